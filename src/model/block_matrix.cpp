@@ -1,0 +1,64 @@
+#include "model/block_matrix.hpp"
+
+namespace beltsim {
+
+void BlockMatrix::resize(int n_el, int n_p) {
+  n = n_el;
+  np = n_p;
+  diag.assign(n, Mat3::Zero());
+  lower.assign(n, Mat3::Zero());
+  upper.assign(n, Mat3::Zero());
+  elem_pulley.setZero(3 * n, np);
+  pulley_elem.setZero(np, 3 * n);
+  pulley_pulley.setZero(np, np);
+}
+
+void BlockMatrix::set_zero() {
+  for (int i = 0; i < n; ++i) {
+    diag[i].setZero();
+    lower[i].setZero();
+    upper[i].setZero();
+  }
+  elem_pulley.setZero();
+  pulley_elem.setZero();
+  pulley_pulley.setZero();
+}
+
+void BlockMatrix::add_pair(int a, int b, const Eigen::Matrix<double, 6, 6>& m) {
+  diag[a] += m.block<3, 3>(0, 0);
+  upper[a] += m.block<3, 3>(0, 3);
+  lower[b] += m.block<3, 3>(3, 0);
+  diag[b] += m.block<3, 3>(3, 3);
+}
+
+void BlockMatrix::multiply(const double* x, double* y) const {
+  using Vec3 = Eigen::Vector3d;
+  const int ne = 3 * n;
+  Eigen::Map<const Eigen::VectorXd> xe(x, ne), xp(x + ne, np);
+  Eigen::Map<Eigen::VectorXd> ye(y, ne), yp(y + ne, np);
+  for (int i = 0; i < n; ++i) {
+    const int im = (i + n - 1) % n, ip = (i + 1) % n;
+    Eigen::Map<Vec3>(y + 3 * i) = diag[i] * Eigen::Map<const Vec3>(x + 3 * i) +
+                                  lower[i] * Eigen::Map<const Vec3>(x + 3 * im) +
+                                  upper[i] * Eigen::Map<const Vec3>(x + 3 * ip);
+  }
+  ye += elem_pulley * xp;
+  yp = pulley_elem * xe + pulley_pulley * xp;
+}
+
+Eigen::MatrixXd BlockMatrix::to_dense() const {
+  const int ne = 3 * n;
+  Eigen::MatrixXd d = Eigen::MatrixXd::Zero(size(), size());
+  for (int i = 0; i < n; ++i) {
+    const int im = (i + n - 1) % n, ip = (i + 1) % n;
+    d.block<3, 3>(3 * i, 3 * i) += diag[i];
+    d.block<3, 3>(3 * i, 3 * im) += lower[i];
+    d.block<3, 3>(3 * i, 3 * ip) += upper[i];
+  }
+  d.block(0, ne, ne, np) = elem_pulley;
+  d.block(ne, 0, np, ne) = pulley_elem;
+  d.block(ne, ne, np, np) = pulley_pulley;
+  return d;
+}
+
+}  // namespace beltsim

@@ -1,0 +1,39 @@
+// BlockMatrix: an N×N matrix (N = 3n + np) with the belt drive's sparsity pattern, used for the
+// force Jacobians K = ∂f/∂q and C = ∂f/∂v. Element i couples only to its ring neighbours
+// i-1 and i+1 (through the SDEs) and to the pulleys (through contact and friction):
+//
+//   [ D0 U0          L0 | P0 ]     Di, Li, Ui : 3×3 blocks (diagonal, left and right neighbour;
+//   [ L1 D1 U1          | P1 ]                  L0 and U_{n-1} close the ring)
+//   [    .. .. ..       | .. ]     Pi : 3×np, element rows × pulley columns
+//   [ U_{n-1}  L_{n-1} D_{n-1} |  ]     Ri : np×3, pulley rows × element columns
+//   [ R0 R1 ...         | G  ]     G  : np×np
+//
+// Storage is dense per block so that the pattern never changes while integrating.
+#pragma once
+
+#include <vector>
+
+#include <Eigen/Core>
+
+namespace beltsim {
+
+using Mat3 = Eigen::Matrix3d;
+
+struct BlockMatrix {
+  int n = 0, np = 0;
+  std::vector<Mat3> diag, lower, upper;          // n each: (i,i), (i,i-1), (i,i+1)
+  Eigen::MatrixXd elem_pulley;                   // 3n × np
+  Eigen::MatrixXd pulley_elem;                   // np × 3n
+  Eigen::MatrixXd pulley_pulley;                 // np × np
+
+  void resize(int n_el, int n_p);
+  void set_zero();
+  int size() const { return 3 * n + np; }
+  // add a 6×6 block coupling elements a = i-1 and b = i (a's coordinates first)
+  void add_pair(int a, int b, const Eigen::Matrix<double, 6, 6>& m);
+  // y = this · x (x, y of length size())
+  void multiply(const double* x, double* y) const;
+  Eigen::MatrixXd to_dense() const;
+};
+
+}  // namespace beltsim

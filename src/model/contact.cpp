@@ -1,0 +1,166 @@
+// Belt–pulley contact (paper eq. 2, Fig. 3): penalty normal force with a depth-ramped damper.
+//
+// Element centre P (velocity V), pulley centre c, contact radius R:
+//   r = |P - c|,  n = (P - c)/r,  t = (-n_y, n_x),  p = R - r (contact when p > 0),  ṗ = -n·V
+//   N = max(0, c1·p² + c2·p + δ(p)·b·ṗ),  δ(p) = min(p/p_max, 1)
+// and the element feels N·n (a contact never pulls: N is clamped at zero).
+// Derivatives (while N > 0; zero when clamped or out of contact):
+//   ∂p/∂P = -nᵀ,  ∂n/∂P = t·tᵀ/r,  ∂ṗ/∂P = -(V·t)/r·tᵀ,  ∂ṗ/∂V = -nᵀ,  δ' = 1/p_max (p < p_max)
+//   ∂N/∂P = -(2·c1·p + c2 + δ'·b·ṗ)·nᵀ - δ·b·(V·t)/r·tᵀ,    ∂N/∂V = -δ·b·nᵀ
+//   ∂(N·n)/∂P = n·∂N/∂P + N·t·tᵀ/r,                         ∂(N·n)/∂V = n·∂N/∂V
+// The normal force has no moment about the pulley centre. Potential c1·p³/3 + c2·p²/2;
+// dissipated power (N - N_el)·ṗ with N_el = c1·p² + c2·p (damping, and the work the clamp removes).
+// Friction of the same pair is in friction.cpp; this file loops over pairs and assembles both.
+#include <cmath>
+#include <limits>
+
+#include "model/contact_law.hpp"
+
+namespace beltsim {
+
+bool normal_law(const Contact& c, const Vec2& P, const Vec2& V, const Vec2& centre, double R, NormalLaw& o) {
+  const Vec2 rv = P - centre;
+  const double r2 = rv.squaredNorm();
+  if (r2 >= R * R) return false;
+  o.r = std::sqrt(r2);
+  o.n = rv / o.r;
+  o.t = perp(o.n);
+  o.p = R - o.r;
+  o.pdot = -o.n.dot(V);
+  o.delta = std::min(o.p / c.p_max, 1.0);
+  o.N_el = (c.c1 * o.p + c.c2) * o.p;
+  const double raw = o.N_el + o.delta * c.b * o.pdot;
+  o.pushing = raw > 0;
+  o.N = o.pushing ? raw : 0.0;
+  return true;
+}
+
+void normal_law_derivatives(const Contact& c, const Vec2& V, NormalLaw& o) {
+  if (!o.pushing) {
+    o.dN_dP.setZero();
+    o.dN_dV.setZero();
+    return;
+  }
+  const double ddelta = o.p < c.p_max ? 1.0 / c.p_max : 0.0;
+  const double vt = V.dot(o.t);
+  o.dN_dP = -(2 * c.c1 * o.p + c.c2 + ddelta * c.b * o.pdot) * o.n.transpose() -
+            o.delta * c.b * vt / o.r * o.t.transpose();
+  o.dN_dV = -o.delta * c.b * o.n.transpose();
+}
+
+void contact_forces(const Model& m, double t, const double* q, const double* v, double* f, double* e_rate) {
+  const int n = m.belt.n;
+  for (int j = 0; j < m.n_p(); ++j) {
+    const Pulley& pl = m.pulleys[j];
+    const double omega = m.omega(j, t, v);
+    double moment = 0;
+    for (int i = 0; i < n; ++i) {
+      const Vec2 P(q[3 * i], q[3 * i + 1]);
+      NormalLaw nl;
+      if (!normal_law(m.contact, P, Vec2(v[3 * i], v[3 * i + 1]), pl.centre, pl.radius, nl)) continue;
+      if (e_rate) e_rate[kDissContact] += (nl.N - nl.N_el) * nl.pdot;
+      if (!nl.pushing) continue;
+      const Vec2 V(v[3 * i], v[3 * i + 1]);
+      const FrictionLaw fl = friction_law(m.mu[i], m.friction.dv, nl, V, omega);
+      const Vec2 F = nl.N * nl.n - fl.mu_eff * nl.N * nl.t;
+      f[3 * i] += F.x();
+      f[3 * i + 1] += F.y();
+      moment += nl.r * fl.mu_eff * nl.N;
+      if (e_rate) e_rate[kDissFriction] += fl.mu_eff * nl.N * fl.vT;
+    }
+    if (!pl.kinematic) {
+      f[m.pulley_coord(j)] += moment;
+    } else if (e_rate) {
+      e_rate[kWorkTorques] -= moment * omega;  // the drive holds the speed against the belt
+    }
+  }
+}
+
+void contact_jacobian(const Model& m, double t, const double* q, const double* v, BlockMatrix& K, BlockMatrix& C,
+                      double* f_t) {
+  const int n = m.belt.n;
+  for (int j = 0; j < m.n_p(); ++j) {
+    const Pulley& pl = m.pulleys[j];
+    const double omega = m.omega(j, t, v);
+    const double omega_rate = pl.kinematic ? pl.speed.table_slope(t) : 0.0;
+    for (int i = 0; i < n; ++i) {
+      const Vec2 P(q[3 * i], q[3 * i + 1]);
+      const Vec2 V(v[3 * i], v[3 * i + 1]);
+      NormalLaw nl;
+      if (!normal_law(m.contact, P, V, pl.centre, pl.radius, nl) || !nl.pushing) continue;
+      normal_law_derivatives(m.contact, V, nl);
+      // normal force
+      K.diag[i].topLeftCorner<2, 2>() += nl.n * nl.dN_dP + nl.N / nl.r * nl.t * nl.t.transpose();
+      C.diag[i].topLeftCorner<2, 2>() += nl.n * nl.dN_dV;
+      // friction
+      const FrictionLaw fl = friction_law(m.mu[i], m.friction.dv, nl, V, omega);
+      PairJacobian J;
+      friction_jacobian(nl, fl, V, omega, J);
+      K.diag[i].topLeftCorner<2, 2>() += J.dF_dP;
+      C.diag[i].topLeftCorner<2, 2>() += J.dF_dV;
+      if (pl.kinematic) {
+        // Omega(t) is prescribed: its effect enters as an explicit time dependence
+        if (f_t) {
+          f_t[3 * i] += J.dF_dOmega.x() * omega_rate;
+          f_t[3 * i + 1] += J.dF_dOmega.y() * omega_rate;
+        }
+        continue;
+      }
+      C.elem_pulley.block<2, 1>(3 * i, j) += J.dF_dOmega;
+      K.pulley_elem.block<1, 2>(j, 3 * i) += J.dM_dP;
+      C.pulley_elem.block<1, 2>(j, 3 * i) += J.dM_dV;
+      C.pulley_pulley(j, j) += J.dM_dOmega;
+    }
+  }
+}
+
+double contact_potential(const Model& m, const double* q) {
+  double u = 0;
+  for (const Pulley& pl : m.pulleys) {
+    for (int i = 0; i < m.belt.n; ++i) {
+      const double r = (Vec2(q[3 * i], q[3 * i + 1]) - pl.centre).norm();
+      const double p = pl.radius - r;
+      if (p > 0) u += m.contact.c1 * p * p * p / 3.0 + m.contact.c2 * p * p / 2.0;
+    }
+  }
+  return u;
+}
+
+ElementContact element_contact(const Model& m, double t, const double* q, const double* v, int i) {
+  ElementContact out;
+  out.slip = std::numeric_limits<double>::quiet_NaN();
+  double deepest = 0;
+  const Vec2 P(q[3 * i], q[3 * i + 1]), V(v[3 * i], v[3 * i + 1]);
+  for (int j = 0; j < m.n_p(); ++j) {
+    NormalLaw nl;
+    if (!normal_law(m.contact, P, V, m.pulleys[j].centre, m.pulleys[j].radius, nl)) continue;
+    const FrictionLaw fl = friction_law(m.mu[i], m.friction.dv, nl, V, m.omega(j, t, v));
+    out.normal += nl.N;
+    out.friction -= fl.mu_eff * nl.N;
+    if (nl.p > deepest) {
+      deepest = nl.p;
+      out.pulley = j;
+      out.slip = fl.vT;
+    }
+  }
+  return out;
+}
+
+double belt_torque(const Model& m, double t, const double* q, const double* v, int j, Vec2* hub_load) {
+  const Pulley& pl = m.pulleys[j];
+  const double omega = m.omega(j, t, v);
+  double moment = 0;
+  Vec2 load = Vec2::Zero();
+  for (int i = 0; i < m.belt.n; ++i) {
+    const Vec2 P(q[3 * i], q[3 * i + 1]), V(v[3 * i], v[3 * i + 1]);
+    NormalLaw nl;
+    if (!normal_law(m.contact, P, V, pl.centre, pl.radius, nl) || !nl.pushing) continue;
+    const FrictionLaw fl = friction_law(m.mu[i], m.friction.dv, nl, V, omega);
+    moment += nl.r * fl.mu_eff * nl.N;
+    load -= nl.N * nl.n - fl.mu_eff * nl.N * nl.t;  // reaction of the force on the element
+  }
+  if (hub_load) *hub_load = load;
+  return moment;
+}
+
+}  // namespace beltsim

@@ -1,0 +1,58 @@
+// The force laws, one file each (sde.cpp, bending.cpp, contact.cpp, friction.cpp, pulley.cpp).
+// Each adds its generalized forces to f (length n_coord) and, when e_rate is not null, its power
+// to the running energy integrals (EnergyIndex). The *_jacobian functions add ∂f/∂q to K and
+// ∂f/∂v to C; every law's derivation is at the top of its file.
+#pragma once
+
+#include "model/block_matrix.hpp"
+#include "model/model.hpp"
+
+namespace beltsim {
+
+// unit vector of an element's axis and its perpendicular
+inline Vec2 axis(double phi) { return {std::cos(phi), std::sin(phi)}; }
+inline Vec2 perp(const Vec2& a) { return {-a.y(), a.x()}; }
+inline double cross(const Vec2& a, const Vec2& b) { return a.x() * b.y() - a.y() * b.x(); }
+// angle difference in (-pi, pi]: phi grows by 2·pi per lap, the SDE sees only the bend
+double wrap_angle(double a);
+
+// longitudinal SDE (paper eq. 5), sde.cpp
+void sde_forces(const Model& m, const double* q, const double* v, double* f, double* e_rate);
+void sde_jacobian(const Model& m, const double* q, const double* v, BlockMatrix& K, BlockMatrix& C);
+double sde_potential(const Model& m, const double* q);
+// signed axial force of SDE i (joining element i-1 to element i), positive in tension [N]
+double sde_axial_force(const Model& m, const double* q, const double* v, int i);
+// gap vector d of SDE i (end A of element i minus end B of element i-1) [m]
+Vec2 sde_gap(const Model& m, const double* q, int i);
+
+// torsional SDE (paper eq. 6), bending.cpp
+void bending_forces(const Model& m, const double* q, const double* v, double* f, double* e_rate);
+void bending_jacobian(const Model& m, const double* q, const double* v, BlockMatrix& K, BlockMatrix& C);
+double bending_potential(const Model& m, const double* q);
+
+// belt–pulley contact (eq. 2) with friction (eqs. 3–4), contact.cpp + friction.cpp
+void contact_forces(const Model& m, double t, const double* q, const double* v, double* f, double* e_rate);
+// f_t (may be null) receives ∂f/∂t through the prescribed speeds of kinematic pulleys
+void contact_jacobian(const Model& m, double t, const double* q, const double* v, BlockMatrix& K,
+                      BlockMatrix& C, double* f_t);
+double contact_potential(const Model& m, const double* q);
+
+// what one element feels from the pulleys (sums over pulleys in contact)
+struct ElementContact {
+  double normal = 0;      // |N| summed over pulleys [N]
+  double friction = 0;    // signed tangential friction force on the element, along t̂ [N]
+  double slip = 0;        // v_T against the pulley it touches [m/s]; NaN when free
+  int pulley = -1;        // index of the pulley touched (the deepest), -1 when free
+};
+ElementContact element_contact(const Model& m, double t, const double* q, const double* v, int i);
+// belt torque on pulley j (moment of the friction reactions) [N·m] and hub load vector [N]
+double belt_torque(const Model& m, double t, const double* q, const double* v, int j, Vec2* hub_load);
+
+// pulley equations (eq. 8): applied torques and gravity on the elements, pulley.cpp
+void pulley_forces(const Model& m, double t, const double* v, double* f, double* e_rate);
+void pulley_jacobian(const Model& m, double t, const double* v, BlockMatrix& C, double* f_t);
+double applied_torque(const Model& m, double t, const double* v, int j);
+void gravity_forces(const Model& m, double* f);
+double gravity_potential(const Model& m, const double* q);
+
+}  // namespace beltsim

@@ -1,0 +1,35 @@
+// The right-hand side ẏ = F(t, y) of the first-order system and its Jacobian.
+//   q̇ = v,   M·v̇ = f(t, q, v),   ė = power of each energy channel (when tracked)
+// with f the sum of the force laws in forces.hpp and M diagonal (Model::mass_of).
+#pragma once
+
+#include <vector>
+
+#include "model/block_matrix.hpp"
+#include "model/model.hpp"
+
+namespace beltsim {
+
+// writes dy (length n_state) for y at time t
+void rhs(const Model& m, double t, const double* y, double* dy);
+
+// ∂f/∂q, ∂f/∂v and ∂f/∂t at (t, y). The energy rows are not part of it: they are pure
+// quadratures that feed nothing back, and the integrators treat them as such (W-method).
+struct Jacobian {
+  BlockMatrix K, C;
+  Eigen::VectorXd f_t;
+  void resize(const Model& m);
+};
+void jacobian(const Model& m, double t, const double* y, Jacobian& J);
+
+// generalized forces only (length n_coord), for tests and diagnostics
+void forces(const Model& m, double t, const double* y, double* f);
+
+// total mechanical energy [J]: kinetic + SDE + bending + contact + gravity
+struct Energy {
+  double kinetic = 0, sde = 0, bending = 0, contact = 0, gravity = 0;
+  double total() const { return kinetic + sde + bending + contact + gravity; }
+};
+Energy energy(const Model& m, double t, const double* y);
+
+}  // namespace beltsim

@@ -1,0 +1,16 @@
+// Assembly of A = α·M - β·C - K (M the diagonal mass matrix, C = ∂f/∂v, K = ∂f/∂q) as an Eigen
+// sparse matrix whose pattern is the same for every call, so a solver may analyse it once.
+#pragma once
+
+#include <Eigen/SparseCore>
+
+#include "model/block_matrix.hpp"
+#include "model/model.hpp"
+
+namespace beltsim {
+
+// only the first `rows` coordinates (rows = n_coord for all, 3n for the elements alone)
+void assemble(const Model& m, double alpha, double beta, const BlockMatrix& C, const BlockMatrix& K, int rows,
+              Eigen::SparseMatrix<double>& A);
+
+}  // namespace beltsim

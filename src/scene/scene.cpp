@@ -1,0 +1,385 @@
+// Scene builder: parameter validation, the belt's route, and the initial static state (DESIGN §3).
+//
+// Initial state. The elements' centres are placed on the route offset inwards by the static
+// penetration p0_j on each pulley (c1·p0² + c2·p0 = N0 = 2·T0·sin(α/2), α the angle one pitch
+// subtends), each rod along the path's tangent at its centre. Walking along the path, each
+// centre is put where the gap of its SDE to the previous element is the one that carries the
+// pretension, |d| = (T0/k)^(1/e_tra); the rigid length l_e is chosen (bisection) so that n
+// elements close the loop exactly. This is an equilibrium on the spans and on the arcs, but not
+// quite where a span meets an arc; a few Newton iterations on the elements' static equations
+// (pulleys held, belt at rest, gravity on) remove the rest (f(q) = 0 with K = ∂f/∂q).
+#include "scene/scene.hpp"
+
+#include <cmath>
+#include <map>
+#include <set>
+#include <sstream>
+
+#include <Eigen/SparseLU>
+
+#include "model/forces.hpp"
+#include "model/rhs.hpp"
+#include "model/sparse.hpp"
+#include "scene/validate.hpp"
+
+namespace beltsim {
+
+namespace {
+
+std::string pulley_label(const PulleyDef& p) { return "pulley '" + p.name + "'"; }
+
+void validate_law(const std::string& what, const TimeSpeedLaw& law, const std::string& unit) {
+  require_finite(what + ".constant", law.constant, unit);
+  require_finite(what + ".per_speed", law.per_speed, unit + "·s/rad");
+  if (law.t.size() != law.value.size()) throw ParameterError(what + ".table: times and values differ in number");
+  for (size_t k = 0; k < law.t.size(); ++k) {
+    require_finite(what + ".table time", law.t[k], "s");
+    require_finite(what + ".table value", law.value[k], unit);
+    if (k > 0 && !(law.t[k] > law.t[k - 1]))
+      reject(what + ".table", "times must increase strictly", law.t[k], "s");
+  }
+}
+
+double static_penetration(const Contact& c, double N0) {
+  if (c.c1 > 0) return (-c.c2 + std::sqrt(c.c2 * c.c2 + 4 * c.c1 * N0)) / (2 * c.c1);
+  return N0 / c.c2;
+}
+
+}  // namespace
+
+void validate(const SceneDef& d) {
+  if (d.pulleys.size() < 2)
+    reject("scene", "needs at least 2 pulleys", static_cast<double>(d.pulleys.size()), "pulleys");
+  std::set<std::string> names;
+  for (const PulleyDef& p : d.pulleys) {
+    if (p.name.empty()) throw ParameterError("every pulley needs a name");
+    if (!names.insert(p.name).second) throw ParameterError("two pulleys are named '" + p.name + "'");
+    const std::string w = pulley_label(p);
+    require_finite(w + " centre x", p.centre.x(), "m");
+    require_finite(w + " centre y", p.centre.y(), "m");
+    require_positive(w + " radius", p.radius, "m");
+    require_positive(w + " inertia", p.inertia, "kg·m²");
+    if (p.kinematic) {
+      validate_law(w + " speed", p.speed, "rad/s");
+      if (p.speed.per_speed != 0) throw ParameterError(w + ": a prescribed speed cannot depend on the speed");
+      if (!p.torque.is_zero()) throw ParameterError(w + ": give either a torque or a prescribed speed, not both");
+    } else {
+      validate_law(w + " torque", p.torque, "N·m");
+    }
+  }
+  for (size_t a = 0; a < d.pulleys.size(); ++a)
+    for (size_t b = a + 1; b < d.pulleys.size(); ++b) {
+      const PulleyDef &p = d.pulleys[a], &q = d.pulleys[b];
+      const double dist = (p.centre - q.centre).norm();
+      if (dist <= p.radius + q.radius) {
+        std::ostringstream s;
+        s << "pulleys '" << p.name << "' and '" << q.name << "' overlap: centres " << dist
+          << " m apart, radii add up to " << p.radius + q.radius << " m";
+        throw ParameterError(s.str());
+      }
+    }
+  const BeltDef& b = d.belt;
+  if (b.elements < 3) reject("belt.elements", "must be >= 3", b.elements, "");
+  require_positive("belt.pretension", b.pretension, "N");
+  if (b.loop_sense != 1 && b.loop_sense != -1) throw ParameterError("belt.direction must be 'cw' or 'ccw'");
+  if (b.reading == StiffnessReading::rigidity) {
+    require_positive("belt.EA", b.EA, "N");
+    require_positive("belt.EI", b.EI, "N·m²");
+    require_non_negative("belt.axial_damping", b.axial_damping, "N·s");
+    require_non_negative("belt.bending_damping", b.bending_damping, "N·m·s/rad");
+  } else {
+    require_positive("belt.sde.k", b.k, "N/m");
+    require_positive("belt.sde.kt", b.kt, "N·m/rad");
+    require_non_negative("belt.sde.c", b.c, "N·s/m");
+    require_non_negative("belt.sde.ct", b.ct, "N·m·s/rad");
+  }
+  if (!(b.e_tra >= 1)) reject("belt.e_tra", "must be >= 1 (below 1 the stiffness is infinite at zero)", b.e_tra, "");
+  if (!(b.e_tor >= 1)) reject("belt.e_tor", "must be >= 1 (below 1 the stiffness is infinite at zero)", b.e_tor, "");
+  require_positive("belt.mass_per_length", b.mass_per_length, "kg/m");
+  require_non_negative("belt.mu", b.mu, "");
+  if (!b.mu_per_element.empty()) {
+    if (static_cast<int>(b.mu_per_element.size()) != b.elements)
+      reject("belt.mu per element", "needs one value per element", static_cast<double>(b.mu_per_element.size()),
+             "values");
+    for (double mu : b.mu_per_element) require_non_negative("belt.mu of an element", mu, "");
+  }
+  if (!b.route.empty()) {
+    std::set<std::string> seen;
+    for (const std::string& nm : b.route) {
+      if (!names.count(nm)) throw ParameterError("belt.route names an unknown pulley '" + nm + "'");
+      if (!seen.insert(nm).second) throw ParameterError("belt.route visits pulley '" + nm + "' twice");
+    }
+    if (seen.size() != names.size()) throw ParameterError("belt.route must visit every pulley once");
+  }
+  require_non_negative("contact.c1", d.contact.c1, "N/m²");
+  require_positive("contact.c2", d.contact.c2, "N/m");
+  require_non_negative("contact.damping", d.contact.b, "N·s/m");
+  require_positive("contact.p_max", d.contact.p_max, "m");
+  require_positive("friction.dv", d.friction.dv, "m/s");
+  require_finite("gravity", d.gravity, "m/s²");
+}
+
+int Scene::find_pulley(const std::string& name) const {
+  for (int j = 0; j < model.n_p(); ++j)
+    if (model.pulleys[j].name == name) return j;
+  return -1;
+}
+
+int Scene::element_nearest(const Vec2& point) const {
+  int best = 0;
+  double bd = 1e300;
+  for (int i = 0; i < model.n_el(); ++i) {
+    const double dd = (Vec2(y0[3 * i], y0[3 * i + 1]) - point).squaredNorm();
+    if (dd < bd) bd = dd, best = i;
+  }
+  return best;
+}
+
+namespace {
+
+// place n element centres along `path`; returns where element n would go (= path.length when
+// the loop closes). Rods lie along the path tangent; each SDE gap has the length `gap`.
+double walk(const Route& path, int n, double h, double gap, std::vector<double>* s_out) {
+  double s_prev = 0;
+  if (s_out) s_out->assign(1, 0.0);
+  Vec2 Cp, Tp, C, T;
+  for (int i = 1; i <= n; ++i) {
+    path.eval(s_prev, Cp, Tp);
+    const Vec2 Bp = Cp + h * Tp;
+    double lo = s_prev + h, hi = s_prev + 6 * h + 4 * gap;
+    for (int it = 0; it < 80; ++it) {
+      const double mid = 0.5 * (lo + hi);
+      path.eval(mid, C, T);
+      const Vec2 d = C - h * T - Bp;
+      const double sigma = d.dot((T + Tp).normalized());
+      (sigma < gap ? lo : hi) = mid;
+    }
+    s_prev = 0.5 * (lo + hi);
+    if (s_out && i < n) s_out->push_back(s_prev);
+  }
+  return s_prev;
+}
+
+// the SDE whose gap is nearest a point
+int sde_nearest(const Model& m, const Eigen::VectorXd& y, const Vec2& point) {
+  const int n = m.n_el();
+  int best = 0;
+  double bdist = 1e300;
+  for (int i = 0; i < n; ++i) {
+    const int a = (i + n - 1) % n;
+    const Vec2 c = 0.5 * (Vec2(y[3 * a], y[3 * a + 1]) + Vec2(y[3 * i], y[3 * i + 1]));
+    const double dd = (c - point).squaredNorm();
+    if (dd < bdist) bdist = dd, best = i;
+  }
+  return best;
+}
+
+// Newton iterations on the elements' static equations; returns the final max |acceleration|
+double static_solve(const Model& m, Eigen::VectorXd& y) {
+  const int ne = 3 * m.n_el();
+  Eigen::VectorXd f(m.n_coord());
+  Jacobian J;
+  J.resize(m);
+  Eigen::SparseMatrix<double> A;
+  Eigen::SparseLU<Eigen::SparseMatrix<double>> lu;
+  auto residual = [&](const Eigen::VectorXd& yy) {
+    forces(m, 0.0, yy.data(), f.data());
+    double r = 0;
+    for (int k = 0; k < ne; ++k) r = std::max(r, std::abs(f[k] / m.mass_of(k)));
+    return r;
+  };
+  double res = residual(y);
+  for (int it = 0; it < 30 && res > 1e-9; ++it) {
+    jacobian(m, 0.0, y.data(), J);
+    assemble(m, 0.0, 0.0, J.C, J.K, ne, A);  // A = -K_ee
+    lu.compute(A);
+    if (lu.info() != Eigen::Success) break;
+    const Eigen::VectorXd dq = lu.solve(f.head(ne));
+    // damped step: accept the largest of 1, 1/2, 1/4, ... that lowers the residual
+    double step = 1.0;
+    bool improved = false;
+    for (int ls = 0; ls < 12; ++ls, step *= 0.5) {
+      Eigen::VectorXd trial = y;
+      trial.head(ne) += step * dq;
+      const double r = residual(trial);
+      if (r < res) {
+        y = trial;
+        res = r;
+        improved = true;
+        break;
+      }
+    }
+    if (!improved) break;
+  }
+  return residual(y);
+}
+
+}  // namespace
+
+Scene build_scene(const SceneDef& d) {
+  validate(d);
+  Scene sc;
+  Model& m = sc.model;
+  const BeltDef& bd = d.belt;
+  const int n = bd.elements;
+
+  // pulleys, in definition order
+  for (const PulleyDef& p : d.pulleys) {
+    Pulley q;
+    q.name = p.name;
+    q.centre = p.centre;
+    q.radius = p.radius;
+    q.inertia = p.inertia;
+    q.wrap = p.wrap;
+    q.kinematic = p.kinematic;
+    q.torque = p.torque;
+    q.speed = p.speed;
+    m.pulleys.push_back(q);
+  }
+  // route order and the pitch-line route
+  sc.route_names = bd.route;
+  if (sc.route_names.empty())
+    for (const PulleyDef& p : d.pulleys) sc.route_names.push_back(p.name);
+  std::vector<RouteCircle> circles;
+  for (const std::string& nm : sc.route_names) {
+    const int j = sc.find_pulley(nm);
+    sc.route_pulleys.push_back(j);
+    const Pulley& p = m.pulleys[j];
+    const int sense = p.wrap == WrapSide::inside ? bd.loop_sense : -bd.loop_sense;
+    circles.push_back({p.centre, p.radius, sense});
+  }
+  sc.route = make_route(circles, bd.loop_sense, sc.route_names);
+  const double pitch = sc.route.length / n;
+
+  // enough elements on every wrap to resolve the contact
+  for (size_t k = 0; k < circles.size(); ++k) {
+    const double on_wrap = sc.route.arcs[k].length() / pitch;
+    if (on_wrap < 3.0) {
+      std::ostringstream s;
+      s << "belt.elements: too few elements for the wrap on pulley '" << sc.route_names[k] << "' ("
+        << sc.route.arcs[k].angle * 180 / M_PI << " deg holds " << on_wrap << " elements, at least 3 needed; got "
+        << n << " elements)";
+      throw ParameterError(s.str());
+    }
+  }
+
+  // belt properties per SDE (DESIGN §2)
+  Belt& b = m.belt;
+  b.n = n;
+  b.pitch = pitch;
+  sc.reading = bd.reading;
+  if (bd.reading == StiffnessReading::rigidity) {
+    b.k = bd.EA / pitch;
+    b.kt = bd.EI / pitch;
+    b.c = bd.axial_damping / pitch;
+    b.ct = bd.bending_damping;
+  } else {
+    b.k = bd.k, b.kt = bd.kt, b.c = bd.c, b.ct = bd.ct;
+  }
+  b.e_tra = bd.e_tra;
+  b.e_tor = bd.e_tor;
+  b.mass = bd.mass_per_length * pitch;
+  const double gap = std::pow(bd.pretension / b.k, 1.0 / b.e_tra);
+  if (gap >= 0.5 * pitch)
+    reject("belt.pretension", "stretches each SDE by more than half a pitch: lower it or stiffen the belt",
+           bd.pretension, "N");
+  m.contact = d.contact;
+  m.friction = d.friction;
+  m.gravity = d.gravity;
+  m.track_energy = d.track_energy;
+
+  // static penetration on each pulley and the offset path of the element centres
+  std::vector<RouteCircle> inner = circles;
+  sc.penetration.assign(m.n_p(), 0.0);
+  for (size_t k = 0; k < circles.size(); ++k) {
+    double p0 = 0;
+    for (int it = 0; it < 8; ++it) {
+      const double alpha = 2 * std::asin(std::min(1.0, pitch / (2 * (circles[k].radius - p0))));
+      p0 = static_penetration(d.contact, 2 * bd.pretension * std::sin(alpha / 2));
+    }
+    if (p0 >= 0.5 * circles[k].radius)
+      reject("contact stiffness", "lets the belt sink more than half the radius of '" + sc.route_names[k] + "'", p0,
+             "m");
+    sc.penetration[sc.route_pulleys[k]] = p0;
+    inner[k].radius = circles[k].radius - p0;
+  }
+  const Route path = make_route(inner, bd.loop_sense, sc.route_names);
+
+  // rigid length that closes the loop with n elements (bisection on the closure)
+  double lo = 0.2 * pitch, hi = pitch;
+  for (int it = 0; it < 100; ++it) {
+    const double le = 0.5 * (lo + hi);
+    (walk(path, n, 0.5 * le, gap, nullptr) < path.length ? lo : hi) = le;
+  }
+  b.rigid_length = 0.5 * (lo + hi);
+  b.rot_inertia = b.mass * b.rigid_length * b.rigid_length / 12.0;
+  std::vector<double> s;
+  walk(path, n, 0.5 * b.rigid_length, gap, &s);
+
+  // the state: elements at rest on the path, pulleys at rest (kinematic ones at their speed)
+  sc.y0.setZero(m.n_state());
+  double phi_prev = 0;
+  for (int i = 0; i < n; ++i) {
+    Vec2 C, T;
+    path.eval(s[i], C, T);
+    double phi = std::atan2(T.y(), T.x());
+    if (i > 0) phi = phi_prev + wrap_angle(phi - phi_prev);
+    sc.y0[3 * i] = C.x();
+    sc.y0[3 * i + 1] = C.y();
+    sc.y0[3 * i + 2] = phi;
+    phi_prev = phi;
+  }
+  // friction coefficient of each element, possibly from where it starts
+  m.mu = bd.mu_per_element.empty() ? std::vector<double>(n, bd.mu) : bd.mu_per_element;
+  if (bd.mu_at) {
+    ElementSite site;
+    site.length = path.length;
+    double acc = 0;
+    for (size_t k = 0; k < path.spans.size(); ++k) {
+      site.leaves[sc.route_names[k]] = acc;
+      acc += path.spans[k].length;
+      const size_t next = (k + 1) % path.spans.size();
+      site.meets[sc.route_names[next]] = acc;
+      acc += path.arcs[next].length();
+    }
+    for (int i = 0; i < n; ++i) {
+      site.index = i;
+      site.centre = Vec2(sc.y0[3 * i], sc.y0[3 * i + 1]);
+      site.s = s[i];
+      site.pulley.clear();
+      for (size_t k = 0; k < path.spans.size(); ++k) {
+        const double a = site.meets[sc.route_names[k]], e = site.leaves[sc.route_names[k]];
+        const bool on = a <= e ? (s[i] >= a && s[i] <= e) : (s[i] >= a || s[i] <= e);
+        if (on) site.pulley = sc.route_names[k];
+      }
+      const double mu = bd.mu_at(site);
+      require_non_negative("belt.mu of element " + std::to_string(i), mu, "");
+      m.mu[i] = mu;
+    }
+  }
+  for (int j = 0; j < m.n_p(); ++j)
+    if (m.pulleys[j].kinematic) sc.y0[m.n_coord() + m.pulley_coord(j)] = m.pulleys[j].speed.eval(0.0, 0.0);
+
+  // static solve; then correct the rigid length until the spans carry the pretension (the
+  // belt's bending stiffness lifts it off small pulleys, which changes the tension a little)
+  for (int it = 0; it < 8; ++it) {
+    sc.static_residual = static_solve(m, sc.y0);
+    sc.span_sde.clear();
+    double tension = 0;
+    for (const Route::Span& sp : sc.route.spans) {
+      const int i = sde_nearest(m, sc.y0, 0.5 * (sp.from + sp.to));
+      sc.span_sde.push_back(i);
+      tension += sde_axial_force(m, sc.y0.data(), sc.y0.data() + m.n_coord(), i);
+    }
+    sc.static_tension = tension / static_cast<double>(sc.route.spans.size());
+    const double error = sc.static_tension - bd.pretension;
+    if (std::abs(error) < 1e-5 * bd.pretension) break;
+    // dT/dl_e = -k·e·gap^(e-1) along the SDE
+    const double g = std::pow(sc.static_tension / b.k, 1.0 / b.e_tra);
+    b.rigid_length += error / (b.k * b.e_tra * std::pow(g, b.e_tra - 1.0));
+    b.rot_inertia = b.mass * b.rigid_length * b.rigid_length / 12.0;
+  }
+  return sc;
+}
+
+}  // namespace beltsim

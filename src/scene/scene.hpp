@@ -1,0 +1,93 @@
+// Scene definition (what a scenario script describes, in SI units, with the paper's values as
+// defaults) and the builder that turns it into a Model and its initial static state.
+#pragma once
+
+#include <functional>
+#include <map>
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "model/model.hpp"
+#include "scene/route.hpp"
+
+namespace beltsim {
+
+struct PulleyDef {
+  std::string name;
+  Vec2 centre{0, 0};        // [m]
+  double radius = 0.1;      // [m] pitch (contact) radius
+  double inertia = 0.025;   // [kg·m²]; 0.025 is ours: a 20 mm steel disc of r = 0.1 m (DESIGN §2)
+  WrapSide wrap = WrapSide::inside;
+  bool kinematic = false;   // speed prescribed by `speed` instead of driven by `torque`
+  TimeSpeedLaw torque;      // [N·m]
+  TimeSpeedLaw speed;       // [rad/s]
+};
+
+// How the belt's stiffness and damping were given (DESIGN §2).
+enum class StiffnessReading {
+  rigidity,  // EA [N], EI [N·m²], axial damping per length [N·s]; per SDE: /pitch (bending damping as is)
+  per_sde    // k [N/m], c [N·s/m], k_t [N·m/rad], c_t [N·m·s/rad] of each SDE as given
+};
+
+// Where an element sits on the belt at t = 0, for per-element properties such as μ.
+struct ElementSite {
+  int index = 0;                 // element number, 0..n-1 in the direction of travel
+  Vec2 centre{0, 0};             // [m] its centre at t = 0
+  double s = 0;                  // [m] arc length along the belt from where it leaves the first
+                                 //     pulley of the route (element 0 sits at s = 0)
+  double length = 0;             // [m] the belt's length along that path
+  std::string pulley;            // the pulley it rides at t = 0, empty on a span
+  std::map<std::string, double> meets, leaves;  // [m] s where the belt meets / leaves each pulley
+};
+
+struct BeltDef {
+  int elements = 60;
+  double pretension = 500;          // [N]
+  int loop_sense = -1;              // direction of travel round the loop: -1 clockwise, +1 anticlockwise
+  std::vector<std::string> route;   // pulley names in travel order; empty: the order of definition
+  StiffnessReading reading = StiffnessReading::rigidity;
+  double EA = 1.52e5;               // [N]        paper's c_tra
+  double EI = 0.026;                // [N·m²]     paper's c_tor
+  double axial_damping = 20.5;      // [N·s]      paper's b_tra, per unit length
+  double bending_damping = 0.05;    // [N·m·s/rad] paper's b_tor, per SDE
+  double k = 0, c = 0, kt = 0, ct = 0;  // per-SDE values for StiffnessReading::per_sde
+  double e_tra = 1, e_tor = 1;      // exponents (ours: 1, DESIGN §2)
+  double mass_per_length = 0.096;   // [kg/m]
+  double mu = 1.0;                  // friction coefficient of every element...
+  std::vector<double> mu_per_element;  // ...unless given per element (size = elements)...
+  std::function<double(const ElementSite&)> mu_at;  // ...or by where the element starts
+};
+
+struct SceneDef {
+  std::vector<PulleyDef> pulleys;
+  BeltDef belt;
+  Contact contact;
+  Friction friction;
+  double gravity = 9.81;            // [m/s²]; 0 switches gravity off
+  bool track_energy = false;
+};
+
+struct Scene {
+  Model model;
+  Eigen::VectorXd y0;              // initial state (static equilibrium, at rest)
+  Route route;                     // pitch-line route (radius r_p on every pulley)
+  std::vector<std::string> route_names;
+  std::vector<int> route_pulleys;  // pulley index of each route entry
+  std::vector<double> penetration; // static penetration p0 of each pulley [m]
+  StiffnessReading reading = StiffnessReading::rigidity;
+  double static_tension = 0;       // mean SDE force on the spans after the static solve [N]
+  double static_residual = 0;      // max |acceleration| of the initial state [m/s²]
+  std::vector<int> span_sde;       // for each span, the SDE nearest its midpoint at t = 0
+  int find_pulley(const std::string& name) const;
+  int element_nearest(const Vec2& point) const;
+};
+
+// Validates every parameter (ParameterError with the reason and the value) and builds the scene.
+Scene build_scene(const SceneDef& def);
+
+// Same checks without building (used by the builder; exposed for tests).
+void validate(const SceneDef& def);
+
+}  // namespace beltsim

@@ -1,0 +1,19 @@
+// Parameter errors: thrown before anything is simulated, with the reason and the offending value.
+#pragma once
+
+#include <stdexcept>
+#include <string>
+
+namespace beltsim {
+
+struct ParameterError : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+// "what must be > 0 (got value unit)"
+[[noreturn]] void reject(const std::string& what, const std::string& rule, double value, const std::string& unit);
+void require_positive(const std::string& what, double value, const std::string& unit);
+void require_non_negative(const std::string& what, double value, const std::string& unit);
+void require_finite(const std::string& what, double value, const std::string& unit);
+
+}  // namespace beltsim

@@ -1,0 +1,238 @@
+// The analytic Jacobian (∂f/∂q, ∂f/∂v, ∂f/∂t) against central finite differences of the forces,
+// on states built to exercise every branch of every force law: free spans, contact in the damping
+// ramp (p < p_max) and beyond it, N clamped at zero, stick (|v_T| < Δv) and slip, bends across
+// ±π and angles several laps apart, a back-side idler, non-unit exponents, a kinematic pulley.
+//
+// Tolerance. Every law is at most quadratic in the state near these points but for the geometry
+// (n̂(P), e(φ)), whose curvature scales are the pulley radius and 1 rad: the central-difference
+// truncation error is ~ (ε/0.03 m)² ≈ 1e-13 relative for ε = 1e-8 m, 1e-7 m/s (the element spin
+// enters only the linear SDE dampers, so it takes ε = 1e-4 rad/s, exact up to rounding). Rounding
+// gives |f|·1e-16/ε: with |f| ≲ 1e5 N (an element pushed 1.6 mm deep) at most 1e-3 absolute
+// against column maxima ≳ 1e1 (measured: ≤ 5e-8 relative at these steps). So each column must
+// agree to 1e-6 of its largest entry. The smallest terms the test must see are far larger:
+// the SDE's -h·e·F moment term (h·F ≈ 5 N·m/rad against k·h² ≈ 750), the friction geometry term
+// μN/r (≈ 1e3 against c2 ≈ 1e6), the contact damping b·δ (≈ 30 against μN/Δv ≈ 1e7): each is
+// ≥ 1e-5 of its column, so dropping one or flipping its sign fails the test (tried: see README).
+// States are kept a margin away from every kink (p = 0, p = p_max, N = 0, |v_T| = Δv), far
+// beyond what the perturbations can move (the stick margin 1e-6 m/s against ε ≤ 1e-7 m/s).
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+
+#include "model/contact_law.hpp"
+#include "model/forces.hpp"
+#include "model/rhs.hpp"
+#include "scene/presets.hpp"
+
+namespace beltsim {
+namespace {
+
+struct Kinks {
+  double min_gap = 1e300;  // smallest distance to a kink, in units of the quantity's own scale
+};
+
+// distance of the state from the nearest kink of the contact and friction laws
+double kink_margin(const Model& m, double t, const Eigen::VectorXd& y) {
+  const int N = m.n_coord();
+  double margin = 1e300;
+  for (int j = 0; j < m.n_p(); ++j)
+    for (int i = 0; i < m.n_el(); ++i) {
+      const Vec2 P(y[3 * i], y[3 * i + 1]), V(y[N + 3 * i], y[N + 3 * i + 1]);
+      const Vec2 rv = P - m.pulleys[j].centre;
+      const double p = m.pulleys[j].radius - rv.norm();
+      margin = std::min(margin, std::abs(p) / 1e-6);                       // contact onset
+      if (p <= 0) continue;
+      margin = std::min(margin, std::abs(p - m.contact.p_max) / 1e-6);     // full damping
+      NormalLaw nl;
+      normal_law(m.contact, P, V, m.pulleys[j].centre, m.pulleys[j].radius, nl);
+      const double raw = nl.N_el + nl.delta * m.contact.b * nl.pdot;
+      margin = std::min(margin, std::abs(raw) / 1e-2);                     // N = 0
+      const FrictionLaw fl = friction_law(m.mu[i], m.friction.dv, nl, V, m.omega(j, t, y.data() + N));
+      margin = std::min(margin, std::abs(std::abs(fl.vT) - m.friction.dv) / 1e-7);  // stick/slip
+    }
+  return margin;
+}
+
+struct Coverage {
+  int free = 0, ramp = 0, deep = 0, clamped = 0, stick = 0, slip = 0;
+};
+
+Coverage coverage(const Model& m, double t, const Eigen::VectorXd& y) {
+  const int N = m.n_coord();
+  Coverage c;
+  for (int i = 0; i < m.n_el(); ++i) {
+    bool touching = false;
+    for (int j = 0; j < m.n_p(); ++j) {
+      const Vec2 P(y[3 * i], y[3 * i + 1]), V(y[N + 3 * i], y[N + 3 * i + 1]);
+      NormalLaw nl;
+      if (!normal_law(m.contact, P, V, m.pulleys[j].centre, m.pulleys[j].radius, nl)) continue;
+      touching = true;
+      (nl.p < m.contact.p_max ? c.ramp : c.deep)++;
+      if (!nl.pushing) {
+        c.clamped++;
+        continue;
+      }
+      const FrictionLaw fl = friction_law(m.mu[i], m.friction.dv, nl, V, m.omega(j, t, y.data() + N));
+      (std::abs(fl.vT) < m.friction.dv ? c.stick : c.slip)++;
+    }
+    if (!touching) c.free++;
+  }
+  return c;
+}
+
+// max over columns of (max |analytic - fd| / max |analytic|) for one matrix
+double column_error(const Eigen::MatrixXd& an, const Eigen::MatrixXd& fd, int* worst_col) {
+  double worst = 0;
+  for (int c = 0; c < an.cols(); ++c) {
+    const double scale = std::max(an.col(c).cwiseAbs().maxCoeff(), fd.col(c).cwiseAbs().maxCoeff());
+    if (scale == 0) continue;
+    const double e = (an.col(c) - fd.col(c)).cwiseAbs().maxCoeff() / scale;
+    if (e > worst) worst = e, *worst_col = c;
+  }
+  return worst;
+}
+
+void expect_jacobian_matches(const Model& m, double t, const Eigen::VectorXd& y) {
+  ASSERT_GT(kink_margin(m, t, y), 10.0) << "test state too close to a kink of the force laws";
+  const int N = m.n_coord();
+  Jacobian J;
+  J.resize(m);
+  jacobian(m, t, y.data(), J);
+  Eigen::MatrixXd Kfd(N, N), Cfd(N, N);
+  Eigen::VectorXd fp(N), fm(N);
+  for (int k = 0; k < 2 * N; ++k) {
+    const bool vel = k >= N;
+    // element spin enters only the (linear) SDE dampers: a large step avoids rounding
+    const bool spin = vel && k - N < 3 * m.n_el() && (k - N) % 3 == 2;
+    const double eps = spin ? 1e-4 : vel ? 1e-7 : 1e-8;
+    Eigen::VectorXd yp = y, ym = y;
+    yp[k] += eps;
+    ym[k] -= eps;
+    forces(m, t, yp.data(), fp.data());
+    forces(m, t, ym.data(), fm.data());
+    (vel ? Cfd.col(k - N) : Kfd.col(k)) = (fp - fm) / (2 * eps);
+  }
+  // kinematic pulleys: their state speed feeds nothing (the prescribed one is used)
+  int col = -1;
+  const double eK = column_error(J.K.to_dense(), Kfd, &col);
+  EXPECT_LT(eK, 1e-6) << "dF/dq column " << col;
+  const double eC = column_error(J.C.to_dense(), Cfd, &col);
+  EXPECT_LT(eC, 1e-6) << "dF/dv column " << col;
+  // ∂f/∂t
+  const double dt = 1e-7;
+  forces(m, t + dt, y.data(), fp.data());
+  forces(m, t - dt, y.data(), fm.data());
+  const Eigen::VectorXd ftfd = (fp - fm) / (2 * dt);
+  const double scale = std::max(1.0, ftfd.cwiseAbs().maxCoeff());
+  EXPECT_LT((J.f_t - ftfd).cwiseAbs().maxCoeff() / scale, 1e-6);
+}
+
+// A running state: pulleys turning, each element in contact given a chosen slip, a few elements
+// pushed deep or pulled out fast, random velocities on the free spans.
+Eigen::VectorXd running_state(const Scene& sc, double time, double omega_scale, unsigned seed) {
+  const Model& m = sc.model;
+  const int N = m.n_coord();
+  Eigen::VectorXd y = sc.y0;
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> u(-1, 1);
+  for (int j = 0; j < m.n_p(); ++j) {
+    const Pulley& p = m.pulleys[j];
+    if (!p.kinematic) y[N + m.pulley_coord(j)] = omega_scale * 0.1 / p.radius * (1 + 0.01 * u(rng));
+  }
+  // slips chosen away from ±Δv: stick, stick, slip, slip
+  const double slips[] = {3e-6, -6e-6, 4e-4, -2e-3};
+  for (int i = 0; i < m.n_el(); ++i) {
+    int touching = -1;
+    for (int j = 0; j < m.n_p(); ++j)
+      if ((Vec2(y[3 * i], y[3 * i + 1]) - m.pulleys[j].centre).norm() < m.pulleys[j].radius) touching = j;
+    y[N + 3 * i + 2] = 5.0 * u(rng);
+    if (touching < 0) {
+      y[N + 3 * i] = 3.0 * u(rng);
+      y[N + 3 * i + 1] = 3.0 * u(rng);
+      continue;
+    }
+    const Pulley& p = m.pulleys[touching];
+    const Vec2 rv = Vec2(y[3 * i], y[3 * i + 1]) - p.centre;
+    const Vec2 n = rv.normalized(), t = perp(n);
+    const double omega = m.omega(touching, time, y.data() + N);
+    Vec2 V = omega * rv.norm() * t + slips[i % 4] * t + 1e-3 * u(rng) * n;  // small normal rate
+    if (i % 7 == 3) {                                // deeper than p_max
+      const Vec2 P = p.centre + (p.radius - 1.6e-3) * n;
+      y[3 * i] = P.x(), y[3 * i + 1] = P.y();
+    } else if (i % 11 == 5) {                        // in the ramp, leaving fast: N clamped at 0
+      V += 20.0 * n;
+    }
+    y[N + 3 * i] = V.x();
+    y[N + 3 * i + 1] = V.y();
+  }
+  return y;
+}
+
+TEST(Jacobian, PaperDryRunningState) {
+  const Scene sc = build_scene(presets::paper_dry());
+  const Eigen::VectorXd y = running_state(sc, 0.1, 30.0, 1);
+  const Coverage c = coverage(sc.model, 0.1, y);
+  EXPECT_GT(c.free, 0);
+  EXPECT_GT(c.ramp, 0);
+  EXPECT_GT(c.deep, 0);
+  EXPECT_GT(c.clamped, 0);
+  EXPECT_GT(c.stick, 0);
+  EXPECT_GT(c.slip, 0);
+  expect_jacobian_matches(sc.model, 0.1, y);  // t = 0.1 s: inside the torque ramp (∂f/∂t ≠ 0)
+}
+
+TEST(Jacobian, AnglesAcrossPiAndLaps) {
+  const Scene sc = build_scene(presets::paper_dry());
+  Eigen::VectorXd y = running_state(sc, 0.35, 20.0, 2);
+  const Model& m = sc.model;
+  // element angles shifted by whole laps, and one bend straddling the ±π cut
+  for (int i = 0; i < m.n_el(); ++i) y[3 * i + 2] += 2 * M_PI * ((i * 7) % 5 - 2);
+  int straddle = 0;
+  for (int i = 1; i < m.n_el(); ++i) {
+    const double a = std::remainder(y[3 * (i - 1) + 2], 2 * M_PI), b = std::remainder(y[3 * i + 2], 2 * M_PI);
+    if (std::abs(a - b) > M_PI) straddle++;
+  }
+  EXPECT_GT(straddle, 0) << "no bend crosses the ±π cut";
+  expect_jacobian_matches(m, 0.35, y);
+}
+
+TEST(Jacobian, BackSideIdlerAutomotive) {
+  const Scene sc = build_scene(presets::automotive_wet());
+  const Eigen::VectorXd y = running_state(sc, 0.2, 25.0, 3);
+  const Coverage c = coverage(sc.model, 0.2, y);
+  EXPECT_GT(c.stick, 0);
+  EXPECT_GT(c.slip, 0);
+  expect_jacobian_matches(sc.model, 0.2, y);
+}
+
+TEST(Jacobian, NonUnitExponents) {
+  SceneDef d = presets::paper_dry();
+  d.belt.e_tra = 1.3;
+  d.belt.e_tor = 1.2;
+  d.belt.reading = StiffnessReading::per_sde;
+  d.belt.k = 2e8;   // k·gap^1.3 carries the pretension at a gap of ≈ 2e-4 m
+  d.belt.c = 1000;
+  d.belt.kt = 1.3;
+  d.belt.ct = 0.05;
+  const Scene sc = build_scene(d);
+  expect_jacobian_matches(sc.model, 0.05, running_state(sc, 0.05, 30.0, 4));
+}
+
+TEST(Jacobian, KinematicPulleyTimeDerivative) {
+  SceneDef d = presets::paper_dry();
+  d.pulleys[0].kinematic = true;
+  d.pulleys[0].torque = TimeSpeedLaw{};
+  d.pulleys[0].speed.t = {0.0, 0.5};
+  d.pulleys[0].speed.value = {0.0, -60.0};
+  const Scene sc = build_scene(d);
+  const Eigen::VectorXd y = running_state(sc, 0.2, 30.0, 5);
+  Jacobian J;
+  J.resize(sc.model);
+  jacobian(sc.model, 0.2, y.data(), J);
+  EXPECT_GT(J.f_t.head(3 * sc.model.n_el()).cwiseAbs().maxCoeff(), 0.0) << "friction sees the speed ramp";
+  expect_jacobian_matches(sc.model, 0.2, y);
+}
+
+}  // namespace
+}  // namespace beltsim
