@@ -1,0 +1,113 @@
+#include "integrate/belt_system.hpp"
+
+#include <cmath>
+#include <sstream>
+
+#include "model/sparse.hpp"
+
+namespace beltsim {
+
+BeltSystem::BeltSystem(const Model& m) : model_(m) { J_.resize(m); }
+
+double BeltSystem::atol_scale(int k) const {
+  // natural sizes: 0.1 m (layout), 1 rad, 1 m/s, 10 rad/s (element spin), 1 J
+  const int N = model_.n_coord(), ne = 3 * model_.n_el();
+  if (k >= 2 * N) return 1.0;
+  const bool vel = k >= N;
+  const int c = vel ? k - N : k;
+  if (c >= ne) return vel ? 1.0 : 1.0;
+  if (c % 3 == 2) return vel ? 10.0 : 1.0;
+  return vel ? 1.0 : 0.1;
+}
+
+bool BeltSystem::prepare_jacobian(double t, const double* y) {
+  jacobian(model_, t, y, J_);
+  return true;
+}
+
+void BeltSystem::time_derivative(double* f_t) const {
+  const int N = model_.n_coord();
+  for (int k = 0; k < N; ++k) f_t[N + k] = J_.f_t[k] / model_.mass_of(k);
+}
+
+bool BeltSystem::factor(double s) {
+  s_ = s;
+  const int N = model_.n_coord();
+  assemble(model_, s * s, s, J_.C, J_.K, N, A_);
+  if (!analysed_) {
+    lu_.analyzePattern(A_);
+    analysed_ = true;
+  }
+  lu_.factorize(A_);
+  return lu_.info() == Eigen::Success;
+}
+
+void BeltSystem::solve(const double* r, double* u) {
+  const int N = model_.n_coord();
+  const double s = s_;
+  rhs_.resize(N);
+  kr_.resize(N);
+  J_.K.multiply(r, kr_.data());
+  for (int k = 0; k < N; ++k) rhs_[k] = s * model_.mass_of(k) * r[N + k] + kr_[k];
+  uv_ = lu_.solve(rhs_);
+  for (int k = 0; k < N; ++k) {
+    u[N + k] = uv_[k];
+    u[k] = (r[k] + uv_[k]) / s;
+  }
+  for (int k = 2 * N; k < model_.n_state(); ++k) u[k] = r[k] / s;
+}
+
+std::string BeltSystem::describe(int k) const {
+  static const char* elem_q[] = {"x position", "y position", "angle"};
+  static const char* elem_v[] = {"x velocity", "y velocity", "angular velocity"};
+  static const char* energy[] = {"work of the torques", "SDE axial dissipation", "SDE bending dissipation",
+                                 "contact dissipation", "friction dissipation"};
+  const int N = model_.n_coord(), ne = 3 * model_.n_el();
+  std::ostringstream s;
+  if (k >= 2 * N) {
+    s << "energy integral (" << energy[k - 2 * N] << ")";
+    return s.str();
+  }
+  const bool vel = k >= N;
+  const int c = vel ? k - N : k;
+  if (c < ne)
+    s << "element " << c / 3 << ' ' << (vel ? elem_v : elem_q)[c % 3];
+  else
+    s << "pulley '" << model_.pulleys[c - ne].name << "' " << (vel ? "speed" : "angle");
+  return s.str();
+}
+
+std::string BeltSystem::check(double, const double* y) const {
+  const int N = model_.n_coord();
+  const int n = model_.n_state();
+  for (int k = 0; k < n; ++k)
+    if (!std::isfinite(y[k])) return describe(k) + " is " + (std::isnan(y[k]) ? "NaN" : "infinite");
+  // runaway: a belt element more than 100 pitches away from every pulley's contact circle or
+  // moving faster than 1 km/s, a pulley faster than 1e5 rad/s
+  double reach = 0;
+  for (const Pulley& p : model_.pulleys) reach = std::max(reach, p.centre.norm() + p.radius);
+  reach += 100 * model_.belt.pitch;
+  std::ostringstream s;
+  for (int i = 0; i < model_.n_el(); ++i) {
+    const double x = y[3 * i], yy = y[3 * i + 1];
+    const double speed = std::hypot(y[N + 3 * i], y[N + 3 * i + 1]);
+    if (std::hypot(x, yy) > reach) {
+      s << "element " << i << " flew off to (" << x << ", " << yy << ") m";
+      return s.str();
+    }
+    if (speed > 1e3) {
+      s << "element " << i << " runs away at " << speed << " m/s";
+      return s.str();
+    }
+  }
+  for (int j = 0; j < model_.n_p(); ++j) {
+    const double w = y[N + model_.pulley_coord(j)];
+    if (std::abs(w) > 1e5) {
+      s << "pulley '" << model_.pulleys[j].name << "' runs away at " << w << " rad/s";
+      return s.str();
+    }
+  }
+  return {};
+}
+
+}  // namespace beltsim

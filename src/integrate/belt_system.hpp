@@ -1,0 +1,43 @@
+// The belt model as an OdeSystem. The linear systems of the implicit methods are reduced to the
+// size of q using the second-order structure. With J = [[0, I], [M⁻¹K, M⁻¹C]] (K = ∂f/∂q,
+// C = ∂f/∂v, M diagonal) the stage system (s·I - J)·[u_q; u_v] = [r_q; r_v] becomes
+//   (s²·M - s·C - K)·u_v = s·M·r_v + K·r_q,    u_q = (r_q + u_v)/s
+// and the energy quadratures (rows of J taken as zero, see rhs.hpp) give u_e = r_e/s.
+// A = s²·M - s·C - K keeps the ring-plus-pulleys pattern; it is factorised by sparse LU with the
+// pattern analysed once.
+#pragma once
+
+#include <Eigen/SparseCore>
+#include <Eigen/SparseLU>
+
+#include "integrate/system.hpp"
+#include "model/model.hpp"
+#include "model/rhs.hpp"
+
+namespace beltsim {
+
+class BeltSystem final : public OdeSystem {
+ public:
+  explicit BeltSystem(const Model& m);
+  int size() const override { return model_.n_state(); }
+  void rhs(double t, const double* y, double* dy) override { beltsim::rhs(model_, t, y, dy); }
+  double atol_scale(int k) const override;
+  bool prepare_jacobian(double t, const double* y) override;
+  void time_derivative(double* f_t) const override;
+  bool factor(double s) override;
+  void solve(const double* r, double* u) override;
+  std::string describe(int k) const override;
+  std::string check(double t, const double* y) const override;
+  const Model& model() const { return model_; }
+
+ private:
+  const Model& model_;
+  Jacobian J_;
+  double s_ = 0;
+  Eigen::SparseMatrix<double> A_;
+  Eigen::SparseLU<Eigen::SparseMatrix<double>> lu_;
+  bool analysed_ = false;
+  Eigen::VectorXd rhs_, kr_, uv_;
+};
+
+}  // namespace beltsim

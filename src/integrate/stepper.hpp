@@ -1,0 +1,38 @@
+// Steppers: one step of a method and its error estimate, nothing else (odeint's split of
+// stepper / controller / driver). Butcher and Rosenbrock tables are data in tableau.cpp.
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "integrate/system.hpp"
+
+namespace beltsim {
+
+class StepController;
+
+class Stepper {
+ public:
+  virtual ~Stepper() = default;
+  virtual std::string name() const = 0;
+  virtual int order() const = 0;            // of the propagated solution
+  virtual int embedded_order() const = 0;   // of the error estimate's companion
+  // implicit methods measure their iterations in the controller's weighted norm
+  virtual void attach(const StepController&) {}
+  // One step of size h from (t, y) with f0 = F(t, y). Writes y1 and the error estimate err.
+  // Returns false when the step cannot be taken at all (e.g. a singular matrix): the driver
+  // then shrinks h as for a rejected step.
+  virtual bool step(OdeSystem& sys, double t, const Eigen::VectorXd& y, const Eigen::VectorXd& f0, double h,
+                    Eigen::VectorXd& y1, Eigen::VectorXd& err) = 0;
+};
+
+// "esdirk32" (L-stable ESDIRK 3(2) with semi-smooth Newton, Kennedy & Carpenter 2003),
+// "rkf45" (the paper's Runge–Kutta–Fehlberg 4(5)) or "ros34pw2" (L-stable Rosenbrock–W 3(2),
+// Rang & Angermann 2005); throws std::invalid_argument listing the valid names otherwise
+std::unique_ptr<Stepper> make_stepper(const std::string& name);
+std::vector<std::string> stepper_names();
+
+}  // namespace beltsim

@@ -1,0 +1,42 @@
+// The view of an ODE system that the integrators need (odeint/SUNDIALS style): the right-hand
+// side, and for linearly implicit methods the Jacobian J = ∂F/∂y, the factorisation of the
+// shifted matrix (s·I - J) and solves with it. Counters let the work-precision study report cost.
+#pragma once
+
+#include <string>
+
+namespace beltsim {
+
+struct WorkCounters {
+  long steps = 0;        // accepted
+  long rejected = 0;
+  long rhs = 0;          // right-hand side evaluations
+  long jacobians = 0;
+  long factorizations = 0;
+  long solves = 0;       // linear solves (one per implicit stage)
+};
+
+class OdeSystem {
+ public:
+  virtual ~OdeSystem() = default;
+  virtual int size() const = 0;
+  virtual void rhs(double t, const double* y, double* dy) = 0;
+  // absolute tolerance of component k per unit of atol (the natural size of that quantity)
+  virtual double atol_scale(int) const { return 1.0; }
+
+  // linearly implicit methods ---------------------------------------------------------------
+  // evaluate J = ∂F/∂y and ∂F/∂t at (t, y); returns false if the system has no Jacobian
+  virtual bool prepare_jacobian(double, const double*) { return false; }
+  virtual void time_derivative(double* f_t) const;  // ∂F/∂t at the prepared point (default 0)
+  virtual bool factor(double) { return false; }     // factor (s·I - J); false when singular
+  virtual void solve(const double* r, double* u) { (void)r, (void)u; }  // u = (s·I - J)^-1 r
+
+  // diagnostics: a name for component k ("element 12 y velocity") and a check of a state that
+  // returns an empty string when it is sane, else what went wrong
+  virtual std::string describe(int k) const { return "component " + std::to_string(k); }
+  virtual std::string check(double, const double*) const { return {}; }
+
+  WorkCounters counters;
+};
+
+}  // namespace beltsim
