@@ -11,6 +11,8 @@
 // h·Σ (b_j - b̂_j)·F_j is filtered through (I - h·γ·J)^-1 (Shampine; Hairer & Wanner IV.8),
 // which keeps it meaningful on the stiff components.
 #include <cmath>
+#include <cstdio>
+#include <cstdlib>
 
 #include "integrate/controller.hpp"
 #include "integrate/stepper.hpp"
@@ -84,6 +86,10 @@ class Esdirk final : public Stepper {
       sys.counters.solves++;
       const double step_norm = ctl_->weighted_norm(Z_, dZ_);
       if (!std::isfinite(step_norm)) return false;
+      if (step_norm <= kappa) {  // converged: take the (tiny) correction as it is
+        Z_ += dZ_;
+        return true;
+      }
       double lambda = 1.0, rt = 0;
       for (;;) {
         Zt_ = Z_ + lambda * dZ_;
@@ -91,11 +97,11 @@ class Esdirk final : public Stepper {
         if (rt <= (1 - 1e-4 * lambda) * r || lambda < 1.0 / 64) break;
         lambda *= 0.5;
       }
+      if (std::getenv("BELTSIM_DEBUG_NEWTON")) std::fprintf(stderr, "  newton t=%.9g it=%d |dZ|=%.3g lambda=%g r=%.3g -> %.3g\n", t, it, step_norm, lambda, r, rt);
       Z_.swap(Zt_);
       Fz_.swap(Ft_);
       G_.swap(Gt_);
       r = rt;
-      if (lambda == 1.0 && step_norm <= kappa) return true;
       if (lambda < 1.0 / 64) return false;  // no descent: give up, the step will be shortened
     }
     return false;

@@ -1,0 +1,18 @@
+// Settings an interpreter passes to the bindings (private to src/script).
+#pragma once
+
+#include <atomic>
+#include <string>
+
+#include "script/interpreter.hpp"
+
+namespace beltsim::script {
+
+struct Context {
+  Overrides overrides;
+  std::string default_out = "out";        // out/<script name> while a script runs
+  const std::atomic<bool>* stop = nullptr;
+  bool interrupted = false;
+};
+
+}  // namespace beltsim::script

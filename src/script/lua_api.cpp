@@ -1,0 +1,545 @@
+// Lua API of beltsim (documented in README.md, "Lua API"). Tables in, SceneDef / RunSettings out;
+// every key is checked (a misspelt key is an error naming the valid ones), every value's type
+// too, and the scene is validated when it is built, so a bad scenario stops before simulating
+// with "file:line: reason (got value unit)".
+//
+// Debian's liblua5.4-c++ is Lua compiled as C++: lua_error unwinds with a C++ exception, so the
+// destructors of the C++ objects below run. C++ exceptions of our own are caught and turned into
+// Lua errors only after their catch block has been left (as LÖVE does).
+#include "script/lua_api.hpp"
+
+#include <cmath>
+#include <map>
+#include <memory>
+#include <optional>
+#include <set>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "integrate/driver.hpp"
+#include "integrate/stepper.hpp"
+#include "scene/scene.hpp"
+#include "scene/validate.hpp"
+#include "script/context.hpp"
+#include "sim/simulation.hpp"
+
+// not lua.hpp: its extern "C" would not match the C++-compiled library
+#include "lauxlib.h"
+#include "lua.h"
+#include "lualib.h"
+
+namespace beltsim::script {
+
+namespace {
+
+constexpr const char* kSceneMeta = "beltsim.Scene";
+
+[[noreturn]] void fail(lua_State* L, const std::string& msg) {
+  luaL_error(L, "%s", msg.c_str());  // prefixes "file:line:" of the calling script line
+  __builtin_unreachable();           // lua_error unwinds (longjmp, or a C++ throw here)
+}
+
+bool has(lua_State* L, int idx, const char* key) {
+  const bool present = lua_getfield(L, idx, key) != LUA_TNIL;
+  lua_pop(L, 1);
+  return present;
+}
+
+size_t edit_distance(const std::string& a, const std::string& b) {
+  std::vector<size_t> d(b.size() + 1);
+  for (size_t j = 0; j <= b.size(); ++j) d[j] = j;
+  for (size_t i = 1; i <= a.size(); ++i) {
+    size_t prev = d[0];
+    d[0] = i;
+    for (size_t j = 1; j <= b.size(); ++j) {
+      const size_t cur = d[j];
+      d[j] = std::min({d[j] + 1, d[j - 1] + 1, prev + (a[i - 1] != b[j - 1])});
+      prev = cur;
+    }
+  }
+  return d[b.size()];
+}
+
+// every key of the table at idx must be one of `allowed`
+void check_keys(lua_State* L, int idx, const std::string& where, const std::vector<std::string>& allowed) {
+  idx = lua_absindex(L, idx);
+  lua_pushnil(L);
+  while (lua_next(L, idx)) {
+    lua_pop(L, 1);
+    if (lua_type(L, -1) != LUA_TSTRING) fail(L, where + ": expected named keys (key = value), got a list entry");
+    const std::string key = lua_tostring(L, -1);
+    bool ok = false;
+    for (const auto& a : allowed) ok = ok || a == key;
+    if (!ok) {
+      std::string best, valid;
+      size_t bd = 3;
+      for (const auto& a : allowed) {
+        valid += (valid.empty() ? "" : ", ") + a;
+        const size_t d = edit_distance(key, a);
+        if (d < bd) bd = d, best = a;
+      }
+      fail(L, "unknown key '" + key + "' in " + where + (best.empty() ? "" : " (did you mean '" + best + "'?)") +
+                  "; valid keys: " + valid);
+    }
+  }
+}
+
+const char* type_name(lua_State* L, int idx) { return luaL_typename(L, idx); }
+
+// value of t[key] pushed; returns false (and pushes nothing) when nil
+bool field(lua_State* L, int idx, const char* key) {
+  lua_getfield(L, idx, key);
+  if (lua_isnil(L, -1)) {
+    lua_pop(L, 1);
+    return false;
+  }
+  return true;
+}
+
+double to_number(lua_State* L, int idx, const std::string& what) {
+  if (lua_type(L, idx) != LUA_TNUMBER) fail(L, what + ": number expected, got " + type_name(L, idx));
+  return lua_tonumber(L, idx);
+}
+
+std::optional<double> opt_number(lua_State* L, int t, const char* key, const std::string& where) {
+  if (!field(L, t, key)) return std::nullopt;
+  const double v = to_number(L, -1, where + "." + key);
+  lua_pop(L, 1);
+  return v;
+}
+
+std::optional<std::string> opt_string(lua_State* L, int t, const char* key, const std::string& where) {
+  if (!field(L, t, key)) return std::nullopt;
+  if (lua_type(L, -1) != LUA_TSTRING) fail(L, where + "." + key + ": string expected, got " + type_name(L, -1));
+  std::string s = lua_tostring(L, -1);
+  lua_pop(L, 1);
+  return s;
+}
+
+std::optional<bool> opt_bool(lua_State* L, int t, const char* key, const std::string& where) {
+  if (!field(L, t, key)) return std::nullopt;
+  if (lua_type(L, -1) != LUA_TBOOLEAN) fail(L, where + "." + key + ": boolean expected, got " + type_name(L, -1));
+  const bool b = lua_toboolean(L, -1);
+  lua_pop(L, 1);
+  return b;
+}
+
+int to_integer(lua_State* L, int idx, const std::string& what) {
+  const double v = to_number(L, idx, what);
+  if (v != std::floor(v) || std::abs(v) > 1e9) {
+    std::ostringstream s;
+    s << what << ": a whole number expected (got " << v << ")";
+    fail(L, s.str());
+  }
+  return static_cast<int>(v);
+}
+
+void require_table(lua_State* L, int idx, const std::string& what) {
+  if (!lua_istable(L, idx)) fail(L, what + ": table expected, got " + type_name(L, idx));
+}
+
+Vec2 to_vec2(lua_State* L, int idx, const std::string& what) {
+  idx = lua_absindex(L, idx);
+  if (!lua_istable(L, idx) || lua_rawlen(L, idx) != 2)
+    fail(L, what + ": a point {x, y} in metres expected, got " + type_name(L, idx));
+  Vec2 v;
+  for (int k = 0; k < 2; ++k) {
+    lua_rawgeti(L, idx, k + 1);
+    v[k] = to_number(L, -1, what);
+    lua_pop(L, 1);
+  }
+  return v;
+}
+
+// a torque [N·m] or speed [rad/s] law: a number, or {constant=, per_speed=, table={{t, v}, ...}}
+TimeSpeedLaw to_law(lua_State* L, int idx, const std::string& what) {
+  idx = lua_absindex(L, idx);
+  TimeSpeedLaw law;
+  if (lua_type(L, idx) == LUA_TNUMBER) {
+    law.constant = lua_tonumber(L, idx);
+    return law;
+  }
+  if (!lua_istable(L, idx)) fail(L, what + ": number or table expected, got " + type_name(L, idx));
+  check_keys(L, idx, what, {"constant", "per_speed", "table"});
+  law.constant = opt_number(L, idx, "constant", what).value_or(0.0);
+  law.per_speed = opt_number(L, idx, "per_speed", what).value_or(0.0);
+  if (field(L, idx, "table")) {
+    const int tt = lua_gettop(L);
+    require_table(L, tt, what + ".table");
+    const lua_Integer n = static_cast<lua_Integer>(lua_rawlen(L, tt));
+    if (n < 1) fail(L, what + ".table: at least one {t, value} pair expected");
+    for (lua_Integer k = 1; k <= n; ++k) {
+      lua_rawgeti(L, tt, k);
+      const Vec2 p = to_vec2(L, -1, what + ".table entry " + std::to_string(k) + " ({t, value})");
+      law.t.push_back(p.x());
+      law.value.push_back(p.y());
+      lua_pop(L, 1);
+    }
+    lua_pop(L, 1);
+  }
+  return law;
+}
+
+PulleyDef to_pulley(lua_State* L, int idx, const std::string& what) {
+  idx = lua_absindex(L, idx);
+  require_table(L, idx, what);
+  check_keys(L, idx, what, {"name", "centre", "center", "radius", "inertia", "wrap", "torque", "speed"});
+  PulleyDef p;
+  const auto name = opt_string(L, idx, "name", what);
+  if (!name) fail(L, what + ": a name is required");
+  p.name = *name;
+  const std::string w = "pulley '" + p.name + "'";
+  bool centred = false;
+  for (const char* key : {"centre", "center"})
+    if (field(L, idx, key)) {
+      p.centre = to_vec2(L, -1, w + " " + key);
+      lua_pop(L, 1);
+      centred = true;
+    }
+  if (!centred) fail(L, w + ": a centre {x, y} [m] is required");
+  if (auto v = opt_number(L, idx, "radius", w)) p.radius = *v;
+  if (auto v = opt_number(L, idx, "inertia", w)) p.inertia = *v;
+  if (auto v = opt_string(L, idx, "wrap", w)) {
+    if (*v == "inside")
+      p.wrap = WrapSide::inside;
+    else if (*v == "back")
+      p.wrap = WrapSide::back;
+    else
+      fail(L, w + ".wrap: 'inside' or 'back' expected, got '" + *v + "'");
+  }
+  if (field(L, idx, "torque")) {
+    p.torque = to_law(L, -1, w + ".torque");
+    lua_pop(L, 1);
+  }
+  if (field(L, idx, "speed")) {
+    p.speed = to_law(L, -1, w + ".speed");
+    p.kinematic = true;
+    lua_pop(L, 1);
+  }
+  return p;
+}
+
+// a Lua function kept alive in the registry while the scene is built
+struct LuaRef {
+  lua_State* L;
+  int ref;
+  LuaRef(lua_State* l, int idx) : L(l) {
+    lua_pushvalue(L, idx);
+    ref = luaL_ref(L, LUA_REGISTRYINDEX);
+  }
+  ~LuaRef() { luaL_unref(L, LUA_REGISTRYINDEX, ref); }
+};
+
+void push_site(lua_State* L, const ElementSite& e) {
+  lua_createtable(L, 0, 8);
+  lua_pushinteger(L, e.index), lua_setfield(L, -2, "index");
+  lua_pushnumber(L, e.centre.x()), lua_setfield(L, -2, "x");
+  lua_pushnumber(L, e.centre.y()), lua_setfield(L, -2, "y");
+  lua_pushnumber(L, e.s), lua_setfield(L, -2, "s");
+  lua_pushnumber(L, e.length), lua_setfield(L, -2, "length");
+  if (!e.pulley.empty()) lua_pushstring(L, e.pulley.c_str()), lua_setfield(L, -2, "pulley");
+  for (const auto& [name, table] : {std::pair{"meets", &e.meets}, std::pair{"leaves", &e.leaves}}) {
+    lua_createtable(L, 0, static_cast<int>(table->size()));
+    for (const auto& [k, v] : *table) lua_pushnumber(L, v), lua_setfield(L, -2, k.c_str());
+    lua_setfield(L, -2, name);
+  }
+}
+
+void read_belt(lua_State* L, int idx, BeltDef& b, std::unique_ptr<LuaRef>& mu_fn) {
+  const std::string w = "belt";
+  require_table(L, idx, w);
+  check_keys(L, idx, w,
+             {"elements", "pretension", "direction", "route", "EA", "EI", "axial_damping", "bending_damping", "sde",
+              "e_tra", "e_tor", "mass_per_length", "mu"});
+  if (field(L, idx, "elements")) {
+    b.elements = to_integer(L, -1, "belt.elements");
+    lua_pop(L, 1);
+  }
+  if (auto v = opt_number(L, idx, "pretension", w)) b.pretension = *v;
+  if (auto v = opt_string(L, idx, "direction", w)) {
+    if (*v == "cw")
+      b.loop_sense = -1;
+    else if (*v == "ccw")
+      b.loop_sense = 1;
+    else
+      fail(L, "belt.direction: 'cw' or 'ccw' expected, got '" + *v + "'");
+  }
+  if (field(L, idx, "route")) {
+    const int r = lua_gettop(L);
+    require_table(L, r, "belt.route");
+    for (lua_Integer k = 1; k <= static_cast<lua_Integer>(lua_rawlen(L, r)); ++k) {
+      lua_rawgeti(L, r, k);
+      if (lua_type(L, -1) != LUA_TSTRING) fail(L, "belt.route: pulley names expected, got " + std::string(type_name(L, -1)));
+      b.route.push_back(lua_tostring(L, -1));
+      lua_pop(L, 1);
+    }
+    lua_pop(L, 1);
+  }
+  const bool rigidities =
+      has(L, idx, "EA") || has(L, idx, "EI") || has(L, idx, "axial_damping") || has(L, idx, "bending_damping");
+  if (auto v = opt_number(L, idx, "EA", w)) b.EA = *v;
+  if (auto v = opt_number(L, idx, "EI", w)) b.EI = *v;
+  if (auto v = opt_number(L, idx, "axial_damping", w)) b.axial_damping = *v;
+  if (auto v = opt_number(L, idx, "bending_damping", w)) b.bending_damping = *v;
+  if (field(L, idx, "sde")) {
+    if (rigidities) fail(L, "belt: give either rigidities (EA, EI, axial_damping, bending_damping) or per-SDE values (sde), not both");
+    const int s = lua_gettop(L);
+    require_table(L, s, "belt.sde");
+    check_keys(L, s, "belt.sde", {"k", "c", "kt", "ct"});
+    b.reading = StiffnessReading::per_sde;
+    for (auto [key, dst] : {std::pair{"k", &b.k}, std::pair{"c", &b.c}, std::pair{"kt", &b.kt}, std::pair{"ct", &b.ct}}) {
+      const auto v = opt_number(L, s, key, "belt.sde");
+      if (!v) fail(L, std::string("belt.sde: all of k, c, kt, ct are required (") + key + " is missing)");
+      *dst = *v;
+    }
+    lua_pop(L, 1);
+  }
+  if (auto v = opt_number(L, idx, "e_tra", w)) b.e_tra = *v;
+  if (auto v = opt_number(L, idx, "e_tor", w)) b.e_tor = *v;
+  if (auto v = opt_number(L, idx, "mass_per_length", w)) b.mass_per_length = *v;
+  if (field(L, idx, "mu")) {
+    const int m = lua_gettop(L);
+    if (lua_type(L, m) == LUA_TNUMBER) {
+      b.mu = lua_tonumber(L, m);
+    } else if (lua_isfunction(L, m)) {
+      mu_fn = std::make_unique<LuaRef>(L, m);
+      LuaRef* ref = mu_fn.get();
+      b.mu_at = [ref](const ElementSite& site) {
+        lua_State* S = ref->L;
+        lua_rawgeti(S, LUA_REGISTRYINDEX, ref->ref);
+        push_site(S, site);
+        lua_call(S, 1, 1);
+        if (lua_type(S, -1) != LUA_TNUMBER)
+          luaL_error(S, "belt.mu function: number expected for element %d, got %s", site.index, luaL_typename(S, -1));
+        const double mu = lua_tonumber(S, -1);
+        lua_pop(S, 1);
+        return mu;
+      };
+    } else if (lua_istable(L, m)) {
+      for (lua_Integer k = 1; k <= static_cast<lua_Integer>(lua_rawlen(L, m)); ++k) {
+        lua_rawgeti(L, m, k);
+        b.mu_per_element.push_back(to_number(L, -1, "belt.mu entry " + std::to_string(k)));
+        lua_pop(L, 1);
+      }
+    } else {
+      fail(L, std::string("belt.mu: number, list or function expected, got ") + type_name(L, m));
+    }
+    lua_pop(L, 1);
+  }
+}
+
+Scene* check_scene(lua_State* L, int idx) {
+  return *static_cast<Scene**>(luaL_checkudata(L, idx, kSceneMeta));
+}
+
+// beltsim.scene{ pulleys = {...}, belt = {...}, contact = {...}, friction = {...}, gravity = g, energy = bool }
+int l_scene(lua_State* L) {
+  luaL_checktype(L, 1, LUA_TTABLE);
+  check_keys(L, 1, "scene", {"pulleys", "belt", "contact", "friction", "gravity", "energy"});
+  SceneDef d;
+  if (!field(L, 1, "pulleys")) fail(L, "scene: a list of pulleys is required");
+  require_table(L, -1, "scene.pulleys");
+  const int pl = lua_gettop(L);
+  for (lua_Integer k = 1; k <= static_cast<lua_Integer>(lua_rawlen(L, pl)); ++k) {
+    lua_rawgeti(L, pl, k);
+    d.pulleys.push_back(to_pulley(L, -1, "pulley " + std::to_string(k)));
+    lua_pop(L, 1);
+  }
+  lua_pop(L, 1);
+  std::unique_ptr<LuaRef> mu_fn;
+  if (field(L, 1, "belt")) {
+    read_belt(L, lua_gettop(L), d.belt, mu_fn);
+    lua_pop(L, 1);
+  }
+  if (field(L, 1, "contact")) {
+    const int c = lua_gettop(L);
+    require_table(L, c, "contact");
+    check_keys(L, c, "contact", {"c1", "c2", "damping", "p_max"});
+    if (auto v = opt_number(L, c, "c1", "contact")) d.contact.c1 = *v;
+    if (auto v = opt_number(L, c, "c2", "contact")) d.contact.c2 = *v;
+    if (auto v = opt_number(L, c, "damping", "contact")) d.contact.b = *v;
+    if (auto v = opt_number(L, c, "p_max", "contact")) d.contact.p_max = *v;
+    lua_pop(L, 1);
+  }
+  if (field(L, 1, "friction")) {
+    const int f = lua_gettop(L);
+    require_table(L, f, "friction");
+    check_keys(L, f, "friction", {"dv"});
+    if (auto v = opt_number(L, f, "dv", "friction")) d.friction.dv = *v;
+    lua_pop(L, 1);
+  }
+  if (auto v = opt_number(L, 1, "gravity", "scene")) d.gravity = *v;
+  if (auto v = opt_bool(L, 1, "energy", "scene")) d.track_energy = *v;
+
+  auto** box = static_cast<Scene**>(lua_newuserdatauv(L, sizeof(Scene*), 0));
+  *box = nullptr;
+  luaL_setmetatable(L, kSceneMeta);
+  std::string error;
+  try {
+    *box = new Scene(build_scene(d));
+  } catch (const ParameterError& e) {
+    error = e.what();
+  }
+  if (!error.empty()) fail(L, error);
+  return 1;
+}
+
+int l_scene_gc(lua_State* L) {
+  auto** box = static_cast<Scene**>(luaL_checkudata(L, 1, kSceneMeta));
+  delete *box;
+  *box = nullptr;
+  return 0;
+}
+
+// scene:info() -> table of the derived model parameters
+int l_scene_info(lua_State* L) {
+  const Scene* sc = check_scene(L, 1);
+  const Belt& b = sc->model.belt;
+  lua_newtable(L);
+  auto num = [&](const char* k, double v) { lua_pushnumber(L, v), lua_setfield(L, -2, k); };
+  lua_pushinteger(L, b.n), lua_setfield(L, -2, "elements");
+  num("pitch", b.pitch);
+  num("rigid_length", b.rigid_length);
+  num("mass", b.mass);
+  num("k", b.k);
+  num("c", b.c);
+  num("kt", b.kt);
+  num("ct", b.ct);
+  num("route_length", sc->route.length);
+  num("static_tension", sc->static_tension);
+  num("static_residual", sc->static_residual);
+  lua_newtable(L);
+  for (size_t k = 0; k < sc->route_names.size(); ++k)
+    lua_pushnumber(L, sc->route.arcs[k].angle * 180 / M_PI), lua_setfield(L, -2, sc->route_names[k].c_str());
+  lua_setfield(L, -2, "wrap_deg");
+  return 1;
+}
+
+// scene:element_near{x, y} -> number of the element whose centre starts nearest the point
+int l_scene_element_near(lua_State* L) {
+  const Scene* sc = check_scene(L, 1);
+  const Vec2 p = to_vec2(L, 2, "element_near");
+  lua_pushinteger(L, sc->element_nearest(p));
+  return 1;
+}
+
+// scene:run{ t_end=, integrator=, rtol=, atol=, sample=, out=, probe=, progress= } -> result
+int l_scene_run(lua_State* L) {
+  const Scene* sc = check_scene(L, 1);
+  auto* ctx = static_cast<Context*>(lua_touserdata(L, lua_upvalueindex(1)));
+  RunSettings rs;
+  rs.out_dir = ctx->default_out;
+  if (!lua_isnoneornil(L, 2)) {
+    require_table(L, 2, "run");
+    check_keys(L, 2, "run", {"t_end", "integrator", "rtol", "atol", "sample", "out", "probe", "progress"});
+    if (auto v = opt_number(L, 2, "t_end", "run")) rs.t_end = *v;
+    if (auto v = opt_string(L, 2, "integrator", "run")) rs.integrator = *v;
+    if (auto v = opt_number(L, 2, "rtol", "run")) rs.rtol = *v;
+    if (auto v = opt_number(L, 2, "atol", "run")) rs.atol = *v;
+    if (auto v = opt_number(L, 2, "sample", "run")) rs.sample_dt = *v;
+    if (auto v = opt_string(L, 2, "out", "run")) rs.out_dir = *v;
+    if (auto v = opt_bool(L, 2, "progress", "run")) rs.progress = *v;
+    if (field(L, 2, "probe")) {
+      if (lua_istable(L, -1))
+        rs.probe_element = sc->element_nearest(to_vec2(L, -1, "run.probe"));
+      else
+        rs.probe_element = to_integer(L, -1, "run.probe");
+      lua_pop(L, 1);
+    }
+  }
+  const Overrides& o = ctx->overrides;
+  if (o.out) rs.out_dir = *o.out;
+  if (o.t_end) rs.t_end = *o.t_end;
+  if (o.integrator) rs.integrator = *o.integrator;
+  if (o.rtol) rs.rtol = *o.rtol;
+
+  std::string error;
+  RunResult res;
+  try {
+    res = run(*sc, rs, ctx->stop);
+  } catch (const DivergenceError& e) {
+    error = std::string(e.what()) + " (the samples up to then are in " + rs.out_dir + "/timeseries.csv)";
+  } catch (const std::exception& e) {
+    error = e.what();
+  }
+  if (!error.empty()) fail(L, error);
+  if (res.interrupted) ctx->interrupted = true;
+
+  lua_newtable(L);
+  lua_pushnumber(L, res.t_reached), lua_setfield(L, -2, "t");
+  lua_pushboolean(L, res.interrupted), lua_setfield(L, -2, "interrupted");
+  lua_pushnumber(L, res.wall_seconds), lua_setfield(L, -2, "wall");
+  lua_pushinteger(L, res.work.steps), lua_setfield(L, -2, "steps");
+  lua_pushinteger(L, res.work.rejected), lua_setfield(L, -2, "rejected");
+  lua_pushinteger(L, res.work.rhs), lua_setfield(L, -2, "rhs");
+  lua_pushinteger(L, res.work.jacobians), lua_setfield(L, -2, "jacobians");
+  lua_pushinteger(L, res.work.factorizations), lua_setfield(L, -2, "factorizations");
+  lua_pushstring(L, res.csv_path.c_str()), lua_setfield(L, -2, "csv");
+  lua_pushstring(L, res.parameters_path.c_str()), lua_setfield(L, -2, "parameters");
+  lua_newtable(L);
+  for (int j = 0; j < sc->model.n_p(); ++j)
+    lua_pushnumber(L, res.omega[j]), lua_setfield(L, -2, sc->model.pulleys[j].name.c_str());
+  lua_setfield(L, -2, "omega");
+  return 1;
+}
+
+int l_scene_tostring(lua_State* L) {
+  const Scene* sc = check_scene(L, 1);
+  lua_pushfstring(L, "beltsim scene: %d pulleys, %d elements", sc->model.n_p(), sc->model.n_el());
+  return 1;
+}
+
+// beltsim.rpm(n) -> rad/s
+int l_rpm(lua_State* L) {
+  lua_pushnumber(L, luaL_checknumber(L, 1) * 2 * M_PI / 60);
+  return 1;
+}
+
+// beltsim.ramp(t1, value) -> law rising linearly from 0 at t = 0 to value at t1, then held
+int l_ramp(lua_State* L) {
+  const double t1 = luaL_checknumber(L, 1), v = luaL_checknumber(L, 2);
+  if (!(t1 > 0)) luaL_error(L, "ramp: the ramp time must be > 0 (got %f s)", t1);
+  lua_newtable(L);
+  lua_createtable(L, 2, 0);
+  for (int k = 0; k < 2; ++k) {
+    lua_createtable(L, 2, 0);
+    lua_pushnumber(L, k ? t1 : 0.0), lua_rawseti(L, -2, 1);
+    lua_pushnumber(L, k ? v : 0.0), lua_rawseti(L, -2, 2);
+    lua_rawseti(L, -2, k + 1);
+  }
+  lua_setfield(L, -2, "table");
+  return 1;
+}
+
+int l_integrators(lua_State* L) {
+  lua_newtable(L);
+  int k = 1;
+  for (const auto& n : stepper_names()) lua_pushstring(L, n.c_str()), lua_rawseti(L, -2, k++);
+  return 1;
+}
+
+}  // namespace
+
+void open_beltsim(lua_State* L, Context* ctx) {
+  luaL_newmetatable(L, kSceneMeta);
+  lua_pushcfunction(L, l_scene_gc), lua_setfield(L, -2, "__gc");
+  lua_pushcfunction(L, l_scene_tostring), lua_setfield(L, -2, "__tostring");
+  lua_newtable(L);
+  lua_pushcfunction(L, l_scene_info), lua_setfield(L, -2, "info");
+  lua_pushcfunction(L, l_scene_element_near), lua_setfield(L, -2, "element_near");
+  lua_pushlightuserdata(L, ctx);
+  lua_pushcclosure(L, l_scene_run, 1), lua_setfield(L, -2, "run");
+  lua_setfield(L, -2, "__index");
+  lua_pop(L, 1);
+
+  lua_newtable(L);
+  lua_pushcfunction(L, l_scene), lua_setfield(L, -2, "scene");
+  lua_pushcfunction(L, l_rpm), lua_setfield(L, -2, "rpm");
+  lua_pushcfunction(L, l_ramp), lua_setfield(L, -2, "ramp");
+  lua_pushcfunction(L, l_integrators), lua_setfield(L, -2, "integrators");
+  lua_pushstring(L, "0.1.0"), lua_setfield(L, -2, "version");
+  lua_setglobal(L, "beltsim");
+}
+
+}  // namespace beltsim::script
