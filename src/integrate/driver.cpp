@@ -5,8 +5,6 @@
 #include <cmath>
 #include <limits>
 #include <sstream>
-#include <cstdio>
-#include <cstdlib>
 
 namespace beltsim {
 
@@ -65,8 +63,10 @@ DriveResult drive(OdeSystem& sys, Stepper& stepper, const Tolerances& tol, const
     h = std::min({h, h_max, 1e-3 * span});
   }
 
-  // after a failed step (no convergence) the step may not grow for a few steps
-  int cooldown = 0;
+  // After a step that could not be taken (an implicit method's iteration did not converge) the
+  // step size is capped below the failed one; the cap relaxes by 5 % per accepted step, so the
+  // controller does not keep walking back into the size at which the iteration fails.
+  double cap = std::numeric_limits<double>::infinity();
   while (t < opt.t_end) {
     if (opt.stop && opt.stop->load()) {
       res.interrupted = true;
@@ -83,8 +83,7 @@ DriveResult drive(OdeSystem& sys, Stepper& stepper, const Tolerances& tol, const
     const double e = ok ? ctl.error_norm(y, y1, err, &worst) : 1e300;
     if (e > 1.0) {
       sys.counters.rejected++;
-      if (!ok) cooldown = 5;
-      if (std::getenv("BELTSIM_DEBUG_REJECT")) fprintf(stderr, "reject t=%.9g h=%.3g e=%.3g %s worst %s\n", t, h, e, ok ? "error" : "newton", sys.describe(worst).c_str());
+      if (!ok) cap = 0.5 * h;
       h = ctl.propose(h, ok ? e : 1e300);
       if (h < 16 * std::numeric_limits<double>::epsilon() * std::max(1.0, std::abs(t)))
         throw DivergenceError(t, "the step size collapsed to " + fmt(h) + " s at t = " + fmt(t) +
@@ -114,10 +113,8 @@ DriveResult drive(OdeSystem& sys, Stepper& stepper, const Tolerances& tol, const
     f0.swap(f1);
     if (hits_event) next_event++;
     h = std::min(ctl.propose(h_used, e), h_max);
-    if (cooldown > 0) {
-      h = std::min(h, h_used);
-      cooldown--;
-    }
+    cap *= 1.05;
+    h = std::min(h, cap);
     if (progress) progress(t, sys.counters);
   }
   res.work = sys.counters;
