@@ -1,0 +1,226 @@
+// Checks with known answers (DESIGN §6, items 1–6), in that order.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include <Eigen/Eigenvalues>
+
+#include "model/forces.hpp"
+#include "model/rhs.hpp"
+#include "physics/helpers.hpp"
+#include "scene/presets.hpp"
+
+namespace beltsim {
+namespace {
+
+using testing::rigid_motion;
+using testing::simulate;
+
+// ---- 1. the initial state ----------------------------------------------------------------------
+// The static solve is a Newton iteration run to |a| < 1e-9 m/s² or until it stalls at rounding;
+// the force scale of an element is T0/m ≈ 2.6e5 m/s², so 1e-6 of it (0.26 m/s²) is a bound that
+// only a broken initial state exceeds (the walk alone, without Newton, leaves ≈ 1e3 m/s²).
+TEST(KnownAnswers, InitialStateIsStatic) {
+  for (const SceneDef& d : {presets::paper_dry(), presets::automotive_wet()}) {
+    const Scene sc = build_scene(d);
+    const Model& m = sc.model;
+    Eigen::VectorXd dy(m.n_state());
+    rhs(m, 0.0, sc.y0.data(), dy.data());
+    const double scale = d.belt.pretension / m.belt.mass;
+    EXPECT_LT(dy.segment(m.n_coord(), 3 * m.n_el()).cwiseAbs().maxCoeff(), 1e-6 * scale);
+    EXPECT_NEAR(sc.static_tension, d.belt.pretension, 1e-4 * d.belt.pretension);
+  }
+}
+
+// Hub load of a pulley at rest. Statics of the belt between the midpoints of the spans on either
+// side: hub load = F_out - F_in + weight of that belt, F the SDE force vectors (k·d) at the two
+// midpoints. This holds whatever the bending stiffness does to the belt's shape; the only error is
+// the contact of neighbouring pulleys (none here) and rounding: bound 1e-6 of the load.
+// For large pulleys it is also 2·T·sin(θ/2) of the flexible-belt textbook: on the paper's drive
+// (r = 0.1 m, bending length sqrt(EI/T) = 7 mm ≪ r) within 0.5 % (measured 0.02 %); on the small
+// automotive pulleys the bending stiffness turns the spans by degrees, so not there.
+TEST(KnownAnswers, HubLoadIsTheSumOfTheSpanTensions) {
+  for (const SceneDef& d : {presets::paper_dry(), presets::automotive_wet()}) {
+    const Scene sc = build_scene(d);
+    const Model& m = sc.model;
+    const int n = m.n_el();
+    const size_t np = sc.route_pulleys.size();
+    for (size_t k = 0; k < np; ++k) {
+      Vec2 hub;
+      belt_torque(m, 0.0, sc.y0.data(), sc.y0.data() + m.n_coord(), sc.route_pulleys[k], &hub);
+      const int in = sc.span_sde[(k + np - 1) % np], out = sc.span_sde[k];
+      const Vec2 F_in = m.belt.k * sde_gap(m, sc.y0.data(), in), F_out = m.belt.k * sde_gap(m, sc.y0.data(), out);
+      const int carried = ((out - in) % n + n) % n;  // elements in, in+1, ..., out-1
+      const Vec2 weight(0, -carried * m.belt.mass * m.gravity);
+      const Vec2 expected = F_out - F_in + weight;
+      EXPECT_LT((hub - expected).norm(), 1e-6 * expected.norm()) << sc.route_names[k];
+      if (d.belt.elements == 60) {
+        const double flexible = 2 * sc.static_tension * std::sin(sc.route.arcs[k].angle / 2);
+        EXPECT_NEAR(hub.norm(), flexible, 5e-3 * flexible) << sc.route_names[k];
+      }
+    }
+  }
+}
+
+// ---- 2. energy ---------------------------------------------------------------------------------
+// Without damping, friction and loads the model is conservative: the total energy of a belt set
+// vibrating must stay constant up to the integrator's error. RKF45 at rtol 1e-10 over 2 ms:
+// measured drift 1e-9 of the injected kinetic energy; bound 1e-6 of it.
+TEST(KnownAnswers, EnergyIsConservedWithoutDissipation) {
+  SceneDef d = presets::paper_dry();
+  d.belt.axial_damping = 0;
+  d.belt.bending_damping = 0;
+  d.contact.b = 0;
+  d.belt.mu = 0;
+  for (PulleyDef& p : d.pulleys) p.torque = TimeSpeedLaw{};
+  const Scene sc = build_scene(d);
+  const Model& m = sc.model;
+  Eigen::VectorXd y0 = sc.y0;
+  const int N = m.n_coord();
+  double kick = 0;
+  for (int i = 0; i < m.n_el(); ++i) {  // a transverse and longitudinal kick of every element
+    y0[N + 3 * i] = 0.05 * std::sin(0.7 * i);
+    y0[N + 3 * i + 1] = 0.1 * std::cos(1.3 * i);
+    kick += 0.5 * m.belt.mass * (y0[N + 3 * i] * y0[N + 3 * i] + y0[N + 3 * i + 1] * y0[N + 3 * i + 1]);
+  }
+  const double E0 = energy(m, 0, y0.data()).total();
+  const auto s = simulate(m, y0, 2e-3, 2e-4, "rkf45", 1e-10);
+  for (size_t k = 0; k < s.t.size(); ++k)
+    EXPECT_NEAR(energy(m, s.t[k], s.y[k].data()).total(), E0, 1e-6 * kick) << "t = " << s.t[k];
+}
+
+// With everything on, the work of the torques equals the change of mechanical energy plus what
+// each dissipation channel took (the channels are integrated with the state). Over the first
+// 50 ms of the paper's drive at rtol 1e-7 the balance closes to 1e-6 of the work (measured
+// 1e-8); each channel must also be non-negative.
+TEST(KnownAnswers, WorkOfTorquesBalancesEnergyAndDissipation) {
+  SceneDef d = presets::paper_dry();
+  d.track_energy = true;
+  const Scene sc = build_scene(d);
+  const Model& m = sc.model;
+  const auto s = simulate(m, sc.y0, 0.05, 0.01, "esdirk32", 1e-7);
+  const double E0 = energy(m, 0, sc.y0.data()).total();
+  const Eigen::VectorXd& y = s.y.back();
+  const double* e = y.data() + m.energy_offset();
+  const double dE = energy(m, s.t.back(), y.data()).total() - E0;
+  double dissipated = 0;
+  for (int k = kDissSdeAxial; k < kEnergyCount; ++k) {
+    EXPECT_GE(e[k], -1e-12) << "channel " << k;
+    dissipated += e[k];
+  }
+  EXPECT_GT(e[kWorkTorques], 0.0);
+  EXPECT_NEAR(e[kWorkTorques], dE + dissipated, 1e-6 * e[kWorkTorques]);
+}
+
+// ---- 3 and 4. waves on a free span --------------------------------------------------------------
+// Linearise the static state (the analytic Jacobian, checked against finite differences in
+// jacobian_test.cpp) and keep the coordinates of the elements of the upper span that touch no
+// pulley and lie between the tangent points, less one at each end; their neighbours are held, on
+// the straight span too. Gravity off, so the span is straight.
+struct Span {
+  Scene scene;
+  std::vector<int> elements;
+  Eigen::MatrixXd K;  // ∂f/∂q over all coordinates
+};
+
+Span free_upper_span(double EI = 0.026) {
+  SceneDef d = presets::paper_dry();
+  d.gravity = 0;
+  d.belt.EI = EI;
+  Span s{build_scene(d), {}, {}};
+  const Model& m = s.scene.model;
+  const Eigen::VectorXd& y = s.scene.y0;
+  for (int i = 0; i < m.n_el(); ++i) {
+    // on the straight part of the upper span, between the tangent points x = 0 and x = l_p
+    bool free = y[3 * i + 1] > 0.05 && y[3 * i] > 0 && y[3 * i] < 0.29;
+    for (const Pulley& p : m.pulleys) free = free && (Vec2(y[3 * i], y[3 * i + 1]) - p.centre).norm() > p.radius;
+    if (free) s.elements.push_back(i);
+  }
+  // hold the first and last of them too, so the held ends are on the straight span as well
+  s.elements.erase(s.elements.begin());
+  s.elements.pop_back();
+  Jacobian J;
+  J.resize(m);
+  jacobian(m, 0.0, y.data(), J);
+  s.K = J.K.to_dense();
+  return s;
+}
+
+// 3. Longitudinal: the x-motions of a straight chain of F masses m joined by springs k, both ends
+// held, have ω_j = 2·sqrt(k/m)·sin(jπ/(2(F+1))) (the discrete dispersion ω(κ) = 2·sqrt(k/m)·
+// sin(κl/2) at κl = jπ/(F+1)). Exact for a straight span: bound 1e-6 (rounding and the span's
+// residual tilt). The lowest tends to the continuum c·π/L, c = sqrt(EA/ρ), within the
+// dispersion error (κl)²/24 ≈ 0.2 % here: bound 0.5 %.
+TEST(KnownAnswers, LongitudinalWavesFollowTheChainDispersion) {
+  const Span s = free_upper_span();
+  const Model& m = s.scene.model;
+  const int F = static_cast<int>(s.elements.size());
+  ASSERT_GE(F, 10);
+  Eigen::MatrixXd A(F, F);
+  for (int a = 0; a < F; ++a)
+    for (int b = 0; b < F; ++b) A(a, b) = -s.K(3 * s.elements[a], 3 * s.elements[b]) / m.belt.mass;
+  Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> es(0.5 * (A + A.transpose()));
+  const double w0 = std::sqrt(m.belt.k / m.belt.mass);
+  for (int j = 1; j <= F; ++j) {
+    const double expected = 2 * w0 * std::sin(j * M_PI / (2.0 * (F + 1)));
+    EXPECT_NEAR(std::sqrt(es.eigenvalues()[j - 1]), expected, 1e-6 * expected) << "mode " << j;
+  }
+  const double c = std::sqrt(1.52e5 / 0.096);
+  const double L = (F + 1) * m.belt.pitch;
+  EXPECT_NEAR(std::sqrt(es.eigenvalues()[0]), c * M_PI / L, 5e-3 * c * M_PI / L);
+}
+
+// 4. Transverse: a tensioned span has f_n = (n/2L)·sqrt(T/ρ) (≈ 124 Hz for 0.29 m, 500 N). Here L
+// ends at the inner ends of the held (clamped) rods: L = (F+1)·l - l_e.
+std::vector<double> transverse_frequencies(const Span& s) {
+  const Model& m = s.scene.model;
+  const int F = static_cast<int>(s.elements.size());
+  Eigen::MatrixXd K(2 * F, 2 * F), M = Eigen::MatrixXd::Zero(2 * F, 2 * F);
+  for (int a = 0; a < F; ++a) {
+    for (int b = 0; b < F; ++b)
+      for (int r = 0; r < 2; ++r)
+        for (int c = 0; c < 2; ++c) K(2 * a + r, 2 * b + c) = -s.K(3 * s.elements[a] + 1 + r, 3 * s.elements[b] + 1 + c);
+    M(2 * a, 2 * a) = m.belt.mass;
+    M(2 * a + 1, 2 * a + 1) = m.belt.rot_inertia;
+  }
+  Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> es(0.5 * (K + K.transpose()), M);
+  std::vector<double> f;
+  for (int k = 0; k < 2 * F; ++k) f.push_back(std::sqrt(es.eigenvalues()[k]) / (2 * M_PI));
+  return f;
+}
+
+// Flexible belt (EI → 1e-6 N·m²): the string. The chain of F ≈ 13 rods departs from the continuum
+// by (nπ/(F+1))²/24 ≲ 1 % for n ≤ 2 (measured ≤ 0.3 %): bound 1.5 %.
+TEST(KnownAnswers, TransverseModesOfAFlexibleSpanAreTheString) {
+  const Span s = free_upper_span(1e-6);
+  const Model& m = s.scene.model;
+  const int F = static_cast<int>(s.elements.size());
+  const double L = (F + 1) * m.belt.pitch - m.belt.rigid_length;
+  const double f0 = std::sqrt(s.scene.static_tension / 0.096) / (2 * L);
+  const std::vector<double> f = transverse_frequencies(s);
+  for (int n = 1; n <= 2; ++n) EXPECT_NEAR(f[n - 1], n * f0, 1.5e-2 * n * f0) << "mode " << n;
+}
+
+// The real belt (EI = 0.026 N·m²) is a stiff string, B = π²·EI/(T·L²). Its modes lie between those
+// of a stiff string with pinned ends, n·f0·sqrt(1 + B·n²), and with clamped ends (Fletcher),
+// n·f0·sqrt(1 + B·n²)·(1 + 2·sqrt(B)/π + 4·B/π²): the discrete torsional spring at each held rod
+// is a clamp of finite stiffness. (Measured: 141 Hz between 138 and 146 Hz.)
+TEST(KnownAnswers, TransverseModesOfTheStiffSpanLieBetweenPinnedAndClamped) {
+  const Span s = free_upper_span(0.026);
+  const Model& m = s.scene.model;
+  const int F = static_cast<int>(s.elements.size());
+  const double L = (F + 1) * m.belt.pitch - m.belt.rigid_length;
+  const double T = s.scene.static_tension;
+  const double f0 = std::sqrt(T / 0.096) / (2 * L);
+  const double B = M_PI * M_PI * 0.026 / (T * L * L);
+  const std::vector<double> f = transverse_frequencies(s);
+  for (int n = 1; n <= 3; ++n) {
+    const double pinned = n * f0 * std::sqrt(1 + B * n * n);
+    const double clamped = pinned * (1 + 2 * std::sqrt(B) / M_PI + 4 * B / (M_PI * M_PI));
+    EXPECT_GT(f[n - 1], pinned) << "mode " << n;
+    EXPECT_LT(f[n - 1], clamped) << "mode " << n;
+  }
+}
+
+}  // namespace
+}  // namespace beltsim
