@@ -222,5 +222,72 @@ TEST(KnownAnswers, TransverseModesOfTheStiffSpanLieBetweenPinnedAndClamped) {
   }
 }
 
+// ---- 5. capstan ---------------------------------------------------------------------------------
+// A belt over a pulley slips when T1/T2 > exp(μθ). With μ = 0.2, θ = π and T1 + T2 = 2·T0 the
+// two-pulley drive carries at most r·2·T0·(e^{μπ} - 1)/(e^{μπ} + 1) = 30.4 N·m. The driven pulley
+// is locked, the driver's torque ramps up in 10 ms and is held to 40 ms. Below the limit the driver
+// only creeps (elastic strain of the belt: |Ω| < 0.5 rad/s); above it the belt slips and the
+// driver accelerates at (M - 30.4 N·m)/I: at 1.05·limit that is -1.8 rad/s after the 30 ms hold
+// (measured -2.1), so Ω < -1 rad/s. Torques at ±5 % of the limit: the bending stiffness and the
+// belt's inertia shift it by less (measured: no slip at 0.95, slip at 1.05).
+double driver_speed_after(double torque) {
+  SceneDef d = presets::paper_dry();
+  d.belt.mu = 0.2;
+  d.pulleys[0].torque = TimeSpeedLaw{};
+  d.pulleys[0].torque.t = {0.0, 0.01};
+  d.pulleys[0].torque.value = {0.0, -torque};
+  d.pulleys[1].torque = TimeSpeedLaw{};
+  d.pulleys[1].kinematic = true;  // locked: prescribed speed 0
+  const Scene sc = build_scene(d);
+  const auto s = simulate(sc.model, sc.y0, 0.04, 0.01, "esdirk32", 1e-5);
+  return s.y.back()[sc.model.n_coord() + sc.model.pulley_coord(0)];
+}
+
+TEST(KnownAnswers, CapstanLimitOfTheWetDrive) {
+  const double limit = 0.1 * 2 * 500 * (std::exp(0.2 * M_PI) - 1) / (std::exp(0.2 * M_PI) + 1);
+  EXPECT_NEAR(limit, 30.4, 0.05);
+  EXPECT_LT(std::abs(driver_speed_after(0.95 * limit)), 0.5);
+  EXPECT_LT(driver_speed_after(1.05 * limit), -1.0) << "the driver should run away clockwise";
+}
+
+// ---- 6. centrifugal tension ---------------------------------------------------------------------
+// Both pulleys held at the speed of a belt running at v = 30 m/s (the belt starts in that rigid
+// motion). The belt on a half wrap turns its momentum round: the pulley carries the two span
+// tensions less the centrifugal part, hub load = 2·(T - ρv²), ρv² = 86 N (17 % of the pretension).
+// After 10 ms the start-up ripple has decayed below 0.5 % (measured); bound 1 % of the load,
+// which the centrifugal term exceeds 17-fold.
+TEST(KnownAnswers, CentrifugalTensionUnloadsThePulleys) {
+  SceneDef d = presets::paper_dry();
+  const double v = 30.0, rho = 0.096;
+  for (PulleyDef& p : d.pulleys) {
+    p.torque = TimeSpeedLaw{};
+    p.kinematic = true;
+    p.speed.constant = -v / p.radius;  // clockwise travel
+  }
+  const Scene sc = build_scene(d);
+  const Model& m = sc.model;
+  const auto s = simulate(m, rigid_motion(sc, v), 0.01, 0.01, "esdirk32", 1e-6);
+  const Eigen::VectorXd& y = s.y.back();
+  const double* q = y.data();
+  const double* vel = q + m.n_coord();
+  double T = 0;
+  for (const Route::Span& sp : sc.route.spans) {
+    int best = 0;
+    double bd = 1e9;
+    for (int i = 0; i < m.n_el(); ++i) {
+      const int a = (i + m.n_el() - 1) % m.n_el();
+      const Vec2 c(0.5 * (q[3 * a] + q[3 * i]), 0.5 * (q[3 * a + 1] + q[3 * i + 1]));
+      if ((c - 0.5 * (sp.from + sp.to)).norm() < bd) bd = (c - 0.5 * (sp.from + sp.to)).norm(), best = i;
+    }
+    T += 0.5 * sde_axial_force(m, q, vel, best);
+  }
+  for (int j = 0; j < m.n_p(); ++j) {
+    Vec2 hub;
+    belt_torque(m, s.t.back(), q, vel, j, &hub);
+    const double expected = 2 * (T - rho * v * v);
+    EXPECT_NEAR(hub.norm(), expected, 0.01 * expected) << m.pulleys[j].name << ", span tension " << T << " N";
+  }
+}
+
 }  // namespace
 }  // namespace beltsim
