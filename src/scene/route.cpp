@@ -1,5 +1,6 @@
 #include "scene/route.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 
@@ -64,6 +65,32 @@ Route make_route(const std::vector<RouteCircle>& c, int loop_sense, const std::v
     s << " does not close into a simple loop (it turns " << turning * 180 / M_PI << " deg instead of "
       << loop_sense * 360 << " deg); check the order of the pulleys and which side each is wrapped on";
     throw ParameterError(s.str());
+  }
+  // the spans must not cross each other, nor cut through a pulley they do not leave or meet
+  auto cross2 = [](const Vec2& a, const Vec2& b) { return a.x() * b.y() - a.y() * b.x(); };
+  auto segments_cross = [&](const Route::Span& p, const Route::Span& q) {
+    const Vec2 d1 = p.to - p.from, d2 = q.to - q.from;
+    const double den = cross2(d1, d2);
+    if (std::abs(den) < 1e-15) return false;
+    const double u = cross2(q.from - p.from, d2) / den, v = cross2(q.from - p.from, d1) / den;
+    return u > 1e-9 && u < 1 - 1e-9 && v > 1e-9 && v < 1 - 1e-9;
+  };
+  for (size_t a = 0; a < m; ++a) {
+    for (size_t b = a + 1; b < m; ++b)
+      if (segments_cross(r.spans[a], r.spans[b]))
+        throw ParameterError("route: the belt would cross itself (span '" + names[a] + "' to '" + names[(a + 1) % m] +
+                             "' crosses span '" + names[b] + "' to '" + names[(b + 1) % m] +
+                             "'); check the order of the pulleys and their wrap sides");
+    for (size_t k = 0; k < m; ++k) {
+      if (k == a || k == (a + 1) % m) continue;
+      const Route::Span& sp = r.spans[a];
+      const Vec2 d = sp.to - sp.from;
+      const double u = std::clamp((c[k].centre - sp.from).dot(d) / d.squaredNorm(), 0.0, 1.0);
+      if ((sp.from + u * d - c[k].centre).norm() < c[k].radius)
+        throw ParameterError("route: the span from '" + names[a] + "' to '" + names[(a + 1) % m] +
+                             "' would cut through pulley '" + names[k] +
+                             "'; check the order of the pulleys and their wrap sides");
+    }
   }
   r.length = 0;
   for (size_t k = 0; k < m; ++k) r.length += r.spans[k].length + r.arcs[(k + 1) % m].length();
