@@ -1,0 +1,87 @@
+// Benchmarks (their own target, not part of the test run): the cost of the pieces of one
+// implicit step on the paper's dry drive, and of a short simulated interval per integrator.
+//   build/bench/beltsim_bench [--benchmark_filter=...]
+#include <benchmark/benchmark.h>
+
+#include "integrate/belt_system.hpp"
+#include "integrate/driver.hpp"
+#include "integrate/stepper.hpp"
+#include "model/rhs.hpp"
+#include "scene/presets.hpp"
+
+namespace beltsim {
+namespace {
+
+// a running state: the paper's drive after 50 ms
+const Scene& scene() {
+  static const Scene sc = build_scene(presets::paper_dry());
+  return sc;
+}
+
+Eigen::VectorXd running_state() {
+  BeltSystem sys(scene().model);
+  auto st = make_stepper("esdirk32");
+  DriveOptions o;
+  o.t_end = 0.05;
+  o.sample_dt = 0.05;
+  o.events = scene().model.breakpoints();
+  Eigen::VectorXd y = scene().y0;
+  drive(sys, *st, Tolerances{1e-5, -1}, o, y, [](double, const Eigen::VectorXd&) {});
+  return y;
+}
+
+void BM_Rhs(benchmark::State& state) {
+  const Eigen::VectorXd y = running_state();
+  Eigen::VectorXd dy(y.size());
+  for (auto _ : state) {
+    rhs(scene().model, 0.05, y.data(), dy.data());
+    benchmark::DoNotOptimize(dy.data());
+  }
+}
+BENCHMARK(BM_Rhs);
+
+void BM_Jacobian(benchmark::State& state) {
+  const Eigen::VectorXd y = running_state();
+  Jacobian J;
+  J.resize(scene().model);
+  for (auto _ : state) {
+    jacobian(scene().model, 0.05, y.data(), J);
+    benchmark::DoNotOptimize(J.K.diag.data());
+  }
+}
+BENCHMARK(BM_Jacobian);
+
+void BM_FactorAndSolve(benchmark::State& state) {
+  const Eigen::VectorXd y = running_state();
+  BeltSystem sys(scene().model);
+  sys.prepare_jacobian(0.05, y.data());
+  Eigen::VectorXd r = Eigen::VectorXd::Ones(y.size()), u(y.size());
+  for (auto _ : state) {
+    sys.factor(1e5);
+    sys.solve(r.data(), u.data());
+    benchmark::DoNotOptimize(u.data());
+  }
+}
+BENCHMARK(BM_FactorAndSolve);
+
+// wall time for the first 20 ms of the dry drive (from rest), per integrator
+void BM_Simulate20ms(benchmark::State& state, const char* method) {
+  for (auto _ : state) {
+    BeltSystem sys(scene().model);
+    auto st = make_stepper(method);
+    DriveOptions o;
+    o.t_end = 0.02;
+    o.sample_dt = 1e-3;
+    o.events = scene().model.breakpoints();
+    Eigen::VectorXd y = scene().y0;
+    const DriveResult r = drive(sys, *st, Tolerances{1e-5, -1}, o, y, [](double, const Eigen::VectorXd&) {});
+    state.counters["steps"] = static_cast<double>(r.work.steps);
+  }
+}
+BENCHMARK_CAPTURE(BM_Simulate20ms, esdirk32, "esdirk32")->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_Simulate20ms, ros34pw2, "ros34pw2")->Unit(benchmark::kMillisecond);
+
+}  // namespace
+}  // namespace beltsim
+
+BENCHMARK_MAIN();
