@@ -3,7 +3,6 @@
 #include <cmath>
 #include <sstream>
 
-#include "model/sparse.hpp"
 
 namespace beltsim {
 
@@ -32,14 +31,7 @@ void BeltSystem::time_derivative(double* f_t) const {
 
 bool BeltSystem::factor(double s) {
   s_ = s;
-  const int N = model_.n_coord();
-  assemble(model_, s * s, s, J_.C, J_.K, N, A_);
-  if (!analysed_) {
-    lu_.analyzePattern(A_);
-    analysed_ = true;
-  }
-  lu_.factorize(A_);
-  return lu_.info() == Eigen::Success;
+  return solver_.factor(model_, s * s, s, J_.C, J_.K);
 }
 
 void BeltSystem::solve(const double* r, double* u) {
@@ -49,7 +41,8 @@ void BeltSystem::solve(const double* r, double* u) {
   kr_.resize(N);
   J_.K.multiply(r, kr_.data());
   for (int k = 0; k < N; ++k) rhs_[k] = s * model_.mass_of(k) * r[N + k] + kr_[k];
-  uv_ = lu_.solve(rhs_);
+  uv_.resize(N);
+  solver_.solve(rhs_.data(), uv_.data());
   for (int k = 0; k < N; ++k) {
     u[N + k] = uv_[k];
     u[k] = (r[k] + uv_[k]) / s;

@@ -3,13 +3,10 @@
 // C = ∂f/∂v, M diagonal) the stage system (s·I - J)·[u_q; u_v] = [r_q; r_v] becomes
 //   (s²·M - s·C - K)·u_v = s·M·r_v + K·r_q,    u_q = (r_q + u_v)/s
 // and the energy quadratures (rows of J taken as zero, see rhs.hpp) give u_e = r_e/s.
-// A = s²·M - s·C - K keeps the ring-plus-pulleys pattern; it is factorised by sparse LU with the
-// pattern analysed once.
+// A = s²·M - s·C - K keeps the ring-plus-pulleys pattern; RingSolver factorises it in O(n).
 #pragma once
 
-#include <Eigen/SparseCore>
-#include <Eigen/SparseLU>
-
+#include "integrate/ring_solver.hpp"
 #include "integrate/system.hpp"
 #include "model/model.hpp"
 #include "model/rhs.hpp"
@@ -35,9 +32,7 @@ class BeltSystem final : public OdeSystem {
   const Model& model_;
   Jacobian J_;
   double s_ = 0;
-  Eigen::SparseMatrix<double> A_;
-  Eigen::SparseLU<Eigen::SparseMatrix<double>> lu_;
-  bool analysed_ = false;
+  RingSolver solver_;
   Eigen::VectorXd rhs_, kr_, uv_;
 };
 
