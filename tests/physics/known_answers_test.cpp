@@ -297,9 +297,8 @@ TEST(KnownAnswers, CentrifugalTensionUnloadsThePulleys) {
 // adds ≈ 20 % to the loss here). Driver held at 20 rad/s, driven loaded by 1.5 N·m·s/rad (30 N·m),
 // both starting at the belt's speed (2 m/s). The loss is averaged over the samples from 0.3 s to
 // 0.5 s, when the belt has run through the arcs and the start-up oscillation of the driven pulley
-// has decayed. Expected ≈ 0.049 rad/s, measured 0.047 (-3 %); bound 10 % (the remaining
-// oscillation; without the radial
-// part the model would be 17 % off, without creep at all 100 %).
+// has decayed. Expected 0.050 rad/s, measured 0.047 (-6 %); bound 10 % (the remaining
+// oscillation; against the elastic part alone the model is 17 % off, without creep 100 %).
 TEST(KnownAnswers, CreepSpeedLossMatchesTheTensionDifference) {
   SceneDef d = presets::paper_dry();
   const double w1 = 20.0, v = w1 * 0.1;
