@@ -114,6 +114,36 @@ TEST(LuaApi, UnknownIntegratorListsTheValidOnes) {
                {"unknown integrator 'euler'", "esdirk32"});
 }
 
+// A run that diverges stops with the time and the pulley involved, and the samples taken up to
+// the last sound step are on disk: a frictionless belt leaves the driver free to spin up under
+// 1e6 N·m (4e7 rad/s² on 0.025 kg·m²), past the runaway check (1e5 rad/s) after 2.5 ms; the
+// integrator's steps grow meanwhile, so the check fires at the end of the first step past that.
+TEST(LuaApi, DivergenceNamesTimeAndPulleyAndKeepsTheSamples) {
+  const std::string text =
+      "local s = beltsim.scene {\n"
+      "  pulleys = {\n"
+      "    { name = 'driver', centre = {0, 0}, radius = 0.1, torque = 1e6 },\n"
+      "    { name = 'driven', centre = {0.29, 0}, radius = 0.1 },\n"
+      "  },\n"
+      "  belt = { mu = 0 },\n"
+      "}\n"
+      "s:run{ t_end = 0.01, sample = 1e-4 }\n";
+  const std::string msg = run_text(text, "runaway.lua");
+  EXPECT_NE(msg.find("runaway.lua:8:"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("pulley 'driver' runs away"), std::string::npos) << msg;
+  const size_t at = msg.find("diverged at t = ");
+  ASSERT_NE(at, std::string::npos) << msg;
+  const double t_fail = std::strtod(msg.c_str() + at + 16, nullptr);
+  EXPECT_GT(t_fail, 2.5e-3);
+  EXPECT_LT(t_fail, 1e-2);
+  std::ifstream csv(temp_dir() / "out" / "timeseries.csv");
+  std::string line, last;
+  int rows = 0;
+  while (std::getline(csv, line)) rows++, last = line;
+  EXPECT_GE(rows, 1 + 2) << "the header and the samples before the failure";
+  EXPECT_LT(std::strtod(last.c_str(), nullptr), t_fail);
+}
+
 // The paper's dry script, cut to 0.1 s from the command-line overrides, writes the documented
 // columns at the fixed sample times. Its speeds: the drive starts as one rigid body
 // (I = 2·0.025 + belt 0.00116 kg·m²) under M = -70·t/0.3 and the resistance -0.955·Ω, which
