@@ -24,6 +24,8 @@ double sde_potential(const Model& m, const double* q);
 double sde_axial_force(const Model& m, const double* q, const double* v, int i);
 // gap vector d of SDE i (end A of element i minus end B of element i-1) [m]
 Vec2 sde_gap(const Model& m, const double* q, int i);
+// the SDE whose middle (between the centres of its two elements) is nearest a point
+int sde_nearest(const Model& m, const double* q, const Vec2& point);
 
 // torsional SDE (paper eq. 6), bending.cpp
 void bending_forces(const Model& m, const double* q, const double* v, double* f, double* e_rate);

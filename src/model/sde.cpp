@@ -17,6 +17,7 @@
 //
 // Potential k·|d|^(e+1)/(e+1); dissipated power c·|ḋ|².
 #include <cmath>
+#include <limits>
 
 #include "model/forces.hpp"
 
@@ -66,6 +67,19 @@ Vec2 spring(const Belt& b, const Vec2& d) {
 }  // namespace
 
 Vec2 sde_gap(const Model& m, const double* q, int i) { return make_pair(m, q, nullptr, i).d; }
+
+int sde_nearest(const Model& m, const double* q, const Vec2& point) {
+  const int n = m.belt.n;
+  int best = 0;
+  double bd = std::numeric_limits<double>::max();
+  for (int i = 0; i < n; ++i) {
+    const int a = (i + n - 1) % n;
+    const Vec2 c(0.5 * (q[3 * a] + q[3 * i]), 0.5 * (q[3 * a + 1] + q[3 * i + 1]));
+    const double d = (c - point).squaredNorm();
+    if (d < bd) bd = d, best = i;
+  }
+  return best;
+}
 
 double sde_axial_force(const Model& m, const double* q, const double* v, int i) {
   const Pair s = make_pair(m, q, v, i);

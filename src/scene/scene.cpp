@@ -160,20 +160,6 @@ double walk(const Route& path, int n, double h, double gap, std::vector<double>*
   return s_prev;
 }
 
-// the SDE whose gap is nearest a point
-int sde_nearest(const Model& m, const Eigen::VectorXd& y, const Vec2& point) {
-  const int n = m.n_el();
-  int best = 0;
-  double bdist = 1e300;
-  for (int i = 0; i < n; ++i) {
-    const int a = (i + n - 1) % n;
-    const Vec2 c = 0.5 * (Vec2(y[3 * a], y[3 * a + 1]) + Vec2(y[3 * i], y[3 * i + 1]));
-    const double dd = (c - point).squaredNorm();
-    if (dd < bdist) bdist = dd, best = i;
-  }
-  return best;
-}
-
 // Newton iterations on the elements' static equations; returns the final max |acceleration|
 double static_solve(const Model& m, Eigen::VectorXd& y) {
   const int ne = 3 * m.n_el();
@@ -367,7 +353,7 @@ Scene build_scene(const SceneDef& d) {
     sc.span_sde.clear();
     double tension = 0;
     for (const Route::Span& sp : sc.route.spans) {
-      const int i = sde_nearest(m, sc.y0, 0.5 * (sp.from + sp.to));
+      const int i = sde_nearest(m, sc.y0.data(), 0.5 * (sp.from + sp.to));
       sc.span_sde.push_back(i);
       tension += sde_axial_force(m, sc.y0.data(), sc.y0.data() + m.n_coord(), i);
     }

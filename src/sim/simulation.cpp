@@ -7,7 +7,6 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
-#include <limits>
 #include <sstream>
 
 #include "integrate/belt_system.hpp"
@@ -20,20 +19,6 @@
 namespace beltsim {
 
 namespace {
-
-// the SDE whose gap midpoint is nearest a point, in state y
-int sde_near(const Model& m, const double* q, const Vec2& point) {
-  const int n = m.n_el();
-  int best = 0;
-  double bd = std::numeric_limits<double>::max();
-  for (int i = 0; i < n; ++i) {
-    const int a = (i + n - 1) % n;
-    const Vec2 c(0.5 * (q[3 * a] + q[3 * i]), 0.5 * (q[3 * a + 1] + q[3 * i + 1]));
-    const double d = (c - point).squaredNorm();
-    if (d < bd) bd = d, best = i;
-  }
-  return best;
-}
 
 std::string span_name(const Scene& sc, size_t k) {
   return "span_" + sc.route_names[k] + "_" + sc.route_names[(k + 1) % sc.route_names.size()];
@@ -160,7 +145,7 @@ RunResult run(const Scene& sc, const RunSettings& rs, const std::atomic<bool>* s
       row.insert(row.end(), {m.omega(j, t, v), applied, belt, hub.norm()});
     }
     for (const Route::Span& sp : sc.route.spans)
-      row.push_back(sde_axial_force(m, q, v, sde_near(m, q, 0.5 * (sp.from + sp.to))));
+      row.push_back(sde_axial_force(m, q, v, sde_nearest(m, q, 0.5 * (sp.from + sp.to))));
     const ElementContact c = element_contact(m, t, q, v, rs.probe_element);
     row.insert(row.end(), {sde_axial_force(m, q, v, rs.probe_element), c.normal, c.friction, c.slip});
     if (m.track_energy) {

@@ -271,16 +271,8 @@ TEST(KnownAnswers, CentrifugalTensionUnloadsThePulleys) {
   const double* q = y.data();
   const double* vel = q + m.n_coord();
   double T = 0;
-  for (const Route::Span& sp : sc.route.spans) {
-    int best = 0;
-    double bd = 1e9;
-    for (int i = 0; i < m.n_el(); ++i) {
-      const int a = (i + m.n_el() - 1) % m.n_el();
-      const Vec2 c(0.5 * (q[3 * a] + q[3 * i]), 0.5 * (q[3 * a + 1] + q[3 * i + 1]));
-      if ((c - 0.5 * (sp.from + sp.to)).norm() < bd) bd = (c - 0.5 * (sp.from + sp.to)).norm(), best = i;
-    }
-    T += 0.5 * sde_axial_force(m, q, vel, best);
-  }
+  for (const Route::Span& sp : sc.route.spans)
+    T += 0.5 * sde_axial_force(m, q, vel, sde_nearest(m, q, 0.5 * (sp.from + sp.to)));
   for (int j = 0; j < m.n_p(); ++j) {
     Vec2 hub;
     belt_torque(m, s.t.back(), q, vel, j, &hub);
@@ -311,14 +303,7 @@ TEST(KnownAnswers, CreepSpeedLossMatchesTheTensionDifference) {
   const Model& m = sc.model;
   const auto s = simulate(m, rigid_motion(sc, v), 0.5, 0.005, "esdirk32", 1e-6);
   auto span_tension = [&](const Eigen::VectorXd& y, const Route::Span& sp) {
-    int best = 0;
-    double bd = 1e9;
-    for (int i = 0; i < m.n_el(); ++i) {
-      const int a = (i + m.n_el() - 1) % m.n_el();
-      const Vec2 c(0.5 * (y[3 * a] + y[3 * i]), 0.5 * (y[3 * a + 1] + y[3 * i + 1]));
-      if ((c - 0.5 * (sp.from + sp.to)).norm() < bd) bd = (c - 0.5 * (sp.from + sp.to)).norm(), best = i;
-    }
-    return sde_axial_force(m, y.data(), y.data() + m.n_coord(), best);
+    return sde_axial_force(m, y.data(), y.data() + m.n_coord(), sde_nearest(m, y.data(), 0.5 * (sp.from + sp.to)));
   };
   double loss = 0, T1 = 0, T2 = 0;
   int count = 0;
