@@ -58,13 +58,9 @@ int main(int argc, char** argv) {
   beltsim::script::Overrides o;
   for (int k = 2; k < argc; ++k) {
     const std::string a = argv[k];
-    auto value = [&](const char* flag) -> const char* {
-      if (k + 1 >= argc) return nullptr;
-      (void)flag;
-      return argv[++k];
-    };
+    auto value = [&]() -> const char* { return k + 1 < argc ? argv[++k] : nullptr; };
     if (a == "--out" || a == "--t-end" || a == "--integrator" || a == "--rtol") {
-      const char* v = value(a.c_str());
+      const char* v = value();
       if (!v) return usage((a + " needs a value").c_str());
       double x = 0;
       if (a == "--out") {

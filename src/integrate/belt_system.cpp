@@ -14,7 +14,7 @@ double BeltSystem::atol_scale(int k) const {
   if (k >= 2 * N) return 1.0;
   const bool vel = k >= N;
   const int c = vel ? k - N : k;
-  if (c >= ne) return vel ? 1.0 : 1.0;
+  if (c >= ne) return 1.0;  // pulley angle [rad], speed [rad/s]
   if (c % 3 == 2) return vel ? 10.0 : 1.0;
   return vel ? 1.0 : 0.1;
 }

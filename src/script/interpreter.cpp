@@ -1,7 +1,6 @@
 #include "script/interpreter.hpp"
 
 #include <filesystem>
-#include <memory>
 
 #include "script/context.hpp"
 #include "script/lua_api.hpp"

@@ -9,10 +9,8 @@
 #include "script/lua_api.hpp"
 
 #include <cmath>
-#include <map>
 #include <memory>
 #include <optional>
-#include <set>
 #include <sstream>
 #include <string>
 #include <vector>
