@@ -222,6 +222,87 @@ TEST(KnownAnswers, TransverseModesOfTheStiffSpanLieBetweenPinnedAndClamped) {
   }
 }
 
+// 4b. A moving span: the transverse modes of a string running at speed v drop to
+// f_n = (n/2L)·(c² - v²)/c, c = sqrt(T/ρ) (T the span tension at that speed). Both pulleys are held
+// at the speed of the belt; after 30 ms at speed the upper span is set vibrating in its first mode
+// and the belt's height at mid-span is followed for 40 ms, averaged over the time one pitch takes
+// to pass (the polygon of rigid elements running onto the pulleys shakes the span at that rate).
+// Measured against the same run at rest, so the ends' clamping and the bending stiffness, which
+// act alike at both speeds, drop out of the ratio f(v)/f(0) = [(c_v² - v²)/c_v]/c_0. The frequency
+// is read from zero crossings over ≈ 4–6 periods: ±2 %; bound 4 %.
+struct SpanVibration {
+  double f = 0, T = 0;
+};
+
+SpanVibration vibrate_span(double v) {
+  SceneDef d = presets::paper_dry();
+  d.gravity = 0;
+  for (PulleyDef& p : d.pulleys) {
+    p.torque = TimeSpeedLaw{};
+    p.kinematic = true;
+    p.speed.constant = -v / p.radius;
+  }
+  const Scene sc = build_scene(d);
+  const Model& m = sc.model;
+  const int N = m.n_coord();
+  Eigen::VectorXd y0 = v > 0 ? simulate(m, rigid_motion(sc, v), 0.03, 0.03, "esdirk32", 1e-6).y.back() : sc.y0;
+  for (int i = 0; i < m.n_el(); ++i) {  // first-mode velocity on the upper span
+    const double x = y0[3 * i];
+    if (y0[3 * i + 1] > 0.05 && x > 0 && x < 0.29) y0[N + 3 * i + 1] += 1.0 * std::sin(M_PI * x / 0.29);
+  }
+  const double dt = 1e-4;
+  const auto s = simulate(m, y0, 0.04, dt, "esdirk32", 1e-6);
+  std::vector<double> h;  // the belt's height at x = 0.145 on the upper span
+  double T = 0;
+  for (const Eigen::VectorXd& y : s.y) {
+    double best_l = -1e9, best_r = 1e9, yl = 0, yr = 0;
+    for (int i = 0; i < m.n_el(); ++i) {
+      if (y[3 * i + 1] < 0.05) continue;
+      const double dx = y[3 * i] - 0.145;
+      if (dx <= 0 && dx > best_l) best_l = dx, yl = y[3 * i + 1];
+      if (dx > 0 && dx < best_r) best_r = dx, yr = y[3 * i + 1];
+    }
+    h.push_back(yl + (yr - yl) * (-best_l) / (best_r - best_l));
+    T += sde_axial_force(m, y.data(), y.data() + N, sde_nearest(m, y.data(), Vec2(0.145, 0.1))) /
+         static_cast<double>(s.y.size());
+  }
+  const int window = v > 0 ? std::max(1, static_cast<int>(std::lround(m.belt.pitch / v / dt))) : 1;
+  std::vector<double> smooth, ts;
+  for (size_t k = 0; k + window <= h.size(); ++k) {
+    double a = 0;
+    for (int j = 0; j < window; ++j) a += h[k + j] / window;
+    smooth.push_back(a);
+    ts.push_back(s.t[k] + 0.5 * (window - 1) * dt);
+  }
+  double mean = 0;
+  for (double x : smooth) mean += x / static_cast<double>(smooth.size());
+  std::vector<double> crossings;
+  for (size_t k = 1; k < smooth.size(); ++k)
+    if ((smooth[k - 1] - mean) * (smooth[k] - mean) < 0)
+      crossings.push_back(ts[k - 1] + (ts[k] - ts[k - 1]) * (smooth[k - 1] - mean) / (smooth[k - 1] - smooth[k]));
+  SpanVibration out;
+  out.T = T;
+  if (crossings.size() >= 3)
+    out.f = 0.5 * static_cast<double>(crossings.size() - 1) / (crossings.back() - crossings.front());
+  return out;
+}
+
+// OPEN, so disabled (run it with --gtest_also_run_disabled_tests): measured f(v)/f(0) = 1.154
+// against 1.066 from the moving-string formula (1.209 with no transport correction at all), at
+// a mean mid-span tension of 732 N. Either the measurement (the mid-span height of a polygon of
+// rods that is itself shaken at the pitch rate) or the discrete model's transport of rod inertia
+// differs from the continuous string; not settled yet.
+TEST(KnownAnswers, DISABLED_MovingSpanVibratesSlower) {
+  const double v = 30.0, rho = 0.096;
+  const SpanVibration rest = vibrate_span(0.0), moving = vibrate_span(v);
+  ASSERT_GT(rest.f, 0.0);
+  ASSERT_GT(moving.f, 0.0);
+  const double c0 = std::sqrt(rest.T / rho), cv = std::sqrt(moving.T / rho);
+  const double expected = (cv * cv - v * v) / cv / c0;
+  EXPECT_NEAR(moving.f / rest.f, expected, 0.04 * expected)
+      << "f(0) = " << rest.f << " Hz at " << rest.T << " N, f(v) = " << moving.f << " Hz at " << moving.T << " N";
+}
+
 // ---- 5. capstan ---------------------------------------------------------------------------------
 // A belt over a pulley slips when T1/T2 > exp(μθ). With μ = 0.2, θ = π and T1 + T2 = 2·T0 the
 // two-pulley drive carries at most r·2·T0·(e^{μπ} - 1)/(e^{μπ} + 1) = 30.4 N·m. The driven pulley
