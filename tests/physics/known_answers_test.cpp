@@ -227,9 +227,9 @@ TEST(KnownAnswers, TransverseModesOfTheStiffSpanLieBetweenPinnedAndClamped) {
 // at the speed of the belt; after 30 ms at speed the upper span is set vibrating in its first mode
 // and the belt's height at mid-span is followed for 80 ms, averaged over the time one pitch takes
 // to pass (the polygon of rigid elements running onto the pulleys shakes the span at that rate).
-// Measured against the same run at rest, so the ends' clamping and the bending stiffness, which
-// act alike at both speeds, drop out of the ratio f(v)/f(0) = [(c_v² - v²)/c_v]/c_0. The frequency
-// is the peak of the windowed spectrum between 60 and 250 Hz (≈ 10 periods): ±1 %; bound 4 %.
+// Measured against the same run at rest, so the span's length and end conditions drop out of the
+// ratio f(v)/f(0) = [(c_v² - v²)/c_v]/c_0. The frequency is the peak of the windowed spectrum
+// between 60 and 250 Hz (≈ 10 periods).
 struct SpanVibration {
   double f = 0, T = 0;
 };
@@ -237,6 +237,9 @@ struct SpanVibration {
 SpanVibration vibrate_span(double v) {
   SceneDef d = presets::paper_dry();
   d.gravity = 0;
+  // the string of the formula: no bending stiffness, no bending damping (see the test's comment)
+  d.belt.EI = 1e-6;
+  d.belt.bending_damping = 0;
   for (PulleyDef& p : d.pulleys) {
     p.torque = TimeSpeedLaw{};
     p.kinematic = true;
@@ -294,22 +297,22 @@ SpanVibration vibrate_span(double v) {
   return out;
 }
 
-// OPEN, so disabled (run it with --gtest_also_run_disabled_tests): measured f(v)/f(0) = 1.146
-// (122.3 Hz at rest, 140.2 Hz at 30 m/s) against 1.067 from the moving-string formula (1.21 with
-// no transport correction at all), at a mean mid-span tension of 733 N; zero crossings gave the
-// same ratio, so it is not the frequency estimate. The formula fits if the span tension were
-// 820 N, or the transport speed 20 m/s. With gravity on the span tension at speed settles at
-// 547 N instead (!) and the ratio is 0.980 against 0.881: again as if the belt ran at ≈ 19 m/s,
-// i.e. only ≈ 42 % of the ρv² term acts. Either the measurement or the discrete model's transport
-// (rigid rods that turn as they pass) differs from the continuous string. Not settled.
-TEST(KnownAnswers, DISABLED_MovingSpanVibratesSlower) {
+// The formula is for a flexible string, so the belt here has EI → 1e-6 N·m² and no bending
+// damping: measured f(v)/f(0) = 0.8738 (126.8 Hz at rest, 110.8 Hz at 30 m/s, span tension 542 N)
+// against 0.8730; bound 1 % (the 0.1 Hz grid and the peak's width after ≈ 10 periods).
+// With the paper's belt the span vibrates faster than this formula says (ratio 1.146 against
+// 1.067, measured). Most likely the torsional dampers: a belt running through a bending wave turns
+// each element at v·w'', the dampers resist that with b_tor·l·v·w'''' per length, at 30 m/s an
+// extra bending stiffness of about 0.03 N·m², more than EI itself. Measured: without b_tor the gap
+// halves (1.122 against 1.078), without EI as well it closes (above).
+TEST(KnownAnswers, MovingSpanVibratesSlower) {
   const double v = 30.0, rho = 0.096;
   const SpanVibration rest = vibrate_span(0.0), moving = vibrate_span(v);
   ASSERT_GT(rest.f, 0.0);
   ASSERT_GT(moving.f, 0.0);
   const double c0 = std::sqrt(rest.T / rho), cv = std::sqrt(moving.T / rho);
   const double expected = (cv * cv - v * v) / cv / c0;
-  EXPECT_NEAR(moving.f / rest.f, expected, 0.04 * expected)
+  EXPECT_NEAR(moving.f / rest.f, expected, 0.01 * expected)
       << "f(0) = " << rest.f << " Hz at " << rest.T << " N, f(v) = " << moving.f << " Hz at " << moving.T << " N";
 }
 
