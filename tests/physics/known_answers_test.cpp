@@ -20,8 +20,18 @@ using testing::simulate;
 // The static solve is a Newton iteration run to |a| < 1e-9 m/s² or until it stalls at rounding;
 // the force scale of an element is T0/m ≈ 2.6e5 m/s², so 1e-6 of it (0.26 m/s²) is a bound that
 // only a broken initial state exceeds (the walk alone, without Newton, leaves ≈ 1e3 m/s²).
+std::vector<SceneDef> static_cases() {
+  std::vector<SceneDef> cases{presets::automotive_wet()};
+  for (int n : {60, 100, 150, 240}) {
+    SceneDef d = presets::paper_dry();
+    d.belt.elements = n;
+    cases.push_back(d);
+  }
+  return cases;
+}
+
 TEST(KnownAnswers, InitialStateIsStatic) {
-  for (const SceneDef& d : {presets::paper_dry(), presets::automotive_wet()}) {
+  for (const SceneDef& d : static_cases()) {
     const Scene sc = build_scene(d);
     const Model& m = sc.model;
     Eigen::VectorXd dy(m.n_state());
