@@ -346,10 +346,16 @@ Scene build_scene(const SceneDef& d) {
   for (int j = 0; j < m.n_p(); ++j)
     if (m.pulleys[j].kinematic) sc.y0[m.n_coord() + m.pulley_coord(j)] = m.pulleys[j].speed.eval(0.0, 0.0);
 
+  // the static state is found with every pulley at rest (a kinematic pulley's prescribed speed
+  // would drag the belt round while it is sought)
+  Model at_rest = m;
+  for (Pulley& p : at_rest.pulleys)
+    if (p.kinematic) p.speed = TimeSpeedLaw{};
   // static solve; then correct the rigid length until the spans carry the pretension (the
   // belt's bending stiffness lifts it off small pulleys, which changes the tension a little)
   for (int it = 0; it < 8; ++it) {
-    sc.static_residual = static_solve(m, sc.y0);
+    at_rest.belt = b;
+    sc.static_residual = static_solve(at_rest, sc.y0);
     sc.span_sde.clear();
     double tension = 0;
     for (const Route::Span& sp : sc.route.spans) {
@@ -364,6 +370,22 @@ Scene build_scene(const SceneDef& d) {
     const double g = std::pow(sc.static_tension / b.k, 1.0 / b.e_tra);
     b.rigid_length += error / (b.k * b.e_tra * std::pow(g, b.e_tra - 1.0));
     b.rot_inertia = b.mass * b.rigid_length * b.rigid_length / 12.0;
+  }
+  // the static iteration can go astray (seen for 120 elements on the paper's drive, where it
+  // carried the whole belt off the pulleys along a free mode): say so before anything is
+  // simulated rather than start from a belt that touches nothing
+  for (size_t k = 0; k < sc.route_pulleys.size(); ++k) {
+    const Pulley& p = m.pulleys[sc.route_pulleys[k]];
+    int touching = 0;
+    for (int i = 0; i < n; ++i)
+      touching += (Vec2(sc.y0[3 * i], sc.y0[3 * i + 1]) - p.centre).norm() < p.radius;
+    if (touching == 0) {
+      std::ostringstream msg;
+      msg << "belt.elements: could not find the belt's static initial state with " << n
+          << " elements (the iteration left pulley '" << p.name << "' untouched); a few elements more or "
+          << "fewer usually works";
+      throw ParameterError(msg.str());
+    }
   }
   return sc;
 }
