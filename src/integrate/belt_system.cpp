@@ -50,19 +50,6 @@ void BeltSystem::solve(const double* r, double* u) {
   for (int k = 2 * N; k < model_.n_state(); ++k) u[k] = r[k] / s;
 }
 
-void BeltSystem::apply_jacobian(const double* x, double* y) const {
-  // y_q = x_v, y_v = M^-1 (K x_q + C x_v), y_e = 0 (see rhs.hpp)
-  const int N = model_.n_coord();
-  Eigen::VectorXd a(N), b(N);
-  J_.K.multiply(x, a.data());
-  J_.C.multiply(x + N, b.data());
-  for (int k = 0; k < N; ++k) {
-    y[k] = x[N + k];
-    y[N + k] = (a[k] + b[k]) / model_.mass_of(k);
-  }
-  for (int k = 2 * N; k < model_.n_state(); ++k) y[k] = 0;
-}
-
 std::string BeltSystem::describe(int k) const {
   static const char* elem_q[] = {"x position", "y position", "angle"};
   static const char* elem_v[] = {"x velocity", "y velocity", "angular velocity"};

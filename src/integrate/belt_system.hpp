@@ -23,7 +23,6 @@ class BeltSystem final : public OdeSystem {
   void time_derivative(double* f_t) const override;
   bool factor(double s) override;
   void solve(const double* r, double* u) override;
-  void apply_jacobian(const double* x, double* y) const override;
   std::string describe(int k) const override;
   std::string check(double t, const double* y) const override;
   const Model& model() const { return model_; }

@@ -30,7 +30,6 @@ class OdeSystem {
   virtual void time_derivative(double* f_t) const;  // ∂F/∂t at the prepared point (default 0)
   virtual bool factor(double) { return false; }     // factor (s·I - J); false when singular
   virtual void solve(const double* r, double* u) { (void)r, (void)u; }  // u = (s·I - J)^-1 r
-  virtual void apply_jacobian(const double* x, double* y) const { (void)x, (void)y; }  // y = J·x
 
   // diagnostics: a name for component k ("element 12 y velocity") and a check of a state that
   // returns an empty string when it is sane, else what went wrong
