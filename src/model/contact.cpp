@@ -55,12 +55,11 @@ void contact_forces(const Model& m, double t, const double* q, const double* v, 
     const double omega = m.omega(j, t, v);
     double moment = 0;
     for (int i = 0; i < n; ++i) {
-      const Vec2 P(q[3 * i], q[3 * i + 1]);
+      const Vec2 P(q[3 * i], q[3 * i + 1]), V(v[3 * i], v[3 * i + 1]);
       NormalLaw nl;
-      if (!normal_law(m.contact, P, Vec2(v[3 * i], v[3 * i + 1]), pl.centre, pl.radius, nl)) continue;
+      if (!normal_law(m.contact, P, V, pl.centre, pl.radius, nl)) continue;
       if (e_rate) e_rate[kDissContact] += (nl.N - nl.N_el) * nl.pdot;
       if (!nl.pushing) continue;
-      const Vec2 V(v[3 * i], v[3 * i + 1]);
       const FrictionLaw fl = friction_law(m.mu[i], m.friction.dv, nl, V, omega);
       const Vec2 F = nl.N * nl.n - fl.mu_eff * nl.N * nl.t;
       f[3 * i] += F.x();
