@@ -3,6 +3,8 @@
 #include <cmath>
 #include <sstream>
 
+#include "model/forces.hpp"
+
 
 namespace beltsim {
 
@@ -17,6 +19,11 @@ double BeltSystem::atol_scale(int k) const {
   if (c >= ne) return 1.0;  // pulley angle [rad], speed [rad/s]
   if (c % 3 == 2) return vel ? 10.0 : 1.0;
   return vel ? 1.0 : 0.1;
+}
+
+bool BeltSystem::reseat(double t, double* z, const double* dz) {
+  const int N = model_.n_coord();
+  return friction_reseat(model_, t, z, z + N, dz, dz + N) > 0;
 }
 
 bool BeltSystem::prepare_jacobian(double t, const double* y) {

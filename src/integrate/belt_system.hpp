@@ -23,6 +23,7 @@ class BeltSystem final : public OdeSystem {
   void time_derivative(double* f_t) const override;
   bool factor(double s) override;
   void solve(const double* r, double* u) override;
+  bool reseat(double t, double* z, const double* dz) override;
   std::string describe(int k) const override;
   std::string check(double t, const double* y) const override;
   const Model& model() const { return model_; }

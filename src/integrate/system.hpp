@@ -31,6 +31,12 @@ class OdeSystem {
   virtual bool factor(double) { return false; }     // factor (s·I - J); false when singular
   virtual void solve(const double* r, double* u) { (void)r, (void)u; }  // u = (s·I - J)^-1 r
 
+  // Newton aid for piecewise-smooth right-hand sides: before the iterate z moves by the Newton
+  // correction dz, the system may move z itself onto the branch the correction would jump
+  // across (see friction_reseat). Returns true when it moved z; the iteration then starts again
+  // from the new z.
+  virtual bool reseat(double, double*, const double*) { return false; }
+
   // diagnostics: a name for component k ("element 12 y velocity") and a check of a state that
   // returns an empty string when it is sane, else what went wrong
   virtual std::string describe(int k) const { return "component " + std::to_string(k); }

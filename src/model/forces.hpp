@@ -47,6 +47,10 @@ struct ElementContact {
   int pulley = -1;        // index of the pulley touched (the deepest), -1 when free
 };
 ElementContact element_contact(const Model& m, double t, const double* q, const double* v, int i);
+// Newton aid for the friction band (see friction.cpp): for every element in contact that slips
+// at (q, v) and would slip the other way at (q + dq, v + dv), set its slip velocity to zero.
+// Returns the number of elements moved.
+int friction_reseat(const Model& m, double t, double* q, double* v, const double* dq, const double* dv);
 // belt torque on pulley j (moment of the friction reactions) [N·m] and hub load vector [N]
 double belt_torque(const Model& m, double t, const double* q, const double* v, int j, Vec2* hub_load);
 

@@ -14,6 +14,13 @@
 //   ∂M_T/∂V = r·(N·μ'·tᵀ + μ·∂N/∂V),     ∂M_T/∂Ω = -r²·N·μ'
 // Dissipated power μ(v_T)·N·v_T >= 0. In the linear zone the slope μ_i·N/(m·Δv) is the stiffest
 // eigenvalue of the whole model (≈ 5e9 1/s for the paper's drive, DESIGN §5).
+//
+// Newton across the band (friction_reseat): at a slipping iterate (|v_T| >= Δv) the friction
+// force is locally constant, so a Newton step cannot see the band; when the step would carry
+// v_T from one side of the band right across to the other, the solution is almost always
+// sticking (|v_T| < Δv). friction_reseat then puts the element back into the band (v_T = 0,
+// moving its velocity along t̂) before the next Newton step, which sees the band's slope and
+// lands on the sticking solution, or leaves the band again if the element truly slips.
 #include <algorithm>
 #include <cmath>
 
@@ -47,6 +54,33 @@ void friction_jacobian(const NormalLaw& nl, const FrictionLaw& fl, const Vec2& V
   J.dM_dP = mu * N * nl.n.transpose() + r * dmuN_dP;
   J.dM_dV = r * dmuN_dV;
   J.dM_dOmega = -r * r * N * fl.dmu;
+}
+
+int friction_reseat(const Model& m, double t, double* q, double* v, const double* dq, const double* dv) {
+  const double band = m.friction.dv;
+  int moved = 0;
+  for (int j = 0; j < m.n_p(); ++j) {
+    const Pulley& pl = m.pulleys[j];
+    const int pc = m.pulley_coord(j);
+    const double omega0 = m.omega(j, t, v);
+    const double omega1 = pl.kinematic ? omega0 : omega0 + dv[pc];
+    for (int i = 0; i < m.belt.n; ++i) {
+      const Vec2 P0(q[3 * i], q[3 * i + 1]), V0(v[3 * i], v[3 * i + 1]);
+      NormalLaw a;
+      if (!normal_law(m.contact, P0, V0, pl.centre, pl.radius, a) || !a.pushing) continue;
+      const double vt0 = V0.dot(a.t) - omega0 * a.r;
+      if (std::abs(vt0) < band) continue;
+      const Vec2 P1 = P0 + Vec2(dq[3 * i], dq[3 * i + 1]), V1 = V0 + Vec2(dv[3 * i], dv[3 * i + 1]);
+      NormalLaw b;
+      if (!normal_law(m.contact, P1, V1, pl.centre, pl.radius, b)) continue;
+      const double vt1 = V1.dot(b.t) - omega1 * b.r;
+      if (std::abs(vt1) < band || (vt1 > 0) == (vt0 > 0)) continue;
+      v[3 * i] -= vt0 * a.t.x();
+      v[3 * i + 1] -= vt0 * a.t.y();
+      ++moved;
+    }
+  }
+  return moved;
 }
 
 }  // namespace beltsim
