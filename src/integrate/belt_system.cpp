@@ -26,6 +26,10 @@ bool BeltSystem::reseat(double t, double* z, const double* dz) {
   return friction_reseat(model_, t, z, z + N, dz, dz + N) > 0;
 }
 
+uint64_t BeltSystem::branches(double t, const double* y) const {
+  return contact_branches(model_, t, y, y + model_.n_coord());
+}
+
 bool BeltSystem::prepare_jacobian(double t, const double* y) {
   jacobian(model_, t, y, J_);
   return true;

@@ -3,6 +3,7 @@
 // shifted matrix (s·I - J) and solves with it. Counters let the work-precision study report cost.
 #pragma once
 
+#include <cstdint>
 #include <string>
 
 namespace beltsim {
@@ -36,6 +37,10 @@ class OdeSystem {
   // across (see friction_reseat). Returns true when it moved z; the iteration then starts again
   // from the new z.
   virtual bool reseat(double, double*, const double*) { return false; }
+
+  // A hash of the smooth piece of a piecewise-smooth right-hand side that y lies on; 0 means
+  // unknown. Newton may reuse a Jacobian (and its factorisation) while the hash is unchanged.
+  virtual uint64_t branches(double, const double*) const { return 0; }
 
   // diagnostics: a name for component k ("element 12 y velocity") and a check of a state that
   // returns an empty string when it is sane, else what went wrong

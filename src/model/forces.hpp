@@ -4,6 +4,8 @@
 // ∂f/∂v to C; every law's derivation is at the top of its file.
 #pragma once
 
+#include <cstdint>
+
 #include "model/block_matrix.hpp"
 #include "model/model.hpp"
 
@@ -38,6 +40,10 @@ void contact_forces(const Model& m, double t, const double* q, const double* v, 
 void contact_jacobian(const Model& m, double t, const double* q, const double* v, BlockMatrix& K,
                       BlockMatrix& C, double* f_t);
 double contact_potential(const Model& m, const double* q);
+// a hash of the branch every element–pulley pair is on (out of contact, clamped, p < p_max,
+// sticking or slipping either way): two states with the same hash have the same smooth piece of
+// the contact and friction laws, so a Jacobian taken at one serves Newton at the other
+uint64_t contact_branches(const Model& m, double t, const double* q, const double* v);
 
 // what one element feels from the pulleys (sums over pulleys in contact)
 struct ElementContact {
