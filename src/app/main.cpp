@@ -1,5 +1,7 @@
 // beltsim command line.
 //   beltsim run SCRIPT [--out DIR] [--t-end T] [--integrator NAME] [--rtol R]
+//   beltsim wp  SCRIPT [--out DIR] [--t-end T] [--integrators A,B] [--rtols R1,R2] [--ref-rtol R]
+//                      [--wall-limit S]
 // The flags override what the script passes to scene:run{}. Exit status: 0 on success, 1 on a
 // script, parameter or run error (message on stderr, outputs written so far kept), 2 on bad
 // usage, 130 when stopped by Ctrl-C (outputs flushed).
@@ -9,8 +11,13 @@
 #include <cstring>
 #include <string>
 
+#include <filesystem>
+#include <sstream>
+#include <vector>
+
 #include "integrate/stepper.hpp"
 #include "script/interpreter.hpp"
+#include "sim/work_precision.hpp"
 
 namespace {
 
@@ -20,13 +27,21 @@ void on_sigint(int) { g_stop.store(true); }
 
 const char* kUsage =
     "usage: beltsim run SCRIPT [--out DIR] [--t-end T] [--integrator NAME] [--rtol R]\n"
+    "       beltsim wp  SCRIPT [--out DIR] [--t-end T] [--integrators A,B,..] [--rtols R1,R2,..]\n"
+    "                          [--ref-rtol R] [--wall-limit S]\n"
     "\n"
-    "Runs a Lua scenario script. The options override the script's run settings:\n"
+    "run: runs a Lua scenario script. The options override the script's run settings:\n"
     "  --out DIR          output folder (default: out/<script name>)\n"
     "  --t-end T          end time [s]\n"
     "  --integrator NAME  one of: %s\n"
     "  --rtol R           relative tolerance of the step-size control\n"
-    "Writes DIR/timeseries.csv (samples at fixed times) and DIR/parameters.csv.\n";
+    "Writes DIR/timeseries.csv (samples at fixed times) and DIR/parameters.csv.\n"
+    "\n"
+    "wp: error against run time. Runs the script's scene with every integrator (or those of\n"
+    "--integrators) at every tolerance of --rtols (default 1e-2,1e-3,1e-4,1e-5,1e-6), each\n"
+    "against a reference run of esdirk32 at --ref-rtol (default 1e-7); a run taking longer\n"
+    "than --wall-limit seconds (default 120) is stopped and recorded as unfinished.\n"
+    "Writes DIR/wp.csv and DIR/wp.png (default DIR: out/<script name>/wp).\n";
 
 int usage(const char* error) {
   std::string names;
@@ -52,10 +67,21 @@ int main(int argc, char** argv) {
     std::printf("beltsim 0.1.0\n");
     return 0;
   }
-  if (cmd != "run") return usage(("unknown command '" + cmd + "'").c_str());
-
+  if (cmd != "run" && cmd != "wp") return usage(("unknown command '" + cmd + "'").c_str());
   std::string script;
   beltsim::script::Overrides o;
+  beltsim::WpSettings wps;
+  auto number_list = [](const char* v, std::vector<double>& out) {
+    out.clear();
+    std::stringstream ss(v);
+    std::string item;
+    while (std::getline(ss, item, ',')) {
+      double x = 0;
+      if (!parse_number(item.c_str(), x) || !(x > 0 && x < 1)) return false;
+      out.push_back(x);
+    }
+    return !out.empty();
+  };
   for (int k = 2; k < argc; ++k) {
     const std::string a = argv[k];
     auto value = [&]() -> const char* { return k + 1 < argc ? argv[++k] : nullptr; };
@@ -75,6 +101,32 @@ int main(int argc, char** argv) {
       } else {
         if (!(x > 0 && x < 1)) return usage(("--rtol must be in (0, 1), got " + std::string(v)).c_str());
         o.rtol = x;
+      }
+    } else if (cmd == "wp" && (a == "--integrators" || a == "--rtols" || a == "--ref-rtol" || a == "--wall-limit")) {
+      const char* v = value();
+      if (!v) return usage((a + " needs a value").c_str());
+      double x = 0;
+      if (a == "--integrators") {
+        std::stringstream ss(v);
+        std::string item;
+        wps.integrators.clear();
+        while (std::getline(ss, item, ',')) wps.integrators.push_back(item);
+        for (const auto& n : wps.integrators) {
+          try {
+            beltsim::make_stepper(n);
+          } catch (const std::invalid_argument& e) {
+            return usage(e.what());
+          }
+        }
+      } else if (a == "--rtols") {
+        if (!number_list(v, wps.rtols)) return usage(("--rtols needs numbers in (0, 1) separated by commas, got '" + std::string(v) + "'").c_str());
+      } else if (!parse_number(v, x) || !(x > 0)) {
+        return usage((a + " needs a positive number, got '" + v + "'").c_str());
+      } else if (a == "--ref-rtol") {
+        if (!(x < 1)) return usage(("--ref-rtol must be in (0, 1), got " + std::string(v)).c_str());
+        wps.ref_rtol = x;
+      } else {
+        wps.wall_limit = x;
       }
     } else if (a == "--help" || a == "-h") {
       return usage(nullptr);
@@ -96,6 +148,25 @@ int main(int argc, char** argv) {
   }
 
   std::signal(SIGINT, on_sigint);
+  if (cmd == "wp") {
+    try {
+      beltsim::script::Captured cap;
+      beltsim::script::Interpreter lua;
+      if (o.t_end) lua.set_overrides({.out = {}, .t_end = o.t_end, .integrator = {}, .rtol = {}});
+      lua.set_capture(&cap);
+      lua.run_file(script);
+      if (!cap.scene) throw std::runtime_error(script + ": the script never calls scene:run{}");
+      wps.base = cap.settings;
+      wps.base.out_dir = o.out ? *o.out : (std::filesystem::path("out") / std::filesystem::path(script).stem() / "wp").string();
+      const beltsim::WpResult r = beltsim::work_precision(*cap.scene, wps, &g_stop);
+      std::fprintf(stderr, "beltsim wp: wrote %s%s%s\n", r.csv_path.c_str(), r.png_path.empty() ? "" : " and ",
+                   r.png_path.c_str());
+      return g_stop.load() ? 130 : 0;
+    } catch (const std::exception& e) {
+      std::fprintf(stderr, "beltsim: %s\n", e.what());
+      return 1;
+    }
+  }
   try {
     beltsim::script::Interpreter lua;
     lua.set_overrides(o);

@@ -13,6 +13,8 @@ struct Context {
   std::string default_out = "out";        // out/<script name> while a script runs
   const std::atomic<bool>* stop = nullptr;
   bool interrupted = false;
+  Captured* capture = nullptr;            // capture mode (see Interpreter::set_capture)
+  bool captured = false;                  // the script was ended by a capture
 };
 
 }  // namespace beltsim::script

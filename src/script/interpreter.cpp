@@ -39,15 +39,18 @@ Interpreter::~Interpreter() {
 
 void Interpreter::set_overrides(const Overrides& o) { context_of(L_)->overrides = o; }
 void Interpreter::set_stop_flag(const std::atomic<bool>* stop) { context_of(L_)->stop = stop; }
+void Interpreter::set_capture(Captured* c) { context_of(L_)->capture = c; }
 bool Interpreter::interrupted() const { return context_of(L_)->interrupted; }
 
 void Interpreter::run_file(const std::string& path) {
   Context* ctx = context_of(L_);
   ctx->default_out = (std::filesystem::path("out") / std::filesystem::path(path).stem()).string();
   ctx->interrupted = false;
+  ctx->captured = false;
   // text only: a precompiled chunk is never loaded
   int status = luaL_loadfilex(L_, path.c_str(), "t");
   if (status == LUA_OK) status = lua_pcall(L_, 0, 0, 0);
+  if (status != LUA_OK && ctx->captured) status = LUA_OK;  // ended on purpose by a capture
   if (status != LUA_OK) {
     // errors carry "file:line:" (chunks are named "@path"); a non-string error object is named
     std::string msg = lua_tostring(L_, -1) ? lua_tostring(L_, -1)

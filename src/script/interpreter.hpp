@@ -7,6 +7,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "sim/simulation.hpp"
+
 struct lua_State;
 
 namespace beltsim::script {
@@ -17,6 +19,12 @@ struct Overrides {
   std::optional<double> t_end;
   std::optional<std::string> integrator;
   std::optional<double> rtol;
+};
+
+// What a script asked of its first scene:run{} (for `beltsim wp`, which runs the scene itself).
+struct Captured {
+  std::optional<Scene> scene;
+  RunSettings settings;
 };
 
 // A script error, already in "file:line: message" form.
@@ -33,6 +41,8 @@ class Interpreter {
 
   void set_overrides(const Overrides& o);
   void set_stop_flag(const std::atomic<bool>* stop);
+  // capture mode: the first scene:run{} stores its scene and settings here and ends the script
+  void set_capture(Captured* c);
   // runs a scenario script (loaded as text only); throws ScriptError
   void run_file(const std::string& path);
   // true when a run inside the last script was stopped by the stop flag

@@ -451,6 +451,13 @@ int l_scene_run(lua_State* L) {
   if (o.t_end) rs.t_end = *o.t_end;
   if (o.integrator) rs.integrator = *o.integrator;
   if (o.rtol) rs.rtol = *o.rtol;
+  if (ctx->capture) {
+    ctx->capture->scene = *sc;
+    ctx->capture->settings = rs;
+    ctx->captured = true;
+    lua_pushliteral(L, "scene captured");
+    return lua_error(L);
+  }
 
   std::string error;
   RunResult res;

@@ -154,6 +154,7 @@ RunResult run(const Scene& sc, const RunSettings& rs, const std::atomic<bool>* s
                              e[kDissContact], e[kDissFriction]});
     }
     csv.row(row);
+    if (rs.keep_samples) res.samples.push_back(row);
   };
 
   // progress on stderr once the run has taken more than a second
@@ -162,10 +163,13 @@ RunResult run(const Scene& sc, const RunSettings& rs, const std::atomic<bool>* s
   auto last_report = start;
   const bool tty = isatty(STDERR_FILENO);
   bool reported = false;
+  std::atomic<bool> halt{false};
   auto progress = [&](double t, const WorkCounters& w) {
-    if (!rs.progress) return;
     const auto now = clock::now();
     const double elapsed = std::chrono::duration<double>(now - start).count();
+    if (stop && stop->load()) halt.store(true);
+    if (rs.wall_limit > 0 && elapsed > rs.wall_limit) halt.store(true), res.over_wall_limit = true;
+    if (!rs.progress) return;
     const double since = std::chrono::duration<double>(now - last_report).count();
     if (elapsed < 1.0 || since < (tty ? 0.5 : 10.0)) return;
     last_report = now;
@@ -180,12 +184,12 @@ RunResult run(const Scene& sc, const RunSettings& rs, const std::atomic<bool>* s
   opt.t_end = rs.t_end;
   opt.sample_dt = rs.sample_dt;
   opt.events = m.breakpoints();
-  opt.stop = stop;
+  opt.stop = &halt;
   Eigen::VectorXd y = sc.y0;
   try {
     const DriveResult dr = drive(sys, *stepper, Tolerances{rs.rtol, rs.atol}, opt, y, sample, progress);
     res.t_reached = dr.t_reached;
-    res.interrupted = dr.interrupted;
+    res.interrupted = dr.interrupted && !res.over_wall_limit;
     res.wall_seconds = dr.wall_seconds;
     res.work = dr.work;
   } catch (...) {

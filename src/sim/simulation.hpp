@@ -22,6 +22,8 @@ struct RunSettings {
   std::string out_dir = "out";
   int probe_element = 0;              // the paper's "selected" element; its SDE joins it to its predecessor
   bool progress = true;               // report on stderr for runs longer than a second
+  double wall_limit = 0;              // [s] stop the run after this much wall time (0: no limit)
+  bool keep_samples = false;          // keep the rows of timeseries.csv in RunResult::samples
 };
 
 struct RunResult {
@@ -31,6 +33,8 @@ struct RunResult {
   WorkCounters work;
   std::vector<double> omega;          // final pulley speeds [rad/s], in the model's order
   std::string csv_path, parameters_path;
+  bool over_wall_limit = false;       // stopped by RunSettings::wall_limit
+  std::vector<std::vector<double>> samples;  // with keep_samples: the CSV rows
 };
 
 // Writes DIR/timeseries.csv and DIR/parameters.csv. Throws DivergenceError (after flushing what
