@@ -111,8 +111,17 @@ DriveResult drive(OdeSystem& sys, Stepper& stepper, const Tolerances& tol, const
     t = t1;
     y.swap(y1);
     f0.swap(f1);
-    if (hits_event) next_event++;
     h = std::min(ctl.propose(h_used, e), h_max);
+    if (hits_event) {
+      next_event++;
+      if (opt.on_event && t < opt.t_end) {
+        // restart: a one-step method needs only F at the new start
+        opt.on_event(t, y);
+        sys.rhs(t, y.data(), f0.data());
+        sys.counters.rhs++;
+        h = std::min(h, h_used);
+      }
+    }
     cap *= 1.05;
     h = std::min(h, cap);
     if (progress) progress(t, sys.counters);

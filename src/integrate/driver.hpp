@@ -29,6 +29,9 @@ struct DriveOptions {
   std::vector<double> events;       // [s] times the stepper must land on exactly
   double h_max = 0;                 // [s] largest step (0: t_end - t0)
   const std::atomic<bool>* stop = nullptr;  // set from elsewhere (Ctrl-C) to end the run early
+  // called on landing at each event time, after that time's sample: it may change the system
+  // (a wetted stretch of belt) or the state; the stepper then restarts from there
+  std::function<void(double t, Eigen::VectorXd& y)> on_event;
 };
 
 struct DriveResult {

@@ -317,7 +317,7 @@ Scene build_scene(const SceneDef& d) {
   }
   // friction coefficient of each element, possibly from where it starts
   m.mu = bd.mu_per_element.empty() ? std::vector<double>(n, bd.mu) : bd.mu_per_element;
-  if (bd.mu_at) {
+  {
     ElementSite site;
     site.length = path.length;
     double acc = 0;
@@ -328,6 +328,7 @@ Scene build_scene(const SceneDef& d) {
       site.meets[sc.route_names[next]] = acc;
       acc += path.arcs[next].length();
     }
+    sc.sites.reserve(n);
     for (int i = 0; i < n; ++i) {
       site.index = i;
       site.centre = Vec2(sc.y0[3 * i], sc.y0[3 * i + 1]);
@@ -338,7 +339,12 @@ Scene build_scene(const SceneDef& d) {
         const bool on = a <= e ? (s[i] >= a && s[i] <= e) : (s[i] >= a || s[i] <= e);
         if (on) site.pulley = sc.route_names[k];
       }
-      const double mu = bd.mu_at(site);
+      sc.sites.push_back(site);
+    }
+  }
+  if (bd.mu_at) {
+    for (int i = 0; i < n; ++i) {
+      const double mu = bd.mu_at(sc.sites[i]);
       require_non_negative("belt.mu of element " + std::to_string(i), mu, "");
       m.mu[i] = mu;
     }

@@ -80,6 +80,7 @@ struct Scene {
   double static_tension = 0;       // mean SDE force on the spans after the static solve [N]
   double static_residual = 0;      // max |acceleration| of the initial state [m/s²]
   std::vector<int> span_sde;       // for each span, the SDE nearest its midpoint at t = 0
+  std::vector<ElementSite> sites; // where each element starts (as belt.mu functions see it)
   int find_pulley(const std::string& name) const;
   int element_nearest(const Vec2& point) const;
 };

@@ -422,7 +422,70 @@ int l_scene_element_near(lua_State* L) {
   return 1;
 }
 
-// scene:run{ t_end=, integrator=, rtol=, atol=, sample=, out=, probe=, progress= } -> result
+// run.events: { {t = 0.5, mu = 0.2, from = 0.3, to = 0.6}, {t = 0.8, mu = function(site) ... end} }
+// Each event sets μ at time t on the elements whose start position s (belt coordinate, m, as in
+// belt.mu functions) lies in [from, to] (wrapping round when from > to; the whole belt without
+// them); mu is a number or a function of the element's site.
+std::vector<MuEvent> read_events(lua_State* L, int idx, const Scene& sc) {
+  std::vector<MuEvent> out;
+  require_table(L, idx, "run.events");
+  const double length = sc.sites.empty() ? 0 : sc.sites[0].length;
+  for (lua_Integer k = 1;; ++k) {
+    if (lua_geti(L, idx, k) == LUA_TNIL) {
+      lua_pop(L, 1);
+      break;
+    }
+    const int e = lua_gettop(L);
+    const std::string what = "run.events[" + std::to_string(k) + "]";
+    require_table(L, e, what);
+    check_keys(L, e, what, {"t", "mu", "from", "to"});
+    MuEvent ev;
+    const auto t = opt_number(L, e, "t", what);
+    if (!t) fail(L, what + ".t: the event's time is missing");
+    if (!(*t > 0)) fail(L, what + ".t: must be > 0 (got " + std::to_string(*t) + " s)");
+    ev.t = *t;
+    const auto from = opt_number(L, e, "from", what), to = opt_number(L, e, "to", what);
+    if (from.has_value() != to.has_value()) fail(L, what + ": give both from and to (m along the belt), or neither");
+    for (const auto& [v, name] : {std::pair{from, "from"}, std::pair{to, "to"}})
+      if (v && !(*v >= 0 && *v <= length)) {
+        std::ostringstream m;
+        m << what << "." << name << ": must be in [0, " << length << "] m, the belt's length (got " << *v << " m)";
+        fail(L, m.str());
+      }
+    if (!field(L, e, "mu")) fail(L, what + ".mu: the new friction coefficient is missing");
+    const int mu_idx = lua_gettop(L);
+    if (!lua_isnumber(L, mu_idx) && !lua_isfunction(L, mu_idx))
+      fail(L, what + ".mu: number or function(site) expected, got " + type_name(L, mu_idx));
+    ev.mu.assign(sc.sites.size(), std::nan(""));
+    for (const ElementSite& site : sc.sites) {
+      if (from) {
+        const bool in = *from <= *to ? (site.s >= *from && site.s <= *to) : (site.s >= *from || site.s <= *to);
+        if (!in) continue;
+      }
+      double mu = 0;
+      if (lua_isfunction(L, mu_idx)) {
+        lua_pushvalue(L, mu_idx);
+        push_site(L, site);
+        lua_call(L, 1, 1);
+        mu = to_number(L, -1, what + ".mu(site) for element " + std::to_string(site.index));
+        lua_pop(L, 1);
+      } else {
+        mu = lua_tonumber(L, mu_idx);
+      }
+      if (!(mu >= 0 && std::isfinite(mu))) {
+        std::ostringstream m;
+        m << what << ".mu: must be >= 0 (got " << mu << " for element " << site.index << ")";
+        fail(L, m.str());
+      }
+      ev.mu[site.index] = mu;
+    }
+    lua_pop(L, 2);  // mu, the event table
+    out.push_back(std::move(ev));
+  }
+  return out;
+}
+
+// scene:run{ t_end=, integrator=, rtol=, atol=, sample=, out=, probe=, progress=, events= } -> result
 int l_scene_run(lua_State* L) {
   const Scene* sc = check_scene(L, 1);
   auto* ctx = static_cast<Context*>(lua_touserdata(L, lua_upvalueindex(1)));
@@ -430,7 +493,7 @@ int l_scene_run(lua_State* L) {
   rs.out_dir = ctx->default_out;
   if (!lua_isnoneornil(L, 2)) {
     require_table(L, 2, "run");
-    check_keys(L, 2, "run", {"t_end", "integrator", "rtol", "atol", "sample", "out", "probe", "progress"});
+    check_keys(L, 2, "run", {"t_end", "integrator", "rtol", "atol", "sample", "out", "probe", "progress", "events"});
     if (auto v = opt_number(L, 2, "t_end", "run")) rs.t_end = *v;
     if (auto v = opt_string(L, 2, "integrator", "run")) rs.integrator = *v;
     if (auto v = opt_number(L, 2, "rtol", "run")) rs.rtol = *v;
@@ -438,6 +501,10 @@ int l_scene_run(lua_State* L) {
     if (auto v = opt_number(L, 2, "sample", "run")) rs.sample_dt = *v;
     if (auto v = opt_string(L, 2, "out", "run")) rs.out_dir = *v;
     if (auto v = opt_bool(L, 2, "progress", "run")) rs.progress = *v;
+    if (field(L, 2, "events")) {
+      rs.mu_events = read_events(L, lua_gettop(L), *sc);
+      lua_pop(L, 1);
+    }
     if (field(L, 2, "probe")) {
       if (lua_istable(L, -1))
         rs.probe_element = sc->element_nearest(to_vec2(L, -1, "run.probe"));

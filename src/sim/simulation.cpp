@@ -113,10 +113,16 @@ std::vector<std::string> timeseries_columns(const Scene& sc) {
 }
 
 RunResult run(const Scene& sc, const RunSettings& rs, const std::atomic<bool>* stop) {
-  const Model& m = sc.model;
+  Model m = sc.model;  // a copy: events may change μ while running
   if (!(rs.t_end > 0)) throw std::invalid_argument("run: t_end must be > 0 (got " + std::to_string(rs.t_end) + " s)");
   if (!(rs.rtol > 0 && rs.rtol < 1)) throw std::invalid_argument("run: rtol must be in (0, 1)");
   if (!(rs.sample_dt > 0)) throw std::invalid_argument("run: sample interval must be > 0");
+  for (const MuEvent& ev : rs.mu_events) {
+    if (!(ev.t > 0 && ev.t < rs.t_end))
+      throw std::invalid_argument("run: an event time must be inside (0, t_end) (got " + std::to_string(ev.t) + " s)");
+    if (static_cast<int>(ev.mu.size()) != m.n_el())
+      throw std::invalid_argument("run: an event's μ needs one value per element");
+  }
   if (rs.probe_element < 0 || rs.probe_element >= m.n_el())
     throw std::invalid_argument("run: probe element must be in 0.." + std::to_string(m.n_el() - 1));
   auto stepper = make_stepper(rs.integrator);
@@ -184,6 +190,14 @@ RunResult run(const Scene& sc, const RunSettings& rs, const std::atomic<bool>* s
   opt.t_end = rs.t_end;
   opt.sample_dt = rs.sample_dt;
   opt.events = m.breakpoints();
+  for (const MuEvent& ev : rs.mu_events) opt.events.push_back(ev.t);
+  if (!rs.mu_events.empty())
+    opt.on_event = [&](double t, Eigen::VectorXd&) {
+      for (const MuEvent& ev : rs.mu_events)
+        if (std::abs(ev.t - t) <= 1e-12 * std::max(1.0, t))
+          for (int i = 0; i < m.n_el(); ++i)
+            if (!std::isnan(ev.mu[i])) m.mu[i] = ev.mu[i];
+    };
   opt.stop = &halt;
   Eigen::VectorXd y = sc.y0;
   try {

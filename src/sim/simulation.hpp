@@ -13,6 +13,13 @@
 
 namespace beltsim {
 
+// A change of the belt's friction coefficient at a known time (wetting, drying): the stepper
+// lands exactly on t and restarts there. mu holds one value per element; NaN keeps the old one.
+struct MuEvent {
+  double t = 0;              // [s]
+  std::vector<double> mu;
+};
+
 struct RunSettings {
   double t_end = 1.0;                 // [s]
   std::string integrator = "esdirk32";
@@ -24,6 +31,7 @@ struct RunSettings {
   bool progress = true;               // report on stderr for runs longer than a second
   double wall_limit = 0;              // [s] stop the run after this much wall time (0: no limit)
   bool keep_samples = false;          // keep the rows of timeseries.csv in RunResult::samples
+  std::vector<MuEvent> mu_events;     // in any order
 };
 
 struct RunResult {

@@ -78,7 +78,7 @@ bool plot(const WpResult& res, const std::vector<std::string>& integrators, cons
     << "set logscale xy\nset grid xtics ytics mxtics mytics lc rgb '#dddddd'\n"
     << "set format x '10^{%L}'\nset format y '10^{%L}'\n"
     << "set xlabel 'wall time per run [s]'\n"
-    << "set ylabel 'largest relative error in the pulley speeds'\n"
+    << "set ylabel 'largest relative error in the pulley speeds over the run'\n"
     << "set title \"" << title << "\" noenhanced\n"
     << "set key outside right top noenhanced\n"
     << "set datafile separator ','\n";
