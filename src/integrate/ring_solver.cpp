@@ -12,7 +12,7 @@ bool RingSolver::factor(const Model& m, double alpha, double beta, const BlockMa
     n_ = n, np_ = np, mb_ = mb;
     Dinv_.resize(nt), Lam_.resize(nt), U_.resize(nt);
     E_.resize(3 * nt, mb), F_.resize(mb, 3 * nt), Y_.resize(3 * nt, mb), G_.resize(mb, mb);
-    z_.resize(3 * nt), rb_.resize(mb);
+    z_.resize(3 * nt), rb_.resize(mb), xb_.resize(mb);
   }
   const Mat3 Mel = Eigen::Vector3d(m.belt.mass, m.belt.mass, m.belt.rot_inertia).asDiagonal();
   auto block = [&](const Mat3& c, const Mat3& k) -> Mat3 { return -beta * c - k; };
@@ -58,7 +58,8 @@ bool RingSolver::factor(const Model& m, double alpha, double beta, const BlockMa
   // Y = T⁻¹·E, S = G - F·Y
   Y_ = E_;
   for (int c = 0; c < mb; ++c) solve_T(Y_.col(c).data());
-  S_.compute(G_ - F_ * Y_);
+  G_.noalias() -= F_ * Y_;  // S = G - F·Y in place (no temporary)
+  S_.compute(G_);
   return std::isfinite(S_.matrixLU().norm()) && std::abs(S_.determinant()) > 0;
 }
 
@@ -77,9 +78,10 @@ void RingSolver::solve(const double* r, double* x) {
   for (int j = 0; j < np_; ++j) rb_[3 + j] = r[3 * n_ + j];
   for (int k = 0; k < 3 * nt; ++k) z_[k] = r[3 + k];
   solve_T(z_.data());
-  rb_ -= F_ * z_;
-  const Eigen::VectorXd xb = S_.solve(rb_);
-  z_ -= Y_ * xb;
+  rb_.noalias() -= F_ * z_;
+  xb_ = S_.solve(rb_);  // into a kept vector: the step loop allocates nothing
+  const Eigen::VectorXd& xb = xb_;
+  z_.noalias() -= Y_ * xb;
   for (int k = 0; k < 3; ++k) x[k] = xb[k];
   for (int k = 0; k < 3 * nt; ++k) x[3 + k] = z_[k];
   for (int j = 0; j < np_; ++j) x[3 * n_ + j] = xb[3 + j];

@@ -36,7 +36,7 @@ class RingSolver {
   Eigen::MatrixXd E_, F_, Y_;             // 3(n-1)×m, m×3(n-1), 3(n-1)×m
   Eigen::MatrixXd G_;
   Eigen::PartialPivLU<Eigen::MatrixXd> S_;
-  Eigen::VectorXd z_, rb_;
+  Eigen::VectorXd z_, rb_, xb_;
   void solve_T(double* z) const;          // in place: z = T⁻¹·z
 };
 

@@ -42,8 +42,10 @@ void BlockMatrix::multiply(const double* x, double* y) const {
                                   lower[i] * Eigen::Map<const Vec3>(x + 3 * im) +
                                   upper[i] * Eigen::Map<const Vec3>(x + 3 * ip);
   }
-  ye += elem_pulley * xp;
-  yp = pulley_elem * xe + pulley_pulley * xp;
+  // noalias: matrix-vector products straight into the output, no temporaries (no allocation)
+  ye.noalias() += elem_pulley * xp;
+  yp.noalias() = pulley_elem * xe;
+  yp.noalias() += pulley_pulley * xp;
 }
 
 Eigen::MatrixXd BlockMatrix::to_dense() const {
