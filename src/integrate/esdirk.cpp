@@ -22,14 +22,15 @@ namespace {
 
 class Esdirk final : public Stepper {
  public:
-  std::string name() const override { return "esdirk32"; }
-  int order() const override { return 3; }
-  int embedded_order() const override { return 2; }
+  explicit Esdirk(const EsdirkTableau& tab) : tab_(tab) {}
+  std::string name() const override { return tab_.name; }
+  int order() const override { return tab_.order; }
+  int embedded_order() const override { return tab_.embedded_order; }
   void attach(const StepController& ctl) override { ctl_ = &ctl; }
 
   bool step(OdeSystem& sys, double t, const Eigen::VectorXd& y, const Eigen::VectorXd& f0, double h,
             Eigen::VectorXd& y1, Eigen::VectorXd& err) override {
-    const EsdirkTableau& tab = esdirk32();
+    const EsdirkTableau& tab = tab_;
     const int n = static_cast<int>(y.size());
     const int s = tab.stages;
     const double sh = 1.0 / (h * tab.gamma);
@@ -136,6 +137,7 @@ class Esdirk final : public Stepper {
     return false;
   }
 
+  const EsdirkTableau& tab_;
   const StepController* ctl_ = nullptr;
   bool have_jac_ = false;  // a Jacobian taken in this step is factored (all stages share h·γ)
   uint64_t jac_sig_ = 0;   // the branches it was taken on
@@ -145,6 +147,7 @@ class Esdirk final : public Stepper {
 
 }  // namespace
 
-std::unique_ptr<Stepper> make_esdirk() { return std::make_unique<Esdirk>(); }
+std::unique_ptr<Stepper> make_esdirk() { return std::make_unique<Esdirk>(esdirk32()); }
+std::unique_ptr<Stepper> make_trbdf2() { return std::make_unique<Esdirk>(trbdf2()); }
 
 }  // namespace beltsim

@@ -1,3 +1,4 @@
+#include <cmath>
 #include "integrate/tableau.hpp"
 
 #include <Eigen/Dense>
@@ -54,6 +55,7 @@ const EsdirkTableau& esdirk32() {
   // 4 stages, order 3, embedded order 2, L-stable, stiffly accurate, stage order 2
   static const EsdirkTableau t = [] {
     EsdirkTableau e;
+    e.name = "esdirk32", e.order = 3, e.embedded_order = 2;
     const double g = 1767732205903.0 / 4055673282236.0;
     e.stages = 4;
     e.gamma = g;
@@ -66,6 +68,25 @@ const EsdirkTableau& esdirk32() {
     e.b_hat = {2756255671327.0 / 12835298489170.0, -10771552573575.0 / 22201958757719.0,
                9247589265047.0 / 10645013368117.0, 2193209047091.0 / 5459859503100.0};
     e.c = {0.0, 2 * g, 3.0 / 5.0, 1.0};
+    return e;
+  }();
+  return t;
+}
+
+const EsdirkTableau& trbdf2() {
+  // TR-BDF2 as an ESDIRK (Hosea & Shampine 1996): a trapezoidal stage to 2γ·h, then BDF2 to h.
+  // 3 stages of which 2 implicit, order 2, L-stable, stiffly accurate; the companion is of
+  // order 3 (the error estimate b - b̂ is that of the order-2 solution)
+  static const EsdirkTableau t = [] {
+    EsdirkTableau e;
+    e.name = "trbdf2", e.order = 2, e.embedded_order = 3;
+    const double g = 1 - std::sqrt(2.0) / 2, w = std::sqrt(2.0) / 4;
+    e.stages = 3;
+    e.gamma = g;
+    e.a = {{0, 0, 0}, {g, g, 0}, {w, w, g}};
+    e.b = e.a[2];
+    e.b_hat = {(1 - w) / 3, (3 * w + 1) / 3, g / 3};
+    e.c = {0.0, 2 * g, 1.0};
     return e;
   }();
   return t;

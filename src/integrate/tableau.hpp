@@ -1,6 +1,7 @@
 // Method coefficients, as data.
 #pragma once
 
+#include <string>
 #include <vector>
 
 namespace beltsim {
@@ -14,12 +15,15 @@ const ExplicitTableau& fehlberg45();
 // Singly diagonally implicit RK with an explicit first stage (ESDIRK), stiffly accurate:
 //   Y_1 = y,  Y_i = y + h·Σ_{j<i} a_ij·F(t + c_j·h, Y_j) + h·γ·F(t + c_i·h, Y_i),  y1 = Y_s
 struct EsdirkTableau {
+  std::string name;
+  int order = 0, embedded_order = 0;
   int stages = 0;
   double gamma = 0;
   std::vector<std::vector<double>> a;  // full rows, a[i][i] = γ for i >= 1
   std::vector<double> b, b_hat, c;
 };
 const EsdirkTableau& esdirk32();
+const EsdirkTableau& trbdf2();
 
 // Rosenbrock method in the form of Hairer & Wanner (IV.7.4):
 //   (I - h·γ·J)·k_i = h·F(t + α_i·h, y + Σ_j α_ij·k_j) + h·J·Σ_j γ_ij·k_j + γ_i·h²·F_t

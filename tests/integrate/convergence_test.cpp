@@ -83,6 +83,7 @@ void expect_order(const std::string& method, int order) {
 TEST(Convergence, Rkf45IsFourthOrder) { expect_order("rkf45", 4); }
 TEST(Convergence, Ros34pw2IsThirdOrder) { expect_order("ros34pw2", 3); }
 TEST(Convergence, Esdirk32IsThirdOrder) { expect_order("esdirk32", 3); }
+TEST(Convergence, Trbdf2IsSecondOrder) { expect_order("trbdf2", 2); }
 
 TEST(Convergence, UnknownIntegratorListsTheValidNames) {
   try {
