@@ -31,7 +31,9 @@ struct Pair {
   Eigen::Matrix<double, 2, 6> D;
 };
 
-Pair make_pair(const Model& m, const double* q, const double* v, int i) {
+// ea: the axis of element i-1 when the caller has it (loops over the SDEs in order pass the
+// previous pair's eb, which halves the sines and cosines)
+Pair make_pair(const Model& m, const double* q, const double* v, int i, const Vec2* ea = nullptr) {
   const int n = m.belt.n;
   Pair s;
   s.a = (i + n - 1) % n;
@@ -39,7 +41,7 @@ Pair make_pair(const Model& m, const double* q, const double* v, int i) {
   s.h = 0.5 * m.belt.rigid_length;
   const double* qa = q + 3 * s.a;
   const double* qb = q + 3 * s.b;
-  s.ea = axis(qa[2]);
+  s.ea = ea ? *ea : axis(qa[2]);
   s.eb = axis(qb[2]);
   s.d = Vec2(qb[0] - qa[0], qb[1] - qa[1]) - s.h * (s.ea + s.eb);
   s.D.setZero();
@@ -91,8 +93,10 @@ double sde_axial_force(const Model& m, const double* q, const double* v, int i) 
 
 void sde_forces(const Model& m, const double* q, const double* v, double* f, double* e_rate) {
   const Belt& b = m.belt;
+  Vec2 prev;
   for (int i = 0; i < b.n; ++i) {
-    const Pair s = make_pair(m, q, v, i);
+    const Pair s = make_pair(m, q, v, i, i > 0 ? &prev : nullptr);
+    prev = s.eb;
     const Vec2 F = spring(b, s.d) + b.c * s.dd;
     const Eigen::Matrix<double, 6, 1> Q = -s.D.transpose() * F;
     for (int k = 0; k < 3; ++k) {
@@ -105,8 +109,10 @@ void sde_forces(const Model& m, const double* q, const double* v, double* f, dou
 
 void sde_jacobian(const Model& m, const double* q, const double* v, BlockMatrix& K, BlockMatrix& C) {
   const Belt& b = m.belt;
+  Vec2 prev;
   for (int i = 0; i < b.n; ++i) {
-    const Pair s = make_pair(m, q, v, i);
+    const Pair s = make_pair(m, q, v, i, i > 0 ? &prev : nullptr);
+    prev = s.eb;
     Eigen::Matrix2d G = Eigen::Matrix2d::Identity();
     if (b.e_tra != 1.0) {
       const double r = s.d.norm();
@@ -118,14 +124,19 @@ void sde_jacobian(const Model& m, const double* q, const double* v, BlockMatrix&
       }
     }
     const Vec2 F = spring(b, s.d) + b.c * s.dd;
-    Eigen::Matrix<double, 2, 6> Ddot = Eigen::Matrix<double, 2, 6>::Zero();
-    Ddot.col(2) = s.h * v[3 * s.a + 2] * s.ea;
-    Ddot.col(5) = s.h * v[3 * s.b + 2] * s.eb;
-    Eigen::Matrix<double, 6, 6> Kl = -b.k * s.D.transpose() * G * s.D - b.c * s.D.transpose() * Ddot;
+    const Eigen::Matrix<double, 6, 6> DtD = s.D.transpose() * s.D;
+    Eigen::Matrix<double, 6, 6> Kl;
+    if (b.e_tra == 1.0)
+      Kl = -b.k * DtD;
+    else
+      Kl = -b.k * s.D.transpose() * G * s.D;
+    // -c·Dᵀ·Ḋ: Ḋ has only its two φ columns
+    Kl.col(2) -= (b.c * s.h * v[3 * s.a + 2]) * (s.D.transpose() * s.ea);
+    Kl.col(5) -= (b.c * s.h * v[3 * s.b + 2]) * (s.D.transpose() * s.eb);
     Kl(2, 2) -= s.h * s.ea.dot(F);
     Kl(5, 5) -= s.h * s.eb.dot(F);
     K.add_pair(s.a, s.b, Kl);
-    C.add_pair(s.a, s.b, -b.c * s.D.transpose() * s.D);
+    C.add_pair(s.a, s.b, -b.c * DtD);
   }
 }
 
