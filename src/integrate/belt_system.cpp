@@ -26,6 +26,11 @@ bool BeltSystem::reseat(double t, double* z, const double* dz) {
   return friction_reseat(model_, t, z, z + N, dz, dz + N) > 0;
 }
 
+bool BeltSystem::local_solve(double t, double s, double* z, const double* g) {
+  const int N = model_.n_coord();
+  return friction_local_solve(model_, t, s, z, z + N, g + N) > 0;
+}
+
 uint64_t BeltSystem::branches(double t, const double* y) const {
   return contact_branches(model_, t, y, y + model_.n_coord());
 }

@@ -24,6 +24,7 @@ class BeltSystem final : public OdeSystem {
   bool factor(double s) override;
   void solve(const double* r, double* u) override;
   bool reseat(double t, double* z, const double* dz) override;
+  bool local_solve(double t, double s, double* z, const double* g) override;
   uint64_t branches(double t, const double* y) const override;
   std::string describe(int k) const override;
   std::string check(double t, const double* y) const override;

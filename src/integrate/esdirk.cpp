@@ -73,7 +73,12 @@ class Esdirk final : public Stepper {
   // semi-smooth Newton on G(Z) = 0; Z_ holds the predictor. The Jacobian and its factorisation
   // are reused within the step while the iterate stays on the same smooth piece of the
   // right-hand side (OdeSystem::branches) and the corrections contract by kRate or better;
-  // otherwise they are refreshed at the current iterate. Two aids for the kinks:
+  // otherwise they are refreshed at the current iterate. Three aids for the kinks:
+  // - after every correction the system solves its stiffest local equations exactly
+  //   (OdeSystem::local_solve: each element's tangential velocity against the friction band,
+  //   everything else held). This settles every element on its stick or slip branch before the
+  //   next Jacobian is taken: on the paper's dry second at rtol 1e-3 it cut the Jacobians from
+  //   55 600 to 19 900 and the wall time from 1.74 s to 0.75 s, at the same answer (6e-5).
   // - the system may reseat the iterate onto the branch a correction would jump across
   //   (OdeSystem::reseat: elements that would slip right across the friction band are put
   //   into it). On the paper's drive this cut the steps of the first 0.3 s from 13 380 to 4 350.
@@ -132,6 +137,7 @@ class Esdirk final : public Stepper {
       Fz_.swap(Ft_);
       G_.swap(Gt_);
       r = rt;
+      if (sys.local_solve(t, s, Z_.data(), G_.data())) r = residual(sys, t, s, Z_, Fz_, G_);
       if (lambda < 1.0 / 64) return false;  // no descent: give up, the step will be shortened
     }
     return false;

@@ -37,6 +37,9 @@ class OdeSystem {
   // across (see friction_reseat). Returns true when it moved z; the iteration then starts again
   // from the new z.
   virtual bool reseat(double, double*, const double*) { return false; }
+  // Newton aid: with G the stage residual Z - ψ - F(t, Z)/s at z, move z so that the stiffest
+  // local equations hold (true when z moved)
+  virtual bool local_solve(double, double, double*, const double*) { return false; }
 
   // A hash of the smooth piece of a piecewise-smooth right-hand side that y lies on; 0 means
   // unknown. Newton may reuse a Jacobian (and its factorisation) while the hash is unchanged.

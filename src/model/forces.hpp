@@ -57,6 +57,10 @@ ElementContact element_contact(const Model& m, double t, const double* q, const 
 // at (q, v) and would slip the other way at (q + dq, v + dv), set its slip velocity to zero.
 // Returns the number of elements moved.
 int friction_reseat(const Model& m, double t, double* q, double* v, const double* dq, const double* dv);
+// Newton aid (see friction.cpp): g is the stage residual's velocity part (m/s) at (q, v); each
+// element in contact gets the tangential velocity change that zeroes its own tangential residual
+// with everything else held (an exact piecewise-linear solve). Returns the number moved.
+int friction_local_solve(const Model& m, double t, double s, double* q, double* v, const double* g);
 // belt torque on pulley j (moment of the friction reactions) [N·m] and hub load vector [N]
 double belt_torque(const Model& m, double t, const double* q, const double* v, int j, Vec2* hub_load);
 
