@@ -23,7 +23,7 @@ struct MuEvent {
 struct RunSettings {
   double t_end = 1.0;                 // [s]
   std::string integrator = "esdirk32";
-  double rtol = 1e-5;                 // relative tolerance of the error control
+  double rtol = 1e-4;                 // relative tolerance of the error control
   double atol = -1;                   // absolute, per natural unit of each component; < 0: = rtol
   double sample_dt = 1e-3;            // [s] interval of the time-series samples
   std::string out_dir = "out";
