@@ -169,7 +169,8 @@ WpResult work_precision(const Scene& sc, const WpSettings& ws, const std::atomic
   std::ostringstream title;
   title << "error against run time: " << sc.model.n_el() << " elements, t_end = " << ws.base.t_end
         << " s, reference " << ws.ref_integrator << " at rtol " << tol_name(ws.ref_rtol);
-  if (plot(res, names, title.str(), png)) res.png_path = png;
+  const bool any = std::any_of(res.rows.begin(), res.rows.end(), [](const WpRow& r) { return r.finished; });
+  if (any && plot(res, names, title.str(), png)) res.png_path = png;
   return res;
 }
 

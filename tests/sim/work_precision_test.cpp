@@ -1,0 +1,78 @@
+// `beltsim wp`: the study runs every integrator and tolerance against one reference, records
+// the work, and its errors shrink as the tolerance tightens; a run over its wall-time limit is
+// recorded as unfinished; the CSV and the PNG are written.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include "scene/presets.hpp"
+#include "sim/work_precision.hpp"
+
+namespace beltsim {
+namespace {
+
+namespace fs = std::filesystem;
+
+fs::path out_dir(const char* name) {
+  return fs::temp_directory_path() / ("beltsim_wp_test_" + std::to_string(::getpid())) / name;
+}
+
+// The first 0.1 s of the dry drive. esdirk32 is third order, so a hundredfold tighter tolerance
+// must cut the error by far more than 2x (measured: 1e-2 → 1e-4 cuts the speed error 10x); the
+// bound 2x leaves room for the error control's irregularity.
+TEST(WorkPrecision, ErrorsShrinkWithTheToleranceAndFilesAreWritten) {
+  const Scene sc = build_scene(presets::paper_dry());
+  WpSettings ws;
+  ws.integrators = {"esdirk32", "trbdf2"};
+  ws.rtols = {1e-2, 1e-4};
+  ws.ref_rtol = 1e-7;
+  ws.base.t_end = 0.1;
+  ws.base.out_dir = out_dir("study").string();
+  const WpResult r = work_precision(sc, ws);
+  ASSERT_EQ(r.rows.size(), 4u);
+  EXPECT_TRUE(r.reference.finished);
+  for (const WpRow& row : r.rows) {
+    EXPECT_TRUE(row.finished) << row.integrator << " " << row.rtol;
+    EXPECT_GT(row.work.steps, 0);
+    EXPECT_GT(row.work.jacobians, 0);
+    EXPECT_GT(row.err_speed, 0);  // not the reference itself
+    EXPECT_LT(row.err_speed, 0.5);  // a run that went wrong is off by the order of the speed itself
+  }
+  EXPECT_LT(2 * r.rows[1].err_speed, r.rows[0].err_speed);  // esdirk32 1e-4 against 1e-2
+  EXPECT_LT(2 * r.rows[3].err_speed, r.rows[2].err_speed);  // trbdf2
+  // the CSV: a header and one line per run plus the reference
+  std::ifstream csv(r.csv_path);
+  std::string line;
+  std::getline(csv, line);
+  EXPECT_EQ(line.rfind("integrator,rtol,finished,t_reached_s,wall_s,steps,rejected,rhs,jacobians", 0), 0u);
+  int lines = 0;
+  while (std::getline(csv, line)) ++lines;
+  EXPECT_EQ(lines, 5);
+  // the plot is a PNG (gnuplot is in the package list)
+  ASSERT_FALSE(r.png_path.empty());
+  std::ifstream png(r.png_path, std::ios::binary);
+  char magic[8] = {};
+  png.read(magic, 8);
+  EXPECT_EQ(std::string(magic + 1, 3), "PNG");
+}
+
+TEST(WorkPrecision, ARunOverItsWallLimitIsUnfinished) {
+  const Scene sc = build_scene(presets::paper_dry());
+  WpSettings ws;
+  ws.integrators = {"rkf45"};  // explicit: ~1e-9 s steps, cannot do 20 ms in 0.2 s
+  ws.rtols = {1e-3};
+  ws.ref_rtol = 1e-5;
+  ws.wall_limit = 0.2;
+  ws.base.t_end = 0.02;
+  ws.base.out_dir = out_dir("limit").string();
+  const WpResult r = work_precision(sc, ws);
+  ASSERT_EQ(r.rows.size(), 1u);
+  EXPECT_FALSE(r.rows[0].finished);
+  EXPECT_LT(r.rows[0].t_reached, 0.02);
+  EXPECT_LT(r.rows[0].wall, 5.0);
+}
+
+}  // namespace
+}  // namespace beltsim
