@@ -45,7 +45,7 @@ const char* kUsage =
 
 int usage(const char* error) {
   std::string names;
-  for (const auto& n : beltsim::stepper_names()) names += (names.empty() ? "" : ", ") + n;
+  for (const auto& n : beltsim::integrator_names()) names += (names.empty() ? "" : ", ") + n;
   if (error) std::fprintf(stderr, "beltsim: %s\n", error);
   std::fprintf(error ? stderr : stdout, kUsage, names.c_str());
   return error ? 2 : 0;
@@ -113,7 +113,7 @@ int main(int argc, char** argv) {
         while (std::getline(ss, item, ',')) wps.integrators.push_back(item);
         for (const auto& n : wps.integrators) {
           try {
-            beltsim::make_stepper(n);
+            beltsim::check_integrator(n);
           } catch (const std::invalid_argument& e) {
             return usage(e.what());
           }
@@ -141,7 +141,7 @@ int main(int argc, char** argv) {
   if (script.empty()) return usage("no script given");
   if (o.integrator) {
     try {
-      beltsim::make_stepper(*o.integrator);
+      beltsim::check_integrator(*o.integrator);
     } catch (const std::invalid_argument& e) {
       return usage(e.what());
     }

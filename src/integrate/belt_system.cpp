@@ -4,6 +4,7 @@
 #include <sstream>
 
 #include "model/forces.hpp"
+#include "model/sparse.hpp"
 
 
 namespace beltsim {
@@ -43,6 +44,12 @@ bool BeltSystem::prepare_jacobian(double t, const double* y) {
 void BeltSystem::time_derivative(double* f_t) const {
   const int N = model_.n_coord();
   for (int k = 0; k < N; ++k) f_t[N + k] = J_.f_t[k] / model_.mass_of(k);
+}
+
+bool BeltSystem::sparse_jacobian(double t, const double* y, Eigen::SparseMatrix<double>& J) {
+  jacobian(model_, t, y, J_);
+  assemble_ode_jacobian(model_, J_.K, J_.C, J);
+  return true;
 }
 
 bool BeltSystem::factor(double s) {

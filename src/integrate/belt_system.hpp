@@ -22,6 +22,7 @@ class BeltSystem final : public OdeSystem {
   bool prepare_jacobian(double t, const double* y) override;
   void time_derivative(double* f_t) const override;
   bool factor(double s) override;
+  bool sparse_jacobian(double t, const double* y, Eigen::SparseMatrix<double>& J) override;
   void solve(const double* r, double* u) override;
   bool reseat(double t, double* z, const double* dz) override;
   bool local_solve(double t, double s, double* z, const double* g) override;

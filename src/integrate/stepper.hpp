@@ -34,5 +34,9 @@ class Stepper {
 // Rang & Angermann 2005); throws std::invalid_argument listing the valid names otherwise
 std::unique_ptr<Stepper> make_stepper(const std::string& name);
 std::vector<std::string> stepper_names();
+// every integrator a run accepts: the steppers and the CVODE peers ("cvode", "cvode-fd",
+// integrate/cvode.hpp); check_integrator throws std::invalid_argument listing them
+std::vector<std::string> integrator_names();
+void check_integrator(const std::string& name);
 
 }  // namespace beltsim

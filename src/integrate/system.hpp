@@ -6,6 +6,8 @@
 #include <cstdint>
 #include <string>
 
+#include <Eigen/SparseCore>
+
 namespace beltsim {
 
 struct WorkCounters {
@@ -31,6 +33,9 @@ class OdeSystem {
   virtual void time_derivative(double* f_t) const;  // ∂F/∂t at the prepared point (default 0)
   virtual bool factor(double) { return false; }     // factor (s·I - J); false when singular
   virtual void solve(const double* r, double* u) { (void)r, (void)u; }  // u = (s·I - J)^-1 r
+  // the full J = ∂F/∂y as a sparse matrix with the same pattern every call (for the CVODE
+  // peer's sparse direct solver); false when the system has none
+  virtual bool sparse_jacobian(double, const double*, Eigen::SparseMatrix<double>&) { return false; }
 
   // Newton aid for piecewise-smooth right-hand sides: before the iterate z moves by the Newton
   // correction dz, the system may move z itself onto the branch the correction would jump

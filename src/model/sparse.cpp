@@ -34,4 +34,45 @@ void assemble(const Model& m, double alpha, double beta, const BlockMatrix& C, c
   A.setFromTriplets(t.begin(), t.end());
 }
 
+void assemble_ode_jacobian(const Model& m, const BlockMatrix& K, const BlockMatrix& C, Eigen::SparseMatrix<double>& J) {
+  const int n = m.n_el(), np = m.n_p(), ne = 3 * n, N = m.n_coord(), S = m.n_state();
+  std::vector<Eigen::Triplet<double>> t;
+  t.reserve(2 * 27 * n + 4 * ne * np + 2 * np * np + 2 * S);
+  for (int k = 0; k < S; ++k) t.emplace_back(k, k, 0.0);
+  for (int k = 0; k < N; ++k) {
+    const bool prescribed = k >= ne && m.pulleys[k - ne].kinematic;
+    if (!prescribed) t.emplace_back(k, N + k, 1.0);
+  }
+  auto block = [&](int bi, int bj, const Mat3& c, const Mat3& k) {
+    for (int r = 0; r < 3; ++r) {
+      const double inv_m = 1.0 / m.mass_of(3 * bi + r);
+      for (int s = 0; s < 3; ++s) {
+        t.emplace_back(N + 3 * bi + r, 3 * bj + s, k(r, s) * inv_m);
+        t.emplace_back(N + 3 * bi + r, N + 3 * bj + s, c(r, s) * inv_m);
+      }
+    }
+  };
+  for (int i = 0; i < n; ++i) {
+    block(i, i, C.diag[i], K.diag[i]);
+    block(i, (i + n - 1) % n, C.lower[i], K.lower[i]);
+    block(i, (i + 1) % n, C.upper[i], K.upper[i]);
+  }
+  for (int j = 0; j < np; ++j) {
+    const double inv_p = 1.0 / m.mass_of(ne + j);
+    for (int k = 0; k < ne; ++k) {
+      const double inv_m = 1.0 / m.mass_of(k);
+      t.emplace_back(N + k, ne + j, K.elem_pulley(k, j) * inv_m);
+      t.emplace_back(N + k, N + ne + j, C.elem_pulley(k, j) * inv_m);
+      t.emplace_back(N + ne + j, k, K.pulley_elem(j, k) * inv_p);
+      t.emplace_back(N + ne + j, N + k, C.pulley_elem(j, k) * inv_p);
+    }
+    for (int l = 0; l < np; ++l) {
+      t.emplace_back(N + ne + j, ne + l, K.pulley_pulley(j, l) * inv_p);
+      t.emplace_back(N + ne + j, N + ne + l, C.pulley_pulley(j, l) * inv_p);
+    }
+  }
+  J.resize(S, S);
+  J.setFromTriplets(t.begin(), t.end());
+}
+
 }  // namespace beltsim

@@ -587,7 +587,7 @@ int l_ramp(lua_State* L) {
 int l_integrators(lua_State* L) {
   lua_newtable(L);
   int k = 1;
-  for (const auto& n : stepper_names()) lua_pushstring(L, n.c_str()), lua_rawseti(L, -2, k++);
+  for (const auto& n : integrator_names()) lua_pushstring(L, n.c_str()), lua_rawseti(L, -2, k++);
   return 1;
 }
 

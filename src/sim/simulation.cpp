@@ -10,6 +10,7 @@
 #include <sstream>
 
 #include "integrate/belt_system.hpp"
+#include "integrate/cvode.hpp"
 #include "integrate/driver.hpp"
 #include "integrate/stepper.hpp"
 #include "io/csv_writer.hpp"
@@ -125,7 +126,9 @@ RunResult run(const Scene& sc, const RunSettings& rs, const std::atomic<bool>* s
   }
   if (rs.probe_element < 0 || rs.probe_element >= m.n_el())
     throw std::invalid_argument("run: probe element must be in 0.." + std::to_string(m.n_el() - 1));
-  auto stepper = make_stepper(rs.integrator);
+  check_integrator(rs.integrator);
+  const bool peer = is_cvode(rs.integrator);
+  auto stepper = peer ? nullptr : make_stepper(rs.integrator);
 
   std::filesystem::create_directories(rs.out_dir);
   RunResult res;
@@ -201,7 +204,9 @@ RunResult run(const Scene& sc, const RunSettings& rs, const std::atomic<bool>* s
   opt.stop = &halt;
   Eigen::VectorXd y = sc.y0;
   try {
-    const DriveResult dr = drive(sys, *stepper, Tolerances{rs.rtol, rs.atol}, opt, y, sample, progress);
+    const Tolerances tol{rs.rtol, rs.atol};
+    const DriveResult dr = peer ? drive_cvode(sys, rs.integrator, tol, opt, y, sample, progress)
+                                : drive(sys, *stepper, tol, opt, y, sample, progress);
     res.t_reached = dr.t_reached;
     res.interrupted = dr.interrupted && !res.over_wall_limit;
     res.wall_seconds = dr.wall_seconds;

@@ -109,8 +109,8 @@ bool plot(const WpResult& res, const std::vector<std::string>& integrators, cons
 }  // namespace
 
 WpResult work_precision(const Scene& sc, const WpSettings& ws, const std::atomic<bool>* stop) {
-  std::vector<std::string> names = ws.integrators.empty() ? stepper_names() : ws.integrators;
-  for (const std::string& n : names) make_stepper(n);  // unknown names fail before anything runs
+  std::vector<std::string> names = ws.integrators.empty() ? integrator_names() : ws.integrators;
+  for (const std::string& n : names) check_integrator(n);  // unknown names fail before anything runs
   fs::create_directories(ws.base.out_dir);
   WpResult res;
   res.csv_path = (fs::path(ws.base.out_dir) / "wp.csv").string();
