@@ -1,5 +1,5 @@
 // beltsim command line.
-//   beltsim run SCRIPT [--out DIR] [--t-end T] [--integrator NAME] [--rtol R]
+//   beltsim run SCRIPT [--out DIR] [--t-end T] [--integrator NAME] [--rtol R] [--no-frames]
 // The flags override what the script passes to scene:run{}. Exit status: 0 on success, 1 on a
 // script, parameter or run error (message on stderr, outputs written so far kept), 2 on bad
 // usage, 130 when stopped by Ctrl-C (outputs flushed).
@@ -19,14 +19,16 @@ std::atomic<bool> g_stop{false};
 void on_sigint(int) { g_stop.store(true); }
 
 const char* kUsage =
-    "usage: beltsim run SCRIPT [--out DIR] [--t-end T] [--integrator NAME] [--rtol R]\n"
+    "usage: beltsim run SCRIPT [--out DIR] [--t-end T] [--integrator NAME] [--rtol R] [--no-frames]\n"
     "\n"
     "Runs a Lua scenario script. The options override the script's run settings:\n"
     "  --out DIR          output folder (default: out/<script name>)\n"
     "  --t-end T          end time [s]\n"
     "  --integrator NAME  one of: %s\n"
     "  --rtol R           relative tolerance of the step-size control\n"
-    "Writes DIR/timeseries.csv (samples at fixed times) and DIR/parameters.csv.\n";
+    "  --no-frames        render no frames and no video, whatever the script asks\n"
+    "Writes DIR/timeseries.csv (samples at fixed times) and DIR/parameters.csv, and the\n"
+    "frames (PNG) and video (MP4) a script asks for with scene:run{ frames = {...} }.\n";
 
 int usage(const char* error) {
   std::string names;
@@ -76,6 +78,8 @@ int main(int argc, char** argv) {
         if (!(x > 0 && x < 1)) return usage(("--rtol must be in (0, 1), got " + std::string(v)).c_str());
         o.rtol = x;
       }
+    } else if (a == "--no-frames") {
+      o.no_frames = true;
     } else if (a == "--help" || a == "-h") {
       return usage(nullptr);
     } else if (!a.empty() && a[0] == '-') {

@@ -29,6 +29,11 @@ struct DriveOptions {
   std::vector<double> events;       // [s] times the stepper must land on exactly
   double h_max = 0;                 // [s] largest step (0: t_end - t0)
   const std::atomic<bool>* stop = nullptr;  // set from elsewhere (Ctrl-C) to end the run early
+  // a second output stream at its own exact times (frames): frame_t0 + k·frame_dt <= t_end,
+  // delivered by the same dense output as the samples (0 or no frame function: none)
+  double frame_dt = 0;
+  double frame_t0 = 0;
+  std::function<void(double t, const Eigen::VectorXd& y)> frame;
 };
 
 struct DriveResult {

@@ -17,6 +17,7 @@ struct Overrides {
   std::optional<double> t_end;
   std::optional<std::string> integrator;
   std::optional<double> rtol;
+  bool no_frames = false;  // ignore the scripts' frames = {...} (no rendering, no video)
 };
 
 // A script error, already in "file:line: message" form.

@@ -120,6 +120,16 @@ RunResult run(const Scene& sc, const RunSettings& rs, const std::atomic<bool>* s
   if (rs.probe_element < 0 || rs.probe_element >= m.n_el())
     throw std::invalid_argument("run: probe element must be in 0.." + std::to_string(m.n_el() - 1));
   auto stepper = make_stepper(rs.integrator);
+  std::optional<FrameSettings> frames = rs.frames;
+  if (frames) {
+    validate(*frames);
+    if (!rs.frame_factory) throw std::invalid_argument("run: frames asked for, but this program has no renderer");
+    auto inside = [&](std::string& p) {
+      if (!p.empty() && std::filesystem::path(p).is_relative()) p = (std::filesystem::path(rs.out_dir) / p).string();
+    };
+    inside(frames->png_dir);
+    inside(frames->video_path);
+  }
 
   std::filesystem::create_directories(rs.out_dir);
   RunResult res;
@@ -176,7 +186,15 @@ RunResult run(const Scene& sc, const RunSettings& rs, const std::atomic<bool>* s
                  w.steps, tty ? "   " : "\n");
   };
 
+  // the renderer exists only when frames are asked for (no GL context, no encoder otherwise)
+  std::unique_ptr<FrameSink> sink;
   DriveOptions opt;
+  if (frames) {
+    sink = rs.frame_factory(sc, *frames);
+    opt.frame_dt = frames->frame_dt();
+    opt.frame_t0 = frames->t_start;
+    opt.frame = [&](double t, const Eigen::VectorXd& y) { sink->frame(t, y.data()); };
+  }
   opt.t_end = rs.t_end;
   opt.sample_dt = rs.sample_dt;
   opt.events = m.breakpoints();
@@ -190,10 +208,20 @@ RunResult run(const Scene& sc, const RunSettings& rs, const std::atomic<bool>* s
     res.work = dr.work;
   } catch (...) {
     csv.flush();
+    if (sink) {
+      try {
+        sink->finish();  // the video stays playable after an error or a divergence
+      } catch (...) {
+      }
+    }
     if (reported && tty) std::fputc('\n', stderr);
     throw;
   }
   csv.flush();
+  if (sink) {
+    sink->finish();
+    res.frames = sink->frames_written();
+  }
   if (reported && tty) std::fputc('\n', stderr);
   for (int j = 0; j < m.n_p(); ++j) res.omega.push_back(m.omega(j, res.t_reached, y.data() + N));
   return res;

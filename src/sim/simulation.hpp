@@ -5,11 +5,13 @@
 #include <atomic>
 #include <functional>
 #include <map>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "integrate/system.hpp"
 #include "scene/scene.hpp"
+#include "sim/frames.hpp"
 
 namespace beltsim {
 
@@ -22,6 +24,10 @@ struct RunSettings {
   std::string out_dir = "out";
   int probe_element = 0;              // the paper's "selected" element; its SDE joins it to its predecessor
   bool progress = true;               // report on stderr for runs longer than a second
+  // frames (PNG and/or video) at their own times; relative paths are taken inside out_dir. The
+  // factory (the renderer's, src/render) is called only when frames are asked for.
+  std::optional<FrameSettings> frames;
+  FrameSinkFactory frame_factory;
 };
 
 struct RunResult {
@@ -31,6 +37,7 @@ struct RunResult {
   WorkCounters work;
   std::vector<double> omega;          // final pulley speeds [rad/s], in the model's order
   std::string csv_path, parameters_path;
+  long frames = 0;                    // frames rendered
 };
 
 // Writes DIR/timeseries.csv and DIR/parameters.csv. Throws DivergenceError (after flushing what
