@@ -115,9 +115,11 @@ DriveResult drive(OdeSystem& sys, Stepper& stepper, const Tolerances& tol, const
       next_sample++;
     }
     while (frames && frame_time(next_frame) <= std::min(t1, opt.t_end) + 1e-12 * span) {
-      const double tf = std::min(frame_time(next_frame), t1);
+      // the frame's own time even when it falls on (or within rounding of) the step's end, so
+      // frame times never depend on where the steps fell
+      const double tf = std::min(frame_time(next_frame), opt.t_end);
       if (tf >= t1) {
-        opt.frame(t1, y1);
+        opt.frame(tf, y1);
       } else {
         hermite((tf - t) / (t1 - t), t1 - t, y, f0, y1, f1, dense);
         opt.frame(tf, dense);
