@@ -332,7 +332,8 @@ void FrameBuilder::build(double t, const double* y, DrawList& out) const {
   const double panel_x = fs_.width - panel_ + 0.5 * font_px_;
   const double bar_w = std::max(8.0, 0.022 * fs_.width);
   const double bar_top = top_ + 2.2 * line;
-  const double bar_bot = fs_.height - 5.2 * line;
+  // (frames too small for a bar of at least four lines get a short one below the text band)
+  const double bar_bot = std::max(fs_.height - 5.2 * line, bar_top + 4.0 * line);
   out.text(Vec2(panel_x, bar_top - 1.6 * line), qi.label, font_px_, kInk);
   out.text(Vec2(panel_x, bar_top - 0.6 * line), *qi.unit ? std::string("[") + qi.unit + "]" : "[\u2013]", font_px_, kInk);
   const int bands = scale_.levels > 0 ? scale_.levels : 64;
@@ -344,7 +345,7 @@ void FrameBuilder::build(double t, const double* y, DrawList& out) const {
   }
   const int edges = scale_.levels > 0 ? scale_.levels : 4;
   int every = 1;
-  while ((bar_bot - bar_top) / edges * every < 1.3 * font_px_) every *= 2;
+  while (every < edges && (bar_bot - bar_top) / edges * every < 1.3 * font_px_) every *= 2;
   for (int k = 0; k <= edges; k += every) {
     const double val = scale_.lo + (scale_.hi - scale_.lo) * k / edges;
     const double yk = bar_bot - (bar_bot - bar_top) * k / edges;
