@@ -48,9 +48,11 @@ void write_png(const std::string& path, const Image& img) {
     throw std::runtime_error("write_png " + path + ": " + error);
   }
   png_init_io(png, file.f);
-  // frames are written while the simulation waits: a fast zlib level (3) is within a few % of
-  // the size of the default (6) at a third of the time on our frames
+  // frames are written while the simulation waits: zlib level 3 and the Sub filter only (not
+  // libpng's adaptive choice among five per row) halve the time per 1280×720 frame (22 to 11 ms
+  // measured); our flat-coloured frames still compress to about 120 kB
   png_set_compression_level(png, 3);
+  png_set_filter(png, PNG_FILTER_TYPE_BASE, PNG_FILTER_SUB);
   png_set_IHDR(png, info, img.width, img.height, 8, PNG_COLOR_TYPE_RGB, PNG_INTERLACE_NONE, PNG_COMPRESSION_TYPE_DEFAULT,
                PNG_FILTER_TYPE_DEFAULT);
   png_write_info(png, info);

@@ -29,7 +29,7 @@ Rgba colour_at(ColourMap map, double x);
 struct ColourScale {
   ColourMap map = ColourMap::viridis;
   double lo = 0, hi = 1;  // value range of the bar
-  int levels = 16;        // bands; 0: continuous
+  int levels = 10;        // bands; 0: continuous
 
   // band of a value: 0..levels-1 (clamped), or -1 for NaN
   int band(double value) const;

@@ -60,18 +60,38 @@ void DrawList::quad(Vec2 a, Vec2 b, Vec2 c, Vec2 d, Rgba col) {
   triangle(a, c, d, col);
 }
 
+namespace {
+SolidVertex vx(const Vec2& p, Rgba c, double da, double db) {
+  return {static_cast<float>(p.x()), static_cast<float>(p.y()), c, static_cast<float>(da), static_cast<float>(db)};
+}
+}  // namespace
+
+void DrawList::band(Vec2 ai, Vec2 bi, Vec2 bo, Vec2 ao, Rgba col) {
+  // grow each end's cross-section by a pixel on both sides; da: distance from the inner edge,
+  // db: from the outer edge
+  const double wa = (ao - ai).norm(), wb = (bo - bi).norm();
+  if (wa <= 0 || wb <= 0) return;
+  const Vec2 ua = (ao - ai) / wa, ub = (bo - bi) / wb;
+  const SolidVertex v[4] = {vx(ai - ua, col, -1, wa + 1), vx(bi - ub, col, -1, wb + 1), vx(bo + ub, col, wb + 1, -1),
+                            vx(ao + ua, col, wa + 1, -1)};
+  triangles.insert(triangles.end(), {v[0], v[1], v[2], v[0], v[2], v[3]});
+}
+
 void DrawList::line(Vec2 a, Vec2 b, double w, Rgba col) {
   const Vec2 d = b - a;
   const double len = d.norm();
   if (len <= 0) return;
   const Vec2 n = Vec2(-d.y(), d.x()) * (0.5 * w / len);
-  quad(a - n, b - n, b + n, a + n, col);
+  band(a - n, b - n, b + n, a + n, col);
 }
 
 void DrawList::disc(Vec2 c, double r, Rgba col, int seg) {
+  // a fan grown by a pixel; da falls linearly from r at the centre to -1 on the grown rim
+  const double R = r + 1;
   for (int k = 0; k < seg; ++k) {
     const double a0 = 2 * M_PI * k / seg, a1 = 2 * M_PI * (k + 1) / seg;
-    triangle(c, c + r * Vec2(std::cos(a0), std::sin(a0)), c + r * Vec2(std::cos(a1), std::sin(a1)), col);
+    triangles.insert(triangles.end(), {vx(c, col, r, 1e4), vx(c + R * Vec2(std::cos(a0), std::sin(a0)), col, -1, 1e4),
+                                       vx(c + R * Vec2(std::cos(a1), std::sin(a1)), col, -1, 1e4)});
   }
 }
 
@@ -79,7 +99,7 @@ void DrawList::ring(Vec2 c, double r0, double r1, Rgba col, int seg) {
   for (int k = 0; k < seg; ++k) {
     const double a0 = 2 * M_PI * k / seg, a1 = 2 * M_PI * (k + 1) / seg;
     const Vec2 u0(std::cos(a0), std::sin(a0)), u1(std::cos(a1), std::sin(a1));
-    quad(c + r0 * u0, c + r1 * u0, c + r1 * u1, c + r0 * u1, col);
+    band(c + r0 * u0, c + r0 * u1, c + r1 * u1, c + r1 * u0, col);
   }
 }
 
@@ -301,15 +321,15 @@ void FrameBuilder::build(double t, const double* y, DrawList& out) const {
     el.centre = P(Cd[i]);
     el.corners[0] = P(A - h * oa), el.corners[1] = P(B - h * ob), el.corners[2] = P(B + h * ob), el.corners[3] = P(A + h * oa);
     // dark edge, then the colour inset by a pixel so the elements read one by one
-    out.quad(el.corners[0], el.corners[1], el.corners[2], el.corners[3], kEdge);
+    out.band(el.corners[0], el.corners[1], el.corners[2], el.corners[3], kEdge);
     const double in = std::min(0.9 * px, 0.2 * h), along = std::min(0.6 * px, 0.2 * len);
-    out.quad(P(A + along * d - (h - in) * oa), P(B - along * d - (h - in) * ob), P(B - along * d + (h - in) * ob),
+    out.band(P(A + along * d - (h - in) * oa), P(B - along * d - (h - in) * ob), P(B - along * d + (h - in) * ob),
              P(A + along * d + (h - in) * oa), el.colour);
     if (el.wet)
-      out.quad(P(A + (h + 0.3 * px) * oa), P(B + (h + 0.3 * px) * ob), P(B + (h + band_w) * ob),
+      out.band(P(A + (h + 0.3 * px) * oa), P(B + (h + 0.3 * px) * ob), P(B + (h + band_w) * ob),
                P(A + (h + band_w) * oa), kWet);
     if (el.slipping)
-      out.quad(P(A - (h + band_w) * oa), P(B - (h + band_w) * ob), P(B - (h + 0.3 * px) * ob),
+      out.band(P(A - (h + band_w) * oa), P(B - (h + band_w) * ob), P(B - (h + 0.3 * px) * ob),
                P(A - (h + 0.3 * px) * oa), kSlip);
     out.elements.push_back(el);
   }

@@ -32,9 +32,15 @@ namespace beltsim::render {
 
 class Font;
 
+// Antialiasing is analytic (cheaper than MSAA on llvmpipe, measured 3×): a shape's geometry is
+// grown by a pixel across each antialiased edge, and each vertex carries its signed distance
+// [px] from up to two such edges (positive inside); the fragment shader scales the alpha by
+// the pixel's coverage clamp(d + 0.5, 0, 1) for each. Edges shared by neighbouring shapes (the
+// joints between belt elements) are not antialiased, so no seams appear between them.
 struct SolidVertex {
   float x, y;  // [px]
   Rgba c;
+  float da = 1e4f, db = 1e4f;  // [px] distances from the two antialiased edges (1e4: none)
 };
 struct GlyphVertex {
   float x, y;  // [px]
@@ -63,8 +69,12 @@ struct DrawList {
   ColourScale scale;
 
   void triangle(Vec2 a, Vec2 b, Vec2 c, Rgba col);
-  void quad(Vec2 a, Vec2 b, Vec2 c, Vec2 d, Rgba col);  // a-b-c-d in order round the quad
-  void line(Vec2 a, Vec2 b, double width_px, Rgba col);
+  // a-b-c-d in order round the quad, edges not antialiased (for pixel-aligned boxes)
+  void quad(Vec2 a, Vec2 b, Vec2 c, Vec2 d, Rgba col);
+  // a strip piece with antialiased long sides: inner edge a_in-b_in, outer edge b_out-a_out;
+  // the ends (a_in-a_out, b_in-b_out) are left sharp, to be shared with the neighbours
+  void band(Vec2 a_in, Vec2 b_in, Vec2 b_out, Vec2 a_out, Rgba col);
+  void line(Vec2 a, Vec2 b, double width_px, Rgba col);  // antialiased along its sides
   void disc(Vec2 centre, double radius_px, Rgba col, int segments = 96);
   void ring(Vec2 centre, double r_in_px, double r_out_px, Rgba col, int segments = 96);
   enum Align { left, centre, right };

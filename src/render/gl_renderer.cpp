@@ -115,8 +115,10 @@ GlRenderer::GlRenderer(GlContext& ctx, int width, int height, int samples)
   gl.BindBuffer(GL_ARRAY_BUFFER, d.vbo_solid);
   gl.VertexAttribPointer(0, 2, GL_FLOAT, GL_FALSE, sizeof(SolidVertex), reinterpret_cast<void*>(0));
   gl.VertexAttribPointer(1, 4, GL_FLOAT, GL_FALSE, sizeof(SolidVertex), reinterpret_cast<void*>(offsetof(SolidVertex, c)));
+  gl.VertexAttribPointer(2, 2, GL_FLOAT, GL_FALSE, sizeof(SolidVertex), reinterpret_cast<void*>(offsetof(SolidVertex, da)));
   gl.EnableVertexAttribArray(0);
   gl.EnableVertexAttribArray(1);
+  gl.EnableVertexAttribArray(2);
   gl.GenVertexArrays(1, &d.vao_text);
   gl.GenBuffers(1, &d.vbo_text);
   gl.BindVertexArray(d.vao_text);
@@ -129,16 +131,7 @@ GlRenderer::GlRenderer(GlContext& ctx, int width, int height, int samples)
   gl.EnableVertexAttribArray(2);
   gl.BindVertexArray(0);
 
-  // multisampled colour buffer to draw into, a single-sampled one to resolve into and read
-  gl.GenRenderbuffers(1, &d.rb_ms);
-  gl.BindRenderbuffer(GL_RENDERBUFFER, d.rb_ms);
-  gl.RenderbufferStorageMultisample(GL_RENDERBUFFER, samples, GL_RGBA8, width, height);
-  gl.GenFramebuffers(1, &d.fbo_ms);
-  gl.BindFramebuffer(GL_FRAMEBUFFER, d.fbo_ms);
-  gl.FramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, d.rb_ms);
-  if (gl.CheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
-    throw std::runtime_error("the multisampled framebuffer (" + std::to_string(samples) + " samples, " +
-                             std::to_string(width) + "x" + std::to_string(height) + ") is incomplete");
+  // the colour buffer read back; with samples > 1 a multisampled one is drawn into and resolved
   gl.GenRenderbuffers(1, &d.rb);
   gl.BindRenderbuffer(GL_RENDERBUFFER, d.rb);
   gl.RenderbufferStorage(GL_RENDERBUFFER, GL_RGBA8, width, height);
@@ -146,7 +139,18 @@ GlRenderer::GlRenderer(GlContext& ctx, int width, int height, int samples)
   gl.BindFramebuffer(GL_FRAMEBUFFER, d.fbo);
   gl.FramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, d.rb);
   if (gl.CheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
-    throw std::runtime_error("the resolve framebuffer is incomplete");
+    throw std::runtime_error("the framebuffer (" + std::to_string(width) + "x" + std::to_string(height) +
+                             ") is incomplete");
+  if (samples > 1) {
+    gl.GenRenderbuffers(1, &d.rb_ms);
+    gl.BindRenderbuffer(GL_RENDERBUFFER, d.rb_ms);
+    gl.RenderbufferStorageMultisample(GL_RENDERBUFFER, samples, GL_RGBA8, width, height);
+    gl.GenFramebuffers(1, &d.fbo_ms);
+    gl.BindFramebuffer(GL_FRAMEBUFFER, d.fbo_ms);
+    gl.FramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, d.rb_ms);
+    if (gl.CheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
+      throw std::runtime_error("the multisampled framebuffer (" + std::to_string(samples) + " samples) is incomplete");
+  }
 
   gl.GenTextures(1, &d.atlas);
   gl.BindTexture(GL_TEXTURE_2D, d.atlas);
@@ -163,9 +167,8 @@ GlRenderer::~GlRenderer() {
   Gl& gl = d.gl;
   gl.DeleteTextures(1, &d.atlas);
   gl.DeleteFramebuffers(1, &d.fbo);
-  gl.DeleteFramebuffers(1, &d.fbo_ms);
   gl.DeleteRenderbuffers(1, &d.rb);
-  gl.DeleteRenderbuffers(1, &d.rb_ms);
+  if (d.fbo_ms) gl.DeleteFramebuffers(1, &d.fbo_ms), gl.DeleteRenderbuffers(1, &d.rb_ms);
   gl.DeleteBuffers(1, &d.vbo_solid);
   gl.DeleteBuffers(1, &d.vbo_text);
   gl.DeleteVertexArrays(1, &d.vao_solid);
@@ -180,13 +183,13 @@ void GlRenderer::render(const DrawList& list, Image& out) {
   if (list.width != d.w || list.height != d.h)
     throw std::runtime_error("draw list of " + std::to_string(list.width) + "x" + std::to_string(list.height) +
                              " for a renderer of " + std::to_string(d.w) + "x" + std::to_string(d.h));
-  gl.BindFramebuffer(GL_FRAMEBUFFER, d.fbo_ms);
+  gl.BindFramebuffer(GL_FRAMEBUFFER, d.fbo_ms ? d.fbo_ms : d.fbo);
   gl.Viewport(0, 0, d.w, d.h);
   gl.ClearColor(list.background.r, list.background.g, list.background.b, 1);
   gl.Clear(GL_COLOR_BUFFER_BIT);
   gl.Enable(GL_BLEND);
   gl.BlendFunc(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA);
-  gl.Enable(GL_MULTISAMPLE);
+  if (d.fbo_ms) gl.Enable(GL_MULTISAMPLE);
 
   gl.UseProgram(d.solid);
   gl.Uniform2f(d.solid_vp, static_cast<float>(d.w), static_cast<float>(d.h));
@@ -217,10 +220,12 @@ void GlRenderer::render(const DrawList& list, Image& out) {
   }
   gl.BindVertexArray(0);
 
-  // resolve the samples, then read back (row 0 is the image's top row, see solid.vert)
-  gl.BindFramebuffer(GL_READ_FRAMEBUFFER, d.fbo_ms);
-  gl.BindFramebuffer(GL_DRAW_FRAMEBUFFER, d.fbo);
-  gl.BlitFramebuffer(0, 0, d.w, d.h, 0, 0, d.w, d.h, GL_COLOR_BUFFER_BIT, GL_NEAREST);
+  // resolve the samples (if any), then read back (row 0 is the image's top row, see solid.vert)
+  if (d.fbo_ms) {
+    gl.BindFramebuffer(GL_READ_FRAMEBUFFER, d.fbo_ms);
+    gl.BindFramebuffer(GL_DRAW_FRAMEBUFFER, d.fbo);
+    gl.BlitFramebuffer(0, 0, d.w, d.h, 0, 0, d.w, d.h, GL_COLOR_BUFFER_BIT, GL_NEAREST);
+  }
   gl.BindFramebuffer(GL_READ_FRAMEBUFFER, d.fbo);
   gl.ReadBuffer(GL_COLOR_ATTACHMENT0);
   gl.PixelStorei(GL_PACK_ALIGNMENT, 1);

@@ -1,5 +1,6 @@
-// The GL backend: draws a DrawList with OpenGL 3.3 core into a multisampled framebuffer object
-// (4× MSAA: antialiased edges), resolves it and reads it back as an Image. It does not create
+// The GL backend: draws a DrawList with OpenGL 3.3 core into a framebuffer object and reads it
+// back as an Image. Edges are antialiased analytically (draw_list.hpp, shaders/solid.frag);
+// MSAA (samples > 1) is available on top but costs 3× per frame on llvmpipe. It does not create
 // the context (gl_context.hpp does); it loads the GL functions it uses through the context.
 // Only src/render includes GL headers.
 #pragma once
@@ -17,7 +18,7 @@ class GlRenderer {
  public:
   // Throws std::runtime_error when a function is missing, a shader fails to compile or the
   // framebuffer is incomplete.
-  GlRenderer(GlContext& ctx, int width, int height, int samples = 4);
+  GlRenderer(GlContext& ctx, int width, int height, int samples = 0);
   ~GlRenderer();
   GlRenderer(const GlRenderer&) = delete;
   GlRenderer& operator=(const GlRenderer&) = delete;

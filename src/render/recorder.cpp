@@ -30,7 +30,7 @@ class FrameRecorder final : public FrameSink {
   void frame(double t, const double* y) override {
     builder_.build(t, y, list_);
     gl_.render(list_, image_);
-    if (!fs_.png_dir.empty()) {
+    if (!fs_.png_dir.empty() && n_ % fs_.png_every == 0) {
       char name[32];
       std::snprintf(name, sizeof name, "frame_%05ld.png", n_);
       write_png((std::filesystem::path(fs_.png_dir) / name).string(), image_);

@@ -424,20 +424,22 @@ int l_scene_element_near(lua_State* L) {
 }
 
 // run{ frames = { fps=, slowdown=, size={w, h}, quantity=, range={lo, hi}, levels=, magnify=,
-// view={centre={x, y}, width=}, png=true|"dir", video=true|"file.mp4", t_start= } }: checked
+// view={centre={x, y}, width=}, png=true|"dir", png_every=, video=true|"file.mp4", t_start= } }: checked
 // here and by validate(FrameSettings) before anything is simulated
 FrameSettings to_frames(lua_State* L, int idx) {
   idx = lua_absindex(L, idx);
   const std::string w = "run.frames";
   require_table(L, idx, w);
   check_keys(L, idx, w,
-             {"fps", "slowdown", "size", "quantity", "range", "levels", "magnify", "view", "png", "video", "t_start"});
+             {"fps", "slowdown", "size", "quantity", "range", "levels", "magnify", "view", "png", "png_every", "video",
+              "t_start"});
   FrameSettings f;
   if (auto v = opt_number(L, idx, "fps", w)) f.fps = *v;
   if (auto v = opt_number(L, idx, "slowdown", w)) f.slowdown = *v;
   if (auto v = opt_number(L, idx, "magnify", w)) f.magnify = *v;
   if (auto v = opt_number(L, idx, "t_start", w)) f.t_start = *v;
   if (field(L, idx, "levels")) f.levels = to_integer(L, -1, w + ".levels"), lua_pop(L, 1);
+  if (field(L, idx, "png_every")) f.png_every = to_integer(L, -1, w + ".png_every"), lua_pop(L, 1);
   auto pair = [&](const char* key, const char* what) -> std::optional<std::pair<double, double>> {
     if (!field(L, idx, key)) return std::nullopt;
     if (!lua_istable(L, -1) || lua_rawlen(L, -1) != 2) fail(L, w + "." + key + ": " + what + " expected, got " + type_name(L, -1));

@@ -36,11 +36,12 @@ struct FrameSettings {
   int width = 1280, height = 720;  // [px], even (H.264 in yuv420p)
   FrameQuantity quantity = FrameQuantity::tension;
   std::optional<double> range_lo, range_hi;  // colour-bar range; unset: the quantity's default for the scene
-  int levels = 16;             // colour bands (0: continuous)
+  int levels = 10;             // colour bands (0: continuous)
   double magnify = 1;          // factor on the belt's deviation from its nominal path
   std::optional<Vec2> view_centre;   // [m] camera centre; unset: fit the layout
   std::optional<double> view_width;  // [m] visible width; unset: fit the layout
   std::string png_dir;         // "" : no PNG files; else frames as DIR/frame_00000.png ...
+  int png_every = 1;           // a PNG of every n-th frame only (the video gets them all)
   std::string video_path;      // "" : no video; else an MP4 file
   double t_start = 0;          // [s] first frame time (frames at t_start + k / (fps·slowdown))
 
@@ -63,7 +64,7 @@ using FrameSinkFactory =
     std::function<std::unique_ptr<FrameSink>(const Scene& scene, const FrameSettings& settings)>;
 
 // Checks the settings (width and height even and in 16..8192, fps in (0, 240], slowdown > 0,
-// magnify > 0, a range with lo < hi, levels 0 or 2..64, at least one output); throws
+// magnify > 0, a range with lo < hi, levels 0 or 2..64, png_every >= 1, at least one output); throws
 // std::invalid_argument "frames.KEY: reason (got value)".
 void validate(const FrameSettings& f);
 

@@ -101,6 +101,7 @@ TEST_F(Fixture, ColoursComeFromTheColourMap) {
   const Eigen::VectorXd y = test::moving_state(sc);
   FrameSettings f = fs();
   f.range_lo = 0, f.range_hi = 1000;
+  f.levels = 16;
   FrameBuilder b(sc, f, &font);
   DrawList dl;
   b.build(0.1, y.data(), dl);

@@ -3,7 +3,7 @@
 //
 // Metric: a pixel differs when any channel differs by more than kLevelTol = 16 of 255 levels;
 // an image fails when more than kMaxBadPixels pixels differ.
-// - Why this is enough: one colour band of the 16-band maps moves a channel by 10–40 levels over
+// - Why this is enough: one colour band of the 10-band maps moves a channel by 10–40 levels over
 //   every pixel of the elements concerned (thousands of pixels); a belt element shifted by half
 //   its thickness changes over a hundred pixels along its edges (both measured by the tests
 //   below, which must fail the comparison).
@@ -169,7 +169,7 @@ TEST_F(Golden, ColourMapOneBandOffFails) {
   const Eigen::VectorXd y = test::moving_state(dry());
   const Image good = render(dry(), fs, y);
   // the same frame with every element coloured one band higher
-  fs.range_lo = 0 - 1000.0 / 16, fs.range_hi = 1000 - 1000.0 / 16;
+  fs.range_lo = 0 - 1000.0 / fs.levels, fs.range_hi = 1000 - 1000.0 / fs.levels;
   const Image shifted = render(dry(), fs, y);
   const Comparison c = compare(good, shifted);
   EXPECT_GT(c.bad, 50 * kMaxBadPixels) << "a colour map one band off must fail (" << c.bad << " pixels)";
