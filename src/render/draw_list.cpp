@@ -283,7 +283,14 @@ void FrameBuilder::build(double t, const double* y, DrawList& out) const {
     }
     out.disc(c + 0.78 * Rp * Vec2(std::cos(theta), -std::sin(theta)), std::max(2.0, 0.07 * Rp), kMarker, 24);
     out.disc(c, 0.18 * Rp, kRim, 48);
-    out.text(c + Vec2(0, 0.18 * Rp + 1.1 * font_px_), p.name, font_px_, kInk, DrawList::centre);
+    // the name on a patch of the disc's colour, so the spokes do not cross it
+    const Vec2 at = c + Vec2(0, 0.18 * Rp + 1.1 * font_px_);
+    const double tw = font_ ? font_->width(p.name, font_px_) : 0;
+    Rgba patch = kPulley;
+    patch.a = 0.85f;
+    out.quad(at + Vec2(-0.5 * tw - 3, -0.95 * font_px_), at + Vec2(0.5 * tw + 3, -0.95 * font_px_),
+             at + Vec2(0.5 * tw + 3, 0.35 * font_px_), at + Vec2(-0.5 * tw - 3, 0.35 * font_px_), patch);
+    out.text(at, p.name, font_px_, kInk, DrawList::centre);
   }
 
   // belt elements
