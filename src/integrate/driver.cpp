@@ -60,7 +60,7 @@ DriveResult drive(OdeSystem& sys, Stepper& stepper, const Tolerances& tol, const
   auto frame_time = [&](long k) { return opt.frame_t0 + static_cast<double>(k) * opt.frame_dt; };
   if (frames)
     while (frame_time(next_frame) < t - 1e-12 * span) next_frame++;
-  if (frames && std::abs(frame_time(next_frame) - t) <= 1e-12 * span) opt.frame(t, y), next_frame++;
+  if (frames && std::abs(frame_time(next_frame) - t) <= 1e-12 * span) opt.frame(frame_time(next_frame), y), next_frame++;
 
   // first step (Hairer II.4, simplified): make the first-order term small against the tolerance
   double h;

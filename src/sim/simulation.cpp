@@ -124,6 +124,9 @@ RunResult run(const Scene& sc, const RunSettings& rs, const std::atomic<bool>* s
   if (frames) {
     validate(*frames);
     if (!rs.frame_factory) throw std::invalid_argument("run: frames asked for, but this program has no renderer");
+    if (frames->t_start > rs.t_end)
+      throw std::invalid_argument("run.frames.t_start: must be <= t_end = " + std::to_string(rs.t_end) + " s (got " +
+                                  std::to_string(frames->t_start) + " s)");
     auto inside = [&](std::string& p) {
       if (!p.empty() && std::filesystem::path(p).is_relative()) p = (std::filesystem::path(rs.out_dir) / p).string();
     };

@@ -8,7 +8,10 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <atomic>
+#include <chrono>
 #include <string>
+#include <thread>
 
 #include "io/video_writer.hpp"
 #include "render/gl_context.hpp"
@@ -78,6 +81,7 @@ TEST(Frames, BadOptionsStopBeforeSimulating) {
       {"png = 5", "run.frames.png: true, false or a path expected, got number"},
       {"fps = 30", "neither png nor video asked for"},
       {"levels = 1, png = true", "run.frames.levels: must be 0 (continuous) or 2..64 (got 1)"},
+      {"t_start = 5, png = true", "run.frames.t_start: must be <= t_end"},
   };
   for (const Case& c : cases) {
     const fs::path out = temp_dir() / "bad";
@@ -146,6 +150,34 @@ TEST(Frames, DivergenceLeavesAPlayableVideo) {
   // frames every 0.4 ms up to the last sound step (measured: 3 frames, the steps grow long
   // before the runaway check fires at 4.6 ms)
   EXPECT_GE(std::stoi("0" + probe(out / "frames.mp4", "stream=nb_read_frames")), 2);
+}
+
+// Ctrl-C (the stop flag main() sets from SIGINT) ends the run early; the video is closed
+// properly: its trailer (the fragmented MP4's 'mfra' index) is written and it plays.
+TEST(Frames, CtrlCLeavesAFinishedVideo) {
+  const fs::path p = temp_dir() / "stopped.lua";
+  std::ofstream(p) << kScene
+                   << "s:run{ t_end = 1, frames = { size = {320, 180}, video = 'stopped.mp4' } }\n";
+  const fs::path out = temp_dir() / "stopped";
+  fs::remove_all(out);
+  std::atomic<bool> stop{false};
+  Interpreter lua;
+  Overrides o;
+  o.out = out.string();
+  lua.set_overrides(o);
+  lua.set_stop_flag(&stop);
+  std::thread ctrl_c([&] {
+    std::this_thread::sleep_for(std::chrono::milliseconds(400));
+    stop = true;
+  });
+  EXPECT_NO_THROW(lua.run_file(p.string()));
+  ctrl_c.join();
+  EXPECT_TRUE(lua.interrupted());
+  std::ifstream f(out / "stopped.mp4", std::ios::binary);
+  const std::string bytes((std::istreambuf_iterator<char>(f)), std::istreambuf_iterator<char>());
+  EXPECT_NE(bytes.find("mfra"), std::string::npos) << "no trailer: the writer was not closed";
+  EXPECT_EQ(probe(out / "stopped.mp4", "stream=codec_name"), "h264");
+  EXPECT_GE(std::stoi("0" + probe(out / "stopped.mp4", "stream=nb_read_frames")), 1);
 }
 
 }  // namespace
