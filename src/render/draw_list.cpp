@@ -154,8 +154,8 @@ void default_range(const Scene& sc, FrameQuantity q, double& lo, double& hi) {
   }
 }
 
-std::vector<double> element_values(const Scene& sc, FrameQuantity q, double t, const double* y) {
-  const Model& m = sc.model;
+std::vector<double> element_values(const Scene& sc, FrameQuantity q, double t, const double* y, const Model* model) {
+  const Model& m = model ? *model : sc.model;
   const int n = m.n_el();
   const double* qs = y;
   const double* v = y + m.n_coord();
@@ -253,8 +253,8 @@ Vec2 FrameBuilder::displayed(const Vec2& p, Vec2* tangent) const {
   return nominal + fs_.magnify * (p - nominal);
 }
 
-void FrameBuilder::build(double t, const double* y, DrawList& out) const {
-  const Model& m = sc_.model;
+void FrameBuilder::build(double t, const double* y, DrawList& out, const Model* model) const {
+  const Model& m = model ? *model : sc_.model;
   const int n = m.n_el();
   const double* q = y;
   const double* v = y + m.n_coord();
@@ -294,7 +294,10 @@ void FrameBuilder::build(double t, const double* y, DrawList& out) const {
   }
 
   // belt elements
-  const std::vector<double> values = element_values(sc_, fs_.quantity, t, y);
+  const std::vector<double> values = element_values(sc_, fs_.quantity, t, y, &m);
+  // dry: the largest μ the belt had at the start or has now (events may wet or dry it)
+  double mu_dry = mu_dry_;
+  for (double mu : m.mu) mu_dry = std::max(mu_dry, mu);
   int loop_sense = -1;
   for (int j = 0; j < m.n_p(); ++j)
     if (m.pulleys[j].wrap == WrapSide::inside) loop_sense = sense_[j];
@@ -322,7 +325,7 @@ void FrameBuilder::build(double t, const double* y, DrawList& out) const {
     el.value = values[i];
     el.band = scale_.band(values[i]);
     el.colour = scale_.colour(values[i]);
-    el.wet = m.mu[i] < mu_dry_;
+    el.wet = m.mu[i] < mu_dry;
     const ElementContact c = element_contact(m, t, q, v, i);
     el.slipping = c.pulley >= 0 && c.normal > 0 && std::abs(c.friction) >= 0.98 * m.mu[i] * c.normal;
     el.centre = P(Cd[i]);
@@ -391,7 +394,7 @@ void FrameBuilder::build(double t, const double* y, DrawList& out) const {
   if (qi.is_signed) out.text(Vec2(panel_x, ly), "+ : along travel", font_px_, kInk), ly += line;
   bool any_wet = false;
   for (const ElementDraw& el : out.elements) any_wet = any_wet || el.wet;
-  if (any_wet) swatch(kWet, "wet (\u03bc < " + format("%g", mu_dry_) + ")");
+  if (any_wet) swatch(kWet, "wet (\u03bc < " + format("%g", mu_dry) + ")");
   swatch(kSlip, "slipping");
   if (fs_.quantity != FrameQuantity::tension && fs_.quantity != FrameQuantity::mu) swatch(scale_.none, "off the pulleys");
 }

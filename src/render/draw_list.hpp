@@ -95,15 +95,18 @@ struct Camera {
 // force of an element on the largest pulley; friction ±2·N0; slip ±0.05 m/s; μ 0..largest μ.
 void default_range(const Scene& scene, FrameQuantity q, double& lo, double& hi);
 
-// The quantity per element at a state (NaN where undefined, e.g. slip off the pulleys).
-std::vector<double> element_values(const Scene& scene, FrameQuantity q, double t, const double* y);
+// The quantity per element at a state (NaN where undefined, e.g. slip off the pulleys); model:
+// the model as it is now (events may have changed μ), null for the scene's own.
+std::vector<double> element_values(const Scene& scene, FrameQuantity q, double t, const double* y,
+                                   const Model* model = nullptr);
 
 class FrameBuilder {
  public:
   // settings are validated by the caller (sim/frames.hpp validate)
   FrameBuilder(const Scene& scene, const FrameSettings& settings, Font* font);
-  // the draw list of the state y at time t (replaces the contents of `out`)
-  void build(double t, const double* y, DrawList& out) const;
+  // the draw list of the state y at time t (replaces the contents of `out`); model: the model as
+  // it is now (run events may change μ while running), null for the scene's own
+  void build(double t, const double* y, DrawList& out, const Model* model = nullptr) const;
   const Camera& camera() const { return cam_; }
   const ColourScale& scale() const { return scale_; }
   // world position at which an element centre p is drawn (nominal point + magnify·deviation);
@@ -117,7 +120,7 @@ class FrameBuilder {
   Camera cam_;
   ColourScale scale_;
   double thickness_ = 0;        // [m] drawn belt thickness
-  double mu_dry_ = 0;           // the largest μ: elements below it are wet
+  double mu_dry_ = 0;           // the largest μ at the start: elements below it are wet
   std::vector<int> sense_;      // per pulley: +1 the belt wraps it anticlockwise, -1 clockwise
   std::vector<double> sink_;    // per route arc: static penetration of its pulley [m]
   int font_px_ = 14;

@@ -27,8 +27,8 @@ class FrameRecorder final : public FrameSink {
       video_ = std::make_unique<VideoWriter>(fs.video_path, vo);
     }
   }
-  void frame(double t, const double* y) override {
-    builder_.build(t, y, list_);
+  void frame(double t, const double* y, const Model& model) override {
+    builder_.build(t, y, list_, &model);
     gl_.render(list_, image_);
     if (!fs_.png_dir.empty() && n_ % fs_.png_every == 0) {
       char name[32];

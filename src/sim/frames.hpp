@@ -50,12 +50,13 @@ struct FrameSettings {
 };
 
 // An observer that turns states into pictures. frame() is called at t_start + k·frame_dt with the
-// dense-output state; finish() finalises the outputs (also called when the run stops early:
-// error, divergence, Ctrl-C).
+// dense-output state and the model as it is then (run events may change μ while running);
+// finish() finalises the outputs (also called when the run stops early: error, divergence,
+// Ctrl-C).
 class FrameSink {
  public:
   virtual ~FrameSink() = default;
-  virtual void frame(double t, const double* y) = 0;
+  virtual void frame(double t, const double* y, const Model& model) = 0;
   virtual void finish() = 0;
   virtual long frames_written() const = 0;
 };

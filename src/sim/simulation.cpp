@@ -196,7 +196,8 @@ RunResult run(const Scene& sc, const RunSettings& rs, const std::atomic<bool>* s
     sink = rs.frame_factory(sc, *frames);
     opt.frame_dt = frames->frame_dt();
     opt.frame_t0 = frames->t_start;
-    opt.frame = [&](double t, const Eigen::VectorXd& y) { sink->frame(t, y.data()); };
+    // m: the model the integrator uses (the one events change, if any)
+    opt.frame = [&](double t, const Eigen::VectorXd& y) { sink->frame(t, y.data(), m); };
   }
   opt.t_end = rs.t_end;
   opt.sample_dt = rs.sample_dt;

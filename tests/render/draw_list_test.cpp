@@ -175,6 +175,25 @@ TEST_F(Fixture, WetAndSlippingElementsAreMarked) {
   EXPECT_GT(off, 10);
 }
 
+// run events change μ while running: the frame shows the model it is given, not the scene's
+TEST_F(Fixture, WetMarksFollowTheModelAsItIsNow) {
+  const Scene& sc = test::moving_scene(presets::paper_dry());
+  const Eigen::VectorXd y = sc.y0;
+  Model now = sc.model;
+  for (int i = 0; i < 10; ++i) now.mu[i] = 0.2;
+  FrameSettings f = fs();
+  f.quantity = FrameQuantity::mu;
+  FrameBuilder b(sc, f, &font);
+  DrawList before, after;
+  b.build(0, y.data(), before);
+  b.build(0, y.data(), after, &now);
+  for (int i = 0; i < sc.model.n_el(); ++i) {
+    EXPECT_FALSE(before.elements[i].wet);
+    EXPECT_EQ(after.elements[i].wet, i < 10);
+    EXPECT_DOUBLE_EQ(after.elements[i].value, now.mu[i]);
+  }
+}
+
 TEST_F(Fixture, SignedQuantitiesUseTheDivergingMapWithTheSignAlongTravel) {
   const Scene& sc = wet();
   const Eigen::VectorXd y = test::moving_state(sc);
