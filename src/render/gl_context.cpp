@@ -18,15 +18,15 @@ std::atomic<long> g_contexts{0};
 
 class OsMesaContext final : public GlContext {
  public:
-  OsMesaContext() {
+  OsMesaContext(int major, int minor) {
     const int attribs[] = {OSMESA_FORMAT, OSMESA_RGBA, OSMESA_DEPTH_BITS, 0, OSMESA_STENCIL_BITS, 0,
                            OSMESA_ACCUM_BITS, 0, OSMESA_PROFILE, OSMESA_CORE_PROFILE,
-                           OSMESA_CONTEXT_MAJOR_VERSION, 3, OSMESA_CONTEXT_MINOR_VERSION, 3, 0};
+                           OSMESA_CONTEXT_MAJOR_VERSION, major, OSMESA_CONTEXT_MINOR_VERSION, minor, 0};
     ctx_ = OSMesaCreateContextAttribs(attribs, nullptr);
     if (!ctx_)
-      throw std::runtime_error(
-          "cannot create an OpenGL 3.3 core context with OSMesa (OSMesaCreateContextAttribs failed; Debian package "
-          "libosmesa6, Mesa's llvmpipe; try BELTSIM_GL=egl)");
+      throw std::runtime_error("cannot create an OpenGL " + std::to_string(major) + "." + std::to_string(minor) +
+                               " core context with OSMesa (OSMesaCreateContextAttribs failed; Debian package "
+                               "libosmesa6, Mesa's llvmpipe; try BELTSIM_GL=egl)");
     // the renderer draws into its own framebuffer object: the window-system buffer stays tiny
     buffer_.resize(16 * 16 * 4);
     make_current();
@@ -47,9 +47,10 @@ class OsMesaContext final : public GlContext {
 
 class EglContext final : public GlContext {
  public:
-  EglContext() {
+  EglContext(int major, int minor) {
     auto fail = [&](const std::string& step) {
-      throw std::runtime_error("cannot create an OpenGL 3.3 core context with EGL (surfaceless Mesa platform): " +
+      throw std::runtime_error("cannot create an OpenGL " + std::to_string(major) + "." + std::to_string(minor) +
+                               " core context with EGL (surfaceless Mesa platform): " +
                                step + " failed (EGL error 0x" + hex(eglGetError()) +
                                "; Debian packages libegl1, libegl-mesa0, libgl1-mesa-dri; try BELTSIM_GL=osmesa)");
     };
@@ -57,17 +58,17 @@ class EglContext final : public GlContext {
     if (!get_display) fail("eglGetPlatformDisplayEXT");
     dpy_ = get_display(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY, nullptr);
     if (dpy_ == EGL_NO_DISPLAY) fail("eglGetPlatformDisplayEXT(EGL_PLATFORM_SURFACELESS_MESA)");
-    EGLint major = 0, minor = 0;
-    if (!eglInitialize(dpy_, &major, &minor)) fail("eglInitialize");
+    EGLint egl_major = 0, egl_minor = 0;
+    if (!eglInitialize(dpy_, &egl_major, &egl_minor)) fail("eglInitialize");
     if (!eglBindAPI(EGL_OPENGL_API)) fail("eglBindAPI(EGL_OPENGL_API)");
     const EGLint cfg_attr[] = {EGL_RENDERABLE_TYPE, EGL_OPENGL_BIT, EGL_SURFACE_TYPE, EGL_PBUFFER_BIT, EGL_NONE};
     EGLConfig cfg = nullptr;
     EGLint n = 0;
     if (!eglChooseConfig(dpy_, cfg_attr, &cfg, 1, &n) || n < 1) fail("eglChooseConfig");
-    const EGLint ctx_attr[] = {EGL_CONTEXT_MAJOR_VERSION, 3, EGL_CONTEXT_MINOR_VERSION, 3,
+    const EGLint ctx_attr[] = {EGL_CONTEXT_MAJOR_VERSION, major, EGL_CONTEXT_MINOR_VERSION, minor,
                                EGL_CONTEXT_OPENGL_PROFILE_MASK, EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT, EGL_NONE};
     ctx_ = eglCreateContext(dpy_, cfg, EGL_NO_CONTEXT, ctx_attr);
-    if (ctx_ == EGL_NO_CONTEXT) fail("eglCreateContext (3.3 core)");
+    if (ctx_ == EGL_NO_CONTEXT) fail("eglCreateContext");
     make_current();
     g_contexts++;
   }
@@ -95,9 +96,9 @@ class EglContext final : public GlContext {
 
 }  // namespace
 
-std::unique_ptr<GlContext> make_gl_context(GlBackend b) {
-  if (b == GlBackend::egl) return std::make_unique<EglContext>();
-  return std::make_unique<OsMesaContext>();
+std::unique_ptr<GlContext> make_gl_context(GlBackend b, int major, int minor) {
+  if (b == GlBackend::egl) return std::make_unique<EglContext>(major, minor);
+  return std::make_unique<OsMesaContext>(major, minor);
 }
 
 GlBackend default_gl_backend() {

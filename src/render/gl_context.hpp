@@ -21,9 +21,10 @@ class GlContext {
   virtual GlBackend backend() const = 0;
 };
 
-// Creates a context of at least OpenGL 3.3 core. Throws std::runtime_error with a message that
-// names the backend, the step that failed and what to install or set.
-std::unique_ptr<GlContext> make_gl_context(GlBackend backend);
+// Creates a core-profile context of at least OpenGL major.minor (the renderer needs 3.3). Throws
+// std::runtime_error with a message that names the backend, the step that failed and what to
+// install or set.
+std::unique_ptr<GlContext> make_gl_context(GlBackend backend, int major = 3, int minor = 3);
 // the backend named by $BELTSIM_GL ("osmesa", the default, or "egl")
 GlBackend default_gl_backend();
 const char* backend_name(GlBackend b);

@@ -219,5 +219,20 @@ TEST_F(Golden, EglDrawsWhatOsMesaDraws) {
   EXPECT_LE(c.bad, kMaxBadPixels) << c.bad << " pixels differ (largest difference " << c.worst << ")";
 }
 
+// A context that cannot be made gives a message naming the backend, the version and what to do
+// (OSMesa of Mesa 22.3 makes no 4.6 core context: DESIGN §9).
+TEST_F(Golden, FailedContextSaysWhy) {
+  try {
+    make_gl_context(GlBackend::osmesa, 4, 6);
+    GTEST_SKIP() << "this OSMesa makes 4.6 core contexts: nothing to fail";
+  } catch (const std::runtime_error& e) {
+    const std::string m = e.what();
+    EXPECT_NE(m.find("cannot create an OpenGL 4.6 core context with OSMesa"), std::string::npos) << m;
+    EXPECT_NE(m.find("libosmesa6"), std::string::npos) << m;
+    EXPECT_NE(m.find("BELTSIM_GL=egl"), std::string::npos) << m;
+  }
+  ctx_->make_current();
+}
+
 }  // namespace
 }  // namespace beltsim::render
