@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Rebuilds the pictures of media/ from the paper's scripts (run from the repository root after
-# building; about two minutes). The main runs' own frames give the tension (dry) and friction
+# building; about five minutes). The main runs' own frames give the tension (dry) and friction
 # (half-wet) pictures; two variants of the scripts, with their frames block replaced, give a
 # normal-force and a slip-velocity picture (t_start = t_end: a single frame).
 set -euo pipefail
@@ -11,6 +11,8 @@ tmp=$(mktemp -d)
 cp "$tmp/dry/frames/frame_00300.png" media/dry_tension_1.0s.png
 cp "$tmp/wet/frames/frame_00180.png" media/wet_friction_0.6s.png
 cp "$tmp/wet/frames/frame_00090.png" media/wet_friction_0.3s.png
+"$b" run scripts/automotive_wet.lua --out "$tmp/auto" >/dev/null
+cp "$tmp/auto/frames/frame_00150.png" media/automotive_slip_0.5s.png
 variant() {  # script, out, frames table
   awk -v f="$3" '/^  frames = \{/ {skip = 1; print "  frames = " f ","; next}
                  skip && /^  \},/ {skip = 0; next} !skip' "$1" > "$tmp/variant.lua"
