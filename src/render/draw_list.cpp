@@ -104,6 +104,7 @@ void DrawList::ring(Vec2 c, double r0, double r1, Rgba col, int seg) {
 }
 
 float DrawList::text(Vec2 at, const std::string& utf8, int px, Rgba col, Align align) {
+  texts.push_back(utf8);
   if (!font) return 0;
   const float w = font->width(utf8, px);
   float x = static_cast<float>(at.x()) - (align == centre ? 0.5f * w : align == right ? w : 0.0f);
@@ -259,7 +260,7 @@ void FrameBuilder::build(double t, const double* y, DrawList& out, const Model* 
   const double* q = y;
   const double* v = y + m.n_coord();
   out.width = fs_.width, out.height = fs_.height;
-  out.triangles.clear(), out.glyphs.clear(), out.elements.clear();
+  out.triangles.clear(), out.glyphs.clear(), out.elements.clear(), out.texts.clear();
   out.font = font_;
   out.scale = scale_;
   const double px = 1.0 / cam_.scale;  // one pixel in metres

@@ -66,6 +66,7 @@ struct DrawList {
   std::vector<GlyphVertex> glyphs;     // drawn after the triangles
   Font* font = nullptr;                // owner of the glyph atlas
   std::vector<ElementDraw> elements;
+  std::vector<std::string> texts;      // every string drawn, in order (for tests)
   ColourScale scale;
 
   void triangle(Vec2 a, Vec2 b, Vec2 c, Rgba col);

@@ -217,6 +217,45 @@ TEST_F(Fixture, SignedQuantitiesUseTheDivergingMapWithTheSignAlongTravel) {
   EXPECT_DOUBLE_EQ(b.scale().lo, -b.scale().hi);
 }
 
+// the text states the time, each pulley's speed and slip, the quantity, its unit and range
+TEST_F(Fixture, TextAndColourBarSayWhatIsShown) {
+  const Scene& sc = wet();
+  const Eigen::VectorXd y = test::moving_state(sc);
+  FrameSettings f = fs();
+  f.magnify = 20;
+  FrameBuilder b(sc, f, &font);
+  DrawList dl;
+  b.build(0.125, y.data(), dl);
+  auto has = [&](const std::string& part) {
+    for (const std::string& t : dl.texts)
+      if (t.find(part) != std::string::npos) return true;
+    return false;
+  };
+  EXPECT_TRUE(has("t = 0.1250 s"));
+  EXPECT_TRUE(has("colour: SDE tension [N]"));
+  EXPECT_TRUE(has("deformation \u00d720"));
+  // the driver's rim runs 1 % ahead of the belt's 6 m/s mean speed (moving_state): ω = −60.6 rad/s
+  EXPECT_TRUE(has("driver: \u03c9 = \u221260.60 rad/s, slip +0.06"));
+  EXPECT_TRUE(has("driven: \u03c9 = \u221259.40 rad/s, slip \u22120.06"));
+  for (const char* s : {"SDE tension", "[N]", "0", "1000", "wet (\u03bc < 1)", "slipping"}) EXPECT_TRUE(has(s)) << s;
+}
+
+TEST_F(Fixture, CameraFitsTheLayoutOrFollowsTheView) {
+  const Scene& sc = wet();
+  FrameSettings f = fs();
+  FrameBuilder fit(sc, f, &font);
+  // both pulleys (x from -0.1 to 0.39 m) inside the drawing, left of the colour-bar panel
+  const Vec2 l = fit.camera().to_px(Vec2(-0.1, 0)), r = fit.camera().to_px(Vec2(0.39, 0));
+  EXPECT_GT(l.x(), 0);
+  EXPECT_LT(r.x(), 0.83 * f.width);
+  EXPECT_GT(r.x() - l.x(), 0.6 * f.width);  // and it fills most of the width
+  f.view_centre = Vec2(0.29, 0.0), f.view_width = 0.25;
+  FrameBuilder view(sc, f, &font);
+  EXPECT_NEAR((view.camera().to_px(Vec2(0.29, 0)) - view.camera().area_centre).norm(), 0, 1e-9);
+  const double width_px = (view.camera().to_px(Vec2(0.415, 0)) - view.camera().to_px(Vec2(0.165, 0))).x();
+  EXPECT_NEAR(width_px, f.width - std::max(0.17 * f.width, 11.0 * std::max(10.0, std::round(f.height / 40.0))), 1e-6);
+}
+
 TEST(Text, Utf8AndGlyphs) {
   EXPECT_EQ(decode_utf8("t = \u03c9 \u00d7"), std::u32string(U"t = \u03c9 \u00d7"));
   Font f;
