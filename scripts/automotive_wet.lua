@@ -35,7 +35,20 @@ local result = drive:run {
   t_end = 1.0,
   sample = 1e-3,
   probe = {0.16 + 0.056, -0.06},
+  -- slip velocity against each pulley: the wet part slipping on the pump, then on the
+  -- crankshaft; a 10 s clip ten times slower than life, a PNG every 0.1 s
+  frames = {
+    fps = 30, slowdown = 10, size = {1280, 720},
+    quantity = "slip", range = {-2, 2},
+    magnify = 2,
+    png = true, png_every = 30,
+    video = "automotive_wet.mp4",
+  },
 }
 print(string.format("t = %.3f s: crankshaft %.2f, alternator %.2f, pump %.2f, tensioner %.2f rad/s",
   result.t, result.omega.crankshaft, result.omega.alternator, result.omega.pump, result.omega.tensioner))
 print("time series: " .. result.csv)
+if result.frames > 0 then
+  print(string.format("%d frames: %s/frames/ (PNG, every 30th) and %s/automotive_wet.mp4",
+    result.frames, result.csv:match("(.*)/"), result.csv:match("(.*)/")))
+end

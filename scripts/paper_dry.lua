@@ -33,7 +33,22 @@ local result = drive:run {
   t_end = 1.0,
   sample = 1e-3,
   probe = {0.29, 0.1},
+  -- a 10 s clip, ten times slower than life (a frame every 3.3 ms of simulated time: the belt
+  -- moves about one element per frame at full speed), coloured by the SDE tension so that its
+  -- fall round each pulley shows; the belt's deviation from its path magnified ten times; a
+  -- PNG every 0.1 s of simulated time (every 30th frame)
+  frames = {
+    fps = 30, slowdown = 10, size = {1280, 720},
+    quantity = "tension", range = {0, 1000},
+    magnify = 10,
+    png = true, png_every = 30,
+    video = "paper_dry.mp4",
+  },
 }
 print(string.format("t = %.3f s: driver %.3f rad/s, driven %.3f rad/s (%d steps, %.1f s wall)",
   result.t, result.omega.driver, result.omega.driven, result.steps, result.wall))
 print("time series: " .. result.csv)
+if result.frames > 0 then
+  print(string.format("%d frames: %s/frames/ (PNG, every 30th) and %s/paper_dry.mp4",
+    result.frames, result.csv:match("(.*)/"), result.csv:match("(.*)/")))
+end

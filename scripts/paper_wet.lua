@@ -26,7 +26,21 @@ local result = drive:run {
   t_end = 1.0,
   sample = 1e-3,
   probe = {l_p + 0.1, 0.0},
+  -- the friction force each element feels (along the travel: positive where the pulley drives
+  -- the belt) shows where the belt grips; the wet half is marked blue along its back, the
+  -- elements that slip orange along their inside
+  frames = {
+    fps = 30, slowdown = 10, size = {1280, 720},
+    quantity = "friction", range = {-100, 100},
+    magnify = 10,
+    png = true, png_every = 30,
+    video = "paper_wet.mp4",
+  },
 }
 print(string.format("t = %.3f s: driver %.3f rad/s, driven %.3f rad/s (%d steps, %.1f s wall)",
   result.t, result.omega.driver, result.omega.driven, result.steps, result.wall))
 print("time series: " .. result.csv)
+if result.frames > 0 then
+  print(string.format("%d frames: %s/frames/ (PNG, every 30th) and %s/paper_wet.mp4",
+    result.frames, result.csv:match("(.*)/"), result.csv:match("(.*)/")))
+end

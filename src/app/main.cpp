@@ -1,5 +1,5 @@
 // beltsim command line.
-//   beltsim run SCRIPT [--out DIR] [--t-end T] [--integrator NAME] [--rtol R]
+//   beltsim run SCRIPT [--out DIR] [--t-end T] [--integrator NAME] [--rtol R] [--no-frames]
 //   beltsim wp  SCRIPT [--out DIR] [--t-end T] [--integrators A,B] [--rtols R1,R2] [--ref-rtol R]
 //                      [--wall-limit S]
 // The flags override what the script passes to scene:run{}. Exit status: 0 on success, 1 on a
@@ -26,7 +26,7 @@ std::atomic<bool> g_stop{false};
 void on_sigint(int) { g_stop.store(true); }
 
 const char* kUsage =
-    "usage: beltsim run SCRIPT [--out DIR] [--t-end T] [--integrator NAME] [--rtol R]\n"
+    "usage: beltsim run SCRIPT [--out DIR] [--t-end T] [--integrator NAME] [--rtol R] [--no-frames]\n"
     "       beltsim wp  SCRIPT [--out DIR] [--t-end T] [--integrators A,B,..] [--rtols R1,R2,..]\n"
     "                          [--ref-rtol R] [--wall-limit S]\n"
     "\n"
@@ -35,7 +35,9 @@ const char* kUsage =
     "  --t-end T          end time [s]\n"
     "  --integrator NAME  one of: %s\n"
     "  --rtol R           relative tolerance of the step-size control\n"
-    "Writes DIR/timeseries.csv (samples at fixed times) and DIR/parameters.csv.\n"
+    "  --no-frames        render no frames and no video, whatever the script asks\n"
+    "Writes DIR/timeseries.csv (samples at fixed times) and DIR/parameters.csv, and the\n"
+    "frames (PNG) and video (MP4) a script asks for with scene:run{ frames = {...} }.\n"
     "\n"
     "wp: error against run time. Runs the script's scene with every integrator (or those of\n"
     "--integrators) at every tolerance of --rtols (default 1e-2,1e-3,1e-4,1e-5,1e-6), each\n"
@@ -128,6 +130,8 @@ int main(int argc, char** argv) {
       } else {
         wps.wall_limit = x;
       }
+    } else if (a == "--no-frames") {
+      o.no_frames = true;
     } else if (a == "--help" || a == "-h") {
       return usage(nullptr);
     } else if (!a.empty() && a[0] == '-') {

@@ -164,6 +164,13 @@ DriveResult drive_cvode(OdeSystem& sys, const std::string& name, const Tolerance
   if (const std::string bad = sys.check(opt.t0, y.data()); !bad.empty())
     throw DivergenceError(opt.t0, "initial state at t = " + fmt(opt.t0) + " s: " + bad);
   sample(opt.t0, y), next_sample = 1;
+  // frames: frame_t0 + k·frame_dt up to t_end, from the same interpolation (as drive())
+  const bool frames = opt.frame && opt.frame_dt > 0;
+  long next_frame = 0;
+  auto frame_time = [&](long k) { return opt.frame_t0 + static_cast<double>(k) * opt.frame_dt; };
+  if (frames)
+    while (frame_time(next_frame) < opt.t0 - 1e-12 * span) next_frame++;
+  if (frames && std::abs(frame_time(next_frame) - opt.t0) <= 1e-12 * span) opt.frame(frame_time(next_frame), y), next_frame++;
 
   DriveResult res;
   double t = opt.t0;
@@ -207,6 +214,13 @@ DriveResult drive_cvode(OdeSystem& sys, const std::string& name, const Tolerance
         }
         sample(ts, dense);
         next_sample++;
+      }
+      while (frames && frame_time(next_frame) <= std::min(t_ret, opt.t_end) + 1e-12 * span) {
+        const double tf = std::min(frame_time(next_frame), opt.t_end);
+        check(CVodeGetDky(cv.mem, std::min(tf, t_ret), 0, cv.dky), "CVodeGetDky");
+        std::copy(N_VGetArrayPointer(cv.dky), N_VGetArrayPointer(cv.dky) + n, dense.data());
+        opt.frame(tf, dense);
+        next_frame++;
       }
       t = t_ret;
       if (progress) {

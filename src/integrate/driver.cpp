@@ -54,6 +54,13 @@ DriveResult drive(OdeSystem& sys, Stepper& stepper, const Tolerances& tol, const
   if (const std::string bad = sys.check(t, y.data()); !bad.empty())
     throw DivergenceError(t, "initial state at t = " + fmt(t) + " s: " + bad);
   if (next_sample <= last_sample && sample_time(next_sample) <= t) sample(t, y), next_sample++;
+  // frames: frame_t0 + k·frame_dt (integer k) up to t_end, by the same dense output
+  const bool frames = opt.frame && opt.frame_dt > 0;
+  long next_frame = 0;
+  auto frame_time = [&](long k) { return opt.frame_t0 + static_cast<double>(k) * opt.frame_dt; };
+  if (frames)
+    while (frame_time(next_frame) < t - 1e-12 * span) next_frame++;
+  if (frames && std::abs(frame_time(next_frame) - t) <= 1e-12 * span) opt.frame(frame_time(next_frame), y), next_frame++;
 
   // first step (Hairer II.4, simplified): make the first-order term small against the tolerance
   double h;
@@ -108,6 +115,18 @@ DriveResult drive(OdeSystem& sys, Stepper& stepper, const Tolerances& tol, const
         sample(ts, dense);
       }
       next_sample++;
+    }
+    while (frames && frame_time(next_frame) <= std::min(t1, opt.t_end) + 1e-12 * span) {
+      // the frame's own time even when it falls on (or within rounding of) the step's end, so
+      // frame times never depend on where the steps fell
+      const double tf = std::min(frame_time(next_frame), opt.t_end);
+      if (tf >= t1) {
+        opt.frame(tf, y1);
+      } else {
+        hermite((tf - t) / (t1 - t), t1 - t, y, f0, y1, f1, dense);
+        opt.frame(tf, dense);
+      }
+      next_frame++;
     }
     const double h_used = t1 - t;
     t = t1;

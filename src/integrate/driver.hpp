@@ -32,6 +32,11 @@ struct DriveOptions {
   // called on landing at each event time, after that time's sample: it may change the system
   // (a wetted stretch of belt) or the state; the stepper then restarts from there
   std::function<void(double t, Eigen::VectorXd& y)> on_event;
+  // a second output stream at its own exact times (frames): frame_t0 + k·frame_dt <= t_end,
+  // delivered by the same dense output as the samples (0 or no frame function: none)
+  double frame_dt = 0;
+  double frame_t0 = 0;
+  std::function<void(double t, const Eigen::VectorXd& y)> frame;
 };
 
 struct DriveResult {

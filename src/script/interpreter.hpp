@@ -19,6 +19,7 @@ struct Overrides {
   std::optional<double> t_end;
   std::optional<std::string> integrator;
   std::optional<double> rtol;
+  bool no_frames = false;  // ignore the scripts' frames = {...} (no rendering, no video)
 };
 
 // What a script asked of its first scene:run{} (for `beltsim wp`, which runs the scene itself).

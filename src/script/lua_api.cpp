@@ -17,6 +17,7 @@
 
 #include "integrate/driver.hpp"
 #include "integrate/stepper.hpp"
+#include "render/recorder.hpp"
 #include "scene/scene.hpp"
 #include "scene/validate.hpp"
 #include "script/context.hpp"
@@ -485,7 +486,89 @@ std::vector<MuEvent> read_events(lua_State* L, int idx, const Scene& sc) {
   return out;
 }
 
-// scene:run{ t_end=, integrator=, rtol=, atol=, sample=, out=, probe=, progress=, events= } -> result
+// run{ frames = { fps=, slowdown=, size={w, h}, quantity=, range={lo, hi}, levels=, magnify=,
+// view={centre={x, y}, width=}, png=true|"dir", png_every=, video=true|"file.mp4", t_start= } }: checked
+// here and by validate(FrameSettings) before anything is simulated
+FrameSettings to_frames(lua_State* L, int idx) {
+  idx = lua_absindex(L, idx);
+  const std::string w = "run.frames";
+  require_table(L, idx, w);
+  check_keys(L, idx, w,
+             {"fps", "slowdown", "size", "quantity", "range", "levels", "magnify", "view", "png", "png_every", "video",
+              "t_start"});
+  FrameSettings f;
+  if (auto v = opt_number(L, idx, "fps", w)) f.fps = *v;
+  if (auto v = opt_number(L, idx, "slowdown", w)) f.slowdown = *v;
+  if (auto v = opt_number(L, idx, "magnify", w)) f.magnify = *v;
+  if (auto v = opt_number(L, idx, "t_start", w)) f.t_start = *v;
+  if (field(L, idx, "levels")) f.levels = to_integer(L, -1, w + ".levels"), lua_pop(L, 1);
+  if (field(L, idx, "png_every")) f.png_every = to_integer(L, -1, w + ".png_every"), lua_pop(L, 1);
+  auto pair = [&](const char* key, const char* what) -> std::optional<std::pair<double, double>> {
+    if (!field(L, idx, key)) return std::nullopt;
+    if (!lua_istable(L, -1) || lua_rawlen(L, -1) != 2) fail(L, w + "." + key + ": " + what + " expected, got " + type_name(L, -1));
+    double a[2];
+    for (int k = 0; k < 2; ++k) {
+      lua_rawgeti(L, -1, k + 1);
+      a[k] = to_number(L, -1, w + "." + key);
+      lua_pop(L, 1);
+    }
+    lua_pop(L, 1);
+    return std::make_pair(a[0], a[1]);
+  };
+  if (auto s = pair("size", "{width, height} in pixels")) {
+    if (s->first != std::floor(s->first) || s->second != std::floor(s->second))
+      fail(L, w + ".size: whole numbers of pixels expected (got {" + std::to_string(s->first) + ", " +
+                  std::to_string(s->second) + "})");
+    f.width = static_cast<int>(s->first), f.height = static_cast<int>(s->second);
+  }
+  if (auto r = pair("range", "{lo, hi} in the quantity's unit")) f.range_lo = r->first, f.range_hi = r->second;
+  if (auto q = opt_string(L, idx, "quantity", w)) {
+    std::string names, best;
+    size_t bd = 3;
+    bool found = false;
+    for (const auto& i : frame_quantities()) {
+      names += (names.empty() ? "" : ", ") + std::string(i.key);
+      if (*q == i.key) f.quantity = i.q, found = true;
+      if (const size_t d = edit_distance(*q, i.key); d < bd) bd = d, best = i.key;
+    }
+    if (!found)
+      fail(L, w + ".quantity: unknown quantity '" + *q + "'" + (best.empty() ? "" : " (did you mean '" + best + "'?)") +
+                  "; one of: " + names);
+  }
+  if (field(L, idx, "view")) {
+    require_table(L, -1, w + ".view");
+    check_keys(L, -1, w + ".view", {"centre", "center", "width"});
+    for (const char* k : {"centre", "center"})
+      if (field(L, -1, k)) f.view_centre = to_vec2(L, -1, w + ".view." + k), lua_pop(L, 1);
+    if (auto v = opt_number(L, lua_gettop(L), "width", w + ".view")) f.view_width = *v;
+    lua_pop(L, 1);
+  }
+  // png = true: <out>/frames/; a string: that folder; video = true: <out>/frames.mp4
+  auto output = [&](const char* key, const char* dflt) -> std::string {
+    if (!field(L, idx, key)) return "";
+    std::string r;
+    if (lua_type(L, -1) == LUA_TBOOLEAN)
+      r = lua_toboolean(L, -1) ? dflt : "";
+    else if (lua_type(L, -1) == LUA_TSTRING)
+      r = lua_tostring(L, -1);
+    else
+      fail(L, w + "." + key + ": true, false or a path expected, got " + type_name(L, -1));
+    lua_pop(L, 1);
+    return r;
+  };
+  f.png_dir = output("png", "frames");
+  f.video_path = output("video", "frames.mp4");
+  std::string error;
+  try {
+    validate(f);
+  } catch (const std::invalid_argument& e) {
+    error = std::string("run.") + e.what();
+  }
+  if (!error.empty()) fail(L, error);
+  return f;
+}
+
+// scene:run{ t_end=, integrator=, rtol=, atol=, sample=, out=, probe=, progress=, events=, frames= } -> result
 int l_scene_run(lua_State* L) {
   const Scene* sc = check_scene(L, 1);
   auto* ctx = static_cast<Context*>(lua_touserdata(L, lua_upvalueindex(1)));
@@ -493,7 +576,8 @@ int l_scene_run(lua_State* L) {
   rs.out_dir = ctx->default_out;
   if (!lua_isnoneornil(L, 2)) {
     require_table(L, 2, "run");
-    check_keys(L, 2, "run", {"t_end", "integrator", "rtol", "atol", "sample", "out", "probe", "progress", "events"});
+    check_keys(L, 2, "run", {"t_end", "integrator", "rtol", "atol", "sample", "out", "probe", "progress", "events",
+                             "frames"});
     if (auto v = opt_number(L, 2, "t_end", "run")) rs.t_end = *v;
     if (auto v = opt_string(L, 2, "integrator", "run")) rs.integrator = *v;
     if (auto v = opt_number(L, 2, "rtol", "run")) rs.rtol = *v;
@@ -512,8 +596,14 @@ int l_scene_run(lua_State* L) {
         rs.probe_element = to_integer(L, -1, "run.probe");
       lua_pop(L, 1);
     }
+    if (field(L, 2, "frames")) {
+      if (!(lua_type(L, -1) == LUA_TBOOLEAN && !lua_toboolean(L, -1))) rs.frames = to_frames(L, -1);
+      lua_pop(L, 1);
+    }
   }
   const Overrides& o = ctx->overrides;
+  if (o.no_frames) rs.frames.reset();
+  rs.frame_factory = render::make_frame_recorder;
   if (o.out) rs.out_dir = *o.out;
   if (o.t_end) rs.t_end = *o.t_end;
   if (o.integrator) rs.integrator = *o.integrator;
@@ -549,6 +639,7 @@ int l_scene_run(lua_State* L) {
   lua_pushinteger(L, res.work.factorizations), lua_setfield(L, -2, "factorizations");
   lua_pushstring(L, res.csv_path.c_str()), lua_setfield(L, -2, "csv");
   lua_pushstring(L, res.parameters_path.c_str()), lua_setfield(L, -2, "parameters");
+  lua_pushinteger(L, res.frames), lua_setfield(L, -2, "frames");
   lua_newtable(L);
   for (int j = 0; j < sc->model.n_p(); ++j)
     lua_pushnumber(L, res.omega[j]), lua_setfield(L, -2, sc->model.pulleys[j].name.c_str());

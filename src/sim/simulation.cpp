@@ -129,6 +129,19 @@ RunResult run(const Scene& sc, const RunSettings& rs, const std::atomic<bool>* s
   check_integrator(rs.integrator);
   const bool peer = is_cvode(rs.integrator);
   auto stepper = peer ? nullptr : make_stepper(rs.integrator);
+  std::optional<FrameSettings> frames = rs.frames;
+  if (frames) {
+    validate(*frames);
+    if (!rs.frame_factory) throw std::invalid_argument("run: frames asked for, but this program has no renderer");
+    if (frames->t_start > rs.t_end)
+      throw std::invalid_argument("run.frames.t_start: must be <= t_end = " + std::to_string(rs.t_end) + " s (got " +
+                                  std::to_string(frames->t_start) + " s)");
+    auto inside = [&](std::string& p) {
+      if (!p.empty() && std::filesystem::path(p).is_relative()) p = (std::filesystem::path(rs.out_dir) / p).string();
+    };
+    inside(frames->png_dir);
+    inside(frames->video_path);
+  }
 
   std::filesystem::create_directories(rs.out_dir);
   RunResult res;
@@ -189,7 +202,16 @@ RunResult run(const Scene& sc, const RunSettings& rs, const std::atomic<bool>* s
                  w.steps, tty ? "   " : "\n");
   };
 
+  // the renderer exists only when frames are asked for (no GL context, no encoder otherwise)
+  std::unique_ptr<FrameSink> sink;
   DriveOptions opt;
+  if (frames) {
+    sink = rs.frame_factory(sc, *frames);
+    opt.frame_dt = frames->frame_dt();
+    opt.frame_t0 = frames->t_start;
+    // m: the model the integrator uses (the one events change, if any)
+    opt.frame = [&](double t, const Eigen::VectorXd& y) { sink->frame(t, y.data(), m); };
+  }
   opt.t_end = rs.t_end;
   opt.sample_dt = rs.sample_dt;
   opt.events = m.breakpoints();
@@ -213,10 +235,20 @@ RunResult run(const Scene& sc, const RunSettings& rs, const std::atomic<bool>* s
     res.work = dr.work;
   } catch (...) {
     csv.flush();
+    if (sink) {
+      try {
+        sink->finish();  // the video stays playable after an error or a divergence
+      } catch (...) {
+      }
+    }
     if (reported && tty) std::fputc('\n', stderr);
     throw;
   }
   csv.flush();
+  if (sink) {
+    sink->finish();
+    res.frames = sink->frames_written();
+  }
   if (reported && tty) std::fputc('\n', stderr);
   for (int j = 0; j < m.n_p(); ++j) res.omega.push_back(m.omega(j, res.t_reached, y.data() + N));
   return res;

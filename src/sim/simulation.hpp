@@ -5,11 +5,13 @@
 #include <atomic>
 #include <functional>
 #include <map>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "integrate/system.hpp"
 #include "scene/scene.hpp"
+#include "sim/frames.hpp"
 
 namespace beltsim {
 
@@ -32,6 +34,10 @@ struct RunSettings {
   double wall_limit = 0;              // [s] stop the run after this much wall time (0: no limit)
   bool keep_samples = false;          // keep the rows of timeseries.csv in RunResult::samples
   std::vector<MuEvent> mu_events;     // in any order
+  // frames (PNG and/or video) at their own times; relative paths are taken inside out_dir. The
+  // factory (the renderer's, src/render) is called only when frames are asked for.
+  std::optional<FrameSettings> frames;
+  FrameSinkFactory frame_factory;
 };
 
 struct RunResult {
@@ -43,6 +49,7 @@ struct RunResult {
   std::string csv_path, parameters_path;
   bool over_wall_limit = false;       // stopped by RunSettings::wall_limit
   std::vector<std::vector<double>> samples;  // with keep_samples: the CSV rows
+  long frames = 0;                    // frames rendered
 };
 
 // Writes DIR/timeseries.csv and DIR/parameters.csv. Throws DivergenceError (after flushing what

@@ -1,0 +1,15 @@
+// PNG files through libpng: 8-bit RGB, no interlace. Throws std::runtime_error with the path and
+// libpng's message on failure.
+#pragma once
+
+#include <string>
+
+#include "io/image.hpp"
+
+namespace beltsim {
+
+void write_png(const std::string& path, const Image& img);
+// reads any 8-bit or 16-bit PNG (grey, palette, alpha are converted) as 8-bit RGB
+Image read_png(const std::string& path);
+
+}  // namespace beltsim

@@ -1,0 +1,182 @@
+#include "io/video_writer.hpp"
+
+#include <atomic>
+#include <stdexcept>
+
+extern "C" {
+#include <libavcodec/avcodec.h>
+#include <libavformat/avformat.h>
+#include <libavutil/opt.h>
+#include <libswscale/swscale.h>
+}
+
+namespace beltsim {
+
+namespace {
+
+std::atomic<long> g_encoders{0};
+
+std::string av_message(int err) {
+  char buf[AV_ERROR_MAX_STRING_SIZE] = {0};
+  av_strerror(err, buf, sizeof buf);
+  return buf;
+}
+
+}  // namespace
+
+struct VideoWriter::Impl {
+  std::string path;
+  VideoOptions opt;
+  AVFormatContext* fmt = nullptr;
+  AVCodecContext* enc = nullptr;
+  AVStream* stream = nullptr;
+  AVFrame* frame = nullptr;
+  AVPacket* pkt = nullptr;
+  SwsContext* sws = nullptr;
+  long n = 0;
+  bool open = false;     // header written, trailer not yet
+  bool io_open = false;
+
+  [[noreturn]] void fail(const std::string& what, int err = 0) {
+    throw std::runtime_error("video " + path + ": " + what + (err ? ": " + av_message(err) : ""));
+  }
+
+  // send a frame (or nullptr to flush) and write every packet the encoder has ready
+  void encode(AVFrame* f) {
+    int r = avcodec_send_frame(enc, f);
+    if (r < 0) fail("encoding failed", r);
+    for (;;) {
+      r = avcodec_receive_packet(enc, pkt);
+      if (r == AVERROR(EAGAIN) || r == AVERROR_EOF) return;
+      if (r < 0) fail("encoding failed", r);
+      av_packet_rescale_ts(pkt, enc->time_base, stream->time_base);
+      pkt->stream_index = stream->index;
+      r = av_interleaved_write_frame(fmt, pkt);  // takes the packet's reference
+      if (r < 0) fail("writing failed", r);
+    }
+  }
+
+  void release() {
+    if (io_open) avio_closep(&fmt->pb), io_open = false;
+    sws_freeContext(sws), sws = nullptr;
+    av_packet_free(&pkt);
+    av_frame_free(&frame);
+    avcodec_free_context(&enc);
+    avformat_free_context(fmt), fmt = nullptr;
+  }
+};
+
+VideoWriter::VideoWriter(const std::string& path, const VideoOptions& opt) : impl_(std::make_unique<Impl>()) {
+  Impl& d = *impl_;
+  d.path = path;
+  d.opt = opt;
+  // FFmpeg and x264 report their settings at the info level: keep the terminal for warnings
+  static const bool quiet = (av_log_set_level(AV_LOG_WARNING), true);
+  (void)quiet;
+  try {
+    if (opt.width <= 0 || opt.height <= 0 || opt.width % 2 || opt.height % 2)
+      d.fail("width and height must be even and positive (got " + std::to_string(opt.width) + "x" +
+             std::to_string(opt.height) + ")");
+    if (opt.fps <= 0 || opt.fps > 240) d.fail("frame rate must be in 1..240 (got " + std::to_string(opt.fps) + ")");
+    int r = avformat_alloc_output_context2(&d.fmt, nullptr, "mp4", path.c_str());
+    if (r < 0 || !d.fmt) d.fail("cannot create the MP4 muxer", r);
+    const AVCodec* codec = avcodec_find_encoder_by_name("libx264");
+    if (!codec) codec = avcodec_find_encoder(AV_CODEC_ID_H264);
+    if (!codec) d.fail("no H.264 encoder in this FFmpeg build (libx264 expected)");
+    d.stream = avformat_new_stream(d.fmt, nullptr);
+    d.enc = avcodec_alloc_context3(codec);
+    d.pkt = av_packet_alloc();
+    d.frame = av_frame_alloc();
+    if (!d.stream || !d.enc || !d.pkt || !d.frame) d.fail("out of memory");
+    AVCodecContext* c = d.enc;
+    c->width = opt.width;
+    c->height = opt.height;
+    c->time_base = AVRational{1, opt.fps};
+    c->framerate = AVRational{opt.fps, 1};
+    c->gop_size = opt.fps;  // a keyframe, hence a fragment, per second of video
+    c->pix_fmt = AV_PIX_FMT_YUV420P;
+    c->color_primaries = AVCOL_PRI_BT709;
+    c->color_trc = AVCOL_TRC_BT709;
+    c->colorspace = AVCOL_SPC_BT709;
+    c->color_range = AVCOL_RANGE_MPEG;
+    if (d.fmt->oformat->flags & AVFMT_GLOBALHEADER) c->flags |= AV_CODEC_FLAG_GLOBAL_HEADER;
+    av_opt_set(c->priv_data, "preset", opt.preset.c_str(), 0);
+    av_opt_set(c->priv_data, "crf", std::to_string(opt.crf).c_str(), 0);
+    if ((r = avcodec_open2(c, codec, nullptr)) < 0) d.fail("cannot open the H.264 encoder", r);
+    g_encoders++;
+    if ((r = avcodec_parameters_from_context(d.stream->codecpar, c)) < 0) d.fail("codec parameters", r);
+    d.stream->time_base = c->time_base;
+    d.stream->avg_frame_rate = c->framerate;
+
+    d.frame->format = c->pix_fmt;
+    d.frame->width = c->width;
+    d.frame->height = c->height;
+    if ((r = av_frame_get_buffer(d.frame, 0)) < 0) d.fail("frame buffer", r);
+    d.frame->color_primaries = c->color_primaries;
+    d.frame->color_trc = c->color_trc;
+    d.frame->colorspace = c->colorspace;
+    d.frame->color_range = c->color_range;
+    d.sws = sws_getContext(opt.width, opt.height, AV_PIX_FMT_RGB24, opt.width, opt.height, AV_PIX_FMT_YUV420P,
+                           SWS_BICUBIC, nullptr, nullptr, nullptr);
+    if (!d.sws) d.fail("cannot create the RGB to YUV converter");
+    // full-range sRGB in, BT.709 TV-range YUV out: without this swscale uses BT.601 and the
+    // colours shift (DESIGN §9)
+    const int* bt709 = sws_getCoefficients(SWS_CS_ITU709);
+    sws_setColorspaceDetails(d.sws, bt709, 1, bt709, 0, 0, 1 << 16, 1 << 16);
+
+    if ((r = avio_open(&d.fmt->pb, path.c_str(), AVIO_FLAG_WRITE)) < 0) d.fail("cannot open the file", r);
+    // hand each fragment to the file as soon as it is complete (not when the 32 kB I/O buffer
+    // fills), so a killed process leaves every finished fragment on disk
+    d.fmt->flags |= AVFMT_FLAG_FLUSH_PACKETS;
+    d.io_open = true;
+    AVDictionary* mux = nullptr;
+    av_dict_set(&mux, "movflags", "frag_keyframe+empty_moov+default_base_moof", 0);
+    r = avformat_write_header(d.fmt, &mux);
+    av_dict_free(&mux);
+    if (r < 0) d.fail("cannot write the header", r);
+    avio_flush(d.fmt->pb);
+    d.open = true;
+  } catch (...) {
+    d.release();
+    throw;
+  }
+}
+
+VideoWriter::~VideoWriter() {
+  try {
+    close();
+  } catch (...) {  // a destructor must not throw; the fragments written so far still play
+  }
+  impl_->release();
+}
+
+void VideoWriter::add(const Image& img) {
+  Impl& d = *impl_;
+  if (!d.open) d.fail("add() after close()");
+  if (img.width != d.opt.width || img.height != d.opt.height)
+    d.fail("frame of " + std::to_string(img.width) + "x" + std::to_string(img.height) + " in a video of " +
+           std::to_string(d.opt.width) + "x" + std::to_string(d.opt.height));
+  int r = av_frame_make_writable(d.frame);
+  if (r < 0) d.fail("frame buffer", r);
+  const uint8_t* src[1] = {img.rgb.data()};
+  const int stride[1] = {3 * img.width};
+  sws_scale(d.sws, src, stride, 0, img.height, d.frame->data, d.frame->linesize);
+  d.frame->pts = d.n++;
+  d.encode(d.frame);
+}
+
+void VideoWriter::close() {
+  Impl& d = *impl_;
+  if (!d.open) return;
+  d.open = false;  // whatever happens below, do not try twice
+  d.encode(nullptr);
+  const int r = av_write_trailer(d.fmt);
+  if (d.io_open) avio_closep(&d.fmt->pb), d.io_open = false;
+  if (r < 0) d.fail("cannot write the trailer", r);
+}
+
+long VideoWriter::frames() const { return impl_->n; }
+const std::string& VideoWriter::path() const { return impl_->path; }
+long VideoWriter::encoders_created() { return g_encoders.load(); }
+
+}  // namespace beltsim

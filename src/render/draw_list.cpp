@@ -1,0 +1,412 @@
+#include "render/draw_list.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+
+#include "model/forces.hpp"
+#include "render/text.hpp"
+#include "scene/scene.hpp"
+
+namespace beltsim::render {
+
+namespace {
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+constexpr Rgba kInk{0.08f, 0.08f, 0.10f, 1};
+constexpr Rgba kWet{0.10f, 0.42f, 0.95f, 1};
+constexpr Rgba kSlip{1.00f, 0.50f, 0.00f, 1};
+constexpr Rgba kPulley{0.86f, 0.87f, 0.89f, 1};
+constexpr Rgba kRim{0.42f, 0.43f, 0.46f, 1};
+constexpr Rgba kSpoke{0.58f, 0.59f, 0.62f, 1};
+constexpr Rgba kMarker{0.80f, 0.10f, 0.12f, 1};
+constexpr Rgba kEdge{0.15f, 0.15f, 0.17f, 1};
+
+// the wrap sense of each pulley (+1: the belt goes round it anticlockwise) from the route
+std::vector<int> pulley_senses(const Scene& sc) {
+  std::vector<int> s(sc.model.n_p(), 1);
+  for (size_t k = 0; k < sc.route_pulleys.size(); ++k) s[sc.route_pulleys[k]] = sc.route.arcs[k].sense;
+  return s;
+}
+
+std::string format(const char* f, double v) {
+  char b[64];
+  std::snprintf(b, sizeof b, f, v);
+  std::string s = b;
+  // a typographic minus
+  if (!s.empty() && s[0] == '-') s = "\u2212" + s.substr(1);
+  return s;
+}
+
+// a tick label: up to 3 significant digits, no exponent for the ranges we draw
+std::string tick(double v, double span) {
+  if (std::abs(v) < 1e-12 * span) v = 0;
+  const double mag = std::abs(span);
+  const char* f = mag >= 100 ? "%.0f" : mag >= 10 ? "%.1f" : mag >= 1 ? "%.2f" : mag >= 0.1 ? "%.3f" : "%.2g";
+  return format(f, v);
+}
+
+}  // namespace
+
+// ---- primitives -------------------------------------------------------------------------------
+
+void DrawList::triangle(Vec2 a, Vec2 b, Vec2 c, Rgba col) {
+  for (const Vec2& p : {a, b, c}) triangles.push_back({static_cast<float>(p.x()), static_cast<float>(p.y()), col});
+}
+
+void DrawList::quad(Vec2 a, Vec2 b, Vec2 c, Vec2 d, Rgba col) {
+  triangle(a, b, c, col);
+  triangle(a, c, d, col);
+}
+
+namespace {
+SolidVertex vx(const Vec2& p, Rgba c, double da, double db) {
+  return {static_cast<float>(p.x()), static_cast<float>(p.y()), c, static_cast<float>(da), static_cast<float>(db)};
+}
+}  // namespace
+
+void DrawList::band(Vec2 ai, Vec2 bi, Vec2 bo, Vec2 ao, Rgba col) {
+  // grow each end's cross-section by a pixel on both sides; da: distance from the inner edge,
+  // db: from the outer edge
+  const double wa = (ao - ai).norm(), wb = (bo - bi).norm();
+  if (wa <= 0 || wb <= 0) return;
+  const Vec2 ua = (ao - ai) / wa, ub = (bo - bi) / wb;
+  const SolidVertex v[4] = {vx(ai - ua, col, -1, wa + 1), vx(bi - ub, col, -1, wb + 1), vx(bo + ub, col, wb + 1, -1),
+                            vx(ao + ua, col, wa + 1, -1)};
+  triangles.insert(triangles.end(), {v[0], v[1], v[2], v[0], v[2], v[3]});
+}
+
+void DrawList::line(Vec2 a, Vec2 b, double w, Rgba col) {
+  const Vec2 d = b - a;
+  const double len = d.norm();
+  if (len <= 0) return;
+  const Vec2 n = Vec2(-d.y(), d.x()) * (0.5 * w / len);
+  band(a - n, b - n, b + n, a + n, col);
+}
+
+void DrawList::disc(Vec2 c, double r, Rgba col, int seg) {
+  // a fan grown by a pixel; da falls linearly from r at the centre to -1 on the grown rim
+  const double R = r + 1;
+  for (int k = 0; k < seg; ++k) {
+    const double a0 = 2 * M_PI * k / seg, a1 = 2 * M_PI * (k + 1) / seg;
+    triangles.insert(triangles.end(), {vx(c, col, r, 1e4), vx(c + R * Vec2(std::cos(a0), std::sin(a0)), col, -1, 1e4),
+                                       vx(c + R * Vec2(std::cos(a1), std::sin(a1)), col, -1, 1e4)});
+  }
+}
+
+void DrawList::ring(Vec2 c, double r0, double r1, Rgba col, int seg) {
+  for (int k = 0; k < seg; ++k) {
+    const double a0 = 2 * M_PI * k / seg, a1 = 2 * M_PI * (k + 1) / seg;
+    const Vec2 u0(std::cos(a0), std::sin(a0)), u1(std::cos(a1), std::sin(a1));
+    band(c + r0 * u0, c + r0 * u1, c + r1 * u1, c + r1 * u0, col);
+  }
+}
+
+float DrawList::text(Vec2 at, const std::string& utf8, int px, Rgba col, Align align) {
+  texts.push_back(utf8);
+  if (!font) return 0;
+  const float w = font->width(utf8, px);
+  float x = static_cast<float>(at.x()) - (align == centre ? 0.5f * w : align == right ? w : 0.0f);
+  // whole pixels: glyph bitmaps are sampled texel for pixel, so text stays crisp
+  x = std::round(x);
+  const float y = std::round(static_cast<float>(at.y()));
+  const float inv = 1.0f / Font::atlas_size;
+  for (char32_t c : decode_utf8(utf8)) {
+    const Glyph& g = font->glyph(c, px);
+    if (g.w > 0 && g.h > 0) {
+      const float x0 = x + g.left, y0 = y - g.top, x1 = x0 + g.w, y1 = y0 + g.h;
+      const float u0 = g.x * inv, v0 = g.y * inv, u1 = (g.x + g.w) * inv, v1 = (g.y + g.h) * inv;
+      const GlyphVertex q[6] = {{x0, y0, u0, v0, col}, {x1, y0, u1, v0, col}, {x1, y1, u1, v1, col},
+                                {x0, y0, u0, v0, col}, {x1, y1, u1, v1, col}, {x0, y1, u0, v1, col}};
+      glyphs.insert(glyphs.end(), q, q + 6);
+    }
+    x += g.advance;
+  }
+  return w;
+}
+
+// ---- quantities -------------------------------------------------------------------------------
+
+namespace {
+// the smallest of 1, 2, 2.5, 5 × 10^k that is >= 0.97·x (round colour-bar ends)
+double nice_up(double x) {
+  const double p = std::pow(10.0, std::floor(std::log10(x)));
+  for (double m : {1.0, 2.0, 2.5, 5.0, 10.0})
+    if (m * p >= 0.97 * x) return m * p;  // 3 % slack: 2·500.4 N still ends at 1000
+  return 10 * p;
+}
+}  // namespace
+
+void default_range(const Scene& sc, FrameQuantity q, double& lo, double& hi) {
+  const Model& m = sc.model;
+  double r_max = 0;
+  for (const Pulley& p : m.pulleys) r_max = std::max(r_max, p.radius);
+  const double T0 = sc.static_tension > 0 ? sc.static_tension : 1.0;
+  const double N0 = T0 * m.belt.pitch / r_max;  // static normal force of an element on the largest pulley
+  double mu_max = 0;
+  for (double mu : m.mu) mu_max = std::max(mu_max, mu);
+  switch (q) {
+    case FrameQuantity::tension: lo = 0, hi = nice_up(2 * T0); break;
+    case FrameQuantity::normal: lo = 0, hi = nice_up(4 * N0); break;
+    case FrameQuantity::friction: lo = -nice_up(2 * N0), hi = nice_up(2 * N0); break;
+    case FrameQuantity::slip: lo = -0.05, hi = 0.05; break;
+    case FrameQuantity::mu: lo = 0, hi = mu_max > 0 ? mu_max : 1; break;
+  }
+}
+
+std::vector<double> element_values(const Scene& sc, FrameQuantity q, double t, const double* y, const Model* model) {
+  const Model& m = model ? *model : sc.model;
+  const int n = m.n_el();
+  const double* qs = y;
+  const double* v = y + m.n_coord();
+  std::vector<double> out(n, kNaN);
+  if (q == FrameQuantity::tension) {
+    std::vector<double> F(n);
+    for (int i = 0; i < n; ++i) F[i] = sde_axial_force(m, qs, v, i);
+    // an element sits between its own SDE (to its predecessor) and its successor's
+    for (int i = 0; i < n; ++i) out[i] = 0.5 * (F[i] + F[(i + 1) % n]);
+    return out;
+  }
+  if (q == FrameQuantity::mu) {
+    for (int i = 0; i < n; ++i) out[i] = m.mu[i];
+    return out;
+  }
+  const std::vector<int> sense = pulley_senses(sc);
+  for (int i = 0; i < n; ++i) {
+    const ElementContact c = element_contact(m, t, qs, v, i);
+    if (c.pulley < 0) continue;  // off the pulleys: no contact quantity
+    const int s = sense[c.pulley];  // t̂ is anticlockwise; the belt travels along s·t̂ on this pulley
+    out[i] = q == FrameQuantity::normal ? c.normal : q == FrameQuantity::friction ? s * c.friction : s * c.slip;
+  }
+  return out;
+}
+
+// ---- the frame --------------------------------------------------------------------------------
+
+FrameBuilder::FrameBuilder(const Scene& sc, const FrameSettings& fs, Font* font) : sc_(sc), fs_(fs), font_(font) {
+  const Model& m = sc.model;
+  sense_ = pulley_senses(sc);
+  for (size_t k = 0; k < sc.route_pulleys.size(); ++k) sink_.push_back(sc.penetration[sc.route_pulleys[k]]);
+  for (double mu : m.mu) mu_dry_ = std::max(mu_dry_, mu);
+
+  double lo, hi;
+  default_range(sc, fs.quantity, lo, hi);
+  if (fs.range_lo) lo = *fs.range_lo;
+  if (fs.range_hi) hi = *fs.range_hi;
+  if (!(lo < hi)) hi = lo + 1;
+  scale_.map = frame_quantity_info(fs.quantity).is_signed ? ColourMap::diverging : ColourMap::viridis;
+  scale_.lo = lo, scale_.hi = hi, scale_.levels = fs.levels;
+
+  // layout: a text band at the top (the time line, then the pulleys' lines in as many columns
+  // as fit), the colour-bar panel at the right, the drive in the rest
+  font_px_ = std::max(10, static_cast<int>(std::lround(fs.height / 40.0)));
+  const double line = 1.4 * font_px_;
+  panel_ = std::max(0.17 * fs.width, 11.0 * font_px_);
+  double widest = 0;
+  for (const Pulley& p : m.pulleys)
+    widest = std::max(widest, font_ ? static_cast<double>(font_->width(p.name + ": \u03c9 = \u2212000.00 rad/s, slip "
+                                                                                 "\u2212000.000 m/s   ", font_px_))
+                                    : 30.0 * font_px_);
+  columns_ = std::max(1, static_cast<int>((fs.width - panel_) / widest));
+  top_ = (1.5 + (m.n_p() + columns_ - 1) / columns_) * line;
+  const Vec2 area0(0, top_), area1(fs.width - panel_, fs.height);
+  cam_.area_centre = 0.5 * (area0 + area1);
+  Vec2 lo_w(1e300, 1e300), hi_w(-1e300, -1e300);
+  for (const Pulley& p : m.pulleys) {
+    lo_w = lo_w.cwiseMin(p.centre - Vec2(p.radius, p.radius));
+    hi_w = hi_w.cwiseMax(p.centre + Vec2(p.radius, p.radius));
+  }
+  const Vec2 size = hi_w - lo_w;
+  const double fit = 0.88 * std::min((area1.x() - area0.x()) / size.x(), (area1.y() - area0.y()) / size.y());
+  cam_.centre = fs.view_centre ? *fs.view_centre : Vec2(0.5 * (lo_w + hi_w));
+  cam_.scale = fs.view_width ? (area1.x() - area0.x()) / *fs.view_width : fit;
+  // a 5PK belt is about 4.5 mm thick; at least 5 px so small frames still show it
+  thickness_ = std::max(4.5e-3, 5.0 / cam_.scale);
+}
+
+Vec2 FrameBuilder::displayed(const Vec2& p, Vec2* tangent) const {
+  if (fs_.magnify == 1 && !tangent) return p;
+  // nearest point of the nominal path: each span's segment, each arc's circle sunk by the
+  // pulley's static penetration (the belt at rest sits there)
+  const Route& r = sc_.route;
+  double best = 1e300;
+  Vec2 nominal = p, tan(1, 0);
+  for (const Route::Span& s : r.spans) {
+    const Vec2 d = s.to - s.from;
+    const double u = std::clamp((p - s.from).dot(d) / d.squaredNorm(), 0.0, 1.0);
+    const Vec2 c = s.from + u * d;
+    if (const double dist = (p - c).squaredNorm(); dist < best) best = dist, nominal = c, tan = d.normalized();
+  }
+  for (size_t k = 0; k < r.arcs.size(); ++k) {
+    const Route::Arc& a = r.arcs[k];
+    const Vec2 rel = p - a.centre;
+    // is the point's angle within the arc (from start_angle, `angle` radians in the arc's sense)?
+    double da = a.sense * (std::atan2(rel.y(), rel.x()) - a.start_angle);
+    da = std::fmod(da, 2 * M_PI);
+    if (da < 0) da += 2 * M_PI;
+    if (da > a.angle) continue;
+    const Vec2 c = a.centre + (a.radius - sink_[k]) * rel.normalized();
+    if (const double dist = (p - c).squaredNorm(); dist < best)
+      best = dist, nominal = c, tan = a.sense * perp(rel.normalized());
+  }
+  if (tangent) *tangent = tan;
+  return nominal + fs_.magnify * (p - nominal);
+}
+
+void FrameBuilder::build(double t, const double* y, DrawList& out, const Model* model) const {
+  const Model& m = model ? *model : sc_.model;
+  const int n = m.n_el();
+  const double* q = y;
+  const double* v = y + m.n_coord();
+  out.width = fs_.width, out.height = fs_.height;
+  out.triangles.clear(), out.glyphs.clear(), out.elements.clear(), out.texts.clear();
+  out.font = font_;
+  out.scale = scale_;
+  const double px = 1.0 / cam_.scale;  // one pixel in metres
+  auto P = [&](const Vec2& w) { return cam_.to_px(w); };
+
+  // pulleys: disc up to the belt's inner edge, rim, spokes turning with θ, a red marker spoke
+  const double h = 0.5 * thickness_;
+  for (int j = 0; j < m.n_p(); ++j) {
+    const Pulley& p = m.pulleys[j];
+    const double R = std::max(p.radius - h - sc_.penetration[j], 0.2 * p.radius);
+    const Vec2 c = P(p.centre);
+    const double Rp = R * cam_.scale;
+    out.disc(c, Rp, kPulley);
+    out.ring(c, Rp - std::max(1.5, 0.04 * Rp), Rp, kRim);
+    const double theta = q[m.pulley_coord(j)];
+    const double w = std::max(1.5, 0.035 * Rp);
+    for (int k = 0; k < 6; ++k) {
+      const double a = theta + k * M_PI / 3;
+      const Vec2 u(std::cos(a), -std::sin(a));  // y down in pixels
+      out.line(c + 0.18 * Rp * u, c + 0.9 * Rp * u, k == 0 ? 2.2 * w : w, k == 0 ? kMarker : kSpoke);
+    }
+    out.disc(c + 0.78 * Rp * Vec2(std::cos(theta), -std::sin(theta)), std::max(2.0, 0.07 * Rp), kMarker, 24);
+    out.disc(c, 0.18 * Rp, kRim, 48);
+    // the name on a patch of the disc's colour, so the spokes do not cross it
+    const Vec2 at = c + Vec2(0, 0.18 * Rp + 1.1 * font_px_);
+    const double tw = font_ ? font_->width(p.name, font_px_) : 0;
+    Rgba patch = kPulley;
+    patch.a = 0.85f;
+    out.quad(at + Vec2(-0.5 * tw - 3, -0.95 * font_px_), at + Vec2(0.5 * tw + 3, -0.95 * font_px_),
+             at + Vec2(0.5 * tw + 3, 0.35 * font_px_), at + Vec2(-0.5 * tw - 3, 0.35 * font_px_), patch);
+    out.text(at, p.name, font_px_, kInk, DrawList::centre);
+  }
+
+  // belt elements
+  const std::vector<double> values = element_values(sc_, fs_.quantity, t, y, &m);
+  // dry: the largest μ the belt had at the start or has now (events may wet or dry it)
+  double mu_dry = mu_dry_;
+  for (double mu : m.mu) mu_dry = std::max(mu_dry, mu);
+  int loop_sense = -1;
+  for (int j = 0; j < m.n_p(); ++j)
+    if (m.pulleys[j].wrap == WrapSide::inside) loop_sense = sense_[j];
+  const double band_w = std::max(0.4 * thickness_, 2.5 * px);
+  // The belt as a band through the displayed element centres: element i runs from the joint
+  // with its predecessor (the mid-point of the two centres, where their SDE is) to the joint with
+  // its successor, so neighbours meet whatever the magnification (rigid elements on an arc are
+  // chords whose ends stand off the arc by l²/8r: magnifying their ends would show that, not
+  // deformation).
+  std::vector<Vec2> Cd(n), J(n), O(n);
+  for (int i = 0; i < n; ++i) Cd[i] = displayed(Vec2(q[3 * i], q[3 * i + 1]));
+  for (int i = 0; i < n; ++i) {
+    const Vec2& prev = Cd[(i + n - 1) % n];
+    J[i] = 0.5 * (prev + Cd[i]);
+    const Vec2 d = (Cd[i] - prev).normalized();
+    O[i] = -loop_sense * perp(d);  // outer (back) side: left of the travel for a clockwise loop
+  }
+  for (int i = 0; i < n; ++i) {
+    const int k = (i + 1) % n;
+    const Vec2 A = J[i], B = J[k];
+    const Vec2 oa = O[i], ob = O[k];
+    const Vec2 d = (B - A).normalized();
+    const double len = (B - A).norm();
+    ElementDraw el;
+    el.value = values[i];
+    el.band = scale_.band(values[i]);
+    el.colour = scale_.colour(values[i]);
+    el.wet = m.mu[i] < mu_dry;
+    const ElementContact c = element_contact(m, t, q, v, i);
+    el.slipping = c.pulley >= 0 && c.normal > 0 && std::abs(c.friction) >= 0.98 * m.mu[i] * c.normal;
+    el.centre = P(Cd[i]);
+    el.corners[0] = P(A - h * oa), el.corners[1] = P(B - h * ob), el.corners[2] = P(B + h * ob), el.corners[3] = P(A + h * oa);
+    // dark edge, then the colour inset by a pixel so the elements read one by one
+    out.band(el.corners[0], el.corners[1], el.corners[2], el.corners[3], kEdge);
+    const double in = std::min(0.9 * px, 0.2 * h), along = std::min(0.6 * px, 0.2 * len);
+    out.band(P(A + along * d - (h - in) * oa), P(B - along * d - (h - in) * ob), P(B - along * d + (h - in) * ob),
+             P(A + along * d + (h - in) * oa), el.colour);
+    if (el.wet)
+      out.band(P(A + (h + 0.3 * px) * oa), P(B + (h + 0.3 * px) * ob), P(B + (h + band_w) * ob),
+               P(A + (h + band_w) * oa), kWet);
+    if (el.slipping)
+      out.band(P(A - (h + band_w) * oa), P(B - (h + band_w) * ob), P(B - (h + 0.3 * px) * ob),
+               P(A - (h + 0.3 * px) * oa), kSlip);
+    out.elements.push_back(el);
+  }
+
+  // text band: time, colour quantity, magnification; each pulley's speed and slip
+  const FrameQuantityInfo& qi = frame_quantity_info(fs_.quantity);
+  const double line = 1.4 * font_px_;
+  const double x0 = 0.6 * font_px_;
+  std::string head = "t = " + format("%.4f", t) + " s      colour: " + qi.label + (*qi.unit ? std::string(" [") + qi.unit + "]" : "");
+  if (fs_.magnify != 1) head += "      deformation \u00d7" + format("%g", fs_.magnify);
+  out.text(Vec2(x0, line), head, font_px_, kInk);
+  double v_belt = 0;  // mean speed of the elements along their axes (the travel direction)
+  for (int i = 0; i < n; ++i) v_belt += axis(q[3 * i + 2]).dot(Vec2(v[3 * i], v[3 * i + 1]));
+  v_belt /= n;
+  const double col_w = (fs_.width - panel_) / columns_;
+  for (int j = 0; j < m.n_p(); ++j)
+    out.text(Vec2(x0 + (j % columns_) * col_w, line * (2 + j / columns_)), pulley_text(j, t, v, v_belt), font_px_, kInk);
+
+  // colour bar: bands from lo (bottom) to hi (top), edges labelled where they fit
+  const double panel_x = fs_.width - panel_ + 0.5 * font_px_;
+  const double bar_w = std::max(8.0, 0.022 * fs_.width);
+  const double bar_top = top_ + 2.2 * line;
+  // (frames too small for a bar of at least four lines get a short one below the text band)
+  const double bar_bot = std::max(fs_.height - 5.2 * line, bar_top + 4.0 * line);
+  out.text(Vec2(panel_x, bar_top - 1.6 * line), qi.label, font_px_, kInk);
+  out.text(Vec2(panel_x, bar_top - 0.6 * line), *qi.unit ? std::string("[") + qi.unit + "]" : "[\u2013]", font_px_, kInk);
+  const int bands = scale_.levels > 0 ? scale_.levels : 64;
+  const double bh = (bar_bot - bar_top) / bands;
+  for (int k = 0; k < bands; ++k) {
+    const double y1 = bar_bot - k * bh, y0 = y1 - bh;
+    const Rgba col = colour_at(scale_.map, (k + 0.5) / bands);
+    out.quad(Vec2(panel_x, y0), Vec2(panel_x + bar_w, y0), Vec2(panel_x + bar_w, y1), Vec2(panel_x, y1), col);
+  }
+  const int edges = scale_.levels > 0 ? scale_.levels : 4;
+  int every = 1;
+  while (every < edges && (bar_bot - bar_top) / edges * every < 1.3 * font_px_) every *= 2;
+  for (int k = 0; k <= edges; k += every) {
+    const double val = scale_.lo + (scale_.hi - scale_.lo) * k / edges;
+    const double yk = bar_bot - (bar_bot - bar_top) * k / edges;
+    out.line(Vec2(panel_x + bar_w, yk), Vec2(panel_x + bar_w + 0.4 * font_px_, yk), 1.2, kInk);
+    out.text(Vec2(panel_x + bar_w + 0.6 * font_px_, yk + 0.35 * font_px_), tick(val, scale_.hi - scale_.lo),
+             font_px_, kInk);
+  }
+  // legend
+  double ly = bar_bot + 1.3 * line;
+  auto swatch = [&](Rgba col, const std::string& what) {
+    out.quad(Vec2(panel_x, ly - 0.7 * font_px_), Vec2(panel_x + bar_w, ly - 0.7 * font_px_), Vec2(panel_x + bar_w, ly),
+             Vec2(panel_x, ly), col);
+    out.text(Vec2(panel_x + bar_w + 0.5 * font_px_, ly), what, font_px_, kInk);
+    ly += line;
+  };
+  if (qi.is_signed) out.text(Vec2(panel_x, ly), "+ : along travel", font_px_, kInk), ly += line;
+  bool any_wet = false;
+  for (const ElementDraw& el : out.elements) any_wet = any_wet || el.wet;
+  if (any_wet) swatch(kWet, "wet (\u03bc < " + format("%g", mu_dry) + ")");
+  swatch(kSlip, "slipping");
+  if (fs_.quantity != FrameQuantity::tension && fs_.quantity != FrameQuantity::mu) swatch(scale_.none, "off the pulleys");
+}
+
+// "driver: ω = −57.05 rad/s, slip +0.021 m/s": the pulley's speed and its rim's speed along the
+// belt's travel minus the belt's mean speed (positive: the pulley drives the belt forward)
+std::string FrameBuilder::pulley_text(int j, double t, const double* v, double v_belt) const {
+  const Pulley& p = sc_.model.pulleys[j];
+  const double om = sc_.model.omega(j, t, v);
+  const double slip = sense_[j] * om * p.radius - v_belt;
+  return p.name + ": \u03c9 = " + format("%.2f", om) + " rad/s, slip " + format("%+.3f", slip) + " m/s";
+}
+
+}  // namespace beltsim::render

@@ -1,0 +1,133 @@
+// The CPU-side draw list of one frame (MuJoCo's abstract scene): coloured triangles and glyph
+// quads in pixel coordinates (origin top-left, y down), built from the Scene and a state, with
+// no GL involved, so tests can check what will be drawn. The GL backend (gl_renderer) only
+// uploads and draws it.
+//
+// A frame shows
+// - pulleys: disc, rim, six spokes and one red marker spoke (rotation and slip show as the marks
+//   turn), the name at the hub;
+// - the belt element by element: a band through the element centres, each element a quad from
+//   the joint with its predecessor to the joint with its successor, coloured by the chosen
+//   quantity on a banded colour map; the centres' deviation from the nominal path (the pitch
+//   line, sunk by the static penetration on each pulley) magnified by `magnify`;
+// - wet elements (μ below the belt's largest μ) with a blue band along the outer (back) edge;
+// - elements that slip (friction saturated, |F| ≥ 0.98·μ·N) with an orange band along the inner
+//   edge, so stick and slip arcs read at a glance whatever the quantity;
+// - a colour bar with the quantity, its unit, its range and band edges; a legend;
+// - time, each pulley's speed and its slip (rim speed minus belt speed) as text.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "model/model.hpp"
+#include "render/colormap.hpp"
+#include "sim/frames.hpp"
+
+namespace beltsim {
+struct Scene;
+}
+
+namespace beltsim::render {
+
+class Font;
+
+// Antialiasing is analytic (cheaper than MSAA on llvmpipe, measured 3×): a shape's geometry is
+// grown by a pixel across each antialiased edge, and each vertex carries its signed distance
+// [px] from up to two such edges (positive inside); the fragment shader scales the alpha by
+// the pixel's coverage clamp(d + 0.5, 0, 1) for each. Edges shared by neighbouring shapes (the
+// joints between belt elements) are not antialiased, so no seams appear between them.
+struct SolidVertex {
+  float x, y;  // [px]
+  Rgba c;
+  float da = 1e4f, db = 1e4f;  // [px] distances from the two antialiased edges (1e4: none)
+};
+struct GlyphVertex {
+  float x, y;  // [px]
+  float u, v;  // atlas coordinates in [0, 1]
+  Rgba c;
+};
+
+// what one element looks like in the frame (kept for tests and for the reader of the code)
+struct ElementDraw {
+  Vec2 centre;      // [px] where its centre is drawn
+  Vec2 corners[4];  // [px] inner and outer corners: inner-A, inner-B, outer-B, outer-A, where A is
+                    // the joint with the predecessor and B with the successor
+  double value = 0; // the quantity (NaN off the pulleys for contact quantities)
+  int band = -1;    // colour band, -1 for NaN
+  Rgba colour;
+  bool wet = false, slipping = false;
+};
+
+struct DrawList {
+  int width = 0, height = 0;
+  Rgba background{1, 1, 1, 1};
+  std::vector<SolidVertex> triangles;  // three vertices per triangle, drawn in order
+  std::vector<GlyphVertex> glyphs;     // drawn after the triangles
+  Font* font = nullptr;                // owner of the glyph atlas
+  std::vector<ElementDraw> elements;
+  std::vector<std::string> texts;      // every string drawn, in order (for tests)
+  ColourScale scale;
+
+  void triangle(Vec2 a, Vec2 b, Vec2 c, Rgba col);
+  // a-b-c-d in order round the quad, edges not antialiased (for pixel-aligned boxes)
+  void quad(Vec2 a, Vec2 b, Vec2 c, Vec2 d, Rgba col);
+  // a strip piece with antialiased long sides: inner edge a_in-b_in, outer edge b_out-a_out;
+  // the ends (a_in-a_out, b_in-b_out) are left sharp, to be shared with the neighbours
+  void band(Vec2 a_in, Vec2 b_in, Vec2 b_out, Vec2 a_out, Rgba col);
+  void line(Vec2 a, Vec2 b, double width_px, Rgba col);  // antialiased along its sides
+  void disc(Vec2 centre, double radius_px, Rgba col, int segments = 96);
+  void ring(Vec2 centre, double r_in_px, double r_out_px, Rgba col, int segments = 96);
+  enum Align { left, centre, right };
+  // text with its baseline at y; returns the width [px]
+  float text(Vec2 at, const std::string& utf8, int px, Rgba col, Align align = left);
+};
+
+// world [m] to pixels
+struct Camera {
+  Vec2 centre{0, 0};     // [m] at the centre of the drawing area
+  double scale = 1000;   // [px/m]
+  Vec2 area_centre{0, 0};  // [px]
+  Vec2 to_px(const Vec2& w) const { return {area_centre.x() + scale * (w.x() - centre.x()), area_centre.y() - scale * (w.y() - centre.y())}; }
+};
+
+// The default colour-bar range of a quantity for a scene (ends rounded up to 1, 2, 2.5 or 5 ×
+// 10^k): tension 0..2·static tension; normal force 0..4·N0, N0 = T0·pitch/r the static normal
+// force of an element on the largest pulley; friction ±2·N0; slip ±0.05 m/s; μ 0..largest μ.
+void default_range(const Scene& scene, FrameQuantity q, double& lo, double& hi);
+
+// The quantity per element at a state (NaN where undefined, e.g. slip off the pulleys); model:
+// the model as it is now (events may have changed μ), null for the scene's own.
+std::vector<double> element_values(const Scene& scene, FrameQuantity q, double t, const double* y,
+                                   const Model* model = nullptr);
+
+class FrameBuilder {
+ public:
+  // settings are validated by the caller (sim/frames.hpp validate)
+  FrameBuilder(const Scene& scene, const FrameSettings& settings, Font* font);
+  // the draw list of the state y at time t (replaces the contents of `out`); model: the model as
+  // it is now (run events may change μ while running), null for the scene's own
+  void build(double t, const double* y, DrawList& out, const Model* model = nullptr) const;
+  const Camera& camera() const { return cam_; }
+  const ColourScale& scale() const { return scale_; }
+  // world position at which an element centre p is drawn (nominal point + magnify·deviation);
+  // tangent (if not null) receives the nominal path's direction of travel there
+  Vec2 displayed(const Vec2& p, Vec2* tangent = nullptr) const;
+
+ private:
+  const Scene& sc_;
+  FrameSettings fs_;
+  Font* font_;
+  Camera cam_;
+  ColourScale scale_;
+  double thickness_ = 0;        // [m] drawn belt thickness
+  double mu_dry_ = 0;           // the largest μ at the start: elements below it are wet
+  std::vector<int> sense_;      // per pulley: +1 the belt wraps it anticlockwise, -1 clockwise
+  std::vector<double> sink_;    // per route arc: static penetration of its pulley [m]
+  int font_px_ = 14;
+  int columns_ = 1;             // pulley lines per row of the text band
+  double top_ = 0, panel_ = 0;  // [px] height of the text band, width of the colour-bar panel
+  std::string pulley_text(int j, double t, const double* v, double v_belt) const;
+};
+
+}  // namespace beltsim::render

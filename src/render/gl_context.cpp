@@ -1,0 +1,113 @@
+#include "render/gl_context.hpp"
+
+#include <EGL/egl.h>
+#include <EGL/eglext.h>
+#include <GL/osmesa.h>
+
+#include <atomic>
+#include <cstdlib>
+#include <cstring>
+#include <stdexcept>
+#include <vector>
+
+namespace beltsim::render {
+
+namespace {
+
+std::atomic<long> g_contexts{0};
+
+class OsMesaContext final : public GlContext {
+ public:
+  OsMesaContext(int major, int minor) {
+    const int attribs[] = {OSMESA_FORMAT, OSMESA_RGBA, OSMESA_DEPTH_BITS, 0, OSMESA_STENCIL_BITS, 0,
+                           OSMESA_ACCUM_BITS, 0, OSMESA_PROFILE, OSMESA_CORE_PROFILE,
+                           OSMESA_CONTEXT_MAJOR_VERSION, major, OSMESA_CONTEXT_MINOR_VERSION, minor, 0};
+    ctx_ = OSMesaCreateContextAttribs(attribs, nullptr);
+    if (!ctx_)
+      throw std::runtime_error("cannot create an OpenGL " + std::to_string(major) + "." + std::to_string(minor) +
+                               " core context with OSMesa (OSMesaCreateContextAttribs failed; Debian package "
+                               "libosmesa6, Mesa's llvmpipe; try BELTSIM_GL=egl)");
+    // the renderer draws into its own framebuffer object: the window-system buffer stays tiny
+    buffer_.resize(16 * 16 * 4);
+    make_current();
+    g_contexts++;
+  }
+  ~OsMesaContext() override { OSMesaDestroyContext(ctx_); }
+  void* proc(const char* name) const override { return reinterpret_cast<void*>(OSMesaGetProcAddress(name)); }
+  void make_current() override {
+    if (!OSMesaMakeCurrent(ctx_, buffer_.data(), GL_UNSIGNED_BYTE, 16, 16))
+      throw std::runtime_error("OSMesaMakeCurrent failed");
+  }
+  GlBackend backend() const override { return GlBackend::osmesa; }
+
+ private:
+  OSMesaContext ctx_ = nullptr;
+  std::vector<unsigned char> buffer_;
+};
+
+class EglContext final : public GlContext {
+ public:
+  EglContext(int major, int minor) {
+    auto fail = [&](const std::string& step) {
+      throw std::runtime_error("cannot create an OpenGL " + std::to_string(major) + "." + std::to_string(minor) +
+                               " core context with EGL (surfaceless Mesa platform): " +
+                               step + " failed (EGL error 0x" + hex(eglGetError()) +
+                               "; Debian packages libegl1, libegl-mesa0, libgl1-mesa-dri; try BELTSIM_GL=osmesa)");
+    };
+    auto get_display = reinterpret_cast<PFNEGLGETPLATFORMDISPLAYEXTPROC>(eglGetProcAddress("eglGetPlatformDisplayEXT"));
+    if (!get_display) fail("eglGetPlatformDisplayEXT");
+    dpy_ = get_display(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY, nullptr);
+    if (dpy_ == EGL_NO_DISPLAY) fail("eglGetPlatformDisplayEXT(EGL_PLATFORM_SURFACELESS_MESA)");
+    EGLint egl_major = 0, egl_minor = 0;
+    if (!eglInitialize(dpy_, &egl_major, &egl_minor)) fail("eglInitialize");
+    if (!eglBindAPI(EGL_OPENGL_API)) fail("eglBindAPI(EGL_OPENGL_API)");
+    const EGLint cfg_attr[] = {EGL_RENDERABLE_TYPE, EGL_OPENGL_BIT, EGL_SURFACE_TYPE, EGL_PBUFFER_BIT, EGL_NONE};
+    EGLConfig cfg = nullptr;
+    EGLint n = 0;
+    if (!eglChooseConfig(dpy_, cfg_attr, &cfg, 1, &n) || n < 1) fail("eglChooseConfig");
+    const EGLint ctx_attr[] = {EGL_CONTEXT_MAJOR_VERSION, major, EGL_CONTEXT_MINOR_VERSION, minor,
+                               EGL_CONTEXT_OPENGL_PROFILE_MASK, EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT, EGL_NONE};
+    ctx_ = eglCreateContext(dpy_, cfg, EGL_NO_CONTEXT, ctx_attr);
+    if (ctx_ == EGL_NO_CONTEXT) fail("eglCreateContext");
+    make_current();
+    g_contexts++;
+  }
+  ~EglContext() override {
+    eglMakeCurrent(dpy_, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
+    eglDestroyContext(dpy_, ctx_);
+    eglTerminate(dpy_);
+  }
+  void* proc(const char* name) const override { return reinterpret_cast<void*>(eglGetProcAddress(name)); }
+  void make_current() override {
+    if (!eglMakeCurrent(dpy_, EGL_NO_SURFACE, EGL_NO_SURFACE, ctx_))
+      throw std::runtime_error("eglMakeCurrent (surfaceless) failed (EGL error 0x" + hex(eglGetError()) + ")");
+  }
+  GlBackend backend() const override { return GlBackend::egl; }
+
+ private:
+  static std::string hex(EGLint v) {
+    char b[16];
+    std::snprintf(b, sizeof b, "%04x", static_cast<unsigned>(v));
+    return b;
+  }
+  EGLDisplay dpy_ = EGL_NO_DISPLAY;
+  EGLContext ctx_ = EGL_NO_CONTEXT;
+};
+
+}  // namespace
+
+std::unique_ptr<GlContext> make_gl_context(GlBackend b, int major, int minor) {
+  if (b == GlBackend::egl) return std::make_unique<EglContext>(major, minor);
+  return std::make_unique<OsMesaContext>(major, minor);
+}
+
+GlBackend default_gl_backend() {
+  const char* e = std::getenv("BELTSIM_GL");
+  return e && std::strcmp(e, "egl") == 0 ? GlBackend::egl : GlBackend::osmesa;
+}
+
+const char* backend_name(GlBackend b) { return b == GlBackend::egl ? "EGL surfaceless" : "OSMesa"; }
+
+long gl_contexts_created() { return g_contexts.load(); }
+
+}  // namespace beltsim::render

@@ -1,0 +1,64 @@
+#include "render/recorder.hpp"
+
+#include <cstdio>
+#include <filesystem>
+
+#include "io/png_writer.hpp"
+#include "io/video_writer.hpp"
+#include "render/draw_list.hpp"
+#include "render/gl_renderer.hpp"
+#include "render/text.hpp"
+
+namespace beltsim::render {
+
+namespace {
+
+class FrameRecorder final : public FrameSink {
+ public:
+  FrameRecorder(const Scene& sc, const FrameSettings& fs)
+      : fs_(fs), font_(), builder_(sc, fs, &font_), ctx_(make_gl_context(default_gl_backend())),
+        gl_(*ctx_, fs.width, fs.height) {
+    if (!fs.png_dir.empty()) std::filesystem::create_directories(fs.png_dir);
+    if (!fs.video_path.empty()) {
+      if (auto dir = std::filesystem::path(fs.video_path).parent_path(); !dir.empty())
+        std::filesystem::create_directories(dir);
+      VideoOptions vo;
+      vo.width = fs.width, vo.height = fs.height, vo.fps = static_cast<int>(fs.fps);
+      video_ = std::make_unique<VideoWriter>(fs.video_path, vo);
+    }
+  }
+  void frame(double t, const double* y, const Model& model) override {
+    builder_.build(t, y, list_, &model);
+    gl_.render(list_, image_);
+    if (!fs_.png_dir.empty() && n_ % fs_.png_every == 0) {
+      char name[32];
+      std::snprintf(name, sizeof name, "frame_%05ld.png", n_);
+      write_png((std::filesystem::path(fs_.png_dir) / name).string(), image_);
+    }
+    if (video_) video_->add(image_);
+    n_++;
+  }
+  void finish() override {
+    if (video_) video_->close();
+  }
+  long frames_written() const override { return n_; }
+
+ private:
+  FrameSettings fs_;
+  Font font_;
+  FrameBuilder builder_;
+  std::unique_ptr<GlContext> ctx_;
+  GlRenderer gl_;
+  std::unique_ptr<VideoWriter> video_;
+  DrawList list_;
+  Image image_;
+  long n_ = 0;
+};
+
+}  // namespace
+
+std::unique_ptr<FrameSink> make_frame_recorder(const Scene& sc, const FrameSettings& fs) {
+  return std::make_unique<FrameRecorder>(sc, fs);
+}
+
+}  // namespace beltsim::render

@@ -1,0 +1,20 @@
+// The renderer as a run's frame observer: a FrameSink that builds the draw list of each frame,
+// renders it on its GL context and hands the image to the PNG and video writers it was asked
+// for. make_frame_recorder is the FrameSinkFactory the scripting layer gives to run().
+#pragma once
+
+#include <memory>
+
+#include "sim/frames.hpp"
+
+namespace beltsim {
+struct Scene;
+}
+
+namespace beltsim::render {
+
+// Creates the GL context (BELTSIM_GL: osmesa or egl), the renderer and the writers. Throws
+// std::runtime_error with a clear message when any of them cannot be created.
+std::unique_ptr<FrameSink> make_frame_recorder(const Scene& scene, const FrameSettings& settings);
+
+}  // namespace beltsim::render

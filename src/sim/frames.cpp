@@ -1,0 +1,57 @@
+#include "sim/frames.hpp"
+
+#include <sstream>
+#include <stdexcept>
+
+namespace beltsim {
+
+const std::vector<FrameQuantityInfo>& frame_quantities() {
+  static const std::vector<FrameQuantityInfo> q{
+      {FrameQuantity::tension, "tension", "SDE tension", "N", false},
+      {FrameQuantity::normal, "normal", "normal force", "N", false},
+      {FrameQuantity::friction, "friction", "friction force", "N", true},
+      {FrameQuantity::slip, "slip", "slip velocity", "m/s", true},
+      {FrameQuantity::mu, "mu", "friction coeff. \u03bc", "", false},
+  };
+  return q;
+}
+
+const FrameQuantityInfo& frame_quantity_info(FrameQuantity q) {
+  for (const auto& i : frame_quantities())
+    if (i.q == q) return i;
+  return frame_quantities().front();
+}
+
+namespace {
+template <class T>
+[[noreturn]] void bad(const std::string& key, const std::string& reason, const T& value, const char* unit = "") {
+  std::ostringstream s;
+  s << "frames." << key << ": " << reason << " (got " << value << unit << ")";
+  throw std::invalid_argument(s.str());
+}
+}  // namespace
+
+void validate(const FrameSettings& f) {
+  if (!(f.fps > 0 && f.fps <= 240)) bad("fps", "must be in (0, 240]", f.fps);
+  if (f.fps != std::floor(f.fps)) bad("fps", "must be a whole number of frames per second", f.fps);
+  if (!(f.slowdown > 0 && f.slowdown < 1e9)) bad("slowdown", "must be > 0 video seconds per simulated second", f.slowdown);
+  for (int v : {f.width, f.height})
+    if (v < 16 || v > 8192 || v % 2) {
+      std::ostringstream s;
+      s << f.width << "x" << f.height;
+      bad("size", "width and height must be even and in 16..8192 px (H.264 in yuv420p)", s.str());
+    }
+  if (f.range_lo && f.range_hi && !(*f.range_lo < *f.range_hi)) {
+    std::ostringstream s;
+    s << "{" << *f.range_lo << ", " << *f.range_hi << "}";
+    bad("range", "needs lo < hi", s.str());
+  }
+  if (!(f.levels == 0 || (f.levels >= 2 && f.levels <= 64))) bad("levels", "must be 0 (continuous) or 2..64", f.levels);
+  if (!(f.magnify > 0 && f.magnify <= 1e4)) bad("magnify", "must be in (0, 1e4]", f.magnify);
+  if (f.view_width && !(*f.view_width > 0)) bad("view.width", "must be > 0", *f.view_width, " m");
+  if (f.png_every < 1) bad("png_every", "must be >= 1", f.png_every);
+  if (!(f.t_start >= 0)) bad("t_start", "must be >= 0", f.t_start, " s");
+  if (f.png_dir.empty() && f.video_path.empty()) bad("png", "neither png nor video asked for: nothing to write", "none");
+}
+
+}  // namespace beltsim

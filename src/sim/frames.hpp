@@ -1,0 +1,72 @@
+// What a run is asked to draw (plain data, no GL): frames at fixed simulated times rendered by an
+// observer that the engine knows only through FrameSink. The renderer (src/render, its own
+// library) provides the sink; a run that asks for no frames never calls the factory, so it opens
+// no GL context and no encoder (DESIGN §7: a scene pays for what it uses).
+#pragma once
+
+#include <cmath>
+#include <functional>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "model/model.hpp"
+
+namespace beltsim {
+
+struct Scene;
+
+// the quantity a frame colours the belt by
+enum class FrameQuantity { tension, normal, friction, slip, mu };
+
+struct FrameQuantityInfo {
+  FrameQuantity q;
+  const char* key;    // Lua name
+  const char* label;  // colour-bar title
+  const char* unit;
+  bool is_signed;     // diverging colour map
+};
+const std::vector<FrameQuantityInfo>& frame_quantities();
+const FrameQuantityInfo& frame_quantity_info(FrameQuantity q);
+
+struct FrameSettings {
+  double fps = 30;             // frames per second of video
+  double slowdown = 10;        // seconds of video per simulated second (10: ten times slower than life)
+  int width = 1280, height = 720;  // [px], even (H.264 in yuv420p)
+  FrameQuantity quantity = FrameQuantity::tension;
+  std::optional<double> range_lo, range_hi;  // colour-bar range; unset: the quantity's default for the scene
+  int levels = 10;             // colour bands (0: continuous)
+  double magnify = 1;          // factor on the belt's deviation from its nominal path
+  std::optional<Vec2> view_centre;   // [m] camera centre; unset: fit the layout
+  std::optional<double> view_width;  // [m] visible width; unset: fit the layout
+  std::string png_dir;         // "" : no PNG files; else frames as DIR/frame_00000.png ...
+  int png_every = 1;           // a PNG of every n-th frame only (the video gets them all)
+  std::string video_path;      // "" : no video; else an MP4 file
+  double t_start = 0;          // [s] first frame time (frames at t_start + k / (fps·slowdown))
+
+  // simulated time between frames [s]
+  double frame_dt() const { return 1.0 / (fps * slowdown); }
+};
+
+// An observer that turns states into pictures. frame() is called at t_start + k·frame_dt with the
+// dense-output state and the model as it is then (run events may change μ while running);
+// finish() finalises the outputs (also called when the run stops early: error, divergence,
+// Ctrl-C).
+class FrameSink {
+ public:
+  virtual ~FrameSink() = default;
+  virtual void frame(double t, const double* y, const Model& model) = 0;
+  virtual void finish() = 0;
+  virtual long frames_written() const = 0;
+};
+
+using FrameSinkFactory =
+    std::function<std::unique_ptr<FrameSink>(const Scene& scene, const FrameSettings& settings)>;
+
+// Checks the settings (width and height even and in 16..8192, fps in (0, 240], slowdown > 0,
+// magnify > 0, a range with lo < hi, levels 0 or 2..64, png_every >= 1, at least one output); throws
+// std::invalid_argument "frames.KEY: reason (got value)".
+void validate(const FrameSettings& f);
+
+}  // namespace beltsim

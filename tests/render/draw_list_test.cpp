@@ -1,0 +1,270 @@
+// The draw list without GL: element quads where the state puts the elements, colours from the
+// colour map, magnification about the nominal path, wet and slip marks, colour-map properties.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "model/forces.hpp"
+#include "render/colormap.hpp"
+#include "render/draw_list.hpp"
+#include "render/render_scenes.hpp"
+#include "render/text.hpp"
+
+namespace beltsim::render {
+namespace {
+
+// CIE L* (perceived lightness, 0..100) of an sRGB colour
+double luminance(Rgba c) {
+  auto lin = [](double u) { return u <= 0.04045 ? u / 12.92 : std::pow((u + 0.055) / 1.055, 2.4); };
+  const double Y = 0.2126 * lin(c.r) + 0.7152 * lin(c.g) + 0.0722 * lin(c.b);
+  return 116 * (Y > 0.008856 ? std::cbrt(Y) : 7.787 * Y + 16.0 / 116) - 16;
+}
+
+TEST(ColourMap, ViridisLightnessRisesDivergingIsSymmetric) {
+  for (int k = 1; k <= 64; ++k)
+    EXPECT_GT(luminance(colour_at(ColourMap::viridis, k / 64.0)), luminance(colour_at(ColourMap::viridis, (k - 1) / 64.0)));
+  for (int k = 0; k < 32; ++k) {
+    // lightness rises to the grey middle and falls after it, equally on both sides (within 2 L*
+    // units: the anchors are symmetric in L*, the interpolation between them in sRGB nearly so)
+    const double a = luminance(colour_at(ColourMap::diverging, k / 64.0));
+    const double b = luminance(colour_at(ColourMap::diverging, 1 - k / 64.0));
+    EXPECT_LT(a, luminance(colour_at(ColourMap::diverging, 0.5)));
+    EXPECT_NEAR(a, b, 2.0);
+  }
+}
+
+TEST(ColourMap, BandsAndNaN) {
+  ColourScale s;
+  s.lo = 0, s.hi = 160, s.levels = 16;
+  EXPECT_EQ(s.band(0), 0);
+  EXPECT_EQ(s.band(9.99), 0);
+  EXPECT_EQ(s.band(10.01), 1);
+  EXPECT_EQ(s.band(159.9), 15);
+  EXPECT_EQ(s.band(1e9), 15);
+  EXPECT_EQ(s.band(-5), 0);
+  EXPECT_EQ(s.band(std::nan("")), -1);
+  const Rgba none = s.colour(std::nan(""));
+  EXPECT_EQ(none.r, s.none.r);
+  // one flat colour per band, different between neighbouring bands
+  const Rgba a = s.colour(11), b = s.colour(19), c = s.colour(21);
+  EXPECT_EQ(a.r, b.r);
+  EXPECT_NE(b.g, c.g);
+}
+
+struct Fixture : ::testing::Test {
+  static const Scene& wet() {
+    static const Scene sc = test::moving_scene(presets::paper_wet());
+    return sc;
+  }
+  Font font;
+  FrameSettings fs() const {
+    FrameSettings f;
+    f.width = 640, f.height = 360;
+    f.png_dir = "x";
+    return f;
+  }
+};
+
+TEST_F(Fixture, ElementQuadsSitWhereTheStateSays) {
+  const Scene& sc = wet();
+  const Eigen::VectorXd y = sc.y0;  // smooth: the checks of the shape below hold to 1 %
+  FrameBuilder b(sc, fs(), &font);
+  DrawList dl;
+  b.build(0.1, y.data(), dl);
+  ASSERT_EQ(static_cast<int>(dl.elements.size()), sc.model.n_el());
+  const int n = sc.model.n_el();
+  const double pitch = sc.model.belt.pitch * b.camera().scale;
+  for (int i = 0; i < n; ++i) {
+    const ElementDraw& el = dl.elements[i];
+    const Vec2 want = b.camera().to_px(Vec2(y[3 * i], y[3 * i + 1]));
+    EXPECT_NEAR((el.centre - want).norm(), 0, 1e-9) << "element " << i;
+    // the quad runs between the joints with its neighbours, which it shares with them
+    const ElementDraw& next = dl.elements[(i + 1) % n];
+    EXPECT_NEAR((el.corners[1] - next.corners[0]).norm(), 0, 1e-9);
+    EXPECT_NEAR((el.corners[2] - next.corners[3]).norm(), 0, 1e-9);
+    // its mid-line passes the centre within twice a chord's sagitta on a pulley (the joints sit
+    // l²/8r inside the circle through the centres: l²/4r = 1 mm here)
+    const double l = sc.model.belt.pitch;
+    const Vec2 mid = 0.25 * (el.corners[0] + el.corners[1] + el.corners[2] + el.corners[3]);
+    EXPECT_LT((mid - want).norm(), 1.1 * l * l / (4 * 0.1) * b.camera().scale) << "element " << i;
+    // one pitch long, along the element's axis within the bend between neighbours (one pitch
+    // turns the belt by l/r = 0.2 rad on the pulleys; measured up to 0.031 where an arc meets a
+    // span; y points down in pixels)
+    const Vec2 d = 0.5 * (el.corners[1] + el.corners[2] - el.corners[0] - el.corners[3]);
+    EXPECT_NEAR(d.norm(), pitch, 0.02 * pitch);
+    EXPECT_NEAR(std::remainder(std::atan2(-d.y(), d.x()) - y[3 * i + 2], 2 * M_PI), 0, 0.05) << "element " << i;
+  }
+}
+
+TEST_F(Fixture, ColoursComeFromTheColourMap) {
+  const Scene& sc = wet();
+  const Eigen::VectorXd y = test::moving_state(sc);
+  FrameSettings f = fs();
+  f.range_lo = 0, f.range_hi = 1000;
+  f.levels = 16;
+  FrameBuilder b(sc, f, &font);
+  DrawList dl;
+  b.build(0.1, y.data(), dl);
+  const Model& m = sc.model;
+  const double* v = y.data() + m.n_coord();
+  int bands_seen = 0;
+  std::vector<bool> seen(16, false);
+  for (int i = 0; i < m.n_el(); ++i) {
+    const double T = 0.5 * (sde_axial_force(m, y.data(), v, i) + sde_axial_force(m, y.data(), v, (i + 1) % m.n_el()));
+    const ElementDraw& el = dl.elements[i];
+    EXPECT_NEAR(el.value, T, 1e-9);
+    EXPECT_EQ(el.band, std::clamp(static_cast<int>(std::floor(T / 1000 * 16)), 0, 15));
+    const Rgba want = colour_at(ColourMap::viridis, (el.band + 0.5) / 16);
+    EXPECT_FLOAT_EQ(el.colour.g, want.g);
+    // a triangle of that colour is in the list
+    bool found = false;
+    for (const SolidVertex& sv : dl.triangles) found = found || (sv.c.r == want.r && sv.c.g == want.g && sv.c.b == want.b);
+    EXPECT_TRUE(found);
+    if (!seen[el.band]) seen[el.band] = true, bands_seen++;
+  }
+  EXPECT_GE(bands_seen, 4);  // the state's ±300 N wave spans several bands
+  EXPECT_FALSE(dl.glyphs.empty());
+}
+
+TEST_F(Fixture, MagnifiesTheDeviationFromTheNominalPath) {
+  const Scene& sc = test::moving_scene(presets::paper_dry());
+  Eigen::VectorXd y = sc.y0;
+  // element in the middle of the upper span: move it up by 0.2 mm
+  const int i = sc.element_nearest(Vec2(0.145, 0.1));
+  y[3 * i + 1] += 2e-4;
+  FrameSettings f = fs();
+  f.magnify = 50;
+  FrameBuilder b(sc, f, &font);
+  const Vec2 C(y[3 * i], y[3 * i + 1]);
+  const Vec2 shown = b.displayed(C);
+  const Vec2 rest = b.displayed(Vec2(sc.y0[3 * i], sc.y0[3 * i + 1]));
+  EXPECT_NEAR((shown - rest).y(), 50 * 2e-4, 1e-6);
+  EXPECT_NEAR((shown - rest).x(), 0, 1e-9);
+  // on a pulley the static penetration is not deformation: the state at rest is drawn on the path
+  const int k = sc.element_nearest(Vec2(-0.1, 0));
+  const Vec2 Ck(sc.y0[3 * k], sc.y0[3 * k + 1]);
+  EXPECT_NEAR((b.displayed(Ck) - Ck).norm(), 0, 50 * 2e-5);
+}
+
+TEST_F(Fixture, WetAndSlippingElementsAreMarked) {
+  const Scene& sc = wet();
+  const Eigen::VectorXd y = test::moving_state(sc);
+  FrameSettings f = fs();
+  f.quantity = FrameQuantity::slip;
+  FrameBuilder b(sc, f, &font);
+  DrawList dl;
+  b.build(0.1, y.data(), dl);
+  const Model& m = sc.model;
+  int wet = 0, slipping = 0, off = 0;
+  for (int i = 0; i < m.n_el(); ++i) {
+    const ElementDraw& el = dl.elements[i];
+    EXPECT_EQ(el.wet, m.mu[i] < 0.5);
+    wet += el.wet;
+    const ElementContact c = element_contact(m, 0.1, y.data(), y.data() + m.n_coord(), i);
+    EXPECT_EQ(el.slipping, c.pulley >= 0 && std::abs(c.slip) > 0.98 * m.friction.dv) << i;
+    slipping += el.slipping;
+    if (c.pulley < 0) {
+      EXPECT_TRUE(std::isnan(el.value));
+      EXPECT_EQ(el.colour.r, dl.scale.none.r);
+      off++;
+    }
+  }
+  EXPECT_EQ(wet, 30);
+  EXPECT_GT(slipping, 5);
+  EXPECT_LT(slipping, 55);
+  EXPECT_GT(off, 10);
+}
+
+// run events change μ while running: the frame shows the model it is given, not the scene's
+TEST_F(Fixture, WetMarksFollowTheModelAsItIsNow) {
+  const Scene& sc = test::moving_scene(presets::paper_dry());
+  const Eigen::VectorXd y = sc.y0;
+  Model now = sc.model;
+  for (int i = 0; i < 10; ++i) now.mu[i] = 0.2;
+  FrameSettings f = fs();
+  f.quantity = FrameQuantity::mu;
+  FrameBuilder b(sc, f, &font);
+  DrawList before, after;
+  b.build(0, y.data(), before);
+  b.build(0, y.data(), after, &now);
+  for (int i = 0; i < sc.model.n_el(); ++i) {
+    EXPECT_FALSE(before.elements[i].wet);
+    EXPECT_EQ(after.elements[i].wet, i < 10);
+    EXPECT_DOUBLE_EQ(after.elements[i].value, now.mu[i]);
+  }
+}
+
+TEST_F(Fixture, SignedQuantitiesUseTheDivergingMapWithTheSignAlongTravel) {
+  const Scene& sc = wet();
+  const Eigen::VectorXd y = test::moving_state(sc);
+  const std::vector<double> slip = element_values(sc, FrameQuantity::slip, 0, y.data());
+  // the driver's rim runs 1 % ahead of the belt (belt slips backwards: negative), the driven's
+  // 1 % behind (positive), apart from the ±3 % ripple of the belt's speed
+  const Model& m = sc.model;
+  double on_driver = 0, on_driven = 0;
+  for (int i = 0; i < m.n_el(); ++i) {
+    const ElementContact c = element_contact(m, 0, y.data(), y.data() + m.n_coord(), i);
+    if (c.pulley == 0) on_driver += slip[i];
+    if (c.pulley == 1) on_driven += slip[i];
+  }
+  EXPECT_LT(on_driver, 0);
+  EXPECT_GT(on_driven, 0);
+  FrameSettings f = fs();
+  f.quantity = FrameQuantity::friction;
+  FrameBuilder b(sc, f, &font);
+  EXPECT_EQ(b.scale().map, ColourMap::diverging);
+  EXPECT_LT(b.scale().lo, 0);
+  EXPECT_DOUBLE_EQ(b.scale().lo, -b.scale().hi);
+}
+
+// the text states the time, each pulley's speed and slip, the quantity, its unit and range
+TEST_F(Fixture, TextAndColourBarSayWhatIsShown) {
+  const Scene& sc = wet();
+  const Eigen::VectorXd y = test::moving_state(sc);
+  FrameSettings f = fs();
+  f.magnify = 20;
+  FrameBuilder b(sc, f, &font);
+  DrawList dl;
+  b.build(0.125, y.data(), dl);
+  auto has = [&](const std::string& part) {
+    for (const std::string& t : dl.texts)
+      if (t.find(part) != std::string::npos) return true;
+    return false;
+  };
+  EXPECT_TRUE(has("t = 0.1250 s"));
+  EXPECT_TRUE(has("colour: SDE tension [N]"));
+  EXPECT_TRUE(has("deformation \u00d720"));
+  // the driver's rim runs 1 % ahead of the belt's 6 m/s mean speed (moving_state): ω = −60.6 rad/s
+  EXPECT_TRUE(has("driver: \u03c9 = \u221260.60 rad/s, slip +0.06"));
+  EXPECT_TRUE(has("driven: \u03c9 = \u221259.40 rad/s, slip \u22120.06"));
+  for (const char* s : {"SDE tension", "[N]", "0", "1000", "wet (\u03bc < 1)", "slipping"}) EXPECT_TRUE(has(s)) << s;
+}
+
+TEST_F(Fixture, CameraFitsTheLayoutOrFollowsTheView) {
+  const Scene& sc = wet();
+  FrameSettings f = fs();
+  FrameBuilder fit(sc, f, &font);
+  // both pulleys (x from -0.1 to 0.39 m) inside the drawing, left of the colour-bar panel
+  const Vec2 l = fit.camera().to_px(Vec2(-0.1, 0)), r = fit.camera().to_px(Vec2(0.39, 0));
+  EXPECT_GT(l.x(), 0);
+  EXPECT_LT(r.x(), 0.83 * f.width);
+  EXPECT_GT(r.x() - l.x(), 0.6 * f.width);  // and it fills most of the width
+  f.view_centre = Vec2(0.29, 0.0), f.view_width = 0.25;
+  FrameBuilder view(sc, f, &font);
+  EXPECT_NEAR((view.camera().to_px(Vec2(0.29, 0)) - view.camera().area_centre).norm(), 0, 1e-9);
+  const double width_px = (view.camera().to_px(Vec2(0.415, 0)) - view.camera().to_px(Vec2(0.165, 0))).x();
+  EXPECT_NEAR(width_px, f.width - std::max(0.17 * f.width, 11.0 * std::max(10.0, std::round(f.height / 40.0))), 1e-6);
+}
+
+TEST(Text, Utf8AndGlyphs) {
+  EXPECT_EQ(decode_utf8("t = \u03c9 \u00d7"), std::u32string(U"t = \u03c9 \u00d7"));
+  Font f;
+  EXPECT_GT(f.width("t = 0.35 s", 18), 40);
+  EXPECT_LT(f.width("t = 0.35 s", 18), 140);
+  const Glyph& g = f.glyph(U'\u03c9', 18);
+  EXPECT_GT(g.w, 4);
+  EXPECT_GT(g.advance, 5);
+}
+
+}  // namespace
+}  // namespace beltsim::render

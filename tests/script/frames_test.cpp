@@ -1,0 +1,184 @@
+// scene:run{ frames = {...} }: bad options stop the script before anything is simulated, with
+// file:line, the reason and the value; a run without frames opens no GL context and no encoder;
+// a run with frames writes one PNG and one video frame per frame time; a diverging run leaves a
+// video that plays.
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <atomic>
+#include <chrono>
+#include <string>
+#include <thread>
+
+#include "io/video_writer.hpp"
+#include "render/gl_context.hpp"
+#include "script/interpreter.hpp"
+
+namespace beltsim::script {
+namespace {
+
+namespace fs = std::filesystem;
+
+fs::path temp_dir() {
+  const fs::path d = fs::temp_directory_path() / ("beltsim_frames_test_" + std::to_string(::getpid()));
+  fs::create_directories(d);
+  return d;
+}
+
+const char* kScene =
+    "local s = beltsim.scene {\n"
+    "  pulleys = {\n"
+    "    { name = 'driver', centre = {0, 0}, radius = 0.1, torque = beltsim.ramp(0.3, -70) },\n"
+    "    { name = 'driven', centre = {0.29, 0}, radius = 0.1, torque = { per_speed = -0.955 } },\n"
+    "  },\n"
+    "  belt = { elements = 60, pretension = 500, direction = 'cw' },\n"
+    "}\n";
+
+// runs `run_line` after the scene (line 8 of the script); returns the error ("" when it ran)
+std::string run(const std::string& run_line, const fs::path& out) {
+  const fs::path p = temp_dir() / "frames.lua";
+  std::ofstream(p) << kScene << run_line << "\n";
+  Interpreter lua;
+  Overrides o;
+  o.out = out.string();
+  lua.set_overrides(o);
+  try {
+    lua.run_file(p.string());
+  } catch (const ScriptError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+std::string probe(const fs::path& file, const std::string& entry) {
+  const std::string cmd = "ffprobe -v error -select_streams v:0 -count_frames -show_entries " + entry +
+                          " -of default=nw=1:nk=1 '" + file.string() + "' 2>/dev/null";
+  std::string out;
+  if (FILE* p = popen(cmd.c_str(), "r")) {
+    char b[256];
+    while (std::fgets(b, sizeof b, p)) out += b;
+    pclose(p);
+  }
+  while (!out.empty() && (out.back() == '\n' || out.back() == '\r')) out.pop_back();
+  return out;
+}
+
+TEST(Frames, BadOptionsStopBeforeSimulating) {
+  struct Case {
+    std::string frames, expect;
+  };
+  const Case cases[] = {
+      {"fps = 0, video = true", "run.frames.fps: must be in (0, 240] (got 0)"},
+      {"fsp = 30, video = true", "unknown key 'fsp' in run.frames (did you mean 'fps'?)"},
+      {"size = {1279, 720}, video = true", "even and in 16..8192 px (H.264 in yuv420p) (got 1279x720)"},
+      {"quantity = 'tensoin', png = true", "unknown quantity 'tensoin' (did you mean 'tension'?); one of: tension"},
+      {"range = {900, 0}, png = true", "run.frames.range: needs lo < hi (got {900, 0})"},
+      {"magnify = -1, png = true", "run.frames.magnify: must be in (0, 1e4] (got -1)"},
+      {"slowdown = 0, png = true", "run.frames.slowdown: must be > 0"},
+      {"png = 5", "run.frames.png: true, false or a path expected, got number"},
+      {"fps = 30", "neither png nor video asked for"},
+      {"levels = 1, png = true", "run.frames.levels: must be 0 (continuous) or 2..64 (got 1)"},
+      {"t_start = 5, png = true", "run.frames.t_start: must be <= t_end"},
+  };
+  for (const Case& c : cases) {
+    const fs::path out = temp_dir() / "bad";
+    fs::remove_all(out);
+    const std::string msg = run("s:run{ t_end = 0.01, frames = { " + c.frames + " } }", out);
+    EXPECT_NE(msg.find("frames.lua:8:"), std::string::npos) << msg;
+    EXPECT_NE(msg.find(c.expect), std::string::npos) << "'" << c.expect << "' not in: " << msg;
+    EXPECT_FALSE(fs::exists(out / "timeseries.csv")) << "simulated despite: " << msg;
+  }
+}
+
+TEST(Frames, NoFramesNoContextNoEncoder) {
+  const long contexts = render::gl_contexts_created(), encoders = VideoWriter::encoders_created();
+  EXPECT_EQ(run("s:run{ t_end = 0.005 }", temp_dir() / "none"), "");
+  EXPECT_EQ(run("s:run{ t_end = 0.005, frames = false }", temp_dir() / "none"), "");
+  EXPECT_TRUE(fs::exists(temp_dir() / "none" / "timeseries.csv"));
+  EXPECT_EQ(render::gl_contexts_created(), contexts);
+  EXPECT_EQ(VideoWriter::encoders_created(), encoders);
+}
+
+// 0.02 s at 30 frames/s, ten times slower than life: frames every 1/300 s, at 0 ... 0.02 (7)
+TEST(Frames, PngAndVideoOnePerFrameTime) {
+  const long contexts = render::gl_contexts_created(), encoders = VideoWriter::encoders_created();
+  const fs::path out = temp_dir() / "with";
+  fs::remove_all(out);
+  EXPECT_EQ(run("local r = s:run{ t_end = 0.02, frames = { fps = 30, slowdown = 10, size = {320, 180}, "
+                "quantity = 'normal', png = true, video = 'clip.mp4' } }\n"
+                "assert(r.frames == 7, 'frames: ' .. tostring(r.frames))",
+                out),
+            "");
+  EXPECT_EQ(render::gl_contexts_created(), contexts + 1);
+  EXPECT_EQ(VideoWriter::encoders_created(), encoders + 1);
+  int pngs = 0;
+  for (const auto& e : fs::directory_iterator(out / "frames")) pngs += e.path().extension() == ".png";
+  EXPECT_EQ(pngs, 7);
+  EXPECT_TRUE(fs::exists(out / "frames" / "frame_00006.png"));
+  EXPECT_EQ(probe(out / "clip.mp4", "stream=codec_name"), "h264");
+  EXPECT_EQ(probe(out / "clip.mp4", "stream=nb_read_frames"), "7");
+  EXPECT_EQ(probe(out / "clip.mp4", "stream=width"), "320");
+}
+
+// the runaway of lua_api_test's divergence test, with a video: the error leaves it finalised
+TEST(Frames, DivergenceLeavesAPlayableVideo) {
+  const fs::path p = temp_dir() / "runaway.lua";
+  std::ofstream(p) << "local s = beltsim.scene {\n"
+                      "  pulleys = {\n"
+                      "    { name = 'driver', centre = {0, 0}, radius = 0.1, torque = 1e6 },\n"
+                      "    { name = 'driven', centre = {0.29, 0}, radius = 0.1 },\n"
+                      "  },\n"
+                      "  belt = { mu = 0 },\n"
+                      "}\n"
+                      "s:run{ t_end = 0.01, frames = { fps = 25, slowdown = 100, size = {160, 90}, video = true } }\n";
+  const fs::path out = temp_dir() / "runaway";
+  Interpreter lua;
+  Overrides o;
+  o.out = out.string();
+  lua.set_overrides(o);
+  std::string msg;
+  try {
+    lua.run_file(p.string());
+  } catch (const ScriptError& e) {
+    msg = e.what();
+  }
+  ASSERT_NE(msg.find("diverged"), std::string::npos) << msg;
+  EXPECT_EQ(probe(out / "frames.mp4", "stream=codec_name"), "h264");
+  // frames every 0.4 ms up to the last sound step (measured: 3 frames, the steps grow long
+  // before the runaway check fires at 4.6 ms)
+  EXPECT_GE(std::stoi("0" + probe(out / "frames.mp4", "stream=nb_read_frames")), 2);
+}
+
+// Ctrl-C (the stop flag main() sets from SIGINT) ends the run early; the video is closed
+// properly: its trailer (the fragmented MP4's 'mfra' index) is written and it plays.
+TEST(Frames, CtrlCLeavesAFinishedVideo) {
+  const fs::path p = temp_dir() / "stopped.lua";
+  std::ofstream(p) << kScene
+                   << "s:run{ t_end = 1, frames = { size = {320, 180}, video = 'stopped.mp4' } }\n";
+  const fs::path out = temp_dir() / "stopped";
+  fs::remove_all(out);
+  std::atomic<bool> stop{false};
+  Interpreter lua;
+  Overrides o;
+  o.out = out.string();
+  lua.set_overrides(o);
+  lua.set_stop_flag(&stop);
+  std::thread ctrl_c([&] {
+    std::this_thread::sleep_for(std::chrono::milliseconds(400));
+    stop = true;
+  });
+  EXPECT_NO_THROW(lua.run_file(p.string()));
+  ctrl_c.join();
+  EXPECT_TRUE(lua.interrupted());
+  std::ifstream f(out / "stopped.mp4", std::ios::binary);
+  const std::string bytes((std::istreambuf_iterator<char>(f)), std::istreambuf_iterator<char>());
+  EXPECT_NE(bytes.find("mfra"), std::string::npos) << "no trailer: the writer was not closed";
+  EXPECT_EQ(probe(out / "stopped.mp4", "stream=codec_name"), "h264");
+  EXPECT_GE(std::stoi("0" + probe(out / "stopped.mp4", "stream=nb_read_frames")), 1);
+}
+
+}  // namespace
+}  // namespace beltsim::script
