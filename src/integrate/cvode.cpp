@@ -12,6 +12,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstring>
+#include <limits>
 #include <sstream>
 
 #include <Eigen/SparseCore>
@@ -199,6 +200,15 @@ DriveResult drive_cvode(OdeSystem& sys, const std::string& name, const Tolerance
                                      (ses.last_error.empty() ? "" : " (" + ses.last_error + ")"));
       }
       if (flag == CV_TSTOP_RETURN) t_ret = t_event;
+      // a step size at rounding level means CVODE cannot get on (it may creep towards a time
+      // where F fails for ever): stop as drive() does
+      double h_now = 0;
+      CVodeGetCurrentStep(cv.mem, &h_now);
+      if (std::abs(h_now) < 16 * std::numeric_limits<double>::epsilon() * std::max(1.0, std::abs(t_ret))) {
+        finish();
+        throw DivergenceError(t_ret, "cvode: the step size collapsed to " + fmt(h_now) + " s at t = " + fmt(t_ret) +
+                                         " s" + (ses.last_error.empty() ? "" : " (" + ses.last_error + ")"));
+      }
       const double* yr = N_VGetArrayPointer(cv.y);
       if (const std::string bad = sys.check(t_ret, yr); !bad.empty()) {
         finish();
