@@ -1,13 +1,14 @@
 // Whole-run benchmarks, each measuring its comparisons side by side in one run (the machines
 // are noisy, so ratios come from the same minutes):
 //   Seconds/<scenario>   wall time per simulated second of the paper's dry and half-wet drives
-//                        for each integrator of BELTSIM_BENCH_INTEGRATORS (default esdirk32 and
-//                        the CVODE peers when built), and the ratios to esdirk32
+//                        over their first BELTSIM_BENCH_T seconds (default 0.1: CVODE stalls
+//                        later, README) for each integrator=rtol of BELTSIM_BENCH_RTOLS, each
+//                        run's speed error against esdirk32 at rtol 1e-8, and the time ratios
+//                        to esdirk32
 //   Scaling              cost per simulated second at 60, 150, 600 and 2400 elements, over a
 //                        window of the running drive, and that cost per element relative to 60
 //   StepLoopAllocations  heap allocations per accepted step inside the driver's loop
-// Environment: BELTSIM_BENCH_T (simulated seconds per scenario run, default 1),
-// BELTSIM_BENCH_RTOL (default 1e-3, the tolerance at which esdirk32 meets 0.1 % in the speeds).
+// Environment: BELTSIM_BENCH_RTOL (Scaling, default 1e-3), BELTSIM_BENCH_WINDOW (Scaling, 0.02 s).
 #include <benchmark/benchmark.h>
 
 #include <atomic>
@@ -15,6 +16,7 @@
 #include <sstream>
 
 #include "integrate/belt_system.hpp"
+#include "integrate/cvode.hpp"
 #include "integrate/driver.hpp"
 #include "integrate/stepper.hpp"
 #include "scene/presets.hpp"
@@ -50,43 +52,64 @@ double env_number(const char* name, double fallback) {
   return v ? std::atof(v) : fallback;
 }
 
-std::vector<std::string> bench_integrators() {
-  std::vector<std::string> names;
-  const char* v = std::getenv("BELTSIM_BENCH_INTEGRATORS");
-  std::stringstream ss(v ? v : "");
-  for (std::string s; std::getline(ss, s, ',');) names.push_back(s);
-  if (names.empty()) {
-    names = {"esdirk32"};
-    for (const std::string& n : stepper_names())
-      if (n.rfind("cvode", 0) == 0) names.push_back(n);
+// integrator=rtol pairs; the defaults are where each first meets 1e-3 in the pulley speeds over
+// the dry drive's first 0.1 s (from `beltsim wp --t-end 0.1`, README), so the ratios are at
+// comparable error; each run's own error is reported next to its time
+std::vector<std::pair<std::string, double>> bench_integrators() {
+  const char* v = std::getenv("BELTSIM_BENCH_RTOLS");
+  std::stringstream ss(v ? v : "esdirk32=1e-3,cvode=1e-6,cvode-fd=1e-6");
+  std::vector<std::pair<std::string, double>> out;
+  for (std::string item; std::getline(ss, item, ',');) {
+    const size_t eq = item.find('=');
+    if (eq != std::string::npos) out.emplace_back(item.substr(0, eq), std::atof(item.c_str() + eq + 1));
   }
-  return names;
+  return out;
 }
 
 DriveResult simulate(const Model& m, Eigen::VectorXd& y, double t0, double t_end, const std::string& method,
-                     double rtol) {
+                     double rtol, std::vector<Eigen::VectorXd>* samples = nullptr) {
   BeltSystem sys(m);
-  auto st = make_stepper(method);
   DriveOptions o;
   o.t0 = t0;
   o.t_end = t_end;
   o.sample_dt = 1e-3;
   o.events = m.breakpoints();
-  return drive(sys, *st, Tolerances{rtol, -1}, o, y, [](double, const Eigen::VectorXd&) {});
+  const auto keep = [&](double, const Eigen::VectorXd& yy) {
+    if (samples) samples->push_back(yy);
+  };
+  if (is_cvode(method)) return drive_cvode(sys, method, Tolerances{rtol, -1}, o, y, keep);
+  auto st = make_stepper(method);
+  return drive(sys, *st, Tolerances{rtol, -1}, o, y, keep);
+}
+
+// largest deviation of a pulley speed over the samples, relative to the reference's largest speed
+double speed_error(const Model& m, const std::vector<Eigen::VectorXd>& run, const std::vector<Eigen::VectorXd>& ref) {
+  const int base = m.n_coord() + 3 * m.n_el();
+  double err = 0, scale = 0;
+  for (size_t k = 0; k < std::min(run.size(), ref.size()); ++k)
+    for (int j = 0; j < m.n_p(); ++j) {
+      err = std::max(err, std::abs(run[k][base + j] - ref[k][base + j]));
+      scale = std::max(scale, std::abs(ref[k][base + j]));
+    }
+  return err / scale;
 }
 
 void BM_Seconds(benchmark::State& state, SceneDef (*preset)()) {
   const Scene sc = build_scene(preset());
-  const double T = env_number("BELTSIM_BENCH_T", 1.0), rtol = env_number("BELTSIM_BENCH_RTOL", 1e-3);
-  const std::vector<std::string> names = bench_integrators();
+  const double T = env_number("BELTSIM_BENCH_T", 0.1);
   for (auto _ : state) {
+    std::vector<Eigen::VectorXd> ref;
+    Eigen::VectorXd y = sc.y0;
+    simulate(sc.model, y, 0, T, "esdirk32", 1e-8, &ref);
     double base = 0;
-    for (const std::string& name : names) {
-      Eigen::VectorXd y = sc.y0;
-      const DriveResult r = simulate(sc.model, y, 0, T, name, rtol);
+    for (const auto& [name, rtol] : bench_integrators()) {
+      std::vector<Eigen::VectorXd> samples;
+      y = sc.y0;
+      const DriveResult r = simulate(sc.model, y, 0, T, name, rtol, &samples);
       const double per_s = r.wall_seconds / T;
       if (name == "esdirk32") base = per_s;
       state.counters[name + "_wall_per_sim_s"] = per_s;
+      state.counters[name + "_speed_error"] = speed_error(sc.model, samples, ref);
       state.counters[name + "_steps"] = static_cast<double>(r.work.steps);
       if (base > 0 && name != "esdirk32") state.counters[name + "_over_esdirk32"] = per_s / base;
     }

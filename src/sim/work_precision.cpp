@@ -85,9 +85,12 @@ bool plot(const WpResult& res, const std::vector<std::string>& integrators, cons
   g << "plot ";
   for (size_t k = 0; k < integrators.size(); ++k) {
     const std::string& name = integrators[k];
+    const bool any = std::any_of(res.rows.begin(), res.rows.end(),
+                                 [&](const WpRow& r) { return r.integrator == name && r.finished; });
+    const std::string label = any ? name : name + " (no run finished)";
     g << (k ? ", \\\n     " : "") << "'" << fs::path(res.csv_path).string() << "' using (strcol(1) eq '" << name
       << "' && $3 == 1 && $0 > 0 ? $5 : NaN):12 with linespoints lw 2 pt " << 5 + 2 * static_cast<int>(k)
-      << " title '" << name << "', '' using (strcol(1) eq '" << name
+      << " title '" << label << "', '' using (strcol(1) eq '" << name
       << "' && $3 == 1 && $0 > 0 ? $5 : NaN):12:(sprintf('%g', $2)) with labels offset 0,1 font ',8' notitle";
   }
   g << "\n";
