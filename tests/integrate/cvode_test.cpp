@@ -80,7 +80,9 @@ TEST(Cvode, ReachesItsToleranceOnASmoothProblem) {
     EXPECT_LT(max_error(tight), 1e-6) << name;
     EXPECT_LT(50 * max_error(tight), max_error(loose)) << name;
     EXPECT_GT(sys.counters.steps, 0) << name;
-    if (name == "cvode") EXPECT_GT(sys.counters.jacobians, 0);
+    if (name == "cvode") {
+      EXPECT_GT(sys.counters.jacobians, 0);
+    }
   }
 }
 
