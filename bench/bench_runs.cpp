@@ -62,7 +62,7 @@ std::vector<std::pair<std::string, double>> bench_integrators() {
   std::vector<std::pair<std::string, double>> out;
   for (std::string item; std::getline(ss, item, ',');) {
     const size_t eq = item.find('=');
-    if (eq != std::string::npos) out.emplace_back(item.substr(0, eq), std::atof(item.c_str() + eq + 1));
+    if (eq != std::string::npos) out.emplace_back(std::string(item.begin(), item.begin() + static_cast<long>(eq)), std::atof(item.c_str() + eq + 1));
   }
   return out;
 }
@@ -133,7 +133,8 @@ void BM_Scaling(benchmark::State& state) {
       simulate(sc.model, y, 0, 0.3, "esdirk32", 1e-2);
       const DriveResult r = simulate(sc.model, y, 0.3, 0.3 + W, "esdirk32", rtol);
       const double per_s = r.wall_seconds / W;
-      const std::string tag = "n" + std::to_string(n);
+      std::string tag = std::to_string(n);
+      tag.insert(tag.begin(), 'n');
       state.counters[tag + "_wall_per_sim_s"] = per_s;
       state.counters[tag + "_steps_per_sim_s"] = static_cast<double>(r.work.steps) / W;
       if (n == 60) base = per_s;
