@@ -1,0 +1,47 @@
+#include "io/units.hpp"
+
+#include <array>
+#include <utility>
+
+namespace beltsim {
+
+namespace {
+
+// last dotted component → unit (README "Outputs"; element and pulley fields of the Lua API)
+constexpr std::array<std::pair<std::string_view, std::string_view>, 19> kUnits{{
+    {"t", "s"},
+    // pulleys
+    {"omega", "rad/s"},
+    {"angle", "rad"},
+    {"torque", "N·m"},
+    {"belt_torque", "N·m"},
+    {"hub_load", "N"},
+    // spans and the probed element
+    {"tension", "N"},
+    {"sde_force", "N"},
+    {"normal_force", "N"},
+    {"friction_force", "N"},
+    {"slip_velocity", "m/s"},
+    // element fields
+    {"x", "m"},
+    {"y", "m"},
+    {"s", "m"},
+    {"phi", "rad"},
+    {"normal", "N"},
+    {"friction", "N"},
+    {"slip", "m/s"},
+    {"mu", ""},
+}};
+
+}  // namespace
+
+std::string unit_of(std::string_view column) {
+  const size_t dot = column.rfind('.');
+  if (dot != std::string_view::npos && column.substr(0, column.find('.')) == "energy") return "J";
+  const std::string_view key = dot == std::string_view::npos ? column : column.substr(dot + 1);
+  for (const auto& [name, unit] : kUnits)
+    if (name == key) return std::string(unit);
+  return "";
+}
+
+}  // namespace beltsim
