@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "integrate/stepper.hpp"
+#include "plot/wp_plot.hpp"
 #include "script/interpreter.hpp"
 #include "sim/work_precision.hpp"
 
@@ -163,8 +164,16 @@ int main(int argc, char** argv) {
       wps.base = cap.settings;
       wps.base.out_dir = o.out ? *o.out : (std::filesystem::path("out") / std::filesystem::path(script).stem() / "wp").string();
       const beltsim::WpResult r = beltsim::work_precision(*cap.scene, wps, &g_stop);
-      std::fprintf(stderr, "beltsim wp: wrote %s%s%s\n", r.csv_path.c_str(), r.png_path.empty() ? "" : " and ",
-                   r.png_path.c_str());
+      const std::string png = (std::filesystem::path(wps.base.out_dir) / "wp.png").string();
+      std::string drawn;
+      try {
+        beltsim::plot::plot_wp_png(r, png);
+        drawn = png;
+      } catch (const std::exception& e) {  // the CSV is the result; the picture is a convenience
+        std::fprintf(stderr, "beltsim wp: no plot: %s\n", e.what());
+      }
+      std::fprintf(stderr, "beltsim wp: wrote %s%s%s\n", r.csv_path.c_str(), drawn.empty() ? "" : " and ",
+                   drawn.c_str());
       return g_stop.load() ? 130 : 0;
     } catch (const std::exception& e) {
       std::fprintf(stderr, "beltsim: %s\n", e.what());

@@ -66,49 +66,6 @@ void write_csv(const WpResult& res, const std::string& path) {
   for (const WpRow& r : res.rows) row(r);
 }
 
-// log-log plot of error against wall time through gnuplot (Debian's gnuplot-nox); false when
-// gnuplot is missing or fails
-bool plot(const WpResult& res, const std::vector<std::string>& integrators, const std::string& title,
-          const std::string& png) {
-  const std::string script = fs::path(png).replace_extension(".gp").string();
-  std::ofstream g(script);
-  if (!g) return false;
-  g << "set terminal pngcairo size 1000,700 font 'DejaVu Sans,11'\n"
-    << "set output '" << png << "'\n"
-    << "set logscale xy\nset grid xtics ytics mxtics mytics lc rgb '#dddddd'\n"
-    << "set format x '10^{%L}'\nset format y '10^{%L}'\n"
-    << "set xlabel 'wall time per run [s]'\n"
-    << "set ylabel 'largest relative error in the pulley speeds over the run'\n"
-    << "set title \"" << title << "\" noenhanced\n"
-    << "set key outside right top noenhanced\n"
-    << "set datafile separator ','\n";
-  g << "plot ";
-  for (size_t k = 0; k < integrators.size(); ++k) {
-    const std::string& name = integrators[k];
-    const bool any = std::any_of(res.rows.begin(), res.rows.end(),
-                                 [&](const WpRow& r) { return r.integrator == name && r.finished; });
-    const std::string label = any ? name : name + " (no run finished)";
-    g << (k ? ", \\\n     " : "") << "'" << fs::path(res.csv_path).string() << "' using (strcol(1) eq '" << name
-      << "' && $3 == 1 && $0 > 0 ? $5 : NaN):12 with linespoints lw 2 pt " << 5 + 2 * static_cast<int>(k)
-      << " title '" << label << "', '' using (strcol(1) eq '" << name
-      << "' && $3 == 1 && $0 > 0 ? $5 : NaN):12:(sprintf('%g', $2)) with labels offset 0,1 font ',8' notitle";
-  }
-  g << "\n";
-  g.close();
-  const std::string cmd = "gnuplot '" + script + "' 2>&1";
-  FILE* p = popen(cmd.c_str(), "r");
-  if (!p) return false;
-  char buf[256];
-  std::string out;
-  while (std::fgets(buf, sizeof buf, p)) out += buf;
-  const int rc = pclose(p);
-  if (rc != 0) {
-    std::fprintf(stderr, "beltsim wp: gnuplot failed (%d): %s", rc, out.c_str());
-    return false;
-  }
-  return fs::exists(png);
-}
-
 }  // namespace
 
 WpResult work_precision(const Scene& sc, const WpSettings& ws, const std::atomic<bool>* stop) {
@@ -169,12 +126,12 @@ WpResult work_precision(const Scene& sc, const WpSettings& ws, const std::atomic
     }
   }
   write_csv(res, res.csv_path);
-  const std::string png = (fs::path(ws.base.out_dir) / "wp.png").string();
+  // the picture is drawn by the caller (plot/wp_plot.hpp): the engine launches no process
   std::ostringstream title;
   title << "error against run time: " << sc.model.n_el() << " elements, t_end = " << ws.base.t_end
         << " s, reference " << ws.ref_integrator << " at rtol " << tol_name(ws.ref_rtol);
-  const bool any = std::any_of(res.rows.begin(), res.rows.end(), [](const WpRow& r) { return r.finished; });
-  if (any && plot(res, names, title.str(), png)) res.png_path = png;
+  res.title = title.str();
+  res.integrators = names;
   return res;
 }
 

@@ -37,10 +37,14 @@ struct WpRow {
 struct WpResult {
   std::vector<WpRow> rows;
   WpRow reference;
-  std::string csv_path, png_path;         // png_path empty when no plot could be made
+  std::string csv_path;
+  std::vector<std::string> integrators;   // those studied, in order (the plot's lines)
+  std::string title;                      // for the plot: elements, t_end, the reference
 };
 
-// Runs the study; writes DIR/wp.csv, DIR/wp.png and DIR/<integrator>-<rtol>/timeseries.csv.
+// Runs the study; writes DIR/wp.csv and DIR/<integrator>-<rtol>/timeseries.csv. DIR/wp.png is
+// drawn from the result by plot::plot_wp_png (plot/wp_plot.hpp, library beltsim_plot), so the
+// engine never launches a process.
 WpResult work_precision(const Scene& scene, const WpSettings& settings, const std::atomic<bool>* stop = nullptr);
 
 }  // namespace beltsim

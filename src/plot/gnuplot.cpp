@@ -1,0 +1,109 @@
+#include "plot/gnuplot.hpp"
+
+#include <fcntl.h>
+#include <spawn.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <cstdlib>
+#include <cstring>
+#include <filesystem>
+#include <stdexcept>
+#include <vector>
+
+extern char** environ;
+
+namespace beltsim::plot {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+// a file descriptor closed on every path out
+struct Fd {
+  int fd = -1;
+  ~Fd() { reset(); }
+  void reset() {
+    if (fd >= 0) ::close(fd);
+    fd = -1;
+  }
+};
+
+// the script in a fresh file only we can read (mkstemps), removed when this goes out of scope
+struct ScriptFile {
+  std::string path;
+  explicit ScriptFile(const std::string& text) {
+    std::string templ = (fs::temp_directory_path() / "beltsim-gnuplot-XXXXXX.gp").string();
+    if (!templ.empty() && templ[0] != '/') templ = fs::absolute(templ).string();  // never read as an option
+    Fd f{::mkstemps(templ.data(), 3)};
+    if (f.fd < 0) throw std::runtime_error("gnuplot: cannot create a script file in " + templ + ": " + std::strerror(errno));
+    path = templ;
+    for (size_t done = 0; done < text.size();) {
+      const ssize_t n = ::write(f.fd, text.data() + done, text.size() - done);
+      if (n < 0 && errno == EINTR) continue;
+      if (n <= 0) {
+        const std::string why = std::strerror(errno);
+        ::unlink(path.c_str());
+        throw std::runtime_error("gnuplot: cannot write " + path + ": " + why);
+      }
+      done += static_cast<size_t>(n);
+    }
+  }
+  ~ScriptFile() { ::unlink(path.c_str()); }
+};
+
+}  // namespace
+
+std::string gnuplot_string(std::string_view text) {
+  std::string s = "'";
+  for (char c : text) {
+    if (c == '\'')
+      s += "''";
+    else if (c == '\n' || c == '\r')
+      s += ' ';
+    else
+      s += c;
+  }
+  return s + "'";
+}
+
+std::string run_gnuplot(const std::string& script) {
+  const ScriptFile file(script);
+  // gnuplot's stdout and stderr into one pipe, read to its end before waiting
+  int fds[2];
+  if (::pipe2(fds, O_CLOEXEC) != 0) throw std::runtime_error(std::string("gnuplot: pipe: ") + std::strerror(errno));
+  Fd rd{fds[0]}, wr{fds[1]};
+  posix_spawn_file_actions_t actions;
+  posix_spawn_file_actions_init(&actions);
+  posix_spawn_file_actions_addopen(&actions, 0, "/dev/null", O_RDONLY, 0);
+  posix_spawn_file_actions_adddup2(&actions, wr.fd, 1);
+  posix_spawn_file_actions_adddup2(&actions, wr.fd, 2);
+  std::string arg0 = "gnuplot", arg1 = file.path;
+  char* argv[] = {arg0.data(), arg1.data(), nullptr};
+  pid_t pid = 0;
+  const int rc = ::posix_spawnp(&pid, "gnuplot", &actions, nullptr, argv, environ);
+  posix_spawn_file_actions_destroy(&actions);
+  wr.reset();
+  if (rc == ENOENT) throw std::runtime_error("gnuplot not found on PATH (install the Debian package gnuplot-nox)");
+  if (rc != 0) throw std::runtime_error(std::string("gnuplot: cannot start it: ") + std::strerror(rc));
+  std::string out;
+  char buf[4096];
+  for (;;) {
+    const ssize_t n = ::read(rd.fd, buf, sizeof buf);
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0) break;
+    out.append(buf, static_cast<size_t>(n));
+  }
+  int status = 0;
+  while (::waitpid(pid, &status, 0) < 0) {
+    if (errno != EINTR) throw std::runtime_error(std::string("gnuplot: waitpid: ") + std::strerror(errno));
+  }
+  while (!out.empty() && (out.back() == '\n' || out.back() == ' ')) out.pop_back();
+  if (WIFEXITED(status) && WEXITSTATUS(status) == 0) return out;
+  const std::string how = WIFEXITED(status) ? "exit " + std::to_string(WEXITSTATUS(status))
+                                            : "signal " + std::to_string(WTERMSIG(status));
+  throw std::runtime_error("gnuplot failed (" + how + "): " + (out.empty() ? "no message" : out));
+}
+
+}  // namespace beltsim::plot

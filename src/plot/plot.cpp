@@ -1,0 +1,310 @@
+#include "plot/plot.hpp"
+
+#include <algorithm>
+#include <charconv>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <stdexcept>
+
+#include "io/units.hpp"
+#include "plot/gnuplot.hpp"
+
+namespace beltsim::plot {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+// shortest decimal that reads back to the same double, whatever the locale
+std::string number(double v) {
+  char b[32];
+  const auto r = std::to_chars(b, b + sizeof b, v);
+  return std::string(b, r.ptr);
+}
+
+// series that share a unit, in the order of their first appearance
+struct Group {
+  std::string unit;
+  std::vector<int> series;
+};
+
+std::string last_component(const std::string& name) {
+  const size_t dot = name.rfind('.');
+  return dot == std::string::npos ? name : name.substr(dot + 1);
+}
+
+std::string with_unit(const std::string& what, const std::string& unit) {
+  if (unit.empty()) return what;
+  return what.empty() ? "[" + unit + "]" : what + " [" + unit + "]";
+}
+
+// "name [unit]" for one series, "omega [rad/s]" for several of one quantity, else the names
+std::string axis_label(const PlotSpec& spec, const Group& g) {
+  if (g.series.size() == 1) return with_unit(spec.series[g.series[0]].name, g.unit);
+  const std::string q = last_component(spec.series[g.series[0]].name);
+  bool same = true;
+  for (int k : g.series) same = same && last_component(spec.series[k].name) == q;
+  if (same) return with_unit(q, g.unit);
+  std::string names;
+  for (int k : g.series) names += (names.empty() ? "" : ", ") + spec.series[k].name;
+  return with_unit(names, g.unit);
+}
+
+// the series as a gnuplot datablock $s<k>: "t y" rows, an empty line (a gap) at undefined values
+void datablock(std::ostringstream& g, int k, const Series& s) {
+  g << "$s" << k << " << EOD\n";
+  bool gap = true;
+  for (size_t i = 0; i < s.t.size(); ++i) {
+    if (!std::isfinite(s.t[i]) || !std::isfinite(s.y[i])) {
+      if (!gap) g << '\n';
+      gap = true;
+      continue;
+    }
+    g << number(s.t[i]) << ' ' << number(s.y[i]) << '\n';
+    gap = false;
+  }
+  g << "EOD\n";
+}
+
+void plot_command(std::ostringstream& g, const PlotSpec& spec, const std::vector<int>& series, bool second_axis,
+                  const std::vector<int>& y2, bool units_in_key) {
+  g << "plot ";
+  for (size_t n = 0; n < series.size(); ++n) {
+    const int k = series[n];
+    const Series& s = spec.series[k];
+    const bool right = second_axis && std::find(y2.begin(), y2.end(), k) != y2.end();
+    g << (n ? ", \\\n     " : "") << "$s" << k << " using 1:2 with lines lw 2 lt " << k + 1
+      << (right ? " axes x1y2" : "") << " title "
+      << gnuplot_string(units_in_key ? with_unit(s.name, s.unit) + (right ? " (right axis)" : "") : s.name);
+  }
+  g << "\n";
+}
+
+std::vector<std::string> split_fields(const std::string& line) {
+  std::vector<std::string> out;
+  std::string cur;
+  bool quoted = false;
+  for (size_t i = 0; i < line.size(); ++i) {
+    const char c = line[i];
+    if (quoted) {
+      if (c == '"' && i + 1 < line.size() && line[i + 1] == '"') {
+        cur += '"';
+        ++i;
+      } else if (c == '"') {
+        quoted = false;
+      } else {
+        cur += c;
+      }
+    } else if (c == '"') {
+      quoted = true;
+    } else if (c == ',') {
+      out.push_back(cur);
+      cur.clear();
+    } else {
+      cur += c;
+    }
+  }
+  out.push_back(cur);
+  return out;
+}
+
+std::string trim(const std::string& s) {
+  const size_t a = s.find_first_not_of(" \t");
+  if (a == std::string::npos) return "";
+  return s.substr(a, s.find_last_not_of(" \t") - a + 1);
+}
+
+// a decimal number, "nan"/"inf" in any case, or empty (NaN); hex and trailing text are not numbers
+bool parse_field(const std::string& text, double& out) {
+  std::string s = trim(text);
+  if (s.empty()) {
+    out = std::nan("");
+    return true;
+  }
+  size_t from = s[0] == '+' ? 1 : 0;
+  const auto r = std::from_chars(s.data() + from, s.data() + s.size(), out, std::chars_format::general);
+  return r.ec == std::errc() && r.ptr == s.data() + s.size();
+}
+
+std::string joined(const std::vector<std::string>& names) {
+  std::string s;
+  for (const auto& n : names) s += (s.empty() ? "" : ", ") + n;
+  return s;
+}
+
+}  // namespace
+
+void plot_png(const PlotSpec& spec) {
+  if (spec.series.empty()) throw std::runtime_error("plot " + spec.file + ": no series to draw");
+  if (spec.file.empty()) throw std::runtime_error("plot: no output file given");
+  if (spec.width < 16 || spec.height < 16 || spec.width > 20000 || spec.height > 20000)
+    throw std::runtime_error("plot " + spec.file + ": size " + std::to_string(spec.width) + "x" +
+                             std::to_string(spec.height) + " is outside 16..20000 pixels");
+  const fs::path parent = fs::path(spec.file).parent_path();
+  if (!parent.empty() && !fs::is_directory(parent))
+    throw std::runtime_error("cannot write " + spec.file + ": the folder " + parent.string() + " does not exist");
+  std::vector<Group> groups;
+  for (size_t k = 0; k < spec.series.size(); ++k) {
+    const Series& s = spec.series[k];
+    if (s.t.size() != s.y.size())
+      throw std::runtime_error("plot " + spec.file + ": series '" + s.name + "' has " + std::to_string(s.t.size()) +
+                               " times but " + std::to_string(s.y.size()) + " values");
+    bool any = false;
+    for (size_t i = 0; i < s.t.size() && !any; ++i) any = std::isfinite(s.t[i]) && std::isfinite(s.y[i]);
+    if (!any) throw std::runtime_error("plot " + spec.file + ": series '" + s.name + "' has no finite values");
+    auto g = std::find_if(groups.begin(), groups.end(), [&](const Group& x) { return x.unit == s.unit; });
+    if (g == groups.end()) g = groups.insert(groups.end(), Group{s.unit, {}});
+    g->series.push_back(static_cast<int>(k));
+  }
+
+  std::ostringstream g;
+  g << "set encoding utf8\n"
+    << "set terminal pngcairo size " << spec.width << "," << spec.height
+    << " font 'DejaVu Sans,12' linewidth 1 noenhanced\n"
+    << "set output " << gnuplot_string(spec.file) << "\n";
+  for (size_t k = 0; k < spec.series.size(); ++k) datablock(g, static_cast<int>(k), spec.series[k]);
+  // one time axis for every series (and every panel)
+  double t0 = INFINITY, t1 = -INFINITY;
+  for (const Series& s : spec.series)
+    for (size_t i = 0; i < s.t.size(); ++i)
+      if (std::isfinite(s.t[i]) && std::isfinite(s.y[i])) t0 = std::min(t0, s.t[i]), t1 = std::max(t1, s.t[i]);
+  if (t1 > t0) g << "set xrange [" << number(t0) << ":" << number(t1) << "]\n";
+  g << "set grid xtics ytics lc rgb '#dddddd'\n"
+    << "set xlabel 't [s]'\n";
+  if (groups.size() <= 2) {
+    // the legend below the plot: the plot keeps the full width, and both y axes stay in view
+    g << "set key below center horizontal Left reverse\n";
+    if (!spec.title.empty()) g << "set title " << gnuplot_string(spec.title) << "\n";
+    g << "set ylabel " << gnuplot_string(axis_label(spec, groups[0])) << "\n";
+    std::vector<int> all;
+    for (size_t k = 0; k < spec.series.size(); ++k) all.push_back(static_cast<int>(k));
+    if (groups.size() == 2) {
+      g << "set ytics nomirror\nset y2tics\nset y2label " << gnuplot_string(axis_label(spec, groups[1])) << "\n";
+    }
+    plot_command(g, spec, all, groups.size() == 2, groups.size() == 2 ? groups[1].series : std::vector<int>{},
+                 groups.size() == 2);
+  } else {
+    // one panel per unit, stacked, aligned, the time axis numbered and labelled on the lowest only;
+    // each panel's legend inside at its top left
+    const double top = spec.title.empty() ? 0.97 : 0.93;
+    g << "set multiplot layout " << groups.size() << ",1 margins 0.1,0.97,0.09," << top << " spacing 0,0.03";
+    if (!spec.title.empty()) g << " title " << gnuplot_string(spec.title);
+    g << "\nset key inside left top Left reverse opaque box\nset format x ''\nunset xlabel\n";
+    const double n = static_cast<double>(groups.size());
+    const double panel_px = spec.height * (top - 0.09 - 0.03 * (n - 1)) / n;
+    for (size_t p = 0; p < groups.size(); ++p) {
+      if (p + 1 == groups.size()) g << "set format x '% h'\nset xlabel 't [s]'\n";
+      // the label along the axis when it fits the panel's height (under 8 pixels a character at 12 pt),
+      // else the unit alone (the legend names the series)
+      std::string label = axis_label(spec, groups[p]);
+      if (8.0 * static_cast<double>(label.size()) > panel_px) label = with_unit("", groups[p].unit);
+      g << "set ylabel " << gnuplot_string(label) << "\n";
+      // about four tic intervals however short the panel
+      double lo = INFINITY, hi = -INFINITY;
+      for (int k : groups[p].series)
+        for (double y : spec.series[k].y)
+          if (std::isfinite(y)) lo = std::min(lo, y), hi = std::max(hi, y);
+      if (hi > lo) {
+        const double raw = (hi - lo) / 4, mag = std::pow(10.0, std::floor(std::log10(raw)));
+        const double step = raw <= mag ? mag : raw <= 2 * mag ? 2 * mag : raw <= 5 * mag ? 5 * mag : 10 * mag;
+        g << "set ytics " << number(step) << "\n";
+      } else {
+        g << "set ytics autofreq\n";
+      }
+      plot_command(g, spec, groups[p].series, false, {}, false);
+    }
+    g << "unset multiplot\n";
+  }
+  g << "set output\n";
+  std::error_code ec;
+  fs::remove(spec.file, ec);  // so that the file found afterwards is gnuplot's
+  run_gnuplot(g.str());
+  if (!fs::exists(spec.file))
+    throw std::runtime_error("plot: gnuplot reported no error but wrote no " + spec.file);
+}
+
+bool Table::has(std::string_view name) const {
+  return std::find(names.begin(), names.end(), name) != names.end();
+}
+
+const std::vector<double>& Table::column(std::string_view name) const {
+  const auto it = std::find(names.begin(), names.end(), name);
+  if (it == names.end())
+    throw std::runtime_error(path + " has no column '" + std::string(name) + "'; its columns: " + joined(names));
+  return columns[it - names.begin()];
+}
+
+Table read_timeseries_csv(const std::string& path) {
+  std::ifstream f(path, std::ios::binary);
+  if (!f) throw std::runtime_error("cannot read " + path);
+  Table t;
+  t.path = path;
+  std::string line;
+  int number_of_line = 0;
+  while (std::getline(f, line)) {
+    ++number_of_line;
+    if (!line.empty() && line.back() == '\r') line.pop_back();
+    if (trim(line).empty()) continue;
+    std::vector<std::string> fields = split_fields(line);
+    const std::string where = path + ":" + std::to_string(number_of_line) + ": ";
+    if (t.names.empty()) {
+      for (auto& s : fields) {
+        s = trim(s);
+        if (s.empty()) throw std::runtime_error(where + "the header has an empty column name");
+        if (t.has(s)) throw std::runtime_error(where + "the header names '" + s + "' twice");
+        t.names.push_back(s);
+      }
+      t.columns.resize(t.names.size());
+      continue;
+    }
+    if (fields.size() != t.names.size())
+      throw std::runtime_error(where + "expected " + std::to_string(t.names.size()) + " fields as in the header, got " +
+                               std::to_string(fields.size()));
+    for (size_t k = 0; k < fields.size(); ++k) {
+      double v = 0;
+      if (!parse_field(fields[k], v))
+        throw std::runtime_error(where + "column '" + t.names[k] + "': '" + trim(fields[k]) + "' is not a number");
+      t.columns[k].push_back(v);
+    }
+  }
+  if (f.bad()) throw std::runtime_error("cannot read " + path);
+  if (t.names.empty()) throw std::runtime_error(path + " is empty (no header line)");
+  return t;
+}
+
+void plot_csv(const std::string& csv_path, const std::vector<std::string>& columns, double from_t,
+              const std::string& out_png) {
+  const Table table = read_timeseries_csv(csv_path);
+  const std::vector<double>& t = table.column("t");
+  std::vector<std::string> wanted = columns;
+  if (wanted.empty()) {
+    for (const auto& n : table.names)
+      if (n.size() > 6 && n.compare(n.size() - 6, 6, ".omega") == 0) wanted.push_back(n);
+    if (wanted.empty())
+      throw std::runtime_error(csv_path + " has no '<pulley>.omega' column to plot; name the columns, its columns: " +
+                               joined(table.names));
+  }
+  for (const auto& name : wanted) table.column(name);  // every unknown name fails before plotting
+  PlotSpec spec;
+  spec.file = out_png;
+  spec.title = csv_path;
+  if (!t.empty() && from_t > t.front()) spec.title += "  (t ≥ " + number(from_t) + " s)";
+  for (const auto& name : wanted) {
+    const std::vector<double>& y = table.column(name);
+    Series s{name, unit_of(name), {}, {}};
+    for (size_t i = 0; i < t.size(); ++i) {
+      if (!(t[i] >= from_t)) continue;
+      s.t.push_back(t[i]);
+      s.y.push_back(y[i]);
+    }
+    if (s.t.empty())
+      throw std::runtime_error(csv_path + " has no samples at t >= " + number(from_t) + " s" +
+                               (t.empty() ? " (it has no rows)" : " (its last is at " + number(t.back()) + " s)"));
+    spec.series.push_back(std::move(s));
+  }
+  plot_png(spec);
+}
+
+}  // namespace beltsim::plot

@@ -1,0 +1,56 @@
+// Time histories drawn to a PNG by gnuplot (pngcairo, through plot/gnuplot.hpp: no shell), and a
+// plain reader of timeseries.csv to feed it.
+//
+// Axes: x is "t [s]"; series are grouped by unit in the order they come. One unit: one y axis;
+// two units: the first on the left axis (y), the second on the right (y2); three or more: one
+// panel per unit, stacked, sharing the time axis. An axis is labelled "name [unit]" (one series),
+// "<last dotted component> [unit]" (several series of one quantity, e.g. "omega [rad/s]") or the
+// names joined by commas; no brackets for "" (dimensionless or unknown). The legend names each
+// series (with its unit when there are two axes). Undefined values (NaN, inf) leave a gap.
+#pragma once
+
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace beltsim::plot {
+
+struct Series {
+  std::string name, unit;   // unit "" for none
+  std::vector<double> t, y;  // same length; t in s
+};
+
+struct PlotSpec {
+  std::string title;          // "" for none
+  std::vector<Series> series;
+  std::string file;           // the PNG to write; its folder must exist
+  int width = 1280, height = 720;  // [pixels]
+};
+
+// Writes spec.file. Throws std::runtime_error naming the problem: no series, a series with no
+// finite values or t and y of different lengths, a missing folder, gnuplot missing or failing
+// (with gnuplot's own message).
+void plot_png(const PlotSpec& spec);
+
+// A CSV file as columns: the first line is the header of names, every later line holds one
+// number per name ("nan" or an empty field: NaN).
+struct Table {
+  std::string path;
+  std::vector<std::string> names;
+  std::vector<std::vector<double>> columns;  // columns[k] belongs to names[k]
+
+  bool has(std::string_view name) const;
+  // throws std::runtime_error "<path> has no column 'x'; its columns: a, b, ..."
+  const std::vector<double>& column(std::string_view name) const;
+};
+
+// Throws std::runtime_error "<path>:<line>: <reason>" for a bad row (wrong field count, a field
+// that is not a decimal number) and for a missing, empty or unreadable file.
+Table read_timeseries_csv(const std::string& path);
+
+// Plots `columns` of a timeseries.csv (empty: every '<pulley>.omega' column) against its 't'
+// column, samples with t >= from_t only, units from io/units.hpp, titled with the CSV's path.
+void plot_csv(const std::string& csv_path, const std::vector<std::string>& columns, double from_t,
+              const std::string& out_png);
+
+}  // namespace beltsim::plot

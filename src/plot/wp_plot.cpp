@@ -1,0 +1,46 @@
+#include "plot/wp_plot.hpp"
+
+#include <algorithm>
+#include <filesystem>
+#include <sstream>
+#include <stdexcept>
+
+#include "plot/gnuplot.hpp"
+
+namespace beltsim::plot {
+
+void plot_wp_png(const WpResult& res, const std::string& png) {
+  if (std::none_of(res.rows.begin(), res.rows.end(), [](const WpRow& r) { return r.finished; }))
+    throw std::runtime_error("wp: no run finished, nothing to plot");
+  std::ostringstream g;
+  g << "set encoding utf8\n"
+    << "set terminal pngcairo size 1000,700 font 'DejaVu Sans,11'\n"
+    << "set output " << gnuplot_string(png) << "\n"
+    << "set logscale xy\nset grid xtics ytics mxtics mytics lc rgb '#dddddd'\n"
+    << "set format x '10^{%L}'\nset format y '10^{%L}'\n"
+    << "set xlabel 'wall time per run [s]'\n"
+    << "set ylabel 'largest relative error in the pulley speeds over the run'\n"
+    << "set title " << gnuplot_string(res.title) << " noenhanced\n"
+    << "set key outside right top noenhanced\n"
+    << "set datafile separator ','\n";
+  // columns of wp.csv: 1 integrator, 2 rtol, 3 finished, 5 wall_s, 12 err_speed; row 0 is the reference
+  const std::string csv = gnuplot_string(res.csv_path);
+  g << "plot ";
+  for (size_t k = 0; k < res.integrators.size(); ++k) {
+    const std::string& name = res.integrators[k];
+    const bool any = std::any_of(res.rows.begin(), res.rows.end(),
+                                 [&](const WpRow& r) { return r.integrator == name && r.finished; });
+    const std::string label = any ? name : name + " (no run finished)";
+    const std::string when = "(strcol(1) eq " + gnuplot_string(name) + " && $3 == 1 && $0 > 0 ? $5 : NaN)";
+    g << (k ? ", \\\n     " : "") << csv << " using " << when << ":12 with linespoints lw 2 pt "
+      << 5 + 2 * static_cast<int>(k) << " title " << gnuplot_string(label) << ", \\\n     '' using " << when
+      << ":12:(sprintf('%g', $2)) with labels offset 0,1 font ',8' notitle";
+  }
+  g << "\nset output\n";
+  std::error_code ec;
+  std::filesystem::remove(png, ec);
+  run_gnuplot(g.str());
+  if (!std::filesystem::exists(png)) throw std::runtime_error("wp: gnuplot reported no error but wrote no " + png);
+}
+
+}  // namespace beltsim::plot

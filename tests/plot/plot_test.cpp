@@ -1,0 +1,222 @@
+// plot/: the CSV reader (its errors name file:line), the unit table, PNGs drawn by gnuplot at
+// the size asked (read back with libpng), a missing column listing the valid ones, paths and
+// titles with quotes and spaces, gnuplot missing or failing, and the wp picture.
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <functional>
+#include <fstream>
+#include <string>
+
+#include "io/png_writer.hpp"
+#include "io/units.hpp"
+#include "plot/gnuplot.hpp"
+#include "plot/plot.hpp"
+#include "plot/wp_plot.hpp"
+
+namespace beltsim::plot {
+namespace {
+
+namespace fs = std::filesystem;
+
+// a fresh folder per test, with a quote and a space in its name
+fs::path dir(const std::string& name) {
+  const fs::path d = fs::temp_directory_path() / ("beltsim plot's test " + std::to_string(::getpid())) / name;
+  fs::remove_all(d);
+  fs::create_directories(d);
+  return d;
+}
+
+std::string write(const fs::path& p, const std::string& text) {
+  std::ofstream(p) << text;
+  return p.string();
+}
+
+// two pulleys' speeds and a span tension over 0.1 s, as beltsim writes them
+std::string small_csv(const fs::path& d) {
+  std::string s = "t,driver.omega,driven.omega,span_driver_driven.tension,probe.slip_velocity\n";
+  for (int k = 0; k <= 100; ++k) {
+    const double t = 1e-3 * k;
+    s += std::to_string(t) + "," + std::to_string(-700 * t * t) + "," + std::to_string(-690 * t * t + 0.1 * std::sin(300 * t)) +
+         "," + std::to_string(500 + 300 * t) + "," + (k < 30 ? "nan" : std::to_string(0.01 * std::sin(200 * t))) + "\n";
+  }
+  return write(d / "timeseries.csv", s);
+}
+
+TEST(Units, TimeseriesColumnsAndFields) {
+  EXPECT_EQ(unit_of("t"), "s");
+  EXPECT_EQ(unit_of("driver.omega"), "rad/s");
+  EXPECT_EQ(unit_of("driver.torque"), "N·m");
+  EXPECT_EQ(unit_of("driven.belt_torque"), "N·m");
+  EXPECT_EQ(unit_of("idler.hub_load"), "N");
+  EXPECT_EQ(unit_of("span_driver_driven.tension"), "N");
+  EXPECT_EQ(unit_of("probe.sde_force"), "N");
+  EXPECT_EQ(unit_of("probe.normal_force"), "N");
+  EXPECT_EQ(unit_of("probe.friction_force"), "N");
+  EXPECT_EQ(unit_of("probe.slip_velocity"), "m/s");
+  EXPECT_EQ(unit_of("energy.mechanical"), "J");
+  EXPECT_EQ(unit_of("energy.dissipated_friction"), "J");
+  EXPECT_EQ(unit_of("angle"), "rad");
+  EXPECT_EQ(unit_of("element.phi"), "rad");
+  EXPECT_EQ(unit_of("x"), "m");
+  EXPECT_EQ(unit_of("slip"), "m/s");
+  EXPECT_EQ(unit_of("normal"), "N");
+  EXPECT_EQ(unit_of("mu"), "");
+  EXPECT_EQ(unit_of("something.unknown"), "");
+}
+
+TEST(Csv, ReadsColumnsByName) {
+  const fs::path d = dir("read");
+  const Table t = read_timeseries_csv(write(d / "a.csv", "t,a.omega,b\n0,1,nan\n0.5, 2 ,\r\n\n1,3e-1,-4\n"));
+  ASSERT_EQ(t.names, (std::vector<std::string>{"t", "a.omega", "b"}));
+  EXPECT_EQ(t.column("t"), (std::vector<double>{0, 0.5, 1}));
+  EXPECT_EQ(t.column("a.omega"), (std::vector<double>{1, 2, 0.3}));
+  EXPECT_TRUE(std::isnan(t.column("b")[0]));
+  EXPECT_TRUE(std::isnan(t.column("b")[1]));  // an empty field
+  EXPECT_EQ(t.column("b")[2], -4);
+}
+
+void expect_error(const std::function<void()>& f, const std::vector<std::string>& parts) {
+  try {
+    f();
+    ADD_FAILURE() << "no error";
+  } catch (const std::runtime_error& e) {
+    for (const auto& p : parts) EXPECT_NE(std::string(e.what()).find(p), std::string::npos) << e.what() << "\nlacks: " << p;
+  }
+}
+
+TEST(Csv, ABadRowNamesFileAndLine) {
+  const fs::path d = dir("bad");
+  const std::string few = write(d / "few.csv", "t,x\n0,1\n1\n");
+  expect_error([&] { read_timeseries_csv(few); }, {few + ":3:", "expected 2 fields", "got 1"});
+  const std::string word = write(d / "word.csv", "t,x\n0,1\n1,2\n2,abc\n");
+  expect_error([&] { read_timeseries_csv(word); }, {word + ":4:", "column 'x'", "'abc' is not a number"});
+  const std::string hex = write(d / "hex.csv", "t,x\n0,0x10\n");
+  expect_error([&] { read_timeseries_csv(hex); }, {hex + ":2:", "'0x10'"});
+  expect_error([&] { read_timeseries_csv((d / "none.csv").string()); }, {"cannot read", "none.csv"});
+  expect_error([&] { read_timeseries_csv(write(d / "empty.csv", "")); }, {"empty"});
+}
+
+TEST(Plot, TwoSeriesFromACsvGiveAPngOfTheSizeAsked) {
+  const fs::path d = dir("two");
+  const std::string csv = small_csv(d);
+  const std::string png = (d / "speeds.png").string();
+  plot_csv(csv, {"driver.omega", "driven.omega"}, 0, png);
+  const Image img = read_png(png);
+  EXPECT_EQ(img.width, 1280);
+  EXPECT_EQ(img.height, 720);
+  EXPECT_GT(fs::file_size(png), 5000u);  // drawn, not blank
+  // any size; two units on two axes; a gap where the speed is undefined
+  const Table t = read_timeseries_csv(csv);
+  PlotSpec spec{"tension and slip", {}, (d / "small.png").string(), 640, 400};
+  spec.series.push_back({"span.tension", "N", t.column("t"), t.column("span_driver_driven.tension")});
+  spec.series.push_back({"probe.slip_velocity", "m/s", t.column("t"), t.column("probe.slip_velocity")});
+  plot_png(spec);
+  const Image small = read_png(spec.file);
+  EXPECT_EQ(small.width, 640);
+  EXPECT_EQ(small.height, 400);
+}
+
+TEST(Plot, DefaultColumnsAreThePulleySpeedsAndFromCutsTheStart) {
+  const fs::path d = dir("default");
+  const std::string csv = small_csv(d);
+  plot_csv(csv, {}, 0.05, (d / "plot.png").string());
+  EXPECT_EQ(read_png((d / "plot.png").string()).width, 1280);
+  expect_error([&] { plot_csv(csv, {}, 7, (d / "late.png").string()); }, {"no samples at t >= 7 s", "0.1 s"});
+  const std::string no_speed = write(d / "tension.csv", "t,span_a_b.tension\n0,1\n1,2\n");
+  expect_error([&] { plot_csv(no_speed, {}, 0, (d / "x.png").string()); }, {"no '<pulley>.omega' column", "t, span_a_b.tension"});
+}
+
+TEST(Plot, AMissingColumnListsTheValidOnes) {
+  const fs::path d = dir("missing");
+  const std::string csv = small_csv(d);
+  expect_error([&] { plot_csv(csv, {"driver.omega", "drivr.omega"}, 0, (d / "x.png").string()); },
+               {"no column 'drivr.omega'",
+                "its columns: t, driver.omega, driven.omega, span_driver_driven.tension, probe.slip_velocity"});
+  EXPECT_FALSE(fs::exists(d / "x.png"));
+}
+
+TEST(Plot, QuotesAndSpacesInPathsAndTitles) {
+  const fs::path d = dir("it's a \"quoted\" folder");
+  const std::string csv = small_csv(d);
+  const std::string png = (d / "pl'ot \\ x.png").string();
+  plot_csv(csv, {"driver.omega"}, 0, png);  // the CSV's path, with its quotes, is the title
+  EXPECT_EQ(read_png(png).height, 720);
+  PlotSpec spec{"a 'title' with \"quotes\", a \\ and\na line break", {}, (d / "b.png").string()};
+  spec.series.push_back({"it's", "N·m", {0, 1, 2}, {1, 2, 1}});
+  plot_png(spec);
+  EXPECT_TRUE(fs::exists(spec.file));
+}
+
+TEST(Plot, ThreeUnitsGiveStackedPanels) {
+  const fs::path d = dir("panels");
+  const std::string csv = small_csv(d);
+  plot_csv(csv, {"driver.omega", "driven.omega", "span_driver_driven.tension", "probe.slip_velocity"}, 0,
+           (d / "p.png").string());
+  EXPECT_EQ(read_png((d / "p.png").string()).width, 1280);
+}
+
+TEST(Plot, ClearErrors) {
+  const fs::path d = dir("errors");
+  PlotSpec spec{"", {}, (d / "x.png").string()};
+  expect_error([&] { plot_png(spec); }, {"no series"});
+  spec.series.push_back({"a", "", {0, 1}, {1}});
+  expect_error([&] { plot_png(spec); }, {"'a' has 2 times but 1 values"});
+  spec.series[0].y = {NAN, NAN};
+  expect_error([&] { plot_png(spec); }, {"'a' has no finite values"});
+  spec.series[0].y = {1, 2};
+  spec.file = (d / "no such folder" / "x.png").string();
+  expect_error([&] { plot_png(spec); }, {"does not exist"});
+}
+
+TEST(Gnuplot, ItsOwnMessageWhenAScriptFails) {
+  expect_error([] { run_gnuplot("plot $nothing using 1:2\n"); }, {"gnuplot failed (exit", "no datablock named $nothing"});
+  EXPECT_EQ(gnuplot_string("it's"), "'it''s'");
+  EXPECT_EQ(gnuplot_string("a\nb"), "'a b'");
+}
+
+TEST(Gnuplot, MissingIsSaidSo) {
+  const std::string path = std::getenv("PATH") ? std::getenv("PATH") : "";
+  const fs::path empty = dir("empty path");
+  ::setenv("PATH", empty.c_str(), 1);
+  try {
+    run_gnuplot("print 1\n");
+    ADD_FAILURE() << "gnuplot ran with an empty PATH";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("gnuplot not found"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("gnuplot-nox"), std::string::npos) << e.what();
+  }
+  ::setenv("PATH", path.c_str(), 1);
+}
+
+TEST(WpPlot, DrawsTheStudyFromItsCsv) {
+  const fs::path d = dir("wp's");
+  WpResult r;
+  r.csv_path = write(d / "wp.csv",
+                     "integrator,rtol,finished,t_reached_s,wall_s,steps,rejected,rhs,jacobians,factorizations,solves,"
+                     "err_speed,err_speed_end,err_tension\n"
+                     "reference:esdirk32,1e-07,1,0.1,2,100,0,1,1,1,1,,,\n"
+                     "esdirk32,0.01,1,0.1,0.1,10,0,1,1,1,1,0.1,0.1,0.1\n"
+                     "esdirk32,0.001,1,0.1,0.3,30,0,1,1,1,1,0.01,0.01,0.01\n"
+                     "rkf45,0.01,0,0.01,1,10,0,1,1,1,1,,,\n");
+  r.integrators = {"esdirk32", "rkf45"};
+  r.title = "a 'study'";
+  WpRow row;
+  row.integrator = "esdirk32";
+  row.finished = true;
+  r.rows = {row, row, WpRow{}};
+  r.rows[2].integrator = "rkf45";
+  const std::string png = (d / "wp.png").string();
+  plot_wp_png(r, png);
+  const Image img = read_png(png);
+  EXPECT_EQ(img.width, 1000);
+  EXPECT_EQ(img.height, 700);
+  r.rows = {r.rows[2]};
+  expect_error([&] { plot_wp_png(r, png); }, {"no run finished"});
+}
+
+}  // namespace
+}  // namespace beltsim::plot
