@@ -1,185 +1,142 @@
-// beltsim command line.
-//   beltsim run SCRIPT [--out DIR] [--t-end T] [--integrator NAME] [--rtol R] [--no-frames]
-//   beltsim wp  SCRIPT [--out DIR] [--t-end T] [--integrators A,B] [--rtols R1,R2] [--ref-rtol R]
-//                      [--wall-limit S]
-// The flags override what the script passes to scene:run{}. Exit status: 0 on success, 1 on a
-// script, parameter or run error (message on stderr, outputs written so far kept), 2 on bad
-// usage, 130 when stopped by Ctrl-C (outputs flushed).
+// beltsim command line (CLI11).
+//   beltsim run     SCRIPT [--out DIR] [--t-end T] [--integrator NAME] [--rtol R] [--no-frames]
+//   beltsim wp      SCRIPT [--out DIR] [--t-end T] [--integrators A,B] [--rtols R1,R2] [--ref-rtol R]
+//                          [--wall-limit S]
+//   beltsim plot    CSV [COLUMNS...] [--out PNG] [--from T]
+//   beltsim console [SCRIPT] [--out DIR] [--t-end T] [--integrator NAME] [--rtol R] [--no-frames]
+//                            [-- ARGS...]
+// The flags override what the script passes to scene:run{}. Every number is a finite decimal
+// (no hex, inf or nan); an option a command does not take is an error. Exit status: 0 on
+// success, 1 on a script, parameter, run or plot error (message on stderr, outputs written so far
+// kept), 2 on bad usage, 130 when stopped by Ctrl-C (outputs flushed).
+#include <CLI/CLI.hpp>
+#include <unistd.h>
+
+#include <atomic>
+#include <charconv>
+#include <cmath>
 #include <csignal>
 #include <cstdio>
-#include <cstdlib>
 #include <cstring>
-#include <string>
-
 #include <filesystem>
+#include <optional>
 #include <sstream>
+#include <string>
 #include <vector>
 
 #include "integrate/stepper.hpp"
+#include "plot/plot.hpp"
 #include "plot/wp_plot.hpp"
 #include "script/interpreter.hpp"
 #include "sim/work_precision.hpp"
+#include "term/term_image.hpp"
+
+#if __has_include("script/console.hpp")
+#include "script/console.hpp"
+#define BELTSIM_HAVE_CONSOLE 1
+#endif
 
 namespace {
+
+namespace fs = std::filesystem;
 
 std::atomic<bool> g_stop{false};
 
 void on_sigint(int) { g_stop.store(true); }
 
-const char* kUsage =
-    "usage: beltsim run SCRIPT [--out DIR] [--t-end T] [--integrator NAME] [--rtol R] [--no-frames]\n"
-    "       beltsim wp  SCRIPT [--out DIR] [--t-end T] [--integrators A,B,..] [--rtols R1,R2,..]\n"
-    "                          [--ref-rtol R] [--wall-limit S]\n"
-    "\n"
-    "run: runs a Lua scenario script. The options override the script's run settings:\n"
-    "  --out DIR          output folder (default: out/<script name>)\n"
-    "  --t-end T          end time [s]\n"
-    "  --integrator NAME  one of: %s\n"
-    "  --rtol R           relative tolerance of the step-size control\n"
-    "  --no-frames        render no frames and no video, whatever the script asks\n"
-    "Writes DIR/timeseries.csv (samples at fixed times) and DIR/parameters.csv, and the\n"
-    "frames (PNG) and video (MP4) a script asks for with scene:run{ frames = {...} }.\n"
-    "\n"
-    "wp: error against run time. Runs the script's scene with every integrator (or those of\n"
-    "--integrators) at every tolerance of --rtols (default 1e-2,1e-3,1e-4,1e-5,1e-6), each\n"
-    "against a reference run of esdirk32 at --ref-rtol (default 1e-7); a run taking longer\n"
-    "than --wall-limit seconds (default 120) is stopped and recorded as unfinished.\n"
-    "Writes DIR/wp.csv and DIR/wp.png (default DIR: out/<script name>/wp).\n";
+// bad usage: the message goes to stderr and the exit status is 2
+struct UsageError : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
 
-int usage(const char* error) {
+// a finite decimal number, nothing before or after it: "0x10", "inf", "nan", "1e" and "2s" fail
+std::optional<double> decimal(const std::string& s) {
+  const size_t from = !s.empty() && s[0] == '+' ? 1 : 0;
+  double x = 0;
+  const auto r = std::from_chars(s.data() + from, s.data() + s.size(), x, std::chars_format::general);
+  if (s.size() == from || r.ec != std::errc() || r.ptr != s.data() + s.size() || !std::isfinite(x)) return std::nullopt;
+  return x;
+}
+
+double number(const std::string& option, const std::string& text) {
+  const auto x = decimal(text);
+  if (!x) throw UsageError(option + " needs a finite decimal number, got '" + text + "'");
+  return *x;
+}
+
+// each comma-separated item a number in (0, 1)
+std::vector<double> tolerances(const std::string& option, const std::string& text) {
+  std::vector<double> out;
+  std::stringstream ss(text);
+  std::string item;
+  while (std::getline(ss, item, ',')) {
+    const auto x = decimal(item);
+    if (!x || !(*x > 0 && *x < 1))
+      throw UsageError(option + " needs numbers in (0, 1) separated by commas, got '" + text + "'");
+    out.push_back(*x);
+  }
+  if (out.empty() || (!text.empty() && text.back() == ','))
+    throw UsageError(option + " needs numbers in (0, 1) separated by commas, got '" + text + "'");
+  return out;
+}
+
+void check_integrator(const std::string& name) {
+  try {
+    beltsim::check_integrator(name);
+  } catch (const std::invalid_argument& e) {
+    throw UsageError(e.what());
+  }
+}
+
+std::string integrator_list() {
   std::string names;
   for (const auto& n : beltsim::integrator_names()) names += (names.empty() ? "" : ", ") + n;
-  if (error) std::fprintf(stderr, "beltsim: %s\n", error);
-  std::fprintf(error ? stderr : stdout, kUsage, names.c_str());
-  return error ? 2 : 0;
+  return names;
 }
 
-bool parse_number(const char* s, double& out) {
-  char* end = nullptr;
-  out = std::strtod(s, &end);
-  return end != s && *end == '\0';
+// the options as typed: text, turned into numbers and checked by overrides() and the commands,
+// so every number goes through decimal()
+struct Raw {
+  std::optional<std::string> out, t_end, integrator, rtol;
+  bool no_frames = false;
+  std::optional<std::string> integrators, rtols, ref_rtol, wall_limit;  // wp
+  std::optional<std::string> from;                                      // plot
+};
+
+void add_out_and_t_end(CLI::App* c, Raw& raw, const char* out_help) {
+  c->add_option("--out", raw.out, out_help)->type_name("DIR");
+  c->add_option("--t-end", raw.t_end, "end time [s] (> 0)")->type_name("T");
 }
 
-}  // namespace
+void add_run_overrides(CLI::App* c, Raw& raw) {
+  add_out_and_t_end(c, raw, "output folder (default: out/<script name>)");
+  c->add_option("--integrator", raw.integrator, "one of: " + integrator_list())->type_name("NAME");
+  c->add_option("--rtol", raw.rtol, "relative tolerance of the step-size control, in (0, 1)")->type_name("R");
+  c->add_flag("--no-frames", raw.no_frames, "render no frames and no video, whatever the script asks");
+}
 
-int main(int argc, char** argv) {
-  if (argc < 2) return usage("no command given");
-  const std::string cmd = argv[1];
-  if (cmd == "--help" || cmd == "-h" || cmd == "help") return usage(nullptr);
-  if (cmd == "--version") {
-    std::printf("beltsim 0.1.0\n");
-    return 0;
-  }
-  if (cmd != "run" && cmd != "wp") return usage(("unknown command '" + cmd + "'").c_str());
-  std::string script;
+beltsim::script::Overrides overrides(const Raw& raw) {
   beltsim::script::Overrides o;
-  beltsim::WpSettings wps;
-  auto number_list = [](const char* v, std::vector<double>& out) {
-    out.clear();
-    std::stringstream ss(v);
-    std::string item;
-    while (std::getline(ss, item, ',')) {
-      double x = 0;
-      if (!parse_number(item.c_str(), x) || !(x > 0 && x < 1)) return false;
-      out.push_back(x);
-    }
-    return !out.empty();
-  };
-  for (int k = 2; k < argc; ++k) {
-    const std::string a = argv[k];
-    auto value = [&]() -> const char* { return k + 1 < argc ? argv[++k] : nullptr; };
-    if (a == "--out" || a == "--t-end" || a == "--integrator" || a == "--rtol") {
-      const char* v = value();
-      if (!v) return usage((a + " needs a value").c_str());
-      double x = 0;
-      if (a == "--out") {
-        o.out = v;
-      } else if (a == "--integrator") {
-        o.integrator = v;
-      } else if (!parse_number(v, x)) {
-        return usage((a + " needs a number, got '" + v + "'").c_str());
-      } else if (a == "--t-end") {
-        if (!(x > 0)) return usage(("--t-end must be > 0 s, got " + std::string(v)).c_str());
-        o.t_end = x;
-      } else {
-        if (!(x > 0 && x < 1)) return usage(("--rtol must be in (0, 1), got " + std::string(v)).c_str());
-        o.rtol = x;
-      }
-    } else if (cmd == "wp" && (a == "--integrators" || a == "--rtols" || a == "--ref-rtol" || a == "--wall-limit")) {
-      const char* v = value();
-      if (!v) return usage((a + " needs a value").c_str());
-      double x = 0;
-      if (a == "--integrators") {
-        std::stringstream ss(v);
-        std::string item;
-        wps.integrators.clear();
-        while (std::getline(ss, item, ',')) wps.integrators.push_back(item);
-        for (const auto& n : wps.integrators) {
-          try {
-            beltsim::check_integrator(n);
-          } catch (const std::invalid_argument& e) {
-            return usage(e.what());
-          }
-        }
-      } else if (a == "--rtols") {
-        if (!number_list(v, wps.rtols)) return usage(("--rtols needs numbers in (0, 1) separated by commas, got '" + std::string(v) + "'").c_str());
-      } else if (!parse_number(v, x) || !(x > 0)) {
-        return usage((a + " needs a positive number, got '" + v + "'").c_str());
-      } else if (a == "--ref-rtol") {
-        if (!(x < 1)) return usage(("--ref-rtol must be in (0, 1), got " + std::string(v)).c_str());
-        wps.ref_rtol = x;
-      } else {
-        wps.wall_limit = x;
-      }
-    } else if (a == "--no-frames") {
-      o.no_frames = true;
-    } else if (a == "--help" || a == "-h") {
-      return usage(nullptr);
-    } else if (!a.empty() && a[0] == '-') {
-      return usage(("unknown option '" + a + "'").c_str());
-    } else if (script.empty()) {
-      script = a;
-    } else {
-      return usage(("unexpected argument '" + a + "'").c_str());
-    }
+  o.out = raw.out;
+  if (raw.t_end) {
+    const double x = number("--t-end", *raw.t_end);
+    if (!(x > 0)) throw UsageError("--t-end must be > 0 s, got " + *raw.t_end);
+    o.t_end = x;
   }
-  if (script.empty()) return usage("no script given");
-  if (o.integrator) {
-    try {
-      beltsim::check_integrator(*o.integrator);
-    } catch (const std::invalid_argument& e) {
-      return usage(e.what());
-    }
+  if (raw.integrator) {
+    check_integrator(*raw.integrator);
+    o.integrator = raw.integrator;
   }
+  if (raw.rtol) {
+    const double x = number("--rtol", *raw.rtol);
+    if (!(x > 0 && x < 1)) throw UsageError("--rtol must be in (0, 1), got " + *raw.rtol);
+    o.rtol = x;
+  }
+  o.no_frames = raw.no_frames;
+  return o;
+}
 
-  std::signal(SIGINT, on_sigint);
-  if (cmd == "wp") {
-    try {
-      beltsim::script::Captured cap;
-      beltsim::script::Interpreter lua;
-      if (o.t_end) lua.set_overrides({.out = {}, .t_end = o.t_end, .integrator = {}, .rtol = {}});
-      lua.set_capture(&cap);
-      lua.run_file(script);
-      if (!cap.scene) throw std::runtime_error(script + ": the script never calls scene:run{}");
-      wps.base = cap.settings;
-      wps.base.out_dir = o.out ? *o.out : (std::filesystem::path("out") / std::filesystem::path(script).stem() / "wp").string();
-      const beltsim::WpResult r = beltsim::work_precision(*cap.scene, wps, &g_stop);
-      const std::string png = (std::filesystem::path(wps.base.out_dir) / "wp.png").string();
-      std::string drawn;
-      try {
-        beltsim::plot::plot_wp_png(r, png);
-        drawn = png;
-      } catch (const std::exception& e) {  // the CSV is the result; the picture is a convenience
-        std::fprintf(stderr, "beltsim wp: no plot: %s\n", e.what());
-      }
-      std::fprintf(stderr, "beltsim wp: wrote %s%s%s\n", r.csv_path.c_str(), drawn.empty() ? "" : " and ",
-                   drawn.c_str());
-      return g_stop.load() ? 130 : 0;
-    } catch (const std::exception& e) {
-      std::fprintf(stderr, "beltsim: %s\n", e.what());
-      return 1;
-    }
-  }
+int cmd_run(const std::string& script, const beltsim::script::Overrides& o) {
   try {
     beltsim::script::Interpreter lua;
     lua.set_overrides(o);
@@ -194,4 +151,194 @@ int main(int argc, char** argv) {
     return 1;
   }
   return 0;
+}
+
+int cmd_wp(const std::string& script, const beltsim::script::Overrides& o, beltsim::WpSettings wps) {
+  try {
+    beltsim::script::Captured cap;
+    beltsim::script::Interpreter lua;
+    if (o.t_end) lua.set_overrides({.out = {}, .t_end = o.t_end, .integrator = {}, .rtol = {}});
+    lua.set_capture(&cap);
+    lua.run_file(script);
+    if (!cap.scene) throw std::runtime_error(script + ": the script never calls scene:run{}");
+    wps.base = cap.settings;
+    wps.base.out_dir = o.out ? *o.out : (fs::path("out") / fs::path(script).stem() / "wp").string();
+    const beltsim::WpResult r = beltsim::work_precision(*cap.scene, wps, &g_stop);
+    const std::string png = (fs::path(wps.base.out_dir) / "wp.png").string();
+    std::string drawn;
+    try {
+      beltsim::plot::plot_wp_png(r, png);
+      drawn = png;
+    } catch (const std::exception& e) {  // the CSV is the result; the picture is a convenience
+      std::fprintf(stderr, "beltsim wp: no plot: %s\n", e.what());
+    }
+    std::fprintf(stderr, "beltsim wp: wrote %s%s%s\n", r.csv_path.c_str(), drawn.empty() ? "" : " and ", drawn.c_str());
+    return g_stop.load() ? 130 : 0;
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "beltsim: %s\n", e.what());
+    return 1;
+  }
+}
+
+int cmd_plot(const std::string& csv, const std::vector<std::string>& columns, const Raw& raw) {
+  const double from = raw.from ? number("--from", *raw.from) : -INFINITY;
+  const std::string png = raw.out ? *raw.out : (fs::path(csv).parent_path() / "plot.png").string();
+  try {
+    beltsim::plot::plot_csv(csv, columns, from, png);
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "beltsim: %s\n", e.what());
+    return 1;
+  }
+  // the picture on a terminal (or wherever BELTSIM_TERM_IMAGES forces it), then the path
+  std::fflush(stdout);
+  std::string why;
+  if (!beltsim::term::show_image_in_terminal(png, stdout, &why) && ::isatty(STDOUT_FILENO))
+    std::fprintf(stderr, "beltsim plot: not shown in the terminal: %s\n", why.c_str());
+  std::printf("%s\n", png.c_str());
+  return 0;
+}
+
+int cmd_console(const std::optional<std::string>& script, const std::vector<std::string>& args,
+                const beltsim::script::Overrides& o) {
+#ifdef BELTSIM_HAVE_CONSOLE
+  try {
+    return beltsim::script::run_console(script, args, o, &g_stop);
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "beltsim: %s\n", e.what());
+    return 1;
+  }
+#else
+  (void)script;
+  (void)args;
+  (void)o;
+  std::fprintf(stderr, "beltsim: console is not part of this build (no src/script/console.hpp)\n");
+  return 1;
+#endif
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"beltsim: belt transmissions, the discrete model of K. Kubas; scenarios are Lua scripts.", "beltsim"};
+  app.set_version_flag("--version", "beltsim 0.1.0");
+  app.require_subcommand(1);
+  app.footer("Exit status: 0 on success, 1 on a script, parameter, run or plot error, 2 on bad usage,\n"
+             "130 after Ctrl-C (outputs flushed). 'beltsim COMMAND --help' describes a command.");
+  Raw raw;
+  std::string script, csv;
+  std::optional<std::string> console_script;
+  std::vector<std::string> columns, console_args;
+
+  CLI::App* run = app.add_subcommand("run", "run a Lua scenario script");
+  run->add_option("SCRIPT", script, "the scenario (Lua)")->required();
+  add_run_overrides(run, raw);
+  run->footer("The options override the script's scene:run{} settings. Writes DIR/timeseries.csv (samples\n"
+              "at fixed times) and DIR/parameters.csv, and the frames (PNG) and video (MP4) a script asks\n"
+              "for with scene:run{ frames = {...} }.");
+
+  CLI::App* wp = app.add_subcommand("wp", "error against run time of every integrator");
+  wp->add_option("SCRIPT", script, "the scenario (Lua): its first scene:run{} gives the scene")->required();
+  add_out_and_t_end(wp, raw, "output folder (default: out/<script name>/wp)");
+  wp->add_option("--integrators", raw.integrators, "those to study, separated by commas (default: all)")
+      ->type_name("A,B,..");
+  wp->add_option("--rtols", raw.rtols, "tolerances (default 1e-2,1e-3,1e-4,1e-5,1e-6)")->type_name("R1,R2,..");
+  wp->add_option("--ref-rtol", raw.ref_rtol, "tolerance of the esdirk32 reference run (default 1e-7)")->type_name("R");
+  wp->add_option("--wall-limit", raw.wall_limit, "a run taking longer is stopped, unfinished (default 120)")
+      ->type_name("S");
+  wp->footer("Runs the script's scene with every integrator at every tolerance, each against the\n"
+             "reference. Writes DIR/wp.csv, DIR/wp.png (log-log, gnuplot) and DIR/<integrator>-<rtol>/.");
+
+  CLI::App* plot = app.add_subcommand("plot", "draw columns of a timeseries.csv to a PNG");
+  plot->add_option("CSV", csv, "a timeseries.csv written by run")->required();
+  plot->add_option("COLUMNS", columns, "columns to draw (default: every <pulley>.omega)");
+  plot->add_option("--out", raw.out, "the PNG (default: plot.png beside the CSV)")->type_name("PNG");
+  plot->add_option("--from", raw.from, "draw samples with t >= T only [s]")->type_name("T");
+  plot->footer("Prints the PNG's path; on a terminal also shows the picture (BELTSIM_TERM_IMAGES=off|symbols|\n"
+               "sixel|kitty|iterm forces a mode). Columns of two units share the plot on two y axes.");
+
+  CLI::App* console = app.add_subcommand("console", "an interactive Lua console with a live simulation");
+  console->add_option("SCRIPT", console_script, "a scenario to load first");
+  add_run_overrides(console, raw);
+  console->footer("Arguments after -- are passed to the script.");
+
+  // `beltsim console ... -- ARGS`: everything after the first -- belongs to the script
+  std::vector<std::string> words(argv + 1, argv + argc);
+  if (!words.empty() && words[0] == "console") {
+    const auto dd = std::find(words.begin(), words.end(), "--");
+    if (dd != words.end()) {
+      console_args.assign(dd + 1, words.end());
+      words.erase(dd, words.end());
+    }
+  }
+  if (!words.empty() && words[0] == "help") words[0] = "--help";
+  const std::vector<std::string> commands{"run", "wp", "plot", "console"};
+  if (!words.empty() && !words[0].empty() && words[0][0] == '-' && words[0] != "-h" && words[0] != "--help" &&
+      words[0] != "--version") {
+    std::fprintf(stderr, "beltsim: unknown option '%s' before the command\nRun 'beltsim --help' for the usage.\n",
+                 words[0].c_str());
+    return 2;
+  }
+  if (!words.empty() && (words[0].empty() || words[0][0] != '-') &&
+      std::find(commands.begin(), commands.end(), words[0]) == commands.end()) {
+    std::fprintf(stderr, "beltsim: unknown command '%s' (commands: run, wp, plot, console)\n"
+                 "Run 'beltsim --help' for the usage.\n", words[0].c_str());
+    return 2;
+  }
+  std::reverse(words.begin(), words.end());  // CLI11 takes the arguments in reverse order
+  try {
+    app.parse(words);
+  } catch (const CLI::CallForHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForAllHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForVersion& e) {
+    return app.exit(e);
+  } catch (const CLI::ParseError& e) {
+    const CLI::App* sub = app.get_subcommands().empty() ? nullptr : app.get_subcommands().front();
+    const std::string name = sub ? sub->get_name() : "";
+    std::string msg = e.what();
+    if (dynamic_cast<const CLI::ExtrasError*>(&e)) {
+      std::string extra;
+      for (const auto& w : app.remaining(true)) extra += (extra.empty() ? "" : " ") + w;
+      msg = (sub ? name + " does not take: " : "unexpected: ") + extra +
+            (name == "console" ? " (arguments for the script go after --)" : "");
+    }
+    std::fprintf(stderr, "beltsim: %s\nRun 'beltsim%s --help' for the usage.\n", msg.c_str(),
+                 name.empty() ? "" : (" " + name).c_str());
+    return 2;
+  }
+
+  try {
+    std::signal(SIGINT, on_sigint);
+    if (*run) return cmd_run(script, overrides(raw));
+    if (*console) return cmd_console(console_script, console_args, overrides(raw));
+    if (*plot) return cmd_plot(csv, columns, raw);
+    // wp
+    beltsim::WpSettings wps;
+    if (raw.integrators) {
+      std::stringstream ss(*raw.integrators);
+      std::string item;
+      while (std::getline(ss, item, ',')) {
+        check_integrator(item);
+        wps.integrators.push_back(item);
+      }
+      if (wps.integrators.empty()) throw UsageError("--integrators needs names separated by commas");
+    }
+    if (raw.rtols) wps.rtols = tolerances("--rtols", *raw.rtols);
+    if (raw.ref_rtol) {
+      const double x = number("--ref-rtol", *raw.ref_rtol);
+      if (!(x > 0 && x < 1)) throw UsageError("--ref-rtol must be in (0, 1), got " + *raw.ref_rtol);
+      wps.ref_rtol = x;
+    }
+    if (raw.wall_limit) {
+      const double x = number("--wall-limit", *raw.wall_limit);
+      if (!(x > 0)) throw UsageError("--wall-limit must be > 0 s, got " + *raw.wall_limit);
+      wps.wall_limit = x;
+    }
+    return cmd_wp(script, overrides(raw), wps);
+  } catch (const UsageError& e) {
+    const CLI::App* sub = app.get_subcommands().front();
+    std::fprintf(stderr, "beltsim: %s\nRun 'beltsim %s --help' for the usage.\n", e.what(), sub->get_name().c_str());
+    return 2;
+  }
 }
