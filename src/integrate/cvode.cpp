@@ -18,6 +18,7 @@
 #include <Eigen/SparseCore>
 
 #include "integrate/controller.hpp"
+#include "integrate/integrator.hpp"
 
 namespace beltsim {
 
@@ -25,13 +26,6 @@ std::vector<std::string> cvode_names() { return {"cvode", "cvode-fd"}; }
 bool is_cvode(const std::string& name) { return name == "cvode" || name == "cvode-fd"; }
 
 namespace {
-
-std::string fmt(double v) {
-  std::ostringstream s;
-  s.precision(9);
-  s << v;
-  return s.str();
-}
 
 struct Session {
   OdeSystem* sys = nullptr;
@@ -112,144 +106,125 @@ void check(int flag, const char* what) {
 
 }  // namespace
 
+namespace {
+
+class CvodeIntegrator final : public Integrator {
+ public:
+  CvodeIntegrator(const std::string& name, OdeSystem& sys, const Tolerances& tol)
+      : name_(name), sys_(sys), tol_(tol), analytic_(name == "cvode") {
+    ses_.sys = &sys;
+    if (SUNContext_Create(nullptr, &cv_.ctx) != 0) throw std::runtime_error("cvode: cannot create a SUNDIALS context");
+    const int n = sys.size();
+    cv_.y = N_VNew_Serial(n, cv_.ctx);
+    cv_.abstol = N_VNew_Serial(n, cv_.ctx);
+    cv_.dky = N_VNew_Serial(n, cv_.ctx);
+    const double atol = tol.atol < 0 ? tol.rtol : tol.atol;
+    for (int k = 0; k < n; ++k) N_VGetArrayPointer(cv_.abstol)[k] = atol * sys.atol_scale(k);
+  }
+  std::string name() const override { return name_; }
+
+  void start(double t, const Eigen::VectorXd& y) override {
+    const int n = sys_.size();
+    if (const std::string bad = sys_.check(t, y.data()); !bad.empty())
+      throw DivergenceError(t, "the state at t = " + fmt_time(t) + " s: " + bad);
+    y_ = y;
+    t_ = t_prev_ = t;
+    std::copy(y.data(), y.data() + n, N_VGetArrayPointer(cv_.y));
+    tstop_ = std::nan("");
+    if (cv_.mem) {
+      // restart: the law may jump here, and a multistep history across it is wrong
+      add_counters(cv_.mem, ses_.done);
+      check(CVodeReInit(cv_.mem, t, cv_.y), "CVodeReInit");
+      return;
+    }
+    cv_.mem = CVodeCreate(CV_BDF, cv_.ctx);
+    if (!cv_.mem) throw std::runtime_error("cvode: CVodeCreate failed");
+    check(CVodeInit(cv_.mem, rhs_cb, t, cv_.y), "CVodeInit");
+    check(CVodeSetUserData(cv_.mem, &ses_), "CVodeSetUserData");
+    check(CVodeSetErrHandlerFn(cv_.mem, err_cb, &ses_), "CVodeSetErrHandlerFn");
+    check(CVodeSVtolerances(cv_.mem, tol_.rtol, cv_.abstol), "CVodeSVtolerances");
+    check(CVodeSetMaxNumSteps(cv_.mem, -1), "CVodeSetMaxNumSteps");  // no limit: the caller's stop flag ends a run
+    if (analytic_) {
+      if (!sys_.sparse_jacobian(t, y.data(), ses_.J)) throw std::runtime_error("cvode: the system has no sparse Jacobian");
+      ses_.J.makeCompressed();
+      cv_.A = SUNSparseMatrix(n, n, ses_.J.nonZeros(), CSC_MAT, cv_.ctx);
+      cv_.LS = SUNLinSol_KLU(cv_.y, cv_.A, cv_.ctx);
+    } else {
+      cv_.A = SUNDenseMatrix(n, n, cv_.ctx);
+      cv_.LS = SUNLinSol_Dense(cv_.y, cv_.A, cv_.ctx);
+    }
+    if (!cv_.A || !cv_.LS) throw std::runtime_error("cvode: cannot create the linear solver");
+    check(CVodeSetLinearSolver(cv_.mem, cv_.LS, cv_.A), "CVodeSetLinearSolver");
+    if (analytic_) check(CVodeSetJacFn(cv_.mem, jac_cb), "CVodeSetJacFn");
+  }
+
+  void step(double t_land) override {
+    if (!(tstop_ == t_land)) {
+      check(CVodeSetStopTime(cv_.mem, t_land), "CVodeSetStopTime");
+      tstop_ = t_land;
+    }
+    double t_ret = t_;
+    const int flag = CVode(cv_.mem, t_land, cv_.y, &t_ret, CV_ONE_STEP);
+    if (flag < 0)
+      throw DivergenceError(t_, "cvode stopped at t = " + fmt_time(t_) + " s: " + CVodeGetReturnFlagName(flag) +
+                                    (ses_.last_error.empty() ? "" : " (" + ses_.last_error + ")"));
+    if (flag == CV_TSTOP_RETURN) t_ret = t_land, tstop_ = std::nan("");  // SUNDIALS 6 clears a reached stop time
+    // a step size at rounding level means CVODE cannot get on (it may creep towards a time
+    // where F fails for ever): stop as the one-step integrators do
+    double h_now = 0;
+    CVodeGetCurrentStep(cv_.mem, &h_now);
+    if (!(std::abs(h_now) >= 16 * std::numeric_limits<double>::epsilon() * std::max(1.0, std::abs(t_ret))))
+      throw DivergenceError(t_ret, "cvode: the step size collapsed to " + fmt_time(h_now) + " s at t = " +
+                                       fmt_time(t_ret) + " s" +
+                                       (ses_.last_error.empty() ? "" : " (" + ses_.last_error + ")"));
+    const double* yr = N_VGetArrayPointer(cv_.y);
+    if (const std::string bad = sys_.check(t_ret, yr); !bad.empty())
+      throw DivergenceError(t_ret, "the run diverged at t = " + fmt_time(t_ret) + " s: " + bad);
+    t_prev_ = t_, t_ = t_ret;
+    std::copy(yr, yr + sys_.size(), y_.data());
+    sys_.counters = work();  // the system's counters tell the same as for the one-step methods
+  }
+
+  // a known kink at t(): restart the BDF history there
+  void kink() override { start(t_, y_); }
+
+  void dense(double t, Eigen::VectorXd& out) const override {
+    if (t >= t_) {
+      out = y_;
+      return;
+    }
+    check(CVodeGetDky(cv_.mem, std::max(t, t_prev_), 0, cv_.dky), "CVodeGetDky");
+    const double* d = N_VGetArrayPointer(cv_.dky);
+    out = Eigen::Map<const Eigen::VectorXd>(d, sys_.size());
+  }
+
+  WorkCounters work() const override {
+    WorkCounters w = ses_.done;
+    if (cv_.mem) add_counters(cv_.mem, w);
+    return w;
+  }
+
+ private:
+  std::string name_;
+  OdeSystem& sys_;
+  Tolerances tol_;
+  bool analytic_;
+  Session ses_;
+  Cvode cv_;
+  double tstop_ = std::nan("");
+};
+
+}  // namespace
+
+std::unique_ptr<Integrator> make_cvode_integrator(const std::string& name, OdeSystem& sys, const Tolerances& tol) {
+  return std::make_unique<CvodeIntegrator>(name, sys, tol);
+}
+
 DriveResult drive_cvode(OdeSystem& sys, const std::string& name, const Tolerances& tol, const DriveOptions& opt,
                         Eigen::VectorXd& y, const SampleFn& sample, const ProgressFn& progress) {
-  using clock = std::chrono::steady_clock;
-  const auto start = clock::now();
-  const int n = sys.size();
-  const bool analytic = name == "cvode";
-  Session ses;
-  ses.sys = &sys;
-  Cvode cv;
-  if (SUNContext_Create(nullptr, &cv.ctx) != 0) throw std::runtime_error("cvode: cannot create a SUNDIALS context");
-  cv.y = N_VNew_Serial(n, cv.ctx);
-  cv.abstol = N_VNew_Serial(n, cv.ctx);
-  cv.dky = N_VNew_Serial(n, cv.ctx);
-  std::copy(y.data(), y.data() + n, N_VGetArrayPointer(cv.y));
-  const double atol = tol.atol < 0 ? tol.rtol : tol.atol;
-  for (int k = 0; k < n; ++k) N_VGetArrayPointer(cv.abstol)[k] = atol * sys.atol_scale(k);
-
-  cv.mem = CVodeCreate(CV_BDF, cv.ctx);
-  if (!cv.mem) throw std::runtime_error("cvode: CVodeCreate failed");
-  check(CVodeInit(cv.mem, rhs_cb, opt.t0, cv.y), "CVodeInit");
-  check(CVodeSetUserData(cv.mem, &ses), "CVodeSetUserData");
-  check(CVodeSetErrHandlerFn(cv.mem, err_cb, &ses), "CVodeSetErrHandlerFn");
-  check(CVodeSVtolerances(cv.mem, tol.rtol, cv.abstol), "CVodeSVtolerances");
-  check(CVodeSetMaxNumSteps(cv.mem, -1), "CVodeSetMaxNumSteps");  // no limit: the caller's stop flag ends a run
-  if (analytic) {
-    if (!sys.sparse_jacobian(opt.t0, y.data(), ses.J)) throw std::runtime_error("cvode: the system has no sparse Jacobian");
-    ses.J.makeCompressed();
-    cv.A = SUNSparseMatrix(n, n, ses.J.nonZeros(), CSC_MAT, cv.ctx);
-    cv.LS = SUNLinSol_KLU(cv.y, cv.A, cv.ctx);
-  } else {
-    cv.A = SUNDenseMatrix(n, n, cv.ctx);
-    cv.LS = SUNLinSol_Dense(cv.y, cv.A, cv.ctx);
-  }
-  if (!cv.A || !cv.LS) throw std::runtime_error("cvode: cannot create the linear solver");
-  check(CVodeSetLinearSolver(cv.mem, cv.LS, cv.A), "CVodeSetLinearSolver");
-  if (analytic) check(CVodeSetJacFn(cv.mem, jac_cb), "CVodeSetJacFn");
-
-  // sample times t0 + k·dt and t_end, as drive()
-  const double span = opt.t_end - opt.t0;
-  const long n_samples = opt.sample_dt > 0 ? static_cast<long>(std::floor(span / opt.sample_dt * (1 + 1e-12))) : 0;
-  auto sample_time = [&](long k) { return k > n_samples ? opt.t_end : opt.t0 + static_cast<double>(k) * opt.sample_dt; };
-  const long last_sample = sample_time(n_samples) < opt.t_end - 1e-12 * span ? n_samples + 1 : n_samples;
-  long next_sample = 0;
-  std::vector<double> events;
-  for (double e : opt.events)
-    if (e > opt.t0 && e < opt.t_end) events.push_back(e);
-  std::sort(events.begin(), events.end());
-  events.erase(std::unique(events.begin(), events.end()), events.end());
-  events.push_back(opt.t_end);
-
-  if (const std::string bad = sys.check(opt.t0, y.data()); !bad.empty())
-    throw DivergenceError(opt.t0, "initial state at t = " + fmt(opt.t0) + " s: " + bad);
-  sample(opt.t0, y), next_sample = 1;
-  // frames: frame_t0 + k·frame_dt up to t_end, from the same interpolation (as drive())
-  const bool frames = opt.frame && opt.frame_dt > 0;
-  long next_frame = 0;
-  auto frame_time = [&](long k) { return opt.frame_t0 + static_cast<double>(k) * opt.frame_dt; };
-  if (frames)
-    while (frame_time(next_frame) < opt.t0 - 1e-12 * span) next_frame++;
-  if (frames && std::abs(frame_time(next_frame) - opt.t0) <= 1e-12 * span) opt.frame(frame_time(next_frame), y), next_frame++;
-
-  DriveResult res;
-  double t = opt.t0;
-  Eigen::VectorXd dense(n);
-  auto finish = [&] {
-    WorkCounters w = ses.done;
-    add_counters(cv.mem, w);
-    sys.counters = w;
-    res.work = w;
-    res.t_reached = t;
-    res.wall_seconds = std::chrono::duration<double>(clock::now() - start).count();
-  };
-  for (size_t e = 0; e < events.size() && !res.interrupted; ++e) {
-    const double t_event = events[e];
-    check(CVodeSetStopTime(cv.mem, t_event), "CVodeSetStopTime");
-    while (t < t_event) {
-      if (opt.stop && opt.stop->load()) {
-        res.interrupted = true;
-        break;
-      }
-      double t_ret = t;
-      const int flag = CVode(cv.mem, t_event, cv.y, &t_ret, CV_ONE_STEP);
-      if (flag < 0) {
-        finish();
-        throw DivergenceError(t, "cvode stopped at t = " + fmt(t) + " s: " + CVodeGetReturnFlagName(flag) +
-                                     (ses.last_error.empty() ? "" : " (" + ses.last_error + ")"));
-      }
-      if (flag == CV_TSTOP_RETURN) t_ret = t_event;
-      // a step size at rounding level means CVODE cannot get on (it may creep towards a time
-      // where F fails for ever): stop as drive() does
-      double h_now = 0;
-      CVodeGetCurrentStep(cv.mem, &h_now);
-      if (std::abs(h_now) < 16 * std::numeric_limits<double>::epsilon() * std::max(1.0, std::abs(t_ret))) {
-        finish();
-        throw DivergenceError(t_ret, "cvode: the step size collapsed to " + fmt(h_now) + " s at t = " + fmt(t_ret) +
-                                         " s" + (ses.last_error.empty() ? "" : " (" + ses.last_error + ")"));
-      }
-      const double* yr = N_VGetArrayPointer(cv.y);
-      if (const std::string bad = sys.check(t_ret, yr); !bad.empty()) {
-        finish();
-        throw DivergenceError(t_ret, "the run diverged at t = " + fmt(t_ret) + " s: " + bad);
-      }
-      while (next_sample <= last_sample && sample_time(next_sample) <= t_ret + 1e-12 * span) {
-        const double ts = std::min(sample_time(next_sample), t_ret);
-        if (ts >= t_ret) {
-          std::copy(yr, yr + n, dense.data());
-        } else {
-          check(CVodeGetDky(cv.mem, ts, 0, cv.dky), "CVodeGetDky");
-          std::copy(N_VGetArrayPointer(cv.dky), N_VGetArrayPointer(cv.dky) + n, dense.data());
-        }
-        sample(ts, dense);
-        next_sample++;
-      }
-      while (frames && frame_time(next_frame) <= std::min(t_ret, opt.t_end) + 1e-12 * span) {
-        const double tf = std::min(frame_time(next_frame), opt.t_end);
-        check(CVodeGetDky(cv.mem, std::min(tf, t_ret), 0, cv.dky), "CVodeGetDky");
-        std::copy(N_VGetArrayPointer(cv.dky), N_VGetArrayPointer(cv.dky) + n, dense.data());
-        opt.frame(tf, dense);
-        next_frame++;
-      }
-      t = t_ret;
-      if (progress) {
-        WorkCounters w = ses.done;
-        add_counters(cv.mem, w);
-        progress(t, w);
-      }
-    }
-    if (res.interrupted || t >= opt.t_end) break;
-    // restart at the event: the law may jump there, and a multistep history across it is wrong
-    std::copy(N_VGetArrayPointer(cv.y), N_VGetArrayPointer(cv.y) + n, y.data());
-    if (opt.on_event) opt.on_event(t, y);
-    std::copy(y.data(), y.data() + n, N_VGetArrayPointer(cv.y));
-    add_counters(cv.mem, ses.done);
-    check(CVodeReInit(cv.mem, t, cv.y), "CVodeReInit");
-  }
-  std::copy(N_VGetArrayPointer(cv.y), N_VGetArrayPointer(cv.y) + n, y.data());
-  finish();
-  return res;
+  check_tolerances(tol);
+  CvodeIntegrator integ(name, sys, tol);
+  return drive(integ, opt, y, sample, progress);
 }
 
 }  // namespace beltsim

@@ -21,7 +21,7 @@ namespace {
 [[noreturn]] void unknown(const std::string& name) {
   std::string valid;
   for (const auto& n : integrator_names()) valid += (valid.empty() ? "" : ", ") + n;
-  throw std::invalid_argument("unknown integrator '" + name + "' (valid: " + valid + ")");
+  throw std::invalid_argument("integrator: unknown integrator '" + name + "' (valid: " + valid + ")");
 }
 }  // namespace
 

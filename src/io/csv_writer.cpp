@@ -14,10 +14,13 @@ std::string csv_text(const std::string& s) {
   return q + "\"";
 }
 
-CsvWriter::CsvWriter(const std::string& path, const std::vector<std::string>& header, double flush_interval)
+CsvWriter::CsvWriter(const std::string& path, const std::vector<std::string>& header, double flush_interval,
+                     bool append)
     : path_(path), columns_(header.size()), flush_interval_(flush_interval) {
-  f_ = std::fopen(path.c_str(), "w");
+  f_ = std::fopen(path.c_str(), append ? "a" : "w");
   if (!f_) throw std::runtime_error("cannot write " + path + ": " + std::strerror(errno));
+  last_flush_ = std::chrono::steady_clock::now();
+  if (append) return;
   for (size_t k = 0; k < header.size(); ++k) std::fprintf(f_, "%s%s", k ? "," : "", csv_text(header[k]).c_str());
   std::fputc('\n', f_);
   std::fflush(f_);

@@ -13,7 +13,9 @@ namespace beltsim {
 
 class CsvWriter {
  public:
-  CsvWriter(const std::string& path, const std::vector<std::string>& header, double flush_interval = 0.5);
+  // append: continue an existing file (a resumed run) without writing the header again
+  CsvWriter(const std::string& path, const std::vector<std::string>& header, double flush_interval = 0.5,
+            bool append = false);
   ~CsvWriter();
   CsvWriter(const CsvWriter&) = delete;
   CsvWriter& operator=(const CsvWriter&) = delete;

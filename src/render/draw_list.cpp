@@ -1,5 +1,7 @@
 #include "render/draw_list.hpp"
 
+#include "model/observables.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -22,13 +24,6 @@ constexpr Rgba kRim{0.42f, 0.43f, 0.46f, 1};
 constexpr Rgba kSpoke{0.58f, 0.59f, 0.62f, 1};
 constexpr Rgba kMarker{0.80f, 0.10f, 0.12f, 1};
 constexpr Rgba kEdge{0.15f, 0.15f, 0.17f, 1};
-
-// the wrap sense of each pulley (+1: the belt goes round it anticlockwise) from the route
-std::vector<int> pulley_senses(const Scene& sc) {
-  std::vector<int> s(sc.model.n_p(), 1);
-  for (size_t k = 0; k < sc.route_pulleys.size(); ++k) s[sc.route_pulleys[k]] = sc.route.arcs[k].sense;
-  return s;
-}
 
 std::string format(const char* f, double v) {
   char b[64];
@@ -157,27 +152,18 @@ void default_range(const Scene& sc, FrameQuantity q, double& lo, double& hi) {
 
 std::vector<double> element_values(const Scene& sc, FrameQuantity q, double t, const double* y, const Model* model) {
   const Model& m = model ? *model : sc.model;
-  const int n = m.n_el();
-  const double* qs = y;
-  const double* v = y + m.n_coord();
-  std::vector<double> out(n, kNaN);
-  if (q == FrameQuantity::tension) {
-    std::vector<double> F(n);
-    for (int i = 0; i < n; ++i) F[i] = sde_axial_force(m, qs, v, i);
-    // an element sits between its own SDE (to its predecessor) and its successor's
-    for (int i = 0; i < n; ++i) out[i] = 0.5 * (F[i] + F[(i + 1) % n]);
-    return out;
-  }
-  if (q == FrameQuantity::mu) {
-    for (int i = 0; i < n; ++i) out[i] = m.mu[i];
-    return out;
-  }
-  const std::vector<int> sense = pulley_senses(sc);
-  for (int i = 0; i < n; ++i) {
-    const ElementContact c = element_contact(m, t, qs, v, i);
-    if (c.pulley < 0) continue;  // off the pulleys: no contact quantity
-    const int s = sense[c.pulley];  // t̂ is anticlockwise; the belt travels along s·t̂ on this pulley
-    out[i] = q == FrameQuantity::normal ? c.normal : q == FrameQuantity::friction ? s * c.friction : s * c.slip;
+  const std::vector<int> sense = sc.senses();
+  std::vector<double> out(m.n_el(), kNaN);
+  for (int i = 0; i < m.n_el(); ++i) {
+    const ElementObs o = observe_element(m, sense, t, y, i);
+    switch (q) {
+      case FrameQuantity::tension: out[i] = o.tension; break;
+      case FrameQuantity::mu: out[i] = o.mu; break;
+      // off the pulleys: no contact quantity
+      case FrameQuantity::normal: out[i] = o.state == ContactState::free ? kNaN : o.normal; break;
+      case FrameQuantity::friction: out[i] = o.friction; break;
+      case FrameQuantity::slip: out[i] = o.slip; break;
+    }
   }
   return out;
 }
@@ -186,7 +172,7 @@ std::vector<double> element_values(const Scene& sc, FrameQuantity q, double t, c
 
 FrameBuilder::FrameBuilder(const Scene& sc, const FrameSettings& fs, Font* font) : sc_(sc), fs_(fs), font_(font) {
   const Model& m = sc.model;
-  sense_ = pulley_senses(sc);
+  sense_ = sc.senses();
   for (size_t k = 0; k < sc.route_pulleys.size(); ++k) sink_.push_back(sc.penetration[sc.route_pulleys[k]]);
   for (double mu : m.mu) mu_dry_ = std::max(mu_dry_, mu);
 
@@ -327,8 +313,7 @@ void FrameBuilder::build(double t, const double* y, DrawList& out, const Model* 
     el.band = scale_.band(values[i]);
     el.colour = scale_.colour(values[i]);
     el.wet = m.mu[i] < mu_dry;
-    const ElementContact c = element_contact(m, t, q, v, i);
-    el.slipping = c.pulley >= 0 && c.normal > 0 && std::abs(c.friction) >= 0.98 * m.mu[i] * c.normal;
+    el.slipping = observe_element(m, sense_, t, y, i).state == ContactState::slip;
     el.centre = P(Cd[i]);
     el.corners[0] = P(A - h * oa), el.corners[1] = P(B - h * ob), el.corners[2] = P(B + h * ob), el.corners[3] = P(A + h * oa);
     // dark edge, then the colour inset by a pixel so the elements read one by one

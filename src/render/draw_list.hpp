@@ -11,8 +11,8 @@
 //   quantity on a banded colour map; the centres' deviation from the nominal path (the pitch
 //   line, sunk by the static penetration on each pulley) magnified by `magnify`;
 // - wet elements (μ below the belt's largest μ) with a blue band along the outer (back) edge;
-// - elements that slip (friction saturated, |F| ≥ 0.98·μ·N) with an orange band along the inner
-//   edge, so stick and slip arcs read at a glance whatever the quantity;
+// - elements that slip (model/observables.hpp: |slip| > Δv, outside the friction band) with an
+//   orange band along the inner edge, so stick and slip arcs read at a glance whatever the quantity;
 // - a colour bar with the quantity, its unit, its range and band edges; a legend;
 // - time, each pulley's speed and its slip (rim speed minus belt speed) as text.
 #pragma once

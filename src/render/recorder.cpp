@@ -29,6 +29,7 @@ class FrameRecorder final : public FrameSink {
   }
   void frame(double t, const double* y, const Model& model) override {
     builder_.build(t, y, list_, &model);
+    ctx_->make_current();  // another context (a snapshot's) may have been current since
     gl_.render(list_, image_);
     if (!fs_.png_dir.empty() && n_ % fs_.png_every == 0) {
       char name[32];
@@ -59,6 +60,20 @@ class FrameRecorder final : public FrameSink {
 
 std::unique_ptr<FrameSink> make_frame_recorder(const Scene& sc, const FrameSettings& fs) {
   return std::make_unique<FrameRecorder>(sc, fs);
+}
+
+void render_snapshot(const Scene& sc, const FrameSettings& fs, double t, const double* y, const Model& model,
+                     const std::string& png) {
+  Font font;
+  FrameBuilder builder(sc, fs, &font);
+  auto ctx = make_gl_context(default_gl_backend());
+  GlRenderer gl(*ctx, fs.width, fs.height);
+  DrawList list;
+  Image image;
+  builder.build(t, y, list, &model);
+  gl.render(list, image);
+  if (auto dir = std::filesystem::path(png).parent_path(); !dir.empty()) std::filesystem::create_directories(dir);
+  write_png(png, image);
 }
 
 }  // namespace beltsim::render

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <memory>
+#include <string>
 
 #include "sim/frames.hpp"
 
@@ -16,5 +17,10 @@ namespace beltsim::render {
 // Creates the GL context (BELTSIM_GL: osmesa or egl), the renderer and the writers. Throws
 // std::runtime_error with a clear message when any of them cannot be created.
 std::unique_ptr<FrameSink> make_frame_recorder(const Scene& scene, const FrameSettings& settings);
+
+// One frame of the state y at time t (model: as it is now) written to a PNG file, with a GL
+// context of its own (Lua sim:show). Throws std::runtime_error.
+void render_snapshot(const Scene& scene, const FrameSettings& settings, double t, const double* y,
+                     const Model& model, const std::string& png);
 
 }  // namespace beltsim::render

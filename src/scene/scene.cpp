@@ -125,6 +125,22 @@ int Scene::find_pulley(const std::string& name) const {
   return -1;
 }
 
+std::vector<int> Scene::senses() const {
+  std::vector<int> s(model.n_p(), 1);
+  for (size_t k = 0; k < route_pulleys.size(); ++k) s[route_pulleys[k]] = route.arcs[k].sense;
+  return s;
+}
+
+int Scene::find_span(const std::string& a, const std::string& b) const {
+  const size_t n = route_names.size();
+  for (size_t k = 0; k < n; ++k) {
+    const std::string& from = route_names[k];
+    const std::string& to = route_names[(k + 1) % n];
+    if ((from == a && to == b) || (from == b && to == a)) return static_cast<int>(k);
+  }
+  return -1;
+}
+
 int Scene::element_nearest(const Vec2& point) const {
   int best = 0;
   double bd = 1e300;

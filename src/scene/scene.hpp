@@ -82,6 +82,10 @@ struct Scene {
   std::vector<int> span_sde;       // for each span, the SDE nearest its midpoint at t = 0
   std::vector<ElementSite> sites; // where each element starts (as belt.mu functions see it)
   int find_pulley(const std::string& name) const;
+  // per pulley: +1 when the belt goes round it anticlockwise, -1 clockwise (from the route)
+  std::vector<int> senses() const;
+  // the route span from pulley a to pulley b (either order), -1 when they are not neighbours
+  int find_span(const std::string& a, const std::string& b) const;
   int element_nearest(const Vec2& point) const;
 };
 

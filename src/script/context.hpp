@@ -2,6 +2,7 @@
 #pragma once
 
 #include <atomic>
+#include <functional>
 #include <string>
 
 #include "script/interpreter.hpp"
@@ -15,6 +16,9 @@ struct Context {
   bool interrupted = false;
   Captured* capture = nullptr;            // capture mode (see Interpreter::set_capture)
   bool captured = false;                  // the script was ended by a capture
+  // a picture made by sim:show or sim:plot: the console shows it in the terminal; a script run
+  // prints its path (empty: print the path)
+  std::function<void(const std::string& png)> on_picture;
 };
 
 }  // namespace beltsim::script

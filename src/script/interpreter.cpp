@@ -40,6 +40,7 @@ Interpreter::~Interpreter() {
 void Interpreter::set_overrides(const Overrides& o) { context_of(L_)->overrides = o; }
 void Interpreter::set_stop_flag(const std::atomic<bool>* stop) { context_of(L_)->stop = stop; }
 void Interpreter::set_capture(Captured* c) { context_of(L_)->capture = c; }
+Context& Interpreter::context() { return *context_of(L_); }
 bool Interpreter::interrupted() const { return context_of(L_)->interrupted; }
 
 void Interpreter::run_file(const std::string& path) {

@@ -13,6 +13,8 @@ struct lua_State;
 
 namespace beltsim::script {
 
+struct Context;  // script/context.hpp
+
 // Command-line values that override what a script asks of scene:run{}.
 struct Overrides {
   std::optional<std::string> out;
@@ -49,6 +51,7 @@ class Interpreter {
   // true when a run inside the last script was stopped by the stop flag
   bool interrupted() const;
   lua_State* state() { return L_; }
+  Context& context();
 
  private:
   lua_State* L_;

@@ -1,21 +1,19 @@
 #include "sim/simulation.hpp"
 
-#include <unistd.h>
-
+#include <algorithm>
+#include <cerrno>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
 
 #include "integrate/belt_system.hpp"
-#include "integrate/cvode.hpp"
-#include "integrate/driver.hpp"
-#include "integrate/stepper.hpp"
+#include "integrate/timeline.hpp"
 #include "io/csv_writer.hpp"
 #include "model/forces.hpp"
-#include "model/rhs.hpp"
 
 namespace beltsim {
 
@@ -29,8 +27,8 @@ void write_parameters(const Scene& sc, const RunSettings& rs, const std::string&
   const Model& m = sc.model;
   const Belt& b = m.belt;
   std::ofstream f(path);
-  if (!f) throw std::runtime_error("cannot write " + path);
-  f.precision(10);
+  if (!f) throw std::runtime_error("cannot write " + path + ": " + std::strerror(errno));
+  f.precision(17);  // doubles round-trip
   f << "name,value,unit,note\n";
   auto row = [&](const std::string& name, double v, const std::string& unit, const std::string& note) {
     f << csv_text(name) << ',' << v << ',' << csv_text(unit) << ',' << csv_text(note) << '\n';
@@ -84,17 +82,14 @@ void write_parameters(const Scene& sc, const RunSettings& rs, const std::string&
   text("run.integrator", rs.integrator, "");
   row("run.rtol", rs.rtol, "", "");
   row("run.atol", rs.atol < 0 ? rs.rtol : rs.atol, "", "per natural unit: 0.1 m, 1 rad, 1 m/s, 10 rad/s, 1 J");
-  row("run.t_end", rs.t_end, "s", "");
   row("run.sample_dt", rs.sample_dt, "s", "");
 }
 
-std::string duration(double s) {
-  char b[32];
-  if (s < 120)
-    std::snprintf(b, sizeof b, "%.0f s", s);
-  else
-    std::snprintf(b, sizeof b, "%.0f min %02.0f s", std::floor(s / 60), std::fmod(s, 60));
-  return b;
+std::string num(double v) {
+  std::ostringstream s;
+  s.precision(10);
+  s << v;
+  return s.str();
 }
 
 }  // namespace
@@ -113,144 +108,324 @@ std::vector<std::string> timeseries_columns(const Scene& sc) {
   return c;
 }
 
-RunResult run(const Scene& sc, const RunSettings& rs, const std::atomic<bool>* stop) {
-  Model m = sc.model;  // a copy: events may change μ while running
-  if (!(rs.t_end > 0)) throw std::invalid_argument("run: t_end must be > 0 (got " + std::to_string(rs.t_end) + " s)");
-  if (!(rs.rtol > 0 && rs.rtol < 1)) throw std::invalid_argument("run: rtol must be in (0, 1)");
-  if (!(rs.sample_dt > 0)) throw std::invalid_argument("run: sample interval must be > 0");
-  for (const MuEvent& ev : rs.mu_events) {
-    if (!(ev.t > 0 && ev.t < rs.t_end))
-      throw std::invalid_argument("run: an event time must be inside (0, t_end) (got " + std::to_string(ev.t) + " s)");
+Simulation::Simulation(const Scene& sc, const RunSettings& rs) : Simulation(sc, rs, true) {}
+
+Simulation::Simulation(const Scene& sc, const RunSettings& rs, bool fresh) : scene_(sc), rs_(rs), model_(sc.model) {
+  const Model& m = model_;
+  if (!(rs_.sample_dt > 0 && std::isfinite(rs_.sample_dt)))
+    throw std::invalid_argument("sample: the sample interval must be > 0 s and finite (got " + num(rs_.sample_dt) + " s)");
+  if (rs_.probe_element < 0 || rs_.probe_element >= m.n_el())
+    throw std::invalid_argument("probe: the probe element must be in 0.." + std::to_string(m.n_el() - 1) + " (got " +
+                                std::to_string(rs_.probe_element) + ")");
+  for (const MuEvent& ev : rs_.mu_events) {
+    if (!(ev.t > 0 && std::isfinite(ev.t)))
+      throw std::invalid_argument("events: an event time must be > 0 s and finite (got " + num(ev.t) + " s)");
     if (static_cast<int>(ev.mu.size()) != m.n_el())
-      throw std::invalid_argument("run: an event's μ needs one value per element");
+      throw std::invalid_argument("events: an event's μ needs one value per element");
   }
-  if (rs.probe_element < 0 || rs.probe_element >= m.n_el())
-    throw std::invalid_argument("run: probe element must be in 0.." + std::to_string(m.n_el() - 1));
-  check_integrator(rs.integrator);
-  const bool peer = is_cvode(rs.integrator);
-  auto stepper = peer ? nullptr : make_stepper(rs.integrator);
-  std::optional<FrameSettings> frames = rs.frames;
-  if (frames) {
-    validate(*frames);
-    if (!rs.frame_factory) throw std::invalid_argument("run: frames asked for, but this program has no renderer");
-    if (frames->t_start > rs.t_end)
-      throw std::invalid_argument("run.frames.t_start: must be <= t_end = " + std::to_string(rs.t_end) + " s (got " +
-                                  std::to_string(frames->t_start) + " s)");
+  sense_ = scene_.senses();
+  sys_ = std::make_unique<BeltSystem>(model_);
+  integ_ = make_integrator(rs_.integrator, *sys_, Tolerances{rs_.rtol, rs_.atol});
+  tl_ = std::make_unique<Timeline>(*integ_);
+  if (rs_.frames) {
+    FrameSettings& f = *rs_.frames;
+    validate(f);
+    if (!rs_.frame_factory) throw std::invalid_argument("frames: asked for, but this program has no renderer");
     auto inside = [&](std::string& p) {
-      if (!p.empty() && std::filesystem::path(p).is_relative()) p = (std::filesystem::path(rs.out_dir) / p).string();
+      if (!p.empty() && std::filesystem::path(p).is_relative()) p = (std::filesystem::path(rs_.out_dir) / p).string();
     };
-    inside(frames->png_dir);
-    inside(frames->video_path);
+    inside(f.png_dir);
+    inside(f.video_path);
   }
+  pending_ = rs_.mu_events;
+  std::stable_sort(pending_.begin(), pending_.end(), [](const MuEvent& a, const MuEvent& b) { return a.t < b.t; });
+  E0_ = beltsim::energy(model_, 0.0, scene_.y0.data()).total();
+  if (!fresh) return;  // resume() fills in the rest
 
-  std::filesystem::create_directories(rs.out_dir);
-  RunResult res;
-  res.csv_path = (std::filesystem::path(rs.out_dir) / "timeseries.csv").string();
-  res.parameters_path = (std::filesystem::path(rs.out_dir) / "parameters.csv").string();
-  write_parameters(sc, rs, res.parameters_path);
-  CsvWriter csv(res.csv_path, timeseries_columns(sc));
-
-  BeltSystem sys(m);
-  const int N = m.n_coord();
-  const double E0 = energy(m, 0.0, sc.y0.data()).total();
-  std::vector<double> row;
-  auto sample = [&](double t, const Eigen::VectorXd& y) {
-    const double* q = y.data();
-    const double* v = q + N;
-    row.clear();
-    row.push_back(t);
-    for (int j = 0; j < m.n_p(); ++j) {
-      Vec2 hub;
-      const double belt = belt_torque(m, t, q, v, j, &hub);
-      const Pulley& p = m.pulleys[j];
-      const double applied = p.kinematic ? p.inertia * p.speed.table_slope(t) - belt : applied_torque(m, t, v, j);
-      row.insert(row.end(), {m.omega(j, t, v), applied, belt, hub.norm()});
-    }
-    for (const Route::Span& sp : sc.route.spans)
-      row.push_back(sde_axial_force(m, q, v, sde_nearest(m, q, 0.5 * (sp.from + sp.to))));
-    const ElementContact c = element_contact(m, t, q, v, rs.probe_element);
-    row.insert(row.end(), {sde_axial_force(m, q, v, rs.probe_element), c.normal, c.friction, c.slip});
-    if (m.track_energy) {
-      const double* e = q + 2 * N;
-      row.insert(row.end(), {energy(m, t, q).total() - E0, e[kWorkTorques], e[kDissSdeAxial], e[kDissSdeBending],
-                             e[kDissContact], e[kDissFriction]});
-    }
-    csv.row(row);
-    if (rs.keep_samples) res.samples.push_back(row);
-  };
-
-  // progress on stderr once the run has taken more than a second
-  using clock = std::chrono::steady_clock;
-  const auto start = clock::now();
-  auto last_report = start;
-  const bool tty = isatty(STDERR_FILENO);
-  bool reported = false;
-  std::atomic<bool> halt{false};
-  auto progress = [&](double t, const WorkCounters& w) {
-    const auto now = clock::now();
-    const double elapsed = std::chrono::duration<double>(now - start).count();
-    if (stop && stop->load()) halt.store(true);
-    if (rs.wall_limit > 0 && elapsed > rs.wall_limit) halt.store(true), res.over_wall_limit = true;
-    if (!rs.progress) return;
-    const double since = std::chrono::duration<double>(now - last_report).count();
-    if (elapsed < 1.0 || since < (tty ? 0.5 : 10.0)) return;
-    last_report = now;
-    reported = true;
-    const double left = t > 0 ? elapsed * (rs.t_end - t) / t : 0;
-    std::fprintf(stderr, "%sbeltsim: t = %.4f s of %.4g s (%.0f %%), %s elapsed, about %s left, %ld steps%s",
-                 tty ? "\r" : "", t, rs.t_end, 100 * t / rs.t_end, duration(elapsed).c_str(), duration(left).c_str(),
-                 w.steps, tty ? "   " : "\n");
-  };
-
-  // the renderer exists only when frames are asked for (no GL context, no encoder otherwise)
-  std::unique_ptr<FrameSink> sink;
-  DriveOptions opt;
-  if (frames) {
-    sink = rs.frame_factory(sc, *frames);
-    opt.frame_dt = frames->frame_dt();
-    opt.frame_t0 = frames->t_start;
-    // m: the model the integrator uses (the one events change, if any)
-    opt.frame = [&](double t, const Eigen::VectorXd& y) { sink->frame(t, y.data(), m); };
-  }
-  opt.t_end = rs.t_end;
-  opt.sample_dt = rs.sample_dt;
-  opt.events = m.breakpoints();
-  for (const MuEvent& ev : rs.mu_events) opt.events.push_back(ev.t);
-  if (!rs.mu_events.empty())
-    opt.on_event = [&](double t, Eigen::VectorXd&) {
-      for (const MuEvent& ev : rs.mu_events)
-        if (std::abs(ev.t - t) <= 1e-12 * std::max(1.0, t))
-          for (int i = 0; i < m.n_el(); ++i)
-            if (!std::isnan(ev.mu[i])) m.mu[i] = ev.mu[i];
-    };
-  opt.stop = &halt;
-  Eigen::VectorXd y = sc.y0;
+  open_outputs(false);
+  tl_->add_stream(0.0, rs_.sample_dt, [this](double t, const Eigen::VectorXd& y) { sample(t, y); });
+  if (sink_)
+    tl_->add_stream(rs_.frames->t_start, rs_.frames->frame_dt(),
+                    [this](double t, const Eigen::VectorXd& y) { sink_->frame(t, y.data(), model_); });
+  set_landings();
   try {
-    const Tolerances tol{rs.rtol, rs.atol};
-    const DriveResult dr = peer ? drive_cvode(sys, rs.integrator, tol, opt, y, sample, progress)
-                                : drive(sys, *stepper, tol, opt, y, sample, progress);
-    res.t_reached = dr.t_reached;
-    res.interrupted = dr.interrupted && !res.over_wall_limit;
-    res.wall_seconds = dr.wall_seconds;
-    res.work = dr.work;
+    tl_->start(0.0, scene_.y0);
   } catch (...) {
-    csv.flush();
-    if (sink) {
-      try {
-        sink->finish();  // the video stays playable after an error or a divergence
-      } catch (...) {
-      }
-    }
-    if (reported && tty) std::fputc('\n', stderr);
+    close();
     throw;
   }
-  csv.flush();
-  if (sink) {
-    sink->finish();
-    res.frames = sink->frames_written();
+}
+
+Simulation::~Simulation() {
+  try {
+    close();
+  } catch (...) {
   }
-  if (reported && tty) std::fputc('\n', stderr);
-  for (int j = 0; j < m.n_p(); ++j) res.omega.push_back(m.omega(j, res.t_reached, y.data() + N));
+  if (events_) std::fclose(events_);
+}
+
+void Simulation::open_outputs(bool append) {
+  namespace fs = std::filesystem;
+  fs::create_directories(rs_.out_dir);
+  if (!append) write_parameters(scene_, rs_, (fs::path(rs_.out_dir) / "parameters.csv").string());
+  csv_ = std::make_unique<CsvWriter>(csv_path(), timeseries_columns(scene_), 0.5, append);
+  events_ = std::fopen(events_path().c_str(), append ? "a" : "w");
+  if (!events_) throw std::runtime_error("cannot write " + events_path() + ": " + std::strerror(errno));
+  if (!append) std::fputs("t,what,value\n", events_), std::fflush(events_);
+  // the renderer exists only when frames are asked for (no GL context, no encoder otherwise)
+  if (rs_.frames) sink_ = rs_.frame_factory(scene_, *rs_.frames);
+}
+
+std::string Simulation::csv_path() const { return (std::filesystem::path(rs_.out_dir) / "timeseries.csv").string(); }
+std::string Simulation::events_path() const { return (std::filesystem::path(rs_.out_dir) / "events.csv").string(); }
+long Simulation::frames_written() const { return frames_before_ + (sink_ ? sink_->frames_written() : 0); }
+const std::string& Simulation::integrator_name() const { return rs_.integrator; }
+
+// the kinks of the laws and the timed μ changes ahead: the integrator lands on each
+void Simulation::set_landings() {
+  std::vector<Timeline::Landing> l;
+  for (double t : model_.breakpoints()) l.push_back({t, {}});
+  for (size_t k = 0; k < pending_.size(); ++k)
+    l.push_back({pending_[k].t, [this](double t) {
+                   // every μ event due now, in the order given
+                   while (!pending_.empty() && pending_.front().t <= t) {
+                     const MuEvent ev = pending_.front();
+                     pending_.erase(pending_.begin());
+                     for (int i = 0; i < model_.n_el(); ++i)
+                       if (!std::isnan(ev.mu[i])) model_.mu[i] = ev.mu[i];
+                     write_event(t, ev.what, "scheduled");
+                     changed();
+                   }
+                 }});
+  tl_->set_landings(std::move(l));
+}
+
+std::vector<std::string> Simulation::columns() const { return timeseries_columns(scene_); }
+
+std::vector<double> Simulation::sample_row() const {
+  const Model& m = model_;
+  const double t = now();
+  const Eigen::VectorXd& y = state();
+  const double* q = y.data();
+  const double* v = q + m.n_coord();
+  std::vector<double> row;
+  row.push_back(t);
+  for (int j = 0; j < m.n_p(); ++j) {
+    const PulleyObs p = observe_pulley(m, t, q, j);
+    row.insert(row.end(), {p.omega, p.torque, p.belt_torque, p.hub_load});
+  }
+  for (size_t k = 0; k < scene_.route.spans.size(); ++k) row.push_back(span_tension(static_cast<int>(k)));
+  const ElementObs e = observe_element(m, sense_, t, q, rs_.probe_element);
+  row.insert(row.end(), {e.sde_force, e.normal, e.friction, e.slip});
+  if (m.track_energy) {
+    const double* en = q + 2 * m.n_coord();
+    row.insert(row.end(), {beltsim::energy(m, t, q).total() - E0_, en[kWorkTorques], en[kDissSdeAxial],
+                           en[kDissSdeBending], en[kDissContact], en[kDissFriction]});
+  }
+  (void)v;
+  return row;
+}
+
+void Simulation::sample(double t, const Eigen::VectorXd& y) {
+  view_t_ = t, view_y_ = &y;
+  std::vector<double> row;
+  try {
+    row = sample_row();
+  } catch (...) {
+    view_y_ = nullptr;
+    throw;
+  }
+  view_y_ = nullptr;
+  csv_->row(row);
+  rows_++;
+  if (rs_.keep_samples) samples_.push_back(std::move(row));
+}
+
+double Simulation::now() const { return view_y_ ? view_t_ : tl_->now(); }
+const Eigen::VectorXd& Simulation::state() const { return view_y_ ? *view_y_ : tl_->state(); }
+
+ElementObs Simulation::element(int i) const { return observe_element(model_, sense_, now(), state().data(), i); }
+PulleyObs Simulation::pulley(int j) const { return observe_pulley(model_, now(), state().data(), j); }
+
+double Simulation::span_tension(int k) const {
+  const Route::Span& sp = scene_.route.spans[k];
+  const double* q = state().data();
+  return sde_axial_force(model_, q, q + model_.n_coord(), sde_nearest(model_, q, 0.5 * (sp.from + sp.to)));
+}
+
+Energy Simulation::energy() const { return beltsim::energy(model_, now(), state().data()); }
+
+std::vector<double> Simulation::energy_integrals() const {
+  if (!model_.track_energy) return {};
+  const double* e = state().data() + 2 * model_.n_coord();
+  return std::vector<double>(e, e + kEnergyCount);
+}
+
+WorkCounters Simulation::stats() const { return integ_->work(); }
+
+void Simulation::require_open(const char* what) const {
+  if (closed_) throw std::logic_error(std::string(what) + ": the simulation is closed");
+  if (!failed_.empty()) throw std::logic_error(std::string(what) + ": the simulation cannot continue: " + failed_);
+}
+
+Simulation::Advance Simulation::run_to(double t, const std::atomic<bool>* stop, const RunProgress& progress) {
+  require_open("run_to");
+  if (!std::isfinite(t)) throw std::invalid_argument("run_to: the time must be finite (got " + num(t) + " s)");
+  if (t < now()) throw std::invalid_argument("run_to: " + num(t) + " s is before now (" + num(now()) + " s)");
+  using clock = std::chrono::steady_clock;
+  const auto start = clock::now();
+  Timeline::Progress pr;
+  if (progress)
+    pr = [&](double tt, const WorkCounters& w) {
+      progress(tt, t, w, std::chrono::duration<double>(clock::now() - start).count());
+    };
+  Advance a;
+  try {
+    const Timeline::Result r = tl_->run_to(t, stop, pr);
+    a.t = r.t, a.steps = r.steps, a.wall = r.wall, a.interrupted = r.interrupted;
+  } catch (const DivergenceError& e) {
+    failed_ = e.what();
+    wall_ += std::chrono::duration<double>(clock::now() - start).count();
+    close();  // CSV flushed, video finalised so it plays
+    throw;
+  } catch (...) {
+    wall_ += std::chrono::duration<double>(clock::now() - start).count();
+    csv_->flush();
+    throw;
+  }
+  wall_ += a.wall;
+  csv_->flush();
+  return a;
+}
+
+void Simulation::close() {
+  if (closed_) return;
+  closed_ = true;
+  if (csv_) csv_->flush();
+  if (events_) std::fflush(events_);
+  if (sink_) sink_->finish();
+}
+
+void Simulation::write_event(double t, const std::string& what, const std::string& text) {
+  if (!events_) return;
+  std::fprintf(events_, "%.17g,%s,%s\n", t, csv_text(what).c_str(), csv_text(text).c_str());
+  std::fflush(events_);
+}
+
+void Simulation::log_event(const std::string& what, const std::string& text) {
+  require_open("log");
+  write_event(now(), what, text);
+}
+
+void Simulation::changed(const Eigen::VectorXd* y) {
+  set_landings();
+  tl_->changed(y);
+}
+
+void Simulation::set_torque(int j, const TimeSpeedLaw& law, const std::string& text) {
+  require_open("set_torque");
+  Pulley& p = model_.pulleys.at(j);
+  p.torque = law;
+  const bool was_kinematic = p.kinematic;
+  p.kinematic = false;
+  write_event(now(), p.name + ".torque", text);
+  if (was_kinematic) {
+    // it turns freely from here, at the speed it was driven at
+    Eigen::VectorXd y = state();
+    y[model_.n_coord() + model_.pulley_coord(j)] = p.speed.eval(now(), 0.0);
+    changed(&y);
+  } else {
+    changed();
+  }
+}
+
+void Simulation::set_speed(int j, const TimeSpeedLaw& law, const std::string& text) {
+  require_open("set_speed");
+  Pulley& p = model_.pulleys.at(j);
+  p.speed = law;
+  p.speed.per_speed = 0;
+  p.kinematic = true;
+  write_event(now(), p.name + ".speed", text);
+  Eigen::VectorXd y = state();
+  y[model_.n_coord() + model_.pulley_coord(j)] = p.speed.eval(now(), 0.0);
+  changed(&y);
+}
+
+void Simulation::set_mu(const std::vector<double>& mu, const std::string& what, const std::string& text) {
+  require_open(what.c_str());
+  if (static_cast<int>(mu.size()) != model_.n_el())
+    throw std::invalid_argument(what + ": one μ per element expected (" + std::to_string(model_.n_el()) + "), got " +
+                                std::to_string(mu.size()));
+  for (size_t i = 0; i < mu.size(); ++i)
+    if (!std::isnan(mu[i]) && !(mu[i] >= 0 && std::isfinite(mu[i])))
+      throw std::invalid_argument(what + ": μ must be >= 0 and finite (got " + num(mu[i]) + " for element " +
+                                  std::to_string(i) + ")");
+  for (size_t i = 0; i < mu.size(); ++i)
+    if (!std::isnan(mu[i])) model_.mu[i] = mu[i];
+  write_event(now(), what, text);
+  changed();
+}
+
+int Simulation::every(double dt, std::function<void()> fn) {
+  require_open("every");
+  if (!(dt > 0 && std::isfinite(dt))) throw std::invalid_argument("every: the interval must be > 0 s and finite (got " + num(dt) + " s)");
+  callbacks_++;
+  return tl_->add_every(dt, [fn = std::move(fn)](double) { fn(); });
+}
+
+int Simulation::when(std::function<bool()> cond, std::function<void()> action) {
+  require_open("when");
+  callbacks_++;
+  auto c = [this, cond = std::move(cond)](double t, const Eigen::VectorXd& y) {
+    const double saved_t = view_t_;
+    const Eigen::VectorXd* saved_y = view_y_;
+    view_t_ = t, view_y_ = &y;
+    struct Restore {
+      Simulation* s;
+      double t;
+      const Eigen::VectorXd* y;
+      ~Restore() { s->view_t_ = t, s->view_y_ = y; }
+    } restore{this, saved_t, saved_y};
+    return cond();
+  };
+  return tl_->add_when(std::move(c), [action = std::move(action)](double) { action(); });
+}
+
+bool Simulation::cancel(int id) {
+  const bool removed = tl_->remove(id);
+  if (removed) callbacks_--;
+  return removed;
+}
+
+RunResult run(const Scene& sc, const RunSettings& rs, const std::atomic<bool>* stop, const RunProgress& progress) {
+  if (!(rs.t_end > 0 && std::isfinite(rs.t_end)))
+    throw std::invalid_argument("t_end: must be > 0 s and finite (got " + num(rs.t_end) + " s)");
+  if (rs.frames && rs.frames->t_start > rs.t_end)
+    throw std::invalid_argument("frames.t_start: must be <= t_end = " + num(rs.t_end) + " s (got " +
+                                num(rs.frames->t_start) + " s)");
+  for (const MuEvent& ev : rs.mu_events)
+    if (!(ev.t > 0 && ev.t < rs.t_end))
+      throw std::invalid_argument("events: an event time must be inside (0, t_end) (got " + num(ev.t) + " s)");
+  Simulation sim(sc, rs);
+  RunResult res;
+  res.csv_path = sim.csv_path();
+  res.parameters_path = (std::filesystem::path(rs.out_dir) / "parameters.csv").string();
+  // the wall-time limit stops the run as Ctrl-C does
+  std::atomic<bool> halt{false};
+  RunProgress pr = [&](double t, double target, const WorkCounters& w, double wall) {
+    if (stop && stop->load()) halt.store(true);
+    if (rs.wall_limit > 0 && wall > rs.wall_limit) halt.store(true), res.over_wall_limit = true;
+    if (progress) progress(t, target, w, wall);
+  };
+  const Simulation::Advance a = sim.run_to(rs.t_end, &halt, pr);
+  sim.close();
+  res.t_reached = a.t;
+  res.interrupted = a.interrupted && !res.over_wall_limit;
+  res.wall_seconds = a.wall;
+  res.work = sim.stats();
+  res.frames = sim.frames_written();
+  res.samples = sim.samples();
+  for (int j = 0; j < sc.model.n_p(); ++j) res.omega.push_back(sim.pulley(j).omega);
   return res;
 }
 

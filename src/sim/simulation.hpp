@@ -1,44 +1,62 @@
-// A run: Scene → integrator → observers (time-series CSV, parameters file, progress).
-// This is what `beltsim run` and the Lua `scene:run{}` call.
+// A live simulation: Scene → integrator → observers (time-series CSV, events CSV, parameters
+// file, frames), advanced in pieces, read and changed between them. A batch run (`beltsim run`,
+// Lua `scene:run{}`) is the special case start + run_to(t_end) + close: one code path.
+//
+// Pausing changes nothing: run_to(a) then run_to(b) writes exactly the samples, frames and final
+// state of one run_to(b) (integrate/timeline.hpp). A change of the drive (torque or speed law,
+// friction coefficients) applies at the current time, restarts the integrator there and is
+// written to events.csv.
 #pragma once
 
 #include <atomic>
 #include <functional>
 #include <map>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
 
+#include "integrate/integrator.hpp"
 #include "integrate/system.hpp"
+#include "model/observables.hpp"
+#include "model/rhs.hpp"
 #include "scene/scene.hpp"
 #include "sim/frames.hpp"
 
 namespace beltsim {
 
-// A change of the belt's friction coefficient at a known time (wetting, drying): the stepper
+class BeltSystem;
+class CsvWriter;
+class Timeline;
+
+// A change of the belt's friction coefficient at a known time (wetting, drying): the integrator
 // lands exactly on t and restarts there. mu holds one value per element; NaN keeps the old one.
 struct MuEvent {
   double t = 0;              // [s]
   std::vector<double> mu;
+  std::string what = "mu";   // for events.csv
 };
 
 struct RunSettings {
-  double t_end = 1.0;                 // [s]
+  double t_end = 1.0;                 // [s] (batch runs only)
   std::string integrator = "esdirk32";
   double rtol = 1e-4;                 // relative tolerance of the error control
   double atol = -1;                   // absolute, per natural unit of each component; < 0: = rtol
   double sample_dt = 1e-3;            // [s] interval of the time-series samples
   std::string out_dir = "out";
   int probe_element = 0;              // the paper's "selected" element; its SDE joins it to its predecessor
-  bool progress = true;               // report on stderr for runs longer than a second
-  double wall_limit = 0;              // [s] stop the run after this much wall time (0: no limit)
-  bool keep_samples = false;          // keep the rows of timeseries.csv in RunResult::samples
+  double wall_limit = 0;              // [s] stop a batch run after this much wall time (0: no limit)
+  bool keep_samples = false;          // keep the rows of timeseries.csv in memory (samples())
   std::vector<MuEvent> mu_events;     // in any order
   // frames (PNG and/or video) at their own times; relative paths are taken inside out_dir. The
   // factory (the renderer's, src/render) is called only when frames are asked for.
   std::optional<FrameSettings> frames;
   FrameSinkFactory frame_factory;
 };
+
+// progress of a long integration: simulated time reached, the target, counters, wall time of
+// this call (printing it is the caller's business, src/script/progress)
+using RunProgress = std::function<void(double t, double t_target, const WorkCounters& w, double wall)>;
 
 struct RunResult {
   double t_reached = 0;
@@ -52,9 +70,116 @@ struct RunResult {
   long frames = 0;                    // frames rendered
 };
 
-// Writes DIR/timeseries.csv and DIR/parameters.csv. Throws DivergenceError (after flushing what
-// was written), std::invalid_argument for unknown integrators, std::runtime_error for I/O.
-RunResult run(const Scene& scene, const RunSettings& settings, const std::atomic<bool>* stop = nullptr);
+class Simulation {
+ public:
+  // Validates the settings (std::invalid_argument naming the key, the reason and the value),
+  // writes DIR/parameters.csv, opens DIR/timeseries.csv and DIR/events.csv, and delivers what is
+  // due at t = 0 (the first sample and frame) from the scene's initial static state.
+  Simulation(const Scene& scene, const RunSettings& settings);
+  ~Simulation();  // close()
+  Simulation(const Simulation&) = delete;
+  Simulation& operator=(const Simulation&) = delete;
+
+  struct Advance {
+    double t = 0;        // [s] where it stands now
+    long steps = 0;      // accepted steps of this call
+    double wall = 0;     // [s] wall time of this call
+    bool interrupted = false;
+  };
+  // integrates to t (>= now) delivering samples, frames and callbacks on the way; stops early at
+  // the last finished step when *stop is set. Throws DivergenceError after flushing the outputs
+  // (the simulation cannot continue after it), std::invalid_argument for t < now or not finite.
+  Advance run_to(double t, const std::atomic<bool>* stop = nullptr, const RunProgress& progress = {});
+  // flushes the CSV files and finalises the video (idempotent); a closed simulation can be read
+  // but not advanced
+  void close();
+  bool closed() const { return closed_; }
+
+  // ---- reading (at now(), or at the time a when-condition is evaluated) ----------------------
+  double now() const;
+  const Eigen::VectorXd& state() const;
+  const Scene& scene() const { return scene_; }
+  const Model& model() const { return model_; }
+  const RunSettings& settings() const { return rs_; }
+  const std::string& integrator_name() const;
+  ElementObs element(int i) const;
+  PulleyObs pulley(int j) const;
+  double span_tension(int k) const;        // [N] route span k (Scene::find_span)
+  Energy energy() const;                   // mechanical energy now [J]
+  std::vector<double> energy_integrals() const;  // EnergyIndex order [J]; empty unless tracked
+  WorkCounters stats() const;
+  double wall() const { return wall_; }    // [s] integration wall time so far
+  std::vector<std::string> columns() const;  // of timeseries.csv
+  std::vector<double> sample_row() const;    // the row timeseries.csv would get now
+  const std::string& out_dir() const { return rs_.out_dir; }
+  std::string csv_path() const;
+  std::string events_path() const;
+  long frames_written() const;
+  const std::vector<std::vector<double>>& samples() const { return samples_; }
+
+  // ---- changes at now() (each restarts the integrator there and is written to events.csv) ----
+  // the law replaces the pulley's drive: a torque law makes it free, a speed law kinematic
+  // (its speed jumps to the law's value now)
+  void set_torque(int j, const TimeSpeedLaw& law, const std::string& text);
+  void set_speed(int j, const TimeSpeedLaw& law, const std::string& text);
+  // one μ per element (NaN keeps the old one); what/text describe it in events.csv
+  void set_mu(const std::vector<double>& mu, const std::string& what, const std::string& text);
+  // a line in events.csv without a change (a note from a script)
+  void log_event(const std::string& what, const std::string& text);
+
+  // ---- callbacks --------------------------------------------------------------------------
+  // fn runs at now + k·dt exactly (k >= 1); a change it makes restarts the integrator there
+  int every(double dt, std::function<void()> fn);
+  // cond is evaluated at every step's end; when it turns true the first time it holds is found
+  // by bisection on the dense output (to 1e-10 s), action runs there and the integrator restarts
+  int when(std::function<bool()> cond, std::function<void()> action);
+  bool cancel(int id);
+  int callbacks() const { return callbacks_; }
+
+  // ---- checkpoints ------------------------------------------------------------------------
+  // state, integrator state, laws, μ, pending events, output positions. Callbacks are not saved
+  // (their count is): the resumed simulation needs them registered again by the script.
+  void save(const std::string& path) const;
+  // continues a saved simulation: its outputs are continued in place (the CSV files truncated to
+  // the saved rows; frames numbered on, the video in a new file <name>_resumed_<t>.mp4).
+  static std::unique_ptr<Simulation> resume(const std::string& path, const FrameSinkFactory& factory);
+
+ private:
+  Simulation(const Scene& scene, const RunSettings& settings, bool fresh);
+  void open_outputs(bool append);
+  void set_landings();
+  void sample(double t, const Eigen::VectorXd& y);
+  void write_event(double t, const std::string& what, const std::string& text);
+  void changed(const Eigen::VectorXd* y = nullptr);
+  void require_open(const char* what) const;
+
+  Scene scene_;
+  RunSettings rs_;
+  Model model_;               // a copy: changes apply to it
+  std::vector<int> sense_;
+  std::unique_ptr<BeltSystem> sys_;
+  std::unique_ptr<Integrator> integ_;
+  std::unique_ptr<Timeline> tl_;
+  std::unique_ptr<CsvWriter> csv_;
+  std::FILE* events_ = nullptr;
+  std::unique_ptr<FrameSink> sink_;
+  std::vector<MuEvent> pending_;  // timed μ changes still ahead
+  std::vector<std::vector<double>> samples_;
+  double E0_ = 0;
+  double wall_ = 0;
+  int callbacks_ = 0;
+  long rows_ = 0;                 // samples written
+  long frames_before_ = 0;        // frames written before a resume
+  bool closed_ = false;
+  std::string failed_;            // why it cannot continue (a divergence)
+  // a when-condition is evaluated at a time other than now(): the state it reads
+  double view_t_ = 0;
+  const Eigen::VectorXd* view_y_ = nullptr;
+};
+
+// A batch run: start, run_to(t_end), close. Throws as Simulation does.
+RunResult run(const Scene& scene, const RunSettings& settings, const std::atomic<bool>* stop = nullptr,
+              const RunProgress& progress = {});
 
 // the column names of timeseries.csv for a scene (documented in the README)
 std::vector<std::string> timeseries_columns(const Scene& scene);

@@ -82,7 +82,6 @@ WpResult work_precision(const Scene& sc, const WpSettings& ws, const std::atomic
     rs.atol = -1;
     rs.wall_limit = limit;
     rs.keep_samples = true;
-    rs.progress = false;
     rs.frames.reset();  // the study times the integration only
     rs.out_dir = (fs::path(ws.base.out_dir) / (integrator + "-" + tol_name(rtol))).string();
     std::fprintf(stderr, "beltsim wp: %-9s rtol %-6s ", integrator.c_str(), tol_name(rtol).c_str());

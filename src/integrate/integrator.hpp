@@ -1,0 +1,77 @@
+// An integrator in its live form: it advances by steps of its own choosing and keeps the last
+// step for dense output, so a caller can read the solution at any time inside that step (a
+// sample, a frame, a pause) without shortening a step. The schedule of what happens when
+// (integrate/timeline.hpp) is the same for every integrator; only this interface differs.
+//
+//   start(t, y)   (re)start at (t, y): a change of the right-hand side at t (a wetted stretch,
+//                 a new torque law) or the first start; any step beyond t is discarded
+//   step(t_land)  one accepted step from t() onwards; a step that would reach t_land lands on it
+//                 exactly (a kink or jump of the model's laws at a known time)
+//   kink()        the solution passed a known kink at t() with no change of the system: a
+//                 multistep method restarts its history, a one-step method needs nothing
+//   dense(t, out) the solution at t_prev() <= t <= t()
+#pragma once
+
+#include <istream>
+#include <memory>
+#include <ostream>
+#include <stdexcept>
+#include <string>
+
+#include <Eigen/Core>
+
+#include "integrate/controller.hpp"
+#include "integrate/system.hpp"
+
+namespace beltsim {
+
+// A run that could not continue: NaN/Inf, runaway, or a step size that collapsed.
+struct DivergenceError : std::runtime_error {
+  DivergenceError(double time, const std::string& what) : std::runtime_error(what), t(time) {}
+  double t;
+};
+
+class Integrator {
+ public:
+  virtual ~Integrator() = default;
+  virtual std::string name() const = 0;
+  virtual void start(double t, const Eigen::VectorXd& y) = 0;
+  virtual void step(double t_land) = 0;  // throws DivergenceError
+  virtual void kink() {}
+  virtual void dense(double t, Eigen::VectorXd& out) const = 0;
+  virtual WorkCounters work() const = 0;
+  // checkpoints (bit-identical continuation); false when the method cannot export its state
+  virtual bool can_save() const { return false; }
+  virtual void save(std::ostream&) const {}
+  virtual void load(std::istream&) {}
+
+  double t() const { return t_; }
+  double t_prev() const { return t_prev_; }
+  const Eigen::VectorXd& y() const { return y_; }
+
+ protected:
+  double t_ = 0, t_prev_ = 0;
+  Eigen::VectorXd y_;
+};
+
+// Every integrator a run accepts (integrate/stepper.hpp integrator_names()). The system must
+// outlive the integrator. h_max: largest step [s] (0: none). Throws std::invalid_argument for an
+// unknown name or a tolerance outside (0, 1) / a negative or non-finite atol.
+std::unique_ptr<Integrator> make_integrator(const std::string& name, OdeSystem& sys, const Tolerances& tol,
+                                            double h_max = 0);
+
+class Stepper;
+// a one-step method the caller owns (tests with their own tableaux)
+std::unique_ptr<Integrator> make_one_step(Stepper& stepper, OdeSystem& sys, const Tolerances& tol, double h_max = 0);
+
+// checks rtol in (0, 1) and atol (< 0: same as rtol; else finite); throws std::invalid_argument
+void check_tolerances(const Tolerances& tol);
+
+// cubic Hermite interpolation on [t0, t0 + h]
+void hermite(double theta, double h, const Eigen::VectorXd& y0, const Eigen::VectorXd& f0,
+             const Eigen::VectorXd& y1, const Eigen::VectorXd& f1, Eigen::VectorXd& out);
+
+// "1.23456789" (9 significant digits) for messages
+std::string fmt_time(double t);
+
+}  // namespace beltsim

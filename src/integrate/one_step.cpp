@@ -1,0 +1,191 @@
+// A one-step method (stepper.hpp) with its step-size controller as a live Integrator. It keeps
+// (t, y, F) of the last two step ends; the solution inside the last step is the cubic Hermite
+// interpolant on them (Hairer, Nørsett & Wanner I, II.6), third order, which is the dense output
+// of samples, frames and pauses alike.
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <sstream>
+
+#include "integrate/cvode.hpp"
+#include "integrate/integrator.hpp"
+#include "integrate/stepper.hpp"
+
+namespace beltsim {
+
+void hermite(double th, double h, const Eigen::VectorXd& y0, const Eigen::VectorXd& f0, const Eigen::VectorXd& y1,
+             const Eigen::VectorXd& f1, Eigen::VectorXd& out) {
+  // y(θ) = (1-θ)y0 + θy1 + θ(θ-1)[(1-2θ)(y1-y0) + (θ-1)h·f0 + θh·f1]
+  out = (1 - th) * y0 + th * y1 + (th * (th - 1)) * ((1 - 2 * th) * (y1 - y0) + ((th - 1) * h) * f0 + (th * h) * f1);
+}
+
+std::string fmt_time(double v) {
+  std::ostringstream s;
+  s.precision(9);
+  s << v;
+  return s.str();
+}
+
+void check_tolerances(const Tolerances& tol) {
+  if (!(tol.rtol > 0 && tol.rtol < 1))
+    throw std::invalid_argument("rtol: must be in (0, 1) (got " + fmt_time(tol.rtol) + ")");
+  if (!(tol.atol < 0 || (tol.atol > 0 && std::isfinite(tol.atol))) || std::isnan(tol.atol))
+    throw std::invalid_argument("atol: must be > 0 and finite, or left out to mean rtol (got " + fmt_time(tol.atol) +
+                                ")");
+}
+
+namespace {
+
+class OneStep final : public Integrator {
+ public:
+  OneStep(std::unique_ptr<Stepper> owned, Stepper& st, OdeSystem& sys, const Tolerances& tol, double h_max)
+      : owned_(std::move(owned)), st_(&st), sys_(sys), ctl_(sys, tol, std::min(st.order(), st.embedded_order())),
+        h_max_(h_max > 0 ? h_max : std::numeric_limits<double>::infinity()) {
+    st_->attach(ctl_);
+    const int n = sys.size();
+    f_.resize(n), y1_.resize(n), f1_.resize(n), err_.resize(n), y_prev_.resize(n), f_prev_.resize(n);
+  }
+  std::string name() const override { return st_->name(); }
+
+  void start(double t, const Eigen::VectorXd& y) override {
+    t_ = t_prev_ = t;
+    y_ = y;
+    sys_.rhs(t, y_.data(), f_.data());
+    sys_.counters.rhs++;
+    if (const std::string bad = sys_.check(t, y_.data()); !bad.empty())
+      throw DivergenceError(t, "the state at t = " + fmt_time(t) + " s: " + bad);
+    y_prev_ = y_, f_prev_ = f_;
+    if (!started_) {
+      // first step (Hairer II.4, simplified): make the first-order term small against the
+      // tolerance; at most 1 ms, a small part of any belt's period of interest
+      const double d0 = ctl_.weighted_norm(y_, y_), d1 = ctl_.weighted_norm(y_, f_);
+      h_ = (d0 < 1e-5 || d1 < 1e-5 || !std::isfinite(d0 / d1)) ? 1e-6 : 0.01 * d0 / d1;
+      h_ = std::min({h_, h_max_, 1e-3});
+      started_ = true;
+    } else if (h_used_ > 0) {
+      h_ = std::min(h_, h_used_);  // a restart after a jump: no longer than the last step
+    }
+  }
+
+  void step(double t_land) override {
+    for (;;) {
+      bool lands = false;
+      double h = h_;
+      // land on t_land; a step that would stop just short of it is stretched onto it, so no
+      // sliver of a step is left between (at most 10 % longer than the controller asked)
+      if (t_ + 1.1 * h >= t_land - 1e-12 * std::max(1.0, std::abs(t_land))) h = t_land - t_, lands = true;
+      const bool ok = st_->step(sys_, t_, y_, f_, h, y1_, err_);
+      int worst = 0;
+      const double e = ok ? ctl_.error_norm(y_, y1_, err_, &worst) : 1e300;
+      if (!(e <= 1.0)) {
+        sys_.counters.rejected++;
+        if (!ok) cap_ = 0.5 * h;
+        h_ = ctl_.propose(h, ok ? e : 1e300);
+        if (!(h_ >= 16 * std::numeric_limits<double>::epsilon() * std::max(1.0, std::abs(t_))))
+          throw DivergenceError(t_, "the step size collapsed to " + fmt_time(h_) + " s at t = " + fmt_time(t_) +
+                                        " s; the largest error is in " + sys_.describe(worst));
+        continue;
+      }
+      const double t1 = lands ? t_land : t_ + h;
+      sys_.rhs(t1, y1_.data(), f1_.data());
+      sys_.counters.rhs++;
+      sys_.counters.steps++;
+      if (const std::string bad = sys_.check(t1, y1_.data()); !bad.empty())
+        throw DivergenceError(t1, "the run diverged at t = " + fmt_time(t1) + " s: " + bad);
+      t_prev_ = t_, t_ = t1;
+      y_prev_.swap(y_), y_.swap(y1_);
+      f_prev_.swap(f_), f_.swap(f1_);
+      h_used_ = t1 - t_prev_;
+      // After a step that could not be taken (an implicit method's iteration did not converge)
+      // the step size is capped below the failed one; the cap relaxes by 5 % per accepted step,
+      // so the controller does not keep walking back into the size at which the iteration fails.
+      cap_ *= 1.05;
+      h_ = std::min({ctl_.propose(h_used_, e), h_max_, cap_});
+      return;
+    }
+  }
+
+  void dense(double t, Eigen::VectorXd& out) const override {
+    if (t >= t_) {
+      out = y_;
+    } else if (t <= t_prev_) {
+      out = y_prev_;
+    } else {
+      hermite((t - t_prev_) / (t_ - t_prev_), t_ - t_prev_, y_prev_, f_prev_, y_, f_, out);
+    }
+  }
+
+  WorkCounters work() const override { return sys_.counters; }
+
+  bool can_save() const override { return true; }
+  void save(std::ostream& o) const override {
+    auto num = [&](double v) { o << std::hexfloat << v << '\n'; };
+    auto vec = [&](const Eigen::VectorXd& v) {
+      o << v.size() << '\n';
+      for (Eigen::Index k = 0; k < v.size(); ++k) o << std::hexfloat << v[k] << '\n';
+    };
+    o << "one_step " << st_->name() << '\n';
+    for (double v : {t_, t_prev_, h_, h_used_, cap_}) num(v);
+    o << started_ << '\n';
+    vec(y_), vec(f_), vec(y_prev_), vec(f_prev_);
+    const WorkCounters& w = sys_.counters;
+    o << w.steps << ' ' << w.rejected << ' ' << w.rhs << ' ' << w.jacobians << ' ' << w.factorizations << ' '
+      << w.solves << '\n';
+  }
+  void load(std::istream& in) override {
+    std::string tag, nm;
+    in >> tag >> nm;
+    if (tag != "one_step" || nm != st_->name())
+      throw std::runtime_error("checkpoint: integrator state of '" + nm + "', expected '" + st_->name() + "'");
+    auto num = [&] {
+      std::string s;
+      in >> s;
+      return std::strtod(s.c_str(), nullptr);
+    };
+    auto vec = [&](Eigen::VectorXd& v) {
+      long n = 0;
+      in >> n;
+      if (n != v.size()) throw std::runtime_error("checkpoint: state size differs from the scene's");
+      for (long k = 0; k < n; ++k) v[k] = num();
+    };
+    t_ = num(), t_prev_ = num(), h_ = num(), h_used_ = num(), cap_ = num();
+    in >> started_;
+    y_.resize(sys_.size());
+    vec(y_), vec(f_), vec(y_prev_), vec(f_prev_);
+    WorkCounters& w = sys_.counters;
+    in >> w.steps >> w.rejected >> w.rhs >> w.jacobians >> w.factorizations >> w.solves;
+    if (!in) throw std::runtime_error("checkpoint: the integrator state is cut short");
+  }
+
+ private:
+  std::unique_ptr<Stepper> owned_;
+  Stepper* st_;
+  OdeSystem& sys_;
+  StepController ctl_;
+  double h_max_;
+  double h_ = 0, h_used_ = 0;
+  double cap_ = std::numeric_limits<double>::infinity();
+  bool started_ = false;
+  Eigen::VectorXd f_, y1_, f1_, err_, y_prev_, f_prev_;
+};
+
+}  // namespace
+
+std::unique_ptr<Integrator> make_cvode_integrator(const std::string& name, OdeSystem& sys, const Tolerances& tol);
+
+std::unique_ptr<Integrator> make_integrator(const std::string& name, OdeSystem& sys, const Tolerances& tol,
+                                            double h_max) {
+  check_integrator(name);
+  check_tolerances(tol);
+  if (is_cvode(name)) return make_cvode_integrator(name, sys, tol);
+  auto st = make_stepper(name);
+  Stepper& ref = *st;
+  return std::make_unique<OneStep>(std::move(st), ref, sys, tol, h_max);
+}
+
+std::unique_ptr<Integrator> make_one_step(Stepper& stepper, OdeSystem& sys, const Tolerances& tol, double h_max) {
+  check_tolerances(tol);
+  return std::make_unique<OneStep>(nullptr, stepper, sys, tol, h_max);
+}
+
+}  // namespace beltsim

@@ -1,0 +1,208 @@
+#include "integrate/timeline.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+
+namespace beltsim {
+
+namespace {
+constexpr double kInf = std::numeric_limits<double>::infinity();
+// crossings of a when-condition are located to this width [s] (bisection on the dense output)
+constexpr double kCrossingWidth = 1e-10;
+}  // namespace
+
+void Timeline::start(double t0, const Eigen::VectorXd& y0) {
+  integ_.start(t0, y0);
+  started_ = true;
+  now_ = t0;
+  y_now_ = y0;
+  for (Periodic& p : periodic_)
+    if (p.output)
+      while (p.time() < t0) p.k++;
+  process(t0);
+}
+
+int Timeline::add_stream(double t0, double dt, Output fn) {
+  Periodic p{next_id_++, true, t0, dt, 0, std::move(fn), {}};
+  if (started_)
+    while (p.time() <= now_) p.k++;  // what was due before it was added is not delivered
+  periodic_.push_back(std::move(p));
+  return periodic_.back().id;
+}
+
+int Timeline::add_every(double dt, Action fn) {
+  periodic_.push_back({next_id_++, false, now_, dt, 1, {}, std::move(fn)});
+  return periodic_.back().id;
+}
+
+int Timeline::add_when(Condition cond, Action action) {
+  When w{next_id_++, std::move(cond), std::move(action)};
+  if (started_) w.last = w.cond(now_, y_now_);
+  when_.push_back(std::move(w));
+  return when_.back().id;
+}
+
+bool Timeline::remove(int id) {
+  for (auto it = periodic_.begin(); it != periodic_.end(); ++it)
+    if (it->id == id) return periodic_.erase(it), true;
+  for (auto it = when_.begin(); it != when_.end(); ++it)
+    if (it->id == id) return when_.erase(it), true;
+  return false;
+}
+
+void Timeline::set_landings(std::vector<Landing> landings) {
+  landings_.clear();
+  for (Landing& l : landings)
+    if (l.t > now_ && std::isfinite(l.t)) landings_.push_back(std::move(l));
+  std::stable_sort(landings_.begin(), landings_.end(), [](const Landing& a, const Landing& b) { return a.t < b.t; });
+}
+
+void Timeline::changed(const Eigen::VectorXd* y) {
+  if (y) new_state_ = *y, have_new_state_ = true;
+  if (in_actions_) {
+    dirty_ = true;
+    return;
+  }
+  restart(now_, have_new_state_ ? new_state_ : y_now_);
+}
+
+void Timeline::restart(double p, const Eigen::VectorXd& y) {
+  const Eigen::VectorXd start = y;  // y may alias y_now_ or new_state_
+  have_new_state_ = false;
+  integ_.start(p, start);
+  now_ = p;
+  y_now_ = start;
+  // the crossings located in the discarded part of the step are gone; the conditions start
+  // again from their values here
+  for (When& w : when_) w.crossing = std::numeric_limits<double>::quiet_NaN(), w.last = w.cond(p, y_now_);
+}
+
+// everything due at time p (p inside the held step, after now_)
+void Timeline::process(double p) {
+  integ_.dense(p, y_now_);
+  now_ = p;
+  in_actions_ = true;
+  dirty_ = false;
+  bool landed = false;
+  try {
+    for (Periodic& s : periodic_)
+      if (s.output && s.time() == p) s.k++, s.out(p, y_now_);
+    // actions may add or remove entries: iterate over the ids due now
+    std::vector<int> due;
+    for (const Periodic& s : periodic_)
+      if (!s.output && s.time() == p) due.push_back(s.id);
+    for (int id : due)
+      for (Periodic& s : periodic_)
+        if (s.id == id) {
+          s.k++;
+          Action a = s.act;  // the action may remove itself
+          a(p);
+          break;
+        }
+    while (!landings_.empty() && landings_.front().t <= p) {
+      Landing l = std::move(landings_.front());
+      landings_.erase(landings_.begin());
+      landed = true;
+      if (l.action) l.action(p);
+    }
+    due.clear();
+    for (const When& w : when_)
+      if (w.crossing == p) due.push_back(w.id);
+    for (int id : due)
+      for (When& w : when_)
+        if (w.id == id) {
+          w.crossing = std::numeric_limits<double>::quiet_NaN();
+          w.last = true;
+          Action a = w.action;
+          a(p);
+          dirty_ = true;  // the integrator restarts where a condition's action ran
+          break;
+        }
+  } catch (...) {
+    in_actions_ = false;
+    if (dirty_) restart(p, have_new_state_ ? new_state_ : y_now_);
+    throw;
+  }
+  in_actions_ = false;
+  if (dirty_)
+    restart(p, have_new_state_ ? new_state_ : y_now_);
+  else if (landed && p == integ_.t())
+    integ_.kink();
+}
+
+// after a new step [a, b]: each condition that turned true in it gets its crossing located
+void Timeline::check_conditions() {
+  const double a = integ_.t_prev(), b = integ_.t();
+  for (When& w : when_) {
+    const bool v = w.cond(b, integ_.y());
+    if (w.last || !v) {
+      w.last = v;
+      continue;
+    }
+    double lo = a, hi = b;
+    while (hi - lo > kCrossingWidth) {
+      const double mid = 0.5 * (lo + hi);
+      if (mid <= lo || mid >= hi) break;
+      integ_.dense(mid, scratch_);
+      (w.cond(mid, scratch_) ? hi : lo) = mid;
+    }
+    w.crossing = hi;
+  }
+}
+
+Timeline::Result Timeline::run_to(double T, const std::atomic<bool>* stop, const Progress& progress) {
+  using clock = std::chrono::steady_clock;
+  const auto t_start = clock::now();
+  Result r;
+  const long steps0 = integ_.work().steps;
+  for (;;) {
+    const double b = integ_.t();
+    // the earliest thing due in (now, min(b, T)]
+    double p = kInf;
+    for (const Periodic& s : periodic_) p = std::min(p, s.time());
+    if (!landings_.empty()) p = std::min(p, landings_.front().t);
+    for (const When& w : when_)
+      if (!std::isnan(w.crossing)) p = std::min(p, w.crossing);
+    if (p <= std::min(b, T)) {
+      process(p);
+      continue;
+    }
+    if (b >= T) {
+      if (T > now_) integ_.dense(T, y_now_), now_ = T;
+      break;
+    }
+    // all due up to b is delivered: the run stands at b
+    if (b > now_) now_ = b, y_now_ = integ_.y();
+    if (stop && stop->load()) {
+      r.interrupted = true;
+      break;
+    }
+    integ_.step(landings_.empty() ? kInf : landings_.front().t);
+    if (!when_.empty()) check_conditions();
+    if (progress) progress(integ_.t(), integ_.work());
+  }
+  r.t = now_;
+  r.steps = integ_.work().steps - steps0;
+  r.wall = std::chrono::duration<double>(clock::now() - t_start).count();
+  return r;
+}
+
+std::vector<long> Timeline::positions() const {
+  std::vector<long> k;
+  for (const Periodic& p : periodic_) k.push_back(p.k);
+  return k;
+}
+
+void Timeline::set_positions(const std::vector<long>& k) {
+  for (size_t i = 0; i < periodic_.size() && i < k.size(); ++i) periodic_[i].k = k[i];
+}
+
+void Timeline::resume_at(double t) {
+  started_ = true;
+  now_ = t;
+  integ_.dense(t, y_now_);
+  for (When& w : when_) w.last = w.cond(t, y_now_);
+}
+
+}  // namespace beltsim

@@ -1,0 +1,106 @@
+// The one schedule of a run, the same for every integrator: what happens at which simulated time.
+//
+//   streams    outputs at t0 + k·dt (samples, frames), read from the dense output
+//   every      actions at t0 + k·dt, k >= 1 (a controller); they may change the system
+//   landings   known times the integrator lands on exactly (kinks and jumps of the laws, timed
+//              changes such as wetting), each with an optional action
+//   when       conditions checked at every step's end; when one turns true, the first time it
+//              holds is located by bisection on the dense output and its action runs there
+//
+// The integrator takes its own steps; run_to(T) reads the state at T from the step that crosses
+// it and stops there without shortening that step, so pausing changes nothing: run_to(a) then
+// run_to(b) gives exactly what run_to(b) gives. A change of the system at the current time (an
+// action's, or one made at a pause) restarts the integrator there (Integrator::start).
+//
+// At one time the order is: streams (in the order added), every-actions, landings, when-actions;
+// then, if any of them changed the system, the restart. Everything at or before now() has been
+// delivered.
+#pragma once
+
+#include <atomic>
+#include <functional>
+#include <limits>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "integrate/integrator.hpp"
+
+namespace beltsim {
+
+class Timeline {
+ public:
+  using Output = std::function<void(double t, const Eigen::VectorXd& y)>;
+  using Action = std::function<void(double t)>;
+  using Condition = std::function<bool(double t, const Eigen::VectorXd& y)>;
+  using Progress = std::function<void(double t, const WorkCounters& w)>;
+  struct Landing {
+    double t;       // [s]
+    Action action;  // may be empty: a kink of a law, nothing to do but land on it
+  };
+  struct Result {
+    double t = 0;            // [s] where the run stands now
+    long steps = 0;          // accepted steps taken by this call
+    double wall = 0;         // [s] wall time of this call
+    bool interrupted = false;
+  };
+
+  explicit Timeline(Integrator& integ) : integ_(integ) {}
+  // starts the integrator at (t0, y0) and delivers what is due at t0
+  void start(double t0, const Eigen::VectorXd& y0);
+  // ids are > 0 and never reused
+  int add_stream(double t0, double dt, Output fn);
+  int add_every(double dt, Action fn);  // first at now() + dt
+  int add_when(Condition cond, Action action);
+  bool remove(int id);
+  void set_landings(std::vector<Landing> landings);  // those at or before now() are dropped
+  // the system (or, with y, the state) changed at now(): restart there; deferred to the end of
+  // the current time's actions while they run
+  void changed(const Eigen::VectorXd* y = nullptr);
+  // integrates until T (>= now()), delivering everything due on the way; stops early at the last
+  // finished step when *stop is set. Throws DivergenceError (everything before it delivered).
+  Result run_to(double T, const std::atomic<bool>* stop = nullptr, const Progress& progress = {});
+
+  double now() const { return now_; }
+  const Eigen::VectorXd& state() const { return y_now_; }
+  const Integrator& integrator() const { return integ_; }
+  // next k of every stream and every-action, for checkpoints (in the order added)
+  std::vector<long> positions() const;
+  void set_positions(const std::vector<long>& k);
+  // the state right after a checkpoint's load: now() and the integrator's own
+  void resume_at(double t);
+
+ private:
+  struct Periodic {
+    int id;
+    bool output;  // a stream; else an every-action
+    double t0, dt;
+    long k;       // next index
+    Output out;
+    Action act;
+    double time() const { return t0 + static_cast<double>(k) * dt; }
+  };
+  struct When {
+    int id;
+    Condition cond;
+    Action action;
+    bool last = false;                                       // its value at now()
+    double crossing = std::numeric_limits<double>::quiet_NaN();  // located crossing in the held step
+  };
+  void process(double p);
+  void restart(double p, const Eigen::VectorXd& y);
+  void check_conditions();
+
+  Integrator& integ_;
+  std::vector<Periodic> periodic_;
+  std::vector<Landing> landings_;  // sorted, all after now()
+  std::vector<When> when_;
+  int next_id_ = 1;
+  double now_ = 0;
+  Eigen::VectorXd y_now_, scratch_;
+  bool started_ = false, in_actions_ = false, dirty_ = false;
+  Eigen::VectorXd new_state_;
+  bool have_new_state_ = false;
+};
+
+}  // namespace beltsim

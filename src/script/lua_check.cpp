@@ -1,0 +1,145 @@
+#include "script/lua_check.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+namespace beltsim::script {
+
+[[noreturn]] void fail(lua_State* L, const std::string& msg) {
+  luaL_error(L, "%s", msg.c_str());  // prefixes "file:line:" of the calling script line
+  __builtin_unreachable();           // lua_error unwinds (longjmp, or a C++ throw here)
+}
+
+bool has(lua_State* L, int idx, const char* key) {
+  const bool present = lua_getfield(L, idx, key) != LUA_TNIL;
+  lua_pop(L, 1);
+  return present;
+}
+
+size_t edit_distance(const std::string& a, const std::string& b) {
+  std::vector<size_t> d(b.size() + 1);
+  for (size_t j = 0; j <= b.size(); ++j) d[j] = j;
+  for (size_t i = 1; i <= a.size(); ++i) {
+    size_t prev = d[0];
+    d[0] = i;
+    for (size_t j = 1; j <= b.size(); ++j) {
+      const size_t cur = d[j];
+      d[j] = std::min({d[j] + 1, d[j - 1] + 1, prev + (a[i - 1] != b[j - 1])});
+      prev = cur;
+    }
+  }
+  return d[b.size()];
+}
+
+void check_keys(lua_State* L, int idx, const std::string& where, const std::vector<std::string>& allowed) {
+  idx = lua_absindex(L, idx);
+  lua_pushnil(L);
+  while (lua_next(L, idx)) {
+    lua_pop(L, 1);
+    if (lua_type(L, -1) != LUA_TSTRING) fail(L, where + ": expected named keys (key = value), got a list entry");
+    const std::string key = lua_tostring(L, -1);
+    bool ok = false;
+    for (const auto& a : allowed) ok = ok || a == key;
+    if (!ok) {
+      std::string best, valid;
+      size_t bd = 3;
+      for (const auto& a : allowed) {
+        valid += (valid.empty() ? "" : ", ") + a;
+        const size_t d = edit_distance(key, a);
+        if (d < bd) bd = d, best = a;
+      }
+      fail(L, "unknown key '" + key + "' in " + where + (best.empty() ? "" : " (did you mean '" + best + "'?)") +
+                  "; valid keys: " + valid);
+    }
+  }
+}
+
+const char* type_name(lua_State* L, int idx) { return luaL_typename(L, idx); }
+
+// value of t[key] pushed; returns false (and pushes nothing) when nil
+bool field(lua_State* L, int idx, const char* key) {
+  lua_getfield(L, idx, key);
+  if (lua_isnil(L, -1)) {
+    lua_pop(L, 1);
+    return false;
+  }
+  return true;
+}
+
+double to_number(lua_State* L, int idx, const std::string& what) {
+  if (lua_type(L, idx) != LUA_TNUMBER) fail(L, what + ": number expected, got " + type_name(L, idx));
+  return lua_tonumber(L, idx);
+}
+
+std::optional<double> opt_number(lua_State* L, int t, const char* key, const std::string& where) {
+  if (!field(L, t, key)) return std::nullopt;
+  const double v = to_number(L, -1, where + "." + key);
+  lua_pop(L, 1);
+  return v;
+}
+
+std::optional<std::string> opt_string(lua_State* L, int t, const char* key, const std::string& where) {
+  if (!field(L, t, key)) return std::nullopt;
+  if (lua_type(L, -1) != LUA_TSTRING) fail(L, where + "." + key + ": string expected, got " + type_name(L, -1));
+  std::string s = lua_tostring(L, -1);
+  lua_pop(L, 1);
+  return s;
+}
+
+std::optional<bool> opt_bool(lua_State* L, int t, const char* key, const std::string& where) {
+  if (!field(L, t, key)) return std::nullopt;
+  if (lua_type(L, -1) != LUA_TBOOLEAN) fail(L, where + "." + key + ": boolean expected, got " + type_name(L, -1));
+  const bool b = lua_toboolean(L, -1);
+  lua_pop(L, 1);
+  return b;
+}
+
+int to_integer(lua_State* L, int idx, const std::string& what) {
+  const double v = to_number(L, idx, what);
+  if (v != std::floor(v) || std::abs(v) > 1e9) {
+    std::ostringstream s;
+    s << what << ": a whole number expected (got " << v << ")";
+    fail(L, s.str());
+  }
+  return static_cast<int>(v);
+}
+
+void require_table(lua_State* L, int idx, const std::string& what) {
+  if (!lua_istable(L, idx)) fail(L, what + ": table expected, got " + type_name(L, idx));
+}
+
+Vec2 to_vec2(lua_State* L, int idx, const std::string& what) {
+  idx = lua_absindex(L, idx);
+  if (!lua_istable(L, idx) || lua_rawlen(L, idx) != 2)
+    fail(L, what + ": a point {x, y} in metres expected, got " + type_name(L, idx));
+  Vec2 v;
+  for (int k = 0; k < 2; ++k) {
+    lua_rawgeti(L, idx, k + 1);
+    v[k] = to_number(L, -1, what);
+    lua_pop(L, 1);
+  }
+  return v;
+}
+
+// a torque [N·m] or speed [rad/s] law: a number, or {constant=, per_speed=, table={{t, v}, ...}}
+
+std::string closest(const std::string& name, const std::vector<std::string>& valid) {
+  std::string best;
+  size_t bd = 3;
+  for (const auto& v : valid)
+    if (const size_t d = edit_distance(name, v); d < bd) bd = d, best = v;
+  return best;
+}
+
+void check_arg_count(lua_State* L, const char* name, int min, int max) {
+  const int n = lua_gettop(L);
+  if (n >= min && n <= max) return;
+  std::ostringstream s;
+  s << name << ": expected " << min;
+  if (max > min) s << " to " << max;
+  s << " argument" << (max == 1 ? "" : "s") << ", got " << n;
+  fail(L, s.str());
+}
+
+}  // namespace beltsim::script

@@ -1,0 +1,575 @@
+// Lua bindings of the live simulation (see lua_sim.hpp and the README, "Live simulation").
+// A simulation is a full userdata holding a SimBox; its methods check their arguments
+// ("sim:advance: expected 1 argument, got 2") and turn C++ errors into Lua errors after leaving
+// the catch block. Callbacks (every, when) are Lua functions kept in the registry; they are
+// called with the simulation as their argument, from inside run_to.
+#include "script/lua_sim.hpp"
+
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <map>
+#include <sstream>
+
+#include "integrate/stepper.hpp"
+#include "io/units.hpp"
+#include "plot/plot.hpp"
+#include "render/recorder.hpp"
+#include "script/context.hpp"
+#include "script/lua_check.hpp"
+#include "script/lua_scene.hpp"
+#include "script/progress.hpp"
+
+namespace beltsim::script {
+
+namespace {
+
+constexpr const char* kSimMeta = "beltsim.Simulation";
+
+struct SimBox {
+  std::unique_ptr<Simulation> sim;
+  Context* ctx = nullptr;
+  bool progress = true;
+  lua_State* L = nullptr;  // the state whose running method has the simulation at index 1
+  std::map<int, std::unique_ptr<LuaRef>> refs;  // callbacks by id (a when has two: -id for its condition)
+  long shows = 0;
+};
+
+SimBox* check_box(lua_State* L, const char* method) {
+  auto* box = static_cast<SimBox*>(luaL_testudata(L, 1, kSimMeta));
+  if (!box) fail(L, std::string("sim:") + method + ": call it as sim:" + method + "(...) on a simulation");
+  if (!box->sim) fail(L, std::string("sim:") + method + ": this simulation has been finalised");
+  box->L = L;
+  return box;
+}
+
+Simulation& live(lua_State* L, const char* method, int min_args, int max_args) {
+  SimBox* box = check_box(L, method);
+  check_arg_count(L, (std::string("sim:") + method).c_str(), min_args + 1, max_args + 1);
+  return *box->sim;
+}
+
+void set_number(lua_State* L, const char* k, double v) { lua_pushnumber(L, v), lua_setfield(L, -2, k); }
+
+int pulley_index(lua_State* L, const Simulation& s, int idx, const char* what) {
+  if (lua_type(L, idx) != LUA_TSTRING) fail(L, std::string(what) + ": a pulley name expected, got " + type_name(L, idx));
+  const std::string name = lua_tostring(L, idx);
+  const int j = s.scene().find_pulley(name);
+  if (j < 0) {
+    std::vector<std::string> names;
+    std::string list;
+    for (const Pulley& p : s.model().pulleys) names.push_back(p.name), list += (list.empty() ? "" : ", ") + p.name;
+    const std::string best = closest(name, names);
+    fail(L, std::string(what) + ": no pulley '" + name + "'" + (best.empty() ? "" : " (did you mean '" + best + "'?)") +
+                "; pulleys: " + list);
+  }
+  return j;
+}
+
+// a C++ call whose exceptions become Lua errors once the catch block is left
+template <class F>
+void guarded(lua_State* L, const char* what, F&& f) {
+  std::string error;
+  try {
+    f();
+  } catch (const DivergenceError& e) {
+    error = std::string(what) + ": " + e.what();
+  } catch (const std::exception& e) {
+    error = std::string(what) + ": " + e.what();
+  }
+  if (!error.empty()) fail(L, error);
+}
+
+// ---- running ---------------------------------------------------------------------------------
+
+int run_to(lua_State* L, SimBox& box, double t, const char* what) {
+  Simulation::Advance a;
+  bool interrupted = false;
+  guarded(L, what, [&] {
+    ProgressLine line(box.progress);
+    a = box.sim->run_to(t, box.ctx->stop, line.callback());
+  });
+  if (a.interrupted) {
+    interrupted = true;
+    box.ctx->interrupted = true;
+    lua_sethook(L, nullptr, 0, 0);  // the stop was honoured here; no "interrupted!" after it
+  }
+  lua_createtable(L, 0, 4);
+  set_number(L, "t", a.t);
+  lua_pushinteger(L, a.steps), lua_setfield(L, -2, "steps");
+  set_number(L, "wall", a.wall);
+  lua_pushboolean(L, interrupted), lua_setfield(L, -2, "interrupted");
+  return 1;
+}
+
+// sim:run_to(t) -> { t [s], steps, wall [s], interrupted }
+int l_run_to(lua_State* L) {
+  live(L, "run_to", 1, 1);
+  SimBox& box = *static_cast<SimBox*>(lua_touserdata(L, 1));
+  return run_to(L, box, to_number(L, 2, "sim:run_to(t)"), "sim:run_to");
+}
+
+// sim:advance(dt) -> same as run_to(sim.t + dt)
+int l_advance(lua_State* L) {
+  Simulation& s = live(L, "advance", 1, 1);
+  const double dt = to_number(L, 2, "sim:advance(dt)");
+  if (!(dt >= 0 && std::isfinite(dt))) {
+    std::ostringstream m;
+    m << "sim:advance: dt must be >= 0 s and finite (got " << dt << " s)";
+    fail(L, m.str());
+  }
+  return run_to(L, *static_cast<SimBox*>(lua_touserdata(L, 1)), s.now() + dt, "sim:advance");
+}
+
+// ---- reading ---------------------------------------------------------------------------------
+
+// sim:pulley(name) -> { omega [rad/s], angle [rad], torque [N·m], belt_torque [N·m], hub_load [N] }
+int l_pulley(lua_State* L) {
+  Simulation& s = live(L, "pulley", 1, 1);
+  const PulleyObs p = s.pulley(pulley_index(L, s, 2, "sim:pulley"));
+  lua_createtable(L, 0, 5);
+  set_number(L, "omega", p.omega);
+  set_number(L, "angle", p.angle);
+  set_number(L, "torque", p.torque);
+  set_number(L, "belt_torque", p.belt_torque);
+  set_number(L, "hub_load", p.hub_load);
+  return 1;
+}
+
+// sim:element(i) -> { x, y [m], phi [rad], s [m], tension, normal, friction [N], slip [m/s], mu,
+// pulley (name or nil), state ("stick", "slip" or "free") }
+int l_element(lua_State* L) {
+  Simulation& s = live(L, "element", 1, 1);
+  const int i = to_integer(L, 2, "sim:element(i)");
+  if (i < 0 || i >= s.model().n_el())
+    fail(L, "sim:element: the element number must be in 0.." + std::to_string(s.model().n_el() - 1) + " (got " +
+                std::to_string(i) + ")");
+  const ElementObs e = s.element(i);
+  lua_createtable(L, 0, 11);
+  set_number(L, "x", e.x);
+  set_number(L, "y", e.y);
+  set_number(L, "phi", e.phi);
+  set_number(L, "s", s.scene().sites[i].s);
+  set_number(L, "tension", e.tension);
+  set_number(L, "normal", e.normal);
+  set_number(L, "friction", e.friction);
+  set_number(L, "slip", e.slip);
+  set_number(L, "mu", e.mu);
+  if (e.pulley >= 0) lua_pushstring(L, s.model().pulleys[e.pulley].name.c_str()), lua_setfield(L, -2, "pulley");
+  lua_pushstring(L, contact_state_name(e.state)), lua_setfield(L, -2, "state");
+  return 1;
+}
+
+// sim:span(a, b) -> tension [N] of the span between pulleys a and b
+int l_span(lua_State* L) {
+  Simulation& s = live(L, "span", 2, 2);
+  const int a = pulley_index(L, s, 2, "sim:span"), b = pulley_index(L, s, 3, "sim:span");
+  const Model& m = s.model();
+  const int k = s.scene().find_span(m.pulleys[a].name, m.pulleys[b].name);
+  if (k < 0) fail(L, "sim:span: '" + m.pulleys[a].name + "' and '" + m.pulleys[b].name + "' are not joined by a span");
+  lua_pushnumber(L, s.span_tension(k));
+  return 1;
+}
+
+// sim:energy() -> { kinetic, sde, bending, contact, gravity, mechanical [J], and with energy
+// tracking work_torques, dissipated_axial, dissipated_bending, dissipated_contact,
+// dissipated_friction [J] }
+int l_energy(lua_State* L) {
+  Simulation& s = live(L, "energy", 0, 0);
+  const Energy e = s.energy();
+  lua_createtable(L, 0, 11);
+  set_number(L, "kinetic", e.kinetic);
+  set_number(L, "sde", e.sde);
+  set_number(L, "bending", e.bending);
+  set_number(L, "contact", e.contact);
+  set_number(L, "gravity", e.gravity);
+  set_number(L, "mechanical", e.total());
+  const std::vector<double> w = s.energy_integrals();
+  static const char* names[] = {"work_torques", "dissipated_axial", "dissipated_bending", "dissipated_contact",
+                                "dissipated_friction"};
+  for (size_t k = 0; k < w.size(); ++k) set_number(L, names[k], w[k]);
+  return 1;
+}
+
+// sim:stats() -> { t, integrator, steps, rejected, rhs, jacobians, factorizations, solves,
+// wall [s], samples, frames, callbacks, out }
+int l_stats(lua_State* L) {
+  Simulation& s = live(L, "stats", 0, 0);
+  const WorkCounters w = s.stats();
+  lua_createtable(L, 0, 13);
+  set_number(L, "t", s.now());
+  lua_pushstring(L, s.integrator_name().c_str()), lua_setfield(L, -2, "integrator");
+  for (const auto& [k, v] : {std::pair{"steps", w.steps}, std::pair{"rejected", w.rejected}, std::pair{"rhs", w.rhs},
+                             std::pair{"jacobians", w.jacobians}, std::pair{"factorizations", w.factorizations},
+                             std::pair{"solves", w.solves}})
+    lua_pushinteger(L, v), lua_setfield(L, -2, k);
+  set_number(L, "wall", s.wall());
+  lua_pushinteger(L, s.frames_written()), lua_setfield(L, -2, "frames");
+  lua_pushinteger(L, s.callbacks()), lua_setfield(L, -2, "callbacks");
+  lua_pushstring(L, s.out_dir().c_str()), lua_setfield(L, -2, "out");
+  return 1;
+}
+
+// ---- changes ---------------------------------------------------------------------------------
+
+// sim:set_torque(name, law) and sim:set_speed(name, law): laws as in the scene
+int set_law(lua_State* L, bool speed) {
+  const char* what = speed ? "set_speed" : "set_torque";
+  Simulation& s = live(L, what, 2, 2);
+  const int j = pulley_index(L, s, 2, (std::string("sim:") + what).c_str());
+  const TimeSpeedLaw law = to_law(L, 3, std::string("sim:") + what);
+  if (speed && law.per_speed != 0) fail(L, "sim:set_speed: a speed law cannot depend on the speed (per_speed)");
+  guarded(L, (std::string("sim:") + what).c_str(), [&] {
+    if (speed)
+      s.set_speed(j, law, law_text(law));
+    else
+      s.set_torque(j, law, law_text(law));
+  });
+  return 0;
+}
+int l_set_torque(lua_State* L) { return set_law(L, false); }
+int l_set_speed(lua_State* L) { return set_law(L, true); }
+
+void apply_mu(lua_State* L, Simulation& s, const std::vector<double>& mu, const std::string& what,
+              const std::string& text) {
+  guarded(L, what.c_str(), [&] { s.set_mu(mu, what, text); });
+}
+
+// sim:wet{ from = s0 [m], to = s1 [m], mu = 0.2 | function(site) } (no from/to: the whole belt)
+int l_wet(lua_State* L) {
+  Simulation& s = live(L, "wet", 1, 1);
+  require_table(L, 2, "sim:wet");
+  check_keys(L, 2, "sim:wet", {"from", "to", "mu"});
+  const auto from = opt_number(L, 2, "from", "sim:wet"), to = opt_number(L, 2, "to", "sim:wet");
+  if (!field(L, 2, "mu")) fail(L, "sim:wet: mu (the wet friction coefficient) is required");
+  const std::vector<double> mu = mu_over(L, lua_gettop(L), s.scene(), from, to, "sim:wet");
+  std::ostringstream text;
+  text << "mu = " << (lua_type(L, -1) == LUA_TNUMBER ? std::to_string(lua_tonumber(L, -1)) : std::string("function"));
+  if (from) text << " on s in [" << *from << ", " << *to << "] m";
+  lua_pop(L, 1);
+  apply_mu(L, s, mu, "wet", text.str());
+  return 0;
+}
+
+// sim:set_mu(number | {mu_0, ..., mu_n-1} | function(site)) on every element
+int l_set_mu(lua_State* L) {
+  Simulation& s = live(L, "set_mu", 1, 1);
+  std::vector<double> mu;
+  std::string text;
+  if (lua_istable(L, 2)) {
+    const lua_Integer n = static_cast<lua_Integer>(lua_rawlen(L, 2));
+    if (n != s.model().n_el())
+      fail(L, "sim:set_mu: a list of one μ per element expected (" + std::to_string(s.model().n_el()) + "), got " +
+                  std::to_string(n));
+    for (lua_Integer k = 1; k <= n; ++k) {
+      lua_rawgeti(L, 2, k);
+      mu.push_back(to_number(L, -1, "sim:set_mu entry " + std::to_string(k)));
+      lua_pop(L, 1);
+    }
+    text = "list";
+  } else {
+    mu = mu_over(L, 2, s.scene(), std::nullopt, std::nullopt, "sim:set_mu");
+    text = lua_type(L, 2) == LUA_TNUMBER ? "mu = " + std::to_string(lua_tonumber(L, 2)) : "function";
+  }
+  apply_mu(L, s, mu, "set_mu", text);
+  return 0;
+}
+
+// sim:log(text): a line in events.csv
+int l_log(lua_State* L) {
+  Simulation& s = live(L, "log", 1, 1);
+  if (lua_type(L, 2) != LUA_TSTRING) fail(L, std::string("sim:log: string expected, got ") + type_name(L, 2));
+  const std::string text = lua_tostring(L, 2);
+  guarded(L, "sim:log", [&] { s.log_event("note", text); });
+  return 0;
+}
+
+// ---- callbacks -------------------------------------------------------------------------------
+
+// calls the function in ref with the simulation; nret results left on the stack
+void call_back(SimBox& box, const LuaRef& ref, int nret) {
+  lua_State* L = box.L;
+  ref.push(L);
+  lua_pushvalue(L, 1);  // the simulation: index 1 of the running method
+  lua_call(L, 1, nret);
+}
+
+// sim:every(dt, function(sim) ... end) -> id: called at now + k·dt exactly
+int l_every(lua_State* L) {
+  Simulation& s = live(L, "every", 2, 2);
+  SimBox* box = static_cast<SimBox*>(lua_touserdata(L, 1));
+  const double dt = to_number(L, 2, "sim:every(dt, fn)");
+  if (!lua_isfunction(L, 3)) fail(L, std::string("sim:every: a function expected, got ") + type_name(L, 3));
+  auto ref = std::make_unique<LuaRef>(L, 3);
+  const LuaRef* r = ref.get();
+  int id = 0;
+  guarded(L, "sim:every", [&] { id = s.every(dt, [box, r] { call_back(*box, *r, 0); }); });
+  box->refs[id] = std::move(ref);
+  lua_pushinteger(L, id);
+  return 1;
+}
+
+// sim:when(function(sim) return condition end, function(sim) ... end) -> id
+int l_when(lua_State* L) {
+  Simulation& s = live(L, "when", 2, 2);
+  SimBox* box = static_cast<SimBox*>(lua_touserdata(L, 1));
+  if (!lua_isfunction(L, 2)) fail(L, std::string("sim:when: a condition function expected, got ") + type_name(L, 2));
+  if (!lua_isfunction(L, 3)) fail(L, std::string("sim:when: an action function expected, got ") + type_name(L, 3));
+  auto cond = std::make_unique<LuaRef>(L, 2), action = std::make_unique<LuaRef>(L, 3);
+  const LuaRef *c = cond.get(), *a = action.get();
+  int id = 0;
+  guarded(L, "sim:when", [&] {
+    id = s.when(
+        [box, c] {
+          call_back(*box, *c, 1);
+          const bool v = lua_toboolean(box->L, -1);
+          lua_pop(box->L, 1);
+          return v;
+        },
+        [box, a] { call_back(*box, *a, 0); });
+  });
+  box->refs[id] = std::move(action);
+  box->refs[-id] = std::move(cond);
+  lua_pushinteger(L, id);
+  return 1;
+}
+
+// sim:cancel(id) -> true when a callback was removed
+int l_cancel(lua_State* L) {
+  Simulation& s = live(L, "cancel", 1, 1);
+  SimBox* box = static_cast<SimBox*>(lua_touserdata(L, 1));
+  const int id = to_integer(L, 2, "sim:cancel(id)");
+  const bool removed = s.cancel(id);
+  box->refs.erase(id), box->refs.erase(-id);
+  lua_pushboolean(L, removed);
+  return 1;
+}
+
+// ---- pictures --------------------------------------------------------------------------------
+
+void picture(lua_State* L, SimBox& box, const std::string& png) {
+  if (box.ctx->on_picture)
+    box.ctx->on_picture(png);
+  else
+    std::printf("picture: %s\n", png.c_str()), std::fflush(stdout);
+  (void)L;
+}
+
+std::string time_tag(double t) {
+  char b[32];
+  std::snprintf(b, sizeof b, "%.6f", t);
+  return b;
+}
+
+// sim:show{ quantity, range, levels, magnify, view, size, file } -> path of the PNG
+int l_show(lua_State* L) {
+  Simulation& s = live(L, "show", 0, 1);
+  SimBox& box = *static_cast<SimBox*>(lua_touserdata(L, 1));
+  FrameSettings fs;
+  std::string file;
+  if (!lua_isnoneornil(L, 2)) {
+    require_table(L, 2, "sim:show");
+    fs = to_frames(L, 2, "sim:show", {"quantity", "range", "levels", "magnify", "view", "size", "file"});
+    if (auto f = opt_string(L, 2, "file", "sim:show")) file = *f;
+  }
+  if (file.empty()) file = "show_" + time_tag(s.now()) + ".png";
+  if (std::filesystem::path(file).is_relative()) file = (std::filesystem::path(s.out_dir()) / file).string();
+  guarded(L, "sim:show", [&] { render::render_snapshot(s.scene(), fs, s.now(), s.state().data(), s.model(), file); });
+  box.shows++;
+  picture(L, box, file);
+  lua_pushstring(L, file.c_str());
+  return 1;
+}
+
+// sim:plot{ "driver.omega", "driven.omega", from = t0 [s], file = "x.png" } -> path of the PNG
+int l_plot(lua_State* L) {
+  Simulation& s = live(L, "plot", 0, 1);
+  SimBox& box = *static_cast<SimBox*>(lua_touserdata(L, 1));
+  std::vector<std::string> columns;
+  double from = 0;
+  std::string file;
+  if (!lua_isnoneornil(L, 2)) {
+    require_table(L, 2, "sim:plot");
+    lua_pushnil(L);
+    while (lua_next(L, 2)) {
+      lua_pop(L, 1);
+      if (lua_type(L, -1) == LUA_TSTRING) {
+        const std::string k = lua_tostring(L, -1);
+        if (k != "from" && k != "file") {
+          const std::string best = closest(k, {"from", "file"});
+          fail(L, "unknown key '" + k + "' in sim:plot" + (best.empty() ? "" : " (did you mean '" + best + "'?)") +
+                      "; valid keys: from, file, and column names as a list");
+        }
+      } else if (lua_type(L, -1) != LUA_TNUMBER) {
+        fail(L, "sim:plot: column names as a list, from = t0 and file = path expected");
+      }
+    }
+    const lua_Integer n = static_cast<lua_Integer>(lua_rawlen(L, 2));
+    for (lua_Integer k = 1; k <= n; ++k) {
+      lua_rawgeti(L, 2, k);
+      if (lua_type(L, -1) != LUA_TSTRING)
+        fail(L, "sim:plot: column " + std::to_string(k) + ": a column name expected, got " + type_name(L, -1));
+      columns.push_back(lua_tostring(L, -1));
+      lua_pop(L, 1);
+    }
+    if (auto v = opt_number(L, 2, "from", "sim:plot")) from = *v;
+    if (auto f = opt_string(L, 2, "file", "sim:plot")) file = *f;
+  }
+  const std::vector<std::string> valid = s.columns();
+  for (const std::string& c : columns) {
+    bool ok = false;
+    for (const std::string& v : valid) ok = ok || v == c;
+    if (!ok) {
+      std::string list;
+      for (const std::string& v : valid) list += (list.empty() ? "" : ", ") + v;
+      const std::string best = closest(c, valid);
+      fail(L, "sim:plot: no column '" + c + "'" + (best.empty() ? "" : " (did you mean '" + best + "'?)") +
+                  "; columns: " + list);
+    }
+  }
+  if (file.empty()) file = "plot_" + time_tag(s.now()) + ".png";
+  if (std::filesystem::path(file).is_relative()) file = (std::filesystem::path(s.out_dir()) / file).string();
+  guarded(L, "sim:plot", [&] { plot::plot_csv(s.csv_path(), columns, from, file); });
+  picture(L, box, file);
+  lua_pushstring(L, file.c_str());
+  return 1;
+}
+
+// sim:close(): flush the CSV files, finalise the video
+int l_close(lua_State* L) {
+  SimBox* box = check_box(L, "close");
+  check_arg_count(L, "sim:close", 1, 1);
+  guarded(L, "sim:close", [&] { box->sim->close(); });
+  box->refs.clear();
+  return 0;
+}
+
+int l_gc(lua_State* L) {
+  auto* box = static_cast<SimBox*>(luaL_testudata(L, 1, kSimMeta));
+  if (!box) return 0;
+  try {
+    if (box->sim) box->sim->close();
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "beltsim: closing a simulation: %s\n", e.what());
+  }
+  box->~SimBox();
+  return 0;
+}
+
+int l_tostring(lua_State* L) {
+  auto* box = static_cast<SimBox*>(luaL_testudata(L, 1, kSimMeta));
+  if (!box || !box->sim) return lua_pushliteral(L, "beltsim simulation (finalised)"), 1;
+  const Simulation& s = *box->sim;
+  lua_pushfstring(L, "beltsim simulation at t = %f s (%s, %d elements%s)", s.now(), s.integrator_name().c_str(),
+                  s.model().n_el(), s.closed() ? ", closed" : "");
+  return 1;
+}
+
+const luaL_Reg kMethods[] = {
+    {"run_to", l_run_to},   {"advance", l_advance},       {"pulley", l_pulley},       {"element", l_element},
+    {"span", l_span},       {"energy", l_energy},         {"stats", l_stats},         {"set_torque", l_set_torque},
+    {"set_speed", l_set_speed}, {"wet", l_wet},           {"set_mu", l_set_mu},       {"log", l_log},
+    {"every", l_every},     {"when", l_when},             {"cancel", l_cancel},       {"show", l_show},
+    {"plot", l_plot},       {"close", l_close},           {nullptr, nullptr}};
+
+// sim.t is the current time; sim.<method> the methods
+int l_index(lua_State* L) {
+  auto* box = static_cast<SimBox*>(luaL_checkudata(L, 1, kSimMeta));
+  const char* key = lua_tostring(L, 2);
+  if (key && std::string(key) == "t") {
+    if (!box->sim) fail(L, "sim.t: this simulation has been finalised");
+    lua_pushnumber(L, box->sim->now());
+    return 1;
+  }
+  lua_getmetatable(L, 1);
+  lua_getfield(L, -1, "methods");
+  lua_pushvalue(L, 2);
+  lua_rawget(L, -2);
+  return 1;
+}
+
+// help() lists the API; help("advance") prints one entry
+int l_help(lua_State* L) {
+  check_arg_count(L, "help", 0, 1);
+  if (lua_isnoneornil(L, 1)) {
+    std::printf("beltsim API (help(\"name\") for one entry; SI units throughout):\n");
+    for (const HelpEntry& h : api_help()) std::printf("  %-48s %s\n", h.call, h.text);
+    std::fflush(stdout);
+    return 0;
+  }
+  if (lua_type(L, 1) != LUA_TSTRING) fail(L, std::string("help: a name expected, got ") + type_name(L, 1));
+  const std::string name = lua_tostring(L, 1);
+  std::vector<std::string> names;
+  for (const HelpEntry& h : api_help()) {
+    names.push_back(h.name);
+    if (name == h.name) {
+      std::printf("%s\n  %s\n", h.call, h.text);
+      std::fflush(stdout);
+      return 0;
+    }
+  }
+  const std::string best = closest(name, names);
+  fail(L, "help: nothing is called '" + name + "'" + (best.empty() ? "" : " (did you mean '" + best + "'?)"));
+}
+
+}  // namespace
+
+const std::vector<HelpEntry>& api_help() {
+  static const std::vector<HelpEntry> h = {
+      {"scene", "beltsim.scene{ pulleys, belt, contact, friction, gravity, energy }", "builds a drive (README, Lua API)"},
+      {"run", "scene:run{ t_end [s], integrator, rtol, atol, sample [s], out, probe, frames, events }",
+       "a batch run: start, run_to(t_end), close"},
+      {"start", "scene:start{ integrator, rtol, atol, sample [s], out, probe, progress, frames }",
+       "a live simulation at t = 0 (the static state)"},
+      {"run_to", "sim:run_to(t [s]) -> { t [s], steps, wall [s], interrupted }", "integrates to time t"},
+      {"advance", "sim:advance(dt [s]) -> { t [s], steps, wall [s], interrupted }", "integrates dt further"},
+      {"t", "sim.t", "the current simulated time [s]"},
+      {"pulley", "sim:pulley(name)", "{ omega [rad/s], angle [rad], torque [N·m], belt_torque [N·m], hub_load [N] }"},
+      {"element", "sim:element(i)",
+       "{ x, y [m], phi [rad], s [m], tension, normal, friction [N], slip [m/s], mu, pulley, state } of element i (0-based)"},
+      {"span", "sim:span(a, b) -> [N]", "tension of the span between pulleys a and b"},
+      {"energy", "sim:energy() -> { ... [J] }", "kinetic, spring, contact, gravity energy (and tracked work)"},
+      {"stats", "sim:stats()", "steps, rejected, rhs, jacobians, factorizations, wall [s], frames, ..."},
+      {"set_torque", "sim:set_torque(name, law [N·m])", "a new torque law on a pulley from now (events.csv)"},
+      {"set_speed", "sim:set_speed(name, law [rad/s])", "a prescribed speed on a pulley from now"},
+      {"wet", "sim:wet{ from [m], to [m], mu }", "μ on the belt between s = from and to (belt coordinate) from now"},
+      {"set_mu", "sim:set_mu(mu | {mu...} | function(site))", "μ of every element from now"},
+      {"log", "sim:log(text)", "a note in events.csv at the current time"},
+      {"every", "sim:every(dt [s], function(sim) end) -> id", "calls the function at now + k·dt exactly"},
+      {"when", "sim:when(function(sim) return cond end, function(sim) end) -> id",
+       "runs the action where the condition turns true (located to 1e-10 s)"},
+      {"cancel", "sim:cancel(id)", "removes an every or when callback"},
+      {"show", "sim:show{ quantity, range, magnify, view, size, file } -> png",
+       "renders the belt as it is now (tension, normal, friction, slip, mu)"},
+      {"plot", "sim:plot{ \"driver.omega\", ..., from = t0 [s], file } -> png", "time histories sampled so far"},
+      {"close", "sim:close()", "flushes the CSV files and finalises the video"},
+      {"rpm", "beltsim.rpm(n) -> [rad/s]", "revolutions per minute to rad/s"},
+      {"ramp", "beltsim.ramp(t1 [s], value)", "a law rising linearly from 0 at t = 0 to value at t1"},
+      {"integrators", "beltsim.integrators()", "the integrators' names"},
+      {"help", "help([name])", "this list, or one entry"},
+  };
+  return h;
+}
+
+void push_simulation(lua_State* L, std::unique_ptr<Simulation> sim, Context* ctx, bool progress) {
+  auto* box = new (lua_newuserdatauv(L, sizeof(SimBox), 0)) SimBox();
+  box->sim = std::move(sim);
+  box->ctx = ctx;
+  box->progress = progress;
+  luaL_setmetatable(L, kSimMeta);
+}
+
+void open_sim(lua_State* L, Context*) {
+  luaL_newmetatable(L, kSimMeta);
+  lua_pushcfunction(L, l_gc), lua_setfield(L, -2, "__gc");
+  lua_pushcfunction(L, l_tostring), lua_setfield(L, -2, "__tostring");
+  lua_pushcfunction(L, l_index), lua_setfield(L, -2, "__index");
+  lua_pushliteral(L, "beltsim.Simulation"), lua_setfield(L, -2, "__metatable");
+  luaL_newlib(L, kMethods);
+  lua_setfield(L, -2, "methods");
+  lua_pop(L, 1);
+  lua_pushcfunction(L, l_help);
+  lua_setglobal(L, "help");
+}
+
+}  // namespace beltsim::script

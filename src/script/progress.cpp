@@ -1,0 +1,46 @@
+#include "script/progress.hpp"
+
+#include <unistd.h>
+
+#include <cmath>
+#include <cstdio>
+
+namespace beltsim::script {
+
+namespace {
+std::string duration(double s) {
+  char b[32];
+  if (!std::isfinite(s))
+    std::snprintf(b, sizeof b, "?");
+  else if (s < 120)
+    std::snprintf(b, sizeof b, "%.0f s", s);
+  else
+    std::snprintf(b, sizeof b, "%.0f min %02.0f s", std::floor(s / 60), std::fmod(s, 60));
+  return b;
+}
+}  // namespace
+
+ProgressLine::ProgressLine(bool enabled) : enabled_(enabled), tty_(isatty(STDERR_FILENO)) {}
+
+ProgressLine::~ProgressLine() {
+  if (drawn_ && tty_) std::fputc('\n', stderr);
+}
+
+RunProgress ProgressLine::callback() {
+  if (!enabled_) return {};
+  return [this](double t, double target, const WorkCounters& w, double wall) {
+    if (t0_ < 0) t0_ = t;
+    if (wall < 1.0 || wall - last_ < (tty_ ? 0.5 : 10.0)) return;
+    last_ = wall;
+    drawn_ = true;
+    const double done = t - t0_, todo = target - t;
+    const double left = done > 0 ? wall * todo / done : NAN;
+    const double pct = target > t0_ ? 100 * done / (target - t0_) : 100;
+    std::fprintf(stderr, "%sbeltsim: t = %.4f s of %.4g s (%.0f %%), %s elapsed, about %s left, %ld steps%s",
+                 tty_ ? "\r" : "", t, target, pct, duration(wall).c_str(), duration(left).c_str(), w.steps,
+                 tty_ ? "   " : "\n");
+    std::fflush(stderr);
+  };
+}
+
+}  // namespace beltsim::script

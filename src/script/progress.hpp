@@ -1,0 +1,24 @@
+// One progress line on stderr for integrations that take more than a second: simulated time
+// reached of the target, wall time, an estimate of what is left, steps. Redrawn in place on a
+// terminal (every 0.5 s), a line every 10 s otherwise. Not part of the engine: the engine reports
+// progress through a callback (sim/simulation.hpp RunProgress) and this prints it.
+#pragma once
+
+#include "sim/simulation.hpp"
+
+namespace beltsim::script {
+
+class ProgressLine {
+ public:
+  explicit ProgressLine(bool enabled);
+  ~ProgressLine();  // ends the line if one was drawn
+  ProgressLine(const ProgressLine&) = delete;
+  ProgressLine& operator=(const ProgressLine&) = delete;
+  RunProgress callback();
+
+ private:
+  bool enabled_, tty_, drawn_ = false;
+  double last_ = 0, t0_ = -1;
+};
+
+}  // namespace beltsim::script
