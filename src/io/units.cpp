@@ -8,7 +8,7 @@ namespace beltsim {
 namespace {
 
 // last dotted component → unit (README "Outputs"; element and pulley fields of the Lua API)
-constexpr std::array<std::pair<std::string_view, std::string_view>, 19> kUnits{{
+constexpr std::array<std::pair<std::string_view, std::string_view>, 31> kUnits{{
     {"t", "s"},
     // pulleys
     {"omega", "rad/s"},
@@ -31,6 +31,19 @@ constexpr std::array<std::pair<std::string_view, std::string_view>, 19> kUnits{{
     {"friction", "N"},
     {"slip", "m/s"},
     {"mu", ""},
+    // the live simulation: wall time of a run, sim:energy() fields
+    {"wall", "s"},
+    {"kinetic", "J"},
+    {"sde", "J"},
+    {"bending", "J"},
+    {"contact", "J"},
+    {"gravity", "J"},
+    {"mechanical", "J"},
+    {"work_torques", "J"},
+    {"dissipated_axial", "J"},
+    {"dissipated_bending", "J"},
+    {"dissipated_contact", "J"},
+    {"dissipated_friction", "J"},
 }};
 
 }  // namespace

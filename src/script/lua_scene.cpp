@@ -459,6 +459,7 @@ FrameSettings to_frames(lua_State* L, int idx, const std::string& w, const std::
     return r;
   };
   f.png_dir = output("png", "frames");
+  if (!extra.empty()) f.png_dir = ".";  // sim:show: one picture, written by its caller
   f.video_path = output("video", "frames.mp4");
   std::string error;
   try {

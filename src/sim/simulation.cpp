@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cerrno>
+#include <charconv>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -308,7 +309,10 @@ void Simulation::close() {
 
 void Simulation::write_event(double t, const std::string& what, const std::string& text) {
   if (!events_) return;
-  std::fprintf(events_, "%.17g,%s,%s\n", t, csv_text(what).c_str(), csv_text(text).c_str());
+  // the shortest decimal that reads back as the same double
+  char b[32];
+  const auto r = std::to_chars(b, b + sizeof b, t);
+  std::fprintf(events_, "%.*s,%s,%s\n", static_cast<int>(r.ptr - b), b, csv_text(what).c_str(), csv_text(text).c_str());
   std::fflush(events_);
 }
 
