@@ -368,6 +368,36 @@ char** complete(const char* text, int, int) {
 
 // ---- the session -----------------------------------------------------------------------------
 
+// the name of the global holding the value with this address, or ""
+std::string global_named(lua_State* L, const void* p) {
+  std::string name;
+  lua_pushglobaltable(L);
+  lua_pushnil(L);
+  while (lua_next(L, -2)) {
+    if (lua_type(L, -2) == LUA_TSTRING && lua_topointer(L, -1) == p) name = lua_tostring(L, -2);
+    lua_pop(L, 1);
+  }
+  lua_pop(L, 1);
+  return name;
+}
+
+// a command as session.lua replays it: one whose run Ctrl-C stopped becomes run_to(where it
+// stopped), so the replay stops at the same step end (and gives the same outputs)
+std::string replayable(lua_State* L, const std::string& chunk, const std::vector<std::pair<const void*, double>>& stopped) {
+  if (stopped.empty()) return chunk;
+  std::string out = "-- " + chunk;
+  for (size_t k = 0; k < out.size(); ++k)
+    if (out[k] == '\n') out.insert(k + 1, "-- ");
+  out += "  -- stopped by Ctrl-C";
+  for (const auto& [p, t] : stopped) {
+    char b[64];
+    std::snprintf(b, sizeof b, ":run_to(%.17g)", t);
+    const std::string name = global_named(L, p);
+    out += "\n" + (name.empty() ? "-- (a simulation not held by a global)" : name) + b;
+  }
+  return out;
+}
+
 std::string history_path() {
   if (const char* h = std::getenv("BELTSIM_HISTORY")) return h;
   if (const char* home = std::getenv("HOME")) return std::string(home) + "/.beltsim_history";
@@ -508,8 +538,8 @@ int run_console(const std::optional<std::string>& script, const std::vector<std:
       std::fprintf(stderr, "%s\n", lua_tostring(L, -1));
       lua_pop(L, 1);
       failed = true;
-    } else if (execute(L)) {
-      commands.push_back(chunk);
+    } else if (ctx.stopped_runs.clear(), execute(L)) {
+      commands.push_back(replayable(L, chunk, ctx.stopped_runs));
     } else {
       failed = true;
     }

@@ -4,6 +4,8 @@
 #include <atomic>
 #include <functional>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "script/interpreter.hpp"
 
@@ -19,6 +21,9 @@ struct Context {
   // a picture made by sim:show or sim:plot: the console shows it in the terminal; a script run
   // prints its path (empty: print the path)
   std::function<void(const std::string& png)> on_picture;
+  // runs stopped by Ctrl-C: the simulation's userdata and where it stopped (the console writes
+  // sim:run_to(t) into session.lua instead of the command, so that the replay stops there too)
+  std::vector<std::pair<const void*, double>> stopped_runs;
 };
 
 }  // namespace beltsim::script

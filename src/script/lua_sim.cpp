@@ -92,6 +92,7 @@ int run_to(lua_State* L, SimBox& box, double t, const char* what) {
   if (a.interrupted) {
     interrupted = true;
     box.ctx->interrupted = true;
+    box.ctx->stopped_runs.push_back({lua_topointer(L, 1), a.t});
     lua_sethook(L, nullptr, 0, 0);  // the stop was honoured here; no "interrupted!" after it
   }
   lua_createtable(L, 0, 4);

@@ -1,0 +1,129 @@
+// The live simulation from Lua: scene:start, run_to/advance, reading, changes, every and when,
+// argument checks. Each script asserts with error(), so a wrong value fails with its line.
+#include <gtest/gtest.h>
+
+#include <unistd.h>
+
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+#include "script/interpreter.hpp"
+
+namespace beltsim::script {
+namespace {
+
+namespace fs = std::filesystem;
+
+fs::path temp_dir() {
+  const fs::path d = fs::temp_directory_path() / ("beltsim_live_api_test_" + std::to_string(::getpid()));
+  fs::create_directories(d);
+  return d;
+}
+
+// the paper's two-pulley drive (40 elements: quick); `driver` is the driver's drive
+std::string scene(const std::string& driver = "torque = beltsim.ramp(0.3, -70)") {
+  return "local s = beltsim.scene {\n"
+         "  pulleys = {\n"
+         "    { name = 'driver', centre = {0, 0}, radius = 0.1, " + driver + " },\n"
+         "    { name = 'driven', centre = {0.29, 0}, radius = 0.1, torque = { per_speed = -0.955 } },\n"
+         "  },\n"
+         "  belt = { elements = 40, pretension = 500, direction = 'cw' },\n"
+         "}\n"
+         "local sim = s:start{ out = '" + (temp_dir() / "out").string() + "', progress = false }\n";
+}
+
+std::string run_text(const std::string& text) {
+  const fs::path p = temp_dir() / "live.lua";
+  std::ofstream(p) << text;
+  Interpreter lua;
+  try {
+    lua.run_file(p.string());
+  } catch (const ScriptError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+TEST(LiveApi, ReadsTheStateInSIUnits) {
+  EXPECT_EQ(run_text(scene() +
+                     "assert(sim.t == 0)\n"
+                     "local r = sim:advance(0.01)\n"
+                     "assert(r.t == 0.01 and sim.t == 0.01 and r.steps > 0 and r.wall >= 0, 'advance')\n"
+                     "local p = sim:pulley('driver')\n"
+                     "assert(p.omega < 0 and p.angle < 0, 'the driver turns clockwise')\n"
+                     "assert(math.abs(p.torque - (-70 * 0.01 / 0.3)) < 1e-9, 'applied torque of the ramp')\n"
+                     "local e = sim:element(0)\n"
+                     "assert(e.state == 'stick' or e.state == 'slip' or e.state == 'free', e.state)\n"
+                     "assert(e.tension > 300 and e.tension < 700, 'tension near the pretension: ' .. e.tension)\n"
+                     "assert(e.mu == 1)\n"
+                     "local T = sim:span('driver', 'driven')\n"
+                     "assert(T > 200 and T < 800, 'span tension ' .. T)\n"
+                     "assert(sim:energy().kinetic > 0)\n"
+                     "assert(sim:stats().steps == r.steps)\n"),
+            "");
+}
+
+// a PI controller on the driver's torque holds the driven pulley within 1 % of its set speed
+TEST(LiveApi, EveryRunsAController) {
+  EXPECT_EQ(run_text(scene("torque = 0") +
+                     "local target, integral, dt = -30, 0, 0.002\n"
+                     "sim:every(dt, function(sim)\n"
+                     "  local e = target - sim:pulley('driven').omega\n"
+                     "  integral = integral + e * dt\n"
+                     "  sim:set_torque('driver', 3 * e + 60 * integral)\n"
+                     "end)\n"
+                     "local worst = 0\n"
+                     "sim:every(0.01, function(sim)\n"
+                     "  if sim.t >= 0.6 then\n"
+                     "    worst = math.max(worst, math.abs(sim:pulley('driven').omega / target - 1))\n"
+                     "  end\n"
+                     "end)\n"
+                     "sim:run_to(0.8)\n"
+                     "if worst > 0.01 then error('the driven speed strays ' .. worst * 100 .. ' % from the set speed') end\n"),
+            "");
+}
+
+// when() locates a crossing known in closed form: a driver at -10 rad/s has turned -0.5 rad at
+// t = 0.05 s; its action runs there and may change the drive
+TEST(LiveApi, WhenFindsTheCrossing) {
+  EXPECT_EQ(run_text(scene("speed = -10") +
+                     "local at\n"
+                     "sim:when(function(sim) return sim:pulley('driver').angle <= -0.5 end,\n"
+                     "         function(sim) at = sim.t; sim:set_speed('driver', -5) end)\n"
+                     "sim:run_to(0.08)\n"
+                     "assert(at, 'the condition never fired')\n"
+                     "if math.abs(at - 0.05) > 1e-6 then error(string.format('crossing at %.9f s', at)) end\n"
+                     "assert(sim:pulley('driver').omega == -5)\n"),
+            "");
+}
+
+TEST(LiveApi, BadCallsNameFileLineAndWhat) {
+  struct Case {
+    std::string call, expect;
+  };
+  for (const Case& c : std::vector<Case>{
+           {"sim:advance(0.1, 2)", "sim:advance: expected 2 arguments, got 3"},
+           {"sim:advance(-1)", "dt must be >= 0 s"},
+           {"sim:run_to('x')", "number expected, got string"},
+           {"sim:pulley('drivn')", "did you mean 'driven'"},
+           {"sim:element(40)", "must be in 0..39"},
+           {"sim:span('driver', 'driver')", "not joined by a span"},
+           {"sim:wet{from = 0.1, mu = 0.2}", "give both from and to"},
+           {"sim:wet{from = 0.1, to = 0.2, mu = -1}", "must be >= 0"},
+           {"sim:set_mu({1, 2})", "one μ per element expected (40), got 2"},
+           {"sim:every(0, function() end)", "the interval must be > 0 s"},
+           {"sim:show{quantiy = 'mu'}", "did you mean 'quantity'"},
+           {"sim:plot{'driver.omga'}", "did you mean 'driver.omega'"},
+           {"sim:close(); sim:advance(0.1)", "the simulation is closed"},
+           {"s:start{ t_end = 1 }", "unknown key 't_end' in start"},
+       }) {
+    const std::string msg = run_text(scene() + c.call + "\n");
+    EXPECT_NE(msg.find("live.lua:9:"), std::string::npos) << c.call << " -> " << msg;
+    EXPECT_NE(msg.find(c.expect), std::string::npos) << c.call << " -> " << msg;
+  }
+}
+
+}  // namespace
+}  // namespace beltsim::script
