@@ -289,7 +289,11 @@ void plot_csv(const std::string& csv_path, const std::vector<std::string>& colum
   for (const auto& name : wanted) table.column(name);  // every unknown name fails before plotting
   PlotSpec spec;
   spec.file = out_png;
-  spec.title = csv_path;
+  // the run's folder and the file: which run it is, without the machine's own path
+  const std::filesystem::path cp(csv_path);
+  spec.title = cp.has_parent_path() && cp.parent_path().has_filename()
+                   ? (cp.parent_path().filename() / cp.filename()).string()
+                   : cp.filename().string();
   if (!t.empty() && from_t > t.front()) spec.title += "  (t ≥ " + number(from_t) + " s)";
   for (const auto& name : wanted) {
     const std::vector<double>& y = table.column(name);

@@ -22,7 +22,12 @@
 #include <cstdlib>
 #include <filesystem>
 
+#include <cmath>
+
 #include "io/png_writer.hpp"
+#include "plot/plot.hpp"
+#include "render/recorder.hpp"
+#include "sim/simulation.hpp"
 #include "render/draw_list.hpp"
 #include "render/gl_context.hpp"
 #include "render/gl_renderer.hpp"
@@ -138,6 +143,10 @@ const Scene& dry() {
   static const Scene sc = test::moving_scene(presets::paper_dry());
   return sc;
 }
+const Scene& live_scene() {
+  static const Scene sc = build_scene(presets::paper_dry());
+  return sc;
+}
 const Scene& wet() {
   static const Scene sc = test::moving_scene(presets::paper_wet());
   return sc;
@@ -158,6 +167,29 @@ TEST_F(Golden, WetSlip) {
 TEST_F(Golden, WetFriction) {
   FrameSettings fs = settings(FrameQuantity::friction);
   expect_golden("wet_friction", render(wet(), fs, test::moving_state(wet())));
+}
+
+// sim:show and sim:plot: a live simulation of the dry drive paused at 0.02 s with a wet stretch,
+// drawn by render_snapshot (what sim:show calls) and its time histories so far by plot_csv (what
+// sim:plot and `beltsim plot` call, through gnuplot's pngcairo)
+TEST_F(Golden, LiveShowAndPlot) {
+  const fs::path out = fs::path(BELTSIM_BINARY_DIR) / "tests" / "golden_live";
+  fs::remove_all(out);
+  RunSettings rs;
+  rs.out_dir = out.string();
+  Simulation sim(live_scene(), rs);
+  sim.run_to(0.01);
+  std::vector<double> mu(sim.model().n_el(), std::nan(""));
+  for (int i = 0; i < 12; ++i) mu[i] = 0.2;
+  sim.set_mu(mu, "wet", "golden");
+  sim.run_to(0.02);
+  FrameSettings fs = settings(FrameQuantity::mu);
+  render_snapshot(sim.scene(), fs, sim.now(), sim.state().data(), sim.model(), (out / "show.png").string());
+  ctx_->make_current();  // the snapshot made a context of its own
+  expect_golden("live_show", read_png((out / "show.png").string()));
+  sim.close();
+  plot::plot_csv(sim.csv_path(), {"driver.omega", "driven.omega", "probe.sde_force"}, 0.0, (out / "plot.png").string());
+  expect_golden("live_plot", read_png((out / "plot.png").string()));
 }
 
 // The comparison must catch a deliberately wrong picture. These compare renderings against the
