@@ -31,9 +31,10 @@ class FrameRecorder final : public FrameSink {
     builder_.build(t, y, list_, &model);
     ctx_->make_current();  // another context (a snapshot's) may have been current since
     gl_.render(list_, image_);
-    if (!fs_.png_dir.empty() && n_ % fs_.png_every == 0) {
+    const long number = fs_.first_number + n_;
+    if (!fs_.png_dir.empty() && number % fs_.png_every == 0) {
       char name[32];
-      std::snprintf(name, sizeof name, "frame_%05ld.png", n_);
+      std::snprintf(name, sizeof name, "frame_%05ld.png", number);
       write_png((std::filesystem::path(fs_.png_dir) / name).string(), image_);
     }
     if (video_) video_->add(image_);

@@ -482,9 +482,7 @@ int run_console(const std::optional<std::string>& script, const std::vector<std:
 
   const std::string hist = history_path();
   if (interactive) {
-    std::printf("beltsim %s console (Lua 5.4). help() lists the API, help(\"name\") one entry; "
-                "Ctrl-D leaves, Ctrl-C stops a run.\n",
-                "0.1.0");
+    std::printf("beltsim 0.1.0 console (Lua 5.4): help() lists the API; Ctrl-C stops a run, Ctrl-D leaves\n");
     std::fflush(stdout);
     rl_readline_name = "beltsim";
     rl_catch_signals = 0;

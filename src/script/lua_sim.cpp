@@ -436,6 +436,39 @@ int l_plot(lua_State* L) {
   return 1;
 }
 
+// sim:save(path) -> path: a checkpoint (see sim/checkpoint.cpp)
+int l_save(lua_State* L) {
+  Simulation& s = live(L, "save", 1, 1);
+  if (lua_type(L, 2) != LUA_TSTRING) fail(L, std::string("sim:save: a file name expected, got ") + type_name(L, 2));
+  std::string path = lua_tostring(L, 2);
+  if (std::filesystem::path(path).is_relative() && std::filesystem::path(path).parent_path().empty())
+    path = (std::filesystem::path(s.out_dir()) / path).string();
+  guarded(L, "sim:save", [&] { s.save(path); });
+  lua_pushstring(L, path.c_str());
+  return 1;
+}
+
+// beltsim.resume(path [, { progress = bool }]) -> the saved simulation, continuing
+int l_resume(lua_State* L) {
+  check_arg_count(L, "beltsim.resume", 1, 2);
+  auto* ctx = static_cast<Context*>(lua_touserdata(L, lua_upvalueindex(1)));
+  if (lua_type(L, 1) != LUA_TSTRING) fail(L, std::string("beltsim.resume: a file name expected, got ") + type_name(L, 1));
+  bool progress = true;
+  if (!lua_isnoneornil(L, 2)) {
+    require_table(L, 2, "beltsim.resume");
+    check_keys(L, 2, "beltsim.resume", {"progress"});
+    if (auto v = opt_bool(L, 2, "progress", "beltsim.resume")) progress = *v;
+  }
+  std::unique_ptr<Simulation> sim;
+  int callbacks = 0;
+  guarded(L, "beltsim.resume", [&] { sim = Simulation::resume(lua_tostring(L, 1), render::make_frame_recorder, &callbacks); });
+  if (callbacks > 0)
+    std::fprintf(stderr, "beltsim: %s had %d callback(s) (every, when); register them again on the resumed simulation\n",
+                 lua_tostring(L, 1), callbacks);
+  push_simulation(L, std::move(sim), ctx, progress);
+  return 1;
+}
+
 // sim:close(): flush the CSV files, finalise the video
 int l_close(lua_State* L) {
   SimBox* box = check_box(L, "close");
@@ -471,7 +504,7 @@ const luaL_Reg kMethods[] = {
     {"span", l_span},       {"energy", l_energy},         {"stats", l_stats},         {"set_torque", l_set_torque},
     {"set_speed", l_set_speed}, {"wet", l_wet},           {"set_mu", l_set_mu},       {"log", l_log},
     {"every", l_every},     {"when", l_when},             {"cancel", l_cancel},       {"show", l_show},
-    {"plot", l_plot},       {"close", l_close},           {nullptr, nullptr}};
+    {"plot", l_plot},       {"save", l_save},             {"close", l_close},           {nullptr, nullptr}};
 
 // sim.t is the current time; sim.<method> the methods
 int l_index(lua_State* L) {
@@ -543,6 +576,8 @@ const std::vector<HelpEntry>& api_help() {
       {"show", "sim:show{ quantity, range, magnify, view, size, file } -> png",
        "renders the belt as it is now (tension, normal, friction, slip, mu)"},
       {"plot", "sim:plot{ \"driver.omega\", ..., from = t0 [s], file } -> png", "time histories sampled so far"},
+      {"save", "sim:save(path) -> path", "a checkpoint: state, integrator, laws, μ, pending events, output positions"},
+      {"resume", "beltsim.resume(path) -> sim", "continues a checkpoint (bit for bit); callbacks must be added again"},
       {"close", "sim:close()", "flushes the CSV files and finalises the video"},
       {"rpm", "beltsim.rpm(n) -> [rad/s]", "revolutions per minute to rad/s"},
       {"ramp", "beltsim.ramp(t1 [s], value)", "a law rising linearly from 0 at t = 0 to value at t1"},
@@ -560,7 +595,7 @@ void push_simulation(lua_State* L, std::unique_ptr<Simulation> sim, Context* ctx
   luaL_setmetatable(L, kSimMeta);
 }
 
-void open_sim(lua_State* L, Context*) {
+void open_sim(lua_State* L, Context* ctx) {
   luaL_newmetatable(L, kSimMeta);
   lua_pushcfunction(L, l_gc), lua_setfield(L, -2, "__gc");
   lua_pushcfunction(L, l_tostring), lua_setfield(L, -2, "__tostring");
@@ -571,6 +606,8 @@ void open_sim(lua_State* L, Context*) {
   lua_pop(L, 1);
   lua_pushcfunction(L, l_help);
   lua_setglobal(L, "help");
+  lua_pushlightuserdata(L, ctx);
+  lua_pushcclosure(L, l_resume, 1), lua_setfield(L, -2, "resume");
 }
 
 }  // namespace beltsim::script

@@ -44,6 +44,7 @@ struct FrameSettings {
   int png_every = 1;           // a PNG of every n-th frame only (the video gets them all)
   std::string video_path;      // "" : no video; else an MP4 file
   double t_start = 0;          // [s] first frame time (frames at t_start + k / (fps·slowdown))
+  long first_number = 0;       // number of the first frame written (a resumed run numbers on)
 
   // simulated time between frames [s]
   double frame_dt() const { return 1.0 / (fps * slowdown); }

@@ -142,7 +142,9 @@ class Simulation {
   void save(const std::string& path) const;
   // continues a saved simulation: its outputs are continued in place (the CSV files truncated to
   // the saved rows; frames numbered on, the video in a new file <name>_resumed_<t>.mp4).
-  static std::unique_ptr<Simulation> resume(const std::string& path, const FrameSinkFactory& factory);
+  // callbacks (if not null) receives the number of callbacks the saved simulation had.
+  static std::unique_ptr<Simulation> resume(const std::string& path, const FrameSinkFactory& factory,
+                                            int* callbacks = nullptr);
 
  private:
   Simulation(const Scene& scene, const RunSettings& settings, bool fresh);

@@ -1,0 +1,241 @@
+// Checkpoints of a live simulation: everything a continuation needs, in a line-oriented text with
+// doubles as hex floats (exact): the run settings, the scene, the model as it is now (laws and μ
+// changed since the start), the schedule's positions, the timed changes still ahead, the output
+// positions (rows and bytes of the CSV files, frames written) and the integrator's own state.
+// Continuing from it gives the uninterrupted run's outputs and state bit for bit. Callbacks
+// (Lua functions) are not saved: a checkpoint counts them and the script registers them again.
+#include <cerrno>
+#include <cmath>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "integrate/belt_system.hpp"
+#include "integrate/timeline.hpp"
+#include "io/csv_writer.hpp"
+#include "scene/scene_io.hpp"
+#include "sim/simulation.hpp"
+
+namespace beltsim {
+
+namespace {
+
+constexpr const char* kMagic = "beltsim-checkpoint";
+constexpr int kVersion = 1;
+
+void put(std::ostream& o, const char* key, double v) { o << key << ' ' << std::hexfloat << v << std::defaultfloat << '\n'; }
+void put(std::ostream& o, const char* key, long v) { o << key << ' ' << v << '\n'; }
+void put(std::ostream& o, const char* key, const std::string& v) { o << key << ' ' << v.size() << ' ' << v << '\n'; }
+
+void expect(std::istream& in, const char* key) {
+  std::string k;
+  in >> k;
+  if (!in || k != key) throw std::runtime_error(std::string("checkpoint: expected '") + key + "', found '" + k + "'");
+}
+double get_double(std::istream& in, const char* key) {
+  expect(in, key);
+  std::string s;
+  in >> s;
+  return std::strtod(s.c_str(), nullptr);
+}
+long get_long(std::istream& in, const char* key) {
+  expect(in, key);
+  long v = 0;
+  in >> v;
+  if (!in) throw std::runtime_error(std::string("checkpoint: a whole number expected after '") + key + "'");
+  return v;
+}
+std::string get_string(std::istream& in, const char* key) {
+  expect(in, key);
+  size_t n = 0;
+  in >> n;
+  in.get();  // the space
+  std::string s(n, '\0');
+  in.read(s.data(), static_cast<std::streamsize>(n));
+  if (!in) throw std::runtime_error(std::string("checkpoint: text after '") + key + "' is cut short");
+  return s;
+}
+
+void put_frames(std::ostream& o, const FrameSettings& f) {
+  for (const auto& [k, v] : {std::pair{"fps", f.fps}, std::pair{"slowdown", f.slowdown}, std::pair{"magnify", f.magnify},
+                             std::pair{"t_start", f.t_start}, std::pair{"range_lo", f.range_lo.value_or(NAN)},
+                             std::pair{"range_hi", f.range_hi.value_or(NAN)},
+                             std::pair{"view_x", f.view_centre ? f.view_centre->x() : NAN},
+                             std::pair{"view_y", f.view_centre ? f.view_centre->y() : NAN},
+                             std::pair{"view_width", f.view_width.value_or(NAN)}})
+    put(o, k, v);
+  for (const auto& [k, v] : {std::pair{"width", long(f.width)}, std::pair{"height", long(f.height)},
+                             std::pair{"quantity", long(f.quantity)}, std::pair{"levels", long(f.levels)},
+                             std::pair{"png_every", long(f.png_every)}})
+    put(o, k, v);
+  put(o, "png_dir", f.png_dir);
+  put(o, "video", f.video_path);
+}
+
+FrameSettings get_frames(std::istream& in) {
+  FrameSettings f;
+  f.fps = get_double(in, "fps"), f.slowdown = get_double(in, "slowdown"), f.magnify = get_double(in, "magnify");
+  f.t_start = get_double(in, "t_start");
+  auto opt = [](double v) { return std::isnan(v) ? std::optional<double>() : std::optional<double>(v); };
+  f.range_lo = opt(get_double(in, "range_lo")), f.range_hi = opt(get_double(in, "range_hi"));
+  const double vx = get_double(in, "view_x"), vy = get_double(in, "view_y");
+  if (!std::isnan(vx)) f.view_centre = Vec2(vx, vy);
+  f.view_width = opt(get_double(in, "view_width"));
+  f.width = static_cast<int>(get_long(in, "width")), f.height = static_cast<int>(get_long(in, "height"));
+  f.quantity = static_cast<FrameQuantity>(get_long(in, "quantity"));
+  f.levels = static_cast<int>(get_long(in, "levels")), f.png_every = static_cast<int>(get_long(in, "png_every"));
+  f.png_dir = get_string(in, "png_dir");
+  f.video_path = get_string(in, "video");
+  return f;
+}
+
+// cuts a file to its first `bytes` bytes (what was written when the checkpoint was taken)
+void truncate_to(const std::string& path, long bytes) {
+  std::error_code ec;
+  const auto size = std::filesystem::file_size(path, ec);
+  if (ec) throw std::runtime_error("checkpoint: the run's output " + path + " is missing: " + ec.message());
+  if (static_cast<long>(size) < bytes)
+    throw std::runtime_error("checkpoint: " + path + " is shorter than when the checkpoint was taken");
+  std::filesystem::resize_file(path, static_cast<uintmax_t>(bytes));
+}
+
+long file_bytes(const std::string& path) {
+  std::error_code ec;
+  const auto size = std::filesystem::file_size(path, ec);
+  return ec ? 0 : static_cast<long>(size);
+}
+
+}  // namespace
+
+void Simulation::save(const std::string& path) const {
+  require_open("save");
+  if (view_y_) throw std::logic_error("save: not inside a callback (save between run_to calls)");
+  if (!integ_->can_save())
+    throw std::invalid_argument("save: " + rs_.integrator +
+                                " keeps a multistep history that SUNDIALS cannot export; checkpoints need a one-step "
+                                "integrator (esdirk32, trbdf2, ros34pw2, rkf45)");
+  csv_->flush();
+  std::fflush(events_);
+  std::ostringstream o;
+  o << kMagic << ' ' << kVersion << '\n';
+  put(o, "integrator", rs_.integrator);
+  put(o, "rtol", rs_.rtol);
+  put(o, "atol", rs_.atol);
+  put(o, "sample_dt", rs_.sample_dt);
+  put(o, "out_dir", std::filesystem::absolute(rs_.out_dir).string());
+  put(o, "probe", long(rs_.probe_element));
+  put(o, "keep_samples", long(rs_.keep_samples));
+  put(o, "frames", long(rs_.frames.has_value()));
+  if (rs_.frames) put_frames(o, *rs_.frames);
+  o << "scene\n";
+  write_scene(o, scene_);
+  o << "model\n";
+  write_model(o, model_);
+  put(o, "now", tl_->now());
+  const std::vector<long> k = tl_->positions();
+  put(o, "streams", long(k.size()));
+  for (long v : k) o << v << '\n';
+  put(o, "pending", long(pending_.size()));
+  for (const MuEvent& ev : pending_) {
+    put(o, "t", ev.t);
+    put(o, "what", ev.what);
+    write_vector(o, ev.mu);
+  }
+  put(o, "rows", rows_);
+  put(o, "csv_bytes", file_bytes(csv_path()));
+  put(o, "events_bytes", file_bytes(events_path()));
+  put(o, "frames_written", frames_written());
+  put(o, "callbacks", long(callbacks_));
+  put(o, "wall", wall_);
+  o << "integrator_state\n";
+  integ_->save(o);
+  o << "end\n";
+  // written whole, then renamed: a checkpoint is never half a file
+  const std::string tmp = path + ".part";
+  {
+    std::ofstream f(tmp, std::ios::binary);
+    if (!f) throw std::runtime_error("save: cannot write " + tmp + ": " + std::strerror(errno));
+    f << o.str();
+    if (!f.flush()) throw std::runtime_error("save: cannot write " + tmp + ": " + std::strerror(errno));
+  }
+  std::filesystem::rename(tmp, path);
+}
+
+std::unique_ptr<Simulation> Simulation::resume(const std::string& path, const FrameSinkFactory& factory, int* callbacks) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw std::runtime_error("resume: cannot read " + path + ": " + std::strerror(errno));
+  std::string magic;
+  int version = 0;
+  in >> magic >> version;
+  if (magic != kMagic) throw std::runtime_error("resume: " + path + " is not a beltsim checkpoint");
+  if (version != kVersion)
+    throw std::runtime_error("resume: " + path + " is a version " + std::to_string(version) +
+                             " checkpoint; this beltsim reads version " + std::to_string(kVersion));
+  RunSettings rs;
+  rs.integrator = get_string(in, "integrator");
+  rs.rtol = get_double(in, "rtol");
+  rs.atol = get_double(in, "atol");
+  rs.sample_dt = get_double(in, "sample_dt");
+  rs.out_dir = get_string(in, "out_dir");
+  rs.probe_element = static_cast<int>(get_long(in, "probe"));
+  rs.keep_samples = get_long(in, "keep_samples") != 0;
+  if (get_long(in, "frames")) {
+    rs.frames = get_frames(in);
+    rs.frame_factory = factory;
+  }
+  expect(in, "scene");
+  const Scene sc = read_scene(in);
+  expect(in, "model");
+  Model model = read_model(in);
+  const double now = get_double(in, "now");
+  std::vector<long> k(static_cast<size_t>(get_long(in, "streams")));
+  for (long& v : k) in >> v;
+  std::vector<MuEvent> pending(static_cast<size_t>(get_long(in, "pending")));
+  for (MuEvent& ev : pending) {
+    ev.t = get_double(in, "t");
+    ev.what = get_string(in, "what");
+    ev.mu = read_std_vector(in);
+  }
+  const long rows = get_long(in, "rows"), csv_bytes = get_long(in, "csv_bytes");
+  const long events_bytes = get_long(in, "events_bytes"), frames = get_long(in, "frames_written");
+  const long n_callbacks = get_long(in, "callbacks");
+  const double wall = get_double(in, "wall");
+  expect(in, "integrator_state");
+
+  std::unique_ptr<Simulation> s(new Simulation(sc, rs, false));
+  s->model_ = std::move(model);
+  s->pending_ = std::move(pending);
+  s->rows_ = rows;
+  s->wall_ = wall;
+  s->frames_before_ = frames;
+  s->integ_->load(in);
+  expect(in, "end");
+  // the outputs continue where the checkpoint left them
+  truncate_to(s->csv_path(), csv_bytes);
+  truncate_to(s->events_path(), events_bytes);
+  if (s->rs_.frames) {
+    FrameSettings& f = *s->rs_.frames;
+    f.first_number = frames;
+    if (!f.video_path.empty()) {
+      // an MP4 cannot be appended to: the continuation's frames go to a file of their own
+      std::filesystem::path v(f.video_path);
+      char tag[32];
+      std::snprintf(tag, sizeof tag, "_resumed_%.6f", now);
+      f.video_path = (v.parent_path() / (v.stem().string() + tag + v.extension().string())).string();
+    }
+  }
+  s->open_outputs(true);
+  s->tl_->add_stream(0.0, s->rs_.sample_dt, [p = s.get()](double t, const Eigen::VectorXd& y) { p->sample(t, y); });
+  if (s->sink_)
+    s->tl_->add_stream(s->rs_.frames->t_start, s->rs_.frames->frame_dt(),
+                       [p = s.get()](double t, const Eigen::VectorXd& y) { p->sink_->frame(t, y.data(), p->model_); });
+  s->tl_->set_positions(k);
+  s->tl_->resume_at(now);
+  s->set_landings();
+  s->write_event(now, "resume", path);
+  if (callbacks) *callbacks = static_cast<int>(n_callbacks);
+  return s;
+}
+
+}  // namespace beltsim
