@@ -3,7 +3,7 @@
 #include <cmath>
 #include <sstream>
 
-#include "model/forces.hpp"
+#include "integrate/newton_aids.hpp"
 #include "model/sparse.hpp"
 
 

@@ -113,28 +113,6 @@ void contact_jacobian(const Model& m, double t, const double* q, const double* v
   }
 }
 
-uint64_t contact_branches(const Model& m, double t, const double* q, const double* v) {
-  // FNV-1a over (pulley, element, branch code) of every pair in contact
-  uint64_t h = 1469598103934665603ull;
-  auto mix = [&h](uint64_t x) { h = (h ^ x) * 1099511628211ull; };
-  for (int j = 0; j < m.n_p(); ++j) {
-    const Pulley& pl = m.pulleys[j];
-    const double omega = m.omega(j, t, v);
-    for (int i = 0; i < m.belt.n; ++i) {
-      const Vec2 P(q[3 * i], q[3 * i + 1]), V(v[3 * i], v[3 * i + 1]);
-      NormalLaw nl;
-      if (!normal_law(m.contact, P, V, pl.centre, pl.radius, nl)) continue;
-      uint64_t code = 1 + (nl.pushing ? 2 : 0) + (nl.p < m.contact.p_max ? 4 : 0);
-      if (nl.pushing) {
-        const double x = friction_law(m.mu[i], m.friction.dv, nl, V, omega).vT / m.friction.dv;
-        code += x <= -1 ? 8 : x >= 1 ? 16 : 0;
-      }
-      mix(static_cast<uint64_t>(j) << 40 | static_cast<uint64_t>(i) << 8 | code);
-    }
-  }
-  return h;
-}
-
 double contact_potential(const Model& m, const double* q) {
   double u = 0;
   for (const Pulley& pl : m.pulleys) {

@@ -1,4 +1,5 @@
-// Per-pair contact and friction laws shared by contact.cpp and friction.cpp (private header).
+// Per-pair contact and friction laws shared by contact.cpp and friction.cpp, and read by the
+// integrator's Newton aids (integrate/newton_aids.cpp); not part of the model's interface.
 #pragma once
 
 #include "model/forces.hpp"

@@ -4,8 +4,6 @@
 // ∂f/∂v to C; every law's derivation is at the top of its file.
 #pragma once
 
-#include <cstdint>
-
 #include "model/block_matrix.hpp"
 #include "model/model.hpp"
 
@@ -40,10 +38,6 @@ void contact_forces(const Model& m, double t, const double* q, const double* v, 
 void contact_jacobian(const Model& m, double t, const double* q, const double* v, BlockMatrix& K,
                       BlockMatrix& C, double* f_t);
 double contact_potential(const Model& m, const double* q);
-// a hash of the branch every element–pulley pair is on (out of contact, clamped, p < p_max,
-// sticking or slipping either way): two states with the same hash have the same smooth piece of
-// the contact and friction laws, so a Jacobian taken at one serves Newton at the other
-uint64_t contact_branches(const Model& m, double t, const double* q, const double* v);
 
 // what one element feels from the pulleys (sums over pulleys in contact)
 struct ElementContact {
@@ -53,14 +47,6 @@ struct ElementContact {
   int pulley = -1;        // index of the pulley touched (the deepest), -1 when free
 };
 ElementContact element_contact(const Model& m, double t, const double* q, const double* v, int i);
-// Newton aid for the friction band (see friction.cpp): for every element in contact that slips
-// at (q, v) and would slip the other way at (q + dq, v + dv), set its slip velocity to zero.
-// Returns the number of elements moved.
-int friction_reseat(const Model& m, double t, double* q, double* v, const double* dq, const double* dv);
-// Newton aid (see friction.cpp): g is the stage residual's velocity part (m/s) at (q, v); each
-// element in contact gets the tangential velocity change that zeroes its own tangential residual
-// with everything else held (an exact piecewise-linear solve). Returns the number moved.
-int friction_local_solve(const Model& m, double t, double s, double* q, double* v, const double* g);
 // belt torque on pulley j (moment of the friction reactions) [N·m] and hub load vector [N]
 double belt_torque(const Model& m, double t, const double* q, const double* v, int j, Vec2* hub_load);
 

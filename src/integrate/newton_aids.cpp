@@ -1,0 +1,118 @@
+// Newton aids for the friction band and the contact branches (declared in newton_aids.hpp).
+// Slip velocity v_T, the band Δv and sat() are those of the friction law (model/friction.cpp).
+//
+// Newton across the band (friction_reseat): at a slipping iterate (|v_T| >= Δv) the friction
+// force is locally constant, so a Newton step cannot see the band; when the step would carry
+// v_T from one side of the band right across to the other, the solution is almost always
+// sticking (|v_T| < Δv). friction_reseat then puts the element back into the band (v_T = 0,
+// moving its velocity along t̂) before the next Newton step, which sees the band's slope and
+// lands on the sticking solution, or leaves the band again if the element truly slips.
+//
+// Local solve (friction_local_solve): an implicit stage solves G(Z) = Z - ψ - F(Z)/s = 0. For
+// one element in contact, move its velocity by w·t̂ (and its position by w·t̂/s, which keeps the
+// position rows G_q = Z_q - ψ_q - Z_v/s at zero and leaves the penetration unchanged to first
+// order) with everything else held. Its tangential residual is then
+//   g(w) = g0 + A·w + B·(sat((u0 + w)/Δv) - sat(u0/Δv)),
+//   A = 1 + (2c + 2k/s)/(m·s)   (the two SDEs' dampers and springs resisting the move),
+//   B = μ_i·N/(m·s)             (friction, saturated outside the band),
+// with u0 the slip velocity and g0 = t̂·G_v at the iterate. g is increasing and piecewise linear
+// in w, so g(w) = 0 is solved exactly by trying the three pieces (slip forwards, slip backwards,
+// stick: w = -(g0 + B·(u0/Δv - sat0))/(A + B/Δv)).
+//
+// Branches (contact_branches): the Jacobian and its factorisation are reused within a step while
+// every pair stays on the same smooth piece of the contact and friction laws; the hash names
+// that piece for every pair (out of contact, clamped, p < p_max, sticking or slipping either way).
+#include "integrate/newton_aids.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "model/contact_law.hpp"
+
+namespace beltsim {
+
+int friction_local_solve(const Model& m, double t, double s, double* q, double* v, const double* g) {
+  const double band = m.friction.dv;
+  const Belt& bl = m.belt;
+  // the element's own linear resistance to a tangential velocity change w inside one stage: its
+  // two SDEs' dampers (2c) and, through the position change w/s, springs (2k), per unit mass
+  const double lam = (2 * bl.c + 2 * bl.k / s) / (bl.mass * s);
+  const double A = 1 + lam;
+  int moved = 0;
+  for (int j = 0; j < m.n_p(); ++j) {
+    const Pulley& pl = m.pulleys[j];
+    const double omega = m.omega(j, t, v);
+    for (int i = 0; i < m.belt.n; ++i) {
+      const Vec2 P(q[3 * i], q[3 * i + 1]), V(v[3 * i], v[3 * i + 1]);
+      NormalLaw nl;
+      if (!normal_law(m.contact, P, V, pl.centre, pl.radius, nl) || !nl.pushing) continue;
+      const double u0 = V.dot(nl.t) - omega * nl.r;
+      const double x0 = std::clamp(u0 / band, -1.0, 1.0);
+      const double g0 = g[3 * i] * nl.t.x() + g[3 * i + 1] * nl.t.y();
+      const double B = m.mu[i] * nl.N / (s * bl.mass);
+      double w = -(g0 + B * (1 - x0)) / A;  // slipping forwards
+      if (u0 + w < band) {
+        w = -(g0 + B * (-1 - x0)) / A;  // backwards
+        if (u0 + w > -band) w = -(g0 + B * (u0 / band - x0)) / (A + B / band);  // sticking
+      }
+      if (w == 0) continue;
+      v[3 * i] += w * nl.t.x();
+      v[3 * i + 1] += w * nl.t.y();
+      q[3 * i] += w / s * nl.t.x();
+      q[3 * i + 1] += w / s * nl.t.y();
+      ++moved;
+    }
+  }
+  return moved;
+}
+
+int friction_reseat(const Model& m, double t, double* q, double* v, const double* dq, const double* dv) {
+  const double band = m.friction.dv;
+  int moved = 0;
+  for (int j = 0; j < m.n_p(); ++j) {
+    const Pulley& pl = m.pulleys[j];
+    const int pc = m.pulley_coord(j);
+    const double omega0 = m.omega(j, t, v);
+    const double omega1 = pl.kinematic ? omega0 : omega0 + dv[pc];
+    for (int i = 0; i < m.belt.n; ++i) {
+      const Vec2 P0(q[3 * i], q[3 * i + 1]), V0(v[3 * i], v[3 * i + 1]);
+      NormalLaw a;
+      if (!normal_law(m.contact, P0, V0, pl.centre, pl.radius, a) || !a.pushing) continue;
+      const double vt0 = V0.dot(a.t) - omega0 * a.r;
+      if (std::abs(vt0) < band) continue;
+      const Vec2 P1 = P0 + Vec2(dq[3 * i], dq[3 * i + 1]), V1 = V0 + Vec2(dv[3 * i], dv[3 * i + 1]);
+      NormalLaw b;
+      if (!normal_law(m.contact, P1, V1, pl.centre, pl.radius, b)) continue;
+      const double vt1 = V1.dot(b.t) - omega1 * b.r;
+      if (std::abs(vt1) < band || (vt1 > 0) == (vt0 > 0)) continue;
+      v[3 * i] -= vt0 * a.t.x();
+      v[3 * i + 1] -= vt0 * a.t.y();
+      ++moved;
+    }
+  }
+  return moved;
+}
+
+uint64_t contact_branches(const Model& m, double t, const double* q, const double* v) {
+  // FNV-1a over (pulley, element, branch code) of every pair in contact
+  uint64_t h = 1469598103934665603ull;
+  auto mix = [&h](uint64_t x) { h = (h ^ x) * 1099511628211ull; };
+  for (int j = 0; j < m.n_p(); ++j) {
+    const Pulley& pl = m.pulleys[j];
+    const double omega = m.omega(j, t, v);
+    for (int i = 0; i < m.belt.n; ++i) {
+      const Vec2 P(q[3 * i], q[3 * i + 1]), V(v[3 * i], v[3 * i + 1]);
+      NormalLaw nl;
+      if (!normal_law(m.contact, P, V, pl.centre, pl.radius, nl)) continue;
+      uint64_t code = 1 + (nl.pushing ? 2 : 0) + (nl.p < m.contact.p_max ? 4 : 0);
+      if (nl.pushing) {
+        const double x = friction_law(m.mu[i], m.friction.dv, nl, V, omega).vT / m.friction.dv;
+        code += x <= -1 ? 8 : x >= 1 ? 16 : 0;
+      }
+      mix(static_cast<uint64_t>(j) << 40 | static_cast<uint64_t>(i) << 8 | code);
+    }
+  }
+  return h;
+}
+
+}  // namespace beltsim

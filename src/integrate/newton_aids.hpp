@@ -1,0 +1,28 @@
+// Newton aids for the belt's implicit stages. They serve the integrator (BeltSystem::reseat,
+// local_solve and branches, see system.hpp), not the model: the right-hand side is piecewise
+// smooth (contact onset, p = p_max, N = 0 and the friction band |v_T| < Δv), and a Newton step
+// taken at a slipping element sees a constant friction force, jumps right across the band and
+// cycles. The aids read the contact and friction laws (model/contact_law.hpp) but add no force;
+// their derivations are at the top of newton_aids.cpp.
+#pragma once
+
+#include <cstdint>
+
+#include "model/model.hpp"
+
+namespace beltsim {
+
+// a hash of the branch every element–pulley pair is on (out of contact, clamped, p < p_max,
+// sticking or slipping either way): two states with the same hash have the same smooth piece of
+// the contact and friction laws, so a Jacobian taken at one serves Newton at the other
+uint64_t contact_branches(const Model& m, double t, const double* q, const double* v);
+// Newton aid for the friction band (see newton_aids.cpp): for every element in contact that slips
+// at (q, v) and would slip the other way at (q + dq, v + dv), set its slip velocity to zero.
+// Returns the number of elements moved.
+int friction_reseat(const Model& m, double t, double* q, double* v, const double* dq, const double* dv);
+// Newton aid (see newton_aids.cpp): g is the stage residual's velocity part (m/s) at (q, v); each
+// element in contact gets the tangential velocity change that zeroes its own tangential residual
+// with everything else held (an exact piecewise-linear solve). Returns the number moved.
+int friction_local_solve(const Model& m, double t, double s, double* q, double* v, const double* g);
+
+}  // namespace beltsim
