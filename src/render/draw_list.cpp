@@ -150,21 +150,25 @@ void default_range(const Scene& sc, FrameQuantity q, double& lo, double& hi) {
   }
 }
 
+namespace {
+// the frame's quantity of one element (NaN where undefined: contact quantities off the pulleys)
+double quantity_of(const ElementObs& o, FrameQuantity q) {
+  switch (q) {
+    case FrameQuantity::tension: return o.tension;
+    case FrameQuantity::mu: return o.mu;
+    case FrameQuantity::normal: return o.state == ContactState::free ? kNaN : o.normal;
+    case FrameQuantity::friction: return o.friction;
+    case FrameQuantity::slip: return o.slip;
+  }
+  return kNaN;
+}
+}  // namespace
+
 std::vector<double> element_values(const Scene& sc, FrameQuantity q, double t, const double* y, const Model* model) {
   const Model& m = model ? *model : sc.model;
   const std::vector<int> sense = sc.senses();
   std::vector<double> out(m.n_el(), kNaN);
-  for (int i = 0; i < m.n_el(); ++i) {
-    const ElementObs o = observe_element(m, sense, t, y, i);
-    switch (q) {
-      case FrameQuantity::tension: out[i] = o.tension; break;
-      case FrameQuantity::mu: out[i] = o.mu; break;
-      // off the pulleys: no contact quantity
-      case FrameQuantity::normal: out[i] = o.state == ContactState::free ? kNaN : o.normal; break;
-      case FrameQuantity::friction: out[i] = o.friction; break;
-      case FrameQuantity::slip: out[i] = o.slip; break;
-    }
-  }
+  for (int i = 0; i < m.n_el(); ++i) out[i] = quantity_of(observe_element(m, sense, t, y, i), q);
   return out;
 }
 
@@ -281,7 +285,8 @@ void FrameBuilder::build(double t, const double* y, DrawList& out, const Model* 
   }
 
   // belt elements
-  const std::vector<double> values = element_values(sc_, fs_.quantity, t, y, &m);
+  std::vector<ElementObs> obs(m.n_el());
+  for (int i = 0; i < m.n_el(); ++i) obs[i] = observe_element(m, sense_, t, y, i);
   // dry: the largest μ the belt had at the start or has now (events may wet or dry it)
   double mu_dry = mu_dry_;
   for (double mu : m.mu) mu_dry = std::max(mu_dry, mu);
@@ -309,11 +314,11 @@ void FrameBuilder::build(double t, const double* y, DrawList& out, const Model* 
     const Vec2 d = (B - A).normalized();
     const double len = (B - A).norm();
     ElementDraw el;
-    el.value = values[i];
-    el.band = scale_.band(values[i]);
-    el.colour = scale_.colour(values[i]);
+    el.value = quantity_of(obs[i], fs_.quantity);
+    el.band = scale_.band(el.value);
+    el.colour = scale_.colour(el.value);
     el.wet = m.mu[i] < mu_dry;
-    el.slipping = observe_element(m, sense_, t, y, i).state == ContactState::slip;
+    el.slipping = obs[i].state == ContactState::slip;
     el.centre = P(Cd[i]);
     el.corners[0] = P(A - h * oa), el.corners[1] = P(B - h * ob), el.corners[2] = P(B + h * ob), el.corners[3] = P(A + h * oa);
     // dark edge, then the colour inset by a pixel so the elements read one by one

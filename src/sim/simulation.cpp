@@ -208,7 +208,6 @@ std::vector<double> Simulation::sample_row() const {
   const double t = now();
   const Eigen::VectorXd& y = state();
   const double* q = y.data();
-  const double* v = q + m.n_coord();
   std::vector<double> row;
   row.push_back(t);
   for (int j = 0; j < m.n_p(); ++j) {
@@ -223,7 +222,6 @@ std::vector<double> Simulation::sample_row() const {
     row.insert(row.end(), {beltsim::energy(m, t, q).total() - E0_, en[kWorkTorques], en[kDissSdeAxial],
                            en[kDissSdeBending], en[kDissContact], en[kDissFriction]});
   }
-  (void)v;
   return row;
 }
 
