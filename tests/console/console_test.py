@@ -1,0 +1,428 @@
+#!/usr/bin/env python3
+"""Tests of `beltsim console` (src/script/console.cpp): the interactive Lua prompt driven through a
+pseudo-terminal (readline: prompts, multi-line chunks, completion, history, Ctrl-C, Ctrl-D) and the
+piped mode (no prompt, exit status, session.lua and its replay with `beltsim run`).
+
+Usage: console_test.py PATH/TO/beltsim [unittest options]
+
+Each test works in its own temporary folder (the console's working directory), with BELTSIM_HISTORY
+pointing into it and a small two-pulley scenario (40 elements) that starts a live simulation `sim`
+writing into arg[1] (after `--`) or <tmp>/out. Nothing sleeps blindly: every wait has a deadline and
+a failure shows the terminal transcript.
+"""
+
+import fcntl
+import os
+import pty
+import re
+import select
+import shutil
+import signal
+import struct
+import subprocess
+import sys
+import tempfile
+import termios
+import time
+import unittest
+
+BELTSIM = None  # set from argv in main
+
+SCENARIO = """\
+-- the paper's two-pulley drive (scripts/paper_dry.lua), coarse, started live
+local drive = beltsim.scene {
+  pulleys = {
+    { name = "driver", centre = {0.0, 0.0}, radius = 0.1, inertia = 0.025,
+      torque = beltsim.ramp(0.3, -70.0) },
+    { name = "driven", centre = {0.29, 0.0}, radius = 0.1, inertia = 0.025,
+      torque = { per_speed = -70.0 / beltsim.rpm(700) } },
+  },
+  belt = {
+    elements = 40, pretension = 500, direction = "cw",
+    EA = 1.52e5, EI = 0.026, axial_damping = 20.5, bending_damping = 0.05,
+    mass_per_length = 0.096, mu = 1.0,
+  },
+  contact = { c1 = 3.0256e9, c2 = 6.5e5, damping = 300, p_max = 1e-3 },
+  friction = { dv = 1e-5 },
+  gravity = 9.81,
+}
+sim = drive:start{ out = arg and arg[1] or "%(out)s" }
+"""
+
+# terminal control sequences readline writes (CSI, OSC, keypad/charset selection)
+ANSI = re.compile(r"\x1b\[[0-9;?]*[ -/]*[@-~]|\x1b\][^\x07\x1b]*(?:\x07|\x1b\\)|\x1b[()][0-9A-Za-z]|\x1b[=>78]")
+PROMPT = re.compile(r"(?:^|\n)> $")
+CONTINUATION = re.compile(r"(?:^|\n)>> $")
+
+STARTUP_TIMEOUT = 20.0
+TIMEOUT = 10.0
+
+
+def clean(raw):
+    """What the screen shows, roughly: escape sequences dropped, CR LF and lone CR as line ends."""
+    text = ANSI.sub("", raw)
+    text = text.replace("\r\n", "\n").replace("\r", "\n")
+    return text.replace("\x07", "")
+
+
+def child_env(tmp):
+    env = dict(os.environ)
+    env.update(TERM="xterm", BELTSIM_HISTORY=os.path.join(tmp, "history"), BELTSIM_TERM_IMAGES="off",
+               INPUTRC="/dev/null", GALLIUM_DRIVER=env.get("GALLIUM_DRIVER", "llvmpipe"))
+    env.pop("COLUMNS", None)
+    env.pop("LINES", None)
+    return env
+
+
+class Console:
+    """beltsim console on a pseudo-terminal (the pty is its controlling terminal, so ^C is SIGINT)."""
+
+    def __init__(self, test, tmp, args=()):
+        self.test = test
+        self.raw = ""
+        self.status = None
+        argv = [BELTSIM, "console", "scenario.lua"] + (["--"] + list(args) if args else [])
+        env = child_env(tmp)
+        pid, fd = pty.fork()
+        if pid == 0:  # the child: the pty's slave is its stdin, stdout, stderr and controlling terminal
+            try:
+                os.chdir(tmp)
+                fcntl.ioctl(0, termios.TIOCSWINSZ, struct.pack("HHHH", 50, 250, 0, 0))
+                os.execve(BELTSIM, argv, env)
+            except BaseException as e:  # noqa: BLE001 (the child must never return into unittest)
+                os.write(2, ("cannot start %s: %s\n" % (BELTSIM, e)).encode())
+            finally:
+                os._exit(127)
+        self.pid, self.fd = pid, fd
+        self.wait_for(PROMPT, STARTUP_TIMEOUT, "the first prompt")
+
+    # ---- reading
+
+    def pump(self, timeout):
+        """Reads what comes within timeout seconds; False once the terminal is closed."""
+        r, _, _ = select.select([self.fd], [], [], max(timeout, 0))
+        if not r:
+            return True
+        try:
+            data = os.read(self.fd, 65536)
+        except OSError:  # EIO: the child has gone and closed the slave
+            data = b""
+        if not data:
+            return False
+        self.raw += data.decode("utf-8", "replace")
+        return True
+
+    @property
+    def screen(self):
+        return clean(self.raw)
+
+    def transcript(self):
+        s = self.screen
+        return ("\n---- transcript (cleaned, last 4000 characters) ----\n" + s[-4000:] +
+                "\n---- raw tail ----\n" + repr(self.raw[-1500:]))
+
+    def wait_for(self, pattern, timeout=TIMEOUT, what=None, start=0):
+        """Waits until pattern (a regex or a string) is on the screen after position start."""
+        deadline = time.monotonic() + timeout
+        rx = re.compile(re.escape(pattern)) if isinstance(pattern, str) else pattern
+        while True:
+            m = rx.search(self.screen, start)
+            if m:
+                return m
+            left = deadline - time.monotonic()
+            if left <= 0:
+                self.test.fail("no %s within %.0f s%s" % (what or repr(pattern), timeout, self.transcript()))
+            if not self.pump(left):
+                m = rx.search(self.screen, start)
+                if m:
+                    return m
+                self.test.fail("the console ended before %s%s" % (what or repr(pattern), self.transcript()))
+
+    def wait_prompt(self, start, timeout=TIMEOUT, continuation=False):
+        """Waits for a prompt written after position start (the last thing on the screen)."""
+        self.wait_for(CONTINUATION if continuation else PROMPT, timeout,
+                      "continuation prompt '>> '" if continuation else "prompt '> '", start)
+
+    def wait_reading(self, timeout=TIMEOUT):
+        """Waits until the console sits in read() on its terminal (readline waiting for a key), as it
+        is when a person presses a key: /proc/PID/syscall then reads "0 0x0 ..." (read, fd 0). Where
+        /proc cannot tell, waits a moment instead."""
+        deadline = time.monotonic() + timeout
+        while time.monotonic() < deadline:
+            try:
+                with open("/proc/%d/syscall" % self.pid) as f:
+                    words = f.read().split()
+            except OSError:
+                time.sleep(0.3)
+                return
+            if words[:2] == ["0", "0x0"]:
+                return
+            self.pump(0.005)
+        self.test.fail("the console never waited for a key" + self.transcript())
+
+    # ---- writing
+
+    def send(self, data):
+        os.write(self.fd, data.encode())
+
+    def command(self, line, continuation=False, timeout=TIMEOUT):
+        """Types line and Enter, waits for the next prompt; returns what the screen shows in between
+        (the echo of the line included)."""
+        mark = len(self.screen)
+        self.send(line + "\r")
+        self.wait_prompt(mark, timeout, continuation)
+        return self.screen[mark:]
+
+    # ---- ending
+
+    def eof(self, timeout=TIMEOUT):
+        """Ctrl-D; returns the exit status once the console has gone."""
+        self.send("\x04")
+        deadline = time.monotonic() + timeout
+        while self.pump(deadline - time.monotonic()):
+            if time.monotonic() > deadline:
+                self.test.fail("the console did not end after Ctrl-D" + self.transcript())
+        self.status = self._reap(deadline)
+        return self.status
+
+    def _reap(self, deadline):
+        while True:
+            pid, status = os.waitpid(self.pid, os.WNOHANG)
+            if pid:
+                os.close(self.fd)
+                self.pid = None
+                return os.waitstatus_to_exitcode(status)
+            if time.monotonic() > deadline:
+                self.test.fail("the console did not exit" + self.transcript())
+            time.sleep(0.02)
+
+    def kill(self):
+        if self.pid:
+            try:
+                os.kill(self.pid, signal.SIGKILL)
+                os.waitpid(self.pid, 0)
+            except OSError:
+                pass
+            try:
+                os.close(self.fd)
+            except OSError:
+                pass
+            self.pid = None
+
+
+class ConsoleTest(unittest.TestCase):
+    def setUp(self):
+        self.tmp = tempfile.mkdtemp(prefix="beltsim_console_")
+        self.addCleanup(shutil.rmtree, self.tmp, True)
+        with open(os.path.join(self.tmp, "scenario.lua"), "w") as f:
+            f.write(SCENARIO % {"out": os.path.join(self.tmp, "out").replace("\\", "/")})
+        self.consoles = []
+
+    def tearDown(self):
+        for c in self.consoles:
+            c.kill()
+
+    def console(self, args=()):
+        c = Console(self, self.tmp, args)
+        self.consoles.append(c)
+        return c
+
+    def piped(self, commands, args=(), timeout=60):
+        argv = [BELTSIM, "console", "scenario.lua"] + (["--"] + list(args) if args else [])
+        return subprocess.run(argv, input="".join(c + "\n" for c in commands).encode(), cwd=self.tmp,
+                              env=child_env(self.tmp), stdout=subprocess.PIPE, stderr=subprocess.PIPE,
+                              timeout=timeout)
+
+    # 1
+    def test_banner_and_expressions(self):
+        c = self.console()
+        banner = c.screen
+        self.assertIn("help()", banner, c.transcript())
+        self.assertIn("Ctrl-D", banner, c.transcript())
+        out = c.command("6*7")
+        self.assertRegex(out, r"\n42\n", c.transcript())
+        out = c.command("return 6*7")
+        self.assertRegex(out, r"\n42\n", c.transcript())
+
+    # 2
+    def test_multi_line_chunk(self):
+        c = self.console()
+        c.command("for i = 1, 3 do", continuation=True)
+        c.command("print(i*10)", continuation=True)
+        out = c.command("end")
+        self.assertRegex(out, r"\n10\n20\n30\n", c.transcript())
+
+    # 3
+    def test_error_then_good_command(self):
+        c = self.console()
+        out = c.command("nosuch()")
+        self.assertIn("stdin:1:", out, c.transcript())
+        self.assertIn("attempt to call a nil value", out, c.transcript())
+        out = c.command("1+1")
+        self.assertRegex(out, r"\n2\n", c.transcript())
+
+    # 4
+    def test_completion_of_a_method(self):
+        c = self.console()
+        mark = len(c.screen)
+        c.send("sim:adv")
+        c.wait_for("sim:adv", start=mark)
+        c.send("\t")
+        c.wait_for("sim:advance(", what="the completion of sim:adv to sim:advance(", start=mark)
+        c.send("0.001)\r")
+        c.wait_prompt(mark)
+        out = c.screen[mark:]
+        self.assertIn("sim:advance(0.001)", out, c.transcript())
+        self.assertRegex(out, r"\n\s*t = 0\.001,", c.transcript())
+        self.assertRegex(out, r"interrupted = false", c.transcript())
+
+    # 5
+    # BUG (console.cpp): the history file is never created. The console saves each line with
+    # readline's append_history(1, path), which opens the file O_WRONLY|O_APPEND without O_CREAT, so
+    # when BELTSIM_HISTORY (or ~/.beltsim_history) does not exist yet nothing is ever written and no
+    # later session can recall anything. (With the file created beforehand this test passes.)
+    @unittest.expectedFailure
+    def test_history_recalled_by_a_new_console(self):
+        hist = os.path.join(self.tmp, "history")
+        c = self.console()
+        c.command("x = 5")
+        self.assertEqual(c.eof(), 0, c.transcript())
+        self.assertTrue(os.path.exists(hist), "no history file %s after the session%s" % (hist, c.transcript()))
+        with open(hist) as f:
+            self.assertIn("x = 5", f.read().splitlines())
+        c = self.console()
+        mark = len(c.screen)
+        c.send("\x1b[A")
+        c.wait_for("x = 5", what="the recalled line 'x = 5'", start=mark)
+        c.send("\r")
+        c.wait_prompt(mark)
+        out = c.command("x")
+        self.assertRegex(out, r"\n5\n", c.transcript())
+
+    # 6
+    def test_ctrl_c_clears_the_line(self):
+        c = self.console()
+        mark = len(c.screen)
+        c.send("nosuch_var_xyz")
+        c.wait_for("nosuch_var_xyz", start=mark)
+        # ^C once readline waits for the next key, as after a person's keystroke. (BUG, console.cpp: a
+        # ^C arriving while readline is busy between two reads, e.g. echoing the keys, is lost:
+        # on_sigint sets g_sigint but console_getc looks at it only when read() fails with EINTR, so
+        # the next read() blocks, the line is kept and "1+2" then runs as "nosuch_var_xyz1+2". Sending
+        # ^C right after the echo showed it in 2 of 12 runs.)
+        c.wait_reading()
+        mark = len(c.screen)
+        c.send("\x03")
+        c.wait_prompt(mark)
+        out = c.command("1+2")
+        after = c.screen[mark:]
+        self.assertRegex(out, r"\n3\n", c.transcript())
+        self.assertNotIn("nosuch_var_xyz", after, c.transcript())
+        self.assertNotIn("attempt to", after, c.transcript())
+        self.assertNotIn("nil", after, c.transcript())
+
+    # 7
+    def test_ctrl_c_stops_a_run(self):
+        c = self.console()
+        mark = len(c.screen)
+        c.send("sim:advance(10)\r")
+        deadline = time.monotonic() + 1.5
+        while time.monotonic() < deadline:
+            if not c.pump(deadline - time.monotonic()):
+                self.fail("the console ended during the run" + c.transcript())
+        self.assertIsNone(PROMPT.search(c.screen, mark), "the 10 s run ended within 1.5 s" + c.transcript())
+        c.send("\x03")
+        c.wait_prompt(mark, timeout=5)
+        out = c.screen[mark:]
+        self.assertRegex(out, r"interrupted = true", c.transcript())
+        out = c.command("sim.t")
+        m = re.search(r"\n([0-9.eE+-]+)\n", out)
+        self.assertTrue(m, "sim.t printed no number" + c.transcript())
+        t = float(m.group(1))
+        self.assertGreater(t, 0)
+        self.assertLess(t, 10)
+        with open(os.path.join(self.tmp, "out", "timeseries.csv")) as f:
+            text = f.read()
+        lines = text.split("\n")
+        self.assertEqual(lines[-1], "", "timeseries.csv does not end with a line end: %r" % text[-300:])
+        header, last = lines[0], lines[-2]
+        self.assertGreater(len(lines), 3, text[-300:])
+        self.assertEqual(last.count(","), header.count(","), "incomplete last row %r" % last)
+        self.assertLessEqual(float(last.split(",")[0]), t + 1e-12)
+
+    # 8
+    def test_ctrl_d_writes_session_lua(self):
+        c = self.console()
+        c.command("y = 2")
+        c.command("nosuch()")
+        c.command("sim:advance(0.001)")
+        self.assertEqual(c.eof(), 0, c.transcript())
+        m = re.search(r"the session's commands are in (\S+)", c.screen)
+        self.assertTrue(m, "where session.lua went is not said" + c.transcript())
+        path = os.path.join(self.tmp, m.group(1))
+        self.assertTrue(path.endswith("session.lua"), path)
+        self.assertTrue(os.path.isfile(path), path)
+        with open(path) as f:
+            lines = f.read().splitlines()
+        self.assertIn("y = 2", lines)
+        self.assertIn("sim:advance(0.001)", lines)
+        self.assertLess(lines.index("y = 2"), lines.index("sim:advance(0.001)"))
+        self.assertNotIn("nosuch()", lines)  # only the commands that ran without error
+
+    # 9
+    def test_pipe_mode(self):
+        r = self.piped(["sim:advance(0.002)", "print(sim.t)"])
+        out, err = r.stdout.decode(), r.stderr.decode()
+        self.assertEqual(r.returncode, 0, out + err)
+        self.assertNotIn("> ", out)
+        self.assertNotIn("\x1b", out)
+        self.assertRegex(out, r"t = 0\.002,")
+        self.assertIn("\n0.002\n", out)
+        r = self.piped(['error("boom")', 'print("after " .. "boom")'])
+        out, err = r.stdout.decode(), r.stderr.decode()
+        self.assertIn("boom", err)
+        self.assertIn("after boom\n", out, err)
+        self.assertEqual(r.returncode, 1, out + err)
+
+    # 10
+    def test_session_replays(self):
+        out_console = os.path.join(self.tmp, "out_console")
+        r = self.piped(["sim:advance(0.003)", "sim:wet{from=0.1, to=0.3, mu=0.2}", "sim:advance(0.003)"],
+                       args=[out_console])
+        out, err = r.stdout.decode(), r.stderr.decode()
+        self.assertEqual(r.returncode, 0, out + err)
+        m = re.search(r"the session's commands are in (\S+)", err)
+        self.assertTrue(m, "where session.lua went is not said: " + err)
+        session = os.path.join(self.tmp, m.group(1))
+        self.assertTrue(os.path.isfile(session), session)
+        with open(os.path.join(out_console, "timeseries.csv"), "rb") as f:
+            series = f.read()
+        with open(os.path.join(out_console, "events.csv")) as f:
+            events = f.read()
+        self.assertIn("\n0.003,wet,", events)
+        # session.lua sets arg (out_console) itself: the replay writes the same folder, so keep the
+        # console's outputs and remove them before replaying
+        shutil.move(out_console, out_console + "_kept")
+        r = subprocess.run([BELTSIM, "run", session], cwd=self.tmp, env=child_env(self.tmp),
+                           stdout=subprocess.PIPE, stderr=subprocess.PIPE, timeout=60)
+        with open(session) as f:
+            text = f.read()
+        self.assertEqual(r.returncode, 0, (r.stdout + r.stderr).decode() + "\nsession.lua:\n" + text)
+        with open(os.path.join(out_console, "timeseries.csv"), "rb") as f:
+            replayed = f.read()
+        self.assertGreater(series.count(b"\n"), 3)
+        self.assertEqual(replayed, series, "the replay's timeseries.csv differs; session.lua:\n" + text)
+        with open(os.path.join(out_console, "events.csv")) as f:
+            self.assertIn("\n0.003,wet,", f.read())
+
+
+def main():
+    global BELTSIM
+    if len(sys.argv) < 2:
+        sys.exit("usage: console_test.py PATH/TO/beltsim [unittest options]")
+    BELTSIM = os.path.abspath(sys.argv.pop(1))
+    unittest.main(verbosity=2)
+
+
+if __name__ == "__main__":
+    main()
