@@ -1,5 +1,6 @@
 #include "script/console.hpp"
 
+#include <poll.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -50,20 +51,34 @@ void on_sigint(int) {
   if (g_L) lua_sethook(g_L, lstop, LUA_MASKCALL | LUA_MASKRET | LUA_MASKCOUNT, 1);
 }
 
-// readline's input: Ctrl-C at the prompt ends the line, emptied
+// readline's input: Ctrl-C at the prompt ends the line, emptied. SIGINT is blocked except while
+// waiting in ppoll, so a Ctrl-C that comes while readline is busy (echoing, redrawing) is seen at
+// the next wait instead of being lost.
 int console_getc(FILE* f) {
+  sigset_t block, orig;
+  sigemptyset(&block);
+  sigaddset(&block, SIGINT);
   for (;;) {
-    unsigned char c;
-    const ssize_t n = read(fileno(f), &c, 1);
-    if (n == 1) return c;
-    if (n == 0) return EOF;
-    if (errno != EINTR) return EOF;
+    sigprocmask(SIG_BLOCK, &block, &orig);
     if (g_sigint) {
+      sigprocmask(SIG_SETMASK, &orig, nullptr);
       g_sigint = 0;
       g_cancelled = true;
       rl_replace_line("", 0);
       return '\n';
     }
+    pollfd p{fileno(f), POLLIN, 0};
+    const int r = ppoll(&p, 1, nullptr, &orig);  // SIGINT may arrive only while waiting here
+    sigprocmask(SIG_SETMASK, &orig, nullptr);
+    if (r < 0) {
+      if (errno == EINTR) continue;
+      return EOF;
+    }
+    unsigned char c;
+    const ssize_t n = read(fileno(f), &c, 1);
+    if (n == 1) return c;
+    if (n == 0) return EOF;
+    if (errno != EINTR) return EOF;
   }
 }
 
@@ -490,6 +505,8 @@ int run_console(const std::optional<std::string>& script, const std::vector<std:
     rl_attempted_completion_function = complete;
     rl_basic_word_break_characters = const_cast<char*>(" \t\n\"\\'><=;+-*/%^~#{}()[],");
     using_history();
+    // append_history does not create the file: make it on first use
+    if (std::FILE* f = std::fopen(hist.c_str(), "a")) std::fclose(f);
     read_history(hist.c_str());
   }
 
