@@ -127,7 +127,7 @@ class CvodeIntegrator final : public Integrator {
     const int n = sys_.size();
     if (const std::string bad = sys_.check(t, y.data()); !bad.empty())
       throw DivergenceError(t, "the state at t = " + fmt_time(t) + " s: " + bad);
-    y_ = y;
+    y_ = y_prev_ = y;
     t_ = t_prev_ = t;
     std::copy(y.data(), y.data() + n, N_VGetArrayPointer(cv_.y));
     tstop_ = std::nan("");
@@ -181,6 +181,8 @@ class CvodeIntegrator final : public Integrator {
     if (const std::string bad = sys_.check(t_ret, yr); !bad.empty())
       throw DivergenceError(t_ret, "the run diverged at t = " + fmt_time(t_ret) + " s: " + bad);
     t_prev_ = t_, t_ = t_ret;
+    y_prev_.swap(y_);
+    y_.resize(sys_.size());
     std::copy(yr, yr + sys_.size(), y_.data());
     sys_.counters = work();  // the system's counters tell the same as for the one-step methods
   }

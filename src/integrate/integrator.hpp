@@ -10,6 +10,7 @@
 //   kink()        the solution passed a known kink at t() with no change of the system: a
 //                 multistep method restarts its history, a one-step method needs nothing
 //   dense(t, out) the solution at t_prev() <= t <= t()
+//   y_prev(), y() the solution at the ends of the last step, where the stage equations hold
 #pragma once
 
 #include <istream>
@@ -48,10 +49,11 @@ class Integrator {
   double t() const { return t_; }
   double t_prev() const { return t_prev_; }
   const Eigen::VectorXd& y() const { return y_; }
+  const Eigen::VectorXd& y_prev() const { return y_prev_; }  // the state at t_prev()
 
  protected:
   double t_ = 0, t_prev_ = 0;
-  Eigen::VectorXd y_;
+  Eigen::VectorXd y_, y_prev_;
 };
 
 // Every integrator a run accepts (integrate/stepper.hpp integrator_names()). The system must

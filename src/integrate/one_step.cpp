@@ -166,7 +166,7 @@ class OneStep final : public Integrator {
   double h_ = 0, h_used_ = 0;
   double cap_ = std::numeric_limits<double>::infinity();
   bool started_ = false;
-  Eigen::VectorXd f_, y1_, f1_, err_, y_prev_, f_prev_;
+  Eigen::VectorXd f_, y1_, f1_, err_, f_prev_;
 };
 
 }  // namespace

@@ -53,4 +53,36 @@ PulleyObs observe_pulley(const Model& m, double t, const double* y, int j) {
   return o;
 }
 
+void observe(const Model& m, const std::vector<int>& sense, double t, const double* y, Observation& out) {
+  out.t = t;
+  out.elements.resize(m.n_el());
+  out.pulleys.resize(m.n_p());
+  for (int i = 0; i < m.n_el(); ++i) out.elements[i] = observe_element(m, sense, t, y, i);
+  for (int j = 0; j < m.n_p(); ++j) out.pulleys[j] = observe_pulley(m, t, y, j);
+}
+
+void blend_contact(const Model& m, double theta, const Observation& a, const Observation& b, Observation& at) {
+  auto mix = [theta](double u, double v) { return (1 - theta) * u + theta * v; };
+  for (size_t i = 0; i < at.elements.size(); ++i) {
+    const ElementObs &ea = a.elements[i], &eb = b.elements[i];
+    ElementObs& e = at.elements[i];
+    // contact made or lost inside the step: what the interpolated state gives
+    if (ea.pulley != eb.pulley || ea.state == ContactState::free || eb.state == ContactState::free) continue;
+    e.pulley = ea.pulley;
+    e.normal = mix(ea.normal, eb.normal);
+    e.friction = mix(ea.friction, eb.friction);
+    e.slip = mix(ea.slip, eb.slip);
+    e.state = std::abs(e.slip) > m.friction.dv ? ContactState::slip : ContactState::stick;
+  }
+  for (size_t j = 0; j < at.pulleys.size(); ++j) {
+    const PulleyObs &pa = a.pulleys[j], &pb = b.pulleys[j];
+    PulleyObs& p = at.pulleys[j];
+    p.belt_torque = mix(pa.belt_torque, pb.belt_torque);
+    p.hub = (1 - theta) * pa.hub + theta * pb.hub;
+    p.hub_load = p.hub.norm();
+    const Pulley& pl = m.pulleys[j];
+    if (pl.kinematic) p.torque = pl.inertia * pl.speed.table_slope(at.t) - p.belt_torque;
+  }
+}
+
 }  // namespace beltsim

@@ -244,7 +244,7 @@ Vec2 FrameBuilder::displayed(const Vec2& p, Vec2* tangent) const {
   return nominal + fs_.magnify * (p - nominal);
 }
 
-void FrameBuilder::build(double t, const double* y, DrawList& out, const Model* model) const {
+void FrameBuilder::build(double t, const double* y, DrawList& out, const Model* model, const Observation* given) const {
   const Model& m = model ? *model : sc_.model;
   const int n = m.n_el();
   const double* q = y;
@@ -285,8 +285,12 @@ void FrameBuilder::build(double t, const double* y, DrawList& out, const Model* 
   }
 
   // belt elements
-  std::vector<ElementObs> obs(m.n_el());
-  for (int i = 0; i < m.n_el(); ++i) obs[i] = observe_element(m, sense_, t, y, i);
+  std::vector<ElementObs> own;
+  if (!given) {
+    own.resize(m.n_el());
+    for (int i = 0; i < m.n_el(); ++i) own[i] = observe_element(m, sense_, t, y, i);
+  }
+  const std::vector<ElementObs>& obs = given ? given->elements : own;
   // dry: the largest μ the belt had at the start or has now (events may wet or dry it)
   double mu_dry = mu_dry_;
   for (double mu : m.mu) mu_dry = std::max(mu_dry, mu);

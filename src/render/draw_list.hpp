@@ -107,7 +107,9 @@ class FrameBuilder {
   FrameBuilder(const Scene& scene, const FrameSettings& settings, Font* font);
   // the draw list of the state y at time t (replaces the contents of `out`); model: the model as
   // it is now (run events may change μ while running), null for the scene's own
-  void build(double t, const double* y, DrawList& out, const Model* model = nullptr) const;
+  // obs: what is observed at t (contact forces from the integrator's step ends), null to observe y
+  void build(double t, const double* y, DrawList& out, const Model* model = nullptr,
+             const Observation* obs = nullptr) const;
   const Camera& camera() const { return cam_; }
   const ColourScale& scale() const { return scale_; }
   // world position at which an element centre p is drawn (nominal point + magnify·deviation);

@@ -27,8 +27,8 @@ class FrameRecorder final : public FrameSink {
       video_ = std::make_unique<VideoWriter>(fs.video_path, vo);
     }
   }
-  void frame(double t, const double* y, const Model& model) override {
-    builder_.build(t, y, list_, &model);
+  void frame(double t, const double* y, const Model& model, const Observation* obs) override {
+    builder_.build(t, y, list_, &model, obs);
     ctx_->make_current();  // another context (a snapshot's) may have been current since
     gl_.render(list_, image_);
     const long number = fs_.first_number + n_;
@@ -64,14 +64,14 @@ std::unique_ptr<FrameSink> make_frame_recorder(const Scene& sc, const FrameSetti
 }
 
 void render_snapshot(const Scene& sc, const FrameSettings& fs, double t, const double* y, const Model& model,
-                     const std::string& png) {
+                     const std::string& png, const Observation* obs) {
   Font font;
   FrameBuilder builder(sc, fs, &font);
   auto ctx = make_gl_context(default_gl_backend());
   GlRenderer gl(*ctx, fs.width, fs.height);
   DrawList list;
   Image image;
-  builder.build(t, y, list, &model);
+  builder.build(t, y, list, &model, obs);
   gl.render(list, image);
   if (auto dir = std::filesystem::path(png).parent_path(); !dir.empty()) std::filesystem::create_directories(dir);
   write_png(png, image);

@@ -21,6 +21,6 @@ std::unique_ptr<FrameSink> make_frame_recorder(const Scene& scene, const FrameSe
 // One frame of the state y at time t (model: as it is now) written to a PNG file, with a GL
 // context of its own (Lua sim:show). Throws std::runtime_error.
 void render_snapshot(const Scene& scene, const FrameSettings& settings, double t, const double* y,
-                     const Model& model, const std::string& png);
+                     const Model& model, const std::string& png, const Observation* obs = nullptr);
 
 }  // namespace beltsim::render

@@ -375,7 +375,8 @@ int l_show(lua_State* L) {
   }
   if (file.empty()) file = "show_" + time_tag(s.now()) + ".png";
   if (std::filesystem::path(file).is_relative()) file = (std::filesystem::path(s.out_dir()) / file).string();
-  guarded(L, "sim:show", [&] { render::render_snapshot(s.scene(), fs, s.now(), s.state().data(), s.model(), file); });
+  guarded(L, "sim:show", [&] { render::render_snapshot(s.scene(), fs, s.now(), s.state().data(), s.model(), file, &s.observation());
+  });
   box.shows++;
   picture(L, box, file);
   lua_pushstring(L, file.c_str());

@@ -229,7 +229,7 @@ std::unique_ptr<Simulation> Simulation::resume(const std::string& path, const Fr
   s->tl_->add_stream(0.0, s->rs_.sample_dt, [p = s.get()](double t, const Eigen::VectorXd& y) { p->sample(t, y); });
   if (s->sink_)
     s->tl_->add_stream(s->rs_.frames->t_start, s->rs_.frames->frame_dt(),
-                       [p = s.get()](double t, const Eigen::VectorXd& y) { p->sink_->frame(t, y.data(), p->model_); });
+                       [p = s.get()](double t, const Eigen::VectorXd& y) { p->frame(t, y); });
   s->tl_->set_positions(k);
   s->tl_->resume_at(now);
   s->set_landings();

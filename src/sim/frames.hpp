@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "model/model.hpp"
+#include "model/observables.hpp"
 
 namespace beltsim {
 
@@ -57,7 +58,8 @@ struct FrameSettings {
 class FrameSink {
  public:
   virtual ~FrameSink() = default;
-  virtual void frame(double t, const double* y, const Model& model) = 0;
+  // obs: what is observed at t (sim/simulation.hpp Simulation::observation), or null to observe y
+  virtual void frame(double t, const double* y, const Model& model, const Observation* obs = nullptr) = 0;
   virtual void finish() = 0;
   virtual long frames_written() const = 0;
 };

@@ -147,7 +147,7 @@ Simulation::Simulation(const Scene& sc, const RunSettings& rs, bool fresh) : sce
   tl_->add_stream(0.0, rs_.sample_dt, [this](double t, const Eigen::VectorXd& y) { sample(t, y); });
   if (sink_)
     tl_->add_stream(rs_.frames->t_start, rs_.frames->frame_dt(),
-                    [this](double t, const Eigen::VectorXd& y) { sink_->frame(t, y.data(), model_); });
+                    [this](double t, const Eigen::VectorXd& y) { frame(t, y); });
   set_landings();
   try {
     tl_->start(0.0, scene_.y0);
@@ -203,19 +203,42 @@ void Simulation::set_landings() {
 
 std::vector<std::string> Simulation::columns() const { return timeseries_columns(scene_); }
 
+const Observation& Simulation::observe_end(Cached& c, double t, const Eigen::VectorXd& y) const {
+  if (c.t != t || c.serial != serial_) {
+    observe(model_, sense_, t, y.data(), c.obs);
+    c.t = t, c.serial = serial_;
+  }
+  return c.obs;
+}
+
+const Observation& Simulation::observation() const {
+  const double t = now();
+  Cached& c = now_obs_;
+  if (c.t == t && c.serial == serial_ && c.step_end == integ_->t() && !view_y_) return c.obs;
+  observe(model_, sense_, t, state().data(), c.obs);
+  const double a = integ_->t_prev(), b = integ_->t();
+  if (t > a && t < b) {
+    // end_b_ of one step is end_a_ of the next: swap rather than observe again
+    if (end_b_.t == a && end_b_.serial == serial_) std::swap(end_a_, end_b_);
+    const Observation& A = observe_end(end_a_, a, integ_->y_prev());
+    const Observation& B = observe_end(end_b_, b, integ_->y());
+    blend_contact(model_, (t - a) / (b - a), A, B, c.obs);
+  }
+  c.t = view_y_ ? -1 : t, c.serial = serial_, c.step_end = b;  // a when-condition's view is not kept
+  return c.obs;
+}
+
 std::vector<double> Simulation::sample_row() const {
   const Model& m = model_;
   const double t = now();
   const Eigen::VectorXd& y = state();
   const double* q = y.data();
+  const Observation& o = observation();
   std::vector<double> row;
   row.push_back(t);
-  for (int j = 0; j < m.n_p(); ++j) {
-    const PulleyObs p = observe_pulley(m, t, q, j);
-    row.insert(row.end(), {p.omega, p.torque, p.belt_torque, p.hub_load});
-  }
+  for (const PulleyObs& p : o.pulleys) row.insert(row.end(), {p.omega, p.torque, p.belt_torque, p.hub_load});
   for (size_t k = 0; k < scene_.route.spans.size(); ++k) row.push_back(span_tension(static_cast<int>(k)));
-  const ElementObs e = observe_element(m, sense_, t, q, rs_.probe_element);
+  const ElementObs& e = o.elements[rs_.probe_element];
   row.insert(row.end(), {e.sde_force, e.normal, e.friction, e.slip});
   if (m.track_energy) {
     const double* en = q + 2 * m.n_coord();
@@ -223,6 +246,17 @@ std::vector<double> Simulation::sample_row() const {
                            en[kDissSdeBending], en[kDissContact], en[kDissFriction]});
   }
   return row;
+}
+
+void Simulation::frame(double t, const Eigen::VectorXd& y) {
+  view_t_ = t, view_y_ = &y;
+  try {
+    sink_->frame(t, y.data(), model_, &observation());
+  } catch (...) {
+    view_y_ = nullptr;
+    throw;
+  }
+  view_y_ = nullptr;
 }
 
 void Simulation::sample(double t, const Eigen::VectorXd& y) {
@@ -243,8 +277,8 @@ void Simulation::sample(double t, const Eigen::VectorXd& y) {
 double Simulation::now() const { return view_y_ ? view_t_ : tl_->now(); }
 const Eigen::VectorXd& Simulation::state() const { return view_y_ ? *view_y_ : tl_->state(); }
 
-ElementObs Simulation::element(int i) const { return observe_element(model_, sense_, now(), state().data(), i); }
-PulleyObs Simulation::pulley(int j) const { return observe_pulley(model_, now(), state().data(), j); }
+ElementObs Simulation::element(int i) const { return observation().elements.at(i); }
+PulleyObs Simulation::pulley(int j) const { return observation().pulleys.at(j); }
 
 double Simulation::span_tension(int k) const {
   const Route::Span& sp = scene_.route.spans[k];
@@ -320,6 +354,7 @@ void Simulation::log_event(const std::string& what, const std::string& text) {
 }
 
 void Simulation::changed(const Eigen::VectorXd* y) {
+  serial_++;
   set_landings();
   tl_->changed(y);
 }

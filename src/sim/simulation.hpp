@@ -102,6 +102,9 @@ class Simulation {
   const Model& model() const { return model_; }
   const RunSettings& settings() const { return rs_; }
   const std::string& integrator_name() const;
+  // what is observed now (model/observables.hpp; inside a step its contact forces come from the
+  // step's ends): the CSV, the frames and the Lua reads all take it from here
+  const Observation& observation() const;
   ElementObs element(int i) const;
   PulleyObs pulley(int j) const;
   double span_tension(int k) const;        // [N] route span k (Scene::find_span)
@@ -151,6 +154,7 @@ class Simulation {
   void open_outputs(bool append);
   void set_landings();
   void sample(double t, const Eigen::VectorXd& y);
+  void frame(double t, const Eigen::VectorXd& y);
   void write_event(double t, const std::string& what, const std::string& text);
   void changed(const Eigen::VectorXd* y = nullptr);
   void require_open(const char* what) const;
@@ -177,6 +181,17 @@ class Simulation {
   // a when-condition is evaluated at a time other than now(): the state it reads
   double view_t_ = 0;
   const Eigen::VectorXd* view_y_ = nullptr;
+  // observations: of the held step's two ends, and of the state read now (each with the time and
+  // the change count it was taken at)
+  struct Cached {
+    Observation obs;
+    double t = -1;
+    long serial = -1;
+    double step_end = -1;
+  };
+  const Observation& observe_end(Cached& c, double t, const Eigen::VectorXd& y) const;
+  mutable Cached end_a_, end_b_, now_obs_;
+  long serial_ = 0;  // counts the changes of the model or state
 };
 
 // A batch run: start, run_to(t_end), close. Throws as Simulation does.
