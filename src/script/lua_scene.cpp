@@ -381,10 +381,14 @@ std::vector<MuEvent> read_events(lua_State* L, int idx, const Scene& sc) {
     if (!field(L, e, "mu")) fail(L, what + ".mu: the new friction coefficient is missing");
     ev.mu = mu_over(L, lua_gettop(L), sc, from, to, what);
     std::ostringstream text;
-    text << "mu";
-    if (lua_type(L, -1) == LUA_TNUMBER) text << " = " << lua_tonumber(L, -1);
+    text << "scheduled: mu = ";
+    if (lua_type(L, -1) == LUA_TNUMBER)
+      text << lua_tonumber(L, -1);
+    else
+      text << "function";
     if (from) text << " on s in [" << *from << ", " << *to << "] m";
-    ev.what = text.str();
+    ev.what = "event";
+    ev.text = text.str();
     lua_pop(L, 2);  // mu, the event table
     out.push_back(std::move(ev));
   }

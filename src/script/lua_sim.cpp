@@ -245,7 +245,11 @@ int l_wet(lua_State* L) {
   if (!field(L, 2, "mu")) fail(L, "sim:wet: mu (the wet friction coefficient) is required");
   const std::vector<double> mu = mu_over(L, lua_gettop(L), s.scene(), from, to, "sim:wet");
   std::ostringstream text;
-  text << "mu = " << (lua_type(L, -1) == LUA_TNUMBER ? std::to_string(lua_tonumber(L, -1)) : std::string("function"));
+  text << "mu = ";
+  if (lua_type(L, -1) == LUA_TNUMBER)
+    text << lua_tonumber(L, -1);
+  else
+    text << "function";
   if (from) text << " on s in [" << *from << ", " << *to << "] m";
   lua_pop(L, 1);
   apply_mu(L, s, mu, "wet", text.str());
@@ -270,7 +274,13 @@ int l_set_mu(lua_State* L) {
     text = "list";
   } else {
     mu = mu_over(L, 2, s.scene(), std::nullopt, std::nullopt, "sim:set_mu");
-    text = lua_type(L, 2) == LUA_TNUMBER ? "mu = " + std::to_string(lua_tonumber(L, 2)) : "function";
+    std::ostringstream t;
+    t << "mu = ";
+    if (lua_type(L, 2) == LUA_TNUMBER)
+      t << lua_tonumber(L, 2);
+    else
+      t << "function";
+    text = t.str();
   }
   apply_mu(L, s, mu, "set_mu", text);
   return 0;

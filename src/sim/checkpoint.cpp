@@ -140,6 +140,7 @@ void Simulation::save(const std::string& path) const {
   for (const MuEvent& ev : pending_) {
     put(o, "t", ev.t);
     put(o, "what", ev.what);
+    put(o, "text", ev.text);
     write_vector(o, ev.mu);
   }
   put(o, "rows", rows_);
@@ -195,6 +196,7 @@ std::unique_ptr<Simulation> Simulation::resume(const std::string& path, const Fr
   for (MuEvent& ev : pending) {
     ev.t = get_double(in, "t");
     ev.what = get_string(in, "what");
+    ev.text = get_string(in, "text");
     ev.mu = read_std_vector(in);
   }
   const long rows = get_long(in, "rows"), csv_bytes = get_long(in, "csv_bytes");

@@ -194,7 +194,7 @@ void Simulation::set_landings() {
                      pending_.erase(pending_.begin());
                      for (int i = 0; i < model_.n_el(); ++i)
                        if (!std::isnan(ev.mu[i])) model_.mu[i] = ev.mu[i];
-                     write_event(t, ev.what, "scheduled");
+                     write_event(t, ev.what, ev.text.empty() ? "scheduled" : ev.text);
                      changed();
                    }
                  }});

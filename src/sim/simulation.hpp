@@ -34,7 +34,8 @@ class Timeline;
 struct MuEvent {
   double t = 0;              // [s]
   std::vector<double> mu;
-  std::string what = "mu";   // for events.csv
+  std::string what = "mu";   // for events.csv: what changed, and how
+  std::string text;
 };
 
 struct RunSettings {
