@@ -110,7 +110,7 @@ long file_bytes(const std::string& path) {
 
 void Simulation::save(const std::string& path) const {
   require_open("save");
-  if (view_y_) throw std::logic_error("save: not inside a callback (save between run_to calls)");
+  if (running_ || view_y_) throw std::logic_error("save: not inside a callback (save between run_to calls)");
   if (!integ_->can_save())
     throw std::invalid_argument("save: " + rs_.integrator +
                                 " keeps a multistep history that SUNDIALS cannot export; checkpoints need a one-step "

@@ -305,6 +305,12 @@ Simulation::Advance Simulation::run_to(double t, const std::atomic<bool>* stop, 
   require_open("run_to");
   if (!std::isfinite(t)) throw std::invalid_argument("run_to: the time must be finite (got " + num(t) + " s)");
   if (t < now()) throw std::invalid_argument("run_to: " + num(t) + " s is before now (" + num(now()) + " s)");
+  if (running_) throw std::logic_error("run_to: the simulation is already running (called from a callback?)");
+  struct Running {
+    bool& r;
+    explicit Running(bool& b) : r(b) { r = true; }
+    ~Running() { r = false; }
+  } running(running_);
   using clock = std::chrono::steady_clock;
   const auto start = clock::now();
   Timeline::Progress pr;

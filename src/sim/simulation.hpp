@@ -178,6 +178,7 @@ class Simulation {
   long rows_ = 0;                 // samples written
   long frames_before_ = 0;        // frames written before a resume
   bool closed_ = false;
+  bool running_ = false;          // inside run_to (callbacks may read and change, not run or save)
   std::string failed_;            // why it cannot continue (a divergence)
   // a when-condition is evaluated at a time other than now(): the state it reads
   double view_t_ = 0;

@@ -118,6 +118,8 @@ TEST(LiveApi, BadCallsNameFileLineAndWhat) {
            {"sim:plot{'driver.omga'}", "did you mean 'driver.omega'"},
            {"sim:close(); sim:advance(0.1)", "the simulation is closed"},
            {"s:start{ t_end = 1 }", "unknown key 't_end' in start"},
+           {"sim:every(0.001, function(sim) sim:advance(0.1) end); sim:run_to(0.01)", "already running"},
+           {"sim:every(0.001, function(sim) sim:save('x') end); sim:run_to(0.01)", "not inside a callback"},
        }) {
     const std::string msg = run_text(scene() + c.call + "\n");
     EXPECT_NE(msg.find("live.lua:9:"), std::string::npos) << c.call << " -> " << msg;
