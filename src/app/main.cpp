@@ -31,10 +31,7 @@
 #include "sim/work_precision.hpp"
 #include "term/term_image.hpp"
 
-#if __has_include("script/console.hpp")
 #include "script/console.hpp"
-#define BELTSIM_HAVE_CONSOLE 1
-#endif
 
 namespace {
 
@@ -200,20 +197,12 @@ int cmd_plot(const std::string& csv, const std::vector<std::string>& columns, co
 
 int cmd_console(const std::optional<std::string>& script, const std::vector<std::string>& args,
                 const beltsim::script::Overrides& o) {
-#ifdef BELTSIM_HAVE_CONSOLE
   try {
     return beltsim::script::run_console(script, args, o, &g_stop);
   } catch (const std::exception& e) {
     std::fprintf(stderr, "beltsim: %s\n", e.what());
     return 1;
   }
-#else
-  (void)script;
-  (void)args;
-  (void)o;
-  std::fprintf(stderr, "beltsim: console is not part of this build (no src/script/console.hpp)\n");
-  return 1;
-#endif
 }
 
 }  // namespace
