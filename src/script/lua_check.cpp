@@ -79,10 +79,18 @@ std::optional<double> opt_number(lua_State* L, int t, const char* key, const std
   return v;
 }
 
+std::string to_string(lua_State* L, int idx, const std::string& what) {
+  if (lua_type(L, idx) != LUA_TSTRING) fail(L, what + ": string expected, got " + type_name(L, idx));
+  size_t len = 0;
+  const char* c = lua_tolstring(L, idx, &len);
+  std::string s(c, len);
+  if (s.find('\0') != std::string::npos) fail(L, what + ": a string without NUL characters expected");
+  return s;
+}
+
 std::optional<std::string> opt_string(lua_State* L, int t, const char* key, const std::string& where) {
   if (!field(L, t, key)) return std::nullopt;
-  if (lua_type(L, -1) != LUA_TSTRING) fail(L, where + "." + key + ": string expected, got " + type_name(L, -1));
-  std::string s = lua_tostring(L, -1);
+  std::string s = to_string(L, -1, where + "." + key);
   lua_pop(L, 1);
   return s;
 }
@@ -118,8 +126,30 @@ Vec2 to_vec2(lua_State* L, int idx, const std::string& what) {
     lua_rawgeti(L, idx, k + 1);
     v[k] = to_number(L, -1, what);
     lua_pop(L, 1);
+    if (!std::isfinite(v[k])) {
+      std::ostringstream m;
+      m << what << ": a finite point {x, y} in metres expected (got " << (k ? "y" : "x") << " = " << v[k] << ")";
+      fail(L, m.str());
+    }
   }
   return v;
+}
+
+std::vector<lua_Integer> check_sequence(lua_State* L, int idx, const std::string& what) {
+  idx = lua_absindex(L, idx);
+  const lua_Integer n = static_cast<lua_Integer>(lua_rawlen(L, idx));
+  lua_Integer count = 0;
+  lua_pushnil(L);
+  while (lua_next(L, idx)) {
+    lua_pop(L, 1);
+    count++;
+    if (!lua_isinteger(L, -1) || lua_tointeger(L, -1) < 1 || lua_tointeger(L, -1) > n)
+      fail(L, what + ": a list without holes or named keys expected");
+  }
+  if (count != n) fail(L, what + ": a list without holes expected (an entry is nil)");
+  std::vector<lua_Integer> k(static_cast<size_t>(n));
+  for (lua_Integer i = 0; i < n; ++i) k[static_cast<size_t>(i)] = i + 1;
+  return k;
 }
 
 // a torque [N·m] or speed [rad/s] law: a number, or {constant=, per_speed=, table={{t, v}, ...}}

@@ -27,11 +27,14 @@ const char* type_name(lua_State* L, int idx);
 bool field(lua_State* L, int idx, const char* key);
 double to_number(lua_State* L, int idx, const std::string& what);
 std::optional<double> opt_number(lua_State* L, int t, const char* key, const std::string& where);
+std::string to_string(lua_State* L, int idx, const std::string& what);  // a string without NUL
 std::optional<std::string> opt_string(lua_State* L, int t, const char* key, const std::string& where);
 std::optional<bool> opt_bool(lua_State* L, int t, const char* key, const std::string& where);
 int to_integer(lua_State* L, int idx, const std::string& what);
 void require_table(lua_State* L, int idx, const std::string& what);
-Vec2 to_vec2(lua_State* L, int idx, const std::string& what);
+Vec2 to_vec2(lua_State* L, int idx, const std::string& what);  // finite
+// the table at idx must be a list 1..n without holes or named keys
+std::vector<lua_Integer> check_sequence(lua_State* L, int idx, const std::string& what);
 // a function's arguments: exactly `min`..`max` of them, or "NAME: expected ..., got N arguments"
 void check_arg_count(lua_State* L, const char* name, int min, int max);
 

@@ -108,6 +108,7 @@ PulleyDef to_pulley(lua_State* L, int idx, const std::string& what) {
   p.name = *name;
   const std::string w = "pulley '" + p.name + "'";
   bool centred = false;
+  if (has(L, idx, "centre") && has(L, idx, "center")) fail(L, w + ": give centre or center, not both");
   for (const char* key : {"centre", "center"})
     if (field(L, idx, key)) {
       p.centre = to_vec2(L, -1, w + " " + key);
@@ -160,6 +161,8 @@ void read_belt(lua_State* L, int idx, BeltDef& b, std::unique_ptr<LuaRef>& mu_fn
   if (field(L, idx, "route")) {
     const int r = lua_gettop(L);
     require_table(L, r, "belt.route");
+    check_sequence(L, r, "belt.route");
+    if (lua_rawlen(L, r) < 2) fail(L, "belt.route: at least two pulley names expected (leave route out for the order of pulleys)");
     for (lua_Integer k = 1; k <= static_cast<lua_Integer>(lua_rawlen(L, r)); ++k) {
       lua_rawgeti(L, r, k);
       if (lua_type(L, -1) != LUA_TSTRING) fail(L, "belt.route: pulley names expected, got " + std::string(type_name(L, -1)));
@@ -209,6 +212,8 @@ void read_belt(lua_State* L, int idx, BeltDef& b, std::unique_ptr<LuaRef>& mu_fn
         return mu;
       };
     } else if (lua_istable(L, m)) {
+      check_sequence(L, m, "belt.mu");
+      if (lua_rawlen(L, m) == 0) fail(L, "belt.mu: an empty list; give a number, one μ per element, or a function(site)");
       for (lua_Integer k = 1; k <= static_cast<lua_Integer>(lua_rawlen(L, m)); ++k) {
         lua_rawgeti(L, m, k);
         b.mu_per_element.push_back(to_number(L, -1, "belt.mu entry " + std::to_string(k)));
@@ -365,6 +370,7 @@ std::vector<double> mu_over(lua_State* L, int mu_idx, const Scene& sc, std::opti
 std::vector<MuEvent> read_events(lua_State* L, int idx, const Scene& sc) {
   std::vector<MuEvent> out;
   require_table(L, idx, "run.events");
+  check_sequence(L, idx, "run.events");
   const lua_Integer n = static_cast<lua_Integer>(lua_rawlen(L, idx));
   for (lua_Integer k = 1; k <= n; ++k) {
     lua_geti(L, idx, k);
@@ -422,9 +428,13 @@ FrameSettings to_frames(lua_State* L, int idx, const std::string& w, const std::
     return std::make_pair(a[0], a[1]);
   };
   if (auto s = pair("size", "{width, height} in pixels")) {
-    if (s->first != std::floor(s->first) || s->second != std::floor(s->second))
-      fail(L, w + ".size: whole numbers of pixels expected (got {" + std::to_string(s->first) + ", " +
-                  std::to_string(s->second) + "})");
+    // checked before the cast to int (a huge value would not fit)
+    if (s->first != std::floor(s->first) || s->second != std::floor(s->second) || !(s->first >= 16 && s->first <= 8192) ||
+        !(s->second >= 16 && s->second <= 8192)) {
+      std::ostringstream m;
+      m << w << ".size: whole numbers of pixels in 16..8192 expected (got {" << s->first << ", " << s->second << "})";
+      fail(L, m.str());
+    }
     f.width = static_cast<int>(s->first), f.height = static_cast<int>(s->second);
   }
   if (auto r = pair("range", "{lo, hi} in the quantity's unit")) f.range_lo = r->first, f.range_hi = r->second;
@@ -491,8 +501,7 @@ const RunKey kRunKeys[] = {
        rs.t_end = to_number(L, v, w + ".t_end");
      }},
     {"integrator", false, [](lua_State* L, int v, const Scene&, RunSettings& rs, bool&, const std::string& w) {
-       if (lua_type(L, v) != LUA_TSTRING) fail(L, w + ".integrator: string expected, got " + type_name(L, v));
-       rs.integrator = lua_tostring(L, v);
+       rs.integrator = to_string(L, v, w + ".integrator");
      }},
     {"rtol", false, [](lua_State* L, int v, const Scene&, RunSettings& rs, bool&, const std::string& w) {
        rs.rtol = to_number(L, v, w + ".rtol");
@@ -506,8 +515,7 @@ const RunKey kRunKeys[] = {
        rs.sample_dt = to_number(L, v, w + ".sample");
      }},
     {"out", false, [](lua_State* L, int v, const Scene&, RunSettings& rs, bool&, const std::string& w) {
-       if (lua_type(L, v) != LUA_TSTRING) fail(L, w + ".out: a folder name expected, got " + type_name(L, v));
-       rs.out_dir = lua_tostring(L, v);
+       rs.out_dir = to_string(L, v, w + ".out");
      }},
     {"probe", false, [](lua_State* L, int v, const Scene& sc, RunSettings& rs, bool&, const std::string& w) {
        if (lua_istable(L, v))

@@ -1,5 +1,7 @@
 #include "sim/frames.hpp"
 
+#include <cmath>
+
 #include <sstream>
 #include <stdexcept>
 
@@ -48,9 +50,13 @@ void validate(const FrameSettings& f) {
   }
   if (!(f.levels == 0 || (f.levels >= 2 && f.levels <= 64))) bad("levels", "must be 0 (continuous) or 2..64", f.levels);
   if (!(f.magnify > 0 && f.magnify <= 1e4)) bad("magnify", "must be in (0, 1e4]", f.magnify);
-  if (f.view_width && !(*f.view_width > 0)) bad("view.width", "must be > 0", *f.view_width, " m");
+  // a view narrower than a micrometre shows nothing one could read; wider than 100 km, likewise
+  if (f.view_width && !(*f.view_width >= 1e-6 && *f.view_width <= 1e5))
+    bad("view.width", "must be in [1e-6, 1e5] m", *f.view_width, " m");
+  if (f.range_lo && !std::isfinite(*f.range_lo)) bad("range", "must be finite", *f.range_lo);
+  if (f.range_hi && !std::isfinite(*f.range_hi)) bad("range", "must be finite", *f.range_hi);
   if (f.png_every < 1) bad("png_every", "must be >= 1", f.png_every);
-  if (!(f.t_start >= 0)) bad("t_start", "must be >= 0", f.t_start, " s");
+  if (!(f.t_start >= 0 && std::isfinite(f.t_start))) bad("t_start", "must be >= 0 and finite", f.t_start, " s");
   if (f.png_dir.empty() && f.video_path.empty()) bad("png", "neither png nor video asked for: nothing to write", "none");
 }
 

@@ -59,6 +59,35 @@ void expect_error(const std::string& text, const std::string& where, const std::
 
 TEST(LuaApi, ValidSceneBuilds) { EXPECT_EQ(run_text(scene_text("")), ""); }
 
+// values that used to be taken silently or misread (issue 12): each is an error naming the key
+TEST(LuaApi, SilentMisreadingsAreErrors) {
+  struct Case {
+    std::string text, expect;
+  };
+  const std::string ok_scene = scene_text("");
+  for (const Case& c : std::vector<Case>{
+           {scene_text("mu = {}"), "belt.mu: an empty list"},
+           {scene_text("mu = {1, nil, 1}"), "belt.mu: a list without holes"},
+           {scene_text("route = {}"), "belt.route: at least two pulley names"},
+           {scene_text("", "centre = {0.29, 0}, center = {0.3, 0}, radius = 0.1"), "give centre or center, not both"},
+           {scene_text("", "centre = {0/0, 0}, radius = 0.1"), "a finite point"},
+           {ok_scene + "s:element_near{0/0, 0}\n", "a finite point"},
+           {ok_scene + "s:run{ t_end = 0.01, probe = {0/0, 0} }\n", "a finite point"},
+           {ok_scene + "s:run{ t_end = 0.01, events = { {t = 0.001, mu = 0.5}, nil, {t = 0.002, mu = 0.5} } }\n",
+            "run.events: a list without holes"},
+           {ok_scene + "s:run{ t_end = 0.01, events = { {t = 0.001, mu = '0.5'} } }\n", "number or function(site) expected"},
+           {ok_scene + "s:run{ t_end = 0.01, atol = -1 }\n", "run.atol: must be > 0"},
+           {ok_scene + "s:run{ t_end = 0.01, integrator = 'esdirk32\\0x' }\n", "without NUL"},
+           {ok_scene + "s:run{ t_end = 0.01, frames = { size = {1e300, 720}, png = true } }\n", "16..8192"},
+           {ok_scene + "s:run{ t_end = 0.01, frames = { view = { width = 1e-300 }, png = true } }\n", "view.width"},
+           {ok_scene + "s:run{ t_end = 0.01, frames = { view = { centre = {0/0, 0} }, png = true } }\n", "a finite point"},
+       }) {
+    const std::string msg = run_text(c.text);
+    EXPECT_NE(msg.find("scene.lua:"), std::string::npos) << c.expect << " -> " << msg;
+    EXPECT_NE(msg.find(c.expect), std::string::npos) << c.expect << " -> " << msg;
+  }
+}
+
 TEST(LuaApi, NegativeRadiusNamesFileLineAndValue) {
   expect_error(scene_text("", "centre = {0.29, 0}, radius = -0.1"), "scene.lua:1:",
                {"pulley 'driven' radius must be > 0", "-0.1 m"});
