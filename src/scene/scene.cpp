@@ -80,6 +80,16 @@ void validate(const SceneDef& d) {
     }
   const BeltDef& b = d.belt;
   if (b.elements < 3) reject("belt.elements", "must be >= 3", b.elements, "");
+  // the cost of a simulated second grows faster than the element count (README, Integration:
+  // 2400 elements take about 10 min per simulated second); past this a scene is surely a mistake
+  constexpr int kMaxElements = 20000;
+  if (b.elements > kMaxElements && !d.allow_large) {
+    std::ostringstream s;
+    s << "belt.elements: " << b.elements << " elements are more than the limit of " << kMaxElements
+      << " (about " << static_cast<long>(b.elements) * 2 / 1000 << " MB of state and Jacobian, and hours per simulated"
+      << " second); set allow_large = true in the scene to go past";
+    throw ParameterError(s.str());
+  }
   require_positive("belt.pretension", b.pretension, "N");
   if (b.loop_sense != 1 && b.loop_sense != -1) throw ParameterError("belt.direction must be 'cw' or 'ccw'");
   if (b.reading == StiffnessReading::rigidity) {

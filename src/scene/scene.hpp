@@ -67,6 +67,7 @@ struct SceneDef {
   Friction friction;
   double gravity = 9.81;            // [m/s²]; 0 switches gravity off
   bool track_energy = false;
+  bool allow_large = false;         // past the size limits that protect the machine (validate)
 };
 
 struct Scene {

@@ -230,7 +230,7 @@ void read_belt(lua_State* L, int idx, BeltDef& b, std::unique_ptr<LuaRef>& mu_fn
 // beltsim.scene{ pulleys = {...}, belt = {...}, contact = {...}, friction = {...}, gravity = g, energy = bool }
 int l_scene(lua_State* L) {
   luaL_checktype(L, 1, LUA_TTABLE);
-  check_keys(L, 1, "scene", {"pulleys", "belt", "contact", "friction", "gravity", "energy"});
+  check_keys(L, 1, "scene", {"pulleys", "belt", "contact", "friction", "gravity", "energy", "allow_large"});
   SceneDef d;
   if (!field(L, 1, "pulleys")) fail(L, "scene: a list of pulleys is required");
   require_table(L, -1, "scene.pulleys");
@@ -265,6 +265,7 @@ int l_scene(lua_State* L) {
   }
   if (auto v = opt_number(L, 1, "gravity", "scene")) d.gravity = *v;
   if (auto v = opt_bool(L, 1, "energy", "scene")) d.track_energy = *v;
+  if (auto v = opt_bool(L, 1, "allow_large", "scene")) d.allow_large = *v;
 
   auto** box = static_cast<Scene**>(lua_newuserdatauv(L, sizeof(Scene*), 0));
   *box = nullptr;
@@ -529,6 +530,10 @@ const RunKey kRunKeys[] = {
      }},
     {"events", true, [](lua_State* L, int v, const Scene& sc, RunSettings& rs, bool&, const std::string&) {
        rs.mu_events = read_events(L, v, sc);
+     }},
+    {"allow_large", false, [](lua_State* L, int v, const Scene&, RunSettings& rs, bool&, const std::string& w) {
+       if (lua_type(L, v) != LUA_TBOOLEAN) fail(L, w + ".allow_large: boolean expected, got " + type_name(L, v));
+       rs.allow_large = lua_toboolean(L, v);
      }},
     {"frames", false, [](lua_State* L, int v, const Scene&, RunSettings& rs, bool&, const std::string& w) {
        if (!(lua_type(L, v) == LUA_TBOOLEAN && !lua_toboolean(L, v))) rs.frames = to_frames(L, v, w + ".frames");

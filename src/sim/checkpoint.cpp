@@ -126,6 +126,7 @@ void Simulation::save(const std::string& path) const {
   put(o, "out_dir", std::filesystem::absolute(rs_.out_dir).string());
   put(o, "probe", long(rs_.probe_element));
   put(o, "keep_samples", long(rs_.keep_samples));
+  put(o, "allow_large", long(rs_.allow_large));
   put(o, "frames", long(rs_.frames.has_value()));
   if (rs_.frames) put_frames(o, *rs_.frames);
   o << "scene\n";
@@ -181,6 +182,7 @@ std::unique_ptr<Simulation> Simulation::resume(const std::string& path, const Fr
   rs.out_dir = get_string(in, "out_dir");
   rs.probe_element = static_cast<int>(get_long(in, "probe"));
   rs.keep_samples = get_long(in, "keep_samples") != 0;
+  rs.allow_large = get_long(in, "allow_large") != 0;
   if (get_long(in, "frames")) {
     rs.frames = get_frames(in);
     rs.frame_factory = factory;

@@ -109,6 +109,29 @@ std::vector<std::string> timeseries_columns(const Scene& sc) {
   return c;
 }
 
+void check_volume(const Scene& sc, const RunSettings& rs, double t0, double t1) {
+  if (rs.allow_large || !(t1 > t0)) return;
+  constexpr double kMaxRows = 1e7, kMaxFrames = 1e5;
+  const double rows = (t1 - t0) / rs.sample_dt;
+  std::ostringstream m;
+  if (rows > kMaxRows) {
+    const double bytes = rows * static_cast<double>(timeseries_columns(sc).size()) * 13;
+    m << "sample: " << num(t1 - t0) << " s at a sample every " << num(rs.sample_dt) << " s would write " << num(rows)
+      << " rows (about " << num(bytes / 1e9) << " GB of timeseries.csv); the limit is " << num(kMaxRows)
+      << " rows: sample less often, or set allow_large = true";
+    throw std::invalid_argument(m.str());
+  }
+  if (rs.frames) {
+    const double frames = std::max(0.0, t1 - std::max(t0, rs.frames->t_start)) / rs.frames->frame_dt();
+    if (frames > kMaxFrames) {
+      m << "frames: " << num(t1 - t0) << " s at " << num(rs.frames->fps) << " fps and slowdown "
+        << num(rs.frames->slowdown) << " would render " << num(frames) << " frames (" << num(frames / rs.frames->fps / 3600)
+        << " h of video); the limit is " << num(kMaxFrames) << ": lower the slowdown, or set allow_large = true";
+      throw std::invalid_argument(m.str());
+    }
+  }
+}
+
 Simulation::Simulation(const Scene& sc, const RunSettings& rs) : Simulation(sc, rs, true) {}
 
 Simulation::Simulation(const Scene& sc, const RunSettings& rs, bool fresh) : scene_(sc), rs_(rs), model_(sc.model) {
@@ -306,6 +329,7 @@ Simulation::Advance Simulation::run_to(double t, const std::atomic<bool>* stop, 
   if (!std::isfinite(t)) throw std::invalid_argument("run_to: the time must be finite (got " + num(t) + " s)");
   if (t < now()) throw std::invalid_argument("run_to: " + num(t) + " s is before now (" + num(now()) + " s)");
   if (running_) throw std::logic_error("run_to: the simulation is already running (called from a callback?)");
+  check_volume(scene_, rs_, now(), t);
   struct Running {
     bool& r;
     explicit Running(bool& b) : r(b) { r = true; }
@@ -449,6 +473,7 @@ RunResult run(const Scene& sc, const RunSettings& rs, const std::atomic<bool>* s
   for (const MuEvent& ev : rs.mu_events)
     if (!(ev.t > 0 && ev.t < rs.t_end))
       throw std::invalid_argument("events: an event time must be inside (0, t_end) (got " + num(ev.t) + " s)");
+  check_volume(sc, rs, 0.0, rs.t_end);
   Simulation sim(sc, rs);
   RunResult res;
   res.csv_path = sim.csv_path();

@@ -48,6 +48,7 @@ struct RunSettings {
   int probe_element = 0;              // the paper's "selected" element; its SDE joins it to its predecessor
   double wall_limit = 0;              // [s] stop a batch run after this much wall time (0: no limit)
   bool keep_samples = false;          // keep the rows of timeseries.csv in memory (samples())
+  bool allow_large = false;           // past the output limits (check_volume)
   std::vector<MuEvent> mu_events;     // in any order
   // frames (PNG and/or video) at their own times; relative paths are taken inside out_dir. The
   // factory (the renderer's, src/render) is called only when frames are asked for.
@@ -199,6 +200,11 @@ class Simulation {
 // A batch run: start, run_to(t_end), close. Throws as Simulation does.
 RunResult run(const Scene& scene, const RunSettings& settings, const std::atomic<bool>* stop = nullptr,
               const RunProgress& progress = {});
+
+// Refuses (std::invalid_argument with the figures) to integrate from t0 to t1 when that would
+// write more than 1e7 samples (a timeseries.csv of gigabytes) or render more than 1e5 frames (an
+// hour of video at 30 fps), unless settings.allow_large.
+void check_volume(const Scene& scene, const RunSettings& settings, double t0, double t1);
 
 // the column names of timeseries.csv for a scene (documented in the README)
 std::vector<std::string> timeseries_columns(const Scene& scene);

@@ -81,6 +81,12 @@ TEST(LuaApi, SilentMisreadingsAreErrors) {
            {ok_scene + "s:run{ t_end = 0.01, frames = { size = {1e300, 720}, png = true } }\n", "16..8192"},
            {ok_scene + "s:run{ t_end = 0.01, frames = { view = { width = 1e-300 }, png = true } }\n", "view.width"},
            {ok_scene + "s:run{ t_end = 0.01, frames = { view = { centre = {0/0, 0} }, png = true } }\n", "a finite point"},
+           {ok_scene + "s:run{ t_end = 1, sample = 1e-12 }\n", "would write 1e+12 rows"},
+           {ok_scene + "s:start{ sample = 1e-12 }:run_to(1)\n", "set allow_large = true"},
+           {ok_scene + "s:run{ t_end = 0.02, frames = { slowdown = 1e6, png = true } }\n", "would render 600000 frames"},
+           {"beltsim.scene { pulleys = { { name = 'a', centre = {0, 0} }, { name = 'b', centre = {0.3, 0} } },\n"
+            " belt = { elements = 1000000 } }\n",
+            "more than the limit of 20000"},
        }) {
     const std::string msg = run_text(c.text);
     EXPECT_NE(msg.find("scene.lua:"), std::string::npos) << c.expect << " -> " << msg;
