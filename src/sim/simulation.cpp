@@ -190,14 +190,18 @@ Simulation::~Simulation() {
 
 void Simulation::open_outputs(bool append) {
   namespace fs = std::filesystem;
-  fs::create_directories(rs_.out_dir);
+  std::error_code ec;
+  fs::create_directories(rs_.out_dir, ec);
+  if (ec) throw std::runtime_error("cannot create the output folder " + rs_.out_dir + ": " + ec.message());
+  // the renderer first (it opens the video file and the PNG folder): a bad frames path stops the
+  // run before any CSV is written. It exists only when frames are asked for (no GL context, no
+  // encoder otherwise).
+  if (rs_.frames) sink_ = rs_.frame_factory(scene_, *rs_.frames);
   if (!append) write_parameters(scene_, rs_, (fs::path(rs_.out_dir) / "parameters.csv").string());
   csv_ = std::make_unique<CsvWriter>(csv_path(), timeseries_columns(scene_), 0.5, append);
   events_ = std::fopen(events_path().c_str(), append ? "a" : "w");
   if (!events_) throw std::runtime_error("cannot write " + events_path() + ": " + std::strerror(errno));
   if (!append) std::fputs("t,what,value\n", events_), std::fflush(events_);
-  // the renderer exists only when frames are asked for (no GL context, no encoder otherwise)
-  if (rs_.frames) sink_ = rs_.frame_factory(scene_, *rs_.frames);
 }
 
 std::string Simulation::csv_path() const { return (std::filesystem::path(rs_.out_dir) / "timeseries.csv").string(); }

@@ -94,6 +94,17 @@ TEST(LuaApi, SilentMisreadingsAreErrors) {
   }
 }
 
+// a video path that cannot be written stops the run before any CSV is written
+TEST(LuaApi, BadVideoPathWritesNothing) {
+  const fs::path out = temp_dir() / "out";  // run_text's output folder
+  fs::remove_all(out);
+  const std::string msg =
+      run_text(scene_text("") + "s:run{ t_end = 0.01, frames = { video = '/proc/no/such/dir/x.mp4' } }\n");
+  EXPECT_NE(msg.find("scene.lua:"), std::string::npos) << msg;
+  EXPECT_FALSE(fs::exists(out / "timeseries.csv")) << msg;
+  EXPECT_FALSE(fs::exists(out / "parameters.csv")) << msg;
+}
+
 TEST(LuaApi, NegativeRadiusNamesFileLineAndValue) {
   expect_error(scene_text("", "centre = {0.29, 0}, radius = -0.1"), "scene.lua:1:",
                {"pulley 'driven' radius must be > 0", "-0.1 m"});
