@@ -77,6 +77,7 @@ void add_counters(void* mem, WorkCounters& w) {
   CVodeGetNumNonlinSolvIters(mem, &nni);
   w.steps += steps;
   w.rejected += etf + ncf;
+  w.failed_steps += ncf;  // CVODE does not say when the first was
   w.rhs += nfe + nfels;
   w.jacobians += nje;
   w.factorizations += nsetups;

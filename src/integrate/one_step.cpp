@@ -79,7 +79,10 @@ class OneStep final : public Integrator {
       const double e = ok ? ctl_.error_norm(y_, y1_, err_, &worst) : 1e300;
       if (!(e <= 1.0)) {
         sys_.counters.rejected++;
-        if (!ok) cap_ = 0.5 * h;
+        if (!ok) {
+          cap_ = 0.5 * h;
+          if (sys_.counters.failed_steps++ == 0) sys_.counters.first_failed_step = t_;
+        }
         h_ = ctl_.propose(h, ok ? e : 1e300);
         if (!(h_ >= 16 * std::numeric_limits<double>::epsilon() * std::max(1.0, std::abs(t_))))
           throw DivergenceError(t_, "the step size collapsed to " + fmt_time(h_) + " s at t = " + fmt_time(t_) +
@@ -130,7 +133,8 @@ class OneStep final : public Integrator {
     vec(y_), vec(f_), vec(y_prev_), vec(f_prev_);
     const WorkCounters& w = sys_.counters;
     o << w.steps << ' ' << w.rejected << ' ' << w.rhs << ' ' << w.jacobians << ' ' << w.factorizations << ' '
-      << w.solves << '\n';
+      << w.solves << ' ' << w.failed_steps << '\n';
+    num(w.first_failed_step);
   }
   void load(std::istream& in) override {
     std::string tag, nm;
@@ -153,7 +157,8 @@ class OneStep final : public Integrator {
     y_.resize(sys_.size());
     vec(y_), vec(f_), vec(y_prev_), vec(f_prev_);
     WorkCounters& w = sys_.counters;
-    in >> w.steps >> w.rejected >> w.rhs >> w.jacobians >> w.factorizations >> w.solves;
+    in >> w.steps >> w.rejected >> w.rhs >> w.jacobians >> w.factorizations >> w.solves >> w.failed_steps;
+    w.first_failed_step = num();
     if (!in) throw std::runtime_error("checkpoint: the integrator state is cut short");
   }
 

@@ -432,7 +432,10 @@ Scene build_scene(const SceneDef& d) {
   // iteration is what the 60-element results were measured from).
   constexpr double kConverged = 1.0;  // [m/s²] against accelerations of 1e5..1e9 in the raw placement
   std::string lost = attempt(0);
-  if (!lost.empty() || !(sc.static_residual < kConverged)) lost = attempt(0.1 * b.pitch);
+  if (!lost.empty() || !(sc.static_residual < kConverged)) {
+    lost = attempt(0.1 * b.pitch);
+    sc.static_retried = true;
+  }
   if (!lost.empty()) {
     std::ostringstream msg;
     msg << "belt.elements: could not find the belt's static initial state with " << n

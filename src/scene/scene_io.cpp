@@ -356,6 +356,7 @@ void write_scene(std::ostream& out, const Scene& sc) {
   w.key("reading") << (sc.reading == StiffnessReading::per_sde ? " per_sde" : " rigidity"), w.end();
   w.line("static_tension", sc.static_tension);
   w.line("static_residual", sc.static_residual);
+  w.line("static_retried", long{sc.static_retried});
   w.line("span_sde", sc.span_sde);
   w.line("sites", static_cast<long>(sc.sites.size()));
   for (const ElementSite& e : sc.sites) {
@@ -389,6 +390,7 @@ Scene read_scene(std::istream& in) {
   r.close();
   sc.static_tension = r.line_num("static_tension");
   sc.static_residual = r.line_num("static_residual");
+  sc.static_retried = r.line_int("static_retried", 0, 1) != 0;
   sc.span_sde = r.line_ints("span_sde");
   for (long i = 0, n = r.line_int("sites", 0, INT_MAX); i < n; ++i) {
     ElementSite& e = sc.sites.emplace_back();

@@ -484,7 +484,10 @@ int l_resume(lua_State* L) {
 int l_close(lua_State* L) {
   SimBox* box = check_box(L, "close");
   check_arg_count(L, "sim:close", 1, 1);
+  const bool was_open = !box->sim->closed();
   guarded(L, "sim:close", [&] { box->sim->close(); });
+  if (was_open)
+    for (const std::string& n : box->sim->notes()) std::fprintf(stderr, "beltsim: note: %s\n", n.c_str());
   box->refs.clear();
   return 0;
 }

@@ -365,9 +365,28 @@ Simulation::Advance Simulation::run_to(double t, const std::atomic<bool>* stop, 
   return a;
 }
 
+std::vector<std::string> Simulation::notes() const {
+  std::vector<std::string> n;
+  if (scene_.static_retried)
+    n.push_back("the static start needed its trust-region retry (the plain iteration drifted along the belt)");
+  const WorkCounters w = integ_->work();
+  if (w.failed_steps > 0)
+    n.push_back(std::to_string(w.failed_steps) + " steps could not be taken (the implicit iteration did not converge" +
+                (w.first_failed_step >= 0 ? "; first at t = " + num(w.first_failed_step) + " s" : std::string()) +
+                ") and were retried shorter");
+  return n;
+}
+
 void Simulation::close() {
   if (closed_) return;
   closed_ = true;
+  if (csv_) {  // the fallbacks, beside the parameters they qualify
+    std::ofstream f((std::filesystem::path(rs_.out_dir) / "parameters.csv").string(), std::ios::app);
+    const WorkCounters w = integ_->work();
+    f << "warning.static_retried," << (scene_.static_retried ? 1 : 0) << ",,the static start's trust-region retry\n"
+      << "warning.failed_steps," << w.failed_steps << ",,steps whose implicit iteration did not converge\n";
+    if (w.first_failed_step >= 0) f << "warning.first_failed_step," << num(w.first_failed_step) << ",s,\n";
+  }
   if (csv_) csv_->flush();
   if (events_) std::fflush(events_);
   if (sink_) sink_->finish();
@@ -497,6 +516,7 @@ RunResult run(const Scene& sc, const RunSettings& rs, const std::atomic<bool>* s
   res.work = sim.stats();
   res.frames = sim.frames_written();
   res.samples = sim.samples();
+  res.notes = sim.notes();
   for (int j = 0; j < sc.model.n_p(); ++j) res.omega.push_back(sim.pulley(j).omega);
   return res;
 }

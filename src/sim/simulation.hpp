@@ -70,6 +70,7 @@ struct RunResult {
   bool over_wall_limit = false;       // stopped by RunSettings::wall_limit
   std::vector<std::vector<double>> samples;  // with keep_samples: the CSV rows
   long frames = 0;                    // frames rendered
+  std::vector<std::string> notes;     // Simulation::notes()
 };
 
 class Simulation {
@@ -96,6 +97,9 @@ class Simulation {
   // but not advanced
   void close();
   bool closed() const { return closed_; }
+  // the fallbacks taken so far (the static start's trust-region retry, steps that could not be
+  // taken), one line each for the user; close() also lists them in parameters.csv
+  std::vector<std::string> notes() const;
 
   // ---- reading (at now(), or at the time a when-condition is evaluated) ----------------------
   double now() const;

@@ -112,6 +112,7 @@ void expect_same(const Scene& a, const Scene& b) {
   EXPECT_EQ(a.reading, b.reading);
   EXPECT_SAME(a.static_tension, b.static_tension);
   EXPECT_SAME(a.static_residual, b.static_residual);
+  EXPECT_EQ(a.static_retried, b.static_retried);
   EXPECT_EQ(a.span_sde, b.span_sde);
   ASSERT_EQ(a.sites.size(), b.sites.size());
   for (size_t i = 0; i < a.sites.size(); ++i) {
@@ -260,8 +261,8 @@ TEST(SceneIo, WrongKeywordOrVersionThrows) {
   };
   EXPECT_EQ(error_of(with("\nbelt.pitch ", "\nbelt.pitck "), read_scene),
             "checkpoint: expected 'belt.pitch', got 'belt.pitck'");
-  EXPECT_EQ(error_of(with("scene 1\n", "scene 2\n"), read_scene),
-            "checkpoint: 'scene' is in format 2, this build reads format 1");
+  EXPECT_EQ(error_of(with("scene " + std::to_string(kCheckpointVersion) + "\n", "scene 99\n"), read_scene),
+            "checkpoint: 'scene' is in format 99, this build reads format " + std::to_string(kCheckpointVersion));
   EXPECT_EQ(error_of(with("pulley.wrap inside", "pulley.wrap outside"), read_scene),
             "checkpoint: 'pulley.wrap': expected inside or back, got 'outside'");
   EXPECT_EQ(error_of(with("\nstatic_tension 0x", "\nstatic_tension zz0x"), read_scene).rfind(

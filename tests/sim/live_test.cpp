@@ -243,6 +243,27 @@ TEST(Live, SampledBeltTorqueTurnsThePulley) {
   EXPECT_LT(worst, 2.0) << "N·m";
 }
 
+// the fallbacks are counted and shown: the static start's retry (needed at 80 elements on the
+// paper's drive, not at 60: README, Integration) and steps whose iteration failed, in notes() and
+// in parameters.csv
+TEST(Live, FallbacksAreCountedAndShown) {
+  EXPECT_FALSE(dry().static_retried);
+  SceneDef d = presets::paper_dry();
+  d.belt.elements = 80;
+  EXPECT_TRUE(build_scene(d).static_retried);
+  const fs::path out = temp("notes");
+  Simulation s(build_scene(d), settings("esdirk32", out));
+  s.run_to(0.05);
+  const std::vector<std::string> notes = s.notes();
+  ASSERT_FALSE(notes.empty());
+  EXPECT_NE(notes[0].find("trust-region retry"), std::string::npos) << notes[0];
+  const long failed = s.stats().failed_steps;
+  s.close();
+  const std::string p = slurp((out / "parameters.csv").string());
+  EXPECT_NE(p.find("warning.static_retried,1"), std::string::npos) << p;
+  EXPECT_NE(p.find("warning.failed_steps," + std::to_string(failed)), std::string::npos) << p;
+}
+
 // invalid requests name what is wrong
 TEST(Live, BadRequests) {
   Simulation s(dry(), settings("esdirk32", temp("bad")));
