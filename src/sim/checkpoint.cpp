@@ -22,7 +22,7 @@ namespace beltsim {
 namespace {
 
 constexpr const char* kMagic = "beltsim-checkpoint";
-constexpr int kVersion = 1;
+constexpr int kVersion = 2;  // 2: failed-step counts in the integrator state
 
 void put(std::ostream& o, const char* key, double v) { o << key << ' ' << std::hexfloat << v << std::defaultfloat << '\n'; }
 void put(std::ostream& o, const char* key, long v) { o << key << ' ' << v << '\n'; }
