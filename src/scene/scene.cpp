@@ -10,6 +10,8 @@
 // (pulleys held, belt at rest, gravity on) remove the rest (f(q) = 0 with K = ∂f/∂q).
 #include "scene/scene.hpp"
 
+#include <tuple>
+
 #include <cmath>
 #include <map>
 #include <set>
@@ -298,6 +300,12 @@ Scene build_scene(const SceneDef& d) {
   b.e_tra = bd.e_tra;
   b.e_tor = bd.e_tor;
   b.mass = bd.mass_per_length * pitch;
+  // per-SDE values that overflow (EA = 1e308 over a pitch of centimetres) make every force NaN
+  for (const auto& [name, v, given, unit] :
+       {std::tuple{"belt.k (EA / pitch)", b.k, bd.reading == StiffnessReading::rigidity ? bd.EA : bd.k, "N"},
+        std::tuple{"belt.kt (EI / pitch)", b.kt, bd.reading == StiffnessReading::rigidity ? bd.EI : bd.kt, "N·m²"},
+        std::tuple{"belt.c (axial_damping / pitch)", b.c, bd.reading == StiffnessReading::rigidity ? bd.axial_damping : bd.c, "N·s"}})
+    if (!std::isfinite(v) || v > 1e15) reject(name, "is beyond what double precision integrates (> 1e15 per SDE)", given, unit);
   const double gap = std::pow(bd.pretension / b.k, 1.0 / b.e_tra);
   if (gap >= 0.5 * pitch)
     reject("belt.pretension", "stretches each SDE by more than half a pitch: lower it or stiffen the belt",

@@ -67,6 +67,8 @@ TEST(LuaApi, SilentMisreadingsAreErrors) {
   const std::string ok_scene = scene_text("");
   for (const Case& c : std::vector<Case>{
            {scene_text("mu = {}"), "belt.mu: an empty list"},
+           {scene_text("EA = 1e308"), "belt.k (EA / pitch) is beyond what double precision integrates"},
+           {scene_text("axial_damping = 1e308"), "belt.c (axial_damping / pitch)"},
            {scene_text("mu = {1, nil, 1}"), "belt.mu: a list without holes"},
            {scene_text("route = {}"), "belt.route: at least two pulley names"},
            {scene_text("", "centre = {0.29, 0}, center = {0.3, 0}, radius = 0.1"), "give centre or center, not both"},
