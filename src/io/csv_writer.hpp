@@ -1,34 +1,34 @@
 // CSV writer: a header row, then one row of numbers per call; '.' decimal point whatever the
 // locale, full double precision, NaN written as "nan" (pandas and MATLAB's readtable read it).
-// Each row is flushed once at least `flush_interval` seconds have passed and on close, so a run
-// that stops for any reason leaves every row it produced on disk.
+// Each row is assembled in memory and written whole by one write(2) (io/row_file.hpp), so the
+// file holds every row produced so far and only whole rows, whatever stops the process.
 #pragma once
 
-#include <chrono>
-#include <cstdio>
 #include <string>
 #include <vector>
+
+#include "io/row_file.hpp"
 
 namespace beltsim {
 
 class CsvWriter {
  public:
-  // append: continue an existing file (a resumed run) without writing the header again
+  // append: continue an existing file (a resumed run) without writing the header again.
+  // flush_interval [s]: rows reach the file at once, so there is nothing to flush on a timer;
+  // kept so callers need not change. Throws std::runtime_error naming the file and the reason
+  // (here and in row()).
   CsvWriter(const std::string& path, const std::vector<std::string>& header, double flush_interval = 0.5,
             bool append = false);
-  ~CsvWriter();
   CsvWriter(const CsvWriter&) = delete;
   CsvWriter& operator=(const CsvWriter&) = delete;
   void row(const std::vector<double>& values);
-  void flush();
-  const std::string& path() const { return path_; }
+  void flush() {}  // every row is in the file when row() returns
+  const std::string& path() const { return file_.path(); }
 
  private:
-  std::string path_;
-  std::FILE* f_ = nullptr;
+  RowFile file_;
   size_t columns_;
-  double flush_interval_;
-  std::chrono::steady_clock::time_point last_flush_;
+  std::string line_;  // the row being assembled (its capacity reused)
 };
 
 // one cell: quotes text containing a comma, quote or newline

@@ -115,8 +115,7 @@ void Simulation::save(const std::string& path) const {
     throw std::invalid_argument("save: " + rs_.integrator +
                                 " keeps a multistep history that SUNDIALS cannot export; checkpoints need a one-step "
                                 "integrator (esdirk32, trbdf2, ros34pw2, rkf45)");
-  csv_->flush();
-  std::fflush(events_);
+  // (the CSV files need no flush: each row is in the file when written)
   std::ostringstream o;
   o << kMagic << ' ' << kVersion << '\n';
   put(o, "integrator", rs_.integrator);

@@ -1,14 +1,11 @@
 #include "sim/simulation.hpp"
 
 #include <algorithm>
-#include <cerrno>
 #include <charconv>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
-#include <cstring>
 #include <filesystem>
-#include <fstream>
 #include <sstream>
 
 #include "integrate/belt_system.hpp"
@@ -27,9 +24,8 @@ std::string span_name(const Scene& sc, size_t k) {
 void write_parameters(const Scene& sc, const RunSettings& rs, const std::string& path) {
   const Model& m = sc.model;
   const Belt& b = m.belt;
-  std::ofstream f(path);
-  if (!f) throw std::runtime_error("cannot write " + path + ": " + std::strerror(errno));
-  f.precision(17);  // doubles round-trip
+  std::ostringstream f;  // written whole at the end (io/row_file.hpp)
+  f.precision(17);        // doubles round-trip
   f << "name,value,unit,note\n";
   auto row = [&](const std::string& name, double v, const std::string& unit, const std::string& note) {
     f << csv_text(name) << ',' << v << ',' << csv_text(unit) << ',' << csv_text(note) << '\n';
@@ -84,6 +80,7 @@ void write_parameters(const Scene& sc, const RunSettings& rs, const std::string&
   row("run.rtol", rs.rtol, "", "");
   row("run.atol", rs.atol < 0 ? rs.rtol : rs.atol, "", "per natural unit: 0.1 m, 1 rad, 1 m/s, 10 rad/s, 1 J");
   row("run.sample_dt", rs.sample_dt, "s", "");
+  write_file_whole(path, f.str());
 }
 
 std::string num(double v) {
@@ -185,7 +182,6 @@ Simulation::~Simulation() {
     close();
   } catch (...) {
   }
-  if (events_) std::fclose(events_);
 }
 
 void Simulation::open_outputs(bool append) {
@@ -199,9 +195,8 @@ void Simulation::open_outputs(bool append) {
   if (rs_.frames) sink_ = rs_.frame_factory(scene_, *rs_.frames);
   if (!append) write_parameters(scene_, rs_, (fs::path(rs_.out_dir) / "parameters.csv").string());
   csv_ = std::make_unique<CsvWriter>(csv_path(), timeseries_columns(scene_), 0.5, append);
-  events_ = std::fopen(events_path().c_str(), append ? "a" : "w");
-  if (!events_) throw std::runtime_error("cannot write " + events_path() + ": " + std::strerror(errno));
-  if (!append) std::fputs("t,what,value\n", events_), std::fflush(events_);
+  events_ = std::make_unique<RowFile>(events_path(), append);
+  if (!append) events_->write("t,what,value\n");
 }
 
 std::string Simulation::csv_path() const { return (std::filesystem::path(rs_.out_dir) / "timeseries.csv").string(); }
@@ -380,16 +375,15 @@ std::vector<std::string> Simulation::notes() const {
 void Simulation::close() {
   if (closed_) return;
   closed_ = true;
-  if (csv_) {  // the fallbacks, beside the parameters they qualify
-    std::ofstream f((std::filesystem::path(rs_.out_dir) / "parameters.csv").string(), std::ios::app);
+  if (sink_) sink_->finish();  // first: a full disk below must not leave the video unfinished
+  if (csv_) {  // the fallbacks, beside the parameters they qualify (whole rows, one write)
+    std::ostringstream f;
     const WorkCounters w = integ_->work();
     f << "warning.static_retried," << (scene_.static_retried ? 1 : 0) << ",,the static start's trust-region retry\n"
       << "warning.failed_steps," << w.failed_steps << ",,steps whose implicit iteration did not converge\n";
     if (w.first_failed_step >= 0) f << "warning.first_failed_step," << num(w.first_failed_step) << ",s,\n";
+    RowFile((std::filesystem::path(rs_.out_dir) / "parameters.csv").string(), true).write(f.str());
   }
-  if (csv_) csv_->flush();
-  if (events_) std::fflush(events_);
-  if (sink_) sink_->finish();
 }
 
 void Simulation::write_event(double t, const std::string& what, const std::string& text) {
@@ -397,8 +391,7 @@ void Simulation::write_event(double t, const std::string& what, const std::strin
   // the shortest decimal that reads back as the same double
   char b[32];
   const auto r = std::to_chars(b, b + sizeof b, t);
-  std::fprintf(events_, "%.*s,%s,%s\n", static_cast<int>(r.ptr - b), b, csv_text(what).c_str(), csv_text(text).c_str());
-  std::fflush(events_);
+  events_->write(std::string(b, r.ptr) + ',' + csv_text(what) + ',' + csv_text(text) + '\n');
 }
 
 void Simulation::log_event(const std::string& what, const std::string& text) {

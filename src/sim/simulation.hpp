@@ -27,6 +27,7 @@ namespace beltsim {
 
 class BeltSystem;
 class CsvWriter;
+class RowFile;
 class Timeline;
 
 // A change of the belt's friction coefficient at a known time (wetting, drying): the integrator
@@ -173,7 +174,7 @@ class Simulation {
   std::unique_ptr<Integrator> integ_;
   std::unique_ptr<Timeline> tl_;
   std::unique_ptr<CsvWriter> csv_;
-  std::FILE* events_ = nullptr;
+  std::unique_ptr<RowFile> events_;  // events.csv, a row per write (io/row_file.hpp)
   std::unique_ptr<FrameSink> sink_;
   std::vector<MuEvent> pending_;  // timed μ changes still ahead
   std::vector<std::vector<double>> samples_;

@@ -4,11 +4,11 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
 #include <limits>
 #include <sstream>
 
 #include "integrate/stepper.hpp"
+#include "io/row_file.hpp"
 
 namespace beltsim {
 
@@ -48,8 +48,7 @@ double rel_error(const std::vector<std::vector<double>>& run, const std::vector<
 }
 
 void write_csv(const WpResult& res, const std::string& path) {
-  std::ofstream f(path);
-  if (!f) throw std::runtime_error("cannot write " + path);
+  std::ostringstream f;  // the table whole, then renamed over the last one: a kill never leaves part of it
   f << "integrator,rtol,finished,t_reached_s,wall_s,steps,rejected,rhs,jacobians,factorizations,solves,"
        "err_speed,err_speed_end,err_tension\n";
   f.precision(6);
@@ -64,6 +63,7 @@ void write_csv(const WpResult& res, const std::string& path) {
   };
   row(res.reference);
   for (const WpRow& r : res.rows) row(r);
+  write_file_whole(path, f.str());
 }
 
 }  // namespace
