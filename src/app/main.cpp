@@ -8,7 +8,7 @@
 // The flags override what the script passes to scene:run{}. Every number is a finite decimal
 // (no hex, inf or nan); an option a command does not take is an error. Exit status: 0 on
 // success, 1 on a script, parameter, run or plot error (message on stderr, outputs written so far
-// kept), 2 on bad usage, 130 when stopped by Ctrl-C (outputs flushed).
+// kept), 2 on bad usage, 130 when stopped by Ctrl-C (SIGINT) and 143 by SIGTERM (outputs closed).
 #include <CLI/CLI.hpp>
 #include <unistd.h>
 
@@ -38,8 +38,39 @@ namespace {
 namespace fs = std::filesystem;
 
 std::atomic<bool> g_stop{false};
+volatile std::sig_atomic_t g_signal = 0;  // the first SIGINT or SIGTERM received
 
-void on_sigint(int) { g_stop.store(true); }
+// SIGINT (Ctrl-C) and SIGTERM (timeout, CI cancellation, docker stop) alike: the run stops at its
+// last finished step and the outputs are closed (CSV rows are on disk as written, the video gets
+// its trailer); a second one while that happens takes the default action: the process ends now
+void on_stop_signal(int sig) {
+  if (g_signal != 0) {
+    std::signal(sig, SIG_DFL);
+    std::raise(sig);  // blocked until this handler returns, then fatal
+    return;
+  }
+  g_signal = sig;
+  g_stop.store(true);
+}
+
+void handle_stop_signals() {
+  struct sigaction sa {};
+  sa.sa_handler = on_stop_signal;
+  sigemptyset(&sa.sa_mask);
+  sigaddset(&sa.sa_mask, SIGINT);  // one handler at a time
+  sigaddset(&sa.sa_mask, SIGTERM);
+  sa.sa_flags = SA_RESTART;
+  sigaction(SIGINT, &sa, nullptr);
+  sigaction(SIGTERM, &sa, nullptr);
+}
+
+// after a stop signal: the message, and 128 + the signal's number (130 SIGINT, 143 SIGTERM)
+int stopped_status() {
+  const int sig = g_signal != 0 ? static_cast<int>(g_signal) : SIGINT;
+  std::fprintf(stderr, "beltsim: %s; the outputs written so far are kept\n",
+               sig == SIGTERM ? "terminated" : "interrupted");
+  return 128 + sig;
+}
 
 // bad usage: the message goes to stderr and the exit status is 2
 struct UsageError : std::runtime_error {
@@ -139,13 +170,10 @@ int cmd_run(const std::string& script, const beltsim::script::Overrides& o) {
     lua.set_overrides(o);
     lua.set_stop_flag(&g_stop);
     lua.run_file(script);
-    if (lua.interrupted()) {
-      std::fprintf(stderr, "beltsim: interrupted; the outputs written so far are kept\n");
-      return 130;
-    }
+    if (lua.interrupted() || g_signal != 0) return stopped_status();
   } catch (const std::exception& e) {
     std::fprintf(stderr, "beltsim: %s\n", e.what());
-    return 1;
+    return g_signal != 0 ? stopped_status() : 1;
   }
   return 0;
 }
@@ -170,10 +198,10 @@ int cmd_wp(const std::string& script, const beltsim::script::Overrides& o, belts
       std::fprintf(stderr, "beltsim wp: no plot: %s\n", e.what());
     }
     std::fprintf(stderr, "beltsim wp: wrote %s%s%s\n", r.csv_path.c_str(), drawn.empty() ? "" : " and ", drawn.c_str());
-    return g_stop.load() ? 130 : 0;
+    return g_signal != 0 ? stopped_status() : 0;
   } catch (const std::exception& e) {
     std::fprintf(stderr, "beltsim: %s\n", e.what());
-    return 1;
+    return g_signal != 0 ? stopped_status() : 1;
   }
 }
 
@@ -212,7 +240,8 @@ int main(int argc, char** argv) {
   app.set_version_flag("--version", "beltsim 0.1.0");
   app.require_subcommand(1);
   app.footer("Exit status: 0 on success, 1 on a script, parameter, run or plot error, 2 on bad usage,\n"
-             "130 after Ctrl-C (outputs flushed). 'beltsim COMMAND --help' describes a command.");
+             "130 after Ctrl-C, 143 after SIGTERM (outputs closed). 'beltsim COMMAND --help' describes a\n"
+             "command.");
   Raw raw;
   std::string script, csv;
   std::optional<std::string> console_script;
@@ -298,10 +327,10 @@ int main(int argc, char** argv) {
   }
 
   try {
-    std::signal(SIGINT, on_sigint);
+    if (*plot) return cmd_plot(csv, columns, raw);  // a signal ends it at once: nothing to close
+    handle_stop_signals();                           // the console then puts its own
     if (*run) return cmd_run(script, overrides(raw));
     if (*console) return cmd_console(console_script, console_args, overrides(raw));
-    if (*plot) return cmd_plot(csv, columns, raw);
     // wp
     beltsim::WpSettings wps;
     if (raw.integrators) {

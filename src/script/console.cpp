@@ -33,7 +33,7 @@ namespace {
 
 lua_State* g_L = nullptr;
 std::atomic<bool>* g_stop = nullptr;
-volatile sig_atomic_t g_at_prompt = 0, g_sigint = 0;
+volatile sig_atomic_t g_at_prompt = 0, g_sigint = 0, g_sigterm = 0;
 bool g_cancelled = false;
 
 void lstop(lua_State* L, lua_Debug*) {
@@ -51,6 +51,19 @@ void on_sigint(int) {
   if (g_L) lua_sethook(g_L, lstop, LUA_MASKCALL | LUA_MASKRET | LUA_MASKCOUNT, 1);
 }
 
+// SIGTERM: a run stops as for Ctrl-C, Lua code stops, and the console leaves as for Ctrl-D (every
+// output closed), exit status 143; a second SIGTERM ends the process at once
+void on_sigterm(int) {
+  if (g_sigterm) {
+    std::signal(SIGTERM, SIG_DFL);
+    std::raise(SIGTERM);
+    return;
+  }
+  g_sigterm = 1;
+  if (g_stop) g_stop->store(true);
+  if (g_L) lua_sethook(g_L, lstop, LUA_MASKCALL | LUA_MASKRET | LUA_MASKCOUNT, 1);
+}
+
 // readline's input: Ctrl-C at the prompt ends the line, emptied. SIGINT is blocked except while
 // waiting in ppoll, so a Ctrl-C that comes while readline is busy (echoing, redrawing) is seen at
 // the next wait instead of being lost.
@@ -58,8 +71,14 @@ int console_getc(FILE* f) {
   sigset_t block, orig;
   sigemptyset(&block);
   sigaddset(&block, SIGINT);
+  sigaddset(&block, SIGTERM);
   for (;;) {
     sigprocmask(SIG_BLOCK, &block, &orig);
+    if (g_sigterm) {  // the line is dropped (not run), then readline returns NULL as for Ctrl-D
+      sigprocmask(SIG_SETMASK, &orig, nullptr);
+      rl_replace_line("", 0);
+      return EOF;
+    }
     if (g_sigint) {
       sigprocmask(SIG_SETMASK, &orig, nullptr);
       g_sigint = 0;
@@ -68,7 +87,7 @@ int console_getc(FILE* f) {
       return '\n';
     }
     pollfd p{fileno(f), POLLIN, 0};
-    const int r = ppoll(&p, 1, nullptr, &orig);  // SIGINT may arrive only while waiting here
+    const int r = ppoll(&p, 1, nullptr, &orig);  // SIGINT and SIGTERM may arrive only while waiting here
     sigprocmask(SIG_SETMASK, &orig, nullptr);
     if (r < 0) {
       if (errno == EINTR) continue;
@@ -480,6 +499,8 @@ int run_console(const std::optional<std::string>& script, const std::vector<std:
   sigemptyset(&sa.sa_mask);
   sa.sa_flags = 0;  // no SA_RESTART: a read at the prompt returns EINTR
   sigaction(SIGINT, &sa, nullptr);
+  sa.sa_handler = on_sigterm;  // no SA_RESTART either: a read of standard input returns
+  sigaction(SIGTERM, &sa, nullptr);
 
   bool failed = false;
   if (script) {
@@ -513,6 +534,7 @@ int run_console(const std::optional<std::string>& script, const std::vector<std:
   std::vector<std::string> commands;
   std::string chunk;
   for (;;) {
+    if (g_sigterm) break;
     std::string line;
     if (interactive) {
       g_at_prompt = 1;
@@ -535,7 +557,7 @@ int run_console(const std::optional<std::string>& script, const std::vector<std:
         history_truncate_file(hist.c_str(), 1000);
       }
     } else if (!std::getline(std::cin, line)) {
-      if (!chunk.empty()) {
+      if (!chunk.empty() && !g_sigterm) {
         std::fprintf(stderr, "stdin: unfinished input at the end: %s\n", chunk.c_str());
         failed = true;
       }
@@ -561,8 +583,13 @@ int run_console(const std::optional<std::string>& script, const std::vector<std:
     chunk.clear();
   }
   g_L = nullptr;
+  lua_sethook(L, nullptr, 0, 0);  // a SIGTERM's hook would stop the finalisers below
   write_session(ctx.default_out, script, args, commands);
   // the interpreter's end closes every simulation (their finalisers flush and finalise outputs)
+  if (g_sigterm) {
+    std::fprintf(stderr, "beltsim: terminated; the outputs written so far are kept\n");
+    return 143;
+  }
   return interactive ? 0 : (failed ? 1 : 0);
 }
 

@@ -6,7 +6,8 @@
 //
 // Ctrl-C at the prompt clears the line; during sim:run_to/advance it stops at the last finished
 // step (outputs written) and the prompt returns; in other Lua code it raises "interrupted!".
-// Ctrl-D closes every simulation's outputs and exits 0. With standard input not a terminal the
+// Ctrl-D closes every simulation's outputs and exits 0; SIGTERM does the same after stopping the
+// run or Lua code under way, and exits 143. With standard input not a terminal the
 // commands are read and run with no prompt or escape codes, and the exit status is 1 if any
 // failed. The commands that ran without error are written to <out>/session.lua, a script that
 // `beltsim run` replays.
@@ -22,7 +23,7 @@
 namespace beltsim::script {
 
 // returns the exit status: 0, or 1 when a command (or the script) failed in a non-interactive
-// session
+// session, or 143 after SIGTERM
 int run_console(const std::optional<std::string>& script, const std::vector<std::string>& args, const Overrides& o,
                 std::atomic<bool>* stop);
 
