@@ -584,7 +584,7 @@ int run_console(const std::optional<std::string>& script, const std::vector<std:
   }
   g_L = nullptr;
   lua_sethook(L, nullptr, 0, 0);  // a SIGTERM's hook would stop the finalisers below
-  write_session(ctx.default_out, script, args, commands);
+  write_session(o.out ? *o.out : ctx.default_out, script, args, commands);  // --out wins, as for the runs
   // the interpreter's end closes every simulation (their finalisers flush and finalise outputs)
   if (g_sigterm) {
     std::fprintf(stderr, "beltsim: terminated; the outputs written so far are kept\n");
