@@ -1,10 +1,11 @@
 // beltsim command line (CLI11).
-//   beltsim run     SCRIPT [--out DIR] [--t-end T] [--integrator NAME] [--rtol R] [--no-frames]
+//   beltsim run     SCRIPT [--out DIR] [--t-end T] [--integrator NAME] [--rtol R] [--no-frames] [SAFETY]
 //   beltsim wp      SCRIPT [--out DIR] [--t-end T] [--integrators A,B] [--rtols R1,R2] [--ref-rtol R]
-//                          [--wall-limit S]
+//                          [--wall-limit S] [SAFETY]
 //   beltsim plot    CSV [COLUMNS...] [--out PNG] [--from T]
 //   beltsim console [SCRIPT] [--out DIR] [--t-end T] [--integrator NAME] [--rtol R] [--no-frames]
-//                            [-- ARGS...]
+//                            [SAFETY] [-- ARGS...]
+//   SAFETY: [--trusted] [--max-instructions N] [--max-lua-memory MiB] (README, Limits and safety)
 // The flags override what the script passes to scene:run{}. Every number is a finite decimal
 // (no hex, inf or nan); an option a command does not take is an error. Exit status: 0 on
 // success, 1 on a script, parameter, run or plot error (message on stderr, outputs written so far
@@ -16,6 +17,7 @@
 #include <charconv>
 #include <cmath>
 #include <csignal>
+#include <cstdint>
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
@@ -129,7 +131,41 @@ struct Raw {
   bool no_frames = false;
   std::optional<std::string> integrators, rtols, ref_rtol, wall_limit;  // wp
   std::optional<std::string> from;                                      // plot
+  bool trusted = false;                                                 // run, wp, console
+  std::optional<std::string> max_instructions, max_lua_memory;
 };
+
+void add_safety(CLI::App* c, Raw& raw) {
+  c->add_flag("--trusted", raw.trusted,
+              "the script gets every Lua library (os.execute, io anywhere, debug, C modules): only for scripts "
+              "you trust");
+  c->add_option("--max-instructions", raw.max_instructions,
+                "Lua instructions per script run or console command (default 1e10; 0: no limit)")
+      ->type_name("N");
+  c->add_option("--max-lua-memory", raw.max_lua_memory, "Lua heap limit in MiB (default 4096; 0: no limit)")
+      ->type_name("MiB");
+}
+
+beltsim::script::Safety safety(const Raw& raw) {
+  beltsim::script::Safety s;
+  s.trusted = raw.trusted;
+  if (raw.max_instructions) {
+    const double x = number("--max-instructions", *raw.max_instructions);
+    if (!(x >= 0 && x == std::floor(x) && x <= 1e18))
+      throw UsageError("--max-instructions must be a whole number in [0, 1e18] (0: no limit), got " +
+                       *raw.max_instructions);
+    s.max_instructions = static_cast<std::uint64_t>(x);
+  }
+  if (raw.max_lua_memory) {
+    const double x = number("--max-lua-memory", *raw.max_lua_memory);
+    if (!(x >= 0 && x <= 1e9))
+      throw UsageError("--max-lua-memory must be in [0, 1e9] MiB (0: no limit), got " + *raw.max_lua_memory);
+    s.max_lua_memory = static_cast<std::size_t>(x * (1 << 20));
+    if (x > 0 && s.max_lua_memory < (std::size_t(1) << 20))
+      throw UsageError("--max-lua-memory must be at least 1 MiB (0: no limit), got " + *raw.max_lua_memory);
+  }
+  return s;
+}
 
 void add_out_and_t_end(CLI::App* c, Raw& raw, const char* out_help) {
   c->add_option("--out", raw.out, out_help)->type_name("DIR");
@@ -141,6 +177,7 @@ void add_run_overrides(CLI::App* c, Raw& raw) {
   c->add_option("--integrator", raw.integrator, "one of: " + integrator_list())->type_name("NAME");
   c->add_option("--rtol", raw.rtol, "relative tolerance of the step-size control, in (0, 1)")->type_name("R");
   c->add_flag("--no-frames", raw.no_frames, "render no frames and no video, whatever the script asks");
+  add_safety(c, raw);
 }
 
 beltsim::script::Overrides overrides(const Raw& raw) {
@@ -164,9 +201,9 @@ beltsim::script::Overrides overrides(const Raw& raw) {
   return o;
 }
 
-int cmd_run(const std::string& script, const beltsim::script::Overrides& o) {
+int cmd_run(const std::string& script, const beltsim::script::Overrides& o, const beltsim::script::Safety& s) {
   try {
-    beltsim::script::Interpreter lua;
+    beltsim::script::Interpreter lua(s);
     lua.set_overrides(o);
     lua.set_stop_flag(&g_stop);
     lua.run_file(script);
@@ -178,10 +215,11 @@ int cmd_run(const std::string& script, const beltsim::script::Overrides& o) {
   return 0;
 }
 
-int cmd_wp(const std::string& script, const beltsim::script::Overrides& o, beltsim::WpSettings wps) {
+int cmd_wp(const std::string& script, const beltsim::script::Overrides& o, const beltsim::script::Safety& s,
+           beltsim::WpSettings wps) {
   try {
     beltsim::script::Captured cap;
-    beltsim::script::Interpreter lua;
+    beltsim::script::Interpreter lua(s);
     if (o.t_end) lua.set_overrides({.out = {}, .t_end = o.t_end, .integrator = {}, .rtol = {}});
     lua.set_capture(&cap);
     lua.run_file(script);
@@ -224,9 +262,9 @@ int cmd_plot(const std::string& csv, const std::vector<std::string>& columns, co
 }
 
 int cmd_console(const std::optional<std::string>& script, const std::vector<std::string>& args,
-                const beltsim::script::Overrides& o) {
+                const beltsim::script::Overrides& o, const beltsim::script::Safety& s) {
   try {
-    return beltsim::script::run_console(script, args, o, &g_stop);
+    return beltsim::script::run_console(script, args, o, s, &g_stop);
   } catch (const std::exception& e) {
     std::fprintf(stderr, "beltsim: %s\n", e.what());
     return 1;
@@ -263,6 +301,7 @@ int main(int argc, char** argv) {
   wp->add_option("--ref-rtol", raw.ref_rtol, "tolerance of the esdirk32 reference run (default 1e-7)")->type_name("R");
   wp->add_option("--wall-limit", raw.wall_limit, "a run taking longer is stopped, unfinished (default 120)")
       ->type_name("S");
+  add_safety(wp, raw);
   wp->footer("Runs the script's scene with every integrator at every tolerance, each against the\n"
              "reference. Writes DIR/wp.csv, DIR/wp.png (log-log, gnuplot) and DIR/<integrator>-<rtol>/.");
 
@@ -329,8 +368,8 @@ int main(int argc, char** argv) {
   try {
     if (*plot) return cmd_plot(csv, columns, raw);  // a signal ends it at once: nothing to close
     handle_stop_signals();                           // the console then puts its own
-    if (*run) return cmd_run(script, overrides(raw));
-    if (*console) return cmd_console(console_script, console_args, overrides(raw));
+    if (*run) return cmd_run(script, overrides(raw), safety(raw));
+    if (*console) return cmd_console(console_script, console_args, overrides(raw), safety(raw));
     // wp
     beltsim::WpSettings wps;
     if (raw.integrators) {
@@ -353,7 +392,7 @@ int main(int argc, char** argv) {
       if (!(x > 0)) throw UsageError("--wall-limit must be > 0 s, got " + *raw.wall_limit);
       wps.wall_limit = x;
     }
-    return cmd_wp(script, overrides(raw), wps);
+    return cmd_wp(script, overrides(raw), safety(raw), wps);
   } catch (const UsageError& e) {
     const CLI::App* sub = app.get_subcommands().front();
     std::fprintf(stderr, "beltsim: %s\nRun 'beltsim %s --help' for the usage.\n", e.what(), sub->get_name().c_str());

@@ -20,6 +20,7 @@
 
 #include "io/units.hpp"
 #include "script/context.hpp"
+#include "script/limits.hpp"
 #include "term/term_image.hpp"
 
 #include "lauxlib.h"
@@ -32,14 +33,10 @@ namespace {
 // ---- signals (lua.c's laction/lstop, plus readline) ------------------------------------------
 
 lua_State* g_L = nullptr;
+Interpreter* g_lua = nullptr;
 std::atomic<bool>* g_stop = nullptr;
 volatile sig_atomic_t g_at_prompt = 0, g_sigint = 0, g_sigterm = 0;
 bool g_cancelled = false;
-
-void lstop(lua_State* L, lua_Debug*) {
-  lua_sethook(L, nullptr, 0, 0);
-  luaL_error(L, "interrupted!");
-}
 
 void on_sigint(int) {
   if (g_at_prompt) {
@@ -47,8 +44,9 @@ void on_sigint(int) {
     return;
   }
   if (g_stop) g_stop->store(true);  // run_to stops at the last finished step
-  // Lua code (a loop, a callback) stops at its next instruction
-  if (g_L) lua_sethook(g_L, lstop, LUA_MASKCALL | LUA_MASKRET | LUA_MASKCOUNT, 1);
+  // Lua code (a loop, a callback) raises "interrupted!" within a slice of instructions: the
+  // interpreter's one count hook (limits.hpp) sees the flag; the hook is never swapped here
+  if (g_lua) g_lua->interrupt();
 }
 
 // SIGTERM: a run stops as for Ctrl-C, Lua code stops, and the console leaves as for Ctrl-D (every
@@ -61,7 +59,7 @@ void on_sigterm(int) {
   }
   g_sigterm = 1;
   if (g_stop) g_stop->store(true);
-  if (g_L) lua_sethook(g_L, lstop, LUA_MASKCALL | LUA_MASKRET | LUA_MASKCOUNT, 1);
+  if (g_lua) g_lua->interrupt();
 }
 
 // readline's input: Ctrl-C at the prompt ends the line, emptied. SIGINT is blocked except while
@@ -278,40 +276,66 @@ Compile compile(lua_State* L, const std::string& chunk, bool& expression) {
   return Compile::error;
 }
 
-// runs the compiled chunk on the stack top; prints results or the error. True when it ran.
-bool execute(lua_State* L) {
-  const int base = lua_gettop(L);  // the chunk
+// prints its arguments as the console shows values; called protected, since a __tostring
+// metamethod is Lua code that may fail or loop
+int print_values(lua_State* L) {
+  const int n = lua_gettop(L);
+  std::string line;
+  for (int k = 1; k <= n; ++k) {
+    std::set<const void*> seen;
+    pretty_into(L, k, line, 0, seen);
+    line += k < n ? '\t' : '\n';
+  }
+  std::fputs(line.c_str(), stdout);
+  std::fflush(stdout);
+  return 0;
+}
+
+// calls the function below the `nargs` values on the stack top with the message handler; the
+// error's text, or "" (the results, if any, are left on the stack)
+std::string protected_call(lua_State* L, int nargs, int nresults) {
+  const int fn = lua_gettop(L) - nargs;
   lua_pushcfunction(L, msghandler);
-  lua_insert(L, base);
+  lua_insert(L, fn);
   std::string error;
   int status = LUA_OK;
   try {
-    status = lua_pcall(L, 0, LUA_MULTRET, base);
+    status = lua_pcall(L, nargs, nresults, fn);
   } catch (const std::exception& e) {  // a C++ error that escaped a binding
     status = LUA_ERRRUN;
-    lua_settop(L, base);
+    lua_settop(L, fn);
     error = e.what();
   }
-  lua_sethook(L, nullptr, 0, 0);
-  if (g_stop) g_stop->store(false);
+  if (status != LUA_OK && error.empty() && !memory_message(L, status, "stdin", error))
+    error = lua_tostring(L, -1) ? lua_tostring(L, -1) : "(error)";
   if (status != LUA_OK) {
-    if (error.empty()) error = lua_tostring(L, -1) ? lua_tostring(L, -1) : "(error)";
-    std::fprintf(stderr, "%s", short_traceback(error).c_str());
+    lua_settop(L, fn - 1);
+    if (error.empty()) error = "(error)";
+  } else {
+    lua_remove(L, fn);  // the handler
+  }
+  return error;
+}
+
+// runs the compiled chunk on the stack top; prints results or the error. True when it ran.
+bool execute(lua_State* L) {
+  const int base = lua_gettop(L) - 1;  // below the chunk
+  begin_call(L);  // the instruction budget is per command; no Ctrl-C pending
+  const std::string error = protected_call(L, 0, LUA_MULTRET);
+  std::string print_error;
+  if (error.empty() && lua_gettop(L) > base) {
+    // the results, printed (within the same command's budget); the command itself has run
+    lua_pushcfunction(L, print_values);
+    lua_insert(L, base + 1);
+    print_error = protected_call(L, lua_gettop(L) - base - 1, 0);
+  }
+  if (g_stop) g_stop->store(false);
+  lua_settop(L, base);
+  if (!error.empty() || !print_error.empty()) {
+    std::fprintf(stderr, "%s", short_traceback(error.empty() ? "printing the result: " + print_error : error).c_str());
     std::fflush(stderr);
-    lua_settop(L, base - 1);
-    return false;
   }
-  const int n = lua_gettop(L) - base;
-  for (int k = 1; k <= n; ++k) {
-    std::set<const void*> seen;
-    std::string s;
-    pretty_into(L, base + k, s, 0, seen);
-    std::fputs(s.c_str(), stdout);
-    std::fputc(k < n ? '\t' : '\n', stdout);
-  }
-  std::fflush(stdout);
-  lua_settop(L, base - 1);
-  return true;
+  return error.empty();
 }
 
 // ---- completion ------------------------------------------------------------------------------
@@ -330,7 +354,8 @@ void push_path(lua_State* L, const std::string& path) {
       lua_pushnil(L);
       return;
     }
-    lua_getfield(L, -1, part.c_str());
+    lua_pushstring(L, part.c_str());
+    lua_rawget(L, -2);  // raw: completing never runs Lua code (an __index could fail or loop)
     lua_remove(L, -2);
     if (dot == std::string::npos) break;
     pos = dot + 1;
@@ -351,7 +376,8 @@ void keys_of(lua_State* L, std::vector<std::pair<std::string, bool>>& out) {
   if (lua_getmetatable(L, v)) {
     const int mt = lua_gettop(L);
     for (const char* k : {"methods", "__index"}) {
-      lua_getfield(L, mt, k);
+      lua_pushstring(L, k);
+      lua_rawget(L, mt);
       if (lua_istable(L, -1)) from_table(lua_gettop(L));
       lua_pop(L, 1);
     }
@@ -438,7 +464,14 @@ std::string history_path() {
   return ".beltsim_history";
 }
 
-void write_session(const std::string& dir, const std::optional<std::string>& script,
+// `text` as a Lua long string: [==[ ... ]==] with as many '=' as it takes
+std::string long_string(const std::string& text) {
+  std::string eq;
+  while (text.find("]" + eq + "]") != std::string::npos) eq += '=';
+  return "[" + eq + "[\n" + text + "\n]" + eq + "]";  // the first newline is not part of the string
+}
+
+void write_session(const std::string& dir, const std::optional<std::string>& script, std::string script_text,
                    const std::vector<std::string>& args, const std::vector<std::string>& commands) {
   if (commands.empty()) return;
   namespace fs = std::filesystem;
@@ -453,11 +486,20 @@ void write_session(const std::string& dir, const std::optional<std::string>& scr
   f << "-- The commands of a beltsim console session that ran without error, in order.\n"
     << "-- Replay with: beltsim run " << path << "\n";
   if (script) {
+    // the scenario's text is copied in (as it was when the session began), so the replay needs
+    // no access to the scenario's folder, which the sandbox would refuse (README, Console)
+    f << "-- The scenario " << *script << " is copied below as it was when the session began; its errors\n"
+      << "-- name it and its own lines. A scenario that reads files beside it needs: beltsim run --trusted\n";
     f << "arg = { [0] = " << quoted(script->data(), script->size());
     for (const std::string& a : args) f << ", " << quoted(a.data(), a.size());
     f << " }\n";
-    const std::string abs = fs::absolute(*script).string();
-    f << "dofile(" << quoted(abs.data(), abs.size()) << ")\n";
+    // as luaL_loadfile reads a file: no UTF-8 byte order mark, a first line "#..." skipped (kept
+    // as a comment, so the line numbers stay)
+    if (script_text.rfind("\xEF\xBB\xBF", 0) == 0) script_text.erase(0, 3);
+    if (!script_text.empty() && script_text[0] == '#') script_text.insert(0, "--");
+    const std::string chunkname = "@" + *script;
+    f << "assert(load(" << long_string(script_text) << ", " << quoted(chunkname.data(), chunkname.size())
+      << ", \"t\"))()\n";
   }
   for (const std::string& c : commands) f << c << "\n";
   std::fprintf(stderr, "beltsim: the session's commands are in %s\n", path.c_str());
@@ -473,13 +515,14 @@ std::string pretty(lua_State* L, int idx) {
 }
 
 int run_console(const std::optional<std::string>& script, const std::vector<std::string>& args, const Overrides& o,
-                std::atomic<bool>* stop) {
+                const Safety& safety, std::atomic<bool>* stop) {
   const bool interactive = isatty(STDIN_FILENO);
-  Interpreter lua;
+  Interpreter lua(safety);
   lua.set_overrides(o);
   lua.set_stop_flag(stop);
   lua_State* L = lua.state();
   g_L = L;
+  g_lua = &lua;
   g_stop = stop;
   Context& ctx = lua.context();
   const bool tty_out = isatty(STDOUT_FILENO);
@@ -503,7 +546,12 @@ int run_console(const std::optional<std::string>& script, const std::vector<std:
   sigaction(SIGTERM, &sa, nullptr);
 
   bool failed = false;
+  std::string script_text;  // as it was when the session began, for session.lua
   if (script) {
+    std::ifstream in(*script, std::ios::binary);
+    std::ostringstream text;
+    text << in.rdbuf();
+    script_text = text.str();
     try {
       lua.run_file(*script);
     } catch (const ScriptError& e) {
@@ -511,7 +559,6 @@ int run_console(const std::optional<std::string>& script, const std::vector<std:
       failed = true;
     }
     if (stop) stop->store(false);
-    lua_sethook(L, nullptr, 0, 0);
   } else {
     ctx.default_out = "out/console";
   }
@@ -583,8 +630,9 @@ int run_console(const std::optional<std::string>& script, const std::vector<std:
     chunk.clear();
   }
   g_L = nullptr;
-  lua_sethook(L, nullptr, 0, 0);  // a SIGTERM's hook would stop the finalisers below
-  write_session(o.out ? *o.out : ctx.default_out, script, args, commands);  // --out wins, as for the runs
+  g_lua = nullptr;
+  // the finalisers below run with a fresh budget and no interrupt pending (~Interpreter)
+  write_session(o.out ? *o.out : ctx.default_out, script, script_text, args, commands);  // --out wins, as for the runs
   // the interpreter's end closes every simulation (their finalisers flush and finalise outputs)
   if (g_sigterm) {
     std::fprintf(stderr, "beltsim: terminated; the outputs written so far are kept\n");

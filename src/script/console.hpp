@@ -10,7 +10,8 @@
 // run or Lua code under way, and exits 143. With standard input not a terminal the
 // commands are read and run with no prompt or escape codes, and the exit status is 1 if any
 // failed. The commands that ran without error are written to <out>/session.lua, a script that
-// `beltsim run` replays.
+// `beltsim run` replays (the scenario's text is copied into it, so the replay runs in the sandbox).
+// Each command has its own instruction budget (Safety::max_instructions).
 #pragma once
 
 #include <atomic>
@@ -25,7 +26,7 @@ namespace beltsim::script {
 // returns the exit status: 0, or 1 when a command (or the script) failed in a non-interactive
 // session, or 143 after SIGTERM
 int run_console(const std::optional<std::string>& script, const std::vector<std::string>& args, const Overrides& o,
-                std::atomic<bool>* stop);
+                const Safety& safety, std::atomic<bool>* stop);
 
 // the value at idx as readable Lua (tables one entry a line, long lists shortened, a number under
 // a key with a known unit followed by "-- unit"); for the console and its tests

@@ -14,6 +14,8 @@ namespace beltsim::script {
 struct Context {
   Overrides overrides;
   std::string default_out = "out";        // out/<script name> while a script runs
+  std::string script_dir;                 // the running script's folder ("" in a console without one)
+  bool trusted = false;                   // full libraries (Safety::trusted)
   const std::atomic<bool>* stop = nullptr;
   bool interrupted = false;
   Captured* capture = nullptr;            // capture mode (see Interpreter::set_capture)

@@ -3,7 +3,9 @@
 #include <filesystem>
 
 #include "script/context.hpp"
+#include "script/limits.hpp"
 #include "script/lua_api.hpp"
+#include "script/sandbox.hpp"
 
 #include "lauxlib.h"
 #include "lua.h"
@@ -11,51 +13,55 @@
 
 namespace beltsim::script {
 
-namespace {
-
-Context* context_of(lua_State* L) {
-  lua_getfield(L, LUA_REGISTRYINDEX, "beltsim.context");
-  auto* c = static_cast<Context*>(lua_touserdata(L, -1));
-  lua_pop(L, 1);
-  return c;
-}
-
-}  // namespace
-
-Interpreter::Interpreter() : L_(luaL_newstate()) {
+Interpreter::Interpreter(const Safety& safety)
+    : limits_(std::make_unique<Limits>()), ctx_(std::make_unique<Context>()), L_(luaL_newstate()) {
   if (!L_) throw std::runtime_error("cannot create a Lua state (out of memory)");
-  luaL_openlibs(L_);
-  auto* ctx = new (lua_newuserdatauv(L_, sizeof(Context), 0)) Context();
-  // the context lives in the registry; its destructor is run in ~Interpreter
-  lua_setfield(L_, LUA_REGISTRYINDEX, "beltsim.context");
-  open_beltsim(L_, ctx);
+  // from here on every block goes through the counting allocator (the state's first ones were
+  // made by luaL_newstate's, also realloc/free: they are counted from the collector's total)
+  limits_->max_instructions = safety.max_instructions;
+  limits_->max_bytes = safety.max_lua_memory;
+  limits_->bytes = static_cast<std::size_t>(lua_gc(L_, LUA_GCCOUNT, 0)) * 1024 +
+                   static_cast<std::size_t>(lua_gc(L_, LUA_GCCOUNTB, 0));
+  lua_setallocf(L_, limited_alloc, limits_.get());
+  ctx_->trusted = safety.trusted;
+  if (safety.trusted)
+    luaL_openlibs(L_);
+  else
+    open_sandbox(L_, ctx_.get());
+  open_beltsim(L_, ctx_.get());
+  install_hook(L_);
 }
 
 Interpreter::~Interpreter() {
-  Context* ctx = context_of(L_);
-  ctx->~Context();
+  begin_call(L_);  // the finalisers lua_close runs get a budget of their own
   lua_close(L_);
 }
 
-void Interpreter::set_overrides(const Overrides& o) { context_of(L_)->overrides = o; }
-void Interpreter::set_stop_flag(const std::atomic<bool>* stop) { context_of(L_)->stop = stop; }
-void Interpreter::set_capture(Captured* c) { context_of(L_)->capture = c; }
-Context& Interpreter::context() { return *context_of(L_); }
-bool Interpreter::interrupted() const { return context_of(L_)->interrupted; }
+void Interpreter::set_overrides(const Overrides& o) { ctx_->overrides = o; }
+void Interpreter::set_stop_flag(const std::atomic<bool>* stop) { ctx_->stop = stop; }
+void Interpreter::set_capture(Captured* c) { ctx_->capture = c; }
+Context& Interpreter::context() { return *ctx_; }
+bool Interpreter::interrupted() const { return ctx_->interrupted; }
+void Interpreter::interrupt() { script::interrupt(*limits_); }
 
 void Interpreter::run_file(const std::string& path) {
-  Context* ctx = context_of(L_);
-  ctx->default_out = (std::filesystem::path("out") / std::filesystem::path(path).stem()).string();
+  Context* ctx = ctx_.get();
+  const std::filesystem::path p(path);
+  ctx->default_out = (std::filesystem::path("out") / p.stem()).string();
+  ctx->script_dir = p.has_parent_path() ? p.parent_path().string() : ".";
   ctx->interrupted = false;
   ctx->captured = false;
+  begin_call(L_);
   // text only: a precompiled chunk is never loaded
   int status = luaL_loadfilex(L_, path.c_str(), "t");
   if (status == LUA_OK) status = lua_pcall(L_, 0, 0, 0);
   if (status != LUA_OK && ctx->captured) status = LUA_OK;  // ended on purpose by a capture
   if (status != LUA_OK) {
-    // errors carry "file:line:" (chunks are named "@path"); a non-string error object is named
-    std::string msg = lua_tostring(L_, -1) ? lua_tostring(L_, -1)
-                                           : std::string(path) + ": error object is a " + luaL_typename(L_, -1);
+    // errors carry "file:line:" (chunks are named "@path"); a non-string error object is named;
+    // memory errors (which Lua gives without a place) name the limit
+    std::string msg;
+    if (!memory_message(L_, status, path, msg))
+      msg = lua_tostring(L_, -1) ? lua_tostring(L_, -1) : std::string(path) + ": error object is a " + luaL_typename(L_, -1);
     lua_settop(L_, 0);
     throw ScriptError(msg);
   }

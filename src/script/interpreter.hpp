@@ -3,6 +3,9 @@
 #pragma once
 
 #include <atomic>
+#include <cstddef>
+#include <cstdint>
+#include <memory>
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -14,6 +17,20 @@ struct lua_State;
 namespace beltsim::script {
 
 struct Context;  // script/context.hpp
+struct Limits;   // script/limits.hpp
+
+// What a script may reach and take (README, "Limits and safety"). The defaults are the sandbox
+// and limits that no sensible scenario meets.
+struct Safety {
+  // every standard Lua library (os.execute, io anywhere, debug, C modules); the main file is
+  // still loaded as text only
+  bool trusted = false;
+  // Lua instructions per call from the host (a script run, a console command, with the every/when
+  // callbacks it runs); 0: no limit
+  std::uint64_t max_instructions = 10'000'000'000;
+  // bytes of Lua heap; 0: no limit
+  std::size_t max_lua_memory = std::size_t(4) << 30;
+};
 
 // Command-line values that override what a script asks of scene:run{}.
 struct Overrides {
@@ -37,7 +54,7 @@ struct ScriptError : std::runtime_error {
 
 class Interpreter {
  public:
-  Interpreter();
+  explicit Interpreter(const Safety& safety = {});
   ~Interpreter();
   Interpreter(const Interpreter&) = delete;
   Interpreter& operator=(const Interpreter&) = delete;
@@ -50,10 +67,15 @@ class Interpreter {
   void run_file(const std::string& path);
   // true when a run inside the last script was stopped by the stop flag
   bool interrupted() const;
+  // Ctrl-C for Lua code: raises "interrupted!" at the next slice of instructions (async-signal-safe:
+  // one atomic store)
+  void interrupt();
   lua_State* state() { return L_; }
   Context& context();
 
  private:
+  std::unique_ptr<Limits> limits_;  // the allocator's: outlives the state
+  std::unique_ptr<Context> ctx_;    // outlives the state too: finalisers may use it
   lua_State* L_;
 };
 

@@ -38,13 +38,17 @@ std::vector<lua_Integer> check_sequence(lua_State* L, int idx, const std::string
 // a function's arguments: exactly `min`..`max` of them, or "NAME: expected ..., got N arguments"
 void check_arg_count(lua_State* L, const char* name, int min, int max);
 
-// a Lua value kept alive in the registry
+// a Lua value kept alive in the registry (released through the main thread: the coroutine that
+// made the reference may be gone by then)
 struct LuaRef {
   lua_State* L;
   int ref;
-  LuaRef(lua_State* l, int idx) : L(l) {
-    lua_pushvalue(L, idx);
-    ref = luaL_ref(L, LUA_REGISTRYINDEX);
+  LuaRef(lua_State* l, int idx) {
+    lua_rawgeti(l, LUA_REGISTRYINDEX, LUA_RIDX_MAINTHREAD);
+    L = lua_tothread(l, -1);
+    lua_pop(l, 1);
+    lua_pushvalue(l, idx);
+    ref = luaL_ref(l, LUA_REGISTRYINDEX);
   }
   ~LuaRef() { luaL_unref(L, LUA_REGISTRYINDEX, ref); }
   LuaRef(const LuaRef&) = delete;

@@ -644,7 +644,8 @@ int l_scene_start(lua_State* L) {
   return 1;
 }
 int l_scene_tostring(lua_State* L) {
-  const Scene* sc = check_scene(L, 1);
+  const Scene* sc = *static_cast<Scene**>(luaL_checkudata(L, 1, kSceneMeta));
+  if (!sc) return lua_pushliteral(L, "beltsim scene (finalised)"), 1;
   lua_pushfstring(L, "beltsim scene: %d pulleys, %d elements", sc->model.n_p(), sc->model.n_el());
   return 1;
 }

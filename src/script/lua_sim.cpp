@@ -16,6 +16,7 @@
 #include "plot/plot.hpp"
 #include "render/recorder.hpp"
 #include "script/context.hpp"
+#include "script/limits.hpp"
 #include "script/lua_check.hpp"
 #include "script/lua_scene.hpp"
 #include "script/progress.hpp"
@@ -93,7 +94,7 @@ int run_to(lua_State* L, SimBox& box, double t, const char* what) {
     interrupted = true;
     box.ctx->interrupted = true;
     box.ctx->stopped_runs.push_back({lua_topointer(L, 1), a.t});
-    lua_sethook(L, nullptr, 0, 0);  // the stop was honoured here; no "interrupted!" after it
+    clear_interrupt(L);  // the stop was honoured here; no "interrupted!" after it
   }
   lua_createtable(L, 0, 4);
   set_number(L, "t", a.t);
@@ -500,7 +501,10 @@ int l_gc(lua_State* L) {
   } catch (const std::exception& e) {
     std::fprintf(stderr, "beltsim: closing a simulation: %s\n", e.what());
   }
-  box->~SimBox();
+  // emptied rather than destroyed: a finaliser that runs later (another object's __gc) may still
+  // reach this userdata, and must find "finalised" (sim == nullptr), not a dead object
+  box->sim.reset();
+  box->refs.clear();
   return 0;
 }
 

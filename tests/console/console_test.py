@@ -210,8 +210,8 @@ class ConsoleTest(unittest.TestCase):
         self.consoles.append(c)
         return c
 
-    def piped(self, commands, args=(), timeout=60):
-        argv = [BELTSIM, "console", "scenario.lua"] + (["--"] + list(args) if args else [])
+    def piped(self, commands, args=(), timeout=60, flags=()):
+        argv = [BELTSIM, "console", "scenario.lua"] + list(flags) + (["--"] + list(args) if args else [])
         return subprocess.run(argv, input="".join(c + "\n" for c in commands).encode(), cwd=self.tmp,
                               env=child_env(self.tmp), stdout=subprocess.PIPE, stderr=subprocess.PIPE,
                               timeout=timeout)
@@ -379,6 +379,9 @@ class ConsoleTest(unittest.TestCase):
         # session.lua sets arg (out_console) itself: the replay writes the same folder, so keep the
         # console's outputs and remove them before replaying
         shutil.move(out_console, out_console + "_kept")
+        # the scenario's text is in session.lua: the replay needs neither the file nor its folder
+        # (which the sandbox would not let it read)
+        os.rename(os.path.join(self.tmp, "scenario.lua"), os.path.join(self.tmp, "scenario_moved.lua"))
         r = subprocess.run([BELTSIM, "run", session], cwd=self.tmp, env=child_env(self.tmp),
                            stdout=subprocess.PIPE, stderr=subprocess.PIPE, timeout=60)
         with open(session) as f:
@@ -390,6 +393,73 @@ class ConsoleTest(unittest.TestCase):
         self.assertEqual(replayed, series, "the replay's timeseries.csv differs; session.lua:\n" + text)
         with open(os.path.join(out_console, "events.csv")) as f:
             self.assertIn("\n0.003,wet,", f.read())
+
+    # 11
+    def test_ctrl_c_stops_lua_code(self):
+        c = self.console()
+        for loop in ["while true do end", "coroutine.wrap(function() while true do end end)()",
+                     "while true do pcall(function() while true do end end) end"]:
+            mark = len(c.screen)
+            c.send(loop + "\r")
+            c.wait_for(loop, start=mark)
+            time.sleep(0.3)
+            self.assertIsNone(PROMPT.search(c.screen, mark + len(loop)), "the loop ended by itself" + c.transcript())
+            c.send("\x03")
+            c.wait_prompt(mark, timeout=5)
+            self.assertIn("interrupted!", c.screen[mark:], c.transcript())
+            out = c.command("1+1")
+            self.assertRegex(out, r"\n2\n", c.transcript())
+
+    # 12
+    def test_completion_runs_no_lua_code(self):
+        c = self.console()
+        c.command("t = setmetatable({}, { __index = function() error('no') end })")
+        mark = len(c.screen)
+        c.send("t.a.b")
+        c.wait_for("t.a.b", start=mark)
+        c.send("\t")
+        time.sleep(0.3)
+        c.send("\x03")  # clears the line
+        c.wait_prompt(mark)
+        out = c.command("1+1")
+        self.assertRegex(out, r"\n2\n", c.transcript())
+
+    # 13
+    def test_sandbox_and_trusted(self):
+        r = self.piped(['os.execute("true")', 'print("after")'])
+        out, err = r.stdout.decode(), r.stderr.decode()
+        self.assertIn("stdin:1: os.execute is not allowed in a scenario script", err)
+        self.assertIn("--trusted", err)
+        self.assertIn("after\n", out, err)
+        self.assertEqual(r.returncode, 1, out + err)
+        r = self.piped(['print(os.execute("true"))'], flags=["--trusted"])
+        out, err = r.stdout.decode(), r.stderr.decode()
+        self.assertEqual(r.returncode, 0, out + err)
+        self.assertIn("true\texit\t0\n", out, err)
+
+    # 14
+    def test_instruction_limit_per_command(self):
+        six_million = "local x = 0 for i = 1, 3e6 do x = x + i end"
+        r = self.piped([six_million, six_million, "while true do end", 'print("after")'],
+                       flags=["--max-instructions", "1e7"])
+        out, err = r.stdout.decode(), r.stderr.decode()
+        self.assertEqual(err.count("instruction limit"), 1, err)
+        self.assertIn("stdin:1: the instruction limit was reached: more than 10000000", err)
+        self.assertIn("--max-instructions", err)
+        self.assertIn("after\n", out, err)
+        r = subprocess.run([BELTSIM, "run", "scenario.lua", "--max-instructions", "-1"], cwd=self.tmp,
+                           env=child_env(self.tmp), stdout=subprocess.PIPE, stderr=subprocess.PIPE, timeout=60)
+        self.assertEqual(r.returncode, 2, r.stderr.decode())
+        self.assertIn("--max-instructions", r.stderr.decode())
+
+    # 15
+    def test_a_failing_tostring_is_an_error(self):
+        # a table key is printed through its __tostring (Lua code, which may fail)
+        r = self.piped(['{ [setmetatable({}, { __tostring = function() error("boom") end })] = 1 }',
+                        'print("after")'])
+        out, err = r.stdout.decode(), r.stderr.decode()
+        self.assertIn("boom", err)
+        self.assertIn("after\n", out, err)
 
 
 def main():

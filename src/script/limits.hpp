@@ -1,0 +1,58 @@
+// Limits on what one call into Lua may take (private to src/script; README, "Limits and safety").
+//
+// Instructions: one count hook on the main thread (coroutines inherit it) adds up the instructions
+// run since the host last called into Lua (a script run, a console command; the every/when
+// callbacks of a live simulation count against the command that runs them) and raises an error
+// naming file:line when the budget is spent. The same hook honours Ctrl-C: the console's signal
+// handler calls interrupt(), which sets a flag, and the hook raises "interrupted!" at the next
+// slice of instructions. Once either fires, the hook runs at every instruction and raises again
+// each time until the host call ends, so a `pcall` in a loop cannot swallow it for ever.
+// Any count hook halves the speed of pure Lua code (Lua 5.4 then traps every instruction), so
+// without an instruction limit (max_instructions = 0) there is no permanent hook: interrupt() and
+// the allocator arm the same hook for the next instruction when they need it.
+//
+// Memory: a lua_Alloc that counts the bytes of the Lua heap. An allocation that would pass the
+// limit is first refused once (Lua then collects garbage, without finalisers, and asks again);
+// if the heap is still over the limit, a small allocation is granted and the hook raises the
+// error with file:line at its next slice, while one that would take the heap past the limit plus
+// a margin (a quarter of the limit, at most 256 MiB) is refused: Lua's "not enough memory",
+// which the host rewrites with memory_message() (Lua gives no file:line for memory errors).
+#pragma once
+
+#include <atomic>
+#include <cstddef>
+#include <cstdint>
+#include <string>
+
+#include "lua.h"
+
+namespace beltsim::script {
+
+struct Limits {
+  std::uint64_t max_instructions = 0;  // per call from the host; 0: none
+  std::size_t max_bytes = 0;           // Lua heap; 0: none
+  std::uint64_t used = 0;              // instructions since the host's call began
+  std::size_t bytes = 0;               // the Lua heap now
+  bool retried = false;                // an allocation was refused once: the next one is Lua's retry
+  bool over_memory = false;            // a small allocation went past the limit: the hook raises
+  std::size_t refused = 0;             // size of the last allocation refused outright (bytes)
+  std::atomic<bool> interrupt{false};  // Ctrl-C: set from a signal handler, cleared by the host
+  lua_State* main = nullptr;
+};
+
+// the allocator (ud: the Limits)
+void* limited_alloc(void* ud, void* ptr, size_t osize, size_t nsize);
+Limits& limits_of(lua_State* L);
+// installs the hook on L (the main thread) once, after the state is made
+void install_hook(lua_State* L);
+// a new call from the host: the instruction budget starts again and no interrupt is pending
+void begin_call(lua_State* L);
+// run_to stopped at a step end because of Ctrl-C: the stop was honoured there, no "interrupted!"
+void clear_interrupt(lua_State* L);
+// Ctrl-C: "interrupted!" at the next slice of instructions (async-signal-safe)
+void interrupt(Limits& g);
+// true when `status`/the error object on the stack top is a memory error; then `msg` is the
+// message naming the limit (prefixed with `where`, e.g. the script's name)
+bool memory_message(lua_State* L, int status, const std::string& where, std::string& msg);
+
+}  // namespace beltsim::script

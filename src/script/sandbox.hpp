@@ -1,0 +1,24 @@
+// The Lua libraries a scenario script gets (private to src/script; README, "Limits and safety").
+//
+// The sandbox: the base library with text-only loading (load, loadfile and dofile never load a
+// precompiled chunk; string.dump is gone), string, table, math, utf8, coroutine; of os only time,
+// clock, date, difftime and getenv; io whose files (io.open, io.lines, io.input, io.output, and
+// dofile, loadfile) lie under the run's output folder (read and write) or the script's own folder
+// (read only), paths resolved with weakly_canonical so that `..` and symbolic links cannot leave
+// them; require of Lua files from the script's folder; debug.traceback; setmetatable without
+// __gc (Lua runs finalisers with hooks off: no limit could stop one). Every other standard
+// function (os.execute, io.popen, os.remove, os.exit, package.loadlib, debug.getinfo, ...) is
+// kept as a function that raises "file:line: NAME is not allowed in a scenario script ...
+// --trusted", so a script learns what it may not do and how to allow it.
+#pragma once
+
+struct lua_State;
+
+namespace beltsim::script {
+
+struct Context;
+
+// the sandboxed libraries; the folders are read from ctx when a file is opened
+void open_sandbox(lua_State* L, Context* ctx);
+
+}  // namespace beltsim::script

@@ -1,0 +1,377 @@
+// The sandbox and the limits (src/script/sandbox.cpp, limits.cpp; README, "Limits and safety"):
+// every forbidden function raises an error naming file:line and --trusted; files only under the
+// output folder (read, write) and the script's folder (read); no precompiled chunk anywhere; an
+// instruction limit and a memory limit with clear messages; Ctrl-C through the same hook; the
+// API's userdata keep their metatables and fail cleanly once finalised.
+#include <gtest/gtest.h>
+
+#include <unistd.h>
+
+#include <chrono>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "script/interpreter.hpp"
+
+namespace beltsim::script {
+namespace {
+
+namespace fs = std::filesystem;
+
+// <tmp>/beltsim_sandbox_test_<pid>/{scripts,out}: the script's folder and the output folder
+fs::path root() {
+  const fs::path d = fs::temp_directory_path() / ("beltsim_sandbox_test_" + std::to_string(::getpid()));
+  fs::create_directories(d / "scripts");
+  fs::create_directories(d / "out");
+  return d;
+}
+fs::path scripts() { return root() / "scripts"; }
+fs::path out() { return root() / "out"; }
+
+std::string slurp(const fs::path& p) {
+  std::ifstream f(p, std::ios::binary);
+  std::ostringstream s;
+  s << f.rdbuf();
+  return s.str();
+}
+
+// runs the text as scripts/<name> with the output folder out/; the error message, or ""
+std::string run(Interpreter& lua, const std::string& text, const std::string& name = "sandbox.lua") {
+  const fs::path p = scripts() / name;
+  std::ofstream(p) << text;
+  Overrides o;
+  o.out = out().string();
+  lua.set_overrides(o);
+  try {
+    lua.run_file(p.string());
+  } catch (const ScriptError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+std::string run(const std::string& text, const Safety& s = {}) {
+  Interpreter lua(s);
+  return run(lua, text);
+}
+
+void expect_has(const std::string& msg, const std::vector<std::string>& parts) {
+  for (const auto& p : parts) EXPECT_NE(msg.find(p), std::string::npos) << "'" << p << "' not in: " << msg;
+}
+
+// Lua's quoting of a path
+std::string q(const fs::path& p) {
+  std::string s = "'";
+  s += p.string();
+  s += "'";
+  return s;
+}
+
+const char* kScene =
+    "local s = beltsim.scene {\n"
+    "  pulleys = {\n"
+    "    { name = 'driver', centre = {0, 0}, radius = 0.1, torque = beltsim.ramp(0.3, -70) },\n"
+    "    { name = 'driven', centre = {0.29, 0}, radius = 0.1, torque = { per_speed = -0.955 } },\n"
+    "  },\n"
+    "  belt = { elements = 40, pretension = 500, direction = 'cw' },\n"
+    "}\n";
+
+// ---- forbidden functions ---------------------------------------------------------------------
+
+TEST(Sandbox, EveryForbiddenFunctionNamesFileLineAndTrusted) {
+  const std::vector<std::string> calls = {
+      "os.execute('true')",  "os.remove('x')",      "os.rename('a', 'b')",   "os.exit(3)",
+      "os.tmpname()",        "os.setlocale('C')",   "io.popen('ls')",        "io.tmpfile()",
+      "string.dump(print)",  "('x').dump(print)",   "package.loadlib('a', 'b')", "package.searchpath('a', 'b')",
+      "debug.getinfo(1)",    "debug.sethook()",     "debug.getregistry()",   "debug.getlocal(1, 1)",
+      "debug.setmetatable(1, {})", "debug.getupvalue(print, 1)", "debug.setupvalue(print, 1, 1)",
+      "debug.upvaluejoin(print, 1, print, 1)", "debug.debug()", "debug.getuservalue(io.stdout)",
+  };
+  for (const std::string& call : calls) {
+    const std::string name = call.substr(0, call.find('('));
+    const std::string msg = run("local x = 1\n\n" + call + "\n");
+    const std::string shown = name == "('x').dump" ? "string.dump" : name;
+    expect_has(msg, {"sandbox.lua:3: ", shown + " is not allowed in a scenario script", "--trusted"});
+  }
+}
+
+TEST(Sandbox, WhatScenarioScriptsUseIsThere) {
+  EXPECT_EQ(run("assert(string.format('%.1f', math.pi) == '3.1')\n"
+                "assert(table.concat({1, 2}, ',') == '1,2')\n"
+                "assert(utf8.len('μ') == 1)\n"
+                "local co = coroutine.wrap(function() coroutine.yield(1) end)\n"
+                "assert(co() == 1)\n"
+                "assert(type(os.time()) == 'number' and type(os.clock()) == 'number')\n"
+                "assert(type(os.date('%Y')) == 'string' and os.difftime(2, 1) == 1)\n"
+                "assert(os.getenv('PATH') ~= nil)\n"
+                "assert(type(debug.traceback('x')) == 'string')\n"
+                "assert(load('return 6*7')() == 42)\n"
+                "assert(pcall(error, 'x') == false)\n"
+                "assert(package.loaded.string == string and package.loaded.os == os)\n"
+                "assert(require('string') == string)\n"),
+            "");
+}
+
+TEST(Sandbox, TrustedRestoresTheFullLibraries) {
+  Safety s;
+  s.trusted = true;
+  EXPECT_EQ(run("assert(os.execute('true'))\n"
+                "assert(debug.getinfo(1).currentline == 2)\n"
+                "assert(io.open('/etc/hostname') or true)\n"
+                "assert(type(string.dump(function() end)) == 'string')\n"
+                "assert(package.loadlib ~= nil and package.path ~= nil)\n",
+                s),
+            "");
+}
+
+// ---- files -----------------------------------------------------------------------------------
+
+TEST(Sandbox, FilesUnderTheOutputFolderCanBeWrittenAndRead) {
+  const fs::path f = out() / "notes" / "a.txt";
+  fs::remove_all(out() / "notes");
+  EXPECT_EQ(run("local f = assert(io.open(" + q(f) + ", 'w'))\n"  // the missing folder is made
+                "f:write('belt\\n') f:close()\n"
+                "assert(io.open(" + q(f) + "):read('l') == 'belt')\n"
+                "local n = 0 for l in io.lines(" + q(f) + ") do n = n + 1 end assert(n == 1)\n"
+                "assert(io.open(" + q(f) + ", 'a')):close()\n"
+                "io.output(" + q(out() / "b.txt") + ") io.write('x') io.close() io.output(io.stdout)\n"),
+            "");
+  EXPECT_EQ(slurp(f), "belt\n");
+  EXPECT_EQ(slurp(out() / "b.txt"), "x");
+}
+
+TEST(Sandbox, TheScriptsFolderIsReadOnly) {
+  std::ofstream(scripts() / "data.txt") << "42\n";
+  EXPECT_EQ(run("assert(io.open(" + q(scripts() / "data.txt") + "):read('n') == 42)\n"), "");
+  expect_has(run("\nio.open(" + q(scripts() / "data.txt") + ", 'w')\n"),
+             {"sandbox.lua:2: io.open: writing", "data.txt", "not allowed", "--trusted"});
+  expect_has(run("\nio.open(" + q(scripts() / "data.txt") + ", 'r+')\n"), {"sandbox.lua:2: io.open: writing"});
+  expect_has(run("\nio.output(" + q(scripts() / "new.txt") + ")\n"), {"sandbox.lua:2: io.output: writing"});
+  EXPECT_FALSE(fs::exists(scripts() / "new.txt"));
+}
+
+TEST(Sandbox, FilesElsewhereAreRefused) {
+  const std::string escape = (out() / ".." / ".." / ".." / "etc" / "passwd").string();
+  for (const std::string& call : std::vector<std::string>{
+           "io.open('/etc/passwd')", "io.open('" + escape + "')", "io.open('/tmp/beltsim_x', 'w')",
+           "io.lines('/etc/passwd')", "io.input('/etc/passwd')", "dofile('/etc/passwd')", "loadfile('/etc/passwd')",
+        "io.open('" + (scripts() / ".." / "x.txt").string() + "')"}) {
+    const std::string msg = run("local x\n" + call + "\n");
+    expect_has(msg, {"sandbox.lua:2: ", "is not allowed in a scenario script", "--trusted", fs::canonical(out()).string()});
+  }
+  // relative paths too (from the working folder, as Lua has it)
+  const fs::path cwd = fs::current_path();
+  fs::current_path(out());
+  expect_has(run("io.open('../../../../../../../../etc/passwd')\n"), {"sandbox.lua:1: io.open: reading"});
+  fs::current_path(cwd);
+}
+
+TEST(Sandbox, SymbolicLinksCannotLeaveTheFolders) {
+  const fs::path link = out() / "etc_link";
+  fs::remove(link);
+  fs::create_directory_symlink("/etc", link);
+  expect_has(run("io.open(" + q(link / "passwd") + ")\n"), {"sandbox.lua:1: io.open: reading", "not allowed"});
+  expect_has(run("io.open(" + q(link / "new.txt") + ", 'w')\n"), {"sandbox.lua:1: io.open: writing"});
+  fs::remove(link);
+}
+
+TEST(Sandbox, RequireLoadsLuaFilesFromTheScriptsFolder) {
+  std::ofstream(scripts() / "helper.lua") << "local calls = (calls or 0) + 1\nreturn { answer = 42 }\n";
+  fs::create_directories(scripts() / "lib");
+  std::ofstream(scripts() / "lib" / "more.lua") << "return 'more'\n";
+  EXPECT_EQ(run("local h = require('helper')\n"
+                "assert(h.answer == 42 and require('helper') == h, 'loaded once')\n"
+                "assert(require('lib.more') == 'more')\n"),
+            "");
+  expect_has(run("\nrequire('lfs')\n"), {"sandbox.lua:2: module 'lfs' not found", "--trusted"});
+  expect_has(run("\nrequire('../../x')\n"), {"sandbox.lua:2: require '../../x'", "--trusted"});
+}
+
+// ---- precompiled chunks ----------------------------------------------------------------------
+
+TEST(Sandbox, PrecompiledChunksAreRefusedEverywhere) {
+  // real bytecode, made by a trusted interpreter
+  const fs::path luac = out() / "f.luac";
+  Safety trusted;
+  trusted.trusted = true;
+  ASSERT_EQ(run("local f = assert(io.open(" + q(luac) + ", 'wb'))\n"
+                "f:write(string.dump(function() return 1 end)) f:close()\n",
+                trusted),
+            "");
+  ASSERT_EQ(slurp(luac).rfind("\x1bLua", 0), 0u);
+  expect_has(run("load(string.dump(function() end))\n"), {"sandbox.lua:1: string.dump is not allowed"});
+  expect_has(run("\nload('return 1', 'x', 'b')\n"), {"sandbox.lua:2: load: mode 'b'", "not loaded"});
+  expect_has(run("\nloadfile(" + q(luac) + ", 'b')\n"), {"sandbox.lua:2: loadfile: mode 'b'"});
+  // the bytes of a binary chunk, given as a string or a file, are refused with a reason
+  EXPECT_EQ(run("local s = assert(io.open(" + q(luac) + ", 'rb')):read('a')\n"
+                "local f, err = load(s)\n"
+                "assert(f == nil and err:find('precompiled'), err)\n"
+                "f, err = load(s, 'x', 'bt')\n"
+                "assert(f == nil and err:find('precompiled'), err)\n"
+                "f, err = loadfile(" + q(luac) + ")\n"
+                "assert(f == nil and err:find('precompiled'), err)\n"),
+            "");
+  expect_has(run("\ndofile(" + q(luac) + ")\n"), {"sandbox.lua:2: dofile: ", "f.luac", "precompiled"});
+  // and so is a main file of bytecode, even trusted
+  fs::copy_file(luac, scripts() / "main.luac", fs::copy_options::overwrite_existing);
+  Interpreter lua(trusted);
+  try {
+    lua.run_file((scripts() / "main.luac").string());
+    ADD_FAILURE() << "a precompiled main file ran";
+  } catch (const ScriptError& e) {
+    expect_has(e.what(), {"binary"});
+  }
+}
+
+// ---- limits ----------------------------------------------------------------------------------
+
+TEST(Limits, TheInstructionLimitStopsAnEndlessLoopWithinASecond) {
+  Safety s;
+  s.max_instructions = 10'000'000;
+  for (const std::string& loop : {std::string("while true do end"),
+                                  std::string("while true do pcall(function() while true do end end) end"),
+                                  std::string("coroutine.wrap(function() while true do end end)()")}) {
+    const auto t0 = std::chrono::steady_clock::now();
+    const std::string msg = run("local x = 1\n" + loop + "\n", s);
+    const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    expect_has(msg, {"sandbox.lua:2: ", "instruction limit", "10000000", "--max-instructions"});
+    EXPECT_LT(wall, 1.0) << loop;
+  }
+}
+
+TEST(Limits, TheInstructionBudgetIsPerCallFromTheHost) {
+  Safety s;
+  s.max_instructions = 10'000'000;
+  Interpreter lua(s);
+  // each run takes about 60 % of the budget: both pass
+  const std::string body = "local x = 0 for i = 1, 3e6 do x = x + i end\n";
+  EXPECT_EQ(run(lua, body), "");
+  EXPECT_EQ(run(lua, body), "");
+  EXPECT_NE(run(lua, body + body).find("instruction limit"), std::string::npos);
+  EXPECT_EQ(run(lua, body), "") << "the next call has a budget again";
+}
+
+TEST(Limits, CallbacksCountAgainstTheCallThatRunsThem) {
+  Safety s;
+  s.max_instructions = 10'000'000;
+  const std::string msg = run(std::string(kScene) + "local sim = s:start{ progress = false }\n"
+                              "sim:every(0.001, function() while true do end end)\n"
+                              "sim:run_to(0.01)\n",
+                              s);
+  expect_has(msg, {"sandbox.lua:9: ", "instruction limit"});
+}
+
+TEST(Limits, NoInstructionLimitMeansNone) {
+  Safety s;
+  s.max_instructions = 0;
+  EXPECT_EQ(run("local x = 0 for i = 1, 2e7 do x = x + i end\n", s), "");
+}
+
+TEST(Limits, TheMemoryLimitStopsAGrowingTable) {
+  Safety s;
+  s.max_lua_memory = std::size_t(64) << 20;
+  for (const std::uint64_t instructions : {std::uint64_t(10'000'000'000), std::uint64_t(0)}) {
+    s.max_instructions = instructions;
+    Interpreter lua(s);
+    const std::string msg = run(lua, "local t = {}\nwhile true do t[#t + 1] = {} end\n");
+    expect_has(msg, {"sandbox.lua:2: ", "the Lua heap reached its limit of 64 MiB", "--max-lua-memory"});
+    EXPECT_EQ(run(lua, "local t = {} for i = 1, 1000 do t[i] = {} end\n"), "") << "usable afterwards";
+  }
+}
+
+TEST(Limits, OneAllocationPastTheLimitIsRefusedAtOnce) {
+  Safety s;
+  s.max_lua_memory = std::size_t(64) << 20;
+  const std::string msg = run("local x = 1\nlocal s = string.rep('x', 2^30)\n", s);
+  expect_has(msg, {"sandbox.lua", "the Lua heap reached its limit of 64 MiB", "--max-lua-memory"});
+}
+
+TEST(Limits, InterruptRaisesInLuaCode) {
+  for (const std::uint64_t instructions : {std::uint64_t(10'000'000'000), std::uint64_t(0)}) {
+    Safety s;
+    s.max_instructions = instructions;
+    Interpreter lua(s);
+    std::thread ctrl_c([&] {
+      std::this_thread::sleep_for(std::chrono::milliseconds(200));
+      lua.interrupt();
+    });
+    const std::string msg = run(lua, "local x = 1\nwhile true do x = x + 1 end\n");
+    ctrl_c.join();
+    expect_has(msg, {"sandbox.lua:2: interrupted!"});
+    EXPECT_EQ(run(lua, "local x = 1\n"), "") << "the next call is not interrupted";
+  }
+}
+
+// ---- the API's userdata ----------------------------------------------------------------------
+
+TEST(Userdata, MetatablesAreProtected) {
+  EXPECT_EQ(run(std::string(kScene) +
+                "assert(getmetatable(s) == 'beltsim.Scene', tostring(getmetatable(s)))\n"
+                "local sim = s:start{ progress = false }\n"
+                "assert(getmetatable(sim) == 'beltsim.Simulation', tostring(getmetatable(sim)))\n"
+                "assert(not pcall(setmetatable, s, {}))\n"
+                "sim:close()\n"),
+            "");
+}
+
+TEST(Sandbox, NoFinalisersInLua) {
+  // Lua runs __gc with hooks off: a loop there could not be stopped
+  expect_has(run("local x\nsetmetatable({}, { __gc = function() while true do end end })\n"),
+             {"sandbox.lua:2: setmetatable: a __gc finaliser is not allowed", "--trusted"});
+  EXPECT_EQ(run("local mt = { __index = function() return 1 end }\nassert(setmetatable({}, mt).x == 1)\n"), "");
+}
+
+// a finaliser (trusted: the sandbox has none) that runs after the scene's and the simulation's (it
+// was marked first) reaches them finalised: every use is an error, none a crash
+TEST(Userdata, FinalisedScenesAndSimulationsGiveErrors) {
+  Safety trusted;
+  trusted.trusted = true;
+  EXPECT_EQ(run("local results = {}\n"
+                "do\n"
+                "  local sc, sim\n"
+                "  setmetatable({}, { __gc = function()\n"
+                "    for _, f in ipairs {\n"
+                "      function() return sc:info() end, function() return sc:element_near{0, 0} end,\n"
+                "      function() return sc:run{ t_end = 0.01 } end, function() return sc:start{} end,\n"
+                "      function() return sim:run_to(1) end, function() return sim.t end,\n"
+                "      function() return sim:pulley('driver') end, function() return sim:close() end,\n"
+                "    } do results[#results + 1] = { pcall(f) } end\n"
+                "    results.scene, results.sim = tostring(sc), tostring(sim)\n"
+                "  end })\n"
+                "  sc = beltsim.scene {\n"
+                "    pulleys = {\n"
+                "      { name = 'driver', centre = {0, 0}, radius = 0.1, torque = beltsim.ramp(0.3, -70) },\n"
+                "      { name = 'driven', centre = {0.29, 0}, radius = 0.1, torque = { per_speed = -0.955 } },\n"
+                "    },\n"
+                "    belt = { elements = 40, pretension = 500, direction = 'cw' },\n"
+                "  }\n"
+                "  sim = sc:start{ progress = false }\n"
+                "end\n"
+                "collectgarbage() collectgarbage()\n"
+                "assert(#results == 8, 'the finaliser ran: ' .. #results)\n"
+                "for i, r in ipairs(results) do\n"
+                "  assert(r[1] == false and r[2]:find('finalised'), i .. ': ' .. tostring(r[2]))\n"
+                "end\n"
+                "assert(results.scene:find('finalised') and results.sim:find('finalised'))\n",
+                trusted),
+            "");
+}
+
+// callbacks registered inside a coroutine that is gone when the simulation is finalised
+TEST(Userdata, CallbacksOfACoroutineOutliveIt) {
+  EXPECT_EQ(run(std::string(kScene) +
+                "local sim = s:start{ progress = false }\n"
+                "coroutine.wrap(function() sim:every(0.001, function() end) end)()\n"
+                "collectgarbage() collectgarbage()\n"
+                "sim:run_to(0.002)\n"
+                "sim = nil\n"
+                "collectgarbage() collectgarbage()\n"),
+            "");
+}
+
+}  // namespace
+}  // namespace beltsim::script
