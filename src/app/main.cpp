@@ -45,6 +45,15 @@ volatile std::sig_atomic_t g_signal = 0;  // the first SIGINT or SIGTERM receive
 // SIGINT (Ctrl-C) and SIGTERM (timeout, CI cancellation, docker stop) alike: the run stops at its
 // last finished step and the outputs are closed (CSV rows are on disk as written, the video gets
 // its trailer); a second one while that happens takes the default action: the process ends now
+// the interpreter of the running command, for the signal handler (interrupt() is one atomic store)
+std::atomic<beltsim::script::Interpreter*> g_lua{nullptr};
+
+// registers an interpreter with the signal handler for its lifetime
+struct Interruptible {
+  explicit Interruptible(beltsim::script::Interpreter& lua) { g_lua.store(&lua); }
+  ~Interruptible() { g_lua.store(nullptr); }
+};
+
 void on_stop_signal(int sig) {
   if (g_signal != 0) {
     std::signal(sig, SIG_DFL);
@@ -52,7 +61,8 @@ void on_stop_signal(int sig) {
     return;
   }
   g_signal = sig;
-  g_stop.store(true);
+  g_stop.store(true);                                  // a run stops at its last finished step
+  if (auto* lua = g_lua.load()) lua->interrupt();      // Lua code stops at its next instructions
 }
 
 void handle_stop_signals() {
@@ -204,6 +214,7 @@ beltsim::script::Overrides overrides(const Raw& raw) {
 int cmd_run(const std::string& script, const beltsim::script::Overrides& o, const beltsim::script::Safety& s) {
   try {
     beltsim::script::Interpreter lua(s);
+    const Interruptible on_signal(lua);
     lua.set_overrides(o);
     lua.set_stop_flag(&g_stop);
     lua.run_file(script);
@@ -220,6 +231,7 @@ int cmd_wp(const std::string& script, const beltsim::script::Overrides& o, const
   try {
     beltsim::script::Captured cap;
     beltsim::script::Interpreter lua(s);
+    const Interruptible on_signal(lua);
     if (o.t_end) lua.set_overrides({.out = {}, .t_end = o.t_end, .integrator = {}, .rtol = {}});
     lua.set_capture(&cap);
     lua.run_file(script);

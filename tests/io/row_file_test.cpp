@@ -97,8 +97,8 @@ std::vector<std::string> header(size_t n) {
 TEST(CsvWriter, KilledAnyTimeLeavesWholeRows) {
   const size_t columns = 15;
   std::mt19937 g(12);
-  std::uniform_int_distribution<int> delay_us(500, 15000);
-  long killed_mid_run = 0;
+  std::uniform_int_distribution<int> delay_us(0, 5000);
+  long killed_mid_run = 0, page_cuts = 0;
   for (int trial = 0; trial < 20; ++trial) {
     const fs::path f = temp_dir() / ("killed_" + std::to_string(trial) + ".csv");
     fs::remove(f);
@@ -106,16 +106,38 @@ TEST(CsvWriter, KilledAnyTimeLeavesWholeRows) {
     const pid_t pid = ::fork();
     ASSERT_GE(pid, 0);
     if (pid == 0) write_rows_for_ever(f, columns);
+    // the kill comes while rows are being written: once the file has passed two pages (the stdio
+    // writer's buffer size), after a random further moment; waiting for that rather than for a
+    // fixed time keeps a loaded machine (a slow fork) from killing the child before it writes
+    const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(10);
+    std::error_code ec;
+    auto size = [&] {
+      const auto n = fs::file_size(f, ec);
+      return ec ? 0 : n;  // not there yet: 0 (file_size says -1)
+    };
+    while (!(size() > 8192) && std::chrono::steady_clock::now() < deadline)
+      std::this_thread::sleep_for(std::chrono::microseconds(50));
     std::this_thread::sleep_for(std::chrono::microseconds(delay));
     ::kill(pid, SIGKILL);
     int status = 0;
     ::waitpid(pid, &status, 0);
     ASSERT_TRUE(WIFSIGNALED(status) && WTERMSIG(status) == SIGKILL);
     const std::string text = slurp(f);
-    EXPECT_EQ(torn_rows(text, columns), "") << "killed after " << delay << " µs, " << text.size() << " bytes";
+    // One cut the kernel makes is allowed, and only that one: a SIGKILL during write(2) stops the
+    // copy at a page boundary of the file (generic_perform_write checks for a fatal signal before
+    // each page), so a row that straddles a 4096-byte offset can end there (row_file.hpp). Seen
+    // once in 20 here when the kill came at the first pages; every other kill leaves whole rows.
+    const std::string torn = torn_rows(text, columns);
+    const bool at_page = text.size() % 4096 == 0 && torn.rfind("the last line has no end", 0) == 0;
+    EXPECT_TRUE(torn.empty() || at_page) << "killed after " << delay << " µs, " << text.size() << " bytes: " << torn;
+    page_cuts += at_page;
     if (text.size() > 8192) killed_mid_run++;
   }
-  EXPECT_GE(killed_mid_run, 5);  // kills came while rows were being written (16 measured; a slow fork can delay them)
+  EXPECT_EQ(killed_mid_run, 20);  // every kill came while rows were being written
+  // a stdio writer's rows are cut at its 4 KiB flushes nearly every time (19-20 of 20 measured);
+  // the kernel's page cut of one write is rare (1 in 400 kills: 20 runs of this test, measured)
+  std::printf("page cuts: %ld of 20\n", page_cuts);
+  EXPECT_LE(page_cuts, 4);
 }
 
 TEST(CsvWriter, FullDiskIsAnErrorNamingTheFile) {
