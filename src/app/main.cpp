@@ -1,10 +1,11 @@
 // beltsim command line (CLI11).
-//   beltsim run     SCRIPT [--out DIR] [--t-end T] [--integrator NAME] [--rtol R] [--no-frames] [SAFETY]
+//   beltsim run     SCRIPT [--out DIR] [--t-end T] [--integrator NAME] [--rtol R] [--max-wall S]
+//                          [--no-frames] [SAFETY]
 //   beltsim wp      SCRIPT [--out DIR] [--t-end T] [--integrators A,B] [--rtols R1,R2] [--ref-rtol R]
 //                          [--wall-limit S] [SAFETY]
 //   beltsim plot    CSV [COLUMNS...] [--out PNG] [--from T]
-//   beltsim console [SCRIPT] [--out DIR] [--t-end T] [--integrator NAME] [--rtol R] [--no-frames]
-//                            [SAFETY] [-- ARGS...]
+//   beltsim console [SCRIPT] [--out DIR] [--t-end T] [--integrator NAME] [--rtol R] [--max-wall S]
+//                            [--no-frames] [SAFETY] [-- ARGS...]
 //   SAFETY: [--trusted] [--max-instructions N] [--max-lua-memory MiB] (README, Limits and safety)
 // The flags override what the script passes to scene:run{}. Every number is a finite decimal
 // (no hex, inf or nan); an option a command does not take is an error. Exit status: 0 on
@@ -137,7 +138,7 @@ std::string integrator_list() {
 // the options as typed: text, turned into numbers and checked by overrides() and the commands,
 // so every number goes through decimal()
 struct Raw {
-  std::optional<std::string> out, t_end, integrator, rtol;
+  std::optional<std::string> out, t_end, integrator, rtol, max_wall;
   bool no_frames = false;
   std::optional<std::string> integrators, rtols, ref_rtol, wall_limit;  // wp
   std::optional<std::string> from;                                      // plot
@@ -186,6 +187,10 @@ void add_run_overrides(CLI::App* c, Raw& raw) {
   add_out_and_t_end(c, raw, "output folder (default: out/<script name>)");
   c->add_option("--integrator", raw.integrator, "one of: " + integrator_list())->type_name("NAME");
   c->add_option("--rtol", raw.rtol, "relative tolerance of the step-size control, in (0, 1)")->type_name("R");
+  c->add_option("--max-wall", raw.max_wall,
+                "wall-time limit of each run [s]: a run past it stops at its last step, outputs closed, with an "
+                "error (exit 1)")
+      ->type_name("S");
   c->add_flag("--no-frames", raw.no_frames, "render no frames and no video, whatever the script asks");
   add_safety(c, raw);
 }
@@ -206,6 +211,11 @@ beltsim::script::Overrides overrides(const Raw& raw) {
     const double x = number("--rtol", *raw.rtol);
     if (!(x > 0 && x < 1)) throw UsageError("--rtol must be in (0, 1), got " + *raw.rtol);
     o.rtol = x;
+  }
+  if (raw.max_wall) {
+    const double x = number("--max-wall", *raw.max_wall);
+    if (!(x > 0)) throw UsageError("--max-wall must be > 0 s, got " + *raw.max_wall);
+    o.max_wall = x;
   }
   o.no_frames = raw.no_frames;
   return o;

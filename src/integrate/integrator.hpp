@@ -41,6 +41,9 @@ class Integrator {
   virtual void kink() {}
   virtual void dense(double t, Eigen::VectorXd& out) const = 0;
   virtual WorkCounters work() const = 0;
+  // the component with the largest error in the last error estimate (OdeSystem::describe), for
+  // the messages of a run that makes no progress; "" when the method does not say
+  virtual std::string stiffest() const { return ""; }
   // checkpoints (bit-identical continuation); false when the method cannot export its state
   virtual bool can_save() const { return false; }
   virtual void save(std::ostream&) const {}

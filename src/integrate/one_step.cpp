@@ -36,6 +36,24 @@ void check_tolerances(const Tolerances& tol) {
 
 namespace {
 
+// A run that makes no progress stops with a word instead of creeping on (issue 12). The limits
+// come from measurement (a temporary counter, removed again) on scripts/paper_dry.lua,
+// paper_wet.lua and automotive_wet.lua as they stand (esdirk32, rtol 1e-4) and cut to 0.3 s with
+// rkf45 at rtol 1e-2 and trbdf2 at 1e-6:
+//   floor: an accepted step no longer than kFloorUlps units of rounding of max(1, |t|) (the
+//          collapse guard below throws at 16). The shortest step of those runs was 5e7 such
+//          units (esdirk32) and 1.7e8 (rkf45), so a step this short is the controller stuck
+//          on a mode it cannot resolve; kFloorSteps of them in a row (2e-9 s at t < 1 s) is a
+//          run that will not get anywhere.
+//   Newton: implicit iterations that did not converge, in a row (an accepted step resets the
+//          count). Those runs had at most 1 in a row; each halves the step, so kFailedInARow
+//          is a step halved far past any useful size without the iteration recovering.
+constexpr double kFloorUlps = 1024;
+constexpr long kFloorSteps = 10000;
+constexpr long kFailedInARow = 60;
+constexpr const char* kSuggestion =
+    "try an implicit integrator (esdirk32, or cvode), a looser rtol or atol, or more damping of that component";
+
 class OneStep final : public Integrator {
  public:
   OneStep(std::unique_ptr<Stepper> owned, Stepper& st, OdeSystem& sys, const Tolerances& tol, double h_max)
@@ -75,19 +93,35 @@ class OneStep final : public Integrator {
       // sliver of a step is left between (at most 10 % longer than the controller asked)
       if (t_ + 1.1 * h >= t_land - 1e-12 * std::max(1.0, std::abs(t_land))) h = t_land - t_, lands = true;
       const bool ok = st_->step(sys_, t_, y_, f_, h, y1_, err_);
-      int worst = 0;
+      int worst = worst_;
       const double e = ok ? ctl_.error_norm(y_, y1_, err_, &worst) : 1e300;
+      worst_ = worst;
+      const double ulp = std::numeric_limits<double>::epsilon() * std::max(1.0, std::abs(t_));
       if (!(e <= 1.0)) {
         sys_.counters.rejected++;
         if (!ok) {
           cap_ = 0.5 * h;
           if (sys_.counters.failed_steps++ == 0) sys_.counters.first_failed_step = t_;
+          if (++failed_in_a_row_ >= kFailedInARow)
+            throw DivergenceError(t_, "no progress at t = " + fmt_time(t_) + " s: the implicit iteration failed " +
+                                          std::to_string(failed_in_a_row_) + " times in a row (step size now " +
+                                          fmt_time(0.5 * h) + " s); the largest error is in " +
+                                          sys_.describe(worst) + "; " + kSuggestion);
         }
         h_ = ctl_.propose(h, ok ? e : 1e300);
-        if (!(h_ >= 16 * std::numeric_limits<double>::epsilon() * std::max(1.0, std::abs(t_))))
+        if (!(h_ >= 16 * ulp))
           throw DivergenceError(t_, "the step size collapsed to " + fmt_time(h_) + " s at t = " + fmt_time(t_) +
-                                        " s; the largest error is in " + sys_.describe(worst));
+                                        " s; the largest error is in " + sys_.describe(worst) + "; " + kSuggestion);
         continue;
+      }
+      failed_in_a_row_ = 0;
+      if (h <= kFloorUlps * ulp && !lands) {
+        if (++at_floor_ >= kFloorSteps)
+          throw DivergenceError(t_, "no progress at t = " + fmt_time(t_) + " s: the step size has stayed at the "
+                                    "rounding floor of t (" + fmt_time(h) + " s) for " + std::to_string(at_floor_) +
+                                    " steps; the largest error is in " + sys_.describe(worst) + "; " + kSuggestion);
+      } else {
+        at_floor_ = 0;
       }
       const double t1 = lands ? t_land : t_ + h;
       sys_.rhs(t1, y1_.data(), f1_.data());
@@ -119,6 +153,7 @@ class OneStep final : public Integrator {
   }
 
   WorkCounters work() const override { return sys_.counters; }
+  std::string stiffest() const override { return sys_.describe(worst_); }
 
   bool can_save() const override { return true; }
   void save(std::ostream& o) const override {
@@ -171,6 +206,9 @@ class OneStep final : public Integrator {
   double h_ = 0, h_used_ = 0;
   double cap_ = std::numeric_limits<double>::infinity();
   bool started_ = false;
+  int worst_ = 0;               // the component with the largest error in the last estimate
+  long at_floor_ = 0;           // accepted steps in a row at the rounding floor of t
+  long failed_in_a_row_ = 0;    // implicit iterations in a row that did not converge
   Eigen::VectorXd f_, y1_, f1_, err_, f_prev_;
 };
 

@@ -151,11 +151,13 @@ void Timeline::check_conditions() {
   }
 }
 
-Timeline::Result Timeline::run_to(double T, const std::atomic<bool>* stop, const Progress& progress) {
+Timeline::Result Timeline::run_to(double T, const std::atomic<bool>* stop, const Progress& progress,
+                                   const Poll& poll) {
   using clock = std::chrono::steady_clock;
   const auto t_start = clock::now();
   Result r;
   const long steps0 = integ_.work().steps;
+  auto stopping = [&] { return (stop && stop->load(std::memory_order_relaxed)) || (poll && poll()); };
   for (;;) {
     const double b = integ_.t();
     // the earliest thing due in (now, min(b, T)]
@@ -165,6 +167,11 @@ Timeline::Result Timeline::run_to(double T, const std::atomic<bool>* stop, const
     for (const When& w : when_)
       if (!std::isnan(w.crossing)) p = std::min(p, w.crossing);
     if (p <= std::min(b, T)) {
+      // between two outputs of one step too: a step may hold thousands of samples or frames
+      if (p > now_ && stopping()) {
+        r.interrupted = true;
+        break;
+      }
       process(p);
       continue;
     }
@@ -174,7 +181,7 @@ Timeline::Result Timeline::run_to(double T, const std::atomic<bool>* stop, const
     }
     // all due up to b is delivered: the run stands at b
     if (b > now_) now_ = b, y_now_ = integ_.y();
-    if (stop && stop->load()) {
+    if (stopping()) {
       r.interrupted = true;
       break;
     }

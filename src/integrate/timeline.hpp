@@ -57,9 +57,13 @@ class Timeline {
   // the system (or, with y, the state) changed at now(): restart there; deferred to the end of
   // the current time's actions while they run
   void changed(const Eigen::VectorXd* y = nullptr);
-  // integrates until T (>= now()), delivering everything due on the way; stops early at the last
-  // finished step when *stop is set. Throws DivergenceError (everything before it delivered).
-  Result run_to(double T, const std::atomic<bool>* stop = nullptr, const Progress& progress = {});
+  // integrates until T (>= now()), delivering everything due on the way; stops early when *stop
+  // is set or poll() returns true: at the last finished step, or between two outputs inside a
+  // step (many samples or frames in one step), so now() may then lie inside the held step, as
+  // after run_to of that time. Throws DivergenceError (everything before it delivered).
+  using Poll = std::function<bool()>;
+  Result run_to(double T, const std::atomic<bool>* stop = nullptr, const Progress& progress = {},
+                const Poll& poll = {});
 
   double now() const { return now_; }
   const Eigen::VectorXd& state() const { return y_now_; }

@@ -2,6 +2,9 @@
 // defaults) and the builder that turns it into a Model and its initial static state.
 #pragma once
 
+#include <atomic>
+#include <stdexcept>
+
 #include <functional>
 #include <map>
 #include <string>
@@ -91,8 +94,16 @@ struct Scene {
   int element_nearest(const Vec2& point) const;
 };
 
+// A scene build stopped by its stop flag (Ctrl-C, SIGTERM).
+struct BuildInterrupted : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
 // Validates every parameter (ParameterError with the reason and the value) and builds the scene.
-Scene build_scene(const SceneDef& def);
+// The placement and the static solve poll *stop (when given) at every bisection step, Newton
+// iteration and line-search trial and throw BuildInterrupted when it is set: a long build (thousands of elements) ends within a
+// fraction of a second.
+Scene build_scene(const SceneDef& def, const std::atomic<bool>* stop = nullptr);
 
 // Same checks without building (used by the builder; exposed for tests).
 void validate(const SceneDef& def);

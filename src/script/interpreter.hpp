@@ -38,6 +38,7 @@ struct Overrides {
   std::optional<double> t_end;
   std::optional<std::string> integrator;
   std::optional<double> rtol;
+  std::optional<double> max_wall;  // [s] --max-wall: RunSettings::wall_limit of every run
   bool no_frames = false;  // ignore the scripts' frames = {...} (no rendering, no video)
 };
 

@@ -271,10 +271,14 @@ int l_scene(lua_State* L) {
   auto** box = static_cast<Scene**>(lua_newuserdatauv(L, sizeof(Scene*), 0));
   *box = nullptr;
   luaL_setmetatable(L, kSceneMeta);
+  auto* ctx = static_cast<Context*>(lua_touserdata(L, lua_upvalueindex(1)));
   std::string error;
   try {
-    *box = new Scene(build_scene(d));
+    *box = new Scene(build_scene(d, ctx ? ctx->stop : nullptr));
   } catch (const ParameterError& e) {
+    error = e.what();
+  } catch (const BuildInterrupted& e) {
+    ctx->interrupted = true;
     error = e.what();
   }
   if (!error.empty()) fail(L, error);
@@ -532,6 +536,11 @@ const RunKey kRunKeys[] = {
     {"events", true, [](lua_State* L, int v, const Scene& sc, RunSettings& rs, bool&, const std::string&) {
        rs.mu_events = read_events(L, v, sc);
      }},
+    {"max_wall", false, [](lua_State* L, int v, const Scene&, RunSettings& rs, bool&, const std::string& w) {
+       rs.wall_limit = to_number(L, v, w + ".max_wall");
+       if (!(rs.wall_limit > 0 && std::isfinite(rs.wall_limit)))
+         fail(L, w + ".max_wall: must be > 0 s and finite (got " + std::to_string(rs.wall_limit) + ")");
+     }},
     {"allow_large", false, [](lua_State* L, int v, const Scene&, RunSettings& rs, bool&, const std::string& w) {
        if (lua_type(L, v) != LUA_TBOOLEAN) fail(L, w + ".allow_large: boolean expected, got " + type_name(L, v));
        rs.allow_large = lua_toboolean(L, v);
@@ -568,6 +577,7 @@ RunSettings read_run_settings(lua_State* L, int idx, const Scene& sc, Context* c
   if (o.t_end) rs.t_end = *o.t_end;
   if (o.integrator) rs.integrator = *o.integrator;
   if (o.rtol) rs.rtol = *o.rtol;
+  if (o.max_wall) rs.wall_limit = *o.max_wall;
   if (progress) *progress = pr;
   return rs;
 }
@@ -601,6 +611,14 @@ int l_scene_run(lua_State* L) {
     error = std::string("run.") + e.what();  // names the key: run.sample, run.frames.t_start, ...
   } catch (const std::exception& e) {
     error = e.what();
+  }
+  if (res.over_wall_limit) {
+    // not silent: the outputs are finalised (run() closed them) and the script stops here
+    std::ostringstream m;
+    m.precision(10);
+    m << "run.max_wall: the run passed its wall-time limit of " << rs.wall_limit << " s and stopped at t = "
+      << res.t_reached << " s of t_end = " << rs.t_end << " s (the samples up to then are in " << res.csv_path << ")";
+    error = m.str();
   }
   if (!error.empty()) fail(L, error);
   if (res.interrupted) ctx->interrupted = true;
@@ -698,7 +716,8 @@ void open_scene(lua_State* L, Context* ctx) {
   lua_setfield(L, -2, "__index");
   lua_pop(L, 1);
 
-  lua_pushcfunction(L, l_scene), lua_setfield(L, -2, "scene");
+  lua_pushlightuserdata(L, ctx);
+  lua_pushcclosure(L, l_scene, 1), lua_setfield(L, -2, "scene");
   lua_pushcfunction(L, l_rpm), lua_setfield(L, -2, "rpm");
   lua_pushcfunction(L, l_ramp), lua_setfield(L, -2, "ramp");
   lua_pushcfunction(L, l_integrators), lua_setfield(L, -2, "integrators");

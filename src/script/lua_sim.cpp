@@ -90,6 +90,15 @@ int run_to(lua_State* L, SimBox& box, double t, const char* what) {
     ProgressLine line(box.progress);
     a = box.sim->run_to(t, box.ctx->stop, line.callback());
   });
+  if (a.over_wall_limit) {
+    // not silent: an error naming the limit and the time reached (outputs flushed; the
+    // simulation can go on with another call)
+    std::ostringstream m;
+    m.precision(10);
+    m << what << ": stopped at its wall-time limit (max_wall = " << box.sim->settings().wall_limit << " s) at t = "
+      << a.t << " s of " << t << " s; the outputs up to then are in " << box.sim->out_dir();
+    fail(L, m.str());
+  }
   if (a.interrupted) {
     interrupted = true;
     box.ctx->interrupted = true;

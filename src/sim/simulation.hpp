@@ -47,7 +47,9 @@ struct RunSettings {
   double sample_dt = 1e-3;            // [s] interval of the time-series samples
   std::string out_dir = "out";
   int probe_element = 0;              // the paper's "selected" element; its SDE joins it to its predecessor
-  double wall_limit = 0;              // [s] stop a batch run after this much wall time (0: no limit)
+  // [s] wall time after which an integration call (a batch run, sim:run_to) stops at the last
+  // finished step or output, Advance::over_wall_limit set (0: no limit); max_wall in Lua
+  double wall_limit = 0;
   bool keep_samples = false;          // keep the rows of timeseries.csv in memory (samples())
   bool allow_large = false;           // past the output limits (check_volume)
   std::vector<MuEvent> mu_events;     // in any order
@@ -88,10 +90,15 @@ class Simulation {
     double t = 0;        // [s] where it stands now
     long steps = 0;      // accepted steps of this call
     double wall = 0;     // [s] wall time of this call
-    bool interrupted = false;
+    bool interrupted = false;     // stopped by *stop or by the wall-time limit
+    bool over_wall_limit = false;  // stopped by RunSettings::wall_limit
   };
   // integrates to t (>= now) delivering samples, frames and callbacks on the way; stops early at
-  // the last finished step when *stop is set. Throws DivergenceError after flushing the outputs
+  // the last finished step or output when *stop is set or this call's wall time passes
+  // RunSettings::wall_limit. A run that makes no progress (simulated time per wall second below
+  // kRateCollapse of its own best over a window of kRateWindow) throws DivergenceError, as the
+  // integrators do for a step size stuck at the rounding floor or a failing implicit iteration
+  // (integrate/one_step.cpp). Throws DivergenceError after flushing the outputs
   // (the simulation cannot continue after it), std::invalid_argument for t < now or not finite.
   Advance run_to(double t, const std::atomic<bool>* stop = nullptr, const RunProgress& progress = {});
   // flushes the CSV files and finalises the video (idempotent); a closed simulation can be read
@@ -180,6 +187,7 @@ class Simulation {
   std::vector<std::vector<double>> samples_;
   double E0_ = 0;
   double wall_ = 0;
+  double best_rate_ = 0;          // [s/s] the best simulated time per wall second over a window
   int callbacks_ = 0;
   long rows_ = 0;                 // samples written
   long frames_before_ = 0;        // frames written before a resume

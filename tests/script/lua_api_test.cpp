@@ -282,5 +282,16 @@ TEST(LuaApi, PaperDryScriptWritesTheTimeSeries) {
   EXPECT_TRUE(fs::exists(out / "parameters.csv"));
 }
 
+// max_wall: a batch run past its wall-time limit is an error naming the limit and the time
+// reached (not a silent stop), outputs kept; a bad limit is rejected
+TEST(LuaApi, MaxWallStopsARunWithAnError) {
+  const std::string msg = run_text(scene_text("") + "s:run{ t_end = 1, max_wall = 0.05, progress = false }\n");
+  EXPECT_NE(msg.find("scene.lua:"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("run.max_wall: the run passed its wall-time limit of 0.05 s and stopped at t = "),
+            std::string::npos) << msg;
+  EXPECT_TRUE(fs::exists(temp_dir() / "out" / "timeseries.csv"));
+  expect_error(scene_text("") + "s:run{ t_end = 1, max_wall = 0 }\n", "scene.lua:", {"run.max_wall: must be > 0"});
+}
+
 }  // namespace
 }  // namespace beltsim::script

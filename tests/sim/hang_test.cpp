@@ -1,0 +1,165 @@
+// No silent hang (issue 12, item 3): a run that makes no progress stops with the time, the
+// stiffest component and a suggestion; the wall-time limit stops a batch run with its outputs
+// finalised; the stop flag is honoured between the outputs of one step and in the scene build.
+#include <gtest/gtest.h>
+
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <string>
+#include <thread>
+
+#include <unistd.h>
+
+#include "integrate/integrator.hpp"
+#include "integrate/timeline.hpp"
+#include "scene/presets.hpp"
+#include "scene/scene.hpp"
+#include "sim/simulation.hpp"
+
+namespace beltsim {
+namespace {
+
+namespace fs = std::filesystem;
+using clock_type = std::chrono::steady_clock;
+
+double seconds_since(clock_type::time_point t) { return std::chrono::duration<double>(clock_type::now() - t).count(); }
+
+// y' = -λ (y - cos t): with λ = 1e14 an explicit method is held by stability to steps of about
+// 3e-14 s, below 1024 units of rounding of t (2.3e-13 s) and above the collapse guard (3.6e-15 s)
+struct Stiff : OdeSystem {
+  double lambda = 1e14;
+  int size() const override { return 1; }
+  void rhs(double t, const double* y, double* dy) override { dy[0] = -lambda * (y[0] - std::cos(t)); }
+  std::string describe(int) const override { return "the stiff test component"; }
+};
+
+TEST(NoHang, StepSizeAtTheRoundingFloorStops) {
+  Stiff sys;
+  auto integ = make_integrator("rkf45", sys, Tolerances{1e-6, 1e-6});
+  Timeline tl(*integ);
+  Eigen::VectorXd y0(1);
+  y0[0] = 1;
+  tl.start(0.0, y0);
+  const auto t0 = clock_type::now();
+  try {
+    tl.run_to(1.0);
+    FAIL() << "no error";
+  } catch (const DivergenceError& e) {
+    const std::string m = e.what();
+    EXPECT_NE(m.find("no progress at t = "), std::string::npos) << m;
+    EXPECT_NE(m.find("rounding floor"), std::string::npos) << m;
+    EXPECT_NE(m.find("the stiff test component"), std::string::npos) << m;
+    EXPECT_NE(m.find("try an implicit integrator"), std::string::npos) << m;
+    EXPECT_LT(e.t, 1e-6);
+  }
+  EXPECT_LT(seconds_since(t0), 5.0);
+}
+
+const Scene& dry() {
+  static const Scene sc = build_scene(presets::paper_dry());
+  return sc;
+}
+
+fs::path temp(const std::string& name) {
+  const fs::path p = fs::temp_directory_path() / ("beltsim_hang_test_" + std::to_string(getpid())) / name;
+  fs::remove_all(p);
+  return p;
+}
+
+// a 1 s run with a wall-time limit of 0.05 s stops at the last finished step, outputs closed
+TEST(NoHang, WallLimitStopsABatchRun) {
+  RunSettings rs;
+  rs.t_end = 1.0;
+  rs.sample_dt = 1e-4;
+  rs.wall_limit = 0.05;
+  rs.out_dir = temp("wall").string();
+  const auto t0 = clock_type::now();
+  const RunResult r = run(dry(), rs);
+  EXPECT_LT(seconds_since(t0), 2.0);
+  EXPECT_TRUE(r.over_wall_limit);
+  EXPECT_FALSE(r.interrupted);
+  EXPECT_GT(r.t_reached, 0.0);
+  EXPECT_LT(r.t_reached, 1.0);
+  // the CSV ends with whole rows up to the time reached; parameters.csv has its closing lines
+  std::ifstream f(r.csv_path);
+  std::string line, last;
+  long rows = 0;
+  while (std::getline(f, line)) last = line, rows++;
+  EXPECT_GT(rows, 1);
+  EXPECT_LE(std::stod(last), r.t_reached);
+  std::ifstream p(r.parameters_path);
+  const std::string params((std::istreambuf_iterator<char>(p)), std::istreambuf_iterator<char>());
+  EXPECT_NE(params.find("warning.failed_steps"), std::string::npos);
+}
+
+// the stop flag between the outputs of one step: a stream at 1e-12 s holds thousands of outputs
+// in each step; the stop set by the 100th ends the call there, and going on delivers exactly
+// what one call would have (pausing changes nothing)
+TEST(NoHang, StopBetweenOutputsOfOneStep) {
+  struct Smooth : OdeSystem {
+    int size() const override { return 1; }
+    void rhs(double t, const double*, double* dy) override { dy[0] = std::cos(t); }
+  };
+  auto outputs = [](bool stop_at_100, std::vector<double>& got) {
+    Smooth sys;
+    auto integ = make_integrator("rkf45", sys, Tolerances{1e-6, 1e-6});
+    Timeline tl(*integ);
+    std::atomic<bool> stop{false};
+    tl.add_stream(0.0, 1e-9, [&](double t, const Eigen::VectorXd& y) {
+      got.push_back(t), got.push_back(y[0]);
+      if (stop_at_100 && got.size() == 200) stop.store(true);
+    });
+    Eigen::VectorXd y0(1);
+    y0[0] = 0;
+    tl.start(0.0, y0);
+    const Timeline::Result r = tl.run_to(2e-6, &stop);
+    if (stop_at_100) {
+      EXPECT_TRUE(r.interrupted);
+      EXPECT_EQ(got.size(), 200u);                  // no output after the stop
+      EXPECT_LT(tl.now(), tl.integrator().t());     // inside the held step
+      EXPECT_EQ(tl.now(), got[198]);
+      stop.store(false);
+      EXPECT_FALSE(tl.run_to(2e-6, &stop).interrupted);
+    }
+  };
+  std::vector<double> a, b;
+  outputs(true, a);
+  outputs(false, b);
+  ASSERT_EQ(a.size(), b.size());
+  EXPECT_EQ(a, b);
+}
+
+// Ctrl-C during a long build: a stop flag set from another thread ends the static solve of a
+// 5000-element belt within a fraction of a second
+TEST(NoHang, StopFlagEndsALongSceneBuild) {
+  SceneDef d = presets::paper_dry();
+  d.belt.elements = 5000;
+  d.allow_large = true;
+  std::atomic<bool> stop{false};
+  clock_type::time_point set_at;
+  std::thread t([&] {
+    std::this_thread::sleep_for(std::chrono::milliseconds(300));
+    set_at = clock_type::now();
+    stop.store(true);
+  });
+  bool interrupted = false;
+  std::string msg;
+  try {
+    build_scene(d, &stop);
+  } catch (const BuildInterrupted& e) {
+    interrupted = true;
+    msg = e.what();
+  }
+  const auto ended = clock_type::now();
+  t.join();
+  ASSERT_TRUE(interrupted) << "the build finished before the stop";
+  EXPECT_LT(std::chrono::duration<double>(ended - set_at).count(), 0.5);
+  EXPECT_NE(msg.find("interrupted"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("5000 elements"), std::string::npos) << msg;
+}
+
+}  // namespace
+}  // namespace beltsim
