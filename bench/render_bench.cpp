@@ -43,7 +43,7 @@ struct Setup {
     o.frame = [&](double tf, const Eigen::VectorXd& yf) { t.push_back(tf), y.push_back(yf); };
     Eigen::VectorXd y0 = sc.y0;
     drive(sys, *st, Tolerances{1e-5, -1}, o, y0, [](double, const Eigen::VectorXd&) {});
-    fs.width = 1280, fs.height = 720, fs.magnify = 10, fs.png_dir = "x";
+    fs.width = 1280, fs.height = 720, fs.magnify = 10, fs.png_dir = std::string(1, 'x');  // not = "x": GCC 12 -O3 gives a false -Wrestrict there (GCC PR 105329)
     gl = std::make_unique<render::GlRenderer>(*ctx, fs.width, fs.height);
     gl_msaa = std::make_unique<render::GlRenderer>(*ctx, fs.width, fs.height, 4);
   }

@@ -242,7 +242,7 @@ int cmd_wp(const std::string& script, const beltsim::script::Overrides& o, const
     beltsim::script::Captured cap;
     beltsim::script::Interpreter lua(s);
     const Interruptible on_signal(lua);
-    if (o.t_end) lua.set_overrides({.out = {}, .t_end = o.t_end, .integrator = {}, .rtol = {}});
+    if (o.t_end) lua.set_overrides({.out = {}, .t_end = o.t_end, .integrator = {}, .rtol = {}, .max_wall = {}});
     lua.set_capture(&cap);
     lua.run_file(script);
     if (!cap.scene) throw std::runtime_error(script + ": the script never calls scene:run{}");

@@ -130,7 +130,7 @@ TEST(Live, CoincidentEventsAndKinks) {
     RunSettings rs = settings(integ, temp("coincident_" + integ));
     rs.t_end = 0.003;
     std::vector<double> mu(sc.model.n_el(), 0.5);
-    rs.mu_events = {{0.002, mu, "a"}, {0.002, mu, "b"}, {0.001, mu, "c"}, {0.001, mu, "d"}};
+    rs.mu_events = {{0.002, mu, "a", ""}, {0.002, mu, "b", ""}, {0.001, mu, "c", ""}, {0.001, mu, "d", ""}};
     RunResult r;
     ASSERT_NO_THROW(r = run(sc, rs)) << integ;
     EXPECT_EQ(r.t_reached, 0.003);
@@ -174,7 +174,7 @@ TEST(Live, CheckpointResumesBitForBit) {
   for (int i = 10; i < 30; ++i) mu[i] = 0.3;
   auto configure = [&](const fs::path& out) {
     RunSettings rs = settings("esdirk32", out);
-    rs.mu_events = {{0.024, std::vector<double>(sc.model.n_el(), 0.8), "dry"}};  // still ahead at the save
+    rs.mu_events = {{0.024, std::vector<double>(sc.model.n_el(), 0.8), "dry", ""}};  // still ahead at the save
     return rs;
   };
   auto change = [&](Simulation& s) {
