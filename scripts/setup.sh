@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # One-command set-up for a Debian 12 machine (run as root, or with sudo available):
 #   bash scripts/setup.sh run    install what is missing, build, run the paper's dry scenario
-#   bash scripts/setup.sh test   install what is missing, build, run the test suite
+#   bash scripts/setup.sh test   install what is missing, build, run the test suite, then the quick
+#                                tests again built with ASan + UBSan in build-asan/
 #   bash scripts/setup.sh build  install what is missing and build only
 # Idempotent: packages already present are not touched, and apt is not consulted at all when
 # nothing is missing; the build is incremental (ccache when available).
@@ -46,5 +47,17 @@ case "$mode" in
     ;;
   test)
     ctest --test-dir "$build_dir" --output-on-failure -j "$jobs"
+    # the quick tests again under AddressSanitizer + UndefinedBehaviorSanitizer (a second build
+    # of only what they run); BELTSIM_SANITIZE=0 skips this. The first finding stops the test.
+    if [ "${BELTSIM_SANITIZE:-1}" != 0 ]; then
+      asan_dir=${BELTSIM_ASAN_BUILD_DIR:-build-asan}
+      export ASAN_OPTIONS=halt_on_error=1:print_stacktrace=1
+      export UBSAN_OPTIONS=halt_on_error=1:print_stacktrace=1
+      export LSAN_OPTIONS=suppressions=$here/tests/lsan.supp:print_suppressions=0
+      cmake -S . -B "$asan_dir" -DCMAKE_BUILD_TYPE=Release -DBELTSIM_SANITIZE=ON >/dev/null
+      cmake --build "$asan_dir" -j "$jobs" --target beltsim beltsim_tests_quick beltsim_tests_script \
+        beltsim_tests_render beltsim_tests_plot
+      ctest --test-dir "$asan_dir" -L quick --output-on-failure -j "$jobs"
+    fi
     ;;
 esac
