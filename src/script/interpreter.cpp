@@ -1,6 +1,7 @@
 #include "script/interpreter.hpp"
 
 #include <filesystem>
+#include <fstream>
 
 #include "script/context.hpp"
 #include "script/limits.hpp"
@@ -44,6 +45,23 @@ Context& Interpreter::context() { return *ctx_; }
 bool Interpreter::interrupted() const { return ctx_->interrupted; }
 void Interpreter::interrupt() { script::interrupt(*limits_); }
 
+namespace {
+// the message handler of a script run: a string error keeps its "file:line:" (Lua adds it); any
+// other error object gets the place it was raised at and its __tostring (or its type), so that
+// error(42) still says where it came from
+int error_message(lua_State* L) {
+  if (lua_type(L, 1) == LUA_TSTRING) return 1;
+  luaL_where(L, 2);  // "file:line:" of the Lua function that called error (1 is error itself)
+  if (luaL_callmeta(L, 1, "__tostring") && lua_type(L, -1) == LUA_TSTRING)
+    lua_pushfstring(L, "%s%s", lua_tostring(L, -2), lua_tostring(L, -1));
+  else if (lua_type(L, 1) == LUA_TNUMBER)
+    lua_pushfstring(L, "%s%s", lua_tostring(L, 2), luaL_tolstring(L, 1, nullptr));
+  else
+    lua_pushfstring(L, "%s(an error object that is a %s value)", lua_tostring(L, 2), luaL_typename(L, 1));
+  return 1;
+}
+}  // namespace
+
 void Interpreter::run_file(const std::string& path) {
   Context* ctx = ctx_.get();
   const std::filesystem::path p(path);
@@ -51,10 +69,19 @@ void Interpreter::run_file(const std::string& path) {
   ctx->script_dir = p.has_parent_path() ? p.parent_path().string() : ".";
   ctx->interrupted = false;
   ctx->captured = false;
+  {
+    std::ifstream in(path);
+    if (in && in.peek() == std::ifstream::traits_type::eof())
+      throw ScriptError(path + ": the script is empty: nothing to run");
+  }
   begin_call(L_);
   // text only: a precompiled chunk is never loaded
   int status = luaL_loadfilex(L_, path.c_str(), "t");
-  if (status == LUA_OK) status = lua_pcall(L_, 0, 0, 0);
+  if (status == LUA_OK) {
+    lua_pushcfunction(L_, error_message);
+    lua_insert(L_, -2);
+    status = lua_pcall(L_, 0, 0, -2);
+  }
   if (status != LUA_OK && ctx->captured) status = LUA_OK;  // ended on purpose by a capture
   if (status != LUA_OK) {
     // errors carry "file:line:" (chunks are named "@path"); a non-string error object is named;

@@ -96,6 +96,16 @@ TEST(LuaApi, SilentMisreadingsAreErrors) {
   }
 }
 
+// error objects that are not strings still name file:line; an empty script is an error
+TEST(LuaApi, EveryErrorNamesFileAndLine) {
+  EXPECT_NE(run_text("\nerror(42)\n").find("scene.lua:2: 42"), std::string::npos) << run_text("\nerror(42)\n");
+  const std::string t = "error(setmetatable({}, { __tostring = function() return 'custom' end }))\n";
+  EXPECT_NE(run_text(t).find("scene.lua:1: custom"), std::string::npos) << run_text(t);
+  EXPECT_NE(run_text("error({})\n").find("scene.lua:1: (an error object that is a table value)"), std::string::npos)
+      << run_text("error({})\n");
+  EXPECT_NE(run_text("").find("the script is empty"), std::string::npos) << run_text("");
+}
+
 // a video path that cannot be written stops the run before any CSV is written
 TEST(LuaApi, BadVideoPathWritesNothing) {
   const fs::path out = temp_dir() / "out";  // run_text's output folder
