@@ -129,41 +129,32 @@ void wrap_file_function(lua_State* L, Context* ctx, const char* field, const cha
 
 // ---- loading: text only, files in the allowed folders ----------------------------------------
 
-// load(chunk [, chunkname [, mode [, env]]]): mode "t" whatever is asked; "b" alone is an error
-int l_load(lua_State* L) {
-  const char* mode = luaL_optstring(L, 3, nullptr);
+// calls the original loader (upvalue 1) with its mode argument (at mode_at) forced to "t"; a mode
+// without "t" is an error, and a binary chunk refused by Lua is explained
+int call_text_only(lua_State* L, int mode_at, const char* what, const std::string& name) {
+  const char* mode = luaL_optstring(L, mode_at, nullptr);
   if (mode && !std::strchr(mode, 't'))
-    return luaL_error(L, "load: mode '%s' asks for precompiled (binary) chunks, which are not loaded (Lua source "
-                         "only); %s", mode, kHow);
-  const int n = std::max(lua_gettop(L), 3);
+    return luaL_error(L, "%s: mode '%s' asks for precompiled (binary) chunks, which are not loaded (Lua source "
+                         "only); %s", what, mode, kHow);
+  const int n = std::max(lua_gettop(L), mode_at);
   lua_settop(L, n);
   lua_pushliteral(L, "t");
-  lua_replace(L, 3);
-  lua_pushvalue(L, lua_upvalueindex(1));
-  lua_insert(L, 1);
-  lua_call(L, n, LUA_MULTRET);
-  if (lua_gettop(L) == 2 && lua_isnil(L, 1)) explain_binary(L, 2, "load");
-  return lua_gettop(L);
-}
-
-// loadfile([filename [, mode [, env]]])
-int l_loadfile(lua_State* L) {
-  const char* fname = luaL_optstring(L, 1, nullptr);
-  const char* mode = luaL_optstring(L, 2, nullptr);
-  if (mode && !std::strchr(mode, 't'))
-    return luaL_error(L, "loadfile: mode '%s' asks for precompiled (binary) chunks, which are not loaded (Lua "
-                         "source only); %s", mode, kHow);
-  if (fname) check_path(L, ctx_up(L), "loadfile", fname, false);
-  const std::string name = fname ? fname : "stdin";
-  const int n = std::max(lua_gettop(L), 2);
-  lua_settop(L, n);
-  lua_pushliteral(L, "t");
-  lua_replace(L, 2);
+  lua_replace(L, mode_at);
   lua_pushvalue(L, lua_upvalueindex(1));
   lua_insert(L, 1);
   lua_call(L, n, LUA_MULTRET);
   if (lua_gettop(L) == 2 && lua_isnil(L, 1)) explain_binary(L, 2, name.c_str());
   return lua_gettop(L);
+}
+
+// load(chunk [, chunkname [, mode [, env]]]): mode "t" whatever is asked; "b" alone is an error
+int l_load(lua_State* L) { return call_text_only(L, 3, "load", "load"); }
+
+// loadfile([filename [, mode [, env]]])
+int l_loadfile(lua_State* L) {
+  const char* fname = luaL_optstring(L, 1, nullptr);
+  if (fname) check_path(L, ctx_up(L), "loadfile", fname, false);
+  return call_text_only(L, 2, "loadfile", fname ? fname : "stdin");
 }
 
 int dofile_continue(lua_State* L, int, lua_KContext) { return lua_gettop(L) - 1; }
