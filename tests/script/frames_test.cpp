@@ -16,6 +16,7 @@
 #include "io/video_writer.hpp"
 #include "render/gl_context.hpp"
 #include "script/interpreter.hpp"
+#include "run_script.hpp"
 
 namespace beltsim::script {
 namespace {
@@ -39,18 +40,8 @@ const char* kScene =
 
 // runs `run_line` after the scene (line 8 of the script); returns the error ("" when it ran)
 std::string run(const std::string& run_line, const fs::path& out) {
-  const fs::path p = temp_dir() / "frames.lua";
-  std::ofstream(p) << kScene << run_line << "\n";
   Interpreter lua;
-  Overrides o;
-  o.out = out.string();
-  lua.set_overrides(o);
-  try {
-    lua.run_file(p.string());
-  } catch (const ScriptError& e) {
-    return e.what();
-  }
-  return "";
+  return test::run_script(lua, temp_dir() / "frames.lua", kScene + run_line + "\n", out);
 }
 
 std::string probe(const fs::path& file, const std::string& entry) {

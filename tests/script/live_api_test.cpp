@@ -10,6 +10,7 @@
 #include <string>
 
 #include "script/interpreter.hpp"
+#include "run_script.hpp"
 
 namespace beltsim::script {
 namespace {
@@ -35,15 +36,8 @@ std::string scene(const std::string& driver = "torque = beltsim.ramp(0.3, -70)")
 }
 
 std::string run_text(const std::string& text) {
-  const fs::path p = temp_dir() / "live.lua";
-  std::ofstream(p) << text;
   Interpreter lua;
-  try {
-    lua.run_file(p.string());
-  } catch (const ScriptError& e) {
-    return e.what();
-  }
-  return "";
+  return test::run_script(lua, temp_dir() / "live.lua", text);
 }
 
 TEST(LiveApi, ReadsTheStateInSIUnits) {

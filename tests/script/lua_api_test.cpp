@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "script/interpreter.hpp"
+#include "run_script.hpp"
 
 namespace beltsim::script {
 namespace {
@@ -36,18 +37,8 @@ std::string scene_text(const std::string& belt_extra, const std::string& driven 
 
 // runs the text as a script file and returns the error message ("" when it ran)
 std::string run_text(const std::string& text, const std::string& name = "scene.lua") {
-  const fs::path p = temp_dir() / name;
-  std::ofstream(p) << text;
   Interpreter lua;
-  Overrides o;
-  o.out = (temp_dir() / "out").string();
-  lua.set_overrides(o);
-  try {
-    lua.run_file(p.string());
-  } catch (const ScriptError& e) {
-    return e.what();
-  }
-  return "";
+  return test::run_script(lua, temp_dir() / name, text, temp_dir() / "out");
 }
 
 void expect_error(const std::string& text, const std::string& where, const std::vector<std::string>& parts) {

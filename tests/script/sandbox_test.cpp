@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "script/interpreter.hpp"
+#include "run_script.hpp"
 
 namespace beltsim::script {
 namespace {
@@ -41,17 +42,7 @@ std::string slurp(const fs::path& p) {
 
 // runs the text as scripts/<name> with the output folder out/; the error message, or ""
 std::string run(Interpreter& lua, const std::string& text, const std::string& name = "sandbox.lua") {
-  const fs::path p = scripts() / name;
-  std::ofstream(p) << text;
-  Overrides o;
-  o.out = out().string();
-  lua.set_overrides(o);
-  try {
-    lua.run_file(p.string());
-  } catch (const ScriptError& e) {
-    return e.what();
-  }
-  return "";
+  return test::run_script(lua, scripts() / name, text, out());
 }
 
 std::string run(const std::string& text, const Safety& s = {}) {

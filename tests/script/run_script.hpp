@@ -1,0 +1,30 @@
+// Shared by the Lua API tests: write a script's text to a file, run it, and return the error.
+#pragma once
+
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include "script/interpreter.hpp"
+
+namespace beltsim::script::test {
+
+// writes text to path and runs it with lua (output folder `out` unless empty); returns the
+// ScriptError's message ("file:line: ..."), or "" when the script ran
+inline std::string run_script(Interpreter& lua, const std::filesystem::path& path, const std::string& text,
+                              const std::filesystem::path& out = {}) {
+  std::ofstream(path) << text;
+  if (!out.empty()) {
+    Overrides o;
+    o.out = out.string();
+    lua.set_overrides(o);
+  }
+  try {
+    lua.run_file(path.string());
+  } catch (const ScriptError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+}  // namespace beltsim::script::test
