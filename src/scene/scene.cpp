@@ -92,14 +92,20 @@ void validate(const SceneDef& d) {
       << " second); set allow_large = true in the scene to go past";
     throw ParameterError(s.str());
   }
-  require_positive("belt.pretension", b.pretension, "N");
+  switch (b.tensioning) {
+    case Tensioning::pretension: require_positive("belt.pretension", b.pretension, "N"); break;
+    case Tensioning::rest_length: require_positive("belt.rest_length", b.rest_length, "m"); break;
+    case Tensioning::strain: require_positive("belt.strain", b.strain, ""); break;
+  }
   if (b.loop_sense != 1 && b.loop_sense != -1) throw ParameterError("belt.direction must be 'cw' or 'ccw'");
   if (b.reading == StiffnessReading::rigidity) {
     require_positive("belt.EA", b.EA, "N");
     require_positive("belt.EI", b.EI, "N·m²");
     require_non_negative("belt.axial_damping", b.axial_damping, "N·s");
     require_non_negative("belt.bending_damping", b.bending_damping, "N·m·s/rad");
+    if (b.bending_viscosity) require_non_negative("belt.bending_viscosity", *b.bending_viscosity, "N·m²·s");
   } else {
+    if (b.bending_viscosity) throw ParameterError("belt.bending_viscosity: a rigidity; with per-SDE values (sde) give ct");
     require_positive("belt.sde.k", b.k, "N/m");
     require_positive("belt.sde.kt", b.kt, "N·m/rad");
     require_non_negative("belt.sde.c", b.c, "N·s/m");
@@ -123,9 +129,13 @@ void validate(const SceneDef& d) {
     }
     if (seen.size() != names.size()) throw ParameterError("belt.route must visit every pulley once");
   }
-  require_non_negative("contact.c1", d.contact.c1, "N/m²");
-  require_positive("contact.c2", d.contact.c2, "N/m");
-  require_non_negative("contact.damping", d.contact.b, "N·s/m");
+  const ContactPerLength& cl = d.contact_per_length;
+  if (cl.c1) require_non_negative("contact.c1_per_length", *cl.c1, "N/m³");
+  else require_non_negative("contact.c1", d.contact.c1, "N/m²");
+  if (cl.c2) require_positive("contact.c2_per_length", *cl.c2, "N/m²");
+  else require_positive("contact.c2", d.contact.c2, "N/m");
+  if (cl.b) require_non_negative("contact.damping_per_length", *cl.b, "N·s/m²");
+  else require_non_negative("contact.damping", d.contact.b, "N·s/m");
   require_positive("contact.p_max", d.contact.p_max, "m");
   require_positive("friction.dv", d.friction.dv, "m/s");
   require_finite("gravity", d.gravity, "m/s²");
@@ -254,6 +264,7 @@ Scene build_scene(const SceneDef& d, const std::atomic<bool>* stop) {
   Model& m = sc.model;
   const BeltDef& bd = d.belt;
   const int n = bd.elements;
+  sc.inputs = scene_inputs(d);
 
   // pulleys, in definition order
   for (const PulleyDef& p : d.pulleys) {
@@ -295,33 +306,62 @@ Scene build_scene(const SceneDef& d, const std::atomic<bool>* stop) {
     }
   }
 
-  // belt properties per SDE (DESIGN §2)
+  // belt properties per SDE (DESIGN §2), from the rest length l0 of an element: its rigid rod,
+  // since an SDE's spring is unstretched at zero gap. The rigidities refer to l0: k = EA/l0,
+  // k_t = EI/l0, c = axial_damping/l0, c_t = bending_viscosity/l0 (or bending_damping per SDE
+  // as the paper gives it); the mass is ρ·l0, ρ per metre of unstretched belt.
   Belt& b = m.belt;
   b.n = n;
   b.pitch = pitch;
-  sc.reading = bd.reading;
-  if (bd.reading == StiffnessReading::rigidity) {
-    b.k = bd.EA / pitch;
-    b.kt = bd.EI / pitch;
-    b.c = bd.axial_damping / pitch;
-    b.ct = bd.bending_damping;
-  } else {
-    b.k = bd.k, b.kt = bd.kt, b.c = bd.c, b.ct = bd.ct;
-  }
   b.e_tra = bd.e_tra;
   b.e_tor = bd.e_tor;
-  b.mass = bd.mass_per_length * pitch;
+  sc.reading = bd.reading;
+  const bool rigid = bd.reading == StiffnessReading::rigidity;
+  auto set_rest = [&](double l0) {
+    b.rigid_length = l0;
+    b.mass = bd.mass_per_length * l0;
+    b.rot_inertia = b.mass * l0 * l0 / 12.0;
+    if (rigid) {
+      b.k = bd.EA / l0;
+      b.kt = bd.EI / l0;
+      b.c = bd.axial_damping / l0;
+      b.ct = bd.bending_viscosity ? *bd.bending_viscosity / l0 : bd.bending_damping;
+    } else {
+      b.k = bd.k, b.kt = bd.kt, b.c = bd.c, b.ct = bd.ct;
+    }
+  };
+  set_rest(pitch);
   // per-SDE values that overflow (EA = 1e308 over a pitch of centimetres) make every force NaN
   for (const auto& [name, v, given, unit] :
-       {std::tuple{"belt.k (EA / pitch)", b.k, bd.reading == StiffnessReading::rigidity ? bd.EA : bd.k, "N"},
-        std::tuple{"belt.kt (EI / pitch)", b.kt, bd.reading == StiffnessReading::rigidity ? bd.EI : bd.kt, "N·m²"},
-        std::tuple{"belt.c (axial_damping / pitch)", b.c, bd.reading == StiffnessReading::rigidity ? bd.axial_damping : bd.c, "N·s"}})
+       {std::tuple{"belt.k (EA / l0)", b.k, rigid ? bd.EA : bd.k, "N"},
+        std::tuple{"belt.kt (EI / l0)", b.kt, rigid ? bd.EI : bd.kt, "N·m²"},
+        std::tuple{"belt.c (axial_damping / l0)", b.c, rigid ? bd.axial_damping : bd.c, "N·s"}})
     if (!std::isfinite(v) || v > 1e15) reject(name, "is beyond what double precision integrates (> 1e15 per SDE)", given, unit);
-  const double gap = std::pow(bd.pretension / b.k, 1.0 / b.e_tra);
-  if (gap >= 0.5 * pitch)
-    reject("belt.pretension", "stretches each SDE by more than half a pitch: lower it or stiffen the belt",
-           bd.pretension, "N");
+  // the tension at rest, given or estimated from the rest length (straight spans: T = k·(l - l0)^e)
+  double rest = 0;  // [m] l0 when the rest length is given
+  if (bd.tensioning == Tensioning::rest_length) rest = bd.rest_length / n;
+  if (bd.tensioning == Tensioning::strain) rest = pitch / (1 + bd.strain);
+  if (rest > 0) {
+    if (!(rest < pitch)) {
+      std::ostringstream s;
+      s << "is not shorter than the route's pitch line (" << sc.route.length
+        << " m): the belt would hang slack; it must be stretched to be mounted";
+      reject(bd.tensioning == Tensioning::strain ? "belt.strain" : "belt.rest_length", s.str(),
+             bd.tensioning == Tensioning::strain ? bd.strain : bd.rest_length,
+             bd.tensioning == Tensioning::strain ? "" : "m");
+    }
+    set_rest(rest);
+  }
+  const double tension0 = rest > 0 ? b.k * std::pow(pitch - rest, b.e_tra) : bd.pretension;
+  if (std::pow(tension0 / b.k, 1.0 / b.e_tra) >= 0.5 * pitch)
+    reject(rest > 0 ? (bd.tensioning == Tensioning::strain ? "belt.strain" : "belt.rest_length") : "belt.pretension",
+           "stretches each SDE by more than half a pitch: lower it or stiffen the belt",
+           rest > 0 ? (bd.tensioning == Tensioning::strain ? bd.strain : bd.rest_length) : bd.pretension,
+           rest > 0 ? (bd.tensioning == Tensioning::strain ? "" : "m") : "N");
   m.contact = d.contact;
+  if (d.contact_per_length.c1) m.contact.c1 = *d.contact_per_length.c1 * pitch;
+  if (d.contact_per_length.c2) m.contact.c2 = *d.contact_per_length.c2 * pitch;
+  if (d.contact_per_length.b) m.contact.b = *d.contact_per_length.b * pitch;
   m.friction = d.friction;
   m.gravity = d.gravity;
   m.track_energy = d.track_energy;
@@ -333,7 +373,7 @@ Scene build_scene(const SceneDef& d, const std::atomic<bool>* stop) {
     double p0 = 0;
     for (int it = 0; it < 8; ++it) {
       const double alpha = 2 * std::asin(std::min(1.0, pitch / (2 * (circles[k].radius - p0))));
-      p0 = static_penetration(d.contact, 2 * bd.pretension * std::sin(alpha / 2));
+      p0 = static_penetration(m.contact, 2 * tension0 * std::sin(alpha / 2));
     }
     if (p0 >= 0.5 * circles[k].radius)
       reject("contact stiffness", "lets the belt sink more than half the radius of '" + sc.route_names[k] + "'", p0,
@@ -343,15 +383,37 @@ Scene build_scene(const SceneDef& d, const std::atomic<bool>* stop) {
   }
   const Route path = make_route(inner, bd.loop_sense, sc.route_names);
 
-  // rigid length that closes the loop with n elements (bisection on the closure)
-  double lo = 0.2 * pitch, hi = pitch;
-  for (int it = 0; it < 100; ++it) {
-    poll_stop(stop, n);  // each walk is O(n): 25 ms at 5000 elements
-    const double le = 0.5 * (lo + hi);
-    (walk(path, n, 0.5 * le, gap, nullptr) < path.length ? lo : hi) = le;
+  // n elements that close the loop: with the pretension given, the rigid length l0 whose SDE
+  // gaps carry it (bisection on the closure, the gap following l0 through k = EA/l0); with the
+  // rest length given, the gap (bisection on the closure)
+  double gap = 0;
+  if (rest > 0) {
+    double lo = 0, hi = 0.5 * pitch;
+    if (walk(path, n, 0.5 * rest, 0, nullptr) >= path.length)
+      reject(bd.tensioning == Tensioning::strain ? "belt.strain" : "belt.rest_length",
+             "leaves the belt slack on the pulleys (its contact shortens the path): stretch it more",
+             bd.tensioning == Tensioning::strain ? bd.strain : bd.rest_length,
+             bd.tensioning == Tensioning::strain ? "" : "m");
+    for (int it = 0; it < 100; ++it) {
+      poll_stop(stop, n);
+      const double g = 0.5 * (lo + hi);
+      (walk(path, n, 0.5 * rest, g, nullptr) < path.length ? lo : hi) = g;
+    }
+    gap = 0.5 * (lo + hi);
+  } else {
+    // the gap that carries the pretension with k = EA/l0 (per-SDE: k as given)
+    auto gap_for = [&](double l0) {
+      return std::pow(bd.pretension / (rigid ? bd.EA / l0 : bd.k), 1.0 / b.e_tra);
+    };
+    double lo = 0.2 * pitch, hi = pitch;
+    for (int it = 0; it < 100; ++it) {
+      poll_stop(stop, n);  // each walk is O(n): 25 ms at 5000 elements
+      const double le = 0.5 * (lo + hi);
+      (walk(path, n, 0.5 * le, gap_for(le), nullptr) < path.length ? lo : hi) = le;
+    }
+    set_rest(0.5 * (lo + hi));
+    gap = gap_for(b.rigid_length);
   }
-  b.rigid_length = 0.5 * (lo + hi);
-  b.rot_inertia = b.mass * b.rigid_length * b.rigid_length / 12.0;
   std::vector<double> s;
   walk(path, n, 0.5 * b.rigid_length, gap, &s);
 
@@ -411,13 +473,17 @@ Scene build_scene(const SceneDef& d, const std::atomic<bool>* stop) {
   for (Pulley& p : at_rest.pulleys)
     if (p.kinematic) p.speed = TimeSpeedLaw{};
   // static solve; then correct the rigid length until the spans carry the pretension (the
-  // belt's bending stiffness lifts it off small pulleys, which changes the tension a little)
+  // belt's bending stiffness lifts it off small pulleys, which changes the tension a little).
+  // The belt is not changed after the last solve, so the state returned is static for the belt
+  // returned (or the residual says it is not, and the trust-region attempt follows).
+  constexpr double kConverged = 1.0;  // [m/s²] against accelerations of 1e5..1e9 in the raw placement
   const Eigen::VectorXd placed = sc.y0;
   const Belt placed_belt = b;
   auto attempt = [&](double max_move) {
     sc.y0 = placed;
     b = placed_belt;
-    for (int it = 0; it < 8; ++it) {
+    constexpr int kPasses = 12;
+    for (int it = 0; it < kPasses; ++it) {
       at_rest.belt = b;
       sc.static_residual = static_solve(at_rest, sc.y0, max_move, stop);
       sc.span_sde.clear();
@@ -428,12 +494,17 @@ Scene build_scene(const SceneDef& d, const std::atomic<bool>* stop) {
         tension += sde_axial_force(m, sc.y0.data(), sc.y0.data() + m.n_coord(), i);
       }
       sc.static_tension = tension / static_cast<double>(sc.route.spans.size());
-      const double error = sc.static_tension - bd.pretension;
-      if (std::abs(error) < 1e-5 * bd.pretension) break;
-      // dT/dl_e = -k·e·gap^(e-1) along the SDE
+      // the rest length given: the tension is what it gives, once converged
+      if (rest > 0) {
+        if (sc.static_residual < kConverged) break;
+        continue;
+      }
+      if ((std::abs(sc.static_tension - bd.pretension) < 1e-5 * bd.pretension && sc.static_residual < kConverged) ||
+          it == kPasses - 1)
+        break;
+      // dT/dl_e = -k·e·gap^(e-1) along the SDE (k's own change with l_e is a fraction T/EA of it)
       const double g = std::pow(sc.static_tension / b.k, 1.0 / b.e_tra);
-      b.rigid_length += error / (b.k * b.e_tra * std::pow(g, b.e_tra - 1.0));
-      b.rot_inertia = b.mass * b.rigid_length * b.rigid_length / 12.0;
+      set_rest(b.rigid_length + (sc.static_tension - bd.pretension) / (b.k * b.e_tra * std::pow(g, b.e_tra - 1.0)));
     }
     // every pulley of the route still touched?
     for (size_t k = 0; k < sc.route_pulleys.size(); ++k) {
@@ -450,7 +521,6 @@ Scene build_scene(const SceneDef& d, const std::atomic<bool>* stop) {
   // off a pulley, or stopped unconverged. Then it is repeated with a trust region of a tenth of
   // a pitch per step (not always: it lands elsewhere along the free mode, and the plain
   // iteration is what the 60-element results were measured from).
-  constexpr double kConverged = 1.0;  // [m/s²] against accelerations of 1e5..1e9 in the raw placement
   std::string lost = attempt(0);
   if (!lost.empty() || !(sc.static_residual < kConverged)) {
     lost = attempt(0.1 * b.pitch);

@@ -7,6 +7,8 @@
 
 #include <functional>
 #include <map>
+#include <optional>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -45,16 +47,27 @@ struct ElementSite {
   std::map<std::string, double> meets, leaves;  // [m] s where the belt meets / leaves each pulley
 };
 
+// How the belt's tension at rest is given: exactly one of the three.
+enum class Tensioning {
+  pretension,   // the spans' tension at rest [N]; the rest length follows
+  rest_length,  // the belt's stress-free length [m]; the tension follows
+  strain        // the mounting strain, route length / rest length - 1; the tension follows
+};
+
 struct BeltDef {
   int elements = 60;
-  double pretension = 500;          // [N]
+  Tensioning tensioning = Tensioning::pretension;
+  double pretension = 500;          // [N]  (Tensioning::pretension)
+  double rest_length = 0;           // [m]  (Tensioning::rest_length)
+  double strain = 0;                // [-]  (Tensioning::strain)
   int loop_sense = -1;              // direction of travel round the loop: -1 clockwise, +1 anticlockwise
   std::vector<std::string> route;   // pulley names in travel order; empty: the order of definition
   StiffnessReading reading = StiffnessReading::rigidity;
   double EA = 1.52e5;               // [N]        paper's c_tra
   double EI = 0.026;                // [N·m²]     paper's c_tor
   double axial_damping = 20.5;      // [N·s]      paper's b_tra, per unit length
-  double bending_damping = 0.05;    // [N·m·s/rad] paper's b_tor, per SDE
+  double bending_damping = 0.05;    // [N·m·s/rad] paper's b_tor, per SDE...
+  std::optional<double> bending_viscosity;  // ...or per length [N·m²·s]: c_t = bending_viscosity / l0
   double k = 0, c = 0, kt = 0, ct = 0;  // per-SDE values for StiffnessReading::per_sde
   double e_tra = 1, e_tor = 1;      // exponents (ours: 1, DESIGN §2)
   double mass_per_length = 0.096;   // [kg/m]
@@ -63,14 +76,38 @@ struct BeltDef {
   std::function<double(const ElementSite&)> mu_at;  // ...or by where the element starts
 };
 
+// The contact law's constants per metre of belt along the pulley (the pitch), beside the paper's
+// per-element constants in `Contact`: an element of pitch l gets c1 = c1_per_length·l, and so on,
+// so the contact pressure does not change when the belt is divided finer.
+struct ContactPerLength {
+  std::optional<double> c1;  // [N/m³]
+  std::optional<double> c2;  // [N/m²]
+  std::optional<double> b;   // [N·s/m²]
+};
+
 struct SceneDef {
   std::vector<PulleyDef> pulleys;
   BeltDef belt;
-  Contact contact;
+  Contact contact;                   // per element (the paper's), unless given per length:
+  ContactPerLength contact_per_length;
   Friction friction;
   double gravity = 9.81;            // [m/s²]; 0 switches gravity off
   bool track_energy = false;
   bool allow_large = false;         // past the size limits that protect the machine (validate)
+  // the parameters the scenario gave, as dotted keys ("belt.EA", "contact.c1", "pulley.driver.inertia"):
+  // every other one takes its default, and the build lists those (Scene::inputs)
+  std::set<std::string> given;
+};
+
+// One input of a scene as the run reports it (parameters.csv, the run's first lines): its value
+// after defaults, and whether the scenario gave it.
+struct SceneInput {
+  std::string name;   // dotted key, as in the scenario
+  double value = 0;   // the value, unless `text` is set
+  std::string text;   // a value that is a word ("cw", "per element")
+  std::string unit;
+  bool given = false; // false: a default was taken
+  std::string note;   // where a default comes from (the paper, or ours) and what the value refers to
 };
 
 struct Scene {
@@ -81,6 +118,7 @@ struct Scene {
   std::vector<int> route_pulleys;  // pulley index of each route entry
   std::vector<double> penetration; // static penetration p0 of each pulley [m]
   StiffnessReading reading = StiffnessReading::rigidity;
+  std::vector<SceneInput> inputs;  // every input, given or default (scene_inputs)
   double static_tension = 0;       // mean SDE force on the spans after the static solve [N]
   double static_residual = 0;      // max |acceleration| of the initial state [m/s²]
   bool static_retried = false;     // the static start needed its trust-region retry (scene.cpp)
@@ -104,6 +142,9 @@ struct BuildInterrupted : std::runtime_error {
 // iteration and line-search trial and throw BuildInterrupted when it is set: a long build (thousands of elements) ends within a
 // fraction of a second.
 Scene build_scene(const SceneDef& def, const std::atomic<bool>* stop = nullptr);
+
+// The scene's inputs after defaults, in the order parameters.csv lists them.
+std::vector<SceneInput> scene_inputs(const SceneDef& def);
 
 // Same checks without building (used by the builder; exposed for tests).
 void validate(const SceneDef& def);

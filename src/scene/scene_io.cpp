@@ -354,6 +354,15 @@ void write_scene(std::ostream& out, const Scene& sc) {
   w.line("route_pulleys", sc.route_pulleys);
   w.line("penetration", sc.penetration);
   w.key("reading") << (sc.reading == StiffnessReading::per_sde ? " per_sde" : " rigidity"), w.end();
+  w.line("inputs", static_cast<long>(sc.inputs.size()));
+  for (const SceneInput& e : sc.inputs) {
+    w.line("input", e.name);
+    w.line("input.value", e.value);
+    w.line("input.text", e.text);
+    w.line("input.unit", e.unit);
+    w.line("input.given", long{e.given});
+    w.line("input.note", e.note);
+  }
   w.line("static_tension", sc.static_tension);
   w.line("static_residual", sc.static_residual);
   w.line("static_retried", long{sc.static_retried});
@@ -388,6 +397,15 @@ Scene read_scene(std::istream& in) {
     fail("'reading': expected rigidity or per_sde, got '" + reading + "'");
   sc.reading = reading == "per_sde" ? StiffnessReading::per_sde : StiffnessReading::rigidity;
   r.close();
+  for (long i = 0, n = r.line_int("inputs", 0, INT_MAX); i < n; ++i) {
+    SceneInput& e = sc.inputs.emplace_back();
+    e.name = r.line_str("input");
+    e.value = r.line_num("input.value");
+    e.text = r.line_str("input.text");
+    e.unit = r.line_str("input.unit");
+    e.given = r.line_int("input.given", 0, 1) != 0;
+    e.note = r.line_str("input.note");
+  }
   sc.static_tension = r.line_num("static_tension");
   sc.static_residual = r.line_num("static_residual");
   sc.static_retried = r.line_int("static_retried", 0, 1) != 0;

@@ -144,13 +144,19 @@ void read_belt(lua_State* L, int idx, BeltDef& b, std::unique_ptr<LuaRef>& mu_fn
   const std::string w = "belt";
   require_table(L, idx, w);
   check_keys(L, idx, w,
-             {"elements", "pretension", "direction", "route", "EA", "EI", "axial_damping", "bending_damping", "sde",
-              "e_tra", "e_tor", "mass_per_length", "mu"});
+             {"elements", "pretension", "rest_length", "strain", "direction", "route", "EA", "EI", "axial_damping",
+              "bending_damping", "bending_viscosity", "sde", "e_tra", "e_tor", "mass_per_length", "mu"});
   if (field(L, idx, "elements")) {
     b.elements = to_integer(L, -1, "belt.elements");
     lua_pop(L, 1);
   }
+  {  // the tension at rest: exactly one of three ways (the paper's 500 N pretension when none)
+    const int ways = has(L, idx, "pretension") + has(L, idx, "rest_length") + has(L, idx, "strain");
+    if (ways > 1) fail(L, "belt: give one of pretension [N], rest_length [m] or strain, not " + std::to_string(ways));
+  }
   if (auto v = opt_number(L, idx, "pretension", w)) b.pretension = *v;
+  if (auto v = opt_number(L, idx, "rest_length", w)) b.rest_length = *v, b.tensioning = Tensioning::rest_length;
+  if (auto v = opt_number(L, idx, "strain", w)) b.strain = *v, b.tensioning = Tensioning::strain;
   if (auto v = opt_string(L, idx, "direction", w)) {
     if (*v == "cw")
       b.loop_sense = -1;
@@ -172,14 +178,17 @@ void read_belt(lua_State* L, int idx, BeltDef& b, std::unique_ptr<LuaRef>& mu_fn
     }
     lua_pop(L, 1);
   }
-  const bool rigidities =
-      has(L, idx, "EA") || has(L, idx, "EI") || has(L, idx, "axial_damping") || has(L, idx, "bending_damping");
+  const bool rigidities = has(L, idx, "EA") || has(L, idx, "EI") || has(L, idx, "axial_damping") ||
+                          has(L, idx, "bending_damping") || has(L, idx, "bending_viscosity");
+  if (has(L, idx, "bending_damping") && has(L, idx, "bending_viscosity"))
+    fail(L, "belt: give bending_damping [N·m·s/rad per SDE] or bending_viscosity [N·m²·s per length], not both");
   if (auto v = opt_number(L, idx, "EA", w)) b.EA = *v;
   if (auto v = opt_number(L, idx, "EI", w)) b.EI = *v;
   if (auto v = opt_number(L, idx, "axial_damping", w)) b.axial_damping = *v;
   if (auto v = opt_number(L, idx, "bending_damping", w)) b.bending_damping = *v;
+  if (auto v = opt_number(L, idx, "bending_viscosity", w)) b.bending_viscosity = *v;
   if (field(L, idx, "sde")) {
-    if (rigidities) fail(L, "belt: give either rigidities (EA, EI, axial_damping, bending_damping) or per-SDE values (sde), not both");
+    if (rigidities) fail(L, "belt: give either rigidities (EA, EI, axial_damping, bending_damping or bending_viscosity) or per-SDE values (sde), not both");
     const int s = lua_gettop(L);
     require_table(L, s, "belt.sde");
     check_keys(L, s, "belt.sde", {"k", "c", "kt", "ct"});
@@ -228,6 +237,39 @@ void read_belt(lua_State* L, int idx, BeltDef& b, std::unique_ptr<LuaRef>& mu_fn
 }
 
 
+// the string keys of the table at idx, as prefix..key, into `given` (SceneDef::given)
+void note_given(lua_State* L, int idx, const std::string& prefix, std::set<std::string>& given) {
+  idx = lua_absindex(L, idx);
+  lua_pushnil(L);
+  while (lua_next(L, idx)) {
+    lua_pop(L, 1);
+    if (lua_type(L, -1) == LUA_TSTRING) given.insert(prefix + lua_tostring(L, -1));
+  }
+}
+
+// the run's first lines: the defaults a scene took, and the tension a given rest length gives
+void report_scene(const Scene& sc, Tensioning tensioning) {
+  std::string taken;
+  for (const SceneInput& in : sc.inputs) {
+    if (in.given) continue;
+    std::ostringstream v;
+    v << in.name << " = ";
+    if (in.text.empty())
+      v << in.value << (in.unit.empty() ? "" : " ") << in.unit;
+    else
+      v << in.text;
+    taken += (taken.empty() ? "" : ", ") + v.str();
+  }
+  if (!taken.empty())
+    std::fprintf(stderr, "beltsim: scene defaults (not given; parameters.csv says where each comes from): %s\n",
+                 taken.c_str());
+  if (tensioning != Tensioning::pretension) {
+    const Belt& b = sc.model.belt;
+    std::fprintf(stderr, "beltsim: belt: rest length %.6g m on a %.6g m route (strain %.4g %%): static span tension %.6g N\n",
+                 b.rigid_length * b.n, sc.route.length, 100 * (b.pitch / b.rigid_length - 1), sc.static_tension);
+  }
+}
+
 // beltsim.scene{ pulleys = {...}, belt = {...}, contact = {...}, friction = {...}, gravity = g, energy = bool }
 int l_scene(lua_State* L) {
   luaL_checktype(L, 1, LUA_TTABLE);
@@ -239,22 +281,34 @@ int l_scene(lua_State* L) {
   for (lua_Integer k = 1; k <= static_cast<lua_Integer>(lua_rawlen(L, pl)); ++k) {
     lua_rawgeti(L, pl, k);
     d.pulleys.push_back(to_pulley(L, -1, "pulley " + std::to_string(k)));
+    note_given(L, -1, "pulley." + d.pulleys.back().name + ".", d.given);
     lua_pop(L, 1);
   }
   lua_pop(L, 1);
   std::unique_ptr<LuaRef> mu_fn;
   if (field(L, 1, "belt")) {
     read_belt(L, lua_gettop(L), d.belt, mu_fn);
+    note_given(L, -1, "belt.", d.given);
+    if (field(L, -1, "sde")) note_given(L, -1, "belt.sde.", d.given), lua_pop(L, 1);
     lua_pop(L, 1);
   }
   if (field(L, 1, "contact")) {
     const int c = lua_gettop(L);
     require_table(L, c, "contact");
-    check_keys(L, c, "contact", {"c1", "c2", "damping", "p_max"});
+    check_keys(L, c, "contact",
+               {"c1", "c2", "damping", "p_max", "c1_per_length", "c2_per_length", "damping_per_length"});
+    // each constant per element (the paper's) or per metre of pitch, not both
+    for (const char* k : {"c1", "c2", "damping"})
+      if (has(L, c, k) && has(L, c, (std::string(k) + "_per_length").c_str()))
+        fail(L, std::string("contact: give ") + k + " (per element) or " + k + "_per_length (per metre of belt), not both");
     if (auto v = opt_number(L, c, "c1", "contact")) d.contact.c1 = *v;
     if (auto v = opt_number(L, c, "c2", "contact")) d.contact.c2 = *v;
     if (auto v = opt_number(L, c, "damping", "contact")) d.contact.b = *v;
     if (auto v = opt_number(L, c, "p_max", "contact")) d.contact.p_max = *v;
+    if (auto v = opt_number(L, c, "c1_per_length", "contact")) d.contact_per_length.c1 = *v;
+    if (auto v = opt_number(L, c, "c2_per_length", "contact")) d.contact_per_length.c2 = *v;
+    if (auto v = opt_number(L, c, "damping_per_length", "contact")) d.contact_per_length.b = *v;
+    note_given(L, c, "contact.", d.given);
     lua_pop(L, 1);
   }
   if (field(L, 1, "friction")) {
@@ -262,8 +316,10 @@ int l_scene(lua_State* L) {
     require_table(L, f, "friction");
     check_keys(L, f, "friction", {"dv"});
     if (auto v = opt_number(L, f, "dv", "friction")) d.friction.dv = *v;
+    note_given(L, f, "friction.", d.given);
     lua_pop(L, 1);
   }
+  note_given(L, 1, "", d.given);
   if (auto v = opt_number(L, 1, "gravity", "scene")) d.gravity = *v;
   if (auto v = opt_bool(L, 1, "energy", "scene")) d.track_energy = *v;
   if (auto v = opt_bool(L, 1, "allow_large", "scene")) d.allow_large = *v;
@@ -282,6 +338,7 @@ int l_scene(lua_State* L) {
     error = e.what();
   }
   if (!error.empty()) fail(L, error);
+  report_scene(**box, d.belt.tensioning);
   return 1;
 }
 
@@ -301,6 +358,8 @@ int l_scene_info(lua_State* L) {
   lua_pushinteger(L, b.n), lua_setfield(L, -2, "elements");
   num("pitch", b.pitch);
   num("rigid_length", b.rigid_length);
+  num("rest_length", b.rigid_length * b.n);
+  num("strain", b.pitch / b.rigid_length - 1);
   num("mass", b.mass);
   num("k", b.k);
   num("c", b.c);

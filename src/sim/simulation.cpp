@@ -26,60 +26,64 @@ void write_parameters(const Scene& sc, const RunSettings& rs, const std::string&
   const Belt& b = m.belt;
   std::ostringstream f;  // written whole at the end (io/row_file.hpp)
   f.precision(17);        // doubles round-trip
-  f << "name,value,unit,note\n";
+  // source: "given" by the scenario, "default" taken, "derived" by the build from those, or "run"
+  f << "name,value,unit,source,note\n";
   auto row = [&](const std::string& name, double v, const std::string& unit, const std::string& note) {
-    f << csv_text(name) << ',' << v << ',' << csv_text(unit) << ',' << csv_text(note) << '\n';
+    f << csv_text(name) << ',' << v << ',' << csv_text(unit) << ",derived," << csv_text(note) << '\n';
   };
   auto text = [&](const std::string& name, const std::string& v, const std::string& note) {
-    f << csv_text(name) << ',' << csv_text(v) << ",," << csv_text(note) << '\n';
+    f << csv_text(name) << ',' << csv_text(v) << ",,derived," << csv_text(note) << '\n';
   };
+  for (const SceneInput& in : sc.inputs) {
+    f << csv_text(in.name) << ',';
+    if (in.text.empty())
+      f << in.value;
+    else
+      f << csv_text(in.text);
+    f << ',' << csv_text(in.unit) << ',' << (in.given ? "given" : "default") << ',' << csv_text(in.note) << '\n';
+  }
   text("stiffness_reading", sc.reading == StiffnessReading::rigidity ? "rigidity" : "per_sde",
        sc.reading == StiffnessReading::rigidity
-           ? "DESIGN §2: c_tra = EA [N] and c_tor = EI [N·m²] are rigidities, b_tra is per unit length: "
-             "k = EA/l, k_t = EI/l, c = b_tra/l; b_tor per SDE as printed"
+           ? "DESIGN §2: c_tra = EA [N] and c_tor = EI [N·m²] are rigidities, b_tra is per unit length; "
+             "per SDE k = EA/l0, k_t = EI/l0, c = b_tra/l0 with l0 the rest length of an element"
            : "per-SDE stiffness and damping as given");
-  row("belt.elements", b.n, "", "");
   row("belt.pitch", b.pitch, "m", "l: route length / elements");
-  row("belt.rigid_length", b.rigid_length, "m", "l_e: chosen so the spans carry the pretension at rest");
-  row("belt.mass", b.mass, "kg", "per element, rho·l");
-  row("belt.rot_inertia", b.rot_inertia, "kg·m²", "per element, m·l_e²/12");
+  row("belt.rigid_length", b.rigid_length, "m",
+      "l0: an element's rest length (its rod; the SDE is unstretched at zero gap)");
+  row("belt.rest_length_total", b.rigid_length * b.n, "m", "the belt's stress-free length, n·l0");
+  row("belt.strain_at_rest", b.pitch / b.rigid_length - 1, "", "route length / rest length - 1");
+  row("belt.mass", b.mass, "kg", "per element, rho·l0");
+  row("belt.rot_inertia", b.rot_inertia, "kg·m²", "per element, m·l0²/12");
   row("belt.k", b.k, "N/m", "longitudinal SDE stiffness");
   row("belt.c", b.c, "N·s/m", "longitudinal SDE damping");
   row("belt.kt", b.kt, "N·m/rad", "torsional SDE stiffness");
   row("belt.ct", b.ct, "N·m·s/rad", "torsional SDE damping");
-  row("belt.e_tra", b.e_tra, "", "exponent of the longitudinal spring (ours: 1, DESIGN §2)");
-  row("belt.e_tor", b.e_tor, "", "exponent of the torsional spring (ours: 1, DESIGN §2)");
   row("belt.static_tension", sc.static_tension, "N", "mean span tension of the initial state");
   row("belt.static_residual", sc.static_residual, "m/s²", "largest acceleration of the initial state");
   double mu_min = 1e300, mu_max = -1;
   for (double mu : m.mu) mu_min = std::min(mu_min, mu), mu_max = std::max(mu_max, mu);
   row("belt.mu_min", mu_min, "", "");
   row("belt.mu_max", mu_max, "", "");
-  row("contact.c1", m.contact.c1, "N/m²", "");
-  row("contact.c2", m.contact.c2, "N/m", "");
-  row("contact.damping", m.contact.b, "N·s/m", "");
-  row("contact.p_max", m.contact.p_max, "m", "");
-  row("friction.dv", m.friction.dv, "m/s", "");
-  row("gravity", m.gravity, "m/s²", "acts along -y");
+  row("contact.element_c1", m.contact.c1, "N/m²", "per element");
+  row("contact.element_c2", m.contact.c2, "N/m", "per element");
+  row("contact.element_damping", m.contact.b, "N·s/m", "per element");
   for (size_t k = 0; k < sc.route_names.size(); ++k) {
     const int j = sc.route_pulleys[k];
     const Pulley& p = m.pulleys[j];
     const std::string pre = "pulley." + p.name + ".";
     row(pre + "centre_x", p.centre.x(), "m", "");
     row(pre + "centre_y", p.centre.y(), "m", "");
-    row(pre + "radius", p.radius, "m", "");
-    row(pre + "inertia", p.inertia, "kg·m²", "");
-    text(pre + "wrap", p.wrap == WrapSide::inside ? "inside" : "back", "");
     text(pre + "drive", p.kinematic ? "kinematic" : "torque", "");
     row(pre + "wrap_angle", sc.route.arcs[k].angle * 180 / M_PI, "deg", "of the pitch line");
     row(pre + "static_penetration", sc.penetration[j], "m", "p0 of the initial state");
   }
   row("route.length", sc.route.length, "m", "pitch-line length");
   row("probe.element", rs.probe_element, "", "the selected element; probe.sde_force is its left SDE");
-  text("run.integrator", rs.integrator, "");
-  row("run.rtol", rs.rtol, "", "");
-  row("run.atol", rs.atol < 0 ? rs.rtol : rs.atol, "", "per natural unit: 0.1 m, 1 rad, 1 m/s, 10 rad/s, 1 J");
-  row("run.sample_dt", rs.sample_dt, "s", "");
+  // the run's settings (source "run")
+  f << "run.integrator," << csv_text(rs.integrator) << ",,run,\n";
+  f << "run.rtol," << rs.rtol << ",,run,\n";
+  f << "run.atol," << (rs.atol < 0 ? rs.rtol : rs.atol) << ",,run," << csv_text("per natural unit: 0.1 m, 1 rad, 1 m/s, 10 rad/s, 1 J") << "\n";
+  f << "run.sample_dt," << rs.sample_dt << ",s,run,\n";
   write_file_whole(path, f.str());
 }
 
@@ -407,9 +411,9 @@ void Simulation::close() {
   if (csv_) {  // the fallbacks, beside the parameters they qualify (whole rows, one write)
     std::ostringstream f;
     const WorkCounters w = integ_->work();
-    f << "warning.static_retried," << (scene_.static_retried ? 1 : 0) << ",,the static start's trust-region retry\n"
-      << "warning.failed_steps," << w.failed_steps << ",,steps whose implicit iteration did not converge\n";
-    if (w.first_failed_step >= 0) f << "warning.first_failed_step," << num(w.first_failed_step) << ",s,\n";
+    f << "warning.static_retried," << (scene_.static_retried ? 1 : 0) << ",,derived,the static start's trust-region retry\n"
+      << "warning.failed_steps," << w.failed_steps << ",,derived,steps whose implicit iteration did not converge\n";
+    if (w.first_failed_step >= 0) f << "warning.first_failed_step," << num(w.first_failed_step) << ",s,derived,\n";
     RowFile((std::filesystem::path(rs_.out_dir) / "parameters.csv").string(), true).write(f.str());
   }
 }

@@ -128,7 +128,10 @@ def stop_and_wait(p, sigs):
 def sigterm_run():
     out = os.path.join(TMP, "term")
     p = start(["run", script("run", RUN)], out)
-    time.sleep(1.0)  # the run is under way: 0.2 s to start, then about 90 frames a second
+    # the run is under way once its CSV exists (the scene's build, 0.2 s alone and longer on a
+    # loaded machine, comes first; a signal then stops the build instead), then about 90 frames a second
+    wait_for(lambda: os.path.exists(os.path.join(out, "timeseries.csv")), 30, "the run's start")
+    time.sleep(0.8)
     status, took = stop_and_wait(p, [signal.SIGTERM])
     err = p.stderr.read()
     check(status == 143, "SIGTERM: exit status 143 (got %s, stderr %r)" % (status, err))

@@ -157,8 +157,12 @@ TEST(Frames, CtrlCLeavesAFinishedVideo) {
   o.out = out.string();
   lua.set_overrides(o);
   lua.set_stop_flag(&stop);
+  // Ctrl-C once the run is under way (its video open), not during the scene's build, which a
+  // loaded machine can stretch past a fixed delay (the build then stops with an error instead)
   std::thread ctrl_c([&] {
-    std::this_thread::sleep_for(std::chrono::milliseconds(400));
+    for (int i = 0; i < 3000 && !fs::exists(out / "stopped.mp4"); ++i)
+      std::this_thread::sleep_for(std::chrono::milliseconds(10));
+    std::this_thread::sleep_for(std::chrono::milliseconds(200));
     stop = true;
   });
   EXPECT_NO_THROW(lua.run_file(p.string()));

@@ -58,8 +58,8 @@ TEST(LuaApi, SilentMisreadingsAreErrors) {
   const std::string ok_scene = scene_text("");
   for (const Case& c : std::vector<Case>{
            {scene_text("mu = {}"), "belt.mu: an empty list"},
-           {scene_text("EA = 1e308"), "belt.k (EA / pitch) is beyond what double precision integrates"},
-           {scene_text("axial_damping = 1e308"), "belt.c (axial_damping / pitch)"},
+           {scene_text("EA = 1e308"), "belt.k (EA / l0) is beyond what double precision integrates"},
+           {scene_text("axial_damping = 1e308"), "belt.c (axial_damping / l0)"},
            {scene_text("mu = {1, nil, 1}"), "belt.mu: a list without holes"},
            {scene_text("route = {}"), "belt.route: at least two pulley names"},
            {scene_text("", "centre = {0.29, 0}, center = {0.3, 0}, radius = 0.1"), "give centre or center, not both"},
@@ -281,6 +281,49 @@ TEST(LuaApi, PaperDryScriptWritesTheTimeSeries) {
   }
   EXPECT_NEAR(w1, w2, 0.01 * std::abs(w1));
   EXPECT_TRUE(fs::exists(out / "parameters.csv"));
+}
+
+// belt data as a datasheet gives it (issue 10 §1): one way of tensioning, one form of each
+// contact constant and of the bending damping; the defaults a scene takes are named on the run's
+// first line and marked in parameters.csv
+TEST(LuaApi, BeltDataAndTheDefaultsTaken) {
+  expect_error(scene_text("strain = 0.01"), "scene.lua:", {"give one of pretension [N], rest_length [m] or strain"});
+  expect_error(scene_text("bending_damping = 0.05, bending_viscosity = 1e-3"), "scene.lua:",
+               {"bending_damping", "bending_viscosity", "not both"});
+  expect_error("beltsim.scene { pulleys = { { name = 'a', centre = {0, 0} }, { name = 'b', centre = {0.3, 0} } },\n"
+               " contact = { c2 = 6.5e5, c2_per_length = 3e7 } }\n",
+               "scene.lua:1", {"c2 (per element) or c2_per_length (per metre of belt), not both"});
+  const std::string text =
+      "local s = beltsim.scene {\n"
+      "  pulleys = { { name = 'driver', centre = {0, 0}, radius = 0.1, torque = 1 },\n"
+      "              { name = 'driven', centre = {0.29, 0}, radius = 0.1 } },\n"
+      "  belt = { elements = 60, rest_length = 1.19, EA = 1.52e5, EI = 0.026, axial_damping = 20.5 },\n"
+      "  contact = { c2_per_length = 3.2e7 },\n"
+      "}\n"
+      "s:run{ t_end = 0.001, progress = false }\n";
+  testing::internal::CaptureStderr();
+  const std::string msg = run_text(text);
+  const std::string err = testing::internal::GetCapturedStderr();
+  ASSERT_EQ(msg, "");
+  EXPECT_NE(err.find("scene defaults (not given"), std::string::npos) << err;
+  EXPECT_NE(err.find("belt.bending_damping = 0.05 N·m·s/rad"), std::string::npos) << err;
+  EXPECT_EQ(err.find("belt.EA ="), std::string::npos) << err;
+  EXPECT_NE(err.find("rest length 1.19 m on a 1.20832 m route"), std::string::npos) << err;
+  std::ifstream f(temp_dir() / "out" / "parameters.csv");
+  const std::string p((std::istreambuf_iterator<char>(f)), std::istreambuf_iterator<char>());
+  EXPECT_EQ(p.rfind("name,value,unit,source,note\n", 0), 0u) << p;
+  // each input's row: its name, then (values aside, which the number format decides) its source
+  auto row = [&](const std::string& name) {
+    const size_t at = p.find("\n" + name + ",");
+    return at == std::string::npos ? std::string() : p.substr(at + 1, p.find('\n', at + 1) - at - 1);
+  };
+  for (const auto& [name, source] : std::vector<std::pair<std::string, std::string>>{
+           {"belt.rest_length", ",m,given,"}, {"belt.EA", ",N,given,"}, {"belt.bending_damping", ",default,"},
+           {"contact.c2_per_length", ",given,"}, {"contact.c1", ",default,"}, {"pulley.driver.inertia", ",default,"},
+           {"pulley.driver.radius", ",given,"}, {"gravity", ",default,"}}) {
+    EXPECT_NE(row(name).find(source), std::string::npos) << name << ": " << row(name);
+  }
+  EXPECT_NE(row("belt.bending_damping").find("the paper's b_tor"), std::string::npos) << row("belt.bending_damping");
 }
 
 // max_wall: a batch run past its wall-time limit is an error naming the limit and the time

@@ -243,13 +243,13 @@ TEST(Live, SampledBeltTorqueTurnsThePulley) {
   EXPECT_LT(worst, 2.0) << "N·m";
 }
 
-// the fallbacks are counted and shown: the static start's retry (needed at 80 elements on the
+// the fallbacks are counted and shown: the static start's retry (needed at 120 elements on the
 // paper's drive, not at 60: README, Integration) and steps whose iteration failed, in notes() and
 // in parameters.csv
 TEST(Live, FallbacksAreCountedAndShown) {
   EXPECT_FALSE(dry().static_retried);
   SceneDef d = presets::paper_dry();
-  d.belt.elements = 80;
+  d.belt.elements = 120;
   EXPECT_TRUE(build_scene(d).static_retried);
   const fs::path out = temp("notes");
   Simulation s(build_scene(d), settings("esdirk32", out));
