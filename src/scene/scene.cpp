@@ -337,7 +337,15 @@ Scene build_scene(const SceneDef& d, const std::atomic<bool>* stop) {
         std::tuple{"belt.kt (EI / l0)", b.kt, rigid ? bd.EI : bd.kt, "N·m²"},
         std::tuple{"belt.c (axial_damping / l0)", b.c, rigid ? bd.axial_damping : bd.c, "N·s"}})
     if (!std::isfinite(v) || v > 1e15) reject(name, "is beyond what double precision integrates (> 1e15 per SDE)", given, unit);
-  // the tension at rest, given or estimated from the rest length (straight spans: T = k·(l - l0)^e)
+  // the tension at rest, given or estimated from the rest length (straight spans: T = k·(l - l0)^e);
+  // `how` names the way it was given, for the messages
+  struct {
+    const char* key;
+    double value;
+    const char* unit;
+  } how = {"belt.pretension", bd.pretension, "N"};
+  if (bd.tensioning == Tensioning::rest_length) how = {"belt.rest_length", bd.rest_length, "m"};
+  if (bd.tensioning == Tensioning::strain) how = {"belt.strain", bd.strain, ""};
   double rest = 0;  // [m] l0 when the rest length is given
   if (bd.tensioning == Tensioning::rest_length) rest = bd.rest_length / n;
   if (bd.tensioning == Tensioning::strain) rest = pitch / (1 + bd.strain);
@@ -346,18 +354,14 @@ Scene build_scene(const SceneDef& d, const std::atomic<bool>* stop) {
       std::ostringstream s;
       s << "is not shorter than the route's pitch line (" << sc.route.length
         << " m): the belt would hang slack; it must be stretched to be mounted";
-      reject(bd.tensioning == Tensioning::strain ? "belt.strain" : "belt.rest_length", s.str(),
-             bd.tensioning == Tensioning::strain ? bd.strain : bd.rest_length,
-             bd.tensioning == Tensioning::strain ? "" : "m");
+      reject(how.key, s.str(), how.value, how.unit);
     }
     set_rest(rest);
   }
   const double tension0 = rest > 0 ? b.k * std::pow(pitch - rest, b.e_tra) : bd.pretension;
   if (std::pow(tension0 / b.k, 1.0 / b.e_tra) >= 0.5 * pitch)
-    reject(rest > 0 ? (bd.tensioning == Tensioning::strain ? "belt.strain" : "belt.rest_length") : "belt.pretension",
-           "stretches each SDE by more than half a pitch: lower it or stiffen the belt",
-           rest > 0 ? (bd.tensioning == Tensioning::strain ? bd.strain : bd.rest_length) : bd.pretension,
-           rest > 0 ? (bd.tensioning == Tensioning::strain ? "" : "m") : "N");
+    reject(how.key, "stretches each SDE by more than half a pitch: lower it or stiffen the belt", how.value,
+           how.unit);
   m.contact = d.contact;
   if (d.contact_per_length.c1) m.contact.c1 = *d.contact_per_length.c1 * pitch;
   if (d.contact_per_length.c2) m.contact.c2 = *d.contact_per_length.c2 * pitch;
@@ -390,10 +394,8 @@ Scene build_scene(const SceneDef& d, const std::atomic<bool>* stop) {
   if (rest > 0) {
     double lo = 0, hi = 0.5 * pitch;
     if (walk(path, n, 0.5 * rest, 0, nullptr) >= path.length)
-      reject(bd.tensioning == Tensioning::strain ? "belt.strain" : "belt.rest_length",
-             "leaves the belt slack on the pulleys (its contact shortens the path): stretch it more",
-             bd.tensioning == Tensioning::strain ? bd.strain : bd.rest_length,
-             bd.tensioning == Tensioning::strain ? "" : "m");
+      reject(how.key, "leaves the belt slack on the pulleys (its contact shortens the path): stretch it more",
+             how.value, how.unit);
     for (int it = 0; it < 100; ++it) {
       poll_stop(stop, n);
       const double g = 0.5 * (lo + hi);
