@@ -12,8 +12,10 @@
 #include <chrono>
 #include <cmath>
 #include <cstring>
+#include <exception>
 #include <limits>
 #include <sstream>
+#include <utility>
 
 #include <Eigen/SparseCore>
 
@@ -32,13 +34,21 @@ struct Session {
   Eigen::SparseMatrix<double> J;  // analytic Jacobian, CSC
   std::string last_error;
   WorkCounters done;              // counters of the finished segments (CVodeReInit resets CVODE's)
+  // an exception of the system (a law's code failed): kept here, since it must not unwind
+  // through CVODE's C frames, and thrown again when CVode() returns
+  std::exception_ptr error;
 };
 
 int rhs_cb(sunrealtype t, N_Vector y, N_Vector ydot, void* user) {
   Session& s = *static_cast<Session*>(user);
   const double* yy = N_VGetArrayPointer(y);
   double* dy = N_VGetArrayPointer(ydot);
-  s.sys->rhs(t, yy, dy);
+  try {
+    s.sys->rhs(t, yy, dy);
+  } catch (...) {
+    s.error = std::current_exception();
+    return -1;  // unrecoverable: CVode returns at once
+  }
   for (int k = 0, n = s.sys->size(); k < n; ++k)
     if (!std::isfinite(dy[k])) return 1;  // recoverable: CVODE retries with a smaller step
   return 0;
@@ -47,7 +57,12 @@ int rhs_cb(sunrealtype t, N_Vector y, N_Vector ydot, void* user) {
 // J = ∂F/∂y from the system, copied into CVODE's CSC matrix (same pattern every call)
 int jac_cb(sunrealtype t, N_Vector y, N_Vector, SUNMatrix A, void* user, N_Vector, N_Vector, N_Vector) {
   Session& s = *static_cast<Session*>(user);
-  if (!s.sys->sparse_jacobian(t, N_VGetArrayPointer(y), s.J)) return -1;
+  try {
+    if (!s.sys->sparse_jacobian(t, N_VGetArrayPointer(y), s.J)) return -1;
+  } catch (...) {
+    s.error = std::current_exception();
+    return -1;
+  }
   s.J.makeCompressed();
   const sunindextype nnz = s.J.nonZeros();
   if (SUNSparseMatrix_NNZ(A) < nnz && SUNSparseMatrix_Reallocate(A, nnz) != 0) return -1;
@@ -166,6 +181,7 @@ class CvodeIntegrator final : public Integrator {
     }
     double t_ret = t_;
     const int flag = CVode(cv_.mem, t_land, cv_.y, &t_ret, CV_ONE_STEP);
+    if (ses_.error) std::rethrow_exception(std::exchange(ses_.error, nullptr));
     if (flag < 0)
       throw DivergenceError(t_, "cvode stopped at t = " + fmt_time(t_) + " s: " + CVodeGetReturnFlagName(flag) +
                                     (ses_.last_error.empty() ? "" : " (" + ses_.last_error + ")"));

@@ -13,6 +13,7 @@ constexpr double kCrossingWidth = 1e-10;
 }  // namespace
 
 void Timeline::start(double t0, const Eigen::VectorXd& y0) {
+  if (on_restart_) on_restart_(t0);
   integ_.start(t0, y0);
   started_ = true;
   now_ = t0;
@@ -70,6 +71,7 @@ void Timeline::changed(const Eigen::VectorXd* y) {
 void Timeline::restart(double p, const Eigen::VectorXd& y) {
   const Eigen::VectorXd start = y;  // y may alias y_now_ or new_state_
   have_new_state_ = false;
+  if (on_restart_) on_restart_(p);
   integ_.start(p, start);
   now_ = p;
   y_now_ = start;

@@ -73,6 +73,9 @@ class Timeline {
   void set_positions(const std::vector<long>& k);
   // the state right after a checkpoint's load: now() and the integrator's own
   void resume_at(double t);
+  // called with the time just before the integrator (re)starts there (start, a change, an
+  // action's restart): the system learns which side of a jump at that time it starts on
+  void on_restart(std::function<void(double t)> fn) { on_restart_ = std::move(fn); }
 
  private:
   struct Periodic {
@@ -105,6 +108,7 @@ class Timeline {
   bool started_ = false, in_actions_ = false, dirty_ = false;
   Eigen::VectorXd new_state_;
   bool have_new_state_ = false;
+  std::function<void(double)> on_restart_;
 };
 
 }  // namespace beltsim

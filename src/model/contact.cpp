@@ -81,7 +81,7 @@ void contact_jacobian(const Model& m, double t, const double* q, const double* v
   for (int j = 0; j < m.n_p(); ++j) {
     const Pulley& pl = m.pulleys[j];
     const double omega = m.omega(j, t, v);
-    const double omega_rate = pl.kinematic ? pl.speed.table_slope(t) : 0.0;
+    const double omega_rate = pl.kinematic ? m.speed_rate(j, t) : 0.0;
     for (int i = 0; i < n; ++i) {
       const Vec2 P(q[3 * i], q[3 * i + 1]);
       const Vec2 V(v[3 * i], v[3 * i + 1]);

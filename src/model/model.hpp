@@ -15,24 +15,11 @@
 
 #include <Eigen/Core>
 
+#include "model/laws.hpp"
+
 namespace beltsim {
 
 using Vec2 = Eigen::Vector2d;
-
-// A torque [N·m] or a prescribed speed [rad/s] as a function of time and speed:
-//   value(t, Omega) = constant + per_speed·Omega + table(t)
-// where table(t) interpolates (t_k, value_k) linearly and holds the end values outside.
-struct TimeSpeedLaw {
-  double constant = 0.0;      // [N·m] or [rad/s]
-  double per_speed = 0.0;     // [N·m·s/rad]; zero for a prescribed speed
-  std::vector<double> t;      // [s], strictly increasing
-  std::vector<double> value;  // same unit as constant, one per t
-
-  bool is_zero() const { return constant == 0.0 && per_speed == 0.0 && t.empty(); }
-  double table(double time) const;
-  double table_slope(double time) const;  // d table / dt, right-hand derivative at breakpoints
-  double eval(double time, double omega) const { return constant + per_speed * omega + table(time); }
-};
 
 enum class WrapSide { inside, back };  // pulley inside the belt loop, or on the belt's back side
 
@@ -102,13 +89,23 @@ struct Model {
   // diagonal of the mass matrix for coordinate k (kinematic pulleys get 1: their rows are
   // prescribed, see rhs.cpp)
   double mass_of(int k) const;
+  // The time of the integrator's last (re)start: a step of a law at exactly this time has
+  // happened (its value after the jump is used), while a step that ends exactly on a law's jump
+  // still sees the value before it. Set by the simulation at every restart; not part of the
+  // model's description (checkpoints restart at their time).
+  double restart_time = -1e300;
+  bool after_jump(double t) const { return t == restart_time; }
   // Omega of pulley j: the prescribed speed for a kinematic pulley, else the state value
   double omega(int j, double t, const double* v) const {
     const Pulley& p = pulleys[j];
-    return p.kinematic ? p.speed.eval(t, 0.0) : v[pulley_coord(j)];
+    return p.kinematic ? p.speed.eval(t, 0.0, after_jump(t)) : v[pulley_coord(j)];
   }
-  // times at which some law of the model has a kink (torque or speed table breakpoints)
+  // dOmega/dt of a kinematic pulley j (its prescribed acceleration) [rad/s²]
+  double speed_rate(int j, double t) const { return pulleys[j].speed.d_time(t, 0.0); }
+  // times at which some law of the model has a kink (table breakpoints, ramp ends)
   std::vector<double> breakpoints() const;
+  // times at which some law of the model jumps (steps)
+  std::vector<double> jumps() const;
 };
 
 }  // namespace beltsim

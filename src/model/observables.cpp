@@ -49,7 +49,7 @@ PulleyObs observe_pulley(const Model& m, double t, const double* y, int j) {
   o.angle = q[m.pulley_coord(j)];
   o.belt_torque = belt_torque(m, t, q, v, j, &o.hub);
   o.hub_load = o.hub.norm();
-  o.torque = p.kinematic ? p.inertia * p.speed.table_slope(t) - o.belt_torque : applied_torque(m, t, v, j);
+  o.torque = p.kinematic ? p.inertia * m.speed_rate(j, t) - o.belt_torque : applied_torque(m, t, v, j);
   return o;
 }
 
@@ -81,7 +81,7 @@ void blend_contact(const Model& m, double theta, const Observation& a, const Obs
     p.hub = (1 - theta) * pa.hub + theta * pb.hub;
     p.hub_load = p.hub.norm();
     const Pulley& pl = m.pulleys[j];
-    if (pl.kinematic) p.torque = pl.inertia * pl.speed.table_slope(at.t) - p.belt_torque;
+    if (pl.kinematic) p.torque = pl.inertia * m.speed_rate(static_cast<int>(j), at.t) - p.belt_torque;
   }
 }
 

@@ -2,10 +2,13 @@
 //
 // A free pulley j turns under its applied torque and the belt's friction reactions:
 //   I_j·Ω̇_j = M_d(t, Ω_j) + Σ_i r_ji·μ_ji·N_ji          (the sum is added in contact.cpp)
-//   M_d(t, Ω) = constant + per_speed·Ω + table(t)        ∂M_d/∂Ω = per_speed, ∂M_d/∂t = table'(t)
+// with M_d a law of laws.hpp (its terms and their derivatives are at the top of laws.cpp):
+//   ∂(I·Ω̇)/∂Ω = ∂M_d/∂Ω (the Jacobian's C block),      ∂(I·Ω̇)/∂t = ∂M_d/∂t (f_t).
 // A kinematic pulley follows a prescribed Ω(t): its row is Ω̇ = Ω'(t) with unit "mass", nothing
-// depends on its state Ω (the prescribed value is used instead), and the drive's power is
-// (I·Ω' - M_belt)·Ω. Gravity: m·g along -y on every element centre, potential m·g·y.
+// depends on its state Ω (the prescribed value is used instead), ∂(Ω̇)/∂t = Ω''(t), and the
+// drive's power is (I·Ω' - M_belt)·Ω. A step of Ω(t) is a jump of the state, made by the
+// simulation where it lands on the step (Simulation::set_landings).
+// Gravity: m·g along -y on every element centre, potential m·g·y.
 #include "model/forces.hpp"
 
 namespace beltsim {
@@ -13,7 +16,7 @@ namespace beltsim {
 double applied_torque(const Model& m, double t, const double* v, int j) {
   const Pulley& p = m.pulleys[j];
   if (p.kinematic) return 0.0;
-  return p.torque.eval(t, v[m.pulley_coord(j)]);
+  return p.torque.eval(t, v[m.pulley_coord(j)], m.after_jump(t));
 }
 
 void pulley_forces(const Model& m, double t, const double* v, double* f, double* e_rate) {
@@ -21,23 +24,27 @@ void pulley_forces(const Model& m, double t, const double* v, double* f, double*
     const Pulley& p = m.pulleys[j];
     const int k = m.pulley_coord(j);
     if (p.kinematic) {
-      const double rate = p.speed.table_slope(t);
+      const double rate = m.speed_rate(j, t);
       f[k] += rate;
-      if (e_rate) e_rate[kWorkTorques] += p.inertia * rate * p.speed.eval(t, 0.0);
+      if (e_rate) e_rate[kWorkTorques] += p.inertia * rate * m.omega(j, t, v);
     } else {
-      const double M = p.torque.eval(t, v[k]);
+      const double M = p.torque.eval(t, v[k], m.after_jump(t));
       f[k] += M;
       if (e_rate) e_rate[kWorkTorques] += M * v[k];
     }
   }
 }
 
-void pulley_jacobian(const Model& m, double t, const double*, BlockMatrix& C, double* f_t) {
+void pulley_jacobian(const Model& m, double t, const double* v, BlockMatrix& C, double* f_t) {
   for (int j = 0; j < m.n_p(); ++j) {
     const Pulley& p = m.pulleys[j];
-    if (p.kinematic) continue;  // Ω'(t) is piecewise constant: no derivative
-    C.pulley_pulley(j, j) += p.torque.per_speed;
-    if (f_t) f_t[m.pulley_coord(j)] += p.torque.table_slope(t);
+    const int k = m.pulley_coord(j);
+    if (p.kinematic) {
+      if (f_t) f_t[k] += p.speed.d_time2(t);
+      continue;
+    }
+    C.pulley_pulley(j, j) += p.torque.d_omega(t, v[k]);
+    if (f_t) f_t[k] += p.torque.d_time(t, v[k]);
   }
 }
 

@@ -30,24 +30,55 @@ namespace {
 
 std::string pulley_label(const PulleyDef& p) { return "pulley '" + p.name + "'"; }
 
-void validate_law(const std::string& what, const TimeSpeedLaw& law, const std::string& unit) {
-  require_finite(what + ".constant", law.constant, unit);
-  require_finite(what + ".per_speed", law.per_speed, unit + "·s/rad");
-  if (law.t.size() != law.value.size()) throw ParameterError(what + ".table: times and values differ in number");
-  for (size_t k = 0; k < law.t.size(); ++k) {
-    require_finite(what + ".table time", law.t[k], "s");
-    require_finite(what + ".table value", law.value[k], unit);
-    if (k > 0 && !(law.t[k] > law.t[k - 1]))
-      reject(what + ".table", "times must increase strictly", law.t[k], "s");
-  }
-}
-
 double static_penetration(const Contact& c, double N0) {
   if (c.c1 > 0) return (-c.c2 + std::sqrt(c.c2 * c.c2 + 4 * c.c1 * N0)) / (2 * c.c1);
   return N0 / c.c2;
 }
 
 }  // namespace
+
+void validate_law(const std::string& what, const TimeSpeedLaw& law, bool speed) {
+  const std::string unit = speed ? "rad/s" : "N·m";
+  require_finite(what + ".constant", law.constant, unit);
+  require_finite(what + ".per_speed", law.per_speed, unit + "·s/rad");
+  auto table = [&](const std::string& name, const std::vector<double>& x, const std::vector<double>& y,
+                   const char* xunit) {
+    if (x.size() != y.size()) throw ParameterError(what + "." + name + ": the two columns differ in length");
+    for (size_t k = 0; k < x.size(); ++k) {
+      require_finite(what + "." + name + " entry " + std::to_string(k + 1) + " (first)", x[k], xunit);
+      require_finite(what + "." + name + " entry " + std::to_string(k + 1) + " (second)", y[k], unit);
+      if (k > 0 && !(x[k] > x[k - 1]))
+        reject(what + "." + name + " entry " + std::to_string(k + 1), "must be larger than the entry before it", x[k],
+               xunit);
+    }
+  };
+  table("table", law.t, law.value, "s");
+  table("per_speed_table", law.omega, law.omega_value, "rad/s");
+  for (const Ramp& r : law.ramps) {
+    const std::string w = what + (r.is_step() ? " step" : " ramp");
+    require_finite(w + ".t0", r.t0, "s");
+    require_finite(w + ".t1", r.t1, "s");
+    require_finite(w + ".from", r.from, unit);
+    require_finite(w + ".to", r.to, unit);
+    if (r.t1 < r.t0) reject(w + ".t1", "must not be before t0", r.t1, "s");
+  }
+  for (const Sine& s : law.sines) {
+    require_finite(what + " sine.mean", s.mean, unit);
+    require_finite(what + " sine.amplitude", s.amplitude, unit);
+    require_non_negative(what + " sine.frequency", s.frequency, "Hz");
+    require_finite(what + " sine.frequency", s.frequency, "Hz");
+    require_finite(what + " sine.phase", s.phase, "rad");
+  }
+  for (const Harmonic& h : law.harmonics) {
+    require_positive(what + " harmonics order", h.order, "");
+    require_finite(what + " harmonics order", h.order, "");
+    require_finite(what + " harmonics amplitude", h.amplitude, unit);
+    require_finite(what + " harmonics phase", h.phase, "rad");
+    require_finite(what + ".mean_speed", h.mean_speed, "rad/s");
+  }
+  if (speed && (law.per_speed != 0 || !law.omega.empty()))
+    throw ParameterError(what + ": a prescribed speed cannot depend on the speed (per_speed, per_speed_table)");
+}
 
 void validate(const SceneDef& d) {
   if (d.pulleys.size() < 2)
@@ -62,11 +93,10 @@ void validate(const SceneDef& d) {
     require_positive(w + " radius", p.radius, "m");
     require_positive(w + " inertia", p.inertia, "kg·m²");
     if (p.kinematic) {
-      validate_law(w + " speed", p.speed, "rad/s");
-      if (p.speed.per_speed != 0) throw ParameterError(w + ": a prescribed speed cannot depend on the speed");
+      validate_law(w + " speed", p.speed, true);
       if (!p.torque.is_zero()) throw ParameterError(w + ": give either a torque or a prescribed speed, not both");
     } else {
-      validate_law(w + " torque", p.torque, "N·m");
+      validate_law(w + " torque", p.torque, false);
     }
   }
   for (size_t a = 0; a < d.pulleys.size(); ++a)
@@ -467,7 +497,7 @@ Scene build_scene(const SceneDef& d, const std::atomic<bool>* stop) {
     }
   }
   for (int j = 0; j < m.n_p(); ++j)
-    if (m.pulleys[j].kinematic) sc.y0[m.n_coord() + m.pulley_coord(j)] = m.pulleys[j].speed.eval(0.0, 0.0);
+    if (m.pulleys[j].kinematic) sc.y0[m.n_coord() + m.pulley_coord(j)] = m.pulleys[j].speed.eval(0.0, 0.0, true);  // a run starts after a step at 0
 
   // the static state is found with every pulley at rest (a kinematic pulley's prescribed speed
   // would drag the belt round while it is sought)

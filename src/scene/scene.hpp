@@ -148,5 +148,8 @@ std::vector<SceneInput> scene_inputs(const SceneDef& def);
 
 // Same checks without building (used by the builder; exposed for tests).
 void validate(const SceneDef& def);
+// a torque law [N·m] (speed = false) or a prescribed speed [rad/s]: every value finite, tables
+// increasing, ramps forward; a speed cannot depend on the speed. Throws ParameterError naming `what`.
+void validate_law(const std::string& what, const TimeSpeedLaw& law, bool speed);
 
 }  // namespace beltsim

@@ -214,10 +214,24 @@ class Reader {
 // ---- the objects --------------------------------------------------------------------------
 
 void put_law(Writer& w, const TimeSpeedLaw& law, const std::string& k) {
+  if (law.fn)
+    throw std::runtime_error("checkpoint: the " + k + " law " + law.fn->describe() +
+                             " is Lua code, which a checkpoint cannot hold");
   w.line(k + ".constant", law.constant);
   w.line(k + ".per_speed", law.per_speed);
   w.line(k + ".t", law.t);
   w.line(k + ".value", law.value);
+  w.line(k + ".omega", law.omega);
+  w.line(k + ".omega_value", law.omega_value);
+  // ramps (t0 t1 from to cosine), sines (mean amplitude frequency phase), harmonics (order
+  // amplitude phase mean_speed): each a flat list of numbers
+  std::vector<double> r, s, h;
+  for (const Ramp& a : law.ramps) r.insert(r.end(), {a.t0, a.t1, a.from, a.to, a.cosine ? 1.0 : 0.0});
+  for (const Sine& a : law.sines) s.insert(s.end(), {a.mean, a.amplitude, a.frequency, a.phase});
+  for (const Harmonic& a : law.harmonics) h.insert(h.end(), {a.order, a.amplitude, a.phase, a.mean_speed});
+  w.line(k + ".ramps", r);
+  w.line(k + ".sines", s);
+  w.line(k + ".harmonics", h);
 }
 TimeSpeedLaw get_law(Reader& r, const std::string& k) {
   TimeSpeedLaw law;
@@ -225,6 +239,17 @@ TimeSpeedLaw get_law(Reader& r, const std::string& k) {
   law.per_speed = r.line_num(k + ".per_speed");
   law.t = r.line_doubles(k + ".t");
   law.value = r.line_doubles(k + ".value");
+  law.omega = r.line_doubles(k + ".omega");
+  law.omega_value = r.line_doubles(k + ".omega_value");
+  auto groups = [&](const std::string& key, size_t n) {
+    std::vector<double> v = r.line_doubles(key);
+    if (v.size() % n != 0) fail("'" + key + "': a multiple of " + std::to_string(n) + " numbers expected");
+    return v;
+  };
+  const std::vector<double> ra = groups(k + ".ramps", 5), si = groups(k + ".sines", 4), ha = groups(k + ".harmonics", 4);
+  for (size_t i = 0; i < ra.size(); i += 5) law.ramps.push_back({ra[i], ra[i + 1], ra[i + 2], ra[i + 3], ra[i + 4] != 0});
+  for (size_t i = 0; i < si.size(); i += 4) law.sines.push_back({si[i], si[i + 1], si[i + 2], si[i + 3]});
+  for (size_t i = 0; i < ha.size(); i += 4) law.harmonics.push_back({ha[i], ha[i + 1], ha[i + 2], ha[i + 3]});
   return law;
 }
 
@@ -261,6 +286,7 @@ void put_model(Writer& w, const Model& m) {
   w.line("gravity", m.gravity);
   w.line("mu", m.mu);
   w.line("track_energy", long{m.track_energy});
+  w.line("restart_time", m.restart_time);
   w.key("end model"), w.end();
 }
 Model get_model(Reader& r) {
@@ -301,6 +327,7 @@ Model get_model(Reader& r) {
   m.gravity = r.line_num("gravity");
   m.mu = r.line_doubles("mu");
   m.track_energy = r.line_int("track_energy", 0, 1) != 0;
+  m.restart_time = r.line_num("restart_time");
   r.footer("model");
   return m;
 }

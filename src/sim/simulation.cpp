@@ -152,6 +152,7 @@ Simulation::Simulation(const Scene& sc, const RunSettings& rs, bool fresh) : sce
   sys_ = std::make_unique<BeltSystem>(model_);
   integ_ = make_integrator(rs_.integrator, *sys_, Tolerances{rs_.rtol, rs_.atol});
   tl_ = std::make_unique<Timeline>(*integ_);
+  tl_->on_restart([this](double t) { model_.restart_time = t; });
   if (rs_.frames) {
     FrameSettings& f = *rs_.frames;
     validate(f);
@@ -208,10 +209,21 @@ std::string Simulation::events_path() const { return (std::filesystem::path(rs_.
 long Simulation::frames_written() const { return frames_before_ + (sink_ ? sink_->frames_written() : 0); }
 const std::string& Simulation::integrator_name() const { return rs_.integrator; }
 
-// the kinks of the laws and the timed μ changes ahead: the integrator lands on each
+// the kinks of the laws, their jumps and the timed μ changes ahead: the integrator lands on each
 void Simulation::set_landings() {
   std::vector<Timeline::Landing> l;
   for (double t : model_.breakpoints()) l.push_back({t, {}});
+  // a step of a law: the step that ends here saw the value before it; the integrator restarts
+  // here after it (Model::restart_time), a kinematic pulley's state speed jumping with its law
+  for (double t : model_.jumps())
+    l.push_back({t, [this](double at) {
+                   Eigen::VectorXd y = state();
+                   model_.restart_time = at;
+                   for (int j = 0; j < model_.n_p(); ++j)
+                     if (model_.pulleys[j].kinematic)
+                       y[model_.n_coord() + model_.pulley_coord(j)] = model_.omega(j, at, y.data() + model_.n_coord());
+                   changed(&y);
+                 }});
   for (size_t k = 0; k < pending_.size(); ++k)
     l.push_back({pending_[k].t, [this](double t) {
                    // every μ event due now, in the order given
@@ -382,6 +394,12 @@ Simulation::Advance Simulation::run_to(double t, const std::atomic<bool>* stop, 
     wall_ += std::chrono::duration<double>(clock::now() - start).count();
     close();  // CSV flushed, video finalised so it plays
     throw;
+  } catch (const LawError& e) {
+    // a law's code failed (a Lua law raised or returned no number): the run cannot go on
+    failed_ = e.what();
+    wall_ += std::chrono::duration<double>(clock::now() - start).count();
+    close();
+    throw;
   } catch (...) {
     wall_ += std::chrono::duration<double>(clock::now() - start).count();
     csv_->flush();
@@ -447,7 +465,7 @@ void Simulation::set_torque(int j, const TimeSpeedLaw& law, const std::string& t
   if (was_kinematic) {
     // it turns freely from here, at the speed it was driven at
     Eigen::VectorXd y = state();
-    y[model_.n_coord() + model_.pulley_coord(j)] = p.speed.eval(now(), 0.0);
+    y[model_.n_coord() + model_.pulley_coord(j)] = p.speed.eval(now(), 0.0, true);
     changed(&y);
   } else {
     changed();
@@ -462,7 +480,7 @@ void Simulation::set_speed(int j, const TimeSpeedLaw& law, const std::string& te
   p.kinematic = true;
   write_event(now(), p.name + ".speed", text);
   Eigen::VectorXd y = state();
-  y[model_.n_coord() + model_.pulley_coord(j)] = p.speed.eval(now(), 0.0);
+  y[model_.n_coord() + model_.pulley_coord(j)] = p.speed.eval(now(), 0.0, true);  // it restarts here
   changed(&y);
 }
 

@@ -234,5 +234,43 @@ TEST(Jacobian, KinematicPulleyTimeDerivative) {
   expect_jacobian_matches(sc.model, 0.2, y);
 }
 
+// a law given as code (what a Lua law is to the model): M = -0.004·Ω·|Ω| + 2·sin(9t), whose
+// derivatives the model takes by finite differences
+class Drag final : public LawFunction {
+ public:
+  double value(double t, double omega) const override { return -0.004 * omega * std::abs(omega) + 2 * std::sin(9 * t); }
+  std::string describe() const override { return "drag"; }
+  long calls() const override { return 0; }
+};
+
+// every kind of law term in the Jacobian: a kinematic driver whose speed is a cosine ramp plus a
+// sine plus harmonics (its Ω'' enters ∂f/∂t), and a driven pulley under a speed map, a ramp, a
+// sine and code (∂M/∂Ω from the map's slope and the code's forward difference, whose error
+// ~1e-8 relative is far inside the 1e-6 asked)
+TEST(Jacobian, EveryLawTerm) {
+  SceneDef d = presets::paper_dry();
+  d.pulleys[0].kinematic = true;
+  d.pulleys[0].torque = TimeSpeedLaw{};
+  d.pulleys[0].speed.ramps = {{0.0, 0.3, 0.0, -60.0, true}};
+  d.pulleys[0].speed.sines = {{0.0, 4.0, 30.0, 0.2}};
+  d.pulleys[0].speed.harmonics = {{2.0, 3.0, 0.5, 60.0}};
+  TimeSpeedLaw& M = d.pulleys[1].torque;
+  M = TimeSpeedLaw{};
+  M.omega = {-100.0, 0.0, 100.0};
+  M.omega_value = {30.0, 0.0, -70.0};
+  M.ramps = {{0.05, 0.2, 0.0, -5.0, true}};
+  M.sines = {{1.0, 3.0, 20.0, 0.0}};
+  M.fn = std::make_shared<Drag>();
+  const Scene sc = build_scene(d);
+  const double t = 0.13;
+  const Eigen::VectorXd y = running_state(sc, t, 30.0, 6);
+  Jacobian J;
+  J.resize(sc.model);
+  jacobian(sc.model, t, y.data(), J);
+  const int k0 = sc.model.pulley_coord(0);
+  EXPECT_NE(J.f_t[k0], 0.0) << "the driver's Ω'' is in ∂f/∂t";
+  expect_jacobian_matches(sc.model, t, y);
+}
+
 }  // namespace
 }  // namespace beltsim

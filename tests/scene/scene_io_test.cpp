@@ -51,6 +51,30 @@ void expect_same(const TimeSpeedLaw& a, const TimeSpeedLaw& b) {
   EXPECT_SAME(a.per_speed, b.per_speed);
   expect_same(a.t, b.t, "law.t");
   expect_same(a.value, b.value, "law.value");
+  expect_same(a.omega, b.omega, "law.omega");
+  expect_same(a.omega_value, b.omega_value, "law.omega_value");
+  ASSERT_EQ(a.ramps.size(), b.ramps.size());
+  for (size_t k = 0; k < a.ramps.size(); ++k) {
+    EXPECT_SAME(a.ramps[k].t0, b.ramps[k].t0);
+    EXPECT_SAME(a.ramps[k].t1, b.ramps[k].t1);
+    EXPECT_SAME(a.ramps[k].from, b.ramps[k].from);
+    EXPECT_SAME(a.ramps[k].to, b.ramps[k].to);
+    EXPECT_EQ(a.ramps[k].cosine, b.ramps[k].cosine);
+  }
+  ASSERT_EQ(a.sines.size(), b.sines.size());
+  for (size_t k = 0; k < a.sines.size(); ++k) {
+    EXPECT_SAME(a.sines[k].mean, b.sines[k].mean);
+    EXPECT_SAME(a.sines[k].amplitude, b.sines[k].amplitude);
+    EXPECT_SAME(a.sines[k].frequency, b.sines[k].frequency);
+    EXPECT_SAME(a.sines[k].phase, b.sines[k].phase);
+  }
+  ASSERT_EQ(a.harmonics.size(), b.harmonics.size());
+  for (size_t k = 0; k < a.harmonics.size(); ++k) {
+    EXPECT_SAME(a.harmonics[k].order, b.harmonics[k].order);
+    EXPECT_SAME(a.harmonics[k].amplitude, b.harmonics[k].amplitude);
+    EXPECT_SAME(a.harmonics[k].phase, b.harmonics[k].phase);
+    EXPECT_SAME(a.harmonics[k].mean_speed, b.harmonics[k].mean_speed);
+  }
 }
 
 void expect_same(const Model& a, const Model& b) {
@@ -85,6 +109,7 @@ void expect_same(const Model& a, const Model& b) {
   EXPECT_SAME(a.gravity, b.gravity);
   expect_same(a.mu, b.mu, "mu");
   EXPECT_EQ(a.track_energy, b.track_energy);
+  EXPECT_SAME(a.restart_time, b.restart_time);
 }
 
 void expect_same(const Scene& a, const Scene& b) {
@@ -205,6 +230,14 @@ TEST(SceneIo, ModelLawVectorsInOneStream) {
   Model m = sc.model;
   m.mu[3] = 0.123456789;
   const std::vector<double> v = {1.0 / 3, -0.0, 1e-310};
+  // every kind of law term, with values that need all 17 digits
+  TimeSpeedLaw& law = m.pulleys[2].speed;
+  law.omega = {0.0, 1.0 / 3};
+  law.omega_value = {2.0 / 3, -0.0};
+  law.ramps = {{0.1, 0.3, 1.0 / 7, -2.0, true}, {0.2, 0.2, 0.0, 5e-300, false}};
+  law.sines = {{1.0, 1.0 / 9, 50.0, M_PI}};
+  law.harmonics = {{0.5, 1.0 / 11, -1.0, 83.77580409572781}};
+  m.restart_time = 0.2;
   std::stringstream s;
   s.imbue(std::locale::classic());
   s << std::hex << std::setw(12);  // the writers do not depend on the caller's flags...

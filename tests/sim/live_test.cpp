@@ -19,6 +19,12 @@
 namespace beltsim {
 namespace {
 
+TimeSpeedLaw constant_law(double c) {
+  TimeSpeedLaw law;
+  law.constant = c;
+  return law;
+}
+
 namespace fs = std::filesystem;
 
 std::string slurp(const std::string& path) {
@@ -93,7 +99,7 @@ TEST(Live, ChangeAtAPauseAppliesFromThen) {
     for (int i = 0; i < 20; ++i) mu[i] = 0.2;
     s.set_mu(mu, "wet", "test");
     EXPECT_EQ(s.model().mu[0], 0.2);
-    s.set_torque(0, TimeSpeedLaw{-30.0, 0.0, {}, {}}, "-30");
+    s.set_torque(0, constant_law(-30.0), "-30");
     s.run_to(0.04);
   }
   {
@@ -124,7 +130,9 @@ TEST(Live, ChangeAtAPauseAppliesFromThen) {
 // "step size collapsed to 0 s" (esdirk32), no endless loop (rkf45)
 TEST(Live, CoincidentEventsAndKinks) {
   SceneDef d = presets::paper_dry();
-  d.pulleys[0].torque = TimeSpeedLaw{0, 0, {0.0, 0.002}, {0.0, -70.0}};  // a kink at 0.002 s
+  d.pulleys[0].torque = TimeSpeedLaw{};
+  d.pulleys[0].torque.t = {0.0, 0.002};  // a kink at 0.002 s
+  d.pulleys[0].torque.value = {0.0, -70.0};
   const Scene sc = build_scene(d);
   for (const std::string integ : {"esdirk32", "rkf45"}) {
     RunSettings rs = settings(integ, temp("coincident_" + integ));
@@ -146,7 +154,7 @@ TEST(Live, EveryAndWhenAtTheirTimes) {
   SceneDef d = presets::paper_dry();
   d.pulleys[0].kinematic = true;
   d.pulleys[0].torque = TimeSpeedLaw{};
-  d.pulleys[0].speed = TimeSpeedLaw{-10.0, 0.0, {}, {}};
+  d.pulleys[0].speed = constant_law(-10.0);
   const Scene sc = build_scene(d);
   Simulation s(sc, settings("esdirk32", temp("callbacks")));
   std::vector<double> times;
@@ -180,7 +188,7 @@ TEST(Live, CheckpointResumesBitForBit) {
   auto change = [&](Simulation& s) {
     s.run_to(0.005);
     s.set_mu(mu, "wet", "test");
-    s.set_torque(0, TimeSpeedLaw{-20.0, 0.0, {}, {}}, "-20");
+    s.set_torque(0, constant_law(-20.0), "-20");
   };
   const fs::path whole = temp("ck_whole"), parts = temp("ck_parts");
   Eigen::VectorXd y_whole, y_parts;
