@@ -1,11 +1,11 @@
 // beltsim command line (CLI11).
 //   beltsim run     SCRIPT [--out DIR] [--t-end T] [--integrator NAME] [--rtol R] [--max-wall S]
-//                          [--no-frames] [SAFETY]
+//                          [--no-frames] [--set KEY=VALUE]... [SAFETY]
 //   beltsim wp      SCRIPT [--out DIR] [--t-end T] [--integrators A,B] [--rtols R1,R2] [--ref-rtol R]
-//                          [--wall-limit S] [SAFETY]
+//                          [--wall-limit S] [--set KEY=VALUE]... [SAFETY]
 //   beltsim plot    CSV [COLUMNS...] [--out PNG] [--from T]
 //   beltsim console [SCRIPT] [--out DIR] [--t-end T] [--integrator NAME] [--rtol R] [--max-wall S]
-//                            [--no-frames] [SAFETY] [-- ARGS...]
+//                            [--no-frames] [--set KEY=VALUE]... [SAFETY] [-- ARGS...]
 //   SAFETY: [--trusted] [--max-instructions N] [--max-lua-memory MiB] (README, Limits and safety)
 // The flags override what the script passes to scene:run{}. Every number is a finite decimal
 // (no hex, inf or nan); an option a command does not take is an error. Exit status: 0 on
@@ -15,7 +15,6 @@
 #include <unistd.h>
 
 #include <atomic>
-#include <charconv>
 #include <cmath>
 #include <csignal>
 #include <cstdint>
@@ -31,6 +30,7 @@
 #include "plot/plot.hpp"
 #include "plot/wp_plot.hpp"
 #include "script/interpreter.hpp"
+#include "script/script_args.hpp"
 #include "sim/work_precision.hpp"
 #include "term/term_image.hpp"
 
@@ -90,14 +90,7 @@ struct UsageError : std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
-// a finite decimal number, nothing before or after it: "0x10", "inf", "nan", "1e" and "2s" fail
-std::optional<double> decimal(const std::string& s) {
-  const size_t from = !s.empty() && s[0] == '+' ? 1 : 0;
-  double x = 0;
-  const auto r = std::from_chars(s.data() + from, s.data() + s.size(), x, std::chars_format::general);
-  if (s.size() == from || r.ec != std::errc() || r.ptr != s.data() + s.size() || !std::isfinite(x)) return std::nullopt;
-  return x;
-}
+using beltsim::script::decimal;
 
 double number(const std::string& option, const std::string& text) {
   const auto x = decimal(text);
@@ -144,7 +137,16 @@ struct Raw {
   std::optional<std::string> from;                                      // plot
   bool trusted = false;                                                 // run, wp, console
   std::optional<std::string> max_instructions, max_lua_memory;
+  std::vector<std::string> set;  // run, console, wp: --set KEY=VALUE
 };
+
+void add_set(CLI::App* c, Raw& raw) {
+  c->add_option("--set", raw.set,
+                "a script parameter, read by the script as beltsim.args.KEY (numbers, true/false, text; repeatable); "
+                "a key the script never reads is an error")
+      ->type_name("KEY=VALUE")
+      ->allow_extra_args(false);
+}
 
 void add_safety(CLI::App* c, Raw& raw) {
   c->add_flag("--trusted", raw.trusted,
@@ -192,6 +194,7 @@ void add_run_overrides(CLI::App* c, Raw& raw) {
                 "error (exit 1)")
       ->type_name("S");
   c->add_flag("--no-frames", raw.no_frames, "render no frames and no video, whatever the script asks");
+  add_set(c, raw);
   add_safety(c, raw);
 }
 
@@ -218,6 +221,11 @@ beltsim::script::Overrides overrides(const Raw& raw) {
     o.max_wall = x;
   }
   o.no_frames = raw.no_frames;
+  try {
+    o.set = beltsim::script::parse_sets(raw.set);
+  } catch (const std::invalid_argument& e) {
+    throw UsageError(e.what());
+  }
   return o;
 }
 
@@ -229,6 +237,10 @@ int cmd_run(const std::string& script, const beltsim::script::Overrides& o, cons
     lua.set_stop_flag(&g_stop);
     lua.run_file(script);
     if (lua.interrupted() || g_signal != 0) return stopped_status();
+    // a --set the script never read: the run did not use what was asked of it
+    const std::vector<std::string> unread = lua.unread_args(script);
+    for (const std::string& m : unread) std::fprintf(stderr, "beltsim: %s\n", m.c_str());
+    if (!unread.empty()) return 1;
   } catch (const std::exception& e) {
     std::fprintf(stderr, "beltsim: %s\n", e.what());
     return g_signal != 0 ? stopped_status() : 1;
@@ -242,10 +254,16 @@ int cmd_wp(const std::string& script, const beltsim::script::Overrides& o, const
     beltsim::script::Captured cap;
     beltsim::script::Interpreter lua(s);
     const Interruptible on_signal(lua);
-    if (o.t_end) lua.set_overrides({.out = {}, .t_end = o.t_end, .integrator = {}, .rtol = {}, .max_wall = {}});
+    beltsim::script::Overrides captured;  // --t-end and --set reach the script; --out is wp's own folder
+    captured.t_end = o.t_end;
+    captured.set = o.set;
+    lua.set_overrides(captured);
     lua.set_capture(&cap);
     lua.run_file(script);
     if (!cap.scene) throw std::runtime_error(script + ": the script never calls scene:run{}");
+    // the script stops at its first scene:run{}: a key read after it cannot be known (a warning)
+    for (const std::string& m : lua.unread_args(script))
+      std::fprintf(stderr, "beltsim wp: warning: %s (before its first scene:run{})\n", m.c_str());
     wps.base = cap.settings;
     wps.base.out_dir = o.out ? *o.out : (fs::path("out") / fs::path(script).stem() / "wp").string();
     const beltsim::WpResult r = beltsim::work_precision(*cap.scene, wps, &g_stop);
@@ -323,6 +341,7 @@ int main(int argc, char** argv) {
   wp->add_option("--ref-rtol", raw.ref_rtol, "tolerance of the esdirk32 reference run (default 1e-7)")->type_name("R");
   wp->add_option("--wall-limit", raw.wall_limit, "a run taking longer is stopped, unfinished (default 120)")
       ->type_name("S");
+  add_set(wp, raw);
   add_safety(wp, raw);
   wp->footer("Runs the script's scene with every integrator at every tolerance, each against the\n"
              "reference. Writes DIR/wp.csv, DIR/wp.png (log-log, gnuplot) and DIR/<integrator>-<rtol>/.");

@@ -472,7 +472,8 @@ std::string long_string(const std::string& text) {
 }
 
 void write_session(const std::string& dir, const std::optional<std::string>& script, std::string script_text,
-                   const std::vector<std::string>& args, const std::vector<std::string>& commands) {
+                   const std::vector<std::string>& args, const std::vector<ScriptArg>& sets,
+                   const std::vector<std::string>& commands) {
   if (commands.empty()) return;
   namespace fs = std::filesystem;
   std::error_code ec;
@@ -484,7 +485,9 @@ void write_session(const std::string& dir, const std::optional<std::string>& scr
     return;
   }
   f << "-- The commands of a beltsim console session that ran without error, in order.\n"
-    << "-- Replay with: beltsim run " << path << "\n";
+    << "-- Replay with: beltsim run " << path;
+  for (const ScriptArg& a : sets) f << " --set " << a.key << "=" << a.text;  // beltsim.args as in the session
+  f << "\n";
   if (script) {
     // the scenario's text is copied in (as it was when the session began), so the replay needs
     // no access to the scenario's folder, which the sandbox would refuse (README, Console)
@@ -554,6 +557,7 @@ int run_console(const std::optional<std::string>& script, const std::vector<std:
     script_text = text.str();
     try {
       lua.run_file(*script);
+      for (const std::string& m : lua.unread_args(*script)) std::fprintf(stderr, "beltsim: warning: %s\n", m.c_str());
     } catch (const ScriptError& e) {
       std::fprintf(stderr, "%s\n", short_traceback(e.what()).c_str());
       failed = true;
@@ -632,7 +636,7 @@ int run_console(const std::optional<std::string>& script, const std::vector<std:
   g_L = nullptr;
   g_lua = nullptr;
   // the finalisers below run with a fresh budget and no interrupt pending (~Interpreter)
-  write_session(o.out ? *o.out : ctx.default_out, script, script_text, args, commands);  // --out wins, as for the runs
+  write_session(o.out ? *o.out : ctx.default_out, script, script_text, args, o.set, commands);  // --out wins, as for the runs
   // the interpreter's end closes every simulation (their finalisers flush and finalise outputs)
   if (g_sigterm) {
     std::fprintf(stderr, "beltsim: terminated; the outputs written so far are kept\n");

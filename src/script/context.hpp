@@ -3,11 +3,13 @@
 
 #include <atomic>
 #include <functional>
+#include <memory>
 #include <string>
 #include <utility>
 #include <vector>
 
 #include "script/interpreter.hpp"
+#include "script/lua_law.hpp"
 
 namespace beltsim::script {
 
@@ -15,6 +17,7 @@ struct Context {
   Overrides overrides;
   std::string default_out = "out";        // out/<script name> while a script runs
   std::string script_dir;                 // the running script's folder ("" in a console without one)
+  std::string script;                     // the running script's path ("" in a console without one)
   bool trusted = false;                   // full libraries (Safety::trusted)
   const std::atomic<bool>* stop = nullptr;
   bool interrupted = false;
@@ -26,6 +29,11 @@ struct Context {
   // runs stopped by Ctrl-C: the simulation's userdata and where it stopped (the console writes
   // sim:run_to(t) into session.lua instead of the command, so that the replay stops there too)
   std::vector<std::pair<const void*, double>> stopped_runs;
+  // the keys of beltsim.args the running script has read (given with --set or not), in order
+  std::vector<std::string> args_read;
+  bool args_warned = false;  // the unread --set keys were reported at a run's start
+  // the state Lua laws call into (emptied when the interpreter closes it)
+  std::shared_ptr<LawHost> law_host = std::make_shared<LawHost>();
 };
 
 }  // namespace beltsim::script

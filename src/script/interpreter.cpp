@@ -5,6 +5,8 @@
 
 #include "script/context.hpp"
 #include "script/limits.hpp"
+#include "script/lua_check.hpp"
+#include "script/lua_law.hpp"
 #include "script/lua_api.hpp"
 #include "script/sandbox.hpp"
 
@@ -29,6 +31,7 @@ Interpreter::Interpreter(const Safety& safety)
     luaL_openlibs(L_);
   else
     open_sandbox(L_, ctx_.get());
+  ctx_->law_host->L = L_;
   open_beltsim(L_, ctx_.get());
   install_hook(L_);
 }
@@ -36,6 +39,7 @@ Interpreter::Interpreter(const Safety& safety)
 Interpreter::~Interpreter() {
   begin_call(L_);  // the finalisers lua_close runs get a budget of their own
   lua_close(L_);
+  ctx_->law_host->L = nullptr;  // laws kept elsewhere (a captured scene) must not call into it
 }
 
 void Interpreter::set_overrides(const Overrides& o) { ctx_->overrides = o; }
@@ -43,32 +47,22 @@ void Interpreter::set_stop_flag(const std::atomic<bool>* stop) { ctx_->stop = st
 void Interpreter::set_capture(Captured* c) { ctx_->capture = c; }
 Context& Interpreter::context() { return *ctx_; }
 bool Interpreter::interrupted() const { return ctx_->interrupted; }
+std::vector<std::string> Interpreter::unread_args(const std::string& script) const {
+  return unread_arg_messages(*ctx_, script);
+}
 void Interpreter::interrupt() { script::interrupt(*limits_); }
 
-namespace {
-// the message handler of a script run: a string error keeps its "file:line:" (Lua adds it); any
-// other error object gets the place it was raised at and its __tostring (or its type), so that
-// error(42) still says where it came from
-int error_message(lua_State* L) {
-  if (lua_type(L, 1) == LUA_TSTRING) return 1;
-  luaL_where(L, 2);  // "file:line:" of the Lua function that called error (1 is error itself)
-  if (luaL_callmeta(L, 1, "__tostring") && lua_type(L, -1) == LUA_TSTRING)
-    lua_pushfstring(L, "%s%s", lua_tostring(L, -2), lua_tostring(L, -1));
-  else if (lua_type(L, 1) == LUA_TNUMBER)
-    lua_pushfstring(L, "%s%s", lua_tostring(L, 2), luaL_tolstring(L, 1, nullptr));
-  else
-    lua_pushfstring(L, "%s(an error object that is a %s value)", lua_tostring(L, 2), luaL_typename(L, 1));
-  return 1;
-}
-}  // namespace
 
 void Interpreter::run_file(const std::string& path) {
   Context* ctx = ctx_.get();
   const std::filesystem::path p(path);
   ctx->default_out = (std::filesystem::path("out") / p.stem()).string();
   ctx->script_dir = p.has_parent_path() ? p.parent_path().string() : ".";
+  ctx->script = path;
   ctx->interrupted = false;
   ctx->captured = false;
+  ctx->args_read.clear();
+  ctx->args_warned = false;
   {
     std::ifstream in(path);
     if (in && in.peek() == std::ifstream::traits_type::eof())
@@ -78,7 +72,7 @@ void Interpreter::run_file(const std::string& path) {
   // text only: a precompiled chunk is never loaded
   int status = luaL_loadfilex(L_, path.c_str(), "t");
   if (status == LUA_OK) {
-    lua_pushcfunction(L_, error_message);
+    lua_pushcfunction(L_, message_handler);
     lua_insert(L_, -2);
     status = lua_pcall(L_, 0, 0, -2);
   }

@@ -9,7 +9,9 @@
 #include <optional>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
+#include "script/script_args.hpp"
 #include "sim/simulation.hpp"
 
 struct lua_State;
@@ -40,6 +42,7 @@ struct Overrides {
   std::optional<double> rtol;
   std::optional<double> max_wall;  // [s] --max-wall: RunSettings::wall_limit of every run
   bool no_frames = false;  // ignore the scripts' frames = {...} (no rendering, no video)
+  std::vector<ScriptArg> set;  // --set KEY=VALUE: beltsim.args (not an override of run{})
 };
 
 // What a script asked of its first scene:run{} (for `beltsim wp`, which runs the scene itself).
@@ -68,6 +71,9 @@ class Interpreter {
   void run_file(const std::string& path);
   // true when a run inside the last script was stopped by the stop flag
   bool interrupted() const;
+  // the --set keys the last script never read (beltsim.args.KEY), one message each:
+  // "--set elemnts=120 was never read by S.lua (did you mean 'elements'?); keys it read: elements, mu"
+  std::vector<std::string> unread_args(const std::string& script) const;
   // Ctrl-C for Lua code: raises "interrupted!" at the next slice of instructions (async-signal-safe:
   // one atomic store)
   void interrupt();

@@ -2,13 +2,23 @@
 // nothing of Lua; this file translates tables to SceneDef / RunSettings and back).
 #pragma once
 
+#include <string>
+#include <vector>
+
 struct lua_State;
 
 namespace beltsim::script {
 
 struct Context;  // per-interpreter settings (overrides, default output folder, stop flag)
 
-// registers the global table `beltsim`
+// registers the global table `beltsim` (with beltsim.args, the --set parameters)
 void open_beltsim(lua_State* L, Context* ctx);
+// the --set keys the script has not read (beltsim.args.KEY) so far, one message each naming the
+// key, a suggestion among the keys it read, and those keys
+// (so_far: said at a run's start, "has not been read ... before this run")
+std::vector<std::string> unread_arg_messages(const Context& ctx, const std::string& script, bool so_far = false);
+// at the start of a script's first run: a warning on stderr for each --set key not read so far
+// (a long run is not wasted on a misspelt key; the error comes after the script)
+void warn_unread_args(Context& ctx);
 
 }  // namespace beltsim::script

@@ -3,6 +3,9 @@
 #include <algorithm>
 #include <cmath>
 #include <sstream>
+#include <utility>
+
+#include "io/suggest.hpp"
 
 namespace beltsim::script {
 
@@ -11,25 +14,22 @@ namespace beltsim::script {
   __builtin_unreachable();           // lua_error unwinds (longjmp, or a C++ throw here)
 }
 
+int message_handler(lua_State* L) {
+  if (lua_type(L, 1) == LUA_TSTRING) return 1;
+  luaL_where(L, 2);  // "file:line:" of the Lua function that called error (1 is error itself)
+  if (luaL_callmeta(L, 1, "__tostring") && lua_type(L, -1) == LUA_TSTRING)
+    lua_pushfstring(L, "%s%s", lua_tostring(L, -2), lua_tostring(L, -1));
+  else if (lua_type(L, 1) == LUA_TNUMBER)
+    lua_pushfstring(L, "%s%s", lua_tostring(L, 2), luaL_tolstring(L, 1, nullptr));
+  else
+    lua_pushfstring(L, "%s(an error object that is a %s value)", lua_tostring(L, 2), luaL_typename(L, 1));
+  return 1;
+}
+
 bool has(lua_State* L, int idx, const char* key) {
   const bool present = lua_getfield(L, idx, key) != LUA_TNIL;
   lua_pop(L, 1);
   return present;
-}
-
-size_t edit_distance(const std::string& a, const std::string& b) {
-  std::vector<size_t> d(b.size() + 1);
-  for (size_t j = 0; j <= b.size(); ++j) d[j] = j;
-  for (size_t i = 1; i <= a.size(); ++i) {
-    size_t prev = d[0];
-    d[0] = i;
-    for (size_t j = 1; j <= b.size(); ++j) {
-      const size_t cur = d[j];
-      d[j] = std::min({d[j] + 1, d[j - 1] + 1, prev + (a[i - 1] != b[j - 1])});
-      prev = cur;
-    }
-  }
-  return d[b.size()];
 }
 
 void check_keys(lua_State* L, int idx, const std::string& where, const std::vector<std::string>& allowed) {
@@ -41,17 +41,8 @@ void check_keys(lua_State* L, int idx, const std::string& where, const std::vect
     const std::string key = lua_tostring(L, -1);
     bool ok = false;
     for (const auto& a : allowed) ok = ok || a == key;
-    if (!ok) {
-      std::string best, valid;
-      size_t bd = 3;
-      for (const auto& a : allowed) {
-        valid += (valid.empty() ? "" : ", ") + a;
-        const size_t d = edit_distance(key, a);
-        if (d < bd) bd = d, best = a;
-      }
-      fail(L, "unknown key '" + key + "' in " + where + (best.empty() ? "" : " (did you mean '" + best + "'?)") +
-                  "; valid keys: " + valid);
-    }
+    if (!ok)
+      fail(L, "unknown key '" + key + "' in " + where + did_you_mean(key, allowed) + "; valid keys: " + join(allowed));
   }
 }
 
@@ -152,24 +143,58 @@ std::vector<lua_Integer> check_sequence(lua_State* L, int idx, const std::string
   return k;
 }
 
-// a torque [N·m] or speed [rad/s] law: a number, or {constant=, per_speed=, table={{t, v}, ...}}
-
-std::string closest(const std::string& name, const std::vector<std::string>& valid) {
-  std::string best;
-  size_t bd = 3;
-  for (const auto& v : valid)
-    if (const size_t d = edit_distance(name, v); d < bd) bd = d, best = v;
-  return best;
+void check_args(lua_State* L, const std::string& function, std::initializer_list<Arg> args, int first) {
+  std::string sig = function + "(";
+  int required = 0;
+  for (const Arg& a : args) {
+    sig += std::string(&a == args.begin() ? "" : ", ") + (a.optional ? "[" : "") + a.name + (a.optional ? "]" : "");
+    if (!a.optional) required++;
+  }
+  sig += ")";
+  const int n = lua_gettop(L) - (first - 1);
+  const int max = static_cast<int>(args.size());
+  if (n < required || n > max) {
+    std::ostringstream s;
+    s << sig << ": expected " << required;
+    if (max > required) s << " to " << max;
+    s << " argument" << (max == 1 && required == 1 ? "" : "s") << ", got " << n;
+    fail(L, s.str());
+  }
+  int k = 0;
+  for (const Arg& a : args) {
+    const int idx = first + k++;
+    const int t = lua_type(L, idx);
+    if (a.optional && t == LUA_TNONE) break;
+    if (a.optional && t == LUA_TNIL) continue;
+    unsigned bit = 0;
+    for (auto [lt, b] : {std::pair{LUA_TNUMBER, kNumber}, std::pair{LUA_TSTRING, kString}, std::pair{LUA_TTABLE, kTable},
+                         std::pair{LUA_TFUNCTION, kFunction}, std::pair{LUA_TBOOLEAN, kBoolean}, std::pair{LUA_TNIL, kNil}})
+      if (t == lt) bit = b;
+    if (a.types & bit) continue;
+    std::vector<std::string> names;
+    for (auto [b, name] : {std::pair{kNumber, "number"}, std::pair{kString, "string"}, std::pair{kTable, "table"},
+                           std::pair{kFunction, "function"}, std::pair{kBoolean, "boolean"}, std::pair{kNil, "nil"}})
+      if (a.types & b) names.push_back(name);
+    std::string expected;
+    for (size_t i = 0; i < names.size(); ++i)
+      expected += (i == 0 ? "" : i + 1 == names.size() ? " or " : ", ") + names[i];
+    fail(L, sig + ": argument " + std::to_string(k) + " (" + a.name + "): " + expected + " expected, got " +
+                type_name(L, idx));
+  }
 }
 
-void check_arg_count(lua_State* L, const char* name, int min, int max) {
-  const int n = lua_gettop(L);
-  if (n >= min && n <= max) return;
-  std::ostringstream s;
-  s << name << ": expected " << min;
-  if (max > min) s << " to " << max;
-  s << " argument" << (max == 1 ? "" : "s") << ", got " << n;
-  fail(L, s.str());
+int index_methods(lua_State* L) {
+  lua_pushvalue(L, 2);
+  if (lua_rawget(L, lua_upvalueindex(1)) != LUA_TNIL || lua_type(L, 2) != LUA_TSTRING) return 1;
+  const std::string kind = lua_tostring(L, lua_upvalueindex(2)), name = lua_tostring(L, 2);
+  std::vector<std::string> names;
+  lua_pushnil(L);
+  while (lua_next(L, lua_upvalueindex(1))) {
+    lua_pop(L, 1);
+    if (lua_type(L, -1) == LUA_TSTRING) names.push_back(lua_tostring(L, -1));
+  }
+  std::sort(names.begin(), names.end());
+  fail(L, kind + " has no field or method '" + name + "'" + did_you_mean(name, names) + "; methods: " + join(names));
 }
 
 }  // namespace beltsim::script

@@ -3,6 +3,7 @@
 // failure is a Lua error prefixed with the script's "file:line:".
 #pragma once
 
+#include <initializer_list>
 #include <optional>
 #include <string>
 #include <vector>
@@ -16,11 +17,13 @@
 namespace beltsim::script {
 
 [[noreturn]] void fail(lua_State* L, const std::string& msg);
+// the message handler of every call into Lua code (a script run, a Lua law): a string error keeps
+// its "file:line:" (Lua adds it); any other error object gets the place it was raised at and its
+// __tostring (or its type), so that error(42) still says where it came from
+int message_handler(lua_State* L);
 bool has(lua_State* L, int idx, const char* key);
-size_t edit_distance(const std::string& a, const std::string& b);
-// the valid name closest to `name` (edit distance <= 2), or ""
-std::string closest(const std::string& name, const std::vector<std::string>& valid);
-// every key of the table at idx must be one of `allowed`
+// every key of the table at idx must be one of `allowed` (a misspelt one gets a suggestion,
+// io/suggest.hpp)
 void check_keys(lua_State* L, int idx, const std::string& where, const std::vector<std::string>& allowed);
 const char* type_name(lua_State* L, int idx);
 // value of t[key] pushed; returns false (and pushes nothing) when nil
@@ -35,8 +38,23 @@ void require_table(lua_State* L, int idx, const std::string& what);
 Vec2 to_vec2(lua_State* L, int idx, const std::string& what);  // finite
 // the table at idx must be a list 1..n without holes or named keys
 std::vector<lua_Integer> check_sequence(lua_State* L, int idx, const std::string& what);
-// a function's arguments: exactly `min`..`max` of them, or "NAME: expected ..., got N arguments"
-void check_arg_count(lua_State* L, const char* name, int min, int max);
+// The arguments of an API function, checked by one helper for every function and method:
+//   check_args(L, "beltsim.step", {{"t", kNumber}, {"from", kNumber}, {"to", kNumber}});
+// Too few or too many arguments, or one of the wrong type, is an error naming the call, e.g.
+//   "beltsim.step(t, from, to): expected 3 arguments, got 4"
+//   "beltsim.step(t, from, to): argument 2 (from): number expected, got string"
+// A method's arguments start at 2 (`first`): the object is checked by its own helper.
+enum ArgType : unsigned { kNumber = 1, kString = 2, kTable = 4, kFunction = 8, kBoolean = 16, kNil = 32 };
+struct Arg {
+  const char* name;
+  unsigned types;         // ArgType bits
+  bool optional = false;  // may be left out (or nil); only at the end
+};
+void check_args(lua_State* L, const std::string& function, std::initializer_list<Arg> args, int first = 1);
+
+// __index of an object whose methods are in the table of upvalue 1 (its kind, e.g. "sim", in
+// upvalue 2): an unknown name is an error with a suggestion, not a nil to call
+int index_methods(lua_State* L);
 
 // a Lua value kept alive in the registry (released through the main thread: the coroutine that
 // made the reference may be gone by then)

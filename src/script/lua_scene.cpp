@@ -17,9 +17,12 @@
 #include <vector>
 
 #include "integrate/stepper.hpp"
+#include "io/suggest.hpp"
 #include "render/recorder.hpp"
 #include "scene/validate.hpp"
 #include "script/context.hpp"
+#include "script/lua_api.hpp"
+#include "script/lua_law.hpp"
 #include "script/lua_sim.hpp"
 #include "script/progress.hpp"
 
@@ -29,56 +32,11 @@ namespace {
 constexpr const char* kSceneMeta = "beltsim.Scene";
 }  // namespace
 
-const Scene* check_scene(lua_State* L, int idx) {
-  const Scene* sc = *static_cast<Scene**>(luaL_checkudata(L, idx, kSceneMeta));
-  if (!sc) fail(L, "this scene has been finalised");
-  return sc;
-}
-
-TimeSpeedLaw to_law(lua_State* L, int idx, const std::string& what) {
-  idx = lua_absindex(L, idx);
-  TimeSpeedLaw law;
-  if (lua_type(L, idx) == LUA_TNUMBER) {
-    law.constant = lua_tonumber(L, idx);
-    return law;
-  }
-  if (!lua_istable(L, idx)) fail(L, what + ": number or table expected, got " + type_name(L, idx));
-  check_keys(L, idx, what, {"constant", "per_speed", "table"});
-  law.constant = opt_number(L, idx, "constant", what).value_or(0.0);
-  law.per_speed = opt_number(L, idx, "per_speed", what).value_or(0.0);
-  if (field(L, idx, "table")) {
-    const int tt = lua_gettop(L);
-    require_table(L, tt, what + ".table");
-    const lua_Integer n = static_cast<lua_Integer>(lua_rawlen(L, tt));
-    if (n < 1) fail(L, what + ".table: at least one {t, value} pair expected");
-    for (lua_Integer k = 1; k <= n; ++k) {
-      lua_rawgeti(L, tt, k);
-      const Vec2 p = to_vec2(L, -1, what + ".table entry " + std::to_string(k) + " ({t, value})");
-      law.t.push_back(p.x());
-      law.value.push_back(p.y());
-      lua_pop(L, 1);
-    }
-    lua_pop(L, 1);
-  }
-  return law;
-}
-
-
-std::string law_text(const TimeSpeedLaw& law) {
-  std::ostringstream s;
-  s.precision(17);
-  if (law.per_speed == 0 && law.t.empty()) {
-    s << law.constant;
-    return s.str();
-  }
-  s << "{ constant = " << law.constant << ", per_speed = " << law.per_speed;
-  if (!law.t.empty()) {
-    s << ", table = {";
-    for (size_t k = 0; k < law.t.size(); ++k) s << (k ? ", " : " ") << "{" << law.t[k] << ", " << law.value[k] << "}";
-    s << " }";
-  }
-  s << " }";
-  return s.str();
+const Scene* check_scene(lua_State* L, int idx, const char* method) {
+  auto** box = static_cast<Scene**>(luaL_testudata(L, idx, kSceneMeta));
+  if (!box) fail(L, std::string("scene:") + method + ": call it as scene:" + method + "(...) on a scene");
+  if (!*box) fail(L, std::string("scene:") + method + ": this scene has been finalised");
+  return *box;
 }
 
 void push_site(lua_State* L, const ElementSite& e) {
@@ -99,7 +57,7 @@ void push_site(lua_State* L, const ElementSite& e) {
 
 namespace {
 
-PulleyDef to_pulley(lua_State* L, int idx, const std::string& what) {
+PulleyDef to_pulley(lua_State* L, int idx, const std::string& what, Context* ctx) {
   idx = lua_absindex(L, idx);
   require_table(L, idx, what);
   check_keys(L, idx, what, {"name", "centre", "center", "radius", "inertia", "wrap", "torque", "speed"});
@@ -128,11 +86,11 @@ PulleyDef to_pulley(lua_State* L, int idx, const std::string& what) {
       fail(L, w + ".wrap: 'inside' or 'back' expected, got '" + *v + "'");
   }
   if (field(L, idx, "torque")) {
-    p.torque = to_law(L, -1, w + ".torque");
+    p.torque = to_law(L, -1, w + ".torque", false, ctx);
     lua_pop(L, 1);
   }
   if (field(L, idx, "speed")) {
-    p.speed = to_law(L, -1, w + ".speed");
+    p.speed = to_law(L, -1, w + ".speed", true, ctx);
     p.kinematic = true;
     lua_pop(L, 1);
   }
@@ -272,15 +230,16 @@ void report_scene(const Scene& sc, Tensioning tensioning) {
 
 // beltsim.scene{ pulleys = {...}, belt = {...}, contact = {...}, friction = {...}, gravity = g, energy = bool }
 int l_scene(lua_State* L) {
-  luaL_checktype(L, 1, LUA_TTABLE);
+  check_args(L, "beltsim.scene", {{"{pulleys, belt, ...}", kTable}});
   check_keys(L, 1, "scene", {"pulleys", "belt", "contact", "friction", "gravity", "energy", "allow_large"});
+  auto* ctx = static_cast<Context*>(lua_touserdata(L, lua_upvalueindex(1)));
   SceneDef d;
   if (!field(L, 1, "pulleys")) fail(L, "scene: a list of pulleys is required");
   require_table(L, -1, "scene.pulleys");
   const int pl = lua_gettop(L);
   for (lua_Integer k = 1; k <= static_cast<lua_Integer>(lua_rawlen(L, pl)); ++k) {
     lua_rawgeti(L, pl, k);
-    d.pulleys.push_back(to_pulley(L, -1, "pulley " + std::to_string(k)));
+    d.pulleys.push_back(to_pulley(L, -1, "pulley " + std::to_string(k), ctx));
     note_given(L, -1, "pulley." + d.pulleys.back().name + ".", d.given);
     lua_pop(L, 1);
   }
@@ -327,7 +286,6 @@ int l_scene(lua_State* L) {
   auto** box = static_cast<Scene**>(lua_newuserdatauv(L, sizeof(Scene*), 0));
   *box = nullptr;
   luaL_setmetatable(L, kSceneMeta);
-  auto* ctx = static_cast<Context*>(lua_touserdata(L, lua_upvalueindex(1)));
   std::string error;
   try {
     *box = new Scene(build_scene(d, ctx ? ctx->stop : nullptr));
@@ -335,6 +293,8 @@ int l_scene(lua_State* L) {
     error = e.what();
   } catch (const BuildInterrupted& e) {
     ctx->interrupted = true;
+    error = e.what();
+  } catch (const std::exception& e) {  // a Lua law that failed while the static state was sought
     error = e.what();
   }
   if (!error.empty()) fail(L, error);
@@ -351,7 +311,8 @@ int l_scene_gc(lua_State* L) {
 
 // scene:info() -> table of the derived model parameters
 int l_scene_info(lua_State* L) {
-  const Scene* sc = check_scene(L, 1);
+  const Scene* sc = check_scene(L, 1, "info");
+  check_args(L, "scene:info", {}, 2);
   const Belt& b = sc->model.belt;
   lua_newtable(L);
   auto num = [&](const char* k, double v) { lua_pushnumber(L, v), lua_setfield(L, -2, k); };
@@ -377,7 +338,8 @@ int l_scene_info(lua_State* L) {
 
 // scene:element_near{x, y} -> number of the element whose centre starts nearest the point
 int l_scene_element_near(lua_State* L) {
-  const Scene* sc = check_scene(L, 1);
+  const Scene* sc = check_scene(L, 1, "element_near");
+  check_args(L, "scene:element_near", {{"{x, y}", kTable}}, 2);
   const Vec2 p = to_vec2(L, 2, "element_near");
   lua_pushinteger(L, sc->element_nearest(p));
   return 1;
@@ -504,17 +466,13 @@ FrameSettings to_frames(lua_State* L, int idx, const std::string& w, const std::
   }
   if (auto r = pair("range", "{lo, hi} in the quantity's unit")) f.range_lo = r->first, f.range_hi = r->second;
   if (auto q = opt_string(L, idx, "quantity", w)) {
-    std::string names, best;
-    size_t bd = 3;
+    std::vector<std::string> names;
     bool found = false;
     for (const auto& i : frame_quantities()) {
-      names += (names.empty() ? "" : ", ") + std::string(i.key);
+      names.push_back(i.key);
       if (*q == i.key) f.quantity = i.q, found = true;
-      if (const size_t d = edit_distance(*q, i.key); d < bd) bd = d, best = i.key;
     }
-    if (!found)
-      fail(L, w + ".quantity: unknown quantity '" + *q + "'" + (best.empty() ? "" : " (did you mean '" + best + "'?)") +
-                  "; one of: " + names);
+    if (!found) fail(L, w + ".quantity: unknown quantity '" + *q + "'" + did_you_mean(*q, names) + "; one of: " + join(names));
   }
   if (field(L, idx, "view")) {
     require_table(L, -1, w + ".view");
@@ -646,11 +604,12 @@ namespace {
 // scene:run{ t_end=, integrator=, rtol=, atol=, sample=, out=, probe=, progress=, events=, frames= } -> result
 // = scene:start{...}, sim:run_to(t_end), sim:close()
 int l_scene_run(lua_State* L) {
-  check_arg_count(L, "scene:run", 1, 2);
-  const Scene* sc = check_scene(L, 1);
+  const Scene* sc = check_scene(L, 1, "run");
+  check_args(L, "scene:run", {{"{t_end, integrator, ...}", kTable, true}}, 2);
   auto* ctx = static_cast<Context*>(lua_touserdata(L, lua_upvalueindex(1)));
   bool progress = true;
   const RunSettings rs = read_run_settings(L, 2, *sc, ctx, true, &progress);
+  warn_unread_args(*ctx);
   if (ctx->capture) {
     ctx->capture->scene = *sc;
     ctx->capture->settings = rs;
@@ -704,11 +663,12 @@ int l_scene_run(lua_State* L) {
 
 // scene:start{ integrator=, rtol=, atol=, sample=, out=, probe=, progress=, frames= } -> sim at t = 0
 int l_scene_start(lua_State* L) {
-  check_arg_count(L, "scene:start", 1, 2);
-  const Scene* sc = check_scene(L, 1);
+  const Scene* sc = check_scene(L, 1, "start");
+  check_args(L, "scene:start", {{"{integrator, rtol, ...}", kTable, true}}, 2);
   auto* ctx = static_cast<Context*>(lua_touserdata(L, lua_upvalueindex(1)));
   bool progress = true;
   const RunSettings rs = read_run_settings(L, 2, *sc, ctx, false, &progress);
+  warn_unread_args(*ctx);
   std::unique_ptr<Simulation> sim;
   std::string error;
   try {
@@ -729,29 +689,13 @@ int l_scene_tostring(lua_State* L) {
 
 // beltsim.rpm(n) -> rad/s
 int l_rpm(lua_State* L) {
-  check_arg_count(L, "beltsim.rpm", 1, 1);
-  lua_pushnumber(L, luaL_checknumber(L, 1) * 2 * M_PI / 60);
-  return 1;
-}
-
-// beltsim.ramp(t1, value) -> law rising linearly from 0 at t = 0 to value at t1, then held
-int l_ramp(lua_State* L) {
-  check_arg_count(L, "beltsim.ramp", 2, 2);
-  const double t1 = luaL_checknumber(L, 1), v = luaL_checknumber(L, 2);
-  if (!(t1 > 0)) luaL_error(L, "ramp: the ramp time must be > 0 (got %f s)", t1);
-  lua_newtable(L);
-  lua_createtable(L, 2, 0);
-  for (int k = 0; k < 2; ++k) {
-    lua_createtable(L, 2, 0);
-    lua_pushnumber(L, k ? t1 : 0.0), lua_rawseti(L, -2, 1);
-    lua_pushnumber(L, k ? v : 0.0), lua_rawseti(L, -2, 2);
-    lua_rawseti(L, -2, k + 1);
-  }
-  lua_setfield(L, -2, "table");
+  check_args(L, "beltsim.rpm", {{"n", kNumber}});
+  lua_pushnumber(L, lua_tonumber(L, 1) * 2 * M_PI / 60);
   return 1;
 }
 
 int l_integrators(lua_State* L) {
+  check_args(L, "beltsim.integrators", {});
   lua_newtable(L);
   int k = 1;
   for (const auto& n : integrator_names()) lua_pushstring(L, n.c_str()), lua_rawseti(L, -2, k++);
@@ -772,13 +716,16 @@ void open_scene(lua_State* L, Context* ctx) {
   lua_pushcclosure(L, l_scene_run, 1), lua_setfield(L, -2, "run");
   lua_pushlightuserdata(L, ctx);
   lua_pushcclosure(L, l_scene_start, 1), lua_setfield(L, -2, "start");
-  lua_setfield(L, -2, "__index");
+  lua_pushvalue(L, -1);
+  lua_setfield(L, -3, "methods");  // for the console's completion (read raw)
+  lua_pushstring(L, "scene");
+  lua_pushcclosure(L, index_methods, 2), lua_setfield(L, -2, "__index");
   lua_pop(L, 1);
 
   lua_pushlightuserdata(L, ctx);
   lua_pushcclosure(L, l_scene, 1), lua_setfield(L, -2, "scene");
   lua_pushcfunction(L, l_rpm), lua_setfield(L, -2, "rpm");
-  lua_pushcfunction(L, l_ramp), lua_setfield(L, -2, "ramp");
+  open_laws(L);
   lua_pushcfunction(L, l_integrators), lua_setfield(L, -2, "integrators");
 }
 

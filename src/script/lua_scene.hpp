@@ -15,10 +15,6 @@ namespace beltsim::script {
 
 struct Context;
 
-// a torque [N·m] or speed [rad/s] law: a number, or {constant=, per_speed=, table={{t, v}, ...}}
-TimeSpeedLaw to_law(lua_State* L, int idx, const std::string& what);
-// the law as one line of text (events.csv, session.lua): a Lua expression that reads back
-std::string law_text(const TimeSpeedLaw& law);
 // the element's site as the table belt.mu functions get
 void push_site(lua_State* L, const ElementSite& e);
 // μ of each element from the value at mu_idx (a number or function(site)), on the elements whose
@@ -28,11 +24,13 @@ std::vector<double> mu_over(lua_State* L, int mu_idx, const Scene& sc, std::opti
                             std::optional<double> to, const std::string& what);
 // frames = {...} (or the keys of sim:show, where `extra` lists keys read elsewhere)
 FrameSettings to_frames(lua_State* L, int idx, const std::string& where, const std::vector<std::string>& extra = {});
-const Scene* check_scene(lua_State* L, int idx);
+// the scene at idx (method: for the message when it is not one)
+const Scene* check_scene(lua_State* L, int idx, const char* method);
 // the settings of scene:run{} (batch) or scene:start{} (live), command-line overrides applied
 RunSettings read_run_settings(lua_State* L, int idx, const Scene& sc, Context* ctx, bool batch, bool* progress);
 
-// adds `scene`, `rpm`, `ramp`, `integrators` to the table on the top of the stack
+// adds `scene`, `rpm`, the laws' helpers (lua_law.hpp), `integrators` to the table on the top of
+// the stack
 void open_scene(lua_State* L, Context* ctx);
 
 }  // namespace beltsim::script

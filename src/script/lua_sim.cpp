@@ -12,12 +12,14 @@
 #include <sstream>
 
 #include "integrate/stepper.hpp"
+#include "io/suggest.hpp"
 #include "io/units.hpp"
 #include "plot/plot.hpp"
 #include "render/recorder.hpp"
 #include "script/context.hpp"
 #include "script/limits.hpp"
 #include "script/lua_check.hpp"
+#include "script/lua_law.hpp"
 #include "script/lua_scene.hpp"
 #include "script/progress.hpp"
 
@@ -44,9 +46,10 @@ SimBox* check_box(lua_State* L, const char* method) {
   return box;
 }
 
-Simulation& live(lua_State* L, const char* method, int min_args, int max_args) {
+// the simulation of a method call, its arguments checked (check_args)
+Simulation& live(lua_State* L, const char* method, std::initializer_list<Arg> args) {
   SimBox* box = check_box(L, method);
-  check_arg_count(L, (std::string("sim:") + method).c_str(), min_args + 1, max_args + 1);
+  check_args(L, std::string("sim:") + method, args, 2);
   return *box->sim;
 }
 
@@ -60,9 +63,7 @@ int pulley_index(lua_State* L, const Simulation& s, int idx, const char* what) {
     std::vector<std::string> names;
     std::string list;
     for (const Pulley& p : s.model().pulleys) names.push_back(p.name), list += (list.empty() ? "" : ", ") + p.name;
-    const std::string best = closest(name, names);
-    fail(L, std::string(what) + ": no pulley '" + name + "'" + (best.empty() ? "" : " (did you mean '" + best + "'?)") +
-                "; pulleys: " + list);
+    fail(L, std::string(what) + ": no pulley '" + name + "'" + did_you_mean(name, names) + "; pulleys: " + list);
   }
   return j;
 }
@@ -115,14 +116,14 @@ int run_to(lua_State* L, SimBox& box, double t, const char* what) {
 
 // sim:run_to(t) -> { t [s], steps, wall [s], interrupted }
 int l_run_to(lua_State* L) {
-  live(L, "run_to", 1, 1);
+  live(L, "run_to", {{"t", kNumber}});
   SimBox& box = *static_cast<SimBox*>(lua_touserdata(L, 1));
   return run_to(L, box, to_number(L, 2, "sim:run_to(t)"), "sim:run_to");
 }
 
 // sim:advance(dt) -> same as run_to(sim.t + dt)
 int l_advance(lua_State* L) {
-  Simulation& s = live(L, "advance", 1, 1);
+  Simulation& s = live(L, "advance", {{"dt", kNumber}});
   const double dt = to_number(L, 2, "sim:advance(dt)");
   if (!(dt >= 0 && std::isfinite(dt))) {
     std::ostringstream m;
@@ -136,8 +137,10 @@ int l_advance(lua_State* L) {
 
 // sim:pulley(name) -> { omega [rad/s], angle [rad], torque [N·m], belt_torque [N·m], hub_load [N] }
 int l_pulley(lua_State* L) {
-  Simulation& s = live(L, "pulley", 1, 1);
-  const PulleyObs p = s.pulley(pulley_index(L, s, 2, "sim:pulley"));
+  Simulation& s = live(L, "pulley", {{"name", kString}});
+  const int j = pulley_index(L, s, 2, "sim:pulley");
+  PulleyObs p;
+  guarded(L, "sim:pulley", [&] { p = s.pulley(j); });  // a Lua law may fail
   lua_createtable(L, 0, 5);
   set_number(L, "omega", p.omega);
   set_number(L, "angle", p.angle);
@@ -150,7 +153,7 @@ int l_pulley(lua_State* L) {
 // sim:element(i) -> { x, y [m], phi [rad], s [m], tension, normal, friction [N], slip [m/s], mu,
 // pulley (name or nil), state ("stick", "slip" or "free") }
 int l_element(lua_State* L) {
-  Simulation& s = live(L, "element", 1, 1);
+  Simulation& s = live(L, "element", {{"i", kNumber}});
   const int i = to_integer(L, 2, "sim:element(i)");
   if (i < 0 || i >= s.model().n_el())
     fail(L, "sim:element: the element number must be in 0.." + std::to_string(s.model().n_el() - 1) + " (got " +
@@ -173,7 +176,7 @@ int l_element(lua_State* L) {
 
 // sim:span(a, b) -> tension [N] of the span between pulleys a and b
 int l_span(lua_State* L) {
-  Simulation& s = live(L, "span", 2, 2);
+  Simulation& s = live(L, "span", {{"a", kString}, {"b", kString}});
   const int a = pulley_index(L, s, 2, "sim:span"), b = pulley_index(L, s, 3, "sim:span");
   const Model& m = s.model();
   const int k = s.scene().find_span(m.pulleys[a].name, m.pulleys[b].name);
@@ -186,7 +189,7 @@ int l_span(lua_State* L) {
 // tracking work_torques, dissipated_axial, dissipated_bending, dissipated_contact,
 // dissipated_friction [J] }
 int l_energy(lua_State* L) {
-  Simulation& s = live(L, "energy", 0, 0);
+  Simulation& s = live(L, "energy", {});
   const Energy e = s.energy();
   lua_createtable(L, 0, 11);
   set_number(L, "kinetic", e.kinetic);
@@ -205,7 +208,7 @@ int l_energy(lua_State* L) {
 // sim:stats() -> { t, integrator, steps, rejected, rhs, jacobians, factorizations, solves,
 // wall [s], samples, frames, callbacks, out }
 int l_stats(lua_State* L) {
-  Simulation& s = live(L, "stats", 0, 0);
+  Simulation& s = live(L, "stats", {});
   const WorkCounters w = s.stats();
   lua_createtable(L, 0, 13);
   set_number(L, "t", s.now());
@@ -226,10 +229,10 @@ int l_stats(lua_State* L) {
 // sim:set_torque(name, law) and sim:set_speed(name, law): laws as in the scene
 int set_law(lua_State* L, bool speed) {
   const char* what = speed ? "set_speed" : "set_torque";
-  Simulation& s = live(L, what, 2, 2);
+  Simulation& s = live(L, what, {{"name", kString}, {"law", kNumber | kTable | kFunction}});
   const int j = pulley_index(L, s, 2, (std::string("sim:") + what).c_str());
-  const TimeSpeedLaw law = to_law(L, 3, std::string("sim:") + what);
-  if (speed && law.per_speed != 0) fail(L, "sim:set_speed: a speed law cannot depend on the speed (per_speed)");
+  SimBox* box = static_cast<SimBox*>(lua_touserdata(L, 1));
+  const TimeSpeedLaw law = to_law(L, 3, std::string("sim:") + what, speed, box->ctx);
   guarded(L, (std::string("sim:") + what).c_str(), [&] {
     if (speed)
       s.set_speed(j, law, law_text(law));
@@ -248,7 +251,7 @@ void apply_mu(lua_State* L, Simulation& s, const std::vector<double>& mu, const 
 
 // sim:wet{ from = s0 [m], to = s1 [m], mu = 0.2 | function(site) } (no from/to: the whole belt)
 int l_wet(lua_State* L) {
-  Simulation& s = live(L, "wet", 1, 1);
+  Simulation& s = live(L, "wet", {{"{from, to, mu}", kTable}});
   require_table(L, 2, "sim:wet");
   check_keys(L, 2, "sim:wet", {"from", "to", "mu"});
   const auto from = opt_number(L, 2, "from", "sim:wet"), to = opt_number(L, 2, "to", "sim:wet");
@@ -268,7 +271,7 @@ int l_wet(lua_State* L) {
 
 // sim:set_mu(number | {mu_0, ..., mu_n-1} | function(site)) on every element
 int l_set_mu(lua_State* L) {
-  Simulation& s = live(L, "set_mu", 1, 1);
+  Simulation& s = live(L, "set_mu", {{"mu", kNumber | kTable | kFunction}});
   std::vector<double> mu;
   std::string text;
   if (lua_istable(L, 2)) {
@@ -298,7 +301,7 @@ int l_set_mu(lua_State* L) {
 
 // sim:log(text): a line in events.csv
 int l_log(lua_State* L) {
-  Simulation& s = live(L, "log", 1, 1);
+  Simulation& s = live(L, "log", {{"text", kString}});
   if (lua_type(L, 2) != LUA_TSTRING) fail(L, std::string("sim:log: string expected, got ") + type_name(L, 2));
   const std::string text = lua_tostring(L, 2);
   guarded(L, "sim:log", [&] { s.log_event("note", text); });
@@ -317,7 +320,7 @@ void call_back(SimBox& box, const LuaRef& ref, int nret) {
 
 // sim:every(dt, function(sim) ... end) -> id: called at now + k·dt exactly
 int l_every(lua_State* L) {
-  Simulation& s = live(L, "every", 2, 2);
+  Simulation& s = live(L, "every", {{"dt", kNumber}, {"fn", kFunction}});
   SimBox* box = static_cast<SimBox*>(lua_touserdata(L, 1));
   const double dt = to_number(L, 2, "sim:every(dt, fn)");
   if (!lua_isfunction(L, 3)) fail(L, std::string("sim:every: a function expected, got ") + type_name(L, 3));
@@ -332,7 +335,7 @@ int l_every(lua_State* L) {
 
 // sim:when(function(sim) return condition end, function(sim) ... end) -> id
 int l_when(lua_State* L) {
-  Simulation& s = live(L, "when", 2, 2);
+  Simulation& s = live(L, "when", {{"condition", kFunction}, {"action", kFunction}});
   SimBox* box = static_cast<SimBox*>(lua_touserdata(L, 1));
   if (!lua_isfunction(L, 2)) fail(L, std::string("sim:when: a condition function expected, got ") + type_name(L, 2));
   if (!lua_isfunction(L, 3)) fail(L, std::string("sim:when: an action function expected, got ") + type_name(L, 3));
@@ -357,7 +360,7 @@ int l_when(lua_State* L) {
 
 // sim:cancel(id) -> true when a callback was removed
 int l_cancel(lua_State* L) {
-  Simulation& s = live(L, "cancel", 1, 1);
+  Simulation& s = live(L, "cancel", {{"id", kNumber}});
   SimBox* box = static_cast<SimBox*>(lua_touserdata(L, 1));
   const int id = to_integer(L, 2, "sim:cancel(id)");
   const bool removed = s.cancel(id);
@@ -384,7 +387,7 @@ std::string time_tag(double t) {
 
 // sim:show{ quantity, range, levels, magnify, view, size, file } -> path of the PNG
 int l_show(lua_State* L) {
-  Simulation& s = live(L, "show", 0, 1);
+  Simulation& s = live(L, "show", {{"{quantity, range, ...}", kTable, true}});
   SimBox& box = *static_cast<SimBox*>(lua_touserdata(L, 1));
   FrameSettings fs;
   std::string file;
@@ -405,7 +408,7 @@ int l_show(lua_State* L) {
 
 // sim:plot{ "driver.omega", "driven.omega", from = t0 [s], file = "x.png" } -> path of the PNG
 int l_plot(lua_State* L) {
-  Simulation& s = live(L, "plot", 0, 1);
+  Simulation& s = live(L, "plot", {{"{columns..., from, file}", kTable, true}});
   SimBox& box = *static_cast<SimBox*>(lua_touserdata(L, 1));
   std::vector<std::string> columns;
   double from = 0;
@@ -418,8 +421,7 @@ int l_plot(lua_State* L) {
       if (lua_type(L, -1) == LUA_TSTRING) {
         const std::string k = lua_tostring(L, -1);
         if (k != "from" && k != "file") {
-          const std::string best = closest(k, {"from", "file"});
-          fail(L, "unknown key '" + k + "' in sim:plot" + (best.empty() ? "" : " (did you mean '" + best + "'?)") +
+          fail(L, "unknown key '" + k + "' in sim:plot" + did_you_mean(k, {"from", "file"}) +
                       "; valid keys: from, file, and column names as a list");
         }
       } else if (lua_type(L, -1) != LUA_TNUMBER) {
@@ -444,9 +446,7 @@ int l_plot(lua_State* L) {
     if (!ok) {
       std::string list;
       for (const std::string& v : valid) list += (list.empty() ? "" : ", ") + v;
-      const std::string best = closest(c, valid);
-      fail(L, "sim:plot: no column '" + c + "'" + (best.empty() ? "" : " (did you mean '" + best + "'?)") +
-                  "; columns: " + list);
+      fail(L, "sim:plot: no column '" + c + "'" + did_you_mean(c, valid) + "; columns: " + list);
     }
   }
   if (file.empty()) file = "plot_" + time_tag(s.now()) + ".png";
@@ -459,7 +459,7 @@ int l_plot(lua_State* L) {
 
 // sim:save(path) -> path: a checkpoint (see sim/checkpoint.cpp)
 int l_save(lua_State* L) {
-  Simulation& s = live(L, "save", 1, 1);
+  Simulation& s = live(L, "save", {{"path", kString}});
   if (lua_type(L, 2) != LUA_TSTRING) fail(L, std::string("sim:save: a file name expected, got ") + type_name(L, 2));
   std::string path = lua_tostring(L, 2);
   if (std::filesystem::path(path).is_relative() && std::filesystem::path(path).parent_path().empty())
@@ -471,9 +471,8 @@ int l_save(lua_State* L) {
 
 // beltsim.resume(path [, { progress = bool }]) -> the saved simulation, continuing
 int l_resume(lua_State* L) {
-  check_arg_count(L, "beltsim.resume", 1, 2);
+  check_args(L, "beltsim.resume", {{"path", kString}, {"{progress}", kTable, true}});
   auto* ctx = static_cast<Context*>(lua_touserdata(L, lua_upvalueindex(1)));
-  if (lua_type(L, 1) != LUA_TSTRING) fail(L, std::string("beltsim.resume: a file name expected, got ") + type_name(L, 1));
   bool progress = true;
   if (!lua_isnoneornil(L, 2)) {
     require_table(L, 2, "beltsim.resume");
@@ -493,7 +492,7 @@ int l_resume(lua_State* L) {
 // sim:close(): flush the CSV files, finalise the video
 int l_close(lua_State* L) {
   SimBox* box = check_box(L, "close");
-  check_arg_count(L, "sim:close", 1, 1);
+  check_args(L, "sim:close", {}, 2);
   const bool was_open = !box->sim->closed();
   guarded(L, "sim:close", [&] { box->sim->close(); });
   if (was_open)
@@ -545,13 +544,16 @@ int l_index(lua_State* L) {
   lua_getmetatable(L, 1);
   lua_getfield(L, -1, "methods");
   lua_pushvalue(L, 2);
-  lua_rawget(L, -2);
-  return 1;
+  if (lua_rawget(L, -2) != LUA_TNIL || !key) return 1;
+  std::vector<std::string> names{"t"};
+  for (const luaL_Reg* r = kMethods; r->name; ++r) names.push_back(r->name);
+  fail(L, std::string("sim has no field or method '") + key + "'" + did_you_mean(key, names) +
+              "; fields: t; methods: " + join(std::vector<std::string>(names.begin() + 1, names.end())));
 }
 
 // help() lists the API; help("advance") prints one entry
 int l_help(lua_State* L) {
-  check_arg_count(L, "help", 0, 1);
+  check_args(L, "help", {{"name", kString, true}});
   if (lua_isnoneornil(L, 1)) {
     std::printf("beltsim API (help(\"name\") for one entry; SI units throughout):\n");
     for (const HelpEntry& h : api_help()) std::printf("  %-48s %s\n", h.call, h.text);
@@ -569,8 +571,7 @@ int l_help(lua_State* L) {
       return 0;
     }
   }
-  const std::string best = closest(name, names);
-  fail(L, "help: nothing is called '" + name + "'" + (best.empty() ? "" : " (did you mean '" + best + "'?)"));
+  fail(L, "help: nothing is called '" + name + "'" + did_you_mean(name, names));
 }
 
 }  // namespace
@@ -607,7 +608,11 @@ const std::vector<HelpEntry>& api_help() {
       {"resume", "beltsim.resume(path) -> sim", "continues a checkpoint (bit for bit); callbacks must be added again"},
       {"close", "sim:close()", "flushes the CSV files and finalises the video"},
       {"rpm", "beltsim.rpm(n) -> [rad/s]", "revolutions per minute to rad/s"},
-      {"ramp", "beltsim.ramp(t1 [s], value)", "a law rising linearly from 0 at t = 0 to value at t1"},
+      {"ramp", "beltsim.ramp{ t0 [s], t1 [s], from, to, shape = \"linear\"|\"cosine\" }",
+       "a law going from `from` at t0 to `to` at t1 (beltsim.ramp(t1, to): from 0 at t = 0)"},
+      {"step", "beltsim.step(t [s], from, to)", "a law jumping from `from` to `to` at t"},
+      {"sine", "beltsim.sine{ mean, amplitude, frequency [Hz], phase [rad] }", "mean + amplitude·sin(2π·frequency·t + phase)"},
+      {"args", "beltsim.args.KEY", "a script parameter given as --set KEY=VALUE (nil when not given)"},
       {"integrators", "beltsim.integrators()", "the integrators' names"},
       {"help", "help([name])", "this list, or one entry"},
   };

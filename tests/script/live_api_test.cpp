@@ -98,7 +98,7 @@ TEST(LiveApi, BadCallsNameFileLineAndWhat) {
     std::string call, expect;
   };
   for (const Case& c : std::vector<Case>{
-           {"sim:advance(0.1, 2)", "sim:advance: expected 2 arguments, got 3"},
+           {"sim:advance(0.1, 2)", "sim:advance(dt): expected 1 argument, got 2"},
            {"sim:advance(-1)", "dt must be >= 0 s"},
            {"sim:run_to('x')", "number expected, got string"},
            {"sim:pulley('drivn')", "did you mean 'driven'"},

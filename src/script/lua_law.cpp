@@ -1,0 +1,384 @@
+// Pulley laws from Lua (see lua_law.hpp; the terms' formulas are at the top of model/laws.cpp).
+//
+//   law       = number | function(t, omega) | law table | { law, law, ... }   (a list: the sum)
+//   law table = { constant, per_speed, table = {{t, v}, ...}, per_speed_table = {{omega, M}, ...},
+//                 ramp = {t0, t1, from, to, shape}, step = {t, from, to},
+//                 sine = {mean, amplitude, frequency, phase},
+//                 mean_speed = ω_m, harmonics = {{order, amplitude, phase}, ...},
+//                 law, law, ... }    (named terms and listed laws, all summed)
+//
+// A speed law's function is called as f(t); a torque law's as f(t, omega). Each call runs Lua
+// (one per evaluation; the finite differences of its derivatives, model/laws.cpp, take more); a
+// law without a function runs none while integrating.
+#include "script/lua_law.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+#include "io/suggest.hpp"
+#include "scene/scene.hpp"
+#include "scene/validate.hpp"
+#include "script/context.hpp"
+
+namespace beltsim::script {
+
+namespace {
+
+// A Lua function as a law. Calls go through the main thread with the script's message handler;
+// an error, a value that is not a number or one that is not finite is a LawError naming the
+// function's place and the error's own file:line.
+class LuaLaw final : public LawFunction {
+ public:
+  LuaLaw(lua_State* L, int idx, bool speed, std::string what, std::shared_ptr<LawHost> host)
+      : host_(std::move(host)), speed_(speed), what_(std::move(what)) {
+    lua_Debug ar;
+    lua_pushvalue(L, idx);
+    lua_getinfo(L, ">S", &ar);
+    where_ = std::string(ar.short_src) + ":" + std::to_string(ar.linedefined);
+    lua_pushvalue(L, idx);
+    ref_ = luaL_ref(L, LUA_REGISTRYINDEX);
+  }
+  ~LuaLaw() override {
+    if (host_->L) luaL_unref(host_->L, LUA_REGISTRYINDEX, ref_);
+  }
+  LuaLaw(const LuaLaw&) = delete;
+  LuaLaw& operator=(const LuaLaw&) = delete;
+
+  double value(double t, double omega) const override {
+    lua_State* L = host_->L;
+    if (!L) throw LawError(what_ + " (" + describe() + "): its Lua state is closed");
+    calls_++;
+    const int top = lua_gettop(L);
+    if (!lua_checkstack(L, 4)) throw LawError(what_ + " (" + describe() + "): the Lua stack is full");
+    lua_pushcfunction(L, message_handler);
+    lua_rawgeti(L, LUA_REGISTRYINDEX, ref_);
+    lua_pushnumber(L, t);
+    if (!speed_) lua_pushnumber(L, omega);
+    const int status = lua_pcall(L, speed_ ? 1 : 2, 1, top + 1);
+    std::string error;
+    double v = 0;
+    if (status != LUA_OK) {
+      error = lua_tostring(L, -1) ? lua_tostring(L, -1) : "an error without a message";
+    } else if (lua_type(L, -1) != LUA_TNUMBER) {
+      error = std::string("it returned ") + luaL_typename(L, -1) + ", a number expected";
+    } else {
+      v = lua_tonumber(L, -1);
+      if (!std::isfinite(v)) error = "it returned " + std::to_string(v) + ", a finite number expected";
+    }
+    lua_settop(L, top);
+    if (!error.empty()) {
+      std::ostringstream m;
+      m.precision(10);
+      m << what_ << " (" << describe() << ") at t = " << t << " s";
+      if (!speed_) m << ", omega = " << omega << " rad/s";
+      m << ": " << error;
+      throw LawError(m.str());
+    }
+    return v;
+  }
+  std::string describe() const override { return "function at " + where_; }
+  long calls() const override { return calls_; }
+
+ private:
+  std::shared_ptr<LawHost> host_;
+  bool speed_;
+  std::string what_, where_;
+  int ref_ = LUA_NOREF;
+  mutable long calls_ = 0;
+};
+
+const std::vector<std::string> kLawKeys{"constant", "per_speed", "table", "per_speed_table", "ramp",
+                                        "step",     "sine",      "mean_speed", "harmonics"};
+
+double number_at(lua_State* L, int t, lua_Integer k, const std::string& what) {
+  lua_rawgeti(L, t, k);
+  const double v = to_number(L, -1, what);
+  lua_pop(L, 1);
+  return v;
+}
+
+// {{x, y}, ...}: at least one pair
+void read_pairs(lua_State* L, int idx, const std::string& what, const char* pair, std::vector<double>& x,
+                std::vector<double>& y) {
+  require_table(L, idx, what);
+  check_sequence(L, idx, what);
+  const lua_Integer n = static_cast<lua_Integer>(lua_rawlen(L, idx));
+  if (n < 1) fail(L, what + ": at least one " + pair + " pair expected");
+  for (lua_Integer k = 1; k <= n; ++k) {
+    const std::string w = what + " entry " + std::to_string(k) + " (" + pair + ")";
+    lua_rawgeti(L, idx, k);
+    if (!lua_istable(L, -1) || lua_rawlen(L, -1) != 2) fail(L, w + ": two numbers expected, got " + type_name(L, -1));
+    x.push_back(number_at(L, lua_gettop(L), 1, w));
+    y.push_back(number_at(L, lua_gettop(L), 2, w));
+    lua_pop(L, 1);
+  }
+}
+
+double required(lua_State* L, int t, const char* key, const std::string& what) {
+  const auto v = opt_number(L, t, key, what);
+  if (!v) fail(L, what + "." + key + " is required");
+  return *v;
+}
+
+Ramp read_ramp(lua_State* L, int idx, const std::string& what) {
+  require_table(L, idx, what);
+  check_keys(L, idx, what, {"t0", "t1", "from", "to", "shape"});
+  Ramp r;
+  r.t0 = opt_number(L, idx, "t0", what).value_or(0.0);
+  r.t1 = required(L, idx, "t1", what);
+  r.from = opt_number(L, idx, "from", what).value_or(0.0);
+  r.to = required(L, idx, "to", what);
+  if (const auto s = opt_string(L, idx, "shape", what)) {
+    if (*s != "linear" && *s != "cosine")
+      fail(L, what + ".shape: 'linear' or 'cosine' expected, got '" + *s + "'" + did_you_mean(*s, {"linear", "cosine"}));
+    r.cosine = *s == "cosine";
+  }
+  if (!(r.t1 > r.t0)) {
+    std::ostringstream m;
+    m << what << ": t1 must be > t0 (got t0 = " << r.t0 << " s, t1 = " << r.t1 << " s; a jump is beltsim.step)";
+    fail(L, m.str());
+  }
+  return r;
+}
+
+Ramp read_step(lua_State* L, int idx, const std::string& what) {
+  require_table(L, idx, what);
+  check_keys(L, idx, what, {"t", "from", "to"});
+  Ramp r;
+  r.t0 = r.t1 = required(L, idx, "t", what);
+  r.from = opt_number(L, idx, "from", what).value_or(0.0);
+  r.to = required(L, idx, "to", what);
+  return r;
+}
+
+Sine read_sine(lua_State* L, int idx, const std::string& what) {
+  require_table(L, idx, what);
+  check_keys(L, idx, what, {"mean", "amplitude", "frequency", "phase"});
+  Sine s;
+  s.mean = opt_number(L, idx, "mean", what).value_or(0.0);
+  s.amplitude = required(L, idx, "amplitude", what);
+  s.frequency = required(L, idx, "frequency", what);
+  s.phase = opt_number(L, idx, "phase", what).value_or(0.0);
+  return s;
+}
+
+void read_harmonics(lua_State* L, int idx, const std::string& what, double mean_speed, std::vector<Harmonic>& out) {
+  require_table(L, idx, what);
+  check_sequence(L, idx, what);
+  const lua_Integer n = static_cast<lua_Integer>(lua_rawlen(L, idx));
+  if (n < 1) fail(L, what + ": at least one {order, amplitude, phase} expected");
+  for (lua_Integer k = 1; k <= n; ++k) {
+    const std::string w = what + " entry " + std::to_string(k) + " ({order, amplitude, phase})";
+    lua_rawgeti(L, idx, k);
+    const int e = lua_gettop(L);
+    if (!lua_istable(L, e) || lua_rawlen(L, e) < 2 || lua_rawlen(L, e) > 3)
+      fail(L, w + ": two or three numbers expected, got " + type_name(L, e));
+    Harmonic h;
+    h.order = number_at(L, e, 1, w);
+    h.amplitude = number_at(L, e, 2, w);
+    h.phase = lua_rawlen(L, e) == 3 ? number_at(L, e, 3, w) : 0.0;
+    h.mean_speed = mean_speed;
+    out.push_back(h);
+    lua_pop(L, 1);
+  }
+}
+
+constexpr int kMaxDepth = 16;
+
+// adds the law at idx to `law`
+void add_law(lua_State* L, int idx, const std::string& what, bool speed, Context* ctx, TimeSpeedLaw& law, int depth) {
+  idx = lua_absindex(L, idx);
+  if (depth > kMaxDepth) fail(L, what + ": laws nested deeper than " + std::to_string(kMaxDepth) + " (a table that holds itself?)");
+  switch (lua_type(L, idx)) {
+    case LUA_TNUMBER:
+      law.constant += lua_tonumber(L, idx);
+      return;
+    case LUA_TFUNCTION: {
+      TimeSpeedLaw f;
+      f.fn = std::make_shared<LuaLaw>(L, idx, speed, what, ctx->law_host);
+      law += f;
+      return;
+    }
+    case LUA_TTABLE:
+      break;
+    default:
+      fail(L, what + ": a number, a law table or function(t" + (speed ? ")" : ", omega)") + " expected, got " +
+                  type_name(L, idx));
+  }
+  // the keys: named terms, and a list of laws 1..n
+  const lua_Integer n = static_cast<lua_Integer>(lua_rawlen(L, idx));
+  lua_pushnil(L);
+  while (lua_next(L, idx)) {
+    lua_pop(L, 1);
+    if (lua_type(L, -1) == LUA_TSTRING) {
+      const std::string key = lua_tostring(L, -1);
+      if (std::find(kLawKeys.begin(), kLawKeys.end(), key) == kLawKeys.end())
+        fail(L, "unknown key '" + key + "' in " + what + did_you_mean(key, kLawKeys) + "; valid keys: " + join(kLawKeys) +
+                    ", and laws as a list (summed)");
+    } else if (!lua_isinteger(L, -1) || lua_tointeger(L, -1) < 1 || lua_tointeger(L, -1) > n) {
+      fail(L, what + ": named terms and a list of laws without holes expected");
+    }
+  }
+  TimeSpeedLaw own;
+  own.constant = opt_number(L, idx, "constant", what).value_or(0.0);
+  own.per_speed = opt_number(L, idx, "per_speed", what).value_or(0.0);
+  if (field(L, idx, "table")) read_pairs(L, lua_gettop(L), what + ".table", "{t, value}", own.t, own.value), lua_pop(L, 1);
+  if (field(L, idx, "per_speed_table"))
+    read_pairs(L, lua_gettop(L), what + ".per_speed_table", "{omega, value}", own.omega, own.omega_value), lua_pop(L, 1);
+  if (field(L, idx, "ramp")) own.ramps.push_back(read_ramp(L, lua_gettop(L), what + ".ramp")), lua_pop(L, 1);
+  if (field(L, idx, "step")) own.ramps.push_back(read_step(L, lua_gettop(L), what + ".step")), lua_pop(L, 1);
+  if (field(L, idx, "sine")) own.sines.push_back(read_sine(L, lua_gettop(L), what + ".sine")), lua_pop(L, 1);
+  const auto mean_speed = opt_number(L, idx, "mean_speed", what);
+  if (field(L, idx, "harmonics")) {
+    if (!mean_speed) fail(L, what + ".harmonics: mean_speed [rad/s] is required beside it (the orders are of it)");
+    read_harmonics(L, lua_gettop(L), what + ".harmonics", *mean_speed, own.harmonics);
+    lua_pop(L, 1);
+  } else if (mean_speed) {
+    fail(L, what + ".mean_speed: only for harmonics (the orders' speed), and no harmonics are given");
+  }
+  // a table's own check first, so that its errors name its own key
+  std::string error;
+  try {
+    validate_law(what, own, speed);
+  } catch (const ParameterError& e) {
+    error = e.what();
+  }
+  if (!error.empty()) fail(L, error);
+  law += own;
+  for (lua_Integer k = 1; k <= n; ++k) {
+    lua_rawgeti(L, idx, k);
+    add_law(L, -1, what + " entry " + std::to_string(k), speed, ctx, law, depth + 1);
+    lua_pop(L, 1);
+  }
+}
+
+// pushes { <key> = <the table at idx> } (a helper's result: a law table of one term)
+int wrap(lua_State* L, const char* key, int idx) {
+  idx = lua_absindex(L, idx);
+  lua_createtable(L, 0, 1);
+  lua_pushvalue(L, idx);
+  lua_setfield(L, -2, key);
+  return 1;
+}
+
+void set_number(lua_State* L, const char* k, double v) { lua_pushnumber(L, v), lua_setfield(L, -2, k); }
+
+// the law on the top of the stack, checked as a torque law (the helpers know no more); errors
+// name the helper
+void check_helper(lua_State* L, const std::string& what) {
+  TimeSpeedLaw law;
+  add_law(L, -1, what, false, nullptr, law, 0);
+}
+
+// beltsim.ramp{ t0 = 0, t1, from = 0, to, shape = "linear" | "cosine" } or beltsim.ramp(t1, to)
+// (from 0 at t = 0) -> { ramp = {...} }
+int l_ramp(lua_State* L) {
+  if (lua_type(L, 1) == LUA_TTABLE) {
+    check_args(L, "beltsim.ramp", {{"{t0, t1, from, to, shape}", kTable}});
+    lua_createtable(L, 0, 5);
+    const int r = lua_gettop(L);
+    check_keys(L, 1, "beltsim.ramp", {"t0", "t1", "from", "to", "shape"});
+    for (const char* k : {"t0", "t1", "from", "to", "shape"}) lua_getfield(L, 1, k), lua_setfield(L, r, k);
+  } else {
+    check_args(L, "beltsim.ramp", {{"t1", kNumber}, {"to", kNumber}});
+    lua_createtable(L, 0, 4);
+    set_number(L, "t0", 0.0);
+    set_number(L, "t1", lua_tonumber(L, 1));
+    set_number(L, "from", 0.0);
+    set_number(L, "to", lua_tonumber(L, 2));
+  }
+  wrap(L, "ramp", -1);
+  check_helper(L, "beltsim");
+  return 1;
+}
+
+// beltsim.step(t, from, to) -> { step = {t, from, to} }
+int l_step(lua_State* L) {
+  check_args(L, "beltsim.step", {{"t", kNumber}, {"from", kNumber}, {"to", kNumber}});
+  lua_createtable(L, 0, 3);
+  set_number(L, "t", lua_tonumber(L, 1));
+  set_number(L, "from", lua_tonumber(L, 2));
+  set_number(L, "to", lua_tonumber(L, 3));
+  wrap(L, "step", -1);
+  check_helper(L, "beltsim");
+  return 1;
+}
+
+// beltsim.sine{ mean = 0, amplitude, frequency [Hz], phase = 0 [rad] } -> { sine = {...} }
+int l_sine(lua_State* L) {
+  check_args(L, "beltsim.sine", {{"{mean, amplitude, frequency, phase}", kTable}});
+  check_keys(L, 1, "beltsim.sine", {"mean", "amplitude", "frequency", "phase"});
+  lua_createtable(L, 0, 4);
+  const int s = lua_gettop(L);
+  for (const char* k : {"mean", "amplitude", "frequency", "phase"}) lua_getfield(L, 1, k), lua_setfield(L, s, k);
+  wrap(L, "sine", -1);
+  check_helper(L, "beltsim");
+  return 1;
+}
+
+}  // namespace
+
+TimeSpeedLaw to_law(lua_State* L, int idx, const std::string& what, bool speed, Context* ctx) {
+  TimeSpeedLaw law;
+  add_law(L, idx, what, speed, ctx, law, 0);
+  std::string error;
+  try {
+    validate_law(what, law, speed);  // the sum: a speed table summed into a speed law, say
+  } catch (const ParameterError& e) {
+    error = e.what();
+  }
+  if (!error.empty()) fail(L, error);
+  return law;
+}
+
+std::string law_text(const TimeSpeedLaw& law) {
+  std::ostringstream s;
+  s.precision(17);
+  const bool plain = law.per_speed == 0 && law.t.empty() && law.omega.empty() && law.ramps.empty() &&
+                     law.sines.empty() && law.harmonics.empty() && !law.fn;
+  if (plain) {
+    s << law.constant;
+    return s.str();
+  }
+  s << "{ constant = " << law.constant;
+  if (law.per_speed != 0) s << ", per_speed = " << law.per_speed;
+  auto pairs = [&](const char* key, const std::vector<double>& x, const std::vector<double>& y) {
+    if (x.empty()) return;
+    s << ", " << key << " = {";
+    for (size_t k = 0; k < x.size(); ++k) s << (k ? ", " : " ") << "{" << x[k] << ", " << y[k] << "}";
+    s << " }";
+  };
+  pairs("table", law.t, law.value);
+  pairs("per_speed_table", law.omega, law.omega_value);
+  for (const Ramp& r : law.ramps) {
+    if (r.is_step())
+      s << ", { step = { t = " << r.t0 << ", from = " << r.from << ", to = " << r.to << " } }";
+    else
+      s << ", { ramp = { t0 = " << r.t0 << ", t1 = " << r.t1 << ", from = " << r.from << ", to = " << r.to
+        << ", shape = \"" << (r.cosine ? "cosine" : "linear") << "\" } }";
+  }
+  for (const Sine& x : law.sines)
+    s << ", { sine = { mean = " << x.mean << ", amplitude = " << x.amplitude << ", frequency = " << x.frequency
+      << ", phase = " << x.phase << " } }";
+  for (size_t k = 0; k < law.harmonics.size(); ++k) {
+    const Harmonic& h = law.harmonics[k];
+    if (k == 0 || h.mean_speed != law.harmonics[k - 1].mean_speed)
+      s << (k ? " } }" : "") << ", { mean_speed = " << h.mean_speed << ", harmonics = {";
+    else
+      s << ",";
+    s << " {" << h.order << ", " << h.amplitude << ", " << h.phase << "}";
+    if (k + 1 == law.harmonics.size()) s << " } }";
+  }
+  if (law.fn) s << ", " << law.fn->describe();
+  s << " }";
+  return s.str();
+}
+
+void open_laws(lua_State* L) {
+  lua_pushcfunction(L, l_ramp), lua_setfield(L, -2, "ramp");
+  lua_pushcfunction(L, l_step), lua_setfield(L, -2, "step");
+  lua_pushcfunction(L, l_sine), lua_setfield(L, -2, "sine");
+}
+
+}  // namespace beltsim::script
