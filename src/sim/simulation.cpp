@@ -214,7 +214,8 @@ void Simulation::set_landings() {
   std::vector<Timeline::Landing> l;
   for (double t : model_.breakpoints()) l.push_back({t, {}});
   // a step of a law: the step that ends here saw the value before it; the integrator restarts
-  // here after it (Model::restart_time), a kinematic pulley's state speed jumping with its law
+  // here after it (Model::restart_time). A kinematic pulley's state speed, which nothing reads
+  // (its prescribed one is used), is kept equal to it.
   for (double t : model_.jumps())
     l.push_back({t, [this](double at) {
                    Eigen::VectorXd y = state();
