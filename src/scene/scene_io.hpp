@@ -39,7 +39,7 @@
 
 namespace beltsim {
 
-inline constexpr int kCheckpointVersion = 3;
+inline constexpr int kCheckpointVersion = 4;
 
 void write_scene(std::ostream& out, const Scene& sc);
 Scene read_scene(std::istream& in);
