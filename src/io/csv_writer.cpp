@@ -1,7 +1,7 @@
 #include "io/csv_writer.hpp"
 
+#include <charconv>
 #include <cmath>
-#include <cstdio>
 #include <stdexcept>
 
 namespace beltsim {
@@ -11,6 +11,23 @@ std::string csv_text(const std::string& s) {
   std::string q = "\"";
   for (char c : s) q += (c == '"') ? std::string("\"\"") : std::string(1, c);
   return q + "\"";
+}
+
+void append_csv_number(std::string& out, double v) {
+  if (std::isnan(v)) {
+    out += "nan";
+    return;
+  }
+  // shortest round trip; never the locale's decimal comma (to_chars ignores the locale)
+  char buf[32];
+  const auto r = std::to_chars(buf, buf + sizeof buf, v);
+  out.append(buf, r.ptr);
+}
+
+std::string csv_number(double v) {
+  std::string s;
+  append_csv_number(s, v);
+  return s;
 }
 
 CsvWriter::CsvWriter(const std::string& path, const std::vector<std::string>& header, double /*flush_interval*/,
@@ -28,13 +45,9 @@ CsvWriter::CsvWriter(const std::string& path, const std::vector<std::string>& he
 void CsvWriter::row(const std::vector<double>& values) {
   if (values.size() != columns_) throw std::logic_error("CsvWriter: row width differs from the header");
   line_.clear();
-  char buf[32];
   for (size_t k = 0; k < values.size(); ++k) {
-    const double v = values[k];
-    // %g never uses the locale's decimal comma here: the C locale is in force (no setlocale call)
-    const int n = std::isnan(v) ? std::snprintf(buf, sizeof buf, "nan") : std::snprintf(buf, sizeof buf, "%.10g", v);
     if (k) line_ += ',';
-    line_.append(buf, static_cast<size_t>(n));
+    append_csv_number(line_, values[k]);
   }
   line_ += '\n';
   file_.write(line_);

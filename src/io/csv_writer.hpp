@@ -1,5 +1,7 @@
 // CSV writer: a header row, then one row of numbers per call; '.' decimal point whatever the
-// locale, full double precision, NaN written as "nan" (pandas and MATLAB's readtable read it).
+// locale, each number the shortest decimal that reads back as the same double (std::to_chars:
+// full round-trip precision, shorter than %.17g), NaN written as "nan" (pandas and MATLAB's
+// readtable read it).
 // Each row is assembled in memory and written whole by one write(2) (io/row_file.hpp), so the
 // file holds every row produced so far and only whole rows, whatever stops the process.
 #pragma once
@@ -33,5 +35,9 @@ class CsvWriter {
 
 // one cell: quotes text containing a comma, quote or newline
 std::string csv_text(const std::string& s);
+// one number: the shortest decimal that reads back (strtod, pandas, numpy) as the same double,
+// "nan" for NaN, "inf"/"-inf"; appended to out. Every CSV file of a run writes its numbers so.
+void append_csv_number(std::string& out, double v);
+std::string csv_number(double v);
 
 }  // namespace beltsim

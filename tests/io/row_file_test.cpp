@@ -140,6 +140,38 @@ TEST(CsvWriter, KilledAnyTimeLeavesWholeRows) {
   EXPECT_LE(page_cuts, 4);
 }
 
+// every number reads back as the same double (the old "%.10g" lost 1/3, 0.1 + 0.2, π, a tension
+// of 500.00000000000006 N, ...): 10 000 random doubles over ±270 decades and awkward ones, bit
+// for bit through strtod; and shorter than %.17g
+TEST(CsvWriter, NumbersReadBackBitForBit) {
+  std::mt19937_64 rng(7);
+  std::vector<double> v{0.0, -0.0, 1.0 / 3, 0.1 + 0.2, M_PI, 500.00000000000006, 5e-324, 2.2250738585072014e-308,
+                        1.7976931348623157e308, -1e-5, 68.5};
+  std::uniform_real_distribution<double> mant(-1, 1);
+  std::uniform_int_distribution<int> ex(-300, 300);
+  for (int k = 0; k < 10000; ++k) v.push_back(std::ldexp(mant(rng), ex(rng) * 3));
+  const fs::path path = fs::temp_directory_path() / ("beltsim_roundtrip_" + std::to_string(getpid()) + ".csv");
+  {
+    CsvWriter w(path.string(), {"x"});
+    for (double x : v) w.row({x});
+  }
+  std::ifstream f(path);
+  std::string line;
+  std::getline(f, line);
+  size_t k = 0, chars = 0, chars17 = 0;
+  while (std::getline(f, line) && k < v.size()) {
+    const double back = std::strtod(line.c_str(), nullptr);
+    EXPECT_EQ(std::memcmp(&back, &v[k], sizeof back), 0) << line << " should be " << v[k];
+    char b[40];
+    chars += line.size(), chars17 += static_cast<size_t>(std::snprintf(b, sizeof b, "%.17g", v[k]));
+    ++k;
+  }
+  EXPECT_EQ(k, v.size());
+  EXPECT_LT(chars, chars17);
+  EXPECT_EQ(csv_number(std::nan("")), "nan");
+  fs::remove(path);
+}
+
 TEST(CsvWriter, FullDiskIsAnErrorNamingTheFile) {
   try {
     CsvWriter w("/dev/full", header(3));  // every write: ENOSPC
