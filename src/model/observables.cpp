@@ -36,7 +36,7 @@ ElementObs observe_element(const Model& m, const std::vector<int>& sense, double
   const int s = sense[c.pulley];
   o.friction = s * c.friction;
   o.slip = s * c.slip;
-  o.state = std::abs(c.slip) > m.friction.dv ? ContactState::slip : ContactState::stick;
+  o.state = ContactState::stick;  // which arc: classify_contact
   return o;
 }
 
@@ -57,8 +57,59 @@ void observe(const Model& m, const std::vector<int>& sense, double t, const doub
   out.t = t;
   out.elements.resize(m.n_el());
   out.pulleys.resize(m.n_p());
-  for (int i = 0; i < m.n_el(); ++i) out.elements[i] = observe_element(m, sense, t, y, i);
-  for (int j = 0; j < m.n_p(); ++j) out.pulleys[j] = observe_pulley(m, t, y, j);
+  const double* v = y + m.n_coord();
+  double vb = 0;
+  for (int i = 0; i < m.n_el(); ++i) {
+    out.elements[i] = observe_element(m, sense, t, y, i);
+    vb += axis(y[3 * i + 2]).dot(Vec2(v[3 * i], v[3 * i + 1]));
+  }
+  out.belt_speed = vb / m.n_el();
+  for (int j = 0; j < m.n_p(); ++j) {
+    PulleyObs& p = out.pulleys[j] = observe_pulley(m, t, y, j);
+    const double v_rim = sense[j] * p.omega * m.pulleys[j].radius;
+    p.creep = std::abs(out.belt_speed) > m.friction.dv ? 1 - v_rim / out.belt_speed
+                                                       : std::numeric_limits<double>::quiet_NaN();
+  }
+  classify_contact(m, out);
+}
+
+void classify_contact(const Model& m, Observation& o) {
+  const int n = static_cast<int>(o.elements.size());
+  std::vector<ElementObs>& e = o.elements;
+  for (ElementObs& x : e)
+    if (x.state != ContactState::free) x.state = ContactState::stick;
+  // k on the same contact arc as element `on` (same pulley, in contact)
+  auto on_arc = [&](int k, int on) { return e[k].state != ContactState::free && e[k].pulley == e[on].pulley; };
+  auto saturated = [&](int k) { return std::abs(e[k].slip) > m.friction.dv; };
+  // the belt moves along the element numbers, or against them when the drive runs backwards
+  const int dir = o.belt_speed < 0 ? -1 : 1;
+  auto prev = [n, dir](int k) { return (k + n - dir) % n; };
+  for (int x = 0; x < n; ++x) {
+    // x is an exit: the last element of a contact arc in the direction the belt moves
+    if (e[x].state == ContactState::free || on_arc((x + n + dir) % n, x)) continue;
+    int k = x;
+    if (!saturated(k) && on_arc(prev(k), x)) k = prev(k);  // the last element lifting off
+    if (!saturated(k)) continue;                            // no gross slip on this arc
+    const bool forward = e[k].slip > 0;
+    auto with = [&](int i) { return saturated(i) && (e[i].slip > 0) == forward; };
+    for (int count = 0; count < n && on_arc(k, x); ++count, k = prev(k)) {
+      if (with(k)) {
+        e[k].state = ContactState::slip;
+      } else if (!saturated(k) && on_arc(prev(k), x) && with(prev(k))) {
+        e[k].state = ContactState::slip;  // one element dipping through the band inside the arc
+      } else {
+        break;
+      }
+    }
+  }
+  for (PulleyObs& p : o.pulleys) p.contact_arc = p.slip_arc = p.stick_arc = 0;
+  const double l = m.belt.pitch;
+  for (const ElementObs& x : e) {
+    if (x.state == ContactState::free) continue;
+    PulleyObs& p = o.pulleys[x.pulley];
+    p.contact_arc += l;
+    (x.state == ContactState::slip ? p.slip_arc : p.stick_arc) += l;
+  }
 }
 
 void blend_contact(const Model& m, double theta, const Observation& a, const Observation& b, Observation& at) {
@@ -72,7 +123,7 @@ void blend_contact(const Model& m, double theta, const Observation& a, const Obs
     e.normal = mix(ea.normal, eb.normal);
     e.friction = mix(ea.friction, eb.friction);
     e.slip = mix(ea.slip, eb.slip);
-    e.state = std::abs(e.slip) > m.friction.dv ? ContactState::slip : ContactState::stick;
+    e.state = ContactState::stick;
   }
   for (size_t j = 0; j < at.pulleys.size(); ++j) {
     const PulleyObs &pa = a.pulleys[j], &pb = b.pulleys[j];
@@ -83,6 +134,7 @@ void blend_contact(const Model& m, double theta, const Observation& a, const Obs
     const Pulley& pl = m.pulleys[j];
     if (pl.kinematic) p.torque = pl.inertia * m.speed_rate(static_cast<int>(j), at.t) - p.belt_torque;
   }
+  classify_contact(m, at);
 }
 
 }  // namespace beltsim

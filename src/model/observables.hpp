@@ -1,15 +1,38 @@
 // What users observe of a state: per element, per pulley and per span, in SI units with one sign
-// convention. The time-series CSV, the frames and the live simulation (Lua `sim:element`,
-// `sim:pulley`, the console) all read these functions, so they show the same numbers.
+// convention. The time-series CSV, the snapshots, the frames and the live simulation (Lua
+// `sim:element`, `sim:pulley`, the console) all read these functions, so they show the same
+// numbers.
 //
 // Signs: counter-clockwise positive for angles, speeds and torques (the model's convention).
 // Contact quantities of an element are taken along the belt's direction of travel on the pulley
 // it rides: friction > 0 pulls the belt forward, slip > 0 means the belt moves faster than the
 // pulley's rim. An element rides the pulley it penetrates deepest.
 //
-// Contact state: "free" off the pulleys (or with N = 0); "slip" when |slip| > Δv, i.e. outside
-// the friction band of the simplified Threlfall law, where the friction is saturated at μN and
-// the element slides; "stick" inside the band (micro-slip |v_T| <= Δv, friction below μN).
+// Contact state: the arc of its pulley an element is in (classify_contact, the one criterion).
+// Creep theory (Reynolds, Grashof; Johnson, Contact Mechanics §8.3): in steady running a belt
+// runs onto a pulley with the tension of the incoming span and sticks to the rim (the adhesion
+// arc: no tension change, so no friction is needed); before it leaves, the tension changes to
+// that of the outgoing span over the gross-slip arc, where the friction is saturated at μN, all
+// in one direction, and the belt creeps against the rim as its strain changes. On that arc
+// dT/dθ = ±μ·(T − m'v²), so its angle is ln((T1 − m'v²)/(T2 − m'v²))/μ (Euler–Eytelwein).
+// The simplified Threlfall law (friction.cpp) makes the friction μ·N·sat(v_T/Δv): saturated
+// exactly when |v_T| > Δv (for Threlfall's exponential μ(1 − exp(−|v|/Δv)) it would be a few
+// Δv). So:
+//   "free"   off the pulleys (or N = 0);
+//   "slip"   in the gross-slip arc: the run of elements, counted back from where the belt leaves
+//            the pulley's contact arc, whose friction is saturated (|slip| > Δv) in one direction.
+//            One element inside the band between two saturated ones does not end the run (with
+//            coarse elements each takes a tension step of μN·l and one of them dips through the
+//            band as the belt passes), nor does the last element as it lifts off (it is counted
+//            as sticking);
+//   "stick"  the rest of the contact arc: the adhesion arc. Micro-slip inside the band (friction
+//            below μN, which a Δv of 1e-5 m/s turns into a stiff spring) is sticking, and so is
+//            the short saturated slip of an element settling onto the rim where the belt runs on
+//            (one to three elements, either direction, measured: it takes the entry's tension
+//            overshoot, not the span-to-span change); its `slip` still shows it.
+// Measured (tests/physics, a two-pulley drive): the slip arc approaches R·ln(T1/T2)/μ as the
+// elements are refined, while |slip| > Δv alone counts the entry's settling too, and
+// |F| >= 0.98·μN counts sticking elements whose slip hovers at the band's edge.
 #pragma once
 
 #include <vector>
@@ -30,7 +53,7 @@ struct ElementObs {
   double slip = 0;               // [m/s] belt speed minus rim speed along the travel (NaN when free)
   double mu = 0;                 // friction coefficient of the element now
   int pulley = -1;               // the pulley it rides, -1 when free
-  ContactState state = ContactState::free;
+  ContactState state = ContactState::free;  // classify_contact (observe_element: free or stick)
 };
 
 struct PulleyObs {
@@ -40,19 +63,35 @@ struct PulleyObs {
   double belt_torque = 0;  // [N·m] moment of the belt's friction on it
   double hub_load = 0;     // [N] magnitude of the belt's resultant force on it
   Vec2 hub{0, 0};          // [N] that force as a vector
+  // arcs [m] of belt length: the elements in each state on this pulley, each standing for one
+  // pitch l of belt (classify_contact); contact_arc = slip_arc + stick_arc
+  double contact_arc = 0, slip_arc = 0, stick_arc = 0;
+  // 1 - v_rim/v_belt: v_rim = ω·R along the travel (R the pulley's contact radius), v_belt the
+  // belt's mean speed (Observation::belt_speed). > 0: the pulley lags the belt (driven), < 0: it
+  // leads (driver); NaN while |v_belt| <= Δv. Includes the radial part: the belt's pitch line
+  // rides at R - p (p the contact penetration), not R.
+  double creep = 0;
 };
 
 // sense[j]: +1 when the belt goes round pulley j anticlockwise, -1 clockwise (Scene::senses())
+// (its state: free or stick; the gross-slip arc needs its neighbours, see classify_contact)
 ElementObs observe_element(const Model& m, const std::vector<int>& sense, double t, const double* y, int i);
 PulleyObs observe_pulley(const Model& m, double t, const double* y, int j);
 
 // Everything observed of one state: each element and each pulley.
 struct Observation {
   double t = 0;
+  double belt_speed = 0;  // [m/s] mean speed of the elements along their axes (the travel direction)
   std::vector<ElementObs> elements;
   std::vector<PulleyObs> pulleys;
 };
 void observe(const Model& m, const std::vector<int>& sense, double t, const double* y, Observation& out);
+
+// The contact state of every element and the arcs of every pulley from the elements' pulley,
+// normal force and slip (the criterion above; the exit is the last element in the direction the
+// belt moves: along the element numbers, or against them when belt_speed < 0).
+// observe() and blend_contact() call it; nothing else decides what slips.
+void classify_contact(const Model& m, Observation& o);
 
 // The contact quantities of a state inside an integrator's step, from the step's two ends.
 //
@@ -69,7 +108,7 @@ void observe(const Model& m, const std::vector<int>& sense, double t, const doub
 // interpolated linearly in time between `a` (the step's start) and `b` (its end), theta =
 // (t - t_a)/(t_b - t_a); an element off the pulleys at either end, or on different pulleys at the
 // two (contact made or lost in the step), keeps what its interpolated state gives. The contact
-// state follows the blended slip.
+// state and the arcs follow the blended slip (classify_contact).
 // A kinematic pulley's drive torque is recomputed from the blended belt torque.
 void blend_contact(const Model& m, double theta, const Observation& a, const Observation& b, Observation& at);
 

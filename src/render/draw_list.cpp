@@ -285,12 +285,10 @@ void FrameBuilder::build(double t, const double* y, DrawList& out, const Model* 
   }
 
   // belt elements
-  std::vector<ElementObs> own;
-  if (!given) {
-    own.resize(m.n_el());
-    for (int i = 0; i < m.n_el(); ++i) own[i] = observe_element(m, sense_, t, y, i);
-  }
-  const std::vector<ElementObs>& obs = given ? given->elements : own;
+  Observation own;
+  if (!given) observe(m, sense_, t, y, own);
+  const Observation& seen = given ? *given : own;
+  const std::vector<ElementObs>& obs = seen.elements;
   // dry: the largest μ the belt had at the start or has now (events may wet or dry it)
   double mu_dry = mu_dry_;
   for (double mu : m.mu) mu_dry = std::max(mu_dry, mu);
@@ -346,9 +344,7 @@ void FrameBuilder::build(double t, const double* y, DrawList& out, const Model* 
   std::string head = "t = " + format("%.4f", t) + " s      colour: " + qi.label + (*qi.unit ? std::string(" [") + qi.unit + "]" : "");
   if (fs_.magnify != 1) head += "      deformation \u00d7" + format("%g", fs_.magnify);
   out.text(Vec2(x0, line), head, font_px_, kInk);
-  double v_belt = 0;  // mean speed of the elements along their axes (the travel direction)
-  for (int i = 0; i < n; ++i) v_belt += axis(q[3 * i + 2]).dot(Vec2(v[3 * i], v[3 * i + 1]));
-  v_belt /= n;
+  const double v_belt = seen.belt_speed;
   const double col_w = (fs_.width - panel_) / columns_;
   for (int j = 0; j < m.n_p(); ++j)
     out.text(Vec2(x0 + (j % columns_) * col_w, line * (2 + j / columns_)), pulley_text(j, t, v, v_belt), font_px_, kInk);
