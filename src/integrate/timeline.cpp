@@ -25,15 +25,23 @@ void Timeline::start(double t0, const Eigen::VectorXd& y0) {
 }
 
 int Timeline::add_stream(double t0, double dt, Output fn) {
-  Periodic p{next_id_++, true, t0, dt, 0, std::move(fn), {}};
+  Periodic p{next_id_++, true, t0, dt, 0, std::move(fn), {}, false, {}};
   if (started_)
     while (p.time() <= now_) p.k++;  // what was due before it was added is not delivered
   periodic_.push_back(std::move(p));
   return periodic_.back().id;
 }
 
+int Timeline::add_times(std::vector<double> times, Output fn) {
+  Periodic p{next_id_++, true, 0.0, 0.0, 0, std::move(fn), {}, true, std::move(times)};
+  if (started_)
+    while (p.time() <= now_) p.k++;
+  periodic_.push_back(std::move(p));
+  return periodic_.back().id;
+}
+
 int Timeline::add_every(double dt, Action fn) {
-  periodic_.push_back({next_id_++, false, now_, dt, 1, {}, std::move(fn)});
+  periodic_.push_back({next_id_++, false, now_, dt, 1, {}, std::move(fn), false, {}});
   return periodic_.back().id;
 }
 
@@ -71,6 +79,7 @@ void Timeline::changed(const Eigen::VectorXd* y) {
 void Timeline::restart(double p, const Eigen::VectorXd& y) {
   const Eigen::VectorXd start = y;  // y may alias y_now_ or new_state_
   have_new_state_ = false;
+  if (step_hook_) step_hook_(p);  // the held step, as it was, up to the restart
   if (on_restart_) on_restart_(p);
   integ_.start(p, start);
   now_ = p;
@@ -187,6 +196,7 @@ Timeline::Result Timeline::run_to(double T, const std::atomic<bool>* stop, const
       r.interrupted = true;
       break;
     }
+    if (step_hook_) step_hook_(now_);
     integ_.step(landings_.empty() ? kInf : landings_.front().t);
     if (!when_.empty()) check_conditions();
     if (progress) progress(integ_.t(), integ_.work());

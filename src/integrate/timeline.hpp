@@ -50,9 +50,14 @@ class Timeline {
   void start(double t0, const Eigen::VectorXd& y0);
   // ids are > 0 and never reused
   int add_stream(double t0, double dt, Output fn);
+  int add_times(std::vector<double> times, Output fn);  // outputs at these times (sorted)
   int add_every(double dt, Action fn);  // first at now() + dt
   int add_when(Condition cond, Action action);
   bool remove(int id);
+  // called with the time the run has reached inside the held step just before that step is
+  // replaced (the next step is taken, or a restart): integrals over the steps (interval means)
+  // cover each step up to there
+  void set_step_hook(std::function<void(double t)> hook) { step_hook_ = std::move(hook); }
   void set_landings(std::vector<Landing> landings);  // those at or before now() are dropped
   // the system (or, with y, the state) changed at now(): restart there; deferred to the end of
   // the current time's actions while they run
@@ -85,7 +90,12 @@ class Timeline {
     long k;       // next index
     Output out;
     Action act;
-    double time() const { return t0 + static_cast<double>(k) * dt; }
+    bool listed = false;       // at the times in `at` rather than t0 + k·dt
+    std::vector<double> at;
+    double time() const {
+      if (!listed) return t0 + static_cast<double>(k) * dt;
+      return k < static_cast<long>(at.size()) ? at[static_cast<size_t>(k)] : std::numeric_limits<double>::infinity();
+    }
   };
   struct When {
     int id;
@@ -109,6 +119,7 @@ class Timeline {
   Eigen::VectorXd new_state_;
   bool have_new_state_ = false;
   std::function<void(double)> on_restart_;
+  std::function<void(double)> step_hook_;
 };
 
 }  // namespace beltsim

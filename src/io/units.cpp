@@ -8,7 +8,7 @@ namespace beltsim {
 namespace {
 
 // last dotted component → unit (README "Outputs"; element and pulley fields of the Lua API)
-constexpr std::array<std::pair<std::string_view, std::string_view>, 31> kUnits{{
+constexpr std::array<std::pair<std::string_view, std::string_view>, 38> kUnits{{
     {"t", "s"},
     // pulleys
     {"omega", "rad/s"},
@@ -16,8 +16,15 @@ constexpr std::array<std::pair<std::string_view, std::string_view>, 31> kUnits{{
     {"torque", "N·m"},
     {"belt_torque", "N·m"},
     {"hub_load", "N"},
+    {"torque_mean", "N·m"},
+    {"belt_torque_mean", "N·m"},
+    {"contact_arc", "m"},
+    {"slip_arc", "m"},
+    {"stick_arc", "m"},
+    {"creep", ""},
     // spans and the probed element
     {"tension", "N"},
+    {"tension_mean", "N"},
     {"sde_force", "N"},
     {"normal_force", "N"},
     {"friction_force", "N"},

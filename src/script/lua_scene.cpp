@@ -512,6 +512,44 @@ FrameSettings to_frames(lua_State* L, int idx, const std::string& w, const std::
 
 namespace {
 
+// probe = 12 (an element), {x, y} (a point in metres: the element that starts nearest it), or a
+// list of these: { 12, 40, {0.29, 0.1} }. A table of two numbers is a point unless both are
+// written as whole numbers without a decimal point (Lua integers): { 12, 40 } probes elements 12
+// and 40, { 0.0, 0.1 } is a point.
+std::vector<int> read_probes(lua_State* L, int v, const Scene& sc, const std::string& w) {
+  if (!lua_istable(L, v)) return {to_integer(L, v, w)};
+  auto is_int = [&](int k) {
+    lua_rawgeti(L, v, k);
+    const bool r = lua_isinteger(L, -1);
+    lua_pop(L, 1);
+    return r;
+  };
+  const size_t n = check_sequence(L, v, w).size();
+  if (n == 0) fail(L, w + ": an element number, a point {x, y} or a list of them expected, got an empty table");
+  if (n == 2 && !(is_int(1) && is_int(2))) {
+    bool numbers = true;
+    for (int k = 1; k <= 2; ++k) {
+      lua_rawgeti(L, v, k);
+      numbers = numbers && lua_type(L, -1) == LUA_TNUMBER;
+      lua_pop(L, 1);
+    }
+    if (numbers) return {sc.element_nearest(to_vec2(L, v, w))};
+  }
+  std::vector<int> out;
+  for (size_t k = 1; k <= n; ++k) {
+    lua_rawgeti(L, v, static_cast<lua_Integer>(k));
+    const std::string wk = w + "[" + std::to_string(k) + "]";
+    const int i = lua_istable(L, -1) ? sc.element_nearest(to_vec2(L, -1, wk)) : to_integer(L, -1, wk);
+    lua_pop(L, 1);
+    for (size_t j = 0; j < out.size(); ++j)
+      if (out[j] == i)
+        fail(L, wk + ": element " + std::to_string(i) + " is probed already (entry " + std::to_string(j + 1) +
+                    "); a point is written with decimals, e.g. {0.0, 0.1}");
+    out.push_back(i);
+  }
+  return out;
+}
+
 // the keys of scene:run{} and scene:start{} with their readers (one table: the key check and
 // the reading cannot drift apart)
 struct RunKey {
@@ -541,10 +579,31 @@ const RunKey kRunKeys[] = {
        rs.out_dir = to_string(L, v, w + ".out");
      }},
     {"probe", false, [](lua_State* L, int v, const Scene& sc, RunSettings& rs, bool&, const std::string& w) {
-       if (lua_istable(L, v))
-         rs.probe_element = sc.element_nearest(to_vec2(L, v, w + ".probe"));
-       else
-         rs.probe_element = to_integer(L, v, w + ".probe");
+       rs.probes = read_probes(L, v, sc, w + ".probe");
+     }},
+    {"snapshots", false, [](lua_State* L, int v, const Scene&, RunSettings& rs, bool&, const std::string& w) {
+       const std::string ww = w + ".snapshots";
+       require_table(L, v, ww);
+       check_keys(L, v, ww, {"times", "every"});
+       if (field(L, v, "every")) {
+         rs.snapshot_every = to_number(L, -1, ww + ".every");
+         if (!(rs.snapshot_every > 0 && std::isfinite(rs.snapshot_every)))
+           fail(L, ww + ".every: must be > 0 s and finite (got " + std::to_string(rs.snapshot_every) + " s)");
+         lua_pop(L, 1);
+       }
+       if (field(L, v, "times")) {
+         const int tt = lua_gettop(L);
+         require_table(L, tt, ww + ".times");
+         const size_t n = check_sequence(L, tt, ww + ".times").size();
+         for (size_t k = 1; k <= n; ++k) {
+           lua_rawgeti(L, tt, static_cast<lua_Integer>(k));
+           rs.snapshot_times.push_back(to_number(L, -1, ww + ".times[" + std::to_string(k) + "]"));
+           lua_pop(L, 1);
+         }
+         lua_pop(L, 1);
+       }
+       if (rs.snapshot_every == 0 && rs.snapshot_times.empty())
+         fail(L, ww + ": give times = {t1, t2, ...} [s] and/or every = dt [s]");
      }},
     {"progress", false, [](lua_State* L, int v, const Scene&, RunSettings&, bool& progress, const std::string& w) {
        if (lua_type(L, v) != LUA_TBOOLEAN) fail(L, w + ".progress: boolean expected, got " + type_name(L, v));

@@ -135,18 +135,23 @@ int l_advance(lua_State* L) {
 
 // ---- reading ---------------------------------------------------------------------------------
 
-// sim:pulley(name) -> { omega [rad/s], angle [rad], torque [N·m], belt_torque [N·m], hub_load [N] }
+// sim:pulley(name) -> { omega [rad/s], angle [rad], torque [N·m], belt_torque [N·m], hub_load [N],
+// contact_arc, slip_arc, stick_arc [m], creep }
 int l_pulley(lua_State* L) {
   Simulation& s = live(L, "pulley", {{"name", kString}});
   const int j = pulley_index(L, s, 2, "sim:pulley");
   PulleyObs p;
   guarded(L, "sim:pulley", [&] { p = s.pulley(j); });  // a Lua law may fail
-  lua_createtable(L, 0, 5);
+  lua_createtable(L, 0, 9);
   set_number(L, "omega", p.omega);
   set_number(L, "angle", p.angle);
   set_number(L, "torque", p.torque);
   set_number(L, "belt_torque", p.belt_torque);
   set_number(L, "hub_load", p.hub_load);
+  set_number(L, "contact_arc", p.contact_arc);
+  set_number(L, "slip_arc", p.slip_arc);
+  set_number(L, "stick_arc", p.stick_arc);
+  set_number(L, "creep", p.creep);
   return 1;
 }
 
@@ -579,14 +584,15 @@ int l_help(lua_State* L) {
 const std::vector<HelpEntry>& api_help() {
   static const std::vector<HelpEntry> h = {
       {"scene", "beltsim.scene{ pulleys, belt, contact, friction, gravity, energy }", "builds a drive (README, Lua API)"},
-      {"run", "scene:run{ t_end [s], integrator, rtol, atol, sample [s], out, probe, frames, events }",
+      {"run", "scene:run{ t_end [s], integrator, rtol, atol, sample [s], out, probe, snapshots, frames, events }",
        "a batch run: start, run_to(t_end), close"},
-      {"start", "scene:start{ integrator, rtol, atol, sample [s], out, probe, progress, frames }",
+      {"start", "scene:start{ integrator, rtol, atol, sample [s], out, probe, snapshots, progress, frames }",
        "a live simulation at t = 0 (the static state)"},
       {"run_to", "sim:run_to(t [s]) -> { t [s], steps, wall [s], interrupted }", "integrates to time t"},
       {"advance", "sim:advance(dt [s]) -> { t [s], steps, wall [s], interrupted }", "integrates dt further"},
       {"t", "sim.t", "the current simulated time [s]"},
-      {"pulley", "sim:pulley(name)", "{ omega [rad/s], angle [rad], torque [N·m], belt_torque [N·m], hub_load [N] }"},
+      {"pulley", "sim:pulley(name)", "{ omega [rad/s], angle [rad], torque, belt_torque [N·m], hub_load [N], contact_arc, slip_arc, "
+                             "stick_arc [m], creep }"},
       {"element", "sim:element(i)",
        "{ x, y [m], phi [rad], s [m], tension, normal, friction [N], slip [m/s], mu, pulley, state } of element i (0-based)"},
       {"span", "sim:span(a, b) -> [N]", "tension of the span between pulleys a and b"},

@@ -22,7 +22,8 @@ namespace beltsim {
 namespace {
 
 constexpr const char* kMagic = "beltsim-checkpoint";
-constexpr int kVersion = 2;  // 2: failed-step counts in the integrator state
+// 2: failed-step counts in the integrator state; 3: several probes, snapshots, interval means
+constexpr int kVersion = 3;
 
 void put(std::ostream& o, const char* key, double v) { o << key << ' ' << std::hexfloat << v << std::defaultfloat << '\n'; }
 void put(std::ostream& o, const char* key, long v) { o << key << ' ' << v << '\n'; }
@@ -123,7 +124,11 @@ void Simulation::save(const std::string& path) const {
   put(o, "atol", rs_.atol);
   put(o, "sample_dt", rs_.sample_dt);
   put(o, "out_dir", std::filesystem::absolute(rs_.out_dir).string());
-  put(o, "probe", long(rs_.probe_element));
+  put(o, "probes", long(rs_.probes.size()));
+  for (int i : rs_.probes) o << i << '\n';
+  put(o, "snapshot_every", rs_.snapshot_every);
+  put(o, "snapshot_times", long(rs_.snapshot_times.size()));
+  for (double t : rs_.snapshot_times) put(o, "t", t);
   put(o, "keep_samples", long(rs_.keep_samples));
   put(o, "allow_large", long(rs_.allow_large));
   put(o, "frames", long(rs_.frames.has_value()));
@@ -146,6 +151,11 @@ void Simulation::save(const std::string& path) const {
   put(o, "rows", rows_);
   put(o, "csv_bytes", file_bytes(csv_path()));
   put(o, "events_bytes", file_bytes(events_path()));
+  put(o, "snapshots_bytes", has_snapshots() ? file_bytes(snapshots_path()) : 0L);
+  put(o, "mean_from", mean_from_);
+  put(o, "mean_covered", mean_covered_);
+  put(o, "mean_acc", long(mean_acc_.size()));
+  for (double v : mean_acc_) put(o, "v", v);
   put(o, "frames_written", frames_written());
   put(o, "callbacks", long(callbacks_));
   put(o, "wall", wall_);
@@ -179,7 +189,11 @@ std::unique_ptr<Simulation> Simulation::resume(const std::string& path, const Fr
   rs.atol = get_double(in, "atol");
   rs.sample_dt = get_double(in, "sample_dt");
   rs.out_dir = get_string(in, "out_dir");
-  rs.probe_element = static_cast<int>(get_long(in, "probe"));
+  rs.probes.assign(static_cast<size_t>(get_long(in, "probes")), 0);
+  for (int& i : rs.probes) in >> i;
+  rs.snapshot_every = get_double(in, "snapshot_every");
+  rs.snapshot_times.resize(static_cast<size_t>(get_long(in, "snapshot_times")));
+  for (double& t : rs.snapshot_times) t = get_double(in, "t");
   rs.keep_samples = get_long(in, "keep_samples") != 0;
   rs.allow_large = get_long(in, "allow_large") != 0;
   if (get_long(in, "frames")) {
@@ -201,7 +215,12 @@ std::unique_ptr<Simulation> Simulation::resume(const std::string& path, const Fr
     ev.mu = read_std_vector(in);
   }
   const long rows = get_long(in, "rows"), csv_bytes = get_long(in, "csv_bytes");
-  const long events_bytes = get_long(in, "events_bytes"), frames = get_long(in, "frames_written");
+  const long events_bytes = get_long(in, "events_bytes");
+  const long snapshots_bytes = get_long(in, "snapshots_bytes");
+  const double mean_from = get_double(in, "mean_from"), mean_covered = get_double(in, "mean_covered");
+  std::vector<double> mean_acc(static_cast<size_t>(get_long(in, "mean_acc")));
+  for (double& v : mean_acc) v = get_double(in, "v");
+  const long frames = get_long(in, "frames_written");
   const long n_callbacks = get_long(in, "callbacks");
   const double wall = get_double(in, "wall");
   expect(in, "integrator_state");
@@ -212,11 +231,15 @@ std::unique_ptr<Simulation> Simulation::resume(const std::string& path, const Fr
   s->rows_ = rows;
   s->wall_ = wall;
   s->frames_before_ = frames;
+  if (mean_acc.size() != s->mean_acc_.size()) throw std::runtime_error("resume: " + path + ": interval means do not fit the scene");
+  s->mean_acc_ = std::move(mean_acc);
+  s->mean_from_ = mean_from, s->mean_covered_ = mean_covered;
   s->integ_->load(in);
   expect(in, "end");
   // the outputs continue where the checkpoint left them
   truncate_to(s->csv_path(), csv_bytes);
   truncate_to(s->events_path(), events_bytes);
+  if (s->has_snapshots()) truncate_to(s->snapshots_path(), snapshots_bytes);
   if (s->rs_.frames) {
     FrameSettings& f = *s->rs_.frames;
     f.first_number = frames;
@@ -229,10 +252,7 @@ std::unique_ptr<Simulation> Simulation::resume(const std::string& path, const Fr
     }
   }
   s->open_outputs(true);
-  s->tl_->add_stream(0.0, s->rs_.sample_dt, [p = s.get()](double t, const Eigen::VectorXd& y) { p->sample(t, y); });
-  if (s->sink_)
-    s->tl_->add_stream(s->rs_.frames->t_start, s->rs_.frames->frame_dt(),
-                       [p = s.get()](double t, const Eigen::VectorXd& y) { p->frame(t, y); });
+  s->add_streams();
   s->tl_->set_positions(k);
   s->tl_->resume_at(now);
   s->set_landings();

@@ -1,11 +1,11 @@
 #include "sim/simulation.hpp"
 
 #include <algorithm>
-#include <charconv>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <limits>
 #include <sstream>
 
 #include "integrate/belt_system.hpp"
@@ -25,11 +25,11 @@ void write_parameters(const Scene& sc, const RunSettings& rs, const std::string&
   const Model& m = sc.model;
   const Belt& b = m.belt;
   std::ostringstream f;  // written whole at the end (io/row_file.hpp)
-  f.precision(17);        // doubles round-trip
+  // numbers as in timeseries.csv: the shortest decimal that reads back as the same double
   // source: "given" by the scenario, "default" taken, "derived" by the build from those, or "run"
   f << "name,value,unit,source,note\n";
   auto row = [&](const std::string& name, double v, const std::string& unit, const std::string& note) {
-    f << csv_text(name) << ',' << v << ',' << csv_text(unit) << ",derived," << csv_text(note) << '\n';
+    f << csv_text(name) << ',' << csv_number(v) << ',' << csv_text(unit) << ",derived," << csv_text(note) << '\n';
   };
   auto text = [&](const std::string& name, const std::string& v, const std::string& note) {
     f << csv_text(name) << ',' << csv_text(v) << ",,derived," << csv_text(note) << '\n';
@@ -37,7 +37,7 @@ void write_parameters(const Scene& sc, const RunSettings& rs, const std::string&
   for (const SceneInput& in : sc.inputs) {
     f << csv_text(in.name) << ',';
     if (in.text.empty())
-      f << in.value;
+      f << csv_number(in.value);
     else
       f << csv_text(in.text);
     f << ',' << csv_text(in.unit) << ',' << (in.given ? "given" : "default") << ',' << csv_text(in.note) << '\n';
@@ -78,12 +78,16 @@ void write_parameters(const Scene& sc, const RunSettings& rs, const std::string&
     row(pre + "static_penetration", sc.penetration[j], "m", "p0 of the initial state");
   }
   row("route.length", sc.route.length, "m", "pitch-line length");
-  row("probe.element", rs.probe_element, "", "the selected element; probe.sde_force is its left SDE");
+  for (size_t k = 0; k < rs.probes.size(); ++k) {
+    const std::string name = rs.probes.size() == 1 ? std::string("probe") : "probe" + std::to_string(k + 1);
+    row(name + ".element", rs.probes[k], "", "a selected element; " + name + ".sde_force is its left SDE");
+  }
   // the run's settings (source "run")
   f << "run.integrator," << csv_text(rs.integrator) << ",,run,\n";
-  f << "run.rtol," << rs.rtol << ",,run,\n";
-  f << "run.atol," << (rs.atol < 0 ? rs.rtol : rs.atol) << ",,run," << csv_text("per natural unit: 0.1 m, 1 rad, 1 m/s, 10 rad/s, 1 J") << "\n";
-  f << "run.sample_dt," << rs.sample_dt << ",s,run,\n";
+  f << "run.rtol," << csv_number(rs.rtol) << ",,run,\n";
+  f << "run.atol," << csv_number(rs.atol < 0 ? rs.rtol : rs.atol) << ",,run,"
+    << csv_text("per natural unit: 0.1 m, 1 rad, 1 m/s, 10 rad/s, 1 J") << "\n";
+  f << "run.sample_dt," << csv_number(rs.sample_dt) << ",s,run,\n";
   write_file_whole(path, f.str());
 }
 
@@ -96,13 +100,17 @@ std::string num(double v) {
 
 }  // namespace
 
-std::vector<std::string> timeseries_columns(const Scene& sc) {
+std::vector<std::string> timeseries_columns(const Scene& sc, size_t probes) {
   std::vector<std::string> c{"t"};
   for (const Pulley& p : sc.model.pulleys)
-    for (const char* q : {".omega", ".torque", ".belt_torque", ".hub_load"}) c.push_back(p.name + q);
-  for (size_t k = 0; k < sc.route.spans.size(); ++k) c.push_back(span_name(sc, k) + ".tension");
-  for (const char* q : {"probe.sde_force", "probe.normal_force", "probe.friction_force", "probe.slip_velocity"})
-    c.push_back(q);
+    for (const char* q : {".omega", ".torque", ".belt_torque", ".hub_load", ".torque_mean", ".belt_torque_mean",
+                          ".contact_arc", ".slip_arc", ".stick_arc", ".creep"})
+      c.push_back(p.name + q);
+  for (size_t k = 0; k < sc.route.spans.size(); ++k)
+    for (const char* q : {".tension", ".tension_mean"}) c.push_back(span_name(sc, k) + q);
+  for (size_t k = 0; k < probes; ++k)
+    for (const char* q : {".sde_force", ".normal_force", ".friction_force", ".slip_velocity"})
+      c.push_back((probes == 1 ? std::string("probe") : "probe" + std::to_string(k + 1)) + q);
   if (sc.model.track_energy)
     for (const char* q : {"energy.mechanical", "energy.work_torques", "energy.dissipated_axial",
                           "energy.dissipated_bending", "energy.dissipated_contact", "energy.dissipated_friction"})
@@ -116,10 +124,18 @@ void check_volume(const Scene& sc, const RunSettings& rs, double t0, double t1) 
   const double rows = (t1 - t0) / rs.sample_dt;
   std::ostringstream m;
   if (rows > kMaxRows) {
-    const double bytes = rows * static_cast<double>(timeseries_columns(sc).size()) * 13;
+    const double bytes = rows * static_cast<double>(timeseries_columns(sc, rs.probes.size()).size()) * 13;
     m << "sample: " << num(t1 - t0) << " s at a sample every " << num(rs.sample_dt) << " s would write " << num(rows)
       << " rows (about " << num(bytes / 1e9) << " GB of timeseries.csv); the limit is " << num(kMaxRows)
       << " rows: sample less often, or set allow_large = true";
+    throw std::invalid_argument(m.str());
+  }
+  const double snaps = static_cast<double>(rs.snapshot_times.size()) +
+                       (rs.snapshot_every > 0 ? (t1 - t0) / rs.snapshot_every : 0.0);
+  if (snaps * sc.model.n_el() > kMaxRows) {
+    m << "snapshots: " << num(snaps) << " snapshots of " << sc.model.n_el() << " elements would write "
+      << num(snaps * sc.model.n_el()) << " rows of snapshots.csv; the limit is " << num(kMaxRows)
+      << ": take fewer, or set allow_large = true";
     throw std::invalid_argument(m.str());
   }
   if (rs.frames) {
@@ -139,9 +155,23 @@ Simulation::Simulation(const Scene& sc, const RunSettings& rs, bool fresh) : sce
   const Model& m = model_;
   if (!(rs_.sample_dt > 0 && std::isfinite(rs_.sample_dt)))
     throw std::invalid_argument("sample: the sample interval must be > 0 s and finite (got " + num(rs_.sample_dt) + " s)");
-  if (rs_.probe_element < 0 || rs_.probe_element >= m.n_el())
-    throw std::invalid_argument("probe: the probe element must be in 0.." + std::to_string(m.n_el() - 1) + " (got " +
-                                std::to_string(rs_.probe_element) + ")");
+  if (rs_.probes.empty()) throw std::invalid_argument("probe: at least one element to probe");
+  for (size_t k = 0; k < rs_.probes.size(); ++k)
+    if (rs_.probes[k] < 0 || rs_.probes[k] >= m.n_el())
+      throw std::invalid_argument("probe: the probe element must be in 0.." + std::to_string(m.n_el() - 1) + " (got " +
+                                  std::to_string(rs_.probes[k]) +
+                                  (rs_.probes.size() > 1 ? " for probe " + std::to_string(k + 1) : std::string()) + ")");
+  for (size_t k = 0; k < rs_.snapshot_times.size(); ++k) {
+    const double t = rs_.snapshot_times[k];
+    if (!(t >= 0 && std::isfinite(t)))
+      throw std::invalid_argument("snapshots.times[" + std::to_string(k + 1) + "]: must be >= 0 s and finite (got " +
+                                  num(t) + " s)");
+    if (k > 0 && !(t > rs_.snapshot_times[k - 1]))
+      throw std::invalid_argument("snapshots.times[" + std::to_string(k + 1) + "]: the times must increase (got " +
+                                  num(t) + " s after " + num(rs_.snapshot_times[k - 1]) + " s)");
+  }
+  if (!(rs_.snapshot_every >= 0 && std::isfinite(rs_.snapshot_every)))
+    throw std::invalid_argument("snapshots.every: must be > 0 s and finite (got " + num(rs_.snapshot_every) + " s)");
   for (const MuEvent& ev : rs_.mu_events) {
     if (!(ev.t > 0 && std::isfinite(ev.t)))
       throw std::invalid_argument("events: an event time must be > 0 s and finite (got " + num(ev.t) + " s)");
@@ -163,16 +193,15 @@ Simulation::Simulation(const Scene& sc, const RunSettings& rs, bool fresh) : sce
     inside(f.png_dir);
     inside(f.video_path);
   }
+  mean_acc_.assign(2 * m.n_p() + scene_.route.spans.size(), 0.0);
+  tl_->set_step_hook([this](double t) { cover(t); });
   pending_ = rs_.mu_events;
   std::stable_sort(pending_.begin(), pending_.end(), [](const MuEvent& a, const MuEvent& b) { return a.t < b.t; });
   E0_ = beltsim::energy(model_, 0.0, scene_.y0.data()).total();
   if (!fresh) return;  // resume() fills in the rest
 
   open_outputs(false);
-  tl_->add_stream(0.0, rs_.sample_dt, [this](double t, const Eigen::VectorXd& y) { sample(t, y); });
-  if (sink_)
-    tl_->add_stream(rs_.frames->t_start, rs_.frames->frame_dt(),
-                    [this](double t, const Eigen::VectorXd& y) { frame(t, y); });
+  add_streams();
   set_landings();
   try {
     tl_->start(0.0, scene_.y0);
@@ -199,12 +228,34 @@ void Simulation::open_outputs(bool append) {
   // encoder otherwise).
   if (rs_.frames) sink_ = rs_.frame_factory(scene_, *rs_.frames);
   if (!append) write_parameters(scene_, rs_, (fs::path(rs_.out_dir) / "parameters.csv").string());
-  csv_ = std::make_unique<CsvWriter>(csv_path(), timeseries_columns(scene_), 0.5, append);
+  csv_ = std::make_unique<CsvWriter>(csv_path(), columns(), 0.5, append);
   events_ = std::make_unique<RowFile>(events_path(), append);
   if (!append) events_->write("t,what,value\n");
+  if (has_snapshots()) {
+    snapshots_ = std::make_unique<RowFile>(snapshots_path(), append);
+    if (!append) snapshots_->write("t,element,s,x,y,tension,normal,friction,slip,mu,pulley,state\n");
+  }
 }
 
+// the outputs' streams, in an order checkpoints rely on: samples, frames, snapshots every dt,
+// snapshots at listed times
+void Simulation::add_streams() {
+  tl_->add_stream(0.0, rs_.sample_dt, [this](double t, const Eigen::VectorXd& y) { sample(t, y); });
+  if (sink_)
+    tl_->add_stream(rs_.frames->t_start, rs_.frames->frame_dt(),
+                    [this](double t, const Eigen::VectorXd& y) { frame(t, y); });
+  if (rs_.snapshot_every > 0)
+    tl_->add_stream(0.0, rs_.snapshot_every, [this](double t, const Eigen::VectorXd& y) { snapshot(t, y); });
+  if (!rs_.snapshot_times.empty())
+    tl_->add_times(rs_.snapshot_times, [this](double t, const Eigen::VectorXd& y) { snapshot(t, y); });
+}
+
+bool Simulation::has_snapshots() const { return rs_.snapshot_every > 0 || !rs_.snapshot_times.empty(); }
+
 std::string Simulation::csv_path() const { return (std::filesystem::path(rs_.out_dir) / "timeseries.csv").string(); }
+std::string Simulation::snapshots_path() const {
+  return (std::filesystem::path(rs_.out_dir) / "snapshots.csv").string();
+}
 std::string Simulation::events_path() const { return (std::filesystem::path(rs_.out_dir) / "events.csv").string(); }
 long Simulation::frames_written() const { return frames_before_ + (sink_ ? sink_->frames_written() : 0); }
 const std::string& Simulation::integrator_name() const { return rs_.integrator; }
@@ -240,7 +291,7 @@ void Simulation::set_landings() {
   tl_->set_landings(std::move(l));
 }
 
-std::vector<std::string> Simulation::columns() const { return timeseries_columns(scene_); }
+std::vector<std::string> Simulation::columns() const { return timeseries_columns(scene_, rs_.probes.size()); }
 
 const Observation& Simulation::observe_end(Cached& c, double t, const Eigen::VectorXd& y) const {
   if (c.t != t || c.serial != serial_) {
@@ -273,18 +324,80 @@ std::vector<double> Simulation::sample_row() const {
   const Eigen::VectorXd& y = state();
   const double* q = y.data();
   const Observation& o = observation();
+  // the interval means since the last sample (NaN in the first row: no interval yet)
+  const std::vector<double> integral = integral_to(t);
+  const double dt = t - mean_from_;
+  auto mean = [&](size_t k) { return dt > 0 ? integral[k] / dt : std::numeric_limits<double>::quiet_NaN(); };
   std::vector<double> row;
   row.push_back(t);
-  for (const PulleyObs& p : o.pulleys) row.insert(row.end(), {p.omega, p.torque, p.belt_torque, p.hub_load});
-  for (size_t k = 0; k < scene_.route.spans.size(); ++k) row.push_back(span_tension(static_cast<int>(k)));
-  const ElementObs& e = o.elements[rs_.probe_element];
-  row.insert(row.end(), {e.sde_force, e.normal, e.friction, e.slip});
+  for (size_t j = 0; j < o.pulleys.size(); ++j) {
+    const PulleyObs& p = o.pulleys[j];
+    row.insert(row.end(), {p.omega, p.torque, p.belt_torque, p.hub_load, mean(2 * j), mean(2 * j + 1), p.contact_arc,
+                           p.slip_arc, p.stick_arc, p.creep});
+  }
+  for (size_t k = 0; k < scene_.route.spans.size(); ++k)
+    row.insert(row.end(), {span_tension(static_cast<int>(k)), mean(2 * o.pulleys.size() + k)});
+  for (int i : rs_.probes) {
+    const ElementObs& e = o.elements[i];
+    row.insert(row.end(), {e.sde_force, e.normal, e.friction, e.slip});
+  }
   if (m.track_energy) {
     const double* en = q + 2 * m.n_coord();
     row.insert(row.end(), {beltsim::energy(m, t, q).total() - E0_, en[kWorkTorques], en[kDissSdeAxial],
                            en[kDissSdeBending], en[kDissContact], en[kDissFriction]});
   }
   return row;
+}
+
+// ---- interval means ---------------------------------------------------------------------------
+// A force sampled at an instant aliases the element-passing frequency; the mean over the sample
+// interval [t_{k-1}, t_k] does not. It is integrated over the integrator's accepted steps: in a
+// step [a, b] each quantity is the straight line between its step-end values (exactly what
+// blend_contact shows inside the step), so over [c, d] ⊂ [a, b]
+//   ∫_c^d f dt = (d − c)·(f(c) + f(d))/2,   f(τ) = f_a + (τ − a)/(b − a)·(f_b − f_a)
+// (the trapezoid rule on the step-end values). mean_acc_ holds ∫ from the last sample to
+// mean_covered_ (inside the held step); cover() moves it on before the step is replaced (a new step
+// or a restart, Timeline's step hook) and the sample reads it. Averaged: each pulley's torque and
+// belt torque, each span's tension (at a free pulley I·dΩ/dt = M + M_belt, so over an interval
+// mean(M) + mean(M_belt) = I·ΔΩ/Δt to the integrator's accuracy: tested).
+
+const std::vector<double>& Simulation::step_values(StepEnd& c, double t, const Eigen::VectorXd& y) const {
+  if (c.t == t && c.serial == serial_) return c.v;
+  c.v.clear();
+  for (int j = 0; j < model_.n_p(); ++j) {
+    const PulleyObs p = observe_pulley(model_, t, y.data(), j);
+    c.v.push_back(p.torque);
+    c.v.push_back(p.belt_torque);
+  }
+  const double* q = y.data();
+  for (const Route::Span& sp : scene_.route.spans)
+    c.v.push_back(sde_axial_force(model_, q, q + model_.n_coord(), sde_nearest(model_, q, 0.5 * (sp.from + sp.to))));
+  c.t = t, c.serial = serial_;
+  return c.v;
+}
+
+std::vector<double> Simulation::integral_to(double t) const {
+  std::vector<double> out = mean_acc_;
+  const double a = integ_->t_prev(), b = integ_->t();
+  const double c = std::max(mean_covered_, a), d = std::min(t, b);
+  if (!(b > a) || !(d > c)) return out;
+  // the last step's end is this step's start
+  if (!(step_a_.t == a && step_a_.serial == serial_) && step_b_.t == a && step_b_.serial == serial_)
+    std::swap(step_a_, step_b_);
+  const std::vector<double>& fa = step_values(step_a_, a, integ_->y_prev());
+  const std::vector<double>& fb = step_values(step_b_, b, integ_->y());
+  const double tc = (c - a) / (b - a), td = (d - a) / (b - a);
+  for (size_t k = 0; k < out.size(); ++k) {
+    const double f_c = fa[k] + tc * (fb[k] - fa[k]), f_d = fa[k] + td * (fb[k] - fa[k]);
+    out[k] += 0.5 * (d - c) * (f_c + f_d);
+  }
+  return out;
+}
+
+void Simulation::cover(double t) {
+  if (t <= mean_covered_) return;
+  mean_acc_ = integral_to(t);
+  mean_covered_ = t;
 }
 
 void Simulation::frame(double t, const Eigen::VectorXd& y) {
@@ -309,8 +422,41 @@ void Simulation::sample(double t, const Eigen::VectorXd& y) {
   }
   view_y_ = nullptr;
   csv_->row(row);
+  // the next interval starts here
+  std::fill(mean_acc_.begin(), mean_acc_.end(), 0.0);
+  mean_covered_ = mean_from_ = t;
   rows_++;
   if (rs_.keep_samples) samples_.push_back(std::move(row));
+}
+
+// one row per element, all written by one write(2) (io/row_file.hpp): the file holds whole
+// snapshots. Columns (SI, README "Outputs"): t [s], element, s [m] (where it started along the
+// belt), x, y [m], tension, normal, friction [N], slip [m/s], mu, pulley (name, empty when free),
+// state (free, stick, slip: model/observables.hpp)
+void Simulation::snapshot(double t, const Eigen::VectorXd& y) {
+  view_t_ = t, view_y_ = &y;
+  std::string rows;
+  try {
+    const Observation& o = observation();
+    for (size_t i = 0; i < o.elements.size(); ++i) {
+      const ElementObs& e = o.elements[i];
+      append_csv_number(rows, t);
+      rows += ',' + std::to_string(i) + ',';
+      for (double v : {scene_.sites[i].s, e.x, e.y, e.tension, e.normal, e.friction, e.slip, e.mu}) {
+        append_csv_number(rows, v);
+        rows += ',';
+      }
+      if (e.pulley >= 0) rows += csv_text(model_.pulleys[e.pulley].name);
+      rows += ',';
+      rows += contact_state_name(e.state);
+      rows += '\n';
+    }
+  } catch (...) {
+    view_y_ = nullptr;
+    throw;
+  }
+  view_y_ = nullptr;
+  snapshots_->write(rows);
 }
 
 double Simulation::now() const { return view_y_ ? view_t_ : tl_->now(); }
@@ -432,17 +578,14 @@ void Simulation::close() {
     const WorkCounters w = integ_->work();
     f << "warning.static_retried," << (scene_.static_retried ? 1 : 0) << ",,derived,the static start's trust-region retry\n"
       << "warning.failed_steps," << w.failed_steps << ",,derived,steps whose implicit iteration did not converge\n";
-    if (w.first_failed_step >= 0) f << "warning.first_failed_step," << num(w.first_failed_step) << ",s,derived,\n";
+    if (w.first_failed_step >= 0) f << "warning.first_failed_step," << csv_number(w.first_failed_step) << ",s,derived,\n";
     RowFile((std::filesystem::path(rs_.out_dir) / "parameters.csv").string(), true).write(f.str());
   }
 }
 
 void Simulation::write_event(double t, const std::string& what, const std::string& text) {
   if (!events_) return;
-  // the shortest decimal that reads back as the same double
-  char b[32];
-  const auto r = std::to_chars(b, b + sizeof b, t);
-  events_->write(std::string(b, r.ptr) + ',' + csv_text(what) + ',' + csv_text(text) + '\n');
+  events_->write(csv_number(t) + ',' + csv_text(what) + ',' + csv_text(text) + '\n');
 }
 
 void Simulation::log_event(const std::string& what, const std::string& text) {
@@ -451,6 +594,7 @@ void Simulation::log_event(const std::string& what, const std::string& text) {
 }
 
 void Simulation::changed(const Eigen::VectorXd* y) {
+  cover(now());  // the held step, as it was, up to the change
   serial_++;
   set_landings();
   tl_->changed(y);
@@ -537,6 +681,10 @@ RunResult run(const Scene& sc, const RunSettings& rs, const std::atomic<bool>* s
   if (rs.frames && rs.frames->t_start > rs.t_end)
     throw std::invalid_argument("frames.t_start: must be <= t_end = " + num(rs.t_end) + " s (got " +
                                 num(rs.frames->t_start) + " s)");
+  for (size_t k = 0; k < rs.snapshot_times.size(); ++k)
+    if (rs.snapshot_times[k] > rs.t_end)
+      throw std::invalid_argument("snapshots.times[" + std::to_string(k + 1) + "]: must be <= t_end = " + num(rs.t_end) +
+                                  " s (got " + num(rs.snapshot_times[k]) + " s)");
   for (const MuEvent& ev : rs.mu_events)
     if (!(ev.t > 0 && ev.t < rs.t_end))
       throw std::invalid_argument("events: an event time must be inside (0, t_end) (got " + num(ev.t) + " s)");

@@ -46,7 +46,13 @@ struct RunSettings {
   double atol = -1;                   // absolute, per natural unit of each component; < 0: = rtol
   double sample_dt = 1e-3;            // [s] interval of the time-series samples
   std::string out_dir = "out";
-  int probe_element = 0;              // the paper's "selected" element; its SDE joins it to its predecessor
+  // the probed elements (the paper's "selected" one): columns probe.* for one, probe<k>.* (k = 1,
+  // 2, ...) for several; an element's SDE joins it to its predecessor
+  std::vector<int> probes{0};
+  // per-element snapshots (snapshots.csv) at these times [s] (sorted, >= 0) and/or every
+  // snapshot_every [s] from t = 0 (0: none)
+  std::vector<double> snapshot_times;
+  double snapshot_every = 0;
   // [s] wall time after which an integration call (a batch run, sim:run_to) stops at the last
   // finished step or output, Advance::over_wall_limit set (0: no limit); max_wall in Lua
   double wall_limit = 0;
@@ -131,6 +137,8 @@ class Simulation {
   const std::string& out_dir() const { return rs_.out_dir; }
   std::string csv_path() const;
   std::string events_path() const;
+  std::string snapshots_path() const;  // written only when snapshots are asked for
+  bool has_snapshots() const;
   long frames_written() const;
   const std::vector<std::vector<double>>& samples() const { return samples_; }
 
@@ -169,6 +177,8 @@ class Simulation {
   void set_landings();
   void sample(double t, const Eigen::VectorXd& y);
   void frame(double t, const Eigen::VectorXd& y);
+  void snapshot(double t, const Eigen::VectorXd& y);
+  void add_streams();
   void write_event(double t, const std::string& what, const std::string& text);
   void changed(const Eigen::VectorXd* y = nullptr);
   void require_open(const char* what) const;
@@ -182,6 +192,7 @@ class Simulation {
   std::unique_ptr<Timeline> tl_;
   std::unique_ptr<CsvWriter> csv_;
   std::unique_ptr<RowFile> events_;  // events.csv, a row per write (io/row_file.hpp)
+  std::unique_ptr<RowFile> snapshots_;  // snapshots.csv, a snapshot per write
   std::unique_ptr<FrameSink> sink_;
   std::vector<MuEvent> pending_;  // timed μ changes still ahead
   std::vector<std::vector<double>> samples_;
@@ -208,6 +219,19 @@ class Simulation {
   const Observation& observe_end(Cached& c, double t, const Eigen::VectorXd& y) const;
   mutable Cached end_a_, end_b_, now_obs_;
   long serial_ = 0;  // counts the changes of the model or state
+  // interval means (simulation.cpp, "interval means"): the averaged quantities at the held step's
+  // ends, their integral from the last sample (mean_from_) to mean_covered_
+  struct StepEnd {
+    std::vector<double> v;
+    double t = -1;
+    long serial = -1;
+  };
+  const std::vector<double>& step_values(StepEnd& c, double t, const Eigen::VectorXd& y) const;
+  std::vector<double> integral_to(double t) const;
+  void cover(double t);
+  mutable StepEnd step_a_, step_b_;
+  std::vector<double> mean_acc_;
+  double mean_from_ = 0, mean_covered_ = 0;
 };
 
 // A batch run: start, run_to(t_end), close. Throws as Simulation does.
@@ -219,7 +243,7 @@ RunResult run(const Scene& scene, const RunSettings& settings, const std::atomic
 // hour of video at 30 fps), unless settings.allow_large.
 void check_volume(const Scene& scene, const RunSettings& settings, double t0, double t1);
 
-// the column names of timeseries.csv for a scene (documented in the README)
-std::vector<std::string> timeseries_columns(const Scene& scene);
+// the column names of timeseries.csv for a scene with that many probes (documented in the README)
+std::vector<std::string> timeseries_columns(const Scene& scene, size_t probes = 1);
 
 }  // namespace beltsim

@@ -193,6 +193,19 @@ TEST(LuaApi, DivergenceNamesTimeAndPulleyAndKeepsTheSamples) {
   EXPECT_LT(std::strtod(last.c_str(), nullptr), t_fail);
 }
 
+// the position of a column of a CSV file (from its header)
+size_t column_of(const fs::path& csv_path, const std::string& name) {
+  std::ifstream csv(csv_path);
+  std::string line;
+  std::getline(csv, line);
+  std::stringstream ss(line);
+  size_t k = 0;
+  for (std::string cell; std::getline(ss, cell, ','); ++k)
+    if (cell == name) return k;
+  ADD_FAILURE() << "no column " << name << " in " << csv_path;
+  return 0;
+}
+
 std::vector<std::vector<double>> read_rows(const fs::path& csv_path) {
   std::ifstream csv(csv_path);
   std::string line;
@@ -222,10 +235,65 @@ TEST(LuaApi, WettingEventChangesTheFrictionAtItsTime) {
   const auto wet = run_case("wet", "events = { { t = 0.03, mu = 0.05 } }");
   ASSERT_EQ(dry.size(), 61u);
   ASSERT_EQ(wet.size(), 61u);
+  const fs::path csv = temp_dir() / "out" / "timeseries.csv";
+  const size_t w1 = column_of(csv, "driver.omega"), w2 = column_of(csv, "driven.omega");
   for (size_t k = 0; k <= 30; ++k)
-    EXPECT_NEAR(wet[k][1], dry[k][1], 1e-4 * std::abs(dry[30][1]) + 1e-9) << "t = " << dry[k][0];
-  const double slip_dry = std::abs(dry[60][1] - dry[60][5]), slip_wet = std::abs(wet[60][1] - wet[60][5]);
+    EXPECT_NEAR(wet[k][w1], dry[k][w1], 1e-4 * std::abs(dry[30][w1]) + 1e-9) << "t = " << dry[k][0];
+  const double slip_dry = std::abs(dry[60][w1] - dry[60][w2]), slip_wet = std::abs(wet[60][w1] - wet[60][w2]);
   EXPECT_GT(slip_wet, 20 * slip_dry) << "wet " << slip_wet << " dry " << slip_dry;
+}
+
+// Several probes: element numbers and points in one list, columns probe<k>.*; the single forms
+// (a number, a point {x, y}) keep the columns probe.*. Snapshots: one row per element at each
+// time asked for. sim:pulley has the arcs and the creep.
+TEST(LuaApi, ProbesSnapshotsAndArcs) {
+  const fs::path csv = temp_dir() / "out" / "timeseries.csv";
+  ASSERT_EQ(run_text(scene_text("") + "s:run{ t_end = 0.004, probe = { 12, 40, {0.29, 0.1} }, "
+                                      "snapshots = { times = {0.001, 0.003}, every = 0.002 } }\n"),
+            "");
+  for (const char* c : {"probe1.sde_force", "probe2.slip_velocity", "probe3.normal_force", "driver.slip_arc",
+                        "driven.contact_arc", "driver.stick_arc", "driven.creep", "driver.torque_mean",
+                        "span_driver_driven.tension_mean"})
+    column_of(csv, c);
+  std::ifstream snaps(temp_dir() / "out" / "snapshots.csv");
+  std::string line;
+  std::getline(snaps, line);
+  EXPECT_EQ(line, "t,element,s,x,y,tension,normal,friction,slip,mu,pulley,state");
+  size_t rows = 0;
+  while (std::getline(snaps, line)) rows++;
+  EXPECT_EQ(rows, 5u * 60);  // 0, 0.001, 0.002, 0.003, 0.004
+  std::ifstream params(temp_dir() / "out" / "parameters.csv");
+  std::string all((std::istreambuf_iterator<char>(params)), std::istreambuf_iterator<char>());
+  EXPECT_NE(all.find("probe2.element,40,"), std::string::npos);
+  // the single forms
+  for (const char* p : {"probe = 7", "probe = {0.29, 0.1}", "probe = {0, 0.1}"}) {
+    ASSERT_EQ(run_text(scene_text("") + "s:run{ t_end = 0.001, " + p + " }\n"), "") << p;
+    column_of(csv, "probe.sde_force");
+  }
+  ASSERT_EQ(run_text(scene_text("") + "s:run{ t_end = 0.001, probe = {12, 40} }\n"), "");
+  column_of(csv, "probe2.sde_force");
+  EXPECT_EQ(run_text(scene_text("") + "local sim = s:start{ out = '" + (temp_dir() / "out").string() +
+                     "' }\nsim:run_to(0.002)\nlocal p = sim:pulley('driver')\n"
+                     "assert(p.contact_arc > 0.25 and p.contact_arc < 0.35, p.contact_arc)\n"
+                     "assert(math.abs(p.slip_arc + p.stick_arc - p.contact_arc) < 1e-12)\n"),
+            "");
+}
+
+TEST(LuaApi, BadProbesAndSnapshotsAreRejectedWithFileLine) {
+  expect_error(scene_text("") + "s:run{ t_end = 0.01, probe = {0, 0} }\n", "scene.lua:8:",
+               {"run.probe[2]", "element 0 is probed already", "{0.0, 0.1}"});
+  expect_error(scene_text("") + "s:run{ t_end = 0.01, probe = {3, 60} }\n", "scene.lua:8:",
+               {"probe", "0..59", "60"});
+  expect_error(scene_text("") + "s:run{ t_end = 0.01, snapshots = { time = {0.005} } }\n", "scene.lua:8:",
+               {"unknown key 'time'", "times"});
+  expect_error(scene_text("") + "s:run{ t_end = 0.01, snapshots = { times = {0.005, 0.002} } }\n", "scene.lua:8:",
+               {"run.snapshots.times[2]", "increase", "0.002"});
+  expect_error(scene_text("") + "s:run{ t_end = 0.01, snapshots = { times = {0.02} } }\n", "scene.lua:8:",
+               {"run.snapshots.times[1]", "t_end", "0.02"});
+  expect_error(scene_text("") + "s:run{ t_end = 0.01, snapshots = { every = -1 } }\n", "scene.lua:8:",
+               {"run.snapshots.every", "> 0"});
+  expect_error(scene_text("") + "s:run{ t_end = 0.01, snapshots = {} }\n", "scene.lua:8:",
+               {"run.snapshots", "times", "every"});
 }
 
 TEST(LuaApi, BadEventsAreRejectedWithFileLine) {
@@ -271,7 +339,8 @@ TEST(LuaApi, PaperDryScriptWritesTheTimeSeries) {
   }
   ASSERT_EQ(rows.size(), 101u);
   for (size_t k = 0; k < rows.size(); ++k) EXPECT_NEAR(rows[k][0], 1e-3 * static_cast<double>(k), 1e-12);
-  const double w1 = rows.back()[1], w2 = rows.back()[5];  // driver.omega, driven.omega
+  const double w1 = rows.back()[column_of(out / "timeseries.csv", "driver.omega")];
+  const double w2 = rows.back()[column_of(out / "timeseries.csv", "driven.omega")];
   const double I = 0.05 + 0.096 * 1.2083 * 0.1 * 0.1, k = 70.0 / (700 * 2 * M_PI / 60), a = 70.0 / 0.3;
   const double lossless = -(a / k) * (0.1 - I / k * (1 - std::exp(-k * 0.1 / I)));
   EXPECT_NEAR(lossless, -13.37, 0.01);
