@@ -80,7 +80,8 @@ void write_parameters(const Scene& sc, const RunSettings& rs, const std::string&
   row("route.length", sc.route.length, "m", "pitch-line length");
   for (size_t k = 0; k < rs.probes.size(); ++k) {
     const std::string name = rs.probes.size() == 1 ? std::string("probe") : "probe" + std::to_string(k + 1);
-    row(name + ".element", rs.probes[k], "", "a selected element; " + name + ".sde_force is its left SDE");
+    f << name << ".element," << rs.probes[k] << ",,run,"
+      << csv_text("a selected element; " + name + ".sde_force is its left SDE") << '\n';
   }
   // the run's settings (source "run")
   f << "run.integrator," << csv_text(rs.integrator) << ",,run,\n";
