@@ -1,35 +1,86 @@
 #!/usr/bin/env bash
-# Rebuilds the pictures of media/ from the paper's scripts (run from the repository root after
-# building; about five minutes). The main runs' own frames give the tension (dry) and friction
-# (half-wet) pictures; two variants of the scripts, with their frames block replaced, give a
-# normal-force and a slip-velocity picture (t_start = t_end: a single frame).
+# Rebuilds the pictures of media/ from the paper's three scripts, after building
+# (`bash scripts/setup.sh build`); idempotent (the same code gives the same files).
+#
+#   bash media/make_media.sh          everything (about five minutes)
+#   bash media/make_media.sh paper    only the paper's figures, media/paper/figNN.png, and the
+#                                     measured values in docs/paper.md (about a minute)
+#
+# The paper's figures: each script is run once, then `beltsim plot` draws the columns of one paper
+# figure per PNG, and media/paper_values.py measures the points docs/paper.md compares with the
+# paper and rewrites that page's generated tables.
+# The other pictures: the main runs' own frames give the tension (dry) and friction (half-wet)
+# pictures; two variants of the scripts, with their frames block replaced, give a normal-force and
+# a slip-velocity picture (t_start = t_end: a single frame).
 set -euo pipefail
+cd "$(dirname "${BASH_SOURCE[0]}")/.."
 b=${BELTSIM:-build/beltsim}
+what=${1:-all}
+case "$what" in
+  all|paper) ;;
+  *) echo "usage: bash media/make_media.sh [all|paper]" >&2; exit 2 ;;
+esac
+[ -x "$b" ] || { echo "make_media: $b not found: build first (bash scripts/setup.sh build)" >&2; exit 1; }
 tmp=$(mktemp -d)
-"$b" run scripts/paper_dry.lua --out "$tmp/dry" >/dev/null
-"$b" run scripts/paper_wet.lua --out "$tmp/wet" >/dev/null
-cp "$tmp/dry/frames/frame_00300.png" media/dry_tension_1.0s.png
-cp "$tmp/wet/frames/frame_00180.png" media/wet_friction_0.6s.png
-cp "$tmp/wet/frames/frame_00090.png" media/wet_friction_0.3s.png
-"$b" run scripts/automotive_wet.lua --out "$tmp/auto" >/dev/null
-cp "$tmp/auto/frames/frame_00150.png" media/automotive_slip_0.5s.png
-variant() {  # script, out, frames table
-  awk -v f="$3" '/^  frames = \{/ {skip = 1; print "  frames = " f ","; next}
-                 skip && /^  \},/ {skip = 0; next} !skip' "$1" > "$tmp/variant.lua"
-  "$b" run "$tmp/variant.lua" --out "$2" >/dev/null
+trap 'rm -rf "$tmp"' EXIT
+export BELTSIM_TERM_IMAGES=off
+
+# the three runs (the out folders are named after the scripts: the plots' titles name the run)
+frames=()
+[ "$what" = paper ] && frames=(--no-frames)
+for s in paper_dry paper_wet automotive_wet; do
+  "$b" run "scripts/$s.lua" --out "$tmp/$s" "${frames[@]}" >/dev/null
+done
+
+# --- the paper's figures: one PNG per figure, the quantities its caption names -------------------
+mkdir -p media/paper
+fig() {  # figure number, run, columns...
+  local n=$1 run=$2
+  shift 2
+  "$b" plot "$tmp/$run/timeseries.csv" "$@" --out "media/paper/fig$n.png" >/dev/null
 }
-variant scripts/paper_dry.lua "$tmp/dryn" \
-  '{ t_start = 1.0, size = {1280, 720}, quantity = "normal", range = {0, 250}, magnify = 10, png = true }'
-cp "$tmp/dryn/frames/frame_00000.png" media/dry_normal_1.0s.png
-variant scripts/paper_wet.lua "$tmp/wets" \
-  '{ t_start = 0.6, size = {1280, 720}, quantity = "slip", range = {-5, 5}, magnify = 10, png = true }'
-cp "$tmp/wets/frames/frame_00000.png" media/wet_slip_0.6s.png
-# a short clip: the half-wet run from 0.15 to 0.45 s of simulated time (video 1.5 to 4.5 s),
-# 640x360, and the same as a GIF (the README shows it inline)
-ffmpeg -v error -y -ss 1.5 -t 3 -i "$tmp/wet/paper_wet.mp4" -vf scale=640:360 -c:v libx264 -preset slow -crf 28 \
-  -pix_fmt yuv420p -colorspace bt709 -color_primaries bt709 -color_trc bt709 -movflags +faststart media/wet_clip.mp4
-ffmpeg -v error -y -i media/wet_clip.mp4 \
-  -vf "fps=10,scale=480:-1:flags=lanczos,split[a][b];[a]palettegen=max_colors=64[p];[b][p]paletteuse=dither=none" \
-  media/wet_clip.gif
-rm -rf "$tmp"
-ls -la media
+# dry belt (§3, Figs 8-13)
+fig 08 paper_dry driver.omega driven.omega
+fig 09 paper_dry driver.torque driven.torque
+fig 10 paper_dry probe.sde_force
+fig 11 paper_dry probe.normal_force
+fig 12 paper_dry probe.friction_force
+fig 13 paper_dry probe.slip_velocity
+# half of the belt wet (§3, Figs 15-18)
+fig 15 paper_wet driver.omega driven.omega
+fig 16 paper_wet driver.torque driven.torque
+fig 17 paper_wet probe.friction_force
+fig 18 paper_wet probe.slip_velocity
+# the automotive drive, 30 % wet (§4, Figs 20-23)
+fig 20 automotive_wet crankshaft.omega alternator.omega pump.omega tensioner.omega
+fig 21 automotive_wet crankshaft.torque alternator.torque pump.torque tensioner.torque
+fig 22 automotive_wet probe.friction_force
+fig 23 automotive_wet probe.sde_force
+python3 media/paper_values.py "$tmp" docs/paper.md
+
+if [ "$what" = all ]; then
+  cp "$tmp/paper_dry/frames/frame_00300.png" media/dry_tension_1.0s.png
+  cp "$tmp/paper_wet/frames/frame_00180.png" media/wet_friction_0.6s.png
+  cp "$tmp/paper_wet/frames/frame_00090.png" media/wet_friction_0.3s.png
+  cp "$tmp/automotive_wet/frames/frame_00150.png" media/automotive_slip_0.5s.png
+  variant() {  # script, out, frames table
+    awk -v f="$3" '/^  frames = \{/ {skip = 1; print "  frames = " f ","; next}
+                   skip && /^  \},/ {skip = 0; next} !skip' "$1" > "$tmp/variant.lua"
+    "$b" run "$tmp/variant.lua" --out "$2" >/dev/null
+  }
+  variant scripts/paper_dry.lua "$tmp/dryn" \
+    '{ t_start = 1.0, size = {1280, 720}, quantity = "normal", range = {0, 250}, magnify = 10, png = true }'
+  cp "$tmp/dryn/frames/frame_00000.png" media/dry_normal_1.0s.png
+  variant scripts/paper_wet.lua "$tmp/wets" \
+    '{ t_start = 0.6, size = {1280, 720}, quantity = "slip", range = {-5, 5}, magnify = 10, png = true }'
+  cp "$tmp/wets/frames/frame_00000.png" media/wet_slip_0.6s.png
+  # a short clip: the half-wet run from 0.15 to 0.45 s of simulated time (video 1.5 to 4.5 s),
+  # 640x360, and the same as a GIF (the README shows it inline)
+  ffmpeg -v error -y -ss 1.5 -t 3 -i "$tmp/paper_wet/paper_wet.mp4" -vf scale=640:360 -c:v libx264 -preset slow \
+    -crf 28 -pix_fmt yuv420p -colorspace bt709 -color_primaries bt709 -color_trc bt709 -movflags +faststart \
+    media/wet_clip.mp4
+  ffmpeg -v error -y -i media/wet_clip.mp4 \
+    -vf "fps=10,scale=480:-1:flags=lanczos,split[a][b];[a]palettegen=max_colors=64[p];[b][p]paletteuse=dither=none" \
+    media/wet_clip.gif
+fi
+ls -la media media/paper
