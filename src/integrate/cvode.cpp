@@ -37,6 +37,7 @@ struct Session {
   // an exception of the system (a law's code failed): kept here, since it must not unwind
   // through CVODE's C frames, and thrown again when CVode() returns
   std::exception_ptr error;
+  Warnings warnings;              // the fallbacks, counted as they happen (not reset by CVodeReInit)
 };
 
 int rhs_cb(sunrealtype t, N_Vector y, N_Vector ydot, void* user) {
@@ -50,7 +51,10 @@ int rhs_cb(sunrealtype t, N_Vector y, N_Vector ydot, void* user) {
     return -1;  // unrecoverable: CVode returns at once
   }
   for (int k = 0, n = s.sys->size(); k < n; ++k)
-    if (!std::isfinite(dy[k])) return 1;  // recoverable: CVODE retries with a smaller step
+    if (!std::isfinite(dy[k])) {
+      s.warnings.add(WarningKind::cvode_nonfinite_rhs, t);
+      return 1;  // recoverable: CVODE retries with a smaller step
+    }
   return 0;
 }
 
@@ -92,7 +96,6 @@ void add_counters(void* mem, WorkCounters& w) {
   CVodeGetNumNonlinSolvIters(mem, &nni);
   w.steps += steps;
   w.rejected += etf + ncf;
-  w.failed_steps += ncf;  // CVODE does not say when the first was
   w.rhs += nfe + nfels;
   w.jacobians += nje;
   w.factorizations += nsetups;
@@ -180,7 +183,12 @@ class CvodeIntegrator final : public Integrator {
       tstop_ = t_land;
     }
     double t_ret = t_;
+    long ncf_before = 0, ncf_after = 0;
+    CVodeGetNumNonlinSolvConvFails(cv_.mem, &ncf_before);
     const int flag = CVode(cv_.mem, t_land, cv_.y, &t_ret, CV_ONE_STEP);
+    // convergence failures of this step, at the time it started from (CVODE gives no other)
+    CVodeGetNumNonlinSolvConvFails(cv_.mem, &ncf_after);
+    ses_.warnings.add(WarningKind::cvode_convergence, t_, ncf_after - ncf_before);
     if (ses_.error) std::rethrow_exception(std::exchange(ses_.error, nullptr));
     if (flag < 0)
       throw DivergenceError(t_, "cvode stopped at t = " + fmt_time(t_) + " s: " + CVodeGetReturnFlagName(flag) +
@@ -220,6 +228,7 @@ class CvodeIntegrator final : public Integrator {
   WorkCounters work() const override {
     WorkCounters w = ses_.done;
     if (cv_.mem) add_counters(cv_.mem, w);
+    w.warnings = ses_.warnings;
     return w;
   }
 

@@ -46,11 +46,13 @@ namespace {
 //          on a mode it cannot resolve; kFloorSteps of them in a row (2e-9 s at t < 1 s) is a
 //          run that will not get anywhere.
 //   Newton: implicit iterations that did not converge, in a row (an accepted step resets the
-//          count). Those runs had at most 1 in a row; each halves the step, so kFailedInARow
-//          is a step halved far past any useful size without the iteration recovering.
+//          count). Those runs had at most 1 in a row. Each failure cuts the step to a fifth
+//          (StepController::propose's largest shrink), so kFailedInARow = 10 is a step 1e7 times
+//          shorter without the iteration recovering; the former 60 could never be reached, as
+//          the collapse guard below stops a step of at most 1 ms after 17 cuts at the latest.
 constexpr double kFloorUlps = 1024;
 constexpr long kFloorSteps = 10000;
-constexpr long kFailedInARow = 60;
+constexpr long kFailedInARow = 10;
 constexpr const char* kSuggestion =
     "try an implicit integrator (esdirk32, or cvode), a looser rtol or atol, or more damping of that component";
 
@@ -101,14 +103,15 @@ class OneStep final : public Integrator {
         sys_.counters.rejected++;
         if (!ok) {
           cap_ = 0.5 * h;
-          if (sys_.counters.failed_steps++ == 0) sys_.counters.first_failed_step = t_;
-          if (++failed_in_a_row_ >= kFailedInARow)
-            throw DivergenceError(t_, "no progress at t = " + fmt_time(t_) + " s: the implicit iteration failed " +
-                                          std::to_string(failed_in_a_row_) + " times in a row (step size now " +
-                                          fmt_time(0.5 * h) + " s); the largest error is in " +
-                                          sys_.describe(worst) + "; " + kSuggestion);
+          sys_.counters.warnings.add(WarningKind::failed_step, t_);
+          ++failed_in_a_row_;
         }
         h_ = ctl_.propose(h, ok ? e : 1e300);
+        if (!ok && failed_in_a_row_ >= kFailedInARow)
+          throw DivergenceError(t_, "no progress at t = " + fmt_time(t_) + " s: the implicit iteration failed " +
+                                        std::to_string(failed_in_a_row_) + " times in a row (step size now " +
+                                        fmt_time(h_) + " s); the largest error is in " + sys_.describe(worst) + "; " +
+                                        kSuggestion);
         if (!(h_ >= 16 * ulp))
           throw DivergenceError(t_, "the step size collapsed to " + fmt_time(h_) + " s at t = " + fmt_time(t_) +
                                         " s; the largest error is in " + sys_.describe(worst) + "; " + kSuggestion);
@@ -166,10 +169,12 @@ class OneStep final : public Integrator {
     for (double v : {t_, t_prev_, h_, h_used_, cap_}) num(v);
     o << started_ << '\n';
     vec(y_), vec(f_), vec(y_prev_), vec(f_prev_);
+    // the one kind of warning a one-step method counts (checkpoint format 2)
     const WorkCounters& w = sys_.counters;
+    const WarningStat& failed = w.warnings[WarningKind::failed_step];
     o << w.steps << ' ' << w.rejected << ' ' << w.rhs << ' ' << w.jacobians << ' ' << w.factorizations << ' '
-      << w.solves << ' ' << w.failed_steps << '\n';
-    num(w.first_failed_step);
+      << w.solves << ' ' << failed.count << '\n';
+    num(failed.first_t);
   }
   void load(std::istream& in) override {
     std::string tag, nm;
@@ -192,8 +197,9 @@ class OneStep final : public Integrator {
     y_.resize(sys_.size());
     vec(y_), vec(f_), vec(y_prev_), vec(f_prev_);
     WorkCounters& w = sys_.counters;
-    in >> w.steps >> w.rejected >> w.rhs >> w.jacobians >> w.factorizations >> w.solves >> w.failed_steps;
-    w.first_failed_step = num();
+    WarningStat& failed = w.warnings[WarningKind::failed_step];
+    in >> w.steps >> w.rejected >> w.rhs >> w.jacobians >> w.factorizations >> w.solves >> failed.count;
+    failed.first_t = num();
     if (!in) throw std::runtime_error("checkpoint: the integrator state is cut short");
   }
 

@@ -8,6 +8,8 @@
 
 #include <Eigen/SparseCore>
 
+#include "integrate/warnings.hpp"
+
 namespace beltsim {
 
 struct WorkCounters {
@@ -17,11 +19,9 @@ struct WorkCounters {
   long jacobians = 0;
   long factorizations = 0;
   long solves = 0;       // linear solves (one per implicit stage)
-  // a fallback taken (MuJoCo's warning statistics): steps that could not be taken at all (an
-  // implicit method's iteration did not converge), after which the step size is halved and
-  // capped; how many, and the time of the first
-  long failed_steps = 0;
-  double first_failed_step = -1;  // [s], -1: none
+  // the fallbacks the integrator took (integrate/warnings.hpp): steps that could not be taken,
+  // CVODE's convergence failures and non-finite forces
+  Warnings warnings;
 };
 
 class OdeSystem {

@@ -19,6 +19,7 @@
 
 #include <Eigen/SparseLU>
 
+#include "integrate/warnings.hpp"
 #include "model/forces.hpp"
 #include "model/rhs.hpp"
 #include "model/sparse.hpp"
@@ -557,6 +558,7 @@ Scene build_scene(const SceneDef& d, const std::atomic<bool>* stop) {
   if (!lost.empty() || !(sc.static_residual < kConverged)) {
     lost = attempt(0.1 * b.pitch);
     sc.static_retried = true;
+    notify_warning(WarningKind::static_retry, 0.0);
   }
   if (!lost.empty()) {
     std::ostringstream msg;

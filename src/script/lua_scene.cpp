@@ -699,7 +699,7 @@ int l_scene_run(lua_State* L) {
   }
   if (!error.empty()) fail(L, error);
   if (res.interrupted) ctx->interrupted = true;
-  for (const std::string& n : res.notes) std::fprintf(stderr, "beltsim: note: %s\n", n.c_str());
+  if (!res.warning_summary.empty()) std::fprintf(stderr, "beltsim: %s\n", res.warning_summary.c_str());
 
   lua_newtable(L);
   lua_pushnumber(L, res.t_reached), lua_setfield(L, -2, "t");

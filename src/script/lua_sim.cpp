@@ -501,7 +501,7 @@ int l_close(lua_State* L) {
   const bool was_open = !box->sim->closed();
   guarded(L, "sim:close", [&] { box->sim->close(); });
   if (was_open)
-    for (const std::string& n : box->sim->notes()) std::fprintf(stderr, "beltsim: note: %s\n", n.c_str());
+    if (const std::string w = box->sim->warning_summary(); !w.empty()) std::fprintf(stderr, "beltsim: %s\n", w.c_str());
   box->refs.clear();
   return 0;
 }

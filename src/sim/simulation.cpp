@@ -498,13 +498,13 @@ Simulation::Advance Simulation::run_to(double t, const std::atomic<bool>* stop, 
     explicit Running(bool& b) : r(b) { r = true; }
     ~Running() { r = false; }
   } running(running_);
-  using clock = std::chrono::steady_clock;
-  const auto start = clock::now();
+  const auto steady = [] {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
+  };
+  const std::function<double()> clock = rs_.wall_clock ? rs_.wall_clock : std::function<double()>(steady);
+  const double start = clock();
   Timeline::Progress pr;
-  if (progress)
-    pr = [&](double tt, const WorkCounters& w) {
-      progress(tt, t, w, std::chrono::duration<double>(clock::now() - start).count());
-    };
+  if (progress) pr = [&](double tt, const WorkCounters& w) { progress(tt, t, w, clock() - start); };
   // polled between steps and between outputs: the wall-time limit, and the no-progress watchdog
   // (simulated time per wall second over windows of kRateWindow against the best window so far).
   // The threshold, measured (windows of 1 s) on scripts/paper_dry.lua, paper_wet.lua and
@@ -516,7 +516,7 @@ Simulation::Advance Simulation::run_to(double t, const std::atomic<bool>* stop, 
   Advance a;
   double win_wall = 0, win_t = now();
   const Timeline::Poll poll = [&] {
-    const double wall = std::chrono::duration<double>(clock::now() - start).count();
+    const double wall = clock() - start;
     if (rs_.wall_limit > 0 && wall > rs_.wall_limit) return a.over_wall_limit = true;
     if (wall - win_wall >= kRateWindow) {
       const double tt = tl_->now(), rate = (tt - win_t) / (wall - win_wall);
@@ -539,17 +539,17 @@ Simulation::Advance Simulation::run_to(double t, const std::atomic<bool>* stop, 
     a.t = r.t, a.steps = r.steps, a.wall = r.wall, a.interrupted = r.interrupted;
   } catch (const DivergenceError& e) {
     failed_ = e.what();
-    wall_ += std::chrono::duration<double>(clock::now() - start).count();
+    wall_ += clock() - start;
     close();  // CSV flushed, video finalised so it plays
     throw;
   } catch (const LawError& e) {
     // a law's code failed (a Lua law raised or returned no number): the run cannot go on
     failed_ = e.what();
-    wall_ += std::chrono::duration<double>(clock::now() - start).count();
+    wall_ += clock() - start;
     close();
     throw;
   } catch (...) {
-    wall_ += std::chrono::duration<double>(clock::now() - start).count();
+    wall_ += clock() - start;
     csv_->flush();
     throw;
   }
@@ -558,16 +558,36 @@ Simulation::Advance Simulation::run_to(double t, const std::atomic<bool>* stop, 
   return a;
 }
 
+Warnings Simulation::warnings() const {
+  Warnings w = integ_->work().warnings;
+  if (scene_.static_retried) {  // counted by the scene build, at the start
+    Warnings s;
+    s[WarningKind::static_retry] = WarningStat{1, 0.0};
+    w.merge(s);
+  }
+  return w;
+}
+
 std::vector<std::string> Simulation::notes() const {
   std::vector<std::string> n;
-  if (scene_.static_retried)
-    n.push_back("the static start needed its trust-region retry (the plain iteration drifted along the belt)");
-  const WorkCounters w = integ_->work();
-  if (w.failed_steps > 0)
-    n.push_back(std::to_string(w.failed_steps) + " steps could not be taken (the implicit iteration did not converge" +
-                (w.first_failed_step >= 0 ? "; first at t = " + num(w.first_failed_step) + " s" : std::string()) +
-                ") and were retried shorter");
+  const Warnings w = warnings();
+  for (const WarningKindInfo& i : warning_kinds())
+    if (w[i.kind].count > 0) n.push_back(describe(i.kind, w[i.kind]));
   return n;
+}
+
+std::string Simulation::warning_summary() const {
+  const Warnings w = warnings();
+  std::string s;
+  for (const WarningKindInfo& i : warning_kinds()) {
+    const WarningStat& st = w[i.kind];
+    if (st.count == 0) continue;
+    s += (s.empty() ? "" : ", ") + std::string(i.name) + " " + std::to_string(st.count) + (st.count == 1 ? " time" : " times") +
+         " (first at t = " + num(st.first_t) + " s)";
+  }
+  if (s.empty()) return s;
+  return "warnings: " + s + "; these fallbacks are described in " +
+         (std::filesystem::path(rs_.out_dir) / "parameters.csv").string() + " (warning.*)";
 }
 
 void Simulation::close() {
@@ -576,10 +596,13 @@ void Simulation::close() {
   if (sink_) sink_->finish();  // first: a full disk below must not leave the video unfinished
   if (csv_) {  // the fallbacks, beside the parameters they qualify (whole rows, one write)
     std::ostringstream f;
-    const WorkCounters w = integ_->work();
-    f << "warning.static_retried," << (scene_.static_retried ? 1 : 0) << ",,derived,the static start's trust-region retry\n"
-      << "warning.failed_steps," << w.failed_steps << ",,derived,steps whose implicit iteration did not converge\n";
-    if (w.first_failed_step >= 0) f << "warning.first_failed_step," << csv_number(w.first_failed_step) << ",s,derived,\n";
+    const Warnings w = warnings();
+    for (const WarningKindInfo& i : warning_kinds()) {
+      const WarningStat& s = w[i.kind];
+      f << "warning." << i.name << ".count," << s.count << ",,derived," << csv_text(i.description) << '\n'
+        << "warning." << i.name << ".first_t," << (s.count > 0 ? csv_number(s.first_t) : std::string()) << ",s,derived,"
+        << "simulated time it first fired (empty: never)\n";
+    }
     RowFile((std::filesystem::path(rs_.out_dir) / "parameters.csv").string(), true).write(f.str());
   }
 }
@@ -705,6 +728,7 @@ RunResult run(const Scene& sc, const RunSettings& rs, const std::atomic<bool>* s
   res.frames = sim.frames_written();
   res.samples = sim.samples();
   res.notes = sim.notes();
+  res.warning_summary = sim.warning_summary();
   for (int j = 0; j < sc.model.n_p(); ++j) res.omega.push_back(sim.pulley(j).omega);
   return res;
 }

@@ -56,6 +56,10 @@ struct RunSettings {
   // [s] wall time after which an integration call (a batch run, sim:run_to) stops at the last
   // finished step or output, Advance::over_wall_limit set (0: no limit); max_wall in Lua
   double wall_limit = 0;
+  // [s] the clock run_to measures its wall time with (the wall-time limit, the no-progress
+  // watchdog, Advance::wall); empty: std::chrono::steady_clock. Tests set a fake one, so that a
+  // collapse of the rate happens at a known moment.
+  std::function<double()> wall_clock;
   bool keep_samples = false;          // keep the rows of timeseries.csv in memory (samples())
   bool allow_large = false;           // past the output limits (check_volume)
   std::vector<MuEvent> mu_events;     // in any order
@@ -80,6 +84,7 @@ struct RunResult {
   std::vector<std::vector<double>> samples;  // with keep_samples: the CSV rows
   long frames = 0;                    // frames rendered
   std::vector<std::string> notes;     // Simulation::notes()
+  std::string warning_summary;        // Simulation::warning_summary()
 };
 
 class Simulation {
@@ -111,9 +116,15 @@ class Simulation {
   // but not advanced
   void close();
   bool closed() const { return closed_; }
-  // the fallbacks taken so far (the static start's trust-region retry, steps that could not be
-  // taken), one line each for the user; close() also lists them in parameters.csv
+  // the fallbacks taken so far (integrate/warnings.hpp: the static start's trust-region retry,
+  // steps that could not be taken, CVODE's failures): counts and first times; close() lists every
+  // kind in parameters.csv (warning.<name>.count and .first_t)
+  Warnings warnings() const;
+  // one line per kind that fired: its name, count, first time and description
   std::vector<std::string> notes() const;
+  // the one line a run prints when any fired ("warnings: failed_step 15 times (first at t =
+  // 0.036 s), ...; ... parameters.csv"), "" when none did
+  std::string warning_summary() const;
 
   // ---- reading (at now(), or at the time a when-condition is evaluated) ----------------------
   double now() const;

@@ -461,6 +461,29 @@ class ConsoleTest(unittest.TestCase):
         self.assertIn("boom", err)
         self.assertIn("after\n", out, err)
 
+    # 16
+    def test_max_wall(self):
+        # --max-wall S limits each integration call of the console: the call stops at the last
+        # finished step with an error naming the limit and the time reached; the session goes on
+        r = self.piped(["sim:advance(10)", 'print("after", sim.t)'], flags=["--max-wall", "0.2"])
+        out, err = r.stdout.decode(), r.stderr.decode()
+        self.assertEqual(r.returncode, 1, out + err)  # a command failed
+        m = re.search(r"stopped at its wall-time limit \(max_wall = 0\.2 s\) at t = ([0-9.e+-]+) s of 10 s", err)
+        self.assertTrue(m, err)
+        t = float(m.group(1))
+        self.assertGreater(t, 0.0, err)
+        self.assertLess(t, 10.0, err)
+        after = re.search(r"after\t([0-9.e+-]+)\n", out)
+        self.assertTrue(after, out + err)
+        self.assertAlmostEqual(float(after.group(1)), t, delta=1e-8 * t)  # the message has 10 digits
+        # the CSV's rows are whole and reach no further than the time reached
+        with open(os.path.join(self.tmp, "out", "timeseries.csv")) as f:
+            rows = f.read().splitlines()[1:]
+        self.assertTrue(rows, "no samples")
+        width = len(rows[0].split(","))
+        self.assertTrue(all(len(r.split(",")) == width for r in rows))
+        self.assertLessEqual(float(rows[-1].split(",")[0]), t)
+
 
 def main():
     global BELTSIM

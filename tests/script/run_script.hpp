@@ -6,6 +6,7 @@
 #include <string>
 
 #include "script/interpreter.hpp"
+#include "support/warning_guard.hpp"  // a run's warnings fail the test unless expect_warnings declares them
 
 namespace beltsim::script::test {
 

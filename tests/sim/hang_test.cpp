@@ -18,6 +18,7 @@
 #include "scene/presets.hpp"
 #include "scene/scene.hpp"
 #include "sim/simulation.hpp"
+#include "support/warning_guard.hpp"
 
 namespace beltsim {
 namespace {
@@ -58,6 +59,37 @@ TEST(NoHang, StepSizeAtTheRoundingFloorStops) {
   EXPECT_LT(seconds_since(t0), 5.0);
 }
 
+// an implicit method whose iteration can never converge (the system offers no Jacobian, as a
+// singular matrix would): each failure cuts the step to a fifth, and the tenth in a row stops
+// the run with the time, the component and a suggestion, before the step size collapses
+TEST(NoHang, ImplicitFailuresInARowStop) {
+  test::expect_warnings({WarningKind::failed_step});
+  struct NoJacobian : OdeSystem {
+    int size() const override { return 1; }
+    void rhs(double t, const double*, double* dy) override { dy[0] = std::cos(t); }
+    std::string describe(int) const override { return "the test component"; }
+  } sys;
+  auto integ = make_integrator("esdirk32", sys, Tolerances{1e-6, 1e-6});
+  Timeline tl(*integ);
+  Eigen::VectorXd y0(1);
+  y0[0] = 1;
+  tl.start(0.0, y0);
+  try {
+    tl.run_to(1.0);
+    FAIL() << "no error";
+  } catch (const DivergenceError& e) {
+    const std::string m = e.what();
+    EXPECT_NE(m.find("no progress at t = 0 s: the implicit iteration failed 10 times in a row"), std::string::npos)
+        << m;
+    EXPECT_NE(m.find("the largest error is in the test component"), std::string::npos) << m;
+    EXPECT_NE(m.find("try an implicit integrator"), std::string::npos) << m;
+    EXPECT_EQ(e.t, 0.0);
+  }
+  const WarningStat failed = integ->work().warnings[WarningKind::failed_step];
+  EXPECT_EQ(failed.count, 10);
+  EXPECT_EQ(failed.first_t, 0.0);
+}
+
 const Scene& dry() {
   static const Scene sc = build_scene(presets::paper_dry());
   return sc;
@@ -71,6 +103,8 @@ fs::path temp(const std::string& name) {
 
 // a 1 s run with a wall-time limit of 0.05 s stops at the last finished step, outputs closed
 TEST(NoHang, WallLimitStopsABatchRun) {
+  // the paper's dry drive has failed implicit steps from 0.036 s, if the run gets that far
+  test::expect_warnings({WarningKind::failed_step});
   RunSettings rs;
   rs.t_end = 1.0;
   rs.sample_dt = 1e-4;
@@ -92,7 +126,41 @@ TEST(NoHang, WallLimitStopsABatchRun) {
   EXPECT_LE(std::stod(last), r.t_reached);
   std::ifstream p(r.parameters_path);
   const std::string params((std::istreambuf_iterator<char>(p)), std::istreambuf_iterator<char>());
-  EXPECT_NE(params.find("warning.failed_steps"), std::string::npos);
+  EXPECT_NE(params.find("warning.failed_step.count"), std::string::npos);
+}
+
+// the rate watchdog on a fake clock: 0.01 s of wall time per poll while the run goes well, then
+// 1e12 s per poll (a run that has all but stopped): the first 10 s window after the change sees
+// a rate far below 1e-9 of the best, and the run stops with the time, the component and a
+// suggestion, its outputs closed
+TEST(NoHang, RateCollapseStops) {
+  test::expect_warnings({WarningKind::failed_step});  // the paper's drive has some (README, Outputs)
+  RunSettings rs;
+  rs.sample_dt = 1e-4;
+  rs.out_dir = temp("rate").string();
+  long polls = 0;
+  double now = 0;
+  rs.wall_clock = [&] {
+    now += ++polls < 2000 ? 0.01 : 1e12;
+    return now;
+  };
+  Simulation s(dry(), rs);
+  try {
+    s.run_to(1.0);
+    FAIL() << "no error after " << polls << " polls, at t = " << s.now() << " s";
+  } catch (const DivergenceError& e) {
+    const std::string m = e.what();
+    EXPECT_NE(m.find("no progress at t = "), std::string::npos) << m;
+    EXPECT_NE(m.find("against"), std::string::npos) << m;
+    EXPECT_TRUE(m.find("the largest error is in element ") != std::string::npos ||
+                m.find("the largest error is in pulley '") != std::string::npos)
+        << m;
+    EXPECT_NE(m.find("try an implicit integrator"), std::string::npos) << m;
+    EXPECT_GT(e.t, 0.0);
+    EXPECT_LT(e.t, 1.0);
+    EXPECT_GE(polls, 2000);
+  }
+  EXPECT_TRUE(s.closed());
 }
 
 // the stop flag between the outputs of one step: a stream at 1e-12 s holds thousands of outputs

@@ -15,6 +15,7 @@
 #include "scene/presets.hpp"
 #include "scene/scene.hpp"
 #include "sim/simulation.hpp"
+#include "support/warning_guard.hpp"
 
 namespace beltsim {
 namespace {
@@ -75,6 +76,9 @@ bool same_bits(const Eigen::VectorXd& a, const Eigen::VectorXd& b) {
 // state bit for bit, for a one-step method and for CVODE; the pauses fall inside steps and off
 // the sample grid
 TEST(Live, PausingChangesNothing) {
+  // the paper's dry drive has failed implicit steps from 0.036 s (esdirk32) and CVODE
+  // convergence failures from 0.018 s (README, Outputs)
+  test::expect_warnings({WarningKind::failed_step, WarningKind::cvode_convergence});
   for (const std::string integ : {"esdirk32", "rkf45", "cvode"}) {
     // rkf45 is stability-limited (steps of ~1e-9 s): a short stretch; CVODE at rtol 1e-4 diverges
     // near 0.054 s (README, Integration): stop before
@@ -116,6 +120,9 @@ TEST(Live, PausingChangesNothing) {
 // a change at a pause: the samples up to the pause are those of the unchanged run, the ones after
 // differ, and events.csv has the change at the pause time
 TEST(Live, ChangeAtAPauseAppliesFromThen) {
+  // the paper's dry drive has failed implicit steps from 0.036 s (esdirk32) and CVODE
+  // convergence failures from 0.018 s (README, Outputs)
+  test::expect_warnings({WarningKind::failed_step});
   const fs::path a = temp("changed"), b = temp("unchanged");
   const double pause = 0.0205;  // off the sample grid
   {
@@ -203,6 +210,9 @@ TEST(Live, EveryAndWhenAtTheirTimes) {
 // its state bit for bit; the run's outputs are continued in place (the CSV cut back to the rows
 // written when the checkpoint was taken); changed laws and μ and pending events are restored
 TEST(Live, CheckpointResumesBitForBit) {
+  // the paper's dry drive has failed implicit steps from 0.036 s (esdirk32) and CVODE
+  // convergence failures from 0.018 s (README, Outputs)
+  test::expect_warnings({WarningKind::failed_step});
   SceneDef d = presets::paper_dry();
   const Scene sc = build_scene(d);
   std::vector<double> mu(sc.model.n_el(), std::nan(""));
@@ -263,6 +273,9 @@ TEST(Live, CheckpointResumesBitForBit) {
 // (the differences' own error); recomputing the friction from the interpolated state instead
 // gave errors up to 150 N·m (model/observables.hpp, blend_contact), so 2 N·m separates the two.
 TEST(Live, SampledBeltTorqueTurnsThePulley) {
+  // the paper's dry drive has failed implicit steps from 0.036 s (esdirk32) and CVODE
+  // convergence failures from 0.018 s (README, Outputs)
+  test::expect_warnings({WarningKind::failed_step});
   RunSettings rs = settings("esdirk32", temp("belt_torque"));
   rs.keep_samples = true;
   rs.t_end = 0.29;
@@ -394,9 +407,10 @@ TEST(Live, IntervalMeansAreExactFromTheSteps) {
 }
 
 // the fallbacks are counted and shown: the static start's retry (needed at 120 elements on the
-// paper's drive, not at 60: README, Integration) and steps whose iteration failed, in notes() and
-// in parameters.csv
+// paper's drive, not at 60: README, Integration) and steps whose iteration failed, with their
+// counts and first times, in notes(), the summary line and parameters.csv
 TEST(Live, FallbacksAreCountedAndShown) {
+  test::expect_warnings({WarningKind::static_retry, WarningKind::failed_step});
   EXPECT_FALSE(dry().static_retried);
   SceneDef d = presets::paper_dry();
   d.belt.elements = 120;
@@ -406,12 +420,29 @@ TEST(Live, FallbacksAreCountedAndShown) {
   s.run_to(0.05);
   const std::vector<std::string> notes = s.notes();
   ASSERT_FALSE(notes.empty());
-  EXPECT_NE(notes[0].find("trust-region retry"), std::string::npos) << notes[0];
-  const long failed = s.stats().failed_steps;
+  EXPECT_NE(notes[0].find("static_retry: 1 time, first at t = 0 s (the static start needed its trust-region retry"),
+            std::string::npos)
+      << notes[0];
+  const WarningStat failed = s.warnings()[WarningKind::failed_step];
+  ASSERT_GT(failed.count, 0) << "the paper's drive at 80 elements had failed steps in its first 0.05 s";
+  EXPECT_GT(failed.first_t, 0.0);
+  EXPECT_LE(failed.first_t, 0.05);
+  const std::string summary = s.warning_summary();
+  EXPECT_NE(summary.find("static_retry 1 time (first at t = 0 s)"), std::string::npos) << summary;
+  EXPECT_NE(summary.find("failed_step " + std::to_string(failed.count) + (failed.count == 1 ? " time" : " times")),
+            std::string::npos)
+      << summary;
   s.close();
   const std::string p = slurp((out / "parameters.csv").string());
-  EXPECT_NE(p.find("warning.static_retried,1"), std::string::npos) << p;
-  EXPECT_NE(p.find("warning.failed_steps," + std::to_string(failed)), std::string::npos) << p;
+  EXPECT_NE(p.find("warning.static_retry.count,1,,"), std::string::npos) << p;
+  EXPECT_NE(p.find("warning.static_retry.first_t,0,s,"), std::string::npos) << p;
+  EXPECT_NE(p.find("warning.failed_step.count," + std::to_string(failed.count) + ",,"), std::string::npos) << p;
+  std::ostringstream first;
+  first.precision(10);
+  first << "warning.failed_step.first_t," << failed.first_t << ",s,";
+  EXPECT_NE(p.find(first.str()), std::string::npos) << p;
+  EXPECT_NE(p.find("warning.cvode_convergence.count,0,,"), std::string::npos) << p;
+  EXPECT_NE(p.find("warning.cvode_convergence.first_t,,s,"), std::string::npos) << p;
 }
 
 // invalid requests name what is wrong

@@ -10,6 +10,7 @@
 #include "plot/wp_plot.hpp"
 #include "scene/presets.hpp"
 #include "sim/work_precision.hpp"
+#include "support/warning_guard.hpp"
 
 namespace beltsim {
 namespace {
@@ -24,6 +25,9 @@ fs::path out_dir(const char* name) {
 // must cut the error by far more than 2x (measured: 1e-2 → 1e-4 cuts the speed error 10x); the
 // bound 2x leaves room for the error control's irregularity.
 TEST(WorkPrecision, ErrorsShrinkWithTheToleranceAndFilesAreWritten) {
+  // the paper's dry drive has failed implicit steps (esdirk32 from 0.036 s; loose tolerances sooner)
+  // and CVODE convergence failures
+  test::expect_warnings({WarningKind::failed_step, WarningKind::cvode_convergence});
   const Scene sc = build_scene(presets::paper_dry());
   WpSettings ws;
   ws.integrators = {"esdirk32", "trbdf2"};
