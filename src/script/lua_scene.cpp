@@ -25,6 +25,7 @@
 #include "script/lua_law.hpp"
 #include "script/lua_sim.hpp"
 #include "script/progress.hpp"
+#include "script/sandbox.hpp"
 
 namespace beltsim::script {
 
@@ -654,6 +655,8 @@ RunSettings read_run_settings(lua_State* L, int idx, const Scene& sc, Context* c
   if (o.integrator) rs.integrator = *o.integrator;
   if (o.rtol) rs.rtol = *o.rtol;
   if (o.max_wall) rs.wall_limit = *o.max_wall;
+  // the files of the run lie where the sandbox lets the script's own files lie
+  if (const std::string r = run_paths_refusal(*ctx, w, rs); !r.empty()) fail(L, r);
   if (progress) *progress = pr;
   return rs;
 }

@@ -22,6 +22,7 @@
 #include "script/lua_law.hpp"
 #include "script/lua_scene.hpp"
 #include "script/progress.hpp"
+#include "script/sandbox.hpp"
 
 namespace beltsim::script {
 
@@ -403,6 +404,7 @@ int l_show(lua_State* L) {
   }
   if (file.empty()) file = "show_" + time_tag(s.now()) + ".png";
   if (std::filesystem::path(file).is_relative()) file = (std::filesystem::path(s.out_dir()) / file).string();
+  if (const std::string r = output_refusal(*box.ctx, "sim:show", file, true); !r.empty()) fail(L, r);
   guarded(L, "sim:show", [&] { render::render_snapshot(s.scene(), fs, s.now(), s.state().data(), s.model(), file, &s.observation());
   });
   box.shows++;
@@ -456,6 +458,7 @@ int l_plot(lua_State* L) {
   }
   if (file.empty()) file = "plot_" + time_tag(s.now()) + ".png";
   if (std::filesystem::path(file).is_relative()) file = (std::filesystem::path(s.out_dir()) / file).string();
+  if (const std::string r = output_refusal(*box.ctx, "sim:plot", file, true); !r.empty()) fail(L, r);
   guarded(L, "sim:plot", [&] { plot::plot_csv(s.csv_path(), columns, from, file); });
   picture(L, box, file);
   lua_pushstring(L, file.c_str());
@@ -469,6 +472,9 @@ int l_save(lua_State* L) {
   std::string path = lua_tostring(L, 2);
   if (std::filesystem::path(path).is_relative() && std::filesystem::path(path).parent_path().empty())
     path = (std::filesystem::path(s.out_dir()) / path).string();
+  if (const std::string r = output_refusal(*static_cast<SimBox*>(lua_touserdata(L, 1))->ctx, "sim:save", path, true);
+      !r.empty())
+    fail(L, r);
   guarded(L, "sim:save", [&] { s.save(path); });
   lua_pushstring(L, path.c_str());
   return 1;
@@ -486,7 +492,13 @@ int l_resume(lua_State* L) {
   }
   std::unique_ptr<Simulation> sim;
   int callbacks = 0;
-  guarded(L, "beltsim.resume", [&] { sim = Simulation::resume(lua_tostring(L, 1), render::make_frame_recorder, &callbacks); });
+  if (const std::string r = output_refusal(*ctx, "beltsim.resume", lua_tostring(L, 1), false); !r.empty()) fail(L, r);
+  // the checkpoint names the outputs it continues: they lie where the sandbox allows too
+  const auto vet = [ctx](const RunSettings& rs) {
+    if (const std::string r = run_paths_refusal(*ctx, "resume", rs); !r.empty()) throw std::invalid_argument(r);
+  };
+  guarded(L, "beltsim.resume",
+          [&] { sim = Simulation::resume(lua_tostring(L, 1), render::make_frame_recorder, &callbacks, vet); });
   if (callbacks > 0)
     std::fprintf(stderr, "beltsim: %s had %d callback(s) (every, when); register them again on the resumed simulation\n",
                  lua_tostring(L, 1), callbacks);

@@ -57,18 +57,26 @@ bool under(const fs::path& p, const fs::path& root) {
 
 std::string out_folder(const Context& c) { return c.overrides.out ? *c.overrides.out : c.default_out; }
 
+// "" when the sandbox allows the access, else why not: a path under the output folder is read and
+// written, one under the script's folder read (and written by beltsim itself: `outputs`)
+std::string refusal(const Context& c, const std::string& what, const std::string& path, bool write, bool outputs) {
+  if (c.trusted) return "";
+  const fs::path p = resolved(path), out = resolved(out_folder(c));
+  if (under(p, out)) return "";
+  const bool has_script = !c.script_dir.empty();
+  const fs::path dir = has_script ? resolved(c.script_dir) : fs::path();
+  if ((!write || outputs) && has_script && under(p, dir)) return "";
+  std::string allowed = (outputs ? "beltsim's outputs under " : "read and write under ") + out.string();
+  if (has_script) allowed += (outputs ? " or " : ", read under ") + dir.string() + " (the script's folder)";
+  return what + ": " + (write ? "writing" : "reading") + " '" + path +
+         "' is not allowed in a scenario script (the sandbox: " + allowed + "); " + kHow;
+}
+
 // raises "file:line: WHAT: reading|writing 'path' is not allowed ..." unless the path is under the
 // output folder (read, write) or the script's folder (read)
 void check_path(lua_State* L, const Context& c, const char* what, const char* path, bool write) {
-  const fs::path p = resolved(path), out = resolved(out_folder(c));
-  if (under(p, out)) return;
-  const bool has_script = !c.script_dir.empty();
-  const fs::path dir = has_script ? resolved(c.script_dir) : fs::path();
-  if (!write && has_script && under(p, dir)) return;
-  std::string allowed = "read and write under " + out.string();
-  if (has_script) allowed += ", read under " + dir.string() + " (the script's folder)";
-  luaL_error(L, "%s: %s '%s' is not allowed in a scenario script (the sandbox: %s); %s", what,
-             write ? "writing" : "reading", path, allowed.c_str(), kHow);
+  const std::string r = refusal(c, what, path, write, false);
+  if (!r.empty()) luaL_error(L, "%s", r.c_str());
 }
 
 Context& ctx_up(lua_State* L) { return *static_cast<Context*>(lua_touserdata(L, lua_upvalueindex(2))); }
@@ -244,6 +252,22 @@ void wrap_global(lua_State* L, Context* ctx, const char* name, lua_CFunction f) 
 }
 
 }  // namespace
+
+std::string output_refusal(const Context& c, const std::string& what, const std::string& path, bool write) {
+  return refusal(c, what, path, write, true);
+}
+
+std::string run_paths_refusal(const Context& c, const std::string& what, const RunSettings& rs) {
+  std::string r = output_refusal(c, what + ".out", rs.out_dir, true);
+  if (r.empty() && rs.frames) {
+    // relative frame paths are taken inside the output folder (Simulation)
+    const auto inside = [&](const std::string& f) { return (fs::path(rs.out_dir) / f).string(); };
+    if (!rs.frames->png_dir.empty()) r = output_refusal(c, what + ".frames.png", inside(rs.frames->png_dir), true);
+    if (r.empty() && !rs.frames->video_path.empty())
+      r = output_refusal(c, what + ".frames.video", inside(rs.frames->video_path), true);
+  }
+  return r;
+}
 
 void open_sandbox(lua_State* L, Context* ctx) {
   const luaL_Reg libs[] = {{LUA_GNAME, luaopen_base},         {LUA_COLIBNAME, luaopen_coroutine},

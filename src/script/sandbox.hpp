@@ -12,6 +12,10 @@
 // --trusted", so a script learns what it may not do and how to allow it.
 #pragma once
 
+#include <string>
+
+#include "sim/simulation.hpp"
+
 struct lua_State;
 
 namespace beltsim::script {
@@ -20,5 +24,15 @@ struct Context;
 
 // the sandboxed libraries; the folders are read from ctx when a file is opened
 void open_sandbox(lua_State* L, Context* ctx);
+
+// The files beltsim itself writes or reads for a script (a run's out and frames paths, sim:save,
+// sim:show{file}, sim:plot{file}; beltsim.resume reads) lie under the output folder or the
+// script's folder, as for io.open. "" when allowed (always with --trusted), else the message:
+// "WHAT: writing 'path' is not allowed in a scenario script (the sandbox: ...); beltsim --trusted
+// allows it".
+std::string output_refusal(const Context& c, const std::string& what, const std::string& path, bool write);
+// the same for every path of a run's settings (out, frames.png, frames.video; relative frame
+// paths are inside out); what: "run", "start", "resume"
+std::string run_paths_refusal(const Context& c, const std::string& what, const RunSettings& rs);
 
 }  // namespace beltsim::script

@@ -173,7 +173,8 @@ void Simulation::save(const std::string& path) const {
   std::filesystem::rename(tmp, path);
 }
 
-std::unique_ptr<Simulation> Simulation::resume(const std::string& path, const FrameSinkFactory& factory, int* callbacks) {
+std::unique_ptr<Simulation> Simulation::resume(const std::string& path, const FrameSinkFactory& factory, int* callbacks,
+                                               const std::function<void(const RunSettings&)>& vet) {
   std::ifstream in(path, std::ios::binary);
   if (!in) throw std::runtime_error("resume: cannot read " + path + ": " + std::strerror(errno));
   std::string magic;
@@ -226,6 +227,7 @@ std::unique_ptr<Simulation> Simulation::resume(const std::string& path, const Fr
   expect(in, "integrator_state");
 
   std::unique_ptr<Simulation> s(new Simulation(sc, rs, false));
+  if (vet) vet(s->rs_);
   s->model_ = std::move(model);
   s->pending_ = std::move(pending);
   s->rows_ = rows;

@@ -179,8 +179,11 @@ class Simulation {
   // continues a saved simulation: its outputs are continued in place (the CSV files truncated to
   // the saved rows; frames numbered on, the video in a new file <name>_resumed_<t>.mp4).
   // callbacks (if not null) receives the number of callbacks the saved simulation had.
+  // vet (if set) sees the saved settings (outputs resolved) before any output is touched, and may
+  // throw to refuse them (a sandboxed script's checkpoint naming files outside its folders).
   static std::unique_ptr<Simulation> resume(const std::string& path, const FrameSinkFactory& factory,
-                                            int* callbacks = nullptr);
+                                            int* callbacks = nullptr,
+                                            const std::function<void(const RunSettings&)>& vet = {});
 
  private:
   Simulation(const Scene& scene, const RunSettings& settings, bool fresh);

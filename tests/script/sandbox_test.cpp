@@ -170,6 +170,70 @@ TEST(Sandbox, SymbolicLinksCannotLeaveTheFolders) {
   fs::remove(link);
 }
 
+// the paths a script gives beltsim itself obey the same folders: a run's out and frame paths,
+// sim:save, sim:show{file}, sim:plot{file} are written under the output folder or the script's
+// folder, beltsim.resume reads from them, and a checkpoint cannot name outputs elsewhere
+TEST(Sandbox, BeltsimsOwnPathsStayInTheFolders) {
+  const fs::path elsewhere = root() / "elsewhere";
+  fs::remove_all(elsewhere);
+  auto refused = [&](const std::string& text, const std::string& what, const std::string& path) {
+    Interpreter lua;  // no --out: the output folder is out/<script> in the working folder
+    const std::string msg = test::run_script(lua, scripts() / "paths.lua", text);
+    expect_has(msg, {"paths.lua:", what + ": writing '" + path + "' is not allowed in a scenario script",
+                     fs::canonical(scripts()).string() + " (the script's folder)", "--trusted"});
+  };
+  const std::string e = elsewhere.string();
+  refused(std::string(kScene) + "s:run{ t_end = 0.001, out = '" + e + "' }\n", "run.out", e);
+  refused(std::string(kScene) + "s:start{ out = '" + e + "' }\n", "start.out", e);
+  refused(std::string(kScene) + "s:start{ out = " + q(scripts() / "r") + ", frames = { video = '" + e + "/v.mp4' } }\n",
+          "start.frames.video", e + "/v.mp4");
+  refused(std::string(kScene) + "s:start{ out = " + q(scripts() / "r") + ", frames = { png = '" + e + "' } }\n",
+          "start.frames.png", e);
+  // a live simulation whose outputs go to a folder beside the script (allowed)
+  const std::string live =
+      std::string(kScene) + "local sim = s:start{ out = " + q(scripts() / "r") + ", progress = false }\n";
+  refused(live + "sim:save('" + e + "/x.chk')\n", "sim:save", e + "/x.chk");
+  const std::string dots = (scripts() / "r" / ".." / ".." / "elsewhere" / "x.chk").string();
+  refused(live + "sim:save('" + dots + "')\n", "sim:save", dots);
+  refused(live + "sim:show{ file = '" + e + "/x.png' }\n", "sim:show", e + "/x.png");
+  refused(live + "sim:plot{ 'driver.omega', file = '" + e + "/x.png' }\n", "sim:plot", e + "/x.png");
+  EXPECT_FALSE(fs::exists(elsewhere));
+  {
+    Interpreter lua;
+    expect_has(test::run_script(lua, scripts() / "paths.lua", "beltsim.resume('/etc/passwd')\n"),
+               {"paths.lua:1: beltsim.resume: reading '/etc/passwd' is not allowed", "--trusted"});
+  }
+  // a checkpoint rewritten (with io.open, in the output folder) to continue its outputs elsewhere
+  {
+    Interpreter lua;
+    const std::string chk = (out() / "x.chk").string();
+    const std::string msg = run(lua, std::string(kScene) +
+                                         "local sim = s:start{ progress = false }\n"
+                                         "sim:advance(0.001)\n"
+                                         "sim:save('" + chk + "')\n"
+                                         "local f = assert(io.open('" + chk + "')) local text = f:read('a') f:close()\n"
+                                         "local old = 'out_dir ' .. #sim:stats().out .. ' ' .. sim:stats().out\n"
+                                         "local i = assert(text:find(old, 1, true), old)\n"
+                                         "text = text:sub(1, i - 1) .. 'out_dir " + std::to_string(e.size()) + " " + e +
+                                         "' .. text:sub(i + #old)\n"
+                                         "f = assert(io.open('" + chk + "', 'w')) f:write(text) f:close()\n"
+                                         "beltsim.resume('" + chk + "')\n");
+    expect_has(msg, {"sandbox.lua:16: beltsim.resume: resume.out: writing '" + e + "' is not allowed", "--trusted"});
+  }
+  EXPECT_FALSE(fs::exists(elsewhere));
+  // --trusted: written where they say
+  {
+    Safety trusted;
+    trusted.trusted = true;
+    Interpreter lua(trusted);
+    fs::create_directories(elsewhere);
+    EXPECT_EQ(test::run_script(lua, scripts() / "paths.lua", live + "sim:save('" + e + "/x.chk')\n"), "");
+    EXPECT_TRUE(fs::exists(elsewhere / "x.chk"));
+  }
+  fs::remove_all(elsewhere);
+  fs::remove_all(scripts() / "r");
+}
+
 TEST(Sandbox, RequireLoadsLuaFilesFromTheScriptsFolder) {
   std::ofstream(scripts() / "helper.lua") << "local calls = (calls or 0) + 1\nreturn { answer = 42 }\n";
   fs::create_directories(scripts() / "lib");
