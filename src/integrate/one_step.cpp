@@ -110,11 +110,11 @@ class OneStep final : public Integrator {
         if (!ok && failed_in_a_row_ >= kFailedInARow)
           throw DivergenceError(t_, "no progress at t = " + fmt_time(t_) + " s: the implicit iteration failed " +
                                         std::to_string(failed_in_a_row_) + " times in a row (step size now " +
-                                        fmt_time(h_) + " s); the largest error is in " + sys_.describe(worst) + "; " +
+                                        fmt_time(h_) + " s); " + largest_error(worst) + "; " +
                                         kSuggestion);
         if (!(h_ >= 16 * ulp))
           throw DivergenceError(t_, "the step size collapsed to " + fmt_time(h_) + " s at t = " + fmt_time(t_) +
-                                        " s; the largest error is in " + sys_.describe(worst) + "; " + kSuggestion);
+                                        " s; " + largest_error(worst) + "; " + kSuggestion);
         continue;
       }
       failed_in_a_row_ = 0;
@@ -122,7 +122,7 @@ class OneStep final : public Integrator {
         if (++at_floor_ >= kFloorSteps)
           throw DivergenceError(t_, "no progress at t = " + fmt_time(t_) + " s: the step size has stayed at the "
                                     "rounding floor of t (" + fmt_time(h) + " s) for " + std::to_string(at_floor_) +
-                                    " steps; the largest error is in " + sys_.describe(worst) + "; " + kSuggestion);
+                                    " steps; " + largest_error(worst) + "; " + kSuggestion);
       } else {
         at_floor_ = 0;
       }
@@ -145,6 +145,14 @@ class OneStep final : public Integrator {
     }
   }
 
+  // "the largest error is in <component>" for the stop messages; before any error estimate (every
+  // step failed from the start) no component can be named
+  std::string largest_error(int worst) const {
+    return worst < 0 ? "no step was taken, so no component has an error estimate (the forces of the initial state, "
+                       "or their Jacobian, are beyond what the iteration solves: check the largest parameters)"
+                     : "the largest error is in " + sys_.describe(worst);
+  }
+
   void dense(double t, Eigen::VectorXd& out) const override {
     if (t >= t_) {
       out = y_;
@@ -156,7 +164,7 @@ class OneStep final : public Integrator {
   }
 
   WorkCounters work() const override { return sys_.counters; }
-  std::string stiffest() const override { return sys_.describe(worst_); }
+  std::string stiffest() const override { return worst_ < 0 ? std::string() : sys_.describe(worst_); }
 
   bool can_save() const override { return true; }
   void save(std::ostream& o) const override {
@@ -212,7 +220,7 @@ class OneStep final : public Integrator {
   double h_ = 0, h_used_ = 0;
   double cap_ = std::numeric_limits<double>::infinity();
   bool started_ = false;
-  int worst_ = 0;               // the component with the largest error in the last estimate
+  int worst_ = -1;              // the component with the largest error in the last estimate (-1: none yet)
   long at_floor_ = 0;           // accepted steps in a row at the rounding floor of t
   long failed_in_a_row_ = 0;    // implicit iterations in a row that did not converge
   Eigen::VectorXd f_, y1_, f1_, err_, f_prev_;

@@ -12,6 +12,7 @@
 
 #include <tuple>
 
+#include <algorithm>
 #include <cmath>
 #include <map>
 #include <set>
@@ -325,6 +326,23 @@ Scene build_scene(const SceneDef& d, const std::atomic<bool>* stop) {
   sc.route = make_route(circles, bd.loop_sense, sc.route_names);
   const double pitch = sc.route.length / n;
 
+  // The static start holds straight spans at the pretension: a belt whose weight over its longest
+  // span passes its pretension (ρ·|g|·L > T: a sag above L/8, δ = ρgL²/8T) hangs instead (on the
+  // paper's drive from gravity = 1.8e4 m/s²; at 1e4 the spans already carry 554 N, not 500)
+  {
+    double longest = 0;
+    for (const Route::Span& sp : sc.route.spans) longest = std::max(longest, sp.length);
+    const double weight = bd.mass_per_length * std::abs(d.gravity) * longest;
+    if (!(weight <= bd.pretension)) {
+      std::ostringstream s;
+      s.precision(6);
+      s << "makes the belt's weight over its longest span (ρ·g·L = " << weight << " N over " << longest
+        << " m) larger than its pretension (" << bd.pretension << " N): the belt would hang rather than span its "
+        << "pulleys; lower gravity or belt.mass_per_length, or raise belt.pretension";
+      reject("gravity", s.str(), d.gravity, "m/s²");
+    }
+  }
+
   // enough elements on every wrap to resolve the contact
   for (size_t k = 0; k < circles.size(); ++k) {
     const double on_wrap = sc.route.arcs[k].length() / pitch;
@@ -409,6 +427,13 @@ Scene build_scene(const SceneDef& d, const std::atomic<bool>* stop) {
     for (int it = 0; it < 8; ++it) {
       const double alpha = 2 * std::asin(std::min(1.0, pitch / (2 * (circles[k].radius - p0))));
       p0 = static_penetration(m.contact, 2 * tension0 * std::sin(alpha / 2));
+    }
+    if (!std::isfinite(p0)) {
+      std::ostringstream c;
+      c.precision(6);
+      c << "gives no finite static penetration on '" << sc.route_names[k] << "' with contact.c2 = " << d.contact.c2
+        << " N/m (beyond double precision)";
+      reject("contact.c1", c.str(), d.contact.c1, "N/m²");
     }
     if (p0 >= 0.5 * circles[k].radius)
       reject("contact stiffness", "lets the belt sink more than half the radius of '" + sc.route_names[k] + "'", p0,
@@ -559,6 +584,27 @@ Scene build_scene(const SceneDef& d, const std::atomic<bool>* stop) {
     lost = attempt(0.1 * b.pitch);
     sc.static_retried = true;
     notify_warning(WarningKind::static_retry, 0.0);
+  }
+  // the initial state must be finite: parameters far beyond a belt's (each finite, and each
+  // within its own rule) can still overflow the static solve
+  {
+    std::string bad;
+    for (Eigen::Index k = 0; k < sc.y0.size() && bad.empty(); ++k)
+      if (!std::isfinite(sc.y0[k]))
+        bad = (k < 3 * n ? "element " + std::to_string(k / 3) + "'s " + (k % 3 == 2 ? "angle" : "position")
+                         : "a pulley's state") + " is " + (std::isnan(sc.y0[k]) ? "NaN" : "infinite");
+    for (const auto& [name, v] : {std::pair{"the rigid length", b.rigid_length}, {"the static tension", sc.static_tension},
+                                  {"the static residual", sc.static_residual}})
+      if (bad.empty() && !std::isfinite(v)) bad = std::string(name) + " is " + (std::isnan(v) ? "NaN" : "infinite");
+    if (!bad.empty()) {
+      std::ostringstream msg;
+      msg.precision(6);
+      msg << "scene: the belt's static initial state is not finite (" << bad << "): the parameters are beyond what "
+          << "double precision resolves (the values that scale it: gravity = " << d.gravity << " m/s², belt.pretension = "
+          << bd.pretension << " N, per-SDE k = " << b.k << " N/m, contact.c1 = " << d.contact.c1
+          << " N/m², belt.mass_per_length = " << bd.mass_per_length << " kg/m)";
+      throw ParameterError(msg.str());
+    }
   }
   if (!lost.empty()) {
     std::ostringstream msg;
