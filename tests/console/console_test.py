@@ -484,6 +484,14 @@ class ConsoleTest(unittest.TestCase):
         self.assertTrue(all(len(r.split(",")) == width for r in rows))
         self.assertLessEqual(float(rows[-1].split(",")[0]), t)
 
+    # 17
+    def test_wp_with_no_integrators_is_a_usage_error(self):
+        # an empty list used to mean "all of them"
+        r = subprocess.run([BELTSIM, "wp", "scenario.lua", "--integrators", ""], cwd=self.tmp, env=child_env(self.tmp),
+                           stdout=subprocess.PIPE, stderr=subprocess.PIPE, timeout=60)
+        self.assertEqual(r.returncode, 2, r.stderr.decode())
+        self.assertIn("--integrators needs names separated by commas", r.stderr.decode())
+
 
 def main():
     global BELTSIM

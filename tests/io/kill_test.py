@@ -218,8 +218,56 @@ def full_disk():
     check(whole_rows(csv) == "" and os.path.getsize(csv) > limit - 1024, "full disk: the rows that fitted, whole")
 
 
+# ---- a file system that is full: a 128 KiB tmpfs (root and mount(2) needed: skipped with the
+# reason otherwise). Exit 1, the message names the file and "No space left on device", and what
+# was written before is kept: the CSV is, row for row, the start of the same run's CSV on a disk
+# with room -------------------------------------------------------------------------------------
+def full_file_system():
+    mnt = os.path.join(TMP, "tmpfs")
+    os.makedirs(mnt)
+    r = subprocess.run(["mount", "-t", "tmpfs", "-o", "size=128k", "tmpfs", mnt], stdout=subprocess.PIPE,
+                       stderr=subprocess.STDOUT)
+    if r.returncode != 0:
+        print("skip full file system: cannot mount a tmpfs here (%s); the file-size limit above stands in for it"
+              % r.stdout.decode().strip())
+        return
+    try:
+        run = script("full_fs", SCENE + 'drive:run { t_end = 1, progress = false }\n')
+        full = os.path.join(mnt, "out")
+        p = start(["run", run, "--no-frames"], full)
+        p.wait(timeout=120)
+        err = p.stderr.read()
+        room = os.path.join(TMP, "room")
+        q = start(["run", run, "--no-frames"], room)
+        q.wait(timeout=120)
+        check(q.returncode == 0, "full file system: the run with room ends well (%s)" % q.stderr.read())
+        check(p.returncode == 1, "full file system: exit status 1 (got %s)" % p.returncode)
+        named = re.search(r"cannot write (%s/\S+): No space left on device" % re.escape(full), err)
+        check(named is not None, "full file system: the message names the file and the reason: %r" % err)
+        csv = os.path.join(full, "timeseries.csv")
+        with open(csv, "rb") as f:
+            written = f.read()
+        with open(os.path.join(room, "timeseries.csv"), "rb") as f:
+            reference = f.read()
+        check(whole_rows(csv) == "" and len(written) > 64 * 1024,
+              "full file system: whole rows, %d bytes of them" % len(written))
+        check(reference.startswith(written), "full file system: nothing written before is lost or changed")
+        with open(os.path.join(full, "parameters.csv"), "rb") as f:
+            params = f.read()
+        with open(os.path.join(room, "parameters.csv"), "rb") as f:
+            ref_params = f.read()
+        # the model's rows as the run with room has them (the warning.* rows, added at the end, count
+        # what each run met before it ended)
+        def model_rows(text):
+            return [r for r in text.split(b"\n") if not r.startswith(b"warning.")]
+        check(model_rows(params) == model_rows(ref_params) and len(model_rows(params)) > 40 and params.endswith(b"\n"),
+              "full file system: parameters.csv as it was written before the disk filled")
+    finally:
+        subprocess.run(["umount", mnt])
+
+
 t0 = time.monotonic()
-for case in (sigterm_run, sigkill_run, second_signal, console, full_disk):
+for case in (sigterm_run, sigkill_run, second_signal, console, full_disk, full_file_system):
     case()
 print("%.1f s" % (time.monotonic() - t0))
 if failures:
