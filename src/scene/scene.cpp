@@ -326,23 +326,6 @@ Scene build_scene(const SceneDef& d, const std::atomic<bool>* stop) {
   sc.route = make_route(circles, bd.loop_sense, sc.route_names);
   const double pitch = sc.route.length / n;
 
-  // The static start holds straight spans at the pretension: a belt whose weight over its longest
-  // span passes its pretension (ρ·|g|·L > T: a sag above L/8, δ = ρgL²/8T) hangs instead (on the
-  // paper's drive from gravity = 1.8e4 m/s²; at 1e4 the spans already carry 554 N, not 500)
-  {
-    double longest = 0;
-    for (const Route::Span& sp : sc.route.spans) longest = std::max(longest, sp.length);
-    const double weight = bd.mass_per_length * std::abs(d.gravity) * longest;
-    if (!(weight <= bd.pretension)) {
-      std::ostringstream s;
-      s.precision(6);
-      s << "makes the belt's weight over its longest span (ρ·g·L = " << weight << " N over " << longest
-        << " m) larger than its pretension (" << bd.pretension << " N): the belt would hang rather than span its "
-        << "pulleys; lower gravity or belt.mass_per_length, or raise belt.pretension";
-      reject("gravity", s.str(), d.gravity, "m/s²");
-    }
-  }
-
   // enough elements on every wrap to resolve the contact
   for (size_t k = 0; k < circles.size(); ++k) {
     const double on_wrap = sc.route.arcs[k].length() / pitch;
@@ -411,6 +394,22 @@ Scene build_scene(const SceneDef& d, const std::atomic<bool>* stop) {
   if (std::pow(tension0 / b.k, 1.0 / b.e_tra) >= 0.5 * pitch)
     reject(how.key, "stretches each SDE by more than half a pitch: lower it or stiffen the belt", how.value,
            how.unit);
+  // The static start holds straight spans at the tension at rest: a belt whose weight over its
+  // longest span passes that tension (ρ·|g|·L > T: a sag above L/8, δ = ρgL²/8T) hangs instead
+  // (on the paper's drive from gravity = 1.8e4 m/s²; at 1e4 the spans already carry 554 N, not 500)
+  {
+    double longest = 0;
+    for (const Route::Span& sp : sc.route.spans) longest = std::max(longest, sp.length);
+    const double weight = bd.mass_per_length * std::abs(d.gravity) * longest;
+    if (!(weight <= tension0)) {
+      std::ostringstream s;
+      s.precision(6);
+      s << "makes the belt's weight over its longest span (ρ·g·L = " << weight << " N over " << longest
+        << " m) larger than its tension at rest (" << tension0 << " N): the belt would hang rather than span its "
+        << "pulleys; lower gravity or belt.mass_per_length, or tension the belt more";
+      reject("gravity", s.str(), d.gravity, "m/s²");
+    }
+  }
   m.contact = d.contact;
   if (d.contact_per_length.c1) m.contact.c1 = *d.contact_per_length.c1 * pitch;
   if (d.contact_per_length.c2) m.contact.c2 = *d.contact_per_length.c2 * pitch;
@@ -600,8 +599,8 @@ Scene build_scene(const SceneDef& d, const std::atomic<bool>* stop) {
       std::ostringstream msg;
       msg.precision(6);
       msg << "scene: the belt's static initial state is not finite (" << bad << "): the parameters are beyond what "
-          << "double precision resolves (the values that scale it: gravity = " << d.gravity << " m/s², belt.pretension = "
-          << bd.pretension << " N, per-SDE k = " << b.k << " N/m, contact.c1 = " << d.contact.c1
+          << "double precision resolves (the values that scale it: gravity = " << d.gravity << " m/s², the tension at rest = "
+          << tension0 << " N, per-SDE k = " << b.k << " N/m, contact.c1 = " << d.contact.c1
           << " N/m², belt.mass_per_length = " << bd.mass_per_length << " kg/m)";
       throw ParameterError(msg.str());
     }

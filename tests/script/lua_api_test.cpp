@@ -100,7 +100,7 @@ TEST(LuaApi, AbsurdButFiniteValuesNameTheParameter) {
   for (const std::string g : {"1e308", "-1e308", "2e4"}) {
     const std::string msg = run_text(with("gravity = " + g + ","));
     EXPECT_NE(msg.find("scene.lua:1: gravity makes the belt's weight over its longest span"), std::string::npos) << msg;
-    EXPECT_NE(msg.find("larger than its pretension (500 N)"), std::string::npos) << msg;
+    EXPECT_NE(msg.find("larger than its tension at rest (500 N)"), std::string::npos) << msg;
     EXPECT_NE(msg.find("(got " + std::string(g == "2e4" ? "20000" : g == "1e308" ? "1e+308" : "-1e+308") + " m/s²)"),
               std::string::npos)
         << msg;
