@@ -492,7 +492,8 @@ void write_session(const std::string& dir, const std::optional<std::string>& scr
     // the scenario's text is copied in (as it was when the session began), so the replay needs
     // no access to the scenario's folder, which the sandbox would refuse (README, Console)
     f << "-- The scenario " << *script << " is copied below as it was when the session began; its errors\n"
-      << "-- name it and its own lines. A scenario that reads files beside it needs: beltsim run --trusted\n";
+      << "-- name it and its own lines. A scenario that reads files beside it, or whose runs wrote outside\n"
+      << "-- this file's folder (out = ..., an argument naming a folder), needs: beltsim run --trusted\n";
     f << "arg = { [0] = " << quoted(script->data(), script->size());
     for (const std::string& a : args) f << ", " << quoted(a.data(), a.size());
     f << " }\n";

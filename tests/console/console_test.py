@@ -382,10 +382,18 @@ class ConsoleTest(unittest.TestCase):
         # the scenario's text is in session.lua: the replay needs neither the file nor its folder
         # (which the sandbox would not let it read)
         os.rename(os.path.join(self.tmp, "scenario.lua"), os.path.join(self.tmp, "scenario_moved.lua"))
+        # its runs wrote beside the scenario, outside session.lua's folders: the sandbox refuses
+        # that, and --trusted (which session.lua's header names) replays it
         r = subprocess.run([BELTSIM, "run", session], cwd=self.tmp, env=child_env(self.tmp),
+                           stdout=subprocess.PIPE, stderr=subprocess.PIPE, timeout=60)
+        self.assertEqual(r.returncode, 1, (r.stdout + r.stderr).decode())
+        self.assertIn("start.out: writing '%s' is not allowed" % out_console, r.stderr.decode())
+        self.assertFalse(os.path.exists(out_console))
+        r = subprocess.run([BELTSIM, "run", "--trusted", session], cwd=self.tmp, env=child_env(self.tmp),
                            stdout=subprocess.PIPE, stderr=subprocess.PIPE, timeout=60)
         with open(session) as f:
             text = f.read()
+        self.assertIn("needs: beltsim run --trusted", text)
         self.assertEqual(r.returncode, 0, (r.stdout + r.stderr).decode() + "\nsession.lua:\n" + text)
         with open(os.path.join(out_console, "timeseries.csv"), "rb") as f:
             replayed = f.read()
