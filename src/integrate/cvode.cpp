@@ -3,9 +3,7 @@
 #include <cvode/cvode.h>
 #include <nvector/nvector_serial.h>
 #include <sundials/sundials_context.h>
-#include <sunlinsol/sunlinsol_dense.h>
 #include <sunlinsol/sunlinsol_klu.h>
-#include <sunmatrix/sunmatrix_dense.h>
 #include <sunmatrix/sunmatrix_sparse.h>
 
 #include <algorithm>
@@ -19,6 +17,7 @@
 
 #include <Eigen/SparseCore>
 
+#include "integrate/colouring.hpp"
 #include "integrate/controller.hpp"
 #include "integrate/integrator.hpp"
 
@@ -31,7 +30,10 @@ namespace {
 
 struct Session {
   OdeSystem* sys = nullptr;
-  Eigen::SparseMatrix<double> J;  // analytic Jacobian, CSC
+  Eigen::SparseMatrix<double> J;  // analytic Jacobian, CSC; for cvode-fd only its pattern is used
+  ColumnColouring colouring;      // cvode-fd: the columns of J's pattern that share one perturbation
+  std::vector<double> work;       // cvode-fd: scratch of the difference quotients
+  long fd_rhs = 0;                // right-hand sides taken by the difference quotients (CVODE does not count them)
   std::string last_error;
   WorkCounters done;              // counters of the finished segments (CVodeReInit resets CVODE's)
   // an exception of the system (a law's code failed): kept here, since it must not unwind
@@ -58,6 +60,21 @@ int rhs_cb(sunrealtype t, N_Vector y, N_Vector ydot, void* user) {
   return 0;
 }
 
+// s.J's pattern into CVODE's CSC matrix (CVODE zeroes the whole matrix, index arrays included,
+// before each Jacobian); with values too when `values`
+int copy_pattern(const Session& s, SUNMatrix A, bool values) {
+  const sunindextype nnz = s.J.nonZeros();
+  if (SUNSparseMatrix_NNZ(A) < nnz && SUNSparseMatrix_Reallocate(A, nnz) != 0) return -1;
+  sunindextype* ptr = SUNSparseMatrix_IndexPointers(A);
+  sunindextype* idx = SUNSparseMatrix_IndexValues(A);
+  double* val = SUNSparseMatrix_Data(A);
+  for (Eigen::Index c = 0; c <= s.J.outerSize(); ++c) ptr[c] = s.J.outerIndexPtr()[c];
+  for (sunindextype k = 0; k < nnz; ++k) idx[k] = s.J.innerIndexPtr()[k];
+  if (values)
+    for (sunindextype k = 0; k < nnz; ++k) val[k] = s.J.valuePtr()[k];
+  return 0;
+}
+
 // J = ∂F/∂y from the system, copied into CVODE's CSC matrix (same pattern every call)
 int jac_cb(sunrealtype t, N_Vector y, N_Vector, SUNMatrix A, void* user, N_Vector, N_Vector, N_Vector) {
   Session& s = *static_cast<Session*>(user);
@@ -68,14 +85,27 @@ int jac_cb(sunrealtype t, N_Vector y, N_Vector, SUNMatrix A, void* user, N_Vecto
     return -1;
   }
   s.J.makeCompressed();
-  const sunindextype nnz = s.J.nonZeros();
-  if (SUNSparseMatrix_NNZ(A) < nnz && SUNSparseMatrix_Reallocate(A, nnz) != 0) return -1;
-  sunindextype* ptr = SUNSparseMatrix_IndexPointers(A);
-  sunindextype* idx = SUNSparseMatrix_IndexValues(A);
-  double* val = SUNSparseMatrix_Data(A);
-  for (Eigen::Index c = 0; c <= s.J.outerSize(); ++c) ptr[c] = s.J.outerIndexPtr()[c];
-  for (sunindextype k = 0; k < nnz; ++k) idx[k] = s.J.innerIndexPtr()[k], val[k] = s.J.valuePtr()[k];
-  return 0;
+  return copy_pattern(s, A, true);
+}
+
+// J by coloured forward differences (integrate/colouring.hpp) on the analytic Jacobian's pattern;
+// a non-finite F is recoverable: CVODE retries with a smaller step
+int fd_jac_cb(sunrealtype t, N_Vector y, N_Vector fy, SUNMatrix A, void* user, N_Vector, N_Vector, N_Vector) {
+  Session& s = *static_cast<Session*>(user);
+  long taken = 0;
+  try {
+    taken = difference_jacobian(*s.sys, s.colouring, t, N_VGetArrayPointer(y), N_VGetArrayPointer(fy), s.J, s.work);
+  } catch (...) {  // as in rhs_cb: kept, not unwound through CVODE
+    s.error = std::current_exception();
+    return -1;
+  }
+  if (taken < 0) {
+    s.fd_rhs += s.colouring.colours;
+    s.warnings.add(WarningKind::cvode_nonfinite_rhs, t);
+    return 1;  // recoverable, as in rhs_cb
+  }
+  s.fd_rhs += taken;
+  return copy_pattern(s, A, true);
 }
 
 void err_cb(int code, const char* module, const char* function, char* msg, void* user) {
@@ -123,14 +153,24 @@ void check(int flag, const char* what) {
   if (flag < 0) throw std::runtime_error(std::string("cvode: ") + what + " failed (" + CVodeGetReturnFlagName(flag) + ")");
 }
 
+// the optional inputs (CVodeReInit keeps them); after the linear solver is attached
+void apply(void* mem, const CvodeSettings& s) {
+  check(CVodeSetMaxOrd(mem, s.max_order), "CVodeSetMaxOrd");
+  check(CVodeSetNonlinConvCoef(mem, s.nonlin_conv_coef), "CVodeSetNonlinConvCoef");
+  check(CVodeSetMaxNonlinIters(mem, s.max_nonlin_iters), "CVodeSetMaxNonlinIters");
+  check(CVodeSetStabLimDet(mem, s.stab_lim_det ? SUNTRUE : SUNFALSE), "CVodeSetStabLimDet");
+  check(CVodeSetLSetupFrequency(mem, s.lsetup_frequency), "CVodeSetLSetupFrequency");
+  check(CVodeSetJacEvalFrequency(mem, s.jac_eval_frequency), "CVodeSetJacEvalFrequency");
+}
+
 }  // namespace
 
 namespace {
 
 class CvodeIntegrator final : public Integrator {
  public:
-  CvodeIntegrator(const std::string& name, OdeSystem& sys, const Tolerances& tol)
-      : name_(name), sys_(sys), tol_(tol), analytic_(name == "cvode") {
+  CvodeIntegrator(const std::string& name, OdeSystem& sys, const Tolerances& tol, const CvodeSettings& settings)
+      : name_(name), sys_(sys), tol_(tol), settings_(settings), analytic_(name == "cvode") {
     ses_.sys = &sys;
     if (SUNContext_Create(nullptr, &cv_.ctx) != 0) throw std::runtime_error("cvode: cannot create a SUNDIALS context");
     const int n = sys.size();
@@ -163,18 +203,20 @@ class CvodeIntegrator final : public Integrator {
     check(CVodeSetErrHandlerFn(cv_.mem, err_cb, &ses_), "CVodeSetErrHandlerFn");
     check(CVodeSVtolerances(cv_.mem, tol_.rtol, cv_.abstol), "CVodeSVtolerances");
     check(CVodeSetMaxNumSteps(cv_.mem, -1), "CVodeSetMaxNumSteps");  // no limit: the caller's stop flag ends a run
-    if (analytic_) {
-      if (!sys_.sparse_jacobian(t, y.data(), ses_.J)) throw std::runtime_error("cvode: the system has no sparse Jacobian");
-      ses_.J.makeCompressed();
-      cv_.A = SUNSparseMatrix(n, n, ses_.J.nonZeros(), CSC_MAT, cv_.ctx);
-      cv_.LS = SUNLinSol_KLU(cv_.y, cv_.A, cv_.ctx);
-    } else {
-      cv_.A = SUNDenseMatrix(n, n, cv_.ctx);
-      cv_.LS = SUNLinSol_Dense(cv_.y, cv_.A, cv_.ctx);
-    }
+    // the pattern (both variants) from the analytic Jacobian: the same for every state
+    if (!sys_.sparse_jacobian(t, y.data(), ses_.J)) throw std::runtime_error("cvode: the system has no sparse Jacobian");
+    ses_.J.makeCompressed();
+    cv_.A = SUNSparseMatrix(n, n, ses_.J.nonZeros(), CSC_MAT, cv_.ctx);
+    cv_.LS = SUNLinSol_KLU(cv_.y, cv_.A, cv_.ctx);
     if (!cv_.A || !cv_.LS) throw std::runtime_error("cvode: cannot create the linear solver");
     check(CVodeSetLinearSolver(cv_.mem, cv_.LS, cv_.A), "CVodeSetLinearSolver");
-    if (analytic_) check(CVodeSetJacFn(cv_.mem, jac_cb), "CVodeSetJacFn");
+    if (analytic_) {
+      check(CVodeSetJacFn(cv_.mem, jac_cb), "CVodeSetJacFn");
+    } else {
+      ses_.colouring = colour_columns(ses_.J);
+      check(CVodeSetJacFn(cv_.mem, fd_jac_cb), "CVodeSetJacFn");
+    }
+    apply(cv_.mem, settings_);
   }
 
   void step(double t_land) override {
@@ -229,13 +271,16 @@ class CvodeIntegrator final : public Integrator {
     WorkCounters w = ses_.done;
     if (cv_.mem) add_counters(cv_.mem, w);
     w.warnings = ses_.warnings;
+    w.rhs += ses_.fd_rhs;
     return w;
   }
+
 
  private:
   std::string name_;
   OdeSystem& sys_;
   Tolerances tol_;
+  CvodeSettings settings_;
   bool analytic_;
   Session ses_;
   Cvode cv_;
@@ -244,15 +289,25 @@ class CvodeIntegrator final : public Integrator {
 
 }  // namespace
 
-std::unique_ptr<Integrator> make_cvode_integrator(const std::string& name, OdeSystem& sys, const Tolerances& tol) {
-  return std::make_unique<CvodeIntegrator>(name, sys, tol);
+std::unique_ptr<Integrator> make_cvode_integrator(const std::string& name, OdeSystem& sys, const Tolerances& tol,
+                                                  const CvodeSettings& settings) {
+  return std::make_unique<CvodeIntegrator>(name, sys, tol, settings);
 }
 
 DriveResult drive_cvode(OdeSystem& sys, const std::string& name, const Tolerances& tol, const DriveOptions& opt,
-                        Eigen::VectorXd& y, const SampleFn& sample, const ProgressFn& progress) {
+                        Eigen::VectorXd& y, const SampleFn& sample, const ProgressFn& progress,
+                        const CvodeSettings& settings) {
   check_tolerances(tol);
-  CvodeIntegrator integ(name, sys, tol);
+  CvodeIntegrator integ(name, sys, tol, settings);
   return drive(integ, opt, y, sample, progress);
+}
+
+std::string describe(const CvodeSettings& s) {
+  std::ostringstream o;
+  o << "order <= " << s.max_order << ", nonlinear coefficient " << s.nonlin_conv_coef << ", Newton iterations <= "
+    << s.max_nonlin_iters << ", Jacobian every " << s.jac_eval_frequency << " steps, setup every "
+    << s.lsetup_frequency << " steps, stability limit detection " << (s.stab_lim_det ? "on" : "off");
+  return o.str();
 }
 
 }  // namespace beltsim

@@ -3,8 +3,11 @@
 // with CVodeSetStopTime and the integration restarted there (CVodeReInit), the stop flag, and
 // DivergenceError naming the time and the component. Two variants:
 //   "cvode"     our analytic Jacobian J = ∂F/∂y assembled sparse, solved by KLU
-//   "cvode-fd"  CVODE's own difference-quotient Jacobian with its dense LU (CVODE has no
-//               difference-quotient Jacobian for sparse matrices)
+//   "cvode-fd"  a difference-quotient Jacobian on the pattern of the analytic one, its columns
+//               coloured so that one perturbed right-hand side serves every column of a colour
+//               (Curtis–Powell–Reid; CVODE's own difference quotients are for dense and banded
+//               matrices only), solved by KLU
+// Both run with the settings of CvodeSettings (the best found on the dry drive, README).
 #pragma once
 
 #include <string>
@@ -14,11 +17,27 @@
 
 namespace beltsim {
 
+// CVODE's optional inputs that matter here; the defaults are the best configuration measured on
+// the paper's dry drive (README, "Against the peer"), not CVODE's own defaults (noted per field)
+struct CvodeSettings {
+  int max_order = 5;               // BDF order limit (CVodeSetMaxOrd; CVODE: 5)
+  double nonlin_conv_coef = 0.1;   // Newton's stopping test against the error test (CVodeSetNonlinConvCoef; CVODE: 0.1)
+  long jac_eval_frequency = 51;    // steps between Jacobians (CVodeSetJacEvalFrequency; CVODE: 51)
+  long lsetup_frequency = 20;      // steps between factorisations (CVodeSetLSetupFrequency; CVODE: 20)
+  bool stab_lim_det = false;       // BDF stability limit detection (CVodeSetStabLimDet; CVODE: off)
+  int max_nonlin_iters = 3;        // Newton iterations per step (CVodeSetMaxNonlinIters; CVODE: 3)
+};
+
 std::vector<std::string> cvode_names();  // {"cvode", "cvode-fd"}
 bool is_cvode(const std::string& name);
 
 DriveResult drive_cvode(OdeSystem& sys, const std::string& name, const Tolerances& tol, const DriveOptions& opt,
-                        Eigen::VectorXd& y, const SampleFn& sample, const ProgressFn& progress = {});
-std::unique_ptr<Integrator> make_cvode_integrator(const std::string& name, OdeSystem& sys, const Tolerances& tol);
+                        Eigen::VectorXd& y, const SampleFn& sample, const ProgressFn& progress = {},
+                        const CvodeSettings& settings = {});
+std::unique_ptr<Integrator> make_cvode_integrator(const std::string& name, OdeSystem& sys, const Tolerances& tol,
+                                                  const CvodeSettings& settings = {});
+
+// "order 2, coefficient 0.1, ..." for reports
+std::string describe(const CvodeSettings& s);
 
 }  // namespace beltsim

@@ -228,8 +228,6 @@ class OneStep final : public Integrator {
 
 }  // namespace
 
-std::unique_ptr<Integrator> make_cvode_integrator(const std::string& name, OdeSystem& sys, const Tolerances& tol);
-
 std::unique_ptr<Integrator> make_integrator(const std::string& name, OdeSystem& sys, const Tolerances& tol,
                                             double h_max) {
   check_integrator(name);
