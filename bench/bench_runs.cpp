@@ -12,8 +12,13 @@
 #include <benchmark/benchmark.h>
 
 #include <atomic>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <ctime>
 #include <cstdlib>
 #include <sstream>
+#include <stdexcept>
 
 #include "integrate/belt_system.hpp"
 #include "integrate/cvode.hpp"
@@ -70,7 +75,8 @@ std::vector<std::pair<std::string, double>> bench_integrators() {
 }
 
 DriveResult simulate(const Model& m, Eigen::VectorXd& y, double t0, double t_end, const std::string& method,
-                     double rtol, std::vector<Eigen::VectorXd>* samples = nullptr) {
+                     double rtol, std::vector<Eigen::VectorXd>* samples = nullptr, const CvodeSettings& cv = {},
+                     double wall_limit = 0) {
   BeltSystem sys(m);
   DriveOptions o;
   o.t0 = t0;
@@ -80,9 +86,18 @@ DriveResult simulate(const Model& m, Eigen::VectorXd& y, double t0, double t_end
   const auto keep = [&](double, const Eigen::VectorXd& yy) {
     if (samples) samples->push_back(yy);
   };
-  if (is_cvode(method)) return drive_cvode(sys, method, Tolerances{rtol, -1}, o, y, keep);
+  std::atomic<bool> stop{false};
+  const auto start = std::chrono::steady_clock::now();
+  ProgressFn watch;
+  if (wall_limit > 0) {
+    o.stop = &stop;
+    watch = [&](double, const WorkCounters&) {
+      if (std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() > wall_limit) stop = true;
+    };
+  }
+  if (is_cvode(method)) return drive_cvode(sys, method, Tolerances{rtol, -1}, o, y, keep, watch, cv);
   auto st = make_stepper(method);
-  return drive(sys, *st, Tolerances{rtol, -1}, o, y, keep);
+  return drive(sys, *st, Tolerances{rtol, -1}, o, y, keep, watch);
 }
 
 // largest deviation of a pulley speed over the samples, relative to the reference's largest speed
@@ -117,9 +132,100 @@ void BM_Seconds(benchmark::State& state, SceneDef (*preset)()) {
       if (base > 0 && name != "esdirk32") state.counters[name + "_over_esdirk32"] = per_s / base;
     }
   }
+  state.SetLabel("cvode: " + describe(CvodeSettings{}));
 }
 BENCHMARK_CAPTURE(BM_Seconds, dry, &presets::paper_dry)->Unit(benchmark::kSecond)->Iterations(1);
 BENCHMARK_CAPTURE(BM_Seconds, half_wet, &presets::paper_wet)->Unit(benchmark::kSecond)->Iterations(1);
+
+// CVODE's settings: a grid of configurations of the cvode integrator (our Jacobian, KLU), each at
+// each tolerance over the dry drive's first BELTSIM_GRID_T seconds (default 0.1), a run stopped
+// after BELTSIM_GRID_WALL seconds of wall time (default 20) counting as unfinished; the speed
+// error as `beltsim wp` measures it (largest deviation of a pulley speed over the run relative to
+// its largest value) against esdirk32 at rtol 1e-8. A configuration is written as letters and
+// values: o max order, c nonlinear convergence coefficient, j steps between Jacobians, s steps
+// between linear-solver setups, d stability limit detection (0/1), i Newton iterations per step
+// (CvodeSettings; a letter left out keeps the default); "o2@1e-5" runs that configuration at
+// that rtol only, "fd:o2" with cvode-fd. BELTSIM_GRID_CONFIGS (separated by
+// spaces), BELTSIM_GRID_RTOLS (by commas), BELTSIM_GRID_METHOD (cvode or cvode-fd) override.
+// Prints a table to stderr: configuration, rtol, wall, CPU time of the process during the run
+// (std::clock: on a loaded machine the wall time includes other jobs' turns), steps, speed
+// error, Jacobians.
+CvodeSettings parse_settings(const std::string& spec) {
+  CvodeSettings s;
+  for (size_t k = 0; k < spec.size();) {
+    const char key = spec[k++];
+    size_t used = 0;
+    const double v = std::stod(spec.substr(k), &used);
+    k += used;
+    switch (key) {
+      case 'o': s.max_order = static_cast<int>(v); break;
+      case 'c': s.nonlin_conv_coef = v; break;
+      case 'j': s.jac_eval_frequency = static_cast<long>(v); break;
+      case 's': s.lsetup_frequency = static_cast<long>(v); break;
+      case 'd': s.stab_lim_det = v != 0; break;
+      case 'i': s.max_nonlin_iters = static_cast<int>(v); break;
+      default: throw std::invalid_argument("BELTSIM_GRID_CONFIGS: unknown key in " + spec);
+    }
+  }
+  return s;
+}
+
+void BM_CvodeGrid(benchmark::State& state) {
+  const Scene sc = build_scene(presets::paper_dry());
+  const double T = env_number("BELTSIM_GRID_T", 0.1), wall = env_number("BELTSIM_GRID_WALL", 20);
+  const char* cfg = std::getenv("BELTSIM_GRID_CONFIGS");
+  const char* rt = std::getenv("BELTSIM_GRID_RTOLS");
+  const char* me = std::getenv("BELTSIM_GRID_METHOD");
+  const std::string method = me ? me : "cvode";
+  std::vector<std::string> configs;
+  std::stringstream cs(cfg ? cfg : "o5 o5d1 o2 o3 o2c0.01 o2c0.3 o2i5 o2j1s1 o2j10s5 o2j200s50");
+  for (std::string c; cs >> c;) configs.push_back(c);
+  std::vector<double> rtols;
+  std::stringstream rs(rt ? rt : "1e-4,1e-5,1e-6,1e-7");
+  for (std::string r; std::getline(rs, r, ',');) rtols.push_back(std::atof(r.c_str()));
+  for (auto _ : state) {
+    std::vector<Eigen::VectorXd> ref;
+    Eigen::VectorXd y = sc.y0;
+    simulate(sc.model, y, 0, T, "esdirk32", 1e-8, &ref);
+    std::fprintf(stderr, "| %s configuration | rtol | wall for %g s [s] | CPU [s] | steps | Jacobians | speed error |\n",
+                 method.c_str(), T);
+    std::fprintf(stderr, "|---|---|---|---|---|---|---|\n");
+    for (const std::string& spec : configs) {
+      const size_t at = spec.find('@');
+      const bool fd = spec.rfind("fd:", 0) == 0;
+      const std::string c = spec.substr(fd ? 3 : 0, at == std::string::npos ? std::string::npos : at - (fd ? 3 : 0));
+      const std::string run_method = fd ? "cvode-fd" : method;
+      const std::vector<double> own = at == std::string::npos ? rtols : std::vector<double>{std::atof(spec.c_str() + at + 1)};
+      for (double rtol : own) {
+        std::vector<Eigen::VectorXd> samples;
+        y = sc.y0;
+        DriveResult r;
+        std::string failure;
+        const std::clock_t cpu0 = std::clock();
+        try {
+          r = simulate(sc.model, y, 0, T, run_method, rtol, &samples, parse_settings(c), wall);
+        } catch (const std::exception& e) {
+          failure = e.what();
+        }
+        const double cpu = static_cast<double>(std::clock() - cpu0) / CLOCKS_PER_SEC;
+        const std::string tag = (fd ? "fd_" : "") + c + "_r" + std::to_string(static_cast<int>(std::lround(-std::log10(rtol))));
+        const bool done = failure.empty() && !r.interrupted;
+        const double err = done ? speed_error(sc.model, samples, ref) : -1;
+        state.counters[tag + "_wall"] = done ? r.wall_seconds : -1;
+        state.counters[tag + "_err"] = err;
+        if (done)
+          std::fprintf(stderr, "| %s | %g | %.3g | %.3g | %ld | %ld | %.2g |\n", spec.c_str(), rtol, r.wall_seconds, cpu,
+                       r.work.steps, r.work.jacobians, err);
+        else if (failure.empty())
+          std::fprintf(stderr, "| %s | %g | stopped at %g s wall, t = %.4g s | %.3g | %ld | %ld | - |\n", spec.c_str(), rtol,
+                       wall, r.t_reached, cpu, r.work.steps, r.work.jacobians);
+        else
+          std::fprintf(stderr, "| %s | %g | failed: %s | %.3g | | | - |\n", spec.c_str(), rtol, failure.c_str(), cpu);
+      }
+    }
+  }
+}
+BENCHMARK(BM_CvodeGrid)->Unit(benchmark::kSecond)->Iterations(1);
 
 // cost per simulated second over [0.3, 0.3 + W] s of the dry drive (running at ≈ 57 rad/s, the
 // ramp just ended) for 60..2400 elements; the state at 0.3 s comes from a run at rtol 1e-2
