@@ -20,10 +20,10 @@ namespace beltsim {
 // CVODE's optional inputs that matter here; the defaults are the best configuration measured on
 // the paper's dry drive (README, "Against the peer"), not CVODE's own defaults (noted per field)
 struct CvodeSettings {
-  int max_order = 5;               // BDF order limit (CVodeSetMaxOrd; CVODE: 5)
+  int max_order = 2;               // BDF order limit (CVodeSetMaxOrd; CVODE: 5)
   double nonlin_conv_coef = 0.1;   // Newton's stopping test against the error test (CVodeSetNonlinConvCoef; CVODE: 0.1)
-  long jac_eval_frequency = 51;    // steps between Jacobians (CVodeSetJacEvalFrequency; CVODE: 51)
-  long lsetup_frequency = 20;      // steps between factorisations (CVodeSetLSetupFrequency; CVODE: 20)
+  long jac_eval_frequency = 10;    // steps between Jacobians (CVodeSetJacEvalFrequency; CVODE: 51)
+  long lsetup_frequency = 5;       // steps between factorisations (CVodeSetLSetupFrequency; CVODE: 20)
   bool stab_lim_det = false;       // BDF stability limit detection (CVodeSetStabLimDet; CVODE: off)
   int max_nonlin_iters = 3;        // Newton iterations per step (CVodeSetMaxNonlinIters; CVODE: 3)
 };

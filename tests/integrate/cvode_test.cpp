@@ -98,7 +98,9 @@ TEST(Cvode, LandsOnEventsAndRestarts) {
     seen.push_back(t);
     y[2] += 1;  // a jump in the state: the restarted integration must carry it on
   };
-  const Trace tr = run("cvode", 1e-8, opt, sys);
+  // rtol 1e-9: CVODE runs at BDF order ≤ 2 (CvodeSettings), whose global error on the oscillator
+  // at rtol 1e-8 is 1.4e-6 (measured; 1e-8 at order 5), too close to the bound below
+  const Trace tr = run("cvode", 1e-9, opt, sys);
   ASSERT_EQ(seen.size(), 1u);
   EXPECT_EQ(seen[0], 0.3141);
   // y3 relaxes back to sin t at rate 1e4: by the next sample (0.5 s) the jump is gone
