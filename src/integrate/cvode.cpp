@@ -190,6 +190,7 @@ class CvodeIntegrator final : public Integrator {
     t_ = t_prev_ = t;
     std::copy(y.data(), y.data() + n, N_VGetArrayPointer(cv_.y));
     tstop_ = std::nan("");
+    window_steps_ = 0, window_t0_ = t, restart_ = false;
     if (cv_.mem) {
       // restart: the law may jump here, and a multistep history across it is wrong
       add_counters(cv_.mem, ses_.done);
@@ -220,6 +221,7 @@ class CvodeIntegrator final : public Integrator {
   }
 
   void step(double t_land) override {
+    if (restart_) restart_ = false, start(t_, y_);
     if (!(tstop_ == t_land)) {
       check(CVodeSetStopTime(cv_.mem, t_land), "CVodeSetStopTime");
       tstop_ = t_land;
@@ -227,7 +229,11 @@ class CvodeIntegrator final : public Integrator {
     double t_ret = t_;
     long ncf_before = 0, ncf_after = 0;
     CVodeGetNumNonlinSolvConvFails(cv_.mem, &ncf_before);
-    const int flag = CVode(cv_.mem, t_land, cv_.y, &t_ret, CV_ONE_STEP);
+    // in one-step mode tout only bounds CVODE's estimate of a first step: after the last event a
+    // live simulation lands nowhere (t_land = inf), and an unbounded estimate was an infinite
+    // step, F evaluated at t = inf and the run stopped (CV_REPTD_RHSFUNC_ERR)
+    const double tout = std::isfinite(t_land) ? t_land : t_ + 1.0;
+    const int flag = CVode(cv_.mem, tout, cv_.y, &t_ret, CV_ONE_STEP);
     // convergence failures of this step, at the time it started from (CVODE gives no other)
     CVodeGetNumNonlinSolvConvFails(cv_.mem, &ncf_after);
     ses_.warnings.add(WarningKind::cvode_convergence, t_, ncf_after - ncf_before);
@@ -252,6 +258,16 @@ class CvodeIntegrator final : public Integrator {
     y_.resize(sys_.size());
     std::copy(yr, yr + sys_.size(), y_.data());
     sys_.counters = work();  // the system's counters tell the same as for the one-step methods
+    // a stall: the BDF history (order, step, Jacobian age) that got it here cannot get it out;
+    // a restart from the current state can (the reference run of DESIGN §5 restarted too)
+    if (settings_.stall_window > 0 && ++window_steps_ >= settings_.stall_window) {
+      const bool stalled = t_ - window_t0_ < settings_.stall_window * settings_.stall_step;
+      window_steps_ = 0, window_t0_ = t_;
+      if (stalled) {
+        ses_.warnings.add(WarningKind::cvode_restart, t_);
+        restart_ = true;  // at the next step: the samples inside this one still need its history
+      }
+    }
   }
 
   // a known kink at t(): restart the BDF history there
@@ -285,6 +301,9 @@ class CvodeIntegrator final : public Integrator {
   Session ses_;
   Cvode cv_;
   double tstop_ = std::nan("");
+  bool restart_ = false;   // a stall was seen: restart before the next step
+  long window_steps_ = 0;  // steps since the stall window began
+  double window_t0_ = 0;   // [s] time the window began
 };
 
 }  // namespace
@@ -306,7 +325,8 @@ std::string describe(const CvodeSettings& s) {
   std::ostringstream o;
   o << "order <= " << s.max_order << ", nonlinear coefficient " << s.nonlin_conv_coef << ", Newton iterations <= "
     << s.max_nonlin_iters << ", Jacobian every " << s.jac_eval_frequency << " steps, setup every "
-    << s.lsetup_frequency << " steps, stability limit detection " << (s.stab_lim_det ? "on" : "off");
+    << s.lsetup_frequency << " steps, stability limit detection " << (s.stab_lim_det ? "on" : "off")
+    << ", restart when " << s.stall_window << " steps advance less than " << s.stall_window * s.stall_step << " s";
   return o.str();
 }
 

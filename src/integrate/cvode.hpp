@@ -26,6 +26,11 @@ struct CvodeSettings {
   long lsetup_frequency = 5;       // steps between factorisations (CVodeSetLSetupFrequency; CVODE: 20)
   bool stab_lim_det = false;       // BDF stability limit detection (CVodeSetStabLimDet; CVODE: off)
   int max_nonlin_iters = 3;        // Newton iterations per step (CVodeSetMaxNonlinIters; CVODE: 3)
+  // restart after a stall (not a CVODE input; the adapter's): when the last stall_window steps
+  // advanced less than stall_window·stall_step seconds, CVODE is re-initialised at its current
+  // state (CVodeReInit: order 1, a new history, a new Jacobian). 0 turns it off.
+  long stall_window = 500;
+  double stall_step = 1e-8;        // [s]
 };
 
 std::vector<std::string> cvode_names();  // {"cvode", "cvode-fd"}

@@ -21,6 +21,9 @@ const std::array<WarningKindInfo, kWarningKinds>& warning_kinds() {
        "CVODE's Newton iteration did not converge; CVODE retried the step shorter"},
       {WarningKind::cvode_nonfinite_rhs, "cvode_nonfinite_rhs",
        "CVODE tried a state whose forces were not finite; CVODE retried the step shorter"},
+      {WarningKind::cvode_restart, "cvode_restart",
+       "CVODE stalled (its steps over a window fell below the stall size) and was restarted from its current "
+       "state at order 1 with a fresh Jacobian"},
   }};
   return k;
 }

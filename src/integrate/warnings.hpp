@@ -15,8 +15,9 @@ enum class WarningKind {
   failed_step,          // a one-step implicit method's step could not be taken (integrate/one_step.cpp)
   cvode_convergence,    // CVODE's Newton iteration did not converge (integrate/cvode.cpp)
   cvode_nonfinite_rhs,  // CVODE tried a state whose right-hand side is not finite (integrate/cvode.cpp)
+  cvode_restart,        // CVODE stalled and was restarted from its current state (integrate/cvode.cpp)
 };
-constexpr std::size_t kWarningKinds = 4;
+constexpr std::size_t kWarningKinds = 5;
 
 struct WarningKindInfo {
   WarningKind kind;

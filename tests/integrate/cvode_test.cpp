@@ -87,6 +87,39 @@ TEST(Cvode, ReachesItsToleranceOnASmoothProblem) {
   }
 }
 
+// The stall restart (CvodeSettings::stall_window): with a window of 20 steps that must advance
+// 10 s, every window counts as a stall, so CVODE is re-initialised every 20 steps. Each restart
+// is counted, and the solution keeps the tolerance's accuracy (the bound of the test above),
+// since a restart starts afresh from the current state rather than changing it.
+TEST(Cvode, RestartsAfterAStallAndKeepsTheSolution) {
+  test::expect_warnings({WarningKind::cvode_restart});
+  Smooth sys;
+  DriveOptions opt;
+  opt.t_end = 2;
+  opt.sample_dt = 0.1;
+  CvodeSettings every20;
+  every20.stall_window = 20;
+  every20.stall_step = 0.5;
+  Trace tr;
+  Eigen::VectorXd y(3);
+  y << 1, 0, 0;
+  const DriveResult res = drive_cvode(sys, "cvode", Tolerances{1e-9, 1e-9}, opt, y, [&](double t, const Eigen::VectorXd& yy) {
+    tr.t.push_back(t);
+    tr.y.push_back(yy);
+  }, {}, every20);
+  const long restarts = res.work.warnings[WarningKind::cvode_restart].count;
+  EXPECT_GE(restarts, res.work.steps / 20 - 1);
+  EXPECT_LE(restarts, res.work.steps / 20);
+  ASSERT_EQ(tr.t.size(), 21u);
+  EXPECT_LT(max_error(tr), 1e-6);
+  // the default window does not fire on a problem that makes progress
+  Smooth calm;
+  Eigen::VectorXd y2(3);
+  y2 << 1, 0, 0;
+  const DriveResult r2 = drive_cvode(calm, "cvode", Tolerances{1e-9, 1e-9}, opt, y2, [](double, const Eigen::VectorXd&) {});
+  EXPECT_EQ(r2.work.warnings[WarningKind::cvode_restart].count, 0);
+}
+
 TEST(Cvode, LandsOnEventsAndRestarts) {
   Smooth sys;
   DriveOptions opt;
