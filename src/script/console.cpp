@@ -4,6 +4,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <cctype>
 #include <cerrno>
 #include <csignal>
 #include <cstdio>
@@ -471,6 +472,38 @@ std::string long_string(const std::string& text) {
   return "[" + eq + "[\n" + text + "\n]" + eq + "]";  // the first newline is not part of the string
 }
 
+// s as one word of a POSIX shell command line: as it is when it holds only characters no shell
+// treats specially, else in single quotes ('\'' for a quote); with a control character (a
+// newline would end session.lua's comment line) as bash's $'...' with escapes
+std::string shell_word(const std::string& s) {
+  auto plain = [](unsigned char c) { return std::isalnum(c) || (c != 0 && std::strchr("_./=:,+-@%", c)); };
+  if (!s.empty() && std::all_of(s.begin(), s.end(), plain)) return s;
+  const bool control = std::any_of(s.begin(), s.end(), [](unsigned char c) { return c < 0x20 || c == 0x7f; });
+  if (!control) {
+    std::string q = "'";
+    for (char c : s) q += c == '\'' ? std::string("'\\''") : std::string(1, c);
+    return q + "'";
+  }
+  std::string q = "$'";
+  for (unsigned char c : s) {
+    if (c == '\'' || c == '\\') {
+      q += '\\';
+      q += static_cast<char>(c);
+    } else if (c == '\n') {
+      q += "\\n";
+    } else if (c == '\t') {
+      q += "\\t";
+    } else if (c < 0x20 || c == 0x7f) {
+      char b[8];
+      std::snprintf(b, sizeof b, "\\x%02x", c);
+      q += b;
+    } else {
+      q += static_cast<char>(c);
+    }
+  }
+  return q + "'";
+}
+
 void write_session(const std::string& dir, const std::optional<std::string>& script, std::string script_text,
                    const std::vector<std::string>& args, const std::vector<ScriptArg>& sets,
                    const std::vector<std::string>& commands) {
@@ -485,8 +518,9 @@ void write_session(const std::string& dir, const std::optional<std::string>& scr
     return;
   }
   f << "-- The commands of a beltsim console session that ran without error, in order.\n"
-    << "-- Replay with: beltsim run " << path;
-  for (const ScriptArg& a : sets) f << " --set " << a.key << "=" << a.text;  // beltsim.args as in the session
+    << "-- Replay with: beltsim run " << shell_word(path);
+  // beltsim.args as in the session, each --set quoted for the shell
+  for (const ScriptArg& a : sets) f << " --set " << shell_word(a.key + "=" + a.text);
   f << "\n";
   if (script) {
     // the scenario's text is copied in (as it was when the session began), so the replay needs

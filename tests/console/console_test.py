@@ -15,6 +15,7 @@ import fcntl
 import os
 import pty
 import re
+import shlex
 import select
 import shutil
 import signal
@@ -401,6 +402,28 @@ class ConsoleTest(unittest.TestCase):
         self.assertEqual(replayed, series, "the replay's timeseries.csv differs; session.lua:\n" + text)
         with open(os.path.join(out_console, "events.csv")) as f:
             self.assertIn("\n0.003,wet,", f.read())
+
+    # 10b
+    def test_session_quotes_set_values(self):
+        # a --set value with spaces, a quote, a dollar sign and a newline: session.lua's replay
+        # line stays one comment line and gives the shell the same value back (run through bash)
+        value = "two words, it's $HOME\nand a second line"
+        r = self.piped(["print('<' .. beltsim.args.label .. '>')"], flags=["--set", "label=" + value])
+        out, err = r.stdout.decode(), r.stderr.decode()
+        self.assertEqual(r.returncode, 0, out + err)
+        self.assertIn("<" + value + ">", out)
+        m = re.search(r"the session's commands are in (\S+)", err)
+        self.assertTrue(m, "where session.lua went is not said: " + err)
+        with open(os.path.join(self.tmp, m.group(1))) as f:
+            text = f.read()
+        replay = [l for l in text.splitlines() if l.startswith("-- Replay with: beltsim run ")]
+        self.assertEqual(len(replay), 1, text)
+        cmd = replay[0][len("-- Replay with: beltsim run "):]
+        # the scenario's own run writes beside it, outside session.lua's folder: --trusted
+        r = subprocess.run(["bash", "-c", "%s run --trusted %s" % (shlex.quote(BELTSIM), cmd)], cwd=self.tmp,
+                           env=child_env(self.tmp), stdout=subprocess.PIPE, stderr=subprocess.PIPE, timeout=60)
+        self.assertEqual(r.returncode, 0, (r.stdout + r.stderr).decode() + "\nsession.lua:\n" + text)
+        self.assertIn("<" + value + ">", r.stdout.decode(), text)
 
     # 11
     def test_ctrl_c_stops_lua_code(self):
