@@ -145,8 +145,9 @@ BENCHMARK_CAPTURE(BM_Seconds, half_wet, &presets::paper_wet)->Unit(benchmark::kS
 // error as `beltsim wp` measures it (largest deviation of a pulley speed over the run relative to
 // its largest value) against esdirk32 at rtol 1e-8. A configuration is written as letters and
 // values: o max order, c nonlinear convergence coefficient, j steps between Jacobians, s steps
-// between linear-solver setups, d stability limit detection (0/1), i Newton iterations per step
-// (CvodeSettings; a letter left out keeps the default); "o2@1e-5" runs that configuration at
+// between linear-solver setups, d stability limit detection (0/1), i Newton iterations per step,
+// w the stall window in steps (0: no restarts after stalls) (CvodeSettings; a letter left out
+// keeps the default); "o2@1e-5" runs that configuration at
 // that rtol only, "fd:o2" with cvode-fd. BELTSIM_GRID_CONFIGS (separated by
 // spaces), BELTSIM_GRID_RTOLS (by commas), BELTSIM_GRID_METHOD (cvode or cvode-fd) override.
 // Prints a table to stderr: configuration, rtol, wall, CPU time of the process during the run
@@ -166,6 +167,7 @@ CvodeSettings parse_settings(const std::string& spec) {
       case 's': s.lsetup_frequency = static_cast<long>(v); break;
       case 'd': s.stab_lim_det = v != 0; break;
       case 'i': s.max_nonlin_iters = static_cast<int>(v); break;
+      case 'w': s.stall_window = static_cast<long>(v); break;
       default: throw std::invalid_argument("BELTSIM_GRID_CONFIGS: unknown key in " + spec);
     }
   }
