@@ -13,6 +13,7 @@
 #include "physics/helpers.hpp"
 #include "scene/presets.hpp"
 #include "sim/simulation.hpp"
+#include "support/warning_guard.hpp"
 
 namespace beltsim {
 namespace {
@@ -35,6 +36,8 @@ std::vector<SceneDef> static_cases() {
 }
 
 TEST(KnownAnswers, InitialStateIsStatic) {
+  // 70, 120 and 140 elements need the static solve's trust-region retry (static_cases)
+  test::expect_warnings({WarningKind::static_retry});
   for (const SceneDef& d : static_cases()) {
     const Scene sc = build_scene(d);
     const Model& m = sc.model;
@@ -405,6 +408,8 @@ TEST(KnownAnswers, CentrifugalTensionUnloadsThePulleys) {
 // has decayed. Expected 0.0502 rad/s, measured 0.0496 (-1 %); bound 10 % (the remaining
 // oscillation; against the elastic part alone the model would be ≈ 20 % off, without creep 100 %).
 TEST(KnownAnswers, CreepSpeedLossMatchesTheTensionDifference) {
+  // the drive's first stick-slip changes cost esdirk32 a failed step (shortened and retried)
+  test::expect_warnings({WarningKind::failed_step});
   SceneDef d = presets::paper_dry();
   const double w1 = 20.0, v = w1 * 0.1;
   d.pulleys[0].torque = TimeSpeedLaw{};
@@ -458,6 +463,8 @@ TEST(KnownAnswers, CreepSpeedLossMatchesTheTensionDifference) {
 // onto the rim where the belt runs on). Bounds: the mean error over both pulleys falls with each
 // refinement, and is within 3 % at 240 elements (twice the measured 1.4 %).
 TEST(KnownAnswers, SlipArcApproachesEulerEytelwein) {
+  // the finer belts meet more stick-slip changes per second: failed steps, shortened and retried
+  test::expect_warnings({WarningKind::failed_step});
   const double l60 = build_scene(presets::paper_dry()).model.belt.rigid_length;  // an element's rest length at 60
   std::vector<double> err;
   for (int n : {60, 120, 240}) {
