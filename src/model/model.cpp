@@ -4,12 +4,6 @@
 
 namespace beltsim {
 
-double Model::mass_of(int k) const {
-  if (k < 3 * belt.n) return (k % 3 == 2) ? belt.rot_inertia : belt.mass;
-  const Pulley& p = pulleys[k - 3 * belt.n];
-  return p.kinematic ? 1.0 : p.inertia;
-}
-
 namespace {
 std::vector<double> sorted_union(const Model& m, std::vector<double> (TimeSpeedLaw::*times)() const) {
   std::vector<double> out;

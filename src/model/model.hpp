@@ -88,7 +88,12 @@ struct Model {
   int energy_offset() const { return 2 * n_coord(); }
   // diagonal of the mass matrix for coordinate k (kinematic pulleys get 1: their rows are
   // prescribed, see rhs.cpp)
-  double mass_of(int k) const;
+  // (inline: the solvers call it per coordinate, 1.8 % of the dry second's instructions out of line)
+  double mass_of(int k) const {
+    if (k < 3 * belt.n) return (k % 3 == 2) ? belt.rot_inertia : belt.mass;
+    const Pulley& p = pulleys[k - 3 * belt.n];
+    return p.kinematic ? 1.0 : p.inertia;
+  }
   // The time of the integrator's last (re)start: a step of a law at exactly this time has
   // happened (its value after the jump is used), while a step that ends exactly on a law's jump
   // still sees the value before it. Set by the simulation at every restart; not part of the
