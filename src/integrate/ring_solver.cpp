@@ -19,9 +19,10 @@ bool RingSolver::factor(const Model& m, double alpha, double beta, const BlockMa
   const Mat3 Mel = Eigen::Vector3d(m.belt.mass, m.belt.mass, m.belt.rot_inertia).asDiagonal();
   auto block = [&](const Mat3& c, const Mat3& k) -> Mat3 { return -beta * c - k; };
 
-  // border couplings: E (T rows × border cols), F (border rows × T cols), G
-  E_.setZero();
-  F_.setZero();
+  // border couplings: E (T rows × border cols), F (border rows × T cols), G. The pulley columns
+  // of E and rows of F are written whole below; element 0's are zero but for two blocks
+  E_.leftCols<3>().setZero();
+  F_.topRows<3>().setZero();
   G_.setZero();
   G_.block<3, 3>(0, 0) = alpha * Mel + block(C.diag[0], K.diag[0]);
   // element 0 couples to element 1 (U_0, L_1) and to element n-1 (L_0, U_{n-1})
