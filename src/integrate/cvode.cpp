@@ -60,9 +60,9 @@ int rhs_cb(sunrealtype t, N_Vector y, N_Vector ydot, void* user) {
   return 0;
 }
 
-// s.J's pattern into CVODE's CSC matrix (CVODE zeroes the whole matrix, index arrays included,
-// before each Jacobian); with values too when `values`
-int copy_pattern(const Session& s, SUNMatrix A, bool values) {
+// s.J, pattern and values, into CVODE's CSC matrix (CVODE zeroes the whole matrix, index arrays
+// included, before each Jacobian)
+int copy_jacobian(const Session& s, SUNMatrix A) {
   const sunindextype nnz = s.J.nonZeros();
   if (SUNSparseMatrix_NNZ(A) < nnz && SUNSparseMatrix_Reallocate(A, nnz) != 0) return -1;
   sunindextype* ptr = SUNSparseMatrix_IndexPointers(A);
@@ -70,8 +70,7 @@ int copy_pattern(const Session& s, SUNMatrix A, bool values) {
   double* val = SUNSparseMatrix_Data(A);
   for (Eigen::Index c = 0; c <= s.J.outerSize(); ++c) ptr[c] = s.J.outerIndexPtr()[c];
   for (sunindextype k = 0; k < nnz; ++k) idx[k] = s.J.innerIndexPtr()[k];
-  if (values)
-    for (sunindextype k = 0; k < nnz; ++k) val[k] = s.J.valuePtr()[k];
+  for (sunindextype k = 0; k < nnz; ++k) val[k] = s.J.valuePtr()[k];
   return 0;
 }
 
@@ -85,7 +84,7 @@ int jac_cb(sunrealtype t, N_Vector y, N_Vector, SUNMatrix A, void* user, N_Vecto
     return -1;
   }
   s.J.makeCompressed();
-  return copy_pattern(s, A, true);
+  return copy_jacobian(s, A);
 }
 
 // J by coloured forward differences (integrate/colouring.hpp) on the analytic Jacobian's pattern;
@@ -105,7 +104,7 @@ int fd_jac_cb(sunrealtype t, N_Vector y, N_Vector fy, SUNMatrix A, void* user, N
     return 1;  // recoverable, as in rhs_cb
   }
   s.fd_rhs += taken;
-  return copy_pattern(s, A, true);
+  return copy_jacobian(s, A);
 }
 
 void err_cb(int code, const char* module, const char* function, char* msg, void* user) {
