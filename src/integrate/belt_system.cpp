@@ -32,6 +32,10 @@ bool BeltSystem::local_solve(double t, double s, double* z, const double* g) {
   return friction_local_solve(model_, t, s, z, z + N, g + N) > 0;
 }
 
+void BeltSystem::predict(double t, double dt, double* z) const {
+  kinematic_predict(model_, t, dt, z, z + model_.n_coord());
+}
+
 uint64_t BeltSystem::branches(double t, const double* y) const {
   return contact_branches(model_, t, y, y + model_.n_coord());
 }

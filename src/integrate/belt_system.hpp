@@ -27,6 +27,7 @@ class BeltSystem final : public OdeSystem {
   bool reseat(double t, double* z, const double* dz) override;
   bool local_solve(double t, double s, double* z, const double* g) override;
   uint64_t branches(double t, const double* y) const override;
+  void predict(double t, double dt, double* z) const override;
   std::string describe(int k) const override;
   std::string check(double t, const double* y) const override;
   const Model& model() const { return model_; }

@@ -25,4 +25,10 @@ int friction_reseat(const Model& m, double t, double* q, double* v, const double
 // with everything else held (an exact piecewise-linear solve). Returns the number moved.
 int friction_local_solve(const Model& m, double t, double s, double* q, double* v, const double* g);
 
+// Newton's starting point for a stage dt after the state (q, v) at t (see newton_aids.cpp): each
+// element pressing on a pulley turns about the pulley's centre with its own angular velocity
+// about it, carrying its velocity round with it; every other element moves on in a straight
+// line; pulley angles advance at their speeds. Velocities keep their size.
+void kinematic_predict(const Model& m, double t, double dt, double* q, double* v);
+
 }  // namespace beltsim

@@ -50,6 +50,9 @@ class OdeSystem {
   // Newton aid: with G the stage residual Z - ψ - F(t, Z)/s at z, move z so that the stiffest
   // local equations hold (true when z moved)
   virtual bool local_solve(double, double, double*, const double*) { return false; }
+  // Newton's starting point: carry the state z, taken at time t, forward by dt along the
+  // motion it describes (the default leaves it where it is)
+  virtual void predict(double, double, double*) const {}
 
   // A hash of the smooth piece of a piecewise-smooth right-hand side that y lies on; 0 means
   // unknown. Newton may reuse a Jacobian (and its factorisation) while the hash is unchanged.
