@@ -249,6 +249,8 @@ void BM_Scaling(benchmark::State& state) {
       tag.insert(tag.begin(), 'n');
       state.counters[tag + "_wall_per_sim_s"] = per_s;
       state.counters[tag + "_steps_per_sim_s"] = static_cast<double>(r.work.steps) / W;
+      state.counters[tag + "_jacobians_per_step"] =
+          static_cast<double>(r.work.jacobians) / static_cast<double>(r.work.steps + r.work.rejected);
       if (n == 60) base = per_s;
       state.counters[tag + "_cost_per_element_vs_n60"] = (per_s / n) / (base / 60);
     }
