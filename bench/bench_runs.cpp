@@ -146,7 +146,8 @@ BENCHMARK_CAPTURE(BM_Seconds, half_wet, &presets::paper_wet)->Unit(benchmark::kS
 // its largest value) against esdirk32 at rtol 1e-8. A configuration is written as letters and
 // values: o max order, c nonlinear convergence coefficient, j steps between Jacobians, s steps
 // between linear-solver setups, d stability limit detection (0/1), i Newton iterations per step,
-// w the stall window in steps (0: no restarts after stalls) (CvodeSettings; a letter left out
+// w the stall window in steps (0: no restarts after stalls), x the stall step [s] (a restart when
+// the window's steps advance less than w·x seconds) (CvodeSettings; a letter left out
 // keeps the default); "o2@1e-5" runs that configuration at
 // that rtol only, "fd:o2" with cvode-fd. BELTSIM_GRID_CONFIGS (separated by
 // spaces), BELTSIM_GRID_RTOLS (by commas), BELTSIM_GRID_METHOD (cvode or cvode-fd) override.
@@ -168,6 +169,7 @@ CvodeSettings parse_settings(const std::string& spec) {
       case 'd': s.stab_lim_det = v != 0; break;
       case 'i': s.max_nonlin_iters = static_cast<int>(v); break;
       case 'w': s.stall_window = static_cast<long>(v); break;
+      case 'x': s.stall_step = v; break;
       default: throw std::invalid_argument("BELTSIM_GRID_CONFIGS: unknown key in " + spec);
     }
   }
