@@ -22,7 +22,7 @@ double BeltSystem::atol_scale(int k) const {
   return vel ? 1.0 : 0.1;
 }
 
-bool BeltSystem::reseat(double t, double* z, const double* dz) {
+bool BeltSystem::reseat(double t, const double* z, double* dz) {
   const int N = model_.n_coord();
   return friction_reseat(model_, t, z, z + N, dz, dz + N) > 0;
 }

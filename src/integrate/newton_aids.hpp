@@ -17,9 +17,9 @@ namespace beltsim {
 // the contact and friction laws, so a Jacobian taken at one serves Newton at the other
 uint64_t contact_branches(const Model& m, double t, const double* q, const double* v);
 // Newton aid for the friction band (see newton_aids.cpp): for every element in contact that slips
-// at (q, v) and would slip the other way at (q + dq, v + dv), set its slip velocity to zero.
-// Returns the number of elements moved.
-int friction_reseat(const Model& m, double t, double* q, double* v, const double* dq, const double* dv);
+// at (q, v) and would slip the other way at (q + dq, v + dv), change its velocity correction dv so
+// that its slip velocity there is zero. Returns the number of elements whose correction changed.
+int friction_reseat(const Model& m, double t, const double* q, const double* v, const double* dq, double* dv);
 // Newton aid (see newton_aids.cpp): g is the stage residual's velocity part (m/s) at (q, v); each
 // element in contact gets the tangential velocity change that zeroes its own tangential residual
 // with everything else held (an exact piecewise-linear solve). Returns the number moved.
