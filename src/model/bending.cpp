@@ -66,7 +66,7 @@ double bending_potential(const Model& m, const double* q) {
   for (int i = 0; i < b.n; ++i) {
     const int a = (i + b.n - 1) % b.n;
     const double delta = std::abs(wrap_angle(q[3 * i + 2] - q[3 * a + 2]));
-    u += b.kt * std::pow(delta, b.e_tor + 1.0) / (b.e_tor + 1.0);
+    u += b.e_tor == 1.0 ? 0.5 * b.kt * delta * delta : b.kt * std::pow(delta, b.e_tor + 1.0) / (b.e_tor + 1.0);
   }
   return u;
 }

@@ -22,6 +22,8 @@ void sde_jacobian(const Model& m, const double* q, const double* v, BlockMatrix&
 double sde_potential(const Model& m, const double* q);
 // signed axial force of SDE i (joining element i-1 to element i), positive in tension [N]
 double sde_axial_force(const Model& m, const double* q, const double* v, int i);
+// the same for every SDE at once (out[i] for SDE i, n values), each element's axis taken once
+void sde_axial_forces(const Model& m, const double* q, const double* v, double* out);
 // gap vector d of SDE i (end A of element i minus end B of element i-1) [m]
 Vec2 sde_gap(const Model& m, const double* q, int i);
 // the SDE whose middle (between the centres of its two elements) is nearest a point

@@ -15,14 +15,16 @@ const char* contact_state_name(ContactState s) {
   }
 }
 
-ElementObs observe_element(const Model& m, const std::vector<int>& sense, double t, const double* y, int i) {
-  const int n = m.n_el();
+namespace {
+// element i with the axial forces of its two SDEs (i joins it to i-1, next to i+1) given
+ElementObs element_with(const Model& m, const std::vector<int>& sense, double t, const double* y, int i,
+                        double sde_force, double next_force) {
   const double* q = y;
   const double* v = y + m.n_coord();
   ElementObs o;
   o.x = q[3 * i], o.y = q[3 * i + 1], o.phi = q[3 * i + 2];
-  o.sde_force = sde_axial_force(m, q, v, i);
-  o.tension = 0.5 * (o.sde_force + sde_axial_force(m, q, v, (i + 1) % n));
+  o.sde_force = sde_force;
+  o.tension = 0.5 * (sde_force + next_force);
   o.mu = m.mu[i];
   const ElementContact c = element_contact(m, t, q, v, i);
   o.normal = c.normal;
@@ -39,6 +41,13 @@ ElementObs observe_element(const Model& m, const std::vector<int>& sense, double
   o.state = ContactState::stick;  // which arc: classify_contact
   return o;
 }
+}  // namespace
+
+ElementObs observe_element(const Model& m, const std::vector<int>& sense, double t, const double* y, int i) {
+  const double* q = y;
+  const double* v = y + m.n_coord();
+  return element_with(m, sense, t, y, i, sde_axial_force(m, q, v, i), sde_axial_force(m, q, v, (i + 1) % m.n_el()));
+}
 
 PulleyObs observe_pulley(const Model& m, double t, const double* y, int j) {
   const double* q = y;
@@ -54,13 +63,16 @@ PulleyObs observe_pulley(const Model& m, double t, const double* y, int j) {
 }
 
 void observe(const Model& m, const std::vector<int>& sense, double t, const double* y, Observation& out) {
+  const int n = m.n_el();
   out.t = t;
-  out.elements.resize(m.n_el());
+  out.elements.resize(n);
   out.pulleys.resize(m.n_p());
+  out.work.resize(n);
   const double* v = y + m.n_coord();
+  sde_axial_forces(m, y, v, out.work.data());
   double vb = 0;
-  for (int i = 0; i < m.n_el(); ++i) {
-    out.elements[i] = observe_element(m, sense, t, y, i);
+  for (int i = 0; i < n; ++i) {
+    out.elements[i] = element_with(m, sense, t, y, i, out.work[i], out.work[(i + 1) % n]);
     vb += axis(y[3 * i + 2]).dot(Vec2(v[3 * i], v[3 * i + 1]));
   }
   out.belt_speed = vb / m.n_el();

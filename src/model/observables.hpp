@@ -84,6 +84,7 @@ struct Observation {
   double belt_speed = 0;  // [m/s] mean speed of the elements along their axes (the travel direction)
   std::vector<ElementObs> elements;
   std::vector<PulleyObs> pulleys;
+  std::vector<double> work;  // observe()'s working space, kept so that a sample allocates nothing
 };
 void observe(const Model& m, const std::vector<int>& sense, double t, const double* y, Observation& out);
 
