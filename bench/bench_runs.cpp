@@ -78,7 +78,7 @@ std::vector<std::pair<std::string, double>> bench_integrators() {
 
 DriveResult simulate(const Model& m, Eigen::VectorXd& y, double t0, double t_end, const std::string& method,
                      double rtol, std::vector<Eigen::VectorXd>* samples = nullptr, const CvodeSettings& cv = {},
-                     double wall_limit = 0) {
+                     double wall_limit = 0, double atol = -1) {
   BeltSystem sys(m);
   DriveOptions o;
   o.t0 = t0;
@@ -97,9 +97,9 @@ DriveResult simulate(const Model& m, Eigen::VectorXd& y, double t0, double t_end
       if (std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() > wall_limit) stop = true;
     };
   }
-  if (is_cvode(method)) return drive_cvode(sys, method, Tolerances{rtol, -1}, o, y, keep, watch, cv);
+  if (is_cvode(method)) return drive_cvode(sys, method, Tolerances{rtol, atol}, o, y, keep, watch, cv);
   auto st = make_stepper(method);
-  return drive(sys, *st, Tolerances{rtol, -1}, o, y, keep, watch);
+  return drive(sys, *st, Tolerances{rtol, atol}, o, y, keep, watch);
 }
 
 // largest deviation of a pulley speed over the samples, relative to the reference's largest speed
@@ -147,14 +147,15 @@ BENCHMARK_CAPTURE(BM_Seconds, half_wet, &presets::paper_wet)->Unit(benchmark::kS
 // values: o max order, c nonlinear convergence coefficient, j steps between Jacobians, s steps
 // between linear-solver setups, d stability limit detection (0/1), i Newton iterations per step,
 // w the stall window in steps (0: no restarts after stalls), x the stall step [s] (a restart when
-// the window's steps advance less than w·x seconds) (CvodeSettings; a letter left out
+// the window's steps advance less than w·x seconds), a the absolute tolerance per unit of each
+// component's natural size (Tolerances::atol; left out: the rtol) (CvodeSettings; a letter left out
 // keeps the default); "o2@1e-5" runs that configuration at
 // that rtol only, "fd:o2" with cvode-fd. BELTSIM_GRID_CONFIGS (separated by
 // spaces), BELTSIM_GRID_RTOLS (by commas), BELTSIM_GRID_METHOD (cvode or cvode-fd) override.
 // Prints a table to stderr: configuration, rtol, wall, CPU time of the process during the run
 // (std::clock: on a loaded machine the wall time includes other jobs' turns), steps, speed
 // error, Jacobians.
-CvodeSettings parse_settings(const std::string& spec) {
+CvodeSettings parse_settings(const std::string& spec, double* atol = nullptr) {
   CvodeSettings s;
   for (size_t k = 0; k < spec.size();) {
     const char key = spec[k++];
@@ -170,6 +171,9 @@ CvodeSettings parse_settings(const std::string& spec) {
       case 'i': s.max_nonlin_iters = static_cast<int>(v); break;
       case 'w': s.stall_window = static_cast<long>(v); break;
       case 'x': s.stall_step = v; break;
+      case 'a':
+        if (atol) *atol = v;
+        break;
       default: throw std::invalid_argument("BELTSIM_GRID_CONFIGS: unknown key in " + spec);
     }
   }
@@ -209,7 +213,9 @@ void BM_CvodeGrid(benchmark::State& state) {
         std::string failure;
         const std::clock_t cpu0 = std::clock();
         try {
-          r = simulate(sc.model, y, 0, T, run_method, rtol, &samples, parse_settings(c), wall);
+          double atol = -1;
+          const CvodeSettings settings = parse_settings(c, &atol);
+          r = simulate(sc.model, y, 0, T, run_method, rtol, &samples, settings, wall, atol);
         } catch (const std::exception& e) {
           failure = e.what();
         }
