@@ -22,9 +22,9 @@ double BeltSystem::atol_scale(int k) const {
   return vel ? 1.0 : 0.1;
 }
 
-bool BeltSystem::reseat(double t, const double* z, double* dz) {
+bool BeltSystem::reseat(double t, double* z, double* dz, bool keep_correction) {
   const int N = model_.n_coord();
-  return friction_reseat(model_, t, z, z + N, dz, dz + N) > 0;
+  return friction_reseat(model_, t, z, z + N, dz, dz + N, keep_correction ? Reseat::correction : Reseat::iterate) > 0;
 }
 
 bool BeltSystem::local_solve(double t, double s, double* z, const double* g) {

@@ -24,7 +24,7 @@ class BeltSystem final : public OdeSystem {
   bool factor(double s) override;
   bool sparse_jacobian(double t, const double* y, Eigen::SparseMatrix<double>& J) override;
   void solve(const double* r, double* u) override;
-  bool reseat(double t, const double* z, double* dz) override;
+  bool reseat(double t, double* z, double* dz, bool keep_correction) override;
   bool local_solve(double t, double s, double* z, const double* g) override;
   uint64_t branches(double t, const double* y) const override;
   void predict(double t, double dt, double* z) const override;

@@ -4,16 +4,13 @@
 // Newton across the band (friction_reseat): at a slipping iterate (|v_T| >= Δv) the friction
 // force is locally constant, so a Newton step cannot see the band; when the step would carry
 // v_T from one side of the band right across to the other, the solution is almost always
-// sticking (|v_T| < Δv). friction_reseat then changes the element's velocity correction along
-// the tangent t̂ at the corrected point so that it lands in the band (v_T = 0 there, against the
-// corrected pulley speed); the next Newton step sees the band's slope and lands on the sticking
-// solution, or leaves the band again if the element truly slips. The rest of the correction is
-// kept: until issue 11 the element was put into the band at the iterate as it was and the
-// iteration restarted from there, throwing the whole correction away; a trace of the dry drive
-// showed such restarts taking two or three Jacobians in a row at the same point. Keeping the
-// correction, the dry second at rtol 1e-3 took 7 229 Jacobians instead of 9 282, and the
-// Jacobians per step in BM_Scaling (0.05 s) fell from 8.5/16.2/20.4 to 6.9/14.6/15.8 at
-// 60/600/2 400 elements.
+// sticking (|v_T| < Δv). friction_reseat then puts the element into the band (v_T = 0), in one of
+// two places: where the correction takes it (Reseat::correction: its velocity correction along
+// the tangent t̂ there changes, against the corrected pulley speed, and the rest of the
+// correction is kept) or at the iterate as it is (Reseat::iterate: its velocity along t̂ changes,
+// and the iteration starts again from there). The next Newton step sees the band's slope and
+// lands on the sticking solution, or leaves the band again if the element truly slips. Which of
+// the two, and what each gave, is at the esdirk stepper's Newton iteration (esdirk.cpp).
 //
 // Local solve (friction_local_solve): an implicit stage solves G(Z) = Z - ψ - F(Z)/s = 0. For
 // one element in contact, move its velocity by w·t̂ (and its position by w·t̂/s, which keeps the
@@ -88,7 +85,7 @@ int friction_local_solve(const Model& m, double t, double s, double* q, double* 
   return moved;
 }
 
-int friction_reseat(const Model& m, double t, const double* q, const double* v, const double* dq, double* dv) {
+int friction_reseat(const Model& m, double t, const double* q, double* v, const double* dq, double* dv, Reseat where) {
   const double band = m.friction.dv;
   int moved = 0;
   for (int j = 0; j < m.n_p(); ++j) {
@@ -107,8 +104,13 @@ int friction_reseat(const Model& m, double t, const double* q, const double* v, 
       if (!normal_law(m.contact, P1, V1, pl.centre, pl.radius, b)) continue;
       const double vt1 = V1.dot(b.t) - omega1 * b.r;
       if (std::abs(vt1) < band || (vt1 > 0) == (vt0 > 0)) continue;
-      dv[3 * i] -= vt1 * b.t.x();
-      dv[3 * i + 1] -= vt1 * b.t.y();
+      if (where == Reseat::correction) {
+        dv[3 * i] -= vt1 * b.t.x();
+        dv[3 * i + 1] -= vt1 * b.t.y();
+      } else {
+        v[3 * i] -= vt0 * a.t.x();
+        v[3 * i + 1] -= vt0 * a.t.y();
+      }
       ++moved;
     }
   }

@@ -16,10 +16,12 @@ namespace beltsim {
 // sticking or slipping either way): two states with the same hash have the same smooth piece of
 // the contact and friction laws, so a Jacobian taken at one serves Newton at the other
 uint64_t contact_branches(const Model& m, double t, const double* q, const double* v);
-// Newton aid for the friction band (see newton_aids.cpp): for every element in contact that slips
-// at (q, v) and would slip the other way at (q + dq, v + dv), change its velocity correction dv so
-// that its slip velocity there is zero. Returns the number of elements whose correction changed.
-int friction_reseat(const Model& m, double t, const double* q, const double* v, const double* dq, double* dv);
+// Newton aid for the friction band (see newton_aids.cpp): every element in contact that slips at
+// (q, v) and would slip the other way at (q + dq, v + dv) is put into the band, where the
+// correction takes it (its velocity correction dv changes so that its slip velocity there is zero)
+// or at the iterate (its velocity v changes). Returns the number of elements moved.
+enum class Reseat { correction, iterate };
+int friction_reseat(const Model& m, double t, const double* q, double* v, const double* dq, double* dv, Reseat where);
 // Newton aid (see newton_aids.cpp): g is the stage residual's velocity part (m/s) at (q, v); each
 // element in contact gets the tangential velocity change that zeroes its own tangential residual
 // with everything else held (an exact piecewise-linear solve). Returns the number moved.

@@ -43,9 +43,10 @@ class OdeSystem {
   virtual bool sparse_jacobian(double, const double*, Eigen::SparseMatrix<double>&) { return false; }
 
   // Newton aid for piecewise-smooth right-hand sides: before the iterate z moves by the Newton
-  // correction dz, the system may change dz so that z + dz lands on the branch the correction
-  // would jump across (see friction_reseat). Returns true when it changed dz.
-  virtual bool reseat(double, const double*, double*) { return false; }
+  // correction dz, the system may put what the correction would carry across a branch onto it
+  // (see friction_reseat): by changing dz so that z + dz lands on it (keep_correction), or by
+  // moving z itself onto it (the iteration then starts again from z). True when it changed one.
+  virtual bool reseat(double, double*, double*, bool) { return false; }
   // Newton aid: with G the stage residual Z - ψ - F(t, Z)/s at z, move z so that the stiffest
   // local equations hold (true when z moved)
   virtual bool local_solve(double, double, double*, const double*) { return false; }
