@@ -64,6 +64,38 @@ void BM_FactorAndSolve(benchmark::State& state) {
 }
 BENCHMARK(BM_FactorAndSolve);
 
+// the same for belts of 60, 600 and 2 400 elements, in their initial static state
+void BM_FactorAndSolveN(benchmark::State& state) {
+  SceneDef d = presets::paper_dry();
+  d.belt.elements = static_cast<int>(state.range(0));
+  const Scene sc = build_scene(d);
+  BeltSystem sys(sc.model);
+  sys.prepare_jacobian(0.0, sc.y0.data());
+  Eigen::VectorXd r = Eigen::VectorXd::Ones(sc.y0.size()), u(sc.y0.size());
+  for (auto _ : state) {
+    sys.factor(1e5);
+    sys.solve(r.data(), u.data());
+    benchmark::DoNotOptimize(u.data());
+  }
+  state.counters["ns_per_element"] =
+      benchmark::Counter(static_cast<double>(state.iterations()) * static_cast<double>(state.range(0)),
+                         benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
+}
+BENCHMARK(BM_FactorAndSolveN)->Arg(60)->Arg(600)->Arg(2400);
+
+// the right-hand side for belts of 60, 600 and 2 400 elements, in their initial static state
+void BM_RhsN(benchmark::State& state) {
+  SceneDef d = presets::paper_dry();
+  d.belt.elements = static_cast<int>(state.range(0));
+  const Scene sc = build_scene(d);
+  Eigen::VectorXd dy(sc.y0.size());
+  for (auto _ : state) {
+    rhs(sc.model, 0.0, sc.y0.data(), dy.data());
+    benchmark::DoNotOptimize(dy.data());
+  }
+}
+BENCHMARK(BM_RhsN)->Arg(60)->Arg(600)->Arg(2400)->UseRealTime();
+
 // wall time for the first 20 ms of the dry drive (from rest), per integrator
 void BM_Simulate20ms(benchmark::State& state, const char* method) {
   for (auto _ : state) {
