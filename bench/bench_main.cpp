@@ -64,11 +64,16 @@ void BM_FactorAndSolve(benchmark::State& state) {
 }
 BENCHMARK(BM_FactorAndSolve);
 
-// the same for belts of 60, 600 and 2 400 elements, in their initial static state
-void BM_FactorAndSolveN(benchmark::State& state) {
+// the paper's drive with a belt of n elements, in its initial static state
+Scene scene_of(int n) {
   SceneDef d = presets::paper_dry();
-  d.belt.elements = static_cast<int>(state.range(0));
-  const Scene sc = build_scene(d);
+  d.belt.elements = n;
+  return build_scene(d);
+}
+
+// the same for belts of 60, 600 and 2 400 elements
+void BM_FactorAndSolveN(benchmark::State& state) {
+  const Scene sc = scene_of(static_cast<int>(state.range(0)));
   BeltSystem sys(sc.model);
   sys.prepare_jacobian(0.0, sc.y0.data());
   Eigen::VectorXd r = Eigen::VectorXd::Ones(sc.y0.size()), u(sc.y0.size());
@@ -83,11 +88,9 @@ void BM_FactorAndSolveN(benchmark::State& state) {
 }
 BENCHMARK(BM_FactorAndSolveN)->Arg(60)->Arg(600)->Arg(2400);
 
-// the right-hand side for belts of 60, 600 and 2 400 elements, in their initial static state
+// the right-hand side for belts of 60, 600 and 2 400 elements
 void BM_RhsN(benchmark::State& state) {
-  SceneDef d = presets::paper_dry();
-  d.belt.elements = static_cast<int>(state.range(0));
-  const Scene sc = build_scene(d);
+  const Scene sc = scene_of(static_cast<int>(state.range(0)));
   Eigen::VectorXd dy(sc.y0.size());
   for (auto _ : state) {
     rhs(sc.model, 0.0, sc.y0.data(), dy.data());
