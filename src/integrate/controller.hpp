@@ -1,7 +1,7 @@
 // Step-size controller: weighted error norm and the next step size. A rejected step is a status
 // returned to the driver, not an exception.
 //   w_k = atol·scale_k + rtol·max(|y0_k|, |y1_k|),   ‖err‖ = sqrt(mean((err_k/w_k)²))
-//   h_new = h·min(grow, max(shrink, 0.9·‖err‖^(-1/(q+1))))   with q the lower of the two orders
+//   h_new = h·min(grow, max(shrink, 0.7·‖err‖^(-1/(q+1))))   with q the lower of the two orders
 #pragma once
 
 #include <Eigen/Core>
