@@ -16,6 +16,8 @@
 namespace beltsim {
 
 double wrap_angle(double a) {
+  // neighbours' bends are almost always inside (-π, π], where fmod would return a unchanged
+  if (a > -M_PI && a <= M_PI) return a;
   constexpr double two_pi = 2.0 * M_PI;
   a = std::fmod(a, two_pi);
   if (a > M_PI) a -= two_pi;
@@ -52,11 +54,10 @@ void bending_jacobian(const Model& m, const double* q, const double*, BlockMatri
   for (int i = 0; i < b.n; ++i) {
     const int a = (i + b.n - 1) % b.n;
     const double ks = spring_slope(b, wrap_angle(q[3 * i + 2] - q[3 * a + 2]));
-    Eigen::Matrix<double, 6, 6> Kl = Eigen::Matrix<double, 6, 6>::Zero(), Cl = Kl;
-    Kl(5, 5) = -ks, Kl(5, 2) = ks, Kl(2, 5) = ks, Kl(2, 2) = -ks;
-    Cl(5, 5) = -b.ct, Cl(5, 2) = b.ct, Cl(2, 5) = b.ct, Cl(2, 2) = -b.ct;
-    K.add_pair(a, i, Kl);
-    C.add_pair(a, i, Cl);
+    // only the (φ, φ) entries of the pair's four blocks (the formulas at the top), written in
+    // place: adding whole 6×6 pair blocks made the Jacobian a third slower (BM_Jacobian)
+    K.diag[a](2, 2) -= ks, K.upper[a](2, 2) += ks, K.lower[i](2, 2) += ks, K.diag[i](2, 2) -= ks;
+    C.diag[a](2, 2) -= b.ct, C.upper[a](2, 2) += b.ct, C.lower[i](2, 2) += b.ct, C.diag[i](2, 2) -= b.ct;
   }
 }
 

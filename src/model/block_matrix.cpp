@@ -24,13 +24,6 @@ void BlockMatrix::set_zero() {
   pulley_pulley.setZero();
 }
 
-void BlockMatrix::add_pair(int a, int b, const Eigen::Matrix<double, 6, 6>& m) {
-  diag[a] += m.block<3, 3>(0, 0);
-  upper[a] += m.block<3, 3>(0, 3);
-  lower[b] += m.block<3, 3>(3, 0);
-  diag[b] += m.block<3, 3>(3, 3);
-}
-
 void BlockMatrix::multiply(const double* x, double* y) const {
   using Vec3 = Eigen::Vector3d;
   const int ne = 3 * n;

@@ -29,8 +29,6 @@ struct BlockMatrix {
   void resize(int n_el, int n_p);
   void set_zero();
   int size() const { return 3 * n + np; }
-  // add a 6×6 block coupling elements a = i-1 and b = i (a's coordinates first)
-  void add_pair(int a, int b, const Eigen::Matrix<double, 6, 6>& m);
   // y = this · x (x, y of length size())
   void multiply(const double* x, double* y) const;
   Eigen::MatrixXd to_dense() const;
