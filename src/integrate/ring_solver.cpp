@@ -63,19 +63,32 @@ bool RingSolver::factor(const Model& m, double alpha, double beta, const BlockMa
   }
   // Y = T⁻¹·E, S = G - F·Y
   Y_ = E_;
-  for (int c = 0; c < mb; ++c) solve_T(Y_.col(c).data());
+  solve_T(Y_.data(), mb, 3 * nt);
   // S = G - F·Y in place; coefficient-wise (a 5×5 result: the blocked product costs more)
   G_.noalias() -= F_.lazyProduct(Y_);
   S_.compute(G_);
   return std::isfinite(S_.matrixLU().norm()) && std::abs(S_.determinant()) > 0;
 }
 
-void RingSolver::solve_T(double* z) const {
+void RingSolver::solve_T(double* z, int cols, int stride) const {
   const int nt = n_ - 1;
   using V3 = Eigen::Map<Eigen::Vector3d>;
-  for (int t = 1; t < nt; ++t) V3(z + 3 * t) -= Lam_[t] * V3(z + 3 * (t - 1));
-  V3(z + 3 * (nt - 1)) = Dinv_[nt - 1] * V3(z + 3 * (nt - 1)).eval();
-  for (int t = nt - 2; t >= 0; --t) V3(z + 3 * t) = Dinv_[t] * (V3(z + 3 * t) - U_[t] * V3(z + 3 * (t + 1)));
+  // the columns side by side, block by block: each column's arithmetic is that of a lone sweep,
+  // but the independent columns overlap in the pipeline (a lone sweep waits on its previous block)
+  for (int t = 1; t < nt; ++t)
+    for (int c = 0; c < cols; ++c) {
+      double* zc = z + c * stride;
+      V3(zc + 3 * t) -= Lam_[t] * V3(zc + 3 * (t - 1));
+    }
+  for (int c = 0; c < cols; ++c) {
+    double* zc = z + c * stride;
+    V3(zc + 3 * (nt - 1)) = Dinv_[nt - 1] * V3(zc + 3 * (nt - 1)).eval();
+  }
+  for (int t = nt - 2; t >= 0; --t)
+    for (int c = 0; c < cols; ++c) {
+      double* zc = z + c * stride;
+      V3(zc + 3 * t) = Dinv_[t] * (V3(zc + 3 * t) - U_[t] * V3(zc + 3 * (t + 1)));
+    }
 }
 
 void RingSolver::solve(const double* r, double* x) {

@@ -37,7 +37,8 @@ class RingSolver {
   Eigen::MatrixXd G_;
   Eigen::PartialPivLU<Eigen::MatrixXd> S_;
   Eigen::VectorXd z_, rb_, xb_;
-  void solve_T(double* z) const;          // in place: z = T⁻¹·z
+  // in place: z = T⁻¹·z for `cols` columns `stride` apart
+  void solve_T(double* z, int cols = 1, int stride = 0) const;
 };
 
 }  // namespace beltsim
