@@ -2,6 +2,7 @@
 """`--set KEY=VALUE` on the command line: beltsim.args in run, console and wp, the checks of the
 values (exit 2), and a key the script never read (exit 1 naming it, with a suggestion)."""
 import os
+import shutil
 import subprocess
 import sys
 import tempfile
@@ -18,6 +19,7 @@ def run(args, stdin=None, cwd=None):
 class SetOption(unittest.TestCase):
     def setUp(self):
         self.dir = tempfile.mkdtemp(prefix="beltsim_cli_")
+        self.addCleanup(shutil.rmtree, self.dir, True)
         self.script = os.path.join(self.dir, "args.lua")
         with open(self.script, "w") as f:
             f.write("local a = beltsim.args\n"

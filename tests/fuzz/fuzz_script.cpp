@@ -16,6 +16,7 @@
 #include <fstream>
 #include <mutex>
 #include <string>
+#include <system_error>
 #include <thread>
 
 #include <unistd.h>
@@ -50,6 +51,11 @@ struct Folder {
     input = dir / "in" / "input.lua";
     out = dir / "out";
     std::ofstream(prelude) << kPrelude;
+  }
+  // at a normal exit (a finding aborts first, and its files stay)
+  ~Folder() {
+    std::error_code ec;
+    fs::remove_all(dir, ec);
   }
 };
 

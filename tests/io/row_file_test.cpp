@@ -23,17 +23,14 @@
 
 #include "io/csv_writer.hpp"
 #include "io/row_file.hpp"
+#include "support/scratch.hpp"
 
 namespace beltsim {
 namespace {
 
 namespace fs = std::filesystem;
 
-fs::path temp_dir() {
-  const fs::path d = fs::temp_directory_path() / ("beltsim_row_file_test_" + std::to_string(::getpid()));
-  fs::create_directories(d);
-  return d;
-}
+fs::path temp_dir() { return beltsim::test::scratch_dir("beltsim_row_file_test"); }
 
 std::string slurp(const fs::path& f) {
   std::ifstream in(f, std::ios::binary);
@@ -150,7 +147,7 @@ TEST(CsvWriter, NumbersReadBackBitForBit) {
   std::uniform_real_distribution<double> mant(-1, 1);
   std::uniform_int_distribution<int> ex(-300, 300);
   for (int k = 0; k < 10000; ++k) v.push_back(std::ldexp(mant(rng), ex(rng) * 3));
-  const fs::path path = fs::temp_directory_path() / ("beltsim_roundtrip_" + std::to_string(getpid()) + ".csv");
+  const fs::path path = temp_dir() / "roundtrip.csv";
   {
     CsvWriter w(path.string(), {"x"});
     for (double x : v) w.row({x});

@@ -12,17 +12,14 @@
 
 #include "io/png_writer.hpp"
 #include "io/video_writer.hpp"
+#include "support/scratch.hpp"
 
 namespace beltsim {
 namespace {
 
 namespace fs = std::filesystem;
 
-fs::path temp_dir() {
-  const fs::path d = fs::temp_directory_path() / ("beltsim_io_test_" + std::to_string(::getpid()));
-  fs::create_directories(d);
-  return d;
-}
+fs::path temp_dir() { return beltsim::test::scratch_dir("beltsim_io_test"); }
 
 Image pattern(int w, int h, int k) {
   Image img(w, h);

@@ -14,6 +14,7 @@
 #include "scene/presets.hpp"
 #include "sim/simulation.hpp"
 #include "support/warning_guard.hpp"
+#include "support/scratch.hpp"
 
 namespace beltsim {
 namespace {
@@ -487,7 +488,7 @@ TEST(KnownAnswers, SlipArcApproachesEulerEytelwein) {
     d.pulleys[1].torque.per_speed = -1.5;
     const Scene sc = build_scene(d);
     RunSettings rs;
-    rs.out_dir = (std::filesystem::temp_directory_path() / ("beltsim_ee_" + std::to_string(n))).string();
+    rs.out_dir = (beltsim::test::scratch_dir("beltsim_physics_test") / ("ee_" + std::to_string(n))).string();
     rs.keep_samples = true;
     rs.t_end = 0.2;
     const RunResult r = run(sc, rs);

@@ -16,6 +16,7 @@
 #include "plot/gnuplot.hpp"
 #include "plot/plot.hpp"
 #include "plot/wp_plot.hpp"
+#include "support/scratch.hpp"
 
 namespace beltsim::plot {
 namespace {
@@ -24,7 +25,7 @@ namespace fs = std::filesystem;
 
 // a fresh folder per test, with a quote and a space in its name
 fs::path dir(const std::string& name) {
-  const fs::path d = fs::temp_directory_path() / ("beltsim plot's test " + std::to_string(::getpid())) / name;
+  const fs::path d = beltsim::test::scratch_dir("beltsim plot's test") / name;
   fs::remove_all(d);
   fs::create_directories(d);
   return d;

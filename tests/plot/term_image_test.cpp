@@ -3,7 +3,6 @@
 // "kitty" an APC one (ESC _ G); without a forced mode nothing is written where the output is not
 // a terminal, and every refusal says why.
 #include <gtest/gtest.h>
-#include <unistd.h>
 
 #include <cstdio>
 #include <cstdlib>
@@ -12,6 +11,7 @@
 
 #include "io/png_writer.hpp"
 #include "term/term_image.hpp"
+#include "support/scratch.hpp"
 
 namespace beltsim::term {
 namespace {
@@ -20,7 +20,7 @@ namespace fs = std::filesystem;
 
 // a 320×180 picture: a colour gradient with a dark diagonal
 std::string picture() {
-  const fs::path p = fs::temp_directory_path() / ("beltsim_term_test_" + std::to_string(::getpid()) + ".png");
+  const fs::path p = beltsim::test::scratch_dir("beltsim_term_test") / "picture.png";
   Image img(320, 180);
   for (int y = 0; y < img.height; ++y)
     for (int x = 0; x < img.width; ++x) {

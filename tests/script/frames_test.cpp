@@ -3,7 +3,6 @@
 // a run with frames writes one PNG and one video frame per frame time; a diverging run leaves a
 // video that plays.
 #include <gtest/gtest.h>
-#include <unistd.h>
 
 #include <cstdio>
 #include <filesystem>
@@ -17,17 +16,14 @@
 #include "render/gl_context.hpp"
 #include "script/interpreter.hpp"
 #include "run_script.hpp"
+#include "support/scratch.hpp"
 
 namespace beltsim::script {
 namespace {
 
 namespace fs = std::filesystem;
 
-fs::path temp_dir() {
-  const fs::path d = fs::temp_directory_path() / ("beltsim_frames_test_" + std::to_string(::getpid()));
-  fs::create_directories(d);
-  return d;
-}
+fs::path temp_dir() { return beltsim::test::scratch_dir("beltsim_frames_test"); }
 
 const char* kScene =
     "local s = beltsim.scene {\n"

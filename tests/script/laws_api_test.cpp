@@ -17,17 +17,14 @@
 #include "run_script.hpp"
 #include "script/interpreter.hpp"
 #include "script/script_args.hpp"
+#include "support/scratch.hpp"
 
 namespace beltsim::script {
 namespace {
 
 namespace fs = std::filesystem;
 
-fs::path temp_dir() {
-  const fs::path d = fs::temp_directory_path() / ("beltsim_laws_test_" + std::to_string(::getpid()));
-  fs::create_directories(d);
-  return d;
-}
+fs::path temp_dir() { return beltsim::test::scratch_dir("beltsim_laws_test"); }
 
 // two pulleys on a frictionless belt: each turns under its own law alone (inertia 0.025 kg·m²)
 std::string isolated(const std::string& driver, const std::string& driven) {

@@ -11,17 +11,14 @@
 
 #include "script/interpreter.hpp"
 #include "run_script.hpp"
+#include "support/scratch.hpp"
 
 namespace beltsim::script {
 namespace {
 
 namespace fs = std::filesystem;
 
-fs::path temp_dir() {
-  const fs::path d = fs::temp_directory_path() / ("beltsim_live_api_test_" + std::to_string(::getpid()));
-  fs::create_directories(d);
-  return d;
-}
+fs::path temp_dir() { return beltsim::test::scratch_dir("beltsim_live_api_test"); }
 
 // the paper's two-pulley drive (40 elements: quick); `driver` is the driver's drive
 std::string scene(const std::string& driver = "torque = beltsim.ramp(0.3, -70)") {

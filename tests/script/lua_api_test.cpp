@@ -11,17 +11,14 @@
 
 #include "script/interpreter.hpp"
 #include "run_script.hpp"
+#include "support/scratch.hpp"
 
 namespace beltsim::script {
 namespace {
 
 namespace fs = std::filesystem;
 
-fs::path temp_dir() {
-  const fs::path d = fs::temp_directory_path() / ("beltsim_lua_test_" + std::to_string(::getpid()));
-  fs::create_directories(d);
-  return d;
-}
+fs::path temp_dir() { return beltsim::test::scratch_dir("beltsim_lua_test"); }
 
 // A valid two-pulley scene; belt_extra adds keys to the belt table, driven replaces the driven
 // pulley's geometry.

@@ -17,6 +17,7 @@
 
 #include "script/interpreter.hpp"
 #include "run_script.hpp"
+#include "support/scratch.hpp"
 
 namespace beltsim::script {
 namespace {
@@ -25,7 +26,7 @@ namespace fs = std::filesystem;
 
 // <tmp>/beltsim_sandbox_test_<pid>/{scripts,out}: the script's folder and the output folder
 fs::path root() {
-  const fs::path d = fs::temp_directory_path() / ("beltsim_sandbox_test_" + std::to_string(::getpid()));
+  const fs::path d = beltsim::test::scratch_dir("beltsim_sandbox_test");
   fs::create_directories(d / "scripts");
   fs::create_directories(d / "out");
   return d;

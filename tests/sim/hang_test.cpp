@@ -11,7 +11,6 @@
 #include <string>
 #include <thread>
 
-#include <unistd.h>
 
 #include "integrate/integrator.hpp"
 #include "integrate/timeline.hpp"
@@ -19,6 +18,7 @@
 #include "scene/scene.hpp"
 #include "sim/simulation.hpp"
 #include "support/warning_guard.hpp"
+#include "support/scratch.hpp"
 
 namespace beltsim {
 namespace {
@@ -98,7 +98,7 @@ const Scene& dry() {
 }
 
 fs::path temp(const std::string& name) {
-  const fs::path p = fs::temp_directory_path() / ("beltsim_hang_test_" + std::to_string(getpid())) / name;
+  const fs::path p = beltsim::test::scratch_dir("beltsim_hang_test") / name;
   fs::remove_all(p);
   return p;
 }

@@ -17,6 +17,7 @@
 #include "scene/scene.hpp"
 #include "sim/simulation.hpp"
 #include "support/warning_guard.hpp"
+#include "support/scratch.hpp"
 
 namespace beltsim {
 namespace {
@@ -37,7 +38,7 @@ std::string slurp(const std::string& path) {
 }
 
 fs::path temp(const std::string& name) {
-  const fs::path p = fs::temp_directory_path() / ("beltsim_live_test_" + std::to_string(getpid())) / name;
+  const fs::path p = beltsim::test::scratch_dir("beltsim_live_test") / name;
   fs::remove_all(p);
   return p;
 }

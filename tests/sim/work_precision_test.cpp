@@ -11,6 +11,7 @@
 #include "scene/presets.hpp"
 #include "sim/work_precision.hpp"
 #include "support/warning_guard.hpp"
+#include "support/scratch.hpp"
 
 namespace beltsim {
 namespace {
@@ -18,7 +19,7 @@ namespace {
 namespace fs = std::filesystem;
 
 fs::path out_dir(const char* name) {
-  return fs::temp_directory_path() / ("beltsim_wp_test_" + std::to_string(::getpid())) / name;
+  return beltsim::test::scratch_dir("beltsim_wp_test") / name;
 }
 
 // The first 0.1 s of the dry drive. esdirk32 is third order, so a hundredfold tighter tolerance
