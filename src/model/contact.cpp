@@ -18,23 +18,6 @@
 
 namespace beltsim {
 
-bool normal_law(const Contact& c, const Vec2& P, const Vec2& V, const Vec2& centre, double R, NormalLaw& o) {
-  const Vec2 rv = P - centre;
-  const double r2 = rv.squaredNorm();
-  if (r2 >= R * R) return false;
-  o.r = std::sqrt(r2);
-  o.n = rv / o.r;
-  o.t = perp(o.n);
-  o.p = R - o.r;
-  o.pdot = -o.n.dot(V);
-  o.delta = std::min(o.p / c.p_max, 1.0);
-  o.N_el = (c.c1 * o.p + c.c2) * o.p;
-  const double raw = o.N_el + o.delta * c.b * o.pdot;
-  o.pushing = raw > 0;
-  o.N = o.pushing ? raw : 0.0;
-  return true;
-}
-
 void normal_law_derivatives(const Contact& c, const Vec2& V, NormalLaw& o) {
   if (!o.pushing) {
     o.dN_dP.setZero();

@@ -23,20 +23,6 @@
 
 namespace beltsim {
 
-FrictionLaw friction_law(double mu_i, double dv, const NormalLaw& nl, const Vec2& V, double omega) {
-  FrictionLaw fl;
-  fl.vT = V.dot(nl.t) - omega * nl.r;
-  const double x = fl.vT / dv;
-  if (std::abs(x) < 1.0) {
-    fl.mu_eff = mu_i * x;
-    fl.dmu = mu_i / dv;
-  } else {
-    fl.mu_eff = std::copysign(mu_i, x);
-    fl.dmu = 0.0;
-  }
-  return fl;
-}
-
 void friction_jacobian(const NormalLaw& nl, const FrictionLaw& fl, const Vec2& V, double omega, PairJacobian& J) {
   const double N = nl.N, mu = fl.mu_eff, r = nl.r;
   const Eigen::RowVector2d dvT_dP = -(V.dot(nl.n) / r) * nl.t.transpose() - omega * nl.n.transpose();
