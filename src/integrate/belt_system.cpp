@@ -41,7 +41,7 @@ uint64_t BeltSystem::branches(double t, const double* y) const {
 }
 
 bool BeltSystem::prepare_jacobian(double t, const double* y) {
-  jacobian(model_, t, y, J_);
+  jacobian(model_, t, y, J_, &axes_);
   return true;
 }
 
@@ -51,7 +51,7 @@ void BeltSystem::time_derivative(double* f_t) const {
 }
 
 bool BeltSystem::sparse_jacobian(double t, const double* y, Eigen::SparseMatrix<double>& J) {
-  jacobian(model_, t, y, J_);
+  jacobian(model_, t, y, J_, &axes_);
   assemble_ode_jacobian(model_, J_.K, J_.C, J);
   return true;
 }

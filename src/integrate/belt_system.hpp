@@ -17,7 +17,7 @@ class BeltSystem final : public OdeSystem {
  public:
   explicit BeltSystem(const Model& m);
   int size() const override { return model_.n_state(); }
-  void rhs(double t, const double* y, double* dy) override { beltsim::rhs(model_, t, y, dy); }
+  void rhs(double t, const double* y, double* dy) override { beltsim::rhs(model_, t, y, dy, &axes_); }
   double atol_scale(int k) const override;
   bool prepare_jacobian(double t, const double* y) override;
   void time_derivative(double* f_t) const override;
@@ -35,6 +35,7 @@ class BeltSystem final : public OdeSystem {
  private:
   const Model& model_;
   Jacobian J_;
+  AxisMemo axes_;  // the elements' axes of the last evaluation, for the next at the same angles
   double s_ = 0;
   RingSolver solver_;
   Eigen::VectorXd rhs_, kr_, uv_;

@@ -7,10 +7,11 @@
 namespace beltsim {
 
 namespace {
-void all_forces(const Model& m, double t, const double* q, const double* v, double* f, double* e_rate) {
+void all_forces(const Model& m, double t, const double* q, const double* v, double* f, double* e_rate,
+                AxisMemo* axes = nullptr) {
   std::fill(f, f + m.n_coord(), 0.0);
   if (m.gravity != 0.0) gravity_forces(m, f);
-  sde_forces(m, q, v, f, e_rate);
+  sde_forces(m, q, v, f, e_rate, axes);
   bending_forces(m, q, v, f, e_rate);
   contact_forces(m, t, q, v, f, e_rate);
   pulley_forces(m, t, v, f, e_rate);
@@ -21,7 +22,7 @@ void forces(const Model& m, double t, const double* y, double* f) {
   all_forces(m, t, y, y + m.n_coord(), f, nullptr);
 }
 
-void rhs(const Model& m, double t, const double* y, double* dy) {
+void rhs(const Model& m, double t, const double* y, double* dy, AxisMemo* axes) {
   const int N = m.n_coord();
   const double* q = y;
   const double* v = y + N;
@@ -33,7 +34,7 @@ void rhs(const Model& m, double t, const double* y, double* dy) {
     if (m.pulleys[j].kinematic) dy[m.pulley_coord(j)] = m.omega(j, t, v);
   // accelerations
   double* a = dy + N;
-  all_forces(m, t, q, v, a, e_rate);
+  all_forces(m, t, q, v, a, e_rate, axes);
   for (int k = 0; k < N; ++k) a[k] /= m.mass_of(k);
 }
 
@@ -43,13 +44,13 @@ void Jacobian::resize(const Model& m) {
   f_t.setZero(m.n_coord());
 }
 
-void jacobian(const Model& m, double t, const double* y, Jacobian& J) {
+void jacobian(const Model& m, double t, const double* y, Jacobian& J, AxisMemo* axes) {
   const double* q = y;
   const double* v = y + m.n_coord();
   J.K.set_zero();
   J.C.set_zero();
   J.f_t.setZero();
-  sde_jacobian(m, q, v, J.K, J.C);
+  sde_jacobian(m, q, v, J.K, J.C, axes);
   bending_jacobian(m, q, v, J.K, J.C);
   contact_jacobian(m, t, q, v, J.K, J.C, J.f_t.data());
   pulley_jacobian(m, t, v, J.C, J.f_t.data());

@@ -6,12 +6,14 @@
 #include <vector>
 
 #include "model/block_matrix.hpp"
+#include "model/forces.hpp"
 #include "model/model.hpp"
 
 namespace beltsim {
 
-// writes dy (length n_state) for y at time t
-void rhs(const Model& m, double t, const double* y, double* dy);
+// writes dy (length n_state) for y at time t; `axes` (may be null) keeps the elements' axes
+// between evaluations (forces.hpp)
+void rhs(const Model& m, double t, const double* y, double* dy, AxisMemo* axes = nullptr);
 
 // ∂f/∂q, ∂f/∂v and ∂f/∂t at (t, y). The energy rows are not part of it: they are pure
 // quadratures that feed nothing back, and the integrators treat them as such (W-method).
@@ -20,7 +22,7 @@ struct Jacobian {
   Eigen::VectorXd f_t;
   void resize(const Model& m);
 };
-void jacobian(const Model& m, double t, const double* y, Jacobian& J);
+void jacobian(const Model& m, double t, const double* y, Jacobian& J, AxisMemo* axes = nullptr);
 
 // generalized forces only (length n_coord), for tests and diagnostics
 void forces(const Model& m, double t, const double* y, double* f);

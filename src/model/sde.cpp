@@ -28,6 +28,8 @@
 // to 710 (callgrind, `beltsim wp` of the dry second at rtol 1e-3; about 150 of each are the sine
 // and cosine of the element's angle).
 #include <cmath>
+#include <cstdint>
+#include <cstring>
 #include <limits>
 
 #include "model/forces.hpp"
@@ -42,9 +44,32 @@ struct Pair {
   Vec2 A, B;           // D's φ columns, -h·e'_a and -h·e'_b
 };
 
+// the axis of element k, from the memo when it holds the same angle (bit for bit: cos and sin of
+// -0.0 and 0.0 differ in the sign of a zero), else taken and written to it
+inline Vec2 element_axis(const double* q, int k, AxisMemo* memo) {
+  const double phi = q[3 * k + 2];
+  if (!memo) return axis(phi);
+  std::uint64_t a, b;
+  std::memcpy(&a, &phi, sizeof a);
+  std::memcpy(&b, &memo->phi[k], sizeof b);
+  if (a == b) return {memo->c[k], memo->s[k]};
+  const Vec2 e = axis(phi);
+  memo->phi[k] = phi, memo->c[k] = e.x(), memo->s[k] = e.y();
+  return e;
+}
+
+// sizes the memo for the belt (a fresh one holds NaN, whose axis is NaN too)
+void fit(const Model& m, AxisMemo* memo) {
+  if (!memo || memo->phi.size() == static_cast<size_t>(m.belt.n)) return;
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  memo->phi.assign(m.belt.n, nan), memo->c.assign(m.belt.n, nan), memo->s.assign(m.belt.n, nan);
+}
+
 // ea: the axis of element i-1 when the caller has it (loops over the SDEs in order pass the
 // previous pair's eb, which halves the sines and cosines)
-Pair make_pair(const Model& m, const double* q, const double* v, int i, const Vec2* ea = nullptr) {
+// (always inlined: called out of line, its overhead took back what the memo saved)
+[[gnu::always_inline]] inline Pair make_pair(const Model& m, const double* q, const double* v, int i,
+                                             const Vec2* ea = nullptr, AxisMemo* memo = nullptr) {
   const int n = m.belt.n;
   Pair s;
   s.a = (i + n - 1) % n;
@@ -52,8 +77,8 @@ Pair make_pair(const Model& m, const double* q, const double* v, int i, const Ve
   s.h = 0.5 * m.belt.rigid_length;
   const double* qa = q + 3 * s.a;
   const double* qb = q + 3 * s.b;
-  s.ea = ea ? *ea : axis(qa[2]);
-  s.eb = axis(qb[2]);
+  s.ea = ea ? *ea : element_axis(q, s.a, memo);
+  s.eb = element_axis(q, s.b, memo);
   s.d = Vec2(qb[0] - qa[0], qb[1] - qa[1]) - s.h * (s.ea + s.eb);
   s.A = -s.h * perp(s.ea);
   s.B = -s.h * perp(s.eb);
@@ -128,11 +153,12 @@ void sde_axial_forces(const Model& m, const double* q, const double* v, double* 
   }
 }
 
-void sde_forces(const Model& m, const double* q, const double* v, double* f, double* e_rate) {
+void sde_forces(const Model& m, const double* q, const double* v, double* f, double* e_rate, AxisMemo* memo) {
   const Belt& b = m.belt;
+  fit(m, memo);
   Vec2 prev;
   for (int i = 0; i < b.n; ++i) {
-    const Pair s = make_pair(m, q, v, i, i > 0 ? &prev : nullptr);
+    const Pair s = make_pair(m, q, v, i, i > 0 ? &prev : nullptr, memo);
     prev = s.eb;
     const Vec2 F = spring(b, s.d) + b.c * s.dd;
     double* fa = f + 3 * s.a;
@@ -143,11 +169,12 @@ void sde_forces(const Model& m, const double* q, const double* v, double* f, dou
   }
 }
 
-void sde_jacobian(const Model& m, const double* q, const double* v, BlockMatrix& K, BlockMatrix& C) {
+void sde_jacobian(const Model& m, const double* q, const double* v, BlockMatrix& K, BlockMatrix& C, AxisMemo* memo) {
   const Belt& b = m.belt;
+  fit(m, memo);
   Vec2 prev;
   for (int i = 0; i < b.n; ++i) {
-    const Pair s = make_pair(m, q, v, i, i > 0 ? &prev : nullptr);
+    const Pair s = make_pair(m, q, v, i, i > 0 ? &prev : nullptr, memo);
     prev = s.eb;
     Eigen::Matrix2d G = Eigen::Matrix2d::Identity();
     if (b.e_tra != 1.0) {

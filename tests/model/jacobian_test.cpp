@@ -18,6 +18,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstring>
 #include <random>
 
 #include "model/contact_law.hpp"
@@ -195,6 +196,39 @@ TEST(Jacobian, AnglesAcrossPiAndLaps) {
   }
   EXPECT_GT(straddle, 0) << "no bend crosses the ±π cut";
   expect_jacobian_matches(m, 0.35, y);
+}
+
+// The axis memo (forces.hpp) changes no result: the right-hand side and the Jacobian with it, after
+// evaluations at other states (some angles changed, one from 0.0 to -0.0, whose sine differs in
+// the sign of its zero), are the same to the bit as without it.
+TEST(Jacobian, AxisMemoChangesNoResult) {
+  const Scene sc = build_scene(presets::paper_dry());
+  const Model& m = sc.model;
+  const Eigen::VectorXd y1 = running_state(sc, 0.1, 30.0, 3);
+  Eigen::VectorXd y2 = y1;
+  for (int i = 0; i < m.n_el(); i += 3) y2[3 * i + 2] += 1e-3 * (i + 1);  // a third of the angles move
+  Eigen::VectorXd y3 = y2;
+  y2[3 * 4 + 2] = 0.0;
+  y3[3 * 4 + 2] = -0.0;
+  AxisMemo memo;
+  Eigen::VectorXd dy(m.n_state()), ref(m.n_state());
+  Jacobian J, Jref;
+  J.resize(m), Jref.resize(m);
+  const Eigen::VectorXd* states[] = {&y1, &y3, &y1, &y2, &y3};  // ends with 0.0 -> -0.0
+  for (const Eigen::VectorXd* y : states) {
+    rhs(m, 0.1, y->data(), dy.data(), &memo);
+    rhs(m, 0.1, y->data(), ref.data());
+    EXPECT_EQ(std::memcmp(dy.data(), ref.data(), sizeof(double) * dy.size()), 0);
+    jacobian(m, 0.1, y->data(), J, &memo);
+    jacobian(m, 0.1, y->data(), Jref);
+    const Eigen::MatrixXd K = J.K.to_dense(), Kref = Jref.K.to_dense(), C = J.C.to_dense(), Cref = Jref.C.to_dense();
+    EXPECT_EQ(std::memcmp(K.data(), Kref.data(), sizeof(double) * K.size()), 0);
+    EXPECT_EQ(std::memcmp(C.data(), Cref.data(), sizeof(double) * C.size()), 0);
+  }
+  // the memo holds the last state's axes, the sign of the zero angle's sine included (the angles
+  // are compared bit for bit: -0.0 == 0.0 would have kept the sine of 0.0)
+  EXPECT_TRUE(std::signbit(memo.s[4]));
+  EXPECT_EQ(memo.c[0], std::cos(y3[2]));
 }
 
 TEST(Jacobian, BackSideIdlerAutomotive) {
