@@ -92,20 +92,23 @@ void fit(const Model& m, AxisMemo* memo) {
   return s;
 }
 
-// adds w·Dᵀ·M·D (M symmetric 2×2) to the pair's four blocks of J (formulas at the top)
+// adds w·Dᵀ·M·D (M symmetric 2×2) to the pair's four blocks of J (formulas at the top), entry by
+// entry in place (through a 3×3 temporary per block it took 5.3 % of the dry drive's samples)
 void add_dtmd(BlockMatrix& J, const Pair& s, double w, const Eigen::Matrix2d& M) {
   const Vec2 MA = w * (M * s.A), MB = w * (M * s.B);
   const double m00 = w * M(0, 0), m01 = w * M(0, 1), m11 = w * M(1, 1);
   const double amb = s.A.dot(MB);
-  Mat3 blk;
-  blk << m00, m01, -MA.x(), m01, m11, -MA.y(), -MA.x(), -MA.y(), s.A.dot(MA);
-  J.diag[s.a] += blk;
-  blk << -m00, -m01, -MB.x(), -m01, -m11, -MB.y(), MA.x(), MA.y(), amb;
-  J.upper[s.a] += blk;
-  blk << -m00, -m01, MA.x(), -m01, -m11, MA.y(), -MB.x(), -MB.y(), amb;
-  J.lower[s.b] += blk;
-  blk << m00, m01, MB.x(), m01, m11, MB.y(), MB.x(), MB.y(), s.B.dot(MB);
-  J.diag[s.b] += blk;
+  // rows (x, y, φ) of block X get (r0; r1; r2), each row three columns
+  auto add = [](Mat3& X, double a00, double a01, double a02, double a10, double a11, double a12, double a20,
+                double a21, double a22) {
+    X(0, 0) += a00, X(0, 1) += a01, X(0, 2) += a02;
+    X(1, 0) += a10, X(1, 1) += a11, X(1, 2) += a12;
+    X(2, 0) += a20, X(2, 1) += a21, X(2, 2) += a22;
+  };
+  add(J.diag[s.a], m00, m01, -MA.x(), m01, m11, -MA.y(), -MA.x(), -MA.y(), s.A.dot(MA));
+  add(J.upper[s.a], -m00, -m01, -MB.x(), -m01, -m11, -MB.y(), MA.x(), MA.y(), amb);
+  add(J.lower[s.b], -m00, -m01, MA.x(), -m01, -m11, MA.y(), -MB.x(), -MB.y(), amb);
+  add(J.diag[s.b], m00, m01, MB.x(), m01, m11, MB.y(), MB.x(), MB.y(), s.B.dot(MB));
 }
 
 // spring part k·g(d)
