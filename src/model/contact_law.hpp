@@ -2,7 +2,7 @@
 // integrator's Newton aids (integrate/newton_aids.cpp); not part of the model's interface.
 // normal_law and friction_law are defined here, inline: every right-hand side calls them for each
 // element and pulley, and inlined into contact_forces they took the dry second at rtol 7e-4 from
-// 0.295 to 0.28 s (alternating runs; the same numbers to the last bit). Their formulas and
+// 0.28–0.29 to 0.26–0.27 s (alternating runs; the same numbers to the last bit). Their formulas and
 // derivatives are at the top of contact.cpp and friction.cpp.
 #pragma once
 
