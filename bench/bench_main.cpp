@@ -99,6 +99,30 @@ void BM_RhsN(benchmark::State& state) {
 }
 BENCHMARK(BM_RhsN)->Arg(60)->Arg(600)->Arg(2400)->UseRealTime();
 
+// the same through BeltSystem, which evaluates a belt of kHalvesElements or more in two halves at
+// once (wall time: the worker's half is on another core); and its Jacobian
+void BM_SystemRhsN(benchmark::State& state) {
+  const Scene sc = scene_of(static_cast<int>(state.range(0)));
+  BeltSystem sys(sc.model);
+  Eigen::VectorXd dy(sc.y0.size());
+  for (auto _ : state) {
+    sys.rhs(0.0, sc.y0.data(), dy.data());
+    benchmark::DoNotOptimize(dy.data());
+  }
+}
+BENCHMARK(BM_SystemRhsN)->Arg(60)->Arg(600)->Arg(2400)->UseRealTime();
+
+void BM_SystemJacobianN(benchmark::State& state) {
+  const Scene sc = scene_of(static_cast<int>(state.range(0)));
+  BeltSystem sys(sc.model);
+  Eigen::VectorXd y = sc.y0;
+  for (auto _ : state) {
+    y[2] += 1e-12;  // a fresh angle each time: the axis memo must not serve it
+    sys.prepare_jacobian(0.0, y.data());
+  }
+}
+BENCHMARK(BM_SystemJacobianN)->Arg(60)->Arg(600)->Arg(2400)->UseRealTime();
+
 // wall time for the first 20 ms of the dry drive (from rest), per integrator
 void BM_Simulate20ms(benchmark::State& state, const char* method) {
   for (auto _ : state) {

@@ -245,27 +245,37 @@ BENCHMARK(BM_CvodeGrid)->Unit(benchmark::kSecond)->Iterations(1);
 // ramp just ended) for 60..2400 elements; the state at 0.3 s comes from a run at rtol 1e-2. The
 // window is run BELTSIM_BENCH_REPEATS times (default 5) from that state and the median wall time
 // is reported: the runs take the same steps, and a 60-element window of 0.05 s is 15–20 ms of
-// work, whose single runs spread by ±20 % on a shared machine.
+// work, whose single runs spread by ±20 % on a shared machine. The repetitions go round the four
+// lengths (60, 150, 600, 2400, 60, ...), so that a drift of the machine's speed within the run
+// reaches every length alike instead of the one measured while it lasted.
 void BM_Scaling(benchmark::State& state) {
   const double W = env_number("BELTSIM_BENCH_WINDOW", 0.02), rtol = env_number("BELTSIM_BENCH_RTOL", 1e-3);
   const int repeats = std::max(1, static_cast<int>(env_number("BELTSIM_BENCH_REPEATS", 5)));
+  const int lengths[] = {60, 150, 600, 2400};
   for (auto _ : state) {
-    double base = 0;
-    for (int n : {60, 150, 600, 2400}) {
+    std::vector<Scene> scenes;
+    std::vector<Eigen::VectorXd> starts;
+    for (int n : lengths) {
       SceneDef d = presets::paper_dry();
       d.belt.elements = n;
-      const Scene sc = build_scene(d);
-      Eigen::VectorXd y0 = sc.y0;
-      simulate(sc.model, y0, 0, 0.3, "esdirk32", 1e-2);
-      std::vector<double> walls;
-      DriveResult r;
-      for (int k = 0; k < repeats; ++k) {
-        Eigen::VectorXd y = y0;
-        r = simulate(sc.model, y, 0.3, 0.3 + W, "esdirk32", rtol);
-        walls.push_back(r.wall_seconds);
+      scenes.push_back(build_scene(d));
+      starts.push_back(scenes.back().y0);
+      simulate(scenes.back().model, starts.back(), 0, 0.3, "esdirk32", 1e-2);
+    }
+    std::vector<std::vector<double>> walls(scenes.size());
+    std::vector<DriveResult> results(scenes.size());
+    for (int k = 0; k < repeats; ++k)
+      for (size_t c = 0; c < scenes.size(); ++c) {
+        Eigen::VectorXd y = starts[c];
+        results[c] = simulate(scenes[c].model, y, 0.3, 0.3 + W, "esdirk32", rtol);
+        walls[c].push_back(results[c].wall_seconds);
       }
-      std::sort(walls.begin(), walls.end());
-      const double per_s = walls[walls.size() / 2] / W;
+    double base = 0;
+    for (size_t c = 0; c < scenes.size(); ++c) {
+      const int n = lengths[c];
+      const DriveResult& r = results[c];
+      std::sort(walls[c].begin(), walls[c].end());
+      const double per_s = walls[c][walls[c].size() / 2] / W;
       std::string tag = std::to_string(n);
       tag.insert(tag.begin(), 'n');
       state.counters[tag + "_wall_per_sim_s"] = per_s;

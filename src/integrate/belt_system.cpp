@@ -9,7 +9,10 @@
 
 namespace beltsim {
 
-BeltSystem::BeltSystem(const Model& m) : model_(m) { J_.resize(m); }
+BeltSystem::BeltSystem(const Model& m) : model_(m) {
+  J_.resize(m);
+  if (m.belt.n >= kHalvesElements) halves_ = std::make_unique<Halves>(m);
+}
 
 double BeltSystem::atol_scale(int k) const {
   // natural sizes: 0.1 m (layout), 1 rad, 1 m/s, 10 rad/s (element spin), 1 J
@@ -41,7 +44,7 @@ uint64_t BeltSystem::branches(double t, const double* y) const {
 }
 
 bool BeltSystem::prepare_jacobian(double t, const double* y) {
-  jacobian(model_, t, y, J_, &axes_);
+  jacobian(model_, t, y, J_, &axes_, halves_.get());
   return true;
 }
 
@@ -51,14 +54,14 @@ void BeltSystem::time_derivative(double* f_t) const {
 }
 
 bool BeltSystem::sparse_jacobian(double t, const double* y, Eigen::SparseMatrix<double>& J) {
-  jacobian(model_, t, y, J_, &axes_);
+  jacobian(model_, t, y, J_, &axes_, halves_.get());
   assemble_ode_jacobian(model_, J_.K, J_.C, J);
   return true;
 }
 
 bool BeltSystem::factor(double s) {
   s_ = s;
-  return solver_.factor(model_, s * s, s, J_.C, J_.K);
+  return solver_.factor(model_, s * s, s, J_.C, J_.K, halves_ ? &halves_->two : nullptr);
 }
 
 void BeltSystem::solve(const double* r, double* u) {

@@ -6,6 +6,8 @@
 // A = s²·M - s·C - K keeps the ring-plus-pulleys pattern; RingSolver factorises it in O(n).
 #pragma once
 
+#include <memory>
+
 #include "integrate/ring_solver.hpp"
 #include "integrate/system.hpp"
 #include "model/model.hpp"
@@ -17,7 +19,7 @@ class BeltSystem final : public OdeSystem {
  public:
   explicit BeltSystem(const Model& m);
   int size() const override { return model_.n_state(); }
-  void rhs(double t, const double* y, double* dy) override { beltsim::rhs(model_, t, y, dy, &axes_); }
+  void rhs(double t, const double* y, double* dy) override { beltsim::rhs(model_, t, y, dy, &axes_, halves_.get()); }
   double atol_scale(int k) const override;
   bool prepare_jacobian(double t, const double* y) override;
   void time_derivative(double* f_t) const override;
@@ -36,6 +38,7 @@ class BeltSystem final : public OdeSystem {
   const Model& model_;
   Jacobian J_;
   AxisMemo axes_;  // the elements' axes of the last evaluation, for the next at the same angles
+  std::unique_ptr<Halves> halves_;  // a long belt's two halves at once (rhs.hpp); null below kHalvesElements
   double s_ = 0;
   RingSolver solver_;
   Eigen::VectorXd rhs_, kr_, uv_;

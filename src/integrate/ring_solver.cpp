@@ -6,105 +6,205 @@
 
 namespace beltsim {
 
-bool RingSolver::factor(const Model& m, double alpha, double beta, const BlockMatrix& C, const BlockMatrix& K) {
-  const int n = m.n_el(), np = m.n_p();
-  const int nt = n - 1;  // elements 1..n-1 in T
-  const int mb = 3 + np;
-  if (n != n_ || np != np_) {
-    n_ = n, np_ = np, mb_ = mb;
-    Dinv_.resize(nt), Lam_.resize(nt), U_.resize(nt);
-    E_.resize(3 * nt, mb), F_.resize(mb, 3 * nt), Y_.resize(3 * nt, mb), G_.resize(mb, mb);
-    z_.resize(3 * nt), rb_.resize(mb), xb_.resize(mb);
+void RingSolver::resize(int n, int np) {
+  n_ = n, np_ = np;
+  const bool split = n >= kHalvesElements;
+  nb_ = split ? 2 : 1;
+  border_[0] = 0, border_[1] = split ? half_start(n) : 0;
+  mb_ = 3 * nb_ + np;
+  chains_.assign(nb_, Chain{});
+  if (split) {
+    chains_[0].first = 1, chains_[0].len = border_[1] - 1;
+    chains_[1].first = border_[1] + 1, chains_[1].len = n - border_[1] - 1;
+  } else {
+    chains_[0].first = 1, chains_[0].len = n - 1;
   }
+  for (Chain& ch : chains_) {
+    const int l = ch.len;
+    ch.Dinv.resize(l), ch.Lam.resize(l), ch.U.resize(l);
+    ch.F.resize(mb_, 3 * l), ch.Y.resize(3 * l, mb_);
+    ch.z.resize(3 * l);
+    if (split) ch.FY.resize(mb_, mb_), ch.Fz.resize(mb_);
+  }
+  G_.resize(mb_, mb_), rb_.resize(mb_), xb_.resize(mb_);
+}
+
+int RingSolver::border_of(int i) const {
+  for (int k = 0; k < nb_; ++k)
+    if (border_[k] == i) return k;
+  return -1;
+}
+
+template <class F>
+void RingSolver::each_chain(F&& f) {
+  if (nb_ == 2 && two_)
+    two_->run([&](int p) { f(chains_[p]); });
+  else
+    for (Chain& ch : chains_) f(ch);
+}
+
+bool RingSolver::factor_chain(Chain& ch, const Model& m, double alpha, double beta, const BlockMatrix& C,
+                              const BlockMatrix& K) const {
+  const int n = n_, np = np_, nt = ch.len, mb = mb_, pb = 3 * nb_;
   const Mat3 Mel = Eigen::Vector3d(m.belt.mass, m.belt.mass, m.belt.rot_inertia).asDiagonal();
   auto block = [&](const Mat3& c, const Mat3& k) -> Mat3 { return -beta * c - k; };
+  auto elem = [&](int t) { return ch.first + t; };
 
-  // border couplings: E (T rows × border cols), F (border rows × T cols), G. The pulley columns
-  // of E and rows of F are written whole below; element 0's are zero but for two blocks
-  E_.leftCols<3>().setZero();
-  F_.topRows<3>().setZero();
-  G_.setZero();
-  G_.block<3, 3>(0, 0) = alpha * Mel + block(C.diag[0], K.diag[0]);
-  // element 0 couples to element 1 (U_0, L_1) and to element n-1 (L_0, U_{n-1})
-  F_.block<3, 3>(0, 0) += block(C.upper[0], K.upper[0]);
-  F_.block<3, 3>(0, 3 * (nt - 1)) += block(C.lower[0], K.lower[0]);
-  E_.block<3, 3>(0, 0) += block(C.lower[1], K.lower[1]);
-  E_.block<3, 3>(3 * (nt - 1), 0) += block(C.upper[n - 1], K.upper[n - 1]);
-  for (int j = 0; j < np; ++j) {
-    for (int i = 1; i < n; ++i)
-      for (int r = 0; r < 3; ++r) {
-        E_(3 * (i - 1) + r, 3 + j) = -beta * C.elem_pulley(3 * i + r, j) - K.elem_pulley(3 * i + r, j);
-        F_(3 + j, 3 * (i - 1) + r) = -beta * C.pulley_elem(j, 3 * i + r) - K.pulley_elem(j, 3 * i + r);
-      }
-    for (int r = 0; r < 3; ++r) {
-      G_(r, 3 + j) = -beta * C.elem_pulley(r, j) - K.elem_pulley(r, j);
-      G_(3 + j, r) = -beta * C.pulley_elem(j, r) - K.pulley_elem(j, r);
-    }
-    for (int l = 0; l < np; ++l) G_(3 + j, 3 + l) = -beta * C.pulley_pulley(j, l) - K.pulley_pulley(j, l);
-    G_(3 + j, 3 + j) += alpha * m.mass_of(3 * n + j);
+  // couplings to the border, E written into Y (Y = T⁻¹·E in place below): the chain's first
+  // element to its left neighbour, its last to its right one (both border elements); the pulley
+  // columns of E and rows of F are written whole
+  Eigen::MatrixXd& E = ch.Y;
+  if (nb_ == 1) {  // fixed sizes: the rows of F are strided
+    E.leftCols<3>().setZero();
+    ch.F.topRows<3>().setZero();
+  } else {
+    E.leftCols<6>().setZero();
+    ch.F.topRows<6>().setZero();
   }
+  const int a = elem(0), b = elem(nt - 1);
+  const int ka = border_of((a + n - 1) % n), kb = border_of((b + 1) % n);
+  ch.F.block<3, 3>(3 * ka, 0) += block(C.upper[(a + n - 1) % n], K.upper[(a + n - 1) % n]);
+  ch.F.block<3, 3>(3 * kb, 3 * (nt - 1)) += block(C.lower[(b + 1) % n], K.lower[(b + 1) % n]);
+  E.block<3, 3>(0, 3 * ka) += block(C.lower[a], K.lower[a]);
+  E.block<3, 3>(3 * (nt - 1), 3 * kb) += block(C.upper[b], K.upper[b]);
+  for (int j = 0; j < np; ++j)
+    for (int t = 0; t < nt; ++t)
+      for (int r = 0; r < 3; ++r) {
+        const int row = 3 * elem(t) + r;
+        E(3 * t + r, pb + j) = -beta * C.elem_pulley(row, j) - K.elem_pulley(row, j);
+        ch.F(pb + j, 3 * t + r) = -beta * C.pulley_elem(j, row) - K.pulley_elem(j, row);
+      }
 
-  // block Thomas on T (local index t = i - 1 for element i)
+  // block Thomas on the chain
   for (int t = 0; t < nt; ++t) {
-    const int i = t + 1;
+    const int i = elem(t);
     Mat3 D = alpha * Mel + block(C.diag[i], K.diag[i]);
     if (t > 0) {
       const Mat3 L = block(C.lower[i], K.lower[i]);
-      Lam_[t] = L * Dinv_[t - 1];
-      D -= Lam_[t] * U_[t - 1];
+      ch.Lam[t] = L * ch.Dinv[t - 1];
+      D -= ch.Lam[t] * ch.U[t - 1];
     }
     // closed-form 3×3 inverse (cofactors): the blocks are diagonally dominant (see the header),
     // so no pivoting is needed, and this is several times cheaper than an LU with a solve
     bool invertible = false;
     double det = 0;
-    D.computeInverseAndDetWithCheck(Dinv_[t], det, invertible, 0.0);
+    D.computeInverseAndDetWithCheck(ch.Dinv[t], det, invertible, 0.0);
     if (!invertible || !std::isfinite(det) || std::abs(det) <= 1e-300) return false;
-    U_[t] = (t + 1 < nt) ? block(C.upper[i], K.upper[i]) : Mat3::Zero();
+    ch.U[t] = (t + 1 < nt) ? block(C.upper[i], K.upper[i]) : Mat3::Zero();
   }
-  // Y = T⁻¹·E, S = G - F·Y
-  Y_ = E_;
-  solve_T(Y_.data(), mb, 3 * nt);
-  // S = G - F·Y in place; coefficient-wise (a 5×5 result: the blocked product costs more)
-  G_.noalias() -= F_.lazyProduct(Y_);
+  // Y = T⁻¹·E. Split, the columns of the border element after the chain are zero but in its last
+  // block, and the forward sweep would leave them so: they take the backward sweep only
+  if (nb_ == 2 && ka != kb)
+    solve_T(ch, ch.Y.data(), mb, 3 * nt, 3 * kb, 3 * kb + 3);
+  else
+    solve_T(ch, ch.Y.data(), mb, 3 * nt);
+  if (nb_ == 2) {
+    // F·Y: the element rows of F touch the two end blocks only (nt ≥ 2 here)
+    ch.FY.topRows(pb).noalias() = ch.F.topLeftCorner(pb, 3) * ch.Y.topRows<3>();
+    ch.FY.topRows(pb).noalias() += ch.F.topRightCorner(pb, 3) * ch.Y.bottomRows<3>();
+    ch.FY.bottomRows(np).noalias() = ch.F.bottomRows(np) * ch.Y;
+  }
+  return true;
+}
+
+bool RingSolver::factor(const Model& m, double alpha, double beta, const BlockMatrix& C, const BlockMatrix& K,
+                        TwoWay* two) {
+  const int n = m.n_el(), np = m.n_p();
+  if (n != n_ || np != np_) resize(n, np);
+  two_ = two;
+  const int pb = 3 * nb_;
+  const Mat3 Mel = Eigen::Vector3d(m.belt.mass, m.belt.mass, m.belt.rot_inertia).asDiagonal();
+  auto block = [&](const Mat3& c, const Mat3& k) -> Mat3 { return -beta * c - k; };
+
+  // G: the border elements (not neighbours of each other when split) and the pulleys
+  G_.setZero();
+  for (int k = 0; k < nb_; ++k) {
+    const int e = border_[k];
+    G_.block<3, 3>(3 * k, 3 * k) = alpha * Mel + block(C.diag[e], K.diag[e]);
+  }
+  for (int j = 0; j < np; ++j) {
+    for (int k = 0; k < nb_; ++k)
+      for (int r = 0; r < 3; ++r) {
+        const int row = 3 * border_[k] + r;
+        G_(3 * k + r, pb + j) = -beta * C.elem_pulley(row, j) - K.elem_pulley(row, j);
+        G_(pb + j, 3 * k + r) = -beta * C.pulley_elem(j, row) - K.pulley_elem(j, row);
+      }
+    for (int l = 0; l < np; ++l) G_(pb + j, pb + l) = -beta * C.pulley_pulley(j, l) - K.pulley_pulley(j, l);
+    G_(pb + j, pb + j) += alpha * m.mass_of(3 * n + j);
+  }
+
+  each_chain([&](Chain& ch) { ch.ok = factor_chain(ch, m, alpha, beta, C, K); });
+  for (const Chain& ch : chains_)
+    if (!ch.ok) return false;
+  // S = G - F·Y in place
+  if (nb_ == 1) {
+    // coefficient-wise (a 5×5 result: the blocked product costs more)
+    G_.noalias() -= chains_[0].F.lazyProduct(chains_[0].Y);
+  } else {
+    for (const Chain& ch : chains_) G_ -= ch.FY;
+  }
   S_.compute(G_);
   return std::isfinite(S_.matrixLU().norm()) && std::abs(S_.determinant()) > 0;
 }
 
-void RingSolver::solve_T(double* z, int cols, int stride) const {
-  const int nt = n_ - 1;
+void RingSolver::solve_T(const Chain& ch, double* z, int cols, int stride, int skip_lo, int skip_hi) {
+  const int nt = ch.len;
   using V3 = Eigen::Map<Eigen::Vector3d>;
   // the columns side by side, block by block: each column's arithmetic is that of a lone sweep,
   // but the independent columns overlap in the pipeline (a lone sweep waits on its previous block)
-  for (int t = 1; t < nt; ++t)
-    for (int c = 0; c < cols; ++c) {
+  for (int t = 1; t < nt; ++t) {
+    for (int c = 0; c < skip_lo; ++c) {
       double* zc = z + c * stride;
-      V3(zc + 3 * t) -= Lam_[t] * V3(zc + 3 * (t - 1));
+      V3(zc + 3 * t) -= ch.Lam[t] * V3(zc + 3 * (t - 1));
     }
+    for (int c = skip_hi; c < cols; ++c) {
+      double* zc = z + c * stride;
+      V3(zc + 3 * t) -= ch.Lam[t] * V3(zc + 3 * (t - 1));
+    }
+  }
   for (int c = 0; c < cols; ++c) {
     double* zc = z + c * stride;
-    V3(zc + 3 * (nt - 1)) = Dinv_[nt - 1] * V3(zc + 3 * (nt - 1)).eval();
+    V3(zc + 3 * (nt - 1)) = ch.Dinv[nt - 1] * V3(zc + 3 * (nt - 1)).eval();
   }
   for (int t = nt - 2; t >= 0; --t)
     for (int c = 0; c < cols; ++c) {
       double* zc = z + c * stride;
-      V3(zc + 3 * t) = Dinv_[t] * (V3(zc + 3 * t) - U_[t] * V3(zc + 3 * (t + 1)));
+      V3(zc + 3 * t) = ch.Dinv[t] * (V3(zc + 3 * t) - ch.U[t] * V3(zc + 3 * (t + 1)));
     }
 }
 
 void RingSolver::solve(const double* r, double* x) {
-  const int nt = n_ - 1;
-  // border right-hand side: element 0 first, then the pulleys
-  for (int k = 0; k < 3; ++k) rb_[k] = r[k];
-  for (int j = 0; j < np_; ++j) rb_[3 + j] = r[3 * n_ + j];
-  for (int k = 0; k < 3 * nt; ++k) z_[k] = r[3 + k];
-  solve_T(z_.data());
-  rb_.noalias() -= F_ * z_;
+  const int pb = 3 * nb_;
+  // border right-hand side: the border elements first, then the pulleys
+  for (int k = 0; k < nb_; ++k)
+    for (int c = 0; c < 3; ++c) rb_[3 * k + c] = r[3 * border_[k] + c];
+  for (int j = 0; j < np_; ++j) rb_[pb + j] = r[3 * n_ + j];
+  if (nb_ == 1) {
+    Chain& ch = chains_[0];
+    for (int k = 0; k < 3 * ch.len; ++k) ch.z[k] = r[3 * ch.first + k];
+    solve_T(ch, ch.z.data());
+    rb_.noalias() -= ch.F * ch.z;
+  } else {
+    each_chain([&](Chain& ch) {
+      for (int k = 0; k < 3 * ch.len; ++k) ch.z[k] = r[3 * ch.first + k];
+      solve_T(ch, ch.z.data());
+      ch.Fz.noalias() = ch.F * ch.z;
+    });
+    for (const Chain& ch : chains_) rb_ -= ch.Fz;
+  }
   xb_ = S_.solve(rb_);  // into a kept vector: the step loop allocates nothing
   const Eigen::VectorXd& xb = xb_;
-  z_.noalias() -= Y_ * xb;
-  for (int k = 0; k < 3; ++k) x[k] = xb[k];
-  for (int k = 0; k < 3 * nt; ++k) x[3 + k] = z_[k];
-  for (int j = 0; j < np_; ++j) x[3 * n_ + j] = xb[3 + j];
+  auto finish = [&](Chain& ch) {
+    ch.z.noalias() -= ch.Y * xb;
+    for (int k = 0; k < 3 * ch.len; ++k) x[3 * ch.first + k] = ch.z[k];
+  };
+  if (nb_ == 1)
+    finish(chains_[0]);
+  else
+    each_chain(finish);
+  for (int k = 0; k < nb_; ++k)
+    for (int c = 0; c < 3; ++c) x[3 * border_[k] + c] = xb[3 * k + c];
+  for (int j = 0; j < np_; ++j) x[3 * n_ + j] = xb[pb + j];
 }
 
 }  // namespace beltsim

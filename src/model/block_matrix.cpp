@@ -14,14 +14,18 @@ void BlockMatrix::resize(int n_el, int n_p) {
 }
 
 void BlockMatrix::set_zero() {
-  for (int i = 0; i < n; ++i) {
+  set_zero_elements(0, n);
+  pulley_pulley.setZero();
+}
+
+void BlockMatrix::set_zero_elements(int lo, int hi) {
+  for (int i = lo; i < hi; ++i) {
     diag[i].setZero();
     lower[i].setZero();
     upper[i].setZero();
   }
-  elem_pulley.setZero();
-  pulley_elem.setZero();
-  pulley_pulley.setZero();
+  elem_pulley.middleRows(3 * lo, 3 * (hi - lo)).setZero();
+  pulley_elem.middleCols(3 * lo, 3 * (hi - lo)).setZero();
 }
 
 void BlockMatrix::multiply(const double* x, double* y) const {

@@ -28,6 +28,8 @@ struct BlockMatrix {
 
   void resize(int n_el, int n_p);
   void set_zero();
+  // the rows of elements lo..hi-1 (their blocks and pulley columns) and their pulley-row columns
+  void set_zero_elements(int lo, int hi);
   int size() const { return 3 * n + np; }
   // y = this · x (x, y of length size())
   void multiply(const double* x, double* y) const;

@@ -31,13 +31,13 @@ void normal_law_derivatives(const Contact& c, const Vec2& V, NormalLaw& o) {
   o.dN_dV = -o.delta * c.b * o.n.transpose();
 }
 
-void contact_forces(const Model& m, double t, const double* q, const double* v, double* f, double* e_rate) {
-  const int n = m.belt.n;
+void contact_forces(const Model& m, double t, const double* q, const double* v, double* f, double* f_pulley,
+                    double* e_rate, const Span& span) {
   for (int j = 0; j < m.n_p(); ++j) {
     const Pulley& pl = m.pulleys[j];
     const double omega = m.omega(j, t, v);
     double moment = 0;
-    for (int i = 0; i < n; ++i) {
+    for (int i = span.lo; i < span.hi; ++i) {
       const Vec2 P(q[3 * i], q[3 * i + 1]), V(v[3 * i], v[3 * i + 1]);
       NormalLaw nl;
       if (!normal_law(m.contact, P, V, pl.centre, pl.radius, nl)) continue;
@@ -51,7 +51,7 @@ void contact_forces(const Model& m, double t, const double* q, const double* v, 
       if (e_rate) e_rate[kDissFriction] += fl.mu_eff * nl.N * fl.vT;
     }
     if (!pl.kinematic) {
-      f[m.pulley_coord(j)] += moment;
+      f_pulley[j] += moment;
     } else if (e_rate) {
       e_rate[kWorkTorques] -= moment * omega;  // the drive holds the speed against the belt
     }
@@ -59,13 +59,13 @@ void contact_forces(const Model& m, double t, const double* q, const double* v, 
 }
 
 void contact_jacobian(const Model& m, double t, const double* q, const double* v, BlockMatrix& K, BlockMatrix& C,
-                      double* f_t) {
-  const int n = m.belt.n;
+                      double* f_t, double* dM_dOmega, const Span& span) {
   for (int j = 0; j < m.n_p(); ++j) {
     const Pulley& pl = m.pulleys[j];
     const double omega = m.omega(j, t, v);
     const double omega_rate = pl.kinematic ? m.speed_rate(j, t) : 0.0;
-    for (int i = 0; i < n; ++i) {
+    double dmo = 0;  // Σ ∂M/∂Ω over the span (the block is zero before: the same sum as adding in place)
+    for (int i = span.lo; i < span.hi; ++i) {
       const Vec2 P(q[3 * i], q[3 * i + 1]);
       const Vec2 V(v[3 * i], v[3 * i + 1]);
       NormalLaw nl;
@@ -91,7 +91,13 @@ void contact_jacobian(const Model& m, double t, const double* q, const double* v
       C.elem_pulley.block<2, 1>(3 * i, j) += J.dF_dOmega;
       K.pulley_elem.block<1, 2>(j, 3 * i) += J.dM_dP;
       C.pulley_elem.block<1, 2>(j, 3 * i) += J.dM_dV;
-      C.pulley_pulley(j, j) += J.dM_dOmega;
+      dmo += J.dM_dOmega;
+    }
+    if (pl.kinematic) continue;
+    if (dM_dOmega) {
+      dM_dOmega[j] += dmo;
+    } else {
+      C.pulley_pulley(j, j) += dmo;
     }
   }
 }

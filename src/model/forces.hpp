@@ -4,6 +4,7 @@
 // ∂f/∂v to C; every law's derivation is at the top of its file.
 #pragma once
 
+#include <limits>
 #include <vector>
 
 #include "model/block_matrix.hpp"
@@ -27,12 +28,52 @@ double wrap_angle(double a);
 // to the bit.
 struct AxisMemo {
   std::vector<double> phi, c, s;  // per element: the angle, cos φ, sin φ
+  // sizes it for n elements (a fresh one holds NaN, whose axis is NaN too); called before the
+  // laws run, never by two threads at once
+  void fit(int n) {
+    if (phi.size() == static_cast<size_t>(n)) return;
+    const double nan = std::numeric_limits<double>::quiet_NaN();
+    phi.assign(n, nan), c.assign(n, nan), s.assign(n, nan);
+  }
 };
 
+// The elements lo..hi-1 one call of a law evaluates for (rhs.cpp splits a long belt in two
+// halves that run at once): it writes the rows of those elements only, evaluating the SDE and
+// bending pairs on the span's edges for them, and adds what it sums over elements (the pulleys'
+// moments and ∂M/∂Ω, the energy rates) to the accumulators it is given. Each element receives its
+// terms in the order the whole loop gives them (pair k as its end b, then pair k+1 as its end a),
+// so its force rows are the same to the bit either way; the sums over elements are added up per
+// half, which changes them in their last bits.
+struct Span {
+  int lo = 0, hi = 0;
+  bool owns(int k) const { return k >= lo && k < hi; }
+  bool whole(int n) const { return lo == 0 && hi == n; }
+};
+// the span of the whole belt, known at compile time: its ownership checks fold away, so a law's
+// loop over the whole belt compiles to the plain loop it was before the split
+struct WholeBelt {
+  static constexpr bool owns(int) { return true; }
+};
+// calls visit(i, own) for each pair (i-1, i) touching an element of the span, in the whole loop's
+// order; own is WholeBelt{} for the whole belt, else the span
+template <class Visit>
+[[gnu::noinline]] void for_pairs_of_span(int n, const Span& s, Visit& visit) {
+  if (s.hi == n && s.lo > 0) visit(0, s);  // its end a is element n-1, first in the whole loop
+  for (int i = s.lo; i < s.hi; ++i) visit(i, s);
+  if (s.hi < n) visit(s.hi, s);  // its end a is element hi-1
+}
+template <class Visit>
+void for_pairs(int n, const Span& s, Visit&& visit) {
+  if (!s.whole(n)) return for_pairs_of_span(n, s, visit);  // out of line: the whole loop stays lean
+  for (int i = 0; i < n; ++i) visit(i, WholeBelt{});
+}
+
 // longitudinal SDE (paper eq. 5), sde.cpp; `memo` (may be null) keeps the axes between calls
-void sde_forces(const Model& m, const double* q, const double* v, double* f, double* e_rate, AxisMemo* memo = nullptr);
-void sde_jacobian(const Model& m, const double* q, const double* v, BlockMatrix& K, BlockMatrix& C,
-                  AxisMemo* memo = nullptr);
+// (with a memo, only the span's own elements are read from it and written to it)
+void sde_forces(const Model& m, const double* q, const double* v, double* f, double* e_rate, AxisMemo* memo,
+                const Span& span);
+void sde_jacobian(const Model& m, const double* q, const double* v, BlockMatrix& K, BlockMatrix& C, AxisMemo* memo,
+                  const Span& span);
 double sde_potential(const Model& m, const double* q);
 // signed axial force of SDE i (joining element i-1 to element i), positive in tension [N]
 double sde_axial_force(const Model& m, const double* q, const double* v, int i);
@@ -44,15 +85,19 @@ Vec2 sde_gap(const Model& m, const double* q, int i);
 int sde_nearest(const Model& m, const double* q, const Vec2& point);
 
 // torsional SDE (paper eq. 6), bending.cpp
-void bending_forces(const Model& m, const double* q, const double* v, double* f, double* e_rate);
-void bending_jacobian(const Model& m, const double* q, const double* v, BlockMatrix& K, BlockMatrix& C);
+void bending_forces(const Model& m, const double* q, const double* v, double* f, double* e_rate, const Span& span);
+void bending_jacobian(const Model& m, const double* q, const double* v, BlockMatrix& K, BlockMatrix& C,
+                      const Span& span);
 double bending_potential(const Model& m, const double* q);
 
 // belt–pulley contact (eq. 2) with friction (eqs. 3–4), contact.cpp + friction.cpp
-void contact_forces(const Model& m, double t, const double* q, const double* v, double* f, double* e_rate);
-// f_t (may be null) receives ∂f/∂t through the prescribed speeds of kinematic pulleys
+// f_pulley[j] receives pulley j's moment (f + 3n for the whole belt)
+void contact_forces(const Model& m, double t, const double* q, const double* v, double* f, double* f_pulley,
+                    double* e_rate, const Span& span);
+// f_t (may be null) receives ∂f/∂t through the prescribed speeds of kinematic pulleys;
+// dM_dOmega[j] receives the sum over the span of pulley j's ∂M/∂Ω (null: added to C.pulley_pulley)
 void contact_jacobian(const Model& m, double t, const double* q, const double* v, BlockMatrix& K,
-                      BlockMatrix& C, double* f_t);
+                      BlockMatrix& C, double* f_t, double* dM_dOmega, const Span& span);
 double contact_potential(const Model& m, const double* q);
 
 // what one element feels from the pulleys (sums over pulleys in contact)

@@ -8,12 +8,27 @@
 #include "model/block_matrix.hpp"
 #include "model/forces.hpp"
 #include "model/model.hpp"
+#include "model/two_way.hpp"
 
 namespace beltsim {
 
+// A belt of kHalvesElements elements or more (two_way.hpp) is evaluated in two halves at once
+// when the caller gives Halves: the worker thread and each half's sums over elements (forces.hpp,
+// Span).
+struct Halves {
+  explicit Halves(const Model& m);
+  TwoWay two;
+  // half p's sums: np pulley moments, the energy rates, np ∂M/∂Ω
+  double* sum(int p) { return storage_.data() + first_ + p * stride_; }
+
+ private:
+  std::vector<double> storage_;
+  int first_ = 0, stride_ = 0;
+};
+
 // writes dy (length n_state) for y at time t; `axes` (may be null) keeps the elements' axes
-// between evaluations (forces.hpp)
-void rhs(const Model& m, double t, const double* y, double* dy, AxisMemo* axes = nullptr);
+// between evaluations (forces.hpp); `halves` (may be null) splits a long belt in two
+void rhs(const Model& m, double t, const double* y, double* dy, AxisMemo* axes = nullptr, Halves* halves = nullptr);
 
 // ∂f/∂q, ∂f/∂v and ∂f/∂t at (t, y). The energy rows are not part of it: they are pure
 // quadratures that feed nothing back, and the integrators treat them as such (W-method).
@@ -22,7 +37,8 @@ struct Jacobian {
   Eigen::VectorXd f_t;
   void resize(const Model& m);
 };
-void jacobian(const Model& m, double t, const double* y, Jacobian& J, AxisMemo* axes = nullptr);
+void jacobian(const Model& m, double t, const double* y, Jacobian& J, AxisMemo* axes = nullptr,
+              Halves* halves = nullptr);
 
 // generalized forces only (length n_coord), for tests and diagnostics
 void forces(const Model& m, double t, const double* y, double* f);

@@ -30,6 +30,7 @@
 #include <cmath>
 #include <cstdint>
 #include <cstring>
+#include <type_traits>
 #include <limits>
 
 #include "model/forces.hpp"
@@ -45,10 +46,12 @@ struct Pair {
 };
 
 // the axis of element k, from the memo when it holds the same angle (bit for bit: cos and sin of
-// -0.0 and 0.0 differ in the sign of a zero), else taken and written to it
-inline Vec2 element_axis(const double* q, int k, AxisMemo* memo) {
+// -0.0 and 0.0 differ in the sign of a zero), else taken and written to it; an element outside
+// `own` (a half of the belt evaluating its edge pair) leaves the memo to the other half
+template <class Own>
+inline Vec2 element_axis(const double* q, int k, AxisMemo* memo, const Own& own) {
   const double phi = q[3 * k + 2];
-  if (!memo) return axis(phi);
+  if (!memo || !own.owns(k)) return axis(phi);
   std::uint64_t a, b;
   std::memcpy(&a, &phi, sizeof a);
   std::memcpy(&b, &memo->phi[k], sizeof b);
@@ -58,18 +61,13 @@ inline Vec2 element_axis(const double* q, int k, AxisMemo* memo) {
   return e;
 }
 
-// sizes the memo for the belt (a fresh one holds NaN, whose axis is NaN too)
-void fit(const Model& m, AxisMemo* memo) {
-  if (!memo || memo->phi.size() == static_cast<size_t>(m.belt.n)) return;
-  const double nan = std::numeric_limits<double>::quiet_NaN();
-  memo->phi.assign(m.belt.n, nan), memo->c.assign(m.belt.n, nan), memo->s.assign(m.belt.n, nan);
-}
-
 // ea: the axis of element i-1 when the caller has it (loops over the SDEs in order pass the
 // previous pair's eb, which halves the sines and cosines)
 // (always inlined: called out of line, its overhead took back what the memo saved)
+template <class Own = WholeBelt>
 [[gnu::always_inline]] inline Pair make_pair(const Model& m, const double* q, const double* v, int i,
-                                             const Vec2* ea = nullptr, AxisMemo* memo = nullptr) {
+                                             const Vec2* ea = nullptr, AxisMemo* memo = nullptr,
+                                             const Own& own = Own{}) {
   const int n = m.belt.n;
   Pair s;
   s.a = (i + n - 1) % n;
@@ -77,8 +75,8 @@ void fit(const Model& m, AxisMemo* memo) {
   s.h = 0.5 * m.belt.rigid_length;
   const double* qa = q + 3 * s.a;
   const double* qb = q + 3 * s.b;
-  s.ea = ea ? *ea : element_axis(q, s.a, memo);
-  s.eb = element_axis(q, s.b, memo);
+  s.ea = ea ? *ea : element_axis(q, s.a, memo, own);
+  s.eb = element_axis(q, s.b, memo, own);
   s.d = Vec2(qb[0] - qa[0], qb[1] - qa[1]) - s.h * (s.ea + s.eb);
   s.A = -s.h * perp(s.ea);
   s.B = -s.h * perp(s.eb);
@@ -93,8 +91,9 @@ void fit(const Model& m, AxisMemo* memo) {
 }
 
 // adds w·Dᵀ·M·D (M symmetric 2×2) to the pair's four blocks of J (formulas at the top), entry by
-// entry in place (through a 3×3 temporary per block it took 5.3 % of the dry drive's samples)
-void add_dtmd(BlockMatrix& J, const Pair& s, double w, const Eigen::Matrix2d& M) {
+// entry in place (through a 3×3 temporary per block it took 5.3 % of the dry drive's samples);
+// row_a, row_b: whether the block rows of elements a and b are written
+void add_dtmd(BlockMatrix& J, const Pair& s, double w, const Eigen::Matrix2d& M, bool row_a, bool row_b) {
   const Vec2 MA = w * (M * s.A), MB = w * (M * s.B);
   const double m00 = w * M(0, 0), m01 = w * M(0, 1), m11 = w * M(1, 1);
   const double amb = s.A.dot(MB);
@@ -105,10 +104,14 @@ void add_dtmd(BlockMatrix& J, const Pair& s, double w, const Eigen::Matrix2d& M)
     X(1, 0) += a10, X(1, 1) += a11, X(1, 2) += a12;
     X(2, 0) += a20, X(2, 1) += a21, X(2, 2) += a22;
   };
-  add(J.diag[s.a], m00, m01, -MA.x(), m01, m11, -MA.y(), -MA.x(), -MA.y(), s.A.dot(MA));
-  add(J.upper[s.a], -m00, -m01, -MB.x(), -m01, -m11, -MB.y(), MA.x(), MA.y(), amb);
-  add(J.lower[s.b], -m00, -m01, MA.x(), -m01, -m11, MA.y(), -MB.x(), -MB.y(), amb);
-  add(J.diag[s.b], m00, m01, MB.x(), m01, m11, MB.y(), MB.x(), MB.y(), s.B.dot(MB));
+  if (row_a) {
+    add(J.diag[s.a], m00, m01, -MA.x(), m01, m11, -MA.y(), -MA.x(), -MA.y(), s.A.dot(MA));
+    add(J.upper[s.a], -m00, -m01, -MB.x(), -m01, -m11, -MB.y(), MA.x(), MA.y(), amb);
+  }
+  if (row_b) {
+    add(J.lower[s.b], -m00, -m01, MA.x(), -m01, -m11, MA.y(), -MB.x(), -MB.y(), amb);
+    add(J.diag[s.b], m00, m01, MB.x(), m01, m11, MB.y(), MB.x(), MB.y(), s.B.dot(MB));
+  }
 }
 
 // spring part k·g(d)
@@ -156,29 +159,40 @@ void sde_axial_forces(const Model& m, const double* q, const double* v, double* 
   }
 }
 
-void sde_forces(const Model& m, const double* q, const double* v, double* f, double* e_rate, AxisMemo* memo) {
+void sde_forces(const Model& m, const double* q, const double* v, double* f, double* e_rate, AxisMemo* memo,
+                const Span& span) {
   const Belt& b = m.belt;
-  fit(m, memo);
   Vec2 prev;
-  for (int i = 0; i < b.n; ++i) {
-    const Pair s = make_pair(m, q, v, i, i > 0 ? &prev : nullptr, memo);
+  int prev_i = -2;  // the pair whose eb is in prev
+  for_pairs(b.n, span, [&](int i, const auto& own) __attribute__((always_inline)) {
+    constexpr bool whole = std::is_same_v<std::decay_t<decltype(own)>, WholeBelt>;
+    const Pair s = make_pair(m, q, v, i, i > 0 && (whole || prev_i == i - 1) ? &prev : nullptr, memo, own);
     prev = s.eb;
+    if constexpr (!whole) prev_i = i;
     const Vec2 F = spring(b, s.d) + b.c * s.dd;
-    double* fa = f + 3 * s.a;
-    double* fb = f + 3 * s.b;
-    fa[0] += F.x(), fa[1] += F.y(), fa[2] -= s.A.dot(F);
-    fb[0] -= F.x(), fb[1] -= F.y(), fb[2] -= s.B.dot(F);
-    if (e_rate) e_rate[kDissSdeAxial] += b.c * s.dd.squaredNorm();
-  }
+    if (own.owns(s.a)) {
+      double* fa = f + 3 * s.a;
+      fa[0] += F.x(), fa[1] += F.y(), fa[2] -= s.A.dot(F);
+    }
+    if (own.owns(s.b)) {  // a pair belongs to its end b, as its power does
+      double* fb = f + 3 * s.b;
+      fb[0] -= F.x(), fb[1] -= F.y(), fb[2] -= s.B.dot(F);
+      if (e_rate) e_rate[kDissSdeAxial] += b.c * s.dd.squaredNorm();
+    }
+  });
 }
 
-void sde_jacobian(const Model& m, const double* q, const double* v, BlockMatrix& K, BlockMatrix& C, AxisMemo* memo) {
+void sde_jacobian(const Model& m, const double* q, const double* v, BlockMatrix& K, BlockMatrix& C, AxisMemo* memo,
+                  const Span& span) {
   const Belt& b = m.belt;
-  fit(m, memo);
   Vec2 prev;
-  for (int i = 0; i < b.n; ++i) {
-    const Pair s = make_pair(m, q, v, i, i > 0 ? &prev : nullptr, memo);
+  int prev_i = -2;
+  for_pairs(b.n, span, [&](int i, const auto& own) __attribute__((always_inline)) {
+    constexpr bool whole = std::is_same_v<std::decay_t<decltype(own)>, WholeBelt>;
+    const Pair s = make_pair(m, q, v, i, i > 0 && (whole || prev_i == i - 1) ? &prev : nullptr, memo, own);
     prev = s.eb;
+    if constexpr (!whole) prev_i = i;
+    const bool ra = own.owns(s.a), rb = own.owns(s.b);
     Eigen::Matrix2d G = Eigen::Matrix2d::Identity();
     if (b.e_tra != 1.0) {
       const double r = s.d.norm();
@@ -190,17 +204,17 @@ void sde_jacobian(const Model& m, const double* q, const double* v, BlockMatrix&
       }
     }
     const Vec2 F = spring(b, s.d) + b.c * s.dd;
-    add_dtmd(K, s, -b.k, G);
-    add_dtmd(C, s, -b.c, Eigen::Matrix2d::Identity());
+    add_dtmd(K, s, -b.k, G, ra, rb);
+    add_dtmd(C, s, -b.c, Eigen::Matrix2d::Identity(), ra, rb);
     // -c·Dᵀ·Ḋ: Ḋ has only its two φ columns, h·ω_a·e_a and h·ω_b·e_b
     const double ga = b.c * s.h * v[3 * s.a + 2], gb = b.c * s.h * v[3 * s.b + 2];
-    K.diag[s.a].col(2) -= ga * Eigen::Vector3d(-s.ea.x(), -s.ea.y(), s.A.dot(s.ea));
-    K.lower[s.b].col(2) -= ga * Eigen::Vector3d(s.ea.x(), s.ea.y(), s.B.dot(s.ea));
-    K.upper[s.a].col(2) -= gb * Eigen::Vector3d(-s.eb.x(), -s.eb.y(), s.A.dot(s.eb));
-    K.diag[s.b].col(2) -= gb * Eigen::Vector3d(s.eb.x(), s.eb.y(), s.B.dot(s.eb));
-    K.diag[s.a](2, 2) -= s.h * s.ea.dot(F);
-    K.diag[s.b](2, 2) -= s.h * s.eb.dot(F);
-  }
+    if (ra) K.diag[s.a].col(2) -= ga * Eigen::Vector3d(-s.ea.x(), -s.ea.y(), s.A.dot(s.ea));
+    if (rb) K.lower[s.b].col(2) -= ga * Eigen::Vector3d(s.ea.x(), s.ea.y(), s.B.dot(s.ea));
+    if (ra) K.upper[s.a].col(2) -= gb * Eigen::Vector3d(-s.eb.x(), -s.eb.y(), s.A.dot(s.eb));
+    if (rb) K.diag[s.b].col(2) -= gb * Eigen::Vector3d(s.eb.x(), s.eb.y(), s.B.dot(s.eb));
+    if (ra) K.diag[s.a](2, 2) -= s.h * s.ea.dot(F);
+    if (rb) K.diag[s.b](2, 2) -= s.h * s.eb.dot(F);
+  });
 }
 
 double sde_potential(const Model& m, const double* q) {

@@ -1,10 +1,12 @@
 // The O(n) ring-plus-border solver against a general sparse LU on the same matrix, at running
-// states of the paper's drive (60 elements) and of the automotive drive (150, a back-side idler),
-// for shifts s from 1e2 to 1e7 (step sizes 1e-2 .. 1e-7 s). Both are backward-stable direct
-// solvers of the same system; their solutions agree to the conditioning of A times the rounding
-// unit (measured ≤ 3e-11 relative); bound 1e-8.
+// states of the paper's drive (60 elements), of the automotive drive (150, a back-side idler) and
+// of the paper's drive refined to 600 and 2 400 elements (the ring split in two chains), for
+// shifts s from 1e2 to 1e7 (step sizes 1e-2 .. 1e-7 s). Both are backward-stable direct solvers
+// of the same system; their solutions agree to the conditioning of A times the rounding unit
+// (measured ≤ 3e-11 relative); bound 1e-8.
 #include <gtest/gtest.h>
 
+#include <cstring>
 #include <random>
 
 #include <Eigen/SparseLU>
@@ -17,14 +19,27 @@
 namespace beltsim {
 namespace {
 
+Eigen::VectorXd moving_state(const Scene& sc, std::mt19937& rng) {
+  const int N = sc.model.n_coord();
+  std::uniform_real_distribution<double> u(-1, 1);
+  Eigen::VectorXd y = sc.y0;
+  for (int k = 0; k < N; ++k) y[N + k] = 0.5 * u(rng);  // a moving state: stick and slip mixed
+  return y;
+}
+
+SceneDef refined(int n) {
+  SceneDef d = presets::paper_dry();
+  d.belt.elements = n;
+  return d;
+}
+
 void expect_same_solution(const SceneDef& d, unsigned seed) {
   const Scene sc = build_scene(d);
   const Model& m = sc.model;
   const int N = m.n_coord();
   std::mt19937 rng(seed);
   std::uniform_real_distribution<double> u(-1, 1);
-  Eigen::VectorXd y = sc.y0;
-  for (int k = 0; k < N; ++k) y[N + k] = 0.5 * u(rng);  // a moving state: stick and slip mixed
+  const Eigen::VectorXd y = moving_state(sc, rng);
   Jacobian J;
   J.resize(m);
   jacobian(m, 0.1, y.data(), J);
@@ -47,6 +62,42 @@ void expect_same_solution(const SceneDef& d, unsigned seed) {
 
 TEST(RingSolver, MatchesSparseLuOnThePaperDrive) { expect_same_solution(presets::paper_dry(), 1); }
 TEST(RingSolver, MatchesSparseLuOnTheAutomotiveDrive) { expect_same_solution(presets::automotive_wet(), 2); }
+TEST(RingSolver, MatchesSparseLuOnASplitRing) {
+  static_assert(600 >= kHalvesElements && 60 < kHalvesElements);
+  expect_same_solution(refined(600), 3);
+  expect_same_solution(refined(601), 4);  // odd: chains of 299 and 300 elements
+}
+
+// The split ring's two chains give the same bits whether they run at once on two threads, one
+// after the other in TwoWay without a worker, or without TwoWay (ring_solver.hpp), and a solve
+// may overwrite its right-hand side.
+TEST(RingSolver, SplitGivesTheSameBitsOnOneOrTwoThreads) {
+  const Scene sc = build_scene(refined(600));
+  const Model& m = sc.model;
+  const int N = m.n_coord();
+  std::mt19937 rng(5);
+  const Eigen::VectorXd y = moving_state(sc, rng);
+  Jacobian J;
+  J.resize(m);
+  jacobian(m, 0.1, y.data(), J);
+  Eigen::VectorXd r(N);
+  std::uniform_real_distribution<double> u(-1, 1);
+  for (int k = 0; k < N; ++k) r[k] = u(rng);
+  TwoWay with_worker(true), without(false);
+  std::vector<Eigen::VectorXd> xs;
+  for (TwoWay* two : {&with_worker, &without, static_cast<TwoWay*>(nullptr)}) {
+    RingSolver ring;
+    for (int rep = 0; rep < 50; ++rep) {  // repeated: the worker must not lose a generation
+      ASSERT_TRUE(ring.factor(m, 1e10, 1e5, J.C, J.K, two));
+      Eigen::VectorXd x = r;
+      ring.solve(x.data(), x.data());
+      if (rep == 0) xs.push_back(x);
+      ASSERT_EQ(0, std::memcmp(x.data(), xs.back().data(), sizeof(double) * N)) << "repetition " << rep;
+    }
+  }
+  EXPECT_EQ(0, std::memcmp(xs[0].data(), xs[1].data(), sizeof(double) * N)) << "two threads against one";
+  EXPECT_EQ(0, std::memcmp(xs[0].data(), xs[2].data(), sizeof(double) * N)) << "two threads against none";
+}
 
 }  // namespace
 }  // namespace beltsim

@@ -231,6 +231,51 @@ TEST(Jacobian, AxisMemoChangesNoResult) {
   EXPECT_EQ(memo.c[0], std::cos(y3[2]));
 }
 
+// A long belt's right-hand side and Jacobian evaluated in two halves at once (rhs.hpp, Halves):
+// every element row (forces, the blocks, the element-pulley couplings) has the same bits as the
+// whole loop's, since each element receives its terms in the whole loop's order; the sums over
+// elements (the pulleys' moments, ∂M/∂Ω, the energy rates) are added per half, which may change
+// their last bits only: bound 1e-12 of the sum of the magnitudes they add (600 terms of rounding
+// 1.1e-16 each). Repeated, so that the worker's hand-over is exercised many times.
+TEST(Jacobian, HalvesChangeNoElementRow) {
+  SceneDef d = presets::paper_dry();
+  d.belt.elements = 600;
+  d.track_energy = true;
+  const Scene sc = build_scene(d);
+  const Model& m = sc.model;
+  ASSERT_GE(m.n_el(), kHalvesElements);
+  const int N = m.n_coord(), ne = 3 * m.n_el();
+  const Eigen::VectorXd y = running_state(sc, 0.1, 30.0, 6);
+  Halves halves(m);
+  Eigen::VectorXd dy(m.n_state()), ref(m.n_state());
+  rhs(m, 0.1, y.data(), ref.data());
+  Jacobian J, Jref;
+  J.resize(m), Jref.resize(m);
+  jacobian(m, 0.1, y.data(), Jref);
+  auto same = [](const auto& a, const auto& b, size_t count) { return std::memcmp(a, b, sizeof(double) * count) == 0; };
+  for (int rep = 0; rep < 20; ++rep) {
+    rhs(m, 0.1, y.data(), dy.data(), nullptr, &halves);
+    for (int k = 0; k < m.n_state(); ++k) {
+      if (k < N + ne)  // positions' rates and the elements' accelerations
+        ASSERT_TRUE(same(&dy[k], &ref[k], 1)) << "row " << k;
+      else
+        ASSERT_NEAR(dy[k], ref[k], 1e-12 * (std::abs(ref[k]) + 1e3)) << "row " << k;
+    }
+    jacobian(m, 0.1, y.data(), J, nullptr, &halves);
+    for (const auto& [A, B] : {std::pair{&J.K, &Jref.K}, std::pair{&J.C, &Jref.C}}) {
+      for (int i = 0; i < m.n_el(); ++i)
+        ASSERT_TRUE(same(A->diag[i].data(), B->diag[i].data(), 9) && same(A->lower[i].data(), B->lower[i].data(), 9) &&
+                    same(A->upper[i].data(), B->upper[i].data(), 9))
+            << "element " << i;
+      ASSERT_TRUE(same(A->elem_pulley.data(), B->elem_pulley.data(), A->elem_pulley.size()));
+      ASSERT_TRUE(same(A->pulley_elem.data(), B->pulley_elem.data(), A->pulley_elem.size()));
+      for (int j = 0; j < m.n_p(); ++j)  // a pulley's ∂M/∂Ω is a sum over elements
+        for (int l = 0; l < m.n_p(); ++l)
+          ASSERT_NEAR((*A).pulley_pulley(j, l), (*B).pulley_pulley(j, l), 1e-12 * std::abs((*B).pulley_pulley(j, l)));
+    }
+  }
+}
+
 TEST(Jacobian, BackSideIdlerAutomotive) {
   const Scene sc = build_scene(presets::automotive_wet());
   const Eigen::VectorXd y = running_state(sc, 0.2, 25.0, 3);
