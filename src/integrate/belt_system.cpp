@@ -69,8 +69,24 @@ void BeltSystem::solve(const double* r, double* u) {
   const double s = s_;
   rhs_.resize(N);
   kr_.resize(N);
-  J_.K.multiply(r, kr_.data());
-  for (int k = 0; k < N; ++k) rhs_[k] = s * model_.mass_of(k) * r[N + k] + kr_[k];
+  auto rows = [&](int lo, int hi) {
+    for (int k = lo; k < hi; ++k) rhs_[k] = s * model_.mass_of(k) * r[N + k] + kr_[k];
+  };
+  if (!halves_) {
+    J_.K.multiply(r, kr_.data());
+    rows(0, N);
+  } else {
+    // each half multiplies the rows of K it assembled (read by this thread, they would have to
+    // come over from the other core's cache and go back for the next Jacobian)
+    const int n = model_.n_el(), h = half_start(n);
+    halves_->two.run([&](int p) {
+      const int lo = p == 0 ? 0 : h, hi = p == 0 ? h : n;
+      J_.K.multiply_elements(r, kr_.data(), lo, hi);
+      rows(3 * lo, 3 * hi);
+    });
+    J_.K.multiply_pulleys(r, kr_.data());
+    rows(3 * n, N);
+  }
   uv_.resize(N);
   solver_.solve(rhs_.data(), uv_.data());
   for (int k = 0; k < N; ++k) {

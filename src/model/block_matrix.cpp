@@ -29,18 +29,28 @@ void BlockMatrix::set_zero_elements(int lo, int hi) {
 }
 
 void BlockMatrix::multiply(const double* x, double* y) const {
+  multiply_elements(x, y, 0, n);
+  multiply_pulleys(x, y);
+}
+
+void BlockMatrix::multiply_elements(const double* x, double* y, int lo, int hi) const {
   using Vec3 = Eigen::Vector3d;
-  const int ne = 3 * n;
-  Eigen::Map<const Eigen::VectorXd> xe(x, ne), xp(x + ne, np);
-  Eigen::Map<Eigen::VectorXd> ye(y, ne), yp(y + ne, np);
-  for (int i = 0; i < n; ++i) {
+  Eigen::Map<const Eigen::VectorXd> xp(x + 3 * n, np);
+  Eigen::Map<Eigen::VectorXd> ye(y + 3 * lo, 3 * (hi - lo));
+  for (int i = lo; i < hi; ++i) {
     const int im = (i + n - 1) % n, ip = (i + 1) % n;
     Eigen::Map<Vec3>(y + 3 * i) = diag[i] * Eigen::Map<const Vec3>(x + 3 * i) +
                                   lower[i] * Eigen::Map<const Vec3>(x + 3 * im) +
                                   upper[i] * Eigen::Map<const Vec3>(x + 3 * ip);
   }
   // noalias: matrix-vector products straight into the output, no temporaries (no allocation)
-  ye.noalias() += elem_pulley * xp;
+  ye.noalias() += elem_pulley.middleRows(3 * lo, 3 * (hi - lo)) * xp;
+}
+
+void BlockMatrix::multiply_pulleys(const double* x, double* y) const {
+  const int ne = 3 * n;
+  Eigen::Map<const Eigen::VectorXd> xe(x, ne), xp(x + ne, np);
+  Eigen::Map<Eigen::VectorXd> yp(y + ne, np);
   yp.noalias() = pulley_elem * xe;
   yp.noalias() += pulley_pulley * xp;
 }

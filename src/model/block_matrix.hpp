@@ -33,6 +33,10 @@ struct BlockMatrix {
   int size() const { return 3 * n + np; }
   // y = this · x (x, y of length size())
   void multiply(const double* x, double* y) const;
+  // the same for the rows of elements lo..hi-1 only, and for the pulley rows only (a long belt's
+  // halves multiply their own rows at once; each row's arithmetic is that of multiply)
+  void multiply_elements(const double* x, double* y, int lo, int hi) const;
+  void multiply_pulleys(const double* x, double* y) const;
   Eigen::MatrixXd to_dense() const;
 };
 
