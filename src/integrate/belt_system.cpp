@@ -78,11 +78,11 @@ void BeltSystem::solve(const double* r, double* u) {
   } else {
     // each half multiplies the rows of K it assembled (read by this thread, they would have to
     // come over from the other core's cache and go back for the next Jacobian)
-    const int n = model_.n_el(), h = half_start(n);
+    const int n = model_.n_el();
     halves_->two.run([&](int p) {
-      const int lo = p == 0 ? 0 : h, hi = p == 0 ? h : n;
-      J_.K.multiply_elements(r, kr_.data(), lo, hi);
-      rows(3 * lo, 3 * hi);
+      const HalfRange e = half_range(n, p);
+      J_.K.multiply_elements(r, kr_.data(), e.lo, e.hi);
+      rows(3 * e.lo, 3 * e.hi);
     });
     J_.K.multiply_pulleys(r, kr_.data());
     rows(3 * n, N);

@@ -179,7 +179,7 @@ void RingSolver::solve(const double* r, double* x) {
   for (int k = 0; k < nb_; ++k)
     for (int c = 0; c < 3; ++c) rb_[3 * k + c] = r[3 * border_[k] + c];
   for (int j = 0; j < np_; ++j) rb_[pb + j] = r[3 * n_ + j];
-  if (nb_ == 1) {
+  if (nb_ == 1) {  // one chain: the unsplit solver's arithmetic, subtracting F·z in one product
     Chain& ch = chains_[0];
     for (int k = 0; k < 3 * ch.len; ++k) ch.z[k] = r[3 * ch.first + k];
     solve_T(ch, ch.z.data());

@@ -11,8 +11,8 @@ namespace beltsim {
 namespace {
 bool split(const Model& m, const Halves* halves) { return halves && m.belt.n >= kHalvesElements; }
 Span half(const Model& m, int p) {
-  const int h = half_start(m.belt.n);
-  return p == 0 ? Span{0, h} : Span{h, m.belt.n};
+  const HalfRange r = half_range(m.belt.n, p);
+  return Span{r.lo, r.hi};
 }
 
 void all_forces(const Model& m, double t, const double* q, const double* v, double* f, double* e_rate,

@@ -24,6 +24,11 @@ namespace beltsim {
 // it a fork and join costs more than half of the work saves.
 constexpr int kHalvesElements = 400;
 inline int half_start(int n) { return n / 2; }
+// the elements lo..hi-1 of half p (0 or 1)
+struct HalfRange {
+  int lo, hi;
+};
+inline HalfRange half_range(int n, int p) { return p == 0 ? HalfRange{0, half_start(n)} : HalfRange{half_start(n), n}; }
 
 class TwoWay {
  public:
