@@ -41,7 +41,12 @@ namespace {
 namespace fs = std::filesystem;
 
 std::atomic<bool> g_stop{false};
-volatile std::sig_atomic_t g_signal = 0;  // the first SIGINT or SIGTERM received
+// the first SIGINT or SIGTERM received. Atomic, not volatile sig_atomic_t: a signal sent to the
+// process goes to any thread that does not block it (the encoder's, llvmpipe's, the worker's), so two
+// signals sent back to back can be in their handlers at once, one per thread; exactly one of them
+// wins the exchange below (lock-free, hence safe in a handler)
+std::atomic<int> g_signal{0};
+static_assert(std::atomic<int>::is_always_lock_free);
 
 // SIGINT (Ctrl-C) and SIGTERM (timeout, CI cancellation, docker stop) alike: the run stops at its
 // last finished step and the outputs are closed (CSV rows are on disk as written, the video gets
@@ -56,12 +61,12 @@ struct Interruptible {
 };
 
 void on_stop_signal(int sig) {
-  if (g_signal != 0) {
+  int none = 0;
+  if (!g_signal.compare_exchange_strong(none, sig)) {  // a stop is under way: this one ends the process
     std::signal(sig, SIG_DFL);
-    std::raise(sig);  // blocked until this handler returns, then fatal
+    std::raise(sig);  // blocked in this thread until this handler returns, then fatal
     return;
   }
-  g_signal = sig;
   g_stop.store(true);                                  // a run stops at its last finished step
   if (auto* lua = g_lua.load()) lua->interrupt();      // Lua code stops at its next instructions
 }
@@ -70,7 +75,7 @@ void handle_stop_signals() {
   struct sigaction sa {};
   sa.sa_handler = on_stop_signal;
   sigemptyset(&sa.sa_mask);
-  sigaddset(&sa.sa_mask, SIGINT);  // one handler at a time
+  sigaddset(&sa.sa_mask, SIGINT);  // one handler at a time in a thread (across threads: the exchange)
   sigaddset(&sa.sa_mask, SIGTERM);
   sa.sa_flags = SA_RESTART;
   sigaction(SIGINT, &sa, nullptr);
@@ -79,7 +84,7 @@ void handle_stop_signals() {
 
 // after a stop signal: the message, and 128 + the signal's number (130 SIGINT, 143 SIGTERM)
 int stopped_status() {
-  const int sig = g_signal != 0 ? static_cast<int>(g_signal) : SIGINT;
+  const int sig = g_signal != 0 ? g_signal.load() : SIGINT;
   std::fprintf(stderr, "beltsim: %s; the outputs written so far are kept\n",
                sig == SIGTERM ? "terminated" : "interrupted");
   return 128 + sig;

@@ -4,6 +4,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <atomic>
 #include <cctype>
 #include <cerrno>
 #include <csignal>
@@ -36,7 +37,10 @@ namespace {
 lua_State* g_L = nullptr;
 Interpreter* g_lua = nullptr;
 std::atomic<bool>* g_stop = nullptr;
-volatile sig_atomic_t g_at_prompt = 0, g_sigint = 0, g_sigterm = 0;
+volatile sig_atomic_t g_at_prompt = 0, g_sigint = 0;
+// a SIGTERM was received. Atomic: two sent back to back can be handled at once by two threads (the
+// encoder's, llvmpipe's), and exactly one of them must find it unset (lock-free: safe in a handler)
+std::atomic<int> g_sigterm{0};
 bool g_cancelled = false;
 
 void on_sigint(int) {
@@ -53,12 +57,11 @@ void on_sigint(int) {
 // SIGTERM: a run stops as for Ctrl-C, Lua code stops, and the console leaves as for Ctrl-D (every
 // output closed), exit status 143; a second SIGTERM ends the process at once
 void on_sigterm(int) {
-  if (g_sigterm) {
+  if (g_sigterm.exchange(1) != 0) {  // a stop is under way: this one ends the process
     std::signal(SIGTERM, SIG_DFL);
     std::raise(SIGTERM);
     return;
   }
-  g_sigterm = 1;
   if (g_stop) g_stop->store(true);
   if (g_lua) g_lua->interrupt();
 }
