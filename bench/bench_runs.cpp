@@ -150,7 +150,8 @@ BENCHMARK_CAPTURE(BM_Seconds, half_wet, &presets::paper_wet)->Unit(benchmark::kS
 // between linear-solver setups, d stability limit detection (0/1), i Newton iterations per step,
 // w the stall window in steps (0: no restarts after stalls), x the stall step [s] (a restart when
 // the window's steps advance less than w·x seconds), a the absolute tolerance per unit of each
-// component's natural size (Tolerances::atol; left out: the rtol) (CvodeSettings; a letter left out
+// component's natural size (Tolerances::atol; left out: the rtol), r1 Newton with the reseat aid
+// (CvodeSettings; a letter left out
 // keeps the default); "o2@1e-5" runs that configuration at
 // that rtol only, "fd:o2" with cvode-fd. BELTSIM_GRID_CONFIGS (separated by
 // spaces), BELTSIM_GRID_RTOLS (by commas), BELTSIM_GRID_METHOD (cvode or cvode-fd) override.
@@ -173,6 +174,8 @@ CvodeSettings parse_settings(const std::string& spec, double* atol = nullptr) {
       case 'i': s.max_nonlin_iters = static_cast<int>(v); break;
       case 'w': s.stall_window = static_cast<long>(v); break;
       case 'x': s.stall_step = v; break;
+      case 'r': s.reseat = v != 0; break;
+      case 'k': s.restart_at_kinks = v != 0; break;
       case 'a':
         if (atol) *atol = v;
         break;
@@ -199,9 +202,9 @@ void BM_CvodeGrid(benchmark::State& state) {
     std::vector<Eigen::VectorXd> ref;
     Eigen::VectorXd y = sc.y0;
     simulate(sc.model, y, 0, T, "esdirk32", 1e-8, &ref);
-    std::fprintf(stderr, "| %s configuration | rtol | wall for %g s [s] | CPU [s] | steps | Jacobians | speed error |\n",
+    std::fprintf(stderr, "| %s configuration | rtol | wall for %g s [s] | CPU [s] | steps | Jacobians | kink restarts | speed error |\n",
                  method.c_str(), T);
-    std::fprintf(stderr, "|---|---|---|---|---|---|---|\n");
+    std::fprintf(stderr, "|---|---|---|---|---|---|---|---|\n");
     for (const std::string& spec : configs) {
       const size_t at = spec.find('@');
       const bool fd = spec.rfind("fd:", 0) == 0;
@@ -228,13 +231,13 @@ void BM_CvodeGrid(benchmark::State& state) {
         state.counters[tag + "_wall"] = done ? r.wall_seconds : -1;
         state.counters[tag + "_err"] = err;
         if (done)
-          std::fprintf(stderr, "| %s | %g | %.3g | %.3g | %ld | %ld | %.2g |\n", spec.c_str(), rtol, r.wall_seconds, cpu,
-                       r.work.steps, r.work.jacobians, err);
+          std::fprintf(stderr, "| %s | %g | %.3g | %.3g | %ld | %ld | %ld | %.2g |\n", spec.c_str(), rtol, r.wall_seconds,
+                       cpu, r.work.steps, r.work.jacobians, r.work.kink_restarts, err);
         else if (failure.empty())
-          std::fprintf(stderr, "| %s | %g | stopped at %g s wall, t = %.4g s | %.3g | %ld | %ld | - |\n", spec.c_str(), rtol,
-                       wall, r.t_reached, cpu, r.work.steps, r.work.jacobians);
+          std::fprintf(stderr, "| %s | %g | stopped at %g s wall, t = %.4g s | %.3g | %ld | %ld | %ld | - |\n", spec.c_str(),
+                       rtol, wall, r.t_reached, cpu, r.work.steps, r.work.jacobians, r.work.kink_restarts);
         else
-          std::fprintf(stderr, "| %s | %g | failed: %s | %.3g | | | - |\n", spec.c_str(), rtol, failure.c_str(), cpu);
+          std::fprintf(stderr, "| %s | %g | failed: %s | %.3g | | | | - |\n", spec.c_str(), rtol, failure.c_str(), cpu);
       }
     }
   }

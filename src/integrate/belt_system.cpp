@@ -4,6 +4,7 @@
 #include <sstream>
 
 #include "integrate/newton_aids.hpp"
+#include "integrate/switches.hpp"
 #include "model/sparse.hpp"
 
 
@@ -33,6 +34,12 @@ bool BeltSystem::reseat(double t, double* z, double* dz, bool keep_correction) {
 bool BeltSystem::local_solve(double t, double s, double* z, const double* g) {
   const int N = model_.n_coord();
   return friction_local_solve(model_, t, s, z, z + N, g + N) > 0;
+}
+
+int BeltSystem::switch_count() const { return beltsim::switch_count(model_); }
+
+void BeltSystem::switches(double t, const double* y, double* g) const {
+  contact_switches(model_, t, y, y + model_.n_coord(), g);
 }
 
 void BeltSystem::predict(double t, double dt, double* z) const {

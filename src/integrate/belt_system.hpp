@@ -30,6 +30,8 @@ class BeltSystem final : public OdeSystem {
   bool local_solve(double t, double s, double* z, const double* g) override;
   uint64_t branches(double t, const double* y) const override;
   void predict(double t, double dt, double* z) const override;
+  int switch_count() const override;
+  void switches(double t, const double* y, double* g) const override;
   std::string describe(int k) const override;
   std::string check(double t, const double* y) const override;
   const Model& model() const { return model_; }

@@ -4,6 +4,7 @@
 #include <nvector/nvector_serial.h>
 #include <sundials/sundials_context.h>
 #include <sunlinsol/sunlinsol_klu.h>
+#include <sunnonlinsol/sunnonlinsol_newton.h>
 #include <sunmatrix/sunmatrix_sparse.h>
 
 #include <algorithm>
@@ -40,7 +41,16 @@ struct Session {
   // through CVODE's C frames, and thrown again when CVode() returns
   std::exception_ptr error;
   Warnings warnings;              // the fallbacks, counted as they happen (not reset by CVodeReInit)
+  long reseats = 0;               // Newton corrections the reseat aid changed
+  long kink_restarts = 0;         // restarts at located kinks (CvodeSettings::restart_at_kinks)
 };
+
+// the switching functions for CVODE's rootfinding
+int switches_cb(sunrealtype t, N_Vector y, sunrealtype* g, void* user) {
+  Session& s = *static_cast<Session*>(user);
+  s.sys->switches(t, N_VGetArrayPointer(y), g);
+  return 0;
+}
 
 int rhs_cb(sunrealtype t, N_Vector y, N_Vector ydot, void* user) {
   Session& s = *static_cast<Session*>(user);
@@ -107,6 +117,38 @@ int fd_jac_cb(sunrealtype t, N_Vector y, N_Vector fy, SUNMatrix A, void* user, N
   return copy_jacobian(s, A);
 }
 
+// The reseat aid inside CVODE's Newton (CvodeSettings::reseat). CVODE's Newton iterates on the
+// correction ycor of the predicted state, y = ypred + ycor, and solves (I - γJ)·δ = -G(ycor) for
+// the update δ of ycor, which is also the update of y. CVODE hands its Newton solver the linear
+// solve as a function (cvNlsLSolve) when it initialises (at the first step and after each
+// CVodeReInit), through the solver's setlsolvefn; the Newton solver here takes that function
+// and puts in its place one that calls it, then lets the system reseat δ at the current iterate
+// y (CVODE's y = ypred + ycor, formed by the residual evaluation just before this solve, read
+// with CVodeGetNonlinearSystemData). CVODE's convergence test then sees the reseated δ.
+SUNNonlinSolLSolveFn cvode_lsolve = nullptr;  // CVODE's own (one static function for every run)
+
+int lsolve_reseat(N_Vector b, void* mem) {
+  const int r = cvode_lsolve(b, mem);
+  if (r != 0) return r;
+  sunrealtype tcur = 0, gamma = 0, rl1 = 0;
+  N_Vector ypred = nullptr, y = nullptr, fn = nullptr, zn1 = nullptr;
+  void* user = nullptr;
+  if (CVodeGetNonlinearSystemData(mem, &tcur, &ypred, &y, &fn, &gamma, &rl1, &zn1, &user) != CV_SUCCESS) return -1;
+  Session& s = *static_cast<Session*>(user);
+  try {
+    if (s.sys->reseat(tcur, N_VGetArrayPointer(y), N_VGetArrayPointer(b), true)) ++s.reseats;
+  } catch (...) {  // as in rhs_cb: kept, not unwound through CVODE
+    s.error = std::current_exception();
+    return -1;
+  }
+  return 0;
+}
+
+int set_lsolve_reseat(SUNNonlinearSolver nls, SUNNonlinSolLSolveFn fn) {
+  if (fn != lsolve_reseat) cvode_lsolve = fn;
+  return SUNNonlinSolSetLSolveFn_Newton(nls, lsolve_reseat);
+}
+
 void err_cb(int code, const char* module, const char* function, char* msg, void* user) {
   if (code == CV_WARNING) return;
   static_cast<Session*>(user)->last_error = std::string(module) + " " + function + ": " + msg;
@@ -137,9 +179,11 @@ struct Cvode {
   N_Vector y = nullptr, abstol = nullptr, dky = nullptr;
   SUNMatrix A = nullptr;
   SUNLinearSolver LS = nullptr;
+  SUNNonlinearSolver NLS = nullptr;  // with CvodeSettings::reseat only (else CVODE's own Newton)
   void* mem = nullptr;
   ~Cvode() {
     if (mem) CVodeFree(&mem);
+    if (NLS) SUNNonlinSolFree(NLS);
     if (LS) SUNLinSolFree(LS);
     if (A) SUNMatDestroy(A);
     for (N_Vector v : {y, abstol, dky})
@@ -216,6 +260,14 @@ class CvodeIntegrator final : public Integrator {
       ses_.colouring = colour_columns(ses_.J);
       check(CVodeSetJacFn(cv_.mem, fd_jac_cb), "CVodeSetJacFn");
     }
+    if (settings_.reseat) {
+      cv_.NLS = SUNNonlinSol_Newton(cv_.y, cv_.ctx);
+      if (!cv_.NLS) throw std::runtime_error("cvode: cannot create the Newton solver");
+      cv_.NLS->ops->setlsolvefn = set_lsolve_reseat;
+      check(CVodeSetNonlinearSolver(cv_.mem, cv_.NLS), "CVodeSetNonlinearSolver");
+    }
+    if (settings_.restart_at_kinks && sys_.switch_count() > 0)
+      check(CVodeRootInit(cv_.mem, sys_.switch_count(), switches_cb), "CVodeRootInit");
     apply(cv_.mem, settings_);
   }
 
@@ -241,6 +293,8 @@ class CvodeIntegrator final : public Integrator {
       throw DivergenceError(t_, "cvode stopped at t = " + fmt_time(t_) + " s: " + CVodeGetReturnFlagName(flag) +
                                     (ses_.last_error.empty() ? "" : " (" + ses_.last_error + ")"));
     if (flag == CV_TSTOP_RETURN) t_ret = t_land, tstop_ = std::nan("");  // SUNDIALS 6 clears a reached stop time
+    // a kink located: restart there (at the next step, as after a stall)
+    if (flag == CV_ROOT_RETURN) restart_ = true, ++ses_.kink_restarts;
     // a step size at rounding level means CVODE cannot get on (it may creep towards a time
     // where F fails for ever): stop as the one-step integrators do
     double h_now = 0;
@@ -287,6 +341,7 @@ class CvodeIntegrator final : public Integrator {
     if (cv_.mem) add_counters(cv_.mem, w);
     w.warnings = ses_.warnings;
     w.rhs += ses_.fd_rhs;
+    w.kink_restarts = ses_.kink_restarts;
     return w;
   }
 
@@ -325,7 +380,8 @@ std::string describe(const CvodeSettings& s) {
   o << "order <= " << s.max_order << ", nonlinear coefficient " << s.nonlin_conv_coef << ", Newton iterations <= "
     << s.max_nonlin_iters << ", Jacobian every " << s.jac_eval_frequency << " steps, setup every "
     << s.lsetup_frequency << " steps, stability limit detection " << (s.stab_lim_det ? "on" : "off")
-    << ", restart when " << s.stall_window << " steps advance less than " << s.stall_window * s.stall_step << " s";
+    << ", restart when " << s.stall_window << " steps advance less than " << s.stall_window * s.stall_step << " s"
+    << (s.reseat ? ", Newton with the reseat aid" : "");
   return o.str();
 }
 

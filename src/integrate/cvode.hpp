@@ -32,6 +32,13 @@ struct CvodeSettings {
   // state (CVodeReInit: order 1, a new history, a new Jacobian). 0 turns it off.
   long stall_window = 500;
   double stall_step = 1e-8;        // [s]
+  // CVODE's Newton with the system's reseat aid (OdeSystem::reseat, as esdirk32 takes it): each
+  // correction that would carry an element right across the friction band lands it in the band
+  // (not a CVODE input; the adapter's)
+  bool reseat = false;
+  // locate the kinks of F with CVODE's rootfinding (CVodeRootInit on OdeSystem::switches) and
+  // restart there, so that no BDF history spans a kink (not a CVODE input; the adapter's)
+  bool restart_at_kinks = false;
 };
 
 std::vector<std::string> cvode_names();  // {"cvode", "cvode-fd"}

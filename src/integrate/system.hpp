@@ -19,6 +19,7 @@ struct WorkCounters {
   long jacobians = 0;
   long factorizations = 0;
   long solves = 0;       // linear solves (one per implicit stage)
+  long kink_restarts = 0;  // restarts of a multistep history at a located kink of F (CVODE's rootfinding)
   // the fallbacks the integrator took (integrate/warnings.hpp): steps that could not be taken,
   // CVODE's convergence failures and non-finite forces
   Warnings warnings;
@@ -58,6 +59,10 @@ class OdeSystem {
   // unknown. Newton may reuse a Jacobian (and its factorisation) while the hash is unchanged.
   virtual uint64_t branches(double, const double*) const { return 0; }
 
+  // switching functions, for integrators that locate the kinks of a piecewise-smooth F and
+  // restart there: their number, and g at (t, y), each continuous in y and zero where F has a kink
+  virtual int switch_count() const { return 0; }
+  virtual void switches(double, const double*, double*) const {}
   // diagnostics: a name for component k ("element 12 y velocity") and a check of a state that
   // returns an empty string when it is sane, else what went wrong
   virtual std::string describe(int k) const { return "component " + std::to_string(k); }

@@ -1,0 +1,46 @@
+// Switching functions: where the contact and friction laws (model/contact_law.hpp) change their
+// smooth piece. For element i (centre P, velocity V) and pulley j (centre c, radius R, speed ω),
+// with r = |P - c|, p = R - r, ṗ = -n·V, n = (P - c)/r, t = n rotated +90°:
+//   contact onset      p = 0                  g0 = R - r
+//   damping ramp end   p = p_max              g1 = p - p_max
+//   clamp              N_el + δ(p)·b·ṗ = 0    g2 = (c1·p + c2)·p + min(p/p_max, 1)·b·ṗ  (p > 0)
+//                                                  c2·p                                  (p <= 0)
+//   friction band      |v_T| = Δv             g3 = |v_T| - Δv  (pushing; otherwise Δv)
+// with v_T = V·t - ω·r. g0, g1 and g2 are continuous in the state (at p = 0 both pieces of g2
+// are 0). g3 jumps where the pair starts or stops pushing, which is a zero of g2 and so a kink
+// already; outside contact the band has no force behind it and gives no kink. Every function is
+// defined for every pair, in or out of contact, so that the count is fixed.
+#include "integrate/switches.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "model/contact_law.hpp"
+
+namespace beltsim {
+
+int switch_count(const Model& m) { return kSwitchesPerPair * m.n_p() * m.belt.n; }
+
+void contact_switches(const Model& m, double t, const double* q, const double* v, double* g) {
+  const Contact& c = m.contact;
+  const double band = m.friction.dv;
+  for (int j = 0; j < m.n_p(); ++j) {
+    const Pulley& pl = m.pulleys[j];
+    const double omega = m.omega(j, t, v);
+    for (int i = 0; i < m.belt.n; ++i) {
+      double* gi = g + kSwitchesPerPair * (j * m.belt.n + i);
+      const Vec2 P(q[3 * i], q[3 * i + 1]), V(v[3 * i], v[3 * i + 1]);
+      const Vec2 rv = P - pl.centre;
+      const double r = rv.norm();
+      const Vec2 n = rv / r;
+      const double p = pl.radius - r, pdot = -n.dot(V);
+      gi[0] = p;
+      gi[1] = p - c.p_max;
+      gi[2] = p > 0 ? (c.c1 * p + c.c2) * p + std::min(p / c.p_max, 1.0) * c.b * pdot : c.c2 * p;
+      gi[3] = band;
+      if (p > 0 && gi[2] > 0) gi[3] = std::abs(V.dot(perp(n)) - omega * r) - band;
+    }
+  }
+}
+
+}  // namespace beltsim
