@@ -150,14 +150,14 @@ BENCHMARK_CAPTURE(BM_Seconds, half_wet, &presets::paper_wet)->Unit(benchmark::kS
 // between linear-solver setups, d stability limit detection (0/1), i Newton iterations per step,
 // w the stall window in steps (0: no restarts after stalls), x the stall step [s] (a restart when
 // the window's steps advance less than w·x seconds), a the absolute tolerance per unit of each
-// component's natural size (Tolerances::atol; left out: the rtol), r1 Newton with the reseat aid
-// (CvodeSettings; a letter left out
+// component's natural size (Tolerances::atol; left out: the rtol), k the kink gap in steps (0: no
+// restarts at kinks), v the error cap as a fraction of the resolution (CvodeSettings; a letter left out
 // keeps the default); "o2@1e-5" runs that configuration at
 // that rtol only, "fd:o2" with cvode-fd. BELTSIM_GRID_CONFIGS (separated by
 // spaces), BELTSIM_GRID_RTOLS (by commas), BELTSIM_GRID_METHOD (cvode or cvode-fd) override.
 // Prints a table to stderr: configuration, rtol, wall, CPU time of the process during the run
-// (std::clock: on a loaded machine the wall time includes other jobs' turns), steps, speed
-// error, Jacobians.
+// (std::clock: on a loaded machine the wall time includes other jobs' turns), steps, Jacobians,
+// restarts at kinks, speed error.
 CvodeSettings parse_settings(const std::string& spec, double* atol = nullptr) {
   CvodeSettings s;
   for (size_t k = 0; k < spec.size();) {
@@ -174,8 +174,8 @@ CvodeSettings parse_settings(const std::string& spec, double* atol = nullptr) {
       case 'i': s.max_nonlin_iters = static_cast<int>(v); break;
       case 'w': s.stall_window = static_cast<long>(v); break;
       case 'x': s.stall_step = v; break;
-      case 'r': s.reseat = v != 0; break;
-      case 'k': s.restart_at_kinks = v != 0; break;
+      case 'k': s.kink_gap = static_cast<long>(v); break;
+      case 'v': s.resolve = v; break;
       case 'a':
         if (atol) *atol = v;
         break;

@@ -1,6 +1,7 @@
 #include "integrate/belt_system.hpp"
 
 #include <cmath>
+#include <limits>
 #include <sstream>
 
 #include "integrate/newton_aids.hpp"
@@ -24,6 +25,15 @@ double BeltSystem::atol_scale(int k) const {
   if (c >= ne) return 1.0;  // pulley angle [rad], speed [rad/s]
   if (c % 3 == 2) return vel ? 10.0 : 1.0;
   return vel ? 1.0 : 0.1;
+}
+
+double BeltSystem::resolution(int k) const {
+  // an element's velocity (x, y) and a pulley's surface speed: the friction band Δv
+  const int N = model_.n_coord(), ne = 3 * model_.n_el();
+  if (k < N || k >= 2 * N) return std::numeric_limits<double>::infinity();
+  const int c = k - N;
+  if (c < ne) return c % 3 == 2 ? std::numeric_limits<double>::infinity() : model_.friction.dv;
+  return model_.friction.dv / model_.pulleys[c - ne].radius;
 }
 
 bool BeltSystem::reseat(double t, double* z, double* dz, bool keep_correction) {

@@ -21,6 +21,7 @@ class BeltSystem final : public OdeSystem {
   int size() const override { return model_.n_state(); }
   void rhs(double t, const double* y, double* dy) override { beltsim::rhs(model_, t, y, dy, &axes_, halves_.get()); }
   double atol_scale(int k) const override;
+  double resolution(int k) const override;
   bool prepare_jacobian(double t, const double* y) override;
   void time_derivative(double* f_t) const override;
   bool factor(double s) override;

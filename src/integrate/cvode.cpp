@@ -4,7 +4,6 @@
 #include <nvector/nvector_serial.h>
 #include <sundials/sundials_context.h>
 #include <sunlinsol/sunlinsol_klu.h>
-#include <sunnonlinsol/sunnonlinsol_newton.h>
 #include <sunmatrix/sunmatrix_sparse.h>
 
 #include <algorithm>
@@ -41,9 +40,24 @@ struct Session {
   // through CVODE's C frames, and thrown again when CVode() returns
   std::exception_ptr error;
   Warnings warnings;              // the fallbacks, counted as they happen (not reset by CVodeReInit)
-  long reseats = 0;               // Newton corrections the reseat aid changed
-  long kink_restarts = 0;         // restarts at located kinks (CvodeSettings::restart_at_kinks)
+  long kink_restarts = 0;         // restarts at located kinks (CvodeSettings::kink_gap)
+  // CvodeSettings::resolve: the relative tolerance, each component's absolute one and its cap
+  double rtol = 0;
+  std::vector<double> atol, cap;
 };
+
+// the error weights with the tolerances capped (CvodeSettings::resolve)
+int weights_cb(N_Vector y, N_Vector ewt, void* user) {
+  const Session& s = *static_cast<const Session*>(user);
+  const double* yy = N_VGetArrayPointer(y);
+  double* w = N_VGetArrayPointer(ewt);
+  for (size_t k = 0; k < s.cap.size(); ++k) {
+    const double tol = std::min(s.rtol * std::abs(yy[k]) + s.atol[k], s.cap[k]);
+    if (!(tol > 0)) return -1;
+    w[k] = 1 / tol;
+  }
+  return 0;
+}
 
 // the switching functions for CVODE's rootfinding
 int switches_cb(sunrealtype t, N_Vector y, sunrealtype* g, void* user) {
@@ -117,38 +131,6 @@ int fd_jac_cb(sunrealtype t, N_Vector y, N_Vector fy, SUNMatrix A, void* user, N
   return copy_jacobian(s, A);
 }
 
-// The reseat aid inside CVODE's Newton (CvodeSettings::reseat). CVODE's Newton iterates on the
-// correction ycor of the predicted state, y = ypred + ycor, and solves (I - γJ)·δ = -G(ycor) for
-// the update δ of ycor, which is also the update of y. CVODE hands its Newton solver the linear
-// solve as a function (cvNlsLSolve) when it initialises (at the first step and after each
-// CVodeReInit), through the solver's setlsolvefn; the Newton solver here takes that function
-// and puts in its place one that calls it, then lets the system reseat δ at the current iterate
-// y (CVODE's y = ypred + ycor, formed by the residual evaluation just before this solve, read
-// with CVodeGetNonlinearSystemData). CVODE's convergence test then sees the reseated δ.
-SUNNonlinSolLSolveFn cvode_lsolve = nullptr;  // CVODE's own (one static function for every run)
-
-int lsolve_reseat(N_Vector b, void* mem) {
-  const int r = cvode_lsolve(b, mem);
-  if (r != 0) return r;
-  sunrealtype tcur = 0, gamma = 0, rl1 = 0;
-  N_Vector ypred = nullptr, y = nullptr, fn = nullptr, zn1 = nullptr;
-  void* user = nullptr;
-  if (CVodeGetNonlinearSystemData(mem, &tcur, &ypred, &y, &fn, &gamma, &rl1, &zn1, &user) != CV_SUCCESS) return -1;
-  Session& s = *static_cast<Session*>(user);
-  try {
-    if (s.sys->reseat(tcur, N_VGetArrayPointer(y), N_VGetArrayPointer(b), true)) ++s.reseats;
-  } catch (...) {  // as in rhs_cb: kept, not unwound through CVODE
-    s.error = std::current_exception();
-    return -1;
-  }
-  return 0;
-}
-
-int set_lsolve_reseat(SUNNonlinearSolver nls, SUNNonlinSolLSolveFn fn) {
-  if (fn != lsolve_reseat) cvode_lsolve = fn;
-  return SUNNonlinSolSetLSolveFn_Newton(nls, lsolve_reseat);
-}
-
 void err_cb(int code, const char* module, const char* function, char* msg, void* user) {
   if (code == CV_WARNING) return;
   static_cast<Session*>(user)->last_error = std::string(module) + " " + function + ": " + msg;
@@ -179,11 +161,9 @@ struct Cvode {
   N_Vector y = nullptr, abstol = nullptr, dky = nullptr;
   SUNMatrix A = nullptr;
   SUNLinearSolver LS = nullptr;
-  SUNNonlinearSolver NLS = nullptr;  // with CvodeSettings::reseat only (else CVODE's own Newton)
   void* mem = nullptr;
   ~Cvode() {
     if (mem) CVodeFree(&mem);
-    if (NLS) SUNNonlinSolFree(NLS);
     if (LS) SUNLinSolFree(LS);
     if (A) SUNMatDestroy(A);
     for (N_Vector v : {y, abstol, dky})
@@ -233,7 +213,7 @@ class CvodeIntegrator final : public Integrator {
     t_ = t_prev_ = t;
     std::copy(y.data(), y.data() + n, N_VGetArrayPointer(cv_.y));
     tstop_ = std::nan("");
-    window_steps_ = 0, window_t0_ = t, restart_ = false;
+    window_steps_ = 0, window_t0_ = t, restart_ = false, since_restart_ = 0, root_returned_ = false;
     if (cv_.mem) {
       // restart: the law may jump here, and a multistep history across it is wrong
       add_counters(cv_.mem, ses_.done);
@@ -245,7 +225,15 @@ class CvodeIntegrator final : public Integrator {
     check(CVodeInit(cv_.mem, rhs_cb, t, cv_.y), "CVodeInit");
     check(CVodeSetUserData(cv_.mem, &ses_), "CVodeSetUserData");
     check(CVodeSetErrHandlerFn(cv_.mem, err_cb, &ses_), "CVodeSetErrHandlerFn");
-    check(CVodeSVtolerances(cv_.mem, tol_.rtol, cv_.abstol), "CVodeSVtolerances");
+    if (settings_.resolve > 0) {
+      ses_.rtol = tol_.rtol;
+      ses_.atol.assign(N_VGetArrayPointer(cv_.abstol), N_VGetArrayPointer(cv_.abstol) + n);
+      ses_.cap.resize(n);
+      for (int k = 0; k < n; ++k) ses_.cap[k] = settings_.resolve * sys_.resolution(k);
+      check(CVodeWFtolerances(cv_.mem, weights_cb), "CVodeWFtolerances");
+    } else {
+      check(CVodeSVtolerances(cv_.mem, tol_.rtol, cv_.abstol), "CVodeSVtolerances");
+    }
     check(CVodeSetMaxNumSteps(cv_.mem, -1), "CVodeSetMaxNumSteps");  // no limit: the caller's stop flag ends a run
     // the pattern (both variants) from the analytic Jacobian: the same for every state
     if (!sys_.sparse_jacobian(t, y.data(), ses_.J)) throw std::runtime_error("cvode: the system has no sparse Jacobian");
@@ -260,13 +248,7 @@ class CvodeIntegrator final : public Integrator {
       ses_.colouring = colour_columns(ses_.J);
       check(CVodeSetJacFn(cv_.mem, fd_jac_cb), "CVodeSetJacFn");
     }
-    if (settings_.reseat) {
-      cv_.NLS = SUNNonlinSol_Newton(cv_.y, cv_.ctx);
-      if (!cv_.NLS) throw std::runtime_error("cvode: cannot create the Newton solver");
-      cv_.NLS->ops->setlsolvefn = set_lsolve_reseat;
-      check(CVodeSetNonlinearSolver(cv_.mem, cv_.NLS), "CVodeSetNonlinearSolver");
-    }
-    if (settings_.restart_at_kinks && sys_.switch_count() > 0)
+    if (settings_.kink_gap > 0 && sys_.switch_count() > 0)
       check(CVodeRootInit(cv_.mem, sys_.switch_count(), switches_cb), "CVodeRootInit");
     apply(cv_.mem, settings_);
   }
@@ -284,7 +266,18 @@ class CvodeIntegrator final : public Integrator {
     // live simulation lands nowhere (t_land = inf), and an unbounded estimate was an infinite
     // step, F evaluated at t = inf and the run stopped (CV_REPTD_RHSFUNC_ERR)
     const double tout = std::isfinite(t_land) ? t_land : t_ + 1.0;
-    const int flag = CVode(cv_.mem, tout, cv_.y, &t_ret, CV_ONE_STEP);
+    int flag = CVode(cv_.mem, tout, cv_.y, &t_ret, CV_ONE_STEP);
+    // after a kink it did not restart at (within kink_gap), CVODE first checks the switching
+    // functions at the root it returned, and stops (CV_ILL_INPUT, "root found at and very near")
+    // when one is exactly zero there and just after. Nothing has moved: restart at the root,
+    // where CVODE sets such a function aside until it leaves zero, and take the step again.
+    if (flag == CV_ILL_INPUT && root_returned_) {
+      start(t_, y_);
+      check(CVodeSetStopTime(cv_.mem, t_land), "CVodeSetStopTime");
+      tstop_ = t_land;
+      flag = CVode(cv_.mem, tout, cv_.y, &t_ret, CV_ONE_STEP);
+    }
+    root_returned_ = flag == CV_ROOT_RETURN;
     // convergence failures of this step, at the time it started from (CVODE gives no other)
     CVodeGetNumNonlinSolvConvFails(cv_.mem, &ncf_after);
     ses_.warnings.add(WarningKind::cvode_convergence, t_, ncf_after - ncf_before);
@@ -293,8 +286,10 @@ class CvodeIntegrator final : public Integrator {
       throw DivergenceError(t_, "cvode stopped at t = " + fmt_time(t_) + " s: " + CVodeGetReturnFlagName(flag) +
                                     (ses_.last_error.empty() ? "" : " (" + ses_.last_error + ")"));
     if (flag == CV_TSTOP_RETURN) t_ret = t_land, tstop_ = std::nan("");  // SUNDIALS 6 clears a reached stop time
-    // a kink located: restart there (at the next step, as after a stall)
-    if (flag == CV_ROOT_RETURN) restart_ = true, ++ses_.kink_restarts;
+    // a kink located: restart there (at the next step, as after a stall), unless the last
+    // restart was fewer than kink_gap steps ago (CvodeSettings::kink_gap)
+    ++since_restart_;
+    if (flag == CV_ROOT_RETURN && since_restart_ >= settings_.kink_gap) restart_ = true, ++ses_.kink_restarts;
     // a step size at rounding level means CVODE cannot get on (it may creep towards a time
     // where F fails for ever): stop as the one-step integrators do
     double h_now = 0;
@@ -357,6 +352,8 @@ class CvodeIntegrator final : public Integrator {
   double tstop_ = std::nan("");
   bool restart_ = false;   // a stall was seen: restart before the next step
   long window_steps_ = 0;  // steps since the stall window began
+  long since_restart_ = 0; // steps since the last (re)start
+  bool root_returned_ = false;  // the last step ended at a located kink
   double window_t0_ = 0;   // [s] time the window began
 };
 
@@ -380,8 +377,9 @@ std::string describe(const CvodeSettings& s) {
   o << "order <= " << s.max_order << ", nonlinear coefficient " << s.nonlin_conv_coef << ", Newton iterations <= "
     << s.max_nonlin_iters << ", Jacobian every " << s.jac_eval_frequency << " steps, setup every "
     << s.lsetup_frequency << " steps, stability limit detection " << (s.stab_lim_det ? "on" : "off")
-    << ", restart when " << s.stall_window << " steps advance less than " << s.stall_window * s.stall_step << " s"
-    << (s.reseat ? ", Newton with the reseat aid" : "");
+    << ", restart when " << s.stall_window << " steps advance less than " << s.stall_window * s.stall_step << " s";
+  if (s.kink_gap > 0) o << ", restart at kinks " << s.kink_gap << " steps apart or more";
+  if (s.resolve > 0) o << ", errors below " << s.resolve << " of the laws' resolution";
   return o.str();
 }
 

@@ -1,13 +1,16 @@
 // SUNDIALS CVODE (variable-order BDF with Newton) as the peer integrator, behind the same live
 // Integrator interface as the one-step methods (integrate/integrator.hpp): samples at exact times by CVODE's own interpolation (CVodeGetDky), events landed on
 // with CVodeSetStopTime and the integration restarted there (CVodeReInit), the stop flag, and
-// DivergenceError naming the time and the component. Two variants:
+// DivergenceError naming the time and the component. For a piecewise-smooth F it also restarts
+// at the kinks CVODE's rootfinding locates, and caps the error weights at the laws' resolution
+// (CvodeSettings::kink_gap, resolve). Two variants:
 //   "cvode"     our analytic Jacobian J = ∂F/∂y assembled sparse, solved by KLU
 //   "cvode-fd"  a difference-quotient Jacobian on the pattern of the analytic one, its columns
 //               coloured so that one perturbed right-hand side serves every column of a colour
 //               (Curtis–Powell–Reid; CVODE's own difference quotients are for dense and banded
 //               matrices only), solved by KLU
-// Both run with the settings of CvodeSettings (the best found over the dry drive's first 0.1 s, README).
+// Both run with the settings of CvodeSettings (the best found over the dry drive's whole second,
+// README "Against the peer").
 #pragma once
 
 #include <string>
@@ -17,9 +20,9 @@
 
 namespace beltsim {
 
-// CVODE's optional inputs that matter here; the defaults are the best configuration measured over
-// the first 0.1 s of the paper's dry drive (README, "Against the peer"; over the whole second,
-// with restarts, order ≤ 5 was twice as fast), not CVODE's own defaults (noted per field)
+// CVODE's optional inputs that matter here, and the adapter's own for a piecewise-smooth F; the
+// defaults are the best configuration measured over the paper's dry second (README, "Against the
+// peer"), not CVODE's own defaults (noted per field)
 struct CvodeSettings {
   int max_order = 2;               // BDF order limit (CVodeSetMaxOrd; CVODE: 5)
   double nonlin_conv_coef = 0.1;   // Newton's stopping test against the error test (CVodeSetNonlinConvCoef; CVODE: 0.1)
@@ -32,13 +35,18 @@ struct CvodeSettings {
   // state (CVodeReInit: order 1, a new history, a new Jacobian). 0 turns it off.
   long stall_window = 500;
   double stall_step = 1e-8;        // [s]
-  // CVODE's Newton with the system's reseat aid (OdeSystem::reseat, as esdirk32 takes it): each
-  // correction that would carry an element right across the friction band lands it in the band
-  // (not a CVODE input; the adapter's)
-  bool reseat = false;
   // locate the kinks of F with CVODE's rootfinding (CVodeRootInit on OdeSystem::switches) and
-  // restart there, so that no BDF history spans a kink (not a CVODE input; the adapter's)
-  bool restart_at_kinks = false;
+  // restart there, so that no BDF history spans a kink, but no sooner than kink_gap steps after
+  // the last restart: where the solution's error is as large as a kink's scale (a friction band
+  // of 1e-5 m/s against rtol·|v| at loose tolerances) its switching function crosses zero every
+  // step or two, and restarting at each crossing never lets the step grow. 0: no rootfinding
+  // (not a CVODE input; the adapter's)
+  long kink_gap = 20;
+  // CVODE's error weights 1/(rtol·|y_k| + atol_k), with each component's tolerance held below
+  // this fraction of OdeSystem::resolution (CVodeWFtolerances): at rtol 1e-5 a belt speed of
+  // 2 m/s lets the velocity error be twice the friction band, and BDF then meets the band's kinks
+  // at random. 0: CVODE's own weights (not a CVODE input; the adapter's)
+  double resolve = 1;
 };
 
 std::vector<std::string> cvode_names();  // {"cvode", "cvode-fd"}

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <cstdint>
+#include <limits>
 #include <string>
 
 #include <Eigen/SparseCore>
@@ -59,6 +60,10 @@ class OdeSystem {
   // unknown. Newton may reuse a Jacobian (and its factorisation) while the hash is unchanged.
   virtual uint64_t branches(double, const double*) const { return 0; }
 
+  // the largest error in component k that the right-hand side's piecewise laws can take without
+  // changing piece at random (for the belt, a slip velocity error as large as the friction band);
+  // infinite when there is no such scale
+  virtual double resolution(int) const { return std::numeric_limits<double>::infinity(); }
   // switching functions, for integrators that locate the kinks of a piecewise-smooth F and
   // restart there: their number, and g at (t, y), each continuous in y and zero where F has a kink
   virtual int switch_count() const { return 0; }
