@@ -350,7 +350,7 @@ class CvodeIntegrator final : public Integrator {
   Session ses_;
   Cvode cv_;
   double tstop_ = std::nan("");
-  bool restart_ = false;   // a stall was seen: restart before the next step
+  bool restart_ = false;   // a stall was seen or a kink located: restart before the next step
   long window_steps_ = 0;  // steps since the stall window began
   long since_restart_ = 0; // steps since the last (re)start
   bool root_returned_ = false;  // the last step ended at a located kink
