@@ -49,14 +49,14 @@ struct Trace {
   std::vector<Eigen::VectorXd> y;
 };
 
-Trace run(const std::string& name, double rtol, DriveOptions opt, Smooth& sys) {
+Trace run(const std::string& name, double rtol, DriveOptions opt, Smooth& sys, const CvodeSettings& settings = {}) {
   Trace tr;
   Eigen::VectorXd y(3);
   y << 1, 0, 0;
   drive_cvode(sys, name, Tolerances{rtol, rtol}, opt, y, [&](double t, const Eigen::VectorXd& yy) {
     tr.t.push_back(t);
     tr.y.push_back(yy);
-  });
+  }, {}, settings);
   return tr;
 }
 
@@ -166,36 +166,44 @@ class Kinked final : public OdeSystem {
   }
 };
 
+// Kinked from y(0) = 0.5 to t = 1 at rtol 1e-9, sampled every 0.05 s: the largest error at the
+// samples against the exact solution, and the number of samples
+struct KinkedRun {
+  DriveResult res;
+  double err = 0;
+  int samples = 0;
+};
+KinkedRun run_kinked(Kinked& sys, const CvodeSettings& settings) {
+  DriveOptions opt;
+  opt.t_end = 1;
+  opt.sample_dt = 0.05;
+  Eigen::VectorXd y(1);
+  y << 0.5;
+  KinkedRun r;
+  r.res = drive_cvode(sys, "cvode", Tolerances{1e-9, 1e-9}, opt, y, [&](double t, const Eigen::VectorXd& yy) {
+    r.err = std::max(r.err, std::abs(yy[0] - Kinked::exact(t)));
+    ++r.samples;
+  }, {}, settings);
+  return r;
+}
+
 // CvodeSettings::kink_gap: CVODE's rootfinding locates the one kink and the adapter
 // restarts there, once, and the samples on both sides keep the accuracy of a run without it: at
 // rtol 1e-9 within 1e-5 of the exact solution (measured: 1.1e-6 with the restart, 9.6e-7 without;
-// order-2 BDF's global error, grown by the e^(3t) after the kink; a restart from a state taken at
-// the wrong time is off by the step, 1e-3 or more). Without the setting no restart is counted.
+// order-2 BDF's global error, grown by the e^(3t) after the kink). Without the setting no restart
+// is counted.
 TEST(Cvode, RestartsAtALocatedKink) {
   for (const bool at_kinks : {true, false}) {
     Kinked sys;
-    DriveOptions opt;
-    opt.t_end = 1;
-    opt.sample_dt = 0.05;
     CvodeSettings settings;
     settings.kink_gap = at_kinks ? 1 : 0;
-    Eigen::VectorXd y(1);
-    y << 0.5;
-    double err = 0;
-    int samples = 0;
-    const DriveResult res = drive_cvode(sys, "cvode", Tolerances{1e-9, 1e-9}, opt, y, [&](double t, const Eigen::VectorXd& yy) {
-      err = std::max(err, std::abs(yy[0] - Kinked::exact(t)));
-      ++samples;
-    }, {}, settings);
-    EXPECT_EQ(samples, 21);
-    EXPECT_LT(err, 1e-5) << (at_kinks ? "with" : "without") << " restarts at kinks";
-    EXPECT_EQ(res.work.kink_restarts, at_kinks ? 1 : 0);
+    const KinkedRun r = run_kinked(sys, settings);
+    EXPECT_EQ(r.samples, 21);
+    EXPECT_LT(r.err, 1e-5) << (at_kinks ? "with" : "without") << " restarts at kinks";
+    EXPECT_EQ(r.res.work.kink_restarts, at_kinks ? 1 : 0);
   }
 }
 
-// CvodeSettings::resolve: CVODE's error weights with every tolerance capped at the system's
-// resolution. At rtol 1e-4 a resolution of 1e-8 must hold the error at the samples a hundred
-// times below that of CVODE's own weights (measured: 9.9e-4 without the cap, 1.5e-6 with it).
 // A kink inside the kink gap is not restarted at, and CVODE then checks its switching function
 // at the root: one that stays exactly zero past it (here min(y - 1, 0)) made CVODE stop with
 // CV_ILL_INPUT ("root found at and very near"), as it did once on the dry drive at order 5 and
@@ -204,22 +212,18 @@ TEST(Cvode, RestartsAtALocatedKink) {
 TEST(Cvode, GoesOnPastASwitchThatStaysZero) {
   Kinked sys;
   sys.flat = true;
-  DriveOptions opt;
-  opt.t_end = 1;
-  opt.sample_dt = 0.05;
   CvodeSettings settings;
   settings.kink_gap = 1000000;  // never restart at the kink itself
-  Eigen::VectorXd y(1);
-  y << 0.5;
-  double err = 0;
-  const DriveResult res = drive_cvode(sys, "cvode", Tolerances{1e-9, 1e-9}, opt, y, [&](double t, const Eigen::VectorXd& yy) {
-    err = std::max(err, std::abs(yy[0] - Kinked::exact(t)));
-  }, {}, settings);
-  EXPECT_EQ(res.t_reached, 1.0);
-  EXPECT_LT(err, 1e-5);
-  EXPECT_EQ(res.work.kink_restarts, 0);
+  const KinkedRun r = run_kinked(sys, settings);
+  EXPECT_EQ(r.res.t_reached, 1.0);
+  EXPECT_EQ(r.samples, 21);
+  EXPECT_LT(r.err, 1e-5);
+  EXPECT_EQ(r.res.work.kink_restarts, 0);
 }
 
+// CvodeSettings::resolve: CVODE's error weights with every tolerance capped at the system's
+// resolution. At rtol 1e-4 a resolution of 1e-8 must hold the error at the samples a hundred
+// times below that of CVODE's own weights (measured: 9.9e-4 without the cap, 1.5e-6 with it).
 TEST(Cvode, HoldsErrorsBelowTheResolution) {
   double err[2];
   for (const int capped : {0, 1}) {
@@ -230,14 +234,7 @@ TEST(Cvode, HoldsErrorsBelowTheResolution) {
     opt.sample_dt = 0.1;
     CvodeSettings settings;
     settings.resolve = capped ? 1.0 : 0.0;
-    Eigen::VectorXd y(3);
-    y << 1, 0, 0;
-    Trace tr;
-    drive_cvode(sys, "cvode", Tolerances{1e-4, 1e-4}, opt, y, [&](double t, const Eigen::VectorXd& yy) {
-      tr.t.push_back(t);
-      tr.y.push_back(yy);
-    }, {}, settings);
-    err[capped] = max_error(tr);
+    err[capped] = max_error(run("cvode", 1e-4, opt, sys, settings));
   }
   EXPECT_LT(100 * err[1], err[0]);
 }
