@@ -212,7 +212,7 @@ int l_energy(lua_State* L) {
 }
 
 // sim:stats() -> { t, integrator, steps, rejected, rhs, jacobians, factorizations, solves,
-// wall [s], samples, frames, callbacks, out }
+// kink_restarts, wall [s], frames, callbacks, out }
 int l_stats(lua_State* L) {
   Simulation& s = live(L, "stats", {});
   const WorkCounters w = s.stats();
@@ -221,7 +221,7 @@ int l_stats(lua_State* L) {
   lua_pushstring(L, s.integrator_name().c_str()), lua_setfield(L, -2, "integrator");
   for (const auto& [k, v] : {std::pair{"steps", w.steps}, std::pair{"rejected", w.rejected}, std::pair{"rhs", w.rhs},
                              std::pair{"jacobians", w.jacobians}, std::pair{"factorizations", w.factorizations},
-                             std::pair{"solves", w.solves}})
+                             std::pair{"solves", w.solves}, std::pair{"kink_restarts", w.kink_restarts}})
     lua_pushinteger(L, v), lua_setfield(L, -2, k);
   set_number(L, "wall", s.wall());
   lua_pushinteger(L, s.frames_written()), lua_setfield(L, -2, "frames");

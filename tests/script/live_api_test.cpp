@@ -56,6 +56,24 @@ TEST(LiveApi, ReadsTheStateInSIUnits) {
             "");
 }
 
+// sim:stats().kink_restarts counts CVODE's restarts at located kinks (the dry drive's first
+// 0.05 s has dozens: its wraps settle and slip begins) and is 0 for a one-step method
+TEST(LiveApi, StatsCountCvodesRestartsAtKinks) {
+  // CVODE's Newton iteration fails to converge at some kinks before it restarts there
+  beltsim::test::expect_warnings({WarningKind::cvode_convergence});
+  for (const std::string integ : {"cvode", "esdirk32"}) {
+    std::string text = scene();
+    const std::string from = "progress = false }", to = "progress = false, integrator = '" + integ + "' }";
+    text.replace(text.find(from), from.size(), to);
+    EXPECT_EQ(run_text(text + "sim:advance(0.05)\n"
+                              "local k = sim:stats().kink_restarts\n"
+                              "assert(sim:stats().integrator == '" + integ + "', sim:stats().integrator)\n" +
+                              (integ == "cvode" ? "assert(k > 0, 'no restart at a kink')\n" : "assert(k == 0, k)\n")),
+              "")
+        << integ;
+  }
+}
+
 // a PI controller on the driver's torque holds the driven pulley within 1 % of its set speed
 TEST(LiveApi, EveryRunsAController) {
   // the controller's torque jumps every 2 ms: failed implicit steps from 0.026 s
