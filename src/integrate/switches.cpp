@@ -1,6 +1,7 @@
 // Switching functions: where the contact and friction laws (model/contact_law.hpp) change their
-// smooth piece. For element i (centre P, velocity V) and pulley j (centre c, radius R, speed ω),
-// with r = |P - c|, p = R - r, ṗ = -n·V, n = (P - c)/r, t = n rotated +90°:
+// smooth piece, read from the laws themselves (normal_law, friction_law). For element i (centre
+// P, velocity V) and pulley j (centre c, radius R, speed ω), with r = |P - c|, p = R - r,
+// ṗ = -n·V, n = (P - c)/r, t = n rotated +90°:
 //   contact onset      p = 0                  g0 = R - r
 //   damping ramp end   p = p_max              g1 = p - p_max
 //   clamp              N_el + δ(p)·b·ṗ = 0    g2 = (c1·p + c2)·p + min(p/p_max, 1)·b·ṗ  (p > 0)
@@ -12,7 +13,6 @@
 // defined for every pair, in or out of contact, so that the count is fixed.
 #include "integrate/switches.hpp"
 
-#include <algorithm>
 #include <cmath>
 
 #include "model/contact_law.hpp"
@@ -30,15 +30,19 @@ void contact_switches(const Model& m, double t, const double* q, const double* v
     for (int i = 0; i < m.belt.n; ++i) {
       double* gi = g + kSwitchesPerPair * (j * m.belt.n + i);
       const Vec2 P(q[3 * i], q[3 * i + 1]), V(v[3 * i], v[3 * i + 1]);
-      const Vec2 rv = P - pl.centre;
-      const double r = rv.norm();
-      const Vec2 n = rv / r;
-      const double p = pl.radius - r, pdot = -n.dot(V);
-      gi[0] = p;
-      gi[1] = p - c.p_max;
-      gi[2] = p > 0 ? (c.c1 * p + c.c2) * p + std::min(p / c.p_max, 1.0) * c.b * pdot : c.c2 * p;
-      gi[3] = band;
-      if (p > 0 && gi[2] > 0) gi[3] = std::abs(V.dot(perp(n)) - omega * r) - band;
+      NormalLaw nl;
+      if (normal_law(c, P, V, pl.centre, pl.radius, nl)) {
+        gi[0] = nl.p;
+        gi[1] = nl.p - c.p_max;
+        gi[2] = nl.N_free;
+        gi[3] = nl.pushing ? std::abs(friction_law(m.mu[i], band, nl, V, omega).vT) - band : band;
+      } else {  // p <= 0
+        const double p = pl.radius - (P - pl.centre).norm();
+        gi[0] = p;
+        gi[1] = p - c.p_max;
+        gi[2] = c.c2 * p;
+        gi[3] = band;
+      }
     }
   }
 }

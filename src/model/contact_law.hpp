@@ -17,6 +17,7 @@ namespace beltsim {
 struct NormalLaw {
   double r = 0, p = 0, pdot = 0;   // distance to the centre, penetration, penetration rate
   double N = 0, N_el = 0;          // clamped normal force, its elastic part
+  double N_free = 0;               // the normal force before the clamp (N = max(N_free, 0))
   double delta = 0;                // damping ramp δ(p)
   Vec2 n, t;                       // outward normal, tangent (n rotated +90°)
   bool pushing = false;            // N > 0 (not clamped)
@@ -34,9 +35,9 @@ inline bool normal_law(const Contact& c, const Vec2& P, const Vec2& V, const Vec
   o.pdot = -o.n.dot(V);
   o.delta = std::min(o.p / c.p_max, 1.0);
   o.N_el = (c.c1 * o.p + c.c2) * o.p;
-  const double raw = o.N_el + o.delta * c.b * o.pdot;
-  o.pushing = raw > 0;
-  o.N = o.pushing ? raw : 0.0;
+  o.N_free = o.N_el + o.delta * c.b * o.pdot;
+  o.pushing = o.N_free > 0;
+  o.N = o.pushing ? o.N_free : 0.0;
   return true;
 }
 void normal_law_derivatives(const Contact& c, const Vec2& V, NormalLaw& nl);
