@@ -285,6 +285,9 @@ void BM_Scaling(benchmark::State& state) {
       state.counters[tag + "_steps_per_sim_s"] = static_cast<double>(r.work.steps) / W;
       state.counters[tag + "_jacobians_per_step"] =
           static_cast<double>(r.work.jacobians) / static_cast<double>(r.work.steps + r.work.rejected);
+      state.counters[tag + "_rejected_per_sim_s"] = static_cast<double>(r.work.rejected) / W;
+      state.counters[tag + "_failed_per_sim_s"] =
+          static_cast<double>(r.work.warnings[WarningKind::failed_step].count) / W;
       if (n == 60) base = per_s;
       state.counters[tag + "_cost_per_element_vs_n60"] = (per_s / n) / (base / 60);
     }

@@ -53,7 +53,7 @@ void BeltSystem::switches(double t, const double* y, double* g) const {
 }
 
 void BeltSystem::predict(double t, double dt, double* z) const {
-  kinematic_predict(model_, t, dt, z, z + model_.n_coord());
+  convective_predict(model_, t, dt, z, z + model_.n_coord(), predict_);
 }
 
 uint64_t BeltSystem::branches(double t, const double* y) const {

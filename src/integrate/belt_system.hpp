@@ -8,6 +8,7 @@
 
 #include <memory>
 
+#include "integrate/newton_aids.hpp"
 #include "integrate/ring_solver.hpp"
 #include "integrate/system.hpp"
 #include "model/model.hpp"
@@ -41,6 +42,7 @@ class BeltSystem final : public OdeSystem {
   const Model& model_;
   Jacobian J_;
   AxisMemo axes_;  // the elements' axes of the last evaluation, for the next at the same angles
+  mutable PredictScratch predict_;  // Newton's starting point's copies of the state (predict)
   std::unique_ptr<Halves> halves_;  // a long belt's two halves at once (rhs.hpp); null below kHalvesElements
   double s_ = 0;
   RingSolver solver_;

@@ -7,6 +7,7 @@
 #pragma once
 
 #include <cstdint>
+#include <vector>
 
 #include "model/model.hpp"
 
@@ -32,5 +33,16 @@ int friction_local_solve(const Model& m, double t, double s, double* q, double* 
 // about it, carrying its velocity round with it; every other element moves on in a straight
 // line; pulley angles advance at their speeds. Velocities keep their size.
 void kinematic_predict(const Model& m, double t, double dt, double* q, double* v);
+
+// Newton's starting point for belts whose elements travel half a pitch or more in a stage (see
+// newton_aids.cpp): kinematic_predict, then each such element takes the state the belt had at t
+// at the place the element travels to (a steadily running drive's state is stationary in space,
+// so the slip arcs and the wrap ends stay where they are while the elements pass through them).
+// w holds copies of the state at t between calls, so the step loop allocates nothing once sized.
+struct PredictScratch {
+  std::vector<double> q0, v0;
+  std::vector<int> on;  // the pulley each element presses on at t (-1: none)
+};
+void convective_predict(const Model& m, double t, double dt, double* q, double* v, PredictScratch& w);
 
 }  // namespace beltsim
