@@ -55,8 +55,8 @@
 // linear between elements, and for a wrap turning rigidly at a constant radius
 // (tests/integrate/predictor_test.cpp). On a coarse belt the interpolation across a pitch is the
 // larger error (20 mm pitches at 60 elements, the wrap ends' chords): applied to every element
-// there, the dry drive at rtol 1e-3 took 11.7 Jacobians per step instead of 4.7, so elements that
-// travel less than half a pitch keep the kinematic prediction. Measured in BM_Scaling (README,
+// there, BM_Scaling's 60-element window at rtol 1e-3 took 11.7 Jacobians per step instead of 4.7,
+// so elements that travel less than half a pitch keep the kinematic prediction. Measured in BM_Scaling (README,
 // *The eighth round*).
 //
 // Branches (contact_branches): the Jacobian and its factorisation are reused within a step while
