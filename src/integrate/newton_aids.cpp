@@ -56,8 +56,8 @@
 // (tests/integrate/predictor_test.cpp). On a coarse belt the interpolation across a pitch is the
 // larger error (20 mm pitches at 60 elements, the wrap ends' chords): applied to every element
 // there, BM_Scaling's 60-element window at rtol 1e-3 took 11.7 Jacobians per step instead of 4.7,
-// so elements that travel less than half a pitch keep the kinematic prediction. Measured in BM_Scaling (README,
-// *The eighth round*).
+// so elements that travel less than half a pitch keep the kinematic prediction. Measured in
+// BM_Scaling (README, *The eighth round*).
 //
 // Branches (contact_branches): the Jacobian and its factorisation are reused within a step while
 // every pair stays on the same smooth piece of the contact and friction laws; the hash names
@@ -139,15 +139,23 @@ int friction_reseat(const Model& m, double t, const double* q, double* v, const 
   return moved;
 }
 
+namespace {
+// the first pulley the element at (P, V) presses on, or -1
+int pressed_pulley(const Model& m, const Vec2& P, const Vec2& V) {
+  for (int j = 0; j < m.n_p(); ++j) {
+    NormalLaw nl;
+    const Pulley& pl = m.pulleys[j];
+    if (normal_law(m.contact, P, V, pl.centre, pl.radius, nl) && nl.pushing) return j;
+  }
+  return -1;
+}
+}  // namespace
+
 void kinematic_predict(const Model& m, double t, double dt, double* q, double* v) {
   for (int i = 0; i < m.belt.n; ++i) {
     const Vec2 P(q[3 * i], q[3 * i + 1]), V(v[3 * i], v[3 * i + 1]);
-    const Pulley* on = nullptr;
-    for (int j = 0; j < m.n_p() && !on; ++j) {
-      NormalLaw nl;
-      const Pulley& pl = m.pulleys[j];
-      if (normal_law(m.contact, P, V, pl.centre, pl.radius, nl) && nl.pushing) on = &pl;
-    }
+    const int j = pressed_pulley(m, P, V);
+    const Pulley* on = j < 0 ? nullptr : &m.pulleys[j];
     if (!on) {
       q[3 * i] += dt * V.x(), q[3 * i + 1] += dt * V.y(), q[3 * i + 2] += dt * v[3 * i + 2];
       continue;
@@ -176,17 +184,11 @@ void convective_predict(const Model& m, double t, double dt, double* q, double* 
   }
   w.q0.assign(q, q + 3 * n);
   w.v0.assign(v, v + 3 * n);
-  w.on.assign(n, -1);
+  w.on.resize(n);
   const double* q0 = w.q0.data();
   const double* v0 = w.v0.data();
-  for (int i = 0; i < n; ++i) {
-    const Vec2 P(q0[3 * i], q0[3 * i + 1]), V(v0[3 * i], v0[3 * i + 1]);
-    for (int j = 0; j < m.n_p() && w.on[i] < 0; ++j) {
-      NormalLaw nl;
-      const Pulley& pl = m.pulleys[j];
-      if (normal_law(m.contact, P, V, pl.centre, pl.radius, nl) && nl.pushing) w.on[i] = j;
-    }
-  }
+  for (int i = 0; i < n; ++i)
+    w.on[i] = pressed_pulley(m, Vec2(q0[3 * i], q0[3 * i + 1]), Vec2(v0[3 * i], v0[3 * i + 1]));
   kinematic_predict(m, t, dt, q, v);
   auto pos = [q0](int k) { return Vec2(q0[3 * k], q0[3 * k + 1]); };
   auto vel = [v0](int k) { return Vec2(v0[3 * k], v0[3 * k + 1]); };
