@@ -149,27 +149,33 @@ int pressed_pulley(const Model& m, const Vec2& P, const Vec2& V) {
   }
   return -1;
 }
+
+// element i moved by kinematic_predict, given the pulley it presses on (-1: none)
+void kinematic_move(const Model& m, int on, double dt, int i, double* q, double* v) {
+  const Vec2 P(q[3 * i], q[3 * i + 1]), V(v[3 * i], v[3 * i + 1]);
+  if (on < 0) {
+    q[3 * i] += dt * V.x(), q[3 * i + 1] += dt * V.y(), q[3 * i + 2] += dt * v[3 * i + 2];
+    return;
+  }
+  const Vec2 C = m.pulleys[on].centre, d = P - C;
+  const double th = (d.x() * V.y() - d.y() * V.x()) / d.squaredNorm() * dt;
+  const double c = std::cos(th), s = std::sin(th);
+  q[3 * i] = C.x() + c * d.x() - s * d.y();
+  q[3 * i + 1] = C.y() + s * d.x() + c * d.y();
+  q[3 * i + 2] += th;
+  v[3 * i] = c * V.x() - s * V.y();
+  v[3 * i + 1] = s * V.x() + c * V.y();
+}
+
+void advance_pulleys(const Model& m, double t, double dt, double* q, const double* v) {
+  for (int j = 0; j < m.n_p(); ++j) q[m.pulley_coord(j)] += dt * m.omega(j, t, v);
+}
 }  // namespace
 
 void kinematic_predict(const Model& m, double t, double dt, double* q, double* v) {
-  for (int i = 0; i < m.belt.n; ++i) {
-    const Vec2 P(q[3 * i], q[3 * i + 1]), V(v[3 * i], v[3 * i + 1]);
-    const int j = pressed_pulley(m, P, V);
-    const Pulley* on = j < 0 ? nullptr : &m.pulleys[j];
-    if (!on) {
-      q[3 * i] += dt * V.x(), q[3 * i + 1] += dt * V.y(), q[3 * i + 2] += dt * v[3 * i + 2];
-      continue;
-    }
-    const Vec2 d = P - on->centre;
-    const double th = (d.x() * V.y() - d.y() * V.x()) / d.squaredNorm() * dt;
-    const double c = std::cos(th), s = std::sin(th);
-    q[3 * i] = on->centre.x() + c * d.x() - s * d.y();
-    q[3 * i + 1] = on->centre.y() + s * d.x() + c * d.y();
-    q[3 * i + 2] += th;
-    v[3 * i] = c * V.x() - s * V.y();
-    v[3 * i + 1] = s * V.x() + c * V.y();
-  }
-  for (int j = 0; j < m.n_p(); ++j) q[m.pulley_coord(j)] += dt * m.omega(j, t, v);
+  for (int i = 0; i < m.belt.n; ++i)
+    kinematic_move(m, pressed_pulley(m, Vec2(q[3 * i], q[3 * i + 1]), Vec2(v[3 * i], v[3 * i + 1])), dt, i, q, v);
+  advance_pulleys(m, t, dt, q, v);
 }
 
 void convective_predict(const Model& m, double t, double dt, double* q, double* v, PredictScratch& w) {
@@ -189,14 +195,17 @@ void convective_predict(const Model& m, double t, double dt, double* q, double* 
   const double* v0 = w.v0.data();
   for (int i = 0; i < n; ++i)
     w.on[i] = pressed_pulley(m, Vec2(q0[3 * i], q0[3 * i + 1]), Vec2(v0[3 * i], v0[3 * i + 1]));
-  kinematic_predict(m, t, dt, q, v);
+  advance_pulleys(m, t, dt, q, v);
   auto pos = [q0](int k) { return Vec2(q0[3 * k], q0[3 * k + 1]); };
   auto vel = [v0](int k) { return Vec2(v0[3 * k], v0[3 * k + 1]); };
   auto cross = [](const Vec2& a, const Vec2& b) { return a.x() * b.y() - a.y() * b.x(); };
   for (int i = 0; i < n; ++i) {
     const Vec2 V = vel(i);
     double rest = V.norm() * std::abs(dt);
-    if (rest < reach) continue;
+    if (rest < reach) {
+      kinematic_move(m, w.on[i], dt, i, q, v);
+      continue;
+    }
     // the direction of the element's motion along the belt
     const int dir = (V.dot(pos((i + 1) % n) - pos((i + n - 1) % n)) >= 0) == (dt > 0) ? 1 : n - 1;
     int a = i, b = i;
@@ -218,7 +227,10 @@ void convective_predict(const Model& m, double t, double dt, double* q, double* 
       }
       rest -= seg;
     }
-    if (f < 0) continue;  // a walk round half the belt: keep the kinematic prediction
+    if (f < 0) {  // a walk round half the belt: the kinematic prediction
+      kinematic_move(m, w.on[i], dt, i, q, v);
+      continue;
+    }
     Vec2 P1, V1;
     if (w.on[a] >= 0 && w.on[a] == w.on[b]) {
       const Vec2 C = m.pulleys[w.on[a]].centre, da = pos(a) - C, db = pos(b) - C;
