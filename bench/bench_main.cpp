@@ -19,12 +19,12 @@ const Scene& scene() {
 }
 
 Eigen::VectorXd running_state() {
-  BeltSystem sys(scene().model);
+  BeltSystem sys(scene().model, scene().drive);
   auto st = make_stepper("esdirk32");
   DriveOptions o;
   o.t_end = 0.05;
   o.sample_dt = 0.05;
-  o.events = scene().model.breakpoints();
+  o.events = scene().drive.breakpoints();
   Eigen::VectorXd y = scene().y0;
   drive(sys, *st, Tolerances{1e-5, -1}, o, y, [](double, const Eigen::VectorXd&) {});
   return y;
@@ -34,7 +34,7 @@ void BM_Rhs(benchmark::State& state) {
   const Eigen::VectorXd y = running_state();
   Eigen::VectorXd dy(y.size());
   for (auto _ : state) {
-    rhs(scene().model, 0.05, y.data(), dy.data());
+    rhs(scene().model, scene().drive, 0.05, y.data(), dy.data());
     benchmark::DoNotOptimize(dy.data());
   }
 }
@@ -45,7 +45,7 @@ void BM_Jacobian(benchmark::State& state) {
   Jacobian J;
   J.resize(scene().model);
   for (auto _ : state) {
-    jacobian(scene().model, 0.05, y.data(), J);
+    jacobian(scene().model, scene().drive, 0.05, y.data(), J);
     benchmark::DoNotOptimize(J.K.diag.data());
   }
 }
@@ -53,7 +53,7 @@ BENCHMARK(BM_Jacobian);
 
 void BM_FactorAndSolve(benchmark::State& state) {
   const Eigen::VectorXd y = running_state();
-  BeltSystem sys(scene().model);
+  BeltSystem sys(scene().model, scene().drive);
   sys.prepare_jacobian(0.05, y.data());
   Eigen::VectorXd r = Eigen::VectorXd::Ones(y.size()), u(y.size());
   for (auto _ : state) {
@@ -74,7 +74,7 @@ Scene scene_of(int n) {
 // the same for belts of 60, 600 and 2 400 elements
 void BM_FactorAndSolveN(benchmark::State& state) {
   const Scene sc = scene_of(static_cast<int>(state.range(0)));
-  BeltSystem sys(sc.model);
+  BeltSystem sys(sc.model, sc.drive);
   sys.prepare_jacobian(0.0, sc.y0.data());
   Eigen::VectorXd r = Eigen::VectorXd::Ones(sc.y0.size()), u(sc.y0.size());
   for (auto _ : state) {
@@ -93,7 +93,7 @@ void BM_RhsN(benchmark::State& state) {
   const Scene sc = scene_of(static_cast<int>(state.range(0)));
   Eigen::VectorXd dy(sc.y0.size());
   for (auto _ : state) {
-    rhs(sc.model, 0.0, sc.y0.data(), dy.data());
+    rhs(sc.model, sc.drive, 0.0, sc.y0.data(), dy.data());
     benchmark::DoNotOptimize(dy.data());
   }
 }
@@ -103,7 +103,7 @@ BENCHMARK(BM_RhsN)->Arg(60)->Arg(600)->Arg(2400)->UseRealTime();
 // once (wall time: the worker's half is on another core); and its Jacobian
 void BM_SystemRhsN(benchmark::State& state) {
   const Scene sc = scene_of(static_cast<int>(state.range(0)));
-  BeltSystem sys(sc.model);
+  BeltSystem sys(sc.model, sc.drive);
   Eigen::VectorXd dy(sc.y0.size());
   for (auto _ : state) {
     sys.rhs(0.0, sc.y0.data(), dy.data());
@@ -114,7 +114,7 @@ BENCHMARK(BM_SystemRhsN)->Arg(60)->Arg(600)->Arg(2400)->UseRealTime();
 
 void BM_SystemJacobianN(benchmark::State& state) {
   const Scene sc = scene_of(static_cast<int>(state.range(0)));
-  BeltSystem sys(sc.model);
+  BeltSystem sys(sc.model, sc.drive);
   Eigen::VectorXd y = sc.y0;
   for (auto _ : state) {
     y[2] += 1e-12;  // a fresh angle each time: the axis memo must not serve it
@@ -126,12 +126,12 @@ BENCHMARK(BM_SystemJacobianN)->Arg(60)->Arg(600)->Arg(2400)->UseRealTime();
 // wall time for the first 20 ms of the dry drive (from rest), per integrator
 void BM_Simulate20ms(benchmark::State& state, const char* method) {
   for (auto _ : state) {
-    BeltSystem sys(scene().model);
+    BeltSystem sys(scene().model, scene().drive);
     auto st = make_stepper(method);
     DriveOptions o;
     o.t_end = 0.02;
     o.sample_dt = 1e-3;
-    o.events = scene().model.breakpoints();
+    o.events = scene().drive.breakpoints();
     Eigen::VectorXd y = scene().y0;
     const DriveResult r = drive(sys, *st, Tolerances{1e-5, -1}, o, y, [](double, const Eigen::VectorXd&) {});
     state.counters["steps"] = static_cast<double>(r.work.steps);

@@ -78,15 +78,15 @@ std::vector<std::pair<std::string, double>> bench_integrators() {
   return out;
 }
 
-DriveResult simulate(const Model& m, Eigen::VectorXd& y, double t0, double t_end, const std::string& method,
+DriveResult simulate(const Model& m, const Drive& dr, Eigen::VectorXd& y, double t0, double t_end, const std::string& method,
                      double rtol, std::vector<Eigen::VectorXd>* samples = nullptr, const CvodeSettings& cv = {},
                      double wall_limit = 0, double atol = -1) {
-  BeltSystem sys(m);
+  BeltSystem sys(m, dr);
   DriveOptions o;
   o.t0 = t0;
   o.t_end = t_end;
   o.sample_dt = 1e-3;
-  o.events = m.breakpoints();
+  o.events = dr.breakpoints();
   const auto keep = [&](double, const Eigen::VectorXd& yy) {
     if (samples) samples->push_back(yy);
   };
@@ -122,12 +122,12 @@ void BM_Seconds(benchmark::State& state, SceneDef (*preset)()) {
   for (auto _ : state) {
     std::vector<Eigen::VectorXd> ref;
     Eigen::VectorXd y = sc.y0;
-    simulate(sc.model, y, 0, T, "esdirk32", 1e-8, &ref);
+    simulate(sc.model, sc.drive, y, 0, T, "esdirk32", 1e-8, &ref);
     double base = 0;
     for (const auto& [name, rtol] : bench_integrators()) {
       std::vector<Eigen::VectorXd> samples;
       y = sc.y0;
-      const DriveResult r = simulate(sc.model, y, 0, T, name, rtol, &samples);
+      const DriveResult r = simulate(sc.model, sc.drive, y, 0, T, name, rtol, &samples);
       const double per_s = r.wall_seconds / T;
       if (name == "esdirk32") base = per_s;
       state.counters[name + "_wall_per_sim_s"] = per_s;
@@ -201,7 +201,7 @@ void BM_CvodeGrid(benchmark::State& state) {
   for (auto _ : state) {
     std::vector<Eigen::VectorXd> ref;
     Eigen::VectorXd y = sc.y0;
-    simulate(sc.model, y, 0, T, "esdirk32", 1e-8, &ref);
+    simulate(sc.model, sc.drive, y, 0, T, "esdirk32", 1e-8, &ref);
     std::fprintf(stderr, "| %s configuration | rtol | wall for %g s [s] | CPU [s] | steps | Jacobians | kink restarts | speed error |\n",
                  method.c_str(), T);
     std::fprintf(stderr, "|---|---|---|---|---|---|---|---|\n");
@@ -220,7 +220,7 @@ void BM_CvodeGrid(benchmark::State& state) {
         try {
           double atol = -1;
           const CvodeSettings settings = parse_settings(c, &atol);
-          r = simulate(sc.model, y, 0, T, run_method, rtol, &samples, settings, wall, atol);
+          r = simulate(sc.model, sc.drive, y, 0, T, run_method, rtol, &samples, settings, wall, atol);
         } catch (const std::exception& e) {
           failure = e.what();
         }
@@ -275,14 +275,14 @@ void run_scaling(benchmark::State& state, bool per_length) {
       d.belt.elements = n;
       scenes.push_back(build_scene(d));
       starts.push_back(scenes.back().y0);
-      simulate(scenes.back().model, starts.back(), 0, 0.3, "esdirk32", 1e-2);
+      simulate(scenes.back().model, scenes.back().drive, starts.back(), 0, 0.3, "esdirk32", 1e-2);
     }
     std::vector<std::vector<double>> walls(scenes.size());
     std::vector<DriveResult> results(scenes.size());
     for (int k = 0; k < repeats; ++k)
       for (size_t c = 0; c < scenes.size(); ++c) {
         Eigen::VectorXd y = starts[c];
-        results[c] = simulate(scenes[c].model, y, 0.3, 0.3 + W, "esdirk32", rtol);
+        results[c] = simulate(scenes[c].model, scenes[c].drive, y, 0.3, 0.3 + W, "esdirk32", rtol);
         walls[c].push_back(results[c].wall_seconds);
       }
     double base = 0;
@@ -315,19 +315,19 @@ BENCHMARK(BM_PerLengthScaling)->Unit(benchmark::kSecond)->Iterations(1);
 void BM_StepLoopAllocations(benchmark::State& state) {
   const Scene sc = build_scene(presets::paper_dry());
   Eigen::VectorXd y0 = sc.y0;
-  simulate(sc.model, y0, 0, 0.3, "esdirk32", 1e-2);
+  simulate(sc.model, sc.drive, y0, 0, 0.3, "esdirk32", 1e-2);
   for (auto _ : state) {
     long steps[2], allocs[2];
     int k = 0;
     for (double W : {0.005, 0.015}) {
       Eigen::VectorXd y = y0;
-      BeltSystem sys(sc.model);
+      BeltSystem sys(sc.model, sc.drive);
       auto st = make_stepper("esdirk32");
       DriveOptions o;
       o.t0 = 0.3;
       o.t_end = 0.3 + W;
       o.sample_dt = 1e-3;
-      o.events = sc.model.breakpoints();
+      o.events = sc.drive.breakpoints();
       const long a0 = g_allocations.load();
       const DriveResult r = drive(sys, *st, Tolerances{1e-3, -1}, o, y, [](double, const Eigen::VectorXd&) {});
       allocs[k] = g_allocations.load() - a0;

@@ -35,10 +35,10 @@ struct Setup {
   std::unique_ptr<render::GlContext> ctx = render::make_gl_context(render::default_gl_backend());
   std::unique_ptr<render::GlRenderer> gl, gl_msaa;
   Setup() {
-    BeltSystem sys(sc.model);
+    BeltSystem sys(sc.model, sc.drive);
     auto st = make_stepper("esdirk32");
     DriveOptions o;
-    o.t_end = 0.25, o.sample_dt = 0.25, o.events = sc.model.breakpoints();
+    o.t_end = 0.25, o.sample_dt = 0.25, o.events = sc.drive.breakpoints();
     o.frame_t0 = 0.05, o.frame_dt = 1.0 / 300;
     o.frame = [&](double tf, const Eigen::VectorXd& yf) { t.push_back(tf), y.push_back(yf); };
     Eigen::VectorXd y0 = sc.y0;

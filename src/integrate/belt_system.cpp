@@ -11,10 +11,7 @@
 
 namespace beltsim {
 
-BeltSystem::BeltSystem(const Model& m) : model_(m) {
-  J_.resize(m);
-  if (m.belt.n >= kHalvesElements) halves_ = std::make_unique<Halves>(m);
-}
+BeltSystem::BeltSystem(const Model& m, const Drive& d) : model_(m), drive_(d), ws_(m) { J_.resize(m); }
 
 double BeltSystem::atol_scale(int k) const {
   // natural sizes: 0.1 m (layout), 1 rad, 1 m/s, 10 rad/s (element spin), 1 J
@@ -38,47 +35,52 @@ double BeltSystem::resolution(int k) const {
 
 bool BeltSystem::reseat(double t, double* z, double* dz, bool keep_correction) {
   const int N = model_.n_coord();
-  return friction_reseat(model_, t, z, z + N, dz, dz + N, keep_correction ? Reseat::correction : Reseat::iterate) > 0;
+  contact_pass(model_, drive_, t, z, z + N, Span{0, model_.n_el()}, pairs_);
+  return friction_reseat(model_, drive_, pairs_, z, z + N, dz, dz + N,
+                         keep_correction ? Reseat::correction : Reseat::iterate) > 0;
 }
 
 bool BeltSystem::local_solve(double t, double s, double* z, const double* g) {
   const int N = model_.n_coord();
-  return friction_local_solve(model_, t, s, z, z + N, g + N) > 0;
+  contact_pass(model_, drive_, t, z, z + N, Span{0, model_.n_el()}, pairs_);
+  return friction_local_solve(model_, drive_, pairs_, s, z, z + N, g + N) > 0;
 }
 
 int BeltSystem::switch_count() const { return beltsim::switch_count(model_); }
 
 void BeltSystem::switches(double t, const double* y, double* g) const {
-  contact_switches(model_, t, y, y + model_.n_coord(), g);
+  contact_pass(model_, drive_, t, y, y + model_.n_coord(), Span{0, model_.n_el()}, pairs_, Pairs::all);
+  contact_switches(model_, pairs_, g);
 }
 
 void BeltSystem::predict(double t, double dt, double* z) const {
-  convective_predict(model_, t, dt, z, z + model_.n_coord(), predict_);
+  convective_predict(model_, drive_, t, dt, z, z + model_.n_coord(), predict_);
 }
 
 uint64_t BeltSystem::branches(double t, const double* y) const {
-  return contact_branches(model_, t, y, y + model_.n_coord());
+  contact_pass(model_, drive_, t, y, y + model_.n_coord(), Span{0, model_.n_el()}, pairs_);
+  return contact_branches(model_, pairs_);
 }
 
 bool BeltSystem::prepare_jacobian(double t, const double* y) {
-  jacobian(model_, t, y, J_, &axes_, halves_.get());
+  jacobian(model_, drive_, t, y, J_, &ws_);
   return true;
 }
 
 void BeltSystem::time_derivative(double* f_t) const {
   const int N = model_.n_coord();
-  for (int k = 0; k < N; ++k) f_t[N + k] = J_.f_t[k] / model_.mass_of(k);
+  for (int k = 0; k < N; ++k) f_t[N + k] = J_.f_t[k] / drive_.mass(model_, k);
 }
 
 bool BeltSystem::sparse_jacobian(double t, const double* y, Eigen::SparseMatrix<double>& J) {
-  jacobian(model_, t, y, J_, &axes_, halves_.get());
-  assemble_ode_jacobian(model_, J_.K, J_.C, J);
+  jacobian(model_, drive_, t, y, J_, &ws_);
+  assemble_ode_jacobian(model_, drive_, J_.K, J_.C, J);
   return true;
 }
 
 bool BeltSystem::factor(double s) {
   s_ = s;
-  return solver_.factor(model_, s * s, s, J_.C, J_.K, halves_ ? &halves_->two : nullptr);
+  return solver_.factor(model_, drive_, s * s, s, J_.C, J_.K, ws_.halves ? &ws_.halves->two : nullptr);
 }
 
 void BeltSystem::solve(const double* r, double* u) {
@@ -87,16 +89,16 @@ void BeltSystem::solve(const double* r, double* u) {
   rhs_.resize(N);
   kr_.resize(N);
   auto rows = [&](int lo, int hi) {
-    for (int k = lo; k < hi; ++k) rhs_[k] = s * model_.mass_of(k) * r[N + k] + kr_[k];
+    for (int k = lo; k < hi; ++k) rhs_[k] = s * drive_.mass(model_, k) * r[N + k] + kr_[k];
   };
-  if (!halves_) {
+  if (!ws_.halves) {
     J_.K.multiply(r, kr_.data());
     rows(0, N);
   } else {
     // each half multiplies the rows of K it assembled (read by this thread, they would have to
     // come over from the other core's cache and go back for the next Jacobian)
     const int n = model_.n_el();
-    halves_->two.run([&](int p) {
+    ws_.halves->two.run([&](int p) {
       const HalfRange e = half_range(n, p);
       J_.K.multiply_elements(r, kr_.data(), e.lo, e.hi);
       rows(3 * e.lo, 3 * e.hi);

@@ -18,9 +18,10 @@ namespace beltsim {
 
 class BeltSystem final : public OdeSystem {
  public:
-  explicit BeltSystem(const Model& m);
+  // d: the drive the run holds (Simulation); changes to it apply from the next evaluation
+  BeltSystem(const Model& m, const Drive& d);
   int size() const override { return model_.n_state(); }
-  void rhs(double t, const double* y, double* dy) override { beltsim::rhs(model_, t, y, dy, &axes_, halves_.get()); }
+  void rhs(double t, const double* y, double* dy) override { beltsim::rhs(model_, drive_, t, y, dy, &ws_); }
   double atol_scale(int k) const override;
   double resolution(int k) const override;
   bool prepare_jacobian(double t, const double* y) override;
@@ -37,13 +38,15 @@ class BeltSystem final : public OdeSystem {
   std::string describe(int k) const override;
   std::string check(double t, const double* y) const override;
   const Model& model() const { return model_; }
+  const Drive& drive() const { return drive_; }
 
  private:
   const Model& model_;
+  const Drive& drive_;
   Jacobian J_;
-  AxisMemo axes_;  // the elements' axes of the last evaluation, for the next at the same angles
-  mutable PredictScratch predict_;  // Newton's starting point's copies of the state (predict)
-  std::unique_ptr<Halves> halves_;  // a long belt's two halves at once (rhs.hpp); null below kHalvesElements
+  Workspace ws_;                     // the right-hand side's and the Jacobian's (model/workspace.hpp)
+  mutable ContactList pairs_;        // the Newton aids' and switching functions' contact pass
+  mutable PredictScratch predict_;   // Newton's starting point's copies of the state (predict)
   double s_ = 0;
   RingSolver solver_;
   Eigen::VectorXd rhs_, kr_, uv_;

@@ -72,7 +72,8 @@
 
 namespace beltsim {
 
-int friction_local_solve(const Model& m, double t, double s, double* q, double* v, const double* g) {
+int friction_local_solve(const Model& m, const Drive& d, const ContactList& pairs, double s, double* q, double* v,
+                         const double* g) {
   const double band = m.friction.dv;
   const Belt& bl = m.belt;
   // the element's own linear resistance to a tangential velocity change w inside one stage: its
@@ -80,76 +81,69 @@ int friction_local_solve(const Model& m, double t, double s, double* q, double* 
   const double lam = (2 * bl.c + 2 * bl.k / s) / (bl.mass * s);
   const double A = 1 + lam;
   int moved = 0;
-  for (int j = 0; j < m.n_p(); ++j) {
-    const Pulley& pl = m.pulleys[j];
-    const double omega = m.omega(j, t, v);
-    for (int i = 0; i < m.belt.n; ++i) {
-      const Vec2 P(q[3 * i], q[3 * i + 1]), V(v[3 * i], v[3 * i + 1]);
-      NormalLaw nl;
-      if (!normal_law(m.contact, P, V, pl.centre, pl.radius, nl) || !nl.pushing) continue;
-      const double u0 = V.dot(nl.t) - omega * nl.r;
-      const double x0 = std::clamp(u0 / band, -1.0, 1.0);
-      const double g0 = g[3 * i] * nl.t.x() + g[3 * i + 1] * nl.t.y();
-      const double B = m.mu[i] * nl.N / (s * bl.mass);
-      double w = -(g0 + B * (1 - x0)) / A;  // slipping forwards
-      if (u0 + w < band) {
-        w = -(g0 + B * (-1 - x0)) / A;  // backwards
-        if (u0 + w > -band) w = -(g0 + B * (u0 / band - x0)) / (A + B / band);  // sticking
-      }
-      if (w == 0) continue;
-      v[3 * i] += w * nl.t.x();
-      v[3 * i + 1] += w * nl.t.y();
-      q[3 * i] += w / s * nl.t.x();
-      q[3 * i + 1] += w / s * nl.t.y();
-      ++moved;
+  for (const ContactPair& c : pairs) {
+    if (!c.touching || !c.nl.pushing) continue;
+    const int i = c.i;
+    const NormalLaw& nl = c.nl;
+    const Vec2 V(v[3 * i], v[3 * i + 1]);
+    const double u0 = V.dot(nl.t) - c.omega * nl.r;
+    const double x0 = std::clamp(u0 / band, -1.0, 1.0);
+    const double g0 = g[3 * i] * nl.t.x() + g[3 * i + 1] * nl.t.y();
+    const double B = d.mu[i] * nl.N / (s * bl.mass);
+    double w = -(g0 + B * (1 - x0)) / A;  // slipping forwards
+    if (u0 + w < band) {
+      w = -(g0 + B * (-1 - x0)) / A;  // backwards
+      if (u0 + w > -band) w = -(g0 + B * (u0 / band - x0)) / (A + B / band);  // sticking
     }
+    if (w == 0) continue;
+    v[3 * i] += w * nl.t.x();
+    v[3 * i + 1] += w * nl.t.y();
+    q[3 * i] += w / s * nl.t.x();
+    q[3 * i + 1] += w / s * nl.t.y();
+    ++moved;
   }
   return moved;
 }
 
-int friction_reseat(const Model& m, double t, const double* q, double* v, const double* dq, double* dv, Reseat where) {
+int friction_reseat(const Model& m, const Drive& d, const ContactList& pairs, const double* q, double* v,
+                    const double* dq, double* dv, Reseat where) {
   const double band = m.friction.dv;
   int moved = 0;
-  for (int j = 0; j < m.n_p(); ++j) {
+  for (const ContactPair& c : pairs) {
+    if (!c.touching || !c.nl.pushing) continue;
+    const int i = c.i, j = c.j;
     const Pulley& pl = m.pulleys[j];
-    const int pc = m.pulley_coord(j);
-    const double omega0 = m.omega(j, t, v);
-    const double omega1 = pl.kinematic ? omega0 : omega0 + dv[pc];
-    for (int i = 0; i < m.belt.n; ++i) {
-      const Vec2 P0(q[3 * i], q[3 * i + 1]), V0(v[3 * i], v[3 * i + 1]);
-      NormalLaw a;
-      if (!normal_law(m.contact, P0, V0, pl.centre, pl.radius, a) || !a.pushing) continue;
-      const double vt0 = V0.dot(a.t) - omega0 * a.r;
-      if (std::abs(vt0) < band) continue;
-      const Vec2 P1 = P0 + Vec2(dq[3 * i], dq[3 * i + 1]), V1 = V0 + Vec2(dv[3 * i], dv[3 * i + 1]);
-      NormalLaw b;
-      if (!normal_law(m.contact, P1, V1, pl.centre, pl.radius, b)) continue;
-      const double vt1 = V1.dot(b.t) - omega1 * b.r;
-      if (std::abs(vt1) < band || (vt1 > 0) == (vt0 > 0)) continue;
-      if (where == Reseat::correction) {
-        dv[3 * i] -= vt1 * b.t.x();
-        dv[3 * i + 1] -= vt1 * b.t.y();
-      } else {
-        v[3 * i] -= vt0 * a.t.x();
-        v[3 * i + 1] -= vt0 * a.t.y();
-      }
-      ++moved;
+    const NormalLaw& a = c.nl;
+    const double omega0 = c.omega;
+    const double omega1 = d.kinematic(j) ? omega0 : omega0 + dv[m.pulley_coord(j)];
+    const Vec2 P0(q[3 * i], q[3 * i + 1]), V0(v[3 * i], v[3 * i + 1]);
+    const double vt0 = V0.dot(a.t) - omega0 * a.r;
+    if (std::abs(vt0) < band) continue;
+    // the same pair where the correction takes it
+    const Vec2 P1 = P0 + Vec2(dq[3 * i], dq[3 * i + 1]), V1 = V0 + Vec2(dv[3 * i], dv[3 * i + 1]);
+    NormalLaw b;
+    if (!normal_law(m.contact, P1, V1, pl.centre, pl.radius, b)) continue;
+    const double vt1 = V1.dot(b.t) - omega1 * b.r;
+    if (std::abs(vt1) < band || (vt1 > 0) == (vt0 > 0)) continue;
+    if (where == Reseat::correction) {
+      dv[3 * i] -= vt1 * b.t.x();
+      dv[3 * i + 1] -= vt1 * b.t.y();
+    } else {
+      v[3 * i] -= vt0 * a.t.x();
+      v[3 * i + 1] -= vt0 * a.t.y();
     }
+    ++moved;
   }
   return moved;
+}
+
+void pressed_pulleys(const Model& m, const ContactList& pairs, std::vector<int>& on) {
+  on.assign(m.belt.n, -1);
+  for (const ContactPair& c : pairs)  // pulley by pulley: the first pulley an element presses on
+    if (c.touching && c.nl.pushing && on[c.i] < 0) on[c.i] = c.j;
 }
 
 namespace {
-// the first pulley the element at (P, V) presses on, or -1
-int pressed_pulley(const Model& m, const Vec2& P, const Vec2& V) {
-  for (int j = 0; j < m.n_p(); ++j) {
-    NormalLaw nl;
-    const Pulley& pl = m.pulleys[j];
-    if (normal_law(m.contact, P, V, pl.centre, pl.radius, nl) && nl.pushing) return j;
-  }
-  return -1;
-}
-
 // element i moved by kinematic_predict, given the pulley it presses on (-1: none)
 void kinematic_move(const Model& m, int on, double dt, int i, double* q, double* v) {
   const Vec2 P(q[3 * i], q[3 * i + 1]), V(v[3 * i], v[3 * i + 1]);
@@ -167,35 +161,35 @@ void kinematic_move(const Model& m, int on, double dt, int i, double* q, double*
   v[3 * i + 1] = s * V.x() + c * V.y();
 }
 
-void advance_pulleys(const Model& m, double t, double dt, double* q, const double* v) {
-  for (int j = 0; j < m.n_p(); ++j) q[m.pulley_coord(j)] += dt * m.omega(j, t, v);
+void advance_pulleys(const Model& m, const Drive& d, double t, double dt, double* q, const double* v) {
+  for (int j = 0; j < m.n_p(); ++j) q[m.pulley_coord(j)] += dt * d.omega(m, j, t, v);
 }
 }  // namespace
 
-void kinematic_predict(const Model& m, double t, double dt, double* q, double* v) {
-  for (int i = 0; i < m.belt.n; ++i)
-    kinematic_move(m, pressed_pulley(m, Vec2(q[3 * i], q[3 * i + 1]), Vec2(v[3 * i], v[3 * i + 1])), dt, i, q, v);
-  advance_pulleys(m, t, dt, q, v);
+void kinematic_predict(const Model& m, const Drive& d, double t, double dt, double* q, double* v, PredictScratch& w) {
+  contact_pass(m, d, t, q, v, Span{0, m.belt.n}, w.pairs);
+  pressed_pulleys(m, w.pairs, w.on);
+  for (int i = 0; i < m.belt.n; ++i) kinematic_move(m, w.on[i], dt, i, q, v);
+  advance_pulleys(m, d, t, dt, q, v);
 }
 
-void convective_predict(const Model& m, double t, double dt, double* q, double* v, PredictScratch& w) {
+void convective_predict(const Model& m, const Drive& d, double t, double dt, double* q, double* v, PredictScratch& w) {
   constexpr double kTravel = 0.5;  // pitches an element travels in dt before it takes the state found there
   const int n = m.belt.n;
   const double reach = kTravel * m.belt.pitch;
   bool any = false;
   for (int i = 0; i < n && !any; ++i) any = std::hypot(v[3 * i], v[3 * i + 1]) * std::abs(dt) >= reach;
   if (!any) {
-    kinematic_predict(m, t, dt, q, v);
+    kinematic_predict(m, d, t, dt, q, v, w);
     return;
   }
   w.q0.assign(q, q + 3 * n);
   w.v0.assign(v, v + 3 * n);
-  w.on.resize(n);
   const double* q0 = w.q0.data();
   const double* v0 = w.v0.data();
-  for (int i = 0; i < n; ++i)
-    w.on[i] = pressed_pulley(m, Vec2(q0[3 * i], q0[3 * i + 1]), Vec2(v0[3 * i], v0[3 * i + 1]));
-  advance_pulleys(m, t, dt, q, v);
+  contact_pass(m, d, t, q, v, Span{0, n}, w.pairs);
+  pressed_pulleys(m, w.pairs, w.on);
+  advance_pulleys(m, d, t, dt, q, v);
   auto pos = [q0](int k) { return Vec2(q0[3 * k], q0[3 * k + 1]); };
   auto vel = [v0](int k) { return Vec2(v0[3 * k], v0[3 * k + 1]); };
   auto cross = [](const Vec2& a, const Vec2& b) { return a.x() * b.y() - a.y() * b.x(); };
@@ -254,24 +248,19 @@ void convective_predict(const Model& m, double t, double dt, double* q, double* 
   }
 }
 
-uint64_t contact_branches(const Model& m, double t, const double* q, const double* v) {
+uint64_t contact_branches(const Model& m, const ContactList& pairs) {
   // FNV-1a over (pulley, element, branch code) of every pair in contact
   uint64_t h = 1469598103934665603ull;
   auto mix = [&h](uint64_t x) { h = (h ^ x) * 1099511628211ull; };
-  for (int j = 0; j < m.n_p(); ++j) {
-    const Pulley& pl = m.pulleys[j];
-    const double omega = m.omega(j, t, v);
-    for (int i = 0; i < m.belt.n; ++i) {
-      const Vec2 P(q[3 * i], q[3 * i + 1]), V(v[3 * i], v[3 * i + 1]);
-      NormalLaw nl;
-      if (!normal_law(m.contact, P, V, pl.centre, pl.radius, nl)) continue;
-      uint64_t code = 1 + (nl.pushing ? 2 : 0) + (nl.p < m.contact.p_max ? 4 : 0);
-      if (nl.pushing) {
-        const double x = friction_law(m.mu[i], m.friction.dv, nl, V, omega).vT / m.friction.dv;
-        code += x <= -1 ? 8 : x >= 1 ? 16 : 0;
-      }
-      mix(static_cast<uint64_t>(j) << 40 | static_cast<uint64_t>(i) << 8 | code);
+  for (const ContactPair& c : pairs) {
+    if (!c.touching) continue;
+    const NormalLaw& nl = c.nl;
+    uint64_t code = 1 + (nl.pushing ? 2 : 0) + (nl.p < m.contact.p_max ? 4 : 0);
+    if (nl.pushing) {
+      const double x = c.fl.vT / m.friction.dv;
+      code += x <= -1 ? 8 : x >= 1 ? 16 : 0;
     }
+    mix(static_cast<uint64_t>(c.j) << 40 | static_cast<uint64_t>(c.i) << 8 | code);
   }
   return h;
 }

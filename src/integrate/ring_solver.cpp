@@ -107,7 +107,7 @@ bool RingSolver::factor_chain(Chain& ch, const Model& m, double alpha, double be
   return true;
 }
 
-bool RingSolver::factor(const Model& m, double alpha, double beta, const BlockMatrix& C, const BlockMatrix& K,
+bool RingSolver::factor(const Model& m, const Drive& d, double alpha, double beta, const BlockMatrix& C, const BlockMatrix& K,
                         TwoWay* two) {
   const int n = m.n_el(), np = m.n_p();
   if (n != n_ || np != np_) resize(n, np);
@@ -130,7 +130,7 @@ bool RingSolver::factor(const Model& m, double alpha, double beta, const BlockMa
         G_(pb + j, 3 * k + r) = -beta * C.pulley_elem(j, row) - K.pulley_elem(j, row);
       }
     for (int l = 0; l < np; ++l) G_(pb + j, pb + l) = -beta * C.pulley_pulley(j, l) - K.pulley_pulley(j, l);
-    G_(pb + j, pb + j) += alpha * m.mass_of(3 * n + j);
+    G_(pb + j, pb + j) += alpha * d.mass(m, 3 * n + j);
   }
 
   each_chain([&](Chain& ch) { ch.ok = factor_chain(ch, m, alpha, beta, C, K); });

@@ -29,6 +29,7 @@
 #include <Eigen/Dense>
 
 #include "model/block_matrix.hpp"
+#include "model/drive.hpp"
 #include "model/model.hpp"
 #include "model/two_way.hpp"
 
@@ -38,7 +39,7 @@ class RingSolver {
  public:
   // factorises α·M - β·C - K; false when a pivot block or the Schur complement is singular.
   // `two` (may be null) runs a split ring's two chains at once, now and in the solves after.
-  bool factor(const Model& m, double alpha, double beta, const BlockMatrix& C, const BlockMatrix& K,
+  bool factor(const Model& m, const Drive& d, double alpha, double beta, const BlockMatrix& C, const BlockMatrix& K,
               TwoWay* two = nullptr);
   // x = A⁻¹·r (length 3n + np); x may alias r
   void solve(const double* r, double* x);

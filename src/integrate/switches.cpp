@@ -21,28 +21,20 @@ namespace beltsim {
 
 int switch_count(const Model& m) { return kSwitchesPerPair * m.n_p() * m.belt.n; }
 
-void contact_switches(const Model& m, double t, const double* q, const double* v, double* g) {
+void contact_switches(const Model& m, const ContactList& pairs, double* g) {
   const Contact& c = m.contact;
   const double band = m.friction.dv;
-  for (int j = 0; j < m.n_p(); ++j) {
-    const Pulley& pl = m.pulleys[j];
-    const double omega = m.omega(j, t, v);
-    for (int i = 0; i < m.belt.n; ++i) {
-      double* gi = g + kSwitchesPerPair * (j * m.belt.n + i);
-      const Vec2 P(q[3 * i], q[3 * i + 1]), V(v[3 * i], v[3 * i + 1]);
-      NormalLaw nl;
-      if (normal_law(c, P, V, pl.centre, pl.radius, nl)) {
-        gi[0] = nl.p;
-        gi[1] = nl.p - c.p_max;
-        gi[2] = nl.N_free;
-        gi[3] = nl.pushing ? std::abs(friction_law(m.mu[i], band, nl, V, omega).vT) - band : band;
-      } else {  // p <= 0
-        const double p = pl.radius - (P - pl.centre).norm();
-        gi[0] = p;
-        gi[1] = p - c.p_max;
-        gi[2] = c.c2 * p;
-        gi[3] = band;
-      }
+  for (const ContactPair& pr : pairs) {
+    double* gi = g + kSwitchesPerPair * (pr.j * m.belt.n + pr.i);
+    const NormalLaw& nl = pr.nl;
+    gi[0] = nl.p;
+    gi[1] = nl.p - c.p_max;
+    if (pr.touching) {
+      gi[2] = nl.N_free;
+      gi[3] = nl.pushing ? std::abs(pr.fl.vT) - band : band;
+    } else {  // p <= 0
+      gi[2] = c.c2 * nl.p;
+      gi[3] = band;
     }
   }
 }

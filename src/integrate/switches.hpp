@@ -4,6 +4,7 @@
 // the pair's kinks (derivation at the top of switches.cpp).
 #pragma once
 
+#include "model/contact_law.hpp"
 #include "model/model.hpp"
 
 namespace beltsim {
@@ -11,7 +12,8 @@ namespace beltsim {
 constexpr int kSwitchesPerPair = 4;
 // the number of switching functions of the model: kSwitchesPerPair per element and pulley
 int switch_count(const Model& m);
-// g[kSwitchesPerPair·(j·n + i) + k] for pulley j, element i, at (q, v)
-void contact_switches(const Model& m, double t, const double* q, const double* v, double* g);
+// g[kSwitchesPerPair·(j·n + i) + k] for pulley j, element i, from a contact pass over every pair
+// (contact_pass with Pairs::all)
+void contact_switches(const Model& m, const ContactList& pairs, double* g);
 
 }  // namespace beltsim

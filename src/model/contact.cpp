@@ -18,39 +18,44 @@
 
 namespace beltsim {
 
-void normal_law_derivatives(const Contact& c, const Vec2& V, NormalLaw& o) {
+NormalJacobian normal_law_derivatives(const Contact& c, const Vec2& V, const NormalLaw& o) {
+  NormalJacobian d;
   if (!o.pushing) {
-    o.dN_dP.setZero();
-    o.dN_dV.setZero();
-    return;
+    d.dN_dP.setZero();
+    d.dN_dV.setZero();
+    return d;
   }
   const double ddelta = o.p < c.p_max ? 1.0 / c.p_max : 0.0;
   const double vt = V.dot(o.t);
-  o.dN_dP = -(2 * c.c1 * o.p + c.c2 + ddelta * c.b * o.pdot) * o.n.transpose() -
+  d.dN_dP = -(2 * c.c1 * o.p + c.c2 + ddelta * c.b * o.pdot) * o.n.transpose() -
             o.delta * c.b * vt / o.r * o.t.transpose();
-  o.dN_dV = -o.delta * c.b * o.n.transpose();
+  d.dN_dV = -o.delta * c.b * o.n.transpose();
+  return d;
 }
 
-void contact_forces(const Model& m, double t, const double* q, const double* v, double* f, double* f_pulley,
-                    double* e_rate, const Span& span) {
+void contact_forces(const Model& m, const Drive& d, const ContactList& pairs, double* f, double* f_pulley,
+                    double* e_rate) {
+  // pairs come pulley by pulley: each pulley's moment is summed over its pairs, then added
+  int at = 0;
+  const int np = static_cast<int>(pairs.size());
   for (int j = 0; j < m.n_p(); ++j) {
-    const Pulley& pl = m.pulleys[j];
-    const double omega = m.omega(j, t, v);
-    double moment = 0;
-    for (int i = span.lo; i < span.hi; ++i) {
-      const Vec2 P(q[3 * i], q[3 * i + 1]), V(v[3 * i], v[3 * i + 1]);
-      NormalLaw nl;
-      if (!normal_law(m.contact, P, V, pl.centre, pl.radius, nl)) continue;
+    double moment = 0, omega = 0;
+    for (; at < np && pairs[at].j == j; ++at) {
+      const ContactPair& c = pairs[at];
+      const NormalLaw& nl = c.nl;
+      omega = c.omega;
+      if (!c.touching) continue;
       if (e_rate) e_rate[kDissContact] += (nl.N - nl.N_el) * nl.pdot;
       if (!nl.pushing) continue;
-      const FrictionLaw fl = friction_law(m.mu[i], m.friction.dv, nl, V, omega);
+      const FrictionLaw& fl = c.fl;
+      const int i = c.i;
       const Vec2 F = nl.N * nl.n - fl.mu_eff * nl.N * nl.t;
       f[3 * i] += F.x();
       f[3 * i + 1] += F.y();
       moment += nl.r * fl.mu_eff * nl.N;
       if (e_rate) e_rate[kDissFriction] += fl.mu_eff * nl.N * fl.vT;
     }
-    if (!pl.kinematic) {
+    if (!d.kinematic(j)) {
       f_pulley[j] += moment;
     } else if (e_rate) {
       e_rate[kWorkTorques] -= moment * omega;  // the drive holds the speed against the belt
@@ -58,29 +63,30 @@ void contact_forces(const Model& m, double t, const double* q, const double* v, 
   }
 }
 
-void contact_jacobian(const Model& m, double t, const double* q, const double* v, BlockMatrix& K, BlockMatrix& C,
-                      double* f_t, double* dM_dOmega, const Span& span) {
+void contact_jacobian(const Model& m, const Drive& d, double t, const double* v, const ContactList& pairs,
+                      BlockMatrix& K, BlockMatrix& C, double* f_t, double* dM_dOmega) {
+  int at = 0;
+  const int np = static_cast<int>(pairs.size());
   for (int j = 0; j < m.n_p(); ++j) {
-    const Pulley& pl = m.pulleys[j];
-    const double omega = m.omega(j, t, v);
-    const double omega_rate = pl.kinematic ? m.speed_rate(j, t) : 0.0;
-    double dmo = 0;  // Σ ∂M/∂Ω over the span (the block is zero before: the same sum as adding in place)
-    for (int i = span.lo; i < span.hi; ++i) {
-      const Vec2 P(q[3 * i], q[3 * i + 1]);
+    const bool kinematic = d.kinematic(j);
+    const double omega_rate = kinematic ? d.speed_rate(j, t) : 0.0;
+    double dmo = 0;  // Σ ∂M/∂Ω over the pairs (the block is zero before: the same sum as adding in place)
+    for (; at < np && pairs[at].j == j; ++at) {
+      const ContactPair& c = pairs[at];
+      if (!c.touching || !c.nl.pushing) continue;
+      const int i = c.i;
       const Vec2 V(v[3 * i], v[3 * i + 1]);
-      NormalLaw nl;
-      if (!normal_law(m.contact, P, V, pl.centre, pl.radius, nl) || !nl.pushing) continue;
-      normal_law_derivatives(m.contact, V, nl);
+      const NormalLaw& nl = c.nl;
+      const NormalJacobian dn = normal_law_derivatives(m.contact, V, nl);
       // normal force
-      K.diag[i].topLeftCorner<2, 2>() += nl.n * nl.dN_dP + nl.N / nl.r * nl.t * nl.t.transpose();
-      C.diag[i].topLeftCorner<2, 2>() += nl.n * nl.dN_dV;
+      K.diag[i].topLeftCorner<2, 2>() += nl.n * dn.dN_dP + nl.N / nl.r * nl.t * nl.t.transpose();
+      C.diag[i].topLeftCorner<2, 2>() += nl.n * dn.dN_dV;
       // friction
-      const FrictionLaw fl = friction_law(m.mu[i], m.friction.dv, nl, V, omega);
       PairJacobian J;
-      friction_jacobian(nl, fl, V, omega, J);
+      friction_jacobian(nl, dn, c.fl, V, c.omega, J);
       K.diag[i].topLeftCorner<2, 2>() += J.dF_dP;
       C.diag[i].topLeftCorner<2, 2>() += J.dF_dV;
-      if (pl.kinematic) {
+      if (kinematic) {
         // Omega(t) is prescribed: its effect enters as an explicit time dependence
         if (f_t) {
           f_t[3 * i] += J.dF_dOmega.x() * omega_rate;
@@ -93,7 +99,7 @@ void contact_jacobian(const Model& m, double t, const double* q, const double* v
       C.pulley_elem.block<1, 2>(j, 3 * i) += J.dM_dV;
       dmo += J.dM_dOmega;
     }
-    if (pl.kinematic) continue;
+    if (kinematic) continue;
     if (dM_dOmega) {
       dM_dOmega[j] += dmo;
     } else {
@@ -112,43 +118,6 @@ double contact_potential(const Model& m, const double* q) {
     }
   }
   return u;
-}
-
-ElementContact element_contact(const Model& m, double t, const double* q, const double* v, int i) {
-  ElementContact out;
-  out.slip = std::numeric_limits<double>::quiet_NaN();
-  double deepest = 0;
-  const Vec2 P(q[3 * i], q[3 * i + 1]), V(v[3 * i], v[3 * i + 1]);
-  for (int j = 0; j < m.n_p(); ++j) {
-    NormalLaw nl;
-    if (!normal_law(m.contact, P, V, m.pulleys[j].centre, m.pulleys[j].radius, nl)) continue;
-    const FrictionLaw fl = friction_law(m.mu[i], m.friction.dv, nl, V, m.omega(j, t, v));
-    out.normal += nl.N;
-    out.friction -= fl.mu_eff * nl.N;
-    if (nl.p > deepest) {
-      deepest = nl.p;
-      out.pulley = j;
-      out.slip = fl.vT;
-    }
-  }
-  return out;
-}
-
-double belt_torque(const Model& m, double t, const double* q, const double* v, int j, Vec2* hub_load) {
-  const Pulley& pl = m.pulleys[j];
-  const double omega = m.omega(j, t, v);
-  double moment = 0;
-  Vec2 load = Vec2::Zero();
-  for (int i = 0; i < m.belt.n; ++i) {
-    const Vec2 P(q[3 * i], q[3 * i + 1]), V(v[3 * i], v[3 * i + 1]);
-    NormalLaw nl;
-    if (!normal_law(m.contact, P, V, pl.centre, pl.radius, nl) || !nl.pushing) continue;
-    const FrictionLaw fl = friction_law(m.mu[i], m.friction.dv, nl, V, omega);
-    moment += nl.r * fl.mu_eff * nl.N;
-    load -= nl.N * nl.n - fl.mu_eff * nl.N * nl.t;  // reaction of the force on the element
-  }
-  if (hub_load) *hub_load = load;
-  return moment;
 }
 
 }  // namespace beltsim

@@ -1,5 +1,7 @@
-// Per-pair contact and friction laws shared by contact.cpp and friction.cpp, and read by the
-// integrator's Newton aids (integrate/newton_aids.cpp); not part of the model's interface.
+// Per-pair contact and friction laws shared by contact.cpp and friction.cpp, and the contact pass
+// that evaluates them once per evaluation for every element–pulley pair (contact_pass): its
+// records are what the forces, the Jacobian, the integrator's Newton aids, the switching
+// functions and the observables read.
 // normal_law and friction_law are defined here, inline: every right-hand side calls them for each
 // element and pulley, and inlined into contact_forces they took the dry second at rtol 7e-4 from
 // 0.28–0.29 to 0.26–0.27 s (alternating runs; the same numbers to the last bit). Their formulas and
@@ -19,9 +21,12 @@ struct NormalLaw {
   double N = 0, N_el = 0;          // clamped normal force, its elastic part
   double N_free = 0;               // the normal force before the clamp (N = max(N_free, 0))
   double delta = 0;                // damping ramp δ(p)
-  Vec2 n, t;                       // outward normal, tangent (n rotated +90°)
+  Vec2 n = Vec2::Zero(), t = Vec2::Zero();  // outward normal, tangent (n rotated +90°)
   bool pushing = false;            // N > 0 (not clamped)
-  Eigen::RowVector2d dN_dP, dN_dV; // filled by normal_law_derivatives
+};
+// ∂N/∂P and ∂N/∂V of a normal law (normal_law_derivatives; zero when clamped)
+struct NormalJacobian {
+  Eigen::RowVector2d dN_dP, dN_dV;
 };
 // returns false when the element is not inside the pulley's contact circle
 inline bool normal_law(const Contact& c, const Vec2& P, const Vec2& V, const Vec2& centre, double R, NormalLaw& o) {
@@ -40,7 +45,7 @@ inline bool normal_law(const Contact& c, const Vec2& P, const Vec2& V, const Vec
   o.N = o.pushing ? o.N_free : 0.0;
   return true;
 }
-void normal_law_derivatives(const Contact& c, const Vec2& V, NormalLaw& nl);
+NormalJacobian normal_law_derivatives(const Contact& c, const Vec2& V, const NormalLaw& nl);
 
 // friction of the same pair: force on the element -mu_eff·N·t̂, moment on the pulley r·mu_eff·N
 struct FrictionLaw {
@@ -68,6 +73,45 @@ struct PairJacobian {
   Eigen::RowVector2d dM_dP, dM_dV;    // pulley moment w.r.t. the element's position, velocity
   double dM_dOmega;                   // pulley moment w.r.t. its own speed
 };
-void friction_jacobian(const NormalLaw& nl, const FrictionLaw& fl, const Vec2& V, double omega, PairJacobian& J);
+void friction_jacobian(const NormalLaw& nl, const NormalJacobian& dn, const FrictionLaw& fl, const Vec2& V, double omega,
+                       PairJacobian& J);
+
+// One element–pulley pair of a contact pass.
+struct ContactPair {
+  int i = 0, j = 0;        // element, pulley
+  bool touching = false;   // the element's centre is inside the pulley's contact circle (p > 0)
+  double omega = 0;        // the pulley's speed at the evaluation [rad/s]
+  NormalLaw nl;            // touching: the normal law (its derivatives are the Jacobian's);
+                           // otherwise only nl.r and nl.p (<= 0) are set
+  FrictionLaw fl;          // touching: the friction law (its force is mu_eff·N, zero when clamped)
+};
+
+// The contact pass: the pairs of the span's elements with every pulley, pulley by pulley and in
+// element order within a pulley (the order every sum over pairs takes), appended to `out` after
+// clearing it. Pairs::touching keeps the pairs in contact only; Pairs::all keeps every pair (the
+// switching functions need the distance of those out of contact too).
+enum class Pairs { touching, all };
+inline void contact_pass(const Model& m, const Drive& d, double t, const double* q, const double* v, const Span& span,
+                         ContactList& out, Pairs which = Pairs::touching) {
+  out.clear();
+  for (int j = 0; j < m.n_p(); ++j) {
+    const Pulley& pl = m.pulleys[j];
+    const double omega = d.omega(m, j, t, v);
+    for (int i = span.lo; i < span.hi; ++i) {
+      const Vec2 P(q[3 * i], q[3 * i + 1]), V(v[3 * i], v[3 * i + 1]);
+      ContactPair c;
+      c.touching = normal_law(m.contact, P, V, pl.centre, pl.radius, c.nl);
+      if (!c.touching) {
+        if (which == Pairs::touching) continue;
+        c.nl.r = (P - pl.centre).norm();
+        c.nl.p = pl.radius - c.nl.r;
+      } else {
+        c.fl = friction_law(d.mu[i], m.friction.dv, c.nl, V, omega);
+      }
+      c.i = i, c.j = j, c.omega = omega;
+      out.push_back(c);
+    }
+  }
+}
 
 }  // namespace beltsim

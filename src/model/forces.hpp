@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "model/block_matrix.hpp"
+#include "model/drive.hpp"
 #include "model/model.hpp"
 
 namespace beltsim {
@@ -90,31 +91,24 @@ void bending_jacobian(const Model& m, const double* q, const double* v, BlockMat
                       const Span& span);
 double bending_potential(const Model& m, const double* q);
 
-// belt–pulley contact (eq. 2) with friction (eqs. 3–4), contact.cpp + friction.cpp
-// f_pulley[j] receives pulley j's moment (f + 3n for the whole belt)
-void contact_forces(const Model& m, double t, const double* q, const double* v, double* f, double* f_pulley,
-                    double* e_rate, const Span& span);
+// belt–pulley contact (eq. 2) with friction (eqs. 3–4), contact.cpp + friction.cpp, from the pairs
+// of one contact pass (contact_law.hpp: contact_pass, ContactPair)
+struct ContactPair;
+using ContactList = std::vector<ContactPair>;
+// adds the pairs' forces to the elements' rows of f and their moments to f_pulley[j] (f + 3n for
+// the whole belt; the moments of a kinematic pulley go to the energy of its drive instead)
+void contact_forces(const Model& m, const Drive& d, const ContactList& pairs, double* f, double* f_pulley,
+                    double* e_rate);
 // f_t (may be null) receives ∂f/∂t through the prescribed speeds of kinematic pulleys;
-// dM_dOmega[j] receives the sum over the span of pulley j's ∂M/∂Ω (null: added to C.pulley_pulley)
-void contact_jacobian(const Model& m, double t, const double* q, const double* v, BlockMatrix& K,
-                      BlockMatrix& C, double* f_t, double* dM_dOmega, const Span& span);
+// dM_dOmega[j] receives the sum over the pairs of pulley j's ∂M/∂Ω (null: added to C.pulley_pulley)
+void contact_jacobian(const Model& m, const Drive& d, double t, const double* v, const ContactList& pairs,
+                      BlockMatrix& K, BlockMatrix& C, double* f_t, double* dM_dOmega);
 double contact_potential(const Model& m, const double* q);
 
-// what one element feels from the pulleys (sums over pulleys in contact)
-struct ElementContact {
-  double normal = 0;      // |N| summed over pulleys [N]
-  double friction = 0;    // signed tangential friction force on the element, along t̂ [N]
-  double slip = 0;        // v_T against the pulley it touches [m/s]; NaN when free
-  int pulley = -1;        // index of the pulley touched (the deepest), -1 when free
-};
-ElementContact element_contact(const Model& m, double t, const double* q, const double* v, int i);
-// belt torque on pulley j (moment of the friction reactions) [N·m] and hub load vector [N]
-double belt_torque(const Model& m, double t, const double* q, const double* v, int j, Vec2* hub_load);
-
 // pulley equations (eq. 8): applied torques and gravity on the elements, pulley.cpp
-void pulley_forces(const Model& m, double t, const double* v, double* f, double* e_rate);
-void pulley_jacobian(const Model& m, double t, const double* v, BlockMatrix& C, double* f_t);
-double applied_torque(const Model& m, double t, const double* v, int j);
+void pulley_forces(const Model& m, const Drive& d, double t, const double* v, double* f, double* e_rate);
+void pulley_jacobian(const Model& m, const Drive& d, double t, const double* v, BlockMatrix& C, double* f_t);
+double applied_torque(const Model& m, const Drive& d, double t, const double* v, int j);
 void gravity_forces(const Model& m, double* f);
 double gravity_potential(const Model& m, const double* q);
 

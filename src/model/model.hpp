@@ -1,5 +1,7 @@
-// Model: the static description of a belt drive, built once by the scene builder and never
-// changed while integrating (MuJoCo's mjModel). State vectors are plain arrays laid out as
+// Model: the constant description of a belt drive, built once by the scene builder and never
+// changed (MuJoCo's mjModel). What a run may change (the pulleys' laws, μ per element) is the
+// Drive (drive.hpp); scratch of an evaluation is the Workspace (workspace.hpp). State vectors are
+// plain arrays laid out as
 //
 //   y = [ q (n_coord) | v (n_coord) | e (n_energy) ]
 //   q = [ x_0 y_0 phi_0 | x_1 y_1 phi_1 | ... | x_{n-1} y_{n-1} phi_{n-1} | theta_0 ... theta_{np-1} ]
@@ -15,8 +17,6 @@
 
 #include <Eigen/Core>
 
-#include "model/laws.hpp"
-
 namespace beltsim {
 
 using Vec2 = Eigen::Vector2d;
@@ -29,9 +29,6 @@ struct Pulley {
   double radius = 0.1;       // [m], contact radius r_p of the pitch line
   double inertia = 0.025;    // [kg·m²] about its axis
   WrapSide wrap = WrapSide::inside;
-  bool kinematic = false;    // true: Omega(t) = speed.eval(t, 0) is prescribed
-  TimeSpeedLaw torque;       // applied torque M_d(t, Omega) for a free pulley
-  TimeSpeedLaw speed;        // prescribed speed for a kinematic pulley
 };
 
 // Per-SDE belt properties (already converted from rigidities, see scene/validate).
@@ -76,7 +73,6 @@ struct Model {
   Contact contact;
   Friction friction;
   double gravity = 9.81;          // [m/s²], acts along -y; 0 switches it off
-  std::vector<double> mu;         // friction coefficient of each element, size belt.n
   bool track_energy = false;
 
   int n_el() const { return belt.n; }
@@ -85,32 +81,12 @@ struct Model {
   int n_energy() const { return track_energy ? kEnergyCount : 0; }
   int n_state() const { return 2 * n_coord() + n_energy(); }
   int pulley_coord(int j) const { return 3 * belt.n + j; }
-  int energy_offset() const { return 2 * n_coord(); }
-  // diagonal of the mass matrix for coordinate k (kinematic pulleys get 1: their rows are
-  // prescribed, see rhs.cpp)
-  // (inline: the solvers call it per coordinate, 1.8 % of the dry second's instructions out of line)
+  // the mass or inertia of coordinate k: an element's mass [kg] or rotational inertia [kg·m²], a
+  // pulley's inertia (a kinematic pulley's row has unit mass instead: Drive::mass)
   double mass_of(int k) const {
     if (k < 3 * belt.n) return (k % 3 == 2) ? belt.rot_inertia : belt.mass;
-    const Pulley& p = pulleys[k - 3 * belt.n];
-    return p.kinematic ? 1.0 : p.inertia;
+    return pulleys[k - 3 * belt.n].inertia;
   }
-  // The time of the integrator's last (re)start: a step of a law at exactly this time has
-  // happened (its value after the jump is used), while a step that ends exactly on a law's jump
-  // still sees the value before it. Set by the simulation at every restart; not part of the
-  // model's description (checkpoints restart at their time).
-  double restart_time = -1e300;
-  bool after_jump(double t) const { return t == restart_time; }
-  // Omega of pulley j: the prescribed speed for a kinematic pulley, else the state value
-  double omega(int j, double t, const double* v) const {
-    const Pulley& p = pulleys[j];
-    return p.kinematic ? p.speed.eval(t, 0.0, after_jump(t)) : v[pulley_coord(j)];
-  }
-  // dOmega/dt of a kinematic pulley j (its prescribed acceleration) [rad/s²]
-  double speed_rate(int j, double t) const { return pulleys[j].speed.d_time(t, 0.0); }
-  // times at which some law of the model has a kink (table breakpoints, ramp ends)
-  std::vector<double> breakpoints() const;
-  // times at which some law of the model jumps (steps)
-  std::vector<double> jumps() const;
 };
 
 }  // namespace beltsim

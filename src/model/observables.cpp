@@ -3,6 +3,7 @@
 #include <cmath>
 #include <limits>
 
+#include "model/contact_law.hpp"
 #include "model/forces.hpp"
 
 namespace beltsim {
@@ -16,17 +17,50 @@ const char* contact_state_name(ContactState s) {
 }
 
 namespace {
-// element i with the axial forces of its two SDEs (i joins it to i-1, next to i+1) given
-ElementObs element_with(const Model& m, const std::vector<int>& sense, double t, const double* y, int i,
-                        double sde_force, double next_force) {
+// the sums of element contacts and pulley loads over the pairs of a pass
+struct PairSums {
+  std::vector<ElementContact>& el;  // indexed by element, first..first+size
+  int first;
+  std::vector<double> deepest;
+  PairSums(std::vector<ElementContact>& e, int first_el) : el(e), first(first_el), deepest(e.size(), 0.0) {
+    for (ElementContact& c : el) c = ElementContact{}, c.slip = std::numeric_limits<double>::quiet_NaN();
+  }
+  void add(const ContactPair& c) {
+    ElementContact& e = el[c.i - first];
+    e.normal += c.nl.N;
+    e.friction -= c.fl.mu_eff * c.nl.N;
+    if (c.nl.p > deepest[c.i - first]) {
+      deepest[c.i - first] = c.nl.p;
+      e.pulley = c.j;
+      e.slip = c.fl.vT;
+    }
+  }
+};
+
+// the belt's moment on pulley j and its hub load from the pulley's pairs
+double pulley_load(const ContactList& pairs, int j, Vec2* hub_load) {
+  double moment = 0;
+  Vec2 load = Vec2::Zero();
+  for (const ContactPair& c : pairs) {
+    if (c.j != j || !c.touching || !c.nl.pushing) continue;
+    const NormalLaw& nl = c.nl;
+    moment += nl.r * c.fl.mu_eff * nl.N;
+    load -= nl.N * nl.n - c.fl.mu_eff * nl.N * nl.t;  // reaction of the force on the element
+  }
+  if (hub_load) *hub_load = load;
+  return moment;
+}
+
+// element i with its contact sums and the axial forces of its two SDEs (i joins it to i-1, next
+// to i+1) given
+ElementObs element_with(const Drive& d, const std::vector<int>& sense, const double* y, int i,
+                        const ElementContact& c, double sde_force, double next_force) {
   const double* q = y;
-  const double* v = y + m.n_coord();
   ElementObs o;
   o.x = q[3 * i], o.y = q[3 * i + 1], o.phi = q[3 * i + 2];
   o.sde_force = sde_force;
   o.tension = 0.5 * (sde_force + next_force);
-  o.mu = m.mu[i];
-  const ElementContact c = element_contact(m, t, q, v, i);
+  o.mu = d.mu[i];
   o.normal = c.normal;
   o.pulley = c.pulley;
   if (c.pulley < 0 || !(c.normal > 0)) {
@@ -41,43 +75,77 @@ ElementObs element_with(const Model& m, const std::vector<int>& sense, double t,
   o.state = ContactState::stick;  // which arc: classify_contact
   return o;
 }
-}  // namespace
 
-ElementObs observe_element(const Model& m, const std::vector<int>& sense, double t, const double* y, int i) {
+PulleyObs pulley_with(const Model& m, const Drive& d, double t, const double* y, int j, const ContactList& pairs) {
   const double* q = y;
   const double* v = y + m.n_coord();
-  return element_with(m, sense, t, y, i, sde_axial_force(m, q, v, i), sde_axial_force(m, q, v, (i + 1) % m.n_el()));
-}
-
-PulleyObs observe_pulley(const Model& m, double t, const double* y, int j) {
-  const double* q = y;
-  const double* v = y + m.n_coord();
-  const Pulley& p = m.pulleys[j];
   PulleyObs o;
-  o.omega = m.omega(j, t, v);
+  o.omega = d.omega(m, j, t, v);
   o.angle = q[m.pulley_coord(j)];
-  o.belt_torque = belt_torque(m, t, q, v, j, &o.hub);
+  o.belt_torque = pulley_load(pairs, j, &o.hub);
   o.hub_load = o.hub.norm();
-  o.torque = p.kinematic ? p.inertia * m.speed_rate(j, t) - o.belt_torque : applied_torque(m, t, v, j);
+  o.torque = d.kinematic(j) ? m.pulleys[j].inertia * d.speed_rate(j, t) - o.belt_torque : applied_torque(m, d, t, v, j);
   return o;
 }
+}  // namespace
 
-void observe(const Model& m, const std::vector<int>& sense, double t, const double* y, Observation& out) {
+ElementContact element_contact(const Model& m, const Drive& d, double t, const double* q, const double* v, int i) {
+  ContactList pairs;
+  contact_pass(m, d, t, q, v, Span{i, i + 1}, pairs);
+  std::vector<ElementContact> one(1);
+  PairSums sums(one, i);
+  for (const ContactPair& c : pairs) sums.add(c);
+  return one[0];
+}
+
+double belt_torque(const Model& m, const Drive& d, double t, const double* q, const double* v, int j, Vec2* hub_load) {
+  ContactList pairs;
+  contact_pass(m, d, t, q, v, Span{0, m.n_el()}, pairs);
+  return pulley_load(pairs, j, hub_load);
+}
+
+ElementObs observe_element(const Model& m, const Drive& d, const std::vector<int>& sense, double t, const double* y,
+                           int i) {
+  const double* q = y;
+  const double* v = y + m.n_coord();
+  return element_with(d, sense, y, i, element_contact(m, d, t, q, v, i), sde_axial_force(m, q, v, i),
+                      sde_axial_force(m, q, v, (i + 1) % m.n_el()));
+}
+
+PulleyObs observe_pulley(const Model& m, const Drive& d, double t, const double* y, int j) {
+  ContactList pairs;
+  contact_pass(m, d, t, y, y + m.n_coord(), Span{0, m.n_el()}, pairs);
+  return pulley_with(m, d, t, y, j, pairs);
+}
+
+void observe_pulleys(const Model& m, const Drive& d, double t, const double* y, ContactList& pairs,
+                     std::vector<PulleyObs>& out) {
+  contact_pass(m, d, t, y, y + m.n_coord(), Span{0, m.n_el()}, pairs);
+  out.resize(m.n_p());
+  for (int j = 0; j < m.n_p(); ++j) out[j] = pulley_with(m, d, t, y, j, pairs);
+}
+
+void observe(const Model& m, const Drive& d, const std::vector<int>& sense, double t, const double* y,
+             Observation& out) {
   const int n = m.n_el();
   out.t = t;
   out.elements.resize(n);
   out.pulleys.resize(m.n_p());
   out.work.resize(n);
+  out.contact.resize(n);
   const double* v = y + m.n_coord();
   sde_axial_forces(m, y, v, out.work.data());
+  contact_pass(m, d, t, y, v, Span{0, n}, out.pairs);
+  PairSums sums(out.contact, 0);
+  for (const ContactPair& c : out.pairs) sums.add(c);
   double vb = 0;
   for (int i = 0; i < n; ++i) {
-    out.elements[i] = element_with(m, sense, t, y, i, out.work[i], out.work[(i + 1) % n]);
+    out.elements[i] = element_with(d, sense, y, i, out.contact[i], out.work[i], out.work[(i + 1) % n]);
     vb += axis(y[3 * i + 2]).dot(Vec2(v[3 * i], v[3 * i + 1]));
   }
   out.belt_speed = vb / m.n_el();
   for (int j = 0; j < m.n_p(); ++j) {
-    PulleyObs& p = out.pulleys[j] = observe_pulley(m, t, y, j);
+    PulleyObs& p = out.pulleys[j] = pulley_with(m, d, t, y, j, out.pairs);
     const double v_rim = sense[j] * p.omega * m.pulleys[j].radius;
     p.creep = std::abs(out.belt_speed) > m.friction.dv ? 1 - v_rim / out.belt_speed
                                                        : std::numeric_limits<double>::quiet_NaN();
@@ -124,7 +192,8 @@ void classify_contact(const Model& m, Observation& o) {
   }
 }
 
-void blend_contact(const Model& m, double theta, const Observation& a, const Observation& b, Observation& at) {
+void blend_contact(const Model& m, const Drive& d, double theta, const Observation& a, const Observation& b,
+                   Observation& at) {
   auto mix = [theta](double u, double v) { return (1 - theta) * u + theta * v; };
   for (size_t i = 0; i < at.elements.size(); ++i) {
     const ElementObs &ea = a.elements[i], &eb = b.elements[i];
@@ -143,8 +212,8 @@ void blend_contact(const Model& m, double theta, const Observation& a, const Obs
     p.belt_torque = mix(pa.belt_torque, pb.belt_torque);
     p.hub = (1 - theta) * pa.hub + theta * pb.hub;
     p.hub_load = p.hub.norm();
-    const Pulley& pl = m.pulleys[j];
-    if (pl.kinematic) p.torque = pl.inertia * m.speed_rate(static_cast<int>(j), at.t) - p.belt_torque;
+    const int k = static_cast<int>(j);
+    if (d.kinematic(k)) p.torque = m.pulleys[j].inertia * d.speed_rate(k, at.t) - p.belt_torque;
   }
   classify_contact(m, at);
 }

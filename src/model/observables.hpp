@@ -37,6 +37,8 @@
 
 #include <vector>
 
+#include "model/contact_law.hpp"
+#include "model/drive.hpp"
 #include "model/model.hpp"
 
 namespace beltsim {
@@ -73,10 +75,26 @@ struct PulleyObs {
   double creep = 0;
 };
 
+// What one element feels from the pulleys, in the pulleys' own frame (sums over the pairs of a
+// contact pass that hold it)
+struct ElementContact {
+  double normal = 0;      // |N| summed over pulleys [N]
+  double friction = 0;    // signed tangential friction force on the element, along t̂ [N]
+  double slip = 0;        // v_T against the pulley it touches [m/s]; NaN when free
+  int pulley = -1;        // index of the pulley touched (the deepest), -1 when free
+};
+ElementContact element_contact(const Model& m, const Drive& d, double t, const double* q, const double* v, int i);
+// belt torque on pulley j (moment of the friction reactions) [N·m] and hub load vector [N]
+double belt_torque(const Model& m, const Drive& d, double t, const double* q, const double* v, int j, Vec2* hub_load);
+
 // sense[j]: +1 when the belt goes round pulley j anticlockwise, -1 clockwise (Scene::senses())
 // (its state: free or stick; the gross-slip arc needs its neighbours, see classify_contact)
-ElementObs observe_element(const Model& m, const std::vector<int>& sense, double t, const double* y, int i);
-PulleyObs observe_pulley(const Model& m, double t, const double* y, int j);
+ElementObs observe_element(const Model& m, const Drive& d, const std::vector<int>& sense, double t, const double* y,
+                           int i);
+PulleyObs observe_pulley(const Model& m, const Drive& d, double t, const double* y, int j);
+// every pulley at once, from one contact pass (pairs: its scratch)
+void observe_pulleys(const Model& m, const Drive& d, double t, const double* y, ContactList& pairs,
+                     std::vector<PulleyObs>& out);
 
 // Everything observed of one state: each element and each pulley.
 struct Observation {
@@ -84,9 +102,13 @@ struct Observation {
   double belt_speed = 0;  // [m/s] mean speed of the elements along their axes (the travel direction)
   std::vector<ElementObs> elements;
   std::vector<PulleyObs> pulleys;
-  std::vector<double> work;  // observe()'s working space, kept so that a sample allocates nothing
+  // observe()'s working space, kept so that a sample allocates nothing
+  std::vector<double> work;             // the SDEs' axial forces
+  ContactList pairs;                    // the contact pass
+  std::vector<ElementContact> contact;  // each element's sums over its pairs
 };
-void observe(const Model& m, const std::vector<int>& sense, double t, const double* y, Observation& out);
+void observe(const Model& m, const Drive& d, const std::vector<int>& sense, double t, const double* y,
+             Observation& out);
 
 // The contact state of every element and the arcs of every pulley from the elements' pulley,
 // normal force and slip (the criterion above; the exit is the last element in the direction the
@@ -111,6 +133,7 @@ void classify_contact(const Model& m, Observation& o);
 // two (contact made or lost in the step), keeps what its interpolated state gives. The contact
 // state and the arcs follow the blended slip (classify_contact).
 // A kinematic pulley's drive torque is recomputed from the blended belt torque.
-void blend_contact(const Model& m, double theta, const Observation& a, const Observation& b, Observation& at);
+void blend_contact(const Model& m, const Drive& d, double theta, const Observation& a, const Observation& b,
+                   Observation& at);
 
 }  // namespace beltsim

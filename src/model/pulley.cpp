@@ -13,31 +13,31 @@
 
 namespace beltsim {
 
-double applied_torque(const Model& m, double t, const double* v, int j) {
-  const Pulley& p = m.pulleys[j];
+double applied_torque(const Model& m, const Drive& d, double t, const double* v, int j) {
+  const PulleyDrive& p = d.pulleys[j];
   if (p.kinematic) return 0.0;
-  return p.torque.eval(t, v[m.pulley_coord(j)], m.after_jump(t));
+  return p.torque.eval(t, v[m.pulley_coord(j)], d.after_jump(t));
 }
 
-void pulley_forces(const Model& m, double t, const double* v, double* f, double* e_rate) {
+void pulley_forces(const Model& m, const Drive& d, double t, const double* v, double* f, double* e_rate) {
   for (int j = 0; j < m.n_p(); ++j) {
-    const Pulley& p = m.pulleys[j];
+    const PulleyDrive& p = d.pulleys[j];
     const int k = m.pulley_coord(j);
     if (p.kinematic) {
-      const double rate = m.speed_rate(j, t);
+      const double rate = d.speed_rate(j, t);
       f[k] += rate;
-      if (e_rate) e_rate[kWorkTorques] += p.inertia * rate * m.omega(j, t, v);
+      if (e_rate) e_rate[kWorkTorques] += m.pulleys[j].inertia * rate * d.omega(m, j, t, v);
     } else {
-      const double M = p.torque.eval(t, v[k], m.after_jump(t));
+      const double M = p.torque.eval(t, v[k], d.after_jump(t));
       f[k] += M;
       if (e_rate) e_rate[kWorkTorques] += M * v[k];
     }
   }
 }
 
-void pulley_jacobian(const Model& m, double t, const double* v, BlockMatrix& C, double* f_t) {
+void pulley_jacobian(const Model& m, const Drive& d, double t, const double* v, BlockMatrix& C, double* f_t) {
   for (int j = 0; j < m.n_p(); ++j) {
-    const Pulley& p = m.pulleys[j];
+    const PulleyDrive& p = d.pulleys[j];
     const int k = m.pulley_coord(j);
     if (p.kinematic) {
       if (f_t) f_t[k] += p.speed.d_time2(t);

@@ -4,43 +4,47 @@
 
 #include <algorithm>
 
+#include "model/contact_law.hpp"
 #include "model/forces.hpp"
 
 namespace beltsim {
 
 namespace {
-bool split(const Model& m, const Halves* halves) { return halves && m.belt.n >= kHalvesElements; }
 Span half(const Model& m, int p) {
   const HalfRange r = half_range(m.belt.n, p);
   return Span{r.lo, r.hi};
 }
 
-void all_forces(const Model& m, double t, const double* q, const double* v, double* f, double* e_rate,
-                AxisMemo* axes = nullptr, Halves* halves = nullptr) {
+// the forces of every law at (t, q, v): one contact pass per half, then each law
+void all_forces(const Model& m, const Drive& d, double t, const double* q, const double* v, double* f,
+                double* e_rate, Workspace& w) {
   const int n = m.belt.n, np = m.n_p();
   std::fill(f, f + m.n_coord(), 0.0);
   if (m.gravity != 0.0) gravity_forces(m, f);
-  if (axes) axes->fit(n);
-  if (!split(m, halves)) {
+  w.axes.fit(n);
+  if (!w.halves) {
     const Span all{0, n};
-    sde_forces(m, q, v, f, e_rate, axes, all);
+    sde_forces(m, q, v, f, e_rate, &w.axes, all);
     bending_forces(m, q, v, f, e_rate, all);
-    contact_forces(m, t, q, v, f, f + 3 * n, e_rate, all);
+    contact_pass(m, d, t, q, v, all, w.contacts[0]);
+    contact_forces(m, d, w.contacts[0], f, f + 3 * n, e_rate);
   } else {
-    halves->two.run([&](int p) {
-      double* sums = halves->sum(p);
+    Halves& h = *w.halves;
+    h.two.run([&](int p) {
+      double* sums = h.sum(p);
       std::fill(sums, sums + np + kEnergyCount, 0.0);
       double* e = e_rate ? sums + np : nullptr;
-      sde_forces(m, q, v, f, e, axes, half(m, p));
+      sde_forces(m, q, v, f, e, &w.axes, half(m, p));
       bending_forces(m, q, v, f, e, half(m, p));
-      contact_forces(m, t, q, v, f, sums, e, half(m, p));
+      contact_pass(m, d, t, q, v, half(m, p), w.contacts[p]);
+      contact_forces(m, d, w.contacts[p], f, sums, e);
     });
-    const double *s0 = halves->sum(0), *s1 = halves->sum(1);
+    const double *s0 = h.sum(0), *s1 = h.sum(1);
     for (int j = 0; j < np; ++j) f[3 * n + j] += s0[j] + s1[j];
     if (e_rate)
       for (int c = 0; c < kEnergyCount; ++c) e_rate[c] += s0[np + c] + s1[np + c];
   }
-  pulley_forces(m, t, v, f, e_rate);
+  pulley_forces(m, d, t, v, f, e_rate);
 }
 }  // namespace
 
@@ -53,11 +57,18 @@ Halves::Halves(const Model& m) {
   first_ = static_cast<int>(((64 - at % 64) % 64) / sizeof(double));
 }
 
-void forces(const Model& m, double t, const double* y, double* f) {
-  all_forces(m, t, y, y + m.n_coord(), f, nullptr);
+Workspace::Workspace(const Model& m, bool split) {
+  if (split && m.belt.n >= kHalvesElements) halves = std::make_unique<Halves>(m);
 }
 
-void rhs(const Model& m, double t, const double* y, double* dy, AxisMemo* axes, Halves* halves) {
+void forces(const Model& m, const Drive& d, double t, const double* y, double* f) {
+  Workspace w(m, false);
+  all_forces(m, d, t, y, y + m.n_coord(), f, nullptr, w);
+}
+
+void rhs(const Model& m, const Drive& d, double t, const double* y, double* dy, Workspace* w) {
+  std::unique_ptr<Workspace> own;
+  if (!w) own = std::make_unique<Workspace>(m, false), w = own.get();
   const int N = m.n_coord();
   const double* q = y;
   const double* v = y + N;
@@ -66,11 +77,11 @@ void rhs(const Model& m, double t, const double* y, double* dy, AxisMemo* axes, 
   // positions move with the velocities (a kinematic pulley with its prescribed speed)
   std::copy(v, v + N, dy);
   for (int j = 0; j < m.n_p(); ++j)
-    if (m.pulleys[j].kinematic) dy[m.pulley_coord(j)] = m.omega(j, t, v);
+    if (d.kinematic(j)) dy[m.pulley_coord(j)] = d.omega(m, j, t, v);
   // accelerations
   double* a = dy + N;
-  all_forces(m, t, q, v, a, e_rate, axes, halves);
-  for (int k = 0; k < N; ++k) a[k] /= m.mass_of(k);
+  all_forces(m, d, t, q, v, a, e_rate, *w);
+  for (int k = 0; k < N; ++k) a[k] /= d.mass(m, k);
 }
 
 void Jacobian::resize(const Model& m) {
@@ -79,47 +90,52 @@ void Jacobian::resize(const Model& m) {
   f_t.setZero(m.n_coord());
 }
 
-void jacobian(const Model& m, double t, const double* y, Jacobian& J, AxisMemo* axes, Halves* halves) {
+void jacobian(const Model& m, const Drive& d, double t, const double* y, Jacobian& J, Workspace* w) {
+  std::unique_ptr<Workspace> own;
+  if (!w) own = std::make_unique<Workspace>(m, false), w = own.get();
   const double* q = y;
   const double* v = y + m.n_coord();
   const int n = m.belt.n, np = m.n_p();
   J.f_t.setZero();
-  if (axes) axes->fit(n);
-  if (!split(m, halves)) {
+  w->axes.fit(n);
+  if (!w->halves) {
     J.K.set_zero();
     J.C.set_zero();
     const Span all{0, n};
-    sde_jacobian(m, q, v, J.K, J.C, axes, all);
+    sde_jacobian(m, q, v, J.K, J.C, &w->axes, all);
     bending_jacobian(m, q, v, J.K, J.C, all);
-    contact_jacobian(m, t, q, v, J.K, J.C, J.f_t.data(), nullptr, all);
+    contact_pass(m, d, t, q, v, all, w->contacts[0]);
+    contact_jacobian(m, d, t, v, w->contacts[0], J.K, J.C, J.f_t.data(), nullptr);
   } else {
+    Halves& h = *w->halves;
     J.K.pulley_pulley.setZero();
     J.C.pulley_pulley.setZero();
-    halves->two.run([&](int p) {
+    h.two.run([&](int p) {
       // each half clears the rows it writes: cleared by the other core, they would first have to
       // come over from its cache
       J.K.set_zero_elements(half(m, p).lo, half(m, p).hi);
       J.C.set_zero_elements(half(m, p).lo, half(m, p).hi);
-      double* dmo = halves->sum(p) + np + kEnergyCount;
+      double* dmo = h.sum(p) + np + kEnergyCount;
       std::fill(dmo, dmo + np, 0.0);
-      sde_jacobian(m, q, v, J.K, J.C, axes, half(m, p));
+      sde_jacobian(m, q, v, J.K, J.C, &w->axes, half(m, p));
       bending_jacobian(m, q, v, J.K, J.C, half(m, p));
-      contact_jacobian(m, t, q, v, J.K, J.C, J.f_t.data(), dmo, half(m, p));
+      contact_pass(m, d, t, q, v, half(m, p), w->contacts[p]);
+      contact_jacobian(m, d, t, v, w->contacts[p], J.K, J.C, J.f_t.data(), dmo);
     });
-    const double *d0 = halves->sum(0) + np + kEnergyCount, *d1 = halves->sum(1) + np + kEnergyCount;
+    const double *d0 = h.sum(0) + np + kEnergyCount, *d1 = h.sum(1) + np + kEnergyCount;
     for (int j = 0; j < np; ++j) J.C.pulley_pulley(j, j) += d0[j] + d1[j];
   }
-  pulley_jacobian(m, t, v, J.C, J.f_t.data());
+  pulley_jacobian(m, d, t, v, J.C, J.f_t.data());
 }
 
-Energy energy(const Model& m, double t, const double* y) {
+Energy energy(const Model& m, const Drive& d, double t, const double* y) {
   const int N = m.n_coord();
   const double* q = y;
   const double* v = y + N;
   Energy e;
   for (int k = 0; k < 3 * m.n_el(); ++k) e.kinetic += 0.5 * m.mass_of(k) * v[k] * v[k];
   for (int j = 0; j < m.n_p(); ++j) {
-    const double w = m.omega(j, t, v);
+    const double w = d.omega(m, j, t, v);
     e.kinetic += 0.5 * m.pulleys[j].inertia * w * w;
   }
   e.sde = sde_potential(m, q);

@@ -4,7 +4,7 @@
 
 namespace beltsim {
 
-void assemble(const Model& m, double alpha, double beta, const BlockMatrix& C, const BlockMatrix& K, int rows,
+void assemble(const Model& m, const Drive& d, double alpha, double beta, const BlockMatrix& C, const BlockMatrix& K, int rows,
               Eigen::SparseMatrix<double>& A) {
   const int n = m.n_el(), np = m.n_p(), ne = 3 * n;
   std::vector<Eigen::Triplet<double>> t;
@@ -18,7 +18,7 @@ void assemble(const Model& m, double alpha, double beta, const BlockMatrix& C, c
     block(i, (i + n - 1) % n, C.lower[i], K.lower[i]);
     block(i, (i + 1) % n, C.upper[i], K.upper[i]);
   }
-  for (int k = 0; k < ne; ++k) t.emplace_back(k, k, alpha * m.mass_of(k));
+  for (int k = 0; k < ne; ++k) t.emplace_back(k, k, alpha * d.mass(m, k));
   if (rows > ne) {
     for (int j = 0; j < np; ++j) {
       for (int k = 0; k < ne; ++k) {
@@ -27,25 +27,25 @@ void assemble(const Model& m, double alpha, double beta, const BlockMatrix& C, c
       }
       for (int l = 0; l < np; ++l)
         t.emplace_back(ne + j, ne + l, -beta * C.pulley_pulley(j, l) - K.pulley_pulley(j, l));
-      t.emplace_back(ne + j, ne + j, alpha * m.mass_of(ne + j));
+      t.emplace_back(ne + j, ne + j, alpha * d.mass(m, ne + j));
     }
   }
   A.resize(rows, rows);
   A.setFromTriplets(t.begin(), t.end());
 }
 
-void assemble_ode_jacobian(const Model& m, const BlockMatrix& K, const BlockMatrix& C, Eigen::SparseMatrix<double>& J) {
+void assemble_ode_jacobian(const Model& m, const Drive& d, const BlockMatrix& K, const BlockMatrix& C, Eigen::SparseMatrix<double>& J) {
   const int n = m.n_el(), np = m.n_p(), ne = 3 * n, N = m.n_coord(), S = m.n_state();
   std::vector<Eigen::Triplet<double>> t;
   t.reserve(2 * 27 * n + 4 * ne * np + 2 * np * np + 2 * S);
   for (int k = 0; k < S; ++k) t.emplace_back(k, k, 0.0);
   for (int k = 0; k < N; ++k) {
-    const bool prescribed = k >= ne && m.pulleys[k - ne].kinematic;
+    const bool prescribed = k >= ne && d.kinematic(k - ne);
     if (!prescribed) t.emplace_back(k, N + k, 1.0);
   }
   auto block = [&](int bi, int bj, const Mat3& c, const Mat3& k) {
     for (int r = 0; r < 3; ++r) {
-      const double inv_m = 1.0 / m.mass_of(3 * bi + r);
+      const double inv_m = 1.0 / d.mass(m, 3 * bi + r);
       for (int s = 0; s < 3; ++s) {
         t.emplace_back(N + 3 * bi + r, 3 * bj + s, k(r, s) * inv_m);
         t.emplace_back(N + 3 * bi + r, N + 3 * bj + s, c(r, s) * inv_m);
@@ -58,9 +58,9 @@ void assemble_ode_jacobian(const Model& m, const BlockMatrix& K, const BlockMatr
     block(i, (i + 1) % n, C.upper[i], K.upper[i]);
   }
   for (int j = 0; j < np; ++j) {
-    const double inv_p = 1.0 / m.mass_of(ne + j);
+    const double inv_p = 1.0 / d.mass(m, ne + j);
     for (int k = 0; k < ne; ++k) {
-      const double inv_m = 1.0 / m.mass_of(k);
+      const double inv_m = 1.0 / d.mass(m, k);
       t.emplace_back(N + k, ne + j, K.elem_pulley(k, j) * inv_m);
       t.emplace_back(N + k, N + ne + j, C.elem_pulley(k, j) * inv_m);
       t.emplace_back(N + ne + j, k, K.pulley_elem(j, k) * inv_p);

@@ -5,17 +5,18 @@
 #include <Eigen/SparseCore>
 
 #include "model/block_matrix.hpp"
+#include "model/drive.hpp"
 #include "model/model.hpp"
 
 namespace beltsim {
 
 // only the first `rows` coordinates (rows = n_coord for all, 3n for the elements alone)
-void assemble(const Model& m, double alpha, double beta, const BlockMatrix& C, const BlockMatrix& K, int rows,
+void assemble(const Model& m, const Drive& d, double alpha, double beta, const BlockMatrix& C, const BlockMatrix& K, int rows,
               Eigen::SparseMatrix<double>& A);
 
 // The full Jacobian of the first-order system y' = F(t, y), y = [q | v | e] (the peer
 // integrators' view): J = [[0, I], [M⁻¹K, M⁻¹C]] with the energy rows zero (quadratures), a
 // kinematic pulley's q row zero (its speed is prescribed), and every diagonal entry stored.
-void assemble_ode_jacobian(const Model& m, const BlockMatrix& K, const BlockMatrix& C, Eigen::SparseMatrix<double>& J);
+void assemble_ode_jacobian(const Model& m, const Drive& d, const BlockMatrix& K, const BlockMatrix& C, Eigen::SparseMatrix<double>& J);
 
 }  // namespace beltsim

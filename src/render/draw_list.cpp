@@ -140,7 +140,7 @@ void default_range(const Scene& sc, FrameQuantity q, double& lo, double& hi) {
   const double T0 = sc.static_tension > 0 ? sc.static_tension : 1.0;
   const double N0 = T0 * m.belt.pitch / r_max;  // static normal force of an element on the largest pulley
   double mu_max = 0;
-  for (double mu : m.mu) mu_max = std::max(mu_max, mu);
+  for (double mu : sc.drive.mu) mu_max = std::max(mu_max, mu);
   switch (q) {
     case FrameQuantity::tension: lo = 0, hi = nice_up(2 * T0); break;
     case FrameQuantity::normal: lo = 0, hi = nice_up(4 * N0); break;
@@ -164,11 +164,14 @@ double quantity_of(const ElementObs& o, FrameQuantity q) {
 }
 }  // namespace
 
-std::vector<double> element_values(const Scene& sc, FrameQuantity q, double t, const double* y, const Model* model) {
-  const Model& m = model ? *model : sc.model;
+std::vector<double> element_values(const Scene& sc, FrameQuantity q, double t, const double* y, const Drive* drive) {
+  const Model& m = sc.model;
+  const Drive& d = drive ? *drive : sc.drive;
   const std::vector<int> sense = sc.senses();
+  Observation o;
+  observe(m, d, sense, t, y, o);
   std::vector<double> out(m.n_el(), kNaN);
-  for (int i = 0; i < m.n_el(); ++i) out[i] = quantity_of(observe_element(m, sense, t, y, i), q);
+  for (int i = 0; i < m.n_el(); ++i) out[i] = quantity_of(o.elements[i], q);
   return out;
 }
 
@@ -178,7 +181,7 @@ FrameBuilder::FrameBuilder(const Scene& sc, const FrameSettings& fs, Font* font)
   const Model& m = sc.model;
   sense_ = sc.senses();
   for (size_t k = 0; k < sc.route_pulleys.size(); ++k) sink_.push_back(sc.penetration[sc.route_pulleys[k]]);
-  for (double mu : m.mu) mu_dry_ = std::max(mu_dry_, mu);
+  for (double mu : sc.drive.mu) mu_dry_ = std::max(mu_dry_, mu);
 
   double lo, hi;
   default_range(sc, fs.quantity, lo, hi);
@@ -244,8 +247,9 @@ Vec2 FrameBuilder::displayed(const Vec2& p, Vec2* tangent) const {
   return nominal + fs_.magnify * (p - nominal);
 }
 
-void FrameBuilder::build(double t, const double* y, DrawList& out, const Model* model, const Observation* given) const {
-  const Model& m = model ? *model : sc_.model;
+void FrameBuilder::build(double t, const double* y, DrawList& out, const Drive* drive, const Observation* given) const {
+  const Model& m = sc_.model;
+  const Drive& dr = drive ? *drive : sc_.drive;
   const int n = m.n_el();
   const double* q = y;
   const double* v = y + m.n_coord();
@@ -286,12 +290,12 @@ void FrameBuilder::build(double t, const double* y, DrawList& out, const Model* 
 
   // belt elements
   Observation own;
-  if (!given) observe(m, sense_, t, y, own);
+  if (!given) observe(m, dr, sense_, t, y, own);
   const Observation& seen = given ? *given : own;
   const std::vector<ElementObs>& obs = seen.elements;
   // dry: the largest μ the belt had at the start or has now (events may wet or dry it)
   double mu_dry = mu_dry_;
-  for (double mu : m.mu) mu_dry = std::max(mu_dry, mu);
+  for (double mu : dr.mu) mu_dry = std::max(mu_dry, mu);
   int loop_sense = -1;
   for (int j = 0; j < m.n_p(); ++j)
     if (m.pulleys[j].wrap == WrapSide::inside) loop_sense = sense_[j];
@@ -319,7 +323,7 @@ void FrameBuilder::build(double t, const double* y, DrawList& out, const Model* 
     el.value = quantity_of(obs[i], fs_.quantity);
     el.band = scale_.band(el.value);
     el.colour = scale_.colour(el.value);
-    el.wet = m.mu[i] < mu_dry;
+    el.wet = dr.mu[i] < mu_dry;
     el.slipping = obs[i].state == ContactState::slip;
     el.centre = P(Cd[i]);
     el.corners[0] = P(A - h * oa), el.corners[1] = P(B - h * ob), el.corners[2] = P(B + h * ob), el.corners[3] = P(A + h * oa);
@@ -347,7 +351,7 @@ void FrameBuilder::build(double t, const double* y, DrawList& out, const Model* 
   const double v_belt = seen.belt_speed;
   const double col_w = (fs_.width - panel_) / columns_;
   for (int j = 0; j < m.n_p(); ++j)
-    out.text(Vec2(x0 + (j % columns_) * col_w, line * (2 + j / columns_)), pulley_text(j, t, v, v_belt), font_px_, kInk);
+    out.text(Vec2(x0 + (j % columns_) * col_w, line * (2 + j / columns_)), pulley_text(dr, j, t, v, v_belt), font_px_, kInk);
 
   // colour bar: bands from lo (bottom) to hi (top), edges labelled where they fit
   const double panel_x = fs_.width - panel_ + 0.5 * font_px_;
@@ -392,9 +396,9 @@ void FrameBuilder::build(double t, const double* y, DrawList& out, const Model* 
 
 // "driver: ω = −57.05 rad/s, slip +0.021 m/s": the pulley's speed and its rim's speed along the
 // belt's travel minus the belt's mean speed (positive: the pulley drives the belt forward)
-std::string FrameBuilder::pulley_text(int j, double t, const double* v, double v_belt) const {
+std::string FrameBuilder::pulley_text(const Drive& d, int j, double t, const double* v, double v_belt) const {
   const Pulley& p = sc_.model.pulleys[j];
-  const double om = sc_.model.omega(j, t, v);
+  const double om = d.omega(sc_.model, j, t, v);
   const double slip = sense_[j] * om * p.radius - v_belt;
   return p.name + ": \u03c9 = " + format("%.2f", om) + " rad/s, slip " + format("%+.3f", slip) + " m/s";
 }

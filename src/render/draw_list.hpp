@@ -96,19 +96,19 @@ struct Camera {
 // force of an element on the largest pulley; friction ±2·N0; slip ±0.05 m/s; μ 0..largest μ.
 void default_range(const Scene& scene, FrameQuantity q, double& lo, double& hi);
 
-// The quantity per element at a state (NaN where undefined, e.g. slip off the pulleys); model:
-// the model as it is now (events may have changed μ), null for the scene's own.
+// The quantity per element at a state (NaN where undefined, e.g. slip off the pulleys); drive:
+// the drive as it is now (events may have changed μ or a law), null for the scene's own.
 std::vector<double> element_values(const Scene& scene, FrameQuantity q, double t, const double* y,
-                                   const Model* model = nullptr);
+                                   const Drive* drive = nullptr);
 
 class FrameBuilder {
  public:
   // settings are validated by the caller (sim/frames.hpp validate)
   FrameBuilder(const Scene& scene, const FrameSettings& settings, Font* font);
-  // the draw list of the state y at time t (replaces the contents of `out`); model: the model as
-  // it is now (run events may change μ while running), null for the scene's own
+  // the draw list of the state y at time t (replaces the contents of `out`); drive: the drive as
+  // it is now (run events may change μ or a law while running), null for the scene's own
   // obs: what is observed at t (contact forces from the integrator's step ends), null to observe y
-  void build(double t, const double* y, DrawList& out, const Model* model = nullptr,
+  void build(double t, const double* y, DrawList& out, const Drive* drive = nullptr,
              const Observation* obs = nullptr) const;
   const Camera& camera() const { return cam_; }
   const ColourScale& scale() const { return scale_; }
@@ -129,7 +129,7 @@ class FrameBuilder {
   int font_px_ = 14;
   int columns_ = 1;             // pulley lines per row of the text band
   double top_ = 0, panel_ = 0;  // [px] height of the text band, width of the colour-bar panel
-  std::string pulley_text(int j, double t, const double* v, double v_belt) const;
+  std::string pulley_text(const Drive& d, int j, double t, const double* v, double v_belt) const;
 };
 
 }  // namespace beltsim::render

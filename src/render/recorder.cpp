@@ -27,8 +27,8 @@ class FrameRecorder final : public FrameSink {
       video_ = std::make_unique<VideoWriter>(fs.video_path, vo);
     }
   }
-  void frame(double t, const double* y, const Model& model, const Observation* obs) override {
-    builder_.build(t, y, list_, &model, obs);
+  void frame(double t, const double* y, const Drive& drive, const Observation* obs) override {
+    builder_.build(t, y, list_, &drive, obs);
     ctx_->make_current();  // another context (a snapshot's) may have been current since
     gl_.render(list_, image_);
     const long number = fs_.first_number + n_;
@@ -63,7 +63,7 @@ std::unique_ptr<FrameSink> make_frame_recorder(const Scene& sc, const FrameSetti
   return std::make_unique<FrameRecorder>(sc, fs);
 }
 
-void render_snapshot(const Scene& sc, const FrameSettings& fs, double t, const double* y, const Model& model,
+void render_snapshot(const Scene& sc, const FrameSettings& fs, double t, const double* y, const Drive& drive,
                      const std::string& png, const Observation* obs) {
   Font font;
   FrameBuilder builder(sc, fs, &font);
@@ -71,7 +71,7 @@ void render_snapshot(const Scene& sc, const FrameSettings& fs, double t, const d
   GlRenderer gl(*ctx, fs.width, fs.height);
   DrawList list;
   Image image;
-  builder.build(t, y, list, &model, obs);
+  builder.build(t, y, list, &drive, obs);
   gl.render(list, image);
   if (auto dir = std::filesystem::path(png).parent_path(); !dir.empty()) std::filesystem::create_directories(dir);
   write_png(png, image);

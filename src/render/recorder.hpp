@@ -18,9 +18,9 @@ namespace beltsim::render {
 // std::runtime_error with a clear message when any of them cannot be created.
 std::unique_ptr<FrameSink> make_frame_recorder(const Scene& scene, const FrameSettings& settings);
 
-// One frame of the state y at time t (model: as it is now) written to a PNG file, with a GL
+// One frame of the state y at time t (drive: as it is now) written to a PNG file, with a GL
 // context of its own (Lua sim:show). Throws std::runtime_error.
 void render_snapshot(const Scene& scene, const FrameSettings& settings, double t, const double* y,
-                     const Model& model, const std::string& png, const Observation* obs = nullptr);
+                     const Drive& drive, const std::string& png, const Observation* obs = nullptr);
 
 }  // namespace beltsim::render

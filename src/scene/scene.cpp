@@ -239,7 +239,7 @@ void poll_stop(const std::atomic<bool>* stop, int elements) {
                            std::to_string(elements) + " elements); no scene was made");
 }
 
-double static_solve(const Model& m, Eigen::VectorXd& y, double max_move = 0,
+double static_solve(const Model& m, const Drive& d, Eigen::VectorXd& y, double max_move = 0,
                     const std::atomic<bool>* stop = nullptr) {
   const int ne = 3 * m.n_el();
   Eigen::VectorXd f(m.n_coord());
@@ -248,7 +248,7 @@ double static_solve(const Model& m, Eigen::VectorXd& y, double max_move = 0,
   Eigen::SparseMatrix<double> A;
   Eigen::SparseLU<Eigen::SparseMatrix<double>> lu;
   auto residual = [&](const Eigen::VectorXd& yy) {
-    forces(m, 0.0, yy.data(), f.data());
+    forces(m, d, 0.0, yy.data(), f.data());
     double r = 0;
     for (int k = 0; k < ne; ++k) r = std::max(r, std::abs(f[k] / m.mass_of(k)));
     return r;
@@ -256,8 +256,8 @@ double static_solve(const Model& m, Eigen::VectorXd& y, double max_move = 0,
   double res = residual(y);
   for (int it = 0; it < 30 && res > 1e-9; ++it) {
     poll_stop(stop, m.n_el());
-    jacobian(m, 0.0, y.data(), J);
-    assemble(m, 0.0, 0.0, J.C, J.K, ne, A);  // A = -K_ee
+    jacobian(m, d, 0.0, y.data(), J);
+    assemble(m, d, 0.0, 0.0, J.C, J.K, ne, A);  // A = -K_ee
     poll_stop(stop, m.n_el());
     lu.compute(A);
     poll_stop(stop, m.n_el());
@@ -306,10 +306,8 @@ Scene build_scene(const SceneDef& d, const std::atomic<bool>* stop) {
     q.radius = p.radius;
     q.inertia = p.inertia;
     q.wrap = p.wrap;
-    q.kinematic = p.kinematic;
-    q.torque = p.torque;
-    q.speed = p.speed;
     m.pulleys.push_back(q);
+    sc.drive.pulleys.push_back(PulleyDrive{p.kinematic, p.torque, p.speed});
   }
   // route order and the pitch-line route
   sc.route_names = bd.route;
@@ -488,7 +486,8 @@ Scene build_scene(const SceneDef& d, const std::atomic<bool>* stop) {
     phi_prev = phi;
   }
   // friction coefficient of each element, possibly from where it starts
-  m.mu = bd.mu_per_element.empty() ? std::vector<double>(n, bd.mu) : bd.mu_per_element;
+  std::vector<double>& mu = sc.drive.mu;
+  mu = bd.mu_per_element.empty() ? std::vector<double>(n, bd.mu) : bd.mu_per_element;
   {
     ElementSite site;
     site.length = path.length;
@@ -516,18 +515,20 @@ Scene build_scene(const SceneDef& d, const std::atomic<bool>* stop) {
   }
   if (bd.mu_at) {
     for (int i = 0; i < n; ++i) {
-      const double mu = bd.mu_at(sc.sites[i]);
-      require_non_negative("belt.mu of element " + std::to_string(i), mu, "");
-      m.mu[i] = mu;
+      const double mu_i = bd.mu_at(sc.sites[i]);
+      require_non_negative("belt.mu of element " + std::to_string(i), mu_i, "");
+      mu[i] = mu_i;
     }
   }
   for (int j = 0; j < m.n_p(); ++j)
-    if (m.pulleys[j].kinematic) sc.y0[m.n_coord() + m.pulley_coord(j)] = m.pulleys[j].speed.eval(0.0, 0.0, true);  // a run starts after a step at 0
+    if (sc.drive.kinematic(j))  // a run starts after a step at 0
+      sc.y0[m.n_coord() + m.pulley_coord(j)] = sc.drive.pulleys[j].speed.eval(0.0, 0.0, true);
 
   // the static state is found with every pulley at rest (a kinematic pulley's prescribed speed
   // would drag the belt round while it is sought)
   Model at_rest = m;
-  for (Pulley& p : at_rest.pulleys)
+  Drive rest_drive = sc.drive;
+  for (PulleyDrive& p : rest_drive.pulleys)
     if (p.kinematic) p.speed = TimeSpeedLaw{};
   // static solve; then correct the rigid length until the spans carry the pretension (the
   // belt's bending stiffness lifts it off small pulleys, which changes the tension a little).
@@ -542,7 +543,7 @@ Scene build_scene(const SceneDef& d, const std::atomic<bool>* stop) {
     constexpr int kPasses = 12;
     for (int it = 0; it < kPasses; ++it) {
       at_rest.belt = b;
-      sc.static_residual = static_solve(at_rest, sc.y0, max_move, stop);
+      sc.static_residual = static_solve(at_rest, rest_drive, sc.y0, max_move, stop);
       sc.span_sde.clear();
       double tension = 0;
       for (const Route::Span& sp : sc.route.spans) {

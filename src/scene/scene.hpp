@@ -14,6 +14,7 @@
 
 #include <Eigen/Core>
 
+#include "model/drive.hpp"
 #include "model/model.hpp"
 #include "scene/route.hpp"
 
@@ -112,6 +113,7 @@ struct SceneInput {
 
 struct Scene {
   Model model;
+  Drive drive;                     // the initial drive: the pulleys' laws, μ per element
   Eigen::VectorXd y0;              // initial state (static equilibrium, at rest)
   Route route;                     // pitch-line route (radius r_p on every pulley)
   std::vector<std::string> route_names;

@@ -262,9 +262,6 @@ void put_model(Writer& w, const Model& m) {
     w.line("pulley.radius", p.radius);
     w.line("pulley.inertia", p.inertia);
     w.key("pulley.wrap") << (p.wrap == WrapSide::back ? " back" : " inside"), w.end();
-    w.line("pulley.kinematic", long{p.kinematic});
-    put_law(w, p.torque, "torque");
-    put_law(w, p.speed, "speed");
   }
   const Belt& b = m.belt;
   w.line("belt.n", long{b.n});
@@ -284,10 +281,35 @@ void put_model(Writer& w, const Model& m) {
   w.line("contact.p_max", m.contact.p_max);
   w.line("friction.dv", m.friction.dv);
   w.line("gravity", m.gravity);
-  w.line("mu", m.mu);
   w.line("track_energy", long{m.track_energy});
-  w.line("restart_time", m.restart_time);
   w.key("end model"), w.end();
+}
+
+void put_drive(Writer& w, const Drive& d) {
+  w.line("drive", long{kCheckpointVersion});
+  w.line("pulleys", static_cast<long>(d.pulleys.size()));
+  for (const PulleyDrive& p : d.pulleys) {
+    w.line("pulley.kinematic", long{p.kinematic});
+    put_law(w, p.torque, "torque");
+    put_law(w, p.speed, "speed");
+  }
+  w.line("mu", d.mu);
+  w.line("restart_time", d.restart_time);
+  w.key("end drive"), w.end();
+}
+Drive get_drive(Reader& r) {
+  r.header("drive");
+  Drive d;
+  for (long j = 0, np = r.line_int("pulleys", 0, INT_MAX); j < np; ++j) {
+    PulleyDrive& p = d.pulleys.emplace_back();
+    p.kinematic = r.line_int("pulley.kinematic", 0, 1) != 0;
+    p.torque = get_law(r, "torque");
+    p.speed = get_law(r, "speed");
+  }
+  d.mu = r.line_doubles("mu");
+  d.restart_time = r.line_num("restart_time");
+  r.footer("drive");
+  return d;
 }
 Model get_model(Reader& r) {
   r.header("model");
@@ -303,9 +325,6 @@ Model get_model(Reader& r) {
     if (wrap != "inside" && wrap != "back") fail("'pulley.wrap': expected inside or back, got '" + wrap + "'");
     p.wrap = wrap == "back" ? WrapSide::back : WrapSide::inside;
     r.close();
-    p.kinematic = r.line_int("pulley.kinematic", 0, 1) != 0;
-    p.torque = get_law(r, "torque");
-    p.speed = get_law(r, "speed");
   }
   Belt& b = m.belt;
   b.n = static_cast<int>(r.line_int("belt.n", 0, INT_MAX));
@@ -325,9 +344,7 @@ Model get_model(Reader& r) {
   m.contact.p_max = r.line_num("contact.p_max");
   m.friction.dv = r.line_num("friction.dv");
   m.gravity = r.line_num("gravity");
-  m.mu = r.line_doubles("mu");
   m.track_energy = r.line_int("track_energy", 0, 1) != 0;
-  m.restart_time = r.line_num("restart_time");
   r.footer("model");
   return m;
 }
@@ -375,6 +392,7 @@ void write_scene(std::ostream& out, const Scene& sc) {
   Writer w(out);
   w.line("scene", long{kCheckpointVersion});
   put_model(w, sc.model);
+  put_drive(w, sc.drive);
   w.line("y0", sc.y0.data(), static_cast<size_t>(sc.y0.size()));
   put_route(w, sc.route);
   w.line("route_names", sc.route_names);
@@ -412,6 +430,7 @@ Scene read_scene(std::istream& in) {
   r.header("scene");
   Scene sc;
   sc.model = get_model(r);
+  sc.drive = get_drive(r);
   const std::vector<double> y0 = r.line_doubles("y0");
   sc.y0 = Eigen::Map<const Eigen::VectorXd>(y0.data(), static_cast<Eigen::Index>(y0.size()));
   sc.route = get_route(r);
@@ -459,6 +478,16 @@ void write_model(std::ostream& out, const Model& m) {
 Model read_model(std::istream& in) {
   Reader r(in);
   return get_model(r);
+}
+
+void write_drive(std::ostream& out, const Drive& d) {
+  Writer w(out);
+  put_drive(w, d);
+}
+
+Drive read_drive(std::istream& in) {
+  Reader r(in);
+  return get_drive(r);
 }
 
 void write_law(std::ostream& out, const TimeSpeedLaw& law, const std::string& key) {

@@ -1,5 +1,5 @@
-// Exact checkpoints of a built Scene (and of a Model, a law, a vector on their own: a live
-// simulation's model may differ from its scene's after changes of torque laws or μ).
+// Exact checkpoints of a built Scene (and of a Model, a Drive, a law, a vector on their own: a live
+// simulation's drive differs from its scene's after changes of torque laws or μ).
 //
 // The format is line-oriented text, one field per line, each line opening with the field's
 // keyword, so a person can read a checkpoint and a reader of another version stops at the first
@@ -23,7 +23,7 @@
 // the field that was expected. Writers use the classic locale whatever the stream's; the reader's
 // std::strtod assumes LC_NUMERIC is "C" (the program never changes it).
 //
-// Adding a field to Scene, Model, Pulley, TimeSpeedLaw, Belt, Contact, Friction, Route or
+// Adding a field to Scene, Model, Drive, Pulley, TimeSpeedLaw, Belt, Contact, Friction, Route or
 // ElementSite means adding it here and raising kCheckpointVersion.
 #pragma once
 
@@ -39,13 +39,15 @@
 
 namespace beltsim {
 
-inline constexpr int kCheckpointVersion = 4;
+inline constexpr int kCheckpointVersion = 5;
 
 void write_scene(std::ostream& out, const Scene& sc);
 Scene read_scene(std::istream& in);
 
 void write_model(std::ostream& out, const Model& m);
 Model read_model(std::istream& in);
+void write_drive(std::ostream& out, const Drive& d);
+Drive read_drive(std::istream& in);
 
 // `key` names the object in the text (e.g. "torque"), and must match on reading
 void write_law(std::ostream& out, const TimeSpeedLaw& law, const std::string& key = "law");

@@ -405,7 +405,7 @@ int l_show(lua_State* L) {
   if (file.empty()) file = "show_" + time_tag(s.now()) + ".png";
   if (std::filesystem::path(file).is_relative()) file = (std::filesystem::path(s.out_dir()) / file).string();
   if (const std::string r = output_refusal(*box.ctx, "sim:show", file, true); !r.empty()) fail(L, r);
-  guarded(L, "sim:show", [&] { render::render_snapshot(s.scene(), fs, s.now(), s.state().data(), s.model(), file, &s.observation());
+  guarded(L, "sim:show", [&] { render::render_snapshot(s.scene(), fs, s.now(), s.state().data(), s.drive(), file, &s.observation());
   });
   box.shows++;
   picture(L, box, file);

@@ -135,8 +135,8 @@ void Simulation::save(const std::string& path) const {
   if (rs_.frames) put_frames(o, *rs_.frames);
   o << "scene\n";
   write_scene(o, scene_);
-  o << "model\n";
-  write_model(o, model_);
+  o << "drive\n";
+  write_drive(o, drive_);
   put(o, "now", tl_->now());
   const std::vector<long> k = tl_->positions();
   put(o, "streams", long(k.size()));
@@ -203,8 +203,8 @@ std::unique_ptr<Simulation> Simulation::resume(const std::string& path, const Fr
   }
   expect(in, "scene");
   const Scene sc = read_scene(in);
-  expect(in, "model");
-  Model model = read_model(in);
+  expect(in, "drive");
+  Drive drive = read_drive(in);
   const double now = get_double(in, "now");
   std::vector<long> k(static_cast<size_t>(get_long(in, "streams")));
   for (long& v : k) in >> v;
@@ -228,7 +228,9 @@ std::unique_ptr<Simulation> Simulation::resume(const std::string& path, const Fr
 
   std::unique_ptr<Simulation> s(new Simulation(sc, rs, false));
   if (vet) vet(s->rs_);
-  s->model_ = std::move(model);
+  if (drive.pulleys.size() != s->drive_.pulleys.size() || drive.mu.size() != s->drive_.mu.size())
+    throw std::runtime_error("resume: " + path + ": the drive does not fit the scene");
+  s->drive_ = std::move(drive);
   s->pending_ = std::move(pending);
   s->rows_ = rows;
   s->wall_ = wall;

@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "model/drive.hpp"
 #include "model/model.hpp"
 #include "model/observables.hpp"
 
@@ -52,14 +53,14 @@ struct FrameSettings {
 };
 
 // An observer that turns states into pictures. frame() is called at t_start + k·frame_dt with the
-// dense-output state and the model as it is then (run events may change μ while running);
+// dense-output state and the drive as it is then (run events may change μ or a law while running);
 // finish() finalises the outputs (also called when the run stops early: error, divergence,
 // Ctrl-C).
 class FrameSink {
  public:
   virtual ~FrameSink() = default;
   // obs: what is observed at t (sim/simulation.hpp Simulation::observation), or null to observe y
-  virtual void frame(double t, const double* y, const Model& model, const Observation* obs = nullptr) = 0;
+  virtual void frame(double t, const double* y, const Drive& drive, const Observation* obs = nullptr) = 0;
   virtual void finish() = 0;
   virtual long frames_written() const = 0;
 };

@@ -61,7 +61,7 @@ void write_parameters(const Scene& sc, const RunSettings& rs, const std::string&
   row("belt.static_tension", sc.static_tension, "N", "mean span tension of the initial state");
   row("belt.static_residual", sc.static_residual, "m/s²", "largest acceleration of the initial state");
   double mu_min = 1e300, mu_max = -1;
-  for (double mu : m.mu) mu_min = std::min(mu_min, mu), mu_max = std::max(mu_max, mu);
+  for (double mu : sc.drive.mu) mu_min = std::min(mu_min, mu), mu_max = std::max(mu_max, mu);
   row("belt.mu_min", mu_min, "", "");
   row("belt.mu_max", mu_max, "", "");
   row("contact.element_c1", m.contact.c1, "N/m²", "per element");
@@ -73,7 +73,7 @@ void write_parameters(const Scene& sc, const RunSettings& rs, const std::string&
     const std::string pre = "pulley." + p.name + ".";
     row(pre + "centre_x", p.centre.x(), "m", "");
     row(pre + "centre_y", p.centre.y(), "m", "");
-    text(pre + "drive", p.kinematic ? "kinematic" : "torque", "");
+    text(pre + "drive", sc.drive.kinematic(j) ? "kinematic" : "torque", "");
     row(pre + "wrap_angle", sc.route.arcs[k].angle * 180 / M_PI, "deg", "of the pitch line");
     row(pre + "static_penetration", sc.penetration[j], "m", "p0 of the initial state");
   }
@@ -152,7 +152,7 @@ void check_volume(const Scene& sc, const RunSettings& rs, double t0, double t1) 
 
 Simulation::Simulation(const Scene& sc, const RunSettings& rs) : Simulation(sc, rs, true) {}
 
-Simulation::Simulation(const Scene& sc, const RunSettings& rs, bool fresh) : scene_(sc), rs_(rs), model_(sc.model) {
+Simulation::Simulation(const Scene& sc, const RunSettings& rs, bool fresh) : scene_(sc), rs_(rs), drive_(sc.drive) {
   const Model& m = model_;
   if (!(rs_.sample_dt > 0 && std::isfinite(rs_.sample_dt)))
     throw std::invalid_argument("sample: the sample interval must be > 0 s and finite (got " + num(rs_.sample_dt) + " s)");
@@ -180,10 +180,10 @@ Simulation::Simulation(const Scene& sc, const RunSettings& rs, bool fresh) : sce
       throw std::invalid_argument("events: an event's μ needs one value per element");
   }
   sense_ = scene_.senses();
-  sys_ = std::make_unique<BeltSystem>(model_);
+  sys_ = std::make_unique<BeltSystem>(model_, drive_);
   integ_ = make_integrator(rs_.integrator, *sys_, Tolerances{rs_.rtol, rs_.atol});
   tl_ = std::make_unique<Timeline>(*integ_);
-  tl_->on_restart([this](double t) { model_.restart_time = t; });
+  tl_->on_restart([this](double t) { drive_.restart_time = t; });
   if (rs_.frames) {
     FrameSettings& f = *rs_.frames;
     validate(f);
@@ -198,7 +198,7 @@ Simulation::Simulation(const Scene& sc, const RunSettings& rs, bool fresh) : sce
   tl_->set_step_hook([this](double t) { cover(t); });
   pending_ = rs_.mu_events;
   std::stable_sort(pending_.begin(), pending_.end(), [](const MuEvent& a, const MuEvent& b) { return a.t < b.t; });
-  E0_ = beltsim::energy(model_, 0.0, scene_.y0.data()).total();
+  E0_ = beltsim::energy(model_, drive_, 0.0, scene_.y0.data()).total();
   if (!fresh) return;  // resume() fills in the rest
 
   open_outputs(false);
@@ -264,17 +264,18 @@ const std::string& Simulation::integrator_name() const { return rs_.integrator; 
 // the kinks of the laws, their jumps and the timed μ changes ahead: the integrator lands on each
 void Simulation::set_landings() {
   std::vector<Timeline::Landing> l;
-  for (double t : model_.breakpoints()) l.push_back({t, {}});
+  for (double t : drive_.breakpoints()) l.push_back({t, {}});
   // a step of a law: the step that ends here saw the value before it; the integrator restarts
-  // here after it (Model::restart_time). A kinematic pulley's state speed, which nothing reads
+  // here after it (Drive::restart_time). A kinematic pulley's state speed, which nothing reads
   // (its prescribed one is used), is kept equal to it.
-  for (double t : model_.jumps())
+  for (double t : drive_.jumps())
     l.push_back({t, [this](double at) {
                    Eigen::VectorXd y = state();
-                   model_.restart_time = at;
+                   drive_.restart_time = at;
                    for (int j = 0; j < model_.n_p(); ++j)
-                     if (model_.pulleys[j].kinematic)
-                       y[model_.n_coord() + model_.pulley_coord(j)] = model_.omega(j, at, y.data() + model_.n_coord());
+                     if (drive_.kinematic(j))
+                       y[model_.n_coord() + model_.pulley_coord(j)] =
+                           drive_.omega(model_, j, at, y.data() + model_.n_coord());
                    changed(&y);
                  }});
   for (size_t k = 0; k < pending_.size(); ++k)
@@ -284,7 +285,7 @@ void Simulation::set_landings() {
                      const MuEvent ev = pending_.front();
                      pending_.erase(pending_.begin());
                      for (int i = 0; i < model_.n_el(); ++i)
-                       if (!std::isnan(ev.mu[i])) model_.mu[i] = ev.mu[i];
+                       if (!std::isnan(ev.mu[i])) drive_.mu[i] = ev.mu[i];
                      write_event(t, ev.what, ev.text.empty() ? "scheduled" : ev.text);
                      changed();
                    }
@@ -296,7 +297,7 @@ std::vector<std::string> Simulation::columns() const { return timeseries_columns
 
 const Observation& Simulation::observe_end(Cached& c, double t, const Eigen::VectorXd& y) const {
   if (c.t != t || c.serial != serial_) {
-    observe(model_, sense_, t, y.data(), c.obs);
+    observe(model_, drive_, sense_, t, y.data(), c.obs);
     c.t = t, c.serial = serial_;
   }
   return c.obs;
@@ -306,14 +307,14 @@ const Observation& Simulation::observation() const {
   const double t = now();
   Cached& c = now_obs_;
   if (c.t == t && c.serial == serial_ && c.step_end == integ_->t() && !view_y_) return c.obs;
-  observe(model_, sense_, t, state().data(), c.obs);
+  observe(model_, drive_, sense_, t, state().data(), c.obs);
   const double a = integ_->t_prev(), b = integ_->t();
   if (t > a && t < b) {
     // end_b_ of one step is end_a_ of the next: swap rather than observe again
     if (end_b_.t == a && end_b_.serial == serial_) std::swap(end_a_, end_b_);
     const Observation& A = observe_end(end_a_, a, integ_->y_prev());
     const Observation& B = observe_end(end_b_, b, integ_->y());
-    blend_contact(model_, (t - a) / (b - a), A, B, c.obs);
+    blend_contact(model_, drive_, (t - a) / (b - a), A, B, c.obs);
   }
   c.t = view_y_ ? -1 : t, c.serial = serial_, c.step_end = b;  // a when-condition's view is not kept
   return c.obs;
@@ -344,7 +345,7 @@ std::vector<double> Simulation::sample_row() const {
   }
   if (m.track_energy) {
     const double* en = q + 2 * m.n_coord();
-    row.insert(row.end(), {beltsim::energy(m, t, q).total() - E0_, en[kWorkTorques], en[kDissSdeAxial],
+    row.insert(row.end(), {beltsim::energy(m, drive_, t, q).total() - E0_, en[kWorkTorques], en[kDissSdeAxial],
                            en[kDissSdeBending], en[kDissContact], en[kDissFriction]});
   }
   return row;
@@ -365,8 +366,8 @@ std::vector<double> Simulation::sample_row() const {
 const std::vector<double>& Simulation::step_values(StepEnd& c, double t, const Eigen::VectorXd& y) const {
   if (c.t == t && c.serial == serial_) return c.v;
   c.v.clear();
-  for (int j = 0; j < model_.n_p(); ++j) {
-    const PulleyObs p = observe_pulley(model_, t, y.data(), j);
+  observe_pulleys(model_, drive_, t, y.data(), c.pairs, c.pulleys);
+  for (const PulleyObs& p : c.pulleys) {
     c.v.push_back(p.torque);
     c.v.push_back(p.belt_torque);
   }
@@ -404,7 +405,7 @@ void Simulation::cover(double t) {
 void Simulation::frame(double t, const Eigen::VectorXd& y) {
   view_t_ = t, view_y_ = &y;
   try {
-    sink_->frame(t, y.data(), model_, &observation());
+    sink_->frame(t, y.data(), drive_, &observation());
   } catch (...) {
     view_y_ = nullptr;
     throw;
@@ -472,7 +473,7 @@ double Simulation::span_tension(int k) const {
   return sde_axial_force(model_, q, q + model_.n_coord(), sde_nearest(model_, q, 0.5 * (sp.from + sp.to)));
 }
 
-Energy Simulation::energy() const { return beltsim::energy(model_, now(), state().data()); }
+Energy Simulation::energy() const { return beltsim::energy(model_, drive_, now(), state().data()); }
 
 std::vector<double> Simulation::energy_integrals() const {
   if (!model_.track_energy) return {};
@@ -626,11 +627,11 @@ void Simulation::changed(const Eigen::VectorXd* y) {
 
 void Simulation::set_torque(int j, const TimeSpeedLaw& law, const std::string& text) {
   require_open("set_torque");
-  Pulley& p = model_.pulleys.at(j);
+  PulleyDrive& p = drive_.pulleys.at(j);
   p.torque = law;
   const bool was_kinematic = p.kinematic;
   p.kinematic = false;
-  write_event(now(), p.name + ".torque", text);
+  write_event(now(), model_.pulleys[j].name + ".torque", text);
   if (was_kinematic) {
     // it turns freely from here, at the speed it was driven at
     Eigen::VectorXd y = state();
@@ -643,11 +644,11 @@ void Simulation::set_torque(int j, const TimeSpeedLaw& law, const std::string& t
 
 void Simulation::set_speed(int j, const TimeSpeedLaw& law, const std::string& text) {
   require_open("set_speed");
-  Pulley& p = model_.pulleys.at(j);
+  PulleyDrive& p = drive_.pulleys.at(j);
   p.speed = law;
   p.speed.per_speed = 0;
   p.kinematic = true;
-  write_event(now(), p.name + ".speed", text);
+  write_event(now(), model_.pulleys[j].name + ".speed", text);
   Eigen::VectorXd y = state();
   y[model_.n_coord() + model_.pulley_coord(j)] = p.speed.eval(now(), 0.0, true);  // it restarts here
   changed(&y);
@@ -663,7 +664,7 @@ void Simulation::set_mu(const std::vector<double>& mu, const std::string& what, 
       throw std::invalid_argument(what + ": μ must be >= 0 and finite (got " + num(mu[i]) + " for element " +
                                   std::to_string(i) + ")");
   for (size_t i = 0; i < mu.size(); ++i)
-    if (!std::isnan(mu[i])) model_.mu[i] = mu[i];
+    if (!std::isnan(mu[i])) drive_.mu[i] = mu[i];
   write_event(now(), what, text);
   changed();
 }

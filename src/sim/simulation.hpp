@@ -130,7 +130,8 @@ class Simulation {
   double now() const;
   const Eigen::VectorXd& state() const;
   const Scene& scene() const { return scene_; }
-  const Model& model() const { return model_; }
+  const Model& model() const { return scene_.model; }
+  const Drive& drive() const { return drive_; }  // the laws and μ now
   const RunSettings& settings() const { return rs_; }
   const std::string& integrator_name() const;
   // what is observed now (model/observables.hpp; inside a step its contact forces come from the
@@ -199,7 +200,8 @@ class Simulation {
 
   Scene scene_;
   RunSettings rs_;
-  Model model_;               // a copy: changes apply to it
+  const Model& model_ = scene_.model;  // constant
+  Drive drive_;               // the scene's drive, as changed since (set_torque, set_mu, μ events)
   std::vector<int> sense_;
   std::unique_ptr<BeltSystem> sys_;
   std::unique_ptr<Integrator> integ_;
@@ -237,6 +239,8 @@ class Simulation {
   // ends, their integral from the last sample (mean_from_) to mean_covered_
   struct StepEnd {
     std::vector<double> v;
+    ContactList pairs;               // observe_pulleys' contact pass
+    std::vector<PulleyObs> pulleys;
     double t = -1;
     long serial = -1;
   };

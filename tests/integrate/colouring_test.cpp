@@ -87,7 +87,7 @@ Compare compare(BeltSystem& sys, double t, const Eigen::VectorXd& y, long* rhs_t
 TEST(Colouring, DifferenceJacobianMatchesTheAnalyticOne) {
   constexpr double tol = 2e-5;
   const Scene sc = build_scene(presets::paper_dry());
-  BeltSystem sys(sc.model);
+  BeltSystem sys(sc.model, sc.drive);
   long taken = 0;
   const Compare at_rest = compare(sys, 0, sc.y0, &taken);
   EXPECT_LT(at_rest.worst, tol) << sys.describe(at_rest.worst_col);
@@ -100,7 +100,7 @@ TEST(Colouring, DifferenceJacobianMatchesTheAnalyticOne) {
   DriveOptions opt;
   opt.t_end = 0.05;
   opt.sample_dt = 0.05;
-  opt.events = sc.model.breakpoints();
+  opt.events = sc.drive.breakpoints();
   auto st = make_stepper("esdirk32");
   drive(sys, *st, Tolerances{1e-6, -1}, opt, y, [](double, const Eigen::VectorXd&) {});
   const Compare moving = compare(sys, 0.05, y);

@@ -266,11 +266,11 @@ TEST(Cvode, AgreesWithEsdirkOnTheBelt) {
   test::expect_warnings({WarningKind::cvode_convergence, WarningKind::failed_step});
   const Scene sc = build_scene(presets::paper_dry());
   auto speeds = [&](const std::string& name) {
-    BeltSystem sys(sc.model);
+    BeltSystem sys(sc.model, sc.drive);
     DriveOptions opt;
     opt.t_end = 0.05;
     opt.sample_dt = 0.01;
-    opt.events = sc.model.breakpoints();
+    opt.events = sc.drive.breakpoints();
     Eigen::VectorXd y = sc.y0;
     const Tolerances tol{1e-7, -1};
     const auto none = [](double, const Eigen::VectorXd&) {};

@@ -21,6 +21,7 @@ namespace {
 TEST(KinematicPredictor, TurnsAWrapWithItsPulleyAndMovesSpansOn) {
   const Scene sc = build_scene(presets::paper_dry());
   const Model& m = sc.model;
+  const Drive& dr = sc.drive;
   const int n = m.n_el(), N = m.n_coord();
   Eigen::VectorXd y = sc.y0;
   const double Omega[2] = {-60.0, -59.0}, dt = 3e-4;
@@ -47,7 +48,8 @@ TEST(KinematicPredictor, TurnsAWrapWithItsPulleyAndMovesSpansOn) {
   ASSERT_GT(free, 10);
 
   Eigen::VectorXd z = y;
-  kinematic_predict(m, 0.5, dt, z.data(), z.data() + N);
+  PredictScratch w;
+  kinematic_predict(m, dr, 0.5, dt, z.data(), z.data() + N, w);
   for (int i = 0; i < n; ++i) {
     const Vec2 P(y[3 * i], y[3 * i + 1]), P1(z[3 * i], z[3 * i + 1]);
     const Vec2 V(y[N + 3 * i], y[N + 3 * i + 1]), V1(z[N + 3 * i], z[N + 3 * i + 1]);
@@ -81,6 +83,7 @@ TEST(KinematicPredictor, TurnsAWrapWithItsPulleyAndMovesSpansOn) {
 TEST(ConvectivePredictor, GivesAnElementTheSteadyStateOfThePlaceItTravelsTo) {
   const Scene sc = build_scene(presets::paper_dry());
   const Model& m = sc.model;
+  const Drive& dr = sc.drive;
   const int n = m.n_el(), N = m.n_coord();
   Eigen::VectorXd y = sc.y0;
   auto P = [&](int k) { return Vec2(y[3 * k], y[3 * k + 1]); };
@@ -143,7 +146,7 @@ TEST(ConvectivePredictor, GivesAnElementTheSteadyStateOfThePlaceItTravelsTo) {
   const double pitch = m.belt.pitch, dt = 0.7 * pitch / V0;
   Eigen::VectorXd z = y;
   PredictScratch w;
-  convective_predict(m, 0.5, dt, z.data(), z.data() + N, w);
+  convective_predict(m, dr, 0.5, dt, z.data(), z.data() + N, w);
   int checked_wrap = 0, checked_span = 0, moved = 0;
   for (int i = 0; i < n; ++i) {
     const Vec2 V(y[N + 3 * i], y[N + 3 * i + 1]), P1(z[3 * i], z[3 * i + 1]), V1(z[N + 3 * i], z[N + 3 * i + 1]);
@@ -175,8 +178,8 @@ TEST(ConvectivePredictor, GivesAnElementTheSteadyStateOfThePlaceItTravelsTo) {
 
   // elements that travel less than half a pitch keep the kinematic prediction, bit for bit
   Eigen::VectorXd k1 = y, k2 = y;
-  kinematic_predict(m, 0.5, 0.3 * pitch / V0, k1.data(), k1.data() + N);
-  convective_predict(m, 0.5, 0.3 * pitch / V0, k2.data(), k2.data() + N, w);
+  kinematic_predict(m, dr, 0.5, 0.3 * pitch / V0, k1.data(), k1.data() + N, w);
+  convective_predict(m, dr, 0.5, 0.3 * pitch / V0, k2.data(), k2.data() + N, w);
   EXPECT_EQ(k1, k2);
 }
 

@@ -37,19 +37,20 @@ SceneDef refined(int n) {
 void expect_same_solution(const SceneDef& d, unsigned seed) {
   const Scene sc = build_scene(d);
   const Model& m = sc.model;
+  const Drive& dr = sc.drive;
   const int N = m.n_coord();
   std::mt19937 rng(seed);
   std::uniform_real_distribution<double> u(-1, 1);
   const Eigen::VectorXd y = moving_state(sc, rng);
   Jacobian J;
   J.resize(m);
-  jacobian(m, 0.1, y.data(), J);
+  jacobian(m, dr, 0.1, y.data(), J);
   RingSolver ring;
   Eigen::SparseMatrix<double> A;
   Eigen::SparseLU<Eigen::SparseMatrix<double>> lu;
   for (double s : {1e2, 1e4, 1e5, 1e7}) {
-    ASSERT_TRUE(ring.factor(m, s * s, s, J.C, J.K));
-    assemble(m, s * s, s, J.C, J.K, N, A);
+    ASSERT_TRUE(ring.factor(m, dr, s * s, s, J.C, J.K));
+    assemble(m, dr, s * s, s, J.C, J.K, N, A);
     lu.compute(A);
     ASSERT_EQ(lu.info(), Eigen::Success);
     Eigen::VectorXd r(N);
@@ -75,12 +76,13 @@ TEST(RingSolver, MatchesSparseLuOnASplitRing) {
 TEST(RingSolver, SplitGivesTheSameBitsOnOneOrTwoThreads) {
   const Scene sc = build_scene(refined(600));
   const Model& m = sc.model;
+  const Drive& dr = sc.drive;
   const int N = m.n_coord();
   std::mt19937 rng(5);
   const Eigen::VectorXd y = moving_state(sc, rng);
   Jacobian J;
   J.resize(m);
-  jacobian(m, 0.1, y.data(), J);
+  jacobian(m, dr, 0.1, y.data(), J);
   Eigen::VectorXd r(N);
   std::uniform_real_distribution<double> u(-1, 1);
   for (int k = 0; k < N; ++k) r[k] = u(rng);
@@ -89,7 +91,7 @@ TEST(RingSolver, SplitGivesTheSameBitsOnOneOrTwoThreads) {
   for (TwoWay* two : {&with_worker, &without, static_cast<TwoWay*>(nullptr)}) {
     RingSolver ring;
     for (int rep = 0; rep < 50; ++rep) {  // repeated: the worker must not lose a generation
-      ASSERT_TRUE(ring.factor(m, 1e10, 1e5, J.C, J.K, two));
+      ASSERT_TRUE(ring.factor(m, dr, 1e10, 1e5, J.C, J.K, two));
       Eigen::VectorXd x = r;
       ring.solve(x.data(), x.data());
       if (rep == 0) xs.push_back(x);
@@ -108,9 +110,10 @@ TEST(RingSolver, BeltSystemSolvesTheShiftedSystem) {
   for (int n : {60, 600}) {
     const Scene sc = build_scene(refined(n));
     const Model& m = sc.model;
+    const Drive& dr = sc.drive;
     std::mt19937 rng(7);
     const Eigen::VectorXd y = moving_state(sc, rng);
-    BeltSystem sys(m);
+    BeltSystem sys(m, dr);
     Eigen::SparseMatrix<double> J;
     ASSERT_TRUE(sys.sparse_jacobian(0.1, y.data(), J));
     ASSERT_TRUE(sys.prepare_jacobian(0.1, y.data()));

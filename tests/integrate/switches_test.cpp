@@ -20,7 +20,7 @@ struct Pieces {
   bool contact = false, deep = false, pushing = false, band = false;
 };
 
-Pieces pieces(const Model& m, double t, const double* q, const double* v, int j, int i) {
+Pieces pieces(const Model& m, const Drive& dr, double t, const double* q, const double* v, int j, int i) {
   Pieces pc;
   const Pulley& pl = m.pulleys[j];
   const Vec2 P(q[3 * i], q[3 * i + 1]), V(v[3 * i], v[3 * i + 1]);
@@ -29,7 +29,7 @@ Pieces pieces(const Model& m, double t, const double* q, const double* v, int j,
   pc.contact = true;
   pc.deep = nl.p > m.contact.p_max;
   pc.pushing = nl.pushing;
-  if (nl.pushing) pc.band = std::abs(friction_law(m.mu[i], m.friction.dv, nl, V, m.omega(j, t, v)).vT) < m.friction.dv;
+  if (nl.pushing) pc.band = std::abs(friction_law(dr.mu[i], m.friction.dv, nl, V, dr.omega(m, j, t, v)).vT) < m.friction.dv;
   return pc;
 }
 
@@ -62,6 +62,7 @@ Eigen::VectorXd random_state(const Model& m, const Eigen::VectorXd& y0, std::mt1
 TEST(ContactSwitches, TheirSignsAreTheLawsPieces) {
   const Scene sc = build_scene(presets::paper_dry());
   const Model& m = sc.model;
+  const Drive& dr = sc.drive;
   const int N = m.n_coord(), n = m.belt.n;
   ASSERT_EQ(switch_count(m), kSwitchesPerPair * m.n_p() * n);
   std::mt19937 rng(11);
@@ -70,11 +71,13 @@ TEST(ContactSwitches, TheirSignsAreTheLawsPieces) {
   for (int trial = 0; trial < 40; ++trial) {
     const Eigen::VectorXd y = random_state(m, sc.y0, rng);
     const double t = 0.5;
-    contact_switches(m, t, y.data(), y.data() + N, g.data());
+    ContactList pairs;
+    contact_pass(m, sc.drive, t, y.data(), y.data() + N, Span{0, n}, pairs, Pairs::all);
+    contact_switches(m, pairs, g.data());
     for (int j = 0; j < m.n_p(); ++j)
       for (int i = 0; i < n; ++i) {
         const double* gi = g.data() + kSwitchesPerPair * (j * n + i);
-        const Pieces pc = pieces(m, t, y.data(), y.data() + N, j, i);
+        const Pieces pc = pieces(m, dr, t, y.data(), y.data() + N, j, i);
         EXPECT_EQ(gi[0] > 0, pc.contact) << "pulley " << j << " element " << i;
         if (!pc.contact) {
           ++seen[0];
@@ -98,6 +101,7 @@ TEST(ContactSwitches, TheirSignsAreTheLawsPieces) {
 TEST(ContactSwitches, AreContinuousInTheState) {
   const Scene sc = build_scene(presets::paper_dry());
   const Model& m = sc.model;
+  const Drive& dr = sc.drive;
   const int N = m.n_coord(), count = switch_count(m);
   std::mt19937 rng(5);
   const Eigen::VectorXd a = random_state(m, sc.y0, rng), b = random_state(m, sc.y0, rng);
@@ -105,7 +109,9 @@ TEST(ContactSwitches, AreContinuousInTheState) {
   std::vector<double> g(count), prev(count), lo(count, 1e300), hi(count, -1e300), jump(count, 0);
   for (int s = 0; s <= kSteps; ++s) {
     const Eigen::VectorXd y = a + (b - a) * (static_cast<double>(s) / kSteps);
-    contact_switches(m, 0.5, y.data(), y.data() + N, g.data());
+    ContactList pairs;
+    contact_pass(m, dr, 0.5, y.data(), y.data() + N, Span{0, m.n_el()}, pairs, Pairs::all);
+    contact_switches(m, pairs, g.data());
     for (int k = 0; k < count; ++k) {
       lo[k] = std::min(lo[k], g[k]), hi[k] = std::max(hi[k], g[k]);
       if (s > 0) jump[k] = std::max(jump[k], std::abs(g[k] - prev[k]));

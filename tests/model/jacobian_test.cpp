@@ -34,7 +34,7 @@ struct Kinks {
 };
 
 // distance of the state from the nearest kink of the contact and friction laws
-double kink_margin(const Model& m, double t, const Eigen::VectorXd& y) {
+double kink_margin(const Model& m, const Drive& dr, double t, const Eigen::VectorXd& y) {
   const int N = m.n_coord();
   double margin = 1e300;
   for (int j = 0; j < m.n_p(); ++j)
@@ -49,7 +49,7 @@ double kink_margin(const Model& m, double t, const Eigen::VectorXd& y) {
       normal_law(m.contact, P, V, m.pulleys[j].centre, m.pulleys[j].radius, nl);
       const double raw = nl.N_el + nl.delta * m.contact.b * nl.pdot;
       margin = std::min(margin, std::abs(raw) / 1e-2);                     // N = 0
-      const FrictionLaw fl = friction_law(m.mu[i], m.friction.dv, nl, V, m.omega(j, t, y.data() + N));
+      const FrictionLaw fl = friction_law(dr.mu[i], m.friction.dv, nl, V, dr.omega(m, j, t, y.data() + N));
       margin = std::min(margin, std::abs(std::abs(fl.vT) - m.friction.dv) / 1e-7);  // stick/slip
     }
   return margin;
@@ -59,7 +59,7 @@ struct Coverage {
   int free = 0, ramp = 0, deep = 0, clamped = 0, stick = 0, slip = 0;
 };
 
-Coverage coverage(const Model& m, double t, const Eigen::VectorXd& y) {
+Coverage coverage(const Model& m, const Drive& dr, double t, const Eigen::VectorXd& y) {
   const int N = m.n_coord();
   Coverage c;
   for (int i = 0; i < m.n_el(); ++i) {
@@ -74,7 +74,7 @@ Coverage coverage(const Model& m, double t, const Eigen::VectorXd& y) {
         c.clamped++;
         continue;
       }
-      const FrictionLaw fl = friction_law(m.mu[i], m.friction.dv, nl, V, m.omega(j, t, y.data() + N));
+      const FrictionLaw fl = friction_law(dr.mu[i], m.friction.dv, nl, V, dr.omega(m, j, t, y.data() + N));
       (std::abs(fl.vT) < m.friction.dv ? c.stick : c.slip)++;
     }
     if (!touching) c.free++;
@@ -94,12 +94,12 @@ double column_error(const Eigen::MatrixXd& an, const Eigen::MatrixXd& fd, int* w
   return worst;
 }
 
-void expect_jacobian_matches(const Model& m, double t, const Eigen::VectorXd& y) {
-  ASSERT_GT(kink_margin(m, t, y), 10.0) << "test state too close to a kink of the force laws";
+void expect_jacobian_matches(const Model& m, const Drive& dr, double t, const Eigen::VectorXd& y) {
+  ASSERT_GT(kink_margin(m, dr, t, y), 10.0) << "test state too close to a kink of the force laws";
   const int N = m.n_coord();
   Jacobian J;
   J.resize(m);
-  jacobian(m, t, y.data(), J);
+  jacobian(m, dr, t, y.data(), J);
   Eigen::MatrixXd Kfd(N, N), Cfd(N, N);
   Eigen::VectorXd fp(N), fm(N);
   for (int k = 0; k < 2 * N; ++k) {
@@ -110,8 +110,8 @@ void expect_jacobian_matches(const Model& m, double t, const Eigen::VectorXd& y)
     Eigen::VectorXd yp = y, ym = y;
     yp[k] += eps;
     ym[k] -= eps;
-    forces(m, t, yp.data(), fp.data());
-    forces(m, t, ym.data(), fm.data());
+    forces(m, dr, t, yp.data(), fp.data());
+    forces(m, dr, t, ym.data(), fm.data());
     (vel ? Cfd.col(k - N) : Kfd.col(k)) = (fp - fm) / (2 * eps);
   }
   // kinematic pulleys: their state speed feeds nothing (the prescribed one is used)
@@ -122,8 +122,8 @@ void expect_jacobian_matches(const Model& m, double t, const Eigen::VectorXd& y)
   EXPECT_LT(eC, 1e-6) << "dF/dv column " << col;
   // ∂f/∂t
   const double dt = 1e-7;
-  forces(m, t + dt, y.data(), fp.data());
-  forces(m, t - dt, y.data(), fm.data());
+  forces(m, dr, t + dt, y.data(), fp.data());
+  forces(m, dr, t - dt, y.data(), fm.data());
   const Eigen::VectorXd ftfd = (fp - fm) / (2 * dt);
   const double scale = std::max(1.0, ftfd.cwiseAbs().maxCoeff());
   EXPECT_LT((J.f_t - ftfd).cwiseAbs().maxCoeff() / scale, 1e-6);
@@ -133,13 +133,14 @@ void expect_jacobian_matches(const Model& m, double t, const Eigen::VectorXd& y)
 // pushed deep or pulled out fast, random velocities on the free spans.
 Eigen::VectorXd running_state(const Scene& sc, double time, double omega_scale, unsigned seed) {
   const Model& m = sc.model;
+  const Drive& dr = sc.drive;
   const int N = m.n_coord();
   Eigen::VectorXd y = sc.y0;
   std::mt19937 rng(seed);
   std::uniform_real_distribution<double> u(-1, 1);
   for (int j = 0; j < m.n_p(); ++j) {
     const Pulley& p = m.pulleys[j];
-    if (!p.kinematic) y[N + m.pulley_coord(j)] = omega_scale * 0.1 / p.radius * (1 + 0.01 * u(rng));
+    if (!dr.kinematic(j)) y[N + m.pulley_coord(j)] = omega_scale * 0.1 / p.radius * (1 + 0.01 * u(rng));
   }
   // slips chosen away from ±Δv: stick, stick, slip, slip
   const double slips[] = {3e-6, -6e-6, 4e-4, -2e-3};
@@ -156,7 +157,7 @@ Eigen::VectorXd running_state(const Scene& sc, double time, double omega_scale, 
     const Pulley& p = m.pulleys[touching];
     const Vec2 rv = Vec2(y[3 * i], y[3 * i + 1]) - p.centre;
     const Vec2 n = rv.normalized(), t = perp(n);
-    const double omega = m.omega(touching, time, y.data() + N);
+    const double omega = dr.omega(m, touching, time, y.data() + N);
     Vec2 V = omega * rv.norm() * t + slips[i % 4] * t + 1e-3 * u(rng) * n;  // small normal rate
     if (i % 7 == 3) {                                // deeper than p_max
       const Vec2 P = p.centre + (p.radius - 1.6e-3) * n;
@@ -173,20 +174,21 @@ Eigen::VectorXd running_state(const Scene& sc, double time, double omega_scale, 
 TEST(Jacobian, PaperDryRunningState) {
   const Scene sc = build_scene(presets::paper_dry());
   const Eigen::VectorXd y = running_state(sc, 0.1, 30.0, 1);
-  const Coverage c = coverage(sc.model, 0.1, y);
+  const Coverage c = coverage(sc.model, sc.drive, 0.1, y);
   EXPECT_GT(c.free, 0);
   EXPECT_GT(c.ramp, 0);
   EXPECT_GT(c.deep, 0);
   EXPECT_GT(c.clamped, 0);
   EXPECT_GT(c.stick, 0);
   EXPECT_GT(c.slip, 0);
-  expect_jacobian_matches(sc.model, 0.1, y);  // t = 0.1 s: inside the torque ramp (∂f/∂t ≠ 0)
+  expect_jacobian_matches(sc.model, sc.drive, 0.1, y);  // t = 0.1 s: inside the torque ramp (∂f/∂t ≠ 0)
 }
 
 TEST(Jacobian, AnglesAcrossPiAndLaps) {
   const Scene sc = build_scene(presets::paper_dry());
   Eigen::VectorXd y = running_state(sc, 0.35, 20.0, 2);
   const Model& m = sc.model;
+  const Drive& dr = sc.drive;
   // element angles shifted by whole laps, and one bend straddling the ±π cut
   for (int i = 0; i < m.n_el(); ++i) y[3 * i + 2] += 2 * M_PI * ((i * 7) % 5 - 2);
   int straddle = 0;
@@ -195,7 +197,7 @@ TEST(Jacobian, AnglesAcrossPiAndLaps) {
     if (std::abs(a - b) > M_PI) straddle++;
   }
   EXPECT_GT(straddle, 0) << "no bend crosses the ±π cut";
-  expect_jacobian_matches(m, 0.35, y);
+  expect_jacobian_matches(m, dr, 0.35, y);
 }
 
 // The axis memo (forces.hpp) changes no result: the right-hand side and the Jacobian with it, after
@@ -204,23 +206,25 @@ TEST(Jacobian, AnglesAcrossPiAndLaps) {
 TEST(Jacobian, AxisMemoChangesNoResult) {
   const Scene sc = build_scene(presets::paper_dry());
   const Model& m = sc.model;
+  const Drive& dr = sc.drive;
   const Eigen::VectorXd y1 = running_state(sc, 0.1, 30.0, 3);
   Eigen::VectorXd y2 = y1;
   for (int i = 0; i < m.n_el(); i += 3) y2[3 * i + 2] += 1e-3 * (i + 1);  // a third of the angles move
   Eigen::VectorXd y3 = y2;
   y2[3 * 4 + 2] = 0.0;
   y3[3 * 4 + 2] = -0.0;
-  AxisMemo memo;
+  Workspace ws(m, false);
+  const AxisMemo& memo = ws.axes;
   Eigen::VectorXd dy(m.n_state()), ref(m.n_state());
   Jacobian J, Jref;
   J.resize(m), Jref.resize(m);
   const Eigen::VectorXd* states[] = {&y1, &y3, &y1, &y2, &y3};  // ends with 0.0 -> -0.0
   for (const Eigen::VectorXd* y : states) {
-    rhs(m, 0.1, y->data(), dy.data(), &memo);
-    rhs(m, 0.1, y->data(), ref.data());
+    rhs(m, dr, 0.1, y->data(), dy.data(), &ws);
+    rhs(m, dr, 0.1, y->data(), ref.data());
     EXPECT_EQ(std::memcmp(dy.data(), ref.data(), sizeof(double) * dy.size()), 0);
-    jacobian(m, 0.1, y->data(), J, &memo);
-    jacobian(m, 0.1, y->data(), Jref);
+    jacobian(m, dr, 0.1, y->data(), J, &ws);
+    jacobian(m, dr, 0.1, y->data(), Jref);
     const Eigen::MatrixXd K = J.K.to_dense(), Kref = Jref.K.to_dense(), C = J.C.to_dense(), Cref = Jref.C.to_dense();
     EXPECT_EQ(std::memcmp(K.data(), Kref.data(), sizeof(double) * K.size()), 0);
     EXPECT_EQ(std::memcmp(C.data(), Cref.data(), sizeof(double) * C.size()), 0);
@@ -243,25 +247,27 @@ TEST(Jacobian, HalvesChangeNoElementRow) {
   d.track_energy = true;
   const Scene sc = build_scene(d);
   const Model& m = sc.model;
+  const Drive& dr = sc.drive;
   ASSERT_GE(m.n_el(), kHalvesElements);
   const int N = m.n_coord(), ne = 3 * m.n_el();
   const Eigen::VectorXd y = running_state(sc, 0.1, 30.0, 6);
-  Halves halves(m);
+  Workspace halves(m);
+  ASSERT_TRUE(halves.halves);
   Eigen::VectorXd dy(m.n_state()), ref(m.n_state());
-  rhs(m, 0.1, y.data(), ref.data());
+  rhs(m, dr, 0.1, y.data(), ref.data());
   Jacobian J, Jref;
   J.resize(m), Jref.resize(m);
-  jacobian(m, 0.1, y.data(), Jref);
+  jacobian(m, dr, 0.1, y.data(), Jref);
   auto same = [](const auto& a, const auto& b, size_t count) { return std::memcmp(a, b, sizeof(double) * count) == 0; };
   for (int rep = 0; rep < 20; ++rep) {
-    rhs(m, 0.1, y.data(), dy.data(), nullptr, &halves);
+    rhs(m, dr, 0.1, y.data(), dy.data(), &halves);
     for (int k = 0; k < m.n_state(); ++k) {
       if (k < N + ne)  // positions' rates and the elements' accelerations
         ASSERT_TRUE(same(&dy[k], &ref[k], 1)) << "row " << k;
       else
         ASSERT_NEAR(dy[k], ref[k], 1e-12 * (std::abs(ref[k]) + 1e3)) << "row " << k;
     }
-    jacobian(m, 0.1, y.data(), J, nullptr, &halves);
+    jacobian(m, dr, 0.1, y.data(), J, &halves);
     for (const auto& [A, B] : {std::pair{&J.K, &Jref.K}, std::pair{&J.C, &Jref.C}}) {
       for (int i = 0; i < m.n_el(); ++i)
         ASSERT_TRUE(same(A->diag[i].data(), B->diag[i].data(), 9) && same(A->lower[i].data(), B->lower[i].data(), 9) &&
@@ -279,10 +285,10 @@ TEST(Jacobian, HalvesChangeNoElementRow) {
 TEST(Jacobian, BackSideIdlerAutomotive) {
   const Scene sc = build_scene(presets::automotive_wet());
   const Eigen::VectorXd y = running_state(sc, 0.2, 25.0, 3);
-  const Coverage c = coverage(sc.model, 0.2, y);
+  const Coverage c = coverage(sc.model, sc.drive, 0.2, y);
   EXPECT_GT(c.stick, 0);
   EXPECT_GT(c.slip, 0);
-  expect_jacobian_matches(sc.model, 0.2, y);
+  expect_jacobian_matches(sc.model, sc.drive, 0.2, y);
 }
 
 TEST(Jacobian, NonUnitExponents) {
@@ -295,7 +301,7 @@ TEST(Jacobian, NonUnitExponents) {
   d.belt.kt = 1.3;
   d.belt.ct = 0.05;
   const Scene sc = build_scene(d);
-  expect_jacobian_matches(sc.model, 0.05, running_state(sc, 0.05, 30.0, 4));
+  expect_jacobian_matches(sc.model, sc.drive, 0.05, running_state(sc, 0.05, 30.0, 4));
 }
 
 TEST(Jacobian, KinematicPulleyTimeDerivative) {
@@ -308,9 +314,9 @@ TEST(Jacobian, KinematicPulleyTimeDerivative) {
   const Eigen::VectorXd y = running_state(sc, 0.2, 30.0, 5);
   Jacobian J;
   J.resize(sc.model);
-  jacobian(sc.model, 0.2, y.data(), J);
+  jacobian(sc.model, sc.drive, 0.2, y.data(), J);
   EXPECT_GT(J.f_t.head(3 * sc.model.n_el()).cwiseAbs().maxCoeff(), 0.0) << "friction sees the speed ramp";
-  expect_jacobian_matches(sc.model, 0.2, y);
+  expect_jacobian_matches(sc.model, sc.drive, 0.2, y);
 }
 
 // a law given as code (what a Lua law is to the model): M = -0.004·Ω·|Ω| + 2·sin(9t), whose
@@ -345,10 +351,10 @@ TEST(Jacobian, EveryLawTerm) {
   const Eigen::VectorXd y = running_state(sc, t, 30.0, 6);
   Jacobian J;
   J.resize(sc.model);
-  jacobian(sc.model, t, y.data(), J);
+  jacobian(sc.model, sc.drive, t, y.data(), J);
   const int k0 = sc.model.pulley_coord(0);
   EXPECT_NE(J.f_t[k0], 0.0) << "the driver's Ω'' is in ∂f/∂t";
-  expect_jacobian_matches(sc.model, t, y);
+  expect_jacobian_matches(sc.model, sc.drive, t, y);
 }
 
 }  // namespace

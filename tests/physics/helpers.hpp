@@ -18,14 +18,14 @@ struct Samples {
   DriveResult result;
 };
 
-inline Samples simulate(const Model& m, const Eigen::VectorXd& y0, double t_end, double sample_dt,
+inline Samples simulate(const Model& m, const Drive& dr, const Eigen::VectorXd& y0, double t_end, double sample_dt,
                         const char* method, double rtol) {
-  BeltSystem sys(m);
+  BeltSystem sys(m, dr);
   auto stepper = make_stepper(method);
   DriveOptions opt;
   opt.t_end = t_end;
   opt.sample_dt = sample_dt;
-  opt.events = m.breakpoints();
+  opt.events = dr.breakpoints();
   Samples s;
   Eigen::VectorXd y = y0;
   s.result = drive(sys, *stepper, Tolerances{rtol, -1}, opt, y, [&](double t, const Eigen::VectorXd& yy) {

@@ -42,8 +42,9 @@ TEST(KnownAnswers, InitialStateIsStatic) {
   for (const SceneDef& d : static_cases()) {
     const Scene sc = build_scene(d);
     const Model& m = sc.model;
+    const Drive& dr = sc.drive;
     Eigen::VectorXd dy(m.n_state());
-    rhs(m, 0.0, sc.y0.data(), dy.data());
+    rhs(m, dr, 0.0, sc.y0.data(), dy.data());
     const double scale = d.belt.pretension / m.belt.mass;
     EXPECT_LT(dy.segment(m.n_coord(), 3 * m.n_el()).cwiseAbs().maxCoeff(), 1e-6 * scale);
     EXPECT_NEAR(sc.static_tension, d.belt.pretension, 1e-4 * d.belt.pretension);
@@ -61,11 +62,12 @@ TEST(KnownAnswers, HubLoadIsTheSumOfTheSpanTensions) {
   for (const SceneDef& d : {presets::paper_dry(), presets::automotive_wet()}) {
     const Scene sc = build_scene(d);
     const Model& m = sc.model;
+    const Drive& dr = sc.drive;
     const int n = m.n_el();
     const size_t np = sc.route_pulleys.size();
     for (size_t k = 0; k < np; ++k) {
       Vec2 hub;
-      belt_torque(m, 0.0, sc.y0.data(), sc.y0.data() + m.n_coord(), sc.route_pulleys[k], &hub);
+      belt_torque(m, dr, 0.0, sc.y0.data(), sc.y0.data() + m.n_coord(), sc.route_pulleys[k], &hub);
       const int in = sc.span_sde[(k + np - 1) % np], out = sc.span_sde[k];
       const Vec2 F_in = m.belt.k * sde_gap(m, sc.y0.data(), in), F_out = m.belt.k * sde_gap(m, sc.y0.data(), out);
       const int carried = ((out - in) % n + n) % n;  // elements in, in+1, ..., out-1
@@ -93,6 +95,7 @@ TEST(KnownAnswers, EnergyIsConservedWithoutDissipation) {
   for (PulleyDef& p : d.pulleys) p.torque = TimeSpeedLaw{};
   const Scene sc = build_scene(d);
   const Model& m = sc.model;
+  const Drive& dr = sc.drive;
   Eigen::VectorXd y0 = sc.y0;
   const int N = m.n_coord();
   double kick = 0;
@@ -101,10 +104,10 @@ TEST(KnownAnswers, EnergyIsConservedWithoutDissipation) {
     y0[N + 3 * i + 1] = 0.1 * std::cos(1.3 * i);
     kick += 0.5 * m.belt.mass * (y0[N + 3 * i] * y0[N + 3 * i] + y0[N + 3 * i + 1] * y0[N + 3 * i + 1]);
   }
-  const double E0 = energy(m, 0, y0.data()).total();
-  const auto s = simulate(m, y0, 2e-3, 2e-4, "rkf45", 1e-10);
+  const double E0 = energy(m, dr, 0, y0.data()).total();
+  const auto s = simulate(m, dr, y0, 2e-3, 2e-4, "rkf45", 1e-10);
   for (size_t k = 0; k < s.t.size(); ++k)
-    EXPECT_NEAR(energy(m, s.t[k], s.y[k].data()).total(), E0, 1e-6 * kick) << "t = " << s.t[k];
+    EXPECT_NEAR(energy(m, dr, s.t[k], s.y[k].data()).total(), E0, 1e-6 * kick) << "t = " << s.t[k];
 }
 
 // With everything on, the work of the torques equals the change of mechanical energy plus what
@@ -116,11 +119,12 @@ TEST(KnownAnswers, WorkOfTorquesBalancesEnergyAndDissipation) {
   d.track_energy = true;
   const Scene sc = build_scene(d);
   const Model& m = sc.model;
-  const auto s = simulate(m, sc.y0, 0.05, 0.01, "esdirk32", 1e-7);
-  const double E0 = energy(m, 0, sc.y0.data()).total();
+  const Drive& dr = sc.drive;
+  const auto s = simulate(m, dr, sc.y0, 0.05, 0.01, "esdirk32", 1e-7);
+  const double E0 = energy(m, dr, 0, sc.y0.data()).total();
   const Eigen::VectorXd& y = s.y.back();
-  const double* e = y.data() + m.energy_offset();
-  const double dE = energy(m, s.t.back(), y.data()).total() - E0;
+  const double* e = y.data() + 2 * m.n_coord();
+  const double dE = energy(m, dr, s.t.back(), y.data()).total() - E0;
   double dissipated = 0;
   for (int k = kDissSdeAxial; k < kEnergyCount; ++k) {
     EXPECT_GE(e[k], -1e-12) << "channel " << k;
@@ -147,6 +151,7 @@ Span free_upper_span(double EI = 0.026) {
   d.belt.EI = EI;
   Span s{build_scene(d), {}, {}};
   const Model& m = s.scene.model;
+  const Drive& dr = s.scene.drive;
   const Eigen::VectorXd& y = s.scene.y0;
   for (int i = 0; i < m.n_el(); ++i) {
     // on the straight part of the upper span, between the tangent points x = 0 and x = l_p
@@ -159,7 +164,7 @@ Span free_upper_span(double EI = 0.026) {
   s.elements.pop_back();
   Jacobian J;
   J.resize(m);
-  jacobian(m, 0.0, y.data(), J);
+  jacobian(m, dr, 0.0, y.data(), J);
   s.K = J.K.to_dense();
   return s;
 }
@@ -266,14 +271,15 @@ SpanVibration vibrate_span(double v) {
   }
   const Scene sc = build_scene(d);
   const Model& m = sc.model;
+  const Drive& dr = sc.drive;
   const int N = m.n_coord();
-  Eigen::VectorXd y0 = v > 0 ? simulate(m, rigid_motion(sc, v), 0.03, 0.03, "esdirk32", 1e-6).y.back() : sc.y0;
+  Eigen::VectorXd y0 = v > 0 ? simulate(m, dr, rigid_motion(sc, v), 0.03, 0.03, "esdirk32", 1e-6).y.back() : sc.y0;
   for (int i = 0; i < m.n_el(); ++i) {  // first-mode velocity on the upper span
     const double x = y0[3 * i];
     if (y0[3 * i + 1] > 0.05 && x > 0 && x < 0.29) y0[N + 3 * i + 1] += 1.0 * std::sin(M_PI * x / 0.29);
   }
   const double dt = 1e-4;
-  const auto s = simulate(m, y0, 0.08, dt, "esdirk32", 1e-6);
+  const auto s = simulate(m, dr, y0, 0.08, dt, "esdirk32", 1e-6);
   std::vector<double> h;  // the belt's height at x = 0.145 on the upper span
   double T = 0;
   SpanVibration out;
@@ -356,7 +362,7 @@ double driver_speed_after(double torque) {
   d.pulleys[1].torque = TimeSpeedLaw{};
   d.pulleys[1].kinematic = true;  // locked: prescribed speed 0
   const Scene sc = build_scene(d);
-  const auto s = simulate(sc.model, sc.y0, 0.04, 0.01, "esdirk32", 1e-5);
+  const auto s = simulate(sc.model, sc.drive, sc.y0, 0.04, 0.01, "esdirk32", 1e-5);
   return s.y.back()[sc.model.n_coord() + sc.model.pulley_coord(0)];
 }
 
@@ -383,7 +389,8 @@ TEST(KnownAnswers, CentrifugalTensionUnloadsThePulleys) {
   }
   const Scene sc = build_scene(d);
   const Model& m = sc.model;
-  const auto s = simulate(m, rigid_motion(sc, v), 0.01, 0.01, "esdirk32", 1e-6);
+  const Drive& dr = sc.drive;
+  const auto s = simulate(m, dr, rigid_motion(sc, v), 0.01, 0.01, "esdirk32", 1e-6);
   const Eigen::VectorXd& y = s.y.back();
   const double* q = y.data();
   const double* vel = q + m.n_coord();
@@ -392,7 +399,7 @@ TEST(KnownAnswers, CentrifugalTensionUnloadsThePulleys) {
     T += 0.5 * sde_axial_force(m, q, vel, sde_nearest(m, q, 0.5 * (sp.from + sp.to)));
   for (int j = 0; j < m.n_p(); ++j) {
     Vec2 hub;
-    belt_torque(m, s.t.back(), q, vel, j, &hub);
+    belt_torque(m, dr, s.t.back(), q, vel, j, &hub);
     const double expected = 2 * (T - rho * v * v);
     EXPECT_NEAR(hub.norm(), expected, 0.01 * expected) << m.pulleys[j].name << ", span tension " << T << " N";
   }
@@ -420,7 +427,8 @@ TEST(KnownAnswers, CreepSpeedLossMatchesTheTensionDifference) {
   d.pulleys[1].torque.per_speed = -1.5;
   const Scene sc = build_scene(d);
   const Model& m = sc.model;
-  const auto s = simulate(m, rigid_motion(sc, v), 0.5, 0.005, "esdirk32", 1e-6);
+  const Drive& dr = sc.drive;
+  const auto s = simulate(m, dr, rigid_motion(sc, v), 0.5, 0.005, "esdirk32", 1e-6);
   auto span_tension = [&](const Eigen::VectorXd& y, const Route::Span& sp) {
     return sde_axial_force(m, y.data(), y.data() + m.n_coord(), sde_nearest(m, y.data(), 0.5 * (sp.from + sp.to)));
   };

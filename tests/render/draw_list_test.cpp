@@ -158,13 +158,13 @@ TEST_F(Fixture, WetAndSlippingElementsAreMarked) {
   const Model& m = sc.model;
   // the marks are the gross-slip arcs of the one criterion (model/observables.hpp)
   Observation o;
-  observe(m, sc.senses(), 0.1, y.data(), o);
+  observe(m, sc.drive, sc.senses(), 0.1, y.data(), o);
   int wet = 0, slipping = 0, off = 0;
   for (int i = 0; i < m.n_el(); ++i) {
     const ElementDraw& el = dl.elements[i];
-    EXPECT_EQ(el.wet, m.mu[i] < 0.5);
+    EXPECT_EQ(el.wet, sc.drive.mu[i] < 0.5);
     wet += el.wet;
-    const ElementContact c = element_contact(m, 0.1, y.data(), y.data() + m.n_coord(), i);
+    const ElementContact c = element_contact(m, sc.drive, 0.1, y.data(), y.data() + m.n_coord(), i);
     EXPECT_EQ(el.slipping, o.elements[i].state == ContactState::slip) << i;
     slipping += el.slipping;
     if (c.pulley < 0) {
@@ -179,11 +179,11 @@ TEST_F(Fixture, WetAndSlippingElementsAreMarked) {
   EXPECT_GT(off, 10);
 }
 
-// run events change μ while running: the frame shows the model it is given, not the scene's
-TEST_F(Fixture, WetMarksFollowTheModelAsItIsNow) {
+// run events change μ while running: the frame shows the drive it is given, not the scene's
+TEST_F(Fixture, WetMarksFollowTheDriveAsItIsNow) {
   const Scene& sc = test::moving_scene(presets::paper_dry());
   const Eigen::VectorXd y = sc.y0;
-  Model now = sc.model;
+  Drive now = sc.drive;
   for (int i = 0; i < 10; ++i) now.mu[i] = 0.2;
   FrameSettings f = fs();
   f.quantity = FrameQuantity::mu;
@@ -207,7 +207,7 @@ TEST_F(Fixture, SignedQuantitiesUseTheDivergingMapWithTheSignAlongTravel) {
   const Model& m = sc.model;
   double on_driver = 0, on_driven = 0;
   for (int i = 0; i < m.n_el(); ++i) {
-    const ElementContact c = element_contact(m, 0, y.data(), y.data() + m.n_coord(), i);
+    const ElementContact c = element_contact(m, sc.drive, 0, y.data(), y.data() + m.n_coord(), i);
     if (c.pulley == 0) on_driver += slip[i];
     if (c.pulley == 1) on_driven += slip[i];
   }

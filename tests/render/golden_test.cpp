@@ -184,7 +184,7 @@ TEST_F(Golden, LiveShowAndPlot) {
   sim.set_mu(mu, "wet", "golden");
   sim.run_to(0.02);
   FrameSettings fs = settings(FrameQuantity::mu);
-  render_snapshot(sim.scene(), fs, sim.now(), sim.state().data(), sim.model(), (out / "show.png").string(),
+  render_snapshot(sim.scene(), fs, sim.now(), sim.state().data(), sim.drive(), (out / "show.png").string(),
                   &sim.observation());
   ctx_->make_current();  // the snapshot made a context of its own
   expect_golden("live_show", read_png((out / "show.png").string()));

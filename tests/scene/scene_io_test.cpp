@@ -86,9 +86,6 @@ void expect_same(const Model& a, const Model& b) {
     EXPECT_SAME(p.radius, q.radius);
     EXPECT_SAME(p.inertia, q.inertia);
     EXPECT_EQ(p.wrap, q.wrap);
-    EXPECT_EQ(p.kinematic, q.kinematic);
-    expect_same(p.torque, q.torque);
-    expect_same(p.speed, q.speed);
   }
   EXPECT_EQ(a.belt.n, b.belt.n);
   EXPECT_SAME(a.belt.pitch, b.belt.pitch);
@@ -107,13 +104,24 @@ void expect_same(const Model& a, const Model& b) {
   EXPECT_SAME(a.contact.p_max, b.contact.p_max);
   EXPECT_SAME(a.friction.dv, b.friction.dv);
   EXPECT_SAME(a.gravity, b.gravity);
-  expect_same(a.mu, b.mu, "mu");
   EXPECT_EQ(a.track_energy, b.track_energy);
+}
+
+void expect_same(const Drive& a, const Drive& b) {
+  ASSERT_EQ(a.pulleys.size(), b.pulleys.size());
+  for (size_t j = 0; j < a.pulleys.size(); ++j) {
+    const PulleyDrive &p = a.pulleys[j], &q = b.pulleys[j];
+    EXPECT_EQ(p.kinematic, q.kinematic);
+    expect_same(p.torque, q.torque);
+    expect_same(p.speed, q.speed);
+  }
+  expect_same(a.mu, b.mu, "mu");
   EXPECT_SAME(a.restart_time, b.restart_time);
 }
 
 void expect_same(const Scene& a, const Scene& b) {
   expect_same(a.model, b.model);
+  expect_same(a.drive, b.drive);
   expect_same(a.y0, b.y0, "y0");
   ASSERT_EQ(a.route.spans.size(), b.route.spans.size());
   for (size_t k = 0; k < a.route.spans.size(); ++k) {
@@ -201,8 +209,8 @@ TEST(SceneIo, DryScene) {
 TEST(SceneIo, AutomotiveScene) {
   const Scene& sc = automotive();
   ASSERT_EQ(sc.model.pulleys[1].wrap, WrapSide::back);
-  ASSERT_TRUE(sc.model.pulleys[2].kinematic);
-  ASSERT_EQ(sc.model.pulleys[2].speed.t.size(), 3u);
+  ASSERT_TRUE(sc.drive.pulleys[2].kinematic);
+  ASSERT_EQ(sc.drive.pulleys[2].speed.t.size(), 3u);
   ASSERT_EQ(sc.sites[0].meets.size(), 4u);
   expect_same(sc, round_trip(sc));
 }
@@ -215,7 +223,7 @@ TEST(SceneIo, SpecialValues) {
   sc.y0[1] = std::numeric_limits<double>::denorm_min();
   sc.y0[2] = -std::numeric_limits<double>::infinity();
   sc.y0[3] = std::numeric_limits<double>::max();
-  sc.model.pulleys[0].torque.constant = std::numeric_limits<double>::infinity();
+  sc.drive.pulleys[0].torque.constant = std::numeric_limits<double>::infinity();
   sc.sites[0].pulley = "a name\nwith \\ \"odd\" # characters";
   sc.reading = StiffnessReading::per_sde;
   const Scene back = round_trip(sc);
@@ -225,29 +233,32 @@ TEST(SceneIo, SpecialValues) {
   EXPECT_TRUE(std::signbit(back.y0[0]));
 }
 
-TEST(SceneIo, ModelLawVectorsInOneStream) {
+TEST(SceneIo, ModelDriveLawVectorsInOneStream) {
   const Scene& sc = automotive();
-  Model m = sc.model;
-  m.mu[3] = 0.123456789;
+  const Model& m = sc.model;
+  Drive d = sc.drive;
+  d.mu[3] = 0.123456789;
   const std::vector<double> v = {1.0 / 3, -0.0, 1e-310};
   // every kind of law term, with values that need all 17 digits
-  TimeSpeedLaw& law = m.pulleys[2].speed;
+  TimeSpeedLaw& law = d.pulleys[2].speed;
   law.omega = {0.0, 1.0 / 3};
   law.omega_value = {2.0 / 3, -0.0};
   law.ramps = {{0.1, 0.3, 1.0 / 7, -2.0, true}, {0.2, 0.2, 0.0, 5e-300, false}};
   law.sines = {{1.0, 1.0 / 9, 50.0, M_PI}};
   law.harmonics = {{0.5, 1.0 / 11, -1.0, 83.77580409572781}};
-  m.restart_time = 0.2;
+  d.restart_time = 0.2;
   std::stringstream s;
   s.imbue(std::locale::classic());
   s << std::hex << std::setw(12);  // the writers do not depend on the caller's flags...
   write_model(s, m);
-  write_law(s, m.pulleys[2].speed, "alternator.speed");
+  write_drive(s, d);
+  write_law(s, d.pulleys[2].speed, "alternator.speed");
   write_vector(s, sc.y0, "y");
   write_vector(s, v);
   EXPECT_TRUE(s.flags() & std::ios_base::hex);  // ...and leave them as they were
   expect_same(m, read_model(s));
-  expect_same(m.pulleys[2].speed, read_law(s, "alternator.speed"));
+  expect_same(d, read_drive(s));
+  expect_same(d.pulleys[2].speed, read_law(s, "alternator.speed"));
   expect_same(sc.y0, read_vector(s, "y"), "y");
   expect_same(v, read_std_vector(s), "vector");
   EXPECT_NE(error_of(s.str(), [](std::istream& in) { read_law(in, "law"); }).find("expected 'law.constant'"),

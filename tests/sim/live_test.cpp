@@ -133,7 +133,7 @@ TEST(Live, ChangeAtAPauseAppliesFromThen) {
     std::vector<double> mu(s.model().n_el(), std::nan(""));
     for (int i = 0; i < 20; ++i) mu[i] = 0.2;
     s.set_mu(mu, "wet", "test");
-    EXPECT_EQ(s.model().mu[0], 0.2);
+    EXPECT_EQ(s.drive().mu[0], 0.2);
     s.set_torque(0, constant_law(-30.0), "-30");
     s.run_to(0.04);
   }
@@ -251,11 +251,11 @@ TEST(Live, CheckpointResumesBitForBit) {
   {
     auto s = Simulation::resume(ck, {});
     EXPECT_EQ(s->now(), 0.0137);
-    EXPECT_EQ(s->model().mu[12], 0.3);
-    EXPECT_EQ(s->model().pulleys[0].torque.constant, -20.0);
+    EXPECT_EQ(s->drive().mu[12], 0.3);
+    EXPECT_EQ(s->drive().pulleys[0].torque.constant, -20.0);
     s->run_to(0.03);
     y_parts = s->state();
-    EXPECT_EQ(s->model().mu[12], 0.8);  // the pending event ran
+    EXPECT_EQ(s->drive().mu[12], 0.8);  // the pending event ran
   }
   EXPECT_TRUE(same_bits(y_whole, y_parts));
   // the interval means and the snapshots continue too

@@ -1,13 +1,13 @@
-#include "model/model.hpp"
+#include "model/drive.hpp"
 
 #include <algorithm>
 
 namespace beltsim {
 
 namespace {
-std::vector<double> sorted_union(const Model& m, std::vector<double> (TimeSpeedLaw::*times)() const) {
+std::vector<double> sorted_union(const Drive& d, std::vector<double> (TimeSpeedLaw::*times)() const) {
   std::vector<double> out;
-  for (const Pulley& p : m.pulleys)
+  for (const PulleyDrive& p : d.pulleys)
     for (const TimeSpeedLaw* law : {&p.torque, &p.speed}) {
       const std::vector<double> k = (law->*times)();
       out.insert(out.end(), k.begin(), k.end());
@@ -18,7 +18,7 @@ std::vector<double> sorted_union(const Model& m, std::vector<double> (TimeSpeedL
 }
 }  // namespace
 
-std::vector<double> Model::breakpoints() const { return sorted_union(*this, &TimeSpeedLaw::kinks); }
-std::vector<double> Model::jumps() const { return sorted_union(*this, &TimeSpeedLaw::jumps); }
+std::vector<double> Drive::breakpoints() const { return sorted_union(*this, &TimeSpeedLaw::kinks); }
+std::vector<double> Drive::jumps() const { return sorted_union(*this, &TimeSpeedLaw::jumps); }
 
 }  // namespace beltsim
