@@ -75,8 +75,7 @@ double close_loop(const Route& path, int n, const BeltDef& bd, const TensionAtRe
                   const std::atomic<bool>* stop);
 
 // 7. the state at the placement: the elements at rest at arc lengths s along path, each rod along
-// the tangent (angles continuous along the belt), the pulleys at rest (kinematic ones at their
-// prescribed speed at t = 0)
+// the tangent (angles continuous along the belt), the pulleys at rest
 Eigen::VectorXd place(const Model& m, const Route& path, const std::vector<double>& s);
 
 // 8. where each element starts (index, centre, s, the pulley it rides, where the belt meets and
@@ -85,6 +84,10 @@ std::vector<ElementSite> element_sites(const Route& path, const std::vector<std:
                                        const Eigen::VectorXd& y0, const std::vector<double>& s);
 // μ of each element: belt.mu, mu_per_element or mu_at(site) (checked >= 0)
 std::vector<double> element_mu(const BeltDef& bd, const std::vector<ElementSite>& sites);
+
+// the kinematic pulleys' speeds in y: their prescribed speed at t = 0 (after a step at 0); after
+// element_mu, so that Lua laws are called in the order the scene lists them
+void set_start_speeds(const Model& m, Eigen::VectorXd& y);
 
 // 9. the static state. static_solve: Newton iterations with a damped step on the elements' static
 // equations of m (pulleys held), from y; returns the final max |acceleration| [m/s²]. max_move > 0

@@ -60,6 +60,14 @@ int Scene::element_nearest(const Vec2& point) const {
   return best;
 }
 
+int span_sde(const Model& m, const Route::Span& sp, const double* y) {
+  return sde_nearest(m, y, 0.5 * (sp.from + sp.to));
+}
+
+double span_force(const Model& m, const Route::Span& sp, const double* y) {
+  return sde_axial_force(m, y, y + m.n_coord(), span_sde(m, sp, y));
+}
+
 namespace build {
 
 namespace {
@@ -286,9 +294,12 @@ Eigen::VectorXd place(const Model& m, const Route& path, const std::vector<doubl
     y[3 * i + 2] = phi;
     phi_prev = phi;
   }
+  return y;
+}
+
+void set_start_speeds(const Model& m, Eigen::VectorXd& y) {
   for (int j = 0; j < m.n_p(); ++j)
     if (m.pulleys[j].kinematic) y[m.n_coord() + m.pulley_coord(j)] = m.pulleys[j].speed.eval(0.0, 0.0, true);  // a run starts after a step at 0
-  return y;
 }
 
 std::vector<ElementSite> element_sites(const Route& path, const std::vector<std::string>& names,
@@ -386,9 +397,8 @@ double span_tension(const Model& m, const Route& route, const Eigen::VectorXd& y
   span_sde.clear();
   double tension = 0;
   for (const Route::Span& sp : route.spans) {
-    const int i = sde_nearest(m, y.data(), 0.5 * (sp.from + sp.to));
-    span_sde.push_back(i);
-    tension += sde_axial_force(m, y.data(), y.data() + m.n_coord(), i);
+    span_sde.push_back(beltsim::span_sde(m, sp, y.data()));
+    tension += span_force(m, sp, y.data());
   }
   return tension / static_cast<double>(route.spans.size());
 }
@@ -520,6 +530,7 @@ Scene build_scene(const SceneDef& d, const std::atomic<bool>* stop) {
   sc.y0 = build::place(m, path, s);
   sc.sites = build::element_sites(path, order.names, sc.y0, s);
   m.mu = build::element_mu(bd, sc.sites);
+  build::set_start_speeds(m, sc.y0);
 
   const std::string lost = build::settle(sc, bd, tension.rest > 0, stop);
   build::check_finite(sc, d, tension.tension);
