@@ -23,7 +23,6 @@
 
 namespace beltsim {
 
-std::vector<std::string> cvode_names() { return {"cvode", "cvode-fd"}; }
 bool is_cvode(const std::string& name) { return name == "cvode" || name == "cvode-fd"; }
 
 namespace {

@@ -49,7 +49,6 @@ struct CvodeSettings {
   double resolve = 1;
 };
 
-std::vector<std::string> cvode_names();  // {"cvode", "cvode-fd"}
 bool is_cvode(const std::string& name);
 
 DriveResult drive_cvode(OdeSystem& sys, const std::string& name, const Tolerances& tol, const DriveOptions& opt,

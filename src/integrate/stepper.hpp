@@ -30,8 +30,9 @@ class Stepper {
 };
 
 // "esdirk32" (L-stable ESDIRK 3(2) with semi-smooth Newton, Kennedy & Carpenter 2003),
-// "rkf45" (the paper's Runge–Kutta–Fehlberg 4(5)) or "ros34pw2" (L-stable Rosenbrock–W 3(2),
-// Rang & Angermann 2005); throws std::invalid_argument listing the valid names otherwise
+// "trbdf2" (TR-BDF2 as an ESDIRK, Hosea & Shampine 1996), "rkf45" (the paper's
+// Runge–Kutta–Fehlberg 4(5)) or "ros34pw2" (L-stable Rosenbrock–W 3(2), Rang & Angermann 2005);
+// throws std::invalid_argument listing the valid names otherwise
 std::unique_ptr<Stepper> make_stepper(const std::string& name);
 std::vector<std::string> stepper_names();
 // every integrator a run accepts: the steppers and the CVODE peers ("cvode", "cvode-fd",

@@ -71,7 +71,6 @@ struct TimeSpeedLaw {
   std::shared_ptr<const LawFunction> fn;
 
   bool is_zero() const;
-  bool depends_on_speed() const { return per_speed != 0 || !omega.empty() || fn; }
   // the value at (t, Ω); at a step's own time the value after the jump when `after_jump`
   double eval(double time, double omega_now, bool after_jump = false) const;
   // ∂/∂Ω (analytic; central differences for fn)

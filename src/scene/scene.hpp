@@ -33,7 +33,8 @@ struct PulleyDef {
 
 // How the belt's stiffness and damping were given (DESIGN §2).
 enum class StiffnessReading {
-  rigidity,  // EA [N], EI [N·m²], axial damping per length [N·s]; per SDE: /pitch (bending damping as is)
+  rigidity,  // EA [N], EI [N·m²], axial damping per length [N·s]; per SDE: /l0, the rest length of an
+             // element (bending damping as is, bending viscosity /l0)
   per_sde    // k [N/m], c [N·s/m], k_t [N·m/rad], c_t [N·m·s/rad] of each SDE as given
 };
 
@@ -133,6 +134,11 @@ struct Scene {
   int find_span(const std::string& a, const std::string& b) const;
   int element_nearest(const Vec2& point) const;
 };
+
+// The SDE nearest the midpoint of route span sp in the state y (positions, then velocities), and
+// its axial force [N]: the span's tension as the build, the runs and the outputs read it.
+int span_sde(const Model& m, const Route::Span& sp, const double* y);
+double span_force(const Model& m, const Route::Span& sp, const double* y);
 
 // A scene build stopped by its stop flag (Ctrl-C, SIGTERM).
 struct BuildInterrupted : std::runtime_error {

@@ -1,6 +1,6 @@
 // Lua API of beltsim (documented in README.md, "Lua API"): the global table `beltsim` with the
-// scene bindings (lua_scene.cpp), the laws' helpers (lua_law.cpp), the live simulation's
-// (lua_sim.cpp) and beltsim.args, the script parameters of the command line (--set KEY=VALUE).
+// scene bindings (lua_scene.cpp; its runs, lua_run.cpp), the laws' helpers (lua_law.cpp), the
+// live simulation's (lua_sim.cpp) and beltsim.args, the script parameters of the command line (--set KEY=VALUE).
 //
 // beltsim.args is an empty table whose metatable hands out the values and notes every key read,
 // given or not: after the script, a --set key it never read is reported with the keys it did

@@ -20,7 +20,7 @@
 #include "script/limits.hpp"
 #include "script/lua_check.hpp"
 #include "script/lua_law.hpp"
-#include "script/lua_scene.hpp"
+#include "script/lua_run.hpp"
 #include "script/progress.hpp"
 #include "script/sandbox.hpp"
 

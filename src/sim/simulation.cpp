@@ -371,9 +371,7 @@ const std::vector<double>& Simulation::step_values(StepEnd& c, double t, const E
     c.v.push_back(p.torque);
     c.v.push_back(p.belt_torque);
   }
-  const double* q = y.data();
-  for (const Route::Span& sp : scene_.route.spans)
-    c.v.push_back(sde_axial_force(model_, q, q + model_.n_coord(), sde_nearest(model_, q, 0.5 * (sp.from + sp.to))));
+  for (const Route::Span& sp : scene_.route.spans) c.v.push_back(span_force(model_, sp, y.data()));
   c.t = t, c.serial = serial_;
   return c.v;
 }
@@ -468,9 +466,7 @@ ElementObs Simulation::element(int i) const { return observation().elements.at(i
 PulleyObs Simulation::pulley(int j) const { return observation().pulleys.at(j); }
 
 double Simulation::span_tension(int k) const {
-  const Route::Span& sp = scene_.route.spans[k];
-  const double* q = state().data();
-  return sde_axial_force(model_, q, q + model_.n_coord(), sde_nearest(model_, q, 0.5 * (sp.from + sp.to)));
+  return span_force(model_, scene_.route.spans[k], state().data());
 }
 
 Energy Simulation::energy() const { return beltsim::energy(model_, drive_, now(), state().data()); }

@@ -1,0 +1,412 @@
+// Lua bindings of a scene's runs (see lua_run.hpp): the settings of scene:run{} and
+// scene:start{} read from their tables (every key checked, as in lua_scene.cpp), the μ events and
+// frames among them, and the run's results handed back to the script.
+#include "script/lua_run.hpp"
+
+#include <cmath>
+#include <cstdio>
+#include <memory>
+#include <optional>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "io/suggest.hpp"
+#include "render/recorder.hpp"
+#include "script/context.hpp"
+#include "script/lua_api.hpp"
+#include "script/lua_scene.hpp"
+#include "script/lua_sim.hpp"
+#include "script/progress.hpp"
+#include "script/sandbox.hpp"
+
+namespace beltsim::script {
+
+std::vector<double> mu_over(lua_State* L, int mu_idx, const Scene& sc, std::optional<double> from,
+                            std::optional<double> to, const std::string& what) {
+  mu_idx = lua_absindex(L, mu_idx);
+  const double length = sc.sites.empty() ? 0 : sc.sites[0].length;
+  if (from.has_value() != to.has_value()) fail(L, what + ": give both from and to (m along the belt), or neither");
+  for (const auto& [v, name] : {std::pair{from, "from"}, std::pair{to, "to"}})
+    if (v && !(*v >= 0 && *v <= length)) {
+      std::ostringstream m;
+      m << what << "." << name << ": must be in [0, " << length << "] m, the belt's length (got " << *v << " m)";
+      fail(L, m.str());
+    }
+  if (lua_type(L, mu_idx) != LUA_TNUMBER && !lua_isfunction(L, mu_idx))
+    fail(L, what + ".mu: number or function(site) expected, got " + type_name(L, mu_idx));
+  std::vector<double> out(sc.sites.size(), std::nan(""));
+  for (const ElementSite& site : sc.sites) {
+    if (from) {
+      const bool in = *from <= *to ? (site.s >= *from && site.s <= *to) : (site.s >= *from || site.s <= *to);
+      if (!in) continue;
+    }
+    double mu = 0;
+    if (lua_isfunction(L, mu_idx)) {
+      lua_pushvalue(L, mu_idx);
+      push_site(L, site);
+      lua_call(L, 1, 1);
+      mu = to_number(L, -1, what + ".mu(site) for element " + std::to_string(site.index));
+      lua_pop(L, 1);
+    } else {
+      mu = lua_tonumber(L, mu_idx);
+    }
+    if (!(mu >= 0 && std::isfinite(mu))) {
+      std::ostringstream m;
+      m << what << ".mu: must be >= 0 and finite (got " << mu << " for element " << site.index << ")";
+      fail(L, m.str());
+    }
+    out[site.index] = mu;
+  }
+  return out;
+}
+
+FrameSettings to_frames(lua_State* L, int idx, const std::string& w, const std::vector<std::string>& extra) {
+  idx = lua_absindex(L, idx);
+  require_table(L, idx, w);
+  std::vector<std::string> keys{"fps", "slowdown", "size", "quantity", "range", "levels", "magnify", "view", "png",
+                                "png_every", "video", "t_start"};
+  if (!extra.empty()) keys = extra;  // sim:show: its own list
+  check_keys(L, idx, w, keys);
+  FrameSettings f;
+  if (auto v = opt_number(L, idx, "fps", w)) f.fps = *v;
+  if (auto v = opt_number(L, idx, "slowdown", w)) f.slowdown = *v;
+  if (auto v = opt_number(L, idx, "magnify", w)) f.magnify = *v;
+  if (auto v = opt_number(L, idx, "t_start", w)) f.t_start = *v;
+  if (field(L, idx, "levels")) f.levels = to_integer(L, -1, w + ".levels"), lua_pop(L, 1);
+  if (field(L, idx, "png_every")) f.png_every = to_integer(L, -1, w + ".png_every"), lua_pop(L, 1);
+  auto pair = [&](const char* key, const char* what) -> std::optional<std::pair<double, double>> {
+    if (!field(L, idx, key)) return std::nullopt;
+    if (!lua_istable(L, -1) || lua_rawlen(L, -1) != 2) fail(L, w + "." + key + ": " + what + " expected, got " + type_name(L, -1));
+    double a[2];
+    for (int k = 0; k < 2; ++k) {
+      lua_rawgeti(L, -1, k + 1);
+      a[k] = to_number(L, -1, w + "." + key);
+      lua_pop(L, 1);
+    }
+    lua_pop(L, 1);
+    return std::make_pair(a[0], a[1]);
+  };
+  if (auto s = pair("size", "{width, height} in pixels")) {
+    // checked before the cast to int (a huge value would not fit)
+    if (s->first != std::floor(s->first) || s->second != std::floor(s->second) || !(s->first >= 16 && s->first <= 8192) ||
+        !(s->second >= 16 && s->second <= 8192)) {
+      std::ostringstream m;
+      m << w << ".size: whole numbers of pixels in 16..8192 expected (got {" << s->first << ", " << s->second << "})";
+      fail(L, m.str());
+    }
+    f.width = static_cast<int>(s->first), f.height = static_cast<int>(s->second);
+  }
+  if (auto r = pair("range", "{lo, hi} in the quantity's unit")) f.range_lo = r->first, f.range_hi = r->second;
+  if (auto q = opt_string(L, idx, "quantity", w)) {
+    std::vector<std::string> names;
+    bool found = false;
+    for (const auto& i : frame_quantities()) {
+      names.push_back(i.key);
+      if (*q == i.key) f.quantity = i.q, found = true;
+    }
+    if (!found) fail(L, w + ".quantity: unknown quantity '" + *q + "'" + did_you_mean(*q, names) + "; one of: " + join(names));
+  }
+  if (field(L, idx, "view")) {
+    require_table(L, -1, w + ".view");
+    check_keys(L, -1, w + ".view", {"centre", "center", "width"});
+    for (const char* k : {"centre", "center"})
+      if (field(L, -1, k)) f.view_centre = to_vec2(L, -1, w + ".view." + k), lua_pop(L, 1);
+    if (auto v = opt_number(L, lua_gettop(L), "width", w + ".view")) f.view_width = *v;
+    lua_pop(L, 1);
+  }
+  // png = true: <out>/frames/; a string: that folder; video = true: <out>/frames.mp4
+  auto output = [&](const char* key, const char* dflt) -> std::string {
+    if (!field(L, idx, key)) return "";
+    std::string r;
+    if (lua_type(L, -1) == LUA_TBOOLEAN)
+      r = lua_toboolean(L, -1) ? dflt : "";
+    else if (lua_type(L, -1) == LUA_TSTRING)
+      r = lua_tostring(L, -1);
+    else
+      fail(L, w + "." + key + ": true, false or a path expected, got " + type_name(L, -1));
+    lua_pop(L, 1);
+    return r;
+  };
+  f.png_dir = output("png", "frames");
+  if (!extra.empty()) f.png_dir = ".";  // sim:show: one picture, written by its caller
+  f.video_path = output("video", "frames.mp4");
+  std::string error;
+  try {
+    validate(f);
+  } catch (const std::invalid_argument& e) {
+    error = w.substr(0, w.rfind('.') == std::string::npos ? 0 : w.rfind('.') + 1) + e.what();
+  }
+  if (!error.empty()) fail(L, error);
+  return f;
+}
+
+namespace {
+
+// run.events: { {t = 0.5, mu = 0.2, from = 0.3, to = 0.6}, {t = 0.8, mu = function(site) ... end} }
+// Each event sets μ at time t on the elements whose start position s (belt coordinate, m, as in
+// belt.mu functions) lies in [from, to] (wrapping round when from > to; the whole belt without
+// them); mu is a number or a function of the element's site.
+std::vector<MuEvent> read_events(lua_State* L, int idx, const Scene& sc) {
+  std::vector<MuEvent> out;
+  require_table(L, idx, "run.events");
+  check_sequence(L, idx, "run.events");
+  const lua_Integer n = static_cast<lua_Integer>(lua_rawlen(L, idx));
+  for (lua_Integer k = 1; k <= n; ++k) {
+    lua_geti(L, idx, k);
+    const int e = lua_gettop(L);
+    const std::string what = "run.events[" + std::to_string(k) + "]";
+    require_table(L, e, what);
+    check_keys(L, e, what, {"t", "mu", "from", "to"});
+    MuEvent ev;
+    const auto t = opt_number(L, e, "t", what);
+    if (!t) fail(L, what + ".t: the event's time is missing");
+    if (!(*t > 0 && std::isfinite(*t))) fail(L, what + ".t: must be > 0 and finite (got " + std::to_string(*t) + " s)");
+    ev.t = *t;
+    const auto from = opt_number(L, e, "from", what), to = opt_number(L, e, "to", what);
+    if (!field(L, e, "mu")) fail(L, what + ".mu: the new friction coefficient is missing");
+    ev.mu = mu_over(L, lua_gettop(L), sc, from, to, what);
+    std::ostringstream text;
+    text << "scheduled: mu = ";
+    if (lua_type(L, -1) == LUA_TNUMBER)
+      text << lua_tonumber(L, -1);
+    else
+      text << "function";
+    if (from) text << " on s in [" << *from << ", " << *to << "] m";
+    ev.what = "event";
+    ev.text = text.str();
+    lua_pop(L, 2);  // mu, the event table
+    out.push_back(std::move(ev));
+  }
+  return out;
+}
+
+// probe = 12 (an element), {x, y} (a point in metres: the element that starts nearest it), or a
+// list of these: { 12, 40, {0.29, 0.1} }. A table of two numbers is a point unless both are
+// written as whole numbers without a decimal point (Lua integers): { 12, 40 } probes elements 12
+// and 40, { 0.0, 0.1 } is a point.
+std::vector<int> read_probes(lua_State* L, int v, const Scene& sc, const std::string& w) {
+  if (!lua_istable(L, v)) return {to_integer(L, v, w)};
+  auto is_int = [&](int k) {
+    lua_rawgeti(L, v, k);
+    const bool r = lua_isinteger(L, -1);
+    lua_pop(L, 1);
+    return r;
+  };
+  const size_t n = check_sequence(L, v, w).size();
+  if (n == 0) fail(L, w + ": an element number, a point {x, y} or a list of them expected, got an empty table");
+  if (n == 2 && !(is_int(1) && is_int(2))) {
+    bool numbers = true;
+    for (int k = 1; k <= 2; ++k) {
+      lua_rawgeti(L, v, k);
+      numbers = numbers && lua_type(L, -1) == LUA_TNUMBER;
+      lua_pop(L, 1);
+    }
+    if (numbers) return {sc.element_nearest(to_vec2(L, v, w))};
+  }
+  std::vector<int> out;
+  for (size_t k = 1; k <= n; ++k) {
+    lua_rawgeti(L, v, static_cast<lua_Integer>(k));
+    const std::string wk = w + "[" + std::to_string(k) + "]";
+    const int i = lua_istable(L, -1) ? sc.element_nearest(to_vec2(L, -1, wk)) : to_integer(L, -1, wk);
+    lua_pop(L, 1);
+    for (size_t j = 0; j < out.size(); ++j)
+      if (out[j] == i)
+        fail(L, wk + ": element " + std::to_string(i) + " is probed already (entry " + std::to_string(j + 1) +
+                    "); a point is written with decimals, e.g. {0.0, 0.1}");
+    out.push_back(i);
+  }
+  return out;
+}
+
+// the keys of scene:run{} and scene:start{} with their readers (one table: the key check and
+// the reading cannot drift apart)
+struct RunKey {
+  const char* key;
+  bool batch_only;
+  void (*read)(lua_State* L, int v, const Scene& sc, RunSettings& rs, bool& progress, const std::string& w);
+};
+const RunKey kRunKeys[] = {
+    {"t_end", true, [](lua_State* L, int v, const Scene&, RunSettings& rs, bool&, const std::string& w) {
+       rs.t_end = to_number(L, v, w + ".t_end");
+     }},
+    {"integrator", false, [](lua_State* L, int v, const Scene&, RunSettings& rs, bool&, const std::string& w) {
+       rs.integrator = to_string(L, v, w + ".integrator");
+     }},
+    {"rtol", false, [](lua_State* L, int v, const Scene&, RunSettings& rs, bool&, const std::string& w) {
+       rs.rtol = to_number(L, v, w + ".rtol");
+     }},
+    {"atol", false, [](lua_State* L, int v, const Scene&, RunSettings& rs, bool&, const std::string& w) {
+       rs.atol = to_number(L, v, w + ".atol");
+       if (!(rs.atol > 0 && std::isfinite(rs.atol)))
+         fail(L, w + ".atol: must be > 0 and finite (leave it out to mean rtol) (got " + std::to_string(rs.atol) + ")");
+     }},
+    {"sample", false, [](lua_State* L, int v, const Scene&, RunSettings& rs, bool&, const std::string& w) {
+       rs.sample_dt = to_number(L, v, w + ".sample");
+     }},
+    {"out", false, [](lua_State* L, int v, const Scene&, RunSettings& rs, bool&, const std::string& w) {
+       rs.out_dir = to_string(L, v, w + ".out");
+     }},
+    {"probe", false, [](lua_State* L, int v, const Scene& sc, RunSettings& rs, bool&, const std::string& w) {
+       rs.probes = read_probes(L, v, sc, w + ".probe");
+     }},
+    {"snapshots", false, [](lua_State* L, int v, const Scene&, RunSettings& rs, bool&, const std::string& w) {
+       const std::string ww = w + ".snapshots";
+       require_table(L, v, ww);
+       check_keys(L, v, ww, {"times", "every"});
+       if (field(L, v, "every")) {
+         rs.snapshot_every = to_number(L, -1, ww + ".every");
+         if (!(rs.snapshot_every > 0 && std::isfinite(rs.snapshot_every)))
+           fail(L, ww + ".every: must be > 0 s and finite (got " + std::to_string(rs.snapshot_every) + " s)");
+         lua_pop(L, 1);
+       }
+       if (field(L, v, "times")) {
+         const int tt = lua_gettop(L);
+         require_table(L, tt, ww + ".times");
+         const size_t n = check_sequence(L, tt, ww + ".times").size();
+         for (size_t k = 1; k <= n; ++k) {
+           lua_rawgeti(L, tt, static_cast<lua_Integer>(k));
+           rs.snapshot_times.push_back(to_number(L, -1, ww + ".times[" + std::to_string(k) + "]"));
+           lua_pop(L, 1);
+         }
+         lua_pop(L, 1);
+       }
+       if (rs.snapshot_every == 0 && rs.snapshot_times.empty())
+         fail(L, ww + ": give times = {t1, t2, ...} [s] and/or every = dt [s]");
+     }},
+    {"progress", false, [](lua_State* L, int v, const Scene&, RunSettings&, bool& progress, const std::string& w) {
+       if (lua_type(L, v) != LUA_TBOOLEAN) fail(L, w + ".progress: boolean expected, got " + type_name(L, v));
+       progress = lua_toboolean(L, v);
+     }},
+    {"events", true, [](lua_State* L, int v, const Scene& sc, RunSettings& rs, bool&, const std::string&) {
+       rs.mu_events = read_events(L, v, sc);
+     }},
+    {"max_wall", false, [](lua_State* L, int v, const Scene&, RunSettings& rs, bool&, const std::string& w) {
+       rs.wall_limit = to_number(L, v, w + ".max_wall");
+       if (!(rs.wall_limit > 0 && std::isfinite(rs.wall_limit)))
+         fail(L, w + ".max_wall: must be > 0 s and finite (got " + std::to_string(rs.wall_limit) + ")");
+     }},
+    {"allow_large", false, [](lua_State* L, int v, const Scene&, RunSettings& rs, bool&, const std::string& w) {
+       if (lua_type(L, v) != LUA_TBOOLEAN) fail(L, w + ".allow_large: boolean expected, got " + type_name(L, v));
+       rs.allow_large = lua_toboolean(L, v);
+     }},
+    {"frames", false, [](lua_State* L, int v, const Scene&, RunSettings& rs, bool&, const std::string& w) {
+       if (!(lua_type(L, v) == LUA_TBOOLEAN && !lua_toboolean(L, v))) rs.frames = to_frames(L, v, w + ".frames");
+     }},
+};
+
+}  // namespace
+
+RunSettings read_run_settings(lua_State* L, int idx, const Scene& sc, Context* ctx, bool batch, bool* progress) {
+  const std::string w = batch ? "run" : "start";
+  RunSettings rs;
+  rs.out_dir = ctx->default_out;
+  bool pr = true;
+  if (!lua_isnoneornil(L, idx)) {
+    idx = lua_absindex(L, idx);
+    require_table(L, idx, w);
+    std::vector<std::string> keys;
+    for (const RunKey& k : kRunKeys)
+      if (batch || !k.batch_only) keys.push_back(k.key);
+    check_keys(L, idx, w, keys);
+    for (const RunKey& k : kRunKeys) {
+      if ((!batch && k.batch_only) || !field(L, idx, k.key)) continue;
+      k.read(L, lua_gettop(L), sc, rs, pr, w);
+      lua_pop(L, 1);
+    }
+  }
+  const Overrides& o = ctx->overrides;
+  if (o.no_frames) rs.frames.reset();
+  rs.frame_factory = render::make_frame_recorder;
+  if (o.out) rs.out_dir = *o.out;
+  if (o.t_end) rs.t_end = *o.t_end;
+  if (o.integrator) rs.integrator = *o.integrator;
+  if (o.rtol) rs.rtol = *o.rtol;
+  if (o.max_wall) rs.wall_limit = *o.max_wall;
+  // the files of the run lie where the sandbox lets the script's own files lie
+  if (const std::string r = run_paths_refusal(*ctx, w, rs); !r.empty()) fail(L, r);
+  if (progress) *progress = pr;
+  return rs;
+}
+
+// scene:run{ t_end=, integrator=, rtol=, atol=, sample=, out=, probe=, progress=, events=, frames= } -> result
+// = scene:start{...}, sim:run_to(t_end), sim:close()
+int l_scene_run(lua_State* L) {
+  const Scene* sc = check_scene(L, 1, "run");
+  check_args(L, "scene:run", {{"{t_end, integrator, ...}", kTable, true}}, 2);
+  auto* ctx = static_cast<Context*>(lua_touserdata(L, lua_upvalueindex(1)));
+  bool progress = true;
+  const RunSettings rs = read_run_settings(L, 2, *sc, ctx, true, &progress);
+  warn_unread_args(*ctx);
+  if (ctx->capture) {
+    ctx->capture->scene = *sc;
+    ctx->capture->settings = rs;
+    ctx->captured = true;
+    lua_pushliteral(L, "scene captured");
+    return lua_error(L);
+  }
+
+  std::string error;
+  RunResult res;
+  try {
+    ProgressLine line(progress);
+    res = run(*sc, rs, ctx->stop, line.callback());
+  } catch (const DivergenceError& e) {
+    error = std::string(e.what()) + " (the samples up to then are in " + rs.out_dir + "/timeseries.csv)";
+  } catch (const std::invalid_argument& e) {
+    error = std::string("run.") + e.what();  // names the key: run.sample, run.frames.t_start, ...
+  } catch (const std::exception& e) {
+    error = e.what();
+  }
+  if (res.over_wall_limit) {
+    // not silent: the outputs are finalised (run() closed them) and the script stops here
+    std::ostringstream m;
+    m.precision(10);
+    m << "run.max_wall: the run passed its wall-time limit of " << rs.wall_limit << " s and stopped at t = "
+      << res.t_reached << " s of t_end = " << rs.t_end << " s (the samples up to then are in " << res.csv_path << ")";
+    error = m.str();
+  }
+  if (!error.empty()) fail(L, error);
+  if (res.interrupted) ctx->interrupted = true;
+  if (!res.warning_summary.empty()) std::fprintf(stderr, "beltsim: %s\n", res.warning_summary.c_str());
+
+  lua_newtable(L);
+  lua_pushnumber(L, res.t_reached), lua_setfield(L, -2, "t");
+  lua_pushboolean(L, res.interrupted), lua_setfield(L, -2, "interrupted");
+  lua_pushnumber(L, res.wall_seconds), lua_setfield(L, -2, "wall");
+  lua_pushinteger(L, res.work.steps), lua_setfield(L, -2, "steps");
+  lua_pushinteger(L, res.work.rejected), lua_setfield(L, -2, "rejected");
+  lua_pushinteger(L, res.work.rhs), lua_setfield(L, -2, "rhs");
+  lua_pushinteger(L, res.work.jacobians), lua_setfield(L, -2, "jacobians");
+  lua_pushinteger(L, res.work.factorizations), lua_setfield(L, -2, "factorizations");
+  lua_pushstring(L, res.csv_path.c_str()), lua_setfield(L, -2, "csv");
+  lua_pushstring(L, res.parameters_path.c_str()), lua_setfield(L, -2, "parameters");
+  lua_pushinteger(L, res.frames), lua_setfield(L, -2, "frames");
+  lua_newtable(L);
+  for (int j = 0; j < sc->model.n_p(); ++j)
+    lua_pushnumber(L, res.omega[j]), lua_setfield(L, -2, sc->model.pulleys[j].name.c_str());
+  lua_setfield(L, -2, "omega");
+  return 1;
+}
+
+// scene:start{ integrator=, rtol=, atol=, sample=, out=, probe=, progress=, frames= } -> sim at t = 0
+int l_scene_start(lua_State* L) {
+  const Scene* sc = check_scene(L, 1, "start");
+  check_args(L, "scene:start", {{"{integrator, rtol, ...}", kTable, true}}, 2);
+  auto* ctx = static_cast<Context*>(lua_touserdata(L, lua_upvalueindex(1)));
+  bool progress = true;
+  const RunSettings rs = read_run_settings(L, 2, *sc, ctx, false, &progress);
+  warn_unread_args(*ctx);
+  std::unique_ptr<Simulation> sim;
+  std::string error;
+  try {
+    sim = std::make_unique<Simulation>(*sc, rs);
+  } catch (const std::exception& e) {
+    error = std::string("start.") + e.what();
+  }
+  if (!error.empty()) fail(L, error);
+  push_simulation(L, std::move(sim), ctx, progress);
+  return 1;
+}
+
+}  // namespace beltsim::script

@@ -1,0 +1,33 @@
+// Lua bindings of a scene's runs: scene:run{} and scene:start{}, the run settings they share (one
+// table of keys and readers), and the readers of μ and frames that the live simulation's methods
+// use too. The C++ classes know nothing of Lua.
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "scene/scene.hpp"
+#include "script/lua_check.hpp"
+#include "sim/simulation.hpp"
+
+namespace beltsim::script {
+
+struct Context;
+
+// μ of each element from the value at mu_idx (a number or function(site)), on the elements whose
+// start position s lies in [from, to] (wrapping round when from > to; every element without
+// them); NaN for the others. Checks the range and every value (>= 0, finite).
+std::vector<double> mu_over(lua_State* L, int mu_idx, const Scene& sc, std::optional<double> from,
+                            std::optional<double> to, const std::string& what);
+// frames = {...} (or the keys of sim:show, where `extra` lists keys read elsewhere)
+FrameSettings to_frames(lua_State* L, int idx, const std::string& where, const std::vector<std::string>& extra = {});
+// the settings of scene:run{} (batch) or scene:start{} (live), command-line overrides applied
+RunSettings read_run_settings(lua_State* L, int idx, const Scene& sc, Context* ctx, bool batch, bool* progress);
+
+// scene:run{...} -> result table; scene:start{...} -> sim at t = 0. Each takes the Context as its
+// first upvalue (open_scene registers them).
+int l_scene_run(lua_State* L);
+int l_scene_start(lua_State* L);
+
+}  // namespace beltsim::script

@@ -1,0 +1,333 @@
+// The stages of build_scene (scene/build.hpp), each on the paper's two-pulley drive, where each
+// has an answer known in closed form.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <string>
+
+#include "scene/build.hpp"
+#include "scene/presets.hpp"
+#include "scene/validate.hpp"
+
+namespace beltsim {
+namespace {
+
+constexpr double kD = 0.29, kR = 0.1;  // the paper's centre distance and pitch radius [m]
+
+// the message of the ParameterError f throws, empty when it throws none
+template <class F>
+std::string error_of(F f) {
+  try {
+    f();
+  } catch (const ParameterError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+struct Stages {
+  SceneDef d = presets::paper_dry();
+  build::RouteOrder order;
+  Route route;
+  Belt belt;
+  void run_route() {
+    order = build::route_order(d, build::make_pulleys(d));
+    route = make_route(order.circles, d.belt.loop_sense, order.names);
+    belt.n = d.belt.elements;
+    belt.pitch = route.length / belt.n;
+    belt.e_tra = d.belt.e_tra;
+    belt.e_tor = d.belt.e_tor;
+    build::set_rest_length(belt, d.belt, belt.pitch);
+  }
+};
+
+TEST(BuildStages, PulleysKeepTheirDefinitionsInOrder) {
+  SceneDef d = presets::paper_dry();
+  d.pulleys[1].kinematic = true;
+  d.pulleys[1].speed.constant = 5;
+  d.pulleys[1].torque = TimeSpeedLaw{};
+  const std::vector<Pulley> p = build::make_pulleys(d);
+  ASSERT_EQ(p.size(), 2u);
+  EXPECT_EQ(p[0].name, "driver");
+  EXPECT_EQ(p[1].name, "driven");
+  EXPECT_EQ(p[1].centre, Vec2(kD, 0));
+  EXPECT_EQ(p[0].radius, kR);
+  EXPECT_EQ(p[0].inertia, d.pulleys[0].inertia);
+  const Drive dr = build::make_drive(d);
+  ASSERT_EQ(dr.pulleys.size(), 2u);
+  EXPECT_FALSE(dr.kinematic(0));
+  EXPECT_TRUE(dr.kinematic(1));
+  EXPECT_EQ(dr.pulleys[1].speed.constant, 5);
+  EXPECT_EQ(dr.pulleys[0].torque.ramps.size(), d.pulleys[0].torque.ramps.size());
+}
+
+// belt.route reorders the circles; an inside pulley turns with the loop, a back-side one against it
+TEST(BuildStages, RouteOrderFollowsBeltRouteAndWrapSides) {
+  SceneDef d = presets::automotive_wet();
+  d.belt.route = {"pump", "crankshaft", "tensioner", "alternator"};
+  const build::RouteOrder o = build::route_order(d, build::make_pulleys(d));
+  EXPECT_EQ(o.names, d.belt.route);
+  EXPECT_EQ(o.pulleys, (std::vector<int>{3, 0, 1, 2}));
+  EXPECT_EQ(o.circles[0].sense, -1);  // pump inside a clockwise loop
+  EXPECT_EQ(o.circles[2].sense, 1);   // the tensioner on the belt's back
+  EXPECT_EQ(o.circles[1].radius, 0.080);
+  d.belt.route.clear();
+  EXPECT_EQ(build::route_order(d, build::make_pulleys(d)).names,
+            (std::vector<std::string>{"crankshaft", "tensioner", "alternator", "pump"}));
+}
+
+// each half-turn wrap (π·r = 0.314 m of a 1.208 m loop) holds 0.26 elements per element of the
+// belt: 11 elements put 11·π·0.1/(0.58 + 0.2·π) = 2.85997 on it (refused), 12 put 3.12 (accepted)
+TEST(BuildStages, WrapsNeedThreeElements) {
+  Stages s;
+  s.run_route();
+  EXPECT_EQ(error_of([&] { build::check_wraps(s.route, s.order.names, 12); }), "");
+  const std::string e = error_of([&] { build::check_wraps(s.route, s.order.names, 11); });
+  EXPECT_NE(e.find("too few elements for the wrap on pulley 'driver' (180 deg holds 2.85997 elements"),
+            std::string::npos)
+      << e;
+}
+
+// the rigidities refer to the rest length l0; per-SDE values are taken as given
+TEST(BuildStages, RestLengthSetsThePerSdeValues) {
+  BeltDef bd;
+  Belt b;
+  const double l0 = 0.02;
+  build::set_rest_length(b, bd, l0);
+  EXPECT_EQ(b.rigid_length, l0);
+  EXPECT_DOUBLE_EQ(b.k, bd.EA / l0);
+  EXPECT_DOUBLE_EQ(b.kt, bd.EI / l0);
+  EXPECT_DOUBLE_EQ(b.c, bd.axial_damping / l0);
+  EXPECT_EQ(b.ct, bd.bending_damping);
+  EXPECT_DOUBLE_EQ(b.mass, bd.mass_per_length * l0);
+  EXPECT_DOUBLE_EQ(b.rot_inertia, b.mass * l0 * l0 / 12);
+  bd.bending_viscosity = 1e-3;
+  build::set_rest_length(b, bd, l0);
+  EXPECT_DOUBLE_EQ(b.ct, 1e-3 / l0);
+  bd.reading = StiffnessReading::per_sde;
+  bd.k = 1, bd.c = 2, bd.kt = 3, bd.ct = 4;
+  build::set_rest_length(b, bd, l0);
+  EXPECT_EQ(b.k, 1);
+  EXPECT_EQ(b.c, 2);
+  EXPECT_EQ(b.kt, 3);
+  EXPECT_EQ(b.ct, 4);
+  EXPECT_EQ(error_of([&] { build::check_sde_values(b, bd); }), "");
+  bd.reading = StiffnessReading::rigidity;
+  bd.EA = 1e300;
+  build::set_rest_length(b, bd, l0);
+  EXPECT_NE(error_of([&] { build::check_sde_values(b, bd); }).find("belt.k (EA / l0)"), std::string::npos);
+}
+
+// a strain ε with e_tra = 1: l0 = pitch/(1 + ε) and T = (EA/l0)·(pitch - l0) = EA·ε; a rest length
+// L0: l0 = L0/n; the pretension given is the tension
+TEST(BuildStages, TensionAtRestFromEachWayOfGivingIt) {
+  Stages s;
+  s.run_route();
+  build::TensionAtRest t = build::tension_at_rest(s.d.belt, s.route.length, s.belt);
+  EXPECT_EQ(t.tension, 500);
+  EXPECT_EQ(t.rest, 0);
+  EXPECT_STREQ(t.key, "belt.pretension");
+
+  s.d.belt.tensioning = Tensioning::strain;
+  s.d.belt.strain = 0.003;
+  t = build::tension_at_rest(s.d.belt, s.route.length, s.belt);
+  EXPECT_DOUBLE_EQ(t.rest, s.belt.pitch / 1.003);
+  EXPECT_EQ(s.belt.rigid_length, t.rest);
+  EXPECT_NEAR(t.tension, s.d.belt.EA * 0.003, 1e-9 * t.tension);
+
+  s.d.belt.tensioning = Tensioning::rest_length;
+  s.d.belt.rest_length = 1.2;
+  t = build::tension_at_rest(s.d.belt, s.route.length, s.belt);
+  EXPECT_DOUBLE_EQ(t.rest, 1.2 / 60);
+  EXPECT_NEAR(t.tension, s.d.belt.EA * (s.route.length / 1.2 - 1), 1e-9 * t.tension);
+  s.d.belt.rest_length = s.route.length;  // not stretched: slack
+  EXPECT_NE(error_of([&] { build::tension_at_rest(s.d.belt, s.route.length, s.belt); }).find("would hang slack"),
+            std::string::npos);
+}
+
+// ρ·g·L against T: on the 0.29 m spans, 0.096 kg/m, 500 N hold up to g = 17 960 m/s²
+TEST(BuildStages, SagCheckComparesTheSpanWeightWithTheTension) {
+  Stages s;
+  s.run_route();
+  const double g_max = 500 / (0.096 * kD);
+  EXPECT_EQ(error_of([&] { build::check_sag(s.route, s.d.belt, 0.99 * g_max, 500); }), "");
+  EXPECT_NE(error_of([&] { build::check_sag(s.route, s.d.belt, -1.01 * g_max, 500); }).find("would hang"),
+            std::string::npos);
+}
+
+TEST(BuildStages, ContactPerLengthIsTimesThePitch) {
+  SceneDef d = presets::paper_dry();
+  EXPECT_EQ(build::element_contact(d, 0.02).c1, d.contact.c1);
+  d.contact_per_length.c1 = 1e11;
+  d.contact_per_length.c2 = 3e7;
+  d.contact_per_length.b = 1.5e4;
+  const Contact c = build::element_contact(d, 0.02);
+  EXPECT_DOUBLE_EQ(c.c1, 2e9);
+  EXPECT_DOUBLE_EQ(c.c2, 6e5);
+  EXPECT_DOUBLE_EQ(c.b, 300);
+  EXPECT_EQ(c.p_max, d.contact.p_max);
+}
+
+// N0 = 2·T·sin(α/2) with sin(α/2) = pitch/(2·(r - p0)) is T·pitch/(r - p0): with c1 = 0 the
+// penetration solves c2·p0·(r - p0) = T·pitch, p0 = (r - sqrt(r² - 4·T·pitch/c2))/2; with c1 it
+// solves (c1·p0² + c2·p0)·(r - p0) = T·pitch. The fixed point converges by a factor p0/r ≈ 1e-3
+// per iteration: after 8 it is at rounding.
+TEST(BuildStages, StaticPenetrationBalancesTheWrapsPressure) {
+  const double T = 500, pitch = 0.02;
+  Contact c;
+  c.c1 = 0;
+  c.c2 = 6.5e5;
+  const double p_lin = build::static_penetration(c, pitch, kR, T);
+  EXPECT_NEAR(p_lin, (kR - std::sqrt(kR * kR - 4 * T * pitch / c.c2)) / 2, 1e-15);
+  c.c1 = 3.0256e9;
+  const double p = build::static_penetration(c, pitch, kR, T);
+  EXPECT_LT(p, p_lin);
+  EXPECT_NEAR((c.c1 * p * p + c.c2 * p) * (kR - p), T * pitch, 1e-12 * T * pitch);
+}
+
+// the centre path of two equal pulleys, each shrunk by p0: wraps of π at r - p0, spans of D
+TEST(BuildStages, CentrePathShrinksEachCircleByItsPenetration) {
+  Stages s;
+  s.run_route();
+  const SceneDef& d = s.d;
+  const Contact c = build::element_contact(d, s.belt.pitch);
+  const std::vector<double> p0 = build::penetrations(s.order, c, s.belt.pitch, 500, d);
+  ASSERT_EQ(p0.size(), 2u);
+  EXPECT_EQ(p0[0], build::static_penetration(c, s.belt.pitch, kR, 500));
+  EXPECT_EQ(p0[1], p0[0]);
+  const Route path = build::centre_path(s.order, p0, d.belt.loop_sense);
+  EXPECT_NEAR(path.arcs[0].radius, kR - p0[0], 1e-17);
+  EXPECT_NEAR(path.length, 2 * kD + 2 * M_PI * (kR - p0[0]), 1e-14);
+  Contact soft = c;
+  soft.c1 = 0, soft.c2 = 1e3;  // sinks deeper than half the radius
+  EXPECT_NE(
+      error_of([&] { build::penetrations(s.order, soft, s.belt.pitch, 500, d); }).find("more than half the radius"),
+      std::string::npos);
+}
+
+// on a straight span, element centres are 2·h + gap apart along the path; closing the loop puts
+// element n back on element 0 and its gap carries the pretension, T = (EA/l0)·gap
+TEST(BuildStages, WalkAndCloseTheLoop) {
+  Stages s;
+  s.run_route();
+  std::vector<double> at;
+  const double h = 0.01, gap = 1e-3;
+  build::walk(s.route, 8, h, gap, &at);
+  ASSERT_EQ(at.size(), 8u);
+  EXPECT_EQ(at[0], 0);
+  for (int i = 1; i < 8 && at[i] < kD; ++i) EXPECT_NEAR(at[i] - at[i - 1], 2 * h + gap, 1e-15) << i;
+
+  const build::TensionAtRest t = build::tension_at_rest(s.d.belt, s.route.length, s.belt);
+  const double g = build::close_loop(s.route, 60, s.d.belt, t, s.belt, nullptr);
+  EXPECT_LT(s.belt.rigid_length, s.belt.pitch);
+  EXPECT_NEAR(s.d.belt.EA / s.belt.rigid_length * g, 500, 1e-9 * 500);
+  EXPECT_NEAR(build::walk(s.route, 60, 0.5 * s.belt.rigid_length, g, nullptr), s.route.length, 1e-12);
+}
+
+// element i sits at the path's point s[i], its rod along the tangent; a kinematic pulley starts at
+// its prescribed speed; the sites say where the belt meets and leaves each pulley and which one an element rides
+TEST(BuildStages, PlacementAndSites) {
+  Stages s;
+  s.d.pulleys[1].kinematic = true;
+  s.d.pulleys[1].torque = TimeSpeedLaw{};
+  s.d.pulleys[1].speed.constant = -7;
+  s.run_route();
+  Model m;
+  m.pulleys = build::make_pulleys(s.d);
+  m.belt = s.belt;
+  const int n = m.n_el();
+  std::vector<double> at;
+  for (int i = 0; i < n; ++i) at.push_back(s.route.length * i / n);
+  Eigen::VectorXd y = build::place(m, s.route, at);
+  ASSERT_EQ(y.size(), m.n_state());
+  for (int i = 0; i < n; ++i) {
+    Vec2 p, tangent;
+    s.route.eval(at[i], p, tangent);
+    EXPECT_EQ(Vec2(y[3 * i], y[3 * i + 1]), p);
+    EXPECT_NEAR(std::cos(y[3 * i + 2]), tangent.x(), 1e-15);
+    EXPECT_NEAR(std::sin(y[3 * i + 2]), tangent.y(), 1e-15);
+    if (i > 0) {
+      EXPECT_LT(std::abs(y[3 * i + 2] - y[3 * i - 1]), M_PI / 2);
+    }
+  }
+  EXPECT_NEAR(y[3 * (n - 1) + 2] - y[2], -2 * M_PI * (n - 1) / n, 0.2);  // one clockwise turn
+  EXPECT_EQ(y[m.n_coord() + m.pulley_coord(1)], 0);
+  build::set_start_speeds(m, build::make_drive(s.d), y);
+  EXPECT_EQ(y[m.n_coord() + m.pulley_coord(1)], -7);
+  EXPECT_EQ(y[m.n_coord() + m.pulley_coord(0)], 0);
+
+  const std::vector<ElementSite> sites = build::element_sites(s.route, s.order.names, y, at);
+  ASSERT_EQ(sites.size(), static_cast<size_t>(n));
+  const ElementSite& e = sites[n / 2];
+  EXPECT_EQ(e.index, n / 2);
+  EXPECT_EQ(e.s, at[n / 2]);
+  EXPECT_EQ(e.length, s.route.length);
+  EXPECT_EQ(e.leaves.at("driver"), 0);
+  EXPECT_NEAR(e.meets.at("driven"), kD, 1e-15);
+  EXPECT_NEAR(e.leaves.at("driven"), kD + M_PI * kR, 1e-15);
+  EXPECT_NEAR(e.meets.at("driver"), 2 * kD + M_PI * kR, 1e-15);
+  EXPECT_EQ(sites[0].pulley, "driver");  // s = 0 is where the belt leaves it
+  EXPECT_EQ(sites[1].pulley, "");        // on the upper span
+  for (const ElementSite& x : sites)
+    if (x.s > kD + 1e-9 && x.s < kD + M_PI * kR - 1e-9) {
+      EXPECT_EQ(x.pulley, "driven") << x.index;
+    }
+}
+
+TEST(BuildStages, MuFromANumberAListOrTheSite) {
+  BeltDef bd;
+  bd.elements = 3;
+  std::vector<ElementSite> sites(3);
+  for (int i = 0; i < 3; ++i) sites[i].index = i;
+  bd.mu = 0.7;
+  EXPECT_EQ(build::element_mu(bd, sites), (std::vector<double>{0.7, 0.7, 0.7}));
+  bd.mu_per_element = {0.1, 0.2, 0.3};
+  EXPECT_EQ(build::element_mu(bd, sites), bd.mu_per_element);
+  bd.mu_at = [](const ElementSite& e) { return 0.5 * e.index; };
+  EXPECT_EQ(build::element_mu(bd, sites), (std::vector<double>{0, 0.5, 1}));
+  bd.mu_at = [](const ElementSite& e) { return e.index == 2 ? -1.0 : 1.0; };
+  EXPECT_NE(error_of([&] { build::element_mu(bd, sites); }).find("belt.mu of element 2"), std::string::npos);
+}
+
+// the static solve takes the placement (accelerations of 1e5..1e9 m/s² where spans meet arcs)
+// to rest; settle's span tension is the pretension to its own criterion (1e-5 relative), and
+// span_tension reads it again from the state returned
+TEST(BuildStages, StaticSolveAndSettle) {
+  const Scene sc = build_scene(presets::paper_dry());
+  EXPECT_LT(sc.static_residual, 1.0);
+  EXPECT_NEAR(sc.static_tension, 500, 1e-5 * 500);
+  std::vector<int> span_sde;
+  EXPECT_EQ(build::span_tension(sc.model, sc.route, sc.y0, span_sde), sc.static_tension);
+  EXPECT_EQ(span_sde, sc.span_sde);
+  // each span near the pretension: the static spans differ by the weight of the belt and where
+  // an element straddles a tangent point (0.11 N of 500 on this drive, measured; 1 N allowed)
+  double sum = 0;
+  for (size_t k = 0; k < 2; ++k) {
+    EXPECT_EQ(span_sde[k], beltsim::span_sde(sc.model, sc.route.spans[k], sc.y0.data()));
+    const double f = span_force(sc.model, sc.route.spans[k], sc.y0.data());
+    EXPECT_NEAR(f, 500, 1.0) << k;
+    sum += f;
+  }
+  EXPECT_EQ(sum / 2, sc.static_tension);
+
+  Eigen::VectorXd y = sc.y0;
+  y[0] += 1e-4;  // one element 0.1 mm off its rest
+  const double moved = build::static_solve(sc.model, sc.drive, y, 0, nullptr);
+  EXPECT_LT(moved, 1e-3);
+  EXPECT_NEAR(y[0], sc.y0[0], 1e-7);
+}
+
+TEST(BuildStages, CheckFiniteNamesWhatIsNot) {
+  Scene sc = build_scene(presets::paper_dry());
+  const SceneDef d = presets::paper_dry();
+  EXPECT_EQ(error_of([&] { build::check_finite(sc, d, 500); }), "");
+  sc.y0[3 * 4 + 1] = std::nan("");
+  EXPECT_NE(error_of([&] { build::check_finite(sc, d, 500); }).find("element 4's position is NaN"), std::string::npos);
+  sc.y0[3 * 4 + 1] = 0;
+  sc.static_tension = INFINITY;
+  EXPECT_NE(error_of([&] { build::check_finite(sc, d, 500); }).find("the static tension is infinite"),
+            std::string::npos);
+}
+
+}  // namespace
+}  // namespace beltsim
