@@ -10,13 +10,12 @@
 // The flags override what the script passes to scene:run{}. Every number is a finite decimal
 // (no hex, inf or nan); an option a command does not take is an error. Exit status: 0 on
 // success, 1 on a script, parameter, run or plot error (message on stderr, outputs written so far
-// kept), 2 on bad usage, 130 when stopped by Ctrl-C (SIGINT) and 143 by SIGTERM (outputs closed).
+// kept), 2 on bad usage (or an environment variable it cannot read, app/environment.hpp), 130 when
+// stopped by Ctrl-C (SIGINT), 143 by SIGTERM and 129 by SIGHUP (outputs closed; script/signals.hpp).
 #include <CLI/CLI.hpp>
 #include <unistd.h>
 
-#include <atomic>
 #include <cmath>
-#include <csignal>
 #include <cstdint>
 #include <cstdio>
 #include <cstring>
@@ -34,61 +33,18 @@
 #include "sim/work_precision.hpp"
 #include "term/term_image.hpp"
 
+#include "app/environment.hpp"
 #include "script/console.hpp"
+#include "script/docall.hpp"
+#include "script/signals.hpp"
 
 namespace {
 
 namespace fs = std::filesystem;
 
-std::atomic<bool> g_stop{false};
-// the first SIGINT or SIGTERM received. Atomic, not volatile sig_atomic_t: a signal sent to the
-// process goes to any thread that does not block it (the encoder's, llvmpipe's, the worker's), so two
-// signals sent back to back can be in their handlers at once, one per thread; exactly one of them
-// wins the exchange below (lock-free, hence safe in a handler)
-std::atomic<int> g_signal{0};
-static_assert(std::atomic<int>::is_always_lock_free);
-
-// SIGINT (Ctrl-C) and SIGTERM (timeout, CI cancellation, docker stop) alike: the run stops at its
-// last finished step and the outputs are closed (CSV rows are on disk as written, the video gets
-// its trailer); a second one while that happens takes the default action: the process ends now
-// the interpreter of the running command, for the signal handler (interrupt() is one atomic store)
-std::atomic<beltsim::script::Interpreter*> g_lua{nullptr};
-
-// registers an interpreter with the signal handler for its lifetime
-struct Interruptible {
-  explicit Interruptible(beltsim::script::Interpreter& lua) { g_lua.store(&lua); }
-  ~Interruptible() { g_lua.store(nullptr); }
-};
-
-void on_stop_signal(int sig) {
-  int none = 0;
-  if (!g_signal.compare_exchange_strong(none, sig)) {  // a stop is under way: this one ends the process
-    std::signal(sig, SIG_DFL);
-    std::raise(sig);  // blocked in this thread until this handler returns, then fatal
-    return;
-  }
-  g_stop.store(true);                                  // a run stops at its last finished step
-  if (auto* lua = g_lua.load()) lua->interrupt();      // Lua code stops at its next instructions
-}
-
-void handle_stop_signals() {
-  struct sigaction sa {};
-  sa.sa_handler = on_stop_signal;
-  sigemptyset(&sa.sa_mask);
-  sigaddset(&sa.sa_mask, SIGINT);  // one handler at a time in a thread (across threads: the exchange)
-  sigaddset(&sa.sa_mask, SIGTERM);
-  sa.sa_flags = SA_RESTART;
-  sigaction(SIGINT, &sa, nullptr);
-  sigaction(SIGTERM, &sa, nullptr);
-}
-
-// after a stop signal: the message, and 128 + the signal's number (130 SIGINT, 143 SIGTERM)
-int stopped_status() {
-  const int sig = g_signal != 0 ? g_signal.load() : SIGINT;
-  std::fprintf(stderr, "beltsim: %s; the outputs written so far are kept\n",
-               sig == SIGTERM ? "terminated" : "interrupted");
-  return 128 + sig;
-}
+using beltsim::script::stop_flag;
+using beltsim::script::stop_signal;
+using beltsim::script::stopped_status;
 
 // bad usage: the message goes to stderr and the exit status is 2
 struct UsageError : std::runtime_error {
@@ -237,18 +193,21 @@ beltsim::script::Overrides overrides(const Raw& raw) {
 int cmd_run(const std::string& script, const beltsim::script::Overrides& o, const beltsim::script::Safety& s) {
   try {
     beltsim::script::Interpreter lua(s);
-    const Interruptible on_signal(lua);
+    const beltsim::script::Interruptible on_signal(lua);
     lua.set_overrides(o);
-    lua.set_stop_flag(&g_stop);
+    lua.set_stop_flag(&stop_flag());
     lua.run_file(script);
-    if (lua.interrupted() || g_signal != 0) return stopped_status();
+    if (lua.interrupted() || stop_signal() != 0) return stopped_status();
     // a --set the script never read: the run did not use what was asked of it
     const std::vector<std::string> unread = lua.unread_args(script);
     for (const std::string& m : unread) std::fprintf(stderr, "beltsim: %s\n", m.c_str());
     if (!unread.empty()) return 1;
+  } catch (const beltsim::script::ScriptError& e) {
+    std::fprintf(stderr, "beltsim: %s\n%s", e.what(), beltsim::script::shown_traceback(e.traceback).c_str());
+    return stop_signal() != 0 ? stopped_status() : 1;
   } catch (const std::exception& e) {
     std::fprintf(stderr, "beltsim: %s\n", e.what());
-    return g_signal != 0 ? stopped_status() : 1;
+    return stop_signal() != 0 ? stopped_status() : 1;
   }
   return 0;
 }
@@ -258,7 +217,7 @@ int cmd_wp(const std::string& script, const beltsim::script::Overrides& o, const
   try {
     beltsim::script::Captured cap;
     beltsim::script::Interpreter lua(s);
-    const Interruptible on_signal(lua);
+    const beltsim::script::Interruptible on_signal(lua);
     beltsim::script::Overrides captured;  // --t-end and --set reach the script; --out is wp's own folder
     captured.t_end = o.t_end;
     captured.set = o.set;
@@ -271,7 +230,7 @@ int cmd_wp(const std::string& script, const beltsim::script::Overrides& o, const
       std::fprintf(stderr, "beltsim wp: warning: %s (before its first scene:run{})\n", m.c_str());
     wps.base = cap.settings;
     wps.base.out_dir = o.out ? *o.out : (fs::path("out") / fs::path(script).stem() / "wp").string();
-    const beltsim::WpResult r = beltsim::work_precision(*cap.scene, wps, &g_stop);
+    const beltsim::WpResult r = beltsim::work_precision(*cap.scene, wps, &stop_flag());
     const std::string png = (fs::path(wps.base.out_dir) / "wp.png").string();
     std::string drawn;
     try {
@@ -281,14 +240,15 @@ int cmd_wp(const std::string& script, const beltsim::script::Overrides& o, const
       std::fprintf(stderr, "beltsim wp: no plot: %s\n", e.what());
     }
     std::fprintf(stderr, "beltsim wp: wrote %s%s%s\n", r.csv_path.c_str(), drawn.empty() ? "" : " and ", drawn.c_str());
-    return g_signal != 0 ? stopped_status() : 0;
+    return stop_signal() != 0 ? stopped_status() : 0;
   } catch (const std::exception& e) {
     std::fprintf(stderr, "beltsim: %s\n", e.what());
-    return g_signal != 0 ? stopped_status() : 1;
+    return stop_signal() != 0 ? stopped_status() : 1;
   }
 }
 
-int cmd_plot(const std::string& csv, const std::vector<std::string>& columns, const Raw& raw) {
+int cmd_plot(const std::string& csv, const std::vector<std::string>& columns, const Raw& raw,
+             beltsim::term::ImageMode images) {
   const double from = raw.from ? number("--from", *raw.from) : -INFINITY;
   const std::string png = raw.out ? *raw.out : (fs::path(csv).parent_path() / "plot.png").string();
   try {
@@ -300,16 +260,17 @@ int cmd_plot(const std::string& csv, const std::vector<std::string>& columns, co
   // the picture on a terminal (or wherever BELTSIM_TERM_IMAGES forces it), then the path
   std::fflush(stdout);
   std::string why;
-  if (!beltsim::term::show_image_in_terminal(png, stdout, &why) && ::isatty(STDOUT_FILENO))
+  if (!beltsim::term::show_image_in_terminal(png, stdout, images, &why) && ::isatty(STDOUT_FILENO))
     std::fprintf(stderr, "beltsim plot: not shown in the terminal: %s\n", why.c_str());
   std::printf("%s\n", png.c_str());
   return 0;
 }
 
 int cmd_console(const std::optional<std::string>& script, const std::vector<std::string>& args,
-                const beltsim::script::Overrides& o, const beltsim::script::Safety& s) {
+                const beltsim::script::Overrides& o, const beltsim::script::Safety& s,
+                const beltsim::app::Environment& env) {
   try {
-    return beltsim::script::run_console(script, args, o, s, &g_stop);
+    return beltsim::script::run_console(script, args, o, s, {env.history, env.images});
   } catch (const std::exception& e) {
     std::fprintf(stderr, "beltsim: %s\n", e.what());
     return 1;
@@ -323,8 +284,8 @@ int main(int argc, char** argv) {
   app.set_version_flag("--version", "beltsim 0.1.0");
   app.require_subcommand(1);
   app.footer("Exit status: 0 on success, 1 on a script, parameter, run or plot error, 2 on bad usage,\n"
-             "130 after Ctrl-C, 143 after SIGTERM (outputs closed). 'beltsim COMMAND --help' describes a\n"
-             "command.");
+             "130 after Ctrl-C, 143 after SIGTERM, 129 after SIGHUP (outputs closed). 'beltsim COMMAND\n"
+             "--help' describes a command.");
   Raw raw;
   std::string script, csv;
   std::optional<std::string> console_script;
@@ -411,11 +372,20 @@ int main(int argc, char** argv) {
     return 2;
   }
 
+  beltsim::app::Environment env;
   try {
-    if (*plot) return cmd_plot(csv, columns, raw);  // a signal ends it at once: nothing to close
-    handle_stop_signals();                           // the console then puts its own
+    env = beltsim::app::read_environment();
+  } catch (const std::invalid_argument& e) {
+    std::fprintf(stderr, "beltsim: %s\n", e.what());
+    return 2;
+  }
+  beltsim::app::apply_render_settings(env);
+
+  try {
+    if (*plot) return cmd_plot(csv, columns, raw, env.images);  // a signal ends it at once: nothing to close
+    beltsim::script::install_stop_signals();
     if (*run) return cmd_run(script, overrides(raw), safety(raw));
-    if (*console) return cmd_console(console_script, console_args, overrides(raw), safety(raw));
+    if (*console) return cmd_console(console_script, console_args, overrides(raw), safety(raw), env);
     // wp
     beltsim::WpSettings wps;
     if (raw.integrators) {

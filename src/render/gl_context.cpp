@@ -101,9 +101,17 @@ std::unique_ptr<GlContext> make_gl_context(GlBackend b, int major, int minor) {
   return std::make_unique<OsMesaContext>(major, minor);
 }
 
-GlBackend default_gl_backend() {
-  const char* e = std::getenv("BELTSIM_GL");
-  return e && std::strcmp(e, "egl") == 0 ? GlBackend::egl : GlBackend::osmesa;
+namespace {
+std::atomic<GlBackend> g_default_backend{GlBackend::osmesa};
+}  // namespace
+
+void set_default_gl_backend(GlBackend b) { g_default_backend.store(b); }
+GlBackend default_gl_backend() { return g_default_backend.load(); }
+
+std::optional<GlBackend> gl_backend_named(std::string_view name) {
+  if (name.empty() || name == "osmesa") return GlBackend::osmesa;
+  if (name == "egl") return GlBackend::egl;
+  return std::nullopt;
 }
 
 const char* backend_name(GlBackend b) { return b == GlBackend::egl ? "EGL surfaceless" : "OSMesa"; }

@@ -6,7 +6,9 @@
 #pragma once
 
 #include <memory>
+#include <optional>
 #include <string>
+#include <string_view>
 
 namespace beltsim::render {
 
@@ -25,8 +27,12 @@ class GlContext {
 // std::runtime_error with a message that names the backend, the step that failed and what to
 // install or set.
 std::unique_ptr<GlContext> make_gl_context(GlBackend backend, int major = 3, int minor = 3);
-// the backend named by $BELTSIM_GL ("osmesa", the default, or "egl")
+// the backend of the renderers this process makes: osmesa unless the program's edge set another
+// (src/app: BELTSIM_GL)
 GlBackend default_gl_backend();
+void set_default_gl_backend(GlBackend b);
+// "osmesa" (or "") and "egl"; nullopt for another name
+std::optional<GlBackend> gl_backend_named(std::string_view name);
 const char* backend_name(GlBackend b);
 
 // how many contexts this process has created (a run without frames creates none: tested)

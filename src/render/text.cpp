@@ -19,10 +19,15 @@ struct Font::Impl {
   int size = 0;
 };
 
-std::string Font::default_path() {
-  if (const char* e = std::getenv("BELTSIM_FONT"); e && *e) return e;
-  return BELTSIM_FONT_PATH;
+namespace {
+std::string& default_font() {
+  static std::string path = BELTSIM_FONT_PATH;
+  return path;
 }
+}  // namespace
+
+std::string Font::default_path() { return default_font(); }
+void Font::set_default_path(const std::string& path) { default_font() = path.empty() ? BELTSIM_FONT_PATH : path; }
 
 Font::Font(const std::string& path) : impl_(std::make_unique<Impl>()), path_(path), atlas_(atlas_size * atlas_size, 0) {
   if (FT_Init_FreeType(&impl_->lib)) throw std::runtime_error("FreeType could not be initialised");

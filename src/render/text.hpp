@@ -20,8 +20,10 @@ struct Glyph {
 
 class Font {
  public:
-  // the font file built in (CMake found DejaVuSans.ttf), or $BELTSIM_FONT
+  // the font file built in (CMake found DejaVuSans.ttf), or the one the program's edge set
+  // (src/app: BELTSIM_FONT; "" restores the built-in one). Set once, before any renderer is made.
   static std::string default_path();
+  static void set_default_path(const std::string& path);
   // Throws std::runtime_error naming the file when FreeType cannot load it.
   explicit Font(const std::string& path = default_path());
   ~Font();

@@ -4,6 +4,7 @@
 #include <fstream>
 
 #include "script/context.hpp"
+#include "script/docall.hpp"
 #include "script/limits.hpp"
 #include "script/lua_check.hpp"
 #include "script/lua_law.hpp"
@@ -63,30 +64,28 @@ void Interpreter::run_file(const std::string& path) {
   ctx->captured = false;
   ctx->args_read.clear();
   ctx->args_warned = false;
+  std::error_code ec;
+  if (std::filesystem::is_directory(p, ec))
+    throw ScriptError(path + ": is a folder, not a script (give the Lua file to run)");
   {
     std::ifstream in(path);
     if (in && in.peek() == std::ifstream::traits_type::eof())
       throw ScriptError(path + ": the script is empty: nothing to run");
   }
   begin_call(L_);
-  // text only: a precompiled chunk is never loaded
-  int status = luaL_loadfilex(L_, path.c_str(), "t");
-  if (status == LUA_OK) {
-    lua_pushcfunction(L_, message_handler);
-    lua_insert(L_, -2);
-    status = lua_pcall(L_, 0, 0, -2);
-  }
-  if (status != LUA_OK && ctx->captured) status = LUA_OK;  // ended on purpose by a capture
-  if (status != LUA_OK) {
-    // errors carry "file:line:" (chunks are named "@path"); a non-string error object is named;
-    // memory errors (which Lua gives without a place) name the limit
+  // text only: a precompiled chunk is never loaded; the chunk is named "@path", so that its
+  // errors read "path:line:"
+  if (const int status = luaL_loadfilex(L_, path.c_str(), "t"); status != LUA_OK) {
     std::string msg;
-    if (!memory_message(L_, status, path, msg))
-      msg = lua_tostring(L_, -1) ? lua_tostring(L_, -1) : std::string(path) + ": error object is a " + luaL_typename(L_, -1);
+    if (!memory_message(L_, status, path, msg)) msg = lua_tostring(L_, -1) ? lua_tostring(L_, -1) : path;
     lua_settop(L_, 0);
     throw ScriptError(msg);
   }
+  CallError error;
+  const bool ok = docall(L_, 0, 0, &error, path);
   lua_settop(L_, 0);
+  if (!ok && !ctx->captured)  // a capture ends the script on purpose
+    throw ScriptError(error.message, error.traceback);
 }
 
 }  // namespace beltsim::script

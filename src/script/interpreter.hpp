@@ -9,6 +9,7 @@
 #include <optional>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "script/script_args.hpp"
@@ -51,9 +52,12 @@ struct Captured {
   RunSettings settings;
 };
 
-// A script error, already in "file:line: message" form.
+// A script error, already in "file:line: message" form, with Lua's traceback of where it was
+// raised ("" when there is none to give).
 struct ScriptError : std::runtime_error {
-  using std::runtime_error::runtime_error;
+  explicit ScriptError(const std::string& message, std::string traceback_ = "")
+      : std::runtime_error(message), traceback(std::move(traceback_)) {}
+  std::string traceback;
 };
 
 class Interpreter {

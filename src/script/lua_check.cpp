@@ -14,18 +14,6 @@ namespace beltsim::script {
   __builtin_unreachable();           // lua_error unwinds (longjmp, or a C++ throw here)
 }
 
-int message_handler(lua_State* L) {
-  if (lua_type(L, 1) == LUA_TSTRING) return 1;
-  luaL_where(L, 2);  // "file:line:" of the Lua function that called error (1 is error itself)
-  if (luaL_callmeta(L, 1, "__tostring") && lua_type(L, -1) == LUA_TSTRING)
-    lua_pushfstring(L, "%s%s", lua_tostring(L, -2), lua_tostring(L, -1));
-  else if (lua_type(L, 1) == LUA_TNUMBER)
-    lua_pushfstring(L, "%s%s", lua_tostring(L, 2), luaL_tolstring(L, 1, nullptr));
-  else
-    lua_pushfstring(L, "%s(an error object that is a %s value)", lua_tostring(L, 2), luaL_typename(L, 1));
-  return 1;
-}
-
 bool has(lua_State* L, int idx, const char* key) {
   const bool present = lua_getfield(L, idx, key) != LUA_TNIL;
   lua_pop(L, 1);

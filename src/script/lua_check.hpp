@@ -17,10 +17,6 @@
 namespace beltsim::script {
 
 [[noreturn]] void fail(lua_State* L, const std::string& msg);
-// the message handler of every call into Lua code (a script run, a Lua law): a string error keeps
-// its "file:line:" (Lua adds it); any other error object gets the place it was raised at and its
-// __tostring (or its type), so that error(42) still says where it came from
-int message_handler(lua_State* L);
 bool has(lua_State* L, int idx, const char* key);
 // every key of the table at idx must be one of `allowed` (a misspelt one gets a suggestion,
 // io/suggest.hpp)

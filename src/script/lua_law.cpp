@@ -20,6 +20,7 @@
 #include "scene/scene.hpp"
 #include "scene/validate.hpp"
 #include "script/context.hpp"
+#include "script/docall.hpp"
 
 namespace beltsim::script {
 
@@ -51,15 +52,14 @@ class LuaLaw final : public LawFunction {
     calls_++;
     const int top = lua_gettop(L);
     if (!lua_checkstack(L, 4)) throw LawError(what_ + " (" + describe() + "): the Lua stack is full");
-    lua_pushcfunction(L, message_handler);
     lua_rawgeti(L, LUA_REGISTRYINDEX, ref_);
     lua_pushnumber(L, t);
     if (!speed_) lua_pushnumber(L, omega);
-    const int status = lua_pcall(L, speed_ ? 1 : 2, 1, top + 1);
+    CallError e;
     std::string error;
     double v = 0;
-    if (status != LUA_OK) {
-      error = lua_tostring(L, -1) ? lua_tostring(L, -1) : "an error without a message";
+    if (!docall(L, speed_ ? 1 : 2, 1, &e, where_)) {
+      error = e.message;
     } else if (lua_type(L, -1) != LUA_TNUMBER) {
       error = std::string("it returned ") + luaL_typename(L, -1) + ", a number expected";
     } else {

@@ -19,6 +19,7 @@
 #include "script/lua_sim.hpp"
 #include "script/progress.hpp"
 #include "script/sandbox.hpp"
+#include "script/signals.hpp"
 
 namespace beltsim::script {
 
@@ -349,6 +350,7 @@ int l_scene_run(lua_State* L) {
   std::string error;
   RunResult res;
   try {
+    const HostWork work;  // beltsim's own work, not Lua code (signals.hpp)
     ProgressLine line(progress);
     res = run(*sc, rs, ctx->stop, line.callback());
   } catch (const DivergenceError& e) {

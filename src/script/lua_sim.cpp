@@ -23,6 +23,7 @@
 #include "script/lua_run.hpp"
 #include "script/progress.hpp"
 #include "script/sandbox.hpp"
+#include "script/signals.hpp"
 
 namespace beltsim::script {
 
@@ -37,6 +38,7 @@ struct SimBox {
   lua_State* L = nullptr;  // the state whose running method has the simulation at index 1
   std::map<int, std::unique_ptr<LuaRef>> refs;  // callbacks by id (a when has two: -id for its condition)
   long shows = 0;
+  bool running = false;  // inside run_to: its callbacks may run Lua code that calls this simulation
 };
 
 SimBox* check_box(lua_State* L, const char* method) {
@@ -74,6 +76,7 @@ template <class F>
 void guarded(lua_State* L, const char* what, F&& f) {
   std::string error;
   try {
+    const HostWork work;  // beltsim's own work, not Lua code (signals.hpp)
     f();
   } catch (const DivergenceError& e) {
     error = std::string(what) + ": " + e.what();
@@ -90,6 +93,11 @@ int run_to(lua_State* L, SimBox& box, double t, const char* what) {
   bool interrupted = false;
   guarded(L, what, [&] {
     ProgressLine line(box.progress);
+    box.running = true;
+    struct Done {
+      SimBox& b;
+      ~Done() { b.running = false; }
+    } done{box};
     a = box.sim->run_to(t, box.ctx->stop, line.callback());
   });
   if (a.over_wall_limit) {
@@ -319,6 +327,7 @@ int l_log(lua_State* L) {
 // calls the function in ref with the simulation; nret results left on the stack
 void call_back(SimBox& box, const LuaRef& ref, int nret) {
   lua_State* L = box.L;
+  const InsideLua lua;  // back in Lua code, inside the run (signals.hpp)
   ref.push(L);
   lua_pushvalue(L, 1);  // the simulation: index 1 of the running method
   lua_call(L, 1, nret);
@@ -510,6 +519,10 @@ int l_resume(lua_State* L) {
 int l_close(lua_State* L) {
   SimBox* box = check_box(L, "close");
   check_args(L, "sim:close", {}, 2);
+  // its callbacks (this one among them) are in use by the run under way
+  if (box->running)
+    fail(L, "sim:close: this simulation is running (this is one of its callbacks); close it after sim:run_to or "
+            "sim:advance returns");
   const bool was_open = !box->sim->closed();
   guarded(L, "sim:close", [&] { box->sim->close(); });
   if (was_open)

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "script/context.hpp"
+#include "script/docall.hpp"
 
 #include "lauxlib.h"
 #include "lua.h"
@@ -115,14 +116,12 @@ int l_file_function(lua_State* L) {
   }
   lua_pushvalue(L, lua_upvalueindex(1));
   lua_insert(L, 1);
-  const int status = lua_pcall(L, lua_gettop(L) - 1, LUA_MULTRET, 0);
-  if (status == LUA_OK) return lua_gettop(L);
+  CallError e;
+  if (docall(L, lua_gettop(L) - 1, LUA_MULTRET, &e, name)) return lua_gettop(L);
   // called from C, the original's error has no file:line: the script's is added
-  if (status == LUA_ERRRUN && lua_type(L, -1) == LUA_TSTRING) {
-    luaL_where(L, 1);
-    lua_insert(L, -2);
-    lua_concat(L, 2);
-  }
+  luaL_where(L, 1);
+  lua_pushstring(L, e.message.c_str());
+  lua_concat(L, 2);
   return lua_error(L);
 }
 

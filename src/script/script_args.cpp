@@ -25,6 +25,11 @@ ScriptArg parse_set(const std::string& kv) {
   bool name = !a.key.empty() && !std::isdigit(static_cast<unsigned char>(a.key[0]));
   for (char c : a.key) name = name && (std::isalnum(static_cast<unsigned char>(c)) || c == '_');
   if (!name) throw bad("the key must be a Lua name (letters, digits and _, not starting with a digit)");
+  for (const char* kw : {"and", "break", "do", "else", "elseif", "end", "false", "for", "function", "goto", "if", "in",
+                         "local", "nil", "not", "or", "repeat", "return", "then", "true", "until", "while"})
+    if (a.key == kw)
+      throw bad("the key must be a Lua name, and '" + a.key + "' is one of Lua's reserved words (a script could not "
+                "read it as beltsim.args." + a.key + ")");
   const std::string& v = a.text;
   if (v == "true" || v == "false") {
     a.value = v == "true";

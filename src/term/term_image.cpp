@@ -19,7 +19,7 @@ namespace beltsim::term {
 
 namespace {
 
-enum class Mode { automatic, off, symbols, sixel, kitty, iterm };
+using Mode = ImageMode;
 
 bool fail(std::string* why_not, const std::string& why) {
   if (why_not) *why_not = why;
@@ -50,18 +50,19 @@ struct Canvas {
 
 }  // namespace
 
-bool show_image_in_terminal(const std::string& png, std::FILE* out, std::string* why_not, CellSize size) {
-  // the mode: forced by BELTSIM_TERM_IMAGES, or chosen below from what the terminal supports
-  Mode mode = Mode::automatic;
-  if (const char* e = std::getenv("BELTSIM_TERM_IMAGES"); e && *e) {
-    const std::string_view v = e;
-    if (v == "off") mode = Mode::off;
-    else if (v == "symbols") mode = Mode::symbols;
-    else if (v == "sixel") mode = Mode::sixel;
-    else if (v == "kitty") mode = Mode::kitty;
-    else if (v == "iterm") mode = Mode::iterm;
-    else return fail(why_not, "BELTSIM_TERM_IMAGES=" + std::string(v) + " is not one of off, symbols, sixel, kitty, iterm");
-  }
+std::optional<ImageMode> image_mode(std::string_view v) {
+  if (v.empty()) return ImageMode::automatic;
+  if (v == "off") return ImageMode::off;
+  if (v == "symbols") return ImageMode::symbols;
+  if (v == "sixel") return ImageMode::sixel;
+  if (v == "kitty") return ImageMode::kitty;
+  if (v == "iterm") return ImageMode::iterm;
+  return std::nullopt;
+}
+
+bool show_image_in_terminal(const std::string& png, std::FILE* out, ImageMode mode, std::string* why_not,
+                            CellSize size) {
+  // the mode: forced by the caller (BELTSIM_TERM_IMAGES), or chosen below from what the terminal supports
   if (mode == Mode::off) return fail(why_not, "pictures are off (BELTSIM_TERM_IMAGES=off)");
   if (!out) return fail(why_not, "no output stream");
   const int fd = ::fileno(out);

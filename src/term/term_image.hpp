@@ -7,7 +7,7 @@
 // the terminal (TIOCGWINSZ on `out`, 80 columns when that fails), as high as its aspect ratio
 // needs, at most the terminal's height less one row.
 //
-// BELTSIM_TERM_IMAGES overrides the choice:
+// The caller may force the choice (ImageMode; the command line reads it from BELTSIM_TERM_IMAGES):
 //   off      never show pictures
 //   symbols  Unicode blocks in truecolor
 //   sixel    DEC sixel graphics (ESC P ... q ... ESC \)
@@ -18,7 +18,9 @@
 #pragma once
 
 #include <cstdio>
+#include <optional>
 #include <string>
+#include <string_view>
 
 namespace beltsim::term {
 
@@ -28,10 +30,14 @@ struct CellSize {
   int columns = 0, rows = 0;
 };
 
+enum class ImageMode { automatic, off, symbols, sixel, kitty, iterm };
+// the mode named by one of the words above ("" is automatic), or nullopt for another word
+std::optional<ImageMode> image_mode(std::string_view word);
+
 // Writes the picture to `out` and returns true; returns false with the reason in *why_not (when
 // not null) and writes nothing when out is not a terminal (and no mode is forced), the terminal
-// is "dumb", BELTSIM_TERM_IMAGES is off or not one of the words above, the PNG cannot be read, or
-// chafa fails.
-bool show_image_in_terminal(const std::string& png, std::FILE* out, std::string* why_not, CellSize size = {});
+// is "dumb", the mode is off, the PNG cannot be read, or chafa fails.
+bool show_image_in_terminal(const std::string& png, std::FILE* out, ImageMode mode, std::string* why_not,
+                            CellSize size = {});
 
 }  // namespace beltsim::term

@@ -1,6 +1,8 @@
 #!/usr/bin/env python3
 """`--set KEY=VALUE` on the command line: beltsim.args in run, console and wp, the checks of the
-values (exit 2), and a key the script never read (exit 1 naming it, with a suggestion)."""
+values (exit 2), and a key the script never read (exit 1 naming it, with a suggestion). What a
+user sees when a script fails (file:line and Lua's traceback), is a folder, or the environment
+names a value beltsim does not know (src/app/environment.cpp)."""
 import os
 import shutil
 import subprocess
@@ -53,6 +55,75 @@ class SetOption(unittest.TestCase):
         self.assertIn("96", out)
         code, out, err = run(["plot", os.path.join(self.dir, "x.csv"), "--set", "a=1"], cwd=self.dir)
         self.assertEqual(code, 2, err)
+
+
+SCENE = """
+local drive = beltsim.scene {
+  pulleys = {
+    { name = "driver", centre = {0, 0},    radius = 0.1, torque = beltsim.ramp(0.3, -70) },
+    { name = "driven", centre = {0.29, 0}, radius = 0.1, torque = { per_speed = -0.955 } },
+  },
+  belt = { elements = 30, pretension = 500, direction = "cw" },
+}
+local sim = drive:start { progress = false, out = "out" }
+"""
+
+
+class Errors(unittest.TestCase):
+    """What a user sees when a script, its path, an option or the environment is wrong."""
+
+    def setUp(self):
+        self.dir = tempfile.mkdtemp(prefix="beltsim_cli_")
+        self.addCleanup(shutil.rmtree, self.dir, True)
+
+    def script(self, text, name="s.lua"):
+        path = os.path.join(self.dir, name)
+        with open(path, "w") as f:
+            f.write(text)
+        return path
+
+    def test_an_error_in_a_callback_names_its_line_with_a_traceback(self):
+        path = self.script(SCENE + "local function check(s)\n  error('too fast')\nend\n"
+                           "sim:every(0.001, function(s) check(s) end)\nsim:run_to(0.003)\n")
+        code, out, err = run(["run", path], cwd=self.dir)
+        self.assertEqual(code, 1, err)
+        self.assertIn("beltsim: %s:11: too fast\nstack traceback:\n" % path, err)
+        self.assertIn("%s:11: in upvalue 'check'" % path, err)
+        self.assertIn("%s:13: in function <%s:13>" % (path, path), err)  # the callback
+        self.assertIn("%s:14: in main chunk" % path, err)                 # its run_to
+
+    def test_close_inside_a_callback_is_refused_with_its_line(self):
+        path = self.script(SCENE + "sim:every(0.001, function(s) s:close() end)\nsim:run_to(0.003)\n")
+        code, out, err = run(["run", path], cwd=self.dir)
+        self.assertEqual(code, 1, err)
+        self.assertIn("%s:10: sim:close: this simulation is running" % path, err)
+        self.assertNotIn("nil value", err)
+
+    def test_a_folder_as_the_script(self):
+        os.mkdir(os.path.join(self.dir, "scenario.lua"))
+        for cmd in ["run", "wp"]:
+            code, out, err = run([cmd, "scenario.lua"], cwd=self.dir)
+            self.assertEqual(code, 1, err)
+            self.assertIn("scenario.lua: is a folder, not a script", err)
+            self.assertNotIn("empty", err)
+
+    def test_a_set_key_that_is_a_reserved_word(self):
+        path = self.script("print(beltsim.args['and'])\n")
+        for key in ["and", "end", "nil", "goto"]:
+            code, out, err = run(["run", path, "--set", key + "=5"], cwd=self.dir)
+            self.assertEqual(code, 2, key + ": " + err)
+            self.assertIn("--set %s=5: the key must be a Lua name, and '%s' is one of Lua's reserved words" % (key, key),
+                          err)
+
+    def test_environment_variables_with_unknown_values(self):
+        path = self.script("print('ran')\n")
+        for var, value, words in [("BELTSIM_GL", "vulkan", "osmesa, egl"),
+                                  ("BELTSIM_TERM_IMAGES", "ascii-art", "off, symbols, sixel, kitty, iterm")]:
+            p = subprocess.run([BELTSIM, "run", path], capture_output=True, text=True, cwd=self.dir, timeout=60,
+                               env=dict(os.environ, **{var: value}))
+            self.assertEqual(p.returncode, 2, p.stderr)
+            self.assertIn("beltsim: %s=%s is not one of %s" % (var, value, words), p.stderr)
+            self.assertNotIn("ran", p.stdout)
 
 
 if __name__ == "__main__":

@@ -346,6 +346,20 @@ class ConsoleTest(unittest.TestCase):
         self.assertLess(lines.index("y = 2"), lines.index("sim:advance(0.001)"))
         self.assertNotIn("nosuch()", lines)  # only the commands that ran without error
 
+    # 8b
+    def test_sighup_closes_like_sigterm(self):
+        # the terminal going away (SIGHUP): the outputs are closed, session.lua is written, 129
+        c = self.console()
+        c.command("y = 2")
+        os.kill(c.pid, signal.SIGHUP)
+        deadline = time.monotonic() + TIMEOUT
+        while c.pump(deadline - time.monotonic()) and time.monotonic() < deadline:
+            pass
+        status = c._reap(deadline)
+        self.assertEqual(status, 129, c.transcript())
+        with open(os.path.join(self.tmp, "out", "scenario", "session.lua")) as f:
+            self.assertIn("y = 2", f.read().splitlines())
+
     # 9
     def test_pipe_mode(self):
         r = self.piped(["sim:advance(0.002)", "print(sim.t)"])
@@ -402,6 +416,33 @@ class ConsoleTest(unittest.TestCase):
         self.assertEqual(replayed, series, "the replay's timeseries.csv differs; session.lua:\n" + text)
         with open(os.path.join(out_console, "events.csv")) as f:
             self.assertIn("\n0.003,wet,", f.read())
+
+    # 10a
+    def test_session_replays_expressions_statements_and_chunks(self):
+        # bare expressions (printed at the prompt), a chunk that returns, locals, a multi-line
+        # chunk and a trailing comment: session.lua is valid Lua and its replay does what the
+        # prompt did (the expressions are printed again)
+        commands = ["6*7", "sim.t", "return 6*7", "local z = 3", "print(z)",
+                    "for i = 1, 2 do", "  print('loop', i)", "end",
+                    "function f()", "  return 5", "end", "f() + 1 -- a comment", "sim:advance(0.001)",
+                    "local w = 4 return w"]
+        r = self.piped(commands, args=[os.path.join(self.tmp, "out_console")])
+        out, err = r.stdout.decode(), r.stderr.decode()
+        self.assertEqual(r.returncode, 0, out + err)
+        m = re.search(r"the session's commands are in (\S+)", err)
+        self.assertTrue(m, "where session.lua went is not said: " + err)
+        session = os.path.join(self.tmp, m.group(1))
+        with open(session) as f:
+            text = f.read()
+        self.assertIn("sim:advance(0.001)\n", text)
+        # the scenario's run writes beside it, outside session.lua's folder: --trusted
+        r = subprocess.run([BELTSIM, "run", "--trusted", session], cwd=self.tmp, env=child_env(self.tmp),
+                           stdout=subprocess.PIPE, stderr=subprocess.PIPE, timeout=60)
+        replay = r.stdout.decode()
+        self.assertEqual(r.returncode, 0, (r.stdout + r.stderr).decode() + "\nsession.lua:\n" + text)
+        # 6*7, sim.t (0 before the advance), z (local to its own command, as at the prompt), the
+        # loop, f() + 1
+        self.assertEqual(replay.split("\n")[:6], ["42", "0.0", "nil", "loop\t1", "loop\t2", "6"], replay + text)
 
     # 10b
     def test_session_quotes_set_values(self):

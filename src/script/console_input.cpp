@@ -1,0 +1,113 @@
+#include "script/console_input.hpp"
+
+#include <poll.h>
+#include <readline/history.h>
+#include <readline/readline.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <csignal>
+#include <cstdio>
+#include <cstdlib>
+
+#include "script/console_complete.hpp"
+#include "script/signals.hpp"
+
+namespace beltsim::script {
+
+namespace {
+
+bool g_cancelled = false;  // Ctrl-C dropped the line being read
+
+// one character of input. The stop signals are blocked except while waiting in ppoll, so one that
+// comes while readline is busy (echoing, redrawing) is seen at the next wait instead of being
+// lost: SIGTERM or SIGHUP ends the input (EOF), a Ctrl-C at the prompt ends the line, emptied.
+int next_char(FILE* f) {
+  sigset_t block, orig;
+  sigemptyset(&block);
+  for (int s : {SIGINT, SIGTERM, SIGHUP}) sigaddset(&block, s);
+  for (;;) {
+    sigprocmask(SIG_BLOCK, &block, &orig);
+    if (terminating()) {  // the line is dropped (not run), then the input ends as for Ctrl-D
+      sigprocmask(SIG_SETMASK, &orig, nullptr);
+      if (rl_line_buffer) rl_replace_line("", 0);
+      return EOF;
+    }
+    if (take_prompt_interrupt()) {
+      sigprocmask(SIG_SETMASK, &orig, nullptr);
+      g_cancelled = true;
+      if (rl_line_buffer) rl_replace_line("", 0);
+      return '\n';
+    }
+    pollfd p{fileno(f), POLLIN, 0};
+    const int r = ppoll(&p, 1, nullptr, &orig);  // the signals may arrive only while waiting here
+    sigprocmask(SIG_SETMASK, &orig, nullptr);
+    if (r < 0) {
+      if (errno == EINTR) continue;
+      return EOF;
+    }
+    unsigned char c;
+    const ssize_t n = ::read(fileno(f), &c, 1);
+    if (n == 1) return c;
+    if (n == 0) return EOF;
+    if (errno != EINTR) return EOF;
+  }
+}
+
+}  // namespace
+
+ConsoleInput::ConsoleInput(bool interactive, const std::string& history, lua_State* L)
+    : interactive_(interactive), history_(history) {
+  if (!interactive_) return;
+  rl_readline_name = "beltsim";
+  rl_catch_signals = 0;
+  rl_getc_function = next_char;
+  complete_from(L);
+  rl_basic_word_break_characters = const_cast<char*>(" \t\n\"\\'><=;+-*/%^~#{}()[],");
+  using_history();
+  // append_history does not create the file: make it on first use
+  if (std::FILE* f = std::fopen(history_.c_str(), "a")) std::fclose(f);
+  read_history(history_.c_str());
+}
+
+ConsoleInput::~ConsoleInput() {
+  if (interactive_) complete_from(nullptr);
+}
+
+ConsoleInput::Got ConsoleInput::read(const char* prompt, std::string& line) {
+  line.clear();
+  g_cancelled = false;
+  set_at_prompt(true);
+  if (interactive_) {
+    char* in = readline(prompt);
+    set_at_prompt(false);
+    if (!in) return Got::end;
+    line = in;
+    std::free(in);
+    if (g_cancelled) return Got::cancelled;
+    if (!line.empty()) {
+      add_history(line.c_str());
+      append_history(1, history_.c_str());
+      history_truncate_file(history_.c_str(), 1000);
+    }
+    return Got::line;
+  }
+  // a pipe: one byte at a time (no read-ahead past the line, which the commands do not share)
+  for (;;) {
+    const int c = next_char(stdin);
+    if (g_cancelled) {
+      set_at_prompt(false);
+      return Got::cancelled;
+    }
+    if (c == EOF) {
+      set_at_prompt(false);
+      return line.empty() || terminating() ? Got::end : Got::line;
+    }
+    if (c == '\n') break;
+    line += static_cast<char>(c);
+  }
+  set_at_prompt(false);
+  return Got::line;
+}
+
+}  // namespace beltsim::script

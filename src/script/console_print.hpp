@@ -1,0 +1,21 @@
+// How the console shows values: readable Lua (tables one entry a line, long lists shortened, a
+// number under a key with a known unit followed by "-- unit"), never running Lua code except a
+// __tostring (print_values is called protected for that reason).
+#pragma once
+
+#include <string>
+
+struct lua_State;
+
+namespace beltsim::script {
+
+// the value at idx as the console shows it
+std::string pretty(lua_State* L, int idx);
+// a lua_CFunction: prints its arguments as the console shows values, separated by tabs, on stdout
+int print_values(lua_State* L);
+// s as a Lua string literal ("..." with escapes)
+std::string quoted(const char* s, size_t n);
+// s is a Lua name (letters, digits and _, not starting with a digit; keywords included)
+bool is_identifier(const std::string& s);
+
+}  // namespace beltsim::script

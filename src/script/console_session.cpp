@@ -1,0 +1,172 @@
+#include "script/console_session.hpp"
+
+#include <algorithm>
+#include <cctype>
+#include <cerrno>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <regex>
+
+#include "lauxlib.h"
+#include "lua.h"
+#include "script/console_print.hpp"
+
+namespace beltsim::script {
+
+namespace {
+
+// the name of the global holding the value with this address, or ""
+std::string global_named(lua_State* L, const void* p) {
+  std::string name;
+  lua_pushglobaltable(L);
+  lua_pushnil(L);
+  while (lua_next(L, -2)) {
+    if (lua_type(L, -2) == LUA_TSTRING && lua_topointer(L, -1) == p) name = lua_tostring(L, -2);
+    lua_pop(L, 1);
+  }
+  lua_pop(L, 1);
+  return name;
+}
+
+// `text` as a Lua long string: [==[ ... ]==] with as many '=' as it takes
+std::string long_string(const std::string& text) {
+  std::string eq;
+  while (text.find("]" + eq + "]") != std::string::npos) eq += '=';
+  return "[" + eq + "[\n" + text + "\n]" + eq + "]";  // the first newline is not part of the string
+}
+
+// s as one word of a POSIX shell command line: as it is when it holds only characters no shell
+// treats specially, else in single quotes ('\'' for a quote); with a control character (a
+// newline would end session.lua's comment line) as bash's $'...' with escapes
+std::string shell_word(const std::string& s) {
+  auto plain = [](unsigned char c) { return std::isalnum(c) || (c != 0 && std::strchr("_./=:,+-@%", c)); };
+  if (!s.empty() && std::all_of(s.begin(), s.end(), plain)) return s;
+  const bool control = std::any_of(s.begin(), s.end(), [](unsigned char c) { return c < 0x20 || c == 0x7f; });
+  if (!control) {
+    std::string q = "'";
+    for (char c : s) q += c == '\'' ? std::string("'\\''") : std::string(1, c);
+    return q + "'";
+  }
+  std::string q = "$'";
+  for (unsigned char c : s) {
+    if (c == '\'' || c == '\\') {
+      q += '\\';
+      q += static_cast<char>(c);
+    } else if (c == '\n') {
+      q += "\\n";
+    } else if (c == '\t') {
+      q += "\\t";
+    } else if (c < 0x20 || c == 0x7f) {
+      char b[8];
+      std::snprintf(b, sizeof b, "\\x%02x", c);
+      q += b;
+    } else {
+      q += static_cast<char>(c);
+    }
+  }
+  return q + "'";
+}
+
+// true when `text` compiles as a Lua chunk (nothing is run)
+bool compiles(lua_State* L, const std::string& text) {
+  const bool ok = luaL_loadbufferx(L, text.data(), text.size(), "=session", "t") == LUA_OK;
+  lua_pop(L, 1);
+  return ok;
+}
+
+// true when the word occurs in text as a word (perhaps inside a string or a comment: then the
+// command is only wrapped when it need not be, which changes nothing)
+bool has_word(const std::string& text, const char* word) {
+  return std::regex_search(text, std::regex(std::string("\\b") + word + "\\b"));
+}
+
+// the command as statements valid anywhere in session.lua, doing what it did at the prompt
+std::string as_statements(lua_State* L, const std::string& chunk, bool expression) {
+  std::string out;
+  if (expression) {
+    // a call is a statement as it is; any other expression was printed: it is printed again
+    if (compiles(L, chunk)) return chunk;
+    out = "print(" + chunk + ")";
+    if (!compiles(L, out)) out = "print(" + chunk + "\n)";  // a comment at its end
+  } else if (has_word(chunk, "return")) {
+    out = "do (function(...)\n" + chunk + "\nend)() end";  // `return` ends the command, not the replay
+  } else if (has_word(chunk, "local") || chunk.find("::") != std::string::npos) {
+    out = "do\n" + chunk + "\nend";  // its locals and labels stay in the command, as at the prompt
+  } else {
+    out = chunk;
+  }
+  if (compiles(L, out)) return out;
+  // not expected: kept as a comment rather than break the replay
+  std::string c = "-- (not replayable) " + chunk;
+  for (size_t k = 0; k < c.size(); ++k)
+    if (c[k] == '\n') c.insert(k + 1, "-- ");
+  return c;
+}
+
+}  // namespace
+
+// a command whose run Ctrl-C stopped becomes run_to(where it stopped), so the replay stops at the
+// same step end (and gives the same outputs)
+std::string replayable(lua_State* L, const std::string& chunk, bool expression, const StoppedRuns& stopped) {
+  if (stopped.empty()) return as_statements(L, chunk, expression);
+  std::string out = "-- " + chunk;
+  for (size_t k = 0; k < out.size(); ++k)
+    if (out[k] == '\n') out.insert(k + 1, "-- ");
+  out += "  -- stopped by Ctrl-C";
+  for (const auto& [p, t] : stopped) {
+    char b[64];
+    std::snprintf(b, sizeof b, ":run_to(%.17g)", t);
+    const std::string name = global_named(L, p);
+    out += "\n" + (name.empty() ? "-- (a simulation not held by a global)" : name) + b;
+  }
+  return out;
+}
+
+bool write_session(const std::string& dir, const std::optional<std::string>& script, std::string script_text,
+                   const std::vector<std::string>& args, const std::vector<ScriptArg>& sets,
+                   const std::vector<std::string>& commands) {
+  if (commands.empty()) return true;
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  fs::create_directories(dir, ec);
+  const std::string path = (fs::path(dir) / "session.lua").string();
+  std::ofstream f(path);
+  if (!f) {
+    std::fprintf(stderr, "beltsim: cannot write %s: %s\n", path.c_str(), std::strerror(errno));
+    return false;
+  }
+  f << "-- The commands of a beltsim console session that ran without error, in order.\n"
+    << "-- Replay with: beltsim run " << shell_word(path);
+  // beltsim.args as in the session, each --set quoted for the shell
+  for (const ScriptArg& a : sets) f << " --set " << shell_word(a.key + "=" + a.text);
+  f << "\n";
+  if (script) {
+    // the scenario's text is copied in (as it was when the session began), so the replay needs
+    // no access to the scenario's folder, which the sandbox would refuse (README, Console)
+    f << "-- The scenario " << *script << " is copied below as it was when the session began; its errors\n"
+      << "-- name it and its own lines. A scenario that reads files beside it, or whose runs wrote outside\n"
+      << "-- this file's folder (out = ..., an argument naming a folder), needs: beltsim run --trusted\n";
+    f << "arg = { [0] = " << quoted(script->data(), script->size());
+    for (const std::string& a : args) f << ", " << quoted(a.data(), a.size());
+    f << " }\n";
+    // as luaL_loadfile reads a file: no UTF-8 byte order mark, a first line "#..." skipped (kept
+    // as a comment, so the line numbers stay)
+    if (script_text.rfind("\xEF\xBB\xBF", 0) == 0) script_text.erase(0, 3);
+    if (!script_text.empty() && script_text[0] == '#') script_text.insert(0, "--");
+    const std::string chunkname = "@" + *script;
+    f << "assert(load(" << long_string(script_text) << ", " << quoted(chunkname.data(), chunkname.size())
+      << ", \"t\"))()\n";
+  }
+  for (const std::string& c : commands) f << c << "\n";
+  f.close();
+  if (!f) {
+    std::fprintf(stderr, "beltsim: the session's commands could not be written to %s (disk full?)\n", path.c_str());
+    return false;
+  }
+  std::fprintf(stderr, "beltsim: the session's commands are in %s\n", path.c_str());
+  return true;
+}
+
+}  // namespace beltsim::script

@@ -1,0 +1,33 @@
+// The console's session.lua: the commands that ran without error, in order, as a script that
+// `beltsim run` replays. Each command is written so that it is valid where it stands and does
+// what it did at the prompt: an expression the prompt printed is printed (`print(sim.t)`), a chunk
+// with locals keeps them to itself (`do ... end`), one that returns runs as a function; a run that
+// Ctrl-C stopped becomes run_to(where it stopped). The scenario's text is copied in, so the replay
+// needs no access to the scenario's folder (which the sandbox would refuse).
+#pragma once
+
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "script/script_args.hpp"
+
+struct lua_State;
+
+namespace beltsim::script {
+
+// runs stopped by Ctrl-C in one command: the simulation's userdata and the time it stopped at
+using StoppedRuns = std::vector<std::pair<const void*, double>>;
+
+// the command `chunk` (compiled as an expression when `expression`) as session.lua replays it;
+// the globals of L name the simulations in `stopped`
+std::string replayable(lua_State* L, const std::string& chunk, bool expression, const StoppedRuns& stopped);
+
+// writes <dir>/session.lua (nothing when no command ran); false, with the reason on stderr, when it
+// cannot be written
+bool write_session(const std::string& dir, const std::optional<std::string>& script, std::string script_text,
+                   const std::vector<std::string>& args, const std::vector<ScriptArg>& sets,
+                   const std::vector<std::string>& commands);
+
+}  // namespace beltsim::script

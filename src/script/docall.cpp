@@ -1,0 +1,89 @@
+#include "script/docall.hpp"
+
+#include <exception>
+#include <sstream>
+
+#include "lauxlib.h"
+#include "lua.h"
+#include "script/limits.hpp"
+#include "script/signals.hpp"
+
+namespace beltsim::script {
+
+namespace {
+
+// the message handler: a string error keeps its "file:line:" (Lua adds it); any other error
+// object gets the place it was raised at and its __tostring (or its type), so that error(42)
+// still says where it came from; then Lua's traceback
+int msghandler(lua_State* L) {
+  if (lua_type(L, 1) != LUA_TSTRING) {
+    luaL_where(L, 2);  // "file:line:" of the Lua function that called error (1 is error itself)
+    if (luaL_callmeta(L, 1, "__tostring") && lua_type(L, -1) == LUA_TSTRING)
+      lua_pushfstring(L, "%s%s", lua_tostring(L, -2), lua_tostring(L, -1));
+    else if (lua_type(L, 1) == LUA_TNUMBER)
+      lua_pushfstring(L, "%s%s", lua_tostring(L, 2), luaL_tolstring(L, 1, nullptr));
+    else
+      lua_pushfstring(L, "%s(an error object that is a %s value)", lua_tostring(L, 2), luaL_typename(L, 1));
+    lua_replace(L, 1);
+    lua_settop(L, 1);
+  }
+  luaL_traceback(L, L, lua_tostring(L, 1), 1);
+  return 1;
+}
+
+constexpr const char* kTraceback = "\nstack traceback:\n";
+
+}  // namespace
+
+bool docall(lua_State* L, int nargs, int nresults, CallError* error, const std::string& where) {
+  const int fn = lua_gettop(L) - nargs;
+  lua_pushcfunction(L, msghandler);
+  lua_insert(L, fn);
+  int status = LUA_OK;
+  std::string escaped;
+  {
+    const InsideLua inside;  // the watchdog's view (signals.hpp)
+    try {
+      status = lua_pcall(L, nargs, nresults, fn);
+    } catch (const std::exception& e) {  // a C++ error that escaped a binding
+      status = LUA_ERRRUN;
+      escaped = e.what();
+    }
+  }
+  if (status == LUA_OK) {
+    lua_remove(L, fn);
+    return true;
+  }
+  CallError e;
+  if (!escaped.empty()) {
+    e.message = escaped;
+  } else if (lua_gettop(L) >= fn && memory_message(L, status, where, e.message)) {
+  } else if (lua_gettop(L) > fn && lua_type(L, -1) == LUA_TSTRING) {
+    const std::string text = lua_tostring(L, -1);
+    const size_t tb = text.rfind(kTraceback);  // the handler's; a message may quote another's
+    e.message = text.substr(0, tb);
+    if (tb != std::string::npos) e.traceback = text.substr(tb + 1);
+  } else {
+    e.message = where + ": an error without a message (status " + std::to_string(status) + ")";
+  }
+  lua_settop(L, fn - 1);
+  if (error) *error = std::move(e);
+  return false;
+}
+
+std::string shown_traceback(const std::string& traceback, int frames) {
+  std::istringstream in(traceback);
+  std::string line, out;
+  int kept = 0;
+  while (std::getline(in, line)) {
+    if (line.rfind('\t', 0) != 0) continue;                     // "stack traceback:"
+    if (line.find("[C]: in ?") != std::string::npos) continue;  // the host's own frame
+    if (++kept > frames) continue;
+    out += line + "\n";
+  }
+  if (kept <= 1) return "";
+  if (kept > frames) out += "\t(" + std::to_string(kept - frames) + " more)\n";
+  return "stack traceback:\n" + out;
+}
+
+}  // namespace beltsim::script

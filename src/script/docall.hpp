@@ -1,0 +1,30 @@
+// The one way the host calls into Lua (after lua.c's docall): a script run, a console command and
+// the printing of its results, a Lua law called by the integrator, an io function the sandbox
+// wraps. The call is protected, with one message handler that names the error's place and appends
+// Lua's traceback (luaL_traceback); a memory error names the limit (limits.hpp); a C++ exception
+// that escaped a binding is an error too. While a call is under way the stop signals' watchdog
+// knows the host is inside Lua (signals.hpp).
+#pragma once
+
+#include <string>
+
+struct lua_State;
+
+namespace beltsim::script {
+
+struct CallError {
+  std::string message;    // "file:line: reason" (a non-string error object named, with its place)
+  std::string traceback;  // "stack traceback:\n\t..." ("" for a memory error)
+};
+
+// calls the function below the `nargs` values on the stack top. On success returns true and
+// leaves `nresults` results (all of them for LUA_MULTRET) where the function was; on error
+// returns false, leaves the stack as it was below the function and fills *error. `where` names
+// the call for an error Lua gives without a place (a memory error: "stdin", the script's path).
+bool docall(lua_State* L, int nargs, int nresults, CallError* error, const std::string& where);
+
+// the traceback as a reader wants it: without the host's own frames ("[C]: in ?"), at most
+// `frames` frames; "" when no more than one frame is left (the message already names that place)
+std::string shown_traceback(const std::string& traceback, int frames = 8);
+
+}  // namespace beltsim::script

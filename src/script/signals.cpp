@@ -1,0 +1,213 @@
+#include "script/signals.hpp"
+
+#include <fcntl.h>
+#include <pthread.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <csignal>
+#include <cstdio>
+#include <cstring>
+#include <mutex>
+#include <string>
+#include <thread>
+
+#include "script/interpreter.hpp"
+
+namespace beltsim::script {
+
+namespace {
+
+enum Mode : int { kOutside = 0, kLua = 1, kWork = 2 };
+
+// Atomics, not volatile sig_atomic_t: a signal sent to the process goes to any thread that does not
+// block it (the encoder's, llvmpipe's), so two sent back to back can be in their handlers at once,
+// one per thread; exactly one of them wins the exchange in on_signal (lock-free: safe in a handler)
+std::atomic<bool> g_stop{false};
+std::atomic<int> g_first{0};    // the first stop signal of the process
+std::atomic<int> g_pending{0};  // the stop under way (a console command's Ctrl-C is done with at its end)
+std::atomic<bool> g_at_prompt{false}, g_prompt_sigint{false};
+std::atomic<Interpreter*> g_lua{nullptr};
+std::atomic<int> g_mode{kOutside};
+std::atomic<unsigned> g_mode_changes{0};
+int g_wake[2] = {-1, -1};  // the handler writes the signal's number, the watchdog reads it
+static_assert(std::atomic<int>::is_always_lock_free && std::atomic<bool>::is_always_lock_free &&
+              std::atomic<Interpreter*>::is_always_lock_free);
+
+// the watchdog's interrupt() against an interpreter going away (never destroyed: the watchdog
+// may still run while the process exits)
+std::mutex& lua_mutex() {
+  static auto* m = new std::mutex;
+  return *m;
+}
+
+void on_signal(int sig) {
+  const int saved_errno = errno;
+  if (sig == SIGINT && g_at_prompt.load()) {
+    g_prompt_sigint.store(true);  // the console's ppoll returns EINTR and clears the line
+    errno = saved_errno;
+    return;
+  }
+  int none = 0;
+  if (!g_pending.compare_exchange_strong(none, sig)) {  // a stop is under way: this one ends the process
+    std::signal(sig, SIG_DFL);
+    std::raise(sig);  // blocked in this thread until this handler returns, then fatal
+    return;
+  }
+  int zero = 0;
+  g_first.compare_exchange_strong(zero, sig);
+  g_stop.store(true);                              // a run stops at its last finished step
+  if (auto* lua = g_lua.load()) lua->interrupt();  // Lua code stops at its next instructions
+  const char c = static_cast<char>(sig);
+  [[maybe_unused]] const ssize_t n = write(g_wake[1], &c, 1);  // non-blocking: never waits here
+  errno = saved_errno;
+}
+
+void say(const std::string& s) {
+  [[maybe_unused]] const ssize_t n = write(STDERR_FILENO, s.data(), s.size());
+}
+
+const char* name(int sig) {
+  return sig == SIGINT ? "Ctrl-C" : sig == SIGHUP ? "SIGHUP" : "SIGTERM";
+}
+
+// waits while the host runs Lua code; true when it has been inside one Lua call for kGrace
+// without leaving it (the mode unchanged); `still` says whether to go on watching, `tick` runs
+// at every look
+template <class Still, class Tick>
+bool stuck_in_lua(Still still, Tick tick) {
+  using clock = std::chrono::steady_clock;
+  bool inside = false;
+  unsigned seen = 0;
+  clock::time_point since;
+  while (still()) {
+    tick();
+    const unsigned changes = g_mode_changes.load();
+    if (g_mode.load() != kLua) {
+      inside = false;
+    } else if (!inside || changes != seen) {
+      inside = true;
+      seen = changes;
+      since = clock::now();
+    } else if (clock::now() - since >= kGrace) {
+      return true;
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  }
+  return false;
+}
+
+void interrupt_lua() {
+  const std::lock_guard<std::mutex> lock(lua_mutex());
+  if (auto* lua = g_lua.load()) lua->interrupt();
+}
+
+void watchdog() {
+  for (;;) {
+    char c = 0;
+    const ssize_t n = read(g_wake[0], &c, 1);
+    if (n != 1) {
+      if (n < 0 && errno == EINTR) continue;
+      return;
+    }
+    const int sig = c;
+    if (sig == SIGINT) {
+      // a Ctrl-C that Lua does not honour: say what the next one does (once)
+      if (stuck_in_lua([] { return g_pending.load() == SIGINT; }, [] {}))
+        say("\nbeltsim: the Lua code under way does not stop (a long C call such as a string pattern, or code that "
+            "runs with hooks off); Ctrl-C again ends beltsim\n");
+      continue;
+    }
+    // SIGTERM, SIGHUP: Lua code that goes on after a stopped run is interrupted again; Lua that
+    // does not return ends the process
+    if (stuck_in_lua([] { return true; }, interrupt_lua)) {
+      say(std::string("\nbeltsim: the Lua code under way did not stop within ") + std::to_string(kGrace.count()) +
+          " ms of " + name(sig) +
+          " (a long C call such as a string pattern, or code that runs with hooks off); "
+          "ending now; the outputs written so far are kept\n");
+      std::signal(sig, SIG_DFL);
+      kill(getpid(), sig);
+      return;
+    }
+  }
+}
+
+}  // namespace
+
+void install_stop_signals() {
+  static bool installed = false;
+  if (installed) return;
+  installed = true;
+  if (pipe2(g_wake, O_CLOEXEC) == 0) {
+    fcntl(g_wake[1], F_SETFL, O_NONBLOCK);
+    // the watchdog takes no signals itself (they go to the threads that run the handlers' work)
+    sigset_t all, old;
+    sigfillset(&all);
+    pthread_sigmask(SIG_SETMASK, &all, &old);
+    std::thread(watchdog).detach();
+    pthread_sigmask(SIG_SETMASK, &old, nullptr);
+  }
+  struct sigaction sa {};
+  sa.sa_handler = on_signal;
+  sigemptyset(&sa.sa_mask);
+  for (int s : {SIGINT, SIGTERM, SIGHUP}) sigaddset(&sa.sa_mask, s);  // one handler at a time in a thread
+  sa.sa_flags = SA_RESTART;  // the console's waits (ppoll) return EINTR all the same
+  for (int s : {SIGINT, SIGTERM, SIGHUP}) sigaction(s, &sa, nullptr);
+}
+
+std::atomic<bool>& stop_flag() {
+  return g_stop;
+}
+int stop_signal() {
+  return g_first.load();
+}
+bool terminating() {
+  const int s = g_pending.load();
+  return s == SIGTERM || s == SIGHUP;
+}
+
+int stopped_status() {
+  const int sig = terminating() ? g_pending.load() : g_first != 0 ? g_first.load() : SIGINT;
+  std::fprintf(stderr, "beltsim: %s; the outputs written so far are kept\n",
+               sig == SIGTERM  ? "terminated"
+               : sig == SIGHUP ? "hung up (SIGHUP)"
+                               : "interrupted");
+  return 128 + sig;
+}
+
+void set_at_prompt(bool at_prompt) {
+  g_at_prompt.store(at_prompt);
+}
+bool take_prompt_interrupt() {
+  return g_prompt_sigint.exchange(false);
+}
+
+void command_done() {
+  int sigint = SIGINT;
+  if (g_pending.compare_exchange_strong(sigint, 0) || g_pending.load() == 0) g_stop.store(false);
+}
+
+Interruptible::Interruptible(Interpreter& lua) {
+  g_lua.store(&lua);
+}
+Interruptible::~Interruptible() {
+  const std::lock_guard<std::mutex> lock(lua_mutex());
+  g_lua.store(nullptr);
+}
+
+InsideLua::InsideLua() : saved_(g_mode.exchange(kLua)) {
+  g_mode_changes.fetch_add(1);
+}
+InsideLua::~InsideLua() {
+  g_mode.store(saved_);
+  g_mode_changes.fetch_add(1);
+}
+HostWork::HostWork() : saved_(g_mode.exchange(kWork)) {
+  g_mode_changes.fetch_add(1);
+}
+HostWork::~HostWork() {
+  g_mode.store(saved_);
+  g_mode_changes.fetch_add(1);
+}
+
+}  // namespace beltsim::script

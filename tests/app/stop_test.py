@@ -1,0 +1,174 @@
+#!/usr/bin/env python3
+"""Every call stoppable (src/script/signals.cpp): SIGTERM ends `beltsim run` and the console whatever
+Lua is doing, including what the Lua hook cannot reach (an xpcall message handler that loops runs
+with hooks off; a backtracking string pattern is one long C call), as does a second Ctrl-C; Lua
+code that goes on after a stopped run stops too; SIGHUP is handled as SIGTERM (exit 129, the video
+finalised). Each case waits for the event it needs (a line the script prints, a file, a message)
+and gives the process 5 s to end after the signal.
+
+usage: stop_test.py BELTSIM
+"""
+import os
+import re
+import select
+import shutil
+import signal
+import subprocess
+import sys
+import tempfile
+import time
+import unittest
+
+BELTSIM = None
+LIMIT = 5.0  # [s] from the signal to the end of the process
+
+# one long C call: string.find backtracks over 3000^4 / 24 positions (hours)
+PATTERN = 'print(string.rep("a", 3000):find(".-.-.-.-b"))'
+# a message handler that loops: Lua runs it with hooks off
+HANDLER = "xpcall(function() error('x') end, function(m) while true do end end)"
+READY = 'print("ready") io.stdout:flush()'
+
+SCENE = """
+local drive = beltsim.scene {
+  pulleys = {
+    { name = "driver", centre = {0, 0},    radius = 0.1, torque = beltsim.ramp(0.3, -70) },
+    { name = "driven", centre = {0.29, 0}, radius = 0.1, torque = { per_speed = -0.955 } },
+  },
+  belt = { elements = 40, pretension = 500, direction = "cw" },
+}
+"""
+
+
+class Stop(unittest.TestCase):
+    def setUp(self):
+        self.dir = tempfile.mkdtemp(prefix="beltsim_stop_")
+        self.addCleanup(shutil.rmtree, self.dir, True)
+        self.procs = []
+
+    def tearDown(self):
+        for p in self.procs:
+            if p.poll() is None:
+                p.kill()
+                p.wait()
+            for stream in (p.stdin, p.stdout, p.stderr):
+                if stream:
+                    stream.close()
+
+    def script(self, text):
+        path = os.path.join(self.dir, "s.lua")
+        with open(path, "w") as f:
+            f.write(text)
+        return path
+
+    def start(self, args, stdin=None):
+        env = dict(os.environ, GALLIUM_DRIVER=os.environ.get("GALLIUM_DRIVER", "llvmpipe"))
+        p = subprocess.Popen([BELTSIM] + args, cwd=self.dir, env=env, stdin=subprocess.PIPE if stdin else None,
+                             stdout=subprocess.PIPE, stderr=subprocess.PIPE)
+        self.procs.append(p)
+        if stdin:
+            p.stdin.write(stdin.encode())
+            p.stdin.flush()
+        return p
+
+    def wait_line(self, stream, text, timeout=60):
+        """reads stream until a line holding text comes; what was read"""
+        seen, deadline = b"", time.monotonic() + timeout
+        while text.encode() not in seen:
+            left = deadline - time.monotonic()
+            r, _, _ = select.select([stream], [], [], max(left, 0))
+            if not r:
+                self.fail("no %r within %.0f s; read %r" % (text, timeout, seen))
+            chunk = os.read(stream.fileno(), 4096)
+            if not chunk:
+                self.fail("the stream ended before %r; read %r" % (text, seen))
+            seen += chunk
+        return seen.decode()
+
+    def ends(self, p, sig, err_so_far=""):
+        """sends sig; the exit status and stderr once the process has ended (within LIMIT)"""
+        t0 = time.monotonic()
+        p.send_signal(sig)
+        try:
+            p.wait(timeout=LIMIT)
+        except subprocess.TimeoutExpired:
+            self.fail("still running %.0f s after %s" % (LIMIT, signal.Signals(sig).name))
+        took = time.monotonic() - t0
+        err = err_so_far + p.stderr.read().decode()
+        print("  %s: ended in %.2f s, status %d" % (signal.Signals(sig).name, took, p.returncode), file=sys.stderr)
+        return p.returncode, err
+
+    # SIGTERM ends the process: the watchdog takes SIGTERM's own action (-15), or the host returns 143
+    def assert_terminated(self, status, err):
+        self.assertIn(status, (-signal.SIGTERM, 143), err)
+        self.assertIn("terminated" if status == 143 else "did not stop within", err)
+
+    def test_sigterm_ends_a_message_handler_that_loops(self):
+        p = self.start(["run", self.script(READY + "\n" + HANDLER + "\n")])
+        self.wait_line(p.stdout, "ready")
+        self.assert_terminated(*self.ends(p, signal.SIGTERM))
+
+    def test_sigterm_ends_a_long_pattern_match(self):
+        p = self.start(["run", self.script(READY + "\n" + PATTERN + "\n")])
+        self.wait_line(p.stdout, "ready")
+        self.assert_terminated(*self.ends(p, signal.SIGTERM))
+
+    def test_sigterm_ends_the_console_in_a_long_pattern_match(self):
+        p = self.start(["console", "--out", "out"], stdin=READY + " " + PATTERN + "\n")  # one command
+        self.wait_line(p.stdout, "ready")
+        self.assert_terminated(*self.ends(p, signal.SIGTERM))
+
+    def test_a_second_ctrl_c_ends_a_long_pattern_match(self):
+        # the first Ctrl-C cannot stop a C call: the watchdog says so, and the second one ends beltsim
+        for args, stdin in [(["run", self.script(READY + "\n" + PATTERN + "\n")], None),
+                                  (["console", "--out", "out"], READY + " " + PATTERN + "\n")]:
+            p = self.start(args, stdin=stdin)
+            self.wait_line(p.stdout, "ready")
+            p.send_signal(signal.SIGINT)
+            err = self.wait_line(p.stderr, "Ctrl-C again ends beltsim")
+            self.assertIsNone(p.poll(), err)
+            status, err = self.ends(p, signal.SIGINT, err)
+            self.assertEqual(status, -signal.SIGINT, err)
+
+    def test_lua_after_a_stopped_run_stops(self):
+        # run_to stops at a step end and Lua goes on (no "interrupted!" there); after SIGTERM the
+        # loop that follows is interrupted too, and the outputs are closed: 143
+        p = self.start(["run", self.script(
+            SCENE + "sim = drive:start { progress = false, out = 'out' }\n" + READY + "\n"
+            "sim:run_to(1000)\nwhile true do end\n")])
+        self.wait_line(p.stdout, "ready")
+        csv = os.path.join(self.dir, "out", "timeseries.csv")
+        deadline = time.monotonic() + 60
+        while os.path.getsize(csv) < 2000:  # some rows: the run is under way
+            self.assertLess(time.monotonic(), deadline, "the run wrote no rows")
+            time.sleep(0.02)
+        status, err = self.ends(p, signal.SIGTERM)
+        self.assertEqual(status, 143, err)
+        self.assertIn("interrupted!", err)
+        self.assertIn("beltsim: terminated; the outputs written so far are kept", err)
+        with open(csv) as f:
+            self.assertTrue(f.read().endswith("\n"))
+
+    def test_sighup_is_handled_as_sigterm(self):
+        p = self.start(["run", self.script(
+            SCENE + "drive:run { t_end = 3, progress = false, out = 'out', "
+            "frames = { size = {320, 240}, video = 'v.mp4' } }\n")])
+        frames = os.path.join(self.dir, "out", "frames")
+        csv = os.path.join(self.dir, "out", "timeseries.csv")
+        deadline = time.monotonic() + 60
+        while not (os.path.exists(csv) and os.path.getsize(csv) > 2000):  # frames being made
+            self.assertIsNone(p.poll(), p.stderr.read().decode() if p.poll() is not None else "")
+            self.assertLess(time.monotonic(), deadline, "the run wrote no rows")
+            time.sleep(0.02)
+        status, err = self.ends(p, signal.SIGHUP)
+        self.assertEqual(status, 129, err)
+        self.assertIn("beltsim: hung up (SIGHUP); the outputs written so far are kept", err)
+        video = os.path.join(self.dir, "out", "v.mp4")
+        r = subprocess.run(["ffprobe", "-v", "error", "-count_frames", "-select_streams", "v:0", "-show_entries",
+                            "stream=nb_read_frames", "-of", "csv=p=0", video], capture_output=True, text=True)
+        self.assertEqual(r.returncode, 0, r.stderr)
+        self.assertTrue(re.match(r"\s*[1-9]\d*", r.stdout), r.stdout + r.stderr)
+
+
+if __name__ == "__main__":
+    BELTSIM = os.path.abspath(sys.argv.pop(1))
+    unittest.main(verbosity=2)
