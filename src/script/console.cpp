@@ -20,6 +20,7 @@
 #include <readline/history.h>
 #include <readline/readline.h>
 
+#include "io/output_dir.hpp"
 #include "io/units.hpp"
 #include "script/context.hpp"
 #include "script/limits.hpp"
@@ -512,14 +513,8 @@ void write_session(const std::string& dir, const std::optional<std::string>& scr
                    const std::vector<std::string>& commands) {
   if (commands.empty()) return;
   namespace fs = std::filesystem;
-  std::error_code ec;
-  fs::create_directories(dir, ec);
   const std::string path = (fs::path(dir) / "session.lua").string();
-  std::ofstream f(path);
-  if (!f) {
-    std::fprintf(stderr, "beltsim: cannot write %s: %s\n", path.c_str(), std::strerror(errno));
-    return;
-  }
+  std::ostringstream f;  // written whole at the end (io/output_dir.hpp: never through a link)
   f << "-- The commands of a beltsim console session that ran without error, in order.\n"
     << "-- Replay with: beltsim run " << shell_word(path);
   // beltsim.args as in the session, each --set quoted for the shell
@@ -543,6 +538,13 @@ void write_session(const std::string& dir, const std::optional<std::string>& scr
       << ", \"t\"))()\n";
   }
   for (const std::string& c : commands) f << c << "\n";
+  try {
+    write_file_whole(OutputDir(dir), "session.lua", f.str());  // the folder made when missing
+  } catch (const std::exception& e) {  // recorded: the exit status says so (app/main.cpp)
+    std::fprintf(stderr, "beltsim: %s\n", e.what());
+    mark_output_failure_shown(e.what());
+    return;
+  }
   std::fprintf(stderr, "beltsim: the session's commands are in %s\n", path.c_str());
 }
 
