@@ -9,9 +9,10 @@
 //   SAFETY: [--trusted] [--max-instructions N] [--max-lua-memory MiB] (README, Limits and safety)
 // The flags override what the script passes to scene:run{}. Every number is a finite decimal
 // (no hex, inf or nan); an option a command does not take is an error. Exit status: 0 on
-// success, 1 on a script, parameter, run or plot error (message on stderr, outputs written so far
-// kept), 2 on bad usage (or an environment variable it cannot read, app/environment.hpp), 130 when
-// stopped by Ctrl-C (SIGINT), 143 by SIGTERM and 129 by SIGHUP (outputs closed; script/signals.hpp).
+// success, 1 on a script, parameter, run or plot error or an output that could not be written
+// (message on stderr, outputs written so far kept), 2 on bad usage (or an environment variable it
+// cannot read, app/environment.hpp), 130 when stopped by Ctrl-C (SIGINT), 143 by SIGTERM and 129
+// by SIGHUP (outputs closed; script/signals.hpp).
 #include <CLI/CLI.hpp>
 #include <unistd.h>
 
@@ -26,6 +27,7 @@
 #include <vector>
 
 #include "integrate/stepper.hpp"
+#include "io/output_dir.hpp"
 #include "plot/plot.hpp"
 #include "plot/wp_plot.hpp"
 #include "script/interpreter.hpp"
@@ -45,6 +47,14 @@ namespace fs = std::filesystem;
 using beltsim::script::stop_flag;
 using beltsim::script::stop_signal;
 using beltsim::script::stopped_status;
+
+// An output that could not be written (io/output_dir.hpp records each) fails the command, also
+// when no message of its own said so (a simulation closed at the interpreter's end, a script that
+// caught the error): each not shown yet is named, and a status of 0 becomes 1.
+int with_outputs(int status) {
+  for (const std::string& m : beltsim::unshown_output_failures()) std::fprintf(stderr, "beltsim: %s\n", m.c_str());
+  return status == 0 && !beltsim::output_failures().empty() ? 1 : status;
+}
 
 // bad usage: the message goes to stderr and the exit status is 2
 struct UsageError : std::runtime_error {
@@ -207,6 +217,7 @@ int cmd_run(const std::string& script, const beltsim::script::Overrides& o, cons
     return stop_signal() != 0 ? stopped_status() : 1;
   } catch (const std::exception& e) {
     std::fprintf(stderr, "beltsim: %s\n", e.what());
+    beltsim::mark_output_failure_shown(e.what());
     return stop_signal() != 0 ? stopped_status() : 1;
   }
   return 0;
@@ -238,11 +249,13 @@ int cmd_wp(const std::string& script, const beltsim::script::Overrides& o, const
       drawn = png;
     } catch (const std::exception& e) {  // the CSV is the result; the picture is a convenience
       std::fprintf(stderr, "beltsim wp: no plot: %s\n", e.what());
+      beltsim::mark_output_failure_shown(e.what());  // (a picture that cannot be written fails the command)
     }
     std::fprintf(stderr, "beltsim wp: wrote %s%s%s\n", r.csv_path.c_str(), drawn.empty() ? "" : " and ", drawn.c_str());
     return stop_signal() != 0 ? stopped_status() : 0;
   } catch (const std::exception& e) {
     std::fprintf(stderr, "beltsim: %s\n", e.what());
+    beltsim::mark_output_failure_shown(e.what());
     return stop_signal() != 0 ? stopped_status() : 1;
   }
 }
@@ -255,6 +268,7 @@ int cmd_plot(const std::string& csv, const std::vector<std::string>& columns, co
     beltsim::plot::plot_csv(csv, columns, from, png);
   } catch (const std::exception& e) {
     std::fprintf(stderr, "beltsim: %s\n", e.what());
+    beltsim::mark_output_failure_shown(e.what());
     return 1;
   }
   // the picture on a terminal (or wherever BELTSIM_TERM_IMAGES forces it), then the path
@@ -273,6 +287,7 @@ int cmd_console(const std::optional<std::string>& script, const std::vector<std:
     return beltsim::script::run_console(script, args, o, s, {env.history, env.images});
   } catch (const std::exception& e) {
     std::fprintf(stderr, "beltsim: %s\n", e.what());
+    beltsim::mark_output_failure_shown(e.what());
     return 1;
   }
 }
@@ -283,9 +298,9 @@ int main(int argc, char** argv) {
   CLI::App app{"beltsim: belt transmissions, the discrete model of K. Kubas; scenarios are Lua scripts.", "beltsim"};
   app.set_version_flag("--version", "beltsim 0.1.0");
   app.require_subcommand(1);
-  app.footer("Exit status: 0 on success, 1 on a script, parameter, run or plot error, 2 on bad usage,\n"
-             "130 after Ctrl-C, 143 after SIGTERM, 129 after SIGHUP (outputs closed). 'beltsim COMMAND\n"
-             "--help' describes a command.");
+  app.footer("Exit status: 0 on success, 1 on a script, parameter, run or plot error or an output that\n"
+             "could not be written, 2 on bad usage, 130 after Ctrl-C, 143 after SIGTERM, 129 after SIGHUP\n"
+             "(outputs closed). 'beltsim COMMAND --help' describes a command.");
   Raw raw;
   std::string script, csv;
   std::optional<std::string> console_script;
@@ -382,10 +397,10 @@ int main(int argc, char** argv) {
   beltsim::app::apply_render_settings(env);
 
   try {
-    if (*plot) return cmd_plot(csv, columns, raw, env.images);  // a signal ends it at once: nothing to close
+    if (*plot) return with_outputs(cmd_plot(csv, columns, raw, env.images));  // a signal ends it at once: nothing to close
     beltsim::script::install_stop_signals();
-    if (*run) return cmd_run(script, overrides(raw), safety(raw));
-    if (*console) return cmd_console(console_script, console_args, overrides(raw), safety(raw), env);
+    if (*run) return with_outputs(cmd_run(script, overrides(raw), safety(raw)));
+    if (*console) return with_outputs(cmd_console(console_script, console_args, overrides(raw), safety(raw), env));
     // wp
     beltsim::WpSettings wps;
     if (raw.integrators) {
@@ -408,7 +423,7 @@ int main(int argc, char** argv) {
       if (!(x > 0)) throw UsageError("--wall-limit must be > 0 s, got " + *raw.wall_limit);
       wps.wall_limit = x;
     }
-    return cmd_wp(script, overrides(raw), safety(raw), wps);
+    return with_outputs(cmd_wp(script, overrides(raw), safety(raw), wps));
   } catch (const UsageError& e) {
     const CLI::App* sub = app.get_subcommands().front();
     std::fprintf(stderr, "beltsim: %s\nRun 'beltsim %s --help' for the usage.\n", e.what(), sub->get_name().c_str());

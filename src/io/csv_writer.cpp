@@ -33,6 +33,16 @@ std::string csv_number(double v) {
 CsvWriter::CsvWriter(const std::string& path, const std::vector<std::string>& header, double /*flush_interval*/,
                      bool append)
     : file_(path, append), columns_(header.size()) {
+  start(header, append);
+}
+
+CsvWriter::CsvWriter(const OutputDir& dir, const std::string& name, const std::vector<std::string>& header,
+                     bool append)
+    : file_(dir, name, append), columns_(header.size()) {
+  start(header, append);
+}
+
+void CsvWriter::start(const std::vector<std::string>& header, bool append) {
   if (append) return;
   for (size_t k = 0; k < header.size(); ++k) {
     if (k) line_ += ',';

@@ -21,6 +21,8 @@ class CsvWriter {
   // (here and in row()).
   CsvWriter(const std::string& path, const std::vector<std::string>& header, double flush_interval = 0.5,
             bool append = false);
+  // DIR/NAME (io/output_dir.hpp: never through a link)
+  CsvWriter(const OutputDir& dir, const std::string& name, const std::vector<std::string>& header, bool append);
   CsvWriter(const CsvWriter&) = delete;
   CsvWriter& operator=(const CsvWriter&) = delete;
   void row(const std::vector<double>& values);
@@ -28,6 +30,7 @@ class CsvWriter {
   const std::string& path() const { return file_.path(); }
 
  private:
+  void start(const std::vector<std::string>& header, bool append);
   RowFile file_;
   size_t columns_;
   std::string line_;  // the row being assembled (its capacity reused)

@@ -4,17 +4,11 @@
 #include <unistd.h>
 
 #include <cerrno>
-#include <cstdio>
 #include <cstring>
-#include <stdexcept>
 
 namespace beltsim {
 
 namespace {
-
-[[noreturn]] void fail(const std::string& path, int err) {
-  throw std::runtime_error("cannot write " + path + ": " + std::strerror(err));
-}
 
 // all of text, in one write(2) unless the kernel takes less (a disk filling part-way: then the
 // rest, which gets the error); 0 or the errno, `done` the bytes written
@@ -28,15 +22,15 @@ int write_all(int fd, std::string_view text, size_t& done) {
   return 0;
 }
 
-int open_for_writing(const std::string& path, bool append) {
-  const int fd = ::open(path.c_str(), O_WRONLY | O_CREAT | O_CLOEXEC | (append ? O_APPEND : O_TRUNC), 0666);
-  if (fd < 0) fail(path, errno);
-  return fd;
-}
-
 }  // namespace
 
-RowFile::RowFile(const std::string& path, bool append) : path_(path), fd_(open_for_writing(path, append)) {}
+RowFile::RowFile(const OutputDir& dir, const std::string& name, bool append)
+    : path_(dir.file(name)), fd_(dir.open_file(name, append)) {}
+
+RowFile::RowFile(const std::string& path, bool append) : path_(path) {
+  const OutputPlace p = output_place(path);
+  fd_ = p.dir.open_file(p.name, append);
+}
 
 RowFile::~RowFile() {
   if (fd_ >= 0) ::close(fd_);
@@ -52,20 +46,7 @@ void RowFile::write(std::string_view rows) {
     if (end >= static_cast<off_t>(done) && ::ftruncate(fd_, end - static_cast<off_t>(done)) == 0)
       ::lseek(fd_, end - static_cast<off_t>(done), SEEK_SET);
   }
-  fail(path_, err);
-}
-
-void write_file_whole(const std::string& path, std::string_view text) {
-  const std::string part = path + ".part";
-  const int fd = open_for_writing(part, false);
-  size_t done = 0;
-  int err = write_all(fd, text, done);
-  if (::close(fd) != 0 && err == 0) err = errno;
-  if (err == 0 && std::rename(part.c_str(), path.c_str()) != 0) err = errno;
-  if (err != 0) {
-    std::remove(part.c_str());
-    fail(path, err);
-  }
+  output_error(path_, std::strerror(err));
 }
 
 }  // namespace beltsim

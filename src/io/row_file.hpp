@@ -3,7 +3,8 @@
 // on an unbuffered descriptor: when write returns, the row is in the file (the page cache, which
 // outlives the process), and no user-space buffer ever holds the first half of a row while the
 // second half waits. A write that fails part-way (a full disk, a file-size limit) cuts the file
-// back to where the row began and throws std::runtime_error naming the file and the reason.
+// back to where the row began and throws std::runtime_error naming the file and the reason
+// (io/output_dir.hpp: recorded, never through a link).
 //
 // What one write(2) does not cover: the kernel copies a write page by page and a SIGKILL that
 // arrives between two pages of one write ends it there (Linux's generic_perform_write checks for
@@ -15,12 +16,16 @@
 #include <string>
 #include <string_view>
 
+#include "io/output_dir.hpp"
+
 namespace beltsim {
 
 class RowFile {
  public:
-  // append: continue the file (a resumed run); otherwise it is created or emptied.
-  // Throws std::runtime_error "cannot write PATH: reason".
+  // DIR/NAME opened by OutputDir::open_file: append continues the file (a resumed run); otherwise
+  // it is created or emptied. Throws std::runtime_error "cannot write PATH: reason".
+  RowFile(const OutputDir& dir, const std::string& name, bool append);
+  // the same for a path (its folder made when missing)
   RowFile(const std::string& path, bool append);
   ~RowFile();
   RowFile(const RowFile&) = delete;
@@ -34,9 +39,5 @@ class RowFile {
   std::string path_;
   int fd_ = -1;
 };
-
-// a whole file at once: written to PATH.part, then renamed over PATH, so that a reader (or a kill)
-// finds the previous file or the new one, never a part of it
-void write_file_whole(const std::string& path, std::string_view text);
 
 }  // namespace beltsim

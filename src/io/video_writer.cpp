@@ -1,7 +1,14 @@
 #include "io/video_writer.hpp"
 
+#include <fcntl.h>
+#include <unistd.h>
+
 #include <atomic>
+#include <cerrno>
+#include <cstring>
 #include <stdexcept>
+
+#include "io/output_dir.hpp"
 
 extern "C" {
 #include <libavcodec/avcodec.h>
@@ -22,6 +29,38 @@ std::string av_message(int err) {
   return buf;
 }
 
+// the file under the muxer: a descriptor opened by OutputDir (never through a link) written by
+// the AVIOContext's callbacks; the first write error is kept (errno)
+struct VideoFile {
+  int fd = -1;
+  int error = 0;
+};
+
+int write_packet(void* opaque, uint8_t* buf, int size) {
+  auto* f = static_cast<VideoFile*>(opaque);
+  for (int done = 0; done < size;) {
+    const ssize_t n = ::write(f->fd, buf + done, static_cast<size_t>(size - done));
+    if (n > 0) {
+      done += static_cast<int>(n);
+    } else if (!(n < 0 && errno == EINTR)) {
+      if (f->error == 0) f->error = n < 0 ? errno : ENOSPC;
+      return AVERROR(f->error);
+    }
+  }
+  return size;
+}
+
+int64_t seek(void* opaque, int64_t offset, int whence) {
+  auto* f = static_cast<VideoFile*>(opaque);
+  if (whence == AVSEEK_SIZE) {
+    const off_t here = ::lseek(f->fd, 0, SEEK_CUR), end = ::lseek(f->fd, 0, SEEK_END);
+    ::lseek(f->fd, here, SEEK_SET);
+    return end < 0 ? AVERROR(errno) : end;
+  }
+  const off_t r = ::lseek(f->fd, static_cast<off_t>(offset), whence & ~AVSEEK_FORCE);
+  return r < 0 ? AVERROR(errno) : r;
+}
+
 }  // namespace
 
 struct VideoWriter::Impl {
@@ -36,9 +75,30 @@ struct VideoWriter::Impl {
   long n = 0;
   bool open = false;     // header written, trailer not yet
   bool io_open = false;
+  VideoFile file;
+  std::unique_ptr<OutputDir> dir;  // the video's folder and its name there
+  std::string name;
+  int64_t whole_end = 0;  // [bytes] where the header or the last whole fragment ends
 
   [[noreturn]] void fail(const std::string& what, int err = 0) {
-    throw std::runtime_error("video " + path + ": " + what + (err ? ": " + av_message(err) : ""));
+    const std::string m = "video " + path + ": " + what + (err ? ": " + av_message(err) : "");
+    if (dir) note_output_failure(m);  // once the file is made, a video that fails is an output lost
+    throw std::runtime_error(m);
+  }
+
+  // after each packet handed to the muxer: a write that failed (a full disk) ends the video at its
+  // last whole fragment, which plays; the error names the file
+  void check_written() {
+    if (file.error == 0 && fmt->pb->error == 0) {
+      whole_end = avio_tell(fmt->pb);
+      return;
+    }
+    const int err = file.error ? file.error : EIO;
+    open = false;
+    const bool cut = ::ftruncate(file.fd, whole_end) == 0;
+    output_error(path, std::string(std::strerror(err)) +
+                           (cut ? " (the video keeps its whole fragments, " + std::to_string(whole_end) + " bytes)"
+                                : " (its last fragment is torn)"));
   }
 
   // send a frame (or nullptr to flush) and write every packet the encoder has ready
@@ -52,12 +112,23 @@ struct VideoWriter::Impl {
       av_packet_rescale_ts(pkt, enc->time_base, stream->time_base);
       pkt->stream_index = stream->index;
       r = av_interleaved_write_frame(fmt, pkt);  // takes the packet's reference
-      if (r < 0) fail("writing failed", r);
+      if (r < 0 && file.error == 0) fail("writing failed", r);
+      check_written();
     }
   }
 
+  void close_io() {
+    if (!io_open) return;
+    io_open = false;
+    avio_flush(fmt->pb);
+    av_freep(&fmt->pb->buffer);
+    avio_context_free(&fmt->pb);
+    if (file.fd >= 0) ::close(file.fd);
+    file.fd = -1;
+  }
+
   void release() {
-    if (io_open) avio_closep(&fmt->pb), io_open = false;
+    close_io();
     sws_freeContext(sws), sws = nullptr;
     av_packet_free(&pkt);
     av_frame_free(&frame);
@@ -124,7 +195,21 @@ VideoWriter::VideoWriter(const std::string& path, const VideoOptions& opt) : imp
     const int* bt709 = sws_getCoefficients(SWS_CS_ITU709);
     sws_setColorspaceDetails(d.sws, bt709, 1, bt709, 0, 0, 1 << 16, 1 << 16);
 
-    if ((r = avio_open(&d.fmt->pb, path.c_str(), AVIO_FLAG_WRITE)) < 0) d.fail("cannot open the file", r);
+    {
+      OutputPlace place = output_place(path);
+      d.file.fd = place.dir.open_file(place.name, false);
+      d.dir = std::make_unique<OutputDir>(std::move(place.dir));
+      d.name = place.name;
+    }
+    constexpr int kBuffer = 32768;
+    auto* buffer = static_cast<unsigned char*>(av_malloc(kBuffer));
+    d.fmt->pb = buffer ? avio_alloc_context(buffer, kBuffer, 1, &d.file, nullptr, write_packet, seek) : nullptr;
+    if (!d.fmt->pb) {
+      av_free(buffer);
+      ::close(d.file.fd), d.file.fd = -1;
+      d.fail("out of memory");
+    }
+    d.fmt->flags |= AVFMT_FLAG_CUSTOM_IO;
     // hand each fragment to the file as soon as it is complete (not when the 32 kB I/O buffer
     // fills), so a killed process leaves every finished fragment on disk
     d.fmt->flags |= AVFMT_FLAG_FLUSH_PACKETS;
@@ -133,8 +218,16 @@ VideoWriter::VideoWriter(const std::string& path, const VideoOptions& opt) : imp
     av_dict_set(&mux, "movflags", "frag_keyframe+empty_moov+default_base_moof", 0);
     r = avformat_write_header(d.fmt, &mux);
     av_dict_free(&mux);
-    if (r < 0) d.fail("cannot write the header", r);
-    avio_flush(d.fmt->pb);
+    if (r >= 0) avio_flush(d.fmt->pb);
+    if (r < 0 || d.file.error || d.fmt->pb->error) {
+      // nothing playable was written: no file is left
+      const int err = d.file.error;
+      d.close_io();
+      d.dir->remove(d.name);
+      if (err) output_error(path, std::strerror(err));
+      d.fail("cannot write the header", r);
+    }
+    d.whole_end = avio_tell(d.fmt->pb);
     d.open = true;
   } catch (...) {
     d.release();
@@ -169,10 +262,20 @@ void VideoWriter::close() {
   Impl& d = *impl_;
   if (!d.open) return;
   d.open = false;  // whatever happens below, do not try twice
-  d.encode(nullptr);
-  const int r = av_write_trailer(d.fmt);
-  if (d.io_open) avio_closep(&d.fmt->pb), d.io_open = false;
-  if (r < 0) d.fail("cannot write the trailer", r);
+  try {
+    d.encode(nullptr);
+    const int r = av_write_trailer(d.fmt);
+    if (d.file.error == 0 && d.fmt->pb->error == 0) avio_flush(d.fmt->pb);
+    if (d.file.error || d.fmt->pb->error) d.check_written();  // throws, the video cut to its whole fragments
+    if (r < 0) d.fail("cannot write the trailer", r);
+  } catch (...) {
+    d.close_io();
+    throw;
+  }
+  const int fd = d.file.fd;
+  d.file.fd = -1;
+  d.close_io();
+  if (::close(fd) != 0) output_error(d.path, std::strerror(errno));
 }
 
 long VideoWriter::frames() const { return impl_->n; }

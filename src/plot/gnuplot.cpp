@@ -9,8 +9,12 @@
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
+#include <fstream>
+#include <sstream>
 #include <stdexcept>
 #include <vector>
+
+#include "io/output_dir.hpp"
 
 extern char** environ;
 
@@ -54,6 +58,28 @@ struct ScriptFile {
 };
 
 }  // namespace
+
+PrivateOutput::PrivateOutput() {
+  std::string templ = (fs::temp_directory_path() / "beltsim-gnuplot-XXXXXX").string();
+  if (!templ.empty() && templ[0] != '/') templ = fs::absolute(templ).string();
+  if (!::mkdtemp(templ.data()))
+    throw std::runtime_error("gnuplot: cannot make a private folder " + templ + ": " + std::strerror(errno));
+  dir_ = templ;
+  file_ = dir_ + "/out.png";
+}
+
+PrivateOutput::~PrivateOutput() {
+  std::error_code ec;
+  fs::remove_all(dir_, ec);
+}
+
+void PrivateOutput::deliver(const std::string& dest, const std::string& who) const {
+  std::ifstream in(file_, std::ios::binary);
+  std::ostringstream bytes;
+  if (in) bytes << in.rdbuf();
+  if (!in || bytes.str().empty()) throw std::runtime_error(who + ": gnuplot reported no error but wrote no " + dest);
+  write_file_whole(dest, bytes.str());
+}
 
 std::string gnuplot_string(std::string_view text) {
   std::string s = "'";

@@ -15,6 +15,25 @@ namespace beltsim::plot {
 // N): <its output>" when the script fails.
 std::string run_gnuplot(const std::string& script);
 
+// A picture gnuplot draws into a private folder of its own (mkdtemp: only this user can enter it)
+// and that is then written whole to its destination (io/output_dir.hpp), so gnuplot never opens a
+// path in an output folder, where a planted link could send its output elsewhere.
+class PrivateOutput {
+ public:
+  PrivateOutput();  // throws std::runtime_error when the folder cannot be made
+  ~PrivateOutput();  // the folder and what is in it removed
+  PrivateOutput(const PrivateOutput&) = delete;
+  PrivateOutput& operator=(const PrivateOutput&) = delete;
+  // where gnuplot writes (its `set output`)
+  const std::string& path() const { return file_; }
+  // what gnuplot wrote, written whole to dest; throws "WHO: gnuplot reported no error but wrote
+  // no DEST" when it wrote nothing, "cannot write DEST: reason" when dest cannot be written
+  void deliver(const std::string& dest, const std::string& who) const;
+
+ private:
+  std::string dir_, file_;
+};
+
 // A gnuplot string literal holding `text` as it is: single quotes, in which gnuplot processes
 // no escapes, with each ' doubled; line breaks become spaces (a literal is one line).
 std::string gnuplot_string(std::string_view text);

@@ -159,11 +159,12 @@ void plot_png(const PlotSpec& spec) {
     g->series.push_back(static_cast<int>(k));
   }
 
+  const PrivateOutput out;  // gnuplot writes there; the picture is then written to spec.file
   std::ostringstream g;
   g << "set encoding utf8\n"
     << "set terminal pngcairo size " << spec.width << "," << spec.height
     << " font 'DejaVu Sans,12' linewidth 1 noenhanced\n"
-    << "set output " << gnuplot_string(spec.file) << "\n";
+    << "set output " << gnuplot_string(out.path()) << "\n";
   for (size_t k = 0; k < spec.series.size(); ++k) datablock(g, static_cast<int>(k), spec.series[k]);
   // one time axis for every series (and every panel)
   double t0 = INFINITY, t1 = -INFINITY;
@@ -218,11 +219,8 @@ void plot_png(const PlotSpec& spec) {
     g << "unset multiplot\n";
   }
   g << "set output\n";
-  std::error_code ec;
-  fs::remove(spec.file, ec);  // so that the file found afterwards is gnuplot's
   run_gnuplot(g.str());
-  if (!fs::exists(spec.file))
-    throw std::runtime_error("plot: gnuplot reported no error but wrote no " + spec.file);
+  out.deliver(spec.file, "plot");
 }
 
 bool Table::has(std::string_view name) const {

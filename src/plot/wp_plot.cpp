@@ -12,10 +12,11 @@ namespace beltsim::plot {
 void plot_wp_png(const WpResult& res, const std::string& png) {
   if (std::none_of(res.rows.begin(), res.rows.end(), [](const WpRow& r) { return r.finished; }))
     throw std::runtime_error("wp: no run finished, nothing to plot");
+  const PrivateOutput out;  // gnuplot writes there; the picture is then written to png
   std::ostringstream g;
   g << "set encoding utf8\n"
     << "set terminal pngcairo size 1000,700 font 'DejaVu Sans,11'\n"
-    << "set output " << gnuplot_string(png) << "\n"
+    << "set output " << gnuplot_string(out.path()) << "\n"
     << "set logscale xy\nset grid xtics ytics mxtics mytics lc rgb '#dddddd'\n"
     << "set format x '10^{%L}'\nset format y '10^{%L}'\n"
     << "set xlabel 'wall time per run [s]'\n"
@@ -43,10 +44,8 @@ void plot_wp_png(const WpResult& res, const std::string& png) {
       << when << ":12:(sprintf('%g', $2)) with labels offset 0,1 font ',8' tc rgb " << colour << " notitle";
   }
   g << "\nset output\n";
-  std::error_code ec;
-  std::filesystem::remove(png, ec);
   run_gnuplot(g.str());
-  if (!std::filesystem::exists(png)) throw std::runtime_error("wp: gnuplot reported no error but wrote no " + png);
+  out.deliver(png, "wp");
 }
 
 }  // namespace beltsim::plot

@@ -1,7 +1,6 @@
 #include "render/recorder.hpp"
 
 #include <cstdio>
-#include <filesystem>
 
 #include "io/png_writer.hpp"
 #include "io/video_writer.hpp"
@@ -18,10 +17,12 @@ class FrameRecorder final : public FrameSink {
   FrameRecorder(const Scene& sc, const FrameSettings& fs)
       : fs_(fs), font_(), builder_(sc, fs, &font_), ctx_(make_gl_context(default_gl_backend())),
         gl_(*ctx_, fs.width, fs.height) {
-    if (!fs.png_dir.empty()) std::filesystem::create_directories(fs.png_dir);
+    // the folders are made when missing; neither they nor the files in them are ever opened
+    // through a link (io/output_dir.hpp)
+    if (!fs.png_dir.empty()) png_dir_ = std::make_unique<OutputDir>(fs.png_dir);
     if (!fs.video_path.empty()) {
-      if (auto dir = std::filesystem::path(fs.video_path).parent_path(); !dir.empty())
-        std::filesystem::create_directories(dir);
+      if (const size_t slash = fs.video_path.rfind('/'); slash != std::string::npos && slash > 0)
+        OutputDir(fs.video_path.substr(0, slash));  // made when missing
       VideoOptions vo;
       vo.width = fs.width, vo.height = fs.height, vo.fps = static_cast<int>(fs.fps);
       video_ = std::make_unique<VideoWriter>(fs.video_path, vo);
@@ -32,10 +33,10 @@ class FrameRecorder final : public FrameSink {
     ctx_->make_current();  // another context (a snapshot's) may have been current since
     gl_.render(list_, image_);
     const long number = fs_.first_number + n_;
-    if (!fs_.png_dir.empty() && number % fs_.png_every == 0) {
+    if (png_dir_ && number % fs_.png_every == 0) {
       char name[32];
       std::snprintf(name, sizeof name, "frame_%05ld.png", number);
-      write_png((std::filesystem::path(fs_.png_dir) / name).string(), image_);
+      write_png(*png_dir_, name, image_);
     }
     if (video_) video_->add(image_);
     n_++;
@@ -51,6 +52,7 @@ class FrameRecorder final : public FrameSink {
   FrameBuilder builder_;
   std::unique_ptr<GlContext> ctx_;
   GlRenderer gl_;
+  std::unique_ptr<OutputDir> png_dir_;
   std::unique_ptr<VideoWriter> video_;
   DrawList list_;
   Image image_;
@@ -73,8 +75,8 @@ void render_snapshot(const Scene& sc, const FrameSettings& fs, double t, const d
   Image image;
   builder.build(t, y, list, &drive, obs);
   gl.render(list, image);
-  if (auto dir = std::filesystem::path(png).parent_path(); !dir.empty()) std::filesystem::create_directories(dir);
-  write_png(png, image);
+  const OutputPlace place = output_place(png, true);  // its folder made when missing
+  write_png(place.dir, place.name, image);
 }
 
 }  // namespace beltsim::render

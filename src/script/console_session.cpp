@@ -8,9 +8,11 @@
 #include <filesystem>
 #include <fstream>
 #include <regex>
+#include <sstream>
 
 #include "lauxlib.h"
 #include "lua.h"
+#include "io/output_dir.hpp"
 #include "script/console_print.hpp"
 
 namespace beltsim::script {
@@ -129,14 +131,8 @@ bool write_session(const std::string& dir, const std::optional<std::string>& scr
                    const std::vector<std::string>& commands) {
   if (commands.empty()) return true;
   namespace fs = std::filesystem;
-  std::error_code ec;
-  fs::create_directories(dir, ec);
   const std::string path = (fs::path(dir) / "session.lua").string();
-  std::ofstream f(path);
-  if (!f) {
-    std::fprintf(stderr, "beltsim: cannot write %s: %s\n", path.c_str(), std::strerror(errno));
-    return false;
-  }
+  std::ostringstream f;  // written whole at the end (io/output_dir.hpp: never through a link)
   f << "-- The commands of a beltsim console session that ran without error, in order.\n"
     << "-- Replay with: beltsim run " << shell_word(path);
   // beltsim.args as in the session, each --set quoted for the shell
@@ -160,9 +156,11 @@ bool write_session(const std::string& dir, const std::optional<std::string>& scr
       << ", \"t\"))()\n";
   }
   for (const std::string& c : commands) f << c << "\n";
-  f.close();
-  if (!f) {
-    std::fprintf(stderr, "beltsim: the session's commands could not be written to %s (disk full?)\n", path.c_str());
+  try {
+    write_file_whole(OutputDir(dir), "session.lua", f.str());  // the folder made when missing
+  } catch (const std::exception& e) {  // recorded: the exit status says so (app/main.cpp)
+    std::fprintf(stderr, "beltsim: %s\n", e.what());
+    mark_output_failure_shown(e.what());
     return false;
   }
   std::fprintf(stderr, "beltsim: the session's commands are in %s\n", path.c_str());

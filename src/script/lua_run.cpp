@@ -403,8 +403,10 @@ int l_scene_start(lua_State* L) {
   std::string error;
   try {
     sim = std::make_unique<Simulation>(*sc, rs);
-  } catch (const std::exception& e) {
+  } catch (const std::invalid_argument& e) {  // "key: reason"
     error = std::string("start.") + e.what();
+  } catch (const std::exception& e) {  // an output that cannot be written, a folder in use
+    error = std::string("start: ") + e.what();
   }
   if (!error.empty()) fail(L, error);
   push_simulation(L, std::move(sim), ctx, progress);

@@ -4,6 +4,7 @@
 // positions (rows and bytes of the CSV files, frames written) and the integrator's own state.
 // Continuing from it gives the uninterrupted run's outputs and state bit for bit. Callbacks
 // (Lua functions) are not saved: a checkpoint counts them and the script registers them again.
+#include <algorithm>
 #include <cerrno>
 #include <cmath>
 #include <cstring>
@@ -14,6 +15,7 @@
 #include "integrate/belt_system.hpp"
 #include "integrate/timeline.hpp"
 #include "io/csv_writer.hpp"
+#include "io/output_dir.hpp"
 #include "scene/scene_io.hpp"
 #include "sim/simulation.hpp"
 
@@ -91,21 +93,6 @@ FrameSettings get_frames(std::istream& in) {
   return f;
 }
 
-// cuts a file to its first `bytes` bytes (what was written when the checkpoint was taken)
-void truncate_to(const std::string& path, long bytes) {
-  std::error_code ec;
-  const auto size = std::filesystem::file_size(path, ec);
-  if (ec) throw std::runtime_error("checkpoint: the run's output " + path + " is missing: " + ec.message());
-  if (static_cast<long>(size) < bytes)
-    throw std::runtime_error("checkpoint: " + path + " is shorter than when the checkpoint was taken");
-  std::filesystem::resize_file(path, static_cast<uintmax_t>(bytes));
-}
-
-long file_bytes(const std::string& path) {
-  std::error_code ec;
-  const auto size = std::filesystem::file_size(path, ec);
-  return ec ? 0 : static_cast<long>(size);
-}
 
 }  // namespace
 
@@ -149,9 +136,11 @@ void Simulation::save(const std::string& path) const {
     write_vector(o, ev.mu);
   }
   put(o, "rows", rows_);
-  put(o, "csv_bytes", file_bytes(csv_path()));
-  put(o, "events_bytes", file_bytes(events_path()));
-  put(o, "snapshots_bytes", has_snapshots() ? file_bytes(snapshots_path()) : 0L);
+  // the outputs' sizes (0 for one that is not there; never through a link)
+  auto bytes = [this](const char* name) { return std::max(0L, out_->size(name)); };
+  put(o, "csv_bytes", bytes("timeseries.csv"));
+  put(o, "events_bytes", bytes("events.csv"));
+  put(o, "snapshots_bytes", has_snapshots() ? bytes("snapshots.csv") : 0L);
   put(o, "mean_from", mean_from_);
   put(o, "mean_covered", mean_covered_);
   put(o, "mean_acc", long(mean_acc_.size()));
@@ -162,15 +151,9 @@ void Simulation::save(const std::string& path) const {
   o << "integrator_state\n";
   integ_->save(o);
   o << "end\n";
-  // written whole, then renamed: a checkpoint is never half a file
-  const std::string tmp = path + ".part";
-  {
-    std::ofstream f(tmp, std::ios::binary);
-    if (!f) throw std::runtime_error("save: cannot write " + tmp + ": " + std::strerror(errno));
-    f << o.str();
-    if (!f.flush()) throw std::runtime_error("save: cannot write " + tmp + ": " + std::strerror(errno));
-  }
-  std::filesystem::rename(tmp, path);
+  // written whole (io/output_dir.hpp): a checkpoint is never half a file, and no part of one is
+  // left behind when it cannot be written
+  write_file_whole(path, o.str());
 }
 
 std::unique_ptr<Simulation> Simulation::resume(const std::string& path, const FrameSinkFactory& factory, int* callbacks,
@@ -240,10 +223,12 @@ std::unique_ptr<Simulation> Simulation::resume(const std::string& path, const Fr
   s->mean_from_ = mean_from, s->mean_covered_ = mean_covered;
   s->integ_->load(in);
   expect(in, "end");
-  // the outputs continue where the checkpoint left them
-  truncate_to(s->csv_path(), csv_bytes);
-  truncate_to(s->events_path(), events_bytes);
-  if (s->has_snapshots()) truncate_to(s->snapshots_path(), snapshots_bytes);
+  // the outputs continue where the checkpoint left them, once the folder is this simulation's alone
+  // (a checkpoint resumed twice: the second is refused before it cuts the first one's files)
+  s->claim_out_dir();
+  s->out_->truncate("timeseries.csv", csv_bytes);
+  s->out_->truncate("events.csv", events_bytes);
+  if (s->has_snapshots()) s->out_->truncate("snapshots.csv", snapshots_bytes);
   if (s->rs_.frames) {
     FrameSettings& f = *s->rs_.frames;
     f.first_number = frames;

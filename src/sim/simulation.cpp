@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <exception>
 #include <filesystem>
 #include <limits>
 #include <sstream>
@@ -11,6 +12,7 @@
 #include "integrate/belt_system.hpp"
 #include "integrate/timeline.hpp"
 #include "io/csv_writer.hpp"
+#include "io/output_dir.hpp"
 #include "model/forces.hpp"
 
 namespace beltsim {
@@ -21,7 +23,7 @@ std::string span_name(const Scene& sc, size_t k) {
   return "span_" + sc.route_names[k] + "_" + sc.route_names[(k + 1) % sc.route_names.size()];
 }
 
-void write_parameters(const Scene& sc, const RunSettings& rs, const std::string& path) {
+void write_parameters(const Scene& sc, const RunSettings& rs, const OutputDir& dir) {
   const Model& m = sc.model;
   const Belt& b = m.belt;
   std::ostringstream f;  // written whole at the end (io/row_file.hpp)
@@ -89,7 +91,7 @@ void write_parameters(const Scene& sc, const RunSettings& rs, const std::string&
   f << "run.atol," << csv_number(rs.atol < 0 ? rs.rtol : rs.atol) << ",,run,"
     << csv_text("per natural unit: 0.1 m, 1 rad, 1 m/s, 10 rad/s, 1 J") << "\n";
   f << "run.sample_dt," << csv_number(rs.sample_dt) << ",s,run,\n";
-  write_file_whole(path, f.str());
+  write_file_whole(dir, "parameters.csv", f.str());
 }
 
 std::string num(double v) {
@@ -219,21 +221,27 @@ Simulation::~Simulation() {
   }
 }
 
+// the output folder, made when missing and held by this simulation alone (io/output_dir.hpp: a
+// second simulation on it is refused before it writes anything; never through a link)
+void Simulation::claim_out_dir() {
+  if (out_) return;
+  auto dir = std::make_unique<OutputDir>(rs_.out_dir);
+  dir->lock();
+  out_ = std::move(dir);
+}
+
 void Simulation::open_outputs(bool append) {
-  namespace fs = std::filesystem;
-  std::error_code ec;
-  fs::create_directories(rs_.out_dir, ec);
-  if (ec) throw std::runtime_error("cannot create the output folder " + rs_.out_dir + ": " + ec.message());
+  claim_out_dir();
   // the renderer first (it opens the video file and the PNG folder): a bad frames path stops the
   // run before any CSV is written. It exists only when frames are asked for (no GL context, no
   // encoder otherwise).
   if (rs_.frames) sink_ = rs_.frame_factory(scene_, *rs_.frames);
-  if (!append) write_parameters(scene_, rs_, (fs::path(rs_.out_dir) / "parameters.csv").string());
-  csv_ = std::make_unique<CsvWriter>(csv_path(), columns(), 0.5, append);
-  events_ = std::make_unique<RowFile>(events_path(), append);
+  if (!append) write_parameters(scene_, rs_, *out_);
+  csv_ = std::make_unique<CsvWriter>(*out_, "timeseries.csv", columns(), append);
+  events_ = std::make_unique<RowFile>(*out_, "events.csv", append);
   if (!append) events_->write("t,what,value\n");
   if (has_snapshots()) {
-    snapshots_ = std::make_unique<RowFile>(snapshots_path(), append);
+    snapshots_ = std::make_unique<RowFile>(*out_, "snapshots.csv", append);
     if (!append) snapshots_->write("t,element,s,x,y,tension,normal,friction,slip,mu,pulley,state\n");
   }
 }
@@ -590,18 +598,31 @@ std::string Simulation::warning_summary() const {
 void Simulation::close() {
   if (closed_) return;
   closed_ = true;
-  if (sink_) sink_->finish();  // first: a full disk below must not leave the video unfinished
-  if (csv_) {  // the fallbacks, beside the parameters they qualify (whole rows, one write)
-    std::ostringstream f;
-    const Warnings w = warnings();
-    for (const WarningKindInfo& i : warning_kinds()) {
-      const WarningStat& s = w[i.kind];
-      f << "warning." << i.name << ".count," << s.count << ",,derived," << csv_text(i.description) << '\n'
-        << "warning." << i.name << ".first_t," << (s.count > 0 ? csv_number(s.first_t) : std::string()) << ",s,derived,"
-        << "simulated time it first fired (empty: never)\n";
-    }
-    RowFile((std::filesystem::path(rs_.out_dir) / "parameters.csv").string(), true).write(f.str());
+  // each output is closed whatever happened to the one before; the first failure is thrown at
+  // the end (each is recorded, io/output_dir.hpp, so the program's exit status says so)
+  std::exception_ptr failed;
+  try {
+    if (sink_) sink_->finish();  // first: a full disk below must not leave the video unfinished
+  } catch (...) {
+    failed = std::current_exception();
   }
+  try {
+    if (csv_) {  // the fallbacks, beside the parameters they qualify (whole rows, one write)
+      std::ostringstream f;
+      const Warnings w = warnings();
+      for (const WarningKindInfo& i : warning_kinds()) {
+        const WarningStat& s = w[i.kind];
+        f << "warning." << i.name << ".count," << s.count << ",,derived," << csv_text(i.description) << '\n'
+          << "warning." << i.name << ".first_t," << (s.count > 0 ? csv_number(s.first_t) : std::string())
+          << ",s,derived," << "simulated time it first fired (empty: never)\n";
+      }
+      RowFile(*out_, "parameters.csv", true).write(f.str());
+    }
+  } catch (...) {
+    if (!failed) failed = std::current_exception();
+  }
+  out_.reset();  // the folder is free for another simulation: this one writes nothing more
+  if (failed) std::rethrow_exception(failed);
 }
 
 void Simulation::write_event(double t, const std::string& what, const std::string& text) {

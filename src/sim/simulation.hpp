@@ -27,6 +27,7 @@ namespace beltsim {
 
 class BeltSystem;
 class CsvWriter;
+class OutputDir;
 class RowFile;
 class Timeline;
 
@@ -188,6 +189,7 @@ class Simulation {
 
  private:
   Simulation(const Scene& scene, const RunSettings& settings, bool fresh);
+  void claim_out_dir();
   void open_outputs(bool append);
   void set_landings();
   void sample(double t, const Eigen::VectorXd& y);
@@ -206,6 +208,7 @@ class Simulation {
   std::unique_ptr<BeltSystem> sys_;
   std::unique_ptr<Integrator> integ_;
   std::unique_ptr<Timeline> tl_;
+  std::unique_ptr<OutputDir> out_;  // out_dir, locked while the simulation is open
   std::unique_ptr<CsvWriter> csv_;
   std::unique_ptr<RowFile> events_;  // events.csv, a row per write (io/row_file.hpp)
   std::unique_ptr<RowFile> snapshots_;  // snapshots.csv, a snapshot per write

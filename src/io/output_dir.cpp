@@ -1,0 +1,318 @@
+#include "io/output_dir.hpp"
+
+#include <fcntl.h>
+#include <sys/file.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <cstring>
+#include <mutex>
+#include <stdexcept>
+
+namespace beltsim {
+
+namespace {
+
+std::mutex g_failures_mutex;
+std::vector<std::string> g_failures;
+std::vector<bool> g_shown;  // g_failures[k] was shown to the user
+
+constexpr const char* kLink = "it is a symbolic link (beltsim never writes through a link)";
+constexpr const char* kLockName = ".beltsim.lock";
+
+// why openat failed, said for an output
+std::string why(int err) {
+  if (err == ELOOP) return kLink;
+  return std::strerror(err);
+}
+
+// "a", "a/" -> "a"; "" -> "."
+std::string trimmed(std::string p) {
+  while (p.size() > 1 && p.back() == '/') p.pop_back();
+  return p.empty() ? "." : p;
+}
+
+// the folder and the last component of a path ("a/b/c" -> "a/b", "c"; "c" -> "", "c")
+std::pair<std::string, std::string> split(const std::string& p) {
+  const size_t k = p.rfind('/');
+  if (k == std::string::npos) return {"", p};
+  return {k == 0 ? "/" : p.substr(0, k), p.substr(k + 1)};
+}
+
+// why a folder could not be opened: O_DIRECTORY | O_NOFOLLOW gives ENOTDIR for a link too
+std::string folder_refusal(int at, const char* name, int err) {
+  struct stat st {};
+  if ((err == ENOTDIR || err == ELOOP) && ::fstatat(at, name, &st, AT_SYMLINK_NOFOLLOW) == 0)
+    return S_ISLNK(st.st_mode) ? kLink : S_ISDIR(st.st_mode) ? std::strerror(err) : "not a folder";
+  return why(err);
+}
+
+void check_name(const std::string& dir, const std::string& name) {
+  if (name.empty() || name == "." || name == ".." || name.find('/') != std::string::npos)
+    output_error(dir + "/" + name, "not a file name");
+}
+
+void write_all(int fd, std::string_view text, const std::string& path) {
+  for (size_t done = 0; done < text.size();) {
+    const ssize_t n = ::write(fd, text.data() + done, text.size() - done);
+    if (n > 0)
+      done += static_cast<size_t>(n);
+    else if (!(n < 0 && errno == EINTR))
+      output_error(path, std::strerror(n < 0 ? errno : ENOSPC));
+  }
+}
+
+}  // namespace
+
+void note_output_failure(const std::string& message) {
+  std::lock_guard<std::mutex> g(g_failures_mutex);
+  g_failures.push_back(message);
+  g_shown.push_back(false);
+}
+
+void output_error(const std::string& path, const std::string& reason) {
+  const std::string m = "cannot write " + path + ": " + reason;
+  note_output_failure(m);
+  throw std::runtime_error(m);
+}
+
+std::vector<std::string> output_failures() {
+  std::lock_guard<std::mutex> g(g_failures_mutex);
+  return g_failures;
+}
+
+std::vector<std::string> unshown_output_failures() {
+  std::lock_guard<std::mutex> g(g_failures_mutex);
+  std::vector<std::string> v;
+  for (size_t k = 0; k < g_failures.size(); ++k)
+    if (!g_shown[k]) v.push_back(g_failures[k]);
+  return v;
+}
+
+void mark_output_failure_shown(const std::string& message) {
+  std::lock_guard<std::mutex> g(g_failures_mutex);
+  for (size_t k = 0; k < g_failures.size(); ++k)
+    if (message.find(g_failures[k]) != std::string::npos) g_shown[k] = true;
+}
+
+// ---- folders -------------------------------------------------------------------------------------
+
+OutputDir::OutputDir(const std::string& path, bool make) : OutputDir(path, make, nullptr) {}
+
+OutputDir::OutputDir(const std::string& path, bool make, const std::string* shown) : path_(trimmed(path)) {
+  // errors name the file the folder was opened for, when there is one
+  auto fail = [&](const std::string& reason) {
+    output_error(shown ? *shown : path_, shown ? path_ + " is " + reason : reason);
+  };
+  fd_ = ::open(path_.c_str(), O_RDONLY | O_DIRECTORY | O_NOFOLLOW | O_CLOEXEC);
+  if (fd_ >= 0) return;
+  const int err = errno;
+  if (err != ENOENT || !make) {
+    if (err == ENOENT) fail(std::string("missing: ") + std::strerror(err));
+    fail(folder_refusal(AT_FDCWD, path_.c_str(), err));
+  }
+  // missing: made in its parent (itself opened, or made, the same way)
+  auto [parent, name] = split(path_);
+  if (name.empty() || name == "." || name == "..") fail(std::strerror(err));
+  OutputDir up(parent, true, shown);
+  *this = OutputDir(up, name);
+  path_ = trimmed(path);
+}
+
+OutputDir::OutputDir(const OutputDir& parent, const std::string& name) {
+  path_ = parent.file(name);
+  check_name(parent.path_, name);
+  if (::mkdirat(parent.fd_, name.c_str(), 0777) != 0 && errno != EEXIST) output_error(path_, std::strerror(errno));
+  fd_ = ::openat(parent.fd_, name.c_str(), O_RDONLY | O_DIRECTORY | O_NOFOLLOW | O_CLOEXEC);
+  if (fd_ < 0) output_error(path_, folder_refusal(parent.fd_, name.c_str(), errno));
+}
+
+OutputDir::OutputDir(OutputDir&& o) noexcept : path_(std::move(o.path_)), fd_(o.fd_), lock_fd_(o.lock_fd_) {
+  o.fd_ = o.lock_fd_ = -1;
+}
+
+OutputDir& OutputDir::operator=(OutputDir&& o) noexcept {
+  if (this != &o) {
+    if (lock_fd_ >= 0) ::close(lock_fd_);
+    if (fd_ >= 0) ::close(fd_);
+    path_ = std::move(o.path_);
+    fd_ = o.fd_, lock_fd_ = o.lock_fd_;
+    o.fd_ = o.lock_fd_ = -1;
+  }
+  return *this;
+}
+
+OutputDir::~OutputDir() {
+  if (lock_fd_ >= 0) ::close(lock_fd_);  // releases the flock
+  if (fd_ >= 0) ::close(fd_);
+  fd_ = lock_fd_ = -1;
+}
+
+std::string OutputDir::file(std::string_view name) const {
+  std::string f = path_;
+  if (f != "/") f += '/';
+  f.append(name);
+  return f;
+}
+
+// ---- files written in place ------------------------------------------------------------------------
+
+int OutputDir::open_file(const std::string& name, bool append) const {
+  return open_own(name, O_WRONLY | (append ? O_APPEND : 0), !append);
+}
+
+int OutputDir::open_own(const std::string& name, int flags, bool empty) const {
+  const std::string p = file(name);
+  check_name(path_, name);
+  // O_NONBLOCK: a FIFO planted under the name must not block the open (it is refused below)
+  const int fd = ::openat(fd_, name.c_str(), flags | O_CREAT | O_NOFOLLOW | O_CLOEXEC | O_NONBLOCK, 0666);
+  if (fd < 0) output_error(p, errno == ENXIO ? "not a regular file" : why(errno));  // ENXIO: a FIFO, no reader
+  struct stat st {};
+  std::string refusal;
+  if (::fstat(fd, &st) != 0)
+    refusal = std::strerror(errno);
+  else if (!S_ISREG(st.st_mode))
+    refusal = "not a regular file";
+  else if (st.st_nlink > 1)
+    refusal = "it has " + std::to_string(st.st_nlink) + " hard links (beltsim writes only files of its own)";
+  else if (::fcntl(fd, F_SETFL, flags & O_APPEND) != 0)
+    refusal = std::strerror(errno);
+  else if (empty && ::ftruncate(fd, 0) != 0)
+    refusal = std::strerror(errno);
+  if (!refusal.empty()) {
+    ::close(fd);
+    output_error(p, refusal);
+  }
+  return fd;
+}
+
+void OutputDir::truncate(const std::string& name, long bytes) const {
+  const std::string p = file(name);
+  const long have = size(name);
+  if (have < 0) output_error(p, "the run's output is missing");
+  if (have < bytes) output_error(p, "shorter than when the checkpoint was taken");
+  const int fd = open_file(name, true);
+  const int r = ::ftruncate(fd, bytes);
+  const int err = errno;
+  ::close(fd);
+  if (r != 0) output_error(p, std::strerror(err));
+}
+
+long OutputDir::size(const std::string& name) const {
+  struct stat st {};
+  if (::fstatat(fd_, name.c_str(), &st, AT_SYMLINK_NOFOLLOW) != 0 || !S_ISREG(st.st_mode)) return -1;
+  return static_cast<long>(st.st_size);
+}
+
+void OutputDir::remove(const std::string& name) const {
+  ::unlinkat(fd_, name.c_str(), 0);
+}
+
+void OutputDir::lock() {
+  if (lock_fd_ >= 0) return;
+  const int fd = open_own(kLockName, O_RDWR, false);
+  if (::flock(fd, LOCK_EX | LOCK_NB) != 0) {
+    const int err = errno;
+    char buf[32] = {0};
+    const ssize_t n = ::pread(fd, buf, sizeof buf - 1, 0);
+    ::close(fd);
+    if (err != EWOULDBLOCK)
+      throw std::runtime_error("cannot lock the output folder " + path_ + ": " + std::strerror(err));
+    const long pid = n > 0 ? std::strtol(buf, nullptr, 10) : 0;
+    const std::string who = pid == static_cast<long>(::getpid()) ? "another simulation of this beltsim"
+                            : pid > 0 ? "another beltsim (process " + std::to_string(pid) + ")"
+                                      : "another beltsim";
+    throw std::runtime_error("the output folder " + path_ + " is in use by " + who +
+                             ": two simulations writing one folder would mix their rows; give this one a folder of "
+                             "its own (out = ...) or close the other first");
+  }
+  // who holds it, for the message above; the lock is the flock, and holds without this text
+  const std::string pid = std::to_string(::getpid()) + "\n";
+  if (::ftruncate(fd, 0) == 0 && ::pwrite(fd, pid.data(), pid.size(), 0) < 0) errno = 0;
+  lock_fd_ = fd;
+}
+
+OutputPlace output_place(const std::string& path, bool make_folder) {
+  auto [dir, name] = split(trimmed(path));
+  if (name.empty() || name == "." || name == "..") output_error(path, "not a file name");
+  return OutputPlace{OutputDir(dir, make_folder, &path), name};
+}
+
+// ---- files written whole ---------------------------------------------------------------------------
+
+WholeFile::WholeFile(const OutputDir& dir, std::string name) : dir_(dir), name_(std::move(name)) {
+  check_name(dir_.path(), name_);
+  struct stat st {};
+  if (::fstatat(dir_.fd(), name_.c_str(), &st, AT_SYMLINK_NOFOLLOW) == 0) {
+    if (S_ISLNK(st.st_mode)) output_error(path(), kLink);
+    if (S_ISDIR(st.st_mode)) output_error(path(), "it is a folder");
+  }
+  fd_ = ::openat(dir_.fd(), ".", O_TMPFILE | O_WRONLY | O_CLOEXEC, 0666);
+  if (fd_ >= 0) return;
+  // a file system without unnamed files: NAME.part, made afresh (a stale one, or a link planted
+  // under that name, removed first: the name is ours)
+  unnamed_ = false;
+  const std::string part = name_ + ".part";
+  dir_.remove(part);
+  fd_ = ::openat(dir_.fd(), part.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, 0666);
+  if (fd_ < 0) output_error(dir_.file(part), why(errno));
+}
+
+WholeFile::~WholeFile() {
+  discard();
+}
+
+void WholeFile::write(std::string_view text) {
+  try {
+    write_all(fd_, text, path());
+  } catch (...) {
+    discard();
+    throw;
+  }
+}
+
+void WholeFile::discard() {
+  if (done_) return;
+  done_ = true;
+  if (fd_ >= 0) ::close(fd_);
+  fd_ = -1;
+  if (!unnamed_) dir_.remove(name_ + ".part");
+}
+
+void WholeFile::commit() {
+  if (done_) output_error(path(), "already written or given up");
+  const std::string part = name_ + ".part";
+  int err = 0;
+  if (unnamed_) {
+    // an unnamed file gets a name by linkat, which never replaces one: NAME.part first (a stale one
+    // removed), then renamed over NAME
+    dir_.remove(part);
+    const std::string proc = "/proc/self/fd/" + std::to_string(fd_);
+    if (::linkat(AT_FDCWD, proc.c_str(), dir_.fd(), part.c_str(), AT_SYMLINK_FOLLOW) != 0 &&
+        ::linkat(fd_, "", dir_.fd(), part.c_str(), AT_EMPTY_PATH) != 0)
+      err = errno;
+    unnamed_ = err != 0;  // from here NAME.part exists
+  }
+  if (::close(fd_) != 0 && err == 0) err = errno;
+  fd_ = -1;
+  if (err == 0 && ::renameat(dir_.fd(), part.c_str(), dir_.fd(), name_.c_str()) != 0) err = errno;
+  if (err != 0) {
+    discard();
+    output_error(path(), std::strerror(err));
+  }
+  done_ = true;
+}
+
+void write_file_whole(const OutputDir& dir, const std::string& name, std::string_view text) {
+  WholeFile f(dir, name);
+  f.write(text);
+  f.commit();
+}
+
+void write_file_whole(const std::string& path, std::string_view text) {
+  const OutputPlace p = output_place(path, false);
+  write_file_whole(p.dir, p.name, text);
+}
+
+}  // namespace beltsim

@@ -1,0 +1,123 @@
+// Every file beltsim creates is opened here, so that it never follows a symbolic link and never
+// lands outside the folder it was meant for (a scenario package that ships `events.csv ->
+// ~/.bashrc` must not get the user's file rewritten):
+// - a folder is opened once (O_DIRECTORY | O_NOFOLLOW) and every file in it by openat() on that
+//   descriptor with O_NOFOLLOW | O_CLOEXEC, one path component at a time, so a link planted
+//   in the folder, or swapped in while the run goes on, is refused rather than followed;
+// - a file written in place must be a regular file with no other hard link (a FIFO, a device or a
+//   second name of some other file is refused before anything is truncated);
+// - a file written whole (parameters.csv, a checkpoint, session.lua, a PNG) is written unnamed
+//   in the folder (O_TMPFILE, else NAME.part) and renamed over NAME when complete.
+// The paths a user or a script names are checked by the sandbox (script/sandbox.cpp) as before;
+// this is what makes the files beltsim itself names inside them safe.
+//
+// Every output that cannot be written throws std::runtime_error "cannot write PATH: reason" and
+// is recorded (output_failures()): a failure that surfaces where nobody can throw (a destructor,
+// the end of the interpreter) still makes the program's exit status non-zero (app/main.cpp).
+#pragma once
+
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace beltsim {
+
+// throws std::runtime_error "cannot write PATH: REASON" after recording it
+[[noreturn]] void output_error(const std::string& path, const std::string& reason);
+// records a failure that is reported another way (its own message)
+void note_output_failure(const std::string& message);
+// the message of every output that could not be written so far in this process, in order
+std::vector<std::string> output_failures();
+// those not yet shown to the user (mark_output_failure_shown)
+std::vector<std::string> unshown_output_failures();
+// the failures with this message (an error's what()) have been shown; others are untouched
+void mark_output_failure_shown(const std::string& message);
+
+class OutputDir {
+ public:
+  // the folder PATH ("" is "."), made with its missing parents unless !make; refused when its
+  // last component is a symbolic link or not a folder (output_error)
+  explicit OutputDir(const std::string& path, bool make = true);
+  // the same for the file `shown` (its errors name it)
+  OutputDir(const std::string& path, bool make, const std::string* shown);
+  // the subfolder NAME of parent (one component), made when missing, never through a link
+  OutputDir(const OutputDir& parent, const std::string& name);
+  OutputDir(OutputDir&& o) noexcept;
+  OutputDir& operator=(OutputDir&& o) noexcept;
+  OutputDir(const OutputDir&) = delete;
+  OutputDir& operator=(const OutputDir&) = delete;
+  ~OutputDir();
+
+  const std::string& path() const { return path_; }
+  int fd() const { return fd_; }
+  // PATH/NAME, for messages
+  std::string file(std::string_view name) const;
+
+  // a descriptor (O_WRONLY | O_CLOEXEC, the caller closes it) writing NAME, created when missing:
+  // emptied, or (append) continued at its end. Refused (output_error) when NAME is a link, not a
+  // regular file, or has another hard link.
+  int open_file(const std::string& name, bool append) const;
+  // NAME cut to its first `bytes` bytes (a resumed run); refused as open_file, and when NAME is
+  // missing or shorter
+  void truncate(const std::string& name, long bytes) const;
+  // the size of NAME (not through a link), -1 when there is none
+  long size(const std::string& name) const;
+  // NAME removed (a link itself, never its target); no error when there is none
+  void remove(const std::string& name) const;
+
+  // claims the folder for one writer: an exclusive flock(2) on DIR/.beltsim.lock (opened as any
+  // output), held until this object is destroyed (or the process ends). Throws
+  // std::runtime_error naming the folder when another simulation, of this process or another,
+  // holds it.
+  void lock();
+
+ private:
+  OutputDir() = default;
+  int open_own(const std::string& name, int flags, bool empty) const;
+  std::string path_;
+  int fd_ = -1;
+  int lock_fd_ = -1;
+};
+
+// The folder and the name of a path a caller gave: OutputDir(parent), the last component. The
+// folder is made when missing only with make_folder; errors name the path.
+struct OutputPlace {
+  OutputDir dir;
+  std::string name;
+};
+OutputPlace output_place(const std::string& path, bool make_folder = false);
+
+// A file written whole: its bytes go to an unnamed file in the folder (O_TMPFILE; NAME.part where
+// the file system has none), and commit() gives it the name NAME, replacing the old file in one
+// rename. Until then (an error, a kill) NAME keeps its old content and no half file is left
+// (a NAME.part only where O_TMPFILE is missing and the process is killed).
+class WholeFile {
+ public:
+  // refused (output_error) when NAME is a symbolic link or a folder
+  WholeFile(const OutputDir& dir, std::string name);
+  ~WholeFile();
+  WholeFile(const WholeFile&) = delete;
+  WholeFile& operator=(const WholeFile&) = delete;
+  int fd() const { return fd_; }
+  std::string path() const { return dir_.file(name_); }
+  // all of text (output_error on a failed write)
+  void write(std::string_view text);
+  // closes the file and names it NAME (output_error on failure: then nothing is left)
+  void commit();
+  // gives up the file: nothing is left of it, NAME keeps its old content
+  void discard();
+
+ private:
+  const OutputDir& dir_;
+  std::string name_;
+  int fd_ = -1;
+  bool unnamed_ = true;  // O_TMPFILE; else NAME.part exists
+  bool done_ = false;
+};
+
+// text written whole to DIR/NAME (WholeFile)
+void write_file_whole(const OutputDir& dir, const std::string& name, std::string_view text);
+// the same for a path (its folder must exist)
+void write_file_whole(const std::string& path, std::string_view text);
+
+}  // namespace beltsim

@@ -1,0 +1,261 @@
+#!/usr/bin/env python3
+"""beltsim's outputs from the outside (io/output_dir.hpp):
+- a symbolic link planted under the name of every file beltsim names itself (timeseries.csv,
+  events.csv, snapshots.csv, parameters.csv, frames/frame_00000.png and the frames folder, the video,
+  a checkpoint, session.lua, plot.png, wp.png) is refused: exit status 1, the message names the file,
+  the link's target is untouched (as a scenario package shipping `events.csv -> ~/.bashrc` would try);
+- one writer per output folder: a run while a console's simulation holds the folder, two live
+  simulations of one script, a checkpoint resumed twice are refused with a clear message;
+- an output that cannot be written (a file-size limit, which fails write(2) as a full disk does)
+  makes the exit status non-zero and names the file: parameters.csv at close, session.lua (never
+  reported as written), the video (cut to its whole fragments, which play), a checkpoint (no
+  .part left behind).
+
+usage: outputs_test.py BELTSIM
+"""
+import os
+import re
+import resource
+import signal
+import subprocess
+import sys
+import tempfile
+import time
+
+BELTSIM = os.path.abspath(sys.argv[1])
+TMP = tempfile.mkdtemp(prefix="beltsim_outputs_test_")
+SECRET = "export PATH=/usr/bin  # the user's own file\n"
+LINK = "it is a symbolic link (beltsim never writes through a link)"
+
+SCENE = """
+local drive = beltsim.scene {
+  pulleys = {
+    { name = "driver", centre = {0, 0},    radius = 0.1, torque = beltsim.ramp(0.3, -70) },
+    { name = "driven", centre = {0.29, 0}, radius = 0.1, torque = { per_speed = -0.955 } },
+  },
+  belt = { elements = 60, pretension = 500, direction = "cw" },
+}
+"""
+
+failures = []
+
+
+def check(ok, what):
+    print(("ok   " if ok else "FAIL ") + what)
+    if not ok:
+        failures.append(what)
+
+
+def script(name, text):
+    path = os.path.join(TMP, name + ".lua")
+    with open(path, "w") as f:
+        f.write(text)
+    return path
+
+
+def fresh(name):
+    d = os.path.join(TMP, name)
+    os.makedirs(d)
+    return d
+
+
+def beltsim(args, limit=None, stdin=None, cwd=None, timeout=120):
+    def limited():
+        signal.signal(signal.SIGXFSZ, signal.SIG_IGN)  # write(2) fails with EFBIG instead
+        resource.setrlimit(resource.RLIMIT_FSIZE, (limit, limit))
+
+    r = subprocess.run([BELTSIM] + args, input=stdin, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
+                       preexec_fn=limited if limit else None, cwd=cwd, timeout=timeout,
+                       env=dict(os.environ, BELTSIM_TERM_IMAGES="off", BELTSIM_HISTORY=os.path.join(TMP, "history")))
+    return r.returncode, r.stderr
+
+
+def read(path):
+    with open(path) as f:
+        return f.read()
+
+
+def plant(folder, name):
+    """folder/name -> a file outside folder holding SECRET; returns the target"""
+    target = os.path.join(os.path.dirname(folder.rstrip("/")), "target_" + name.replace("/", "_"))
+    with open(target, "w") as f:
+        f.write(SECRET)
+    os.makedirs(os.path.dirname(os.path.join(folder, name)), exist_ok=True)
+    os.symlink(target, os.path.join(folder, name))
+    return target
+
+
+def refused(label, status, err, path, target, shown=None):
+    check(status == 1, "%s: exit status 1 (got %s)" % (label, status))
+    check("cannot write %s: %s" % (shown or path, LINK) in err, "%s: the message names the file: %r" % (label, err[-400:]))
+    check(read(target) == SECRET, "%s: the link's target is untouched" % label)
+    check(os.path.islink(path), "%s: the link is left as it was" % label)
+
+
+RUN = SCENE + 'drive:run { t_end = 0.004, progress = false, snapshots = { every = 0.002 } }\n'
+FRAMES = SCENE + ('drive:run { t_end = 0.004, progress = false, frames = { size = {64, 48}, png = true, '
+                  'video = "v.mp4" } }\n')
+
+
+# ---- §1 a planted link under every fixed name --------------------------------------------------
+def planted_links():
+    for name in ("timeseries.csv", "events.csv", "snapshots.csv", "parameters.csv"):
+        out = fresh("link_" + name)
+        target = plant(out, name)
+        status, err = beltsim(["run", script("run", RUN), "--no-frames", "--out", out])
+        refused(name, status, err, os.path.join(out, name), target)
+    for name in ("frames/frame_00000.png", "v.mp4"):
+        out = fresh("link_" + name.replace("/", "_"))
+        target = plant(out, name)
+        status, err = beltsim(["run", script("frames", FRAMES), "--out", out])
+        refused(name, status, err, os.path.join(out, name), target)
+    # the frames folder itself
+    out = fresh("link_frames_folder")
+    elsewhere = fresh("elsewhere")
+    os.symlink(elsewhere, os.path.join(out, "frames"))
+    status, err = beltsim(["run", script("frames", FRAMES), "--out", out])
+    check(status == 1 and "cannot write %s/frames: %s" % (out, LINK) in err, "frames folder: refused: %r" % err[-300:])
+    check(os.listdir(elsewhere) == [], "frames folder: nothing written through it")
+    # a checkpoint
+    out = fresh("link_ckpt")
+    target = plant(out, "run.ckpt")
+    ck = os.path.join(out, "run.ckpt")
+    status, err = beltsim(["run", script("save", SCENE + 'local sim = drive:start { progress = false }\n'
+                                         'sim:run_to(0.002)\nsim:save(%r)\n' % ck), "--out", out])
+    refused("run.ckpt", status, err, ck, target)
+    check(not os.path.exists(ck + ".part"), "run.ckpt: no .part left")
+    # the console's session.lua
+    out = fresh("link_session")
+    target = plant(out, "session.lua")
+    status, err = beltsim(["console", "--out", out], stdin="x = 1\n")
+    refused("session.lua", status, err, os.path.join(out, "session.lua"), target)
+    check("the session's commands are in" not in err, "session.lua: not reported as written")
+    # beltsim plot's picture, beside the CSV
+    out = fresh("link_plot")
+    status, err = beltsim(["run", script("run", RUN), "--no-frames", "--out", out])
+    check(status == 0, "plot: the run for it ends well (%r)" % err[-300:])
+    target = plant(out, "plot.png")
+    status, err = beltsim(["plot", os.path.join(out, "timeseries.csv")])
+    refused("plot.png", status, err, os.path.join(out, "plot.png"), target)
+    # wp's picture (wp.csv is written, the picture is refused: exit 1 all the same)
+    out = fresh("link_wp")
+    target = plant(out, "wp.png")
+    status, err = beltsim(["wp", script("wp", SCENE + 'drive:run { t_end = 0.01, progress = false }\n'),
+                           "--integrators", "rkf45", "--rtols", "1e-3", "--ref-rtol", "1e-5", "--out", out])
+    refused("wp.png", status, err, os.path.join(out, "wp.png"), target)
+    # the shape of the attack: a scenario package whose own folder (an allowed output folder) holds
+    # events.csv -> the user's start-up file, and a script that logs shell syntax into it
+    package = fresh("package")
+    target = plant(package, "events.csv")
+    attack = script_in(package, "scenario.lua", SCENE + 'local sim = drive:start { out = ".", progress = false }\n'
+                       'sim:log("$(touch /tmp/pwned)")\nsim:close()\n')
+    status, err = beltsim(["run", attack], cwd=package)
+    refused("the scenario package", status, err, os.path.join(package, "events.csv"), target, shown="./events.csv")
+
+
+def script_in(folder, name, text):
+    path = os.path.join(folder, name)
+    with open(path, "w") as f:
+        f.write(text)
+    return path
+
+
+# ---- §4 one writer per output folder -------------------------------------------------------------
+def one_writer():
+    out = fresh("busy")
+    console = subprocess.Popen([BELTSIM, "console", "--out", out], stdin=subprocess.PIPE, stdout=subprocess.PIPE,
+                               stderr=subprocess.PIPE, text=True,
+                               env=dict(os.environ, BELTSIM_HISTORY=os.path.join(TMP, "history")))
+    console.stdin.write(SCENE.replace("local drive", "drive") + "sim = drive:start { progress = false }\n")
+    console.stdin.flush()
+    t0 = time.monotonic()
+    while not os.path.exists(os.path.join(out, "events.csv")):  # the console's simulation holds the folder
+        if time.monotonic() - t0 > 60 or console.poll() is not None:
+            raise SystemExit("the console's simulation never opened its outputs")
+        time.sleep(0.02)
+    rows = read(os.path.join(out, "timeseries.csv"))
+    status, err = beltsim(["run", script("run", RUN), "--no-frames", "--out", out])
+    check(status == 1 and ("the output folder %s is in use by another beltsim (process %d)" % (out, console.pid)) in err,
+          "a run while a console's simulation holds the folder: refused, naming the process: %r" % err[-300:])
+    check(read(os.path.join(out, "timeseries.csv")) == rows, "the console's rows are untouched")
+    console.stdin.write("sim:close()\n")
+    console.stdin.close()
+    console.wait(timeout=60)
+    status, err = beltsim(["run", script("run", RUN), "--no-frames", "--out", out])
+    check(status == 0, "once the console is done, the folder is free (%r)" % err[-300:])
+
+    out = fresh("two_live")
+    status, err = beltsim(["run", script("two_live", SCENE + 'local a = drive:start { progress = false }\n'
+                                         'local b = drive:start { progress = false }\n'), "--out", out])
+    check(status == 1 and re.search(r"two_live\.lua:\d+: .*the output folder %s is in use by another simulation of "
+                                    r"this beltsim" % re.escape(out), err) is not None,
+          "two live simulations of one script: the second refused with file:line: %r" % err[-300:])
+
+    out = fresh("resume_twice")
+    ck = os.path.join(out, "run.ckpt")
+    status, err = beltsim(["run", script("resume_twice", SCENE + 'local s = drive:start { progress = false }\n'
+                                         's:run_to(0.002)\ns:save(%r)\ns:close()\n'
+                                         'local a = beltsim.resume(%r)\nlocal b = beltsim.resume(%r)\n'
+                                         % (ck, ck, ck)), "--out", out])
+    check(status == 1 and "is in use by another simulation of this beltsim" in err,
+          "a checkpoint resumed twice: the second refused: %r" % err[-300:])
+
+
+# ---- §6 outputs that cannot be written -----------------------------------------------------------
+def not_written():
+    # parameters.csv at close: the limit lets its first write through, not the warning rows added
+    # at close; the samples of 5 ms stay far below it
+    room = fresh("room")
+    short = script("short", SCENE + 'drive:run { t_end = 0.005, progress = false }\n')
+    status, err = beltsim(["run", short, "--out", room])
+    check(status == 0, "a short run with room ends well (%r)" % err[-300:])
+    first = sum(len(line) + 1 for line in read(os.path.join(room, "parameters.csv")).split("\n")[:-1]
+                if not line.startswith("warning."))
+    check(os.path.getsize(os.path.join(room, "timeseries.csv")) < first, "the samples stay below parameters.csv")
+    out = fresh("params_at_close")
+    status, err = beltsim(["run", short, "--out", out], limit=first + 16)
+    check(status == 1 and "cannot write %s/parameters.csv: File too large" % out in err,
+          "parameters.csv at close: exit 1 naming it (got %s, %r)" % (status, err[-300:]))
+
+    # session.lua: the limit is below its first line
+    out = fresh("session_full")
+    status, err = beltsim(["console", "--out", out], stdin="x = 1\n", limit=64)
+    check(status == 1 and "cannot write %s/session.lua: File too large" % out in err,
+          "session.lua: exit 1 naming it (got %s, %r)" % (status, err[-300:]))
+    check("the session's commands are in" not in err, "session.lua: not reported as written")
+    check(os.listdir(out) == [], "session.lua: neither an empty one nor a .part left: %r" % os.listdir(out))
+
+    # the video: cut at its last whole fragment, which plays; named; exit 1
+    out = fresh("video_full")
+    limit = 48 * 1024
+    status, err = beltsim(["run", script("video", SCENE + 'drive:run { t_end = 1, progress = false, sample = 0.1, '
+                                         'frames = { size = {320, 240}, video = "v.mp4" } }\n'), "--out", out],
+                          limit=limit)
+    video = os.path.join(out, "v.mp4")
+    check(status == 1 and "cannot write %s: File too large" % video in err,
+          "video: exit 1 naming it (got %s, %r)" % (status, err[-300:]))
+    probe = subprocess.run(["ffprobe", "-v", "error", "-count_frames", "-select_streams", "v:0", "-show_entries",
+                            "stream=nb_read_frames", "-of", "csv=p=0", video], capture_output=True, text=True)
+    frames = int(probe.stdout.strip() or 0) if probe.returncode == 0 else -1
+    check(frames > 0 and probe.stderr == "" and os.path.getsize(video) < limit,
+          "video: its whole fragments play, no torn one (%d frames, %d bytes, ffprobe says %r)"
+          % (frames, os.path.getsize(video), probe.stderr[-300:]))
+
+    # a checkpoint that does not fit: named, and no .part left
+    out = fresh("ckpt_full")
+    ck = os.path.join(out, "run.ckpt")
+    status, err = beltsim(["run", script("save_full", SCENE + 'local sim = drive:start { progress = false }\n'
+                                         'sim:run_to(0.002)\nsim:save(%r)\n' % ck), "--out", out], limit=8192)
+    check(status == 1 and "cannot write %s: File too large" % ck in err,
+          "checkpoint: exit 1 naming it (got %s, %r)" % (status, err[-300:]))
+    check(not os.path.exists(ck) and not os.path.exists(ck + ".part"), "checkpoint: no half file, no .part")
+
+
+t0 = time.monotonic()
+for case in (planted_links, one_writer, not_written):
+    case()
+print("%.1f s" % (time.monotonic() - t0))
+if failures:
+    print("%d failed" % len(failures))
+    sys.exit(1)
+subprocess.run(["rm", "-rf", TMP])
