@@ -4,7 +4,7 @@
 //
 //   beltsim-checkpoint 5             <- what it is, and the format version
 //   integrator "esdirk32"            <- a key, then its values, one field per line
-//   rtol 0.0001
+//   rtol 1e-04
 //   probe 2 0 75                     <- sequences: the count, then the values
 //   pulley.centre 0 0                <- fixed pairs: no count
 //   ...

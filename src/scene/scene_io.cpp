@@ -332,11 +332,11 @@ Scene read_scene(CheckpointReader& r) {
   // the scene as a script's scene is checked, and what the build derives from it
   std::string error;
   try {
-    validate(definition(sc));
     require_positive("belt.pitch", b.pitch, "m");
     require_positive("belt.rigid_length", b.rigid_length, "m");
     require_positive("belt.mass", b.mass, "kg");
     require_positive("belt.rot_inertia", b.rot_inertia, "kg·m²");
+    validate(definition(sc));
   } catch (const ParameterError& e) {
     error = e.what();
   }
