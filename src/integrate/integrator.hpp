@@ -13,9 +13,7 @@
 //   y_prev(), y() the solution at the ends of the last step, where the stage equations hold
 #pragma once
 
-#include <istream>
 #include <memory>
-#include <ostream>
 #include <stdexcept>
 #include <string>
 
@@ -25,6 +23,9 @@
 #include "integrate/system.hpp"
 
 namespace beltsim {
+
+class CheckpointReader;
+class CheckpointWriter;
 
 // A run that could not continue: NaN/Inf, runaway, or a step size that collapsed.
 struct DivergenceError : std::runtime_error {
@@ -46,8 +47,10 @@ class Integrator {
   virtual std::string stiffest() const { return ""; }
   // checkpoints (bit-identical continuation); false when the method cannot export its state
   virtual bool can_save() const { return false; }
-  virtual void save(std::ostream&) const {}
-  virtual void load(std::istream&) {}
+  // (in a checkpoint's text, io/checkpoint_text.hpp; load refuses a state that does not fit the
+  // system, CheckpointError naming the line)
+  virtual void save(CheckpointWriter&) const {}
+  virtual void load(CheckpointReader&) {}
 
   double t() const { return t_; }
   double t_prev() const { return t_prev_; }

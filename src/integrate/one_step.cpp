@@ -3,6 +3,7 @@
 // interpolant on them (Hairer, Nørsett & Wanner I, II.6), third order, which is the dense output
 // of samples, frames and pauses alike.
 #include <algorithm>
+#include <climits>
 #include <cmath>
 #include <limits>
 #include <sstream>
@@ -10,6 +11,7 @@
 #include "integrate/cvode.hpp"
 #include "integrate/integrator.hpp"
 #include "integrate/stepper.hpp"
+#include "io/checkpoint_text.hpp"
 
 namespace beltsim {
 
@@ -173,48 +175,51 @@ class OneStep final : public Integrator {
   std::string stiffest() const override { return worst_ < 0 ? std::string() : sys_.describe(worst_); }
 
   bool can_save() const override { return true; }
-  void save(std::ostream& o) const override {
-    auto num = [&](double v) { o << std::hexfloat << v << '\n'; };
-    auto vec = [&](const Eigen::VectorXd& v) {
-      o << v.size() << '\n';
-      for (Eigen::Index k = 0; k < v.size(); ++k) o << std::hexfloat << v[k] << '\n';
-    };
-    o << "one_step " << st_->name() << '\n';
-    for (double v : {t_, t_prev_, h_, h_used_, cap_}) num(v);
-    o << started_ << '\n';
-    vec(y_), vec(f_), vec(y_prev_), vec(f_prev_);
-    // the one kind of warning a one-step method counts (checkpoint format 2)
-    const WorkCounters& w = sys_.counters;
-    const WarningStat& failed = w.warnings[WarningKind::failed_step];
-    o << w.steps << ' ' << w.rejected << ' ' << w.rhs << ' ' << w.jacobians << ' ' << w.factorizations << ' '
-      << w.solves << ' ' << failed.count << '\n';
-    num(failed.first_t);
+  void save(CheckpointWriter& w) const override {
+    w.line("integrator.state", st_->name());
+    w.line("integrator.t", t_);
+    w.line("integrator.t_prev", t_prev_);
+    w.line("integrator.h", h_);
+    w.line("integrator.h_used", h_used_);
+    w.line("integrator.h_cap", cap_);
+    w.line("integrator.started", started_);
+    auto vec = [&](const char* k, const Eigen::VectorXd& v) { w.line(k, v.data(), static_cast<size_t>(v.size())); };
+    vec("integrator.y", y_), vec("integrator.f", f_), vec("integrator.y_prev", y_prev_), vec("integrator.f_prev", f_prev_);
+    // the one kind of warning a one-step method counts
+    const WorkCounters& c = sys_.counters;
+    const WarningStat& failed = c.warnings[WarningKind::failed_step];
+    w.line("integrator.counters",
+           std::vector<long>{c.steps, c.rejected, c.rhs, c.jacobians, c.factorizations, c.solves, failed.count});
+    w.line("integrator.failed_first_t", failed.first_t);
   }
-  void load(std::istream& in) override {
-    std::string tag, nm;
-    in >> tag >> nm;
-    if (tag != "one_step" || nm != st_->name())
-      throw std::runtime_error("checkpoint: integrator state of '" + nm + "', expected '" + st_->name() + "'");
-    auto num = [&] {
-      std::string s;
-      in >> s;
-      return std::strtod(s.c_str(), nullptr);
+  void load(CheckpointReader& r) override {
+    if (r.line_str("integrator.state") != st_->name()) r.fail("the state of another integrator than " + st_->name());
+    t_ = r.line_num("integrator.t");
+    t_prev_ = r.line_num("integrator.t_prev");
+    if (!(t_prev_ <= t_)) r.fail("the step's start lies after its end");
+    h_ = r.line_num("integrator.h");
+    if (!(h_ >= 0)) r.fail("a step size must be >= 0");
+    h_used_ = r.line_num("integrator.h_used");
+    if (!(h_used_ >= 0)) r.fail("a step size must be >= 0");
+    r.open("integrator.h_cap");
+    cap_ = r.num_or_infinity();
+    r.close();
+    if (!(cap_ > 0)) r.fail("a step size cap must be > 0");
+    started_ = r.line_bool("integrator.started");
+    const size_t n = static_cast<size_t>(sys_.size());
+    auto vec = [&](const char* k, Eigen::VectorXd& v) {
+      const std::vector<double> x = r.line_doubles(k, n);
+      if (x.size() != n) r.fail(std::to_string(x.size()) + " values for a state of " + std::to_string(n));
+      v = Eigen::Map<const Eigen::VectorXd>(x.data(), static_cast<Eigen::Index>(n));
     };
-    auto vec = [&](Eigen::VectorXd& v) {
-      long n = 0;
-      in >> n;
-      if (n != v.size()) throw std::runtime_error("checkpoint: state size differs from the scene's");
-      for (long k = 0; k < n; ++k) v[k] = num();
-    };
-    t_ = num(), t_prev_ = num(), h_ = num(), h_used_ = num(), cap_ = num();
-    in >> started_;
-    y_.resize(sys_.size());
-    vec(y_), vec(f_), vec(y_prev_), vec(f_prev_);
+    vec("integrator.y", y_), vec("integrator.f", f_), vec("integrator.y_prev", y_prev_), vec("integrator.f_prev", f_prev_);
+    const std::vector<long> c = r.line_longs("integrator.counters", 0, LONG_MAX, 7);
+    if (c.size() != 7) r.fail("7 counts expected");
     WorkCounters& w = sys_.counters;
     WarningStat& failed = w.warnings[WarningKind::failed_step];
-    in >> w.steps >> w.rejected >> w.rhs >> w.jacobians >> w.factorizations >> w.solves >> failed.count;
-    failed.first_t = num();
-    if (!in) throw std::runtime_error("checkpoint: the integrator state is cut short");
+    w.steps = c[0], w.rejected = c[1], w.rhs = c[2], w.jacobians = c[3], w.factorizations = c[4], w.solves = c[5];
+    failed.count = c[6];
+    failed.first_t = r.line_num("integrator.failed_first_t");
   }
 
  private:

@@ -1,8 +1,8 @@
 #include "io/csv_writer.hpp"
 
-#include <charconv>
-#include <cmath>
 #include <stdexcept>
+
+#include "io/number_text.hpp"
 
 namespace beltsim {
 
@@ -13,16 +13,7 @@ std::string csv_text(const std::string& s) {
   return q + "\"";
 }
 
-void append_csv_number(std::string& out, double v) {
-  if (std::isnan(v)) {
-    out += "nan";
-    return;
-  }
-  // shortest round trip; never the locale's decimal comma (to_chars ignores the locale)
-  char buf[32];
-  const auto r = std::to_chars(buf, buf + sizeof buf, v);
-  out.append(buf, r.ptr);
-}
+void append_csv_number(std::string& out, double v) { append_number(out, v); }
 
 std::string csv_number(double v) {
   std::string s;

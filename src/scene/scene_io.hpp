@@ -1,62 +1,33 @@
-// Exact checkpoints of a built Scene (and of a Model, a Drive, a law, a vector on their own: a live
-// simulation's drive differs from its scene's after changes of torque laws or μ).
+// A built Scene, and a Drive (what a run changes: laws, μ), in a checkpoint's text
+// (io/checkpoint_text.hpp: the format, its one version, its strict reader). The keys are the
+// scenario's Lua names where the scenario has one (pulley.inertia, belt.sde.k, contact.damping,
+// friction.dv, energy); the values a build derives (belt.pitch, the route, the element sites)
+// carry the names of scene:info() and of the element sites.
 //
-// The format is line-oriented text, one field per line, each line opening with the field's
-// keyword, so a person can read a checkpoint and a reader of another version stops at the first
-// field it does not expect:
-//
-//   scene 1                          <- object and format version
-//   model 1
-//   gravity 0x1.39eb851eb851fp+3
-//   pulleys 2
-//   pulley "driver"                  <- strings quoted, \" \\ \n escaped
-//   pulley.centre 0x0p+0 0x0p+0
-//   ...
-//   y0 364 0x1.2p-3 ...              <- sequences: keyword, count, values
-//   ...
-//   end scene
-//
-// Doubles are C99 hex floats (std::hexfloat), read back with std::strtod, so every finite value,
-// ±0, subnormals and ±inf come back bit for bit; a NaN comes back as a NaN of the same sign (its
-// payload is not kept). Text after '#' at the end of a line, blank lines and '#' lines are
-// ignored. A malformed or truncated input throws std::runtime_error("checkpoint: ...") naming
-// the field that was expected. Writers use the classic locale whatever the stream's; the reader's
-// std::strtod assumes LC_NUMERIC is "C" (the program never changes it).
+// Reading checks as it goes that every count fits the text that holds it and the scene it
+// belongs to (the pulleys, the elements, the state's size), then validates the scene as a
+// script's scene is validated (validate(SceneDef), scene.hpp) and the drive with the same rules
+// (validate_law, μ >= 0 per element). Errors are CheckpointError ("line N: ...") for the text and
+// for what a single line gets wrong, and CheckpointError naming the lines of the scene for what
+// the validation refuses.
 //
 // Adding a field to Scene, Model, Drive, Pulley, TimeSpeedLaw, Belt, Contact, Friction, Route or
 // ElementSite means adding it here and raising kCheckpointVersion.
 #pragma once
 
-#include <istream>
-#include <ostream>
-#include <string>
-#include <vector>
-
-#include <Eigen/Core>
-
+#include "io/checkpoint_text.hpp"
 #include "model/model.hpp"
 #include "scene/scene.hpp"
 
 namespace beltsim {
 
-inline constexpr int kCheckpointVersion = 5;
+void write_scene(CheckpointWriter& w, const Scene& sc);
+Scene read_scene(CheckpointReader& r);
 
-void write_scene(std::ostream& out, const Scene& sc);
-Scene read_scene(std::istream& in);
-
-void write_model(std::ostream& out, const Model& m);
-Model read_model(std::istream& in);
-void write_drive(std::ostream& out, const Drive& d);
-Drive read_drive(std::istream& in);
-
-// `key` names the object in the text (e.g. "torque"), and must match on reading
-void write_law(std::ostream& out, const TimeSpeedLaw& law, const std::string& key = "law");
-TimeSpeedLaw read_law(std::istream& in, const std::string& key = "law");
-
-// one line: key, count, values
-void write_vector(std::ostream& out, const Eigen::VectorXd& v, const std::string& key = "vector");
-Eigen::VectorXd read_vector(std::istream& in, const std::string& key = "vector");
-void write_vector(std::ostream& out, const std::vector<double>& v, const std::string& key = "vector");
-std::vector<double> read_std_vector(std::istream& in, const std::string& key = "vector");
+// the drive: each pulley's torque and speed laws and which of them drives it, μ per element,
+// the time of the last restart
+void write_drive(CheckpointWriter& w, const Model& m, const Drive& d);
+// the drive of the model's scene (its pulleys' names, its element count): validated
+Drive read_drive(CheckpointReader& r, const Model& m);
 
 }  // namespace beltsim

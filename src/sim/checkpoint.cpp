@@ -1,96 +1,202 @@
-// Checkpoints of a live simulation: everything a continuation needs, in a line-oriented text with
-// doubles as hex floats (exact): the run settings, the scene, the model as it is now (laws and μ
+// Checkpoints of a live simulation: everything a continuation needs, in the one checkpoint text
+// (io/checkpoint_text.hpp): the run settings, the scene, the drive as it is now (laws and μ
 // changed since the start), the schedule's positions, the timed changes still ahead, the output
-// positions (rows and bytes of the CSV files, frames written) and the integrator's own state.
-// Continuing from it gives the uninterrupted run's outputs and state bit for bit. Callbacks
-// (Lua functions) are not saved: a checkpoint counts them and the script registers them again.
+// positions (bytes of the CSV files, frames written) and the integrator's own state. Continuing
+// from it gives the uninterrupted run's outputs and state bit for bit. Callbacks (Lua functions)
+// are not saved: a checkpoint counts them and the script registers them again.
+//
+// Reading trusts nothing in the file: it reads only a regular file of bounded size, every count
+// is bounded by the text that holds its values and by the scene, the scene and the settings are
+// validated as a script's are, the output positions must fall on row ends past the headers, and
+// a checksum catches what is otherwise well-formed. No output is touched before all of it passed.
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
 #include <algorithm>
 #include <cerrno>
+#include <climits>
 #include <cmath>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
-#include <sstream>
+#include <new>
 
 #include "integrate/belt_system.hpp"
 #include "integrate/timeline.hpp"
+#include "io/checkpoint_text.hpp"
 #include "io/csv_writer.hpp"
+#include "io/number_text.hpp"
 #include "io/output_dir.hpp"
 #include "scene/scene_io.hpp"
+#include "scene/validate.hpp"
 #include "sim/simulation.hpp"
 
 namespace beltsim {
 
 namespace {
 
-constexpr const char* kMagic = "beltsim-checkpoint";
-// 2: failed-step counts in the integrator state; 3: several probes, snapshots, interval means
-constexpr int kVersion = 3;
+// The largest checkpoint read: a checkpoint takes about 710 bytes per element on two pulleys
+// (measured at 100 and 1000 elements), 15 MB at the 20 000 elements a scene may have without
+// allow_large; past this a file is surely not a checkpoint.
+constexpr long kMaxCheckpointBytes = 1L << 30;
 
-void put(std::ostream& o, const char* key, double v) { o << key << ' ' << std::hexfloat << v << std::defaultfloat << '\n'; }
-void put(std::ostream& o, const char* key, long v) { o << key << ' ' << v << '\n'; }
-void put(std::ostream& o, const char* key, const std::string& v) { o << key << ' ' << v.size() << ' ' << v << '\n'; }
-
-void expect(std::istream& in, const char* key) {
-  std::string k;
-  in >> k;
-  if (!in || k != key) throw std::runtime_error(std::string("checkpoint: expected '") + key + "', found '" + k + "'");
-}
-double get_double(std::istream& in, const char* key) {
-  expect(in, key);
-  std::string s;
-  in >> s;
-  return std::strtod(s.c_str(), nullptr);
-}
-long get_long(std::istream& in, const char* key) {
-  expect(in, key);
-  long v = 0;
-  in >> v;
-  if (!in) throw std::runtime_error(std::string("checkpoint: a whole number expected after '") + key + "'");
-  return v;
-}
-std::string get_string(std::istream& in, const char* key) {
-  expect(in, key);
-  size_t n = 0;
-  in >> n;
-  in.get();  // the space
-  std::string s(n, '\0');
-  in.read(s.data(), static_cast<std::streamsize>(n));
-  if (!in) throw std::runtime_error(std::string("checkpoint: text after '") + key + "' is cut short");
-  return s;
-}
-
-void put_frames(std::ostream& o, const FrameSettings& f) {
-  for (const auto& [k, v] : {std::pair{"fps", f.fps}, std::pair{"slowdown", f.slowdown}, std::pair{"magnify", f.magnify},
-                             std::pair{"t_start", f.t_start}, std::pair{"range_lo", f.range_lo.value_or(NAN)},
-                             std::pair{"range_hi", f.range_hi.value_or(NAN)},
-                             std::pair{"view_x", f.view_centre ? f.view_centre->x() : NAN},
-                             std::pair{"view_y", f.view_centre ? f.view_centre->y() : NAN},
-                             std::pair{"view_width", f.view_width.value_or(NAN)}})
-    put(o, k, v);
-  for (const auto& [k, v] : {std::pair{"width", long(f.width)}, std::pair{"height", long(f.height)},
-                             std::pair{"quantity", long(f.quantity)}, std::pair{"levels", long(f.levels)},
-                             std::pair{"png_every", long(f.png_every)}})
-    put(o, k, v);
-  put(o, "png_dir", f.png_dir);
-  put(o, "video", f.video_path);
+void write_settings(CheckpointWriter& w, const RunSettings& rs) {
+  w.line("integrator", rs.integrator);
+  w.line("rtol", rs.rtol);
+  w.line("atol", rs.atol);
+  w.line("sample", rs.sample_dt);
+  w.line("out", std::filesystem::absolute(rs.out_dir).string());
+  w.line("probe", rs.probes);
+  w.line("snapshots.every", rs.snapshot_every);
+  w.line("snapshots.times", rs.snapshot_times);
+  w.line("keep_samples", rs.keep_samples);
+  w.line("allow_large", rs.allow_large);
+  w.line("frames", rs.frames.has_value());
+  if (!rs.frames) return;
+  const FrameSettings& f = *rs.frames;
+  w.line("frames.fps", f.fps);
+  w.line("frames.slowdown", f.slowdown);
+  w.fixed("frames.size", {static_cast<double>(f.width), static_cast<double>(f.height)});
+  w.word("frames.quantity", frame_quantity_info(f.quantity).key);
+  w.optional("frames.range.lo", f.range_lo);
+  w.optional("frames.range.hi", f.range_hi);
+  w.line("frames.levels", f.levels);
+  w.line("frames.magnify", f.magnify);
+  if (f.view_centre) w.fixed("frames.view.centre", {f.view_centre->x(), f.view_centre->y()});
+  else w.word("frames.view.centre", "none");
+  w.optional("frames.view.width", f.view_width);
+  w.line("frames.png", f.png_dir);
+  w.line("frames.png_every", f.png_every);
+  w.line("frames.video", f.video_path);
+  w.line("frames.t_start", f.t_start);
 }
 
-FrameSettings get_frames(std::istream& in) {
-  FrameSettings f;
-  f.fps = get_double(in, "fps"), f.slowdown = get_double(in, "slowdown"), f.magnify = get_double(in, "magnify");
-  f.t_start = get_double(in, "t_start");
-  auto opt = [](double v) { return std::isnan(v) ? std::optional<double>() : std::optional<double>(v); };
-  f.range_lo = opt(get_double(in, "range_lo")), f.range_hi = opt(get_double(in, "range_hi"));
-  const double vx = get_double(in, "view_x"), vy = get_double(in, "view_y");
-  if (!std::isnan(vx)) f.view_centre = Vec2(vx, vy);
-  f.view_width = opt(get_double(in, "view_width"));
-  f.width = static_cast<int>(get_long(in, "width")), f.height = static_cast<int>(get_long(in, "height"));
-  f.quantity = static_cast<FrameQuantity>(get_long(in, "quantity"));
-  f.levels = static_cast<int>(get_long(in, "levels")), f.png_every = static_cast<int>(get_long(in, "png_every"));
-  f.png_dir = get_string(in, "png_dir");
-  f.video_path = get_string(in, "video");
-  return f;
+// (checked by the Simulation's constructor as a script's settings are)
+RunSettings read_settings(CheckpointReader& r) {
+  RunSettings rs;
+  rs.integrator = r.line_str("integrator");
+  rs.rtol = r.line_num("rtol");
+  rs.atol = r.line_num("atol");
+  rs.sample_dt = r.line_num("sample");
+  rs.out_dir = r.line_str("out");
+  rs.probes = r.line_ints("probe", INT_MIN, INT_MAX);
+  rs.snapshot_every = r.line_num("snapshots.every");
+  rs.snapshot_times = r.line_doubles("snapshots.times");
+  rs.keep_samples = r.line_bool("keep_samples");
+  rs.allow_large = r.line_bool("allow_large");
+  if (!r.line_bool("frames")) return rs;
+  FrameSettings& f = rs.frames.emplace();
+  f.fps = r.line_num("frames.fps");
+  f.slowdown = r.line_num("frames.slowdown");
+  r.open("frames.size");
+  f.width = static_cast<int>(r.integer(0, INT_MAX)), f.height = static_cast<int>(r.integer(0, INT_MAX));
+  r.close();
+  std::vector<std::string> names;
+  for (const FrameQuantityInfo& q : frame_quantities()) names.push_back(q.key);
+  f.quantity = frame_quantities()[static_cast<size_t>(r.line_choice("frames.quantity", names))].q;
+  f.range_lo = r.line_optional("frames.range.lo");
+  f.range_hi = r.line_optional("frames.range.hi");
+  f.levels = static_cast<int>(r.line_int("frames.levels", INT_MIN, INT_MAX));
+  f.magnify = r.line_num("frames.magnify");
+  r.open("frames.view.centre");
+  if (const std::optional<double> x = r.optional_num()) f.view_centre = Vec2(*x, r.num());
+  r.close();
+  f.view_width = r.line_optional("frames.view.width");
+  f.png_dir = r.line_str("frames.png");
+  f.png_every = static_cast<int>(r.line_int("frames.png_every", INT_MIN, INT_MAX));
+  f.video_path = r.line_str("frames.video");
+  f.t_start = r.line_num("frames.t_start");
+  return rs;
+}
+
+// the whole of a regular file of at most kMaxCheckpointBytes: a FIFO, a device (/dev/zero) or a
+// folder is refused at once, without blocking on it or reading from it
+std::string read_checkpoint_file(const std::string& path) {
+  const int fd = ::open(path.c_str(), O_RDONLY | O_NONBLOCK | O_CLOEXEC);
+  if (fd < 0) throw CheckpointError("cannot read it: " + std::string(std::strerror(errno)));
+  struct Closer {
+    int fd;
+    ~Closer() { ::close(fd); }
+  } closer{fd};
+  struct stat st {};
+  if (::fstat(fd, &st) != 0) throw CheckpointError("cannot read it: " + std::string(std::strerror(errno)));
+  if (!S_ISREG(st.st_mode)) throw CheckpointError("not a regular file, so not a checkpoint");
+  if (st.st_size > kMaxCheckpointBytes)
+    throw CheckpointError(std::to_string(st.st_size) + " bytes, more than any checkpoint (at most " +
+                             std::to_string(kMaxCheckpointBytes) + ")");
+  std::string text(static_cast<size_t>(st.st_size), '\0');
+  size_t got = 0;
+  while (got < text.size()) {
+    const ssize_t n = ::read(fd, text.data() + got, text.size() - got);
+    if (n < 0 && errno == EINTR) continue;
+    if (n < 0) throw CheckpointError("cannot read it: " + std::string(std::strerror(errno)));
+    if (n == 0) break;  // it shrank while read
+    got += static_cast<size_t>(n);
+  }
+  text.resize(got);
+  if (text.empty()) throw CheckpointError("an empty file, not a checkpoint");
+  return text;
+}
+
+// An output the checkpoint continues: the position it was at when saved must lie past its header
+// line, on the end of a row, within the file as it is now.
+struct OutputCut {
+  std::string name;  // in the output folder
+  std::string path;
+  long bytes;
+};
+
+void check_cut(const OutputCut& c) {
+  const int fd = ::open(c.path.c_str(), O_RDONLY | O_NONBLOCK | O_NOFOLLOW | O_CLOEXEC);
+  if (fd < 0) throw std::runtime_error("the run's output " + c.path + " cannot be read: " + std::strerror(errno));
+  struct Closer {
+    int fd;
+    ~Closer() { ::close(fd); }
+  } closer{fd};
+  struct stat st {};
+  if (::fstat(fd, &st) != 0 || !S_ISREG(st.st_mode))
+    throw std::runtime_error("the run's output " + c.path + " is not a regular file");
+  if (st.st_size < c.bytes)
+    throw std::runtime_error("the run's output " + c.path + " (" + std::to_string(st.st_size) +
+                             " bytes) is shorter than when the checkpoint was taken (" + std::to_string(c.bytes) + ")");
+  // the header: the first line, read in pieces up to the saved position
+  long header = -1;
+  char buf[4096];
+  for (long at = 0; at < c.bytes && header < 0;) {
+    const ssize_t n = ::pread(fd, buf, sizeof buf, at);
+    if (n <= 0) break;
+    if (const void* nl = std::memchr(buf, '\n', static_cast<size_t>(n)))
+      header = at + (static_cast<const char*>(nl) - buf) + 1;
+    at += n;
+  }
+  if (header < 0 || c.bytes < header)
+    throw std::runtime_error("the checkpoint continues " + c.path + " from byte " + std::to_string(c.bytes) +
+                             ", inside its header line: cutting it there would lose the header");
+  char last = 0;
+  if (::pread(fd, &last, 1, c.bytes - 1) != 1 || last != '\n')
+    throw std::runtime_error("the checkpoint continues " + c.path + " from byte " + std::to_string(c.bytes) +
+                             ", which is not the end of a row");
+}
+
+// the next index of each output stream at `now`, in Simulation::add_streams' order (samples,
+// frames, snapshots every dt, snapshots at listed times): the first whose time lies after now
+std::vector<long> next_outputs(const RunSettings& rs, double now) {
+  auto next = [&](double t0, double dt) {
+    if (now < t0) return 0L;
+    const double k = std::floor((now - t0) / dt);
+    if (!(k < 1e15)) throw CheckpointError("its time " + number_text(now) + " s is beyond its outputs' reach");
+    long i = static_cast<long>(k);
+    while (i > 0 && t0 + static_cast<double>(i - 1) * dt > now) --i;
+    while (t0 + static_cast<double>(i) * dt <= now) ++i;
+    return i;
+  };
+  std::vector<long> k{next(0.0, rs.sample_dt)};
+  if (rs.frames) k.push_back(next(rs.frames->t_start, rs.frames->frame_dt()));
+  if (rs.snapshot_every > 0) k.push_back(next(0.0, rs.snapshot_every));
+  if (!rs.snapshot_times.empty())
+    k.push_back(std::upper_bound(rs.snapshot_times.begin(), rs.snapshot_times.end(), now) - rs.snapshot_times.begin());
+  return k;
 }
 
 
@@ -104,134 +210,145 @@ void Simulation::save(const std::string& path) const {
                                 " keeps a multistep history that SUNDIALS cannot export; checkpoints need a one-step "
                                 "integrator (esdirk32, trbdf2, ros34pw2, rkf45)");
   // (the CSV files need no flush: each row is in the file when written)
-  std::ostringstream o;
-  o << kMagic << ' ' << kVersion << '\n';
-  put(o, "integrator", rs_.integrator);
-  put(o, "rtol", rs_.rtol);
-  put(o, "atol", rs_.atol);
-  put(o, "sample_dt", rs_.sample_dt);
-  put(o, "out_dir", std::filesystem::absolute(rs_.out_dir).string());
-  put(o, "probes", long(rs_.probes.size()));
-  for (int i : rs_.probes) o << i << '\n';
-  put(o, "snapshot_every", rs_.snapshot_every);
-  put(o, "snapshot_times", long(rs_.snapshot_times.size()));
-  for (double t : rs_.snapshot_times) put(o, "t", t);
-  put(o, "keep_samples", long(rs_.keep_samples));
-  put(o, "allow_large", long(rs_.allow_large));
-  put(o, "frames", long(rs_.frames.has_value()));
-  if (rs_.frames) put_frames(o, *rs_.frames);
-  o << "scene\n";
-  write_scene(o, scene_);
-  o << "drive\n";
-  write_drive(o, drive_);
-  put(o, "now", tl_->now());
-  const std::vector<long> k = tl_->positions();
-  put(o, "streams", long(k.size()));
-  for (long v : k) o << v << '\n';
-  put(o, "pending", long(pending_.size()));
+  CheckpointWriter w;
+  w.word("part", "settings");
+  write_settings(w, rs_);
+  w.word("part", "scene");
+  write_scene(w, scene_);
+  w.word("part", "drive");
+  write_drive(w, model_, drive_);
+  w.word("part", "outputs");
+  w.line("now", tl_->now());
+  w.line("streams", tl_->positions());
+  w.line("pending", static_cast<long>(pending_.size()));
   for (const MuEvent& ev : pending_) {
-    put(o, "t", ev.t);
-    put(o, "what", ev.what);
-    put(o, "text", ev.text);
-    write_vector(o, ev.mu);
+    w.line("event.t", ev.t);
+    w.line("event.what", ev.what);
+    w.line("event.text", ev.text);
+    w.line("event.mu", ev.mu);
   }
-  put(o, "rows", rows_);
+  w.line("rows", rows_);
   // the outputs' sizes (0 for one that is not there; never through a link)
   auto bytes = [this](const char* name) { return std::max(0L, out_->size(name)); };
-  put(o, "csv_bytes", bytes("timeseries.csv"));
-  put(o, "events_bytes", bytes("events.csv"));
-  put(o, "snapshots_bytes", has_snapshots() ? bytes("snapshots.csv") : 0L);
-  put(o, "mean_from", mean_from_);
-  put(o, "mean_covered", mean_covered_);
-  put(o, "mean_acc", long(mean_acc_.size()));
-  for (double v : mean_acc_) put(o, "v", v);
-  put(o, "frames_written", frames_written());
-  put(o, "callbacks", long(callbacks_));
-  put(o, "wall", wall_);
-  o << "integrator_state\n";
-  integ_->save(o);
-  o << "end\n";
+  w.line("csv_bytes", bytes("timeseries.csv"));
+  w.line("events_bytes", bytes("events.csv"));
+  w.line("snapshots_bytes", has_snapshots() ? bytes("snapshots.csv") : 0L);
+  w.line("mean_from", mean_from_);
+  w.line("mean_covered", mean_covered_);
+  w.line("mean_acc", mean_acc_);
+  w.line("frames_written", frames_written());
+  w.line("callbacks", callbacks_);
+  w.line("wall", wall_);
+  w.word("part", "integrator");
+  integ_->save(w);
+  const std::string text = w.finish();
   // written whole (io/output_dir.hpp): a checkpoint is never half a file, and no part of one is
   // left behind when it cannot be written
-  write_file_whole(path, o.str());
+  write_file_whole(path, text);
 }
 
 std::unique_ptr<Simulation> Simulation::resume(const std::string& path, const FrameSinkFactory& factory, int* callbacks,
                                                const std::function<void(const RunSettings&)>& vet) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw std::runtime_error("resume: cannot read " + path + ": " + std::strerror(errno));
-  std::string magic;
-  int version = 0;
-  in >> magic >> version;
-  if (magic != kMagic) throw std::runtime_error("resume: " + path + " is not a beltsim checkpoint");
-  if (version != kVersion)
-    throw std::runtime_error("resume: " + path + " is a version " + std::to_string(version) +
-                             " checkpoint; this beltsim reads version " + std::to_string(kVersion));
-  RunSettings rs;
-  rs.integrator = get_string(in, "integrator");
-  rs.rtol = get_double(in, "rtol");
-  rs.atol = get_double(in, "atol");
-  rs.sample_dt = get_double(in, "sample_dt");
-  rs.out_dir = get_string(in, "out_dir");
-  rs.probes.assign(static_cast<size_t>(get_long(in, "probes")), 0);
-  for (int& i : rs.probes) in >> i;
-  rs.snapshot_every = get_double(in, "snapshot_every");
-  rs.snapshot_times.resize(static_cast<size_t>(get_long(in, "snapshot_times")));
-  for (double& t : rs.snapshot_times) t = get_double(in, "t");
-  rs.keep_samples = get_long(in, "keep_samples") != 0;
-  rs.allow_large = get_long(in, "allow_large") != 0;
-  if (get_long(in, "frames")) {
-    rs.frames = get_frames(in);
-    rs.frame_factory = factory;
-  }
-  expect(in, "scene");
-  const Scene sc = read_scene(in);
-  expect(in, "drive");
-  Drive drive = read_drive(in);
-  const double now = get_double(in, "now");
-  std::vector<long> k(static_cast<size_t>(get_long(in, "streams")));
-  for (long& v : k) in >> v;
-  std::vector<MuEvent> pending(static_cast<size_t>(get_long(in, "pending")));
-  for (MuEvent& ev : pending) {
-    ev.t = get_double(in, "t");
-    ev.what = get_string(in, "what");
-    ev.text = get_string(in, "text");
-    ev.mu = read_std_vector(in);
-  }
-  const long rows = get_long(in, "rows"), csv_bytes = get_long(in, "csv_bytes");
-  const long events_bytes = get_long(in, "events_bytes");
-  const long snapshots_bytes = get_long(in, "snapshots_bytes");
-  const double mean_from = get_double(in, "mean_from"), mean_covered = get_double(in, "mean_covered");
-  std::vector<double> mean_acc(static_cast<size_t>(get_long(in, "mean_acc")));
-  for (double& v : mean_acc) v = get_double(in, "v");
-  const long frames = get_long(in, "frames_written");
-  const long n_callbacks = get_long(in, "callbacks");
-  const double wall = get_double(in, "wall");
-  expect(in, "integrator_state");
+  const std::string where = "resume: " + path + ": ";
+  std::unique_ptr<Simulation> s;
+  std::vector<OutputCut> cuts;
+  double now = 0;
+  std::vector<long> positions;
+  long n_callbacks = 0;
+  try {
+    CheckpointReader r(read_checkpoint_file(path));
+    r.line_choice("part", {"settings"});
+    RunSettings rs = read_settings(r);
+    r.line_choice("part", {"scene"});
+    const Scene sc = read_scene(r);
+    r.line_choice("part", {"drive"});
+    Drive drive = read_drive(r, sc.model);
+    r.line_choice("part", {"outputs"});
+    now = r.line_num("now");
+    if (!(now >= 0)) r.fail("a time >= 0 s expected");
+    positions = r.line_longs("streams", 0, LONG_MAX);
+    const int streams_line = r.line_number();
+    r.open("pending");
+    const size_t n_pending = r.group_count(4);
+    r.close();
+    std::vector<MuEvent> pending(n_pending);
+    const size_t n = static_cast<size_t>(sc.model.n_el());
+    for (MuEvent& ev : pending) {
+      ev.t = r.line_num("event.t");
+      if (!(ev.t >= now)) r.fail("an event still ahead must come at or after the checkpoint's time");
+      ev.what = r.line_str("event.what");
+      ev.text = r.line_str("event.text");
+      ev.mu = r.line_doubles_or_nan("event.mu", n);
+      if (ev.mu.size() != n) r.fail(std::to_string(ev.mu.size()) + " values for " + std::to_string(n) + " elements");
+      for (double mu : ev.mu)
+        if (!std::isnan(mu) && !(mu >= 0)) r.fail("μ must be >= 0 (got " + number_text(mu) + ")");
+    }
+    const long rows = r.line_int("rows", 0, LONG_MAX);
+    const long csv_bytes = r.line_int("csv_bytes", 0, LONG_MAX);
+    const long events_bytes = r.line_int("events_bytes", 0, LONG_MAX);
+    const long snapshots_bytes = r.line_int("snapshots_bytes", 0, LONG_MAX);
+    const double mean_from = r.line_num("mean_from"), mean_covered = r.line_num("mean_covered");
+    if (!(mean_from <= mean_covered && mean_covered <= now)) r.fail("the interval means must cover a time up to now");
+    std::vector<double> mean_acc = r.line_doubles("mean_acc", 2 * sc.model.pulleys.size() + sc.route.spans.size());
+    const long frames = r.line_int("frames_written", 0, LONG_MAX);
+    n_callbacks = r.line_int("callbacks", 0, INT_MAX);
+    const double wall = r.line_num("wall");
+    if (!(wall >= 0)) r.fail("a wall time >= 0 s expected");
+    r.line_choice("part", {"integrator"});
 
-  std::unique_ptr<Simulation> s(new Simulation(sc, rs, false));
+    if (rs.frames) rs.frame_factory = factory;
+    try {
+      s.reset(new Simulation(sc, rs, false));
+    } catch (const std::invalid_argument& e) {
+      throw CheckpointError(std::string("the run settings: ") + e.what());
+    }
+    if (rs.frames) s->rs_.frames->first_number = frames;
+    // the outputs' streams, as Simulation::add_streams adds them, at `now`
+    const std::vector<long> expected = next_outputs(s->rs_, now);
+    if (positions.size() < expected.size() || positions.size() > expected.size() + static_cast<size_t>(n_callbacks))
+      r.fail_at(streams_line, "streams", std::to_string(positions.size()) + " positions for the " + std::to_string(expected.size()) +
+                            " output streams of its settings and " + std::to_string(n_callbacks) + " callbacks");
+    for (size_t i = 0; i < expected.size(); ++i)
+      if (positions[i] != expected[i] && positions[i] + 1 != expected[i])
+        r.fail_at(streams_line, "streams", "position " + std::to_string(positions[i]) + " of output stream " + std::to_string(i + 1) +
+                              " does not fit the time " + number_text(now) + " s");
+    positions.resize(expected.size());
+
+    if (mean_acc.size() != s->mean_acc_.size()) r.fail("interval means do not fit the scene");
+    s->drive_ = std::move(drive);
+    s->pending_ = std::move(pending);
+    s->rows_ = rows;
+    s->wall_ = wall;
+    s->frames_before_ = frames;
+    s->mean_acc_ = std::move(mean_acc);
+    s->mean_from_ = mean_from, s->mean_covered_ = mean_covered;
+    s->integ_->load(r);
+    if (!(s->integ_->t_prev() <= now && now <= s->integ_->t()))
+      r.fail("the checkpoint's time " + number_text(now) + " s lies outside the integrator's last step");
+    r.finish();
+    cuts.push_back({"timeseries.csv", s->csv_path(), csv_bytes});
+    cuts.push_back({"events.csv", s->events_path(), events_bytes});
+    if (s->has_snapshots()) cuts.push_back({"snapshots.csv", s->snapshots_path(), snapshots_bytes});
+  } catch (const CheckpointError& e) {
+    throw std::runtime_error(where + e.what());
+  } catch (const std::bad_alloc&) {
+    throw std::runtime_error(where + "there is not enough memory to read it");
+  } catch (const std::length_error&) {
+    throw std::runtime_error(where + "a size in it is beyond what this machine can hold");
+  }
   if (vet) vet(s->rs_);
-  if (drive.pulleys.size() != s->drive_.pulleys.size() || drive.mu.size() != s->drive_.mu.size())
-    throw std::runtime_error("resume: " + path + ": the drive does not fit the scene");
-  s->drive_ = std::move(drive);
-  s->pending_ = std::move(pending);
-  s->rows_ = rows;
-  s->wall_ = wall;
-  s->frames_before_ = frames;
-  if (mean_acc.size() != s->mean_acc_.size()) throw std::runtime_error("resume: " + path + ": interval means do not fit the scene");
-  s->mean_acc_ = std::move(mean_acc);
-  s->mean_from_ = mean_from, s->mean_covered_ = mean_covered;
-  s->integ_->load(in);
-  expect(in, "end");
   // the outputs continue where the checkpoint left them, once the folder is this simulation's alone
-  // (a checkpoint resumed twice: the second is refused before it cuts the first one's files)
+  // (a checkpoint resumed twice: the second is refused before it cuts the first one's files);
+  // every one checked before any is cut
   s->claim_out_dir();
-  s->out_->truncate("timeseries.csv", csv_bytes);
-  s->out_->truncate("events.csv", events_bytes);
-  if (s->has_snapshots()) s->out_->truncate("snapshots.csv", snapshots_bytes);
+  try {
+    for (const OutputCut& c : cuts) check_cut(c);
+  } catch (const std::runtime_error& e) {
+    throw std::runtime_error(where + e.what());
+  }
+  for (const OutputCut& c : cuts) s->out_->truncate(c.name, c.bytes);
   if (s->rs_.frames) {
     FrameSettings& f = *s->rs_.frames;
-    f.first_number = frames;
     if (!f.video_path.empty()) {
       // an MP4 cannot be appended to: the continuation's frames go to a file of their own
       std::filesystem::path v(f.video_path);
@@ -242,7 +359,9 @@ std::unique_ptr<Simulation> Simulation::resume(const std::string& path, const Fr
   }
   s->open_outputs(true);
   s->add_streams();
-  s->tl_->set_positions(k);
+  if (s->tl_->positions().size() != positions.size())
+    throw std::logic_error("resume: the streams differ from those checkpoint.cpp expects (next_outputs)");
+  s->tl_->set_positions(positions);
   s->tl_->resume_at(now);
   s->set_landings();
   s->write_event(now, "resume", path);

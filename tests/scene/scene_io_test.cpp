@@ -1,15 +1,17 @@
-// Checkpoints (scene/scene_io.hpp): a built scene, a model, a law and vectors come back bit for
-// bit through text; truncated or altered text throws, naming the field that was expected.
+// Checkpoints' scenes and drives (scene/scene_io.hpp) in the checkpoint text (io/checkpoint_text.hpp):
+// a built scene and a changed drive come back bit for bit; a text cut short, damaged, or holding
+// a scene a script could not give is refused, naming the line; counts are believed only as far
+// as the text holding them goes.
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <cstring>
-#include <iomanip>
 #include <limits>
 #include <map>
-#include <sstream>
 #include <stdexcept>
 
+#include "io/checkpoint_text.hpp"
+#include "io/number_text.hpp"
 #include "scene/presets.hpp"
 #include "scene/scene.hpp"
 #include "scene/scene_io.hpp"
@@ -17,11 +19,7 @@
 namespace beltsim {
 namespace {
 
-// bit-equal, or both NaN (a NaN's payload is not kept)
-bool same(double a, double b) {
-  return (std::isnan(a) && std::isnan(b) && std::signbit(a) == std::signbit(b)) ||
-         std::memcmp(&a, &b, sizeof a) == 0;
-}
+bool same(double a, double b) { return std::memcmp(&a, &b, sizeof a) == 0; }
 
 #define EXPECT_SAME(a, b) EXPECT_TRUE(same(a, b)) << #a << ": " << (a) << " vs " << (b)
 
@@ -160,22 +158,52 @@ void expect_same(const Scene& a, const Scene& b) {
   }
 }
 
-Scene round_trip(const Scene& sc) {
-  std::stringstream s;
-  write_scene(s, sc);
-  return read_scene(s);
+std::string scene_text(const Scene& sc) {
+  CheckpointWriter w;
+  write_scene(w, sc);
+  return w.finish();
 }
 
-// the message of what `read` throws on `text`, "" when it does not throw
-template <class F>
-std::string error_of(const std::string& text, F read) {
-  std::istringstream s(text);
+Scene read_whole(const std::string& text) {
+  CheckpointReader r(text);
+  Scene sc = read_scene(r);
+  r.finish();
+  return sc;
+}
+
+Scene round_trip(const Scene& sc) { return read_whole(scene_text(sc)); }
+
+// what reading `text` throws, "" when it reads
+std::string error_of(const std::string& text) {
   try {
-    read(s);
-  } catch (const std::runtime_error& e) {
+    read_whole(text);
+  } catch (const std::exception& e) {
     return e.what();
   }
   return "";
+}
+
+// the text with its checksum made to match again (a file edited on purpose, or by a program)
+std::string resealed(std::string text) {
+  text.erase(text.rfind('\n', text.size() - 2) + 1);
+  char sum[17];
+  std::snprintf(sum, sizeof sum, "%016llx", static_cast<unsigned long long>(fnv1a64(text)));
+  return text + "checksum fnv1a64 " + sum + "\n";
+}
+
+// the text with the first line that opens with `key ` replaced by `line`
+std::string with_line(const std::string& text, const std::string& key, const std::string& line) {
+  const size_t at = text.find("\n" + key + " ");
+  EXPECT_NE(at, std::string::npos) << key;
+  if (at == std::string::npos) return text;
+  const size_t end = text.find('\n', at + 1);
+  return text.substr(0, at + 1) + line + text.substr(end);
+}
+
+// the 1-based number of the first line that opens with `key `
+int line_of(const std::string& text, const std::string& key) {
+  const size_t at = text.find("\n" + key + " ");
+  return 2 + static_cast<int>(std::count(text.begin(), text.begin() + static_cast<std::ptrdiff_t>(at), '\n'));
 }
 
 const Scene& dry() {
@@ -215,110 +243,184 @@ TEST(SceneIo, AutomotiveScene) {
   expect_same(sc, round_trip(sc));
 }
 
-TEST(SceneIo, SpecialValues) {
+// the shortest decimal of every double reads back as that double: signed zero, subnormals, the
+// largest, thirds; strings with quotes, backslashes, newlines and '#'
+TEST(SceneIo, ExactValues) {
   Scene sc = dry();
-  sc.static_residual = std::numeric_limits<double>::quiet_NaN();
-  sc.static_tension = -std::numeric_limits<double>::quiet_NaN();
   sc.y0[0] = -0.0;
   sc.y0[1] = std::numeric_limits<double>::denorm_min();
-  sc.y0[2] = -std::numeric_limits<double>::infinity();
-  sc.y0[3] = std::numeric_limits<double>::max();
-  sc.drive.pulleys[0].torque.constant = std::numeric_limits<double>::infinity();
+  sc.y0[2] = -std::numeric_limits<double>::max();
+  sc.y0[3] = 1.0 / 3;
+  sc.static_residual = std::numeric_limits<double>::min();
   sc.sites[0].pulley = "a name\nwith \\ \"odd\" # characters";
   sc.reading = StiffnessReading::per_sde;
   const Scene back = round_trip(sc);
   expect_same(sc, back);
-  EXPECT_TRUE(std::isnan(back.static_residual));
-  EXPECT_TRUE(std::signbit(back.static_tension));
   EXPECT_TRUE(std::signbit(back.y0[0]));
+  EXPECT_EQ(number_text(1.0 / 3), "0.3333333333333333");
 }
 
-TEST(SceneIo, ModelDriveLawVectorsInOneStream) {
+// the drive a run changes (laws with every kind of term, kinematic or not, μ per element, the
+// restart time) comes back for the model of the same scene
+TEST(SceneIo, DriveRoundTrip) {
   const Scene& sc = automotive();
-  const Model& m = sc.model;
-  Drive d = sc.drive;
-  d.mu[3] = 0.123456789;
-  const std::vector<double> v = {1.0 / 3, -0.0, 1e-310};
-  // every kind of law term, with values that need all 17 digits
-  TimeSpeedLaw& law = d.pulleys[2].speed;
+  Drive m = sc.drive;
+  m.mu[3] = 0.123456789;
+  TimeSpeedLaw& law = m.pulleys[0].torque;
+  law.per_speed = -0.25;
   law.omega = {0.0, 1.0 / 3};
   law.omega_value = {2.0 / 3, -0.0};
   law.ramps = {{0.1, 0.3, 1.0 / 7, -2.0, true}, {0.2, 0.2, 0.0, 5e-300, false}};
   law.sines = {{1.0, 1.0 / 9, 50.0, M_PI}};
   law.harmonics = {{0.5, 1.0 / 11, -1.0, 83.77580409572781}};
-  d.restart_time = 0.2;
-  std::stringstream s;
-  s.imbue(std::locale::classic());
-  s << std::hex << std::setw(12);  // the writers do not depend on the caller's flags...
-  write_model(s, m);
-  write_drive(s, d);
-  write_law(s, d.pulleys[2].speed, "alternator.speed");
-  write_vector(s, sc.y0, "y");
-  write_vector(s, v);
-  EXPECT_TRUE(s.flags() & std::ios_base::hex);  // ...and leave them as they were
-  expect_same(m, read_model(s));
-  expect_same(d, read_drive(s));
-  expect_same(d.pulleys[2].speed, read_law(s, "alternator.speed"));
-  expect_same(sc.y0, read_vector(s, "y"), "y");
-  expect_same(v, read_std_vector(s), "vector");
-  EXPECT_NE(error_of(s.str(), [](std::istream& in) { read_law(in, "law"); }).find("expected 'law.constant'"),
-            std::string::npos);
+  m.pulleys[2].speed.sines = {{-40.0, 1.0 / 9, 50.0, M_PI}};
+  m.pulleys[0].kinematic = true;  // driven by its speed now, its torque law kept
+  m.pulleys[0].speed.constant = 12.5;
+  m.restart_time = 0.2;
+  CheckpointWriter w;
+  write_drive(w, sc.model, m);
+  const std::string text = w.finish();
+  CheckpointReader r(text);
+  const Drive back = read_drive(r, sc.model);
+  r.finish();
+  expect_same(m, back);
+  // for the model of another scene: refused
+  const Model& other = dry().model;
+  CheckpointReader r2(text);
+  try {
+    read_drive(r2, other);
+    ADD_FAILURE() << "read a drive of other pulleys";
+  } catch (const CheckpointError& e) {
+    EXPECT_EQ(std::string(e.what()), "line 3: 'pulley.drive': expected the drive of pulley 'driver'");
+  }
 }
 
-TEST(SceneIo, TruncatedInputThrowsNamingTheField) {
-  std::stringstream s;
-  write_scene(s, automotive());
-  const std::string text = s.str();
+// the keys are the scenario's Lua names
+TEST(SceneIo, KeysAreTheLuaNames) {
+  const std::string text = scene_text(dry());
+  for (const char* key : {"\npulley.inertia ", "\nbelt.sde.k ", "\ncontact.damping ", "\ncontact.p_max ",
+                          "\nfriction.dv ", "\nenergy false\n", "\nbelt.mu 60 ", "\npulley.torque.constant "})
+    EXPECT_NE(text.find(key), std::string::npos) << key;
+  EXPECT_EQ(text.find("\ncontact.b "), std::string::npos);
+}
+
+TEST(SceneIo, CutShortIsRefusedNamingTheLine) {
+  const std::string text = scene_text(automotive());
   // anywhere in the text, and at every character of the last lines
   std::vector<size_t> cuts;
   for (size_t k = 0; k < 300; ++k) cuts.push_back(k * text.size() / 300);
   for (size_t k = text.size() > 200 ? text.size() - 200 : 0; k < text.size(); ++k) cuts.push_back(k);
   for (size_t cut : cuts) {
-    const std::string e = error_of(text.substr(0, cut), read_scene);
-    EXPECT_EQ(e.rfind("checkpoint: ", 0), 0u) << "cut at " << cut << " of " << text.size() << ": '" << e << "'";
+    const std::string e = error_of(text.substr(0, cut));
+    EXPECT_EQ(e.rfind("line ", 0), 0u) << "cut at " << cut << " of " << text.size() << ": '" << e << "'";
   }
-  // cut before a whole line: that field is named
+  // cut after a whole line: the last line is not the checksum
   const size_t at = text.find("\nstatic_residual ");
   ASSERT_NE(at, std::string::npos);
-  EXPECT_EQ(error_of(text.substr(0, at + 1), read_scene),
-            "checkpoint: expected 'static_residual', got the end of the input");
-  // cut inside a line (inside a number)
-  const size_t y0 = text.find("\ny0 ");
-  EXPECT_NE(error_of(text.substr(0, y0 + 40), read_scene).find("'y0'"), std::string::npos);
-  // a sequence shorter than its count
-  std::string shorter = text;
-  const size_t mu = shorter.find("\nmu 150 ");
-  ASSERT_NE(mu, std::string::npos);
-  shorter.replace(mu, 7, "\nmu 151 ");
-  EXPECT_EQ(error_of(shorter, read_scene), "checkpoint: 'mu': expected a number, got the end of the line");
+  const std::string cut = text.substr(0, at + 1);
+  EXPECT_EQ(error_of(cut), "line " + std::to_string(line_of(text, "static_residual") - 1) + ": 'static_tension " +
+                               number_text(automotive().static_tension).substr(0, 25) +
+                               "' where the checksum line should end the file: it was cut short or damaged");
+  // a whole line missing, the rest sealed again: the line that comes instead is named
+  const size_t end = text.find('\n', at + 1);
+  EXPECT_EQ(error_of(resealed(text.substr(0, at + 1) + text.substr(end + 1))),
+            "line " + std::to_string(line_of(text, "static_residual")) +
+                ": expected 'static_residual', got 'static_retried'");
 }
 
-TEST(SceneIo, WrongKeywordOrVersionThrows) {
-  std::stringstream s;
-  write_scene(s, dry());
-  const std::string text = s.str();
-  auto with = [&](const std::string& from, const std::string& to) {
-    std::string t = text;
-    const size_t at = t.find(from);
-    EXPECT_NE(at, std::string::npos) << from;
-    return t.replace(at, from.size(), to);
-  };
-  EXPECT_EQ(error_of(with("\nbelt.pitch ", "\nbelt.pitck "), read_scene),
-            "checkpoint: expected 'belt.pitch', got 'belt.pitck'");
-  EXPECT_EQ(error_of(with("scene " + std::to_string(kCheckpointVersion) + "\n", "scene 99\n"), read_scene),
-            "checkpoint: 'scene' is in format 99, this build reads format " + std::to_string(kCheckpointVersion));
-  EXPECT_EQ(error_of(with("pulley.wrap inside", "pulley.wrap outside"), read_scene),
-            "checkpoint: 'pulley.wrap': expected inside or back, got 'outside'");
-  EXPECT_EQ(error_of(with("\nstatic_tension 0x", "\nstatic_tension zz0x"), read_scene).rfind(
-                "checkpoint: 'static_tension': expected a number, got 'zz0x", 0),
-            0u);
-  EXPECT_EQ(error_of(with("end scene", "end model"), read_scene), "checkpoint: expected 'end scene', got 'end model'");
-  EXPECT_EQ(error_of(text, read_model), "checkpoint: expected 'model', got 'scene'");
-  // comments and blank lines are allowed
-  expect_same(dry(), [&] {
-    std::istringstream in(with("\nbelt.pitch ", "\n# a note\n\nbelt.pitch "));
-    return read_scene(in);
-  }());
+TEST(SceneIo, WrongKeywordOrVersionIsRefused) {
+  const std::string text = scene_text(dry());
+  EXPECT_EQ(error_of(resealed(with_line(text, "belt.pitch", "belt.pitck 0.01"))),
+            "line " + std::to_string(line_of(text, "belt.pitch")) + ": expected 'belt.pitch', got 'belt.pitck'");
+  // unsealed: the same, and the checksum's verdict
+  EXPECT_EQ(error_of(with_line(text, "belt.pitch", "belt.pitck 0.01")),
+            "line " + std::to_string(line_of(text, "belt.pitch")) +
+                ": expected 'belt.pitch', got 'belt.pitck' (and the file does not match its checksum, line " +
+                std::to_string(std::count(text.begin(), text.end(), '\n')) +
+                ": it was damaged or changed after it was written)");
+  EXPECT_EQ(error_of("beltsim-checkpoint 4\nscene 4\n"),
+            "line 1: a version 4 checkpoint; this beltsim reads version " + std::to_string(kCheckpointVersion) +
+                " only: resume it with the beltsim that wrote it, or run the scene again from its script");
+  EXPECT_EQ(error_of("scene 4\nmodel 4\n"), "line 1: not a beltsim checkpoint (it begins 'scene 4')");
+  EXPECT_EQ(error_of(resealed(with_line(text, "pulley.wrap", "pulley.wrap outside"))),
+            "line " + std::to_string(line_of(text, "pulley.wrap")) +
+                ": 'pulley.wrap': expected inside or back, got 'outside'");
+}
+
+// a value changed without a sign in its syntax: only the checksum sees it
+TEST(SceneIo, ChecksumCatchesAChangedValue) {
+  const std::string text = scene_text(dry());
+  const std::string changed = with_line(text, "belt.mass", "belt.mass 1");
+  const int last = static_cast<int>(std::count(text.begin(), text.end(), '\n'));
+  EXPECT_EQ(error_of(changed), "line " + std::to_string(last) +
+                                   ": the checksum does not match the text before it: the file was damaged or "
+                                   "changed after it was written");
+  EXPECT_EQ(error_of(resealed(changed)), "");
+}
+
+// numbers are whole decimal numbers, finite where the field needs it; nothing else passes
+TEST(SceneIo, NumbersAreStrict) {
+  const std::string text = scene_text(dry());
+  const std::string line = std::to_string(line_of(text, "contact.c2"));
+  for (const char* bad : {"0x1.3d6p+19", "0x", "1e", "1.5.2", "+3", "6.5e5x", "1e999", "--1", "1,5", ""})
+    EXPECT_EQ(error_of(resealed(with_line(text, "contact.c2", std::string("contact.c2 ") + bad))),
+              "line " + line + ": 'contact.c2': " +
+                  (*bad ? "expected a number, got '" + std::string(bad) + "'"
+                        : std::string("an empty value (two spaces in a row, or a space at the end of the line)")))
+        << bad;
+  for (const char* bad : {"inf", "-inf", "nan"})
+    EXPECT_EQ(error_of(resealed(with_line(text, "contact.c2", std::string("contact.c2 ") + bad))),
+              "line " + line + ": 'contact.c2': expected a finite number, got " + bad)
+        << bad;
+  EXPECT_EQ(error_of(resealed(with_line(text, "contact.c2", "contact.c2 650000 1"))),
+            "line " + line + ": 'contact.c2': unexpected ' 1' after the values");
+  EXPECT_EQ(error_of(resealed(with_line(text, "contact.c2", "contact.c2  650000"))),
+            "line " + line + ": 'contact.c2': an empty value (two spaces in a row, or a space at the end of the line)");
+}
+
+// a count is believed only as far as the line (or the file) holds its values, and the scene its
+// entries: a huge one allocates nothing
+TEST(SceneIo, CountsAreBoundedByTheTextAndTheScene) {
+  const std::string text = scene_text(dry());
+  EXPECT_EQ(error_of(resealed(with_line(text, "belt.mu", "belt.mu 1000000000 0.5"))),
+            "line " + std::to_string(line_of(text, "belt.mu")) +
+                ": 'belt.mu': 1000000000 values announced, the line holds 1");
+  EXPECT_EQ(error_of(resealed(with_line(text, "pulleys", "pulleys 4000000000"))),
+            "line 2: 'pulleys': 4000000000 entries of 5 lines announced, the file has " +
+                std::to_string(std::count(text.begin(), text.end(), '\n') - 3) + " lines left");
+  EXPECT_EQ(error_of(resealed(with_line(text, "sites", "sites 99999999999999999999"))),
+            "line " + std::to_string(line_of(text, "sites")) + ": 'sites': expected an integer, got '99999999999999999999'");
+  // the element count must agree with every per-element list
+  EXPECT_EQ(error_of(resealed(with_line(text, "belt.elements", "belt.elements 59"))),
+            "line " + std::to_string(line_of(text, "belt.mu")) + ": 'belt.mu': 60 values, more than the 59 this " +
+                "checkpoint's scene has room for");
+}
+
+// the scene is checked as a script's scene is (validate(SceneDef)), with the scenario's names
+TEST(SceneIo, SceneIsValidatedAsAScriptsScene) {
+  const std::string text = scene_text(dry());
+  const std::string lines = "lines 2 to " + std::to_string(std::count(text.begin(), text.end(), '\n') - 1) + ": the scene: ";
+  EXPECT_EQ(error_of(resealed(with_line(text, "pulley.inertia", "pulley.inertia -1"))),
+            lines + "pulley 'driver' inertia must be > 0 (got -1 kg·m²)");
+  EXPECT_EQ(error_of(resealed(with_line(text, "contact.p_max", "contact.p_max 0"))),
+            lines + "contact.p_max must be > 0 (got 0 m)");
+  EXPECT_EQ(error_of(resealed(with_line(text, "friction.dv", "friction.dv 0"))),
+            lines + "friction.dv must be > 0 (got 0 m/s)");
+  EXPECT_EQ(error_of(resealed(with_line(text, "belt.sde.k", "belt.sde.k -5"))),
+            lines + "belt.sde.k must be > 0 (got -5 N/m)");
+  // μ (in the drive, read first): negative, or a list of the wrong length
+  std::string mu = "belt.mu 60 -0.5";
+  for (int i = 1; i < 60; ++i) mu += " 0.3";
+  EXPECT_EQ(error_of(resealed(with_line(text, "belt.mu", mu))),
+            "line " + std::to_string(line_of(text, "belt.mu")) +
+                ": 'belt.mu': belt.mu of element 0 must be >= 0 (got -0.5)");
+  EXPECT_EQ(error_of(resealed(with_line(text, "belt.mu", "belt.mu 2 0.3 0.3"))),
+            "line " + std::to_string(line_of(text, "belt.mu")) + ": 'belt.mu': 2 values for 60 elements");
+  // a law a script could not give
+  EXPECT_EQ(error_of(resealed(with_line(text, "pulley.torque.table", "pulley.torque.table 2 0.1 1 0.05 2"))),
+            "line " + std::to_string(line_of(text, "pulley.torque.harmonics")) +
+                ": 'pulley.torque.harmonics': pulley 'driver' torque.table entry 2 must be larger than the entry "
+                "before it (got 0.05 s)");
 }
 
 }  // namespace

@@ -1,0 +1,33 @@
+#include "io/number_text.hpp"
+
+#include <charconv>
+#include <cmath>
+#include <system_error>
+
+namespace beltsim {
+
+void append_number(std::string& out, double v) {
+  if (std::isnan(v)) {
+    out += "nan";
+    return;
+  }
+  char buf[32];  // the longest shortest form, "-2.2250738585072014e-308", has 24
+  const auto r = std::to_chars(buf, buf + sizeof buf, v);
+  out.append(buf, r.ptr);
+}
+
+std::string number_text(double v) {
+  std::string s;
+  append_number(s, v);
+  return s;
+}
+
+std::optional<double> parse_number(std::string_view s) {
+  if (s.empty() || s.front() == '+') return std::nullopt;
+  double v = 0;
+  const auto r = std::from_chars(s.data(), s.data() + s.size(), v, std::chars_format::general);
+  if (r.ec != std::errc() || r.ptr != s.data() + s.size()) return std::nullopt;
+  return v;
+}
+
+}  // namespace beltsim

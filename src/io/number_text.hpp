@@ -1,0 +1,21 @@
+// Numbers as text, one way for every file beltsim writes (the CSV files, checkpoints): the
+// shortest decimal that reads back as the same double (std::to_chars), with '.' as the decimal
+// point whatever the locale; "nan" for every NaN (its sign and payload are not kept), "inf" and
+// "-inf". parse_number reads exactly that text back, and nothing looser.
+#pragma once
+
+#include <optional>
+#include <string>
+#include <string_view>
+
+namespace beltsim {
+
+void append_number(std::string& out, double v);
+std::string number_text(double v);
+
+// the whole of s as one decimal number ("1", "-2.5e-3", "inf", "-inf", "nan"): no blanks, no
+// leading '+', no hex, nothing after it; nullopt otherwise. Out-of-range magnitudes (1e999) are
+// refused rather than rounded to infinity or zero.
+std::optional<double> parse_number(std::string_view s);
+
+}  // namespace beltsim

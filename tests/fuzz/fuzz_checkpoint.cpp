@@ -1,0 +1,83 @@
+// The fuzz target over checkpoint reading (issue 31, "Extend the fuzz harness to checkpoints"): the
+// fuzzer's bytes are a checkpoint, resumed by Simulation::resume as beltsim.resume would. "@OUT@"
+// in them stands for this process's output folder (the seeds, tests/fuzz/checkpoints/, are saved
+// checkpoints with their folder written so), and the last line is made the checksum of the rest,
+// so that mutations reach the reader's own checks rather than stopping at the checksum. Every
+// outcome but a refusal (std::runtime_error, or the vet's std::invalid_argument) or a resumed run
+// is a finding: a crash, a sanitizer report, another exception, a hang or an allocation past
+// libFuzzer's -rss_limit_mb.
+//
+// Built as beltsim_fuzz_checkpoint with BELTSIM_FUZZ, and as beltsim_fuzz_checkpoint_replay (the
+// normal build) which runs the seeds through it as a ctest test.
+#include <cstddef>
+#include <cstdint>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <stdexcept>
+#include <string>
+#include <system_error>
+
+#include <unistd.h>
+
+#include "io/checkpoint_text.hpp"
+#include "sim/simulation.hpp"
+
+namespace {
+
+namespace fs = std::filesystem;
+
+struct Folder {
+  fs::path dir, input, out;
+  Folder() {
+    dir = fs::temp_directory_path() / ("beltsim_fuzz_checkpoint_" + std::to_string(getpid()));
+    fs::create_directories(dir);
+    input = dir / "input.ckpt";
+    out = dir / "out";
+  }
+  ~Folder() {
+    std::error_code ec;
+    fs::remove_all(dir, ec);
+  }
+};
+
+std::string sealed(std::string text) {
+  if (text.size() >= 2 && text.back() == '\n') {
+    const size_t last = text.rfind('\n', text.size() - 2);
+    if (last != std::string::npos && text.compare(last + 1, 17, "checksum fnv1a64 ") == 0) text.erase(last + 1);
+  }
+  char sum[17];
+  std::snprintf(sum, sizeof sum, "%016llx", static_cast<unsigned long long>(beltsim::fnv1a64(text)));
+  return text + "checksum fnv1a64 " + sum + "\n";
+}
+
+}  // namespace
+
+extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
+  static const Folder f;
+  std::string text(reinterpret_cast<const char*>(data), size);
+  for (size_t at; (at = text.find("@OUT@")) != std::string::npos;) text.replace(at, 5, f.out.string());
+  {
+    std::ofstream in(f.input, std::ios::binary | std::ios::trunc);
+    in << sealed(text);
+  }
+  // the outputs a resume continues: a header and a row each, for the positions to fall on
+  fs::create_directories(f.out);
+  for (const char* name : {"timeseries.csv", "events.csv", "snapshots.csv"}) std::ofstream(f.out / name) << "t\n0\n";
+  // outputs elsewhere are refused, as the sandbox refuses a script's
+  const auto vet = [&](const beltsim::RunSettings& rs) {
+    if (fs::path(rs.out_dir) != f.out) throw std::invalid_argument("outputs outside the fuzz folder");
+  };
+  try {
+    auto sim = beltsim::Simulation::resume(f.input.string(), {}, nullptr, vet);
+    try {
+      sim->run_to(sim->now() + 1e-4);
+    } catch (const beltsim::DivergenceError&) {
+    }
+  } catch (const std::runtime_error&) {
+  } catch (const std::invalid_argument&) {
+  }
+  std::error_code ec;
+  fs::remove_all(f.out, ec);
+  return 0;
+}

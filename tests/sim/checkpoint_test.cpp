@@ -1,0 +1,405 @@
+// Reading a checkpoint that cannot hurt (sim/checkpoint.cpp, issue 31 §3): only a regular file of
+// bounded size is read, every count is bounded by the text and the scene, the scene and settings
+// are validated as a script's, the outputs are cut only at row ends past their headers and only
+// after everything passed, a checksum catches the rest, and no message is a raw C++ text. The
+// mutator at the end damages a saved checkpoint a few hundred ways (a fixed seed) and resumes each
+// in a child process with bounded memory and time: each resumes or is refused with a message.
+#include <gtest/gtest.h>
+
+#include <fcntl.h>
+#include <signal.h>
+#include <sys/resource.h>
+#include <sys/stat.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <random>
+#include <sstream>
+
+#include "io/checkpoint_text.hpp"
+#include "scene/presets.hpp"
+#include "scene/scene.hpp"
+#include "sim/simulation.hpp"
+#include "support/scratch.hpp"
+#include "support/warning_guard.hpp"
+
+namespace beltsim {
+namespace {
+
+namespace fs = std::filesystem;
+
+std::string slurp(const fs::path& path) {
+  std::ifstream f(path, std::ios::binary);
+  std::stringstream s;
+  s << f.rdbuf();
+  return s.str();
+}
+
+void spit(const fs::path& path, const std::string& text) { std::ofstream(path, std::ios::binary) << text; }
+
+fs::path dir() { return test::scratch_dir("beltsim_checkpoint_test"); }
+
+const char* const kOutputs[] = {"timeseries.csv", "events.csv", "snapshots.csv"};
+
+// A run of the paper's dry drive with snapshots, saved at 0.0137 s and continued to 0.02 s: its
+// checkpoint's text, and its outputs as the run left them (restored before every resume).
+struct Saved {
+  std::string text;
+  fs::path out, ck;
+  std::map<std::string, std::string> outputs;
+
+  Saved() {
+    out = dir() / "out";
+    ck = dir() / "ck.txt";
+    fs::remove_all(out);
+    const Scene sc = build_scene(presets::paper_dry());
+    RunSettings rs;
+    rs.integrator = "esdirk32";
+    rs.out_dir = out.string();
+    rs.snapshot_times = {0.01, 0.019};
+    {
+      Simulation s(sc, rs);
+      s.run_to(0.0137);
+      s.save(ck.string());
+      s.run_to(0.02);
+    }
+    text = slurp(ck);
+    for (const char* f : kOutputs) outputs[f] = slurp(out / f);
+  }
+  void restore() const {
+    for (const auto& [f, bytes] : outputs) spit(out / f, bytes);
+  }
+  bool outputs_untouched() const {
+    for (const auto& [f, bytes] : outputs)
+      if (slurp(out / f) != bytes) return false;
+    return true;
+  }
+};
+
+const Saved& saved() {
+  static const Saved s;
+  return s;
+}
+
+std::string resealed(std::string text) {
+  const size_t last = text.rfind('\n', text.size() - 2);
+  if (last == std::string::npos) return text;
+  text.erase(last + 1);
+  char sum[17];
+  std::snprintf(sum, sizeof sum, "%016llx", static_cast<unsigned long long>(fnv1a64(text)));
+  return text + "checksum fnv1a64 " + sum + "\n";
+}
+
+std::string with_line(const std::string& text, const std::string& key, const std::string& line) {
+  const size_t at = text.find("\n" + key + " ");
+  EXPECT_NE(at, std::string::npos) << key;
+  if (at == std::string::npos) return text;
+  const size_t end = text.find('\n', at + 1);
+  return text.substr(0, at + 1) + line + text.substr(end);
+}
+
+int line_of(const std::string& text, const std::string& key, const std::string& after = " ") {
+  const size_t at = text.find("\n" + key + after);
+  return 2 + static_cast<int>(std::count(text.begin(), text.begin() + static_cast<std::ptrdiff_t>(at), '\n'));
+}
+
+// The address space a child may add to what this process has mapped: room for a resumed 60-element
+// run (a few MB) many times over, far below what an unbounded count would take.
+constexpr long kHeadroom = 512L << 20;
+
+struct Outcome {
+  bool resumed = false;
+  std::string message;  // why it was refused
+  std::string failure;  // a crash, a hang, a refusal without words: what happened
+};
+
+// resumes the checkpoint at `path` in a child process (address space and time bounded) and runs
+// it on for 2 ms
+Outcome resume_in_child(const fs::path& path) {
+  int fds[2];
+  if (pipe(fds) != 0) return {false, "", "pipe failed"};
+  long pages = 0;
+  std::ifstream("/proc/self/statm") >> pages;
+  const pid_t pid = fork();
+  if (pid == 0) {
+    close(fds[0]);
+#if !defined(__SANITIZE_ADDRESS__)
+    // (the sanitizers map terabytes of shadow memory, and stop a huge allocation themselves)
+    const rlim_t limit = static_cast<rlim_t>(pages * sysconf(_SC_PAGESIZE) + kHeadroom);
+    const rlimit rl{limit, limit};
+    setrlimit(RLIMIT_AS, &rl);
+#endif
+    alarm(30);
+    std::string msg;
+    int code = 0;
+    try {
+      auto s = Simulation::resume(path.string(), {});
+      try {
+        s->run_to(s->now() + 2e-3);
+      } catch (const DivergenceError&) {
+        // a state changed on purpose may diverge: that is said, and is not a finding
+      }
+    } catch (const std::exception& e) {
+      msg = e.what();
+      code = 3;
+    }
+    if (!msg.empty() && write(fds[1], msg.data(), msg.size()) < 0) code = 4;
+    _exit(code);  // (no exit handlers: they belong to the parent)
+  }
+  close(fds[1]);
+  std::string msg;
+  char buf[4096];
+  for (ssize_t n; (n = read(fds[0], buf, sizeof buf)) > 0;) msg.append(buf, static_cast<size_t>(n));
+  close(fds[0]);
+  int status = 0;
+  waitpid(pid, &status, 0);
+  Outcome o;
+  o.message = msg;
+  if (WIFSIGNALED(status)) {
+    o.failure = std::string("killed by signal ") + strsignal(WTERMSIG(status));
+  } else if (WEXITSTATUS(status) == 0) {
+    o.resumed = true;
+  } else if (WEXITSTATUS(status) != 3 || msg.empty()) {
+    o.failure = "exit status " + std::to_string(WEXITSTATUS(status)) + " with '" + msg + "'";
+  }
+  return o;
+}
+
+Outcome resume_text(const std::string& text) {
+  const fs::path p = dir() / "mutant.txt";
+  spit(p, text);
+  saved().restore();
+  return resume_in_child(p);
+}
+
+// the message of a refusal of `text` (a failure of the test when it resumes or crashes)
+std::string refusal(const std::string& text) {
+  const Outcome o = resume_text(text);
+  EXPECT_TRUE(o.failure.empty()) << o.failure;
+  EXPECT_FALSE(o.resumed);
+  EXPECT_TRUE(saved().outputs_untouched());
+  return o.message;
+}
+
+std::string prefix() { return "resume: " + (dir() / "mutant.txt").string() + ": "; }
+
+TEST(Checkpoint, ResumesTheSavedText) {
+  const Outcome o = resume_text(saved().text);
+  EXPECT_TRUE(o.resumed) << o.message << o.failure;
+}
+
+// a FIFO or a device would block or never end; a folder is not a file; a huge file is not read
+TEST(Checkpoint, ReadsOnlyRegularFilesOfBoundedSize) {
+  const fs::path fifo = dir() / "fifo";
+  fs::remove(fifo);
+  ASSERT_EQ(mkfifo(fifo.c_str(), 0600), 0);
+  for (const fs::path& p : {fifo, fs::path("/dev/zero"), dir()}) {
+    try {
+      Simulation::resume(p.string(), {});
+      ADD_FAILURE() << p;
+    } catch (const std::runtime_error& e) {
+      EXPECT_EQ(std::string(e.what()), "resume: " + p.string() + ": not a regular file, so not a checkpoint");
+    }
+  }
+  const fs::path big = dir() / "big.txt";
+  {
+    std::ofstream(big) << "beltsim-checkpoint";
+  }
+  fs::resize_file(big, (1ull << 30) + 1);  // sparse: no disk used
+  try {
+    Simulation::resume(big.string(), {});
+    ADD_FAILURE() << "read a 1 GiB file";
+  } catch (const std::runtime_error& e) {
+    EXPECT_EQ(std::string(e.what()),
+              "resume: " + big.string() + ": 1073741825 bytes, more than any checkpoint (at most 1073741824)");
+  }
+  fs::remove(big);
+}
+
+TEST(Checkpoint, OldVersionsAreRefusedNamingBoth) {
+  EXPECT_EQ(refusal("beltsim-checkpoint 3\nintegrator 8 esdirk32\n"),
+            prefix() + "line 1: a version 3 checkpoint; this beltsim reads version " +
+                std::to_string(kCheckpointVersion) +
+                " only: resume it with the beltsim that wrote it, or run the scene again from its script");
+}
+
+// the counts of issue 31: a billion streams, pending events, interval means
+TEST(Checkpoint, HugeCountsAllocateNothing) {
+  const std::string& t = saved().text;
+  EXPECT_EQ(refusal(resealed(with_line(t, "streams", "streams 1000000000"))),
+            prefix() + "line " + std::to_string(line_of(t, "streams")) +
+                ": 'streams': 1000000000 values announced, the line holds 0");
+  EXPECT_EQ(refusal(resealed(with_line(t, "pending", "pending 1000000000"))),
+            prefix() + "line " + std::to_string(line_of(t, "pending")) + ": 'pending': 1000000000 entries of 4 lines " +
+                "announced, the file has " + std::to_string(std::count(t.begin(), t.end(), '\n') - line_of(t, "pending") - 1) +
+                " lines left");
+  EXPECT_EQ(refusal(resealed(with_line(t, "mean_acc", "mean_acc 1000000000 1"))),
+            prefix() + "line " + std::to_string(line_of(t, "mean_acc")) +
+                ": 'mean_acc': 1000000000 values announced, the line holds 1");
+  EXPECT_EQ(refusal(resealed(with_line(t, "integrator.y", "integrator.y 4000000000000 1"))),
+            prefix() + "line " + std::to_string(line_of(t, "integrator.y")) +
+                ": 'integrator.y': 4000000000000 values announced, the line holds 1");
+}
+
+TEST(Checkpoint, MalformedHexFloatIsRefused) {
+  const std::string& t = saved().text;
+  EXPECT_EQ(refusal(resealed(with_line(t, "rtol", "rtol 0x1.a36e2eb1c432dp-14"))),
+            prefix() + "line " + std::to_string(line_of(t, "rtol")) +
+                ": 'rtol': expected a number, got '0x1.a36e2eb1c432dp-14'");
+  EXPECT_EQ(refusal(resealed(with_line(t, "now", "now 0x1.zzp-7"))),
+            prefix() + "line " + std::to_string(line_of(t, "now")) + ": 'now': expected a number, got '0x1.zzp-7'");
+}
+
+// the scene inside is checked as a script's scene: issue 31's four cases and a settings' one
+TEST(Checkpoint, SceneAndSettingsAreValidated) {
+  const std::string& t = saved().text;
+  // (the scene's lines: from its first key to the last element site)
+  const std::string scene = prefix() + "lines " + std::to_string(line_of(t, "pulleys")) + " to " +
+                            std::to_string(line_of(t, "part drive", "\n") - 1) + ": the scene: ";
+  auto refused = [&](const std::string& key, const std::string& line, const std::string& expected) {
+    const std::string m = refusal(resealed(with_line(t, key, line)));
+    EXPECT_NE(m.find(expected), std::string::npos) << m;
+    EXPECT_EQ(m.rfind(prefix(), 0), 0u) << m;
+    if (expected.rfind("the scene: ", 0) == 0) {
+      EXPECT_EQ(m, scene + expected.substr(11));
+    }
+  };
+  refused("pulley.inertia", "pulley.inertia -0.025", "the scene: pulley 'driver' inertia must be > 0 (got -0.025 kg·m²)");
+  refused("contact.p_max", "contact.p_max 0", "the scene: contact.p_max must be > 0 (got 0 m)");
+  refused("friction.dv", "friction.dv 0", "the scene: friction.dv must be > 0 (got 0 m/s)");
+  refused("belt.mu", "belt.mu 3 0.3 0.3 0.3", "'belt.mu': 3 values for 60 elements");
+  std::string mu = "belt.mu 60 -1";
+  for (int i = 1; i < 60; ++i) mu += " 0.3";
+  refused("belt.mu", mu, "'belt.mu': belt.mu of element 0 must be >= 0 (got -1)");
+  refused("sample", "sample 0", "the run settings: sample: the sample interval must be > 0 s and finite (got 0 s)");
+  refused("integrator", "integrator \"euler\"", "the run settings: ");
+}
+
+// the outputs are cut at the saved positions only when those are row ends past the header, and
+// only after the whole checkpoint passed
+TEST(Checkpoint, OutputsAreCutOnlyAtRowEndsPastTheirHeaders) {
+  const std::string& t = saved().text;
+  const std::string csv = (saved().out / "timeseries.csv").string();
+  EXPECT_EQ(refusal(resealed(with_line(t, "csv_bytes", "csv_bytes 0"))),
+            prefix() + "the checkpoint continues " + csv + " from byte 0, inside its header line: cutting it there " +
+                "would lose the header");
+  EXPECT_EQ(refusal(resealed(with_line(t, "csv_bytes", "csv_bytes 20"))),
+            prefix() + "the checkpoint continues " + csv + " from byte 20, inside its header line: cutting it there " +
+                "would lose the header");
+  const size_t header = saved().outputs.at("timeseries.csv").find('\n') + 1;
+  EXPECT_EQ(refusal(resealed(with_line(t, "csv_bytes", "csv_bytes " + std::to_string(header + 5)))),
+            prefix() + "the checkpoint continues " + csv + " from byte " + std::to_string(header + 5) +
+                ", which is not the end of a row");
+  // a later output wrong: the earlier ones are not cut either (refusal() checks them all)
+  refusal(resealed(with_line(t, "snapshots_bytes", "snapshots_bytes 3")));
+}
+
+// a damaged file: the line when the damage shows in it, else the checksum's line
+TEST(Checkpoint, DamageIsRefusedNamingTheLine) {
+  const std::string& t = saved().text;
+  const int last = static_cast<int>(std::count(t.begin(), t.end(), '\n'));
+  EXPECT_EQ(refusal(with_line(t, "rtol", "rtol 0.0002")),
+            prefix() + "line " + std::to_string(last) +
+                ": the checksum does not match the text before it: the file was damaged or changed after it was "
+                "written");
+  EXPECT_EQ(refusal(with_line(t, "rtol", "rtol 0.0@01")),
+            prefix() + "line " + std::to_string(line_of(t, "rtol")) + ": 'rtol': expected a number, got '0.0@01' " +
+                "(and the file does not match its checksum, line " + std::to_string(last) +
+                ": it was damaged or changed after it was written)");
+  EXPECT_EQ(refusal(t.substr(0, t.size() / 2)).rfind(prefix() + "line ", 0), 0u);
+}
+
+// C++'s own texts for what went wrong inside it (none of them means anything to a user)
+bool raw(const std::string& m) {
+  for (const char* s : {"basic_string", "bad_alloc", "_M_", "std::", "vector::", "stoi", "stod", "bad_optional",
+                        "bad_variant", "out_of_range", "filesystem error"})
+    if (m.find(s) != std::string::npos) return true;
+  return false;
+}
+
+// A few hundred mutants of the saved checkpoint (a fixed seed): bytes flipped, deleted or
+// inserted, lines deleted, duplicated or swapped, numbers replaced by extreme values; every
+// second one sealed again with a matching checksum, so that the reader's own checks are reached.
+TEST(Checkpoint, MutantsResumeOrAreRefusedWithAMessage) {
+  // a changed state may fail steps, and a changed law jump: the warnings are not findings here
+  test::expect_warnings({WarningKind::failed_step});
+  const std::string& t = saved().text;
+  std::vector<std::string> lines;
+  for (size_t b = 0, e; b < t.size(); b = e + 1) lines.push_back(t.substr(b, (e = t.find('\n', b)) - b));
+  const char* const extremes[] = {"0", "-1", "1e308", "-1e308", "1000000000", "-0", "5e-324", "nan", "inf",
+                                  "9223372036854775807", "-9223372036854775808", "2147483648", "1e-300", "3"};
+  std::mt19937 rng(20240531);
+  auto pick = [&](size_t n) { return std::uniform_int_distribution<size_t>(0, n - 1)(rng); };
+  constexpr int kMutants = 300;
+  int resumed = 0, refused = 0;
+  for (int m = 0; m < kMutants; ++m) {
+    std::vector<std::string> l = lines;
+    std::string text, what;
+    const size_t i = 1 + pick(l.size() - 2);  // never the first line (its own test) nor the checksum
+    switch (pick(7)) {
+      case 0: {  // a byte changed
+        std::string& s = l[i];
+        if (s.empty()) break;
+        const size_t k = pick(s.size());
+        s[k] = static_cast<char>(s[k] ^ (1 + pick(255)));
+        what = "byte " + std::to_string(k) + " of line " + std::to_string(i + 1) + " changed";
+        break;
+      }
+      case 1: what = "line " + std::to_string(i + 1) + " deleted", l.erase(l.begin() + static_cast<long>(i)); break;
+      case 2: what = "line " + std::to_string(i + 1) + " duplicated", l.insert(l.begin() + static_cast<long>(i), l[i]); break;
+      case 3: what = "lines " + std::to_string(i + 1) + " and " + std::to_string(i + 2) + " swapped";
+              if (i + 2 < l.size()) std::swap(l[i], l[i + 1]);
+              break;
+      case 4: {  // a byte deleted
+        if (l[i].empty()) break;
+        const size_t k = pick(l[i].size());
+        l[i].erase(k, 1);
+        what = "byte " + std::to_string(k) + " of line " + std::to_string(i + 1) + " deleted";
+        break;
+      }
+      case 5: {  // a digit inserted
+        const size_t k = pick(l[i].size() + 1);
+        l[i].insert(k, 1, static_cast<char>('0' + pick(10)));
+        what = "a digit inserted at " + std::to_string(k) + " of line " + std::to_string(i + 1);
+        break;
+      }
+      default: {  // one value of the line replaced by an extreme one
+        std::vector<size_t> starts;
+        for (size_t k = 0; k < l[i].size(); ++k)
+          if (l[i][k] == ' ') starts.push_back(k + 1);
+        if (starts.empty()) break;
+        const size_t b = starts[pick(starts.size())];
+        const size_t e = std::min(l[i].find(' ', b), l[i].size());
+        const std::string x = extremes[pick(std::size(extremes))];
+        what = "value '" + l[i].substr(b, e - b) + "' of line " + std::to_string(i + 1) + " replaced by " + x;
+        l[i].replace(b, e - b, x);
+      }
+    }
+    for (const std::string& s : l) text += s + '\n';
+    const bool sealed = m % 2 == 1;
+    if (sealed) text = resealed(text);
+    if (text == t) continue;
+    SCOPED_TRACE("mutant " + std::to_string(m) + (sealed ? " (sealed again): " : ": ") + what);
+    const Outcome o = resume_text(text);
+    EXPECT_TRUE(o.failure.empty()) << o.failure;
+    if (o.resumed) {
+      ++resumed;
+      EXPECT_TRUE(sealed) << "a damaged checkpoint resumed";
+    } else if (o.failure.empty()) {
+      ++refused;
+      EXPECT_FALSE(raw(o.message)) << o.message;
+      EXPECT_EQ(o.message.rfind("resume: ", 0), 0u) << o.message;
+      EXPECT_TRUE(saved().outputs_untouched()) << o.message;
+    }
+  }
+  std::printf("checkpoint mutants: %d resumed, %d refused\n", resumed, refused);
+  EXPECT_GT(refused, kMutants / 2);
+}
+
+}  // namespace
+}  // namespace beltsim
