@@ -64,6 +64,24 @@ int span_sde(const Model& m, const Route::Span& sp, const double* y) {
   return sde_nearest(m, y, 0.5 * (sp.from + sp.to));
 }
 
+std::vector<std::string> coarse_wraps(const Scene& sc) {
+  std::vector<std::string> out;
+  const int n = sc.model.n_el();
+  for (size_t k = 0; k < sc.route_names.size(); ++k) {
+    const double on = sc.wrap_elements(k);
+    if (on >= kWrapElementsWarn) continue;
+    const int needed = static_cast<int>(std::ceil(kWrapElementsWarn / on * n));
+    std::ostringstream m;
+    m.precision(3);
+    m << "pulley '" << sc.route_names[k] << "': its wrap (" << sc.route.arcs[k].angle * 180 / M_PI << "° of r = "
+      << sc.route.arcs[k].radius << " m) holds " << on << " elements of " << 1e3 * sc.model.belt.pitch
+      << " mm; its slip arc, belt torque and the span tensions beside it need about "
+      << kWrapElementsWarn << " or more: belt.elements = " << needed << " or more (docs/model.md, element count)";
+    out.push_back(m.str());
+  }
+  return out;
+}
+
 double span_force(const Model& m, const Route::Span& sp, const double* y) {
   return sde_axial_force(m, y, y + m.n_coord(), span_sde(m, sp, y));
 }

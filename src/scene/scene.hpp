@@ -133,7 +133,17 @@ struct Scene {
   // the route span from pulley a to pulley b (either order), -1 when they are not neighbours
   int find_span(const std::string& a, const std::string& b) const;
   int element_nearest(const Vec2& point) const;
+  // elements on route entry k's wrap: its pitch-line arc over the pitch
+  double wrap_elements(size_t k) const { return route.arcs[k].length() / model.belt.pitch; }
 };
+
+// Below this many elements on a wrap, the wrap's contact and slip arcs and the span tensions
+// next to it are resolved by a handful of elements: the run's first lines warn (coarse_wraps).
+inline constexpr double kWrapElementsWarn = 10;
+
+// One line per pulley whose wrap holds fewer than kWrapElementsWarn elements: the count, the wrap,
+// and the belt.elements that would put kWrapElementsWarn on it. Empty when none.
+std::vector<std::string> coarse_wraps(const Scene& sc);
 
 // The SDE nearest the midpoint of route span sp in the state y (positions, then velocities), and
 // its axial force [N]: the span's tension as the build, the runs and the outputs read it.

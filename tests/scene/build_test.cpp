@@ -2,6 +2,7 @@
 // has an answer known in closed form.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 
@@ -330,4 +331,30 @@ TEST(BuildStages, CheckFiniteNamesWhatIsNot) {
 }
 
 }  // namespace
+}  // namespace beltsim
+
+namespace beltsim {
+// a wrap's element count is its pitch-line arc over the pitch; a wrap below kWrapElementsWarn is
+// named with the belt.elements that would put that many on it (the automotive drive at 150
+// elements: the tensioner's 51° of r = 31 mm holds ≈ 3.9 elements of ≈ 7.0 mm), none on the
+// paper's two-pulley drive (π·0.1 m over 60 pitches of 0.0202 m ≈ 15.5 each)
+TEST(BuildStages, CoarseWrapsAreNamedWithTheElementCountThatResolvesThem) {
+  const Scene sc = build_scene(presets::automotive_wet());
+  const int k = static_cast<int>(std::find(sc.route_names.begin(), sc.route_names.end(), "tensioner") -
+                                 sc.route_names.begin());
+  ASSERT_LT(k, static_cast<int>(sc.route_names.size()));
+  EXPECT_NEAR(sc.wrap_elements(k), sc.route.arcs[k].radius * sc.route.arcs[k].angle / sc.model.belt.pitch, 1e-12);
+  EXPECT_NEAR(sc.wrap_elements(k), 3.9, 0.1);
+  const std::vector<std::string> w = coarse_wraps(sc);
+  ASSERT_FALSE(w.empty());
+  EXPECT_NE(w[0].find("'tensioner'"), std::string::npos) << w[0];
+  // 10 elements on the tensioner need 150·10/3.89 ≈ 386 elements
+  const int needed = static_cast<int>(std::ceil(kWrapElementsWarn / sc.wrap_elements(k) * sc.model.n_el()));
+  EXPECT_NE(w[0].find("belt.elements = " + std::to_string(needed)), std::string::npos) << w[0];
+  SceneDef fine = presets::automotive_wet();
+  fine.belt.elements = needed + 2;
+  const Scene f = build_scene(fine);
+  for (const std::string& s : coarse_wraps(f)) EXPECT_EQ(s.find("'tensioner'"), std::string::npos) << s;
+  EXPECT_TRUE(coarse_wraps(build_scene(presets::paper_dry())).empty());
+}
 }  // namespace beltsim
