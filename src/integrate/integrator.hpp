@@ -62,15 +62,12 @@ class Integrator {
   Eigen::VectorXd y_, y_prev_;
 };
 
-// Every integrator a run accepts (integrate/stepper.hpp integrator_names()). The system must
-// outlive the integrator. h_max: largest step [s] (0: none). Throws std::invalid_argument for an
-// unknown name or a tolerance outside (0, 1) / a negative or non-finite atol.
-std::unique_ptr<Integrator> make_integrator(const std::string& name, OdeSystem& sys, const Tolerances& tol,
-                                            double h_max = 0);
-
 class Stepper;
 // a one-step method the caller owns (tests with their own tableaux)
 std::unique_ptr<Integrator> make_one_step(Stepper& stepper, OdeSystem& sys, const Tolerances& tol, double h_max = 0);
+// a one-step method the integrator owns
+std::unique_ptr<Integrator> make_one_step(std::unique_ptr<Stepper> stepper, OdeSystem& sys, const Tolerances& tol,
+                                          double h_max = 0);
 
 // checks rtol in (0, 1) and atol (< 0: same as rtol; else finite); throws std::invalid_argument
 void check_tolerances(const Tolerances& tol);

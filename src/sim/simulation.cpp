@@ -10,6 +10,7 @@
 #include <sstream>
 
 #include "integrate/belt_system.hpp"
+#include "integrate/make_integrator.hpp"
 #include "integrate/timeline.hpp"
 #include "io/csv_writer.hpp"
 #include "io/output_dir.hpp"

@@ -4,11 +4,12 @@
 // video that plays.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <atomic>
+#include <chrono>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
-#include <atomic>
-#include <chrono>
 #include <string>
 #include <thread>
 
@@ -16,6 +17,7 @@
 #include "render/gl_context.hpp"
 #include "script/interpreter.hpp"
 #include "run_script.hpp"
+#include "support/scenes.hpp"
 #include "support/scratch.hpp"
 
 namespace beltsim::script {
@@ -25,14 +27,11 @@ namespace fs = std::filesystem;
 
 fs::path temp_dir() { return beltsim::test::scratch_dir("beltsim_frames_test"); }
 
-const char* kScene =
-    "local s = beltsim.scene {\n"
-    "  pulleys = {\n"
-    "    { name = 'driver', centre = {0, 0}, radius = 0.1, torque = beltsim.ramp(0.3, -70) },\n"
-    "    { name = 'driven', centre = {0.29, 0}, radius = 0.1, torque = { per_speed = -0.955 } },\n"
-    "  },\n"
-    "  belt = { elements = 60, pretension = 500, direction = 'cw' },\n"
-    "}\n";
+const std::string kScene = [] {
+  beltsim::test::TwoPulley p;
+  p.elements = 60;
+  return beltsim::test::two_pulley(p);
+}();
 
 // runs `run_line` after the scene (line 8 of the script); returns the error ("" when it ran)
 std::string run(const std::string& run_line, const fs::path& out) {
@@ -113,13 +112,7 @@ TEST(Frames, PngAndVideoOnePerFrameTime) {
 // the runaway of lua_api_test's divergence test, with a video: the error leaves it finalised
 TEST(Frames, DivergenceLeavesAPlayableVideo) {
   const fs::path p = temp_dir() / "runaway.lua";
-  std::ofstream(p) << "local s = beltsim.scene {\n"
-                      "  pulleys = {\n"
-                      "    { name = 'driver', centre = {0, 0}, radius = 0.1, torque = 1e6 },\n"
-                      "    { name = 'driven', centre = {0.29, 0}, radius = 0.1 },\n"
-                      "  },\n"
-                      "  belt = { mu = 0 },\n"
-                      "}\n"
+  std::ofstream(p) << beltsim::test::runaway() +
                       "s:run{ t_end = 0.01, frames = { fps = 25, slowdown = 100, size = {160, 90}, video = true } }\n";
   const fs::path out = temp_dir() / "runaway";
   Interpreter lua;
@@ -139,6 +132,12 @@ TEST(Frames, DivergenceLeavesAPlayableVideo) {
   EXPECT_GE(std::stoi("0" + probe(out / "frames.mp4", "stream=nb_read_frames")), 2);
 }
 
+// the lines of a text file (0 while it does not exist)
+int lines_of(const fs::path& p) {
+  std::ifstream f(p);
+  return static_cast<int>(std::count(std::istreambuf_iterator<char>(f), std::istreambuf_iterator<char>(), '\n'));
+}
+
 // Ctrl-C (the stop flag main() sets from SIGINT) ends the run early; the video is closed
 // properly: its trailer (the fragmented MP4's 'mfra' index) is written and it plays.
 TEST(Frames, CtrlCLeavesAFinishedVideo) {
@@ -155,12 +154,13 @@ TEST(Frames, CtrlCLeavesAFinishedVideo) {
   o.out = out.string();
   lua.set_overrides(o);
   lua.set_stop_flag(&stop);
-  // Ctrl-C once the run is under way (its video open), not during the scene's build, which a
-  // loaded machine can stretch past a fixed delay (the build then stops with an error instead)
+  // Ctrl-C once the run is under way with its first frame rendered: the time series has rows
+  // past t = 0 (the scene's build comes first, which a loaded machine can stretch; a stop then
+  // ends the build with an error instead). 60 s at most.
   std::thread ctrl_c([&] {
-    for (int i = 0; i < 3000 && !fs::exists(out / "stopped.mp4"); ++i)
+    const fs::path csv = out / "timeseries.csv";
+    for (int i = 0; i < 6000 && lines_of(csv) < 1 + 3; ++i)
       std::this_thread::sleep_for(std::chrono::milliseconds(10));
-    std::this_thread::sleep_for(std::chrono::milliseconds(200));
     stop = true;
   });
   EXPECT_NO_THROW(lua.run_file(p.string()));

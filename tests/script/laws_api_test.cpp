@@ -17,6 +17,7 @@
 #include "run_script.hpp"
 #include "script/interpreter.hpp"
 #include "script/script_args.hpp"
+#include "support/scenes.hpp"
 #include "support/scratch.hpp"
 
 namespace beltsim::script {
@@ -28,14 +29,10 @@ fs::path temp_dir() { return beltsim::test::scratch_dir("beltsim_laws_test"); }
 
 // two pulleys on a frictionless belt: each turns under its own law alone (inertia 0.025 kg·m²)
 std::string isolated(const std::string& driver, const std::string& driven) {
-  return "local s = beltsim.scene {\n"
-         "  pulleys = {\n"
-         "    { name = 'driver', centre = {0, 0}, radius = 0.1, inertia = 0.025, " + driver + " },\n"
-         "    { name = 'driven', centre = {0.29, 0}, radius = 0.1, inertia = 0.025, " + driven + " },\n"
-         "  },\n"
-         "  belt = { elements = 40, pretension = 500, direction = 'cw', mu = 0 },\n"
-         "  gravity = 0,\n"
-         "}\n";
+  beltsim::test::TwoPulley p;
+  p.driver = "inertia = 0.025, " + driver, p.driven = "inertia = 0.025, " + driven;
+  p.belt = "mu = 0", p.extra = "gravity = 0,";
+  return beltsim::test::two_pulley(p);
 }
 
 // runs the text (file laws.lua) and returns the error ("" when it ran); `numbers` gets the global

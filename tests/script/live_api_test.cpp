@@ -11,6 +11,7 @@
 
 #include "script/interpreter.hpp"
 #include "run_script.hpp"
+#include "support/scenes.hpp"
 #include "support/scratch.hpp"
 
 namespace beltsim::script {
@@ -22,13 +23,9 @@ fs::path temp_dir() { return beltsim::test::scratch_dir("beltsim_live_api_test")
 
 // the paper's two-pulley drive (40 elements: quick); `driver` is the driver's drive
 std::string scene(const std::string& driver = "torque = beltsim.ramp(0.3, -70)") {
-  return "local s = beltsim.scene {\n"
-         "  pulleys = {\n"
-         "    { name = 'driver', centre = {0, 0}, radius = 0.1, " + driver + " },\n"
-         "    { name = 'driven', centre = {0.29, 0}, radius = 0.1, torque = { per_speed = -0.955 } },\n"
-         "  },\n"
-         "  belt = { elements = 40, pretension = 500, direction = 'cw' },\n"
-         "}\n"
+  beltsim::test::TwoPulley p;
+  p.driver = driver;
+  return beltsim::test::two_pulley(p) +
          "local sim = s:start{ out = '" + (temp_dir() / "out").string() + "', progress = false }\n";
 }
 

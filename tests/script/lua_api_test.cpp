@@ -11,6 +11,7 @@
 
 #include "script/interpreter.hpp"
 #include "run_script.hpp"
+#include "support/scenes.hpp"
 #include "support/scratch.hpp"
 
 namespace beltsim::script {
@@ -23,13 +24,9 @@ fs::path temp_dir() { return beltsim::test::scratch_dir("beltsim_lua_test"); }
 // A valid two-pulley scene; belt_extra adds keys to the belt table, driven replaces the driven
 // pulley's geometry.
 std::string scene_text(const std::string& belt_extra, const std::string& driven = "centre = {0.29, 0}, radius = 0.1") {
-  return "local s = beltsim.scene {\n"
-         "  pulleys = {\n"
-         "    { name = 'driver', centre = {0, 0}, radius = 0.1, torque = beltsim.ramp(0.3, -70) },\n"
-         "    { name = 'driven', " + driven + ", torque = { per_speed = -0.955 } },\n"
-         "  },\n"
-         "  belt = { elements = 60, pretension = 500, direction = 'cw', " + belt_extra + " },\n"
-         "}\n";
+  beltsim::test::TwoPulley p;
+  p.driven_at = driven, p.elements = 60, p.belt = belt_extra;
+  return beltsim::test::two_pulley(p);
 }
 
 // runs the text as a script file and returns the error message ("" when it ran)
@@ -194,15 +191,7 @@ TEST(LuaApi, UnknownIntegratorListsTheValidOnes) {
 // 1e6 N·m (4e7 rad/s² on 0.025 kg·m²), past the runaway check (1e5 rad/s) after 2.5 ms; the
 // integrator's steps grow meanwhile, so the check fires at the end of the first step past that.
 TEST(LuaApi, DivergenceNamesTimeAndPulleyAndKeepsTheSamples) {
-  const std::string text =
-      "local s = beltsim.scene {\n"
-      "  pulleys = {\n"
-      "    { name = 'driver', centre = {0, 0}, radius = 0.1, torque = 1e6 },\n"
-      "    { name = 'driven', centre = {0.29, 0}, radius = 0.1 },\n"
-      "  },\n"
-      "  belt = { mu = 0 },\n"
-      "}\n"
-      "s:run{ t_end = 0.01, sample = 1e-4 }\n";
+  const std::string text = beltsim::test::runaway() + "s:run{ t_end = 0.01, sample = 1e-4 }\n";
   const std::string msg = run_text(text, "runaway.lua");
   EXPECT_NE(msg.find("runaway.lua:8:"), std::string::npos) << msg;
   EXPECT_NE(msg.find("pulley 'driver' runs away"), std::string::npos) << msg;

@@ -7,6 +7,7 @@
 
 #include <unistd.h>
 
+#include <atomic>
 #include <chrono>
 #include <filesystem>
 #include <fstream>
@@ -15,8 +16,10 @@
 #include <thread>
 #include <vector>
 
+#include "lua.h"
 #include "script/interpreter.hpp"
 #include "run_script.hpp"
+#include "support/scenes.hpp"
 #include "support/scratch.hpp"
 
 namespace beltsim::script {
@@ -63,14 +66,14 @@ std::string q(const fs::path& p) {
   return s;
 }
 
-const char* kScene =
-    "local s = beltsim.scene {\n"
-    "  pulleys = {\n"
-    "    { name = 'driver', centre = {0, 0}, radius = 0.1, torque = beltsim.ramp(0.3, -70) },\n"
-    "    { name = 'driven', centre = {0.29, 0}, radius = 0.1, torque = { per_speed = -0.955 } },\n"
-    "  },\n"
-    "  belt = { elements = 40, pretension = 500, direction = 'cw' },\n"
-    "}\n";
+const std::string kScene = beltsim::test::two_pulley();
+
+// the same scene assigned to `sc`
+std::string sc_scene() {
+  beltsim::test::TwoPulley p;
+  p.assign = "sc = ";
+  return beltsim::test::two_pulley(p);
+}
 
 // ---- forbidden functions ---------------------------------------------------------------------
 
@@ -350,16 +353,37 @@ TEST(Limits, OneAllocationPastTheLimitIsRefusedAtOnce) {
   expect_has(msg, {"sandbox.lua", "the Lua heap reached its limit of 64 MiB", "--max-lua-memory"});
 }
 
+// a global function running() for the script to call as its loop starts: it sets *flag
+void announce_running(Interpreter& lua, std::atomic<bool>& flag) {
+  lua_State* L = lua.state();
+  lua_pushlightuserdata(L, &flag);
+  lua_pushcclosure(
+      L,
+      [](lua_State* l) -> int {
+        auto* f = static_cast<std::atomic<bool>*>(lua_touserdata(l, lua_upvalueindex(1)));
+        f->store(true);
+        f->notify_all();
+        return 0;
+      },
+      1);
+  lua_setglobal(L, "running");
+}
+
 TEST(Limits, InterruptRaisesInLuaCode) {
   for (const std::uint64_t instructions : {std::uint64_t(10'000'000'000), std::uint64_t(0)}) {
     Safety s;
     s.max_instructions = instructions;
     Interpreter lua(s);
+    std::atomic<bool> looping{false};
+    announce_running(lua, looping);
+    // Ctrl-C once the loop runs (one before the call would be cleared as the call starts)
     std::thread ctrl_c([&] {
-      std::this_thread::sleep_for(std::chrono::milliseconds(200));
+      looping.wait(false);
       lua.interrupt();
     });
-    const std::string msg = run(lua, "local x = 1\nwhile true do x = x + 1 end\n");
+    const std::string msg = run(lua, "local x = 1\nrunning() while true do x = x + 1 end\n");
+    looping = true;  // (the thread ends also when the script failed before its loop)
+    looping.notify_all();
     ctrl_c.join();
     expect_has(msg, {"sandbox.lua:2: interrupted!"});
     EXPECT_EQ(run(lua, "local x = 1\n"), "") << "the next call is not interrupted";
@@ -401,14 +425,8 @@ TEST(Userdata, FinalisedScenesAndSimulationsGiveErrors) {
                 "      function() return sim:pulley('driver') end, function() return sim:close() end,\n"
                 "    } do results[#results + 1] = { pcall(f) } end\n"
                 "    results.scene, results.sim = tostring(sc), tostring(sim)\n"
-                "  end })\n"
-                "  sc = beltsim.scene {\n"
-                "    pulleys = {\n"
-                "      { name = 'driver', centre = {0, 0}, radius = 0.1, torque = beltsim.ramp(0.3, -70) },\n"
-                "      { name = 'driven', centre = {0.29, 0}, radius = 0.1, torque = { per_speed = -0.955 } },\n"
-                "    },\n"
-                "    belt = { elements = 40, pretension = 500, direction = 'cw' },\n"
-                "  }\n"
+                "  end })\n" +
+                sc_scene() +
                 "  sim = sc:start{ progress = false }\n"
                 "end\n"
                 "collectgarbage() collectgarbage()\n"

@@ -12,7 +12,7 @@
 #include <thread>
 
 
-#include "integrate/integrator.hpp"
+#include "integrate/make_integrator.hpp"
 #include "integrate/timeline.hpp"
 #include "scene/presets.hpp"
 #include "scene/scene.hpp"

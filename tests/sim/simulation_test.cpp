@@ -38,7 +38,7 @@ std::string slurp(const std::string& path) {
 }
 
 fs::path temp(const std::string& name) {
-  const fs::path p = beltsim::test::scratch_dir("beltsim_live_test") / name;
+  const fs::path p = beltsim::test::scratch_dir("beltsim_simulation_test") / name;
   fs::remove_all(p);
   return p;
 }
