@@ -394,12 +394,13 @@ void FrameBuilder::build(double t, const double* y, DrawList& out, const Drive* 
   if (fs_.quantity != FrameQuantity::tension && fs_.quantity != FrameQuantity::mu) swatch(scale_.none, "off the pulleys");
 }
 
-// "driver: ω = −57.05 rad/s, slip +0.021 m/s": the pulley's speed and its rim's speed along the
-// belt's travel minus the belt's mean speed (positive: the pulley drives the belt forward)
+// "driver: ω = −57.05 rad/s, slip −0.021 m/s": the pulley's speed, and the belt's mean speed minus
+// its rim's speed along the belt's travel: the sign of the elements' slip colours (belt minus rim,
+// model/observables.hpp), negative on a driver (its rim leads the belt), positive on a driven one
 std::string FrameBuilder::pulley_text(const Drive& d, int j, double t, const double* v, double v_belt) const {
   const Pulley& p = sc_.model.pulleys[j];
   const double om = d.omega(sc_.model, j, t, v);
-  const double slip = sense_[j] * om * p.radius - v_belt;
+  const double slip = v_belt - sense_[j] * om * p.radius;
   return p.name + ": \u03c9 = " + format("%.2f", om) + " rad/s, slip " + format("%+.3f", slip) + " m/s";
 }
 

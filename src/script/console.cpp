@@ -83,6 +83,7 @@ int run_console(const std::optional<std::string>& script, const std::vector<std:
   lua_State* L = lua.state();
   Context& ctx = lua.context();
   const bool tty_out = isatty(STDOUT_FILENO);
+  ctx.interactive = true;
   ctx.on_picture = [tty_out, mode = settings.images](const std::string& png) {
     std::string why;
     if (!(tty_out || mode != term::ImageMode::automatic) || !term::show_image_in_terminal(png, stdout, mode, &why))

@@ -138,6 +138,14 @@ bool write_session(const std::string& dir, const std::optional<std::string>& scr
   // beltsim.args as in the session, each --set quoted for the shell
   for (const ScriptArg& a : sets) f << " --set " << shell_word(a.key + "=" + a.text);
   f << "\n";
+  // the keys are read by the commands below, after the scenario's first run: read here first,
+  // so that the replay's first run does not stop on them as unread (lua_api.hpp, check_unread_args)
+  if (!sets.empty()) {
+    f << "local _ = {";
+    for (size_t k = 0; k < sets.size(); ++k)
+      f << (k ? ", " : "") << "beltsim.args[" << quoted(sets[k].key.data(), sets[k].key.size()) << "]";
+    f << "}\n";
+  }
   if (script) {
     // the scenario's text is copied in (as it was when the session began), so the replay needs
     // no access to the scenario's folder, which the sandbox would refuse (README, Console)

@@ -26,6 +26,9 @@ struct Context {
   // a picture made by sim:show or sim:plot: the console shows it in the terminal; a script run
   // prints its path (empty: print the path)
   std::function<void(const std::string& png)> on_picture;
+  // a console session: commands typed later may read --set keys, so a key unread at the first
+  // run is a warning there, not the error it is in a script run (check_unread_args)
+  bool interactive = false;
   // runs stopped by Ctrl-C: the simulation's userdata and where it stopped (the console writes
   // sim:run_to(t) into session.lua instead of the command, so that the replay stops there too)
   std::vector<std::pair<const void*, double>> stopped_runs;

@@ -126,12 +126,16 @@ std::vector<std::string> unread_arg_messages(const Context& ctx, const std::stri
   return out;
 }
 
-void warn_unread_args(Context& ctx) {
+void check_unread_args(lua_State* L, Context& ctx, const char* call) {
   if (ctx.args_warned || ctx.capture) return;
   ctx.args_warned = true;
   const std::string script = ctx.script.empty() ? "the console" : ctx.script;
-  for (const std::string& m : unread_arg_messages(ctx, script, true))
-    std::fprintf(stderr, "beltsim: warning: %s\n", m.c_str());
+  std::string all;
+  for (const std::string& m : unread_arg_messages(ctx, script, true)) {
+    if (ctx.interactive) std::fprintf(stderr, "beltsim: warning: %s\n", m.c_str());
+    all += (all.empty() ? "" : "; ") + m;
+  }
+  if (!all.empty() && !ctx.interactive) fail(L, std::string(call) + ": nothing was integrated: " + all);
 }
 
 }  // namespace beltsim::script

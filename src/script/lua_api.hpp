@@ -19,6 +19,8 @@ void open_beltsim(lua_State* L, Context* ctx);
 std::vector<std::string> unread_arg_messages(const Context& ctx, const std::string& script, bool so_far = false);
 // at the start of a script's first run: a warning on stderr for each --set key not read so far
 // (a long run is not wasted on a misspelt key; the error comes after the script)
-void warn_unread_args(Context& ctx);
+// the first call that integrates (scene:run, scene:start) fails, before integrating, when a
+// --set key has not been read by then (call names it in the message); in the console it warns
+void check_unread_args(lua_State* L, Context& ctx, const char* call);
 
 }  // namespace beltsim::script

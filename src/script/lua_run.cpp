@@ -337,8 +337,9 @@ int l_scene_run(lua_State* L) {
   check_args(L, "scene:run", {{"{t_end, integrator, ...}", kTable, true}}, 2);
   auto* ctx = static_cast<Context*>(lua_touserdata(L, lua_upvalueindex(1)));
   bool progress = true;
-  const RunSettings rs = read_run_settings(L, 2, *sc, ctx, true, &progress);
-  warn_unread_args(*ctx);
+  RunSettings rs = read_run_settings(L, 2, *sc, ctx, true, &progress);
+  check_unread_args(L, *ctx, "run");
+  for (const std::string& note : drop_events_after_end(rs)) std::fprintf(stderr, "beltsim: %s\n", note.c_str());
   if (ctx->capture) {
     ctx->capture->scene = *sc;
     ctx->capture->settings = rs;
@@ -398,7 +399,7 @@ int l_scene_start(lua_State* L) {
   auto* ctx = static_cast<Context*>(lua_touserdata(L, lua_upvalueindex(1)));
   bool progress = true;
   const RunSettings rs = read_run_settings(L, 2, *sc, ctx, false, &progress);
-  warn_unread_args(*ctx);
+  check_unread_args(L, *ctx, "start");
   std::unique_ptr<Simulation> sim;
   std::string error;
   try {

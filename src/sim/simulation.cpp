@@ -718,7 +718,25 @@ bool Simulation::cancel(int id) {
   return removed;
 }
 
-RunResult run(const Scene& sc, const RunSettings& rs, const std::atomic<bool>* stop, const RunProgress& progress) {
+std::vector<std::string> drop_events_after_end(RunSettings& rs) {
+  std::vector<std::string> notes;
+  std::vector<MuEvent> kept;
+  for (const MuEvent& ev : rs.mu_events) {
+    if (ev.t < rs.t_end || !std::isfinite(ev.t)) {
+      kept.push_back(ev);
+      continue;
+    }
+    notes.push_back("events: the event at " + num(ev.t) + " s (" + ev.what + ") is at or after t_end = " +
+                    num(rs.t_end) + " s: skipped");
+  }
+  rs.mu_events = std::move(kept);
+  return notes;
+}
+
+RunResult run(const Scene& sc, const RunSettings& settings, const std::atomic<bool>* stop,
+              const RunProgress& progress) {
+  RunSettings rs = settings;
+  std::vector<std::string> skipped = drop_events_after_end(rs);
   if (!(rs.t_end > 0 && std::isfinite(rs.t_end)))
     throw std::invalid_argument("t_end: must be > 0 s and finite (got " + num(rs.t_end) + " s)");
   if (rs.frames && rs.frames->t_start > rs.t_end)
@@ -734,6 +752,7 @@ RunResult run(const Scene& sc, const RunSettings& rs, const std::atomic<bool>* s
   check_volume(sc, rs, 0.0, rs.t_end);
   Simulation sim(sc, rs);
   RunResult res;
+  res.skipped = std::move(skipped);
   res.csv_path = sim.csv_path();
   res.parameters_path = (std::filesystem::path(rs.out_dir) / "parameters.csv").string();
   // the wall-time limit stops the run as Ctrl-C does (Simulation::run_to)

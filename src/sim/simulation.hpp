@@ -85,6 +85,7 @@ struct RunResult {
   std::vector<std::vector<double>> samples;  // with keep_samples: the CSV rows
   long frames = 0;                    // frames rendered
   std::vector<std::string> notes;     // Simulation::notes()
+  std::vector<std::string> skipped;   // events after t_end (drop_events_after_end)
   std::string warning_summary;        // Simulation::warning_summary()
 };
 
@@ -256,6 +257,12 @@ class Simulation {
 };
 
 // A batch run: start, run_to(t_end), close. Throws as Simulation does.
+// Timed μ events at or after settings.t_end cannot happen in a run that ends there (a quick
+// `--t-end 0.05` check of a script whose events come later): they are removed from
+// settings.mu_events, and one note per event says so ("events: the event at 0.1 s (wet) is at or
+// after t_end = 0.05 s: skipped").
+std::vector<std::string> drop_events_after_end(RunSettings& settings);
+
 RunResult run(const Scene& scene, const RunSettings& settings, const std::atomic<bool>* stop = nullptr,
               const RunProgress& progress = {});
 

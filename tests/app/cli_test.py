@@ -39,6 +39,19 @@ class SetOption(unittest.TestCase):
         self.assertIn("--set elemnts=120 was never read by " + self.script + " (did you mean 'elements'?); "
                       "keys it read: elements, mu, wet, name", err)
 
+    def test_unread_key_fails_the_first_run_before_it_integrates(self):
+        # issue 29: a misspelt key used to cost the whole simulation before the error
+        path = os.path.join(self.dir, "runs.lua")
+        with open(path, "w") as f:
+            f.write("local e = beltsim.args.elements or 30\n" + SCENE.replace("elements = 30", "elements = e")
+                    .replace("local sim = drive:start { progress = false, out = \"out\" }",
+                             "drive:run { t_end = 5, progress = false, out = \"out\" }"))
+        code, out, err = run(["run", path, "--set", "elements=30", "--set", "rtoll=1e-3"], cwd=self.dir)
+        self.assertEqual(code, 1, err)
+        self.assertIn("run: nothing was integrated: --set rtoll=1e-3 has not been read by " + path +
+                      " before its first run", err)
+        self.assertFalse(os.path.exists(os.path.join(self.dir, "out", "timeseries.csv")), err)
+
     def test_values_that_start_like_numbers_must_be_numbers(self):
         for value in ["0x10", "1e", "-inf", "+nan", "2s", ".5.5"]:
             code, out, err = run(["run", self.script, "--set", "elements=" + value], cwd=self.dir)
