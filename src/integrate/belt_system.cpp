@@ -58,30 +58,8 @@ void BeltSystem::predict(double t, double dt, double* z) const {
 }
 
 uint64_t BeltSystem::branches(double t, const double* y) const {
-  contact_pass(model_, drive_, t, y, y + model_.n_coord(), Span{0, model_.n_el()}, pairs_, Pairs::touching,
-               ws_.held_branches);
+  contact_pass(model_, drive_, t, y, y + model_.n_coord(), Span{0, model_.n_el()}, pairs_);
   return contact_branches(model_, pairs_);
-}
-
-long BeltSystem::hold_branches(double t, const double* y) {
-  const int n = model_.n_el();
-  contact_pass(model_, drive_, t, y, y + model_.n_coord(), Span{0, n}, pairs_);
-  const bool first = !ws_.held_branches;
-  held_next_.assign(static_cast<size_t>(model_.n_p()) * n, kFreeBranch);
-  long changed = 0;
-  for (const ContactPair& c : pairs_) {
-    const size_t k = static_cast<size_t>(c.j) * n + c.i;
-    held_next_[k] = static_cast<signed char>(c.fl.branch);
-    // a pair held slipping one way whose solution slips the other way crossed the band in one
-    // solve: it sticks (or the next solve finds it slipping the other way from the band)
-    if (!first && held_[k] != kFreeBranch && held_[k] != 0 && held_next_[k] == -held_[k]) held_next_[k] = 0;
-    // a pair pressing on the pulley whose force came from another branch than the one it lies on
-    // (a pair held on none was evaluated on the one it lies on)
-    if (!first && c.nl.pushing && held_[k] != kFreeBranch && held_[k] != held_next_[k]) ++changed;
-  }
-  held_.swap(held_next_);
-  ws_.held_branches = held_.data();
-  return changed;
 }
 
 bool BeltSystem::prepare_jacobian(double t, const double* y) {

@@ -32,8 +32,6 @@ class BeltSystem final : public OdeSystem {
   bool reseat(double t, double* z, double* dz, bool keep_correction) override;
   bool local_solve(double t, double s, double* z, const double* g) override;
   uint64_t branches(double t, const double* y) const override;
-  long hold_branches(double t, const double* y) override;
-  void release_branches() override { ws_.held_branches = nullptr; }
   void predict(double t, double dt, double* z) const override;
   int switch_count() const override;
   void switches(double t, const double* y, double* g) const override;
@@ -48,8 +46,6 @@ class BeltSystem final : public OdeSystem {
   Jacobian J_;
   Workspace ws_;                     // the right-hand side's and the Jacobian's (model/workspace.hpp)
   mutable ContactList pairs_;        // the Newton aids' and switching functions' contact pass
-  std::vector<signed char> held_;    // the friction branch each pair is held on (hold_branches)
-  std::vector<signed char> held_next_;
   mutable PredictScratch predict_;   // Newton's starting point's copies of the state (predict)
   double s_ = 0;
   RingSolver solver_;

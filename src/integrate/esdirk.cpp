@@ -11,8 +11,6 @@
 // h·Σ (b_j - b̂_j)·F_j is filtered through (I - h·γ·J)^-1 (Shampine; Hairer & Wanner IV.8),
 // which keeps it meaningful on the stiff components.
 #include <cmath>
-#include <cstdio>
-#include <cstdlib>
 
 #include "integrate/controller.hpp"
 #include "integrate/stepper.hpp"
@@ -98,26 +96,6 @@ class Esdirk final : public Stepper {
   //   first iteration rejected the full steps that carry an element from stick to slip (the
   //   residual grows until the next Jacobian sees the new branch): 4 350 → 1 830 steps.
   bool newton(OdeSystem& sys, double t, double s, int n) {
-    static const int kRounds = std::getenv("BELTSIM_HOLD_ROUNDS") ? std::atoi(std::getenv("BELTSIM_HOLD_ROUNDS")) : 0;
-    static const int kFallback = std::getenv("BELTSIM_HOLD_FALLBACK") ? std::atoi(std::getenv("BELTSIM_HOLD_FALLBACK")) : 0;
-    if (kRounds <= 0 || sys.hold_branches(t, Z_.data()) < 0) return iterate(sys, t, s, n, false, false) >= 0;
-    for (int round = 0;; ++round) {
-      const int its = iterate(sys, t, s, n, true, round > 0);
-      if (its < 0) break;
-      const long changed = round > 0 && its == 0 ? 0 : sys.hold_branches(t, Z_.data());
-      if (std::getenv("BELTSIM_HOLD_TRACE")) std::fprintf(stderr, "t %.9g round %d its %d changed %ld\n", t, round, its, changed);
-      if (changed == 0) {
-        sys.release_branches();
-        return true;
-      }
-      if (round + 1 >= kRounds) break;
-    }
-    sys.release_branches();
-    if (std::getenv("BELTSIM_HOLD_TRACE")) std::fprintf(stderr, "t %.9g held failed\n", t);
-    return kFallback ? iterate(sys, t, s, n, false, false) >= 0 : false;
-  }
-
-  int iterate(OdeSystem& sys, double t, double s, int n, bool held, bool reuse_first) {
     constexpr int max_iter = 12;
     constexpr int kFullSteps = 3;
     constexpr double kRate = 0.3;
@@ -138,13 +116,13 @@ class Esdirk final : public Stepper {
     double prev_norm = 0;
     bool refresh = false;
     for (int it = 0; it < max_iter; ++it) {
-      if (!std::isfinite(r)) return -1;
+      if (!std::isfinite(r)) return false;
       const uint64_t sig = sys.branches(t, Z_.data());
-      const bool reuse = have_jac_ && !refresh && ((sig != 0 && sig == jac_sig_) || (reuse_first && it == 0));
+      const bool reuse = have_jac_ && !refresh && sig != 0 && sig == jac_sig_;
       if (!reuse) {
-        if (!sys.prepare_jacobian(t, Z_.data())) return -1;
+        if (!sys.prepare_jacobian(t, Z_.data())) return false;
         sys.counters.jacobians++;
-        if (!sys.factor(s)) return -1;
+        if (!sys.factor(s)) return false;
         sys.counters.factorizations++;
         have_jac_ = true, jac_sig_ = sig;
       }
@@ -153,16 +131,15 @@ class Esdirk final : public Stepper {
       sys.solve(rhs_.data(), dZ_.data());
       sys.counters.solves++;
       const double step_norm = ctl_->weighted_norm(Z_, dZ_);
-      if (!std::isfinite(step_norm)) return -1;
+      if (!std::isfinite(step_norm)) return false;
       // a reused Jacobian that no longer contracts fast is refreshed at the next iterate
       if (reuse && it > 0 && step_norm > kRate * prev_norm) refresh = true;
       prev_norm = step_norm;
       if (step_norm <= kappa) {  // converged: take the (tiny) correction as it is
         Z_ += dZ_;
-        return it;
+        return true;
       }
-      if (held) {
-      } else if (it < kFullSteps) {
+      if (it < kFullSteps) {
         sys.reseat(t, Z_.data(), dZ_.data(), true);
       } else if (sys.reseat(t, Z_.data(), dZ_.data(), false)) {
         r = residual(sys, t, s, Z_, Fz_, G_);
@@ -181,10 +158,10 @@ class Esdirk final : public Stepper {
       Fz_.swap(Ft_);
       G_.swap(Gt_);
       r = rt;
-      if (!held && sys.local_solve(t, s, Z_.data(), G_.data())) r = residual(sys, t, s, Z_, Fz_, G_);
-      if (lambda < 1.0 / 64) return -1;  // no descent: give up, the step will be shortened
+      if (sys.local_solve(t, s, Z_.data(), G_.data())) r = residual(sys, t, s, Z_, Fz_, G_);
+      if (lambda < 1.0 / 64) return false;  // no descent: give up, the step will be shortened
     }
-    return -1;
+    return false;
   }
 
   const EsdirkTableau& tab_;

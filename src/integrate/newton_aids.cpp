@@ -256,7 +256,10 @@ uint64_t contact_branches(const Model& m, const ContactList& pairs) {
     if (!c.touching) continue;
     const NormalLaw& nl = c.nl;
     uint64_t code = 1 + (nl.pushing ? 2 : 0) + (nl.p < m.contact.p_max ? 4 : 0);
-    if (nl.pushing) code += c.fl.branch < 0 ? 8 : c.fl.branch > 0 ? 16 : 0;
+    if (nl.pushing) {
+      const double x = c.fl.vT / m.friction.dv;
+      code += x <= -1 ? 8 : x >= 1 ? 16 : 0;
+    }
     mix(static_cast<uint64_t>(c.j) << 40 | static_cast<uint64_t>(c.i) << 8 | code);
   }
   return h;

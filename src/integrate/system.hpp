@@ -56,14 +56,6 @@ class OdeSystem {
   // motion it describes (the default leaves it where it is)
   virtual void predict(double, double, double*) const {}
 
-  // Newton aid for piecewise-smooth right-hand sides: hold every branch the state y lies on (for
-  // the belt, each pair's friction branch) for the evaluations that follow (rhs, Jacobian,
-  // branches), so that one Newton solve sees a smooth system whose solution is the true one when
-  // every branch held is the one it lies on. Returns the number of branches that changed against
-  // those held before (-1: the system holds none). release_branches lets every branch follow y again.
-  virtual long hold_branches(double, const double*) { return -1; }
-  virtual void release_branches() {}
-
   // A hash of the smooth piece of a piecewise-smooth right-hand side that y lies on; 0 means
   // unknown. Newton may reuse a Jacobian (and its factorisation) while the hash is unchanged.
   virtual uint64_t branches(double, const double*) const { return 0; }

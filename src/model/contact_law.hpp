@@ -47,30 +47,21 @@ inline bool normal_law(const Contact& c, const Vec2& P, const Vec2& V, const Vec
 }
 NormalJacobian normal_law_derivatives(const Contact& c, const Vec2& V, const NormalLaw& nl);
 
-// friction of the same pair: force on the element -mu_eff·N·t̂, moment on the pulley r·mu_eff·N.
-// The branch of sat() is the one vT/dv lies on, or one the caller holds (a FrozenBranch: the
-// Newton iteration of an implicit stage, see newton_aids.hpp), where sticking extends the band's
-// line mu_i·vT/dv beyond it and slipping keeps ±mu_i whatever vT is.
+// friction of the same pair: force on the element -mu_eff·N·t̂, moment on the pulley r·mu_eff·N
 struct FrictionLaw {
   double vT = 0;       // slip velocity of the element against the pulley surface [m/s]
-  double mu_eff = 0;   // mu_i·sat(vT/dv) on the branch
+  double mu_eff = 0;   // mu_i·sat(vT/dv)
   double dmu = 0;      // d mu_eff / d vT
-  int branch = 0;      // -1: slipping backwards, 0: sticking (in the band), 1: slipping forwards
 };
-// the branch vT/dv lies on
-inline int friction_branch(double x) { return x <= -1 ? -1 : x >= 1 ? 1 : 0; }
-constexpr signed char kFreeBranch = 2;  // a FrozenBranch entry that holds no branch: vT decides
-inline FrictionLaw friction_law(double mu_i, double dv, const NormalLaw& nl, const Vec2& V, double omega,
-                                signed char held = kFreeBranch) {
+inline FrictionLaw friction_law(double mu_i, double dv, const NormalLaw& nl, const Vec2& V, double omega) {
   FrictionLaw fl;
   fl.vT = V.dot(nl.t) - omega * nl.r;
   const double x = fl.vT / dv;
-  fl.branch = held == kFreeBranch ? friction_branch(x) : held;
-  if (fl.branch == 0) {
+  if (std::abs(x) < 1.0) {
     fl.mu_eff = mu_i * x;
     fl.dmu = mu_i / dv;
   } else {
-    fl.mu_eff = fl.branch * mu_i;
+    fl.mu_eff = std::copysign(mu_i, x);
     fl.dmu = 0.0;
   }
   return fl;
@@ -98,11 +89,10 @@ struct ContactPair {
 // The contact pass: the pairs of the span's elements with every pulley, pulley by pulley and in
 // element order within a pulley (the order every sum over pairs takes), appended to `out` after
 // clearing it. Pairs::touching keeps the pairs in contact only; Pairs::all keeps every pair (the
-// switching functions need the distance of those out of contact too). held: null, or the friction
-// branch each pair is held on, held[j·n + i] for pulley j and element i (kFreeBranch: none).
+// switching functions need the distance of those out of contact too).
 enum class Pairs { touching, all };
 inline void contact_pass(const Model& m, const Drive& d, double t, const double* q, const double* v, const Span& span,
-                         ContactList& out, Pairs which = Pairs::touching, const signed char* held = nullptr) {
+                         ContactList& out, Pairs which = Pairs::touching) {
   out.clear();
   for (int j = 0; j < m.n_p(); ++j) {
     const Pulley& pl = m.pulleys[j];
@@ -116,7 +106,7 @@ inline void contact_pass(const Model& m, const Drive& d, double t, const double*
         c.nl.r = (P - pl.centre).norm();
         c.nl.p = pl.radius - c.nl.r;
       } else {
-        c.fl = friction_law(d.mu[i], m.friction.dv, c.nl, V, omega, held ? held[j * m.belt.n + i] : kFreeBranch);
+        c.fl = friction_law(d.mu[i], m.friction.dv, c.nl, V, omega);
       }
       c.i = i, c.j = j, c.omega = omega;
       out.push_back(c);

@@ -26,7 +26,7 @@ void all_forces(const Model& m, const Drive& d, double t, const double* q, const
     const Span all{0, n};
     sde_forces(m, q, v, f, e_rate, &w.axes, all);
     bending_forces(m, q, v, f, e_rate, all);
-    contact_pass(m, d, t, q, v, all, w.contacts[0], Pairs::touching, w.held_branches);
+    contact_pass(m, d, t, q, v, all, w.contacts[0]);
     contact_forces(m, d, w.contacts[0], f, f + 3 * n, e_rate);
   } else {
     Halves& h = *w.halves;
@@ -36,7 +36,7 @@ void all_forces(const Model& m, const Drive& d, double t, const double* q, const
       double* e = e_rate ? sums + np : nullptr;
       sde_forces(m, q, v, f, e, &w.axes, half(m, p));
       bending_forces(m, q, v, f, e, half(m, p));
-      contact_pass(m, d, t, q, v, half(m, p), w.contacts[p], Pairs::touching, w.held_branches);
+      contact_pass(m, d, t, q, v, half(m, p), w.contacts[p]);
       contact_forces(m, d, w.contacts[p], f, sums, e);
     });
     const double *s0 = h.sum(0), *s1 = h.sum(1);
@@ -104,7 +104,7 @@ void jacobian(const Model& m, const Drive& d, double t, const double* y, Jacobia
     const Span all{0, n};
     sde_jacobian(m, q, v, J.K, J.C, &w->axes, all);
     bending_jacobian(m, q, v, J.K, J.C, all);
-    contact_pass(m, d, t, q, v, all, w->contacts[0], Pairs::touching, w->held_branches);
+    contact_pass(m, d, t, q, v, all, w->contacts[0]);
     contact_jacobian(m, d, t, v, w->contacts[0], J.K, J.C, J.f_t.data(), nullptr);
   } else {
     Halves& h = *w->halves;
@@ -119,7 +119,7 @@ void jacobian(const Model& m, const Drive& d, double t, const double* y, Jacobia
       std::fill(dmo, dmo + np, 0.0);
       sde_jacobian(m, q, v, J.K, J.C, &w->axes, half(m, p));
       bending_jacobian(m, q, v, J.K, J.C, half(m, p));
-      contact_pass(m, d, t, q, v, half(m, p), w->contacts[p], Pairs::touching, w->held_branches);
+      contact_pass(m, d, t, q, v, half(m, p), w->contacts[p]);
       contact_jacobian(m, d, t, v, w->contacts[p], J.K, J.C, J.f_t.data(), dmo);
     });
     const double *d0 = h.sum(0) + np + kEnergyCount, *d1 = h.sum(1) + np + kEnergyCount;

@@ -34,9 +34,6 @@ struct Workspace {
   // belt (only contacts[0] when the belt is not split); read by the forces, the Jacobian and
   // whoever asks the evaluation's contacts
   ContactList contacts[2];
-  // the friction branch each pair is held on (contact_pass's `held`), or null: an input the
-  // integrator's Newton iteration sets for the evaluations of one implicit stage (BeltSystem)
-  const signed char* held_branches = nullptr;
   // position stage (sde.cpp): the elements' axes of the last evaluation, reused at the same angles
   AxisMemo axes;
   // the two halves' worker and sums; null when the belt is not split
