@@ -2,7 +2,7 @@
 // are noisy, so ratios come from the same minutes):
 //   Seconds/<scenario>   wall time per simulated second of the paper's dry and half-wet drives
 //                        over their first BELTSIM_BENCH_T seconds (default 0.1: CVODE takes
-//                        minutes for the whole second, README) for each integrator=rtol of
+//                        minutes for the whole second, docs/performance.md) for each integrator=rtol of
 //                        BELTSIM_BENCH_RTOLS, each run's speed error against esdirk32 at rtol
 //                        1e-8, and the time ratios to esdirk32; the label names CVODE's settings
 //   CvodeGrid            CVODE's configurations side by side (the search for its best settings)
@@ -61,11 +61,11 @@ double env_number(const char* name, double fallback) {
 }
 
 // integrator=rtol pairs. The defaults give comparable errors over the dry drive's first 0.1 s
-// (README, "Against the peer"): esdirk32 at 1e-5 stays within 2.5e-4 of the reference in the
+// (docs/integration.md, "CVODE"): esdirk32 at 1e-5 stays within 2.5e-4 of the reference in the
 // speeds, CVODE in its best configuration (CvodeSettings: BDF order <= 2, Jacobian every 10
 // steps, setup every 5) at 1e-5 within 6.4e-4, its best time at that error in BM_CvodeGrid.
 // cvode-fd (coloured difference quotients, KLU) is not in the default list (each Jacobian takes
-// as many right-hand sides as there are state components, README); add "cvode-fd=1e-5" to
+// as many right-hand sides as there are state components, docs/integration.md); add "cvode-fd=1e-5" to
 // include it. Each run's own error is reported next to its time.
 std::vector<std::pair<std::string, double>> bench_integrators() {
   const char* v = std::getenv("BELTSIM_BENCH_RTOLS");

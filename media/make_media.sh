@@ -75,7 +75,7 @@ if [ "$what" = all ]; then
     '{ t_start = 0.6, size = {1280, 720}, quantity = "slip", range = {-5, 5}, magnify = 10, png = true }'
   cp "$tmp/wets/frames/frame_00000.png" media/wet_slip_0.6s.png
   # a short clip: the half-wet run from 0.15 to 0.45 s of simulated time (video 1.5 to 4.5 s),
-  # 640x360, and the same as a GIF (the README shows it inline)
+  # 640x360, and the same as a GIF (docs/frames-and-video.md shows it inline)
   ffmpeg -v error -y -ss 1.5 -t 3 -i "$tmp/paper_wet/paper_wet.mp4" -vf scale=640:360 -c:v libx264 -preset slow \
     -crf 28 -pix_fmt yuv420p -colorspace bt709 -color_primaries bt709 -color_trc bt709 -movflags +faststart \
     media/wet_clip.mp4

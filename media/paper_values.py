@@ -229,7 +229,7 @@ def dry_figures(d):
          'and the start of its second (driver), from `probe.normal_force` > 0'),
         ('SDE force there, largest', '"maximum value … about 820 N" (Fig. 10, §3)',
          f"{num(d.extreme('probe.sde_force', *lower0)[1])} N", 'largest `probe.sde_force` in that passage'),
-        ('lower span in steady running', '≈ 820 N (Fig. 10; DESIGN §4)',
+        ('lower span in steady running', '≈ 820 N (Fig. 10)',
          f"{num(mid_mean(*last_lower))} N (span: {num(d.mean('span_driven_driver.tension', 0.9, 1.0))} N)",
          f'mean of `probe.sde_force` over the middle half of the last lower-span passage '
          f'({ms(last_lower[0])}–{ms(last_lower[1])} s); span: mean of `span_driven_driver.tension` over 0.9–1 s'),

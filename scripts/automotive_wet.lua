@@ -1,6 +1,6 @@
 -- The automotive drive of Kubas §4 (Figs 19–23): crankshaft, tensioner idler (on the belt's back),
 -- alternator and coolant pump; 150 elements, 280 N, 30 % of the belt wet.
--- The layout (Fig. 19 has no coordinates) and the inertias are ours (DESIGN §4): origin at the
+-- The layout (Fig. 19 has no coordinates) and the inertias are ours (docs/model.md, Our choices): origin at the
 -- alternator, belt travelling clockwise, pulleys listed in the order the belt visits them.
 
 local drive = beltsim.scene {

@@ -2,7 +2,7 @@
 --   beltsim console scripts/live_dry.lua
 -- then, at the prompt: sim:run_to(0.3), sim:pulley("driver"), sim:wet{from = 0, to = 0.3, mu = 0.2},
 -- sim:show{quantity = "slip"}, sim:advance(0.2), sim:plot{"driver.omega", "driven.omega"}.
--- SI units; counter-clockwise positive; the pulley inertias are ours (DESIGN §2).
+-- SI units; counter-clockwise positive; the pulley inertias are ours (docs/model.md).
 
 drive = beltsim.scene {
   pulleys = {
@@ -13,7 +13,7 @@ drive = beltsim.scene {
   },
   belt = {
     elements = 60, pretension = 500, direction = "cw",
-    EA = 1.52e5, EI = 0.026, axial_damping = 20.5, bending_damping = 0.05,  -- DESIGN §2
+    EA = 1.52e5, EI = 0.026, axial_damping = 20.5, bending_damping = 0.05,  -- read as in docs/model.md
     mass_per_length = 0.096, mu = 1.0,
   },
   energy = true,

@@ -1,6 +1,6 @@
 -- The paper's two-pulley drive with a dry belt (Kubas, §3, Figs 6–13).
 -- SI units; counter-clockwise positive. Parameters not given here take the paper's values
--- (see the README, "Lua API"); the pulley inertias are ours (DESIGN §2).
+-- (docs/lua-api.md); the pulley inertias are ours (docs/model.md).
 
 local drive = beltsim.scene {
   pulleys = {
@@ -15,7 +15,7 @@ local drive = beltsim.scene {
     elements = 60,
     pretension = 500,           -- N
     direction = "cw",           -- the driver turns clockwise, the belt with it
-    EA = 1.52e5,                -- N      (paper's c_tra, read as an axial rigidity: DESIGN §2)
+    EA = 1.52e5,                -- N      (paper's c_tra, read as an axial rigidity: docs/model.md)
     EI = 0.026,                 -- N·m²   (paper's c_tor, a bending rigidity)
     axial_damping = 20.5,       -- N·s    (paper's b_tra, per unit length)
     bending_damping = 0.05,     -- N·m·s/rad per SDE (paper's b_tor)

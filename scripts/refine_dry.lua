@@ -2,7 +2,7 @@
 -- damping given per length (equal to the paper's per-element values at 60 elements), and with the
 -- paper's per-element values as printed: the first converges as elements are added, the second
 -- does not (each element of a finer belt presses on the pulley as hard as a coarse one). The
--- README's "Element count" table comes from this script.
+-- "Element count" table of docs/model.md comes from this script.
 -- SI units; counter-clockwise positive.
 
 local route = 2 * 0.29 + 2 * math.pi * 0.1      -- m, the pitch line round the two pulleys

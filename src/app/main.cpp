@@ -6,7 +6,7 @@
 //   beltsim plot    CSV [COLUMNS...] [--out PNG] [--from T]
 //   beltsim console [SCRIPT] [--out DIR] [--t-end T] [--integrator NAME] [--rtol R] [--max-wall S]
 //                            [--no-frames] [--set KEY=VALUE]... [SAFETY] [-- ARGS...]
-//   SAFETY: [--trusted] [--max-instructions N] [--max-lua-memory MiB] (README, Limits and safety)
+//   SAFETY: [--trusted] [--max-instructions N] [--max-lua-memory MiB] (docs/limits-and-safety.md)
 // The flags override what the script passes to scene:run{}. Every number is a finite decimal
 // (no hex, inf or nan); an option a command does not take is an error. Exit status: 0 on
 // success, 1 on a script, parameter, run or plot error or an output that could not be written

@@ -36,10 +36,8 @@ double StepController::weighted_norm(const Eigen::VectorXd& y, const Eigen::Vect
 
 double StepController::propose(double h, double e) const {
   // safety 0.7, not the textbook 0.9: a rejected step costs a whole implicit step, and on the
-  // belt's friction kinks 0.9 aims too close to the limit. Measured on the paper's dry second
-  // (esdirk32, rtol 1e-4): rejected steps 2 962 -> 1 460, Jacobians 25 957 -> 20 119, speed
-  // error 1.8e-4 -> 1.0e-4, instructions -11 % (half-wet -6 %, automotive -3 %); README, "The
-  // fourth round".
+  // belt's friction kinks 0.9 aims too close to the limit: 0.7 takes more steps but rejects fewer
+  // (docs/integration.md, "Step-size control").
   constexpr double safety = 0.7, shrink = 0.2, grow = 5.0;
   if (e <= 0) return h * grow;
   const double factor = safety * std::pow(e, -exponent_);

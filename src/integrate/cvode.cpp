@@ -306,7 +306,7 @@ class CvodeIntegrator final : public Integrator {
     std::copy(yr, yr + sys_.size(), y_.data());
     sys_.counters = work();  // the system's counters tell the same as for the one-step methods
     // a stall: the BDF history (order, step, Jacobian age) that got it here cannot get it out;
-    // a restart from the current state can (the reference run of DESIGN §5 restarted too)
+    // a restart from the current state can (the reference implementation's CVODE run restarted too)
     if (settings_.stall_window > 0 && ++window_steps_ >= settings_.stall_window) {
       const bool stalled = t_ - window_t0_ < settings_.stall_window * settings_.stall_step;
       window_steps_ = 0, window_t0_ = t_;

@@ -10,7 +10,7 @@
 //               (Curtis–Powell–Reid; CVODE's own difference quotients are for dense and banded
 //               matrices only), solved by KLU
 // Both run with the settings of CvodeSettings (the best found over the dry drive's whole second,
-// README "Against the peer").
+// docs/integration.md, "CVODE").
 #pragma once
 
 #include <string>
@@ -21,8 +21,8 @@
 namespace beltsim {
 
 // CVODE's optional inputs that matter here, and the adapter's own for a piecewise-smooth F; the
-// defaults are the best configuration measured over the paper's dry second (README, "Against the
-// peer"), not CVODE's own defaults (noted per field)
+// defaults are the best configuration measured over the paper's dry second (docs/integration.md,
+// "CVODE"), not CVODE's own defaults (noted per field)
 struct CvodeSettings {
   int max_order = 2;               // BDF order limit (CVodeSetMaxOrd; CVODE: 5)
   double nonlin_conv_coef = 0.1;   // Newton's stopping test against the error test (CVodeSetNonlinConvCoef; CVODE: 0.1)

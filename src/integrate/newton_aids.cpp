@@ -33,12 +33,9 @@
 // predictor moves each pressing element as the wrap moves it: a rotation about the pulley centre
 // C by θ = ((P - C) × V)/|P - C|²·dt, applied to P - C, to V and (as +θ) to the element angle, which
 // keeps its penetration, slip velocity and spin as they are; a free element moves by V·dt (its
-// angle by φ̇·dt), exact for a span in uniform motion; a pulley's angle by Ω·dt. On the dry
-// second at rtol 1e-3 (Newton's stop then at 5 % of the tolerance) this halved the steps
-// (1 616 -> 821), cut the Jacobians from 20 125 to 9 288 and the failed steps (the Newton
-// iteration running out) from 118 to 3.
+// angle by φ̇·dt), exact for a span in uniform motion; a pulley's angle by Ω·dt.
 //
-// Convective predictor (convective_predict, issue 11): the kinematic predictor carries each element's
+// Convective predictor (convective_predict): the kinematic predictor carries each element's
 // own state along its motion, so whatever it was (sticking, out of contact) it stays. But in a drive
 // that runs steadily the state is stationary in space, not in the belt: an element that reaches
 // the edge of a slip arc starts to slip, one that reaches the end of a wrap leaves the pulley. On
@@ -54,10 +51,8 @@
 // difference, kept on the element's own branch of 2π. This is exact for a steady state whose fields are
 // linear between elements, and for a wrap turning rigidly at a constant radius
 // (tests/integrate/predictor_test.cpp). On a coarse belt the interpolation across a pitch is the
-// larger error (20 mm pitches at 60 elements, the wrap ends' chords): applied to every element
-// there, BM_Scaling's 60-element window at rtol 1e-3 took 11.7 Jacobians per step instead of 4.7,
-// so elements that travel less than half a pitch keep the kinematic prediction. Measured in
-// BM_Scaling (README, *The eighth round*).
+// larger error (20 mm pitches at 60 elements, the wrap ends' chords), so elements that travel
+// less than half a pitch keep the kinematic prediction.
 //
 // Branches (contact_branches): the Jacobian and its factorisation are reused within a step while
 // every pair stays on the same smooth piece of the contact and friction laws; the hash names

@@ -1,6 +1,6 @@
 // Runge–Kutta–Fehlberg 4(5), the paper's integrator: six stages, the 4th-order solution is
 // propagated and the difference to the 5th-order one estimates its error. Explicit, so its steps
-// are limited by stability to h ≲ 2.8/|λ_max| (≈ 1e-9 s on the paper's drive, DESIGN §5).
+// are limited by stability to h ≲ 2.8/|λ_max| (≈ 1e-9 s on the paper's drive; docs/integration.md).
 #include "integrate/stepper.hpp"
 #include "integrate/tableau.hpp"
 

@@ -7,7 +7,7 @@ namespace beltsim {
 
 namespace {
 
-// last dotted component → unit (README "Outputs"; element and pulley fields of the Lua API)
+// last dotted component → unit (docs/outputs.md; element and pulley fields of the Lua API)
 constexpr std::array<std::pair<std::string_view, std::string_view>, 38> kUnits{{
     {"t", "s"},
     // pulleys

@@ -191,7 +191,7 @@ VideoWriter::VideoWriter(const std::string& path, const VideoOptions& opt) : imp
                            SWS_BICUBIC, nullptr, nullptr, nullptr);
     if (!d.sws) d.fail("cannot create the RGB to YUV converter");
     // full-range sRGB in, BT.709 TV-range YUV out: without this swscale uses BT.601 and the
-    // colours shift (DESIGN §9)
+    // colours shift
     const int* bt709 = sws_getCoefficients(SWS_CS_ITU709);
     sws_setColorspaceDetails(d.sws, bt709, 1, bt709, 0, 0, 1 << 16, 1 << 16);
 

@@ -3,9 +3,8 @@
 // records are what the forces, the Jacobian, the integrator's Newton aids, the switching
 // functions and the observables read.
 // normal_law and friction_law are defined here, inline: every right-hand side calls them for each
-// element and pulley, and inlined into contact_forces they took the dry second at rtol 7e-4 from
-// 0.28–0.29 to 0.26–0.27 s (alternating runs; the same numbers to the last bit). Their formulas and
-// derivatives are at the top of contact.cpp and friction.cpp.
+// element and pulley, so they are inlined into the contact pass. Their formulas and derivatives are
+// at the top of contact.cpp and friction.cpp.
 #pragma once
 
 #include <algorithm>

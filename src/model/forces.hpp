@@ -24,9 +24,7 @@ double wrap_angle(double a);
 // at the same angles (to the bit) reads them instead of taking the sines and cosines again. The
 // Newton iteration takes its Jacobians at the iterate whose right-hand side it has just evaluated,
 // and its local friction solve moves only velocities, so those evaluations read their axes from
-// the memo (sde.cpp): the sines and cosines fell from 10.8 % to 6.6 % of the dry drive's samples
-// (perf), the dry second at rtol 7e-4 from 0.258 to 0.245 s (alternating runs), results the same
-// to the bit.
+// the memo (sde.cpp); the axes read are the same bits as those computed afresh.
 struct AxisMemo {
   std::vector<double> phi, c, s;  // per element: the angle, cos φ, sin φ
   // sizes it for n elements (a fresh one holds NaN, whose axis is NaN too); called before the
@@ -51,7 +49,7 @@ struct Span {
   bool whole(int n) const { return lo == 0 && hi == n; }
 };
 // the span of the whole belt, known at compile time: its ownership checks fold away, so a law's
-// loop over the whole belt compiles to the plain loop it was before the split
+// loop over the whole belt compiles to a plain loop
 struct WholeBelt {
   static constexpr bool owns(int) { return true; }
 };

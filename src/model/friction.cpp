@@ -13,7 +13,7 @@
 //   ∂M_T/∂P = μ·N·nᵀ + r·(N·μ'·∂v_T/∂P + μ·∂N/∂P)
 //   ∂M_T/∂V = r·(N·μ'·tᵀ + μ·∂N/∂V),     ∂M_T/∂Ω = -r²·N·μ'
 // Dissipated power μ(v_T)·N·v_T >= 0. In the linear zone the slope μ_i·N/(m·Δv) is the stiffest
-// eigenvalue of the whole model (≈ 5e9 1/s for the paper's drive, DESIGN §5).
+// eigenvalue of the whole model (≈ 5e9 1/s for the paper's drive; docs/integration.md).
 //
 // The integrator's Newton aids for the band (reseat, local solve) are in
 // src/integrate/newton_aids.cpp.

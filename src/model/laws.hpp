@@ -1,5 +1,5 @@
 // Pulley laws: the applied torque M(t, Ω) [N·m] of a free pulley, or the prescribed speed Ω(t)
-// [rad/s] of a kinematic one, as a sum of terms (the README's "Laws" lists them with the same
+// [rad/s] of a kinematic one, as a sum of terms (docs/lua-api.md, "Laws", lists them with the same
 // formulas; laws.cpp evaluates them and their derivatives, formulas at its top).
 //
 //   value(t, Ω) = constant + per_speed·Ω + table(t) + speed_table(Ω)

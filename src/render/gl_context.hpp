@@ -1,5 +1,5 @@
 // An OpenGL 3.3 core context without a window system, behind a small interface so that the
-// renderer does not care who made it: OSMesa (libosmesa6; gone from Mesa 25.1, DESIGN §9) or EGL
+// renderer does not care who made it: OSMesa (libosmesa6; gone from Mesa 25.1) or EGL
 // on the surfaceless platform (EGL_PLATFORM_SURFACELESS_MESA). The renderer draws into its own
 // framebuffer object either way. One thread per context; the context is current on the thread
 // that created it.

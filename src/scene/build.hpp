@@ -31,7 +31,7 @@ RouteOrder route_order(const SceneDef& d, const std::vector<Pulley>& pulleys);
 // throws when a wrap of `route` holds fewer than 3 elements of the pitch route.length / elements
 void check_wraps(const Route& route, const std::vector<std::string>& names, int elements);
 
-// 3. the per-SDE values of an element of rest length l0 (DESIGN §2), into rigid_length, mass,
+// 3. the per-SDE values of an element of rest length l0 (docs/model.md, Parameter reading), into rigid_length, mass,
 // rot_inertia, k, kt, c and ct: the rigidities refer to l0 (k = EA/l0, k_t = EI/l0,
 // c = axial_damping/l0, c_t = bending_viscosity/l0 or bending_damping per SDE), per-SDE values are
 // taken as given; the mass is ρ·l0, ρ per metre of unstretched belt

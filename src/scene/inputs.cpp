@@ -38,8 +38,8 @@ std::vector<SceneInput> scene_inputs(const SceneDef& d) {
     num("belt.sde.kt", b.kt, "N·m/rad", "per SDE");
     num("belt.sde.ct", b.ct, "N·m·s/rad", "per SDE");
   }
-  num("belt.e_tra", b.e_tra, "", "ours: 1 (DESIGN §2)");
-  num("belt.e_tor", b.e_tor, "", "ours: 1 (DESIGN §2)");
+  num("belt.e_tra", b.e_tra, "", "ours: 1 (docs/model.md)");
+  num("belt.e_tor", b.e_tor, "", "ours: 1 (docs/model.md)");
   num("belt.mass_per_length", b.mass_per_length, "kg/m", "the paper's rho, per metre of unstretched belt");
   if (b.mu_at)
     word("belt.mu", "function of where each element starts", "");
@@ -60,7 +60,7 @@ std::vector<SceneInput> scene_inputs(const SceneDef& d) {
   for (const PulleyDef& p : d.pulleys) {
     const std::string pre = "pulley." + p.name + ".";
     num(pre + "radius", p.radius, "m", "the paper's r_p = 0.1 m");
-    num(pre + "inertia", p.inertia, "kg·m²", "ours: a steel disc of r = 0.1 m, 20 mm wide (DESIGN §2)");
+    num(pre + "inertia", p.inertia, "kg·m²", "ours: a steel disc of r = 0.1 m, 20 mm wide (docs/model.md)");
     word(pre + "wrap", p.wrap == WrapSide::inside ? "inside" : "back", "the pulley inside the loop");
   }
   return in;

@@ -6,13 +6,13 @@
 
 namespace beltsim::presets {
 
-// Two-pulley drive of paper §3 (DESIGN §4 "Dry"): driver at the origin, driven at (0.29, 0),
+// Two-pulley drive of paper §3 (docs/model.md, Our choices): driver at the origin, driven at (0.29, 0),
 // r = 0.1 m, 60 elements, 500 N, belt travelling clockwise; M_d1 = -70·min(t/0.3, 1) N·m,
 // M_d2 = -0.955·Ω N·m.
 SceneDef paper_dry();
 // The same with μ = 0.2 on the half of the belt whose centres start at x > l_p/2.
 SceneDef paper_wet();
-// The automotive drive of paper §4 with DESIGN §4's layout (crankshaft, tensioner, alternator,
+// The automotive drive of paper §4 with our layout (docs/model.md, Our choices) (crankshaft, tensioner, alternator,
 // pump), 150 elements, 280 N; wet 30 % of the belt ending where it leaves the pump.
 SceneDef automotive_wet();
 

@@ -1,5 +1,5 @@
-// Scene builder: the belt's route and its initial static state (DESIGN §3), in the stages of
-// scene/build.hpp.
+// Scene builder: the belt's route and its initial static state (docs/model.md, Initial state),
+// in the stages of scene/build.hpp.
 //
 // Initial state. The elements' centres are placed on the route offset inwards by the static
 // penetration p0_j on each pulley (c1·p0² + c2·p0 = N0 = 2·T0·sin(α/2), α the angle one pitch

@@ -24,14 +24,14 @@ struct PulleyDef {
   std::string name;
   Vec2 centre{0, 0};        // [m]
   double radius = 0.1;      // [m] pitch (contact) radius
-  double inertia = 0.025;   // [kg·m²]; 0.025 is ours: a 20 mm steel disc of r = 0.1 m (DESIGN §2)
+  double inertia = 0.025;   // [kg·m²]; 0.025 is ours: a 20 mm steel disc of r = 0.1 m (docs/model.md)
   WrapSide wrap = WrapSide::inside;
   bool kinematic = false;   // speed prescribed by `speed` instead of driven by `torque`
   TimeSpeedLaw torque;      // [N·m]
   TimeSpeedLaw speed;       // [rad/s]
 };
 
-// How the belt's stiffness and damping were given (DESIGN §2).
+// How the belt's stiffness and damping were given (docs/model.md, Parameter reading).
 enum class StiffnessReading {
   rigidity,  // EA [N], EI [N·m²], axial damping per length [N·s]; per SDE: /l0, the rest length of an
              // element (bending damping as is, bending viscosity /l0)
@@ -71,7 +71,7 @@ struct BeltDef {
   double bending_damping = 0.05;    // [N·m·s/rad] paper's b_tor, per SDE...
   std::optional<double> bending_viscosity;  // ...or per length [N·m²·s]: c_t = bending_viscosity / l0
   double k = 0, c = 0, kt = 0, ct = 0;  // per-SDE values for StiffnessReading::per_sde
-  double e_tra = 1, e_tor = 1;      // exponents (ours: 1, DESIGN §2)
+  double e_tra = 1, e_tor = 1;      // exponents (ours: 1, docs/model.md)
   double mass_per_length = 0.096;   // [kg/m]
   double mu = 1.0;                  // friction coefficient of every element...
   std::vector<double> mu_per_element;  // ...unless given per element (size = elements)...

@@ -111,8 +111,8 @@ void validate(const SceneDef& d) {
     }
   const BeltDef& b = d.belt;
   if (b.elements < 3) reject("belt.elements", "must be >= 3", b.elements, "");
-  // the cost of a simulated second grows faster than the element count (README, Integration:
-  // 2400 elements take about 10 min per simulated second); past this a scene is surely a mistake
+  // the cost of a simulated second grows faster than the element count (docs/performance.md:
+  // 2400 elements take minutes per simulated second); past this a scene is surely a mistake
   constexpr int kMaxElements = 20000;
   if (b.elements > kMaxElements && !d.allow_large) {
     std::ostringstream s;

@@ -148,7 +148,7 @@ bool write_session(const std::string& dir, const std::optional<std::string>& scr
   }
   if (script) {
     // the scenario's text is copied in (as it was when the session began), so the replay needs
-    // no access to the scenario's folder, which the sandbox would refuse (README, Console)
+    // no access to the scenario's folder, which the sandbox would refuse (docs/console.md)
     f << "-- The scenario " << *script << " is copied below as it was when the session began; its errors\n"
       << "-- name it and its own lines. A scenario that reads files beside it, or whose runs wrote outside\n"
       << "-- this file's folder (out = ..., an argument naming a folder), needs: beltsim run --trusted\n";

@@ -1,5 +1,5 @@
 // The embedded Lua 5.4 interpreter that runs scenario scripts (the engine never sees lua.h).
-// Scripts get a global table `beltsim` (see lua_api.cpp and the README for the API).
+// Scripts get a global table `beltsim` (see lua_api.cpp and docs/lua-api.md for the API).
 #pragma once
 
 #include <atomic>
@@ -22,7 +22,7 @@ namespace beltsim::script {
 struct Context;  // script/context.hpp
 struct Limits;   // script/limits.hpp
 
-// What a script may reach and take (README, "Limits and safety"). The defaults are the sandbox
+// What a script may reach and take (docs/limits-and-safety.md). The defaults are the sandbox
 // and limits that no sensible scenario meets.
 struct Safety {
   // every standard Lua library (os.execute, io anywhere, debug, C modules); the main file is

@@ -1,4 +1,4 @@
-// Limits on what one call into Lua may take (private to src/script; README, "Limits and safety").
+// Limits on what one call into Lua may take (private to src/script; docs/limits-and-safety.md).
 //
 // Instructions: one count hook on the main thread (coroutines inherit it) adds up the instructions
 // run since the host last called into Lua (a script run, a console command; the every/when

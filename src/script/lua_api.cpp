@@ -1,4 +1,4 @@
-// Lua API of beltsim (documented in README.md, "Lua API"): the global table `beltsim` with the
+// Lua API of beltsim (documented in docs/lua-api.md): the global table `beltsim` with the
 // scene bindings (lua_scene.cpp; its runs, lua_run.cpp), the laws' helpers (lua_law.cpp), the
 // live simulation's (lua_sim.cpp) and beltsim.args, the script parameters of the command line (--set KEY=VALUE).
 //

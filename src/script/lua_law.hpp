@@ -1,4 +1,4 @@
-// Pulley laws from Lua (README, "Laws"): numbers, law tables, lists of laws (their sum), and
+// Pulley laws from Lua (docs/lua-api.md, "Laws"): numbers, law tables, lists of laws (their sum), and
 // function(t, omega) laws; the helpers beltsim.ramp, beltsim.step and beltsim.sine. The terms and
 // their formulas are in model/laws.hpp; this file only reads them, checks them (file:line) and
 // writes them back as text.

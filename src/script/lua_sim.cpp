@@ -1,4 +1,4 @@
-// Lua bindings of the live simulation (see lua_sim.hpp and the README, "Live simulation").
+// Lua bindings of the live simulation (see lua_sim.hpp and docs/lua-api.md, "Live simulation").
 // A simulation is a full userdata holding a SimBox; its methods check their arguments
 // ("sim:advance: expected 1 argument, got 2") and turn C++ errors into Lua errors after leaving
 // the catch block. Callbacks (every, when) are Lua functions kept in the registry; they are
@@ -608,7 +608,7 @@ int l_help(lua_State* L) {
 
 const std::vector<HelpEntry>& api_help() {
   static const std::vector<HelpEntry> h = {
-      {"scene", "beltsim.scene{ pulleys, belt, contact, friction, gravity, energy }", "builds a drive (README, Lua API)"},
+      {"scene", "beltsim.scene{ pulleys, belt, contact, friction, gravity, energy }", "builds a drive (docs/lua-api.md)"},
       {"run", "scene:run{ t_end [s], integrator, rtol, atol, sample [s], out, probe, snapshots, frames, events }",
        "a batch run: start, run_to(t_end), close"},
       {"start", "scene:start{ integrator, rtol, atol, sample [s], out, probe, snapshots, progress, frames }",

@@ -20,7 +20,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-constexpr const char* kHow = "beltsim --trusted allows it (README, Limits and safety)";
+constexpr const char* kHow = "beltsim --trusted allows it (docs/limits-and-safety.md)";
 
 // ---- forbidden functions ---------------------------------------------------------------------
 

@@ -1,4 +1,4 @@
-// The Lua libraries a scenario script gets (private to src/script; README, "Limits and safety").
+// The Lua libraries a scenario script gets (private to src/script; docs/limits-and-safety.md).
 //
 // The sandbox: the base library with text-only loading (load, loadfile and dofile never load a
 // precompiled chunk; string.dump is gone), string, table, math, utf8, coroutine; of os only time,

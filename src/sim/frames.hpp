@@ -1,7 +1,7 @@
 // What a run is asked to draw (plain data, no GL): frames at fixed simulated times rendered by an
 // observer that the engine knows only through FrameSink. The renderer (src/render, its own
 // library) provides the sink; a run that asks for no frames never calls the factory, so it opens
-// no GL context and no encoder (DESIGN §7: a scene pays for what it uses).
+// no GL context and no encoder (a scene pays only for what it uses).
 #pragma once
 
 #include <cmath>

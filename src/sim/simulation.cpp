@@ -47,7 +47,7 @@ void write_parameters(const Scene& sc, const RunSettings& rs, const OutputDir& d
   }
   text("stiffness_reading", sc.reading == StiffnessReading::rigidity ? "rigidity" : "per_sde",
        sc.reading == StiffnessReading::rigidity
-           ? "DESIGN §2: c_tra = EA [N] and c_tor = EI [N·m²] are rigidities, b_tra is per unit length; "
+           ? "the paper's c_tra = EA [N] and c_tor = EI [N·m²] are rigidities, b_tra is per unit length; "
              "per SDE k = EA/l0, k_t = EI/l0, c = b_tra/l0 with l0 the rest length of an element"
            : "per-SDE stiffness and damping as given");
   row("belt.pitch", b.pitch, "m", "l: route length / elements");
@@ -439,7 +439,7 @@ void Simulation::sample(double t, const Eigen::VectorXd& y) {
 }
 
 // one row per element, all written by one write(2) (io/row_file.hpp): the file holds whole
-// snapshots. Columns (SI, README "Outputs"): t [s], element, s [m] (where it started along the
+// snapshots. Columns (SI, docs/outputs.md): t [s], element, s [m] (where it started along the
 // belt), x, y [m], tension, normal, friction [N], slip [m/s], mu, pulley (name, empty when free),
 // state (free, stick, slip: model/observables.hpp)
 void Simulation::snapshot(double t, const Eigen::VectorXd& y) {

@@ -271,7 +271,7 @@ RunResult run(const Scene& scene, const RunSettings& settings, const std::atomic
 // hour of video at 30 fps), unless settings.allow_large.
 void check_volume(const Scene& scene, const RunSettings& settings, double t0, double t1);
 
-// the column names of timeseries.csv for a scene with that many probes (documented in the README)
+// the column names of timeseries.csv for a scene with that many probes (documented in docs/outputs.md)
 std::vector<std::string> timeseries_columns(const Scene& scene, size_t probes = 1);
 
 }  // namespace beltsim

@@ -1,5 +1,5 @@
 // The fuzz target over the scene API (issue 12, item 7): the fuzzer's bytes are a scenario script,
-// run by the real interpreter in its sandbox (README, Limits and safety) with small limits, so
+// run by the real interpreter in its sandbox (docs/limits-and-safety.md) with small limits, so
 // that it explores beltsim.scene{...} tables, scene:run{}, scene:start{} and sim:run_to for a few
 // steps. Every outcome but a ScriptError ("file:line: reason") is a finding: a crash, a sanitizer
 // report, an exception of another type, a hang (libFuzzer's -timeout).

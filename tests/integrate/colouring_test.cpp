@@ -92,7 +92,7 @@ TEST(Colouring, DifferenceJacobianMatchesTheAnalyticOne) {
   const Compare at_rest = compare(sys, 0, sc.y0, &taken);
   EXPECT_LT(at_rest.worst, tol) << sys.describe(at_rest.worst_col);
   // one right-hand side per colour; the two pulley-speed rows touch every element column, so
-  // the belt's pattern needs about as many colours as columns (README)
+  // the belt's pattern needs about as many colours as columns (docs/integration.md)
   EXPECT_GT(taken, 0);
   EXPECT_LE(taken, sys.size());
   // moving: the drive after 0.05 s, elements in stick and slip on both pulleys

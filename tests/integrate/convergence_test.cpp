@@ -1,4 +1,4 @@
-// Each integrator reaches its order on a smooth problem with a known solution (DESIGN §6.7).
+// Each integrator reaches its order on a smooth problem with a known solution.
 // Problem: a harmonic oscillator y1' = y2, y2' = -y1 and a Prothero–Robinson component
 // y3' = λ·(y3 - sin t) + cos t (non-autonomous, so the ∂F/∂t terms of the Rosenbrock method are
 // exercised); exact solution (cos t, -sin t, sin t). Fixed steps h = 1/10 ... 1/160 to t = 1;

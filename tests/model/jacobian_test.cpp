@@ -12,7 +12,7 @@
 // agree to 1e-6 of its largest entry. The smallest terms the test must see are far larger:
 // the SDE's -h·e·F moment term (h·F ≈ 5 N·m/rad against k·h² ≈ 750), the friction geometry term
 // μN/r (≈ 1e3 against c2 ≈ 1e6), the contact damping b·δ (≈ 30 against μN/Δv ≈ 1e7): each is
-// ≥ 1e-5 of its column, so dropping one or flipping its sign fails the test (tried: see README).
+// ≥ 1e-5 of its column, so dropping one or flipping its sign fails the test (tried: see docs/testing.md).
 // States are kept a margin away from every kink (p = 0, p = p_max, N = 0, |v_T| = Δv), far
 // beyond what the perturbations can move (the stick margin 1e-6 m/s against ε ≤ 1e-7 m/s).
 #include <gtest/gtest.h>

@@ -1,4 +1,4 @@
-// Pulley laws (model/laws.hpp): each term against its formula written out here (the README's),
+// Pulley laws (model/laws.hpp): each term against its formula written out here (docs/lua-api.md's),
 // the analytic derivatives against central differences of the value, sums, kinks and jumps.
 //
 // Tolerances. The values are sums of a few terms of size ≤ 100 evaluated in double precision:
@@ -44,7 +44,7 @@ TimeSpeedLaw every_term() {
   return law;
 }
 
-// the README's formulas, written out independently of laws.cpp
+// docs/lua-api.md's formulas, written out independently of laws.cpp
 double formula(double t, double w) {
   auto lerp = [](double x, double x0, double x1, double y0, double y1) {
     return x <= x0 ? y0 : x >= x1 ? y1 : y0 + (y1 - y0) * (x - x0) / (x1 - x0);

@@ -1,4 +1,4 @@
-// Checks with known answers (DESIGN §6, items 1–6), in that order.
+// Checks with known answers (docs/testing.md, Known answers), in that order.
 #include <gtest/gtest.h>
 
 #include <algorithm>

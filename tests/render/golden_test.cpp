@@ -8,7 +8,7 @@
 //   its thickness changes over a hundred pixels along its edges (both measured by the tests
 //   below, which must fail the comparison).
 // - Why it is not too much: llvmpipe differs across CPUs and Mesa versions by a level or two
-//   (DESIGN §9; pygfx uses 3), antialiased edges by a few more where coverage rounds
+//   (pygfx uses 3), antialiased edges by a few more where coverage rounds
 //   differently; 16 levels leaves room for that on every pixel, and kMaxBadPixels for a few
 //   edge pixels whose coverage flips. A FreeType or font upgrade that moves glyphs is a real
 //   change of the picture: update the goldens (below), or add an alternate NAME_1.png beside
@@ -252,7 +252,7 @@ TEST_F(Golden, EglDrawsWhatOsMesaDraws) {
 }
 
 // A context that cannot be made gives a message naming the backend, the version and what to do
-// (OSMesa of Mesa 22.3 makes no 4.6 core context: DESIGN §9).
+// (OSMesa of Mesa 22.3 makes no 4.6 core context).
 TEST_F(Golden, FailedContextSaysWhy) {
   try {
     make_gl_context(GlBackend::osmesa, 4, 6);

@@ -130,7 +130,7 @@ double wrap_penetration(const Scene& sc) {
 // 3 % tolerance covers the polygon (an element's chord carries 2T·sin(α/2) over a pitch, α = l/R,
 // against T/R: 0.2 % at 60 elements) and the bending moment's end effects.
 TEST(BeltData, PerLengthContactHoldsThePressureAsElementsAreAdded) {
-  // the static start needs its trust-region retry at 120 and 240 elements (README, Integration)
+  // the static start needs its trust-region retry at 120 and 240 elements (docs/model.md, Initial state)
   test::expect_warnings({WarningKind::static_retry});
   const SceneDef paper = presets::paper_dry();
   const double pitch60 = build_scene(paper).model.belt.pitch;

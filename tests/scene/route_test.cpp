@@ -16,7 +16,7 @@ Route route_of(const SceneDef& d) {
   return make_route(order.circles, d.belt.loop_sense, order.names);
 }
 
-// DESIGN §4's layout of the paper's automotive drive gives wraps of 183°, 51°, 137° and 91°
+// Our layout (docs/model.md, Our choices) of the paper's automotive drive gives wraps of 183°, 51°, 137° and 91°
 // (crankshaft, tensioner, alternator, pump), rounded to the degree: each wrap lies within half a
 // degree of its figure. Its pitch length of 1.057 m is rounded to the millimetre and is the spans'
 // length plus arcs of the rounded wraps: it may differ from the route's by the rounding (0.5 mm)

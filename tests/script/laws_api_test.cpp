@@ -1,4 +1,4 @@
-// Pulley laws through Lua (README, "Laws"), the argument checks of every API function, the
+// Pulley laws through Lua (docs/lua-api.md, "Laws"), the argument checks of every API function, the
 // suggestions for misspelt names, and the script parameters of --set (beltsim.args).
 //
 // The physics tests take the belt's friction away (μ = 0: the belt's torque on a pulley,

@@ -241,7 +241,7 @@ std::vector<std::vector<double>> read_rows(const fs::path& csv_path) {
 // the ramp asks 14 N·m by 60 ms, so the driver runs ahead of the driven pulley by far more than
 // the dry drive's creep (measured: 0.6 rad/s wet against 0.003 dry at 60 ms).
 TEST(LuaApi, WettingEventChangesTheFrictionAtItsTime) {
-  // the paper's dry drive has failed implicit steps from 0.036 s (README, Outputs)
+  // the paper's dry drive has failed implicit steps from 0.036 s (docs/outputs.md)
   beltsim::test::expect_warnings({WarningKind::failed_step});
   auto run_case = [](const std::string& name, const std::string& events) {
     const std::string text = scene_text("") + "s:run{ t_end = 0.06, sample = 1e-3, rtol = 1e-6, " + events + " }\n";
@@ -332,7 +332,7 @@ TEST(LuaApi, BadEventsAreRejectedWithFileLine) {
 // below that bound by a few per cent (measured: -12.75 rad/s, 4.6 %). Bounds: between 0.9 and 1.0
 // of the lossless value; driver and driven within 1 % of each other (the belt is not slipping).
 TEST(LuaApi, PaperDryScriptWritesTheTimeSeries) {
-  // the paper's dry drive has failed implicit steps from 0.036 s (README, Outputs)
+  // the paper's dry drive has failed implicit steps from 0.036 s (docs/outputs.md)
   beltsim::test::expect_warnings({WarningKind::failed_step});
   const fs::path out = temp_dir() / "paper_dry";
   Interpreter lua;
@@ -417,7 +417,7 @@ TEST(LuaApi, BeltDataAndTheDefaultsTaken) {
 // max_wall: a batch run past its wall-time limit is an error naming the limit and the time
 // reached (not a silent stop), outputs kept; a bad limit is rejected
 TEST(LuaApi, MaxWallStopsARunWithAnError) {
-  // the paper's dry drive has failed implicit steps from 0.036 s (README, Outputs)
+  // the paper's dry drive has failed implicit steps from 0.036 s (docs/outputs.md)
   beltsim::test::expect_warnings({WarningKind::failed_step});
   const std::string msg = run_text(scene_text("") + "s:run{ t_end = 1, max_wall = 0.05, progress = false }\n");
   EXPECT_NE(msg.find("scene.lua:"), std::string::npos) << msg;

@@ -1,4 +1,4 @@
-// The sandbox and the limits (src/script/sandbox.cpp, limits.cpp; README, "Limits and safety"):
+// The sandbox and the limits (src/script/sandbox.cpp, limits.cpp; docs/limits-and-safety.md):
 // every forbidden function raises an error naming file:line and --trusted; files only under the
 // output folder (read, write) and the script's folder (read); no precompiled chunk anywhere; an
 // instruction limit and a memory limit with clear messages; Ctrl-C through the same hook; the

@@ -136,7 +136,7 @@ TEST(NoHang, WallLimitStopsABatchRun) {
 // a rate far below 1e-9 of the best, and the run stops with the time, the component and a
 // suggestion, its outputs closed
 TEST(NoHang, RateCollapseStops) {
-  test::expect_warnings({WarningKind::failed_step});  // the paper's drive has some (README, Outputs)
+  test::expect_warnings({WarningKind::failed_step});  // the paper's drive has some (docs/outputs.md)
   RunSettings rs;
   rs.sample_dt = 1e-4;
   rs.out_dir = temp("rate").string();

@@ -79,7 +79,7 @@ bool same_bits(const Eigen::VectorXd& a, const Eigen::VectorXd& b) {
 // the sample grid
 TEST(Live, PausingChangesNothing) {
   // the paper's dry drive has failed implicit steps from 0.036 s (esdirk32) and CVODE
-  // convergence failures from 0.018 s (README, Outputs)
+  // convergence failures from 0.018 s (docs/outputs.md)
   test::expect_warnings({WarningKind::failed_step, WarningKind::cvode_convergence});
   for (const std::string integ : {"esdirk32", "rkf45", "cvode"}) {
     // rkf45 is stability-limited (steps of ~1e-9 s): a short stretch
@@ -122,7 +122,7 @@ TEST(Live, PausingChangesNothing) {
 // differ, and events.csv has the change at the pause time
 TEST(Live, ChangeAtAPauseAppliesFromThen) {
   // the paper's dry drive has failed implicit steps from 0.036 s (esdirk32) and CVODE
-  // convergence failures from 0.018 s (README, Outputs)
+  // convergence failures from 0.018 s (docs/outputs.md)
   test::expect_warnings({WarningKind::failed_step});
   const fs::path a = temp("changed"), b = temp("unchanged");
   const double pause = 0.0205;  // off the sample grid
@@ -214,7 +214,7 @@ TEST(Live, EveryAndWhenAtTheirTimes) {
 // written when the checkpoint was taken); changed laws and μ and pending events are restored
 TEST(Live, CheckpointResumesBitForBit) {
   // the paper's dry drive has failed implicit steps from 0.036 s (esdirk32) and CVODE
-  // convergence failures from 0.018 s (README, Outputs)
+  // convergence failures from 0.018 s (docs/outputs.md)
   test::expect_warnings({WarningKind::failed_step});
   SceneDef d = presets::paper_dry();
   const Scene sc = build_scene(d);
@@ -277,7 +277,7 @@ TEST(Live, CheckpointResumesBitForBit) {
 // gave errors up to 150 N·m (model/observables.hpp, blend_contact), so 2 N·m separates the two.
 TEST(Live, SampledBeltTorqueTurnsThePulley) {
   // the paper's dry drive has failed implicit steps from 0.036 s (esdirk32) and CVODE
-  // convergence failures from 0.018 s (README, Outputs)
+  // convergence failures from 0.018 s (docs/outputs.md)
   test::expect_warnings({WarningKind::failed_step});
   RunSettings rs = settings("esdirk32", temp("belt_torque"));
   rs.keep_samples = true;
@@ -357,7 +357,7 @@ TEST(Live, OutputsReadBackBitForBit) {
 //    (rms), its interval mean by 0.17 N·m (measured; the mean over an interval shorter than the
 //    passing period smooths less: 5 ms gave 3.5 against 2.5 N·m); bound: below 0.3 of the samples'.
 TEST(Live, IntervalMeansAreExactFromTheSteps) {
-  // the paper's dry drive: failed implicit steps from 0.036 s (README, Outputs)
+  // the paper's dry drive: failed implicit steps from 0.036 s (docs/outputs.md)
   test::expect_warnings({WarningKind::failed_step});
   SceneDef d = presets::paper_dry();
   d.belt.mu = 0.3;
@@ -412,7 +412,7 @@ TEST(Live, IntervalMeansAreExactFromTheSteps) {
 }
 
 // the fallbacks are counted and shown: the static start's retry (needed at 120 elements on the
-// paper's drive, not at 60: README, Integration) and steps whose iteration failed, with their
+// paper's drive, not at 60: docs/model.md, Initial state) and steps whose iteration failed, with their
 // counts and first times, in notes(), the summary line and parameters.csv
 TEST(Live, FallbacksAreCountedAndShown) {
   test::expect_warnings({WarningKind::static_retry, WarningKind::failed_step});
