@@ -73,7 +73,7 @@ case "$mode" in
       targets=(beltsim_fuzz)
       if [ "${BELTSIM_SANITIZE:-1}" != 0 ]; then
         targets+=(beltsim beltsim_tests_quick beltsim_tests_script beltsim_tests_render beltsim_tests_plot
-                  beltsim_fuzz_replay)
+                  beltsim_fuzz_replay beltsim_fuzz_checkpoint_replay)
       fi
       cmake --build "$san_dir" -j "$jobs" --target "${targets[@]}"
       if [ "${BELTSIM_SANITIZE:-1}" != 0 ]; then
