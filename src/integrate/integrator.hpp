@@ -42,7 +42,7 @@ class Integrator {
   virtual void kink() {}
   virtual void dense(double t, Eigen::VectorXd& out) const = 0;
   virtual WorkCounters work() const = 0;
-  // the component with the largest error in the last error estimate (OdeSystem::describe), for
+  // the component with the largest error in the last error estimate (OdeProblem::describe), for
   // the messages of a run that makes no progress; "" when the method does not say
   virtual std::string stiffest() const { return ""; }
   // checkpoints (bit-identical continuation); false when the method cannot export its state
@@ -62,15 +62,16 @@ class Integrator {
   Eigen::VectorXd y_, y_prev_;
 };
 
-// Every integrator a run accepts (integrate/stepper.hpp integrator_names()). The system must
-// outlive the integrator. h_max: largest step [s] (0: none). Throws std::invalid_argument for an
-// unknown name or a tolerance outside (0, 1) / a negative or non-finite atol.
-std::unique_ptr<Integrator> make_integrator(const std::string& name, OdeSystem& sys, const Tolerances& tol,
+// Every integrator a run accepts (integrate/stepper.hpp integrator_names()). The system's parts
+// must outlive the integrator. h_max: largest step [s] (0: none). Throws std::invalid_argument for an
+// unknown name, an implicit method on a system without a linear solver, or a tolerance outside
+// (0, 1) / a negative or non-finite atol.
+std::unique_ptr<Integrator> make_integrator(const std::string& name, const OdeSystem& sys, const Tolerances& tol,
                                             double h_max = 0);
 
 class Stepper;
 // a one-step method the caller owns (tests with their own tableaux)
-std::unique_ptr<Integrator> make_one_step(Stepper& stepper, OdeSystem& sys, const Tolerances& tol, double h_max = 0);
+std::unique_ptr<Integrator> make_one_step(Stepper& stepper, const OdeSystem& sys, const Tolerances& tol, double h_max = 0);
 
 // checks rtol in (0, 1) and atol (< 0: same as rtol; else finite); throws std::invalid_argument
 void check_tolerances(const Tolerances& tol);
