@@ -62,7 +62,7 @@ bool valid_colouring(const Eigen::SparseMatrix<double>& A, const ColumnColouring
   return true;
 }
 
-long difference_jacobian(OdeSystem& sys, const ColumnColouring& c, double t, const double* y, const double* f0,
+long difference_jacobian(OdeProblem& sys, const ColumnColouring& c, double t, const double* y, const double* f0,
                          Eigen::SparseMatrix<double>& J, std::vector<double>& work) {
   const int n = sys.size();
   work.resize(2 * static_cast<size_t>(n));

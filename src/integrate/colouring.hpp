@@ -33,7 +33,7 @@ ColumnColouring colour_columns(const Eigen::SparseMatrix<double>& A);
 // error (∝ ε/δ); the typical size (0.1 m, 1 m/s, ...) keeps δ_k away from zero for components
 // that pass through zero. work: 2·size scratch. Returns the right-hand sides taken (the
 // colours), or -1 when F was not finite at a perturbed point.
-long difference_jacobian(OdeSystem& sys, const ColumnColouring& c, double t, const double* y, const double* f0,
+long difference_jacobian(OdeProblem& sys, const ColumnColouring& c, double t, const double* y, const double* f0,
                          Eigen::SparseMatrix<double>& J, std::vector<double>& work);
 
 // true when no two columns of one colour share a row of A's pattern

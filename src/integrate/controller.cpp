@@ -5,7 +5,7 @@
 
 namespace beltsim {
 
-StepController::StepController(const OdeSystem& sys, const Tolerances& tol, int q)
+StepController::StepController(const OdeProblem& sys, const Tolerances& tol, int q)
     : rtol_(tol.rtol), exponent_(1.0 / (q + 1)) {
   const double atol = tol.atol < 0 ? tol.rtol : tol.atol;
   atol_.resize(sys.size());

@@ -17,7 +17,7 @@ struct Tolerances {
 
 class StepController {
  public:
-  StepController(const OdeSystem& sys, const Tolerances& tol, int q);
+  StepController(const OdeProblem& sys, const Tolerances& tol, int q);
   double error_norm(const Eigen::VectorXd& y0, const Eigen::VectorXd& y1, const Eigen::VectorXd& err,
                     int* worst = nullptr) const;
   // next step size after a step with error norm e (accepted when e <= 1)

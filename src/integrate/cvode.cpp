@@ -28,7 +28,8 @@ bool is_cvode(const std::string& name) { return name == "cvode" || name == "cvod
 namespace {
 
 struct Session {
-  OdeSystem* sys = nullptr;
+  OdeProblem* problem = nullptr;
+  LinearSolver* linear = nullptr;  // its sparse Jacobian (the pattern, and for "cvode" the values)
   Eigen::SparseMatrix<double> J;  // analytic Jacobian, CSC; for cvode-fd only its pattern is used
   ColumnColouring colouring;      // cvode-fd: the columns of J's pattern that share one perturbation
   std::vector<double> work;       // cvode-fd: scratch of the difference quotients
@@ -61,7 +62,7 @@ int weights_cb(N_Vector y, N_Vector ewt, void* user) {
 // the switching functions for CVODE's rootfinding
 int switches_cb(sunrealtype t, N_Vector y, sunrealtype* g, void* user) {
   Session& s = *static_cast<Session*>(user);
-  s.sys->switches(t, N_VGetArrayPointer(y), g);
+  s.problem->switches(t, N_VGetArrayPointer(y), g);
   return 0;
 }
 
@@ -70,12 +71,12 @@ int rhs_cb(sunrealtype t, N_Vector y, N_Vector ydot, void* user) {
   const double* yy = N_VGetArrayPointer(y);
   double* dy = N_VGetArrayPointer(ydot);
   try {
-    s.sys->rhs(t, yy, dy);
+    s.problem->rhs(t, yy, dy);
   } catch (...) {
     s.error = std::current_exception();
     return -1;  // unrecoverable: CVode returns at once
   }
-  for (int k = 0, n = s.sys->size(); k < n; ++k)
+  for (int k = 0, n = s.problem->size(); k < n; ++k)
     if (!std::isfinite(dy[k])) {
       s.warnings.add(WarningKind::cvode_nonfinite_rhs, t);
       return 1;  // recoverable: CVODE retries with a smaller step
@@ -101,7 +102,7 @@ int copy_jacobian(const Session& s, SUNMatrix A) {
 int jac_cb(sunrealtype t, N_Vector y, N_Vector, SUNMatrix A, void* user, N_Vector, N_Vector, N_Vector) {
   Session& s = *static_cast<Session*>(user);
   try {
-    if (!s.sys->sparse_jacobian(t, N_VGetArrayPointer(y), s.J)) return -1;
+    if (!s.linear->sparse_jacobian(t, N_VGetArrayPointer(y), s.J)) return -1;
   } catch (...) {
     s.error = std::current_exception();
     return -1;
@@ -116,7 +117,7 @@ int fd_jac_cb(sunrealtype t, N_Vector y, N_Vector fy, SUNMatrix A, void* user, N
   Session& s = *static_cast<Session*>(user);
   long taken = 0;
   try {
-    taken = difference_jacobian(*s.sys, s.colouring, t, N_VGetArrayPointer(y), N_VGetArrayPointer(fy), s.J, s.work);
+    taken = difference_jacobian(*s.problem, s.colouring, t, N_VGetArrayPointer(y), N_VGetArrayPointer(fy), s.J, s.work);
   } catch (...) {  // as in rhs_cb: kept, not unwound through CVODE
     s.error = std::current_exception();
     return -1;
@@ -191,22 +192,26 @@ namespace {
 
 class CvodeIntegrator final : public Integrator {
  public:
-  CvodeIntegrator(const std::string& name, OdeSystem& sys, const Tolerances& tol, const CvodeSettings& settings)
-      : name_(name), sys_(sys), tol_(tol), settings_(settings), analytic_(name == "cvode") {
-    ses_.sys = &sys;
+  CvodeIntegrator(const std::string& name, const OdeSystem& sys, const Tolerances& tol, const CvodeSettings& settings)
+      : name_(name), problem_(*sys.problem), linear_(sys.linear), tol_(tol), settings_(settings),
+        analytic_(name == "cvode") {
+    if (!linear_)
+      throw std::invalid_argument("integrator: " + name + " needs a linear solver with a sparse Jacobian; the system has none");
+    ses_.problem = sys.problem;
+    ses_.linear = sys.linear;
     if (SUNContext_Create(nullptr, &cv_.ctx) != 0) throw std::runtime_error("cvode: cannot create a SUNDIALS context");
-    const int n = sys.size();
+    const int n = problem_.size();
     cv_.y = N_VNew_Serial(n, cv_.ctx);
     cv_.abstol = N_VNew_Serial(n, cv_.ctx);
     cv_.dky = N_VNew_Serial(n, cv_.ctx);
     const double atol = tol.atol < 0 ? tol.rtol : tol.atol;
-    for (int k = 0; k < n; ++k) N_VGetArrayPointer(cv_.abstol)[k] = atol * sys.atol_scale(k);
+    for (int k = 0; k < n; ++k) N_VGetArrayPointer(cv_.abstol)[k] = atol * problem_.atol_scale(k);
   }
   std::string name() const override { return name_; }
 
   void start(double t, const Eigen::VectorXd& y) override {
-    const int n = sys_.size();
-    if (const std::string bad = sys_.check(t, y.data()); !bad.empty())
+    const int n = problem_.size();
+    if (const std::string bad = problem_.check(t, y.data()); !bad.empty())
       throw DivergenceError(t, "the state at t = " + fmt_time(t) + " s: " + bad);
     y_ = y_prev_ = y;
     t_ = t_prev_ = t;
@@ -228,14 +233,14 @@ class CvodeIntegrator final : public Integrator {
       ses_.rtol = tol_.rtol;
       ses_.atol.assign(N_VGetArrayPointer(cv_.abstol), N_VGetArrayPointer(cv_.abstol) + n);
       ses_.cap.resize(n);
-      for (int k = 0; k < n; ++k) ses_.cap[k] = settings_.resolve * sys_.resolution(k);
+      for (int k = 0; k < n; ++k) ses_.cap[k] = settings_.resolve * problem_.resolution(k);
       check(CVodeWFtolerances(cv_.mem, weights_cb), "CVodeWFtolerances");
     } else {
       check(CVodeSVtolerances(cv_.mem, tol_.rtol, cv_.abstol), "CVodeSVtolerances");
     }
     check(CVodeSetMaxNumSteps(cv_.mem, -1), "CVodeSetMaxNumSteps");  // no limit: the caller's stop flag ends a run
     // the pattern (both variants) from the analytic Jacobian: the same for every state
-    if (!sys_.sparse_jacobian(t, y.data(), ses_.J)) throw std::runtime_error("cvode: the system has no sparse Jacobian");
+    if (!linear_->sparse_jacobian(t, y.data(), ses_.J)) throw std::runtime_error("cvode: the linear solver gives no sparse Jacobian");
     ses_.J.makeCompressed();
     cv_.A = SUNSparseMatrix(n, n, ses_.J.nonZeros(), CSC_MAT, cv_.ctx);
     cv_.LS = SUNLinSol_KLU(cv_.y, cv_.A, cv_.ctx);
@@ -247,8 +252,8 @@ class CvodeIntegrator final : public Integrator {
       ses_.colouring = colour_columns(ses_.J);
       check(CVodeSetJacFn(cv_.mem, fd_jac_cb), "CVodeSetJacFn");
     }
-    if (settings_.kink_gap > 0 && sys_.switch_count() > 0)
-      check(CVodeRootInit(cv_.mem, sys_.switch_count(), switches_cb), "CVodeRootInit");
+    if (settings_.kink_gap > 0 && problem_.switch_count() > 0)
+      check(CVodeRootInit(cv_.mem, problem_.switch_count(), switches_cb), "CVodeRootInit");
     apply(cv_.mem, settings_);
   }
 
@@ -298,13 +303,13 @@ class CvodeIntegrator final : public Integrator {
                                        fmt_time(t_ret) + " s" +
                                        (ses_.last_error.empty() ? "" : " (" + ses_.last_error + ")"));
     const double* yr = N_VGetArrayPointer(cv_.y);
-    if (const std::string bad = sys_.check(t_ret, yr); !bad.empty())
+    if (const std::string bad = problem_.check(t_ret, yr); !bad.empty())
       throw DivergenceError(t_ret, "the run diverged at t = " + fmt_time(t_ret) + " s: " + bad);
     t_prev_ = t_, t_ = t_ret;
     y_prev_.swap(y_);
-    y_.resize(sys_.size());
-    std::copy(yr, yr + sys_.size(), y_.data());
-    sys_.counters = work();  // the system's counters tell the same as for the one-step methods
+    y_.resize(problem_.size());
+    std::copy(yr, yr + problem_.size(), y_.data());
+    problem_.counters = work();  // the problem's counters tell the same as for the one-step methods
     // a stall: the BDF history (order, step, Jacobian age) that got it here cannot get it out;
     // a restart from the current state can (the reference implementation's CVODE run restarted too)
     if (settings_.stall_window > 0 && ++window_steps_ >= settings_.stall_window) {
@@ -327,7 +332,7 @@ class CvodeIntegrator final : public Integrator {
     }
     check(CVodeGetDky(cv_.mem, std::max(t, t_prev_), 0, cv_.dky), "CVodeGetDky");
     const double* d = N_VGetArrayPointer(cv_.dky);
-    out = Eigen::Map<const Eigen::VectorXd>(d, sys_.size());
+    out = Eigen::Map<const Eigen::VectorXd>(d, problem_.size());
   }
 
   WorkCounters work() const override {
@@ -342,7 +347,8 @@ class CvodeIntegrator final : public Integrator {
 
  private:
   std::string name_;
-  OdeSystem& sys_;
+  OdeProblem& problem_;
+  LinearSolver* linear_;
   Tolerances tol_;
   CvodeSettings settings_;
   bool analytic_;
@@ -358,12 +364,12 @@ class CvodeIntegrator final : public Integrator {
 
 }  // namespace
 
-std::unique_ptr<Integrator> make_cvode_integrator(const std::string& name, OdeSystem& sys, const Tolerances& tol,
+std::unique_ptr<Integrator> make_cvode_integrator(const std::string& name, const OdeSystem& sys, const Tolerances& tol,
                                                   const CvodeSettings& settings) {
   return std::make_unique<CvodeIntegrator>(name, sys, tol, settings);
 }
 
-DriveResult drive_cvode(OdeSystem& sys, const std::string& name, const Tolerances& tol, const DriveOptions& opt,
+DriveResult drive_cvode(const OdeSystem& sys, const std::string& name, const Tolerances& tol, const DriveOptions& opt,
                         Eigen::VectorXd& y, const SampleFn& sample, const ProgressFn& progress,
                         const CvodeSettings& settings) {
   check_tolerances(tol);

@@ -35,7 +35,7 @@ struct CvodeSettings {
   // state (CVodeReInit: order 1, a new history, a new Jacobian). 0 turns it off.
   long stall_window = 500;
   double stall_step = 1e-8;        // [s]
-  // locate the kinks of F with CVODE's rootfinding (CVodeRootInit on OdeSystem::switches) and
+  // locate the kinks of F with CVODE's rootfinding (CVodeRootInit on OdeProblem::switches) and
   // restart there, so that no BDF history spans a kink, but no sooner than kink_gap steps after
   // the last restart: where the solution's error is as large as a kink's scale (a friction band
   // of 1e-5 m/s against rtol·|v| at loose tolerances) its switching function crosses zero every
@@ -43,7 +43,7 @@ struct CvodeSettings {
   // (not a CVODE input; the adapter's)
   long kink_gap = 20;
   // CVODE's error weights 1/(rtol·|y_k| + atol_k), with each component's tolerance held below
-  // this fraction of OdeSystem::resolution (CVodeWFtolerances): at rtol 1e-5 a belt speed of
+  // this fraction of OdeProblem::resolution (CVodeWFtolerances): at rtol 1e-5 a belt speed of
   // 2 m/s lets the velocity error be twice the friction band, and BDF then meets the band's kinks
   // at random. 0: CVODE's own weights (not a CVODE input; the adapter's)
   double resolve = 1;
@@ -51,10 +51,10 @@ struct CvodeSettings {
 
 bool is_cvode(const std::string& name);
 
-DriveResult drive_cvode(OdeSystem& sys, const std::string& name, const Tolerances& tol, const DriveOptions& opt,
+DriveResult drive_cvode(const OdeSystem& sys, const std::string& name, const Tolerances& tol, const DriveOptions& opt,
                         Eigen::VectorXd& y, const SampleFn& sample, const ProgressFn& progress = {},
                         const CvodeSettings& settings = {});
-std::unique_ptr<Integrator> make_cvode_integrator(const std::string& name, OdeSystem& sys, const Tolerances& tol,
+std::unique_ptr<Integrator> make_cvode_integrator(const std::string& name, const OdeSystem& sys, const Tolerances& tol,
                                                   const CvodeSettings& settings = {});
 
 // "order 2, coefficient 0.1, ..." for reports

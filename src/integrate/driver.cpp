@@ -36,7 +36,7 @@ DriveResult drive(Integrator& integ, const DriveOptions& opt, Eigen::VectorXd& y
   return res;
 }
 
-DriveResult drive(OdeSystem& sys, Stepper& stepper, const Tolerances& tol, const DriveOptions& opt,
+DriveResult drive(const OdeSystem& sys, Stepper& stepper, const Tolerances& tol, const DriveOptions& opt,
                   Eigen::VectorXd& y, const SampleFn& sample, const ProgressFn& progress) {
   auto integ = make_one_step(stepper, sys, tol, opt.h_max > 0 ? opt.h_max : opt.t_end - opt.t0);
   return drive(*integ, opt, y, sample, progress);

@@ -48,7 +48,7 @@ using ProgressFn = std::function<void(double t, const WorkCounters& w)>;
 DriveResult drive(Integrator& integ, const DriveOptions& opt, Eigen::VectorXd& y, const SampleFn& sample,
                   const ProgressFn& progress = {});
 // the same with a one-step method
-DriveResult drive(OdeSystem& sys, Stepper& stepper, const Tolerances& tol, const DriveOptions& opt,
+DriveResult drive(const OdeSystem& sys, Stepper& stepper, const Tolerances& tol, const DriveOptions& opt,
                   Eigen::VectorXd& y, const SampleFn& sample, const ProgressFn& progress = {});
 
 }  // namespace beltsim

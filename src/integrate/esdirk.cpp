@@ -27,10 +27,12 @@ class Esdirk final : public Stepper {
   int order() const override { return tab_.order; }
   int embedded_order() const override { return tab_.embedded_order; }
   void attach(const StepController& ctl) override { ctl_ = &ctl; }
+  bool needs_linear_solver() const override { return true; }
 
-  bool step(OdeSystem& sys, double t, const Eigen::VectorXd& y, const Eigen::VectorXd& f0, double h,
+  bool step(const OdeSystem& sys, double t, const Eigen::VectorXd& y, const Eigen::VectorXd& f0, double h,
             Eigen::VectorXd& y1, Eigen::VectorXd& err) override {
     const EsdirkTableau& tab = tab_;
+    aids_ = sys.aids ? sys.aids : &no_aids_;
     const int n = static_cast<int>(y.size());
     const int s = tab.stages;
     const double sh = 1.0 / (h * tab.gamma);
@@ -43,11 +45,11 @@ class Esdirk final : public Stepper {
       psi_ = y;
       for (int j = 0; j < i; ++j) psi_ += (h * tab.a[i][j]) * F_[j];
       // predictor: the previous stage's value carried along its own motion to ti
-      // (OdeSystem::predict; for the belt, elements in a wrap turn with it). Extrapolating along
+      // (NewtonAids::predict; for the belt, elements in a wrap turn with it). Extrapolating along
       // the previous stage's slope instead carries the stiff components (friction in stick,
       // ≈ 5e9 1/s) across their kinks and starts Newton on the wrong branch for many elements:
       // measured 6x more steps over the first 0.3 s of the paper's drive.
-      sys.predict(t + tab.c[i - 1] * h, (tab.c[i] - tab.c[i - 1]) * h, Z_.data());
+      aids_->predict(t + tab.c[i - 1] * h, (tab.c[i] - tab.c[i - 1]) * h, Z_.data());
       if (!newton(sys, ti, sh, n)) return false;
       F_[i] = (Z_ - psi_) * sh;
     }
@@ -56,32 +58,32 @@ class Esdirk final : public Stepper {
     for (int j = 0; j < s; ++j) raw_ += (h * (tab.b[j] - tab.b_hat[j])) * F_[j];
     // filter: err = (I - hγJ)^-1 raw = s·(sI - J)^-1 raw, with J of the last stage
     err.resize(n);
-    sys.solve(raw_.data(), err.data());
-    sys.counters.solves++;
+    sys.linear->solve(raw_.data(), err.data());
+    sys.problem->counters.solves++;
     err *= sh;
     return y1.allFinite();
   }
 
  private:
   // residual G(Z) = Z - ψ - F(t, Z)/s, in the units of the state; F(t, Z) kept in Fz
-  double residual(OdeSystem& sys, double t, double s, const Eigen::VectorXd& Z, Eigen::VectorXd& Fz,
+  double residual(const OdeSystem& sys, double t, double s, const Eigen::VectorXd& Z, Eigen::VectorXd& Fz,
                   Eigen::VectorXd& G) {
-    sys.rhs(t, Z.data(), Fz.data());
-    sys.counters.rhs++;
+    sys.problem->rhs(t, Z.data(), Fz.data());
+    sys.problem->counters.rhs++;
     G = Z - psi_ - Fz / s;
     return ctl_->weighted_norm(Z, G);
   }
 
   // semi-smooth Newton on G(Z) = 0; Z_ holds the predictor. The Jacobian and its factorisation
   // are reused within the step while the iterate stays on the same smooth piece of the
-  // right-hand side (OdeSystem::branches) and the corrections contract by kRate or better;
+  // right-hand side (NewtonAids::branches) and the corrections contract by kRate or better;
   // otherwise they are refreshed at the current iterate. Three aids for the kinks:
   // - after every correction the system solves its stiffest local equations exactly
-  //   (OdeSystem::local_solve: each element's tangential velocity against the friction band,
+  //   (NewtonAids::local_solve: each element's tangential velocity against the friction band,
   //   everything else held). This settles every element on its stick or slip branch before the
   //   next Jacobian is taken: on the paper's dry second at rtol 1e-3 it cut the Jacobians from
   //   55 600 to 19 900 and the wall time from 1.74 s to 0.75 s, at the same answer (6e-5).
-  // - the system may put what a correction would carry across a branch onto it (OdeSystem::reseat:
+  // - the system may put what a correction would carry across a branch onto it (NewtonAids::reseat:
   //   elements that would slip right across the friction band land in it). On the paper's drive
   //   this cut the steps of the first 0.3 s from 13 380 to 4 350. While corrections are taken
   //   whole, the reseat changes the correction and the rest of it is kept; once the line search
@@ -95,7 +97,7 @@ class Esdirk final : public Stepper {
   //   on ‖G‖ guards against cycling between the two sides of a kink. A line search from the
   //   first iteration rejected the full steps that carry an element from stick to slip (the
   //   residual grows until the next Jacobian sees the new branch): 4 350 → 1 830 steps.
-  bool newton(OdeSystem& sys, double t, double s, int n) {
+  bool newton(const OdeSystem& sys, double t, double s, int n) {
     constexpr int max_iter = 12;
     constexpr int kFullSteps = 3;
     constexpr double kRate = 0.3;
@@ -117,19 +119,19 @@ class Esdirk final : public Stepper {
     bool refresh = false;
     for (int it = 0; it < max_iter; ++it) {
       if (!std::isfinite(r)) return false;
-      const uint64_t sig = sys.branches(t, Z_.data());
+      const uint64_t sig = aids_->branches(t, Z_.data());
       const bool reuse = have_jac_ && !refresh && sig != 0 && sig == jac_sig_;
       if (!reuse) {
-        if (!sys.prepare_jacobian(t, Z_.data())) return false;
-        sys.counters.jacobians++;
-        if (!sys.factor(s)) return false;
-        sys.counters.factorizations++;
+        if (!sys.linear->prepare_jacobian(t, Z_.data())) return false;
+        sys.problem->counters.jacobians++;
+        if (!sys.linear->factor(s)) return false;
+        sys.problem->counters.factorizations++;
         have_jac_ = true, jac_sig_ = sig;
       }
       refresh = false;
       rhs_ = -s * G_;
-      sys.solve(rhs_.data(), dZ_.data());
-      sys.counters.solves++;
+      sys.linear->solve(rhs_.data(), dZ_.data());
+      sys.problem->counters.solves++;
       const double step_norm = ctl_->weighted_norm(Z_, dZ_);
       if (!std::isfinite(step_norm)) return false;
       // a reused Jacobian that no longer contracts fast is refreshed at the next iterate
@@ -140,8 +142,8 @@ class Esdirk final : public Stepper {
         return true;
       }
       if (it < kFullSteps) {
-        sys.reseat(t, Z_.data(), dZ_.data(), true);
-      } else if (sys.reseat(t, Z_.data(), dZ_.data(), false)) {
+        aids_->reseat(t, Z_.data(), dZ_.data(), true);
+      } else if (aids_->reseat(t, Z_.data(), dZ_.data(), false)) {
         r = residual(sys, t, s, Z_, Fz_, G_);
         continue;
       }
@@ -158,7 +160,7 @@ class Esdirk final : public Stepper {
       Fz_.swap(Ft_);
       G_.swap(Gt_);
       r = rt;
-      if (sys.local_solve(t, s, Z_.data(), G_.data())) r = residual(sys, t, s, Z_, Fz_, G_);
+      if (aids_->local_solve(t, s, Z_.data(), G_.data())) r = residual(sys, t, s, Z_, Fz_, G_);
       if (lambda < 1.0 / 64) return false;  // no descent: give up, the step will be shortened
     }
     return false;
@@ -166,6 +168,8 @@ class Esdirk final : public Stepper {
 
   const EsdirkTableau& tab_;
   const StepController* ctl_ = nullptr;
+  NewtonAids no_aids_;                 // for a system without aids: each does nothing
+  NewtonAids* aids_ = &no_aids_;
   bool have_jac_ = false;  // a Jacobian taken in this step is factored (all stages share h·γ)
   uint64_t jac_sig_ = 0;   // the branches it was taken on
   std::vector<Eigen::VectorXd> F_;

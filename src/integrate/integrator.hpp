@@ -42,7 +42,7 @@ class Integrator {
   virtual void kink() {}
   virtual void dense(double t, Eigen::VectorXd& out) const = 0;
   virtual WorkCounters work() const = 0;
-  // the component with the largest error in the last error estimate (OdeSystem::describe), for
+  // the component with the largest error in the last error estimate (OdeProblem::describe), for
   // the messages of a run that makes no progress; "" when the method does not say
   virtual std::string stiffest() const { return ""; }
   // checkpoints (bit-identical continuation); false when the method cannot export its state
@@ -64,10 +64,11 @@ class Integrator {
 
 class Stepper;
 // a one-step method the caller owns (tests with their own tableaux)
-std::unique_ptr<Integrator> make_one_step(Stepper& stepper, OdeSystem& sys, const Tolerances& tol, double h_max = 0);
-// a one-step method the integrator owns
-std::unique_ptr<Integrator> make_one_step(std::unique_ptr<Stepper> stepper, OdeSystem& sys, const Tolerances& tol,
+std::unique_ptr<Integrator> make_one_step(Stepper& stepper, const OdeSystem& sys, const Tolerances& tol,
                                           double h_max = 0);
+// a one-step method the integrator owns
+std::unique_ptr<Integrator> make_one_step(std::unique_ptr<Stepper> stepper, const OdeSystem& sys,
+                                          const Tolerances& tol, double h_max = 0);
 
 // checks rtol in (0, 1) and atol (< 0: same as rtol; else finite); throws std::invalid_argument
 void check_tolerances(const Tolerances& tol);

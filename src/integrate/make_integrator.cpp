@@ -5,7 +5,7 @@
 
 namespace beltsim {
 
-std::unique_ptr<Integrator> make_integrator(const std::string& name, OdeSystem& sys, const Tolerances& tol,
+std::unique_ptr<Integrator> make_integrator(const std::string& name, const OdeSystem& sys, const Tolerances& tol,
                                             double h_max) {
   check_integrator(name);
   check_tolerances(tol);

@@ -1,4 +1,4 @@
-// Newton aids for the belt's implicit stages. They serve the integrator (BeltSystem::reseat,
+// Newton aids for the belt's implicit stages. They serve the integrator (BeltNewtonAids::reseat,
 // local_solve, predict and branches, see system.hpp), not the model: the right-hand side is piecewise
 // smooth (contact onset, p = p_max, N = 0 and the friction band |v_T| < Δv), and a Newton step
 // taken at a slipping element sees a constant friction force, jumps right across the band and

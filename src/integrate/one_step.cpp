@@ -38,11 +38,13 @@ constexpr const char* kSuggestion =
 
 class OneStep final : public Integrator {
  public:
-  OneStep(std::unique_ptr<Stepper> owned, Stepper& st, OdeSystem& sys, const Tolerances& tol, double h_max)
-      : owned_(std::move(owned)), st_(&st), sys_(sys), ctl_(sys, tol, std::min(st.order(), st.embedded_order())),
+  OneStep(std::unique_ptr<Stepper> owned, Stepper& st, const OdeSystem& sys, const Tolerances& tol, double h_max)
+      : owned_(std::move(owned)), st_(&st), sys_(sys), ctl_(*sys.problem, tol, std::min(st.order(), st.embedded_order())),
         h_max_(h_max > 0 ? h_max : std::numeric_limits<double>::infinity()) {
+    if (st.needs_linear_solver() && !sys.linear)
+      throw std::invalid_argument("integrator: " + st.name() + " is implicit and needs a linear solver; the system has none");
     st_->attach(ctl_);
-    const int n = sys.size();
+    const int n = sys.problem->size();
     f_.resize(n), y1_.resize(n), f1_.resize(n), err_.resize(n), y_prev_.resize(n), f_prev_.resize(n);
   }
   std::string name() const override { return st_->name(); }
@@ -50,9 +52,9 @@ class OneStep final : public Integrator {
   void start(double t, const Eigen::VectorXd& y) override {
     t_ = t_prev_ = t;
     y_ = y;
-    sys_.rhs(t, y_.data(), f_.data());
-    sys_.counters.rhs++;
-    if (const std::string bad = sys_.check(t, y_.data()); !bad.empty())
+    sys_.problem->rhs(t, y_.data(), f_.data());
+    sys_.problem->counters.rhs++;
+    if (const std::string bad = sys_.problem->check(t, y_.data()); !bad.empty())
       throw DivergenceError(t, "the state at t = " + fmt_time(t) + " s: " + bad);
     y_prev_ = y_, f_prev_ = f_;
     // first step (Hairer II.4, simplified): make the first-order term small against the
@@ -86,10 +88,10 @@ class OneStep final : public Integrator {
       worst_ = worst;
       const double ulp = std::numeric_limits<double>::epsilon() * std::max(1.0, std::abs(t_));
       if (!(e <= 1.0)) {
-        sys_.counters.rejected++;
+        sys_.problem->counters.rejected++;
         if (!ok) {
           cap_ = 0.5 * h;
-          sys_.counters.warnings.add(WarningKind::failed_step, t_);
+          sys_.problem->counters.warnings.add(WarningKind::failed_step, t_);
           ++failed_in_a_row_;
         }
         h_ = ctl_.propose(h, ok ? e : 1e300);
@@ -113,10 +115,10 @@ class OneStep final : public Integrator {
         at_floor_ = 0;
       }
       const double t1 = lands ? t_land : t_ + h;
-      sys_.rhs(t1, y1_.data(), f1_.data());
-      sys_.counters.rhs++;
-      sys_.counters.steps++;
-      if (const std::string bad = sys_.check(t1, y1_.data()); !bad.empty())
+      sys_.problem->rhs(t1, y1_.data(), f1_.data());
+      sys_.problem->counters.rhs++;
+      sys_.problem->counters.steps++;
+      if (const std::string bad = sys_.problem->check(t1, y1_.data()); !bad.empty())
         throw DivergenceError(t1, "the run diverged at t = " + fmt_time(t1) + " s: " + bad);
       t_prev_ = t_, t_ = t1;
       y_prev_.swap(y_), y_.swap(y1_);
@@ -136,7 +138,7 @@ class OneStep final : public Integrator {
   std::string largest_error(int worst) const {
     return worst < 0 ? "no step was taken, so no component has an error estimate (the forces of the initial state, "
                        "or their Jacobian, are beyond what the iteration solves: check the largest parameters)"
-                     : "the largest error is in " + sys_.describe(worst);
+                     : "the largest error is in " + sys_.problem->describe(worst);
   }
 
   void dense(double t, Eigen::VectorXd& out) const override {
@@ -149,8 +151,8 @@ class OneStep final : public Integrator {
     }
   }
 
-  WorkCounters work() const override { return sys_.counters; }
-  std::string stiffest() const override { return worst_ < 0 ? std::string() : sys_.describe(worst_); }
+  WorkCounters work() const override { return sys_.problem->counters; }
+  std::string stiffest() const override { return worst_ < 0 ? std::string() : sys_.problem->describe(worst_); }
 
   bool can_save() const override { return true; }
   void save(CheckpointWriter& w) const override {
@@ -164,7 +166,7 @@ class OneStep final : public Integrator {
     auto vec = [&](const char* k, const Eigen::VectorXd& v) { w.line(k, v.data(), static_cast<size_t>(v.size())); };
     vec("integrator.y", y_), vec("integrator.f", f_), vec("integrator.y_prev", y_prev_), vec("integrator.f_prev", f_prev_);
     // the one kind of warning a one-step method counts
-    const WorkCounters& c = sys_.counters;
+    const WorkCounters& c = sys_.problem->counters;
     const WarningStat& failed = c.warnings[WarningKind::failed_step];
     w.line("integrator.counters",
            std::vector<long>{c.steps, c.rejected, c.rhs, c.jacobians, c.factorizations, c.solves, failed.count});
@@ -184,7 +186,7 @@ class OneStep final : public Integrator {
     r.close();
     if (!(cap_ > 0)) r.fail("a step size cap must be > 0");
     started_ = r.line_bool("integrator.started");
-    const size_t n = static_cast<size_t>(sys_.size());
+    const size_t n = static_cast<size_t>(sys_.problem->size());
     auto vec = [&](const char* k, Eigen::VectorXd& v) {
       const std::vector<double> x = r.line_doubles(k, n);
       if (x.size() != n) r.fail(std::to_string(x.size()) + " values for a state of " + std::to_string(n));
@@ -193,7 +195,7 @@ class OneStep final : public Integrator {
     vec("integrator.y", y_), vec("integrator.f", f_), vec("integrator.y_prev", y_prev_), vec("integrator.f_prev", f_prev_);
     const std::vector<long> c = r.line_longs("integrator.counters", 0, LONG_MAX, 7);
     if (c.size() != 7) r.fail("7 counts expected");
-    WorkCounters& w = sys_.counters;
+    WorkCounters& w = sys_.problem->counters;
     WarningStat& failed = w.warnings[WarningKind::failed_step];
     w.steps = c[0], w.rejected = c[1], w.rhs = c[2], w.jacobians = c[3], w.factorizations = c[4], w.solves = c[5];
     failed.count = c[6];
@@ -203,7 +205,7 @@ class OneStep final : public Integrator {
  private:
   std::unique_ptr<Stepper> owned_;
   Stepper* st_;
-  OdeSystem& sys_;
+  OdeSystem sys_;
   StepController ctl_;
   double h_max_;
   double h_ = 0, h_used_ = 0;
@@ -217,12 +219,12 @@ class OneStep final : public Integrator {
 
 }  // namespace
 
-std::unique_ptr<Integrator> make_one_step(Stepper& stepper, OdeSystem& sys, const Tolerances& tol, double h_max) {
+std::unique_ptr<Integrator> make_one_step(Stepper& stepper, const OdeSystem& sys, const Tolerances& tol, double h_max) {
   check_tolerances(tol);
   return std::make_unique<OneStep>(nullptr, stepper, sys, tol, h_max);
 }
 
-std::unique_ptr<Integrator> make_one_step(std::unique_ptr<Stepper> stepper, OdeSystem& sys, const Tolerances& tol,
+std::unique_ptr<Integrator> make_one_step(std::unique_ptr<Stepper> stepper, const OdeSystem& sys, const Tolerances& tol,
                                           double h_max) {
   check_tolerances(tol);
   Stepper& ref = *stepper;

@@ -13,7 +13,7 @@ class Rkf45 final : public Stepper {
   std::string name() const override { return "rkf45"; }
   int order() const override { return 4; }
   int embedded_order() const override { return 5; }
-  bool step(OdeSystem& sys, double t, const Eigen::VectorXd& y, const Eigen::VectorXd& f0, double h,
+  bool step(const OdeSystem& sys, double t, const Eigen::VectorXd& y, const Eigen::VectorXd& f0, double h,
             Eigen::VectorXd& y1, Eigen::VectorXd& err) override {
     const ExplicitTableau& tab = fehlberg45();
     const int s = static_cast<int>(tab.b.size());
@@ -24,8 +24,8 @@ class Rkf45 final : public Stepper {
       for (int j = 0; j < i; ++j)
         if (tab.a[i][j] != 0.0) stage_ += (h * tab.a[i][j]) * k_[j];
       k_[i].resize(y.size());
-      sys.rhs(t + tab.c[i] * h, stage_.data(), k_[i].data());
-      sys.counters.rhs++;
+      sys.problem->rhs(t + tab.c[i] * h, stage_.data(), k_[i].data());
+      sys.problem->counters.rhs++;
     }
     y1 = y;
     err.setZero(y.size());

@@ -18,16 +18,18 @@ class Rosenbrock final : public Stepper {
   int order() const override { return 3; }
   int embedded_order() const override { return 2; }
 
-  bool step(OdeSystem& sys, double t, const Eigen::VectorXd& y, const Eigen::VectorXd& f0, double h,
+  bool needs_linear_solver() const override { return true; }
+
+  bool step(const OdeSystem& sys, double t, const Eigen::VectorXd& y, const Eigen::VectorXd& f0, double h,
             Eigen::VectorXd& y1, Eigen::VectorXd& err) override {
     const int n = static_cast<int>(y.size());
     const int s = tab_.stages;
-    if (!sys.prepare_jacobian(t, y.data())) return false;
-    sys.counters.jacobians++;
-    if (!sys.factor(1.0 / (h * tab_.gamma))) return false;
-    sys.counters.factorizations++;
+    if (!sys.linear->prepare_jacobian(t, y.data())) return false;
+    sys.problem->counters.jacobians++;
+    if (!sys.linear->factor(1.0 / (h * tab_.gamma))) return false;
+    sys.problem->counters.factorizations++;
     ft_.setZero(n);
-    sys.time_derivative(ft_.data());
+    sys.linear->time_derivative(ft_.data());
     u_.resize(s);
     for (int i = 0; i < s; ++i) {
       // right-hand side of stage i
@@ -38,14 +40,14 @@ class Rosenbrock final : public Stepper {
         for (int j = 0; j < i; ++j)
           if (tab_.a[i][j] != 0.0) stage_ += tab_.a[i][j] * u_[j];
         rhs_.resize(n);
-        sys.rhs(t + tab_.alpha_sum[i] * h, stage_.data(), rhs_.data());
-        sys.counters.rhs++;
+        sys.problem->rhs(t + tab_.alpha_sum[i] * h, stage_.data(), rhs_.data());
+        sys.problem->counters.rhs++;
         for (int j = 0; j < i; ++j) rhs_ += (tab_.c[i][j] / h) * u_[j];
       }
       if (tab_.gamma_sum[i] != 0.0) rhs_ += (tab_.gamma_sum[i] * h) * ft_;
       u_[i].resize(n);
-      sys.solve(rhs_.data(), u_[i].data());
-      sys.counters.solves++;
+      sys.linear->solve(rhs_.data(), u_[i].data());
+      sys.problem->counters.solves++;
     }
     y1 = y;
     err.setZero(n);

@@ -22,10 +22,13 @@ class Stepper {
   virtual int embedded_order() const = 0;   // of the error estimate's companion
   // implicit methods measure their iterations in the controller's weighted norm
   virtual void attach(const StepController&) {}
+  // linearly implicit methods solve with the system's LinearSolver (an integrator refuses a
+  // system without one); explicit methods read only the problem
+  virtual bool needs_linear_solver() const { return false; }
   // One step of size h from (t, y) with f0 = F(t, y). Writes y1 and the error estimate err.
   // Returns false when the step cannot be taken at all (e.g. a singular matrix): the driver
   // then shrinks h as for a rejected step.
-  virtual bool step(OdeSystem& sys, double t, const Eigen::VectorXd& y, const Eigen::VectorXd& f0, double h,
+  virtual bool step(const OdeSystem& sys, double t, const Eigen::VectorXd& y, const Eigen::VectorXd& f0, double h,
                     Eigen::VectorXd& y1, Eigen::VectorXd& err) = 0;
 };
 

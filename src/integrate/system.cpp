@@ -2,6 +2,6 @@
 
 namespace beltsim {
 
-void OdeSystem::time_derivative(double*) const {}
+void LinearSolver::time_derivative(double*) const {}
 
 }  // namespace beltsim

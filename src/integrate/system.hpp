@@ -1,8 +1,16 @@
-// The view of an ODE system that the integrators need (odeint/SUNDIALS style): the right-hand
-// side, and for linearly implicit methods the Jacobian J = ∂F/∂y, the factorisation of the
-// shifted matrix (s·I - J) and solves with it. Counters let the work-precision study report cost.
+// The view of an ODE system that the integrators need, in the three parts SUNDIALS keeps apart
+// (the problem given to CVodeInit, the SUNLinearSolver attached to the integrator, and the
+// user's optional inputs):
+//   OdeProblem    y' = F(t, y): its size, F, the scales of the tolerances, the kinks of a
+//                 piecewise-smooth F, diagnostics, and the work counters
+//   LinearSolver  for linearly implicit methods: J = ∂F/∂y at a point, the factorisation of the
+//                 shifted matrix (s·I - J) and solves with it
+//   NewtonAids    optional help for Newton's iteration on a piecewise-smooth F
+// An integrator is given an OdeSystem: the problem, and where its method asks for them a linear
+// solver (the implicit one-step methods, CVODE) and Newton aids (the ESDIRK methods).
 #pragma once
 
+#include <concepts>
 #include <cstdint>
 #include <limits>
 #include <string>
@@ -26,39 +34,14 @@ struct WorkCounters {
   Warnings warnings;
 };
 
-class OdeSystem {
+// The problem y' = F(t, y).
+class OdeProblem {
  public:
-  virtual ~OdeSystem() = default;
+  virtual ~OdeProblem() = default;
   virtual int size() const = 0;
   virtual void rhs(double t, const double* y, double* dy) = 0;
   // absolute tolerance of component k per unit of atol (the natural size of that quantity)
   virtual double atol_scale(int) const { return 1.0; }
-
-  // linearly implicit methods ---------------------------------------------------------------
-  // evaluate J = ∂F/∂y and ∂F/∂t at (t, y); returns false if the system has no Jacobian
-  virtual bool prepare_jacobian(double, const double*) { return false; }
-  virtual void time_derivative(double* f_t) const;  // ∂F/∂t at the prepared point (default 0)
-  virtual bool factor(double) { return false; }     // factor (s·I - J); false when singular
-  virtual void solve(const double* r, double* u) { (void)r, (void)u; }  // u = (s·I - J)^-1 r
-  // the full J = ∂F/∂y as a sparse matrix with the same pattern every call (for the CVODE
-  // peer's sparse direct solver); false when the system has none
-  virtual bool sparse_jacobian(double, const double*, Eigen::SparseMatrix<double>&) { return false; }
-
-  // Newton aid for piecewise-smooth right-hand sides: before the iterate z moves by the Newton
-  // correction dz, the system may put what the correction would carry across a branch onto it
-  // (see friction_reseat): by changing dz so that z + dz lands on it (keep_correction), or by
-  // moving z itself onto it (the iteration then starts again from z). True when it changed one.
-  virtual bool reseat(double, double*, double*, bool) { return false; }
-  // Newton aid: with G the stage residual Z - ψ - F(t, Z)/s at z, move z so that the stiffest
-  // local equations hold (true when z moved)
-  virtual bool local_solve(double, double, double*, const double*) { return false; }
-  // Newton's starting point: carry the state z, taken at time t, forward by dt along the
-  // motion it describes (the default leaves it where it is)
-  virtual void predict(double, double, double*) const {}
-
-  // A hash of the smooth piece of a piecewise-smooth right-hand side that y lies on; 0 means
-  // unknown. Newton may reuse a Jacobian (and its factorisation) while the hash is unchanged.
-  virtual uint64_t branches(double, const double*) const { return 0; }
 
   // the largest error in component k that the right-hand side's piecewise laws can take without
   // changing piece at random (for the belt, a slip velocity error as large as the friction band);
@@ -73,7 +56,61 @@ class OdeSystem {
   virtual std::string describe(int k) const { return "component " + std::to_string(k); }
   virtual std::string check(double, const double*) const { return {}; }
 
+  // the work of the integrator that solves this problem, counted by the integrator (the stepper
+  // counts its evaluations, Jacobians and solves, the driver its steps; CVODE's statistics are
+  // copied here after every step), read after a run
   WorkCounters counters;
+};
+
+// The linear algebra of linearly implicit methods with J = ∂F/∂y of an OdeProblem.
+class LinearSolver {
+ public:
+  virtual ~LinearSolver() = default;
+  // evaluate J = ∂F/∂y and ∂F/∂t at (t, y); false when the solver cannot (a solver that only
+  // gives the sparse Jacobian below)
+  virtual bool prepare_jacobian(double, const double*) { return false; }
+  virtual void time_derivative(double* f_t) const;  // ∂F/∂t at the prepared point (default 0)
+  virtual bool factor(double) { return false; }     // factor (s·I - J); false when singular
+  virtual void solve(const double* r, double* u) { (void)r, (void)u; }  // u = (s·I - J)^-1 r
+  // the full J = ∂F/∂y as a sparse matrix with the same pattern every call (for the CVODE
+  // peer's sparse direct solver); false when the solver has none
+  virtual bool sparse_jacobian(double, const double*, Eigen::SparseMatrix<double>&) { return false; }
+};
+
+// Newton aids for a piecewise-smooth right-hand side; every one may do nothing (the defaults).
+class NewtonAids {
+ public:
+  virtual ~NewtonAids() = default;
+  // before the iterate z moves by the Newton correction dz, put what the correction would carry
+  // across a branch onto it (see friction_reseat): by changing dz so that z + dz lands on it
+  // (keep_correction), or by moving z itself onto it (the iteration then starts again from z).
+  // True when it changed one.
+  virtual bool reseat(double, double*, double*, bool) { return false; }
+  // with G the stage residual Z - ψ - F(t, Z)/s at z, move z so that the stiffest local
+  // equations hold (true when z moved)
+  virtual bool local_solve(double, double, double*, const double*) { return false; }
+  // Newton's starting point: carry the state z, taken at time t, forward by dt along the
+  // motion it describes (the default leaves it where it is)
+  virtual void predict(double, double, double*) const {}
+  // A hash of the smooth piece of a piecewise-smooth right-hand side that y lies on; 0 means
+  // unknown. Newton may reuse a Jacobian (and its factorisation) while the hash is unchanged.
+  virtual uint64_t branches(double, const double*) const { return 0; }
+};
+
+// What an integrator is given (none of it owned): the problem, and optionally a linear solver
+// for it and Newton aids. The parts must outlive the integrator.
+struct OdeSystem {
+  // the problem p; p is also the linear solver, or the aids, when its class is one too (a small
+  // problem that brings its own Jacobian)
+  template <std::derived_from<OdeProblem> P>
+  OdeSystem(P& p) : problem(&p) {
+    if constexpr (std::derived_from<P, LinearSolver>) linear = &p;
+    if constexpr (std::derived_from<P, NewtonAids>) aids = &p;
+  }
+  OdeSystem(OdeProblem& p, LinearSolver* ls, NewtonAids* a = nullptr) : problem(&p), linear(ls), aids(a) {}
+  OdeProblem* problem;
+  LinearSolver* linear = nullptr;
+  NewtonAids* aids = nullptr;
 };
 
 }  // namespace beltsim

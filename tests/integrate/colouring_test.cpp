@@ -52,15 +52,15 @@ struct Compare {
 
 Compare compare(BeltSystem& sys, double t, const Eigen::VectorXd& y, long* rhs_taken = nullptr) {
   Eigen::SparseMatrix<double> Ja, Jd;
-  sys.sparse_jacobian(t, y.data(), Ja);
+  sys.linear.sparse_jacobian(t, y.data(), Ja);
   Ja.makeCompressed();
   Jd = Ja;
   const ColumnColouring c = colour_columns(Ja);
   EXPECT_TRUE(valid_colouring(Ja, c));
   Eigen::VectorXd f0(y.size());
-  sys.rhs(t, y.data(), f0.data());
+  sys.problem.rhs(t, y.data(), f0.data());
   std::vector<double> work;
-  const long taken = difference_jacobian(sys, c, t, y.data(), f0.data(), Jd, work);
+  const long taken = difference_jacobian(sys.problem, c, t, y.data(), f0.data(), Jd, work);
   if (rhs_taken) *rhs_taken = taken;
   Compare out;
   for (int k = 0; k < Ja.outerSize(); ++k) {
@@ -90,11 +90,11 @@ TEST(Colouring, DifferenceJacobianMatchesTheAnalyticOne) {
   BeltSystem sys(sc.model, sc.drive);
   long taken = 0;
   const Compare at_rest = compare(sys, 0, sc.y0, &taken);
-  EXPECT_LT(at_rest.worst, tol) << sys.describe(at_rest.worst_col);
+  EXPECT_LT(at_rest.worst, tol) << sys.problem.describe(at_rest.worst_col);
   // one right-hand side per colour; the two pulley-speed rows touch every element column, so
   // the belt's pattern needs about as many colours as columns (docs/integration.md)
   EXPECT_GT(taken, 0);
-  EXPECT_LE(taken, sys.size());
+  EXPECT_LE(taken, sys.problem.size());
   // moving: the drive after 0.05 s, elements in stick and slip on both pulleys
   Eigen::VectorXd y = sc.y0;
   DriveOptions opt;
@@ -104,7 +104,7 @@ TEST(Colouring, DifferenceJacobianMatchesTheAnalyticOne) {
   auto st = make_stepper("esdirk32");
   drive(sys, *st, Tolerances{1e-6, -1}, opt, y, [](double, const Eigen::VectorXd&) {});
   const Compare moving = compare(sys, 0.05, y);
-  EXPECT_LT(moving.worst, tol) << sys.describe(moving.worst_col);
+  EXPECT_LT(moving.worst, tol) << sys.problem.describe(moving.worst_col);
 }
 
 }  // namespace

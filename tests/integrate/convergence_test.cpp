@@ -11,12 +11,15 @@
 #include <Eigen/Dense>
 
 #include "integrate/controller.hpp"
+#include "integrate/integrator.hpp"
+#include "integrate/make_integrator.hpp"
 #include "integrate/stepper.hpp"
 
 namespace beltsim {
 namespace {
 
-class SmoothProblem final : public OdeSystem {
+// the problem and its own linear solver (dense 3x3)
+class SmoothProblem final : public OdeProblem, public LinearSolver {
  public:
   explicit SmoothProblem(double lambda) : lambda_(lambda) {}
   int size() const override { return 3; }
@@ -84,6 +87,30 @@ TEST(Convergence, Rkf45IsFourthOrder) { expect_order("rkf45", 4); }
 TEST(Convergence, Ros34pw2IsThirdOrder) { expect_order("ros34pw2", 3); }
 TEST(Convergence, Esdirk32IsThirdOrder) { expect_order("esdirk32", 3); }
 TEST(Convergence, Trbdf2IsSecondOrder) { expect_order("trbdf2", 2); }
+
+// an integrator takes the problem alone for an explicit method and refuses it, naming the
+// method, for one that solves linear systems; given the linear solver as well, it runs
+TEST(Convergence, ImplicitMethodsNeedALinearSolver) {
+  SmoothProblem sys(-1.0);
+  const OdeSystem alone(static_cast<OdeProblem&>(sys), nullptr);
+  const Tolerances tol{1e-6, 1e-6};
+  EXPECT_NO_THROW(make_integrator("rkf45", alone, tol));
+  for (const std::string name : {"esdirk32", "trbdf2", "ros34pw2", "cvode", "cvode-fd"}) {
+    try {
+      make_integrator(name, alone, tol);
+      ADD_FAILURE() << name << ": no exception";
+    } catch (const std::invalid_argument& e) {
+      EXPECT_NE(std::string(e.what()).find(name + " "), std::string::npos) << e.what();
+      EXPECT_NE(std::string(e.what()).find("linear solver"), std::string::npos) << e.what();
+    }
+  }
+  auto integ = make_integrator("esdirk32", sys, tol);
+  Eigen::VectorXd y(3);
+  y << 1, 0, 0;
+  integ->start(0, y);
+  integ->step(0.1);
+  EXPECT_GT(integ->t(), 0.0);
+}
 
 TEST(Convergence, UnknownIntegratorListsTheValidNames) {
   try {

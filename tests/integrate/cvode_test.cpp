@@ -19,10 +19,11 @@ namespace {
 
 // harmonic oscillator and a stiff Prothero–Robinson component (λ = -1e4); exact solution
 // (cos t, -sin t, sin t); nan_after > 0 makes F NaN from that time on
-class Smooth final : public OdeSystem {
+// (the problem with a linear solver that gives the sparse Jacobian CVODE asks for)
+class Smooth final : public OdeProblem, public LinearSolver {
  public:
   double nan_after = -1;
-  double res = std::numeric_limits<double>::infinity();  // OdeSystem::resolution of every component
+  double res = std::numeric_limits<double>::infinity();  // OdeProblem::resolution of every component
   int size() const override { return 3; }
   double resolution(int) const override { return res; }
   void rhs(double t, const double* y, double* dy) override {
@@ -147,7 +148,7 @@ TEST(Cvode, LandsOnEventsAndRestarts) {
 // y' = y below y = 1 and 1 + 3·(y - 1) above: F is continuous with a kink at y = 1 (slope 1,
 // then 3), the switching function g = y - 1. From y(0) = 0.5, y = e^t/2 until t1 = ln 2, then
 // y = 1 + (e^(3(t - t1)) - 1)/3.
-class Kinked final : public OdeSystem {
+class Kinked final : public OdeProblem, public LinearSolver {
  public:
   int size() const override { return 1; }
   void rhs(double, const double* y, double* dy) override { dy[0] = y[0] < 1 ? y[0] : 1 + 3 * (y[0] - 1); }

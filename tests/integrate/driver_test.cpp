@@ -11,7 +11,7 @@ namespace beltsim {
 namespace {
 
 // y1' = y2, y2' = -y1: (cos t, -sin t)
-class Oscillator final : public OdeSystem {
+class Oscillator final : public OdeProblem {
  public:
   int size() const override { return 2; }
   void rhs(double, const double* y, double* dy) override {

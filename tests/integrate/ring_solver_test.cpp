@@ -102,11 +102,11 @@ TEST(RingSolver, SplitGivesTheSameBitsOnOneOrTwoThreads) {
   EXPECT_EQ(0, std::memcmp(xs[0].data(), xs[2].data(), sizeof(double) * N)) << "two threads against none";
 }
 
-// BeltSystem's solve of (s·I - J)·u = r for the first-order system, J = ∂F/∂y from
+// BeltLinearSolver's solve of (s·I - J)·u = r for the first-order system, J = ∂F/∂y from
 // sparse_jacobian, at 60 elements (one core) and 600 (the halves and the split ring): the
 // componentwise backward error max_i |(s·u - J·u - r)_i| / (|s·u| + |J|·|u| + |r|)_i of a stable
 // direct solve is a small multiple of the rounding unit (measured: at most 4.4e-13, at s = 1e2); bound 1e-11.
-TEST(RingSolver, BeltSystemSolvesTheShiftedSystem) {
+TEST(RingSolver, BeltLinearSolverSolvesTheShiftedSystem) {
   for (int n : {60, 600}) {
     const Scene sc = build_scene(refined(n));
     const Model& m = sc.model;
@@ -115,15 +115,15 @@ TEST(RingSolver, BeltSystemSolvesTheShiftedSystem) {
     const Eigen::VectorXd y = moving_state(sc, rng);
     BeltSystem sys(m, dr);
     Eigen::SparseMatrix<double> J;
-    ASSERT_TRUE(sys.sparse_jacobian(0.1, y.data(), J));
-    ASSERT_TRUE(sys.prepare_jacobian(0.1, y.data()));
+    ASSERT_TRUE(sys.linear.sparse_jacobian(0.1, y.data(), J));
+    ASSERT_TRUE(sys.linear.prepare_jacobian(0.1, y.data()));
     const int M = static_cast<int>(J.rows());
     std::uniform_real_distribution<double> u(-1, 1);
     for (double s : {1e2, 1e5}) {
-      ASSERT_TRUE(sys.factor(s));
-      Eigen::VectorXd r(sys.size()), x(sys.size());
-      for (int k = 0; k < sys.size(); ++k) r[k] = u(rng);
-      sys.solve(r.data(), x.data());
+      ASSERT_TRUE(sys.linear.factor(s));
+      Eigen::VectorXd r(sys.problem.size()), x(sys.problem.size());
+      for (int k = 0; k < sys.problem.size(); ++k) r[k] = u(rng);
+      sys.linear.solve(r.data(), x.data());
       const Eigen::VectorXd res = s * x.head(M) - J * x.head(M) - r.head(M);
       const Eigen::VectorXd scale =
           (s * x.head(M)).cwiseAbs() + J.cwiseAbs() * x.head(M).cwiseAbs() + r.head(M).cwiseAbs();

@@ -1,0 +1,94 @@
+#include "integrate/belt_problem.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <sstream>
+
+#include "integrate/switches.hpp"
+
+namespace beltsim {
+
+BeltProblem::BeltProblem(const Model& m, const Drive& d) : model_(m), drive_(d), ws_(m) {}
+
+double BeltProblem::atol_scale(int k) const {
+  // natural sizes: 0.1 m (layout), 1 rad, 1 m/s, 10 rad/s (element spin), 1 J
+  const int N = model_.n_coord(), ne = 3 * model_.n_el();
+  if (k >= 2 * N) return 1.0;
+  const bool vel = k >= N;
+  const int c = vel ? k - N : k;
+  if (c >= ne) return 1.0;  // pulley angle [rad], speed [rad/s]
+  if (c % 3 == 2) return vel ? 10.0 : 1.0;
+  return vel ? 1.0 : 0.1;
+}
+
+double BeltProblem::resolution(int k) const {
+  // an element's velocity (x, y) and a pulley's surface speed: the friction band Δv
+  const int N = model_.n_coord(), ne = 3 * model_.n_el();
+  if (k < N || k >= 2 * N) return std::numeric_limits<double>::infinity();
+  const int c = k - N;
+  if (c < ne) return c % 3 == 2 ? std::numeric_limits<double>::infinity() : model_.friction.dv;
+  return model_.friction.dv / model_.pulleys[c - ne].radius;
+}
+
+int BeltProblem::switch_count() const { return beltsim::switch_count(model_); }
+
+void BeltProblem::switches(double t, const double* y, double* g) const {
+  contact_pass(model_, drive_, t, y, y + model_.n_coord(), Span{0, model_.n_el()}, pairs_, Pairs::all);
+  contact_switches(model_, pairs_, g);
+}
+
+std::string BeltProblem::describe(int k) const {
+  static const char* elem_q[] = {"x position", "y position", "angle"};
+  static const char* elem_v[] = {"x velocity", "y velocity", "angular velocity"};
+  static const char* energy[] = {"work of the torques", "SDE axial dissipation", "SDE bending dissipation",
+                                 "contact dissipation", "friction dissipation"};
+  const int N = model_.n_coord(), ne = 3 * model_.n_el();
+  std::ostringstream s;
+  if (k >= 2 * N) {
+    s << "energy integral (" << energy[k - 2 * N] << ")";
+    return s.str();
+  }
+  const bool vel = k >= N;
+  const int c = vel ? k - N : k;
+  if (c < ne)
+    s << "element " << c / 3 << ' ' << (vel ? elem_v : elem_q)[c % 3];
+  else
+    s << "pulley '" << model_.pulleys[c - ne].name << "' " << (vel ? "speed" : "angle");
+  return s.str();
+}
+
+std::string BeltProblem::check(double, const double* y) const {
+  const int N = model_.n_coord();
+  const int n = model_.n_state();
+  for (int k = 0; k < n; ++k)
+    if (!std::isfinite(y[k])) return describe(k) + " is " + (std::isnan(y[k]) ? "NaN" : "infinite");
+  // runaway: a belt element more than 100 pitches away from every pulley's contact circle or
+  // moving faster than 1 km/s, a pulley faster than 1e5 rad/s
+  double reach = 0;
+  for (const Pulley& p : model_.pulleys) reach = std::max(reach, p.centre.norm() + p.radius);
+  reach += 100 * model_.belt.pitch;
+  std::ostringstream s;
+  for (int i = 0; i < model_.n_el(); ++i) {
+    const double x = y[3 * i], yy = y[3 * i + 1];
+    const double speed = std::hypot(y[N + 3 * i], y[N + 3 * i + 1]);
+    if (std::hypot(x, yy) > reach) {
+      s << "element " << i << " flew off to (" << x << ", " << yy << ") m";
+      return s.str();
+    }
+    if (speed > 1e3) {
+      s << "element " << i << " runs away at " << speed << " m/s";
+      return s.str();
+    }
+  }
+  for (int j = 0; j < model_.n_p(); ++j) {
+    const double w = y[N + model_.pulley_coord(j)];
+    if (std::abs(w) > 1e5) {
+      s << "pulley '" << model_.pulleys[j].name << "' runs away at " << w << " rad/s";
+      return s.str();
+    }
+  }
+  return {};
+}
+
+}  // namespace beltsim

@@ -1,0 +1,37 @@
+// The belt model as an OdeProblem (integrate/system.hpp): F, the tolerances' scales and the
+// friction band's resolution, the switching functions of the contact and friction laws, and the
+// names and sanity check of the state's components.
+#pragma once
+
+#include "integrate/system.hpp"
+#include "model/contact_law.hpp"
+#include "model/model.hpp"
+#include "model/rhs.hpp"
+
+namespace beltsim {
+
+class BeltProblem final : public OdeProblem {
+ public:
+  // d: the drive the run holds (Simulation); changes to it apply from the next evaluation
+  BeltProblem(const Model& m, const Drive& d);
+  int size() const override { return model_.n_state(); }
+  void rhs(double t, const double* y, double* dy) override { beltsim::rhs(model_, drive_, t, y, dy, &ws_); }
+  double atol_scale(int k) const override;
+  double resolution(int k) const override;
+  int switch_count() const override;
+  void switches(double t, const double* y, double* g) const override;
+  std::string describe(int k) const override;
+  std::string check(double t, const double* y) const override;
+  const Model& model() const { return model_; }
+  const Drive& drive() const { return drive_; }
+  // the right-hand side's scratch, which the Jacobian shares (BeltLinearSolver)
+  Workspace& workspace() { return ws_; }
+
+ private:
+  const Model& model_;
+  const Drive& drive_;
+  Workspace ws_;               // the right-hand side's and the Jacobian's (model/workspace.hpp)
+  mutable ContactList pairs_;  // the switching functions' contact pass
+};
+
+}  // namespace beltsim
