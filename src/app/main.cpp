@@ -4,6 +4,8 @@
 //   beltsim wp      SCRIPT [--out DIR] [--t-end T] [--integrators A,B] [--rtols R1,R2] [--ref-rtol R]
 //                          [--wall-limit S] [--set KEY=VALUE]... [SAFETY]
 //   beltsim plot    CSV [COLUMNS...] [--out PNG] [--from T]
+//   beltsim sweep   FILE [--out DIR] [--jobs N] [--point K] [--list] [--collect] [--set KEY=V1,V2,..]...
+//                        [--slurm [--submit] [--partition P] [--time T] [--max-parallel M]] [SAFETY]
 //   beltsim console [SCRIPT] [--out DIR] [--t-end T] [--integrator NAME] [--rtol R] [--max-wall S]
 //                            [--no-frames] [--set KEY=VALUE]... [SAFETY] [-- ARGS...]
 //   SAFETY: [--trusted] [--max-instructions N] [--max-lua-memory MiB] (docs/limits-and-safety.md)
@@ -14,6 +16,7 @@
 // cannot read, app/environment.hpp), 130 when stopped by Ctrl-C (SIGINT), 143 by SIGTERM and 129
 // by SIGHUP (outputs closed; script/signals.hpp).
 #include <CLI/CLI.hpp>
+#include <sched.h>
 #include <unistd.h>
 
 #include <cmath>
@@ -27,6 +30,7 @@
 #include <vector>
 
 #include "integrate/stepper.hpp"
+#include "io/csv_writer.hpp"
 #include "io/output_dir.hpp"
 #include "plot/plot.hpp"
 #include "plot/wp_plot.hpp"
@@ -39,6 +43,10 @@
 #include "script/console.hpp"
 #include "script/docall.hpp"
 #include "script/signals.hpp"
+#include "script/lua_sweep.hpp"
+#include "sweep/driver.hpp"
+#include "sweep/results.hpp"
+#include "sweep/slurm.hpp"
 
 namespace {
 
@@ -108,7 +116,9 @@ struct Raw {
   std::optional<std::string> from;                                      // plot
   bool trusted = false;                                                 // run, wp, console
   std::optional<std::string> max_instructions, max_lua_memory;
-  std::vector<std::string> set;  // run, console, wp: --set KEY=VALUE
+  std::vector<std::string> set;  // run, console, wp: --set KEY=VALUE; sweep: --set KEY=V1,V2,..
+  std::optional<std::string> jobs, point, partition, time, max_parallel;  // sweep
+  bool list = false, collect = false, slurm = false, submit = false;
 };
 
 void add_set(CLI::App* c, Raw& raw) {
@@ -292,6 +302,177 @@ int cmd_console(const std::optional<std::string>& script, const std::vector<std:
   }
 }
 
+// the processors this process may run on (its affinity mask: a cgroup's or taskset's share)
+int processors() {
+  cpu_set_t set;
+  if (sched_getaffinity(0, sizeof set, &set) == 0 && CPU_COUNT(&set) > 0) return CPU_COUNT(&set);
+  const long n = sysconf(_SC_NPROCESSORS_ONLN);
+  return n > 0 ? static_cast<int>(n) : 1;
+}
+
+int whole_number(const std::string& option, const std::string& text, int lo) {
+  const double x = number(option, text);
+  if (!(x == std::floor(x) && x >= lo && x <= 1e9))
+    throw UsageError(option + " must be a whole number >= " + std::to_string(lo) + ", got " + text);
+  return static_cast<int>(x);
+}
+
+// the quick form's grid: each --set KEY=V1,V2,.. a parameter, crossed in the order given (the
+// first varies slowest); each value read as --set reads one
+beltsim::sweep::Grid set_grid(const std::vector<std::string>& sets) {
+  beltsim::sweep::Grid g;
+  for (const std::string& kv : sets) {
+    const std::size_t eq = kv.find('=');
+    if (eq == std::string::npos) throw UsageError("--set " + kv + ": KEY=V1,V2,.. expected");
+    const std::string key = kv.substr(0, eq), list = kv.substr(eq + 1);
+    if (std::find(g.names.begin(), g.names.end(), key) != g.names.end())
+      throw UsageError("--set " + key + " is given twice; give its values in one list: --set " + key + "=V1,V2,..");
+    std::vector<beltsim::sweep::Value> values;
+    std::size_t from = 0;
+    while (true) {
+      const std::size_t comma = list.find(',', from);
+      const std::string item = list.substr(from, comma == std::string::npos ? std::string::npos : comma - from);
+      try {
+        const beltsim::script::ScriptArg a = beltsim::script::parse_set(key + "=" + item);
+        std::visit([&](const auto& x) { values.emplace_back(x); }, a.value);
+      } catch (const std::invalid_argument& e) {
+        throw UsageError(std::string(e.what()) + " (in --set " + kv + ")");
+      }
+      if (comma == std::string::npos) break;
+      from = comma + 1;
+    }
+    g.names.push_back(key);
+    g.values.push_back(std::move(values));
+  }
+  return g;
+}
+
+// the arguments that give a point's process the same sweep: the file, the folder, the --set
+// lists and the safety options as typed
+std::vector<std::string> sweep_args(const std::string& file, const std::string& dir, const Raw& raw) {
+  std::vector<std::string> a{"sweep", file, "--out", dir};
+  for (const std::string& s : raw.set) a.insert(a.end(), {"--set", s});
+  if (raw.trusted) a.push_back("--trusted");
+  if (raw.max_instructions) a.insert(a.end(), {"--max-instructions", *raw.max_instructions});
+  if (raw.max_lua_memory) a.insert(a.end(), {"--max-lua-memory", *raw.max_lua_memory});
+  return a;
+}
+
+std::string params_text(const beltsim::sweep::Point& p) {
+  std::string s;
+  for (const auto& [name, v] : p.params) s += (s.empty() ? "" : ", ") + name + "=" + beltsim::sweep::value_text(v);
+  return s;
+}
+
+int cmd_sweep(const std::string& file, const Raw& raw, const beltsim::script::Safety& s) {
+  namespace sw = beltsim::sweep;
+  const std::string dir = raw.out ? *raw.out : (fs::path("out") / fs::path(file).stem()).string();
+  const std::string name = fs::path(file).stem().string();
+  const bool quick = !raw.set.empty();
+  const int jobs = raw.jobs ? whole_number("--jobs", *raw.jobs, 1) : processors();
+  const int point = raw.point ? whole_number("--point", *raw.point, 0) : -1;
+  if (!raw.slurm && (raw.submit || raw.partition || raw.time || raw.max_parallel))
+    throw UsageError("--submit, --partition, --time and --max-parallel go with --slurm");
+  if (int(point >= 0) + int(raw.list) + int(raw.collect) + int(raw.slurm) > 1)
+    throw UsageError("give one of --point, --list, --collect and --slurm");
+  std::vector<sw::Point> points;
+  const sw::Grid grid = quick ? set_grid(raw.set) : sw::Grid{};
+  try {
+    beltsim::script::Interpreter lua(s);
+    const beltsim::script::Interruptible on_signal(lua);
+    lua.set_stop_flag(&stop_flag());
+    if (quick) {
+      if (!fs::is_regular_file(file)) throw beltsim::script::ScriptError(file + ": no such script");
+      points = sw::grid_points(grid);
+    } else {
+      points = beltsim::script::load_sweep(lua, file);
+    }
+    if (raw.list) {
+      std::string h = "point";
+      for (const auto& [n, v] : points[0].params) h += "," + n;
+      std::printf("%s\n", h.c_str());
+      for (const sw::Point& p : points) {
+        std::string r = p.id;
+        for (const auto& [n, v] : p.params) r += "," + beltsim::csv_text(sw::value_text(v));
+        std::printf("%s\n", r.c_str());
+      }
+      return 0;
+    }
+    if (point >= 0) {
+      if (point >= static_cast<int>(points.size()))
+        throw UsageError("--point " + std::to_string(point) + ": the sweep has points 0.." +
+                         std::to_string(points.size() - 1));
+      const sw::Point& p = points[static_cast<std::size_t>(point)];
+      const std::string point_dir = (fs::path(dir) / p.id).string();
+      std::fprintf(stderr, "beltsim sweep: point %s of %zu (%s)\n", p.id.c_str(), points.size(), params_text(p).c_str());
+      const sw::PointResult r = quick ? beltsim::script::run_script_point(lua, file, p, point_dir)
+                                      : beltsim::script::run_sweep_point(lua, file, p, point_dir);
+      if (lua.interrupted() || stop_signal() != 0) return stopped_status();  // not a result: it runs again
+      sw::write_point_result(dir, p, r);
+      std::fprintf(stderr, "beltsim sweep: point %s: %s\n", p.id.c_str(), r.status.c_str());
+      return r.ok() ? 0 : 1;
+    }
+  } catch (const beltsim::script::ScriptError& e) {
+    std::fprintf(stderr, "beltsim: %s\n%s", e.what(), beltsim::script::shown_traceback(e.traceback).c_str());
+    return stop_signal() != 0 ? stopped_status() : 1;
+  } catch (const std::invalid_argument& e) {  // the grid of the --set lists
+    throw UsageError(e.what());
+  }
+
+  const auto summary = [&] {
+    const sw::SummaryCounts c = sw::write_summary(dir, points);
+    std::fprintf(stderr, "beltsim sweep: %s/%s: %d ok, %d failed, %d not run\n", dir.c_str(), sw::kSummaryFile, c.ok,
+                 c.failed, c.not_run);
+    return c.failed + c.not_run == 0 ? 0 : 1;
+  };
+  if (raw.collect) return summary();
+  if (raw.slurm) {
+    sw::SlurmSettings ss;
+    ss.program = sw::this_program();
+    ss.dir = fs::absolute(dir).lexically_normal().string();
+    ss.point_args = sweep_args(fs::absolute(file).lexically_normal().string(), ss.dir, raw);
+    ss.collect_args = ss.point_args;
+    ss.collect_args.push_back("--collect");
+    ss.name = name;
+    ss.workdir = fs::current_path().string();
+    ss.partition = raw.partition;
+    ss.time = raw.time;
+    if (raw.max_parallel) ss.max_parallel = whole_number("--max-parallel", *raw.max_parallel, 1);
+    sw::SlurmJobs j;
+    try {
+      j = sw::write_slurm_jobs(points, ss);
+    } catch (const std::invalid_argument& e) {
+      throw UsageError(e.what());
+    }
+    std::printf("%s\n%s\n", j.array_script.c_str(), j.collect_script.c_str());
+    if (j.array.empty()) {
+      std::fprintf(stderr, "beltsim sweep: every point is done: nothing to submit\n");
+      return summary();
+    }
+    if (!raw.submit) {
+      std::fprintf(stderr, "beltsim sweep: submit with\n  jid=$(sbatch --parsable %s)\n  sbatch --dependency=afterany:$jid %s\n",
+                   j.array_script.c_str(), j.collect_script.c_str());
+      return 0;
+    }
+    const auto [array, collect] = sw::submit_slurm_jobs(j);
+    std::printf("%s %s\n", array.c_str(), collect.c_str());
+    std::fprintf(stderr, "beltsim sweep: submitted job array %s (points %s) and job %s (summary.csv after it)\n",
+                 array.c_str(), j.array.c_str(), collect.c_str());
+    return 0;
+  }
+  sw::DriverSettings ds;
+  ds.program = sw::this_program();
+  ds.point_args = sweep_args(file, dir, raw);
+  ds.dir = dir;
+  ds.name = name;
+  ds.jobs = jobs;
+  ds.stop = &stop_flag();
+  ds.stop_signal = [] { return stop_signal(); };
+  const sw::DriverReport r = sw::run_points(points, ds);
+  const int status = summary();
+  return r.stopped ? stopped_status() : status;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -340,6 +521,33 @@ int main(int argc, char** argv) {
   add_run_overrides(console, raw);
   console->footer("Arguments after -- are passed to the script.");
 
+  CLI::App* sweep = app.add_subcommand("sweep", "run a sweep: many points, each a run, on every core or on Slurm");
+  sweep->add_option("FILE", script, "a sweep file (returns beltsim.sweep{...}), or a script with --set lists")
+      ->required();
+  sweep->add_option("--out", raw.out, "the sweep's folder (default: out/<file name>)")->type_name("DIR");
+  sweep->add_option("--jobs", raw.jobs, "points run at once (default: the processors this process may use)")
+      ->type_name("N");
+  sweep->add_option("--point", raw.point, "run point K alone, in this process (0-based, as --list numbers them)")
+      ->type_name("K");
+  sweep->add_flag("--list", raw.list, "print the points (CSV) and run nothing");
+  sweep->add_flag("--collect", raw.collect, "merge the points' results into summary.csv and run nothing");
+  sweep->add_option("--set", raw.set,
+                    "the quick form: FILE is an ordinary script and each KEY=V1,V2,.. one parameter "
+                    "(beltsim.args.KEY); the lists are crossed, the first varying slowest (repeatable)")
+      ->type_name("KEY=V1,V2,..")
+      ->allow_extra_args(false);
+  sweep->add_flag("--slurm", raw.slurm, "write DIR/sweep.sbatch (a job array) and DIR/collect.sbatch, run nothing");
+  sweep->add_flag("--submit", raw.submit, "with --slurm: submit both with sbatch and print the job ids");
+  sweep->add_option("--partition", raw.partition, "with --slurm: the partition")->type_name("P");
+  sweep->add_option("--time", raw.time, "with --slurm: each task's time limit (Slurm's format, e.g. 30 or 1:00:00)")
+      ->type_name("T");
+  sweep->add_option("--max-parallel", raw.max_parallel, "with --slurm: tasks running at once (--array=..%M)")
+      ->type_name("M");
+  add_safety(sweep, raw);
+  sweep->footer("Each point runs in a process of its own with its folder DIR/<point>/ (point.csv: its parameters,\n"
+                "status and figures; log.txt: its messages); DIR/summary.csv merges them. Run again: only the\n"
+                "points not ok run. Exit status 0 when every point is ok, 1 otherwise. docs/sweeps.md.");
+
   // `beltsim console ... -- ARGS`: everything after the first -- belongs to the script
   std::vector<std::string> words(argv + 1, argv + argc);
   if (!words.empty() && words[0] == "console") {
@@ -350,7 +558,7 @@ int main(int argc, char** argv) {
     }
   }
   if (!words.empty() && words[0] == "help") words[0] = "--help";
-  const std::vector<std::string> commands{"run", "wp", "plot", "console"};
+  const std::vector<std::string> commands{"run", "wp", "plot", "console", "sweep"};
   if (!words.empty() && !words[0].empty() && words[0][0] == '-' && words[0] != "-h" && words[0] != "--help" &&
       words[0] != "--version") {
     std::fprintf(stderr, "beltsim: unknown option '%s' before the command\nRun 'beltsim --help' for the usage.\n",
@@ -359,7 +567,7 @@ int main(int argc, char** argv) {
   }
   if (!words.empty() && (words[0].empty() || words[0][0] != '-') &&
       std::find(commands.begin(), commands.end(), words[0]) == commands.end()) {
-    std::fprintf(stderr, "beltsim: unknown command '%s' (commands: run, wp, plot, console)\n"
+    std::fprintf(stderr, "beltsim: unknown command '%s' (commands: run, wp, plot, console, sweep)\n"
                  "Run 'beltsim --help' for the usage.\n", words[0].c_str());
     return 2;
   }
@@ -400,6 +608,7 @@ int main(int argc, char** argv) {
     if (*plot) return with_outputs(cmd_plot(csv, columns, raw, env.images));  // a signal ends it at once: nothing to close
     beltsim::script::install_stop_signals();
     if (*run) return with_outputs(cmd_run(script, overrides(raw), safety(raw)));
+    if (*sweep) return with_outputs(cmd_sweep(script, raw, safety(raw)));
     if (*console) return with_outputs(cmd_console(console_script, console_args, overrides(raw), safety(raw), env));
     // wp
     beltsim::WpSettings wps;

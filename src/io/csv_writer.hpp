@@ -38,6 +38,8 @@ class CsvWriter {
 
 // one cell: quotes text containing a comma, quote or newline
 std::string csv_text(const std::string& s);
+// the cells of one line, csv_text's quoting undone ("a,\"b,\"\"c\"\"\"" is a and b,"c")
+std::vector<std::string> csv_fields(const std::string& line);
 // one number: the shortest decimal that reads back (strtod, pandas, numpy) as the same double,
 // "nan" for NaN, "inf"/"-inf"; appended to out. Every CSV file of a run writes its numbers so.
 void append_csv_number(std::string& out, double v);

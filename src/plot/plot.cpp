@@ -8,6 +8,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "io/csv_writer.hpp"
 #include "io/units.hpp"
 #include "plot/gnuplot.hpp"
 
@@ -80,34 +81,6 @@ void plot_command(std::ostringstream& g, const PlotSpec& spec, const std::vector
       << gnuplot_string(units_in_key ? with_unit(s.name, s.unit) + (right ? " (right axis)" : "") : s.name);
   }
   g << "\n";
-}
-
-std::vector<std::string> split_fields(const std::string& line) {
-  std::vector<std::string> out;
-  std::string cur;
-  bool quoted = false;
-  for (size_t i = 0; i < line.size(); ++i) {
-    const char c = line[i];
-    if (quoted) {
-      if (c == '"' && i + 1 < line.size() && line[i + 1] == '"') {
-        cur += '"';
-        ++i;
-      } else if (c == '"') {
-        quoted = false;
-      } else {
-        cur += c;
-      }
-    } else if (c == '"') {
-      quoted = true;
-    } else if (c == ',') {
-      out.push_back(cur);
-      cur.clear();
-    } else {
-      cur += c;
-    }
-  }
-  out.push_back(cur);
-  return out;
 }
 
 std::string trim(const std::string& s) {
@@ -245,7 +218,7 @@ Table read_timeseries_csv(const std::string& path) {
     ++number_of_line;
     if (!line.empty() && line.back() == '\r') line.pop_back();
     if (trim(line).empty()) continue;
-    std::vector<std::string> fields = split_fields(line);
+    std::vector<std::string> fields = csv_fields(line);
     const std::string where = path + ":" + std::to_string(number_of_line) + ": ";
     if (t.names.empty()) {
       for (auto& s : fields) {

@@ -4,6 +4,7 @@
 #include <atomic>
 #include <functional>
 #include <memory>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -12,6 +13,9 @@
 #include "script/lua_law.hpp"
 
 namespace beltsim::script {
+
+// the registry field holding the result table of the last scene:run{} (a sweep point of the quick form)
+inline constexpr const char* kLastRun = "beltsim.last_run";
 
 struct Context {
   Overrides overrides;
@@ -34,6 +38,8 @@ struct Context {
   std::vector<std::pair<const void*, double>> stopped_runs;
   // the keys of beltsim.args the running script has read (given with --set or not), in order
   std::vector<std::string> args_read;
+  // the last run that diverged: its time and message (a sweep point's status, lua_sweep.hpp)
+  std::optional<std::pair<double, std::string>> divergence;
   bool args_warned = false;  // the unread --set keys were reported at a run's start
   // the state Lua laws call into (emptied when the interpreter closes it)
   std::shared_ptr<LawHost> law_host = std::make_shared<LawHost>();

@@ -54,7 +54,7 @@ std::vector<std::string> Interpreter::unread_args(const std::string& script) con
 void Interpreter::interrupt() { script::interrupt(*limits_); }
 
 
-void Interpreter::run_file(const std::string& path) {
+void Interpreter::run_file(const std::string& path, int nresults) {
   Context* ctx = ctx_.get();
   const std::filesystem::path p(path);
   ctx->default_out = (std::filesystem::path("out") / p.stem()).string();
@@ -82,8 +82,8 @@ void Interpreter::run_file(const std::string& path) {
     throw ScriptError(msg);
   }
   CallError error;
-  const bool ok = docall(L_, 0, 0, &error, path);
-  lua_settop(L_, 0);
+  const bool ok = docall(L_, 0, nresults, &error, path);
+  if (!ok || nresults == 0) lua_settop(L_, 0);
   if (!ok && !ctx->captured)  // a capture ends the script on purpose
     throw ScriptError(error.message, error.traceback);
 }

@@ -71,8 +71,9 @@ class Interpreter {
   void set_stop_flag(const std::atomic<bool>* stop);
   // capture mode: the first scene:run{} stores its scene and settings here and ends the script
   void set_capture(Captured* c);
-  // runs a scenario script (loaded as text only); throws ScriptError
-  void run_file(const std::string& path);
+  // runs a scenario script (loaded as text only); throws ScriptError. With nresults > 0 the first
+  // nresults values the script returns are left on the stack (a sweep file's sweep).
+  void run_file(const std::string& path, int nresults = 0);
   // true when a run inside the last script was stopped by the stop flag
   bool interrupted() const;
   // the --set keys the last script never read (beltsim.args.KEY), one message each:

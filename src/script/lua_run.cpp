@@ -356,6 +356,7 @@ int l_scene_run(lua_State* L) {
     res = run(*sc, rs, ctx->stop, line.callback());
   } catch (const DivergenceError& e) {
     error = std::string(e.what()) + " (the samples up to then are in " + rs.out_dir + "/timeseries.csv)";
+    ctx->divergence = {e.t, e.what()};
   } catch (const std::invalid_argument& e) {
     error = std::string("run.") + e.what();  // names the key: run.sample, run.frames.t_start, ...
   } catch (const std::exception& e) {
@@ -389,6 +390,8 @@ int l_scene_run(lua_State* L) {
   for (int j = 0; j < sc->model.n_p(); ++j)
     lua_pushnumber(L, res.omega[j]), lua_setfield(L, -2, sc->model.pulleys[j].name.c_str());
   lua_setfield(L, -2, "omega");
+  lua_pushvalue(L, -1);
+  lua_setfield(L, LUA_REGISTRYINDEX, kLastRun);
   return 1;
 }
 

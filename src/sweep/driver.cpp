@@ -1,0 +1,217 @@
+#include "sweep/driver.hpp"
+
+#include <fcntl.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <csignal>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <stdexcept>
+#include <thread>
+
+#include "io/output_dir.hpp"
+#include "sweep/results.hpp"
+
+namespace beltsim::sweep {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+struct Running {
+  const Point* point;
+  Clock::time_point start;
+};
+
+std::string duration_text(double s) {
+  char b[64];
+  if (s < 90)
+    std::snprintf(b, sizeof b, "%.0f s", s);
+  else if (s < 5400)
+    std::snprintf(b, sizeof b, "%.0f min %02.0f s", std::floor(s / 60), std::fmod(s, 60));
+  else
+    std::snprintf(b, sizeof b, "%.0f h %02.0f min", std::floor(s / 3600), std::floor(std::fmod(s, 3600) / 60));
+  return b;
+}
+
+std::string params_text(const Point& p) {
+  std::string s;
+  for (const auto& [name, v] : p.params) s += (s.empty() ? "" : ", ") + name + "=" + value_text(v);
+  return s;
+}
+
+// the last line of a point's log that is not blank ("" when none)
+std::string last_log_line(const std::string& path) {
+  std::ifstream f(path, std::ios::binary);
+  std::string line, last;
+  while (std::getline(f, line))
+    if (line.find_first_not_of(" \t\r") != std::string::npos) last = line;
+  if (!last.empty() && last.back() == '\r') last.pop_back();
+  return last;
+}
+
+class Progress {
+ public:
+  Progress(const DriverSettings& s, int total, int done) : s_(s), total_(total), done_(done), tty_(isatty(2)) {}
+  void finished(double seconds, bool ok) {
+    ++finished_;
+    ++(ok ? done_ : failed_);
+    wall_ += seconds;
+  }
+  void show(int running, int waiting, bool final_line) {
+    std::string line = "sweep " + s_.name + ": " + std::to_string(done_) + "/" + std::to_string(total_) + " done, " +
+                       std::to_string(failed_) + " failed";
+    if (running > 0) line += ", " + std::to_string(running) + " running";
+    if (finished_ > 0 && running + waiting > 0) {
+      // the mean wall time of the points finished in this run, spread over the processes
+      const double per = wall_ / finished_;
+      const int slots = std::max(1, std::min(s_.jobs, running + waiting));
+      line += ", about " + duration_text(per * (running + waiting) / slots) + " left";
+    }
+    if (tty_)
+      std::fprintf(stderr, "\r%s\033[K%s", line.c_str(), final_line ? "\n" : "");
+    else if (final_line || line != last_)
+      std::fprintf(stderr, "%s\n", line.c_str());
+    last_ = line;
+  }
+  // a message on a line of its own (the progress line redrawn after it on a terminal)
+  void say(const std::string& m) { std::fprintf(stderr, tty_ ? "\r%s\033[K\n" : "%s\n", m.c_str()); }
+
+ private:
+  const DriverSettings& s_;
+  int total_, done_, failed_ = 0, finished_ = 0;
+  double wall_ = 0;
+  bool tty_;
+  std::string last_;
+};
+
+}  // namespace
+
+std::string this_program() {
+  std::error_code ec;
+  const auto p = std::filesystem::read_symlink("/proc/self/exe", ec);
+  if (ec) throw std::runtime_error("cannot find this program's path (/proc/self/exe): " + ec.message());
+  return p.string();
+}
+
+DriverReport run_points(const std::vector<Point>& points, const DriverSettings& s) {
+  DriverReport report;
+  std::vector<const Point*> todo;
+  for (const Point& p : points) {
+    const auto r = read_point_result(s.dir, p);
+    if (r && r->ok())
+      ++report.already_done;
+    else
+      todo.push_back(&p);
+  }
+  const OutputDir top(s.dir);
+  Progress progress(s, static_cast<int>(points.size()), report.already_done);
+  if (report.already_done > 0)
+    progress.say("sweep " + s.name + ": " + std::to_string(report.already_done) + " of " +
+                 std::to_string(points.size()) + " points done already (" + s.dir + "), " +
+                 std::to_string(todo.size()) + " to run");
+  std::map<pid_t, Running> running;
+  std::size_t next = 0;
+  bool forwarded = false;
+
+  const auto launch = [&](const Point& p) {
+    const OutputDir folder(top, p.id);
+    folder.remove(kPointFile);  // not done until its process writes it again
+    const int log = folder.open_file("log.txt", false);
+    std::vector<std::string> args{s.program};
+    args.insert(args.end(), s.point_args.begin(), s.point_args.end());
+    args.push_back("--point");
+    args.push_back(std::to_string(p.index));
+    std::vector<char*> argv;
+    for (std::string& a : args) argv.push_back(a.data());
+    argv.push_back(nullptr);
+    const pid_t pid = fork();
+    if (pid < 0) {
+      const int e = errno;
+      ::close(log);
+      throw std::runtime_error("cannot start the process of point " + p.id + ": " + std::strerror(e));
+    }
+    if (pid == 0) {  // the child: only async-signal-safe calls until exec
+      setpgid(0, 0);
+      const int null = ::open("/dev/null", O_RDONLY);
+      if (null >= 0) dup2(null, 0);
+      dup2(log, 1);
+      dup2(log, 2);
+      execv(argv[0], argv.data());
+      const char m[] = "beltsim sweep: cannot run the program for this point\n";
+      (void)!::write(2, m, sizeof m - 1);
+      _exit(127);
+    }
+    ::close(log);
+    running[pid] = Running{&p, Clock::now()};
+  };
+
+  const auto finish = [&](pid_t pid, int status) {
+    const Running r = running.at(pid);
+    running.erase(pid);
+    const Point& p = *r.point;
+    const double seconds = std::chrono::duration<double>(Clock::now() - r.start).count();
+    auto result = read_point_result(s.dir, p);
+    if (!result && forwarded) {  // stopped before it finished: it runs next time
+      ++report.not_run;
+      return;
+    }
+    if (!result) {
+      const std::string log = (std::filesystem::path(s.dir) / p.id / "log.txt").string();
+      std::string why = WIFSIGNALED(status) ? "its process was killed by signal " + std::to_string(WTERMSIG(status))
+                                            : "its process ended with status " + std::to_string(WEXITSTATUS(status)) +
+                                                  " without a result";
+      const std::string last = last_log_line(log);
+      why += last.empty() ? " (" + log + " is empty)" : " (" + log + ": " + last + ")";
+      result = PointResult{error_status(why), {}};
+      try {
+        write_point_result(s.dir, p, *result);
+      } catch (const std::exception& e) {
+        progress.say(std::string("beltsim sweep: ") + e.what());
+      }
+    }
+    progress.finished(seconds, result->ok());
+    if (result->ok()) {
+      ++report.ok;
+    } else {
+      ++report.failed;
+      progress.say("sweep " + s.name + ": point " + p.id + " (" + params_text(p) + "): " + result->status);
+    }
+  };
+
+  bool changed = true;
+  while ((next < todo.size() && !forwarded) || !running.empty()) {
+    if (s.stop && s.stop->load() && !forwarded) {
+      forwarded = true;
+      report.stopped = true;
+      const int sig = s.stop_signal ? s.stop_signal() : SIGINT;
+      for (const auto& [pid, r] : running) kill(pid, sig == 0 ? SIGINT : sig);
+    }
+    while (!forwarded && running.size() < static_cast<std::size_t>(std::max(1, s.jobs)) && next < todo.size())
+      launch(*todo[next++]);
+    if (changed) progress.show(static_cast<int>(running.size()), static_cast<int>(todo.size() - next), false);
+    changed = false;
+    int status = 0;
+    const pid_t pid = waitpid(-1, &status, WNOHANG);
+    if (pid > 0 && running.count(pid)) {
+      finish(pid, status);
+      changed = true;
+    } else if (pid <= 0) {
+      if (pid < 0 && errno != EINTR && errno != ECHILD) throw std::runtime_error(std::string("waitpid: ") + std::strerror(errno));
+      std::this_thread::sleep_for(std::chrono::milliseconds(20));  // the children's end is polled with the stop flag
+    }
+  }
+  if (forwarded) report.not_run += static_cast<int>(todo.size() - next);
+  progress.show(0, 0, true);
+  return report;
+}
+
+}  // namespace beltsim::sweep

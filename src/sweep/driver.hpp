@@ -1,0 +1,43 @@
+// Runs the points of a sweep on several processes of this machine (docs/sweeps.md).
+//
+// Each point that is not done (sweep/results.hpp) runs in a process of its own, the beltsim
+// program run again with `--point K`, so that a crash or a limit of one point leaves the others
+// running. Its standard output and error go to DIR/<id>/log.txt; it writes DIR/<id>/point.csv
+// itself, and a process that ends without one (a crash, a kill) gets a point.csv with an error
+// status from here. The children run in process groups of their own: a stop (Ctrl-C, SIGTERM)
+// reaches them from here, once, and the sweep waits for them to close their outputs.
+// A progress line on stderr says the points done, failed and running and an estimate of the time
+// left (rewritten in place on a terminal, a line per finished point otherwise).
+#pragma once
+
+#include <atomic>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "sweep/points.hpp"
+
+namespace beltsim::sweep {
+
+struct DriverSettings {
+  std::string program;                  // the beltsim executable
+  std::vector<std::string> point_args;  // its arguments but `--point K`: {"sweep", FILE, "--out", DIR, ...}
+  std::string dir;                      // the sweep's output folder
+  std::string name;                     // for the progress line
+  int jobs = 1;
+  const std::atomic<bool>* stop = nullptr;  // raised by a stop signal
+  std::function<int()> stop_signal;         // the signal received (forwarded to the children)
+};
+
+struct DriverReport {
+  int already_done = 0;  // ok before this run
+  int ok = 0, failed = 0, not_run = 0;  // of the points run now
+  bool stopped = false;
+};
+
+// the folder of the executable running now (/proc/self/exe)
+std::string this_program();
+// runs every point not done yet; throws std::runtime_error when a process cannot be started
+DriverReport run_points(const std::vector<Point>& points, const DriverSettings& s);
+
+}  // namespace beltsim::sweep

@@ -1,0 +1,45 @@
+// The results of a sweep's points and their summary (docs/sweeps.md).
+//
+// A point's folder DIR/<id>/ holds what its runs wrote and, written last and whole (created
+// unnamed, then renamed: io/output_dir.hpp), point.csv: a header and one row,
+//   point,<parameter>...,status,<figure>...
+// The status is "ok", "diverged at t = T s" or "error: message" (one line). A point is done when
+// its point.csv says ok for the same parameters; any other point runs again when the sweep does.
+// summary.csv merges every point's row in the points' order (a point with no point.csv: "not run";
+// the figures are the union of every point's, in the order they first come).
+#pragma once
+
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "sweep/points.hpp"
+
+namespace beltsim::sweep {
+
+struct PointResult {
+  std::string status = "ok";
+  std::vector<std::pair<std::string, std::string>> figures;  // name, text (numbers in full precision)
+  bool ok() const { return status == "ok"; }
+};
+
+inline constexpr const char* kPointFile = "point.csv";
+inline constexpr const char* kSummaryFile = "summary.csv";
+
+// "error: " + message, the message on one line
+std::string error_status(const std::string& message);
+
+// DIR/<id>/point.csv written whole (the folder made when missing); output_error on failure
+void write_point_result(const std::string& dir, const Point& p, const PointResult& r);
+// what DIR/<id>/point.csv says of p; nullopt when it is missing, unreadable, or written for other
+// parameters (the sweep changed)
+std::optional<PointResult> read_point_result(const std::string& dir, const Point& p);
+
+struct SummaryCounts {
+  int ok = 0, failed = 0, not_run = 0;
+};
+// DIR/summary.csv written whole from every point's point.csv
+SummaryCounts write_summary(const std::string& dir, const std::vector<Point>& points);
+
+}  // namespace beltsim::sweep

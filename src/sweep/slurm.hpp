@@ -1,0 +1,46 @@
+// A sweep as a Slurm job array (docs/sweeps.md, "On a cluster").
+//
+// DIR/sweep.sbatch is the array: one task per point not done yet (--array=0-3,7%M), each running
+// `beltsim sweep FILE --out DIR --point $SLURM_ARRAY_TASK_ID`. DIR/collect.sbatch merges
+// summary.csv (`beltsim sweep FILE --out DIR --collect`) and is submitted with
+// --dependency=afterany on the array, so that it runs however the tasks end. Paths are absolute
+// and the jobs start in the folder the command was given in, as a Slurm user expects of a job
+// script written by a tool. Each task's output is DIR/slurm-<array job>_<task>.out.
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "sweep/points.hpp"
+
+namespace beltsim::sweep {
+
+struct SlurmSettings {
+  std::string program;                    // the beltsim executable (absolute)
+  std::vector<std::string> point_args;    // its arguments but `--point K` (paths absolute)
+  std::vector<std::string> collect_args;  // its arguments that merge the summary
+  std::string dir;                        // the sweep's output folder (absolute)
+  std::string name;                       // the job's name: beltsim-<name>
+  std::string workdir;                    // the jobs' working folder (absolute)
+  std::optional<std::string> partition;   // --partition
+  std::optional<std::string> time;        // --time, Slurm's format (minutes, MM:SS, HH:MM:SS, D-HH)
+  int max_parallel = 0;                   // the array's %M; 0: as many as Slurm gives
+};
+
+struct SlurmJobs {
+  std::string array_script, collect_script;  // the files written
+  std::string array;                          // the --array value ("" when every point is done)
+};
+
+// "0-3,7,9-12" for the sorted indices
+std::string index_ranges(const std::vector<int>& indices);
+// throws std::invalid_argument naming a partition or time Slurm could not take
+void check_slurm_settings(const SlurmSettings& s);
+// writes both scripts for the points not done (sweep/results.hpp)
+SlurmJobs write_slurm_jobs(const std::vector<Point>& points, const SlurmSettings& s);
+// submits them with sbatch (the collector after the array, afterany); the two job ids. Throws
+// std::runtime_error with sbatch's message when it fails or is missing.
+std::pair<std::string, std::string> submit_slurm_jobs(const SlurmJobs& jobs);
+
+}  // namespace beltsim::sweep
