@@ -76,7 +76,8 @@ void plot_command(std::ostringstream& g, const PlotSpec& spec, const std::vector
     const int k = series[n];
     const Series& s = spec.series[k];
     const bool right = second_axis && std::find(y2.begin(), y2.end(), k) != y2.end();
-    g << (n ? ", \\\n     " : "") << "$s" << k << " using 1:2 with lines lw 2 lt " << k + 1
+    g << (n ? ", \\\n     " : "") << "$s" << k << " using 1:2 with "
+      << (spec.points ? "points pt 7 ps 1.5 lt " : "lines lw 2 lt ") << k + 1
       << (right ? " axes x1y2" : "") << " title "
       << gnuplot_string(units_in_key ? with_unit(s.name, s.unit) + (right ? " (right axis)" : "") : s.name);
   }
@@ -144,9 +145,12 @@ void plot_png(const PlotSpec& spec) {
   for (const Series& s : spec.series)
     for (size_t i = 0; i < s.t.size(); ++i)
       if (std::isfinite(s.t[i]) && std::isfinite(s.y[i])) t0 = std::min(t0, s.t[i]), t1 = std::max(t1, s.t[i]);
-  if (t1 > t0) g << "set xrange [" << number(t0) << ":" << number(t1) << "]\n";
+  if (spec.points)
+    g << "set offsets graph 0.05, graph 0.05, graph 0.05, graph 0.05\n";  // no mark on the frame
+  else if (t1 > t0)
+    g << "set xrange [" << number(t0) << ":" << number(t1) << "]\n";
   g << "set grid xtics ytics lc rgb '#dddddd'\n"
-    << "set xlabel 't [s]'\n";
+    << "set xlabel " << gnuplot_string(spec.x_label) << "\n";
   if (groups.size() <= 2) {
     // the legend below the plot: the plot keeps the full width, and both y axes stay in view
     g << "set key below center horizontal Left reverse\n";
@@ -169,7 +173,7 @@ void plot_png(const PlotSpec& spec) {
     const double n = static_cast<double>(groups.size());
     const double panel_px = spec.height * (top - 0.09 - 0.03 * (n - 1)) / n;
     for (size_t p = 0; p < groups.size(); ++p) {
-      if (p + 1 == groups.size()) g << "set format x '% h'\nset xlabel 't [s]'\n";
+      if (p + 1 == groups.size()) g << "set format x '% h'\nset xlabel " << gnuplot_string(spec.x_label) << "\n";
       // the label along the axis when it fits the panel's height (under 8 pixels a character at 12 pt),
       // else the unit alone (the legend names the series)
       std::string label = axis_label(spec, groups[p]);
@@ -207,7 +211,7 @@ const std::vector<double>& Table::column(std::string_view name) const {
   return columns[it - names.begin()];
 }
 
-Table read_timeseries_csv(const std::string& path) {
+Table read_timeseries_csv(const std::string& path, const std::vector<std::string>* only) {
   std::ifstream f(path, std::ios::binary);
   if (!f) throw std::runtime_error("cannot read " + path);
   Table t;
@@ -234,7 +238,11 @@ Table read_timeseries_csv(const std::string& path) {
       throw std::runtime_error(where + "expected " + std::to_string(t.names.size()) + " fields as in the header, got " +
                                std::to_string(fields.size()));
     for (size_t k = 0; k < fields.size(); ++k) {
-      double v = 0;
+      double v = std::nan("");
+      if (only && std::find(only->begin(), only->end(), t.names[k]) == only->end()) {
+        t.columns[k].push_back(v);
+        continue;
+      }
       if (!parse_field(fields[k], v))
         throw std::runtime_error(where + "column '" + t.names[k] + "': '" + trim(fields[k]) + "' is not a number");
       t.columns[k].push_back(v);
@@ -245,8 +253,42 @@ Table read_timeseries_csv(const std::string& path) {
   return t;
 }
 
+namespace {
+
+// a sweep's summary.csv: the header starts "point," and names a status column
+bool is_summary(const std::string& csv_path) {
+  std::ifstream f(csv_path, std::ios::binary);
+  std::string line;
+  if (!std::getline(f, line)) return false;
+  const std::vector<std::string> names = csv_fields(line);
+  return names.size() > 2 && names[0] == "point" && std::find(names.begin(), names.end(), "status") != names.end();
+}
+
+void plot_summary(const std::string& csv_path, const std::vector<std::string>& columns, const std::string& out_png) {
+  if (columns.size() < 2)
+    throw std::runtime_error(csv_path + " is a sweep's summary: name the x column and at least one y column, e.g. "
+                             "beltsim plot " + csv_path + " pretension slip");
+  const Table table = read_timeseries_csv(csv_path, &columns);
+  const std::vector<double>& x = table.column(columns[0]);
+  for (const auto& name : columns) table.column(name);
+  PlotSpec spec;
+  spec.file = out_png;
+  spec.points = true;
+  spec.x_label = with_unit(columns[0], unit_of(columns[0]));
+  const std::filesystem::path cp(csv_path);
+  spec.title = cp.has_parent_path() && cp.parent_path().has_filename()
+                   ? (cp.parent_path().filename() / cp.filename()).string()
+                   : cp.filename().string();
+  for (size_t k = 1; k < columns.size(); ++k)
+    spec.series.push_back(Series{columns[k], unit_of(columns[k]), x, table.column(columns[k])});
+  plot_png(spec);
+}
+
+}  // namespace
+
 void plot_csv(const std::string& csv_path, const std::vector<std::string>& columns, double from_t,
               const std::string& out_png) {
+  if (is_summary(csv_path)) return plot_summary(csv_path, columns, out_png);
   const Table table = read_timeseries_csv(csv_path);
   const std::vector<double>& t = table.column("t");
   std::vector<std::string> wanted = columns;

@@ -25,6 +25,8 @@ struct PlotSpec {
   std::vector<Series> series;
   std::string file;           // the PNG to write; its folder must exist
   int width = 1280, height = 720;  // [pixels]
+  std::string x_label = "t [s]";   // the x axis (Series::t holds its values)
+  bool points = false;             // a mark per value, unjoined (a sweep's points), instead of lines
 };
 
 // Writes spec.file. Throws std::runtime_error naming the problem: no series, a series with no
@@ -45,11 +47,15 @@ struct Table {
 };
 
 // Throws std::runtime_error "<path>:<line>: <reason>" for a bad row (wrong field count, a field
-// that is not a decimal number) and for a missing, empty or unreadable file.
-Table read_timeseries_csv(const std::string& path);
+// that is not a decimal number) and for a missing, empty or unreadable file. With `only`, the
+// fields of the other columns are not read (NaN): text such as a sweep's status may stand there.
+Table read_timeseries_csv(const std::string& path, const std::vector<std::string>* only = nullptr);
 
 // Plots `columns` of a timeseries.csv (empty: every '<pulley>.omega' column) against its 't'
 // column, samples with t >= from_t only, units from io/units.hpp, titled with the CSV's path.
+// A sweep's summary.csv (its header starts "point," and has a status column; sweep/results.hpp)
+// is drawn as points: the first of `columns` is the x axis, the others y (from_t is not used); a
+// point without a value (failed, not run) is left out.
 void plot_csv(const std::string& csv_path, const std::vector<std::string>& columns, double from_t,
               const std::string& out_png);
 

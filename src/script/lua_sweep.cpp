@@ -291,10 +291,16 @@ sweep::PointResult run_script_point(Interpreter& lua, const std::string& script,
   lua_pushnil(L);
   lua_setfield(L, LUA_REGISTRYINDEX, kLastRun);
   try {
-    lua.run_file(script);
+    lua.run_file(script, 1);
   } catch (const ScriptError& e) {
     return {failed_status(ctx, e.what()), {}};
   }
+  const bool sweep_file = luaL_testudata(L, -1, kSweepMeta) != nullptr;
+  lua_settop(L, 0);
+  if (sweep_file)
+    return {sweep::error_status(script + " is a sweep file (it returns beltsim.sweep{...}): the --set lists of "
+                                "`beltsim sweep` are for ordinary scripts"),
+            {}};
   std::string unread;
   for (const std::string& m : lua.unread_args(script)) unread += (unread.empty() ? "" : "; ") + m;
   if (!unread.empty()) return {sweep::error_status(unread), {}};

@@ -1,0 +1,162 @@
+#!/usr/bin/env python3
+"""`beltsim sweep` (docs/sweeps.md) through the program itself: the grid's order and ids, --list,
+--point, a failing point among good ones, the --set cross form, the summary against the points
+run one by one, resumption after a Ctrl-C and after a kill (only the points not done run again),
+and `beltsim plot` on a summary. Waits are for events (a point's point.csv), never fixed sleeps.
+
+usage: sweep_test.py BELTSIM
+"""
+import csv
+import os
+import shutil
+import signal
+import subprocess
+import sys
+import tempfile
+import time
+import unittest
+
+BELTSIM = None
+HERE = os.path.dirname(os.path.abspath(__file__))
+GRID = os.path.join(HERE, "grid.lua")
+BAD = os.path.join(HERE, "bad_point.lua")
+PLAIN = os.path.join(HERE, "plain.lua")
+LIMIT = 60.0  # [s] for one event; the points take a fraction of a second each
+
+
+def rows(path):
+    with open(path, newline="") as f:
+        return list(csv.reader(f))
+
+
+class Sweep(unittest.TestCase):
+    def setUp(self):
+        self.dir = tempfile.mkdtemp(prefix="beltsim_sweep_")
+        self.addCleanup(shutil.rmtree, self.dir, True)
+
+    def run_beltsim(self, *args, ok=(0,)):
+        p = subprocess.run([BELTSIM, *args], cwd=self.dir, capture_output=True, text=True, timeout=300)
+        self.assertIn(p.returncode, ok, p.stderr)
+        return p
+
+    def path(self, *parts):
+        return os.path.join(self.dir, *parts)
+
+    def wait_for(self, path, proc):
+        end = time.monotonic() + LIMIT
+        while not os.path.exists(path):
+            self.assertIsNone(proc.poll(), "the sweep ended before " + path)
+            self.assertLess(time.monotonic(), end, "no " + path)
+            time.sleep(0.005)
+
+    def test_grid_order_and_ids(self):
+        # names in alphabetical order, the last varying fastest; ids 0..n-1
+        out = self.run_beltsim("sweep", GRID, "--list").stdout.splitlines()
+        self.assertEqual(out, ["point,mu,pretension", "0,0.3,300", "1,0.3,500", "2,0.6,300", "3,0.6,500",
+                               "4,1,300", "5,1,500"])
+        self.assertFalse(os.path.exists(self.path("out")), "--list ran something")
+
+    def test_summary_matches_the_points_run_one_by_one(self):
+        self.run_beltsim("sweep", GRID, "--jobs", "2")
+        summary = rows(self.path("out", "grid", "summary.csv"))
+        self.assertEqual(summary[0][:4], ["point", "mu", "pretension", "status"])
+        self.assertEqual(len(summary), 7)
+        self.assertTrue(all(r[3] == "ok" for r in summary[1:]), summary)
+        self.assertIn("slip", summary[0])
+        # each point alone, in this process, into another folder, then merged
+        for k in range(6):
+            self.run_beltsim("sweep", GRID, "--point", str(k), "--out", "alone")
+        self.run_beltsim("sweep", GRID, "--collect", "--out", "alone")
+        self.assertEqual(rows(self.path("alone", "summary.csv")), summary)
+        # full precision: each figure reads back as the point's own value
+        for r in summary[1:]:
+            point = rows(self.path("out", "grid", r[0], "point.csv"))
+            self.assertEqual(dict(zip(summary[0], r)), dict(zip(point[0], point[1])))
+        slip = [float(r[summary[0].index("slip")]) for r in summary[1:]]
+        self.assertEqual(len(set(slip)), 6, "the points gave the same figures")
+
+    def test_one_point(self):
+        p = self.run_beltsim("sweep", GRID, "--point", "4")
+        self.assertEqual(sorted(os.listdir(self.path("out", "grid"))), ["4"])
+        point = rows(self.path("out", "grid", "4", "point.csv"))
+        self.assertEqual(point[1][:4], ["4", "1", "300", "ok"])
+        self.assertTrue(os.path.exists(self.path("out", "grid", "4", "timeseries.csv")))
+        self.assertIn("point 4: ok", p.stderr)
+        p = self.run_beltsim("sweep", GRID, "--point", "6", ok=(2,))
+        self.assertIn("points 0..5", p.stderr)
+
+    def test_a_failing_point_does_not_stop_the_others(self):
+        p = self.run_beltsim("sweep", BAD, "--jobs", "1", ok=(1,))
+        summary = rows(self.path("out", "bad_point", "summary.csv"))
+        status = [r[2] for r in summary[1:]]
+        self.assertEqual(status[0], "ok")
+        self.assertEqual(status[2], "ok")
+        self.assertTrue(status[1].startswith("error: " + BAD + ":"), status[1])
+        self.assertIn("belt.mu must be >= 0", status[1])
+        self.assertEqual(summary[2][3], "")  # no figure for the failed point
+        self.assertIn("point 1 (mu=-1): error:", p.stderr)
+        # run again: only the failed point runs
+        p = self.run_beltsim("sweep", BAD, ok=(1,))
+        self.assertIn("2 of 3 points done already", p.stderr)
+
+    def test_set_lists_cross_over_a_script(self):
+        self.run_beltsim("sweep", PLAIN, "--set", "pretension=300,500", "--set", "mu=0.3,1")
+        summary = rows(self.path("out", "plain", "summary.csv"))
+        self.assertEqual(summary[0][:4], ["point", "pretension", "mu", "status"])
+        self.assertEqual([r[:4] for r in summary[1:]], [["0", "300", "0.3", "ok"], ["1", "300", "1", "ok"],
+                                                        ["2", "500", "0.3", "ok"], ["3", "500", "1", "ok"]])
+        self.assertIn("omega.driver", summary[0])  # the result table of the script's run
+        # a point is the script run with those values
+        self.run_beltsim("run", PLAIN, "--set", "pretension=500", "--set", "mu=0.3", "--out", "direct")
+        with open(self.path("direct", "timeseries.csv")) as a, open(self.path("out", "plain", "2", "timeseries.csv")) as b:
+            self.assertEqual(a.read(), b.read())
+        p = self.run_beltsim("sweep", PLAIN, "--set", "mu=0.3,1x", ok=(2,))  # a number's typo
+        self.assertIn("1x", p.stderr)
+
+    def interrupted_then_resumed(self, stop):
+        args = [BELTSIM, "sweep", PLAIN, "--jobs", "1", "--set", "pretension=300,400,500,600", "--set",
+                "mu=0.3,1", "--set", "t_end=0.2"]
+        proc = subprocess.Popen(args, cwd=self.dir, stderr=subprocess.PIPE, text=True)
+        first = self.path("out", "plain", "0", "point.csv")
+        self.wait_for(first, proc)
+        stop(proc)
+        proc.communicate(timeout=LIMIT)
+        before = os.stat(first).st_ino
+        done = [k for k in range(8) if os.path.exists(self.path("out", "plain", str(k), "point.csv"))]
+        p = self.run_beltsim(*args[1:])
+        self.assertIn("%d of 8 points done already" % len(done), p.stderr)
+        self.assertEqual(os.stat(first).st_ino, before, "a finished point ran again")
+        summary = rows(self.path("out", "plain", "summary.csv"))
+        self.assertEqual([r[4] for r in summary[1:]], ["ok"] * 8)
+        return proc.returncode
+
+    def test_ctrl_c_stops_cleanly_and_the_rest_runs_later(self):
+        status = self.interrupted_then_resumed(lambda p: p.send_signal(signal.SIGINT))
+        self.assertEqual(status, 130)
+
+    def test_a_killed_sweep_resumes(self):
+        def kill(proc):
+            # the sweep and the point it runs (a process group of its own), both without warning
+            with open("/proc/%d/task/%d/children" % (proc.pid, proc.pid)) as f:
+                children = f.read().split()
+            proc.kill()
+            for c in children:
+                try:
+                    os.killpg(int(c), signal.SIGKILL)
+                except ProcessLookupError:
+                    pass
+        self.assertEqual(self.interrupted_then_resumed(kill), -signal.SIGKILL)
+
+    def test_plot_of_a_summary(self):
+        self.run_beltsim("sweep", GRID)
+        p = self.run_beltsim("plot", "out/grid/summary.csv", "pretension", "slip", "steps")
+        png = self.path("out", "grid", "plot.png")
+        self.assertEqual(p.stdout.strip(), "out/grid/plot.png")
+        self.assertGreater(os.path.getsize(png), 5000)
+        p = self.run_beltsim("plot", "out/grid/summary.csv", "pretension", ok=(1,))
+        self.assertIn("name the x column", p.stderr)
+
+
+if __name__ == "__main__":
+    BELTSIM = os.path.abspath(sys.argv.pop(1))
+    unittest.main(verbosity=2)
