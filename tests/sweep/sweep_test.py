@@ -21,7 +21,23 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 GRID = os.path.join(HERE, "grid.lua")
 BAD = os.path.join(HERE, "bad_point.lua")
 PLAIN = os.path.join(HERE, "plain.lua")
-LIMIT = 60.0  # [s] for one event; the points take a fraction of a second each
+LIMIT = 60.0
+# point 0 of this sweep diverges at once (a torque of 1e12 N·m)
+DIVERGES = """
+return beltsim.sweep {
+  grid = { torque = {-1e12, 0} },
+  run = function(p)
+    local drive = beltsim.scene {
+      pulleys = {
+        { name = "driver", centre = {0.0, 0.0}, radius = 0.1, inertia = 0.025, torque = p.torque },
+        { name = "driven", centre = {0.29, 0.0}, radius = 0.1, inertia = 0.025, torque = { per_speed = -0.5 } },
+      },
+      belt = { elements = 40, pretension = 500, mu = 1 },
+    }
+    drive:run { t_end = 0.01, sample = 1e-3, progress = false, max_wall = 60 }
+  end,
+}
+"""  # [s] for one event; the points take a fraction of a second each
 
 
 def rows(path):
@@ -98,6 +114,37 @@ class Sweep(unittest.TestCase):
         # run again: only the failed point runs
         p = self.run_beltsim("sweep", BAD, ok=(1,))
         self.assertIn("2 of 3 points done already", p.stderr)
+
+    def test_a_diverged_point_says_when(self):
+        script = self.path("div.lua")
+        with open(script, "w") as f:
+            f.write(DIVERGES)
+        p = self.run_beltsim("sweep", script, "--point", "0", ok=(1,))
+        status = rows(self.path("out", "div", "0", "point.csv"))[1][2]
+        self.assertRegex(status, r"^diverged at t = [0-9.e+-]+ s$")
+        self.assertIn("point 0: diverged at t =", p.stderr)
+
+    def test_samples_are_listed_in_their_ranges(self):
+        script = self.path("samples.lua")
+        with open(script, "w") as f:
+            f.write("return beltsim.sweep { samples = { n = 12, seed = 7, ranges = { mu = {0.2, 0.8} } },"
+                    " run = function(p) return { twice = 2 * p.mu } end }\n")
+        out = self.run_beltsim("sweep", script, "--list").stdout.splitlines()
+        self.assertEqual(out[0], "point,mu")
+        self.assertEqual([r.split(",")[0] for r in out[1:]], ["%02d" % k for k in range(12)])
+        mu = [float(r.split(",")[1]) for r in out[1:]]
+        self.assertTrue(all(0.2 <= m < 0.8 for m in mu), mu)
+        self.assertEqual(out, self.run_beltsim("sweep", script, "--list").stdout.splitlines())
+        self.run_beltsim("sweep", script, "--jobs", "2")
+        summary = rows(self.path("out", "samples", "summary.csv"))
+        self.assertEqual([float(r[3]) for r in summary[1:]], [2 * m for m in mu])
+        # a mistake in the sweep names its line
+        with open(script, "w") as f:
+            f.write("return beltsim.sweep {\n  samples = { n = 0, ranges = { mu = {0.2, 0.8} } },\n"
+                    "  run = function(p) end }\n")
+        p = self.run_beltsim("sweep", script, "--list", ok=(1,))
+        self.assertIn(script + ":1:", p.stderr)
+        self.assertIn("samples.n", p.stderr)
 
     def test_set_lists_cross_over_a_script(self):
         self.run_beltsim("sweep", PLAIN, "--set", "pretension=300,500", "--set", "mu=0.3,1")
