@@ -1,6 +1,7 @@
 #include "sweep/driver.hpp"
 
 #include <fcntl.h>
+#include <sys/prctl.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -133,6 +134,7 @@ DriverReport run_points(const std::vector<Point>& points, const DriverSettings& 
     std::vector<char*> argv;
     for (std::string& a : args) argv.push_back(a.data());
     argv.push_back(nullptr);
+    const pid_t parent = getpid();
     const pid_t pid = fork();
     if (pid < 0) {
       const int e = errno;
@@ -141,6 +143,9 @@ DriverReport run_points(const std::vector<Point>& points, const DriverSettings& 
     }
     if (pid == 0) {  // the child: only async-signal-safe calls until exec
       setpgid(0, 0);
+      // the sweep killed outright (kill -9): its points stop too, their outputs closed
+      prctl(PR_SET_PDEATHSIG, SIGTERM);
+      if (getppid() != parent) _exit(143);
       const int null = ::open("/dev/null", O_RDONLY);
       if (null >= 0) dup2(null, 0);
       dup2(log, 1);

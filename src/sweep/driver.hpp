@@ -5,7 +5,8 @@
 // running. Its standard output and error go to DIR/<id>/log.txt; it writes DIR/<id>/point.csv
 // itself, and a process that ends without one (a crash, a kill) gets a point.csv with an error
 // status from here. The children run in process groups of their own: a stop (Ctrl-C, SIGTERM)
-// reaches them from here, once, and the sweep waits for them to close their outputs.
+// reaches them from here, once, and the sweep waits for them to close their outputs; when the
+// sweep dies without a word (kill -9) they get SIGTERM (PR_SET_PDEATHSIG).
 // A progress line on stderr says the points done, failed and running and an estimate of the time
 // left (rewritten in place on a terminal, a line per finished point otherwise).
 #pragma once

@@ -40,6 +40,15 @@ return beltsim.sweep {
 """  # [s] for one event; the points take a fraction of a second each
 
 
+def alive(pid):
+    """the process runs (not gone, not a zombie)"""
+    try:
+        with open("/proc/%d/stat" % pid) as f:
+            return f.read().rsplit(")", 1)[1].split()[0] != "Z"
+    except FileNotFoundError:
+        return False
+
+
 def rows(path):
     with open(path, newline="") as f:
         return list(csv.reader(f))
@@ -182,17 +191,20 @@ class Sweep(unittest.TestCase):
         self.assertEqual(status, 130)
 
     def test_a_killed_sweep_resumes(self):
+        children = []
+
         def kill(proc):
-            # the sweep and the point it runs (a process group of its own), both without warning
+            # the sweep without warning: the point it runs gets SIGTERM and ends too
             with open("/proc/%d/task/%d/children" % (proc.pid, proc.pid)) as f:
-                children = f.read().split()
+                children.extend(int(c) for c in f.read().split())
             proc.kill()
             for c in children:
-                try:
-                    os.killpg(int(c), signal.SIGKILL)
-                except ProcessLookupError:
-                    pass
+                end = time.monotonic() + LIMIT
+                while alive(c):
+                    self.assertLess(time.monotonic(), end, "point process %d outlived the sweep" % c)
+                    time.sleep(0.005)
         self.assertEqual(self.interrupted_then_resumed(kill), -signal.SIGKILL)
+        self.assertTrue(children, "no point was running when the sweep was killed")
 
     def test_plot_of_a_summary(self):
         self.run_beltsim("sweep", GRID)
