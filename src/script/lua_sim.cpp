@@ -72,14 +72,16 @@ int pulley_index(lua_State* L, const Simulation& s, int idx, const char* what) {
 }
 
 // a C++ call whose exceptions become Lua errors once the catch block is left
+// (a divergence is noted in ctx, when given, for a sweep point's status: lua_sweep.hpp)
 template <class F>
-void guarded(lua_State* L, const char* what, F&& f) {
+void guarded(lua_State* L, const char* what, F&& f, Context* ctx = nullptr) {
   std::string error;
   try {
     const HostWork work;  // beltsim's own work, not Lua code (signals.hpp)
     f();
   } catch (const DivergenceError& e) {
     error = std::string(what) + ": " + e.what();
+    if (ctx) ctx->divergence = {e.t, e.what()};
   } catch (const std::exception& e) {
     error = std::string(what) + ": " + e.what();
   }
@@ -99,7 +101,7 @@ int run_to(lua_State* L, SimBox& box, double t, const char* what) {
       ~Done() { b.running = false; }
     } done{box};
     a = box.sim->run_to(t, box.ctx->stop, line.callback());
-  });
+  }, box.ctx);
   if (a.over_wall_limit) {
     // not silent: an error naming the limit and the time reached (outputs flushed; the
     // simulation can go on with another call)

@@ -22,7 +22,8 @@ struct SweepBox {
 
 bool is_name(const std::string& s) {
   if (s.empty() || !(std::isalpha(static_cast<unsigned char>(s[0])) || s[0] == '_')) return false;
-  return std::all_of(s.begin(), s.end(), [](char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_'; });
+  return std::all_of(s.begin(), s.end(),
+                     [](char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_'; });
 }
 
 // the string keys of the table at idx, sorted (a Lua table has no order of its own)
@@ -48,9 +49,12 @@ sweep::Value to_value(lua_State* L, int idx, const std::string& what) {
       if (!std::isfinite(x)) fail(L, what + ": a finite number expected, got " + number_text(x));
       return x;
     }
-    case LUA_TBOOLEAN: return static_cast<bool>(lua_toboolean(L, idx));
-    case LUA_TSTRING: return to_string(L, idx, what);
-    default: fail(L, what + ": a number, string or boolean expected, got " + type_name(L, idx));
+    case LUA_TBOOLEAN:
+      return static_cast<bool>(lua_toboolean(L, idx));
+    case LUA_TSTRING:
+      return to_string(L, idx, what);
+    default:
+      fail(L, what + ": a number, string or boolean expected, got " + type_name(L, idx));
   }
 }
 
@@ -88,7 +92,8 @@ std::vector<sweep::Point> read_samples(lua_State* L, int s) {
   samples.n = static_cast<long long>(lua_tointeger(L, -1));
   lua_pop(L, 1);
   if (field(L, s, "seed")) {
-    if (!lua_isinteger(L, -1)) fail(L, std::string("sweep.samples.seed: a whole number expected, got ") + type_name(L, -1));
+    if (!lua_isinteger(L, -1))
+      fail(L, std::string("sweep.samples.seed: a whole number expected, got ") + type_name(L, -1));
     samples.seed = static_cast<std::uint64_t>(lua_tointeger(L, -1));
     lua_pop(L, 1);
   }
@@ -192,11 +197,15 @@ void flatten(lua_State* L, int idx, const std::string& prefix, std::vector<std::
     }
     switch (lua_type(L, -1)) {
       case LUA_TNUMBER:
-        out.emplace_back(name, lua_isinteger(L, -1) ? std::to_string(lua_tointeger(L, -1))
-                                                    : number_text(lua_tonumber(L, -1)));
+        out.emplace_back(
+            name, lua_isinteger(L, -1) ? std::to_string(lua_tointeger(L, -1)) : number_text(lua_tonumber(L, -1)));
         break;
-      case LUA_TBOOLEAN: out.emplace_back(name, lua_toboolean(L, -1) ? "true" : "false"); break;
-      case LUA_TSTRING: out.emplace_back(name, lua_tostring(L, -1)); break;
+      case LUA_TBOOLEAN:
+        out.emplace_back(name, lua_toboolean(L, -1) ? "true" : "false");
+        break;
+      case LUA_TSTRING:
+        out.emplace_back(name, lua_tostring(L, -1));
+        break;
       case LUA_TTABLE:
         if (depth > 8) throw std::runtime_error("run(p) returned tables nested deeper than 8 at " + name);
         flatten(L, -1, name + ".", out, depth + 1);
@@ -299,7 +308,7 @@ sweep::PointResult run_script_point(Interpreter& lua, const std::string& script,
   lua_settop(L, 0);
   if (sweep_file)
     return {sweep::error_status(script + " is a sweep file (it returns beltsim.sweep{...}): the --set lists of "
-                                "`beltsim sweep` are for ordinary scripts"),
+                                         "`beltsim sweep` are for ordinary scripts"),
             {}};
   std::string unread;
   for (const std::string& m : lua.unread_args(script)) unread += (unread.empty() ? "" : "; ") + m;

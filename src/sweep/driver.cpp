@@ -5,8 +5,8 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
-#include <cerrno>
 #include <algorithm>
+#include <cerrno>
 #include <chrono>
 #include <cmath>
 #include <csignal>
@@ -210,7 +210,8 @@ DriverReport run_points(const std::vector<Point>& points, const DriverSettings& 
       finish(pid, status);
       changed = true;
     } else if (pid <= 0) {
-      if (pid < 0 && errno != EINTR && errno != ECHILD) throw std::runtime_error(std::string("waitpid: ") + std::strerror(errno));
+      if (pid < 0 && errno != EINTR && errno != ECHILD)
+        throw std::runtime_error(std::string("waitpid: ") + std::strerror(errno));
       std::this_thread::sleep_for(std::chrono::milliseconds(20));  // the children's end is polled with the stop flag
     }
   }

@@ -31,7 +31,7 @@ struct DriverSettings {
 };
 
 struct DriverReport {
-  int already_done = 0;  // ok before this run
+  int already_done = 0;                 // ok before this run
   int ok = 0, failed = 0, not_run = 0;  // of the points run now
   bool stopped = false;
 };

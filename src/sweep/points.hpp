@@ -18,8 +18,8 @@ using Value = std::variant<long long, double, bool, std::string>;
 std::string value_text(const Value& v);
 
 struct Point {
-  int index = 0;    // 0..count-1, the K of --point K and of a Slurm array task
-  std::string id;   // the index with leading zeros to the width of the last one: "007" of 120
+  int index = 0;   // 0..count-1, the K of --point K and of a Slurm array task
+  std::string id;  // the index with leading zeros to the width of the last one: "007" of 120
   std::vector<std::pair<std::string, Value>> params;  // in the sweep's order of names
 };
 

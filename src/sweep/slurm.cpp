@@ -107,8 +107,8 @@ void check_slurm_settings(const SlurmSettings& s) {
     return !v.empty() && v.find_first_not_of(allowed) == std::string::npos;
   };
   if (s.partition && !plain(*s.partition, "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789_-.,"))
-    throw std::invalid_argument("--partition: a Slurm partition name (letters, digits, _-., and commas) expected, got '" +
-                                *s.partition + "'");
+    throw std::invalid_argument(
+        "--partition: a Slurm partition name (letters, digits, _-., and commas) expected, got '" + *s.partition + "'");
   if (s.time && !plain(*s.time, "0123456789:-"))
     throw std::invalid_argument("--time: Slurm's time format (minutes, MM:SS, HH:MM:SS or D-HH:MM:SS) expected, got '" +
                                 *s.time + "'");
@@ -127,8 +127,7 @@ SlurmJobs write_slurm_jobs(const std::vector<Point>& points, const SlurmSettings
   const OutputDir top(s.dir);
   std::string a = header(s, "sweep " + s.name + ": " + std::to_string(todo.size()) + " of " +
                                 std::to_string(points.size()) + " points, one array task each");
-  if (!todo.empty())
-  {
+  if (!todo.empty()) {
     a += "#SBATCH --array=" + jobs.array;
     if (s.max_parallel > 0) a += '%' + std::to_string(s.max_parallel);
     a += '\n';

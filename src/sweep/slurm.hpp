@@ -30,7 +30,7 @@ struct SlurmSettings {
 
 struct SlurmJobs {
   std::string array_script, collect_script;  // the files written
-  std::string array;                          // the --array value ("" when every point is done)
+  std::string array;                         // the --array value ("" when every point is done)
 };
 
 // "0-3,7,9-12" for the sorted indices

@@ -1,10 +1,11 @@
 // The points of a sweep (src/sweep/points.hpp) and the Slurm array's index list (slurm.hpp).
+#include "sweep/points.hpp"
+
 #include <gtest/gtest.h>
 
 #include <string>
 #include <vector>
 
-#include "sweep/points.hpp"
 #include "sweep/slurm.hpp"
 
 namespace beltsim::sweep {
@@ -15,7 +16,8 @@ TEST(SweepPoints, TheGridCrossesTheListsTheLastFastest) {
   const std::vector<Point> p = grid_points(g);
   ASSERT_EQ(p.size(), 6u);
   std::vector<std::string> seen;
-  for (const Point& q : p) seen.push_back(q.id + ":" + value_text(q.params[0].second) + "," + value_text(q.params[1].second));
+  for (const Point& q : p)
+    seen.push_back(q.id + ":" + value_text(q.params[0].second) + "," + value_text(q.params[1].second));
   EXPECT_EQ(seen, (std::vector<std::string>{"0:1,0.5", "1:1,x", "2:1,true", "3:2,0.5", "4:2,x", "5:2,true"}));
   EXPECT_THROW(grid_points(Grid{{"a"}, {{}}}), std::invalid_argument);
 }

@@ -22,10 +22,10 @@ GRID = os.path.join(HERE, "grid.lua")
 BAD = os.path.join(HERE, "bad_point.lua")
 PLAIN = os.path.join(HERE, "plain.lua")
 LIMIT = 60.0
-# point 0 of this sweep diverges at once (a torque of 1e12 N·m)
+# points 0 (scene:run) and 2 (sim:run_to) of this sweep diverge at once (a torque of 1e12 N·m)
 DIVERGES = """
 return beltsim.sweep {
-  grid = { torque = {-1e12, 0} },
+  grid = { how = {"run", "start"}, torque = {-1e12, 0} },
   run = function(p)
     local drive = beltsim.scene {
       pulleys = {
@@ -34,7 +34,12 @@ return beltsim.sweep {
       },
       belt = { elements = 40, pretension = 500, mu = 1 },
     }
-    drive:run { t_end = 0.01, sample = 1e-3, progress = false, max_wall = 60 }
+    if p.how == "run" then
+      drive:run { t_end = 0.01, sample = 1e-3, progress = false, max_wall = 60 }
+    else
+      local sim = drive:start { sample = 1e-3, progress = false, max_wall = 60 }
+      sim:run_to(0.01)
+    end
   end,
 }
 """  # [s] for one event; the points take a fraction of a second each
@@ -128,10 +133,11 @@ class Sweep(unittest.TestCase):
         script = self.path("div.lua")
         with open(script, "w") as f:
             f.write(DIVERGES)
-        p = self.run_beltsim("sweep", script, "--point", "0", ok=(1,))
-        status = rows(self.path("out", "div", "0", "point.csv"))[1][2]
-        self.assertRegex(status, r"^diverged at t = [0-9.e+-]+ s$")
-        self.assertIn("point 0: diverged at t =", p.stderr)
+        for k in (0, 2):
+            p = self.run_beltsim("sweep", script, "--point", str(k), ok=(1,))
+            status = rows(self.path("out", "div", str(k), "point.csv"))[1][3]
+            self.assertRegex(status, r"^diverged at t = [0-9.e+-]+ s$")
+            self.assertIn("point %d: diverged at t =" % k, p.stderr)
 
     def test_samples_are_listed_in_their_ranges(self):
         script = self.path("samples.lua")
@@ -169,6 +175,9 @@ class Sweep(unittest.TestCase):
         p = self.run_beltsim("sweep", PLAIN, "--set", "mu=0.3,1x", ok=(2,))  # a number's typo
         self.assertIn("1x", p.stderr)
 
+    def finished_points(self):
+        return [k for k in range(8) if os.path.exists(self.path("out", "plain", str(k), "point.csv"))]
+
     def interrupted_then_resumed(self, stop):
         args = [BELTSIM, "sweep", PLAIN, "--jobs", "1", "--set", "pretension=300,400,500,600", "--set",
                 "mu=0.3,1", "--set", "t_end=0.2"]
@@ -178,7 +187,7 @@ class Sweep(unittest.TestCase):
         stop(proc)
         proc.communicate(timeout=LIMIT)
         before = os.stat(first).st_ino
-        done = [k for k in range(8) if os.path.exists(self.path("out", "plain", str(k), "point.csv"))]
+        done = self.finished_points()
         p = self.run_beltsim(*args[1:])
         self.assertIn("%d of 8 points done already" % len(done), p.stderr)
         self.assertEqual(os.stat(first).st_ino, before, "a finished point ran again")
@@ -194,15 +203,27 @@ class Sweep(unittest.TestCase):
         children = []
 
         def kill(proc):
-            # the sweep without warning: the point it runs gets SIGTERM and ends too
-            with open("/proc/%d/task/%d/children" % (proc.pid, proc.pid)) as f:
-                children.extend(int(c) for c in f.read().split())
+            # the sweep without warning, once point 1 runs: that point gets SIGTERM and ends too
+            end = time.monotonic() + LIMIT
+            while not children:
+                self.assertLess(time.monotonic(), end, "point 1 never started")
+                with open("/proc/%d/task/%d/children" % (proc.pid, proc.pid)) as f:
+                    for c in f.read().split():
+                        try:
+                            with open("/proc/%s/cmdline" % c, "rb") as g:
+                                if b"\0--point\0" + b"1\0" in g.read():
+                                    children.append(int(c))
+                        except FileNotFoundError:
+                            pass
             proc.kill()
+            finished = self.finished_points()
             for c in children:
                 end = time.monotonic() + LIMIT
                 while alive(c):
                     self.assertLess(time.monotonic(), end, "point process %d outlived the sweep" % c)
                     time.sleep(0.005)
+            # stopped, not run to its end as an orphan
+            self.assertEqual(self.finished_points(), finished)
         self.assertEqual(self.interrupted_then_resumed(kill), -signal.SIGKILL)
         self.assertTrue(children, "no point was running when the sweep was killed")
 
