@@ -56,7 +56,7 @@ class Slurm(unittest.TestCase):
         conf = os.path.join(d, "slurm.conf")
         with open(conf, "w") as f:
             f.write("\n".join([
-                "ClusterName=beltsimtest", "SlurmctldHost=" + host,
+                "ClusterName=beltsimtest", "SlurmctldHost=%s(127.0.0.1)" % host,
                 "SlurmUser=root", "SlurmdUser=root",
                 "SlurmctldPort=%d" % free_port(), "SlurmdPort=%d" % free_port(),
                 "AuthType=auth/munge", "CredType=cred/munge", "AuthInfo=socket=" + sock,
@@ -69,7 +69,7 @@ class Slurm(unittest.TestCase):
                 "SchedulerType=sched/backfill", "SelectType=select/cons_tres", "SelectTypeParameters=CR_CPU",
                 "ReturnToService=2", "MpiDefault=none", "JobAcctGatherType=jobacct_gather/none",
                 "AccountingStorageType=accounting_storage/none",
-                "NodeName=%s CPUs=%d State=UNKNOWN" % (host, os.cpu_count()),
+                "NodeName=%s NodeAddr=127.0.0.1 CPUs=%d State=UNKNOWN" % (host, os.cpu_count()),
                 "PartitionName=test Nodes=%s Default=YES MaxTime=INFINITE State=UP" % host, ""]))
         self.env = dict(os.environ, SLURM_CONF=conf)
         self.start(["slurmctld", "-D", "-i", "-f", conf])
