@@ -12,16 +12,30 @@
 // lands on the sticking solution, or leaves the band again if the element truly slips. Which of
 // the two, and what each gave, is at the esdirk stepper's Newton iteration (esdirk.cpp).
 //
-// Local solve (friction_local_solve): an implicit stage solves G(Z) = Z - ψ - F(Z)/s = 0. For
-// one element in contact, move its velocity by w·t̂ (and its position by w·t̂/s, which keeps the
-// position rows G_q = Z_q - ψ_q - Z_v/s at zero and leaves the penetration unchanged to first
-// order) with everything else held. Its tangential residual is then
-//   g(w) = g0 + A·w + B·(sat((u0 + w)/Δv) - sat(u0/Δv)),
-//   A = 1 + (2c + 2k/s)/(m·s)   (the two SDEs' dampers and springs resisting the move),
-//   B = μ_i·N/(m·s)             (friction, saturated outside the band),
-// with u0 the slip velocity and g0 = t̂·G_v at the iterate. g is increasing and piecewise linear
-// in w, so g(w) = 0 is solved exactly by trying the three pieces (slip forwards, slip backwards,
-// stick: w = -(g0 + B·(u0/Δv - sat0))/(A + B/Δv)).
+// Local solve (friction_local_solve): an implicit stage solves G(Z) = Z - ψ - F(Z)/s = 0. Move the
+// velocity of every element k pressing on a pulley by w_k·t̂_k (and its position by w_k·t̂_k/s,
+// which keeps the position rows G_q = Z_q - ψ_q - Z_v/s at zero and leaves the penetration
+// unchanged to first order), with everything else held. An SDE is a vector Kelvin–Voigt element
+// (model/sde.cpp): moving the velocity of one of its ends by δ (its position by δ/s) changes its
+// force by (c + k/s)·δ, and the velocity residual G_v = V - ψ_v - F_v/s of either end by λ·δ with
+//   λ = (c + k/s)/(m·s),
+// and the tangential residuals of a run of consecutive elements on one pulley (a wrap) become
+//   g_k(w) = g0_k + (1 + 2λ)·w_k - λ·(t̂_k·t̂_{k-1})·w_{k-1} - λ·(t̂_k·t̂_{k+1})·w_{k+1}
+//            + B_k·(sat((u0_k + w_k)/Δv) - sat(u0_k/Δv)),     B_k = μ_k·N_k/(m·s),
+// with u0 the slip velocity and g0 = t̂·G_v at the iterate (a neighbour off the run is held:
+// its term drops). The linear part A is symmetric and diagonally dominant, sat is increasing,
+// so g = ∇E of the strictly convex, piecewise quadratic
+//   E(w) = ½·wᵀA·w + Σ_k (g0_k - B_k·sat(u0_k/Δv))·w_k + Σ_k B_k·Δv·H((u0_k + w_k)/Δv),
+// H(x) = x²/2 for |x| <= 1, |x| - ½ beyond (Huber's function, H' = sat), and g(w) = 0 has one
+// solution: E's minimum. Newton's method on g with the tridiagonal Hessian of the current piece
+// (A plus B_k/Δv for each element in the band; Thomas' algorithm) and an exact line search on E
+// (E is piecewise quadratic along a line: safeguarded Newton on its increasing, piecewise linear
+// derivative) finds it; a full step that stays on its piece ends the iteration exactly. A run of one
+// element is the scalar case g(w) = g0 + A·w + B·(sat((u0 + w)/Δv) - sat0).
+// Solving whole wraps matters on fine belts: λ grows with the element count (k ∝ n, m ∝ 1/n), so
+// neighbours are held far more by each other than by their own inertia, and a run of elements at
+// the edge of a slip arc changes branch together: element by element, Newton moved the edge by
+// one element per iteration and ran out of iterations (docs/fine-belts.md).
 //
 // Kinematic predictor (kinematic_predict): an implicit stage at t + dt starts Newton from the
 // previous stage's value, taken at t. An element wrapped on a pulley moves round it by
@@ -67,34 +81,143 @@
 
 namespace beltsim {
 
+namespace {
+double sat(double x) { return std::clamp(x, -1.0, 1.0); }
+
+// the run r.lo .. r.lo + L - 1 of w.* (see friction_local_solve): minimises E(w) by Newton's method
+// on its gradient with a backtracking line search on E itself; returns the iterations taken
+int solve_run(LocalSolveScratch& w, int lo, int L, double lam, double band) {
+  double* x = w.w.data() + lo;
+  const double* u0 = w.u0.data() + lo;
+  const double* lin = w.lin.data() + lo;
+  const double* B = w.B.data() + lo;
+  const double* off = w.off.data() + lo;  // off[k] couples k and k + 1
+  double* grad = w.grad.data() + lo;
+  double* dir = w.dir.data() + lo;
+  double* cp = w.cp.data() + lo;
+  const double A = 1 + 2 * lam;
+  auto Aw = [&](const double* v, int k) {
+    double r = A * v[k];
+    if (k > 0) r += off[k - 1] * v[k - 1];
+    if (k + 1 < L) r += off[k] * v[k + 1];
+    return r;
+  };
+  auto piece = [&](double v, int k) { const double y = (u0[k] + v) / band; return y <= -1 ? -1 : y >= 1 ? 1 : 0; };
+  constexpr int kMaxIter = 40;
+  int it = 0;
+  for (; it < kMaxIter; ++it) {
+    // gradient and the tridiagonal Hessian of the piece x lies on; Thomas' algorithm for the direction
+    double gmax = 0;
+    for (int k = 0; k < L; ++k) {
+      grad[k] = lin[k] + Aw(x, k) + B[k] * sat((u0[k] + x[k]) / band);
+      gmax = std::max(gmax, std::abs(grad[k]));
+    }
+    if (!(gmax > 0)) break;
+    double prev_c = 0, prev_d = 0;
+    for (int k = 0; k < L; ++k) {
+      const double hk = A + (piece(x[k], k) == 0 ? B[k] / band : 0);
+      const double sub = k > 0 ? off[k - 1] : 0;
+      const double den = hk - sub * prev_c;
+      cp[k] = k + 1 < L ? off[k] / den : 0;
+      dir[k] = (-grad[k] - sub * prev_d) / den;
+      prev_c = cp[k], prev_d = dir[k];
+    }
+    for (int k = L - 2; k >= 0; --k) dir[k] -= cp[k] * dir[k + 1];
+    double slope = 0, dmax = 0;
+    for (int k = 0; k < L; ++k) slope += grad[k] * dir[k], dmax = std::max(dmax, std::abs(dir[k]));
+    if (!(slope < 0) || dmax <= 1e-6 * band) break;
+    // exact line search: E along x + α·dir is convex and piecewise quadratic, so its derivative
+    // φ'(α) is increasing and piecewise linear; safeguarded Newton on φ' from α = 1 lands on its
+    // root within a few pieces
+    double c0 = 0, dAd = 0;
+    for (int k = 0; k < L; ++k) c0 += dir[k] * (lin[k] + Aw(x, k)), dAd += dir[k] * Aw(dir, k);
+    auto dphi = [&](double al, double& curv) {
+      double val = c0 + al * dAd;
+      curv = dAd;
+      for (int k = 0; k < L; ++k) {
+        if (dir[k] == 0) continue;
+        const double yk = (u0[k] + x[k] + al * dir[k]) / band;
+        if (std::abs(yk) < 1) {
+          val += B[k] * dir[k] * yk;
+          curv += B[k] * dir[k] * dir[k] / band;
+        } else {
+          val += B[k] * dir[k] * (yk > 0 ? 1 : -1);
+        }
+      }
+      return val;
+    };
+    double lo_a = 0, hi_a = 1, curv = 0, alpha = 1;
+    double val = dphi(1, curv);
+    for (int grow = 0; val < 0 && grow < 30; ++grow) lo_a = hi_a, hi_a *= 4, val = dphi(hi_a, curv);
+    alpha = hi_a;
+    for (int ls = 0; ls < 60 && val != 0 && hi_a - lo_a > 1e-14 * hi_a; ++ls) {
+      (val < 0 ? lo_a : hi_a) = alpha;
+      double next = alpha - val / curv;
+      if (!(next > lo_a && next < hi_a)) next = 0.5 * (lo_a + hi_a);
+      if (next == alpha) break;
+      alpha = next;
+      val = dphi(alpha, curv);
+    }
+    bool same = true;
+    for (int k = 0; k < L; ++k) {
+      const double xn = x[k] + alpha * dir[k];
+      same = same && piece(xn, k) == piece(x[k], k);
+      x[k] = xn;
+    }
+    if (same && std::abs(alpha - 1) < 1e-9) {  // a full step within one piece: x is E's minimum there
+      ++it;
+      break;
+    }
+  }
+  return it;
+}
+}  // namespace
+
 int friction_local_solve(const Model& m, const Drive& d, const ContactList& pairs, double s, double* q, double* v,
-                         const double* g) {
+                         const double* g, LocalSolveScratch& w) {
   const double band = m.friction.dv;
   const Belt& bl = m.belt;
-  // the element's own linear resistance to a tangential velocity change w inside one stage: its
-  // two SDEs' dampers (2c) and, through the position change w/s, springs (2k), per unit mass
-  const double lam = (2 * bl.c + 2 * bl.k / s) / (bl.mass * s);
-  const double A = 1 + lam;
-  int moved = 0;
-  for (const ContactPair& c : pairs) {
-    if (!c.touching || !c.nl.pushing) continue;
+  // one SDE's resistance to a relative velocity change inside one stage, per unit mass: its
+  // damper c and, through the position change w/s, its spring k
+  const double lam = (bl.c + bl.k / s) / (bl.mass * s);
+  // the pressing pairs, pulley by pulley in element order (the pass's order); a run is a chain of
+  // consecutive elements on one pulley
+  w.pair.clear();
+  for (int p = 0; p < static_cast<int>(pairs.size()); ++p)
+    if (pairs[p].touching && pairs[p].nl.pushing) w.pair.push_back(p);
+  const int M = static_cast<int>(w.pair.size());
+  if (M == 0) return 0;
+  w.u0.resize(M), w.lin.resize(M), w.B.resize(M), w.off.resize(M), w.w.assign(M, 0.0);
+  w.grad.resize(M), w.dir.resize(M), w.cp.resize(M);
+  for (int k = 0; k < M; ++k) {
+    const ContactPair& c = pairs[w.pair[k]];
     const int i = c.i;
     const NormalLaw& nl = c.nl;
     const Vec2 V(v[3 * i], v[3 * i + 1]);
-    const double u0 = V.dot(nl.t) - c.omega * nl.r;
-    const double x0 = std::clamp(u0 / band, -1.0, 1.0);
-    const double g0 = g[3 * i] * nl.t.x() + g[3 * i + 1] * nl.t.y();
-    const double B = d.mu[i] * nl.N / (s * bl.mass);
-    double w = -(g0 + B * (1 - x0)) / A;  // slipping forwards
-    if (u0 + w < band) {
-      w = -(g0 + B * (-1 - x0)) / A;  // backwards
-      if (u0 + w > -band) w = -(g0 + B * (u0 / band - x0)) / (A + B / band);  // sticking
+    w.u0[k] = V.dot(nl.t) - c.omega * nl.r;
+    w.B[k] = d.mu[i] * nl.N / (s * bl.mass);
+    w.lin[k] = g[3 * i] * nl.t.x() + g[3 * i + 1] * nl.t.y() - w.B[k] * sat(w.u0[k] / band);
+    w.off[k] = 0;
+    if (k + 1 < M) {
+      const ContactPair& n = pairs[w.pair[k + 1]];
+      if (n.j == c.j && n.i == i + 1) w.off[k] = -lam * nl.t.dot(n.nl.t);
     }
-    if (w == 0) continue;
-    v[3 * i] += w * nl.t.x();
-    v[3 * i + 1] += w * nl.t.y();
-    q[3 * i] += w / s * nl.t.x();
-    q[3 * i + 1] += w / s * nl.t.y();
+  }
+  int lo = 0;
+  for (int k = 0; k < M; ++k)
+    if (w.off[k] == 0) {
+      solve_run(w, lo, k + 1 - lo, lam, band);
+      lo = k + 1;
+    }
+  int moved = 0;
+  for (int k = 0; k < M; ++k) {
+    if (w.w[k] == 0) continue;
+    const ContactPair& c = pairs[w.pair[k]];
+    const int i = c.i;
+    v[3 * i] += w.w[k] * c.nl.t.x();
+    v[3 * i + 1] += w.w[k] * c.nl.t.y();
+    q[3 * i] += w.w[k] / s * c.nl.t.x();
+    q[3 * i + 1] += w.w[k] / s * c.nl.t.y();
     ++moved;
   }
   return moved;
