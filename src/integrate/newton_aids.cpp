@@ -84,72 +84,101 @@ namespace beltsim {
 namespace {
 double sat(double x) { return std::clamp(x, -1.0, 1.0); }
 
-// the run r.lo .. r.lo + L - 1 of w.* (see friction_local_solve): minimises E(w) by Newton's method
-// on its gradient with a backtracking line search on E itself; returns the iterations taken
-int solve_run(LocalSolveScratch& w, int lo, int L, double lam, double band) {
+// Minimises E over the elements lo .. lo + L - 1 of w.* (the pressing pairs on one pulley, see
+// friction_local_solve) and, when w.J > 0, that pulley's speed change w.omega: Newton's method
+// on ∇E with an exact line search. The Hessian of the current piece is tridiagonal in the
+// elements (with breaks where two are not neighbours) bordered by the pulley's row, solved by
+// Thomas' algorithm twice (for the gradient and for the border) and the border's Schur
+// complement. Returns the iterations taken.
+int solve_block(LocalSolveScratch& w, int lo, int L, double diag, double band) {
   double* x = w.w.data() + lo;
   const double* u0 = w.u0.data() + lo;
   const double* lin = w.lin.data() + lo;
   const double* B = w.B.data() + lo;
-  const double* off = w.off.data() + lo;  // off[k] couples k and k + 1
+  const double* r = w.r.data() + lo;
+  const double* off = w.off.data() + lo;  // off[k] couples k and k + 1 (0: no coupling)
   double* grad = w.grad.data() + lo;
   double* dir = w.dir.data() + lo;
+  double* dz = w.dz.data() + lo;
   double* cp = w.cp.data() + lo;
-  const double A = 1 + 2 * lam;
+  double* den = w.den.data() + lo;
+  const double J = w.J;
+  double& om = w.omega;
   auto Aw = [&](const double* v, int k) {
-    double r = A * v[k];
-    if (k > 0) r += off[k - 1] * v[k - 1];
-    if (k + 1 < L) r += off[k] * v[k + 1];
-    return r;
+    double a = diag * v[k];
+    if (k > 0) a += off[k - 1] * v[k - 1];
+    if (k + 1 < L) a += off[k] * v[k + 1];
+    return a;
   };
-  auto piece = [&](double v, int k) { const double y = (u0[k] + v) / band; return y <= -1 ? -1 : y >= 1 ? 1 : 0; };
-  constexpr int kMaxIter = 40;
+  auto slip = [&](int k, double wk, double o) { return (u0[k] + wk - r[k] * o) / band; };
+  auto piece = [&](double y) { return y <= -1 ? -1 : y >= 1 ? 1 : 0; };
+  // T·out = in with T's factorisation in cp, den (Thomas' algorithm)
+  auto thomas = [&](const double* in, double* out) {
+    for (int k = 0; k < L; ++k) out[k] = (in[k] - (k > 0 ? off[k - 1] * out[k - 1] : 0)) / den[k];
+    for (int k = L - 2; k >= 0; --k) out[k] -= cp[k] * out[k + 1];
+  };
+  constexpr int kMaxIter = 50;
   int it = 0;
   for (; it < kMaxIter; ++it) {
-    // gradient and the tridiagonal Hessian of the piece x lies on; Thomas' algorithm for the direction
-    double gmax = 0;
+    double gmax = 0, g_om = J > 0 ? w.lin_omega + J * om : 0;
     for (int k = 0; k < L; ++k) {
-      grad[k] = lin[k] + Aw(x, k) + B[k] * sat((u0[k] + x[k]) / band);
+      const double f = B[k] * sat(slip(k, x[k], om));
+      grad[k] = lin[k] + Aw(x, k) + f;
+      g_om -= r[k] * f;
       gmax = std::max(gmax, std::abs(grad[k]));
     }
+    gmax = std::max(gmax, std::abs(g_om));
     if (!(gmax > 0)) break;
-    double prev_c = 0, prev_d = 0;
+    // the Hessian of the piece: T = A + diag(D), D_k = B_k/Δv in the band; border b_k = -r_k·D_k,
+    // corner J + Σ r_k²·D_k
+    double corner = J;
     for (int k = 0; k < L; ++k) {
-      const double hk = A + (piece(x[k], k) == 0 ? B[k] / band : 0);
+      const double Dk = piece(slip(k, x[k], om)) == 0 ? B[k] / band : 0;
       const double sub = k > 0 ? off[k - 1] : 0;
-      const double den = hk - sub * prev_c;
-      cp[k] = k + 1 < L ? off[k] / den : 0;
-      dir[k] = (-grad[k] - sub * prev_d) / den;
-      prev_c = cp[k], prev_d = dir[k];
+      den[k] = diag + Dk - sub * (k > 0 ? cp[k - 1] : 0);
+      cp[k] = k + 1 < L ? off[k] / den[k] : 0;
+      dz[k] = -r[k] * Dk;  // the border, solved in place below
+      corner += r[k] * r[k] * Dk;
+      grad[k] = -grad[k];
     }
-    for (int k = L - 2; k >= 0; --k) dir[k] -= cp[k] * dir[k + 1];
-    double slope = 0, dmax = 0;
+    thomas(grad, dir);  // y = -T⁻¹·g
+    double d_om = 0;
+    if (J > 0) {
+      double bz = 0, by = 0;
+      for (int k = 0; k < L; ++k) by += dz[k] * dir[k];
+      thomas(dz, dz);  // z = T⁻¹·b (in place: each out[k] reads in[k] before it is written)
+      for (int k = 0; k < L; ++k) bz += -r[k] * (piece(slip(k, x[k], om)) == 0 ? B[k] / band : 0) * dz[k];
+      d_om = (-g_om - by) / (corner - bz);
+      for (int k = 0; k < L; ++k) dir[k] -= dz[k] * d_om;
+    }
+    for (int k = 0; k < L; ++k) grad[k] = -grad[k];
+    double slope = g_om * d_om, dmax = std::abs(d_om) * (L > 0 ? r[0] : 0);
     for (int k = 0; k < L; ++k) slope += grad[k] * dir[k], dmax = std::max(dmax, std::abs(dir[k]));
     if (!(slope < 0) || dmax <= 1e-6 * band) break;
-    // exact line search: E along x + α·dir is convex and piecewise quadratic, so its derivative
-    // φ'(α) is increasing and piecewise linear; safeguarded Newton on φ' from α = 1 lands on its
-    // root within a few pieces
-    double c0 = 0, dAd = 0;
+    // exact line search: E along the direction is convex and piecewise quadratic, so its derivative
+    // φ'(α) is increasing and piecewise linear; safeguarded Newton on φ' from α = 1
+    double c0 = d_om * (J > 0 ? w.lin_omega + J * om : 0), dAd = J * d_om * d_om;
     for (int k = 0; k < L; ++k) c0 += dir[k] * (lin[k] + Aw(x, k)), dAd += dir[k] * Aw(dir, k);
     auto dphi = [&](double al, double& curv) {
       double val = c0 + al * dAd;
       curv = dAd;
       for (int k = 0; k < L; ++k) {
-        if (dir[k] == 0) continue;
-        const double yk = (u0[k] + x[k] + al * dir[k]) / band;
+        const double du = dir[k] - r[k] * d_om;
+        if (du == 0) continue;
+        const double yk = slip(k, x[k], om) + al * du / band;
         if (std::abs(yk) < 1) {
-          val += B[k] * dir[k] * yk;
-          curv += B[k] * dir[k] * dir[k] / band;
+          val += B[k] * du * yk;
+          curv += B[k] * du * du / band;
         } else {
-          val += B[k] * dir[k] * (yk > 0 ? 1 : -1);
+          val += B[k] * du * (yk > 0 ? 1 : -1);
         }
       }
       return val;
     };
-    double lo_a = 0, hi_a = 1, curv = 0, alpha = 1;
+    double lo_a = 0, hi_a = 1, curv = 0;
     double val = dphi(1, curv);
     for (int grow = 0; val < 0 && grow < 30; ++grow) lo_a = hi_a, hi_a *= 4, val = dphi(hi_a, curv);
-    alpha = hi_a;
+    double alpha = hi_a;
     for (int ls = 0; ls < 60 && val != 0 && hi_a - lo_a > 1e-14 * hi_a; ++ls) {
       (val < 0 ? lo_a : hi_a) = alpha;
       double next = alpha - val / curv;
@@ -159,12 +188,14 @@ int solve_run(LocalSolveScratch& w, int lo, int L, double lam, double band) {
       val = dphi(alpha, curv);
     }
     bool same = true;
+    const double om1 = om + alpha * d_om;
     for (int k = 0; k < L; ++k) {
       const double xn = x[k] + alpha * dir[k];
-      same = same && piece(xn, k) == piece(x[k], k);
+      same = same && piece(slip(k, xn, om1)) == piece(slip(k, x[k], om));
       x[k] = xn;
     }
-    if (same && std::abs(alpha - 1) < 1e-9) {  // a full step within one piece: x is E's minimum there
+    om = om1;
+    if (same && std::abs(alpha - 1) < 1e-9) {  // a full step within one piece: E's minimum there
       ++it;
       break;
     }
@@ -177,48 +208,50 @@ int friction_local_solve(const Model& m, const Drive& d, const ContactList& pair
                          const double* g, LocalSolveScratch& w) {
   const double band = m.friction.dv;
   const Belt& bl = m.belt;
-  // one SDE's resistance to a relative velocity change inside one stage, per unit mass: its
-  // damper c and, through the position change w/s, its spring k
-  const double lam = (bl.c + bl.k / s) / (bl.mass * s);
-  // the pressing pairs, pulley by pulley in element order (the pass's order); a run is a chain of
-  // consecutive elements on one pulley
-  w.pair.clear();
-  for (int p = 0; p < static_cast<int>(pairs.size()); ++p)
-    if (pairs[p].touching && pairs[p].nl.pushing) w.pair.push_back(p);
-  const int M = static_cast<int>(w.pair.size());
-  if (M == 0) return 0;
-  w.u0.resize(M), w.lin.resize(M), w.B.resize(M), w.off.resize(M), w.w.assign(M, 0.0);
-  w.grad.resize(M), w.dir.resize(M), w.cp.resize(M);
-  for (int k = 0; k < M; ++k) {
-    const ContactPair& c = pairs[w.pair[k]];
-    const int i = c.i;
-    const NormalLaw& nl = c.nl;
-    const Vec2 V(v[3 * i], v[3 * i + 1]);
-    w.u0[k] = V.dot(nl.t) - c.omega * nl.r;
-    w.B[k] = d.mu[i] * nl.N / (s * bl.mass);
-    w.lin[k] = g[3 * i] * nl.t.x() + g[3 * i + 1] * nl.t.y() - w.B[k] * sat(w.u0[k] / band);
-    w.off[k] = 0;
-    if (k + 1 < M) {
-      const ContactPair& n = pairs[w.pair[k + 1]];
-      if (n.j == c.j && n.i == i + 1) w.off[k] = -lam * nl.t.dot(n.nl.t);
-    }
-  }
-  int lo = 0;
-  for (int k = 0; k < M; ++k)
-    if (w.off[k] == 0) {
-      solve_run(w, lo, k + 1 - lo, lam, band);
-      lo = k + 1;
-    }
+  // in units of force·time: an element's row times m, the pulley's times its inertia; then one
+  // SDE adds c/s·... (c + k/s)/s per end
+  const double lam = (bl.c + bl.k / s) / s;
+  const double diag = bl.mass + 2 * lam;
   int moved = 0;
-  for (int k = 0; k < M; ++k) {
-    if (w.w[k] == 0) continue;
-    const ContactPair& c = pairs[w.pair[k]];
-    const int i = c.i;
-    v[3 * i] += w.w[k] * c.nl.t.x();
-    v[3 * i + 1] += w.w[k] * c.nl.t.y();
-    q[3 * i] += w.w[k] / s * c.nl.t.x();
-    q[3 * i + 1] += w.w[k] / s * c.nl.t.y();
-    ++moved;
+  for (int j = 0; j < m.n_p(); ++j) {
+    // the pulley's pressing pairs, in element order (the pass's order within a pulley)
+    w.pair.clear();
+    for (int p = 0; p < static_cast<int>(pairs.size()); ++p)
+      if (pairs[p].j == j && pairs[p].touching && pairs[p].nl.pushing) w.pair.push_back(p);
+    const int L = static_cast<int>(w.pair.size());
+    if (L == 0) continue;
+    w.u0.resize(L), w.lin.resize(L), w.B.resize(L), w.r.resize(L), w.off.resize(L), w.w.assign(L, 0.0);
+    w.grad.resize(L), w.dir.resize(L), w.dz.resize(L), w.cp.resize(L), w.den.resize(L);
+    const int pc = m.pulley_coord(j);
+    w.J = d.kinematic(j) ? 0 : d.mass(m, pc);
+    w.omega = 0;
+    w.lin_omega = w.J * g[pc];
+    for (int k = 0; k < L; ++k) {
+      const ContactPair& c = pairs[w.pair[k]];
+      const int i = c.i;
+      const NormalLaw& nl = c.nl;
+      const Vec2 V(v[3 * i], v[3 * i + 1]);
+      w.u0[k] = V.dot(nl.t) - c.omega * nl.r;
+      w.r[k] = w.J > 0 ? nl.r : 0;
+      w.B[k] = d.mu[i] * nl.N / s;
+      const double f0 = w.B[k] * sat(w.u0[k] / band);
+      w.lin[k] = bl.mass * (g[3 * i] * nl.t.x() + g[3 * i + 1] * nl.t.y()) - f0;
+      w.lin_omega += w.r[k] * f0;
+      w.off[k] = 0;
+      if (k + 1 < L && pairs[w.pair[k + 1]].i == i + 1) w.off[k] = -lam * nl.t.dot(pairs[w.pair[k + 1]].nl.t);
+    }
+    solve_block(w, 0, L, diag, band);
+    for (int k = 0; k < L; ++k) {
+      if (w.w[k] == 0) continue;
+      const ContactPair& c = pairs[w.pair[k]];
+      const int i = c.i;
+      v[3 * i] += w.w[k] * c.nl.t.x();
+      v[3 * i + 1] += w.w[k] * c.nl.t.y();
+      q[3 * i] += w.w[k] / s * c.nl.t.x();
+      q[3 * i + 1] += w.w[k] / s * c.nl.t.y();
+      ++moved;
+    }
+    if (w.omega != 0) v[pc] += w.omega, q[pc] += w.omega / s, ++moved;
   }
   return moved;
 }

@@ -192,9 +192,10 @@ namespace {
 
 // friction_local_solve against the equations it solves (newton_aids.cpp): for every element
 // pressing on a pulley, the tangential velocity change w_k (its position moving by w_k/s along
-// the tangent too) must zero
+// the tangent too) and the pulley's speed change ω must zero
 //   g0_k + (1 + 2λ)·w_k - λ·Σ_{neighbours j on the same pulley} (t_k·t_j)·w_j + B_k·(sat(x_k) - sat(x0_k)),
-//   λ = (c + k/s)/(m·s),  B_k = μ_k·N_k/(m·s),  x = (u0 + w)/Δv.
+//   g0_Ω + ω - Σ_k r_k·m·B_k·(sat(x_k) - sat(x0_k))/J,
+//   λ = (c + k/s)/(m·s),  B_k = μ_k·N_k/(m·s),  x = (u0 + w - r·ω)/Δv.
 // The state is the paper's dry drive at rest with slip velocities spread across the band and
 // beyond it, and a residual whose tangential parts push runs of elements either way, so the
 // solution has sticking and slipping elements side by side in each wrap. Bound: rounding of the
@@ -219,6 +220,7 @@ TEST(FrictionLocalSolve, ZeroesTheTangentialResidualOfWholeWraps) {
     }
     contact_pass(m, dr, 0, y.data(), y.data() + N, Span{0, m.n_el()}, pairs);
     Eigen::VectorXd g = Eigen::VectorXd::Zero(N);
+    for (int j = 0; j < m.n_p(); ++j) g[m.pulley_coord(j)] = 0.3 * (j + 1);  // rad/s
     double B_max = 0;
     for (const ContactPair& c : pairs)
       if (c.touching && c.nl.pushing) {
@@ -244,17 +246,30 @@ TEST(FrictionLocalSolve, ZeroesTheTangentialResidualOfWholeWraps) {
         // the position moved with the velocity, by w/s along the tangent
         EXPECT_NEAR(z[3 * c.i] - y[3 * c.i], wk[c.i] / s * c.nl.t.x(), 1e-15);
       }
+    std::vector<double> om(m.n_p()), pulley_res(m.n_p());
+    for (int j = 0; j < m.n_p(); ++j) {
+      const int pc = m.pulley_coord(j);
+      om[j] = z[N + pc] - y[N + pc];
+      EXPECT_NEAR(z[pc] - y[pc], om[j] / s, 1e-15);
+      pulley_res[j] = g[pc] + om[j];
+    }
     int sticking = 0, slipping = 0;
     for (const ContactPair& c : pairs) {
       if (!c.touching || !c.nl.pushing || on[c.i] != c.j) continue;
       const int i = c.i, nel = m.n_el();
       const double u0 = (y.segment<2>(N + 3 * i)).dot(c.nl.t) - c.omega * c.nl.r;
       const double B = dr.mu[i] * c.nl.N / (s * m.belt.mass);
-      double res = g.segment<2>(3 * i).dot(c.nl.t) + (1 + 2 * lam) * wk[i] + B * (sat((u0 + wk[i]) / band) - sat(u0 / band));
+      const double dsat = sat((u0 + wk[i] - c.nl.r * om[c.j]) / band) - sat(u0 / band);
+      double res = g.segment<2>(3 * i).dot(c.nl.t) + (1 + 2 * lam) * wk[i] + B * dsat;
+      pulley_res[c.j] -= c.nl.r * m.belt.mass * B * dsat / dr.mass(m, m.pulley_coord(c.j));
       for (int j : {(i + nel - 1) % nel, (i + 1) % nel})
         if (on[j] == c.j && std::abs(j - i) == 1) res -= lam * tang[i].dot(tang[j]) * wk[j];
       EXPECT_LT(std::abs(res), 1e-9 * B_max * (1 + 4 * lam)) << n << " elements, element " << i;
-      (std::abs(u0 + wk[i]) < band ? sticking : slipping)++;
+      (std::abs(u0 + wk[i] - c.nl.r * om[c.j]) < band ? sticking : slipping)++;
+    }
+    for (int j = 0; j < m.n_p(); ++j) {
+      EXPECT_NE(om[j], 0.0) << "pulley " << j << " is free: its speed takes part";
+      EXPECT_LT(std::abs(pulley_res[j]), 1e-9 * (1 + std::abs(g[m.pulley_coord(j)]))) << n << " elements, pulley " << j;
     }
     EXPECT_GT(sticking, 5) << n << " elements";
     EXPECT_GT(slipping, 5) << n << " elements";
