@@ -12,7 +12,7 @@ bool BeltNewtonAids::reseat(double t, double* z, double* dz, bool keep_correctio
 bool BeltNewtonAids::local_solve(double t, double s, double* z, const double* g) {
   const int N = model_.n_coord();
   contact_pass(model_, drive_, t, z, z + N, Span{0, model_.n_el()}, pairs_);
-  return friction_local_solve(model_, drive_, pairs_, s, z, z + N, g + N) > 0;
+  return friction_local_solve(model_, drive_, pairs_, s, z, z + N, g + N, local_) > 0;
 }
 
 void BeltNewtonAids::predict(double t, double dt, double* z) const {

@@ -23,7 +23,8 @@ class BeltNewtonAids final : public NewtonAids {
   const Model& model_;
   const Drive& drive_;
   mutable ContactList pairs_;       // the contact pass at the iterate
-  mutable PredictScratch predict_;  // Newton's starting point's copies of the state (predict)
+  mutable PredictScratch predict_;
+  LocalSolveScratch local_;  // Newton's starting point's copies of the state (predict)
 };
 
 }  // namespace beltsim

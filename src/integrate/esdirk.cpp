@@ -79,24 +79,17 @@ class Esdirk final : public Stepper {
   // right-hand side (NewtonAids::branches) and the corrections contract by kRate or better;
   // otherwise they are refreshed at the current iterate. Three aids for the kinks:
   // - after every correction the system solves its stiffest local equations exactly
-  //   (NewtonAids::local_solve: each element's tangential velocity against the friction band,
-  //   everything else held). This settles every element on its stick or slip branch before the
-  //   next Jacobian is taken: on the paper's dry second at rtol 1e-3 it cut the Jacobians from
-  //   55 600 to 19 900 and the wall time from 1.74 s to 0.75 s, at the same answer (6e-5).
+  //   (NewtonAids::local_solve: the tangential velocities of each wrap's elements against the
+  //   friction band and their springs, everything else held), which settles every element on its
+  //   stick or slip branch before the next Jacobian is taken;
   // - the system may put what a correction would carry across a branch onto it (NewtonAids::reseat:
-  //   elements that would slip right across the friction band land in it). On the paper's drive
-  //   this cut the steps of the first 0.3 s from 13 380 to 4 350. While corrections are taken
-  //   whole, the reseat changes the correction and the rest of it is kept; once the line search
-  //   guards the iteration, it moves the iterate and the iteration starts again from there.
-  //   Restarting every time threw corrections away: the dry second at rtol 1e-3 took 9 282
-  //   Jacobians, 7 674 with the correction kept in the first three iterations. Keeping it in
-  //   every iteration (7 229) left the line search without descent along reseated corrections
-  //   and in two-cycles with the local solve: 81 failed steps instead of 33 in the automotive
-  //   drive at rtol 1e-4; kept in the first three only, 31.
-  // - the first kFullSteps corrections are taken whole; after that a backtracking line search
-  //   on ‖G‖ guards against cycling between the two sides of a kink. A line search from the
-  //   first iteration rejected the full steps that carry an element from stick to slip (the
-  //   residual grows until the next Jacobian sees the new branch): 4 350 → 1 830 steps.
+  //   elements that would slip right across the friction band land in it). While corrections are
+  //   taken whole, the reseat changes the correction and the rest of it is kept; once the line
+  //   search guards the iteration, it moves the iterate and the iteration starts again from there;
+  // - the first kFullSteps corrections are taken whole (a full step that carries an element from
+  //   stick to slip raises the residual until the next Jacobian sees the new branch); after that a
+  //   backtracking line search on ‖G‖ guards against cycling between the two sides of a kink.
+  // docs/integration.md gives what each of these measured.
   bool newton(const OdeSystem& sys, double t, double s, int n) {
     constexpr int max_iter = 12;
     constexpr int kFullSteps = 3;

@@ -12,16 +12,30 @@
 // lands on the sticking solution, or leaves the band again if the element truly slips. Which of
 // the two, and what each gave, is at the esdirk stepper's Newton iteration (esdirk.cpp).
 //
-// Local solve (friction_local_solve): an implicit stage solves G(Z) = Z - ψ - F(Z)/s = 0. For
-// one element in contact, move its velocity by w·t̂ (and its position by w·t̂/s, which keeps the
-// position rows G_q = Z_q - ψ_q - Z_v/s at zero and leaves the penetration unchanged to first
-// order) with everything else held. Its tangential residual is then
-//   g(w) = g0 + A·w + B·(sat((u0 + w)/Δv) - sat(u0/Δv)),
-//   A = 1 + (2c + 2k/s)/(m·s)   (the two SDEs' dampers and springs resisting the move),
-//   B = μ_i·N/(m·s)             (friction, saturated outside the band),
-// with u0 the slip velocity and g0 = t̂·G_v at the iterate. g is increasing and piecewise linear
-// in w, so g(w) = 0 is solved exactly by trying the three pieces (slip forwards, slip backwards,
-// stick: w = -(g0 + B·(u0/Δv - sat0))/(A + B/Δv)).
+// Local solve (friction_local_solve): an implicit stage solves G(Z) = Z - ψ - F(Z)/s = 0. Move the
+// velocity of every element k pressing on a pulley by w_k·t̂_k (and its position by w_k·t̂_k/s,
+// which keeps the position rows G_q = Z_q - ψ_q - Z_v/s at zero and leaves the penetration
+// unchanged to first order), with everything else held. An SDE is a vector Kelvin–Voigt element
+// (model/sde.cpp): moving the velocity of one of its ends by δ (its position by δ/s) changes its
+// force by (c + k/s)·δ, and the velocity residual G_v = V - ψ_v - F_v/s of either end by λ·δ with
+//   λ = (c + k/s)/(m·s),
+// and the tangential residuals of a run of consecutive elements on one pulley (a wrap) become
+//   g_k(w) = g0_k + (1 + 2λ)·w_k - λ·(t̂_k·t̂_{k-1})·w_{k-1} - λ·(t̂_k·t̂_{k+1})·w_{k+1}
+//            + B_k·(sat((u0_k + w_k)/Δv) - sat(u0_k/Δv)),     B_k = μ_k·N_k/(m·s),
+// with u0 the slip velocity and g0 = t̂·G_v at the iterate (a neighbour off the run is held:
+// its term drops). The linear part A is symmetric and diagonally dominant, sat is increasing,
+// so g = ∇E of the strictly convex, piecewise quadratic
+//   E(w) = ½·wᵀA·w + Σ_k (g0_k - B_k·sat(u0_k/Δv))·w_k + Σ_k B_k·Δv·H((u0_k + w_k)/Δv),
+// H(x) = x²/2 for |x| <= 1, |x| - ½ beyond (Huber's function, H' = sat), and g(w) = 0 has one
+// solution: E's minimum. Newton's method on g with the tridiagonal Hessian of the current piece
+// (A plus B_k/Δv for each element in the band; Thomas' algorithm) and an exact line search on E
+// (E is piecewise quadratic along a line: safeguarded Newton on its increasing, piecewise linear
+// derivative) finds it; a full step that stays on its piece ends the iteration exactly. A run of one
+// element is the scalar case g(w) = g0 + A·w + B·(sat((u0 + w)/Δv) - sat0).
+// Solving whole wraps matters on fine belts: λ grows with the element count (k ∝ n, m ∝ 1/n), so
+// neighbours are held far more by each other than by their own inertia, and a run of elements at
+// the edge of a slip arc changes branch together: element by element, Newton moved the edge by
+// one element per iteration and ran out of iterations (docs/fine-belts.md).
 //
 // Kinematic predictor (kinematic_predict): an implicit stage at t + dt starts Newton from the
 // previous stage's value, taken at t. An element wrapped on a pulley moves round it by
@@ -67,35 +81,177 @@
 
 namespace beltsim {
 
+namespace {
+double sat(double x) { return std::clamp(x, -1.0, 1.0); }
+
+// Minimises E over the elements lo .. lo + L - 1 of w.* (the pressing pairs on one pulley, see
+// friction_local_solve) and, when w.J > 0, that pulley's speed change w.omega: Newton's method
+// on ∇E with an exact line search. The Hessian of the current piece is tridiagonal in the
+// elements (with breaks where two are not neighbours) bordered by the pulley's row, solved by
+// Thomas' algorithm twice (for the gradient and for the border) and the border's Schur
+// complement. Returns the iterations taken.
+int solve_block(LocalSolveScratch& w, int lo, int L, double diag, double band) {
+  double* x = w.w.data() + lo;
+  const double* u0 = w.u0.data() + lo;
+  const double* lin = w.lin.data() + lo;
+  const double* B = w.B.data() + lo;
+  const double* r = w.r.data() + lo;
+  const double* off = w.off.data() + lo;  // off[k] couples k and k + 1 (0: no coupling)
+  double* grad = w.grad.data() + lo;
+  double* dir = w.dir.data() + lo;
+  double* dz = w.dz.data() + lo;
+  double* cp = w.cp.data() + lo;
+  double* den = w.den.data() + lo;
+  const double J = w.J;
+  double& om = w.omega;
+  auto Aw = [&](const double* v, int k) {
+    double a = diag * v[k];
+    if (k > 0) a += off[k - 1] * v[k - 1];
+    if (k + 1 < L) a += off[k] * v[k + 1];
+    return a;
+  };
+  auto slip = [&](int k, double wk, double o) { return (u0[k] + wk - r[k] * o) / band; };
+  auto piece = [&](double y) { return y <= -1 ? -1 : y >= 1 ? 1 : 0; };
+  // T·out = in with T's factorisation in cp, den (Thomas' algorithm)
+  auto thomas = [&](const double* in, double* out) {
+    for (int k = 0; k < L; ++k) out[k] = (in[k] - (k > 0 ? off[k - 1] * out[k - 1] : 0)) / den[k];
+    for (int k = L - 2; k >= 0; --k) out[k] -= cp[k] * out[k + 1];
+  };
+  constexpr int kMaxIter = 50;
+  int it = 0;
+  for (; it < kMaxIter; ++it) {
+    double gmax = 0, g_om = J > 0 ? w.lin_omega + J * om : 0;
+    for (int k = 0; k < L; ++k) {
+      const double f = B[k] * sat(slip(k, x[k], om));
+      grad[k] = lin[k] + Aw(x, k) + f;
+      g_om -= r[k] * f;
+      gmax = std::max(gmax, std::abs(grad[k]));
+    }
+    gmax = std::max(gmax, std::abs(g_om));
+    if (!(gmax > 0)) break;
+    // the Hessian of the piece: T = A + diag(D), D_k = B_k/Δv in the band; border b_k = -r_k·D_k,
+    // corner J + Σ r_k²·D_k
+    double corner = J;
+    for (int k = 0; k < L; ++k) {
+      const double Dk = piece(slip(k, x[k], om)) == 0 ? B[k] / band : 0;
+      const double sub = k > 0 ? off[k - 1] : 0;
+      den[k] = diag + Dk - sub * (k > 0 ? cp[k - 1] : 0);
+      cp[k] = k + 1 < L ? off[k] / den[k] : 0;
+      dz[k] = -r[k] * Dk;  // the border, solved in place below
+      corner += r[k] * r[k] * Dk;
+      grad[k] = -grad[k];
+    }
+    thomas(grad, dir);  // y = -T⁻¹·g
+    double d_om = 0;
+    if (J > 0) {
+      double bz = 0, by = 0;
+      for (int k = 0; k < L; ++k) by += dz[k] * dir[k];
+      thomas(dz, dz);  // z = T⁻¹·b (in place: each out[k] reads in[k] before it is written)
+      for (int k = 0; k < L; ++k) bz += -r[k] * (piece(slip(k, x[k], om)) == 0 ? B[k] / band : 0) * dz[k];
+      d_om = (-g_om - by) / (corner - bz);
+      for (int k = 0; k < L; ++k) dir[k] -= dz[k] * d_om;
+    }
+    for (int k = 0; k < L; ++k) grad[k] = -grad[k];
+    double slope = g_om * d_om, dmax = std::abs(d_om) * (L > 0 ? r[0] : 0);
+    for (int k = 0; k < L; ++k) slope += grad[k] * dir[k], dmax = std::max(dmax, std::abs(dir[k]));
+    if (!(slope < 0) || dmax <= 1e-6 * band) break;
+    // exact line search: E along the direction is convex and piecewise quadratic, so its derivative
+    // φ'(α) is increasing and piecewise linear; safeguarded Newton on φ' from α = 1
+    double c0 = d_om * (J > 0 ? w.lin_omega + J * om : 0), dAd = J * d_om * d_om;
+    for (int k = 0; k < L; ++k) c0 += dir[k] * (lin[k] + Aw(x, k)), dAd += dir[k] * Aw(dir, k);
+    auto dphi = [&](double al, double& curv) {
+      double val = c0 + al * dAd;
+      curv = dAd;
+      for (int k = 0; k < L; ++k) {
+        const double du = dir[k] - r[k] * d_om;
+        if (du == 0) continue;
+        const double yk = slip(k, x[k], om) + al * du / band;
+        if (std::abs(yk) < 1) {
+          val += B[k] * du * yk;
+          curv += B[k] * du * du / band;
+        } else {
+          val += B[k] * du * (yk > 0 ? 1 : -1);
+        }
+      }
+      return val;
+    };
+    double lo_a = 0, hi_a = 1, curv = 0;
+    double val = dphi(1, curv);
+    for (int grow = 0; val < 0 && grow < 30; ++grow) lo_a = hi_a, hi_a *= 4, val = dphi(hi_a, curv);
+    double alpha = hi_a;
+    for (int ls = 0; ls < 60 && val != 0 && hi_a - lo_a > 1e-14 * hi_a; ++ls) {
+      (val < 0 ? lo_a : hi_a) = alpha;
+      double next = alpha - val / curv;
+      if (!(next > lo_a && next < hi_a)) next = 0.5 * (lo_a + hi_a);
+      if (next == alpha) break;
+      alpha = next;
+      val = dphi(alpha, curv);
+    }
+    bool same = true;
+    const double om1 = om + alpha * d_om;
+    for (int k = 0; k < L; ++k) {
+      const double xn = x[k] + alpha * dir[k];
+      same = same && piece(slip(k, xn, om1)) == piece(slip(k, x[k], om));
+      x[k] = xn;
+    }
+    om = om1;
+    if (same && std::abs(alpha - 1) < 1e-9) {  // a full step within one piece: E's minimum there
+      ++it;
+      break;
+    }
+  }
+  return it;
+}
+}  // namespace
+
 int friction_local_solve(const Model& m, const Drive& d, const ContactList& pairs, double s, double* q, double* v,
-                         const double* g) {
+                         const double* g, LocalSolveScratch& w) {
   const double band = m.friction.dv;
   const Belt& bl = m.belt;
-  // the element's own linear resistance to a tangential velocity change w inside one stage: its
-  // two SDEs' dampers (2c) and, through the position change w/s, springs (2k), per unit mass
-  const double lam = (2 * bl.c + 2 * bl.k / s) / (bl.mass * s);
-  const double A = 1 + lam;
+  // in units of force·time: an element's row times m, the pulley's times its inertia; then one
+  // SDE adds c/s·... (c + k/s)/s per end
+  const double lam = (bl.c + bl.k / s) / s;
+  const double diag = bl.mass + 2 * lam;
   int moved = 0;
-  for (const ContactPair& c : pairs) {
-    if (!c.touching || !c.nl.pushing) continue;
-    const int i = c.i;
-    const NormalLaw& nl = c.nl;
-    const Vec2 V(v[3 * i], v[3 * i + 1]);
-    const double u0 = V.dot(nl.t) - c.omega * nl.r;
-    const double x0 = std::clamp(u0 / band, -1.0, 1.0);
-    const double g0 = g[3 * i] * nl.t.x() + g[3 * i + 1] * nl.t.y();
-    const double B = d.mu[i] * nl.N / (s * bl.mass);
-    double w = -(g0 + B * (1 - x0)) / A;  // slipping forwards
-    if (u0 + w < band) {
-      w = -(g0 + B * (-1 - x0)) / A;  // backwards
-      if (u0 + w > -band) w = -(g0 + B * (u0 / band - x0)) / (A + B / band);  // sticking
+  for (int j = 0; j < m.n_p(); ++j) {
+    // the pulley's pressing pairs, in element order (the pass's order within a pulley)
+    w.pair.clear();
+    for (int p = 0; p < static_cast<int>(pairs.size()); ++p)
+      if (pairs[p].j == j && pairs[p].touching && pairs[p].nl.pushing) w.pair.push_back(p);
+    const int L = static_cast<int>(w.pair.size());
+    if (L == 0) continue;
+    w.u0.resize(L), w.lin.resize(L), w.B.resize(L), w.r.resize(L), w.off.resize(L), w.w.assign(L, 0.0);
+    w.grad.resize(L), w.dir.resize(L), w.dz.resize(L), w.cp.resize(L), w.den.resize(L);
+    const int pc = m.pulley_coord(j);
+    w.J = d.kinematic(j) ? 0 : d.mass(m, pc);
+    w.omega = 0;
+    w.lin_omega = w.J * g[pc];
+    for (int k = 0; k < L; ++k) {
+      const ContactPair& c = pairs[w.pair[k]];
+      const int i = c.i;
+      const NormalLaw& nl = c.nl;
+      const Vec2 V(v[3 * i], v[3 * i + 1]);
+      w.u0[k] = V.dot(nl.t) - c.omega * nl.r;
+      w.r[k] = w.J > 0 ? nl.r : 0;
+      w.B[k] = d.mu[i] * nl.N / s;
+      const double f0 = w.B[k] * sat(w.u0[k] / band);
+      w.lin[k] = bl.mass * (g[3 * i] * nl.t.x() + g[3 * i + 1] * nl.t.y()) - f0;
+      w.lin_omega += w.r[k] * f0;
+      w.off[k] = 0;
+      if (k + 1 < L && pairs[w.pair[k + 1]].i == i + 1) w.off[k] = -lam * nl.t.dot(pairs[w.pair[k + 1]].nl.t);
     }
-    if (w == 0) continue;
-    v[3 * i] += w * nl.t.x();
-    v[3 * i + 1] += w * nl.t.y();
-    q[3 * i] += w / s * nl.t.x();
-    q[3 * i + 1] += w / s * nl.t.y();
-    ++moved;
+    solve_block(w, 0, L, diag, band);
+    for (int k = 0; k < L; ++k) {
+      if (w.w[k] == 0) continue;
+      const ContactPair& c = pairs[w.pair[k]];
+      const int i = c.i;
+      v[3 * i] += w.w[k] * c.nl.t.x();
+      v[3 * i + 1] += w.w[k] * c.nl.t.y();
+      q[3 * i] += w.w[k] / s * c.nl.t.x();
+      q[3 * i + 1] += w.w[k] / s * c.nl.t.y();
+      ++moved;
+    }
+    if (w.omega != 0) v[pc] += w.omega, q[pc] += w.omega / s, ++moved;
   }
   return moved;
 }

@@ -31,8 +31,13 @@ int friction_reseat(const Model& m, const Drive& d, const ContactList& pairs, co
 // Newton aid (see newton_aids.cpp): g is the stage residual's velocity part (m/s) at (q, v); each
 // element in contact gets the tangential velocity change that zeroes its own tangential residual
 // with everything else held (an exact piecewise-linear solve). Returns the number moved.
+struct LocalSolveScratch {
+  std::vector<int> pair;                                            // one pulley's pressing pairs
+  std::vector<double> u0, lin, B, r, off, w, grad, dir, dz, cp, den;  // per pressing pair
+  double J = 0, lin_omega = 0, omega = 0;                           // the pulley's (J = 0: held)
+};
 int friction_local_solve(const Model& m, const Drive& d, const ContactList& pairs, double s, double* q, double* v,
-                         const double* g);
+                         const double* g, LocalSolveScratch& w);
 // on[i]: the first pulley element i presses on in the pass (-1: none)
 void pressed_pulleys(const Model& m, const ContactList& pairs, std::vector<int>& on);
 

@@ -8,6 +8,7 @@
 // sizes).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "integrate/newton_aids.hpp"
@@ -181,6 +182,98 @@ TEST(ConvectivePredictor, GivesAnElementTheSteadyStateOfThePlaceItTravelsTo) {
   kinematic_predict(m, dr, 0.5, 0.3 * pitch / V0, k1.data(), k1.data() + N, w);
   convective_predict(m, dr, 0.5, 0.3 * pitch / V0, k2.data(), k2.data() + N, w);
   EXPECT_EQ(k1, k2);
+}
+
+}  // namespace
+}  // namespace beltsim
+
+namespace beltsim {
+namespace {
+
+// friction_local_solve against the equations it solves (newton_aids.cpp): for every element
+// pressing on a pulley, the tangential velocity change w_k (its position moving by w_k/s along
+// the tangent too) and the pulley's speed change ω must zero
+//   g0_k + (1 + 2λ)·w_k - λ·Σ_{neighbours j on the same pulley} (t_k·t_j)·w_j + B_k·(sat(x_k) - sat(x0_k)),
+//   g0_Ω + ω - Σ_k r_k·m·B_k·(sat(x_k) - sat(x0_k))/J,
+//   λ = (c + k/s)/(m·s),  B_k = μ_k·N_k/(m·s),  x = (u0 + w - r·ω)/Δv.
+// The state is the paper's dry drive at rest with slip velocities spread across the band and
+// beyond it, and a residual whose tangential parts push runs of elements either way, so the
+// solution has sticking and slipping elements side by side in each wrap. Bound: rounding of the
+// equation's largest term (1e-9 of it; Thomas' algorithm on a diagonally dominant chain).
+TEST(FrictionLocalSolve, ZeroesTheTangentialResidualOfWholeWraps) {
+  for (int n : {60, 600}) {
+    SceneDef def = presets::paper_dry();
+    def.belt.elements = n;
+    const Scene sc = build_scene(def);
+    const Model& m = sc.model;
+    const Drive& dr = sc.drive;
+    const int N = m.n_coord();
+    Eigen::VectorXd y = sc.y0;
+    const double band = m.friction.dv, s = 1 / (0.43 * 2e-4);
+    ContactList pairs;
+    contact_pass(m, dr, 0, y.data(), y.data() + N, Span{0, m.n_el()}, pairs);
+    // slip velocities of a few band widths either way, varying along the belt
+    for (const ContactPair& c : pairs) {
+      if (!c.touching || !c.nl.pushing) continue;
+      const double u = 3 * band * std::sin(0.37 * c.i);
+      y[N + 3 * c.i] += u * c.nl.t.x(), y[N + 3 * c.i + 1] += u * c.nl.t.y();
+    }
+    contact_pass(m, dr, 0, y.data(), y.data() + N, Span{0, m.n_el()}, pairs);
+    Eigen::VectorXd g = Eigen::VectorXd::Zero(N);
+    for (int j = 0; j < m.n_p(); ++j) g[m.pulley_coord(j)] = 0.3 * (j + 1);  // rad/s
+    double B_max = 0;
+    for (const ContactPair& c : pairs)
+      if (c.touching && c.nl.pushing) {
+        const double B = dr.mu[c.i] * c.nl.N / (s * m.belt.mass);
+        B_max = std::max(B_max, B);
+        const double gt = 1.5 * B * std::cos(0.11 * c.i);  // a tangential residual of up to 1.5 friction limits
+        g[3 * c.i] = gt * c.nl.t.x(), g[3 * c.i + 1] = gt * c.nl.t.y();
+      }
+    Eigen::VectorXd z = y;
+    LocalSolveScratch w;
+    const int moved = friction_local_solve(m, dr, pairs, s, z.data(), z.data() + N, g.data(), w);
+    ASSERT_GT(moved, 10) << n << " elements";
+
+    const double lam = (m.belt.c + m.belt.k / s) / (m.belt.mass * s);
+    auto sat = [](double x) { return std::clamp(x, -1.0, 1.0); };
+    std::vector<double> wk(m.n_el(), 0.0);
+    std::vector<int> on(m.n_el(), -1);
+    std::vector<Vec2> tang(m.n_el(), Vec2::Zero());
+    for (const ContactPair& c : pairs)
+      if (c.touching && c.nl.pushing && on[c.i] < 0) {
+        on[c.i] = c.j, tang[c.i] = c.nl.t;
+        wk[c.i] = (z[N + 3 * c.i] - y[N + 3 * c.i]) * c.nl.t.x() + (z[N + 3 * c.i + 1] - y[N + 3 * c.i + 1]) * c.nl.t.y();
+        // the position moved with the velocity, by w/s along the tangent
+        EXPECT_NEAR(z[3 * c.i] - y[3 * c.i], wk[c.i] / s * c.nl.t.x(), 1e-15);
+      }
+    std::vector<double> om(m.n_p()), pulley_res(m.n_p());
+    for (int j = 0; j < m.n_p(); ++j) {
+      const int pc = m.pulley_coord(j);
+      om[j] = z[N + pc] - y[N + pc];
+      EXPECT_NEAR(z[pc] - y[pc], om[j] / s, 1e-15);
+      pulley_res[j] = g[pc] + om[j];
+    }
+    int sticking = 0, slipping = 0;
+    for (const ContactPair& c : pairs) {
+      if (!c.touching || !c.nl.pushing || on[c.i] != c.j) continue;
+      const int i = c.i, nel = m.n_el();
+      const double u0 = (y.segment<2>(N + 3 * i)).dot(c.nl.t) - c.omega * c.nl.r;
+      const double B = dr.mu[i] * c.nl.N / (s * m.belt.mass);
+      const double dsat = sat((u0 + wk[i] - c.nl.r * om[c.j]) / band) - sat(u0 / band);
+      double res = g.segment<2>(3 * i).dot(c.nl.t) + (1 + 2 * lam) * wk[i] + B * dsat;
+      pulley_res[c.j] -= c.nl.r * m.belt.mass * B * dsat / dr.mass(m, m.pulley_coord(c.j));
+      for (int j : {(i + nel - 1) % nel, (i + 1) % nel})
+        if (on[j] == c.j && std::abs(j - i) == 1) res -= lam * tang[i].dot(tang[j]) * wk[j];
+      EXPECT_LT(std::abs(res), 1e-9 * B_max * (1 + 4 * lam)) << n << " elements, element " << i;
+      (std::abs(u0 + wk[i] - c.nl.r * om[c.j]) < band ? sticking : slipping)++;
+    }
+    for (int j = 0; j < m.n_p(); ++j) {
+      EXPECT_NE(om[j], 0.0) << "pulley " << j << " is free: its speed takes part";
+      EXPECT_LT(std::abs(pulley_res[j]), 1e-9 * (1 + std::abs(g[m.pulley_coord(j)]))) << n << " elements, pulley " << j;
+    }
+    EXPECT_GT(sticking, 5) << n << " elements";
+    EXPECT_GT(slipping, 5) << n << " elements";
+  }
 }
 
 }  // namespace
