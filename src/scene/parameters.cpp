@@ -32,9 +32,9 @@ constexpr Parameter kParameters[] = {
      "friction law, eqs. 3-4 (table below)", nullptr, nullptr, nullptr},
     {"scene", "gravity", K::number, "m/s²", 9.81, "", W::ours, R::finite, "gravity along -y; 0 switches it off",
      [](SceneDef& d, PulleyDef&) -> Slot { return &d.gravity; }, nullptr, nullptr},
-    {"scene", "energy", K::other, "", {}, "false", W::none, R::none,
+    {"scene", "energy", K::other, "", {}, "`false`", W::none, R::none,
      "track work and dissipation per channel (adds energy.* columns)", nullptr, nullptr, nullptr},
-    {"scene", "allow_large", K::other, "", {}, "false", W::none, R::none,
+    {"scene", "allow_large", K::other, "", {}, "`false`", W::none, R::none,
      "past the limit of 20 000 elements (hours per simulated second)", nullptr, nullptr, nullptr},
 
     // ---- pulleys = { {...}, ... } ----
@@ -49,7 +49,7 @@ constexpr Parameter kParameters[] = {
     {"pulley", "inertia", K::number, "kg·m²", 0.025, "", W::ours, R::positive,
      "moment of inertia about its axis (the default is a steel disc of r = 0.1 m, 20 mm wide)",
      [](SceneDef&, PulleyDef& p) -> Slot { return &p.inertia; }, nullptr, nullptr},
-    {"pulley", "wrap", K::other, "", {}, "inside", W::ours, R::none,
+    {"pulley", "wrap", K::other, "", {}, "`\"inside\"`", W::ours, R::none,
      "\"inside\" the loop, or \"back\" (the belt's back side, e.g. a tensioner idler)", nullptr, nullptr,
      [](const SceneDef&, const PulleyDef& p) -> std::string { return p.wrap == WrapSide::inside ? "inside" : "back"; }},
     {"pulley", "torque", K::other, "N·m", {}, "none", W::none, R::none, "applied torque law (Laws, below)", nullptr,
@@ -72,7 +72,7 @@ constexpr Parameter kParameters[] = {
      "mounting strain (route pitch length / rest length - 1), instead of pretension",
      [](SceneDef& d, PulleyDef&) -> Slot { return &d.belt.strain; },
      [](const SceneDef& d) { return d.belt.tensioning == Tensioning::strain; }, nullptr},
-    {"belt", "direction", K::other, "", {}, "cw", W::ours, R::none,
+    {"belt", "direction", K::other, "", {}, "`\"cw\"`", W::ours, R::none,
      "direction of travel round the loop, \"cw\" or \"ccw\" (the default turns as the paper's driver)", nullptr,
      nullptr,
      [](const SceneDef& d, const PulleyDef&) -> std::string { return d.belt.loop_sense < 0 ? "cw" : "ccw"; }},
@@ -154,9 +154,9 @@ constexpr Parameter kParameters[] = {
      [](SceneDef& d, PulleyDef&) -> Slot { return &d.friction.dv; }, nullptr, nullptr},
 };
 
-// a default as the docs show it: "3.0256e9", "1e-5", "0.026", "500"
+// a default as the docs show it: "3.0256e9", "1e-3", "0.026", "500"
 std::string doc_number(double v) {
-  if (v == 0 || (std::abs(v) >= 1e-3 && std::abs(v) < 1e5)) return number_text(v);
+  if (v == 0 || (std::abs(v) >= 1e-2 && std::abs(v) < 1e5)) return number_text(v);
   char buf[32];
   const auto r = std::to_chars(buf, buf + sizeof buf, v, std::chars_format::scientific);
   std::string s(buf, r.ptr);  // "3.0256e+09"
@@ -166,6 +166,19 @@ std::string doc_number(double v) {
   exp = exp.substr(1);
   while (exp.size() > 1 && exp[0] == '0') exp.erase(0, 1);
   return s.substr(0, e + 1) + (neg ? "-" : "") + exp;
+}
+
+// a rule as the docs show it
+std::string_view doc_range(Rule r) {
+  switch (r) {
+    case Rule::positive: return "> 0";
+    case Rule::non_negative: return "≥ 0";
+    case Rule::exponent: return "≥ 1";
+    case Rule::at_least_three: return "≥ 3";
+    case Rule::finite: return "finite";
+    case Rule::none: break;
+  }
+  return "—";
 }
 
 }  // namespace
@@ -239,7 +252,7 @@ std::string parameters_markdown() {
   for (const auto& [table, title] : {std::pair{"scene", "`beltsim.scene{...}`"}, std::pair{"pulley", "Pulley table"},
                                      std::pair{"belt", "Belt table"}, std::pair{"belt.sde", "`belt.sde` table"},
                                      std::pair{"contact", "Contact table"}, std::pair{"friction", "Friction table"}}) {
-    md.append(md.empty() ? "" : "\n").append(title).append(":\n\n| key | unit | default | meaning |\n|---|---|---|---|\n");
+    md.append(md.empty() ? "" : "\n").append(title).append(":\n\n| key | unit | default | range | meaning |\n|---|---|---|---|---|\n");
     for (const Parameter* p : parameters_of(table)) {
       std::string fallback;
       if (p->fallback)
@@ -248,7 +261,8 @@ std::string parameters_markdown() {
         fallback.append(p->fallback_text.empty() ? "—" : p->fallback_text);
       if (p->whose != Whose::none) fallback.append(" (").append(whose_text(p->whose)).append(")");
       md.append("| `").append(p->key).append("` | ").append(p->unit.empty() ? "—" : p->unit);
-      md.append(" | ").append(fallback).append(" | ").append(p->note).append(" |\n");
+      md.append(" | ").append(fallback).append(" | ").append(doc_range(p->rule)).append(" | ").append(p->note);
+      md.append(" |\n");
     }
   }
   return md;

@@ -341,10 +341,40 @@ TEST(SceneIo, WrongKeywordOrVersionIsRefused) {
   EXPECT_EQ(error_of("beltsim-checkpoint 4\nscene 4\n"),
             "line 1: a version 4 checkpoint; this beltsim reads version " + std::to_string(kCheckpointVersion) +
                 " only: resume it with the beltsim that wrote it, or run the scene again from its script");
+  // version 5 held each input's unit and note; 6 takes them from the parameter table
+  EXPECT_EQ(error_of("beltsim-checkpoint 5\nscene 4\n"),
+            "line 1: a version 5 checkpoint; this beltsim reads version 6 only: resume it with the beltsim that "
+            "wrote it, or run the scene again from its script");
   EXPECT_EQ(error_of("scene 4\nmodel 4\n"), "line 1: not a beltsim checkpoint (it begins 'scene 4')");
   EXPECT_EQ(error_of(resealed(with_line(text, "pulley.wrap", "pulley.wrap outside"))),
             "line " + std::to_string(line_of(text, "pulley.wrap")) +
                 ": 'pulley.wrap': expected inside or back, got 'outside'");
+}
+
+// the scene's inputs (parameters.csv's first rows) keep their names, values and sources; their
+// units and notes come back from the parameter table, which must know every name
+TEST(SceneIo, InputsComeBackWithTheTablesUnitsAndNotes) {
+  for (const Scene* sc : {&dry(), &automotive()}) {
+    const Scene back = round_trip(*sc);
+    ASSERT_EQ(back.inputs.size(), sc->inputs.size());
+    for (size_t i = 0; i < sc->inputs.size(); ++i) {
+      const SceneInput &a = sc->inputs[i], &b = back.inputs[i];
+      EXPECT_EQ(b.name, a.name);
+      EXPECT_EQ(std::memcmp(&b.value, &a.value, sizeof a.value), 0) << a.name;
+      EXPECT_EQ(b.text, a.text) << a.name;
+      EXPECT_EQ(b.unit, a.unit) << a.name;
+      EXPECT_EQ(b.given, a.given) << a.name;
+      EXPECT_EQ(b.note, a.note) << a.name;
+    }
+  }
+  const std::string text = scene_text(dry());
+  EXPECT_EQ(error_of(resealed(with_line(text, "input.name", "input.name \"belt.stiffness\""))),
+            "line " + std::to_string(line_of(text, "input.name")) +
+                ": 'input.name': 'belt.stiffness' is not a scene parameter");
+  // a pulley's key under another pulley's name is no parameter either
+  EXPECT_EQ(error_of(resealed(with_line(text, "input.name", "input.name \"pulley.nobody.radius\""))),
+            "line " + std::to_string(line_of(text, "input.name")) +
+                ": 'input.name': 'pulley.nobody.radius' is not a scene parameter");
 }
 
 // a value changed without a sign in its syntax: only the checksum sees it
