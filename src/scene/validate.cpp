@@ -5,6 +5,7 @@
 #include <cmath>
 #include <set>
 #include <sstream>
+#include <stdexcept>
 
 #include "scene/parameters.hpp"
 #include "scene/scene.hpp"
@@ -16,6 +17,12 @@ void reject(const std::string& what, const std::string& rule, double value, cons
   s.precision(6);
   s << what << ' ' << rule << " (got " << value << (unit.empty() ? "" : " ") << unit << ")";
   throw ParameterError(s.str());
+}
+
+void reject(std::string_view dotted, const std::string& rule, double value) {
+  const Parameter* p = find_parameter(dotted);
+  if (!p) throw std::logic_error("reject: '" + std::string(dotted) + "' is not in the parameter table");
+  reject(std::string(dotted), rule, value, std::string(p->unit));
 }
 
 void require_finite(const std::string& what, double value, const std::string& unit) {
