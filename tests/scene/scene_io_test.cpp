@@ -9,9 +9,12 @@
 #include <limits>
 #include <map>
 #include <stdexcept>
+#include <sstream>
+#include <set>
 
 #include "io/checkpoint_text.hpp"
 #include "io/number_text.hpp"
+#include "scene/parameters.hpp"
 #include "scene/presets.hpp"
 #include "scene/scene.hpp"
 #include "scene/scene_io.hpp"
@@ -375,6 +378,27 @@ TEST(SceneIo, InputsComeBackWithTheTablesUnitsAndNotes) {
   EXPECT_EQ(error_of(resealed(with_line(text, "input.name", "input.name \"pulley.nobody.radius\""))),
             "line " + std::to_string(line_of(text, "input.name")) +
                 ": 'input.name': 'pulley.nobody.radius' is not a scene parameter");
+}
+
+// the scene's fields a scenario gives are under the scenario's keys, the parameter table's
+// (contact.damping, not the model's contact.b); the rest are values the build derives or the drive's
+TEST(SceneIo, TheScenarioFieldsAreUnderTheTablesKeys) {
+  const std::string text = scene_text(automotive());
+  const std::set<std::string> derived{"belt.pitch", "belt.rigid_length", "belt.mass", "belt.rot_inertia"};
+  int found = 0;
+  std::istringstream lines(text);
+  for (std::string line; std::getline(lines, line);) {
+    const std::string key = line.substr(0, line.find(' '));
+    if (key == "y0") break;  // the state and what the build derived follow
+    const bool scenario = key.rfind("belt.", 0) == 0 || key.rfind("contact.", 0) == 0 ||
+                          key.rfind("friction.", 0) == 0 || key == "gravity" ||
+                          (key.rfind("pulley.", 0) == 0 && key.rfind("pulley.drive", 0) != 0 &&
+                           key.rfind("pulley.torque", 0) != 0 && key.rfind("pulley.speed", 0) != 0);
+    if (!scenario || derived.count(key)) continue;
+    EXPECT_NE(find_parameter(key), nullptr) << key;
+    ++found;
+  }
+  EXPECT_GE(found, 20);
 }
 
 // a value changed without a sign in its syntax: only the checksum sees it
