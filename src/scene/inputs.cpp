@@ -19,8 +19,7 @@ std::vector<SceneInput> scene_inputs(const SceneDef& d) {
   std::vector<SceneInput> in;
   auto add = [&](const Parameter* par, const PulleyDef* p) {
     if (par->applies && !par->applies(d)) return;
-    const std::string name =
-        p ? "pulley." + p->name + "." + std::string(par->key) : par->dotted();
+    const std::string name = p ? "pulley." + p->name + "." + std::string(par->key) : par->dotted();
     const std::string text = par->word ? par->word(d, p ? *p : PulleyDef{}) : "";
     const std::optional<double> v = value_of(*par, d, p);
     if (text.empty() && !v) return;  // read by its own code, or an alternative not given

@@ -20,6 +20,7 @@ bool per_sde(const SceneDef& d) { return d.belt.reading == StiffnessReading::per
 
 // The table. A number's default is `fallback`; what a scenario may leave out but has no single
 // number (a law, a route) says its default in `fallback_text`.
+// clang-format off
 constexpr Parameter kParameters[] = {
     // ---- beltsim.scene{...} ----
     {"scene", "pulleys", K::other, "", {}, "", W::none, R::none,
@@ -153,6 +154,7 @@ constexpr Parameter kParameters[] = {
      "the paper's Δv, the slip speed at which μ reaches its kinetic value",
      [](SceneDef& d, PulleyDef&) -> Slot { return &d.friction.dv; }, nullptr, nullptr},
 };
+// clang-format on
 
 // a default as the docs show it: "3.0256e9", "1e-3", "0.026", "500"
 std::string doc_number(double v) {

@@ -43,14 +43,14 @@ struct Parameter {
   std::string_view table;  // the scenario's table: "scene", "belt", "belt.sde", "contact", "friction", "pulley"
   std::string_view key;    // the key in that table
   Kind kind;
-  std::string_view unit;   // SI; "" when dimensionless or not a number
+  std::string_view unit;           // SI; "" when dimensionless or not a number
   std::optional<double> fallback;  // the default of a number
   std::string_view fallback_text;  // the default of anything else, as the docs show it ("" when none)
   Whose whose;
   Rule rule;
-  std::string_view note;   // what it is and what it refers to
-  Slot (*slot)(SceneDef&, PulleyDef&);        // nullptr: no single number (read and checked by their own code)
-  bool (*applies)(const SceneDef&);           // nullptr: always; else whether the scene uses it
+  std::string_view note;                // what it is and what it refers to
+  Slot (*slot)(SceneDef&, PulleyDef&);  // nullptr: no single number (read and checked by their own code)
+  bool (*applies)(const SceneDef&);     // nullptr: always; else whether the scene uses it
   std::string (*word)(const SceneDef&, const PulleyDef&);  // a value that is a word, "" when it is a number
 
   // "belt.mass_per_length", "pulley.radius", "gravity" (a key of the scene table stands alone)
