@@ -34,6 +34,7 @@
 #include "io/output_dir.hpp"
 #include "plot/plot.hpp"
 #include "plot/wp_plot.hpp"
+#include "scene/parameters.hpp"
 #include "script/interpreter.hpp"
 #include "script/script_args.hpp"
 #include "sim/work_precision.hpp"
@@ -481,7 +482,8 @@ int main(int argc, char** argv) {
   app.require_subcommand(1);
   app.footer("Exit status: 0 on success, 1 on a script, parameter, run or plot error or an output that\n"
              "could not be written, 2 on bad usage, 130 after Ctrl-C, 143 after SIGTERM, 129 after SIGHUP\n"
-             "(outputs closed). 'beltsim COMMAND --help' describes a command.");
+             "(outputs closed). 'beltsim COMMAND --help' describes a command; 'beltsim help parameters' lists\n"
+             "the scene's parameters with their units and defaults.");
   Raw raw;
   std::string script, csv;
   std::optional<std::string> console_script;
@@ -556,6 +558,11 @@ int main(int argc, char** argv) {
       console_args.assign(dd + 1, words.end());
       words.erase(dd, words.end());
     }
+  }
+  if (words.size() == 2 && words[0] == "help" && words[1] == "parameters") {
+    // the scene's parameter tables, as docs/lua-api.md holds them (scene/parameters.hpp)
+    std::fputs(beltsim::parameters_markdown().c_str(), stdout);
+    return 0;
   }
   if (!words.empty() && words[0] == "help") words[0] = "--help";
   const std::vector<std::string> commands{"run", "wp", "plot", "console", "sweep"};

@@ -9,7 +9,8 @@
 //       pulley speeds Omega_j [rad/s]);
 //   e = running integrals of power, present only when energy tracking is on (see EnergyIndex).
 //
-// SI units throughout; counter-clockwise positive (z out of the page), y up.
+// SI units throughout; counter-clockwise positive (z out of the page), y up. The model has no defaults: a scene's
+// come from the parameter table (scene/parameters.hpp) and the builder copies them in.
 #pragma once
 
 #include <string>
@@ -26,8 +27,8 @@ enum class WrapSide { inside, back };  // pulley inside the belt loop, or on the
 struct Pulley {
   std::string name;
   Vec2 centre{0, 0};         // [m], fixed
-  double radius = 0.1;       // [m], contact radius r_p of the pitch line
-  double inertia = 0.025;    // [kg·m²] about its axis
+  double radius = 0;         // [m], contact radius r_p of the pitch line
+  double inertia = 0;        // [kg·m²] about its axis
   WrapSide wrap = WrapSide::inside;
 };
 
@@ -47,14 +48,14 @@ struct Belt {
 };
 
 struct Contact {
-  double c1 = 3.0256e9;  // [N/m²]
-  double c2 = 6.5e5;     // [N/m]
-  double b = 300;        // [N·s/m]
-  double p_max = 1e-3;   // [m] depth of full damping
+  double c1 = 0;     // [N/m²]
+  double c2 = 0;     // [N/m]
+  double b = 0;      // [N·s/m]
+  double p_max = 0;  // [m] depth of full damping
 };
 
 struct Friction {
-  double dv = 1e-5;      // [m/s] slip speed at which mu reaches its kinetic value
+  double dv = 0;  // [m/s] slip speed at which mu reaches its kinetic value
 };
 
 // Running integrals carried in y when Model::track_energy is set; all in joules.
@@ -72,7 +73,7 @@ struct Model {
   Belt belt;
   Contact contact;
   Friction friction;
-  double gravity = 9.81;          // [m/s²], acts along -y; 0 switches it off
+  double gravity = 0;             // [m/s²], acts along -y; 0 switches it off
   bool track_energy = false;
 
   int n_el() const { return belt.n; }

@@ -44,7 +44,6 @@ void check_sde_values(const Belt& b, const BeltDef& bd);
 struct TensionAtRest {
   const char* key;  // how it was given, for the messages: "belt.pretension", ...
   double value;     // the value given
-  const char* unit;
   double rest = 0;     // [m] the rest length of an element when the rest length or strain is given, else 0
   double tension = 0;  // [N] the tension at rest
 };

@@ -174,9 +174,9 @@ void check_sde_values(const Belt& b, const BeltDef& bd) {
 }
 
 TensionAtRest tension_at_rest(const BeltDef& bd, double route_length, Belt& b) {
-  TensionAtRest t{"belt.pretension", bd.pretension, "N"};
-  if (bd.tensioning == Tensioning::rest_length) t.key = "belt.rest_length", t.value = bd.rest_length, t.unit = "m";
-  if (bd.tensioning == Tensioning::strain) t.key = "belt.strain", t.value = bd.strain, t.unit = "";
+  TensionAtRest t{"belt.pretension", bd.pretension};
+  if (bd.tensioning == Tensioning::rest_length) t.key = "belt.rest_length", t.value = bd.rest_length;
+  if (bd.tensioning == Tensioning::strain) t.key = "belt.strain", t.value = bd.strain;
   if (bd.tensioning == Tensioning::rest_length) t.rest = bd.rest_length / b.n;
   if (bd.tensioning == Tensioning::strain) t.rest = b.pitch / (1 + bd.strain);
   if (t.rest > 0) {
@@ -184,13 +184,13 @@ TensionAtRest tension_at_rest(const BeltDef& bd, double route_length, Belt& b) {
       std::ostringstream s;
       s << "is not shorter than the route's pitch line (" << route_length
         << " m): the belt would hang slack; it must be stretched to be mounted";
-      reject(t.key, s.str(), t.value, t.unit);
+      reject(t.key, s.str(), t.value);
     }
     set_rest_length(b, bd, t.rest);
   }
   t.tension = t.rest > 0 ? b.k * std::pow(b.pitch - t.rest, b.e_tra) : bd.pretension;
   if (std::pow(t.tension / b.k, 1.0 / b.e_tra) >= 0.5 * b.pitch)
-    reject(t.key, "stretches each SDE by more than half a pitch: lower it or stiffen the belt", t.value, t.unit);
+    reject(t.key, "stretches each SDE by more than half a pitch: lower it or stiffen the belt", t.value);
   return t;
 }
 
@@ -207,7 +207,7 @@ void check_sag(const Route& route, const BeltDef& bd, double gravity, double ten
     s << "makes the belt's weight over its longest span (ρ·g·L = " << weight << " N over " << longest
       << " m) larger than its tension at rest (" << tension << " N): the belt would hang rather than span its "
       << "pulleys; lower gravity or belt.mass_per_length, or tension the belt more";
-    reject("gravity", s.str(), gravity, "m/s²");
+    reject("gravity", s.str(), gravity);
   }
 }
 
@@ -239,7 +239,7 @@ std::vector<double> penetrations(const RouteOrder& order, const Contact& c, doub
       s.precision(6);
       s << "gives no finite static penetration on '" << order.names[k] << "' with contact.c2 = " << d.contact.c2
         << " N/m (beyond double precision)";
-      reject("contact.c1", s.str(), d.contact.c1, "N/m²");
+      reject("contact.c1", s.str(), d.contact.c1);
     }
     if (p0 >= 0.5 * order.circles[k].radius)
       reject("contact stiffness", "lets the belt sink more than half the radius of '" + order.names[k] + "'", p0, "m");
@@ -280,8 +280,7 @@ double close_loop(const Route& path, int n, const BeltDef& bd, const TensionAtRe
   if (t.rest > 0) {
     double lo = 0, hi = 0.5 * b.pitch;
     if (walk(path, n, 0.5 * t.rest, 0, nullptr) >= path.length)
-      reject(t.key, "leaves the belt slack on the pulleys (its contact shortens the path): stretch it more", t.value,
-             t.unit);
+      reject(t.key, "leaves the belt slack on the pulleys (its contact shortens the path): stretch it more", t.value);
     for (int it = 0; it < 100; ++it) {
       poll_stop(stop, n);
       const double g = 0.5 * (lo + hi);

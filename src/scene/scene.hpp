@@ -1,5 +1,5 @@
-// Scene definition (what a scenario script describes, in SI units, with the paper's values as
-// defaults) and the builder that turns it into a Model and its initial static state.
+// Scene definition (what a scenario script describes, in SI units, with the defaults of the
+// parameter table, scene/parameters.hpp) and the builder that turns it into a Model and its initial static state.
 #pragma once
 
 #include <atomic>
@@ -16,6 +16,7 @@
 
 #include "model/drive.hpp"
 #include "model/model.hpp"
+#include "scene/parameters.hpp"
 #include "scene/route.hpp"
 
 namespace beltsim {
@@ -23,8 +24,8 @@ namespace beltsim {
 struct PulleyDef {
   std::string name;
   Vec2 centre{0, 0};        // [m]
-  double radius = 0.1;      // [m] pitch (contact) radius
-  double inertia = 0.025;   // [kg·m²]; 0.025 is ours: a 20 mm steel disc of r = 0.1 m (docs/model.md)
+  double radius = parameter_default("pulley.radius");    // [m] pitch (contact) radius
+  double inertia = parameter_default("pulley.inertia");  // [kg·m²]
   WrapSide wrap = WrapSide::inside;
   bool kinematic = false;   // speed prescribed by `speed` instead of driven by `torque`
   TimeSpeedLaw torque;      // [N·m]
@@ -57,23 +58,23 @@ enum class Tensioning {
 };
 
 struct BeltDef {
-  int elements = 60;
+  int elements = static_cast<int>(parameter_default("belt.elements"));
   Tensioning tensioning = Tensioning::pretension;
-  double pretension = 500;          // [N]  (Tensioning::pretension)
+  double pretension = parameter_default("belt.pretension");  // [N]  (Tensioning::pretension)
   double rest_length = 0;           // [m]  (Tensioning::rest_length)
   double strain = 0;                // [-]  (Tensioning::strain)
   int loop_sense = -1;              // direction of travel round the loop: -1 clockwise, +1 anticlockwise
   std::vector<std::string> route;   // pulley names in travel order; empty: the order of definition
   StiffnessReading reading = StiffnessReading::rigidity;
-  double EA = 1.52e5;               // [N]        paper's c_tra
-  double EI = 0.026;                // [N·m²]     paper's c_tor
-  double axial_damping = 20.5;      // [N·s]      paper's b_tra, per unit length
-  double bending_damping = 0.05;    // [N·m·s/rad] paper's b_tor, per SDE...
+  double EA = parameter_default("belt.EA");                        // [N]
+  double EI = parameter_default("belt.EI");                        // [N·m²]
+  double axial_damping = parameter_default("belt.axial_damping");  // [N·s] per unit length
+  double bending_damping = parameter_default("belt.bending_damping");  // [N·m·s/rad] per SDE...
   std::optional<double> bending_viscosity;  // ...or per length [N·m²·s]: c_t = bending_viscosity / l0
   double k = 0, c = 0, kt = 0, ct = 0;  // per-SDE values for StiffnessReading::per_sde
-  double e_tra = 1, e_tor = 1;      // exponents (ours: 1, docs/model.md)
-  double mass_per_length = 0.096;   // [kg/m]
-  double mu = 1.0;                  // friction coefficient of every element...
+  double e_tra = parameter_default("belt.e_tra"), e_tor = parameter_default("belt.e_tor");  // exponents
+  double mass_per_length = parameter_default("belt.mass_per_length");  // [kg/m]
+  double mu = parameter_default("belt.mu");  // friction coefficient of every element...
   std::vector<double> mu_per_element;  // ...unless given per element (size = elements)...
   std::function<double(const ElementSite&)> mu_at;  // ...or by where the element starts
 };
@@ -90,10 +91,11 @@ struct ContactPerLength {
 struct SceneDef {
   std::vector<PulleyDef> pulleys;
   BeltDef belt;
-  Contact contact;                   // per element (the paper's), unless given per length:
-  ContactPerLength contact_per_length;
-  Friction friction;
-  double gravity = 9.81;            // [m/s²]; 0 switches gravity off
+  Contact contact{parameter_default("contact.c1"), parameter_default("contact.c2"),
+                  parameter_default("contact.damping"), parameter_default("contact.p_max")};  // per element
+  ContactPerLength contact_per_length;  // ...unless given per length
+  Friction friction{parameter_default("friction.dv")};
+  double gravity = parameter_default("gravity");  // [m/s²]; 0 switches gravity off
   bool track_energy = false;
   bool allow_large = false;         // past the size limits that protect the machine (validate)
   // the parameters the scenario gave, as dotted keys ("belt.EA", "contact.c1", "pulley.driver.inertia"):
@@ -163,6 +165,10 @@ Scene build_scene(const SceneDef& def, const std::atomic<bool>* stop = nullptr);
 
 // The scene's inputs after defaults, in the order parameters.csv lists them.
 std::vector<SceneInput> scene_inputs(const SceneDef& def);
+// One input of parameter `par` under `name` ("pulley.driver.inertia"): a number `value`, or a
+// word `text`; its unit and note from the table.
+SceneInput scene_input(const Parameter& par, const std::string& name, double value, const std::string& text,
+                       bool given);
 
 // Same checks without building (used by the builder; exposed for tests).
 void validate(const SceneDef& def);

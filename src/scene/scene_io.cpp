@@ -154,6 +154,16 @@ SceneDef definition(const Scene& sc) {
   return d;
 }
 
+// the parameter of an input's name: "belt.EA" is itself, "pulley.driver.radius" is pulley.radius
+// for a pulley of the model; nullptr when none
+const Parameter* input_parameter(const std::string& name, const Model& m) {
+  for (const Pulley& p : m.pulleys) {
+    const std::string pre = "pulley." + p.name + ".";
+    if (name.compare(0, pre.size(), pre) == 0) return find_parameter("pulley." + name.substr(pre.size()));
+  }
+  return find_parameter(name);
+}
+
 }  // namespace
 
 // ---- the drive -----------------------------------------------------------------------------
@@ -235,9 +245,7 @@ void write_scene(CheckpointWriter& w, const Scene& sc) {
     w.line("input.name", e.name);
     w.line("input.value", e.value);
     w.line("input.text", e.text);
-    w.line("input.unit", e.unit);
     w.line("input.given", e.given);
-    w.line("input.note", e.note);
   }
   w.line("static_tension", sc.static_tension);
   w.line("static_residual", sc.static_residual);
@@ -306,16 +314,15 @@ Scene read_scene(CheckpointReader& r) {
   sc.reading = r.line_choice("reading", {"rigidity", "per_sde"}) == 1 ? StiffnessReading::per_sde
                                                                        : StiffnessReading::rigidity;
   r.open("inputs");
-  const size_t n_inputs = r.group_count(6);
+  const size_t n_inputs = r.group_count(4);
   r.close();
   for (size_t i = 0; i < n_inputs; ++i) {
-    SceneInput& e = sc.inputs.emplace_back();
-    e.name = r.line_str("input.name");
-    e.value = r.line_num("input.value");
-    e.text = r.line_str("input.text");
-    e.unit = r.line_str("input.unit");
-    e.given = r.line_bool("input.given");
-    e.note = r.line_str("input.note");
+    const std::string name = r.line_str("input.name");
+    const Parameter* par = input_parameter(name, m);
+    if (!par) r.fail("'" + name + "' is not a scene parameter");
+    const double value = r.line_num("input.value");
+    const std::string text = r.line_str("input.text");
+    sc.inputs.push_back(scene_input(*par, name, value, text, r.line_bool("input.given")));
   }
   sc.static_tension = r.line_num("static_tension");
   sc.static_residual = r.line_num("static_residual");

@@ -1,8 +1,10 @@
 // A built Scene, and a Drive (what a run changes: laws, μ), in a checkpoint's text
 // (io/checkpoint_text.hpp: the format, its one version, its strict reader). The keys are the
-// scenario's Lua names where the scenario has one (pulley.inertia, belt.sde.k, contact.damping,
-// friction.dv, energy); the values a build derives (belt.pitch, the route, the element sites)
-// carry the names of scene:info() and of the element sites.
+// scenario's Lua names, the parameter table's (scene/parameters.hpp), where the scenario has one
+// (pulley.inertia, belt.sde.k, contact.damping, friction.dv, energy); the values a build derives
+// (belt.pitch, the route, the element sites) carry the names of scene:info() and of the element
+// sites. The scene's inputs (parameters.csv's first rows) are kept as name, value and whether
+// given; their units and notes come from the table, and a name the table lacks is refused.
 //
 // Reading checks as it goes that every count fits the text that holds it and the scene it
 // belongs to (the pulleys, the elements, the state's size), then validates the scene as a

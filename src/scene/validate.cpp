@@ -1,10 +1,13 @@
-// Parameter checks: the helpers (validate.hpp), the laws' and the whole SceneDef's (scene.hpp).
+// Parameter checks: the helpers (validate.hpp), the laws' and the whole SceneDef's (scene.hpp):
+// each number's range from the parameter table (scene/parameters.hpp), what relates several here.
 #include "scene/validate.hpp"
 
 #include <cmath>
 #include <set>
 #include <sstream>
+#include <stdexcept>
 
+#include "scene/parameters.hpp"
 #include "scene/scene.hpp"
 
 namespace beltsim {
@@ -14,6 +17,12 @@ void reject(const std::string& what, const std::string& rule, double value, cons
   s.precision(6);
   s << what << ' ' << rule << " (got " << value << (unit.empty() ? "" : " ") << unit << ")";
   throw ParameterError(s.str());
+}
+
+void reject(std::string_view dotted, const std::string& rule, double value) {
+  const Parameter* p = find_parameter(dotted);
+  if (!p) throw std::logic_error("reject: '" + std::string(dotted) + "' is not in the parameter table");
+  reject(std::string(dotted), rule, value, std::string(p->unit));
 }
 
 void require_finite(const std::string& what, double value, const std::string& unit) {
@@ -33,6 +42,25 @@ void require_non_negative(const std::string& what, double value, const std::stri
 namespace {
 
 std::string pulley_label(const PulleyDef& p) { return "pulley '" + p.name + "'"; }
+
+// the rule of every number of `table` (a pulley's: p's) the scene uses, from the parameter table;
+// the message names the key as the scenario gives it ("belt.EA", "pulley 'driver' inertia")
+void check_rules(const SceneDef& d, std::string_view table, const PulleyDef* p) {
+  for (const Parameter* par : parameters_of(table)) {
+    if (par->rule == Rule::none || (par->applies && !par->applies(d))) continue;
+    const std::optional<double> v = value_of(*par, d, p);
+    if (!v) continue;
+    const std::string what = p ? pulley_label(*p) + " " + std::string(par->key) : par->dotted();
+    const std::string unit(par->unit);
+    require_finite(what, *v, unit);
+    const bool ok = par->rule == Rule::positive         ? *v > 0
+                    : par->rule == Rule::non_negative   ? *v >= 0
+                    : par->rule == Rule::exponent       ? *v >= 1
+                    : par->rule == Rule::at_least_three ? *v >= 3
+                                                        : true;
+    if (!ok) reject(what, std::string(rule_text(par->rule)), *v, unit);
+  }
+}
 
 }  // namespace
 
@@ -89,8 +117,7 @@ void validate(const SceneDef& d) {
     const std::string w = pulley_label(p);
     require_finite(w + " centre x", p.centre.x(), "m");
     require_finite(w + " centre y", p.centre.y(), "m");
-    require_positive(w + " radius", p.radius, "m");
-    require_positive(w + " inertia", p.inertia, "kg·m²");
+    check_rules(d, "pulley", &p);
     if (p.kinematic) {
       validate_law(w + " speed", p.speed, true);
       if (!p.torque.is_zero()) throw ParameterError(w + ": give either a torque or a prescribed speed, not both");
@@ -110,7 +137,7 @@ void validate(const SceneDef& d) {
       }
     }
   const BeltDef& b = d.belt;
-  if (b.elements < 3) reject("belt.elements", "must be >= 3", b.elements, "");
+  check_rules(d, "belt", nullptr);
   // the cost of a simulated second grows faster than the element count (docs/performance.md:
   // 2400 elements take minutes per simulated second); past this a scene is surely a mistake
   constexpr int kMaxElements = 20000;
@@ -121,29 +148,10 @@ void validate(const SceneDef& d) {
       << " second); set allow_large = true in the scene to go past";
     throw ParameterError(s.str());
   }
-  switch (b.tensioning) {
-    case Tensioning::pretension: require_positive("belt.pretension", b.pretension, "N"); break;
-    case Tensioning::rest_length: require_positive("belt.rest_length", b.rest_length, "m"); break;
-    case Tensioning::strain: require_positive("belt.strain", b.strain, ""); break;
-  }
   if (b.loop_sense != 1 && b.loop_sense != -1) throw ParameterError("belt.direction must be 'cw' or 'ccw'");
-  if (b.reading == StiffnessReading::rigidity) {
-    require_positive("belt.EA", b.EA, "N");
-    require_positive("belt.EI", b.EI, "N·m²");
-    require_non_negative("belt.axial_damping", b.axial_damping, "N·s");
-    require_non_negative("belt.bending_damping", b.bending_damping, "N·m·s/rad");
-    if (b.bending_viscosity) require_non_negative("belt.bending_viscosity", *b.bending_viscosity, "N·m²·s");
-  } else {
-    if (b.bending_viscosity) throw ParameterError("belt.bending_viscosity: a rigidity; with per-SDE values (sde) give ct");
-    require_positive("belt.sde.k", b.k, "N/m");
-    require_positive("belt.sde.kt", b.kt, "N·m/rad");
-    require_non_negative("belt.sde.c", b.c, "N·s/m");
-    require_non_negative("belt.sde.ct", b.ct, "N·m·s/rad");
-  }
-  if (!(b.e_tra >= 1)) reject("belt.e_tra", "must be >= 1 (below 1 the stiffness is infinite at zero)", b.e_tra, "");
-  if (!(b.e_tor >= 1)) reject("belt.e_tor", "must be >= 1 (below 1 the stiffness is infinite at zero)", b.e_tor, "");
-  require_positive("belt.mass_per_length", b.mass_per_length, "kg/m");
-  require_non_negative("belt.mu", b.mu, "");
+  if (b.reading == StiffnessReading::per_sde && b.bending_viscosity)
+    throw ParameterError("belt.bending_viscosity: a rigidity; with per-SDE values (sde) give ct");
+  check_rules(d, "belt.sde", nullptr);
   if (!b.mu_per_element.empty()) {
     if (static_cast<int>(b.mu_per_element.size()) != b.elements)
       reject("belt.mu per element", "needs one value per element", static_cast<double>(b.mu_per_element.size()),
@@ -158,16 +166,9 @@ void validate(const SceneDef& d) {
     }
     if (seen.size() != names.size()) throw ParameterError("belt.route must visit every pulley once");
   }
-  const ContactPerLength& cl = d.contact_per_length;
-  if (cl.c1) require_non_negative("contact.c1_per_length", *cl.c1, "N/m³");
-  else require_non_negative("contact.c1", d.contact.c1, "N/m²");
-  if (cl.c2) require_positive("contact.c2_per_length", *cl.c2, "N/m²");
-  else require_positive("contact.c2", d.contact.c2, "N/m");
-  if (cl.b) require_non_negative("contact.damping_per_length", *cl.b, "N·s/m²");
-  else require_non_negative("contact.damping", d.contact.b, "N·s/m");
-  require_positive("contact.p_max", d.contact.p_max, "m");
-  require_positive("friction.dv", d.friction.dv, "m/s");
-  require_finite("gravity", d.gravity, "m/s²");
+  check_rules(d, "contact", nullptr);
+  check_rules(d, "friction", nullptr);
+  check_rules(d, "scene", nullptr);
 }
 
 }  // namespace beltsim

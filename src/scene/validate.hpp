@@ -3,6 +3,7 @@
 
 #include <stdexcept>
 #include <string>
+#include <string_view>
 
 namespace beltsim {
 
@@ -12,6 +13,8 @@ struct ParameterError : std::runtime_error {
 
 // "what must be > 0 (got value unit)"
 [[noreturn]] void reject(const std::string& what, const std::string& rule, double value, const std::string& unit);
+// the same for a parameter of the scene's table by its dotted key ("belt.strain"), with the table's unit
+[[noreturn]] void reject(std::string_view dotted, const std::string& rule, double value);
 void require_positive(const std::string& what, double value, const std::string& unit);
 void require_non_negative(const std::string& what, double value, const std::string& unit);
 void require_finite(const std::string& what, double value, const std::string& unit);

@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "integrate/stepper.hpp"
+#include "scene/parameters.hpp"
 #include "scene/validate.hpp"
 #include "script/context.hpp"
 #include "script/lua_api.hpp"
@@ -54,10 +55,29 @@ void push_site(lua_State* L, const ElementSite& e) {
 
 namespace {
 
-PulleyDef to_pulley(lua_State* L, int idx, const std::string& what, Context* ctx) {
+// every number of the parameter table's `table` that the Lua table at idx gives (scene/parameters.hpp),
+// into d (a pulley's into p); `where` names the table in errors ("belt", "pulley 'driver'")
+void read_numbers(lua_State* L, int idx, std::string_view table, const std::string& where, SceneDef& d,
+                  PulleyDef& p) {
+  for (const Parameter* par : parameters_of(table)) {
+    if (par->kind == Kind::other) continue;
+    const std::string key(par->key);
+    if (!field(L, idx, key.c_str())) continue;
+    const Slot slot = par->slot(d, p);
+    if (int* const* i = std::get_if<int*>(&slot))
+      **i = to_integer(L, -1, where + "." + key);
+    else if (double* const* x = std::get_if<double*>(&slot))
+      **x = to_number(L, -1, where + "." + key);
+    else if (std::optional<double>* const* o = std::get_if<std::optional<double>*>(&slot))
+      **o = to_number(L, -1, where + "." + key);
+    lua_pop(L, 1);
+  }
+}
+
+PulleyDef to_pulley(lua_State* L, int idx, const std::string& what, SceneDef& d, Context* ctx) {
   idx = lua_absindex(L, idx);
   require_table(L, idx, what);
-  check_keys(L, idx, what, {"name", "centre", "center", "radius", "inertia", "wrap", "torque", "speed"});
+  check_keys(L, idx, what, keys_of("pulley"));
   PulleyDef p;
   const auto name = opt_string(L, idx, "name", what);
   if (!name) fail(L, what + ": a name is required");
@@ -72,8 +92,7 @@ PulleyDef to_pulley(lua_State* L, int idx, const std::string& what, Context* ctx
       centred = true;
     }
   if (!centred) fail(L, w + ": a centre {x, y} [m] is required");
-  if (auto v = opt_number(L, idx, "radius", w)) p.radius = *v;
-  if (auto v = opt_number(L, idx, "inertia", w)) p.inertia = *v;
+  read_numbers(L, idx, "pulley", w, d, p);
   if (auto v = opt_string(L, idx, "wrap", w)) {
     if (*v == "inside")
       p.wrap = WrapSide::inside;
@@ -95,24 +114,23 @@ PulleyDef to_pulley(lua_State* L, int idx, const std::string& what, Context* ctx
 }
 
 // a Lua function kept alive in the registry while the scene is built
-void read_belt(lua_State* L, int idx, BeltDef& b, std::unique_ptr<LuaRef>& mu_fn) {
-  const std::string w = "belt";
-  require_table(L, idx, w);
-  check_keys(L, idx, w,
-             {"elements", "pretension", "rest_length", "strain", "direction", "route", "EA", "EI", "axial_damping",
-              "bending_damping", "bending_viscosity", "sde", "e_tra", "e_tor", "mass_per_length", "mu"});
-  if (field(L, idx, "elements")) {
-    b.elements = to_integer(L, -1, "belt.elements");
-    lua_pop(L, 1);
-  }
+void read_belt(lua_State* L, int idx, SceneDef& d, std::unique_ptr<LuaRef>& mu_fn) {
+  BeltDef& b = d.belt;
+  require_table(L, idx, "belt");
+  check_keys(L, idx, "belt", keys_of("belt"));
   {  // the tension at rest: exactly one of three ways (the paper's 500 N pretension when none)
     const int ways = has(L, idx, "pretension") + has(L, idx, "rest_length") + has(L, idx, "strain");
     if (ways > 1) fail(L, "belt: give one of pretension [N], rest_length [m] or strain, not " + std::to_string(ways));
   }
-  if (auto v = opt_number(L, idx, "pretension", w)) b.pretension = *v;
-  if (auto v = opt_number(L, idx, "rest_length", w)) b.rest_length = *v, b.tensioning = Tensioning::rest_length;
-  if (auto v = opt_number(L, idx, "strain", w)) b.strain = *v, b.tensioning = Tensioning::strain;
-  if (auto v = opt_string(L, idx, "direction", w)) {
+  const bool rigidities = has(L, idx, "EA") || has(L, idx, "EI") || has(L, idx, "axial_damping") ||
+                          has(L, idx, "bending_damping") || has(L, idx, "bending_viscosity");
+  if (has(L, idx, "bending_damping") && has(L, idx, "bending_viscosity"))
+    fail(L, "belt: give bending_damping [N·m·s/rad per SDE] or bending_viscosity [N·m²·s per length], not both");
+  PulleyDef none;
+  read_numbers(L, idx, "belt", "belt", d, none);
+  if (has(L, idx, "rest_length")) b.tensioning = Tensioning::rest_length;
+  if (has(L, idx, "strain")) b.tensioning = Tensioning::strain;
+  if (auto v = opt_string(L, idx, "direction", "belt")) {
     if (*v == "cw")
       b.loop_sense = -1;
     else if (*v == "ccw")
@@ -133,31 +151,17 @@ void read_belt(lua_State* L, int idx, BeltDef& b, std::unique_ptr<LuaRef>& mu_fn
     }
     lua_pop(L, 1);
   }
-  const bool rigidities = has(L, idx, "EA") || has(L, idx, "EI") || has(L, idx, "axial_damping") ||
-                          has(L, idx, "bending_damping") || has(L, idx, "bending_viscosity");
-  if (has(L, idx, "bending_damping") && has(L, idx, "bending_viscosity"))
-    fail(L, "belt: give bending_damping [N·m·s/rad per SDE] or bending_viscosity [N·m²·s per length], not both");
-  if (auto v = opt_number(L, idx, "EA", w)) b.EA = *v;
-  if (auto v = opt_number(L, idx, "EI", w)) b.EI = *v;
-  if (auto v = opt_number(L, idx, "axial_damping", w)) b.axial_damping = *v;
-  if (auto v = opt_number(L, idx, "bending_damping", w)) b.bending_damping = *v;
-  if (auto v = opt_number(L, idx, "bending_viscosity", w)) b.bending_viscosity = *v;
   if (field(L, idx, "sde")) {
     if (rigidities) fail(L, "belt: give either rigidities (EA, EI, axial_damping, bending_damping or bending_viscosity) or per-SDE values (sde), not both");
     const int s = lua_gettop(L);
     require_table(L, s, "belt.sde");
-    check_keys(L, s, "belt.sde", {"k", "c", "kt", "ct"});
+    check_keys(L, s, "belt.sde", keys_of("belt.sde"));
     b.reading = StiffnessReading::per_sde;
-    for (auto [key, dst] : {std::pair{"k", &b.k}, std::pair{"c", &b.c}, std::pair{"kt", &b.kt}, std::pair{"ct", &b.ct}}) {
-      const auto v = opt_number(L, s, key, "belt.sde");
-      if (!v) fail(L, std::string("belt.sde: all of k, c, kt, ct are required (") + key + " is missing)");
-      *dst = *v;
-    }
+    read_numbers(L, s, "belt.sde", "belt.sde", d, none);
+    for (const std::string& key : keys_of("belt.sde"))
+      if (!has(L, s, key.c_str())) fail(L, "belt.sde: all of k, c, kt, ct are required (" + key + " is missing)");
     lua_pop(L, 1);
   }
-  if (auto v = opt_number(L, idx, "e_tra", w)) b.e_tra = *v;
-  if (auto v = opt_number(L, idx, "e_tor", w)) b.e_tor = *v;
-  if (auto v = opt_number(L, idx, "mass_per_length", w)) b.mass_per_length = *v;
   if (field(L, idx, "mu")) {
     const int m = lua_gettop(L);
     if (lua_type(L, m) == LUA_TNUMBER) {
@@ -229,7 +233,7 @@ void report_scene(const Scene& sc, Tensioning tensioning) {
 // beltsim.scene{ pulleys = {...}, belt = {...}, contact = {...}, friction = {...}, gravity = g, energy = bool }
 int l_scene(lua_State* L) {
   check_args(L, "beltsim.scene", {{"{pulleys, belt, ...}", kTable}});
-  check_keys(L, 1, "scene", {"pulleys", "belt", "contact", "friction", "gravity", "energy", "allow_large"});
+  check_keys(L, 1, "scene", keys_of("scene"));
   auto* ctx = static_cast<Context*>(lua_touserdata(L, lua_upvalueindex(1)));
   SceneDef d;
   if (!field(L, 1, "pulleys")) fail(L, "scene: a list of pulleys is required");
@@ -237,14 +241,14 @@ int l_scene(lua_State* L) {
   const int pl = lua_gettop(L);
   for (lua_Integer k = 1; k <= static_cast<lua_Integer>(lua_rawlen(L, pl)); ++k) {
     lua_rawgeti(L, pl, k);
-    d.pulleys.push_back(to_pulley(L, -1, "pulley " + std::to_string(k), ctx));
+    d.pulleys.push_back(to_pulley(L, -1, "pulley " + std::to_string(k), d, ctx));
     note_given(L, -1, "pulley." + d.pulleys.back().name + ".", d.given);
     lua_pop(L, 1);
   }
   lua_pop(L, 1);
   std::unique_ptr<LuaRef> mu_fn;
   if (field(L, 1, "belt")) {
-    read_belt(L, lua_gettop(L), d.belt, mu_fn);
+    read_belt(L, lua_gettop(L), d, mu_fn);
     note_given(L, -1, "belt.", d.given);
     if (field(L, -1, "sde")) note_given(L, -1, "belt.sde.", d.given), lua_pop(L, 1);
     lua_pop(L, 1);
@@ -252,32 +256,28 @@ int l_scene(lua_State* L) {
   if (field(L, 1, "contact")) {
     const int c = lua_gettop(L);
     require_table(L, c, "contact");
-    check_keys(L, c, "contact",
-               {"c1", "c2", "damping", "p_max", "c1_per_length", "c2_per_length", "damping_per_length"});
+    check_keys(L, c, "contact", keys_of("contact"));
     // each constant per element (the paper's) or per metre of pitch, not both
     for (const char* k : {"c1", "c2", "damping"})
       if (has(L, c, k) && has(L, c, (std::string(k) + "_per_length").c_str()))
         fail(L, std::string("contact: give ") + k + " (per element) or " + k + "_per_length (per metre of belt), not both");
-    if (auto v = opt_number(L, c, "c1", "contact")) d.contact.c1 = *v;
-    if (auto v = opt_number(L, c, "c2", "contact")) d.contact.c2 = *v;
-    if (auto v = opt_number(L, c, "damping", "contact")) d.contact.b = *v;
-    if (auto v = opt_number(L, c, "p_max", "contact")) d.contact.p_max = *v;
-    if (auto v = opt_number(L, c, "c1_per_length", "contact")) d.contact_per_length.c1 = *v;
-    if (auto v = opt_number(L, c, "c2_per_length", "contact")) d.contact_per_length.c2 = *v;
-    if (auto v = opt_number(L, c, "damping_per_length", "contact")) d.contact_per_length.b = *v;
+    PulleyDef none;
+    read_numbers(L, c, "contact", "contact", d, none);
     note_given(L, c, "contact.", d.given);
     lua_pop(L, 1);
   }
   if (field(L, 1, "friction")) {
     const int f = lua_gettop(L);
     require_table(L, f, "friction");
-    check_keys(L, f, "friction", {"dv"});
-    if (auto v = opt_number(L, f, "dv", "friction")) d.friction.dv = *v;
+    check_keys(L, f, "friction", keys_of("friction"));
+    PulleyDef none;
+    read_numbers(L, f, "friction", "friction", d, none);
     note_given(L, f, "friction.", d.given);
     lua_pop(L, 1);
   }
   note_given(L, 1, "", d.given);
-  if (auto v = opt_number(L, 1, "gravity", "scene")) d.gravity = *v;
+  PulleyDef none;
+  read_numbers(L, 1, "scene", "scene", d, none);
   if (auto v = opt_bool(L, 1, "energy", "scene")) d.track_energy = *v;
   if (auto v = opt_bool(L, 1, "allow_large", "scene")) d.allow_large = *v;
 

@@ -70,6 +70,20 @@ class SetOption(unittest.TestCase):
         self.assertEqual(code, 2, err)
 
 
+class HelpParameters(unittest.TestCase):
+    """`beltsim help parameters`: the scene's parameter tables (the same text docs/lua-api.md holds,
+    checked there by Parameters.TheDocsHoldTheTable)."""
+
+    def test_prints_the_tables(self):
+        code, out, err = run(["help", "parameters"])
+        self.assertEqual(code, 0, err)
+        self.assertIn("| `mass_per_length` | kg/m | `0.096` (the paper's) | > 0 |", out)
+        self.assertIn("| `damping` | N·s/m | `300` (the paper's) | ≥ 0 |", out)
+        with open(os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "docs", "lua-api.md"),
+                  encoding="utf-8") as f:
+            self.assertIn(out, f.read())
+
+
 SCENE = """
 local drive = beltsim.scene {
   pulleys = {

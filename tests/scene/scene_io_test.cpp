@@ -9,9 +9,12 @@
 #include <limits>
 #include <map>
 #include <stdexcept>
+#include <sstream>
+#include <set>
 
 #include "io/checkpoint_text.hpp"
 #include "io/number_text.hpp"
+#include "scene/parameters.hpp"
 #include "scene/presets.hpp"
 #include "scene/scene.hpp"
 #include "scene/scene_io.hpp"
@@ -341,10 +344,61 @@ TEST(SceneIo, WrongKeywordOrVersionIsRefused) {
   EXPECT_EQ(error_of("beltsim-checkpoint 4\nscene 4\n"),
             "line 1: a version 4 checkpoint; this beltsim reads version " + std::to_string(kCheckpointVersion) +
                 " only: resume it with the beltsim that wrote it, or run the scene again from its script");
+  // version 5 held each input's unit and note; 6 takes them from the parameter table
+  EXPECT_EQ(error_of("beltsim-checkpoint 5\nscene 4\n"),
+            "line 1: a version 5 checkpoint; this beltsim reads version 6 only: resume it with the beltsim that "
+            "wrote it, or run the scene again from its script");
   EXPECT_EQ(error_of("scene 4\nmodel 4\n"), "line 1: not a beltsim checkpoint (it begins 'scene 4')");
   EXPECT_EQ(error_of(resealed(with_line(text, "pulley.wrap", "pulley.wrap outside"))),
             "line " + std::to_string(line_of(text, "pulley.wrap")) +
                 ": 'pulley.wrap': expected inside or back, got 'outside'");
+}
+
+// the scene's inputs (parameters.csv's first rows) keep their names, values and sources; their
+// units and notes come back from the parameter table, which must know every name
+TEST(SceneIo, InputsComeBackWithTheTablesUnitsAndNotes) {
+  for (const Scene* sc : {&dry(), &automotive()}) {
+    const Scene back = round_trip(*sc);
+    ASSERT_EQ(back.inputs.size(), sc->inputs.size());
+    for (size_t i = 0; i < sc->inputs.size(); ++i) {
+      const SceneInput &a = sc->inputs[i], &b = back.inputs[i];
+      EXPECT_EQ(b.name, a.name);
+      EXPECT_EQ(std::memcmp(&b.value, &a.value, sizeof a.value), 0) << a.name;
+      EXPECT_EQ(b.text, a.text) << a.name;
+      EXPECT_EQ(b.unit, a.unit) << a.name;
+      EXPECT_EQ(b.given, a.given) << a.name;
+      EXPECT_EQ(b.note, a.note) << a.name;
+    }
+  }
+  const std::string text = scene_text(dry());
+  EXPECT_EQ(error_of(resealed(with_line(text, "input.name", "input.name \"belt.stiffness\""))),
+            "line " + std::to_string(line_of(text, "input.name")) +
+                ": 'input.name': 'belt.stiffness' is not a scene parameter");
+  // a pulley's key under another pulley's name is no parameter either
+  EXPECT_EQ(error_of(resealed(with_line(text, "input.name", "input.name \"pulley.nobody.radius\""))),
+            "line " + std::to_string(line_of(text, "input.name")) +
+                ": 'input.name': 'pulley.nobody.radius' is not a scene parameter");
+}
+
+// the scene's fields a scenario gives are under the scenario's keys, the parameter table's
+// (contact.damping, not the model's contact.b); the rest are values the build derives or the drive's
+TEST(SceneIo, TheScenarioFieldsAreUnderTheTablesKeys) {
+  const std::string text = scene_text(automotive());
+  const std::set<std::string> derived{"belt.pitch", "belt.rigid_length", "belt.mass", "belt.rot_inertia"};
+  int found = 0;
+  std::istringstream lines(text);
+  for (std::string line; std::getline(lines, line);) {
+    const std::string key = line.substr(0, line.find(' '));
+    if (key == "y0") break;  // the state and what the build derived follow
+    const bool scenario = key.rfind("belt.", 0) == 0 || key.rfind("contact.", 0) == 0 ||
+                          key.rfind("friction.", 0) == 0 || key == "gravity" ||
+                          (key.rfind("pulley.", 0) == 0 && key.rfind("pulley.drive", 0) != 0 &&
+                           key.rfind("pulley.torque", 0) != 0 && key.rfind("pulley.speed", 0) != 0);
+    if (!scenario || derived.count(key)) continue;
+    EXPECT_NE(find_parameter(key), nullptr) << key;
+    ++found;
+  }
+  EXPECT_GE(found, 20);
 }
 
 // a value changed without a sign in its syntax: only the checksum sees it

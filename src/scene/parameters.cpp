@@ -1,0 +1,273 @@
+#include "scene/parameters.hpp"
+
+#include <charconv>
+#include <cmath>
+#include <stdexcept>
+
+#include "io/number_text.hpp"
+#include "scene/scene.hpp"
+
+namespace beltsim {
+
+namespace {
+
+using K = Kind;
+using W = Whose;
+using R = Rule;
+
+bool rigidity(const SceneDef& d) { return d.belt.reading == StiffnessReading::rigidity; }
+bool per_sde(const SceneDef& d) { return d.belt.reading == StiffnessReading::per_sde; }
+
+// The table. A number's default is `fallback`; what a scenario may leave out but has no single
+// number (a law, a route) says its default in `fallback_text`.
+// clang-format off
+constexpr Parameter kParameters[] = {
+    // ---- beltsim.scene{...} ----
+    {"scene", "pulleys", K::other, "", {}, "", W::none, R::none,
+     "list of pulley tables (below), at least two; required", nullptr, nullptr, nullptr},
+    {"scene", "belt", K::other, "", {}, "the belt table's defaults", W::none, R::none, "belt table (below)", nullptr,
+     nullptr, nullptr},
+    {"scene", "contact", K::other, "", {}, "the contact table's defaults", W::none, R::none,
+     "contact law, eq. 2 (table below)", nullptr, nullptr, nullptr},
+    {"scene", "friction", K::other, "", {}, "the friction table's defaults", W::none, R::none,
+     "friction law, eqs. 3-4 (table below)", nullptr, nullptr, nullptr},
+    {"scene", "gravity", K::number, "m/s²", 9.81, "", W::ours, R::finite, "gravity along -y; 0 switches it off",
+     [](SceneDef& d, PulleyDef&) -> Slot { return &d.gravity; }, nullptr, nullptr},
+    {"scene", "energy", K::other, "", {}, "`false`", W::none, R::none,
+     "track work and dissipation per channel (adds energy.* columns)", nullptr, nullptr, nullptr},
+    {"scene", "allow_large", K::other, "", {}, "`false`", W::none, R::none,
+     "past the limit of 20 000 elements (hours per simulated second)", nullptr, nullptr, nullptr},
+
+    // ---- pulleys = { {...}, ... } ----
+    {"pulley", "name", K::other, "", {}, "", W::none, R::none, "used in column names and routes; required", nullptr,
+     nullptr, nullptr},
+    {"pulley", "centre", K::other, "m", {}, "", W::none, R::none, "{x, y} of its axis; required", nullptr, nullptr,
+     nullptr},
+    {"pulley", "center", K::other, "m", {}, "", W::none, R::none, "the same as centre (one of the two)", nullptr,
+     nullptr, nullptr},
+    {"pulley", "radius", K::number, "m", 0.1, "", W::paper, R::positive, "contact (pitch) radius r_p",
+     [](SceneDef&, PulleyDef& p) -> Slot { return &p.radius; }, nullptr, nullptr},
+    {"pulley", "inertia", K::number, "kg·m²", 0.025, "", W::ours, R::positive,
+     "moment of inertia about its axis (the default is a steel disc of r = 0.1 m, 20 mm wide)",
+     [](SceneDef&, PulleyDef& p) -> Slot { return &p.inertia; }, nullptr, nullptr},
+    {"pulley", "wrap", K::other, "", {}, "`\"inside\"`", W::ours, R::none,
+     "\"inside\" the loop, or \"back\" (the belt's back side, e.g. a tensioner idler)", nullptr, nullptr,
+     [](const SceneDef&, const PulleyDef& p) -> std::string { return p.wrap == WrapSide::inside ? "inside" : "back"; }},
+    {"pulley", "torque", K::other, "N·m", {}, "none", W::none, R::none, "applied torque law (Laws, below)", nullptr,
+     nullptr, nullptr},
+    {"pulley", "speed", K::other, "rad/s", {}, "", W::none, R::none,
+     "prescribed speed law: the pulley becomes kinematic (Laws, below)", nullptr, nullptr, nullptr},
+
+    // ---- belt = {...} ----
+    {"belt", "elements", K::integer, "", 60, "", W::paper, R::at_least_three, "number of elements",
+     [](SceneDef& d, PulleyDef&) -> Slot { return &d.belt.elements; }, nullptr, nullptr},
+    {"belt", "pretension", K::number, "N", 500, "", W::paper, R::positive,
+     "tension the spans carry at rest; the rest length follows",
+     [](SceneDef& d, PulleyDef&) -> Slot { return &d.belt.pretension; },
+     [](const SceneDef& d) { return d.belt.tensioning == Tensioning::pretension; }, nullptr},
+    {"belt", "rest_length", K::number, "m", {}, "", W::none, R::positive,
+     "the belt's stress-free length (a datasheet's), instead of pretension",
+     [](SceneDef& d, PulleyDef&) -> Slot { return &d.belt.rest_length; },
+     [](const SceneDef& d) { return d.belt.tensioning == Tensioning::rest_length; }, nullptr},
+    {"belt", "strain", K::number, "", {}, "", W::none, R::positive,
+     "mounting strain (route pitch length / rest length - 1), instead of pretension",
+     [](SceneDef& d, PulleyDef&) -> Slot { return &d.belt.strain; },
+     [](const SceneDef& d) { return d.belt.tensioning == Tensioning::strain; }, nullptr},
+    {"belt", "direction", K::other, "", {}, "`\"cw\"`", W::ours, R::none,
+     "direction of travel round the loop, \"cw\" or \"ccw\" (the default turns as the paper's driver)", nullptr,
+     nullptr,
+     [](const SceneDef& d, const PulleyDef&) -> std::string { return d.belt.loop_sense < 0 ? "cw" : "ccw"; }},
+    {"belt", "route", K::other, "", {}, "the order of pulleys", W::none, R::none,
+     "pulley names in the order the belt visits them", nullptr, nullptr, nullptr},
+    {"belt", "EA", K::number, "N", 1.52e5, "", W::reading, R::positive,
+     "axial rigidity, the paper's c_tra; per SDE k = EA/l0, l0 the rest length of an element",
+     [](SceneDef& d, PulleyDef&) -> Slot { return &d.belt.EA; }, rigidity, nullptr},
+    {"belt", "EI", K::number, "N·m²", 0.026, "", W::reading, R::positive,
+     "bending rigidity, the paper's c_tor; per SDE k_t = EI/l0",
+     [](SceneDef& d, PulleyDef&) -> Slot { return &d.belt.EI; }, rigidity, nullptr},
+    {"belt", "axial_damping", K::number, "N·s", 20.5, "", W::reading, R::non_negative,
+     "the paper's b_tra, per length; per SDE c = axial_damping/l0",
+     [](SceneDef& d, PulleyDef&) -> Slot { return &d.belt.axial_damping; }, rigidity, nullptr},
+    {"belt", "bending_damping", K::number, "N·m·s/rad", 0.05, "", W::paper, R::non_negative,
+     "the paper's b_tor, per SDE (bending_viscosity gives it per length)",
+     [](SceneDef& d, PulleyDef&) -> Slot { return &d.belt.bending_damping; },
+     [](const SceneDef& d) { return rigidity(d) && !d.belt.bending_viscosity; }, nullptr},
+    {"belt", "bending_viscosity", K::number, "N·m²·s", {}, "", W::none, R::non_negative,
+     "per length, instead of bending_damping; per SDE c_t = bending_viscosity/l0",
+     [](SceneDef& d, PulleyDef&) -> Slot { return &d.belt.bending_viscosity; }, rigidity, nullptr},
+    {"belt", "sde", K::other, "", {}, "", W::none, R::none,
+     "instead of EA, EI and the dampings: { k, c, kt, ct } per SDE (table below)", nullptr, nullptr, nullptr},
+    {"belt", "e_tra", K::number, "", 1, "", W::ours, R::exponent, "exponent of the axial spring",
+     [](SceneDef& d, PulleyDef&) -> Slot { return &d.belt.e_tra; }, nullptr, nullptr},
+    {"belt", "e_tor", K::number, "", 1, "", W::ours, R::exponent, "exponent of the bending spring",
+     [](SceneDef& d, PulleyDef&) -> Slot { return &d.belt.e_tor; }, nullptr, nullptr},
+    {"belt", "mass_per_length", K::number, "kg/m", 0.096, "", W::paper, R::positive,
+     "the paper's rho, per metre of unstretched belt",
+     [](SceneDef& d, PulleyDef&) -> Slot { return &d.belt.mass_per_length; }, nullptr, nullptr},
+    {"belt", "mu", K::other, "", 1, "", W::paper, R::non_negative,
+     "friction coefficient: a number, a list (one per element) or function(site) return μ end",
+     [](SceneDef& d, PulleyDef&) -> Slot { return &d.belt.mu; }, nullptr,
+     [](const SceneDef& d, const PulleyDef&) -> std::string {
+       return d.belt.mu_at ? "function of where each element starts"
+              : d.belt.mu_per_element.empty() ? ""
+                                              : "one value per element";
+     }},
+
+    // ---- belt.sde = {...}: all four, instead of the rigidities ----
+    {"belt.sde", "k", K::number, "N/m", {}, "", W::none, R::positive, "axial stiffness per SDE",
+     [](SceneDef& d, PulleyDef&) -> Slot { return &d.belt.k; }, per_sde, nullptr},
+    {"belt.sde", "c", K::number, "N·s/m", {}, "", W::none, R::non_negative, "axial damping per SDE",
+     [](SceneDef& d, PulleyDef&) -> Slot { return &d.belt.c; }, per_sde, nullptr},
+    {"belt.sde", "kt", K::number, "N·m/rad", {}, "", W::none, R::positive, "bending stiffness per SDE",
+     [](SceneDef& d, PulleyDef&) -> Slot { return &d.belt.kt; }, per_sde, nullptr},
+    {"belt.sde", "ct", K::number, "N·m·s/rad", {}, "", W::none, R::non_negative, "bending damping per SDE",
+     [](SceneDef& d, PulleyDef&) -> Slot { return &d.belt.ct; }, per_sde, nullptr},
+
+    // ---- contact = {...}: eq. 2, each constant per element or per metre of pitch ----
+    {"contact", "c1", K::number, "N/m²", 3.0256e9, "", W::paper, R::non_negative,
+     "the paper's c1, quadratic stiffness per element",
+     [](SceneDef& d, PulleyDef&) -> Slot { return &d.contact.c1; },
+     [](const SceneDef& d) { return !d.contact_per_length.c1; }, nullptr},
+    {"contact", "c1_per_length", K::number, "N/m³", {}, "", W::none, R::non_negative,
+     "c1 per metre of pitch, instead of c1: per element c1 = c1_per_length·l",
+     [](SceneDef& d, PulleyDef&) -> Slot { return &d.contact_per_length.c1; }, nullptr, nullptr},
+    {"contact", "c2", K::number, "N/m", 6.5e5, "", W::paper, R::positive,
+     "the paper's c2, linear stiffness per element",
+     [](SceneDef& d, PulleyDef&) -> Slot { return &d.contact.c2; },
+     [](const SceneDef& d) { return !d.contact_per_length.c2; }, nullptr},
+    {"contact", "c2_per_length", K::number, "N/m²", {}, "", W::none, R::positive,
+     "c2 per metre of pitch, instead of c2: per element c2 = c2_per_length·l",
+     [](SceneDef& d, PulleyDef&) -> Slot { return &d.contact_per_length.c2; }, nullptr, nullptr},
+    {"contact", "damping", K::number, "N·s/m", 300, "", W::paper, R::non_negative,
+     "the paper's b, damping per element",
+     [](SceneDef& d, PulleyDef&) -> Slot { return &d.contact.b; },
+     [](const SceneDef& d) { return !d.contact_per_length.b; }, nullptr},
+    {"contact", "damping_per_length", K::number, "N·s/m²", {}, "", W::none, R::non_negative,
+     "b per metre of pitch, instead of damping: per element b = damping_per_length·l",
+     [](SceneDef& d, PulleyDef&) -> Slot { return &d.contact_per_length.b; }, nullptr, nullptr},
+    {"contact", "p_max", K::number, "m", 1e-3, "", W::paper, R::positive,
+     "the paper's p_max, the depth at which the damping is full (a depth: the same either way)",
+     [](SceneDef& d, PulleyDef&) -> Slot { return &d.contact.p_max; }, nullptr, nullptr},
+
+    // ---- friction = {...} ----
+    {"friction", "dv", K::number, "m/s", 1e-5, "", W::paper, R::positive,
+     "the paper's Δv, the slip speed at which μ reaches its kinetic value",
+     [](SceneDef& d, PulleyDef&) -> Slot { return &d.friction.dv; }, nullptr, nullptr},
+};
+// clang-format on
+
+// a default as the docs show it: "3.0256e9", "1e-3", "0.026", "500"
+std::string doc_number(double v) {
+  if (v == 0 || (std::abs(v) >= 1e-2 && std::abs(v) < 1e5)) return number_text(v);
+  char buf[32];
+  const auto r = std::to_chars(buf, buf + sizeof buf, v, std::chars_format::scientific);
+  std::string s(buf, r.ptr);  // "3.0256e+09"
+  const size_t e = s.find('e');
+  std::string exp = s.substr(e + 1);
+  const bool neg = exp[0] == '-';
+  exp = exp.substr(1);
+  while (exp.size() > 1 && exp[0] == '0') exp.erase(0, 1);
+  return s.substr(0, e + 1) + (neg ? "-" : "") + exp;
+}
+
+// a rule as the docs show it
+std::string_view doc_range(Rule r) {
+  switch (r) {
+    case Rule::positive: return "> 0";
+    case Rule::non_negative: return "≥ 0";
+    case Rule::exponent: return "≥ 1";
+    case Rule::at_least_three: return "≥ 3";
+    case Rule::finite: return "finite";
+    case Rule::none: break;
+  }
+  return "—";
+}
+
+}  // namespace
+
+std::string Parameter::dotted() const {
+  return table == "scene" ? std::string(key) : std::string(table) + "." + std::string(key);
+}
+
+std::span<const Parameter> parameters() { return kParameters; }
+
+std::vector<const Parameter*> parameters_of(std::string_view table) {
+  std::vector<const Parameter*> out;
+  for (const Parameter& p : kParameters)
+    if (p.table == table) out.push_back(&p);
+  return out;
+}
+
+std::vector<std::string> keys_of(std::string_view table) {
+  std::vector<std::string> out;
+  for (const Parameter* p : parameters_of(table)) out.emplace_back(p->key);
+  return out;
+}
+
+const Parameter* find_parameter(std::string_view dotted) {
+  for (const Parameter& p : kParameters)
+    if (p.dotted() == dotted) return &p;
+  return nullptr;
+}
+
+double parameter_default(std::string_view dotted) {
+  const Parameter* p = find_parameter(dotted);
+  if (!p || !p->fallback) throw std::logic_error("no default for the parameter '" + std::string(dotted) + "'");
+  return *p->fallback;
+}
+
+std::optional<double> value_of(const Parameter& par, const SceneDef& d, const PulleyDef* p) {
+  if (!par.slot) return std::nullopt;
+  // the slot's accessor takes mutable references; it only takes an address here
+  PulleyDef none;
+  const Slot s = par.slot(const_cast<SceneDef&>(d), const_cast<PulleyDef&>(p ? *p : none));
+  if (auto* x = std::get_if<double*>(&s)) return **x;
+  if (auto* i = std::get_if<int*>(&s)) return **i;
+  if (auto* o = std::get_if<std::optional<double>*>(&s)) return **o;
+  return std::nullopt;
+}
+
+std::string_view whose_text(Whose w) {
+  switch (w) {
+    case Whose::paper: return "the paper's";
+    case Whose::reading: return "the paper's, read as docs/model.md says";
+    case Whose::ours: return "ours";
+    case Whose::none: break;
+  }
+  return "";
+}
+
+std::string_view rule_text(Rule r) {
+  switch (r) {
+    case Rule::positive: return "must be > 0";
+    case Rule::non_negative: return "must be >= 0";
+    case Rule::exponent: return "must be >= 1 (below 1 the stiffness is infinite at zero)";
+    case Rule::at_least_three: return "must be >= 3";
+    case Rule::finite: return "must be a finite number";
+    case Rule::none: break;
+  }
+  return "";
+}
+
+std::string parameters_markdown() {
+  std::string md;
+  for (const auto& [table, title] : {std::pair{"scene", "`beltsim.scene{...}`"}, std::pair{"pulley", "Pulley table"},
+                                     std::pair{"belt", "Belt table"}, std::pair{"belt.sde", "`belt.sde` table"},
+                                     std::pair{"contact", "Contact table"}, std::pair{"friction", "Friction table"}}) {
+    md.append(md.empty() ? "" : "\n").append(title).append(":\n\n| key | unit | default | range | meaning |\n|---|---|---|---|---|\n");
+    for (const Parameter* p : parameters_of(table)) {
+      std::string fallback;
+      if (p->fallback)
+        fallback.append("`").append(doc_number(*p->fallback)).append("`");
+      else
+        fallback.append(p->fallback_text.empty() ? "—" : p->fallback_text);
+      if (p->whose != Whose::none) fallback.append(" (").append(whose_text(p->whose)).append(")");
+      md.append("| `").append(p->key).append("` | ").append(p->unit.empty() ? "—" : p->unit);
+      md.append(" | ").append(fallback).append(" | ").append(doc_range(p->rule)).append(" | ").append(p->note);
+      md.append(" |\n");
+    }
+  }
+  return md;
+}
+
+}  // namespace beltsim

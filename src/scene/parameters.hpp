@@ -1,0 +1,84 @@
+// The scene's parameters: one table of every key a scenario's tables take (scene, belt, belt.sde,
+// contact, friction, pulley), with its unit, its default and whose that default is, its rule and
+// where its value lives in a SceneDef. The Lua readers (script/lua_scene.cpp), the validation
+// (validate(SceneDef)), the scene's inputs in parameters.csv and the run's first lines
+// (scene_inputs), the checkpoint's inputs (scene_io.cpp) and the parameter tables of
+// docs/lua-api.md (parameters_markdown) all come from it.
+#pragma once
+
+#include <optional>
+#include <span>
+#include <string>
+#include <string_view>
+#include <variant>
+#include <vector>
+
+namespace beltsim {
+
+struct SceneDef;
+struct PulleyDef;
+
+// whose a default is
+enum class Whose {
+  none,     // no default: required, or an alternative to another key
+  paper,    // the paper's value
+  reading,  // the paper's value, read as docs/model.md (Parameter reading) says
+  ours      // not in the paper: our choice
+};
+
+// how a scenario gives the value
+enum class Kind {
+  number,   // a number, read by the table's reader
+  integer,  // a whole number, read by the table's reader
+  other     // a word, a list, a law or a table: read by its own code (script/lua_scene.cpp)
+};
+
+// the range a number must lie in; every rule also requires a finite number
+enum class Rule { none, finite, positive, non_negative, exponent, at_least_three };
+
+// where a parameter's value lives in a SceneDef (a pulley's in its PulleyDef)
+using Slot = std::variant<std::monostate, double*, int*, std::optional<double>*>;
+
+struct Parameter {
+  std::string_view table;  // the scenario's table: "scene", "belt", "belt.sde", "contact", "friction", "pulley"
+  std::string_view key;    // the key in that table
+  Kind kind;
+  std::string_view unit;           // SI; "" when dimensionless or not a number
+  std::optional<double> fallback;  // the default of a number
+  std::string_view fallback_text;  // the default of anything else, as the docs show it ("" when none)
+  Whose whose;
+  Rule rule;
+  std::string_view note;                // what it is and what it refers to
+  Slot (*slot)(SceneDef&, PulleyDef&);  // nullptr: no single number (read and checked by their own code)
+  bool (*applies)(const SceneDef&);     // nullptr: always; else whether the scene uses it
+  std::string (*word)(const SceneDef&, const PulleyDef&);  // a value that is a word, "" when it is a number
+
+  // "belt.mass_per_length", "pulley.radius", "gravity" (a key of the scene table stands alone)
+  std::string dotted() const;
+};
+
+// every parameter, in the order the docs, the valid-key lists and parameters.csv give them
+std::span<const Parameter> parameters();
+// the parameters of one table ("belt", "pulley", ...), in order
+std::vector<const Parameter*> parameters_of(std::string_view table);
+// the keys of one table, as a valid-key list
+std::vector<std::string> keys_of(std::string_view table);
+// the parameter of a dotted key ("contact.damping", "pulley.inertia"); nullptr when none
+const Parameter* find_parameter(std::string_view dotted);
+// the default of a number parameter; throws std::logic_error for a key without one (a bug)
+double parameter_default(std::string_view dotted);
+
+// the value a parameter has in d (p: the pulley's), nullopt when it has no number there (an
+// optional not given, a parameter read by its own code)
+std::optional<double> value_of(const Parameter& par, const SceneDef& d, const PulleyDef* p = nullptr);
+
+// "the paper's", "our reading of the paper's", "ours", ""
+std::string_view whose_text(Whose w);
+// the rule's words: "must be > 0"
+std::string_view rule_text(Rule r);
+
+// The parameter tables of docs/lua-api.md: one Markdown table per scenario table (key, unit,
+// default, meaning), as `beltsim help parameters` prints them and the docs hold them.
+std::string parameters_markdown();
+
+}  // namespace beltsim

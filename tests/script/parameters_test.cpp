@@ -1,0 +1,162 @@
+// The parameter table (scene/parameters.hpp) is the one place of the scene's keys: every number in
+// it is read from Lua, checked by its rule with the reason and the value, written to
+// parameters.csv with its unit and source, and docs/lua-api.md holds its tables as generated.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <sstream>
+#include <string>
+
+#include "io/number_text.hpp"
+#include "run_script.hpp"
+#include "scene/parameters.hpp"
+#include "script/interpreter.hpp"
+#include "support/scratch.hpp"
+
+namespace beltsim::script {
+namespace {
+
+namespace fs = std::filesystem;
+
+fs::path temp_dir() { return beltsim::test::scratch_dir("beltsim_parameters_test"); }
+
+std::string slurp(const fs::path& p) {
+  std::ifstream f(p);
+  std::ostringstream s;
+  s << f.rdbuf();
+  return s.str();
+}
+
+// A two-pulley scene (pulleys 'a' and 'b') with the given values as Lua expressions, each under its
+// dotted key ("belt.EA", "belt.sde.k", "pulley.radius": pulley a's, "gravity"), then a run of one
+// millisecond writing parameters.csv.
+std::string scene_with(const std::map<std::string, std::string>& values) {
+  std::map<std::string, std::string> tables;
+  for (const auto& [dotted, v] : values) {
+    const Parameter* p = find_parameter(dotted);
+    EXPECT_NE(p, nullptr) << dotted;
+    if (p) tables[std::string(p->table)] += std::string(p->key) + " = " + v + ", ";
+  }
+  std::string belt = tables["belt"];
+  if (!tables["belt.sde"].empty()) belt += "sde = { " + tables["belt.sde"] + "}, ";
+  return "local s = beltsim.scene {\n"
+         "  pulleys = { { name = 'a', centre = {0, 0}, torque = -1, " + tables["pulley"] + "},\n"
+         "              { name = 'b', centre = {0.29, 0} } },\n"
+         "  belt = { " + belt + "},\n"
+         "  contact = { " + tables["contact"] + "},\n"
+         "  friction = { " + tables["friction"] + "},\n"
+         "  " + tables["scene"] + "\n"
+         "}\n"
+         "s:run { t_end = 1e-3, progress = false }\n";
+}
+
+std::string run_text(const std::string& text) {
+  Interpreter lua;
+  return test::run_script(lua, temp_dir() / "scene.lua", text, temp_dir() / "out");
+}
+
+// a value that breaks the rule, as Lua writes it and as the error shows it
+std::pair<std::string, std::string> breaking(Rule r) {
+  switch (r) {
+    case Rule::positive: return {"0", "0"};
+    case Rule::non_negative: return {"-1", "-1"};
+    case Rule::exponent: return {"0.5", "0.5"};
+    case Rule::at_least_three: return {"2", "2"};
+    case Rule::finite: return {"1/0", "inf"};
+    case Rule::none: break;
+  }
+  return {};
+}
+
+// the per-SDE values are given all four or none
+const std::map<std::string, std::string> kSde{
+    {"belt.sde.k", "7.5e6"}, {"belt.sde.c", "1000"}, {"belt.sde.kt", "1.3"}, {"belt.sde.ct", "0.05"}};
+
+// every rule of the table stops the script at the scene's line with the key, the reason and the value
+TEST(Parameters, EveryRuleStopsTheScriptWithTheKeyTheReasonAndTheValue) {
+  int checked = 0;
+  for (const Parameter& p : parameters()) {
+    if (p.rule == Rule::none) continue;
+    const auto [lua, shown] = breaking(p.rule);
+    std::map<std::string, std::string> values;
+    if (p.table == "belt.sde") values = kSde;
+    values[p.dotted()] = lua;
+    const std::string what = p.table == "pulley" ? "pulley 'a' " + std::string(p.key) : p.dotted();
+    const std::string expected = (temp_dir() / "scene.lua").string() + ":1: " + what + " " + std::string(rule_text(p.rule)) + " (got " + shown +
+                                 (p.unit.empty() ? "" : " ") + std::string(p.unit) + ")";
+    EXPECT_EQ(run_text(scene_with(values)).rfind(expected, 0), 0u)
+        << p.dotted() << ": expected '" << expected << "', got '" << run_text(scene_with(values)) << "'";
+    ++checked;
+  }
+  EXPECT_GE(checked, 25);  // every number of the scene has a rule
+}
+
+// the value of every number a scene gives reaches parameters.csv with its unit as given, and every
+// default taken as default; the alternatives (rest_length, strain, per SDE, per length) in
+// scenes of their own
+TEST(Parameters, EveryNumberReachesParametersCsv) {
+  std::map<std::string, std::string> primary, per_length{{"belt.rest_length", "1.2045"}}, per_sde = kSde;
+  per_sde["belt.strain"] = "0.005";
+  per_length["belt.bending_viscosity"] = "1e-3";
+  per_length["contact.c1_per_length"] = "1.5e11";
+  per_length["contact.c2_per_length"] = "3.25e7";
+  per_length["contact.damping_per_length"] = "1.5e4";
+  for (const Parameter& p : parameters()) {
+    if (!p.slot || !p.fallback) continue;
+    // 5 % off the default, a whole number for an integer
+    const double v = p.kind == Kind::integer ? *p.fallback + 2 : *p.fallback * 1.05;
+    primary[p.dotted()] = number_text(v);
+  }
+  auto row = [](const std::string& csv, const std::string& name) {
+    const size_t at = csv.find("\n" + name + ",");
+    return at == std::string::npos ? std::string() : csv.substr(at + 1, csv.find('\n', at + 1) - at - 1);
+  };
+  for (const auto* values : {&primary, &per_length, &per_sde}) {
+    ASSERT_EQ(run_text(scene_with(*values)), "");
+    const std::string csv = slurp(temp_dir() / "out" / "parameters.csv");
+    for (const auto& [dotted, v] : *values) {
+      const Parameter* p = find_parameter(dotted);
+      const std::string name = p->table == "pulley" ? "pulley.a." + std::string(p->key) : dotted;
+      const std::string expected = name + "," + number_text(std::stod(v)) + "," + std::string(p->unit) + ",given,";
+      EXPECT_EQ(row(csv, name).rfind(expected, 0), 0u) << "expected '" << expected << "', got '" << row(csv, name) << "'";
+    }
+  }
+  // nothing given: the defaults, marked so
+  ASSERT_EQ(run_text(scene_with({})), "");
+  const std::string csv = slurp(temp_dir() / "out" / "parameters.csv");
+  for (const auto& [dotted, v] : primary) {
+    const Parameter* p = find_parameter(dotted);
+    const std::string name = p->table == "pulley" ? "pulley.b." + std::string(p->key) : dotted;
+    const std::string expected =
+        name + "," + number_text(*p->fallback) + "," + std::string(p->unit) + ",default," ;
+    EXPECT_EQ(row(csv, name).rfind(expected, 0), 0u) << "expected '" << expected << "', got '" << row(csv, name) << "'";
+    EXPECT_NE(row(csv, name).find(whose_text(p->whose)), std::string::npos) << row(csv, name);
+  }
+}
+
+// docs/lua-api.md holds the table's Markdown between its markers, exactly (regenerate it with
+// `beltsim help parameters`): no key, unit, default or range in the docs differs from the code's
+TEST(Parameters, TheDocsHoldTheTable) {
+  const std::string docs = slurp(fs::path(BELTSIM_SOURCE_DIR) / "docs" / "lua-api.md");
+  const std::string begin = "<!-- parameters: begin (beltsim help parameters) -->\n", end = "<!-- parameters: end -->";
+  const size_t b = docs.find(begin), e = docs.find(end);
+  ASSERT_NE(b, std::string::npos);
+  ASSERT_NE(e, std::string::npos);
+  EXPECT_EQ(docs.substr(b + begin.size(), e - b - begin.size()), parameters_markdown())
+      << "docs/lua-api.md's parameter tables differ from the code's: put the output of 'beltsim help parameters' "
+         "between the markers";
+  EXPECT_EQ(docs.find(begin, b + 1), std::string::npos) << "one copy of the tables";
+}
+
+// every key a scene table takes is in the table once
+TEST(Parameters, EachKeyOnce) {
+  std::map<std::string, int> seen;
+  for (const Parameter& p : parameters()) EXPECT_EQ(++seen[p.dotted()], 1) << p.dotted();
+  EXPECT_EQ(find_parameter("contact.b"), nullptr);  // the model's name, not the scenario's
+  EXPECT_EQ(find_parameter("contact.damping")->unit, "N·s/m");
+}
+
+}  // namespace
+}  // namespace beltsim::script
