@@ -33,6 +33,10 @@ struct DivergenceError : std::runtime_error {
   double t;
 };
 
+// the advice every message of a run that diverged or made no progress ends with
+inline constexpr const char* kDivergenceHint =
+    "try an implicit integrator (esdirk32, or cvode), a looser rtol or atol, or more damping of that component";
+
 class Integrator {
  public:
   virtual ~Integrator() = default;

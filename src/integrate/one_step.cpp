@@ -33,8 +33,6 @@ namespace {
 constexpr double kFloorUlps = 1024;
 constexpr long kFloorSteps = 10000;
 constexpr long kFailedInARow = 10;
-constexpr const char* kSuggestion =
-    "try an implicit integrator (esdirk32, or cvode), a looser rtol or atol, or more damping of that component";
 
 class OneStep final : public Integrator {
  public:
@@ -99,10 +97,10 @@ class OneStep final : public Integrator {
           throw DivergenceError(t_, "no progress at t = " + fmt_time(t_) + " s: the implicit iteration failed " +
                                         std::to_string(failed_in_a_row_) + " times in a row (step size now " +
                                         fmt_time(h_) + " s); " + largest_error(worst) + "; " +
-                                        kSuggestion);
+                                        kDivergenceHint);
         if (!(h_ >= 16 * ulp))
           throw DivergenceError(t_, "the step size collapsed to " + fmt_time(h_) + " s at t = " + fmt_time(t_) +
-                                        " s; " + largest_error(worst) + "; " + kSuggestion);
+                                        " s; " + largest_error(worst) + "; " + kDivergenceHint);
         continue;
       }
       failed_in_a_row_ = 0;
@@ -110,7 +108,7 @@ class OneStep final : public Integrator {
         if (++at_floor_ >= kFloorSteps)
           throw DivergenceError(t_, "no progress at t = " + fmt_time(t_) + " s: the step size has stayed at the "
                                     "rounding floor of t (" + fmt_time(h) + " s) for " + std::to_string(at_floor_) +
-                                    " steps; " + largest_error(worst) + "; " + kSuggestion);
+                                    " steps; " + largest_error(worst) + "; " + kDivergenceHint);
       } else {
         at_floor_ = 0;
       }
