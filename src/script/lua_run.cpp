@@ -162,7 +162,7 @@ std::vector<MuEvent> read_events(lua_State* L, int idx, const Scene& sc) {
     MuEvent ev;
     const auto t = opt_number(L, e, "t", what);
     if (!t) fail(L, what + ".t: the event's time is missing");
-    if (!(*t > 0 && std::isfinite(*t))) fail(L, what + ".t: must be > 0 and finite (got " + std::to_string(*t) + " s)");
+    if (const std::string bad = event_time_problem(*t); !bad.empty()) fail(L, what + ".t: " + bad);
     ev.t = *t;
     const auto from = opt_number(L, e, "from", what), to = opt_number(L, e, "to", what);
     if (!field(L, e, "mu")) fail(L, what + ".mu: the new friction coefficient is missing");
