@@ -21,8 +21,7 @@ std::string csv_number(double v) {
   return s;
 }
 
-CsvWriter::CsvWriter(const std::string& path, const std::vector<std::string>& header, double /*flush_interval*/,
-                     bool append)
+CsvWriter::CsvWriter(const std::string& path, const std::vector<std::string>& header, bool append)
     : file_(path, append), columns_(header.size()) {
   start(header, append);
 }

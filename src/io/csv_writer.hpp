@@ -15,18 +15,14 @@ namespace beltsim {
 
 class CsvWriter {
  public:
-  // append: continue an existing file (a resumed run) without writing the header again.
-  // flush_interval [s]: rows reach the file at once, so there is nothing to flush on a timer;
-  // kept so callers need not change. Throws std::runtime_error naming the file and the reason
-  // (here and in row()).
-  CsvWriter(const std::string& path, const std::vector<std::string>& header, double flush_interval = 0.5,
-            bool append = false);
+  // append: continue an existing file (a resumed run) without writing the header again. Throws
+  // std::runtime_error naming the file and the reason (here and in row()).
+  CsvWriter(const std::string& path, const std::vector<std::string>& header, bool append = false);
   // DIR/NAME (io/output_dir.hpp: never through a link)
   CsvWriter(const OutputDir& dir, const std::string& name, const std::vector<std::string>& header, bool append);
   CsvWriter(const CsvWriter&) = delete;
   CsvWriter& operator=(const CsvWriter&) = delete;
   void row(const std::vector<double>& values);
-  void flush() {}  // every row is in the file when row() returns
   const std::string& path() const { return file_.path(); }
 
  private:
