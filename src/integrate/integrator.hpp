@@ -81,7 +81,4 @@ void check_tolerances(const Tolerances& tol);
 void hermite(double theta, double h, const Eigen::VectorXd& y0, const Eigen::VectorXd& f0,
              const Eigen::VectorXd& y1, const Eigen::VectorXd& f1, Eigen::VectorXd& out);
 
-// "1.23456789" (9 significant digits) for messages
-std::string fmt_time(double t);
-
 }  // namespace beltsim

@@ -2,7 +2,6 @@
 
 #include <stdexcept>
 
-#include "io/number_text.hpp"
 
 namespace beltsim {
 
@@ -11,14 +10,6 @@ std::string csv_text(const std::string& s) {
   std::string q = "\"";
   for (char c : s) q += (c == '"') ? std::string("\"\"") : std::string(1, c);
   return q + "\"";
-}
-
-void append_csv_number(std::string& out, double v) { append_number(out, v); }
-
-std::string csv_number(double v) {
-  std::string s;
-  append_csv_number(s, v);
-  return s;
 }
 
 CsvWriter::CsvWriter(const std::string& path, const std::vector<std::string>& header, bool append)
@@ -47,7 +38,7 @@ void CsvWriter::row(const std::vector<double>& values) {
   line_.clear();
   for (size_t k = 0; k < values.size(); ++k) {
     if (k) line_ += ',';
-    append_csv_number(line_, values[k]);
+    append_number(line_, values[k]);
   }
   line_ += '\n';
   file_.write(line_);

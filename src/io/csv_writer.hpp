@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "io/number_text.hpp"  // each number as number_text writes it
 #include "io/row_file.hpp"
 
 namespace beltsim {
@@ -34,9 +35,5 @@ class CsvWriter {
 
 // one cell: quotes text containing a comma, quote or newline
 std::string csv_text(const std::string& s);
-// one number: the shortest decimal that reads back (strtod, pandas, numpy) as the same double,
-// "nan" for NaN, "inf"/"-inf"; appended to out. Every CSV file of a run writes its numbers so.
-void append_csv_number(std::string& out, double v);
-std::string csv_number(double v);
 
 }  // namespace beltsim

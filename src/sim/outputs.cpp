@@ -25,7 +25,7 @@ void write_parameters(const Scene& sc, const RunSettings& rs, const OutputDir& d
   // source: "given" by the scenario, "default" taken, "derived" by the build from those, or "run"
   f << "name,value,unit,source,note\n";
   auto row = [&](const std::string& name, double v, const std::string& unit, const std::string& note) {
-    f << csv_text(name) << ',' << csv_number(v) << ',' << csv_text(unit) << ",derived," << csv_text(note) << '\n';
+    f << csv_text(name) << ',' << number_text(v) << ',' << csv_text(unit) << ",derived," << csv_text(note) << '\n';
   };
   auto text = [&](const std::string& name, const std::string& v, const std::string& note) {
     f << csv_text(name) << ',' << csv_text(v) << ",,derived," << csv_text(note) << '\n';
@@ -33,7 +33,7 @@ void write_parameters(const Scene& sc, const RunSettings& rs, const OutputDir& d
   for (const SceneInput& in : sc.inputs) {
     f << csv_text(in.name) << ',';
     if (in.text.empty())
-      f << csv_number(in.value);
+      f << number_text(in.value);
     else
       f << csv_text(in.text);
     f << ',' << csv_text(in.unit) << ',' << (in.given ? "given" : "default") << ',' << csv_text(in.note) << '\n';
@@ -81,10 +81,10 @@ void write_parameters(const Scene& sc, const RunSettings& rs, const OutputDir& d
   }
   // the run's settings (source "run")
   f << "run.integrator," << csv_text(rs.integrator) << ",,run,\n";
-  f << "run.rtol," << csv_number(rs.rtol) << ",,run,\n";
-  f << "run.atol," << csv_number(rs.atol < 0 ? rs.rtol : rs.atol) << ",,run,"
+  f << "run.rtol," << number_text(rs.rtol) << ",,run,\n";
+  f << "run.atol," << number_text(rs.atol < 0 ? rs.rtol : rs.atol) << ",,run,"
     << csv_text("per natural unit: 0.1 m, 1 rad, 1 m/s, 10 rad/s, 1 J") << "\n";
-  f << "run.sample_dt," << csv_number(rs.sample_dt) << ",s,run,\n";
+  f << "run.sample_dt," << number_text(rs.sample_dt) << ",s,run,\n";
   write_file_whole(dir, "parameters.csv", f.str());
 }
 
@@ -148,7 +148,7 @@ void Outputs::close(const Warnings& w) {
       for (const WarningKindInfo& i : warning_kinds()) {
         const WarningStat& s = w[i.kind];
         f << "warning." << i.name << ".count," << s.count << ",,derived," << csv_text(i.description) << '\n'
-          << "warning." << i.name << ".first_t," << (s.count > 0 ? csv_number(s.first_t) : std::string())
+          << "warning." << i.name << ".first_t," << (s.count > 0 ? number_text(s.first_t) : std::string())
           << ",s,derived," << "simulated time it first fired (empty: never)\n";
       }
       RowFile(*dir_, "parameters.csv", true).write(f.str());
@@ -168,7 +168,7 @@ void Outputs::sample(std::vector<double> row) {
 
 void Outputs::event(double t, const std::string& what, const std::string& text) {
   if (!events_) return;
-  events_->write(csv_number(t) + ',' + csv_text(what) + ',' + csv_text(text) + '\n');
+  events_->write(number_text(t) + ',' + csv_text(what) + ',' + csv_text(text) + '\n');
 }
 
 // all rows by one write(2) (io/row_file.hpp): the file holds whole snapshots. Columns in SI
@@ -177,10 +177,10 @@ void Outputs::snapshot(double t, const Observation& o) {
   std::string rows;
   for (size_t i = 0; i < o.elements.size(); ++i) {
     const ElementObs& e = o.elements[i];
-    append_csv_number(rows, t);
+    append_number(rows, t);
     rows += ',' + std::to_string(i) + ',';
     for (double v : {scene_.sites[i].s, e.x, e.y, e.tension, e.normal, e.friction, e.slip, e.mu}) {
-      append_csv_number(rows, v);
+      append_number(rows, v);
       rows += ',';
     }
     if (e.pulley >= 0) rows += csv_text(scene_.model.pulleys[e.pulley].name);
