@@ -3,19 +3,15 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <cstdio>
-#include <exception>
 #include <filesystem>
-#include <limits>
-#include <sstream>
 #include <utility>
 
 #include "integrate/belt_system.hpp"
 #include "integrate/make_integrator.hpp"
 #include "integrate/timeline.hpp"
 #include "io/number_text.hpp"
-#include "sim/interval_means.hpp"
 #include "model/forces.hpp"
+#include "sim/interval_means.hpp"
 
 namespace beltsim {
 
