@@ -20,6 +20,7 @@
 #include "integrate/colouring.hpp"
 #include "integrate/controller.hpp"
 #include "integrate/integrator.hpp"
+#include "io/number_text.hpp"
 
 namespace beltsim {
 
@@ -212,7 +213,7 @@ class CvodeIntegrator final : public Integrator {
   void start(double t, const Eigen::VectorXd& y) override {
     const int n = problem_.size();
     if (const std::string bad = problem_.check(t, y.data()); !bad.empty())
-      throw DivergenceError(t, "the state at t = " + fmt_time(t) + " s: " + bad);
+      throw DivergenceError(t, "the state at t = " + rounded_text(t, 9) + " s: " + bad);
     y_ = y_prev_ = y;
     t_ = t_prev_ = t;
     std::copy(y.data(), y.data() + n, N_VGetArrayPointer(cv_.y));
@@ -287,7 +288,7 @@ class CvodeIntegrator final : public Integrator {
     ses_.warnings.add(WarningKind::cvode_convergence, t_, ncf_after - ncf_before);
     if (ses_.error) std::rethrow_exception(std::exchange(ses_.error, nullptr));
     if (flag < 0)
-      throw DivergenceError(t_, "cvode stopped at t = " + fmt_time(t_) + " s: " + CVodeGetReturnFlagName(flag) +
+      throw DivergenceError(t_, "cvode stopped at t = " + rounded_text(t_, 9) + " s: " + CVodeGetReturnFlagName(flag) +
                                     (ses_.last_error.empty() ? "" : " (" + ses_.last_error + ")"));
     if (flag == CV_TSTOP_RETURN) t_ret = t_land, tstop_ = std::nan("");  // SUNDIALS 6 clears a reached stop time
     // a kink located: restart there (at the next step, as after a stall), unless the last
@@ -299,12 +300,12 @@ class CvodeIntegrator final : public Integrator {
     double h_now = 0;
     CVodeGetCurrentStep(cv_.mem, &h_now);
     if (!(std::abs(h_now) >= 16 * std::numeric_limits<double>::epsilon() * std::max(1.0, std::abs(t_ret))))
-      throw DivergenceError(t_ret, "cvode: the step size collapsed to " + fmt_time(h_now) + " s at t = " +
-                                       fmt_time(t_ret) + " s" +
+      throw DivergenceError(t_ret, "cvode: the step size collapsed to " + rounded_text(h_now, 9) + " s at t = " +
+                                       rounded_text(t_ret, 9) + " s" +
                                        (ses_.last_error.empty() ? "" : " (" + ses_.last_error + ")"));
     const double* yr = N_VGetArrayPointer(cv_.y);
     if (const std::string bad = problem_.check(t_ret, yr); !bad.empty())
-      throw DivergenceError(t_ret, "the run diverged at t = " + fmt_time(t_ret) + " s: " + bad);
+      throw DivergenceError(t_ret, "the run diverged at t = " + rounded_text(t_ret, 9) + " s: " + bad);
     t_prev_ = t_, t_ = t_ret;
     y_prev_.swap(y_);
     y_.resize(problem_.size());

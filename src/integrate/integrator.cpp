@@ -3,6 +3,7 @@
 #include <sstream>
 
 #include "integrate/integrator.hpp"
+#include "io/number_text.hpp"
 
 namespace beltsim {
 
@@ -12,18 +13,11 @@ void hermite(double th, double h, const Eigen::VectorXd& y0, const Eigen::Vector
   out = (1 - th) * y0 + th * y1 + (th * (th - 1)) * ((1 - 2 * th) * (y1 - y0) + ((th - 1) * h) * f0 + (th * h) * f1);
 }
 
-std::string fmt_time(double v) {
-  std::ostringstream s;
-  s.precision(9);
-  s << v;
-  return s.str();
-}
-
 void check_tolerances(const Tolerances& tol) {
   if (!(tol.rtol > 0 && tol.rtol < 1))
-    throw std::invalid_argument("rtol: must be in (0, 1) (got " + fmt_time(tol.rtol) + ")");
+    throw std::invalid_argument("rtol: must be in (0, 1) (got " + rounded_text(tol.rtol, 9) + ")");
   if (!(tol.atol < 0 || (tol.atol > 0 && std::isfinite(tol.atol))) || std::isnan(tol.atol))
-    throw std::invalid_argument("atol: must be > 0 and finite, or left out to mean rtol (got " + fmt_time(tol.atol) +
+    throw std::invalid_argument("atol: must be > 0 and finite, or left out to mean rtol (got " + rounded_text(tol.atol, 9) +
                                 ")");
 }
 

@@ -33,6 +33,10 @@ struct DivergenceError : std::runtime_error {
   double t;
 };
 
+// the advice every message of a run that diverged or made no progress ends with
+inline constexpr const char* kDivergenceHint =
+    "try an implicit integrator (esdirk32, or cvode), a looser rtol or atol, or more damping of that component";
+
 class Integrator {
  public:
   virtual ~Integrator() = default;
@@ -76,8 +80,5 @@ void check_tolerances(const Tolerances& tol);
 // cubic Hermite interpolation on [t0, t0 + h]
 void hermite(double theta, double h, const Eigen::VectorXd& y0, const Eigen::VectorXd& f0,
              const Eigen::VectorXd& y1, const Eigen::VectorXd& f1, Eigen::VectorXd& out);
-
-// "1.23456789" (9 significant digits) for messages
-std::string fmt_time(double t);
 
 }  // namespace beltsim

@@ -11,6 +11,7 @@
 #include "integrate/integrator.hpp"
 #include "integrate/stepper.hpp"
 #include "io/checkpoint_text.hpp"
+#include "io/number_text.hpp"
 
 namespace beltsim {
 
@@ -33,8 +34,6 @@ namespace {
 constexpr double kFloorUlps = 1024;
 constexpr long kFloorSteps = 10000;
 constexpr long kFailedInARow = 10;
-constexpr const char* kSuggestion =
-    "try an implicit integrator (esdirk32, or cvode), a looser rtol or atol, or more damping of that component";
 
 class OneStep final : public Integrator {
  public:
@@ -55,7 +54,7 @@ class OneStep final : public Integrator {
     sys_.problem->rhs(t, y_.data(), f_.data());
     sys_.problem->counters.rhs++;
     if (const std::string bad = sys_.problem->check(t, y_.data()); !bad.empty())
-      throw DivergenceError(t, "the state at t = " + fmt_time(t) + " s: " + bad);
+      throw DivergenceError(t, "the state at t = " + rounded_text(t, 9) + " s: " + bad);
     y_prev_ = y_, f_prev_ = f_;
     // first step (Hairer II.4, simplified): make the first-order term small against the
     // tolerance; at most 1 ms, a small part of any belt's period of interest. A restart after a
@@ -96,21 +95,21 @@ class OneStep final : public Integrator {
         }
         h_ = ctl_.propose(h, ok ? e : 1e300);
         if (!ok && failed_in_a_row_ >= kFailedInARow)
-          throw DivergenceError(t_, "no progress at t = " + fmt_time(t_) + " s: the implicit iteration failed " +
+          throw DivergenceError(t_, "no progress at t = " + rounded_text(t_, 9) + " s: the implicit iteration failed " +
                                         std::to_string(failed_in_a_row_) + " times in a row (step size now " +
-                                        fmt_time(h_) + " s); " + largest_error(worst) + "; " +
-                                        kSuggestion);
+                                        rounded_text(h_, 9) + " s); " + largest_error(worst) + "; " +
+                                        kDivergenceHint);
         if (!(h_ >= 16 * ulp))
-          throw DivergenceError(t_, "the step size collapsed to " + fmt_time(h_) + " s at t = " + fmt_time(t_) +
-                                        " s; " + largest_error(worst) + "; " + kSuggestion);
+          throw DivergenceError(t_, "the step size collapsed to " + rounded_text(h_, 9) + " s at t = " + rounded_text(t_, 9) +
+                                        " s; " + largest_error(worst) + "; " + kDivergenceHint);
         continue;
       }
       failed_in_a_row_ = 0;
       if (h <= kFloorUlps * ulp && !lands) {
         if (++at_floor_ >= kFloorSteps)
-          throw DivergenceError(t_, "no progress at t = " + fmt_time(t_) + " s: the step size has stayed at the "
-                                    "rounding floor of t (" + fmt_time(h) + " s) for " + std::to_string(at_floor_) +
-                                    " steps; " + largest_error(worst) + "; " + kSuggestion);
+          throw DivergenceError(t_, "no progress at t = " + rounded_text(t_, 9) + " s: the step size has stayed at the "
+                                    "rounding floor of t (" + rounded_text(h, 9) + " s) for " + std::to_string(at_floor_) +
+                                    " steps; " + largest_error(worst) + "; " + kDivergenceHint);
       } else {
         at_floor_ = 0;
       }
@@ -119,7 +118,7 @@ class OneStep final : public Integrator {
       sys_.problem->counters.rhs++;
       sys_.problem->counters.steps++;
       if (const std::string bad = sys_.problem->check(t1, y1_.data()); !bad.empty())
-        throw DivergenceError(t1, "the run diverged at t = " + fmt_time(t1) + " s: " + bad);
+        throw DivergenceError(t1, "the run diverged at t = " + rounded_text(t1, 9) + " s: " + bad);
       t_prev_ = t_, t_ = t1;
       y_prev_.swap(y_), y_.swap(y1_);
       f_prev_.swap(f_), f_.swap(f1_);

@@ -1,4 +1,5 @@
 #include "integrate/warnings.hpp"
+#include "io/number_text.hpp"
 
 #include <algorithm>
 #include <atomic>
@@ -52,11 +53,8 @@ void Warnings::merge(const Warnings& o) {
 
 std::string describe(WarningKind k, const WarningStat& s) {
   const WarningKindInfo& i = warning_kinds()[static_cast<std::size_t>(k)];
-  std::ostringstream m;
-  m.precision(10);
-  m << i.name << ": " << s.count << (s.count == 1 ? " time" : " times") << ", first at t = " << s.first_t << " s ("
-    << i.description << ")";
-  return m.str();
+  return std::string(i.name) + ": " + std::to_string(s.count) + (s.count == 1 ? " time" : " times") +
+         ", first at t = " + rounded_text(s.first_t) + " s (" + i.description + ")";
 }
 
 void set_warning_observer(WarningObserver o) { g_observer.store(o); }

@@ -2,7 +2,6 @@
 
 #include <stdexcept>
 
-#include "io/number_text.hpp"
 
 namespace beltsim {
 
@@ -41,16 +40,7 @@ std::vector<std::string> csv_fields(const std::string& line) {
   return out;
 }
 
-void append_csv_number(std::string& out, double v) { append_number(out, v); }
-
-std::string csv_number(double v) {
-  std::string s;
-  append_csv_number(s, v);
-  return s;
-}
-
-CsvWriter::CsvWriter(const std::string& path, const std::vector<std::string>& header, double /*flush_interval*/,
-                     bool append)
+CsvWriter::CsvWriter(const std::string& path, const std::vector<std::string>& header, bool append)
     : file_(path, append), columns_(header.size()) {
   start(header, append);
 }
@@ -76,7 +66,7 @@ void CsvWriter::row(const std::vector<double>& values) {
   line_.clear();
   for (size_t k = 0; k < values.size(); ++k) {
     if (k) line_ += ',';
-    append_csv_number(line_, values[k]);
+    append_number(line_, values[k]);
   }
   line_ += '\n';
   file_.write(line_);

@@ -9,24 +9,21 @@
 #include <string>
 #include <vector>
 
+#include "io/number_text.hpp"  // each number as number_text writes it
 #include "io/row_file.hpp"
 
 namespace beltsim {
 
 class CsvWriter {
  public:
-  // append: continue an existing file (a resumed run) without writing the header again.
-  // flush_interval [s]: rows reach the file at once, so there is nothing to flush on a timer;
-  // kept so callers need not change. Throws std::runtime_error naming the file and the reason
-  // (here and in row()).
-  CsvWriter(const std::string& path, const std::vector<std::string>& header, double flush_interval = 0.5,
-            bool append = false);
+  // append: continue an existing file (a resumed run) without writing the header again. Throws
+  // std::runtime_error naming the file and the reason (here and in row()).
+  CsvWriter(const std::string& path, const std::vector<std::string>& header, bool append = false);
   // DIR/NAME (io/output_dir.hpp: never through a link)
   CsvWriter(const OutputDir& dir, const std::string& name, const std::vector<std::string>& header, bool append);
   CsvWriter(const CsvWriter&) = delete;
   CsvWriter& operator=(const CsvWriter&) = delete;
   void row(const std::vector<double>& values);
-  void flush() {}  // every row is in the file when row() returns
   const std::string& path() const { return file_.path(); }
 
  private:
@@ -40,9 +37,5 @@ class CsvWriter {
 std::string csv_text(const std::string& s);
 // the cells of one line, csv_text's quoting undone ("a,\"b,\"\"c\"\"\"" is a and b,"c")
 std::vector<std::string> csv_fields(const std::string& line);
-// one number: the shortest decimal that reads back (strtod, pandas, numpy) as the same double,
-// "nan" for NaN, "inf"/"-inf"; appended to out. Every CSV file of a run writes its numbers so.
-void append_csv_number(std::string& out, double v);
-std::string csv_number(double v);
 
 }  // namespace beltsim

@@ -1,5 +1,6 @@
 #include "io/number_text.hpp"
 
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <system_error>
@@ -20,6 +21,12 @@ std::string number_text(double v) {
   std::string s;
   append_number(s, v);
   return s;
+}
+
+std::string rounded_text(double v, int digits) {
+  char buf[64];  // %.17g's longest, "-2.2250738585072014e-308", has 24
+  const auto r = std::to_chars(buf, buf + sizeof buf, v, std::chars_format::general, std::clamp(digits, 1, 17));
+  return std::string(buf, r.ptr);
 }
 
 std::optional<double> parse_number(std::string_view s) {

@@ -13,6 +13,10 @@ namespace beltsim {
 void append_number(std::string& out, double v);
 std::string number_text(double v);
 
+// v rounded to that many significant digits (as printf's %.<digits>g, '.' whatever the locale),
+// for messages, where a reader wants "0.1" rather than every digit of the double
+std::string rounded_text(double v, int digits = 10);
+
 // the whole of s as one decimal number ("1", "-2.5e-3", "inf", "-inf", "nan"): no blanks, no
 // leading '+', no hex, nothing after it; nullopt otherwise. Out-of-range magnitudes (1e999) are
 // refused rather than rounded to infinity or zero.

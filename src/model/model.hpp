@@ -32,13 +32,13 @@ struct Pulley {
   WrapSide wrap = WrapSide::inside;
 };
 
-// Per-SDE belt properties (already converted from rigidities, see scene/validate).
+// Per-SDE belt properties (converted from rigidities by the scene build, scene/scene.cpp).
 struct Belt {
   int n = 0;                 // number of elements
   double pitch = 0;          // l: centre-to-centre spacing along the route at rest [m]
-  double rigid_length = 0;   // l_e: length of an element's rigid rod [m]
-  double mass = 0;           // m = rho·l [kg]
-  double rot_inertia = 0;    // I_z = m·l_e²/12 [kg·m²]
+  double rigid_length = 0;   // l0: an element's rest length, its rigid rod [m]
+  double mass = 0;           // m = rho·l0 [kg]
+  double rot_inertia = 0;    // I_z = m·l0²/12 [kg·m²]
   double k = 0;              // longitudinal SDE stiffness [N/m^e_tra]
   double c = 0;              // longitudinal SDE damping [N·s/m]
   double kt = 0;             // torsional SDE stiffness [N·m/rad^e_tor]

@@ -11,19 +11,13 @@
 #include "io/csv_writer.hpp"
 #include "io/units.hpp"
 #include "plot/gnuplot.hpp"
+#include "io/number_text.hpp"
 
 namespace beltsim::plot {
 
 namespace {
 
 namespace fs = std::filesystem;
-
-// shortest decimal that reads back to the same double, whatever the locale
-std::string number(double v) {
-  char b[32];
-  const auto r = std::to_chars(b, b + sizeof b, v);
-  return std::string(b, r.ptr);
-}
 
 // series that share a unit, in the order of their first appearance
 struct Group {
@@ -63,7 +57,7 @@ void datablock(std::ostringstream& g, int k, const Series& s) {
       gap = true;
       continue;
     }
-    g << number(s.t[i]) << ' ' << number(s.y[i]) << '\n';
+    g << number_text(s.t[i]) << ' ' << number_text(s.y[i]) << '\n';
     gap = false;
   }
   g << "EOD\n";
@@ -148,7 +142,7 @@ void plot_png(const PlotSpec& spec) {
   if (spec.points)
     g << "set offsets graph 0.05, graph 0.05, graph 0.05, graph 0.05\n";  // no mark on the frame
   else if (t1 > t0)
-    g << "set xrange [" << number(t0) << ":" << number(t1) << "]\n";
+    g << "set xrange [" << number_text(t0) << ":" << number_text(t1) << "]\n";
   g << "set grid xtics ytics lc rgb '#dddddd'\n"
     << "set xlabel " << gnuplot_string(spec.x_label) << "\n";
   if (groups.size() <= 2) {
@@ -187,7 +181,7 @@ void plot_png(const PlotSpec& spec) {
       if (hi > lo) {
         const double raw = (hi - lo) / 4, mag = std::pow(10.0, std::floor(std::log10(raw)));
         const double step = raw <= mag ? mag : raw <= 2 * mag ? 2 * mag : raw <= 5 * mag ? 5 * mag : 10 * mag;
-        g << "set ytics " << number(step) << "\n";
+        g << "set ytics " << number_text(step) << "\n";
       } else {
         g << "set ytics autofreq\n";
       }
@@ -307,7 +301,7 @@ void plot_csv(const std::string& csv_path, const std::vector<std::string>& colum
   spec.title = cp.has_parent_path() && cp.parent_path().has_filename()
                    ? (cp.parent_path().filename() / cp.filename()).string()
                    : cp.filename().string();
-  if (!t.empty() && from_t > t.front()) spec.title += "  (t ≥ " + number(from_t) + " s)";
+  if (!t.empty() && from_t > t.front()) spec.title += "  (t ≥ " + number_text(from_t) + " s)";
   for (const auto& name : wanted) {
     const std::vector<double>& y = table.column(name);
     Series s{name, unit_of(name), {}, {}};
@@ -317,8 +311,8 @@ void plot_csv(const std::string& csv_path, const std::vector<std::string>& colum
       s.y.push_back(y[i]);
     }
     if (s.t.empty())
-      throw std::runtime_error(csv_path + " has no samples at t >= " + number(from_t) + " s" +
-                               (t.empty() ? " (it has no rows)" : " (its last is at " + number(t.back()) + " s)"));
+      throw std::runtime_error(csv_path + " has no samples at t >= " + number_text(from_t) + " s" +
+                               (t.empty() ? " (it has no rows)" : " (its last is at " + number_text(t.back()) + " s)"));
     spec.series.push_back(std::move(s));
   }
   plot_png(spec);

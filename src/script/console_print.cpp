@@ -11,6 +11,7 @@
 
 #include "lauxlib.h"
 #include "lua.h"
+#include "io/number_text.hpp"
 
 namespace beltsim::script {
 
@@ -44,12 +45,8 @@ constexpr int kMaxItems = 12;  // list entries shown before "... N more"
 constexpr int kMaxDepth = 3;
 
 std::string number(lua_State* L, int idx) {
-  char b[64];
-  if (lua_isinteger(L, idx))
-    std::snprintf(b, sizeof b, "%lld", static_cast<long long>(lua_tointeger(L, idx)));
-  else
-    std::snprintf(b, sizeof b, "%.10g", lua_tonumber(L, idx));
-  return b;
+  if (lua_isinteger(L, idx)) return std::to_string(lua_tointeger(L, idx));
+  return rounded_text(lua_tonumber(L, idx));
 }
 
 void pretty_into(lua_State* L, int idx, std::string& out, int depth, std::set<const void*>& seen);

@@ -14,6 +14,7 @@
 #include "lua.h"
 #include "io/output_dir.hpp"
 #include "script/console_print.hpp"
+#include "io/number_text.hpp"
 
 namespace beltsim::script {
 
@@ -118,10 +119,8 @@ std::string replayable(lua_State* L, const std::string& chunk, bool expression, 
     if (out[k] == '\n') out.insert(k + 1, "-- ");
   out += "  -- stopped by Ctrl-C";
   for (const auto& [p, t] : stopped) {
-    char b[64];
-    std::snprintf(b, sizeof b, ":run_to(%.17g)", t);
     const std::string name = global_named(L, p);
-    out += "\n" + (name.empty() ? "-- (a simulation not held by a global)" : name) + b;
+    out += "\n" + (name.empty() ? "-- (a simulation not held by a global)" : name) + ":run_to(" + number_text(t) + ")";
   }
   return out;
 }

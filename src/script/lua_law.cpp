@@ -21,6 +21,7 @@
 #include "scene/validate.hpp"
 #include "script/context.hpp"
 #include "script/docall.hpp"
+#include "io/number_text.hpp"
 
 namespace beltsim::script {
 
@@ -64,16 +65,13 @@ class LuaLaw final : public LawFunction {
       error = std::string("it returned ") + luaL_typename(L, -1) + ", a number expected";
     } else {
       v = lua_tonumber(L, -1);
-      if (!std::isfinite(v)) error = "it returned " + std::to_string(v) + ", a finite number expected";
+      if (!std::isfinite(v)) error = "it returned " + rounded_text(v) + ", a finite number expected";
     }
     lua_settop(L, top);
     if (!error.empty()) {
-      std::ostringstream m;
-      m.precision(10);
-      m << what_ << " (" << describe() << ") at t = " << t << " s";
-      if (!speed_) m << ", omega = " << omega << " rad/s";
-      m << ": " << error;
-      throw LawError(m.str());
+      std::string m = what_ + " (" + describe() + ") at t = " + rounded_text(t) + " s";
+      if (!speed_) m += ", omega = " + rounded_text(omega) + " rad/s";
+      throw LawError(m + ": " + error);
     }
     return v;
   }
@@ -332,14 +330,30 @@ TimeSpeedLaw to_law(lua_State* L, int idx, const std::string& what, bool speed, 
   return law;
 }
 
+namespace {
+
+// the text of a law, its numbers as number_text writes them (each reads back as the same double)
+struct LawText {
+  std::string s;
+  LawText& operator<<(double v) {
+    append_number(s, v);
+    return *this;
+  }
+  LawText& operator<<(std::string_view t) {
+    s += t;
+    return *this;
+  }
+};
+
+}  // namespace
+
 std::string law_text(const TimeSpeedLaw& law) {
-  std::ostringstream s;
-  s.precision(17);
+  LawText s;
   const bool plain = law.per_speed == 0 && law.t.empty() && law.omega.empty() && law.ramps.empty() &&
                      law.sines.empty() && law.harmonics.empty() && !law.fn;
   if (plain) {
     s << law.constant;
-    return s.str();
+    return s.s;
   }
   s << "{ constant = " << law.constant;
   if (law.per_speed != 0) s << ", per_speed = " << law.per_speed;
@@ -372,7 +386,7 @@ std::string law_text(const TimeSpeedLaw& law) {
   }
   if (law.fn) s << ", " << law.fn->describe();
   s << " }";
-  return s.str();
+  return s.s;
 }
 
 void open_laws(lua_State* L) {

@@ -20,6 +20,7 @@
 #include "script/progress.hpp"
 #include "script/sandbox.hpp"
 #include "script/signals.hpp"
+#include "io/number_text.hpp"
 
 namespace beltsim::script {
 
@@ -162,7 +163,7 @@ std::vector<MuEvent> read_events(lua_State* L, int idx, const Scene& sc) {
     MuEvent ev;
     const auto t = opt_number(L, e, "t", what);
     if (!t) fail(L, what + ".t: the event's time is missing");
-    if (!(*t > 0 && std::isfinite(*t))) fail(L, what + ".t: must be > 0 and finite (got " + std::to_string(*t) + " s)");
+    if (const std::string bad = event_time_problem(*t); !bad.empty()) fail(L, what + ".t: " + bad);
     ev.t = *t;
     const auto from = opt_number(L, e, "from", what), to = opt_number(L, e, "to", what);
     if (!field(L, e, "mu")) fail(L, what + ".mu: the new friction coefficient is missing");
@@ -170,10 +171,10 @@ std::vector<MuEvent> read_events(lua_State* L, int idx, const Scene& sc) {
     std::ostringstream text;
     text << "scheduled: mu = ";
     if (lua_type(L, -1) == LUA_TNUMBER)
-      text << lua_tonumber(L, -1);
+      text << number_text(lua_tonumber(L, -1));
     else
       text << "function";
-    if (from) text << " on s in [" << *from << ", " << *to << "] m";
+    if (from) text << " on s in [" << number_text(*from) << ", " << number_text(*to) << "] m";
     ev.what = "event";
     ev.text = text.str();
     lua_pop(L, 2);  // mu, the event table
@@ -364,11 +365,9 @@ int l_scene_run(lua_State* L) {
   }
   if (res.over_wall_limit) {
     // not silent: the outputs are finalised (run() closed them) and the script stops here
-    std::ostringstream m;
-    m.precision(10);
-    m << "run.max_wall: the run passed its wall-time limit of " << rs.wall_limit << " s and stopped at t = "
-      << res.t_reached << " s of t_end = " << rs.t_end << " s (the samples up to then are in " << res.csv_path << ")";
-    error = m.str();
+    error = "run.max_wall: the run passed its wall-time limit of " + rounded_text(rs.wall_limit) +
+            " s and stopped at t = " + rounded_text(res.t_reached) + " s of t_end = " + rounded_text(rs.t_end) +
+            " s (the samples up to then are in " + res.csv_path + ")";
   }
   if (!error.empty()) fail(L, error);
   if (res.interrupted) ctx->interrupted = true;

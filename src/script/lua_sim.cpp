@@ -24,6 +24,7 @@
 #include "script/progress.hpp"
 #include "script/sandbox.hpp"
 #include "script/signals.hpp"
+#include "io/number_text.hpp"
 
 namespace beltsim::script {
 
@@ -105,11 +106,9 @@ int run_to(lua_State* L, SimBox& box, double t, const char* what) {
   if (a.over_wall_limit) {
     // not silent: an error naming the limit and the time reached (outputs flushed; the
     // simulation can go on with another call)
-    std::ostringstream m;
-    m.precision(10);
-    m << what << ": stopped at its wall-time limit (max_wall = " << box.sim->settings().wall_limit << " s) at t = "
-      << a.t << " s of " << t << " s; the outputs up to then are in " << box.sim->out_dir();
-    fail(L, m.str());
+    fail(L, std::string(what) + ": stopped at its wall-time limit (max_wall = " +
+                rounded_text(box.sim->settings().wall_limit) + " s) at t = " + rounded_text(a.t) + " s of " +
+                rounded_text(t) + " s; the outputs up to then are in " + box.sim->out_dir());
   }
   if (a.interrupted) {
     interrupted = true;

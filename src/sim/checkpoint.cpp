@@ -25,11 +25,11 @@
 #include "integrate/belt_system.hpp"
 #include "integrate/timeline.hpp"
 #include "io/checkpoint_text.hpp"
-#include "io/csv_writer.hpp"
 #include "io/number_text.hpp"
 #include "io/output_dir.hpp"
 #include "scene/scene_io.hpp"
 #include "scene/validate.hpp"
+#include "sim/interval_means.hpp"
 #include "sim/simulation.hpp"
 
 namespace beltsim {
@@ -204,7 +204,7 @@ std::vector<long> next_outputs(const RunSettings& rs, double now) {
 
 void Simulation::save(const std::string& path) const {
   require_open("save");
-  if (running_ || view_y_) throw std::logic_error("save: not inside a callback (save between run_to calls)");
+  if (running_ || view_.y) throw std::logic_error("save: not inside a callback (save between run_to calls)");
   if (!integ_->can_save())
     throw std::invalid_argument("save: " + rs_.integrator +
                                 " keeps a multistep history that SUNDIALS cannot export; checkpoints need a one-step "
@@ -227,15 +227,14 @@ void Simulation::save(const std::string& path) const {
     w.line("event.text", ev.text);
     w.line("event.mu", ev.mu);
   }
-  w.line("rows", rows_);
+  w.line("rows", out_->rows());
   // the outputs' sizes (0 for one that is not there; never through a link)
-  auto bytes = [this](const char* name) { return std::max(0L, out_->size(name)); };
-  w.line("csv_bytes", bytes("timeseries.csv"));
-  w.line("events_bytes", bytes("events.csv"));
-  w.line("snapshots_bytes", has_snapshots() ? bytes("snapshots.csv") : 0L);
-  w.line("mean_from", mean_from_);
-  w.line("mean_covered", mean_covered_);
-  w.line("mean_acc", mean_acc_);
+  w.line("csv_bytes", out_->bytes("timeseries.csv"));
+  w.line("events_bytes", out_->bytes("events.csv"));
+  w.line("snapshots_bytes", has_snapshots() ? out_->bytes("snapshots.csv") : 0L);
+  w.line("mean_from", means_->from());
+  w.line("mean_covered", means_->covered());
+  w.line("mean_acc", means_->integral());
   w.line("frames_written", frames_written());
   w.line("callbacks", callbacks_);
   w.line("wall", wall_);
@@ -275,6 +274,7 @@ std::unique_ptr<Simulation> Simulation::resume(const std::string& path, const Fr
     const size_t n = static_cast<size_t>(sc.model.n_el());
     for (MuEvent& ev : pending) {
       ev.t = r.line_num("event.t");
+      if (const std::string bad = event_time_problem(ev.t); !bad.empty()) r.fail("an event's time " + bad);
       if (!(ev.t >= now)) r.fail("an event still ahead must come at or after the checkpoint's time");
       ev.what = r.line_str("event.what");
       ev.text = r.line_str("event.text");
@@ -314,14 +314,12 @@ std::unique_ptr<Simulation> Simulation::resume(const std::string& path, const Fr
                               " does not fit the time " + number_text(now) + " s");
     positions.resize(expected.size());
 
-    if (mean_acc.size() != s->mean_acc_.size()) r.fail("interval means do not fit the scene");
+    if (mean_acc.size() != s->means_->size()) r.fail("interval means do not fit the scene");
     s->drive_ = std::move(drive);
     s->pending_ = std::move(pending);
-    s->rows_ = rows;
     s->wall_ = wall;
-    s->frames_before_ = frames;
-    s->mean_acc_ = std::move(mean_acc);
-    s->mean_from_ = mean_from, s->mean_covered_ = mean_covered;
+    s->out_->continue_from(rows, frames);
+    s->means_->restore(std::move(mean_acc), mean_from, mean_covered);
     s->integ_->load(r);
     if (!(s->integ_->t_prev() <= now && now <= s->integ_->t()))
       r.fail("the checkpoint's time " + number_text(now) + " s lies outside the integrator's last step");
@@ -340,13 +338,13 @@ std::unique_ptr<Simulation> Simulation::resume(const std::string& path, const Fr
   // the outputs continue where the checkpoint left them, once the folder is this simulation's alone
   // (a checkpoint resumed twice: the second is refused before it cuts the first one's files);
   // every one checked before any is cut
-  s->claim_out_dir();
+  const OutputDir& dir = s->out_->claim();
   try {
     for (const OutputCut& c : cuts) check_cut(c);
   } catch (const std::runtime_error& e) {
     throw std::runtime_error(where + e.what());
   }
-  for (const OutputCut& c : cuts) s->out_->truncate(c.name, c.bytes);
+  for (const OutputCut& c : cuts) dir.truncate(c.name, c.bytes);
   if (s->rs_.frames) {
     FrameSettings& f = *s->rs_.frames;
     if (!f.video_path.empty()) {
@@ -357,7 +355,7 @@ std::unique_ptr<Simulation> Simulation::resume(const std::string& path, const Fr
       f.video_path = (v.parent_path() / (v.stem().string() + tag + v.extension().string())).string();
     }
   }
-  s->open_outputs(true);
+  s->out_->open(true);
   s->add_streams();
   if (s->tl_->positions().size() != positions.size())
     throw std::logic_error("resume: the streams differ from those checkpoint.cpp expects (next_outputs)");

@@ -3,185 +3,43 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <cstdio>
-#include <exception>
 #include <filesystem>
-#include <limits>
-#include <sstream>
+#include <utility>
 
 #include "integrate/belt_system.hpp"
 #include "integrate/make_integrator.hpp"
 #include "integrate/timeline.hpp"
-#include "io/csv_writer.hpp"
-#include "io/output_dir.hpp"
+#include "io/number_text.hpp"
 #include "model/forces.hpp"
+#include "sim/interval_means.hpp"
 
 namespace beltsim {
 
 namespace {
 
-std::string span_name(const Scene& sc, size_t k) {
-  return "span_" + sc.route_names[k] + "_" + sc.route_names[(k + 1) % sc.route_names.size()];
-}
+std::string num(double v) { return rounded_text(v, 10); }
 
-void write_parameters(const Scene& sc, const RunSettings& rs, const OutputDir& dir) {
-  const Model& m = sc.model;
-  const Belt& b = m.belt;
-  std::ostringstream f;  // written whole at the end (io/row_file.hpp)
-  // numbers as in timeseries.csv: the shortest decimal that reads back as the same double
-  // source: "given" by the scenario, "default" taken, "derived" by the build from those, or "run"
-  f << "name,value,unit,source,note\n";
-  auto row = [&](const std::string& name, double v, const std::string& unit, const std::string& note) {
-    f << csv_text(name) << ',' << csv_number(v) << ',' << csv_text(unit) << ",derived," << csv_text(note) << '\n';
-  };
-  auto text = [&](const std::string& name, const std::string& v, const std::string& note) {
-    f << csv_text(name) << ',' << csv_text(v) << ",,derived," << csv_text(note) << '\n';
-  };
-  for (const SceneInput& in : sc.inputs) {
-    f << csv_text(in.name) << ',';
-    if (in.text.empty())
-      f << csv_number(in.value);
-    else
-      f << csv_text(in.text);
-    f << ',' << csv_text(in.unit) << ',' << (in.given ? "given" : "default") << ',' << csv_text(in.note) << '\n';
-  }
-  text("stiffness_reading", sc.reading == StiffnessReading::rigidity ? "rigidity" : "per_sde",
-       sc.reading == StiffnessReading::rigidity
-           ? "the paper's c_tra = EA [N] and c_tor = EI [N·m²] are rigidities, b_tra is per unit length; "
-             "per SDE k = EA/l0, k_t = EI/l0, c = b_tra/l0 with l0 the rest length of an element"
-           : "per-SDE stiffness and damping as given");
-  row("belt.pitch", b.pitch, "m", "l: route length / elements");
-  row("belt.rigid_length", b.rigid_length, "m",
-      "l0: an element's rest length (its rod; the SDE is unstretched at zero gap)");
-  row("belt.rest_length_total", b.rigid_length * b.n, "m", "the belt's stress-free length, n·l0");
-  row("belt.strain_at_rest", b.pitch / b.rigid_length - 1, "", "route length / rest length - 1");
-  row("belt.mass", b.mass, "kg", "per element, rho·l0");
-  row("belt.rot_inertia", b.rot_inertia, "kg·m²", "per element, m·l0²/12");
-  row("belt.k", b.k, "N/m", "longitudinal SDE stiffness");
-  row("belt.c", b.c, "N·s/m", "longitudinal SDE damping");
-  row("belt.kt", b.kt, "N·m/rad", "torsional SDE stiffness");
-  row("belt.ct", b.ct, "N·m·s/rad", "torsional SDE damping");
-  row("belt.static_tension", sc.static_tension, "N", "mean span tension of the initial state");
-  row("belt.static_residual", sc.static_residual, "m/s²", "largest acceleration of the initial state");
-  double mu_min = 1e300, mu_max = -1;
-  for (double mu : sc.drive.mu) mu_min = std::min(mu_min, mu), mu_max = std::max(mu_max, mu);
-  row("belt.mu_min", mu_min, "", "");
-  row("belt.mu_max", mu_max, "", "");
-  row("contact.element_c1", m.contact.c1, "N/m²", "per element");
-  row("contact.element_c2", m.contact.c2, "N/m", "per element");
-  row("contact.element_damping", m.contact.b, "N·s/m", "per element");
-  for (size_t k = 0; k < sc.route_names.size(); ++k) {
-    const int j = sc.route_pulleys[k];
-    const Pulley& p = m.pulleys[j];
-    const std::string pre = "pulley." + p.name + ".";
-    row(pre + "centre_x", p.centre.x(), "m", "");
-    row(pre + "centre_y", p.centre.y(), "m", "");
-    text(pre + "drive", sc.drive.kinematic(j) ? "kinematic" : "torque", "");
-    row(pre + "wrap_angle", sc.route.arcs[k].angle * 180 / M_PI, "deg", "of the pitch line");
-    row(pre + "static_penetration", sc.penetration[j], "m", "p0 of the initial state");
-  }
-  row("route.length", sc.route.length, "m", "pitch-line length");
-  for (size_t k = 0; k < rs.probes.size(); ++k) {
-    const std::string name = rs.probes.size() == 1 ? std::string("probe") : "probe" + std::to_string(k + 1);
-    f << name << ".element," << rs.probes[k] << ",,run,"
-      << csv_text("a selected element; " + name + ".sde_force is its left SDE") << '\n';
-  }
-  // the run's settings (source "run")
-  f << "run.integrator," << csv_text(rs.integrator) << ",,run,\n";
-  f << "run.rtol," << csv_number(rs.rtol) << ",,run,\n";
-  f << "run.atol," << csv_number(rs.atol < 0 ? rs.rtol : rs.atol) << ",,run,"
-    << csv_text("per natural unit: 0.1 m, 1 rad, 1 m/s, 10 rad/s, 1 J") << "\n";
-  f << "run.sample_dt," << csv_number(rs.sample_dt) << ",s,run,\n";
-  write_file_whole(dir, "parameters.csv", f.str());
-}
+// sets a variable for the guard's scope and gives it back its value before, however the scope is
+// left (an exception from a Lua callback included)
+template <class T>
+class Scoped {
+ public:
+  Scoped(T& var, T value) : var_(var), saved_(std::exchange(var, std::move(value))) {}
+  ~Scoped() { var_ = std::move(saved_); }
+  Scoped(const Scoped&) = delete;
+  Scoped& operator=(const Scoped&) = delete;
 
-std::string num(double v) {
-  std::ostringstream s;
-  s.precision(10);
-  s << v;
-  return s.str();
-}
+ private:
+  T& var_;
+  T saved_;
+};
 
 }  // namespace
-
-std::vector<std::string> timeseries_columns(const Scene& sc, size_t probes) {
-  std::vector<std::string> c{"t"};
-  for (const Pulley& p : sc.model.pulleys)
-    for (const char* q : {".omega", ".torque", ".belt_torque", ".hub_load", ".torque_mean", ".belt_torque_mean",
-                          ".contact_arc", ".slip_arc", ".stick_arc", ".creep"})
-      c.push_back(p.name + q);
-  for (size_t k = 0; k < sc.route.spans.size(); ++k)
-    for (const char* q : {".tension", ".tension_mean"}) c.push_back(span_name(sc, k) + q);
-  for (size_t k = 0; k < probes; ++k)
-    for (const char* q : {".sde_force", ".normal_force", ".friction_force", ".slip_velocity"})
-      c.push_back((probes == 1 ? std::string("probe") : "probe" + std::to_string(k + 1)) + q);
-  if (sc.model.track_energy)
-    for (const char* q : {"energy.mechanical", "energy.work_torques", "energy.dissipated_axial",
-                          "energy.dissipated_bending", "energy.dissipated_contact", "energy.dissipated_friction"})
-      c.push_back(q);
-  return c;
-}
-
-void check_volume(const Scene& sc, const RunSettings& rs, double t0, double t1) {
-  if (rs.allow_large || !(t1 > t0)) return;
-  constexpr double kMaxRows = 1e7, kMaxFrames = 1e5;
-  const double rows = (t1 - t0) / rs.sample_dt;
-  std::ostringstream m;
-  if (rows > kMaxRows) {
-    const double bytes = rows * static_cast<double>(timeseries_columns(sc, rs.probes.size()).size()) * 13;
-    m << "sample: " << num(t1 - t0) << " s at a sample every " << num(rs.sample_dt) << " s would write " << num(rows)
-      << " rows (about " << num(bytes / 1e9) << " GB of timeseries.csv); the limit is " << num(kMaxRows)
-      << " rows: sample less often, or set allow_large = true";
-    throw std::invalid_argument(m.str());
-  }
-  const double snaps = static_cast<double>(rs.snapshot_times.size()) +
-                       (rs.snapshot_every > 0 ? (t1 - t0) / rs.snapshot_every : 0.0);
-  if (snaps * sc.model.n_el() > kMaxRows) {
-    m << "snapshots: " << num(snaps) << " snapshots of " << sc.model.n_el() << " elements would write "
-      << num(snaps * sc.model.n_el()) << " rows of snapshots.csv; the limit is " << num(kMaxRows)
-      << ": take fewer, or set allow_large = true";
-    throw std::invalid_argument(m.str());
-  }
-  if (rs.frames) {
-    const double frames = std::max(0.0, t1 - std::max(t0, rs.frames->t_start)) / rs.frames->frame_dt();
-    if (frames > kMaxFrames) {
-      m << "frames: " << num(t1 - t0) << " s at " << num(rs.frames->fps) << " fps and slowdown "
-        << num(rs.frames->slowdown) << " would render " << num(frames) << " frames (" << num(frames / rs.frames->fps / 3600)
-        << " h of video); the limit is " << num(kMaxFrames) << ": lower the slowdown, or set allow_large = true";
-      throw std::invalid_argument(m.str());
-    }
-  }
-}
 
 Simulation::Simulation(const Scene& sc, const RunSettings& rs) : Simulation(sc, rs, true) {}
 
 Simulation::Simulation(const Scene& sc, const RunSettings& rs, bool fresh) : scene_(sc), rs_(rs), drive_(sc.drive) {
-  const Model& m = model_;
-  if (!(rs_.sample_dt > 0 && std::isfinite(rs_.sample_dt)))
-    throw std::invalid_argument("sample: the sample interval must be > 0 s and finite (got " + num(rs_.sample_dt) + " s)");
-  if (rs_.probes.empty()) throw std::invalid_argument("probe: at least one element to probe");
-  for (size_t k = 0; k < rs_.probes.size(); ++k)
-    if (rs_.probes[k] < 0 || rs_.probes[k] >= m.n_el())
-      throw std::invalid_argument("probe: the probe element must be in 0.." + std::to_string(m.n_el() - 1) + " (got " +
-                                  std::to_string(rs_.probes[k]) +
-                                  (rs_.probes.size() > 1 ? " for probe " + std::to_string(k + 1) : std::string()) + ")");
-  for (size_t k = 0; k < rs_.snapshot_times.size(); ++k) {
-    const double t = rs_.snapshot_times[k];
-    if (!(t >= 0 && std::isfinite(t)))
-      throw std::invalid_argument("snapshots.times[" + std::to_string(k + 1) + "]: must be >= 0 s and finite (got " +
-                                  num(t) + " s)");
-    if (k > 0 && !(t > rs_.snapshot_times[k - 1]))
-      throw std::invalid_argument("snapshots.times[" + std::to_string(k + 1) + "]: the times must increase (got " +
-                                  num(t) + " s after " + num(rs_.snapshot_times[k - 1]) + " s)");
-  }
-  if (!(rs_.snapshot_every >= 0 && std::isfinite(rs_.snapshot_every)))
-    throw std::invalid_argument("snapshots.every: must be > 0 s and finite (got " + num(rs_.snapshot_every) + " s)");
-  for (const MuEvent& ev : rs_.mu_events) {
-    if (!(ev.t > 0 && std::isfinite(ev.t)))
-      throw std::invalid_argument("events: an event time must be > 0 s and finite (got " + num(ev.t) + " s)");
-    if (static_cast<int>(ev.mu.size()) != m.n_el())
-      throw std::invalid_argument("events: an event's μ needs one value per element");
-  }
+  check(scene_, rs_, false);
   sense_ = scene_.senses();
   sys_ = std::make_unique<BeltSystem>(model_, drive_);
   integ_ = make_integrator(rs_.integrator, *sys_, Tolerances{rs_.rtol, rs_.atol});
@@ -189,22 +47,21 @@ Simulation::Simulation(const Scene& sc, const RunSettings& rs, bool fresh) : sce
   tl_->on_restart([this](double t) { drive_.restart_time = t; });
   if (rs_.frames) {
     FrameSettings& f = *rs_.frames;
-    validate(f);
-    if (!rs_.frame_factory) throw std::invalid_argument("frames: asked for, but this program has no renderer");
     auto inside = [&](std::string& p) {
       if (!p.empty() && std::filesystem::path(p).is_relative()) p = (std::filesystem::path(rs_.out_dir) / p).string();
     };
     inside(f.png_dir);
     inside(f.video_path);
   }
-  mean_acc_.assign(2 * m.n_p() + scene_.route.spans.size(), 0.0);
-  tl_->set_step_hook([this](double t) { cover(t); });
+  means_ = std::make_unique<IntervalMeans>(model_, drive_, scene_.route, *integ_);
+  tl_->set_step_hook([this](double t) { means_->cover(t, serial_); });
+  out_ = std::make_unique<Outputs>(scene_, rs_);
   pending_ = rs_.mu_events;
   std::stable_sort(pending_.begin(), pending_.end(), [](const MuEvent& a, const MuEvent& b) { return a.t < b.t; });
   E0_ = beltsim::energy(model_, drive_, 0.0, scene_.y0.data()).total();
   if (!fresh) return;  // resume() fills in the rest
 
-  open_outputs(false);
+  out_->open(false);
   add_streams();
   set_landings();
   try {
@@ -222,36 +79,11 @@ Simulation::~Simulation() {
   }
 }
 
-// the output folder, made when missing and held by this simulation alone (io/output_dir.hpp: a
-// second simulation on it is refused before it writes anything; never through a link)
-void Simulation::claim_out_dir() {
-  if (out_) return;
-  auto dir = std::make_unique<OutputDir>(rs_.out_dir);
-  dir->lock();
-  out_ = std::move(dir);
-}
-
-void Simulation::open_outputs(bool append) {
-  claim_out_dir();
-  // the renderer first (it opens the video file and the PNG folder): a bad frames path stops the
-  // run before any CSV is written. It exists only when frames are asked for (no GL context, no
-  // encoder otherwise).
-  if (rs_.frames) sink_ = rs_.frame_factory(scene_, *rs_.frames);
-  if (!append) write_parameters(scene_, rs_, *out_);
-  csv_ = std::make_unique<CsvWriter>(*out_, "timeseries.csv", columns(), append);
-  events_ = std::make_unique<RowFile>(*out_, "events.csv", append);
-  if (!append) events_->write("t,what,value\n");
-  if (has_snapshots()) {
-    snapshots_ = std::make_unique<RowFile>(*out_, "snapshots.csv", append);
-    if (!append) snapshots_->write("t,element,s,x,y,tension,normal,friction,slip,mu,pulley,state\n");
-  }
-}
-
 // the outputs' streams, in an order checkpoints rely on: samples, frames, snapshots every dt,
 // snapshots at listed times
 void Simulation::add_streams() {
   tl_->add_stream(0.0, rs_.sample_dt, [this](double t, const Eigen::VectorXd& y) { sample(t, y); });
-  if (sink_)
+  if (out_->has_frames())
     tl_->add_stream(rs_.frames->t_start, rs_.frames->frame_dt(),
                     [this](double t, const Eigen::VectorXd& y) { frame(t, y); });
   if (rs_.snapshot_every > 0)
@@ -260,14 +92,12 @@ void Simulation::add_streams() {
     tl_->add_times(rs_.snapshot_times, [this](double t, const Eigen::VectorXd& y) { snapshot(t, y); });
 }
 
-bool Simulation::has_snapshots() const { return rs_.snapshot_every > 0 || !rs_.snapshot_times.empty(); }
-
-std::string Simulation::csv_path() const { return (std::filesystem::path(rs_.out_dir) / "timeseries.csv").string(); }
-std::string Simulation::snapshots_path() const {
-  return (std::filesystem::path(rs_.out_dir) / "snapshots.csv").string();
-}
-std::string Simulation::events_path() const { return (std::filesystem::path(rs_.out_dir) / "events.csv").string(); }
-long Simulation::frames_written() const { return frames_before_ + (sink_ ? sink_->frames_written() : 0); }
+bool Simulation::has_snapshots() const { return out_->has_snapshots(); }
+std::string Simulation::csv_path() const { return out_->path("timeseries.csv"); }
+std::string Simulation::snapshots_path() const { return out_->path("snapshots.csv"); }
+std::string Simulation::events_path() const { return out_->path("events.csv"); }
+long Simulation::frames_written() const { return out_->frames_written(); }
+const std::vector<std::vector<double>>& Simulation::samples() const { return out_->samples(); }
 const std::string& Simulation::integrator_name() const { return rs_.integrator; }
 
 // the kinks of the laws, their jumps and the timed μ changes ahead: the integrator lands on each
@@ -315,7 +145,7 @@ const Observation& Simulation::observe_end(Cached& c, double t, const Eigen::Vec
 const Observation& Simulation::observation() const {
   const double t = now();
   Cached& c = now_obs_;
-  if (c.t == t && c.serial == serial_ && c.step_end == integ_->t() && !view_y_) return c.obs;
+  if (c.t == t && c.serial == serial_ && c.step_end == integ_->t() && !view_.y) return c.obs;
   observe(model_, drive_, sense_, t, state().data(), c.obs);
   const double a = integ_->t_prev(), b = integ_->t();
   if (t > a && t < b) {
@@ -325,7 +155,7 @@ const Observation& Simulation::observation() const {
     const Observation& B = observe_end(end_b_, b, integ_->y());
     blend_contact(model_, drive_, (t - a) / (b - a), A, B, c.obs);
   }
-  c.t = view_y_ ? -1 : t, c.serial = serial_, c.step_end = b;  // a when-condition's view is not kept
+  c.t = view_.y ? -1 : t, c.serial = serial_, c.step_end = b;  // a when-condition's view is not kept
   return c.obs;
 }
 
@@ -336,9 +166,8 @@ std::vector<double> Simulation::sample_row() const {
   const double* q = y.data();
   const Observation& o = observation();
   // the interval means since the last sample (NaN in the first row: no interval yet)
-  const std::vector<double> integral = integral_to(t);
-  const double dt = t - mean_from_;
-  auto mean = [&](size_t k) { return dt > 0 ? integral[k] / dt : std::numeric_limits<double>::quiet_NaN(); };
+  const std::vector<double> means = means_->means_to(t, serial_);
+  auto mean = [&](size_t k) { return means[k]; };
   std::vector<double> row;
   row.push_back(t);
   for (size_t j = 0; j < o.pulleys.size(); ++j) {
@@ -360,116 +189,28 @@ std::vector<double> Simulation::sample_row() const {
   return row;
 }
 
-// ---- interval means ---------------------------------------------------------------------------
-// A force sampled at an instant aliases the element-passing frequency; the mean over the sample
-// interval [t_{k-1}, t_k] does not. It is integrated over the integrator's accepted steps: in a
-// step [a, b] each quantity is the straight line between its step-end values (exactly what
-// blend_contact shows inside the step), so over [c, d] ⊂ [a, b]
-//   ∫_c^d f dt = (d − c)·(f(c) + f(d))/2,   f(τ) = f_a + (τ − a)/(b − a)·(f_b − f_a)
-// (the trapezoid rule on the step-end values). mean_acc_ holds ∫ from the last sample to
-// mean_covered_ (inside the held step); cover() moves it on before the step is replaced (a new step
-// or a restart, Timeline's step hook) and the sample reads it. Averaged: each pulley's torque and
-// belt torque, each span's tension (at a free pulley I·dΩ/dt = M + M_belt, so over an interval
-// mean(M) + mean(M_belt) = I·ΔΩ/Δt to the integrator's accuracy: tested).
-
-const std::vector<double>& Simulation::step_values(StepEnd& c, double t, const Eigen::VectorXd& y) const {
-  if (c.t == t && c.serial == serial_) return c.v;
-  c.v.clear();
-  observe_pulleys(model_, drive_, t, y.data(), c.pairs, c.pulleys);
-  for (const PulleyObs& p : c.pulleys) {
-    c.v.push_back(p.torque);
-    c.v.push_back(p.belt_torque);
-  }
-  for (const Route::Span& sp : scene_.route.spans) c.v.push_back(span_force(model_, sp, y.data()));
-  c.t = t, c.serial = serial_;
-  return c.v;
-}
-
-std::vector<double> Simulation::integral_to(double t) const {
-  std::vector<double> out = mean_acc_;
-  const double a = integ_->t_prev(), b = integ_->t();
-  const double c = std::max(mean_covered_, a), d = std::min(t, b);
-  if (!(b > a) || !(d > c)) return out;
-  // the last step's end is this step's start
-  if (!(step_a_.t == a && step_a_.serial == serial_) && step_b_.t == a && step_b_.serial == serial_)
-    std::swap(step_a_, step_b_);
-  const std::vector<double>& fa = step_values(step_a_, a, integ_->y_prev());
-  const std::vector<double>& fb = step_values(step_b_, b, integ_->y());
-  const double tc = (c - a) / (b - a), td = (d - a) / (b - a);
-  for (size_t k = 0; k < out.size(); ++k) {
-    const double f_c = fa[k] + tc * (fb[k] - fa[k]), f_d = fa[k] + td * (fb[k] - fa[k]);
-    out[k] += 0.5 * (d - c) * (f_c + f_d);
-  }
-  return out;
-}
-
-void Simulation::cover(double t) {
-  if (t <= mean_covered_) return;
-  mean_acc_ = integral_to(t);
-  mean_covered_ = t;
-}
-
 void Simulation::frame(double t, const Eigen::VectorXd& y) {
-  view_t_ = t, view_y_ = &y;
-  try {
-    sink_->frame(t, y.data(), drive_, &observation());
-  } catch (...) {
-    view_y_ = nullptr;
-    throw;
-  }
-  view_y_ = nullptr;
+  const Scoped<View> at(view_, {t, &y});
+  out_->frame(t, y, drive_, observation());
 }
 
 void Simulation::sample(double t, const Eigen::VectorXd& y) {
-  view_t_ = t, view_y_ = &y;
   std::vector<double> row;
-  try {
+  {
+    const Scoped<View> at(view_, {t, &y});
     row = sample_row();
-  } catch (...) {
-    view_y_ = nullptr;
-    throw;
   }
-  view_y_ = nullptr;
-  csv_->row(row);
-  // the next interval starts here
-  std::fill(mean_acc_.begin(), mean_acc_.end(), 0.0);
-  mean_covered_ = mean_from_ = t;
-  rows_++;
-  if (rs_.keep_samples) samples_.push_back(std::move(row));
+  out_->sample(std::move(row));
+  means_->start(t);  // the next interval starts here
 }
 
-// one row per element, all written by one write(2) (io/row_file.hpp): the file holds whole
-// snapshots. Columns (SI, docs/outputs.md): t [s], element, s [m] (where it started along the
-// belt), x, y [m], tension, normal, friction [N], slip [m/s], mu, pulley (name, empty when free),
-// state (free, stick, slip: model/observables.hpp)
 void Simulation::snapshot(double t, const Eigen::VectorXd& y) {
-  view_t_ = t, view_y_ = &y;
-  std::string rows;
-  try {
-    const Observation& o = observation();
-    for (size_t i = 0; i < o.elements.size(); ++i) {
-      const ElementObs& e = o.elements[i];
-      append_csv_number(rows, t);
-      rows += ',' + std::to_string(i) + ',';
-      for (double v : {scene_.sites[i].s, e.x, e.y, e.tension, e.normal, e.friction, e.slip, e.mu}) {
-        append_csv_number(rows, v);
-        rows += ',';
-      }
-      if (e.pulley >= 0) rows += csv_text(model_.pulleys[e.pulley].name);
-      rows += ',';
-      rows += contact_state_name(e.state);
-      rows += '\n';
-    }
-  } catch (...) {
-    view_y_ = nullptr;
-    throw;
-  }
-  view_y_ = nullptr;
-  snapshots_->write(rows);
+  const Scoped<View> at(view_, {t, &y});
+  out_->snapshot(t, observation());
 }
 
-double Simulation::now() const { return view_y_ ? view_t_ : tl_->now(); }
-const Eigen::VectorXd& Simulation::state() const { return view_y_ ? *view_y_ : tl_->state(); }
+double Simulation::now() const { return view_.y ? view_.t : tl_->now(); }
+const Eigen::VectorXd& Simulation::state() const { return view_.y ? *view_.y : tl_->state(); }
 
 ElementObs Simulation::element(int i) const { return observation().elements.at(i); }
 PulleyObs Simulation::pulley(int j) const { return observation().pulleys.at(j); }
@@ -499,11 +240,7 @@ Simulation::Advance Simulation::run_to(double t, const std::atomic<bool>* stop, 
   if (t < now()) throw std::invalid_argument("run_to: " + num(t) + " s is before now (" + num(now()) + " s)");
   if (running_) throw std::logic_error("run_to: the simulation is already running (called from a callback?)");
   check_volume(scene_, rs_, now(), t);
-  struct Running {
-    bool& r;
-    explicit Running(bool& b) : r(b) { r = true; }
-    ~Running() { r = false; }
-  } running(running_);
+  const Scoped<bool> running(running_, true);
   const auto steady = [] {
     return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
   };
@@ -532,8 +269,7 @@ Simulation::Advance Simulation::run_to(double t, const std::atomic<bool>* stop, 
                                       num(wall - win_wall) + " s of wall time, against " + num(best_rate_) +
                                       " s per second earlier in this run; the largest error is in " +
                                       (worst.empty() ? std::string("a component the integrator does not name") : worst) +
-                                      "; try an implicit integrator (esdirk32, or cvode), a looser rtol or atol, "
-                                      "or more damping of that component");
+                                      "; " + kDivergenceHint);
       }
       best_rate_ = std::max(best_rate_, rate);
       win_wall = wall, win_t = tt;
@@ -556,11 +292,9 @@ Simulation::Advance Simulation::run_to(double t, const std::atomic<bool>* stop, 
     throw;
   } catch (...) {
     wall_ += clock() - start;
-    csv_->flush();
     throw;
   }
   wall_ += a.wall;
-  csv_->flush();
   return a;
 }
 
@@ -599,36 +333,11 @@ std::string Simulation::warning_summary() const {
 void Simulation::close() {
   if (closed_) return;
   closed_ = true;
-  // each output is closed whatever happened to the one before; the first failure is thrown at
-  // the end (each is recorded, io/output_dir.hpp, so the program's exit status says so)
-  std::exception_ptr failed;
-  try {
-    if (sink_) sink_->finish();  // first: a full disk below must not leave the video unfinished
-  } catch (...) {
-    failed = std::current_exception();
-  }
-  try {
-    if (csv_) {  // the fallbacks, beside the parameters they qualify (whole rows, one write)
-      std::ostringstream f;
-      const Warnings w = warnings();
-      for (const WarningKindInfo& i : warning_kinds()) {
-        const WarningStat& s = w[i.kind];
-        f << "warning." << i.name << ".count," << s.count << ",,derived," << csv_text(i.description) << '\n'
-          << "warning." << i.name << ".first_t," << (s.count > 0 ? csv_number(s.first_t) : std::string())
-          << ",s,derived," << "simulated time it first fired (empty: never)\n";
-      }
-      RowFile(*out_, "parameters.csv", true).write(f.str());
-    }
-  } catch (...) {
-    if (!failed) failed = std::current_exception();
-  }
-  out_.reset();  // the folder is free for another simulation: this one writes nothing more
-  if (failed) std::rethrow_exception(failed);
+  out_->close(warnings());
 }
 
 void Simulation::write_event(double t, const std::string& what, const std::string& text) {
-  if (!events_) return;
-  events_->write(csv_number(t) + ',' + csv_text(what) + ',' + csv_text(text) + '\n');
+  out_->event(t, what, text);
 }
 
 void Simulation::log_event(const std::string& what, const std::string& text) {
@@ -637,7 +346,7 @@ void Simulation::log_event(const std::string& what, const std::string& text) {
 }
 
 void Simulation::changed(const Eigen::VectorXd* y) {
-  cover(now());  // the held step, as it was, up to the change
+  means_->cover(now(), serial_);  // the held step, as it was, up to the change
   serial_++;
   set_landings();
   tl_->changed(y);
@@ -698,15 +407,7 @@ int Simulation::when(std::function<bool()> cond, std::function<void()> action) {
   require_open("when");
   callbacks_++;
   auto c = [this, cond = std::move(cond)](double t, const Eigen::VectorXd& y) {
-    const double saved_t = view_t_;
-    const Eigen::VectorXd* saved_y = view_y_;
-    view_t_ = t, view_y_ = &y;
-    struct Restore {
-      Simulation* s;
-      double t;
-      const Eigen::VectorXd* y;
-      ~Restore() { s->view_t_ = t, s->view_y_ = y; }
-    } restore{this, saved_t, saved_y};
+    const Scoped<View> at(view_, {t, &y});
     return cond();
   };
   return tl_->add_when(std::move(c), [action = std::move(action)](double) { action(); });
@@ -718,37 +419,11 @@ bool Simulation::cancel(int id) {
   return removed;
 }
 
-std::vector<std::string> drop_events_after_end(RunSettings& rs) {
-  std::vector<std::string> notes;
-  std::vector<MuEvent> kept;
-  for (const MuEvent& ev : rs.mu_events) {
-    if (ev.t < rs.t_end || !std::isfinite(ev.t)) {
-      kept.push_back(ev);
-      continue;
-    }
-    notes.push_back("events: the event at " + num(ev.t) + " s (" + ev.what + ") is at or after t_end = " +
-                    num(rs.t_end) + " s: skipped");
-  }
-  rs.mu_events = std::move(kept);
-  return notes;
-}
-
 RunResult run(const Scene& sc, const RunSettings& settings, const std::atomic<bool>* stop,
               const RunProgress& progress) {
   RunSettings rs = settings;
   std::vector<std::string> skipped = drop_events_after_end(rs);
-  if (!(rs.t_end > 0 && std::isfinite(rs.t_end)))
-    throw std::invalid_argument("t_end: must be > 0 s and finite (got " + num(rs.t_end) + " s)");
-  if (rs.frames && rs.frames->t_start > rs.t_end)
-    throw std::invalid_argument("frames.t_start: must be <= t_end = " + num(rs.t_end) + " s (got " +
-                                num(rs.frames->t_start) + " s)");
-  for (size_t k = 0; k < rs.snapshot_times.size(); ++k)
-    if (rs.snapshot_times[k] > rs.t_end)
-      throw std::invalid_argument("snapshots.times[" + std::to_string(k + 1) + "]: must be <= t_end = " + num(rs.t_end) +
-                                  " s (got " + num(rs.snapshot_times[k]) + " s)");
-  for (const MuEvent& ev : rs.mu_events)
-    if (!(ev.t > 0 && ev.t < rs.t_end))
-      throw std::invalid_argument("events: an event time must be inside (0, t_end) (got " + num(ev.t) + " s)");
+  check(sc, rs, true);
   check_volume(sc, rs, 0.0, rs.t_end);
   Simulation sim(sc, rs);
   RunResult res;

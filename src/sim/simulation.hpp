@@ -22,53 +22,14 @@
 #include "model/rhs.hpp"
 #include "scene/scene.hpp"
 #include "sim/frames.hpp"
+#include "sim/outputs.hpp"
+#include "sim/run_settings.hpp"
 
 namespace beltsim {
 
 class BeltSystem;
-class CsvWriter;
-class OutputDir;
-class RowFile;
+class IntervalMeans;
 class Timeline;
-
-// A change of the belt's friction coefficient at a known time (wetting, drying): the integrator
-// lands exactly on t and restarts there. mu holds one value per element; NaN keeps the old one.
-struct MuEvent {
-  double t = 0;              // [s]
-  std::vector<double> mu;
-  std::string what = "mu";   // for events.csv: what changed, and how
-  std::string text;
-};
-
-struct RunSettings {
-  double t_end = 1.0;                 // [s] (batch runs only)
-  std::string integrator = "esdirk32";
-  double rtol = 1e-4;                 // relative tolerance of the error control
-  double atol = -1;                   // absolute, per natural unit of each component; < 0: = rtol
-  double sample_dt = 1e-3;            // [s] interval of the time-series samples
-  std::string out_dir = "out";
-  // the probed elements (the paper's "selected" one): columns probe.* for one, probe<k>.* (k = 1,
-  // 2, ...) for several; an element's SDE joins it to its predecessor
-  std::vector<int> probes{0};
-  // per-element snapshots (snapshots.csv) at these times [s] (sorted, >= 0) and/or every
-  // snapshot_every [s] from t = 0 (0: none)
-  std::vector<double> snapshot_times;
-  double snapshot_every = 0;
-  // [s] wall time after which an integration call (a batch run, sim:run_to) stops at the last
-  // finished step or output, Advance::over_wall_limit set (0: no limit); max_wall in Lua
-  double wall_limit = 0;
-  // [s] the clock run_to measures its wall time with (the wall-time limit, the no-progress
-  // watchdog, Advance::wall); empty: std::chrono::steady_clock. Tests set a fake one, so that a
-  // collapse of the rate happens at a known moment.
-  std::function<double()> wall_clock;
-  bool keep_samples = false;          // keep the rows of timeseries.csv in memory (samples())
-  bool allow_large = false;           // past the output limits (check_volume)
-  std::vector<MuEvent> mu_events;     // in any order
-  // frames (PNG and/or video) at their own times; relative paths are taken inside out_dir. The
-  // factory (the renderer's, src/render) is called only when frames are asked for.
-  std::optional<FrameSettings> frames;
-  FrameSinkFactory frame_factory;
-};
 
 // progress of a long integration: simulated time reached, the target, counters, wall time of
 // this call (printing it is the caller's business, src/script/progress)
@@ -154,7 +115,7 @@ class Simulation {
   std::string snapshots_path() const;  // written only when snapshots are asked for
   bool has_snapshots() const;
   long frames_written() const;
-  const std::vector<std::vector<double>>& samples() const { return samples_; }
+  const std::vector<std::vector<double>>& samples() const;  // with keep_samples: the CSV rows
 
   // ---- changes at now() (each restarts the integrator there and is written to events.csv) ----
   // the law replaces the pulley's drive: a torque law makes it free, a speed law kinematic
@@ -190,8 +151,6 @@ class Simulation {
 
  private:
   Simulation(const Scene& scene, const RunSettings& settings, bool fresh);
-  void claim_out_dir();
-  void open_outputs(bool append);
   void set_landings();
   void sample(double t, const Eigen::VectorXd& y);
   void frame(double t, const Eigen::VectorXd& y);
@@ -209,25 +168,23 @@ class Simulation {
   std::unique_ptr<BeltSystem> sys_;
   std::unique_ptr<Integrator> integ_;
   std::unique_ptr<Timeline> tl_;
-  std::unique_ptr<OutputDir> out_;  // out_dir, locked while the simulation is open
-  std::unique_ptr<CsvWriter> csv_;
-  std::unique_ptr<RowFile> events_;  // events.csv, a row per write (io/row_file.hpp)
-  std::unique_ptr<RowFile> snapshots_;  // snapshots.csv, a snapshot per write
-  std::unique_ptr<FrameSink> sink_;
+  std::unique_ptr<IntervalMeans> means_;
+  std::unique_ptr<Outputs> out_;
   std::vector<MuEvent> pending_;  // timed μ changes still ahead
-  std::vector<std::vector<double>> samples_;
   double E0_ = 0;
   double wall_ = 0;
   double best_rate_ = 0;          // [s/s] the best simulated time per wall second over a window
   int callbacks_ = 0;
-  long rows_ = 0;                 // samples written
-  long frames_before_ = 0;        // frames written before a resume
   bool closed_ = false;
   bool running_ = false;          // inside run_to (callbacks may read and change, not run or save)
   std::string failed_;            // why it cannot continue (a divergence)
-  // a when-condition is evaluated at a time other than now(): the state it reads
-  double view_t_ = 0;
-  const Eigen::VectorXd* view_y_ = nullptr;
+  // the state the reads see when it is not the integrator's now: an output's time, or the time a
+  // when-condition is evaluated at (set for a scope by a guard, simulation.cpp)
+  struct View {
+    double t = 0;
+    const Eigen::VectorXd* y = nullptr;
+  };
+  View view_;
   // observations: of the held step's two ends, and of the state read now (each with the time and
   // the change count it was taken at)
   struct Cached {
@@ -239,39 +196,11 @@ class Simulation {
   const Observation& observe_end(Cached& c, double t, const Eigen::VectorXd& y) const;
   mutable Cached end_a_, end_b_, now_obs_;
   long serial_ = 0;  // counts the changes of the model or state
-  // interval means (simulation.cpp, "interval means"): the averaged quantities at the held step's
-  // ends, their integral from the last sample (mean_from_) to mean_covered_
-  struct StepEnd {
-    std::vector<double> v;
-    ContactList pairs;               // observe_pulleys' contact pass
-    std::vector<PulleyObs> pulleys;
-    double t = -1;
-    long serial = -1;
-  };
-  const std::vector<double>& step_values(StepEnd& c, double t, const Eigen::VectorXd& y) const;
-  std::vector<double> integral_to(double t) const;
-  void cover(double t);
-  mutable StepEnd step_a_, step_b_;
-  std::vector<double> mean_acc_;
-  double mean_from_ = 0, mean_covered_ = 0;
 };
 
-// A batch run: start, run_to(t_end), close. Throws as Simulation does.
-// Timed μ events at or after settings.t_end cannot happen in a run that ends there (a quick
-// `--t-end 0.05` check of a script whose events come later): they are removed from
-// settings.mu_events, and one note per event says so ("events: the event at 0.1 s (wet) is at or
-// after t_end = 0.05 s: skipped").
-std::vector<std::string> drop_events_after_end(RunSettings& settings);
-
+// A batch run: start, run_to(t_end), close. Throws as Simulation does; first drops the events
+// after t_end (drop_events_after_end) and checks the settings (check).
 RunResult run(const Scene& scene, const RunSettings& settings, const std::atomic<bool>* stop = nullptr,
               const RunProgress& progress = {});
-
-// Refuses (std::invalid_argument with the figures) to integrate from t0 to t1 when that would
-// write more than 1e7 samples (a timeseries.csv of gigabytes) or render more than 1e5 frames (an
-// hour of video at 30 fps), unless settings.allow_large.
-void check_volume(const Scene& scene, const RunSettings& settings, double t0, double t1);
-
-// the column names of timeseries.csv for a scene with that many probes (documented in docs/outputs.md)
-std::vector<std::string> timeseries_columns(const Scene& scene, size_t probes = 1);
 
 }  // namespace beltsim

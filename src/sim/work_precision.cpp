@@ -9,6 +9,7 @@
 
 #include "integrate/stepper.hpp"
 #include "io/row_file.hpp"
+#include "io/number_text.hpp"
 
 namespace beltsim {
 
@@ -51,13 +52,14 @@ void write_csv(const WpResult& res, const std::string& path) {
   std::ostringstream f;  // the table whole, then renamed over the last one: a kill never leaves part of it
   f << "integrator,rtol,finished,t_reached_s,wall_s,steps,rejected,rhs,jacobians,factorizations,solves,"
        "err_speed,err_speed_end,err_tension\n";
-  f.precision(6);
+  const auto num = [](double v) { return number_text(v); };
   auto row = [&](const WpRow& r) {
-    f << r.integrator << ',' << r.rtol << ',' << (r.finished ? 1 : 0) << ',' << r.t_reached << ',' << r.wall << ','
+    f << r.integrator << ',' << num(r.rtol) << ',' << (r.finished ? 1 : 0) << ',' << num(r.t_reached) << ','
+      << num(r.wall) << ','
       << r.work.steps << ',' << r.work.rejected << ',' << r.work.rhs << ',' << r.work.jacobians << ','
       << r.work.factorizations << ',' << r.work.solves << ',';
     if (r.finished)
-      f << r.err_speed << ',' << r.err_speed_end << ',' << r.err_tension << '\n';
+      f << num(r.err_speed) << ',' << num(r.err_speed_end) << ',' << num(r.err_tension) << '\n';
     else
       f << ",,\n";
   };

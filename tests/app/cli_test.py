@@ -9,6 +9,8 @@ import subprocess
 import sys
 import tempfile
 import unittest
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "support"))
+from scenes import two_pulley  # noqa: E402
 
 BELTSIM = None
 
@@ -84,16 +86,7 @@ class HelpParameters(unittest.TestCase):
             self.assertIn(out, f.read())
 
 
-SCENE = """
-local drive = beltsim.scene {
-  pulleys = {
-    { name = "driver", centre = {0, 0},    radius = 0.1, torque = beltsim.ramp(0.3, -70) },
-    { name = "driven", centre = {0.29, 0}, radius = 0.1, torque = { per_speed = -0.955 } },
-  },
-  belt = { elements = 30, pretension = 500, direction = "cw" },
-}
-local sim = drive:start { progress = false, out = "out" }
-"""
+SCENE = two_pulley(elements=30) + 'local sim = drive:start { progress = false, out = "out" }\n'
 
 
 class Errors(unittest.TestCase):

@@ -18,6 +18,8 @@ import sys
 import tempfile
 import time
 import unittest
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "support"))
+from scenes import two_pulley  # noqa: E402
 
 BELTSIM = None
 LIMIT = 5.0  # [s] from the signal to the end of the process
@@ -28,15 +30,7 @@ PATTERN = 'print(string.rep("a", 3000):find(".-.-.-.-b"))'
 HANDLER = "xpcall(function() error('x') end, function(m) while true do end end)"
 READY = 'print("ready") io.stdout:flush()'
 
-SCENE = """
-local drive = beltsim.scene {
-  pulleys = {
-    { name = "driver", centre = {0, 0},    radius = 0.1, torque = beltsim.ramp(0.3, -70) },
-    { name = "driven", centre = {0.29, 0}, radius = 0.1, torque = { per_speed = -0.955 } },
-  },
-  belt = { elements = 40, pretension = 500, direction = "cw" },
-}
-"""
+SCENE = two_pulley(elements=40)
 
 
 class Stop(unittest.TestCase):

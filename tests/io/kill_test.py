@@ -16,20 +16,14 @@ import subprocess
 import sys
 import tempfile
 import time
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "support"))
+from scenes import two_pulley  # noqa: E402
 
 BELTSIM = os.path.abspath(sys.argv[1])
 TMP = tempfile.mkdtemp(prefix="beltsim_kill_test_")
 FPS, SLOWDOWN = 30, 10  # the frames' defaults: a frame every 1/300 s of simulated time
 
-SCENE = """
-local drive = beltsim.scene {
-  pulleys = {
-    { name = "driver", centre = {0, 0},    radius = 0.1, torque = beltsim.ramp(0.3, -70) },
-    { name = "driven", centre = {0.29, 0}, radius = 0.1, torque = { per_speed = -0.955 } },
-  },
-  belt = { elements = 60, pretension = 500, direction = "cw" },
-}
-"""
+SCENE = two_pulley(elements=60)
 # 3 s of simulated time: about 10 s of wall time with 320x240 frames, so every signal below comes
 # in the middle of the run
 RUN = SCENE + 'drive:run { t_end = 3, progress = false, frames = { size = {320, 240}, video = "v.mp4" } }\n'

@@ -21,21 +21,15 @@ import subprocess
 import sys
 import tempfile
 import time
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "support"))
+from scenes import two_pulley  # noqa: E402
 
 BELTSIM = os.path.abspath(sys.argv[1])
 TMP = tempfile.mkdtemp(prefix="beltsim_outputs_test_")
 SECRET = "export PATH=/usr/bin  # the user's own file\n"
 LINK = "it is a symbolic link (beltsim never writes through a link)"
 
-SCENE = """
-local drive = beltsim.scene {
-  pulleys = {
-    { name = "driver", centre = {0, 0},    radius = 0.1, torque = beltsim.ramp(0.3, -70) },
-    { name = "driven", centre = {0.29, 0}, radius = 0.1, torque = { per_speed = -0.955 } },
-  },
-  belt = { elements = 60, pretension = 500, direction = "cw" },
-}
-"""
+SCENE = two_pulley(elements=60)
 
 failures = []
 

@@ -165,7 +165,7 @@ TEST(CsvWriter, NumbersReadBackBitForBit) {
   }
   EXPECT_EQ(k, v.size());
   EXPECT_LT(chars, chars17);
-  EXPECT_EQ(csv_number(std::nan("")), "nan");
+  EXPECT_EQ(number_text(std::nan("")), "nan");
   fs::remove(path);
 }
 

@@ -316,6 +316,8 @@ TEST(LuaApi, BadProbesAndSnapshotsAreRejectedWithFileLine) {
 TEST(LuaApi, BadEventsAreRejectedWithFileLine) {
   expect_error(scene_text("") + "s:run{ t_end = 0.01, events = { { mu = 0.2 } } }\n", "scene.lua:8:",
                {"run.events[1].t", "missing"});
+  expect_error(scene_text("") + "s:run{ t_end = 0.01, events = { { t = -0.5, mu = 0.2 } } }\n", "scene.lua:8:",
+               {"run.events[1].t: must be > 0 s and finite (got -0.5 s)"});
   expect_error(scene_text("") + "s:run{ t_end = 0.01, events = { { t = 0.005, mu = -1 } } }\n", "scene.lua:8:",
                {"run.events[1].mu", ">= 0", "-1"});
   expect_error(scene_text("") + "s:run{ t_end = 0.01, events = { { t = 0.005, mu = 0.2, from = 0.1 } } }\n",

@@ -447,7 +447,7 @@ TEST(Live, FallbacksAreCountedAndShown) {
   EXPECT_NE(p.find("warning.static_retry.first_t,0,s,"), std::string::npos) << p;
   EXPECT_NE(p.find("warning.failed_step.count," + std::to_string(failed.count) + ",,"), std::string::npos) << p;
   // the time as every number of the file: the shortest decimal that reads back as the same double
-  EXPECT_NE(p.find("warning.failed_step.first_t," + csv_number(failed.first_t) + ",s,"), std::string::npos) << p;
+  EXPECT_NE(p.find("warning.failed_step.first_t," + number_text(failed.first_t) + ",s,"), std::string::npos) << p;
   EXPECT_NE(p.find("warning.cvode_convergence.count,0,,"), std::string::npos) << p;
   EXPECT_NE(p.find("warning.cvode_convergence.first_t,,s,"), std::string::npos) << p;
 }

@@ -1,0 +1,208 @@
+#include "sim/outputs.hpp"
+
+#include <cmath>
+#include <exception>
+#include <filesystem>
+#include <sstream>
+
+#include "io/csv_writer.hpp"
+#include "io/output_dir.hpp"
+#include "scene/scene.hpp"
+
+namespace beltsim {
+
+namespace {
+
+std::string span_name(const Scene& sc, size_t k) {
+  return "span_" + sc.route_names[k] + "_" + sc.route_names[(k + 1) % sc.route_names.size()];
+}
+
+void write_parameters(const Scene& sc, const RunSettings& rs, const OutputDir& dir) {
+  const Model& m = sc.model;
+  const Belt& b = m.belt;
+  std::ostringstream f;  // written whole at the end (io/row_file.hpp)
+  // numbers as in timeseries.csv: the shortest decimal that reads back as the same double
+  // source: "given" by the scenario, "default" taken, "derived" by the build from those, or "run"
+  f << "name,value,unit,source,note\n";
+  auto row = [&](const std::string& name, double v, const std::string& unit, const std::string& note) {
+    f << csv_text(name) << ',' << number_text(v) << ',' << csv_text(unit) << ",derived," << csv_text(note) << '\n';
+  };
+  auto text = [&](const std::string& name, const std::string& v, const std::string& note) {
+    f << csv_text(name) << ',' << csv_text(v) << ",,derived," << csv_text(note) << '\n';
+  };
+  for (const SceneInput& in : sc.inputs) {
+    f << csv_text(in.name) << ',';
+    if (in.text.empty())
+      f << number_text(in.value);
+    else
+      f << csv_text(in.text);
+    f << ',' << csv_text(in.unit) << ',' << (in.given ? "given" : "default") << ',' << csv_text(in.note) << '\n';
+  }
+  text("stiffness_reading", sc.reading == StiffnessReading::rigidity ? "rigidity" : "per_sde",
+       sc.reading == StiffnessReading::rigidity
+           ? "the paper's c_tra = EA [N] and c_tor = EI [N·m²] are rigidities, b_tra is per unit length; "
+             "per SDE k = EA/l0, k_t = EI/l0, c = b_tra/l0 with l0 the rest length of an element"
+           : "per-SDE stiffness and damping as given");
+  row("belt.pitch", b.pitch, "m", "l: route length / elements");
+  row("belt.rigid_length", b.rigid_length, "m",
+      "l0: an element's rest length (its rod; the SDE is unstretched at zero gap)");
+  row("belt.rest_length_total", b.rigid_length * b.n, "m", "the belt's stress-free length, n·l0");
+  row("belt.strain_at_rest", b.pitch / b.rigid_length - 1, "", "route length / rest length - 1");
+  row("belt.mass", b.mass, "kg", "per element, rho·l0");
+  row("belt.rot_inertia", b.rot_inertia, "kg·m²", "per element, m·l0²/12");
+  row("belt.k", b.k, "N/m", "longitudinal SDE stiffness");
+  row("belt.c", b.c, "N·s/m", "longitudinal SDE damping");
+  row("belt.kt", b.kt, "N·m/rad", "torsional SDE stiffness");
+  row("belt.ct", b.ct, "N·m·s/rad", "torsional SDE damping");
+  row("belt.static_tension", sc.static_tension, "N", "mean span tension of the initial state");
+  row("belt.static_residual", sc.static_residual, "m/s²", "largest acceleration of the initial state");
+  double mu_min = 1e300, mu_max = -1;
+  for (double mu : sc.drive.mu) mu_min = std::min(mu_min, mu), mu_max = std::max(mu_max, mu);
+  row("belt.mu_min", mu_min, "", "");
+  row("belt.mu_max", mu_max, "", "");
+  row("contact.element_c1", m.contact.c1, "N/m²", "per element");
+  row("contact.element_c2", m.contact.c2, "N/m", "per element");
+  row("contact.element_damping", m.contact.b, "N·s/m", "per element");
+  for (size_t k = 0; k < sc.route_names.size(); ++k) {
+    const int j = sc.route_pulleys[k];
+    const Pulley& p = m.pulleys[j];
+    const std::string pre = "pulley." + p.name + ".";
+    row(pre + "centre_x", p.centre.x(), "m", "");
+    row(pre + "centre_y", p.centre.y(), "m", "");
+    text(pre + "drive", sc.drive.kinematic(j) ? "kinematic" : "torque", "");
+    row(pre + "wrap_angle", sc.route.arcs[k].angle * 180 / M_PI, "deg", "of the pitch line");
+    row(pre + "static_penetration", sc.penetration[j], "m", "p0 of the initial state");
+  }
+  row("route.length", sc.route.length, "m", "pitch-line length");
+  for (size_t k = 0; k < rs.probes.size(); ++k) {
+    const std::string name = rs.probes.size() == 1 ? std::string("probe") : "probe" + std::to_string(k + 1);
+    f << name << ".element," << rs.probes[k] << ",,run,"
+      << csv_text("a selected element; " + name + ".sde_force is its left SDE") << '\n';
+  }
+  // the run's settings (source "run")
+  f << "run.integrator," << csv_text(rs.integrator) << ",,run,\n";
+  f << "run.rtol," << number_text(rs.rtol) << ",,run,\n";
+  f << "run.atol," << number_text(rs.atol < 0 ? rs.rtol : rs.atol) << ",,run,"
+    << csv_text("per natural unit: 0.1 m, 1 rad, 1 m/s, 10 rad/s, 1 J") << "\n";
+  f << "run.sample_dt," << number_text(rs.sample_dt) << ",s,run,\n";
+  write_file_whole(dir, "parameters.csv", f.str());
+}
+
+}  // namespace
+
+std::vector<std::string> timeseries_columns(const Scene& sc, size_t probes) {
+  std::vector<std::string> c{"t"};
+  for (const Pulley& p : sc.model.pulleys)
+    for (const char* q : {".omega", ".torque", ".belt_torque", ".hub_load", ".torque_mean", ".belt_torque_mean",
+                          ".contact_arc", ".slip_arc", ".stick_arc", ".creep"})
+      c.push_back(p.name + q);
+  for (size_t k = 0; k < sc.route.spans.size(); ++k)
+    for (const char* q : {".tension", ".tension_mean"}) c.push_back(span_name(sc, k) + q);
+  for (size_t k = 0; k < probes; ++k)
+    for (const char* q : {".sde_force", ".normal_force", ".friction_force", ".slip_velocity"})
+      c.push_back((probes == 1 ? std::string("probe") : "probe" + std::to_string(k + 1)) + q);
+  if (sc.model.track_energy)
+    for (const char* q : {"energy.mechanical", "energy.work_torques", "energy.dissipated_axial",
+                          "energy.dissipated_bending", "energy.dissipated_contact", "energy.dissipated_friction"})
+      c.push_back(q);
+  return c;
+}
+
+Outputs::Outputs(const Scene& sc, const RunSettings& rs) : scene_(sc), rs_(rs) {}
+
+Outputs::~Outputs() = default;
+
+const OutputDir& Outputs::claim() {
+  if (!dir_) {
+    auto dir = std::make_unique<OutputDir>(rs_.out_dir);
+    dir->lock();
+    dir_ = std::move(dir);
+  }
+  return *dir_;
+}
+
+void Outputs::open(bool append) {
+  const OutputDir& dir = claim();
+  // it exists only when frames are asked for (no GL context, no encoder otherwise)
+  if (rs_.frames) sink_ = rs_.frame_factory(scene_, *rs_.frames);
+  if (!append) write_parameters(scene_, rs_, dir);
+  csv_ = std::make_unique<CsvWriter>(dir, "timeseries.csv", timeseries_columns(scene_, rs_.probes.size()), append);
+  events_ = std::make_unique<RowFile>(dir, "events.csv", append);
+  if (!append) events_->write("t,what,value\n");
+  if (has_snapshots()) {
+    snapshots_ = std::make_unique<RowFile>(dir, "snapshots.csv", append);
+    if (!append) snapshots_->write("t,element,s,x,y,tension,normal,friction,slip,mu,pulley,state\n");
+  }
+}
+
+void Outputs::close(const Warnings& w) {
+  std::exception_ptr failed;
+  try {
+    if (sink_) sink_->finish();  // first: a full disk below must not leave the video unfinished
+  } catch (...) {
+    failed = std::current_exception();
+  }
+  try {
+    if (csv_) {  // the fallbacks, beside the parameters they qualify (whole rows, one write)
+      std::ostringstream f;
+      for (const WarningKindInfo& i : warning_kinds()) {
+        const WarningStat& s = w[i.kind];
+        f << "warning." << i.name << ".count," << s.count << ",,derived," << csv_text(i.description) << '\n'
+          << "warning." << i.name << ".first_t," << (s.count > 0 ? number_text(s.first_t) : std::string())
+          << ",s,derived," << "simulated time it first fired (empty: never)\n";
+      }
+      RowFile(*dir_, "parameters.csv", true).write(f.str());
+    }
+  } catch (...) {
+    if (!failed) failed = std::current_exception();
+  }
+  dir_.reset();  // the folder is free for another simulation: this one writes nothing more
+  if (failed) std::rethrow_exception(failed);
+}
+
+void Outputs::sample(std::vector<double> row) {
+  csv_->row(row);
+  rows_++;
+  if (rs_.keep_samples) samples_.push_back(std::move(row));
+}
+
+void Outputs::event(double t, const std::string& what, const std::string& text) {
+  if (!events_) return;
+  events_->write(number_text(t) + ',' + csv_text(what) + ',' + csv_text(text) + '\n');
+}
+
+// all rows by one write(2) (io/row_file.hpp): the file holds whole snapshots. Columns in SI
+// (docs/outputs.md); state as model/observables.hpp names it
+void Outputs::snapshot(double t, const Observation& o) {
+  std::string rows;
+  for (size_t i = 0; i < o.elements.size(); ++i) {
+    const ElementObs& e = o.elements[i];
+    append_number(rows, t);
+    rows += ',' + std::to_string(i) + ',';
+    for (double v : {scene_.sites[i].s, e.x, e.y, e.tension, e.normal, e.friction, e.slip, e.mu}) {
+      append_number(rows, v);
+      rows += ',';
+    }
+    if (e.pulley >= 0) rows += csv_text(scene_.model.pulleys[e.pulley].name);
+    rows += ',';
+    rows += contact_state_name(e.state);
+    rows += '\n';
+  }
+  snapshots_->write(rows);
+}
+
+void Outputs::frame(double t, const Eigen::VectorXd& y, const Drive& drive, const Observation& obs) {
+  sink_->frame(t, y.data(), drive, &obs);
+}
+
+bool Outputs::has_snapshots() const { return rs_.snapshot_every > 0 || !rs_.snapshot_times.empty(); }
+
+std::string Outputs::path(const char* name) const { return (std::filesystem::path(rs_.out_dir) / name).string(); }
+
+long Outputs::bytes(const char* name) const { return std::max(0L, dir_->size(name)); }
+
+long Outputs::frames_written() const { return frames_before_ + (sink_ ? sink_->frames_written() : 0); }
+
+void Outputs::continue_from(long rows, long frames) { rows_ = rows, frames_before_ = frames; }
+
+}  // namespace beltsim

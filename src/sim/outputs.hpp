@@ -1,0 +1,85 @@
+// The files a simulation writes into its output folder, and the observer that writes them: the
+// simulation notifies it of each sample, event, snapshot and frame as they fall due.
+//   parameters.csv  the scene's and the run's values (at open), the fallbacks taken (at close)
+//   timeseries.csv  a row per sample (columns: timeseries_columns)
+//   events.csv      a row per change (t, what, value)
+//   snapshots.csv   a row per element per snapshot, when snapshots are asked for
+//   frames          PNG files and/or a video, through the renderer's FrameSink
+// Every row reaches its file whole when written (io/row_file.hpp). The folder is held by this
+// simulation alone from open() to close() (io/output_dir.hpp).
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "integrate/warnings.hpp"
+#include "model/drive.hpp"
+#include "model/observables.hpp"
+#include "sim/run_settings.hpp"
+
+namespace beltsim {
+
+class CsvWriter;
+class OutputDir;
+class RowFile;
+struct Scene;
+
+// the column names of timeseries.csv for a scene with that many probes (documented in docs/outputs.md)
+std::vector<std::string> timeseries_columns(const Scene& scene, size_t probes = 1);
+
+class Outputs {
+ public:
+  // scene and settings are the simulation's own (frames paths resolved), read as they are when
+  // open() is called; nothing is written before then
+  Outputs(const Scene& scene, const RunSettings& settings);
+  ~Outputs();
+  Outputs(const Outputs&) = delete;
+  Outputs& operator=(const Outputs&) = delete;
+
+  // the output folder, made when missing and claimed (a second simulation on it is refused before
+  // it writes anything; never through a link); a resumed run cuts its files through it
+  const OutputDir& claim();
+  // the renderer first (it opens the video and the PNG folder, so a bad frames path stops the run
+  // before any CSV is written), then parameters.csv (unless append), timeseries.csv, events.csv
+  // and snapshots.csv; append continues the files of a resumed run
+  void open(bool append);
+  // finishes the video, appends the fallbacks (warning.<name>.count, .first_t) to parameters.csv
+  // and releases the folder; each output closed whatever happened to the one before, the first
+  // failure thrown at the end
+  void close(const Warnings& warnings);
+
+  // ---- notifications (each a whole row or rows, in the file when it returns) ----------------
+  void sample(std::vector<double> row);
+  void event(double t, const std::string& what, const std::string& text);
+  // one row per element: t, element, s (where it started along the belt), x, y, tension, normal,
+  // friction, slip, mu, pulley (name, empty when free), state (free, stick, slip)
+  void snapshot(double t, const Observation& obs);
+  void frame(double t, const Eigen::VectorXd& y, const Drive& drive, const Observation& obs);
+
+  bool has_frames() const { return sink_ != nullptr; }
+  bool has_snapshots() const;
+  std::string path(const char* name) const;  // OUT_DIR/NAME
+  long bytes(const char* name) const;        // the size of NAME in the claimed folder, 0 when none
+  long rows() const { return rows_; }        // samples written
+  long frames_written() const;
+  const std::vector<std::vector<double>>& samples() const { return samples_; }  // keep_samples
+  // a resumed run's counts so far
+  void continue_from(long rows, long frames);
+
+ private:
+  const Scene& scene_;
+  const RunSettings& rs_;
+  std::unique_ptr<OutputDir> dir_;  // out_dir, locked from claim() to close()
+  std::unique_ptr<FrameSink> sink_;
+  std::unique_ptr<CsvWriter> csv_;
+  std::unique_ptr<RowFile> events_;
+  std::unique_ptr<RowFile> snapshots_;
+  std::vector<std::vector<double>> samples_;
+  long rows_ = 0;
+  long frames_before_ = 0;  // frames written before a resume
+};
+
+}  // namespace beltsim

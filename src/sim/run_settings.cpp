@@ -1,0 +1,121 @@
+#include "sim/run_settings.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+#include <stdexcept>
+
+#include "integrate/integrator.hpp"
+#include "integrate/stepper.hpp"
+#include "io/number_text.hpp"
+#include "scene/scene.hpp"
+#include "sim/outputs.hpp"
+
+namespace beltsim {
+
+namespace {
+
+std::string num(double v) { return rounded_text(v, 10); }
+
+}  // namespace
+
+std::string event_time_problem(double t, double t_end) {
+  if (!(t > 0 && std::isfinite(t))) return "must be > 0 s and finite (got " + num(t) + " s)";
+  if (!(t < t_end)) return "must be before t_end = " + num(t_end) + " s (got " + num(t) + " s)";
+  return "";
+}
+
+void check(const Scene& sc, const RunSettings& rs, bool batch) {
+  const Model& m = sc.model;
+  if (batch) {
+    if (!(rs.t_end > 0 && std::isfinite(rs.t_end)))
+      throw std::invalid_argument("t_end: must be > 0 s and finite (got " + num(rs.t_end) + " s)");
+    if (rs.frames && rs.frames->t_start > rs.t_end)
+      throw std::invalid_argument("frames.t_start: must be <= t_end = " + num(rs.t_end) + " s (got " +
+                                  num(rs.frames->t_start) + " s)");
+    for (size_t k = 0; k < rs.snapshot_times.size(); ++k)
+      if (rs.snapshot_times[k] > rs.t_end)
+        throw std::invalid_argument("snapshots.times[" + std::to_string(k + 1) + "]: must be <= t_end = " +
+                                    num(rs.t_end) + " s (got " + num(rs.snapshot_times[k]) + " s)");
+  }
+  check_integrator(rs.integrator);
+  check_tolerances(Tolerances{rs.rtol, rs.atol});
+  if (!(rs.sample_dt > 0 && std::isfinite(rs.sample_dt)))
+    throw std::invalid_argument("sample: the sample interval must be > 0 s and finite (got " + num(rs.sample_dt) + " s)");
+  if (rs.probes.empty()) throw std::invalid_argument("probe: at least one element to probe");
+  for (size_t k = 0; k < rs.probes.size(); ++k)
+    if (rs.probes[k] < 0 || rs.probes[k] >= m.n_el())
+      throw std::invalid_argument("probe: the probe element must be in 0.." + std::to_string(m.n_el() - 1) + " (got " +
+                                  std::to_string(rs.probes[k]) +
+                                  (rs.probes.size() > 1 ? " for probe " + std::to_string(k + 1) : std::string()) + ")");
+  for (size_t k = 0; k < rs.snapshot_times.size(); ++k) {
+    const double t = rs.snapshot_times[k];
+    if (!(t >= 0 && std::isfinite(t)))
+      throw std::invalid_argument("snapshots.times[" + std::to_string(k + 1) + "]: must be >= 0 s and finite (got " +
+                                  num(t) + " s)");
+    if (k > 0 && !(t > rs.snapshot_times[k - 1]))
+      throw std::invalid_argument("snapshots.times[" + std::to_string(k + 1) + "]: the times must increase (got " +
+                                  num(t) + " s after " + num(rs.snapshot_times[k - 1]) + " s)");
+  }
+  if (!(rs.snapshot_every >= 0 && std::isfinite(rs.snapshot_every)))
+    throw std::invalid_argument("snapshots.every: must be > 0 s and finite (got " + num(rs.snapshot_every) + " s)");
+  for (const MuEvent& ev : rs.mu_events) {
+    const std::string bad = event_time_problem(ev.t, batch ? rs.t_end : std::numeric_limits<double>::infinity());
+    if (!bad.empty()) throw std::invalid_argument("events: an event's time " + bad);
+    if (static_cast<int>(ev.mu.size()) != m.n_el())
+      throw std::invalid_argument("events: an event's μ needs one value per element");
+  }
+  if (rs.frames) {
+    validate(*rs.frames);
+    if (!rs.frame_factory) throw std::invalid_argument("frames: asked for, but this program has no renderer");
+  }
+}
+
+std::vector<std::string> drop_events_after_end(RunSettings& rs) {
+  std::vector<std::string> notes;
+  std::vector<MuEvent> kept;
+  for (const MuEvent& ev : rs.mu_events) {
+    // an event that is wrong by itself is kept, for check() to refuse
+    if (event_time_problem(ev.t, rs.t_end).empty() || !event_time_problem(ev.t).empty()) {
+      kept.push_back(ev);
+      continue;
+    }
+    notes.push_back("events: the event at " + num(ev.t) + " s (" + ev.what + ") is at or after t_end = " +
+                    num(rs.t_end) + " s: skipped");
+  }
+  rs.mu_events = std::move(kept);
+  return notes;
+}
+
+void check_volume(const Scene& sc, const RunSettings& rs, double t0, double t1) {
+  if (rs.allow_large || !(t1 > t0)) return;
+  constexpr double kMaxRows = 1e7, kMaxFrames = 1e5;
+  const double rows = (t1 - t0) / rs.sample_dt;
+  std::ostringstream m;
+  if (rows > kMaxRows) {
+    const double bytes = rows * static_cast<double>(timeseries_columns(sc, rs.probes.size()).size()) * 13;
+    m << "sample: " << num(t1 - t0) << " s at a sample every " << num(rs.sample_dt) << " s would write " << num(rows)
+      << " rows (about " << num(bytes / 1e9) << " GB of timeseries.csv); the limit is " << num(kMaxRows)
+      << " rows: sample less often, or set allow_large = true";
+    throw std::invalid_argument(m.str());
+  }
+  const double snaps = static_cast<double>(rs.snapshot_times.size()) +
+                       (rs.snapshot_every > 0 ? (t1 - t0) / rs.snapshot_every : 0.0);
+  if (snaps * sc.model.n_el() > kMaxRows) {
+    m << "snapshots: " << num(snaps) << " snapshots of " << sc.model.n_el() << " elements would write "
+      << num(snaps * sc.model.n_el()) << " rows of snapshots.csv; the limit is " << num(kMaxRows)
+      << ": take fewer, or set allow_large = true";
+    throw std::invalid_argument(m.str());
+  }
+  if (rs.frames) {
+    const double frames = std::max(0.0, t1 - std::max(t0, rs.frames->t_start)) / rs.frames->frame_dt();
+    if (frames > kMaxFrames) {
+      m << "frames: " << num(t1 - t0) << " s at " << num(rs.frames->fps) << " fps and slowdown "
+        << num(rs.frames->slowdown) << " would render " << num(frames) << " frames (" << num(frames / rs.frames->fps / 3600)
+        << " h of video); the limit is " << num(kMaxFrames) << ": lower the slowdown, or set allow_large = true";
+      throw std::invalid_argument(m.str());
+    }
+  }
+}
+
+}  // namespace beltsim

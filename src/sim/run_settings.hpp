@@ -1,0 +1,78 @@
+// What a run is asked to do (plain data) and the one check of it: Simulation's constructor, a
+// batch run, a checkpoint's reader and the Lua reader of run.events all check through here.
+#pragma once
+
+#include <functional>
+#include <limits>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "sim/frames.hpp"
+
+namespace beltsim {
+
+struct Scene;
+
+// A change of the belt's friction coefficient at a known time (wetting, drying): the integrator
+// lands exactly on t and restarts there. mu holds one value per element; NaN keeps the old one.
+struct MuEvent {
+  double t = 0;              // [s]
+  std::vector<double> mu;
+  std::string what = "mu";   // for events.csv: what changed, and how
+  std::string text;
+};
+
+struct RunSettings {
+  double t_end = 1.0;                 // [s] (batch runs only)
+  std::string integrator = "esdirk32";
+  double rtol = 1e-4;                 // relative tolerance of the error control
+  double atol = -1;                   // absolute, per natural unit of each component; < 0: = rtol
+  double sample_dt = 1e-3;            // [s] interval of the time-series samples
+  std::string out_dir = "out";
+  // the probed elements (the paper's "selected" one): columns probe.* for one, probe<k>.* (k = 1,
+  // 2, ...) for several; an element's SDE joins it to its predecessor
+  std::vector<int> probes{0};
+  // per-element snapshots (snapshots.csv) at these times [s] (sorted, >= 0) and/or every
+  // snapshot_every [s] from t = 0 (0: none)
+  std::vector<double> snapshot_times;
+  double snapshot_every = 0;
+  // [s] wall time after which an integration call (a batch run, sim:run_to) stops at the last
+  // finished step or output, Advance::over_wall_limit set (0: no limit); max_wall in Lua
+  double wall_limit = 0;
+  // [s] the clock run_to measures its wall time with (the wall-time limit, the no-progress
+  // watchdog, Advance::wall); empty: std::chrono::steady_clock. Tests set a fake one, so that a
+  // collapse of the rate happens at a known moment.
+  std::function<double()> wall_clock;
+  bool keep_samples = false;          // keep the rows of timeseries.csv in memory (samples())
+  bool allow_large = false;           // past the output limits (check_volume)
+  std::vector<MuEvent> mu_events;     // in any order
+  // frames (PNG and/or video) at their own times; relative paths are taken inside out_dir. The
+  // factory (the renderer's, src/render) is called only when frames are asked for.
+  std::optional<FrameSettings> frames;
+  FrameSinkFactory frame_factory;
+};
+
+// Why t cannot be the time of a timed event in a run that ends at t_end (infinity: a live
+// simulation, which has no end): "must be > 0 s and finite (got -1 s)", "must be before t_end =
+// 0.05 s (got 0.1 s)"; "" when it can.
+std::string event_time_problem(double t, double t_end = std::numeric_limits<double>::infinity());
+
+// Checks settings for a run of sc: integrator and tolerances, sample interval, probes, snapshot times, events (one μ per
+// element, event_time_problem), frames (validate(FrameSettings), a renderer to draw them). A batch
+// run (batch) also checks t_end and what must come before it (frames.t_start, snapshot times,
+// events). Throws std::invalid_argument naming the key, the reason and the value.
+void check(const Scene& sc, const RunSettings& rs, bool batch);
+
+// Timed μ events at or after settings.t_end cannot happen in a run that ends there (a quick
+// `--t-end 0.05` check of a script whose events come later): they are removed from
+// settings.mu_events, and one note per event says so ("events: the event at 0.1 s (wet) is at or
+// after t_end = 0.05 s: skipped").
+std::vector<std::string> drop_events_after_end(RunSettings& settings);
+
+// Refuses (std::invalid_argument with the figures) to integrate from t0 to t1 when that would
+// write more than 1e7 samples (a timeseries.csv of gigabytes) or render more than 1e5 frames (an
+// hour of video at 30 fps), unless settings.allow_large.
+void check_volume(const Scene& scene, const RunSettings& settings, double t0, double t1);
+
+}  // namespace beltsim

@@ -1,0 +1,37 @@
+// Numbers as text (io/number_text.hpp): rounded_text, the messages' one formatter, is printf's %.<digits>g.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <random>
+#include <string>
+
+#include "io/number_text.hpp"
+
+namespace beltsim {
+namespace {
+
+std::string printf_g(double v, int digits) {
+  char b[64];
+  std::snprintf(b, sizeof b, "%.*g", digits, v);
+  return b;
+}
+
+// the messages' numbers read as they did when each printed with its own %.<digits>g: the same
+// text for doubles over ±300 decades, at every precision the code uses
+TEST(NumberText, RoundedIsPrintfG) {
+  std::mt19937_64 rng(7);
+  std::uniform_real_distribution<double> mantissa(-1, 1);
+  std::uniform_int_distribution<int> exponent(-300, 300);
+  for (int k = 0; k < 10000; ++k) {
+    const double v = mantissa(rng) * std::pow(10.0, exponent(rng));
+    for (int digits : {3, 6, 9, 10, 17}) ASSERT_EQ(rounded_text(v, digits), printf_g(v, digits)) << v;
+  }
+  for (double v : {0.0, -0.0, 0.1 + 0.2, 1e-320, double(INFINITY), -double(INFINITY), double(NAN)})
+    EXPECT_EQ(rounded_text(v), printf_g(v, 10)) << v;
+  EXPECT_EQ(rounded_text(0.1 + 0.2), "0.3");
+  EXPECT_EQ(number_text(0.1 + 0.2), "0.30000000000000004");
+}
+
+}  // namespace
+}  // namespace beltsim

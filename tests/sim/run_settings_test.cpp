@@ -1,0 +1,80 @@
+// The one check of a run's settings (sim/run_settings.hpp): an event's time is judged by
+// event_time_problem wherever it comes from (a live simulation, a batch run, run.events in Lua).
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+
+#include "scene/presets.hpp"
+#include "scene/scene.hpp"
+#include "sim/run_settings.hpp"
+#include "sim/simulation.hpp"
+#include "support/scratch.hpp"
+
+namespace beltsim {
+namespace {
+
+namespace fs = std::filesystem;
+
+const Scene& dry() {
+  static const Scene sc = build_scene(presets::paper_dry());
+  return sc;
+}
+
+MuEvent event_at(double t) {
+  MuEvent ev;
+  ev.t = t;
+  ev.mu.assign(dry().model.n_el(), 0.2);
+  return ev;
+}
+
+RunSettings with_event(double t, const std::string& name) {
+  RunSettings rs;
+  rs.t_end = 0.004;
+  rs.out_dir = (beltsim::test::scratch_dir("beltsim_run_settings_test") / name).string();
+  fs::remove_all(rs.out_dir);
+  rs.mu_events.push_back(event_at(t));
+  return rs;
+}
+
+std::string refusal(const std::function<void()>& f) {
+  try {
+    f();
+  } catch (const std::invalid_argument& e) {
+    return e.what();
+  }
+  return "";
+}
+
+TEST(RunSettings, EventTimeProblemNamesTheRuleAndTheValue) {
+  EXPECT_EQ(event_time_problem(0.5), "");
+  EXPECT_EQ(event_time_problem(0.5, 1.0), "");
+  EXPECT_EQ(event_time_problem(0), "must be > 0 s and finite (got 0 s)");
+  EXPECT_EQ(event_time_problem(-0.25, 1.0), "must be > 0 s and finite (got -0.25 s)");
+  EXPECT_EQ(event_time_problem(INFINITY), "must be > 0 s and finite (got inf s)");
+  EXPECT_EQ(event_time_problem(NAN, 1.0), "must be > 0 s and finite (got nan s)");
+  EXPECT_EQ(event_time_problem(1.0, 1.0), "must be before t_end = 1 s (got 1 s)");
+}
+
+// a live simulation, a batch run and check() refuse the same times with the same words
+TEST(RunSettings, EveryCallerChecksEventTimesAlike) {
+  const std::string live = refusal([] { Simulation s(dry(), with_event(0, "live")); });
+  EXPECT_EQ(live, "events: an event's time must be > 0 s and finite (got 0 s)");
+  const std::string batch = refusal([] { run(dry(), with_event(-1, "batch")); });
+  EXPECT_EQ(batch, "events: an event's time must be > 0 s and finite (got -1 s)");
+  // at t_end: skipped by a batch run (drop_events_after_end), refused by check() for one
+  RunSettings at_end = with_event(0.004, "at_end");
+  EXPECT_EQ(refusal([&] { check(dry(), at_end, true); }),
+            "events: an event's time must be before t_end = 0.004 s (got 0.004 s)");
+  EXPECT_EQ(refusal([&] { check(dry(), at_end, false); }), "");
+  const std::vector<std::string> notes = drop_events_after_end(at_end);
+  ASSERT_EQ(notes.size(), 1u);
+  EXPECT_TRUE(at_end.mu_events.empty());
+  // one wrong by itself is kept for check() to refuse
+  RunSettings bad = with_event(NAN, "nan");
+  EXPECT_TRUE(drop_events_after_end(bad).empty());
+  EXPECT_EQ(bad.mu_events.size(), 1u);
+}
+
+}  // namespace
+}  // namespace beltsim
