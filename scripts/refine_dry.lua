@@ -32,7 +32,8 @@ local function drive(elements, contact, bending)
   }
 end
 
--- --set counts=60,120,240,480,960 and --set form="per length" (or "per element") choose the runs
+-- --set 'counts="60,120,240,480,960"' and --set 'form="per length"' (or "per element") choose the runs
+-- (default: 60, 120 and 240 elements in both forms)
 local args = beltsim.args
 local counts = {}
 for c in tostring(args.counts or "60,120,240"):gmatch("%d+") do counts[#counts + 1] = tonumber(c) end
