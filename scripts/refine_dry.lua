@@ -32,18 +32,39 @@ local function drive(elements, contact, bending)
   }
 end
 
+-- --set 'counts="60,120,240,480,960"' and --set 'form="per length"' (or "per element") choose the runs
+-- (default: 60, 120 and 240 elements in both forms)
+local args = beltsim.args
+local counts = {}
+for c in tostring(args.counts or "60,120,240"):gmatch("%d+") do counts[#counts + 1] = tonumber(c) end
 local forms = {
   { name = "per length", contact = per_length, bending = { bending_viscosity = 0.05 * pitch60 } },
   { name = "per element", contact = paper, bending = { bending_damping = 0.05 } },
 }
-print("form         elements  driver [rad/s]  driven [rad/s]  slip [rad/s]  steps  wall [s]")
+print("form         elements  driver [rad/s]  driven [rad/s]  slip [rad/s]  slack, tight span [N]  " ..
+  "driver slip arc [m]  steps  wall [s]")
 for _, form in ipairs(forms) do
-  for _, n in ipairs({60, 120, 240}) do
-    local r = drive(n, form.contact, form.bending):run {
-      t_end = 1.0, sample = 1e-3, progress = false,
-      out = string.format("out/refine_dry/%s-%d", form.name:gsub(" ", "_"), n),
-    }
-    print(string.format("%-12s %8d  %14.4f  %14.4f  %12.4f  %5d  %8.1f", form.name, n,
-      r.omega.driver, r.omega.driven, r.omega.driven - r.omega.driver, r.steps, r.wall))
+  if args.form == nil or args.form == form.name then
+    for _, n in ipairs(counts) do
+      local sim = drive(n, form.contact, form.bending):start {
+        sample = 1e-3, progress = false,
+        out = string.format("out/refine_dry/%s-%d", form.name:gsub(" ", "_"), n),
+      }
+      local r = sim:run_to(0.9)
+      -- span tensions and the driver's slip arc: means of 101 samples over 0.9-1 s
+      local slack, tight, arc, k = 0, 0, 0, 0
+      local steps, wall = r.steps, r.wall
+      sim:every(1e-3, function()
+        local a, b = sim:span("driver", "driven"), sim:span("driven", "driver")
+        slack, tight = slack + math.min(a, b), tight + math.max(a, b)
+        arc, k = arc + sim:pulley("driver").slip_arc, k + 1
+      end)
+      r = sim:run_to(1.0)
+      steps, wall = steps + r.steps, wall + r.wall
+      local d, e = sim:pulley("driver").omega, sim:pulley("driven").omega
+      print(string.format("%-12s %8d  %14.4f  %14.4f  %12.4f  %9.1f, %9.1f  %19.4f  %5d  %8.1f", form.name, n,
+        d, e, e - d, slack / k, tight / k, arc / k, steps, wall))
+      sim:close()
+    end
   end
 end

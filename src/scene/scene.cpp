@@ -41,12 +41,14 @@ std::vector<int> Scene::senses() const {
 }
 
 int Scene::find_span(const std::string& a, const std::string& b) const {
+  // the span the belt runs along from a to b; else the one from b to a (two pulleys have both)
   const size_t n = route_names.size();
-  for (size_t k = 0; k < n; ++k) {
-    const std::string& from = route_names[k];
-    const std::string& to = route_names[(k + 1) % n];
-    if ((from == a && to == b) || (from == b && to == a)) return static_cast<int>(k);
-  }
+  for (int pass = 0; pass < 2; ++pass)
+    for (size_t k = 0; k < n; ++k) {
+      const std::string& from = route_names[k];
+      const std::string& to = route_names[(k + 1) % n];
+      if (pass == 0 ? (from == a && to == b) : (from == b && to == a)) return static_cast<int>(k);
+    }
   return -1;
 }
 

@@ -48,6 +48,9 @@ TEST(LiveApi, ReadsTheStateInSIUnits) {
                      "assert(e.mu == 1)\n"
                      "local T = sim:span('driver', 'driven')\n"
                      "assert(T > 200 and T < 800, 'span tension ' .. T)\n"
+                     "-- two pulleys have two spans: the one run from driver to driven, and back\n"
+                     "local U = sim:span('driven', 'driver')\n"
+                     "assert(math.abs(T - U) > 1, 'the two spans: ' .. T .. ' and ' .. U)\n"
                      "assert(sim:energy().kinetic > 0)\n"
                      "assert(sim:stats().steps == r.steps)\n"),
             "");
