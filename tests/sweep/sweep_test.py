@@ -213,7 +213,7 @@ class Sweep(unittest.TestCase):
                             with open("/proc/%s/cmdline" % c, "rb") as g:
                                 if b"\0--point\0" + b"1\0" in g.read():
                                     children.append(int(c))
-                        except FileNotFoundError:
+                        except (FileNotFoundError, ProcessLookupError):  # the child ended meanwhile
                             pass
             proc.kill()
             finished = self.finished_points()
