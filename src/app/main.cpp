@@ -4,6 +4,7 @@
 //   beltsim wp      SCRIPT [--out DIR] [--t-end T] [--integrators A,B] [--rtols R1,R2] [--ref-rtol R]
 //                          [--wall-limit S] [--set KEY=VALUE]... [SAFETY]
 //   beltsim plot    CSV [COLUMNS...] [--out PNG] [--from T]
+//   beltsim render  CHECKPOINT --out PNG [--quantity Q] [--size WxH] [--view X,Y,W] [--magnify M] [--range LO,HI]
 //   beltsim compare A B [--tol L] [--max-bad N] [--diff PNG] [--rtol R] [--atol A] [--col-tol NAME=R[,A]]...
 //   beltsim console [SCRIPT] [--out DIR] [--t-end T] [--integrator NAME] [--rtol R] [--max-wall S]
 //                            [--no-frames] [--set KEY=VALUE]... [SAFETY] [-- ARGS...]
@@ -39,6 +40,7 @@
 
 #include "app/compare.hpp"
 #include "app/environment.hpp"
+#include "app/render_cmd.hpp"
 #include "script/console.hpp"
 #include "script/docall.hpp"
 #include "script/signals.hpp"
@@ -338,6 +340,8 @@ int main(int argc, char** argv) {
   plot->footer("Prints the PNG's path; on a terminal also shows the picture (BELTSIM_TERM_IMAGES=off|symbols|\n"
                "sixel|kitty|iterm forces a mode). Columns of two units share the plot on two y axes.");
 
+  beltsim::app::RenderOptions render_options;
+  CLI::App* render = beltsim::app::add_render_command(app, render_options);
   beltsim::app::CompareOptions compare_options;
   CLI::App* compare = beltsim::app::add_compare_command(app, compare_options);
 
@@ -356,7 +360,7 @@ int main(int argc, char** argv) {
     }
   }
   if (!words.empty() && words[0] == "help") words[0] = "--help";
-  const std::vector<std::string> commands{"run", "wp", "plot", "compare", "console"};
+  const std::vector<std::string> commands{"run", "wp", "plot", "render", "compare", "console"};
   if (!words.empty() && !words[0].empty() && words[0][0] == '-' && words[0] != "-h" && words[0] != "--help" &&
       words[0] != "--version") {
     std::fprintf(stderr, "beltsim: unknown option '%s' before the command\nRun 'beltsim --help' for the usage.\n",
@@ -365,7 +369,7 @@ int main(int argc, char** argv) {
   }
   if (!words.empty() && (words[0].empty() || words[0][0] != '-') &&
       std::find(commands.begin(), commands.end(), words[0]) == commands.end()) {
-    std::fprintf(stderr, "beltsim: unknown command '%s' (commands: run, wp, plot, compare, console)\n"
+    std::fprintf(stderr, "beltsim: unknown command '%s' (commands: run, wp, plot, render, compare, console)\n"
                  "Run 'beltsim --help' for the usage.\n", words[0].c_str());
     return 2;
   }
@@ -403,6 +407,7 @@ int main(int argc, char** argv) {
   beltsim::app::apply_render_settings(env);
 
   try {
+    if (*render) return with_outputs(beltsim::app::cmd_render(render_options));
     if (*compare) return with_outputs(beltsim::app::cmd_compare(compare_options));
     if (*plot) return with_outputs(cmd_plot(csv, columns, raw, env.images));  // a signal ends it at once: nothing to close
     beltsim::script::install_stop_signals();

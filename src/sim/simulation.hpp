@@ -187,9 +187,15 @@ class Simulation {
   static std::unique_ptr<Simulation> resume(const std::string& path, const FrameSinkFactory& factory,
                                             int* callbacks = nullptr,
                                             const std::function<void(const RunSettings&)>& vet = {});
+  // a saved simulation at its time, to read (state, drive, observation) and draw: no output is
+  // opened or touched, and it cannot run (it is closed). Throws std::runtime_error as resume does.
+  static std::unique_ptr<Simulation> open_checkpoint(const std::string& path);
 
  private:
   Simulation(const Scene& scene, const RunSettings& settings, bool fresh);
+  // resume (outputs: continue them) or open_checkpoint (no outputs)
+  static std::unique_ptr<Simulation> load(const std::string& path, const FrameSinkFactory& factory, int* callbacks,
+                                          const std::function<void(const RunSettings&)>& vet, bool outputs);
   void claim_out_dir();
   void open_outputs(bool append);
   void set_landings();
