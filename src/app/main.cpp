@@ -6,13 +6,16 @@
 //   beltsim plot    CSV [COLUMNS...] [--out PNG] [--from T]
 //   beltsim sweep   FILE [--out DIR] [--jobs N] [--point K] [--list] [--collect] [--set KEY=V1,V2,..]...
 //                        [--slurm [--submit] [--partition P] [--time T] [--max-parallel M]] [SAFETY]
+//   beltsim render  CHECKPOINT --out PNG [--quantity Q] [--size WxH] [--view X,Y,W] [--magnify M] [--range LO,HI]
+//   beltsim compare A B [--tol L] [--max-bad N] [--diff PNG] [--rtol R] [--atol A] [--col-tol NAME=R[,A]]...
 //   beltsim console [SCRIPT] [--out DIR] [--t-end T] [--integrator NAME] [--rtol R] [--max-wall S]
 //                            [--no-frames] [--set KEY=VALUE]... [SAFETY] [-- ARGS...]
 //   SAFETY: [--trusted] [--max-instructions N] [--max-lua-memory MiB] (docs/limits-and-safety.md)
 // The flags override what the script passes to scene:run{}. Every number is a finite decimal
 // (no hex, inf or nan); an option a command does not take is an error. Exit status: 0 on
 // success, 1 on a script, parameter, run or plot error or an output that could not be written
-// (message on stderr, outputs written so far kept), 2 on bad usage (or an environment variable it
+// (message on stderr, outputs written so far kept; compare: 0 when the files match, 1 when they
+// differ), 2 on bad usage (or an environment variable it
 // cannot read, app/environment.hpp), 130 when stopped by Ctrl-C (SIGINT), 143 by SIGTERM and 129
 // by SIGHUP (outputs closed; script/signals.hpp).
 #include <CLI/CLI.hpp>
@@ -40,7 +43,9 @@
 #include "sim/work_precision.hpp"
 #include "term/term_image.hpp"
 
+#include "app/compare.hpp"
 #include "app/environment.hpp"
+#include "app/render_cmd.hpp"
 #include "script/console.hpp"
 #include "script/docall.hpp"
 #include "script/signals.hpp"
@@ -518,6 +523,11 @@ int main(int argc, char** argv) {
   plot->footer("Prints the PNG's path; on a terminal also shows the picture (BELTSIM_TERM_IMAGES=off|symbols|\n"
                "sixel|kitty|iterm forces a mode). Columns of two units share the plot on two y axes.");
 
+  beltsim::app::RenderOptions render_options;
+  CLI::App* render = beltsim::app::add_render_command(app, render_options);
+  beltsim::app::CompareOptions compare_options;
+  CLI::App* compare = beltsim::app::add_compare_command(app, compare_options);
+
   CLI::App* console = app.add_subcommand("console", "an interactive Lua console with a live simulation");
   console->add_option("SCRIPT", console_script, "a scenario to load first");
   add_run_overrides(console, raw);
@@ -565,7 +575,7 @@ int main(int argc, char** argv) {
     return 0;
   }
   if (!words.empty() && words[0] == "help") words[0] = "--help";
-  const std::vector<std::string> commands{"run", "wp", "plot", "console", "sweep"};
+  const std::vector<std::string> commands{"run", "wp", "plot", "render", "compare", "console", "sweep"};
   if (!words.empty() && !words[0].empty() && words[0][0] == '-' && words[0] != "-h" && words[0] != "--help" &&
       words[0] != "--version") {
     std::fprintf(stderr, "beltsim: unknown option '%s' before the command\nRun 'beltsim --help' for the usage.\n",
@@ -574,7 +584,7 @@ int main(int argc, char** argv) {
   }
   if (!words.empty() && (words[0].empty() || words[0][0] != '-') &&
       std::find(commands.begin(), commands.end(), words[0]) == commands.end()) {
-    std::fprintf(stderr, "beltsim: unknown command '%s' (commands: run, wp, plot, console, sweep)\n"
+    std::fprintf(stderr, "beltsim: unknown command '%s' (commands: run, wp, plot, render, compare, console, sweep)\n"
                  "Run 'beltsim --help' for the usage.\n", words[0].c_str());
     return 2;
   }
@@ -612,6 +622,8 @@ int main(int argc, char** argv) {
   beltsim::app::apply_render_settings(env);
 
   try {
+    if (*render) return with_outputs(beltsim::app::cmd_render(render_options));
+    if (*compare) return with_outputs(beltsim::app::cmd_compare(compare_options));
     if (*plot) return with_outputs(cmd_plot(csv, columns, raw, env.images));  // a signal ends it at once: nothing to close
     beltsim::script::install_stop_signals();
     if (*run) return with_outputs(cmd_run(script, overrides(raw), safety(raw)));

@@ -2,6 +2,7 @@
 // and the PNG and video writers consume; no dependencies, so each writer is usable alone.
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
 #include <vector>
 
@@ -12,9 +13,9 @@ struct Image {
   std::vector<std::uint8_t> rgb;  // 3·width·height bytes, row 0 at the top
 
   Image() = default;
-  Image(int w, int h) : width(w), height(h), rgb(static_cast<size_t>(3) * w * h, 0) {}
-  std::uint8_t* pixel(int x, int y) { return rgb.data() + 3 * (static_cast<size_t>(y) * width + x); }
-  const std::uint8_t* pixel(int x, int y) const { return rgb.data() + 3 * (static_cast<size_t>(y) * width + x); }
+  Image(int w, int h) : width(w), height(h), rgb(static_cast<std::size_t>(3) * w * h, 0) {}
+  std::uint8_t* pixel(int x, int y) { return rgb.data() + 3 * (static_cast<std::size_t>(y) * width + x); }
+  const std::uint8_t* pixel(int x, int y) const { return rgb.data() + 3 * (static_cast<std::size_t>(y) * width + x); }
 };
 
 }  // namespace beltsim

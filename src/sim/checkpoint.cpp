@@ -248,7 +248,19 @@ void Simulation::save(const std::string& path) const {
 
 std::unique_ptr<Simulation> Simulation::resume(const std::string& path, const FrameSinkFactory& factory, int* callbacks,
                                                const std::function<void(const RunSettings&)>& vet) {
-  const std::string where = "resume: " + path + ": ";
+  return load(path, factory, callbacks, vet, true);
+}
+
+std::unique_ptr<Simulation> Simulation::open_checkpoint(const std::string& path) {
+  // a run that drew frames keeps its frame settings (what a reader draws by default); the factory
+  // is never called, as no output is opened
+  const FrameSinkFactory none = [](const Scene&, const FrameSettings&) { return std::unique_ptr<FrameSink>(); };
+  return load(path, none, nullptr, {}, false);
+}
+
+std::unique_ptr<Simulation> Simulation::load(const std::string& path, const FrameSinkFactory& factory, int* callbacks,
+                                             const std::function<void(const RunSettings&)>& vet, bool outputs) {
+  const std::string where = (outputs ? "resume: " : "") + path + ": ";
   std::unique_ptr<Simulation> s;
   std::vector<OutputCut> cuts;
   double now = 0;
@@ -333,6 +345,11 @@ std::unique_ptr<Simulation> Simulation::resume(const std::string& path, const Fr
     throw std::runtime_error(where + "there is not enough memory to read it");
   } catch (const std::length_error&) {
     throw std::runtime_error(where + "a size in it is beyond what this machine can hold");
+  }
+  if (!outputs) {
+    s->tl_->resume_at(now);
+    s->closed_ = true;  // nothing to close, and run_to refuses it
+    return s;
   }
   if (vet) vet(s->rs_);
   // the outputs continue where the checkpoint left them, once the folder is this simulation's alone

@@ -148,9 +148,15 @@ class Simulation {
   static std::unique_ptr<Simulation> resume(const std::string& path, const FrameSinkFactory& factory,
                                             int* callbacks = nullptr,
                                             const std::function<void(const RunSettings&)>& vet = {});
+  // a saved simulation at its time, to read (state, drive, observation) and draw: no output is
+  // opened or touched, and it cannot run (it is closed). Throws std::runtime_error as resume does.
+  static std::unique_ptr<Simulation> open_checkpoint(const std::string& path);
 
  private:
   Simulation(const Scene& scene, const RunSettings& settings, bool fresh);
+  // resume (outputs: continue them) or open_checkpoint (no outputs)
+  static std::unique_ptr<Simulation> load(const std::string& path, const FrameSinkFactory& factory, int* callbacks,
+                                          const std::function<void(const RunSettings&)>& vet, bool outputs);
   void set_landings();
   void sample(double t, const Eigen::VectorXd& y);
   void frame(double t, const Eigen::VectorXd& y);

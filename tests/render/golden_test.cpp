@@ -1,18 +1,10 @@
 // Golden images: small deterministic frames rendered with OSMesa (llvmpipe, pinned by the test's
-// GALLIUM_DRIVER=llvmpipe) compared with tests/golden/*.png.
-//
-// Metric: a pixel differs when any channel differs by more than kLevelTol = 16 of 255 levels;
-// an image fails when more than kMaxBadPixels pixels differ.
-// - Why this is enough: one colour band of the 10-band maps moves a channel by 10–40 levels over
-//   every pixel of the elements concerned (thousands of pixels); a belt element shifted by half
-//   its thickness changes over a hundred pixels along its edges (both measured by the tests
-//   below, which must fail the comparison).
-// - Why it is not too much: llvmpipe differs across CPUs and Mesa versions by a level or two
-//   (pygfx uses 3), antialiased edges by a few more where coverage rounds
-//   differently; 16 levels leaves room for that on every pixel, and kMaxBadPixels for a few
-//   edge pixels whose coverage flips. A FreeType or font upgrade that moves glyphs is a real
-//   change of the picture: update the goldens (below), or add an alternate NAME_1.png beside
-//   NAME.png (accepted as well, as VTK does).
+// GALLIUM_DRIVER=llvmpipe) compared with tests/golden/*.png by the goldens' metric (io/image_compare.hpp,
+// also `beltsim compare`): a pixel differs when any channel differs by more than 16 of 255 levels;
+// an image fails when more than 12 pixels differ. The tests below check that the metric catches a
+// colour map one band off and an element shifted by half its thickness. A FreeType or font upgrade
+// that moves glyphs is a real change of the picture: update the goldens (below), or add an
+// alternate NAME_1.png beside NAME.png (accepted as well, as VTK does).
 // On failure the actual image and a difference image (differing pixels red on grey) are
 // written to the build tree (tests/golden_out/). To update the goldens on purpose:
 //   BELTSIM_UPDATE_GOLDEN=1 ctest --test-dir build -L golden
@@ -24,6 +16,7 @@
 
 #include <cmath>
 
+#include "io/image_compare.hpp"
 #include "io/png_writer.hpp"
 #include "plot/plot.hpp"
 #include "render/recorder.hpp"
@@ -39,39 +32,10 @@ namespace {
 
 namespace fs = std::filesystem;
 
-constexpr int kLevelTol = 16;
-constexpr long kMaxBadPixels = 12;
+constexpr int kLevelTol = ImageTolerance{}.level_tol;
+constexpr long kMaxBadPixels = ImageTolerance{}.max_bad_pixels;
 
-struct Comparison {
-  long bad = 0;     // pixels beyond kLevelTol
-  int worst = 0;    // largest channel difference
-  Image diff;
-};
-
-Comparison compare(const Image& a, const Image& b) {
-  Comparison c;
-  if (a.width != b.width || a.height != b.height) {
-    c.bad = static_cast<long>(a.width) * a.height + 1;
-    return c;
-  }
-  c.diff = Image(a.width, a.height);
-  for (int y = 0; y < a.height; ++y)
-    for (int x = 0; x < a.width; ++x) {
-      const uint8_t *p = a.pixel(x, y), *q = b.pixel(x, y);
-      int d = 0;
-      for (int k = 0; k < 3; ++k) d = std::max(d, std::abs(int(p[k]) - int(q[k])));
-      c.worst = std::max(c.worst, d);
-      uint8_t* o = c.diff.pixel(x, y);
-      const uint8_t grey = static_cast<uint8_t>(128 + (p[0] + p[1] + p[2]) / 12);
-      if (d > kLevelTol) {
-        c.bad++;
-        o[0] = 255, o[1] = 0, o[2] = 0;
-      } else {
-        o[0] = o[1] = o[2] = grey;
-      }
-    }
-  return c;
-}
+ImageComparison compare(const Image& a, const Image& b) { return compare_images(a, b, kLevelTol); }
 
 // one context and renderer per size for the whole test program
 class Golden : public ::testing::Test {
@@ -113,10 +77,10 @@ class Golden : public ::testing::Test {
       GTEST_SKIP() << "updated " << golden.string() << ": nothing compared";
     }
     ASSERT_TRUE(fs::exists(golden)) << golden << " missing: run with BELTSIM_UPDATE_GOLDEN=1 to create it";
-    Comparison best = compare(img, read_png(golden.string()));
+    ImageComparison best = compare(img, read_png(golden.string()));
     const fs::path alt = golden.parent_path() / (name + "_1.png");
     if (best.bad > kMaxBadPixels && fs::exists(alt)) {
-      Comparison c = compare(img, read_png(alt.string()));
+      ImageComparison c = compare(img, read_png(alt.string()));
       if (c.bad < best.bad) best = std::move(c);
     }
     if (best.bad > kMaxBadPixels) {
@@ -203,7 +167,7 @@ TEST_F(Golden, ColourMapOneBandOffFails) {
   // the same frame with every element coloured one band higher
   fs.range_lo = 0 - 1000.0 / fs.levels, fs.range_hi = 1000 - 1000.0 / fs.levels;
   const Image shifted = render(dry(), fs, y);
-  const Comparison c = compare(good, shifted);
+  const ImageComparison c = compare(good, shifted);
   EXPECT_GT(c.bad, 50 * kMaxBadPixels) << "a colour map one band off must fail (" << c.bad << " pixels)";
   std::printf("colour map one band off: %ld pixels differ\n", c.bad);
 }
@@ -218,7 +182,7 @@ TEST_F(Golden, ShiftedElementFails) {
   const Vec2 e = axis(y[3 * 10 + 2]);
   const Vec2 shift = 2.25e-3 / fs.magnify * perp(e);  // magnified to half the drawn thickness
   y2[30] += shift.x(), y2[31] += shift.y();
-  const Comparison c = compare(good, render(dry(), fs, y2));
+  const ImageComparison c = compare(good, render(dry(), fs, y2));
   EXPECT_GT(c.bad, kMaxBadPixels) << "an element shifted by half its thickness must fail (" << c.bad << " pixels)";
   std::printf("shifted element: %ld pixels differ\n", c.bad);
 }
@@ -247,7 +211,7 @@ TEST_F(Golden, EglDrawsWhatOsMesaDraws) {
   }
   egl.reset();
   ctx_->make_current();  // back to the suite's OSMesa context
-  const Comparison c = compare(osmesa, img);
+  const ImageComparison c = compare(osmesa, img);
   EXPECT_LE(c.bad, kMaxBadPixels) << c.bad << " pixels differ (largest difference " << c.worst << ")";
 }
 

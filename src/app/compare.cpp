@@ -1,0 +1,187 @@
+#include "app/compare.hpp"
+
+#include <cerrno>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <stdexcept>
+
+#include "io/image_compare.hpp"
+#include "io/output_dir.hpp"
+#include "io/png_writer.hpp"
+#include "plot/csv_compare.hpp"
+#include "script/script_args.hpp"
+
+namespace beltsim::app {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+// bad usage (exit 2, with the pointer to --help)
+struct Usage : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+// a file that cannot be read or is not a PNG or CSV of numbers (exit 2)
+struct Unreadable : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+double number(const std::string& option, const std::string& text) {
+  const auto x = script::decimal(text);
+  if (!x) throw Usage(option + " needs a finite decimal number, got '" + text + "'");
+  return *x;
+}
+
+double non_negative(const std::string& option, const std::string& text) {
+  const double x = number(option, text);
+  if (!(x >= 0)) throw Usage(option + " must be >= 0, got " + text);
+  return x;
+}
+
+long whole(const std::string& option, const std::string& text, double hi) {
+  const double x = number(option, text);
+  if (!(x >= 0 && x <= hi && x == std::floor(x)))
+    throw Usage(option + " must be a whole number in [0, " + std::to_string(static_cast<long>(hi)) + "], got " + text);
+  return static_cast<long>(x);
+}
+
+// true for a PNG (by its signature); throws Unreadable naming the file when it cannot be read
+bool is_png(const std::string& path) {
+  if (fs::is_directory(path)) throw Unreadable("cannot read " + path + ": it is a folder");
+  std::ifstream f(path, std::ios::binary);
+  if (!f) throw Unreadable("cannot read " + path + ": " + std::strerror(errno));
+  static const unsigned char sig[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
+  unsigned char head[8] = {};
+  f.read(reinterpret_cast<char*>(head), 8);
+  return f.gcount() == 8 && std::memcmp(head, sig, 8) == 0;
+}
+
+std::string size_text(const Image& i) {
+  return std::to_string(i.width) + "x" + std::to_string(i.height);
+}
+
+int compare_pngs(const CompareOptions& o) {
+  for (const auto& [given, name] :
+       {std::pair{bool(o.rtol), "--rtol"}, {bool(o.atol), "--atol"}, {!o.col_tol.empty(), "--col-tol"}})
+    if (given) throw Usage(std::string(name) + " is for CSV files; " + o.a + " and " + o.b + " are PNGs");
+  ImageTolerance tol;
+  if (o.tol) tol.level_tol = static_cast<int>(whole("--tol", *o.tol, 255));
+  if (o.max_bad) tol.max_bad_pixels = whole("--max-bad", *o.max_bad, 1e15);
+  Image a, b;
+  try {
+    a = read_png(o.a);
+    b = read_png(o.b);
+  } catch (const std::exception& e) {
+    throw Unreadable(e.what());
+  }
+  const ImageComparison c = compare_images(a, b, tol.level_tol);
+  if (!c.same_size) {
+    std::printf("differ: the sizes differ: %s is %s, %s is %s\n", o.a.c_str(), size_text(a).c_str(), o.b.c_str(),
+                size_text(b).c_str());
+    return 1;
+  }
+  const bool match = c.match(tol);
+  std::string diff_note;
+  if (!match || o.diff) {
+    const fs::path pa(o.a);
+    const std::string path = o.diff ? *o.diff : (pa.parent_path() / (pa.stem().string() + "_diff.png")).string();
+    try {
+      write_png(path, c.diff);
+      diff_note = "; difference image (differing pixels red): " + path;
+    } catch (const std::exception& e) {
+      std::fprintf(stderr, "beltsim compare: %s\n", e.what());
+      mark_output_failure_shown(e.what());
+    }
+  }
+  std::printf("%s: %ld of %s pixels differ by more than %d levels (%ld allowed); largest difference %d levels%s%s\n",
+              match ? "match" : "differ", c.bad, size_text(a).c_str(), tol.level_tol, tol.max_bad_pixels, c.worst,
+              c.worst ? (" at x = " + std::to_string(c.worst_x) + ", y = " + std::to_string(c.worst_y)).c_str() : "",
+              diff_note.c_str());
+  return match ? 0 : 1;
+}
+
+int compare_csvs(const CompareOptions& o) {
+  for (const auto& [given, name] :
+       {std::pair{bool(o.tol), "--tol"}, {bool(o.max_bad), "--max-bad"}, {bool(o.diff), "--diff"}})
+    if (given) throw Usage(std::string(name) + " is for PNG files; " + o.a + " and " + o.b + " are not PNGs");
+  plot::CsvTolerance tol;
+  if (o.rtol) tol.all.rtol = non_negative("--rtol", *o.rtol);
+  if (o.atol) tol.all.atol = non_negative("--atol", *o.atol);
+  for (const std::string& item : o.col_tol) {
+    const size_t eq = item.find('=');
+    if (eq == std::string::npos || eq == 0)
+      throw Usage("--col-tol needs NAME=RTOL or NAME=RTOL,ATOL, got '" + item + "'");
+    const std::string name = item.substr(0, eq), value = item.substr(eq + 1);
+    const size_t comma = value.find(',');
+    plot::ColumnTolerance ct = tol.all;
+    ct.rtol = non_negative("--col-tol " + name, value.substr(0, comma));
+    if (comma != std::string::npos) ct.atol = non_negative("--col-tol " + name, value.substr(comma + 1));
+    tol.columns[name] = ct;
+  }
+  plot::Table a, b;
+  try {
+    a = plot::read_timeseries_csv(o.a);
+    b = plot::read_timeseries_csv(o.b);
+  } catch (const std::exception& e) {
+    throw Unreadable(e.what());
+  }
+  plot::CsvComparison c;
+  try {
+    c = plot::compare_csv(a, b, tol);
+  } catch (const std::invalid_argument& e) {
+    throw Usage(e.what());
+  } catch (const std::exception& e) {
+    throw Unreadable(e.what());
+  }
+  if (!c.note.empty()) std::fprintf(stderr, "beltsim compare: %s\n", c.note.c_str());
+  std::printf("%s: %s\n", c.match ? "match" : "differ", c.reason.c_str());
+  return c.match ? 0 : 1;
+}
+
+}  // namespace
+
+CLI::App* add_compare_command(CLI::App& app, CompareOptions& o) {
+  CLI::App* c = app.add_subcommand("compare", "compare two PNGs (golden images) or two CSV files (results)");
+  c->add_option("A", o.a, "the file to check (a run's output)")->required();
+  c->add_option("B", o.b, "the reference (a stored PNG or CSV)")->required();
+  c->add_option("--tol", o.tol, "PNG: a pixel differs when a channel differs by more than L of 255 levels (default 16)")
+      ->type_name("L");
+  c->add_option("--max-bad", o.max_bad, "PNG: the images match when at most N pixels differ (default 12)")
+      ->type_name("N");
+  c->add_option("--diff", o.diff,
+                "PNG: the difference image, always written (default: A_diff.png beside A, written when they differ)")
+      ->type_name("PNG");
+  c->add_option("--rtol", o.rtol, "CSV: relative tolerance (default 1e-6)")->type_name("R");
+  c->add_option("--atol", o.atol, "CSV: absolute tolerance (default 1e-12)")->type_name("A");
+  c->add_option("--col-tol", o.col_tol, "CSV: a column's own tolerances (repeatable)")
+      ->type_name("NAME=RTOL[,ATOL]")
+      ->allow_extra_args(false);
+  c->footer(
+      "PNGs: the golden images' metric (a pixel differs when any channel differs by more than L\n"
+      "levels). CSVs: columns matched by name; a and b agree when |a - b| <= atol + rtol*max(|a|, |b|);\n"
+      "rows aligned on the 't' column, B interpolated linearly onto A's times when they differ (said\n"
+      "on stderr). Prints one line; exit 0 when they match, 1 when they differ, 2 on bad usage or a\n"
+      "file that cannot be read.");
+  return c;
+}
+
+int cmd_compare(const CompareOptions& o) {
+  try {
+    const bool pa = is_png(o.a), pb = is_png(o.b);
+    if (pa != pb)
+      throw Usage("cannot compare a PNG with a file that is not one: " + (pa ? o.a : o.b) + " is a PNG, " +
+                  (pa ? o.b : o.a) + " is not");
+    return pa ? compare_pngs(o) : compare_csvs(o);
+  } catch (const Usage& e) {
+    std::fprintf(stderr, "beltsim: %s\nRun 'beltsim compare --help' for the usage.\n", e.what());
+    return 2;
+  } catch (const Unreadable& e) {
+    std::fprintf(stderr, "beltsim compare: %s\n", e.what());
+    return 2;
+  }
+}
+
+}  // namespace beltsim::app

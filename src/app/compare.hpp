@@ -1,0 +1,24 @@
+// `beltsim compare A B`: two PNGs by the golden images' metric (io/image_compare.hpp), or two CSV
+// files column by column (plot/csv_compare.hpp). One line on stdout says why they match or
+// differ; exit status 0 when they match, 1 when they differ, 2 for bad usage or a file that
+// cannot be read (the message names it).
+#pragma once
+
+#include <CLI/CLI.hpp>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace beltsim::app {
+
+struct CompareOptions {
+  std::string a, b;
+  std::optional<std::string> tol, max_bad, diff;  // PNGs
+  std::optional<std::string> rtol, atol;          // CSVs
+  std::vector<std::string> col_tol;               // CSVs: NAME=RTOL[,ATOL]
+};
+
+CLI::App* add_compare_command(CLI::App& app, CompareOptions& o);
+int cmd_compare(const CompareOptions& o);
+
+}  // namespace beltsim::app

@@ -1,0 +1,326 @@
+#!/usr/bin/env python3
+"""`beltsim compare A B`: two PNGs by the golden images' metric, two CSV files column by column
+(tolerances, time alignment), its one-line reasons and exit statuses (0 match, 1 differ, 2 bad
+usage or a file it cannot read); and the two recipes of docs/testing-your-scenario.md
+(docs/examples/my_drive/: ctest and pytest) run as a user runs them, passing on the stored results
+and failing on a stored result that is off."""
+import os
+import shutil
+import struct
+import subprocess
+import sys
+import tempfile
+import unittest
+import zlib
+
+BELTSIM = None
+EXAMPLE = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "docs", "examples", "my_drive")
+
+
+def run(args, cwd=None, env=None):
+    p = subprocess.run([BELTSIM] + args, capture_output=True, text=True, cwd=cwd, timeout=120, env=env)
+    return p.returncode, p.stdout, p.stderr
+
+
+def write_png(path, width, height, pixel):
+    """An 8-bit RGB PNG whose pixel (x, y) is pixel(x, y) = (r, g, b)."""
+    raw = b"".join(b"\0" + bytes(c for x in range(width) for c in pixel(x, y)) for y in range(height))
+
+    def chunk(kind, data):
+        return struct.pack(">I", len(data)) + kind + data + struct.pack(">I", zlib.crc32(kind + data))
+
+    with open(path, "wb") as f:
+        f.write(b"\x89PNG\r\n\x1a\n" + chunk(b"IHDR", struct.pack(">IIBBBBB", width, height, 8, 2, 0, 0, 0)) +
+                chunk(b"IDAT", zlib.compress(raw)) + chunk(b"IEND", b""))
+
+
+def square(dx, level=200):
+    """grey background, a 20x20 square at (30 + dx, 20)"""
+    return lambda x, y: (level, 40, 40) if 30 + dx <= x < 50 + dx and 20 <= y < 40 else (90, 90, 90)
+
+
+def write_csv(path, header, rows):
+    with open(path, "w") as f:
+        f.write(",".join(header) + "\n")
+        for r in rows:
+            f.write(",".join(repr(float(v)) if isinstance(v, (int, float)) else v for v in r) + "\n")
+
+
+class Base(unittest.TestCase):
+    def setUp(self):
+        self.dir = tempfile.mkdtemp(prefix="beltsim_compare_")
+        self.addCleanup(shutil.rmtree, self.dir, True)
+
+    def path(self, name):
+        return os.path.join(self.dir, name)
+
+    def compare(self, *args):
+        return run(["compare"] + list(args), cwd=self.dir)
+
+
+class Pngs(Base):
+    def setUp(self):
+        super().setUp()
+        write_png(self.path("a.png"), 80, 60, square(0))
+
+    def test_identical_images_match(self):
+        shutil.copy(self.path("a.png"), self.path("b.png"))
+        code, out, err = self.compare("a.png", "b.png")
+        self.assertEqual((code, err), (0, ""))
+        self.assertEqual(out, "match: 0 of 80x60 pixels differ by more than 16 levels (12 allowed); "
+                              "largest difference 0 levels\n")
+        self.assertFalse(os.path.exists(self.path("a_diff.png")), "no difference image when they match")
+
+    def test_a_shifted_square_differs_and_the_difference_image_shows_where(self):
+        write_png(self.path("b.png"), 80, 60, square(2))
+        code, out, err = self.compare("a.png", "b.png")
+        self.assertEqual(code, 1, err)
+        # two columns of 20 pixels at each side of the square: 80 pixels
+        self.assertEqual(out, "differ: 80 of 80x60 pixels differ by more than 16 levels (12 allowed); largest "
+                              "difference 110 levels at x = 30, y = 20; difference image (differing pixels red): "
+                              "a_diff.png\n")
+        code, out, err = self.compare("a_diff.png", "a_diff.png")  # a PNG beltsim reads
+        self.assertEqual(code, 0, err)
+
+    def test_the_level_and_pixel_tolerances(self):
+        write_png(self.path("b.png"), 80, 60, square(0, level=216))  # 16 levels: within
+        self.assertEqual(self.compare("a.png", "b.png")[0], 0)
+        write_png(self.path("b.png"), 80, 60, square(0, level=217))  # 17 levels over 400 pixels
+        code, out, err = self.compare("a.png", "b.png")
+        self.assertEqual(code, 1, err)
+        self.assertTrue(out.startswith("differ: 400 of 80x60 pixels differ by more than 16 levels"), out)
+        self.assertEqual(self.compare("a.png", "b.png", "--tol", "17")[0], 0)
+        self.assertEqual(self.compare("a.png", "b.png", "--max-bad", "400")[0], 0)
+        self.assertEqual(self.compare("a.png", "b.png", "--max-bad", "399")[0], 1)
+
+    def test_diff_writes_the_difference_image_where_asked_even_when_they_match(self):
+        code, out, err = self.compare("a.png", "a.png", "--diff", "d.png")
+        self.assertEqual(code, 0, err)
+        self.assertTrue(out.endswith("; difference image (differing pixels red): d.png\n"), out)
+        self.assertTrue(os.path.exists(self.path("d.png")))
+
+    def test_different_sizes_differ(self):
+        write_png(self.path("b.png"), 60, 80, square(0))
+        code, out, err = self.compare("a.png", "b.png")
+        self.assertEqual(code, 1, err)
+        self.assertEqual(out, "differ: the sizes differ: a.png is 80x60, b.png is 60x80\n")
+
+    def test_csv_options_are_refused(self):
+        code, out, err = self.compare("a.png", "a.png", "--rtol", "1e-3")
+        self.assertEqual(code, 2)
+        self.assertIn("--rtol is for CSV files; a.png and a.png are PNGs", err)
+
+    def test_a_png_and_a_csv_cannot_be_compared(self):
+        write_csv(self.path("b.csv"), ["t"], [[0]])
+        code, out, err = self.compare("a.png", "b.csv")
+        self.assertEqual(code, 2)
+        self.assertIn("cannot compare a PNG with a file that is not one: a.png is a PNG, b.csv is not", err)
+
+    def test_a_broken_png_names_the_file(self):
+        with open(self.path("b.png"), "wb") as f:
+            with open(self.path("a.png"), "rb") as a:
+                f.write(a.read()[:40])
+        code, out, err = self.compare("a.png", "b.png")
+        self.assertEqual(code, 2)
+        self.assertIn("b.png", err)
+
+
+class Csvs(Base):
+    HEADER = ["t", "driver.omega", "driven.omega"]
+
+    def rows(self, times, bump=None):
+        """driver.omega = 10 t, driven.omega = 1 + t; bump = (column, row, factor)"""
+        rows = [[t, 10 * t, 1 + t] for t in times]
+        if bump:
+            rows[bump[1]][bump[0]] *= bump[2]
+        return rows
+
+    def setUp(self):
+        super().setUp()
+        write_csv(self.path("a.csv"), self.HEADER, self.rows([i * 0.01 for i in range(11)]))
+
+    def test_identical_files_match(self):
+        shutil.copy(self.path("a.csv"), self.path("b.csv"))
+        code, out, err = self.compare("a.csv", "b.csv")
+        self.assertEqual((code, err), (0, ""))
+        self.assertEqual(out, "match: 2 columns agree at 11 times: every value equal\n")
+
+    def test_a_perturbed_column_differs_naming_column_time_and_values(self):
+        write_csv(self.path("b.csv"), self.HEADER, self.rows([i * 0.01 for i in range(11)], bump=(1, 7, 1.001)))
+        code, out, err = self.compare("a.csv", "b.csv")
+        self.assertEqual(code, 1, err)
+        self.assertEqual(out, "differ: 1 of 2 columns differ (driver.omega); worst: driver.omega at t = 0.07 s "
+                              "(row 8): 0.7 vs 0.7007, |a - b| = 0.0007, 999 times its tolerance "
+                              "(rtol 1e-06, atol 1e-12)\n")
+        # the tolerances: 1e-3 relative is within rtol 1e-3, for all columns or that one
+        self.assertEqual(self.compare("a.csv", "b.csv", "--rtol", "1.001e-3")[0], 0)
+        self.assertEqual(self.compare("a.csv", "b.csv", "--atol", "7.1e-4")[0], 0)
+        self.assertEqual(self.compare("a.csv", "b.csv", "--col-tol", "driver.omega=1.001e-3")[0], 0)
+        self.assertEqual(self.compare("a.csv", "b.csv", "--col-tol", "driver.omega=0,7.1e-4")[0], 0)
+        self.assertEqual(self.compare("a.csv", "b.csv", "--col-tol", "driven.omega=1e-2")[0], 1)
+        code, out, err = self.compare("a.csv", "b.csv", "--rtol", "5e-4")
+        self.assertIn("1.998 times its tolerance (rtol 0.0005, atol 1e-12)", out)
+
+    def test_a_nan_against_a_number_differs(self):
+        rows = self.rows([i * 0.01 for i in range(11)])
+        rows[3][2] = "nan"
+        write_csv(self.path("b.csv"), self.HEADER, rows)
+        code, out, err = self.compare("a.csv", "b.csv", "--rtol", "0.5")
+        self.assertEqual(code, 1, err)
+        self.assertIn("worst: driven.omega at t = 0.03 s (row 4): 1.03 vs nan", out)
+        self.assertIn("beyond any tolerance", out)
+        write_csv(self.path("a2.csv"), self.HEADER, rows)
+        self.assertEqual(self.compare("a2.csv", "b.csv")[0], 0, "NaN against NaN agrees")
+
+    def test_mismatched_headers_differ_naming_the_columns(self):
+        write_csv(self.path("b.csv"), ["t", "driver.omega", "idler.omega"], self.rows([i * 0.01 for i in range(11)]))
+        code, out, err = self.compare("a.csv", "b.csv")
+        self.assertEqual(code, 1, err)
+        self.assertEqual(out, "differ: the columns differ: only in a.csv: driven.omega; only in b.csv: idler.omega\n")
+
+    def test_column_order_does_not_matter(self):
+        rows = self.rows([i * 0.01 for i in range(11)])
+        write_csv(self.path("b.csv"), ["driven.omega", "t", "driver.omega"], [[r[2], r[0], r[1]] for r in rows])
+        self.assertEqual(self.compare("a.csv", "b.csv")[0], 0)
+
+    def test_a_finer_time_grid_is_interpolated_and_said(self):
+        # the columns are linear in t: interpolation is exact to rounding
+        write_csv(self.path("b.csv"), self.HEADER, self.rows([i * 0.0025 for i in range(41)]))
+        code, out, err = self.compare("a.csv", "b.csv", "--rtol", "1e-12")
+        self.assertEqual(code, 0, out + err)
+        self.assertEqual(err, "beltsim compare: the times differ (11 rows in a.csv, 41 in b.csv): b.csv "
+                              "interpolated linearly onto a.csv's times\n")
+        self.assertTrue(out.startswith("match: 2 columns agree at 11 times"), out)
+        # a bump between A's times is not seen; one at A's time 0.05 is
+        write_csv(self.path("b.csv"), self.HEADER, self.rows([i * 0.0025 for i in range(41)], bump=(1, 20, 1.01)))
+        code, out, err = self.compare("a.csv", "b.csv")
+        self.assertEqual(code, 1)
+        self.assertIn("worst: driver.omega at t = 0.05 s (row 6): 0.5 vs 0.505", out)
+
+    def test_times_that_do_not_cover_a_differ(self):
+        write_csv(self.path("b.csv"), self.HEADER, self.rows([i * 0.01 for i in range(6)]))
+        code, out, err = self.compare("a.csv", "b.csv")
+        self.assertEqual(code, 1, err)
+        self.assertEqual(out, "differ: the times differ and b.csv (t in [0, 0.05] s, 6 rows) does not cover "
+                              "a.csv's [0, 0.1] s\n")
+        # the other way round: A's times lie within B's
+        code, out, err = self.compare("b.csv", "a.csv")
+        self.assertEqual(code, 0, out + err)
+
+    def test_times_that_do_not_increase_are_an_error_naming_the_file(self):
+        write_csv(self.path("b.csv"), self.HEADER, self.rows([0, 0.01, 0.01, 0.02]))
+        code, out, err = self.compare("a.csv", "b.csv")
+        self.assertEqual(code, 2)
+        self.assertIn("b.csv: column 't' does not increase at data row 3 (0.01 then 0.01)", err)
+
+    def test_without_a_time_column_rows_are_compared_in_order(self):
+        write_csv(self.path("x.csv"), ["a"], [[1], [2]])
+        write_csv(self.path("y.csv"), ["a"], [[1], [2], [3]])
+        code, out, err = self.compare("x.csv", "y.csv")
+        self.assertEqual(code, 1)
+        self.assertEqual(out, "differ: the row counts differ: 2 in x.csv, 3 in y.csv (no 't' column to align them on)\n")
+        write_csv(self.path("y.csv"), ["a"], [[1], [2.5]])
+        code, out, err = self.compare("x.csv", "y.csv")
+        self.assertIn("worst: a at row 2: 2 vs 2.5", out)
+
+    def test_missing_and_unreadable_files_name_the_file(self):
+        code, out, err = self.compare("a.csv", "missing.csv")
+        self.assertEqual((code, out), (2, ""))
+        self.assertEqual(err, "beltsim compare: cannot read missing.csv: No such file or directory\n")
+        code, out, err = self.compare("missing.png", "a.csv")
+        self.assertEqual(code, 2)
+        self.assertIn("cannot read missing.png", err)
+        with open(self.path("bad.csv"), "w") as f:
+            f.write("t,driver.omega,driven.omega\n0,1,x\n")
+        code, out, err = self.compare("a.csv", "bad.csv")
+        self.assertEqual(code, 2)
+        self.assertIn("bad.csv:2: column 'driven.omega': 'x' is not a number", err)
+        code, out, err = self.compare("a.csv", ".")
+        self.assertEqual(code, 2)
+        self.assertIn("cannot read .: it is a folder", err)
+
+    def test_usage_errors(self):
+        for args, message in [
+                (["--col-tol", "driver.omgea=1e-3"], "--col-tol driver.omgea: a.csv has no column 'driver.omgea' "
+                                                     "(did you mean 'driver.omega'?)"),
+                (["--col-tol", "driver.omega"], "--col-tol needs NAME=RTOL or NAME=RTOL,ATOL, got 'driver.omega'"),
+                (["--rtol", "-1"], "--rtol must be >= 0, got -1"),
+                (["--atol", "nan"], "--atol needs a finite decimal number, got 'nan'"),
+                (["--tol", "3"], "--tol is for PNG files; a.csv and a.csv are not PNGs"),
+                (["--diff", "d.png"], "--diff is for PNG files"),
+                (["--frobnicate"], "compare does not take: --frobnicate")]:
+            code, out, err = self.compare("a.csv", "a.csv", *args)
+            self.assertEqual(code, 2, args)
+            self.assertIn(message, err)
+            self.assertIn("Run 'beltsim compare --help' for the usage.", err)
+        code, out, err = self.compare("a.csv")
+        self.assertEqual(code, 2)
+
+
+class Recipes(Base):
+    """docs/testing-your-scenario.md's recipes, run as a user runs them."""
+
+    def example(self, off=False):
+        """the example's folder; off: a copy whose stored driver.omega is 5 % off from t = 0.02 s"""
+        if not off:
+            return os.path.abspath(EXAMPLE)
+        copy = self.path("my_drive")
+        shutil.copytree(EXAMPLE, copy)
+        csv = os.path.join(copy, "expected", "timeseries.csv")
+        with open(csv) as f:
+            lines = f.read().splitlines()
+        k = lines[0].split(",").index("driver.omega")
+        for i in range(21, len(lines)):
+            f = lines[i].split(",")
+            f[k] = repr(float(f[k]) * 1.05)
+            lines[i] = ",".join(f)
+        with open(csv, "w") as f:
+            f.write("\n".join(lines) + "\n")
+        return copy
+
+    def ctest(self, source):
+        build = self.path("build")
+        shutil.rmtree(build, True)
+        p = subprocess.run(["cmake", "-S", source, "-B", build, "-DBELTSIM=" + BELTSIM], capture_output=True,
+                           text=True, timeout=120)
+        self.assertEqual(p.returncode, 0, p.stdout + p.stderr)
+        return subprocess.run(["ctest", "--test-dir", build, "--output-on-failure"], capture_output=True, text=True,
+                              timeout=300)
+
+    def test_the_ctest_recipe(self):
+        p = self.ctest(self.example())
+        self.assertEqual(p.returncode, 0, p.stdout + p.stderr)
+        self.assertIn("100% tests passed, 0 tests failed out of 3", p.stdout)
+        p = self.ctest(self.example(off=True))
+        self.assertNotEqual(p.returncode, 0, p.stdout)
+        self.assertIn("67% tests passed, 1 tests failed out of 3", p.stdout)
+        self.assertIn("differ: 1 of 28 columns differ (driver.omega); worst: driver.omega", p.stdout)
+
+    def pytest(self, source):
+        env = dict(os.environ, BELTSIM=BELTSIM, PYTHONDONTWRITEBYTECODE="1")
+        return subprocess.run(PYTEST + ["-p", "no:cacheprovider", "-q", os.path.join(source, "test_my_drive.py")],
+                              capture_output=True, text=True, cwd=self.dir, env=env, timeout=300)
+
+    def test_the_pytest_recipe(self):
+        if PYTEST is None:
+            self.skipTest("no pytest (Debian's python3-pytest, scripts/debian-packages-test.txt)")
+        p = self.pytest(self.example())
+        self.assertEqual(p.returncode, 0, p.stdout + p.stderr)
+        self.assertIn("2 passed", p.stdout)
+        p = self.pytest(self.example(off=True))
+        self.assertEqual(p.returncode, 1, p.stdout + p.stderr)
+        self.assertIn("1 failed, 1 passed", p.stdout)
+        self.assertIn("differ: 1 of 28 columns differ (driver.omega)", p.stdout)
+
+
+def find_pytest():
+    for cmd in ([sys.executable, "-m", "pytest"], ["/usr/bin/python3", "-m", "pytest"]):
+        if os.path.exists(cmd[0]) and subprocess.run(cmd + ["--version"], capture_output=True).returncode == 0:
+            return cmd
+    return None
+
+
+if __name__ == "__main__":
+    BELTSIM = os.path.abspath(sys.argv.pop(1))
+    PYTEST = find_pytest()
+    unittest.main(verbosity=2)

@@ -1,0 +1,115 @@
+#!/usr/bin/env python3
+"""`beltsim render CHECKPOINT --out PNG`: the state a checkpoint holds drawn by the renderer of a
+run's frames (the same picture as the run's frame at that time), the same bytes twice, another
+picture for another quantity, the options' checks, and a checkpoint's outputs left untouched."""
+import os
+import shutil
+import subprocess
+import sys
+import tempfile
+import unittest
+
+BELTSIM = None
+
+# a run that draws a frame every 1/300 s (frame 6 at t = 0.02 s) and saves a checkpoint there
+SCENE = """
+local drive = beltsim.scene {
+  pulleys = {
+    { name = "driver", centre = {0, 0},    radius = 0.1, inertia = 0.025, torque = beltsim.ramp(0.3, -70) },
+    { name = "driven", centre = {0.29, 0}, radius = 0.1, inertia = 0.025, torque = { per_speed = -0.955 } },
+  },
+  belt = { elements = 40, pretension = 500, direction = "cw" },
+}
+local sim = drive:start { progress = false, out = "out", integrator = "esdirk32",
+  frames = { fps = 30, slowdown = 10, size = {320, 180}, quantity = "tension", range = {0, 1000},
+             magnify = 20, png = true, video = false } }
+sim:run_to(0.02)
+sim:save("state.txt")
+sim:close()
+"""
+
+
+def run(args, cwd):
+    p = subprocess.run([BELTSIM] + args, capture_output=True, text=True, cwd=cwd, timeout=120)
+    return p.returncode, p.stdout, p.stderr
+
+
+class Render(unittest.TestCase):
+    @classmethod
+    def setUpClass(cls):
+        cls.dir = tempfile.mkdtemp(prefix="beltsim_render_")
+        with open(os.path.join(cls.dir, "s.lua"), "w") as f:
+            f.write(SCENE)
+        code, out, err = run(["run", "s.lua"], cls.dir)
+        assert code == 0, err
+        cls.checkpoint = os.path.join(cls.dir, "out", "state.txt")
+        assert os.path.exists(cls.checkpoint), err
+
+    @classmethod
+    def tearDownClass(cls):
+        shutil.rmtree(cls.dir, True)
+
+    def render(self, *args):
+        return run(["render", self.checkpoint] + list(args), self.dir)
+
+    def bytes(self, name):
+        with open(os.path.join(self.dir, name), "rb") as f:
+            return f.read()
+
+    def test_the_picture_is_the_runs_frame_at_that_time(self):
+        code, out, err = self.render("--out", "a.png")
+        self.assertEqual((code, out), (0, "a.png\n"), err)
+        code, out, err = run(["compare", "a.png", os.path.join("out", "frames", "frame_00006.png")], self.dir)
+        self.assertEqual(code, 0, out + err)
+        self.assertIn("largest difference 0 levels", out)
+
+    def test_the_same_bytes_twice(self):
+        self.assertEqual(self.render("--out", "1.png")[0], 0)
+        self.assertEqual(self.render("--out", "2.png")[0], 0)
+        self.assertEqual(self.bytes("1.png"), self.bytes("2.png"))
+
+    def test_quantity_size_and_view_change_the_picture(self):
+        self.assertEqual(self.render("--out", "tension.png")[0], 0)
+        code, out, err = self.render("--out", "friction.png", "--quantity", "friction")
+        self.assertEqual(code, 0, err)
+        code, out, err = run(["compare", "friction.png", "tension.png"], self.dir)
+        self.assertEqual(code, 1, out + err)
+        self.assertNotEqual(self.bytes("friction.png"), self.bytes("tension.png"))
+        code, out, err = self.render("--out", "big.png", "--size", "640x360")
+        self.assertEqual(code, 0, err)
+        code, out, err = run(["compare", "big.png", "tension.png"], self.dir)
+        self.assertEqual(out, "differ: the sizes differ: big.png is 640x360, tension.png is 320x180\n")
+        code, out, err = self.render("--out", "zoom.png", "--view", "0.29,0,0.3")
+        self.assertEqual(code, 0, err)
+        self.assertEqual(run(["compare", "zoom.png", "tension.png"], self.dir)[0], 1)
+
+    def test_the_checkpoints_outputs_are_left_alone(self):
+        csv = os.path.join(self.dir, "out", "timeseries.csv")
+        events = os.path.join(self.dir, "out", "events.csv")
+        before = (self.bytes(csv), self.bytes(events))
+        self.assertEqual(self.render("--out", "x.png")[0], 0)
+        self.assertEqual((self.bytes(csv), self.bytes(events)), before)
+
+    def test_bad_options_and_files(self):
+        for args, message in [
+                (["--out", "x.png", "--quantity", "tensoin"], "--quantity: unknown quantity 'tensoin' (did you mean "
+                                                              "'tension'?)"),
+                (["--out", "x.png", "--size", "640"], "--size needs WxH in pixels, e.g. 640x360, got '640'"),
+                (["--out", "x.png", "--size", "641x360"], "frames.size"),
+                (["--out", "x.png", "--view", "0,0"], "--view needs X,Y,WIDTH in metres"),
+                (["--out", "x.png", "--rtol", "1e-3"], "render does not take: --rtol"),
+                ([], "--out is required")]:
+            code, out, err = self.render(*args)
+            self.assertEqual(code, 2, args)
+            self.assertIn(message, err)
+        code, out, err = run(["render", "missing.txt", "--out", "x.png"], self.dir)
+        self.assertEqual(code, 1)
+        self.assertIn("beltsim render: missing.txt", err)
+        code, out, err = run(["render", "s.lua", "--out", "x.png"], self.dir)
+        self.assertEqual(code, 1)
+        self.assertIn("beltsim render: s.lua", err)
+
+
+if __name__ == "__main__":
+    BELTSIM = os.path.abspath(sys.argv.pop(1))
+    unittest.main(verbosity=2)
