@@ -62,6 +62,17 @@ std::vector<SceneInput> scene_inputs(const SceneDef& d) {
     num(pre + "radius", p.radius, "m", "the paper's r_p = 0.1 m");
     num(pre + "inertia", p.inertia, "kg·m²", "ours: a steel disc of r = 0.1 m, 20 mm wide (docs/model.md)");
     word(pre + "wrap", p.wrap == WrapSide::inside ? "inside" : "back", "the pulley inside the loop");
+    if (!p.tensioner) continue;
+    const TensionerDef& t = *p.tensioner;
+    const std::string tp = pre + "tensioner.";
+    num(tp + "inertia", t.inertia, "kg·m²", "");
+    num(tp + "stiffness", t.stiffness, "N·m/rad", "");
+    if (t.preload) num(tp + "preload", *t.preload, "N·m", "sets the belt's tension at rest");
+    if (t.angle0) num(tp + "angle0", *t.angle0, "rad", "sets the belt's tension at rest");
+    num(tp + "damping", t.damping, "N·m·s/rad", "ours: none");
+    num(tp + "friction_torque", t.friction_torque, "N·m", "ours: none");
+    num(tp + "friction_speed", t.friction_speed, "rad/s", "ours: the width of the friction torque's tanh");
+    num(tp + "asymmetric", t.asymmetric, "", "ours: symmetric");
   }
   return in;
 }

@@ -54,10 +54,36 @@ void push_site(lua_State* L, const ElementSite& e) {
 
 namespace {
 
+// a pulley's tensioner = {pivot = {x, y}, inertia, stiffness, preload | angle0, damping, friction_torque,
+// friction_speed, asymmetric} (TensionerDef)
+TensionerDef to_tensioner(lua_State* L, int idx, const std::string& w) {
+  require_table(L, idx, w);
+  check_keys(L, idx, w,
+             {"pivot", "inertia", "stiffness", "preload", "angle0", "damping", "friction_torque", "friction_speed",
+              "asymmetric"});
+  TensionerDef t;
+  if (!field(L, idx, "pivot")) fail(L, w + ": a pivot {x, y} [m] is required");
+  t.pivot = to_vec2(L, -1, w + ".pivot");
+  lua_pop(L, 1);
+  const auto inertia = opt_number(L, idx, "inertia", w);
+  const auto stiffness = opt_number(L, idx, "stiffness", w);
+  if (!inertia) fail(L, w + ": the arm's inertia about the pivot [kg·m²] is required");
+  if (!stiffness) fail(L, w + ": the spring's stiffness [N·m/rad] is required");
+  t.inertia = *inertia, t.stiffness = *stiffness;
+  if (has(L, idx, "preload") && has(L, idx, "angle0")) fail(L, w + ": give preload [N·m] or angle0 [rad], not both");
+  t.preload = opt_number(L, idx, "preload", w);
+  t.angle0 = opt_number(L, idx, "angle0", w);
+  if (auto v = opt_number(L, idx, "damping", w)) t.damping = *v;
+  if (auto v = opt_number(L, idx, "friction_torque", w)) t.friction_torque = *v;
+  if (auto v = opt_number(L, idx, "friction_speed", w)) t.friction_speed = *v;
+  if (auto v = opt_number(L, idx, "asymmetric", w)) t.asymmetric = *v;
+  return t;
+}
+
 PulleyDef to_pulley(lua_State* L, int idx, const std::string& what, Context* ctx) {
   idx = lua_absindex(L, idx);
   require_table(L, idx, what);
-  check_keys(L, idx, what, {"name", "centre", "center", "radius", "inertia", "wrap", "torque", "speed"});
+  check_keys(L, idx, what, {"name", "centre", "center", "radius", "inertia", "wrap", "torque", "speed", "tensioner"});
   PulleyDef p;
   const auto name = opt_string(L, idx, "name", what);
   if (!name) fail(L, what + ": a name is required");
@@ -89,6 +115,10 @@ PulleyDef to_pulley(lua_State* L, int idx, const std::string& what, Context* ctx
   if (field(L, idx, "speed")) {
     p.speed = to_law(L, -1, w + ".speed", true, ctx);
     p.kinematic = true;
+    lua_pop(L, 1);
+  }
+  if (field(L, idx, "tensioner")) {
+    p.tensioner = to_tensioner(L, lua_gettop(L), w + ".tensioner");
     lua_pop(L, 1);
   }
   return p;
@@ -239,6 +269,7 @@ int l_scene(lua_State* L) {
     lua_rawgeti(L, pl, k);
     d.pulleys.push_back(to_pulley(L, -1, "pulley " + std::to_string(k), ctx));
     note_given(L, -1, "pulley." + d.pulleys.back().name + ".", d.given);
+    if (field(L, -1, "tensioner")) note_given(L, -1, "pulley." + d.pulleys.back().name + ".tensioner.", d.given), lua_pop(L, 1);
     lua_pop(L, 1);
   }
   lua_pop(L, 1);

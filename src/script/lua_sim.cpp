@@ -145,7 +145,7 @@ int l_advance(lua_State* L) {
 // ---- reading ---------------------------------------------------------------------------------
 
 // sim:pulley(name) -> { omega [rad/s], angle [rad], torque [N·m], belt_torque [N·m], hub_load [N],
-// contact_arc, slip_arc, stick_arc [m], creep }
+// contact_arc, slip_arc, stick_arc [m], creep; on a tensioner arm arm_angle [rad], arm_rate [rad/s] }
 int l_pulley(lua_State* L) {
   Simulation& s = live(L, "pulley", {{"name", kString}});
   const int j = pulley_index(L, s, 2, "sim:pulley");
@@ -161,6 +161,7 @@ int l_pulley(lua_State* L) {
   set_number(L, "slip_arc", p.slip_arc);
   set_number(L, "stick_arc", p.stick_arc);
   set_number(L, "creep", p.creep);
+  if (!std::isnan(p.arm_angle)) set_number(L, "arm_angle", p.arm_angle), set_number(L, "arm_rate", p.arm_rate);
   return 1;
 }
 

@@ -110,6 +110,8 @@ std::vector<std::string> timeseries_columns(const Scene& sc, size_t probes) {
     for (const char* q : {".omega", ".torque", ".belt_torque", ".hub_load", ".torque_mean", ".belt_torque_mean",
                           ".contact_arc", ".slip_arc", ".stick_arc", ".creep"})
       c.push_back(p.name + q);
+  for (const Pulley& p : sc.model.pulleys)
+    if (p.arm >= 0) c.push_back(p.name + ".arm_angle"), c.push_back(p.name + ".arm_rate");
   for (size_t k = 0; k < sc.route.spans.size(); ++k)
     for (const char* q : {".tension", ".tension_mean"}) c.push_back(span_name(sc, k) + q);
   for (size_t k = 0; k < probes; ++k)
@@ -346,6 +348,8 @@ std::vector<double> Simulation::sample_row() const {
     row.insert(row.end(), {p.omega, p.torque, p.belt_torque, p.hub_load, mean(2 * j), mean(2 * j + 1), p.contact_arc,
                            p.slip_arc, p.stick_arc, p.creep});
   }
+  for (size_t j = 0; j < o.pulleys.size(); ++j)
+    if (m.pulleys[j].arm >= 0) row.insert(row.end(), {o.pulleys[j].arm_angle, o.pulleys[j].arm_rate});
   for (size_t k = 0; k < scene_.route.spans.size(); ++k)
     row.insert(row.end(), {span_tension(static_cast<int>(k)), mean(2 * o.pulleys.size() + k)});
   for (int i : rs_.probes) {
