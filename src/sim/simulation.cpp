@@ -676,6 +676,19 @@ void Simulation::set_speed(int j, const TimeSpeedLaw& law, const std::string& te
   changed(&y);
 }
 
+void Simulation::set_arm(int j, std::optional<double> angle, std::optional<double> rate) {
+  require_open("set_arm");
+  const int a = model_.pulleys.at(j).arm;
+  if (a < 0) throw std::invalid_argument("pulley '" + model_.pulleys[j].name + "' has no tensioner arm");
+  Eigen::VectorXd y = state();
+  const int k = model_.arm_coord(a);
+  std::string text;
+  if (angle) y[k] = *angle, text += "angle " + std::to_string(*angle) + " rad";
+  if (rate) y[model_.n_coord() + k] = *rate, text += std::string(text.empty() ? "" : ", ") + "rate " + std::to_string(*rate) + " rad/s";
+  write_event(now(), model_.pulleys[j].name + ".arm", text);
+  changed(&y);
+}
+
 void Simulation::set_mu(const std::vector<double>& mu, const std::string& what, const std::string& text) {
   require_open(what.c_str());
   if (static_cast<int>(mu.size()) != model_.n_el())
