@@ -59,6 +59,13 @@ fig 23 automotive_wet probe.sde_force
 python3 media/paper_values.py "$tmp" docs/paper.md
 
 if [ "$what" = all ]; then
+  # docs/automotive.md: the idler on its tensioner arm and held fixed
+  "$b" run scripts/automotive_tensioner.lua --out "$tmp/automotive_tensioner" >/dev/null
+  "$b" run scripts/automotive_tensioner.lua --set idler=fixed --out "$tmp/automotive_tensioner_fixed" >/dev/null
+  "$b" plot "$tmp/automotive_tensioner/timeseries.csv" tensioner.arm_angle span_crankshaft_tensioner.tension \
+    span_pump_crankshaft.tension --from 0.3 --out media/automotive_tensioner_arm.png >/dev/null
+  "$b" plot "$tmp/automotive_tensioner_fixed/timeseries.csv" span_crankshaft_tensioner.tension \
+    span_pump_crankshaft.tension --from 0.3 --out media/automotive_tensioner_fixed.png >/dev/null
   cp "$tmp/paper_dry/frames/frame_00300.png" media/dry_tension_1.0s.png
   cp "$tmp/paper_wet/frames/frame_00180.png" media/wet_friction_0.6s.png
   cp "$tmp/paper_wet/frames/frame_00090.png" media/wet_friction_0.3s.png

@@ -53,8 +53,11 @@ std::string BeltProblem::describe(int k) const {
   const int c = vel ? k - N : k;
   if (c < ne)
     s << "element " << c / 3 << ' ' << (vel ? elem_v : elem_q)[c % 3];
-  else
+  else if (c < ne + model_.n_p())
     s << "pulley '" << model_.pulleys[c - ne].name << "' " << (vel ? "speed" : "angle");
+  else
+    s << "pulley '" << model_.pulleys[model_.arms[c - ne - model_.n_p()].pulley].name << "' tensioner arm "
+      << (vel ? "rate" : "angle");
   return s.str();
 }
 

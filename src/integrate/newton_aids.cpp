@@ -22,8 +22,9 @@
 // and the tangential residuals of a run of consecutive elements on one pulley (a wrap) become
 //   g_k(w) = g0_k + (1 + 2λ)·w_k - λ·(t̂_k·t̂_{k-1})·w_{k-1} - λ·(t̂_k·t̂_{k+1})·w_{k+1}
 //            + B_k·(sat((u0_k + w_k)/Δv) - sat(u0_k/Δv)),     B_k = μ_k·N_k/(m·s),
-// with u0 the slip velocity and g0 = t̂·G_v at the iterate (a neighbour off the run is held:
-// its term drops). The linear part A is symmetric and diagonally dominant, sat is increasing,
+// with u0 the slip velocity (V - V_C)·t̂ - Ω·r, relative to the pulley's centre C (a tensioner arm
+// moves it; the arm's angle is held), and g0 = t̂·G_v at the iterate (a neighbour off the run is
+// held: its term drops). The linear part A is symmetric and diagonally dominant, sat is increasing,
 // so g = ∇E of the strictly convex, piecewise quadratic
 //   E(w) = ½·wᵀA·w + Σ_k (g0_k - B_k·sat(u0_k/Δv))·w_k + Σ_k B_k·Δv·H((u0_k + w_k)/Δv),
 // H(x) = x²/2 for |x| <= 1, |x| - ½ beyond (Huber's function, H' = sat), and g(w) = 0 has one
@@ -226,11 +227,12 @@ int friction_local_solve(const Model& m, const Drive& d, const ContactList& pair
     w.J = d.kinematic(j) ? 0 : d.mass(m, pc);
     w.omega = 0;
     w.lin_omega = w.J * g[pc];
+    const Vec2 Vc = m.centre_velocity(j, q, v);
     for (int k = 0; k < L; ++k) {
       const ContactPair& c = pairs[w.pair[k]];
       const int i = c.i;
       const NormalLaw& nl = c.nl;
-      const Vec2 V(v[3 * i], v[3 * i + 1]);
+      const Vec2 V = Vec2(v[3 * i], v[3 * i + 1]) - Vc;  // relative to the pulley's centre (a tensioner arm moves it)
       w.u0[k] = V.dot(nl.t) - c.omega * nl.r;
       w.r[k] = w.J > 0 ? nl.r : 0;
       w.B[k] = d.mu[i] * nl.N / s;
@@ -267,13 +269,22 @@ int friction_reseat(const Model& m, const Drive& d, const ContactList& pairs, co
     const NormalLaw& a = c.nl;
     const double omega0 = c.omega;
     const double omega1 = d.kinematic(j) ? omega0 : omega0 + dv[m.pulley_coord(j)];
-    const Vec2 P0(q[3 * i], q[3 * i + 1]), V0(v[3 * i], v[3 * i + 1]);
+    // velocities relative to the pulley's centre (it moves on a tensioner arm)
+    const Vec2 P0(q[3 * i], q[3 * i + 1]), V0 = Vec2(v[3 * i], v[3 * i + 1]) - m.centre_velocity(j, q, v);
     const double vt0 = V0.dot(a.t) - omega0 * a.r;
     if (std::abs(vt0) < band) continue;
     // the same pair where the correction takes it
-    const Vec2 P1 = P0 + Vec2(dq[3 * i], dq[3 * i + 1]), V1 = V0 + Vec2(dv[3 * i], dv[3 * i + 1]);
+    Vec2 C1 = pl.centre, VC1 = Vec2::Zero();
+    if (pl.arm >= 0) {
+      const Arm& arm = m.arms[pl.arm];
+      const int k = m.arm_coord(pl.arm);
+      const Vec2 e(std::cos(q[k] + dq[k]), std::sin(q[k] + dq[k]));
+      C1 = arm.pivot + arm.length * e;
+      VC1 = arm.length * (v[k] + dv[k]) * perp(e) - m.centre_velocity(j, q, v);
+    }
+    const Vec2 P1 = P0 + Vec2(dq[3 * i], dq[3 * i + 1]), V1 = V0 + Vec2(dv[3 * i], dv[3 * i + 1]) - VC1;
     NormalLaw b;
-    if (!normal_law(m.contact, P1, V1, pl.centre, pl.radius, b)) continue;
+    if (!normal_law(m.contact, P1, V1, C1, pl.radius, b)) continue;
     const double vt1 = V1.dot(b.t) - omega1 * b.r;
     if (std::abs(vt1) < band || (vt1 > 0) == (vt0 > 0)) continue;
     if (where == Reseat::correction) {
@@ -302,7 +313,7 @@ void kinematic_move(const Model& m, int on, double dt, int i, double* q, double*
     q[3 * i] += dt * V.x(), q[3 * i + 1] += dt * V.y(), q[3 * i + 2] += dt * v[3 * i + 2];
     return;
   }
-  const Vec2 C = m.pulleys[on].centre, d = P - C;
+  const Vec2 C = m.centre(on, q), d = P - C;
   const double th = (d.x() * V.y() - d.y() * V.x()) / d.squaredNorm() * dt;
   const double c = std::cos(th), s = std::sin(th);
   q[3 * i] = C.x() + c * d.x() - s * d.y();
@@ -360,7 +371,7 @@ void convective_predict(const Model& m, const Drive& d, double t, double dt, dou
       const bool arc = w.on[a] >= 0 && w.on[a] == w.on[b];
       double seg;
       if (arc) {
-        const Vec2 C = m.pulleys[w.on[a]].centre, da = pos(a) - C, db = pos(b) - C;
+        const Vec2 C = m.centre(w.on[a], q), da = pos(a) - C, db = pos(b) - C;
         dth = std::atan2(cross(da, db), da.dot(db));
         seg = 0.5 * (da.norm() + db.norm()) * std::abs(dth);
       } else {
@@ -378,7 +389,7 @@ void convective_predict(const Model& m, const Drive& d, double t, double dt, dou
     }
     Vec2 P1, V1;
     if (w.on[a] >= 0 && w.on[a] == w.on[b]) {
-      const Vec2 C = m.pulleys[w.on[a]].centre, da = pos(a) - C, db = pos(b) - C;
+      const Vec2 C = m.centre(w.on[a], q), da = pos(a) - C, db = pos(b) - C;
       const double ra = da.norm(), rb = db.norm();
       const Vec2 ea = da / ra, eb = db / rb;
       const double c = std::cos(f * dth), s = std::sin(f * dth);

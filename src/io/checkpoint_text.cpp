@@ -182,6 +182,13 @@ void CheckpointReader::open(std::string_view key) {
   key_ = key;
 }
 
+bool CheckpointReader::next_is(std::string_view key) const {
+  if (next_ >= body_end_) return false;
+  const std::string_view rest = std::string_view(text_).substr(next_);
+  return rest.substr(0, key.size()) == key && rest.size() > key.size() &&
+         (rest[key.size()] == ' ' || rest[key.size()] == '\n');
+}
+
 void CheckpointReader::close() {
   if (pos_ < line_.size()) fail("unexpected '" + shown(line_.substr(pos_)) + "' after the values");
 }

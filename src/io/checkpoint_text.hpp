@@ -82,6 +82,8 @@ class CheckpointReader {
 
   // the next line, which must open with `key`; its values follow through the calls below
   void open(std::string_view key);
+  // whether the next line opens with `key` (a part a checkpoint holds only when the run has it)
+  bool next_is(std::string_view key) const;
   void close();  // nothing but the end of the line may follow
   double num();              // finite
   double num_or_infinity();  // finite or +inf

@@ -8,7 +8,7 @@ namespace beltsim {
 namespace {
 
 // last dotted component → unit (docs/outputs.md; element and pulley fields of the Lua API)
-constexpr std::array<std::pair<std::string_view, std::string_view>, 38> kUnits{{
+constexpr std::array<std::pair<std::string_view, std::string_view>, 40> kUnits{{
     {"t", "s"},
     // pulleys
     {"omega", "rad/s"},
@@ -16,6 +16,8 @@ constexpr std::array<std::pair<std::string_view, std::string_view>, 38> kUnits{{
     {"torque", "N·m"},
     {"belt_torque", "N·m"},
     {"hub_load", "N"},
+    {"arm_angle", "rad"},
+    {"arm_rate", "rad/s"},
     {"torque_mean", "N·m"},
     {"belt_torque_mean", "N·m"},
     {"contact_arc", "m"},

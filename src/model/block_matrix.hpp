@@ -8,7 +8,8 @@
 //   [ U_{n-1}  L_{n-1} D_{n-1} |  ]     Ri : np×3, pulley rows × element columns
 //   [ R0 R1 ...         | G  ]     G  : np×np
 //
-// Storage is dense per block so that the pattern never changes while integrating.
+// The border (np columns and rows here) holds the pulleys and then the tensioner arms
+// (Model::n_border). Storage is dense per block so that the pattern never changes while integrating.
 #pragma once
 
 #include <vector>

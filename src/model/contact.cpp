@@ -11,6 +11,8 @@
 // The normal force has no moment about the pulley centre. Potential c1·p³/3 + c2·p²/2;
 // dissipated power (N - N_el)·ṗ with N_el = c1·p² + c2·p (damping, and the work the clamp removes).
 // Friction of the same pair is in friction.cpp; this file loops over pairs and assembles both.
+// A pulley on a tensioner arm: P and V above are relative to its moving centre, and the arm takes
+// the reaction of the pairs' forces (tensioner.cpp).
 #include <cmath>
 #include <limits>
 
@@ -33,13 +35,14 @@ NormalJacobian normal_law_derivatives(const Contact& c, const Vec2& V, const Nor
   return d;
 }
 
-void contact_forces(const Model& m, const Drive& d, const ContactList& pairs, double* f, double* f_pulley,
-                    double* e_rate) {
+void contact_forces(const Model& m, const Drive& d, const double* q, const ContactList& pairs, double* f,
+                    double* f_pulley, double* e_rate) {
   // pairs come pulley by pulley: each pulley's moment is summed over its pairs, then added
   int at = 0;
   const int np = static_cast<int>(pairs.size());
   for (int j = 0; j < m.n_p(); ++j) {
     double moment = 0, omega = 0;
+    Vec2 load = Vec2::Zero();  // Σ F over the pairs: the belt's hub load is its negative
     for (; at < np && pairs[at].j == j; ++at) {
       const ContactPair& c = pairs[at];
       const NormalLaw& nl = c.nl;
@@ -52,6 +55,7 @@ void contact_forces(const Model& m, const Drive& d, const ContactList& pairs, do
       const Vec2 F = nl.N * nl.n - fl.mu_eff * nl.N * nl.t;
       f[3 * i] += F.x();
       f[3 * i + 1] += F.y();
+      load += F;
       moment += nl.r * fl.mu_eff * nl.N;
       if (e_rate) e_rate[kDissFriction] += fl.mu_eff * nl.N * fl.vT;
     }
@@ -60,27 +64,33 @@ void contact_forces(const Model& m, const Drive& d, const ContactList& pairs, do
     } else if (e_rate) {
       e_rate[kWorkTorques] -= moment * omega;  // the drive holds the speed against the belt
     }
+    const int a = m.pulleys[j].arm;
+    if (a >= 0) f_pulley[m.n_p() + a] -= load.dot(arm_lever(m, a, q));
   }
 }
 
-void contact_jacobian(const Model& m, const Drive& d, double t, const double* v, const ContactList& pairs,
-                      BlockMatrix& K, BlockMatrix& C, double* f_t, double* dM_dOmega) {
+void contact_jacobian(const Model& m, const Drive& d, double t, const double* q, const double* v,
+                      const ContactList& pairs, BlockMatrix& K, BlockMatrix& C, double* f_t, double* dM_dOmega) {
   int at = 0;
   const int np = static_cast<int>(pairs.size());
   for (int j = 0; j < m.n_p(); ++j) {
     const bool kinematic = d.kinematic(j);
     const double omega_rate = kinematic ? d.speed_rate(j, t) : 0.0;
+    const Vec2 vc = m.centre_velocity(j, q, v);  // the laws take velocities relative to the centre
+    const int arm = m.pulleys[j].arm;
     double dmo = 0;  // Σ ∂M/∂Ω over the pairs (the block is zero before: the same sum as adding in place)
     for (; at < np && pairs[at].j == j; ++at) {
       const ContactPair& c = pairs[at];
       if (!c.touching || !c.nl.pushing) continue;
       const int i = c.i;
-      const Vec2 V(v[3 * i], v[3 * i + 1]);
+      const Vec2 V = Vec2(v[3 * i], v[3 * i + 1]) - vc;
       const NormalLaw& nl = c.nl;
       const NormalJacobian dn = normal_law_derivatives(m.contact, V, nl);
       // normal force
-      K.diag[i].topLeftCorner<2, 2>() += nl.n * dn.dN_dP + nl.N / nl.r * nl.t * nl.t.transpose();
-      C.diag[i].topLeftCorner<2, 2>() += nl.n * dn.dN_dV;
+      const Eigen::Matrix2d dNn_dP = nl.n * dn.dN_dP + nl.N / nl.r * nl.t * nl.t.transpose();
+      const Eigen::Matrix2d dNn_dV = nl.n * dn.dN_dV;
+      K.diag[i].topLeftCorner<2, 2>() += dNn_dP;
+      C.diag[i].topLeftCorner<2, 2>() += dNn_dV;
       // friction
       PairJacobian J;
       friction_jacobian(nl, dn, c.fl, V, c.omega, J);
@@ -98,6 +108,10 @@ void contact_jacobian(const Model& m, const Drive& d, double t, const double* v,
       K.pulley_elem.block<1, 2>(j, 3 * i) += J.dM_dP;
       C.pulley_elem.block<1, 2>(j, 3 * i) += J.dM_dV;
       dmo += J.dM_dOmega;
+      if (arm >= 0) {
+        const Vec2 F = nl.N * nl.n - c.fl.mu_eff * nl.N * nl.t;
+        arm_pair_jacobian(m, arm, q, v, F, dNn_dP + J.dF_dP, dNn_dV + J.dF_dV, J, i, K, C);
+      }
     }
     if (kinematic) continue;
     if (dM_dOmega) {
@@ -110,9 +124,11 @@ void contact_jacobian(const Model& m, const Drive& d, double t, const double* v,
 
 double contact_potential(const Model& m, const double* q) {
   double u = 0;
-  for (const Pulley& pl : m.pulleys) {
+  for (int j = 0; j < m.n_p(); ++j) {
+    const Pulley& pl = m.pulleys[j];
+    const Vec2 centre = m.centre(j, q);
     for (int i = 0; i < m.belt.n; ++i) {
-      const double r = (Vec2(q[3 * i], q[3 * i + 1]) - pl.centre).norm();
+      const double r = (Vec2(q[3 * i], q[3 * i + 1]) - centre).norm();
       const double p = pl.radius - r;
       if (p > 0) u += m.contact.c1 * p * p * p / 3.0 + m.contact.c2 * p * p / 2.0;
     }

@@ -75,7 +75,8 @@ struct PairJacobian {
 void friction_jacobian(const NormalLaw& nl, const NormalJacobian& dn, const FrictionLaw& fl, const Vec2& V, double omega,
                        PairJacobian& J);
 
-// One element–pulley pair of a contact pass.
+// One element–pulley pair of a contact pass. On a tensioner arm's pulley the laws take the
+// element's position and velocity relative to the pulley's moving centre (Model::centre).
 struct ContactPair {
   int i = 0, j = 0;        // element, pulley
   bool touching = false;   // the element's centre is inside the pulley's contact circle (p > 0)
@@ -96,13 +97,15 @@ inline void contact_pass(const Model& m, const Drive& d, double t, const double*
   for (int j = 0; j < m.n_p(); ++j) {
     const Pulley& pl = m.pulleys[j];
     const double omega = d.omega(m, j, t, v);
+    // on a tensioner arm the centre moves: the laws see the element relative to it
+    const Vec2 centre = m.centre(j, q), vc = m.centre_velocity(j, q, v);
     for (int i = span.lo; i < span.hi; ++i) {
-      const Vec2 P(q[3 * i], q[3 * i + 1]), V(v[3 * i], v[3 * i + 1]);
+      const Vec2 P(q[3 * i], q[3 * i + 1]), V = Vec2(v[3 * i], v[3 * i + 1]) - vc;
       ContactPair c;
-      c.touching = normal_law(m.contact, P, V, pl.centre, pl.radius, c.nl);
+      c.touching = normal_law(m.contact, P, V, centre, pl.radius, c.nl);
       if (!c.touching) {
         if (which == Pairs::touching) continue;
-        c.nl.r = (P - pl.centre).norm();
+        c.nl.r = (P - centre).norm();
         c.nl.p = pl.radius - c.nl.r;
       } else {
         c.fl = friction_law(d.mu[i], m.friction.dv, c.nl, V, omega);

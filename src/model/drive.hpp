@@ -42,8 +42,9 @@ struct Drive {
   // kinematic pulley, whose row is its prescribed acceleration (rhs.cpp)
   // (inline: the solvers call it per coordinate, 1.8 % of the dry second's instructions out of line)
   double mass(const Model& m, int k) const {
-    if (k < 3 * m.belt.n) return m.mass_of(k);
-    return pulleys[k - 3 * m.belt.n].kinematic ? 1.0 : m.mass_of(k);
+    const int j = k - 3 * m.belt.n;
+    if (j < 0 || j >= m.n_p()) return m.mass_of(k);
+    return pulleys[j].kinematic ? 1.0 : m.mass_of(k);
   }
   // times at which some law has a kink (table breakpoints, ramp ends)
   std::vector<double> breakpoints() const;

@@ -94,14 +94,31 @@ double bending_potential(const Model& m, const double* q);
 struct ContactPair;
 using ContactList = std::vector<ContactPair>;
 // adds the pairs' forces to the elements' rows of f and their moments to f_pulley[j] (f + 3n for
-// the whole belt; the moments of a kinematic pulley go to the energy of its drive instead)
-void contact_forces(const Model& m, const Drive& d, const ContactList& pairs, double* f, double* f_pulley,
-                    double* e_rate);
+// the whole belt; the moments of a kinematic pulley go to the energy of its drive instead), and
+// the moments of their reactions about a tensioner arm's pivot to f_pulley[np + arm]
+void contact_forces(const Model& m, const Drive& d, const double* q, const ContactList& pairs, double* f,
+                    double* f_pulley, double* e_rate);
 // f_t (may be null) receives ∂f/∂t through the prescribed speeds of kinematic pulleys;
 // dM_dOmega[j] receives the sum over the pairs of pulley j's ∂M/∂Ω (null: added to C.pulley_pulley)
-void contact_jacobian(const Model& m, const Drive& d, double t, const double* v, const ContactList& pairs,
-                      BlockMatrix& K, BlockMatrix& C, double* f_t, double* dM_dOmega);
+void contact_jacobian(const Model& m, const Drive& d, double t, const double* q, const double* v,
+                      const ContactList& pairs, BlockMatrix& K, BlockMatrix& C, double* f_t, double* dM_dOmega);
 double contact_potential(const Model& m, const double* q);
+
+// tensioner arms, tensioner.cpp: the spring, damper and friction on each arm; the lever ∂c/∂psi
+// of the arm's pulley centre; the terms a contact pair on the arm's pulley adds to the Jacobian
+// through the moving centre (F, dF_dP, dF_dV: the pair's force on its element and its derivatives
+// w.r.t. the element's relative position and velocity, J: its friction Jacobian)
+struct PairJacobian;
+inline Vec2 arm_lever(const Model& m, int a, const double* q) {
+  const double psi = q[m.arm_coord(a)];
+  return m.arms[a].length * Vec2(-std::sin(psi), std::cos(psi));
+}
+void arm_forces(const Model& m, const double* q, const double* v, double* f, double* e_rate);
+void arm_jacobian(const Model& m, const double* q, const double* v, BlockMatrix& K, BlockMatrix& C);
+void arm_pair_jacobian(const Model& m, int a, const double* q, const double* v, const Vec2& F,
+                       const Eigen::Matrix2d& dF_dP, const Eigen::Matrix2d& dF_dV, const PairJacobian& J, int i,
+                       BlockMatrix& K, BlockMatrix& C);
+double arm_potential(const Model& m, const double* q);
 
 // pulley equations (eq. 8): applied torques and gravity on the elements, pulley.cpp
 void pulley_forces(const Model& m, const Drive& d, double t, const double* v, double* f, double* e_rate);

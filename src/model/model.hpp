@@ -4,15 +4,17 @@
 // plain arrays laid out as
 //
 //   y = [ q (n_coord) | v (n_coord) | e (n_energy) ]
-//   q = [ x_0 y_0 phi_0 | x_1 y_1 phi_1 | ... | x_{n-1} y_{n-1} phi_{n-1} | theta_0 ... theta_{np-1} ]
+//   q = [ x_0 y_0 phi_0 | ... | x_{n-1} y_{n-1} phi_{n-1} | theta_0 ... theta_{np-1} | psi_0 ... psi_{na-1} ]
 //   v = the time derivatives of q, in the same order (element velocities [m/s], [rad/s];
-//       pulley speeds Omega_j [rad/s]);
+//       pulley speeds Omega_j [rad/s]; tensioner arm rates [rad/s]);
 //   e = running integrals of power, present only when energy tracking is on (see EnergyIndex).
 //
+// The pulleys' angles and the arms' angles are the border of the belt's ring pattern (n_border).
 // SI units throughout; counter-clockwise positive (z out of the page), y up. The model has no defaults: a scene's
 // come from the parameter table (scene/parameters.hpp) and the builder copies them in.
 #pragma once
 
+#include <cmath>
 #include <string>
 #include <vector>
 
@@ -26,10 +28,27 @@ enum class WrapSide { inside, back };  // pulley inside the belt loop, or on the
 
 struct Pulley {
   std::string name;
-  Vec2 centre{0, 0};         // [m], fixed
+  Vec2 centre{0, 0};         // [m], fixed (on a tensioner arm: where the arm holds it at t = 0)
   double radius = 0;         // [m], contact radius r_p of the pitch line
   double inertia = 0;        // [kg·m²] about its axis
   WrapSide wrap = WrapSide::inside;
+  int arm = -1;              // the tensioner arm carrying its centre (Model::arms), -1: none
+};
+
+// A spring-loaded tensioner arm (tensioner.cpp): pulley `pulley`'s centre turns about `pivot` at
+// the arm's angle psi, c = pivot + length·(cos psi, sin psi). Its law is at the top of tensioner.cpp.
+struct Arm {
+  int pulley = 0;
+  Vec2 pivot{0, 0};              // [m]
+  double length = 0;             // [m] pivot to the pulley's centre
+  double inertia = 0;            // [kg·m²] about the pivot, the pulley's mass included
+  double stiffness = 0;          // k [N·m/rad]
+  double free_angle = 0;         // psi_0 [rad]: the spring's moment is -k·(psi - psi_0)
+  double damping = 0;            // c [N·m·s/rad]
+  double friction_torque = 0;    // T_f [N·m]
+  double friction_speed = 0;     // w_f [rad/s]: the friction torque's tanh width
+  double asymmetric = 0;         // damping and friction times this while the belt pushes the arm back
+  int press = 1;                 // the sense (+1 ccw) in which the spring presses the pulley on the belt
 };
 
 // Per-SDE belt properties (converted from rigidities by the scene build, scene/scene.cpp).
@@ -70,6 +89,7 @@ enum EnergyIndex {
 
 struct Model {
   std::vector<Pulley> pulleys;
+  std::vector<Arm> arms;          // tensioner arms, each carrying one pulley
   Belt belt;
   Contact contact;
   Friction friction;
@@ -78,15 +98,34 @@ struct Model {
 
   int n_el() const { return belt.n; }
   int n_p() const { return static_cast<int>(pulleys.size()); }
-  int n_coord() const { return 3 * belt.n + n_p(); }
+  int n_arm() const { return static_cast<int>(arms.size()); }
+  int n_border() const { return n_p() + n_arm(); }  // the coordinates beside the elements
+  int n_coord() const { return 3 * belt.n + n_border(); }
   int n_energy() const { return track_energy ? kEnergyCount : 0; }
   int n_state() const { return 2 * n_coord() + n_energy(); }
   int pulley_coord(int j) const { return 3 * belt.n + j; }
+  int arm_coord(int a) const { return 3 * belt.n + n_p() + a; }
+  // pulley j's centre in the positions q, and its velocity (zero but on an arm)
+  Vec2 centre(int j, const double* q) const {
+    const Pulley& p = pulleys[j];
+    if (p.arm < 0) return p.centre;
+    const Arm& a = arms[p.arm];
+    const double psi = q[arm_coord(p.arm)];
+    return a.pivot + a.length * Vec2(std::cos(psi), std::sin(psi));
+  }
+  Vec2 centre_velocity(int j, const double* q, const double* v) const {
+    const Pulley& p = pulleys[j];
+    if (p.arm < 0) return Vec2::Zero();
+    const Arm& a = arms[p.arm];
+    const double psi = q[arm_coord(p.arm)];
+    return a.length * v[arm_coord(p.arm)] * Vec2(-std::sin(psi), std::cos(psi));
+  }
   // the mass or inertia of coordinate k: an element's mass [kg] or rotational inertia [kg·m²], a
-  // pulley's inertia (a kinematic pulley's row has unit mass instead: Drive::mass)
+  // pulley's or an arm's inertia (a kinematic pulley's row has unit mass instead: Drive::mass)
   double mass_of(int k) const {
     if (k < 3 * belt.n) return (k % 3 == 2) ? belt.rot_inertia : belt.mass;
-    return pulleys[k - 3 * belt.n].inertia;
+    if (k < 3 * belt.n + n_p()) return pulleys[k - 3 * belt.n].inertia;
+    return arms[k - 3 * belt.n - n_p()].inertia;
   }
 };
 

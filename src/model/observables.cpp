@@ -85,6 +85,9 @@ PulleyObs pulley_with(const Model& m, const Drive& d, double t, const double* y,
   o.belt_torque = pulley_load(pairs, j, &o.hub);
   o.hub_load = o.hub.norm();
   o.torque = d.kinematic(j) ? m.pulleys[j].inertia * d.speed_rate(j, t) - o.belt_torque : applied_torque(m, d, t, v, j);
+  const int a = m.pulleys[j].arm;
+  o.arm_angle = a >= 0 ? q[m.arm_coord(a)] : std::numeric_limits<double>::quiet_NaN();
+  o.arm_rate = a >= 0 ? v[m.arm_coord(a)] : std::numeric_limits<double>::quiet_NaN();
   return o;
 }
 }  // namespace

@@ -64,6 +64,8 @@ struct PulleyObs {
   double torque = 0;       // [N·m] applied (for a kinematic pulley: what the drive supplies)
   double belt_torque = 0;  // [N·m] moment of the belt's friction on it
   double hub_load = 0;     // [N] magnitude of the belt's resultant force on it
+  double arm_angle = 0;    // [rad] its tensioner arm's angle (NaN without an arm)
+  double arm_rate = 0;     // [rad/s] the arm's angular speed (NaN without an arm)
   Vec2 hub{0, 0};          // [N] that force as a vector
   // arcs [m] of belt length: the elements in each state on this pulley, each standing for one
   // pitch l of belt (classify_contact); contact_arc = slip_arc + stick_arc

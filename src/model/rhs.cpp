@@ -27,7 +27,7 @@ void all_forces(const Model& m, const Drive& d, double t, const double* q, const
     sde_forces(m, q, v, f, e_rate, &w.axes, all);
     bending_forces(m, q, v, f, e_rate, all);
     contact_pass(m, d, t, q, v, all, w.contacts[0]);
-    contact_forces(m, d, w.contacts[0], f, f + 3 * n, e_rate);
+    contact_forces(m, d, q, w.contacts[0], f, f + 3 * n, e_rate);
   } else {
     Halves& h = *w.halves;
     h.two.run([&](int p) {
@@ -37,7 +37,7 @@ void all_forces(const Model& m, const Drive& d, double t, const double* q, const
       sde_forces(m, q, v, f, e, &w.axes, half(m, p));
       bending_forces(m, q, v, f, e, half(m, p));
       contact_pass(m, d, t, q, v, half(m, p), w.contacts[p]);
-      contact_forces(m, d, w.contacts[p], f, sums, e);
+      contact_forces(m, d, q, w.contacts[p], f, sums, e);
     });
     const double *s0 = h.sum(0), *s1 = h.sum(1);
     for (int j = 0; j < np; ++j) f[3 * n + j] += s0[j] + s1[j];
@@ -45,6 +45,7 @@ void all_forces(const Model& m, const Drive& d, double t, const double* q, const
       for (int c = 0; c < kEnergyCount; ++c) e_rate[c] += s0[np + c] + s1[np + c];
   }
   pulley_forces(m, d, t, v, f, e_rate);
+  if (!m.arms.empty()) arm_forces(m, q, v, f, e_rate);
 }
 }  // namespace
 
@@ -58,7 +59,8 @@ Halves::Halves(const Model& m) {
 }
 
 Workspace::Workspace(const Model& m, bool split) {
-  if (split && m.belt.n >= kHalvesElements) halves = std::make_unique<Halves>(m);
+  // a tensioner arm's terms join border rows and columns that both halves would write: one thread
+  if (split && m.belt.n >= kHalvesElements && m.arms.empty()) halves = std::make_unique<Halves>(m);
 }
 
 void forces(const Model& m, const Drive& d, double t, const double* y, double* f) {
@@ -85,8 +87,8 @@ void rhs(const Model& m, const Drive& d, double t, const double* y, double* dy, 
 }
 
 void Jacobian::resize(const Model& m) {
-  K.resize(m.n_el(), m.n_p());
-  C.resize(m.n_el(), m.n_p());
+  K.resize(m.n_el(), m.n_border());
+  C.resize(m.n_el(), m.n_border());
   f_t.setZero(m.n_coord());
 }
 
@@ -105,7 +107,7 @@ void jacobian(const Model& m, const Drive& d, double t, const double* y, Jacobia
     sde_jacobian(m, q, v, J.K, J.C, &w->axes, all);
     bending_jacobian(m, q, v, J.K, J.C, all);
     contact_pass(m, d, t, q, v, all, w->contacts[0]);
-    contact_jacobian(m, d, t, v, w->contacts[0], J.K, J.C, J.f_t.data(), nullptr);
+    contact_jacobian(m, d, t, q, v, w->contacts[0], J.K, J.C, J.f_t.data(), nullptr);
   } else {
     Halves& h = *w->halves;
     J.K.pulley_pulley.setZero();
@@ -120,12 +122,13 @@ void jacobian(const Model& m, const Drive& d, double t, const double* y, Jacobia
       sde_jacobian(m, q, v, J.K, J.C, &w->axes, half(m, p));
       bending_jacobian(m, q, v, J.K, J.C, half(m, p));
       contact_pass(m, d, t, q, v, half(m, p), w->contacts[p]);
-      contact_jacobian(m, d, t, v, w->contacts[p], J.K, J.C, J.f_t.data(), dmo);
+      contact_jacobian(m, d, t, q, v, w->contacts[p], J.K, J.C, J.f_t.data(), dmo);
     });
     const double *d0 = h.sum(0) + np + kEnergyCount, *d1 = h.sum(1) + np + kEnergyCount;
     for (int j = 0; j < np; ++j) J.C.pulley_pulley(j, j) += d0[j] + d1[j];
   }
   pulley_jacobian(m, d, t, v, J.C, J.f_t.data());
+  if (!m.arms.empty()) arm_jacobian(m, q, v, J.K, J.C);
 }
 
 Energy energy(const Model& m, const Drive& d, double t, const double* y) {
@@ -138,6 +141,8 @@ Energy energy(const Model& m, const Drive& d, double t, const double* y) {
     const double w = d.omega(m, j, t, v);
     e.kinetic += 0.5 * m.pulleys[j].inertia * w * w;
   }
+  for (int a = 0; a < m.n_arm(); ++a) e.kinetic += 0.5 * m.arms[a].inertia * v[m.arm_coord(a)] * v[m.arm_coord(a)];
+  e.arm = arm_potential(m, q);
   e.sde = sde_potential(m, q);
   e.bending = bending_potential(m, q);
   e.contact = contact_potential(m, q);

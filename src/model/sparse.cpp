@@ -6,7 +6,7 @@ namespace beltsim {
 
 void assemble(const Model& m, const Drive& d, double alpha, double beta, const BlockMatrix& C, const BlockMatrix& K, int rows,
               Eigen::SparseMatrix<double>& A) {
-  const int n = m.n_el(), np = m.n_p(), ne = 3 * n;
+  const int n = m.n_el(), np = m.n_border(), ne = 3 * n;
   std::vector<Eigen::Triplet<double>> t;
   t.reserve(27 * n + 6 * n * np + np * np + rows);
   auto block = [&](int bi, int bj, const Mat3& c, const Mat3& k) {
@@ -35,12 +35,12 @@ void assemble(const Model& m, const Drive& d, double alpha, double beta, const B
 }
 
 void assemble_ode_jacobian(const Model& m, const Drive& d, const BlockMatrix& K, const BlockMatrix& C, Eigen::SparseMatrix<double>& J) {
-  const int n = m.n_el(), np = m.n_p(), ne = 3 * n, N = m.n_coord(), S = m.n_state();
+  const int n = m.n_el(), np = m.n_border(), ne = 3 * n, N = m.n_coord(), S = m.n_state();
   std::vector<Eigen::Triplet<double>> t;
   t.reserve(2 * 27 * n + 4 * ne * np + 2 * np * np + 2 * S);
   for (int k = 0; k < S; ++k) t.emplace_back(k, k, 0.0);
   for (int k = 0; k < N; ++k) {
-    const bool prescribed = k >= ne && d.kinematic(k - ne);
+    const bool prescribed = k >= ne && k - ne < m.n_p() && d.kinematic(k - ne);
     if (!prescribed) t.emplace_back(k, N + k, 1.0);
   }
   auto block = [&](int bi, int bj, const Mat3& c, const Mat3& k) {

@@ -260,12 +260,21 @@ void FrameBuilder::build(double t, const double* y, DrawList& out, const Drive* 
   const double px = 1.0 / cam_.scale;  // one pixel in metres
   auto P = [&](const Vec2& w) { return cam_.to_px(w); };
 
+  // tensioner arms under their pulleys: a bar from the pivot to the pulley's centre, the pivot a
+  // rimmed disc
+  for (const Arm& a : m.arms) {
+    const Vec2 pivot = P(a.pivot), c = P(m.centre(a.pulley, q));
+    const double w = std::max(3.0, 0.25 * m.pulleys[a.pulley].radius * cam_.scale);
+    out.line(pivot, c, w, kRim);
+    out.disc(pivot, 0.8 * w, kRim, 32);
+    out.disc(pivot, 0.4 * w, kPulley, 24);
+  }
   // pulleys: disc up to the belt's inner edge, rim, spokes turning with θ, a red marker spoke
   const double h = 0.5 * thickness_;
   for (int j = 0; j < m.n_p(); ++j) {
     const Pulley& p = m.pulleys[j];
     const double R = std::max(p.radius - h - sc_.penetration[j], 0.2 * p.radius);
-    const Vec2 c = P(p.centre);
+    const Vec2 c = P(m.centre(j, q));  // on a tensioner arm it moves
     const double Rp = R * cam_.scale;
     out.disc(c, Rp, kPulley);
     out.ring(c, Rp - std::max(1.5, 0.04 * Rp), Rp, kRim);

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <atomic>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -107,5 +108,21 @@ std::string settle(Scene& sc, const BeltDef& bd, bool rest_given, const std::ato
 
 // 10. throws when the static state, rest length, tension or residual is not finite
 void check_finite(const Scene& sc, const SceneDef& d, double tension);
+
+// Tensioner arms (scene/tensioner.cpp). validate_tensioner: throws on what the parameter table's
+// rules (validate) do not cover: the pivot, the arm's length, a prescribed speed; make_arms: the
+// model's arms from the pulleys' tensioner definitions, each at its installed angle (after
+// make_pulleys); set_arm_angles: those angles into
+// the state y (before the static solve, which holds them); balance_arms: each spring's free angle
+// and pressing sense from the belt's moment about its pivot in the static state sc.y0.
+void validate_tensioner(const PulleyDef& p);
+void make_arms(const SceneDef& d, Model& m);
+void set_arm_angles(const Model& m, Eigen::VectorXd& y);
+void balance_arms(Scene& sc);
+// the preload that sets the belt's tension at rest (the one arm that gives preload or angle0),
+// none when no arm does; throws when two arms do or the belt's tension is given as well
+std::optional<double> tensioner_preload(const SceneDef& d);
+// the belt's moment about arm a's pivot in the state y [N·m]
+double arm_belt_moment(const Scene& sc, int a);
 
 }  // namespace beltsim::build

@@ -19,7 +19,9 @@ std::vector<SceneInput> scene_inputs(const SceneDef& d) {
   std::vector<SceneInput> in;
   auto add = [&](const Parameter* par, const PulleyDef* p) {
     if (par->applies && !par->applies(d)) return;
-    const std::string name = p ? "pulley." + p->name + "." + std::string(par->key) : par->dotted();
+    // a pulley's: "pulley.driver.radius", "pulley.idler.tensioner.stiffness"
+    const std::string name =
+        p ? "pulley." + p->name + par->dotted().substr(std::string_view("pulley").size()) : par->dotted();
     const std::string text = par->word ? par->word(d, p ? *p : PulleyDef{}) : "";
     const std::optional<double> v = value_of(*par, d, p);
     if (text.empty() && !v) return;  // read by its own code, or an alternative not given
@@ -27,8 +29,11 @@ std::vector<SceneInput> scene_inputs(const SceneDef& d) {
   };
   for (const char* table : {"belt", "belt.sde", "contact", "friction", "scene"})
     for (const Parameter* par : parameters_of(table)) add(par, nullptr);
-  for (const PulleyDef& p : d.pulleys)
+  for (const PulleyDef& p : d.pulleys) {
     for (const Parameter* par : parameters_of("pulley")) add(par, &p);
+    if (p.tensioner)
+      for (const Parameter* par : parameters_of("pulley.tensioner")) add(par, &p);
+  }
   return in;
 }
 

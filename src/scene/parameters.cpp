@@ -57,6 +57,44 @@ constexpr Parameter kParameters[] = {
      nullptr, nullptr},
     {"pulley", "speed", K::other, "rad/s", {}, "", W::none, R::none,
      "prescribed speed law: the pulley becomes kinematic (Laws, below)", nullptr, nullptr, nullptr},
+    {"pulley", "tensioner", K::other, "", {}, "none: a fixed centre", W::none, R::none,
+     "its centre on a spring-loaded arm (table below)", nullptr, nullptr, nullptr},
+
+    // ---- a pulley's tensioner = {...}: its centre on a spring-loaded arm ----
+    {"pulley.tensioner", "pivot", K::other, "m", {}, "", W::none, R::none, "{x, y} of the arm's pivot; required",
+     nullptr, nullptr, nullptr},
+    {"pulley.tensioner", "inertia", K::number, "kg·m²", {}, "", W::none, R::positive,
+     "the arm's moment of inertia about the pivot, the pulley's mass included; required",
+     [](SceneDef&, PulleyDef& p) -> Slot { return p.tensioner ? Slot(&p.tensioner->inertia) : Slot(); }, nullptr,
+     nullptr},
+    {"pulley.tensioner", "stiffness", K::number, "N·m/rad", {}, "", W::none, R::positive,
+     "the spring's stiffness k; required",
+     [](SceneDef&, PulleyDef& p) -> Slot { return p.tensioner ? Slot(&p.tensioner->stiffness) : Slot(); }, nullptr,
+     nullptr},
+    {"pulley.tensioner", "preload", K::number, "N·m", {}, "", W::none, R::positive,
+     "the spring's moment at the installed angle; sets the belt's tension at rest",
+     [](SceneDef&, PulleyDef& p) -> Slot { return p.tensioner ? Slot(&p.tensioner->preload) : Slot(); }, nullptr,
+     nullptr},
+    {"pulley.tensioner", "angle0", K::number, "rad", {}, "", W::none, R::finite,
+     "the spring's free angle, instead of preload; sets the belt's tension at rest",
+     [](SceneDef&, PulleyDef& p) -> Slot { return p.tensioner ? Slot(&p.tensioner->angle0) : Slot(); }, nullptr,
+     nullptr},
+    {"pulley.tensioner", "damping", K::number, "N·m·s/rad", 0, "", W::ours, R::non_negative,
+     "the arm's viscous damping c",
+     [](SceneDef&, PulleyDef& p) -> Slot { return p.tensioner ? Slot(&p.tensioner->damping) : Slot(); }, nullptr,
+     nullptr},
+    {"pulley.tensioner", "friction_torque", K::number, "N·m", 0, "", W::ours, R::non_negative,
+     "the pivot's friction torque T_f (T_f·tanh(ψ̇/friction_speed))",
+     [](SceneDef&, PulleyDef& p) -> Slot { return p.tensioner ? Slot(&p.tensioner->friction_torque) : Slot(); },
+     nullptr, nullptr},
+    {"pulley.tensioner", "friction_speed", K::number, "rad/s", 0.01, "", W::ours, R::positive,
+     "the width of the friction torque's tanh",
+     [](SceneDef&, PulleyDef& p) -> Slot { return p.tensioner ? Slot(&p.tensioner->friction_speed) : Slot(); },
+     nullptr, nullptr},
+    {"pulley.tensioner", "asymmetric", K::number, "", 1, "", W::ours, R::positive,
+     "damping and friction times this while the belt pushes the arm back (1: symmetric)",
+     [](SceneDef&, PulleyDef& p) -> Slot { return p.tensioner ? Slot(&p.tensioner->asymmetric) : Slot(); }, nullptr,
+     nullptr},
 
     // ---- belt = {...} ----
     {"belt", "elements", K::integer, "", 60, "", W::paper, R::at_least_three, "number of elements",
@@ -252,6 +290,7 @@ std::string_view rule_text(Rule r) {
 std::string parameters_markdown() {
   std::string md;
   for (const auto& [table, title] : {std::pair{"scene", "`beltsim.scene{...}`"}, std::pair{"pulley", "Pulley table"},
+                                     std::pair{"pulley.tensioner", "A pulley's `tensioner` table"},
                                      std::pair{"belt", "Belt table"}, std::pair{"belt.sde", "`belt.sde` table"},
                                      std::pair{"contact", "Contact table"}, std::pair{"friction", "Friction table"}}) {
     md.append(md.empty() ? "" : "\n").append(title).append(":\n\n| key | unit | default | range | meaning |\n|---|---|---|---|---|\n");

@@ -73,4 +73,16 @@ SceneDef automotive_wet() {
   return d;
 }
 
+SceneDef automotive_tensioner() {
+  SceneDef d = automotive_wet();
+  d.belt.mu_at = nullptr;
+  TensionerDef& t = d.pulleys[1].tensioner.emplace();
+  t.pivot = {0.075, -0.14};
+  t.inertia = 1e-3;
+  t.stiffness = 30;
+  t.damping = 0.05;
+  t.friction_torque = 0.5;
+  return d;
+}
+
 }  // namespace beltsim::presets

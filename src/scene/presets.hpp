@@ -15,5 +15,9 @@ SceneDef paper_wet();
 // The automotive drive of paper §4 with our layout (docs/model.md, Our choices) (crankshaft, tensioner, alternator,
 // pump), 150 elements, 280 N; wet 30 % of the belt ending where it leaves the pump.
 SceneDef automotive_wet();
+// The same drive dry, with the idler on a tensioner arm pivoted at (0.075, -0.14) (arm 63 mm):
+// 1e-3 kg·m², 30 N·m/rad, damping 0.05 N·m·s/rad, friction torque 0.5 N·m; the spring's free
+// angle holds the belt's 280 N (scripts/automotive_tensioner.lua describes the same arm).
+SceneDef automotive_tensioner();
 
 }  // namespace beltsim::presets

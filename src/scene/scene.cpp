@@ -513,8 +513,8 @@ void check_finite(const Scene& sc, const SceneDef& d, double tension) {
 
 }  // namespace build
 
-Scene build_scene(const SceneDef& d, const std::atomic<bool>* stop) {
-  validate(d);
+namespace {
+Scene build_at(const SceneDef& d, const std::atomic<bool>* stop) {
   const BeltDef& bd = d.belt;
   const int n = bd.elements;
   Scene sc;
@@ -523,6 +523,7 @@ Scene build_scene(const SceneDef& d, const std::atomic<bool>* stop) {
   sc.reading = bd.reading;
 
   m.pulleys = build::make_pulleys(d);
+  build::make_arms(d, m);
   sc.drive = build::make_drive(d);
   const build::RouteOrder order = build::route_order(d, m.pulleys);
   sc.route_names = order.names;
@@ -553,6 +554,7 @@ Scene build_scene(const SceneDef& d, const std::atomic<bool>* stop) {
   build::walk(path, n, 0.5 * b.rigid_length, gap, &s);
 
   sc.y0 = build::place(m, path, s);
+  build::set_arm_angles(m, sc.y0);
   sc.sites = build::element_sites(path, order.names, sc.y0, s);
   sc.drive.mu = build::element_mu(bd, sc.sites);
   build::set_start_speeds(m, sc.drive, sc.y0);
@@ -566,7 +568,30 @@ Scene build_scene(const SceneDef& d, const std::atomic<bool>* stop) {
         << "fewer usually works";
     throw ParameterError(msg.str());
   }
+  build::balance_arms(sc);
   return sc;
+}
+}  // namespace
+
+Scene build_scene(const SceneDef& d, const std::atomic<bool>* stop) {
+  validate(d);
+  for (const PulleyDef& p : d.pulleys) build::validate_tensioner(p);
+  const std::optional<double> preload = build::tensioner_preload(d);
+  if (!preload) return build_at(d, stop);
+  // the preload sets the belt's tension: the belt's moment about the pivot is proportional to it
+  // (to a part in 1e3 over a doubling: the wrap angle changes little), so the ratio converges in a
+  // few builds
+  int arm = -1;
+  for (size_t j = 0; j < d.pulleys.size(); ++j)
+    if (d.pulleys[j].tensioner && (d.pulleys[j].tensioner->preload || d.pulleys[j].tensioner->angle0)) arm = static_cast<int>(j);
+  SceneDef e = d;
+  constexpr double kAgree = 1e-6;  // relative: far below the static state's own residual tension error
+  for (int it = 0;; ++it) {
+    Scene sc = build_at(e, stop);
+    const double Mb = std::abs(build::arm_belt_moment(sc, sc.model.pulleys[arm].arm));
+    if (std::abs(Mb - *preload) <= kAgree * *preload || it == 8) return sc;
+    e.belt.pretension *= *preload / Mb;
+  }
 }
 
 }  // namespace beltsim

@@ -21,6 +21,23 @@
 
 namespace beltsim {
 
+// A spring-loaded tensioner arm carrying a pulley's centre (model.hpp's Arm, its law at the top of
+// model/tensioner.cpp). The pulley's centre is where the arm holds it at t = 0, the installed
+// angle. The static initial state balances the arm: with a preload (or the free angle angle0,
+// which gives it) the belt's tension at rest is the one whose moment about the pivot the preload
+// holds; with neither, the spring's free angle is the one that holds the belt's pretension.
+struct TensionerDef {
+  Vec2 pivot{0, 0};                // [m]
+  double inertia = 0;              // [kg·m²] about the pivot, the pulley's mass included
+  double stiffness = 0;            // [N·m/rad]
+  std::optional<double> preload;   // [N·m] the spring's moment at the installed angle
+  std::optional<double> angle0;    // [rad] the spring's free angle
+  double damping = parameter_default("pulley.tensioner.damping");                  // [N·m·s/rad]
+  double friction_torque = parameter_default("pulley.tensioner.friction_torque");  // [N·m]
+  double friction_speed = parameter_default("pulley.tensioner.friction_speed");    // [rad/s]
+  double asymmetric = parameter_default("pulley.tensioner.asymmetric");
+};
+
 struct PulleyDef {
   std::string name;
   Vec2 centre{0, 0};        // [m]
@@ -30,6 +47,7 @@ struct PulleyDef {
   bool kinematic = false;   // speed prescribed by `speed` instead of driven by `torque`
   TimeSpeedLaw torque;      // [N·m]
   TimeSpeedLaw speed;       // [rad/s]
+  std::optional<TensionerDef> tensioner;  // its centre on a tensioner arm
 };
 
 // How the belt's stiffness and damping were given (docs/model.md, Parameter reading).

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <set>
 
+#include "scene/build.hpp"
 #include "scene/validate.hpp"
 
 namespace beltsim {
@@ -134,7 +135,12 @@ SceneDef definition(const Scene& sc) {
   for (int j = 0; j < m.n_p(); ++j) {
     const Pulley& p = m.pulleys[j];
     const PulleyDrive& pd = sc.drive.pulleys[j];
-    d.pulleys.push_back({p.name, p.centre, p.radius, p.inertia, p.wrap, pd.kinematic, pd.torque, pd.speed});
+    d.pulleys.push_back({p.name, p.centre, p.radius, p.inertia, p.wrap, pd.kinematic, pd.torque, pd.speed, {}});
+    if (p.arm < 0) continue;
+    const Arm& a = m.arms[p.arm];
+    TensionerDef& t = d.pulleys.back().tensioner.emplace();
+    t.pivot = a.pivot, t.inertia = a.inertia, t.stiffness = a.stiffness, t.damping = a.damping;
+    t.friction_torque = a.friction_torque, t.friction_speed = a.friction_speed, t.asymmetric = a.asymmetric;
   }
   BeltDef& b = d.belt;
   b.elements = m.belt.n;
@@ -214,6 +220,22 @@ void write_scene(CheckpointWriter& w, const Scene& sc) {
     w.line("pulley.inertia", p.inertia);
     w.word("pulley.wrap", p.wrap == WrapSide::back ? "back" : "inside");
   }
+  if (!m.arms.empty()) {  // only a scene with tensioner arms has this part
+    w.line("arms", m.n_arm());
+    for (const Arm& a : m.arms) {
+      w.line("arm.pulley", a.pulley);
+      w.fixed("arm.pivot", {a.pivot.x(), a.pivot.y()});
+      w.line("arm.length", a.length);
+      w.line("arm.inertia", a.inertia);
+      w.line("arm.stiffness", a.stiffness);
+      w.line("arm.free_angle", a.free_angle);
+      w.line("arm.damping", a.damping);
+      w.line("arm.friction_torque", a.friction_torque);
+      w.line("arm.friction_speed", a.friction_speed);
+      w.line("arm.asymmetric", a.asymmetric);
+      w.line("arm.press", a.press);
+    }
+  }
   const Belt& b = m.belt;
   w.line("belt.elements", b.n);
   w.line("belt.pitch", b.pitch);
@@ -277,6 +299,28 @@ Scene read_scene(CheckpointReader& r) {
     p.radius = r.line_num("pulley.radius");
     p.inertia = r.line_num("pulley.inertia");
     p.wrap = r.line_choice("pulley.wrap", {"inside", "back"}) == 1 ? WrapSide::back : WrapSide::inside;
+  }
+  if (r.next_is("arms")) {
+    r.open("arms");
+    const size_t na = r.group_count(11, np);
+    r.close();
+    for (size_t k = 0; k < na; ++k) {
+      Arm& a = m.arms.emplace_back();
+      a.pulley = static_cast<int>(r.line_int("arm.pulley", 0, static_cast<long>(np) - 1));
+      if (m.pulleys[a.pulley].arm >= 0) r.fail("pulley " + std::to_string(a.pulley) + " has an arm already");
+      m.pulleys[a.pulley].arm = static_cast<int>(k);
+      a.pivot = read_vec2(r, "arm.pivot");
+      a.length = r.line_num("arm.length");
+      a.inertia = r.line_num("arm.inertia");
+      a.stiffness = r.line_num("arm.stiffness");
+      a.free_angle = r.line_num("arm.free_angle");
+      a.damping = r.line_num("arm.damping");
+      a.friction_torque = r.line_num("arm.friction_torque");
+      a.friction_speed = r.line_num("arm.friction_speed");
+      a.asymmetric = r.line_num("arm.asymmetric");
+      a.press = static_cast<int>(r.line_int("arm.press", -1, 1));
+      checked(r, [&] { require_positive("arm.length", a.length, "m"); });
+    }
   }
   Belt& b = m.belt;
   b.n = static_cast<int>(r.line_int("belt.elements", 0, INT_MAX / 8));
@@ -350,7 +394,9 @@ Scene read_scene(CheckpointReader& r) {
     require_positive("belt.rigid_length", b.rigid_length, "m");
     require_positive("belt.mass", b.mass, "kg");
     require_positive("belt.rot_inertia", b.rot_inertia, "kg·m²");
-    validate(definition(sc));
+    const SceneDef def = definition(sc);
+    validate(def);
+    for (const PulleyDef& p : def.pulleys) build::validate_tensioner(p);
   } catch (const ParameterError& e) {
     error = e.what();
   }

@@ -50,7 +50,9 @@ void check_rules(const SceneDef& d, std::string_view table, const PulleyDef* p) 
     if (par->rule == Rule::none || (par->applies && !par->applies(d))) continue;
     const std::optional<double> v = value_of(*par, d, p);
     if (!v) continue;
-    const std::string what = p ? pulley_label(*p) + " " + std::string(par->key) : par->dotted();
+    // a pulley's key after its label: "radius", "tensioner.stiffness"
+    const std::string what =
+        p ? pulley_label(*p) + " " + par->dotted().substr(std::string_view("pulley.").size()) : par->dotted();
     const std::string unit(par->unit);
     require_finite(what, *v, unit);
     const bool ok = par->rule == Rule::positive         ? *v > 0
@@ -118,6 +120,7 @@ void validate(const SceneDef& d) {
     require_finite(w + " centre x", p.centre.x(), "m");
     require_finite(w + " centre y", p.centre.y(), "m");
     check_rules(d, "pulley", &p);
+    if (p.tensioner) check_rules(d, "pulley.tensioner", &p);
     if (p.kinematic) {
       validate_law(w + " speed", p.speed, true);
       if (!p.torque.is_zero()) throw ParameterError(w + ": give either a torque or a prescribed speed, not both");

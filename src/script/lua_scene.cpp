@@ -74,6 +74,21 @@ void read_numbers(lua_State* L, int idx, std::string_view table, const std::stri
   }
 }
 
+// a pulley's tensioner table at idx into p.tensioner: its pivot {x, y}, then the numbers of the
+// parameter table's "pulley.tensioner" (w names it in errors: "pulley 'idler'.tensioner")
+void read_tensioner(lua_State* L, int idx, const std::string& w, SceneDef& d, PulleyDef& p) {
+  require_table(L, idx, w);
+  check_keys(L, idx, w, keys_of("pulley.tensioner"));
+  TensionerDef& t = p.tensioner.emplace();
+  if (!field(L, idx, "pivot")) fail(L, w + ": a pivot {x, y} [m] is required");
+  t.pivot = to_vec2(L, -1, w + ".pivot");
+  lua_pop(L, 1);
+  if (!has(L, idx, "inertia")) fail(L, w + ": the arm's inertia about the pivot [kg·m²] is required");
+  if (!has(L, idx, "stiffness")) fail(L, w + ": the spring's stiffness [N·m/rad] is required");
+  if (has(L, idx, "preload") && has(L, idx, "angle0")) fail(L, w + ": give preload [N·m] or angle0 [rad], not both");
+  read_numbers(L, idx, "pulley.tensioner", w, d, p);
+}
+
 PulleyDef to_pulley(lua_State* L, int idx, const std::string& what, SceneDef& d, Context* ctx) {
   idx = lua_absindex(L, idx);
   require_table(L, idx, what);
@@ -108,6 +123,10 @@ PulleyDef to_pulley(lua_State* L, int idx, const std::string& what, SceneDef& d,
   if (field(L, idx, "speed")) {
     p.speed = to_law(L, -1, w + ".speed", true, ctx);
     p.kinematic = true;
+    lua_pop(L, 1);
+  }
+  if (field(L, idx, "tensioner")) {
+    read_tensioner(L, lua_gettop(L), w + ".tensioner", d, p);
     lua_pop(L, 1);
   }
   return p;
@@ -243,6 +262,8 @@ int l_scene(lua_State* L) {
     lua_rawgeti(L, pl, k);
     d.pulleys.push_back(to_pulley(L, -1, "pulley " + std::to_string(k), d, ctx));
     note_given(L, -1, "pulley." + d.pulleys.back().name + ".", d.given);
+    if (field(L, -1, "tensioner"))
+      note_given(L, -1, "pulley." + d.pulleys.back().name + ".tensioner.", d.given), lua_pop(L, 1);
     lua_pop(L, 1);
   }
   lua_pop(L, 1);

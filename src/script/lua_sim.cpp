@@ -146,7 +146,7 @@ int l_advance(lua_State* L) {
 // ---- reading ---------------------------------------------------------------------------------
 
 // sim:pulley(name) -> { omega [rad/s], angle [rad], torque [N·m], belt_torque [N·m], hub_load [N],
-// contact_arc, slip_arc, stick_arc [m], creep }
+// contact_arc, slip_arc, stick_arc [m], creep; on a tensioner arm arm_angle [rad], arm_rate [rad/s] }
 int l_pulley(lua_State* L) {
   Simulation& s = live(L, "pulley", {{"name", kString}});
   const int j = pulley_index(L, s, 2, "sim:pulley");
@@ -162,6 +162,7 @@ int l_pulley(lua_State* L) {
   set_number(L, "slip_arc", p.slip_arc);
   set_number(L, "stick_arc", p.stick_arc);
   set_number(L, "creep", p.creep);
+  if (!std::isnan(p.arm_angle)) set_number(L, "arm_angle", p.arm_angle), set_number(L, "arm_rate", p.arm_rate);
   return 1;
 }
 
@@ -254,6 +255,23 @@ int set_law(lua_State* L, bool speed) {
     else
       s.set_torque(j, law, law_text(law));
   });
+  return 0;
+}
+// sim:set_arm(name, { angle [rad], rate [rad/s] }): the tensioner arm's state from now
+int l_set_arm(lua_State* L) {
+  Simulation& s = live(L, "set_arm", {{"name", kString}, {"{ angle, rate }", kTable}});
+  const int j = pulley_index(L, s, 2, "sim:set_arm");
+  check_keys(L, 3, "sim:set_arm", {"angle", "rate"});
+  const std::optional<double> angle = opt_number(L, 3, "angle", "sim:set_arm");
+  const std::optional<double> rate = opt_number(L, 3, "rate", "sim:set_arm");
+  if (!angle && !rate) fail(L, "sim:set_arm: give angle [rad] or rate [rad/s]");
+  std::string error;
+  try {
+    s.set_arm(j, angle, rate);
+  } catch (const std::invalid_argument& e) {
+    error = e.what();
+  }
+  if (!error.empty()) fail(L, "sim:set_arm: " + error);
   return 0;
 }
 int l_set_torque(lua_State* L) { return set_law(L, false); }
@@ -559,7 +577,7 @@ int l_tostring(lua_State* L) {
 const luaL_Reg kMethods[] = {
     {"run_to", l_run_to},   {"advance", l_advance},       {"pulley", l_pulley},       {"element", l_element},
     {"span", l_span},       {"energy", l_energy},         {"stats", l_stats},         {"set_torque", l_set_torque},
-    {"set_speed", l_set_speed}, {"wet", l_wet},           {"set_mu", l_set_mu},       {"log", l_log},
+    {"set_speed", l_set_speed}, {"set_arm", l_set_arm}, {"wet", l_wet},           {"set_mu", l_set_mu},       {"log", l_log},
     {"every", l_every},     {"when", l_when},             {"cancel", l_cancel},       {"show", l_show},
     {"plot", l_plot},       {"save", l_save},             {"close", l_close},           {nullptr, nullptr}};
 
@@ -618,7 +636,7 @@ const std::vector<HelpEntry>& api_help() {
       {"advance", "sim:advance(dt [s]) -> { t [s], steps, wall [s], interrupted }", "integrates dt further"},
       {"t", "sim.t", "the current simulated time [s]"},
       {"pulley", "sim:pulley(name)", "{ omega [rad/s], angle [rad], torque, belt_torque [N·m], hub_load [N], contact_arc, slip_arc, "
-                             "stick_arc [m], creep }"},
+                             "stick_arc [m], creep; arm_angle [rad], arm_rate [rad/s] on a tensioner arm }"},
       {"element", "sim:element(i)",
        "{ x, y [m], phi [rad], s [m], tension, normal, friction [N], slip [m/s], mu, pulley, state } of element i (0-based)"},
       {"span", "sim:span(a, b) -> [N]", "tension of the span between pulleys a and b"},
@@ -626,6 +644,7 @@ const std::vector<HelpEntry>& api_help() {
       {"stats", "sim:stats()", "steps, rejected, rhs, jacobians, factorizations, wall [s], frames, ..."},
       {"set_torque", "sim:set_torque(name, law [N·m])", "a new torque law on a pulley from now (events.csv)"},
       {"set_speed", "sim:set_speed(name, law [rad/s])", "a prescribed speed on a pulley from now"},
+      {"set_arm", "sim:set_arm(name, { angle [rad], rate [rad/s] })", "moves a tensioner arm now (events.csv)"},
       {"wet", "sim:wet{ from [m], to [m], mu }", "μ on the belt between s = from and to (belt coordinate) from now"},
       {"set_mu", "sim:set_mu(mu | {mu...} | function(site))", "μ of every element from now"},
       {"log", "sim:log(text)", "a note in events.csv at the current time"},

@@ -96,6 +96,8 @@ std::vector<std::string> timeseries_columns(const Scene& sc, size_t probes) {
     for (const char* q : {".omega", ".torque", ".belt_torque", ".hub_load", ".torque_mean", ".belt_torque_mean",
                           ".contact_arc", ".slip_arc", ".stick_arc", ".creep"})
       c.push_back(p.name + q);
+  for (const Pulley& p : sc.model.pulleys)
+    if (p.arm >= 0) c.push_back(p.name + ".arm_angle"), c.push_back(p.name + ".arm_rate");
   for (size_t k = 0; k < sc.route.spans.size(); ++k)
     for (const char* q : {".tension", ".tension_mean"}) c.push_back(span_name(sc, k) + q);
   for (size_t k = 0; k < probes; ++k)

@@ -175,6 +175,8 @@ std::vector<double> Simulation::sample_row() const {
     row.insert(row.end(), {p.omega, p.torque, p.belt_torque, p.hub_load, mean(2 * j), mean(2 * j + 1), p.contact_arc,
                            p.slip_arc, p.stick_arc, p.creep});
   }
+  for (size_t j = 0; j < o.pulleys.size(); ++j)
+    if (m.pulleys[j].arm >= 0) row.insert(row.end(), {o.pulleys[j].arm_angle, o.pulleys[j].arm_rate});
   for (size_t k = 0; k < scene_.route.spans.size(); ++k)
     row.insert(row.end(), {span_tension(static_cast<int>(k)), mean(2 * o.pulleys.size() + k)});
   for (int i : rs_.probes) {
@@ -378,6 +380,21 @@ void Simulation::set_speed(int j, const TimeSpeedLaw& law, const std::string& te
   write_event(now(), model_.pulleys[j].name + ".speed", text);
   Eigen::VectorXd y = state();
   y[model_.n_coord() + model_.pulley_coord(j)] = p.speed.eval(now(), 0.0, true);  // it restarts here
+  changed(&y);
+}
+
+void Simulation::set_arm(int j, std::optional<double> angle, std::optional<double> rate) {
+  require_open("set_arm");
+  const int a = model_.pulleys.at(j).arm;
+  if (a < 0) throw std::invalid_argument("pulley '" + model_.pulleys[j].name + "' has no tensioner arm");
+  Eigen::VectorXd y = state();
+  const int k = model_.arm_coord(a);
+  std::string text;
+  if (angle) y[k] = *angle, text += "angle " + number_text(*angle) + " rad";
+  if (rate)
+    y[model_.n_coord() + k] = *rate,
+                         text += std::string(text.empty() ? "" : ", ") + "rate " + number_text(*rate) + " rad/s";
+  write_event(now(), model_.pulleys[j].name + ".arm", text);
   changed(&y);
 }
 

@@ -64,6 +64,14 @@ void expect_same_solution(const SceneDef& d, unsigned seed) {
 
 TEST(RingSolver, MatchesSparseLuOnThePaperDrive) { expect_same_solution(presets::paper_dry(), 1); }
 TEST(RingSolver, MatchesSparseLuOnTheAutomotiveDrive) { expect_same_solution(presets::automotive_wet(), 2); }
+// a tensioner arm: one more border row and column (its angle), coupled to the idler's elements,
+// its speed and itself; on a ring split in two as well
+TEST(RingSolver, MatchesSparseLuWithATensionerArm) {
+  expect_same_solution(presets::automotive_tensioner(), 5);
+  SceneDef d = presets::automotive_tensioner();
+  d.belt.elements = 600;
+  expect_same_solution(d, 6);
+}
 TEST(RingSolver, MatchesSparseLuOnASplitRing) {
   static_assert(600 >= kHalvesElements && 60 < kHalvesElements);
   expect_same_solution(refined(600), 3);

@@ -39,14 +39,17 @@ double kink_margin(const Model& m, const Drive& dr, double t, const Eigen::Vecto
   double margin = 1e300;
   for (int j = 0; j < m.n_p(); ++j)
     for (int i = 0; i < m.n_el(); ++i) {
-      const Vec2 P(y[3 * i], y[3 * i + 1]), V(y[N + 3 * i], y[N + 3 * i + 1]);
-      const Vec2 rv = P - m.pulleys[j].centre;
+      // relative to the pulley's centre, which moves on a tensioner arm
+      const Vec2 centre = m.centre(j, y.data());
+      const Vec2 P(y[3 * i], y[3 * i + 1]);
+      const Vec2 V = Vec2(y[N + 3 * i], y[N + 3 * i + 1]) - m.centre_velocity(j, y.data(), y.data() + N);
+      const Vec2 rv = P - centre;
       const double p = m.pulleys[j].radius - rv.norm();
       margin = std::min(margin, std::abs(p) / 1e-6);                       // contact onset
       if (p <= 0) continue;
       margin = std::min(margin, std::abs(p - m.contact.p_max) / 1e-6);     // full damping
       NormalLaw nl;
-      normal_law(m.contact, P, V, m.pulleys[j].centre, m.pulleys[j].radius, nl);
+      normal_law(m.contact, P, V, centre, m.pulleys[j].radius, nl);
       const double raw = nl.N_el + nl.delta * m.contact.b * nl.pdot;
       margin = std::min(margin, std::abs(raw) / 1e-2);                     // N = 0
       const FrictionLaw fl = friction_law(dr.mu[i], m.friction.dv, nl, V, dr.omega(m, j, t, y.data() + N));
@@ -65,9 +68,10 @@ Coverage coverage(const Model& m, const Drive& dr, double t, const Eigen::Vector
   for (int i = 0; i < m.n_el(); ++i) {
     bool touching = false;
     for (int j = 0; j < m.n_p(); ++j) {
-      const Vec2 P(y[3 * i], y[3 * i + 1]), V(y[N + 3 * i], y[N + 3 * i + 1]);
+      const Vec2 P(y[3 * i], y[3 * i + 1]);
+      const Vec2 V = Vec2(y[N + 3 * i], y[N + 3 * i + 1]) - m.centre_velocity(j, y.data(), y.data() + N);
       NormalLaw nl;
-      if (!normal_law(m.contact, P, V, m.pulleys[j].centre, m.pulleys[j].radius, nl)) continue;
+      if (!normal_law(m.contact, P, V, m.centre(j, y.data()), m.pulleys[j].radius, nl)) continue;
       touching = true;
       (nl.p < m.contact.p_max ? c.ramp : c.deep)++;
       if (!nl.pushing) {
@@ -130,8 +134,9 @@ void expect_jacobian_matches(const Model& m, const Drive& dr, double t, const Ei
 }
 
 // A running state: pulleys turning, each element in contact given a chosen slip, a few elements
-// pushed deep or pulled out fast, random velocities on the free spans.
-Eigen::VectorXd running_state(const Scene& sc, double time, double omega_scale, unsigned seed) {
+// pushed deep or pulled out fast, random velocities on the free spans; tensioner arms turning at
+// arm_rate (slips and rates are relative to the moving centre).
+Eigen::VectorXd running_state(const Scene& sc, double time, double omega_scale, unsigned seed, double arm_rate = 0) {
   const Model& m = sc.model;
   const Drive& dr = sc.drive;
   const int N = m.n_coord();
@@ -142,12 +147,13 @@ Eigen::VectorXd running_state(const Scene& sc, double time, double omega_scale, 
     const Pulley& p = m.pulleys[j];
     if (!dr.kinematic(j)) y[N + m.pulley_coord(j)] = omega_scale * 0.1 / p.radius * (1 + 0.01 * u(rng));
   }
+  for (int a = 0; a < m.n_arm(); ++a) y[N + m.arm_coord(a)] = arm_rate;
   // slips chosen away from ±Δv: stick, stick, slip, slip
   const double slips[] = {3e-6, -6e-6, 4e-4, -2e-3};
   for (int i = 0; i < m.n_el(); ++i) {
     int touching = -1;
     for (int j = 0; j < m.n_p(); ++j)
-      if ((Vec2(y[3 * i], y[3 * i + 1]) - m.pulleys[j].centre).norm() < m.pulleys[j].radius) touching = j;
+      if ((Vec2(y[3 * i], y[3 * i + 1]) - m.centre(j, y.data())).norm() < m.pulleys[j].radius) touching = j;
     y[N + 3 * i + 2] = 5.0 * u(rng);
     if (touching < 0) {
       y[N + 3 * i] = 3.0 * u(rng);
@@ -155,16 +161,18 @@ Eigen::VectorXd running_state(const Scene& sc, double time, double omega_scale, 
       continue;
     }
     const Pulley& p = m.pulleys[touching];
-    const Vec2 rv = Vec2(y[3 * i], y[3 * i + 1]) - p.centre;
+    const Vec2 centre = m.centre(touching, y.data());
+    const Vec2 rv = Vec2(y[3 * i], y[3 * i + 1]) - centre;
     const Vec2 n = rv.normalized(), t = perp(n);
     const double omega = dr.omega(m, touching, time, y.data() + N);
     Vec2 V = omega * rv.norm() * t + slips[i % 4] * t + 1e-3 * u(rng) * n;  // small normal rate
     if (i % 7 == 3) {                                // deeper than p_max
-      const Vec2 P = p.centre + (p.radius - 1.6e-3) * n;
+      const Vec2 P = centre + (p.radius - 1.6e-3) * n;
       y[3 * i] = P.x(), y[3 * i + 1] = P.y();
     } else if (i % 11 == 5) {                        // in the ramp, leaving fast: N clamped at 0
       V += 20.0 * n;
     }
+    V += m.centre_velocity(touching, y.data(), y.data() + N);
     y[N + 3 * i] = V.x();
     y[N + 3 * i + 1] = V.y();
   }
@@ -289,6 +297,71 @@ TEST(Jacobian, BackSideIdlerAutomotive) {
   EXPECT_GT(c.stick, 0);
   EXPECT_GT(c.slip, 0);
   expect_jacobian_matches(sc.model, sc.drive, 0.2, y);
+}
+
+// The idler on a tensioner arm (model/tensioner.cpp), turning either way: the arm's column and
+// row through the belt's pairs, the moving centre's terms in the element rows and the pulley's
+// row. Dropping any one of ∂F/∂ψ's ψ̇·A_V·h, ∂Q/∂ψ's F·h, ∂M/∂ψ's ψ̇·∂M/∂V·h or ∂Q/∂Ω fails it
+// (tried). The arm's own law is below the belt's terms in its column: TensionerArmLaw checks it.
+TEST(Jacobian, TensionerArm) {
+  for (const double rate : {2.0, -2.0}) {
+    SceneDef d = presets::automotive_tensioner();
+    TensionerDef& t = *d.pulleys[1].tensioner;
+    t.damping = 1.0, t.friction_torque = 1.0, t.friction_speed = 2.0, t.asymmetric = 3.0;
+    const Scene sc = build_scene(d);
+    ASSERT_EQ(sc.model.n_arm(), 1);
+    const Eigen::VectorXd y = running_state(sc, 0.2, 25.0, 7, rate);
+    const Coverage c = coverage(sc.model, sc.drive, 0.2, y);
+    EXPECT_GT(c.stick, 0);
+    EXPECT_GT(c.slip, 0);
+    expect_jacobian_matches(sc.model, sc.drive, 0.2, y);
+  }
+}
+
+// The arm's own law (spring, damper, friction torque, asymmetric factor) against central
+// differences of arm_forces alone: in the full Jacobian its ∂Q/∂ψ̇ is hidden under the belt's
+// (-gᵀ·A_V·g ≈ L²·μN/Δv per sticking element). The law is smooth but for the kink of the
+// asymmetric factor at ψ̇ = 0 (the rates keep 100 steps away); the steps, 1e-6 rad and 1e-6 rad/s
+// against curvature scales of w_f = 0.05 rad/s, leave truncation ~ (1e-6/0.05)² = 4e-10 relative.
+TEST(Jacobian, TensionerArmLaw) {
+  SceneDef d = presets::automotive_tensioner();
+  TensionerDef& t = *d.pulleys[1].tensioner;
+  t.damping = 0.2, t.friction_torque = 2.0, t.friction_speed = 0.05, t.asymmetric = 3.0;
+  const Scene sc = build_scene(d);
+  const Model& m = sc.model;
+  const int k = m.arm_coord(0), N = m.n_coord(), b = m.n_p();
+  for (const double rate : {-0.3, -0.04, -1e-4, 1e-4, 0.03, 0.5}) {
+    Eigen::VectorXd y = sc.y0;
+    y[k] += 0.01;
+    y[N + k] = rate;
+    auto Q = [&](const Eigen::VectorXd& z) {
+      Eigen::VectorXd f = Eigen::VectorXd::Zero(N);
+      arm_forces(m, z.data(), z.data() + N, f.data(), nullptr);
+      return f[k];
+    };
+    BlockMatrix K, C;
+    K.resize(m.n_el(), m.n_border()), C.resize(m.n_el(), m.n_border());
+    arm_jacobian(m, y.data(), y.data() + N, K, C);
+    const double eps = 1e-6;
+    Eigen::VectorXd yp = y, ym = y;
+    yp[k] += eps, ym[k] -= eps;
+    EXPECT_NEAR(K.pulley_pulley(b, b), (Q(yp) - Q(ym)) / (2 * eps), 1e-6 * t.stiffness) << "rate " << rate;
+    yp = y, ym = y;
+    yp[N + k] += eps, ym[N + k] -= eps;
+    const double fd = (Q(yp) - Q(ym)) / (2 * eps);
+    EXPECT_NEAR(C.pulley_pulley(b, b), fd, 1e-6 * std::abs(fd)) << "rate " << rate;
+  }
+  // asymmetric: at the spring's free angle, the arm resists `asymmetric` times harder turning
+  // against the spring (the belt pushing it back, press·ψ̇ < 0) than with it
+  Eigen::VectorXd y = sc.y0, f = Eigen::VectorXd::Zero(N);
+  y[k] = m.arms[0].free_angle;
+  y[N + k] = -m.arms[0].press * 0.1;
+  arm_forces(m, y.data(), y.data() + N, f.data(), nullptr);
+  const double back = f[k];
+  f.setZero();
+  y[N + k] = m.arms[0].press * 0.1;
+  arm_forces(m, y.data(), y.data() + N, f.data(), nullptr);
+  EXPECT_NEAR(back / f[k], -3.0, 1e-12);
 }
 
 TEST(Jacobian, NonUnitExponents) {

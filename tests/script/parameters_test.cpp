@@ -30,8 +30,9 @@ std::string slurp(const fs::path& p) {
 }
 
 // A two-pulley scene (pulleys 'a' and 'b') with the given values as Lua expressions, each under its
-// dotted key ("belt.EA", "belt.sde.k", "pulley.radius": pulley a's, "gravity"), then a run of one
-// millisecond writing parameters.csv.
+// dotted key ("belt.EA", "belt.sde.k", "pulley.radius": pulley a's, "pulley.tensioner.stiffness":
+// pulley a's arm, pivoted 0.1 m above its centre, "gravity"), then a run of one millisecond writing
+// parameters.csv.
 std::string scene_with(const std::map<std::string, std::string>& values) {
   std::map<std::string, std::string> tables;
   for (const auto& [dotted, v] : values) {
@@ -41,13 +42,26 @@ std::string scene_with(const std::map<std::string, std::string>& values) {
   }
   std::string belt = tables["belt"];
   if (!tables["belt.sde"].empty()) belt += "sde = { " + tables["belt.sde"] + "}, ";
+  std::string pulley = tables["pulley"];
+  if (!tables["pulley.tensioner"].empty())
+    pulley += "tensioner = { pivot = {0, 0.1}, " + tables["pulley.tensioner"] + "}, ";
   return "local s = beltsim.scene {\n"
-         "  pulleys = { { name = 'a', centre = {0, 0}, torque = -1, " + tables["pulley"] + "},\n"
+         "  pulleys = { { name = 'a', centre = {0, 0}, torque = -1, " +
+         pulley +
+         "},\n"
          "              { name = 'b', centre = {0.29, 0} } },\n"
-         "  belt = { " + belt + "},\n"
-         "  contact = { " + tables["contact"] + "},\n"
-         "  friction = { " + tables["friction"] + "},\n"
-         "  " + tables["scene"] + "\n"
+         "  belt = { " +
+         belt +
+         "},\n"
+         "  contact = { " +
+         tables["contact"] +
+         "},\n"
+         "  friction = { " +
+         tables["friction"] +
+         "},\n"
+         "  " +
+         tables["scene"] +
+         "\n"
          "}\n"
          "s:run { t_end = 1e-3, progress = false }\n";
 }
@@ -73,6 +87,15 @@ std::pair<std::string, std::string> breaking(Rule r) {
 // the per-SDE values are given all four or none
 const std::map<std::string, std::string> kSde{
     {"belt.sde.k", "7.5e6"}, {"belt.sde.c", "1000"}, {"belt.sde.kt", "1.3"}, {"belt.sde.ct", "0.05"}};
+// a tensioner requires these two
+const std::map<std::string, std::string> kTensioner{{"pulley.tensioner.inertia", "0.01"},
+                                                    {"pulley.tensioner.stiffness", "3000"}};
+
+// the name a key of pulley `pulley`'s has in parameters.csv ("pulley.a.radius",
+// "pulley.a.tensioner.stiffness"), the dotted key otherwise
+std::string csv_name(const Parameter& p, const std::string& pulley) {
+  return p.table.starts_with("pulley") ? "pulley." + pulley + p.dotted().substr(6) : p.dotted();
+}
 
 // every rule of the table stops the script at the scene's line with the key, the reason and the value
 TEST(Parameters, EveryRuleStopsTheScriptWithTheKeyTheReasonAndTheValue) {
@@ -82,8 +105,9 @@ TEST(Parameters, EveryRuleStopsTheScriptWithTheKeyTheReasonAndTheValue) {
     const auto [lua, shown] = breaking(p.rule);
     std::map<std::string, std::string> values;
     if (p.table == "belt.sde") values = kSde;
+    if (p.table == "pulley.tensioner") values = kTensioner;
     values[p.dotted()] = lua;
-    const std::string what = p.table == "pulley" ? "pulley 'a' " + std::string(p.key) : p.dotted();
+    const std::string what = p.table.starts_with("pulley") ? "pulley 'a' " + p.dotted().substr(7) : p.dotted();
     const std::string expected = (temp_dir() / "scene.lua").string() + ":1: " + what + " " + std::string(rule_text(p.rule)) + " (got " + shown +
                                  (p.unit.empty() ? "" : " ") + std::string(p.unit) + ")";
     EXPECT_EQ(run_text(scene_with(values)).rfind(expected, 0), 0u)
@@ -97,7 +121,7 @@ TEST(Parameters, EveryRuleStopsTheScriptWithTheKeyTheReasonAndTheValue) {
 // default taken as default; the alternatives (rest_length, strain, per SDE, per length) in
 // scenes of their own
 TEST(Parameters, EveryNumberReachesParametersCsv) {
-  std::map<std::string, std::string> primary, per_length{{"belt.rest_length", "1.2045"}}, per_sde = kSde;
+  std::map<std::string, std::string> primary = kTensioner, per_length{{"belt.rest_length", "1.2045"}}, per_sde = kSde;
   per_sde["belt.strain"] = "0.005";
   per_length["belt.bending_viscosity"] = "1e-3";
   per_length["contact.c1_per_length"] = "1.5e11";
@@ -105,8 +129,8 @@ TEST(Parameters, EveryNumberReachesParametersCsv) {
   per_length["contact.damping_per_length"] = "1.5e4";
   for (const Parameter& p : parameters()) {
     if (!p.slot || !p.fallback) continue;
-    // 5 % off the default, a whole number for an integer
-    const double v = p.kind == Kind::integer ? *p.fallback + 2 : *p.fallback * 1.05;
+    // 5 % off the default (0.05 for a default of 0), a whole number for an integer
+    const double v = p.kind == Kind::integer ? *p.fallback + 2 : *p.fallback == 0 ? 0.05 : *p.fallback * 1.05;
     primary[p.dotted()] = number_text(v);
   }
   auto row = [](const std::string& csv, const std::string& name) {
@@ -118,17 +142,19 @@ TEST(Parameters, EveryNumberReachesParametersCsv) {
     const std::string csv = slurp(temp_dir() / "out" / "parameters.csv");
     for (const auto& [dotted, v] : *values) {
       const Parameter* p = find_parameter(dotted);
-      const std::string name = p->table == "pulley" ? "pulley.a." + std::string(p->key) : dotted;
+      const std::string name = csv_name(*p, "a");
       const std::string expected = name + "," + number_text(std::stod(v)) + "," + std::string(p->unit) + ",given,";
-      EXPECT_EQ(row(csv, name).rfind(expected, 0), 0u) << "expected '" << expected << "', got '" << row(csv, name) << "'";
+      EXPECT_EQ(row(csv, name).rfind(expected, 0), 0u)
+          << "expected '" << expected << "', got '" << row(csv, name) << "'";
     }
   }
-  // nothing given: the defaults, marked so
-  ASSERT_EQ(run_text(scene_with({})), "");
+  // nothing given (but a tensioner's required two): the defaults, marked so
+  ASSERT_EQ(run_text(scene_with(kTensioner)), "");
   const std::string csv = slurp(temp_dir() / "out" / "parameters.csv");
   for (const auto& [dotted, v] : primary) {
     const Parameter* p = find_parameter(dotted);
-    const std::string name = p->table == "pulley" ? "pulley.b." + std::string(p->key) : dotted;
+    if (!p->fallback) continue;  // a required key
+    const std::string name = csv_name(*p, p->table == "pulley" ? "b" : "a");
     const std::string expected =
         name + "," + number_text(*p->fallback) + "," + std::string(p->unit) + ",default," ;
     EXPECT_EQ(row(csv, name).rfind(expected, 0), 0u) << "expected '" << expected << "', got '" << row(csv, name) << "'";

@@ -1,0 +1,112 @@
+// The tensioner arms of a scene (TensionerDef in scene.hpp; the arm's law at the top of
+// model/tensioner.cpp). Arm a holds its pulley's centre c at the installed angle
+// ψ_i = atan2(c - pivot), length L = |c - pivot|. In the static state the belt's moment about the
+// pivot, M_b = g·H (H the belt's hub load on the pulley, g = ∂c/∂ψ), is held by the spring:
+//   -k·(ψ_i - ψ0) + M_b = 0,   so   ψ0 = ψ_i - M_b/k,
+// and the spring presses the pulley on the belt in the sense of -M_b. M_b grows in proportion to
+// the belt's tension, so a preload P (the spring's moment at ψ_i; angle0 gives P = k·|ψ_i - angle0|)
+// sets the tension: build_scene scales the pretension by P/|M_b| until they agree.
+#include <cmath>
+
+#include "model/forces.hpp"
+#include "model/observables.hpp"
+#include "scene/build.hpp"
+#include "scene/validate.hpp"
+
+namespace beltsim::build {
+
+void validate_tensioner(const PulleyDef& p) {
+  if (!p.tensioner) return;
+  const TensionerDef& t = *p.tensioner;
+  const std::string w = "pulley '" + p.name + "'.tensioner.";
+  require_finite(w + "pivot x", t.pivot.x(), "m");
+  require_finite(w + "pivot y", t.pivot.y(), "m");
+  require_positive(w + "pivot's distance from the pulley's centre", (p.centre - t.pivot).norm(), "m");
+  if (p.kinematic)
+    throw ParameterError("pulley '" + p.name + "': a pulley on a tensioner arm turns freely; give it a torque (or none), "
+                         "not a prescribed speed");
+}
+
+void make_arms(const SceneDef& d, Model& m) {
+  m.arms.clear();
+  for (size_t j = 0; j < d.pulleys.size(); ++j) {
+    const PulleyDef& p = d.pulleys[j];
+    if (!p.tensioner) continue;
+    const TensionerDef& t = *p.tensioner;
+    Arm a;
+    a.pulley = static_cast<int>(j);
+    a.pivot = t.pivot;
+    a.length = (p.centre - t.pivot).norm();
+    a.inertia = t.inertia;
+    a.stiffness = t.stiffness;
+    a.damping = t.damping;
+    a.friction_torque = t.friction_torque;
+    a.friction_speed = t.friction_speed;
+    a.asymmetric = t.asymmetric;
+    a.free_angle = std::atan2(p.centre.y() - t.pivot.y(), p.centre.x() - t.pivot.x());  // until balanced
+    m.pulleys[j].arm = m.n_arm();
+    m.arms.push_back(a);
+  }
+}
+
+void set_arm_angles(const Model& m, Eigen::VectorXd& y) {
+  for (int a = 0; a < m.n_arm(); ++a) {
+    const Vec2 d = m.pulleys[m.arms[a].pulley].centre - m.arms[a].pivot;
+    y[m.arm_coord(a)] = std::atan2(d.y(), d.x());
+  }
+}
+
+double arm_belt_moment(const Scene& sc, int a) {
+  const Model& m = sc.model;
+  const double* q = sc.y0.data();
+  Vec2 hub;
+  belt_torque(m, sc.drive, 0.0, q, q + m.n_coord(), m.arms[a].pulley, &hub);
+  return hub.dot(arm_lever(m, a, q));
+}
+
+void balance_arms(Scene& sc) {
+  Model& m = sc.model;
+  for (int a = 0; a < m.n_arm(); ++a) {
+    Arm& arm = m.arms[a];
+    const double Mb = arm_belt_moment(sc, a);
+    if (!(Mb != 0)) {
+      throw ParameterError("pulley '" + m.pulleys[arm.pulley].name +
+                           "'.tensioner: the belt has no moment about the pivot at the installed angle (the pivot "
+                           "lies on the line of the hub load); move the pivot");
+    }
+    arm.free_angle = sc.y0[m.arm_coord(a)] - Mb / arm.stiffness;
+    arm.press = Mb < 0 ? 1 : -1;
+  }
+}
+
+std::optional<double> tensioner_preload(const SceneDef& d) {
+  std::optional<double> preload;
+  std::string setter;
+  for (const PulleyDef& p : d.pulleys) {
+    if (!p.tensioner || !(p.tensioner->preload || p.tensioner->angle0)) continue;
+    const TensionerDef& t = *p.tensioner;
+    const std::string w = "pulley '" + p.name + "'.tensioner";
+    if (t.preload && t.angle0) throw ParameterError(w + ": give preload [N·m] or angle0 [rad], not both");
+    if (preload)
+      throw ParameterError(w + ": only one tensioner can set the belt's tension by its preload or angle0 ('" + setter +
+                           "' does already); leave them out here and the spring's free angle holds the belt's tension");
+    for (const char* key : {"belt.pretension", "belt.rest_length", "belt.strain"})
+      if (d.given.count(key))
+        throw ParameterError(w + ": its preload or angle0 sets the belt's tension at rest; leave out " + key +
+                             " or the tensioner's preload/angle0");
+    if (t.preload) {
+      preload = *t.preload;  // > 0: the parameter table's rule (validate)
+    } else {
+      const Vec2 c = p.centre - t.pivot;
+      const double psi = std::atan2(c.y(), c.x());
+      preload = t.stiffness * std::abs(psi - *t.angle0);
+      if (!(*preload > 0))
+        throw ParameterError(w + ".angle0: the spring's free angle equals the installed angle (" + std::to_string(psi) +
+                             " rad): the spring would hold no tension");
+    }
+    setter = p.name;
+  }
+  return preload;
+}
+
+}  // namespace beltsim::build

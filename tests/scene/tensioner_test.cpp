@@ -1,0 +1,133 @@
+// Tensioner arms in a scene (scene/tensioner.cpp): the static state balances the arm, a preload
+// sets the belt's tension, and what a tensioner may not be given.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <string>
+
+#include "model/forces.hpp"
+#include "model/observables.hpp"
+#include "model/rhs.hpp"
+#include "scene/presets.hpp"
+#include "scene/validate.hpp"
+
+namespace beltsim {
+namespace {
+
+template <class F>
+std::string error_of(F f) {
+  try {
+    f();
+  } catch (const ParameterError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+struct ArmBalance {
+  double spring = 0;  // the spring's moment at the installed angle [N·m]
+  double belt = 0;    // the belt's hub load's moment about the pivot [N·m]
+  double total = 0;   // the arm's generalized force in the static state [N·m]
+};
+
+ArmBalance balance(const Scene& sc) {
+  const Model& m = sc.model;
+  const Arm& a = m.arms[0];
+  const double* q = sc.y0.data();
+  const double psi = q[m.arm_coord(0)];
+  ArmBalance b;
+  b.spring = -a.stiffness * (psi - a.free_angle);
+  const PulleyObs p = observe_pulley(m, sc.drive, 0.0, sc.y0.data(), a.pulley);
+  b.belt = p.hub.dot(arm_lever(m, 0, q));
+  Eigen::VectorXd f(m.n_coord());
+  forces(m, sc.drive, 0.0, sc.y0.data(), f.data());
+  b.total = f[m.arm_coord(0)];
+  return b;
+}
+
+// The known answer of the static state: the spring's moment equals the hub load's moment about
+// the pivot (opposite in sign), so the arm starts at rest: its force is the rounding of the two
+// (1e-12 of them), the arm does not move at the installed angle.
+TEST(Tensioner, StaticStateBalancesTheArm) {
+  const Scene sc = build_scene(presets::automotive_tensioner());
+  ASSERT_EQ(sc.model.n_arm(), 1);
+  const ArmBalance b = balance(sc);
+  EXPECT_GT(std::abs(b.spring), 1.0);
+  EXPECT_NEAR(b.spring, -b.belt, 1e-12 * std::abs(b.spring));
+  EXPECT_NEAR(b.total, 0.0, 1e-12 * std::abs(b.spring));
+  // the spring presses the idler on the belt: its moment turns the arm in `press`'s sense
+  EXPECT_EQ(b.spring > 0 ? 1 : -1, sc.model.arms[0].press);
+  // the pulley's centre is where the scene put it
+  const Vec2 c = sc.model.centre(1, sc.y0.data());
+  EXPECT_NEAR((c - Vec2(0.015, -0.12)).norm(), 0.0, 1e-15);
+}
+
+// A preload sets the tension: the spring's moment at the installed angle is the preload and the
+// belt's moment balances it. For an idler at rest both spans pull with T along their directions
+// u1 (arriving), u2 (leaving): H = T·(u2 - u1), M = T·(u2 - u1)·g. The belt's bending stiffness
+// adds a part that does not grow with T (EI/r² ≈ 27 N on this idler; measured: the tension falls
+// 19.5 N short of P/|(u2 - u1)·g| at either preload), so the known answer is the slope: doubling
+// the preload adds ΔP/|(u2 - u1)·g| to the tension (to 1 %: the penetration's shift of the spans).
+TEST(Tensioner, PreloadSetsTheBeltTension) {
+  double tension[2] = {0, 0}, slope = 0;
+  const double preload[2] = {6.0, 12.0};
+  for (int k = 0; k < 2; ++k) {
+    const double P = preload[k];
+    SceneDef d = presets::automotive_tensioner();
+    d.pulleys[1].tensioner->preload = P;
+    const Scene sc = build_scene(d);
+    const ArmBalance b = balance(sc);
+    EXPECT_NEAR(std::abs(b.spring), P, 1e-5 * P);
+    EXPECT_NEAR(b.spring, -b.belt, 1e-12 * P);
+    // the spans arriving at and leaving the idler (route entry 1)
+    const Route::Span& in = sc.route.spans[0];
+    const Route::Span& out = sc.route.spans[1];
+    const Vec2 u1 = (in.to - in.from).normalized(), u2 = (out.to - out.from).normalized();
+    slope = 1.0 / std::abs((u2 - u1).dot(arm_lever(sc.model, 0, sc.y0.data())));
+    tension[k] = sc.static_tension;
+  }
+  const double expected = (preload[1] - preload[0]) * slope;
+  EXPECT_NEAR(tension[1] - tension[0], expected, 0.01 * expected);
+}
+
+TEST(Tensioner, Angle0GivesThePreload) {
+  SceneDef d = presets::automotive_tensioner();
+  const Scene ref = build_scene(d);
+  const double psi = ref.y0[ref.model.arm_coord(0)];
+  const int press = ref.model.arms[0].press;
+  d.pulleys[1].tensioner->angle0 = psi + press * 0.3;  // 30 N·m/rad · 0.3 rad = 9 N·m
+  const Scene sc = build_scene(d);
+  EXPECT_NEAR(std::abs(balance(sc).spring), 9.0, 1e-5 * 9.0);
+  EXPECT_NEAR(sc.model.arms[0].free_angle, psi + press * 0.3, 1e-5 * 0.3);
+}
+
+TEST(Tensioner, ErrorsNameTheParameter) {
+  auto with = [](auto change) {
+    SceneDef d = presets::automotive_tensioner();
+    change(d);
+    return error_of([&] { build_scene(d); });
+  };
+  EXPECT_NE(with([](SceneDef& d) { d.pulleys[1].tensioner->stiffness = 0; }).find("tensioner.stiffness must be > 0"),
+            std::string::npos);
+  EXPECT_NE(with([](SceneDef& d) { d.pulleys[1].tensioner->inertia = -1; }).find("tensioner.inertia"), std::string::npos);
+  EXPECT_NE(with([](SceneDef& d) {
+              d.pulleys[1].tensioner->preload = 5.0;
+              d.given.insert("belt.pretension");
+            }).find("leave out belt.pretension"),
+            std::string::npos);
+  EXPECT_NE(with([](SceneDef& d) {
+              d.pulleys[1].tensioner->preload = 5.0;
+              d.pulleys[1].tensioner->angle0 = 1.0;
+            }).find("not both"),
+            std::string::npos);
+  EXPECT_NE(with([](SceneDef& d) {
+              d.pulleys[1].kinematic = true;
+              d.pulleys[1].speed.constant = 1.0;
+            }).find("turns freely"),
+            std::string::npos);
+  EXPECT_NE(with([](SceneDef& d) { d.pulleys[1].tensioner->pivot = d.pulleys[1].centre; }).find("pivot's distance"),
+            std::string::npos);
+}
+
+}  // namespace
+}  // namespace beltsim
