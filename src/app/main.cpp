@@ -32,6 +32,7 @@
 #include <string>
 #include <vector>
 
+#include "integrate/integrator.hpp"
 #include "integrate/stepper.hpp"
 #include "io/csv_writer.hpp"
 #include "io/output_dir.hpp"
@@ -90,8 +91,9 @@ std::vector<double> tolerances(const std::string& option, const std::string& tex
   std::string item;
   while (std::getline(ss, item, ',')) {
     const auto x = decimal(item);
-    if (!x || !(*x > 0 && *x < 1))
-      throw UsageError(option + " needs numbers in (0, 1) separated by commas, got '" + text + "'");
+    if (!x) throw UsageError(option + " needs numbers in (0, 1) separated by commas, got '" + text + "'");
+    if (const std::string bad = beltsim::rtol_problem(*x); !bad.empty())
+      throw UsageError(option + ": each " + bad);
     out.push_back(*x);
   }
   if (out.empty() || (!text.empty() && text.back() == ','))
@@ -199,7 +201,7 @@ beltsim::script::Overrides overrides(const Raw& raw) {
   }
   if (raw.rtol) {
     const double x = number("--rtol", *raw.rtol);
-    if (!(x > 0 && x < 1)) throw UsageError("--rtol must be in (0, 1), got " + *raw.rtol);
+    if (const std::string bad = beltsim::rtol_problem(x); !bad.empty()) throw UsageError("--rtol " + bad);
     o.rtol = x;
   }
   if (raw.max_wall) {
@@ -643,7 +645,7 @@ int main(int argc, char** argv) {
     if (raw.rtols) wps.rtols = tolerances("--rtols", *raw.rtols);
     if (raw.ref_rtol) {
       const double x = number("--ref-rtol", *raw.ref_rtol);
-      if (!(x > 0 && x < 1)) throw UsageError("--ref-rtol must be in (0, 1), got " + *raw.ref_rtol);
+      if (const std::string bad = beltsim::rtol_problem(x); !bad.empty()) throw UsageError("--ref-rtol " + bad);
       wps.ref_rtol = x;
     }
     if (raw.wall_limit) {

@@ -13,9 +13,16 @@ void hermite(double th, double h, const Eigen::VectorXd& y0, const Eigen::Vector
   out = (1 - th) * y0 + th * y1 + (th * (th - 1)) * ((1 - 2 * th) * (y1 - y0) + ((th - 1) * h) * f0 + (th * h) * f1);
 }
 
+std::string rtol_problem(double rtol) {
+  if (!(rtol > 0 && rtol < 1)) return "must be in (0, 1) (got " + rounded_text(rtol, 9) + ")";
+  if (rtol < kRtolMin)
+    return "must be at least 1e-12 (got " + rounded_text(rtol, 9) +
+           "): double precision cannot honour a smaller one (the run would shorten its steps without end)";
+  return "";
+}
+
 void check_tolerances(const Tolerances& tol) {
-  if (!(tol.rtol > 0 && tol.rtol < 1))
-    throw std::invalid_argument("rtol: must be in (0, 1) (got " + rounded_text(tol.rtol, 9) + ")");
+  if (const std::string bad = rtol_problem(tol.rtol); !bad.empty()) throw std::invalid_argument("rtol: " + bad);
   if (!(tol.atol < 0 || (tol.atol > 0 && std::isfinite(tol.atol))) || std::isnan(tol.atol))
     throw std::invalid_argument("atol: must be > 0 and finite, or left out to mean rtol (got " + rounded_text(tol.atol, 9) +
                                 ")");

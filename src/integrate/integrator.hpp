@@ -74,7 +74,14 @@ std::unique_ptr<Integrator> make_one_step(Stepper& stepper, const OdeSystem& sys
 std::unique_ptr<Integrator> make_one_step(std::unique_ptr<Stepper> stepper, const OdeSystem& sys,
                                           const Tolerances& tol, double h_max = 0);
 
-// checks rtol in (0, 1) and atol (< 0: same as rtol; else finite); throws std::invalid_argument
+// The smallest rtol a run accepts. Below it the arithmetic cannot honour the tolerance: the implicit
+// stages stop their Newton iteration at 1 % of it, and the state's own rounding (double precision,
+// 2.2e-16 of each value) is then a sizeable part of that, so the error estimate does not fall as the
+// step shrinks and the run takes ever shorter steps without end.
+constexpr double kRtolMin = 1e-12;
+// what is wrong with rtol as a relative tolerance ("" when nothing): the one rule for every reader
+std::string rtol_problem(double rtol);
+// checks rtol (rtol_problem) and atol (< 0: same as rtol; else finite); throws std::invalid_argument
 void check_tolerances(const Tolerances& tol);
 
 // cubic Hermite interpolation on [t0, t0 + h]

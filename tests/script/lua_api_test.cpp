@@ -64,6 +64,7 @@ TEST(LuaApi, SilentMisreadingsAreErrors) {
             "run.events: a list without holes"},
            {ok_scene + "s:run{ t_end = 0.01, events = { {t = 0.001, mu = '0.5'} } }\n", "number or function(site) expected"},
            {ok_scene + "s:run{ t_end = 0.01, atol = -1 }\n", "run.atol: must be > 0"},
+           {ok_scene + "s:run{ t_end = 0.01, rtol = 1e-15 }\n", "must be at least 1e-12 (got 1e-15)"},
            {ok_scene + "s:run{ t_end = 0.01, integrator = 'esdirk32\\0x' }\n", "without NUL"},
            {ok_scene + "s:run{ t_end = 0.01, frames = { size = {1e300, 720}, png = true } }\n", "16..8192"},
            {ok_scene + "s:run{ t_end = 0.01, frames = { view = { width = 1e-300 }, png = true } }\n", "view.width"},
