@@ -87,6 +87,15 @@ std::vector<std::string> drop_events_after_end(RunSettings& rs) {
   return notes;
 }
 
+void check_calls(const RunSettings& rs, double t0, double t1, double every_dt) {
+  constexpr double kMaxCalls = 1e7;
+  const double calls = (t1 - t0) / every_dt;
+  if (rs.allow_large || !(calls > kMaxCalls)) return;
+  throw std::invalid_argument("every: a callback every " + num(every_dt) + " s would be called " + num(calls) +
+                              " times from " + num(t0) + " s to " + num(t1) + " s; the limit is " + num(kMaxCalls) +
+                              " calls: call it less often, or set allow_large = true");
+}
+
 void check_volume(const Scene& sc, const RunSettings& rs, double t0, double t1) {
   if (rs.allow_large || !(t1 > t0)) return;
   constexpr double kMaxRows = 1e7, kMaxFrames = 1e5;

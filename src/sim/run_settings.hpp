@@ -73,6 +73,9 @@ std::vector<std::string> drop_events_after_end(RunSettings& settings);
 // Refuses (std::invalid_argument with the figures) to integrate from t0 to t1 when that would
 // write more than 1e7 samples (a timeseries.csv of gigabytes) or render more than 1e5 frames (an
 // hour of video at 30 fps), unless settings.allow_large.
+// refuses an every() callback that a run from t0 to t1 would call more than 1e7 times (a period
+// far below what the run resolves makes it crawl without a word), unless allow_large is set
+void check_calls(const RunSettings& rs, double t0, double t1, double every_dt);
 void check_volume(const Scene& scene, const RunSettings& settings, double t0, double t1);
 
 }  // namespace beltsim

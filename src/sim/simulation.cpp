@@ -242,6 +242,7 @@ Simulation::Advance Simulation::run_to(double t, const std::atomic<bool>* stop, 
   if (t < now()) throw std::invalid_argument("run_to: " + num(t) + " s is before now (" + num(now()) + " s)");
   if (running_) throw std::logic_error("run_to: the simulation is already running (called from a callback?)");
   check_volume(scene_, rs_, now(), t);
+  for (const auto& [id, dt] : every_dt_) check_calls(rs_, now(), t, dt);
   const Scoped<bool> running(running_, true);
   const auto steady = [] {
     return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
@@ -417,7 +418,9 @@ int Simulation::every(double dt, std::function<void()> fn) {
   require_open("every");
   if (!(dt > 0 && std::isfinite(dt))) throw std::invalid_argument("every: the interval must be > 0 s and finite (got " + num(dt) + " s)");
   callbacks_++;
-  return tl_->add_every(dt, [fn = std::move(fn)](double) { fn(); });
+  const int id = tl_->add_every(dt, [fn = std::move(fn)](double) { fn(); });
+  every_dt_[id] = dt;
+  return id;
 }
 
 int Simulation::when(std::function<bool()> cond, std::function<void()> action) {
@@ -432,7 +435,7 @@ int Simulation::when(std::function<bool()> cond, std::function<void()> action) {
 
 bool Simulation::cancel(int id) {
   const bool removed = tl_->remove(id);
-  if (removed) callbacks_--;
+  if (removed) callbacks_--, every_dt_.erase(id);
   return removed;
 }
 

@@ -184,6 +184,7 @@ class Simulation {
   double wall_ = 0;
   double best_rate_ = 0;          // [s/s] the best simulated time per wall second over a window
   int callbacks_ = 0;
+  std::map<int, double> every_dt_;  // the period of each every() callback, by id (for run_to's volume check)
   bool closed_ = false;
   bool running_ = false;          // inside run_to (callbacks may read and change, not run or save)
   std::string failed_;            // why it cannot continue (a divergence)

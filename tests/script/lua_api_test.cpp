@@ -71,6 +71,8 @@ TEST(LuaApi, SilentMisreadingsAreErrors) {
            {ok_scene + "s:run{ t_end = 0.01, frames = { view = { centre = {0/0, 0} }, png = true } }\n", "a finite point"},
            {ok_scene + "s:run{ t_end = 1, sample = 1e-12 }\n", "would write 1e+12 rows"},
            {ok_scene + "s:start{ sample = 1e-12 }:run_to(1)\n", "set allow_large = true"},
+           {ok_scene + "local sim = s:start{ progress = false }\nsim:every(1e-12, function() end)\nsim:run_to(0.01)\n",
+            "every: a callback every 1e-12 s would be called"},
            {ok_scene + "s:run{ t_end = 0.02, frames = { slowdown = 1e6, png = true } }\n", "would render 600000 frames"},
            {"beltsim.scene { pulleys = { { name = 'a', centre = {0, 0} }, { name = 'b', centre = {0.3, 0} } },\n"
             " belt = { elements = 1000000 } }\n",
