@@ -177,3 +177,25 @@ TEST(LiveApi, BadCallsNameFileLineAndWhat) {
 
 }  // namespace
 }  // namespace beltsim::script
+
+namespace beltsim::script {
+namespace {
+
+// sim:when fires when its condition turns true: one already true when registered fires only after
+// it has been false (the driver speeds up from rest, so omega > -1 holds at first, fails, then a
+// condition set to hold again once |omega| > 2 turns true once)
+TEST(LiveApi, WhenAlreadyTrueFiresOnlyAfterItHasBeenFalse) {
+  EXPECT_EQ(run_text(scene() +
+                     "local always, later = 0, 0\n"
+                     "sim:when(function(sim) return true end, function() always = always + 1 end)\n"
+                     "sim:when(function(sim) local w = sim:pulley('driver').omega return w > -1e-9 or w < -2 end,\n"
+                     "         function() later = later + 1 end)\n"
+                     "sim:run_to(0.1)\n"
+                     "assert(always == 0, 'a condition true from the start fired ' .. always .. ' times')\n"
+                     "assert(sim:pulley('driver').omega < -2, 'the driver reached ' .. sim:pulley('driver').omega)\n"
+                     "assert(later == 1, 'the condition that was false in between fired ' .. later .. ' times')\n"),
+            "");
+}
+
+}  // namespace
+}  // namespace beltsim::script
