@@ -89,7 +89,7 @@ class Esdirk final : public Stepper {
   // - the first kFullSteps corrections are taken whole (a full step that carries an element from
   //   stick to slip raises the residual until the next Jacobian sees the new branch); after that a
   //   backtracking line search on ‖G‖ guards against cycling between the two sides of a kink.
-  // docs/integration.md gives what each of these measured.
+  // What each of these measured is in the commit messages that brought them (git log -S on their names).
   bool newton(const OdeSystem& sys, double t, double s, int n) {
     constexpr int max_iter = 12;
     constexpr int kFullSteps = 3;
