@@ -4,8 +4,9 @@
 #                                build the program alone, run the paper's dry scenario
 #   bash scripts/setup.sh test   install that and what the tests add (debian-packages-test.txt),
 #                                build everything and run the test suite in build/, then the quick
-#                                tests again and 60 s of fuzzing in one clang-14 build with ASan +
-#                                UBSan and libFuzzer's instrumentation in build-san/
+#                                tests again (but those labelled heavy) and 60 s of fuzzing in one
+#                                clang-14 build with ASan + UBSan and libFuzzer's instrumentation
+#                                in build-san/
 #   bash scripts/setup.sh build  install both lists and build everything, running nothing
 # Idempotent: packages already present are not touched, and apt is not consulted at all when
 # nothing is missing; the build is incremental (ccache when available).
@@ -77,7 +78,7 @@ case "$mode" in
       fi
       cmake --build "$san_dir" -j "$jobs" --target "${targets[@]}"
       if [ "${BELTSIM_SANITIZE:-1}" != 0 ]; then
-        ctest --test-dir "$san_dir" -L quick --output-on-failure -j "$jobs"
+        ctest --test-dir "$san_dir" -L quick -LE heavy --output-on-failure -j "$jobs"
       fi
     fi
     # fuzzing: the scene API fed random scripts (tests/fuzz/fuzz_script.cpp) by libFuzzer,

@@ -143,31 +143,6 @@ int compare_csvs(const CompareOptions& o) {
 
 }  // namespace
 
-CLI::App* add_compare_command(CLI::App& app, CompareOptions& o) {
-  CLI::App* c = app.add_subcommand("compare", "compare two PNGs (golden images) or two CSV files (results)");
-  c->add_option("A", o.a, "the file to check (a run's output)")->required();
-  c->add_option("B", o.b, "the reference (a stored PNG or CSV)")->required();
-  c->add_option("--tol", o.tol, "PNG: a pixel differs when a channel differs by more than L of 255 levels (default 16)")
-      ->type_name("L");
-  c->add_option("--max-bad", o.max_bad, "PNG: the images match when at most N pixels differ (default 12)")
-      ->type_name("N");
-  c->add_option("--diff", o.diff,
-                "PNG: the difference image, always written (default: A_diff.png beside A, written when they differ)")
-      ->type_name("PNG");
-  c->add_option("--rtol", o.rtol, "CSV: relative tolerance (default 1e-6)")->type_name("R");
-  c->add_option("--atol", o.atol, "CSV: absolute tolerance (default 1e-12)")->type_name("A");
-  c->add_option("--col-tol", o.col_tol, "CSV: a column's own tolerances (repeatable)")
-      ->type_name("NAME=RTOL[,ATOL]")
-      ->allow_extra_args(false);
-  c->footer(
-      "PNGs: the golden images' metric (a pixel differs when any channel differs by more than L\n"
-      "levels). CSVs: columns matched by name; a and b agree when |a - b| <= atol + rtol*max(|a|, |b|);\n"
-      "rows aligned on the 't' column, B interpolated linearly onto A's times when they differ (said\n"
-      "on stderr). Prints one line; exit 0 when they match, 1 when they differ, 2 on bad usage or a\n"
-      "file that cannot be read.");
-  return c;
-}
-
 int cmd_compare(const CompareOptions& o) {
   try {
     const bool pa = is_png(o.a), pb = is_png(o.b);

@@ -4,7 +4,6 @@
 // cannot be read (the message names it).
 #pragma once
 
-#include <CLI/CLI.hpp>
 #include <optional>
 #include <string>
 #include <vector>
@@ -18,7 +17,6 @@ struct CompareOptions {
   std::vector<std::string> col_tol;               // CSVs: NAME=RTOL[,ATOL]
 };
 
-CLI::App* add_compare_command(CLI::App& app, CompareOptions& o);
 int cmd_compare(const CompareOptions& o);
 
 }  // namespace beltsim::app

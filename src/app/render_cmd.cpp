@@ -70,7 +70,7 @@ FrameSettings settings(const RenderOptions& o, const RunSettings& rs) {
     const auto r = numbers("--range", *o.range, ',', 2, "LO,HI in the quantity's unit");
     f.range_lo = r[0], f.range_hi = r[1];
   }
-  f.png_dir = ".";  // one picture, written by render_snapshot
+  f.png_dir.assign(1, '.');  // one picture, written by render_snapshot
   f.video_path.clear();
   try {
     validate(f);
@@ -81,24 +81,6 @@ FrameSettings settings(const RenderOptions& o, const RunSettings& rs) {
 }
 
 }  // namespace
-
-CLI::App* add_render_command(CLI::App& app, RenderOptions& o) {
-  CLI::App* c = app.add_subcommand("render", "draw the state a checkpoint holds (sim:save) to a PNG");
-  c->add_option("CHECKPOINT", o.checkpoint, "a checkpoint written by sim:save")->required();
-  c->add_option("--out", o.out, "the PNG to write")->type_name("PNG")->required();
-  std::string names;
-  for (const auto& i : frame_quantities()) names += (names.empty() ? "" : ", ") + std::string(i.key);
-  c->add_option("--quantity", o.quantity, "colour the belt by: " + names)->type_name("Q");
-  c->add_option("--size", o.size, "picture size in pixels, even, 16..8192")->type_name("WxH");
-  c->add_option("--view", o.view, "camera centre [m] and visible width [m] (default: the whole layout)")
-      ->type_name("X,Y,W");
-  c->add_option("--magnify", o.magnify, "factor on the belt's deviation from its path")->type_name("M");
-  c->add_option("--range", o.range, "colour-bar range in the quantity's unit")->type_name("LO,HI");
-  c->footer(
-      "Draws with the renderer of a run's frames, at the checkpoint's time, with the run's frame\n"
-      "settings (or the defaults when it drew none) changed by the options. Prints the PNG's path.");
-  return c;
-}
 
 int cmd_render(const RenderOptions& o) {
   try {

@@ -4,7 +4,6 @@
 // cannot be read or the picture cannot be drawn or written, 2 on bad usage.
 #pragma once
 
-#include <CLI/CLI.hpp>
 #include <optional>
 #include <string>
 
@@ -15,7 +14,6 @@ struct RenderOptions {
   std::optional<std::string> quantity, size, view, magnify, range;
 };
 
-CLI::App* add_render_command(CLI::App& app, RenderOptions& o);
 int cmd_render(const RenderOptions& o);
 
 }  // namespace beltsim::app

@@ -13,6 +13,7 @@
 #include <unistd.h>
 
 #include "io/csv_writer.hpp"
+#include "io/number_text.hpp"
 #include "scene/presets.hpp"
 #include "scene/scene.hpp"
 #include "sim/simulation.hpp"
@@ -83,11 +84,12 @@ TEST(Live, PausingChangesNothing) {
   test::expect_warnings({WarningKind::failed_step, WarningKind::cvode_convergence});
   for (const std::string integ : {"esdirk32", "rkf45", "cvode"}) {
     // rkf45 is stability-limited (steps of ~1e-9 s): a short stretch
-    const double end = integ == "rkf45" ? 0.004 : 0.06;
+    const double end = integ == "rkf45" ? 0.0005 : 0.06;
     const fs::path a = temp(integ + "_paused"), b = temp(integ + "_whole");
     Eigen::VectorXd ya, yb;
     // snapshots at listed times (one of them a pause) and every 0.3·end
     RunSettings rs = settings(integ, a);
+    rs.sample_dt = end / 8;  // samples on both sides of every pause
     rs.snapshot_times = {0.0123 * end, 0.37 * end, 0.61 * end};
     rs.snapshot_every = 0.3 * end;
     {
@@ -166,20 +168,20 @@ TEST(Live, ChangeAtAPauseAppliesFromThen) {
 TEST(Live, CoincidentEventsAndKinks) {
   SceneDef d = presets::paper_dry();
   d.pulleys[0].torque = TimeSpeedLaw{};
-  d.pulleys[0].torque.t = {0.0, 0.002};  // a kink at 0.002 s
+  d.pulleys[0].torque.t = {0.0, 0.0004};  // a kink at 0.0004 s
   d.pulleys[0].torque.value = {0.0, -70.0};
   const Scene sc = build_scene(d);
   for (const std::string integ : {"esdirk32", "rkf45"}) {
     RunSettings rs = settings(integ, temp("coincident_" + integ));
-    rs.t_end = 0.003;
+    rs.t_end = 0.0006;  // rkf45 is stability-limited (steps of ~1e-9 s): a short stretch
     std::vector<double> mu(sc.model.n_el(), 0.5);
-    rs.mu_events = {{0.002, mu, "a", ""}, {0.002, mu, "b", ""}, {0.001, mu, "c", ""}, {0.001, mu, "d", ""}};
+    rs.mu_events = {{0.0004, mu, "a", ""}, {0.0004, mu, "b", ""}, {0.0002, mu, "c", ""}, {0.0002, mu, "d", ""}};
     RunResult r;
     ASSERT_NO_THROW(r = run(sc, rs)) << integ;
-    EXPECT_EQ(r.t_reached, 0.003);
+    EXPECT_EQ(r.t_reached, 0.0006);
     const std::string ev = slurp((fs::path(rs.out_dir) / "events.csv").string());
-    EXPECT_NE(ev.find("0.001,c"), std::string::npos) << ev;
-    EXPECT_NE(ev.find("0.002,b"), std::string::npos) << ev;
+    EXPECT_NE(ev.find(number_text(0.0002) + ",c"), std::string::npos) << ev;
+    EXPECT_NE(ev.find(number_text(0.0004) + ",b"), std::string::npos) << ev;
   }
 }
 

@@ -1,0 +1,230 @@
+#include "app/cli.hpp"
+
+#include <CLI/CLI.hpp>
+
+#include <algorithm>
+#include <cstdio>
+
+#include "sim/frames.hpp"
+
+namespace beltsim::app {
+
+namespace {
+
+void add_set(CLI::App* c, Raw& raw) {
+  c->add_option("--set", raw.set,
+                "a script parameter, read by the script as beltsim.args.KEY (numbers, true/false, text; repeatable); "
+                "a key the script never reads is an error")
+      ->type_name("KEY=VALUE")
+      ->allow_extra_args(false);
+}
+
+void add_safety(CLI::App* c, Raw& raw) {
+  c->add_flag("--trusted", raw.trusted,
+              "the script gets every Lua library (os.execute, io anywhere, debug, C modules): only for scripts "
+              "you trust");
+  c->add_option("--max-instructions", raw.max_instructions,
+                "Lua instructions per script run or console command (default 1e10; 0: no limit)")
+      ->type_name("N");
+  c->add_option("--max-lua-memory", raw.max_lua_memory, "Lua heap limit in MiB (default 4096; 0: no limit)")
+      ->type_name("MiB");
+}
+
+void add_out_and_t_end(CLI::App* c, Raw& raw, const char* out_help) {
+  c->add_option("--out", raw.out, out_help)->type_name("DIR");
+  c->add_option("--t-end", raw.t_end, "end time [s] (> 0)")->type_name("T");
+}
+
+void add_run_overrides(CLI::App* c, Raw& raw) {
+  add_out_and_t_end(c, raw, "output folder (default: out/<script name>)");
+  c->add_option("--integrator", raw.integrator, "one of: " + integrator_list())->type_name("NAME");
+  c->add_option("--rtol", raw.rtol, "relative tolerance of the step-size control, in (0, 1)")->type_name("R");
+  c->add_option("--max-wall", raw.max_wall,
+                "wall-time limit of each run [s]: a run past it stops at its last step, outputs closed, with an "
+                "error (exit 1)")
+      ->type_name("S");
+  c->add_flag("--no-frames", raw.no_frames, "render no frames and no video, whatever the script asks");
+  add_set(c, raw);
+  add_safety(c, raw);
+}
+
+CLI::App* add_render_command(CLI::App& app, RenderOptions& o) {
+  CLI::App* c = app.add_subcommand("render", "draw the state a checkpoint holds (sim:save) to a PNG");
+  c->add_option("CHECKPOINT", o.checkpoint, "a checkpoint written by sim:save")->required();
+  c->add_option("--out", o.out, "the PNG to write")->type_name("PNG")->required();
+  std::string names;
+  for (const auto& i : frame_quantities()) names += (names.empty() ? "" : ", ") + std::string(i.key);
+  c->add_option("--quantity", o.quantity, "colour the belt by: " + names)->type_name("Q");
+  c->add_option("--size", o.size, "picture size in pixels, even, 16..8192")->type_name("WxH");
+  c->add_option("--view", o.view, "camera centre [m] and visible width [m] (default: the whole layout)")
+      ->type_name("X,Y,W");
+  c->add_option("--magnify", o.magnify, "factor on the belt's deviation from its path")->type_name("M");
+  c->add_option("--range", o.range, "colour-bar range in the quantity's unit")->type_name("LO,HI");
+  c->footer(
+      "Draws with the renderer of a run's frames, at the checkpoint's time, with the run's frame\n"
+      "settings (or the defaults when it drew none) changed by the options. Prints the PNG's path.");
+  return c;
+}
+
+CLI::App* add_compare_command(CLI::App& app, CompareOptions& o) {
+  CLI::App* c = app.add_subcommand("compare", "compare two PNGs (golden images) or two CSV files (results)");
+  c->add_option("A", o.a, "the file to check (a run's output)")->required();
+  c->add_option("B", o.b, "the reference (a stored PNG or CSV)")->required();
+  c->add_option("--tol", o.tol, "PNG: a pixel differs when a channel differs by more than L of 255 levels (default 16)")
+      ->type_name("L");
+  c->add_option("--max-bad", o.max_bad, "PNG: the images match when at most N pixels differ (default 12)")
+      ->type_name("N");
+  c->add_option("--diff", o.diff,
+                "PNG: the difference image, always written (default: A_diff.png beside A, written when they differ)")
+      ->type_name("PNG");
+  c->add_option("--rtol", o.rtol, "CSV: relative tolerance (default 1e-6)")->type_name("R");
+  c->add_option("--atol", o.atol, "CSV: absolute tolerance (default 1e-12)")->type_name("A");
+  c->add_option("--col-tol", o.col_tol, "CSV: a column's own tolerances (repeatable)")
+      ->type_name("NAME=RTOL[,ATOL]")
+      ->allow_extra_args(false);
+  c->footer(
+      "PNGs: the golden images' metric (a pixel differs when any channel differs by more than L\n"
+      "levels). CSVs: columns matched by name; a and b agree when |a - b| <= atol + rtol*max(|a|, |b|);\n"
+      "rows aligned on the 't' column, B interpolated linearly onto A's times when they differ (said\n"
+      "on stderr). Prints one line; exit 0 when they match, 1 when they differ, 2 on bad usage or a\n"
+      "file that cannot be read.");
+  return c;
+}
+
+}  // namespace
+
+std::optional<CommandLine> parse_command_line(int argc, char** argv, int* status) {
+  CLI::App app{"beltsim: belt transmissions, the discrete model of K. Kubas; scenarios are Lua scripts.", "beltsim"};
+  app.set_version_flag("--version", "beltsim 0.1.0");
+  app.require_subcommand(1);
+  app.footer("Exit status: 0 on success, 1 on a script, parameter, run or plot error or an output that\n"
+             "could not be written, 2 on bad usage, 130 after Ctrl-C, 143 after SIGTERM, 129 after SIGHUP\n"
+             "(outputs closed). 'beltsim COMMAND --help' describes a command; 'beltsim help parameters' lists\n"
+             "the scene's parameters with their units and defaults.");
+  const auto fail = [&](int s) {
+    *status = s;
+    return std::optional<CommandLine>();
+  };
+  CommandLine cl;
+  Raw& raw = cl.raw;
+
+  CLI::App* run = app.add_subcommand("run", "run a Lua scenario script");
+  run->add_option("SCRIPT", cl.script, "the scenario (Lua)")->required();
+  add_run_overrides(run, raw);
+  run->footer("The options override the script's scene:run{} settings. Writes DIR/timeseries.csv (samples\n"
+              "at fixed times) and DIR/parameters.csv, and the frames (PNG) and video (MP4) a script asks\n"
+              "for with scene:run{ frames = {...} }.");
+
+  CLI::App* wp = app.add_subcommand("wp", "error against run time of every integrator");
+  wp->add_option("SCRIPT", cl.script, "the scenario (Lua): its first scene:run{} gives the scene")->required();
+  add_out_and_t_end(wp, raw, "output folder (default: out/<script name>/wp)");
+  wp->add_option("--integrators", raw.integrators, "those to study, separated by commas (default: all)")
+      ->type_name("A,B,..");
+  wp->add_option("--rtols", raw.rtols, "tolerances (default 1e-2,1e-3,1e-4,1e-5,1e-6)")->type_name("R1,R2,..");
+  wp->add_option("--ref-rtol", raw.ref_rtol, "tolerance of the esdirk32 reference run (default 1e-7)")->type_name("R");
+  wp->add_option("--wall-limit", raw.wall_limit, "a run taking longer is stopped, unfinished (default 120)")
+      ->type_name("S");
+  add_set(wp, raw);
+  add_safety(wp, raw);
+  wp->footer("Runs the script's scene with every integrator at every tolerance, each against the\n"
+             "reference. Writes DIR/wp.csv, DIR/wp.png (log-log, gnuplot) and DIR/<integrator>-<rtol>/.");
+
+  CLI::App* plot = app.add_subcommand("plot", "draw columns of a timeseries.csv to a PNG");
+  plot->add_option("CSV", cl.csv, "a timeseries.csv written by run")->required();
+  plot->add_option("COLUMNS", cl.columns, "columns to draw (default: every <pulley>.omega)");
+  plot->add_option("--out", raw.out, "the PNG (default: plot.png beside the CSV)")->type_name("PNG");
+  plot->add_option("--from", raw.from, "draw samples with t >= T only [s]")->type_name("T");
+  plot->footer("Prints the PNG's path; on a terminal also shows the picture (BELTSIM_TERM_IMAGES=off|symbols|\n"
+               "sixel|kitty|iterm forces a mode). Columns of two units share the plot on two y axes.");
+
+  add_render_command(app, cl.render);
+  add_compare_command(app, cl.compare);
+
+  CLI::App* console = app.add_subcommand("console", "an interactive Lua console with a live simulation");
+  console->add_option("SCRIPT", cl.console_script, "a scenario to load first");
+  add_run_overrides(console, raw);
+  console->footer("Arguments after -- are passed to the script.");
+
+  CLI::App* sweep = app.add_subcommand("sweep", "run a sweep: many points, each a run, on every core or on Slurm");
+  sweep->add_option("FILE", cl.script, "a sweep file (returns beltsim.sweep{...}), or a script with --set lists")
+      ->required();
+  sweep->add_option("--out", raw.out, "the sweep's folder (default: out/<file name>)")->type_name("DIR");
+  sweep->add_option("--jobs", raw.jobs, "points run at once (default: the processors this process may use)")
+      ->type_name("N");
+  sweep->add_option("--point", raw.point, "run point K alone, in this process (0-based, as --list numbers them)")
+      ->type_name("K");
+  sweep->add_flag("--list", raw.list, "print the points (CSV) and run nothing");
+  sweep->add_flag("--collect", raw.collect, "merge the points' results into summary.csv and run nothing");
+  sweep->add_option("--set", raw.set,
+                    "the quick form: FILE is an ordinary script and each KEY=V1,V2,.. one parameter "
+                    "(beltsim.args.KEY); the lists are crossed, the first varying slowest (repeatable)")
+      ->type_name("KEY=V1,V2,..")
+      ->allow_extra_args(false);
+  sweep->add_flag("--slurm", raw.slurm, "write DIR/sweep.sbatch (a job array) and DIR/collect.sbatch, run nothing");
+  sweep->add_flag("--submit", raw.submit, "with --slurm: submit both with sbatch and print the job ids");
+  sweep->add_option("--partition", raw.partition, "with --slurm: the partition")->type_name("P");
+  sweep->add_option("--time", raw.time, "with --slurm: each task's time limit (Slurm's format, e.g. 30 or 1:00:00)")
+      ->type_name("T");
+  sweep->add_option("--max-parallel", raw.max_parallel, "with --slurm: tasks running at once (--array=..%M)")
+      ->type_name("M");
+  add_safety(sweep, raw);
+  sweep->footer("Each point runs in a process of its own with its folder DIR/<point>/ (point.csv: its parameters,\n"
+                "status and figures; log.txt: its messages); DIR/summary.csv merges them. Run again: only the\n"
+                "points not ok run. Exit status 0 when every point is ok, 1 otherwise. docs/sweeps.md.");
+
+  // `beltsim console ... -- ARGS`: everything after the first -- belongs to the script
+  std::vector<std::string> words(argv + 1, argv + argc);
+  if (!words.empty() && words[0] == "console") {
+    const auto dd = std::find(words.begin(), words.end(), "--");
+    if (dd != words.end()) {
+      cl.console_args.assign(dd + 1, words.end());
+      words.erase(dd, words.end());
+    }
+  }
+  if (words.size() == 2 && words[0] == "help" && words[1] == "parameters") {
+    // the scene's parameter tables, as docs/lua-api.md holds them (scene/parameters.hpp)
+    cl.command = "help-parameters";
+    return cl;
+  }
+  if (!words.empty() && words[0] == "help") words[0] = "--help";
+  const std::vector<std::string> commands{"run", "wp", "plot", "render", "compare", "console", "sweep"};
+  if (!words.empty() && !words[0].empty() && words[0][0] == '-' && words[0] != "-h" && words[0] != "--help" &&
+      words[0] != "--version") {
+    std::fprintf(stderr, "beltsim: unknown option '%s' before the command\nRun 'beltsim --help' for the usage.\n",
+                 words[0].c_str());
+    return fail(2);
+  }
+  if (!words.empty() && (words[0].empty() || words[0][0] != '-') &&
+      std::find(commands.begin(), commands.end(), words[0]) == commands.end()) {
+    std::fprintf(stderr, "beltsim: unknown command '%s' (commands: run, wp, plot, render, compare, console, sweep)\n"
+                 "Run 'beltsim --help' for the usage.\n", words[0].c_str());
+    return fail(2);
+  }
+  std::reverse(words.begin(), words.end());  // CLI11 takes the arguments in reverse order
+  try {
+    app.parse(words);
+  } catch (const CLI::CallForHelp& e) {
+    return fail(app.exit(e));
+  } catch (const CLI::CallForAllHelp& e) {
+    return fail(app.exit(e));
+  } catch (const CLI::CallForVersion& e) {
+    return fail(app.exit(e));
+  } catch (const CLI::ParseError& e) {
+    const CLI::App* sub = app.get_subcommands().empty() ? nullptr : app.get_subcommands().front();
+    const std::string name = sub ? sub->get_name() : "";
+    std::string msg = e.what();
+    if (dynamic_cast<const CLI::ExtrasError*>(&e)) {
+      std::string extra;
+      for (const auto& w : app.remaining(true)) extra += (extra.empty() ? "" : " ") + w;
+      msg = (sub ? name + " does not take: " : "unexpected: ") + extra +
+            (name == "console" ? " (arguments for the script go after --)" : "");
+    }
+    std::fprintf(stderr, "beltsim: %s\nRun 'beltsim%s --help' for the usage.\n", msg.c_str(),
+                 name.empty() ? "" : (" " + name).c_str());
+    return fail(2);
+  }
+
+  cl.command = app.get_subcommands().front()->get_name();
+  return cl;
+}
+}  // namespace beltsim::app

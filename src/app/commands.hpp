@@ -1,0 +1,23 @@
+// The commands that run scripts or read results: each takes its options as read by options.hpp and
+// returns the exit status (0, 1 on an error whose message it printed, 130/143/129 after a signal);
+// a UsageError (exit 2) escapes to main. `render` and `compare` are in render_cmd.hpp and compare.hpp.
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "app/environment.hpp"
+#include "app/options.hpp"
+
+namespace beltsim::app {
+
+int cmd_run(const std::string& script, const script::Overrides& o, const script::Safety& s);
+int cmd_wp(const std::string& script, const script::Overrides& o, const script::Safety& s, WpSettings wps);
+int cmd_console(const std::optional<std::string>& script, const std::vector<std::string>& args,
+                const script::Overrides& o, const script::Safety& s, const Environment& env);
+int cmd_plot(const std::string& csv, const std::vector<std::string>& columns, const Raw& raw,
+             term::ImageMode images);
+int cmd_sweep(const std::string& file, const Raw& raw, const script::Safety& s);
+
+}  // namespace beltsim::app

@@ -1,0 +1,139 @@
+#include "app/options.hpp"
+
+#include <cmath>
+#include <cstdint>
+#include <sstream>
+
+#include "integrate/integrator.hpp"
+#include "integrate/stepper.hpp"
+#include "script/script_args.hpp"
+
+namespace beltsim::app {
+
+double number(const std::string& option, const std::string& text) {
+  const auto x = script::decimal(text);
+  if (!x) throw UsageError(option + " needs a finite decimal number, got '" + text + "'");
+  return *x;
+}
+
+namespace {
+
+// each comma-separated item a number in (0, 1)
+std::vector<double> tolerances(const std::string& option, const std::string& text) {
+  std::vector<double> out;
+  std::stringstream ss(text);
+  std::string item;
+  while (std::getline(ss, item, ',')) {
+    const auto x = script::decimal(item);
+    if (!x) throw UsageError(option + " needs numbers in (0, 1) separated by commas, got '" + text + "'");
+    if (const std::string bad = rtol_problem(*x); !bad.empty())
+      throw UsageError(option + ": each " + bad);
+    out.push_back(*x);
+  }
+  if (out.empty() || (!text.empty() && text.back() == ','))
+    throw UsageError(option + " needs numbers in (0, 1) separated by commas, got '" + text + "'");
+  return out;
+}
+
+// a name of an integrator (integrate/stepper.hpp), else a UsageError
+void known_integrator(const std::string& name) {
+  try {
+    beltsim::check_integrator(name);
+  } catch (const std::invalid_argument& e) {
+    throw UsageError(e.what());
+  }
+}
+
+}  // namespace
+
+std::string integrator_list() {
+  std::string names;
+  for (const auto& n : integrator_names()) names += (names.empty() ? "" : ", ") + n;
+  return names;
+}
+
+int whole_number(const std::string& option, const std::string& text, int lo) {
+  const double x = number(option, text);
+  if (!(x == std::floor(x) && x >= lo && x <= 1e9))
+    throw UsageError(option + " must be a whole number >= " + std::to_string(lo) + ", got " + text);
+  return static_cast<int>(x);
+}
+
+script::Safety safety(const Raw& raw) {
+  script::Safety s;
+  s.trusted = raw.trusted;
+  if (raw.max_instructions) {
+    const double x = number("--max-instructions", *raw.max_instructions);
+    if (!(x >= 0 && x == std::floor(x) && x <= 1e18))
+      throw UsageError("--max-instructions must be a whole number in [0, 1e18] (0: no limit), got " +
+                       *raw.max_instructions);
+    s.max_instructions = static_cast<std::uint64_t>(x);
+  }
+  if (raw.max_lua_memory) {
+    const double x = number("--max-lua-memory", *raw.max_lua_memory);
+    if (!(x >= 0 && x <= 1e9))
+      throw UsageError("--max-lua-memory must be in [0, 1e9] MiB (0: no limit), got " + *raw.max_lua_memory);
+    s.max_lua_memory = static_cast<std::size_t>(x * (1 << 20));
+    if (x > 0 && s.max_lua_memory < (std::size_t(1) << 20))
+      throw UsageError("--max-lua-memory must be at least 1 MiB (0: no limit), got " + *raw.max_lua_memory);
+  }
+  return s;
+}
+
+script::Overrides overrides(const Raw& raw) {
+  script::Overrides o;
+  o.out = raw.out;
+  if (raw.t_end) {
+    const double x = number("--t-end", *raw.t_end);
+    if (!(x > 0)) throw UsageError("--t-end must be > 0 s, got " + *raw.t_end);
+    o.t_end = x;
+  }
+  if (raw.integrator) {
+    known_integrator(*raw.integrator);
+    o.integrator = raw.integrator;
+  }
+  if (raw.rtol) {
+    const double x = number("--rtol", *raw.rtol);
+    if (const std::string bad = rtol_problem(x); !bad.empty()) throw UsageError("--rtol " + bad);
+    o.rtol = x;
+  }
+  if (raw.max_wall) {
+    const double x = number("--max-wall", *raw.max_wall);
+    if (!(x > 0)) throw UsageError("--max-wall must be > 0 s, got " + *raw.max_wall);
+    o.max_wall = x;
+  }
+  o.no_frames = raw.no_frames;
+  try {
+    o.set = script::parse_sets(raw.set);
+  } catch (const std::invalid_argument& e) {
+    throw UsageError(e.what());
+  }
+  return o;
+}
+
+WpSettings wp_settings(const Raw& raw) {
+  WpSettings wps;
+  if (raw.integrators) {
+    std::stringstream ss(*raw.integrators);
+    std::string item;
+    while (std::getline(ss, item, ',')) {
+      known_integrator(item);
+      wps.integrators.push_back(item);
+    }
+    if (wps.integrators.empty()) throw UsageError("--integrators needs names separated by commas");
+  }
+  if (raw.rtols) wps.rtols = tolerances("--rtols", *raw.rtols);
+  if (raw.ref_rtol) {
+    const double x = number("--ref-rtol", *raw.ref_rtol);
+    if (const std::string bad = rtol_problem(x); !bad.empty()) throw UsageError("--ref-rtol " + bad);
+    wps.ref_rtol = x;
+  }
+  if (raw.wall_limit) {
+    const double x = number("--wall-limit", *raw.wall_limit);
+    if (!(x > 0)) throw UsageError("--wall-limit must be > 0 s, got " + *raw.wall_limit);
+    wps.wall_limit = x;
+  }
+  return wps;
+}
+
+}  // namespace beltsim::app

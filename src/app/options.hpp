@@ -1,0 +1,47 @@
+// The command line's options as typed (text) and their reading into the settings the commands
+// take: every number through script::decimal (a finite decimal: no hex, inf or nan), every
+// problem a UsageError (exit status 2 with the pointer to the command's --help).
+#pragma once
+
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "script/interpreter.hpp"
+#include "sim/work_precision.hpp"
+
+namespace beltsim::app {
+
+// bad usage: the message goes to stderr and the exit status is 2
+struct UsageError : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+// the options as typed: text, turned into numbers and checked by the readers below and the
+// commands, so every number goes through decimal()
+struct Raw {
+  std::optional<std::string> out, t_end, integrator, rtol, max_wall;
+  bool no_frames = false;
+  std::optional<std::string> integrators, rtols, ref_rtol, wall_limit;  // wp
+  std::optional<std::string> from;                                      // plot
+  bool trusted = false;                                                 // run, wp, console, sweep
+  std::optional<std::string> max_instructions, max_lua_memory;
+  std::vector<std::string> set;  // run, console, wp: --set KEY=VALUE; sweep: --set KEY=V1,V2,..
+  std::optional<std::string> jobs, point, partition, time, max_parallel;  // sweep
+  bool list = false, collect = false, slurm = false, submit = false;
+};
+
+double number(const std::string& option, const std::string& text);
+// a whole number in [lo, 1e9]
+int whole_number(const std::string& option, const std::string& text, int lo);
+// the integrators' names, separated by commas (for the help)
+std::string integrator_list();
+
+script::Safety safety(const Raw& raw);
+// --out, --t-end, --integrator, --rtol, --max-wall, --no-frames and --set of run and console
+script::Overrides overrides(const Raw& raw);
+// wp's --integrators, --rtols, --ref-rtol and --wall-limit
+WpSettings wp_settings(const Raw& raw);
+
+}  // namespace beltsim::app

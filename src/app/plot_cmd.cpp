@@ -1,0 +1,37 @@
+// `beltsim plot CSV [COLUMNS...]`: columns of a time series drawn to a PNG (commands.hpp).
+#include <unistd.h>
+
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+
+#include "app/commands.hpp"
+#include "io/output_dir.hpp"
+#include "plot/plot.hpp"
+#include "term/term_image.hpp"
+
+namespace beltsim::app {
+
+namespace fs = std::filesystem;
+
+int cmd_plot(const std::string& csv, const std::vector<std::string>& columns, const Raw& raw,
+             term::ImageMode images) {
+  const double from = raw.from ? number("--from", *raw.from) : -INFINITY;
+  const std::string png = raw.out ? *raw.out : (fs::path(csv).parent_path() / "plot.png").string();
+  try {
+    plot::plot_csv(csv, columns, from, png);
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "beltsim: %s\n", e.what());
+    mark_output_failure_shown(e.what());
+    return 1;
+  }
+  // the picture on a terminal (or wherever BELTSIM_TERM_IMAGES forces it), then the path
+  std::fflush(stdout);
+  std::string why;
+  if (!term::show_image_in_terminal(png, stdout, images, &why) && ::isatty(STDOUT_FILENO))
+    std::fprintf(stderr, "beltsim plot: not shown in the terminal: %s\n", why.c_str());
+  std::printf("%s\n", png.c_str());
+  return 0;
+}
+
+}  // namespace beltsim::app

@@ -1,0 +1,92 @@
+// `beltsim run`, `beltsim wp` and `beltsim console`: a script run by the interpreter (commands.hpp).
+#include <cstdio>
+#include <filesystem>
+
+#include "app/commands.hpp"
+#include "io/output_dir.hpp"
+#include "plot/wp_plot.hpp"
+#include "script/console.hpp"
+#include "script/docall.hpp"
+#include "script/signals.hpp"
+
+namespace beltsim::app {
+
+namespace fs = std::filesystem;
+
+using script::stop_flag;
+using script::stop_signal;
+using script::stopped_status;
+
+int cmd_run(const std::string& script, const script::Overrides& o, const script::Safety& s) {
+  try {
+    script::Interpreter lua(s);
+    const script::Interruptible on_signal(lua);
+    lua.set_overrides(o);
+    lua.set_stop_flag(&stop_flag());
+    lua.run_file(script);
+    if (lua.interrupted() || stop_signal() != 0) return stopped_status();
+    // a --set the script never read: the run did not use what was asked of it
+    const std::vector<std::string> unread = lua.unread_args(script);
+    for (const std::string& m : unread) std::fprintf(stderr, "beltsim: %s\n", m.c_str());
+    if (!unread.empty()) return 1;
+  } catch (const script::ScriptError& e) {
+    std::fprintf(stderr, "beltsim: %s\n%s", e.what(), script::shown_traceback(e.traceback).c_str());
+    return stop_signal() != 0 ? stopped_status() : 1;
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "beltsim: %s\n", e.what());
+    mark_output_failure_shown(e.what());
+    return stop_signal() != 0 ? stopped_status() : 1;
+  }
+  return 0;
+}
+
+int cmd_wp(const std::string& script, const script::Overrides& o, const script::Safety& s,
+           WpSettings wps) {
+  try {
+    script::Captured cap;
+    script::Interpreter lua(s);
+    const script::Interruptible on_signal(lua);
+    script::Overrides captured;  // --t-end and --set reach the script; --out is wp's own folder
+    captured.t_end = o.t_end;
+    captured.set = o.set;
+    lua.set_overrides(captured);
+    lua.set_capture(&cap);
+    lua.run_file(script);
+    if (!cap.scene) throw std::runtime_error(script + ": the script never calls scene:run{}");
+    // the script stops at its first scene:run{}: a key read after it cannot be known (a warning)
+    for (const std::string& m : lua.unread_args(script))
+      std::fprintf(stderr, "beltsim wp: warning: %s (before its first scene:run{})\n", m.c_str());
+    wps.base = cap.settings;
+    wps.base.out_dir = o.out ? *o.out : (fs::path("out") / fs::path(script).stem() / "wp").string();
+    const WpResult r = work_precision(*cap.scene, wps, &stop_flag());
+    const std::string png = (fs::path(wps.base.out_dir) / "wp.png").string();
+    std::string drawn;
+    try {
+      plot::plot_wp_png(r, png);
+      drawn = png;
+    } catch (const std::exception& e) {  // the CSV is the result; the picture is a convenience
+      std::fprintf(stderr, "beltsim wp: no plot: %s\n", e.what());
+      mark_output_failure_shown(e.what());  // (a picture that cannot be written fails the command)
+    }
+    std::fprintf(stderr, "beltsim wp: wrote %s%s%s\n", r.csv_path.c_str(), drawn.empty() ? "" : " and ", drawn.c_str());
+    return stop_signal() != 0 ? stopped_status() : 0;
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "beltsim: %s\n", e.what());
+    mark_output_failure_shown(e.what());
+    return stop_signal() != 0 ? stopped_status() : 1;
+  }
+}
+
+int cmd_console(const std::optional<std::string>& script, const std::vector<std::string>& args,
+                const script::Overrides& o, const script::Safety& s,
+                const Environment& env) {
+  try {
+    return script::run_console(script, args, o, s, {env.history, env.images});
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "beltsim: %s\n", e.what());
+    mark_output_failure_shown(e.what());
+    return 1;
+  }
+}
+
+}  // namespace beltsim::app

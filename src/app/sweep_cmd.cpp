@@ -1,0 +1,198 @@
+// `beltsim sweep FILE`: the points of a sweep run on this machine's processors, one at a time
+// (--point), listed, collected, or written as a Slurm job array (commands.hpp, sweep/).
+#include <sched.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cstdio>
+#include <filesystem>
+#include <variant>
+
+#include "app/commands.hpp"
+#include "io/csv_writer.hpp"
+#include "script/docall.hpp"
+#include "script/lua_sweep.hpp"
+#include "script/script_args.hpp"
+#include "script/signals.hpp"
+#include "sweep/driver.hpp"
+#include "sweep/results.hpp"
+#include "sweep/slurm.hpp"
+
+namespace beltsim::app {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+using script::stop_flag;
+using script::stop_signal;
+using script::stopped_status;
+
+// the processors this process may run on (its affinity mask: a cgroup's or taskset's share)
+int processors() {
+  cpu_set_t set;
+  if (sched_getaffinity(0, sizeof set, &set) == 0 && CPU_COUNT(&set) > 0) return CPU_COUNT(&set);
+  const long n = sysconf(_SC_NPROCESSORS_ONLN);
+  return n > 0 ? static_cast<int>(n) : 1;
+}
+
+
+// the quick form's grid: each --set KEY=V1,V2,.. a parameter, crossed in the order given (the
+// first varies slowest); each value read as --set reads one
+sweep::Grid set_grid(const std::vector<std::string>& sets) {
+  sweep::Grid g;
+  for (const std::string& kv : sets) {
+    const std::size_t eq = kv.find('=');
+    if (eq == std::string::npos) throw UsageError("--set " + kv + ": KEY=V1,V2,.. expected");
+    const std::string key = kv.substr(0, eq), list = kv.substr(eq + 1);
+    if (std::find(g.names.begin(), g.names.end(), key) != g.names.end())
+      throw UsageError("--set " + key + " is given twice; give its values in one list: --set " + key + "=V1,V2,..");
+    std::vector<sweep::Value> values;
+    std::size_t from = 0;
+    while (true) {
+      const std::size_t comma = list.find(',', from);
+      const std::string item = list.substr(from, comma == std::string::npos ? std::string::npos : comma - from);
+      try {
+        const script::ScriptArg a = script::parse_set(key + "=" + item);
+        std::visit([&](const auto& x) { values.emplace_back(x); }, a.value);
+      } catch (const std::invalid_argument& e) {
+        throw UsageError(std::string(e.what()) + " (in --set " + kv + ")");
+      }
+      if (comma == std::string::npos) break;
+      from = comma + 1;
+    }
+    g.names.push_back(key);
+    g.values.push_back(std::move(values));
+  }
+  return g;
+}
+
+// the arguments that give a point's process the same sweep: the file, the folder, the --set
+// lists and the safety options as typed
+std::vector<std::string> sweep_args(const std::string& file, const std::string& dir, const Raw& raw) {
+  std::vector<std::string> a{"sweep", file, "--out", dir};
+  for (const std::string& s : raw.set) a.insert(a.end(), {"--set", s});
+  if (raw.trusted) a.push_back("--trusted");
+  if (raw.max_instructions) a.insert(a.end(), {"--max-instructions", *raw.max_instructions});
+  if (raw.max_lua_memory) a.insert(a.end(), {"--max-lua-memory", *raw.max_lua_memory});
+  return a;
+}
+
+std::string params_text(const sweep::Point& p) {
+  std::string s;
+  for (const auto& [name, v] : p.params) s += (s.empty() ? "" : ", ") + name + "=" + sweep::value_text(v);
+  return s;
+}
+
+}  // namespace
+
+int cmd_sweep(const std::string& file, const Raw& raw, const script::Safety& s) {
+  namespace sw = beltsim::sweep;
+  const std::string dir = raw.out ? *raw.out : (fs::path("out") / fs::path(file).stem()).string();
+  const std::string name = fs::path(file).stem().string();
+  const bool quick = !raw.set.empty();
+  const int jobs = raw.jobs ? whole_number("--jobs", *raw.jobs, 1) : processors();
+  const int point = raw.point ? whole_number("--point", *raw.point, 0) : -1;
+  if (!raw.slurm && (raw.submit || raw.partition || raw.time || raw.max_parallel))
+    throw UsageError("--submit, --partition, --time and --max-parallel go with --slurm");
+  if (int(point >= 0) + int(raw.list) + int(raw.collect) + int(raw.slurm) > 1)
+    throw UsageError("give one of --point, --list, --collect and --slurm");
+  std::vector<sw::Point> points;
+  const sw::Grid grid = quick ? set_grid(raw.set) : sw::Grid{};
+  try {
+    script::Interpreter lua(s);
+    const script::Interruptible on_signal(lua);
+    lua.set_stop_flag(&stop_flag());
+    if (quick) {
+      if (!fs::is_regular_file(file)) throw script::ScriptError(file + ": no such script");
+      points = sw::grid_points(grid);
+    } else {
+      points = script::load_sweep(lua, file);
+    }
+    if (raw.list) {
+      std::string h = "point";
+      for (const auto& [n, v] : points[0].params) h += "," + n;
+      std::printf("%s\n", h.c_str());
+      for (const sw::Point& p : points) {
+        std::string r = p.id;
+        for (const auto& [n, v] : p.params) r.append(",").append(csv_text(sw::value_text(v)));
+        std::printf("%s\n", r.c_str());
+      }
+      return 0;
+    }
+    if (point >= 0) {
+      if (point >= static_cast<int>(points.size()))
+        throw UsageError("--point " + std::to_string(point) + ": the sweep has points 0.." +
+                         std::to_string(points.size() - 1));
+      const sw::Point& p = points[static_cast<std::size_t>(point)];
+      const std::string point_dir = (fs::path(dir) / p.id).string();
+      std::fprintf(stderr, "beltsim sweep: point %s of %zu (%s)\n", p.id.c_str(), points.size(), params_text(p).c_str());
+      const sw::PointResult r = quick ? script::run_script_point(lua, file, p, point_dir)
+                                      : script::run_sweep_point(lua, file, p, point_dir);
+      if (lua.interrupted() || stop_signal() != 0) return stopped_status();  // not a result: it runs again
+      sw::write_point_result(dir, p, r);
+      std::fprintf(stderr, "beltsim sweep: point %s: %s\n", p.id.c_str(), r.status.c_str());
+      return r.ok() ? 0 : 1;
+    }
+  } catch (const script::ScriptError& e) {
+    std::fprintf(stderr, "beltsim: %s\n%s", e.what(), script::shown_traceback(e.traceback).c_str());
+    return stop_signal() != 0 ? stopped_status() : 1;
+  } catch (const std::invalid_argument& e) {  // the grid of the --set lists
+    throw UsageError(e.what());
+  }
+
+  const auto summary = [&] {
+    const sw::SummaryCounts c = sw::write_summary(dir, points);
+    std::fprintf(stderr, "beltsim sweep: %s/%s: %d ok, %d failed, %d not run\n", dir.c_str(), sw::kSummaryFile, c.ok,
+                 c.failed, c.not_run);
+    return c.failed + c.not_run == 0 ? 0 : 1;
+  };
+  if (raw.collect) return summary();
+  if (raw.slurm) {
+    sw::SlurmSettings ss;
+    ss.program = sw::this_program();
+    ss.dir = fs::absolute(dir).lexically_normal().string();
+    ss.point_args = sweep_args(fs::absolute(file).lexically_normal().string(), ss.dir, raw);
+    ss.collect_args = ss.point_args;
+    ss.collect_args.push_back("--collect");
+    ss.name = name;
+    ss.workdir = fs::current_path().string();
+    ss.partition = raw.partition;
+    ss.time = raw.time;
+    if (raw.max_parallel) ss.max_parallel = whole_number("--max-parallel", *raw.max_parallel, 1);
+    sw::SlurmJobs j;
+    try {
+      j = sw::write_slurm_jobs(points, ss);
+    } catch (const std::invalid_argument& e) {
+      throw UsageError(e.what());
+    }
+    std::printf("%s\n%s\n", j.array_script.c_str(), j.collect_script.c_str());
+    if (j.array.empty()) {
+      std::fprintf(stderr, "beltsim sweep: every point is done: nothing to submit\n");
+      return summary();
+    }
+    if (!raw.submit) {
+      std::fprintf(stderr, "beltsim sweep: submit with\n  jid=$(sbatch --parsable %s)\n  sbatch --dependency=afterany:$jid %s\n",
+                   j.array_script.c_str(), j.collect_script.c_str());
+      return 0;
+    }
+    const auto [array, collect] = sw::submit_slurm_jobs(j);
+    std::printf("%s %s\n", array.c_str(), collect.c_str());
+    std::fprintf(stderr, "beltsim sweep: submitted job array %s (points %s) and job %s (summary.csv after it)\n",
+                 array.c_str(), j.array.c_str(), collect.c_str());
+    return 0;
+  }
+  sw::DriverSettings ds;
+  ds.program = sw::this_program();
+  ds.point_args = sweep_args(file, dir, raw);
+  ds.dir = dir;
+  ds.name = name;
+  ds.jobs = jobs;
+  ds.stop = &stop_flag();
+  ds.stop_signal = [] { return stop_signal(); };
+  const sw::DriverReport r = sw::run_points(points, ds);
+  const int status = summary();
+  return r.stopped ? stopped_status() : status;
+}
+
+}  // namespace beltsim::app
