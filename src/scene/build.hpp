@@ -31,6 +31,11 @@ struct RouteOrder {
 RouteOrder route_order(const SceneDef& d, const std::vector<Pulley>& pulleys);
 // throws when a wrap of `route` holds fewer than 3 elements of the pitch route.length / elements
 void check_wraps(const Route& route, const std::vector<std::string>& names, int elements);
+// throws when a free pulley's inertia is below kWrapInertiaMin of the belt's on its wrap
+// (mass_per_length · wrap length · r²): the step-size control cannot follow so light a pulley
+constexpr double kWrapInertiaMin = 0.01;
+void check_inertias(const Route& route, const RouteOrder& order, const std::vector<Pulley>& pulleys, const Drive& dr,
+                    double mass_per_length);
 
 // 3. the per-SDE values of an element of rest length l0 (docs/model.md, Parameter reading), into rigid_length, mass,
 // rot_inertia, k, kt, c and ct: the rigidities refer to l0 (k = EA/l0, k_t = EI/l0,

@@ -142,7 +142,7 @@ constexpr Parameter kParameters[] = {
     {"belt", "mass_per_length", K::number, "kg/m", 0.096, "", W::paper, R::positive,
      "the paper's rho, per metre of unstretched belt",
      [](SceneDef& d, PulleyDef&) -> Slot { return &d.belt.mass_per_length; }, nullptr, nullptr},
-    {"belt", "mu", K::other, "", 1, "", W::paper, R::non_negative,
+    {"belt", "mu", K::other, "", 1, "", W::paper, R::friction_coefficient,
      "friction coefficient: a number, a list (one per element) or function(site) return μ end",
      [](SceneDef& d, PulleyDef&) -> Slot { return &d.belt.mu; }, nullptr,
      [](const SceneDef& d, const PulleyDef&) -> std::string {
@@ -215,6 +215,7 @@ std::string_view doc_range(Rule r) {
     case Rule::non_negative: return "≥ 0";
     case Rule::exponent: return "≥ 1";
     case Rule::at_least_three: return "≥ 3";
+    case Rule::friction_coefficient: return "0 … 10";
     case Rule::finite: return "finite";
     case Rule::none: break;
   }
@@ -281,6 +282,9 @@ std::string_view rule_text(Rule r) {
     case Rule::non_negative: return "must be >= 0";
     case Rule::exponent: return "must be >= 1 (below 1 the stiffness is infinite at zero)";
     case Rule::at_least_three: return "must be >= 3";
+    case Rule::friction_coefficient:
+      return "must be in [0, 10]: a friction coefficient (a rib's effective one stays below 5; a larger one only "
+             "shrinks the steps, the friction band's stiffness growing with it)";
     case Rule::finite: return "must be a finite number";
     case Rule::none: break;
   }

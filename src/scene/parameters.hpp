@@ -34,7 +34,12 @@ enum class Kind {
 };
 
 // the range a number must lie in; every rule also requires a finite number
-enum class Rule { none, finite, positive, non_negative, exponent, at_least_three };
+enum class Rule { none, finite, positive, non_negative, exponent, at_least_three, friction_coefficient };
+
+// The largest friction coefficient accepted (Rule::friction_coefficient): a poly-V rib's effective
+// coefficient μ/sin(β/2) stays below 5 (rubber on steel, μ up to 1.5, over sin 20°); a larger one
+// changes no answer but shrinks the steps, the friction band's stiffness μ·N/Δv growing with it.
+constexpr double kMuMax = 10;
 
 // where a parameter's value lives in a SceneDef (a pulley's in its PulleyDef)
 using Slot = std::variant<std::monostate, double*, int*, std::optional<double>*>;

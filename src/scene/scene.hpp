@@ -165,6 +165,11 @@ inline constexpr double kWrapElementsWarn = 10;
 // and the belt.elements that would put kWrapElementsWarn on it. Empty when none.
 std::vector<std::string> coarse_wraps(const Scene& sc);
 
+// What the run's first lines warn of (scene:info().warnings lists the same): the coarse wraps, and
+// each free pulley whose torque grows with its speed (per_speed > 0, an energy source: the speed
+// grows as exp(per_speed·t/J) unless the belt holds it back).
+std::vector<std::string> scene_warnings(const Scene& sc);
+
 // The SDE nearest the midpoint of route span sp in the state y (positions, then velocities), and
 // its axial force [N]: the span's tension as the build, the runs and the outputs read it.
 int span_sde(const Model& m, const Route::Span& sp, const double* y);

@@ -203,7 +203,7 @@ Drive read_drive(CheckpointReader& r, const Model& m) {
   d.mu = r.line_doubles("belt.mu", n);
   if (d.mu.size() != n) r.fail(std::to_string(d.mu.size()) + " values for " + std::to_string(n) + " elements");
   checked(r, [&] {
-    for (size_t i = 0; i < n; ++i) require_non_negative("belt.mu of element " + std::to_string(i), d.mu[i], "");
+    for (size_t i = 0; i < n; ++i) require_mu("belt.mu of element " + std::to_string(i), d.mu[i]);
   });
   return d;
 }

@@ -34,6 +34,15 @@ void require_positive(const std::string& what, double value, const std::string& 
   if (!(value > 0)) reject(what, "must be > 0", value, unit);
 }
 
+std::string mu_problem(double mu) {
+  if (!std::isfinite(mu)) return std::string(rule_text(Rule::finite));
+  return mu >= 0 && mu <= kMuMax ? "" : std::string(rule_text(Rule::friction_coefficient));
+}
+
+void require_mu(const std::string& what, double mu) {
+  if (const std::string bad = mu_problem(mu); !bad.empty()) reject(what, bad, mu, "");
+}
+
 void require_non_negative(const std::string& what, double value, const std::string& unit) {
   require_finite(what, value, unit);
   if (!(value >= 0)) reject(what, "must be >= 0", value, unit);
@@ -59,6 +68,7 @@ void check_rules(const SceneDef& d, std::string_view table, const PulleyDef* p) 
                     : par->rule == Rule::non_negative   ? *v >= 0
                     : par->rule == Rule::exponent       ? *v >= 1
                     : par->rule == Rule::at_least_three ? *v >= 3
+                    : par->rule == Rule::friction_coefficient ? *v >= 0 && *v <= kMuMax
                                                         : true;
     if (!ok) reject(what, std::string(rule_text(par->rule)), *v, unit);
   }
@@ -159,7 +169,7 @@ void validate(const SceneDef& d) {
     if (static_cast<int>(b.mu_per_element.size()) != b.elements)
       reject("belt.mu per element", "needs one value per element", static_cast<double>(b.mu_per_element.size()),
              "values");
-    for (double mu : b.mu_per_element) require_non_negative("belt.mu of an element", mu, "");
+    for (double mu : b.mu_per_element) require_mu("belt.mu of an element", mu);
   }
   if (!b.route.empty()) {
     std::set<std::string> seen;

@@ -18,5 +18,8 @@ struct ParameterError : std::runtime_error {
 void require_positive(const std::string& what, double value, const std::string& unit);
 void require_non_negative(const std::string& what, double value, const std::string& unit);
 void require_finite(const std::string& what, double value, const std::string& unit);
+// a friction coefficient: "" when it is one, else why not (parameters.hpp, kMuMax)
+std::string mu_problem(double mu);
+void require_mu(const std::string& what, double mu);
 
 }  // namespace beltsim

@@ -13,6 +13,7 @@
 
 #include "io/suggest.hpp"
 #include "render/recorder.hpp"
+#include "scene/validate.hpp"
 #include "script/context.hpp"
 #include "script/lua_api.hpp"
 #include "script/lua_scene.hpp"
@@ -53,9 +54,9 @@ std::vector<double> mu_over(lua_State* L, int mu_idx, const Scene& sc, std::opti
     } else {
       mu = lua_tonumber(L, mu_idx);
     }
-    if (!(mu >= 0 && std::isfinite(mu))) {
+    if (const std::string bad = mu_problem(mu); !bad.empty()) {
       std::ostringstream m;
-      m << what << ".mu: must be >= 0 and finite (got " << mu << " for element " << site.index << ")";
+      m << what << ".mu: " << bad << " (got " << mu << " for element " << site.index << ")";
       fail(L, m.str());
     }
     out[site.index] = mu;

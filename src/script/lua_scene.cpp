@@ -241,7 +241,7 @@ void report_scene(const Scene& sc, Tensioning tensioning) {
   if (!taken.empty())
     std::fprintf(stderr, "beltsim: scene defaults (not given; parameters.csv says where each comes from): %s\n",
                  taken.c_str());
-  for (const std::string& w : coarse_wraps(sc)) std::fprintf(stderr, "beltsim: warning: %s\n", w.c_str());
+  for (const std::string& w : scene_warnings(sc)) std::fprintf(stderr, "beltsim: warning: %s\n", w.c_str());
   if (tensioning != Tensioning::pretension) {
     const Belt& b = sc.model.belt;
     std::fprintf(stderr, "beltsim: belt: rest length %.6g m on a %.6g m route (strain %.4g %%): static span tension %.6g N\n",
@@ -357,7 +357,7 @@ int l_scene_info(lua_State* L) {
     lua_pushnumber(L, sc->wrap_elements(k)), lua_setfield(L, -2, sc->route_names[k].c_str());
   lua_setfield(L, -2, "wrap_elements");
   lua_newtable(L);
-  const std::vector<std::string> coarse = coarse_wraps(*sc);
+  const std::vector<std::string> coarse = scene_warnings(*sc);
   for (size_t k = 0; k < coarse.size(); ++k) lua_pushstring(L, coarse[k].c_str()), lua_rawseti(L, -2, k + 1);
   lua_setfield(L, -2, "warnings");
   return 1;

@@ -11,6 +11,7 @@
 #include "integrate/timeline.hpp"
 #include "io/number_text.hpp"
 #include "model/forces.hpp"
+#include "scene/validate.hpp"
 #include "sim/interval_means.hpp"
 
 namespace beltsim {
@@ -405,9 +406,9 @@ void Simulation::set_mu(const std::vector<double>& mu, const std::string& what, 
     throw std::invalid_argument(what + ": one μ per element expected (" + std::to_string(model_.n_el()) + "), got " +
                                 std::to_string(mu.size()));
   for (size_t i = 0; i < mu.size(); ++i)
-    if (!std::isnan(mu[i]) && !(mu[i] >= 0 && std::isfinite(mu[i])))
-      throw std::invalid_argument(what + ": μ must be >= 0 and finite (got " + num(mu[i]) + " for element " +
-                                  std::to_string(i) + ")");
+    if (const std::string bad = std::isnan(mu[i]) ? "" : mu_problem(mu[i]); !bad.empty())
+      throw std::invalid_argument(what + ": μ " + bad + " (got " + num(mu[i]) + " for element " + std::to_string(i) +
+                                  ")");
   for (size_t i = 0; i < mu.size(); ++i)
     if (!std::isnan(mu[i])) drive_.mu[i] = mu[i];
   write_event(now(), what, text);

@@ -15,6 +15,7 @@
 #include "io/checkpoint_text.hpp"
 #include "io/number_text.hpp"
 #include "scene/parameters.hpp"
+#include "scene/parameters.hpp"
 #include "scene/presets.hpp"
 #include "scene/scene.hpp"
 #include "scene/scene_io.hpp"
@@ -467,7 +468,7 @@ TEST(SceneIo, SceneIsValidatedAsAScriptsScene) {
   for (int i = 1; i < 60; ++i) mu += " 0.3";
   EXPECT_EQ(error_of(resealed(with_line(text, "belt.mu", mu))),
             "line " + std::to_string(line_of(text, "belt.mu")) +
-                ": 'belt.mu': belt.mu of element 0 must be >= 0 (got -0.5)");
+                ": 'belt.mu': belt.mu of element 0 " + std::string(rule_text(Rule::friction_coefficient)) + " (got -0.5)");
   EXPECT_EQ(error_of(resealed(with_line(text, "belt.mu", "belt.mu 2 0.3 0.3"))),
             "line " + std::to_string(line_of(text, "belt.mu")) + ": 'belt.mu': 2 values for 60 elements");
   // a law a script could not give

@@ -322,7 +322,7 @@ TEST(LuaApi, BadEventsAreRejectedWithFileLine) {
   expect_error(scene_text("") + "s:run{ t_end = 0.01, events = { { t = -0.5, mu = 0.2 } } }\n", "scene.lua:8:",
                {"run.events[1].t: must be > 0 s and finite (got -0.5 s)"});
   expect_error(scene_text("") + "s:run{ t_end = 0.01, events = { { t = 0.005, mu = -1 } } }\n", "scene.lua:8:",
-               {"run.events[1].mu", ">= 0", "-1"});
+               {"run.events[1].mu", "must be in [0, 10]", "-1"});
   expect_error(scene_text("") + "s:run{ t_end = 0.01, events = { { t = 0.005, mu = 0.2, from = 0.1 } } }\n",
                "scene.lua:8:", {"both from and to"});
   expect_error(scene_text("") + "s:run{ t_end = 0.01, events = { { t = 0.005, mu = 0.2, wet = true } } }\n",

@@ -78,6 +78,7 @@ std::pair<std::string, std::string> breaking(Rule r) {
     case Rule::non_negative: return {"-1", "-1"};
     case Rule::exponent: return {"0.5", "0.5"};
     case Rule::at_least_three: return {"2", "2"};
+    case Rule::friction_coefficient: return {"11", "11"};
     case Rule::finite: return {"1/0", "inf"};
     case Rule::none: break;
   }

@@ -275,7 +275,7 @@ TEST(Checkpoint, SceneAndSettingsAreValidated) {
   refused("belt.mu", "belt.mu 3 0.3 0.3 0.3", "'belt.mu': 3 values for 60 elements");
   std::string mu = "belt.mu 60 -1";
   for (int i = 1; i < 60; ++i) mu += " 0.3";
-  refused("belt.mu", mu, "'belt.mu': belt.mu of element 0 must be >= 0 (got -1)");
+  refused("belt.mu", mu, "'belt.mu': belt.mu of element 0 must be in [0, 10]: a friction coefficient");
   refused("sample", "sample 0", "the run settings: sample: the sample interval must be > 0 s and finite (got 0 s)");
   refused("integrator", "integrator \"euler\"", "the run settings: ");
 }

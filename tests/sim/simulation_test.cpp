@@ -462,6 +462,7 @@ TEST(Live, BadRequests) {
   EXPECT_THROW(s.run_to(INFINITY), std::invalid_argument);
   EXPECT_THROW(s.every(0, [] {}), std::invalid_argument);
   EXPECT_THROW(s.set_mu(std::vector<double>(3, 0.1), "set_mu", ""), std::invalid_argument);
+  EXPECT_THROW(s.set_mu(std::vector<double>(s.model().n_el(), 1e7), "set_mu", ""), std::invalid_argument);
   s.close();
   EXPECT_THROW(s.run_to(0.003), std::logic_error);
 }

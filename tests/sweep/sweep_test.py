@@ -122,7 +122,7 @@ class Sweep(unittest.TestCase):
         self.assertEqual(status[0], "ok")
         self.assertEqual(status[2], "ok")
         self.assertTrue(status[1].startswith("error: " + BAD + ":"), status[1])
-        self.assertIn("belt.mu must be >= 0", status[1])
+        self.assertIn("belt.mu must be in [0, 10]", status[1])
         self.assertEqual(summary[2][3], "")  # no figure for the failed point
         self.assertIn("point 1 (mu=-1): error:", p.stderr)
         # run again: only the failed point runs
