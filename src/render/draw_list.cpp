@@ -332,7 +332,7 @@ void FrameBuilder::build(double t, const double* y, DrawList& out, const Drive* 
     el.value = quantity_of(obs[i], fs_.quantity);
     el.band = scale_.band(el.value);
     el.colour = scale_.colour(el.value);
-    el.wet = dr.mu[i] < mu_dry;
+    el.wet = obs[i].mu < mu_dry;  // the μ it has now: a spray zone's water included
     el.slipping = obs[i].state == ContactState::slip;
     el.centre = P(Cd[i]);
     el.corners[0] = P(A - h * oa), el.corners[1] = P(B - h * ob), el.corners[2] = P(B + h * ob), el.corners[3] = P(A + h * oa);

@@ -7,6 +7,8 @@
 
 namespace beltsim {
 
+struct Parameter;
+
 struct ParameterError : std::runtime_error {
   using std::runtime_error::runtime_error;
 };
@@ -18,5 +20,7 @@ struct ParameterError : std::runtime_error {
 void require_positive(const std::string& what, double value, const std::string& unit);
 void require_non_negative(const std::string& what, double value, const std::string& unit);
 void require_finite(const std::string& what, double value, const std::string& unit);
+// value v of parameter par (scene/parameters.hpp), named `what`, against the parameter's rule
+void check_rule(const Parameter& par, const std::string& what, double v);
 
 }  // namespace beltsim
