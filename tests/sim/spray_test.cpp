@@ -10,6 +10,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "model/forces.hpp"
 #include "scene/presets.hpp"
 #include "scene/scene.hpp"
 #include "scene/validate.hpp"
@@ -79,6 +80,30 @@ TEST(Spray, ZoneOffThePathChangesNothing) {
   EXPECT_TRUE(same_bits(a.state(), b.state()));
   EXPECT_EQ(a.stats().steps, b.stats().steps);
   for (int i = 0; i < sprayed.model.n_el(); ++i) EXPECT_EQ(b.element(i).mu, plain.drive.mu[i]);
+}
+
+// The contact and friction laws see the sprayed μ: the forces of a run with a zone on the driver's
+// wrap are, bit for bit, those of the same drive with each element's μ set to the zone's where it
+// wets them, and differ from the dry drive's.
+TEST(Spray, TheLawsSeeTheSprayedMu) {
+  SceneDef d = presets::paper_dry();
+  d.spray.push_back(zone({-0.1, 0.0}, 0.03, 0.2, 0.0, std::numeric_limits<double>::infinity(), 0.5));
+  const Scene sc = build_scene(d);
+  ASSERT_GT(sc.drive.spray.n_wet, 0);
+  Simulation sim(sc, settings(temp("laws")));
+  sim.run_to(0.02);
+  const Model& m = sc.model;
+  const double t = sim.now();
+  const Drive& sprayed = sim.drive();
+  Drive plain = sprayed, dry = sprayed;
+  plain.spray = Spray{}, dry.spray = Spray{};
+  for (int i = 0; i < m.n_el(); ++i) plain.mu[i] = sprayed.mu_at(i, t);
+  Eigen::VectorXd f_sprayed(m.n_coord()), f_plain(m.n_coord()), f_dry(m.n_coord());
+  forces(m, sprayed, t, sim.state().data(), f_sprayed.data());
+  forces(m, plain, t, sim.state().data(), f_plain.data());
+  forces(m, dry, t, sim.state().data(), f_dry.data());
+  EXPECT_TRUE(same_bits(f_sprayed, f_plain));
+  EXPECT_GT((f_sprayed - f_dry).norm(), 1e-3 * f_dry.norm());
 }
 
 struct Sample {
