@@ -25,22 +25,22 @@
 namespace beltsim {
 
 struct SprayZone {
-  Vec2 centre{0, 0};          // [m]
-  double radius = 0;          // [m]
-  double mu = 0;              // the friction coefficient it gives the elements it wets
-  double from = 0, to = 0;    // [s] it sprays for from <= t < to
-  double drying_length = 0;   // [m] of travel over which a wetted element dries back to its own μ
-  bool enabled = true;        // switched at a pause (sim:spray)
-  bool on = false;            // spraying now: enabled and from <= t < to (set by spray_switch)
+  Vec2 centre{0, 0};         // [m]
+  double radius = 0;         // [m]
+  double mu = 0;             // the friction coefficient it gives the elements it wets
+  double from = 0, to = 0;   // [s] it sprays for from <= t < to
+  double drying_length = 0;  // [m] of travel over which a wetted element dries back to its own μ
+  bool enabled = true;       // switched at a pause (sim:spray)
+  bool on = false;           // spraying now: enabled and from <= t < to (set by spray_switch)
 };
 
 struct ElementSpray {
-  int zone = -1;         // the zone spraying it now, -1: none
-  bool drying = false;   // left a zone and not yet dry
-  double t_in = 0;       // [s] when it entered its zone (or the zone started spraying on it)
-  double mu_wet = 0;     // μ when it left
-  double t_wet = 0;      // [s] when it left
-  double rate = 0;       // [1/s] v_w / L: the fraction dried per second
+  int zone = -1;        // the zone spraying it now, -1: none
+  bool drying = false;  // left a zone and not yet dry
+  double t_in = 0;      // [s] when it entered its zone (or the zone started spraying on it)
+  double mu_wet = 0;    // μ when it left
+  double t_wet = 0;     // [s] when it left
+  double rate = 0;      // [1/s] v_w / L: the fraction dried per second
   // [s] when it is dry (infinite for an element that left at rest)
   double t_dry() const { return rate > 0 ? t_wet + 1.0 / rate : std::numeric_limits<double>::infinity(); }
 };
