@@ -194,7 +194,7 @@ TEST(Spray, EntryAndExitAreLocatedOnTheCrossings) {
   d.spray.push_back(zone(c, R, 0.3, from, std::numeric_limits<double>::infinity(), 0.5));
   const Scene sc = build_scene(d);
   const int n = sc.model.n_el();
-  Simulation sim(sc, settings(temp("locate"), 1e-6));
+  Simulation sim(sc, settings(temp("locate")));
   sim.run_to(from);
   // the first element upstream of the zone (the belt runs along +x on the upper span)
   const Eigen::VectorXd ya = sim.state();
@@ -218,7 +218,7 @@ TEST(Spray, EntryAndExitAreLocatedOnTheCrossings) {
   EXPECT_NEAR(e.t_wet, t_out, 3e-3 * (t_out - from));
   EXPECT_GT(e.t_in, from);
   // the same run paused at the located entry: its state there is the dense output's
-  Simulation again(sc, settings(temp("locate_again"), 1e-6));
+  Simulation again(sc, settings(temp("locate_again")));
   again.run_to(e.t_in);
   const Eigen::VectorXd& y = again.state();
   const double r = (Vec2(y[3 * next], y[3 * next + 1]) - c).norm();
