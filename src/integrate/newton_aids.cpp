@@ -235,7 +235,7 @@ int friction_local_solve(const Model& m, const Drive& d, const ContactList& pair
       const Vec2 V = Vec2(v[3 * i], v[3 * i + 1]) - Vc;  // relative to the pulley's centre (a tensioner arm moves it)
       w.u0[k] = V.dot(nl.t) - c.omega * nl.r;
       w.r[k] = w.J > 0 ? nl.r : 0;
-      w.B[k] = d.mu[i] * nl.N / s;
+      w.B[k] = c.mu * nl.N / s;
       const double f0 = w.B[k] * sat(w.u0[k] / band);
       w.lin[k] = bl.mass * (g[3 * i] * nl.t.x() + g[3 * i + 1] * nl.t.y()) - f0;
       w.lin_omega += w.r[k] * f0;

@@ -81,6 +81,7 @@ struct ContactPair {
   int i = 0, j = 0;        // element, pulley
   bool touching = false;   // the element's centre is inside the pulley's contact circle (p > 0)
   double omega = 0;        // the pulley's speed at the evaluation [rad/s]
+  double mu = 0;           // touching: the element's μ at the evaluation (Drive::mu_at)
   NormalLaw nl;            // touching: the normal law (its derivatives are the Jacobian's);
                            // otherwise only nl.r and nl.p (<= 0) are set
   FrictionLaw fl;          // touching: the friction law (its force is mu_eff·N, zero when clamped)
@@ -108,7 +109,8 @@ inline void contact_pass(const Model& m, const Drive& d, double t, const double*
         c.nl.r = (P - centre).norm();
         c.nl.p = pl.radius - c.nl.r;
       } else {
-        c.fl = friction_law(d.mu[i], m.friction.dv, c.nl, V, omega);
+        c.mu = d.mu_at(i, t);
+        c.fl = friction_law(c.mu, m.friction.dv, c.nl, V, omega);
       }
       c.i = i, c.j = j, c.omega = omega;
       out.push_back(c);

@@ -6,6 +6,8 @@
 //   pulleys[j]    how pulley j is driven: a free pulley under an applied torque M(t, Ω), or a
 //                 kinematic one whose speed Ω(t) is prescribed
 //   mu[i]         the friction coefficient of element i (it travels with the belt)
+//   spray         spray zones and what they have wetted (spray.hpp): μ of element i at t is
+//                 mu_at(i, t), its own mu[i] unless a zone wets it or it is drying
 //   restart_time  the time of the integrator's last (re)start: a law's step at exactly this time
 //                 has happened (its value after the jump is used), while a step that ends exactly
 //                 on a law's jump still sees the value before it
@@ -15,6 +17,7 @@
 
 #include "model/laws.hpp"
 #include "model/model.hpp"
+#include "model/spray.hpp"
 
 namespace beltsim {
 
@@ -27,8 +30,11 @@ struct PulleyDrive {
 struct Drive {
   std::vector<PulleyDrive> pulleys;  // one per pulley, in the model's order
   std::vector<double> mu;            // friction coefficient of each element, size belt.n
+  Spray spray;                       // spray zones and the elements' wetting (none: no cost)
   double restart_time = -1e300;      // [s]
 
+  // the friction coefficient of element i at t
+  double mu_at(int i, double t) const { return spray.n_wet == 0 ? mu[i] : spray.mu(i, mu[i], t); }
   bool after_jump(double t) const { return t == restart_time; }
   bool kinematic(int j) const { return pulleys[j].kinematic; }
   // Omega of pulley j: the prescribed speed for a kinematic pulley, else the state value

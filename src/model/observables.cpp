@@ -53,14 +53,14 @@ double pulley_load(const ContactList& pairs, int j, Vec2* hub_load) {
 
 // element i with its contact sums and the axial forces of its two SDEs (i joins it to i-1, next
 // to i+1) given
-ElementObs element_with(const Drive& d, const std::vector<int>& sense, const double* y, int i,
+ElementObs element_with(const Drive& d, const std::vector<int>& sense, double t, const double* y, int i,
                         const ElementContact& c, double sde_force, double next_force) {
   const double* q = y;
   ElementObs o;
   o.x = q[3 * i], o.y = q[3 * i + 1], o.phi = q[3 * i + 2];
   o.sde_force = sde_force;
   o.tension = 0.5 * (sde_force + next_force);
-  o.mu = d.mu[i];
+  o.mu = d.mu_at(i, t);
   o.normal = c.normal;
   o.pulley = c.pulley;
   if (c.pulley < 0 || !(c.normal > 0)) {
@@ -111,7 +111,7 @@ ElementObs observe_element(const Model& m, const Drive& d, const std::vector<int
                            int i) {
   const double* q = y;
   const double* v = y + m.n_coord();
-  return element_with(d, sense, y, i, element_contact(m, d, t, q, v, i), sde_axial_force(m, q, v, i),
+  return element_with(d, sense, t, y, i, element_contact(m, d, t, q, v, i), sde_axial_force(m, q, v, i),
                       sde_axial_force(m, q, v, (i + 1) % m.n_el()));
 }
 
@@ -143,7 +143,7 @@ void observe(const Model& m, const Drive& d, const std::vector<int>& sense, doub
   for (const ContactPair& c : out.pairs) sums.add(c);
   double vb = 0;
   for (int i = 0; i < n; ++i) {
-    out.elements[i] = element_with(d, sense, y, i, out.contact[i], out.work[i], out.work[(i + 1) % n]);
+    out.elements[i] = element_with(d, sense, t, y, i, out.contact[i], out.work[i], out.work[(i + 1) % n]);
     vb += axis(y[3 * i + 2]).dot(Vec2(v[3 * i], v[3 * i + 1]));
   }
   out.belt_speed = vb / m.n_el();

@@ -297,6 +297,17 @@ void FrameBuilder::build(double t, const double* y, DrawList& out, const Drive* 
     out.text(at, p.name, font_px_, kInk, DrawList::centre);
   }
 
+  // spray zones under the belt: a translucent disc of the wet colour while it sprays, the outline
+  // while it does not
+  for (const SprayZone& z : dr.spray.zones) {
+    const Vec2 c = P(z.centre);
+    const double r = z.radius * cam_.scale;
+    Rgba fill = kWet;
+    fill.a = 0.25f;
+    if (z.on) out.disc(c, r, fill, 64);
+    out.ring(c, std::max(r - 1.5, 0.0), r, kWet, 64);
+  }
+
   // belt elements
   Observation own;
   if (!given) observe(m, dr, sense_, t, y, own);
@@ -332,7 +343,7 @@ void FrameBuilder::build(double t, const double* y, DrawList& out, const Drive* 
     el.value = quantity_of(obs[i], fs_.quantity);
     el.band = scale_.band(el.value);
     el.colour = scale_.colour(el.value);
-    el.wet = dr.mu[i] < mu_dry;
+    el.wet = obs[i].mu < mu_dry;  // the μ it has now: a spray zone's water included
     el.slipping = obs[i].state == ContactState::slip;
     el.centre = P(Cd[i]);
     el.corners[0] = P(A - h * oa), el.corners[1] = P(B - h * ob), el.corners[2] = P(B + h * ob), el.corners[3] = P(A + h * oa);

@@ -4,6 +4,8 @@
 // first lines name the defaults, so a user who gave EA, EI and the axial damping sees that the
 // bending damping is the paper's.
 
+#include <cmath>
+
 #include "scene/scene.hpp"
 
 namespace beltsim {
@@ -33,6 +35,19 @@ std::vector<SceneInput> scene_inputs(const SceneDef& d) {
     for (const Parameter* par : parameters_of("pulley")) add(par, &p);
     if (p.tensioner)
       for (const Parameter* par : parameters_of("pulley.tensioner")) add(par, &p);
+  }
+  // a spray zone's: "spray.1.radius"; `to` is "never" when it does not stop
+  for (size_t k = 0; k < d.spray.size(); ++k) {
+    const SprayZone& z = d.spray[k];
+    const std::string pre = "spray." + std::to_string(k + 1) + ".";
+    const std::pair<const char*, double> numbers[] = {
+        {"radius", z.radius}, {"mu", z.mu}, {"from", z.from}, {"to", z.to}, {"drying_length", z.drying_length}};
+    for (const auto& [key, v] : numbers) {
+      const std::string name = pre + key;
+      const bool never = std::isinf(v);
+      in.push_back(scene_input(*find_parameter(std::string("spray.") + key), name, never ? 0 : v, never ? "never" : "",
+                               d.given.count(name) > 0));
+    }
   }
   return in;
 }

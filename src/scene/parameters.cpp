@@ -35,6 +35,8 @@ constexpr Parameter kParameters[] = {
      [](SceneDef& d, PulleyDef&) -> Slot { return &d.gravity; }, nullptr, nullptr},
     {"scene", "energy", K::other, "", {}, "`false`", W::none, R::none,
      "track work and dissipation per channel (adds energy.* columns)", nullptr, nullptr, nullptr},
+    {"scene", "spray", K::other, "", {}, "none", W::none, R::none,
+     "spray zones: a list of tables (below) that wet the belt where it passes", nullptr, nullptr, nullptr},
     {"scene", "allow_large", K::other, "", {}, "`false`", W::none, R::none,
      "past the limit of 20 000 elements (hours per simulated second)", nullptr, nullptr, nullptr},
 
@@ -191,6 +193,22 @@ constexpr Parameter kParameters[] = {
     {"friction", "dv", K::number, "m/s", 1e-5, "", W::paper, R::positive,
      "the paper's Δv, the slip speed at which μ reaches its kinetic value",
      [](SceneDef& d, PulleyDef&) -> Slot { return &d.friction.dv; }, nullptr, nullptr},
+
+    // ---- spray = { {...}, ... }: zones that wet the belt (model/spray.hpp); read by their own code ----
+    {"spray", "centre", K::other, "m", {}, "", W::none, R::none, "{x, y} of the zone's circle; required", nullptr,
+     nullptr, nullptr},
+    {"spray", "radius", K::number, "m", {}, "", W::none, R::positive,
+     "the circle's radius: an element whose centre is inside it while it sprays is wetted; required", nullptr,
+     nullptr, nullptr},
+    {"spray", "mu", K::number, "", {}, "", W::none, R::friction_coefficient,
+     "the friction coefficient a wetted element takes; required", nullptr, nullptr, nullptr},
+    {"spray", "from", K::number, "s", 0, "", W::ours, R::non_negative, "when it starts spraying", nullptr, nullptr,
+     nullptr},
+    {"spray", "to", K::number, "s", {}, "never: to the run's end", W::none, R::non_negative,
+     "when it stops spraying (after from)", nullptr, nullptr, nullptr},
+    {"spray", "drying_length", K::number, "m", {}, "", W::none, R::positive,
+     "the travel over which an element that leaves the spray dries back to its own μ (linearly); required",
+     nullptr, nullptr, nullptr},
 };
 // clang-format on
 
@@ -296,7 +314,8 @@ std::string parameters_markdown() {
   for (const auto& [table, title] : {std::pair{"scene", "`beltsim.scene{...}`"}, std::pair{"pulley", "Pulley table"},
                                      std::pair{"pulley.tensioner", "A pulley's `tensioner` table"},
                                      std::pair{"belt", "Belt table"}, std::pair{"belt.sde", "`belt.sde` table"},
-                                     std::pair{"contact", "Contact table"}, std::pair{"friction", "Friction table"}}) {
+                                     std::pair{"contact", "Contact table"}, std::pair{"friction", "Friction table"},
+                                     std::pair{"spray", "A `spray` zone's table"}}) {
     md.append(md.empty() ? "" : "\n").append(title).append(":\n\n| key | unit | default | range | meaning |\n|---|---|---|---|---|\n");
     for (const Parameter* p : parameters_of(table)) {
       std::string fallback;

@@ -609,6 +609,14 @@ Scene build_at(const SceneDef& d, const std::atomic<bool>* stop) {
     throw ParameterError(msg.str());
   }
   build::balance_arms(sc);
+  // spray zones: those spraying at t = 0 wet the elements inside them
+  if (!d.spray.empty()) {
+    Spray& sp = sc.drive.spray;
+    sp.zones = d.spray;
+    sp.el.assign(static_cast<size_t>(n), ElementSpray{});
+    spray_switch(sp, 0.0);
+    spray_update(sp, n, 0.0, sc.y0.data(), sc.y0.data() + m.n_coord());
+  }
   return sc;
 }
 }  // namespace

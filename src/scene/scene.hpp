@@ -116,6 +116,7 @@ struct SceneDef {
   double gravity = parameter_default("gravity");  // [m/s²]; 0 switches gravity off
   bool track_energy = false;
   bool allow_large = false;         // past the size limits that protect the machine (validate)
+  std::vector<SprayZone> spray;     // spray zones (model/spray.hpp); `to` infinite: never stops
   // the parameters the scenario gave, as dotted keys ("belt.EA", "contact.c1", "pulley.driver.inertia"):
   // every other one takes its default, and the build lists those (Scene::inputs)
   std::set<std::string> given;

@@ -157,6 +157,7 @@ SceneDef definition(const Scene& sc) {
   d.gravity = m.gravity;
   d.track_energy = m.track_energy;
   d.allow_large = true;
+  d.spray = sc.drive.spray.zones;
   return d;
 }
 
@@ -167,6 +168,11 @@ const Parameter* input_parameter(const std::string& name, const Model& m) {
     const std::string pre = "pulley." + p.name + ".";
     if (name.compare(0, pre.size(), pre) == 0) return find_parameter("pulley." + name.substr(pre.size()));
   }
+  // a spray zone's: "spray.2.radius" is spray.radius
+  const size_t dot = name.find('.', 6);
+  if (name.compare(0, 6, "spray.") == 0 && dot != std::string::npos && dot > 6 &&
+      name.find_first_not_of("0123456789", 6) == dot)
+    return find_parameter("spray." + name.substr(dot + 1));
   return find_parameter(name);
 }
 
@@ -184,6 +190,28 @@ void write_drive(CheckpointWriter& w, const Model& m, const Drive& d) {
     write_law(w, p.speed, "pulley.speed");
   }
   w.line("belt.mu", d.mu);
+  if (d.spray.any()) {  // only a drive with spray zones has this part
+    const Spray& sp = d.spray;
+    w.line("spray", static_cast<long>(sp.zones.size()));
+    for (const SprayZone& z : sp.zones) {
+      w.fixed("spray.centre", {z.centre.x(), z.centre.y()});
+      w.fixed("spray.zone", {z.radius, z.mu, z.from, z.to, z.drying_length});
+      w.line("spray.enabled", z.enabled);
+      w.line("spray.on", z.on);
+    }
+    std::vector<int> zone, drying;
+    std::vector<double> t_in, mu_wet, t_wet, rate;
+    for (const ElementSpray& e : sp.el) {
+      zone.push_back(e.zone), drying.push_back(e.drying ? 1 : 0), t_in.push_back(e.t_in);
+      mu_wet.push_back(e.mu_wet), t_wet.push_back(e.t_wet), rate.push_back(e.rate);
+    }
+    w.line("spray.element.zone", zone);
+    w.line("spray.element.drying", drying);
+    w.line("spray.element.t_in", t_in);
+    w.line("spray.element.mu_wet", mu_wet);
+    w.line("spray.element.t_wet", t_wet);
+    w.line("spray.element.rate", rate);
+  }
 }
 
 Drive read_drive(CheckpointReader& r, const Model& m) {
@@ -205,6 +233,39 @@ Drive read_drive(CheckpointReader& r, const Model& m) {
   checked(r, [&] {
     for (size_t i = 0; i < n; ++i) require_mu("belt.mu of element " + std::to_string(i), d.mu[i]);
   });
+  if (r.next_is("spray")) {
+    Spray& sp = d.spray;
+    r.open("spray");
+    const size_t nz = r.group_count(4);
+    r.close();
+    for (size_t k = 0; k < nz; ++k) {
+      SprayZone& z = sp.zones.emplace_back();
+      const std::vector<double> c = r.line_fixed("spray.centre", 2);
+      z.centre = Vec2(c[0], c[1]);
+      r.open("spray.zone");
+      z.radius = r.num(), z.mu = r.num(), z.from = r.num(), z.to = r.num_or_infinity(), z.drying_length = r.num();
+      r.close();
+      z.enabled = r.line_bool("spray.enabled");
+      z.on = r.line_bool("spray.on");
+    }
+    const std::vector<int> zone = r.line_ints("spray.element.zone", -1, static_cast<long>(nz) - 1, n);
+    const std::vector<int> drying = r.line_ints("spray.element.drying", 0, 1, n);
+    const std::vector<double> t_in = r.line_doubles("spray.element.t_in", n);
+    const std::vector<double> mu_wet = r.line_doubles("spray.element.mu_wet", n);
+    const std::vector<double> t_wet = r.line_doubles("spray.element.t_wet", n);
+    const std::vector<double> rate = r.line_doubles("spray.element.rate", n);
+    for (const auto* v : {&t_in, &mu_wet, &t_wet, &rate})
+      if (v->size() != n) r.fail(std::to_string(v->size()) + " values for " + std::to_string(n) + " elements");
+    if (zone.size() != n || drying.size() != n) r.fail("one value per element expected");
+    sp.el.resize(n);
+    for (size_t i = 0; i < n; ++i) {
+      ElementSpray& e = sp.el[i];
+      e.zone = zone[i], e.drying = drying[i] != 0 && zone[i] < 0;
+      e.t_in = t_in[i], e.mu_wet = mu_wet[i], e.t_wet = t_wet[i], e.rate = rate[i];
+      if (!(e.mu_wet >= 0) || !(e.rate >= 0)) r.fail("element " + std::to_string(i) + ": μ and rate must be >= 0");
+      if (e.zone >= 0 || e.drying) sp.n_wet++;
+    }
+  }
   return d;
 }
 

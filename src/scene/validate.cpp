@@ -3,6 +3,7 @@
 #include "scene/validate.hpp"
 
 #include <cmath>
+#include <limits>
 #include <set>
 #include <sstream>
 #include <stdexcept>
@@ -48,6 +49,18 @@ void require_non_negative(const std::string& what, double value, const std::stri
   if (!(value >= 0)) reject(what, "must be >= 0", value, unit);
 }
 
+void check_rule(const Parameter& par, const std::string& what, double v) {
+  const std::string unit(par.unit);
+  require_finite(what, v, unit);
+  const bool ok = par.rule == Rule::positive         ? v > 0
+                  : par.rule == Rule::non_negative   ? v >= 0
+                  : par.rule == Rule::exponent       ? v >= 1
+                  : par.rule == Rule::at_least_three ? v >= 3
+                  : par.rule == Rule::friction_coefficient ? v >= 0 && v <= kMuMax
+                                                     : true;
+  if (!ok) reject(what, std::string(rule_text(par.rule)), v, unit);
+}
+
 namespace {
 
 std::string pulley_label(const PulleyDef& p) { return "pulley '" + p.name + "'"; }
@@ -62,15 +75,30 @@ void check_rules(const SceneDef& d, std::string_view table, const PulleyDef* p) 
     // a pulley's key after its label: "radius", "tensioner.stiffness"
     const std::string what =
         p ? pulley_label(*p) + " " + par->dotted().substr(std::string_view("pulley.").size()) : par->dotted();
-    const std::string unit(par->unit);
-    require_finite(what, *v, unit);
-    const bool ok = par->rule == Rule::positive         ? *v > 0
-                    : par->rule == Rule::non_negative   ? *v >= 0
-                    : par->rule == Rule::exponent       ? *v >= 1
-                    : par->rule == Rule::at_least_three ? *v >= 3
-                    : par->rule == Rule::friction_coefficient ? *v >= 0 && *v <= kMuMax
-                                                        : true;
-    if (!ok) reject(what, std::string(rule_text(par->rule)), *v, unit);
+    check_rule(*par, what, *v);
+  }
+}
+
+// the spray zones' numbers by the rules of the table's "spray" entries, named "spray 2.radius";
+// a zone stops after it starts
+void check_spray(const SceneDef& d) {
+  for (size_t k = 0; k < d.spray.size(); ++k) {
+    const SprayZone& z = d.spray[k];
+    const std::string w = "spray " + std::to_string(k + 1);
+    require_finite(w + ".centre x", z.centre.x(), "m");
+    require_finite(w + ".centre y", z.centre.y(), "m");
+    const std::pair<const char*, double> numbers[] = {
+        {"radius", z.radius}, {"mu", z.mu}, {"from", z.from}, {"to", z.to}, {"drying_length", z.drying_length}};
+    for (const auto& [key, v] : numbers) {
+      if (std::string_view(key) == "to" && v == std::numeric_limits<double>::infinity()) continue;  // never stops
+      check_rule(*find_parameter(std::string("spray.") + key), w + "." + key, v);
+    }
+    if (!(z.to > z.from)) {
+      std::ostringstream from;
+      from.precision(6);
+      from << "must be after from (" << z.from << " s)";
+      reject(w + ".to", from.str(), z.to, "s");
+    }
   }
 }
 
@@ -182,6 +210,7 @@ void validate(const SceneDef& d) {
   check_rules(d, "contact", nullptr);
   check_rules(d, "friction", nullptr);
   check_rules(d, "scene", nullptr);
+  check_spray(d);
 }
 
 }  // namespace beltsim

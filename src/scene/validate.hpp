@@ -7,6 +7,8 @@
 
 namespace beltsim {
 
+struct Parameter;
+
 struct ParameterError : std::runtime_error {
   using std::runtime_error::runtime_error;
 };
@@ -21,5 +23,7 @@ void require_finite(const std::string& what, double value, const std::string& un
 // a friction coefficient: "" when it is one, else why not (parameters.hpp, kMuMax)
 std::string mu_problem(double mu);
 void require_mu(const std::string& what, double mu);
+// value v of parameter par (scene/parameters.hpp), named `what`, against the parameter's rule
+void check_rule(const Parameter& par, const std::string& what, double v);
 
 }  // namespace beltsim

@@ -10,6 +10,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <memory>
 #include <optional>
 #include <sstream>
@@ -87,6 +88,45 @@ void read_tensioner(lua_State* L, int idx, const std::string& w, SceneDef& d, Pu
   if (!has(L, idx, "stiffness")) fail(L, w + ": the spring's stiffness [N·m/rad] is required");
   if (has(L, idx, "preload") && has(L, idx, "angle0")) fail(L, w + ": give preload [N·m] or angle0 [rad], not both");
   read_numbers(L, idx, "pulley.tensioner", w, d, p);
+}
+
+void note_given(lua_State* L, int idx, const std::string& prefix, std::set<std::string>& given);
+
+// the scene's spray list at idx into d.spray: each zone's centre {x, y}, then the numbers of the
+// parameter table's "spray" (their rules are checked by validate); the keys given go to d.given
+// as "spray.<k>.<key>"
+void read_spray(lua_State* L, int idx, SceneDef& d) {
+  require_table(L, idx, "scene.spray");
+  const std::vector<lua_Integer> keys = check_sequence(L, idx, "scene.spray");
+  for (lua_Integer k = 1; k <= static_cast<lua_Integer>(keys.size()); ++k) {
+    lua_rawgeti(L, idx, k);
+    const int z = lua_gettop(L);
+    const std::string w = "spray " + std::to_string(k);
+    require_table(L, z, w);
+    check_keys(L, z, w, keys_of("spray"));
+    SprayZone& zone = d.spray.emplace_back();
+    if (!field(L, z, "centre")) fail(L, w + ": a centre {x, y} [m] is required");
+    zone.centre = to_vec2(L, -1, w + ".centre");
+    lua_pop(L, 1);
+    zone.from = parameter_default("spray.from");
+    zone.to = std::numeric_limits<double>::infinity();
+    for (const Parameter* par : parameters_of("spray")) {
+      if (par->kind != Kind::number) continue;
+      const std::string key(par->key);
+      double* slot = key == "radius" ? &zone.radius
+                     : key == "mu"   ? &zone.mu
+                     : key == "from" ? &zone.from
+                     : key == "to"   ? &zone.to
+                                     : &zone.drying_length;
+      if (auto v = opt_number(L, z, key.c_str(), w)) {
+        *slot = *v;
+      } else if (!par->fallback && key != "to") {
+        fail(L, w + ": " + key + (par->unit.empty() ? "" : " [" + std::string(par->unit) + "]") + " is required");
+      }
+    }
+    note_given(L, z, "spray." + std::to_string(k) + ".", d.given);
+    lua_pop(L, 1);
+  }
 }
 
 PulleyDef to_pulley(lua_State* L, int idx, const std::string& what, SceneDef& d, Context* ctx) {
@@ -294,6 +334,10 @@ int l_scene(lua_State* L) {
     PulleyDef none;
     read_numbers(L, f, "friction", "friction", d, none);
     note_given(L, f, "friction.", d.given);
+    lua_pop(L, 1);
+  }
+  if (field(L, 1, "spray")) {
+    read_spray(L, lua_gettop(L), d);
     lua_pop(L, 1);
   }
   note_given(L, 1, "", d.given);

@@ -274,6 +274,30 @@ int l_set_arm(lua_State* L) {
   if (!error.empty()) fail(L, "sim:set_arm: " + error);
   return 0;
 }
+// sim:spray(k) -> { enabled, on, inside, drying }; sim:spray(k, enabled): switches spray zone k
+// (1-based) on or off from now (its from..to window still applies)
+int l_spray(lua_State* L) {
+  Simulation& s = live(L, "spray", {{"k", kNumber}, {"enabled", kBoolean, true}});
+  const Spray& sp = s.drive().spray;
+  const lua_Integer k = lua_isinteger(L, 2) ? lua_tointeger(L, 2) : 0;
+  if (k < 1 || k > static_cast<lua_Integer>(sp.zones.size()))
+    fail(L, "sim:spray: no zone " + std::string(lua_tostring(L, 2)) + " (the scene has " +
+                std::to_string(sp.zones.size()) + " spray zones, numbered from 1)");
+  const int z = static_cast<int>(k - 1);
+  if (lua_gettop(L) >= 3) {
+    const bool on = lua_toboolean(L, 3);
+    guarded(L, "sim:spray", [&] { s.set_spray(z, on); });
+    return 0;
+  }
+  int inside = 0, drying = 0;
+  for (const ElementSpray& e : sp.el) inside += e.zone == z, drying += e.drying;
+  lua_createtable(L, 0, 4);
+  lua_pushboolean(L, sp.zones[z].enabled), lua_setfield(L, -2, "enabled");
+  lua_pushboolean(L, sp.zones[z].on), lua_setfield(L, -2, "on");
+  set_number(L, "inside", inside);
+  set_number(L, "drying", drying);
+  return 1;
+}
 int l_set_torque(lua_State* L) { return set_law(L, false); }
 int l_set_speed(lua_State* L) { return set_law(L, true); }
 
@@ -577,7 +601,7 @@ int l_tostring(lua_State* L) {
 const luaL_Reg kMethods[] = {
     {"run_to", l_run_to},   {"advance", l_advance},       {"pulley", l_pulley},       {"element", l_element},
     {"span", l_span},       {"energy", l_energy},         {"stats", l_stats},         {"set_torque", l_set_torque},
-    {"set_speed", l_set_speed}, {"set_arm", l_set_arm}, {"wet", l_wet},           {"set_mu", l_set_mu},       {"log", l_log},
+    {"set_speed", l_set_speed}, {"set_arm", l_set_arm}, {"wet", l_wet},           {"spray", l_spray},       {"set_mu", l_set_mu},       {"log", l_log},
     {"every", l_every},     {"when", l_when},             {"cancel", l_cancel},       {"show", l_show},
     {"plot", l_plot},       {"save", l_save},             {"close", l_close},           {nullptr, nullptr}};
 
@@ -646,6 +670,8 @@ const std::vector<HelpEntry>& api_help() {
       {"set_speed", "sim:set_speed(name, law [rad/s])", "a prescribed speed on a pulley from now"},
       {"set_arm", "sim:set_arm(name, { angle [rad], rate [rad/s] })", "moves a tensioner arm now (events.csv)"},
       {"wet", "sim:wet{ from [m], to [m], mu }", "μ on the belt between s = from and to (belt coordinate) from now"},
+      {"spray", "sim:spray(k [, enabled]) -> { enabled, on, inside, drying }",
+       "reads spray zone k, or switches it on or off from now (events.csv)"},
       {"set_mu", "sim:set_mu(mu | {mu...} | function(site))", "μ of every element from now"},
       {"log", "sim:log(text)", "a note in events.csv at the current time"},
       {"every", "sim:every(dt [s], function(sim) end) -> id", "calls the function at now + k·dt exactly"},

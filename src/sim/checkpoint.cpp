@@ -327,6 +327,9 @@ std::unique_ptr<Simulation> Simulation::load(const std::string& path, const Fram
     positions.resize(expected.size());
 
     if (mean_acc.size() != s->means_->size()) r.fail("interval means do not fit the scene");
+    if (drive.spray.zones.size() != sc.drive.spray.zones.size())
+      r.fail("the drive's " + std::to_string(drive.spray.zones.size()) + " spray zones do not fit the scene's " +
+             std::to_string(sc.drive.spray.zones.size()));
     s->drive_ = std::move(drive);
     s->pending_ = std::move(pending);
     s->wall_ = wall;

@@ -60,9 +60,18 @@ Simulation::Simulation(const Scene& sc, const RunSettings& rs, bool fresh) : sce
   pending_ = rs_.mu_events;
   std::stable_sort(pending_.begin(), pending_.end(), [](const MuEvent& a, const MuEvent& b) { return a.t < b.t; });
   E0_ = beltsim::energy(model_, drive_, 0.0, scene_.y0.data()).total();
+  if (drive_.spray.any()) {
+    // an element entering or leaving a spray zone: the first time the zones in the state differ
+    // from the elements' records, located on the dense output
+    const int n = model_.n_el();
+    tl_->add_when([this, n](double, const Eigen::VectorXd& y) { return spray_changed(drive_.spray, n, y.data()); },
+                  [this](double t) { spray_at(t); });
+  }
   if (!fresh) return;  // resume() fills in the rest
 
   out_->open(false);
+  for (size_t z = 0; z < drive_.spray.zones.size(); ++z)
+    if (drive_.spray.zones[z].on) write_event(0.0, spray_name(static_cast<int>(z)), "on");
   add_streams();
   set_landings();
   try {
@@ -118,6 +127,11 @@ void Simulation::set_landings() {
                            drive_.omega(model_, j, at, y.data() + model_.n_coord());
                    changed(&y);
                  }});
+  // spray zones starting or stopping, and wetted elements dry (a kink of μ: nothing changes there)
+  for (const SprayZone& z : drive_.spray.zones)
+    for (double t : {z.from, z.to}) l.push_back({t, [this](double at) { spray_at(at); }});
+  for (const ElementSpray& e : drive_.spray.el)
+    if (e.drying) l.push_back({e.t_dry(), [this](double at) { spray_dry(drive_.spray, at); }});
   for (size_t k = 0; k < pending_.size(); ++k)
     l.push_back({pending_[k].t, [this](double t) {
                    // every μ event due now, in the order given
@@ -413,6 +427,26 @@ void Simulation::set_mu(const std::vector<double>& mu, const std::string& what, 
     if (!std::isnan(mu[i])) drive_.mu[i] = mu[i];
   write_event(now(), what, text);
   changed();
+}
+
+std::string Simulation::spray_name(int z) { return "spray" + std::to_string(z + 1); }
+
+void Simulation::spray_at(double t) {
+  const Eigen::VectorXd& y = state();
+  const std::vector<int> switched = spray_switch(drive_.spray, t);
+  for (int z : switched) write_event(t, spray_name(z), drive_.spray.zones[z].on ? "on" : "off");
+  const bool moved = spray_update(drive_.spray, model_.n_el(), t, y.data(), y.data() + model_.n_coord());
+  if (moved || !switched.empty()) changed();
+}
+
+void Simulation::set_spray(int z, bool enabled) {
+  require_open("spray");
+  if (z < 0 || z >= static_cast<int>(drive_.spray.zones.size()))
+    throw std::invalid_argument("spray: no zone " + std::to_string(z + 1) + " (the scene has " +
+                                std::to_string(drive_.spray.zones.size()) + ")");
+  drive_.spray.zones[z].enabled = enabled;
+  write_event(now(), spray_name(z), enabled ? "enabled" : "disabled");
+  spray_at(now());
 }
 
 int Simulation::every(double dt, std::function<void()> fn) {

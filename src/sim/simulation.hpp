@@ -127,6 +127,9 @@ class Simulation {
   void set_arm(int j, std::optional<double> angle, std::optional<double> rate);
   // one μ per element (NaN keeps the old one); what/text describe it in events.csv
   void set_mu(const std::vector<double>& mu, const std::string& what, const std::string& text);
+  // switches spray zone z (0-based) on or off now (its time window still applies): elements it
+  // held start drying, those inside it are wetted; throws std::invalid_argument for no such zone
+  void set_spray(int z, bool enabled);
   // a line in events.csv without a change (a note from a script)
   void log_event(const std::string& what, const std::string& text);
 
@@ -167,6 +170,10 @@ class Simulation {
   void add_streams();
   void write_event(double t, const std::string& what, const std::string& text);
   void changed(const Eigen::VectorXd* y = nullptr);
+  // the spray zones at t: each zone on or off by its window, the elements' records brought to the
+  // state (events.csv has the zones switching); restarts the integrator when something changed
+  void spray_at(double t);
+  static std::string spray_name(int z);  // "spray1", as events.csv names zone 0
   void require_open(const char* what) const;
 
   Scene scene_;

@@ -147,6 +147,49 @@ TEST(LiveApi, TensionerArmReadChangedAndCheckpointed) {
             "");
 }
 
+// A spray zone from Lua: the elements inside it at the start take its μ, sim:spray reads it and
+// switches it off (the elements it held start drying; events.csv has both), bad zones and calls
+// are refused naming the key.
+TEST(LiveApi, SprayZoneReadSwitchedAndRefused) {
+  const std::string out = (temp_dir() / "spray").string();
+  beltsim::test::TwoPulley p;
+  p.extra = "spray = { { centre = {0.145, 0.1}, radius = 0.03, mu = 0.2, drying_length = 1 } },";
+  EXPECT_EQ(run_text(beltsim::test::two_pulley(p) +
+                     "local sim = s:start{ out = '" + out + "', progress = false }\n"
+                     "local z = sim:spray(1)\n"
+                     "assert(z.on and z.enabled and z.inside > 0 and z.drying == 0, 'on from the start')\n"
+                     "local inside = 0\n"
+                     "for i = 0, 39 do\n"
+                     "  local e = sim:element(i)\n"
+                     "  local r = math.sqrt((e.x - 0.145)^2 + (e.y - 0.1)^2)\n"
+                     "  if r < 0.03 then inside = inside + 1; assert(e.mu == 0.2, 'wet ' .. i) else assert(e.mu == 1, 'dry ' .. i) end\n"
+                     "end\n"
+                     "assert(inside == z.inside, inside .. ' inside, the zone says ' .. z.inside)\n"
+                     "sim:advance(0.001)\n"
+                     "sim:spray(1, false)\n"
+                     "z = sim:spray(1)\n"
+                     "assert(not z.on and not z.enabled and z.inside == 0 and z.drying >= inside, 'off')\n"
+                     "local ok, err = pcall(sim.spray, sim, 2)\n"
+                     "assert(not ok and err:find('no zone 2 %(the scene has 1 spray zones'), err)\n"
+                     "sim:close()\n"
+                     "local f = io.open('" + out + "/events.csv'):read('a')\n"
+                     "assert(f:find('0,spray1,on') and f:find('spray1,disabled') and f:find('spray1,off'), f)\n"),
+            "");
+  for (const auto& [zone, expect] : std::vector<std::pair<std::string, std::string>>{
+           {"{ centre = {0, 0}, mu = 0.2, drying_length = 1 }", "spray 1: radius [m] is required"},
+           {"{ centre = {0, 0}, radius = 0.1, mu = 0.2 }", "spray 1: drying_length [m] is required"},
+           {"{ radius = 0.1, mu = 0.2, drying_length = 1 }", "spray 1: a centre {x, y} [m] is required"},
+           {"{ centre = {0, 0}, radius = 0.1, mu = 0.2, drying_lenght = 1 }", "did you mean 'drying_length'"},
+           {"{ centre = {0, 0}, radius = -0.1, mu = 0.2, drying_length = 1 }", "spray 1.radius must be > 0 (got -0.1 m)"},
+           {"{ centre = {0, 0}, radius = 0.1, mu = 0.2, drying_length = 1, from = 2, to = 1 }",
+            "spray 1.to must be after from (2 s) (got 1 s)"}}) {
+    beltsim::test::TwoPulley q;
+    q.extra = "spray = { " + zone + " },";
+    const std::string err = run_text(beltsim::test::two_pulley(q));
+    EXPECT_NE(err.find(expect), std::string::npos) << zone << ": " << err;
+  }
+}
+
 TEST(LiveApi, BadCallsNameFileLineAndWhat) {
   struct Case {
     std::string call, expect;

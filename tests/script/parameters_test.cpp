@@ -43,6 +43,9 @@ std::string scene_with(const std::map<std::string, std::string>& values) {
   std::string belt = tables["belt"];
   if (!tables["belt.sde"].empty()) belt += "sde = { " + tables["belt.sde"] + "}, ";
   std::string pulley = tables["pulley"];
+  // a spray zone's keys: one zone, off the belt's path
+  const std::string spray =
+      tables["spray"].empty() ? "" : "spray = { { centre = {0.145, 0.5}, " + tables["spray"] + "} },";
   if (!tables["pulley.tensioner"].empty())
     pulley += "tensioner = { pivot = {0, 0.1}, " + tables["pulley.tensioner"] + "}, ";
   return "local s = beltsim.scene {\n"
@@ -60,7 +63,7 @@ std::string scene_with(const std::map<std::string, std::string>& values) {
          tables["friction"] +
          "},\n"
          "  " +
-         tables["scene"] +
+         tables["scene"] + spray +
          "\n"
          "}\n"
          "s:run { t_end = 1e-3, progress = false }\n";
@@ -92,6 +95,10 @@ const std::map<std::string, std::string> kSde{
 const std::map<std::string, std::string> kTensioner{{"pulley.tensioner.inertia", "0.01"},
                                                     {"pulley.tensioner.stiffness", "3000"}};
 
+// a spray zone requires these three
+const std::map<std::string, std::string> kSpray{
+    {"spray.radius", "0.01"}, {"spray.mu", "0.2"}, {"spray.drying_length", "1"}};
+
 // the name a key of pulley `pulley`'s has in parameters.csv ("pulley.a.radius",
 // "pulley.a.tensioner.stiffness"), the dotted key otherwise
 std::string csv_name(const Parameter& p, const std::string& pulley) {
@@ -107,8 +114,11 @@ TEST(Parameters, EveryRuleStopsTheScriptWithTheKeyTheReasonAndTheValue) {
     std::map<std::string, std::string> values;
     if (p.table == "belt.sde") values = kSde;
     if (p.table == "pulley.tensioner") values = kTensioner;
+    if (p.table == "spray") values = kSpray;
     values[p.dotted()] = lua;
-    const std::string what = p.table.starts_with("pulley") ? "pulley 'a' " + p.dotted().substr(7) : p.dotted();
+    const std::string what = p.table.starts_with("pulley") ? "pulley 'a' " + p.dotted().substr(7)
+                             : p.table == "spray"          ? "spray 1." + std::string(p.key)
+                                                           : p.dotted();
     const std::string expected = (temp_dir() / "scene.lua").string() + ":1: " + what + " " + std::string(rule_text(p.rule)) + " (got " + shown +
                                  (p.unit.empty() ? "" : " ") + std::string(p.unit) + ")";
     EXPECT_EQ(run_text(scene_with(values)).rfind(expected, 0), 0u)
