@@ -11,6 +11,7 @@
 #include <sstream>
 
 #include "model/forces.hpp"
+#include "scene/parameters.hpp"
 #include "scene/presets.hpp"
 #include "scene/scene.hpp"
 #include "scene/validate.hpp"
@@ -277,7 +278,9 @@ TEST(Spray, BadZonesAreRefused) {
   z = good, z.drying_length = 0;
   EXPECT_EQ(error(z), "spray 1.drying_length must be > 0 (got 0 m)");
   z = good, z.mu = -1;
-  EXPECT_EQ(error(z), "spray 1.mu must be >= 0 (got -1)");
+  EXPECT_EQ(error(z), "spray 1.mu " + std::string(rule_text(Rule::friction_coefficient)) + " (got -1)");
+  z = good, z.mu = 11;
+  EXPECT_EQ(error(z), "spray 1.mu " + std::string(rule_text(Rule::friction_coefficient)) + " (got 11)");
   z = good, z.from = 0.3;
   EXPECT_EQ(error(z), "spray 1.to must be after from (0.3 s) (got 0.2 s)");
   z = good, z.centre = {NAN, 0};
