@@ -67,12 +67,17 @@ inline FrictionLaw friction_law(double mu_i, double dv, const NormalLaw& nl, con
 }
 // Stribeck's law of the same pair (friction.cpp): μ_i·g(v_T)·sat(v_T/Δv) + μ_v·v_T with
 // g(v) = 1 + (μ_s/μ_k - 1)·exp(-(|v|/v_s)^δ)
+// g(v_T) - 1 = (μ_s/μ_k - 1)·exp(-powr), powr = (|v_T|/v_s)^δ, written to powr
+inline double stribeck_peak(const Friction& f, double vT, double& powr) {
+  powr = std::pow(std::abs(vT) / f.stribeck_speed, f.exponent);
+  return (f.static_ratio - 1) * std::exp(-powr);
+}
 inline FrictionLaw stribeck_law(double mu_i, const Friction& f, const NormalLaw& nl, const Vec2& V, double omega) {
   FrictionLaw fl;
   fl.vT = V.dot(nl.t) - omega * nl.r;
   const double x = fl.vT / f.dv, a = std::abs(fl.vT);
-  const double powr = std::pow(a / f.stribeck_speed, f.exponent);  // (|v_T|/v_s)^δ
-  const double peak = (f.static_ratio - 1) * std::exp(-powr);      // g - 1
+  double powr;                                          // (|v_T|/v_s)^δ
+  const double peak = stribeck_peak(f, fl.vT, powr);   // g - 1
   const double g = 1 + peak;
   if (std::abs(x) < 1.0) {
     fl.mu_eff = mu_i * g * x;

@@ -202,7 +202,7 @@ constexpr Parameter kParameters[] = {
      "stribeck: v_s, the slip speed over which μ falls from μ_s towards μ_k",
      [](SceneDef& d, PulleyDef&) -> Slot { return &d.friction.stribeck_speed; }, stribeck, nullptr},
     {"friction", "exponent", K::number, "", 2, "", W::ours, R::positive,
-     "stribeck: δ, the shape of the fall, exp(-(|v_T|/v_s)^δ)",
+     "stribeck: δ, the shape of the fall, exp(-(v_T/v_s)^δ) for v_T > 0",
      [](SceneDef& d, PulleyDef&) -> Slot { return &d.friction.exponent; }, stribeck, nullptr},
     {"friction", "viscous", K::number, "s/m", 0, "", W::ours, R::non_negative,
      "stribeck: μ_v, the viscous term: μ grows by μ_v·v_T",
