@@ -6,6 +6,7 @@
 #include "integrate/belt_system.hpp"
 #include "integrate/driver.hpp"
 #include "integrate/stepper.hpp"
+#include "model/contact_law.hpp"
 #include "model/rhs.hpp"
 #include "scene/presets.hpp"
 
@@ -139,6 +140,69 @@ void BM_Simulate20ms(benchmark::State& state, const char* method) {
 }
 BENCHMARK_CAPTURE(BM_Simulate20ms, esdirk32, "esdirk32")->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(BM_Simulate20ms, ros34pw2, "ros34pw2")->Unit(benchmark::kMillisecond);
+
+// The friction laws (model/contact_law.hpp). A scene on Threlfall's law pays nothing for
+// Stribeck's: the contact pass picks the law once per pass, outside the loop over pairs, so its
+// inner loop is the one it was. Rows, in one run: the contact pass of the dry drive's running state
+// through contact_pass (the law picked) and through contact_pass_with and Threlfall's law directly
+// (the loop as it was before there was a choice), and the same pass, the right-hand side and 20 ms
+// from rest under Stribeck's law (μ_s/μ_k = 1.3, v_s = 0.01 m/s, δ = 2, μ_v = 0).
+const Scene& stribeck_scene() {
+  static const Scene sc = [] {
+    SceneDef d = presets::paper_dry();
+    d.friction.law = FrictionKind::stribeck;
+    return build_scene(d);
+  }();
+  return sc;
+}
+
+void BM_ContactPass(benchmark::State& state, int which) {
+  const Scene& sc = which == 2 ? stribeck_scene() : scene();
+  const Eigen::VectorXd y = running_state();
+  const Model& m = sc.model;
+  const double* q = y.data();
+  const double* v = q + m.n_coord();
+  ContactList pairs;
+  for (auto _ : state) {
+    if (which == 0) {
+      contact_pass_with(m, sc.drive, 0.05, q, v, Span{0, m.n_el()}, pairs, Pairs::touching,
+                        [dv = m.friction.dv](double mu_i, const NormalLaw& nl, const Vec2& V, double omega) {
+                          return friction_law(mu_i, dv, nl, V, omega);
+                        });
+    } else {
+      contact_pass(m, sc.drive, 0.05, q, v, Span{0, m.n_el()}, pairs);
+    }
+    benchmark::DoNotOptimize(pairs.data());
+  }
+}
+BENCHMARK_CAPTURE(BM_ContactPass, threlfall_direct, 0);
+BENCHMARK_CAPTURE(BM_ContactPass, threlfall, 1);
+BENCHMARK_CAPTURE(BM_ContactPass, stribeck, 2);
+
+void BM_RhsStribeck(benchmark::State& state) {
+  const Eigen::VectorXd y = running_state();
+  Eigen::VectorXd dy(y.size());
+  for (auto _ : state) {
+    rhs(stribeck_scene().model, stribeck_scene().drive, 0.05, y.data(), dy.data());
+    benchmark::DoNotOptimize(dy.data());
+  }
+}
+BENCHMARK(BM_RhsStribeck);
+
+void BM_Simulate20msStribeck(benchmark::State& state) {
+  for (auto _ : state) {
+    BeltSystem sys(stribeck_scene().model, stribeck_scene().drive);
+    auto st = make_stepper("esdirk32");
+    DriveOptions o;
+    o.t_end = 0.02;
+    o.sample_dt = 1e-3;
+    o.events = stribeck_scene().drive.breakpoints();
+    Eigen::VectorXd y = stribeck_scene().y0;
+    const DriveResult r = drive(sys, *st, Tolerances{1e-5, -1}, o, y, [](double, const Eigen::VectorXd&) {});
+    state.counters["steps"] = static_cast<double>(r.work.steps);
+  }
+}
+BENCHMARK(BM_Simulate20msStribeck)->Unit(benchmark::kMillisecond);
 
 }  // namespace
 }  // namespace beltsim

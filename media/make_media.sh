@@ -2,7 +2,7 @@
 # Rebuilds the pictures of media/ from the paper's three scripts, after building
 # (`bash scripts/setup.sh build`); idempotent (the same code gives the same files).
 #
-#   bash media/make_media.sh          everything (about five minutes)
+#   bash media/make_media.sh          everything (about seven minutes)
 #   bash media/make_media.sh paper    only the paper's figures, media/paper/figNN.png, and the
 #                                     measured values in docs/paper.md (about a minute)
 #
@@ -89,5 +89,15 @@ if [ "$what" = all ]; then
   ffmpeg -v error -y -i media/wet_clip.mp4 \
     -vf "fps=10,scale=480:-1:flags=lanczos,split[a][b];[a]palettegen=max_colors=64[p];[b][p]paletteuse=dither=none" \
     media/wet_clip.gif
+  # docs/friction.md: the half-wet drive under each friction law, the speeds of both runs in one
+  # plot (their timeseries.csv share the sample times; the columns take the law's name in front)
+  for law in threlfall stribeck; do
+    "$b" run scripts/paper_wet.lua --set friction=$law --no-frames --out "$tmp/wet_$law" >/dev/null
+  done
+  mkdir -p "$tmp/friction_laws"
+  python3 media/merge_runs.py "$tmp/friction_laws/timeseries.csv" threlfall="$tmp/wet_threlfall/timeseries.csv" \
+    stribeck="$tmp/wet_stribeck/timeseries.csv"
+  "$b" plot "$tmp/friction_laws/timeseries.csv" threlfall.driver.omega threlfall.driven.omega stribeck.driver.omega \
+    stribeck.driven.omega --out media/friction_laws_wet.png >/dev/null
 fi
 ls -la media media/paper

@@ -1,8 +1,12 @@
 -- The paper's two-pulley drive with half of the belt wet (Kubas, §3, Figs 14–18).
 -- μ = 0.2 on the half of the belt whose elements start on the driven side (x > l_p/2), μ = 1
 -- elsewhere; the same torques as the dry case. The wet part travels with the belt.
+--   beltsim run scripts/paper_wet.lua                          the paper's friction law (Threlfall's)
+--   beltsim run scripts/paper_wet.lua --set friction=stribeck  Stribeck's, its parameters' defaults
+--                                                              (docs/friction.md)
 
 local l_p = 0.29
+local law = beltsim.args.friction  -- nil: the scene's default law, the paper's
 
 local drive = beltsim.scene {
   pulleys = {
@@ -18,6 +22,7 @@ local drive = beltsim.scene {
     -- wet where the element starts on the driven pulley's half
     mu = function(site) if site.x > l_p / 2 then return 0.2 else return 1.0 end end,
   },
+  friction = law and { law = law } or nil,
   energy = true,
 }
 

@@ -38,6 +38,11 @@
 // the edge of a slip arc changes branch together: element by element, Newton moved the edge by
 // one element per iteration and ran out of iterations (docs/fine-belts.md).
 //
+// The local solve is Threlfall's alone: Stribeck's μ falls from μ_s to μ_k outside the band, so
+// its g is not increasing, E not convex and g(w) = 0 may have several solutions; with that law
+// friction_local_solve moves nothing and Newton goes without it. The reseat reads only the band
+// |v_T| < Δv, which both laws have, and serves both.
+//
 // Kinematic predictor (kinematic_predict): an implicit stage at t + dt starts Newton from the
 // previous stage's value, taken at t. An element wrapped on a pulley moves round it by
 // |v|·dt ≈ 1.2 mm in a stage at rtol 1e-3 (3.4 m/s, dt ≈ 0.35 ms), so left where it was it is
@@ -207,6 +212,7 @@ int solve_block(LocalSolveScratch& w, int lo, int L, double diag, double band) {
 
 int friction_local_solve(const Model& m, const Drive& d, const ContactList& pairs, double s, double* q, double* v,
                          const double* g, LocalSolveScratch& w) {
+  if (m.friction.law != FrictionKind::threlfall) return 0;  // E is convex only for Threlfall's sat
   const double band = m.friction.dv;
   const Belt& bl = m.belt;
   // in units of force·time: an element's row times m, the pulley's times its inertia; then one

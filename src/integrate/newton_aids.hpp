@@ -30,7 +30,8 @@ int friction_reseat(const Model& m, const Drive& d, const ContactList& pairs, co
                     const double* dq, double* dv, Reseat where);
 // Newton aid (see newton_aids.cpp): g is the stage residual's velocity part (m/s) at (q, v); each
 // element in contact gets the tangential velocity change that zeroes its own tangential residual
-// with everything else held (an exact piecewise-linear solve). Returns the number moved.
+// with everything else held (an exact piecewise-linear solve). Returns the number moved; 0 under
+// a friction law other than Threlfall's (its solve needs sat's monotone band).
 struct LocalSolveScratch {
   std::vector<int> pair;                                            // one pulley's pressing pairs
   std::vector<double> u0, lin, B, r, off, w, grad, dir, dz, cp, den;  // per pressing pair

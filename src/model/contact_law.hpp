@@ -2,7 +2,7 @@
 // that evaluates them once per evaluation for every element–pulley pair (contact_pass): its
 // records are what the forces, the Jacobian, the integrator's Newton aids, the switching
 // functions and the observables read.
-// normal_law and friction_law are defined here, inline: every right-hand side calls them for each
+// normal_law, friction_law and stribeck_law are defined here, inline: every right-hand side calls them for each
 // element and pulley, so they are inlined into the contact pass. Their formulas and derivatives are
 // at the top of contact.cpp and friction.cpp.
 #pragma once
@@ -65,6 +65,31 @@ inline FrictionLaw friction_law(double mu_i, double dv, const NormalLaw& nl, con
   }
   return fl;
 }
+// Stribeck's law of the same pair (friction.cpp): μ_i·g(v_T)·sat(v_T/Δv) + μ_v·v_T with
+// g(v) = 1 + (μ_s/μ_k - 1)·exp(-(|v|/v_s)^δ)
+// g(v_T) - 1 = (μ_s/μ_k - 1)·exp(-powr), powr = (|v_T|/v_s)^δ, written to powr
+inline double stribeck_peak(const Friction& f, double vT, double& powr) {
+  powr = std::pow(std::abs(vT) / f.stribeck_speed, f.exponent);
+  return (f.static_ratio - 1) * std::exp(-powr);
+}
+inline FrictionLaw stribeck_law(double mu_i, const Friction& f, const NormalLaw& nl, const Vec2& V, double omega) {
+  FrictionLaw fl;
+  fl.vT = V.dot(nl.t) - omega * nl.r;
+  const double x = fl.vT / f.dv, a = std::abs(fl.vT);
+  double powr;                                          // (|v_T|/v_s)^δ
+  const double peak = stribeck_peak(f, fl.vT, powr);   // g - 1
+  const double g = 1 + peak;
+  if (std::abs(x) < 1.0) {
+    fl.mu_eff = mu_i * g * x;
+    fl.dmu = mu_i * (g - peak * f.exponent * powr) / f.dv;  // g'·sat + g·sat', g'·v = -(g - 1)·δ·powr
+  } else {
+    fl.mu_eff = std::copysign(mu_i * g, x);
+    fl.dmu = -mu_i * peak * f.exponent * powr / a;
+  }
+  fl.mu_eff += f.viscous * fl.vT;
+  fl.dmu += f.viscous;
+  return fl;
+}
 // adds the friction terms of the pair to the element's and pulley's Jacobian rows
 struct PairJacobian {
   Eigen::Matrix2d dF_dP, dF_dV;       // element force rows (x, y) w.r.t. its position, velocity
@@ -92,8 +117,10 @@ struct ContactPair {
 // clearing it. Pairs::touching keeps the pairs in contact only; Pairs::all keeps every pair (the
 // switching functions need the distance of those out of contact too).
 enum class Pairs { touching, all };
-inline void contact_pass(const Model& m, const Drive& d, double t, const double* q, const double* v, const Span& span,
-                         ContactList& out, Pairs which = Pairs::touching) {
+// (the law is chosen once per pass, outside the loop over pairs)
+template <class Law>
+inline void contact_pass_with(const Model& m, const Drive& d, double t, const double* q, const double* v,
+                              const Span& span, ContactList& out, Pairs which, Law&& law) {
   out.clear();
   for (int j = 0; j < m.n_p(); ++j) {
     const Pulley& pl = m.pulleys[j];
@@ -110,11 +137,26 @@ inline void contact_pass(const Model& m, const Drive& d, double t, const double*
         c.nl.p = pl.radius - c.nl.r;
       } else {
         c.mu = d.mu_at(i, t);
-        c.fl = friction_law(c.mu, m.friction.dv, c.nl, V, omega);
+        c.fl = law(c.mu, c.nl, V, omega);
       }
       c.i = i, c.j = j, c.omega = omega;
       out.push_back(c);
     }
+  }
+}
+inline void contact_pass(const Model& m, const Drive& d, double t, const double* q, const double* v, const Span& span,
+                         ContactList& out, Pairs which = Pairs::touching) {
+  const Friction& f = m.friction;
+  if (f.law == FrictionKind::threlfall) {
+    contact_pass_with(m, d, t, q, v, span, out, which, [dv = f.dv](double mu_i, const NormalLaw& nl, const Vec2& V,
+                                                                  double omega) {
+      return friction_law(mu_i, dv, nl, V, omega);
+    });
+  } else {
+    contact_pass_with(m, d, t, q, v, span, out, which,
+                      [&f](double mu_i, const NormalLaw& nl, const Vec2& V, double omega) {
+                        return stribeck_law(mu_i, f, nl, V, omega);
+                      });
   }
 }
 

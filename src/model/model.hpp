@@ -73,8 +73,19 @@ struct Contact {
   double p_max = 0;  // [m] depth of full damping
 };
 
+// The friction law of every element–pulley pair (contact_law.hpp: friction_law; its formulas at
+// the top of friction.cpp). Both laws scale with the element's own μ_i (Drive::mu), which is its
+// kinetic coefficient.
+enum class FrictionKind { threlfall, stribeck };
+inline const char* friction_law_name(FrictionKind k) { return k == FrictionKind::stribeck ? "stribeck" : "threlfall"; }
 struct Friction {
-  double dv = 0;  // [m/s] slip speed at which mu reaches its kinetic value
+  double dv = 0;  // [m/s] slip speed at which mu reaches its kinetic value (the regularising band)
+  FrictionKind law = FrictionKind::threlfall;
+  // Stribeck's (unused by Threlfall's law)
+  double static_ratio = 1;    // μ_s/μ_k: the peak at the band's edge over the kinetic value
+  double stribeck_speed = 0;  // v_s [m/s]: the slip speed over which μ falls from μ_s to μ_k
+  double exponent = 0;        // δ: the shape of that fall
+  double viscous = 0;         // μ_v [s/m]: μ grows by μ_v·v_T
 };
 
 // Running integrals carried in y when Model::track_energy is set; all in joules.

@@ -17,6 +17,7 @@ using R = Rule;
 
 bool rigidity(const SceneDef& d) { return d.belt.reading == StiffnessReading::rigidity; }
 bool per_sde(const SceneDef& d) { return d.belt.reading == StiffnessReading::per_sde; }
+bool stribeck(const SceneDef& d) { return d.friction.law == FrictionKind::stribeck; }
 
 // The table. A number's default is `fallback`; what a scenario may leave out but has no single
 // number (a law, a route) says its default in `fallback_text`.
@@ -193,6 +194,21 @@ constexpr Parameter kParameters[] = {
     {"friction", "dv", K::number, "m/s", 1e-5, "", W::paper, R::positive,
      "the paper's Δv, the slip speed at which μ reaches its kinetic value",
      [](SceneDef& d, PulleyDef&) -> Slot { return &d.friction.dv; }, nullptr, nullptr},
+    {"friction", "law", K::other, "", {}, "`\"threlfall\"`", W::paper, R::none,
+     "\"threlfall\" (the paper's: μ_i·sat(v_T/Δv)) or \"stribeck\" (docs/friction.md)", nullptr, nullptr,
+     [](const SceneDef& d, const PulleyDef&) -> std::string { return friction_law_name(d.friction.law); }},
+    {"friction", "static_ratio", K::number, "", 1.3, "", W::ours, R::positive,
+     "stribeck: μ_s/μ_k, the peak at the edge of the band over the element's kinetic μ (belt.mu)",
+     [](SceneDef& d, PulleyDef&) -> Slot { return &d.friction.static_ratio; }, stribeck, nullptr},
+    {"friction", "stribeck_speed", K::number, "m/s", 0.01, "", W::ours, R::positive,
+     "stribeck: v_s, the slip speed over which μ falls from μ_s towards μ_k",
+     [](SceneDef& d, PulleyDef&) -> Slot { return &d.friction.stribeck_speed; }, stribeck, nullptr},
+    {"friction", "exponent", K::number, "", 2, "", W::ours, R::positive,
+     "stribeck: δ, the shape of the fall, exp(-(v_T/v_s)^δ) for v_T > 0",
+     [](SceneDef& d, PulleyDef&) -> Slot { return &d.friction.exponent; }, stribeck, nullptr},
+    {"friction", "viscous", K::number, "s/m", 0, "", W::ours, R::non_negative,
+     "stribeck: μ_v, the viscous term: μ grows by μ_v·v_T",
+     [](SceneDef& d, PulleyDef&) -> Slot { return &d.friction.viscous; }, stribeck, nullptr},
 
     // ---- spray = { {...}, ... }: zones that wet the belt (model/spray.hpp); read by their own code ----
     {"spray", "centre", K::other, "m", {}, "", W::none, R::none, "{x, y} of the zone's circle; required", nullptr,

@@ -112,7 +112,12 @@ struct SceneDef {
   Contact contact{parameter_default("contact.c1"), parameter_default("contact.c2"),
                   parameter_default("contact.damping"), parameter_default("contact.p_max")};  // per element
   ContactPerLength contact_per_length;  // ...unless given per length
-  Friction friction{parameter_default("friction.dv")};
+  Friction friction{.dv = parameter_default("friction.dv"),
+                    .law = FrictionKind::threlfall,
+                    .static_ratio = parameter_default("friction.static_ratio"),
+                    .stribeck_speed = parameter_default("friction.stribeck_speed"),
+                    .exponent = parameter_default("friction.exponent"),
+                    .viscous = parameter_default("friction.viscous")};
   double gravity = parameter_default("gravity");  // [m/s²]; 0 switches gravity off
   bool track_energy = false;
   bool allow_large = false;         // past the size limits that protect the machine (validate)

@@ -314,6 +314,11 @@ void write_scene(CheckpointWriter& w, const Scene& sc) {
   w.line("contact.damping", m.contact.b);
   w.line("contact.p_max", m.contact.p_max);
   w.line("friction.dv", m.friction.dv);
+  w.word("friction.law", friction_law_name(m.friction.law));
+  w.line("friction.static_ratio", m.friction.static_ratio);
+  w.line("friction.stribeck_speed", m.friction.stribeck_speed);
+  w.line("friction.exponent", m.friction.exponent);
+  w.line("friction.viscous", m.friction.viscous);
   w.line("gravity", m.gravity);
   w.line("energy", m.track_energy);
   write_drive(w, m, sc.drive);
@@ -400,6 +405,12 @@ Scene read_scene(CheckpointReader& r) {
   m.contact.b = r.line_num("contact.damping");
   m.contact.p_max = r.line_num("contact.p_max");
   m.friction.dv = r.line_num("friction.dv");
+  m.friction.law = r.line_choice("friction.law", {"threlfall", "stribeck"}) == 1 ? FrictionKind::stribeck
+                                                                                : FrictionKind::threlfall;
+  m.friction.static_ratio = r.line_num("friction.static_ratio");
+  m.friction.stribeck_speed = r.line_num("friction.stribeck_speed");
+  m.friction.exponent = r.line_num("friction.exponent");
+  m.friction.viscous = r.line_num("friction.viscous");
   m.gravity = r.line_num("gravity");
   m.track_energy = r.line_bool("energy");
   sc.drive = read_drive(r, m);

@@ -331,6 +331,19 @@ int l_scene(lua_State* L) {
     const int f = lua_gettop(L);
     require_table(L, f, "friction");
     check_keys(L, f, "friction", keys_of("friction"));
+    if (auto v = opt_string(L, f, "law", "friction")) {
+      if (*v == "threlfall")
+        d.friction.law = FrictionKind::threlfall;
+      else if (*v == "stribeck")
+        d.friction.law = FrictionKind::stribeck;
+      else
+        fail(L, "friction.law: 'threlfall' or 'stribeck' expected, got '" + *v + "'");
+    }
+    // a law's own parameters with another law: a mistake the run would silently ignore
+    for (const Parameter* par : parameters_of("friction"))
+      if (par->applies && !par->applies(d) && has(L, f, std::string(par->key).c_str()))
+        fail(L, "friction." + std::string(par->key) + ": a parameter of another law; this scene's law is '" +
+                    friction_law_name(d.friction.law) + "'");
     PulleyDef none;
     read_numbers(L, f, "friction", "friction", d, none);
     note_given(L, f, "friction.", d.given);

@@ -1,7 +1,8 @@
 // The analytic Jacobian (∂f/∂q, ∂f/∂v, ∂f/∂t) against central finite differences of the forces,
 // on states built to exercise every branch of every force law: free spans, contact in the damping
 // ramp (p < p_max) and beyond it, N clamped at zero, stick (|v_T| < Δv) and slip, bends across
-// ±π and angles several laps apart, a back-side idler, non-unit exponents, a kinematic pulley.
+// ±π and angles several laps apart, a back-side idler, non-unit exponents, a kinematic pulley,
+// Stribeck's friction law.
 //
 // Tolerance. Every law is at most quadratic in the state near these points but for the geometry
 // (n̂(P), e(φ)), whose curvature scales are the pulley radius and 1 rad: the central-difference
@@ -375,6 +376,25 @@ TEST(Jacobian, NonUnitExponents) {
   d.belt.ct = 0.05;
   const Scene sc = build_scene(d);
   expect_jacobian_matches(sc.model, sc.drive, 0.05, running_state(sc, 0.05, 30.0, 4));
+}
+
+// Stribeck's law: its falling branch (v_s = 1 mm/s, between the slips of 0.4 and 2 mm/s the
+// running state gives) and its peaked band; the curve's scale v_s is 1e4 times the velocity step,
+// so its truncation error (1e-8) stays far inside the 1e-6 asked. The branch's slope, ≈ -2e4 N·s/m
+// on an element slipping at 0.4 mm/s, is most of that element's velocity column.
+TEST(Jacobian, StribeckLaw) {
+  SceneDef d = presets::paper_dry();
+  d.friction.law = FrictionKind::stribeck;
+  d.friction.static_ratio = 1.6;
+  d.friction.stribeck_speed = 1e-3;
+  d.friction.exponent = 1.5;
+  d.friction.viscous = 0.05;
+  const Scene sc = build_scene(d);
+  const Eigen::VectorXd y = running_state(sc, 0.1, 30.0, 7);
+  const Coverage c = coverage(sc.model, sc.drive, 0.1, y);
+  EXPECT_GT(c.stick, 0);
+  EXPECT_GT(c.slip, 0);
+  expect_jacobian_matches(sc.model, sc.drive, 0.1, y);
 }
 
 TEST(Jacobian, KinematicPulleyTimeDerivative) {

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <tuple>
 
 #include <Eigen/Eigenvalues>
 
@@ -373,6 +374,113 @@ TEST(KnownAnswers, CapstanLimitOfTheWetDrive) {
   EXPECT_LT(driver_speed_after(1.05 * limit), -1.0) << "the driver should run away clockwise";
 }
 
+// The same with each friction law. Stribeck's (μ_k = 0.2, μ_s = 1.5·μ_k, v_s = 0.1 m/s): its belt
+// holds up to the limit of μ_s, 43.9 N·m, as long as its elements slip at ≪ v_s; the torque ramps
+// in over 30 ms here, which winds the belt up onto the driver at a few cm/s (over 10 ms, at
+// 0.03 m/s, the curve fell under the load and the belt ran away at 0.95 of μ_s's limit). At 0.95 of
+// that limit Stribeck's belt holds (|Ω| < 0.5 rad/s) where Threlfall's with μ = μ_k slips. At 1.05
+// of each law's static limit the belt slips grossly, and at large slip (|v_T| ≥ 3·v_s, where
+// e^(-(v_T/v_s)²) < 1.3e-4, once the driver turns at 3 rad/s) the belt's moment on the driver is
+// the Euler–Eytelwein limit of the kinetic μ for both laws, 100·tanh(μ_k·π/2) = 30.4 N·m.
+// Measured: Stribeck's belt at 41.7 N·m turns at 0.04 rad/s after 60 ms, Threlfall's at -15 rad/s;
+// past the limits the belt's moment is 30.74 N·m (Threlfall's, at -2.1 rad/s) and 30.78 N·m
+// (Stribeck's, at -17.7 rad/s), +1.0 and +1.2 % over 30.42: bound 3 % (the belt's inertia and
+// bending, which the capstan formula leaves out).
+struct Capstan {
+  double omega = 0;   // the driver's speed at the end [rad/s]
+  double moment = 0;  // the belt's moment on the driver then [N·m]
+};
+Capstan capstan_run(const Friction& f, double mu, double torque, double t_ramp, double t_end) {
+  SceneDef d = presets::paper_dry();
+  d.belt.mu = mu;
+  d.friction = f;
+  d.pulleys[0].torque = TimeSpeedLaw{};
+  d.pulleys[0].torque.t = {0.0, t_ramp};
+  d.pulleys[0].torque.value = {0.0, -torque};
+  d.pulleys[1].torque = TimeSpeedLaw{};
+  d.pulleys[1].kinematic = true;  // locked: prescribed speed 0
+  const Scene sc = build_scene(d);
+  const auto s = simulate(sc.model, sc.drive, sc.y0, t_end, 0.01, "esdirk32", 1e-5);
+  const Eigen::VectorXd& y = s.y.back();
+  const double* q = y.data();
+  const double* v = q + sc.model.n_coord();
+  return {v[sc.model.pulley_coord(0)], belt_torque(sc.model, sc.drive, s.t.back(), q, v, 0, nullptr)};
+}
+double capstan_limit(double mu) { return 0.1 * 2 * 500 * std::tanh(mu * M_PI / 2); }
+
+Friction stribeck_friction(double ratio, double vs) {
+  Friction f = SceneDef{}.friction;
+  f.law = FrictionKind::stribeck;
+  f.static_ratio = ratio;
+  f.stribeck_speed = vs;
+  f.exponent = 2;
+  f.viscous = 0;
+  return f;
+}
+
+TEST(KnownAnswers, CapstanLimitWithEachLaw) {
+  // the runs that slip grossly shorten and retry steps as the belt breaks loose
+  test::expect_warnings({WarningKind::failed_step});
+  const double mu_k = 0.2;
+  const Friction threlfall = SceneDef{}.friction, stribeck = stribeck_friction(1.5, 0.1);
+  const double between = 0.95 * capstan_limit(1.5 * mu_k);
+  const Capstan held = capstan_run(stribeck, mu_k, between, 0.03, 0.06);
+  const Capstan slips = capstan_run(threlfall, mu_k, between, 0.03, 0.06);
+  const Capstan t = capstan_run(threlfall, mu_k, 1.05 * capstan_limit(mu_k), 0.01, 0.04);
+  const Capstan s = capstan_run(stribeck, mu_k, 1.05 * capstan_limit(1.5 * mu_k), 0.03, 0.06);
+  std::printf("capstan: at %.1f N·m Stribeck %.3f rad/s, Threlfall %.3f rad/s; past the limits Threlfall %.2f rad/s "
+              "%.2f N·m, Stribeck %.2f rad/s %.2f N·m; μ_k's limit %.2f N·m\n",
+              between, held.omega, slips.omega, t.omega, t.moment, s.omega, s.moment, capstan_limit(mu_k));
+  EXPECT_LT(std::abs(held.omega), 0.5);
+  EXPECT_LT(slips.omega, -1.0) << "Threlfall's belt should run away clockwise";
+  EXPECT_LT(t.omega, -1.0);
+  EXPECT_LT(s.omega, -3.0);
+  EXPECT_NEAR(std::abs(t.moment), capstan_limit(mu_k), 0.03 * capstan_limit(mu_k));
+  EXPECT_NEAR(std::abs(s.moment), capstan_limit(mu_k), 0.03 * capstan_limit(mu_k));
+}
+
+// Drift under a constant tangential load below the limit. Threlfall's law has no true stick: an
+// element carries μ·N·v_T/Δv, so a load needs a slip. The driver's torque M (half the μ = 0.2
+// limit) against the locked driven pulley: in the steady state the belt creeps over both pulleys
+// at one slip u, the driver turning at Ω = 2u/r, and each wrap (π) carries T1/T2 = e^(kπ) with
+// k = μ·u/Δv, T1 + T2 = 2·T0 and r·(T1 - T2) = M, so
+//   Ω = 4·Δv·atanh(M/(2·r·T0))/(π·μ·r)                  (Threlfall)
+// and Stribeck's, whose band slope is μ_s/Δv while u ≪ v_s, drifts at that over μ_s/μ_k. Δv is
+// 0.05 m/s here (the paper's 1e-5 would take minutes to wind the belt up through the band: the
+// time constant Σμ·N/Δv over the belt's stiffness EA/L is 25 ms at 0.05 m/s and 2 min at 1e-5),
+// v_s = 1 m/s ≫ u = 0.024 m/s. The speed averaged over 0.25-0.3 s (10 time constants);
+// measured 0.4862 rad/s against 0.4811 (+1.1 %) and 0.3257 against 0.3207 (+1.6 %): bound 5 %
+// (the wrap is not quite π where the belt's bending lifts it off at the ends).
+double drift_speed(Friction f, double torque) {
+  SceneDef d = presets::paper_dry();
+  d.belt.mu = 0.2;
+  f.dv = 0.05;
+  d.friction = f;
+  d.pulleys[0].torque = TimeSpeedLaw{};
+  d.pulleys[0].torque.t = {0.0, 0.01};
+  d.pulleys[0].torque.value = {0.0, -torque};
+  d.pulleys[1].torque = TimeSpeedLaw{};
+  d.pulleys[1].kinematic = true;
+  const Scene sc = build_scene(d);
+  const auto s = simulate(sc.model, sc.drive, sc.y0, 0.3, 0.005, "esdirk32", 1e-5);
+  double omega = 0;
+  int count = 0;
+  for (size_t k = 0; k < s.t.size(); ++k)
+    if (s.t[k] >= 0.25) omega += s.y[k][sc.model.n_coord() + sc.model.pulley_coord(0)], ++count;
+  return omega / count;
+}
+
+TEST(KnownAnswers, DriftUnderASubLimitLoadIsTheBandsCreep) {
+  const double M = 15.0, mu = 0.2, r = 0.1, T0 = 500, dv = 0.05;
+  const double expected = 4 * dv * std::atanh(M / (2 * r * T0)) / (M_PI * mu * r);
+  const Friction stribeck = stribeck_friction(1.5, 1.0);
+  const double threlfall = -drift_speed(SceneDef{}.friction, M), peaked = -drift_speed(stribeck, M);
+  std::printf("drift: Threlfall %.4f rad/s, Stribeck %.4f rad/s, expected %.4f and %.4f\n", threlfall, peaked,
+              expected, expected / 1.5);
+  EXPECT_NEAR(threlfall, expected, 0.05 * expected);
+  EXPECT_NEAR(peaked, expected / 1.5, 0.05 * expected / 1.5);
+}
+
 // ---- 6. centrifugal tension ---------------------------------------------------------------------
 // Both pulleys held at the speed of a belt running at v = 30 m/s (the belt starts in that rigid
 // motion). The belt on a half wrap turns its momentum round: the pulley carries the two span
@@ -415,10 +523,12 @@ TEST(KnownAnswers, CentrifugalTensionUnloadsThePulleys) {
 // 0.5 s, when the belt has run through the arcs and the start-up oscillation of the driven pulley
 // has decayed. Expected 0.0502 rad/s, measured 0.0496 (-1 %); bound 10 % (the remaining
 // oscillation; against the elastic part alone the model would be ≈ 20 % off, without creep 100 %).
-TEST(KnownAnswers, CreepSpeedLossMatchesTheTensionDifference) {
-  // the drive's first stick-slip changes cost esdirk32 a failed step (shortened and retried)
-  test::expect_warnings({WarningKind::failed_step});
+// The creep is the belt's elasticity, not its friction law: Stribeck's belt (μ_s = 1.5·μ, v_s =
+// 0.01 m/s) loses the same speed within the same bound (measured 0.0490 rad/s against 0.0506,
+// -3.3 %).
+void expect_creep_loss(const Friction& f) {
   SceneDef d = presets::paper_dry();
+  d.friction = f;
   const double w1 = 20.0, v = w1 * 0.1;
   d.pulleys[0].torque = TimeSpeedLaw{};
   d.pulleys[0].kinematic = true;
@@ -452,6 +562,18 @@ TEST(KnownAnswers, CreepSpeedLossMatchesTheTensionDifference) {
   const double expected = w1 * (1 - ratio);
   EXPECT_NEAR(T1 - T2, 300.0, 30.0) << "the load is 30 N·m on r = 0.1 m";
   EXPECT_NEAR(loss, expected, 0.1 * expected) << "T1 = " << T1 << " N, T2 = " << T2 << " N";
+  std::printf("%s: creep loss %.5f rad/s, expected %.5f\n", friction_law_name(f.law), loss, expected);
+}
+
+TEST(KnownAnswers, CreepSpeedLossMatchesTheTensionDifference) {
+  // the drive's first stick-slip changes cost esdirk32 a failed step (shortened and retried)
+  test::expect_warnings({WarningKind::failed_step});
+  expect_creep_loss(SceneDef{}.friction);
+}
+
+TEST(KnownAnswers, CreepSpeedLossIsTheSameWithStribecksLaw) {
+  test::expect_warnings({WarningKind::failed_step});
+  expect_creep_loss(stribeck_friction(1.5, 0.01));
 }
 
 // Euler–Eytelwein: on a steady drive the gross-slip arc of each pulley (where the friction is

@@ -105,6 +105,11 @@ void expect_same(const Model& a, const Model& b) {
   EXPECT_SAME(a.contact.b, b.contact.b);
   EXPECT_SAME(a.contact.p_max, b.contact.p_max);
   EXPECT_SAME(a.friction.dv, b.friction.dv);
+  EXPECT_EQ(a.friction.law, b.friction.law);
+  EXPECT_SAME(a.friction.static_ratio, b.friction.static_ratio);
+  EXPECT_SAME(a.friction.stribeck_speed, b.friction.stribeck_speed);
+  EXPECT_SAME(a.friction.exponent, b.friction.exponent);
+  EXPECT_SAME(a.friction.viscous, b.friction.viscous);
   EXPECT_SAME(a.gravity, b.gravity);
   EXPECT_EQ(a.track_energy, b.track_energy);
 }
@@ -247,6 +252,19 @@ TEST(SceneIo, AutomotiveScene) {
   expect_same(sc, round_trip(sc));
 }
 
+// Stribeck's law and its parameters come back (the automotive scene's law and values replaced)
+TEST(SceneIo, StribeckScene) {
+  Scene sc = automotive();
+  sc.model.friction.law = FrictionKind::stribeck;
+  sc.model.friction.static_ratio = 1.0 / 0.7;
+  sc.model.friction.stribeck_speed = 0.003;
+  sc.model.friction.exponent = 0.75;
+  sc.model.friction.viscous = 1.0 / 300;
+  const Scene back = round_trip(sc);
+  EXPECT_EQ(back.model.friction.law, FrictionKind::stribeck);
+  expect_same(sc, back);
+}
+
 // the shortest decimal of every double reads back as that double: signed zero, subnormals, the
 // largest, thirds; strings with quotes, backslashes, newlines and '#'
 TEST(SceneIo, ExactValues) {
@@ -345,7 +363,7 @@ TEST(SceneIo, WrongKeywordOrVersionIsRefused) {
   EXPECT_EQ(error_of("beltsim-checkpoint 4\nscene 4\n"),
             "line 1: a version 4 checkpoint; this beltsim reads version " + std::to_string(kCheckpointVersion) +
                 " only: resume it with the beltsim that wrote it, or run the scene again from its script");
-  // version 5 held each input's unit and note; 6 takes them from the parameter table; 7 holds spray zones
+  // version 5 held each input's unit and note; 6 takes them from the parameter table; 7 holds spray zones and the friction law
   for (const int v : {5, 6})
     EXPECT_EQ(error_of("beltsim-checkpoint " + std::to_string(v) + "\nscene 4\n"),
               "line 1: a version " + std::to_string(v) + " checkpoint; this beltsim reads version 7 only: resume it "

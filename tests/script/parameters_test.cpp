@@ -31,9 +31,15 @@ std::string slurp(const fs::path& p) {
 
 // A two-pulley scene (pulleys 'a' and 'b') with the given values as Lua expressions, each under its
 // dotted key ("belt.EA", "belt.sde.k", "pulley.radius": pulley a's, "pulley.tensioner.stiffness":
-// pulley a's arm, pivoted 0.1 m above its centre, "gravity"), then a run of one millisecond writing
-// parameters.csv.
-std::string scene_with(const std::map<std::string, std::string>& values) {
+// pulley a's arm, pivoted 0.1 m above its centre, "gravity"; a friction law's own parameters
+// with that law), then a run of one millisecond writing parameters.csv.
+std::string scene_with(std::map<std::string, std::string> values) {
+  // a friction law's own parameters (those that apply to one law only) come with that law
+  for (const auto& [dotted, v] : std::map<std::string, std::string>(values)) {
+    const Parameter* p = find_parameter(dotted);
+    if (p && p->table == "friction" && p->applies && !values.count("friction.law"))
+      values["friction.law"] = "'stribeck'";
+  }
   std::map<std::string, std::string> tables;
   for (const auto& [dotted, v] : values) {
     const Parameter* p = find_parameter(dotted);
@@ -159,8 +165,11 @@ TEST(Parameters, EveryNumberReachesParametersCsv) {
           << "expected '" << expected << "', got '" << row(csv, name) << "'";
     }
   }
-  // nothing given (but a tensioner's required two): the defaults, marked so
-  ASSERT_EQ(run_text(scene_with(kTensioner)), "");
+  // nothing given (but a tensioner's required two, and the law whose parameters apply): the
+  // defaults, marked so
+  std::map<std::string, std::string> none = kTensioner;
+  none["friction.law"] = "'stribeck'";
+  ASSERT_EQ(run_text(scene_with(none)), "");
   const std::string csv = slurp(temp_dir() / "out" / "parameters.csv");
   for (const auto& [dotted, v] : primary) {
     const Parameter* p = find_parameter(dotted);
@@ -185,6 +194,20 @@ TEST(Parameters, TheDocsHoldTheTable) {
       << "docs/lua-api.md's parameter tables differ from the code's: put the output of 'beltsim help parameters' "
          "between the markers";
   EXPECT_EQ(docs.find(begin, b + 1), std::string::npos) << "one copy of the tables";
+}
+
+// friction.law takes the two words and names a third; a law's own parameter under another law is
+// refused with both names (it would otherwise be ignored without a word)
+TEST(Parameters, FrictionLawWordsAndTheirParameters) {
+  const std::string at = (temp_dir() / "scene.lua").string() + ":1: ";
+  EXPECT_EQ(run_text(scene_with({{"friction.law", "'coulomb'"}})),
+            at + "friction.law: 'threlfall' or 'stribeck' expected, got 'coulomb'");
+  EXPECT_EQ(run_text(scene_with({{"friction.law", "'threlfall'"}, {"friction.static_ratio", "1.5"}})),
+            at + "friction.static_ratio: a parameter of another law; this scene's law is 'threlfall'");
+  EXPECT_EQ(run_text(scene_with({{"friction.law", "'stribeck'"}, {"friction.static_ratio", "1.5"}})), "");
+  const std::string csv = slurp(temp_dir() / "out" / "parameters.csv");
+  EXPECT_NE(csv.find("\nfriction.law,"), std::string::npos) << csv;
+  EXPECT_NE(csv.find("stribeck"), std::string::npos) << csv;
 }
 
 // every key a scene table takes is in the table once
