@@ -33,6 +33,8 @@ std::vector<SceneInput> scene_inputs(const SceneDef& d) {
     for (const Parameter* par : parameters_of("pulley")) add(par, &p);
     if (p.tensioner)
       for (const Parameter* par : parameters_of("pulley.tensioner")) add(par, &p);
+    if (p.coupling)
+      for (const Parameter* par : parameters_of("pulley.coupling")) add(par, &p);
   }
   return in;
 }

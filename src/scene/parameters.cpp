@@ -59,6 +59,9 @@ constexpr Parameter kParameters[] = {
      "prescribed speed law: the pulley becomes kinematic (Laws, below)", nullptr, nullptr, nullptr},
     {"pulley", "tensioner", K::other, "", {}, "none: a fixed centre", W::none, R::none,
      "its centre on a spring-loaded arm (table below)", nullptr, nullptr, nullptr},
+    {"pulley", "coupling", K::other, "", {}, "none: one body", W::none, R::none,
+     "a rotor behind a torsional spring-damper, optionally one-way (table below); the torque law then acts on "
+     "the rotor", nullptr, nullptr, nullptr},
 
     // ---- a pulley's tensioner = {...}: its centre on a spring-loaded arm ----
     {"pulley.tensioner", "pivot", K::other, "m", {}, "", W::none, R::none, "{x, y} of the arm's pivot; required",
@@ -94,6 +97,39 @@ constexpr Parameter kParameters[] = {
     {"pulley.tensioner", "asymmetric", K::number, "", 1, "", W::ours, R::positive,
      "damping and friction times this while the belt pushes the arm back (1: symmetric)",
      [](SceneDef&, PulleyDef& p) -> Slot { return p.tensioner ? Slot(&p.tensioner->asymmetric) : Slot(); }, nullptr,
+     nullptr},
+
+    // ---- a pulley's coupling = {...}: a rotor behind a decoupler ----
+    {"pulley.coupling", "inertia", K::number, "kg·m²", {}, "", W::none, R::positive,
+     "the rotor's moment of inertia J_r (an alternator's rotor); required",
+     [](SceneDef&, PulleyDef& p) -> Slot { return p.coupling ? Slot(&p.coupling->inertia) : Slot(); }, nullptr,
+     nullptr},
+    {"pulley.coupling", "stiffness", K::number, "N·m/rad", {}, "", W::none, R::positive,
+     "the decoupler spring's torsional stiffness k; required",
+     [](SceneDef&, PulleyDef& p) -> Slot { return p.coupling ? Slot(&p.coupling->stiffness) : Slot(); }, nullptr,
+     nullptr},
+    {"pulley.coupling", "damping", K::number, "N·m·s/rad", 0, "", W::ours, R::non_negative,
+     "the decoupler's viscous damping c",
+     [](SceneDef&, PulleyDef& p) -> Slot { return p.coupling ? Slot(&p.coupling->damping) : Slot(); }, nullptr,
+     nullptr},
+    {"pulley.coupling", "one_way", K::other, "", {}, "`false`", W::ours, R::none,
+     "`true`: an overrunning clutch behind the spring drives the rotor only in the sense the pulley turns as the "
+     "belt travels",
+     nullptr, nullptr,
+     [](const SceneDef&, const PulleyDef& p) -> std::string {
+       return p.coupling ? (p.coupling->one_way ? "true" : "false") : "";
+     }},
+    {"pulley.coupling", "hub_inertia", K::number, "kg·m²", 1e-4, "", W::ours, R::positive,
+     "one way: the clutch hub's inertia J_h (with the spring's end)",
+     [](SceneDef&, PulleyDef& p) -> Slot { return p.coupling ? Slot(&p.coupling->hub_inertia) : Slot(); }, nullptr,
+     nullptr},
+    {"pulley.coupling", "lock_damping", K::number, "N·m·s/rad", 200, "", W::ours, R::positive,
+     "one way: the engaged clutch's viscous lock c_L (it slips torque/c_L)",
+     [](SceneDef&, PulleyDef& p) -> Slot { return p.coupling ? Slot(&p.coupling->lock_damping) : Slot(); }, nullptr,
+     nullptr},
+    {"pulley.coupling", "drag_torque", K::number, "N·m", 0.05, "", W::ours, R::positive,
+     "one way: the clutch's drag on the rotor while it overruns",
+     [](SceneDef&, PulleyDef& p) -> Slot { return p.coupling ? Slot(&p.coupling->drag_torque) : Slot(); }, nullptr,
      nullptr},
 
     // ---- belt = {...} ----
@@ -291,6 +327,7 @@ std::string parameters_markdown() {
   std::string md;
   for (const auto& [table, title] : {std::pair{"scene", "`beltsim.scene{...}`"}, std::pair{"pulley", "Pulley table"},
                                      std::pair{"pulley.tensioner", "A pulley's `tensioner` table"},
+                                     std::pair{"pulley.coupling", "A pulley's `coupling` table"},
                                      std::pair{"belt", "Belt table"}, std::pair{"belt.sde", "`belt.sde` table"},
                                      std::pair{"contact", "Contact table"}, std::pair{"friction", "Friction table"}}) {
     md.append(md.empty() ? "" : "\n").append(title).append(":\n\n| key | unit | default | range | meaning |\n|---|---|---|---|---|\n");

@@ -1,5 +1,5 @@
 // The scene's parameters: one table of every key a scenario's tables take (scene, belt, belt.sde,
-// contact, friction, pulley, pulley.tensioner), with its unit, its default and whose that default is, its rule and
+// contact, friction, pulley, pulley.tensioner, pulley.coupling), with its unit, its default and whose that default is, its rule and
 // where its value lives in a SceneDef. The Lua readers (script/lua_scene.cpp), the validation
 // (validate(SceneDef)), the scene's inputs in parameters.csv and the run's first lines
 // (scene_inputs), the checkpoint's inputs (scene_io.cpp) and the parameter tables of
@@ -41,7 +41,7 @@ using Slot = std::variant<std::monostate, double*, int*, std::optional<double>*>
 
 struct Parameter {
   std::string_view table;  // the scenario's table: "scene", "belt", "belt.sde", "contact", "friction", "pulley",
-                           // "pulley.tensioner"
+                           // "pulley.tensioner", "pulley.coupling"
   std::string_view key;    // the key in that table
   Kind kind;
   std::string_view unit;           // SI; "" when dimensionless or not a number

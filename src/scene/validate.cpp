@@ -121,6 +121,7 @@ void validate(const SceneDef& d) {
     require_finite(w + " centre y", p.centre.y(), "m");
     check_rules(d, "pulley", &p);
     if (p.tensioner) check_rules(d, "pulley.tensioner", &p);
+    if (p.coupling) check_rules(d, "pulley.coupling", &p);
     if (p.kinematic) {
       validate_law(w + " speed", p.speed, true);
       if (!p.torque.is_zero()) throw ParameterError(w + ": give either a torque or a prescribed speed, not both");

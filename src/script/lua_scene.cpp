@@ -89,6 +89,18 @@ void read_tensioner(lua_State* L, int idx, const std::string& w, SceneDef& d, Pu
   read_numbers(L, idx, "pulley.tensioner", w, d, p);
 }
 
+// a pulley's coupling table at idx into p.coupling: one_way, then the numbers of the parameter
+// table's "pulley.coupling" (w names it in errors: "pulley 'alternator'.coupling")
+void read_coupling(lua_State* L, int idx, const std::string& w, SceneDef& d, PulleyDef& p) {
+  require_table(L, idx, w);
+  check_keys(L, idx, w, keys_of("pulley.coupling"));
+  CouplingDef& c = p.coupling.emplace();
+  if (!has(L, idx, "inertia")) fail(L, w + ": the rotor's inertia [kg·m²] is required");
+  if (!has(L, idx, "stiffness")) fail(L, w + ": the decoupler spring's stiffness [N·m/rad] is required");
+  if (auto v = opt_bool(L, idx, "one_way", w)) c.one_way = *v;
+  read_numbers(L, idx, "pulley.coupling", w, d, p);
+}
+
 PulleyDef to_pulley(lua_State* L, int idx, const std::string& what, SceneDef& d, Context* ctx) {
   idx = lua_absindex(L, idx);
   require_table(L, idx, what);
@@ -127,6 +139,10 @@ PulleyDef to_pulley(lua_State* L, int idx, const std::string& what, SceneDef& d,
   }
   if (field(L, idx, "tensioner")) {
     read_tensioner(L, lua_gettop(L), w + ".tensioner", d, p);
+    lua_pop(L, 1);
+  }
+  if (field(L, idx, "coupling")) {
+    read_coupling(L, lua_gettop(L), w + ".coupling", d, p);
     lua_pop(L, 1);
   }
   return p;
@@ -264,6 +280,8 @@ int l_scene(lua_State* L) {
     note_given(L, -1, "pulley." + d.pulleys.back().name + ".", d.given);
     if (field(L, -1, "tensioner"))
       note_given(L, -1, "pulley." + d.pulleys.back().name + ".tensioner.", d.given), lua_pop(L, 1);
+    if (field(L, -1, "coupling"))
+      note_given(L, -1, "pulley." + d.pulleys.back().name + ".coupling.", d.given), lua_pop(L, 1);
     lua_pop(L, 1);
   }
   lua_pop(L, 1);

@@ -146,7 +146,8 @@ int l_advance(lua_State* L) {
 // ---- reading ---------------------------------------------------------------------------------
 
 // sim:pulley(name) -> { omega [rad/s], angle [rad], torque [N·m], belt_torque [N·m], hub_load [N],
-// contact_arc, slip_arc, stick_arc [m], creep; on a tensioner arm arm_angle [rad], arm_rate [rad/s] }
+// contact_arc, slip_arc, stick_arc [m], creep; on a tensioner arm arm_angle [rad], arm_rate [rad/s];
+// with a coupling rotor_angle [rad], rotor_speed [rad/s], windup [rad], coupling_torque [N·m] }
 int l_pulley(lua_State* L) {
   Simulation& s = live(L, "pulley", {{"name", kString}});
   const int j = pulley_index(L, s, 2, "sim:pulley");
@@ -163,6 +164,10 @@ int l_pulley(lua_State* L) {
   set_number(L, "stick_arc", p.stick_arc);
   set_number(L, "creep", p.creep);
   if (!std::isnan(p.arm_angle)) set_number(L, "arm_angle", p.arm_angle), set_number(L, "arm_rate", p.arm_rate);
+  if (!std::isnan(p.rotor_speed)) {
+    set_number(L, "rotor_angle", p.rotor_angle), set_number(L, "rotor_speed", p.rotor_speed);
+    set_number(L, "windup", p.windup), set_number(L, "coupling_torque", p.coupling_torque);
+  }
   return 1;
 }
 
@@ -272,6 +277,23 @@ int l_set_arm(lua_State* L) {
     error = e.what();
   }
   if (!error.empty()) fail(L, "sim:set_arm: " + error);
+  return 0;
+}
+// sim:set_rotor(name, { angle [rad], speed [rad/s] }): the coupled rotor's state from now
+int l_set_rotor(lua_State* L) {
+  Simulation& s = live(L, "set_rotor", {{"name", kString}, {"{ angle, speed }", kTable}});
+  const int j = pulley_index(L, s, 2, "sim:set_rotor");
+  check_keys(L, 3, "sim:set_rotor", {"angle", "speed"});
+  const std::optional<double> angle = opt_number(L, 3, "angle", "sim:set_rotor");
+  const std::optional<double> speed = opt_number(L, 3, "speed", "sim:set_rotor");
+  if (!angle && !speed) fail(L, "sim:set_rotor: give angle [rad] or speed [rad/s]");
+  std::string error;
+  try {
+    s.set_rotor(j, angle, speed);
+  } catch (const std::invalid_argument& e) {
+    error = e.what();
+  }
+  if (!error.empty()) fail(L, "sim:set_rotor: " + error);
   return 0;
 }
 int l_set_torque(lua_State* L) { return set_law(L, false); }
@@ -577,7 +599,7 @@ int l_tostring(lua_State* L) {
 const luaL_Reg kMethods[] = {
     {"run_to", l_run_to},   {"advance", l_advance},       {"pulley", l_pulley},       {"element", l_element},
     {"span", l_span},       {"energy", l_energy},         {"stats", l_stats},         {"set_torque", l_set_torque},
-    {"set_speed", l_set_speed}, {"set_arm", l_set_arm}, {"wet", l_wet},           {"set_mu", l_set_mu},       {"log", l_log},
+    {"set_speed", l_set_speed}, {"set_arm", l_set_arm}, {"set_rotor", l_set_rotor}, {"wet", l_wet},           {"set_mu", l_set_mu},       {"log", l_log},
     {"every", l_every},     {"when", l_when},             {"cancel", l_cancel},       {"show", l_show},
     {"plot", l_plot},       {"save", l_save},             {"close", l_close},           {nullptr, nullptr}};
 
@@ -636,7 +658,8 @@ const std::vector<HelpEntry>& api_help() {
       {"advance", "sim:advance(dt [s]) -> { t [s], steps, wall [s], interrupted }", "integrates dt further"},
       {"t", "sim.t", "the current simulated time [s]"},
       {"pulley", "sim:pulley(name)", "{ omega [rad/s], angle [rad], torque, belt_torque [N·m], hub_load [N], contact_arc, slip_arc, "
-                             "stick_arc [m], creep; arm_angle [rad], arm_rate [rad/s] on a tensioner arm }"},
+                             "stick_arc [m], creep; arm_angle [rad], arm_rate [rad/s] on a tensioner arm; rotor_angle [rad], "
+                             "rotor_speed [rad/s], windup [rad], coupling_torque [N·m] with a coupling }"},
       {"element", "sim:element(i)",
        "{ x, y [m], phi [rad], s [m], tension, normal, friction [N], slip [m/s], mu, pulley, state } of element i (0-based)"},
       {"span", "sim:span(a, b) -> [N]", "tension of the span between pulleys a and b"},
@@ -645,6 +668,8 @@ const std::vector<HelpEntry>& api_help() {
       {"set_torque", "sim:set_torque(name, law [N·m])", "a new torque law on a pulley from now (events.csv)"},
       {"set_speed", "sim:set_speed(name, law [rad/s])", "a prescribed speed on a pulley from now"},
       {"set_arm", "sim:set_arm(name, { angle [rad], rate [rad/s] })", "moves a tensioner arm now (events.csv)"},
+      {"set_rotor", "sim:set_rotor(name, { angle [rad], speed [rad/s] })",
+       "sets a coupled rotor's angle or speed now (events.csv)"},
       {"wet", "sim:wet{ from [m], to [m], mu }", "μ on the belt between s = from and to (belt coordinate) from now"},
       {"set_mu", "sim:set_mu(mu | {mu...} | function(site))", "μ of every element from now"},
       {"log", "sim:log(text)", "a note in events.csv at the current time"},

@@ -147,6 +147,41 @@ TEST(LiveApi, TensionerArmReadChangedAndCheckpointed) {
             "");
 }
 
+// A one-way coupled alternator: its rotor read, set at a pause (events.csv), saved and resumed bit
+// for bit; the Lua table reads one_way as a boolean.
+TEST(LiveApi, CoupledRotorReadChangedAndCheckpointed) {
+  const std::string out = (temp_dir() / "rotor").string();
+  EXPECT_EQ(run_text("local s = beltsim.scene{ pulleys = {\n"
+                     "  { name = 'driver', centre = {0, 0}, torque = beltsim.ramp(0.3, -70.0) },\n"
+                     "  { name = 'driven', centre = {0.29, 0}, torque = { per_speed = -0.5 },\n"
+                     "    coupling = { inertia = 0.01, stiffness = 50, damping = 0.2, one_way = true } } },\n"
+                     "  belt = { direction = 'cw' } }\n"
+                     "local sim = s:start{ out = '" + out + "', progress = false }\n"
+                     "local p = sim:pulley('driven')\n"
+                     "assert(p.rotor_speed == 0 and p.windup == 0 and p.coupling_torque == 0, 'relaxed at rest')\n"
+                     "assert(sim:pulley('driver').rotor_speed == nil, 'no coupling')\n"
+                     "sim:advance(0.002)\n"
+                     "sim:set_rotor('driven', { speed = -3.0 })\n"
+                     "p = sim:pulley('driven')\n"
+                     "assert(p.rotor_speed == -3.0, 'set_rotor')\n"
+                     "local ok, err = pcall(sim.set_rotor, sim, 'driver', { speed = 0 })\n"
+                     "assert(not ok and err:find(\"pulley 'driver' has no coupling\"), err)\n"
+                     "local path = sim:save('" + out + "/rotor.chk')\n"
+                     "sim:advance(0.002)\n"
+                     "local later = sim:pulley('driven')\n"
+                     "assert(later.rotor_speed ~= -3.0, 'the rotor moves')\n"
+                     "sim:close()\n"
+                     "local r = beltsim.resume(path)\n"
+                     "r:advance(0.002)\n"
+                     "local again = r:pulley('driven')\n"
+                     "assert(again.rotor_speed == later.rotor_speed and again.windup == later.windup, 'resumed bits')\n"
+                     "r:close()\n"),
+            "");
+  std::ifstream ev(out + "/events.csv");
+  const std::string events((std::istreambuf_iterator<char>(ev)), std::istreambuf_iterator<char>());
+  EXPECT_NE(events.find("driven.rotor"), std::string::npos) << events;
+}
+
 TEST(LiveApi, BadCallsNameFileLineAndWhat) {
   struct Case {
     std::string call, expect;
