@@ -31,7 +31,8 @@ std::string slurp(const fs::path& p) {
 
 // A two-pulley scene (pulleys 'a' and 'b') with the given values as Lua expressions, each under its
 // dotted key ("belt.EA", "belt.sde.k", "pulley.radius": pulley a's, "pulley.tensioner.stiffness":
-// pulley a's arm, pivoted 0.1 m above its centre, "gravity"), then a run of one millisecond writing
+// pulley a's arm, pivoted 0.1 m above its centre, "pulley.coupling.stiffness": pulley a's
+// coupling, "gravity"), then a run of one millisecond writing
 // parameters.csv.
 std::string scene_with(const std::map<std::string, std::string>& values) {
   std::map<std::string, std::string> tables;
@@ -45,6 +46,7 @@ std::string scene_with(const std::map<std::string, std::string>& values) {
   std::string pulley = tables["pulley"];
   if (!tables["pulley.tensioner"].empty())
     pulley += "tensioner = { pivot = {0, 0.1}, " + tables["pulley.tensioner"] + "}, ";
+  if (!tables["pulley.coupling"].empty()) pulley += "coupling = { " + tables["pulley.coupling"] + "}, ";
   return "local s = beltsim.scene {\n"
          "  pulleys = { { name = 'a', centre = {0, 0}, torque = -1, " +
          pulley +
@@ -90,6 +92,15 @@ const std::map<std::string, std::string> kSde{
 // a tensioner requires these two
 const std::map<std::string, std::string> kTensioner{{"pulley.tensioner.inertia", "0.01"},
                                                     {"pulley.tensioner.stiffness", "3000"}};
+// a coupling requires these two
+const std::map<std::string, std::string> kCoupling{{"pulley.coupling.inertia", "0.01"},
+                                                   {"pulley.coupling.stiffness", "50"}};
+// the required keys of both
+std::map<std::string, std::string> required() {
+  std::map<std::string, std::string> r = kTensioner;
+  r.insert(kCoupling.begin(), kCoupling.end());
+  return r;
+}
 
 // the name a key of pulley `pulley`'s has in parameters.csv ("pulley.a.radius",
 // "pulley.a.tensioner.stiffness"), the dotted key otherwise
@@ -106,6 +117,7 @@ TEST(Parameters, EveryRuleStopsTheScriptWithTheKeyTheReasonAndTheValue) {
     std::map<std::string, std::string> values;
     if (p.table == "belt.sde") values = kSde;
     if (p.table == "pulley.tensioner") values = kTensioner;
+    if (p.table == "pulley.coupling") values = kCoupling;
     values[p.dotted()] = lua;
     const std::string what = p.table.starts_with("pulley") ? "pulley 'a' " + p.dotted().substr(7) : p.dotted();
     const std::string expected = (temp_dir() / "scene.lua").string() + ":1: " + what + " " + std::string(rule_text(p.rule)) + " (got " + shown +
@@ -121,7 +133,7 @@ TEST(Parameters, EveryRuleStopsTheScriptWithTheKeyTheReasonAndTheValue) {
 // default taken as default; the alternatives (rest_length, strain, per SDE, per length) in
 // scenes of their own
 TEST(Parameters, EveryNumberReachesParametersCsv) {
-  std::map<std::string, std::string> primary = kTensioner, per_length{{"belt.rest_length", "1.2045"}}, per_sde = kSde;
+  std::map<std::string, std::string> primary = required(), per_length{{"belt.rest_length", "1.2045"}}, per_sde = kSde;
   per_sde["belt.strain"] = "0.005";
   per_length["belt.bending_viscosity"] = "1e-3";
   per_length["contact.c1_per_length"] = "1.5e11";
@@ -148,8 +160,8 @@ TEST(Parameters, EveryNumberReachesParametersCsv) {
           << "expected '" << expected << "', got '" << row(csv, name) << "'";
     }
   }
-  // nothing given (but a tensioner's required two): the defaults, marked so
-  ASSERT_EQ(run_text(scene_with(kTensioner)), "");
+  // nothing given (but a tensioner's and a coupling's required two): the defaults, marked so
+  ASSERT_EQ(run_text(scene_with(required())), "");
   const std::string csv = slurp(temp_dir() / "out" / "parameters.csv");
   for (const auto& [dotted, v] : primary) {
     const Parameter* p = find_parameter(dotted);
