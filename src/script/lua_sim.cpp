@@ -5,6 +5,7 @@
 // called with the simulation as their argument, from inside run_to.
 #include "script/lua_sim.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -304,14 +305,50 @@ void apply_mu(lua_State* L, Simulation& s, const std::vector<double>& mu, const 
   guarded(L, what.c_str(), [&] { s.set_mu(mu, what, text); });
 }
 
-// sim:wet{ from = s0 [m], to = s1 [m], mu = 0.2 | function(site) } (no from/to: the whole belt)
+// sim:wet{ from = s0 [m], to = s1 [m], mu = 0.2 | function(site), transition = 0.02 [m] } (no
+// from/to: the whole belt; transition: μ ramps linearly across that length about each end)
+// The share of the wet μ an element at belt coordinate s takes with a transition of length tau
+// [m] about each end of [from, to] (wrapping round the belt of length len when from > to): 1 inside
+// farther than tau/2 from both ends, 0 outside farther than tau/2, linear across the ends; tau = 0
+// is the sharp boundary (the ends inside).
+double wet_share(double s, double from, double to, double len, double tau) {
+  const double span = from <= to ? to - from : len - from + to;
+  double u = std::fmod(s - from, len);
+  if (u < 0) u += len;
+  const bool inside = u <= span;
+  if (tau == 0) return inside ? 1.0 : 0.0;
+  const double d = inside ? std::min(u, span - u) : -std::min(u - span, len - u);  // > 0 inside
+  return std::clamp(0.5 + d / tau, 0.0, 1.0);
+}
+
 int l_wet(lua_State* L) {
-  Simulation& s = live(L, "wet", {{"{from, to, mu}", kTable}});
+  Simulation& s = live(L, "wet", {{"{from, to, mu, transition}", kTable}});
   require_table(L, 2, "sim:wet");
-  check_keys(L, 2, "sim:wet", {"from", "to", "mu"});
+  check_keys(L, 2, "sim:wet", {"from", "to", "mu", "transition"});
   const auto from = opt_number(L, 2, "from", "sim:wet"), to = opt_number(L, 2, "to", "sim:wet");
+  const auto transition = opt_number(L, 2, "transition", "sim:wet");
+  if (transition) {
+    if (!from) fail(L, "sim:wet.transition: a transition needs the wet stretch's from and to [m]");
+    if (!(*transition >= 0 && std::isfinite(*transition))) {
+      std::ostringstream m;
+      m << "sim:wet.transition: must be >= 0 and finite (got " << *transition << " m)";
+      fail(L, m.str());
+    }
+  }
   if (!field(L, 2, "mu")) fail(L, "sim:wet: mu (the wet friction coefficient) is required");
-  const std::vector<double> mu = mu_over(L, lua_gettop(L), s.scene(), from, to, "sim:wet");
+  std::vector<double> mu;
+  if (transition && *transition > 0) {
+    // μ ramps linearly from the belt's μ now to the wet one across `transition` about each end
+    mu = mu_over(L, lua_gettop(L), s.scene(), std::nullopt, std::nullopt, "sim:wet");
+    const double len = s.scene().sites.empty() ? 0 : s.scene().sites[0].length;
+    mu_over(L, lua_gettop(L), s.scene(), from, to, "sim:wet");  // checks from and to
+    for (const ElementSite& site : s.scene().sites) {
+      const double w = wet_share(site.s, *from, *to, len, *transition), old = s.drive().mu[site.index];
+      mu[site.index] = w == 0 ? std::nan("") : w == 1 ? mu[site.index] : old + w * (mu[site.index] - old);
+    }
+  } else {
+    mu = mu_over(L, lua_gettop(L), s.scene(), from, to, "sim:wet");
+  }
   std::ostringstream text;
   text << "mu = ";
   if (lua_type(L, -1) == LUA_TNUMBER)
@@ -319,6 +356,7 @@ int l_wet(lua_State* L) {
   else
     text << "function";
   if (from) text << " on s in [" << *from << ", " << *to << "] m";
+  if (transition && *transition > 0) text << ", transition " << *transition << " m";
   lua_pop(L, 1);
   apply_mu(L, s, mu, "wet", text.str());
   return 0;
@@ -670,7 +708,8 @@ const std::vector<HelpEntry>& api_help() {
       {"set_arm", "sim:set_arm(name, { angle [rad], rate [rad/s] })", "moves a tensioner arm now (events.csv)"},
       {"set_rotor", "sim:set_rotor(name, { angle [rad], speed [rad/s] })",
        "sets a coupled rotor's angle or speed now (events.csv)"},
-      {"wet", "sim:wet{ from [m], to [m], mu }", "μ on the belt between s = from and to (belt coordinate) from now"},
+      {"wet", "sim:wet{ from [m], to [m], mu, transition [m] }",
+       "μ on the belt between s = from and to (belt coordinate) from now, ramped across transition at each end"},
       {"set_mu", "sim:set_mu(mu | {mu...} | function(site))", "μ of every element from now"},
       {"log", "sim:log(text)", "a note in events.csv at the current time"},
       {"every", "sim:every(dt [s], function(sim) end) -> id", "calls the function at now + k·dt exactly"},

@@ -182,6 +182,40 @@ TEST(LiveApi, CoupledRotorReadChangedAndCheckpointed) {
   EXPECT_NE(events.find("driven.rotor"), std::string::npos) << events;
 }
 
+// sim:wet's transition (issue 27 §4): μ ramps linearly from the belt's μ to the wet one across the
+// transition's length about each end of [from, to]; 0 is the sharp boundary of no transition.
+TEST(LiveApi, WetTransitionRampsMuAcrossItsLength) {
+  const std::string out = (temp_dir() / "transition").string();
+  EXPECT_EQ(run_text("local s = beltsim.scene{ pulleys = {\n"
+                     "  { name = 'driver', centre = {0, 0}, torque = -1 },\n"
+                     "  { name = 'driven', centre = {0.29, 0} } }, belt = { elements = 240 } }\n"
+                     "local sim = s:start{ out = '" + out + "', progress = false }\n"
+                     "local n = s:info().elements\n"
+                     "sim:wet{ from = 0.3, to = 0.6, mu = 0.2, transition = 0.05 }\n"
+                     "local ramped = 0\n"
+                     "for i = 0, n - 1 do\n"
+                     "  local e = sim:element(i)\n"
+                     "  local d = math.min(e.s - 0.3, 0.6 - e.s)  -- > 0 inside\n"
+                     "  local w = math.max(0, math.min(1, 0.5 + d / 0.05))\n"
+                     "  local want = 1 + w * (0.2 - 1)\n"
+                     "  assert(math.abs(e.mu - want) < 1e-12, ('element %d at s = %g: mu %g, want %g'):format(i, e.s, e.mu, want))\n"
+                     "  if w > 0 and w < 1 then ramped = ramped + 1 end\n"
+                     "  if d > 0.025 then assert(e.mu == 0.2) elseif d < -0.025 then assert(e.mu == 1) end\n"
+                     "end\n"
+                     "assert(ramped >= 8, 'elements on the ramps: ' .. ramped)\n"
+                     "sim:set_mu(1)\n"
+                     "sim:wet{ from = 0.3, to = 0.6, mu = 0.2, transition = 0 }\n"
+                     "local sharp = {}\n"
+                     "for i = 0, n - 1 do sharp[i] = sim:element(i).mu end\n"
+                     "sim:set_mu(1)\n"
+                     "sim:wet{ from = 0.3, to = 0.6, mu = 0.2 }\n"
+                     "for i = 0, n - 1 do assert(sim:element(i).mu == sharp[i], 'transition 0 is no transition') end\n"
+                     "local ok, err = pcall(sim.wet, sim, { from = 0.3, to = 0.6, mu = 0.2, transition = -0.01 })\n"
+                     "assert(not ok and err:find('sim:wet.transition: must be >= 0 and finite %(got %-0.01 m%)'), err)\n"
+                     "sim:close()\n"),
+            "");
+}
+
 TEST(LiveApi, BadCallsNameFileLineAndWhat) {
   struct Case {
     std::string call, expect;
