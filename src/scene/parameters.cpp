@@ -179,13 +179,22 @@ constexpr Parameter kParameters[] = {
      "the paper's rho, per metre of unstretched belt",
      [](SceneDef& d, PulleyDef&) -> Slot { return &d.belt.mass_per_length; }, nullptr, nullptr},
     {"belt", "mu", K::other, "", 1, "", W::paper, R::non_negative,
-     "friction coefficient: a number, a list (one per element) or function(site) return μ end",
+     "effective friction coefficient of the belt on a pulley: a number, a list (one per element) or "
+     "function(site) return μ end",
      [](SceneDef& d, PulleyDef&) -> Slot { return &d.belt.mu; }, nullptr,
      [](const SceneDef& d, const PulleyDef&) -> std::string {
        return d.belt.mu_at ? "function of where each element starts"
               : d.belt.mu_per_element.empty() ? ""
                                               : "one value per element";
      }},
+
+    {"belt", "rib_angle", K::number, "°", 40, "", W::ours, R::positive,
+     "the V-ribs' included angle β (40° for PK belts); with mu_flank the effective μ = mu_flank/sin(β/2)",
+     [](SceneDef& d, PulleyDef&) -> Slot { return &d.belt.rib_angle; }, nullptr, nullptr},
+    {"belt", "mu_flank", K::number, "", {}, "", W::none, R::non_negative,
+     "friction coefficient of the rib flanks, instead of mu: mu = mu_flank/sin(rib_angle/2) (the paper's μ = 1 is "
+     "already the effective one)",
+     [](SceneDef& d, PulleyDef&) -> Slot { return &d.belt.mu_flank; }, nullptr, nullptr},
 
     // ---- belt.sde = {...}: all four, instead of the rigidities ----
     {"belt.sde", "k", K::number, "N/m", {}, "", W::none, R::positive, "axial stiffness per SDE",

@@ -111,6 +111,8 @@ struct BeltDef {
   double mu = parameter_default("belt.mu");  // friction coefficient of every element...
   std::vector<double> mu_per_element;  // ...unless given per element (size = elements)...
   std::function<double(const ElementSite&)> mu_at;  // ...or by where the element starts
+  double rib_angle = parameter_default("belt.rib_angle");  // [°] the V-ribs' included angle β
+  std::optional<double> mu_flank;  // the ribs' flank coefficient a scenario gave instead of mu (mu = mu_flank/sin(β/2))
 };
 
 // The contact law's constants per metre of belt along the pulley (the pitch), beside the paper's

@@ -156,6 +156,7 @@ void validate(const SceneDef& d) {
   if (b.reading == StiffnessReading::per_sde && b.bending_viscosity)
     throw ParameterError("belt.bending_viscosity: a rigidity; with per-SDE values (sde) give ct");
   check_rules(d, "belt.sde", nullptr);
+  if (!(b.rib_angle < 180)) reject("belt.rib_angle", "must be < 180 (the ribs' included angle)", b.rib_angle, "°");
   if (!b.mu_per_element.empty()) {
     if (static_cast<int>(b.mu_per_element.size()) != b.elements)
       reject("belt.mu per element", "needs one value per element", static_cast<double>(b.mu_per_element.size()),

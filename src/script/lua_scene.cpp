@@ -228,6 +228,17 @@ void read_belt(lua_State* L, int idx, SceneDef& d, std::unique_ptr<LuaRef>& mu_f
     }
     lua_pop(L, 1);
   }
+  if (b.mu_flank) {  // the effective coefficient of the wedge from the flanks' (docs/model.md, The rib wedge)
+    if (has(L, idx, "mu")) fail(L, "belt: give mu (the effective coefficient) or mu_flank, not both");
+    std::ostringstream m;
+    if (!(b.rib_angle > 0 && b.rib_angle < 180))
+      m << "belt.rib_angle: must be > 0 and < 180 (the ribs' included angle) (got " << b.rib_angle << " °)";
+    else if (!(*b.mu_flank >= 0 && std::isfinite(*b.mu_flank)))
+      m << "belt.mu_flank must be >= 0 (got " << *b.mu_flank << ")";
+    if (!m.str().empty()) fail(L, m.str());
+    b.mu = *b.mu_flank / std::sin(b.rib_angle * M_PI / 360.0);
+    d.given.insert("belt.mu");
+  }
 }
 
 

@@ -216,6 +216,37 @@ TEST(LiveApi, WetTransitionRampsMuAcrossItsLength) {
             "");
 }
 
+// belt.mu_flank (issue 27 §4): the effective μ of the rib wedge is mu_flank/sin(rib_angle/2), with
+// the PK belt's 40° by default (0.5/sin 20° = 1.4619); parameters.csv states both; mu and mu_flank
+// together, or a rib angle of 180°, are refused with the reason and the value.
+TEST(LiveApi, RibWedgeGivesTheEffectiveMu) {
+  const std::string out = (temp_dir() / "wedge").string();
+  const std::string pulleys = "pulleys = { { name = 'a', centre = {0, 0}, torque = -1 }, { name = 'b', centre = {0.29, 0} } }";
+  EXPECT_EQ(run_text("local s = beltsim.scene{ " + pulleys + ", belt = { mu_flank = 0.5 } }\n"
+                     "local sim = s:start{ out = '" + out + "', progress = false }\n"
+                     "local mu = sim:element(7).mu\n"
+                     "assert(math.abs(mu - 0.5 / math.sin(math.rad(20))) < 1e-15, mu)\n"
+                     "local t = beltsim.scene{ " + pulleys + ", belt = { mu_flank = 0.5, rib_angle = 60 } }\n"
+                     "local u = t:start{ out = '" + out + "_60', progress = false }\n"
+                     "assert(math.abs(u:element(7).mu - 1.0) < 1e-15, u:element(7).mu)\n"
+                     "sim:close() u:close()\n"),
+            "");
+  std::ifstream f(out + "/parameters.csv");
+  const std::string csv((std::istreambuf_iterator<char>(f)), std::istreambuf_iterator<char>());
+  EXPECT_NE(csv.find("\nbelt.rib_angle,40,°,default,"), std::string::npos) << csv;
+  EXPECT_NE(csv.find("\nbelt.mu_flank,0.5,,given,"), std::string::npos) << csv;
+  EXPECT_NE(csv.find("\nbelt.mu,1.4619"), std::string::npos) << csv;
+  EXPECT_NE(run_text("beltsim.scene{ " + pulleys + ", belt = { mu = 1, mu_flank = 0.5 } }")
+                .find(":1: belt: give mu (the effective coefficient) or mu_flank, not both"),
+            std::string::npos);
+  EXPECT_NE(run_text("beltsim.scene{ " + pulleys + ", belt = { mu_flank = 0.5, rib_angle = 180 } }")
+                .find(":1: belt.rib_angle: must be > 0 and < 180 (the ribs' included angle) (got 180 °)"),
+            std::string::npos);
+  EXPECT_NE(run_text("beltsim.scene{ " + pulleys + ", belt = { rib_angle = 200 } }")
+                .find(":1: belt.rib_angle must be < 180 (the ribs' included angle) (got 200 °)"),
+            std::string::npos);
+}
+
 TEST(LiveApi, BadCallsNameFileLineAndWhat) {
   struct Case {
     std::string call, expect;
