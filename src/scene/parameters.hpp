@@ -1,6 +1,6 @@
 // The scene's parameters: one table of every key a scenario's tables take (scene, belt, belt.sde,
-// contact, friction, pulley, pulley.tensioner, pulley.coupling), with its unit, its default and whose that default is, its rule and
-// where its value lives in a SceneDef. The Lua readers (script/lua_scene.cpp), the validation
+// contact, friction, pulley, pulley.tensioner, pulley.coupling), with its unit, its default and whose that default is,
+// its rule and where its value lives in a SceneDef. The Lua readers (script/lua_scene.cpp), the validation
 // (validate(SceneDef)), the scene's inputs in parameters.csv and the run's first lines
 // (scene_inputs), the checkpoint's inputs (scene_io.cpp) and the parameter tables of
 // docs/lua-api.md (parameters_markdown) all come from it.
