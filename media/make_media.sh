@@ -66,6 +66,12 @@ if [ "$what" = all ]; then
     span_pump_crankshaft.tension --from 0.3 --out media/automotive_tensioner_arm.png >/dev/null
   "$b" plot "$tmp/automotive_tensioner_fixed/timeseries.csv" span_crankshaft_tensioner.tension \
     span_pump_crankshaft.tension --from 0.3 --out media/automotive_tensioner_fixed.png >/dev/null
+  # docs/automotive.md: the alternator's rotor behind a one-way and a two-way decoupler
+  for k in one_way two_way; do
+    "$b" run scripts/automotive_decoupler.lua --set coupling=$k --no-frames --out "$tmp/decoupler_$k" >/dev/null
+    "$b" plot "$tmp/decoupler_$k/timeseries.csv" alternator.omega alternator.rotor_speed alternator.coupling_torque \
+      --from 0.3 --out "media/automotive_decoupler_$k.png" >/dev/null
+  done
   cp "$tmp/paper_dry/frames/frame_00300.png" media/dry_tension_1.0s.png
   cp "$tmp/paper_wet/frames/frame_00180.png" media/wet_friction_0.6s.png
   cp "$tmp/paper_wet/frames/frame_00090.png" media/wet_friction_0.3s.png

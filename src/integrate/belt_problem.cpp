@@ -55,9 +55,16 @@ std::string BeltProblem::describe(int k) const {
     s << "element " << c / 3 << ' ' << (vel ? elem_v : elem_q)[c % 3];
   else if (c < ne + model_.n_p())
     s << "pulley '" << model_.pulleys[c - ne].name << "' " << (vel ? "speed" : "angle");
-  else
+  else if (c < ne + model_.n_p() + model_.n_arm())
     s << "pulley '" << model_.pulleys[model_.arms[c - ne - model_.n_p()].pulley].name << "' tensioner arm "
       << (vel ? "rate" : "angle");
+  else
+    for (int r = 0; r < model_.n_coupling(); ++r) {
+      const bool hub = c == model_.rotor_coord(r) + 1 && model_.couplings[r].one_way;
+      if (c == model_.rotor_coord(r) || hub)
+        s << "pulley '" << model_.pulleys[model_.couplings[r].pulley].name << "' " << (hub ? "clutch hub " : "rotor ")
+          << (vel ? "speed" : "angle");
+    }
   return s.str();
 }
 

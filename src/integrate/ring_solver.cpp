@@ -109,7 +109,7 @@ bool RingSolver::factor_chain(Chain& ch, const Model& m, double alpha, double be
 
 bool RingSolver::factor(const Model& m, const Drive& d, double alpha, double beta, const BlockMatrix& C, const BlockMatrix& K,
                         TwoWay* two) {
-  const int n = m.n_el(), np = m.n_border();  // the pulleys and the tensioner arms
+  const int n = m.n_el(), np = m.n_border();  // the pulleys, the tensioner arms and the coupled rotors
   if (n != n_ || np != np_) resize(n, np);
   two_ = two;
   const int pb = 3 * nb_;

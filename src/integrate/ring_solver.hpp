@@ -2,10 +2,10 @@
 // O(n) operations.
 //
 // Element 0 is moved into the border with the pulleys, which leaves the elements 1..n-1 as a
-// plain (not cyclic) block-tridiagonal matrix T with 3×3 blocks, bordered by m = 3 + np + na rows and
+// plain (not cyclic) block-tridiagonal matrix T with 3×3 blocks, bordered by m = 3 + Model::n_border() rows and
 // columns:
 //     A = [ T  E ]      T: elements 1..n-1          E, F: their couplings to the border
-//         [ F  G ]      G: element 0, the pulleys and the tensioner arms (dense, m×m)
+//         [ F  G ]      G: element 0, the pulleys, the tensioner arms and the coupled rotors (dense, m×m)
 // T is factorised by block LU (block Thomas: Δ_1 = D_1, Λ_i = L_i·Δ_{i-1}⁻¹, Δ_i = D_i - Λ_i·U_{i-1});
 // then Y = T⁻¹·E (m columns) and the Schur complement S = G - F·Y, factorised densely. A solve is
 // x_T = T⁻¹·r_T - Y·x_b with S·x_b = r_b - F·T⁻¹·r_T. Cost per factorisation ≈ n·(27 + 9m)

@@ -8,7 +8,7 @@ namespace beltsim {
 namespace {
 
 // last dotted component → unit (docs/outputs.md; element and pulley fields of the Lua API)
-constexpr std::array<std::pair<std::string_view, std::string_view>, 40> kUnits{{
+constexpr std::array<std::pair<std::string_view, std::string_view>, 44> kUnits{{
     {"t", "s"},
     // pulleys
     {"omega", "rad/s"},
@@ -18,6 +18,10 @@ constexpr std::array<std::pair<std::string_view, std::string_view>, 40> kUnits{{
     {"hub_load", "N"},
     {"arm_angle", "rad"},
     {"arm_rate", "rad/s"},
+    {"rotor_angle", "rad"},
+    {"rotor_speed", "rad/s"},
+    {"windup", "rad"},
+    {"coupling_torque", "N·m"},
     {"torque_mean", "N·m"},
     {"belt_torque_mean", "N·m"},
     {"contact_arc", "m"},

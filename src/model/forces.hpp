@@ -1,4 +1,5 @@
-// The force laws, one file each (sde.cpp, bending.cpp, contact.cpp, friction.cpp, pulley.cpp).
+// The force laws, one file each (sde.cpp, bending.cpp, contact.cpp, friction.cpp, pulley.cpp,
+// tensioner.cpp, coupling.cpp).
 // Each adds its generalized forces to f (length n_coord) and, when e_rate is not null, its power
 // to the running energy integrals (EnergyIndex). The *_jacobian functions add ∂f/∂q to K and
 // ∂f/∂v to C; every law's derivation is at the top of its file.
@@ -120,7 +121,25 @@ void arm_pair_jacobian(const Model& m, int a, const double* q, const double* v, 
                        BlockMatrix& K, BlockMatrix& C);
 double arm_potential(const Model& m, const double* q);
 
-// pulley equations (eq. 8): applied torques and gravity on the elements, pulley.cpp
+// coupled rotors, coupling.cpp: the spring-damper (and one-way clutch) between each coupled pulley
+// and its rotor; f_t (may be null) receives ∂f/∂t through a kinematic pulley's prescribed speed
+void coupling_forces(const Model& m, const Drive& d, double t, const double* q, const double* v, double* f,
+                     double* e_rate);
+void coupling_jacobian(const Model& m, const Drive& d, double t, const double* v, BlockMatrix& K, BlockMatrix& C,
+                       double* f_t);
+double coupling_potential(const Model& m, const double* q);
+// coupling c at (t, q, v): what the outputs give
+struct CouplingState {
+  double rotor_angle = 0;  // [rad]
+  double rotor_speed = 0;  // [rad/s]
+  double windup = 0;       // [rad] the spring's twist, pulley minus rotor (one-way: minus the clutch's hub)
+  double spring = 0;       // [N·m] the spring-damper's torque on the rotor (one-way: on the hub)
+  double transmitted = 0;  // [N·m] the torque the coupling puts on the rotor (one-way: the clutch's)
+};
+CouplingState coupling_state(const Model& m, const Drive& d, double t, const double* q, const double* v, int c);
+
+// pulley equations (eq. 8): applied torques (on a coupled pulley's rotor) and gravity on the
+// elements, pulley.cpp
 void pulley_forces(const Model& m, const Drive& d, double t, const double* v, double* f, double* e_rate);
 void pulley_jacobian(const Model& m, const Drive& d, double t, const double* v, BlockMatrix& C, double* f_t);
 double applied_torque(const Model& m, const Drive& d, double t, const double* v, int j);

@@ -4,12 +4,13 @@
 // plain arrays laid out as
 //
 //   y = [ q (n_coord) | v (n_coord) | e (n_energy) ]
-//   q = [ x_0 y_0 phi_0 | ... | x_{n-1} y_{n-1} phi_{n-1} | theta_0 ... theta_{np-1} | psi_0 ... psi_{na-1} ]
+//   q = [ x_0 y_0 phi_0 | ... | x_{n-1} y_{n-1} phi_{n-1} | theta_0 ... theta_{np-1} | psi_0 ... psi_{na-1}
+//         | the couplings' rotor angles (each followed by its clutch hub's with a one-way clutch) ]
 //   v = the time derivatives of q, in the same order (element velocities [m/s], [rad/s];
-//       pulley speeds Omega_j [rad/s]; tensioner arm rates [rad/s]);
+//       pulley speeds Omega_j [rad/s]; tensioner arm rates [rad/s]; rotor and hub speeds [rad/s]);
 //   e = running integrals of power, present only when energy tracking is on (see EnergyIndex).
 //
-// The pulleys' angles and the arms' angles are the border of the belt's ring pattern (n_border).
+// The pulleys', the arms' and the couplings' angles are the border of the belt's ring pattern (n_border).
 // SI units throughout; counter-clockwise positive (z out of the page), y up. The model has no defaults: a scene's
 // come from the parameter table (scene/parameters.hpp) and the builder copies them in.
 #pragma once
@@ -33,6 +34,7 @@ struct Pulley {
   double inertia = 0;        // [kg·m²] about its axis
   WrapSide wrap = WrapSide::inside;
   int arm = -1;              // the tensioner arm carrying its centre (Model::arms), -1: none
+  int coupling = -1;         // the rotor coupled to it (Model::couplings), -1: none
 };
 
 // A spring-loaded tensioner arm (tensioner.cpp): pulley `pulley`'s centre turns about `pivot` at
@@ -49,6 +51,23 @@ struct Arm {
   double friction_speed = 0;     // w_f [rad/s]: the friction torque's tanh width
   double asymmetric = 0;         // damping and friction times this while the belt pushes the arm back
   int press = 1;                 // the sense (+1 ccw) in which the spring presses the pulley on the belt
+};
+
+// A rotor behind a torsional spring-damper on a pulley (a decoupler), its law at the top of
+// coupling.cpp. Two-way, the spring-damper joins the pulley to the rotor; one-way, it joins the
+// pulley to the hub of an overrunning clutch that drives the rotor in the sense `sense` only. The
+// pulley's applied torque law acts on the rotor.
+struct Coupling {
+  int pulley = 0;
+  double inertia = 0;       // J_r [kg·m²] the rotor's
+  double stiffness = 0;     // k [N·m/rad]
+  double damping = 0;       // c [N·m·s/rad]
+  bool one_way = false;
+  int sense = 1;            // one way: the sense (+1 ccw) in which the clutch drives the rotor
+  double hub_inertia = 0;   // one way: J_h [kg·m²] of the clutch's hub (with the spring's end)
+  double lock_damping = 0;  // one way: c_L [N·m·s/rad] of the engaged clutch
+  double drag_torque = 0;   // one way: T_d [N·m] the clutch's drag while it overruns
+  int coord = 0;            // its rotor's place among the couplings' coordinates (the hub's is next)
 };
 
 // Per-SDE belt properties (converted from rigidities by the scene build, scene/scene.cpp).
@@ -101,6 +120,7 @@ enum EnergyIndex {
 struct Model {
   std::vector<Pulley> pulleys;
   std::vector<Arm> arms;          // tensioner arms, each carrying one pulley
+  std::vector<Coupling> couplings;  // rotors coupled to pulleys, each on one pulley
   Belt belt;
   Contact contact;
   Friction friction;
@@ -110,12 +130,19 @@ struct Model {
   int n_el() const { return belt.n; }
   int n_p() const { return static_cast<int>(pulleys.size()); }
   int n_arm() const { return static_cast<int>(arms.size()); }
-  int n_border() const { return n_p() + n_arm(); }  // the coordinates beside the elements
+  int n_coupling() const { return static_cast<int>(couplings.size()); }
+  // the couplings' coordinates: a rotor each, a hub more with a one-way clutch
+  int n_coupled() const {
+    return couplings.empty() ? 0 : couplings.back().coord + (couplings.back().one_way ? 2 : 1);
+  }
+  int n_border() const { return n_p() + n_arm() + n_coupled(); }  // the coordinates beside the elements
   int n_coord() const { return 3 * belt.n + n_border(); }
   int n_energy() const { return track_energy ? kEnergyCount : 0; }
   int n_state() const { return 2 * n_coord() + n_energy(); }
   int pulley_coord(int j) const { return 3 * belt.n + j; }
   int arm_coord(int a) const { return 3 * belt.n + n_p() + a; }
+  int rotor_coord(int c) const { return 3 * belt.n + n_p() + n_arm() + couplings[c].coord; }
+  int hub_coord(int c) const { return rotor_coord(c) + 1; }  // one-way couplings only
   // pulley j's centre in the positions q, and its velocity (zero but on an arm)
   Vec2 centre(int j, const double* q) const {
     const Pulley& p = pulleys[j];
@@ -132,11 +159,17 @@ struct Model {
     return a.length * v[arm_coord(p.arm)] * Vec2(-std::sin(psi), std::cos(psi));
   }
   // the mass or inertia of coordinate k: an element's mass [kg] or rotational inertia [kg·m²], a
-  // pulley's or an arm's inertia (a kinematic pulley's row has unit mass instead: Drive::mass)
+  // pulley's, an arm's, a rotor's or a clutch hub's inertia (a kinematic pulley's row has unit mass
+  // instead: Drive::mass)
   double mass_of(int k) const {
     if (k < 3 * belt.n) return (k % 3 == 2) ? belt.rot_inertia : belt.mass;
     if (k < 3 * belt.n + n_p()) return pulleys[k - 3 * belt.n].inertia;
-    return arms[k - 3 * belt.n - n_p()].inertia;
+    if (k < 3 * belt.n + n_p() + n_arm()) return arms[k - 3 * belt.n - n_p()].inertia;
+    const int r = k - 3 * belt.n - n_p() - n_arm();
+    for (const Coupling& c : couplings)
+      if (r == c.coord) return c.inertia;
+      else if (r == c.coord + 1 && c.one_way) return c.hub_inertia;
+    return 0;
   }
 };
 

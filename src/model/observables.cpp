@@ -88,6 +88,14 @@ PulleyObs pulley_with(const Model& m, const Drive& d, double t, const double* y,
   const int a = m.pulleys[j].arm;
   o.arm_angle = a >= 0 ? q[m.arm_coord(a)] : std::numeric_limits<double>::quiet_NaN();
   o.arm_rate = a >= 0 ? v[m.arm_coord(a)] : std::numeric_limits<double>::quiet_NaN();
+  const int c = m.pulleys[j].coupling;
+  if (c >= 0) {
+    const CouplingState s = coupling_state(m, d, t, q, v, c);
+    o.rotor_angle = s.rotor_angle, o.rotor_speed = s.rotor_speed, o.windup = s.windup;
+    o.coupling_torque = s.transmitted;
+  } else {
+    o.rotor_angle = o.rotor_speed = o.windup = o.coupling_torque = std::numeric_limits<double>::quiet_NaN();
+  }
   return o;
 }
 }  // namespace

@@ -66,6 +66,10 @@ struct PulleyObs {
   double hub_load = 0;     // [N] magnitude of the belt's resultant force on it
   double arm_angle = 0;    // [rad] its tensioner arm's angle (NaN without an arm)
   double arm_rate = 0;     // [rad/s] the arm's angular speed (NaN without an arm)
+  // with a coupled rotor (NaN without): its angle [rad] and speed [rad/s], the decoupler spring's
+  // windup [rad] (pulley minus rotor, or minus the one-way clutch's hub) and the torque the
+  // coupling puts on the rotor [N·m]; `torque` is then the applied torque on the rotor
+  double rotor_angle = 0, rotor_speed = 0, windup = 0, coupling_torque = 0;
   Vec2 hub{0, 0};          // [N] that force as a vector
   // arcs [m] of belt length: the elements in each state on this pulley, each standing for one
   // pitch l of belt (classify_contact); contact_arc = slip_arc + stick_arc

@@ -8,15 +8,24 @@
 // depends on its state Ω (the prescribed value is used instead), ∂(Ω̇)/∂t = Ω''(t), and the
 // drive's power is (I·Ω' - M_belt)·Ω. A step of Ω(t) is a jump of the state, made by the
 // simulation where it lands on the step (Simulation::set_landings).
+// A coupled pulley (coupling.cpp): its law M_d(t, Ω_r) acts on the rotor, at the rotor's speed Ω_r.
 // Gravity: m·g along -y on every element centre, potential m·g·y.
 #include "model/forces.hpp"
 
 namespace beltsim {
 
+namespace {
+// the coordinate the applied torque of pulley j acts on: the pulley's, or its coupled rotor's
+int torque_coord(const Model& m, int j) {
+  const int c = m.pulleys[j].coupling;
+  return c < 0 ? m.pulley_coord(j) : m.rotor_coord(c);
+}
+}  // namespace
+
 double applied_torque(const Model& m, const Drive& d, double t, const double* v, int j) {
   const PulleyDrive& p = d.pulleys[j];
   if (p.kinematic) return 0.0;
-  return p.torque.eval(t, v[m.pulley_coord(j)], d.after_jump(t));
+  return p.torque.eval(t, v[torque_coord(m, j)], d.after_jump(t));
 }
 
 void pulley_forces(const Model& m, const Drive& d, double t, const double* v, double* f, double* e_rate) {
@@ -28,9 +37,10 @@ void pulley_forces(const Model& m, const Drive& d, double t, const double* v, do
       f[k] += rate;
       if (e_rate) e_rate[kWorkTorques] += m.pulleys[j].inertia * rate * d.omega(m, j, t, v);
     } else {
-      const double M = p.torque.eval(t, v[k], d.after_jump(t));
-      f[k] += M;
-      if (e_rate) e_rate[kWorkTorques] += M * v[k];
+      const int kt = torque_coord(m, j);
+      const double M = p.torque.eval(t, v[kt], d.after_jump(t));
+      f[kt] += M;
+      if (e_rate) e_rate[kWorkTorques] += M * v[kt];
     }
   }
 }
@@ -43,8 +53,9 @@ void pulley_jacobian(const Model& m, const Drive& d, double t, const double* v, 
       if (f_t) f_t[k] += p.speed.d_time2(t);
       continue;
     }
-    C.pulley_pulley(j, j) += p.torque.d_omega(t, v[k]);
-    if (f_t) f_t[k] += p.torque.d_time(t, v[k]);
+    const int kt = torque_coord(m, j), b = kt - 3 * m.n_el();
+    C.pulley_pulley(b, b) += p.torque.d_omega(t, v[kt]);
+    if (f_t) f_t[kt] += p.torque.d_time(t, v[kt]);
   }
 }
 

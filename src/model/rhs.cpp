@@ -46,6 +46,7 @@ void all_forces(const Model& m, const Drive& d, double t, const double* q, const
   }
   pulley_forces(m, d, t, v, f, e_rate);
   if (!m.arms.empty()) arm_forces(m, q, v, f, e_rate);
+  if (!m.couplings.empty()) coupling_forces(m, d, t, q, v, f, e_rate);
 }
 }  // namespace
 
@@ -129,6 +130,7 @@ void jacobian(const Model& m, const Drive& d, double t, const double* y, Jacobia
   }
   pulley_jacobian(m, d, t, v, J.C, J.f_t.data());
   if (!m.arms.empty()) arm_jacobian(m, q, v, J.K, J.C);
+  if (!m.couplings.empty()) coupling_jacobian(m, d, t, v, J.K, J.C, J.f_t.data());
 }
 
 Energy energy(const Model& m, const Drive& d, double t, const double* y) {
@@ -142,7 +144,13 @@ Energy energy(const Model& m, const Drive& d, double t, const double* y) {
     e.kinetic += 0.5 * m.pulleys[j].inertia * w * w;
   }
   for (int a = 0; a < m.n_arm(); ++a) e.kinetic += 0.5 * m.arms[a].inertia * v[m.arm_coord(a)] * v[m.arm_coord(a)];
+  for (int c = 0; c < m.n_coupling(); ++c) {
+    const Coupling& cp = m.couplings[c];
+    const double wr = v[m.rotor_coord(c)], wh = cp.one_way ? v[m.hub_coord(c)] : 0.0;
+    e.kinetic += 0.5 * cp.inertia * wr * wr + 0.5 * cp.hub_inertia * wh * wh;
+  }
   e.arm = arm_potential(m, q);
+  e.coupling = coupling_potential(m, q);
   e.sde = sde_potential(m, q);
   e.bending = bending_potential(m, q);
   e.contact = contact_potential(m, q);

@@ -29,10 +29,11 @@ void jacobian(const Model& m, const Drive& d, double t, const double* y, Jacobia
 // generalized forces only (length n_coord), for tests and diagnostics
 void forces(const Model& m, const Drive& d, double t, const double* y, double* f);
 
-// total mechanical energy [J]: kinetic + SDE + bending + contact + gravity + tensioner springs
+// total mechanical energy [J]: kinetic + SDE + bending + contact + gravity + tensioner springs +
+// coupling springs
 struct Energy {
-  double kinetic = 0, sde = 0, bending = 0, contact = 0, gravity = 0, arm = 0;
-  double total() const { return kinetic + sde + bending + contact + gravity + arm; }
+  double kinetic = 0, sde = 0, bending = 0, contact = 0, gravity = 0, arm = 0, coupling = 0;
+  double total() const { return kinetic + sde + bending + contact + gravity + arm + coupling; }
 };
 Energy energy(const Model& m, const Drive& d, double t, const double* y);
 

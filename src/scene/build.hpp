@@ -130,4 +130,12 @@ std::optional<double> tensioner_preload(const SceneDef& d);
 // the belt's moment about arm a's pivot in the state y [N·m]
 double arm_belt_moment(const Scene& sc, int a);
 
+// Coupled rotors (scene/coupling.cpp). validate_coupling: throws on a bad parameter;
+// make_couplings: the model's couplings from the pulleys' coupling definitions (after
+// make_pulleys, make_arms); start_couplings: each rotor (and hub) at its pulley's angle and speed
+// in y (after the pulleys' start speeds).
+void validate_coupling(const PulleyDef& p);
+void make_couplings(const SceneDef& d, Model& m);
+void start_couplings(const Model& m, Eigen::VectorXd& y);
+
 }  // namespace beltsim::build

@@ -35,6 +35,8 @@ std::vector<SceneInput> scene_inputs(const SceneDef& d) {
     for (const Parameter* par : parameters_of("pulley")) add(par, &p);
     if (p.tensioner)
       for (const Parameter* par : parameters_of("pulley.tensioner")) add(par, &p);
+    if (p.coupling)
+      for (const Parameter* par : parameters_of("pulley.coupling")) add(par, &p);
   }
   // a spray zone's: "spray.1.radius"; `to` is "never" when it does not stop
   for (size_t k = 0; k < d.spray.size(); ++k) {

@@ -62,6 +62,9 @@ constexpr Parameter kParameters[] = {
      "prescribed speed law: the pulley becomes kinematic (Laws, below)", nullptr, nullptr, nullptr},
     {"pulley", "tensioner", K::other, "", {}, "none: a fixed centre", W::none, R::none,
      "its centre on a spring-loaded arm (table below)", nullptr, nullptr, nullptr},
+    {"pulley", "coupling", K::other, "", {}, "none: one body", W::none, R::none,
+     "a rotor behind a torsional spring-damper, optionally one-way (table below); the torque law then acts on "
+     "the rotor", nullptr, nullptr, nullptr},
 
     // ---- a pulley's tensioner = {...}: its centre on a spring-loaded arm ----
     {"pulley.tensioner", "pivot", K::other, "m", {}, "", W::none, R::none, "{x, y} of the arm's pivot; required",
@@ -97,6 +100,39 @@ constexpr Parameter kParameters[] = {
     {"pulley.tensioner", "asymmetric", K::number, "", 1, "", W::ours, R::positive,
      "damping and friction times this while the belt pushes the arm back (1: symmetric)",
      [](SceneDef&, PulleyDef& p) -> Slot { return p.tensioner ? Slot(&p.tensioner->asymmetric) : Slot(); }, nullptr,
+     nullptr},
+
+    // ---- a pulley's coupling = {...}: a rotor behind a decoupler ----
+    {"pulley.coupling", "inertia", K::number, "kg·m²", {}, "", W::none, R::positive,
+     "the rotor's moment of inertia J_r (an alternator's rotor); required",
+     [](SceneDef&, PulleyDef& p) -> Slot { return p.coupling ? Slot(&p.coupling->inertia) : Slot(); }, nullptr,
+     nullptr},
+    {"pulley.coupling", "stiffness", K::number, "N·m/rad", {}, "", W::none, R::positive,
+     "the decoupler spring's torsional stiffness k; required",
+     [](SceneDef&, PulleyDef& p) -> Slot { return p.coupling ? Slot(&p.coupling->stiffness) : Slot(); }, nullptr,
+     nullptr},
+    {"pulley.coupling", "damping", K::number, "N·m·s/rad", 0, "", W::ours, R::non_negative,
+     "the decoupler's viscous damping c",
+     [](SceneDef&, PulleyDef& p) -> Slot { return p.coupling ? Slot(&p.coupling->damping) : Slot(); }, nullptr,
+     nullptr},
+    {"pulley.coupling", "one_way", K::other, "", {}, "`false`", W::ours, R::none,
+     "`true`: an overrunning clutch behind the spring drives the rotor only in the sense the pulley turns as the "
+     "belt travels",
+     nullptr, nullptr,
+     [](const SceneDef&, const PulleyDef& p) -> std::string {
+       return p.coupling ? (p.coupling->one_way ? "true" : "false") : "";
+     }},
+    {"pulley.coupling", "hub_inertia", K::number, "kg·m²", 1e-4, "", W::ours, R::positive,
+     "one way: the clutch hub's inertia J_h (with the spring's end)",
+     [](SceneDef&, PulleyDef& p) -> Slot { return p.coupling ? Slot(&p.coupling->hub_inertia) : Slot(); }, nullptr,
+     nullptr},
+    {"pulley.coupling", "lock_damping", K::number, "N·m·s/rad", 200, "", W::ours, R::positive,
+     "one way: the engaged clutch's viscous lock c_L (it slips torque/c_L)",
+     [](SceneDef&, PulleyDef& p) -> Slot { return p.coupling ? Slot(&p.coupling->lock_damping) : Slot(); }, nullptr,
+     nullptr},
+    {"pulley.coupling", "drag_torque", K::number, "N·m", 0.05, "", W::ours, R::positive,
+     "one way: the clutch's drag on the rotor while it overruns",
+     [](SceneDef&, PulleyDef& p) -> Slot { return p.coupling ? Slot(&p.coupling->drag_torque) : Slot(); }, nullptr,
      nullptr},
 
     // ---- belt = {...} ----
@@ -146,13 +182,22 @@ constexpr Parameter kParameters[] = {
      "the paper's rho, per metre of unstretched belt",
      [](SceneDef& d, PulleyDef&) -> Slot { return &d.belt.mass_per_length; }, nullptr, nullptr},
     {"belt", "mu", K::other, "", 1, "", W::paper, R::friction_coefficient,
-     "friction coefficient: a number, a list (one per element) or function(site) return μ end",
+     "effective friction coefficient of the belt on a pulley: a number, a list (one per element) or "
+     "function(site) return μ end",
      [](SceneDef& d, PulleyDef&) -> Slot { return &d.belt.mu; }, nullptr,
      [](const SceneDef& d, const PulleyDef&) -> std::string {
        return d.belt.mu_at ? "function of where each element starts"
               : d.belt.mu_per_element.empty() ? ""
                                               : "one value per element";
      }},
+
+    {"belt", "rib_angle", K::number, "°", 40, "", W::ours, R::positive,
+     "the V-ribs' included angle β (40° for PK belts); with mu_flank the effective μ = mu_flank/sin(β/2)",
+     [](SceneDef& d, PulleyDef&) -> Slot { return &d.belt.rib_angle; }, nullptr, nullptr},
+    {"belt", "mu_flank", K::number, "", {}, "", W::none, R::non_negative,
+     "friction coefficient of the rib flanks, instead of mu: mu = mu_flank/sin(rib_angle/2) (the paper's μ = 1 is "
+     "already the effective one)",
+     [](SceneDef& d, PulleyDef&) -> Slot { return &d.belt.mu_flank; }, nullptr, nullptr},
 
     // ---- belt.sde = {...}: all four, instead of the rigidities ----
     {"belt.sde", "k", K::number, "N/m", {}, "", W::none, R::positive, "axial stiffness per SDE",
@@ -329,6 +374,7 @@ std::string parameters_markdown() {
   std::string md;
   for (const auto& [table, title] : {std::pair{"scene", "`beltsim.scene{...}`"}, std::pair{"pulley", "Pulley table"},
                                      std::pair{"pulley.tensioner", "A pulley's `tensioner` table"},
+                                     std::pair{"pulley.coupling", "A pulley's `coupling` table"},
                                      std::pair{"belt", "Belt table"}, std::pair{"belt.sde", "`belt.sde` table"},
                                      std::pair{"contact", "Contact table"}, std::pair{"friction", "Friction table"},
                                      std::pair{"spray", "A `spray` zone's table"}}) {

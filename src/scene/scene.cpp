@@ -563,6 +563,7 @@ Scene build_at(const SceneDef& d, const std::atomic<bool>* stop) {
 
   m.pulleys = build::make_pulleys(d);
   build::make_arms(d, m);
+  build::make_couplings(d, m);
   sc.drive = build::make_drive(d);
   const build::RouteOrder order = build::route_order(d, m.pulleys);
   sc.route_names = order.names;
@@ -617,13 +618,14 @@ Scene build_at(const SceneDef& d, const std::atomic<bool>* stop) {
     spray_switch(sp, 0.0);
     spray_update(sp, n, 0.0, sc.y0.data(), sc.y0.data() + m.n_coord());
   }
+  build::start_couplings(m, sc.y0);
   return sc;
 }
 }  // namespace
 
 Scene build_scene(const SceneDef& d, const std::atomic<bool>* stop) {
   validate(d);
-  for (const PulleyDef& p : d.pulleys) build::validate_tensioner(p);
+  for (const PulleyDef& p : d.pulleys) build::validate_tensioner(p), build::validate_coupling(p);
   const std::optional<double> preload = build::tensioner_preload(d);
   if (!preload) return build_at(d, stop);
   // the preload sets the belt's tension: the belt's moment about the pivot is proportional to it

@@ -38,6 +38,21 @@ struct TensionerDef {
   double asymmetric = parameter_default("pulley.tensioner.asymmetric");
 };
 
+// A rotor behind a torsional spring-damper on a pulley (model.hpp's Coupling, its law at the top of
+// model/coupling.cpp): an alternator's rotor behind a decoupler; with one_way the spring drives
+// the rotor through an overrunning clutch, in the sense the pulley turns as the belt travels. The
+// pulley's torque law acts on the rotor. At t = 0 the spring is relaxed and the rotor (and hub)
+// turn with the pulley.
+struct CouplingDef {
+  double inertia = 0;    // [kg·m²] the rotor's
+  double stiffness = 0;  // [N·m/rad]
+  double damping = parameter_default("pulley.coupling.damping");  // [N·m·s/rad]
+  bool one_way = false;
+  double hub_inertia = parameter_default("pulley.coupling.hub_inertia");    // [kg·m²]
+  double lock_damping = parameter_default("pulley.coupling.lock_damping");  // [N·m·s/rad]
+  double drag_torque = parameter_default("pulley.coupling.drag_torque");    // [N·m]
+};
+
 struct PulleyDef {
   std::string name;
   Vec2 centre{0, 0};        // [m]
@@ -48,6 +63,7 @@ struct PulleyDef {
   TimeSpeedLaw torque;      // [N·m]
   TimeSpeedLaw speed;       // [rad/s]
   std::optional<TensionerDef> tensioner;  // its centre on a tensioner arm
+  std::optional<CouplingDef> coupling;    // a rotor behind a decoupler
 };
 
 // How the belt's stiffness and damping were given (docs/model.md, Parameter reading).
@@ -95,6 +111,8 @@ struct BeltDef {
   double mu = parameter_default("belt.mu");  // friction coefficient of every element...
   std::vector<double> mu_per_element;  // ...unless given per element (size = elements)...
   std::function<double(const ElementSite&)> mu_at;  // ...or by where the element starts
+  double rib_angle = parameter_default("belt.rib_angle");  // [°] the V-ribs' included angle β
+  std::optional<double> mu_flank;  // the ribs' flank coefficient a scenario gave instead of mu (mu = mu_flank/sin(β/2))
 };
 
 // The contact law's constants per metre of belt along the pulley (the pitch), beside the paper's

@@ -135,7 +135,13 @@ SceneDef definition(const Scene& sc) {
   for (int j = 0; j < m.n_p(); ++j) {
     const Pulley& p = m.pulleys[j];
     const PulleyDrive& pd = sc.drive.pulleys[j];
-    d.pulleys.push_back({p.name, p.centre, p.radius, p.inertia, p.wrap, pd.kinematic, pd.torque, pd.speed, {}});
+    d.pulleys.push_back({p.name, p.centre, p.radius, p.inertia, p.wrap, pd.kinematic, pd.torque, pd.speed, {}, {}});
+    if (p.coupling >= 0) {
+      const Coupling& c = m.couplings[p.coupling];
+      CouplingDef& cd = d.pulleys.back().coupling.emplace();
+      cd.inertia = c.inertia, cd.stiffness = c.stiffness, cd.damping = c.damping, cd.one_way = c.one_way;
+      if (c.one_way) cd.hub_inertia = c.hub_inertia, cd.lock_damping = c.lock_damping, cd.drag_torque = c.drag_torque;
+    }
     if (p.arm < 0) continue;
     const Arm& a = m.arms[p.arm];
     TensionerDef& t = d.pulleys.back().tensioner.emplace();
@@ -297,6 +303,20 @@ void write_scene(CheckpointWriter& w, const Scene& sc) {
       w.line("arm.press", a.press);
     }
   }
+  if (!m.couplings.empty()) {  // only a scene with coupled rotors has this part
+    w.line("couplings", m.n_coupling());
+    for (const Coupling& c : m.couplings) {
+      w.line("coupling.pulley", c.pulley);
+      w.line("coupling.inertia", c.inertia);
+      w.line("coupling.stiffness", c.stiffness);
+      w.line("coupling.damping", c.damping);
+      w.line("coupling.one_way", c.one_way ? 1 : 0);
+      w.line("coupling.sense", c.sense);
+      w.line("coupling.hub_inertia", c.hub_inertia);
+      w.line("coupling.lock_damping", c.lock_damping);
+      w.line("coupling.drag_torque", c.drag_torque);
+    }
+  }
   const Belt& b = m.belt;
   w.line("belt.elements", b.n);
   w.line("belt.pitch", b.pitch);
@@ -388,6 +408,29 @@ Scene read_scene(CheckpointReader& r) {
       checked(r, [&] { require_positive("arm.length", a.length, "m"); });
     }
   }
+  if (r.next_is("couplings")) {
+    r.open("couplings");
+    const size_t nc = r.group_count(9, np);
+    r.close();
+    int coord = 0;
+    for (size_t k = 0; k < nc; ++k) {
+      Coupling& c = m.couplings.emplace_back();
+      c.pulley = static_cast<int>(r.line_int("coupling.pulley", 0, static_cast<long>(np) - 1));
+      if (m.pulleys[c.pulley].coupling >= 0) r.fail("pulley " + std::to_string(c.pulley) + " has a coupling already");
+      m.pulleys[c.pulley].coupling = static_cast<int>(k);
+      c.inertia = r.line_num("coupling.inertia");
+      c.stiffness = r.line_num("coupling.stiffness");
+      c.damping = r.line_num("coupling.damping");
+      c.one_way = r.line_int("coupling.one_way", 0, 1) == 1;
+      c.sense = static_cast<int>(r.line_int("coupling.sense", -1, 1));
+      if (c.sense == 0) r.fail("coupling.sense must be -1 or 1");
+      c.hub_inertia = r.line_num("coupling.hub_inertia");
+      c.lock_damping = r.line_num("coupling.lock_damping");
+      c.drag_torque = r.line_num("coupling.drag_torque");
+      c.coord = coord;
+      coord += c.one_way ? 2 : 1;
+    }
+  }
   Belt& b = m.belt;
   b.n = static_cast<int>(r.line_int("belt.elements", 0, INT_MAX / 8));
   b.pitch = r.line_num("belt.pitch");
@@ -468,7 +511,7 @@ Scene read_scene(CheckpointReader& r) {
     require_positive("belt.rot_inertia", b.rot_inertia, "kg·m²");
     const SceneDef def = definition(sc);
     validate(def);
-    for (const PulleyDef& p : def.pulleys) build::validate_tensioner(p);
+    for (const PulleyDef& p : def.pulleys) build::validate_tensioner(p), build::validate_coupling(p);
   } catch (const ParameterError& e) {
     error = e.what();
   }

@@ -159,6 +159,7 @@ void validate(const SceneDef& d) {
     require_finite(w + " centre y", p.centre.y(), "m");
     check_rules(d, "pulley", &p);
     if (p.tensioner) check_rules(d, "pulley.tensioner", &p);
+    if (p.coupling) check_rules(d, "pulley.coupling", &p);
     if (p.kinematic) {
       validate_law(w + " speed", p.speed, true);
       if (!p.torque.is_zero()) throw ParameterError(w + ": give either a torque or a prescribed speed, not both");
@@ -193,6 +194,7 @@ void validate(const SceneDef& d) {
   if (b.reading == StiffnessReading::per_sde && b.bending_viscosity)
     throw ParameterError("belt.bending_viscosity: a rigidity; with per-SDE values (sde) give ct");
   check_rules(d, "belt.sde", nullptr);
+  if (!(b.rib_angle < 180)) reject("belt.rib_angle", "must be < 180 (the ribs' included angle)", b.rib_angle, "°");
   if (!b.mu_per_element.empty()) {
     if (static_cast<int>(b.mu_per_element.size()) != b.elements)
       reject("belt.mu per element", "needs one value per element", static_cast<double>(b.mu_per_element.size()),

@@ -129,6 +129,18 @@ void read_spray(lua_State* L, int idx, SceneDef& d) {
   }
 }
 
+// a pulley's coupling table at idx into p.coupling: one_way, then the numbers of the parameter
+// table's "pulley.coupling" (w names it in errors: "pulley 'alternator'.coupling")
+void read_coupling(lua_State* L, int idx, const std::string& w, SceneDef& d, PulleyDef& p) {
+  require_table(L, idx, w);
+  check_keys(L, idx, w, keys_of("pulley.coupling"));
+  CouplingDef& c = p.coupling.emplace();
+  if (!has(L, idx, "inertia")) fail(L, w + ": the rotor's inertia [kg·m²] is required");
+  if (!has(L, idx, "stiffness")) fail(L, w + ": the decoupler spring's stiffness [N·m/rad] is required");
+  if (auto v = opt_bool(L, idx, "one_way", w)) c.one_way = *v;
+  read_numbers(L, idx, "pulley.coupling", w, d, p);
+}
+
 PulleyDef to_pulley(lua_State* L, int idx, const std::string& what, SceneDef& d, Context* ctx) {
   idx = lua_absindex(L, idx);
   require_table(L, idx, what);
@@ -167,6 +179,10 @@ PulleyDef to_pulley(lua_State* L, int idx, const std::string& what, SceneDef& d,
   }
   if (field(L, idx, "tensioner")) {
     read_tensioner(L, lua_gettop(L), w + ".tensioner", d, p);
+    lua_pop(L, 1);
+  }
+  if (field(L, idx, "coupling")) {
+    read_coupling(L, lua_gettop(L), w + ".coupling", d, p);
     lua_pop(L, 1);
   }
   return p;
@@ -252,6 +268,17 @@ void read_belt(lua_State* L, int idx, SceneDef& d, std::unique_ptr<LuaRef>& mu_f
     }
     lua_pop(L, 1);
   }
+  if (b.mu_flank) {  // the effective coefficient of the wedge from the flanks' (docs/model.md, The rib wedge)
+    if (has(L, idx, "mu")) fail(L, "belt: give mu (the effective coefficient) or mu_flank, not both");
+    std::ostringstream m;
+    if (!(b.rib_angle > 0 && b.rib_angle < 180))
+      m << "belt.rib_angle: must be > 0 and < 180 (the ribs' included angle) (got " << b.rib_angle << " °)";
+    else if (!(*b.mu_flank >= 0 && std::isfinite(*b.mu_flank)))
+      m << "belt.mu_flank must be >= 0 (got " << *b.mu_flank << ")";
+    if (!m.str().empty()) fail(L, m.str());
+    b.mu = *b.mu_flank / std::sin(b.rib_angle * M_PI / 360.0);
+    d.given.insert("belt.mu");
+  }
 }
 
 
@@ -304,6 +331,8 @@ int l_scene(lua_State* L) {
     note_given(L, -1, "pulley." + d.pulleys.back().name + ".", d.given);
     if (field(L, -1, "tensioner"))
       note_given(L, -1, "pulley." + d.pulleys.back().name + ".tensioner.", d.given), lua_pop(L, 1);
+    if (field(L, -1, "coupling"))
+      note_given(L, -1, "pulley." + d.pulleys.back().name + ".coupling.", d.given), lua_pop(L, 1);
     lua_pop(L, 1);
   }
   lua_pop(L, 1);

@@ -5,6 +5,7 @@
 // called with the simulation as their argument, from inside run_to.
 #include "script/lua_sim.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -146,7 +147,8 @@ int l_advance(lua_State* L) {
 // ---- reading ---------------------------------------------------------------------------------
 
 // sim:pulley(name) -> { omega [rad/s], angle [rad], torque [N·m], belt_torque [N·m], hub_load [N],
-// contact_arc, slip_arc, stick_arc [m], creep; on a tensioner arm arm_angle [rad], arm_rate [rad/s] }
+// contact_arc, slip_arc, stick_arc [m], creep; on a tensioner arm arm_angle [rad], arm_rate [rad/s];
+// with a coupling rotor_angle [rad], rotor_speed [rad/s], windup [rad], coupling_torque [N·m] }
 int l_pulley(lua_State* L) {
   Simulation& s = live(L, "pulley", {{"name", kString}});
   const int j = pulley_index(L, s, 2, "sim:pulley");
@@ -163,6 +165,10 @@ int l_pulley(lua_State* L) {
   set_number(L, "stick_arc", p.stick_arc);
   set_number(L, "creep", p.creep);
   if (!std::isnan(p.arm_angle)) set_number(L, "arm_angle", p.arm_angle), set_number(L, "arm_rate", p.arm_rate);
+  if (!std::isnan(p.rotor_speed)) {
+    set_number(L, "rotor_angle", p.rotor_angle), set_number(L, "rotor_speed", p.rotor_speed);
+    set_number(L, "windup", p.windup), set_number(L, "coupling_torque", p.coupling_torque);
+  }
   return 1;
 }
 
@@ -298,6 +304,24 @@ int l_spray(lua_State* L) {
   set_number(L, "drying", drying);
   return 1;
 }
+
+// sim:set_rotor(name, { angle [rad], speed [rad/s] }): the coupled rotor's state from now
+int l_set_rotor(lua_State* L) {
+  Simulation& s = live(L, "set_rotor", {{"name", kString}, {"{ angle, speed }", kTable}});
+  const int j = pulley_index(L, s, 2, "sim:set_rotor");
+  check_keys(L, 3, "sim:set_rotor", {"angle", "speed"});
+  const std::optional<double> angle = opt_number(L, 3, "angle", "sim:set_rotor");
+  const std::optional<double> speed = opt_number(L, 3, "speed", "sim:set_rotor");
+  if (!angle && !speed) fail(L, "sim:set_rotor: give angle [rad] or speed [rad/s]");
+  std::string error;
+  try {
+    s.set_rotor(j, angle, speed);
+  } catch (const std::invalid_argument& e) {
+    error = e.what();
+  }
+  if (!error.empty()) fail(L, "sim:set_rotor: " + error);
+  return 0;
+}
 int l_set_torque(lua_State* L) { return set_law(L, false); }
 int l_set_speed(lua_State* L) { return set_law(L, true); }
 
@@ -306,14 +330,50 @@ void apply_mu(lua_State* L, Simulation& s, const std::vector<double>& mu, const 
   guarded(L, what.c_str(), [&] { s.set_mu(mu, what, text); });
 }
 
-// sim:wet{ from = s0 [m], to = s1 [m], mu = 0.2 | function(site) } (no from/to: the whole belt)
+// sim:wet{ from = s0 [m], to = s1 [m], mu = 0.2 | function(site), transition = 0.02 [m] } (no
+// from/to: the whole belt; transition: μ ramps linearly across that length about each end)
+// The share of the wet μ an element at belt coordinate s takes with a transition of length tau
+// [m] about each end of [from, to] (wrapping round the belt of length len when from > to): 1 inside
+// farther than tau/2 from both ends, 0 outside farther than tau/2, linear across the ends; tau = 0
+// is the sharp boundary (the ends inside).
+double wet_share(double s, double from, double to, double len, double tau) {
+  const double span = from <= to ? to - from : len - from + to;
+  double u = std::fmod(s - from, len);
+  if (u < 0) u += len;
+  const bool inside = u <= span;
+  if (tau == 0) return inside ? 1.0 : 0.0;
+  const double d = inside ? std::min(u, span - u) : -std::min(u - span, len - u);  // > 0 inside
+  return std::clamp(0.5 + d / tau, 0.0, 1.0);
+}
+
 int l_wet(lua_State* L) {
-  Simulation& s = live(L, "wet", {{"{from, to, mu}", kTable}});
+  Simulation& s = live(L, "wet", {{"{from, to, mu, transition}", kTable}});
   require_table(L, 2, "sim:wet");
-  check_keys(L, 2, "sim:wet", {"from", "to", "mu"});
+  check_keys(L, 2, "sim:wet", {"from", "to", "mu", "transition"});
   const auto from = opt_number(L, 2, "from", "sim:wet"), to = opt_number(L, 2, "to", "sim:wet");
+  const auto transition = opt_number(L, 2, "transition", "sim:wet");
+  if (transition) {
+    if (!from) fail(L, "sim:wet.transition: a transition needs the wet stretch's from and to [m]");
+    if (!(*transition >= 0 && std::isfinite(*transition))) {
+      std::ostringstream m;
+      m << "sim:wet.transition: must be >= 0 and finite (got " << *transition << " m)";
+      fail(L, m.str());
+    }
+  }
   if (!field(L, 2, "mu")) fail(L, "sim:wet: mu (the wet friction coefficient) is required");
-  const std::vector<double> mu = mu_over(L, lua_gettop(L), s.scene(), from, to, "sim:wet");
+  std::vector<double> mu;
+  if (transition && *transition > 0) {
+    // μ ramps linearly from the belt's μ now to the wet one across `transition` about each end
+    mu = mu_over(L, lua_gettop(L), s.scene(), std::nullopt, std::nullopt, "sim:wet");
+    const double len = s.scene().sites.empty() ? 0 : s.scene().sites[0].length;
+    mu_over(L, lua_gettop(L), s.scene(), from, to, "sim:wet");  // checks from and to
+    for (const ElementSite& site : s.scene().sites) {
+      const double w = wet_share(site.s, *from, *to, len, *transition), old = s.drive().mu[site.index];
+      mu[site.index] = w == 0 ? std::nan("") : w == 1 ? mu[site.index] : old + w * (mu[site.index] - old);
+    }
+  } else {
+    mu = mu_over(L, lua_gettop(L), s.scene(), from, to, "sim:wet");
+  }
   std::ostringstream text;
   text << "mu = ";
   if (lua_type(L, -1) == LUA_TNUMBER)
@@ -321,6 +381,7 @@ int l_wet(lua_State* L) {
   else
     text << "function";
   if (from) text << " on s in [" << *from << ", " << *to << "] m";
+  if (transition && *transition > 0) text << ", transition " << *transition << " m";
   lua_pop(L, 1);
   apply_mu(L, s, mu, "wet", text.str());
   return 0;
@@ -601,7 +662,7 @@ int l_tostring(lua_State* L) {
 const luaL_Reg kMethods[] = {
     {"run_to", l_run_to},   {"advance", l_advance},       {"pulley", l_pulley},       {"element", l_element},
     {"span", l_span},       {"energy", l_energy},         {"stats", l_stats},         {"set_torque", l_set_torque},
-    {"set_speed", l_set_speed}, {"set_arm", l_set_arm}, {"wet", l_wet},           {"spray", l_spray},       {"set_mu", l_set_mu},       {"log", l_log},
+    {"set_speed", l_set_speed}, {"set_arm", l_set_arm}, {"set_rotor", l_set_rotor}, {"wet", l_wet},           {"spray", l_spray},       {"set_mu", l_set_mu},       {"log", l_log},
     {"every", l_every},     {"when", l_when},             {"cancel", l_cancel},       {"show", l_show},
     {"plot", l_plot},       {"save", l_save},             {"close", l_close},           {nullptr, nullptr}};
 
@@ -660,7 +721,8 @@ const std::vector<HelpEntry>& api_help() {
       {"advance", "sim:advance(dt [s]) -> { t [s], steps, wall [s], interrupted }", "integrates dt further"},
       {"t", "sim.t", "the current simulated time [s]"},
       {"pulley", "sim:pulley(name)", "{ omega [rad/s], angle [rad], torque, belt_torque [N·m], hub_load [N], contact_arc, slip_arc, "
-                             "stick_arc [m], creep; arm_angle [rad], arm_rate [rad/s] on a tensioner arm }"},
+                             "stick_arc [m], creep; arm_angle [rad], arm_rate [rad/s] on a tensioner arm; rotor_angle [rad], "
+                             "rotor_speed [rad/s], windup [rad], coupling_torque [N·m] with a coupling }"},
       {"element", "sim:element(i)",
        "{ x, y [m], phi [rad], s [m], tension, normal, friction [N], slip [m/s], mu, pulley, state } of element i (0-based)"},
       {"span", "sim:span(a, b) -> [N]", "tension of the span between pulleys a and b"},
@@ -669,7 +731,10 @@ const std::vector<HelpEntry>& api_help() {
       {"set_torque", "sim:set_torque(name, law [N·m])", "a new torque law on a pulley from now (events.csv)"},
       {"set_speed", "sim:set_speed(name, law [rad/s])", "a prescribed speed on a pulley from now"},
       {"set_arm", "sim:set_arm(name, { angle [rad], rate [rad/s] })", "moves a tensioner arm now (events.csv)"},
-      {"wet", "sim:wet{ from [m], to [m], mu }", "μ on the belt between s = from and to (belt coordinate) from now"},
+      {"set_rotor", "sim:set_rotor(name, { angle [rad], speed [rad/s] })",
+       "sets a coupled rotor's angle or speed now (events.csv)"},
+      {"wet", "sim:wet{ from [m], to [m], mu, transition [m] }",
+       "μ on the belt between s = from and to (belt coordinate) from now, ramped across transition at each end"},
       {"spray", "sim:spray(k [, enabled]) -> { enabled, on, inside, drying }",
        "reads spray zone k, or switches it on or off from now (events.csv)"},
       {"set_mu", "sim:set_mu(mu | {mu...} | function(site))", "μ of every element from now"},

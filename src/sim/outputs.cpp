@@ -98,6 +98,9 @@ std::vector<std::string> timeseries_columns(const Scene& sc, size_t probes) {
       c.push_back(p.name + q);
   for (const Pulley& p : sc.model.pulleys)
     if (p.arm >= 0) c.push_back(p.name + ".arm_angle"), c.push_back(p.name + ".arm_rate");
+  for (const Pulley& p : sc.model.pulleys)
+    if (p.coupling >= 0)
+      for (const char* q : {".rotor_angle", ".rotor_speed", ".windup", ".coupling_torque"}) c.push_back(p.name + q);
   for (size_t k = 0; k < sc.route.spans.size(); ++k)
     for (const char* q : {".tension", ".tension_mean"}) c.push_back(span_name(sc, k) + q);
   for (size_t k = 0; k < probes; ++k)

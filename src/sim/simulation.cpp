@@ -192,6 +192,10 @@ std::vector<double> Simulation::sample_row() const {
   }
   for (size_t j = 0; j < o.pulleys.size(); ++j)
     if (m.pulleys[j].arm >= 0) row.insert(row.end(), {o.pulleys[j].arm_angle, o.pulleys[j].arm_rate});
+  for (size_t j = 0; j < o.pulleys.size(); ++j) {
+    const PulleyObs& p = o.pulleys[j];
+    if (m.pulleys[j].coupling >= 0) row.insert(row.end(), {p.rotor_angle, p.rotor_speed, p.windup, p.coupling_torque});
+  }
   for (size_t k = 0; k < scene_.route.spans.size(); ++k)
     row.insert(row.end(), {span_tension(static_cast<int>(k)), mean(2 * o.pulleys.size() + k)});
   for (int i : rs_.probes) {
@@ -411,6 +415,21 @@ void Simulation::set_arm(int j, std::optional<double> angle, std::optional<doubl
     y[model_.n_coord() + k] = *rate,
                          text += std::string(text.empty() ? "" : ", ") + "rate " + number_text(*rate) + " rad/s";
   write_event(now(), model_.pulleys[j].name + ".arm", text);
+  changed(&y);
+}
+
+void Simulation::set_rotor(int j, std::optional<double> angle, std::optional<double> speed) {
+  require_open("set_rotor");
+  const int c = model_.pulleys.at(j).coupling;
+  if (c < 0) throw std::invalid_argument("pulley '" + model_.pulleys[j].name + "' has no coupling");
+  Eigen::VectorXd y = state();
+  const int k = model_.rotor_coord(c);
+  std::string text;
+  if (angle) y[k] = *angle, text += "angle " + number_text(*angle) + " rad";
+  if (speed)
+    y[model_.n_coord() + k] = *speed,
+                         text += std::string(text.empty() ? "" : ", ") + "speed " + number_text(*speed) + " rad/s";
+  write_event(now(), model_.pulleys[j].name + ".rotor", text);
   changed(&y);
 }
 

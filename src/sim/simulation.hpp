@@ -125,6 +125,9 @@ class Simulation {
   // moves pulley j's tensioner arm to `angle` [rad] and/or sets its rate [rad/s] now (a jump of
   // the state, in events.csv); throws std::invalid_argument when the pulley has no arm
   void set_arm(int j, std::optional<double> angle, std::optional<double> rate);
+  // sets pulley j's coupled rotor's angle [rad] and/or speed [rad/s] now (a jump of the state, in
+  // events.csv); throws std::invalid_argument when the pulley has no coupling
+  void set_rotor(int j, std::optional<double> angle, std::optional<double> speed);
   // one μ per element (NaN keeps the old one); what/text describe it in events.csv
   void set_mu(const std::vector<double>& mu, const std::string& what, const std::string& text);
   // switches spray zone z (0-based) on or off now (its time window still applies): elements it

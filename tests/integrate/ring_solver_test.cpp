@@ -72,6 +72,23 @@ TEST(RingSolver, MatchesSparseLuWithATensionerArm) {
   d.belt.elements = 600;
   expect_same_solution(d, 6);
 }
+// coupled rotors: border rows and columns joined only to their pulleys (a one-way coupling's hub
+// and rotor to each other), beside an arm; on a free and on a kinematic pulley; on a ring split in
+// two as well (600 elements)
+TEST(RingSolver, MatchesSparseLuWithCoupledRotors) {
+  for (const int n : {150, 600}) {
+    SceneDef d = presets::automotive_tensioner();
+    d.belt.elements = n;
+    d.pulleys[0].torque = TimeSpeedLaw{};
+    d.pulleys[0].kinematic = true;
+    d.pulleys[0].speed.constant = -60;
+    d.pulleys[0].coupling.emplace().inertia = 1e-3;
+    d.pulleys[0].coupling->stiffness = 200;
+    CouplingDef& c = d.pulleys[2].coupling.emplace();
+    c.inertia = 2e-3, c.stiffness = 15, c.damping = 0.01, c.one_way = true;
+    expect_same_solution(d, 7);
+  }
+}
 TEST(RingSolver, MatchesSparseLuOnASplitRing) {
   static_assert(600 >= kHalvesElements && 60 < kHalvesElements);
   expect_same_solution(refined(600), 3);

@@ -365,6 +365,48 @@ TEST(Jacobian, TensionerArmLaw) {
   EXPECT_NEAR(back / f[k], -3.0, 1e-12);
 }
 
+// A rotor coupled to a pulley: the spring-damper's four entries in K and C, the applied torque's
+// ∂M/∂Ω on the rotor's column, and the one-way clutch's lock in each of its regimes (the hub
+// overtaking the rotor by 40 w, within the smoothing at ±0.5 w, overrun by 40 w, w = 2·T_d/c_L the
+// width of σ; the central difference's step 1e-7 rad/s against w = 5e-4 rad/s leaves truncation
+// (1e-7/5e-4)² = 4e-8). On the automotive drive's alternator (free, with a viscous load: its
+// ∂M/∂Ω lands on the rotor) and on its kinematic crankshaft (∂/∂Ω_p goes to ∂f/∂t).
+TEST(Jacobian, CoupledRotor) {
+  for (const bool one_way : {false, true}) {
+    for (const double slip : {40.0, 0.5, -0.5, -40.0}) {
+      SceneDef d = presets::automotive_tensioner();
+      d.pulleys[2].torque.per_speed = -0.05;
+      d.pulleys[0].torque = TimeSpeedLaw{};
+      d.pulleys[0].kinematic = true;
+      d.pulleys[0].speed.t = {0.0, 0.5};
+      d.pulleys[0].speed.value = {0.0, -60.0};
+      for (const int j : {0, 2}) {
+        CouplingDef& c = d.pulleys[j].coupling.emplace();
+        c.inertia = 3e-3, c.stiffness = 40, c.damping = 0.3, c.one_way = one_way;
+      }
+      const Scene sc = build_scene(d);
+      const Model& m = sc.model;
+      ASSERT_EQ(m.n_coupled(), one_way ? 4 : 2);
+      Eigen::VectorXd y = running_state(sc, 0.2, 25.0, 11, 0.5);
+      const int N = m.n_coord();
+      for (int c = 0; c < m.n_coupling(); ++c) {
+        const Coupling& cp = m.couplings[c];
+        const int kp = m.pulley_coord(cp.pulley), kr = m.rotor_coord(c);
+        const double wp = sc.drive.omega(m, cp.pulley, 0.2, y.data() + N);
+        const double w = 2 * cp.drag_torque / cp.lock_damping;
+        y[kr] = y[kp] - 0.01 * (c + 1);  // a windup
+        y[N + kr] = wp - cp.sense * slip * w + 0.3;
+        if (cp.one_way) {
+          y[kr + 1] = y[kp] - 0.02;
+          y[N + kr + 1] = wp + 0.3;  // the rotor's speed is the hub's less sense·slip·w
+        }
+      }
+      SCOPED_TRACE(std::string(one_way ? "one-way" : "two-way") + " slip " + std::to_string(slip));
+      expect_jacobian_matches(m, sc.drive, 0.2, y);
+    }
+  }
+}
+
 TEST(Jacobian, NonUnitExponents) {
   SceneDef d = presets::paper_dry();
   d.belt.e_tra = 1.3;

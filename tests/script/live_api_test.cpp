@@ -190,6 +190,106 @@ TEST(LiveApi, SprayZoneReadSwitchedAndRefused) {
   }
 }
 
+// A one-way coupled alternator: its rotor read, set at a pause (events.csv), saved and resumed bit
+// for bit; the Lua table reads one_way as a boolean.
+TEST(LiveApi, CoupledRotorReadChangedAndCheckpointed) {
+  const std::string out = (temp_dir() / "rotor").string();
+  EXPECT_EQ(run_text("local s = beltsim.scene{ pulleys = {\n"
+                     "  { name = 'driver', centre = {0, 0}, torque = beltsim.ramp(0.3, -70.0) },\n"
+                     "  { name = 'driven', centre = {0.29, 0}, torque = { per_speed = -0.5 },\n"
+                     "    coupling = { inertia = 0.01, stiffness = 50, damping = 0.2, one_way = true } } },\n"
+                     "  belt = { direction = 'cw' } }\n"
+                     "local sim = s:start{ out = '" + out + "', progress = false }\n"
+                     "local p = sim:pulley('driven')\n"
+                     "assert(p.rotor_speed == 0 and p.windup == 0 and p.coupling_torque == 0, 'relaxed at rest')\n"
+                     "assert(sim:pulley('driver').rotor_speed == nil, 'no coupling')\n"
+                     "sim:advance(0.002)\n"
+                     "sim:set_rotor('driven', { speed = -3.0 })\n"
+                     "p = sim:pulley('driven')\n"
+                     "assert(p.rotor_speed == -3.0, 'set_rotor')\n"
+                     "local ok, err = pcall(sim.set_rotor, sim, 'driver', { speed = 0 })\n"
+                     "assert(not ok and err:find(\"pulley 'driver' has no coupling\"), err)\n"
+                     "local path = sim:save('" + out + "/rotor.chk')\n"
+                     "sim:advance(0.002)\n"
+                     "local later = sim:pulley('driven')\n"
+                     "assert(later.rotor_speed ~= -3.0, 'the rotor moves')\n"
+                     "sim:close()\n"
+                     "local r = beltsim.resume(path)\n"
+                     "r:advance(0.002)\n"
+                     "local again = r:pulley('driven')\n"
+                     "assert(again.rotor_speed == later.rotor_speed and again.windup == later.windup, 'resumed bits')\n"
+                     "r:close()\n"),
+            "");
+  std::ifstream ev(out + "/events.csv");
+  const std::string events((std::istreambuf_iterator<char>(ev)), std::istreambuf_iterator<char>());
+  EXPECT_NE(events.find("driven.rotor"), std::string::npos) << events;
+}
+
+// sim:wet's transition (issue 27 §4): μ ramps linearly from the belt's μ to the wet one across the
+// transition's length about each end of [from, to]; 0 is the sharp boundary of no transition.
+TEST(LiveApi, WetTransitionRampsMuAcrossItsLength) {
+  const std::string out = (temp_dir() / "transition").string();
+  EXPECT_EQ(run_text("local s = beltsim.scene{ pulleys = {\n"
+                     "  { name = 'driver', centre = {0, 0}, torque = -1 },\n"
+                     "  { name = 'driven', centre = {0.29, 0} } }, belt = { elements = 240 } }\n"
+                     "local sim = s:start{ out = '" + out + "', progress = false }\n"
+                     "local n = s:info().elements\n"
+                     "sim:wet{ from = 0.3, to = 0.6, mu = 0.2, transition = 0.05 }\n"
+                     "local ramped = 0\n"
+                     "for i = 0, n - 1 do\n"
+                     "  local e = sim:element(i)\n"
+                     "  local d = math.min(e.s - 0.3, 0.6 - e.s)  -- > 0 inside\n"
+                     "  local w = math.max(0, math.min(1, 0.5 + d / 0.05))\n"
+                     "  local want = 1 + w * (0.2 - 1)\n"
+                     "  assert(math.abs(e.mu - want) < 1e-12, ('element %d at s = %g: mu %g, want %g'):format(i, e.s, e.mu, want))\n"
+                     "  if w > 0 and w < 1 then ramped = ramped + 1 end\n"
+                     "  if d > 0.025 then assert(e.mu == 0.2) elseif d < -0.025 then assert(e.mu == 1) end\n"
+                     "end\n"
+                     "assert(ramped >= 8, 'elements on the ramps: ' .. ramped)\n"
+                     "sim:set_mu(1)\n"
+                     "sim:wet{ from = 0.3, to = 0.6, mu = 0.2, transition = 0 }\n"
+                     "local sharp = {}\n"
+                     "for i = 0, n - 1 do sharp[i] = sim:element(i).mu end\n"
+                     "sim:set_mu(1)\n"
+                     "sim:wet{ from = 0.3, to = 0.6, mu = 0.2 }\n"
+                     "for i = 0, n - 1 do assert(sim:element(i).mu == sharp[i], 'transition 0 is no transition') end\n"
+                     "local ok, err = pcall(sim.wet, sim, { from = 0.3, to = 0.6, mu = 0.2, transition = -0.01 })\n"
+                     "assert(not ok and err:find('sim:wet.transition: must be >= 0 and finite %(got %-0.01 m%)'), err)\n"
+                     "sim:close()\n"),
+            "");
+}
+
+// belt.mu_flank (issue 27 §4): the effective μ of the rib wedge is mu_flank/sin(rib_angle/2), with
+// the PK belt's 40° by default (0.5/sin 20° = 1.4619); parameters.csv states both; mu and mu_flank
+// together, or a rib angle of 180°, are refused with the reason and the value.
+TEST(LiveApi, RibWedgeGivesTheEffectiveMu) {
+  const std::string out = (temp_dir() / "wedge").string();
+  const std::string pulleys = "pulleys = { { name = 'a', centre = {0, 0}, torque = -1 }, { name = 'b', centre = {0.29, 0} } }";
+  EXPECT_EQ(run_text("local s = beltsim.scene{ " + pulleys + ", belt = { mu_flank = 0.5 } }\n"
+                     "local sim = s:start{ out = '" + out + "', progress = false }\n"
+                     "local mu = sim:element(7).mu\n"
+                     "assert(math.abs(mu - 0.5 / math.sin(math.rad(20))) < 1e-15, mu)\n"
+                     "local t = beltsim.scene{ " + pulleys + ", belt = { mu_flank = 0.5, rib_angle = 60 } }\n"
+                     "local u = t:start{ out = '" + out + "_60', progress = false }\n"
+                     "assert(math.abs(u:element(7).mu - 1.0) < 1e-15, u:element(7).mu)\n"
+                     "sim:close() u:close()\n"),
+            "");
+  std::ifstream f(out + "/parameters.csv");
+  const std::string csv((std::istreambuf_iterator<char>(f)), std::istreambuf_iterator<char>());
+  EXPECT_NE(csv.find("\nbelt.rib_angle,40,°,default,"), std::string::npos) << csv;
+  EXPECT_NE(csv.find("\nbelt.mu_flank,0.5,,given,"), std::string::npos) << csv;
+  EXPECT_NE(csv.find("\nbelt.mu,1.4619"), std::string::npos) << csv;
+  EXPECT_NE(run_text("beltsim.scene{ " + pulleys + ", belt = { mu = 1, mu_flank = 0.5 } }")
+                .find(":1: belt: give mu (the effective coefficient) or mu_flank, not both"),
+            std::string::npos);
+  EXPECT_NE(run_text("beltsim.scene{ " + pulleys + ", belt = { mu_flank = 0.5, rib_angle = 180 } }")
+                .find(":1: belt.rib_angle: must be > 0 and < 180 (the ribs' included angle) (got 180 °)"),
+            std::string::npos);
+  EXPECT_NE(run_text("beltsim.scene{ " + pulleys + ", belt = { rib_angle = 200 } }")
+                .find(":1: belt.rib_angle must be < 180 (the ribs' included angle) (got 200 °)"),
+            std::string::npos);
+}
+
 TEST(LiveApi, BadCallsNameFileLineAndWhat) {
   struct Case {
     std::string call, expect;

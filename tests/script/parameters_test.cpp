@@ -31,8 +31,9 @@ std::string slurp(const fs::path& p) {
 
 // A two-pulley scene (pulleys 'a' and 'b') with the given values as Lua expressions, each under its
 // dotted key ("belt.EA", "belt.sde.k", "pulley.radius": pulley a's, "pulley.tensioner.stiffness":
-// pulley a's arm, pivoted 0.1 m above its centre, "gravity"; a friction law's own parameters
-// with that law), then a run of one millisecond writing parameters.csv.
+// pulley a's arm, pivoted 0.1 m above its centre, "pulley.coupling.stiffness": pulley a's
+// coupling, "gravity"; a friction law's own parameters with that law), then a run of one
+// millisecond writing parameters.csv.
 std::string scene_with(std::map<std::string, std::string> values) {
   // a friction law's own parameters (those that apply to one law only) come with that law
   for (const auto& [dotted, v] : std::map<std::string, std::string>(values)) {
@@ -54,6 +55,7 @@ std::string scene_with(std::map<std::string, std::string> values) {
       tables["spray"].empty() ? "" : "spray = { { centre = {0.145, 0.5}, " + tables["spray"] + "} },";
   if (!tables["pulley.tensioner"].empty())
     pulley += "tensioner = { pivot = {0, 0.1}, " + tables["pulley.tensioner"] + "}, ";
+  if (!tables["pulley.coupling"].empty()) pulley += "coupling = { " + tables["pulley.coupling"] + "}, ";
   return "local s = beltsim.scene {\n"
          "  pulleys = { { name = 'a', centre = {0, 0}, torque = -1, " +
          pulley +
@@ -100,6 +102,15 @@ const std::map<std::string, std::string> kSde{
 // a tensioner requires these two
 const std::map<std::string, std::string> kTensioner{{"pulley.tensioner.inertia", "0.01"},
                                                     {"pulley.tensioner.stiffness", "3000"}};
+// a coupling requires these two
+const std::map<std::string, std::string> kCoupling{{"pulley.coupling.inertia", "0.01"},
+                                                   {"pulley.coupling.stiffness", "50"}};
+// the required keys of both
+std::map<std::string, std::string> required() {
+  std::map<std::string, std::string> r = kTensioner;
+  r.insert(kCoupling.begin(), kCoupling.end());
+  return r;
+}
 
 // a spray zone requires these three
 const std::map<std::string, std::string> kSpray{
@@ -121,6 +132,7 @@ TEST(Parameters, EveryRuleStopsTheScriptWithTheKeyTheReasonAndTheValue) {
     if (p.table == "belt.sde") values = kSde;
     if (p.table == "pulley.tensioner") values = kTensioner;
     if (p.table == "spray") values = kSpray;
+    if (p.table == "pulley.coupling") values = kCoupling;
     values[p.dotted()] = lua;
     const std::string what = p.table.starts_with("pulley") ? "pulley 'a' " + p.dotted().substr(7)
                              : p.table == "spray"          ? "spray 1." + std::string(p.key)
@@ -138,7 +150,7 @@ TEST(Parameters, EveryRuleStopsTheScriptWithTheKeyTheReasonAndTheValue) {
 // default taken as default; the alternatives (rest_length, strain, per SDE, per length) in
 // scenes of their own
 TEST(Parameters, EveryNumberReachesParametersCsv) {
-  std::map<std::string, std::string> primary = kTensioner, per_length{{"belt.rest_length", "1.2045"}}, per_sde = kSde;
+  std::map<std::string, std::string> primary = required(), per_length{{"belt.rest_length", "1.2045"}}, per_sde = kSde;
   per_sde["belt.strain"] = "0.005";
   per_length["belt.bending_viscosity"] = "1e-3";
   per_length["contact.c1_per_length"] = "1.5e11";
@@ -165,9 +177,9 @@ TEST(Parameters, EveryNumberReachesParametersCsv) {
           << "expected '" << expected << "', got '" << row(csv, name) << "'";
     }
   }
-  // nothing given (but a tensioner's required two, and the law whose parameters apply): the
-  // defaults, marked so
-  std::map<std::string, std::string> none = kTensioner;
+  // nothing given (but a tensioner's and a coupling's required two, and the law whose parameters
+  // apply): the defaults, marked so
+  std::map<std::string, std::string> none = required();
   none["friction.law"] = "'stribeck'";
   ASSERT_EQ(run_text(scene_with(none)), "");
   const std::string csv = slurp(temp_dir() / "out" / "parameters.csv");
