@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "script/interpreter.hpp"
+#include "script/progress.hpp"
 #include "run_script.hpp"
 #include "support/scenes.hpp"
 #include "support/scratch.hpp"
@@ -430,6 +431,21 @@ TEST(LuaApi, MaxWallStopsARunWithAnError) {
             std::string::npos) << msg;
   EXPECT_TRUE(fs::exists(temp_dir() / "out" / "timeseries.csv"));
   expect_error(scene_text("") + "s:run{ t_end = 1, max_wall = 0 }\n", "scene.lua:", {"run.max_wall: must be > 0"});
+}
+
+// the progress line shows the run's time, at most its target, and never a negative time left: the
+// integrator's last step may end past the target (t = 0.0507 s of 0.05 s, "about -0 s left")
+TEST(Progress, NeverPastTheTarget) {
+  ProgressLine line(true);
+  const RunProgress show = line.callback();
+  WorkCounters w;
+  w.steps = 11;
+  testing::internal::CaptureStderr();
+  show(0.0, 0.05, w, 0.0);     // the start: nothing shown before a second
+  show(0.0507, 0.05, w, 11.0);  // a step past the target (a line every 10 s when not a terminal)
+  const std::string text = testing::internal::GetCapturedStderr();
+  EXPECT_NE(text.find("t = 0.0500 s of 0.05 s (100 %)"), std::string::npos) << text;
+  EXPECT_EQ(text.find("-0 s"), std::string::npos) << text;
 }
 
 }  // namespace
