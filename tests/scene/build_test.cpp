@@ -9,22 +9,14 @@
 #include "scene/build.hpp"
 #include "scene/presets.hpp"
 #include "scene/validate.hpp"
+#include "support/parameter_error.hpp"
 
 namespace beltsim {
 namespace {
 
 constexpr double kD = 0.29, kR = 0.1;  // the paper's centre distance and pitch radius [m]
 
-// the message of the ParameterError f throws, empty when it throws none
-template <class F>
-std::string error_of(F f) {
-  try {
-    f();
-  } catch (const ParameterError& e) {
-    return e.what();
-  }
-  return "";
-}
+using test::error_of;
 
 struct Stages {
   SceneDef d = presets::paper_dry();

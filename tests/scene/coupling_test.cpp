@@ -12,6 +12,7 @@
 #include "model/rhs.hpp"
 #include "scene/presets.hpp"
 #include "scene/validate.hpp"
+#include "support/parameter_error.hpp"
 #include "sim/simulation.hpp"
 #include "support/scratch.hpp"
 #include "support/warning_guard.hpp"
@@ -19,15 +20,7 @@
 namespace beltsim {
 namespace {
 
-template <class F>
-std::string error_of(F f) {
-  try {
-    f();
-  } catch (const ParameterError& e) {
-    return e.what();
-  }
-  return "";
-}
+using test::error_of;
 
 // The paper's drive with μ = 0 and no applied torques: the belt puts no moment on a pulley (the
 // normal force passes through its centre), so the driven pulley and a rotor coupled to it are a

@@ -10,19 +10,12 @@
 #include "model/rhs.hpp"
 #include "scene/presets.hpp"
 #include "scene/validate.hpp"
+#include "support/parameter_error.hpp"
 
 namespace beltsim {
 namespace {
 
-template <class F>
-std::string error_of(F f) {
-  try {
-    f();
-  } catch (const ParameterError& e) {
-    return e.what();
-  }
-  return "";
-}
+using test::error_of;
 
 struct ArmBalance {
   double spring = 0;  // the spring's moment at the installed angle [N·m]
