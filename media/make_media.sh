@@ -72,6 +72,12 @@ if [ "$what" = all ]; then
     "$b" plot "$tmp/decoupler_$k/timeseries.csv" alternator.omega alternator.rotor_speed alternator.coupling_torque \
       --from 0.3 --out "media/automotive_decoupler_$k.png" >/dev/null
   done
+  # docs/tutorial.md: a frame of the tutorial's run, and its console session's sim:show
+  "$b" run docs/examples/tutorial/drive.lua --out "$tmp/tutorial" >/dev/null
+  cp "$tmp/tutorial/frames/frame_00075.png" media/tutorial_drive.png
+  grep '^> ' docs/tutorial.md | cut -c3- |
+    "$b" console docs/examples/tutorial/drive.lua --set live=true --out "$tmp/tutorial_live" >/dev/null
+  cp "$tmp/tutorial_live/show_0.100000.png" media/tutorial_console_slip.png
   cp "$tmp/paper_dry/frames/frame_00300.png" media/dry_tension_1.0s.png
   cp "$tmp/paper_wet/frames/frame_00180.png" media/wet_friction_0.6s.png
   cp "$tmp/paper_wet/frames/frame_00090.png" media/wet_friction_0.3s.png

@@ -45,10 +45,10 @@ class Esdirk final : public Stepper {
       psi_ = y;
       for (int j = 0; j < i; ++j) psi_ += (h * tab.a[i][j]) * F_[j];
       // predictor: the previous stage's value carried along its own motion to ti
-      // (NewtonAids::predict; for the belt, elements in a wrap turn with it). Extrapolating along
-      // the previous stage's slope instead carries the stiff components (friction in stick,
-      // ≈ 5e9 1/s) across their kinks and starts Newton on the wrong branch for many elements:
-      // measured 6x more steps over the first 0.3 s of the paper's drive.
+      // (NewtonAids::predict; for the belt, elements in a wrap turn with it), not extrapolated
+      // along the previous stage's slope: that would carry the stiff components (friction in
+      // stick, ≈ 5e9 1/s) across their kinks and start Newton on the wrong branch for many
+      // elements, each a failed iteration and often a shortened step.
       aids_->predict(t + tab.c[i - 1] * h, (tab.c[i] - tab.c[i - 1]) * h, Z_.data());
       if (!newton(sys, ti, sh, n)) return false;
       F_[i] = (Z_ - psi_) * sh;
@@ -94,17 +94,16 @@ class Esdirk final : public Stepper {
     constexpr int max_iter = 12;
     constexpr int kFullSteps = 3;
     constexpr double kRate = 0.3;
-    // converged when a full correction is below 1 % of the tolerance. With the kinematic
-    // predictor Newton often starts close enough to stop after one or two corrections, so the
-    // stop is what limits how well a stage is solved: at 5 % the dry second at rtol 1e-4 was
-    // off the rtol 1e-7 run by 6.4e-4 in the pulley speeds (during the start-up), at 1 % by
-    // 2.0e-4, for 2 % more right-hand sides
+    // converged when a full correction is below 1 % of the tolerance. The predictor often starts
+    // Newton close enough to stop after one or two corrections, so this stop, more than the step
+    // size, limits how well a stage is solved: at 5 % the stages' error shows in the pulley speeds
+    // during the start-up (three times that at 1 %); 1 % costs 2 % more right-hand sides
     constexpr double kappa = 0.01;
-    // a correction below 5 % of the tolerance is taken whole by the line search (near convergence
-    // the residual is at rounding level and need not decrease). Tied to kappa at 1 %, the line
-    // search gave up on 198 stages of the dry second at rtol 1e-4 whose reused Jacobian was
-    // contracting (corrections of 0.8 of the tolerance after 290, 24, 4.3), each a failed step;
-    // at 5 %: 20, for 9 % more Jacobians and the same answer
+    // a correction below 5 % of the tolerance is taken whole by the line search: near convergence
+    // the residual is at rounding level and need not decrease, and a search that demanded it would
+    // give up on stages whose reused Jacobian still contracts, each a failed step. It sits above
+    // kappa so that such a stage takes its last few corrections whole and converges (a tenth as
+    // many failed steps as with the bound at kappa, for 9 % more Jacobians)
     constexpr double kTakeWhole = 0.05;
     Fz_.resize(n), Ft_.resize(n), G_.resize(n), Gt_.resize(n), dZ_.resize(n), Zt_.resize(n);
     double r = residual(sys, t, s, Z_, Fz_, G_);

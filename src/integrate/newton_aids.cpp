@@ -35,8 +35,8 @@
 // element is the scalar case g(w) = g0 + A·w + B·(sat((u0 + w)/Δv) - sat0).
 // Solving whole wraps matters on fine belts: λ grows with the element count (k ∝ n, m ∝ 1/n), so
 // neighbours are held far more by each other than by their own inertia, and a run of elements at
-// the edge of a slip arc changes branch together: element by element, Newton moved the edge by
-// one element per iteration and ran out of iterations (docs/fine-belts.md).
+// the edge of a slip arc changes branch together: solved element by element, Newton would move
+// the edge by one element per iteration and run out of iterations (docs/fine-belts.md).
 //
 // The local solve is Threlfall's alone: Stribeck's μ falls from μ_s to μ_k outside the band, so
 // its g is not increasing, E not convex and g(w) = 0 may have several solutions; with that law
@@ -49,7 +49,7 @@
 // 1.2 mm behind, its velocity turned by |v|·dt/R ≈ 0.012 rad from the tangent it will have: the
 // first Newton correction, linear, moves it along the chord, off the circle by (|v|·dt)²/2R ≈ 7 µm
 // (7 % of the static penetration) and with a slip velocity of |v|·0.012 ≈ 4 cm/s, 4 000 times
-// the friction band, so whole wraps left the band and were put back by the next iterations. The
+// the friction band: whole wraps would leave the band and cost iterations to come back. The
 // predictor moves each pressing element as the wrap moves it: a rotation about the pulley centre
 // C by θ = ((P - C) × V)/|P - C|²·dt, applied to P - C, to V and (as +θ) to the element angle, which
 // keeps its penetration, slip velocity and spin as they are; a free element moves by V·dt (its

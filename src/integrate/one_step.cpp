@@ -61,8 +61,8 @@ class OneStep final : public Integrator {
     // jump (a change of μ or of a law) starts the same way, and no longer than the last step:
     // F there carries the jump's fast transient (elements re-settling on the pulley within
     // microseconds), and a long first step would take that F into the cubic Hermite dense output
-    // of its samples. On the dry drive with 12 elements wetted at t = 0.01 s, a 7 ms first step
-    // drew the pulleys swinging to +4.8 rad/s between samples that the step's ends never showed.
+    // of its samples (on the dry drive with 12 elements wetted at t = 0.01 s, a 7 ms first step
+    // draws the pulleys swinging to +4.8 rad/s between samples, which the step's ends never show).
     const double d0 = ctl_.weighted_norm(y_, y_), d1 = ctl_.weighted_norm(y_, f_);
     double h0 = (d0 < 1e-5 || d1 < 1e-5 || !std::isfinite(d0 / d1)) ? 1e-6 : 0.01 * d0 / d1;
     h0 = std::min({h0, h_max_, 1e-3});

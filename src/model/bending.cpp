@@ -58,7 +58,7 @@ void bending_jacobian(const Model& m, const double* q, const double*, BlockMatri
     const int a = (i + b.n - 1) % b.n;
     const double ks = spring_slope(b, wrap_angle(q[3 * i + 2] - q[3 * a + 2]));
     // only the (φ, φ) entries of the pair's four blocks (the formulas at the top), written in
-    // place: adding whole 6×6 pair blocks made the Jacobian a third slower (BM_Jacobian)
+    // place: adding whole 6×6 pair blocks would make the Jacobian a third slower (BM_Jacobian)
     if (own.owns(a)) {
       K.diag[a](2, 2) -= ks, K.upper[a](2, 2) += ks;
       C.diag[a](2, 2) -= b.ct, C.upper[a](2, 2) += b.ct;

@@ -23,10 +23,10 @@
 //   (a,a) = [ M  -MA ; -(MA)ᵀ  A·MA ]     (a,b) = [ -M  -MB ; (MA)ᵀ  A·MB ]
 //   (b,a) = [ -M  MA ; -(MB)ᵀ  A·MB ]     (b,b) = [ M  MB ; (MB)ᵀ  B·MB ]
 // (M = k·G for K, c·I for C), written straight into the block rows; the φ columns of Dᵀ·Ḋ are
-// Dᵀ·e = (-e, A·e | e, B·e) for e = e_a, e_b. Against the dense 2×6 D and 6×6 products this took
-// the SDEs' forces from 375 to 299 machine instructions per element and their Jacobian from 913
-// to 710 (callgrind, `beltsim wp` of the dry second at rtol 1e-3; about 150 of each are the sine
-// and cosine of the element's angle).
+// Dᵀ·e = (-e, A·e | e, B·e) for e = e_a, e_b. This costs about a fifth fewer machine instructions
+// per element than forming the dense 2×6 D and its 6×6 products, for the forces and for the
+// Jacobian (callgrind over `beltsim wp` of the dry second; the sine and cosine of the element's
+// angle are about 150 of each).
 #include <cmath>
 #include <cstdint>
 #include <cstring>
@@ -91,7 +91,7 @@ template <class Own = WholeBelt>
 }
 
 // adds w·Dᵀ·M·D (M symmetric 2×2) to the pair's four blocks of J (formulas at the top), entry by
-// entry in place (through a 3×3 temporary per block it took 5.3 % of the dry drive's samples);
+// entry in place (a 3×3 temporary per block would cost about 5 % of the dry drive's time);
 // row_a, row_b: whether the block rows of elements a and b are written
 void add_dtmd(BlockMatrix& J, const Pair& s, double w, const Eigen::Matrix2d& M, bool row_a, bool row_b) {
   const Vec2 MA = w * (M * s.A), MB = w * (M * s.B);

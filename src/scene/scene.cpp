@@ -512,11 +512,12 @@ std::string settle(Scene& sc, const BeltDef& bd, bool rest_given, const std::ato
     return std::string();
   };
   // The plain Newton iteration can go astray: with the belt at rest friction holds nothing, so
-  // sliding the belt along its path costs no force and K is nearly singular that way. For 80,
-  // 120 and 140 elements on the paper's drive the iteration carried the belt along that mode
-  // off a pulley, or stopped unconverged. Then it is repeated with a trust region of a tenth of
-  // a pitch per step (not always: it lands elsewhere along the free mode, and the plain
-  // iteration is what the 60-element results were measured from).
+  // sliding the belt along its path costs no force and K is nearly singular that way, and the
+  // iteration may carry the belt along that mode off a pulley or stop unconverged (on the
+  // paper's drive at some element counts, 80, 120 and 140 among them). Then it is repeated with
+  // a trust region of a tenth of a pitch per step. The plain iteration goes first because the
+  // trust region lands elsewhere along the free mode, and the docs' 60-element results are the
+  // plain iteration's.
   std::string lost = attempt(0);
   if (!lost.empty() || !(sc.static_residual < kConverged)) {
     lost = attempt(0.1 * b.pitch);

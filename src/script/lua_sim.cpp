@@ -712,19 +712,29 @@ int l_help(lua_State* L) {
 
 const std::vector<HelpEntry>& api_help() {
   static const std::vector<HelpEntry> h = {
-      {"scene", "beltsim.scene{ pulleys, belt, contact, friction, gravity, energy }", "builds a drive (docs/lua-api.md)"},
-      {"run", "scene:run{ t_end [s], integrator, rtol, atol, sample [s], out, probe, snapshots, frames, events }",
+      {"scene", "beltsim.scene{ pulleys, belt, contact, friction, gravity, energy, spray, allow_large }",
+       "builds a drive (docs/lua-api.md)"},
+      {"run",
+       "scene:run{ t_end [s], integrator, rtol, atol, sample [s], out, probe, snapshots, progress, events, frames, "
+       "allow_large, max_wall [s] }",
        "a batch run: start, run_to(t_end), close"},
-      {"start", "scene:start{ integrator, rtol, atol, sample [s], out, probe, snapshots, progress, frames }",
+      {"start",
+       "scene:start{ integrator, rtol, atol, sample [s], out, probe, snapshots, progress, frames, allow_large, "
+       "max_wall [s] }",
        "a live simulation at t = 0 (the static state)"},
+      {"info", "scene:info() -> { elements, pitch, rest_length, strain, static_tension, wrap_deg, warnings, ... }",
+       "the scene as built: element sizes, stiffnesses, the tension at rest, each pulley's wrap"},
+      {"element_near", "scene:element_near{ x [m], y [m] } -> i", "the element that starts nearest the point"},
       {"run_to", "sim:run_to(t [s]) -> { t [s], steps, wall [s], interrupted }", "integrates to time t"},
       {"advance", "sim:advance(dt [s]) -> { t [s], steps, wall [s], interrupted }", "integrates dt further"},
       {"t", "sim.t", "the current simulated time [s]"},
-      {"pulley", "sim:pulley(name)", "{ omega [rad/s], angle [rad], torque, belt_torque [N·m], hub_load [N], contact_arc, slip_arc, "
-                             "stick_arc [m], creep; arm_angle [rad], arm_rate [rad/s] on a tensioner arm; rotor_angle [rad], "
-                             "rotor_speed [rad/s], windup [rad], coupling_torque [N·m] with a coupling }"},
+      {"pulley", "sim:pulley(name)",
+       "{ omega [rad/s], angle [rad], torque, belt_torque [N·m], hub_load [N], contact_arc, slip_arc, "
+       "stick_arc [m], creep; arm_angle [rad], arm_rate [rad/s] on a tensioner arm; rotor_angle [rad], "
+       "rotor_speed [rad/s], windup [rad], coupling_torque [N·m] with a coupling }"},
       {"element", "sim:element(i)",
-       "{ x, y [m], phi [rad], s [m], tension, normal, friction [N], slip [m/s], mu, pulley, state } of element i (0-based)"},
+       "{ x, y [m], phi [rad], s [m], tension, normal, friction [N], slip [m/s], mu, pulley, state } of element i "
+       "(0-based)"},
       {"span", "sim:span(a, b) -> [N]", "tension of the span between pulleys a and b"},
       {"energy", "sim:energy() -> { ... [J] }", "kinetic, spring, contact, gravity energy (and tracked work)"},
       {"stats", "sim:stats()", "steps, rejected, rhs, jacobians, factorizations, wall [s], frames, ..."},
@@ -743,7 +753,7 @@ const std::vector<HelpEntry>& api_help() {
       {"when", "sim:when(function(sim) return cond end, function(sim) end) -> id",
        "runs the action where the condition turns true (located to 1e-10 s)"},
       {"cancel", "sim:cancel(id)", "removes an every or when callback"},
-      {"show", "sim:show{ quantity, range, magnify, view, size, file } -> png",
+      {"show", "sim:show{ quantity, range, levels, magnify, view, size, file } -> png",
        "renders the belt as it is now (tension, normal, friction, slip, mu)"},
       {"plot", "sim:plot{ \"driver.omega\", ..., from = t0 [s], file } -> png", "time histories sampled so far"},
       {"save", "sim:save(path) -> path", "a checkpoint: state, integrator, laws, μ, pending events, output positions"},
@@ -753,9 +763,12 @@ const std::vector<HelpEntry>& api_help() {
       {"ramp", "beltsim.ramp{ t0 [s], t1 [s], from, to, shape = \"linear\"|\"cosine\" }",
        "a law going from `from` at t0 to `to` at t1 (beltsim.ramp(t1, to): from 0 at t = 0)"},
       {"step", "beltsim.step(t [s], from, to)", "a law jumping from `from` to `to` at t"},
-      {"sine", "beltsim.sine{ mean, amplitude, frequency [Hz], phase [rad] }", "mean + amplitude·sin(2π·frequency·t + phase)"},
+      {"sine", "beltsim.sine{ mean, amplitude, frequency [Hz], phase [rad] }",
+       "mean + amplitude·sin(2π·frequency·t + phase)"},
       {"args", "beltsim.args.KEY", "a script parameter given as --set KEY=VALUE (nil when not given)"},
       {"integrators", "beltsim.integrators()", "the integrators' names"},
+      {"sweep", "beltsim.sweep{ grid | samples, run = function(p) end } -> sweep",
+       "what a sweep file returns for `beltsim sweep`: its points and the run of one point (docs/sweeps.md)"},
       {"help", "help([name])", "this list, or one entry"},
   };
   return h;
