@@ -194,7 +194,7 @@ constexpr Parameter kParameters[] = {
     {"belt", "rib_angle", K::number, "°", 40, "", W::ours, R::positive,
      "the V-ribs' included angle β (40° for PK belts); with mu_flank the effective μ = mu_flank/sin(β/2)",
      [](SceneDef& d, PulleyDef&) -> Slot { return &d.belt.rib_angle; }, nullptr, nullptr},
-    {"belt", "mu_flank", K::number, "", {}, "", W::none, R::non_negative,
+    {"belt", "mu_flank", K::number, "", {}, "", W::none, R::friction_coefficient,
      "friction coefficient of the rib flanks, instead of mu: mu = mu_flank/sin(rib_angle/2) (the paper's μ = 1 is "
      "already the effective one)",
      [](SceneDef& d, PulleyDef&) -> Slot { return &d.belt.mu_flank; }, nullptr, nullptr},

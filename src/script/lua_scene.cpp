@@ -273,8 +273,8 @@ void read_belt(lua_State* L, int idx, SceneDef& d, std::unique_ptr<LuaRef>& mu_f
     std::ostringstream m;
     if (!(b.rib_angle > 0 && b.rib_angle < 180))
       m << "belt.rib_angle: must be > 0 and < 180 (the ribs' included angle) (got " << b.rib_angle << " °)";
-    else if (!(*b.mu_flank >= 0 && std::isfinite(*b.mu_flank)))
-      m << "belt.mu_flank must be >= 0 (got " << *b.mu_flank << ")";
+    else if (const std::string bad = mu_problem(*b.mu_flank); !bad.empty())
+      m << "belt.mu_flank " << bad << " (got " << *b.mu_flank << ")";
     if (!m.str().empty()) fail(L, m.str());
     b.mu = *b.mu_flank / std::sin(b.rib_angle * M_PI / 360.0);
     d.given.insert("belt.mu");
