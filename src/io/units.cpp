@@ -8,7 +8,7 @@ namespace beltsim {
 namespace {
 
 // last dotted component → unit (docs/outputs.md; element and pulley fields of the Lua API)
-constexpr std::array<std::pair<std::string_view, std::string_view>, 44> kUnits{{
+constexpr std::array<std::pair<std::string_view, std::string_view>, 45> kUnits{{
     {"t", "s"},
     // pulleys
     {"omega", "rad/s"},
@@ -28,6 +28,7 @@ constexpr std::array<std::pair<std::string_view, std::string_view>, 44> kUnits{{
     {"slip_arc", "m"},
     {"stick_arc", "m"},
     {"creep", ""},
+    {"slip_speed", "m/s"},
     // spans and the probed element
     {"tension", "N"},
     {"tension_mean", "N"},

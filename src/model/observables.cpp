@@ -158,6 +158,7 @@ void observe(const Model& m, const Drive& d, const std::vector<int>& sense, doub
   for (int j = 0; j < m.n_p(); ++j) {
     PulleyObs& p = out.pulleys[j] = pulley_with(m, d, t, y, j, out.pairs);
     const double v_rim = sense[j] * p.omega * m.pulleys[j].radius;
+    p.slip_speed = out.belt_speed - v_rim;
     p.creep = std::abs(out.belt_speed) > m.friction.dv ? 1 - v_rim / out.belt_speed
                                                        : std::numeric_limits<double>::quiet_NaN();
   }

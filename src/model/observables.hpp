@@ -79,6 +79,9 @@ struct PulleyObs {
   // leads (driver); NaN while |v_belt| <= Δv. Includes the radial part: the belt's pitch line
   // rides at R - p (p the contact penetration), not R.
   double creep = 0;
+  // v_belt - v_rim [m/s], both along the travel as in creep: the sign of the elements' slip (belt
+  // minus rim), < 0 on a driver (its rim leads the belt), > 0 on a driven pulley
+  double slip_speed = 0;
 };
 
 // What one element feels from the pulleys, in the pulleys' own frame (sums over the pairs of a

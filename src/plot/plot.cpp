@@ -9,6 +9,7 @@
 #include <stdexcept>
 
 #include "io/csv_writer.hpp"
+#include "io/suggest.hpp"
 #include "io/units.hpp"
 #include "plot/gnuplot.hpp"
 #include "io/number_text.hpp"
@@ -201,7 +202,8 @@ bool Table::has(std::string_view name) const {
 const std::vector<double>& Table::column(std::string_view name) const {
   const auto it = std::find(names.begin(), names.end(), name);
   if (it == names.end())
-    throw std::runtime_error(path + " has no column '" + std::string(name) + "'; its columns: " + joined(names));
+    throw std::runtime_error(path + " has no column '" + std::string(name) + "'" + did_you_mean(std::string(name), names) +
+                             "; its columns: " + joined(names));
   return columns[it - names.begin()];
 }
 

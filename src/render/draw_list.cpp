@@ -252,7 +252,6 @@ void FrameBuilder::build(double t, const double* y, DrawList& out, const Drive* 
   const Drive& dr = drive ? *drive : sc_.drive;
   const int n = m.n_el();
   const double* q = y;
-  const double* v = y + m.n_coord();
   out.width = fs_.width, out.height = fs_.height;
   out.triangles.clear(), out.glyphs.clear(), out.elements.clear(), out.texts.clear();
   out.font = font_;
@@ -368,10 +367,9 @@ void FrameBuilder::build(double t, const double* y, DrawList& out, const Drive* 
   std::string head = "t = " + format("%.4f", t) + " s      colour: " + qi.label + (*qi.unit ? std::string(" [") + qi.unit + "]" : "");
   if (fs_.magnify != 1) head += "      deformation \u00d7" + format("%g", fs_.magnify);
   out.text(Vec2(x0, line), head, font_px_, kInk);
-  const double v_belt = seen.belt_speed;
   const double col_w = (fs_.width - panel_) / columns_;
   for (int j = 0; j < m.n_p(); ++j)
-    out.text(Vec2(x0 + (j % columns_) * col_w, line * (2 + j / columns_)), pulley_text(dr, j, t, v, v_belt), font_px_, kInk);
+    out.text(Vec2(x0 + (j % columns_) * col_w, line * (2 + j / columns_)), pulley_text(j, seen.pulleys[j]), font_px_, kInk);
 
   // colour bar: bands from lo (bottom) to hi (top), edges labelled where they fit
   const double panel_x = fs_.width - panel_ + 0.5 * font_px_;
@@ -414,14 +412,11 @@ void FrameBuilder::build(double t, const double* y, DrawList& out, const Drive* 
   if (fs_.quantity != FrameQuantity::tension && fs_.quantity != FrameQuantity::mu) swatch(scale_.none, "off the pulleys");
 }
 
-// "driver: ω = −57.05 rad/s, slip −0.021 m/s": the pulley's speed, and the belt's mean speed minus
-// its rim's speed along the belt's travel: the sign of the elements' slip colours (belt minus rim,
-// model/observables.hpp), negative on a driver (its rim leads the belt), positive on a driven one
-std::string FrameBuilder::pulley_text(const Drive& d, int j, double t, const double* v, double v_belt) const {
-  const Pulley& p = sc_.model.pulleys[j];
-  const double om = d.omega(sc_.model, j, t, v);
-  const double slip = v_belt - sense_[j] * om * p.radius;
-  return p.name + ": \u03c9 = " + format("%.2f", om) + " rad/s, slip " + format("%+.3f", slip) + " m/s";
+// "driver: ω = −57.05 rad/s, slip −0.021 m/s": the pulley's speed and its slip_speed (belt minus
+// rim, model/observables.hpp: the sign of the elements' slip colours)
+std::string FrameBuilder::pulley_text(int j, const PulleyObs& o) const {
+  return sc_.model.pulleys[j].name + ": \u03c9 = " + format("%.2f", o.omega) + " rad/s, slip " +
+         format("%+.3f", o.slip_speed) + " m/s";
 }
 
 }  // namespace beltsim::render

@@ -129,7 +129,7 @@ class FrameBuilder {
   int font_px_ = 14;
   int columns_ = 1;             // pulley lines per row of the text band
   double top_ = 0, panel_ = 0;  // [px] height of the text band, width of the colour-bar panel
-  std::string pulley_text(const Drive& d, int j, double t, const double* v, double v_belt) const;
+  std::string pulley_text(int j, const PulleyObs& o) const;
 };
 
 }  // namespace beltsim::render

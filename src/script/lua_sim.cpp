@@ -164,6 +164,7 @@ int l_pulley(lua_State* L) {
   set_number(L, "slip_arc", p.slip_arc);
   set_number(L, "stick_arc", p.stick_arc);
   set_number(L, "creep", p.creep);
+  set_number(L, "slip_speed", p.slip_speed);
   if (!std::isnan(p.arm_angle)) set_number(L, "arm_angle", p.arm_angle), set_number(L, "arm_rate", p.arm_rate);
   if (!std::isnan(p.rotor_speed)) {
     set_number(L, "rotor_angle", p.rotor_angle), set_number(L, "rotor_speed", p.rotor_speed);
@@ -193,6 +194,20 @@ int l_element(lua_State* L) {
   set_number(L, "mu", e.mu);
   if (e.pulley >= 0) lua_pushstring(L, s.model().pulleys[e.pulley].name.c_str()), lua_setfield(L, -2, "pulley");
   lua_pushstring(L, contact_state_name(e.state)), lua_setfield(L, -2, "state");
+  return 1;
+}
+
+// sim:elements{ pulley = name } -> the numbers (0-based) of the elements in contact with the pulley now
+int l_elements(lua_State* L) {
+  Simulation& s = live(L, "elements", {{"{ pulley }", kTable}});
+  check_keys(L, 2, "sim:elements", {"pulley"});
+  if (lua_getfield(L, 2, "pulley") != LUA_TSTRING) fail(L, "sim:elements: pulley (a pulley's name) is required");
+  const int j = pulley_index(L, s, lua_gettop(L), "sim:elements");
+  lua_pop(L, 1);
+  lua_newtable(L);
+  lua_Integer k = 0;
+  for (int i = 0; i < s.model().n_el(); ++i)
+    if (s.element(i).pulley == j) lua_pushinteger(L, i), lua_rawseti(L, -2, ++k);
   return 1;
 }
 
@@ -255,13 +270,18 @@ int set_law(lua_State* L, bool speed) {
   const int j = pulley_index(L, s, 2, (std::string("sim:") + what).c_str());
   SimBox* box = static_cast<SimBox*>(lua_touserdata(L, 1));
   const TimeSpeedLaw law = to_law(L, 3, std::string("sim:") + what, speed, box->ctx);
+  const PulleyDrive& p = s.drive().pulleys.at(j);
+  const std::string before = p.kinematic ? "speed " + law_text(p.speed) : "torque " + law_text(p.torque);
   guarded(L, (std::string("sim:") + what).c_str(), [&] {
     if (speed)
       s.set_speed(j, law, law_text(law));
     else
       s.set_torque(j, law, law_text(law));
   });
-  return 0;
+  const std::string message = s.model().pulleys[j].name + ": " + before + " -> " + (speed ? "speed " : "torque ") +
+                              law_text(law) + " from t = " + rounded_text(s.now(), 6) + " s";
+  lua_pushstring(L, message.c_str());
+  return 1;
 }
 // sim:set_arm(name, { angle [rad], rate [rad/s] }): the tensioner arm's state from now
 int l_set_arm(lua_State* L) {
@@ -325,9 +345,38 @@ int l_set_rotor(lua_State* L) {
 int l_set_torque(lua_State* L) { return set_law(L, false); }
 int l_set_speed(lua_State* L) { return set_law(L, true); }
 
+// "[lo, hi]" or "v" when lo == hi
+std::string value_range(double lo, double hi) {
+  return lo == hi ? rounded_text(lo, 6) : "[" + rounded_text(lo, 6) + ", " + rounded_text(hi, 6) + "]";
+}
+
+// applies μ (NaN: unchanged) and pushes what changed as one line: how many elements, where they
+// are now (in contact with which pulley, or free), their μ before -> after
 void apply_mu(lua_State* L, Simulation& s, const std::vector<double>& mu, const std::string& what,
               const std::string& text) {
+  const std::vector<double> before = s.drive().mu;
   guarded(L, what.c_str(), [&] { s.set_mu(mu, what, text); });
+  const int n = s.model().n_el();
+  int changed = 0;
+  std::vector<int> on(s.model().pulleys.size() + 1, 0);  // per pulley, last: free
+  double lo0 = INFINITY, hi0 = -INFINITY, lo1 = INFINITY, hi1 = -INFINITY;
+  for (int i = 0; i < n; ++i) {
+    if (std::isnan(mu[i])) continue;
+    ++changed;
+    const int p = s.element(i).pulley;
+    ++on[p >= 0 ? p : on.size() - 1];
+    lo0 = std::min(lo0, before[i]), hi0 = std::max(hi0, before[i]);
+    lo1 = std::min(lo1, mu[i]), hi1 = std::max(hi1, mu[i]);
+  }
+  std::string m = what + ": " + std::to_string(changed) + " of " + std::to_string(n) + " elements";
+  if (changed > 0) {
+    std::vector<std::string> where;
+    for (size_t p = 0; p < on.size(); ++p)
+      if (on[p] > 0)
+        where.push_back(std::to_string(on[p]) + (p + 1 < on.size() ? " on " + s.model().pulleys[p].name : " free"));
+    m += " (" + join(where) + "), mu " + value_range(lo0, hi0) + " -> " + value_range(lo1, hi1);
+  }
+  lua_pushstring(L, m.c_str());
 }
 
 // sim:wet{ from = s0 [m], to = s1 [m], mu = 0.2 | function(site), transition = 0.02 [m] } (no
@@ -384,7 +433,7 @@ int l_wet(lua_State* L) {
   if (transition && *transition > 0) text << ", transition " << *transition << " m";
   lua_pop(L, 1);
   apply_mu(L, s, mu, "wet", text.str());
-  return 0;
+  return 1;
 }
 
 // sim:set_mu(number | {mu_0, ..., mu_n-1} | function(site)) on every element
@@ -414,7 +463,7 @@ int l_set_mu(lua_State* L) {
     text = t.str();
   }
   apply_mu(L, s, mu, "set_mu", text);
-  return 0;
+  return 1;
 }
 
 // sim:log(text): a line in events.csv
@@ -661,6 +710,7 @@ int l_tostring(lua_State* L) {
 
 const luaL_Reg kMethods[] = {
     {"run_to", l_run_to},   {"advance", l_advance},       {"pulley", l_pulley},       {"element", l_element},
+    {"elements", l_elements},
     {"span", l_span},       {"energy", l_energy},         {"stats", l_stats},         {"set_torque", l_set_torque},
     {"set_speed", l_set_speed}, {"set_arm", l_set_arm}, {"set_rotor", l_set_rotor}, {"wet", l_wet},           {"spray", l_spray},       {"set_mu", l_set_mu},       {"log", l_log},
     {"every", l_every},     {"when", l_when},             {"cancel", l_cancel},       {"show", l_show},
@@ -730,11 +780,12 @@ const std::vector<HelpEntry>& api_help() {
       {"t", "sim.t", "the current simulated time [s]"},
       {"pulley", "sim:pulley(name)",
        "{ omega [rad/s], angle [rad], torque, belt_torque [N·m], hub_load [N], contact_arc, slip_arc, "
-       "stick_arc [m], creep; arm_angle [rad], arm_rate [rad/s] on a tensioner arm; rotor_angle [rad], "
+       "stick_arc [m], creep, slip_speed [m/s]; arm_angle [rad], arm_rate [rad/s] on a tensioner arm; rotor_angle [rad], "
        "rotor_speed [rad/s], windup [rad], coupling_torque [N·m] with a coupling }"},
       {"element", "sim:element(i)",
        "{ x, y [m], phi [rad], s [m], tension, normal, friction [N], slip [m/s], mu, pulley, state } of element i "
        "(0-based)"},
+      {"elements", "sim:elements{ pulley = name } -> { i... }", "the elements (0-based) in contact with the pulley now"},
       {"span", "sim:span(a, b) -> [N]", "tension of the span between pulleys a and b"},
       {"energy", "sim:energy() -> { ... [J] }", "kinetic, spring, contact, gravity energy (and tracked work)"},
       {"stats", "sim:stats()", "steps, rejected, rhs, jacobians, factorizations, wall [s], frames, ..."},

@@ -377,6 +377,22 @@ class ConsoleTest(unittest.TestCase):
         self.assertIn("after boom\n", out, err)
         self.assertEqual(r.returncode, 1, out + err)
 
+    def test_changes_say_what_they_did(self):
+        # wet, set_torque and set_mu return one line: which elements (how many, in contact with
+        # which pulley now), old -> new; sim:elements{ pulley } lists the elements on a pulley
+        r = self.piped(["sim:advance(0.002)", "sim:wet{ mu = 0.2, from = 0, to = 0.3 }",
+                        'sim:set_torque("driver", -10)', "sim:set_mu(0.5)", 'sim:elements{ pulley = "driven" }',
+                        'print(#sim:elements{ pulley = "driven" } == tonumber(sim:wet{ mu = 0.5 }:match("(%d+) on driven")))'])
+        out, err = r.stdout.decode(), r.stderr.decode()
+        self.assertEqual(r.returncode, 0, out + err)
+        # 0.3 m of the 40-element belt's length (2·0.29 + 2π·0.1 m): 10 elements, μ 1 -> 0.2
+        self.assertRegex(out, r'"wet: 10 of 40 elements \([^)]*\), mu 1 -> 0\.2"', out)
+        self.assertRegex(out, r'"driver: torque \{.*ramp.*\} -> torque -10 from t = 0\.002 s"', out)
+        self.assertRegex(out, r'"set_mu: 40 of 40 elements \(\d+ on driver, \d+ on driven, \d+ free\), '
+                              r'mu \[0\.2, 1\] -> 0\.5"', out)
+        self.assertRegex(out, r"\{\n  \d+,\n", out)
+        self.assertIn("\ntrue\n", out)
+
     # 10
     def test_session_replays(self):
         out_console = os.path.join(self.tmp, "out_console")

@@ -131,11 +131,11 @@ TEST(Plot, DefaultColumnsAreThePulleySpeedsAndFromCutsTheStart) {
   expect_error([&] { plot_csv(no_speed, {}, 0, (d / "x.png").string()); }, {"no '<pulley>.omega' column", "t, span_a_b.tension"});
 }
 
-TEST(Plot, AMissingColumnListsTheValidOnes) {
+TEST(Plot, AMissingColumnSuggestsAndListsTheValidOnes) {
   const fs::path d = dir("missing");
   const std::string csv = small_csv(d);
   expect_error([&] { plot_csv(csv, {"driver.omega", "drivr.omega"}, 0, (d / "x.png").string()); },
-               {"no column 'drivr.omega'",
+               {"no column 'drivr.omega' (did you mean 'driver.omega'?)",
                 "its columns: t, driver.omega, driven.omega, span_driver_driven.tension, probe.slip_velocity"});
   EXPECT_FALSE(fs::exists(d / "x.png"));
 }

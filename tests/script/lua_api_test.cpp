@@ -266,14 +266,14 @@ TEST(LuaApi, WettingEventChangesTheFrictionAtItsTime) {
 
 // Several probes: element numbers and points in one list, columns probe<k>.*; the single forms
 // (a number, a point {x, y}) keep the columns probe.*. Snapshots: one row per element at each
-// time asked for. sim:pulley has the arcs and the creep.
+// time asked for. sim:pulley has the arcs, the creep and the slip speed.
 TEST(LuaApi, ProbesSnapshotsAndArcs) {
   const fs::path csv = temp_dir() / "out" / "timeseries.csv";
   ASSERT_EQ(run_text(scene_text("") + "s:run{ t_end = 0.004, probe = { 12, 40, {0.29, 0.1} }, "
                                       "snapshots = { times = {0.001, 0.003}, every = 0.002 } }\n"),
             "");
   for (const char* c : {"probe1.sde_force", "probe2.slip_velocity", "probe3.normal_force", "driver.slip_arc",
-                        "driven.contact_arc", "driver.stick_arc", "driven.creep", "driver.torque_mean",
+                        "driven.contact_arc", "driver.stick_arc", "driven.creep", "driver.slip_speed", "driver.torque_mean",
                         "span_driver_driven.tension_mean"})
     column_of(csv, c);
   std::ifstream snaps(temp_dir() / "out" / "snapshots.csv");
@@ -296,7 +296,12 @@ TEST(LuaApi, ProbesSnapshotsAndArcs) {
   EXPECT_EQ(run_text(scene_text("") + "local sim = s:start{ out = '" + (temp_dir() / "out").string() +
                      "' }\nsim:run_to(0.002)\nlocal p = sim:pulley('driver')\n"
                      "assert(p.contact_arc > 0.25 and p.contact_arc < 0.35, p.contact_arc)\n"
-                     "assert(math.abs(p.slip_arc + p.stick_arc - p.contact_arc) < 1e-12)\n"),
+                     "assert(math.abs(p.slip_arc + p.stick_arc - p.contact_arc) < 1e-12)\n"
+                     // slip_speed = v_belt - v_rim and creep = 1 - v_rim / v_belt: slip_speed / creep
+                     // is the belt's mean speed, one for both pulleys (to rounding; 9e-4 m/s at 2 ms, > 10·Δv)
+                     "local q = sim:pulley('driven')\n"
+                     "local vb, vq = p.slip_speed / p.creep, q.slip_speed / q.creep\n"
+                     "assert(math.abs(vb) > 1e-4 and math.abs(vb - vq) < 1e-9 * math.abs(vb), vb .. ' ' .. vq)\n"),
             "");
 }
 
