@@ -8,6 +8,7 @@
 #include <fstream>
 #include <stdexcept>
 
+#include "app/options.hpp"
 #include "io/image_compare.hpp"
 #include "io/output_dir.hpp"
 #include "io/png_writer.hpp"
@@ -20,31 +21,21 @@ namespace {
 
 namespace fs = std::filesystem;
 
-// bad usage (exit 2, with the pointer to --help)
-struct Usage : std::runtime_error {
-  using std::runtime_error::runtime_error;
-};
 // a file that cannot be read or is not a PNG or CSV of numbers (exit 2)
 struct Unreadable : std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
-double number(const std::string& option, const std::string& text) {
-  const auto x = script::decimal(text);
-  if (!x) throw Usage(option + " needs a finite decimal number, got '" + text + "'");
-  return *x;
-}
-
 double non_negative(const std::string& option, const std::string& text) {
   const double x = number(option, text);
-  if (!(x >= 0)) throw Usage(option + " must be >= 0, got " + text);
+  if (!(x >= 0)) throw UsageError(option + " must be >= 0, got " + text);
   return x;
 }
 
 long whole(const std::string& option, const std::string& text, double hi) {
   const double x = number(option, text);
   if (!(x >= 0 && x <= hi && x == std::floor(x)))
-    throw Usage(option + " must be a whole number in [0, " + std::to_string(static_cast<long>(hi)) + "], got " + text);
+    throw UsageError(option + " must be a whole number in [0, " + std::to_string(static_cast<long>(hi)) + "], got " + text);
   return static_cast<long>(x);
 }
 
@@ -66,7 +57,7 @@ std::string size_text(const Image& i) {
 int compare_pngs(const CompareOptions& o) {
   for (const auto& [given, name] :
        {std::pair{bool(o.rtol), "--rtol"}, {bool(o.atol), "--atol"}, {!o.col_tol.empty(), "--col-tol"}})
-    if (given) throw Usage(std::string(name) + " is for CSV files; " + o.a + " and " + o.b + " are PNGs");
+    if (given) throw UsageError(std::string(name) + " is for CSV files; " + o.a + " and " + o.b + " are PNGs");
   ImageTolerance tol;
   if (o.tol) tol.level_tol = static_cast<int>(whole("--tol", *o.tol, 255));
   if (o.max_bad) tol.max_bad_pixels = whole("--max-bad", *o.max_bad, 1e15);
@@ -106,14 +97,14 @@ int compare_pngs(const CompareOptions& o) {
 int compare_csvs(const CompareOptions& o) {
   for (const auto& [given, name] :
        {std::pair{bool(o.tol), "--tol"}, {bool(o.max_bad), "--max-bad"}, {bool(o.diff), "--diff"}})
-    if (given) throw Usage(std::string(name) + " is for PNG files; " + o.a + " and " + o.b + " are not PNGs");
+    if (given) throw UsageError(std::string(name) + " is for PNG files; " + o.a + " and " + o.b + " are not PNGs");
   plot::CsvTolerance tol;
   if (o.rtol) tol.all.rtol = non_negative("--rtol", *o.rtol);
   if (o.atol) tol.all.atol = non_negative("--atol", *o.atol);
   for (const std::string& item : o.col_tol) {
     const size_t eq = item.find('=');
     if (eq == std::string::npos || eq == 0)
-      throw Usage("--col-tol needs NAME=RTOL or NAME=RTOL,ATOL, got '" + item + "'");
+      throw UsageError("--col-tol needs NAME=RTOL or NAME=RTOL,ATOL, got '" + item + "'");
     const std::string name = item.substr(0, eq), value = item.substr(eq + 1);
     const size_t comma = value.find(',');
     plot::ColumnTolerance ct = tol.all;
@@ -132,7 +123,7 @@ int compare_csvs(const CompareOptions& o) {
   try {
     c = plot::compare_csv(a, b, tol);
   } catch (const std::invalid_argument& e) {
-    throw Usage(e.what());
+    throw UsageError(e.what());
   } catch (const std::exception& e) {
     throw Unreadable(e.what());
   }
@@ -147,10 +138,10 @@ int cmd_compare(const CompareOptions& o) {
   try {
     const bool pa = is_png(o.a), pb = is_png(o.b);
     if (pa != pb)
-      throw Usage("cannot compare a PNG with a file that is not one: " + (pa ? o.a : o.b) + " is a PNG, " +
+      throw UsageError("cannot compare a PNG with a file that is not one: " + (pa ? o.a : o.b) + " is a PNG, " +
                   (pa ? o.b : o.a) + " is not");
     return pa ? compare_pngs(o) : compare_csvs(o);
-  } catch (const Usage& e) {
+  } catch (const UsageError& e) {
     std::fprintf(stderr, "beltsim: %s\nRun 'beltsim compare --help' for the usage.\n", e.what());
     return 2;
   } catch (const Unreadable& e) {

@@ -6,6 +6,7 @@
 #include <stdexcept>
 #include <vector>
 
+#include "app/options.hpp"
 #include "io/output_dir.hpp"
 #include "io/suggest.hpp"
 #include "render/recorder.hpp"
@@ -16,10 +17,6 @@ namespace beltsim::app {
 
 namespace {
 
-struct Usage : std::runtime_error {
-  using std::runtime_error::runtime_error;
-};
-
 // n numbers separated by `sep`, each a finite decimal
 std::vector<double> numbers(const std::string& option, const std::string& text, char sep, size_t n,
                             const std::string& form) {
@@ -28,10 +25,10 @@ std::vector<double> numbers(const std::string& option, const std::string& text, 
   std::string item;
   while (std::getline(ss, item, sep)) {
     const auto x = script::decimal(item);
-    if (!x) throw Usage(option + " needs " + form + ", got '" + text + "'");
+    if (!x) throw UsageError(option + " needs " + form + ", got '" + text + "'");
     out.push_back(*x);
   }
-  if (out.size() != n || text.back() == sep) throw Usage(option + " needs " + form + ", got '" + text + "'");
+  if (out.size() != n || text.back() == sep) throw UsageError(option + " needs " + form + ", got '" + text + "'");
   return out;
 }
 
@@ -50,14 +47,14 @@ FrameSettings settings(const RenderOptions& o, const RunSettings& rs) {
       }
     }
     if (!found)
-      throw Usage("--quantity: unknown quantity '" + *o.quantity + "'" + did_you_mean(*o.quantity, names) +
+      throw UsageError("--quantity: unknown quantity '" + *o.quantity + "'" + did_you_mean(*o.quantity, names) +
                   "; one of: " + join(names));
   }
   if (o.size) {
     const auto s = numbers("--size", *o.size, 'x', 2, "WxH in pixels, e.g. 640x360");
     if (s[0] != std::floor(s[0]) || s[1] != std::floor(s[1]) || !(s[0] >= 16 && s[0] <= 8192) ||
         !(s[1] >= 16 && s[1] <= 8192))
-      throw Usage("--size needs whole numbers of pixels in 16..8192, got " + *o.size);
+      throw UsageError("--size needs whole numbers of pixels in 16..8192, got " + *o.size);
     f.width = static_cast<int>(s[0]), f.height = static_cast<int>(s[1]);
   }
   if (o.view) {
@@ -75,7 +72,7 @@ FrameSettings settings(const RenderOptions& o, const RunSettings& rs) {
   try {
     validate(f);
   } catch (const std::invalid_argument& e) {
-    throw Usage(e.what());
+    throw UsageError(e.what());
   }
   return f;
 }
@@ -89,7 +86,7 @@ int cmd_render(const RenderOptions& o) {
     render::render_snapshot(s->scene(), f, s->now(), s->state().data(), s->drive(), o.out, &s->observation());
     std::printf("%s\n", o.out.c_str());
     return 0;
-  } catch (const Usage& e) {
+  } catch (const UsageError& e) {
     std::fprintf(stderr, "beltsim: %s\nRun 'beltsim render --help' for the usage.\n", e.what());
     return 2;
   } catch (const std::exception& e) {
