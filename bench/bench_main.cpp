@@ -171,11 +171,11 @@ void BM_ContactPass(benchmark::State& state, int which) {
   for (auto _ : state) {
     if (which == 0) {
       contact_pass_with(m, sc.drive, 0.05, q, v, Span{0, m.n_el()}, pairs, Pairs::touching,
-                        [dv = m.friction.dv](double mu_i, const NormalLaw& nl, const Vec2& V, double omega) {
+                        [dv = m.friction.dv](int, double mu_i, const NormalLaw& nl, const Vec2& V, double omega) {
                           return friction_law(mu_i, dv, nl, V, omega);
                         });
     } else {
-      contact_pass(m, sc.drive, 0.05, q, v, Span{0, m.n_el()}, pairs);
+      contact_pass(m, sc.drive, 0.05, q, v, nullptr, Span{0, m.n_el()}, pairs);
     }
     benchmark::DoNotOptimize(pairs.data());
   }
@@ -232,7 +232,12 @@ const Scene& variant_scene(int which) {
     d.pulleys[1].coupling = c;
     return build_scene(d);
   }();
-  return which == 0 ? plain : which == 1 ? spray : coupled;
+  static const Scene lugre = [] {
+    SceneDef d = presets::paper_dry();
+    d.friction.law = FrictionKind::lugre;
+    return build_scene(d);
+  }();
+  return which == 0 ? plain : which == 1 ? spray : which == 2 ? coupled : lugre;
 }
 
 void BM_Simulate100msWith(benchmark::State& state, int which) {
@@ -255,6 +260,7 @@ void BM_Simulate100msWith(benchmark::State& state, int which) {
 BENCHMARK_CAPTURE(BM_Simulate100msWith, nothing, 0)->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(BM_Simulate100msWith, spray_off_path, 1)->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(BM_Simulate100msWith, decoupler, 2)->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_Simulate100msWith, lugre, 3)->Unit(benchmark::kMillisecond);
 
 }  // namespace
 }  // namespace beltsim

@@ -103,13 +103,13 @@ if [ "$what" = all ]; then
     media/wet_clip.gif
   # docs/friction.md: the half-wet drive under each friction law, the speeds of both runs in one
   # plot (their timeseries.csv share the sample times; the columns take the law's name in front)
-  for law in threlfall stribeck; do
+  for law in threlfall stribeck lugre; do
     "$b" run scripts/paper_wet.lua --set friction=$law --no-frames --out "$tmp/wet_$law" >/dev/null
   done
   mkdir -p "$tmp/friction_laws"
   python3 media/merge_runs.py "$tmp/friction_laws/timeseries.csv" threlfall="$tmp/wet_threlfall/timeseries.csv" \
-    stribeck="$tmp/wet_stribeck/timeseries.csv"
-  "$b" plot "$tmp/friction_laws/timeseries.csv" threlfall.driver.omega threlfall.driven.omega stribeck.driver.omega \
-    stribeck.driven.omega --out media/friction_laws_wet.png >/dev/null
+    stribeck="$tmp/wet_stribeck/timeseries.csv" lugre="$tmp/wet_lugre/timeseries.csv"
+  "$b" plot "$tmp/friction_laws/timeseries.csv" threlfall.driven.omega stribeck.driven.omega lugre.driven.omega \
+    --out media/friction_laws_wet.png >/dev/null
 fi
 ls -la media media/paper

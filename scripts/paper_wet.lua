@@ -3,6 +3,7 @@
 -- elsewhere; the same torques as the dry case. The wet part travels with the belt.
 --   beltsim run scripts/paper_wet.lua                          the paper's friction law (Threlfall's)
 --   beltsim run scripts/paper_wet.lua --set friction=stribeck  Stribeck's, its parameters' defaults
+--   beltsim run scripts/paper_wet.lua --set friction=lugre     LuGre's, its parameters' defaults
 --                                                              (docs/friction.md)
 
 local l_p = 0.29

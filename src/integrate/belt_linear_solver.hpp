@@ -2,7 +2,9 @@
 // reduced to the size of q using the second-order structure. With J = [[0, I], [M⁻¹K, M⁻¹C]]
 // (K = ∂f/∂q, C = ∂f/∂v, M diagonal) the stage system (s·I - J)·[u_q; u_v] = [r_q; r_v] becomes
 //   (s²·M - s·C - K)·u_v = s·M·r_v + K·r_q,    u_q = (r_q + u_v)/s
-// and the energy quadratures (rows of J taken as zero, see rhs.hpp) give u_e = r_e/s.
+// and the energy quadratures (rows of J taken as zero, see rhs.hpp) give u_e = r_e/s. LuGre's
+// bristle deflections are eliminated first (model/bristles.hpp: bristle_eliminate), which puts
+// K' and C' in the place of K and C and adds their share to the right-hand side.
 // A = s²·M - s·C - K keeps the ring-plus-pulleys pattern; RingSolver factorises it in O(n).
 #pragma once
 
@@ -32,8 +34,12 @@ class BeltLinearSolver final : public LinearSolver {
   Workspace& ws_;
   Jacobian J_;  // taken by prepare_jacobian, factored by factor
   double s_ = 0;
+  // under LuGre's law: K', C' and D of the factored s (K_ and C_ point at them, else at J_'s)
+  BlockMatrix K_eff_, C_eff_;
+  std::vector<double> D_;
+  const BlockMatrix* K_ = nullptr;
   RingSolver solver_;
-  Eigen::VectorXd rhs_, kr_, uv_;
+  Eigen::VectorXd rhs_, kr_, uv_, fz_;
 };
 
 }  // namespace beltsim

@@ -4,14 +4,14 @@ namespace beltsim {
 
 bool BeltNewtonAids::reseat(double t, double* z, double* dz, bool keep_correction) {
   const int N = model_.n_coord();
-  contact_pass(model_, drive_, t, z, z + N, Span{0, model_.n_el()}, pairs_);
+  contact_pass(model_, drive_, t, z, Span{0, model_.n_el()}, pairs_);
   return friction_reseat(model_, drive_, pairs_, z, z + N, dz, dz + N,
                          keep_correction ? Reseat::correction : Reseat::iterate) > 0;
 }
 
 bool BeltNewtonAids::local_solve(double t, double s, double* z, const double* g) {
   const int N = model_.n_coord();
-  contact_pass(model_, drive_, t, z, z + N, Span{0, model_.n_el()}, pairs_);
+  contact_pass(model_, drive_, t, z, Span{0, model_.n_el()}, pairs_);
   return friction_local_solve(model_, drive_, pairs_, s, z, z + N, g + N, local_) > 0;
 }
 
@@ -20,7 +20,7 @@ void BeltNewtonAids::predict(double t, double dt, double* z) const {
 }
 
 uint64_t BeltNewtonAids::branches(double t, const double* y) const {
-  contact_pass(model_, drive_, t, y, y + model_.n_coord(), Span{0, model_.n_el()}, pairs_);
+  contact_pass(model_, drive_, t, y, Span{0, model_.n_el()}, pairs_);
   return contact_branches(model_, pairs_);
 }
 

@@ -12,8 +12,10 @@ namespace beltsim {
 BeltProblem::BeltProblem(const Model& m, const Drive& d) : model_(m), drive_(d), ws_(m) {}
 
 double BeltProblem::atol_scale(int k) const {
-  // natural sizes: 0.1 m (layout), 1 rad, 1 m/s, 10 rad/s (element spin), 1 J
+  // natural sizes: 0.1 m (layout), 1 rad, 1 m/s, 10 rad/s (element spin), 1 J, and a bristle's
+  // deflection at μ = 1, 1/σ0 (so that its error weighs as μ's)
   const int N = model_.n_coord(), ne = 3 * model_.n_el();
+  if (k >= model_.bristle_offset()) return 1.0 / model_.friction.bristle_stiffness;
   if (k >= 2 * N) return 1.0;
   const bool vel = k >= N;
   const int c = vel ? k - N : k;
@@ -34,7 +36,7 @@ double BeltProblem::resolution(int k) const {
 int BeltProblem::switch_count() const { return beltsim::switch_count(model_); }
 
 void BeltProblem::switches(double t, const double* y, double* g) const {
-  contact_pass(model_, drive_, t, y, y + model_.n_coord(), Span{0, model_.n_el()}, pairs_, Pairs::all);
+  contact_pass(model_, drive_, t, y, Span{0, model_.n_el()}, pairs_, Pairs::all);
   contact_switches(model_, pairs_, g);
 }
 
@@ -45,6 +47,10 @@ std::string BeltProblem::describe(int k) const {
                                  "contact dissipation", "friction dissipation"};
   const int N = model_.n_coord(), ne = 3 * model_.n_el();
   std::ostringstream s;
+  if (k >= model_.bristle_offset()) {
+    s << "element " << k - model_.bristle_offset() << " bristle deflection";
+    return s.str();
+  }
   if (k >= 2 * N) {
     s << "energy integral (" << energy[k - 2 * N] << ")";
     return s.str();

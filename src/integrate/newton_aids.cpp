@@ -266,6 +266,7 @@ int friction_local_solve(const Model& m, const Drive& d, const ContactList& pair
 
 int friction_reseat(const Model& m, const Drive& d, const ContactList& pairs, const double* q, double* v,
                     const double* dq, double* dv, Reseat where) {
+  if (m.friction.law == FrictionKind::lugre) return 0;  // no band: the bristle law is smooth but at v_T = 0
   const double band = m.friction.dv;
   int moved = 0;
   for (const ContactPair& c : pairs) {
@@ -335,7 +336,7 @@ void advance_pulleys(const Model& m, const Drive& d, double t, double dt, double
 }  // namespace
 
 void kinematic_predict(const Model& m, const Drive& d, double t, double dt, double* q, double* v, PredictScratch& w) {
-  contact_pass(m, d, t, q, v, Span{0, m.belt.n}, w.pairs);
+  contact_pass(m, d, t, q, v, nullptr, Span{0, m.belt.n}, w.pairs);  // normal laws only
   pressed_pulleys(m, w.pairs, w.on);
   for (int i = 0; i < m.belt.n; ++i) kinematic_move(m, w.on[i], dt, i, q, v);
   advance_pulleys(m, d, t, dt, q, v);
@@ -355,7 +356,7 @@ void convective_predict(const Model& m, const Drive& d, double t, double dt, dou
   w.v0.assign(v, v + 3 * n);
   const double* q0 = w.q0.data();
   const double* v0 = w.v0.data();
-  contact_pass(m, d, t, q, v, Span{0, n}, w.pairs);
+  contact_pass(m, d, t, q, v, nullptr, Span{0, n}, w.pairs);  // normal laws only
   pressed_pulleys(m, w.pairs, w.on);
   advance_pulleys(m, d, t, dt, q, v);
   auto pos = [q0](int k) { return Vec2(q0[3 * k], q0[3 * k + 1]); };

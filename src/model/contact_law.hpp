@@ -90,6 +90,43 @@ inline FrictionLaw stribeck_law(double mu_i, const Friction& f, const NormalLaw&
   fl.dmu += f.viscous;
   return fl;
 }
+// LuGre's law of the same pair (bristles.cpp): the element's bristle deflection z [m] and its
+// rate, with g(v_T) = μ_i·(1 + (μ_s/μ_k - 1)·exp(-(|v_T|/v_s)^δ)) Stribeck's curve:
+//   ż = v_T - σ0·|v_T|·z/g(v_T),   μ = σ0·z + σ1·ż + μ_v·v_T
+// and the partial derivatives of both in v_T and z (with v·g'(v) = -(g - μ_i)·δ·(|v|/v_s)^δ).
+// An element whose μ_i is 0 holds no bristle: ż = -z/τ, μ = μ_v·v_T.
+struct Bristle {
+  double zdot = 0, dzdot_dv = 0, dzdot_dz = 0;  // ż and its derivatives [1, 1/s]
+  double mu = 0, dmu_dv = 0, dmu_dz = 0;        // μ and its derivatives [s/m, 1/m]
+};
+inline Bristle bristle_law(double mu_i, const Friction& f, double vT, double z) {
+  Bristle b;
+  if (mu_i <= 0) {
+    b.zdot = -z / f.release_time;
+    b.dzdot_dz = -1 / f.release_time;
+    b.mu = f.viscous * vT, b.dmu_dv = f.viscous;
+    return b;
+  }
+  double powr;                                                 // (|v_T|/v_s)^δ
+  const double g = mu_i * (1 + stribeck_peak(f, vT, powr));    // Stribeck's curve
+  const double s0 = f.bristle_stiffness, a = std::abs(vT), sg = (vT > 0) - (vT < 0);
+  b.zdot = vT - s0 * a * z / g;
+  b.dzdot_dz = -s0 * a / g;
+  b.dzdot_dv = 1 - s0 * z * sg * (g + f.exponent * powr * (g - mu_i)) / (g * g);  // d(|v|/g)/dv
+  b.mu = s0 * z + f.bristle_damping * b.zdot + f.viscous * vT;
+  b.dmu_dv = f.bristle_damping * b.dzdot_dv + f.viscous;
+  b.dmu_dz = s0 + f.bristle_damping * b.dzdot_dz;
+  return b;
+}
+inline FrictionLaw lugre_law(double mu_i, const Friction& f, double z, const NormalLaw& nl, const Vec2& V,
+                             double omega) {
+  FrictionLaw fl;
+  fl.vT = V.dot(nl.t) - omega * nl.r;
+  const Bristle b = bristle_law(mu_i, f, fl.vT, z);
+  fl.mu_eff = b.mu;
+  fl.dmu = b.dmu_dv;  // at a fixed deflection: z is a state of its own
+  return fl;
+}
 // adds the friction terms of the pair to the element's and pulley's Jacobian rows
 struct PairJacobian {
   Eigen::Matrix2d dF_dP, dF_dV;       // element force rows (x, y) w.r.t. its position, velocity
@@ -137,27 +174,39 @@ inline void contact_pass_with(const Model& m, const Drive& d, double t, const do
         c.nl.p = pl.radius - c.nl.r;
       } else {
         c.mu = d.mu_at(i, t);
-        c.fl = law(c.mu, c.nl, V, omega);
+        c.fl = law(i, c.mu, c.nl, V, omega);
       }
       c.i = i, c.j = j, c.omega = omega;
       out.push_back(c);
     }
   }
 }
-inline void contact_pass(const Model& m, const Drive& d, double t, const double* q, const double* v, const Span& span,
-                         ContactList& out, Pairs which = Pairs::touching) {
+// z: the bristle deflections (Model::bristles; null but under LuGre's law, and for callers that
+// read only the normal laws, which then see LuGre's friction at zero deflection)
+inline void contact_pass(const Model& m, const Drive& d, double t, const double* q, const double* v, const double* z,
+                         const Span& span, ContactList& out, Pairs which = Pairs::touching) {
   const Friction& f = m.friction;
   if (f.law == FrictionKind::threlfall) {
-    contact_pass_with(m, d, t, q, v, span, out, which, [dv = f.dv](double mu_i, const NormalLaw& nl, const Vec2& V,
-                                                                  double omega) {
-      return friction_law(mu_i, dv, nl, V, omega);
-    });
-  } else {
     contact_pass_with(m, d, t, q, v, span, out, which,
-                      [&f](double mu_i, const NormalLaw& nl, const Vec2& V, double omega) {
+                      [dv = f.dv](int, double mu_i, const NormalLaw& nl, const Vec2& V, double omega) {
+                        return friction_law(mu_i, dv, nl, V, omega);
+                      });
+  } else if (f.law == FrictionKind::stribeck) {
+    contact_pass_with(m, d, t, q, v, span, out, which,
+                      [&f](int, double mu_i, const NormalLaw& nl, const Vec2& V, double omega) {
                         return stribeck_law(mu_i, f, nl, V, omega);
                       });
+  } else {
+    contact_pass_with(m, d, t, q, v, span, out, which,
+                      [&f, z](int i, double mu_i, const NormalLaw& nl, const Vec2& V, double omega) {
+                        return lugre_law(mu_i, f, z ? z[i] : 0.0, nl, V, omega);
+                      });
   }
+}
+// the same for a state y = [q | v | e | z]
+inline void contact_pass(const Model& m, const Drive& d, double t, const double* y, const Span& span, ContactList& out,
+                         Pairs which = Pairs::touching) {
+  contact_pass(m, d, t, y, y + m.n_coord(), m.bristles(y), span, out, which);
 }
 
 }  // namespace beltsim

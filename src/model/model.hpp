@@ -8,7 +8,9 @@
 //         | the couplings' rotor angles (each followed by its clutch hub's with a one-way clutch) ]
 //   v = the time derivatives of q, in the same order (element velocities [m/s], [rad/s];
 //       pulley speeds Omega_j [rad/s]; tensioner arm rates [rad/s]; rotor and hub speeds [rad/s]);
-//   e = running integrals of power, present only when energy tracking is on (see EnergyIndex).
+//   e = running integrals of power, present only when energy tracking is on (see EnergyIndex);
+//   z = the elements' bristle deflections [m], present only under the LuGre friction law
+//       (bristles.cpp): y = [ q | v | e | z ].
 //
 // The pulleys', the arms' and the couplings' angles are the border of the belt's ring pattern (n_border).
 // SI units throughout; counter-clockwise positive (z out of the page), y up. The model has no defaults: a scene's
@@ -93,10 +95,12 @@ struct Contact {
 };
 
 // The friction law of every element–pulley pair (contact_law.hpp: friction_law; its formulas at
-// the top of friction.cpp). Both laws scale with the element's own μ_i (Drive::mu), which is its
-// kinetic coefficient.
-enum class FrictionKind { threlfall, stribeck };
-inline const char* friction_law_name(FrictionKind k) { return k == FrictionKind::stribeck ? "stribeck" : "threlfall"; }
+// the top of friction.cpp, LuGre's at the top of bristles.cpp). Every law scales with the
+// element's own μ_i (Drive::mu), which is its kinetic coefficient.
+enum class FrictionKind { threlfall, stribeck, lugre };
+inline const char* friction_law_name(FrictionKind k) {
+  return k == FrictionKind::stribeck ? "stribeck" : k == FrictionKind::lugre ? "lugre" : "threlfall";
+}
 struct Friction {
   double dv = 0;  // [m/s] slip speed at which mu reaches its kinetic value (the regularising band)
   FrictionKind law = FrictionKind::threlfall;
@@ -105,6 +109,11 @@ struct Friction {
   double stribeck_speed = 0;  // v_s [m/s]: the slip speed over which μ falls from μ_s to μ_k
   double exponent = 0;        // δ: the shape of that fall
   double viscous = 0;         // μ_v [s/m]: μ grows by μ_v·v_T
+  // LuGre's (with the Stribeck curve above and its viscous term; Δv is then only the speed scale
+  // of the integrators' error control)
+  double bristle_stiffness = 0;  // σ0 [1/m]: μ = σ0·z + σ1·ż + μ_v·v_T
+  double bristle_damping = 0;    // σ1 [s/m]
+  double release_time = 0;       // τ [s]: out of contact the deflection relaxes as ż = -z/τ
 };
 
 // Running integrals carried in y when Model::track_energy is set; all in joules.
@@ -138,7 +147,11 @@ struct Model {
   int n_border() const { return n_p() + n_arm() + n_coupled(); }  // the coordinates beside the elements
   int n_coord() const { return 3 * belt.n + n_border(); }
   int n_energy() const { return track_energy ? kEnergyCount : 0; }
-  int n_state() const { return 2 * n_coord() + n_energy(); }
+  int n_bristle() const { return friction.law == FrictionKind::lugre ? belt.n : 0; }
+  int bristle_offset() const { return 2 * n_coord() + n_energy(); }  // z_0's index in y
+  int n_state() const { return 2 * n_coord() + n_energy() + n_bristle(); }
+  // the bristle deflections in a state y (null when the law has none)
+  const double* bristles(const double* y) const { return n_bristle() ? y + bristle_offset() : nullptr; }
   int pulley_coord(int j) const { return 3 * belt.n + j; }
   int arm_coord(int a) const { return 3 * belt.n + n_p() + a; }
   int rotor_coord(int c) const { return 3 * belt.n + n_p() + n_arm() + couplings[c].coord; }

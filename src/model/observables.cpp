@@ -100,18 +100,18 @@ PulleyObs pulley_with(const Model& m, const Drive& d, double t, const double* y,
 }
 }  // namespace
 
-ElementContact element_contact(const Model& m, const Drive& d, double t, const double* q, const double* v, int i) {
+ElementContact element_contact(const Model& m, const Drive& d, double t, const double* y, int i) {
   ContactList pairs;
-  contact_pass(m, d, t, q, v, Span{i, i + 1}, pairs);
+  contact_pass(m, d, t, y, Span{i, i + 1}, pairs);
   std::vector<ElementContact> one(1);
   PairSums sums(one, i);
   for (const ContactPair& c : pairs) sums.add(c);
   return one[0];
 }
 
-double belt_torque(const Model& m, const Drive& d, double t, const double* q, const double* v, int j, Vec2* hub_load) {
+double belt_torque(const Model& m, const Drive& d, double t, const double* y, int j, Vec2* hub_load) {
   ContactList pairs;
-  contact_pass(m, d, t, q, v, Span{0, m.n_el()}, pairs);
+  contact_pass(m, d, t, y, Span{0, m.n_el()}, pairs);
   return pulley_load(pairs, j, hub_load);
 }
 
@@ -119,19 +119,19 @@ ElementObs observe_element(const Model& m, const Drive& d, const std::vector<int
                            int i) {
   const double* q = y;
   const double* v = y + m.n_coord();
-  return element_with(d, sense, t, y, i, element_contact(m, d, t, q, v, i), sde_axial_force(m, q, v, i),
+  return element_with(d, sense, t, y, i, element_contact(m, d, t, y, i), sde_axial_force(m, q, v, i),
                       sde_axial_force(m, q, v, (i + 1) % m.n_el()));
 }
 
 PulleyObs observe_pulley(const Model& m, const Drive& d, double t, const double* y, int j) {
   ContactList pairs;
-  contact_pass(m, d, t, y, y + m.n_coord(), Span{0, m.n_el()}, pairs);
+  contact_pass(m, d, t, y, Span{0, m.n_el()}, pairs);
   return pulley_with(m, d, t, y, j, pairs);
 }
 
 void observe_pulleys(const Model& m, const Drive& d, double t, const double* y, ContactList& pairs,
                      std::vector<PulleyObs>& out) {
-  contact_pass(m, d, t, y, y + m.n_coord(), Span{0, m.n_el()}, pairs);
+  contact_pass(m, d, t, y, Span{0, m.n_el()}, pairs);
   out.resize(m.n_p());
   for (int j = 0; j < m.n_p(); ++j) out[j] = pulley_with(m, d, t, y, j, pairs);
 }
@@ -146,7 +146,7 @@ void observe(const Model& m, const Drive& d, const std::vector<int>& sense, doub
   out.contact.resize(n);
   const double* v = y + m.n_coord();
   sde_axial_forces(m, y, v, out.work.data());
-  contact_pass(m, d, t, y, v, Span{0, n}, out.pairs);
+  contact_pass(m, d, t, y, Span{0, n}, out.pairs);
   PairSums sums(out.contact, 0);
   for (const ContactPair& c : out.pairs) sums.add(c);
   double vb = 0;

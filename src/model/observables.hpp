@@ -92,9 +92,10 @@ struct ElementContact {
   double slip = 0;        // v_T against the pulley it touches [m/s]; NaN when free
   int pulley = -1;        // index of the pulley touched (the deepest), -1 when free
 };
-ElementContact element_contact(const Model& m, const Drive& d, double t, const double* q, const double* v, int i);
+// (y: the state, [q | v | e | z])
+ElementContact element_contact(const Model& m, const Drive& d, double t, const double* y, int i);
 // belt torque on pulley j (moment of the friction reactions) [N·m] and hub load vector [N]
-double belt_torque(const Model& m, const Drive& d, double t, const double* q, const double* v, int j, Vec2* hub_load);
+double belt_torque(const Model& m, const Drive& d, double t, const double* y, int j, Vec2* hub_load);
 
 // sense[j]: +1 when the belt goes round pulley j anticlockwise, -1 clockwise (Scene::senses())
 // (its state: free or stick; the gross-slip arc needs its neighbours, see classify_contact)

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 
+#include "model/bristles.hpp"
 #include "model/contact_law.hpp"
 #include "model/forces.hpp"
 
@@ -16,8 +17,8 @@ Span half(const Model& m, int p) {
 }
 
 // the forces of every law at (t, q, v): one contact pass per half, then each law
-void all_forces(const Model& m, const Drive& d, double t, const double* q, const double* v, double* f,
-                double* e_rate, Workspace& w) {
+void all_forces(const Model& m, const Drive& d, double t, const double* q, const double* v, const double* z,
+                double* f, double* e_rate, Workspace& w) {
   const int n = m.belt.n, np = m.n_p();
   std::fill(f, f + m.n_coord(), 0.0);
   if (m.gravity != 0.0) gravity_forces(m, f);
@@ -26,7 +27,7 @@ void all_forces(const Model& m, const Drive& d, double t, const double* q, const
     const Span all{0, n};
     sde_forces(m, q, v, f, e_rate, &w.axes, all);
     bending_forces(m, q, v, f, e_rate, all);
-    contact_pass(m, d, t, q, v, all, w.contacts[0]);
+    contact_pass(m, d, t, q, v, z, all, w.contacts[0]);
     contact_forces(m, d, q, w.contacts[0], f, f + 3 * n, e_rate);
   } else {
     Halves& h = *w.halves;
@@ -36,7 +37,7 @@ void all_forces(const Model& m, const Drive& d, double t, const double* q, const
       double* e = e_rate ? sums + np : nullptr;
       sde_forces(m, q, v, f, e, &w.axes, half(m, p));
       bending_forces(m, q, v, f, e, half(m, p));
-      contact_pass(m, d, t, q, v, half(m, p), w.contacts[p]);
+      contact_pass(m, d, t, q, v, z, half(m, p), w.contacts[p]);
       contact_forces(m, d, q, w.contacts[p], f, sums, e);
     });
     const double *s0 = h.sum(0), *s1 = h.sum(1);
@@ -66,7 +67,7 @@ Workspace::Workspace(const Model& m, bool split) {
 
 void forces(const Model& m, const Drive& d, double t, const double* y, double* f) {
   Workspace w(m, false);
-  all_forces(m, d, t, y, y + m.n_coord(), f, nullptr, w);
+  all_forces(m, d, t, y, y + m.n_coord(), m.bristles(y), f, nullptr, w);
 }
 
 void rhs(const Model& m, const Drive& d, double t, const double* y, double* dy, Workspace* w) {
@@ -83,14 +84,18 @@ void rhs(const Model& m, const Drive& d, double t, const double* y, double* dy, 
     if (d.kinematic(j)) dy[m.pulley_coord(j)] = d.omega(m, j, t, v);
   // accelerations
   double* a = dy + N;
-  all_forces(m, d, t, q, v, a, e_rate, *w);
+  const double* z = m.bristles(y);
+  all_forces(m, d, t, q, v, z, a, e_rate, *w);
   for (int k = 0; k < N; ++k) a[k] /= d.mass(m, k);
+  // the bristles' deflections
+  if (z) bristle_rates(m, z, w->contacts, w->halves ? 2 : 1, dy + m.bristle_offset());
 }
 
 void Jacobian::resize(const Model& m) {
   K.resize(m.n_el(), m.n_border());
   C.resize(m.n_el(), m.n_border());
   f_t.setZero(m.n_coord());
+  if (m.n_bristle()) B.resize(m.n_el(), m.n_border());
 }
 
 void jacobian(const Model& m, const Drive& d, double t, const double* y, Jacobian& J, Workspace* w) {
@@ -98,6 +103,7 @@ void jacobian(const Model& m, const Drive& d, double t, const double* y, Jacobia
   if (!w) own = std::make_unique<Workspace>(m, false), w = own.get();
   const double* q = y;
   const double* v = y + m.n_coord();
+  const double* z = m.bristles(y);
   const int n = m.belt.n, np = m.n_p();
   J.f_t.setZero();
   w->axes.fit(n);
@@ -107,7 +113,7 @@ void jacobian(const Model& m, const Drive& d, double t, const double* y, Jacobia
     const Span all{0, n};
     sde_jacobian(m, q, v, J.K, J.C, &w->axes, all);
     bending_jacobian(m, q, v, J.K, J.C, all);
-    contact_pass(m, d, t, q, v, all, w->contacts[0]);
+    contact_pass(m, d, t, q, v, z, all, w->contacts[0]);
     contact_jacobian(m, d, t, q, v, w->contacts[0], J.K, J.C, J.f_t.data(), nullptr);
   } else {
     Halves& h = *w->halves;
@@ -122,7 +128,7 @@ void jacobian(const Model& m, const Drive& d, double t, const double* y, Jacobia
       std::fill(dmo, dmo + np, 0.0);
       sde_jacobian(m, q, v, J.K, J.C, &w->axes, half(m, p));
       bending_jacobian(m, q, v, J.K, J.C, half(m, p));
-      contact_pass(m, d, t, q, v, half(m, p), w->contacts[p]);
+      contact_pass(m, d, t, q, v, z, half(m, p), w->contacts[p]);
       contact_jacobian(m, d, t, q, v, w->contacts[p], J.K, J.C, J.f_t.data(), dmo);
     });
     const double *d0 = h.sum(0) + np + kEnergyCount, *d1 = h.sum(1) + np + kEnergyCount;
@@ -131,6 +137,10 @@ void jacobian(const Model& m, const Drive& d, double t, const double* y, Jacobia
   pulley_jacobian(m, d, t, v, J.C, J.f_t.data());
   if (!m.arms.empty()) arm_jacobian(m, q, v, J.K, J.C);
   if (!m.couplings.empty()) coupling_jacobian(m, d, t, v, J.K, J.C, J.f_t.data());
+  if (z) {
+    J.B.clear(m.friction.release_time);
+    for (int p = 0; p < (w->halves ? 2 : 1); ++p) bristle_jacobian(m, d, t, q, v, z, w->contacts[p], J.B);
+  }
 }
 
 Energy energy(const Model& m, const Drive& d, double t, const double* y) {

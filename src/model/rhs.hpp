@@ -1,11 +1,13 @@
 // The right-hand side ẏ = F(t, y) of the first-order system and its Jacobian.
-//   q̇ = v,   M·v̇ = f(t, q, v),   ė = power of each energy channel (when tracked)
+//   q̇ = v,   M·v̇ = f(t, q, v, z),   ė = power of each energy channel (when tracked),
+//   ż = the bristles' deflection rates (under LuGre's law, bristles.cpp)
 // with f the sum of the force laws in forces.hpp and M diagonal (Drive::mass).
 #pragma once
 
 #include <vector>
 
 #include "model/block_matrix.hpp"
+#include "model/bristles.hpp"
 #include "model/drive.hpp"
 #include "model/forces.hpp"
 #include "model/model.hpp"
@@ -17,11 +19,13 @@ namespace beltsim {
 // its own, for tests) holds the evaluation's contact pass and scratch (workspace.hpp)
 void rhs(const Model& m, const Drive& d, double t, const double* y, double* dy, Workspace* w = nullptr);
 
-// ∂f/∂q, ∂f/∂v and ∂f/∂t at (t, y). The energy rows are not part of it: they are pure
-// quadratures that feed nothing back, and the integrators treat them as such (W-method).
+// ∂f/∂q, ∂f/∂v and ∂f/∂t at (t, y), and under LuGre's law the bristles' rows and columns. The
+// energy rows are not part of it: they are pure quadratures that feed nothing back, and the
+// integrators treat them as such (W-method).
 struct Jacobian {
   BlockMatrix K, C;
   Eigen::VectorXd f_t;
+  BristleJacobian B;  // sized under LuGre's law only
   void resize(const Model& m);
 };
 void jacobian(const Model& m, const Drive& d, double t, const double* y, Jacobian& J, Workspace* w = nullptr);

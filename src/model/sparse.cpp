@@ -34,7 +34,8 @@ void assemble(const Model& m, const Drive& d, double alpha, double beta, const B
   A.setFromTriplets(t.begin(), t.end());
 }
 
-void assemble_ode_jacobian(const Model& m, const Drive& d, const BlockMatrix& K, const BlockMatrix& C, Eigen::SparseMatrix<double>& J) {
+void assemble_ode_jacobian(const Model& m, const Drive& d, const BlockMatrix& K, const BlockMatrix& C,
+                           const BristleJacobian* B, Eigen::SparseMatrix<double>& J) {
   const int n = m.n_el(), np = m.n_border(), ne = 3 * n, N = m.n_coord(), S = m.n_state();
   std::vector<Eigen::Triplet<double>> t;
   t.reserve(2 * 27 * n + 4 * ne * np + 2 * np * np + 2 * S);
@@ -69,6 +70,23 @@ void assemble_ode_jacobian(const Model& m, const Drive& d, const BlockMatrix& K,
     for (int l = 0; l < np; ++l) {
       t.emplace_back(N + ne + j, ne + l, K.pulley_pulley(j, l) * inv_p);
       t.emplace_back(N + ne + j, N + ne + l, C.pulley_pulley(j, l) * inv_p);
+    }
+  }
+  if (B) {
+    const int zo = m.bristle_offset();
+    for (int i = 0; i < n; ++i) {
+      const int row = zo + i;
+      t.emplace_back(row, row, B->dz[i]);
+      for (int r = 0; r < 2; ++r) {
+        t.emplace_back(row, 3 * i + r, B->dP[i][r]);
+        t.emplace_back(row, N + 3 * i + r, B->dV[i][r]);
+        t.emplace_back(N + 3 * i + r, row, B->F[i][r] / d.mass(m, 3 * i + r));
+      }
+      for (int b = 0; b < np; ++b) {
+        t.emplace_back(row, ne + b, B->dq_b(i, b));
+        t.emplace_back(row, N + ne + b, B->dv_b(i, b));
+        t.emplace_back(N + ne + b, row, B->F_b(b, i) / d.mass(m, ne + b));
+      }
     }
   }
   J.resize(S, S);

@@ -5,6 +5,7 @@
 #include <Eigen/SparseCore>
 
 #include "model/block_matrix.hpp"
+#include "model/bristles.hpp"
 #include "model/drive.hpp"
 #include "model/model.hpp"
 
@@ -14,9 +15,12 @@ namespace beltsim {
 void assemble(const Model& m, const Drive& d, double alpha, double beta, const BlockMatrix& C, const BlockMatrix& K, int rows,
               Eigen::SparseMatrix<double>& A);
 
-// The full Jacobian of the first-order system y' = F(t, y), y = [q | v | e] (the peer
+// The full Jacobian of the first-order system y' = F(t, y), y = [q | v | e | z] (the peer
 // integrators' view): J = [[0, I], [M⁻¹K, M⁻¹C]] with the energy rows zero (quadratures), a
-// kinematic pulley's q row zero (its speed is prescribed), and every diagonal entry stored.
-void assemble_ode_jacobian(const Model& m, const Drive& d, const BlockMatrix& K, const BlockMatrix& C, Eigen::SparseMatrix<double>& J);
+// kinematic pulley's q row zero (its speed is prescribed), and every diagonal entry stored; under
+// LuGre's law B (else null) gives the bristles' rows and columns (each row holds its element's
+// and every border column, so the pattern does not depend on which pulley an element touches).
+void assemble_ode_jacobian(const Model& m, const Drive& d, const BlockMatrix& K, const BlockMatrix& C,
+                           const BristleJacobian* B, Eigen::SparseMatrix<double>& J);
 
 }  // namespace beltsim

@@ -17,7 +17,8 @@ using R = Rule;
 
 bool rigidity(const SceneDef& d) { return d.belt.reading == StiffnessReading::rigidity; }
 bool per_sde(const SceneDef& d) { return d.belt.reading == StiffnessReading::per_sde; }
-bool stribeck(const SceneDef& d) { return d.friction.law == FrictionKind::stribeck; }
+bool stribeck(const SceneDef& d) { return d.friction.law != FrictionKind::threlfall; }  // LuGre's curve too
+bool lugre(const SceneDef& d) { return d.friction.law == FrictionKind::lugre; }
 
 // The table. A number's default is `fallback`; what a scenario may leave out but has no single
 // number (a law, a route) says its default in `fallback_text`.
@@ -240,20 +241,29 @@ constexpr Parameter kParameters[] = {
      "the paper's Δv, the slip speed at which μ reaches its kinetic value",
      [](SceneDef& d, PulleyDef&) -> Slot { return &d.friction.dv; }, nullptr, nullptr},
     {"friction", "law", K::other, "", {}, "`\"threlfall\"`", W::paper, R::none,
-     "\"threlfall\" (the paper's: μ_i·sat(v_T/Δv)) or \"stribeck\" (docs/friction.md)", nullptr, nullptr,
+     "\"threlfall\" (the paper's: μ_i·sat(v_T/Δv)), \"stribeck\" or \"lugre\" (docs/friction.md)", nullptr, nullptr,
      [](const SceneDef& d, const PulleyDef&) -> std::string { return friction_law_name(d.friction.law); }},
     {"friction", "static_ratio", K::number, "", 1.3, "", W::ours, R::positive,
-     "stribeck: μ_s/μ_k, the peak at the edge of the band over the element's kinetic μ (belt.mu)",
+     "stribeck, lugre: μ_s/μ_k, the peak of the curve at rest over the element's kinetic μ (belt.mu)",
      [](SceneDef& d, PulleyDef&) -> Slot { return &d.friction.static_ratio; }, stribeck, nullptr},
     {"friction", "stribeck_speed", K::number, "m/s", 0.01, "", W::ours, R::positive,
-     "stribeck: v_s, the slip speed over which μ falls from μ_s towards μ_k",
+     "stribeck, lugre: v_s, the slip speed over which μ falls from μ_s towards μ_k",
      [](SceneDef& d, PulleyDef&) -> Slot { return &d.friction.stribeck_speed; }, stribeck, nullptr},
     {"friction", "exponent", K::number, "", 2, "", W::ours, R::positive,
-     "stribeck: δ, the shape of the fall, exp(-(v_T/v_s)^δ) for v_T > 0",
+     "stribeck, lugre: δ, the shape of the fall, exp(-(v_T/v_s)^δ) for v_T > 0",
      [](SceneDef& d, PulleyDef&) -> Slot { return &d.friction.exponent; }, stribeck, nullptr},
     {"friction", "viscous", K::number, "s/m", 0, "", W::ours, R::non_negative,
-     "stribeck: μ_v, the viscous term: μ grows by μ_v·v_T",
+     "stribeck, lugre: μ_v, the viscous term: μ grows by μ_v·v_T",
      [](SceneDef& d, PulleyDef&) -> Slot { return &d.friction.viscous; }, stribeck, nullptr},
+    {"friction", "bristle_stiffness", K::number, "1/m", 1e5, "", W::ours, R::positive,
+     "lugre: σ0, μ per metre of bristle deflection (μ_s/σ0 is the deflection before sliding)",
+     [](SceneDef& d, PulleyDef&) -> Slot { return &d.friction.bristle_stiffness; }, lugre, nullptr},
+    {"friction", "bristle_damping", K::number, "s/m", 0.3, "", W::ours, R::non_negative,
+     "lugre: σ1, μ per m/s of the deflection's rate",
+     [](SceneDef& d, PulleyDef&) -> Slot { return &d.friction.bristle_damping; }, lugre, nullptr},
+    {"friction", "release_time", K::number, "s", 1e-3, "", W::ours, R::positive,
+     "lugre: τ, the time in which an element's deflection relaxes once it leaves a pulley",
+     [](SceneDef& d, PulleyDef&) -> Slot { return &d.friction.release_time; }, lugre, nullptr},
 
     // ---- spray = { {...}, ... }: zones that wet the belt (model/spray.hpp); read by their own code ----
     {"spray", "centre", K::other, "m", {}, "", W::none, R::none, "{x, y} of the zone's circle; required", nullptr,

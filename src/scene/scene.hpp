@@ -135,7 +135,10 @@ struct SceneDef {
                     .static_ratio = parameter_default("friction.static_ratio"),
                     .stribeck_speed = parameter_default("friction.stribeck_speed"),
                     .exponent = parameter_default("friction.exponent"),
-                    .viscous = parameter_default("friction.viscous")};
+                    .viscous = parameter_default("friction.viscous"),
+                    .bristle_stiffness = parameter_default("friction.bristle_stiffness"),
+                    .bristle_damping = parameter_default("friction.bristle_damping"),
+                    .release_time = parameter_default("friction.release_time")};
   double gravity = parameter_default("gravity");  // [m/s²]; 0 switches gravity off
   bool track_energy = false;
   bool allow_large = false;         // past the size limits that protect the machine (validate)

@@ -339,6 +339,9 @@ void write_scene(CheckpointWriter& w, const Scene& sc) {
   w.line("friction.stribeck_speed", m.friction.stribeck_speed);
   w.line("friction.exponent", m.friction.exponent);
   w.line("friction.viscous", m.friction.viscous);
+  w.line("friction.bristle_stiffness", m.friction.bristle_stiffness);
+  w.line("friction.bristle_damping", m.friction.bristle_damping);
+  w.line("friction.release_time", m.friction.release_time);
   w.line("gravity", m.gravity);
   w.line("energy", m.track_energy);
   write_drive(w, m, sc.drive);
@@ -448,12 +451,14 @@ Scene read_scene(CheckpointReader& r) {
   m.contact.b = r.line_num("contact.damping");
   m.contact.p_max = r.line_num("contact.p_max");
   m.friction.dv = r.line_num("friction.dv");
-  m.friction.law = r.line_choice("friction.law", {"threlfall", "stribeck"}) == 1 ? FrictionKind::stribeck
-                                                                                : FrictionKind::threlfall;
+  m.friction.law = static_cast<FrictionKind>(r.line_choice("friction.law", {"threlfall", "stribeck", "lugre"}));
   m.friction.static_ratio = r.line_num("friction.static_ratio");
   m.friction.stribeck_speed = r.line_num("friction.stribeck_speed");
   m.friction.exponent = r.line_num("friction.exponent");
   m.friction.viscous = r.line_num("friction.viscous");
+  m.friction.bristle_stiffness = r.line_num("friction.bristle_stiffness");
+  m.friction.bristle_damping = r.line_num("friction.bristle_damping");
+  m.friction.release_time = r.line_num("friction.release_time");
   m.gravity = r.line_num("gravity");
   m.track_energy = r.line_bool("energy");
   sc.drive = read_drive(r, m);

@@ -60,7 +60,7 @@ double arm_belt_moment(const Scene& sc, int a) {
   const Model& m = sc.model;
   const double* q = sc.y0.data();
   Vec2 hub;
-  belt_torque(m, sc.drive, 0.0, q, q + m.n_coord(), m.arms[a].pulley, &hub);
+  belt_torque(m, sc.drive, 0.0, q, m.arms[a].pulley, &hub);
   return hub.dot(arm_lever(m, a, q));
 }
 

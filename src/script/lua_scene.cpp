@@ -365,8 +365,10 @@ int l_scene(lua_State* L) {
         d.friction.law = FrictionKind::threlfall;
       else if (*v == "stribeck")
         d.friction.law = FrictionKind::stribeck;
+      else if (*v == "lugre")
+        d.friction.law = FrictionKind::lugre;
       else
-        fail(L, "friction.law: 'threlfall' or 'stribeck' expected, got '" + *v + "'");
+        fail(L, "friction.law: 'threlfall', 'stribeck' or 'lugre' expected, got '" + *v + "'");
     }
     // a law's own parameters with another law: a mistake the run would silently ignore
     for (const Parameter* par : parameters_of("friction"))

@@ -219,7 +219,7 @@ TEST(FrictionLocalSolve, ZeroesTheTangentialResidualOfWholeWraps) {
     for (int a = 0; a < m.n_arm(); ++a) y[N + m.arm_coord(a)] = arm_rate;
     const double band = m.friction.dv, s = 1 / (0.43 * 2e-4);
     ContactList pairs;
-    contact_pass(m, dr, 0, y.data(), y.data() + N, Span{0, m.n_el()}, pairs);
+    contact_pass(m, dr, 0, y.data(), Span{0, m.n_el()}, pairs);
     // slip velocities of a few band widths either way (half a band width on an arm's pulley),
     // varying along the belt, on a wrap that moves with its pulley's centre
     for (const ContactPair& c : pairs) {
@@ -228,7 +228,7 @@ TEST(FrictionLocalSolve, ZeroesTheTangentialResidualOfWholeWraps) {
       const Vec2 Vc = m.centre_velocity(c.j, y.data(), y.data() + N);
       y[N + 3 * c.i] += u * c.nl.t.x() + Vc.x(), y[N + 3 * c.i + 1] += u * c.nl.t.y() + Vc.y();
     }
-    contact_pass(m, dr, 0, y.data(), y.data() + N, Span{0, m.n_el()}, pairs);
+    contact_pass(m, dr, 0, y.data(), Span{0, m.n_el()}, pairs);
     Eigen::VectorXd g = Eigen::VectorXd::Zero(N);
     // rad/s; none on an arm's pulley, whose wrap of a few elements then sticks
     for (int j = 0; j < m.n_p(); ++j) g[m.pulley_coord(j)] = m.pulleys[j].arm < 0 ? 0.3 * (j + 1) : 0.0;

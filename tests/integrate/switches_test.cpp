@@ -72,7 +72,7 @@ TEST(ContactSwitches, TheirSignsAreTheLawsPieces) {
     const Eigen::VectorXd y = random_state(m, sc.y0, rng);
     const double t = 0.5;
     ContactList pairs;
-    contact_pass(m, sc.drive, t, y.data(), y.data() + N, Span{0, n}, pairs, Pairs::all);
+    contact_pass(m, sc.drive, t, y.data(), Span{0, n}, pairs, Pairs::all);
     contact_switches(m, pairs, g.data());
     for (int j = 0; j < m.n_p(); ++j)
       for (int i = 0; i < n; ++i) {
@@ -102,7 +102,7 @@ TEST(ContactSwitches, AreContinuousInTheState) {
   const Scene sc = build_scene(presets::paper_dry());
   const Model& m = sc.model;
   const Drive& dr = sc.drive;
-  const int N = m.n_coord(), count = switch_count(m);
+  const int count = switch_count(m);
   std::mt19937 rng(5);
   const Eigen::VectorXd a = random_state(m, sc.y0, rng), b = random_state(m, sc.y0, rng);
   constexpr int kSteps = 20000;
@@ -110,7 +110,7 @@ TEST(ContactSwitches, AreContinuousInTheState) {
   for (int s = 0; s <= kSteps; ++s) {
     const Eigen::VectorXd y = a + (b - a) * (static_cast<double>(s) / kSteps);
     ContactList pairs;
-    contact_pass(m, dr, 0.5, y.data(), y.data() + N, Span{0, m.n_el()}, pairs, Pairs::all);
+    contact_pass(m, dr, 0.5, y.data(), Span{0, m.n_el()}, pairs, Pairs::all);
     contact_switches(m, pairs, g.data());
     for (int k = 0; k < count; ++k) {
       lo[k] = std::min(lo[k], g[k]), hi[k] = std::max(hi[k], g[k]);

@@ -1,6 +1,8 @@
 // The friction laws of one element–pulley pair (contact_law.hpp, formulas at the top of
 // model/friction.cpp): Stribeck's law without its peak and viscous term is Threlfall's to the bit;
-// with them it has the curve's known values; its slope is the derivative of its value.
+// with them it has the curve's known values; its slope is the derivative of its value. LuGre's
+// bristle (model/bristles.cpp): its steady sliding state is Stribeck's curve, it holds a load
+// below μ_s at rest, and its slopes are the derivatives of its values.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -84,6 +86,55 @@ TEST(FrictionLaw, StribeckSlopeIsTheDerivativeOfItsValue) {
       EXPECT_NEAR(c.dmu, fd, 1e-6 * std::max(std::abs(fd), 0.8 / f.stribeck_speed))
           << "δ = " << delta << ", v_T = " << vT;
     }
+  }
+}
+
+Friction lugre(double ratio, double vs, double delta, double viscous) {
+  Friction f = stribeck(ratio, vs, delta, viscous);
+  f.law = FrictionKind::lugre;
+  f.bristle_stiffness = 1e4, f.bristle_damping = 0.3, f.release_time = 1e-3;
+  return f;
+}
+
+// Sliding steadily at v the deflection settles where ż = 0, z = g(v)·sgn(v)/σ0, and μ is
+// Stribeck's curve without its band, μ_i·g(v)·sgn(v) + μ_v·v; at rest (v_T = 0) any deflection
+// is steady and μ = σ0·z: a load below μ_s is held. Rounding only: bound 1e-12.
+TEST(FrictionLaw, LugreSlidesOnStribecksCurveAndHoldsAtRest) {
+  const Friction f = lugre(1.5, 5e-3, 2.0, 0.01), s = stribeck(1.5, 5e-3, 2.0, 0.01);
+  const double mu_k = 0.4;
+  for (double v : {-0.3, -5e-3, -1e-4, 2e-4, 5e-3, 0.08}) {
+    const Pair p(v);
+    const double curve = stribeck_law(mu_k, s, p.nl, p.V, p.omega).mu_eff;  // |v| > Δv: sat = ±1
+    const double z = (curve - f.viscous * v) / f.bristle_stiffness;
+    const Bristle b = bristle_law(mu_k, f, v, z);
+    EXPECT_NEAR(b.zdot, 0.0, 1e-12 * std::abs(v)) << "v = " << v;
+    EXPECT_NEAR(b.mu, curve, 1e-12) << "v = " << v;
+  }
+  const double held = 0.9 * 1.5 * mu_k;
+  const Bristle rest = bristle_law(mu_k, f, 0.0, held / f.bristle_stiffness);
+  EXPECT_EQ(rest.zdot, 0.0);
+  EXPECT_NEAR(rest.mu, held, 1e-15);
+}
+
+// ∂ż/∂v, ∂ż/∂z, ∂μ/∂v, ∂μ/∂z against central differences, δ = 1.5 and 2, away from v = 0 (the
+// kink of |v|) and on both sides of v_s; steps 1e-3 of |v| and of z: truncation ~1e-6 relative
+// (the curve's scale is v_s, at least 2.5 times |v| here... or |v| itself), bound 1e-5 relative
+// to the slope's scale (1 for ż's, σ0 for μ's in z).
+TEST(FrictionLaw, BristleSlopes) {
+  for (double delta : {1.5, 2.0}) {
+    const Friction f = lugre(1.6, 5e-3, delta, 0.05);
+    for (double v : {-2e-2, -4e-3, -5e-4, 3e-4, 2e-3, 1e-2})
+      for (double zr : {-0.8, 0.2, 1.1}) {
+        const double mu_k = 0.5, z = zr * 1.6 * mu_k / f.bristle_stiffness;
+        const Bristle b = bristle_law(mu_k, f, v, z);
+        const double hv = 1e-3 * std::abs(v), hz = 1e-3 * std::abs(z);
+        const Bristle vp = bristle_law(mu_k, f, v + hv, z), vm = bristle_law(mu_k, f, v - hv, z);
+        const Bristle zp = bristle_law(mu_k, f, v, z + hz), zm = bristle_law(mu_k, f, v, z - hz);
+        EXPECT_NEAR(b.dzdot_dv, (vp.zdot - vm.zdot) / (2 * hv), 1e-5) << "δ " << delta << ", v " << v << ", z " << zr;
+        EXPECT_NEAR(b.dmu_dv, (vp.mu - vm.mu) / (2 * hv), 1e-5) << "δ " << delta << ", v " << v << ", z " << zr;
+        EXPECT_NEAR(b.dzdot_dz, (zp.zdot - zm.zdot) / (2 * hz), 1e-5 * f.bristle_stiffness * std::abs(v));
+        EXPECT_NEAR(b.dmu_dz, (zp.mu - zm.mu) / (2 * hz), 1e-5 * f.bristle_stiffness);
+      }
   }
 }
 

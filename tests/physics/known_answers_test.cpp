@@ -68,7 +68,7 @@ TEST(KnownAnswers, HubLoadIsTheSumOfTheSpanTensions) {
     const size_t np = sc.route_pulleys.size();
     for (size_t k = 0; k < np; ++k) {
       Vec2 hub;
-      belt_torque(m, dr, 0.0, sc.y0.data(), sc.y0.data() + m.n_coord(), sc.route_pulleys[k], &hub);
+      belt_torque(m, dr, 0.0, sc.y0.data(), sc.route_pulleys[k], &hub);
       const int in = sc.span_sde[(k + np - 1) % np], out = sc.span_sde[k];
       const Vec2 F_in = m.belt.k * sde_gap(m, sc.y0.data(), in), F_out = m.belt.k * sde_gap(m, sc.y0.data(), out);
       const int carried = ((out - in) % n + n) % n;  // elements in, in+1, ..., out-1
@@ -404,7 +404,7 @@ Capstan capstan_run(const Friction& f, double mu, double torque, double t_ramp, 
   const Eigen::VectorXd& y = s.y.back();
   const double* q = y.data();
   const double* v = q + sc.model.n_coord();
-  return {v[sc.model.pulley_coord(0)], belt_torque(sc.model, sc.drive, s.t.back(), q, v, 0, nullptr)};
+  return {v[sc.model.pulley_coord(0)], belt_torque(sc.model, sc.drive, s.t.back(), q, 0, nullptr)};
 }
 double capstan_limit(double mu) { return 0.1 * 2 * 500 * std::tanh(mu * M_PI / 2); }
 
@@ -415,6 +415,16 @@ Friction stribeck_friction(double ratio, double vs) {
   f.stribeck_speed = vs;
   f.exponent = 2;
   f.viscous = 0;
+  return f;
+}
+
+// LuGre's (model/bristles.cpp) with the same curve; its bristles (σ0 = 1e5 1/m, the default) hold
+// the belt up to μ_s's limit at any slip below v_s, like Stribeck's band. The capstan formula is
+// the limit of rigid bristles: softer ones carry more past the limit (measured at 0.06 s:
+// 32.44 N·m with σ0 = 1e4, 30.93 with 1e5, against 30.74 and 30.78 for the other laws).
+Friction lugre_friction(double ratio, double vs) {
+  Friction f = stribeck_friction(ratio, vs);
+  f.law = FrictionKind::lugre;
   return f;
 }
 
@@ -437,6 +447,15 @@ TEST(KnownAnswers, CapstanLimitWithEachLaw) {
   EXPECT_LT(s.omega, -3.0);
   EXPECT_NEAR(std::abs(t.moment), capstan_limit(mu_k), 0.03 * capstan_limit(mu_k));
   EXPECT_NEAR(std::abs(s.moment), capstan_limit(mu_k), 0.03 * capstan_limit(mu_k));
+  // LuGre's: held between the limits, and at large slip the kinetic limit
+  const Friction lugre = lugre_friction(1.5, 0.1);
+  const Capstan lheld = capstan_run(lugre, mu_k, between, 0.03, 0.06);
+  const Capstan ls = capstan_run(lugre, mu_k, 1.05 * capstan_limit(1.5 * mu_k), 0.03, 0.06);
+  std::printf("capstan, LuGre: at %.1f N·m %.3f rad/s; past the limit %.2f rad/s %.2f N·m\n", between, lheld.omega,
+              ls.omega, ls.moment);
+  EXPECT_LT(std::abs(lheld.omega), 0.5);
+  EXPECT_LT(ls.omega, -3.0);
+  EXPECT_NEAR(std::abs(ls.moment), capstan_limit(mu_k), 0.03 * capstan_limit(mu_k));
 }
 
 // Drift under a constant tangential load below the limit. Threlfall's law has no true stick: an
@@ -481,6 +500,21 @@ TEST(KnownAnswers, DriftUnderASubLimitLoadIsTheBandsCreep) {
   EXPECT_NEAR(peaked, expected / 1.5, 0.05 * expected / 1.5);
 }
 
+// LuGre's law has true stick: under the same load each element's bristle deflects to z = μ/σ0 and
+// the belt stops. With σ0 = 1e5 1/m the deflections wind the driver on by at most
+// 2·μ_s/σ0/r = 3e-5 rad in all, so its mean speed over 0.25-0.3 s, long after the load came on,
+// is the belt's ringing, not a creep: bound 1 % of Threlfall's drift (0.48 rad/s; measured
+// below 1e-6 rad/s, 3.6e-5 with σ0 = 1e4).
+TEST(KnownAnswers, LugreHoldsASubLimitLoadWithoutDrift) {
+  // the load's ramp end winds the belt up at once: a few steps retried at a fifth of their size
+  test::expect_warnings({WarningKind::failed_step});
+  const double M = 15.0, mu = 0.2, r = 0.1, T0 = 500, dv = 0.05;
+  const double threlfall = 4 * dv * std::atanh(M / (2 * r * T0)) / (M_PI * mu * r);
+  const double held = -drift_speed(lugre_friction(1.5, 1.0), M);
+  std::printf("drift: LuGre %.2e rad/s, Threlfall's creep %.4f rad/s\n", held, threlfall);
+  EXPECT_LT(std::abs(held), 0.01 * threlfall);
+}
+
 // ---- 6. centrifugal tension ---------------------------------------------------------------------
 // Both pulleys held at the speed of a belt running at v = 30 m/s (the belt starts in that rigid
 // motion). The belt on a half wrap turns its momentum round: the pulley carries the two span
@@ -507,7 +541,7 @@ TEST(KnownAnswers, CentrifugalTensionUnloadsThePulleys) {
     T += 0.5 * sde_axial_force(m, q, vel, sde_nearest(m, q, 0.5 * (sp.from + sp.to)));
   for (int j = 0; j < m.n_p(); ++j) {
     Vec2 hub;
-    belt_torque(m, dr, s.t.back(), q, vel, j, &hub);
+    belt_torque(m, dr, s.t.back(), q, j, &hub);
     const double expected = 2 * (T - rho * v * v);
     EXPECT_NEAR(hub.norm(), expected, 0.01 * expected) << m.pulleys[j].name << ", span tension " << T << " N";
   }
@@ -526,7 +560,11 @@ TEST(KnownAnswers, CentrifugalTensionUnloadsThePulleys) {
 // The creep is the belt's elasticity, not its friction law: Stribeck's belt (μ_s = 1.5·μ, v_s =
 // 0.01 m/s) loses the same speed within the same bound (measured 0.0490 rad/s against 0.0506,
 // -3.3 %).
-void expect_creep_loss(const Friction& f) {
+// LuGre's belt loses the elastic part and, depending on how stiff its bristles are, some of the
+// radial one: measured 0.04274 rad/s with σ0 = 1e5 1/m (the elastic part alone is 0.0400, with
+// the radial part 0.0500) and 0.05207 with σ0 = 1e4. So its bounds are the two predictions:
+// from 5 % under the elastic part to 10 % over the whole (radial = false).
+void expect_creep_loss(const Friction& f, bool radial = true) {
   SceneDef d = presets::paper_dry();
   d.friction = f;
   const double w1 = 20.0, v = w1 * 0.1;
@@ -558,11 +596,18 @@ void expect_creep_loss(const Friction& f) {
     const double N = 2 * T * std::sin(alpha / 2), c1 = m.contact.c1, c2 = m.contact.c2;
     return (-c2 + std::sqrt(c2 * c2 + 4 * c1 * N)) / (2 * c1);
   };
-  const double ratio = (R - depth(T1)) / (R - depth(T2)) * (1 + T2 / EA) / (1 + T1 / EA);
+  const double elastic = (1 + T2 / EA) / (1 + T1 / EA);
+  const double ratio = (R - depth(T1)) / (R - depth(T2)) * elastic;
   const double expected = w1 * (1 - ratio);
   EXPECT_NEAR(T1 - T2, 300.0, 30.0) << "the load is 30 N·m on r = 0.1 m";
-  EXPECT_NEAR(loss, expected, 0.1 * expected) << "T1 = " << T1 << " N, T2 = " << T2 << " N";
-  std::printf("%s: creep loss %.5f rad/s, expected %.5f\n", friction_law_name(f.law), loss, expected);
+  if (radial) {
+    EXPECT_NEAR(loss, expected, 0.1 * expected) << "T1 = " << T1 << " N, T2 = " << T2 << " N";
+  } else {
+    EXPECT_GT(loss, 0.95 * w1 * (1 - elastic)) << "T1 = " << T1 << " N, T2 = " << T2 << " N";
+    EXPECT_LT(loss, 1.1 * expected) << "T1 = " << T1 << " N, T2 = " << T2 << " N";
+  }
+  std::printf("%s: creep loss %.5f rad/s, expected %.5f (elastic part %.5f)\n", friction_law_name(f.law), loss,
+              expected, w1 * (1 - elastic));
 }
 
 TEST(KnownAnswers, CreepSpeedLossMatchesTheTensionDifference) {
@@ -574,6 +619,11 @@ TEST(KnownAnswers, CreepSpeedLossMatchesTheTensionDifference) {
 TEST(KnownAnswers, CreepSpeedLossIsTheSameWithStribecksLaw) {
   test::expect_warnings({WarningKind::failed_step});
   expect_creep_loss(stribeck_friction(1.5, 0.01));
+}
+
+TEST(KnownAnswers, CreepSpeedLossIsTheSameWithLugresLaw) {
+  test::expect_warnings({WarningKind::failed_step});
+  expect_creep_loss(lugre_friction(1.5, 0.01), false);
 }
 
 // Euler–Eytelwein: on a steady drive the gross-slip arc of each pulley (where the friction is

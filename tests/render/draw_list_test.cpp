@@ -164,7 +164,7 @@ TEST_F(Fixture, WetAndSlippingElementsAreMarked) {
     const ElementDraw& el = dl.elements[i];
     EXPECT_EQ(el.wet, sc.drive.mu[i] < 0.5);
     wet += el.wet;
-    const ElementContact c = element_contact(m, sc.drive, 0.1, y.data(), y.data() + m.n_coord(), i);
+    const ElementContact c = element_contact(m, sc.drive, 0.1, y.data(), i);
     EXPECT_EQ(el.slipping, o.elements[i].state == ContactState::slip) << i;
     slipping += el.slipping;
     if (c.pulley < 0) {
@@ -207,7 +207,7 @@ TEST_F(Fixture, SignedQuantitiesUseTheDivergingMapWithTheSignAlongTravel) {
   const Model& m = sc.model;
   double on_driver = 0, on_driven = 0;
   for (int i = 0; i < m.n_el(); ++i) {
-    const ElementContact c = element_contact(m, sc.drive, 0, y.data(), y.data() + m.n_coord(), i);
+    const ElementContact c = element_contact(m, sc.drive, 0, y.data(), i);
     if (c.pulley == 0) on_driver += slip[i];
     if (c.pulley == 1) on_driven += slip[i];
   }

@@ -28,7 +28,7 @@ inline Eigen::VectorXd moving_state(const Scene& sc, double v_belt = 6.0) {
   for (int i = 0; i < n; ++i) {
     const Vec2 e = axis(y[3 * i + 2]);
     const double s = 2 * M_PI * i / n;
-    const ElementContact c = element_contact(m, sc.drive, 0.0, sc.y0.data(), sc.y0.data() + N, i);
+    const ElementContact c = element_contact(m, sc.drive, 0.0, sc.y0.data(), i);
     Vec2 shift = 3.8e-4 * std::sin(s) * e;
     if (c.pulley < 0) shift += 3e-4 * std::sin(5 * s) * perp(e);
     y[3 * i] += shift.x(), y[3 * i + 1] += shift.y();

@@ -265,6 +265,22 @@ TEST(SceneIo, StribeckScene) {
   expect_same(sc, back);
 }
 
+// LuGre's law: its parameters and the bristles' deflections, a part of the state, come back
+TEST(SceneIo, LugreScene) {
+  SceneDef d = presets::paper_dry();
+  d.friction.law = FrictionKind::lugre;
+  d.friction.bristle_stiffness = 3.0e4, d.friction.bristle_damping = 0.125, d.friction.release_time = 2.5e-3;
+  Scene sc = build_scene(d);
+  ASSERT_EQ(sc.y0.size(), sc.model.n_state());
+  for (int i = 0; i < sc.model.n_bristle(); ++i) sc.y0[sc.model.bristle_offset() + i] = 1e-5 * std::sin(i + 0.5);
+  const Scene back = round_trip(sc);
+  EXPECT_EQ(back.model.friction.law, FrictionKind::lugre);
+  EXPECT_EQ(back.model.friction.bristle_stiffness, 3.0e4);
+  EXPECT_EQ(back.model.friction.bristle_damping, 0.125);
+  EXPECT_EQ(back.model.friction.release_time, 2.5e-3);
+  expect_same(sc, back);
+}
+
 // the shortest decimal of every double reads back as that double: signed zero, subnormals, the
 // largest, thirds; strings with quotes, backslashes, newlines and '#'
 TEST(SceneIo, ExactValues) {
@@ -363,10 +379,11 @@ TEST(SceneIo, WrongKeywordOrVersionIsRefused) {
   EXPECT_EQ(error_of("beltsim-checkpoint 4\nscene 4\n"),
             "line 1: a version 4 checkpoint; this beltsim reads version " + std::to_string(kCheckpointVersion) +
                 " only: resume it with the beltsim that wrote it, or run the scene again from its script");
-  // version 5 held each input's unit and note; 6 takes them from the parameter table; 7 holds spray zones, the friction law and the couplings
-  for (const int v : {5, 6})
+  // version 5 held each input's unit and note; 6 takes them from the parameter table; 7 holds spray zones, the
+  // friction law and the couplings; 8 LuGre's parameters and the bristles' deflections
+  for (const int v : {5, 6, 7})
     EXPECT_EQ(error_of("beltsim-checkpoint " + std::to_string(v) + "\nscene 4\n"),
-              "line 1: a version " + std::to_string(v) + " checkpoint; this beltsim reads version 7 only: resume it "
+              "line 1: a version " + std::to_string(v) + " checkpoint; this beltsim reads version 8 only: resume it "
               "with the beltsim that wrote it, or run the scene again from its script");
   EXPECT_EQ(error_of("scene 4\nmodel 4\n"), "line 1: not a beltsim checkpoint (it begins 'scene 4')");
   EXPECT_EQ(error_of(resealed(with_line(text, "pulley.wrap", "pulley.wrap outside"))),

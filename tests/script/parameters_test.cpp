@@ -35,11 +35,12 @@ std::string slurp(const fs::path& p) {
 // coupling, "gravity"; a friction law's own parameters with that law), then a run of one
 // millisecond writing parameters.csv.
 std::string scene_with(std::map<std::string, std::string> values) {
-  // a friction law's own parameters (those that apply to one law only) come with that law
+  // a friction law's own parameters (those that apply to some laws only) come with LuGre's, which
+  // takes them all
   for (const auto& [dotted, v] : std::map<std::string, std::string>(values)) {
     const Parameter* p = find_parameter(dotted);
     if (p && p->table == "friction" && p->applies && !values.count("friction.law"))
-      values["friction.law"] = "'stribeck'";
+      values["friction.law"] = "'lugre'";
   }
   std::map<std::string, std::string> tables;
   for (const auto& [dotted, v] : values) {
@@ -180,7 +181,7 @@ TEST(Parameters, EveryNumberReachesParametersCsv) {
   // nothing given (but a tensioner's and a coupling's required two, and the law whose parameters
   // apply): the defaults, marked so
   std::map<std::string, std::string> none = required();
-  none["friction.law"] = "'stribeck'";
+  none["friction.law"] = "'lugre'";
   ASSERT_EQ(run_text(scene_with(none)), "");
   const std::string csv = slurp(temp_dir() / "out" / "parameters.csv");
   for (const auto& [dotted, v] : primary) {
@@ -208,18 +209,22 @@ TEST(Parameters, TheDocsHoldTheTable) {
   EXPECT_EQ(docs.find(begin, b + 1), std::string::npos) << "one copy of the tables";
 }
 
-// friction.law takes the two words and names a third; a law's own parameter under another law is
+// friction.law takes the three words and names a fourth; a law's own parameter under another law is
 // refused with both names (it would otherwise be ignored without a word)
 TEST(Parameters, FrictionLawWordsAndTheirParameters) {
   const std::string at = (temp_dir() / "scene.lua").string() + ":1: ";
   EXPECT_EQ(run_text(scene_with({{"friction.law", "'coulomb'"}})),
-            at + "friction.law: 'threlfall' or 'stribeck' expected, got 'coulomb'");
+            at + "friction.law: 'threlfall', 'stribeck' or 'lugre' expected, got 'coulomb'");
+  EXPECT_EQ(run_text(scene_with({{"friction.law", "'stribeck'"}, {"friction.bristle_stiffness", "1e5"}})),
+            at + "friction.bristle_stiffness: a parameter of another law; this scene's law is 'stribeck'");
   EXPECT_EQ(run_text(scene_with({{"friction.law", "'threlfall'"}, {"friction.static_ratio", "1.5"}})),
             at + "friction.static_ratio: a parameter of another law; this scene's law is 'threlfall'");
   EXPECT_EQ(run_text(scene_with({{"friction.law", "'stribeck'"}, {"friction.static_ratio", "1.5"}})), "");
   const std::string csv = slurp(temp_dir() / "out" / "parameters.csv");
   EXPECT_NE(csv.find("\nfriction.law,"), std::string::npos) << csv;
   EXPECT_NE(csv.find("stribeck"), std::string::npos) << csv;
+  EXPECT_EQ(run_text(scene_with({{"friction.law", "'lugre'"}, {"friction.static_ratio", "1.5"}})), "");
+  EXPECT_NE(slurp(temp_dir() / "out" / "parameters.csv").find("\nfriction.bristle_stiffness,"), std::string::npos);
 }
 
 // every key a scene table takes is in the table once
