@@ -363,10 +363,11 @@ TEST(SceneIo, WrongKeywordOrVersionIsRefused) {
   EXPECT_EQ(error_of("beltsim-checkpoint 4\nscene 4\n"),
             "line 1: a version 4 checkpoint; this beltsim reads version " + std::to_string(kCheckpointVersion) +
                 " only: resume it with the beltsim that wrote it, or run the scene again from its script");
-  // version 5 held each input's unit and note; 6 takes them from the parameter table; 7 holds spray zones, the friction law and the couplings
-  for (const int v : {5, 6})
+  // version 5 held each input's unit and note; 6 takes them from the parameter table; 7 holds spray zones, the friction
+  // law and the couplings; 8 the run's keep_states
+  for (const int v : {5, 6, 7})
     EXPECT_EQ(error_of("beltsim-checkpoint " + std::to_string(v) + "\nscene 4\n"),
-              "line 1: a version " + std::to_string(v) + " checkpoint; this beltsim reads version 7 only: resume it "
+              "line 1: a version " + std::to_string(v) + " checkpoint; this beltsim reads version 8 only: resume it "
               "with the beltsim that wrote it, or run the scene again from its script");
   EXPECT_EQ(error_of("scene 4\nmodel 4\n"), "line 1: not a beltsim checkpoint (it begins 'scene 4')");
   EXPECT_EQ(error_of(resealed(with_line(text, "pulley.wrap", "pulley.wrap outside"))),
