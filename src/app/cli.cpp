@@ -49,9 +49,15 @@ void add_run_overrides(CLI::App* c, Raw& raw) {
 }
 
 CLI::App* add_render_command(CLI::App& app, RenderOptions& o) {
-  CLI::App* c = app.add_subcommand("render", "draw the state a checkpoint holds (sim:save) to a PNG");
-  c->add_option("CHECKPOINT", o.checkpoint, "a checkpoint written by sim:save")->required();
-  c->add_option("--out", o.out, "the PNG to write")->type_name("PNG")->required();
+  CLI::App* c =
+      app.add_subcommand("render", "draw stored states (a checkpoint, or the states a run kept) to PNGs or a video");
+  c->add_option("STATE", o.states,
+                "a checkpoint (sim:save), a kept state (OUT/states/state_NNNNN.ckpt), several of them, or a folder of "
+                "them (its *.ckpt files)")
+      ->required();
+  c->add_option("--out", o.out, "the PNG to write; for several states, the folder of their PNGs")->type_name("PNG|DIR");
+  c->add_option("--video", o.video, "an MP4 of the states, one frame each, at the run's frames per second")
+      ->type_name("MP4");
   std::string names;
   for (const auto& i : frame_quantities()) names += (names.empty() ? "" : ", ") + std::string(i.key);
   c->add_option("--quantity", o.quantity, "colour the belt by: " + names)->type_name("Q");
@@ -61,8 +67,10 @@ CLI::App* add_render_command(CLI::App& app, RenderOptions& o) {
   c->add_option("--magnify", o.magnify, "factor on the belt's deviation from its path")->type_name("M");
   c->add_option("--range", o.range, "colour-bar range in the quantity's unit")->type_name("LO,HI");
   c->footer(
-      "Draws with the renderer of a run's frames, at the checkpoint's time, with the run's frame\n"
-      "settings (or the defaults when it drew none) changed by the options. Prints the PNG's path.");
+      "Draws with the renderer of a run's frames, at each state's time, with the run's frame settings\n"
+      "(the first state's; the defaults when it drew none) changed by the options. Several states:\n"
+      "--out DIR gets DIR/<state name>.png each, --video one frame each, in the order given (a\n"
+      "folder's in the order of their numbers). Prints the path of each file written.");
   return c;
 }
 

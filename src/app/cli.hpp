@@ -7,7 +7,8 @@
 //   beltsim plot    CSV [COLUMNS...] [--out PNG] [--from T]
 //   beltsim sweep   FILE [--out DIR] [--jobs N] [--point K] [--list] [--collect] [--set KEY=V1,V2,..]...
 //                        [--slurm [--submit] [--partition P] [--time T] [--max-parallel M]] [SAFETY]
-//   beltsim render  CHECKPOINT --out PNG [--quantity Q] [--size WxH] [--view X,Y,W] [--magnify M] [--range LO,HI]
+//   beltsim render  STATE... [--out PNG|DIR] [--video MP4] [--quantity Q] [--size WxH] [--view X,Y,W] [--magnify M]
+//                           [--range LO,HI]
 //   beltsim compare A B [--tol L] [--max-bad N] [--diff PNG] [--rtol R] [--atol A] [--col-tol NAME=R[,A]]...
 //   beltsim console [SCRIPT] [--out DIR] [--t-end T] [--integrator NAME] [--rtol R] [--max-wall S]
 //                            [--no-frames] [--set KEY=VALUE]... [SAFETY] [-- ARGS...]

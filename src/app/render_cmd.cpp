@@ -1,15 +1,19 @@
 #include "app/render_cmd.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <sstream>
 #include <stdexcept>
 #include <vector>
 
 #include "app/options.hpp"
+#include "io/checkpoint_text.hpp"
 #include "io/output_dir.hpp"
 #include "io/suggest.hpp"
 #include "render/recorder.hpp"
+#include "scene/scene_io.hpp"
 #include "script/script_args.hpp"
 #include "sim/simulation.hpp"
 
@@ -77,19 +81,85 @@ FrameSettings settings(const RenderOptions& o, const RunSettings& rs) {
   return f;
 }
 
+// the checkpoint files named: a file as given, a folder's *.ckpt files in the order of their
+// numbers (state_99999.ckpt before state_100000.ckpt: shorter names first, then by name)
+std::vector<std::string> state_files(const std::vector<std::string>& given) {
+  namespace fs = std::filesystem;
+  std::vector<std::string> files;
+  for (const std::string& g : given) {
+    std::error_code ec;
+    if (!fs::is_directory(g, ec)) {
+      files.push_back(g);
+      continue;
+    }
+    std::vector<std::string> in;
+    for (const fs::directory_entry& e : fs::directory_iterator(g, ec))
+      if (e.path().extension() == ".ckpt" && e.is_regular_file(ec)) in.push_back(e.path().filename().string());
+    if (ec) throw std::runtime_error(g + ": cannot read the folder: " + ec.message());
+    if (in.empty()) throw std::runtime_error(g + ": no states in it (no *.ckpt files)");
+    std::sort(in.begin(), in.end(), [](const std::string& a, const std::string& b) {
+      return a.size() != b.size() ? a.size() < b.size() : a < b;
+    });
+    for (const std::string& name : in) files.push_back((fs::path(g) / name).string());
+  }
+  return files;
+}
+
+std::string scene_text(const Scene& sc) {
+  CheckpointWriter w;
+  write_scene(w, sc);
+  return w.finish();
+}
+
 }  // namespace
 
 int cmd_render(const RenderOptions& o) {
+  std::unique_ptr<FrameSink> video;
   try {
-    const std::unique_ptr<Simulation> s = Simulation::open_checkpoint(o.checkpoint);
-    const FrameSettings f = settings(o, s->settings());
-    render::render_snapshot(s->scene(), f, s->now(), s->state().data(), s->drive(), o.out, &s->observation());
-    std::printf("%s\n", o.out.c_str());
+    if (!o.out && !o.video)
+      throw UsageError("--out is required (the PNG, or a folder for several states), or --video MP4");
+    const std::vector<std::string> files = state_files(o.states);
+    std::error_code ec;
+    const bool several = files.size() > 1 || std::filesystem::is_directory(o.states.front(), ec);
+    // the first state gives the scene and the frame settings of every picture
+    const std::unique_ptr<Simulation> first = Simulation::open_checkpoint(files.front());
+    const FrameSettings f = settings(o, first->settings());
+    const std::string scene = scene_text(first->scene());
+    if (o.video) {
+      FrameSettings v = f;
+      v.png_dir.clear(), v.video_path = *o.video;
+      video = render::make_frame_recorder(first->scene(), v);
+    }
+    for (size_t k = 0; k < files.size(); ++k) {
+      std::unique_ptr<Simulation> other = k == 0 ? nullptr : Simulation::open_checkpoint(files[k]);
+      const Simulation& s = k == 0 ? *first : *other;
+      if (k > 0 && scene_text(s.scene()) != scene)
+        throw std::runtime_error(files[k] + ": a state of another scene than " + files.front() +
+                                 "'s (one render draws the states of one scene)");
+      if (o.out) {
+        const std::string png =
+            several ? (std::filesystem::path(*o.out) / std::filesystem::path(files[k]).stem()).string() + ".png"
+                    : *o.out;
+        render::render_snapshot(s.scene(), f, s.now(), s.state().data(), s.drive(), png, &s.observation());
+        std::printf("%s\n", png.c_str());
+      }
+      if (video) video->frame(s.now(), s.state().data(), s.drive(), &s.observation());
+    }
+    if (video) {
+      std::unique_ptr<FrameSink> done = std::move(video);
+      done->finish();
+      std::printf("%s\n", o.video->c_str());
+    }
     return 0;
   } catch (const UsageError& e) {
     std::fprintf(stderr, "beltsim: %s\nRun 'beltsim render --help' for the usage.\n", e.what());
     return 2;
   } catch (const std::exception& e) {
+    // the frames drawn so far make a video that plays
+    try {
+      if (video) video->finish();
+    } catch (const std::exception&) {
+    }
     std::fprintf(stderr, "beltsim render: %s\n", e.what());
     mark_output_failure_shown(e.what());
     return 1;

@@ -64,7 +64,8 @@ std::vector<double> mu_over(lua_State* L, int mu_idx, const Scene& sc, std::opti
   return out;
 }
 
-FrameSettings to_frames(lua_State* L, int idx, const std::string& w, const std::vector<std::string>& extra) {
+FrameSettings to_frames(lua_State* L, int idx, const std::string& w, const std::vector<std::string>& extra,
+                        bool times_only) {
   idx = lua_absindex(L, idx);
   require_table(L, idx, w);
   std::vector<std::string> keys{"fps", "slowdown", "size", "quantity", "range", "levels", "magnify", "view", "png",
@@ -136,7 +137,7 @@ FrameSettings to_frames(lua_State* L, int idx, const std::string& w, const std::
   f.video_path = output("video", "frames.mp4");
   std::string error;
   try {
-    validate(f);
+    validate(f, times_only);
   } catch (const std::invalid_argument& e) {
     error = w.substr(0, w.rfind('.') == std::string::npos ? 0 : w.rfind('.') + 1) + e.what();
   }
@@ -293,8 +294,14 @@ const RunKey kRunKeys[] = {
        if (lua_type(L, v) != LUA_TBOOLEAN) fail(L, w + ".allow_large: boolean expected, got " + type_name(L, v));
        rs.allow_large = lua_toboolean(L, v);
      }},
+    // before frames: with it, frames may give only the times (neither png nor video)
+    {"keep_states", false, [](lua_State* L, int v, const Scene&, RunSettings& rs, bool&, const std::string& w) {
+       if (lua_type(L, v) != LUA_TBOOLEAN) fail(L, w + ".keep_states: boolean expected, got " + type_name(L, v));
+       rs.keep_states = lua_toboolean(L, v);
+     }},
     {"frames", false, [](lua_State* L, int v, const Scene&, RunSettings& rs, bool&, const std::string& w) {
-       if (!(lua_type(L, v) == LUA_TBOOLEAN && !lua_toboolean(L, v))) rs.frames = to_frames(L, v, w + ".frames");
+       if (!(lua_type(L, v) == LUA_TBOOLEAN && !lua_toboolean(L, v)))
+         rs.frames = to_frames(L, v, w + ".frames", {}, rs.keep_states);
      }},
 };
 
@@ -319,7 +326,9 @@ RunSettings read_run_settings(lua_State* L, int idx, const Scene& sc, Context* c
     }
   }
   const Overrides& o = ctx->overrides;
-  if (o.no_frames) rs.frames.reset();
+  // --no-frames draws nothing; kept states stay at the frames' times
+  if (o.no_frames && rs.keep_states && rs.frames) rs.frames->png_dir.clear(), rs.frames->video_path.clear();
+  if (o.no_frames && !rs.keep_states) rs.frames.reset();
   rs.frame_factory = render::make_frame_recorder;
   if (o.out) rs.out_dir = *o.out;
   if (o.t_end) rs.t_end = *o.t_end;

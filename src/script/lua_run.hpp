@@ -20,8 +20,10 @@ struct Context;
 // them); NaN for the others. Checks the range and every value (>= 0, finite).
 std::vector<double> mu_over(lua_State* L, int mu_idx, const Scene& sc, std::optional<double> from,
                             std::optional<double> to, const std::string& what);
-// frames = {...} (or the keys of sim:show, where `extra` lists keys read elsewhere)
-FrameSettings to_frames(lua_State* L, int idx, const std::string& where, const std::vector<std::string>& extra = {});
+// frames = {...} (or the keys of sim:show, where `extra` lists keys read elsewhere); times_only: neither
+// png nor video needed (the times of kept states)
+FrameSettings to_frames(lua_State* L, int idx, const std::string& where, const std::vector<std::string>& extra = {},
+                        bool times_only = false);
 // the settings of scene:run{} (batch) or scene:start{} (live), command-line overrides applied
 RunSettings read_run_settings(lua_State* L, int idx, const Scene& sc, Context* ctx, bool batch, bool* progress);
 

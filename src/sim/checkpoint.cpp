@@ -52,6 +52,7 @@ void write_settings(CheckpointWriter& w, const RunSettings& rs) {
   w.line("snapshots.times", rs.snapshot_times);
   w.line("keep_samples", rs.keep_samples);
   w.line("allow_large", rs.allow_large);
+  w.line("keep_states", rs.keep_states);
   w.line("frames", rs.frames.has_value());
   if (!rs.frames) return;
   const FrameSettings& f = *rs.frames;
@@ -85,6 +86,7 @@ RunSettings read_settings(CheckpointReader& r) {
   rs.snapshot_times = r.line_doubles("snapshots.times");
   rs.keep_samples = r.line_bool("keep_samples");
   rs.allow_large = r.line_bool("allow_large");
+  rs.keep_states = r.line_bool("keep_states");
   if (!r.line_bool("frames")) return rs;
   FrameSettings& f = rs.frames.emplace();
   f.fps = r.line_num("frames.fps");
@@ -192,7 +194,7 @@ std::vector<long> next_outputs(const RunSettings& rs, double now) {
     return i;
   };
   std::vector<long> k{next(0.0, rs.sample_dt)};
-  if (rs.frames) k.push_back(next(rs.frames->t_start, rs.frames->frame_dt()));
+  if (const std::optional<FrameSettings> f = frame_times(rs)) k.push_back(next(f->t_start, f->frame_dt()));
   if (rs.snapshot_every > 0) k.push_back(next(0.0, rs.snapshot_every));
   if (!rs.snapshot_times.empty())
     k.push_back(std::upper_bound(rs.snapshot_times.begin(), rs.snapshot_times.end(), now) - rs.snapshot_times.begin());
@@ -202,13 +204,22 @@ std::vector<long> next_outputs(const RunSettings& rs, double now) {
 
 }  // namespace
 
+std::string cannot_save(const std::string& integrator) {
+  return integrator +
+         " keeps a multistep history that SUNDIALS cannot export; checkpoints need a one-step integrator (esdirk32, "
+         "trbdf2, ros34pw2, rkf45)";
+}
+
 void Simulation::save(const std::string& path) const {
   require_open("save");
   if (running_ || view_.y) throw std::logic_error("save: not inside a callback (save between run_to calls)");
-  if (!integ_->can_save())
-    throw std::invalid_argument("save: " + rs_.integrator +
-                                " keeps a multistep history that SUNDIALS cannot export; checkpoints need a one-step "
-                                "integrator (esdirk32, trbdf2, ros34pw2, rkf45)");
+  if (!integ_->can_save()) throw std::invalid_argument("save: " + cannot_save(rs_.integrator));
+  // written whole (io/output_dir.hpp): a checkpoint is never half a file, and no part of one is
+  // left behind when it cannot be written
+  write_file_whole(path, checkpoint_text());
+}
+
+std::string Simulation::checkpoint_text() const {
   // (the CSV files need no flush: each row is in the file when written)
   CheckpointWriter w;
   w.word("part", "settings");
@@ -240,10 +251,7 @@ void Simulation::save(const std::string& path) const {
   w.line("wall", wall_);
   w.word("part", "integrator");
   integ_->save(w);
-  const std::string text = w.finish();
-  // written whole (io/output_dir.hpp): a checkpoint is never half a file, and no part of one is
-  // left behind when it cannot be written
-  write_file_whole(path, text);
+  return w.finish();
 }
 
 std::unique_ptr<Simulation> Simulation::resume(const std::string& path, const FrameSinkFactory& factory, int* callbacks,

@@ -33,7 +33,7 @@ template <class T>
 }
 }  // namespace
 
-void validate(const FrameSettings& f) {
+void validate(const FrameSettings& f, bool times_only) {
   if (!(f.fps > 0 && f.fps <= 240)) bad("fps", "must be in (0, 240]", f.fps);
   if (f.fps != std::floor(f.fps)) bad("fps", "must be a whole number of frames per second", f.fps);
   if (!(f.slowdown > 0 && f.slowdown < 1e9)) bad("slowdown", "must be > 0 video seconds per simulated second", f.slowdown);
@@ -57,7 +57,9 @@ void validate(const FrameSettings& f) {
   if (f.range_hi && !std::isfinite(*f.range_hi)) bad("range", "must be finite", *f.range_hi);
   if (f.png_every < 1) bad("png_every", "must be >= 1", f.png_every);
   if (!(f.t_start >= 0 && std::isfinite(f.t_start))) bad("t_start", "must be >= 0 and finite", f.t_start, " s");
-  if (f.png_dir.empty() && f.video_path.empty()) bad("png", "neither png nor video asked for: nothing to write", "none");
+  if (!times_only && !f.draws())
+    bad("png", "neither png nor video asked for: nothing to write (keep_states = true keeps the states at these times)",
+        "none");
 }
 
 }  // namespace beltsim

@@ -50,6 +50,8 @@ struct FrameSettings {
 
   // simulated time between frames [s]
   double frame_dt() const { return 1.0 / (fps * slowdown); }
+  // a picture is drawn (else the settings give only the times, for a run's kept states)
+  bool draws() const { return !png_dir.empty() || !video_path.empty(); }
 };
 
 // An observer that turns states into pictures. frame() is called at t_start + k·frame_dt with the
@@ -69,8 +71,9 @@ using FrameSinkFactory =
     std::function<std::unique_ptr<FrameSink>(const Scene& scene, const FrameSettings& settings)>;
 
 // Checks the settings (width and height even and in 16..8192, fps in (0, 240], slowdown > 0,
-// magnify > 0, a range with lo < hi, levels 0 or 2..64, png_every >= 1, at least one output); throws
-// std::invalid_argument "frames.KEY: reason (got value)".
-void validate(const FrameSettings& f);
+// magnify > 0, a range with lo < hi, levels 0 or 2..64, png_every >= 1, at least one output unless
+// times_only: the times of a run's kept states); throws std::invalid_argument "frames.KEY: reason
+// (got value)".
+void validate(const FrameSettings& f, bool times_only = false);
 
 }  // namespace beltsim

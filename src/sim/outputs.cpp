@@ -129,7 +129,8 @@ const OutputDir& Outputs::claim() {
 void Outputs::open(bool append) {
   const OutputDir& dir = claim();
   // it exists only when frames are asked for (no GL context, no encoder otherwise)
-  if (rs_.frames) sink_ = rs_.frame_factory(scene_, *rs_.frames);
+  if (rs_.frames && rs_.frames->draws()) sink_ = rs_.frame_factory(scene_, *rs_.frames);
+  if (rs_.keep_states) states_ = std::make_unique<OutputDir>(dir, "states");
   if (!append) write_parameters(scene_, rs_, dir);
   csv_ = std::make_unique<CsvWriter>(dir, "timeseries.csv", timeseries_columns(scene_, rs_.probes.size()), append);
   events_ = std::make_unique<RowFile>(dir, "events.csv", append);
@@ -161,6 +162,7 @@ void Outputs::close(const Warnings& w) {
   } catch (...) {
     if (!failed) failed = std::current_exception();
   }
+  states_.reset();
   dir_.reset();  // the folder is free for another simulation: this one writes nothing more
   if (failed) std::rethrow_exception(failed);
 }
@@ -198,6 +200,10 @@ void Outputs::snapshot(double t, const Observation& o) {
 
 void Outputs::frame(double t, const Eigen::VectorXd& y, const Drive& drive, const Observation& obs) {
   sink_->frame(t, y.data(), drive, &obs);
+}
+
+void Outputs::keep_state(const std::string& name, const std::string& checkpoint) {
+  write_file_whole(*states_, name, checkpoint);
 }
 
 bool Outputs::has_snapshots() const { return rs_.snapshot_every > 0 || !rs_.snapshot_times.empty(); }

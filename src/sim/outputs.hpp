@@ -5,6 +5,7 @@
 //   events.csv      a row per change (t, what, value)
 //   snapshots.csv   a row per element per snapshot, when snapshots are asked for
 //   frames          PNG files and/or a video, through the renderer's FrameSink
+//   states/         with keep_states, a checkpoint at each frame time (state_NNNNN.ckpt)
 // Every row reaches its file whole when written (io/row_file.hpp). The folder is held by this
 // simulation alone from open() to close() (io/output_dir.hpp).
 #pragma once
@@ -58,6 +59,8 @@ class Outputs {
   // friction, slip, mu, pulley (name, empty when free), state (free, stick, slip)
   void snapshot(double t, const Observation& obs);
   void frame(double t, const Eigen::VectorXd& y, const Drive& drive, const Observation& obs);
+  // states/NAME, written whole (keep_states)
+  void keep_state(const std::string& name, const std::string& checkpoint);
 
   bool has_frames() const { return sink_ != nullptr; }
   bool has_snapshots() const;
@@ -74,6 +77,7 @@ class Outputs {
   const RunSettings& rs_;
   std::unique_ptr<OutputDir> dir_;  // out_dir, locked from claim() to close()
   std::unique_ptr<FrameSink> sink_;
+  std::unique_ptr<OutputDir> states_;  // OUT_DIR/states, with keep_states
   std::unique_ptr<CsvWriter> csv_;
   std::unique_ptr<RowFile> events_;
   std::unique_ptr<RowFile> snapshots_;

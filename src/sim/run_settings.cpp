@@ -25,6 +25,12 @@ std::string event_time_problem(double t, double t_end) {
   return "";
 }
 
+std::optional<FrameSettings> frame_times(const RunSettings& rs) {
+  if (rs.frames) return rs.frames;
+  if (rs.keep_states) return FrameSettings{};
+  return std::nullopt;
+}
+
 void check(const Scene& sc, const RunSettings& rs, bool batch) {
   const Model& m = sc.model;
   if (batch) {
@@ -66,8 +72,9 @@ void check(const Scene& sc, const RunSettings& rs, bool batch) {
       throw std::invalid_argument("events: an event's μ needs one value per element");
   }
   if (rs.frames) {
-    validate(*rs.frames);
-    if (!rs.frame_factory) throw std::invalid_argument("frames: asked for, but this program has no renderer");
+    validate(*rs.frames, rs.keep_states);
+    if (rs.frames->draws() && !rs.frame_factory)
+      throw std::invalid_argument("frames: asked for, but this program has no renderer");
   }
 }
 
@@ -116,12 +123,18 @@ void check_volume(const Scene& sc, const RunSettings& rs, double t0, double t1) 
       << ": take fewer, or set allow_large = true";
     throw std::invalid_argument(m.str());
   }
-  if (rs.frames) {
-    const double frames = std::max(0.0, t1 - std::max(t0, rs.frames->t_start)) / rs.frames->frame_dt();
-    if (frames > kMaxFrames) {
-      m << "frames: " << num(t1 - t0) << " s at " << num(rs.frames->fps) << " fps and slowdown "
-        << num(rs.frames->slowdown) << " would render " << num(frames) << " frames (" << num(frames / rs.frames->fps / 3600)
+  if (const std::optional<FrameSettings> f = frame_times(rs)) {
+    const double frames = std::max(0.0, t1 - std::max(t0, f->t_start)) / f->frame_dt();
+    if (frames > kMaxFrames && f->draws()) {
+      m << "frames: " << num(t1 - t0) << " s at " << num(f->fps) << " fps and slowdown " << num(f->slowdown)
+        << " would render " << num(frames) << " frames (" << num(frames / f->fps / 3600)
         << " h of video); the limit is " << num(kMaxFrames) << ": lower the slowdown, or set allow_large = true";
+      throw std::invalid_argument(m.str());
+    }
+    if (frames > kMaxFrames) {
+      m << "keep_states: " << num(t1 - t0) << " s at a state every " << num(f->frame_dt())
+        << " s (the frame times) would keep " << num(frames) << " states; the limit is " << num(kMaxFrames)
+        << ": lower frames.slowdown or frames.fps, or set allow_large = true";
       throw std::invalid_argument(m.str());
     }
   }

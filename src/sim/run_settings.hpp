@@ -51,17 +51,26 @@ struct RunSettings {
   // factory (the renderer's, src/render) is called only when frames are asked for.
   std::optional<FrameSettings> frames;
   FrameSinkFactory frame_factory;
+  // the whole state (a checkpoint, sim/simulation.hpp Simulation::save) at each frame time, as
+  // OUT_DIR/states/state_NNNNN.ckpt (NNNNN the number of the frame drawn there), for
+  // `beltsim render`. Frames with neither png nor video give only the times; without frames the
+  // default frame settings' times (every 1/300 s from t = 0). One-step integrators only.
+  bool keep_states = false;
 };
+
+// The times frames are drawn and states kept at, t_start + k·frame_dt(): the frames' settings, the
+// default ones when states are kept without frames; none when neither is asked for.
+std::optional<FrameSettings> frame_times(const RunSettings& settings);
 
 // Why t cannot be the time of a timed event in a run that ends at t_end (infinity: a live
 // simulation, which has no end): "must be > 0 s and finite (got -1 s)", "must be before t_end =
 // 0.05 s (got 0.1 s)"; "" when it can.
 std::string event_time_problem(double t, double t_end = std::numeric_limits<double>::infinity());
 
-// Checks settings for a run of sc: integrator and tolerances, sample interval, probes, snapshot times, events (one μ per
-// element, event_time_problem), frames (validate(FrameSettings), a renderer to draw them). A batch
-// run (batch) also checks t_end and what must come before it (frames.t_start, snapshot times,
-// events). Throws std::invalid_argument naming the key, the reason and the value.
+// Checks settings for a run of sc: integrator and tolerances, sample interval, probes, snapshot times, events (one μ
+// per element, event_time_problem), frames (validate(FrameSettings), a renderer to draw them; frames that draw nothing
+// only with keep_states). A batch run (batch) also checks t_end and what must come before it (frames.t_start, snapshot
+// times, events). Throws std::invalid_argument naming the key, the reason and the value.
 void check(const Scene& sc, const RunSettings& rs, bool batch);
 
 // Timed μ events at or after settings.t_end cannot happen in a run that ends there (a quick
@@ -72,7 +81,7 @@ std::vector<std::string> drop_events_after_end(RunSettings& settings);
 
 // Refuses (std::invalid_argument with the figures) to integrate from t0 to t1 when that would
 // write more than 1e7 samples (a timeseries.csv of gigabytes) or render more than 1e5 frames (an
-// hour of video at 30 fps), unless settings.allow_large.
+// hour of video at 30 fps) or keep more than 1e5 states, unless settings.allow_large.
 // refuses an every() callback that a run from t0 to t1 would call more than 1e7 times (a period
 // far below what the run resolves makes it crawl without a word), unless allow_large is set
 void check_calls(const RunSettings& rs, double t0, double t1, double every_dt);

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <utility>
 
@@ -44,6 +45,8 @@ Simulation::Simulation(const Scene& sc, const RunSettings& rs, bool fresh) : sce
   sense_ = scene_.senses();
   sys_ = std::make_unique<BeltSystem>(model_, drive_);
   integ_ = make_integrator(rs_.integrator, *sys_, Tolerances{rs_.rtol, rs_.atol});
+  if (rs_.keep_states && !integ_->can_save())
+    throw std::invalid_argument("keep_states: " + cannot_save(rs_.integrator));
   tl_ = std::make_unique<Timeline>(*integ_);
   tl_->on_restart([this](double t) { drive_.restart_time = t; });
   if (rs_.frames) {
@@ -93,9 +96,8 @@ Simulation::~Simulation() {
 // snapshots at listed times
 void Simulation::add_streams() {
   tl_->add_stream(0.0, rs_.sample_dt, [this](double t, const Eigen::VectorXd& y) { sample(t, y); });
-  if (out_->has_frames())
-    tl_->add_stream(rs_.frames->t_start, rs_.frames->frame_dt(),
-                    [this](double t, const Eigen::VectorXd& y) { frame(t, y); });
+  if (const std::optional<FrameSettings> f = frame_times(rs_))
+    tl_->add_stream(f->t_start, f->frame_dt(), [this](double t, const Eigen::VectorXd& y) { frame(t, y); });
   if (rs_.snapshot_every > 0)
     tl_->add_stream(0.0, rs_.snapshot_every, [this](double t, const Eigen::VectorXd& y) { snapshot(t, y); });
   if (!rs_.snapshot_times.empty())
@@ -210,9 +212,16 @@ std::vector<double> Simulation::sample_row() const {
   return row;
 }
 
+// the frame drawn at t and/or the state kept there (its number the frame's: t_start + number·frame_dt)
 void Simulation::frame(double t, const Eigen::VectorXd& y) {
   const Scoped<View> at(view_, {t, &y});
-  out_->frame(t, y, drive_, observation());
+  if (out_->has_frames()) out_->frame(t, y, drive_, observation());
+  if (rs_.keep_states) {
+    const FrameSettings f = *frame_times(rs_);
+    char name[40];
+    std::snprintf(name, sizeof name, "state_%05lld.ckpt", std::llround((t - f.t_start) / f.frame_dt()));
+    out_->keep_state(name, checkpoint_text());
+  }
 }
 
 void Simulation::sample(double t, const Eigen::VectorXd& y) {

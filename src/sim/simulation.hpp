@@ -147,7 +147,8 @@ class Simulation {
 
   // ---- checkpoints ------------------------------------------------------------------------
   // state, integrator state, laws, μ, pending events, output positions. Callbacks are not saved
-  // (their count is): the resumed simulation needs them registered again by the script.
+  // (their count is): the resumed simulation needs them registered again by the script. Throws
+  // std::invalid_argument (cannot_save) for an integrator whose state cannot be saved.
   void save(const std::string& path) const;
   // continues a saved simulation: its outputs are continued in place (the CSV files truncated to
   // the saved rows; frames numbered on, the video in a new file <name>_resumed_<t>.mp4).
@@ -166,6 +167,9 @@ class Simulation {
   // resume (outputs: continue them) or open_checkpoint (no outputs)
   static std::unique_ptr<Simulation> load(const std::string& path, const FrameSinkFactory& factory, int* callbacks,
                                           const std::function<void(const RunSettings&)>& vet, bool outputs);
+  // the checkpoint of now (save, and a kept state at a frame time: inside the frame stream's
+  // output, now() is that time and the integrator holds the step that crosses it)
+  std::string checkpoint_text() const;
   void set_landings();
   void sample(double t, const Eigen::VectorXd& y);
   void frame(double t, const Eigen::VectorXd& y);
@@ -217,6 +221,9 @@ class Simulation {
   mutable Cached end_a_, end_b_, now_obs_;
   long serial_ = 0;  // counts the changes of the model or state
 };
+
+// why a run with this integrator cannot be saved (a multistep history SUNDIALS cannot export)
+std::string cannot_save(const std::string& integrator);
 
 // A batch run: start, run_to(t_end), close. Throws as Simulation does; first drops the events
 // after t_end (drop_events_after_end) and checks the settings (check).

@@ -273,6 +273,121 @@ TEST(Live, CheckpointResumesBitForBit) {
   }
 }
 
+// keep_states: a checkpoint at each frame time, numbered as the frames, holding what the frame was
+// drawn from (time, state and observation, bit for bit); a run resumed from a checkpoint keeps the
+// same states; without frames the default frame times
+struct Seen {
+  double t;
+  Eigen::VectorXd y;
+  std::vector<double> friction;
+};
+class Recording final : public FrameSink {
+ public:
+  explicit Recording(std::vector<Seen>* seen) : seen_(seen) {}
+  void frame(double t, const double* y, const Drive&, const Observation* obs) override {
+    Seen s{t, Eigen::Map<const Eigen::VectorXd>(y, static_cast<Eigen::Index>(y_size_)), {}};
+    for (const ElementObs& e : obs->elements) s.friction.push_back(e.friction);
+    seen_->push_back(std::move(s));
+  }
+  void finish() override {}
+  long frames_written() const override { return static_cast<long>(seen_->size()); }
+  size_t y_size_ = 0;
+
+ private:
+  std::vector<Seen>* seen_;
+};
+
+std::vector<std::string> listing(const fs::path& dir) {
+  std::vector<std::string> names;
+  for (const auto& e : fs::directory_iterator(dir)) names.push_back(e.path().filename().string());
+  std::sort(names.begin(), names.end());
+  return names;
+}
+
+TEST(Live, KeptStatesAreWhatTheFramesWereDrawnFrom) {
+  test::expect_warnings({WarningKind::failed_step});
+  const Scene& sc = dry();
+  std::vector<Seen> seen;
+  auto configure = [&](const fs::path& out, std::vector<Seen>* record) {
+    RunSettings rs = settings("esdirk32", out);
+    rs.keep_states = true;
+    FrameSettings f;
+    f.slowdown = 20, f.t_start = 0.0011;  // every 1/600 s from 1.1 ms
+    f.png_dir = "unused";                 // drawn by the recording below
+    rs.frames = f;
+    rs.frame_factory = [record, &sc](const Scene&, const FrameSettings&) {
+      auto r = std::make_unique<Recording>(record);
+      r->y_size_ = static_cast<size_t>(sc.y0.size());
+      return std::unique_ptr<FrameSink>(std::move(r));
+    };
+    return rs;
+  };
+  const fs::path whole = temp("keep_whole"), parts = temp("keep_parts");
+  {
+    Simulation s(sc, configure(whole, &seen));
+    s.run_to(0.012);
+  }
+  ASSERT_EQ(seen.size(), 7u);  // 1.1 ms + k/600 s <= 12 ms: k = 0..6
+  std::vector<std::string> names;
+  for (size_t k = 0; k < seen.size(); ++k) {
+    char name[32];
+    std::snprintf(name, sizeof name, "state_%05zu.ckpt", k);
+    names.push_back(name);
+    const auto kept = Simulation::open_checkpoint((whole / "states" / name).string());
+    EXPECT_EQ(kept->now(), seen[k].t) << name;
+    EXPECT_TRUE(same_bits(kept->state(), seen[k].y)) << name;
+    std::vector<double> friction;
+    for (const ElementObs& e : kept->observation().elements) friction.push_back(e.friction);
+    EXPECT_EQ(std::memcmp(friction.data(), seen[k].friction.data(), sizeof(double) * friction.size()), 0) << name;
+  }
+  EXPECT_EQ(listing(whole / "states"), names);
+  // saved between frames 3 and 4 and resumed: the same states, bit for bit in state and time
+  std::vector<Seen> before, after;
+  const std::string ck = (parts / "ck.txt").string();
+  {
+    Simulation s(sc, configure(parts, &before));
+    s.run_to(0.0067);
+    s.save(ck);
+  }
+  {
+    RunSettings rs = configure(parts, &after);
+    auto s = Simulation::resume(ck, rs.frame_factory);
+    s->run_to(0.012);
+  }
+  EXPECT_EQ(before.size() + after.size(), seen.size());
+  EXPECT_EQ(listing(parts / "states"), names);
+  for (const std::string& name : names) {
+    const auto a = Simulation::open_checkpoint((whole / "states" / name).string());
+    const auto b = Simulation::open_checkpoint((parts / "states" / name).string());
+    EXPECT_EQ(a->now(), b->now()) << name;
+    EXPECT_TRUE(same_bits(a->state(), b->state())) << name;
+  }
+  // without frames: the default frame times (every 1/300 s from 0), nothing drawn
+  const fs::path bare = temp("keep_bare");
+  {
+    RunSettings rs = settings("esdirk32", bare);
+    rs.keep_states = true;
+    Simulation s(sc, rs);
+    s.run_to(0.011);
+    EXPECT_EQ(s.frames_written(), 0);
+  }
+  const std::vector<std::string> kept = listing(bare / "states");
+  ASSERT_EQ(kept.size(), 4u);  // 0, 1/300, 2/300, 3/300 s
+  for (size_t k = 0; k < kept.size(); ++k)
+    EXPECT_EQ(Simulation::open_checkpoint((bare / "states" / kept[k]).string())->now(),
+              static_cast<double>(k) * FrameSettings{}.frame_dt());
+  // CVODE's state cannot be kept: refused before anything is written
+  RunSettings c = settings("cvode", temp("keep_cvode"));
+  c.keep_states = true;
+  try {
+    Simulation s(sc, c);
+    ADD_FAILURE() << "cvode kept states";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("keep_states: cvode keeps a multistep history"), std::string::npos)
+        << e.what();
+  }
+}
+
 // the belt torque a sample reports is the one that turns the pulley: I·dΩ/dt − M, with dΩ/dt by
 // central differences of the sampled speeds. Measured worst difference over 0.01–0.28 s: 0.9 N·m
 // (the differences' own error); recomputing the friction from the interpolated state instead
