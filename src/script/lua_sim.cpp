@@ -825,6 +825,35 @@ const std::vector<HelpEntry>& api_help() {
   return h;
 }
 
+std::vector<std::string> argument_names(lua_State* L, int idx, const std::string& method, bool in_table, int arg,
+                                        const std::string& key) {
+  const auto* box = static_cast<const SimBox*>(luaL_testudata(L, idx, kSimMeta));
+  if (!box || !box->sim) return {};
+  const Simulation& s = *box->sim;
+  std::vector<std::string> names;
+  auto pulleys = [&](auto keep) {
+    for (const Pulley& p : s.model().pulleys)
+      if (keep(p)) names.push_back(p.name);
+  };
+  const auto any = [](const Pulley&) { return true; };
+  if (in_table) {
+    if (method == "elements" && key == "pulley") pulleys(any);
+    if (method == "plot" && key.empty()) names = s.columns();
+    if (method == "show" && key == "quantity")
+      for (const FrameQuantityInfo& q : frame_quantities()) names.push_back(q.key);
+    return names;
+  }
+  if (((method == "pulley" || method == "set_torque" || method == "set_speed") && arg == 1) ||
+      (method == "span" && arg <= 2)) {
+    pulleys(any);
+  } else if (method == "set_arm" && arg == 1) {
+    pulleys([](const Pulley& p) { return p.arm >= 0; });
+  } else if (method == "set_rotor" && arg == 1) {
+    pulleys([](const Pulley& p) { return p.coupling >= 0; });
+  }
+  return names;
+}
+
 void push_simulation(lua_State* L, std::unique_ptr<Simulation> sim, Context* ctx, bool progress) {
   auto* box = new (lua_newuserdatauv(L, sizeof(SimBox), 0)) SimBox();
   box->sim = std::move(sim);
