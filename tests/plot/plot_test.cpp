@@ -160,6 +160,51 @@ TEST(Plot, ThreeUnitsGiveStackedPanels) {
   EXPECT_EQ(read_png((d / "p.png").string()).width, 1280);
 }
 
+// events.csv's rows as marks: one per time, labels "what value" shortened, a cut row left out
+TEST(Plot, EventsBecomeMarks) {
+  const fs::path d = dir("events");
+  EXPECT_TRUE(read_event_marks((d / "events.csv").string()).empty());  // no file: no marks
+  const std::string events = write(d / "events.csv",
+                                   "t,what,value\n"
+                                   "0.02,driven.torque,-5\n"
+                                   "0.02,wet,\"mu = 0.3 on s in [0, 0.3] m\"\n"
+                                   "0.04,note,\"a note, with a comma, and long enough to be shortened\"\n"
+                                   "0.05,cut");
+  const std::vector<Mark> m = read_event_marks(events);
+  ASSERT_EQ(m.size(), 2u);
+  EXPECT_EQ(m[0].x, 0.02);
+  EXPECT_EQ(m[0].label, "driven.torque -5; wet mu = 0.3 on s in [0, 0.3] m");
+  EXPECT_EQ(m[1].x, 0.04);
+  EXPECT_EQ(m[1].label, "note a note, with a comma, and long eno\u2026");
+}
+
+// the events beside a timeseries.csv are drawn as lines (every panel); outside the time range none
+TEST(Plot, EventsBesideTheCsvAreDrawn) {
+  const fs::path d = dir("marked");
+  const std::string csv = small_csv(d);
+  const std::vector<std::string> columns{"driver.omega", "span_driver_driven.tension", "probe.slip_velocity"};
+  auto draw = [&](const std::string& name) {
+    plot_csv(csv, {"driver.omega"}, 0, (d / (name + "_one.png")).string());
+    plot_csv(csv, columns, 0, (d / (name + "_panels.png")).string());
+    return std::pair{read_png((d / (name + "_one.png")).string()), read_png((d / (name + "_panels.png")).string())};
+  };
+  auto differing = [](const Image& a, const Image& b) {
+    long n = 0;
+    for (size_t k = 0; k < a.rgb.size(); k += 3) n += a.rgb[k] != b.rgb[k] || a.rgb[k + 1] != b.rgb[k + 1];
+    return n;
+  };
+  const auto [plain_one, plain_panels] = draw("plain");
+  write(d / "events.csv", "t,what,value\n0.5,late,1\n");  // after the last sample (0.1 s)
+  const auto [late_one, late_panels] = draw("late");
+  EXPECT_EQ(differing(plain_one, late_one), 0);
+  EXPECT_EQ(differing(plain_panels, late_panels), 0);
+  write(d / "events.csv", "t,what,value\n0.05,driven.torque,-5\n");
+  const auto [marked_one, marked_panels] = draw("marked");
+  // a dashed line across the plot (about 600 pixels high, half of them dashes) and its label
+  EXPECT_GT(differing(plain_one, marked_one), 200);
+  EXPECT_GT(differing(plain_panels, marked_panels), 200);
+}
+
 TEST(Plot, ClearErrors) {
   const fs::path d = dir("errors");
   PlotSpec spec{"", {}, (d / "x.png").string()};
