@@ -241,26 +241,29 @@ TEST(Gnuplot, MissingIsSaidSo) {
 TEST(WpPlot, DrawsTheStudyFromItsCsv) {
   const fs::path d = dir("wp's");
   WpResult r;
-  r.csv_path = write(d / "wp.csv",
-                     "integrator,rtol,finished,t_reached_s,wall_s,steps,rejected,rhs,jacobians,factorizations,solves,"
-                     "err_speed,err_speed_end,err_tension\n"
-                     "reference:esdirk32,1e-07,1,0.1,2,100,0,1,1,1,1,,,\n"
-                     "esdirk32,0.01,1,0.1,0.1,10,0,1,1,1,1,0.1,0.1,0.1\n"
-                     "esdirk32,0.001,1,0.1,0.3,30,0,1,1,1,1,0.01,0.01,0.01\n"
-                     "rkf45,0.01,0,0.01,1,10,0,1,1,1,1,,,\n");
   r.integrators = {"esdirk32", "rkf45"};
   r.title = "a 'study'";
   WpRow row;
   row.integrator = "esdirk32";
   row.finished = true;
-  r.rows = {row, row, WpRow{}};
-  r.rows[2].integrator = "rkf45";
+  row.rtol = 1e-2, row.wall = 0.1, row.err_speed = 0.1;
+  r.rows = {row, row, row, WpRow{}, WpRow{}};
+  r.rows[1].rtol = 1e-3, r.rows[1].wall = 0.3, r.rows[1].err_speed = 0.01;
+  r.rows[2].rtol = 1e-4, r.rows[2].wall = 0.31, r.rows[2].err_speed = 0.011;  // labels that would collide
+  for (int k : {3, 4}) r.rows[k].integrator = "rkf45", r.rows[k].wall = 1, r.rows[k].note = "wall-time limit";
   const std::string png = (d / "wp.png").string();
   plot_wp_png(r, png);
   const Image img = read_png(png);
   EXPECT_EQ(img.width, 1000);
   EXPECT_EQ(img.height, 700);
-  r.rows = {r.rows[2]};
+  // with a metric its error is drawn
+  r.metric = "driven.creep";
+  for (WpRow& w : r.rows) w.err_metric = 2 * w.err_speed;
+  plot_wp_png(r, png);
+  EXPECT_EQ(read_png(png).width, 1000);
+  for (WpRow& w : r.rows) w.err_metric = std::nan("");  // (a creep undefined at t_end)
+  expect_error([&] { plot_wp_png(r, png); }, {"no finished run has an error of driven.creep above 0"});
+  r.rows = {r.rows[3]};
   expect_error([&] { plot_wp_png(r, png); }, {"no run finished"});
 }
 
