@@ -165,6 +165,7 @@ int l_pulley(lua_State* L) {
   set_number(L, "stick_arc", p.stick_arc);
   set_number(L, "creep", p.creep);
   set_number(L, "slip_speed", p.slip_speed);
+  set_number(L, "creep_pitch", p.creep_pitch);
   if (!std::isnan(p.arm_angle)) set_number(L, "arm_angle", p.arm_angle), set_number(L, "arm_rate", p.arm_rate);
   if (!std::isnan(p.rotor_speed)) {
     set_number(L, "rotor_angle", p.rotor_angle), set_number(L, "rotor_speed", p.rotor_speed);
@@ -780,7 +781,7 @@ const std::vector<HelpEntry>& api_help() {
       {"t", "sim.t", "the current simulated time [s]"},
       {"pulley", "sim:pulley(name)",
        "{ omega [rad/s], angle [rad], torque, belt_torque [N·m], hub_load [N], contact_arc, slip_arc, "
-       "stick_arc [m], creep, slip_speed [m/s]; arm_angle [rad], arm_rate [rad/s] on a tensioner arm; rotor_angle [rad], "
+       "stick_arc [m], creep, slip_speed [m/s], creep_pitch; arm_angle [rad], arm_rate [rad/s] on a tensioner arm; rotor_angle [rad], "
        "rotor_speed [rad/s], windup [rad], coupling_torque [N·m] with a coupling }"},
       {"element", "sim:element(i)",
        "{ x, y [m], phi [rad], s [m], tension, normal, friction [N], slip [m/s], mu, pulley, state } of element i "
