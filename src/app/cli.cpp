@@ -123,18 +123,24 @@ std::optional<CommandLine> parse_command_line(int argc, char** argv, int* status
               "at fixed times) and DIR/parameters.csv, and the frames (PNG) and video (MP4) a script asks\n"
               "for with scene:run{ frames = {...} }.");
 
-  CLI::App* wp = app.add_subcommand("wp", "error against run time of every integrator");
+  CLI::App* wp = app.add_subcommand("wp", "error against run time of integrators");
   wp->add_option("SCRIPT", cl.script, "the scenario (Lua): its first scene:run{} gives the scene")->required();
   add_out_and_t_end(wp, raw, "output folder (default: out/<script name>/wp)");
-  wp->add_option("--integrators", raw.integrators, "those to study, separated by commas (default: all)")
+  wp->add_option("--integrators", raw.integrators,
+                 "those to study, separated by commas (default: esdirk32,trbdf2,cvode; any of: " + integrator_list() +
+                     ")")
       ->type_name("A,B,..");
   wp->add_option("--rtols", raw.rtols, "tolerances (default 1e-2,1e-3,1e-4,1e-5,1e-6)")->type_name("R1,R2,..");
   wp->add_option("--ref-rtol", raw.ref_rtol, "tolerance of the esdirk32 reference run (default 1e-7)")->type_name("R");
   wp->add_option("--wall-limit", raw.wall_limit, "a run taking longer is stopped, unfinished (default 120)")
       ->type_name("S");
+  wp->add_option("--metric", raw.metric,
+                 "also the relative error of this timeseries column at t_end (e.g. driven.creep); the figure "
+                 "shows it")
+      ->type_name("COLUMN");
   add_set(wp, raw);
   add_safety(wp, raw);
-  wp->footer("Runs the script's scene with every integrator at every tolerance, each against the\n"
+  wp->footer("Runs the script's scene with each integrator at every tolerance, each against the\n"
              "reference. Writes DIR/wp.csv, DIR/wp.png (log-log, gnuplot) and DIR/<integrator>-<rtol>/.");
 
   CLI::App* plot = app.add_subcommand("plot", "draw columns of a timeseries.csv to a PNG");

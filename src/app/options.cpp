@@ -128,6 +128,10 @@ WpSettings wp_settings(const Raw& raw) {
     if (const std::string bad = rtol_problem(x); !bad.empty()) throw UsageError("--ref-rtol " + bad);
     wps.ref_rtol = x;
   }
+  if (raw.metric) {
+    if (raw.metric->empty()) throw UsageError("--metric needs a column name, e.g. --metric driven.creep");
+    wps.metric = *raw.metric;
+  }
   if (raw.wall_limit) {
     const double x = number("--wall-limit", *raw.wall_limit);
     if (!(x > 0)) throw UsageError("--wall-limit must be > 0 s, got " + *raw.wall_limit);

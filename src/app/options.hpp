@@ -23,7 +23,7 @@ struct UsageError : std::runtime_error {
 struct Raw {
   std::optional<std::string> out, t_end, integrator, rtol, max_wall;
   bool no_frames = false;
-  std::optional<std::string> integrators, rtols, ref_rtol, wall_limit;  // wp
+  std::optional<std::string> integrators, rtols, ref_rtol, wall_limit, metric;  // wp
   std::optional<std::string> from;                                      // plot
   bool trusted = false;                                                 // run, wp, console, sweep
   std::optional<std::string> max_instructions, max_lua_memory;

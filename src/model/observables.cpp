@@ -155,12 +155,19 @@ void observe(const Model& m, const Drive& d, const std::vector<int>& sense, doub
     vb += axis(y[3 * i + 2]).dot(Vec2(v[3 * i], v[3 * i + 1]));
   }
   out.belt_speed = vb / m.n_el();
+  const bool moving = std::abs(out.belt_speed) > m.friction.dv;
+  constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
   for (int j = 0; j < m.n_p(); ++j) {
     PulleyObs& p = out.pulleys[j] = pulley_with(m, d, t, y, j, out.pairs);
     const double v_rim = sense[j] * p.omega * m.pulleys[j].radius;
     p.slip_speed = out.belt_speed - v_rim;
-    p.creep = std::abs(out.belt_speed) > m.friction.dv ? 1 - v_rim / out.belt_speed
-                                                       : std::numeric_limits<double>::quiet_NaN();
+    p.creep = moving ? 1 - v_rim / out.belt_speed : kNaN;
+    double p_sum = 0;
+    int touching = 0;
+    for (const ContactPair& c : out.pairs)
+      if (c.j == j && c.touching) p_sum += c.nl.p, ++touching;
+    const double v_pitch = sense[j] * p.omega * (m.pulleys[j].radius - (touching ? p_sum / touching : 0.0));
+    p.creep_pitch = moving ? 1 - v_pitch / out.belt_speed : kNaN;
   }
   classify_contact(m, out);
 }

@@ -82,6 +82,10 @@ struct PulleyObs {
   // v_belt - v_rim [m/s], both along the travel as in creep: the sign of the elements' slip (belt
   // minus rim), < 0 on a driver (its rim leads the belt), > 0 on a driven pulley
   double slip_speed = 0;
+  // creep without the radial part: 1 - v_pitch/v_belt with v_pitch = ω·(R - p̄) along the travel,
+  // p̄ the mean penetration of the elements in contact with it (0 when none); NaN while
+  // |v_belt| <= Δv. The rim speed at the radius where the belt's centre line rides.
+  double creep_pitch = 0;
 };
 
 // What one element feels from the pulleys, in the pulleys' own frame (sums over the pairs of a

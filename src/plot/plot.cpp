@@ -7,6 +7,7 @@
 #include <fstream>
 #include <sstream>
 #include <stdexcept>
+#include <utility>
 
 #include "io/csv_writer.hpp"
 #include "io/suggest.hpp"
@@ -62,6 +63,33 @@ void datablock(std::ostringstream& g, int k, const Series& s) {
     gap = false;
   }
   g << "EOD\n";
+}
+
+// at most n characters (UTF-8 code points) of s, the last an ellipsis when it was longer
+std::string shortened(const std::string& s, size_t n) {
+  size_t chars = 0, cut = 0;
+  for (size_t i = 0; i < s.size(); ++i) {
+    if ((static_cast<unsigned char>(s[i]) & 0xC0) == 0x80) continue;  // a continuation byte
+    if (++chars == n) cut = i;
+  }
+  return chars <= n ? s : s.substr(0, cut) + "…";
+}
+
+// the marks inside [x0, x1]: dashed grey lines on every panel, their labels right of the line,
+// reading upwards to the top, shortened to `label_px` (none for 0)
+void mark_lines(std::ostringstream& g, const PlotSpec& spec, double x0, double x1, double label_px) {
+  const size_t chars = static_cast<size_t>(std::max(0.0, label_px / 7.0));  // 9 pt: under 7 pixels a character
+  g << "unset arrow\nunset label\n";
+  int k = 0;
+  for (const Mark& m : spec.marks) {
+    if (!(m.x >= x0 && m.x <= x1)) continue;
+    ++k;
+    g << "set arrow " << k << " from " << number_text(m.x) << ", graph 0 to " << number_text(m.x)
+      << ", graph 1 nohead dt 2 lw 1 lc rgb '#777777' back\n";
+    if (chars >= 4)
+      g << "set label " << k << " " << gnuplot_string(shortened(m.label, chars)) << " at " << number_text(m.x)
+        << ", graph 0.98 right rotate by 90 offset 1,0 font ',9' tc rgb '#555555' front\n";
+  }
 }
 
 void plot_command(std::ostringstream& g, const PlotSpec& spec, const std::vector<int>& series, bool second_axis,
@@ -156,6 +184,7 @@ void plot_png(const PlotSpec& spec) {
     if (groups.size() == 2) {
       g << "set ytics nomirror\nset y2tics\nset y2label " << gnuplot_string(axis_label(spec, groups[1])) << "\n";
     }
+    if (!spec.points) mark_lines(g, spec, t0, t1, 0.6 * spec.height);
     plot_command(g, spec, all, groups.size() == 2, groups.size() == 2 ? groups[1].series : std::vector<int>{},
                  groups.size() == 2);
   } else {
@@ -186,6 +215,7 @@ void plot_png(const PlotSpec& spec) {
       } else {
         g << "set ytics autofreq\n";
       }
+      if (!spec.points) mark_lines(g, spec, t0, t1, p == 0 ? 0.9 * panel_px : 0);
       plot_command(g, spec, groups[p].series, false, {}, false);
     }
     g << "unset multiplot\n";
@@ -247,6 +277,27 @@ Table read_timeseries_csv(const std::string& path, const std::vector<std::string
   if (f.bad()) throw std::runtime_error("cannot read " + path);
   if (t.names.empty()) throw std::runtime_error(path + " is empty (no header line)");
   return t;
+}
+
+std::vector<Mark> read_event_marks(const std::string& events_csv) {
+  std::vector<Mark> marks;
+  std::ifstream f(events_csv, std::ios::binary);
+  if (!f) return marks;
+  std::string line;
+  bool header = true;
+  while (std::getline(f, line)) {
+    if (!line.empty() && line.back() == '\r') line.pop_back();
+    if (std::exchange(header, false)) continue;
+    const std::vector<std::string> fields = csv_fields(line);
+    double t = 0;
+    if (fields.size() != 3 || !parse_field(fields[0], t) || !std::isfinite(t)) continue;
+    const std::string label = shortened(trim(fields[1] + " " + fields[2]), 40);
+    if (!marks.empty() && marks.back().x == t)
+      marks.back().label += "; " + label;
+    else
+      marks.push_back({t, label});
+  }
+  return marks;
 }
 
 namespace {
@@ -317,6 +368,7 @@ void plot_csv(const std::string& csv_path, const std::vector<std::string>& colum
                                (t.empty() ? " (it has no rows)" : " (its last is at " + number_text(t.back()) + " s)"));
     spec.series.push_back(std::move(s));
   }
+  spec.marks = read_event_marks((cp.parent_path() / "events.csv").string());
   plot_png(spec);
 }
 

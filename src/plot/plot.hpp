@@ -20,6 +20,12 @@ struct Series {
   std::vector<double> t, y;  // same length; t in s
 };
 
+// a vertical line across the plot at x with a label beside it (a run's event)
+struct Mark {
+  double x;
+  std::string label;
+};
+
 struct PlotSpec {
   std::string title;          // "" for none
   std::vector<Series> series;
@@ -27,6 +33,7 @@ struct PlotSpec {
   int width = 1280, height = 720;  // [pixels]
   std::string x_label = "t [s]";   // the x axis (Series::t holds its values)
   bool points = false;             // a mark per value, unjoined (a sweep's points), instead of lines
+  std::vector<Mark> marks = {};    // drawn where they fall inside the x range (every panel; labels on the top one)
 };
 
 // Writes spec.file. Throws std::runtime_error naming the problem: no series, a series with no
@@ -51,8 +58,14 @@ struct Table {
 // fields of the other columns are not read (NaN): text such as a sweep's status may stand there.
 Table read_timeseries_csv(const std::string& path, const std::vector<std::string>* only = nullptr);
 
+// The events of a run as marks: the rows `t,what,value` of an events.csv (outputs.hpp), labelled
+// "what value" (shortened to 40 characters), the events of one time in one mark joined by "; ".
+// No file: none; a row that is not `number,text,text` (a row cut by a kill) is left out.
+std::vector<Mark> read_event_marks(const std::string& events_csv);
+
 // Plots `columns` of a timeseries.csv (empty: every '<pulley>.omega' column) against its 't'
-// column, samples with t >= from_t only, units from io/units.hpp, titled with the CSV's path.
+// column, samples with t >= from_t only, units from io/units.hpp, titled with the CSV's path; the
+// events of the events.csv beside it, if there is one, as vertical lines with their labels.
 // A sweep's summary.csv (its header starts "point," and has a status column; sweep/results.hpp)
 // is drawn as points: the first of `columns` is the x axis, the others y (from_t is not used); a
 // point without a value (failed, not run) is left out.

@@ -18,7 +18,7 @@ namespace {
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 constexpr Rgba kInk{0.08f, 0.08f, 0.10f, 1};
 constexpr Rgba kWet{0.10f, 0.42f, 0.95f, 1};
-constexpr Rgba kSlip{1.00f, 0.50f, 0.00f, 1};
+constexpr Rgba kSlip = kSlipColour;
 constexpr Rgba kPulley{0.86f, 0.87f, 0.89f, 1};
 constexpr Rgba kRim{0.42f, 0.43f, 0.46f, 1};
 constexpr Rgba kSpoke{0.58f, 0.59f, 0.62f, 1};
@@ -119,6 +119,25 @@ float DrawList::text(Vec2 at, const std::string& utf8, int px, Rgba col, Align a
     x += g.advance;
   }
   return w;
+}
+
+float DrawList::boxed_text(Vec2 at, const std::string& utf8, int px, Rgba col, Rgba box, Align align) {
+  const double w = font ? font->width(utf8, px) : 0;
+  const double x = at.x() - (align == centre ? 0.5 * w : align == right ? w : 0.0);
+  const double pad = std::max(2.0, 0.2 * px);
+  quad(Vec2(x - pad, at.y() - 0.95 * px), Vec2(x + w + pad, at.y() - 0.95 * px), Vec2(x + w + pad, at.y() + 0.35 * px),
+       Vec2(x - pad, at.y() + 0.35 * px), box);
+  return text(at, utf8, px, col, align);
+}
+
+void DrawList::arrow(Vec2 tail, Vec2 tip, double w, double head, Rgba col) {
+  const double len = (tip - tail).norm();
+  if (len <= 0) return;
+  const Vec2 u = (tip - tail) / len, n(-u.y(), u.x());
+  head = std::min(head, len);
+  const Vec2 base = tip - head * u;
+  line(tail, base + 0.5 * w * u, w, col);
+  triangle(tip, base + 0.5 * head * n, base - 0.5 * head * n, col);
 }
 
 // ---- quantities -------------------------------------------------------------------------------
@@ -253,11 +272,17 @@ void FrameBuilder::build(double t, const double* y, DrawList& out, const Drive* 
   const int n = m.n_el();
   const double* q = y;
   out.width = fs_.width, out.height = fs_.height;
-  out.triangles.clear(), out.glyphs.clear(), out.elements.clear(), out.texts.clear();
+  out.triangles.clear(), out.glyphs.clear(), out.elements.clear(), out.texts.clear(), out.travel.clear();
   out.font = font_;
   out.scale = scale_;
   const double px = 1.0 / cam_.scale;  // one pixel in metres
   auto P = [&](const Vec2& w) { return cam_.to_px(w); };
+  // a pixel inside the drawing area (below the text band, left of the colour-bar panel)
+  const double area_right = fs_.width - panel_;
+  auto in_view = [&](const Vec2& p_px) {
+    return p_px.x() > font_px_ && p_px.x() < area_right - font_px_ && p_px.y() > top_ + font_px_ &&
+           p_px.y() < fs_.height - font_px_;
+  };
 
   // tensioner arms under their pulleys: a bar from the pivot to the pulley's centre, the pivot a
   // rimmed disc
@@ -286,14 +311,12 @@ void FrameBuilder::build(double t, const double* y, DrawList& out, const Drive* 
     }
     out.disc(c + 0.78 * Rp * Vec2(std::cos(theta), -std::sin(theta)), std::max(2.0, 0.07 * Rp), kMarker, 24);
     out.disc(c, 0.18 * Rp, kRim, 48);
-    // the name on a patch of the disc's colour, so the spokes do not cross it
-    const Vec2 at = c + Vec2(0, 0.18 * Rp + 1.1 * font_px_);
-    const double tw = font_ ? font_->width(p.name, font_px_) : 0;
+    // the name on a patch of the disc's colour, so the spokes do not cross it (where it is in view:
+    // text is drawn over everything)
     Rgba patch = kPulley;
     patch.a = 0.85f;
-    out.quad(at + Vec2(-0.5 * tw - 3, -0.95 * font_px_), at + Vec2(0.5 * tw + 3, -0.95 * font_px_),
-             at + Vec2(0.5 * tw + 3, 0.35 * font_px_), at + Vec2(-0.5 * tw - 3, 0.35 * font_px_), patch);
-    out.text(at, p.name, font_px_, kInk, DrawList::centre);
+    const Vec2 at = c + Vec2(0, 0.18 * Rp + 1.1 * font_px_);
+    if (in_view(at)) out.boxed_text(at, p.name, font_px_, kInk, patch, DrawList::centre);
   }
 
   // spray zones under the belt: a translucent disc of the wet colour while it sprays, the outline
@@ -360,25 +383,67 @@ void FrameBuilder::build(double t, const double* y, DrawList& out, const Drive* 
     out.elements.push_back(el);
   }
 
+  // the direction of travel: an arrow beside the belt's outer side at the middle of each span
+  // whose middle is in view, else beside the visible element nearest the view's centre
+  const double arrow_len = 2.5 * font_px_, arrow_w = std::max(2.0, 0.16 * font_px_);
+  const double gap = h + band_w + 0.6 * font_px_ * px;  // [m] from the belt's centre line
+  // an arrow beside element i, on the belt's outer side or else its inner side, if it is in view
+  auto travel_arrow = [&](int i) {
+    const Vec2 d = (Cd[(i + 1) % n] - Cd[(i + n - 1) % n]).normalized();
+    const Vec2 u = (P(Cd[i] + d) - P(Cd[i])).normalized();
+    for (double side : {1.0, -1.0}) {
+      const Vec2 mid = P(Cd[i] + side * gap * O[i]);
+      const Vec2 tail = mid - 0.5 * arrow_len * u, tip = mid + 0.5 * arrow_len * u;
+      if (!in_view(tail) || !in_view(tip)) continue;
+      out.arrow(tail, tip, arrow_w, 0.8 * font_px_, kInk);
+      out.travel.push_back({tail, tip});
+      return true;
+    }
+    return false;
+  };
+  bool arrows = false;  // (any drawn: the legend shows one)
+  for (const Route::Span& sp : sc_.route.spans) {
+    if (sp.length * cam_.scale < 2 * arrow_len) continue;
+    const Vec2 mid = 0.5 * (sp.from + sp.to);
+    int best = 0;
+    for (int i = 1; i < n; ++i)
+      if ((Cd[i] - mid).squaredNorm() < (Cd[best] - mid).squaredNorm()) best = i;
+    arrows = travel_arrow(best) || arrows;
+  }
+  if (!arrows) {
+    std::vector<int> near(n);
+    for (int i = 0; i < n; ++i) near[i] = i;
+    std::sort(near.begin(), near.end(), [&](int a, int b) {
+      return (P(Cd[a]) - cam_.area_centre).squaredNorm() < (P(Cd[b]) - cam_.area_centre).squaredNorm();
+    });
+    for (int i : near)
+      if ((arrows = travel_arrow(i))) break;
+  }
+
   // text band: time, colour quantity, magnification; each pulley's speed and slip
   const FrameQuantityInfo& qi = frame_quantity_info(fs_.quantity);
   const double line = 1.4 * font_px_;
   const double x0 = 0.6 * font_px_;
+  Rgba paper = out.background;  // the boxes under the text
+  paper.a = 0.85f;
   std::string head = "t = " + format("%.4f", t) + " s      colour: " + qi.label + (*qi.unit ? std::string(" [") + qi.unit + "]" : "");
   if (fs_.magnify != 1) head += "      deformation \u00d7" + format("%g", fs_.magnify);
-  out.text(Vec2(x0, line), head, font_px_, kInk);
+  out.boxed_text(Vec2(x0, line), head, font_px_, kInk, paper);
   const double col_w = (fs_.width - panel_) / columns_;
   for (int j = 0; j < m.n_p(); ++j)
-    out.text(Vec2(x0 + (j % columns_) * col_w, line * (2 + j / columns_)), pulley_text(j, seen.pulleys[j]), font_px_, kInk);
+    out.boxed_text(Vec2(x0 + (j % columns_) * col_w, line * (2 + j / columns_)), pulley_text(j, seen.pulleys[j]), font_px_, kInk, paper);
 
-  // colour bar: bands from lo (bottom) to hi (top), edges labelled where they fit
+  // colour bar: bands from lo (bottom) to hi (top), edges labelled where they fit, on the
+  // background's colour (in a zoomed view the drawing reaches under the panel)
+  out.quad(Vec2(area_right, 0), Vec2(fs_.width, 0), Vec2(fs_.width, fs_.height), Vec2(area_right, fs_.height),
+           out.background);
   const double panel_x = fs_.width - panel_ + 0.5 * font_px_;
   const double bar_w = std::max(8.0, 0.022 * fs_.width);
   const double bar_top = top_ + 2.2 * line;
   // (frames too small for a bar of at least four lines get a short one below the text band)
-  const double bar_bot = std::max(fs_.height - 5.2 * line, bar_top + 4.0 * line);
-  out.text(Vec2(panel_x, bar_top - 1.6 * line), qi.label, font_px_, kInk);
-  out.text(Vec2(panel_x, bar_top - 0.6 * line), *qi.unit ? std::string("[") + qi.unit + "]" : "[\u2013]", font_px_, kInk);
+  const double bar_bot = std::max(fs_.height - 6.2 * line, bar_top + 4.0 * line);  // room for 5 legend lines
+  out.boxed_text(Vec2(panel_x, bar_top - 1.6 * line), qi.label, font_px_, kInk, paper);
+  out.boxed_text(Vec2(panel_x, bar_top - 0.6 * line), *qi.unit ? std::string("[") + qi.unit + "]" : "[\u2013]", font_px_, kInk, paper);
   const int bands = scale_.levels > 0 ? scale_.levels : 64;
   const double bh = (bar_bot - bar_top) / bands;
   for (int k = 0; k < bands; ++k) {
@@ -393,22 +458,28 @@ void FrameBuilder::build(double t, const double* y, DrawList& out, const Drive* 
     const double val = scale_.lo + (scale_.hi - scale_.lo) * k / edges;
     const double yk = bar_bot - (bar_bot - bar_top) * k / edges;
     out.line(Vec2(panel_x + bar_w, yk), Vec2(panel_x + bar_w + 0.4 * font_px_, yk), 1.2, kInk);
-    out.text(Vec2(panel_x + bar_w + 0.6 * font_px_, yk + 0.35 * font_px_), tick(val, scale_.hi - scale_.lo),
-             font_px_, kInk);
+    out.boxed_text(Vec2(panel_x + bar_w + 0.6 * font_px_, yk + 0.35 * font_px_), tick(val, scale_.hi - scale_.lo),
+             font_px_, kInk, paper);
   }
   // legend
   double ly = bar_bot + 1.3 * line;
   auto swatch = [&](Rgba col, const std::string& what) {
     out.quad(Vec2(panel_x, ly - 0.7 * font_px_), Vec2(panel_x + bar_w, ly - 0.7 * font_px_), Vec2(panel_x + bar_w, ly),
              Vec2(panel_x, ly), col);
-    out.text(Vec2(panel_x + bar_w + 0.5 * font_px_, ly), what, font_px_, kInk);
+    out.boxed_text(Vec2(panel_x + bar_w + 0.5 * font_px_, ly), what, font_px_, kInk, paper);
     ly += line;
   };
-  if (qi.is_signed) out.text(Vec2(panel_x, ly), "+ : along travel", font_px_, kInk), ly += line;
+  if (qi.is_signed) out.boxed_text(Vec2(panel_x, ly), "+ : along travel", font_px_, kInk, paper), ly += line;
   bool any_wet = false;
   for (const ElementDraw& el : out.elements) any_wet = any_wet || el.wet;
   if (any_wet) swatch(kWet, "wet (\u03bc < " + format("%g", mu_dry) + ")");
   swatch(kSlip, "slipping");
+  if (arrows) {
+    out.arrow(Vec2(panel_x, ly - 0.35 * font_px_), Vec2(panel_x + bar_w, ly - 0.35 * font_px_), arrow_w,
+              std::min(0.8 * font_px_, 0.6 * bar_w), kInk);
+    out.boxed_text(Vec2(panel_x + bar_w + 0.5 * font_px_, ly), "belt travel", font_px_, kInk, paper);
+    ly += line;
+  }
   if (fs_.quantity != FrameQuantity::tension && fs_.quantity != FrameQuantity::mu) swatch(scale_.none, "off the pulleys");
 }
 

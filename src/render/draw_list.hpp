@@ -11,13 +11,20 @@
 //   quantity on a banded colour map; the centres' deviation from the nominal path (the pitch
 //   line, sunk by the static penetration on each pulley) magnified by `magnify`;
 // - wet elements (μ below the belt's largest μ) with a blue band along the outer (back) edge;
-// - elements that slip (model/observables.hpp: |slip| > Δv, outside the friction band) with an
-//   orange band along the inner edge, so stick and slip arcs read at a glance whatever the quantity;
+// - elements that slip (model/observables.hpp: |slip| > Δv, outside the friction band) with a
+//   magenta band along the inner edge (a colour neither colour map has), so stick and slip arcs
+//   read at a glance whatever the quantity;
+// - an arrow beside the belt on its outer side showing the direction of travel, at the middle of
+//   each span (in a view that shows no span's middle, beside the visible element nearest the
+//   centre);
 // - a colour bar with the quantity, its unit, its range and band edges; a legend;
-// - time, each pulley's speed and its slip (rim speed minus belt speed) as text.
+// - time, each pulley's speed and its slip (belt speed minus rim speed) as text.
+// Text stands on a box of the background's colour, so it stays readable where the belt runs under
+// it (zoomed views).
 #pragma once
 
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "model/model.hpp"
@@ -48,6 +55,10 @@ struct GlyphVertex {
   Rgba c;
 };
 
+// the band along the inner edge of a slipping element: magenta, a colour neither colour map
+// (colormap.cpp: viridis, cool-warm) comes near
+inline constexpr Rgba kSlipColour{0.90f, 0.00f, 0.90f, 1};
+
 // what one element looks like in the frame (kept for tests and for the reader of the code)
 struct ElementDraw {
   Vec2 centre;      // [px] where its centre is drawn
@@ -67,6 +78,7 @@ struct DrawList {
   Font* font = nullptr;                // owner of the glyph atlas
   std::vector<ElementDraw> elements;
   std::vector<std::string> texts;      // every string drawn, in order (for tests)
+  std::vector<std::pair<Vec2, Vec2>> travel;  // tail and tip [px] of the direction-of-travel arrows (for tests)
   ColourScale scale;
 
   void triangle(Vec2 a, Vec2 b, Vec2 c, Rgba col);
@@ -81,6 +93,10 @@ struct DrawList {
   enum Align { left, centre, right };
   // text with its baseline at y; returns the width [px]
   float text(Vec2 at, const std::string& utf8, int px, Rgba col, Align align = left);
+  // text on a box of colour `box` a few pixels larger than it (readable over the belt)
+  float boxed_text(Vec2 at, const std::string& utf8, int px, Rgba col, Rgba box, Align align = left);
+  // an arrow from tail to tip, its head `head_px` long
+  void arrow(Vec2 tail, Vec2 tip, double width_px, double head_px, Rgba col);
 };
 
 // world [m] to pixels

@@ -1,7 +1,9 @@
 // Tab completion at the console prompt: globals and Lua's keywords, the fields of a table named by
 // a dotted path (`beltsim.ra` -> `beltsim.ramp(`), a simulation's methods (`sim:adv` ->
-// `sim:advance(`). Completing reads tables raw and never runs Lua code (an __index could fail or
-// loop).
+// `sim:advance(`); inside a string argument, the names the call takes there (`sim:pulley("dr` ->
+// `sim:pulley("driver"`, `sim:plot{ "driver.om` -> `"driver.omega"`, `sim:elements{ pulley = "`,
+// `sim:show{ quantity = "`, `help("`). Completing reads tables raw and never runs Lua code (an
+// __index could fail or loop).
 #pragma once
 
 struct lua_State;

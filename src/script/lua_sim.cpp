@@ -165,6 +165,7 @@ int l_pulley(lua_State* L) {
   set_number(L, "stick_arc", p.stick_arc);
   set_number(L, "creep", p.creep);
   set_number(L, "slip_speed", p.slip_speed);
+  set_number(L, "creep_pitch", p.creep_pitch);
   if (!std::isnan(p.arm_angle)) set_number(L, "arm_angle", p.arm_angle), set_number(L, "arm_rate", p.arm_rate);
   if (!std::isnan(p.rotor_speed)) {
     set_number(L, "rotor_angle", p.rotor_angle), set_number(L, "rotor_speed", p.rotor_speed);
@@ -780,7 +781,7 @@ const std::vector<HelpEntry>& api_help() {
       {"t", "sim.t", "the current simulated time [s]"},
       {"pulley", "sim:pulley(name)",
        "{ omega [rad/s], angle [rad], torque, belt_torque [N·m], hub_load [N], contact_arc, slip_arc, "
-       "stick_arc [m], creep, slip_speed [m/s]; arm_angle [rad], arm_rate [rad/s] on a tensioner arm; rotor_angle [rad], "
+       "stick_arc [m], creep, slip_speed [m/s], creep_pitch; arm_angle [rad], arm_rate [rad/s] on a tensioner arm; rotor_angle [rad], "
        "rotor_speed [rad/s], windup [rad], coupling_torque [N·m] with a coupling }"},
       {"element", "sim:element(i)",
        "{ x, y [m], phi [rad], s [m], tension, normal, friction [N], slip [m/s], mu, pulley, state } of element i "
@@ -823,6 +824,35 @@ const std::vector<HelpEntry>& api_help() {
       {"help", "help([name])", "this list, or one entry"},
   };
   return h;
+}
+
+std::vector<std::string> argument_names(lua_State* L, int idx, const std::string& method, bool in_table, int arg,
+                                        const std::string& key) {
+  const auto* box = static_cast<const SimBox*>(luaL_testudata(L, idx, kSimMeta));
+  if (!box || !box->sim) return {};
+  const Simulation& s = *box->sim;
+  std::vector<std::string> names;
+  auto pulleys = [&](auto keep) {
+    for (const Pulley& p : s.model().pulleys)
+      if (keep(p)) names.push_back(p.name);
+  };
+  const auto any = [](const Pulley&) { return true; };
+  if (in_table) {
+    if (method == "elements" && key == "pulley") pulleys(any);
+    if (method == "plot" && key.empty()) names = s.columns();
+    if (method == "show" && key == "quantity")
+      for (const FrameQuantityInfo& q : frame_quantities()) names.push_back(q.key);
+    return names;
+  }
+  if (((method == "pulley" || method == "set_torque" || method == "set_speed") && arg == 1) ||
+      (method == "span" && arg <= 2)) {
+    pulleys(any);
+  } else if (method == "set_arm" && arg == 1) {
+    pulleys([](const Pulley& p) { return p.arm >= 0; });
+  } else if (method == "set_rotor" && arg == 1) {
+    pulleys([](const Pulley& p) { return p.coupling >= 0; });
+  }
+  return names;
 }
 
 void push_simulation(lua_State* L, std::unique_ptr<Simulation> sim, Context* ctx, bool progress) {

@@ -27,4 +27,13 @@ struct HelpEntry {
 };
 const std::vector<HelpEntry>& api_help();
 
+// The names a string argument of `sim:<method>` takes, for the console's completion: for the live
+// simulation at index idx (anything else: none), argument `arg` (1-based) of the call, or inside
+// its table argument (`in_table`) the field `key` ("" for the list part). Pulley names for
+// pulley, span, set_torque, set_speed, set_arm (pulleys on an arm), set_rotor (coupled pulleys) and
+// elements{ pulley = }; timeseries.csv's columns for plot{ ... }; the quantities for show{ quantity = }.
+// Runs no Lua code.
+std::vector<std::string> argument_names(lua_State* L, int idx, const std::string& method, bool in_table, int arg,
+                                        const std::string& key);
+
 }  // namespace beltsim::script

@@ -1,6 +1,7 @@
 #include "sim/work_precision.hpp"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -8,7 +9,9 @@
 #include <sstream>
 
 #include "integrate/stepper.hpp"
+#include "io/csv_writer.hpp"
 #include "io/row_file.hpp"
+#include "io/suggest.hpp"
 #include "io/number_text.hpp"
 
 namespace beltsim {
@@ -51,7 +54,7 @@ double rel_error(const std::vector<std::vector<double>>& run, const std::vector<
 void write_csv(const WpResult& res, const std::string& path) {
   std::ostringstream f;  // the table whole, then renamed over the last one: a kill never leaves part of it
   f << "integrator,rtol,finished,t_reached_s,wall_s,steps,rejected,rhs,jacobians,factorizations,solves,"
-       "err_speed,err_speed_end,err_tension\n";
+       "err_speed,err_speed_end,err_tension,metric,err_metric,note\n";
   const auto num = [](double v) { return number_text(v); };
   auto row = [&](const WpRow& r) {
     f << r.integrator << ',' << num(r.rtol) << ',' << (r.finished ? 1 : 0) << ',' << num(r.t_reached) << ','
@@ -59,9 +62,11 @@ void write_csv(const WpResult& res, const std::string& path) {
       << r.work.steps << ',' << r.work.rejected << ',' << r.work.rhs << ',' << r.work.jacobians << ','
       << r.work.factorizations << ',' << r.work.solves << ',';
     if (r.finished)
-      f << num(r.err_speed) << ',' << num(r.err_speed_end) << ',' << num(r.err_tension) << '\n';
+      f << num(r.err_speed) << ',' << num(r.err_speed_end) << ',' << num(r.err_tension) << ',' << num(r.metric) << ','
+        << num(r.err_metric);
     else
-      f << ",,\n";
+      f << ",,,,";
+    f << ',' << csv_text(r.note) << '\n';
   };
   row(res.reference);
   for (const WpRow& r : res.rows) row(r);
@@ -70,9 +75,40 @@ void write_csv(const WpResult& res, const std::string& path) {
 
 }  // namespace
 
+std::string large_errors(const WpRow& r, const std::string& metric) {
+  std::string s;
+  auto check = [&](const std::string& what, double e) {
+    if (!(e > kWpErrorWarning)) return;
+    char b[96];
+    std::snprintf(b, sizeof b, "%s%s error %.3g %%", s.empty() ? "" : ", ", what.c_str(), 100 * e);
+    s += b;
+  };
+  check("speed", r.err_speed);
+  check("tension", r.err_tension);
+  if (!metric.empty()) check(metric, r.err_metric);
+  return s;
+}
+
+const std::vector<std::string>& default_wp_integrators() {
+  static const std::vector<std::string> names{"esdirk32", "trbdf2", "cvode"};
+  return names;
+}
+
 WpResult work_precision(const Scene& sc, const WpSettings& ws, const std::atomic<bool>* stop) {
-  std::vector<std::string> names = ws.integrators.empty() ? integrator_names() : ws.integrators;
+  std::vector<std::string> names = ws.integrators.empty() ? default_wp_integrators() : ws.integrators;
   for (const std::string& n : names) check_integrator(n);  // unknown names fail before anything runs
+  int metric = -1;
+  if (!ws.metric.empty()) {
+    const std::vector<std::string> cols = timeseries_columns(sc, ws.base.probes.size());
+    const auto it = std::find(cols.begin(), cols.end(), ws.metric);
+    if (it == cols.end()) {
+      std::string list;
+      for (const std::string& c : cols) list += (list.empty() ? "" : ", ") + c;
+      throw std::invalid_argument("wp: --metric: no column '" + ws.metric + "'" + did_you_mean(ws.metric, cols) +
+                                  "; columns: " + list);
+    }
+    metric = static_cast<int>(it - cols.begin());
+  }
   fs::create_directories(ws.base.out_dir);
   WpResult res;
   res.csv_path = (fs::path(ws.base.out_dir) / "wp.csv").string();
@@ -92,11 +128,17 @@ WpResult work_precision(const Scene& sc, const WpSettings& ws, const std::atomic
     WpRow row;
     row.integrator = integrator;
     row.rtol = rtol;
+    const auto started = std::chrono::steady_clock::now();
     try {
       rr = run(sc, rs, stop);
       row.finished = !rr.interrupted && !rr.over_wall_limit;
+      if (!row.finished) row.note = rr.over_wall_limit ? "wall-time limit" : "interrupted";
     } catch (const std::exception& e) {  // divergence: recorded as unfinished
       std::fprintf(stderr, "failed: %s\n", e.what());
+      row.wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+      const DivergenceError* d = dynamic_cast<const DivergenceError*>(&e);
+      row.t_reached = d ? d->t : 0;
+      row.note = std::string("failed: ") + e.what();
       return std::make_pair(row, rr);
     }
     row.t_reached = rr.t_reached;
@@ -111,6 +153,9 @@ WpResult work_precision(const Scene& sc, const WpSettings& ws, const std::atomic
   if (!ref_row.finished) throw std::runtime_error("wp: the reference run did not finish");
   res.reference = ref_row;
   res.reference.integrator = "reference:" + ws.ref_integrator;
+  res.reference.metric = metric >= 0 && !ref_run.samples.empty() ? ref_run.samples.back()[metric]
+                                                                  : std::numeric_limits<double>::quiet_NaN();
+  res.reference.err_metric = metric >= 0 ? 0 : std::numeric_limits<double>::quiet_NaN();
   std::vector<int> speed, tension;
   channels(sc, speed, tension);
 
@@ -122,6 +167,15 @@ WpResult work_precision(const Scene& sc, const WpSettings& ws, const std::atomic
         row.err_speed = rel_error(rr.samples, ref_run.samples, speed, false);
         row.err_speed_end = rel_error(rr.samples, ref_run.samples, speed, true);
         row.err_tension = rel_error(rr.samples, ref_run.samples, tension, false);
+        row.metric = row.err_metric = std::numeric_limits<double>::quiet_NaN();
+        if (metric >= 0 && !rr.samples.empty() && !ref_run.samples.empty()) {
+          const double m = rr.samples.back()[metric], m_ref = ref_run.samples.back()[metric];
+          row.metric = m;
+          row.err_metric = std::abs(m - m_ref) / (m_ref != 0 ? std::abs(m_ref) : 1.0);
+        }
+        if (const std::string e = large_errors(row, ws.metric); !e.empty())
+          std::fprintf(stderr, "beltsim wp: warning: %s at rtol %s finished with %s (over %g %%): do not trust its answer\n",
+                       name.c_str(), tol_name(rtol).c_str(), e.c_str(), 100 * kWpErrorWarning);
       }
       res.rows.push_back(row);
       write_csv(res, res.csv_path);  // after every run: an interrupted study keeps what it has
@@ -134,6 +188,7 @@ WpResult work_precision(const Scene& sc, const WpSettings& ws, const std::atomic
         << " s, reference " << ws.ref_integrator << " at rtol " << tol_name(ws.ref_rtol);
   res.title = title.str();
   res.integrators = names;
+  res.metric = ws.metric;
   return res;
 }
 

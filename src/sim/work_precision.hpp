@@ -5,7 +5,10 @@
 //   speed error   = max over pulleys j and samples k of |Ω_j(t_k) - Ω_j,ref(t_k)| / max_k |Ω_j,ref|
 //   end error     = the same at t_end only (what the paper's Figs 5–6 read off)
 //   tension error = max over spans and samples of |T(t_k) - T_ref(t_k)| / max_k |T_ref|
-// A run that exceeds the wall-time limit is recorded with finished = false and no errors.
+//   metric error  = |m - m_ref| / |m_ref| for a timeseries column m at t_end (--metric), or
+//                   |m - m_ref| where m_ref = 0
+// A run that exceeds the wall-time limit, diverges or is interrupted is recorded with finished =
+// false, why in its note and no errors. A finished run whose error passes 10 % gets a warning.
 #pragma once
 
 #include <atomic>
@@ -16,13 +19,21 @@
 
 namespace beltsim {
 
+// the integrators a study runs when none are named: those that finish the paper's dry second at
+// every rtol of 1e-2..1e-6 well within the wall-time limit (docs/performance.md)
+const std::vector<std::string>& default_wp_integrators();
+
+// a finished run with an error above this is warned about (its answer is not to be trusted)
+constexpr double kWpErrorWarning = 0.1;
+
 struct WpSettings {
-  std::vector<std::string> integrators;   // empty: every name of integrator_names()
+  std::vector<std::string> integrators;   // empty: default_wp_integrators()
   std::vector<double> rtols{1e-2, 1e-3, 1e-4, 1e-5, 1e-6};
   std::string ref_integrator = "esdirk32";
   double ref_rtol = 1e-7;
   double wall_limit = 120;                // [s] per run (the reference has none)
   RunSettings base;                       // t_end, sample interval, out_dir, probe of the script
+  std::string metric;                     // a timeseries column compared at t_end ("" for none)
 };
 
 struct WpRow {
@@ -32,6 +43,8 @@ struct WpRow {
   double t_reached = 0, wall = 0;
   WorkCounters work;
   double err_speed = 0, err_speed_end = 0, err_tension = 0;
+  double metric = 0, err_metric = 0;  // the metric's value at t_end and its error (NaN without one)
+  std::string note;                   // why an unfinished run stopped
 };
 
 struct WpResult {
@@ -40,9 +53,15 @@ struct WpResult {
   std::string csv_path;
   std::vector<std::string> integrators;   // those studied, in order (the plot's lines)
   std::string title;                      // for the plot: elements, t_end, the reference
+  std::string metric;                     // the metric's column ("" for none: the plot shows err_speed)
 };
 
-// Runs the study; writes DIR/wp.csv and DIR/<integrator>-<rtol>/timeseries.csv. DIR/wp.png is
+// The errors of a finished run above kWpErrorWarning ("speed error 13.2 %, driven.creep error
+// 31.9 %"), or "" (metric: the study's, "" for none)
+std::string large_errors(const WpRow& r, const std::string& metric);
+
+// Runs the study; an unknown metric column fails first (std::invalid_argument naming the columns);
+// writes DIR/wp.csv and DIR/<integrator>-<rtol>/timeseries.csv. DIR/wp.png is
 // drawn from the result by plot::plot_wp_png (plot/wp_plot.hpp, library beltsim_plot), so the
 // engine never launches a process.
 WpResult work_precision(const Scene& scene, const WpSettings& settings, const std::atomic<bool>* stop = nullptr);

@@ -584,6 +584,55 @@ class ConsoleTest(unittest.TestCase):
         self.assertEqual(r.returncode, 2, r.stderr.decode())
         self.assertIn("--integrators needs names separated by commas", r.stderr.decode())
 
+    # 18
+    def test_completion_inside_strings(self):
+        c = self.console()
+        # a pulley name; one match closes the string
+        mark = len(c.screen)
+        c.send('sim:pulley("dr')
+        c.wait_for('sim:pulley("dr', start=mark)
+        c.send("\t")
+        c.wait_for('sim:pulley("drive', what="the common part of driver and driven", start=mark)
+        c.send("r\t")  # now one match: the quote is closed
+        c.wait_for('sim:pulley("driver"', what='the completion to "driver"', start=mark)
+        c.send(").omega\r")
+        c.wait_prompt(mark)
+        self.assertRegex(c.screen[mark:], r"\n-?[0-9.e+-]+\n> ", c.transcript())  # a number, no error
+        # a column in sim:plot's list, in single quotes
+        mark = len(c.screen)
+        c.send("sim:plot{ 'driven.slip_sp")
+        c.wait_for("'driven.slip_sp", start=mark)
+        c.send("\t")
+        c.wait_for("sim:plot{ 'driven.slip_speed'", what="the completion of a column", start=mark)
+        c.send("\x03")
+        c.wait_prompt(mark)
+        # a field of a table argument, both matches listed on a second Tab
+        mark = len(c.screen)
+        c.send('sim:elements{ pulley = "drive')
+        c.wait_for('pulley = "drive', start=mark)
+        c.send("\t\t")
+        c.wait_for(re.compile(r"driven\s+driver"), what="the list of the two pulleys", start=mark)
+        c.send("\x03")
+        c.wait_prompt(mark)
+        # help's entries
+        mark = len(c.screen)
+        c.send('help("set_to')
+        c.wait_for('help("set_to', start=mark)
+        c.send("\t")
+        c.wait_for('help("set_torque"', what="the completion of a help entry", start=mark)
+        c.send(")\r")
+        c.wait_prompt(mark)
+        self.assertIn("sim:set_torque(name, law", c.screen[mark:], c.transcript())
+        # a string that is no call's argument completes nothing
+        mark = len(c.screen)
+        c.send('x = "dr')
+        c.wait_for('x = "dr', start=mark)
+        raw_mark = len(c.raw)
+        c.send("\t")
+        c.wait_for("\x07", start=raw_mark, raw=True, what="the bell of a completion that found nothing")
+        c.send("\x03")
+        c.wait_prompt(mark)
+
 
 def main():
     global BELTSIM

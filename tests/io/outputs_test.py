@@ -221,7 +221,7 @@ def not_written():
 
     # the video: cut at its last whole fragment, which plays; named; exit 1
     out = fresh("video_full")
-    limit = 48 * 1024
+    limit = 96 * 1024  # past the first whole fragment (a second of video: about 50 KB)
     status, err = beltsim(["run", script("video", SCENE + 'drive:run { t_end = 1, progress = false, sample = 0.1, '
                                          'frames = { size = {320, 240}, video = "v.mp4" } }\n'), "--out", out],
                           limit=limit)

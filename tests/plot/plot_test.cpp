@@ -160,6 +160,51 @@ TEST(Plot, ThreeUnitsGiveStackedPanels) {
   EXPECT_EQ(read_png((d / "p.png").string()).width, 1280);
 }
 
+// events.csv's rows as marks: one per time, labels "what value" shortened, a cut row left out
+TEST(Plot, EventsBecomeMarks) {
+  const fs::path d = dir("events");
+  EXPECT_TRUE(read_event_marks((d / "events.csv").string()).empty());  // no file: no marks
+  const std::string events = write(d / "events.csv",
+                                   "t,what,value\n"
+                                   "0.02,driven.torque,-5\n"
+                                   "0.02,wet,\"mu = 0.3 on s in [0, 0.3] m\"\n"
+                                   "0.04,note,\"a note, with a comma, and long enough to be shortened\"\n"
+                                   "0.05,cut");
+  const std::vector<Mark> m = read_event_marks(events);
+  ASSERT_EQ(m.size(), 2u);
+  EXPECT_EQ(m[0].x, 0.02);
+  EXPECT_EQ(m[0].label, "driven.torque -5; wet mu = 0.3 on s in [0, 0.3] m");
+  EXPECT_EQ(m[1].x, 0.04);
+  EXPECT_EQ(m[1].label, "note a note, with a comma, and long eno\u2026");
+}
+
+// the events beside a timeseries.csv are drawn as lines (every panel); outside the time range none
+TEST(Plot, EventsBesideTheCsvAreDrawn) {
+  const fs::path d = dir("marked");
+  const std::string csv = small_csv(d);
+  const std::vector<std::string> columns{"driver.omega", "span_driver_driven.tension", "probe.slip_velocity"};
+  auto draw = [&](const std::string& name) {
+    plot_csv(csv, {"driver.omega"}, 0, (d / (name + "_one.png")).string());
+    plot_csv(csv, columns, 0, (d / (name + "_panels.png")).string());
+    return std::pair{read_png((d / (name + "_one.png")).string()), read_png((d / (name + "_panels.png")).string())};
+  };
+  auto differing = [](const Image& a, const Image& b) {
+    long n = 0;
+    for (size_t k = 0; k < a.rgb.size(); k += 3) n += a.rgb[k] != b.rgb[k] || a.rgb[k + 1] != b.rgb[k + 1];
+    return n;
+  };
+  const auto [plain_one, plain_panels] = draw("plain");
+  write(d / "events.csv", "t,what,value\n0.5,late,1\n");  // after the last sample (0.1 s)
+  const auto [late_one, late_panels] = draw("late");
+  EXPECT_EQ(differing(plain_one, late_one), 0);
+  EXPECT_EQ(differing(plain_panels, late_panels), 0);
+  write(d / "events.csv", "t,what,value\n0.05,driven.torque,-5\n");
+  const auto [marked_one, marked_panels] = draw("marked");
+  // a dashed line across the plot (about 600 pixels high, half of them dashes) and its label
+  EXPECT_GT(differing(plain_one, marked_one), 200);
+  EXPECT_GT(differing(plain_panels, marked_panels), 200);
+}
+
 TEST(Plot, ClearErrors) {
   const fs::path d = dir("errors");
   PlotSpec spec{"", {}, (d / "x.png").string()};
@@ -196,26 +241,29 @@ TEST(Gnuplot, MissingIsSaidSo) {
 TEST(WpPlot, DrawsTheStudyFromItsCsv) {
   const fs::path d = dir("wp's");
   WpResult r;
-  r.csv_path = write(d / "wp.csv",
-                     "integrator,rtol,finished,t_reached_s,wall_s,steps,rejected,rhs,jacobians,factorizations,solves,"
-                     "err_speed,err_speed_end,err_tension\n"
-                     "reference:esdirk32,1e-07,1,0.1,2,100,0,1,1,1,1,,,\n"
-                     "esdirk32,0.01,1,0.1,0.1,10,0,1,1,1,1,0.1,0.1,0.1\n"
-                     "esdirk32,0.001,1,0.1,0.3,30,0,1,1,1,1,0.01,0.01,0.01\n"
-                     "rkf45,0.01,0,0.01,1,10,0,1,1,1,1,,,\n");
   r.integrators = {"esdirk32", "rkf45"};
   r.title = "a 'study'";
   WpRow row;
   row.integrator = "esdirk32";
   row.finished = true;
-  r.rows = {row, row, WpRow{}};
-  r.rows[2].integrator = "rkf45";
+  row.rtol = 1e-2, row.wall = 0.1, row.err_speed = 0.1;
+  r.rows = {row, row, row, WpRow{}, WpRow{}};
+  r.rows[1].rtol = 1e-3, r.rows[1].wall = 0.3, r.rows[1].err_speed = 0.01;
+  r.rows[2].rtol = 1e-4, r.rows[2].wall = 0.31, r.rows[2].err_speed = 0.011;  // labels that would collide
+  for (int k : {3, 4}) r.rows[k].integrator = "rkf45", r.rows[k].wall = 1, r.rows[k].note = "wall-time limit";
   const std::string png = (d / "wp.png").string();
   plot_wp_png(r, png);
   const Image img = read_png(png);
   EXPECT_EQ(img.width, 1000);
   EXPECT_EQ(img.height, 700);
-  r.rows = {r.rows[2]};
+  // with a metric its error is drawn
+  r.metric = "driven.creep";
+  for (WpRow& w : r.rows) w.err_metric = 2 * w.err_speed;
+  plot_wp_png(r, png);
+  EXPECT_EQ(read_png(png).width, 1000);
+  for (WpRow& w : r.rows) w.err_metric = std::nan("");  // (a creep undefined at t_end)
+  expect_error([&] { plot_wp_png(r, png); }, {"no finished run has an error of driven.creep above 0"});
+  r.rows = {r.rows[3]};
   expect_error([&] { plot_wp_png(r, png); }, {"no run finished"});
 }
 

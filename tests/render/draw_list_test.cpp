@@ -34,6 +34,27 @@ TEST(ColourMap, ViridisLightnessRisesDivergingIsSymmetric) {
   }
 }
 
+// CIE L*a*b* (D65) of an sRGB colour
+Eigen::Vector3d lab(Rgba c) {
+  auto lin = [](double u) { return u <= 0.04045 ? u / 12.92 : std::pow((u + 0.055) / 1.055, 2.4); };
+  const double r = lin(c.r), g = lin(c.g), b = lin(c.b);
+  const double X = (0.4124 * r + 0.3576 * g + 0.1805 * b) / 0.95047, Y = 0.2126 * r + 0.7152 * g + 0.0722 * b,
+               Z = (0.0193 * r + 0.1192 * g + 0.9505 * b) / 1.08883;
+  auto f = [](double t) { return t > 0.008856 ? std::cbrt(t) : 7.787 * t + 16.0 / 116; };
+  return {116 * f(Y) - 16, 500 * (f(X) - f(Y)), 200 * (f(Y) - f(Z))};
+}
+
+// the slipping mark cannot be read as a value: every colour of both maps is farther from it (CIE76
+// ΔE) than half the diverging map's distance from its grey middle to either end (ΔE 87, so 43;
+// the orange used before came within 40 of the map's warm side, magenta stays 61 away)
+TEST(ColourMap, SlipMarkIsNoColourOfEitherMap) {
+  const double half = 0.5 * (lab(colour_at(ColourMap::diverging, 0)) - lab(colour_at(ColourMap::diverging, 0.5))).norm();
+  EXPECT_NEAR(half, 43.4, 0.5);
+  for (ColourMap map : {ColourMap::viridis, ColourMap::diverging})
+    for (int k = 0; k <= 256; ++k)
+      EXPECT_GT((lab(kSlipColour) - lab(colour_at(map, k / 256.0))).norm(), half) << k;
+}
+
 TEST(ColourMap, BandsAndNaN) {
   ColourScale s;
   s.lo = 0, s.hi = 160, s.levels = 16;
@@ -243,6 +264,57 @@ TEST_F(Fixture, TextAndColourBarSayWhatIsShown) {
   EXPECT_TRUE(has("driver: \u03c9 = \u221260.60 rad/s, slip \u22120.06"));
   EXPECT_TRUE(has("driven: \u03c9 = \u221259.40 rad/s, slip +0.06"));
   for (const char* s : {"SDE tension", "[N]", "0", "1000", "wet (\u03bc < 1)", "slipping"}) EXPECT_TRUE(has(s)) << s;
+}
+
+// arrows beside the belt point along the route's direction of travel: one at each span's middle,
+// outside the loop; in a view of one pulley's rim, one beside the visible belt
+TEST_F(Fixture, ArrowsShowTheDirectionOfTravel) {
+  const Scene& sc = wet();
+  const Eigen::VectorXd y = test::moving_state(sc);
+  // the route's tangent (direction of travel) at the point nearest w
+  auto travel_at = [&](const Vec2& w) {
+    Vec2 best_t(0, 0), p, t;
+    double best = 1e300;
+    for (int k = 0; k < 4000; ++k) {
+      sc.route.eval(sc.route.length * k / 4000, p, t);
+      if ((p - w).squaredNorm() < best) best = (p - w).squaredNorm(), best_t = t;
+    }
+    return best_t;
+  };
+  auto check = [&](const FrameBuilder& b, const DrawList& dl) {
+    const Camera& cam = b.camera();
+    for (const auto& [tail, tip] : dl.travel) {
+      const Vec2 mid = 0.5 * (tail + tip);
+      const Vec2 w = cam.centre + Vec2(mid.x() - cam.area_centre.x(), cam.area_centre.y() - mid.y()) / cam.scale;
+      const Vec2 t = travel_at(w), u = (tip - tail).normalized();
+      EXPECT_GT(u.x() * t.x() - u.y() * t.y(), 0.95) << "arrow at " << w.transpose();  // y down in pixels
+      for (const Vec2& e : {tail, tip}) {
+        EXPECT_GT(e.x(), 0);
+        EXPECT_LT(e.x(), 0.83 * dl.width);
+        EXPECT_GT(e.y(), 0);
+        EXPECT_LT(e.y(), dl.height);
+      }
+    }
+  };
+  FrameSettings f = fs();
+  FrameBuilder fit(sc, f, &font);
+  DrawList dl;
+  fit.build(0.25, y.data(), dl);
+  ASSERT_EQ(dl.travel.size(), sc.route.spans.size());
+  check(fit, dl);
+  for (size_t k = 0; k < dl.travel.size(); ++k) {
+    // outside the loop: farther from the pulleys' centre line (y = 0) than the span (|y| = r)
+    const Vec2 mid = 0.5 * (dl.travel[k].first + dl.travel[k].second);
+    EXPECT_GT(std::abs(mid.y() - fit.camera().area_centre.y()), 0.1 * fit.camera().scale);
+  }
+  bool legend = false;
+  for (const std::string& t : dl.texts) legend = legend || t == "belt travel";
+  EXPECT_TRUE(legend);
+  f.view_centre = Vec2(0.39, 0.0), f.view_width = 0.05;  // the driven pulley's rim, no span in view
+  FrameBuilder zoom(sc, f, &font);
+  zoom.build(0.25, y.data(), dl);
+  ASSERT_EQ(dl.travel.size(), 1u);
+  check(zoom, dl);
 }
 
 TEST_F(Fixture, CameraFitsTheLayoutOrFollowsTheView) {

@@ -127,6 +127,15 @@ TEST_F(Golden, WetSlip) {
   expect_golden("wet_slip", render(wet(), fs, test::moving_state(wet())));
 }
 
+// zoomed on the driven pulley's slip arc: the belt runs under the text band and the colour-bar
+// panel, whose text stands on boxes; the arrow of travel sits beside the visible belt
+TEST_F(Golden, WetSlipZoomed) {
+  FrameSettings fs = settings(FrameQuantity::slip);
+  fs.range_lo = -0.08, fs.range_hi = 0.08;
+  fs.view_centre = Vec2(0.33, 0.05), fs.view_width = 0.15;
+  expect_golden("wet_slip_zoomed", render(wet(), fs, test::moving_state(wet())));
+}
+
 TEST_F(Golden, WetFriction) {
   FrameSettings fs = settings(FrameQuantity::friction);
   expect_golden("wet_friction", render(wet(), fs, test::moving_state(wet())));

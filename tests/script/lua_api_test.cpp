@@ -273,7 +273,8 @@ TEST(LuaApi, ProbesSnapshotsAndArcs) {
                                       "snapshots = { times = {0.001, 0.003}, every = 0.002 } }\n"),
             "");
   for (const char* c : {"probe1.sde_force", "probe2.slip_velocity", "probe3.normal_force", "driver.slip_arc",
-                        "driven.contact_arc", "driver.stick_arc", "driven.creep", "driver.slip_speed", "driver.torque_mean",
+                        "driven.contact_arc", "driver.stick_arc", "driven.creep", "driver.slip_speed", "driven.creep_pitch",
+                        "driver.torque_mean",
                         "span_driver_driven.tension_mean"})
     column_of(csv, c);
   std::ifstream snaps(temp_dir() / "out" / "snapshots.csv");
@@ -301,7 +302,17 @@ TEST(LuaApi, ProbesSnapshotsAndArcs) {
                      // is the belt's mean speed, one for both pulleys (to rounding; 9e-4 m/s at 2 ms, > 10·Δv)
                      "local q = sim:pulley('driven')\n"
                      "local vb, vq = p.slip_speed / p.creep, q.slip_speed / q.creep\n"
-                     "assert(math.abs(vb) > 1e-4 and math.abs(vb - vq) < 1e-9 * math.abs(vb), vb .. ' ' .. vq)\n"),
+                     "assert(math.abs(vb) > 1e-4 and math.abs(vb - vq) < 1e-9 * math.abs(vb), vb .. ' ' .. vq)\n"
+                     // creep_pitch takes the rim's speed at R - p̄ (p̄ from the elements' centres on the
+                     // driver, radius 0.1 at the origin): creep_pitch - creep = (v_rim - v_pitch) / v_belt
+                     // = v_rim·(p̄/R) / v_belt, v_rim = vb - slip_speed (to rounding)
+                     "local sum, k = 0, 0\n"
+                     "for i = 0, 59 do local e = sim:element(i)\n"
+                     "  if e.pulley == 'driver' then sum, k = sum + 0.1 - math.sqrt(e.x^2 + e.y^2), k + 1 end end\n"
+                     "assert(k > 10 and sum / k > 1e-6, k .. ' ' .. sum)\n"
+                     "local want = (vb - p.slip_speed) * (sum / k / 0.1) / vb\n"
+                     "local got = p.creep_pitch - p.creep\n"
+                     "assert(math.abs(got - want) < 1e-6 * math.abs(want), got .. ' vs ' .. want)\n"),
             "");
 }
 

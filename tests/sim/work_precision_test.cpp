@@ -3,6 +3,7 @@
 // recorded as unfinished; the CSV and the PNG are written.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <string>
@@ -80,6 +81,57 @@ TEST(WorkPrecision, ARunOverItsWallLimitIsUnfinished) {
   EXPECT_FALSE(r.rows[0].finished);
   EXPECT_LT(r.rows[0].t_reached, 0.02);
   EXPECT_LT(r.rows[0].wall, 5.0);
+  EXPECT_EQ(r.rows[0].note, "wall-time limit");
+}
+
+// --metric: a column's relative error at t_end, in wp.csv; an unknown column fails before any run
+TEST(WorkPrecision, AMetricIsComparedAtTheEnd) {
+  test::expect_warnings({WarningKind::failed_step});
+  const Scene sc = build_scene(presets::paper_dry());
+  WpSettings ws;
+  ws.integrators = {"esdirk32"};
+  ws.rtols = {1e-2, 1e-4};
+  ws.ref_rtol = 1e-6;
+  ws.base.t_end = 0.05;
+  ws.base.out_dir = out_dir("metric").string();
+  fs::remove_all(ws.base.out_dir);
+  ws.metric = "drivn.omega";
+  try {
+    work_precision(sc, ws);
+    ADD_FAILURE() << "an unknown metric column was accepted";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("no column 'drivn.omega' (did you mean 'driven.omega'?)"), std::string::npos)
+        << e.what();
+  }
+  EXPECT_FALSE(fs::exists(fs::path(ws.base.out_dir) / "wp.csv"));  // nothing ran
+  ws.metric = "driven.omega";
+  const WpResult r = work_precision(sc, ws);
+  EXPECT_EQ(r.metric, "driven.omega");
+  ASSERT_EQ(r.rows.size(), 2u);
+  ASSERT_NE(r.reference.metric, 0);
+  for (const WpRow& row : r.rows) {
+    ASSERT_TRUE(row.finished);
+    EXPECT_DOUBLE_EQ(row.err_metric, std::abs(row.metric - r.reference.metric) / std::abs(r.reference.metric));
+    EXPECT_GT(row.err_metric, 0);
+    // one speed at the end: within the largest end error of the speeds, relative to the run's
+    // largest speed (0.05 s into a ramp: the end speed is the largest)
+    EXPECT_LE(row.err_metric, row.err_speed_end * 1.000001);
+  }
+  std::ifstream csv(r.csv_path);
+  std::string header;
+  std::getline(csv, header);
+  EXPECT_NE(header.find(",err_tension,metric,err_metric,note"), std::string::npos) << header;
+}
+
+// a finished run whose error passes 10 % is named with the errors that do
+TEST(WorkPrecision, LargeErrorsAreNamed) {
+  WpRow row;
+  row.finished = true;
+  row.err_speed = 0.05, row.err_tension = 0.099, row.err_metric = 0.5;
+  EXPECT_EQ(large_errors(row, ""), "");
+  EXPECT_EQ(large_errors(row, "driven.creep"), "driven.creep error 50 %");
+  row.err_speed = 0.132;
+  EXPECT_EQ(large_errors(row, ""), "speed error 13.2 %");
 }
 
 }  // namespace
