@@ -145,12 +145,36 @@ FrameSettings to_frames(lua_State* L, int idx, const std::string& w, const std::
   return f;
 }
 
+double wet_share(double s, double from, double to, double len, double tau) {
+  const double span = from <= to ? to - from : len - from + to;
+  double u = std::fmod(s - from, len);
+  if (u < 0) u += len;
+  const bool inside = u <= span;
+  if (tau == 0) return inside ? 1.0 : 0.0;
+  const double d = inside ? std::min(u, span - u) : -std::min(u - span, len - u);  // > 0 inside
+  return std::clamp(0.5 + d / tau, 0.0, 1.0);
+}
+
+
+std::optional<double> read_transition(lua_State* L, int idx, bool has_range, const std::string& what) {
+  const auto transition = opt_number(L, idx, "transition", what);
+  if (!transition) return transition;
+  if (!has_range) fail(L, what + ".transition: a transition needs the wet stretch's from and to [m]");
+  if (!(*transition >= 0 && std::isfinite(*transition))) {
+    std::ostringstream m;
+    m << what << ".transition: must be >= 0 and finite (got " << *transition << " m)";
+    fail(L, m.str());
+  }
+  return transition;
+}
+
 namespace {
 
-// run.events: { {t = 0.5, mu = 0.2, from = 0.3, to = 0.6}, {t = 0.8, mu = function(site) ... end} }
+// run.events: { {t = 0.5, mu = 0.2, from = 0.3, to = 0.6, transition = 0.02}, {t = 0.8, mu = function(site) ... end} }
 // Each event sets μ at time t on the elements whose start position s (belt coordinate, m, as in
 // belt.mu functions) lies in [from, to] (wrapping round when from > to; the whole belt without
-// them); mu is a number or a function of the element's site.
+// them); mu is a number or a function of the element's site; with a transition [m] μ ramps from
+// the belt's μ at time t to the new one across that length about each end (as sim:wet's).
 std::vector<MuEvent> read_events(lua_State* L, int idx, const Scene& sc) {
   std::vector<MuEvent> out;
   require_table(L, idx, "run.events");
@@ -161,15 +185,27 @@ std::vector<MuEvent> read_events(lua_State* L, int idx, const Scene& sc) {
     const int e = lua_gettop(L);
     const std::string what = "run.events[" + std::to_string(k) + "]";
     require_table(L, e, what);
-    check_keys(L, e, what, {"t", "mu", "from", "to"});
+    check_keys(L, e, what, {"t", "mu", "from", "to", "transition"});
     MuEvent ev;
     const auto t = opt_number(L, e, "t", what);
     if (!t) fail(L, what + ".t: the event's time is missing");
     if (const std::string bad = event_time_problem(*t); !bad.empty()) fail(L, what + ".t: " + bad);
     ev.t = *t;
     const auto from = opt_number(L, e, "from", what), to = opt_number(L, e, "to", what);
+    const auto transition = read_transition(L, e, from.has_value(), what);
     if (!field(L, e, "mu")) fail(L, what + ".mu: the new friction coefficient is missing");
     ev.mu = mu_over(L, lua_gettop(L), sc, from, to, what);
+    if (transition && *transition > 0) {
+      // the new μ on every element the ramps reach, each with its share (wet_share)
+      ev.mu = mu_over(L, lua_gettop(L), sc, std::nullopt, std::nullopt, what);
+      const double len = sc.sites.empty() ? 0 : sc.sites[0].length;
+      ev.share.assign(ev.mu.size(), 0.0);
+      for (const ElementSite& site : sc.sites) {
+        const double w = wet_share(site.s, *from, *to, len, *transition);
+        if (w == 0) ev.mu[site.index] = std::nan("");
+        ev.share[site.index] = w;
+      }
+    }
     std::ostringstream text;
     text << "scheduled: mu = ";
     if (lua_type(L, -1) == LUA_TNUMBER)
@@ -177,6 +213,7 @@ std::vector<MuEvent> read_events(lua_State* L, int idx, const Scene& sc) {
     else
       text << "function";
     if (from) text << " on s in [" << number_text(*from) << ", " << number_text(*to) << "] m";
+    if (transition && *transition > 0) text << ", transition " << number_text(*transition) << " m";
     ev.what = "event";
     ev.text = text.str();
     lua_pop(L, 2);  // mu, the event table

@@ -20,6 +20,14 @@ struct Context;
 // them); NaN for the others. Checks the range and every value (>= 0, finite).
 std::vector<double> mu_over(lua_State* L, int mu_idx, const Scene& sc, std::optional<double> from,
                             std::optional<double> to, const std::string& what);
+// The share of the wet μ an element at belt coordinate s takes with a transition of length tau
+// [m] about each end of [from, to] (wrapping round the belt of length len when from > to): 1 inside
+// farther than tau/2 from both ends, 0 outside farther than tau/2, linear across the ends; tau = 0
+// is the sharp boundary (the ends inside).
+double wet_share(double s, double from, double to, double len, double tau);
+// the transition = tau [m] of a wet stretch's table at idx (sim:wet, run.events): absent, or >= 0
+// and finite with the stretch's from and to
+std::optional<double> read_transition(lua_State* L, int idx, bool has_range, const std::string& what);
 // frames = {...} (or the keys of sim:show, where `extra` lists keys read elsewhere); times_only: neither
 // png nor video needed (the times of kept states)
 FrameSettings to_frames(lua_State* L, int idx, const std::string& where, const std::vector<std::string>& extra = {},

@@ -382,34 +382,12 @@ void apply_mu(lua_State* L, Simulation& s, const std::vector<double>& mu, const 
 
 // sim:wet{ from = s0 [m], to = s1 [m], mu = 0.2 | function(site), transition = 0.02 [m] } (no
 // from/to: the whole belt; transition: μ ramps linearly across that length about each end)
-// The share of the wet μ an element at belt coordinate s takes with a transition of length tau
-// [m] about each end of [from, to] (wrapping round the belt of length len when from > to): 1 inside
-// farther than tau/2 from both ends, 0 outside farther than tau/2, linear across the ends; tau = 0
-// is the sharp boundary (the ends inside).
-double wet_share(double s, double from, double to, double len, double tau) {
-  const double span = from <= to ? to - from : len - from + to;
-  double u = std::fmod(s - from, len);
-  if (u < 0) u += len;
-  const bool inside = u <= span;
-  if (tau == 0) return inside ? 1.0 : 0.0;
-  const double d = inside ? std::min(u, span - u) : -std::min(u - span, len - u);  // > 0 inside
-  return std::clamp(0.5 + d / tau, 0.0, 1.0);
-}
-
 int l_wet(lua_State* L) {
   Simulation& s = live(L, "wet", {{"{from, to, mu, transition}", kTable}});
   require_table(L, 2, "sim:wet");
   check_keys(L, 2, "sim:wet", {"from", "to", "mu", "transition"});
   const auto from = opt_number(L, 2, "from", "sim:wet"), to = opt_number(L, 2, "to", "sim:wet");
-  const auto transition = opt_number(L, 2, "transition", "sim:wet");
-  if (transition) {
-    if (!from) fail(L, "sim:wet.transition: a transition needs the wet stretch's from and to [m]");
-    if (!(*transition >= 0 && std::isfinite(*transition))) {
-      std::ostringstream m;
-      m << "sim:wet.transition: must be >= 0 and finite (got " << *transition << " m)";
-      fail(L, m.str());
-    }
-  }
+  const auto transition = read_transition(L, 2, from.has_value(), "sim:wet");
   if (!field(L, 2, "mu")) fail(L, "sim:wet: mu (the wet friction coefficient) is required");
   std::vector<double> mu;
   if (transition && *transition > 0) {

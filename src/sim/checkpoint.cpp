@@ -237,6 +237,7 @@ std::string Simulation::checkpoint_text() const {
     w.line("event.what", ev.what);
     w.line("event.text", ev.text);
     w.line("event.mu", ev.mu);
+    w.line("event.share", ev.share);
   }
   w.line("rows", out_->rows());
   // the outputs' sizes (0 for one that is not there; never through a link)
@@ -288,7 +289,7 @@ std::unique_ptr<Simulation> Simulation::load(const std::string& path, const Fram
     positions = r.line_longs("streams", 0, LONG_MAX);
     const int streams_line = r.line_number();
     r.open("pending");
-    const size_t n_pending = r.group_count(4);
+    const size_t n_pending = r.group_count(5);
     r.close();
     std::vector<MuEvent> pending(n_pending);
     const size_t n = static_cast<size_t>(sc.model.n_el());
@@ -302,6 +303,11 @@ std::unique_ptr<Simulation> Simulation::load(const std::string& path, const Fram
       if (ev.mu.size() != n) r.fail(std::to_string(ev.mu.size()) + " values for " + std::to_string(n) + " elements");
       for (double mu : ev.mu)
         if (!std::isnan(mu) && !(mu >= 0)) r.fail("μ must be >= 0 (got " + number_text(mu) + ")");
+      ev.share = r.line_doubles("event.share", n);
+      if (!ev.share.empty() && ev.share.size() != n)
+        r.fail(std::to_string(ev.share.size()) + " shares for " + std::to_string(n) + " elements");
+      for (double w : ev.share)
+        if (!(w >= 0 && w <= 1)) r.fail("a share of the new μ must be in [0, 1] (got " + number_text(w) + ")");
     }
     const long rows = r.line_int("rows", 0, LONG_MAX);
     const long csv_bytes = r.line_int("csv_bytes", 0, LONG_MAX);

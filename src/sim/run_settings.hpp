@@ -18,9 +18,12 @@ struct Scene;
 // lands exactly on t and restarts there. mu holds one value per element; NaN keeps the old one.
 struct MuEvent {
   double t = 0;              // [s]
-  std::vector<double> mu;
+  std::vector<double> mu;    // the new μ per element (NaN: unchanged)
+  // empty: mu replaces; else the share w in [0, 1] of the new μ each element takes when the event
+  // comes, μ = μ_then + w·(mu - μ_then) (a wet/dry transition over a length, wet_share)
   std::string what = "mu";   // for events.csv: what changed, and how
   std::string text;
+  std::vector<double> share;
 };
 
 struct RunSettings {

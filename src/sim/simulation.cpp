@@ -141,7 +141,8 @@ void Simulation::set_landings() {
                      const MuEvent ev = pending_.front();
                      pending_.erase(pending_.begin());
                      for (int i = 0; i < model_.n_el(); ++i)
-                       if (!std::isnan(ev.mu[i])) drive_.mu[i] = ev.mu[i];
+                       if (!std::isnan(ev.mu[i]))
+                         drive_.mu[i] = ev.share.empty() ? ev.mu[i] : drive_.mu[i] + ev.share[i] * (ev.mu[i] - drive_.mu[i]);
                      write_event(t, ev.what, ev.text.empty() ? "scheduled" : ev.text);
                      changed();
                    }

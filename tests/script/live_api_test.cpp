@@ -259,6 +259,45 @@ TEST(LiveApi, WetTransitionRampsMuAcrossItsLength) {
             "");
 }
 
+// The same transition on a run's events: μ ramps from the belt's μ when the event comes (here 0.5,
+// set by a first event) to the new one. Read from the states the run keeps (keep_states, frames
+// 1.5e-4 s apart): after both events, and resumed from the one between them (the pending event's
+// shares are in the checkpoint).
+TEST(LiveApi, EventTransitionRampsMuWhenTheEventComes) {
+  const std::string out = (temp_dir() / "event_transition").string();
+  EXPECT_EQ(run_text("local s = beltsim.scene{ pulleys = {\n"
+                     "  { name = 'driver', centre = {0, 0}, torque = -1 },\n"
+                     "  { name = 'driven', centre = {0.29, 0} } }, belt = { elements = 240 } }\n"
+                     "local ev = { { t = 1e-4, mu = 0.5 },\n"
+                     "             { t = 2e-4, mu = 0.2, from = 0.3, to = 0.6, transition = 0.05 } }\n"
+                     "local function check(sim, n)\n"
+                     "  local ramped = 0\n"
+                     "  for i = 0, n - 1 do\n"
+                     "    local e = sim:element(i)\n"
+                     "    local d = math.min(e.s - 0.3, 0.6 - e.s)\n"
+                     "    local w = math.max(0, math.min(1, 0.5 + d / 0.05))\n"
+                     "    local want = 0.5 + w * (0.2 - 0.5)\n"
+                     "    assert(math.abs(e.mu - want) < 1e-12, ('element %d at s = %g: mu %g, want %g'):format(i, e.s, e.mu, want))\n"
+                     "    if w > 0 and w < 1 then ramped = ramped + 1 end\n"
+                     "  end\n"
+                     "  assert(ramped >= 8, 'elements on the ramps: ' .. ramped)\n"
+                     "end\n"
+                     "s:run{ t_end = 3.5e-4, out = '" + out + "', progress = false, events = ev, keep_states = true,\n"
+                     "       frames = { fps = 10, slowdown = 1 / 1.5e-3 } }\n"
+                     "local after = beltsim.resume('" + out + "/states/state_00002.ckpt')\n"
+                     "check(after, 240)\n"
+                     "after:close()\n"
+                     "local between = beltsim.resume('" + out + "/states/state_00001.ckpt')\n"
+                     "assert(between:element(0).mu == 0.5, between:element(0).mu)\n"
+                     "between:run_to(2.5e-4)\n"
+                     "check(between, 240)\n"
+                     "between:close()\n"
+                     "local ok, err = pcall(s.run, s, { t_end = 1e-4, out = '" + out + "_bad', progress = false,\n"
+                     "  events = { { t = 1e-4, mu = 0.2, transition = 0.05 } } })\n"
+                     "assert(not ok and err:find('run.events%[1%].transition: a transition needs'), err)\n"),
+            "");
+}
+
 // belt.mu_flank (issue 27 §4): the effective μ of the rib wedge is mu_flank/sin(rib_angle/2), with
 // the PK belt's 40° by default (0.5/sin 20° = 1.4619); parameters.csv states both; mu and mu_flank
 // together, or a rib angle of 180°, are refused with the reason and the value.

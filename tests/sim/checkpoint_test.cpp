@@ -235,7 +235,7 @@ TEST(Checkpoint, HugeCountsAllocateNothing) {
             prefix() + "line " + std::to_string(line_of(t, "streams")) +
                 ": 'streams': 1000000000 values announced, the line holds 0");
   EXPECT_EQ(refusal(resealed(with_line(t, "pending", "pending 1000000000"))),
-            prefix() + "line " + std::to_string(line_of(t, "pending")) + ": 'pending': 1000000000 entries of 4 lines " +
+            prefix() + "line " + std::to_string(line_of(t, "pending")) + ": 'pending': 1000000000 entries of 5 lines " +
                 "announced, the file has " + std::to_string(std::count(t.begin(), t.end(), '\n') - line_of(t, "pending") - 1) +
                 " lines left");
   EXPECT_EQ(refusal(resealed(with_line(t, "mean_acc", "mean_acc 1000000000 1"))),

@@ -175,7 +175,7 @@ TEST(Live, CoincidentEventsAndKinks) {
     RunSettings rs = settings(integ, temp("coincident_" + integ));
     rs.t_end = 0.0006;  // rkf45 is stability-limited (steps of ~1e-9 s): a short stretch
     std::vector<double> mu(sc.model.n_el(), 0.5);
-    rs.mu_events = {{0.0004, mu, "a", ""}, {0.0004, mu, "b", ""}, {0.0002, mu, "c", ""}, {0.0002, mu, "d", ""}};
+    rs.mu_events = {{0.0004, mu, "a", "", {}}, {0.0004, mu, "b", "", {}}, {0.0002, mu, "c", "", {}}, {0.0002, mu, "d", "", {}}};
     RunResult r;
     ASSERT_NO_THROW(r = run(sc, rs)) << integ;
     EXPECT_EQ(r.t_reached, 0.0006);
@@ -226,7 +226,7 @@ TEST(Live, CheckpointResumesBitForBit) {
     RunSettings rs = settings("esdirk32", out);
     rs.snapshot_times = {0.01, 0.0137, 0.019, 0.025};
     rs.snapshot_every = 0.007;
-    rs.mu_events = {{0.024, std::vector<double>(sc.model.n_el(), 0.8), "dry", ""}};  // still ahead at the save
+    rs.mu_events = {{0.024, std::vector<double>(sc.model.n_el(), 0.8), "dry", "", {}}};  // still ahead at the save
     return rs;
   };
   auto change = [&](Simulation& s) {
