@@ -15,7 +15,10 @@ double BeltProblem::atol_scale(int k) const {
   // natural sizes: 0.1 m (layout), 1 rad, 1 m/s, 10 rad/s (element spin), 1 J, and a bristle's
   // deflection at μ = 1, 1/σ0 (so that its error weighs as μ's)
   const int N = model_.n_coord(), ne = 3 * model_.n_el();
-  if (k >= model_.bristle_offset()) return 1.0 / model_.friction.bristle_stiffness;
+  if (k >= model_.bristle_offset()) {
+    const Friction& f = model_.friction_of(k - model_.bristle_offset());
+    return f.law == FrictionKind::lugre ? 1.0 / f.bristle_stiffness : 1.0;  // z stays 0 under another law
+  }
   if (k >= 2 * N) return 1.0;
   const bool vel = k >= N;
   const int c = vel ? k - N : k;
@@ -29,8 +32,10 @@ double BeltProblem::resolution(int k) const {
   const int N = model_.n_coord(), ne = 3 * model_.n_el();
   if (k < N || k >= 2 * N) return std::numeric_limits<double>::infinity();
   const int c = k - N;
-  if (c < ne) return c % 3 == 2 ? std::numeric_limits<double>::infinity() : model_.friction.dv;
-  return model_.friction.dv / model_.pulleys[c - ne].radius;
+  if (c < ne) return c % 3 == 2 ? std::numeric_limits<double>::infinity() : model_.friction_of(c / 3).dv;
+  double band = model_.friction.dv;  // a pulley's speed: the narrowest band on the belt
+  for (const Friction& f : model_.laws) band = std::min(band, f.dv);
+  return band / model_.pulleys[c - ne].radius;
 }
 
 int BeltProblem::switch_count() const { return beltsim::switch_count(model_); }

@@ -212,7 +212,7 @@ int solve_block(LocalSolveScratch& w, int lo, int L, double diag, double band) {
 
 int friction_local_solve(const Model& m, const Drive& d, const ContactList& pairs, double s, double* q, double* v,
                          const double* g, LocalSolveScratch& w) {
-  if (m.friction.law != FrictionKind::threlfall) return 0;  // E is convex only for Threlfall's sat
+  if (!m.every_law(FrictionKind::threlfall)) return 0;  // E is convex only for Threlfall's sat
   const double band = m.friction.dv;
   const Belt& bl = m.belt;
   // in units of force·time: an element's row times m, the pulley's times its inertia; then one
@@ -266,11 +266,12 @@ int friction_local_solve(const Model& m, const Drive& d, const ContactList& pair
 
 int friction_reseat(const Model& m, const Drive& d, const ContactList& pairs, const double* q, double* v,
                     const double* dq, double* dv, Reseat where) {
-  if (m.friction.law == FrictionKind::lugre) return 0;  // no band: the bristle law is smooth but at v_T = 0
-  const double band = m.friction.dv;
   int moved = 0;
   for (const ContactPair& c : pairs) {
     if (!c.touching || !c.nl.pushing) continue;
+    const Friction& f = m.friction_of(c.i);
+    if (f.law == FrictionKind::lugre) continue;  // no band: the bristle law is smooth but at v_T = 0
+    const double band = f.dv;
     const int i = c.i, j = c.j;
     const Pulley& pl = m.pulleys[j];
     const NormalLaw& a = c.nl;
@@ -426,7 +427,7 @@ uint64_t contact_branches(const Model& m, const ContactList& pairs) {
     const NormalLaw& nl = c.nl;
     uint64_t code = 1 + (nl.pushing ? 2 : 0) + (nl.p < m.contact.p_max ? 4 : 0);
     if (nl.pushing) {
-      const double x = c.fl.vT / m.friction.dv;
+      const double x = c.fl.vT / m.friction_of(c.i).dv;
       code += x <= -1 ? 8 : x >= 1 ? 16 : 0;
     }
     mix(static_cast<uint64_t>(c.j) << 40 | static_cast<uint64_t>(c.i) << 8 | code);

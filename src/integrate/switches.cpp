@@ -24,9 +24,10 @@ int switch_count(const Model& m) { return kSwitchesPerPair * m.n_p() * m.belt.n;
 
 void contact_switches(const Model& m, const ContactList& pairs, double* g) {
   const Contact& c = m.contact;
-  const double band = m.friction.dv;
-  const bool banded = m.friction.law != FrictionKind::lugre;
   for (const ContactPair& pr : pairs) {
+    const Friction& f = m.friction_of(pr.i);
+    const double band = f.dv;
+    const bool banded = f.law != FrictionKind::lugre;
     double* gi = g + kSwitchesPerPair * (pr.j * m.belt.n + pr.i);
     const NormalLaw& nl = pr.nl;
     gi[0] = nl.p;

@@ -6,7 +6,9 @@
 //   ż    = -z/τ                                          out of contact: the bristles let go
 //   μ    = σ0·z + σ1·ż + μ_v·v_T,   F_T = -μ·N·t on the element, M_T = r·μ·N on the pulley
 //
-// with v_T = V·t - Ω·r the slip velocity of friction.cpp. At rest under a tangential load the
+// with v_T = V·t - Ω·r the slip velocity of friction.cpp. On a belt whose segments have laws of
+// their own (Model::law_of) only the elements under LuGre's carry a deflection: the others' z
+// stays 0 (ż = 0). At rest under a tangential load the
 // deflection settles at z = μ/σ0 (|μ| < g(0) = μ_s) and the element stays put: no drift, unlike
 // the regularised laws, whose elements creep at Δv·μ/μ_i. Sliding steadily, z = g(v)·sgn(v)/σ0 and
 // μ = g(v)·sgn(v) + μ_v·v: Stribeck's curve. A belt element holds σ0·N [N/m] of tangential
@@ -48,24 +50,31 @@ void BristleJacobian::resize(int n_el, int n_border) {
   F_b.setZero(n_border, n_el);
 }
 
-void BristleJacobian::clear(double release_time) {
+void BristleJacobian::clear(const Model& m) {
   resize(static_cast<int>(dz.size()), static_cast<int>(dq_b.cols()));
-  dz.assign(dz.size(), -1.0 / release_time);
+  for (int i = 0; i < m.n_el(); ++i) {
+    const Friction& f = m.friction_of(i);
+    dz[i] = f.law == FrictionKind::lugre ? -1.0 / f.release_time : 0.0;
+  }
 }
 
 void bristle_rates(const Model& m, const double* z, const ContactList* lists, int count, double* dz) {
-  const Friction& f = m.friction;
-  for (int i = 0; i < m.n_el(); ++i) dz[i] = -z[i] / f.release_time;
+  for (int i = 0; i < m.n_el(); ++i) {
+    const Friction& f = m.friction_of(i);
+    dz[i] = f.law == FrictionKind::lugre ? -z[i] / f.release_time : 0.0;
+  }
   for (int l = 0; l < count; ++l)
-    for (const ContactPair& c : lists[l])
-      if (c.touching) dz[c.i] = bristle_law(c.mu, f, c.fl.vT, z[c.i]).zdot;
+    for (const ContactPair& c : lists[l]) {
+      const Friction& f = m.friction_of(c.i);
+      if (c.touching && f.law == FrictionKind::lugre) dz[c.i] = bristle_law(c.mu, f, c.fl.vT, z[c.i]).zdot;
+    }
 }
 
 void bristle_jacobian(const Model& m, const Drive& d, double t, const double* q, const double* v, const double* z,
                       const ContactList& pairs, BristleJacobian& B) {
-  const Friction& f = m.friction;
   for (const ContactPair& c : pairs) {
-    if (!c.touching) continue;
+    const Friction& f = m.friction_of(c.i);
+    if (!c.touching || f.law != FrictionKind::lugre) continue;
     const int i = c.i, j = c.j;
     const NormalLaw& nl = c.nl;
     const Vec2 V = Vec2(v[3 * i], v[3 * i + 1]) - m.centre_velocity(j, q, v);

@@ -24,8 +24,8 @@ struct BristleJacobian {
   Eigen::MatrixXd F_b;              // nb × n: ∂f_b/∂z_i, the pulleys' and arms' moments [N]
   std::vector<double> t;            // ∂ż_i/∂t through a kinematic pulley's prescribed speed [m/s²]
   void resize(int n_el, int n_border);
-  // every entry zero but ∂ż/∂z = -1/τ, an element's out of contact
-  void clear(double release_time);
+  // every entry zero but ∂ż/∂z = -1/τ of an element under LuGre's law out of contact
+  void clear(const Model& m);
 };
 
 // ż of every element from the pairs of one contact pass (elements out of contact relax); the

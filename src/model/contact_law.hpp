@@ -186,7 +186,18 @@ inline void contact_pass_with(const Model& m, const Drive& d, double t, const do
 inline void contact_pass(const Model& m, const Drive& d, double t, const double* q, const double* v, const double* z,
                          const Span& span, ContactList& out, Pairs which = Pairs::touching) {
   const Friction& f = m.friction;
-  if (f.law == FrictionKind::threlfall) {
+  if (!m.law_of.empty()) {
+    // belt segments with laws of their own: the law is the element's, chosen per pair
+    contact_pass_with(m, d, t, q, v, span, out, which,
+                      [&m, z](int i, double mu_i, const NormalLaw& nl, const Vec2& V, double omega) {
+                        const Friction& fi = m.friction_of(i);
+                        switch (fi.law) {
+                          case FrictionKind::threlfall: return friction_law(mu_i, fi.dv, nl, V, omega);
+                          case FrictionKind::stribeck: return stribeck_law(mu_i, fi, nl, V, omega);
+                          default: return lugre_law(mu_i, fi, z ? z[i] : 0.0, nl, V, omega);
+                        }
+                      });
+  } else if (f.law == FrictionKind::threlfall) {
     contact_pass_with(m, d, t, q, v, span, out, which,
                       [dv = f.dv](int, double mu_i, const NormalLaw& nl, const Vec2& V, double omega) {
                         return friction_law(mu_i, dv, nl, V, omega);

@@ -132,7 +132,11 @@ struct Model {
   std::vector<Coupling> couplings;  // rotors coupled to pulleys, each on one pulley
   Belt belt;
   Contact contact;
-  Friction friction;
+  Friction friction;               // the scene's law, every element's but those of a segment below
+  // friction laws of belt segments (friction.segments): element i takes laws[law_of[i] - 1], or
+  // `friction` where law_of[i] is 0; law_of is empty when the whole belt takes `friction`
+  std::vector<Friction> laws;
+  std::vector<unsigned char> law_of;
   double gravity = 0;             // [m/s²], acts along -y; 0 switches it off
   bool track_energy = false;
 
@@ -147,7 +151,23 @@ struct Model {
   int n_border() const { return n_p() + n_arm() + n_coupled(); }  // the coordinates beside the elements
   int n_coord() const { return 3 * belt.n + n_border(); }
   int n_energy() const { return track_energy ? kEnergyCount : 0; }
-  int n_bristle() const { return friction.law == FrictionKind::lugre ? belt.n : 0; }
+  const Friction& friction_of(int i) const {
+    return law_of.empty() || law_of[i] == 0 ? friction : laws[law_of[i] - 1];
+  }
+  // some element's law is `kind`; every element's law is `kind`
+  bool any_law(FrictionKind kind) const {
+    if (friction.law == kind) return true;
+    for (const Friction& f : laws)
+      if (f.law == kind) return true;
+    return false;
+  }
+  bool every_law(FrictionKind kind) const {
+    if (law_of.empty()) return friction.law == kind;
+    for (int i = 0; i < belt.n; ++i)
+      if (friction_of(i).law != kind) return false;
+    return true;
+  }
+  int n_bristle() const { return any_law(FrictionKind::lugre) ? belt.n : 0; }
   int bristle_offset() const { return 2 * n_coord() + n_energy(); }  // z_0's index in y
   int n_state() const { return 2 * n_coord() + n_energy() + n_bristle(); }
   // the bristle deflections in a state y (null when the law has none)

@@ -179,7 +179,7 @@ void classify_contact(const Model& m, Observation& o) {
     if (x.state != ContactState::free) x.state = ContactState::stick;
   // k on the same contact arc as element `on` (same pulley, in contact)
   auto on_arc = [&](int k, int on) { return e[k].state != ContactState::free && e[k].pulley == e[on].pulley; };
-  auto saturated = [&](int k) { return std::abs(e[k].slip) > m.friction.dv; };
+  auto saturated = [&](int k) { return std::abs(e[k].slip) > m.friction_of(k).dv; };
   // the belt moves along the element numbers, or against them when the drive runs backwards
   const int dir = o.belt_speed < 0 ? -1 : 1;
   auto prev = [n, dir](int k) { return (k + n - dir) % n; };

@@ -138,7 +138,7 @@ void jacobian(const Model& m, const Drive& d, double t, const double* y, Jacobia
   if (!m.arms.empty()) arm_jacobian(m, q, v, J.K, J.C);
   if (!m.couplings.empty()) coupling_jacobian(m, d, t, v, J.K, J.C, J.f_t.data());
   if (z) {
-    J.B.clear(m.friction.release_time);
+    J.B.clear(m);
     for (int p = 0; p < (w->halves ? 2 : 1); ++p) bristle_jacobian(m, d, t, q, v, z, w->contacts[p], J.B);
   }
 }

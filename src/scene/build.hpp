@@ -91,6 +91,9 @@ std::vector<ElementSite> element_sites(const Route& path, const std::vector<std:
                                        const Eigen::VectorXd& y0, const std::vector<double>& s);
 // μ of each element: belt.mu, mu_per_element or mu_at(site) (checked >= 0)
 std::vector<double> element_mu(const BeltDef& bd, const std::vector<ElementSite>& sites);
+// the segments' friction laws (Model::laws) and each element's (Model::law_of) from where the
+// elements start along the belt, s
+void set_segment_laws(Model& m, const SceneDef& d, const std::vector<double>& s);
 
 // the kinematic pulleys' speeds in y: their prescribed speed at t = 0 (after a step at 0); after
 // element_mu, so that Lua laws are called in the order the scene lists them

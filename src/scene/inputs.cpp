@@ -38,6 +38,25 @@ std::vector<SceneInput> scene_inputs(const SceneDef& d) {
     if (p.coupling)
       for (const Parameter* par : parameters_of("pulley.coupling")) add(par, &p);
   }
+  // a friction segment's: "friction.segments.1.from", "friction.segments.1.law", and its law's numbers
+  for (size_t k = 0; k < d.friction_segments.size(); ++k) {
+    const FrictionSegment& g = d.friction_segments[k];
+    const std::string pre = "friction.segments." + std::to_string(k + 1) + ".";
+    for (const auto& [key, v] : {std::pair{"from", g.from}, std::pair{"to", g.to}})
+      in.push_back(scene_input(*find_parameter(std::string("friction.segments.") + key), pre + key, v, "", true));
+    SceneDef own;
+    own.friction = g.law;
+    for (const Parameter* par : parameters_of("friction")) {
+      const std::string key(par->key);
+      if (key == "dv" || key == "segments" || (par->applies && !par->applies(own))) continue;
+      const std::string text = par->word ? par->word(own, PulleyDef{}) : "";
+      const std::optional<double> v = value_of(*par, own, nullptr);
+      if (text.empty() && !v) continue;
+      // given: in the segment, or in the friction table the segment's law starts from
+      const bool given = d.given.count(pre + key) > 0 || d.given.count("friction." + key) > 0;
+      in.push_back(scene_input(*par, pre + key, text.empty() ? *v : 0, text, given));
+    }
+  }
   // a spray zone's: "spray.1.radius"; `to` is "never" when it does not stop
   for (size_t k = 0; k < d.spray.size(); ++k) {
     const SprayZone& z = d.spray[k];

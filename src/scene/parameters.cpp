@@ -265,6 +265,20 @@ constexpr Parameter kParameters[] = {
      "lugre: τ, the time in which an element's deflection relaxes once it leaves a pulley",
      [](SceneDef& d, PulleyDef&) -> Slot { return &d.friction.release_time; }, lugre, nullptr},
 
+    {"friction", "segments", K::other, "", {}, "none: the whole belt", W::none, R::none,
+     "belt segments with a law of their own: a list of tables (below)", nullptr, nullptr, nullptr},
+
+    // ---- friction.segments = { {...}, ... }: their own code reads them, with the friction keys ----
+    {"friction.segments", "from", K::other, "m", {}, "", W::none, R::none,
+     "where the segment begins along the belt (site.s of the elements, as belt.mu functions); required",
+     nullptr, nullptr, nullptr},
+    {"friction.segments", "to", K::other, "m", {}, "", W::none, R::none,
+     "where it ends (from > to wraps round past s = 0); required", nullptr, nullptr, nullptr},
+    {"friction.segments", "law", K::other, "", {}, "the friction table's", W::none, R::none,
+     "the segment's law; every other key of the friction table (but dv and segments) too, each defaulting to "
+     "the friction table's value",
+     nullptr, nullptr, nullptr},
+
     // ---- spray = { {...}, ... }: zones that wet the belt (model/spray.hpp); read by their own code ----
     {"spray", "centre", K::other, "m", {}, "", W::none, R::none, "{x, y} of the zone's circle; required", nullptr,
      nullptr, nullptr},
@@ -387,6 +401,7 @@ std::string parameters_markdown() {
                                      std::pair{"pulley.coupling", "A pulley's `coupling` table"},
                                      std::pair{"belt", "Belt table"}, std::pair{"belt.sde", "`belt.sde` table"},
                                      std::pair{"contact", "Contact table"}, std::pair{"friction", "Friction table"},
+                                     std::pair{"friction.segments", "A `friction.segments` entry's table"},
                                      std::pair{"spray", "A `spray` zone's table"}}) {
     md.append(md.empty() ? "" : "\n").append(title).append(":\n\n| key | unit | default | range | meaning |\n|---|---|---|---|---|\n");
     for (const Parameter* p : parameters_of(table)) {

@@ -393,6 +393,21 @@ std::vector<ElementSite> element_sites(const Route& path, const std::vector<std:
   return sites;
 }
 
+void set_segment_laws(Model& m, const SceneDef& d, const std::vector<double>& s) {
+  m.laws.clear();
+  m.law_of.clear();
+  if (d.friction_segments.empty()) return;
+  m.law_of.assign(s.size(), 0);
+  for (size_t k = 0; k < d.friction_segments.size(); ++k) {
+    const FrictionSegment& g = d.friction_segments[k];
+    m.laws.push_back(g.law);
+    for (size_t i = 0; i < s.size(); ++i) {
+      const bool in = g.from <= g.to ? (s[i] >= g.from && s[i] <= g.to) : (s[i] >= g.from || s[i] <= g.to);
+      if (in) m.law_of[i] = static_cast<unsigned char>(k + 1);
+    }
+  }
+}
+
 std::vector<double> element_mu(const BeltDef& bd, const std::vector<ElementSite>& sites) {
   const int n = bd.elements;
   std::vector<double> mu = bd.mu_per_element.empty() ? std::vector<double>(n, bd.mu) : bd.mu_per_element;
@@ -594,6 +609,7 @@ Scene build_at(const SceneDef& d, const std::atomic<bool>* stop) {
   const double gap = build::close_loop(path, n, bd, tension, b, stop);
   std::vector<double> s;
   build::walk(path, n, 0.5 * b.rigid_length, gap, &s);
+  build::set_segment_laws(m, d, s);  // before the state is sized: a LuGre segment adds deflections
 
   sc.y0 = build::place(m, path, s);
   build::set_arm_angles(m, sc.y0);

@@ -124,6 +124,14 @@ struct ContactPerLength {
   std::optional<double> b;   // [N·s/m²]
 };
 
+// friction.segments: a stretch of belt [from, to] (m along the belt where each element starts, as
+// belt.mu functions' site.s; wrapping round when from > to) with a friction law of its own; the
+// law starts from the scene's friction table and takes the segment's keys
+struct FrictionSegment {
+  double from = 0, to = 0;  // [m]
+  Friction law;
+};
+
 struct SceneDef {
   std::vector<PulleyDef> pulleys;
   BeltDef belt;
@@ -139,6 +147,7 @@ struct SceneDef {
                     .bristle_stiffness = parameter_default("friction.bristle_stiffness"),
                     .bristle_damping = parameter_default("friction.bristle_damping"),
                     .release_time = parameter_default("friction.release_time")};
+  std::vector<FrictionSegment> friction_segments;  // later segments override earlier ones
   double gravity = parameter_default("gravity");  // [m/s²]; 0 switches gravity off
   bool track_energy = false;
   bool allow_large = false;         // past the size limits that protect the machine (validate)

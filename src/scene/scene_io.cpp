@@ -23,6 +23,35 @@ void checked(CheckpointReader& r, F&& f) {
   if (!error.empty()) r.fail(error);
 }
 
+// ---- friction laws: "friction.dv 1e-05", "friction.law lugre", ... ------------------------------
+
+constexpr size_t kFrictionLines = 9;  // the lines of one law
+void write_friction(CheckpointWriter& w, const std::string& pre, const Friction& f) {
+  w.line(pre + "dv", f.dv);
+  w.word(pre + "law", friction_law_name(f.law));
+  w.line(pre + "static_ratio", f.static_ratio);
+  w.line(pre + "stribeck_speed", f.stribeck_speed);
+  w.line(pre + "exponent", f.exponent);
+  w.line(pre + "viscous", f.viscous);
+  w.line(pre + "bristle_stiffness", f.bristle_stiffness);
+  w.line(pre + "bristle_damping", f.bristle_damping);
+  w.line(pre + "release_time", f.release_time);
+}
+Friction read_friction(CheckpointReader& r, const std::string& pre) {
+  Friction f;
+  f.dv = r.line_num(pre + "dv");
+  // the words in FrictionKind's order
+  f.law = static_cast<FrictionKind>(r.line_choice(pre + "law", {"threlfall", "stribeck", "lugre"}));
+  f.static_ratio = r.line_num(pre + "static_ratio");
+  f.stribeck_speed = r.line_num(pre + "stribeck_speed");
+  f.exponent = r.line_num(pre + "exponent");
+  f.viscous = r.line_num(pre + "viscous");
+  f.bristle_stiffness = r.line_num(pre + "bristle_stiffness");
+  f.bristle_damping = r.line_num(pre + "bristle_damping");
+  f.release_time = r.line_num(pre + "release_time");
+  return f;
+}
+
 // ---- laws: "pulley.torque.constant 2", ... ---------------------------------------------------
 
 void write_law(CheckpointWriter& w, const TimeSpeedLaw& law, const std::string& k) {
@@ -179,6 +208,16 @@ const Parameter* input_parameter(const std::string& name, const Model& m) {
   if (name.compare(0, 6, "spray.") == 0 && dot != std::string::npos && dot > 6 &&
       name.find_first_not_of("0123456789", 6) == dot)
     return find_parameter("spray." + name.substr(dot + 1));
+  // a friction segment's: "friction.segments.2.from" is friction.segments.from, ".law" and the
+  // law's keys are the friction table's
+  const std::string_view seg = "friction.segments.";
+  const size_t end = name.find('.', seg.size());
+  if (name.compare(0, seg.size(), seg) == 0 && end != std::string::npos && end > seg.size() &&
+      name.find_first_not_of("0123456789", seg.size()) == end) {
+    const std::string key = name.substr(end + 1);
+    if (key == "from" || key == "to") return find_parameter("friction.segments." + key);
+    return key == "dv" || key == "segments" ? nullptr : find_parameter("friction." + key);
+  }
   return find_parameter(name);
 }
 
@@ -333,15 +372,11 @@ void write_scene(CheckpointWriter& w, const Scene& sc) {
   w.line("contact.c2", m.contact.c2);
   w.line("contact.damping", m.contact.b);
   w.line("contact.p_max", m.contact.p_max);
-  w.line("friction.dv", m.friction.dv);
-  w.word("friction.law", friction_law_name(m.friction.law));
-  w.line("friction.static_ratio", m.friction.static_ratio);
-  w.line("friction.stribeck_speed", m.friction.stribeck_speed);
-  w.line("friction.exponent", m.friction.exponent);
-  w.line("friction.viscous", m.friction.viscous);
-  w.line("friction.bristle_stiffness", m.friction.bristle_stiffness);
-  w.line("friction.bristle_damping", m.friction.bristle_damping);
-  w.line("friction.release_time", m.friction.release_time);
+  write_friction(w, "friction.", m.friction);
+  // the segments' laws, then each element's (0: the scene's)
+  w.line("friction.segments", static_cast<long>(m.laws.size()));
+  for (const Friction& f : m.laws) write_friction(w, "segment.", f);
+  w.line("segment.law_of", std::vector<int>(m.law_of.begin(), m.law_of.end()));
   w.line("gravity", m.gravity);
   w.line("energy", m.track_energy);
   write_drive(w, m, sc.drive);
@@ -450,15 +485,19 @@ Scene read_scene(CheckpointReader& r) {
   m.contact.c2 = r.line_num("contact.c2");
   m.contact.b = r.line_num("contact.damping");
   m.contact.p_max = r.line_num("contact.p_max");
-  m.friction.dv = r.line_num("friction.dv");
-  m.friction.law = static_cast<FrictionKind>(r.line_choice("friction.law", {"threlfall", "stribeck", "lugre"}));
-  m.friction.static_ratio = r.line_num("friction.static_ratio");
-  m.friction.stribeck_speed = r.line_num("friction.stribeck_speed");
-  m.friction.exponent = r.line_num("friction.exponent");
-  m.friction.viscous = r.line_num("friction.viscous");
-  m.friction.bristle_stiffness = r.line_num("friction.bristle_stiffness");
-  m.friction.bristle_damping = r.line_num("friction.bristle_damping");
-  m.friction.release_time = r.line_num("friction.release_time");
+  m.friction = read_friction(r, "friction.");
+  r.open("friction.segments");
+  const size_t n_laws = r.group_count(kFrictionLines, kMaxFrictionSegments);
+  r.close();
+  for (size_t k = 0; k < n_laws; ++k) {
+    m.laws.push_back(read_friction(r, "segment."));
+    checked(r, [&] { check_friction_law(m.laws.back(), "friction.segments[" + std::to_string(k + 1) + "]"); });
+  }
+  const std::vector<int> law_of = r.line_ints("segment.law_of", 0, static_cast<long>(n_laws), static_cast<size_t>(b.n));
+  if (!(law_of.empty() ? n_laws == 0 : law_of.size() == static_cast<size_t>(b.n)))
+    r.fail(std::to_string(law_of.size()) + " laws for " + std::to_string(b.n) + " elements and " +
+           std::to_string(n_laws) + " segments");
+  m.law_of.assign(law_of.begin(), law_of.end());
   m.gravity = r.line_num("gravity");
   m.track_energy = r.line_bool("energy");
   sc.drive = read_drive(r, m);

@@ -67,14 +67,16 @@ std::string pulley_label(const PulleyDef& p) { return "pulley '" + p.name + "'";
 
 // the rule of every number of `table` (a pulley's: p's) the scene uses, from the parameter table;
 // the message names the key as the scenario gives it ("belt.EA", "pulley 'driver' inertia")
-void check_rules(const SceneDef& d, std::string_view table, const PulleyDef* p) {
+// (label: instead of the table's name, "friction.segments[2]")
+void check_rules(const SceneDef& d, std::string_view table, const PulleyDef* p, const std::string& label = {}) {
   for (const Parameter* par : parameters_of(table)) {
     if (par->rule == Rule::none || (par->applies && !par->applies(d))) continue;
     const std::optional<double> v = value_of(*par, d, p);
     if (!v) continue;
     // a pulley's key after its label: "radius", "tensioner.stiffness"
-    const std::string what =
-        p ? pulley_label(*p) + " " + par->dotted().substr(std::string_view("pulley.").size()) : par->dotted();
+    const std::string what = p                ? pulley_label(*p) + " " + par->dotted().substr(std::string_view("pulley.").size())
+                             : !label.empty() ? label + "." + std::string(par->key)
+                                              : par->dotted();
     check_rule(*par, what, *v);
   }
 }
@@ -213,6 +215,22 @@ void validate(const SceneDef& d) {
   check_rules(d, "friction", nullptr);
   check_rules(d, "scene", nullptr);
   check_spray(d);
+  if (d.friction_segments.size() > kMaxFrictionSegments)
+    throw ParameterError("friction.segments: " + std::to_string(d.friction_segments.size()) +
+                         " segments are more than the limit of " + std::to_string(kMaxFrictionSegments));
+  for (size_t k = 0; k < d.friction_segments.size(); ++k) {
+    const FrictionSegment& g = d.friction_segments[k];
+    const std::string w = "friction.segments[" + std::to_string(k + 1) + "]";
+    require_non_negative(w + ".from", g.from, "m");
+    require_non_negative(w + ".to", g.to, "m");
+    check_friction_law(g.law, w);
+  }
+}
+
+void check_friction_law(const Friction& f, const std::string& label) {
+  SceneDef d;
+  d.friction = f;
+  check_rules(d, "friction", nullptr, label);
 }
 
 }  // namespace beltsim

@@ -1,6 +1,7 @@
 // Parameter errors: thrown before anything is simulated, with the reason and the offending value.
 #pragma once
 
+#include <cstddef>
 #include <stdexcept>
 #include <string>
 #include <string_view>
@@ -8,6 +9,7 @@
 namespace beltsim {
 
 struct Parameter;
+struct Friction;
 
 struct ParameterError : std::runtime_error {
   using std::runtime_error::runtime_error;
@@ -25,5 +27,9 @@ std::string mu_problem(double mu);
 void require_mu(const std::string& what, double mu);
 // value v of parameter par (scene/parameters.hpp), named `what`, against the parameter's rule
 void check_rule(const Parameter& par, const std::string& what, double v);
+// a friction law's numbers by the rules of the parameter table's "friction" entries, named
+// "<label>.<key>" ("friction.segments[2].static_ratio")
+void check_friction_law(const Friction& f, const std::string& label);
+inline constexpr size_t kMaxFrictionSegments = 255;  // Model::law_of holds a segment's number in a byte
 
 }  // namespace beltsim

@@ -75,6 +75,57 @@ void read_numbers(lua_State* L, int idx, std::string_view table, const std::stri
   }
 }
 
+void note_given(lua_State* L, int idx, const std::string& prefix, std::set<std::string>& given);
+
+// a friction table's law and its numbers at idx into d.friction (w: "friction", "friction.segments[2]")
+void read_friction_law(lua_State* L, int idx, const std::string& w, SceneDef& d) {
+  if (auto v = opt_string(L, idx, "law", w)) {
+    if (*v == "threlfall")
+      d.friction.law = FrictionKind::threlfall;
+    else if (*v == "stribeck")
+      d.friction.law = FrictionKind::stribeck;
+    else if (*v == "lugre")
+      d.friction.law = FrictionKind::lugre;
+    else
+      fail(L, w + ".law: 'threlfall', 'stribeck' or 'lugre' expected, got '" + *v + "'");
+  }
+  // a law's own parameters with another law: a mistake the run would silently ignore
+  for (const Parameter* par : parameters_of("friction"))
+    if (par->applies && !par->applies(d) && has(L, idx, std::string(par->key).c_str()))
+      fail(L, w + "." + std::string(par->key) + ": a parameter of another law; this " +
+                  (w == "friction" ? "scene's" : "segment's") + " law is '" + friction_law_name(d.friction.law) + "'");
+  PulleyDef none;
+  read_numbers(L, idx, "friction", w, d, none);
+}
+
+// friction.segments at idx into d.friction_segments: each a stretch {from, to} [m] with the keys of
+// the friction table (but dv and segments), starting from the scene's friction law; the keys given
+// go to d.given as "friction.segments.<k>.<key>"
+void read_friction_segments(lua_State* L, int idx, SceneDef& d) {
+  require_table(L, idx, "friction.segments");
+  const std::vector<lua_Integer> keys = check_sequence(L, idx, "friction.segments");
+  std::vector<std::string> allowed{"from", "to"};
+  for (const std::string& k : keys_of("friction"))
+    if (k != "dv" && k != "segments") allowed.push_back(k);
+  for (const lua_Integer k : keys) {
+    lua_geti(L, idx, k);
+    const int g = lua_gettop(L);
+    const std::string w = "friction.segments[" + std::to_string(k) + "]";
+    require_table(L, g, w);
+    check_keys(L, g, w, allowed);
+    FrictionSegment& seg = d.friction_segments.emplace_back();
+    const auto from = opt_number(L, g, "from", w), to = opt_number(L, g, "to", w);
+    if (!from || !to) fail(L, w + ": from and to [m] (where the segment begins and ends along the belt) are required");
+    seg.from = *from, seg.to = *to;
+    SceneDef own;  // the segment's law, from the scene's
+    own.friction = d.friction;
+    read_friction_law(L, g, w, own);
+    seg.law = own.friction;
+    note_given(L, g, "friction.segments." + std::to_string(k) + ".", d.given);
+    lua_pop(L, 1);
+  }
+}
+
 // a pulley's tensioner table at idx into p.tensioner: its pivot {x, y}, then the numbers of the
 // parameter table's "pulley.tensioner" (w names it in errors: "pulley 'idler'.tensioner")
 void read_tensioner(lua_State* L, int idx, const std::string& w, SceneDef& d, PulleyDef& p) {
@@ -360,24 +411,12 @@ int l_scene(lua_State* L) {
     const int f = lua_gettop(L);
     require_table(L, f, "friction");
     check_keys(L, f, "friction", keys_of("friction"));
-    if (auto v = opt_string(L, f, "law", "friction")) {
-      if (*v == "threlfall")
-        d.friction.law = FrictionKind::threlfall;
-      else if (*v == "stribeck")
-        d.friction.law = FrictionKind::stribeck;
-      else if (*v == "lugre")
-        d.friction.law = FrictionKind::lugre;
-      else
-        fail(L, "friction.law: 'threlfall', 'stribeck' or 'lugre' expected, got '" + *v + "'");
-    }
-    // a law's own parameters with another law: a mistake the run would silently ignore
-    for (const Parameter* par : parameters_of("friction"))
-      if (par->applies && !par->applies(d) && has(L, f, std::string(par->key).c_str()))
-        fail(L, "friction." + std::string(par->key) + ": a parameter of another law; this scene's law is '" +
-                    friction_law_name(d.friction.law) + "'");
-    PulleyDef none;
-    read_numbers(L, f, "friction", "friction", d, none);
+    read_friction_law(L, f, "friction", d);
     note_given(L, f, "friction.", d.given);
+    if (field(L, f, "segments")) {
+      read_friction_segments(L, lua_gettop(L), d);
+      lua_pop(L, 1);
+    }
     lua_pop(L, 1);
   }
   if (field(L, 1, "spray")) {

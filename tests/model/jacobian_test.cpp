@@ -603,5 +603,42 @@ TEST(Jacobian, LugreBristlesUnderAKinematicPulley) {
   expect_ode_jacobian_matches(sc.model, sc.drive, 0.2, y);
 }
 
+// Belt segments with laws of their own (friction.segments): the paper's Threlfall law, a Stribeck
+// stretch and a LuGre stretch on one belt; the per-pair choice of law, the deflections of the LuGre
+// elements only (the others' rows hold ∂ż/∂z = 0), against differences as above.
+TEST(Jacobian, FrictionSegmentsWithTheirOwnLaws) {
+  SceneDef d = presets::paper_dry();
+  const Friction lu = lugre(d).friction;
+  Friction st = lu;
+  st.law = FrictionKind::stribeck;
+  d.friction_segments = {{0.1, 0.4, st}, {0.5, 0.8, lu}};
+  const Scene sc = build_scene(d);
+  const Model& m = sc.model;
+  int count[3] = {0, 0, 0};
+  for (int i = 0; i < m.n_el(); ++i) count[static_cast<int>(m.friction_of(i).law)]++;
+  EXPECT_GT(count[0], 5);
+  EXPECT_GT(count[1], 5);
+  EXPECT_GT(count[2], 5);
+  const Eigen::VectorXd y = with_deflections(sc, running_state(sc, 0.1, 30.0, 7), 3);
+  expect_ode_jacobian_matches(m, sc.drive, 0.1, y);
+}
+
+// A segment over the whole belt is the scene's law: the same right-hand side to the bit.
+TEST(Jacobian, ASegmentOverTheWholeBeltIsTheScenesLaw) {
+  for (const FrictionKind kind : {FrictionKind::stribeck, FrictionKind::lugre}) {
+    SceneDef whole = lugre(presets::paper_dry()), seg = presets::paper_dry();
+    whole.friction.law = kind;
+    seg.friction_segments = {{0.0, 1e9, whole.friction}};
+    const Scene a = build_scene(whole), b = build_scene(seg);
+    ASSERT_EQ(a.model.n_state(), b.model.n_state());
+    const Eigen::VectorXd y = a.model.n_bristle() ? with_deflections(a, running_state(a, 0.1, 30.0, 7), 3)
+                                                  : running_state(a, 0.1, 30.0, 7);
+    Eigen::VectorXd da(y.size()), db(y.size());
+    rhs(a.model, a.drive, 0.1, y.data(), da.data());
+    rhs(b.model, b.drive, 0.1, y.data(), db.data());
+    EXPECT_EQ(0, std::memcmp(da.data(), db.data(), sizeof(double) * da.size())) << friction_law_name(kind);
+  }
+}
+
 }  // namespace
 }  // namespace beltsim

@@ -281,6 +281,25 @@ TEST(SceneIo, LugreScene) {
   expect_same(sc, back);
 }
 
+// friction segments: their laws and each element's law come back; a law number past the
+// segments' count is refused with its line
+TEST(SceneIo, FrictionSegments) {
+  SceneDef d = presets::paper_dry();
+  Friction st = d.friction, lu = d.friction;
+  st.law = FrictionKind::stribeck, st.static_ratio = 1.7;
+  lu.law = FrictionKind::lugre, lu.bristle_stiffness = 2.5e4;
+  d.friction_segments = {{0.1, 0.4, st}, {0.9, 0.05, lu}};  // the second wraps round past s = 0
+  const Scene sc = build_scene(d);
+  const Scene back = round_trip(sc);
+  ASSERT_EQ(back.model.laws.size(), 2u);
+  EXPECT_EQ(back.model.laws[0].static_ratio, 1.7);
+  EXPECT_EQ(back.model.laws[1].law, FrictionKind::lugre);
+  EXPECT_EQ(back.model.laws[1].bristle_stiffness, 2.5e4);
+  EXPECT_EQ(back.model.law_of, sc.model.law_of);
+  EXPECT_EQ(back.model.n_state(), sc.model.n_state());
+  expect_same(sc, back);
+}
+
 // the shortest decimal of every double reads back as that double: signed zero, subnormals, the
 // largest, thirds; strings with quotes, backslashes, newlines and '#'
 TEST(SceneIo, ExactValues) {

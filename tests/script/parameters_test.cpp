@@ -227,6 +227,41 @@ TEST(Parameters, FrictionLawWordsAndTheirParameters) {
   EXPECT_NE(slurp(temp_dir() / "out" / "parameters.csv").find("\nfriction.bristle_stiffness,"), std::string::npos);
 }
 
+// friction.segments: each segment's law starts from the scene's and takes its own keys; their rows
+// in parameters.csv; a missing end, a misspelt key, another law's parameter and a value past its
+// rule are refused with file:line and the segment's number
+TEST(Parameters, FrictionSegments) {
+  const std::string at = (temp_dir() / "scene.lua").string() + ":1: ";
+  auto scene = [](const std::string& friction) {
+    return "local s = beltsim.scene { pulleys = { { name = 'a', centre = {0, 0}, torque = -1 }, "
+           "{ name = 'b', centre = {0.29, 0} } }, friction = { " +
+           friction + " } }\ns:run { t_end = 1e-3, progress = false }\n";
+  };
+  EXPECT_EQ(run_text(scene("static_ratio = 1.4, law = 'stribeck', segments = { { from = 0.1, to = 0.3, "
+                           "stribeck_speed = 0.05 }, { from = 0.5, to = 0.7, law = 'lugre', bristle_damping = 0.1 } }")),
+            "");
+  const std::string csv = slurp(temp_dir() / "out" / "parameters.csv");
+  // (a segment's law starts from the friction table's: what that table gave, the segment was given)
+  for (const char* row : {"friction.segments.1.from,0.1,m,given", "friction.segments.1.law,stribeck,,given",
+                          "friction.segments.1.static_ratio,1.4,,given", "friction.segments.1.stribeck_speed,0.05,m/s,given",
+                          "friction.segments.1.exponent,2,,default", "friction.segments.2.law,lugre,,given",
+                          "friction.segments.2.bristle_damping,0.1,s/m,given",
+                          "friction.segments.2.bristle_stiffness,1e+05,1/m,default"})
+    EXPECT_NE(csv.find(std::string("\n") + row), std::string::npos) << row << " in\n" << csv;
+  EXPECT_EQ(run_text(scene("segments = { { from = 0.1, law = 'stribeck' } }")),
+            at + "friction.segments[1]: from and to [m] (where the segment begins and ends along the belt) are required");
+  EXPECT_EQ(run_text(scene("segments = { { from = 0.1, to = 0.2, dv = 1e-4 } }")).rfind(
+                at + "unknown key 'dv' in friction.segments[1]", 0),
+            0u);
+  EXPECT_EQ(run_text(scene("segments = { { from = 0.1, to = 0.2, law = 'stribeck', bristle_damping = 1 } }")),
+            at + "friction.segments[1].bristle_damping: a parameter of another law; this segment's law is 'stribeck'");
+  EXPECT_EQ(run_text(scene("segments = { { from = 0.1, to = 0.2 }, { from = 0.1, to = 0.2, law = 'lugre', "
+                           "release_time = 0 } }")),
+            at + "friction.segments[2].release_time must be > 0 (got 0 s)");
+  EXPECT_EQ(run_text(scene("segments = { { from = -0.1, to = 0.2 } }")),
+            at + "friction.segments[1].from must be >= 0 (got -0.1 m)");
+}
+
 // every key a scene table takes is in the table once
 TEST(Parameters, EachKeyOnce) {
   std::map<std::string, int> seen;
