@@ -14,6 +14,7 @@
 usage: outputs_test.py BELTSIM
 """
 import os
+import select
 import re
 import resource
 import signal
@@ -160,13 +161,18 @@ def one_writer():
     console = subprocess.Popen([BELTSIM, "console", "--out", out], stdin=subprocess.PIPE, stdout=subprocess.PIPE,
                                stderr=subprocess.PIPE, text=True,
                                env=dict(os.environ, BELTSIM_HISTORY=os.path.join(TMP, "history")))
-    console.stdin.write(SCENE.replace("local drive", "drive") + "sim = drive:start { progress = false }\n")
+    # the console prints the marker once start has returned: the simulation holds the folder and
+    # has written its first row (events.csv appears earlier, before that row)
+    console.stdin.write(SCENE.replace("local drive", "drive") + "sim = drive:start { progress = false }\n"
+                        "print('console: started')\n")
     console.stdin.flush()
     t0 = time.monotonic()
-    while not os.path.exists(os.path.join(out, "events.csv")):  # the console's simulation holds the folder
+    while True:
+        ready, _, _ = select.select([console.stdout], [], [], 1.0)
         if time.monotonic() - t0 > 60 or console.poll() is not None:
-            raise SystemExit("the console's simulation never opened its outputs")
-        time.sleep(0.02)
+            raise SystemExit("the console's simulation never started")
+        if ready and "console: started" in console.stdout.readline():
+            break
     rows = read(os.path.join(out, "timeseries.csv"))
     status, err = beltsim(["run", script("run", RUN), "--no-frames", "--out", out])
     check(status == 1 and ("the output folder %s is in use by another beltsim (process %d)" % (out, console.pid)) in err,
