@@ -2,7 +2,7 @@
 // on states built to exercise every branch of every force law: free spans, contact in the damping
 // ramp (p < p_max) and beyond it, N clamped at zero, stick (|v_T| < Δv) and slip, bends across
 // ±π and angles several laps apart, a back-side idler, non-unit exponents, a kinematic pulley,
-// Stribeck's friction law, LuGre's bristles (the whole first-order Jacobian, their rows and columns).
+// Stribeck's friction law (LuGre's bristles: bristles_jacobian_test.cpp).
 //
 // Tolerance. Every law is at most quadratic in the state near these points but for the geometry
 // (n̂(P), e(φ)), whose curvature scales are the pulley radius and 1 rad: the central-difference
@@ -24,164 +24,18 @@
 
 #include "model/contact_law.hpp"
 #include "model/forces.hpp"
+#include "model/jacobian_check.hpp"
 #include "model/rhs.hpp"
-#include "model/sparse.hpp"
 #include "scene/presets.hpp"
 
 namespace beltsim {
 namespace {
 
-struct Kinks {
-  double min_gap = 1e300;  // smallest distance to a kink, in units of the quantity's own scale
-};
-
-// distance of the state from the nearest kink of the contact and friction laws
-double kink_margin(const Model& m, const Drive& dr, double t, const Eigen::VectorXd& y) {
-  const int N = m.n_coord();
-  double margin = 1e300;
-  for (int j = 0; j < m.n_p(); ++j)
-    for (int i = 0; i < m.n_el(); ++i) {
-      // relative to the pulley's centre, which moves on a tensioner arm
-      const Vec2 centre = m.centre(j, y.data());
-      const Vec2 P(y[3 * i], y[3 * i + 1]);
-      const Vec2 V = Vec2(y[N + 3 * i], y[N + 3 * i + 1]) - m.centre_velocity(j, y.data(), y.data() + N);
-      const Vec2 rv = P - centre;
-      const double p = m.pulleys[j].radius - rv.norm();
-      margin = std::min(margin, std::abs(p) / 1e-6);                       // contact onset
-      if (p <= 0) continue;
-      margin = std::min(margin, std::abs(p - m.contact.p_max) / 1e-6);     // full damping
-      NormalLaw nl;
-      normal_law(m.contact, P, V, centre, m.pulleys[j].radius, nl);
-      const double raw = nl.N_el + nl.delta * m.contact.b * nl.pdot;
-      margin = std::min(margin, std::abs(raw) / 1e-2);                     // N = 0
-      const FrictionLaw fl = friction_law(dr.mu[i], m.friction.dv, nl, V, dr.omega(m, j, t, y.data() + N));
-      margin = std::min(margin, std::abs(std::abs(fl.vT) - m.friction.dv) / 1e-7);  // stick/slip
-    }
-  return margin;
-}
-
-struct Coverage {
-  int free = 0, ramp = 0, deep = 0, clamped = 0, stick = 0, slip = 0;
-};
-
-Coverage coverage(const Model& m, const Drive& dr, double t, const Eigen::VectorXd& y) {
-  const int N = m.n_coord();
-  Coverage c;
-  for (int i = 0; i < m.n_el(); ++i) {
-    bool touching = false;
-    for (int j = 0; j < m.n_p(); ++j) {
-      const Vec2 P(y[3 * i], y[3 * i + 1]);
-      const Vec2 V = Vec2(y[N + 3 * i], y[N + 3 * i + 1]) - m.centre_velocity(j, y.data(), y.data() + N);
-      NormalLaw nl;
-      if (!normal_law(m.contact, P, V, m.centre(j, y.data()), m.pulleys[j].radius, nl)) continue;
-      touching = true;
-      (nl.p < m.contact.p_max ? c.ramp : c.deep)++;
-      if (!nl.pushing) {
-        c.clamped++;
-        continue;
-      }
-      const FrictionLaw fl = friction_law(dr.mu[i], m.friction.dv, nl, V, dr.omega(m, j, t, y.data() + N));
-      (std::abs(fl.vT) < m.friction.dv ? c.stick : c.slip)++;
-    }
-    if (!touching) c.free++;
-  }
-  return c;
-}
-
-// max over columns of (max |analytic - fd| / max |analytic|) for one matrix; a column's scale is
-// at least `floor`
-double column_error(const Eigen::MatrixXd& an, const Eigen::MatrixXd& fd, int* worst_col, double floor = 0) {
-  double worst = 0;
-  for (int c = 0; c < an.cols(); ++c) {
-    const double scale =
-        std::max({an.col(c).cwiseAbs().maxCoeff(), fd.col(c).cwiseAbs().maxCoeff(), floor});
-    if (scale == 0) continue;
-    const double e = (an.col(c) - fd.col(c)).cwiseAbs().maxCoeff() / scale;
-    if (e > worst) worst = e, *worst_col = c;
-  }
-  return worst;
-}
-
-void expect_jacobian_matches(const Model& m, const Drive& dr, double t, const Eigen::VectorXd& y) {
-  ASSERT_GT(kink_margin(m, dr, t, y), 10.0) << "test state too close to a kink of the force laws";
-  const int N = m.n_coord();
-  Jacobian J;
-  J.resize(m);
-  jacobian(m, dr, t, y.data(), J);
-  Eigen::MatrixXd Kfd(N, N), Cfd(N, N);
-  Eigen::VectorXd fp(N), fm(N);
-  for (int k = 0; k < 2 * N; ++k) {
-    const bool vel = k >= N;
-    // element spin enters only the (linear) SDE dampers: a large step avoids rounding
-    const bool spin = vel && k - N < 3 * m.n_el() && (k - N) % 3 == 2;
-    const double eps = spin ? 1e-4 : vel ? 1e-7 : 1e-8;
-    Eigen::VectorXd yp = y, ym = y;
-    yp[k] += eps;
-    ym[k] -= eps;
-    forces(m, dr, t, yp.data(), fp.data());
-    forces(m, dr, t, ym.data(), fm.data());
-    (vel ? Cfd.col(k - N) : Kfd.col(k)) = (fp - fm) / (2 * eps);
-  }
-  // kinematic pulleys: their state speed feeds nothing (the prescribed one is used)
-  int col = -1;
-  const double eK = column_error(J.K.to_dense(), Kfd, &col);
-  EXPECT_LT(eK, 1e-6) << "dF/dq column " << col;
-  const double eC = column_error(J.C.to_dense(), Cfd, &col);
-  EXPECT_LT(eC, 1e-6) << "dF/dv column " << col;
-  // ∂f/∂t
-  const double dt = 1e-7;
-  forces(m, dr, t + dt, y.data(), fp.data());
-  forces(m, dr, t - dt, y.data(), fm.data());
-  const Eigen::VectorXd ftfd = (fp - fm) / (2 * dt);
-  const double scale = std::max(1.0, ftfd.cwiseAbs().maxCoeff());
-  EXPECT_LT((J.f_t - ftfd).cwiseAbs().maxCoeff() / scale, 1e-6);
-}
-
-// A running state: pulleys turning, each element in contact given a chosen slip, a few elements
-// pushed deep or pulled out fast, random velocities on the free spans; tensioner arms turning at
-// arm_rate (slips and rates are relative to the moving centre).
-Eigen::VectorXd running_state(const Scene& sc, double time, double omega_scale, unsigned seed, double arm_rate = 0) {
-  const Model& m = sc.model;
-  const Drive& dr = sc.drive;
-  const int N = m.n_coord();
-  Eigen::VectorXd y = sc.y0;
-  std::mt19937 rng(seed);
-  std::uniform_real_distribution<double> u(-1, 1);
-  for (int j = 0; j < m.n_p(); ++j) {
-    const Pulley& p = m.pulleys[j];
-    if (!dr.kinematic(j)) y[N + m.pulley_coord(j)] = omega_scale * 0.1 / p.radius * (1 + 0.01 * u(rng));
-  }
-  for (int a = 0; a < m.n_arm(); ++a) y[N + m.arm_coord(a)] = arm_rate;
-  // slips chosen away from ±Δv: stick, stick, slip, slip
-  const double slips[] = {3e-6, -6e-6, 4e-4, -2e-3};
-  for (int i = 0; i < m.n_el(); ++i) {
-    int touching = -1;
-    for (int j = 0; j < m.n_p(); ++j)
-      if ((Vec2(y[3 * i], y[3 * i + 1]) - m.centre(j, y.data())).norm() < m.pulleys[j].radius) touching = j;
-    y[N + 3 * i + 2] = 5.0 * u(rng);
-    if (touching < 0) {
-      y[N + 3 * i] = 3.0 * u(rng);
-      y[N + 3 * i + 1] = 3.0 * u(rng);
-      continue;
-    }
-    const Pulley& p = m.pulleys[touching];
-    const Vec2 centre = m.centre(touching, y.data());
-    const Vec2 rv = Vec2(y[3 * i], y[3 * i + 1]) - centre;
-    const Vec2 n = rv.normalized(), t = perp(n);
-    const double omega = dr.omega(m, touching, time, y.data() + N);
-    Vec2 V = omega * rv.norm() * t + slips[i % 4] * t + 1e-3 * u(rng) * n;  // small normal rate
-    if (i % 7 == 3) {                                // deeper than p_max
-      const Vec2 P = centre + (p.radius - 1.6e-3) * n;
-      y[3 * i] = P.x(), y[3 * i + 1] = P.y();
-    } else if (i % 11 == 5) {                        // in the ramp, leaving fast: N clamped at 0
-      V += 20.0 * n;
-    }
-    V += m.centre_velocity(touching, y.data(), y.data() + N);
-    y[N + 3 * i] = V.x();
-    y[N + 3 * i + 1] = V.y();
-  }
-  return y;
-}
+using test::column_error;
+using test::coverage;
+using test::Coverage;
+using test::expect_jacobian_matches;
+using test::running_state;
 
 TEST(Jacobian, PaperDryRunningState) {
   const Scene sc = build_scene(presets::paper_dry());
@@ -493,151 +347,6 @@ TEST(Jacobian, EveryLawTerm) {
   const int k0 = sc.model.pulley_coord(0);
   EXPECT_NE(J.f_t[k0], 0.0) << "the driver's Ω'' is in ∂f/∂t";
   expect_jacobian_matches(sc.model, sc.drive, t, y);
-}
-
-// LuGre's bristles (model/bristles.cpp): the first-order system's whole Jacobian ∂F/∂y as the
-// peer integrator takes it (assemble_ode_jacobian: the bristles' rows ∂ż/∂y, their columns ∂f/∂z
-// and the mechanical blocks at a fixed deflection) against central differences of the right-hand
-// side, and ∂ż/∂t through a kinematic pulley's ramp. Deflections are set to ±0.8·μ_s/σ0, so the
-// elements hold and pass their limit; ż's kink at v_T = 0 is 3e-6 m/s or more away (the slips
-// of running_state) against steps of 1e-7 m/s; positions take 1e-9 m, which moves v_T by Ω·1e-9
-// (a pulley turning at 100 rad/s would move it by 1e-6 with 1e-8 m, and the curve's truncation
-// would show at 5e-5). ż and μ are linear in z: its step 1e-9 m is exact
-// but for rounding, |F|·1e-16/1e-9 ≲ 1e-7 of the columns' largest entries (σ0·N/m ≈ 1e10). A
-// pulley's or an arm's speed column holds only friction's N·μ'·r/m ≈ 1e3 (μ' ≈ σ1, no band), so
-// its step is 1e-5 rad/s: the rounding of accelerations up to 1e8 m/s² is then 5e-4, 5e-7 of the
-// column, and the slip moves by 3e-7 m/s at most, a tenth of the nearest kink's distance.
-// Dropping ∂ż/∂v_T's Stribeck term, or an arm's ψ̇ term in ∂ż/∂ψ fails it (tried: 3e-2 of its column).
-void expect_ode_jacobian_matches(const Model& m, const Drive& dr, double t, const Eigen::VectorXd& y) {
-  ASSERT_GT(m.n_bristle(), 0);
-  const int S = m.n_state(), N = m.n_coord(), zo = m.bristle_offset();
-  Jacobian J;
-  J.resize(m);
-  jacobian(m, dr, t, y.data(), J);
-  Eigen::SparseMatrix<double> A;
-  assemble_ode_jacobian(m, dr, J.K, J.C, &J.B, A);
-  const Eigen::MatrixXd an = Eigen::MatrixXd(A);
-  Eigen::MatrixXd fd(S, S);
-  Eigen::VectorXd fp(S), fm(S);
-  for (int k = 0; k < S; ++k) {
-    const bool vel = k >= N && k < 2 * N, spin = vel && k - N < 3 * m.n_el() && (k - N) % 3 == 2;
-    const bool border_rate = vel && k - N >= 3 * m.n_el();
-    const double eps = k >= zo ? 1e-9 : spin ? 1e-4 : border_rate ? 1e-5 : vel ? 1e-7 : 1e-9;
-    Eigen::VectorXd yp = y, ym = y;
-    yp[k] += eps;
-    ym[k] -= eps;
-    rhs(m, dr, t, yp.data(), fp.data());
-    rhs(m, dr, t, ym.data(), fm.data());
-    fd.col(k) = (fp - fm) / (2 * eps);
-  }
-  // the position rows are q̇ = v (exact in both); the accelerations' rows and the deflections'
-  // rows each against their own scale (ż's entries are 1e5 times smaller than the forces'), a
-  // column's at least 1e-4 of its block's largest entry (1/τ = 1e3 1/s, an element out of
-  // contact): ∂ż/∂v_T = 1 - σ0·z·(...)/g nearly cancels for a deflection near the curve, where
-  // the differences of ż (rounding ~1e-15 of v_T ≈ 3 m/s before the rim's speed is taken off,
-  // over steps of 1e-9 m) resolve no better than 1e-6 1/s: measured up to 2.1e-6 of the floor
-  // there, bound 1e-5 (a dropped term shows at 1e-2)
-  for (const bool bristle_rows : {false, true}) {
-    const int first = bristle_rows ? zo : N, count = bristle_rows ? S - zo : zo - N;
-    int col = -1;
-    const double floor = 1e-4 * an.middleRows(first, count).cwiseAbs().maxCoeff();
-    const double e = column_error(an.middleRows(first, count), fd.middleRows(first, count), &col, floor);
-    EXPECT_LT(e, bristle_rows ? 1e-5 : 1e-6) << (bristle_rows ? "∂ż/∂y" : "∂v̇/∂y") << ", column " << col << " ("
-                       << (col >= zo ? "a deflection" : col >= N ? "a velocity" : "a position") << ")";
-  }
-  // ∂ż/∂t
-  const double dt = 1e-7;
-  rhs(m, dr, t + dt, y.data(), fp.data());
-  rhs(m, dr, t - dt, y.data(), fm.data());
-  Eigen::VectorXd ft(S);
-  ft.setZero();
-  for (int i = 0; i < m.n_el(); ++i) ft[zo + i] = J.B.t[i];
-  const Eigen::VectorXd ftfd = ((fp - fm) / (2 * dt)).tail(m.n_el());
-  EXPECT_LT((ft.tail(m.n_el()) - ftfd).cwiseAbs().maxCoeff() / std::max(1.0, ftfd.cwiseAbs().maxCoeff()), 1e-6);
-}
-
-SceneDef lugre(SceneDef d) {
-  d.friction.law = FrictionKind::lugre;
-  d.friction.static_ratio = 1.4;
-  d.friction.stribeck_speed = 1e-3;  // the curve falls between the running state's slips
-  // δ = 2: (|v|/v_s)^δ is smooth at the slips of 3e-6 m/s (with δ = 1.5 its third derivative,
-  // ~|v|^-1.5, puts a truncation error of 1e-4 into ż's columns); FrictionLaw.BristleSlopes
-  // checks the slopes at any δ
-  d.friction.exponent = 2;
-  d.friction.viscous = 0.05;
-  d.friction.bristle_damping = 0.3;
-  return d;
-}
-
-Eigen::VectorXd with_deflections(const Scene& sc, Eigen::VectorXd y, unsigned seed) {
-  const Model& m = sc.model;
-  std::mt19937 rng(seed);
-  std::uniform_real_distribution<double> u(-0.8, 0.8);
-  const double z_s = m.friction.static_ratio / m.friction.bristle_stiffness;  // per unit μ_k
-  for (int i = 0; i < m.n_el(); ++i) y[m.bristle_offset() + i] = u(rng) * z_s * sc.drive.mu[i];
-  return y;
-}
-
-TEST(Jacobian, LugreBristles) {
-  const Scene sc = build_scene(lugre(presets::paper_dry()));
-  const Eigen::VectorXd y = with_deflections(sc, running_state(sc, 0.1, 30.0, 7), 3);
-  expect_ode_jacobian_matches(sc.model, sc.drive, 0.1, y);
-}
-
-TEST(Jacobian, LugreBristlesOnATensionerArm) {
-  for (const double rate : {2.0, -2.0}) {
-    const Scene sc = build_scene(lugre(presets::automotive_tensioner()));
-    const Eigen::VectorXd y = with_deflections(sc, running_state(sc, 0.2, 25.0, 7, rate), 5);
-    expect_ode_jacobian_matches(sc.model, sc.drive, 0.2, y);
-  }
-}
-
-TEST(Jacobian, LugreBristlesUnderAKinematicPulley) {
-  SceneDef d = lugre(presets::paper_dry());
-  d.pulleys[0].kinematic = true;
-  d.pulleys[0].torque = TimeSpeedLaw{};
-  d.pulleys[0].speed.t = {0.0, 0.5};
-  d.pulleys[0].speed.value = {0.0, -60.0};
-  const Scene sc = build_scene(d);
-  const Eigen::VectorXd y = with_deflections(sc, running_state(sc, 0.2, 30.0, 5), 9);
-  expect_ode_jacobian_matches(sc.model, sc.drive, 0.2, y);
-}
-
-// Belt segments with laws of their own (friction.segments): the paper's Threlfall law, a Stribeck
-// stretch and a LuGre stretch on one belt; the per-pair choice of law, the deflections of the LuGre
-// elements only (the others' rows hold ∂ż/∂z = 0), against differences as above.
-TEST(Jacobian, FrictionSegmentsWithTheirOwnLaws) {
-  SceneDef d = presets::paper_dry();
-  const Friction lu = lugre(d).friction;
-  Friction st = lu;
-  st.law = FrictionKind::stribeck;
-  d.friction_segments = {{0.1, 0.4, st}, {0.5, 0.8, lu}};
-  const Scene sc = build_scene(d);
-  const Model& m = sc.model;
-  int count[3] = {0, 0, 0};
-  for (int i = 0; i < m.n_el(); ++i) count[static_cast<int>(m.friction_of(i).law)]++;
-  EXPECT_GT(count[0], 5);
-  EXPECT_GT(count[1], 5);
-  EXPECT_GT(count[2], 5);
-  const Eigen::VectorXd y = with_deflections(sc, running_state(sc, 0.1, 30.0, 7), 3);
-  expect_ode_jacobian_matches(m, sc.drive, 0.1, y);
-}
-
-// A segment over the whole belt is the scene's law: the same right-hand side to the bit.
-TEST(Jacobian, ASegmentOverTheWholeBeltIsTheScenesLaw) {
-  for (const FrictionKind kind : {FrictionKind::stribeck, FrictionKind::lugre}) {
-    SceneDef whole = lugre(presets::paper_dry()), seg = presets::paper_dry();
-    whole.friction.law = kind;
-    seg.friction_segments = {{0.0, 1e9, whole.friction}};
-    const Scene a = build_scene(whole), b = build_scene(seg);
-    ASSERT_EQ(a.model.n_state(), b.model.n_state());
-    const Eigen::VectorXd y = a.model.n_bristle() ? with_deflections(a, running_state(a, 0.1, 30.0, 7), 3)
-                                                  : running_state(a, 0.1, 30.0, 7);
-    Eigen::VectorXd da(y.size()), db(y.size());
-    rhs(a.model, a.drive, 0.1, y.data(), da.data());
-    rhs(b.model, b.drive, 0.1, y.data(), db.data());
-    EXPECT_EQ(0, std::memcmp(da.data(), db.data(), sizeof(double) * da.size())) << friction_law_name(kind);
-  }
 }
 
 }  // namespace
