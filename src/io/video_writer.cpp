@@ -19,6 +19,14 @@ extern "C" {
 
 namespace beltsim {
 
+// the file under the muxer: a descriptor opened by OutputDir (never through a link) written by
+// the AVIOContext's callbacks; the first write error is kept (errno)
+// (outside the anonymous namespace: VideoWriter::Impl holds one)
+struct VideoFile {
+  int fd = -1;
+  int error = 0;
+};
+
 namespace {
 
 std::atomic<long> g_encoders{0};
@@ -28,13 +36,6 @@ std::string av_message(int err) {
   av_strerror(err, buf, sizeof buf);
   return buf;
 }
-
-// the file under the muxer: a descriptor opened by OutputDir (never through a link) written by
-// the AVIOContext's callbacks; the first write error is kept (errno)
-struct VideoFile {
-  int fd = -1;
-  int error = 0;
-};
 
 int write_packet(void* opaque, uint8_t* buf, int size) {
   auto* f = static_cast<VideoFile*>(opaque);

@@ -79,7 +79,7 @@ void bristle_jacobian(const Model& m, const Drive& d, double t, const double* q,
     const NormalLaw& nl = c.nl;
     const Vec2 V = Vec2(v[3 * i], v[3 * i + 1]) - m.centre_velocity(j, q, v);
     const Bristle b = bristle_law(c.mu, f, c.fl.vT, z[i]);
-    const Vec2 dvT_dP = -(V.dot(nl.n) / nl.r) * nl.t - c.omega * nl.n;
+    const Vec2 dvT_dP = slip_velocity_dP(nl, V, c.omega);
     B.dz[i] = b.dzdot_dz;
     B.dP[i] = b.dzdot_dv * dvT_dP;
     B.dV[i] = b.dzdot_dv * nl.t;

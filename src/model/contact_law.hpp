@@ -65,6 +65,11 @@ inline FrictionLaw friction_law(double mu_i, double dv, const NormalLaw& nl, con
   }
   return fl;
 }
+// ∂v_T/∂P of the slip velocity v_T = V·t - Ω·r above (∂t/∂P = -n·tᵀ/r, ∂r/∂P = nᵀ; friction.cpp's
+// comment): -(V·n)/r·tᵀ - Ω·nᵀ; ∂v_T/∂V = tᵀ and ∂v_T/∂Ω = -r need no helper
+inline Vec2 slip_velocity_dP(const NormalLaw& nl, const Vec2& V, double omega) {
+  return -(V.dot(nl.n) / nl.r) * nl.t - omega * nl.n;
+}
 // Stribeck's law of the same pair (friction.cpp): μ_i·g(v_T)·sat(v_T/Δv) + μ_v·v_T with
 // g(v) = 1 + (μ_s/μ_k - 1)·exp(-(|v|/v_s)^δ)
 // g(v_T) - 1 = (μ_s/μ_k - 1)·exp(-powr), powr = (|v_T|/v_s)^δ, written to powr

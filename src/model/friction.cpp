@@ -38,7 +38,7 @@ namespace beltsim {
 void friction_jacobian(const NormalLaw& nl, const NormalJacobian& dn, const FrictionLaw& fl, const Vec2& V, double omega,
                        PairJacobian& J) {
   const double N = nl.N, mu = fl.mu_eff, r = nl.r;
-  const Eigen::RowVector2d dvT_dP = -(V.dot(nl.n) / r) * nl.t.transpose() - omega * nl.n.transpose();
+  const Eigen::RowVector2d dvT_dP = slip_velocity_dP(nl, V, omega).transpose();
   const Eigen::RowVector2d dvT_dV = nl.t.transpose();
   const Eigen::RowVector2d dmuN_dP = N * fl.dmu * dvT_dP + mu * dn.dN_dP;  // ∂(μN)/∂P
   const Eigen::RowVector2d dmuN_dV = N * fl.dmu * dvT_dV + mu * dn.dN_dV;

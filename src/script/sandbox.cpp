@@ -94,14 +94,14 @@ void explain_binary(lua_State* L, int idx, const char* what) {
 
 // ---- io --------------------------------------------------------------------------------------
 
-enum Kind { kOpen, kRead, kWrite };
+enum FileAccess { kOpen, kRead, kWrite };
 
-// upvalues: the original function, the Context, the name, the Kind. A string first argument is
+// upvalues: the original function, the Context, the name, the FileAccess. A string first argument is
 // a path to check (io.open: its mode says read or write); errors get the caller's file:line.
 int l_file_function(lua_State* L) {
   const char* name = lua_tostring(L, lua_upvalueindex(3));
   if (lua_type(L, 1) == LUA_TSTRING) {
-    const auto kind = static_cast<Kind>(lua_tointeger(L, lua_upvalueindex(4)));
+    const auto kind = static_cast<FileAccess>(lua_tointeger(L, lua_upvalueindex(4)));
     bool write = kind == kWrite;
     if (kind == kOpen) {
       const char* mode = luaL_optstring(L, 2, "r");
@@ -125,7 +125,7 @@ int l_file_function(lua_State* L) {
   return lua_error(L);
 }
 
-void wrap_file_function(lua_State* L, Context* ctx, const char* field, const char* name, Kind kind) {
+void wrap_file_function(lua_State* L, Context* ctx, const char* field, const char* name, FileAccess kind) {
   lua_getfield(L, -1, field);
   lua_pushlightuserdata(L, ctx);
   lua_pushstring(L, name);

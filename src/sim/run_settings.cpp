@@ -13,15 +13,9 @@
 
 namespace beltsim {
 
-namespace {
-
-std::string num(double v) { return rounded_text(v, 10); }
-
-}  // namespace
-
 std::string event_time_problem(double t, double t_end) {
-  if (!(t > 0 && std::isfinite(t))) return "must be > 0 s and finite (got " + num(t) + " s)";
-  if (!(t < t_end)) return "must be before t_end = " + num(t_end) + " s (got " + num(t) + " s)";
+  if (!(t > 0 && std::isfinite(t))) return "must be > 0 s and finite (got " + rounded_text(t) + " s)";
+  if (!(t < t_end)) return "must be before t_end = " + rounded_text(t_end) + " s (got " + rounded_text(t) + " s)";
   return "";
 }
 
@@ -35,19 +29,20 @@ void check(const Scene& sc, const RunSettings& rs, bool batch) {
   const Model& m = sc.model;
   if (batch) {
     if (!(rs.t_end > 0 && std::isfinite(rs.t_end)))
-      throw std::invalid_argument("t_end: must be > 0 s and finite (got " + num(rs.t_end) + " s)");
+      throw std::invalid_argument("t_end: must be > 0 s and finite (got " + rounded_text(rs.t_end) + " s)");
     if (rs.frames && rs.frames->t_start > rs.t_end)
-      throw std::invalid_argument("frames.t_start: must be <= t_end = " + num(rs.t_end) + " s (got " +
-                                  num(rs.frames->t_start) + " s)");
+      throw std::invalid_argument("frames.t_start: must be <= t_end = " + rounded_text(rs.t_end) + " s (got " +
+                                  rounded_text(rs.frames->t_start) + " s)");
     for (size_t k = 0; k < rs.snapshot_times.size(); ++k)
       if (rs.snapshot_times[k] > rs.t_end)
         throw std::invalid_argument("snapshots.times[" + std::to_string(k + 1) + "]: must be <= t_end = " +
-                                    num(rs.t_end) + " s (got " + num(rs.snapshot_times[k]) + " s)");
+                                    rounded_text(rs.t_end) + " s (got " + rounded_text(rs.snapshot_times[k]) + " s)");
   }
   check_integrator(rs.integrator);
   check_tolerances(Tolerances{rs.rtol, rs.atol});
   if (!(rs.sample_dt > 0 && std::isfinite(rs.sample_dt)))
-    throw std::invalid_argument("sample: the sample interval must be > 0 s and finite (got " + num(rs.sample_dt) + " s)");
+    throw std::invalid_argument("sample: the sample interval must be > 0 s and finite (got " +
+                                rounded_text(rs.sample_dt) + " s)");
   if (rs.probes.empty()) throw std::invalid_argument("probe: at least one element to probe");
   for (size_t k = 0; k < rs.probes.size(); ++k)
     if (rs.probes[k] < 0 || rs.probes[k] >= m.n_el())
@@ -58,13 +53,14 @@ void check(const Scene& sc, const RunSettings& rs, bool batch) {
     const double t = rs.snapshot_times[k];
     if (!(t >= 0 && std::isfinite(t)))
       throw std::invalid_argument("snapshots.times[" + std::to_string(k + 1) + "]: must be >= 0 s and finite (got " +
-                                  num(t) + " s)");
+                                  rounded_text(t) + " s)");
     if (k > 0 && !(t > rs.snapshot_times[k - 1]))
       throw std::invalid_argument("snapshots.times[" + std::to_string(k + 1) + "]: the times must increase (got " +
-                                  num(t) + " s after " + num(rs.snapshot_times[k - 1]) + " s)");
+                                  rounded_text(t) + " s after " + rounded_text(rs.snapshot_times[k - 1]) + " s)");
   }
   if (!(rs.snapshot_every >= 0 && std::isfinite(rs.snapshot_every)))
-    throw std::invalid_argument("snapshots.every: must be > 0 s and finite (got " + num(rs.snapshot_every) + " s)");
+    throw std::invalid_argument("snapshots.every: must be > 0 s and finite (got " + rounded_text(rs.snapshot_every) +
+                                " s)");
   for (const MuEvent& ev : rs.mu_events) {
     const std::string bad = event_time_problem(ev.t, batch ? rs.t_end : std::numeric_limits<double>::infinity());
     if (!bad.empty()) throw std::invalid_argument("events: an event's time " + bad);
@@ -87,8 +83,8 @@ std::vector<std::string> drop_events_after_end(RunSettings& rs) {
       kept.push_back(ev);
       continue;
     }
-    notes.push_back("events: the event at " + num(ev.t) + " s (" + ev.what + ") is at or after t_end = " +
-                    num(rs.t_end) + " s: skipped");
+    notes.push_back("events: the event at " + rounded_text(ev.t) + " s (" + ev.what +
+                    ") is at or after t_end = " + rounded_text(rs.t_end) + " s: skipped");
   }
   rs.mu_events = std::move(kept);
   return notes;
@@ -98,8 +94,9 @@ void check_calls(const RunSettings& rs, double t0, double t1, double every_dt) {
   constexpr double kMaxCalls = 1e7;
   const double calls = (t1 - t0) / every_dt;
   if (rs.allow_large || !(calls > kMaxCalls)) return;
-  throw std::invalid_argument("every: a callback every " + num(every_dt) + " s would be called " + num(calls) +
-                              " times from " + num(t0) + " s to " + num(t1) + " s; the limit is " + num(kMaxCalls) +
+  throw std::invalid_argument("every: a callback every " + rounded_text(every_dt) + " s would be called " +
+                              rounded_text(calls) + " times from " + rounded_text(t0) + " s to " + rounded_text(t1) +
+                              " s; the limit is " + rounded_text(kMaxCalls) +
                               " calls: call it less often, or set allow_large = true");
 }
 
@@ -110,31 +107,33 @@ void check_volume(const Scene& sc, const RunSettings& rs, double t0, double t1) 
   std::ostringstream m;
   if (rows > kMaxRows) {
     const double bytes = rows * static_cast<double>(timeseries_columns(sc, rs.probes.size()).size()) * 13;
-    m << "sample: " << num(t1 - t0) << " s at a sample every " << num(rs.sample_dt) << " s would write " << num(rows)
-      << " rows (about " << num(bytes / 1e9) << " GB of timeseries.csv); the limit is " << num(kMaxRows)
+    m << "sample: " << rounded_text(t1 - t0) << " s at a sample every " << rounded_text(rs.sample_dt)
+      << " s would write " << rounded_text(rows) << " rows (about " << rounded_text(bytes / 1e9)
+      << " GB of timeseries.csv); the limit is " << rounded_text(kMaxRows)
       << " rows: sample less often, or set allow_large = true";
     throw std::invalid_argument(m.str());
   }
   const double snaps = static_cast<double>(rs.snapshot_times.size()) +
                        (rs.snapshot_every > 0 ? (t1 - t0) / rs.snapshot_every : 0.0);
   if (snaps * sc.model.n_el() > kMaxRows) {
-    m << "snapshots: " << num(snaps) << " snapshots of " << sc.model.n_el() << " elements would write "
-      << num(snaps * sc.model.n_el()) << " rows of snapshots.csv; the limit is " << num(kMaxRows)
+    m << "snapshots: " << rounded_text(snaps) << " snapshots of " << sc.model.n_el() << " elements would write "
+      << rounded_text(snaps * sc.model.n_el()) << " rows of snapshots.csv; the limit is " << rounded_text(kMaxRows)
       << ": take fewer, or set allow_large = true";
     throw std::invalid_argument(m.str());
   }
   if (const std::optional<FrameSettings> f = frame_times(rs)) {
     const double frames = std::max(0.0, t1 - std::max(t0, f->t_start)) / f->frame_dt();
     if (frames > kMaxFrames && f->draws()) {
-      m << "frames: " << num(t1 - t0) << " s at " << num(f->fps) << " fps and slowdown " << num(f->slowdown)
-        << " would render " << num(frames) << " frames (" << num(frames / f->fps / 3600)
-        << " h of video); the limit is " << num(kMaxFrames) << ": lower the slowdown, or set allow_large = true";
+      m << "frames: " << rounded_text(t1 - t0) << " s at " << rounded_text(f->fps) << " fps and slowdown "
+        << rounded_text(f->slowdown) << " would render " << rounded_text(frames) << " frames ("
+        << rounded_text(frames / f->fps / 3600) << " h of video); the limit is " << rounded_text(kMaxFrames)
+        << ": lower the slowdown, or set allow_large = true";
       throw std::invalid_argument(m.str());
     }
     if (frames > kMaxFrames) {
-      m << "keep_states: " << num(t1 - t0) << " s at a state every " << num(f->frame_dt())
-        << " s (the frame times) would keep " << num(frames) << " states; the limit is " << num(kMaxFrames)
-        << ": lower frames.slowdown or frames.fps, or set allow_large = true";
+      m << "keep_states: " << rounded_text(t1 - t0) << " s at a state every " << rounded_text(f->frame_dt())
+        << " s (the frame times) would keep " << rounded_text(frames) << " states; the limit is "
+        << rounded_text(kMaxFrames) << ": lower frames.slowdown or frames.fps, or set allow_large = true";
       throw std::invalid_argument(m.str());
     }
   }

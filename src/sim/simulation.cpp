@@ -19,8 +19,6 @@ namespace beltsim {
 
 namespace {
 
-std::string num(double v) { return rounded_text(v, 10); }
-
 // sets a variable for the guard's scope and gives it back its value before, however the scope is
 // left (an exception from a Lua callback included)
 template <class T>
@@ -267,8 +265,9 @@ void Simulation::require_open(const char* what) const {
 
 Simulation::Advance Simulation::run_to(double t, const std::atomic<bool>* stop, const RunProgress& progress) {
   require_open("run_to");
-  if (!std::isfinite(t)) throw std::invalid_argument("run_to: the time must be finite (got " + num(t) + " s)");
-  if (t < now()) throw std::invalid_argument("run_to: " + num(t) + " s is before now (" + num(now()) + " s)");
+  if (!std::isfinite(t)) throw std::invalid_argument("run_to: the time must be finite (got " + rounded_text(t) + " s)");
+  if (t < now())
+    throw std::invalid_argument("run_to: " + rounded_text(t) + " s is before now (" + rounded_text(now()) + " s)");
   if (running_) throw std::logic_error("run_to: the simulation is already running (called from a callback?)");
   check_volume(scene_, rs_, now(), t);
   for (const auto& [id, dt] : every_dt_) check_calls(rs_, now(), t, dt);
@@ -297,11 +296,12 @@ Simulation::Advance Simulation::run_to(double t, const std::atomic<bool>* stop, 
       const double tt = tl_->now(), rate = (tt - win_t) / (wall - win_wall);
       if (best_rate_ > 0 && rate < kRateCollapse * best_rate_) {
         const std::string worst = integ_->stiffest();
-        throw DivergenceError(tt, "no progress at t = " + num(tt) + " s: " + num(tt - win_t) + " s simulated in the last " +
-                                      num(wall - win_wall) + " s of wall time, against " + num(best_rate_) +
-                                      " s per second earlier in this run; the largest error is in " +
-                                      (worst.empty() ? std::string("a component the integrator does not name") : worst) +
-                                      "; " + kDivergenceHint);
+        throw DivergenceError(
+            tt, "no progress at t = " + rounded_text(tt) + " s: " + rounded_text(tt - win_t) +
+                    " s simulated in the last " + rounded_text(wall - win_wall) + " s of wall time, against " +
+                    rounded_text(best_rate_) + " s per second earlier in this run; the largest error is in " +
+                    (worst.empty() ? std::string("a component the integrator does not name") : worst) + "; " +
+                    kDivergenceHint);
       }
       best_rate_ = std::max(best_rate_, rate);
       win_wall = wall, win_t = tt;
@@ -354,8 +354,8 @@ std::string Simulation::warning_summary() const {
   for (const WarningKindInfo& i : warning_kinds()) {
     const WarningStat& st = w[i.kind];
     if (st.count == 0) continue;
-    s += (s.empty() ? "" : ", ") + std::string(i.name) + " " + std::to_string(st.count) + (st.count == 1 ? " time" : " times") +
-         " (first at t = " + num(st.first_t) + " s)";
+    s += (s.empty() ? "" : ", ") + std::string(i.name) + " " + std::to_string(st.count) +
+         (st.count == 1 ? " time" : " times") + " (first at t = " + rounded_text(st.first_t) + " s)";
   }
   if (s.empty()) return s;
   return "warnings: " + s + "; these fallbacks are described in " +
@@ -450,8 +450,8 @@ void Simulation::set_mu(const std::vector<double>& mu, const std::string& what, 
                                 std::to_string(mu.size()));
   for (size_t i = 0; i < mu.size(); ++i)
     if (const std::string bad = std::isnan(mu[i]) ? "" : mu_problem(mu[i]); !bad.empty())
-      throw std::invalid_argument(what + ": μ " + bad + " (got " + num(mu[i]) + " for element " + std::to_string(i) +
-                                  ")");
+      throw std::invalid_argument(what + ": μ " + bad + " (got " + rounded_text(mu[i]) + " for element " +
+                                  std::to_string(i) + ")");
   for (size_t i = 0; i < mu.size(); ++i)
     if (!std::isnan(mu[i])) drive_.mu[i] = mu[i];
   write_event(now(), what, text);
@@ -480,7 +480,8 @@ void Simulation::set_spray(int z, bool enabled) {
 
 int Simulation::every(double dt, std::function<void()> fn) {
   require_open("every");
-  if (!(dt > 0 && std::isfinite(dt))) throw std::invalid_argument("every: the interval must be > 0 s and finite (got " + num(dt) + " s)");
+  if (!(dt > 0 && std::isfinite(dt)))
+    throw std::invalid_argument("every: the interval must be > 0 s and finite (got " + rounded_text(dt) + " s)");
   callbacks_++;
   const int id = tl_->add_every(dt, [fn = std::move(fn)](double) { fn(); });
   every_dt_[id] = dt;

@@ -23,10 +23,14 @@
 
 #include "io/csv_writer.hpp"
 #include "io/row_file.hpp"
+#include "support/files.hpp"
 #include "support/scratch.hpp"
 
 namespace beltsim {
 namespace {
+
+using test::slurp;
+using test::what_of;
 
 namespace fs = std::filesystem;
 
@@ -37,25 +41,8 @@ fs::path fresh_dir(const std::string& name) {
   return d;
 }
 
-std::string slurp(const fs::path& f) {
-  std::ifstream in(f, std::ios::binary);
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
 void spit(const fs::path& f, const std::string& text) {
   std::ofstream(f, std::ios::binary) << text;
-}
-
-// what `write` throws, "" when it throws nothing
-std::string error_of(const std::function<void()>& write) {
-  try {
-    write();
-  } catch (const std::exception& e) {
-    return e.what();
-  }
-  return "";
 }
 
 constexpr const char* kSecret = "the user's own file\n";
@@ -83,40 +70,39 @@ TEST(OutputDir, EveryWayOfWritingRefusesAPlantedLink) {
   {
     const Planted p("open_empty", "events.csv");
     const OutputDir d(p.dir.string());
-    p.expect_refused(error_of([&] { d.open_file("events.csv", false); }), "events.csv");
+    p.expect_refused(what_of([&] { d.open_file("events.csv", false); }), "events.csv");
   }
   {
     const Planted p("open_append", "events.csv");
     const OutputDir d(p.dir.string());
-    p.expect_refused(error_of([&] { d.open_file("events.csv", true); }), "events.csv");
+    p.expect_refused(what_of([&] { d.open_file("events.csv", true); }), "events.csv");
   }
   {
     const Planted p("truncate", "timeseries.csv");
     const OutputDir d(p.dir.string());
     // the size is the link's business, never the target's: "missing"
-    EXPECT_NE(error_of([&] { d.truncate("timeseries.csv", 0); }), "");
+    EXPECT_NE(what_of([&] { d.truncate("timeseries.csv", 0); }), "");
     EXPECT_EQ(slurp(p.target), kSecret);
   }
   {
     const Planted p("row_file", "snapshots.csv");
-    p.expect_refused(error_of([&] { RowFile((p.dir / "snapshots.csv").string(), false); }), "snapshots.csv");
+    p.expect_refused(what_of([&] { RowFile((p.dir / "snapshots.csv").string(), false); }), "snapshots.csv");
   }
   {
     const Planted p("csv", "timeseries.csv");
     const OutputDir d(p.dir.string());
-    p.expect_refused(error_of([&] { CsvWriter(d, "timeseries.csv", {"t", "x"}, false); }), "timeseries.csv");
+    p.expect_refused(what_of([&] { CsvWriter(d, "timeseries.csv", {"t", "x"}, false); }), "timeseries.csv");
   }
   {
     const Planted p("whole", "parameters.csv");
-    p.expect_refused(error_of([&] { write_file_whole((p.dir / "parameters.csv").string(), "a\n"); }), "parameters.csv");
+    p.expect_refused(what_of([&] { write_file_whole((p.dir / "parameters.csv").string(), "a\n"); }), "parameters.csv");
   }
   {
     // a dangling link: O_CREAT would make its target
     const fs::path dir = fresh_dir("dangling");
     const fs::path target = dir / "made_elsewhere";
     fs::create_symlink(target, dir / "events.csv");
-    EXPECT_NE(error_of([&] { RowFile((dir / "events.csv").string(), false); }).find("symbolic link"),
-              std::string::npos);
+    EXPECT_NE(what_of([&] { RowFile((dir / "events.csv").string(), false); }).find("symbolic link"), std::string::npos);
     EXPECT_FALSE(fs::exists(target));
   }
 }
@@ -125,11 +111,11 @@ TEST(OutputDir, AFolderThatIsALinkIsRefused) {
   const fs::path base = fresh_dir("folder_link");
   fs::create_directories(base / "elsewhere");
   fs::create_symlink(base / "elsewhere", base / "frames");
-  const std::string e = error_of([&] { OutputDir((base / "frames").string()); });
+  const std::string e = what_of([&] { OutputDir((base / "frames").string()); });
   EXPECT_EQ(e, "cannot write " + (base / "frames").string() +
                    ": it is a symbolic link (beltsim never writes through a link)");
   const OutputDir d(base.string());
-  EXPECT_NE(error_of([&] { OutputDir(d, "frames"); }).find("symbolic link"), std::string::npos);
+  EXPECT_NE(what_of([&] { OutputDir(d, "frames"); }).find("symbolic link"), std::string::npos);
   EXPECT_TRUE(fs::is_empty(base / "elsewhere"));
   // missing folders are made, each opened as it is made
   const OutputDir deep((base / "a" / "b" / "c").string());
@@ -143,12 +129,12 @@ TEST(OutputDir, HardLinksAndFifosAreRefusedUntouched) {
   fs::create_hard_link(dir / "bashrc", dir / "events.csv");
   const OutputDir d(dir.string());
   EXPECT_EQ(
-      error_of([&] { d.open_file("events.csv", false); }),
+      what_of([&] { d.open_file("events.csv", false); }),
       "cannot write " + (dir / "events.csv").string() + ": it has 2 hard links (beltsim writes only files of its own)");
   EXPECT_EQ(slurp(dir / "bashrc"), kSecret);
   // a FIFO would block the open until a reader came: refused at once
   ASSERT_EQ(::mkfifo((dir / "timeseries.csv").c_str(), 0600), 0);
-  EXPECT_EQ(error_of([&] { d.open_file("timeseries.csv", false); }),
+  EXPECT_EQ(what_of([&] { d.open_file("timeseries.csv", false); }),
             "cannot write " + (dir / "timeseries.csv").string() + ": not a regular file");
 }
 
@@ -158,20 +144,20 @@ TEST(OutputDir, OneWriterPerFolder) {
     OutputDir a(dir.string());
     a.lock();
     OutputDir b(dir.string());
-    const std::string e = error_of([&] { b.lock(); });
+    const std::string e = what_of([&] { b.lock(); });
     EXPECT_EQ(e, "the output folder " + dir.string() +
                      " is in use by another simulation of this beltsim: two simulations writing one folder would "
                      "mix their rows; give this one a folder of its own (out = ...) or close the other first");
   }
   // released with its holder
   OutputDir c(dir.string());
-  EXPECT_EQ(error_of([&] { c.lock(); }), "");
+  EXPECT_EQ(what_of([&] { c.lock(); }), "");
   // another process: named by its id
   const pid_t pid = ::fork();
   ASSERT_GE(pid, 0);
   if (pid == 0) {
     OutputDir d(dir.string());
-    const std::string e = error_of([&] { d.lock(); });
+    const std::string e = what_of([&] { d.lock(); });
     _exit(e.find("another beltsim (process " + std::to_string(::getppid()) + ")") != std::string::npos ? 0 : 1);
   }
   int status = 0;
@@ -190,7 +176,7 @@ TEST(OutputDir, AFailedWholeWriteLeavesTheOldFileAndNoPart) {
     ::signal(SIGXFSZ, SIG_IGN);
     const rlimit r{4096, 4096};
     ::setrlimit(RLIMIT_FSIZE, &r);
-    const std::string e = error_of([&] { write_file_whole((dir / "run.ckpt").string(), std::string(10000, 'x')); });
+    const std::string e = what_of([&] { write_file_whole((dir / "run.ckpt").string(), std::string(10000, 'x')); });
     const std::string want = "cannot write " + (dir / "run.ckpt").string() + ": " + std::strerror(EFBIG);
     const auto failures = output_failures();
     _exit(e == want && !failures.empty() && failures.back() == want ? 0 : 1);

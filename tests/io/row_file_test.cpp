@@ -2,6 +2,8 @@
 // with SIGKILL at random moments leaves only whole rows; a full disk and a file-size limit are
 // errors naming the file, and the row that did not fit is taken back out; a whole-file write
 // replaces the file or leaves it as it was.
+#include "io/row_file.hpp"
+
 #include <gtest/gtest.h>
 #include <signal.h>
 #include <sys/resource.h>
@@ -22,22 +24,17 @@
 #include <vector>
 
 #include "io/csv_writer.hpp"
-#include "io/row_file.hpp"
+#include "support/files.hpp"
 #include "support/scratch.hpp"
 
 namespace beltsim {
 namespace {
 
+using test::slurp;
+
 namespace fs = std::filesystem;
 
 fs::path temp_dir() { return beltsim::test::scratch_dir("beltsim_row_file_test"); }
-
-std::string slurp(const fs::path& f) {
-  std::ifstream in(f, std::ios::binary);
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
 
 // what is wrong with the file's rows ("" if nothing): each line ends in '\n', has `columns`
 // fields, and every field after the header is a number as CsvWriter writes it

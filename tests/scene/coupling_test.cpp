@@ -34,7 +34,7 @@ SceneDef frictionless(const CouplingDef& c) {
   return d;
 }
 
-RunSettings settings(const std::string& name) {
+RunSettings coupling_settings(const std::string& name) {
   RunSettings rs;
   rs.integrator = "esdirk32";
   rs.rtol = 1e-7;
@@ -67,7 +67,7 @@ TEST(Coupling, TwoInertiaNaturalFrequency) {
   const Scene sc = started(frictionless(c), 0.0, 1.0);
   const double J1 = sc.model.pulleys[1].inertia, J2 = c.inertia;
   const double omega = std::sqrt(c.stiffness * (1 / J1 + 1 / J2));
-  Simulation s(sc, settings("natural"));
+  Simulation s(sc, coupling_settings("natural"));
   const double h = 2e-4, end = 4 * 2 * M_PI / omega + 2 * h;
   std::vector<double> crossings;
   double prev = s.pulley(1).windup, t_prev = 0;
@@ -133,7 +133,7 @@ TEST(Coupling, OneWayClutchOverruns) {
   const CouplingDef c = one_way();
   const Scene sc = started(frictionless(c), -50.0, -80.0);  // sense -1: the rotor 30 rad/s ahead
   ASSERT_EQ(sc.model.couplings[0].sense, -1);
-  Simulation s(sc, settings("overrun"));
+  Simulation s(sc, coupling_settings("overrun"));
   s.run_to(0.1);
   const PulleyObs p = s.pulley(1);
   const double drag_slowdown = c.drag_torque / c.inertia * 0.1;  // 0.5 rad/s
@@ -147,7 +147,7 @@ TEST(Coupling, OneWayClutchOverruns) {
   // two-way: the spring takes the rotor back within a quarter period
   CouplingDef two = c;
   two.one_way = false;
-  Simulation t(started(frictionless(two), -50.0, -80.0), settings("two_way"));
+  Simulation t(started(frictionless(two), -50.0, -80.0), coupling_settings("two_way"));
   t.run_to(0.02);
   EXPECT_GT(t.pulley(1).rotor_speed, -70.0);
 }
@@ -163,7 +163,7 @@ TEST(Coupling, OneWayClutchLockedFollows) {
   const Scene sc = started(frictionless(c), -80.0, -50.0);
   const double J1 = sc.model.pulleys[1].inertia, Jh = c.hub_inertia, Jr = c.inertia;
   const double common = ((J1 + Jh) * -80.0 + Jr * -50.0) / (J1 + Jh + Jr);
-  Simulation s(sc, settings("locked"));
+  Simulation s(sc, coupling_settings("locked"));
   s.run_to(0.005);
   EXPECT_LT(s.pulley(1).coupling_torque, -1.0);  // driving the rotor in the sense -1
   s.run_to(3.0);

@@ -2,26 +2,33 @@
 // a built scene and a changed drive come back bit for bit; a text cut short, damaged, or holding
 // a scene a script could not give is refused, naming the line; counts are believed only as far
 // as the text holding them goes.
+#include "scene/scene_io.hpp"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <cstring>
 #include <limits>
 #include <map>
-#include <stdexcept>
-#include <sstream>
 #include <set>
+#include <sstream>
+#include <stdexcept>
 
 #include "io/checkpoint_text.hpp"
 #include "io/number_text.hpp"
 #include "scene/parameters.hpp"
-#include "scene/parameters.hpp"
 #include "scene/presets.hpp"
 #include "scene/scene.hpp"
-#include "scene/scene_io.hpp"
+#include "support/checkpoint_edit.hpp"
+#include "support/dry_scene.hpp"
 
 namespace beltsim {
 namespace {
+
+using test::dry_scene;
+using test::line_of;
+using test::resealed;
+using test::with_line;
 
 bool same(double a, double b) { return std::memcmp(&a, &b, sizeof a) == 0; }
 
@@ -183,41 +190,13 @@ Scene read_whole(const std::string& text) {
 Scene round_trip(const Scene& sc) { return read_whole(scene_text(sc)); }
 
 // what reading `text` throws, "" when it reads
-std::string error_of(const std::string& text) {
+std::string read_error(const std::string& text) {
   try {
     read_whole(text);
   } catch (const std::exception& e) {
     return e.what();
   }
   return "";
-}
-
-// the text with its checksum made to match again (a file edited on purpose, or by a program)
-std::string resealed(std::string text) {
-  text.erase(text.rfind('\n', text.size() - 2) + 1);
-  char sum[17];
-  std::snprintf(sum, sizeof sum, "%016llx", static_cast<unsigned long long>(fnv1a64(text)));
-  return text + "checksum fnv1a64 " + sum + "\n";
-}
-
-// the text with the first line that opens with `key ` replaced by `line`
-std::string with_line(const std::string& text, const std::string& key, const std::string& line) {
-  const size_t at = text.find("\n" + key + " ");
-  EXPECT_NE(at, std::string::npos) << key;
-  if (at == std::string::npos) return text;
-  const size_t end = text.find('\n', at + 1);
-  return text.substr(0, at + 1) + line + text.substr(end);
-}
-
-// the 1-based number of the first line that opens with `key `
-int line_of(const std::string& text, const std::string& key) {
-  const size_t at = text.find("\n" + key + " ");
-  return 2 + static_cast<int>(std::count(text.begin(), text.begin() + static_cast<std::ptrdiff_t>(at), '\n'));
-}
-
-const Scene& dry() {
-  static const Scene sc = build_scene(presets::paper_dry());
-  return sc;
 }
 
 // four pulleys with a back-side idler (its name with a space and a quote), a kinematic alternator
@@ -237,7 +216,7 @@ const Scene& automotive() {
 }
 
 TEST(SceneIo, DryScene) {
-  const Scene& sc = dry();
+  const Scene& sc = dry_scene();
   ASSERT_EQ(sc.route.spans.size(), 2u);
   ASSERT_FALSE(sc.sites.empty());
   expect_same(sc, round_trip(sc));
@@ -303,7 +282,7 @@ TEST(SceneIo, FrictionSegments) {
 // the shortest decimal of every double reads back as that double: signed zero, subnormals, the
 // largest, thirds; strings with quotes, backslashes, newlines and '#'
 TEST(SceneIo, ExactValues) {
-  Scene sc = dry();
+  Scene sc = dry_scene();
   sc.y0[0] = -0.0;
   sc.y0[1] = std::numeric_limits<double>::denorm_min();
   sc.y0[2] = -std::numeric_limits<double>::max();
@@ -342,7 +321,7 @@ TEST(SceneIo, DriveRoundTrip) {
   r.finish();
   expect_same(m, back);
   // for the model of another scene: refused
-  const Model& other = dry().model;
+  const Model& other = dry_scene().model;
   CheckpointReader r2(text);
   try {
     read_drive(r2, other);
@@ -354,7 +333,7 @@ TEST(SceneIo, DriveRoundTrip) {
 
 // the keys are the scenario's Lua names
 TEST(SceneIo, KeysAreTheLuaNames) {
-  const std::string text = scene_text(dry());
+  const std::string text = scene_text(dry_scene());
   for (const char* key : {"\npulley.inertia ", "\nbelt.sde.k ", "\ncontact.damping ", "\ncontact.p_max ",
                           "\nfriction.dv ", "\nenergy false\n", "\nbelt.mu 60 ", "\npulley.torque.constant "})
     EXPECT_NE(text.find(key), std::string::npos) << key;
@@ -368,44 +347,45 @@ TEST(SceneIo, CutShortIsRefusedNamingTheLine) {
   for (size_t k = 0; k < 300; ++k) cuts.push_back(k * text.size() / 300);
   for (size_t k = text.size() > 200 ? text.size() - 200 : 0; k < text.size(); ++k) cuts.push_back(k);
   for (size_t cut : cuts) {
-    const std::string e = error_of(text.substr(0, cut));
+    const std::string e = read_error(text.substr(0, cut));
     EXPECT_EQ(e.rfind("line ", 0), 0u) << "cut at " << cut << " of " << text.size() << ": '" << e << "'";
   }
   // cut after a whole line: the last line is not the checksum
   const size_t at = text.find("\nstatic_residual ");
   ASSERT_NE(at, std::string::npos);
   const std::string cut = text.substr(0, at + 1);
-  EXPECT_EQ(error_of(cut), "line " + std::to_string(line_of(text, "static_residual") - 1) + ": 'static_tension " +
-                               number_text(automotive().static_tension).substr(0, 25) +
-                               "' where the checksum line should end the file: it was cut short or damaged");
+  EXPECT_EQ(read_error(cut), "line " + std::to_string(line_of(text, "static_residual") - 1) + ": 'static_tension " +
+                                 number_text(automotive().static_tension).substr(0, 25) +
+                                 "' where the checksum line should end the file: it was cut short or damaged");
   // a whole line missing, the rest sealed again: the line that comes instead is named
   const size_t end = text.find('\n', at + 1);
-  EXPECT_EQ(error_of(resealed(text.substr(0, at + 1) + text.substr(end + 1))),
+  EXPECT_EQ(read_error(resealed(text.substr(0, at + 1) + text.substr(end + 1))),
             "line " + std::to_string(line_of(text, "static_residual")) +
                 ": expected 'static_residual', got 'static_retried'");
 }
 
 TEST(SceneIo, WrongKeywordOrVersionIsRefused) {
-  const std::string text = scene_text(dry());
-  EXPECT_EQ(error_of(resealed(with_line(text, "belt.pitch", "belt.pitck 0.01"))),
+  const std::string text = scene_text(dry_scene());
+  EXPECT_EQ(read_error(resealed(with_line(text, "belt.pitch", "belt.pitck 0.01"))),
             "line " + std::to_string(line_of(text, "belt.pitch")) + ": expected 'belt.pitch', got 'belt.pitck'");
   // unsealed: the same, and the checksum's verdict
-  EXPECT_EQ(error_of(with_line(text, "belt.pitch", "belt.pitck 0.01")),
+  EXPECT_EQ(read_error(with_line(text, "belt.pitch", "belt.pitck 0.01")),
             "line " + std::to_string(line_of(text, "belt.pitch")) +
                 ": expected 'belt.pitch', got 'belt.pitck' (and the file does not match its checksum, line " +
                 std::to_string(std::count(text.begin(), text.end(), '\n')) +
                 ": it was damaged or changed after it was written)");
-  EXPECT_EQ(error_of("beltsim-checkpoint 4\nscene 4\n"),
+  EXPECT_EQ(read_error("beltsim-checkpoint 4\nscene 4\n"),
             "line 1: a version 4 checkpoint; this beltsim reads version " + std::to_string(kCheckpointVersion) +
                 " only: resume it with the beltsim that wrote it, or run the scene again from its script");
   // version 5 held each input's unit and note; 6 takes them from the parameter table; 7 holds spray zones, the
   // friction law and the couplings; 8 LuGre's parameters, the bristles' deflections and the run's keep_states
   for (const int v : {5, 6, 7})
-    EXPECT_EQ(error_of("beltsim-checkpoint " + std::to_string(v) + "\nscene 4\n"),
-              "line 1: a version " + std::to_string(v) + " checkpoint; this beltsim reads version 8 only: resume it "
-              "with the beltsim that wrote it, or run the scene again from its script");
-  EXPECT_EQ(error_of("scene 4\nmodel 4\n"), "line 1: not a beltsim checkpoint (it begins 'scene 4')");
-  EXPECT_EQ(error_of(resealed(with_line(text, "pulley.wrap", "pulley.wrap outside"))),
+    EXPECT_EQ(read_error("beltsim-checkpoint " + std::to_string(v) + "\nscene 4\n"),
+              "line 1: a version " + std::to_string(v) +
+                  " checkpoint; this beltsim reads version 8 only: resume it "
+                  "with the beltsim that wrote it, or run the scene again from its script");
+  EXPECT_EQ(read_error("scene 4\nmodel 4\n"), "line 1: not a beltsim checkpoint (it begins 'scene 4')");
+  EXPECT_EQ(read_error(resealed(with_line(text, "pulley.wrap", "pulley.wrap outside"))),
             "line " + std::to_string(line_of(text, "pulley.wrap")) +
                 ": 'pulley.wrap': expected inside or back, got 'outside'");
 }
@@ -413,7 +393,7 @@ TEST(SceneIo, WrongKeywordOrVersionIsRefused) {
 // the scene's inputs (parameters.csv's first rows) keep their names, values and sources; their
 // units and notes come back from the parameter table, which must know every name
 TEST(SceneIo, InputsComeBackWithTheTablesUnitsAndNotes) {
-  for (const Scene* sc : {&dry(), &automotive()}) {
+  for (const Scene* sc : {&dry_scene(), &automotive()}) {
     const Scene back = round_trip(*sc);
     ASSERT_EQ(back.inputs.size(), sc->inputs.size());
     for (size_t i = 0; i < sc->inputs.size(); ++i) {
@@ -426,12 +406,12 @@ TEST(SceneIo, InputsComeBackWithTheTablesUnitsAndNotes) {
       EXPECT_EQ(b.note, a.note) << a.name;
     }
   }
-  const std::string text = scene_text(dry());
-  EXPECT_EQ(error_of(resealed(with_line(text, "input.name", "input.name \"belt.stiffness\""))),
+  const std::string text = scene_text(dry_scene());
+  EXPECT_EQ(read_error(resealed(with_line(text, "input.name", "input.name \"belt.stiffness\""))),
             "line " + std::to_string(line_of(text, "input.name")) +
                 ": 'input.name': 'belt.stiffness' is not a scene parameter");
   // a pulley's key under another pulley's name is no parameter either
-  EXPECT_EQ(error_of(resealed(with_line(text, "input.name", "input.name \"pulley.nobody.radius\""))),
+  EXPECT_EQ(read_error(resealed(with_line(text, "input.name", "input.name \"pulley.nobody.radius\""))),
             "line " + std::to_string(line_of(text, "input.name")) +
                 ": 'input.name': 'pulley.nobody.radius' is not a scene parameter");
 }
@@ -459,75 +439,76 @@ TEST(SceneIo, TheScenarioFieldsAreUnderTheTablesKeys) {
 
 // a value changed without a sign in its syntax: only the checksum sees it
 TEST(SceneIo, ChecksumCatchesAChangedValue) {
-  const std::string text = scene_text(dry());
+  const std::string text = scene_text(dry_scene());
   const std::string changed = with_line(text, "belt.mass", "belt.mass 1");
   const int last = static_cast<int>(std::count(text.begin(), text.end(), '\n'));
-  EXPECT_EQ(error_of(changed), "line " + std::to_string(last) +
-                                   ": the checksum does not match the text before it: the file was damaged or "
-                                   "changed after it was written");
-  EXPECT_EQ(error_of(resealed(changed)), "");
+  EXPECT_EQ(read_error(changed), "line " + std::to_string(last) +
+                                     ": the checksum does not match the text before it: the file was damaged or "
+                                     "changed after it was written");
+  EXPECT_EQ(read_error(resealed(changed)), "");
 }
 
 // numbers are whole decimal numbers, finite where the field needs it; nothing else passes
 TEST(SceneIo, NumbersAreStrict) {
-  const std::string text = scene_text(dry());
+  const std::string text = scene_text(dry_scene());
   const std::string line = std::to_string(line_of(text, "contact.c2"));
   for (const char* bad : {"0x1.3d6p+19", "0x", "1e", "1.5.2", "+3", "6.5e5x", "1e999", "--1", "1,5", ""})
-    EXPECT_EQ(error_of(resealed(with_line(text, "contact.c2", std::string("contact.c2 ") + bad))),
+    EXPECT_EQ(read_error(resealed(with_line(text, "contact.c2", std::string("contact.c2 ") + bad))),
               "line " + line + ": 'contact.c2': " +
                   (*bad ? "expected a number, got '" + std::string(bad) + "'"
                         : std::string("an empty value (two spaces in a row, or a space at the end of the line)")))
         << bad;
   for (const char* bad : {"inf", "-inf", "nan"})
-    EXPECT_EQ(error_of(resealed(with_line(text, "contact.c2", std::string("contact.c2 ") + bad))),
+    EXPECT_EQ(read_error(resealed(with_line(text, "contact.c2", std::string("contact.c2 ") + bad))),
               "line " + line + ": 'contact.c2': expected a finite number, got " + bad)
         << bad;
-  EXPECT_EQ(error_of(resealed(with_line(text, "contact.c2", "contact.c2 650000 1"))),
+  EXPECT_EQ(read_error(resealed(with_line(text, "contact.c2", "contact.c2 650000 1"))),
             "line " + line + ": 'contact.c2': unexpected ' 1' after the values");
-  EXPECT_EQ(error_of(resealed(with_line(text, "contact.c2", "contact.c2  650000"))),
+  EXPECT_EQ(read_error(resealed(with_line(text, "contact.c2", "contact.c2  650000"))),
             "line " + line + ": 'contact.c2': an empty value (two spaces in a row, or a space at the end of the line)");
 }
 
 // a count is believed only as far as the line (or the file) holds its values, and the scene its
 // entries: a huge one allocates nothing
 TEST(SceneIo, CountsAreBoundedByTheTextAndTheScene) {
-  const std::string text = scene_text(dry());
-  EXPECT_EQ(error_of(resealed(with_line(text, "belt.mu", "belt.mu 1000000000 0.5"))),
+  const std::string text = scene_text(dry_scene());
+  EXPECT_EQ(read_error(resealed(with_line(text, "belt.mu", "belt.mu 1000000000 0.5"))),
             "line " + std::to_string(line_of(text, "belt.mu")) +
                 ": 'belt.mu': 1000000000 values announced, the line holds 1");
-  EXPECT_EQ(error_of(resealed(with_line(text, "pulleys", "pulleys 4000000000"))),
+  EXPECT_EQ(read_error(resealed(with_line(text, "pulleys", "pulleys 4000000000"))),
             "line 2: 'pulleys': 4000000000 entries of 5 lines announced, the file has " +
                 std::to_string(std::count(text.begin(), text.end(), '\n') - 3) + " lines left");
-  EXPECT_EQ(error_of(resealed(with_line(text, "sites", "sites 99999999999999999999"))),
-            "line " + std::to_string(line_of(text, "sites")) + ": 'sites': expected an integer, got '99999999999999999999'");
+  EXPECT_EQ(
+      read_error(resealed(with_line(text, "sites", "sites 99999999999999999999"))),
+      "line " + std::to_string(line_of(text, "sites")) + ": 'sites': expected an integer, got '99999999999999999999'");
   // the element count must agree with every per-element list
-  EXPECT_EQ(error_of(resealed(with_line(text, "belt.elements", "belt.elements 59"))),
+  EXPECT_EQ(read_error(resealed(with_line(text, "belt.elements", "belt.elements 59"))),
             "line " + std::to_string(line_of(text, "belt.mu")) + ": 'belt.mu': 60 values, more than the 59 this " +
                 "checkpoint's scene has room for");
 }
 
 // the scene is checked as a script's scene is (validate(SceneDef)), with the scenario's names
 TEST(SceneIo, SceneIsValidatedAsAScriptsScene) {
-  const std::string text = scene_text(dry());
+  const std::string text = scene_text(dry_scene());
   const std::string lines = "lines 2 to " + std::to_string(std::count(text.begin(), text.end(), '\n') - 1) + ": the scene: ";
-  EXPECT_EQ(error_of(resealed(with_line(text, "pulley.inertia", "pulley.inertia -1"))),
+  EXPECT_EQ(read_error(resealed(with_line(text, "pulley.inertia", "pulley.inertia -1"))),
             lines + "pulley 'driver' inertia must be > 0 (got -1 kg·m²)");
-  EXPECT_EQ(error_of(resealed(with_line(text, "contact.p_max", "contact.p_max 0"))),
+  EXPECT_EQ(read_error(resealed(with_line(text, "contact.p_max", "contact.p_max 0"))),
             lines + "contact.p_max must be > 0 (got 0 m)");
-  EXPECT_EQ(error_of(resealed(with_line(text, "friction.dv", "friction.dv 0"))),
+  EXPECT_EQ(read_error(resealed(with_line(text, "friction.dv", "friction.dv 0"))),
             lines + "friction.dv must be > 0 (got 0 m/s)");
-  EXPECT_EQ(error_of(resealed(with_line(text, "belt.sde.k", "belt.sde.k -5"))),
+  EXPECT_EQ(read_error(resealed(with_line(text, "belt.sde.k", "belt.sde.k -5"))),
             lines + "belt.sde.k must be > 0 (got -5 N/m)");
   // μ (in the drive, read first): negative, or a list of the wrong length
   std::string mu = "belt.mu 60 -0.5";
   for (int i = 1; i < 60; ++i) mu += " 0.3";
-  EXPECT_EQ(error_of(resealed(with_line(text, "belt.mu", mu))),
-            "line " + std::to_string(line_of(text, "belt.mu")) +
-                ": 'belt.mu': belt.mu of element 0 " + std::string(rule_text(Rule::friction_coefficient)) + " (got -0.5)");
-  EXPECT_EQ(error_of(resealed(with_line(text, "belt.mu", "belt.mu 2 0.3 0.3"))),
+  EXPECT_EQ(read_error(resealed(with_line(text, "belt.mu", mu))),
+            "line " + std::to_string(line_of(text, "belt.mu")) + ": 'belt.mu': belt.mu of element 0 " +
+                std::string(rule_text(Rule::friction_coefficient)) + " (got -0.5)");
+  EXPECT_EQ(read_error(resealed(with_line(text, "belt.mu", "belt.mu 2 0.3 0.3"))),
             "line " + std::to_string(line_of(text, "belt.mu")) + ": 'belt.mu': 2 values for 60 elements");
   // a law a script could not give
-  EXPECT_EQ(error_of(resealed(with_line(text, "pulley.torque.table", "pulley.torque.table 2 0.1 1 0.05 2"))),
+  EXPECT_EQ(read_error(resealed(with_line(text, "pulley.torque.table", "pulley.torque.table 2 0.1 1 0.05 2"))),
             "line " + std::to_string(line_of(text, "pulley.torque.harmonics")) +
                 ": 'pulley.torque.harmonics': pulley 'driver' torque.table entry 2 must be larger than the entry "
                 "before it (got 0.05 s)");

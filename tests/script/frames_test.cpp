@@ -21,7 +21,7 @@
 #include "support/scratch.hpp"
 
 namespace beltsim::script {
-namespace {
+namespace frames_test {
 
 namespace fs = std::filesystem;
 
@@ -173,5 +173,5 @@ TEST(Frames, CtrlCLeavesAFinishedVideo) {
   EXPECT_GE(std::stoi("0" + probe(out / "stopped.mp4", "stream=nb_read_frames")), 1);
 }
 
-}  // namespace
+}  // namespace frames_test
 }  // namespace beltsim::script

@@ -21,7 +21,7 @@
 #include "support/scratch.hpp"
 
 namespace beltsim::script {
-namespace {
+namespace laws_api_test {
 
 namespace fs = std::filesystem;
 
@@ -410,5 +410,5 @@ TEST(ScriptArgs, ScriptReadsThemAndUnreadOnesAreNamed) {
   EXPECT_TRUE(lua.unread_args("args2.lua").empty());
 }
 
-}  // namespace
+}  // namespace laws_api_test
 }  // namespace beltsim::script

@@ -15,7 +15,7 @@
 #include "support/scratch.hpp"
 
 namespace beltsim::script {
-namespace {
+namespace live_api_test {
 
 namespace fs = std::filesystem;
 
@@ -358,11 +358,11 @@ TEST(LiveApi, BadCallsNameFileLineAndWhat) {
   }
 }
 
-}  // namespace
+}  // namespace live_api_test
 }  // namespace beltsim::script
 
 namespace beltsim::script {
-namespace {
+namespace live_api_test {
 
 // sim:when fires when its condition turns true: one already true when registered fires only after
 // it has been false (the driver speeds up from rest, so omega > -1 holds at first, fails, then a
@@ -380,5 +380,5 @@ TEST(LiveApi, WhenAlreadyTrueFiresOnlyAfterItHasBeenFalse) {
             "");
 }
 
-}  // namespace
+}  // namespace live_api_test
 }  // namespace beltsim::script

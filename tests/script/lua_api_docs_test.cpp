@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "script/lua_sim.hpp"
+#include "support/files.hpp"
 
 namespace fs = std::filesystem;
 using beltsim::script::api_help;
@@ -19,12 +20,7 @@ using beltsim::script::HelpEntry;
 
 namespace {
 
-std::string slurp(const fs::path& p) {
-  std::ifstream f(p);
-  std::stringstream s;
-  s << f.rdbuf();
-  return s.str();
-}
+using beltsim::test::slurp;
 
 // a help entry's call as the docs write it: what precedes " -> " (the docs give the result in
 // the row's second column)

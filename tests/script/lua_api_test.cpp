@@ -16,7 +16,7 @@
 #include "support/scratch.hpp"
 
 namespace beltsim::script {
-namespace {
+namespace lua_api_test {
 
 namespace fs = std::filesystem;
 
@@ -464,5 +464,5 @@ TEST(Progress, NeverPastTheTarget) {
   EXPECT_EQ(text.find("-0 s"), std::string::npos) << text;
 }
 
-}  // namespace
+}  // namespace lua_api_test
 }  // namespace beltsim::script

@@ -1,6 +1,8 @@
 // The parameter table (scene/parameters.hpp) is the one place of the scene's keys: every number in
 // it is read from Lua, checked by its rule with the reason and the value, written to
 // parameters.csv with its unit and source, and docs/lua-api.md holds its tables as generated.
+#include "scene/parameters.hpp"
+
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -11,23 +13,18 @@
 
 #include "io/number_text.hpp"
 #include "run_script.hpp"
-#include "scene/parameters.hpp"
 #include "script/interpreter.hpp"
+#include "support/files.hpp"
 #include "support/scratch.hpp"
 
 namespace beltsim::script {
-namespace {
+namespace parameters_test {
+
+using beltsim::test::slurp;
 
 namespace fs = std::filesystem;
 
 fs::path temp_dir() { return beltsim::test::scratch_dir("beltsim_parameters_test"); }
-
-std::string slurp(const fs::path& p) {
-  std::ifstream f(p);
-  std::ostringstream s;
-  s << f.rdbuf();
-  return s.str();
-}
 
 // A two-pulley scene (pulleys 'a' and 'b') with the given values as Lua expressions, each under its
 // dotted key ("belt.EA", "belt.sde.k", "pulley.radius": pulley a's, "pulley.tensioner.stiffness":
@@ -270,5 +267,5 @@ TEST(Parameters, EachKeyOnce) {
   EXPECT_EQ(find_parameter("contact.damping")->unit, "N·s/m");
 }
 
-}  // namespace
+}  // namespace parameters_test
 }  // namespace beltsim::script

@@ -4,7 +4,6 @@
 // instruction limit and a memory limit with clear messages; Ctrl-C through the same hook; the
 // API's userdata keep their metatables and fail cleanly once finalised.
 #include <gtest/gtest.h>
-
 #include <unistd.h>
 
 #include <atomic>
@@ -17,13 +16,16 @@
 #include <vector>
 
 #include "lua.h"
-#include "script/interpreter.hpp"
 #include "run_script.hpp"
+#include "script/interpreter.hpp"
+#include "support/files.hpp"
 #include "support/scenes.hpp"
 #include "support/scratch.hpp"
 
 namespace beltsim::script {
-namespace {
+namespace sandbox_test {
+
+using beltsim::test::slurp;
 
 namespace fs = std::filesystem;
 
@@ -36,13 +38,6 @@ fs::path root() {
 }
 fs::path scripts() { return root() / "scripts"; }
 fs::path out() { return root() / "out"; }
-
-std::string slurp(const fs::path& p) {
-  std::ifstream f(p, std::ios::binary);
-  std::ostringstream s;
-  s << f.rdbuf();
-  return s.str();
-}
 
 // runs the text as scripts/<name> with the output folder out/; the error message, or ""
 std::string run(Interpreter& lua, const std::string& text, const std::string& name = "sandbox.lua") {
@@ -451,5 +446,5 @@ TEST(Userdata, CallbacksOfACoroutineOutliveIt) {
             "");
 }
 
-}  // namespace
+}  // namespace sandbox_test
 }  // namespace beltsim::script

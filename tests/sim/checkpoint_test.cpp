@@ -4,9 +4,8 @@
 // after everything passed, a checksum catches the rest, and no message is a raw C++ text. The
 // mutator at the end damages a saved checkpoint a few hundred ways (a fixed seed) and resumes each
 // in a child process with bounded memory and time: each resumes or is refused with a message.
-#include <gtest/gtest.h>
-
 #include <fcntl.h>
+#include <gtest/gtest.h>
 #include <signal.h>
 #include <sys/resource.h>
 #include <sys/stat.h>
@@ -25,20 +24,20 @@
 #include "scene/presets.hpp"
 #include "scene/scene.hpp"
 #include "sim/simulation.hpp"
+#include "support/checkpoint_edit.hpp"
+#include "support/files.hpp"
 #include "support/scratch.hpp"
 #include "support/warning_guard.hpp"
 
 namespace beltsim {
 namespace {
 
-namespace fs = std::filesystem;
+using test::line_of;
+using test::resealed;
+using test::slurp;
+using test::with_line;
 
-std::string slurp(const fs::path& path) {
-  std::ifstream f(path, std::ios::binary);
-  std::stringstream s;
-  s << f.rdbuf();
-  return s.str();
-}
+namespace fs = std::filesystem;
 
 void spit(const fs::path& path, const std::string& text) { std::ofstream(path, std::ios::binary) << text; }
 
@@ -84,28 +83,6 @@ struct Saved {
 const Saved& saved() {
   static const Saved s;
   return s;
-}
-
-std::string resealed(std::string text) {
-  const size_t last = text.rfind('\n', text.size() - 2);
-  if (last == std::string::npos) return text;
-  text.erase(last + 1);
-  char sum[17];
-  std::snprintf(sum, sizeof sum, "%016llx", static_cast<unsigned long long>(fnv1a64(text)));
-  return text + "checksum fnv1a64 " + sum + "\n";
-}
-
-std::string with_line(const std::string& text, const std::string& key, const std::string& line) {
-  const size_t at = text.find("\n" + key + " ");
-  EXPECT_NE(at, std::string::npos) << key;
-  if (at == std::string::npos) return text;
-  const size_t end = text.find('\n', at + 1);
-  return text.substr(0, at + 1) + line + text.substr(end);
-}
-
-int line_of(const std::string& text, const std::string& key, const std::string& after = " ") {
-  const size_t at = text.find("\n" + key + after);
-  return 2 + static_cast<int>(std::count(text.begin(), text.begin() + static_cast<std::ptrdiff_t>(at), '\n'));
 }
 
 // The address space a child may add to what this process has mapped: room for a resumed 60-element

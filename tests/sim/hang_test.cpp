@@ -11,17 +11,19 @@
 #include <string>
 #include <thread>
 
-
 #include "integrate/make_integrator.hpp"
 #include "integrate/timeline.hpp"
 #include "scene/presets.hpp"
 #include "scene/scene.hpp"
 #include "sim/simulation.hpp"
-#include "support/warning_guard.hpp"
+#include "support/dry_scene.hpp"
 #include "support/scratch.hpp"
+#include "support/warning_guard.hpp"
 
 namespace beltsim {
 namespace {
+
+using test::dry_scene;
 
 namespace fs = std::filesystem;
 using clock_type = std::chrono::steady_clock;
@@ -97,11 +99,6 @@ TEST(NoHang, ImplicitFailuresInARowStop) {
   EXPECT_EQ(failed.first_t, 0.0);
 }
 
-const Scene& dry() {
-  static const Scene sc = build_scene(presets::paper_dry());
-  return sc;
-}
-
 fs::path temp(const std::string& name) {
   const fs::path p = beltsim::test::scratch_dir("beltsim_hang_test") / name;
   fs::remove_all(p);
@@ -118,7 +115,7 @@ TEST(NoHang, WallLimitStopsABatchRun) {
   rs.wall_limit = 0.05;
   rs.out_dir = temp("wall").string();
   const auto t0 = clock_type::now();
-  const RunResult r = run(dry(), rs);
+  const RunResult r = run(dry_scene(), rs);
   EXPECT_LT(seconds_since(t0), 2.0);
   EXPECT_TRUE(r.over_wall_limit);
   EXPECT_FALSE(r.interrupted);
@@ -151,7 +148,7 @@ TEST(NoHang, RateCollapseStops) {
     now += ++polls < 2000 ? 0.01 : 1e12;
     return now;
   };
-  Simulation s(dry(), rs);
+  Simulation s(dry_scene(), rs);
   try {
     s.run_to(1.0);
     FAIL() << "no error after " << polls << " polls, at t = " << s.now() << " s";

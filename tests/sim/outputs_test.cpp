@@ -15,31 +15,25 @@
 #include "scene/presets.hpp"
 #include "scene/scene.hpp"
 #include "sim/simulation.hpp"
+#include "support/dry_scene.hpp"
+#include "support/files.hpp"
 #include "support/scratch.hpp"
 #include "support/warning_guard.hpp"
 
 namespace beltsim {
 namespace {
 
-namespace fs = std::filesystem;
+using test::dry_scene;
+using test::slurp;
+using test::what_of;
 
-std::string slurp(const fs::path& path) {
-  std::ifstream f(path, std::ios::binary);
-  std::stringstream s;
-  s << f.rdbuf();
-  return s.str();
-}
+namespace fs = std::filesystem;
 
 fs::path fresh(const std::string& name) {
   const fs::path p = beltsim::test::scratch_dir("beltsim_outputs_test") / name;
   fs::remove_all(p);
   fs::create_directories(p);
   return p;
-}
-
-const Scene& dry() {
-  static const Scene sc = build_scene(presets::paper_dry());
-  return sc;
 }
 
 RunSettings settings(const fs::path& out) {
@@ -51,16 +45,7 @@ RunSettings settings(const fs::path& out) {
   return rs;
 }
 
-std::string error_of(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const std::exception& e) {
-    return e.what();
-  }
-  return "";
-}
-
-constexpr const char* kSecret = "export PATH=/usr/bin\n";
+constexpr const char* kShellLine = "export PATH=/usr/bin\n";
 
 std::string link_refusal(const fs::path& file) {
   return "cannot write " + file.string() + ": it is a symbolic link (beltsim never writes through a link)";
@@ -71,29 +56,29 @@ TEST(Outputs, EveryFixedNameRefusesAPlantedLink) {
     SCOPED_TRACE(name);
     const fs::path base = fresh(std::string("link_") + name), out = base / "out", target = base / "bashrc";
     fs::create_directories(out);
-    std::ofstream(target) << kSecret;
+    std::ofstream(target) << kShellLine;
     fs::create_symlink(target, out / name);
-    const std::string e = error_of([&] { Simulation s(dry(), settings(out)); });
+    const std::string e = what_of([&] { Simulation s(dry_scene(), settings(out)); });
     EXPECT_EQ(e, link_refusal(out / name));
-    EXPECT_EQ(slurp(target), kSecret);
+    EXPECT_EQ(slurp(target), kShellLine);
     EXPECT_TRUE(fs::is_symlink(out / name));
   }
   // the folder itself
   const fs::path base = fresh("link_folder");
   fs::create_directories(base / "home");
   fs::create_symlink(base / "home", base / "out");
-  EXPECT_EQ(error_of([&] { Simulation s(dry(), settings(base / "out")); }), link_refusal(base / "out"));
+  EXPECT_EQ(what_of([&] { Simulation s(dry_scene(), settings(base / "out")); }), link_refusal(base / "out"));
   EXPECT_TRUE(fs::is_empty(base / "home"));
 }
 
 TEST(Outputs, ACheckpointIsNeverWrittenThroughALinkAndLeavesNoPart) {
   const fs::path base = fresh("ckpt_link"), out = base / "out", target = base / "bashrc";
-  std::ofstream(target) << kSecret;
-  Simulation s(dry(), settings(out));
+  std::ofstream(target) << kShellLine;
+  Simulation s(dry_scene(), settings(out));
   s.run_to(0.002);
   fs::create_symlink(target, out / "run.ckpt");
-  EXPECT_EQ(error_of([&] { s.save((out / "run.ckpt").string()); }), link_refusal(out / "run.ckpt"));
-  EXPECT_EQ(slurp(target), kSecret);
+  EXPECT_EQ(what_of([&] { s.save((out / "run.ckpt").string()); }), link_refusal(out / "run.ckpt"));
+  EXPECT_EQ(slurp(target), kShellLine);
   s.save((out / "good.ckpt").string());
   EXPECT_FALSE(fs::exists(out / "good.ckpt.part"));
   EXPECT_FALSE(fs::exists(out / "run.ckpt.part"));
@@ -108,33 +93,33 @@ std::string in_use(const fs::path& out) {
 
 TEST(Outputs, OneSimulationPerFolder) {
   const fs::path out = fresh("one_writer") / "out";
-  auto a = std::make_unique<Simulation>(dry(), settings(out));
+  auto a = std::make_unique<Simulation>(dry_scene(), settings(out));
   a->run_to(0.003);
   const std::string rows = slurp(out / "timeseries.csv"), params = slurp(out / "parameters.csv");
   // a second live one, a batch run: refused before they write anything
-  EXPECT_EQ(error_of([&] { Simulation b(dry(), settings(out)); }), in_use(out));
+  EXPECT_EQ(what_of([&] { Simulation b(dry_scene(), settings(out)); }), in_use(out));
   RunSettings batch = settings(out);
   batch.t_end = 0.002;
-  EXPECT_EQ(error_of([&] { run(dry(), batch); }), in_use(out));
+  EXPECT_EQ(what_of([&] { run(dry_scene(), batch); }), in_use(out));
   EXPECT_EQ(slurp(out / "timeseries.csv"), rows);
   EXPECT_EQ(slurp(out / "parameters.csv"), params);
   // released at close
   a->close();
-  EXPECT_EQ(error_of([&] { run(dry(), batch); }), "");
+  EXPECT_EQ(what_of([&] { run(dry_scene(), batch); }), "");
 }
 
 TEST(Outputs, ACheckpointResumedTwiceIsRefusedTheSecondTime) {
   const fs::path out = fresh("resume_twice") / "out";
   const std::string ck = (out.parent_path() / "run.ckpt").string();
   {
-    Simulation s(dry(), settings(out));
+    Simulation s(dry_scene(), settings(out));
     s.run_to(0.002);
     s.save(ck);
   }
   auto first = Simulation::resume(ck, {});
   first->run_to(0.004);
   const std::string rows = slurp(out / "timeseries.csv");
-  EXPECT_EQ(error_of([&] { Simulation::resume(ck, {}); }), in_use(out));
+  EXPECT_EQ(what_of([&] { Simulation::resume(ck, {}); }), in_use(out));
   EXPECT_EQ(slurp(out / "timeseries.csv"), rows);  // not cut back by the second
   first->run_to(0.005);
   EXPECT_GT(slurp(out / "timeseries.csv").size(), rows.size());
@@ -145,17 +130,17 @@ TEST(Outputs, ACheckpointResumedTwiceIsRefusedTheSecondTime) {
 // the exit status, and the other outputs are closed all the same
 TEST(Outputs, AFailureAtCloseIsThrownAndRecorded) {
   const fs::path out = fresh("close_fails") / "out";
-  Simulation s(dry(), settings(out));
+  Simulation s(dry_scene(), settings(out));
   s.run_to(0.002);
   fs::create_hard_link(out / "parameters.csv", out.parent_path() / "second_name.csv");
   const size_t before = output_failures().size();
-  const std::string e = error_of([&] { s.close(); });
+  const std::string e = what_of([&] { s.close(); });
   EXPECT_EQ(e, "cannot write " + (out / "parameters.csv").string() +
                    ": it has 2 hard links (beltsim writes only files of its own)");
   ASSERT_EQ(output_failures().size(), before + 1);
   EXPECT_EQ(output_failures().back(), e);
   // the folder was released all the same
-  EXPECT_EQ(error_of([&] { Simulation b(dry(), settings(out)); }).find("in use"), std::string::npos);
+  EXPECT_EQ(what_of([&] { Simulation b(dry_scene(), settings(out)); }).find("in use"), std::string::npos);
 }
 
 }  // namespace

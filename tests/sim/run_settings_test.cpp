@@ -1,5 +1,7 @@
 // The one check of a run's settings (sim/run_settings.hpp): an event's time is judged by
 // event_time_problem wherever it comes from (a live simulation, a batch run, run.events in Lua).
+#include "sim/run_settings.hpp"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -7,24 +9,21 @@
 
 #include "scene/presets.hpp"
 #include "scene/scene.hpp"
-#include "sim/run_settings.hpp"
 #include "sim/simulation.hpp"
+#include "support/dry_scene.hpp"
 #include "support/scratch.hpp"
 
 namespace beltsim {
 namespace {
 
-namespace fs = std::filesystem;
+using test::dry_scene;
 
-const Scene& dry() {
-  static const Scene sc = build_scene(presets::paper_dry());
-  return sc;
-}
+namespace fs = std::filesystem;
 
 MuEvent event_at(double t) {
   MuEvent ev;
   ev.t = t;
-  ev.mu.assign(dry().model.n_el(), 0.2);
+  ev.mu.assign(dry_scene().model.n_el(), 0.2);
   return ev;
 }
 
@@ -58,15 +57,15 @@ TEST(RunSettings, EventTimeProblemNamesTheRuleAndTheValue) {
 
 // a live simulation, a batch run and check() refuse the same times with the same words
 TEST(RunSettings, EveryCallerChecksEventTimesAlike) {
-  const std::string live = refusal([] { Simulation s(dry(), with_event(0, "live")); });
+  const std::string live = refusal([] { Simulation s(dry_scene(), with_event(0, "live")); });
   EXPECT_EQ(live, "events: an event's time must be > 0 s and finite (got 0 s)");
-  const std::string batch = refusal([] { run(dry(), with_event(-1, "batch")); });
+  const std::string batch = refusal([] { run(dry_scene(), with_event(-1, "batch")); });
   EXPECT_EQ(batch, "events: an event's time must be > 0 s and finite (got -1 s)");
   // at t_end: skipped by a batch run (drop_events_after_end), refused by check() for one
   RunSettings at_end = with_event(0.004, "at_end");
-  EXPECT_EQ(refusal([&] { check(dry(), at_end, true); }),
+  EXPECT_EQ(refusal([&] { check(dry_scene(), at_end, true); }),
             "events: an event's time must be before t_end = 0.004 s (got 0.004 s)");
-  EXPECT_EQ(refusal([&] { check(dry(), at_end, false); }), "");
+  EXPECT_EQ(refusal([&] { check(dry_scene(), at_end, false); }), "");
   const std::vector<std::string> notes = drop_events_after_end(at_end);
   ASSERT_EQ(notes.size(), 1u);
   EXPECT_TRUE(at_end.mu_events.empty());

@@ -1,7 +1,10 @@
 // The live simulation (sim/simulation.hpp): pausing changes nothing, a change at a pause applies
 // from that time on and is logged, events at the same time (or at a law's kink) are landed on
 // once, callbacks run at their exact times.
+#include "sim/simulation.hpp"
+
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <cmath>
@@ -10,18 +13,20 @@
 #include <fstream>
 #include <sstream>
 
-#include <unistd.h>
-
 #include "io/csv_writer.hpp"
 #include "io/number_text.hpp"
 #include "scene/presets.hpp"
 #include "scene/scene.hpp"
-#include "sim/simulation.hpp"
-#include "support/warning_guard.hpp"
+#include "support/dry_scene.hpp"
+#include "support/files.hpp"
 #include "support/scratch.hpp"
+#include "support/warning_guard.hpp"
 
 namespace beltsim {
 namespace {
+
+using test::dry_scene;
+using test::slurp;
 
 TimeSpeedLaw constant_law(double c) {
   TimeSpeedLaw law;
@@ -31,22 +36,10 @@ TimeSpeedLaw constant_law(double c) {
 
 namespace fs = std::filesystem;
 
-std::string slurp(const std::string& path) {
-  std::ifstream f(path);
-  std::stringstream s;
-  s << f.rdbuf();
-  return s.str();
-}
-
 fs::path temp(const std::string& name) {
   const fs::path p = beltsim::test::scratch_dir("beltsim_simulation_test") / name;
   fs::remove_all(p);
   return p;
-}
-
-const Scene& dry() {
-  static const Scene sc = build_scene(presets::paper_dry());
-  return sc;
 }
 
 RunSettings settings(const std::string& integrator, const fs::path& out) {
@@ -93,13 +86,13 @@ TEST(Live, PausingChangesNothing) {
     rs.snapshot_times = {0.0123 * end, 0.37 * end, 0.61 * end};
     rs.snapshot_every = 0.3 * end;
     {
-      Simulation s(dry(), rs);
+      Simulation s(dry_scene(), rs);
       for (double t : {0.1 * end, 0.37 * end, 0.5 * end, 0.77 * end, end}) s.run_to(t);
       ya = s.state();
     }
     rs.out_dir = b.string();
     {
-      Simulation s(dry(), rs);
+      Simulation s(dry_scene(), rs);
       s.run_to(end);
       yb = s.state();
     }
@@ -110,7 +103,7 @@ TEST(Live, PausingChangesNothing) {
     std::sort(sorted.begin(), sorted.end());
     EXPECT_EQ(snapshot_times(b), sorted) << integ;
     const std::string sa = slurp((a / "snapshots.csv").string()), sb = slurp((b / "snapshots.csv").string());
-    EXPECT_EQ(std::count(sb.begin(), sb.end(), '\n'), 1 + 7 * dry().model.n_el()) << integ;
+    EXPECT_EQ(std::count(sb.begin(), sb.end(), '\n'), 1 + 7 * dry_scene().model.n_el()) << integ;
     EXPECT_EQ(sa, sb) << integ;
     EXPECT_TRUE(same_bits(ya, yb)) << integ;
     EXPECT_TRUE(ya.allFinite()) << integ;
@@ -129,7 +122,7 @@ TEST(Live, ChangeAtAPauseAppliesFromThen) {
   const fs::path a = temp("changed"), b = temp("unchanged");
   const double pause = 0.0205;  // off the sample grid
   {
-    Simulation s(dry(), settings("esdirk32", a));
+    Simulation s(dry_scene(), settings("esdirk32", a));
     s.run_to(pause);
     EXPECT_EQ(s.now(), pause);
     std::vector<double> mu(s.model().n_el(), std::nan(""));
@@ -140,7 +133,7 @@ TEST(Live, ChangeAtAPauseAppliesFromThen) {
     s.run_to(0.04);
   }
   {
-    Simulation s(dry(), settings("esdirk32", b));
+    Simulation s(dry_scene(), settings("esdirk32", b));
     s.run_to(0.04);
   }
   std::istringstream ra(slurp((a / "timeseries.csv").string())), rb(slurp((b / "timeseries.csv").string()));
@@ -306,7 +299,7 @@ std::vector<std::string> listing(const fs::path& dir) {
 
 TEST(Live, KeptStatesAreWhatTheFramesWereDrawnFrom) {
   test::expect_warnings({WarningKind::failed_step});
-  const Scene& sc = dry();
+  const Scene& sc = dry_scene();
   std::vector<Seen> seen;
   auto configure = [&](const fs::path& out, std::vector<Seen>* record) {
     RunSettings rs = settings("esdirk32", out);
@@ -399,10 +392,10 @@ TEST(Live, SampledBeltTorqueTurnsThePulley) {
   RunSettings rs = settings("esdirk32", temp("belt_torque"));
   rs.keep_samples = true;
   rs.t_end = 0.29;
-  const RunResult r = run(dry(), rs);
-  const std::vector<std::string> cols = timeseries_columns(dry());
+  const RunResult r = run(dry_scene(), rs);
+  const std::vector<std::string> cols = timeseries_columns(dry_scene());
   auto col = [&](const std::string& name) { return std::find(cols.begin(), cols.end(), name) - cols.begin(); };
-  const double I = dry().model.pulleys[0].inertia, dt = rs.sample_dt;
+  const double I = dry_scene().model.pulleys[0].inertia, dt = rs.sample_dt;
   double worst = 0;
   for (const char* p : {"driver", "driven"}) {
     const auto om = col(std::string(p) + ".omega"), M = col(std::string(p) + ".torque"),
@@ -423,7 +416,7 @@ TEST(Live, OutputsReadBackBitForBit) {
   rs.keep_samples = true;
   rs.t_end = 0.003;
   rs.snapshot_times = {0.0};
-  const RunResult r = run(dry(), rs);
+  const RunResult r = run(dry_scene(), rs);
   auto bits = [](double a, double b) { return std::memcmp(&a, &b, sizeof a) == 0; };
   auto fields = [](const std::string& line) {
     std::vector<std::string> f;
@@ -452,14 +445,14 @@ TEST(Live, OutputsReadBackBitForBit) {
   while (std::getline(pf, line))
     if (line.rfind("belt.pitch,", 0) == 0) {
       found = true;
-      EXPECT_TRUE(bits(std::strtod(fields(line)[1].c_str(), nullptr), dry().model.belt.pitch)) << line;
+      EXPECT_TRUE(bits(std::strtod(fields(line)[1].c_str(), nullptr), dry_scene().model.belt.pitch)) << line;
     }
   EXPECT_TRUE(found);
   std::ifstream sf((out / "snapshots.csv").string());
   std::getline(sf, line);
   std::getline(sf, line);  // element 0 at t = 0: where the scene put it
-  EXPECT_TRUE(bits(std::strtod(fields(line)[3].c_str(), nullptr), dry().y0[0])) << line;
-  EXPECT_TRUE(bits(std::strtod(fields(line)[4].c_str(), nullptr), dry().y0[1])) << line;
+  EXPECT_TRUE(bits(std::strtod(fields(line)[3].c_str(), nullptr), dry_scene().y0[0])) << line;
+  EXPECT_TRUE(bits(std::strtod(fields(line)[4].c_str(), nullptr), dry_scene().y0[1])) << line;
 }
 
 // Interval means (sim/simulation.cpp, "interval means") on a steady drive: a kinematic driver at
@@ -533,7 +526,7 @@ TEST(Live, IntervalMeansAreExactFromTheSteps) {
 // counts and first times, in notes(), the summary line and parameters.csv
 TEST(Live, FallbacksAreCountedAndShown) {
   test::expect_warnings({WarningKind::static_retry, WarningKind::failed_step});
-  EXPECT_FALSE(dry().static_retried);
+  EXPECT_FALSE(dry_scene().static_retried);
   SceneDef d = presets::paper_dry();
   d.belt.elements = 120;
   EXPECT_TRUE(build_scene(d).static_retried);
@@ -571,7 +564,7 @@ TEST(Live, FallbacksAreCountedAndShown) {
 
 // invalid requests name what is wrong
 TEST(Live, BadRequests) {
-  Simulation s(dry(), settings("esdirk32", temp("bad")));
+  Simulation s(dry_scene(), settings("esdirk32", temp("bad")));
   s.run_to(0.002);
   EXPECT_THROW(s.run_to(0.001), std::invalid_argument);
   EXPECT_THROW(s.run_to(INFINITY), std::invalid_argument);
