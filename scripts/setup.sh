@@ -43,12 +43,15 @@ fi
 
 # --- build ----------------------------------------------------------------------------------
 jobs=$(nproc 2>/dev/null || echo 2)
+# Ninja for a new build folder; a folder configured before keeps its generator (CMake refuses to
+# change it)
+generator() { [ -f "$1/CMakeCache.txt" ] || echo "-GNinja"; }
 if [ "$mode" = run ]; then
   # the program alone: no tests, no benchmarks
-  cmake -S . -B "$build_dir" -DCMAKE_BUILD_TYPE=Release -DBELTSIM_BUILD_TESTS=OFF -DBELTSIM_BUILD_BENCH=OFF >/dev/null
+  cmake $(generator "$build_dir") -S . -B "$build_dir" -DCMAKE_BUILD_TYPE=Release -DBELTSIM_BUILD_TESTS=OFF -DBELTSIM_BUILD_BENCH=OFF >/dev/null
   cmake --build "$build_dir" -j "$jobs" --target beltsim
 else
-  cmake -S . -B "$build_dir" -DCMAKE_BUILD_TYPE=Release -DBELTSIM_BUILD_TESTS=ON -DBELTSIM_BUILD_BENCH=ON >/dev/null
+  cmake $(generator "$build_dir") -S . -B "$build_dir" -DCMAKE_BUILD_TYPE=Release -DBELTSIM_BUILD_TESTS=ON -DBELTSIM_BUILD_BENCH=ON >/dev/null
   cmake --build "$build_dir" -j "$jobs"
 fi
 
@@ -69,7 +72,7 @@ case "$mode" in
       export ASAN_OPTIONS=halt_on_error=1:print_stacktrace=1
       export UBSAN_OPTIONS=halt_on_error=1:print_stacktrace=1
       export LSAN_OPTIONS=suppressions=$here/tests/lsan.supp:print_suppressions=0
-      CXX=clang++-14 cmake -S . -B "$san_dir" -DCMAKE_BUILD_TYPE=Release -DBELTSIM_FUZZ=ON \
+      CXX=clang++-14 cmake $(generator "$san_dir") -S . -B "$san_dir" -DCMAKE_BUILD_TYPE=Release -DBELTSIM_FUZZ=ON \
         -DBELTSIM_BUILD_TESTS=ON -DBELTSIM_BUILD_BENCH=OFF >/dev/null
       targets=(beltsim_fuzz)
       if [ "${BELTSIM_SANITIZE:-1}" != 0 ]; then

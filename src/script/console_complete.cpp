@@ -12,6 +12,7 @@
 #include <readline/readline.h>
 
 #include "script/console_print.hpp"
+#include "script/lua_help.hpp"
 #include "script/lua_sim.hpp"
 
 #include "lauxlib.h"

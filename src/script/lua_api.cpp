@@ -16,6 +16,7 @@
 #include "io/suggest.hpp"
 #include "script/context.hpp"
 #include "script/lua_check.hpp"
+#include "script/lua_help.hpp"
 #include "script/lua_scene.hpp"
 #include "script/lua_sim.hpp"
 #include "script/lua_sweep.hpp"
@@ -103,6 +104,7 @@ void open_beltsim(lua_State* L, Context* ctx) {
   lua_newtable(L);
   open_scene(L, ctx);
   open_sim(L, ctx);
+  open_help(L);
   open_sweep(L, ctx);
   lua_pushstring(L, "0.1.0"), lua_setfield(L, -2, "version");
   push_args(L, ctx);

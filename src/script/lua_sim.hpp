@@ -1,6 +1,6 @@
 // Lua bindings of the live simulation (sim/simulation.hpp): the object scene:start{} returns,
 // its methods (run_to, advance, reading, changes, callbacks, show, plot, save, close) and
-// beltsim.resume. The method table is also the source of help() and of the console's completion.
+// beltsim.resume. The method table is also the source of the console's completion.
 #pragma once
 
 #include <memory>
@@ -16,16 +16,8 @@ namespace beltsim::script {
 struct Context;
 
 void push_simulation(lua_State* L, std::unique_ptr<Simulation> sim, Context* ctx, bool progress);
-// adds `resume` and `help` to the table on the top of the stack; registers the metatable
+// adds `resume` to the table on the top of the stack; registers the metatable
 void open_sim(lua_State* L, Context* ctx);
-
-// one line of help per API entry: name, call, what it does (with units)
-struct HelpEntry {
-  const char* name;
-  const char* call;
-  const char* text;
-};
-const std::vector<HelpEntry>& api_help();
 
 // The names a string argument of `sim:<method>` takes, for the console's completion: for the live
 // simulation at index idx (anything else: none), argument `arg` (1-based) of the call, or inside

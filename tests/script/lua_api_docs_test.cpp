@@ -1,4 +1,4 @@
-// docs/lua-api.md against the API's own help table (script/lua_sim.hpp, api_help(), which help()
+// docs/lua-api.md against the API's own help table (script/lua_help.hpp, api_help(), which help()
 // prints): every entry has a table row in the docs whose call is the entry's call, and every row
 // of the docs that names a call of the API is an entry of the help table.
 #include <gtest/gtest.h>
@@ -11,7 +11,7 @@
 #include <string>
 #include <vector>
 
-#include "script/lua_sim.hpp"
+#include "script/lua_help.hpp"
 #include "support/files.hpp"
 
 namespace fs = std::filesystem;

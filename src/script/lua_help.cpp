@@ -1,0 +1,109 @@
+// help() and the table it prints (lua_help.hpp).
+#include "script/lua_help.hpp"
+
+#include <cstdio>
+#include <string>
+
+#include "io/suggest.hpp"
+#include "script/lua_check.hpp"
+
+namespace beltsim::script {
+
+namespace {
+
+// help() lists the API; help("advance") prints one entry
+int l_help(lua_State* L) {
+  check_args(L, "help", {{"name", kString, true}});
+  if (lua_isnoneornil(L, 1)) {
+    std::printf("beltsim API (help(\"name\") for one entry; SI units throughout):\n");
+    for (const HelpEntry& h : api_help()) std::printf("  %-48s %s\n", h.call, h.text);
+    std::fflush(stdout);
+    return 0;
+  }
+  if (lua_type(L, 1) != LUA_TSTRING) fail(L, std::string("help: a name expected, got ") + type_name(L, 1));
+  const std::string name = lua_tostring(L, 1);
+  std::vector<std::string> names;
+  for (const HelpEntry& h : api_help()) {
+    names.push_back(h.name);
+    if (name == h.name) {
+      std::printf("%s\n  %s\n", h.call, h.text);
+      std::fflush(stdout);
+      return 0;
+    }
+  }
+  fail(L, "help: nothing is called '" + name + "'" + did_you_mean(name, names));
+}
+
+}  // namespace
+
+const std::vector<HelpEntry>& api_help() {
+  static const std::vector<HelpEntry> h = {
+      {"scene", "beltsim.scene{ pulleys, belt, contact, friction, gravity, energy, spray, allow_large }",
+       "builds a drive (docs/lua-api.md)"},
+      {"run",
+       "scene:run{ t_end [s], integrator, rtol, atol, sample [s], out, probe, snapshots, progress, events, frames, "
+       "keep_states, allow_large, max_wall [s] }",
+       "a batch run: start, run_to(t_end), close"},
+      {"start",
+       "scene:start{ integrator, rtol, atol, sample [s], out, probe, snapshots, progress, frames, keep_states, "
+       "allow_large, max_wall [s] }",
+       "a live simulation at t = 0 (the static state)"},
+      {"info", "scene:info() -> { elements, pitch, rest_length, strain, static_tension, wrap_deg, warnings, ... }",
+       "the scene as built: element sizes, stiffnesses, the tension at rest, each pulley's wrap"},
+      {"element_near", "scene:element_near{ x [m], y [m] } -> i", "the element that starts nearest the point"},
+      {"run_to", "sim:run_to(t [s]) -> { t [s], steps, wall [s], interrupted }", "integrates to time t"},
+      {"advance", "sim:advance(dt [s]) -> { t [s], steps, wall [s], interrupted }", "integrates dt further"},
+      {"t", "sim.t", "the current simulated time [s]"},
+      {"pulley", "sim:pulley(name)",
+       "{ omega [rad/s], angle [rad], torque, belt_torque [N·m], hub_load [N], contact_arc, slip_arc, "
+       "stick_arc [m], creep, slip_speed [m/s], creep_pitch; arm_angle [rad], arm_rate [rad/s] on a tensioner arm; rotor_angle [rad], "
+       "rotor_speed [rad/s], windup [rad], coupling_torque [N·m] with a coupling }"},
+      {"element", "sim:element(i)",
+       "{ x, y [m], phi [rad], s [m], tension, normal, friction [N], slip [m/s], mu, pulley, state } of element i "
+       "(0-based)"},
+      {"elements", "sim:elements{ pulley = name } -> { i... }", "the elements (0-based) in contact with the pulley now"},
+      {"span", "sim:span(a, b) -> [N]", "tension of the span between pulleys a and b"},
+      {"energy", "sim:energy() -> { ... [J] }", "kinetic, spring, contact, gravity energy (and tracked work)"},
+      {"stats", "sim:stats()", "steps, rejected, rhs, jacobians, factorizations, wall [s], frames, ..."},
+      {"set_torque", "sim:set_torque(name, law [N·m])", "a new torque law on a pulley from now (events.csv)"},
+      {"set_speed", "sim:set_speed(name, law [rad/s])", "a prescribed speed on a pulley from now"},
+      {"set_arm", "sim:set_arm(name, { angle [rad], rate [rad/s] })", "moves a tensioner arm now (events.csv)"},
+      {"set_rotor", "sim:set_rotor(name, { angle [rad], speed [rad/s] })",
+       "sets a coupled rotor's angle or speed now (events.csv)"},
+      {"wet", "sim:wet{ from [m], to [m], mu, transition [m] }",
+       "μ on the belt between s = from and to (belt coordinate) from now, ramped across transition at each end"},
+      {"spray", "sim:spray(k [, enabled]) -> { enabled, on, inside, drying }",
+       "reads spray zone k, or switches it on or off from now (events.csv)"},
+      {"set_mu", "sim:set_mu(mu | {mu...} | function(site))", "μ of every element from now"},
+      {"log", "sim:log(text)", "a note in events.csv at the current time"},
+      {"every", "sim:every(dt [s], function(sim) end) -> id", "calls the function at now + k·dt exactly"},
+      {"when", "sim:when(function(sim) return cond end, function(sim) end) -> id",
+       "runs the action where the condition turns true (located to 1e-10 s)"},
+      {"cancel", "sim:cancel(id)", "removes an every or when callback"},
+      {"show", "sim:show{ quantity, range, levels, magnify, view, size, file } -> png",
+       "renders the belt as it is now (tension, normal, friction, slip, mu)"},
+      {"plot", "sim:plot{ \"driver.omega\", ..., from = t0 [s], file } -> png", "time histories sampled so far"},
+      {"save", "sim:save(path) -> path", "a checkpoint: state, integrator, laws, μ, pending events, output positions"},
+      {"resume", "beltsim.resume(path) -> sim", "continues a checkpoint (bit for bit); callbacks must be added again"},
+      {"close", "sim:close()", "flushes the CSV files and finalises the video"},
+      {"rpm", "beltsim.rpm(n) -> [rad/s]", "revolutions per minute to rad/s"},
+      {"ramp", "beltsim.ramp{ t0 [s], t1 [s], from, to, shape = \"linear\"|\"cosine\" }",
+       "a law going from `from` at t0 to `to` at t1 (beltsim.ramp(t1, to): from 0 at t = 0)"},
+      {"step", "beltsim.step(t [s], from, to)", "a law jumping from `from` to `to` at t"},
+      {"sine", "beltsim.sine{ mean, amplitude, frequency [Hz], phase [rad] }",
+       "mean + amplitude·sin(2π·frequency·t + phase)"},
+      {"args", "beltsim.args.KEY", "a script parameter given as --set KEY=VALUE (nil when not given)"},
+      {"integrators", "beltsim.integrators()", "the integrators' names"},
+      {"sweep", "beltsim.sweep{ grid | samples, run = function(p) end } -> sweep",
+       "what a sweep file returns for `beltsim sweep`: its points and the run of one point (docs/sweeps.md)"},
+      {"help", "help([name])", "this list, or one entry"},
+  };
+  return h;
+}
+
+void open_help(lua_State* L) {
+  lua_pushcfunction(L, l_help);
+  lua_setglobal(L, "help");
+}
+
+}  // namespace beltsim::script
