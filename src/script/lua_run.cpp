@@ -25,9 +25,8 @@
 
 namespace beltsim::script {
 
-std::vector<double> mu_over(lua_State* L, int mu_idx, const Scene& sc, std::optional<double> from,
-                            std::optional<double> to, const std::string& what) {
-  mu_idx = lua_absindex(L, mu_idx);
+void check_range(lua_State* L, const Scene& sc, std::optional<double> from, std::optional<double> to,
+                 const std::string& what) {
   const double length = sc.sites.empty() ? 0 : sc.sites[0].length;
   if (from.has_value() != to.has_value()) fail(L, what + ": give both from and to (m along the belt), or neither");
   for (const auto& [v, name] : {std::pair{from, "from"}, std::pair{to, "to"}})
@@ -36,6 +35,12 @@ std::vector<double> mu_over(lua_State* L, int mu_idx, const Scene& sc, std::opti
       m << what << "." << name << ": must be in [0, " << length << "] m, the belt's length (got " << *v << " m)";
       fail(L, m.str());
     }
+}
+
+std::vector<double> mu_over(lua_State* L, int mu_idx, const Scene& sc, std::optional<double> from,
+                            std::optional<double> to, const std::string& what) {
+  mu_idx = lua_absindex(L, mu_idx);
+  check_range(L, sc, from, to, what);
   if (lua_type(L, mu_idx) != LUA_TNUMBER && !lua_isfunction(L, mu_idx))
     fail(L, what + ".mu: number or function(site) expected, got " + type_name(L, mu_idx));
   std::vector<double> out(sc.sites.size(), std::nan(""));
@@ -155,6 +160,12 @@ double wet_share(double s, double from, double to, double len, double tau) {
   return std::clamp(0.5 + d / tau, 0.0, 1.0);
 }
 
+std::vector<double> wet_shares(const Scene& sc, double from, double to, double tau) {
+  const double len = sc.sites.empty() ? 0 : sc.sites[0].length;
+  std::vector<double> share(sc.sites.size(), 0.0);
+  for (const ElementSite& site : sc.sites) share[site.index] = wet_share(site.s, from, to, len, tau);
+  return share;
+}
 
 std::optional<double> read_transition(lua_State* L, int idx, bool has_range, const std::string& what) {
   const auto transition = opt_number(L, idx, "transition", what);
@@ -194,17 +205,15 @@ std::vector<MuEvent> read_events(lua_State* L, int idx, const Scene& sc) {
     const auto from = opt_number(L, e, "from", what), to = opt_number(L, e, "to", what);
     const auto transition = read_transition(L, e, from.has_value(), what);
     if (!field(L, e, "mu")) fail(L, what + ".mu: the new friction coefficient is missing");
-    ev.mu = mu_over(L, lua_gettop(L), sc, from, to, what);
     if (transition && *transition > 0) {
       // the new μ on every element the ramps reach, each with its share (wet_share)
+      check_range(L, sc, from, to, what);
       ev.mu = mu_over(L, lua_gettop(L), sc, std::nullopt, std::nullopt, what);
-      const double len = sc.sites.empty() ? 0 : sc.sites[0].length;
-      ev.share.assign(ev.mu.size(), 0.0);
-      for (const ElementSite& site : sc.sites) {
-        const double w = wet_share(site.s, *from, *to, len, *transition);
-        if (w == 0) ev.mu[site.index] = std::nan("");
-        ev.share[site.index] = w;
-      }
+      ev.share = wet_shares(sc, *from, *to, *transition);
+      for (size_t i = 0; i < ev.mu.size(); ++i)
+        if (ev.share[i] == 0) ev.mu[i] = std::nan("");
+    } else {
+      ev.mu = mu_over(L, lua_gettop(L), sc, from, to, what);
     }
     std::ostringstream text;
     text << "scheduled: mu = ";

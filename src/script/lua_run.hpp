@@ -15,6 +15,10 @@ namespace beltsim::script {
 
 struct Context;
 
+// a stretch [from, to] of the belt: both or neither given, each in [0, the belt's length] (a Lua
+// error naming `what` otherwise)
+void check_range(lua_State* L, const Scene& sc, std::optional<double> from, std::optional<double> to,
+                 const std::string& what);
 // μ of each element from the value at mu_idx (a number or function(site)), on the elements whose
 // start position s lies in [from, to] (wrapping round when from > to; every element without
 // them); NaN for the others. Checks the range and every value (>= 0, finite).
@@ -25,6 +29,8 @@ std::vector<double> mu_over(lua_State* L, int mu_idx, const Scene& sc, std::opti
 // farther than tau/2 from both ends, 0 outside farther than tau/2, linear across the ends; tau = 0
 // is the sharp boundary (the ends inside).
 double wet_share(double s, double from, double to, double len, double tau);
+// wet_share of every element (by index) at its start position
+std::vector<double> wet_shares(const Scene& sc, double from, double to, double tau);
 // the transition = tau [m] of a wet stretch's table at idx (sim:wet, run.events): absent, or >= 0
 // and finite with the stretch's from and to
 std::optional<double> read_transition(lua_State* L, int idx, bool has_range, const std::string& what);

@@ -392,12 +392,12 @@ int l_wet(lua_State* L) {
   std::vector<double> mu;
   if (transition && *transition > 0) {
     // μ ramps linearly from the belt's μ now to the wet one across `transition` about each end
+    check_range(L, s.scene(), from, to, "sim:wet");
     mu = mu_over(L, lua_gettop(L), s.scene(), std::nullopt, std::nullopt, "sim:wet");
-    const double len = s.scene().sites.empty() ? 0 : s.scene().sites[0].length;
-    mu_over(L, lua_gettop(L), s.scene(), from, to, "sim:wet");  // checks from and to
-    for (const ElementSite& site : s.scene().sites) {
-      const double w = wet_share(site.s, *from, *to, len, *transition), old = s.drive().mu[site.index];
-      mu[site.index] = w == 0 ? std::nan("") : w == 1 ? mu[site.index] : old + w * (mu[site.index] - old);
+    const std::vector<double> share = wet_shares(s.scene(), *from, *to, *transition);
+    for (size_t i = 0; i < mu.size(); ++i) {
+      const double w = share[i], old = s.drive().mu[i];
+      mu[i] = w == 0 ? std::nan("") : w == 1 ? mu[i] : old + w * (mu[i] - old);
     }
   } else {
     mu = mu_over(L, lua_gettop(L), s.scene(), from, to, "sim:wet");
