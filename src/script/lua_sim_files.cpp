@@ -1,0 +1,149 @@
+// What a live simulation writes to files and reads back: sim:show (a frame of the belt now),
+// sim:plot (time histories so far), sim:save (a checkpoint) and beltsim.resume (sim_box.hpp).
+#include <cstdio>
+#include <filesystem>
+
+#include "io/suggest.hpp"
+#include "plot/plot.hpp"
+#include "render/recorder.hpp"
+#include "script/lua_run.hpp"
+#include "script/lua_sim.hpp"
+#include "script/sandbox.hpp"
+#include "script/sim_box.hpp"
+
+namespace beltsim::script {
+
+namespace {
+
+void picture(lua_State* L, SimBox& box, const std::string& png) {
+  if (box.ctx->on_picture)
+    box.ctx->on_picture(png);
+  else
+    std::printf("picture: %s\n", png.c_str()), std::fflush(stdout);
+  (void)L;
+}
+
+std::string time_tag(double t) {
+  char b[32];
+  std::snprintf(b, sizeof b, "%.6f", t);
+  return b;
+}
+
+}  // namespace
+
+// sim:show{ quantity, range, levels, magnify, view, size, file } -> path of the PNG
+int l_show(lua_State* L) {
+  Simulation& s = live(L, "show", {{"{quantity, range, ...}", kTable, true}});
+  SimBox& box = *static_cast<SimBox*>(lua_touserdata(L, 1));
+  FrameSettings fs;
+  std::string file;
+  if (!lua_isnoneornil(L, 2)) {
+    require_table(L, 2, "sim:show");
+    fs = to_frames(L, 2, "sim:show", {"quantity", "range", "levels", "magnify", "view", "size", "file"});
+    if (auto f = opt_string(L, 2, "file", "sim:show")) file = *f;
+  }
+  if (file.empty()) file = "show_" + time_tag(s.now()) + ".png";
+  if (std::filesystem::path(file).is_relative()) file = (std::filesystem::path(s.out_dir()) / file).string();
+  if (const std::string r = output_refusal(*box.ctx, "sim:show", file, true); !r.empty()) fail(L, r);
+  guarded(L, "sim:show", [&] { render::render_snapshot(s.scene(), fs, s.now(), s.state().data(), s.drive(), file, &s.observation());
+  });
+  box.shows++;
+  picture(L, box, file);
+  lua_pushstring(L, file.c_str());
+  return 1;
+}
+
+// sim:plot{ "driver.omega", "driven.omega", from = t0 [s], file = "x.png" } -> path of the PNG
+int l_plot(lua_State* L) {
+  Simulation& s = live(L, "plot", {{"{columns..., from, file}", kTable, true}});
+  SimBox& box = *static_cast<SimBox*>(lua_touserdata(L, 1));
+  std::vector<std::string> columns;
+  double from = 0;
+  std::string file;
+  if (!lua_isnoneornil(L, 2)) {
+    require_table(L, 2, "sim:plot");
+    lua_pushnil(L);
+    while (lua_next(L, 2)) {
+      lua_pop(L, 1);
+      if (lua_type(L, -1) == LUA_TSTRING) {
+        const std::string k = lua_tostring(L, -1);
+        if (k != "from" && k != "file") {
+          fail(L, "unknown key '" + k + "' in sim:plot" + did_you_mean(k, {"from", "file"}) +
+                      "; valid keys: from, file, and column names as a list");
+        }
+      } else if (lua_type(L, -1) != LUA_TNUMBER) {
+        fail(L, "sim:plot: column names as a list, from = t0 and file = path expected");
+      }
+    }
+    const lua_Integer n = static_cast<lua_Integer>(lua_rawlen(L, 2));
+    for (lua_Integer k = 1; k <= n; ++k) {
+      lua_rawgeti(L, 2, k);
+      if (lua_type(L, -1) != LUA_TSTRING)
+        fail(L, "sim:plot: column " + std::to_string(k) + ": a column name expected, got " + type_name(L, -1));
+      columns.push_back(lua_tostring(L, -1));
+      lua_pop(L, 1);
+    }
+    if (auto v = opt_number(L, 2, "from", "sim:plot")) from = *v;
+    if (auto f = opt_string(L, 2, "file", "sim:plot")) file = *f;
+  }
+  const std::vector<std::string> valid = s.columns();
+  for (const std::string& c : columns) {
+    bool ok = false;
+    for (const std::string& v : valid) ok = ok || v == c;
+    if (!ok) {
+      std::string list;
+      for (const std::string& v : valid) list += (list.empty() ? "" : ", ") + v;
+      fail(L, "sim:plot: no column '" + c + "'" + did_you_mean(c, valid) + "; columns: " + list);
+    }
+  }
+  if (file.empty()) file = "plot_" + time_tag(s.now()) + ".png";
+  if (std::filesystem::path(file).is_relative()) file = (std::filesystem::path(s.out_dir()) / file).string();
+  if (const std::string r = output_refusal(*box.ctx, "sim:plot", file, true); !r.empty()) fail(L, r);
+  guarded(L, "sim:plot", [&] { plot::plot_csv(s.csv_path(), columns, from, file); });
+  picture(L, box, file);
+  lua_pushstring(L, file.c_str());
+  return 1;
+}
+
+// sim:save(path) -> path: a checkpoint (see sim/checkpoint.cpp)
+int l_save(lua_State* L) {
+  Simulation& s = live(L, "save", {{"path", kString}});
+  if (lua_type(L, 2) != LUA_TSTRING) fail(L, std::string("sim:save: a file name expected, got ") + type_name(L, 2));
+  std::string path = lua_tostring(L, 2);
+  if (std::filesystem::path(path).is_relative() && std::filesystem::path(path).parent_path().empty())
+    path = (std::filesystem::path(s.out_dir()) / path).string();
+  if (const std::string r = output_refusal(*static_cast<SimBox*>(lua_touserdata(L, 1))->ctx, "sim:save", path, true);
+      !r.empty())
+    fail(L, r);
+  guarded(L, "sim:save", [&] { s.save(path); });
+  lua_pushstring(L, path.c_str());
+  return 1;
+}
+
+// beltsim.resume(path [, { progress = bool }]) -> the saved simulation, continuing
+int l_resume(lua_State* L) {
+  check_args(L, "beltsim.resume", {{"path", kString}, {"{progress}", kTable, true}});
+  auto* ctx = static_cast<Context*>(lua_touserdata(L, lua_upvalueindex(1)));
+  bool progress = true;
+  if (!lua_isnoneornil(L, 2)) {
+    require_table(L, 2, "beltsim.resume");
+    check_keys(L, 2, "beltsim.resume", {"progress"});
+    if (auto v = opt_bool(L, 2, "progress", "beltsim.resume")) progress = *v;
+  }
+  std::unique_ptr<Simulation> sim;
+  int callbacks = 0;
+  if (const std::string r = output_refusal(*ctx, "beltsim.resume", lua_tostring(L, 1), false); !r.empty()) fail(L, r);
+  // the checkpoint names the outputs it continues: they lie where the sandbox allows too
+  const auto vet = [ctx](const RunSettings& rs) {
+    if (const std::string r = run_paths_refusal(*ctx, "resume", rs); !r.empty()) throw std::invalid_argument(r);
+  };
+  guarded(L, "beltsim.resume",
+          [&] { sim = Simulation::resume(lua_tostring(L, 1), render::make_frame_recorder, &callbacks, vet); });
+  if (callbacks > 0)
+    std::fprintf(stderr, "beltsim: %s had %d callback(s) (every, when); register them again on the resumed simulation\n",
+                 lua_tostring(L, 1), callbacks);
+  push_simulation(L, std::move(sim), ctx, progress);
+  return 1;
+}
+
+}  // namespace beltsim::script

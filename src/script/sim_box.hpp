@@ -1,0 +1,69 @@
+// The live simulation's userdata as the files of its methods share it (lua_sim.cpp: running,
+// reading, changes, callbacks; lua_sim_files.cpp: pictures and checkpoints): the box, the check
+// each method opens with, and the guard that turns C++ exceptions into Lua errors.
+#pragma once
+
+#include <initializer_list>
+#include <map>
+#include <memory>
+#include <string>
+
+#include "integrate/integrator.hpp"
+#include "script/context.hpp"
+#include "script/lua_check.hpp"
+#include "script/signals.hpp"
+#include "sim/simulation.hpp"
+
+namespace beltsim::script {
+
+inline constexpr const char* kSimMeta = "beltsim.Simulation";
+
+struct SimBox {
+  std::unique_ptr<Simulation> sim;
+  Context* ctx = nullptr;
+  bool progress = true;
+  lua_State* L = nullptr;  // the state whose running method has the simulation at index 1
+  std::map<int, std::unique_ptr<LuaRef>> refs;  // callbacks by id (a when has two: -id for its condition)
+  long shows = 0;
+  bool running = false;  // inside run_to: its callbacks may run Lua code that calls this simulation
+};
+
+inline SimBox* check_box(lua_State* L, const char* method) {
+  auto* box = static_cast<SimBox*>(luaL_testudata(L, 1, kSimMeta));
+  if (!box) fail(L, std::string("sim:") + method + ": call it as sim:" + method + "(...) on a simulation");
+  if (!box->sim) fail(L, std::string("sim:") + method + ": this simulation has been finalised");
+  box->L = L;
+  return box;
+}
+
+// the simulation of a method call, its arguments checked (check_args)
+inline Simulation& live(lua_State* L, const char* method, std::initializer_list<Arg> args) {
+  SimBox* box = check_box(L, method);
+  check_args(L, std::string("sim:") + method, args, 2);
+  return *box->sim;
+}
+
+// a C++ call whose exceptions become Lua errors once the catch block is left
+// (a divergence is noted in ctx, when given, for a sweep point's status: lua_sweep.hpp)
+template <class F>
+void guarded(lua_State* L, const char* what, F&& f, Context* ctx = nullptr) {
+  std::string error;
+  try {
+    const HostWork work;  // beltsim's own work, not Lua code (signals.hpp)
+    f();
+  } catch (const DivergenceError& e) {
+    error = std::string(what) + ": " + e.what();
+    if (ctx) ctx->divergence = {e.t, e.what()};
+  } catch (const std::exception& e) {
+    error = std::string(what) + ": " + e.what();
+  }
+  if (!error.empty()) fail(L, error);
+}
+
+// lua_sim_files.cpp: sim:show, sim:plot, sim:save, and beltsim.resume (upvalue 1: the Context)
+int l_show(lua_State* L);
+int l_plot(lua_State* L);
+int l_save(lua_State* L);
+int l_resume(lua_State* L);
+
+}  // namespace beltsim::script
