@@ -10,21 +10,14 @@ import subprocess
 import sys
 import tempfile
 import unittest
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "support"))
+from scenes import two_pulley  # noqa: E402
 
 BELTSIM = None
 
-DRIVE = """
-local drive = beltsim.scene {
-  pulleys = {
-    { name = "driver", centre = {0, 0},    radius = 0.1, inertia = 0.025, torque = beltsim.ramp(0.3, -70) },
-    { name = "driven", centre = {0.29, 0}, radius = 0.1, inertia = 0.025, torque = { per_speed = -0.955 } },
-  },
-  belt = { elements = %d, pretension = 500, direction = "cw" },
-}
-"""
 
 # frames every 1/300 s up to 0.02 s: frames 0..6, and a state kept at each
-KEEP = DRIVE % 40 + """
+KEEP = two_pulley(40, inertia=0.025) + """
 drive:run { t_end = 0.02, progress = false, out = "out", integrator = "esdirk32", keep_states = true,
   frames = { fps = 30, slowdown = 10, size = {320, 180}, quantity = "tension", range = {0, 1000},
              magnify = 20, png = true, video = false } }
@@ -119,7 +112,7 @@ class KeepStates(unittest.TestCase):
 
     def test_states_without_frames_at_the_frame_times(self):
         # no frames: the default frame settings' times (fps 30, slowdown 10: every 1/300 s)
-        self.script("bare.lua", DRIVE % 40 + 'drive:run { t_end = 0.01, progress = false, out = "bare", '
+        self.script("bare.lua", two_pulley(40, inertia=0.025) + 'drive:run { t_end = 0.01, progress = false, out = "bare", '
                                              'keep_states = true }\n')
         code, out, err = run(["run", "bare.lua"], self.dir)
         self.assertEqual(code, 0, err)
@@ -129,7 +122,7 @@ class KeepStates(unittest.TestCase):
         self.assertEqual([state_time(os.path.join(self.dir, "bare", "states", n)) for n in names],
                          frame_times(0.0, 1.0 / 300.0, 0.01))
         # frames that draw nothing give the times: every 1/150 s from 0.004 s
-        self.script("times.lua", DRIVE % 40 + 'drive:run { t_end = 0.02, progress = false, out = "times", '
+        self.script("times.lua", two_pulley(40, inertia=0.025) + 'drive:run { t_end = 0.02, progress = false, out = "times", '
                                               'keep_states = true, frames = { slowdown = 5, t_start = 0.004 } }\n')
         code, out, err = run(["run", "times.lua"], self.dir)
         self.assertEqual(code, 0, err)
@@ -151,7 +144,7 @@ class KeepStates(unittest.TestCase):
                 ("b3.lua", "frames = { slowdown = 5 }", "neither png nor video asked for"),
                 ("b4.lua", "keep_states = true, t_end = 400", "would keep 120000 states; the limit is 100000")]:
             run_keys = run_keys if "t_end" in run_keys else run_keys + ", t_end = 0.01"
-            self.script(name, DRIVE % 40 + 'drive:run { progress = false, out = "%s", %s }\n' % (name, run_keys))
+            self.script(name, two_pulley(40, inertia=0.025) + 'drive:run { progress = false, out = "%s", %s }\n' % (name, run_keys))
             code, out, err = run(["run", name], self.dir)
             self.assertEqual(code, 1, name + err)
             self.assertIn(message, err)
@@ -168,7 +161,7 @@ class KeepStates(unittest.TestCase):
         code, out, err = run(["render", "empty", "--out", "x"], self.dir)
         self.assertEqual((code, err), (1, "beltsim render: empty: no states in it (no *.ckpt files)\n"))
         # a state of another scene (80 elements) among them: refused, the PNGs before it kept
-        self.script("other.lua", DRIVE % 80 + 'drive:run { t_end = 0.001, progress = false, out = "other", '
+        self.script("other.lua", two_pulley(80, inertia=0.025) + 'drive:run { t_end = 0.001, progress = false, out = "other", '
                                               'keep_states = true }\n')
         self.assertEqual(run(["run", "other.lua"], self.dir)[0], 0)
         first = os.path.join("out", "states", "state_00000.ckpt")

@@ -8,19 +8,13 @@ import subprocess
 import sys
 import tempfile
 import unittest
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "support"))
+from scenes import two_pulley  # noqa: E402
 
 BELTSIM = None
 
 # a run that draws a frame every 1/300 s (frame 6 at t = 0.02 s) and saves a checkpoint there
-SCENE = """
-local drive = beltsim.scene {
-  pulleys = {
-    { name = "driver", centre = {0, 0},    radius = 0.1, inertia = 0.025, torque = beltsim.ramp(0.3, -70) },
-    { name = "driven", centre = {0.29, 0}, radius = 0.1, inertia = 0.025, torque = { per_speed = -0.955 } },
-  },
-  belt = { elements = 40, pretension = 500, direction = "cw" },
-}
-local sim = drive:start { progress = false, out = "out", integrator = "esdirk32",
+SCENE = two_pulley(40, inertia=0.025) + """local sim = drive:start { progress = false, out = "out", integrator = "esdirk32",
   frames = { fps = 30, slowdown = 10, size = {320, 180}, quantity = "tension", range = {0, 1000},
              magnify = 20, png = true, video = false } }
 sim:run_to(0.02)

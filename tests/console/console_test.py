@@ -151,6 +151,27 @@ class Console:
     def send(self, data):
         os.write(self.fd, data.encode())
 
+    def complete(self, typed, expected, what, tabs="\t"):
+        """Types typed (no Enter), then tabs; waits until expected (a regex or a string) is on the
+        screen; returns the screen position before the typing."""
+        mark = len(self.screen)
+        self.send(typed)
+        self.wait_for(typed, start=mark)
+        self.send(tabs)
+        self.wait_for(expected, what=what, start=mark)
+        return mark
+
+    def complete_nothing(self, typed):
+        """Types typed, then Tab, and waits for readline's bell: a completion that found nothing.
+        Returns the screen position before the typing."""
+        mark = len(self.screen)
+        self.send(typed)
+        self.wait_for(typed, start=mark)
+        raw_mark = len(self.raw)
+        self.send("\t")
+        self.wait_for("\x07", start=raw_mark, raw=True, what="the bell of a completion that found nothing")
+        return mark
+
     def command(self, line, continuation=False, timeout=TIMEOUT):
         """Types line and Enter, waits for the next prompt; returns what the screen shows in between
         (the echo of the line included)."""
@@ -250,11 +271,7 @@ class ConsoleTest(unittest.TestCase):
     # 4
     def test_completion_of_a_method(self):
         c = self.console()
-        mark = len(c.screen)
-        c.send("sim:adv")
-        c.wait_for("sim:adv", start=mark)
-        c.send("\t")
-        c.wait_for("sim:advance(", what="the completion of sim:adv to sim:advance(", start=mark)
+        mark = c.complete("sim:adv", "sim:advance(", "the completion of sim:adv to sim:advance(")
         c.send("0.001)\r")
         c.wait_prompt(mark)
         out = c.screen[mark:]
@@ -504,13 +521,8 @@ class ConsoleTest(unittest.TestCase):
     def test_completion_runs_no_lua_code(self):
         c = self.console()
         c.command("t = setmetatable({}, { __index = function() error('no') end })")
-        mark = len(c.screen)
-        c.send("t.a.b")
-        c.wait_for("t.a.b", start=mark)
-        raw_mark = len(c.raw)
-        c.send("\t")
         # no key to complete: readline rings the bell once the completion has ended
-        c.wait_for("\x07", start=raw_mark, raw=True, what="the bell of a completion that found nothing")
+        mark = c.complete_nothing("t.a.b")
         c.send("\x03")  # clears the line
         c.wait_prompt(mark)
         out = c.command("1+1")
@@ -588,48 +600,28 @@ class ConsoleTest(unittest.TestCase):
     def test_completion_inside_strings(self):
         c = self.console()
         # a pulley name; one match closes the string
-        mark = len(c.screen)
-        c.send('sim:pulley("dr')
-        c.wait_for('sim:pulley("dr', start=mark)
-        c.send("\t")
-        c.wait_for('sim:pulley("drive', what="the common part of driver and driven", start=mark)
+        mark = c.complete('sim:pulley("dr', 'sim:pulley("drive', "the common part of driver and driven")
         c.send("r\t")  # now one match: the quote is closed
         c.wait_for('sim:pulley("driver"', what='the completion to "driver"', start=mark)
         c.send(").omega\r")
         c.wait_prompt(mark)
         self.assertRegex(c.screen[mark:], r"\n-?[0-9.e+-]+\n> ", c.transcript())  # a number, no error
         # a column in sim:plot's list, in single quotes
-        mark = len(c.screen)
-        c.send("sim:plot{ 'driven.slip_sp")
-        c.wait_for("'driven.slip_sp", start=mark)
-        c.send("\t")
-        c.wait_for("sim:plot{ 'driven.slip_speed'", what="the completion of a column", start=mark)
+        mark = c.complete("sim:plot{ 'driven.slip_sp", "sim:plot{ 'driven.slip_speed'", "the completion of a column")
         c.send("\x03")
         c.wait_prompt(mark)
         # a field of a table argument, both matches listed on a second Tab
-        mark = len(c.screen)
-        c.send('sim:elements{ pulley = "drive')
-        c.wait_for('pulley = "drive', start=mark)
-        c.send("\t\t")
-        c.wait_for(re.compile(r"driven\s+driver"), what="the list of the two pulleys", start=mark)
+        mark = c.complete('sim:elements{ pulley = "drive', re.compile(r"driven\s+driver"),
+                          "the list of the two pulleys", tabs="\t\t")
         c.send("\x03")
         c.wait_prompt(mark)
         # help's entries
-        mark = len(c.screen)
-        c.send('help("set_to')
-        c.wait_for('help("set_to', start=mark)
-        c.send("\t")
-        c.wait_for('help("set_torque"', what="the completion of a help entry", start=mark)
+        mark = c.complete('help("set_to', 'help("set_torque"', "the completion of a help entry")
         c.send(")\r")
         c.wait_prompt(mark)
         self.assertIn("sim:set_torque(name, law", c.screen[mark:], c.transcript())
         # a string that is no call's argument completes nothing
-        mark = len(c.screen)
-        c.send('x = "dr')
-        c.wait_for('x = "dr', start=mark)
-        raw_mark = len(c.raw)
-        c.send("\t")
-        c.wait_for("\x07", start=raw_mark, raw=True, what="the bell of a completion that found nothing")
+        mark = c.complete_nothing('x = "dr')
         c.send("\x03")
         c.wait_prompt(mark)
 

@@ -6,12 +6,14 @@ with an empty line and has 8 lines: a script's next line is line 9, which the te
 messages name."""
 
 
-def two_pulley(elements=40):
+def two_pulley(elements=40, inertia=None):
+    """inertia [kg·m²]: both pulleys' (the scene's default when None)"""
+    i = "" if inertia is None else " inertia = %r," % inertia
     return ("\n"
             "local drive = beltsim.scene {\n"
             "  pulleys = {\n"
-            "    { name = \"driver\", centre = {0, 0},    radius = 0.1, torque = beltsim.ramp(0.3, -70) },\n"
-            "    { name = \"driven\", centre = {0.29, 0}, radius = 0.1, torque = { per_speed = -0.955 } },\n"
+            "    { name = \"driver\", centre = {0, 0},    radius = 0.1,%s torque = beltsim.ramp(0.3, -70) },\n"
+            "    { name = \"driven\", centre = {0.29, 0}, radius = 0.1,%s torque = { per_speed = -0.955 } },\n"
             "  },\n"
             "  belt = { elements = %d, pretension = 500, direction = \"cw\" },\n"
-            "}\n" % elements)
+            "}\n" % (i, i, elements))
