@@ -48,6 +48,9 @@ struct Arg {
 };
 void check_args(lua_State* L, const std::string& function, std::initializer_list<Arg> args, int first = 1);
 
+// t[key] = v for the table on the top of the stack (the results' tables)
+void set_number(lua_State* L, const char* key, double v);
+
 // __index of an object whose methods are in the table of upvalue 1 (its kind, e.g. "sim", in
 // upvalue 2): an unknown name is an error with a suggestion, not a nil to call
 int index_methods(lua_State* L);

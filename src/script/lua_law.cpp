@@ -260,8 +260,6 @@ int wrap(lua_State* L, const char* key, int idx) {
   return 1;
 }
 
-void set_number(lua_State* L, const char* k, double v) { lua_pushnumber(L, v), lua_setfield(L, -2, k); }
-
 // the law on the top of the stack, checked as a torque law (the helpers know no more); errors
 // name the helper
 void check_helper(lua_State* L, const std::string& what) {

@@ -30,8 +30,6 @@ namespace beltsim::script {
 
 namespace {
 
-void set_number(lua_State* L, const char* k, double v) { lua_pushnumber(L, v), lua_setfield(L, -2, k); }
-
 int pulley_index(lua_State* L, const Simulation& s, int idx, const char* what) {
   if (lua_type(L, idx) != LUA_TSTRING) fail(L, std::string(what) + ": a pulley name expected, got " + type_name(L, idx));
   const std::string name = lua_tostring(L, idx);

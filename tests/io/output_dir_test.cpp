@@ -30,6 +30,7 @@ namespace beltsim {
 namespace {
 
 using test::slurp;
+using test::spit;
 using test::what_of;
 
 namespace fs = std::filesystem;
@@ -39,10 +40,6 @@ fs::path fresh_dir(const std::string& name) {
   fs::remove_all(d);
   fs::create_directories(d);
   return d;
-}
-
-void spit(const fs::path& f, const std::string& text) {
-  std::ofstream(f, std::ios::binary) << text;
 }
 
 constexpr const char* kSecret = "the user's own file\n";

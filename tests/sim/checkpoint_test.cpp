@@ -35,11 +35,11 @@ namespace {
 using test::line_of;
 using test::resealed;
 using test::slurp;
+using test::spit;
 using test::with_line;
 
 namespace fs = std::filesystem;
 
-void spit(const fs::path& path, const std::string& text) { std::ofstream(path, std::ios::binary) << text; }
 
 fs::path dir() { return test::scratch_dir("beltsim_checkpoint_test"); }
 

@@ -18,6 +18,11 @@ inline std::string slurp(const std::filesystem::path& path) {
   return s.str();
 }
 
+// the file made to hold exactly `text`
+inline void spit(const std::filesystem::path& path, const std::string& text) {
+  std::ofstream(path, std::ios::binary) << text;
+}
+
 // what() of the std::exception the call throws, "" when it throws none
 inline std::string what_of(const std::function<void()>& call) {
   try {
