@@ -295,6 +295,8 @@ void FrameBuilder::build(double t, const double* y, DrawList& out, const Drive* 
   }
   // pulleys: disc up to the belt's inner edge, rim, spokes turning with θ, a red marker spoke
   const double h = 0.5 * thickness_;
+  Vec2 middle = Vec2::Zero();  // of the pulleys' centres
+  for (int j = 0; j < m.n_p(); ++j) middle += m.centre(j, q) / m.n_p();
   for (int j = 0; j < m.n_p(); ++j) {
     const Pulley& p = m.pulleys[j];
     const double R = std::max(p.radius - h - sc_.penetration[j], 0.2 * p.radius);
@@ -311,12 +313,26 @@ void FrameBuilder::build(double t, const double* y, DrawList& out, const Drive* 
     }
     out.disc(c + 0.78 * Rp * Vec2(std::cos(theta), -std::sin(theta)), std::max(2.0, 0.07 * Rp), kMarker, 24);
     out.disc(c, 0.18 * Rp, kRim, 48);
-    // the name on a patch of the disc's colour, so the spokes do not cross it (where it is in view:
-    // text is drawn over everything)
-    Rgba patch = kPulley;
-    patch.a = 0.85f;
-    const Vec2 at = c + Vec2(0, 0.18 * Rp + 1.1 * font_px_);
-    if (in_view(at)) out.boxed_text(at, p.name, font_px_, kInk, patch, DrawList::centre);
+    // the name below the hub on a patch of the disc's colour, so the spokes do not cross it; a
+    // name wider than the disc there goes beside the pulley, outside the belt, on the side away
+    // from the drive's middle (text is drawn over everything: only where it is in view)
+    const double tw = font_ ? font_->width(p.name, font_px_) : 0, pad = std::max(2.0, 0.2 * font_px_);
+    const double below = 0.18 * Rp + 1.1 * font_px_;
+    if (std::hypot(0.5 * tw + pad, below + 0.35 * font_px_) <= 0.95 * Rp) {
+      Rgba patch = kPulley;
+      patch.a = 0.85f;
+      const Vec2 at = c + Vec2(0, below);
+      if (in_view(at)) out.boxed_text(at, p.name, font_px_, kInk, patch, DrawList::centre);
+    } else {
+      Rgba paper = out.background;
+      paper.a = 0.85f;
+      const double out_px = (p.radius + 2 * h) * cam_.scale + 0.5 * font_px_;
+      const bool right = c.x() >= P(middle).x();
+      const Vec2 at = c + Vec2(right ? out_px : -out_px, 0.35 * font_px_);
+      const Vec2 far = at + Vec2(right ? tw : -tw, 0);
+      if (in_view(at) && in_view(far))
+        out.boxed_text(at, p.name, font_px_, kInk, paper, right ? DrawList::left : DrawList::right);
+    }
   }
 
   // spray zones under the belt: a translucent disc of the wet colour while it sprays, the outline
