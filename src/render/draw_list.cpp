@@ -124,9 +124,10 @@ float DrawList::text(Vec2 at, const std::string& utf8, int px, Rgba col, Align a
 float DrawList::boxed_text(Vec2 at, const std::string& utf8, int px, Rgba col, Rgba box, Align align) {
   const double w = font ? font->width(utf8, px) : 0;
   const double x = at.x() - (align == centre ? 0.5 * w : align == right ? w : 0.0);
-  const double pad = std::max(2.0, 0.2 * px);
-  quad(Vec2(x - pad, at.y() - 0.95 * px), Vec2(x + w + pad, at.y() - 0.95 * px), Vec2(x + w + pad, at.y() + 0.35 * px),
-       Vec2(x - pad, at.y() + 0.35 * px), box);
+  const BoxMargins b = box_margins(px);
+  const Vec2 lo(x - b.pad, at.y() - b.above), hi(x + w + b.pad, at.y() + b.below);
+  quad(lo, Vec2(hi.x(), lo.y()), hi, Vec2(lo.x(), hi.y()), box);
+  boxes.push_back({utf8, lo, hi});
   return text(at, utf8, px, col, align);
 }
 
@@ -272,7 +273,8 @@ void FrameBuilder::build(double t, const double* y, DrawList& out, const Drive* 
   const int n = m.n_el();
   const double* q = y;
   out.width = fs_.width, out.height = fs_.height;
-  out.triangles.clear(), out.glyphs.clear(), out.elements.clear(), out.texts.clear(), out.travel.clear();
+  out.triangles.clear(), out.glyphs.clear(), out.elements.clear(), out.texts.clear(), out.boxes.clear(),
+      out.travel.clear();
   out.font = font_;
   out.scale = scale_;
   const double px = 1.0 / cam_.scale;  // one pixel in metres
@@ -316,9 +318,10 @@ void FrameBuilder::build(double t, const double* y, DrawList& out, const Drive* 
     // the name below the hub on a patch of the disc's colour, so the spokes do not cross it; a
     // name wider than the disc there goes beside the pulley, outside the belt, on the side away
     // from the drive's middle (text is drawn over everything: only where it is in view)
-    const double tw = font_ ? font_->width(p.name, font_px_) : 0, pad = std::max(2.0, 0.2 * font_px_);
+    const double tw = font_ ? font_->width(p.name, font_px_) : 0;
+    const DrawList::BoxMargins bm = DrawList::box_margins(font_px_);
     const double below = 0.18 * Rp + 1.1 * font_px_;
-    if (std::hypot(0.5 * tw + pad, below + 0.35 * font_px_) <= 0.95 * Rp) {
+    if (std::hypot(0.5 * tw + bm.pad, below + bm.below) <= 0.95 * Rp) {
       Rgba patch = kPulley;
       patch.a = 0.85f;
       const Vec2 at = c + Vec2(0, below);

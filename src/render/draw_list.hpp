@@ -23,6 +23,7 @@
 // it (zoomed views).
 #pragma once
 
+#include <algorithm>
 #include <string>
 #include <utility>
 #include <vector>
@@ -78,6 +79,11 @@ struct DrawList {
   Font* font = nullptr;                // owner of the glyph atlas
   std::vector<ElementDraw> elements;
   std::vector<std::string> texts;      // every string drawn, in order (for tests)
+  struct TextBox {
+    std::string text;
+    Vec2 lo, hi;  // [px] the box's top-left and bottom-right corners
+  };
+  std::vector<TextBox> boxes;          // every boxed text with its box, in order (for tests)
   std::vector<std::pair<Vec2, Vec2>> travel;  // tail and tip [px] of the direction-of-travel arrows (for tests)
   ColourScale scale;
 
@@ -93,7 +99,12 @@ struct DrawList {
   enum Align { left, centre, right };
   // text with its baseline at y; returns the width [px]
   float text(Vec2 at, const std::string& utf8, int px, Rgba col, Align align = left);
-  // text on a box of colour `box` a few pixels larger than it (readable over the belt)
+  // text on a box of colour `box` a few pixels larger than it (readable over the belt): the box
+  // reaches `above` over the baseline, `below` under it and `pad` beyond the text's ends [px]
+  struct BoxMargins {
+    double pad, above, below;
+  };
+  static BoxMargins box_margins(int px) { return {std::max(2.0, 0.2 * px), 0.95 * px, 0.35 * px}; }
   float boxed_text(Vec2 at, const std::string& utf8, int px, Rgba col, Rgba box, Align align = left);
   // an arrow from tail to tip, its head `head_px` long
   void arrow(Vec2 tail, Vec2 tip, double width_px, double head_px, Rgba col);

@@ -1,5 +1,6 @@
 // The draw list without GL: element quads where the state puts the elements, colours from the
-// colour map, magnification about the nominal path, wet and slip marks, colour-map properties.
+// colour map, magnification about the nominal path, wet and slip marks, pulley names off the belt,
+// colour-map properties.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -331,6 +332,36 @@ TEST_F(Fixture, CameraFitsTheLayoutOrFollowsTheView) {
   EXPECT_NEAR((view.camera().to_px(Vec2(0.29, 0)) - view.camera().area_centre).norm(), 0, 1e-9);
   const double width_px = (view.camera().to_px(Vec2(0.415, 0)) - view.camera().to_px(Vec2(0.165, 0))).x();
   EXPECT_NEAR(width_px, f.width - std::max(0.17 * f.width, 11.0 * std::max(10.0, std::round(f.height / 40.0))), 1e-6);
+}
+
+// a pulley's name sits inside its disc where it fits there and beside the pulley where it does not,
+// never on the belt: no element's corner or centre inside the name's box
+TEST_F(Fixture, PulleyNamesStayOffTheBelt) {
+  const Scene automotive = test::moving_scene(presets::automotive_wet());
+  for (const Scene* sc : {&wet(), &automotive}) {
+    FrameBuilder b(*sc, fs(), &font);
+    DrawList dl;
+    b.build(0, sc->y0.data(), dl);
+    int inside = 0, beside = 0;
+    for (int j = 0; j < sc->model.n_p(); ++j) {
+      const Pulley& p = sc->model.pulleys[j];
+      const DrawList::TextBox* box = nullptr;
+      for (const DrawList::TextBox& t : dl.boxes)
+        if (t.text == p.name) box = &t;
+      ASSERT_NE(box, nullptr) << p.name;
+      auto in_box = [&](const Vec2& v) {
+        return v.x() > box->lo.x() && v.x() < box->hi.x() && v.y() > box->lo.y() && v.y() < box->hi.y();
+      };
+      for (const ElementDraw& e : dl.elements) {
+        EXPECT_FALSE(in_box(e.centre)) << p.name << " over an element";
+        for (const Vec2& c : e.corners) EXPECT_FALSE(in_box(c)) << p.name << " over an element's corner";
+      }
+      const Vec2 mid = 0.5 * (box->lo + box->hi), c = b.camera().to_px(sc->model.centre(j, sc->y0.data()));
+      ((mid - c).norm() < p.radius * b.camera().scale ? inside : beside) += 1;
+    }
+    if (sc == &wet()) EXPECT_EQ(inside, 2);  // the paper's two large pulleys
+    else EXPECT_GT(beside, 0);               // the automotive drive's small ones
+  }
 }
 
 TEST(Text, Utf8AndGlyphs) {
