@@ -278,65 +278,10 @@ void FrameBuilder::build(double t, const double* y, DrawList& out, const Drive* 
   out.font = font_;
   out.scale = scale_;
   const double px = 1.0 / cam_.scale;  // one pixel in metres
+  const double h = 0.5 * thickness_;   // [m] half the drawn belt's thickness
   auto P = [&](const Vec2& w) { return cam_.to_px(w); };
-  // a pixel inside the drawing area (below the text band, left of the colour-bar panel)
-  const double area_right = fs_.width - panel_;
-  auto in_view = [&](const Vec2& p_px) {
-    return p_px.x() > font_px_ && p_px.x() < area_right - font_px_ && p_px.y() > top_ + font_px_ &&
-           p_px.y() < fs_.height - font_px_;
-  };
 
-  // tensioner arms under their pulleys: a bar from the pivot to the pulley's centre, the pivot a
-  // rimmed disc
-  for (const Arm& a : m.arms) {
-    const Vec2 pivot = P(a.pivot), c = P(m.centre(a.pulley, q));
-    const double w = std::max(3.0, 0.25 * m.pulleys[a.pulley].radius * cam_.scale);
-    out.line(pivot, c, w, kRim);
-    out.disc(pivot, 0.8 * w, kRim, 32);
-    out.disc(pivot, 0.4 * w, kPulley, 24);
-  }
-  // pulleys: disc up to the belt's inner edge, rim, spokes turning with θ, a red marker spoke
-  const double h = 0.5 * thickness_;
-  Vec2 middle = Vec2::Zero();  // of the pulleys' centres
-  for (int j = 0; j < m.n_p(); ++j) middle += m.centre(j, q) / m.n_p();
-  for (int j = 0; j < m.n_p(); ++j) {
-    const Pulley& p = m.pulleys[j];
-    const double R = std::max(p.radius - h - sc_.penetration[j], 0.2 * p.radius);
-    const Vec2 c = P(m.centre(j, q));  // on a tensioner arm it moves
-    const double Rp = R * cam_.scale;
-    out.disc(c, Rp, kPulley);
-    out.ring(c, Rp - std::max(1.5, 0.04 * Rp), Rp, kRim);
-    const double theta = q[m.pulley_coord(j)];
-    const double w = std::max(1.5, 0.035 * Rp);
-    for (int k = 0; k < 6; ++k) {
-      const double a = theta + k * M_PI / 3;
-      const Vec2 u(std::cos(a), -std::sin(a));  // y down in pixels
-      out.line(c + 0.18 * Rp * u, c + 0.9 * Rp * u, k == 0 ? 2.2 * w : w, k == 0 ? kMarker : kSpoke);
-    }
-    out.disc(c + 0.78 * Rp * Vec2(std::cos(theta), -std::sin(theta)), std::max(2.0, 0.07 * Rp), kMarker, 24);
-    out.disc(c, 0.18 * Rp, kRim, 48);
-    // the name below the hub on a patch of the disc's colour, so the spokes do not cross it; a
-    // name wider than the disc there goes beside the pulley, outside the belt, on the side away
-    // from the drive's middle (text is drawn over everything: only where it is in view)
-    const double tw = font_ ? font_->width(p.name, font_px_) : 0;
-    const DrawList::BoxMargins bm = DrawList::box_margins(font_px_);
-    const double below = 0.18 * Rp + 1.1 * font_px_;
-    if (std::hypot(0.5 * tw + bm.pad, below + bm.below) <= 0.95 * Rp) {
-      Rgba patch = kPulley;
-      patch.a = 0.85f;
-      const Vec2 at = c + Vec2(0, below);
-      if (in_view(at)) out.boxed_text(at, p.name, font_px_, kInk, patch, DrawList::centre);
-    } else {
-      Rgba paper = out.background;
-      paper.a = 0.85f;
-      const double out_px = (p.radius + 2 * h) * cam_.scale + 0.5 * font_px_;
-      const bool right = c.x() >= P(middle).x();
-      const Vec2 at = c + Vec2(right ? out_px : -out_px, 0.35 * font_px_);
-      const Vec2 far = at + Vec2(right ? tw : -tw, 0);
-      if (in_view(at) && in_view(far))
-        out.boxed_text(at, p.name, font_px_, kInk, paper, right ? DrawList::left : DrawList::right);
-    }
-  }
+  draw_pulleys(q, out);
 
   // spray zones under the belt: a translucent disc of the wet colour while it sprays, the outline
   // while it does not
@@ -439,6 +384,74 @@ void FrameBuilder::build(double t, const double* y, DrawList& out, const Drive* 
       if ((arrows = travel_arrow(i))) break;
   }
 
+  draw_text_and_legend(t, seen, mu_dry, arrows, arrow_w, out);
+}
+
+bool FrameBuilder::in_view(const Vec2& p_px) const {
+  return p_px.x() > font_px_ && p_px.x() < fs_.width - panel_ - font_px_ && p_px.y() > top_ + font_px_ &&
+         p_px.y() < fs_.height - font_px_;
+}
+
+void FrameBuilder::draw_pulleys(const double* q, DrawList& out) const {
+  const Model& m = sc_.model;
+  auto P = [&](const Vec2& w) { return cam_.to_px(w); };
+  // tensioner arms under their pulleys: a bar from the pivot to the pulley's centre, the pivot a
+  // rimmed disc
+  for (const Arm& a : m.arms) {
+    const Vec2 pivot = P(a.pivot), c = P(m.centre(a.pulley, q));
+    const double w = std::max(3.0, 0.25 * m.pulleys[a.pulley].radius * cam_.scale);
+    out.line(pivot, c, w, kRim);
+    out.disc(pivot, 0.8 * w, kRim, 32);
+    out.disc(pivot, 0.4 * w, kPulley, 24);
+  }
+  // pulleys: disc up to the belt's inner edge, rim, spokes turning with θ, a red marker spoke
+  const double h = 0.5 * thickness_;
+  Vec2 middle = Vec2::Zero();  // of the pulleys' centres
+  for (int j = 0; j < m.n_p(); ++j) middle += m.centre(j, q) / m.n_p();
+  for (int j = 0; j < m.n_p(); ++j) {
+    const Pulley& p = m.pulleys[j];
+    const double R = std::max(p.radius - h - sc_.penetration[j], 0.2 * p.radius);
+    const Vec2 c = P(m.centre(j, q));  // on a tensioner arm it moves
+    const double Rp = R * cam_.scale;
+    out.disc(c, Rp, kPulley);
+    out.ring(c, Rp - std::max(1.5, 0.04 * Rp), Rp, kRim);
+    const double theta = q[m.pulley_coord(j)];
+    const double w = std::max(1.5, 0.035 * Rp);
+    for (int k = 0; k < 6; ++k) {
+      const double a = theta + k * M_PI / 3;
+      const Vec2 u(std::cos(a), -std::sin(a));  // y down in pixels
+      out.line(c + 0.18 * Rp * u, c + 0.9 * Rp * u, k == 0 ? 2.2 * w : w, k == 0 ? kMarker : kSpoke);
+    }
+    out.disc(c + 0.78 * Rp * Vec2(std::cos(theta), -std::sin(theta)), std::max(2.0, 0.07 * Rp), kMarker, 24);
+    out.disc(c, 0.18 * Rp, kRim, 48);
+    // the name below the hub on a patch of the disc's colour, so the spokes do not cross it; a
+    // name wider than the disc there goes beside the pulley, outside the belt, on the side away
+    // from the drive's middle (text is drawn over everything: only where it is in view)
+    const double tw = font_ ? font_->width(p.name, font_px_) : 0;
+    const DrawList::BoxMargins bm = DrawList::box_margins(font_px_);
+    const double below = 0.18 * Rp + 1.1 * font_px_;
+    if (std::hypot(0.5 * tw + bm.pad, below + bm.below) <= 0.95 * Rp) {
+      Rgba patch = kPulley;
+      patch.a = 0.85f;
+      const Vec2 at = c + Vec2(0, below);
+      if (in_view(at)) out.boxed_text(at, p.name, font_px_, kInk, patch, DrawList::centre);
+    } else {
+      Rgba paper = out.background;
+      paper.a = 0.85f;
+      const double out_px = (p.radius + 2 * h) * cam_.scale + 0.5 * font_px_;
+      const bool right = c.x() >= P(middle).x();
+      const Vec2 at = c + Vec2(right ? out_px : -out_px, 0.35 * font_px_);
+      const Vec2 far = at + Vec2(right ? tw : -tw, 0);
+      if (in_view(at) && in_view(far))
+        out.boxed_text(at, p.name, font_px_, kInk, paper, right ? DrawList::left : DrawList::right);
+    }
+  }
+}
+
+void FrameBuilder::draw_text_and_legend(double t, const Observation& seen, double mu_dry, bool arrows,
+                                        double arrow_w, DrawList& out) const {
+  const Model& m = sc_.model;
+  const double area_right = fs_.width - panel_;
   // text band: time, colour quantity, magnification; each pulley's speed and slip
   const FrameQuantityInfo& qi = frame_quantity_info(fs_.quantity);
   const double line = 1.4 * font_px_;

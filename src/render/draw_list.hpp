@@ -157,6 +157,13 @@ class FrameBuilder {
   int columns_ = 1;             // pulley lines per row of the text band
   double top_ = 0, panel_ = 0;  // [px] height of the text band, width of the colour-bar panel
   std::string pulley_text(int j, const PulleyObs& o) const;
+  // a pixel inside the drawing area (below the text band, left of the colour-bar panel)
+  bool in_view(const Vec2& p_px) const;
+  // build's stages: tensioner arms and pulleys with their names; the text band, colour bar and
+  // legend (arrows: whether the belt got direction-of-travel arrows, arrow_w their width [px])
+  void draw_pulleys(const double* q, DrawList& out) const;
+  void draw_text_and_legend(double t, const Observation& seen, double mu_dry, bool arrows, double arrow_w,
+                            DrawList& out) const;
 };
 
 }  // namespace beltsim::render
