@@ -2,7 +2,7 @@
 // the scene, the drive, the integrator's state), so that the whole file has one format and one
 // version.
 //
-//   beltsim-checkpoint 8             <- what it is, and the format version
+//   beltsim-checkpoint 9             <- what it is, and the format version
 //   integrator "esdirk32"            <- a key, then its values, one field per line
 //   rtol 1e-04
 //   probe 2 0 75                     <- sequences: the count, then the values
@@ -31,7 +31,7 @@ namespace beltsim {
 
 // Raised whenever anything a checkpoint holds changes (src/scene/scene_io.cpp,
 // src/sim/checkpoint.cpp, the integrators' save and load): a reader refuses every other version.
-inline constexpr int kCheckpointVersion = 8;
+inline constexpr int kCheckpointVersion = 9;
 inline constexpr const char* kCheckpointMagic = "beltsim-checkpoint";
 
 // A checkpoint that cannot be read: "line N: reason".

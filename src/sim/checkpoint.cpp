@@ -67,6 +67,7 @@ void write_settings(CheckpointWriter& w, const RunSettings& rs) {
   if (f.view_centre) w.fixed("frames.view.centre", {f.view_centre->x(), f.view_centre->y()});
   else w.word("frames.view.centre", "none");
   w.optional("frames.view.width", f.view_width);
+  // the paths as the script gave them: relative ones lie inside the output folder (sim/outputs.cpp)
   w.line("frames.png", f.png_dir);
   w.line("frames.png_every", f.png_every);
   w.line("frames.video", f.video_path);

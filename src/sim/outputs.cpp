@@ -129,8 +129,14 @@ const OutputDir& Outputs::claim() {
 
 void Outputs::open(bool append) {
   const OutputDir& dir = claim();
-  // it exists only when frames are asked for (no GL context, no encoder otherwise)
-  if (rs_.frames && rs_.frames->draws()) sink_ = rs_.frame_factory(scene_, *rs_.frames);
+  // it exists only when frames are asked for (no GL context, no encoder otherwise); the settings
+  // keep the paths as given (checkpoints store them so), relative ones taken inside the folder
+  if (rs_.frames && rs_.frames->draws()) {
+    FrameSettings f = *rs_.frames;
+    for (std::string* p : {&f.png_dir, &f.video_path})
+      if (!p->empty() && std::filesystem::path(*p).is_relative()) *p = (std::filesystem::path(rs_.out_dir) / *p).string();
+    sink_ = rs_.frame_factory(scene_, f);
+  }
   if (rs_.keep_states) states_ = std::make_unique<OutputDir>(dir, "states");
   if (!append) write_parameters(scene_, rs_, dir);
   csv_ = std::make_unique<CsvWriter>(dir, "timeseries.csv", timeseries_columns(scene_, rs_.probes.size()), append);

@@ -47,14 +47,6 @@ Simulation::Simulation(const Scene& sc, const RunSettings& rs, bool fresh) : sce
     throw std::invalid_argument("keep_states: " + cannot_save(rs_.integrator));
   tl_ = std::make_unique<Timeline>(*integ_);
   tl_->on_restart([this](double t) { drive_.restart_time = t; });
-  if (rs_.frames) {
-    FrameSettings& f = *rs_.frames;
-    auto inside = [&](std::string& p) {
-      if (!p.empty() && std::filesystem::path(p).is_relative()) p = (std::filesystem::path(rs_.out_dir) / p).string();
-    };
-    inside(f.png_dir);
-    inside(f.video_path);
-  }
   means_ = std::make_unique<IntervalMeans>(model_, drive_, scene_.route, *integ_);
   tl_->set_step_hook([this](double t) { means_->cover(t, serial_); });
   out_ = std::make_unique<Outputs>(scene_, rs_);

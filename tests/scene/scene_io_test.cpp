@@ -378,11 +378,13 @@ TEST(SceneIo, WrongKeywordOrVersionIsRefused) {
             "line 1: a version 4 checkpoint; this beltsim reads version " + std::to_string(kCheckpointVersion) +
                 " only: resume it with the beltsim that wrote it, or run the scene again from its script");
   // version 5 held each input's unit and note; 6 takes them from the parameter table; 7 holds spray zones, the
-  // friction law and the couplings; 8 LuGre's parameters, the bristles' deflections and the run's keep_states
-  for (const int v : {5, 6, 7})
+  // friction law and the couplings; 8 LuGre's parameters, the bristles' deflections and the run's keep_states;
+  // 9 the frames' paths as given (relative ones inside the output folder), not joined to the folder
+  for (const int v : {5, 6, 7, 8})
     EXPECT_EQ(read_error("beltsim-checkpoint " + std::to_string(v) + "\nscene 4\n"),
               "line 1: a version " + std::to_string(v) +
-                  " checkpoint; this beltsim reads version 8 only: resume it "
+                  " checkpoint; this beltsim reads version " + std::to_string(kCheckpointVersion) +
+                  " only: resume it "
                   "with the beltsim that wrote it, or run the scene again from its script");
   EXPECT_EQ(read_error("scene 4\nmodel 4\n"), "line 1: not a beltsim checkpoint (it begins 'scene 4')");
   EXPECT_EQ(read_error(resealed(with_line(text, "pulley.wrap", "pulley.wrap outside"))),

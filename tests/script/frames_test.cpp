@@ -132,6 +132,41 @@ TEST(Frames, DivergenceLeavesAPlayableVideo) {
   EXPECT_GE(std::stoi("0" + probe(out / "frames.mp4", "stream=nb_read_frames")), 2);
 }
 
+// A resumed run's frames go where the saved run's went: its video's continuation beside the video
+// and its PNGs numbered on in the same folder, with the output folder given relative to the
+// folder beltsim runs in (the default out/<script> is) as well as absolute. Checkpoints keep the
+// paths as given; joined to the folder once more, they landed in rel/rel/.
+TEST(Frames, AResumedRunsFramesGoWhereTheSavedRunsWent) {
+  const fs::path dir = temp_dir() / "resumed";
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  const fs::path was = fs::current_path();
+  fs::current_path(dir);
+  struct Back {
+    fs::path p;
+    ~Back() { fs::current_path(p); }
+  } back{was};
+  // frames every 1/300 s: 0 ... 0.01 before the save (4), then 0.01333 ... 0.02 (3)
+  std::ofstream("resume.lua") << kScene
+                              << "local sim = s:start{ out = 'rel', frames = { fps = 30, "
+                                 "slowdown = 10, size = {160, 90}, png = true, video = true } }\n"
+                                 "sim:run_to(0.01)\nsim:save('ck.ckpt')\nsim:close()\n"
+                                 "local r = beltsim.resume('rel/ck.ckpt')\nr:run_to(0.02)\nr:close()\n";
+  Interpreter lua;
+  std::string msg;
+  try {
+    lua.run_file("resume.lua");
+  } catch (const ScriptError& e) {
+    msg = e.what();
+  }
+  ASSERT_EQ(msg, "");
+  EXPECT_FALSE(fs::exists("rel/rel")) << "the frames' paths were joined to the folder twice";
+  EXPECT_EQ(probe("rel/frames.mp4", "stream=nb_read_frames"), "4");
+  EXPECT_EQ(probe("rel/frames_resumed_0.010000.mp4", "stream=nb_read_frames"), "3");
+  EXPECT_TRUE(fs::exists("rel/frames/frame_00003.png"));
+  EXPECT_TRUE(fs::exists("rel/frames/frame_00006.png"));
+}
+
 // the lines of a text file (0 while it does not exist)
 int lines_of(const fs::path& p) {
   std::ifstream f(p);
