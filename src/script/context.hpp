@@ -41,6 +41,7 @@ struct Context {
   // the last run that diverged: its time and message (a sweep point's status, lua_sweep.hpp)
   std::optional<std::pair<double, std::string>> divergence;
   bool args_warned = false;  // the unread --set keys were reported at a run's start
+  bool t_end_warned = false;  // --t-end was said not to shorten scene:start's simulations
   // the state Lua laws call into (emptied when the interpreter closes it)
   std::shared_ptr<LawHost> law_host = std::make_shared<LawHost>();
 };

@@ -458,6 +458,14 @@ int l_scene_start(lua_State* L) {
   bool progress = true;
   const RunSettings rs = read_run_settings(L, 2, *sc, ctx, false, &progress);
   check_unread_args(L, *ctx, "start");
+  // a live simulation runs to the times its script names: said once, before anything runs
+  if (ctx->overrides.t_end && !ctx->t_end_warned) {
+    ctx->t_end_warned = true;
+    std::fprintf(stderr,
+                 "beltsim: warning: --t-end %s s shortens scene:run only; %s's simulation (scene:start) runs to the "
+                 "times its sim:run_to and sim:advance name\n",
+                 rounded_text(*ctx->overrides.t_end).c_str(), ctx->script.empty() ? "the console" : ctx->script.c_str());
+  }
   std::unique_ptr<Simulation> sim;
   std::string error;
   try {

@@ -358,6 +358,25 @@ TEST(LiveApi, BadCallsNameFileLineAndWhat) {
   }
 }
 
+// --t-end shortens scene:run; a live simulation runs to the times its script names, and says so
+// once when --t-end was given (the script runs as it would without it)
+TEST(LiveApi, TEndSaysItDoesNotShortenALiveSimulation) {
+  Interpreter lua;
+  Overrides o;
+  o.t_end = 0.001;
+  lua.set_overrides(o);
+  testing::internal::CaptureStderr();
+  const std::string msg = test::run_script(lua, temp_dir() / "live.lua",
+                                           scene() + "sim:run_to(0.004)\nassert(sim.t == 0.004, sim.t)\nsim:close()\n" +
+                                               "local again = s:start{ out = '" + (temp_dir() / "again").string() +
+                                               "', progress = false }\nagain:close()\n");
+  const std::string err = testing::internal::GetCapturedStderr();
+  EXPECT_EQ(msg, "");
+  const std::string warning = "--t-end 0.001 s shortens scene:run only; ";
+  ASSERT_NE(err.find(warning), std::string::npos) << err;
+  EXPECT_EQ(err.find(warning, err.find(warning) + 1), std::string::npos) << "said twice: " << err;
+}
+
 }  // namespace live_api_test
 }  // namespace beltsim::script
 
