@@ -108,7 +108,7 @@ void collect_obstacles(WpLayout& l) {
   for (size_t i = 0; i < p.size(); ++i) {
     const double x = p[i].px, y = p[i].py;
     l.marks.push_back({x - kPointPx, y - kPointPx, x + kPointPx, y + kPointPx});
-    if (i + 1 < p.size() && p[i + 1].series == p[i].series && p[i].y < l.y_errors && p[i + 1].y < l.y_errors) {
+    if (i + 1 < p.size() && p[i + 1].series == p[i].series && p[i].finished && p[i + 1].finished) {
       const double x1 = p[i + 1].px, y1 = p[i + 1].py;
       const int n = static_cast<int>(std::hypot(x1 - x, y1 - y) / 3);
       for (int s = 1; s < n; ++s) {
