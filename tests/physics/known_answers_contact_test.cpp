@@ -235,16 +235,16 @@ TEST(KnownAnswers, CentrifugalTensionUnloadsThePulleys) {
 // Where the belt sticks to a pulley it moves with the rim at the radius R - p it rides at (p the
 // contact penetration under N = 2·T·sin(α/2), α = pitch/R) and carries the strain T/EA of the
 // tension T there; the elements pass both pulleys at the same rate, so at the middle of each wrap
-//   ω_j·(R - p(T_j)) - v_T,j = c·(1 + T_j/EA)      (c: the belt's speed at zero strain)
+//   |ω_j|·(R - p(T_j)) - v_T,j = c·(1 + T_j/EA)      (c: the belt's speed at zero strain)
 // with v_T,j the element's slip there (travel clockwise: v_T is along the anticlockwise tangent;
 // 0 where the belt sticks). Hence
 //   ω2/ω1 = [(R - p(T_1))/(R - p(T_2))]·(1 + T_2/EA + v_T,2/c)/(1 + T_1/EA + v_T,1/c)
 // with T_1, T_2 the tensions at the middle of the driver's and the driven pulley's wrap. These are
-// not the spans' tensions: running onto a pulley, each element is slowed to the rim's speed by
-// friction over its first pitch, which raises the tension of the stuck belt over the span's, by
-// about EA·p/R (measured with Threlfall's law: 172 N on the driver, 120 N on the driven pulley;
-// EA·p/R is 183 and 106 N). With the spans' tensions the formula gives 0.0504 rad/s, 13 % under
-// the loss.
+// not the spans' tensions: each element runs onto a pulley faster than the rim under it and is
+// slowed to the rim's speed by friction over its first pitch or two, which raises the tension of
+// the stuck belt over the span's (measured with Threlfall's law: by 172 N on the driver, 120 N on
+// the driven pulley; 100 to 250 N with the other laws). With the spans' tensions the formula gives
+// 0.0504 rad/s, 13 % under the loss.
 // Driver held at 20 rad/s, driven loaded by 1.5 N·m·s/rad (30 N·m), both starting at the belt's
 // speed (2 m/s); the loss is the driven pulley's mean speed from its angle over 0.3-0.5 s, when
 // the start-up oscillation has decayed, and the tensions and the slip are averaged over samples
@@ -252,13 +252,14 @@ TEST(KnownAnswers, CentrifugalTensionUnloadsThePulleys) {
 // mean of samples 5 ms apart takes its second harmonic at 1.7 Hz, ±0.01 rad/s over a 0.2 s
 // window.) Measured (rtol 1e-6; rtol 1e-7 changes the losses by less than 0.1 %): Threlfall's
 // 0.05815 rad/s against 0.05770 (+0.8 %), Stribeck's (μ_s = 1.5·μ, v_s = 0.01 m/s) 0.06265
-// against 0.06338 (-1.2 %), LuGre's (σ0 = 1e5 1/m) 0.05929 against 0.05862 (+1.1 %): bound 3 %.
+// against 0.06338 (-1.2 %), LuGre's (σ0 = 1e5 1/m) 0.05929 against 0.05862 (+1.1 %): bound 3 %,
+// twice the largest deviation.
 struct Creep {
-  double loss = 0;              // ω1 - |ω2| [rad/s]
-  double expected = 0;          // the formula above [rad/s]
-  double stuck_only = 0;        // the same with v_T,j = 0 [rad/s]
-  double span_tensions = 0;     // the same with the spans' tensions and v_T,j = 0 [rad/s]
-  double rise[2] = {0, 0};      // T_j less the tension of the span running onto pulley j [N]
+  double loss = 0;           // ω1 - |ω2| [rad/s]
+  double expected = 0;       // the formula above [rad/s]
+  double stuck_only = 0;     // the same with v_T,j = 0 [rad/s]
+  double span_tensions = 0;  // the same with the spans' tensions and v_T,j = 0 [rad/s]
+  double rise[2] = {0, 0};   // T_j less the tension of the span running onto pulley j [N]
 };
 Creep creep_run(const Friction& f) {
   SceneDef d = presets::paper_dry();
@@ -314,11 +315,12 @@ Creep creep_run(const Friction& f) {
   c.stuck_only = loss(T, none);
   c.span_tensions = loss(span, none);
   EXPECT_NEAR(span[0] - span[1], 300.0, 30.0) << "the load is 30 N·m on r = 0.1 m";
-  std::printf("%s: creep loss %.5f rad/s, expected %.5f (%+.1f %%; without the slip %.5f, with the spans' tensions "
-              "%.5f); tension at the middle of the wraps %.1f and %.1f N, %+.1f and %+.1f N over the spans'; slip there "
-              "%.2e and %.2e m/s\n",
-              friction_law_name(f.law), c.loss, c.expected, 100 * (c.loss / c.expected - 1), c.stuck_only,
-              c.span_tensions, T[0], T[1], c.rise[0], c.rise[1], slip[0], slip[1]);
+  std::printf(
+      "%s: creep loss %.5f rad/s, expected %.5f (%+.1f %%; without the slip %.5f, with the spans' tensions "
+      "%.5f); tension at the middle of the wraps %.1f and %.1f N, %+.1f and %+.1f N over the spans'; slip there "
+      "%.2e and %.2e m/s\n",
+      friction_law_name(f.law), c.loss, c.expected, 100 * (c.loss / c.expected - 1), c.stuck_only, c.span_tensions,
+      T[0], T[1], c.rise[0], c.rise[1], slip[0], slip[1]);
   return c;
 }
 
@@ -342,7 +344,7 @@ TEST(KnownAnswers, CreepSpeedLossIsTheSameWithStribecksLaw) {
 // -2.0e-4 m/s on the driver and the driven pulley: without that slip the formula gives 0.04892,
 // 14 % under the loss), and they slow the elements running onto a pulley less abruptly, so the
 // tension of the stuck belt rises less over the span's (48 and 53 N against 170 and 112 N with
-// σ0 = 1e5). The two effects about cancel: the loss is 0.05682 rad/s with σ0 = 1e4 and 0.05929
+// σ0 = 1e5). The two effects partly cancel: the loss is 0.05682 rad/s with σ0 = 1e4 and 0.05929
 // with σ0 = 1e5, 1.3 % and 1.1 % over the formula (0.05609 and 0.05862). Bounds: 3 % against the
 // formula; the slip's share of it above 7 % with soft bristles, below 2 % with stiff ones; the
 // rise with soft bristles under half that with stiff ones.
