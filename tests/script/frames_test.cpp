@@ -176,7 +176,7 @@ int lines_of(const fs::path& p) {
 // Ctrl-C (the stop flag main() sets from SIGINT) ends the run early; the video is closed
 // properly: its trailer (the fragmented MP4's 'mfra' index) is written and it plays.
 TEST(Frames, CtrlCLeavesAFinishedVideo) {
-  // the paper's dry drive has failed implicit steps from 0.036 s (docs/outputs.md)
+  // the drive may shorten and retry implicit steps as it breaks loose (failed_step) before the Ctrl-C
   beltsim::test::expect_warnings({WarningKind::failed_step});
   const fs::path p = temp_dir() / "stopped.lua";
   std::ofstream(p) << kScene
