@@ -43,7 +43,7 @@ int l_show(lua_State* L) {
     if (auto f = opt_string(L, 2, "file", "sim:show")) file = *f;
   }
   if (file.empty()) file = "show_" + time_tag(s.now()) + ".png";
-  if (std::filesystem::path(file).is_relative()) file = (std::filesystem::path(s.out_dir()) / file).string();
+  file = output_path(s.settings(), file);
   if (const std::string r = output_refusal(*box.ctx, "sim:show", file, true); !r.empty()) fail(L, r);
   guarded(L, "sim:show", [&] { render::render_snapshot(s.scene(), fs, s.now(), s.state().data(), s.drive(), file, &s.observation());
   });
@@ -97,7 +97,7 @@ int l_plot(lua_State* L) {
     }
   }
   if (file.empty()) file = "plot_" + time_tag(s.now()) + ".png";
-  if (std::filesystem::path(file).is_relative()) file = (std::filesystem::path(s.out_dir()) / file).string();
+  file = output_path(s.settings(), file);
   if (const std::string r = output_refusal(*box.ctx, "sim:plot", file, true); !r.empty()) fail(L, r);
   guarded(L, "sim:plot", [&] { plot::plot_csv(s.csv_path(), columns, from, file); });
   picture(L, box, file);
@@ -110,8 +110,7 @@ int l_save(lua_State* L) {
   Simulation& s = live(L, "save", {{"path", kString}});
   if (lua_type(L, 2) != LUA_TSTRING) fail(L, std::string("sim:save: a file name expected, got ") + type_name(L, 2));
   std::string path = lua_tostring(L, 2);
-  if (std::filesystem::path(path).is_relative() && std::filesystem::path(path).parent_path().empty())
-    path = (std::filesystem::path(s.out_dir()) / path).string();
+  if (std::filesystem::path(path).parent_path().empty()) path = output_path(s.settings(), path);  // a bare name
   if (const std::string r = output_refusal(*static_cast<SimBox*>(lua_touserdata(L, 1))->ctx, "sim:save", path, true);
       !r.empty())
     fail(L, r);

@@ -259,11 +259,10 @@ std::string output_refusal(const Context& c, const std::string& what, const std:
 std::string run_paths_refusal(const Context& c, const std::string& what, const RunSettings& rs) {
   std::string r = output_refusal(c, what + ".out", rs.out_dir, true);
   if (r.empty() && rs.frames) {
-    // relative frame paths are taken inside the output folder (Simulation)
-    const auto inside = [&](const std::string& f) { return (fs::path(rs.out_dir) / f).string(); };
-    if (!rs.frames->png_dir.empty()) r = output_refusal(c, what + ".frames.png", inside(rs.frames->png_dir), true);
+    if (!rs.frames->png_dir.empty())
+      r = output_refusal(c, what + ".frames.png", output_path(rs, rs.frames->png_dir), true);
     if (r.empty() && !rs.frames->video_path.empty())
-      r = output_refusal(c, what + ".frames.video", inside(rs.frames->video_path), true);
+      r = output_refusal(c, what + ".frames.video", output_path(rs, rs.frames->video_path), true);
   }
   return r;
 }

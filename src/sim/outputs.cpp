@@ -2,7 +2,6 @@
 
 #include <cmath>
 #include <exception>
-#include <filesystem>
 #include <sstream>
 
 #include "io/csv_writer.hpp"
@@ -134,7 +133,7 @@ void Outputs::open(bool append) {
   if (rs_.frames && rs_.frames->draws()) {
     FrameSettings f = *rs_.frames;
     for (std::string* p : {&f.png_dir, &f.video_path})
-      if (!p->empty() && std::filesystem::path(*p).is_relative()) *p = (std::filesystem::path(rs_.out_dir) / *p).string();
+      if (!p->empty()) *p = output_path(rs_, *p);
     sink_ = rs_.frame_factory(scene_, f);
   }
   if (rs_.keep_states) states_ = std::make_unique<OutputDir>(dir, "states");
@@ -215,7 +214,7 @@ void Outputs::keep_state(const std::string& name, const std::string& checkpoint)
 
 bool Outputs::has_snapshots() const { return rs_.snapshot_every > 0 || !rs_.snapshot_times.empty(); }
 
-std::string Outputs::path(const char* name) const { return (std::filesystem::path(rs_.out_dir) / name).string(); }
+std::string Outputs::path(const char* name) const { return output_path(rs_, name); }
 
 long Outputs::bytes(const char* name) const { return std::max(0L, dir_->size(name)); }
 

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
 #include <sstream>
 #include <stdexcept>
 
@@ -17,6 +18,10 @@ std::string event_time_problem(double t, double t_end) {
   if (!(t > 0 && std::isfinite(t))) return "must be > 0 s and finite (got " + rounded_text(t) + " s)";
   if (!(t < t_end)) return "must be before t_end = " + rounded_text(t_end) + " s (got " + rounded_text(t) + " s)";
   return "";
+}
+
+std::string output_path(const RunSettings& settings, const std::string& path) {
+  return (std::filesystem::path(settings.out_dir) / path).string();
 }
 
 std::optional<FrameSettings> frame_times(const RunSettings& rs) {

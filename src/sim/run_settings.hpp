@@ -65,6 +65,10 @@ struct RunSettings {
 // default ones when states are kept without frames; none when neither is asked for.
 std::optional<FrameSettings> frame_times(const RunSettings& settings);
 
+// a path of the run's outputs as seen from the folder beltsim runs in: a relative one lies inside
+// out_dir (frames.png, frames.video, sim:show's and sim:plot's files), an absolute one stays
+std::string output_path(const RunSettings& settings, const std::string& path);
+
 // Why t cannot be the time of a timed event in a run that ends at t_end (infinity: a live
 // simulation, which has no end): "must be > 0 s and finite (got -1 s)", "must be before t_end =
 // 0.05 s (got 0.1 s)"; "" when it can.
