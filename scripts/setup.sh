@@ -85,24 +85,36 @@ case "$mode" in
       fi
       cmake --build "$san_dir" -j "$jobs" --target "${targets[@]}"
       stage_done "built $san_dir/"
-      if [ "${BELTSIM_SANITIZE:-1}" != 0 ]; then
-        ctest --test-dir "$san_dir" -L quick --output-on-failure -j "$jobs"
-        stage_done "tests in $san_dir/ passed"
-      fi
     fi
     # fuzzing: the scene API fed random scripts (tests/fuzz/fuzz_script.cpp) by libFuzzer,
     # seeded with scripts/*.lua and the kept findings, for BELTSIM_FUZZ_SECONDS (default 60; 0
-    # skips). A crash, sanitizer report, uncaught exception or hang (-timeout) fails the run: its
-    # input is printed and kept in build-san/findings/ (fix it, then add it to
+    # skips). It runs on one core beside the sanitizer tests, which cannot keep both cores busy
+    # to the end. A crash, sanitizer report, uncaught exception or hang (-timeout) fails the run:
+    # its input is printed and kept in build-san/findings/ (fix it, then add it to
     # tests/fuzz/regressions/).
+    fuzz_pid=""
     if [ "$fuzz_seconds" != 0 ]; then
       mkdir -p "$san_dir/corpus" "$san_dir/seeds" "$san_dir/findings"
       rm -f "$san_dir"/findings/*
       cp scripts/*.lua tests/fuzz/regressions/* "$san_dir/seeds/" 2>/dev/null || true
       # -close_fd_mask=1: the scripts' print() output is not wanted; the reports go to stderr
-      if ! "$san_dir/tests/beltsim_fuzz" -max_total_time="$fuzz_seconds" -timeout=30 -rss_limit_mb=4096 \
+      "$san_dir/tests/beltsim_fuzz" -max_total_time="$fuzz_seconds" -timeout=30 -rss_limit_mb=4096 \
           -dict=tests/fuzz/lua.dict -close_fd_mask=1 -artifact_prefix="$san_dir/findings/" \
-          "$san_dir/corpus" "$san_dir/seeds" 2>"$san_dir/fuzz.log"; then
+          "$san_dir/corpus" "$san_dir/seeds" 2>"$san_dir/fuzz.log" &
+      fuzz_pid=$!
+      # the fuzzer does not outlive this script (a failed test, Ctrl-C)
+      trap 'kill "$fuzz_pid" 2>/dev/null || true' EXIT
+    fi
+    tests_ok=1
+    if [ "${BELTSIM_SANITIZE:-1}" != 0 ]; then
+      if ctest --test-dir "$san_dir" -L quick --output-on-failure -j "$jobs"; then
+        stage_done "tests in $san_dir/ passed"
+      else
+        tests_ok=0
+      fi
+    fi
+    if [ -n "$fuzz_pid" ]; then
+      if ! wait "$fuzz_pid"; then
         tail -n 60 "$san_dir/fuzz.log" >&2
         for f in "$san_dir"/findings/*; do
           [ -f "$f" ] || continue
@@ -113,8 +125,13 @@ case "$mode" in
         echo "setup: the fuzzer found a crash, a sanitizer report or a hang (the log: $san_dir/fuzz.log)" >&2
         exit 1
       fi
+      trap - EXIT
       grep -E '^Done|^#[0-9]+.*DONE' "$san_dir/fuzz.log" | tail -n 1
-      stage_done "fuzzing found nothing"
+      stage_done "fuzzing (${fuzz_seconds} s from the tests' start) found nothing; waited for it"
+    fi
+    if [ "$tests_ok" = 0 ]; then
+      echo "setup: tests failed in $san_dir/ (above)" >&2
+      exit 1
     fi
     ;;
 esac
