@@ -78,6 +78,11 @@ if [ "$what" = all ]; then
   grep '^> ' docs/tutorial.md | cut -c3- |
     "$b" console docs/examples/tutorial/drive.lua --set live=true --out "$tmp/tutorial_live" >/dev/null
   cp "$tmp/tutorial_live/show_0.100000.png" media/tutorial_console_slip.png
+  # docs/console.md: its session's sim:show and sim:plot
+  grep '^> ' docs/console.md | cut -c3- |
+    BELTSIM_TERM_IMAGES=off "$b" console scripts/live_dry.lua --out "$tmp/live_dry" >/dev/null
+  cp "$tmp/live_dry/show_0.750000.png" media/console_show.png
+  cp "$tmp/live_dry/plot_0.750000.png" media/console_plot.png
   cp "$tmp/paper_dry/frames/frame_00300.png" media/dry_tension_1.0s.png
   cp "$tmp/paper_wet/frames/frame_00180.png" media/wet_friction_0.6s.png
   cp "$tmp/paper_wet/frames/frame_00090.png" media/wet_friction_0.3s.png
