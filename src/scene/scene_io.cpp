@@ -409,10 +409,9 @@ void write_scene(CheckpointWriter& w, const Scene& sc) {
   }
 }
 
-Scene read_scene(CheckpointReader& r) {
-  const int first = r.line_number() + 1;
-  Scene sc;
-  Model& m = sc.model;
+namespace {
+
+void read_pulleys(CheckpointReader& r, Model& m) {
   r.open("pulleys");
   const size_t np = r.group_count(5);
   r.close();
@@ -424,51 +423,61 @@ Scene read_scene(CheckpointReader& r) {
     p.inertia = r.line_num("pulley.inertia");
     p.wrap = r.line_choice("pulley.wrap", {"inside", "back"}) == 1 ? WrapSide::back : WrapSide::inside;
   }
-  if (r.next_is("arms")) {
-    r.open("arms");
-    const size_t na = r.group_count(11, np);
-    r.close();
-    for (size_t k = 0; k < na; ++k) {
-      Arm& a = m.arms.emplace_back();
-      a.pulley = static_cast<int>(r.line_int("arm.pulley", 0, static_cast<long>(np) - 1));
-      if (m.pulleys[a.pulley].arm >= 0) r.fail("pulley " + std::to_string(a.pulley) + " has an arm already");
-      m.pulleys[a.pulley].arm = static_cast<int>(k);
-      a.pivot = read_vec2(r, "arm.pivot");
-      a.length = r.line_num("arm.length");
-      a.inertia = r.line_num("arm.inertia");
-      a.stiffness = r.line_num("arm.stiffness");
-      a.free_angle = r.line_num("arm.free_angle");
-      a.damping = r.line_num("arm.damping");
-      a.friction_torque = r.line_num("arm.friction_torque");
-      a.friction_speed = r.line_num("arm.friction_speed");
-      a.asymmetric = r.line_num("arm.asymmetric");
-      a.press = static_cast<int>(r.line_int("arm.press", -1, 1));
-      checked(r, [&] { require_positive("arm.length", a.length, "m"); });
-    }
+}
+
+void read_arms(CheckpointReader& r, Model& m) {
+  if (!r.next_is("arms")) return;
+  const size_t np = m.pulleys.size();
+  r.open("arms");
+  const size_t na = r.group_count(11, np);
+  r.close();
+  for (size_t k = 0; k < na; ++k) {
+    Arm& a = m.arms.emplace_back();
+    a.pulley = static_cast<int>(r.line_int("arm.pulley", 0, static_cast<long>(np) - 1));
+    if (m.pulleys[a.pulley].arm >= 0) r.fail("pulley " + std::to_string(a.pulley) + " has an arm already");
+    m.pulleys[a.pulley].arm = static_cast<int>(k);
+    a.pivot = read_vec2(r, "arm.pivot");
+    a.length = r.line_num("arm.length");
+    a.inertia = r.line_num("arm.inertia");
+    a.stiffness = r.line_num("arm.stiffness");
+    a.free_angle = r.line_num("arm.free_angle");
+    a.damping = r.line_num("arm.damping");
+    a.friction_torque = r.line_num("arm.friction_torque");
+    a.friction_speed = r.line_num("arm.friction_speed");
+    a.asymmetric = r.line_num("arm.asymmetric");
+    a.press = static_cast<int>(r.line_int("arm.press", -1, 1));
+    checked(r, [&] { require_positive("arm.length", a.length, "m"); });
   }
-  if (r.next_is("couplings")) {
-    r.open("couplings");
-    const size_t nc = r.group_count(9, np);
-    r.close();
-    int coord = 0;
-    for (size_t k = 0; k < nc; ++k) {
-      Coupling& c = m.couplings.emplace_back();
-      c.pulley = static_cast<int>(r.line_int("coupling.pulley", 0, static_cast<long>(np) - 1));
-      if (m.pulleys[c.pulley].coupling >= 0) r.fail("pulley " + std::to_string(c.pulley) + " has a coupling already");
-      m.pulleys[c.pulley].coupling = static_cast<int>(k);
-      c.inertia = r.line_num("coupling.inertia");
-      c.stiffness = r.line_num("coupling.stiffness");
-      c.damping = r.line_num("coupling.damping");
-      c.one_way = r.line_int("coupling.one_way", 0, 1) == 1;
-      c.sense = static_cast<int>(r.line_int("coupling.sense", -1, 1));
-      if (c.sense == 0) r.fail("coupling.sense must be -1 or 1");
-      c.hub_inertia = r.line_num("coupling.hub_inertia");
-      c.lock_damping = r.line_num("coupling.lock_damping");
-      c.drag_torque = r.line_num("coupling.drag_torque");
-      c.coord = coord;
-      coord += c.one_way ? 2 : 1;
-    }
+}
+
+void read_couplings(CheckpointReader& r, Model& m) {
+  if (!r.next_is("couplings")) return;
+  const size_t np = m.pulleys.size();
+  r.open("couplings");
+  const size_t nc = r.group_count(9, np);
+  r.close();
+  int coord = 0;
+  for (size_t k = 0; k < nc; ++k) {
+    Coupling& c = m.couplings.emplace_back();
+    c.pulley = static_cast<int>(r.line_int("coupling.pulley", 0, static_cast<long>(np) - 1));
+    if (m.pulleys[c.pulley].coupling >= 0) r.fail("pulley " + std::to_string(c.pulley) + " has a coupling already");
+    m.pulleys[c.pulley].coupling = static_cast<int>(k);
+    c.inertia = r.line_num("coupling.inertia");
+    c.stiffness = r.line_num("coupling.stiffness");
+    c.damping = r.line_num("coupling.damping");
+    c.one_way = r.line_int("coupling.one_way", 0, 1) == 1;
+    c.sense = static_cast<int>(r.line_int("coupling.sense", -1, 1));
+    if (c.sense == 0) r.fail("coupling.sense must be -1 or 1");
+    c.hub_inertia = r.line_num("coupling.hub_inertia");
+    c.lock_damping = r.line_num("coupling.lock_damping");
+    c.drag_torque = r.line_num("coupling.drag_torque");
+    c.coord = coord;
+    coord += c.one_way ? 2 : 1;
   }
+}
+
+// the belt, the contact, the friction laws (the scene's and the segments') and the rest of the model
+void read_belt(CheckpointReader& r, Model& m) {
   Belt& b = m.belt;
   b.n = static_cast<int>(r.line_int("belt.elements", 0, INT_MAX / 8));
   b.pitch = r.line_num("belt.pitch");
@@ -500,11 +509,12 @@ Scene read_scene(CheckpointReader& r) {
   m.law_of.assign(law_of.begin(), law_of.end());
   m.gravity = r.line_num("gravity");
   m.track_energy = r.line_bool("energy");
-  sc.drive = read_drive(r, m);
-  const size_t n_state = static_cast<size_t>(m.n_state());
-  const std::vector<double> y0 = r.line_doubles("y0", n_state);
-  if (y0.size() != n_state) r.fail(std::to_string(y0.size()) + " values for a state of " + std::to_string(n_state));
-  sc.y0 = Eigen::Map<const Eigen::VectorXd>(y0.data(), static_cast<Eigen::Index>(y0.size()));
+}
+
+// the route round the pulleys, the penetrations and the stiffness reading
+void read_placement(CheckpointReader& r, Scene& sc) {
+  const Model& m = sc.model;
+  const size_t np = m.pulleys.size();
   sc.route = read_route(r, np);
   sc.route_names = r.line_strs("route.names", np);
   sc.route_pulleys = r.line_ints("route.pulleys", 0, static_cast<long>(np) - 1, np);
@@ -516,25 +526,34 @@ Scene read_scene(CheckpointReader& r) {
   if (sc.penetration.size() != np) r.fail("one value per pulley expected");
   sc.reading = r.line_choice("reading", {"rigidity", "per_sde"}) == 1 ? StiffnessReading::per_sde
                                                                        : StiffnessReading::rigidity;
+}
+
+void read_inputs(CheckpointReader& r, Scene& sc) {
   r.open("inputs");
   const size_t n_inputs = r.group_count(4);
   r.close();
   for (size_t i = 0; i < n_inputs; ++i) {
     const std::string name = r.line_str("input.name");
-    const Parameter* par = input_parameter(name, m);
+    const Parameter* par = input_parameter(name, sc.model);
     if (!par) r.fail("'" + name + "' is not a scene parameter");
     const double value = r.line_num("input.value");
     const std::string text = r.line_str("input.text");
     sc.inputs.push_back(scene_input(*par, name, value, text, r.line_bool("input.given")));
   }
+}
+
+// the static solve's figures, the span SDEs and each element's initial site
+void read_sites(CheckpointReader& r, Scene& sc) {
+  const size_t np = sc.model.pulleys.size();
+  const int n = sc.model.belt.n;
   sc.static_tension = r.line_num("static_tension");
   sc.static_residual = r.line_num("static_residual");
   sc.static_retried = r.line_bool("static_retried");
-  sc.span_sde = r.line_ints("span_sde", 0, b.n - 1L, np);
+  sc.span_sde = r.line_ints("span_sde", 0, n - 1L, np);
   if (sc.span_sde.size() != np) r.fail("one element per span expected");
   r.open("sites");
-  const size_t n_sites = r.group_count(7, static_cast<size_t>(b.n));
-  if (n_sites != static_cast<size_t>(b.n)) r.fail(std::to_string(n_sites) + " for " + std::to_string(b.n) + " elements");
+  const size_t n_sites = r.group_count(7, static_cast<size_t>(n));
+  if (n_sites != static_cast<size_t>(n)) r.fail(std::to_string(n_sites) + " for " + std::to_string(n) + " elements");
   r.close();
   for (size_t i = 0; i < n_sites; ++i) {
     ElementSite& e = sc.sites.emplace_back();
@@ -546,7 +565,12 @@ Scene read_scene(CheckpointReader& r) {
     e.meets = r.line_map("site.meets", np);
     e.leaves = r.line_map("site.leaves", np);
   }
-  // the scene as a script's scene is checked, and what the build derives from it
+}
+
+// the scene read is checked as a script's scene is, with what the build derives from it; an
+// error names the scene's lines, from `first`
+void check_read_scene(CheckpointReader& r, const Scene& sc, int first) {
+  const Belt& b = sc.model.belt;
   std::string error;
   try {
     require_positive("belt.pitch", b.pitch, "m");
@@ -560,6 +584,27 @@ Scene read_scene(CheckpointReader& r) {
     error = e.what();
   }
   if (!error.empty()) r.fail_lines(first, "the scene: " + error);
+}
+
+}  // namespace
+
+Scene read_scene(CheckpointReader& r) {
+  const int first = r.line_number() + 1;
+  Scene sc;
+  Model& m = sc.model;
+  read_pulleys(r, m);
+  read_arms(r, m);
+  read_couplings(r, m);
+  read_belt(r, m);
+  sc.drive = read_drive(r, m);
+  const size_t n_state = static_cast<size_t>(m.n_state());
+  const std::vector<double> y0 = r.line_doubles("y0", n_state);
+  if (y0.size() != n_state) r.fail(std::to_string(y0.size()) + " values for a state of " + std::to_string(n_state));
+  sc.y0 = Eigen::Map<const Eigen::VectorXd>(y0.data(), static_cast<Eigen::Index>(y0.size()));
+  read_placement(r, sc);
+  read_inputs(r, sc);
+  read_sites(r, sc);
+  check_read_scene(r, sc, first);
   return sc;
 }
 
