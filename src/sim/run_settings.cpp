@@ -79,19 +79,34 @@ void check(const Scene& sc, const RunSettings& rs, bool batch) {
   }
 }
 
-std::vector<std::string> drop_events_after_end(RunSettings& rs) {
+std::vector<std::string> drop_after_end(RunSettings& rs, const std::string& t_end_from) {
   std::vector<std::string> notes;
+  const std::string end = "t_end = " + rounded_text(rs.t_end) + " s" + t_end_from;
   std::vector<MuEvent> kept;
   for (const MuEvent& ev : rs.mu_events) {
-    // an event that is wrong by itself is kept, for check() to refuse
     if (event_time_problem(ev.t, rs.t_end).empty() || !event_time_problem(ev.t).empty()) {
       kept.push_back(ev);
       continue;
     }
-    notes.push_back("events: the event at " + rounded_text(ev.t) + " s (" + ev.what +
-                    ") is at or after t_end = " + rounded_text(rs.t_end) + " s: skipped");
+    notes.push_back("events: the event at " + rounded_text(ev.t) + " s (" + ev.what + ") is at or after " + end +
+                    ": skipped");
   }
   rs.mu_events = std::move(kept);
+  std::vector<double> times;
+  for (double t : rs.snapshot_times) {
+    if (t > rs.t_end && std::isfinite(t)) {
+      notes.push_back("snapshots: the snapshot at " + rounded_text(t) + " s is after " + end + ": skipped");
+      continue;
+    }
+    times.push_back(t);
+  }
+  rs.snapshot_times = std::move(times);
+  if (rs.frames && rs.frames->t_start > rs.t_end && std::isfinite(rs.frames->t_start)) {
+    notes.push_back("frames: they start at " + rounded_text(rs.frames->t_start) + " s, after " + end + ": none drawn" +
+                    (rs.keep_states ? " and no states kept" : ""));
+    rs.frames.reset();
+    rs.keep_states = false;
+  }
   return notes;
 }
 

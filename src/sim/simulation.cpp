@@ -499,7 +499,7 @@ bool Simulation::cancel(int id) {
 RunResult run(const Scene& sc, const RunSettings& settings, const std::atomic<bool>* stop,
               const RunProgress& progress) {
   RunSettings rs = settings;
-  std::vector<std::string> skipped = drop_events_after_end(rs);
+  std::vector<std::string> skipped = drop_after_end(rs);
   check(sc, rs, true);
   check_volume(sc, rs, 0.0, rs.t_end);
   Simulation sim(sc, rs);

@@ -46,7 +46,7 @@ struct RunResult {
   std::vector<std::vector<double>> samples;  // with keep_samples: the CSV rows
   long frames = 0;                    // frames rendered
   std::vector<std::string> notes;     // Simulation::notes()
-  std::vector<std::string> skipped;   // events after t_end (drop_events_after_end)
+  std::vector<std::string> skipped;   // events after t_end (drop_after_end)
   std::string warning_summary;        // Simulation::warning_summary()
 };
 
@@ -226,7 +226,7 @@ class Simulation {
 std::string cannot_save(const std::string& integrator);
 
 // A batch run: start, run_to(t_end), close. Throws as Simulation does; first drops the events
-// after t_end (drop_events_after_end) and checks the settings (check).
+// after t_end (drop_after_end) and checks the settings (check).
 RunResult run(const Scene& scene, const RunSettings& settings, const std::atomic<bool>* stop = nullptr,
               const RunProgress& progress = {});
 

@@ -102,6 +102,17 @@ class Errors(unittest.TestCase):
             f.write(text)
         return path
 
+    def test_t_end_leaves_out_what_comes_after_it(self):
+        # a quick --t-end check of a script whose snapshots and frames come later runs, saying so
+        path = self.script(two_pulley(elements=30) +
+                           'drive:run { t_end = 0.5, progress = false, out = "out", snapshots = { times = {0.001, 0.3} },\n'
+                           '            frames = { t_start = 0.2, png = true } }\n')
+        code, out, err = run(["run", path, "--t-end", "0.003"], cwd=self.dir)
+        self.assertEqual(code, 0, err)
+        self.assertIn("beltsim: snapshots: the snapshot at 0.3 s is after t_end = 0.003 s (from --t-end): skipped", err)
+        self.assertIn("beltsim: frames: they start at 0.2 s, after t_end = 0.003 s (from --t-end): none drawn", err)
+        self.assertFalse(os.path.exists(os.path.join(self.dir, "out", "frames")), err)
+
     def test_an_error_in_a_callback_names_its_line_with_a_traceback(self):
         path = self.script(SCENE + "local function check(s)\n  error('too fast')\nend\n"
                            "sim:every(0.001, function(s) check(s) end)\nsim:run_to(0.003)\n")

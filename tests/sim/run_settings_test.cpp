@@ -61,18 +61,42 @@ TEST(RunSettings, EveryCallerChecksEventTimesAlike) {
   EXPECT_EQ(live, "events: an event's time must be > 0 s and finite (got 0 s)");
   const std::string batch = refusal([] { run(dry_scene(), with_event(-1, "batch")); });
   EXPECT_EQ(batch, "events: an event's time must be > 0 s and finite (got -1 s)");
-  // at t_end: skipped by a batch run (drop_events_after_end), refused by check() for one
+  // at t_end: skipped by a batch run (drop_after_end), refused by check() for one
   RunSettings at_end = with_event(0.004, "at_end");
   EXPECT_EQ(refusal([&] { check(dry_scene(), at_end, true); }),
             "events: an event's time must be before t_end = 0.004 s (got 0.004 s)");
   EXPECT_EQ(refusal([&] { check(dry_scene(), at_end, false); }), "");
-  const std::vector<std::string> notes = drop_events_after_end(at_end);
+  const std::vector<std::string> notes = drop_after_end(at_end);
   ASSERT_EQ(notes.size(), 1u);
   EXPECT_TRUE(at_end.mu_events.empty());
   // one wrong by itself is kept for check() to refuse
   RunSettings bad = with_event(NAN, "nan");
-  EXPECT_TRUE(drop_events_after_end(bad).empty());
+  EXPECT_TRUE(drop_after_end(bad).empty());
   EXPECT_EQ(bad.mu_events.size(), 1u);
+}
+
+// what a shortened run cannot reach is left out with a note each, and the rest passes check()
+TEST(RunSettings, ARunLeavesOutWhatComesAfterItsEnd) {
+  RunSettings rs = with_event(0.01, "after_end");
+  rs.mu_events.back().what = "wet";
+  rs.snapshot_times = {0.002, 0.01};
+  rs.frames = FrameSettings{};
+  rs.frames->t_start = 0.01;
+  rs.keep_states = true;
+  EXPECT_NE(refusal([&] { check(dry_scene(), rs, true); }), "");
+  const std::vector<std::string> notes = drop_after_end(rs, " (from --t-end)");
+  ASSERT_EQ(notes.size(), 3u);
+  EXPECT_EQ(notes[0], "events: the event at 0.01 s (wet) is at or after t_end = 0.004 s (from --t-end): skipped");
+  EXPECT_EQ(notes[1], "snapshots: the snapshot at 0.01 s is after t_end = 0.004 s (from --t-end): skipped");
+  EXPECT_EQ(notes[2], "frames: they start at 0.01 s, after t_end = 0.004 s (from --t-end): none drawn and no states kept");
+  EXPECT_TRUE(rs.mu_events.empty());
+  EXPECT_EQ(rs.snapshot_times, std::vector<double>{0.002});
+  EXPECT_FALSE(rs.frames.has_value());
+  EXPECT_FALSE(rs.keep_states);
+  EXPECT_EQ(refusal([&] { check(dry_scene(), rs, true); }), "");
+  // a snapshot at t_end is taken: nothing to leave out
+  rs.snapshot_times = {0.004};
+  EXPECT_TRUE(drop_after_end(rs).empty());
 }
 
 }  // namespace
