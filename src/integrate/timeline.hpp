@@ -18,6 +18,7 @@
 #pragma once
 
 #include <atomic>
+#include <cmath>
 #include <functional>
 #include <limits>
 #include <vector>
@@ -27,6 +28,18 @@
 #include "integrate/integrator.hpp"
 
 namespace beltsim {
+
+// The k-th time of a stream that starts at t0 and repeats every dt (samples, frames, snapshots,
+// every-actions): t0 + k/R when dt is 1/R for a whole number R (a rate: 1e-3 s is 1000 Hz, a frame
+// every 1/300 s is 300 Hz), so that the times are the doubles nearest the decimals a user types
+// (180/300 is 0.6 where 180·(1/300) is 0.6000000000000001, past a t_end of 0.6, and 350/1000 is
+// 0.35 where 350·0.001 is 0.35000000000000003); t0 + k·dt otherwise.
+inline double stream_time(double t0, double dt, long k) {
+  const double rate = 1.0 / dt;
+  const double r = std::round(rate);
+  if (r >= 1 && std::abs(rate - r) <= 1e-9 * r) return t0 + static_cast<double>(k) / r;
+  return t0 + static_cast<double>(k) * dt;
+}
 
 class Timeline {
  public:
@@ -93,7 +106,7 @@ class Timeline {
     bool listed = false;       // at the times in `at` rather than t0 + k·dt
     std::vector<double> at;
     double time() const {
-      if (!listed) return t0 + static_cast<double>(k) * dt;
+      if (!listed) return stream_time(t0, dt, k);
       return k < static_cast<long>(at.size()) ? at[static_cast<size_t>(k)] : std::numeric_limits<double>::infinity();
     }
   };

@@ -396,7 +396,7 @@ int l_scene_run(lua_State* L) {
   bool progress = true;
   RunSettings rs = read_run_settings(L, 2, *sc, ctx, true, &progress);
   check_unread_args(L, *ctx, "run");
-  for (const std::string& note : drop_after_end(rs, ctx->overrides.t_end ? " (from --t-end)" : ""))
+  for (const std::string& note : drop_after_end(rs, ctx->overrides.t_end ? "--t-end" : nullptr))
     std::fprintf(stderr, "beltsim: %s\n", note.c_str());
   if (ctx->capture) {
     ctx->capture->scene = *sc;

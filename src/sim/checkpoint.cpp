@@ -190,8 +190,8 @@ std::vector<long> next_outputs(const RunSettings& rs, double now) {
     const double k = std::floor((now - t0) / dt);
     if (!(k < 1e15)) throw CheckpointError("its time " + number_text(now) + " s is beyond its outputs' reach");
     long i = static_cast<long>(k);
-    while (i > 0 && t0 + static_cast<double>(i - 1) * dt > now) --i;
-    while (t0 + static_cast<double>(i) * dt <= now) ++i;
+    while (i > 0 && stream_time(t0, dt, i - 1) > now) --i;
+    while (stream_time(t0, dt, i) <= now) ++i;
     return i;
   };
   std::vector<long> k{next(0.0, rs.sample_dt)};

@@ -79,9 +79,10 @@ void check(const Scene& sc, const RunSettings& rs, bool batch) {
   }
 }
 
-std::vector<std::string> drop_after_end(RunSettings& rs, const std::string& t_end_from) {
+std::vector<std::string> drop_after_end(RunSettings& rs, const char* shortened_by) {
   std::vector<std::string> notes;
-  const std::string end = "t_end = " + rounded_text(rs.t_end) + " s" + t_end_from;
+  const std::string end =
+      "t_end = " + rounded_text(rs.t_end) + " s" + (shortened_by ? std::string(" (from ") + shortened_by + ")" : "");
   std::vector<MuEvent> kept;
   for (const MuEvent& ev : rs.mu_events) {
     if (event_time_problem(ev.t, rs.t_end).empty() || !event_time_problem(ev.t).empty()) {
@@ -92,6 +93,7 @@ std::vector<std::string> drop_after_end(RunSettings& rs, const std::string& t_en
                     ": skipped");
   }
   rs.mu_events = std::move(kept);
+  if (!shortened_by) return notes;
   std::vector<double> times;
   for (double t : rs.snapshot_times) {
     if (t > rs.t_end && std::isfinite(t)) {

@@ -80,13 +80,14 @@ std::string event_time_problem(double t, double t_end = std::numeric_limits<doub
 // times, events). Throws std::invalid_argument naming the key, the reason and the value.
 void check(const Scene& sc, const RunSettings& rs, bool batch);
 
-// What a run that ends at settings.t_end cannot reach (a quick `--t-end 0.05` check of a script
-// whose events, snapshots or frames come later) is removed, one note for each, for the caller to
-// print: timed μ events at or after t_end ("events: the event at 0.1 s (wet) is at or after t_end
-// = 0.05 s: skipped"), snapshot times after it, and the frames (with the kept states) when they
-// start after it. `t_end_from` follows t_end's value in the notes (" from --t-end"). A time that
-// is wrong by itself (negative, not finite) is kept for check() to refuse.
-std::vector<std::string> drop_after_end(RunSettings& settings, const std::string& t_end_from = "");
+// What a run that ends at settings.t_end cannot reach is removed, one note for each, for the caller
+// to print: timed μ events at or after t_end ("events: the event at 0.1 s (wet) is at or after
+// t_end = 0.05 s: skipped"). When t_end was shortened from outside the script (`shortened_by`:
+// "--t-end", a quick check of a script whose snapshots and frames come later), also the snapshot
+// times after it, and the frames (with the kept states) when they start after it; the notes then
+// name it. Otherwise those are the script's own contradiction, for check() to refuse. A time wrong
+// by itself (negative, not finite) is kept for check() to refuse.
+std::vector<std::string> drop_after_end(RunSettings& settings, const char* shortened_by = nullptr);
 
 // Refuses (std::invalid_argument with the figures) to integrate from t0 to t1 when that would
 // write more than 1e7 samples (a timeseries.csv of gigabytes) or render more than 1e5 frames (an

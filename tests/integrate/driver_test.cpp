@@ -6,6 +6,7 @@
 
 #include "integrate/driver.hpp"
 #include "integrate/stepper.hpp"
+#include "integrate/timeline.hpp"
 
 namespace beltsim {
 namespace {
@@ -24,11 +25,11 @@ struct Frames {
   std::vector<double> t, y0;
 };
 
-Frames run(double h_max, double t0, double dt) {
+Frames run(double h_max, double t0, double dt, double t_end = 2.0) {
   Oscillator sys;
   auto st = make_stepper("rkf45");
   DriveOptions o;
-  o.t_end = 2.0;
+  o.t_end = t_end;
   o.sample_dt = 0.5;
   o.h_max = h_max;
   o.frame_dt = dt;
@@ -48,7 +49,7 @@ TEST(Frames, AtTheirOwnTimesWhateverTheSteps) {
   ASSERT_EQ(a.t.size(), n);
   ASSERT_EQ(b.t.size(), n);
   for (size_t k = 0; k < n; ++k) {
-    EXPECT_EQ(a.t[k], t0 + static_cast<double>(k) * dt);  // exactly: no accumulated drift
+    EXPECT_EQ(a.t[k], t0 + static_cast<double>(k) / 30);  // exactly: no accumulated drift (stream_time)
     EXPECT_EQ(b.t[k], a.t[k]);
     // cubic Hermite on steps of rtol 1e-10: error well below 1e-6 on either step pattern
     EXPECT_NEAR(a.y0[k], std::cos(a.t[k]), 1e-6);
@@ -62,6 +63,20 @@ TEST(Frames, NoneWithoutAFrameFunctionAndFromTheStart) {
   EXPECT_EQ(f.t.front(), 0.0);
   EXPECT_EQ(f.t.back(), 2.0);
   EXPECT_NEAR(f.y0.back(), std::cos(2.0), 1e-6);
+}
+
+// a run whose end is a whole number of frame periods ends with a frame there, whatever the
+// rounding of the period: at 30 frames/s ten times slower (1/300 s) the runs to 0.3, 0.6 and 0.7 s
+// lost their last frame when the times were k·(1/300) (180·(1/300) is 0.6000000000000001)
+TEST(Frames, ARunEndingOnAFrameTimeEndsWithThatFrame) {
+  const std::pair<double, int> ends[] = {{0.1, 30}, {0.3, 90}, {0.5, 150}, {0.6, 180}, {0.7, 210}, {1.0, 300}};
+  for (const auto& [t_end, n] : ends) {
+    const Frames f = run(0.0, 0.0, 1.0 / 300, t_end);
+    ASSERT_EQ(f.t.size(), static_cast<size_t>(n + 1)) << "t_end " << t_end;
+    EXPECT_EQ(f.t.back(), t_end);
+  }
+  // and a sample every 1e-3 s lands on the decimals: the 350th at 0.35, not 0.35000000000000003
+  EXPECT_EQ(stream_time(0, 1e-3, 350), 0.35);
 }
 
 }  // namespace

@@ -75,7 +75,7 @@ TEST(RunSettings, EveryCallerChecksEventTimesAlike) {
   EXPECT_EQ(bad.mu_events.size(), 1u);
 }
 
-// what a shortened run cannot reach is left out with a note each, and the rest passes check()
+// what a run shortened by --t-end cannot reach is left out with a note each, and the rest passes check()
 TEST(RunSettings, ARunLeavesOutWhatComesAfterItsEnd) {
   RunSettings rs = with_event(0.01, "after_end");
   rs.mu_events.back().what = "wet";
@@ -84,7 +84,7 @@ TEST(RunSettings, ARunLeavesOutWhatComesAfterItsEnd) {
   rs.frames->t_start = 0.01;
   rs.keep_states = true;
   EXPECT_NE(refusal([&] { check(dry_scene(), rs, true); }), "");
-  const std::vector<std::string> notes = drop_after_end(rs, " (from --t-end)");
+  const std::vector<std::string> notes = drop_after_end(rs, "--t-end");
   ASSERT_EQ(notes.size(), 3u);
   EXPECT_EQ(notes[0], "events: the event at 0.01 s (wet) is at or after t_end = 0.004 s (from --t-end): skipped");
   EXPECT_EQ(notes[1], "snapshots: the snapshot at 0.01 s is after t_end = 0.004 s (from --t-end): skipped");
@@ -96,7 +96,11 @@ TEST(RunSettings, ARunLeavesOutWhatComesAfterItsEnd) {
   EXPECT_EQ(refusal([&] { check(dry_scene(), rs, true); }), "");
   // a snapshot at t_end is taken: nothing to leave out
   rs.snapshot_times = {0.004};
+  EXPECT_TRUE(drop_after_end(rs, "--t-end").empty());
+  // a script's own t_end: its snapshots after it are its contradiction, for check() to refuse
+  rs.snapshot_times = {0.01};
   EXPECT_TRUE(drop_after_end(rs).empty());
+  EXPECT_EQ(rs.snapshot_times.size(), 1u);
 }
 
 }  // namespace

@@ -199,7 +199,7 @@ TEST(Live, EveryAndWhenAtTheirTimes) {
          });
   s.run_to(0.06);
   ASSERT_EQ(times.size(), 4u);
-  for (size_t k = 0; k < times.size(); ++k) EXPECT_EQ(times[k], 0.0125 * static_cast<double>(k + 1));
+  for (size_t k = 0; k < times.size(); ++k) EXPECT_EQ(times[k], static_cast<double>(k + 1) / 80);  // every 1/80 s
   EXPECT_NEAR(crossing, 0.05, 1e-6);
   EXPECT_LT(omega_driven, 0);
 }
