@@ -14,10 +14,12 @@ void hermite(double th, double h, const Eigen::VectorXd& y0, const Eigen::Vector
 }
 
 std::string rtol_problem(double rtol) {
-  if (!(rtol > 0 && rtol < 1)) return "must be in (0, 1) (got " + rounded_text(rtol, 9) + ")";
-  if (rtol < kRtolMin)
-    return "must be at least 1e-12 (got " + rounded_text(rtol, 9) +
-           "): double precision cannot honour a smaller one (the run would shorten its steps without end)";
+  if (!(rtol >= kRtolMin && rtol < 1)) {
+    const std::string bad = "must be in [1e-12, 1) (got " + rounded_text(rtol, 9) + ")";
+    if (rtol > 0 && rtol < kRtolMin)
+      return bad + ": double precision cannot honour a smaller one (the run would shorten its steps without end)";
+    return bad;
+  }
   return "";
 }
 

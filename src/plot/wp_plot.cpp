@@ -24,11 +24,8 @@ const char* const kColours[] = {"#1f77b4", "#ff7f0e", "#2ca02c", "#d62728", "#94
                                 "#8c564b", "#e377c2", "#7f7f7f", "#bcbd22", "#17becf"};
 constexpr size_t kNumColours = sizeof kColours / sizeof kColours[0];
 
-std::string tol_text(double r) {
-  char b[32];
-  std::snprintf(b, sizeof b, "%g", r);
-  return b;
-}
+// an rtol as the user gave it (1e-4 reads 0.0001, as %g writes it)
+std::string tol_text(double r) { return rounded_text(r, 6); }
 
 // the error the figure shows: the metric's at t_end, or the largest speed error over the run
 double shown_error(const WpResult& res, const WpRow& r) {

@@ -8,6 +8,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "io/suggest.hpp"
 #include "scene/parameters.hpp"
 #include "scene/scene.hpp"
 
@@ -199,14 +200,16 @@ void validate(const SceneDef& d) {
   if (!(b.rib_angle < 180)) reject("belt.rib_angle", "must be < 180 (the ribs' included angle)", b.rib_angle, "°");
   if (!b.mu_per_element.empty()) {
     if (static_cast<int>(b.mu_per_element.size()) != b.elements)
-      reject("belt.mu per element", "needs one value per element", static_cast<double>(b.mu_per_element.size()),
-             "values");
+      reject("belt.mu per element", "needs one value per element (" + std::to_string(b.elements) + ")",
+             static_cast<double>(b.mu_per_element.size()), "values");
     for (double mu : b.mu_per_element) require_mu("belt.mu of an element", mu);
   }
   if (!b.route.empty()) {
     std::set<std::string> seen;
     for (const std::string& nm : b.route) {
-      if (!names.count(nm)) throw ParameterError("belt.route names an unknown pulley '" + nm + "'");
+      if (!names.count(nm))
+        throw ParameterError("belt.route names an unknown pulley '" + nm + "'" +
+                             did_you_mean(nm, std::vector<std::string>(names.begin(), names.end())));
       if (!seen.insert(nm).second) throw ParameterError("belt.route visits pulley '" + nm + "' twice");
     }
     if (seen.size() != names.size()) throw ParameterError("belt.route must visit every pulley once");

@@ -270,7 +270,7 @@ std::unique_ptr<Simulation> Simulation::open_checkpoint(const std::string& path)
 
 std::unique_ptr<Simulation> Simulation::load(const std::string& path, const FrameSinkFactory& factory, int* callbacks,
                                              const std::function<void(const RunSettings&)>& vet, bool outputs) {
-  const std::string where = (outputs ? "resume: " : "") + path + ": ";
+  const std::string where = path + ": ";  // the caller says what it was doing (beltsim.resume, render)
   std::unique_ptr<Simulation> s;
   std::vector<OutputCut> cuts;
   double now = 0;

@@ -20,11 +20,8 @@ namespace {
 
 namespace fs = std::filesystem;
 
-std::string tol_name(double r) {
-  char b[32];
-  std::snprintf(b, sizeof b, "%g", r);
-  return b;
-}
+// an rtol as the user gave it (1e-4 reads 0.0001, as %g writes it)
+std::string tol_name(double r) { return rounded_text(r, 6); }
 
 // columns of the CSV rows that hold pulley speeds and span tensions
 void channels(const Scene& sc, std::vector<int>& speed, std::vector<int>& tension) {

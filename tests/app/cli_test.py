@@ -140,9 +140,9 @@ class Errors(unittest.TestCase):
 
     def test_a_tolerance_below_what_double_precision_honours(self):
         path = self.script("print('ran')\n")
-        for args, what in [(["run", path, "--rtol", "1e-15"], "--rtol must be at least 1e-12 (got 1e-15)"),
-                           (["wp", path, "--rtols", "1e-3,1e-13"], "--rtols: each must be at least 1e-12 (got 1e-13)"),
-                           (["wp", path, "--ref-rtol", "1e-14"], "--ref-rtol must be at least 1e-12 (got 1e-14)")]:
+        for args, what in [(["run", path, "--rtol", "1e-15"], "--rtol must be in [1e-12, 1) (got 1e-15): double precision cannot honour"),
+                           (["wp", path, "--rtols", "1e-3,1e-13"], "--rtols: each must be in [1e-12, 1) (got 1e-13)"),
+                           (["wp", path, "--ref-rtol", "1e-14"], "--ref-rtol must be in [1e-12, 1) (got 1e-14)")]:
             code, out, err = run(args, cwd=self.dir)
             self.assertEqual(code, 2, err)
             self.assertIn(what, err)

@@ -94,5 +94,30 @@ TEST(Route, CirclesTooCloseForASpanAreRefused) {
   }
 }
 
+// a misspelt name in belt.route is refused with the pulley it was probably meant to be
+TEST(Route, AnUnknownPulleyInTheRouteGetsASuggestion) {
+  SceneDef d = presets::paper_dry();
+  d.belt.route = {"driver", "drivn"};
+  try {
+    validate(d);
+    FAIL() << "an unknown pulley in the route was accepted";
+  } catch (const ParameterError& e) {
+    EXPECT_STREQ(e.what(), "belt.route names an unknown pulley 'drivn' (did you mean 'driven'?)");
+  }
+}
+
+// a μ list of the wrong length says how many values it needs
+TEST(Validate, AMuListOfTheWrongLengthSaysHowManyItNeeds) {
+  SceneDef d = presets::paper_dry();
+  d.belt.mu_per_element = {1, 1, 1, 1};
+  try {
+    validate(d);
+    FAIL() << "a mu list of 4 values for " << d.belt.elements << " elements was accepted";
+  } catch (const ParameterError& e) {
+    EXPECT_STREQ(e.what(), ("belt.mu per element needs one value per element (" + std::to_string(d.belt.elements) +
+                            ") (got 4 values)").c_str());
+  }
+}
+
 }  // namespace
 }  // namespace beltsim

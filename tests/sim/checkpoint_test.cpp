@@ -163,7 +163,7 @@ std::string refusal(const std::string& text) {
   return o.message;
 }
 
-std::string prefix() { return "resume: " + (dir() / "mutant.txt").string() + ": "; }
+std::string prefix() { return (dir() / "mutant.txt").string() + ": "; }
 
 TEST(Checkpoint, ResumesTheSavedText) {
   const Outcome o = resume_text(saved().text);
@@ -180,7 +180,7 @@ TEST(Checkpoint, ReadsOnlyRegularFilesOfBoundedSize) {
       Simulation::resume(p.string(), {});
       ADD_FAILURE() << p;
     } catch (const std::runtime_error& e) {
-      EXPECT_EQ(std::string(e.what()), "resume: " + p.string() + ": not a regular file, so not a checkpoint");
+      EXPECT_EQ(std::string(e.what()), p.string() + ": not a regular file, so not a checkpoint");
     }
   }
   const fs::path big = dir() / "big.txt";
@@ -193,7 +193,7 @@ TEST(Checkpoint, ReadsOnlyRegularFilesOfBoundedSize) {
     ADD_FAILURE() << "read a 1 GiB file";
   } catch (const std::runtime_error& e) {
     EXPECT_EQ(std::string(e.what()),
-              "resume: " + big.string() + ": 1073741825 bytes, more than any checkpoint (at most 1073741824)");
+              big.string() + ": 1073741825 bytes, more than any checkpoint (at most 1073741824)");
   }
   fs::remove(big);
 }
@@ -370,7 +370,7 @@ TEST(Checkpoint, MutantsResumeOrAreRefusedWithAMessage) {
     } else if (o.failure.empty()) {
       ++refused;
       EXPECT_FALSE(raw(o.message)) << o.message;
-      EXPECT_EQ(o.message.rfind("resume: ", 0), 0u) << o.message;
+      EXPECT_EQ(o.message.rfind(prefix(), 0), 0u) << o.message;  // names the file
       EXPECT_TRUE(saved().outputs_untouched()) << o.message;
     }
   }
