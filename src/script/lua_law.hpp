@@ -23,9 +23,6 @@ struct LawHost {
 // a torque law [N·m] (speed = false) or a prescribed speed [rad/s] from the value at idx,
 // checked (validate_law) with errors naming `what` and the script's file:line
 TimeSpeedLaw to_law(lua_State* L, int idx, const std::string& what, bool speed, Context* ctx);
-// the law as one line of text (events.csv): a Lua expression that reads back, but for a Lua
-// function, written as "function (file:line)"
-std::string law_text(const TimeSpeedLaw& law);
 // adds ramp, step and sine to the table on the top of the stack
 void open_laws(lua_State* L);
 

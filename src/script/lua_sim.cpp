@@ -18,6 +18,7 @@
 #include "script/context.hpp"
 #include "script/limits.hpp"
 #include "script/lua_check.hpp"
+#include "scene/law_text.hpp"
 #include "script/lua_law.hpp"
 #include "script/lua_run.hpp"
 #include "script/progress.hpp"

@@ -6,6 +6,7 @@
 
 #include "io/csv_writer.hpp"
 #include "io/output_dir.hpp"
+#include "scene/law_text.hpp"
 #include "scene/scene.hpp"
 
 namespace beltsim {
@@ -68,7 +69,12 @@ void write_parameters(const Scene& sc, const RunSettings& rs, const OutputDir& d
     const std::string pre = "pulley." + p.name + ".";
     row(pre + "centre_x", p.centre.x(), "m", "");
     row(pre + "centre_y", p.centre.y(), "m", "");
-    text(pre + "drive", sc.drive.kinematic(j) ? "kinematic" : "torque", "");
+    const PulleyDrive& pd = sc.drive.pulleys[j];
+    text(pre + "drive", pd.kinematic ? "kinematic" : "torque", "");
+    // the law as the scene reads it (a pulley given none turns freely: torque 0)
+    f << csv_text(pre + (pd.kinematic ? "speed" : "torque")) << ',' << csv_text(law_text(pd.kinematic ? pd.speed : pd.torque))
+      << ',' << (pd.kinematic ? "rad/s" : "N·m") << ",derived,"
+      << csv_text("its law at the start of the run (docs/lua-api.md, Laws); per_speed terms in N·m·s/rad") << '\n';
     row(pre + "wrap_angle", sc.route.arcs[k].angle * 180 / M_PI, "deg", "of the pitch line");
     row(pre + "static_penetration", sc.penetration[j], "m", "p0 of the initial state");
   }
