@@ -24,4 +24,10 @@ uint64_t BeltNewtonAids::branches(double t, const double* y) const {
   return contact_branches(model_, pairs_);
 }
 
+double BeltNewtonAids::overshoot(double t, const double* z, const double* dz) const {
+  const int N = model_.n_coord();
+  contact_pass(model_, drive_, t, z, Span{0, model_.n_el()}, pairs_);
+  return friction_overshoot(model_, drive_, pairs_, z, dz + N);
+}
+
 }  // namespace beltsim

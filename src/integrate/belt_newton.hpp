@@ -18,6 +18,7 @@ class BeltNewtonAids final : public NewtonAids {
   bool local_solve(double t, double s, double* z, const double* g) override;
   void predict(double t, double dt, double* z) const override;
   uint64_t branches(double t, const double* y) const override;
+  double overshoot(double t, const double* z, const double* dz) const override;
 
  private:
   const Model& model_;

@@ -43,6 +43,13 @@
 // friction_local_solve moves nothing and Newton goes without it. The reseat reads only the band
 // |v_T| < Δv, which both laws have, and serves both.
 //
+// Overshoot (friction_overshoot): Newton's stop asks how far its last correction carries a slip
+// velocity v_T past an edge of the band (esdirk.cpp says why). With x = v_T/Δv the pieces of sat(x)
+// are x <= -1, |x| < 1 and x >= 1; a correction from x0 to x1 leaves x0's piece by the part of
+// [x0, x1] beyond its edge. The change of v_T is taken to first order, along the tangent t̂ of the
+// iterate: (δV - δV_C)·t̂ - δΩ·r, with δV_C the pulley centre's (a tensioner arm's speed times its
+// length) and δΩ the pulley's (none for a kinematic pulley).
+//
 // Kinematic predictor (kinematic_predict): an implicit stage at t + dt starts Newton from the
 // previous stage's value, taken at t. An element wrapped on a pulley moves round it by
 // |v|·dt ≈ 1.2 mm in a stage at rtol 1e-3 (3.4 m/s, dt ≈ 0.35 ms), so left where it was it is
@@ -305,6 +312,25 @@ int friction_reseat(const Model& m, const Drive& d, const ContactList& pairs, co
     ++moved;
   }
   return moved;
+}
+
+double friction_overshoot(const Model& m, const Drive& d, const ContactList& pairs, const double* q, const double* dv) {
+  double worst = 0;
+  for (const ContactPair& c : pairs) {
+    if (!c.touching || !c.nl.pushing) continue;
+    const Friction& f = m.friction_of(c.i);
+    if (f.law == FrictionKind::lugre) continue;
+    const int i = c.i, j = c.j;
+    // the slip velocity's change: the element's along t̂, against the pulley centre's (linear in
+    // the arm's speed) and the surface's
+    const Vec2 dV = Vec2(dv[3 * i], dv[3 * i + 1]) - m.centre_velocity(j, q, dv);
+    const double domega = d.kinematic(j) ? 0.0 : dv[m.pulley_coord(j)];
+    const double x0 = c.fl.vT / f.dv, x1 = x0 + (dV.dot(c.nl.t) - domega * c.nl.r) / f.dv;
+    // the part of [x0, x1] outside x0's piece: (-∞, -1], (-1, 1) or [1, ∞)
+    const double past = x0 >= 1 ? 1 - x1 : x0 <= -1 ? x1 + 1 : std::abs(x1) - 1;
+    worst = std::max(worst, past);
+  }
+  return worst;
 }
 
 void pressed_pulleys(const Model& m, const ContactList& pairs, std::vector<int>& on) {

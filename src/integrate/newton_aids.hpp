@@ -39,6 +39,11 @@ struct LocalSolveScratch {
 };
 int friction_local_solve(const Model& m, const Drive& d, const ContactList& pairs, double s, double* q, double* v,
                          const double* g, LocalSolveScratch& w);
+// Newton aid for the stop (see newton_aids.cpp): the largest distance, in friction bands, by which
+// the velocity correction dv (linearised) carries an element's slip velocity at (q, v) past an edge
+// of the band |v_T| < Δv, out of the piece it is on (0: every element stays on its piece; the
+// pairs' friction laws give v_T at (q, v); LuGre's bristles have no band and are left out).
+double friction_overshoot(const Model& m, const Drive& d, const ContactList& pairs, const double* q, const double* dv);
 // on[i]: the first pulley element i presses on in the pass (-1: none)
 void pressed_pulleys(const Model& m, const ContactList& pairs, std::vector<int>& on);
 

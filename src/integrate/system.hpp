@@ -95,6 +95,10 @@ class NewtonAids {
   // A hash of the smooth piece of a piecewise-smooth right-hand side that y lies on; 0 means
   // unknown. Newton may reuse a Jacobian (and its factorisation) while the hash is unchanged.
   virtual uint64_t branches(double, const double*) const { return 0; }
+  // how far the Newton correction dz from z carries the right-hand side past a kink, in units of
+  // the kink's resolution (for the belt: slip velocities past the edge of the friction band, in
+  // band widths); 0 when it leaves every law on the piece z lies on
+  virtual double overshoot(double, const double*, const double*) const { return 0; }
 };
 
 // What an integrator is given (none of it owned): the problem, and optionally a linear solver
