@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cstdio>
 
+#include "io/suggest.hpp"
 #include "sim/frames.hpp"
 
 namespace beltsim::app {
@@ -210,8 +211,8 @@ std::optional<CommandLine> parse_command_line(int argc, char** argv, int* status
   }
   if (!words.empty() && (words[0].empty() || words[0][0] != '-') &&
       std::find(commands.begin(), commands.end(), words[0]) == commands.end()) {
-    std::fprintf(stderr, "beltsim: unknown command '%s' (commands: run, wp, plot, render, compare, console, sweep)\n"
-                 "Run 'beltsim --help' for the usage.\n", words[0].c_str());
+    std::fprintf(stderr, "beltsim: unknown command '%s'%s (commands: %s)\nRun 'beltsim --help' for the usage.\n",
+                 words[0].c_str(), did_you_mean(words[0], commands).c_str(), join(commands).c_str());
     return fail(2);
   }
   std::reverse(words.begin(), words.end());  // CLI11 takes the arguments in reverse order
@@ -228,9 +229,16 @@ std::optional<CommandLine> parse_command_line(int argc, char** argv, int* status
     const std::string name = sub ? sub->get_name() : "";
     std::string msg = e.what();
     if (dynamic_cast<const CLI::ExtrasError*>(&e)) {
-      std::string extra;
-      for (const auto& w : app.remaining(true)) extra += (extra.empty() ? "" : " ") + w;
-      msg = (sub ? name + " does not take: " : "unexpected: ") + extra +
+      std::string extra, hint;
+      std::vector<std::string> options;  // the command's own, for a misspelt one
+      if (sub)
+        for (const CLI::Option* o : sub->get_options())
+          for (const std::string& l : o->get_lnames()) options.push_back("--" + l);
+      for (const auto& w : app.remaining(true)) {
+        extra += (extra.empty() ? "" : " ") + w;
+        if (hint.empty() && w.rfind("--", 0) == 0) hint = did_you_mean(w.substr(0, w.find('=')), options);
+      }
+      msg = (sub ? name + " does not take: " : "unexpected: ") + extra + hint +
             (name == "console" ? " (arguments for the script go after --)" : "");
     }
     std::fprintf(stderr, "beltsim: %s\nRun 'beltsim%s --help' for the usage.\n", msg.c_str(),

@@ -113,6 +113,16 @@ class Errors(unittest.TestCase):
         self.assertIn("beltsim: frames: they start at 0.2 s, after t_end = 0.003 s (from --t-end): none drawn", err)
         self.assertFalse(os.path.exists(os.path.join(self.dir, "out", "frames")), err)
 
+    def test_a_misspelt_command_or_option_gets_a_suggestion(self):
+        for args, what in [(["runn", "x.lua"], "beltsim: unknown command 'runn' (did you mean 'run'?) (commands: run,"),
+                           (["run", "x.lua", "--tend", "1"], "run does not take: --tend 1 (did you mean '--t-end'?)"),
+                           (["run", "x.lua", "--no-frame"], "run does not take: --no-frame (did you mean '--no-frames'?)"),
+                           (["wp", "x.lua", "--rtol=1e-3"], "wp does not take: --rtol=1e-3 (did you mean '--rtols'?)"),
+                           (["run", "x.lua", "--zzz"], "run does not take: --zzz\n")]:
+            code, out, err = run(args, cwd=self.dir)
+            self.assertEqual(code, 2, err)
+            self.assertIn(what, err)
+
     def test_an_error_in_a_callback_names_its_line_with_a_traceback(self):
         path = self.script(SCENE + "local function check(s)\n  error('too fast')\nend\n"
                            "sim:every(0.001, function(s) check(s) end)\nsim:run_to(0.003)\n")
