@@ -52,6 +52,9 @@ int span_sde(const Model& m, const Route::Span& sp, const double* y) {
 std::vector<std::string> coarse_wraps(const Scene& sc) {
   std::vector<std::string> out;
   const int n = sc.model.n_el();
+  // with the contact given per element, a finer belt is a stiffer contact: refining changes the answer
+  bool per_length = false;
+  for (const SceneInput& in : sc.inputs) per_length = per_length || in.name == "contact.c2_per_length";
   for (size_t k = 0; k < sc.route_names.size(); ++k) {
     const double on = sc.wrap_elements(k);
     if (on >= kWrapElementsWarn) continue;
@@ -61,7 +64,9 @@ std::vector<std::string> coarse_wraps(const Scene& sc) {
     m << "pulley '" << sc.route_names[k] << "': its wrap (" << sc.route.arcs[k].angle * 180 / M_PI << "° of r = "
       << sc.route.arcs[k].radius << " m) holds " << on << " elements of " << 1e3 * sc.model.belt.pitch
       << " mm; its slip arc, belt torque and the span tensions beside it need about "
-      << kWrapElementsWarn << " or more: belt.elements = " << needed << " or more (docs/model.md, element count)";
+      << kWrapElementsWarn << " or more: belt.elements = " << needed << " or more";
+    if (!per_length) m << ", with the contact given per length (contact.c1_per_length, ...) so that refining keeps the answer";
+    m << " (docs/model.md, element count)";
     out.push_back(m.str());
   }
   return out;

@@ -348,6 +348,16 @@ TEST(BuildStages, CoarseWrapsAreNamedWithTheElementCountThatResolvesThem) {
   const Scene f = build_scene(fine);
   for (const std::string& s : coarse_wraps(f)) EXPECT_EQ(s.find("'tensioner'"), std::string::npos) << s;
   EXPECT_TRUE(coarse_wraps(build_scene(presets::paper_dry())).empty());
+  // with the contact per element a finer belt is a stiffer contact: the warning says to give it per
+  // length; given so, it does not
+  EXPECT_NE(w[0].find("with the contact given per length"), std::string::npos) << w[0];
+  SceneDef per_length = presets::automotive_wet();
+  per_length.contact_per_length.c1 = per_length.contact.c1 / 0.007;
+  per_length.contact_per_length.c2 = per_length.contact.c2 / 0.007;
+  per_length.contact_per_length.b = per_length.contact.b / 0.007;
+  const std::vector<std::string> wl = coarse_wraps(build_scene(per_length));
+  ASSERT_FALSE(wl.empty());
+  EXPECT_EQ(wl[0].find("per length"), std::string::npos) << wl[0];
 }
 
 // a free pulley under 1 % of the belt's inertia on its wrap is refused with both figures (on the
