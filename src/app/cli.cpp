@@ -91,6 +91,9 @@ CLI::App* add_compare_command(CLI::App& app, CompareOptions& o) {
   c->add_option("--col-tol", o.col_tol, "CSV: a column's own tolerances (repeatable)")
       ->type_name("NAME=RTOL[,ATOL]")
       ->allow_extra_args(false);
+  c->add_option("--skip", o.skip, "CSV: a column left out of the comparison (repeatable)")
+      ->type_name("NAME")
+      ->allow_extra_args(false);
   c->footer(
       "PNGs: the golden images' metric (a pixel differs when any channel differs by more than L\n"
       "levels). CSVs: columns matched by name; a and b agree when |a - b| <= atol + rtol*max(|a|, |b|);\n"

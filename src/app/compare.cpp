@@ -56,7 +56,7 @@ std::string size_text(const Image& i) {
 
 int compare_pngs(const CompareOptions& o) {
   for (const auto& [given, name] :
-       {std::pair{bool(o.rtol), "--rtol"}, {bool(o.atol), "--atol"}, {!o.col_tol.empty(), "--col-tol"}})
+       {std::pair{bool(o.rtol), "--rtol"}, {bool(o.atol), "--atol"}, {!o.col_tol.empty(), "--col-tol"}, {!o.skip.empty(), "--skip"}})
     if (given) throw UsageError(std::string(name) + " is for CSV files; " + o.a + " and " + o.b + " are PNGs");
   ImageTolerance tol;
   if (o.tol) tol.level_tol = static_cast<int>(whole("--tol", *o.tol, 255));
@@ -112,6 +112,7 @@ int compare_csvs(const CompareOptions& o) {
     if (comma != std::string::npos) ct.atol = non_negative("--col-tol " + name, value.substr(comma + 1));
     tol.columns[name] = ct;
   }
+  tol.skip.insert(o.skip.begin(), o.skip.end());
   plot::Table a, b;
   try {
     a = plot::read_timeseries_csv(o.a);

@@ -15,6 +15,7 @@ struct CompareOptions {
   std::optional<std::string> tol, max_bad, diff;  // PNGs
   std::optional<std::string> rtol, atol;          // CSVs
   std::vector<std::string> col_tol;               // CSVs: NAME=RTOL[,ATOL]
+  std::vector<std::string> skip;                  // CSVs: columns left out
 };
 
 int cmd_compare(const CompareOptions& o);

@@ -61,10 +61,13 @@ const ColumnTolerance& CsvTolerance::of(const std::string& column) const {
 }
 
 CsvComparison compare_csv(const Table& a, const Table& b, const CsvTolerance& tol) {
-  for (const auto& [name, t] : tol.columns)
+  auto require = [&](const std::string& option, const std::string& name) {
     if (!a.has(name))
-      throw std::invalid_argument("--col-tol " + name + ": " + a.path + " has no column '" + name + "'" +
+      throw std::invalid_argument(option + " " + name + ": " + a.path + " has no column '" + name + "'" +
                                   did_you_mean(name, a.names) + "; its columns: " + join(a.names));
+  };
+  for (const auto& [name, t] : tol.columns) require("--col-tol", name);
+  for (const std::string& name : tol.skip) require("--skip", name);
   CsvComparison c;
   const std::vector<std::string> a_only = only_in(a, b), b_only = only_in(b, a);
   if (!a_only.empty() || !b_only.empty()) {
@@ -100,7 +103,7 @@ CsvComparison compare_csv(const Table& a, const Table& b, const CsvTolerance& to
   c.worst_ratio = -1;
   for (std::size_t k = 0; k < a.names.size(); ++k) {
     const std::string& name = a.names[k];
-    if (timed && name == kTime) continue;
+    if ((timed && name == kTime) || tol.skip.count(name)) continue;
     const std::vector<double>&ya = a.columns[k], &yb = b.column(name);
     const ColumnTolerance& ct = tol.of(name);
     bool failed = false;
@@ -127,15 +130,18 @@ CsvComparison compare_csv(const Table& a, const Table& b, const CsvTolerance& to
     if (failed) c.failing_columns.push_back(name);
   }
   c.match = c.failing_columns.empty();
-  const std::size_t compared = a.names.size() - (timed ? 1 : 0);
+  std::size_t compared = a.names.size() - (timed ? 1 : 0);
+  for (const std::string& name : tol.skip) compared -= name != kTime;
   if (c.worst_column.empty()) {
     c.reason = "no values to compare (" + std::to_string(compared) + " columns, " + std::to_string(rows) + " rows)";
     c.worst_ratio = 0;
     return c;
   }
   const ColumnTolerance& wt = tol.of(c.worst_column);
+  const std::string left_out =
+      tol.skip.empty() ? "" : " (left out: " + some(std::vector<std::string>(tol.skip.begin(), tol.skip.end())) + ")";
   const std::string agree =
-      std::to_string(compared) + " columns agree at " + std::to_string(rows) + (timed ? " times" : " rows");
+      std::to_string(compared) + " columns" + left_out + " agree at " + std::to_string(rows) + (timed ? " times" : " rows");
   const std::string at = c.worst_column + (timed ? " at t = " + num(c.worst_t) + " s (row " : " at row ") +
                          std::to_string(c.worst_row) + (timed ? ")" : "") + ": " + num(c.worst_a) + " vs " +
                          num(c.worst_b);

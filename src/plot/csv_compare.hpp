@@ -10,6 +10,7 @@
 
 #include <cstddef>
 #include <map>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -24,6 +25,7 @@ struct ColumnTolerance {
 struct CsvTolerance {
   ColumnTolerance all;
   std::map<std::string, ColumnTolerance> columns;  // per-column overrides
+  std::set<std::string> skip;                      // columns left out (both files must still have them)
   const ColumnTolerance& of(const std::string& column) const;
 };
 
@@ -39,8 +41,8 @@ struct CsvComparison {
   std::vector<std::string> failing_columns;
 };
 
-// Throws std::invalid_argument for a per-column tolerance naming a column A lacks (with a
-// suggestion), std::runtime_error for a 't' column that does not increase.
+// Throws std::invalid_argument for a per-column tolerance or a skipped column naming a column A
+// lacks (with a suggestion), std::runtime_error for a 't' column that does not increase.
 CsvComparison compare_csv(const Table& a, const Table& b, const CsvTolerance& tol);
 
 }  // namespace beltsim::plot

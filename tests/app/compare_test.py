@@ -109,6 +109,9 @@ class Pngs(Base):
         code, out, err = self.compare("a.png", "a.png", "--rtol", "1e-3")
         self.assertEqual(code, 2)
         self.assertIn("--rtol is for CSV files; a.png and a.png are PNGs", err)
+        code, out, err = self.compare("a.png", "a.png", "--skip", "t")
+        self.assertEqual(code, 2)
+        self.assertIn("--skip is for CSV files", err)
 
     def test_a_png_and_a_csv_cannot_be_compared(self):
         write_csv(self.path("b.csv"), ["t"], [[0]])
@@ -171,6 +174,10 @@ class Csvs(Base):
         self.assertIn("beyond any tolerance", out)
         write_csv(self.path("a2.csv"), self.HEADER, rows)
         self.assertEqual(self.compare("a2.csv", "b.csv")[0], 0, "NaN against NaN agrees")
+        # a column left out: the rest is compared, and the line says what was left out
+        code, out, err = self.compare("a.csv", "b.csv", "--skip", "driven.omega")
+        self.assertEqual(code, 0, err)
+        self.assertIn("1 columns (left out: driven.omega) agree at 11 times", out)
 
     def test_mismatched_headers_differ_naming_the_columns(self):
         write_csv(self.path("b.csv"), ["t", "driver.omega", "idler.omega"], self.rows([i * 0.01 for i in range(11)]))
@@ -244,6 +251,8 @@ class Csvs(Base):
                 (["--col-tol", "driver.omgea=1e-3"], "--col-tol driver.omgea: a.csv has no column 'driver.omgea' "
                                                      "(did you mean 'driver.omega'?)"),
                 (["--col-tol", "driver.omega"], "--col-tol needs NAME=RTOL or NAME=RTOL,ATOL, got 'driver.omega'"),
+                (["--skip", "driven.omegaa"], "--skip driven.omegaa: a.csv has no column 'driven.omegaa' "
+                                              "(did you mean 'driven.omega'?)"),
                 (["--rtol", "-1"], "--rtol must be >= 0, got -1"),
                 (["--atol", "nan"], "--atol needs a finite decimal number, got 'nan'"),
                 (["--tol", "3"], "--tol is for PNG files; a.csv and a.csv are not PNGs"),
