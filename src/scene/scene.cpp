@@ -52,9 +52,11 @@ int span_sde(const Model& m, const Route::Span& sp, const double* y) {
 std::vector<std::string> coarse_wraps(const Scene& sc) {
   std::vector<std::string> out;
   const int n = sc.model.n_el();
-  // with the contact given per element, a finer belt is a stiffer contact: refining changes the answer
-  bool per_length = false;
-  for (const SceneInput& in : sc.inputs) per_length = per_length || in.name == "contact.c2_per_length";
+  // a contact constant given per element (its input is listed as contact.c1, contact.c2 or
+  // contact.damping, not *_per_length) makes a finer belt a stiffer contact: refining changes the answer
+  bool per_element = false;
+  for (const SceneInput& in : sc.inputs)
+    per_element = per_element || in.name == "contact.c1" || in.name == "contact.c2" || in.name == "contact.damping";
   for (size_t k = 0; k < sc.route_names.size(); ++k) {
     const double on = sc.wrap_elements(k);
     if (on >= kWrapElementsWarn) continue;
@@ -65,7 +67,7 @@ std::vector<std::string> coarse_wraps(const Scene& sc) {
       << sc.route.arcs[k].radius << " m) holds " << on << " elements of " << 1e3 * sc.model.belt.pitch
       << " mm; its slip arc, belt torque and the span tensions beside it need about "
       << kWrapElementsWarn << " or more: belt.elements = " << needed << " or more";
-    if (!per_length) m << ", with the contact given per length (contact.c1_per_length, ...) so that refining keeps the answer";
+    if (per_element) m << ", with the contact given per length (contact.c1_per_length, ...) so that refining keeps the answer";
     m << " (docs/model.md, element count)";
     out.push_back(m.str());
   }

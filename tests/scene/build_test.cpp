@@ -358,6 +358,11 @@ TEST(BuildStages, CoarseWrapsAreNamedWithTheElementCountThatResolvesThem) {
   const std::vector<std::string> wl = coarse_wraps(build_scene(per_length));
   ASSERT_FALSE(wl.empty());
   EXPECT_EQ(wl[0].find("per length"), std::string::npos) << wl[0];
+  // one constant still per element is enough for the advice
+  per_length.contact_per_length.c1.reset();
+  const std::vector<std::string> w1 = coarse_wraps(build_scene(per_length));
+  ASSERT_FALSE(w1.empty());
+  EXPECT_NE(w1[0].find("with the contact given per length"), std::string::npos) << w1[0];
 }
 
 // a free pulley under 1 % of the belt's inertia on its wrap is refused with both figures (on the
