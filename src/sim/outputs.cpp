@@ -27,8 +27,8 @@ void write_parameters(const Scene& sc, const RunSettings& rs, const OutputDir& d
   auto row = [&](const std::string& name, double v, const std::string& unit, const std::string& note) {
     f << csv_text(name) << ',' << number_text(v) << ',' << csv_text(unit) << ",derived," << csv_text(note) << '\n';
   };
-  auto text = [&](const std::string& name, const std::string& v, const std::string& note) {
-    f << csv_text(name) << ',' << csv_text(v) << ",,derived," << csv_text(note) << '\n';
+  auto text = [&](const std::string& name, const std::string& v, const std::string& note, const std::string& unit = "") {
+    f << csv_text(name) << ',' << csv_text(v) << ',' << csv_text(unit) << ",derived," << csv_text(note) << '\n';
   };
   for (const SceneInput& in : sc.inputs) {
     f << csv_text(in.name) << ',';
@@ -72,9 +72,9 @@ void write_parameters(const Scene& sc, const RunSettings& rs, const OutputDir& d
     const PulleyDrive& pd = sc.drive.pulleys[j];
     text(pre + "drive", pd.kinematic ? "kinematic" : "torque", "");
     // the law as the scene reads it (a pulley given none turns freely: torque 0)
-    f << csv_text(pre + (pd.kinematic ? "speed" : "torque")) << ',' << csv_text(law_text(pd.kinematic ? pd.speed : pd.torque))
-      << ',' << (pd.kinematic ? "rad/s" : "N·m") << ",derived,"
-      << csv_text("its law at the start of the run (docs/lua-api.md, Laws); per_speed terms in N·m·s/rad") << '\n';
+    text(pre + (pd.kinematic ? "speed" : "torque"), law_text(pd.kinematic ? pd.speed : pd.torque),
+         "its law at the start of the run (docs/lua-api.md, Laws); per_speed terms in N·m·s/rad",
+         pd.kinematic ? "rad/s" : "N·m");
     row(pre + "wrap_angle", sc.route.arcs[k].angle * 180 / M_PI, "deg", "of the pitch line");
     row(pre + "static_penetration", sc.penetration[j], "m", "p0 of the initial state");
   }
