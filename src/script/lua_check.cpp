@@ -6,12 +6,21 @@
 #include <utility>
 
 #include "io/suggest.hpp"
+#include "script/key_line.hpp"
 
 namespace beltsim::script {
 
 [[noreturn]] void fail(lua_State* L, const std::string& msg) {
-  luaL_error(L, "%s", msg.c_str());  // prefixes "file:line:" of the calling script line
-  __builtin_unreachable();           // lua_error unwinds (longjmp, or a C++ throw here)
+  // "file:line:" of the calling script line, or of the line in the call's table constructor
+  // where the key the message names was written (key_line.hpp)
+  lua_Debug ar;
+  if (lua_getstack(L, 1, &ar) && lua_getinfo(L, "Sl", &ar) && ar.currentline > 0 && ar.source[0] == '@')
+    if (const auto line = key_line_in_file(ar.source + 1, ar.currentline, message_path(msg))) {
+      lua_pushfstring(L, "%s:%d: %s", ar.short_src, *line, msg.c_str());
+      lua_error(L);
+    }
+  luaL_error(L, "%s", msg.c_str());
+  __builtin_unreachable();  // lua_error unwinds (longjmp, or a C++ throw here)
 }
 
 bool has(lua_State* L, int idx, const char* key) {

@@ -98,7 +98,7 @@ TEST(LuaApi, AbsurdButFiniteValuesNameTheParameter) {
   };
   for (const std::string g : {"1e308", "-1e308", "2e4"}) {
     const std::string msg = run_text(with("gravity = " + g + ","));
-    EXPECT_NE(msg.find("scene.lua:1: gravity makes the belt's weight over its longest span"), std::string::npos) << msg;
+    EXPECT_NE(msg.find("scene.lua:5: gravity makes the belt's weight over its longest span"), std::string::npos) << msg;
     EXPECT_NE(msg.find("larger than its tension at rest (500 N)"), std::string::npos) << msg;
     EXPECT_NE(msg.find("(got " + std::string(g == "2e4" ? "20000" : g == "1e308" ? "1e+308" : "-1e+308") + " m/s²)"),
               std::string::npos)
@@ -108,7 +108,7 @@ TEST(LuaApi, AbsurdButFiniteValuesNameTheParameter) {
   // the limit is the belt's weight over the 0.29 m span against the pretension: 1.8e4 m/s² here
   EXPECT_EQ(run_text(with("gravity = 1.7e4,")), "");
   const std::string msg = run_text(with("contact = { c1 = 1e308 },"));
-  EXPECT_NE(msg.find("scene.lua:1: contact.c1 gives no finite static penetration on 'driver' with contact.c2 = 650000 "
+  EXPECT_NE(msg.find("scene.lua:5: contact.c1 gives no finite static penetration on 'driver' with contact.c2 = 650000 "
                      "N/m (beyond double precision) (got 1e+308 N/m²)"),
             std::string::npos)
       << msg;
@@ -137,25 +137,25 @@ TEST(LuaApi, BadVideoPathWritesNothing) {
 }
 
 TEST(LuaApi, NegativeRadiusNamesFileLineAndValue) {
-  expect_error(scene_text("", "centre = {0.29, 0}, radius = -0.1"), "scene.lua:1:",
+  expect_error(scene_text("", "centre = {0.29, 0}, radius = -0.1"), "scene.lua:4:",
                {"pulley 'driven' radius must be > 0", "-0.1 m"});
 }
 
 TEST(LuaApi, ZeroInertiaIsRejected) {
-  expect_error(scene_text("", "centre = {0.29, 0}, radius = 0.1, inertia = 0"), "scene.lua:1:",
+  expect_error(scene_text("", "centre = {0.29, 0}, radius = 0.1, inertia = 0"), "scene.lua:4:",
                {"inertia must be > 0", "got 0 kg·m²"});
 }
 
 TEST(LuaApi, OverlappingPulleysAreRejected) {
-  expect_error(scene_text("", "centre = {0.15, 0}, radius = 0.1"), "scene.lua:1:", {"overlap", "0.15 m apart"});
+  expect_error(scene_text("", "centre = {0.15, 0}, radius = 0.1"), "scene.lua:2:", {"overlap", "0.15 m apart"});
 }
 
 TEST(LuaApi, NonPositivePretensionIsRejected) {
-  expect_error(scene_text("pretension = -5"), "scene.lua:1:", {"belt.pretension must be > 0", "got -5 N"});
+  expect_error(scene_text("pretension = -5"), "scene.lua:6:", {"belt.pretension must be > 0", "got -5 N"});
 }
 
 TEST(LuaApi, TooFewElementsForTheWrap) {
-  expect_error(scene_text("elements = 8"), "scene.lua:1:", {"too few elements", "'driver'", "got 8 elements"});
+  expect_error(scene_text("elements = 8"), "scene.lua:6:", {"too few elements", "'driver'", "got 8 elements"});
 }
 
 TEST(LuaApi, RouteThatCannotClose) {
@@ -174,12 +174,12 @@ TEST(LuaApi, RouteThatCannotClose) {
 }
 
 TEST(LuaApi, MisspeltKeyIsAnErrorWithASuggestion) {
-  expect_error(scene_text("pretention = 400"), "scene.lua:1:",
+  expect_error(scene_text("pretention = 400"), "scene.lua:6:",
                {"unknown key 'pretention' in belt", "did you mean 'pretension'"});
 }
 
 TEST(LuaApi, WrongTypeSaysWhatWasExpected) {
-  expect_error(scene_text("elements = 'sixty'"), "scene.lua:1:", {"belt.elements: number expected, got string"});
+  expect_error(scene_text("elements = 'sixty'"), "scene.lua:6:", {"belt.elements: number expected, got string"});
 }
 
 TEST(LuaApi, SyntaxErrorNamesTheLine) {
@@ -403,7 +403,7 @@ TEST(LuaApi, BeltDataAndTheDefaultsTaken) {
                {"bending_damping", "bending_viscosity", "not both"});
   expect_error("beltsim.scene { pulleys = { { name = 'a', centre = {0, 0} }, { name = 'b', centre = {0.3, 0} } },\n"
                " contact = { c2 = 6.5e5, c2_per_length = 3e7 } }\n",
-               "scene.lua:1", {"c2 (per element) or c2_per_length (per metre of belt), not both"});
+               "scene.lua:2:", {"c2 (per element) or c2_per_length (per metre of belt), not both"});
   const std::string text =
       "local s = beltsim.scene {\n"
       "  pulleys = { { name = 'driver', centre = {0, 0}, radius = 0.1, torque = 1 },\n"

@@ -5,6 +5,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -75,6 +76,15 @@ std::string scene_with(std::map<std::string, std::string> values) {
          "s:run { t_end = 1e-3, progress = false }\n";
 }
 
+// "file:N: " with N the line of `text` where `written` stands: an error about a key names the line
+// where the key was written
+std::string at_line_of(const std::string& text, const std::string& written) {
+  const size_t k = text.find(written);
+  EXPECT_NE(k, std::string::npos) << written << " in\n" << text;
+  const auto line = 1 + std::count(text.begin(), text.begin() + static_cast<std::ptrdiff_t>(std::min(k, text.size())), '\n');
+  return (temp_dir() / "scene.lua").string() + ":" + std::to_string(line) + ": ";
+}
+
 std::string run_text(const std::string& text) {
   Interpreter lua;
   return test::run_script(lua, temp_dir() / "scene.lua", text, temp_dir() / "out");
@@ -120,7 +130,7 @@ std::string csv_name(const Parameter& p, const std::string& pulley) {
   return p.table.starts_with("pulley") ? "pulley." + pulley + p.dotted().substr(6) : p.dotted();
 }
 
-// every rule of the table stops the script at the scene's line with the key, the reason and the value
+// every rule of the table stops the script at the key's line with the key, the reason and the value
 TEST(Parameters, EveryRuleStopsTheScriptWithTheKeyTheReasonAndTheValue) {
   int checked = 0;
   for (const Parameter& p : parameters()) {
@@ -135,10 +145,12 @@ TEST(Parameters, EveryRuleStopsTheScriptWithTheKeyTheReasonAndTheValue) {
     const std::string what = p.table.starts_with("pulley") ? "pulley 'a' " + p.dotted().substr(7)
                              : p.table == "spray"          ? "spray 1." + std::string(p.key)
                                                            : p.dotted();
-    const std::string expected = (temp_dir() / "scene.lua").string() + ":1: " + what + " " + std::string(rule_text(p.rule)) + " (got " + shown +
-                                 (p.unit.empty() ? "" : " ") + std::string(p.unit) + ")";
-    EXPECT_EQ(run_text(scene_with(values)).rfind(expected, 0), 0u)
-        << p.dotted() << ": expected '" << expected << "', got '" << run_text(scene_with(values)) << "'";
+    const std::string text = scene_with(values);
+    const std::string expected = at_line_of(text, std::string(p.key) + " = " + lua + ", ") + what + " " +
+                                 std::string(rule_text(p.rule)) + " (got " + shown + (p.unit.empty() ? "" : " ") +
+                                 std::string(p.unit) + ")";
+    EXPECT_EQ(run_text(text).rfind(expected, 0), 0u)
+        << p.dotted() << ": expected '" << expected << "', got '" << run_text(text) << "'";
     ++checked;
   }
   EXPECT_GE(checked, 25);  // every number of the scene has a rule
@@ -209,7 +221,7 @@ TEST(Parameters, TheDocsHoldTheTable) {
 // friction.law takes the three words and names a fourth; a law's own parameter under another law is
 // refused with both names (it would otherwise be ignored without a word)
 TEST(Parameters, FrictionLawWordsAndTheirParameters) {
-  const std::string at = (temp_dir() / "scene.lua").string() + ":1: ";
+  const std::string at = at_line_of(scene_with({}), "friction = {");  // the friction table's line
   EXPECT_EQ(run_text(scene_with({{"friction.law", "'coulomb'"}})),
             at + "friction.law: 'threlfall', 'stribeck' or 'lugre' expected, got 'coulomb'");
   EXPECT_EQ(run_text(scene_with({{"friction.law", "'stribeck'"}, {"friction.bristle_stiffness", "1e5"}})),

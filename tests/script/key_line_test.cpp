@@ -1,0 +1,124 @@
+// key_line: the line where a script wrote the key an error is about, read from the script's text
+// (comments, strings and function bodies stepped over; the tables around the key must be the
+// path's); and, through a script, errors about a scene's or a run's value name that line.
+#include "script/key_line.hpp"
+
+#include <gtest/gtest.h>
+
+#include <string>
+
+#include "run_script.hpp"
+#include "script/interpreter.hpp"
+#include "support/scratch.hpp"
+
+namespace beltsim::script {
+namespace key_line_test {
+
+std::optional<int> line_of(const std::string& text, int call_line, const std::string& message) {
+  return key_line(text, call_line, message_path(message));
+}
+
+TEST(KeyLine, MessagePathsAsTheErrorsSpellThem) {
+  auto chain = [](const std::string& m) {
+    const KeyPath p = message_path(m);
+    std::string s = p.pulley.empty() ? "" : "<" + p.pulley + ">";
+    for (const std::string& c : p.chain) s += "/" + c;
+    return s;
+  };
+  EXPECT_EQ(chain("belt.mass_per_length must be > 0 (got -1 kg/m)"), "/belt/mass_per_length");
+  EXPECT_EQ(chain("belt.sde.k must be > 0 (got -5 N/m)"), "/belt/sde/k");
+  EXPECT_EQ(chain("pulley 'driver' inertia must be > 0 (got 0 kg·m²)"), "<driver>/inertia");
+  EXPECT_EQ(chain("pulley 'idler'.tensioner.stiffness must be > 0"), "<idler>/tensioner/stiffness");
+  EXPECT_EQ(chain("pulley 'a' tensioner.inertia must be > 0"), "<a>/tensioner/inertia");
+  EXPECT_EQ(chain("unknown key 'radus' in pulley 'driver' (did you mean 'radius'?)"), "<driver>/radus");
+  EXPECT_EQ(chain("unknown key 'radus' in pulley 1 (did you mean 'radius'?)"), "/pulleys/1/radus");
+  EXPECT_EQ(chain("unknown key 'c11' in contact (did you mean 'c1'?); valid keys: c1"), "/contact/c11");
+  EXPECT_EQ(chain("friction.segments[2].release_time must be > 0 (got 0 s)"), "/friction/segments/2/release_time");
+  EXPECT_EQ(chain("friction.segments.2.from must be >= 0"), "/friction/segments/2/from");
+  EXPECT_EQ(chain("spray 1.radius must be > 0 (got 0 m)"), "/spray/1/radius");
+  EXPECT_EQ(chain("run.frames.fps: must be in (0, 240] (got -30)"), "/run/frames/fps");
+  // no key: a path that ends at a list position, a sentence
+  EXPECT_EQ(chain("friction.segments[2]: from and to [m] are required"), "");
+  EXPECT_EQ(chain("the script is empty"), "/the");  // a word that no table holds as a key
+  EXPECT_EQ(chain("(an error object that is a table value)"), "");
+}
+
+const std::string kScene =
+    "-- a scene with what could mislead a scan\n"                                           // 1
+    "local k = 3000\n"                                                                      // 2
+    "local drive = beltsim.scene {\n"                                                       // 3
+    "  pulleys = {\n"                                                                       // 4
+    "    { name = 'crank', centre = {0, 0}, radius = 0.08,\n"                               // 5
+    "      torque = function(t, w) local radius = { radius = 1 } return 0 end },\n"         // 6
+    "    { centre = {0.3, 0}, radius = 0.05,\n"                                             // 7
+    "      tensioner = { pivot = {0.3, 0.1},\n"                                             // 8
+    "                    stiffness = k },\n"                                                // 9
+    "      name = \"idler\" },\n"                                                           // 10
+    "  },\n"                                                                                // 11
+    "  --[[ belt = { mass_per_length = 1 }, ]] note = 'belt = { mass_per_length = 2 }',\n"  // 12
+    "  belt = { elements = 60, [\"mu\"] = 1,\n"                                             // 13
+    "    mass_per_length = [[0.1]],\n"                                                      // 14
+    "    sde = { k = 1 }, k = 2 },\n"                                                       // 15
+    "  friction = { segments = { { from = 0, to = 0.1, mu = 1 },\n"                         // 16
+    "                            { from = 0.2, to = 0.3,\n"                                 // 17
+    "                              mu = 2 } } },\n"                                         // 18
+    "}\n"                                                                                   // 19
+    "drive:run { t_end = 1 }\n";                                                            // 20
+
+TEST(KeyLine, FindsTheKeyWhoseTablesMatchThePath) {
+  EXPECT_EQ(line_of(kScene, 3, "belt.mass_per_length must be > 0"), 14);  // not the comment's, not the string's
+  EXPECT_EQ(line_of(kScene, 3, "belt.sde.k must be > 0"), 15);
+  EXPECT_EQ(line_of(kScene, 3, "belt.k is beyond what double precision integrates"), 15);  // `k` of belt, not of sde
+  EXPECT_EQ(line_of(kScene, 3, "belt.elements: number expected"), 13);
+  EXPECT_EQ(line_of(kScene, 3, "pulley 'crank' radius must be > 0"), 5);  // not the function's local table
+  EXPECT_EQ(line_of(kScene, 3, "pulley 'idler' radius must be > 0"), 7);  // its name comes after the key
+  EXPECT_EQ(line_of(kScene, 3, "pulley 'idler'.tensioner.stiffness must be > 0"), 9);
+  EXPECT_EQ(line_of(kScene, 3, "unknown key 'radius' in pulley 2"), 7);
+  EXPECT_EQ(line_of(kScene, 3, "friction.segments[2].mu must be in [0, 10]"), 18);
+  EXPECT_EQ(line_of(kScene, 3, "friction.segments.1.to must be >= 0"), 16);
+  EXPECT_EQ(line_of(kScene, 3, "scene.friction.segments[1].mu"), 16);  // "scene" names the call's table
+  EXPECT_EQ(line_of(kScene, 20, "run.t_end must be > 0"), 20);
+  EXPECT_EQ(line_of(kScene, 3, "contact.c1 must be > 0"), std::nullopt);      // not written
+  EXPECT_EQ(line_of(kScene, 3, "belt.mu must be in [0, 10]"), std::nullopt);  // written as ["mu"]
+  EXPECT_EQ(line_of(kScene, 3, "pulley 'pump' radius must be > 0"), std::nullopt);
+  EXPECT_EQ(line_of(kScene, 2, "belt.elements: number expected"), std::nullopt);  // no table opens on line 2
+  EXPECT_EQ(line_of(kScene, 3, "friction.segments.mu"), std::nullopt);            // mu is a segment's, not the list's
+  // unfinished text and nesting deeper than Lua's parser takes: no answer, no crash
+  EXPECT_EQ(line_of("x = beltsim.scene { belt = { elements = 'a", 1, "belt.elements"), 1);
+  EXPECT_EQ(line_of("x = beltsim.scene { " + std::string(100000, '{'), 1, "belt.elements"), std::nullopt);
+  // a key written twice in one table: which one?
+  EXPECT_EQ(line_of("x = beltsim.scene { belt = { elements = 1,\n elements = 2 } }\n", 1, "belt.elements"),
+            std::nullopt);
+}
+
+// through the interpreter: the message names the key's line; a value that the scan cannot place
+// keeps the call's line
+TEST(KeyLine, ScriptErrorsNameTheLineOfTheKey) {
+  const auto dir = beltsim::test::scratch_dir("beltsim_key_line_test");
+  auto run = [&](const std::string& text) {
+    Interpreter lua;
+    return test::run_script(lua, dir / "drive.lua", text, dir / "out");
+  };
+  const std::string pulleys =
+      "  pulleys = {\n"
+      "    { name = 'driver', centre = {0, 0}, radius = 0.1, torque = -1 },\n"
+      "    { name = 'driven', centre = {0.29, 0}, radius = 0.1 },\n"
+      "  },\n";
+  const std::string file = (dir / "drive.lua").string();
+  EXPECT_EQ(run("local s = beltsim.scene {\n" + pulleys + "  belt = {\n    pretension = -5,\n  },\n}\n")
+                .rfind(file + ":7: belt.pretension must be > 0 (got -5 N)", 0),
+            0u);
+  EXPECT_EQ(run("local s = beltsim.scene {\n" + pulleys + "  belt = { pretention = 5 },\n}\n")
+                .rfind(file + ":6: unknown key 'pretention' in belt", 0),
+            0u);
+  EXPECT_EQ(run("local s = beltsim.scene {\n" + pulleys + "}\ns:run {\n  t_end = 0.01,\n  sample = -1,\n}\n")
+                .rfind(file + ":9: run.sample", 0),
+            0u);
+  // a belt table made elsewhere: the call's line
+  EXPECT_EQ(run("local b = { pretension = -5 }\nlocal s = beltsim.scene {\n" + pulleys + "  belt = b,\n}\n")
+                .rfind(file + ":2: belt.pretension must be > 0", 0),
+            0u);
+}
+
+}  // namespace key_line_test
+}  // namespace beltsim::script
