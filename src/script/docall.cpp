@@ -40,23 +40,20 @@ bool docall(lua_State* L, int nargs, int nresults, CallError* error, const std::
   lua_pushcfunction(L, msghandler);
   lua_insert(L, fn);
   int status = LUA_OK;
-  std::string escaped;
   {
     const InsideLua inside;  // the watchdog's view (signals.hpp)
-    try {
-      status = lua_pcall(L, nargs, nresults, fn);
-    } catch (const std::exception& e) {  // a C++ error that escaped a binding
-      status = LUA_ERRRUN;
-      escaped = e.what();
-    }
+    status = lua_pcall(L, nargs, nresults, fn);
   }
   if (status == LUA_OK) {
     lua_remove(L, fn);
     return true;
   }
   CallError e;
-  if (!escaped.empty()) {
-    e.message = escaped;
+  if (status == -1) {
+    // Lua compiled as C++ takes any other exception for an error of status -1, without running
+    // the message handler or keeping the exception's text: a binding let a C++ exception out
+    // instead of turning it into a Lua error (sim_box.hpp, guarded)
+    e.message = where + ": an internal error of beltsim (a C++ exception left one of its Lua functions; please report it)";
   } else if (lua_gettop(L) >= fn && memory_message(L, status, where, e.message)) {
   } else if (lua_gettop(L) > fn && lua_type(L, -1) == LUA_TSTRING) {
     const std::string text = lua_tostring(L, -1);

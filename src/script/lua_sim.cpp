@@ -101,8 +101,9 @@ int l_advance(lua_State* L) {
 // ---- reading ---------------------------------------------------------------------------------
 
 // sim:pulley(name) -> { omega [rad/s], angle [rad], torque [N·m], belt_torque [N·m], hub_load [N],
-// contact_arc, slip_arc, stick_arc [m], creep; on a tensioner arm arm_angle [rad], arm_rate [rad/s];
-// with a coupling rotor_angle [rad], rotor_speed [rad/s], windup [rad], coupling_torque [N·m] }
+// contact_arc, slip_arc, stick_arc [m], creep, slip_speed [m/s], creep_pitch; on a tensioner arm
+// arm_angle [rad], arm_rate [rad/s]; with a coupling rotor_angle [rad], rotor_speed [rad/s],
+// windup [rad], coupling_torque [N·m] }
 int l_pulley(lua_State* L) {
   Simulation& s = live(L, "pulley", {{"name", kString}});
   const int j = pulley_index(L, s, 2, "sim:pulley");
@@ -136,7 +137,8 @@ int l_element(lua_State* L) {
   if (i < 0 || i >= s.model().n_el())
     fail(L, "sim:element: the element number must be in 0.." + std::to_string(s.model().n_el() - 1) + " (got " +
                 std::to_string(i) + ")");
-  const ElementObs e = s.element(i);
+  ElementObs e;
+  guarded(L, "sim:element", [&] { e = s.element(i); });  // a Lua law may fail
   lua_createtable(L, 0, 11);
   set_number(L, "x", e.x);
   set_number(L, "y", e.y);
@@ -159,10 +161,13 @@ int l_elements(lua_State* L) {
   if (lua_getfield(L, 2, "pulley") != LUA_TSTRING) fail(L, "sim:elements: pulley (a pulley's name) is required");
   const int j = pulley_index(L, s, lua_gettop(L), "sim:elements");
   lua_pop(L, 1);
-  lua_newtable(L);
-  lua_Integer k = 0;
-  for (int i = 0; i < s.model().n_el(); ++i)
-    if (s.element(i).pulley == j) lua_pushinteger(L, i), lua_rawseti(L, -2, ++k);
+  std::vector<int> on;
+  guarded(L, "sim:elements", [&] {  // a Lua law may fail
+    for (int i = 0; i < s.model().n_el(); ++i)
+      if (s.element(i).pulley == j) on.push_back(i);
+  });
+  lua_createtable(L, static_cast<int>(on.size()), 0);
+  for (size_t k = 0; k < on.size(); ++k) lua_pushinteger(L, on[k]), lua_rawseti(L, -2, static_cast<lua_Integer>(k + 1));
   return 1;
 }
 
@@ -177,18 +182,22 @@ int l_span(lua_State* L) {
   return 1;
 }
 
-// sim:energy() -> { kinetic, sde, bending, contact, gravity, mechanical [J], and with energy
+// sim:energy() -> { kinetic, sde, bending, contact, gravity, arm, coupling, mechanical (their sum)
+// [J], and with energy
 // tracking work_torques, dissipated_axial, dissipated_bending, dissipated_contact,
 // dissipated_friction [J] }
 int l_energy(lua_State* L) {
   Simulation& s = live(L, "energy", {});
-  const Energy e = s.energy();
-  lua_createtable(L, 0, 11);
+  Energy e;
+  guarded(L, "sim:energy", [&] { e = s.energy(); });  // a Lua law may fail
+  lua_createtable(L, 0, 13);
   set_number(L, "kinetic", e.kinetic);
   set_number(L, "sde", e.sde);
   set_number(L, "bending", e.bending);
   set_number(L, "contact", e.contact);
   set_number(L, "gravity", e.gravity);
+  set_number(L, "arm", e.arm);
+  set_number(L, "coupling", e.coupling);
   set_number(L, "mechanical", e.total());
   const std::vector<double> w = s.energy_integrals();
   static const char* names[] = {"work_torques", "dissipated_axial", "dissipated_bending", "dissipated_contact",
@@ -312,13 +321,17 @@ void apply_mu(lua_State* L, Simulation& s, const std::vector<double>& mu, const 
   const std::vector<double> before = s.drive().mu;
   guarded(L, what.c_str(), [&] { s.set_mu(mu, what, text); });
   const int n = s.model().n_el();
+  std::vector<int> pulley_of(static_cast<size_t>(n));
+  guarded(L, what.c_str(), [&] {  // a Lua law may fail
+    for (int i = 0; i < n; ++i) pulley_of[static_cast<size_t>(i)] = s.element(i).pulley;
+  });
   int changed = 0;
   std::vector<int> on(s.model().pulleys.size() + 1, 0);  // per pulley, last: free
   double lo0 = INFINITY, hi0 = -INFINITY, lo1 = INFINITY, hi1 = -INFINITY;
   for (int i = 0; i < n; ++i) {
     if (std::isnan(mu[i])) continue;
     ++changed;
-    const int p = s.element(i).pulley;
+    const int p = pulley_of[static_cast<size_t>(i)];
     ++on[p >= 0 ? p : on.size() - 1];
     lo0 = std::min(lo0, before[i]), hi0 = std::max(hi0, before[i]);
     lo1 = std::min(lo1, mu[i]), hi1 = std::max(hi1, mu[i]);

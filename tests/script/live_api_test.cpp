@@ -56,6 +56,25 @@ TEST(LiveApi, ReadsTheStateInSIUnits) {
             "");
 }
 
+// a Lua law that fails while the state is read (a prescribed speed enters sim:element,
+// sim:elements, sim:energy, sim:pulley and the report of sim:wet) stops with the law's message, as
+// it does in a run (it escaped as a C++ exception: pcall gave false, 0)
+TEST(LiveApi, ALawFailingWhileTheStateIsReadSaysSo) {
+  EXPECT_EQ(run_text("broken = false\n" +
+                     scene("speed = function(t) if broken then error('law broke') end return -10 end") +
+                     "sim:advance(0.001)\n"
+                     "broken = true\n"
+                     "for _, read in ipairs({ function() return sim:element(0) end,\n"
+                     "                        function() return sim:elements{ pulley = 'driver' } end,\n"
+                     "                        function() return sim:energy() end,\n"
+                     "                        function() return sim:pulley('driver') end,\n"
+                     "                        function() return sim:wet{ from = 0, to = 0.1, mu = 0.5 } end }) do\n"
+                     "  local ok, err = pcall(read)\n"
+                     "  assert(not ok and type(err) == 'string' and err:find('law broke'), _ .. ': ' .. tostring(err))\n"
+                     "end\n"),
+            "");
+}
+
 // sim:stats().kink_restarts counts CVODE's restarts at located kinks (the dry drive's first
 // 0.05 s has dozens: its wraps settle and slip begins) and is 0 for a one-step method
 TEST(LiveApi, StatsCountCvodesRestartsAtKinks) {
@@ -111,7 +130,7 @@ TEST(LiveApi, WhenFindsTheCrossing) {
 }
 
 // A tensioner arm from Lua: sim:pulley reads its angle and rate (none on a pulley without one),
-// sim:set_arm moves it, and a checkpoint carries it (the resumed run gives the same bits).
+// sim:energy its spring's energy, sim:set_arm moves it, and a checkpoint carries it (the resumed run gives the same bits).
 TEST(LiveApi, TensionerArmReadChangedAndCheckpointed) {
   const std::string out = (temp_dir() / "arm").string();
   EXPECT_EQ(run_text("local s = beltsim.scene{ pulleys = {\n"
@@ -128,6 +147,11 @@ TEST(LiveApi, TensionerArmReadChangedAndCheckpointed) {
                      "assert(p.arm_rate == 0, 'at rest')\n"
                      "assert(sim:pulley('pump').arm_angle == nil, 'no arm')\n"
                      "sim:advance(0.002)\n"
+                     "-- sim:energy's parts add up to the mechanical energy, the arm's spring among them\n"
+                     "local e = sim:energy()\n"
+                     "local parts = e.kinetic + e.sde + e.bending + e.contact + e.gravity + e.arm + e.coupling\n"
+                     "assert(math.abs(parts - e.mechanical) <= 1e-12 * math.abs(e.mechanical), parts .. ' ' .. e.mechanical)\n"
+                     "assert(e.arm > 0 and e.coupling == 0, 'arm ' .. e.arm .. ', coupling ' .. e.coupling)\n"
                      "local a = sim:pulley('tensioner').arm_angle + 1e-4\n"
                      "sim:set_arm('tensioner', { angle = a, rate = 0.5 })\n"
                      "p = sim:pulley('tensioner')\n"
