@@ -23,6 +23,7 @@
 #include "model/forces.hpp"
 #include "model/rhs.hpp"
 #include "model/sparse.hpp"
+#include "scene/parameters.hpp"
 #include "scene/validate.hpp"
 
 namespace beltsim {
@@ -130,12 +131,16 @@ void set_rest_length(Belt& b, const BeltDef& bd, double l0) {
 
 void check_sde_values(const Belt& b, const BeltDef& bd) {
   // per-SDE values that overflow (EA = 1e308 over a pitch of centimetres) make every force NaN
+  // named by the key the scene gave (its unit from the parameter table)
   const bool rigid = bd.reading == StiffnessReading::rigidity;
-  for (const auto& [name, v, given, unit] :
-       {std::tuple{"belt.k (EA / l0)", b.k, rigid ? bd.EA : bd.k, "N"},
-        std::tuple{"belt.kt (EI / l0)", b.kt, rigid ? bd.EI : bd.kt, "N·m²"},
-        std::tuple{"belt.c (axial_damping / l0)", b.c, rigid ? bd.axial_damping : bd.c, "N·s"}})
-    if (!std::isfinite(v) || v > 1e15) reject(name, "is beyond what double precision integrates (> 1e15 per SDE)", given, unit);
+  for (const auto& [key, per_sde, v, given] :
+       {std::tuple{rigid ? "belt.EA" : "belt.sde.k", " (per SDE: EA / l0)", b.k, rigid ? bd.EA : bd.k},
+        std::tuple{rigid ? "belt.EI" : "belt.sde.kt", " (per SDE: EI / l0)", b.kt, rigid ? bd.EI : bd.kt},
+        std::tuple{rigid ? "belt.axial_damping" : "belt.sde.c", " (per SDE: axial_damping / l0)", b.c,
+                   rigid ? bd.axial_damping : bd.c}})
+    if (!std::isfinite(v) || v > 1e15)
+      reject(std::string(key) + (rigid ? per_sde : ""), "is beyond what double precision integrates (> 1e15 per SDE)",
+             given, std::string(find_parameter(key)->unit));
 }
 
 TensionAtRest tension_at_rest(const BeltDef& bd, double route_length, Belt& b) {

@@ -193,6 +193,11 @@ void validate(const SceneDef& d) {
       << " second); set allow_large = true in the scene to go past";
     throw ParameterError(s.str());
   }
+  // allow_large or not: the sparse Jacobian's entries are counted in int (Eigen's index type)
+  constexpr int kMostElements = 1000000;
+  if (b.elements > kMostElements)
+    throw ParameterError("belt.elements: " + std::to_string(b.elements) + " elements are more than beltsim can hold (" +
+                         std::to_string(kMostElements) + ", allow_large or not)");
   if (b.loop_sense != 1 && b.loop_sense != -1) throw ParameterError("belt.direction must be 'cw' or 'ccw'");
   if (b.reading == StiffnessReading::per_sde && b.bending_viscosity)
     throw ParameterError("belt.bending_viscosity: a rigidity; with per-SDE values (sde) give ct");

@@ -105,10 +105,16 @@ TEST(BuildStages, RestLengthSetsThePerSdeValues) {
   EXPECT_EQ(b.kt, 3);
   EXPECT_EQ(b.ct, 4);
   EXPECT_EQ(error_of([&] { build::check_sde_values(b, bd); }), "");
+  // an overflowing value is named by the key given, with its unit
+  bd.k = 2e15;
+  build::set_rest_length(b, bd, l0);
+  EXPECT_EQ(error_of([&] { build::check_sde_values(b, bd); }),
+            "belt.sde.k is beyond what double precision integrates (> 1e15 per SDE) (got 2e+15 N/m)");
   bd.reading = StiffnessReading::rigidity;
   bd.EA = 1e300;
   build::set_rest_length(b, bd, l0);
-  EXPECT_NE(error_of([&] { build::check_sde_values(b, bd); }).find("belt.k (EA / l0)"), std::string::npos);
+  EXPECT_EQ(error_of([&] { build::check_sde_values(b, bd); }),
+            "belt.EA (per SDE: EA / l0) is beyond what double precision integrates (> 1e15 per SDE) (got 1e+300 N)");
 }
 
 // a strain ε with e_tra = 1: l0 = pitch/(1 + ε) and T = (EA/l0)·(pitch - l0) = EA·ε; a rest length

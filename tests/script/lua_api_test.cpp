@@ -53,8 +53,8 @@ TEST(LuaApi, SilentMisreadingsAreErrors) {
   const std::string ok_scene = scene_text("");
   for (const Case& c : std::vector<Case>{
            {scene_text("mu = {}"), "belt.mu: an empty list"},
-           {scene_text("EA = 1e308"), "belt.k (EA / l0) is beyond what double precision integrates"},
-           {scene_text("axial_damping = 1e308"), "belt.c (axial_damping / l0)"},
+           {scene_text("EA = 1e308"), "belt.EA (per SDE: EA / l0) is beyond what double precision integrates"},
+           {scene_text("axial_damping = 1e308"), "belt.axial_damping (per SDE: axial_damping / l0)"},
            {scene_text("mu = {1, nil, 1}"), "belt.mu: a list without holes"},
            {scene_text("route = {}"), "belt.route: at least two pulley names"},
            {scene_text("", "centre = {0.29, 0}, center = {0.3, 0}, radius = 0.1"), "give centre or center, not both"},
@@ -79,6 +79,9 @@ TEST(LuaApi, SilentMisreadingsAreErrors) {
            {"beltsim.scene { pulleys = { { name = 'a', centre = {0, 0} }, { name = 'b', centre = {0.3, 0} } },\n"
             " belt = { elements = 1000000 } }\n",
             "more than the limit of 20000"},
+           {"beltsim.scene { pulleys = { { name = 'a', centre = {0, 0} }, { name = 'b', centre = {0.3, 0} } },\n"
+            " belt = { elements = 1000001 }, allow_large = true }\n",
+            "1000001 elements are more than beltsim can hold (1000000, allow_large or not)"},
        }) {
     const std::string msg = run_text(c.text);
     EXPECT_NE(msg.find("scene.lua:"), std::string::npos) << c.expect << " -> " << msg;
