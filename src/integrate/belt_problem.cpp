@@ -12,8 +12,8 @@ namespace beltsim {
 BeltProblem::BeltProblem(const Model& m, const Drive& d) : model_(m), drive_(d), ws_(m) {}
 
 double BeltProblem::atol_scale(int k) const {
-  // natural sizes: 0.1 m (layout), 1 rad, 1 m/s, 10 rad/s (element spin), 1 J, and a bristle's
-  // deflection at μ = 1, 1/σ0 (so that its error weighs as μ's)
+  // natural sizes (kNaturalSizes): 0.1 m (layout), 1 rad, 1 m/s, 10 rad/s (element spin), 1 rad/s
+  // (pulley speed), 1 J, and a bristle's deflection at μ = 1, 1/σ0 (so that its error weighs as μ's)
   const int N = model_.n_coord(), ne = 3 * model_.n_el();
   if (k >= model_.bristle_offset()) {
     const Friction& f = model_.friction_of(k - model_.bristle_offset());

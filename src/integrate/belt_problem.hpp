@@ -16,6 +16,10 @@ class BeltProblem final : public OdeProblem {
   BeltProblem(const Model& m, const Drive& d);
   int size() const override { return model_.n_state(); }
   void rhs(double t, const double* y, double* dy) override { beltsim::rhs(model_, drive_, t, y, dy, &ws_); }
+  // atol applies per natural size of each component (atol_scale), in words:
+  static constexpr const char* kNaturalSizes =
+      "0.1 m (positions), 1 rad (angles), 1 m/s (element velocities), 10 rad/s (element spins), "
+      "1 rad/s (pulley speeds), 1 J (energies), 1/σ0 (LuGre bristle deflections)";
   double atol_scale(int k) const override;
   double resolution(int k) const override;
   int switch_count() const override;

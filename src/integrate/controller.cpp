@@ -7,7 +7,7 @@ namespace beltsim {
 
 StepController::StepController(const OdeProblem& sys, const Tolerances& tol, int q)
     : rtol_(tol.rtol), exponent_(1.0 / (q + 1)) {
-  const double atol = tol.atol < 0 ? tol.rtol : tol.atol;
+  const double atol = tol.absolute();
   atol_.resize(sys.size());
   for (int k = 0; k < sys.size(); ++k) atol_[k] = atol * sys.atol_scale(k);
 }
@@ -41,7 +41,7 @@ double StepController::propose(double h, double e) const {
   constexpr double safety = 0.7, shrink = 0.2, grow = 5.0;
   if (e <= 0) return h * grow;
   const double factor = safety * std::pow(e, -exponent_);
-  return h * std::clamp(factor, shrink, e > 1 ? 1.0 : grow);
+  return h * std::clamp(factor, shrink, grow);  // (after a rejection, e > 1: factor < 0.7)
 }
 
 }  // namespace beltsim

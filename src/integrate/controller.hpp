@@ -13,6 +13,7 @@ namespace beltsim {
 struct Tolerances {
   double rtol = 1e-6;
   double atol = -1;  // per unit of each component's natural size; < 0: same as rtol
+  double absolute() const { return atol < 0 ? rtol : atol; }  // the atol in force
 };
 
 class StepController {

@@ -205,7 +205,7 @@ class CvodeIntegrator final : public Integrator {
     cv_.y = N_VNew_Serial(n, cv_.ctx);
     cv_.abstol = N_VNew_Serial(n, cv_.ctx);
     cv_.dky = N_VNew_Serial(n, cv_.ctx);
-    const double atol = tol.atol < 0 ? tol.rtol : tol.atol;
+    const double atol = tol.absolute();
     for (int k = 0; k < n; ++k) N_VGetArrayPointer(cv_.abstol)[k] = atol * problem_.atol_scale(k);
   }
   std::string name() const override { return name_; }

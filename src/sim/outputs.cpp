@@ -4,6 +4,8 @@
 #include <exception>
 #include <sstream>
 
+#include "integrate/belt_problem.hpp"
+#include "integrate/controller.hpp"
 #include "io/csv_writer.hpp"
 #include "io/output_dir.hpp"
 #include "scene/law_text.hpp"
@@ -87,8 +89,8 @@ void write_parameters(const Scene& sc, const RunSettings& rs, const OutputDir& d
   // the run's settings (source "run")
   f << "run.integrator," << csv_text(rs.integrator) << ",,run,\n";
   f << "run.rtol," << number_text(rs.rtol) << ",,run,\n";
-  f << "run.atol," << number_text(rs.atol < 0 ? rs.rtol : rs.atol) << ",,run,"
-    << csv_text("per natural unit: 0.1 m, 1 rad, 1 m/s, 10 rad/s, 1 J") << "\n";
+  f << "run.atol," << number_text(Tolerances{rs.rtol, rs.atol}.absolute()) << ",,run,"
+    << csv_text(std::string("per natural size: ") + BeltProblem::kNaturalSizes) << "\n";
   f << "run.sample_dt," << number_text(rs.sample_dt) << ",s,run,\n";
   write_file_whole(dir, "parameters.csv", f.str());
 }
