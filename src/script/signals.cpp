@@ -20,9 +20,8 @@ namespace {
 
 enum Mode : int { kOutside = 0, kLua = 1, kWork = 2 };
 
-// Atomics, not volatile sig_atomic_t: a signal sent to the process goes to any thread that does not
-// block it (the encoder's, llvmpipe's), so two sent back to back can be in their handlers at once,
-// one per thread; exactly one of them wins the exchange in on_signal (lock-free: safe in a handler)
+// Atomics, not volatile sig_atomic_t: the watchdog thread reads them while the handler (on the
+// main thread, see on_signal) writes them; lock-free, so safe in a handler
 std::atomic<bool> g_stop{false};
 std::atomic<int> g_first{0};    // the first stop signal of the process
 std::atomic<int> g_pending{0};  // the stop under way (a console command's Ctrl-C is done with at its end)
@@ -31,6 +30,7 @@ std::atomic<Interpreter*> g_lua{nullptr};
 std::atomic<int> g_mode{kOutside};
 std::atomic<unsigned> g_mode_changes{0};
 int g_wake[2] = {-1, -1};  // the handler writes the signal's number, the watchdog reads it
+pthread_t g_main;          // the thread that installed the handlers: the one that runs Lua
 static_assert(std::atomic<int>::is_always_lock_free && std::atomic<bool>::is_always_lock_free &&
               std::atomic<Interpreter*>::is_always_lock_free);
 
@@ -43,6 +43,14 @@ std::mutex& lua_mutex() {
 
 void on_signal(int sig) {
   const int saved_errno = errno;
+  // a signal sent to the process may land on any thread that does not block it (the encoder's,
+  // llvmpipe's): it goes on to the main thread, whose Lua state the handler interrupts and whose
+  // waits (the console's ppoll) it must wake
+  if (!pthread_equal(pthread_self(), g_main)) {
+    pthread_kill(g_main, sig);
+    errno = saved_errno;
+    return;
+  }
   if (sig == SIGINT && g_at_prompt.load()) {
     g_prompt_sigint.store(true);  // the console's ppoll returns EINTR and clears the line
     errno = saved_errno;
@@ -138,6 +146,7 @@ void install_stop_signals() {
   static bool installed = false;
   if (installed) return;
   installed = true;
+  g_main = pthread_self();
   if (pipe2(g_wake, O_CLOEXEC) == 0) {
     fcntl(g_wake[1], F_SETFL, O_NONBLOCK);
     // the watchdog takes no signals itself (they go to the threads that run the handlers' work)

@@ -26,8 +26,8 @@ class Interpreter;
 
 inline constexpr std::chrono::milliseconds kGrace{500};
 
-// installs the handlers of SIGINT, SIGTERM and SIGHUP and starts the watchdog (once; later calls
-// do nothing)
+// installs the handlers of SIGINT, SIGTERM and SIGHUP and starts the watchdog (once, from the
+// main thread: a signal that lands on another thread is passed on to it; later calls do nothing)
 void install_stop_signals();
 // the flag a run polls: set by a stop signal
 std::atomic<bool>& stop_flag();
