@@ -78,12 +78,6 @@ std::vector<std::string> sweep_args(const std::string& file, const std::string& 
   return a;
 }
 
-std::string params_text(const sweep::Point& p) {
-  std::string s;
-  for (const auto& [name, v] : p.params) s += (s.empty() ? "" : ", ") + name + "=" + sweep::value_text(v);
-  return s;
-}
-
 }  // namespace
 
 int cmd_sweep(const std::string& file, const Raw& raw, const script::Safety& s) {
@@ -126,7 +120,8 @@ int cmd_sweep(const std::string& file, const Raw& raw, const script::Safety& s) 
                          std::to_string(points.size() - 1));
       const sw::Point& p = points[static_cast<std::size_t>(point)];
       const std::string point_dir = (fs::path(dir) / p.id).string();
-      std::fprintf(stderr, "beltsim sweep: point %s of %zu (%s)\n", p.id.c_str(), points.size(), params_text(p).c_str());
+      std::fprintf(stderr, "beltsim sweep: point %s of %zu (%s)\n", p.id.c_str(), points.size(),
+                   sw::params_text(p).c_str());
       const sw::PointResult r = quick ? script::run_script_point(lua, file, p, point_dir)
                                       : script::run_sweep_point(lua, file, p, point_dir);
       if (lua.interrupted() || stop_signal() != 0) return stopped_status();  // not a result: it runs again

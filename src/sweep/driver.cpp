@@ -43,12 +43,6 @@ std::string duration_text(double s) {
   return b;
 }
 
-std::string params_text(const Point& p) {
-  std::string s;
-  for (const auto& [name, v] : p.params) s += (s.empty() ? "" : ", ") + name + "=" + value_text(v);
-  return s;
-}
-
 // the last line of a point's log that is not blank ("" when none)
 std::string last_log_line(const std::string& path) {
   std::ifstream f(path, std::ios::binary);
