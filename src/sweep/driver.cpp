@@ -8,7 +8,6 @@
 #include <algorithm>
 #include <cerrno>
 #include <chrono>
-#include <cmath>
 #include <csignal>
 #include <cstdio>
 #include <cstring>
@@ -18,6 +17,7 @@
 #include <stdexcept>
 #include <thread>
 
+#include "io/duration_text.hpp"
 #include "io/output_dir.hpp"
 #include "sweep/results.hpp"
 
@@ -31,17 +31,6 @@ struct Running {
   const Point* point;
   Clock::time_point start;
 };
-
-std::string duration_text(double s) {
-  char b[64];
-  if (s < 90)
-    std::snprintf(b, sizeof b, "%.0f s", s);
-  else if (s < 5400)
-    std::snprintf(b, sizeof b, "%.0f min %02.0f s", std::floor(s / 60), std::fmod(s, 60));
-  else
-    std::snprintf(b, sizeof b, "%.0f h %02.0f min", std::floor(s / 3600), std::floor(std::fmod(s, 3600) / 60));
-  return b;
-}
 
 // the last line of a point's log that is not blank ("" when none)
 std::string last_log_line(const std::string& path) {
