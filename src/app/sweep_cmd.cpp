@@ -10,6 +10,7 @@
 
 #include "app/commands.hpp"
 #include "io/csv_writer.hpp"
+#include "io/output_dir.hpp"
 #include "script/docall.hpp"
 #include "script/lua_sweep.hpp"
 #include "script/script_args.hpp"
@@ -78,9 +79,7 @@ std::vector<std::string> sweep_args(const std::string& file, const std::string& 
   return a;
 }
 
-}  // namespace
-
-int cmd_sweep(const std::string& file, const Raw& raw, const script::Safety& s) {
+int sweep(const std::string& file, const Raw& raw, const script::Safety& s) {
   namespace sw = beltsim::sweep;
   const std::string dir = raw.out ? *raw.out : (fs::path("out") / fs::path(file).stem()).string();
   const std::string name = fs::path(file).stem().string();
@@ -185,9 +184,34 @@ int cmd_sweep(const std::string& file, const Raw& raw, const script::Safety& s) 
   ds.jobs = jobs;
   ds.stop = &stop_flag();
   ds.stop_signal = [] { return stop_signal(); };
-  const sw::DriverReport r = sw::run_points(points, ds);
+  sw::DriverReport r;
+  try {
+    r = sw::run_points(points, ds);
+  } catch (const std::exception&) {
+    // the points finished before the error are in the summary; the error is what is told (a
+    // summary that cannot be written either is recorded and named by main as well)
+    try {
+      summary();
+    } catch (const std::exception&) {
+    }
+    throw;
+  }
   const int status = summary();
   return r.stopped ? stopped_status() : status;
+}
+
+}  // namespace
+
+int cmd_sweep(const std::string& file, const Raw& raw, const script::Safety& s) {
+  try {
+    return sweep(file, raw, s);
+  } catch (const UsageError&) {
+    throw;
+  } catch (const std::exception& e) {  // a folder or a file that cannot be written, sbatch failing, ...
+    std::fprintf(stderr, "beltsim: %s\n", e.what());
+    mark_output_failure_shown(e.what());
+    return stop_signal() != 0 ? stopped_status() : 1;
+  }
 }
 
 }  // namespace beltsim::app

@@ -38,7 +38,8 @@ struct DriverReport {
 
 // the folder of the executable running now (/proc/self/exe)
 std::string this_program();
-// runs every point not done yet; throws std::runtime_error when a process cannot be started
+// runs every point not done yet; throws std::runtime_error when a process cannot be started or
+// waited for, after stopping the points running (SIGTERM) and waiting for them
 DriverReport run_points(const std::vector<Point>& points, const DriverSettings& s);
 
 }  // namespace beltsim::sweep
