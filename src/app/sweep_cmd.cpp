@@ -135,6 +135,7 @@ int sweep(const std::string& file, const Raw& raw, const script::Safety& s) {
     throw UsageError(e.what());
   }
 
+  const OutputDir top = sw::claim_sweep_folder(dir);  // held to the end: one sweep at a time on the folder
   const auto summary = [&] {
     const sw::SummaryCounts c = sw::write_summary(dir, points);
     std::fprintf(stderr, "beltsim sweep: %s/%s: %d ok, %d failed, %d not run\n", dir.c_str(), sw::kSummaryFile, c.ok,
@@ -186,7 +187,7 @@ int sweep(const std::string& file, const Raw& raw, const script::Safety& s) {
   ds.stop_signal = [] { return stop_signal(); };
   sw::DriverReport r;
   try {
-    r = sw::run_points(points, ds);
+    r = sw::run_points(points, ds, top);
   } catch (const std::exception&) {
     // the points finished before the error are in the summary; the error is what is told (a
     // summary that cannot be written either is recorded and named by main as well)

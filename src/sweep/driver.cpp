@@ -86,7 +86,7 @@ std::string this_program() {
   return p.string();
 }
 
-DriverReport run_points(const std::vector<Point>& points, const DriverSettings& s) {
+DriverReport run_points(const std::vector<Point>& points, const DriverSettings& s, const OutputDir& top) {
   DriverReport report;
   std::vector<const Point*> todo;
   for (const Point& p : points) {
@@ -96,7 +96,6 @@ DriverReport run_points(const std::vector<Point>& points, const DriverSettings& 
     else
       todo.push_back(&p);
   }
-  const OutputDir top(s.dir);
   Progress progress(s, static_cast<int>(points.size()), report.already_done);
   if (report.already_done > 0)
     progress.say("sweep " + s.name + ": " + std::to_string(report.already_done) + " of " +

@@ -3,7 +3,8 @@
 --point, a failing point among good ones, the --set cross form, the summary against the points
 run one by one, resumption after a Ctrl-C and after a kill (only the points not done run again),
 `beltsim plot` on a summary, errors after the points are known (a folder that cannot be written,
-sbatch missing) said in one line with nothing finished lost. Waits are for events (a point's point.csv, a file the test writes), never fixed sleeps.
+sbatch missing) said in one line with nothing finished lost, and a second sweep on a folder in use
+refused. Waits are for events (a point's point.csv, a file the test writes), never fixed sleeps.
 
 usage: sweep_test.py BELTSIM
 """
@@ -321,6 +322,23 @@ class Sweep(unittest.TestCase):
             pass
         self.run_beltsim("sweep", script, "--jobs", "2")
         self.assertEqual([r[2] for r in rows(self.path("out", "gated", "summary.csv"))[1:]], ["ok", "ok"])
+
+    def test_a_second_sweep_on_a_folder_in_use_is_refused(self):
+        script, gate = self.gated()
+        first = subprocess.Popen([BELTSIM, "sweep", script, "--jobs", "1"], cwd=self.dir, stderr=subprocess.PIPE,
+                                 text=True)
+        self.addCleanup(first.kill)
+        self.wait_for(self.path("out", "gated", "0", "log.txt"), first)
+        for mode in ([], ["--collect"], ["--slurm"]):
+            p = self.run_beltsim("sweep", script, "--jobs", "1", *mode, ok=(0, 1, 2))
+            self.assert_one_line_error(p, "out/gated", "another sweep is running there")
+        self.assertIsNone(first.poll(), "the first sweep ended while the second was refused")
+        with open(gate, "w"):
+            pass
+        _, err = first.communicate(timeout=LIMIT)
+        self.assertEqual(first.returncode, 0, err)
+        self.assertEqual([r[2] for r in rows(self.path("out", "gated", "summary.csv"))[1:]], ["ok", "ok"])
+        self.assertFalse(os.path.exists(self.path("out", "gated", "sweep.sbatch")), "the refused --slurm wrote")
 
 
 if __name__ == "__main__":
