@@ -10,6 +10,7 @@
 
 #include "app/commands.hpp"
 #include "io/csv_writer.hpp"
+#include "io/output_dir.hpp"
 #include "script/docall.hpp"
 #include "script/lua_sweep.hpp"
 #include "script/script_args.hpp"
@@ -78,15 +79,7 @@ std::vector<std::string> sweep_args(const std::string& file, const std::string& 
   return a;
 }
 
-std::string params_text(const sweep::Point& p) {
-  std::string s;
-  for (const auto& [name, v] : p.params) s += (s.empty() ? "" : ", ") + name + "=" + sweep::value_text(v);
-  return s;
-}
-
-}  // namespace
-
-int cmd_sweep(const std::string& file, const Raw& raw, const script::Safety& s) {
+int sweep(const std::string& file, const Raw& raw, const script::Safety& s) {
   namespace sw = beltsim::sweep;
   const std::string dir = raw.out ? *raw.out : (fs::path("out") / fs::path(file).stem()).string();
   const std::string name = fs::path(file).stem().string();
@@ -126,7 +119,8 @@ int cmd_sweep(const std::string& file, const Raw& raw, const script::Safety& s) 
                          std::to_string(points.size() - 1));
       const sw::Point& p = points[static_cast<std::size_t>(point)];
       const std::string point_dir = (fs::path(dir) / p.id).string();
-      std::fprintf(stderr, "beltsim sweep: point %s of %zu (%s)\n", p.id.c_str(), points.size(), params_text(p).c_str());
+      std::fprintf(stderr, "beltsim sweep: point %s of %zu (%s)\n", p.id.c_str(), points.size(),
+                   sw::params_text(p).c_str());
       const sw::PointResult r = quick ? script::run_script_point(lua, file, p, point_dir)
                                       : script::run_sweep_point(lua, file, p, point_dir);
       if (lua.interrupted() || stop_signal() != 0) return stopped_status();  // not a result: it runs again
@@ -141,6 +135,7 @@ int cmd_sweep(const std::string& file, const Raw& raw, const script::Safety& s) 
     throw UsageError(e.what());
   }
 
+  const OutputDir top = sw::claim_sweep_folder(dir);  // held to the end: one sweep at a time on the folder
   const auto summary = [&] {
     const sw::SummaryCounts c = sw::write_summary(dir, points);
     std::fprintf(stderr, "beltsim sweep: %s/%s: %d ok, %d failed, %d not run\n", dir.c_str(), sw::kSummaryFile, c.ok,
@@ -190,9 +185,34 @@ int cmd_sweep(const std::string& file, const Raw& raw, const script::Safety& s) 
   ds.jobs = jobs;
   ds.stop = &stop_flag();
   ds.stop_signal = [] { return stop_signal(); };
-  const sw::DriverReport r = sw::run_points(points, ds);
+  sw::DriverReport r;
+  try {
+    r = sw::run_points(points, ds, top);
+  } catch (const std::exception&) {
+    // the points finished before the error are in the summary; the error is what is told (a
+    // summary that cannot be written either is recorded and named by main as well)
+    try {
+      summary();
+    } catch (const std::exception&) {
+    }
+    throw;
+  }
   const int status = summary();
   return r.stopped ? stopped_status() : status;
+}
+
+}  // namespace
+
+int cmd_sweep(const std::string& file, const Raw& raw, const script::Safety& s) {
+  try {
+    return sweep(file, raw, s);
+  } catch (const UsageError&) {
+    throw;
+  } catch (const std::exception& e) {  // a folder or a file that cannot be written, sbatch failing, ...
+    std::fprintf(stderr, "beltsim: %s\n", e.what());
+    mark_output_failure_shown(e.what());
+    return stop_signal() != 0 ? stopped_status() : 1;
+  }
 }
 
 }  // namespace beltsim::app

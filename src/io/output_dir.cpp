@@ -210,7 +210,15 @@ void OutputDir::remove(const std::string& name) const {
 }
 
 void OutputDir::lock() {
-  if (lock_fd_ >= 0) return;
+  const std::string who = try_lock();
+  if (!who.empty())
+    throw std::runtime_error("the output folder " + path_ + " is in use by " + who +
+                             ": two simulations writing one folder would mix their rows; give this one a folder of "
+                             "its own (out = ...) or close the other first");
+}
+
+std::string OutputDir::try_lock() {
+  if (lock_fd_ >= 0) return "";
   const int fd = open_own(kLockName, O_RDWR, false);
   if (::flock(fd, LOCK_EX | LOCK_NB) != 0) {
     const int err = errno;
@@ -220,17 +228,15 @@ void OutputDir::lock() {
     if (err != EWOULDBLOCK)
       throw std::runtime_error("cannot lock the output folder " + path_ + ": " + std::strerror(err));
     const long pid = n > 0 ? std::strtol(buf, nullptr, 10) : 0;
-    const std::string who = pid == static_cast<long>(::getpid()) ? "another simulation of this beltsim"
-                            : pid > 0 ? "another beltsim (process " + std::to_string(pid) + ")"
-                                      : "another beltsim";
-    throw std::runtime_error("the output folder " + path_ + " is in use by " + who +
-                             ": two simulations writing one folder would mix their rows; give this one a folder of "
-                             "its own (out = ...) or close the other first");
+    return pid == static_cast<long>(::getpid()) ? "another simulation of this beltsim"
+           : pid > 0                            ? "another beltsim (process " + std::to_string(pid) + ")"
+                                                : "another beltsim";
   }
   // who holds it, for the message above; the lock is the flock, and holds without this text
   const std::string pid = std::to_string(::getpid()) + "\n";
   if (::ftruncate(fd, 0) == 0 && ::pwrite(fd, pid.data(), pid.size(), 0) < 0) errno = 0;
   lock_fd_ = fd;
+  return "";
 }
 
 OutputPlace output_place(const std::string& path, bool make_folder) {

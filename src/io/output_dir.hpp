@@ -70,6 +70,10 @@ class OutputDir {
   // std::runtime_error naming the folder when another simulation, of this process or another,
   // holds it.
   void lock();
+  // the same claim, the holder said rather than thrown: "" when this object holds the folder
+  // now, else who does ("another beltsim (process N)", "another simulation of this beltsim");
+  // throws as an output for any other failure
+  std::string try_lock();
 
  private:
   OutputDir() = default;

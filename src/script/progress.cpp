@@ -6,20 +6,9 @@
 #include <cmath>
 #include <cstdio>
 
-namespace beltsim::script {
+#include "io/duration_text.hpp"
 
-namespace {
-std::string duration(double s) {
-  char b[32];
-  if (!std::isfinite(s))
-    std::snprintf(b, sizeof b, "?");
-  else if (s < 120)
-    std::snprintf(b, sizeof b, "%.0f s", s);
-  else
-    std::snprintf(b, sizeof b, "%.0f min %02.0f s", std::floor(s / 60), std::fmod(s, 60));
-  return b;
-}
-}  // namespace
+namespace beltsim::script {
 
 ProgressLine::ProgressLine(bool enabled) : enabled_(enabled), tty_(isatty(STDERR_FILENO)) {}
 
@@ -41,7 +30,7 @@ RunProgress ProgressLine::callback() {
     const double left = done > 0 ? std::max(0.0, wall * todo / done) : NAN;
     const double pct = target > t0_ ? 100 * done / (target - t0_) : 100;
     std::fprintf(stderr, "%sbeltsim: t = %.4f s of %.4g s (%.0f %%), %s elapsed, about %s left, %ld steps%s",
-                 tty_ ? "\r" : "", t, target, pct, duration(wall).c_str(), duration(left).c_str(), w.steps,
+                 tty_ ? "\r" : "", t, target, pct, duration_text(wall).c_str(), duration_text(left).c_str(), w.steps,
                  tty_ ? "   " : "\n");
     std::fflush(stderr);
   };

@@ -8,7 +8,6 @@
 #include <algorithm>
 #include <cerrno>
 #include <chrono>
-#include <cmath>
 #include <csignal>
 #include <cstdio>
 #include <cstring>
@@ -18,6 +17,7 @@
 #include <stdexcept>
 #include <thread>
 
+#include "io/duration_text.hpp"
 #include "io/output_dir.hpp"
 #include "sweep/results.hpp"
 
@@ -31,23 +31,6 @@ struct Running {
   const Point* point;
   Clock::time_point start;
 };
-
-std::string duration_text(double s) {
-  char b[64];
-  if (s < 90)
-    std::snprintf(b, sizeof b, "%.0f s", s);
-  else if (s < 5400)
-    std::snprintf(b, sizeof b, "%.0f min %02.0f s", std::floor(s / 60), std::fmod(s, 60));
-  else
-    std::snprintf(b, sizeof b, "%.0f h %02.0f min", std::floor(s / 3600), std::floor(std::fmod(s, 3600) / 60));
-  return b;
-}
-
-std::string params_text(const Point& p) {
-  std::string s;
-  for (const auto& [name, v] : p.params) s += (s.empty() ? "" : ", ") + name + "=" + value_text(v);
-  return s;
-}
 
 // the last line of a point's log that is not blank ("" when none)
 std::string last_log_line(const std::string& path) {
@@ -103,7 +86,7 @@ std::string this_program() {
   return p.string();
 }
 
-DriverReport run_points(const std::vector<Point>& points, const DriverSettings& s) {
+DriverReport run_points(const std::vector<Point>& points, const DriverSettings& s, const OutputDir& top) {
   DriverReport report;
   std::vector<const Point*> todo;
   for (const Point& p : points) {
@@ -113,7 +96,6 @@ DriverReport run_points(const std::vector<Point>& points, const DriverSettings& 
     else
       todo.push_back(&p);
   }
-  const OutputDir top(s.dir);
   Progress progress(s, static_cast<int>(points.size()), report.already_done);
   if (report.already_done > 0)
     progress.say("sweep " + s.name + ": " + std::to_string(report.already_done) + " of " +
@@ -135,13 +117,23 @@ DriverReport run_points(const std::vector<Point>& points, const DriverSettings& 
     for (std::string& a : args) argv.push_back(a.data());
     argv.push_back(nullptr);
     const pid_t parent = getpid();
+    // the stop signals are blocked across the fork: one sent to the child before its exec stays
+    // pending until the child has their default actions back, rather than being taken by this
+    // process's handlers in the child and lost at the exec
+    sigset_t stops, old;
+    sigemptyset(&stops);
+    for (int sig : {SIGINT, SIGTERM, SIGHUP}) sigaddset(&stops, sig);
+    pthread_sigmask(SIG_BLOCK, &stops, &old);
     const pid_t pid = fork();
+    if (pid != 0) pthread_sigmask(SIG_SETMASK, &old, nullptr);
     if (pid < 0) {
       const int e = errno;
       ::close(log);
       throw std::runtime_error("cannot start the process of point " + p.id + ": " + std::strerror(e));
     }
     if (pid == 0) {  // the child: only async-signal-safe calls until exec
+      for (int sig : {SIGINT, SIGTERM, SIGHUP}) signal(sig, SIG_DFL);
+      sigprocmask(SIG_SETMASK, &old, nullptr);
       setpgid(0, 0);
       // the sweep killed outright (kill -9): its points stop too, their outputs closed
       prctl(PR_SET_PDEATHSIG, SIGTERM);
@@ -192,28 +184,46 @@ DriverReport run_points(const std::vector<Point>& points, const DriverSettings& 
     }
   };
 
-  bool changed = true;
-  while ((next < todo.size() && !forwarded) || !running.empty()) {
-    if (s.stop && s.stop->load() && !forwarded) {
-      forwarded = true;
-      report.stopped = true;
-      const int sig = s.stop_signal ? s.stop_signal() : SIGINT;
-      for (const auto& [pid, r] : running) kill(pid, sig == 0 ? SIGINT : sig);
+  try {
+    bool changed = true;
+    while ((next < todo.size() && !forwarded) || !running.empty()) {
+      if (s.stop && s.stop->load() && !forwarded) {
+        forwarded = true;
+        report.stopped = true;
+        const int sig = s.stop_signal ? s.stop_signal() : SIGINT;
+        for (const auto& [pid, r] : running) kill(pid, sig == 0 ? SIGINT : sig);
+      }
+      while (!forwarded && running.size() < static_cast<std::size_t>(std::max(1, s.jobs)) && next < todo.size())
+        launch(*todo[next++]);
+      if (changed) progress.show(static_cast<int>(running.size()), static_cast<int>(todo.size() - next), false);
+      changed = false;
+      int status = 0;
+      const pid_t pid = waitpid(-1, &status, WNOHANG);
+      if (pid > 0 && running.count(pid)) {
+        finish(pid, status);
+        changed = true;
+      } else if (pid <= 0) {
+        if (pid < 0 && errno != EINTR && errno != ECHILD)
+          throw std::runtime_error(std::string("waitpid: ") + std::strerror(errno));
+        std::this_thread::sleep_for(std::chrono::milliseconds(20));  // the children's end is polled with the stop flag
+      }
     }
-    while (!forwarded && running.size() < static_cast<std::size_t>(std::max(1, s.jobs)) && next < todo.size())
-      launch(*todo[next++]);
-    if (changed) progress.show(static_cast<int>(running.size()), static_cast<int>(todo.size() - next), false);
-    changed = false;
-    int status = 0;
-    const pid_t pid = waitpid(-1, &status, WNOHANG);
-    if (pid > 0 && running.count(pid)) {
-      finish(pid, status);
-      changed = true;
-    } else if (pid <= 0) {
-      if (pid < 0 && errno != EINTR && errno != ECHILD)
-        throw std::runtime_error(std::string("waitpid: ") + std::strerror(errno));
-      std::this_thread::sleep_for(std::chrono::milliseconds(20));  // the children's end is polled with the stop flag
+  } catch (...) {
+    // a point that cannot start, a failed wait: the points running are stopped as by a signal
+    // and waited for (their outputs closed, their folders as a stop leaves them), then the error
+    // goes on
+    forwarded = true;
+    for (const auto& [pid, r] : running) kill(pid, SIGTERM);
+    while (!running.empty()) {
+      int status = 0;
+      const pid_t pid = waitpid(running.begin()->first, &status, 0);
+      if (pid > 0)
+        finish(pid, status);
+      else if (errno != EINTR)
+        running.erase(running.begin());  // not a child any more: nothing to wait for
     }
+    progress.show(0, 0, true);
+    throw;
   }
   if (forwarded) report.not_run += static_cast<int>(todo.size() - next);
   progress.show(0, 0, true);

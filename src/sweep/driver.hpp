@@ -16,6 +16,7 @@
 #include <string>
 #include <vector>
 
+#include "io/output_dir.hpp"
 #include "sweep/points.hpp"
 
 namespace beltsim::sweep {
@@ -38,7 +39,9 @@ struct DriverReport {
 
 // the folder of the executable running now (/proc/self/exe)
 std::string this_program();
-// runs every point not done yet; throws std::runtime_error when a process cannot be started
-DriverReport run_points(const std::vector<Point>& points, const DriverSettings& s);
+// runs every point not done yet; throws std::runtime_error when a process cannot be started or
+// waited for, after stopping the points running (SIGTERM) and
+// waiting for them; top is s.dir, claimed by the caller (claim_sweep_folder, sweep/results.hpp)
+DriverReport run_points(const std::vector<Point>& points, const DriverSettings& s, const OutputDir& top);
 
 }  // namespace beltsim::sweep

@@ -23,6 +23,12 @@ std::string value_text(const Value& v) {
       v);
 }
 
+std::string params_text(const Point& p) {
+  std::string s;
+  for (const auto& [name, v] : p.params) s += (s.empty() ? "" : ", ") + name + "=" + value_text(v);
+  return s;
+}
+
 std::string point_id(int index, int count) {
   const std::size_t width = std::to_string(count > 1 ? count - 1 : 0).size();
   std::string s = std::to_string(index);

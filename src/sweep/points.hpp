@@ -23,6 +23,9 @@ struct Point {
   std::vector<std::pair<std::string, Value>> params;  // in the sweep's order of names
 };
 
+// the point's parameters for messages: "a=1, b=x" (values as value_text)
+std::string params_text(const Point& p);
+
 // names[k] takes the values values[k]; the first name varies slowest, the last fastest
 struct Grid {
   std::vector<std::string> names;

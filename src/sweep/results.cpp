@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <filesystem>
 #include <fstream>
+#include <stdexcept>
 
 #include "io/csv_writer.hpp"
 #include "io/output_dir.hpp"
@@ -66,6 +67,16 @@ std::optional<PointResult> read_point_result(const std::string& dir, const Point
   r.status = values[n + 1];
   for (std::size_t k = n + 2; k < names.size(); ++k) r.figures.emplace_back(names[k], values[k]);
   return r;
+}
+
+OutputDir claim_sweep_folder(const std::string& dir) {
+  OutputDir top(dir);
+  const std::string who = top.try_lock();
+  if (!who.empty())
+    throw std::runtime_error("the sweep folder " + dir + " is in use by " + who +
+                             ": another sweep is running there; wait for it to end, or give this one a folder "
+                             "of its own (--out)");
+  return top;
 }
 
 SummaryCounts write_summary(const std::string& dir, const std::vector<Point>& points) {

@@ -5,6 +5,9 @@
 //   point,<parameter>...,status,<figure>...
 // The status is "ok", "diverged at t = T s" or "error: message" (one line). A point is done when
 // its point.csv says ok for the same parameters; any other point runs again when the sweep does.
+// A sweep that runs its points, merges the summary or writes its Slurm jobs holds DIR first
+// (claim_sweep_folder): a second one on the same folder is refused rather than run the points the
+// first is running.
 // summary.csv merges every point's row in the points' order (a point with no point.csv: "not run";
 // the figures are the union of every point's, in the order they first come).
 #pragma once
@@ -14,6 +17,7 @@
 #include <utility>
 #include <vector>
 
+#include "io/output_dir.hpp"
 #include "sweep/points.hpp"
 
 namespace beltsim::sweep {
@@ -35,6 +39,10 @@ void write_point_result(const std::string& dir, const Point& p, const PointResul
 // what DIR/<id>/point.csv says of p; nullopt when it is missing, unreadable, or written for other
 // parameters (the sweep changed)
 std::optional<PointResult> read_point_result(const std::string& dir, const Point& p);
+
+// DIR, made when missing and claimed for this process until the object is destroyed (the lock
+// of io/output_dir.hpp); throws std::runtime_error naming DIR when another sweep holds it
+OutputDir claim_sweep_folder(const std::string& dir);
 
 struct SummaryCounts {
   int ok = 0, failed = 0, not_run = 0;

@@ -1,14 +1,9 @@
 #include "sweep/slurm.hpp"
 
-#include <fcntl.h>
-#include <sys/wait.h>
-#include <unistd.h>
-
-#include <cerrno>
-#include <cstring>
 #include <stdexcept>
 
 #include "io/output_dir.hpp"
+#include "sweep/capture.hpp"
 #include "sweep/results.hpp"
 
 namespace beltsim::sweep {
@@ -44,44 +39,16 @@ std::string header(const SlurmSettings& s, const std::string& what) {
   return h;
 }
 
-// stdout of argv (no shell); throws with its stderr when it fails
-std::string run_capture(const std::vector<std::string>& args) {
-  int out[2], err[2];
-  if (pipe2(out, O_CLOEXEC) != 0 || pipe2(err, O_CLOEXEC) != 0)
-    throw std::runtime_error(std::string("cannot run ") + args[0] + ": " + std::strerror(errno));
-  std::vector<std::string> a = args;
-  std::vector<char*> argv;
-  for (std::string& x : a) argv.push_back(x.data());
-  argv.push_back(nullptr);
-  const pid_t pid = fork();
-  if (pid == 0) {
-    dup2(out[1], 1);
-    dup2(err[1], 2);
-    execvp(argv[0], argv.data());
-    const char m[] = "cannot run the program (is it installed and on PATH?)\n";
-    (void)!::write(2, m, sizeof m - 1);
-    _exit(127);
-  }
-  ::close(out[1]);
-  ::close(err[1]);
-  std::string o, e;
-  char b[4096];
-  for (auto [fd, text] : {std::pair{out[0], &o}, std::pair{err[0], &e}}) {
-    ssize_t n;
-    while ((n = ::read(fd, b, sizeof b)) > 0 || (n < 0 && errno == EINTR))
-      if (n > 0) text->append(b, static_cast<std::size_t>(n));
-    ::close(fd);
-  }
-  int status = 0;
-  while (pid > 0 && waitpid(pid, &status, 0) < 0 && errno == EINTR) {
-  }
-  if (pid < 0 || !WIFEXITED(status) || WEXITSTATUS(status) != 0) {
-    while (!e.empty() && (e.back() == '\n' || e.back() == '\r')) e.pop_back();
+// the standard output of args; throws with its standard error when it fails
+std::string output_of(const std::vector<std::string>& args) {
+  Captured r = run_capture(args);
+  if (r.status != 0) {
+    while (!r.err.empty() && (r.err.back() == '\n' || r.err.back() == '\r')) r.err.pop_back();
     std::string c;
     for (const std::string& x : args) c += (c.empty() ? "" : " ") + x;
-    throw std::runtime_error(c + " failed" + (e.empty() ? std::string() : ": " + e));
+    throw std::runtime_error(c + " failed" + (r.err.empty() ? std::string() : ": " + r.err));
   }
-  return o;
+  return r.out;
 }
 
 }  // namespace
@@ -154,9 +121,9 @@ std::pair<std::string, std::string> submit_slurm_jobs(const SlurmJobs& jobs) {
       throw std::runtime_error("sbatch printed no job id: '" + out + "'");
     return out;
   };
-  const std::string array = id(run_capture({"sbatch", "--parsable", jobs.array_script}));
+  const std::string array = id(output_of({"sbatch", "--parsable", jobs.array_script}));
   const std::string collect =
-      id(run_capture({"sbatch", "--parsable", "--dependency=afterany:" + array, jobs.collect_script}));
+      id(output_of({"sbatch", "--parsable", "--dependency=afterany:" + array, jobs.collect_script}));
   return {array, collect};
 }
 

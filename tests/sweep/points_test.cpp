@@ -35,6 +35,12 @@ TEST(SweepPoints, NumbersKeepFullPrecision) {
   EXPECT_EQ(value_text(Value(300LL)), "300");
 }
 
+TEST(SweepPoints, ParametersForMessagesAreNamedInTheSweepsOrder) {
+  const std::vector<Point> p = grid_points(Grid{{"mu", "how"}, {{Value(0.1 + 0.2)}, {Value(std::string("run"))}}});
+  EXPECT_EQ(params_text(p[0]), "mu=0.30000000000000004, how=run");
+  EXPECT_EQ(params_text(Point{}), "");
+}
+
 TEST(SweepPoints, SamplesAreReproducibleAndInTheirRanges) {
   const Samples s{200, {"mu", "pretension"}, {{0.2, 0.8}, {300, 600}}, 42};
   const std::vector<Point> a = sample_points(s), b = sample_points(s);

@@ -2,7 +2,9 @@
 """`beltsim sweep` (docs/sweeps.md) through the program itself: the grid's order and ids, --list,
 --point, a failing point among good ones, the --set cross form, the summary against the points
 run one by one, resumption after a Ctrl-C and after a kill (only the points not done run again),
-and `beltsim plot` on a summary. Waits are for events (a point's point.csv), never fixed sleeps.
+`beltsim plot` on a summary, errors after the points are known (a folder that cannot be written,
+sbatch missing) said in one line with nothing finished lost, and a second sweep on a folder in use
+refused. Waits are for events (a point's point.csv, a file the test writes), never fixed sleeps.
 
 usage: sweep_test.py BELTSIM
 """
@@ -43,6 +45,20 @@ return beltsim.sweep {
   end,
 }
 """  # [s] for one event; the points take a fraction of a second each
+
+# each point waits until the file GATE exists (the script's folder is readable in the sandbox)
+GATED = """
+return beltsim.sweep {
+  grid = { k = {0, 1} },
+  run = function(p)
+    while true do
+      local f = io.open(%r)
+      if f then f:close() break end
+    end
+    return { twice = 2 * p.k }
+  end,
+}
+"""
 
 
 def alive(pid):
@@ -235,6 +251,94 @@ class Sweep(unittest.TestCase):
         self.assertGreater(os.path.getsize(png), 5000)
         p = self.run_beltsim("plot", "out/grid/summary.csv", "pretension", ok=(1,))
         self.assertIn("name the x column", p.stderr)
+
+    def gated(self):
+        """the GATED sweep in this test's folder and its gate"""
+        script, gate = self.path("gated.lua"), self.path("go")
+        with open(script, "w") as f:
+            f.write(GATED % gate)
+        return script, gate
+
+    def processes_here(self):
+        """the processes (not zombies) working in this test's folder: the sweep's and its points'"""
+        found = []
+        for pid in os.listdir("/proc"):
+            try:
+                if pid.isdigit() and os.readlink("/proc/%s/cwd" % pid) == self.dir and alive(int(pid)):
+                    found.append(int(pid))
+            except OSError:  # ended meanwhile, or not ours to read
+                pass
+        return found
+
+    def assert_one_line_error(self, p, *words):
+        self.assertEqual(p.returncode, 1, p.stderr)
+        self.assertNotIn("terminate", p.stderr)
+        # the error, said once, on the last line (after the notes of a point's run)
+        last = p.stderr.splitlines()[-1]
+        self.assertTrue(last.startswith("beltsim: "), p.stderr)
+        self.assertEqual(p.stderr.count(last[len("beltsim: "):]), 1, p.stderr)
+        for w in words:
+            self.assertIn(w, last)
+
+    def test_sbatch_missing_is_an_error_not_an_abort(self):
+        empty = self.path("bin")
+        os.mkdir(empty)
+        p = subprocess.run([BELTSIM, "sweep", GRID, "--slurm", "--submit"], cwd=self.dir, capture_output=True,
+                           text=True, timeout=300, env=dict(os.environ, PATH=empty))
+        self.assert_one_line_error(p, "sbatch", "PATH")
+        self.assertTrue(os.path.exists(self.path("out", "grid", "sweep.sbatch")))
+
+    def test_a_folder_that_cannot_be_written_is_an_error_not_an_abort(self):
+        with open(self.path("blocker"), "w") as f:
+            f.write("a file, not a folder\n")
+        for mode in ([], ["--collect"], ["--slurm"]):
+            p = self.run_beltsim("sweep", GRID, "--out", "blocker/sweep", *mode, ok=(0, 1, 2, 134, -6))
+            self.assert_one_line_error(p, "blocker/sweep")
+        # a point's result that cannot be written (its name taken by a folder)
+        os.makedirs(self.path("out", "grid", "4", "point.csv"))
+        p = self.run_beltsim("sweep", GRID, "--point", "4", ok=(0, 1, 2, 134, -6))
+        self.assert_one_line_error(p, "point.csv")
+
+    def test_a_point_that_cannot_start_stops_the_sweep_and_keeps_what_finished(self):
+        # point 1's log.txt is a folder: point 0 finishes first (one job), then the sweep stops
+        os.makedirs(self.path("out", "plain", "1", "log.txt"))
+        args = ["sweep", PLAIN, "--set", "pretension=300,500,700"]
+        p = self.run_beltsim(*args, "--jobs", "1", ok=(0, 1, 134, -6))
+        self.assert_one_line_error(p, "out/plain/1/log.txt")
+        summary = rows(self.path("out", "plain", "summary.csv"))
+        self.assertEqual([r[2] for r in summary[1:]], ["ok", "not run", "not run"])
+        # two jobs: point 0 runs (and waits) when point 1 cannot start; it is stopped and reaped
+        # before the sweep ends, and the folder is left as a stop leaves it
+        script, gate = self.gated()
+        os.makedirs(self.path("out", "gated", "1", "log.txt"))
+        p = self.run_beltsim("sweep", script, "--jobs", "2", ok=(0, 1, 134, -6))
+        self.assert_one_line_error(p, "out/gated/1/log.txt")
+        self.assertEqual(self.processes_here(), [], "a point's process outlived the sweep")
+        summary = rows(self.path("out", "gated", "summary.csv"))
+        self.assertEqual([r[2] for r in summary[1:]], ["not run", "not run"])
+        # the cause gone, the sweep runs to its end
+        os.rmdir(self.path("out", "gated", "1", "log.txt"))
+        with open(gate, "w"):
+            pass
+        self.run_beltsim("sweep", script, "--jobs", "2")
+        self.assertEqual([r[2] for r in rows(self.path("out", "gated", "summary.csv"))[1:]], ["ok", "ok"])
+
+    def test_a_second_sweep_on_a_folder_in_use_is_refused(self):
+        script, gate = self.gated()
+        first = subprocess.Popen([BELTSIM, "sweep", script, "--jobs", "1"], cwd=self.dir, stderr=subprocess.PIPE,
+                                 text=True)
+        self.addCleanup(first.kill)
+        self.wait_for(self.path("out", "gated", "0", "log.txt"), first)
+        for mode in ([], ["--collect"], ["--slurm"]):
+            p = self.run_beltsim("sweep", script, "--jobs", "1", *mode, ok=(0, 1, 2))
+            self.assert_one_line_error(p, "out/gated", "another sweep is running there")
+        self.assertIsNone(first.poll(), "the first sweep ended while the second was refused")
+        with open(gate, "w"):
+            pass
+        _, err = first.communicate(timeout=LIMIT)
+        self.assertEqual(first.returncode, 0, err)
+        self.assertEqual([r[2] for r in rows(self.path("out", "gated", "summary.csv"))[1:]], ["ok", "ok"])
+        self.assertFalse(os.path.exists(self.path("out", "gated", "sweep.sbatch")), "the refused --slurm wrote")
 
 
 if __name__ == "__main__":
