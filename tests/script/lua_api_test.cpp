@@ -178,8 +178,14 @@ TEST(LuaApi, MisspeltKeyIsAnErrorWithASuggestion) {
                {"unknown key 'pretention' in belt", "did you mean 'pretension'"});
 }
 
+// a string where a number is due shows its text (a --set value in quotes, '25', reads as text), cut
+// to 40 characters
 TEST(LuaApi, WrongTypeSaysWhatWasExpected) {
-  expect_error(scene_text("elements = 'sixty'"), "scene.lua:1:", {"belt.elements: number expected, got string"});
+  expect_error(scene_text("elements = 'sixty'"), "scene.lua:1:", {"belt.elements: number expected, got string 'sixty'"});
+  expect_error(scene_text("EA = '1.5e5'"), "scene.lua:1:", {"belt.EA: number expected, got string '1.5e5'"});
+  expect_error(scene_text("EA = string.rep('x', 100)"), "scene.lua:1:",
+               {"belt.EA: number expected, got string '" + std::string(40, 'x') + "...'"});
+  expect_error(scene_text("elements = {}"), "scene.lua:1:", {"belt.elements: number expected, got table"});
 }
 
 TEST(LuaApi, SyntaxErrorNamesTheLine) {
