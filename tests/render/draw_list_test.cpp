@@ -329,9 +329,10 @@ TEST_F(Fixture, TravelArrowsStayOffThePulleyNames) {
     p.name = name, p.centre = c, p.radius = r, p.wrap = w;
     return p;
   };
-  d.pulleys = {pulley("crank", {0, 0}, 0.08, WrapSide::inside), pulley("tensioner", {-0.108, 0.07}, 0.032, WrapSide::back),
-               pulley("pump", {-0.1, 0.18}, 0.05, WrapSide::inside), pulley("idler", {0.01, 0.235}, 0.03, WrapSide::back),
-               pulley("alternator", {0.12, 0.22}, 0.028, WrapSide::inside)};
+  d.pulleys = {
+      pulley("crank", {0, 0}, 0.08, WrapSide::inside), pulley("tensioner", {-0.108, 0.07}, 0.032, WrapSide::back),
+      pulley("pump", {-0.1, 0.18}, 0.05, WrapSide::inside), pulley("idler", {0.01, 0.235}, 0.03, WrapSide::back),
+      pulley("alternator", {0.12, 0.22}, 0.028, WrapSide::inside)};
   d.belt.elements = 240;
   d.belt.pretension = 320;
   d.belt.loop_sense = -1;
@@ -344,7 +345,8 @@ TEST_F(Fixture, TravelArrowsStayOffThePulleyNames) {
   ASSERT_EQ(dl.travel.size(), sc.route.spans.size());
   int names = 0;
   for (const DrawList::TextBox& box : dl.boxes) {
-    if (std::none_of(sc.model.pulleys.begin(), sc.model.pulleys.end(), [&](const Pulley& p) { return p.name == box.text; }))
+    if (std::none_of(sc.model.pulleys.begin(), sc.model.pulleys.end(),
+                     [&](const Pulley& p) { return p.name == box.text; }))
       continue;
     ++names;
     for (const auto& [tail, tip] : dl.travel)
