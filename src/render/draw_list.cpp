@@ -351,14 +351,24 @@ void FrameBuilder::build(double t, const double* y, DrawList& out, const Drive* 
   // whose middle is in view, else beside the visible element nearest the view's centre
   const double arrow_len = 2.5 * font_px_, arrow_w = std::max(2.0, 0.16 * font_px_);
   const double gap = h + band_w + 0.6 * font_px_ * px;  // [m] from the belt's centre line
+  // whether the arrow from tail to tip, with its head's half width, runs into a text box drawn so
+  // far (the pulleys' names)
+  const double head_half = 0.4 * font_px_;
+  auto over_text = [&](const Vec2& tail, const Vec2& tip) {
+    const Vec2 lo = tail.cwiseMin(tip) - Vec2::Constant(head_half), hi = tail.cwiseMax(tip) + Vec2::Constant(head_half);
+    for (const DrawList::TextBox& b : out.boxes)
+      if (lo.x() < b.hi.x() && hi.x() > b.lo.x() && lo.y() < b.hi.y() && hi.y() > b.lo.y()) return true;
+    return false;
+  };
   // an arrow beside element i, on the belt's outer side or else its inner side, if it is in view
-  auto travel_arrow = [&](int i) {
+  // (and, when `clear`, crosses no pulley's name)
+  auto travel_arrow = [&](int i, bool clear) {
     const Vec2 d = (Cd[(i + 1) % n] - Cd[(i + n - 1) % n]).normalized();
     const Vec2 u = (P(Cd[i] + d) - P(Cd[i])).normalized();
     for (double side : {1.0, -1.0}) {
       const Vec2 mid = P(Cd[i] + side * gap * O[i]);
       const Vec2 tail = mid - 0.5 * arrow_len * u, tip = mid + 0.5 * arrow_len * u;
-      if (!in_view(tail) || !in_view(tip)) continue;
+      if (!in_view(tail) || !in_view(tip) || (clear && over_text(tail, tip))) continue;
       out.arrow(tail, tip, arrow_w, 0.8 * font_px_, kInk);
       out.travel.push_back({tail, tip});
       return true;
@@ -372,7 +382,14 @@ void FrameBuilder::build(double t, const double* y, DrawList& out, const Drive* 
     int best = 0;
     for (int i = 1; i < n; ++i)
       if ((Cd[i] - mid).squaredNorm() < (Cd[best] - mid).squaredNorm()) best = i;
-    arrows = travel_arrow(best) || arrows;
+    // at the span's middle, else the element nearest it (either way, within the middle half of
+    // the span) whose arrow crosses no name, else at the middle whatever it crosses
+    const int reach = static_cast<int>(0.25 * sp.length / sc_.model.belt.pitch);
+    bool drawn = false;
+    for (int k = 0; k <= reach && !drawn; ++k)
+      for (int i : {best + k, best - k})
+        if (!drawn) drawn = travel_arrow((i % n + n) % n, true);
+    arrows = (drawn || travel_arrow(best, false)) || arrows;
   }
   if (!arrows) {
     std::vector<int> near(n);
@@ -381,7 +398,7 @@ void FrameBuilder::build(double t, const double* y, DrawList& out, const Drive* 
       return (P(Cd[a]) - cam_.area_centre).squaredNorm() < (P(Cd[b]) - cam_.area_centre).squaredNorm();
     });
     for (int i : near)
-      if ((arrows = travel_arrow(i))) break;
+      if ((arrows = travel_arrow(i, false))) break;
   }
 
   draw_text_and_legend(t, seen, mu_dry, arrows, arrow_w, out);

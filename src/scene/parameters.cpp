@@ -1,5 +1,6 @@
 #include "scene/parameters.hpp"
 
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <stdexcept>
@@ -142,7 +143,14 @@ constexpr Parameter kParameters[] = {
     {"belt", "pretension", K::number, "N", 500, "", W::paper, R::positive,
      "tension the spans carry at rest; the rest length follows",
      [](SceneDef& d, PulleyDef&) -> Slot { return &d.belt.pretension; },
-     [](const SceneDef& d) { return d.belt.tensioning == Tensioning::pretension; }, nullptr},
+     // not an input when a tensioner's preload or angle0 sets the tension (the build finds it)
+     [](const SceneDef& d) {
+       return d.belt.tensioning == Tensioning::pretension &&
+              std::none_of(d.pulleys.begin(), d.pulleys.end(), [](const PulleyDef& p) {
+                return p.tensioner && (p.tensioner->preload || p.tensioner->angle0);
+              });
+     },
+     nullptr},
     {"belt", "rest_length", K::number, "m", {}, "", W::none, R::positive,
      "the belt's stress-free length (a datasheet's), instead of pretension",
      [](SceneDef& d, PulleyDef&) -> Slot { return &d.belt.rest_length; },

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <sstream>
+#include <string_view>
 #include <utility>
 
 #include "io/suggest.hpp"
@@ -56,6 +57,13 @@ bool field(lua_State* L, int idx, const char* key) {
 }
 
 double to_number(lua_State* L, int idx, const std::string& what) {
+  if (lua_type(L, idx) == LUA_TSTRING) {  // its text too: a number in quotes, a --set value given as "25"
+    constexpr size_t kShown = 40;
+    size_t len = 0;
+    const char* c = lua_tolstring(L, idx, &len);
+    const std::string text(c, std::min({len, kShown, std::string_view(c, len).find('\0')}));
+    fail(L, what + ": number expected, got string '" + text + (text.size() < len ? "...'" : "'"));
+  }
   if (lua_type(L, idx) != LUA_TNUMBER) fail(L, what + ": number expected, got " + type_name(L, idx));
   return lua_tonumber(L, idx);
 }

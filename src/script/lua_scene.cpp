@@ -8,6 +8,7 @@
 // Lua errors only after their catch block has been left (as LÖVE does).
 #include "script/lua_scene.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <limits>
@@ -343,8 +344,9 @@ void note_given(lua_State* L, int idx, const std::string& prefix, std::set<std::
   }
 }
 
-// the run's first lines: the defaults a scene took, and the tension a given rest length gives
-void report_scene(const Scene& sc, Tensioning tensioning) {
+// the run's first lines: the defaults a scene took, and the tension a given rest length, strain
+// or tensioner preload gives
+void report_scene(const Scene& sc) {
   std::string taken;
   for (const SceneInput& in : sc.inputs) {
     if (in.given) continue;
@@ -360,7 +362,10 @@ void report_scene(const Scene& sc, Tensioning tensioning) {
     std::fprintf(stderr, "beltsim: scene defaults (not given; parameters.csv says where each comes from): %s\n",
                  taken.c_str());
   for (const std::string& w : scene_warnings(sc)) std::fprintf(stderr, "beltsim: warning: %s\n", w.c_str());
-  if (tensioning != Tensioning::pretension) {
+  // the tension at rest is an input (given or the default) unless the rest length, the strain or a
+  // tensioner's preload sets it
+  if (std::none_of(sc.inputs.begin(), sc.inputs.end(),
+                   [](const SceneInput& in) { return in.name == "belt.pretension"; })) {
     const Belt& b = sc.model.belt;
     std::fprintf(stderr, "beltsim: belt: rest length %.6g m on a %.6g m route (strain %.4g %%): static span tension %.6g N\n",
                  b.rigid_length * b.n, sc.route.length, 100 * (b.pitch / b.rigid_length - 1), sc.static_tension);
@@ -444,7 +449,7 @@ int l_scene(lua_State* L) {
     error = e.what();
   }
   if (!error.empty()) fail(L, error);
-  report_scene(**box, d.belt.tensioning);
+  report_scene(**box);
   return 1;
 }
 

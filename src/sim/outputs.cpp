@@ -79,6 +79,20 @@ void write_parameters(const Scene& sc, const RunSettings& rs, const OutputDir& d
          pd.kinematic ? "rad/s" : "N·m");
     row(pre + "wrap_angle", sc.route.arcs[k].angle * 180 / M_PI, "deg", "of the pitch line");
     row(pre + "static_penetration", sc.penetration[j], "m", "p0 of the initial state");
+    if (p.arm >= 0) {
+      const Arm& a = m.arms[p.arm];
+      row(pre + "tensioner.pivot_x", a.pivot.x(), "m", "");
+      row(pre + "tensioner.pivot_y", a.pivot.y(), "m", "");
+      row(pre + "tensioner.length", a.length, "m", "the arm: pivot to the pulley's centre");
+      row(pre + "tensioner.free_angle", a.free_angle, "rad",
+          "psi_0, the spring's free angle (counter-clockwise from +x; the arm starts at "
+          "atan2 of centre - pivot)");
+    }
+  }
+  for (size_t k = 0; k < sc.drive.spray.zones.size(); ++k) {
+    const std::string pre = "spray." + std::to_string(k + 1) + ".";
+    row(pre + "centre_x", sc.drive.spray.zones[k].centre.x(), "m", "");
+    row(pre + "centre_y", sc.drive.spray.zones[k].centre.y(), "m", "");
   }
   row("route.length", sc.route.length, "m", "pitch-line length");
   for (size_t k = 0; k < rs.probes.size(); ++k) {

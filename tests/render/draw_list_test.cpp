@@ -3,6 +3,7 @@
 // colour-map properties.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "model/forces.hpp"
@@ -316,6 +317,46 @@ TEST_F(Fixture, ArrowsShowTheDirectionOfTravel) {
   zoom.build(0.25, y.data(), dl);
   ASSERT_EQ(dl.travel.size(), 1u);
   check(zoom, dl);
+}
+
+// an arrow of travel never crosses a pulley's name: on a serpentine drive whose back-side idler has
+// its name beside it, where the span leaving it has its middle, the arrow goes to the belt's other
+// side (it was drawn through the name "idler")
+TEST_F(Fixture, TravelArrowsStayOffThePulleyNames) {
+  SceneDef d;
+  auto pulley = [](const char* name, Vec2 c, double r, WrapSide w) {
+    PulleyDef p;
+    p.name = name, p.centre = c, p.radius = r, p.wrap = w;
+    return p;
+  };
+  d.pulleys = {
+      pulley("crank", {0, 0}, 0.08, WrapSide::inside), pulley("tensioner", {-0.108, 0.07}, 0.032, WrapSide::back),
+      pulley("pump", {-0.1, 0.18}, 0.05, WrapSide::inside), pulley("idler", {0.01, 0.235}, 0.03, WrapSide::back),
+      pulley("alternator", {0.12, 0.22}, 0.028, WrapSide::inside)};
+  d.belt.elements = 240;
+  d.belt.pretension = 320;
+  d.belt.loop_sense = -1;
+  const Scene sc = test::moving_scene(d);
+  FrameSettings f = fs();
+  f.width = 1280, f.height = 720;
+  FrameBuilder b(sc, f, &font);
+  DrawList dl;
+  b.build(0, sc.y0.data(), dl);
+  ASSERT_EQ(dl.travel.size(), sc.route.spans.size());
+  int names = 0;
+  for (const DrawList::TextBox& box : dl.boxes) {
+    if (std::none_of(sc.model.pulleys.begin(), sc.model.pulleys.end(),
+                     [&](const Pulley& p) { return p.name == box.text; }))
+      continue;
+    ++names;
+    for (const auto& [tail, tip] : dl.travel)
+      for (int k = 0; k <= 20; ++k) {  // points along the arrow
+        const Vec2 v = tail + (tip - tail) * (k / 20.0);
+        EXPECT_FALSE(v.x() > box.lo.x() && v.x() < box.hi.x() && v.y() > box.lo.y() && v.y() < box.hi.y())
+            << "the arrow from " << tail.transpose() << " to " << tip.transpose() << " crosses the name " << box.text;
+      }
+  }
+  EXPECT_EQ(names, 5);
 }
 
 TEST_F(Fixture, CameraFitsTheLayoutOrFollowsTheView) {

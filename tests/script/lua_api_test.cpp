@@ -181,8 +181,14 @@ TEST(LuaApi, MisspeltKeyIsAnErrorWithASuggestion) {
                {"unknown key 'pretention' in belt", "did you mean 'pretension'"});
 }
 
+// a string where a number is due shows its text (a --set value in quotes, '25', reads as text), cut
+// to 40 characters
 TEST(LuaApi, WrongTypeSaysWhatWasExpected) {
-  expect_error(scene_text("elements = 'sixty'"), "scene.lua:6:", {"belt.elements: number expected, got string"});
+  expect_error(scene_text("elements = 'sixty'"), "scene.lua:6:", {"belt.elements: number expected, got string 'sixty'"});
+  expect_error(scene_text("EA = '1.5e5'"), "scene.lua:6:", {"belt.EA: number expected, got string '1.5e5'"});
+  expect_error(scene_text("EA = string.rep('x', 100)"), "scene.lua:6:",
+               {"belt.EA: number expected, got string '" + std::string(40, 'x') + "...'"});
+  expect_error(scene_text("elements = {}"), "scene.lua:6:", {"belt.elements: number expected, got table"});
 }
 
 TEST(LuaApi, SyntaxErrorNamesTheLine) {
@@ -438,6 +444,39 @@ TEST(LuaApi, BeltDataAndTheDefaultsTaken) {
     EXPECT_NE(row(name).find(source), std::string::npos) << name << ": " << row(name);
   }
   EXPECT_NE(row("belt.bending_damping").find("the paper's b_tor"), std::string::npos) << row("belt.bending_damping");
+}
+
+// a tensioner's preload sets the belt's tension at rest: the run's first lines give the tension it
+// gives (as for a rest length), and neither they nor parameters.csv call belt.pretension a default
+// (it was the paper's 500 N's row, holding the tension the preload gave); parameters.csv holds the
+// arm's pivot and free angle and the spray zone's centre, inputs it had no row for
+TEST(LuaApi, ATensionersPreloadSetsTheTensionAndTheArmIsListed) {
+  beltsim::test::expect_warnings({WarningKind::failed_step});
+  const std::string text =
+      "local s = beltsim.scene{ pulleys = {\n"
+      "  { name = 'crankshaft', centre = {0.09, -0.27}, radius = 0.080, inertia = 0.02, torque = -1 },\n"
+      "  { name = 'tensioner', centre = {0.015, -0.12}, radius = 0.031, inertia = 5e-5, wrap = 'back',\n"
+      "    tensioner = { pivot = {0.075, -0.14}, inertia = 1e-3, stiffness = 30, preload = 6 } },\n"
+      "  { name = 'alternator', centre = {0.0, 0.0}, radius = 0.027, inertia = 2e-3 },\n"
+      "  { name = 'pump', centre = {0.16, -0.06}, radius = 0.056, inertia = 1e-3 } },\n"
+      "  belt = { elements = 150, direction = 'cw' },\n"
+      "  spray = { { centre = {0.5, 0.5}, radius = 0.01, mu = 0.2, drying_length = 1 } } }\n"
+      "s:run{ t_end = 0.0005, progress = false }\n";
+  testing::internal::CaptureStderr();
+  const std::string msg = run_text(text);
+  const std::string err = testing::internal::GetCapturedStderr();
+  ASSERT_EQ(msg, "");
+  EXPECT_EQ(err.find("belt.pretension"), std::string::npos) << err;
+  EXPECT_NE(err.find("static span tension"), std::string::npos) << err;
+  std::ifstream f(temp_dir() / "out" / "parameters.csv");
+  const std::string p((std::istreambuf_iterator<char>(f)), std::istreambuf_iterator<char>());
+  EXPECT_EQ(p.find("\nbelt.pretension,"), std::string::npos) << p;
+  for (const char* row : {"\nbelt.static_tension,", "\npulley.tensioner.tensioner.preload,6,N·m,given,",
+                          "\npulley.tensioner.tensioner.pivot_x,0.075,m,derived,",
+                          "\npulley.tensioner.tensioner.pivot_y,-0.14,m,derived,",
+                          "\npulley.tensioner.tensioner.length,", "\npulley.tensioner.tensioner.free_angle,",
+                          "\nspray.1.centre_x,0.5,m,derived,", "\nspray.1.centre_y,0.5,m,derived,"})
+    EXPECT_NE(p.find(row), std::string::npos) << row << " in\n" << p;
 }
 
 // max_wall: a batch run past its wall-time limit is an error naming the limit and the time
