@@ -130,7 +130,14 @@ bool write_session(const std::string& dir, const std::optional<std::string>& scr
                    const std::vector<std::string>& commands) {
   if (commands.empty()) return true;
   namespace fs = std::filesystem;
-  const std::string path = (fs::path(dir) / "session.lua").string();
+  // never over an earlier session's record (a console resumed in its folder): session_2.lua, ...
+  std::string name = "session.lua";
+  for (int k = 2;; ++k) {
+    std::error_code ec;  // (a folder that cannot be read: the write says why)
+    if (fs::symlink_status(fs::path(dir) / name, ec).type() == fs::file_type::not_found || ec) break;
+    name = "session_" + std::to_string(k) + ".lua";
+  }
+  const std::string path = (fs::path(dir) / name).string();
   std::ostringstream f;  // written whole at the end (io/output_dir.hpp: never through a link)
   f << "-- The commands of a beltsim console session that ran without error, in order.\n"
     << "-- Replay with: beltsim run " << shell_word(path);
@@ -164,7 +171,7 @@ bool write_session(const std::string& dir, const std::optional<std::string>& scr
   }
   for (const std::string& c : commands) f << c << "\n";
   try {
-    write_file_whole(OutputDir(dir), "session.lua", f.str());  // the folder made when missing
+    write_file_whole(OutputDir(dir), name, f.str());  // the folder made when missing
   } catch (const std::exception& e) {  // recorded: the exit status says so (app/main.cpp)
     std::fprintf(stderr, "beltsim: %s\n", e.what());
     mark_output_failure_shown(e.what());

@@ -24,8 +24,8 @@ using StoppedRuns = std::vector<std::pair<const void*, double>>;
 // the globals of L name the simulations in `stopped`
 std::string replayable(lua_State* L, const std::string& chunk, bool expression, const StoppedRuns& stopped);
 
-// writes <dir>/session.lua (nothing when no command ran); false, with the reason on stderr, when it
-// cannot be written
+// writes <dir>/session.lua, or session_2.lua, ... when an earlier session's is there (nothing when
+// no command ran); false, with the reason on stderr, when it cannot be written
 bool write_session(const std::string& dir, const std::optional<std::string>& script, std::string script_text,
                    const std::vector<std::string>& args, const std::vector<ScriptArg>& sets,
                    const std::vector<std::string>& commands);

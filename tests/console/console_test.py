@@ -282,6 +282,25 @@ class ConsoleTest(unittest.TestCase):
         with open(os.path.join(out_console, "events.csv")) as f:
             self.assertIn("\n0.003,wet,", f.read())
 
+    # 10b
+    def test_a_second_session_keeps_the_first_ones_record(self):
+        # two consoles in one output folder (a checkpoint resumed where it was saved): each
+        # session's commands in a file of its own, the first's left as it was
+        paths = []
+        for command in ["sim:advance(0.001)", "print(6*7)"]:
+            r = self.piped([command])
+            err = r.stderr.decode()
+            self.assertEqual(r.returncode, 0, err)
+            m = re.search(r"the session's commands are in (\S+)", err)
+            self.assertTrue(m, "where the session's commands went is not said: " + err)
+            paths.append(os.path.join(self.tmp, m.group(1)))
+        self.assertTrue(paths[0].endswith(os.sep + "session.lua"), paths)
+        self.assertEqual(paths[1], paths[0][:-len("session.lua")] + "session_2.lua")
+        with open(paths[0]) as f:
+            self.assertIn("\nsim:advance(0.001)\n", f.read())
+        with open(paths[1]) as f:
+            self.assertIn("\nprint(6*7)\n", f.read())
+
     # 10a
     def test_session_replays_expressions_statements_and_chunks(self):
         # bare expressions (printed at the prompt), a chunk that returns, locals, a multi-line
