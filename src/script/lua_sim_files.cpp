@@ -3,6 +3,7 @@
 #include <cstdio>
 #include <filesystem>
 
+#include "io/number_text.hpp"
 #include "io/suggest.hpp"
 #include "plot/plot.hpp"
 #include "render/recorder.hpp"
@@ -138,6 +139,8 @@ int l_resume(lua_State* L) {
   };
   guarded(L, "beltsim.resume",
           [&] { sim = Simulation::resume(lua_tostring(L, 1), render::make_frame_recorder, &callbacks, vet); });
+  std::fprintf(stderr, "beltsim: %s resumed at t = %s s; its outputs go on in %s\n", lua_tostring(L, 1),
+               number_text(sim->now()).c_str(), sim->out_dir().c_str());
   if (callbacks > 0)
     std::fprintf(stderr, "beltsim: %s had %d callback(s) (every, when); register them again on the resumed simulation\n",
                  lua_tostring(L, 1), callbacks);

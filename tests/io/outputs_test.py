@@ -119,12 +119,16 @@ def planted_links():
                                          'sim:run_to(0.002)\nsim:save(%r)\n' % ck), "--out", out])
     refused("run.ckpt", status, err, ck, target)
     check(not os.path.exists(ck + ".part"), "run.ckpt: no .part left")
-    # the console's session.lua
+    # the console's session.lua: a name that is taken, a link too, is left alone (the session's
+    # commands go to session_2.lua)
     out = fresh("link_session")
     target = plant(out, "session.lua")
     status, err = beltsim(["console", "--out", out], stdin="x = 1\n")
-    refused("session.lua", status, err, os.path.join(out, "session.lua"), target)
-    check("the session's commands are in" not in err, "session.lua: not reported as written")
+    check(status == 0, "session.lua: a console beside a planted link ends well (%r)" % err[-300:])
+    check("the session's commands are in %s" % os.path.join(out, "session_2.lua") in err,
+          "session.lua: the commands go to session_2.lua (%r)" % err[-300:])
+    check(read(target) == SECRET, "session.lua: the link's target is untouched")
+    check(os.path.islink(os.path.join(out, "session.lua")), "session.lua: the link is left as it was")
     # beltsim plot's picture, beside the CSV
     out = fresh("link_plot")
     status, err = beltsim(["run", script("run", RUN), "--no-frames", "--out", out])
@@ -199,6 +203,9 @@ def one_writer():
                                          % (ck, ck, ck)), "--out", out])
     check(status == 1 and "is in use by another simulation of this beltsim" in err,
           "a checkpoint resumed twice: the second refused: %r" % err[-300:])
+    # the first one says what it continued, from when, and where its outputs go
+    check("beltsim: %s resumed at t = 0.002 s; its outputs go on in %s\n" % (ck, out) in err,
+          "a resumed checkpoint is announced with its time and folder: %r" % err[-600:])
 
 
 # ---- §6 outputs that cannot be written -----------------------------------------------------------
