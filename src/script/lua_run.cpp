@@ -389,6 +389,11 @@ RunSettings read_run_settings(lua_State* L, int idx, const Scene& sc, Context* c
 
 // scene:run{ t_end=, integrator=, rtol=, atol=, sample=, out=, probe=, progress=, events=, frames= } -> result
 // = scene:start{...}, sim:run_to(t_end), sim:close()
+std::string wall_limit_text(double limit, double t, double target, const std::string& outputs) {
+  return "stopped at its wall-time limit (max_wall = " + rounded_text(limit) + " s) at t = " + rounded_text(t) +
+         " s of " + rounded_text(target) + " s; the outputs up to then are in " + outputs;
+}
+
 int l_scene_run(lua_State* L) {
   const Scene* sc = check_scene(L, 1, "run");
   check_args(L, "scene:run", {{"{t_end, integrator, ...}", kTable, true}}, 2);
@@ -422,9 +427,7 @@ int l_scene_run(lua_State* L) {
   }
   if (res.over_wall_limit) {
     // not silent: the outputs are finalised (run() closed them) and the script stops here
-    error = "run.max_wall: the run passed its wall-time limit of " + rounded_text(rs.wall_limit) +
-            " s and stopped at t = " + rounded_text(res.t_reached) + " s of t_end = " + rounded_text(rs.t_end) +
-            " s (the samples up to then are in " + res.csv_path + ")";
+    error = "run.max_wall: the run " + wall_limit_text(rs.wall_limit, res.t_reached, rs.t_end, res.csv_path);
   }
   if (!error.empty()) fail(L, error);
   if (res.interrupted) ctx->interrupted = true;

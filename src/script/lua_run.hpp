@@ -43,6 +43,10 @@ RunSettings read_run_settings(lua_State* L, int idx, const Scene& sc, Context* c
 
 // scene:run{...} -> result table; scene:start{...} -> sim at t = 0. Each takes the Context as its
 // first upvalue (open_scene registers them).
+// "stopped at its wall-time limit (max_wall = LIMIT s) at t = T s of TARGET s; the outputs up to
+// then are in DIR": a run's or a live simulation's call's message, after the caller's name
+std::string wall_limit_text(double limit, double t, double target, const std::string& outputs);
+
 int l_scene_run(lua_State* L);
 int l_scene_start(lua_State* L);
 

@@ -61,9 +61,7 @@ int run_to(lua_State* L, SimBox& box, double t, const char* what) {
   if (a.over_wall_limit) {
     // not silent: an error naming the limit and the time reached (outputs flushed; the
     // simulation can go on with another call)
-    fail(L, std::string(what) + ": stopped at its wall-time limit (max_wall = " +
-                rounded_text(box.sim->settings().wall_limit) + " s) at t = " + rounded_text(a.t) + " s of " +
-                rounded_text(t) + " s; the outputs up to then are in " + box.sim->out_dir());
+    fail(L, std::string(what) + ": " + wall_limit_text(box.sim->settings().wall_limit, a.t, t, box.sim->out_dir()));
   }
   if (a.interrupted) {
     interrupted = true;

@@ -15,6 +15,11 @@ namespace beltsim {
 
 namespace {
 
+// a probe's column prefix: "probe" when the run has one, "probe1", "probe2", ... when more
+std::string probe_name(size_t k, size_t probes) {
+  return probes == 1 ? std::string("probe") : "probe" + std::to_string(k + 1);
+}
+
 std::string span_name(const Scene& sc, size_t k) {
   return "span_" + sc.route_names[k] + "_" + sc.route_names[(k + 1) % sc.route_names.size()];
 }
@@ -96,7 +101,7 @@ void write_parameters(const Scene& sc, const RunSettings& rs, const OutputDir& d
   }
   row("route.length", sc.route.length, "m", "pitch-line length");
   for (size_t k = 0; k < rs.probes.size(); ++k) {
-    const std::string name = rs.probes.size() == 1 ? std::string("probe") : "probe" + std::to_string(k + 1);
+    const std::string name = probe_name(k, rs.probes.size());
     f << name << ".element," << rs.probes[k] << ",,run,"
       << csv_text("a selected element; " + name + ".sde_force is its left SDE") << '\n';
   }
@@ -127,7 +132,7 @@ std::vector<std::string> timeseries_columns(const Scene& sc, size_t probes) {
     for (const char* q : {".tension", ".tension_mean"}) c.push_back(span_name(sc, k) + q);
   for (size_t k = 0; k < probes; ++k)
     for (const char* q : {".sde_force", ".normal_force", ".friction_force", ".slip_velocity"})
-      c.push_back((probes == 1 ? std::string("probe") : "probe" + std::to_string(k + 1)) + q);
+      c.push_back(probe_name(k, probes) + q);
   if (sc.model.track_energy)
     for (const char* q : {"energy.mechanical", "energy.work_torques", "energy.dissipated_axial",
                           "energy.dissipated_bending", "energy.dissipated_contact", "energy.dissipated_friction"})

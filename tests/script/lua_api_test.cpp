@@ -486,7 +486,7 @@ TEST(LuaApi, MaxWallStopsARunWithAnError) {
   beltsim::test::expect_warnings({WarningKind::failed_step});
   const std::string msg = run_text(scene_text("") + "s:run{ t_end = 1, max_wall = 0.05, progress = false }\n");
   EXPECT_NE(msg.find("scene.lua:"), std::string::npos) << msg;
-  EXPECT_NE(msg.find("run.max_wall: the run passed its wall-time limit of 0.05 s and stopped at t = "),
+  EXPECT_NE(msg.find("run.max_wall: the run stopped at its wall-time limit (max_wall = 0.05 s) at t = "),
             std::string::npos) << msg;
   EXPECT_TRUE(fs::exists(temp_dir() / "out" / "timeseries.csv"));
   expect_error(scene_text("") + "s:run{ t_end = 1, max_wall = 0 }\n", "scene.lua:", {"run.max_wall: must be > 0"});
