@@ -105,7 +105,7 @@ void check_inertias(const Route& route, const RouteOrder& order, const std::vect
     if (pulleys[j].inertia < kWrapInertiaMin * on_wrap) {
       std::ostringstream s;
       s.precision(3);
-      s << "pulley '" << order.names[k] << "' inertia: " << pulleys[j].inertia
+      s << "pulley '" << order.names[k] << "'.inertia: " << pulleys[j].inertia
         << " kg·m² is below 1 % of the belt's inertia on its wrap (" << on_wrap << " kg·m²: "
         << mass_per_length * route.arcs[k].length() << " kg at r = " << r
         << " m); the step-size control cannot follow so light a pulley and its speed comes out wrong: give at least "

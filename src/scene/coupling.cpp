@@ -11,7 +11,7 @@ namespace beltsim::build {
 void validate_coupling(const PulleyDef& p) {
   if (!p.coupling) return;
   const CouplingDef& c = *p.coupling;
-  const std::string w = "pulley '" + p.name + "' coupling.";
+  const std::string w = "pulley '" + p.name + "'.coupling.";
   require_positive(w + "inertia", c.inertia, "kg·m²");
   require_positive(w + "stiffness", c.stiffness, "N·m/rad");
   require_non_negative(w + "damping", c.damping, "N·m·s/rad");

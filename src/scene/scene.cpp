@@ -81,7 +81,7 @@ std::vector<std::string> scene_warnings(const Scene& sc) {
     if (p.kinematic || !(p.torque.per_speed > 0)) continue;
     std::ostringstream m;
     m.precision(3);
-    m << "pulley '" << sc.model.pulleys[j].name << "' torque: per_speed = " << p.torque.per_speed
+    m << "pulley '" << sc.model.pulleys[j].name << "'.torque: per_speed = " << p.torque.per_speed
       << " N·m·s/rad > 0 feeds energy in (the torque grows with the speed in its own sense): the speed runs away "
          "unless the belt holds it; a load opposing the rotation has per_speed < 0";
     out.push_back(m.str());

@@ -191,9 +191,9 @@ Drive read_drive(CheckpointReader& r, const Model& m) {
     p.kinematic = r.line_choice("pulley.drive.by", {"torque", "speed"}) == 1;
     const std::string label = "pulley '" + pl.name + "'";
     p.torque = read_law(r, "pulley.torque");
-    checked(r, [&] { validate_law(label + " torque", p.torque, false); });
+    checked(r, [&] { validate_law(label + ".torque", p.torque, false); });
     p.speed = read_law(r, "pulley.speed");
-    checked(r, [&] { validate_law(label + " speed", p.speed, true); });
+    checked(r, [&] { validate_law(label + ".speed", p.speed, true); });
   }
   const size_t n = static_cast<size_t>(m.n_el());
   d.mu = r.line_doubles("belt.mu", n);

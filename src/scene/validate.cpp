@@ -74,8 +74,8 @@ void check_rules(const SceneDef& d, std::string_view table, const PulleyDef* p, 
     if (par->rule == Rule::none || (par->applies && !par->applies(d))) continue;
     const std::optional<double> v = value_of(*par, d, p);
     if (!v) continue;
-    // a pulley's key after its label: "radius", "tensioner.stiffness"
-    const std::string what = p                ? pulley_label(*p) + " " + par->dotted().substr(std::string_view("pulley.").size())
+    // a pulley's key after its label: "pulley 'a'.radius", "pulley 'a'.tensioner.stiffness"
+    const std::string what = p                ? pulley_label(*p) + "." + par->dotted().substr(std::string_view("pulley.").size())
                              : !label.empty() ? label + "." + std::string(par->key)
                                               : par->dotted();
     check_rule(*par, what, *v);
@@ -164,10 +164,10 @@ void validate(const SceneDef& d) {
     if (p.tensioner) check_rules(d, "pulley.tensioner", &p);
     if (p.coupling) check_rules(d, "pulley.coupling", &p);
     if (p.kinematic) {
-      validate_law(w + " speed", p.speed, true);
+      validate_law(w + ".speed", p.speed, true);
       if (!p.torque.is_zero()) throw ParameterError(w + ": give either a torque or a prescribed speed, not both");
     } else {
-      validate_law(w + " torque", p.torque, false);
+      validate_law(w + ".torque", p.torque, false);
     }
   }
   for (size_t a = 0; a < d.pulleys.size(); ++a)

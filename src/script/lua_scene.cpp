@@ -206,7 +206,7 @@ PulleyDef to_pulley(lua_State* L, int idx, const std::string& what, SceneDef& d,
   if (has(L, idx, "centre") && has(L, idx, "center")) fail(L, w + ": give centre or center, not both");
   for (const char* key : {"centre", "center"})
     if (field(L, idx, key)) {
-      p.centre = to_vec2(L, -1, w + " " + key);
+      p.centre = to_vec2(L, -1, w + "." + key);
       lua_pop(L, 1);
       centred = true;
     }

@@ -379,7 +379,7 @@ TEST(BuildStages, LightPulleysAreRefusedWithTheBeltsInertiaOnTheWrap) {
   const double on_wrap = 0.096 * M_PI * kR * kR * kR;  // ≈ 180° of wrap: ρ·(π r)·r²
   d.pulleys[1].inertia = 0.5 * build::kWrapInertiaMin * on_wrap;
   const std::string e = error_of([&] { build_scene(d); });
-  EXPECT_NE(e.find("pulley 'driven' inertia"), std::string::npos) << e;
+  EXPECT_NE(e.find("pulley 'driven'.inertia"), std::string::npos) << e;
   EXPECT_NE(e.find("below 1 %"), std::string::npos) << e;
   EXPECT_NE(e.find("0.0003"), std::string::npos) << e;  // the belt's inertia on the wrap
   d.pulleys[1].inertia = 2 * build::kWrapInertiaMin * on_wrap;  // the wrap is a little over 180°: 2x clears it
@@ -407,7 +407,7 @@ TEST(BuildStages, HugeMuIsRefusedAndAnEnergySourceIsWarnedOf) {
   s.pulleys[1].torque.per_speed = 0.5;
   const std::vector<std::string> w = scene_warnings(build_scene(s));
   ASSERT_EQ(w.size(), 1u);
-  EXPECT_NE(w[0].find("pulley 'driven' torque: per_speed = 0.5"), std::string::npos) << w[0];
+  EXPECT_NE(w[0].find("pulley 'driven'.torque: per_speed = 0.5"), std::string::npos) << w[0];
 }
 
 }  // namespace beltsim

@@ -176,11 +176,11 @@ TEST(Coupling, ErrorsNameTheParameter) {
   SceneDef d = presets::paper_dry();
   CouplingDef& c = d.pulleys[1].coupling.emplace();
   c.inertia = 0.01, c.stiffness = -3;
-  EXPECT_EQ(error_of([&] { build_scene(d); }), "pulley 'driven' coupling.stiffness must be > 0 (got -3 N·m/rad)");
+  EXPECT_EQ(error_of([&] { build_scene(d); }), "pulley 'driven'.coupling.stiffness must be > 0 (got -3 N·m/rad)");
   c.stiffness = 50, c.inertia = 0;
-  EXPECT_EQ(error_of([&] { build_scene(d); }), "pulley 'driven' coupling.inertia must be > 0 (got 0 kg·m²)");
+  EXPECT_EQ(error_of([&] { build_scene(d); }), "pulley 'driven'.coupling.inertia must be > 0 (got 0 kg·m²)");
   c.inertia = 0.01, c.one_way = true, c.lock_damping = 0;
-  EXPECT_EQ(error_of([&] { build_scene(d); }), "pulley 'driven' coupling.lock_damping must be > 0 (got 0 N·m·s/rad)");
+  EXPECT_EQ(error_of([&] { build_scene(d); }), "pulley 'driven'.coupling.lock_damping must be > 0 (got 0 N·m·s/rad)");
 }
 
 }  // namespace

@@ -494,7 +494,7 @@ TEST(SceneIo, SceneIsValidatedAsAScriptsScene) {
   const std::string text = scene_text(dry_scene());
   const std::string lines = "lines 2 to " + std::to_string(std::count(text.begin(), text.end(), '\n') - 1) + ": the scene: ";
   EXPECT_EQ(read_error(resealed(with_line(text, "pulley.inertia", "pulley.inertia -1"))),
-            lines + "pulley 'driver' inertia must be > 0 (got -1 kg·m²)");
+            lines + "pulley 'driver'.inertia must be > 0 (got -1 kg·m²)");
   EXPECT_EQ(read_error(resealed(with_line(text, "contact.p_max", "contact.p_max 0"))),
             lines + "contact.p_max must be > 0 (got 0 m)");
   EXPECT_EQ(read_error(resealed(with_line(text, "friction.dv", "friction.dv 0"))),
@@ -512,7 +512,7 @@ TEST(SceneIo, SceneIsValidatedAsAScriptsScene) {
   // a law a script could not give
   EXPECT_EQ(read_error(resealed(with_line(text, "pulley.torque.table", "pulley.torque.table 2 0.1 1 0.05 2"))),
             "line " + std::to_string(line_of(text, "pulley.torque.harmonics")) +
-                ": 'pulley.torque.harmonics': pulley 'driver' torque.table entry 2 must be larger than the entry "
+                ": 'pulley.torque.harmonics': pulley 'driver'.torque.table entry 2 must be larger than the entry "
                 "before it (got 0.05 s)");
 }
 

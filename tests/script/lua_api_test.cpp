@@ -141,7 +141,7 @@ TEST(LuaApi, BadVideoPathWritesNothing) {
 
 TEST(LuaApi, NegativeRadiusNamesFileLineAndValue) {
   expect_error(scene_text("", "centre = {0.29, 0}, radius = -0.1"), "scene.lua:4:",
-               {"pulley 'driven' radius must be > 0", "-0.1 m"});
+               {"pulley 'driven'.radius must be > 0", "-0.1 m"});
 }
 
 TEST(LuaApi, ZeroInertiaIsRejected) {

@@ -142,7 +142,7 @@ TEST(Parameters, EveryRuleStopsTheScriptWithTheKeyTheReasonAndTheValue) {
     if (p.table == "spray") values = kSpray;
     if (p.table == "pulley.coupling") values = kCoupling;
     values[p.dotted()] = lua;
-    const std::string what = p.table.starts_with("pulley") ? "pulley 'a' " + p.dotted().substr(7)
+    const std::string what = p.table.starts_with("pulley") ? "pulley 'a'." + p.dotted().substr(7)
                              : p.table == "spray"          ? "spray 1." + std::string(p.key)
                                                            : p.dotted();
     const std::string text = scene_with(values);

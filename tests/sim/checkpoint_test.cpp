@@ -246,7 +246,7 @@ TEST(Checkpoint, SceneAndSettingsAreValidated) {
       EXPECT_EQ(m, scene + expected.substr(11));
     }
   };
-  refused("pulley.inertia", "pulley.inertia -0.025", "the scene: pulley 'driver' inertia must be > 0 (got -0.025 kg·m²)");
+  refused("pulley.inertia", "pulley.inertia -0.025", "the scene: pulley 'driver'.inertia must be > 0 (got -0.025 kg·m²)");
   refused("contact.p_max", "contact.p_max 0", "the scene: contact.p_max must be > 0 (got 0 m)");
   refused("friction.dv", "friction.dv 0", "the scene: friction.dv must be > 0 (got 0 m/s)");
   refused("belt.mu", "belt.mu 3 0.3 0.3 0.3", "'belt.mu': 3 values for 60 elements");
