@@ -140,7 +140,7 @@ int l_resume(lua_State* L) {
   guarded(L, "beltsim.resume",
           [&] { sim = Simulation::resume(lua_tostring(L, 1), render::make_frame_recorder, &callbacks, vet); });
   std::fprintf(stderr, "beltsim: %s resumed at t = %s s; its outputs go on in %s\n", lua_tostring(L, 1),
-               number_text(sim->now()).c_str(), sim->out_dir().c_str());
+               rounded_text(sim->now()).c_str(), sim->out_dir().c_str());
   if (callbacks > 0)
     std::fprintf(stderr, "beltsim: %s had %d callback(s) (every, when); register them again on the resumed simulation\n",
                  lua_tostring(L, 1), callbacks);
