@@ -259,7 +259,8 @@ bool tables_match(const std::vector<Table>& tables, const std::vector<int>& ids,
   if (ids.size() - from != prefix.size()) return false;
   for (size_t k = 0; k < prefix.size(); ++k) {
     const Table& t = tables[static_cast<size_t>(ids[from + k])];
-    const bool ok = is_digits(prefix[k]) ? t.position == std::stoi(prefix[k]) : t.key == prefix[k];
+    const bool ok = is_digits(prefix[k]) ? prefix[k].size() <= 9 && t.position == std::stoi(prefix[k])
+                                         : t.key == prefix[k];
     if (!ok) return false;
   }
   return true;

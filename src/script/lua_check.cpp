@@ -15,11 +15,17 @@ namespace beltsim::script {
   // "file:line:" of the calling script line, or of the line in the call's table constructor
   // where the key the message names was written (key_line.hpp)
   lua_Debug ar;
-  if (lua_getstack(L, 1, &ar) && lua_getinfo(L, "Sl", &ar) && ar.currentline > 0 && ar.source[0] == '@')
-    if (const auto line = key_line_in_file(ar.source + 1, ar.currentline, message_path(msg))) {
-      lua_pushfstring(L, "%s:%d: %s", ar.short_src, *line, msg.c_str());
-      lua_error(L);
+  std::optional<int> line;
+  if (lua_getstack(L, 1, &ar) && lua_getinfo(L, "Sl", &ar) && ar.currentline > 0 && ar.source[0] == '@') {
+    try {
+      line = key_line_in_file(ar.source + 1, ar.currentline, message_path(msg));
+    } catch (const std::exception&) {  // (no memory for the text): the call's line
     }
+  }
+  if (line) {
+    lua_pushfstring(L, "%s:%d: %s", ar.short_src, *line, msg.c_str());
+    lua_error(L);
+  }
   luaL_error(L, "%s", msg.c_str());
   __builtin_unreachable();  // lua_error unwinds (longjmp, or a C++ throw here)
 }

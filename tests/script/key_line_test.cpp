@@ -86,6 +86,8 @@ TEST(KeyLine, FindsTheKeyWhoseTablesMatchThePath) {
   // unfinished text and nesting deeper than Lua's parser takes: no answer, no crash
   EXPECT_EQ(line_of("x = beltsim.scene { belt = { elements = 'a", 1, "belt.elements"), 1);
   EXPECT_EQ(line_of("x = beltsim.scene { " + std::string(100000, '{'), 1, "belt.elements"), std::nullopt);
+  // a list position past int: no match, no exception
+  EXPECT_EQ(line_of(kScene, 3, "friction.segments[99999999999999999999].mu"), std::nullopt);
   // a key written twice in one table: which one?
   EXPECT_EQ(line_of("x = beltsim.scene { belt = { elements = 1,\n elements = 2 } }\n", 1, "belt.elements"),
             std::nullopt);
