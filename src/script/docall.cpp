@@ -1,6 +1,5 @@
 #include "script/docall.hpp"
 
-#include <exception>
 #include <sstream>
 
 #include "lauxlib.h"

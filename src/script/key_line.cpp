@@ -21,6 +21,14 @@ bool ident_start(char c) {
 bool ident_char(char c) {
   return std::isalnum(static_cast<unsigned char>(c)) || c == '_';
 }
+bool digit(char c) {
+  return std::isdigit(static_cast<unsigned char>(c));
+}
+// the end of the run of digits of s that starts at i
+size_t digits_end(std::string_view s, size_t i) {
+  while (i < s.size() && digit(s[i])) ++i;
+  return i;
+}
 
 // Lua's tokens, as far as tables need them: a name, a string's contents, a number, or the
 // punctuation itself ("{", "=", "==", "..")
@@ -58,8 +66,7 @@ class Lexer {
       const size_t b = i_;
       while (i_ < s_.size() && ident_char(s_[i_])) ++i_;
       t.kind = Token::name, t.text = s_.substr(b, i_ - b);
-    } else if (std::isdigit(static_cast<unsigned char>(c)) ||
-               (c == '.' && i_ + 1 < s_.size() && std::isdigit(static_cast<unsigned char>(s_[i_ + 1])))) {
+    } else if (digit(c) || (c == '.' && i_ + 1 < s_.size() && digit(s_[i_ + 1]))) {
       const size_t b = i_;
       while (i_ < s_.size() && (ident_char(s_[i_]) || s_[i_] == '.' ||
                                 ((s_[i_] == '+' || s_[i_] == '-') && std::strchr("eEpP", s_[i_ - 1]))))
@@ -140,6 +147,10 @@ class Lexer {
   bool peeked_ = false;
 };
 
+bool is(const Token& t, std::string_view punct) {
+  return t.kind == Token::punct && t.text == punct;
+}
+
 // a table constructor being read: the key or list position it is the value of, and the value of
 // its own `name` key (known only when its `name =` has been read: kept by id, filled in later)
 struct Table {
@@ -199,8 +210,6 @@ class ConstructorScan {
   bool gave_up() const { return gave_up_; }
 
  private:
-  static bool is(const Token& t, std::string_view punct) { return t.kind == Token::punct && t.text == punct; }
-
   // steps over one field's value from its first token t; returns the token that ends it ("," ";"
   // "}" or the end). Tables inside it are read as the value of `key` (the one at the value's
   // start also as the list entry `position`; later ones, a call's arguments, as the key's only).
@@ -247,10 +256,7 @@ class ConstructorScan {
 };
 
 bool is_digits(std::string_view s) {
-  if (s.empty()) return false;
-  for (char c : s)
-    if (!std::isdigit(static_cast<unsigned char>(c))) return false;
-  return true;
+  return !s.empty() && digits_end(s, 0) == s.size();
 }
 
 // the tables around an occurrence, below the call's own, match `prefix` (keys and positions)
@@ -259,8 +265,8 @@ bool tables_match(const std::vector<Table>& tables, const std::vector<int>& ids,
   if (ids.size() - from != prefix.size()) return false;
   for (size_t k = 0; k < prefix.size(); ++k) {
     const Table& t = tables[static_cast<size_t>(ids[from + k])];
-    const bool ok = is_digits(prefix[k]) ? prefix[k].size() <= 9 && t.position == std::stoi(prefix[k])
-                                         : t.key == prefix[k];
+    const bool ok =
+        is_digits(prefix[k]) ? prefix[k].size() <= 9 && t.position == std::stoi(prefix[k]) : t.key == prefix[k];
     if (!ok) return false;
   }
   return true;
@@ -289,11 +295,10 @@ KeyPath message_path(std::string_view m) {
     unknown = std::string(rest.substr(u.size(), e - u.size()));
     rest = rest.substr(e + 5);
   }
-  if (constexpr std::string_view pn = "pulley "; rest.substr(0, pn.size()) == pn && rest.size() > pn.size() &&
-                                                 std::isdigit(static_cast<unsigned char>(rest[pn.size()]))) {
+  if (constexpr std::string_view pn = "pulley ";
+      rest.substr(0, pn.size()) == pn && rest.size() > pn.size() && digit(rest[pn.size()])) {
     // "pulley 2": the second entry of `pulleys` (its name not read yet)
-    size_t e = pn.size();
-    while (e < rest.size() && std::isdigit(static_cast<unsigned char>(rest[e]))) ++e;
+    const size_t e = digits_end(rest, pn.size());
     p.chain = {"pulleys", std::string(rest.substr(pn.size(), e - pn.size()))};
     rest = e < rest.size() && rest[e] == '.' ? rest.substr(e + 1) : std::string_view{};
   } else if (constexpr std::string_view pu = "pulley '"; rest.substr(0, pu.size()) == pu) {
@@ -312,15 +317,15 @@ KeyPath message_path(std::string_view m) {
     size_t b = i;
     if (ident_start(rest[i])) {
       while (i < rest.size() && ident_char(rest[i])) ++i;
-    } else if (!p.chain.empty() && std::isdigit(static_cast<unsigned char>(rest[i]))) {
-      while (i < rest.size() && std::isdigit(static_cast<unsigned char>(rest[i]))) ++i;
+    } else if (!p.chain.empty() && digit(rest[i])) {
+      i = digits_end(rest, i);
     } else {
       break;
     }
     p.chain.emplace_back(rest.substr(b, i - b));
     // "spray 2.radius": the second entry of the list `spray`
-    if (size_t e = i + 1; p.chain.size() == 1 && i < rest.size() && rest[i] == ' ') {
-      while (e < rest.size() && std::isdigit(static_cast<unsigned char>(rest[e]))) ++e;
+    if (p.chain.size() == 1 && i < rest.size() && rest[i] == ' ') {
+      const size_t e = digits_end(rest, i + 1);
       if (e > i + 1 && e + 1 < rest.size() && rest[e] == '.') {
         p.chain.emplace_back(rest.substr(i + 1, e - i - 1));
         i = e;
@@ -354,22 +359,23 @@ std::optional<int> key_line(std::string_view text, int call_line, const KeyPath&
   Lexer lex(text);
   Token t = lex.next();
   while (t.kind != Token::end && t.line < call_line) t = lex.next();
-  while (t.kind != Token::end && t.line == call_line && !(t.kind == Token::punct && t.text == "{")) t = lex.next();
+  while (t.kind != Token::end && t.line == call_line && !is(t, "{")) t = lex.next();
   if (t.kind == Token::end || t.line != call_line) return std::nullopt;
   ConstructorScan scan(lex);
   scan.table("", 0);
   if (scan.gave_up()) return std::nullopt;
 
-  std::vector<std::string> prefix(path.chain.begin(), path.chain.end() - 1);
-  std::set<int> lines;
-  for (const Occurrence& o : scan.found())
-    if (matches(scan.tables(), o, path, prefix)) lines.insert(o.line);
-  // a leading "scene" or "run" names the call's own table
-  if (lines.empty() && !prefix.empty() && (prefix[0] == "scene" || prefix[0] == "run")) {
-    prefix.erase(prefix.begin());
+  const auto lines_of = [&](const std::vector<std::string>& prefix) {
+    std::set<int> lines;
     for (const Occurrence& o : scan.found())
       if (matches(scan.tables(), o, path, prefix)) lines.insert(o.line);
-  }
+    return lines;
+  };
+  const std::vector<std::string> prefix(path.chain.begin(), path.chain.end() - 1);
+  std::set<int> lines = lines_of(prefix);
+  // a leading "scene" or "run" names the call's own table
+  if (lines.empty() && !prefix.empty() && (prefix[0] == "scene" || prefix[0] == "run"))
+    lines = lines_of({prefix.begin() + 1, prefix.end()});
   if (lines.size() != 1) return std::nullopt;
   return *lines.begin();
 }
