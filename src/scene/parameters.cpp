@@ -147,7 +147,7 @@ constexpr Parameter kParameters[] = {
      [](const SceneDef& d) {
        return d.belt.tensioning == Tensioning::pretension &&
               std::none_of(d.pulleys.begin(), d.pulleys.end(), [](const PulleyDef& p) {
-                return p.tensioner && (p.tensioner->preload || p.tensioner->angle0);
+                return p.tensioner && p.tensioner->sets_tension();
               });
      },
      nullptr},

@@ -175,7 +175,7 @@ Scene build_scene(const SceneDef& d, const std::atomic<bool>* stop) {
   // few builds
   int arm = -1;
   for (size_t j = 0; j < d.pulleys.size(); ++j)
-    if (d.pulleys[j].tensioner && (d.pulleys[j].tensioner->preload || d.pulleys[j].tensioner->angle0)) arm = static_cast<int>(j);
+    if (d.pulleys[j].tensioner && d.pulleys[j].tensioner->sets_tension()) arm = static_cast<int>(j);
   SceneDef e = d;
   constexpr double kAgree = 1e-6;  // relative: far below the static state's own residual tension error
   for (int it = 0;; ++it) {

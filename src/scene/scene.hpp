@@ -36,6 +36,8 @@ struct TensionerDef {
   double friction_torque = parameter_default("pulley.tensioner.friction_torque");  // [N·m]
   double friction_speed = parameter_default("pulley.tensioner.friction_speed");    // [rad/s]
   double asymmetric = parameter_default("pulley.tensioner.asymmetric");
+  // its preload or free angle sets the belt's tension at rest (else the belt's pretension does)
+  bool sets_tension() const { return preload || angle0; }
 };
 
 // A rotor behind a torsional spring-damper on a pulley (model.hpp's Coupling, its law at the top of

@@ -83,7 +83,7 @@ std::optional<double> tensioner_preload(const SceneDef& d) {
   std::optional<double> preload;
   std::string setter;
   for (const PulleyDef& p : d.pulleys) {
-    if (!p.tensioner || !(p.tensioner->preload || p.tensioner->angle0)) continue;
+    if (!p.tensioner || !p.tensioner->sets_tension()) continue;
     const TensionerDef& t = *p.tensioner;
     const std::string w = "pulley '" + p.name + "'.tensioner";
     if (t.preload && t.angle0) throw ParameterError(w + ": give preload [N·m] or angle0 [rad], not both");
