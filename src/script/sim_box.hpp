@@ -1,5 +1,5 @@
 // The live simulation's userdata as the files of its methods share it (lua_sim.cpp: running,
-// reading, changes, callbacks; lua_sim_files.cpp: pictures and checkpoints): the box, the check
+// changes, callbacks; lua_sim_read.cpp: reading; lua_sim_files.cpp: pictures and checkpoints): the box, the check
 // each method opens with, and the guard that turns C++ exceptions into Lua errors.
 #pragma once
 
@@ -59,6 +59,18 @@ void guarded(lua_State* L, const char* what, F&& f, Context* ctx = nullptr) {
   }
   if (!error.empty()) fail(L, error);
 }
+
+// the number of the pulley named by the string at idx; an error naming `what`, with a suggestion,
+// when there is none (lua_sim.cpp)
+int pulley_index(lua_State* L, const Simulation& s, int idx, const char* what);
+
+// lua_sim_read.cpp: sim:pulley, sim:element, sim:elements, sim:span, sim:energy, sim:stats
+int l_pulley(lua_State* L);
+int l_element(lua_State* L);
+int l_elements(lua_State* L);
+int l_span(lua_State* L);
+int l_energy(lua_State* L);
+int l_stats(lua_State* L);
 
 // lua_sim_files.cpp: sim:show, sim:plot, sim:save, and beltsim.resume (upvalue 1: the Context)
 int l_show(lua_State* L);
