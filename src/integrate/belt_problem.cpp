@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "integrate/switches.hpp"
+#include "model/forces.hpp"
 
 namespace beltsim {
 
@@ -110,6 +111,52 @@ std::string BeltProblem::check(double, const double* y) const {
     }
   }
   return {};
+}
+
+}  // namespace beltsim
+
+namespace beltsim {
+
+int BeltProblem::answer_size() const {
+  return model_.n_p() + model_.n_arm() + model_.n_coupling() + static_cast<int>(spans_.size());
+}
+
+void BeltProblem::answer(double, const double* y, double* a) {
+  const int N = model_.n_coord();
+  for (int j = 0; j < model_.n_p(); ++j) *a++ = y[N + model_.pulley_coord(j)];
+  for (int r = 0; r < model_.n_arm(); ++r) *a++ = y[model_.arm_coord(r)];
+  for (int c = 0; c < model_.n_coupling(); ++c) *a++ = y[N + model_.rotor_coord(c)];
+  for (const Vec2& p : spans_) *a++ = sde_axial_force(model_, y, y + N, sde_nearest(model_, y, p));
+}
+
+void BeltProblem::answer_error(double, const double* y, const double* e, double* da) {
+  const int N = model_.n_coord();
+  for (int j = 0; j < model_.n_p(); ++j) *da++ = e[N + model_.pulley_coord(j)];
+  for (int r = 0; r < model_.n_arm(); ++r) *da++ = e[model_.arm_coord(r)];
+  for (int c = 0; c < model_.n_coupling(); ++c) *da++ = e[N + model_.rotor_coord(c)];
+  if (spans_.empty()) return;
+  y_minus_e_.resize(static_cast<size_t>(2 * N));
+  for (int k = 0; k < 2 * N; ++k) y_minus_e_[k] = y[k] - e[k];
+  const double* z = y_minus_e_.data();
+  for (const Vec2& p : spans_) {
+    const int i = sde_nearest(model_, y, p);
+    *da++ = sde_axial_force(model_, y, y + N, i) - sde_axial_force(model_, z, z + N, i);
+  }
+}
+
+double BeltProblem::answer_scale(int k) const {
+  // natural sizes: 1 rad/s (speeds), 1 rad (arm angles), 100 N (span tensions: a fifth of a
+  // typical pretension, so that rtol·T decides for a span under load)
+  const int speeds = model_.n_p() + model_.n_arm() + model_.n_coupling();
+  return k < speeds ? 1.0 : 100.0;
+}
+
+std::string BeltProblem::describe_answer(int k) const {
+  const int np = model_.n_p(), na = model_.n_arm(), nc = model_.n_coupling();
+  if (k < np) return "pulley '" + model_.pulleys[k].name + "' speed";
+  if (k < np + na) return "pulley '" + model_.pulleys[model_.arms[k - np].pulley].name + "' tensioner arm angle";
+  if (k < np + na + nc) return "pulley '" + model_.pulleys[model_.couplings[k - np - na].pulley].name + "' rotor speed";
+  return "span " + std::to_string(k - np - na - nc) + " tension";
 }
 
 }  // namespace beltsim

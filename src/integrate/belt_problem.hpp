@@ -22,6 +22,15 @@ class BeltProblem final : public OdeProblem {
       "1 rad/s (pulley speeds), 1 J (energies), 1/σ0 (LuGre bristle deflections)";
   double atol_scale(int k) const override;
   double resolution(int k) const override;
+  // the answer (OdeProblem::answer): the speeds of the pulleys, the tensioner arms' angles, the
+  // coupled rotors' speeds, then the axial force of the SDE nearest each of the points `spans`
+  // (the middles of the route's spans: the span tensions users read) [rad/s, rad, N]
+  void set_spans(std::vector<Vec2> spans) { spans_ = std::move(spans); }
+  int answer_size() const override;
+  void answer(double t, const double* y, double* a) override;
+  void answer_error(double t, const double* y, const double* e, double* da) override;
+  double answer_scale(int k) const override;
+  std::string describe_answer(int k) const override;
   int switch_count() const override;
   void switches(double t, const double* y, double* g) const override;
   std::string describe(int k) const override;
@@ -36,6 +45,8 @@ class BeltProblem final : public OdeProblem {
   const Drive& drive_;
   Workspace ws_;               // the right-hand side's and the Jacobian's (model/workspace.hpp)
   mutable ContactList pairs_;  // the switching functions' contact pass
+  std::vector<Vec2> spans_;    // where the answer's span tensions are taken
+  std::vector<double> y_minus_e_;  // answer_error's scratch
 };
 
 }  // namespace beltsim

@@ -5,15 +5,20 @@
 
 namespace beltsim {
 
-StepController::StepController(const OdeProblem& sys, const Tolerances& tol, int q)
-    : rtol_(tol.rtol), exponent_(1.0 / (q + 1)) {
-  const double atol = tol.absolute();
+StepController::StepController(OdeProblem& sys, const Tolerances& tol, int q, int p)
+    : sys_(sys), rtol_(tol.rtol), exponent_(1.0 / (q + 1)) {
+  const double tighter = p > 0 ? std::min(1.0, std::pow(tol.rtol / kProportionalFrom, 1.0 / p)) : 1.0;
+  rtol_ *= tighter;
+  const double atol = tol.absolute() * tighter;
   atol_.resize(sys.size());
   for (int k = 0; k < sys.size(); ++k) atol_[k] = atol * sys.atol_scale(k);
+  const int na = sys.answer_size();
+  aatol_.resize(na), a0_.resize(na), a1_.resize(na), da_.resize(na);
+  for (int a = 0; a < na; ++a) aatol_[a] = atol * sys.answer_scale(a);
 }
 
-double StepController::error_norm(const Eigen::VectorXd& y0, const Eigen::VectorXd& y1, const Eigen::VectorXd& err,
-                                  int* worst) const {
+double StepController::error_norm(double t1, const Eigen::VectorXd& y0, const Eigen::VectorXd& y1,
+                                  const Eigen::VectorXd& err, int* worst) {
   double sum = 0, big = -1;
   for (Eigen::Index k = 0; k < err.size(); ++k) {
     const double w = atol_[k] + rtol_ * std::max(std::abs(y0[k]), std::abs(y1[k]));
@@ -21,7 +26,17 @@ double StepController::error_norm(const Eigen::VectorXd& y0, const Eigen::Vector
     sum += r * r;
     if (worst && std::abs(r) > big) big = std::abs(r), *worst = static_cast<int>(k);
   }
-  const double e = std::sqrt(sum / static_cast<double>(err.size()));
+  double e = std::sqrt(sum / static_cast<double>(err.size()));
+  if (aatol_.size() > 0) {
+    e /= kStateLooseness;
+    sys_.answer(t1, y0.data(), a0_.data());
+    sys_.answer(t1, y1.data(), a1_.data());
+    sys_.answer_error(t1, y1.data(), err.data(), da_.data());
+    for (Eigen::Index a = 0; a < da_.size(); ++a) {
+      const double w = aatol_[a] + rtol_ * std::max(std::abs(a0_[a]), std::abs(a1_[a]));
+      e = std::max(e, std::abs(da_[a]) / w);
+    }
+  }
   return std::isfinite(e) ? e : 1e300;
 }
 

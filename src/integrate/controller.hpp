@@ -1,7 +1,19 @@
-// Step-size controller: weighted error norm and the next step size. A rejected step is a status
-// returned to the driver, not an exception.
-//   w_k = atol·scale_k + rtol·max(|y0_k|, |y1_k|),   ‖err‖ = sqrt(mean((err_k/w_k)²))
+// Step-size controller: the error norm of a step and the next step size. A rejected step is a
+// status returned to the driver, not an exception.
+//
+// The error norm measures the answer users read, each quantity on its own, and the state as a
+// whole more loosely:
+//   w_k = atol·scale_k + rtol·max(|y0_k|, |y1_k|)          (state component k)
+//   e_state  = sqrt(mean((err_k/w_k)²))
+//   W_a = atol·ascale_a + rtol·max(|A_a(y0)|, |A_a(y1)|)   (answer quantity a: OdeProblem::answer)
+//   e_answer = max_a |δA_a| / W_a,   δA = A(y1) - A(y1 - err)
+//   ‖err‖ = max(e_answer, e_state / kStateLooseness)
 //   h_new = h·min(grow, max(shrink, 0.7·‖err‖^(-1/(q+1))))   with q the lower of the two orders
+// The mean over all the states lets one quantity's error be √n times the tolerance (a pulley's
+// speed among 6n element states), and holds the element states, whose local vibration no output
+// depends on, as tightly as the answer: e_answer holds each answer quantity to the tolerance, and
+// the state norm keeps only what the iteration and the answer's future need (docs/integration.md,
+// "Error control"). A problem without an answer is controlled by e_state alone, unscaled.
 #pragma once
 
 #include <Eigen/Core>
@@ -18,15 +30,31 @@ struct Tolerances {
 
 class StepController {
  public:
-  StepController(const OdeProblem& sys, const Tolerances& tol, int q);
-  double error_norm(const Eigen::VectorXd& y0, const Eigen::VectorXd& y1, const Eigen::VectorXd& err,
-                    int* worst = nullptr) const;
+  // the factor by which the state's norm is looser than the answer's (when there is an answer)
+  static constexpr double kStateLooseness = 10.0;
+
+  // q: the lower order of the method's pair. p: the order of the solution a method propagates when
+  // it is the lower of the pair (trbdf2, rkf45), else 0. Such a method's error per step, held to
+  // the tolerance, adds up to a global error ∝ tol^(p/(p+1)), not ∝ tol: below kProportionalFrom
+  // it runs at the tighter tolerance rtol·(rtol/kProportionalFrom)^(1/p) (atol likewise), so that
+  // its global error falls in proportion to rtol (Hairer, Nørsett & Wanner I, II.4: tolerance
+  // proportionality). At and above it, the rtol given.
+  static constexpr double kProportionalFrom = 1e-4;
+  StepController(OdeProblem& sys, const Tolerances& tol, int q, int p = 0);
+  // the error norm of a step from y0 to y1 at t1 with the error estimate err; worst: the state
+  // component with the largest weighted error
+  double error_norm(double t1, const Eigen::VectorXd& y0, const Eigen::VectorXd& y1, const Eigen::VectorXd& err,
+                    int* worst = nullptr);
+  double rtol() const { return rtol_; }  // the tolerance in force
   // next step size after a step with error norm e (accepted when e <= 1)
   double propose(double h, double e) const;
-  double weighted_norm(const Eigen::VectorXd& y, const Eigen::VectorXd& v) const;  // for the first step
+  // the state norm at the full tolerance (Newton's convergence test, the first step)
+  double weighted_norm(const Eigen::VectorXd& y, const Eigen::VectorXd& v) const;
 
  private:
+  OdeProblem& sys_;
   Eigen::VectorXd atol_;
+  Eigen::VectorXd aatol_, a0_, a1_, da_;  // the answer's atol, its values at y0 and y1, its error
   double rtol_;
   double exponent_;
 };

@@ -38,7 +38,8 @@ constexpr long kFailedInARow = 10;
 class OneStep final : public Integrator {
  public:
   OneStep(std::unique_ptr<Stepper> owned, Stepper& st, const OdeSystem& sys, const Tolerances& tol, double h_max)
-      : owned_(std::move(owned)), st_(&st), sys_(sys), ctl_(*sys.problem, tol, std::min(st.order(), st.embedded_order())),
+      : owned_(std::move(owned)), st_(&st), sys_(sys), ctl_(*sys.problem, tol, std::min(st.order(), st.embedded_order()),
+              st.order() < st.embedded_order() ? st.order() : 0),
         h_max_(h_max > 0 ? h_max : std::numeric_limits<double>::infinity()) {
     if (st.needs_linear_solver() && !sys.linear)
       throw std::invalid_argument("integrator: " + st.name() + " is implicit and needs a linear solver; the system has none");
@@ -83,7 +84,7 @@ class OneStep final : public Integrator {
       if (t_ + 1.1 * h >= t_land - 1e-12 * std::max(1.0, std::abs(t_land))) h = t_land - t_, lands = true;
       const bool ok = st_->step(sys_, t_, y_, f_, h, y1_, err_);
       int worst = worst_;
-      const double e = ok ? ctl_.error_norm(y_, y1_, err_, &worst) : 1e300;
+      const double e = ok ? ctl_.error_norm(lands ? t_land : t_ + h, y_, y1_, err_, &worst) : 1e300;
       worst_ = worst;
       const double ulp = std::numeric_limits<double>::epsilon() * std::max(1.0, std::abs(t_));
       if (!(e <= 1.0)) {

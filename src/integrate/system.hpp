@@ -51,6 +51,17 @@ class OdeProblem {
   // restart there: their number, and g at (t, y), each continuous in y and zero where F has a kink
   virtual int switch_count() const { return 0; }
   virtual void switches(double, const double*, double*) const {}
+  // The answer: the quantities users read of a state (for the belt: the speeds of the pulleys,
+  // arms and rotors and the span tensions), which the step-size control holds to the tolerance
+  // each on its own (StepController). answer(t, y, a) writes them; answer_error(t, y, e, da) the
+  // change of each when the state y moves by -e (the error estimate e of a step ending at y);
+  // answer_scale(k) is quantity k's natural size, the unit of atol for it.
+  virtual int answer_size() const { return 0; }
+  virtual void answer(double, const double*, double*) {}
+  virtual void answer_error(double, const double*, const double*, double*) {}
+  virtual double answer_scale(int) const { return 1.0; }
+  virtual std::string describe_answer(int k) const { return "answer " + std::to_string(k); }
+
   // diagnostics: a name for component k ("element 12 y velocity") and a check of a state that
   // returns an empty string when it is sane, else what went wrong
   virtual std::string describe(int k) const { return "component " + std::to_string(k); }
