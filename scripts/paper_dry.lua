@@ -1,18 +1,23 @@
 -- The paper's two-pulley drive with a dry belt (Kubas, §3, Figs 6–13).
 -- SI units; counter-clockwise positive. Parameters not given here take the paper's values
 -- (docs/lua-api.md); the pulley inertias are ours (docs/model.md).
+-- Parameters (--set KEY=VALUE), for variants of the drive (the accuracy matrix of
+-- docs/integration.md): elements (default 60), inertia of both pulleys [kg·m²] (default 0.025).
+
+local elements = beltsim.args.elements or 60
+local inertia = beltsim.args.inertia or 0.025
 
 local drive = beltsim.scene {
   pulleys = {
     -- driving torque: ramp to 70 N·m in 0.3 s, clockwise (Fig. 7a)
-    { name = "driver", centre = {0.0, 0.0}, radius = 0.1, inertia = 0.025,
+    { name = "driver", centre = {0.0, 0.0}, radius = 0.1, inertia = inertia,
       torque = beltsim.ramp(0.3, -70.0) },
     -- resistance: 70 N·m at 700 rpm, opposing the rotation (Fig. 7b)
-    { name = "driven", centre = {0.29, 0.0}, radius = 0.1, inertia = 0.025,
+    { name = "driven", centre = {0.29, 0.0}, radius = 0.1, inertia = inertia,
       torque = { per_speed = -70.0 / beltsim.rpm(700) } },
   },
   belt = {
-    elements = 60,
+    elements = elements,
     pretension = 500,           -- N
     direction = "cw",           -- the driver turns clockwise, the belt with it
     EA = 1.52e5,                -- N      (paper's c_tra, read as an axial rigidity: docs/model.md)
