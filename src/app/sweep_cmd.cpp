@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cstdio>
 #include <filesystem>
+#include <optional>
 #include <variant>
 
 #include "app/commands.hpp"
@@ -79,6 +80,29 @@ std::vector<std::string> sweep_args(const std::string& file, const std::string& 
   return a;
 }
 
+// the Slurm jobs of this sweep (the paths absolute), checked before anything is loaded or
+// written: a UsageError for what the batch scripts cannot hold or Slurm would not take
+beltsim::sweep::SlurmSettings slurm_settings(const std::string& file, const std::string& dir, const std::string& name,
+                                             const Raw& raw) {
+  beltsim::sweep::SlurmSettings ss;
+  ss.program = beltsim::sweep::this_program();
+  ss.dir = fs::absolute(dir).lexically_normal().string();
+  ss.point_args = sweep_args(fs::absolute(file).lexically_normal().string(), ss.dir, raw);
+  ss.collect_args = ss.point_args;
+  ss.collect_args.push_back("--collect");
+  ss.name = name;
+  ss.workdir = fs::current_path().string();
+  ss.partition = raw.partition;
+  ss.time = raw.time;
+  if (raw.max_parallel) ss.max_parallel = whole_number("--max-parallel", *raw.max_parallel, 1);
+  try {
+    beltsim::sweep::check_slurm_settings(ss);
+  } catch (const std::invalid_argument& e) {
+    throw UsageError(e.what());
+  }
+  return ss;
+}
+
 int sweep(const std::string& file, const Raw& raw, const script::Safety& s) {
   namespace sw = beltsim::sweep;
   const std::string dir = raw.out ? *raw.out : (fs::path("out") / fs::path(file).stem()).string();
@@ -90,6 +114,8 @@ int sweep(const std::string& file, const Raw& raw, const script::Safety& s) {
     throw UsageError("--submit, --partition, --time and --max-parallel go with --slurm");
   if (int(point >= 0) + int(raw.list) + int(raw.collect) + int(raw.slurm) > 1)
     throw UsageError("give one of --point, --list, --collect and --slurm");
+  std::optional<sw::SlurmSettings> slurm;
+  if (raw.slurm) slurm = slurm_settings(file, dir, name, raw);
   std::vector<sw::Point> points;
   const sw::Grid grid = quick ? set_grid(raw.set) : sw::Grid{};
   try {
@@ -143,24 +169,8 @@ int sweep(const std::string& file, const Raw& raw, const script::Safety& s) {
     return c.failed + c.not_run == 0 ? 0 : 1;
   };
   if (raw.collect) return summary();
-  if (raw.slurm) {
-    sw::SlurmSettings ss;
-    ss.program = sw::this_program();
-    ss.dir = fs::absolute(dir).lexically_normal().string();
-    ss.point_args = sweep_args(fs::absolute(file).lexically_normal().string(), ss.dir, raw);
-    ss.collect_args = ss.point_args;
-    ss.collect_args.push_back("--collect");
-    ss.name = name;
-    ss.workdir = fs::current_path().string();
-    ss.partition = raw.partition;
-    ss.time = raw.time;
-    if (raw.max_parallel) ss.max_parallel = whole_number("--max-parallel", *raw.max_parallel, 1);
-    sw::SlurmJobs j;
-    try {
-      j = sw::write_slurm_jobs(points, ss);
-    } catch (const std::invalid_argument& e) {
-      throw UsageError(e.what());
-    }
+  if (slurm) {
+    const sw::SlurmJobs j = sw::write_slurm_jobs(points, *slurm);
     std::printf("%s\n%s\n", j.array_script.c_str(), j.collect_script.c_str());
     if (j.array.empty()) {
       std::fprintf(stderr, "beltsim sweep: every point is done: nothing to submit\n");
@@ -168,7 +178,7 @@ int sweep(const std::string& file, const Raw& raw, const script::Safety& s) {
     }
     if (!raw.submit) {
       std::fprintf(stderr, "beltsim sweep: submit with\n  jid=$(sbatch --parsable %s)\n  sbatch --dependency=afterany:$jid %s\n",
-                   j.array_script.c_str(), j.collect_script.c_str());
+                   sw::shell_quoted(j.array_script).c_str(), sw::shell_quoted(j.collect_script).c_str());
       return 0;
     }
     const auto [array, collect] = sw::submit_slurm_jobs(j);

@@ -288,6 +288,36 @@ class Sweep(unittest.TestCase):
         self.assert_one_line_error(p, "sbatch", "PATH")
         self.assertTrue(os.path.exists(self.path("out", "grid", "sweep.sbatch")))
 
+    def test_slurm_scripts_quote_every_value_or_refuse_it(self):
+        # a folder whose name the shell (a space, ', #, $) and Slurm's --output pattern (%x, the
+        # job's name) would both read otherwise: quoted for each, and for the submit hint
+        folder = self.path("mu%x 'q' #1 $HOME")
+        p = self.run_beltsim("sweep", GRID, "--slurm", "--out", folder)
+        with open(os.path.join(folder, "sweep.sbatch")) as f:
+            self.assertIn('\n#SBATCH --output="%s/slurm-%%A_%%a.out"\n' % folder.replace("%", "%%"), f.read())
+        for name in ("sweep.sbatch", "collect.sbatch"):
+            check = subprocess.run(["sh", "-n", os.path.join(folder, name)], capture_output=True, text=True)
+            self.assertEqual(check.returncode, 0, check.stderr)
+        quoted = "'%s/sweep.sbatch'" % folder.replace("'", "'\\''")
+        self.assertIn("jid=$(sbatch --parsable %s)" % quoted, p.stderr)
+        # a line break in --out, in the sweep file's path or its name would end a line of the
+        # script and run the rest as a command: refused, nothing made
+        odd = self.path("x\ntouch pwned")
+        os.mkdir(odd)
+        shutil.copy(GRID, os.path.join(odd, "grid.lua"))
+        shutil.copy(GRID, self.path("g\nrid.lua"))
+        for args in ([GRID, "--out", "a\nb"], [GRID, "--out", "a\r\nb"], [GRID, "--out", "x\n#SBATCH --wrap=touch pwned"],
+                     [os.path.join(odd, "grid.lua"), "--out", "odd"], [self.path("g\nrid.lua"), "--out", "odd"]):
+            p = self.run_beltsim("sweep", *args, "--slurm", ok=(2,))
+            self.assertIn("control character", p.stderr)
+            self.assertNotIn("\ntouch", p.stderr)
+        self.assertEqual(sorted(os.listdir(self.dir)), sorted(["g\nrid.lua", "mu%x 'q' #1 $HOME", "x\ntouch pwned"]))
+        # times and partitions Slurm would not take, or would take as no limit
+        for args in (["--time", "-1"], ["--time=0"], ["--time", "1-2-3"], ["--partition=-x"], ["--partition", "a,,b"]):
+            p = self.run_beltsim("sweep", GRID, "--slurm", "--out", "t", *args, ok=(2,))
+            self.assertIn(args[0].split("=")[0] + ":", p.stderr)
+        self.assertFalse(os.path.exists(self.path("t")))
+
     def test_a_folder_that_cannot_be_written_is_an_error_not_an_abort(self):
         with open(self.path("blocker"), "w") as f:
             f.write("a file, not a folder\n")
