@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <stdexcept>
 
+#include "io/number_text.hpp"
 #include "io/output_dir.hpp"
 #include "sweep/capture.hpp"
 #include "sweep/results.hpp"
@@ -146,16 +147,47 @@ bool partition_list(const std::string& p) {
   }
 }
 
-// the standard output of args; throws with its standard error when it fails
-std::string output_of(const std::vector<std::string>& args) {
-  Captured r = run_capture(args);
-  if (r.status != 0) {
-    while (!r.err.empty() && (r.err.back() == '\n' || r.err.back() == '\r')) r.err.pop_back();
-    std::string c;
-    for (const std::string& x : args) c += (c.empty() ? "" : " ") + x;
-    throw std::runtime_error(c + " failed" + (r.err.empty() ? std::string() : ": " + r.err));
+// text as a message quotes what a program printed: its first 200 bytes on one line, control
+// characters shown as \n, \xNN, ...
+std::string printed(std::string text) {
+  while (!text.empty() && (text.back() == '\n' || text.back() == '\r')) text.pop_back();
+  return text.size() > 200 ? shown(text.substr(0, 200)) + "..." : shown(text);
+}
+
+// the standard output of args, run within limits; throws with its standard error when it fails,
+// and saying which limit it passed
+std::string output_of(const std::vector<std::string>& args, const CaptureLimits& limits) {
+  const Captured r = run_capture(args, limits);
+  std::string c;
+  for (const std::string& x : args) {
+    if (!c.empty()) c += ' ';
+    c += shell_quoted(x);
   }
+  if (r.timed_out)
+    throw std::runtime_error(c + " gave no answer within " + number_text(limits.seconds) +
+                             " s and was stopped (is slurmctld reachable?)" +
+                             (r.err.empty() ? std::string() : ": " + printed(r.err)));
+  if (r.overflowed)
+    throw std::runtime_error(c + " printed more than " + std::to_string(limits.max_bytes) +
+                             " bytes and was stopped; one job id expected: " + printed(r.out.empty() ? r.err : r.out));
+  if (r.status != 0) throw std::runtime_error(c + " failed" + (r.err.empty() ? std::string() : ": " + printed(r.err)));
   return r.out;
+}
+
+// the job id sbatch --parsable printed: "ID" or "ID;CLUSTER" on one line, the id of 1 to 10
+// digits (Slurm's are 32-bit); throws naming what it printed otherwise
+std::string job_id(const std::string& out) {
+  std::string line = out;
+  if (!line.empty() && line.back() == '\n') line.pop_back();
+  const std::size_t semicolon = line.find(';');
+  const std::string id = line.substr(0, semicolon);
+  const bool cluster_ok =
+      semicolon == std::string::npos ||
+      (semicolon + 1 < line.size() && line.find_first_of(";\n\r", semicolon + 1) == std::string::npos);
+  if (id.empty() || id.size() > 10 || id.find_first_not_of("0123456789") != std::string::npos || !cluster_ok)
+    throw std::runtime_error("sbatch --parsable printed no job id (ID or ID;CLUSTER on one line expected): '" +
+                             printed(out) + "'");
+  return id;
 }
 
 }  // namespace
@@ -247,18 +279,16 @@ SlurmJobs write_slurm_jobs(const std::vector<Point>& points, const SlurmSettings
   return jobs;
 }
 
-std::pair<std::string, std::string> submit_slurm_jobs(const SlurmJobs& jobs) {
-  const auto id = [](std::string out) {
-    // --parsable: "jobid" or "jobid;cluster"
-    out = out.substr(0, out.find_first_of(";\n"));
-    if (out.empty() || out.find_first_not_of("0123456789") != std::string::npos)
-      throw std::runtime_error("sbatch printed no job id: '" + out + "'");
-    return out;
-  };
-  const std::string array = id(output_of({"sbatch", "--parsable", jobs.array_script}));
-  const std::string collect =
-      id(output_of({"sbatch", "--parsable", "--dependency=afterany:" + array, jobs.collect_script}));
-  return {array, collect};
+std::pair<std::string, std::string> submit_slurm_jobs(const SlurmJobs& jobs, const CaptureLimits& limits) {
+  const std::string array = job_id(output_of({"sbatch", "--parsable", jobs.array_script}, limits));
+  const std::string dependency = "--dependency=afterany:" + array;
+  try {
+    return {array, job_id(output_of({"sbatch", "--parsable", dependency, jobs.collect_script}, limits))};
+  } catch (const std::runtime_error& e) {
+    throw std::runtime_error(std::string(e.what()) + "; the job array " + array +
+                             " is submitted: submit the summary's job after it with sbatch " + dependency + " " +
+                             shell_quoted(jobs.collect_script));
+  }
 }
 
 }  // namespace beltsim::sweep

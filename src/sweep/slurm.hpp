@@ -17,6 +17,7 @@
 #include <string>
 #include <vector>
 
+#include "sweep/capture.hpp"
 #include "sweep/points.hpp"
 
 namespace beltsim::sweep {
@@ -50,8 +51,13 @@ std::string shell_quoted(const std::string& s);
 void check_slurm_settings(const SlurmSettings& s);
 // writes both scripts for the points not done (sweep/results.hpp)
 SlurmJobs write_slurm_jobs(const std::vector<Point>& points, const SlurmSettings& s);
-// submits them with sbatch (the collector after the array, afterany); the two job ids. Throws
-// std::runtime_error with sbatch's message when it fails or is missing.
-std::pair<std::string, std::string> submit_slurm_jobs(const SlurmJobs& jobs);
+// each sbatch's time and output bound: it answers in a second or two, one short line
+inline constexpr CaptureLimits kSbatchLimits{120, 65536};
+// submits them with sbatch (the collector after the array, afterany), each run within limits;
+// the two job ids. Throws std::runtime_error with sbatch's message when it fails or is missing,
+// passes a limit or prints anything but a job id (and, when only the collector failed, the
+// array's id and the command that submits the collector).
+std::pair<std::string, std::string> submit_slurm_jobs(const SlurmJobs& jobs,
+                                                      const CaptureLimits& limits = kSbatchLimits);
 
 }  // namespace beltsim::sweep

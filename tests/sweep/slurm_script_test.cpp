@@ -7,6 +7,8 @@
 #include <sys/stat.h>
 
 #include <cctype>
+#include <chrono>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -311,6 +313,75 @@ TEST(SweepSlurm, TimesAndPartitionsSlurmWouldNotTakeAreRefused) {
     const std::string e = refusal(s);
     EXPECT_NE(e.find("--partition"), std::string::npos) << p << ": " << e;
   }
+}
+
+// sbatch's folder put first on PATH for one test (the PATH before restored at its end)
+class FakeSbatch {
+ public:
+  // an sbatch that runs `body` (sh), its arguments logged one a line in ROOT/args
+  FakeSbatch(const std::string& root, const std::string& body) : old_(std::getenv("PATH")) {
+    fs::create_directories(root + "/bin");
+    const std::string p = root + "/bin/sbatch";
+    std::ofstream(p) << "#!/bin/sh\nprintf '%s\\n' \"$@\" >> '" << root << "/args'\n" << body << "\n";
+    ::chmod(p.c_str(), 0755);
+    ::setenv("PATH", (root + "/bin:" + old_).c_str(), 1);
+  }
+  ~FakeSbatch() { ::setenv("PATH", old_.c_str(), 1); }
+  FakeSbatch(const FakeSbatch&) = delete;
+  FakeSbatch& operator=(const FakeSbatch&) = delete;
+
+ private:
+  std::string old_;
+};
+
+// the error submit_slurm_jobs throws with this sbatch ("" when none), and the job ids otherwise
+std::string submit_error(const std::string& root, const std::string& body, std::pair<std::string, std::string>* ids) {
+  const FakeSbatch sbatch(root, body);
+  SlurmJobs j;
+  j.array_script = root + "/sweep.sbatch";
+  j.collect_script = root + "/collect.sbatch";
+  j.array = "0-2";
+  try {
+    const auto r = submit_slurm_jobs(j, CaptureLimits{1.0, 4096});
+    if (ids) *ids = r;
+  } catch (const std::runtime_error& e) {
+    return e.what();
+  }
+  return "";
+}
+
+// sbatch --parsable prints "ID" or "ID;CLUSTER" on one line: that is read, and anything else, an
+// sbatch that does not answer in time or prints past the bound, is an error that says so
+TEST(SweepSlurm, SubmitReadsOneJobIdAndBoundsSbatch) {
+  const std::string root = fresh("submit");
+  std::pair<std::string, std::string> ids;
+  EXPECT_EQ(
+      submit_error(root,
+                   "if [ -e " + root + "/first ]; then echo 13; else touch " + root + "/first; echo '12;cluster'; fi",
+                   &ids),
+      "");
+  EXPECT_EQ(ids, std::make_pair(std::string("12"), std::string("13")));
+  EXPECT_EQ(read(root + "/args"), "--parsable\n" + root + "/sweep.sbatch\n--parsable\n--dependency=afterany:12\n" +
+                                      root + "/collect.sbatch\n");
+  const auto t0 = std::chrono::steady_clock::now();
+  std::string e = submit_error(root, "sleep 60", nullptr);
+  EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(), 30.0);
+  EXPECT_NE(e.find("no answer within 1 s"), std::string::npos) << e;
+  e = submit_error(root, "head -c 50000000 /dev/zero | tr '\\0' 7", nullptr);
+  EXPECT_NE(e.find("more than 4096 bytes"), std::string::npos) << e;
+  EXPECT_LT(e.size(), 1000u) << e;
+  for (const char* out : {"Submitted batch job 12", "12\n13", "", "12;", " 12", "12x", "123456789012345678901"}) {
+    e = submit_error(root, std::string("printf '") + out + "'", nullptr);
+    EXPECT_NE(e.find("no job id"), std::string::npos) << out << ": " << e;
+    EXPECT_EQ(e.find('\n'), std::string::npos) << "one line: " << e;
+  }
+  e = submit_error(root, "echo 'sbatch: error: invalid partition' >&2; exit 1", nullptr);
+  EXPECT_NE(e.find("failed: sbatch: error: invalid partition"), std::string::npos) << e;
+  // the array submitted, the collector refused: the array's id is told, and how to submit the rest
+  e = submit_error(root, "if [ -e " + root + "/once ]; then exit 1; else touch " + root + "/once; echo 77; fi",
+                   nullptr);
+  EXPECT_NE(e.find("job array 77 is submitted"), std::string::npos) << e;
+  EXPECT_NE(e.find("sbatch --dependency=afterany:77 " + root + "/collect.sbatch"), std::string::npos) << e;
 }
 
 }  // namespace

@@ -318,6 +318,19 @@ class Sweep(unittest.TestCase):
             self.assertIn(args[0].split("=")[0] + ":", p.stderr)
         self.assertFalse(os.path.exists(self.path("t")))
 
+    def test_an_sbatch_that_prints_megabytes_is_an_error_of_one_short_line(self):
+        # 50 MB of digits on one line was taken whole as a job id
+        fake = self.path("bin")
+        os.mkdir(fake)
+        with open(os.path.join(fake, "sbatch"), "w") as f:
+            f.write("#!/bin/sh\nhead -c 50000000 /dev/zero | tr '\\0' 7\n")
+        os.chmod(os.path.join(fake, "sbatch"), 0o755)
+        p = subprocess.run([BELTSIM, "sweep", GRID, "--slurm", "--submit"], cwd=self.dir, capture_output=True,
+                           text=True, timeout=300, env=dict(os.environ, PATH=fake + ":" + os.environ["PATH"]))
+        self.assert_one_line_error(p, "sbatch", "printed more than 65536 bytes")
+        self.assertLess(len(p.stderr), 2000)
+        self.assertEqual(p.stdout.count("\n"), 2, p.stdout)  # the scripts' paths, no job ids
+
     def test_a_folder_that_cannot_be_written_is_an_error_not_an_abort(self):
         with open(self.path("blocker"), "w") as f:
             f.write("a file, not a folder\n")
