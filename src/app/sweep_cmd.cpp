@@ -49,6 +49,9 @@ sweep::Grid set_grid(const std::vector<std::string>& sets) {
     const std::string key = kv.substr(0, eq), list = kv.substr(eq + 1);
     if (std::find(g.names.begin(), g.names.end(), key) != g.names.end())
       throw UsageError("--set " + key + " is given twice; give its values in one list: --set " + key + "=V1,V2,..");
+    if (sweep::reserved_name(key))
+      throw UsageError("--set " + kv + ": a parameter may not be named '" + key +
+                       "': point.csv and summary.csv have a column of that name; give it another");
     std::vector<sweep::Value> values;
     std::size_t from = 0;
     while (true) {
@@ -147,8 +150,8 @@ int sweep(const std::string& file, const Raw& raw, const script::Safety& s) {
       const std::string point_dir = (fs::path(dir) / p.id).string();
       std::fprintf(stderr, "beltsim sweep: point %s of %zu (%s)\n", p.id.c_str(), points.size(),
                    sw::params_text(p).c_str());
-      const sw::PointResult r = quick ? script::run_script_point(lua, file, p, point_dir)
-                                      : script::run_sweep_point(lua, file, p, point_dir);
+      const sw::PointResult r = sw::unique_columns(p, quick ? script::run_script_point(lua, file, p, point_dir)
+                                                            : script::run_sweep_point(lua, file, p, point_dir));
       if (lua.interrupted() || stop_signal() != 0) return stopped_status();  // not a result: it runs again
       sw::write_point_result(dir, p, r);
       std::fprintf(stderr, "beltsim sweep: point %s: %s\n", p.id.c_str(), r.status.c_str());

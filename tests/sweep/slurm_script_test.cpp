@@ -15,6 +15,7 @@
 #include <string>
 #include <vector>
 
+#include "support/files.hpp"
 #include "support/scratch.hpp"
 #include "sweep/capture.hpp"
 #include "sweep/slurm.hpp"
@@ -30,13 +31,6 @@ std::string fresh(const std::string& name) {
   fs::remove_all(d);
   fs::create_directories(d);
   return d.string();
-}
-
-std::string read(const std::string& path) {
-  std::ifstream f(path, std::ios::binary);
-  std::ostringstream s;
-  s << f.rdbuf();
-  return s.str();
 }
 
 // every "ROOT" in text replaced by root
@@ -167,7 +161,7 @@ TEST(SweepSlurm, BothScriptsForAFolderWithCharactersTheShellAndSlurmTreatSpecial
   EXPECT_EQ(j.array, "0-2");
   EXPECT_EQ(j.array_script, s.dir + "/sweep.sbatch");
   EXPECT_EQ(j.collect_script, s.dir + "/collect.sbatch");
-  EXPECT_EQ(read(j.array_script), rooted(R"(#!/bin/sh
+  EXPECT_EQ(test::slurp(j.array_script), rooted(R"(#!/bin/sh
 # sweep it's #1: 3 of 3 points, one array task each (written by beltsim sweep --slurm)
 #SBATCH --job-name="beltsim-it's #1"
 #SBATCH --chdir="ROOT/work d"
@@ -179,8 +173,8 @@ TEST(SweepSlurm, BothScriptsForAFolderWithCharactersTheShellAndSlurmTreatSpecial
 #SBATCH --output="ROOT/mu %%x 'q' #1 $HOME/slurm-%A_%a.out"
 exec 'ROOT/bin dir/print'\''args' sweep 'ROOT/it'\''s #1.lua' --out 'ROOT/mu %x '\''q'\'' #1 $HOME' --set 'mu=0.3,$x' --point "$SLURM_ARRAY_TASK_ID"
 )",
-                                         root));
-  EXPECT_EQ(read(j.collect_script), rooted(R"(#!/bin/sh
+                                                root));
+  EXPECT_EQ(test::slurp(j.collect_script), rooted(R"(#!/bin/sh
 # sweep it's #1: summary.csv from the points' results, after the array (written by beltsim sweep --slurm)
 #SBATCH --job-name="beltsim-it's #1"
 #SBATCH --chdir="ROOT/work d"
@@ -191,7 +185,7 @@ exec 'ROOT/bin dir/print'\''args' sweep 'ROOT/it'\''s #1.lua' --out 'ROOT/mu %x 
 #SBATCH --output="ROOT/mu %%x 'q' #1 $HOME/slurm-%j-collect.out"
 exec 'ROOT/bin dir/print'\''args' sweep 'ROOT/it'\''s #1.lua' --out 'ROOT/mu %x '\''q'\'' #1 $HOME' --set 'mu=0.3,$x' --collect
 )",
-                                           root));
+                                                  root));
   for (const std::string& script : {j.array_script, j.collect_script}) {
     const Captured c = run_capture({"sh", "-n", script});
     EXPECT_EQ(c.status, 0) << script << ": " << c.err;
@@ -218,15 +212,15 @@ TEST(SweepSlurm, ShAndSbatchReadBackEveryValue) {
     point.insert(point.end(), {"--point", "7"});
     EXPECT_EQ(run_arguments(j.array_script), point) << folder;
     EXPECT_EQ(run_arguments(j.collect_script), s.collect_args) << folder;
-    std::vector<std::string> a = sbatch_arguments(read(j.array_script));
-    ASSERT_EQ(a.size(), 6u) << read(j.array_script);
+    std::vector<std::string> a = sbatch_arguments(test::slurp(j.array_script));
+    ASSERT_EQ(a.size(), 6u) << test::slurp(j.array_script);
     EXPECT_EQ(a[0], "--job-name=beltsim-" + s.name);
     EXPECT_EQ(a[1], "--chdir=" + s.workdir);
     EXPECT_EQ(a[4], "--array=0-2");
     ASSERT_EQ(a[5].rfind("--output=", 0), 0u) << a[5];
     EXPECT_EQ(expanded(a[5].substr(9)), s.dir + "/slurm-100_7.out");
-    const std::vector<std::string> c = sbatch_arguments(read(j.collect_script));
-    ASSERT_EQ(c.size(), 5u) << read(j.collect_script);
+    const std::vector<std::string> c = sbatch_arguments(test::slurp(j.collect_script));
+    ASSERT_EQ(c.size(), 5u) << test::slurp(j.collect_script);
     ASSERT_EQ(c[4].rfind("--output=", 0), 0u) << c[4];
     EXPECT_EQ(expanded(c[4].substr(9)), s.dir + "/slurm-101-collect.out");
   }
@@ -361,8 +355,9 @@ TEST(SweepSlurm, SubmitReadsOneJobIdAndBoundsSbatch) {
                    &ids),
       "");
   EXPECT_EQ(ids, std::make_pair(std::string("12"), std::string("13")));
-  EXPECT_EQ(read(root + "/args"), "--parsable\n" + root + "/sweep.sbatch\n--parsable\n--dependency=afterany:12\n" +
-                                      root + "/collect.sbatch\n");
+  EXPECT_EQ(
+      test::slurp(root + "/args"),
+      "--parsable\n" + root + "/sweep.sbatch\n--parsable\n--dependency=afterany:12\n" + root + "/collect.sbatch\n");
   const auto t0 = std::chrono::steady_clock::now();
   std::string e = submit_error(root, "sleep 60", nullptr);
   EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(), 30.0);

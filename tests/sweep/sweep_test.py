@@ -191,6 +191,33 @@ class Sweep(unittest.TestCase):
         p = self.run_beltsim("sweep", PLAIN, "--set", "mu=0.3,1x", ok=(2,))  # a number's typo
         self.assertIn("1x", p.stderr)
 
+    def test_values_read_back_exactly_and_columns_are_named_once(self):
+        # strings with \r, \n, commas and quotes, as parameters and figures: summary.csv holds them
+        # exactly, and each point.csv reads back (the next sweep finds every point done)
+        script = self.path("odd.lua")
+        with open(script, "w") as f:
+            f.write('return beltsim.sweep { grid = { how = {"a\\rb", "c\\nd", "e,\\"f\\""} },\n'
+                    '  run = function(p) return { echo = p.how .. "\\r\\n!" } end }\n')
+        self.run_beltsim("sweep", script, "--jobs", "1")
+        self.assertEqual(rows(self.path("out", "odd", "summary.csv")), [
+            ["point", "how", "status", "echo"], ["0", "a\rb", "ok", "a\rb\r\n!"], ["1", "c\nd", "ok", "c\nd\r\n!"],
+            ["2", 'e,"f"', "ok", 'e,"f"\r\n!']])
+        p = self.run_beltsim("sweep", script)
+        self.assertIn("3 of 3 points done already", p.stderr)
+        # a parameter named as another column is refused; a point whose figure is, fails saying so
+        with open(script, "w") as f:
+            f.write("return beltsim.sweep { grid = { status = {1} }, run = function(p) end }\n")
+        p = self.run_beltsim("sweep", script, "--list", ok=(1,))
+        self.assertIn("status", p.stderr)
+        p = self.run_beltsim("sweep", PLAIN, "--set", "point=1,2", "--list", ok=(2,))
+        self.assertIn("--set point=1,2", p.stderr)
+        with open(script, "w") as f:
+            f.write("return beltsim.sweep { grid = { k = {1} }, run = function(p) return { k = 2, status = 3 } end }\n")
+        self.run_beltsim("sweep", script, ok=(1,))
+        summary = rows(self.path("out", "odd", "summary.csv"))
+        self.assertEqual(summary[0], ["point", "k", "status"])
+        self.assertTrue(summary[1][2].startswith("error: ") and "'k'" in summary[1][2], summary[1][2])
+
     def finished_points(self):
         return [k for k in range(8) if os.path.exists(self.path("out", "plain", str(k), "point.csv"))]
 
