@@ -39,6 +39,29 @@ int processors() {
 }
 
 
+// the items of the list V1,V2,.. of --set kv, split at its commas; an item that starts with "
+// runs to the next " followed by a comma or the list's end, commas and all (--set reads "..." as a
+// string)
+std::vector<std::string> list_items(const std::string& kv, const std::string& list) {
+  std::vector<std::string> items;
+  for (std::size_t from = 0;;) {
+    std::size_t end = list.find(',', from);
+    if (from < list.size() && list[from] == '"') {
+      end = from;
+      do {
+        end = list.find('"', end + 1);
+        if (end == std::string::npos)
+          throw UsageError("--set " + kv + ": a value that opens a quote (\") must close it before a comma or the end");
+      } while (end + 1 < list.size() && list[end + 1] != ',');
+      ++end;
+    }
+    if (end == std::string::npos) end = list.size();
+    items.push_back(list.substr(from, end - from));
+    if (end == list.size()) return items;
+    from = end + 1;
+  }
+}
+
 // the quick form's grid: each --set KEY=V1,V2,.. a parameter, crossed in the order given (the
 // first varies slowest); each value read as --set reads one
 sweep::Grid set_grid(const std::vector<std::string>& sets) {
@@ -53,18 +76,13 @@ sweep::Grid set_grid(const std::vector<std::string>& sets) {
       throw UsageError("--set " + kv + ": a parameter may not be named '" + key +
                        "': point.csv and summary.csv have a column of that name; give it another");
     std::vector<sweep::Value> values;
-    std::size_t from = 0;
-    while (true) {
-      const std::size_t comma = list.find(',', from);
-      const std::string item = list.substr(from, comma == std::string::npos ? std::string::npos : comma - from);
+    for (const std::string& item : list_items(kv, list)) {
       try {
         const script::ScriptArg a = script::parse_set(key + "=" + item);
         std::visit([&](const auto& x) { values.emplace_back(x); }, a.value);
       } catch (const std::invalid_argument& e) {
         throw UsageError(std::string(e.what()) + " (in --set " + kv + ")");
       }
-      if (comma == std::string::npos) break;
-      from = comma + 1;
     }
     g.names.push_back(key);
     g.values.push_back(std::move(values));

@@ -191,6 +191,16 @@ class Sweep(unittest.TestCase):
         p = self.run_beltsim("sweep", PLAIN, "--set", "mu=0.3,1x", ok=(2,))  # a number's typo
         self.assertIn("1x", p.stderr)
 
+    def test_a_quoted_set_value_keeps_its_commas(self):
+        # "..." around a value of a --set list, as --set reads a string: its commas are its own
+        out = self.run_beltsim("sweep", PLAIN, "--set", 'how="a,b",c,"d"', "--set", 'x="1,2"', "--list").stdout
+        self.assertEqual(list(csv.reader(out.splitlines())), [["point", "how", "x"], ["0", "a,b", "1,2"],
+                                                             ["1", "c", "1,2"], ["2", "d", "1,2"]])
+        for bad in ('how="a,b', 'how=a,"b', 'how="a"b,c'):
+            p = self.run_beltsim("sweep", PLAIN, "--set", bad, "--list", ok=(2,))
+            self.assertIn("--set " + bad, p.stderr)
+            self.assertIn("quote", p.stderr)
+
     def test_values_read_back_exactly_and_columns_are_named_once(self):
         # strings with \r, \n, commas and quotes, as parameters and figures: summary.csv holds them
         # exactly, and each point.csv reads back (the next sweep finds every point done)
