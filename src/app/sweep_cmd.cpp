@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cstdio>
 #include <filesystem>
+#include <optional>
 #include <variant>
 
 #include "app/commands.hpp"
@@ -38,6 +39,29 @@ int processors() {
 }
 
 
+// the items of the list V1,V2,.. of --set kv, split at its commas; an item that starts with "
+// runs to the next " followed by a comma or the list's end, commas and all (--set reads "..." as a
+// string)
+std::vector<std::string> list_items(const std::string& kv, const std::string& list) {
+  std::vector<std::string> items;
+  for (std::size_t from = 0;;) {
+    std::size_t end = list.find(',', from);
+    if (from < list.size() && list[from] == '"') {
+      end = from;
+      do {
+        end = list.find('"', end + 1);
+        if (end == std::string::npos)
+          throw UsageError("--set " + kv + ": a value that opens a quote (\") must close it before a comma or the end");
+      } while (end + 1 < list.size() && list[end + 1] != ',');
+      ++end;
+    }
+    if (end == std::string::npos) end = list.size();
+    items.push_back(list.substr(from, end - from));
+    if (end == list.size()) return items;
+    from = end + 1;
+  }
+}
+
 // the quick form's grid: each --set KEY=V1,V2,.. a parameter, crossed in the order given (the
 // first varies slowest); each value read as --set reads one
 sweep::Grid set_grid(const std::vector<std::string>& sets) {
@@ -48,19 +72,17 @@ sweep::Grid set_grid(const std::vector<std::string>& sets) {
     const std::string key = kv.substr(0, eq), list = kv.substr(eq + 1);
     if (std::find(g.names.begin(), g.names.end(), key) != g.names.end())
       throw UsageError("--set " + key + " is given twice; give its values in one list: --set " + key + "=V1,V2,..");
+    if (sweep::reserved_name(key))
+      throw UsageError("--set " + kv + ": a parameter may not be named '" + key +
+                       "': point.csv and summary.csv have a column of that name; give it another");
     std::vector<sweep::Value> values;
-    std::size_t from = 0;
-    while (true) {
-      const std::size_t comma = list.find(',', from);
-      const std::string item = list.substr(from, comma == std::string::npos ? std::string::npos : comma - from);
+    for (const std::string& item : list_items(kv, list)) {
       try {
         const script::ScriptArg a = script::parse_set(key + "=" + item);
         std::visit([&](const auto& x) { values.emplace_back(x); }, a.value);
       } catch (const std::invalid_argument& e) {
         throw UsageError(std::string(e.what()) + " (in --set " + kv + ")");
       }
-      if (comma == std::string::npos) break;
-      from = comma + 1;
     }
     g.names.push_back(key);
     g.values.push_back(std::move(values));
@@ -79,6 +101,29 @@ std::vector<std::string> sweep_args(const std::string& file, const std::string& 
   return a;
 }
 
+// the Slurm jobs of this sweep (the paths absolute), checked before anything is loaded or
+// written: a UsageError for what the batch scripts cannot hold or Slurm would not take
+beltsim::sweep::SlurmSettings slurm_settings(const std::string& file, const std::string& dir, const std::string& name,
+                                             const Raw& raw) {
+  beltsim::sweep::SlurmSettings ss;
+  ss.program = beltsim::sweep::this_program();
+  ss.dir = fs::absolute(dir).lexically_normal().string();
+  ss.point_args = sweep_args(fs::absolute(file).lexically_normal().string(), ss.dir, raw);
+  ss.collect_args = ss.point_args;
+  ss.collect_args.push_back("--collect");
+  ss.name = name;
+  ss.workdir = fs::current_path().string();
+  ss.partition = raw.partition;
+  ss.time = raw.time;
+  if (raw.max_parallel) ss.max_parallel = whole_number("--max-parallel", *raw.max_parallel, 1);
+  try {
+    beltsim::sweep::check_slurm_settings(ss);
+  } catch (const std::invalid_argument& e) {
+    throw UsageError(e.what());
+  }
+  return ss;
+}
+
 int sweep(const std::string& file, const Raw& raw, const script::Safety& s) {
   namespace sw = beltsim::sweep;
   const std::string dir = raw.out ? *raw.out : (fs::path("out") / fs::path(file).stem()).string();
@@ -90,6 +135,8 @@ int sweep(const std::string& file, const Raw& raw, const script::Safety& s) {
     throw UsageError("--submit, --partition, --time and --max-parallel go with --slurm");
   if (int(point >= 0) + int(raw.list) + int(raw.collect) + int(raw.slurm) > 1)
     throw UsageError("give one of --point, --list, --collect and --slurm");
+  std::optional<sw::SlurmSettings> slurm;
+  if (raw.slurm) slurm = slurm_settings(file, dir, name, raw);
   std::vector<sw::Point> points;
   const sw::Grid grid = quick ? set_grid(raw.set) : sw::Grid{};
   try {
@@ -121,8 +168,8 @@ int sweep(const std::string& file, const Raw& raw, const script::Safety& s) {
       const std::string point_dir = (fs::path(dir) / p.id).string();
       std::fprintf(stderr, "beltsim sweep: point %s of %zu (%s)\n", p.id.c_str(), points.size(),
                    sw::params_text(p).c_str());
-      const sw::PointResult r = quick ? script::run_script_point(lua, file, p, point_dir)
-                                      : script::run_sweep_point(lua, file, p, point_dir);
+      const sw::PointResult r = sw::unique_columns(p, quick ? script::run_script_point(lua, file, p, point_dir)
+                                                            : script::run_sweep_point(lua, file, p, point_dir));
       if (lua.interrupted() || stop_signal() != 0) return stopped_status();  // not a result: it runs again
       sw::write_point_result(dir, p, r);
       std::fprintf(stderr, "beltsim sweep: point %s: %s\n", p.id.c_str(), r.status.c_str());
@@ -143,24 +190,8 @@ int sweep(const std::string& file, const Raw& raw, const script::Safety& s) {
     return c.failed + c.not_run == 0 ? 0 : 1;
   };
   if (raw.collect) return summary();
-  if (raw.slurm) {
-    sw::SlurmSettings ss;
-    ss.program = sw::this_program();
-    ss.dir = fs::absolute(dir).lexically_normal().string();
-    ss.point_args = sweep_args(fs::absolute(file).lexically_normal().string(), ss.dir, raw);
-    ss.collect_args = ss.point_args;
-    ss.collect_args.push_back("--collect");
-    ss.name = name;
-    ss.workdir = fs::current_path().string();
-    ss.partition = raw.partition;
-    ss.time = raw.time;
-    if (raw.max_parallel) ss.max_parallel = whole_number("--max-parallel", *raw.max_parallel, 1);
-    sw::SlurmJobs j;
-    try {
-      j = sw::write_slurm_jobs(points, ss);
-    } catch (const std::invalid_argument& e) {
-      throw UsageError(e.what());
-    }
+  if (slurm) {
+    const sw::SlurmJobs j = sw::write_slurm_jobs(points, *slurm);
     std::printf("%s\n%s\n", j.array_script.c_str(), j.collect_script.c_str());
     if (j.array.empty()) {
       std::fprintf(stderr, "beltsim sweep: every point is done: nothing to submit\n");
@@ -168,7 +199,7 @@ int sweep(const std::string& file, const Raw& raw, const script::Safety& s) {
     }
     if (!raw.submit) {
       std::fprintf(stderr, "beltsim sweep: submit with\n  jid=$(sbatch --parsable %s)\n  sbatch --dependency=afterany:$jid %s\n",
-                   j.array_script.c_str(), j.collect_script.c_str());
+                   sw::shell_quoted(j.array_script).c_str(), sw::shell_quoted(j.collect_script).c_str());
       return 0;
     }
     const auto [array, collect] = sw::submit_slurm_jobs(j);

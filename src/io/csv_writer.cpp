@@ -6,7 +6,7 @@
 namespace beltsim {
 
 std::string csv_text(const std::string& s) {
-  if (s.find_first_of(",\"\n") == std::string::npos) return s;
+  if (s.find_first_of(",\"\n\r") == std::string::npos) return s;
   std::string q = "\"";
   for (char c : s) q += (c == '"') ? std::string("\"\"") : std::string(1, c);
   return q + "\"";
@@ -38,6 +38,46 @@ std::vector<std::string> csv_fields(const std::string& line) {
   }
   out.push_back(cur);
   return out;
+}
+
+std::vector<std::vector<std::string>> csv_rows(const std::string& text) {
+  std::vector<std::vector<std::string>> rows;
+  std::vector<std::string> row;
+  std::string cur;
+  bool quoted = false, begun = false;  // begun: the row has a character (the last row needs no \n)
+  for (size_t i = 0; i < text.size(); ++i) {
+    const char c = text[i];
+    if (quoted) {
+      if (c == '"' && i + 1 < text.size() && text[i + 1] == '"') {
+        cur += '"';
+        ++i;
+      } else if (c == '"') {
+        quoted = false;
+      } else {
+        cur += c;
+      }
+      continue;
+    }
+    begun = c != '\n';
+    if (c == '"') {
+      quoted = true;
+    } else if (c == ',') {
+      row.push_back(std::move(cur));
+      cur.clear();
+    } else if (c == '\n') {
+      row.push_back(std::move(cur));
+      cur.clear();
+      rows.push_back(std::move(row));
+      row.clear();
+    } else {
+      cur += c;
+    }
+  }
+  if (begun || quoted) {
+    row.push_back(std::move(cur));
+    rows.push_back(std::move(row));
+  }
+  return rows;
 }
 
 CsvWriter::CsvWriter(const std::string& path, const std::vector<std::string>& header, bool append)

@@ -35,7 +35,25 @@ std::string point_id(int index, int count) {
   return std::string(s.size() < width ? width - s.size() : 0, '0') + s;
 }
 
+bool reserved_name(const std::string& name) {
+  return name == "point" || name == "status";
+}
+
+namespace {
+
+// throws std::invalid_argument naming what.NAME when a name is reserved
+void check_names(const std::vector<std::string>& names, const std::string& what) {
+  for (const std::string& n : names)
+    if (reserved_name(n))
+      throw std::invalid_argument(what + "." + n + ": a parameter may not be named '" + n +
+                                  "': point.csv and summary.csv have a column of that name (and one named '" +
+                                  (n == "point" ? "status" : "point") + "'); give it another");
+}
+
+}  // namespace
+
 std::vector<Point> grid_points(const Grid& g) {
+  check_names(g.names, "grid");
   long long count = 1;
   for (std::size_t k = 0; k < g.names.size(); ++k) {
     if (g.values[k].empty()) throw std::invalid_argument("grid." + g.names[k] + ": no values");
@@ -78,6 +96,7 @@ std::vector<Point> sample_points(const Samples& s) {
     throw std::invalid_argument("samples.n: must be a whole number in 1.." + std::to_string(kMaxPoints) + " (got " +
                                 std::to_string(s.n) + ")");
   if (s.names.empty()) throw std::invalid_argument("samples.ranges names no parameter");
+  check_names(s.names, "samples.ranges");
   for (std::size_t k = 0; k < s.names.size(); ++k)
     if (!(s.ranges[k].first <= s.ranges[k].second))
       throw std::invalid_argument("samples.ranges." + s.names[k] + ": {lo, hi} with lo <= hi expected (got {" +

@@ -41,10 +41,13 @@ struct Samples {
 };
 
 std::string point_id(int index, int count);
-// throws std::invalid_argument for an empty grid (a name without values) or one of more than
-// kMaxPoints points
+// "point" and "status", the names of the columns point.csv and summary.csv have besides the
+// parameters and the figures: no parameter takes one
+bool reserved_name(const std::string& name);
+// throws std::invalid_argument for an empty grid (a name without values), one of more than
+// kMaxPoints points, or a reserved name
 std::vector<Point> grid_points(const Grid& g);
-// throws std::invalid_argument for n outside 1..kMaxPoints or a range with hi < lo
+// throws std::invalid_argument for n outside 1..kMaxPoints, a range with hi < lo or a reserved name
 std::vector<Point> sample_points(const Samples& s);
 
 inline constexpr long long kMaxPoints = 1'000'000;

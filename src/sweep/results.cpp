@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <filesystem>
 #include <fstream>
+#include <sstream>
 #include <stdexcept>
 
 #include "io/csv_writer.hpp"
@@ -54,9 +55,12 @@ void write_point_result(const std::string& dir, const Point& p, const PointResul
 
 std::optional<PointResult> read_point_result(const std::string& dir, const Point& p) {
   std::ifstream f(std::filesystem::path(dir) / p.id / kPointFile, std::ios::binary);
-  std::string names_line, values_line;
-  if (!f || !std::getline(f, names_line) || !std::getline(f, values_line)) return std::nullopt;
-  const std::vector<std::string> names = csv_fields(names_line), values = csv_fields(values_line);
+  if (!f) return std::nullopt;
+  std::ostringstream text;
+  text << f.rdbuf();
+  const std::vector<std::vector<std::string>> rows = csv_rows(text.str());
+  if (rows.size() != 2) return std::nullopt;
+  const std::vector<std::string>&names = rows[0], &values = rows[1];
   const std::size_t n = p.params.size();
   if (names.size() != values.size() || names.size() < n + 2 || names[0] != "point" || values[0] != p.id ||
       names[n + 1] != "status")
@@ -66,6 +70,20 @@ std::optional<PointResult> read_point_result(const std::string& dir, const Point
   PointResult r;
   r.status = values[n + 1];
   for (std::size_t k = n + 2; k < names.size(); ++k) r.figures.emplace_back(names[k], values[k]);
+  return r;
+}
+
+PointResult unique_columns(const Point& p, PointResult r) {
+  std::vector<std::string> taken{"point", "status"};
+  for (const auto& [name, v] : p.params) taken.push_back(name);
+  for (const auto& [name, text] : r.figures) {
+    if (std::find(taken.begin(), taken.end(), name) != taken.end())
+      return {error_status("run(p) returned the figure '" + name +
+                           "', a name point.csv and summary.csv already have for a column (point, status, a "
+                           "parameter or an earlier figure); give it another"),
+              {}};
+    taken.push_back(name);
+  }
   return r;
 }
 

@@ -3,7 +3,8 @@
 // A point's folder DIR/<id>/ holds what its runs wrote and, written last and whole (created
 // unnamed, then renamed: io/output_dir.hpp), point.csv: a header and one row,
 //   point,<parameter>...,status,<figure>...
-// The status is "ok", "diverged at t = T s" or "error: message" (one line). A point is done when
+// Cells are quoted as CSV (csv_text), so a value with commas, quotes or line breaks reads back
+// exactly. The status is "ok", "diverged at t = T s" or "error: message" (one line). A point is done when
 // its point.csv says ok for the same parameters; any other point runs again when the sweep does.
 // A sweep that runs its points, merges the summary or writes its Slurm jobs holds DIR first
 // (claim_sweep_folder): a second one on the same folder is refused rather than run the points the
@@ -39,6 +40,11 @@ void write_point_result(const std::string& dir, const Point& p, const PointResul
 // what DIR/<id>/point.csv says of p; nullopt when it is missing, unreadable, or written for other
 // parameters (the sweep changed)
 std::optional<PointResult> read_point_result(const std::string& dir, const Point& p);
+
+// r, or when a figure's name is one point.csv and summary.csv already have for a column (point,
+// status, a parameter, an earlier figure) a failed result that names it: a file would hold two
+// columns of one name
+PointResult unique_columns(const Point& p, PointResult r);
 
 // DIR, made when missing and claimed for this process until the object is destroyed (the lock
 // of io/output_dir.hpp); throws std::runtime_error naming DIR when another sweep holds it

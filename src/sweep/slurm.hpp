@@ -6,12 +6,18 @@
 // --dependency=afterany on the array, so that it runs however the tasks end. Paths are absolute
 // and the jobs start in the folder the command was given in, as a Slurm user expects of a job
 // script written by a tool. Each task's output is DIR/slurm-<array job>_<task>.out.
+//
+// Every value is written so that each reader takes it back exactly: the command line quoted for
+// sh, the #SBATCH values for sbatch's own reader of those lines (double quotes, \ and " escaped),
+// and the folder in --output with each % doubled, as Slurm expands %j, %u, %x, ... there.
+// What no quoting makes safe is refused before anything is written (check_slurm_settings).
 #pragma once
 
 #include <optional>
 #include <string>
 #include <vector>
 
+#include "sweep/capture.hpp"
 #include "sweep/points.hpp"
 
 namespace beltsim::sweep {
@@ -35,12 +41,23 @@ struct SlurmJobs {
 
 // "0-3,7,9-12" for the sorted indices
 std::string index_ranges(const std::vector<int>& indices);
-// throws std::invalid_argument naming a partition or time Slurm could not take
+// one word for sh: bare when it has only characters sh reads as they are, else single-quoted
+std::string shell_quoted(const std::string& s);
+// throws std::invalid_argument, with the reason and the value, for what the scripts cannot hold
+// or Slurm would not take: a control character in any value (a line break would end a line of
+// the script and run the rest as a command), a backslash in the folder (Slurm drops it from an
+// --output path), a path or name longer than slurmctld takes, a partition list or a time not in
+// Slurm's forms, a time Slurm reads as no limit (0, -1)
 void check_slurm_settings(const SlurmSettings& s);
 // writes both scripts for the points not done (sweep/results.hpp)
 SlurmJobs write_slurm_jobs(const std::vector<Point>& points, const SlurmSettings& s);
-// submits them with sbatch (the collector after the array, afterany); the two job ids. Throws
-// std::runtime_error with sbatch's message when it fails or is missing.
-std::pair<std::string, std::string> submit_slurm_jobs(const SlurmJobs& jobs);
+// each sbatch's time and output bound: it answers in a second or two, one short line
+inline constexpr CaptureLimits kSbatchLimits{120, 65536};
+// submits them with sbatch (the collector after the array, afterany), each run within limits;
+// the two job ids. Throws std::runtime_error with sbatch's message when it fails or is missing,
+// passes a limit or prints anything but a job id (and, when only the collector failed, the
+// array's id and the command that submits the collector).
+std::pair<std::string, std::string> submit_slurm_jobs(const SlurmJobs& jobs,
+                                                      const CaptureLimits& limits = kSbatchLimits);
 
 }  // namespace beltsim::sweep

@@ -115,9 +115,13 @@ class Slurm(unittest.TestCase):
         return text
 
     def test_the_job_array_gives_the_local_summary(self):
-        out = os.path.join(self.dir, "cluster")
+        # the folders' names hold what sh and sbatch's reader of #SBATCH lines treat specially, and
+        # what Slurm expands in an --output path (%x, the job's name)
+        out = os.path.join(self.dir, "cluster %x 'q' #1 $HOME")
+        work = os.path.join(self.dir, "work \"d\" %j")
+        os.mkdir(work)
         p = subprocess.run([BELTSIM, "sweep", GRID, "--slurm", "--submit", "--max-parallel", "2", "--time", "10",
-                            "--out", out], cwd=self.dir, capture_output=True, text=True, env=self.env, timeout=60)
+                            "--out", out], cwd=work, capture_output=True, text=True, env=self.env, timeout=60)
         self.assertEqual(p.returncode, 0, p.stderr)
         array, collect = p.stdout.split()[-2:]
         with open(os.path.join(out, "sweep.sbatch")) as f:
@@ -125,6 +129,10 @@ class Slurm(unittest.TestCase):
         self.wait(lambda: self.query(["squeue", "-h", "-j", "%s,%s" % (array, collect)]) == "", "the jobs' end")
         summary = os.path.join(out, "summary.csv")
         self.assertTrue(os.path.exists(summary), "the collecting job wrote no summary: %s" % self.logs())
+        # each job's output where the scripts name it, nothing anywhere else
+        self.assertEqual(sorted(f for f in os.listdir(out) if f.startswith("slurm-")),
+                         sorted(["slurm-%s-collect.out" % collect] + ["slurm-%s_%d.out" % (array, k) for k in range(6)]))
+        self.assertEqual(os.listdir(work), [])
         p = subprocess.run([BELTSIM, "sweep", GRID, "--out", os.path.join(self.dir, "local")], cwd=self.dir,
                            capture_output=True, text=True, timeout=300)
         self.assertEqual(p.returncode, 0, p.stderr)

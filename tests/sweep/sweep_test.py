@@ -191,6 +191,43 @@ class Sweep(unittest.TestCase):
         p = self.run_beltsim("sweep", PLAIN, "--set", "mu=0.3,1x", ok=(2,))  # a number's typo
         self.assertIn("1x", p.stderr)
 
+    def test_a_quoted_set_value_keeps_its_commas(self):
+        # "..." around a value of a --set list, as --set reads a string: its commas are its own
+        out = self.run_beltsim("sweep", PLAIN, "--set", 'how="a,b",c,"d"', "--set", 'x="1,2"', "--list").stdout
+        self.assertEqual(list(csv.reader(out.splitlines())), [["point", "how", "x"], ["0", "a,b", "1,2"],
+                                                             ["1", "c", "1,2"], ["2", "d", "1,2"]])
+        for bad in ('how="a,b', 'how=a,"b', 'how="a"b,c'):
+            p = self.run_beltsim("sweep", PLAIN, "--set", bad, "--list", ok=(2,))
+            self.assertIn("--set " + bad, p.stderr)
+            self.assertIn("quote", p.stderr)
+
+    def test_values_read_back_exactly_and_columns_are_named_once(self):
+        # strings with \r, \n, commas and quotes, as parameters and figures: summary.csv holds them
+        # exactly, and each point.csv reads back (the next sweep finds every point done)
+        script = self.path("odd.lua")
+        with open(script, "w") as f:
+            f.write('return beltsim.sweep { grid = { how = {"a\\rb", "c\\nd", "e,\\"f\\""} },\n'
+                    '  run = function(p) return { echo = p.how .. "\\r\\n!" } end }\n')
+        self.run_beltsim("sweep", script, "--jobs", "1")
+        self.assertEqual(rows(self.path("out", "odd", "summary.csv")), [
+            ["point", "how", "status", "echo"], ["0", "a\rb", "ok", "a\rb\r\n!"], ["1", "c\nd", "ok", "c\nd\r\n!"],
+            ["2", 'e,"f"', "ok", 'e,"f"\r\n!']])
+        p = self.run_beltsim("sweep", script)
+        self.assertIn("3 of 3 points done already", p.stderr)
+        # a parameter named as another column is refused; a point whose figure is, fails saying so
+        with open(script, "w") as f:
+            f.write("return beltsim.sweep { grid = { status = {1} }, run = function(p) end }\n")
+        p = self.run_beltsim("sweep", script, "--list", ok=(1,))
+        self.assertIn("status", p.stderr)
+        p = self.run_beltsim("sweep", PLAIN, "--set", "point=1,2", "--list", ok=(2,))
+        self.assertIn("--set point=1,2", p.stderr)
+        with open(script, "w") as f:
+            f.write("return beltsim.sweep { grid = { k = {1} }, run = function(p) return { k = 2, status = 3 } end }\n")
+        self.run_beltsim("sweep", script, ok=(1,))
+        summary = rows(self.path("out", "odd", "summary.csv"))
+        self.assertEqual(summary[0], ["point", "k", "status"])
+        self.assertTrue(summary[1][2].startswith("error: ") and "'k'" in summary[1][2], summary[1][2])
+
     def finished_points(self):
         return [k for k in range(8) if os.path.exists(self.path("out", "plain", str(k), "point.csv"))]
 
@@ -287,6 +324,49 @@ class Sweep(unittest.TestCase):
                            text=True, timeout=300, env=dict(os.environ, PATH=empty))
         self.assert_one_line_error(p, "sbatch", "PATH")
         self.assertTrue(os.path.exists(self.path("out", "grid", "sweep.sbatch")))
+
+    def test_slurm_scripts_quote_every_value_or_refuse_it(self):
+        # a folder whose name the shell (a space, ', #, $) and Slurm's --output pattern (%x, the
+        # job's name) would both read otherwise: quoted for each, and for the submit hint
+        folder = self.path("mu%x 'q' #1 $HOME")
+        p = self.run_beltsim("sweep", GRID, "--slurm", "--out", folder)
+        with open(os.path.join(folder, "sweep.sbatch")) as f:
+            self.assertIn('\n#SBATCH --output="%s/slurm-%%A_%%a.out"\n' % folder.replace("%", "%%"), f.read())
+        for name in ("sweep.sbatch", "collect.sbatch"):
+            check = subprocess.run(["sh", "-n", os.path.join(folder, name)], capture_output=True, text=True)
+            self.assertEqual(check.returncode, 0, check.stderr)
+        quoted = "'%s/sweep.sbatch'" % folder.replace("'", "'\\''")
+        self.assertIn("jid=$(sbatch --parsable %s)" % quoted, p.stderr)
+        # a line break in --out, in the sweep file's path or its name would end a line of the
+        # script and run the rest as a command: refused, nothing made
+        odd = self.path("x\ntouch pwned")
+        os.mkdir(odd)
+        shutil.copy(GRID, os.path.join(odd, "grid.lua"))
+        shutil.copy(GRID, self.path("g\nrid.lua"))
+        for args in ([GRID, "--out", "a\nb"], [GRID, "--out", "a\r\nb"], [GRID, "--out", "x\n#SBATCH --wrap=touch pwned"],
+                     [os.path.join(odd, "grid.lua"), "--out", "odd"], [self.path("g\nrid.lua"), "--out", "odd"]):
+            p = self.run_beltsim("sweep", *args, "--slurm", ok=(2,))
+            self.assertIn("control character", p.stderr)
+            self.assertNotIn("\ntouch", p.stderr)
+        self.assertEqual(sorted(os.listdir(self.dir)), sorted(["g\nrid.lua", "mu%x 'q' #1 $HOME", "x\ntouch pwned"]))
+        # times and partitions Slurm would not take, or would take as no limit
+        for args in (["--time", "-1"], ["--time=0"], ["--time", "1-2-3"], ["--partition=-x"], ["--partition", "a,,b"]):
+            p = self.run_beltsim("sweep", GRID, "--slurm", "--out", "t", *args, ok=(2,))
+            self.assertIn(args[0].split("=")[0] + ":", p.stderr)
+        self.assertFalse(os.path.exists(self.path("t")))
+
+    def test_an_sbatch_that_prints_megabytes_is_an_error_of_one_short_line(self):
+        # 50 MB of digits on one line was taken whole as a job id
+        fake = self.path("bin")
+        os.mkdir(fake)
+        with open(os.path.join(fake, "sbatch"), "w") as f:
+            f.write("#!/bin/sh\nhead -c 50000000 /dev/zero | tr '\\0' 7\n")
+        os.chmod(os.path.join(fake, "sbatch"), 0o755)
+        p = subprocess.run([BELTSIM, "sweep", GRID, "--slurm", "--submit"], cwd=self.dir, capture_output=True,
+                           text=True, timeout=300, env=dict(os.environ, PATH=fake + ":" + os.environ["PATH"]))
+        self.assert_one_line_error(p, "sbatch", "printed more than 65536 bytes")
+        self.assertLess(len(p.stderr), 2000)
+        self.assertEqual(p.stdout.count("\n"), 2, p.stdout)  # the scripts' paths, no job ids
 
     def test_a_folder_that_cannot_be_written_is_an_error_not_an_abort(self):
         with open(self.path("blocker"), "w") as f:

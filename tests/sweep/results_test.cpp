@@ -1,0 +1,90 @@
+// A point's point.csv and the summary (src/sweep/results.hpp): every value, with line breaks,
+// carriage returns, commas and quotes in it, read back exactly; the columns' names each once.
+#include "sweep/results.hpp"
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "io/csv_writer.hpp"
+#include "support/files.hpp"
+#include "support/scratch.hpp"
+
+namespace beltsim::sweep {
+namespace {
+
+namespace fs = std::filesystem;
+
+// a fresh folder for one test
+std::string results_folder(const std::string& name) {
+  const fs::path d = test::scratch_dir("beltsim_sweep_results_test") / name;
+  fs::remove_all(d);
+  fs::create_directories(d);
+  return d.string();
+}
+
+const std::vector<std::string> kAwkward = {"a\rb", "c\nd", "e\r\nf", "g,\"h\"", "\"", "", " i ", "j\n", "\n"};
+
+// a carriage return is quoted as a line break is (RFC 4180): a reader that ends lines at \r\n
+// must not split the cell
+TEST(SweepResults, CsvQuotesCarriageReturnsAndReadsRowsWithLineBreaks) {
+  EXPECT_EQ(csv_text("a\rb"), "\"a\rb\"");
+  EXPECT_EQ(csv_text("plain"), "plain");
+  std::string text;
+  for (const std::string& v : kAwkward) text += csv_text(v) + "," + csv_text(v + v) + "\n";
+  std::vector<std::vector<std::string>> expected;
+  for (const std::string& v : kAwkward) expected.push_back({v, v + v});
+  EXPECT_EQ(csv_rows(text), expected);
+  EXPECT_EQ(csv_rows("a,b\n\n1,\"2\n3\""), (std::vector<std::vector<std::string>>{{"a", "b"}, {""}, {"1", "2\n3"}}));
+}
+
+// each awkward value as a parameter and as a figure: written and read back the same, so the
+// point is done and is not run again by the next sweep
+TEST(SweepResults, PointValuesReadBackExactly) {
+  const std::string dir = results_folder("round trip");
+  std::vector<Value> values;
+  for (const std::string& v : kAwkward) values.emplace_back(v);
+  const std::vector<Point> points = grid_points(Grid{{"how"}, {values}});
+  for (const Point& p : points) {
+    PointResult r;
+    r.figures = {{"echo", value_text(p.params[0].second) + "\r\n!"}, {"n\nl", "x"}};
+    write_point_result(dir, p, r);
+    const auto back = read_point_result(dir, p);
+    ASSERT_TRUE(back) << test::slurp(dir + "/" + p.id + "/point.csv");
+    EXPECT_TRUE(back->ok());
+    EXPECT_EQ(back->figures, r.figures);
+  }
+  const SummaryCounts c = write_summary(dir, points);
+  EXPECT_EQ(c.ok, static_cast<int>(points.size()));
+  const auto rows = csv_rows(test::slurp(dir + "/summary.csv"));
+  ASSERT_EQ(rows.size(), points.size() + 1);
+  EXPECT_EQ(rows[0], (std::vector<std::string>{"point", "how", "status", "echo", "n\nl"}));
+  for (std::size_t k = 0; k < points.size(); ++k)
+    EXPECT_EQ(rows[k + 1], (std::vector<std::string>{points[k].id, kAwkward[k], "ok", kAwkward[k] + "\r\n!", "x"}));
+}
+
+// point.csv and summary.csv have the columns point, the parameters, status, the figures: a
+// parameter may not take the name of another column, and a point whose figure does fails, saying so
+TEST(SweepResults, EveryColumnHasItsOwnName) {
+  for (const char* name : {"point", "status"}) {
+    EXPECT_THROW(grid_points(Grid{{"mu", name}, {{Value(1LL)}, {Value(2LL)}}}), std::invalid_argument) << name;
+    EXPECT_THROW(sample_points(Samples{2, {name}, {{0, 1}}, 1}), std::invalid_argument) << name;
+  }
+  const Point p = grid_points(Grid{{"mu"}, {{Value(0.5)}}})[0];
+  const PointResult good{"ok", {{"slip", "1"}, {"mu.x", "2"}}};
+  EXPECT_EQ(unique_columns(p, good).status, "ok");
+  EXPECT_EQ(unique_columns(p, good).figures, good.figures);
+  const PointResult failed{"error: x.lua:3: boom", {}};
+  EXPECT_EQ(unique_columns(p, failed).status, failed.status);
+  for (const char* clash : {"point", "status", "mu", "slip"}) {
+    const PointResult r = unique_columns(p, PointResult{"ok", {{"slip", "1"}, {clash, "2"}}});
+    EXPECT_EQ(r.status.rfind("error: ", 0), 0u) << clash << ": " << r.status;
+    EXPECT_NE(r.status.find(std::string("'") + clash + "'"), std::string::npos) << r.status;
+    EXPECT_TRUE(r.figures.empty());
+  }
+}
+
+}  // namespace
+}  // namespace beltsim::sweep
