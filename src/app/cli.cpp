@@ -12,6 +12,16 @@ namespace beltsim::app {
 
 namespace {
 
+// every --out: a path given empty (an unset shell variable) would silently be the folder beltsim
+// runs in
+const CLI::Validator kNotEmpty(
+    [](std::string& v) {
+      return v.empty() ? std::string("an empty path (leave --out out for its default, or give '.' for the folder "
+                                     "beltsim runs in)")
+                       : std::string();
+    },
+    "");
+
 void add_set(CLI::App* c, Raw& raw) {
   c->add_option("--set", raw.set,
                 "a script parameter, read by the script as beltsim.args.KEY (numbers, true/false, text; repeatable); "
@@ -32,7 +42,7 @@ void add_safety(CLI::App* c, Raw& raw) {
 }
 
 void add_out_and_t_end(CLI::App* c, Raw& raw, const char* out_help) {
-  c->add_option("--out", raw.out, out_help)->type_name("DIR");
+  c->add_option("--out", raw.out, out_help)->type_name("DIR")->check(kNotEmpty);
   c->add_option("--t-end", raw.t_end, "end time [s] (> 0)")->type_name("T");
 }
 
@@ -56,7 +66,9 @@ CLI::App* add_render_command(CLI::App& app, RenderOptions& o) {
                 "a checkpoint (sim:save), a kept state (OUT/states/state_NNNNN.ckpt), several of them, or a folder of "
                 "them (its *.ckpt files)")
       ->required();
-  c->add_option("--out", o.out, "the PNG to write; for several states, the folder of their PNGs")->type_name("PNG|DIR");
+  c->add_option("--out", o.out, "the PNG to write; for several states, the folder of their PNGs")
+      ->type_name("PNG|DIR")
+      ->check(kNotEmpty);
   c->add_option("--video", o.video, "an MP4 of the states, one frame each, at the run's frames per second")
       ->type_name("MP4");
   std::string names;
@@ -150,7 +162,7 @@ std::optional<CommandLine> parse_command_line(int argc, char** argv, int* status
   CLI::App* plot = app.add_subcommand("plot", "draw columns of a timeseries.csv to a PNG");
   plot->add_option("CSV", cl.csv, "a timeseries.csv written by run")->required();
   plot->add_option("COLUMNS", cl.columns, "columns to draw (default: every <pulley>.omega)");
-  plot->add_option("--out", raw.out, "the PNG (default: plot.png beside the CSV)")->type_name("PNG");
+  plot->add_option("--out", raw.out, "the PNG (default: plot.png beside the CSV)")->type_name("PNG")->check(kNotEmpty);
   plot->add_option("--from", raw.from, "draw samples with t >= T only [s]")->type_name("T");
   plot->footer("Prints the PNG's path; on a terminal also shows the picture (BELTSIM_TERM_IMAGES=off|symbols|\n"
                "sixel|kitty|iterm forces a mode). Columns of two units share the plot on two y axes.");
@@ -166,7 +178,9 @@ std::optional<CommandLine> parse_command_line(int argc, char** argv, int* status
   CLI::App* sweep = app.add_subcommand("sweep", "run a sweep: many points, each a run, on every core or on Slurm");
   sweep->add_option("FILE", cl.script, "a sweep file (returns beltsim.sweep{...}), or a script with --set lists")
       ->required();
-  sweep->add_option("--out", raw.out, "the sweep's folder (default: out/<file name>)")->type_name("DIR");
+  sweep->add_option("--out", raw.out, "the sweep's folder (default: out/<file name>)")
+      ->type_name("DIR")
+      ->check(kNotEmpty);
   sweep->add_option("--jobs", raw.jobs, "points run at once (default: the processors this process may use)")
       ->type_name("N");
   sweep->add_option("--point", raw.point, "run point K alone, in this process (0-based, as --list numbers them)")

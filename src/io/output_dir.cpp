@@ -10,6 +10,8 @@
 #include <mutex>
 #include <stdexcept>
 
+#include "io/beneath.hpp"
+
 namespace beltsim {
 
 namespace {
@@ -27,25 +29,11 @@ std::string why(int err) {
   return std::strerror(err);
 }
 
-// "a", "a/" -> "a"; "" -> "."
-std::string trimmed(std::string p) {
-  while (p.size() > 1 && p.back() == '/') p.pop_back();
-  return p.empty() ? "." : p;
-}
-
-// the folder and the last component of a path ("a/b/c" -> "a/b", "c"; "c" -> "", "c")
-std::pair<std::string, std::string> split(const std::string& p) {
-  const size_t k = p.rfind('/');
-  if (k == std::string::npos) return {"", p};
-  return {k == 0 ? "/" : p.substr(0, k), p.substr(k + 1)};
-}
-
-// why a folder could not be opened: O_DIRECTORY | O_NOFOLLOW gives ENOTDIR for a link too
-std::string folder_refusal(int at, const char* name, int err) {
-  struct stat st {};
-  if ((err == ENOTDIR || err == ELOOP) && ::fstatat(at, name, &st, AT_SYMLINK_NOFOLLOW) == 0)
-    return S_ISLNK(st.st_mode) ? kLink : S_ISDIR(st.st_mode) ? std::strerror(err) : "not a folder";
-  return why(err);
+// a BeneathError said for an output
+std::string said(const BeneathError& e) {
+  if (e.kind == BeneathError::kLink) return kLink;
+  if (e.kind == BeneathError::kHardLinks) return e.reason() + " (beltsim writes only files of its own)";
+  return e.reason();
 }
 
 void check_name(const std::string& dir, const std::string& name) {
@@ -100,32 +88,23 @@ void mark_output_failure_shown(const std::string& message) {
 
 OutputDir::OutputDir(const std::string& path, bool make) : OutputDir(path, make, nullptr) {}
 
-OutputDir::OutputDir(const std::string& path, bool make, const std::string* shown) : path_(trimmed(path)) {
-  // errors name the file the folder was opened for, when there is one
-  auto fail = [&](const std::string& reason) {
-    output_error(shown ? *shown : path_, shown ? path_ + " is " + reason : reason);
-  };
-  fd_ = ::open(path_.c_str(), O_RDONLY | O_DIRECTORY | O_NOFOLLOW | O_CLOEXEC);
+OutputDir::OutputDir(const std::string& path, bool make, const std::string* shown) : path_(trimmed_path(path)) {
+  BeneathError e;
+  fd_ = folder_path(path_, make, &e);
   if (fd_ >= 0) return;
-  const int err = errno;
-  if (err != ENOENT || !make) {
-    if (err == ENOENT) fail(std::string("missing: ") + std::strerror(err));
-    fail(folder_refusal(AT_FDCWD, path_.c_str(), err));
-  }
-  // missing: made in its parent (itself opened, or made, the same way)
-  auto [parent, name] = split(path_);
-  if (name.empty() || name == "." || name == "..") fail(std::strerror(err));
-  OutputDir up(parent, true, shown);
-  *this = OutputDir(up, name);
-  path_ = trimmed(path);
+  // errors name the file the folder was opened for, when there is one
+  const std::string& folder = e.at.empty() ? path_ : e.at;
+  const std::string reason =
+      e.kind == BeneathError::kSystem && e.err == ENOENT && !make ? "missing: " + e.reason() : said(e);
+  output_error(shown ? *shown : folder, shown ? folder + " is " + reason : reason);
 }
 
 OutputDir::OutputDir(const OutputDir& parent, const std::string& name) {
   path_ = parent.file(name);
   check_name(parent.path_, name);
-  if (::mkdirat(parent.fd_, name.c_str(), 0777) != 0 && errno != EEXIST) output_error(path_, std::strerror(errno));
-  fd_ = ::openat(parent.fd_, name.c_str(), O_RDONLY | O_DIRECTORY | O_NOFOLLOW | O_CLOEXEC);
-  if (fd_ < 0) output_error(path_, folder_refusal(parent.fd_, name.c_str(), errno));
+  BeneathError e;
+  fd_ = folder_at(parent.fd_, name, true, &e);
+  if (fd_ < 0) output_error(path_, said(e));
 }
 
 OutputDir::OutputDir(OutputDir&& o) noexcept : path_(std::move(o.path_)), fd_(o.fd_), lock_fd_(o.lock_fd_) {
@@ -163,27 +142,15 @@ int OutputDir::open_file(const std::string& name, bool append) const {
 }
 
 int OutputDir::open_own(const std::string& name, int flags, bool empty) const {
-  const std::string p = file(name);
   check_name(path_, name);
-  // O_NONBLOCK: a FIFO planted under the name must not block the open (it is refused below)
-  const int fd = ::openat(fd_, name.c_str(), flags | O_CREAT | O_NOFOLLOW | O_CLOEXEC | O_NONBLOCK, 0666);
-  if (fd < 0) output_error(p, errno == ENXIO ? "not a regular file" : why(errno));  // ENXIO: a FIFO, no reader
-  struct stat st {};
-  std::string refusal;
-  if (::fstat(fd, &st) != 0)
-    refusal = std::strerror(errno);
-  else if (!S_ISREG(st.st_mode))
-    refusal = "not a regular file";
-  else if (st.st_nlink > 1)
-    refusal = "it has " + std::to_string(st.st_nlink) + " hard links (beltsim writes only files of its own)";
-  else if (::fcntl(fd, F_SETFL, flags & O_APPEND) != 0)
-    refusal = std::strerror(errno);
-  else if (empty && ::ftruncate(fd, 0) != 0)
-    refusal = std::strerror(errno);
-  if (!refusal.empty()) {
-    ::close(fd);
-    output_error(p, refusal);
-  }
+  FileMode m;
+  m.read = (flags & O_ACCMODE) == O_RDWR;
+  m.write = m.create = true;
+  m.append = (flags & O_APPEND) != 0;
+  m.empty = empty;
+  BeneathError e;
+  const int fd = file_at(fd_, name, m, &e);
+  if (fd < 0) output_error(file(name), said(e));
   return fd;
 }
 
@@ -240,7 +207,7 @@ std::string OutputDir::try_lock() {
 }
 
 OutputPlace output_place(const std::string& path, bool make_folder) {
-  auto [dir, name] = split(trimmed(path));
+  auto [dir, name] = split_path(trimmed_path(path));
   if (name.empty() || name == "." || name == "..") output_error(path, "not a file name");
   return OutputPlace{OutputDir(dir, make_folder, &path), name};
 }

@@ -2,13 +2,14 @@
 // lands outside the folder it was meant for (a scenario package that ships `events.csv ->
 // ~/.bashrc` must not get the user's file rewritten):
 // - a folder is opened once (O_DIRECTORY | O_NOFOLLOW) and every file in it by openat() on that
-//   descriptor with O_NOFOLLOW | O_CLOEXEC, one path component at a time, so a link planted
-//   in the folder, or swapped in while the run goes on, is refused rather than followed;
+//   descriptor with O_NOFOLLOW | O_CLOEXEC, one path component at a time (io/beneath.hpp, the
+//   routine a script's own files are opened with too), so a link planted in the folder, or
+//   swapped in while the run goes on, is refused rather than followed;
 // - a file written in place must be a regular file with no other hard link (a FIFO, a device or a
 //   second name of some other file is refused before anything is truncated);
 // - a file written whole (parameters.csv, a checkpoint, session.lua, a PNG) is written unnamed
 //   in the folder (O_TMPFILE, else NAME.part) and renamed over NAME when complete.
-// The paths a user or a script names are checked by the sandbox (script/sandbox.cpp) as before;
+// The paths a user or a script names are checked by the sandbox (script/sandbox.hpp) before;
 // this is what makes the files beltsim itself names inside them safe.
 //
 // Every output that cannot be written throws std::runtime_error "cannot write PATH: reason" and

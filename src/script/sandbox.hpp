@@ -4,9 +4,9 @@
 // precompiled chunk; string.dump is gone), string, table, math, utf8, coroutine; of os only time,
 // clock, date, difftime and getenv; io whose files (io.open, io.lines, io.input, io.output, and
 // dofile, loadfile) lie under the run's output folder (read and write) or the script's own folder
-// (read only), paths resolved with weakly_canonical so that `..` and symbolic links cannot leave
-// them; require of Lua files from the script's folder; debug.traceback; setmetatable without
-// __gc (Lua runs finalisers with hooks off: no limit could stop one). Every other standard
+// (read only), opened from the folder without following any link or climbing out with `..`
+// (sandbox_files.hpp); require of Lua files from the script's folder; debug.traceback;
+// setmetatable without __gc (Lua runs finalisers with hooks off: no limit could stop one). Every other standard
 // function (os.execute, io.popen, os.remove, os.exit, package.loadlib, debug.getinfo, ...) is
 // kept as a function that raises "file:line: NAME is not allowed in a scenario script ...
 // --trusted", so a script learns what it may not do and how to allow it.
@@ -27,7 +27,9 @@ void open_sandbox(lua_State* L, Context* ctx);
 
 // The files beltsim itself writes or reads for a script (a run's out and frames paths, sim:save,
 // sim:show{file}, sim:plot{file}; beltsim.resume reads) lie under the output folder or the
-// script's folder, as for io.open. "" when allowed (always with --trusted), else the message:
+// script's folder, as for io.open, with no symbolic link on their way below the folder (checked
+// here; beltsim's own writers then open them as any output, io/output_dir.hpp). "" when allowed
+// (always with --trusted), else the message:
 // "WHAT: writing 'path' is not allowed in a scenario script (the sandbox: ...); beltsim --trusted
 // allows it".
 std::string output_refusal(const Context& c, const std::string& what, const std::string& path, bool write);

@@ -2,7 +2,7 @@
 """`--set KEY=VALUE` on the command line: beltsim.args in run, console and wp, the checks of the
 values (exit 2), and a key the script never read (exit 1 naming it, with a suggestion). What a
 user sees when a script fails (file:line and Lua's traceback), is a folder, or the environment
-names a value beltsim does not know (src/app/environment.cpp)."""
+names a value beltsim does not know (src/app/environment.cpp); an empty --out or out is refused."""
 import os
 import shutil
 import subprocess
@@ -175,6 +175,26 @@ class Errors(unittest.TestCase):
             self.assertEqual(p.returncode, 2, p.stderr)
             self.assertIn("beltsim: %s=%s is not one of %s" % (var, value, words), p.stderr)
             self.assertNotIn("ran", p.stdout)
+
+    def test_an_empty_out_is_refused(self):
+        # '--out ""' (an unset shell variable) would be the folder beltsim runs in, silently
+        path = self.script(two_pulley(elements=30) + 'drive:run { t_end = 0.002, progress = false }\n')
+        csv = os.path.join(self.dir, "t.csv")
+        with open(csv, "w") as f:
+            f.write("t,x\n0,1\n")
+        for args in [["run", path], ["wp", path], ["console"], ["sweep", path], ["plot", csv], ["render", csv]]:
+            code, out, err = run(args + ["--out", ""], cwd=self.dir)
+            self.assertEqual(code, 2, "%s: %s" % (args[0], err))
+            self.assertIn("beltsim: --out: an empty path (leave --out out for its default, or give '.' for the "
+                          "folder beltsim runs in)\nRun 'beltsim %s --help' for the usage." % args[0], err)
+            self.assertEqual(sorted(os.listdir(self.dir)), ["s.lua", "t.csv"], args[0])
+        # a run's out = "" in a script the same
+        path = self.script(two_pulley(elements=30) + 'drive:run { t_end = 0.002, progress = false, out = "" }\n')
+        code, out, err = run(["run", path], cwd=self.dir)
+        self.assertEqual(code, 1, err)
+        self.assertIn("s.lua:9: run.out: an empty path (leave it out for out/<script>, or give '.' for the folder "
+                      "beltsim runs in)", err)
+        self.assertEqual(sorted(os.listdir(self.dir)), ["s.lua", "t.csv"])
 
 
 if __name__ == "__main__":
