@@ -94,6 +94,7 @@ enum class Tensioning {
 };
 
 struct BeltDef {
+  std::string preset;  // the belt preset whose values the scene took (scene/belt_presets.hpp), "" when none
   int elements = static_cast<int>(parameter_default("belt.elements"));
   Tensioning tensioning = Tensioning::pretension;
   double pretension = parameter_default("belt.pretension");  // [N]  (Tensioning::pretension)

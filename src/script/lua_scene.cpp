@@ -19,6 +19,7 @@
 #include <vector>
 
 #include "integrate/stepper.hpp"
+#include "scene/belt_presets.hpp"
 #include "scene/parameters.hpp"
 #include "scene/validate.hpp"
 #include "script/context.hpp"
@@ -253,6 +254,12 @@ void read_belt(lua_State* L, int idx, SceneDef& d, std::unique_ptr<LuaRef>& mu_f
                           has(L, idx, "bending_damping") || has(L, idx, "bending_viscosity");
   if (has(L, idx, "bending_damping") && has(L, idx, "bending_viscosity"))
     fail(L, "belt: give bending_damping [N·m·s/rad per SDE] or bending_viscosity [N·m²·s per length], not both");
+  if (auto name = opt_string(L, idx, "preset", "belt")) {  // its values first: the table's own override them
+    const BeltPreset* p = find_belt_preset(*name);
+    if (!p) fail(L, "belt.preset: no preset '" + *name + "'" + belt_preset_hint(*name));
+    b.preset = *name;
+    apply_belt_preset(*p, d, [&](const std::string& key) { return has(L, idx, key.c_str()); });
+  }
   PulleyDef none;
   read_numbers(L, idx, "belt", "belt", d, none);
   if (has(L, idx, "rest_length")) b.tensioning = Tensioning::rest_length;
@@ -550,6 +557,7 @@ void open_scene(lua_State* L, Context* ctx) {
   lua_pushcfunction(L, l_rpm), lua_setfield(L, -2, "rpm");
   open_laws(L);
   lua_pushcfunction(L, l_integrators), lua_setfield(L, -2, "integrators");
+  open_belts(L);
 }
 
 }  // namespace beltsim::script

@@ -279,5 +279,19 @@ TEST(Parameters, EachKeyOnce) {
   EXPECT_EQ(find_parameter("contact.damping")->unit, "N·s/m");
 }
 
+// belt.preset: a PK section's values (scene/belt_presets.hpp) are given, the table's own keys
+// override them and parameters.csv names the preset; a name that is no preset is refused
+TEST(Parameters, ABeltPresetGivesItsValues) {
+  ASSERT_EQ(run_text(scene_with({{"belt.preset", "'6PK'"}, {"belt.EI", "0.01"}})), "");
+  const std::string csv = slurp(temp_dir() / "out" / "parameters.csv");
+  for (const char* expected :
+       {"\nbelt.preset,6PK,,given,", "\nbelt.EA,182400,N,given,", "\nbelt.EI,0.01,N·m²,given,",
+        "\nbelt.bending_viscosity,8.4e-07,N·m²·s,given,", "\nbelt.mass_per_length,0.1152,kg/m,given,"})
+    EXPECT_NE(csv.find(expected), std::string::npos) << expected << " in\n" << csv;
+  EXPECT_EQ(csv.find("\nbelt.bending_damping,"), std::string::npos) << csv;
+  const std::string bad = scene_with({{"belt.preset", "'6pk'"}});
+  EXPECT_EQ(run_text(bad), at_line_of(bad, "preset =") + "belt.preset: no preset '6pk' (did you mean '6PK'?)");
+}
+
 }  // namespace parameters_test
 }  // namespace beltsim::script
