@@ -20,6 +20,7 @@
 
 #include "integrate/stepper.hpp"
 #include "scene/belt_presets.hpp"
+#include "scene/bending_loss.hpp"
 #include "scene/parameters.hpp"
 #include "scene/validate.hpp"
 #include "script/context.hpp"
@@ -498,6 +499,15 @@ int l_scene_info(lua_State* L) {
   const std::vector<std::string> coarse = scene_warnings(*sc);
   for (size_t k = 0; k < coarse.size(); ++k) lua_pushstring(L, coarse[k].c_str()), lua_rawseti(L, -2, k + 1);
   lua_setfield(L, -2, "warnings");
+  // the bending dampers' estimated power at the laws' steady speeds (scene/bending_loss.hpp)
+  if (const std::optional<BendingLoss> e = estimate_bending_loss(*sc)) {
+    lua_createtable(L, 0, 4);
+    set_number(L, "belt_speed", e->belt_speed);
+    set_number(L, "transmitted", e->transmitted);
+    set_number(L, "dissipated", e->dissipated);
+    set_number(L, "share", e->share());
+    lua_setfield(L, -2, "bending_loss");
+  }
   return 1;
 }
 
