@@ -5,7 +5,7 @@
 -- default, an overrunning clutch. At 0.4 s the crankshaft drops to 600 rpm within 30 ms (a gear
 -- shift): the alternator pulley decelerates faster than its loaded rotor would, and the clutch
 -- lets the rotor run on. The alternator's load (per_speed -0.01: 2.5 N·m at 250 rad/s) acts on
--- its rotor.
+-- its rotor. The belt is a 6PK (its preset, docs/belts.md).
 --   beltsim run scripts/automotive_decoupler.lua                          one-way decoupler
 --   beltsim run scripts/automotive_decoupler.lua --set coupling=two_way   the spring alone
 --   beltsim run scripts/automotive_decoupler.lua --set coupling=none      a solid alternator
@@ -37,7 +37,7 @@ local drive = beltsim.scene {
     { name = "pump", centre = {0.16, -0.06}, radius = 0.056, inertia = 1e-3,
       torque = { per_speed = -0.05 } },          -- 6 N·m at 120 rad/s
   },
-  belt = { elements = 150, pretension = 280, direction = "cw" },
+  belt = { preset = "6PK", elements = 150, pretension = 280, direction = "cw" },
 }
 
 local result = drive:run { t_end = tonumber(beltsim.args.t_end) or 0.6, sample = 5e-4 }

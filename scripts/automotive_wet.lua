@@ -2,6 +2,9 @@
 -- alternator and coolant pump; 150 elements, 280 N, 30 % of the belt wet.
 -- The layout (Fig. 19 has no coordinates) and the inertias are ours (docs/model.md, Our choices): origin at the
 -- alternator, belt travelling clockwise, pulleys listed in the order the belt visits them.
+-- The belt is the paper's, to reproduce its figures (docs/paper.md): its bending dampers take a
+-- large share of the power on these small pulleys, and the run's first lines warn so (a PK belt's
+-- own: docs/belts.md).
 
 local drive = beltsim.scene {
   pulleys = {

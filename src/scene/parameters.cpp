@@ -6,6 +6,7 @@
 #include <stdexcept>
 
 #include "io/number_text.hpp"
+#include "scene/belt_presets.hpp"
 #include "scene/scene.hpp"
 
 namespace beltsim {
@@ -138,6 +139,10 @@ constexpr Parameter kParameters[] = {
      nullptr},
 
     // ---- belt = {...} ----
+    {"belt", "preset", K::other, "", {}, "none", W::none, R::none,
+     "a PK section's values, \"3PK\" … \"8PK\" (the presets' table below, docs/belts.md), for the keys the "
+     "belt table does not give itself",
+     nullptr, nullptr, [](const SceneDef& d, const PulleyDef&) -> std::string { return d.belt.preset; }},
     {"belt", "elements", K::integer, "", 60, "", W::paper, R::at_least_three, "number of elements",
      [](SceneDef& d, PulleyDef&) -> Slot { return &d.belt.elements; }, nullptr, nullptr},
     {"belt", "pretension", K::number, "N", 500, "", W::paper, R::positive,
@@ -424,7 +429,8 @@ std::string parameters_markdown() {
       md.append(" |\n");
     }
   }
-  return md;
+  md.append("\nBelt presets (`belt.preset`, or `belt = beltsim.belts[\"6PK\"]`; docs/belts.md gives the sources):\n\n");
+  return md.append(belt_presets_markdown());
 }
 
 }  // namespace beltsim

@@ -85,4 +85,16 @@ SceneDef automotive_tensioner() {
   return d;
 }
 
+SceneDef automotive_accessories(double crank_rpm) {
+  SceneDef d = automotive_wet();
+  d.belt.mu_at = nullptr;
+  PulleyDef& crank = d.pulleys[0];
+  crank.torque = TimeSpeedLaw{};
+  crank.kinematic = true;
+  crank.speed.ramps.push_back({.t0 = 0, .t1 = 0.05, .from = 0, .to = -crank_rpm * 2 * M_PI / 60, .cosine = true});
+  d.pulleys[2].torque = viscous(-0.01);
+  d.pulleys[3].torque = viscous(-0.05);
+  return d;
+}
+
 }  // namespace beltsim::presets

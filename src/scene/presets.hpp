@@ -19,5 +19,11 @@ SceneDef automotive_wet();
 // 1e-3 kg·m², 30 N·m/rad, damping 0.05 N·m·s/rad, friction torque 0.5 N·m; the spring's free
 // angle holds the belt's 280 N (scripts/automotive_tensioner.lua describes the same arm).
 SceneDef automotive_tensioner();
+// The automotive drive's layout (automotive_wet's, dry, the idler fixed) as an accessory drive
+// at the speed of scripts/automotive_tensioner.lua without its pulsation: the crankshaft
+// kinematic, a cosine ramp to crank_rpm clockwise over 0.05 s; the alternator loaded with
+// -0.01 N·m·s/rad, the pump with -0.05 N·m·s/rad (1.33 kW in all at 800 rpm); the paper's belt,
+// 150 elements at 280 N.
+SceneDef automotive_accessories(double crank_rpm = 800);
 
 }  // namespace beltsim::presets

@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "model/forces.hpp"
+#include "scene/bending_loss.hpp"
 #include "scene/build.hpp"
 #include "scene/validate.hpp"
 
@@ -86,6 +87,7 @@ std::vector<std::string> scene_warnings(const Scene& sc) {
          "unless the belt holds it; a load opposing the rotation has per_speed < 0";
     out.push_back(m.str());
   }
+  if (std::string bending = bending_loss_warning(sc); !bending.empty()) out.push_back(std::move(bending));
   return out;
 }
 

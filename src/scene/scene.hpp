@@ -94,6 +94,7 @@ enum class Tensioning {
 };
 
 struct BeltDef {
+  std::string preset;  // the belt preset whose values the scene took (scene/belt_presets.hpp), "" when none
   int elements = static_cast<int>(parameter_default("belt.elements"));
   Tensioning tensioning = Tensioning::pretension;
   double pretension = parameter_default("belt.pretension");  // [N]  (Tensioning::pretension)
@@ -203,9 +204,10 @@ inline constexpr double kWrapElementsWarn = 10;
 // and the belt.elements that would put kWrapElementsWarn on it. Empty when none.
 std::vector<std::string> coarse_wraps(const Scene& sc);
 
-// What the run's first lines warn of (scene:info().warnings lists the same): the coarse wraps, and
+// What the run's first lines warn of (scene:info().warnings lists the same): the coarse wraps,
 // each free pulley whose torque grows with its speed (per_speed > 0, an energy source: the speed
-// grows as exp(per_speed·t/J) unless the belt holds it back).
+// grows as exp(per_speed·t/J) unless the belt holds it back), and bending dampers that will take
+// more than a few per cent of the power the drive transmits (scene/bending_loss.hpp).
 std::vector<std::string> scene_warnings(const Scene& sc);
 
 // The SDE nearest the midpoint of route span sp in the state y (positions, then velocities), and

@@ -87,6 +87,8 @@ const std::vector<HelpEntry>& api_help() {
       {"resume", "beltsim.resume(path) -> sim", "continues a checkpoint (bit for bit); callbacks must be added again"},
       {"close", "sim:close()", "flushes the CSV files and finalises the video"},
       {"rpm", "beltsim.rpm(n) -> [rad/s]", "revolutions per minute to rad/s"},
+      {"belts", "beltsim.belts[\"6PK\"] -> { preset, mass_per_length, EA, EI, ... }",
+       "a PK belt's values (3PK … 8PK) for the belt table, a new table each time (docs/belts.md)"},
       {"ramp", "beltsim.ramp{ t0 [s], t1 [s], from, to, shape = \"linear\"|\"cosine\" }",
        "a law going from `from` at t0 to `to` at t1 (beltsim.ramp(t1, to): from 0 at t = 0)"},
       {"step", "beltsim.step(t [s], from, to)", "a law jumping from `from` to `to` at t"},

@@ -19,6 +19,8 @@
 #include <vector>
 
 #include "integrate/stepper.hpp"
+#include "scene/belt_presets.hpp"
+#include "scene/bending_loss.hpp"
 #include "scene/parameters.hpp"
 #include "scene/validate.hpp"
 #include "script/context.hpp"
@@ -253,6 +255,12 @@ void read_belt(lua_State* L, int idx, SceneDef& d, std::unique_ptr<LuaRef>& mu_f
                           has(L, idx, "bending_damping") || has(L, idx, "bending_viscosity");
   if (has(L, idx, "bending_damping") && has(L, idx, "bending_viscosity"))
     fail(L, "belt: give bending_damping [N·m·s/rad per SDE] or bending_viscosity [N·m²·s per length], not both");
+  if (auto name = opt_string(L, idx, "preset", "belt")) {  // its values first: the table's own override them
+    const BeltPreset* p = find_belt_preset(*name);
+    if (!p) fail(L, "belt.preset: no preset '" + *name + "'" + belt_preset_hint(*name));
+    b.preset = *name;
+    apply_belt_preset(*p, d, [&](const std::string& key) { return has(L, idx, key.c_str()); });
+  }
   PulleyDef none;
   read_numbers(L, idx, "belt", "belt", d, none);
   if (has(L, idx, "rest_length")) b.tensioning = Tensioning::rest_length;
@@ -491,6 +499,15 @@ int l_scene_info(lua_State* L) {
   const std::vector<std::string> coarse = scene_warnings(*sc);
   for (size_t k = 0; k < coarse.size(); ++k) lua_pushstring(L, coarse[k].c_str()), lua_rawseti(L, -2, k + 1);
   lua_setfield(L, -2, "warnings");
+  // the bending dampers' estimated power at the laws' steady speeds (scene/bending_loss.hpp)
+  if (const std::optional<BendingLoss> e = estimate_bending_loss(*sc)) {
+    lua_createtable(L, 0, 4);
+    set_number(L, "belt_speed", e->belt_speed);
+    set_number(L, "transmitted", e->transmitted);
+    set_number(L, "dissipated", e->dissipated);
+    set_number(L, "share", e->share());
+    lua_setfield(L, -2, "bending_loss");
+  }
   return 1;
 }
 
@@ -550,6 +567,7 @@ void open_scene(lua_State* L, Context* ctx) {
   lua_pushcfunction(L, l_rpm), lua_setfield(L, -2, "rpm");
   open_laws(L);
   lua_pushcfunction(L, l_integrators), lua_setfield(L, -2, "integrators");
+  open_belts(L);
 }
 
 }  // namespace beltsim::script

@@ -15,8 +15,10 @@ void push_site(lua_State* L, const ElementSite& e);
 // the scene at idx (method: for the message when it is not one)
 const Scene* check_scene(lua_State* L, int idx, const char* method);
 
-// adds `scene`, `rpm`, the laws' helpers (lua_law.hpp), `integrators` to the table on the top of
+// adds `scene`, `rpm`, the laws' helpers (lua_law.hpp), `integrators`, `belts` to the table on the top of
 // the stack
 void open_scene(lua_State* L, Context* ctx);
+// adds `belts`, the belt presets (lua_belts.cpp), to the table on the top of the stack
+void open_belts(lua_State* L);
 
 }  // namespace beltsim::script

@@ -402,7 +402,9 @@ TEST(BuildStages, HugeMuIsRefusedAndAnEnergySourceIsWarnedOf) {
   EXPECT_NE(e.find("1e+07"), std::string::npos) << e;
   d.belt.mu = 10;
   EXPECT_EQ(error_of([&] { validate(d); }), "");
-  EXPECT_TRUE(scene_warnings(build_scene(presets::paper_dry())).empty());
+  SceneDef quiet = presets::paper_dry();
+  quiet.belt.bending_damping = 0;  // the paper's takes 6.5 % of the power: warned of (bending_loss_test.cpp)
+  EXPECT_TRUE(scene_warnings(build_scene(quiet)).empty());
   SceneDef s = presets::paper_dry();
   s.pulleys[1].torque.per_speed = 0.5;
   const std::vector<std::string> w = scene_warnings(build_scene(s));

@@ -279,5 +279,46 @@ TEST(Parameters, EachKeyOnce) {
   EXPECT_EQ(find_parameter("contact.damping")->unit, "N·s/m");
 }
 
+// belt.preset: a PK section's values (scene/belt_presets.hpp) are given, the table's own keys
+// override them and parameters.csv names the preset; a name that is no preset is refused
+TEST(Parameters, ABeltPresetGivesItsValues) {
+  ASSERT_EQ(run_text(scene_with({{"belt.preset", "'6PK'"}, {"belt.EI", "0.01"}})), "");
+  const std::string csv = slurp(temp_dir() / "out" / "parameters.csv");
+  for (const char* expected :
+       {"\nbelt.preset,6PK,,given,", "\nbelt.EA,182400,N,given,", "\nbelt.EI,0.01,N·m²,given,",
+        "\nbelt.bending_viscosity,8.4e-07,N·m²·s,given,", "\nbelt.mass_per_length,0.1152,kg/m,given,"})
+    EXPECT_NE(csv.find(expected), std::string::npos) << expected << " in\n" << csv;
+  EXPECT_EQ(csv.find("\nbelt.bending_damping,"), std::string::npos) << csv;
+  const std::string bad = scene_with({{"belt.preset", "'6pk'"}});
+  EXPECT_EQ(run_text(bad), at_line_of(bad, "preset =") + "belt.preset: no preset '6pk' (did you mean '6PK'?)");
+}
+
+// beltsim.belts["6PK"] is a new table of the preset's values each time, which a scene's belt
+// takes; beltsim.belts lists the presets and is read-only. scene:info() gives the bending loss
+// estimated at the drive's speeds, and the paper's drive (6.5 % in its bending dampers) is warned
+// of where its 5PK preset is not.
+TEST(Parameters, BeltsTablesAndTheBendingLossInInfo) {
+  // the 5PK preset's softer bending: the static start's retry (scene/bending_loss_test.cpp)
+  beltsim::test::expect_warnings({WarningKind::static_retry});
+  const std::string paper =
+      "pulleys = { { name = 'a', centre = {0, 0}, radius = 0.1, torque = beltsim.ramp(0.3, -70) },\n"
+      "            { name = 'b', centre = {0.29, 0}, radius = 0.1, torque = { per_speed = -0.955 } } }";
+  EXPECT_EQ(run_text("local b = beltsim.belts['6PK']\n"
+                     "assert(b.preset == '6PK' and b.EI == 0.004704 and b.bending_viscosity == 8.4e-7)\n"
+                     "b.EI = 1\n"
+                     "assert(beltsim.belts['6PK'].EI == 0.004704, 'a new table each time')\n"
+                     "local names = {}\n"
+                     "for name in pairs(beltsim.belts) do names[#names + 1] = name end\n"
+                     "assert(table.concat(names, ' ') == '3PK 4PK 5PK 6PK 7PK 8PK')\n"
+                     "local i = beltsim.scene { " + paper + " }:info()\n"
+                     "assert(i.bending_loss.share > 0.05 and #i.warnings == 1, i.warnings[1])\n"
+                     "assert(i.warnings[1]:find('bending dampers', 1, true))\n"
+                     "local p = beltsim.scene { " + paper + ", belt = beltsim.belts['5PK'] }:info()\n"
+                     "assert(p.bending_loss.share < 0.05 and #p.warnings == 0, p.warnings[1])\n"
+                     "beltsim.belts['9PK'] = b\n"),
+            (temp_dir() / "scene.lua").string() +
+                ":15: beltsim.belts is read-only: change the table beltsim.belts[name] returns (a new one each time)");
+}
+
 }  // namespace parameters_test
 }  // namespace beltsim::script

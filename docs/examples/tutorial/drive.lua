@@ -11,7 +11,7 @@ drive = beltsim.scene {
       torque = { per_speed = -0.01 } },                          -- -2.5 N·m at 250 rad/s
     { name = "idler", centre = {0.04, 0.125}, radius = 0.035, inertia = 5e-5, wrap = "back" },
   },
-  belt = { elements = 200, pretension = 300, direction = "cw" },
+  belt = { preset = "6PK", elements = 200, pretension = 300, direction = "cw" },
 }
 
 if beltsim.args.live then
