@@ -50,7 +50,7 @@ void RunCheck::sample(double t, const Eigen::VectorXd& y, const Eigen::VectorXd*
   const bool speeds = est_.err_speed > est_.limit();
   rs_.on_warning("check: at t = " + rounded_text(t) + " s the estimated error so far of the " +
                  (speeds ? "pulley speeds" : "span tensions") + " is " +
-                 rounded_text(speeds ? est_.err_speed : est_.err_tension, 2) +
+                 rounded_text(speeds ? est_.err_speed : est_.err_tension, 3) +
                  " (relative to their largest values so far), past " + rounded_text(kCheckLimit) +
                  "×rtol = " + rounded_text(est_.limit()) +
                  ": this run's answer is not within its tolerance; try a tighter rtol");
