@@ -103,6 +103,7 @@ script::Overrides overrides(const Raw& raw) {
     o.max_wall = x;
   }
   o.no_frames = raw.no_frames;
+  o.check = raw.check;
   try {
     o.set = script::parse_sets(raw.set);
   } catch (const std::invalid_argument& e) {

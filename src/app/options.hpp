@@ -22,7 +22,7 @@ struct UsageError : std::runtime_error {
 // commands, so every number goes through decimal()
 struct Raw {
   std::optional<std::string> out, t_end, integrator, rtol, max_wall;
-  bool no_frames = false;
+  bool no_frames = false, check = false;
   std::optional<std::string> integrators, rtols, ref_rtol, wall_limit, metric;  // wp
   std::optional<std::string> from;                                      // plot
   bool trusted = false;                                                 // run, wp, console, sweep
@@ -39,7 +39,7 @@ int whole_number(const std::string& option, const std::string& text, int lo);
 std::string integrator_list();
 
 script::Safety safety(const Raw& raw);
-// --out, --t-end, --integrator, --rtol, --max-wall, --no-frames and --set of run and console
+// --out, --t-end, --integrator, --rtol, --max-wall, --no-frames, --check and --set of run and console
 script::Overrides overrides(const Raw& raw);
 // wp's --integrators, --rtols, --ref-rtol and --wall-limit
 WpSettings wp_settings(const Raw& raw);

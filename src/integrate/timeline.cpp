@@ -15,6 +15,7 @@ constexpr double kCrossingWidth = 1e-10;
 void Timeline::start(double t0, const Eigen::VectorXd& y0) {
   if (on_restart_) on_restart_(t0);
   integ_.start(t0, y0);
+  if (companion_) companion_->start(t0, y0), y_companion_ = y0, companion_at_ = t0;
   started_ = true;
   now_ = t0;
   y_now_ = y0;
@@ -80,8 +81,17 @@ void Timeline::restart(double p, const Eigen::VectorXd& y) {
   const Eigen::VectorXd start = y;  // y may alias y_now_ or new_state_
   have_new_state_ = false;
   if (step_hook_) step_hook_(p);  // the held step, as it was, up to the restart
+  if (companion_ && companion_failed_.empty()) {
+    // the companion restarts here too: its own state, with the components the restart changed
+    // (y_now_ is still the main state before the change)
+    companion_to(p);
+    if (companion_failed_.empty())
+      for (Eigen::Index i = 0; i < start.size(); ++i)
+        if (start[i] != y_now_[i]) y_companion_[i] = start[i];
+  }
   if (on_restart_) on_restart_(p);
   integ_.start(p, start);
+  if (companion_ && companion_failed_.empty()) companion_->start(p, y_companion_), companion_at_ = p;
   now_ = p;
   y_now_ = start;
   // the crossings located in the discarded part of the step are gone; the conditions start
@@ -91,6 +101,7 @@ void Timeline::restart(double p, const Eigen::VectorXd& y) {
 
 // everything due at time p (p inside the held step, after now_)
 void Timeline::process(double p) {
+  companion_to(p);
   integ_.dense(p, y_now_);
   now_ = p;
   in_actions_ = true;
@@ -140,6 +151,32 @@ void Timeline::process(double p) {
     restart(p, have_new_state_ ? new_state_ : y_now_);
   else if (landed && p == integ_.t())
     integ_.kink();
+  if (landed && !dirty_ && companion_ && companion_failed_.empty() && p == companion_->t()) companion_->kink();
+}
+
+void Timeline::companion_to(double p) {
+  if (!companion_ || !companion_failed_.empty() || p == companion_at_) return;
+  try {
+    // its own steps, landing where the main one lands (the landings ahead of now_ are those ahead of it)
+    while (companion_->t() < p) {
+      double land = kInf;
+      for (const Landing& l : landings_)
+        if (l.t > companion_->t()) {
+          land = l.t;
+          break;
+        }
+      companion_->step(land);
+    }
+    companion_->dense(p, y_companion_);
+    companion_at_ = p;
+  } catch (const DivergenceError& e) {
+    companion_failed_ = e.what();
+  }
+}
+
+const Eigen::VectorXd* Timeline::companion_state() const {
+  if (!companion_ || !companion_failed_.empty() || companion_at_ != now_) return nullptr;
+  return &y_companion_;
 }
 
 // after a new step [a, b]: each condition that turned true in it gets its crossing located

@@ -15,12 +15,20 @@
 // At one time the order is: streams (in the order added), every-actions, landings, when-actions;
 // then, if any of them changed the system, the restart. Everything at or before now() has been
 // delivered.
+//
+// A companion (optional): a second integrator of the same system, at another tolerance, driven by
+// this schedule in lockstep with the main one (a run's error check, sim/run_check.hpp). Before
+// anything is delivered at a time p it is brought to p (its own steps, landing on the same
+// landings); when the main integrator (re)starts, it restarts at the same time, from its own state
+// with the components the restart's state changed (a jump of the state: set_arm, set_speed)
+// taken from that state. Its steps depend on the schedule only, not on where a run pauses.
 #pragma once
 
 #include <atomic>
 #include <cmath>
 #include <functional>
 #include <limits>
+#include <string>
 #include <vector>
 
 #include <Eigen/Core>
@@ -94,6 +102,13 @@ class Timeline {
   // called with the time just before the integrator (re)starts there (start, a change, an
   // action's restart): the system learns which side of a jump at that time it starts on
   void on_restart(std::function<void(double t)> fn) { on_restart_ = std::move(fn); }
+  // the companion (null: none); set before start(). A DivergenceError of its own does not stop
+  // the run: the companion stops where it failed (companion_failed() says why)
+  void set_companion(Integrator* c) { companion_ = c; }
+  // its state at now() when it is due there (inside an output of now(): brought to now());
+  // null without a companion or after its failure
+  const Eigen::VectorXd* companion_state() const;
+  const std::string& companion_failed() const { return companion_failed_; }
 
  private:
   struct Periodic {
@@ -120,6 +135,7 @@ class Timeline {
   void process(double p);
   void restart(double p, const Eigen::VectorXd& y);
   void check_conditions();
+  void companion_to(double p);  // brings the companion to p (no-op once it failed)
 
   Integrator& integ_;
   std::vector<Periodic> periodic_;
@@ -133,6 +149,10 @@ class Timeline {
   bool have_new_state_ = false;
   std::function<void(double)> on_restart_;
   std::function<void(double)> step_hook_;
+  Integrator* companion_ = nullptr;
+  Eigen::VectorXd y_companion_;  // its state at companion_at_
+  double companion_at_ = -std::numeric_limits<double>::infinity();
+  std::string companion_failed_;
 };
 
 }  // namespace beltsim

@@ -43,6 +43,7 @@ struct Overrides {
   std::optional<double> rtol;
   std::optional<double> max_wall;  // [s] --max-wall: RunSettings::wall_limit of every run
   bool no_frames = false;  // ignore the scripts' frames = {...} (no rendering, no video)
+  bool check = false;      // --check: every run estimates its own error (RunSettings::check)
   std::vector<ScriptArg> set;  // --set KEY=VALUE: beltsim.args (not an override of run{})
 };
 

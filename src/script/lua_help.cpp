@@ -42,11 +42,11 @@ const std::vector<HelpEntry>& api_help() {
        "builds a drive (docs/lua-api.md)"},
       {"run",
        "scene:run{ t_end [s], integrator, rtol, atol, sample [s], out, probe, snapshots, progress, events, frames, "
-       "keep_states, allow_large, max_wall [s] }",
+       "keep_states, allow_large, max_wall [s], check }",
        "a batch run: start, run_to(t_end), close"},
       {"start",
        "scene:start{ integrator, rtol, atol, sample [s], out, probe, snapshots, progress, frames, keep_states, "
-       "allow_large, max_wall [s] }",
+       "allow_large, max_wall [s], check }",
        "a live simulation at t = 0 (the static state)"},
       {"info", "scene:info() -> { elements, pitch, rest_length, strain, static_tension, wrap_deg, warnings, ... }",
        "the scene as built: element sizes, stiffnesses, the tension at rest, each pulley's wrap"},

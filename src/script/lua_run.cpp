@@ -338,6 +338,10 @@ const RunKey kRunKeys[] = {
        if (!(rs.wall_limit > 0 && std::isfinite(rs.wall_limit)))
          fail(L, w + ".max_wall: must be > 0 s and finite (got " + std::to_string(rs.wall_limit) + ")");
      }},
+    {"check", false, [](lua_State* L, int v, const Scene&, RunSettings& rs, bool&, const std::string& w) {
+       if (lua_type(L, v) != LUA_TBOOLEAN) fail(L, w + ".check: boolean expected, got " + type_name(L, v));
+       rs.check = lua_toboolean(L, v);
+     }},
     {"allow_large", false, [](lua_State* L, int v, const Scene&, RunSettings& rs, bool&, const std::string& w) {
        if (lua_type(L, v) != LUA_TBOOLEAN) fail(L, w + ".allow_large: boolean expected, got " + type_name(L, v));
        rs.allow_large = lua_toboolean(L, v);
@@ -383,13 +387,26 @@ RunSettings read_run_settings(lua_State* L, int idx, const Scene& sc, Context* c
   if (o.integrator) rs.integrator = *o.integrator;
   if (o.rtol) rs.rtol = *o.rtol;
   if (o.max_wall) rs.wall_limit = *o.max_wall;
+  if (o.check) rs.check = true;
+  // the check's warning while the run goes on (sim/run_check.hpp)
+  rs.on_warning = [](const std::string& m) { std::fprintf(stderr, "beltsim: warning: %s\n", m.c_str()); };
   // the files of the run lie where the sandbox lets the script's own files lie
   if (const std::string r = run_paths_refusal(*ctx, w, rs); !r.empty()) fail(L, r);
   if (progress) *progress = pr;
   return rs;
 }
 
-// scene:run{ t_end=, integrator=, rtol=, atol=, sample=, out=, probe=, progress=, events=, frames= } -> result
+void push_check(lua_State* L, const CheckEstimate& c) {
+  lua_createtable(L, 0, 6);
+  lua_pushnumber(L, c.err_speed), lua_setfield(L, -2, "speed");
+  lua_pushnumber(L, c.err_tension), lua_setfield(L, -2, "tension");
+  lua_pushnumber(L, c.limit()), lua_setfield(L, -2, "limit");
+  lua_pushboolean(L, c.over()), lua_setfield(L, -2, "over");
+  if (c.warned_t >= 0) lua_pushnumber(L, c.warned_t), lua_setfield(L, -2, "warned_t");
+  if (!c.failed.empty()) lua_pushstring(L, c.failed.c_str()), lua_setfield(L, -2, "failed");
+}
+
+// scene:run{ t_end=, integrator=, rtol=, atol=, sample=, out=, probe=, progress=, events=, frames=, check= } -> result
 // = scene:start{...}, sim:run_to(t_end), sim:close()
 std::string wall_limit_text(double limit, double t, double target, const std::string& outputs) {
   return "stopped at its wall-time limit (max_wall = " + rounded_text(limit) + " s) at t = " + rounded_text(t) +
@@ -434,6 +451,8 @@ int l_scene_run(lua_State* L) {
   if (!error.empty()) fail(L, error);
   if (res.interrupted) ctx->interrupted = true;
   if (!res.warning_summary.empty()) std::fprintf(stderr, "beltsim: %s\n", res.warning_summary.c_str());
+  if (!res.check_line.empty())
+    std::fprintf(stderr, "beltsim: %s%s\n", res.check.over() ? "warning: " : "", res.check_line.c_str());
 
   lua_newtable(L);
   lua_pushnumber(L, res.t_reached), lua_setfield(L, -2, "t");
@@ -451,6 +470,7 @@ int l_scene_run(lua_State* L) {
   for (int j = 0; j < sc->model.n_p(); ++j)
     lua_pushnumber(L, res.omega[j]), lua_setfield(L, -2, sc->model.pulleys[j].name.c_str());
   lua_setfield(L, -2, "omega");
+  if (res.check.on) push_check(L, res.check), lua_setfield(L, -2, "check");
   lua_pushvalue(L, -1);
   lua_setfield(L, LUA_REGISTRYINDEX, kLastRun);
   return 1;

@@ -365,8 +365,11 @@ int l_close(lua_State* L) {
             "sim:advance returns");
   const bool was_open = !box->sim->closed();
   guarded(L, "sim:close", [&] { box->sim->close(); });
-  if (was_open)
+  if (was_open) {
     if (const std::string w = box->sim->warning_summary(); !w.empty()) std::fprintf(stderr, "beltsim: %s\n", w.c_str());
+    if (const std::string c = box->sim->check_line(); !c.empty())
+      std::fprintf(stderr, "beltsim: %s%s\n", box->sim->check_estimate().over() ? "warning: " : "", c.c_str());
+  }
   box->refs.clear();
   return 0;
 }

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "model/observables.hpp"
+#include "script/lua_run.hpp"
 #include "script/sim_box.hpp"
 
 namespace beltsim::script {
@@ -117,7 +118,7 @@ int l_energy(lua_State* L) {
 }
 
 // sim:stats() -> { t, integrator, steps, rejected, rhs, jacobians, factorizations, solves,
-// kink_restarts, wall [s], frames, callbacks, out }
+// kink_restarts, wall [s], frames, callbacks, out, check (a checked run's estimate so far) }
 int l_stats(lua_State* L) {
   Simulation& s = live(L, "stats", {});
   const WorkCounters w = s.stats();
@@ -132,6 +133,7 @@ int l_stats(lua_State* L) {
   lua_pushinteger(L, s.frames_written()), lua_setfield(L, -2, "frames");
   lua_pushinteger(L, s.callbacks()), lua_setfield(L, -2, "callbacks");
   lua_pushstring(L, s.out_dir().c_str()), lua_setfield(L, -2, "out");
+  if (const CheckEstimate c = s.check_estimate(); c.on) push_check(L, c), lua_setfield(L, -2, "check");
   return 1;
 }
 

@@ -111,6 +111,8 @@ void write_parameters(const Scene& sc, const RunSettings& rs, const OutputDir& d
   f << "run.atol," << number_text(Tolerances{rs.rtol, rs.atol}.absolute()) << ",,run,"
     << csv_text(std::string("per natural size: ") + BeltProblem::kNaturalSizes) << "\n";
   f << "run.sample_dt," << number_text(rs.sample_dt) << ",s,run,\n";
+  f << "run.check," << (rs.check ? 1 : 0) << ",,run,"
+    << csv_text("1: the run estimates its own error (check.* below, at its end)") << '\n';
   write_file_whole(dir, "parameters.csv", f.str());
 }
 
@@ -174,7 +176,7 @@ void Outputs::open(bool append) {
   }
 }
 
-void Outputs::close(const Warnings& w) {
+void Outputs::close(const Warnings& w, const std::string& rows) {
   std::exception_ptr failed;
   try {
     if (sink_) sink_->finish();  // first: a full disk below must not leave the video unfinished
@@ -190,6 +192,7 @@ void Outputs::close(const Warnings& w) {
           << "warning." << i.name << ".first_t," << (s.count > 0 ? number_text(s.first_t) : std::string())
           << ",s,derived," << "simulated time it first fired (empty: never)\n";
       }
+      f << rows;
       RowFile(*dir_, "parameters.csv", true).write(f.str());
     }
   } catch (...) {

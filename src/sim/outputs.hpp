@@ -47,10 +47,10 @@ class Outputs {
   // before any CSV is written), then parameters.csv (unless append), timeseries.csv, events.csv
   // and snapshots.csv; append continues the files of a resumed run
   void open(bool append);
-  // finishes the video, appends the fallbacks (warning.<name>.count, .first_t) to parameters.csv
-  // and releases the folder; each output closed whatever happened to the one before, the first
-  // failure thrown at the end
-  void close(const Warnings& warnings);
+  // finishes the video, appends the fallbacks (warning.<name>.count, .first_t) and `rows` (whole
+  // rows: a checked run's check.*) to parameters.csv and releases the folder; each output closed
+  // whatever happened to the one before, the first failure thrown at the end
+  void close(const Warnings& warnings, const std::string& rows = "");
 
   // ---- notifications (each a whole row or rows, in the file when it returns) ----------------
   void sample(std::vector<double> row);

@@ -10,6 +10,7 @@
 #include "integrate/stepper.hpp"
 #include "io/number_text.hpp"
 #include "scene/scene.hpp"
+#include "sim/run_check.hpp"
 #include "sim/outputs.hpp"
 
 namespace beltsim {
@@ -45,6 +46,10 @@ void check(const Scene& sc, const RunSettings& rs, bool batch) {
   }
   check_integrator(rs.integrator);
   check_tolerances(Tolerances{rs.rtol, rs.atol});
+  if (rs.check && check_rtol(rs) < kRtolMin)
+    throw std::invalid_argument("check: the companion solution runs at rtol/" + rounded_text(kCheckTighten) +
+                                ", which must be >= " +
+                                rounded_text(kRtolMin) + " (got rtol " + rounded_text(rs.rtol) + ")");
   if (!(rs.sample_dt > 0 && std::isfinite(rs.sample_dt)))
     throw std::invalid_argument("sample: the sample interval must be > 0 s and finite (got " +
                                 rounded_text(rs.sample_dt) + " s)");

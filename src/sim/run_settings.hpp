@@ -59,6 +59,13 @@ struct RunSettings {
   // `beltsim render`. Frames with neither png nor video give only the times; without frames the
   // default frame settings' times (every 1/300 s from t = 0). One-step integrators only.
   bool keep_states = false;
+  // estimate the run's own error against a companion solution at rtol/10 advanced in lockstep
+  // (sim/run_check.hpp): about 3 times the run's cost (docs/integration.md). A checkpoint keeps
+  // the run alone: a resumed run is not checked.
+  bool check = false;
+  // messages of a run while it runs (the check's estimate past 10×rtol), for the caller to show;
+  // empty: none shown (parameters.csv and the result still hold them)
+  std::function<void(const std::string&)> on_warning;
 };
 
 // The times frames are drawn and states kept at, t_start + k·frame_dt(): the frames' settings, the

@@ -51,6 +51,10 @@ Simulation::Simulation(const Scene& sc, const RunSettings& rs, bool fresh) : sce
   if (rs_.keep_states && !integ_->can_save())
     throw std::invalid_argument("keep_states: " + cannot_save(rs_.integrator));
   tl_ = std::make_unique<Timeline>(*integ_);
+  if (rs_.check) {
+    check_ = std::make_unique<RunCheck>(scene_, drive_, rs_);
+    tl_->set_companion(&check_->integrator());
+  }
   tl_->on_restart([this](double t) { drive_.restart_time = t; });
   means_ = std::make_unique<IntervalMeans>(model_, drive_, scene_.route, *integ_);
   tl_->set_step_hook([this](double t) { means_->cover(t, serial_); });
@@ -228,6 +232,7 @@ void Simulation::sample(double t, const Eigen::VectorXd& y) {
   }
   out_->sample(std::move(row));
   means_->start(t);  // the next interval starts here
+  if (check_) check_->sample(t, y, tl_->companion_state(), tl_->companion_failed());
 }
 
 void Simulation::snapshot(double t, const Eigen::VectorXd& y) {
@@ -359,10 +364,14 @@ std::string Simulation::warning_summary() const {
          (std::filesystem::path(rs_.out_dir) / "parameters.csv").string() + " (warning.*)";
 }
 
+CheckEstimate Simulation::check_estimate() const { return check_ ? check_->estimate() : CheckEstimate{}; }
+
+std::string Simulation::check_line() const { return check_ ? check_->line() : std::string(); }
+
 void Simulation::close() {
   if (closed_) return;
   closed_ = true;
-  out_->close(warnings());
+  out_->close(warnings(), check_ ? check_->parameter_rows() : std::string());
 }
 
 void Simulation::write_event(double t, const std::string& what, const std::string& text) {
@@ -524,6 +533,8 @@ RunResult run(const Scene& sc, const RunSettings& settings, const std::atomic<bo
   res.samples = sim.samples();
   res.notes = sim.notes();
   res.warning_summary = sim.warning_summary();
+  res.check = sim.check_estimate();
+  res.check_line = sim.check_line();
   for (int j = 0; j < sc.model.n_p(); ++j) res.omega.push_back(sim.pulley(j).omega);
   return res;
 }

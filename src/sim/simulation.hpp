@@ -23,6 +23,7 @@
 #include "scene/scene.hpp"
 #include "sim/frames.hpp"
 #include "sim/outputs.hpp"
+#include "sim/run_check.hpp"
 #include "sim/run_settings.hpp"
 
 namespace beltsim {
@@ -48,6 +49,8 @@ struct RunResult {
   std::vector<std::string> notes;     // Simulation::notes()
   std::vector<std::string> skipped;   // events after t_end (drop_after_end)
   std::string warning_summary;        // Simulation::warning_summary()
+  CheckEstimate check;                // the error estimate (check.on with RunSettings::check)
+  std::string check_line;             // Simulation::check_line()
 };
 
 class Simulation {
@@ -88,6 +91,11 @@ class Simulation {
   // the one line a run prints when any fired ("warnings: failed_step 15 times (first at t =
   // 0.036 s), ...; ... parameters.csv"), "" when none did
   std::string warning_summary() const;
+  // the run's estimate of its own error so far (sim/run_check.hpp; on = false unless checked)
+  CheckEstimate check_estimate() const;
+  // the closing line of a checked run ("check: estimated error of the pulley speeds ..."), ""
+  // unless checked
+  std::string check_line() const;
 
   // ---- reading (at now(), or at the time a when-condition is evaluated) ----------------------
   double now() const;
@@ -193,6 +201,7 @@ class Simulation {
   std::unique_ptr<Timeline> tl_;
   std::unique_ptr<IntervalMeans> means_;
   std::unique_ptr<Outputs> out_;
+  std::unique_ptr<RunCheck> check_;  // with RunSettings::check
   std::vector<MuEvent> pending_;  // timed μ changes still ahead
   double E0_ = 0;
   double wall_ = 0;

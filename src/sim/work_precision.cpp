@@ -13,6 +13,7 @@
 #include "io/row_file.hpp"
 #include "io/suggest.hpp"
 #include "io/number_text.hpp"
+#include "sim/run_error.hpp"
 
 namespace beltsim {
 
@@ -34,18 +35,16 @@ void channels(const Scene& sc, std::vector<int>& speed, std::vector<int>& tensio
   }
 }
 
-// max over channels and samples of |x - x_ref| / max |x_ref| (per channel)
-double rel_error(const std::vector<std::vector<double>>& run, const std::vector<std::vector<double>>& ref,
-                 const std::vector<int>& cols, bool end_only) {
-  const size_t n = std::min(run.size(), ref.size());
-  double worst = 0;
-  for (int c : cols) {
-    double scale = 0;
-    for (const auto& r : ref) scale = std::max(scale, std::abs(r[c]));
-    if (scale == 0) scale = 1;
-    for (size_t k = end_only ? n - 1 : 0; k < n; ++k) worst = std::max(worst, std::abs(run[k][c] - ref[k][c]) / scale);
+// the run's error on those columns against the reference, sample by sample (sim/run_error.hpp)
+ErrorMeter meter(const std::vector<std::vector<double>>& run, const std::vector<std::vector<double>>& ref,
+                 const std::vector<int>& cols) {
+  ErrorMeter m(cols.size());
+  std::vector<double> x(cols.size()), r(cols.size());
+  for (size_t k = 0; k < std::min(run.size(), ref.size()); ++k) {
+    for (size_t c = 0; c < cols.size(); ++c) x[c] = run[k][cols[c]], r[c] = ref[k][cols[c]];
+    m.add(x.data(), r.data());
   }
-  return worst;
+  return m;
 }
 
 void write_csv(const WpResult& res, const std::string& path) {
@@ -119,6 +118,7 @@ WpResult work_precision(const Scene& sc, const WpSettings& ws, const std::atomic
     rs.keep_samples = true;
     rs.frames.reset();  // the study times the integration only
     rs.keep_states = false;
+    rs.check = false;  // each run is measured against the reference here
     rs.out_dir = (fs::path(ws.base.out_dir) / (integrator + "-" + tol_name(rtol))).string();
     std::fprintf(stderr, "beltsim wp: %-9s rtol %-6s ", integrator.c_str(), tol_name(rtol).c_str());
     RunResult rr;
@@ -161,9 +161,10 @@ WpResult work_precision(const Scene& sc, const WpSettings& ws, const std::atomic
       if (stop && stop->load()) break;
       auto [row, rr] = one(name, rtol, ws.wall_limit);
       if (row.finished) {
-        row.err_speed = rel_error(rr.samples, ref_run.samples, speed, false);
-        row.err_speed_end = rel_error(rr.samples, ref_run.samples, speed, true);
-        row.err_tension = rel_error(rr.samples, ref_run.samples, tension, false);
+        const ErrorMeter es = meter(rr.samples, ref_run.samples, speed);
+        row.err_speed = es.error();
+        row.err_speed_end = es.error_last();
+        row.err_tension = meter(rr.samples, ref_run.samples, tension).error();
         row.metric = row.err_metric = std::numeric_limits<double>::quiet_NaN();
         if (metric >= 0 && !rr.samples.empty() && !ref_run.samples.empty()) {
           const double m = rr.samples.back()[metric], m_ref = ref_run.samples.back()[metric];

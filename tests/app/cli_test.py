@@ -158,6 +158,26 @@ class Errors(unittest.TestCase):
             self.assertIn(what, err)
             self.assertNotIn("ran", out)
 
+    def test_check_estimates_the_error_of_each_run(self):
+        # --check: each run ends with its estimate, written to parameters.csv (sim/run_check.hpp)
+        path = self.script(two_pulley(elements=30) + 'drive:run { t_end = 0.01, progress = false, out = "out" }\n')
+        params = os.path.join(self.dir, "out", "parameters.csv")
+        code, out, err = run(["run", path], cwd=self.dir)
+        self.assertEqual(code, 0, err)
+        self.assertNotIn("check:", err)
+        with open(params) as f:
+            self.assertIn("\nrun.check,0,,run,", f.read())
+        code, out, err = run(["run", path, "--check", "--rtol", "1e-2"], cwd=self.dir)
+        self.assertEqual(code, 0, err)
+        # (a warning when past 10×rtol: the first 10 ms of this coarse belt at 1e-2 are, 0.6 of the speeds)
+        self.assertRegex(err, "beltsim: (warning: )?check: estimated error of the pulley speeds ")
+        self.assertIn("(relative to their largest values over the run; rtol 0.01, companion at 0.001)", err)
+        with open(params) as f:
+            text = f.read()
+        self.assertIn("\nrun.check,1,,run,", text)
+        self.assertIn("\ncheck.err_speed,", text)
+        self.assertIn("\ncheck.err_tension,", text)
+
     def test_a_set_key_that_is_a_reserved_word(self):
         path = self.script("print(beltsim.args['and'])\n")
         for key in ["and", "end", "nil", "goto"]:

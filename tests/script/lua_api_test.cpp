@@ -492,6 +492,26 @@ TEST(LuaApi, MaxWallStopsARunWithAnError) {
   expect_error(scene_text("") + "s:run{ t_end = 1, max_wall = 0 }\n", "scene.lua:", {"run.max_wall: must be > 0"});
 }
 
+// check: a boolean (else an error naming the line, as the other run keys); a checked run hands its
+// estimate back in result.check and sim:stats().check
+TEST(LuaApi, CheckIsABooleanAndHandsBackTheEstimate) {
+  beltsim::test::expect_warnings({WarningKind::failed_step});
+  expect_error(scene_text("") + "s:run{ t_end = 0.01, check = 1 }\n", "scene.lua:8:",
+               {"run.check: boolean expected, got number"});
+  expect_error(scene_text("") + "local sim = s:start{ check = 'yes' }\n", "scene.lua:8:",
+               {"start.check: boolean expected, got string"});
+  EXPECT_EQ(run_text(scene_text("") +
+                     "local r = s:run{ t_end = 0.01, check = true, progress = false }\n"
+                     "assert(r.check.speed >= 0 and r.check.tension >= 0 and r.check.limit == 10 * 1e-4, 'check')\n"
+                     "assert(type(r.check.over) == 'boolean', 'over')\n"
+                     "local sim = s:start{ check = true, progress = false }\n"
+                     "sim:run_to(0.005)\n"
+                     "assert(sim:stats().check.speed >= 0, 'stats')\n"
+                     "sim:close()\n"
+                     "assert(s:run{ t_end = 0.005, progress = false }.check == nil, 'unchecked')\n"),
+            "");
+}
+
 // the progress line shows the run's time, at most its target, and never a negative time left: the
 // integrator's last step may end past the target (t = 0.0507 s of 0.05 s, "about -0 s left")
 TEST(Progress, NeverPastTheTarget) {

@@ -1,0 +1,92 @@
+#include "sim/run_check.hpp"
+
+#include <sstream>
+
+#include "integrate/belt_system.hpp"
+#include "integrate/make_integrator.hpp"
+#include "io/csv_writer.hpp"
+#include "io/number_text.hpp"
+#include "scene/scene.hpp"
+
+namespace beltsim {
+
+namespace {
+// [rad/s] the least scale of a pulley's speed: the size its absolute tolerance is per
+// (BeltProblem::kNaturalSizes)
+constexpr double kSpeedFloor = 1.0;
+}  // namespace
+
+double check_rtol(const RunSettings& rs) { return rs.rtol / kCheckTighten; }
+
+RunCheck::RunCheck(const Scene& sc, const Drive& drive, const RunSettings& rs)
+    : sc_(sc),
+      drive_(drive),
+      rs_(rs),
+      speed_(static_cast<size_t>(sc.model.n_p()), kSpeedFloor),
+      tension_(sc.route.spans.size()) {
+  sys_ = std::make_unique<BeltSystem>(sc.model, drive);
+  const Tolerances tol{rs.rtol, rs.atol};
+  integ_ = make_integrator(rs.integrator, *sys_, Tolerances{check_rtol(rs), tol.absolute() / kCheckTighten});
+  est_.on = true;
+  est_.rtol = rs.rtol;
+}
+
+RunCheck::~RunCheck() = default;
+
+void RunCheck::sample(double t, const Eigen::VectorXd& y, const Eigen::VectorXd* yc, const std::string& failed) {
+  if (!yc) {
+    est_.failed = failed;
+    return;
+  }
+  speeds_and_tensions(sc_, drive_, t, y.data(), s_, t_);
+  speeds_and_tensions(sc_, drive_, t, yc->data(), sc_s_, sc_t_);
+  speed_.add(s_.data(), sc_s_.data());
+  tension_.add(t_.data(), sc_t_.data());
+  est_.err_speed = speed_.error();
+  est_.err_tension = tension_.error();
+  if (est_.warned_t >= 0 || !est_.over()) return;
+  est_.warned_t = t;
+  if (!rs_.on_warning) return;
+  const bool speeds = est_.err_speed > est_.limit();
+  rs_.on_warning("check: at t = " + rounded_text(t) + " s the estimated error so far of the " +
+                 (speeds ? "pulley speeds" : "span tensions") + " is " +
+                 rounded_text(speeds ? est_.err_speed : est_.err_tension, 3) +
+                 " (relative to their largest values so far), past " + rounded_text(kCheckLimit) +
+                 "×rtol = " + rounded_text(est_.limit()) +
+                 ": this run's answer is not within its tolerance; try a tighter rtol");
+}
+
+std::string RunCheck::line() const {
+  std::string s = "check: estimated error of the pulley speeds " + rounded_text(est_.err_speed, 2) +
+                  ", of the span tensions " + rounded_text(est_.err_tension, 2) +
+                  " (relative to their largest values over the run; rtol " + rounded_text(rs_.rtol) +
+                  ", companion at " + rounded_text(check_rtol(rs_)) + ")";
+  if (est_.over())
+    s += "; past " + rounded_text(kCheckLimit) + "×rtol = " + rounded_text(est_.limit()) +
+         ": do not trust this run's answer at this tolerance";
+  else if (est_.warned_t >= 0)
+    s += "; it passed " + rounded_text(kCheckLimit) + "×rtol at t = " + rounded_text(est_.warned_t) +
+         " s, relative to the smaller values then";
+  if (!est_.failed.empty()) s += "; the companion stopped early, the estimate covers the run up to then: " + est_.failed;
+  return s;
+}
+
+std::string RunCheck::parameter_rows() const {
+  std::ostringstream f;
+  auto row = [&](const char* name, const std::string& v, const char* note) {
+    f << name << ',' << v << ",,derived," << csv_text(note) << '\n';
+  };
+  row("check.rtol", number_text(check_rtol(rs_)), "the companion solution's rtol (its atol likewise a tenth)");
+  row("check.err_speed", number_text(est_.err_speed),
+      "estimated error of the pulley speeds: max over pulleys and samples of |run - companion|, relative to the "
+      "companion's largest |speed| of that pulley (at least 1 rad/s)");
+  row("check.err_tension", number_text(est_.err_tension), "the same for the span tensions");
+  row("check.limit", number_text(est_.limit()), "10×rtol: past it the run warned");
+  row("check.over", est_.over() ? "1" : "0", "1: the estimate over the run is past the limit");
+  row("check.warned_t", est_.warned_t >= 0 ? number_text(est_.warned_t) : std::string(),
+      "simulated time [s] the estimate so far first passed the limit, when the run warned (empty: never)");
+  row("check.failed", csv_text(est_.failed), "why the companion stopped early (empty: it did not)");
+  return f.str();
+}
+
+}  // namespace beltsim

@@ -1,0 +1,79 @@
+// A run's estimate of its own error (issue 42 §2; run{ check = true }, `beltsim run --check`).
+//
+// A companion solution at a tolerance kCheckTighten times tighter (rtol/10, atol/10), by the same
+// integrator, is advanced in lockstep with the run over the one schedule (integrate/timeline.hpp:
+// the same sample times, landings and restarts; a jump of the state made at a change applied to
+// both). At every sample the run's pulley speeds and span tensions are compared with the
+// companion's (sim/run_error.hpp, as §1 and `beltsim wp` measure):
+//   estimate = max over channels and samples of |x(rtol) - x(rtol/10)| / max |x(rtol/10)|
+// which is the run's true error when the error falls with the tolerance (the companion's own is
+// then a tenth of it). A pulley's speed is measured against at least 1 rad/s, the size its
+// absolute tolerance is per: a drive starting from rest is not measured against its first
+// hundredths of a rad/s. The run warns, once, the first time the estimate so far (relative to
+// the largest values so far) passes kCheckLimit·rtol, and reports the estimate over the whole
+// run at its end (parameters.csv check.*, the closing line), past the limit as a warning.
+#pragma once
+
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "sim/run_error.hpp"
+#include "sim/run_settings.hpp"
+
+namespace beltsim {
+
+class BeltSystem;
+class Integrator;
+
+constexpr double kCheckTighten = 10;  // the companion's tolerance: rtol / kCheckTighten
+constexpr double kCheckLimit = 10;    // a run warns past kCheckLimit · rtol
+
+// what the check found so far
+struct CheckEstimate {
+  bool on = false;               // the run was checked
+  double rtol = 0;               // the run's
+  double err_speed = 0, err_tension = 0;  // the estimates (relative to the largest values)
+  double warned_t = -1;          // [s] the first sample the estimate so far passed the limit (-1: never)
+  std::string failed;            // why the companion stopped early ("" when it did not)
+  double limit() const { return kCheckLimit * rtol; }
+  // the estimate over the run is past the limit
+  bool over() const { return err_speed > limit() || err_tension > limit(); }
+};
+
+class RunCheck {
+ public:
+  // the companion of a run of sc with these settings, on the run's drive (read, not copied: the
+  // drive's changes and the restart time are the run's)
+  RunCheck(const Scene& sc, const Drive& drive, const RunSettings& rs);
+  ~RunCheck();
+  Integrator& integrator() { return *integ_; }
+  // a sample of the run at t: y its state, yc the companion's there (null when the companion has
+  // failed: failed says why)
+  void sample(double t, const Eigen::VectorXd& y, const Eigen::VectorXd* yc, const std::string& failed);
+  const CheckEstimate& estimate() const { return est_; }
+  // "check: estimated error of the pulley speeds 2.1e-3, of the span tensions 4e-4 (relative to
+  // their largest values over the run; rtol 0.001, companion at 0.0001)", with what is wrong when
+  // it passed the limit or the companion failed
+  std::string line() const;
+  // parameters.csv's rows of the check (name,value,unit,source,note)
+  std::string parameter_rows() const;
+
+ private:
+  const Scene& sc_;
+  const Drive& drive_;
+  const RunSettings& rs_;
+  std::unique_ptr<BeltSystem> sys_;
+  std::unique_ptr<Integrator> integ_;
+  ErrorMeter speed_, tension_;
+  std::vector<double> s_, t_, sc_s_, sc_t_;  // channels of the run and of the companion
+  CheckEstimate est_;
+};
+
+// the tolerances of the companion of a run at these (rtol / kCheckTighten, atol likewise)
+double check_rtol(const RunSettings& rs);
+
+}  // namespace beltsim
