@@ -120,9 +120,10 @@ class Esdirk final : public Stepper {
     // and within it at 1e-4, the same steps to within 10 % on the paper's own drive (commit
     // message). The stages' residual norm is the mean over all states, so one element's part can
     // be √n times it: the margin covers that too.
-    // (at tolerances near the rounding of the state, a correction of a few units of rounding is
-    // as converged as it gets: the bound never falls below that)
-    const double kappa = std::max(1e-4, 10 * std::numeric_limits<double>::epsilon() / ctl_->rtol());
+    // (at tolerances near the rounding of the state, a correction at the rounding noise of the
+    // residual, a thousand units of rounding of the state on the belt's stiff stages, is as
+    // converged as it gets: the bound never falls below that)
+    const double kappa = std::max(1e-4, 1e3 * std::numeric_limits<double>::epsilon() / ctl_->rtol());
     constexpr double kBand = 0.1;
     // a correction below 5 % of the tolerance is taken whole by the line search: near convergence
     // the residual is at rounding level and need not decrease, and a search that demanded it would

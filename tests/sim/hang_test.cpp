@@ -99,7 +99,7 @@ TEST(NoHang, ImplicitFailuresInARowStop) {
   EXPECT_EQ(failed.first_t, 0.0);
 }
 
-fs::path temp(const std::string& name) {
+fs::path hang_temp(const std::string& name) {
   const fs::path p = beltsim::test::scratch_dir("beltsim_hang_test") / name;
   fs::remove_all(p);
   return p;
@@ -113,7 +113,7 @@ TEST(NoHang, WallLimitStopsABatchRun) {
   rs.t_end = 1.0;
   rs.sample_dt = 1e-4;
   rs.wall_limit = 0.05;
-  rs.out_dir = temp("wall").string();
+  rs.out_dir = hang_temp("wall").string();
   const auto t0 = clock_type::now();
   const RunResult r = run(dry_scene(), rs);
   EXPECT_LT(seconds_since(t0), 2.0);
@@ -141,7 +141,7 @@ TEST(NoHang, RateCollapseStops) {
   test::expect_warnings({WarningKind::failed_step});  // the paper's drive has some (docs/outputs.md)
   RunSettings rs;
   rs.sample_dt = 1e-4;
-  rs.out_dir = temp("rate").string();
+  rs.out_dir = hang_temp("rate").string();
   long polls = 0;
   double now = 0;
   rs.wall_clock = [&] {

@@ -117,10 +117,14 @@ TEST(RunCheck, TheRunsAnswerIsUnchanged) {
 TEST(RunCheck, WarnsPastTenTimesRtolOnceAndSaysSoAtTheEnd) {
   test::expect_warnings({WarningKind::failed_step});
   std::vector<std::string> said;
+  // ros34pw2: under the answer's error control trbdf2 (2.3e-3) and esdirk32 (4.5e-3) keep this
+  // scene within the limit at 1e-2; ros34pw2's frozen Jacobian carries a wrong friction branch
+  // through a step (docs/integration.md)
   RunSettings rs = settings(1e-2, "warns", true);
+  rs.integrator = "ros34pw2";
   rs.on_warning = [&](const std::string& m) { said.push_back(m); };
   const RunResult r = run(small_scene(), rs);
-  EXPECT_GT(r.check.err_speed, 10 * 1e-2);  // measured 0.227: the true error is 0.228
+  EXPECT_GT(r.check.err_speed, 10 * 1e-2);  // measured 0.366
   EXPECT_TRUE(r.check.over());
   ASSERT_EQ(said.size(), 1u);
   EXPECT_EQ(said[0].rfind("check: at t = " + rounded_text(r.check.warned_t) + " s the estimated error so far of the "
