@@ -34,7 +34,7 @@ class BeltProblem final : public OdeProblem {
  private:
   const Model& model_;
   const Drive& drive_;
-  Workspace ws_;               // the right-hand side's and the Jacobian's (model/workspace.hpp)
+  Workspace ws_;               // the right-hand side's, the Jacobian's and the Newton aids' (model/workspace.hpp)
   mutable ContactList pairs_;  // the switching functions' contact pass
 };
 
