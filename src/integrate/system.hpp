@@ -49,8 +49,9 @@ class OdeProblem {
   virtual double resolution(int) const { return std::numeric_limits<double>::infinity(); }
   // switching functions, for integrators that locate the kinks of a piecewise-smooth F and
   // restart there: their number, and g at (t, y), each continuous in y and zero where F has a kink
+  // (evaluated as F is: not const)
   virtual int switch_count() const { return 0; }
-  virtual void switches(double, const double*, double*) const {}
+  virtual void switches(double, const double*, double*) {}
   // diagnostics: a name for component k ("element 12 y velocity") and a check of a state that
   // returns an empty string when it is sane, else what went wrong
   virtual std::string describe(int k) const { return "component " + std::to_string(k); }

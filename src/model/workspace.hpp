@@ -32,7 +32,7 @@ struct Workspace {
   explicit Workspace(const Model& m, bool split = true);
   // contact stage (contacts.hpp): the records of the last state the right-hand side evaluated, or
   // that a reader filled them at (contacts_at), one list per half of a split belt; read by the
-  // forces, the Jacobian, the bristle rates and the Newton aids
+  // forces, the Jacobian, the bristle rates, the Newton aids and the switching functions
   ContactRecords contacts;
   // position stage (sde.cpp): the elements' axes of the last evaluation, reused at the same angles
   AxisMemo axes;
