@@ -35,22 +35,29 @@ class ContactView {
     const int na = static_cast<int>(a_->size());
     return k < na ? (*a_)[k] : (*b_)[k - na];
   }
+  // walks the first list, then steps from its end to the second's start
   class iterator {
    public:
-    iterator(const ContactView* v, int k) : v_(v), k_(k) {}
-    const ContactPair& operator*() const { return (*v_)[k_]; }
+    iterator(const ContactPair* at, const ContactPair* a_end, const ContactPair* b_begin)
+        : at_(at), a_end_(a_end), b_begin_(b_begin) {}
+    const ContactPair& operator*() const { return *at_; }
     iterator& operator++() {
-      ++k_;
+      if (++at_ == a_end_) at_ = b_begin_;
       return *this;
     }
-    bool operator!=(const iterator& o) const { return k_ != o.k_; }
+    bool operator!=(const iterator& o) const { return at_ != o.at_; }
 
    private:
-    const ContactView* v_;
-    int k_;
+    const ContactPair *at_, *a_end_, *b_begin_;
   };
-  iterator begin() const { return iterator(this, 0); }
-  iterator end() const { return iterator(this, size()); }
+  iterator begin() const {
+    const ContactPair *a = a_->data(), *a_end = a + a_->size(), *b = b_->data();
+    return iterator(a == a_end ? b : a, a_end, b);
+  }
+  iterator end() const {
+    const ContactPair* b_end = b_->data() + b_->size();
+    return iterator(b_end, b_end, b_end);
+  }
 
  private:
   const ContactList *a_, *b_;
