@@ -1,6 +1,7 @@
 // The contact stage's records (model/contacts.hpp): they know the state they are of, a reader at
 // another state (or at the same pointer after the state moved in place) gets a pass of its own,
-// and a belt split in two halves gives every pulley the whole belt's pairs in element order.
+// a belt split in two halves gives every pulley the whole belt's pairs in element order, and the
+// questions about one pulley or one element read the records that observe() reads.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -8,6 +9,7 @@
 
 #include "model/contacts.hpp"
 #include "model/jacobian_check.hpp"
+#include "model/observables.hpp"
 #include "model/rhs.hpp"
 #include "scene/presets.hpp"
 
@@ -125,6 +127,44 @@ TEST(Contacts, HalvesReadAsOnePass) {
       }
       EXPECT_EQ(k == a.size(), l == b.size()) << "pulley " << j;
     }
+  }
+}
+
+// one fill of a state's records answers every question about its pulleys and elements with the
+// bits observe() gives
+TEST(Contacts, QuestionsAboutOnePulleyReadTheRecords) {
+  auto same = [](double a, double b) { return std::memcmp(&a, &b, sizeof a) == 0; };
+  for (const SceneDef& d : {presets::paper_dry(), presets::automotive_tensioner()}) {
+    const Scene sc = build_scene(d);
+    const Model& m = sc.model;
+    const Drive& dr = sc.drive;
+    const Eigen::VectorXd y = running_state(sc, 0.1, 30.0, 3);
+    Observation o;
+    observe(m, dr, sc.senses(), 0.1, y.data(), o);
+    ContactRecords c;
+    fill_contacts(m, dr, 0.1, y.data(), c);
+    std::vector<PulleyObs> all;
+    ContactRecords scratch;
+    observe_pulleys(m, dr, 0.1, y.data(), scratch, all);
+    EXPECT_TRUE(scratch.of(m, 0.1, y.data()));
+    for (int j = 0; j < m.n_p(); ++j) {
+      const PulleyObs p = observe_pulley(m, dr, 0.1, y.data(), c, j);
+      Vec2 hub;
+      const double torque = belt_torque(c, j, &hub);
+      EXPECT_TRUE(same(p.belt_torque, o.pulleys[j].belt_torque) && same(torque, p.belt_torque)) << j;
+      EXPECT_TRUE(same(p.hub_load, o.pulleys[j].hub_load) && same(hub.x(), p.hub.x()) && same(hub.y(), p.hub.y()));
+      EXPECT_TRUE(same(p.torque, o.pulleys[j].torque) && same(all[j].torque, p.torque)) << j;
+      EXPECT_TRUE(same(all[j].belt_torque, p.belt_torque)) << j;
+    }
+    int touching = 0;
+    for (int i = 0; i < m.n_el(); ++i) {
+      const ElementContact e = element_contact(c, i);
+      EXPECT_EQ(e.pulley, o.elements[i].pulley) << i;
+      EXPECT_TRUE(same(e.normal, o.elements[i].normal)) << i;
+      EXPECT_TRUE(same(e.slip, o.contact[i].slip) && same(e.friction, o.contact[i].friction)) << i;
+      touching += e.pulley >= 0;
+    }
+    EXPECT_GT(touching, 10);
   }
 }
 
