@@ -110,10 +110,8 @@ void jacobian(const Model& m, const Drive& d, double t, const double* y, Jacobia
   const double* v = y + m.n_coord();
   const double* z = m.bristles(y);
   const int n = m.belt.n, np = m.n_p();
-  ContactList* pairs = w->contacts.half;
-  // the contact stage: the right-hand side's records when they are this state's, else a pass here
-  const bool have = w->contacts.of(m, t, y);
-  if (!have) w->contacts.forget();
+  // the contact stage: the right-hand side's records when they are this state's, else a pass
+  const ContactList* pairs = contacts_at(m, d, t, y, *w).half;
   J.f_t.setZero();
   w->axes.fit(n);
   if (!w->halves) {
@@ -122,7 +120,6 @@ void jacobian(const Model& m, const Drive& d, double t, const double* y, Jacobia
     const Span all{0, n};
     sde_jacobian(m, q, v, J.K, J.C, &w->axes, all);
     bending_jacobian(m, q, v, J.K, J.C, all);
-    if (!have) contact_pass(m, d, t, q, v, z, all, pairs[0]), pairs[1].clear();
     contact_jacobian(m, d, t, q, v, pairs[0], J.K, J.C, J.f_t.data(), nullptr);
   } else {
     Halves& h = *w->halves;
@@ -137,13 +134,11 @@ void jacobian(const Model& m, const Drive& d, double t, const double* y, Jacobia
       std::fill(dmo, dmo + np, 0.0);
       sde_jacobian(m, q, v, J.K, J.C, &w->axes, half(m, p));
       bending_jacobian(m, q, v, J.K, J.C, half(m, p));
-      if (!have) contact_pass(m, d, t, q, v, z, half(m, p), pairs[p]);
       contact_jacobian(m, d, t, q, v, pairs[p], J.K, J.C, J.f_t.data(), dmo);
     });
     const double *d0 = h.sum(0) + np + kEnergyCount, *d1 = h.sum(1) + np + kEnergyCount;
     for (int j = 0; j < np; ++j) J.C.pulley_pulley(j, j) += d0[j] + d1[j];
   }
-  if (!have) w->contacts.stamp(m, t, y, Pairs::touching);
   pulley_jacobian(m, d, t, v, J.C, J.f_t.data());
   if (!m.arms.empty()) arm_jacobian(m, q, v, J.K, J.C);
   if (!m.couplings.empty()) coupling_jacobian(m, d, t, v, J.K, J.C, J.f_t.data());

@@ -22,8 +22,8 @@ void rhs(const Model& m, const Drive& d, double t, const double* y, double* dy, 
 
 // ∂f/∂q, ∂f/∂v and ∂f/∂t at (t, y), and under LuGre's law the bristles' rows and columns. The
 // energy rows are not part of it: they are pure quadratures that feed nothing back, and the
-// integrators treat them as such (W-method). The contact terms come from w's contact records when
-// they are those of (t, y) (the right-hand side's at the same state), else from a pass here.
+// integrators treat them as such (W-method). The contact terms come from w's contact records of
+// (t, y) (contacts_at: the right-hand side's at the same state, else filled here).
 struct Jacobian {
   BlockMatrix K, C;
   Eigen::VectorXd f_t;
