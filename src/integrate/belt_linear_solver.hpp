@@ -20,7 +20,7 @@ namespace beltsim {
 class BeltLinearSolver final : public LinearSolver {
  public:
   // ws: the workspace of the problem's right-hand side (BeltProblem::workspace), which the
-  // Jacobian's evaluation shares (its contact pass, and the two halves' worker)
+  // Jacobian's evaluation shares (the right-hand side's contact records, and the two halves' worker)
   BeltLinearSolver(const Model& m, const Drive& d, Workspace& ws);
   bool prepare_jacobian(double t, const double* y) override;
   void time_derivative(double* f_t) const override;

@@ -41,9 +41,8 @@ double BeltProblem::resolution(int k) const {
 
 int BeltProblem::switch_count() const { return beltsim::switch_count(model_); }
 
-void BeltProblem::switches(double t, const double* y, double* g) const {
-  contact_pass(model_, drive_, t, y, Span{0, model_.n_el()}, pairs_, Pairs::all);
-  contact_switches(model_, pairs_, g);
+void BeltProblem::switches(double t, const double* y, double* g) {
+  contact_switches(model_, contacts_at(model_, drive_, t, y, ws_, Pairs::all).pairs(), g);
 }
 
 std::string BeltProblem::describe(int k) const {

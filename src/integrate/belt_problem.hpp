@@ -4,7 +4,6 @@
 #pragma once
 
 #include "integrate/system.hpp"
-#include "model/contact_law.hpp"
 #include "model/model.hpp"
 #include "model/rhs.hpp"
 
@@ -32,7 +31,8 @@ class BeltProblem final : public OdeProblem {
   double answer_scale(int k) const override;
   std::string describe_answer(int k) const override;
   int switch_count() const override;
-  void switches(double t, const double* y, double* g) const override;
+  // from the contact records of (t, y) with every pair (model/contacts.hpp), kept in the workspace
+  void switches(double t, const double* y, double* g) override;
   std::string describe(int k) const override;
   std::string check(double t, const double* y) const override;
   const Model& model() const { return model_; }
@@ -43,8 +43,9 @@ class BeltProblem final : public OdeProblem {
  private:
   const Model& model_;
   const Drive& drive_;
-  Workspace ws_;               // the right-hand side's and the Jacobian's (model/workspace.hpp)
-  mutable ContactList pairs_;  // the switching functions' contact pass
+  // the right-hand side's, the Jacobian's, the Newton aids' and the switching functions'
+  // (model/workspace.hpp)
+  Workspace ws_;
   std::vector<Vec2> spans_;    // where the answer's span tensions are taken
   std::vector<double> y_minus_e_;  // answer_error's scratch
 };

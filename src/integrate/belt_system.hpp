@@ -12,14 +12,15 @@ namespace beltsim {
 class BeltSystem {
  public:
   // d: the drive the run holds (Simulation); changes to it apply from the next evaluation
-  BeltSystem(const Model& m, const Drive& d) : problem(m, d), linear(m, d, problem.workspace()), aids(m, d) {}
+  BeltSystem(const Model& m, const Drive& d)
+      : problem(m, d), linear(m, d, problem.workspace()), aids(m, d, problem.workspace()) {}
   BeltSystem(const BeltSystem&) = delete;
   BeltSystem& operator=(const BeltSystem&) = delete;
   operator OdeSystem() { return OdeSystem(problem, &linear, &aids); }
 
   BeltProblem problem;
   BeltLinearSolver linear;  // shares the problem's workspace
-  BeltNewtonAids aids;
+  BeltNewtonAids aids;      // reads the contact records in the problem's workspace
 };
 
 }  // namespace beltsim

@@ -217,7 +217,7 @@ int solve_block(LocalSolveScratch& w, int lo, int L, double diag, double band) {
 }
 }  // namespace
 
-int friction_local_solve(const Model& m, const Drive& d, const ContactList& pairs, double s, double* q, double* v,
+int friction_local_solve(const Model& m, const Drive& d, const ContactView& pairs, double s, double* q, double* v,
                          const double* g, LocalSolveScratch& w) {
   if (!m.every_law(FrictionKind::threlfall)) return 0;  // E is convex only for Threlfall's sat
   const double band = m.friction.dv;
@@ -230,7 +230,7 @@ int friction_local_solve(const Model& m, const Drive& d, const ContactList& pair
   for (int j = 0; j < m.n_p(); ++j) {
     // the pulley's pressing pairs, in element order (the pass's order within a pulley)
     w.pair.clear();
-    for (int p = 0; p < static_cast<int>(pairs.size()); ++p)
+    for (int p = 0; p < pairs.size(); ++p)
       if (pairs[p].j == j && pairs[p].touching && pairs[p].nl.pushing) w.pair.push_back(p);
     const int L = static_cast<int>(w.pair.size());
     if (L == 0) continue;
@@ -271,7 +271,7 @@ int friction_local_solve(const Model& m, const Drive& d, const ContactList& pair
   return moved;
 }
 
-int friction_reseat(const Model& m, const Drive& d, const ContactList& pairs, const double* q, double* v,
+int friction_reseat(const Model& m, const Drive& d, const ContactView& pairs, const double* q, double* v,
                     const double* dq, double* dv, Reseat where) {
   int moved = 0;
   for (const ContactPair& c : pairs) {
@@ -314,7 +314,7 @@ int friction_reseat(const Model& m, const Drive& d, const ContactList& pairs, co
   return moved;
 }
 
-double friction_overshoot(const Model& m, const Drive& d, const ContactList& pairs, const double* q, const double* dv) {
+double friction_overshoot(const Model& m, const Drive& d, const ContactView& pairs, const double* q, const double* dv) {
   double worst = 0;
   for (const ContactPair& c : pairs) {
     if (!c.touching || !c.nl.pushing) continue;
@@ -333,7 +333,7 @@ double friction_overshoot(const Model& m, const Drive& d, const ContactList& pai
   return worst;
 }
 
-void pressed_pulleys(const Model& m, const ContactList& pairs, std::vector<int>& on) {
+void pressed_pulleys(const Model& m, const ContactView& pairs, std::vector<int>& on) {
   on.assign(m.belt.n, -1);
   for (const ContactPair& c : pairs)  // pulley by pulley: the first pulley an element presses on
     if (c.touching && c.nl.pushing && on[c.i] < 0) on[c.i] = c.j;
@@ -362,29 +362,29 @@ void advance_pulleys(const Model& m, const Drive& d, double t, double dt, double
 }
 }  // namespace
 
-void kinematic_predict(const Model& m, const Drive& d, double t, double dt, double* q, double* v, PredictScratch& w) {
-  contact_pass(m, d, t, q, v, nullptr, Span{0, m.belt.n}, w.pairs);  // normal laws only
-  pressed_pulleys(m, w.pairs, w.on);
+void kinematic_predict(const Model& m, const Drive& d, double t, double dt, const ContactView& pairs, double* q,
+                       double* v, PredictScratch& w) {
+  pressed_pulleys(m, pairs, w.on);
   for (int i = 0; i < m.belt.n; ++i) kinematic_move(m, w.on[i], dt, i, q, v);
   advance_pulleys(m, d, t, dt, q, v);
 }
 
-void convective_predict(const Model& m, const Drive& d, double t, double dt, double* q, double* v, PredictScratch& w) {
+void convective_predict(const Model& m, const Drive& d, double t, double dt, const ContactView& pairs, double* q,
+                        double* v, PredictScratch& w) {
   constexpr double kTravel = 0.5;  // pitches an element travels in dt before it takes the state found there
   const int n = m.belt.n;
   const double reach = kTravel * m.belt.pitch;
   bool any = false;
   for (int i = 0; i < n && !any; ++i) any = std::hypot(v[3 * i], v[3 * i + 1]) * std::abs(dt) >= reach;
   if (!any) {
-    kinematic_predict(m, d, t, dt, q, v, w);
+    kinematic_predict(m, d, t, dt, pairs, q, v, w);
     return;
   }
   w.q0.assign(q, q + 3 * n);
   w.v0.assign(v, v + 3 * n);
   const double* q0 = w.q0.data();
   const double* v0 = w.v0.data();
-  contact_pass(m, d, t, q, v, nullptr, Span{0, n}, w.pairs);  // normal laws only
-  pressed_pulleys(m, w.pairs, w.on);
+  pressed_pulleys(m, pairs, w.on);
   advance_pulleys(m, d, t, dt, q, v);
   auto pos = [q0](int k) { return Vec2(q0[3 * k], q0[3 * k + 1]); };
   auto vel = [v0](int k) { return Vec2(v0[3 * k], v0[3 * k + 1]); };
@@ -444,7 +444,7 @@ void convective_predict(const Model& m, const Drive& d, double t, double dt, dou
   }
 }
 
-uint64_t contact_branches(const Model& m, const ContactList& pairs) {
+uint64_t contact_branches(const Model& m, const ContactView& pairs) {
   // FNV-1a over (pulley, element, branch code) of every pair in contact
   uint64_t h = 1469598103934665603ull;
   auto mix = [&h](uint64_t x) { h = (h ^ x) * 1099511628211ull; };

@@ -22,7 +22,7 @@ namespace beltsim {
 
 int switch_count(const Model& m) { return kSwitchesPerPair * m.n_p() * m.belt.n; }
 
-void contact_switches(const Model& m, const ContactList& pairs, double* g) {
+void contact_switches(const Model& m, const ContactView& pairs, double* g) {
   const Contact& c = m.contact;
   for (const ContactPair& pr : pairs) {
     const Friction& f = m.friction_of(pr.i);

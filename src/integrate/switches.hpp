@@ -4,7 +4,7 @@
 // the pair's kinks (derivation at the top of switches.cpp).
 #pragma once
 
-#include "model/contact_law.hpp"
+#include "model/contacts.hpp"
 #include "model/model.hpp"
 
 namespace beltsim {
@@ -12,8 +12,8 @@ namespace beltsim {
 constexpr int kSwitchesPerPair = 4;
 // the number of switching functions of the model: kSwitchesPerPair per element and pulley
 int switch_count(const Model& m);
-// g[kSwitchesPerPair·(j·n + i) + k] for pulley j, element i, from a contact pass over every pair
-// (contact_pass with Pairs::all)
-void contact_switches(const Model& m, const ContactList& pairs, double* g);
+// g[kSwitchesPerPair·(j·n + i) + k] for pulley j, element i, from the contact records of a state
+// with every pair (model/contacts.hpp, Pairs::all)
+void contact_switches(const Model& m, const ContactView& pairs, double* g);
 
 }  // namespace beltsim

@@ -49,8 +49,9 @@ class OdeProblem {
   virtual double resolution(int) const { return std::numeric_limits<double>::infinity(); }
   // switching functions, for integrators that locate the kinks of a piecewise-smooth F and
   // restart there: their number, and g at (t, y), each continuous in y and zero where F has a kink
+  // (evaluated as F is: not const)
   virtual int switch_count() const { return 0; }
-  virtual void switches(double, const double*, double*) const {}
+  virtual void switches(double, const double*, double*) {}
   // The answer: the quantities users read of a state (for the belt: the speeds of the pulleys,
   // arms and rotors and the span tensions), which the step-size control holds to the tolerance
   // each on its own (StepController). answer(t, y, a) writes them; answer_error(t, y, e, da) the
@@ -88,7 +89,8 @@ class LinearSolver {
   virtual bool sparse_jacobian(double, const double*, Eigen::SparseMatrix<double>&) { return false; }
 };
 
-// Newton aids for a piecewise-smooth right-hand side; every one may do nothing (the defaults).
+// Newton aids for a piecewise-smooth right-hand side; every one may do nothing (the defaults). They
+// may evaluate the problem at the state they are given (none is const).
 class NewtonAids {
  public:
   virtual ~NewtonAids() = default;
@@ -102,14 +104,14 @@ class NewtonAids {
   virtual bool local_solve(double, double, double*, const double*) { return false; }
   // Newton's starting point: carry the state z, taken at time t, forward by dt along the
   // motion it describes (the default leaves it where it is)
-  virtual void predict(double, double, double*) const {}
+  virtual void predict(double, double, double*) {}
   // A hash of the smooth piece of a piecewise-smooth right-hand side that y lies on; 0 means
   // unknown. Newton may reuse a Jacobian (and its factorisation) while the hash is unchanged.
-  virtual uint64_t branches(double, const double*) const { return 0; }
+  virtual uint64_t branches(double, const double*) { return 0; }
   // how far the Newton correction dz from z carries the right-hand side past a kink, in units of
   // the kink's resolution (for the belt: slip velocities past the edge of the friction band, in
   // band widths); 0 when it leaves every law on the piece z lies on
-  virtual double overshoot(double, const double*, const double*) const { return 0; }
+  virtual double overshoot(double, const double*, const double*) { return 0; }
 };
 
 // What an integrator is given (none of it owned): the problem, and optionally a linear solver

@@ -58,20 +58,19 @@ void BristleJacobian::clear(const Model& m) {
   }
 }
 
-void bristle_rates(const Model& m, const double* z, const ContactList* lists, int count, double* dz) {
+void bristle_rates(const Model& m, const double* z, const ContactView& pairs, double* dz) {
   for (int i = 0; i < m.n_el(); ++i) {
     const Friction& f = m.friction_of(i);
     dz[i] = f.law == FrictionKind::lugre ? -z[i] / f.release_time : 0.0;
   }
-  for (int l = 0; l < count; ++l)
-    for (const ContactPair& c : lists[l]) {
-      const Friction& f = m.friction_of(c.i);
-      if (c.touching && f.law == FrictionKind::lugre) dz[c.i] = bristle_law(c.mu, f, c.fl.vT, z[c.i]).zdot;
-    }
+  for (const ContactPair& c : pairs) {
+    const Friction& f = m.friction_of(c.i);
+    if (c.touching && f.law == FrictionKind::lugre) dz[c.i] = bristle_law(c.mu, f, c.fl.vT, z[c.i]).zdot;
+  }
 }
 
 void bristle_jacobian(const Model& m, const Drive& d, double t, const double* q, const double* v, const double* z,
-                      const ContactList& pairs, BristleJacobian& B) {
+                      const ContactView& pairs, BristleJacobian& B) {
   for (const ContactPair& c : pairs) {
     const Friction& f = m.friction_of(c.i);
     if (!c.touching || f.law != FrictionKind::lugre) continue;

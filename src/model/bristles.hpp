@@ -8,6 +8,7 @@
 #include <Eigen/Core>
 
 #include "model/block_matrix.hpp"
+#include "model/contacts.hpp"
 #include "model/drive.hpp"
 #include "model/forces.hpp"
 #include "model/model.hpp"
@@ -28,12 +29,12 @@ struct BristleJacobian {
   void clear(const Model& m);
 };
 
-// ż of every element from the pairs of one contact pass (elements out of contact relax); the
-// pairs of `lists` (count of them) together hold every element in contact
-void bristle_rates(const Model& m, const double* z, const ContactList* lists, int count, double* dz);
+// ż of every element from the records of its state's contact stage (contacts.hpp; elements out
+// of contact relax)
+void bristle_rates(const Model& m, const double* z, const ContactView& pairs, double* dz);
 // writes the entries of the elements in contact in `pairs` to B (cleared by the caller)
 void bristle_jacobian(const Model& m, const Drive& d, double t, const double* q, const double* v, const double* z,
-                      const ContactList& pairs, BristleJacobian& B);
+                      const ContactView& pairs, BristleJacobian& B);
 
 // The bristles eliminated from a linear solve with s·I - ∂F/∂y (bristles.cpp): with
 // D_i = 1/(s - ∂ż_i/∂z_i), u_z = D·(r_z + H_q·u_q + H_v·u_v), which leaves the mechanical rows

@@ -1,7 +1,7 @@
 // Per-pair contact and friction laws shared by contact.cpp and friction.cpp, and the contact pass
-// that evaluates them once per evaluation for every element–pulley pair (contact_pass): its
-// records are what the forces, the Jacobian, the integrator's Newton aids, the switching
-// functions and the observables read.
+// that evaluates them for every element–pulley pair (contact_pass). The contact stage
+// (contacts.hpp) runs it once per state and keeps its records, which the forces, the Jacobian,
+// the integrator's Newton aids, the switching functions and the observables read.
 // normal_law, friction_law and stribeck_law are defined here, inline: every right-hand side calls them for each
 // element and pulley, so they are inlined into the contact pass. Their formulas and derivatives are
 // at the top of contact.cpp and friction.cpp.

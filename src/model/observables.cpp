@@ -1,9 +1,10 @@
 #include "model/observables.hpp"
 
+#include <cassert>
 #include <cmath>
 #include <limits>
 
-#include "model/contact_law.hpp"
+#include "model/contacts.hpp"
 #include "model/forces.hpp"
 
 namespace beltsim {
@@ -17,7 +18,7 @@ const char* contact_state_name(ContactState s) {
 }
 
 namespace {
-// the sums of element contacts and pulley loads over the pairs of a pass
+// the sums of element contacts over the pairs of a contact stage
 struct PairSums {
   std::vector<ElementContact>& el;  // indexed by element, first..first+size
   int first;
@@ -38,7 +39,7 @@ struct PairSums {
 };
 
 // the belt's moment on pulley j and its hub load from the pulley's pairs
-double pulley_load(const ContactList& pairs, int j, Vec2* hub_load) {
+double pulley_load(const ContactView& pairs, int j, Vec2* hub_load) {
   double moment = 0;
   Vec2 load = Vec2::Zero();
   for (const ContactPair& c : pairs) {
@@ -76,7 +77,7 @@ ElementObs element_with(const Drive& d, const std::vector<int>& sense, double t,
   return o;
 }
 
-PulleyObs pulley_with(const Model& m, const Drive& d, double t, const double* y, int j, const ContactList& pairs) {
+PulleyObs pulley_with(const Model& m, const Drive& d, double t, const double* y, int j, const ContactView& pairs) {
   const double* q = y;
   const double* v = y + m.n_coord();
   PulleyObs o;
@@ -100,40 +101,29 @@ PulleyObs pulley_with(const Model& m, const Drive& d, double t, const double* y,
 }
 }  // namespace
 
-ElementContact element_contact(const Model& m, const Drive& d, double t, const double* y, int i) {
-  ContactList pairs;
-  contact_pass(m, d, t, y, Span{i, i + 1}, pairs);
+ElementContact element_contact(const ContactRecords& contacts, int i) {
   std::vector<ElementContact> one(1);
   PairSums sums(one, i);
-  for (const ContactPair& c : pairs) sums.add(c);
+  for (const ContactPair& c : contacts.pairs())
+    if (c.i == i) sums.add(c);
   return one[0];
 }
 
-double belt_torque(const Model& m, const Drive& d, double t, const double* y, int j, Vec2* hub_load) {
-  ContactList pairs;
-  contact_pass(m, d, t, y, Span{0, m.n_el()}, pairs);
-  return pulley_load(pairs, j, hub_load);
+double belt_torque(const ContactRecords& contacts, int j, Vec2* hub_load) {
+  return pulley_load(contacts.pairs(), j, hub_load);
 }
 
-ElementObs observe_element(const Model& m, const Drive& d, const std::vector<int>& sense, double t, const double* y,
-                           int i) {
-  const double* q = y;
-  const double* v = y + m.n_coord();
-  return element_with(d, sense, t, y, i, element_contact(m, d, t, y, i), sde_axial_force(m, q, v, i),
-                      sde_axial_force(m, q, v, (i + 1) % m.n_el()));
+PulleyObs observe_pulley(const Model& m, const Drive& d, double t, const double* y, const ContactRecords& contacts,
+                         int j) {
+  assert(contacts.of(m, t, y));
+  return pulley_with(m, d, t, y, j, contacts.pairs());
 }
 
-PulleyObs observe_pulley(const Model& m, const Drive& d, double t, const double* y, int j) {
-  ContactList pairs;
-  contact_pass(m, d, t, y, Span{0, m.n_el()}, pairs);
-  return pulley_with(m, d, t, y, j, pairs);
-}
-
-void observe_pulleys(const Model& m, const Drive& d, double t, const double* y, ContactList& pairs,
+void observe_pulleys(const Model& m, const Drive& d, double t, const double* y, ContactRecords& contacts,
                      std::vector<PulleyObs>& out) {
-  contact_pass(m, d, t, y, Span{0, m.n_el()}, pairs);
+  fill_contacts(m, d, t, y, contacts);
   out.resize(m.n_p());
-  for (int j = 0; j < m.n_p(); ++j) out[j] = pulley_with(m, d, t, y, j, pairs);
+  for (int j = 0; j < m.n_p(); ++j) out[j] = pulley_with(m, d, t, y, j, contacts.pairs());
 }
 
 void observe(const Model& m, const Drive& d, const std::vector<int>& sense, double t, const double* y,
@@ -146,9 +136,10 @@ void observe(const Model& m, const Drive& d, const std::vector<int>& sense, doub
   out.contact.resize(n);
   const double* v = y + m.n_coord();
   sde_axial_forces(m, y, v, out.work.data());
-  contact_pass(m, d, t, y, Span{0, n}, out.pairs);
+  fill_contacts(m, d, t, y, out.contacts);
+  const ContactView pairs = out.contacts.pairs();
   PairSums sums(out.contact, 0);
-  for (const ContactPair& c : out.pairs) sums.add(c);
+  for (const ContactPair& c : pairs) sums.add(c);
   double vb = 0;
   for (int i = 0; i < n; ++i) {
     out.elements[i] = element_with(d, sense, t, y, i, out.contact[i], out.work[i], out.work[(i + 1) % n]);
@@ -158,13 +149,13 @@ void observe(const Model& m, const Drive& d, const std::vector<int>& sense, doub
   const bool moving = std::abs(out.belt_speed) > m.friction.dv;
   constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
   for (int j = 0; j < m.n_p(); ++j) {
-    PulleyObs& p = out.pulleys[j] = pulley_with(m, d, t, y, j, out.pairs);
+    PulleyObs& p = out.pulleys[j] = pulley_with(m, d, t, y, j, pairs);
     const double v_rim = sense[j] * p.omega * m.pulleys[j].radius;
     p.slip_speed = out.belt_speed - v_rim;
     p.creep = moving ? 1 - v_rim / out.belt_speed : kNaN;
     double p_sum = 0;
     int touching = 0;
-    for (const ContactPair& c : out.pairs)
+    for (const ContactPair& c : pairs)
       if (c.j == j && c.touching) p_sum += c.nl.p, ++touching;
     const double v_pitch = sense[j] * p.omega * (m.pulleys[j].radius - (touching ? p_sum / touching : 0.0));
     p.creep_pitch = moving ? 1 - v_pitch / out.belt_speed : kNaN;

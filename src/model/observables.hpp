@@ -37,7 +37,7 @@
 
 #include <vector>
 
-#include "model/contact_law.hpp"
+#include "model/contacts.hpp"
 #include "model/drive.hpp"
 #include "model/model.hpp"
 
@@ -55,7 +55,7 @@ struct ElementObs {
   double slip = 0;               // [m/s] belt speed minus rim speed along the travel (NaN when free)
   double mu = 0;                 // friction coefficient of the element now
   int pulley = -1;               // the pulley it rides, -1 when free
-  ContactState state = ContactState::free;  // classify_contact (observe_element: free or stick)
+  ContactState state = ContactState::free;  // classify_contact
 };
 
 struct PulleyObs {
@@ -88,26 +88,25 @@ struct PulleyObs {
   double creep_pitch = 0;
 };
 
-// What one element feels from the pulleys, in the pulleys' own frame (sums over the pairs of a
-// contact pass that hold it)
+// What one element feels from the pulleys, in the pulleys' own frame (sums over its pairs in the
+// contact records of its state, model/contacts.hpp)
 struct ElementContact {
   double normal = 0;      // |N| summed over pulleys [N]
   double friction = 0;    // signed tangential friction force on the element, along t̂ [N]
   double slip = 0;        // v_T against the pulley it touches [m/s]; NaN when free
   int pulley = -1;        // index of the pulley touched (the deepest), -1 when free
 };
-// (y: the state, [q | v | e | z])
-ElementContact element_contact(const Model& m, const Drive& d, double t, const double* y, int i);
+// Asked about one element or one pulley of a state, these read the contact records of the state
+// (fill_contacts, model/contacts.hpp), which the caller fills once for every question about it.
+// Element i's contact sums
+ElementContact element_contact(const ContactRecords& contacts, int i);
 // belt torque on pulley j (moment of the friction reactions) [N·m] and hub load vector [N]
-double belt_torque(const Model& m, const Drive& d, double t, const double* y, int j, Vec2* hub_load);
-
-// sense[j]: +1 when the belt goes round pulley j anticlockwise, -1 clockwise (Scene::senses())
-// (its state: free or stick; the gross-slip arc needs its neighbours, see classify_contact)
-ElementObs observe_element(const Model& m, const Drive& d, const std::vector<int>& sense, double t, const double* y,
-                           int i);
-PulleyObs observe_pulley(const Model& m, const Drive& d, double t, const double* y, int j);
-// every pulley at once, from one contact pass (pairs: its scratch)
-void observe_pulleys(const Model& m, const Drive& d, double t, const double* y, ContactList& pairs,
+double belt_torque(const ContactRecords& contacts, int j, Vec2* hub_load);
+// pulley j of the state y (y = [q | v | e | z]) at t, whose contact records are `contacts`
+PulleyObs observe_pulley(const Model& m, const Drive& d, double t, const double* y, const ContactRecords& contacts,
+                         int j);
+// every pulley at once: fills `contacts` with the records of (t, y) and reads them
+void observe_pulleys(const Model& m, const Drive& d, double t, const double* y, ContactRecords& contacts,
                      std::vector<PulleyObs>& out);
 
 // Everything observed of one state: each element and each pulley.
@@ -118,9 +117,11 @@ struct Observation {
   std::vector<PulleyObs> pulleys;
   // observe()'s working space, kept so that a sample allocates nothing
   std::vector<double> work;             // the SDEs' axial forces
-  ContactList pairs;                    // the contact pass
+  ContactRecords contacts;              // the contact records of the state observed
   std::vector<ElementContact> contact;  // each element's sums over its pairs
 };
+// sense[j]: +1 when the belt goes round pulley j anticlockwise, -1 clockwise (Scene::senses());
+// fills out.contacts with the records of (t, y) and reads them for every element and pulley
 void observe(const Model& m, const Drive& d, const std::vector<int>& sense, double t, const double* y,
              Observation& out);
 

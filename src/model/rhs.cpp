@@ -16,19 +16,25 @@ Span half(const Model& m, int p) {
   return Span{r.lo, r.hi};
 }
 
-// the forces of every law at (t, q, v): one contact pass per half, then each law
-void all_forces(const Model& m, const Drive& d, double t, const double* q, const double* v, const double* z,
-                double* f, double* e_rate, Workspace& w) {
+// the forces of every law at (t, y): the contact stage (one pass per half, filling w.contacts
+// whatever they held: a change of the Drive is seen here), then each law
+void all_forces(const Model& m, const Drive& d, double t, const double* y, double* f, double* e_rate, Workspace& w) {
   const int n = m.belt.n, np = m.n_p();
+  const double* q = y;
+  const double* v = y + m.n_coord();
+  const double* z = m.bristles(y);
+  ContactList* pairs = w.contacts.half;
   std::fill(f, f + m.n_coord(), 0.0);
   if (m.gravity != 0.0) gravity_forces(m, f);
   w.axes.fit(n);
+  w.contacts.forget();
   if (!w.halves) {
     const Span all{0, n};
     sde_forces(m, q, v, f, e_rate, &w.axes, all);
     bending_forces(m, q, v, f, e_rate, all);
-    contact_pass(m, d, t, q, v, z, all, w.contacts[0]);
-    contact_forces(m, d, q, w.contacts[0], f, f + 3 * n, e_rate);
+    contact_pass(m, d, t, q, v, z, all, pairs[0]);
+    pairs[1].clear();
+    contact_forces(m, d, q, pairs[0], f, f + 3 * n, e_rate);
   } else {
     Halves& h = *w.halves;
     h.two.run([&](int p) {
@@ -37,14 +43,15 @@ void all_forces(const Model& m, const Drive& d, double t, const double* q, const
       double* e = e_rate ? sums + np : nullptr;
       sde_forces(m, q, v, f, e, &w.axes, half(m, p));
       bending_forces(m, q, v, f, e, half(m, p));
-      contact_pass(m, d, t, q, v, z, half(m, p), w.contacts[p]);
-      contact_forces(m, d, q, w.contacts[p], f, sums, e);
+      contact_pass(m, d, t, q, v, z, half(m, p), pairs[p]);
+      contact_forces(m, d, q, pairs[p], f, sums, e);
     });
     const double *s0 = h.sum(0), *s1 = h.sum(1);
     for (int j = 0; j < np; ++j) f[3 * n + j] += s0[j] + s1[j];
     if (e_rate)
       for (int c = 0; c < kEnergyCount; ++c) e_rate[c] += s0[np + c] + s1[np + c];
   }
+  w.contacts.stamp(m, t, y, Pairs::touching);
   pulley_forces(m, d, t, v, f, e_rate);
   if (!m.arms.empty()) arm_forces(m, q, v, f, e_rate);
   if (!m.couplings.empty()) coupling_forces(m, d, t, q, v, f, e_rate);
@@ -67,14 +74,13 @@ Workspace::Workspace(const Model& m, bool split) {
 
 void forces(const Model& m, const Drive& d, double t, const double* y, double* f) {
   Workspace w(m, false);
-  all_forces(m, d, t, y, y + m.n_coord(), m.bristles(y), f, nullptr, w);
+  all_forces(m, d, t, y, f, nullptr, w);
 }
 
 void rhs(const Model& m, const Drive& d, double t, const double* y, double* dy, Workspace* w) {
   std::unique_ptr<Workspace> own;
   if (!w) own = std::make_unique<Workspace>(m, false), w = own.get();
   const int N = m.n_coord();
-  const double* q = y;
   const double* v = y + N;
   double* e_rate = m.track_energy ? dy + 2 * N : nullptr;
   if (e_rate) std::fill(e_rate, e_rate + kEnergyCount, 0.0);
@@ -84,11 +90,10 @@ void rhs(const Model& m, const Drive& d, double t, const double* y, double* dy, 
     if (d.kinematic(j)) dy[m.pulley_coord(j)] = d.omega(m, j, t, v);
   // accelerations
   double* a = dy + N;
-  const double* z = m.bristles(y);
-  all_forces(m, d, t, q, v, z, a, e_rate, *w);
+  all_forces(m, d, t, y, a, e_rate, *w);
   for (int k = 0; k < N; ++k) a[k] /= d.mass(m, k);
   // the bristles' deflections
-  if (z) bristle_rates(m, z, w->contacts, w->halves ? 2 : 1, dy + m.bristle_offset());
+  if (const double* z = m.bristles(y)) bristle_rates(m, z, w->contacts.pairs(), dy + m.bristle_offset());
 }
 
 void Jacobian::resize(const Model& m) {
@@ -105,6 +110,8 @@ void jacobian(const Model& m, const Drive& d, double t, const double* y, Jacobia
   const double* v = y + m.n_coord();
   const double* z = m.bristles(y);
   const int n = m.belt.n, np = m.n_p();
+  // the contact stage: the right-hand side's records when they are this state's, else a pass
+  const ContactList* pairs = contacts_at(m, d, t, y, *w).half;
   J.f_t.setZero();
   w->axes.fit(n);
   if (!w->halves) {
@@ -113,8 +120,7 @@ void jacobian(const Model& m, const Drive& d, double t, const double* y, Jacobia
     const Span all{0, n};
     sde_jacobian(m, q, v, J.K, J.C, &w->axes, all);
     bending_jacobian(m, q, v, J.K, J.C, all);
-    contact_pass(m, d, t, q, v, z, all, w->contacts[0]);
-    contact_jacobian(m, d, t, q, v, w->contacts[0], J.K, J.C, J.f_t.data(), nullptr);
+    contact_jacobian(m, d, t, q, v, pairs[0], J.K, J.C, J.f_t.data(), nullptr);
   } else {
     Halves& h = *w->halves;
     J.K.pulley_pulley.setZero();
@@ -128,8 +134,7 @@ void jacobian(const Model& m, const Drive& d, double t, const double* y, Jacobia
       std::fill(dmo, dmo + np, 0.0);
       sde_jacobian(m, q, v, J.K, J.C, &w->axes, half(m, p));
       bending_jacobian(m, q, v, J.K, J.C, half(m, p));
-      contact_pass(m, d, t, q, v, z, half(m, p), w->contacts[p]);
-      contact_jacobian(m, d, t, q, v, w->contacts[p], J.K, J.C, J.f_t.data(), dmo);
+      contact_jacobian(m, d, t, q, v, pairs[p], J.K, J.C, J.f_t.data(), dmo);
     });
     const double *d0 = h.sum(0) + np + kEnergyCount, *d1 = h.sum(1) + np + kEnergyCount;
     for (int j = 0; j < np; ++j) J.C.pulley_pulley(j, j) += d0[j] + d1[j];
@@ -139,7 +144,7 @@ void jacobian(const Model& m, const Drive& d, double t, const double* y, Jacobia
   if (!m.couplings.empty()) coupling_jacobian(m, d, t, v, J.K, J.C, J.f_t.data());
   if (z) {
     J.B.clear(m);
-    for (int p = 0; p < (w->halves ? 2 : 1); ++p) bristle_jacobian(m, d, t, q, v, z, w->contacts[p], J.B);
+    bristle_jacobian(m, d, t, q, v, z, w->contacts.pairs(), J.B);
   }
 }
 

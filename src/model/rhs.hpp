@@ -16,12 +16,14 @@
 namespace beltsim {
 
 // writes dy (length n_state) for y at time t under the drive d; w (may be null: a workspace of
-// its own, for tests) holds the evaluation's contact pass and scratch (workspace.hpp)
+// its own, for tests) holds the evaluation's scratch (workspace.hpp) and receives the contact
+// records of (t, y), filled here whatever w held (contacts.hpp)
 void rhs(const Model& m, const Drive& d, double t, const double* y, double* dy, Workspace* w = nullptr);
 
 // ∂f/∂q, ∂f/∂v and ∂f/∂t at (t, y), and under LuGre's law the bristles' rows and columns. The
 // energy rows are not part of it: they are pure quadratures that feed nothing back, and the
-// integrators treat them as such (W-method).
+// integrators treat them as such (W-method). The contact terms come from w's contact records of
+// (t, y) (contacts_at: the right-hand side's at the same state, else filled here).
 struct Jacobian {
   BlockMatrix K, C;
   Eigen::VectorXd f_t;

@@ -1,13 +1,13 @@
-// Workspace: the scratch of one evaluation of the model (MuJoCo's mjData without the state),
-// owned by whoever evaluates (an integrator's system, the observer, a test) and filled stage by
-// stage. Nothing in it outlives the evaluation as an input: a stage reads only what an earlier
-// stage of the same evaluation wrote (the axes memo is the exception, and it checks its angles).
+// Workspace: the scratch of the evaluations of the model (MuJoCo's mjData without the state),
+// owned by whoever evaluates (an integrator's system, a test) and filled stage by stage. A stage
+// reads only what an earlier stage wrote for the same state: the contact records say which state
+// they are of (contacts.hpp), and the axes memo checks its angles.
 #pragma once
 
 #include <memory>
 #include <vector>
 
-#include "model/contact_law.hpp"
+#include "model/contacts.hpp"
 #include "model/forces.hpp"
 #include "model/model.hpp"
 #include "model/two_way.hpp"
@@ -30,10 +30,10 @@ struct Halves {
 struct Workspace {
   // split: evaluate a belt of kHalvesElements or more in two halves at once
   explicit Workspace(const Model& m, bool split = true);
-  // contact stage (contact_pass, contact_law.hpp): the pairs in contact, one list per half of the
-  // belt (only contacts[0] when the belt is not split); read by the forces, the Jacobian and
-  // whoever asks the evaluation's contacts
-  ContactList contacts[2];
+  // contact stage (contacts.hpp): the records of the last state the right-hand side evaluated, or
+  // that a reader filled them at (contacts_at), one list per half of a split belt; read by the
+  // forces, the Jacobian, the bristle rates, the Newton aids and the switching functions
+  ContactRecords contacts;
   // position stage (sde.cpp): the elements' axes of the last evaluation, reused at the same angles
   AxisMemo axes;
   // the two halves' worker and sums; null when the belt is not split

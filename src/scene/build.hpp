@@ -10,6 +10,7 @@
 
 #include <Eigen/Core>
 
+#include "model/contacts.hpp"
 #include "model/model.hpp"
 #include "scene/route.hpp"
 #include "scene/scene.hpp"
@@ -130,8 +131,9 @@ void balance_arms(Scene& sc);
 // the preload that sets the belt's tension at rest (the one arm that gives preload or angle0),
 // none when no arm does; throws when two arms do or the belt's tension is given as well
 std::optional<double> tensioner_preload(const SceneDef& d);
-// the belt's moment about arm a's pivot in the state y [N·m]
-double arm_belt_moment(const Scene& sc, int a);
+// the belt's moment about arm a's pivot in the static state sc.y0 [N·m], from its contact records
+// at t = 0 (model/contacts.hpp: fill_contacts)
+double arm_belt_moment(const Scene& sc, const ContactRecords& contacts, int a);
 
 // Coupled rotors (scene/coupling.cpp). validate_coupling: throws on a bad parameter;
 // make_couplings: the model's couplings from the pulleys' coupling definitions (after

@@ -31,6 +31,12 @@ struct Route {
 
   // point and unit tangent (direction of travel) at arc length s from the start of span 0
   void eval(double s, Vec2& point, Vec2& tangent) const;
+  // the middle of each span, in span order (where a span's tension is read: span_sde)
+  std::vector<Vec2> span_middles() const {
+    std::vector<Vec2> out;
+    for (const Span& sp : spans) out.push_back(0.5 * (sp.from + sp.to));
+    return out;
+  }
 };
 
 // Throws ParameterError (scene/validate.hpp) when a span has no tangent (circles too close) or the

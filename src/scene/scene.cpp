@@ -5,6 +5,7 @@
 #include <cmath>
 #include <sstream>
 
+#include "model/contacts.hpp"
 #include "model/forces.hpp"
 #include "scene/bending_loss.hpp"
 #include "scene/build.hpp"
@@ -182,7 +183,9 @@ Scene build_scene(const SceneDef& d, const std::atomic<bool>* stop) {
   constexpr double kAgree = 1e-6;  // relative: far below the static state's own residual tension error
   for (int it = 0;; ++it) {
     Scene sc = build_at(e, stop);
-    const double Mb = std::abs(build::arm_belt_moment(sc, sc.model.pulleys[arm].arm));
+    ContactRecords contacts;
+    fill_contacts(sc.model, sc.drive, 0.0, sc.y0.data(), contacts);
+    const double Mb = std::abs(build::arm_belt_moment(sc, contacts, sc.model.pulleys[arm].arm));
     if (std::abs(Mb - *preload) <= kAgree * *preload || it == 8) return sc;
     e.belt.pretension *= *preload / Mb;
   }

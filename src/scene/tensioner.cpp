@@ -8,6 +8,7 @@
 // sets the tension: build_scene scales the pretension by P/|M_b| until they agree.
 #include <cmath>
 
+#include "model/contacts.hpp"
 #include "model/forces.hpp"
 #include "model/observables.hpp"
 #include "scene/build.hpp"
@@ -56,19 +57,20 @@ void set_arm_angles(const Model& m, Eigen::VectorXd& y) {
   }
 }
 
-double arm_belt_moment(const Scene& sc, int a) {
+double arm_belt_moment(const Scene& sc, const ContactRecords& contacts, int a) {
   const Model& m = sc.model;
-  const double* q = sc.y0.data();
   Vec2 hub;
-  belt_torque(m, sc.drive, 0.0, q, m.arms[a].pulley, &hub);
-  return hub.dot(arm_lever(m, a, q));
+  belt_torque(contacts, m.arms[a].pulley, &hub);
+  return hub.dot(arm_lever(m, a, sc.y0.data()));
 }
 
 void balance_arms(Scene& sc) {
   Model& m = sc.model;
+  ContactRecords contacts;
+  fill_contacts(m, sc.drive, 0.0, sc.y0.data(), contacts);
   for (int a = 0; a < m.n_arm(); ++a) {
     Arm& arm = m.arms[a];
-    const double Mb = arm_belt_moment(sc, a);
+    const double Mb = arm_belt_moment(sc, contacts, a);
     if (!(Mb != 0)) {
       throw ParameterError("pulley '" + m.pulleys[arm.pulley].name +
                            "'.tensioner: the belt has no moment about the pivot at the installed angle (the pivot "

@@ -15,7 +15,7 @@ IntervalMeans::IntervalMeans(const Model& m, const Drive& drive, const Route& ro
 const std::vector<double>& IntervalMeans::values(StepEnd& c, double t, const Eigen::VectorXd& y, long serial) const {
   if (c.t == t && c.serial == serial) return c.v;
   c.v.clear();
-  observe_pulleys(model_, drive_, t, y.data(), c.pairs, c.pulleys);
+  observe_pulleys(model_, drive_, t, y.data(), c.contacts, c.pulleys);
   for (const PulleyObs& p : c.pulleys) {
     c.v.push_back(p.torque);
     c.v.push_back(p.belt_torque);

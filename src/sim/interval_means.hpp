@@ -51,7 +51,7 @@ class IntervalMeans {
  private:
   struct StepEnd {
     std::vector<double> v;
-    ContactList pairs;  // observe_pulleys' contact pass
+    ContactRecords contacts;  // the step end's contact records (observe_pulleys)
     std::vector<PulleyObs> pulleys;
     double t = -1;
     long serial = -1;

@@ -25,6 +25,7 @@ RunCheck::RunCheck(const Scene& sc, const Drive& drive, const RunSettings& rs)
       speed_(static_cast<size_t>(sc.model.n_p()), kSpeedFloor),
       tension_(sc.route.spans.size()) {
   sys_ = std::make_unique<BeltSystem>(sc.model, drive);
+  sys_->problem.set_spans(sc.route.span_middles());  // the answer's span tensions, as the run's
   const Tolerances tol{rs.rtol, rs.atol};
   integ_ = make_integrator(rs.integrator, *sys_, Tolerances{check_rtol(rs), tol.absolute() / kCheckTighten});
   est_.on = true;

@@ -42,11 +42,7 @@ Simulation::Simulation(const Scene& sc, const RunSettings& rs, bool fresh) : sce
   check(scene_, rs_, false);
   sense_ = scene_.senses();
   sys_ = std::make_unique<BeltSystem>(model_, drive_);
-  {
-    std::vector<Vec2> middles;
-    for (const Route::Span& sp : scene_.route.spans) middles.push_back(0.5 * (sp.from + sp.to));
-    sys_->problem.set_spans(std::move(middles));
-  }
+  sys_->problem.set_spans(scene_.route.span_middles());  // the answer's span tensions
   integ_ = make_integrator(rs_.integrator, *sys_, Tolerances{rs_.rtol, rs_.atol});
   if (rs_.keep_states && !integ_->can_save())
     throw std::invalid_argument("keep_states: " + cannot_save(rs_.integrator));

@@ -160,7 +160,7 @@ class Kinked final : public OdeProblem, public LinearSolver {
   }
   bool flat = false;  // the switching function min(y - 1, 0): exactly zero once past the kink
   int switch_count() const override { return 1; }
-  void switches(double, const double* y, double* g) const override { g[0] = flat ? std::min(y[0] - 1, 0.0) : y[0] - 1; }
+  void switches(double, const double* y, double* g) override { g[0] = flat ? std::min(y[0] - 1, 0.0) : y[0] - 1; }
   static double exact(double t) {
     const double t1 = std::log(2.0);
     return t < t1 ? 0.5 * std::exp(t) : 1 + (std::exp(3 * (t - t1)) - 1) / 3;

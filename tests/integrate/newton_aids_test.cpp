@@ -13,7 +13,9 @@
 
 #include "integrate/newton_aids.hpp"
 #include "model/contact_law.hpp"
+#include "model/contacts.hpp"
 #include "model/forces.hpp"
+#include "model/workspace.hpp"
 #include "scene/presets.hpp"
 
 namespace beltsim {
@@ -50,7 +52,9 @@ TEST(KinematicPredictor, TurnsAWrapWithItsPulleyAndMovesSpansOn) {
 
   Eigen::VectorXd z = y;
   PredictScratch w;
-  kinematic_predict(m, dr, 0.5, dt, z.data(), z.data() + N, w);
+  ContactRecords at_y;
+  fill_contacts(m, dr, 0.5, y.data(), at_y);
+  kinematic_predict(m, dr, 0.5, dt, at_y.pairs(), z.data(), z.data() + N, w);
   for (int i = 0; i < n; ++i) {
     const Vec2 P(y[3 * i], y[3 * i + 1]), P1(z[3 * i], z[3 * i + 1]);
     const Vec2 V(y[N + 3 * i], y[N + 3 * i + 1]), V1(z[N + 3 * i], z[N + 3 * i + 1]);
@@ -147,7 +151,9 @@ TEST(ConvectivePredictor, GivesAnElementTheSteadyStateOfThePlaceItTravelsTo) {
   const double pitch = m.belt.pitch, dt = 0.7 * pitch / V0;
   Eigen::VectorXd z = y;
   PredictScratch w;
-  convective_predict(m, dr, 0.5, dt, z.data(), z.data() + N, w);
+  ContactRecords at_y;
+  fill_contacts(m, dr, 0.5, y.data(), at_y);
+  convective_predict(m, dr, 0.5, dt, at_y.pairs(), z.data(), z.data() + N, w);
   int checked_wrap = 0, checked_span = 0, moved = 0;
   for (int i = 0; i < n; ++i) {
     const Vec2 V(y[N + 3 * i], y[N + 3 * i + 1]), P1(z[3 * i], z[3 * i + 1]), V1(z[N + 3 * i], z[N + 3 * i + 1]);
@@ -179,8 +185,8 @@ TEST(ConvectivePredictor, GivesAnElementTheSteadyStateOfThePlaceItTravelsTo) {
 
   // elements that travel less than half a pitch keep the kinematic prediction, bit for bit
   Eigen::VectorXd k1 = y, k2 = y;
-  kinematic_predict(m, dr, 0.5, 0.3 * pitch / V0, k1.data(), k1.data() + N, w);
-  convective_predict(m, dr, 0.5, 0.3 * pitch / V0, k2.data(), k2.data() + N, w);
+  kinematic_predict(m, dr, 0.5, 0.3 * pitch / V0, at_y.pairs(), k1.data(), k1.data() + N, w);
+  convective_predict(m, dr, 0.5, 0.3 * pitch / V0, at_y.pairs(), k2.data(), k2.data() + N, w);
   EXPECT_EQ(k1, k2);
 }
 
@@ -218,8 +224,10 @@ TEST(FrictionLocalSolve, ZeroesTheTangentialResidualOfWholeWraps) {
     Eigen::VectorXd y = sc.y0;
     for (int a = 0; a < m.n_arm(); ++a) y[N + m.arm_coord(a)] = arm_rate;
     const double band = m.friction.dv, s = 1 / (0.43 * 2e-4);
-    ContactList pairs;
-    contact_pass(m, dr, 0, y.data(), Span{0, m.n_el()}, pairs);
+    // the contact records as the right-hand side leaves them (the long belt's in two halves)
+    Workspace ws(m);
+    fill_contacts(m, dr, 0, y.data(), ws);
+    const ContactView pairs = ws.contacts.pairs();
     // slip velocities of a few band widths either way (half a band width on an arm's pulley),
     // varying along the belt, on a wrap that moves with its pulley's centre
     for (const ContactPair& c : pairs) {
@@ -228,7 +236,7 @@ TEST(FrictionLocalSolve, ZeroesTheTangentialResidualOfWholeWraps) {
       const Vec2 Vc = m.centre_velocity(c.j, y.data(), y.data() + N);
       y[N + 3 * c.i] += u * c.nl.t.x() + Vc.x(), y[N + 3 * c.i + 1] += u * c.nl.t.y() + Vc.y();
     }
-    contact_pass(m, dr, 0, y.data(), Span{0, m.n_el()}, pairs);
+    fill_contacts(m, dr, 0, y.data(), ws);
     Eigen::VectorXd g = Eigen::VectorXd::Zero(N);
     // rad/s; none on an arm's pulley, whose wrap of a few elements then sticks
     for (int j = 0; j < m.n_p(); ++j) g[m.pulley_coord(j)] = m.pulleys[j].arm < 0 ? 0.3 * (j + 1) : 0.0;

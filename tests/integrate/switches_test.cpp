@@ -11,6 +11,7 @@
 
 #include "integrate/switches.hpp"
 #include "model/contact_law.hpp"
+#include "model/contacts.hpp"
 #include "scene/presets.hpp"
 
 namespace beltsim {
@@ -71,9 +72,9 @@ TEST(ContactSwitches, TheirSignsAreTheLawsPieces) {
   for (int trial = 0; trial < 40; ++trial) {
     const Eigen::VectorXd y = random_state(m, sc.y0, rng);
     const double t = 0.5;
-    ContactList pairs;
-    contact_pass(m, sc.drive, t, y.data(), Span{0, n}, pairs, Pairs::all);
-    contact_switches(m, pairs, g.data());
+    ContactRecords records;
+    fill_contacts(m, sc.drive, t, y.data(), records, Pairs::all);
+    contact_switches(m, records.pairs(), g.data());
     for (int j = 0; j < m.n_p(); ++j)
       for (int i = 0; i < n; ++i) {
         const double* gi = g.data() + kSwitchesPerPair * (j * n + i);
@@ -109,9 +110,9 @@ TEST(ContactSwitches, AreContinuousInTheState) {
   std::vector<double> g(count), prev(count), lo(count, 1e300), hi(count, -1e300), jump(count, 0);
   for (int s = 0; s <= kSteps; ++s) {
     const Eigen::VectorXd y = a + (b - a) * (static_cast<double>(s) / kSteps);
-    ContactList pairs;
-    contact_pass(m, dr, 0.5, y.data(), Span{0, m.n_el()}, pairs, Pairs::all);
-    contact_switches(m, pairs, g.data());
+    ContactRecords records;
+    fill_contacts(m, dr, 0.5, y.data(), records, Pairs::all);
+    contact_switches(m, records.pairs(), g.data());
     for (int k = 0; k < count; ++k) {
       lo[k] = std::min(lo[k], g[k]), hi[k] = std::max(hi[k], g[k]);
       if (s > 0) jump[k] = std::max(jump[k], std::abs(g[k] - prev[k]));

@@ -10,6 +10,7 @@
 
 #include <Eigen/Eigenvalues>
 
+#include "model/contacts.hpp"
 #include "model/forces.hpp"
 #include "model/observables.hpp"
 #include "model/rhs.hpp"
@@ -83,7 +84,9 @@ Capstan capstan_run(const Friction& f, double mu, double torque, double t_ramp, 
   const Eigen::VectorXd& y = s.y.back();
   const double* q = y.data();
   const double* v = q + sc.model.n_coord();
-  return {v[sc.model.pulley_coord(0)], belt_torque(sc.model, sc.drive, s.t.back(), q, 0, nullptr)};
+  ContactRecords contacts;
+  fill_contacts(sc.model, sc.drive, s.t.back(), q, contacts);
+  return {v[sc.model.pulley_coord(0)], belt_torque(contacts, 0, nullptr)};
 }
 double capstan_limit(double mu) { return 0.1 * 2 * 500 * std::tanh(mu * M_PI / 2); }
 
@@ -222,9 +225,11 @@ TEST(KnownAnswers, CentrifugalTensionUnloadsThePulleys) {
   double T = 0;
   for (const Route::Span& sp : sc.route.spans)
     T += 0.5 * sde_axial_force(m, q, vel, sde_nearest(m, q, 0.5 * (sp.from + sp.to)));
+  ContactRecords contacts;
+  fill_contacts(m, dr, s.t.back(), q, contacts);
   for (int j = 0; j < m.n_p(); ++j) {
     Vec2 hub;
-    belt_torque(m, dr, s.t.back(), q, j, &hub);
+    belt_torque(contacts, j, &hub);
     const double expected = 2 * (T - rho * v * v);
     EXPECT_NEAR(hub.norm(), expected, 0.01 * expected) << m.pulleys[j].name << ", span tension " << T << " N";
   }
@@ -285,6 +290,8 @@ Creep creep_run(const Friction& f) {
     const double* vel = y + m.n_coord();
     if (count == 0) angle[0] = y[m.pulley_coord(1)];
     angle[1] = y[m.pulley_coord(1)];
+    ContactRecords contacts;
+    fill_contacts(m, dr, s.t[k], y, contacts);
     for (int j = 0; j < 2; ++j) {
       // spans[1] (lower) runs onto the driver: tight; spans[0] (upper) onto the driven pulley
       const Route::Span& sp = sc.route.spans[1 - j];
@@ -294,7 +301,7 @@ Creep creep_run(const Friction& f) {
       for (int i = 1; i < m.n_el(); ++i)
         if ((Vec2(y[3 * i], y[3 * i + 1]) - mid[j]).norm() < (Vec2(y[3 * nearest], y[3 * nearest + 1]) - mid[j]).norm())
           nearest = i;
-      slip[j] += element_contact(m, dr, s.t[k], y, nearest).slip;
+      slip[j] += element_contact(contacts, nearest).slip;
     }
     count++;
   }

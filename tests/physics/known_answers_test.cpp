@@ -10,7 +10,9 @@
 
 #include <Eigen/Eigenvalues>
 
+#include "model/contacts.hpp"
 #include "model/forces.hpp"
+#include "model/observables.hpp"
 #include "model/rhs.hpp"
 #include "physics/helpers.hpp"
 #include "scene/presets.hpp"
@@ -67,9 +69,11 @@ TEST(KnownAnswers, HubLoadIsTheSumOfTheSpanTensions) {
     const Drive& dr = sc.drive;
     const int n = m.n_el();
     const size_t np = sc.route_pulleys.size();
+    ContactRecords contacts;
+    fill_contacts(m, dr, 0.0, sc.y0.data(), contacts);
     for (size_t k = 0; k < np; ++k) {
       Vec2 hub;
-      belt_torque(m, dr, 0.0, sc.y0.data(), sc.route_pulleys[k], &hub);
+      belt_torque(contacts, sc.route_pulleys[k], &hub);
       const int in = sc.span_sde[(k + np - 1) % np], out = sc.span_sde[k];
       const Vec2 F_in = m.belt.k * sde_gap(m, sc.y0.data(), in), F_out = m.belt.k * sde_gap(m, sc.y0.data(), out);
       const int carried = ((out - in) % n + n) % n;  // elements in, in+1, ..., out-1

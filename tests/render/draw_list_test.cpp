@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "model/contacts.hpp"
 #include "model/forces.hpp"
 #include "model/observables.hpp"
 #include "render/colormap.hpp"
@@ -187,7 +188,7 @@ TEST_F(Fixture, WetAndSlippingElementsAreMarked) {
     const ElementDraw& el = dl.elements[i];
     EXPECT_EQ(el.wet, sc.drive.mu[i] < 0.5);
     wet += el.wet;
-    const ElementContact c = element_contact(m, sc.drive, 0.1, y.data(), i);
+    const ElementContact c = element_contact(o.contacts, i);
     EXPECT_EQ(el.slipping, o.elements[i].state == ContactState::slip) << i;
     slipping += el.slipping;
     if (c.pulley < 0) {
@@ -229,8 +230,10 @@ TEST_F(Fixture, SignedQuantitiesUseTheDivergingMapWithTheSignAlongTravel) {
   // 1 % behind (positive), apart from the ±3 % ripple of the belt's speed
   const Model& m = sc.model;
   double on_driver = 0, on_driven = 0;
+  ContactRecords contacts;
+  fill_contacts(m, sc.drive, 0, y.data(), contacts);
   for (int i = 0; i < m.n_el(); ++i) {
-    const ElementContact c = element_contact(m, sc.drive, 0, y.data(), i);
+    const ElementContact c = element_contact(contacts, i);
     if (c.pulley == 0) on_driver += slip[i];
     if (c.pulley == 1) on_driven += slip[i];
   }

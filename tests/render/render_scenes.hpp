@@ -5,7 +5,9 @@
 
 #include <cmath>
 
+#include "model/contacts.hpp"
 #include "model/forces.hpp"
+#include "model/observables.hpp"
 #include "scene/presets.hpp"
 #include "scene/scene.hpp"
 
@@ -25,10 +27,12 @@ inline Eigen::VectorXd moving_state(const Scene& sc, double v_belt = 6.0) {
   const Model& m = sc.model;
   const int n = m.n_el(), N = m.n_coord();
   Eigen::VectorXd y = sc.y0;
+  ContactRecords at_rest;
+  fill_contacts(m, sc.drive, 0.0, sc.y0.data(), at_rest);
   for (int i = 0; i < n; ++i) {
     const Vec2 e = axis(y[3 * i + 2]);
     const double s = 2 * M_PI * i / n;
-    const ElementContact c = element_contact(m, sc.drive, 0.0, sc.y0.data(), i);
+    const ElementContact c = element_contact(at_rest, i);
     Vec2 shift = 3.8e-4 * std::sin(s) * e;
     if (c.pulley < 0) shift += 3e-4 * std::sin(5 * s) * perp(e);
     y[3 * i] += shift.x(), y[3 * i + 1] += shift.y();

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <string>
 
+#include "model/contacts.hpp"
 #include "model/forces.hpp"
 #include "model/observables.hpp"
 #include "model/rhs.hpp"
@@ -30,7 +31,9 @@ ArmBalance balance(const Scene& sc) {
   const double psi = q[m.arm_coord(0)];
   ArmBalance b;
   b.spring = -a.stiffness * (psi - a.free_angle);
-  const PulleyObs p = observe_pulley(m, sc.drive, 0.0, sc.y0.data(), a.pulley);
+  ContactRecords contacts;
+  fill_contacts(m, sc.drive, 0.0, sc.y0.data(), contacts);
+  const PulleyObs p = observe_pulley(m, sc.drive, 0.0, sc.y0.data(), contacts, a.pulley);
   b.belt = p.hub.dot(arm_lever(m, 0, q));
   Eigen::VectorXd f(m.n_coord());
   forces(m, sc.drive, 0.0, sc.y0.data(), f.data());
