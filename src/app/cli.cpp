@@ -48,7 +48,7 @@ void add_out_and_t_end(CLI::App* c, Raw& raw, const char* out_help) {
 
 void add_run_overrides(CLI::App* c, Raw& raw) {
   add_out_and_t_end(c, raw, "output folder (default: out/<script name>)");
-  c->add_option("--integrator", raw.integrator, "one of: " + integrator_list())->type_name("NAME");
+  c->add_option("--integrator", raw.integrator, "one of: " + integrator_list() + " (default " + RunSettings{}.integrator + ")")->type_name("NAME");
   c->add_option("--rtol", raw.rtol, "relative tolerance of the step-size control, in (0, 1)")->type_name("R");
   c->add_option("--max-wall", raw.max_wall,
                 "wall-time limit of each run [s]: a run past it stops at its last step, outputs closed, with an "
