@@ -106,7 +106,7 @@ void CsvWriter::row(const std::vector<double>& values) {
   line_.clear();
   for (size_t k = 0; k < values.size(); ++k) {
     if (k) line_ += ',';
-    append_number(line_, values[k]);
+    append_value(line_, values[k]);
   }
   line_ += '\n';
   file_.write(line_);

@@ -17,6 +17,8 @@ void append_number(std::string& out, double v) {
   out.append(buf, r.ptr);
 }
 
+void append_value(std::string& out, double v) { append_number(out, v == 0 ? 0.0 : v); }
+
 std::string number_text(double v) {
   std::string s;
   append_number(s, v);

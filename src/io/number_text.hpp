@@ -12,6 +12,9 @@ namespace beltsim {
 
 void append_number(std::string& out, double v);
 std::string number_text(double v);
+// a value in a results file (timeseries.csv, snapshots.csv): as append_number, with -0 written as
+// 0 (a quantity that is zero has no sign for a reader; checkpoints keep it, append_number)
+void append_value(std::string& out, double v);
 
 // v rounded to that many significant digits (as printf's %.<digits>g, '.' whatever the locale),
 // for messages, where a reader wants "0.1" rather than every digit of the double

@@ -220,10 +220,10 @@ void Outputs::snapshot(double t, const Observation& o) {
   std::string rows;
   for (size_t i = 0; i < o.elements.size(); ++i) {
     const ElementObs& e = o.elements[i];
-    append_number(rows, t);
+    append_value(rows, t);
     rows += ',' + std::to_string(i) + ',';
     for (double v : {scene_.sites[i].s, e.x, e.y, e.tension, e.normal, e.friction, e.slip, e.mu}) {
-      append_number(rows, v);
+      append_value(rows, v);
       rows += ',';
     }
     if (e.pulley >= 0) rows += csv_text(scene_.model.pulleys[e.pulley].name);

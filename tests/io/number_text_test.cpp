@@ -33,5 +33,17 @@ TEST(NumberText, RoundedIsPrintfG) {
   EXPECT_EQ(number_text(0.1 + 0.2), "0.30000000000000004");
 }
 
+// a results file writes a zero without its sign (issue 44: the CSVs held "-0"); a checkpoint's
+// number keeps it, so that a resumed run starts from the same bits
+TEST(NumberText, AValueOfZeroHasNoSign) {
+  std::string s;
+  append_value(s, -0.0);
+  EXPECT_EQ(s, "0");
+  s.clear();
+  append_value(s, -1e-300);
+  EXPECT_EQ(s, "-1e-300");
+  EXPECT_EQ(number_text(-0.0), "-0");
+}
+
 }  // namespace
 }  // namespace beltsim
