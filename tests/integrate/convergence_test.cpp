@@ -14,46 +14,13 @@
 #include "integrate/integrator.hpp"
 #include "integrate/make_integrator.hpp"
 #include "integrate/stepper.hpp"
+#include "integrate/smooth_problem.hpp"
 
 namespace beltsim {
 namespace {
 
 // the problem and its own linear solver (dense 3x3)
-class SmoothProblem final : public OdeProblem, public LinearSolver {
- public:
-  explicit SmoothProblem(double lambda) : lambda_(lambda) {}
-  int size() const override { return 3; }
-  void rhs(double t, const double* y, double* dy) override {
-    dy[0] = y[1];
-    dy[1] = -y[0];
-    dy[2] = lambda_ * (y[2] - std::sin(t)) + std::cos(t);
-  }
-  bool prepare_jacobian(double t, const double*) override {
-    J_.setZero();
-    J_(0, 1) = 1;
-    J_(1, 0) = -1;
-    J_(2, 2) = lambda_;
-    t_ = t;
-    return true;
-  }
-  void time_derivative(double* ft) const override {
-    ft[0] = ft[1] = 0;
-    ft[2] = -lambda_ * std::cos(t_) - std::sin(t_);
-  }
-  bool factor(double s) override {
-    lu_.compute(s * Eigen::Matrix3d::Identity() - J_);
-    return true;
-  }
-  void solve(const double* r, double* u) override {
-    Eigen::Map<Eigen::Vector3d> out(u);
-    out = lu_.solve(Eigen::Map<const Eigen::Vector3d>(r));
-  }
-
- private:
-  double lambda_, t_ = 0;
-  Eigen::Matrix3d J_;
-  Eigen::PartialPivLU<Eigen::Matrix3d> lu_;
-};
+using test::SmoothProblem;
 
 double error_at_one(const std::string& method, int steps, double lambda) {
   SmoothProblem sys(lambda);
@@ -69,8 +36,7 @@ double error_at_one(const std::string& method, int steps, double lambda) {
     EXPECT_TRUE(st->step(sys, t, y, f, h, y1, err));
     y = y1;
   }
-  const Eigen::Vector3d exact(std::cos(1.0), -std::sin(1.0), std::sin(1.0));
-  return (y - exact).cwiseAbs().maxCoeff();
+  return (y - SmoothProblem::exact(1.0)).cwiseAbs().maxCoeff();
 }
 
 void expect_order(const std::string& method, int order) {

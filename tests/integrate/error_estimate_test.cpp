@@ -10,8 +10,7 @@
 //   - run under the controller, the global error follows the tolerance: the slope of log(error)
 //     against log(rtol) over rtol = 1e-3 ... 1e-6 is at least 0.8 (a method that propagates the
 //     lower order of its pair reaches it through StepController's tolerance proportionality).
-// Problem: a harmonic oscillator y1' = y2, y2' = -y1 beside the Prothero–Robinson component
-// y3' = λ(y3 - sin t) + cos t; exact solution (cos t, -sin t, sin t).
+// Problem: integrate/smooth_problem.hpp.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -22,65 +21,30 @@
 #include "integrate/integrator.hpp"
 #include "integrate/make_integrator.hpp"
 #include "integrate/stepper.hpp"
+#include "integrate/smooth_problem.hpp"
 
 namespace beltsim {
 namespace {
 
-class Problem final : public OdeProblem, public LinearSolver {
- public:
-  explicit Problem(double lambda) : lambda_(lambda) {}
-  int size() const override { return 3; }
-  void rhs(double t, const double* y, double* dy) override {
-    dy[0] = y[1];
-    dy[1] = -y[0];
-    dy[2] = lambda_ * (y[2] - std::sin(t)) + std::cos(t);
-  }
-  bool prepare_jacobian(double t, const double*) override {
-    J_.setZero();
-    J_(0, 1) = 1;
-    J_(1, 0) = -1;
-    J_(2, 2) = lambda_;
-    t_ = t;
-    return true;
-  }
-  void time_derivative(double* ft) const override {
-    ft[0] = ft[1] = 0;
-    ft[2] = -lambda_ * std::cos(t_) - std::sin(t_);
-  }
-  bool factor(double s) override {
-    lu_.compute(s * Eigen::Matrix3d::Identity() - J_);
-    return true;
-  }
-  void solve(const double* r, double* u) override {
-    Eigen::Map<Eigen::Vector3d> out(u);
-    out = lu_.solve(Eigen::Map<const Eigen::Vector3d>(r));
-  }
-
- private:
-  double lambda_, t_ = 0;
-  Eigen::Matrix3d J_;
-  Eigen::PartialPivLU<Eigen::Matrix3d> lu_;
-};
-
-Eigen::Vector3d exact(double t) { return {std::cos(t), -std::sin(t), std::sin(t)}; }
+using test::SmoothProblem;
 
 struct OneStepErrors {
   double estimate, truth;
 };
 
 OneStepErrors one_step(const std::string& method, double lambda, double h) {
-  Problem sys(lambda);
+  SmoothProblem sys(lambda);
   auto st = make_stepper(method);
   const StepController ctl(sys, Tolerances{1e-10, 1e-10}, 3);
   st->attach(ctl);
   const double t0 = 0.3;
-  Eigen::VectorXd y = exact(t0), f(3), y1(3), err(3);
+  Eigen::VectorXd y = SmoothProblem::exact(t0), f(3), y1(3), err(3);
   sys.rhs(t0, y.data(), f.data());
   EXPECT_TRUE(st->step(sys, t0, y, f, h, y1, err));
   // the estimate is of the lower-order solution of the pair
   const bool propagates_higher = st->order() > st->embedded_order();
   const Eigen::VectorXd of = propagates_higher ? Eigen::VectorXd(y1 - err) : y1;
-  return {err.cwiseAbs().maxCoeff(), (of - exact(t0 + h)).cwiseAbs().maxCoeff()};
+  return {err.cwiseAbs().maxCoeff(), (of - SmoothProblem::exact(t0 + h)).cwiseAbs().maxCoeff()};
 }
 
 class EstimateOf : public ::testing::TestWithParam<std::string> {};
@@ -109,13 +73,13 @@ TEST_P(EstimateOf, ItsLocalErrorOnAStiffProblem) {
 
 // the controlled run's global error at t = 2 against rtol (= atol)
 double global_error(const std::string& method, double lambda, double rtol) {
-  Problem sys(lambda);
+  SmoothProblem sys(lambda);
   auto integ = make_integrator(method, sys, Tolerances{rtol, rtol});
-  integ->start(0, exact(0));
+  integ->start(0, SmoothProblem::exact(0));
   while (integ->t() < 2.0) integ->step(2.0);
   Eigen::VectorXd y(3);
   integ->dense(2.0, y);
-  return (y - exact(2.0)).cwiseAbs().maxCoeff();
+  return (y - SmoothProblem::exact(2.0)).cwiseAbs().maxCoeff();
 }
 
 TEST_P(EstimateOf, ControlsTheGlobalError) {
