@@ -12,34 +12,6 @@ std::string csv_text(const std::string& s) {
   return q + "\"";
 }
 
-std::vector<std::string> csv_fields(const std::string& line) {
-  std::vector<std::string> out;
-  std::string cur;
-  bool quoted = false;
-  for (size_t i = 0; i < line.size(); ++i) {
-    const char c = line[i];
-    if (quoted) {
-      if (c == '"' && i + 1 < line.size() && line[i + 1] == '"') {
-        cur += '"';
-        ++i;
-      } else if (c == '"') {
-        quoted = false;
-      } else {
-        cur += c;
-      }
-    } else if (c == '"') {
-      quoted = true;
-    } else if (c == ',') {
-      out.push_back(cur);
-      cur.clear();
-    } else {
-      cur += c;
-    }
-  }
-  out.push_back(cur);
-  return out;
-}
-
 std::vector<std::vector<std::string>> csv_rows(const std::string& text) {
   std::vector<std::vector<std::string>> rows;
   std::vector<std::string> row;
@@ -78,6 +50,11 @@ std::vector<std::vector<std::string>> csv_rows(const std::string& text) {
     rows.push_back(std::move(row));
   }
   return rows;
+}
+
+std::vector<std::string> csv_fields(const std::string& line) {
+  std::vector<std::vector<std::string>> rows = csv_rows(line);
+  return rows.empty() ? std::vector<std::string>{""} : std::move(rows.front());
 }
 
 CsvWriter::CsvWriter(const std::string& path, const std::vector<std::string>& header, bool append)

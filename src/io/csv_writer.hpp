@@ -35,10 +35,11 @@ class CsvWriter {
 
 // one cell: quotes text containing a comma, quote, line feed or carriage return
 std::string csv_text(const std::string& s);
-// the cells of one line, csv_text's quoting undone ("a,\"b,\"\"c\"\"\"" is a and b,"c")
-std::vector<std::string> csv_fields(const std::string& line);
-// the rows of a CSV text, each a line's cells as csv_fields gives them, but a quoted cell may
-// hold line breaks; the last row may end without one
+// the rows of a CSV text, each a line's cells with csv_text's quoting undone
+// ("a,\"b,\"\"c\"\"\"" is a and b,"c"); a quoted cell may hold line breaks; the last row may end
+// without one
 std::vector<std::vector<std::string>> csv_rows(const std::string& text);
+// the cells of one line (csv_rows' first row; "" gives one empty cell)
+std::vector<std::string> csv_fields(const std::string& line);
 
 }  // namespace beltsim
