@@ -34,6 +34,13 @@ class Esdirk final : public Stepper {
   int embedded_order() const override { return tab_.embedded_order; }
   void attach(const StepController& ctl) override { ctl_ = &ctl; }
   double h_limit() const override { return h_limit_; }
+  // the stage values strictly inside the step, where the tableau says they serve (trbdf2's
+  // trapezoidal stage at 2γ)
+  void interior(std::vector<double>& c, std::vector<Eigen::VectorXd>& Z) const override {
+    const int k = tab_.interior_stages ? tab_.stages - 2 : 0;
+    c.resize(k), Z.resize(k);
+    for (int i = 0; i < k; ++i) c[i] = tab_.c[i + 1], Z[i] = stage_[i + 1];
+  }
   bool needs_linear_solver() const override { return true; }
 
   bool step(const OdeSystem& sys, double t, const Eigen::VectorXd& y, const Eigen::VectorXd& f0, double h,
@@ -44,6 +51,7 @@ class Esdirk final : public Stepper {
     const int s = tab.stages;
     const double sh = 1.0 / (h * tab.gamma);
     F_.resize(s);
+    stage_.resize(s);
     F_[0] = f0;
     Z_ = y;
     have_jac_ = false;
@@ -66,6 +74,7 @@ class Esdirk final : public Stepper {
         return false;
       }
       F_[i] = (Z_ - psi_) * sh;
+      if (i + 1 < s) stage_[i] = Z_;
     }
     if (rho > 0) h_limit_ = kGrowth / (tab.gamma * rho);
     y1 = Z_;
@@ -210,6 +219,7 @@ class Esdirk final : public Stepper {
   bool have_jac_ = false;  // a Jacobian taken in this step is factored (all stages share h·γ)
   uint64_t jac_sig_ = 0;   // the branches it was taken on
   std::vector<Eigen::VectorXd> F_;
+  std::vector<Eigen::VectorXd> stage_;  // the stage values of the last step (interior)
   Eigen::VectorXd Z_, Zt_, psi_, G_, Gt_, dZ_, raw_, rhs_, Fz_, Ft_;
 };
 
