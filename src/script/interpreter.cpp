@@ -1,11 +1,15 @@
 #include "script/interpreter.hpp"
 
+#include <cerrno>
+#include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 
 #include "script/context.hpp"
 #include "script/docall.hpp"
 #include "script/limits.hpp"
+#include "script/load_source.hpp"
 #include "script/lua_check.hpp"
 #include "script/lua_law.hpp"
 #include "script/lua_api.hpp"
@@ -75,7 +79,11 @@ void Interpreter::run_file(const std::string& path, int nresults) {
   begin_call(L_);
   // text only: a precompiled chunk is never loaded; the chunk is named "@path", so that its
   // errors read "path:line:"
-  if (const int status = luaL_loadfilex(L_, path.c_str(), "t"); status != LUA_OK) {
+  std::FILE* f = std::fopen(path.c_str(), "r");
+  if (!f) throw ScriptError("cannot open " + path + ": " + std::strerror(errno));
+  const int status = load_source(L_, f, "@" + path);
+  std::fclose(f);
+  if (status != LUA_OK) {
     std::string msg;
     if (!memory_message(L_, status, path, msg)) msg = lua_tostring(L_, -1) ? lua_tostring(L_, -1) : path;
     lua_settop(L_, 0);

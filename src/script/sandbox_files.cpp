@@ -18,6 +18,7 @@
 #include "io/beneath.hpp"
 #include "script/context.hpp"
 #include "script/docall.hpp"
+#include "script/load_source.hpp"
 
 #include "lauxlib.h"
 #include "lua.h"
@@ -276,50 +277,10 @@ int l_output(lua_State* L) { return input_output(L, "io.output", "w"); }
 
 // ---- loading -------------------------------------------------------------------------------
 
-// lua_load's reader of a file: first the characters read ahead, then the rest
-struct Reader {
-  std::FILE* f;
-  std::string ahead;
-  char buf[BUFSIZ];
-};
-
-const char* read_chunk(lua_State*, void* ud, size_t* size) {
-  auto* r = static_cast<Reader*>(ud);
-  if (!r->ahead.empty()) {
-    *size = r->ahead.size();
-    std::memcpy(r->buf, r->ahead.data(), *size);
-    r->ahead.clear();
-    return r->buf;
-  }
-  *size = std::fread(r->buf, 1, sizeof r->buf, r->f);
-  return *size > 0 ? r->buf : nullptr;
-}
-
-// the text of f loaded as a chunk (a UTF-8 BOM and a first line starting with '#' skipped, as
-// luaL_loadfile does, keeping the line numbers): the function, or the message (a status)
-int load_stream(lua_State* L, std::FILE* f, const std::string& chunkname) {
-  Reader r{f, "", {}};
-  int c = std::getc(f);
-  if (c == 0xEF && std::getc(f) == 0xBB && std::getc(f) == 0xBF) c = std::getc(f);
-  if (c == '#') {
-    while (c != EOF && c != '\n') c = std::getc(f);
-    r.ahead = "\n";
-    c = std::getc(f);
-  }
-  if (c != EOF) r.ahead += static_cast<char>(c);
-  const int status = lua_load(L, read_chunk, &r, chunkname.c_str(), "t");
-  if (std::ferror(f)) {
-    lua_settop(L, lua_gettop(L) - 1);
-    lua_pushfstring(L, "cannot read %s", chunkname.c_str() + 1);
-    return LUA_ERRFILE;
-  }
-  return status;
-}
-
 // the file fname (nullptr: standard input) loaded as Lua source, opened in the sandbox: a status,
 // and the function or the message on the stack
 int load_named(lua_State* L, const char* what, const char* fname) {
-  if (!fname) return load_stream(L, stdin, "=stdin");
+  if (!fname) return load_source(L, stdin, "=stdin");
   int err = 0;
   const int fd = open_in_sandbox(L, ctx_up(L), what, fname, FileMode{}, &err);
   std::FILE* f = fd >= 0 ? ::fdopen(fd, "r") : nullptr;
@@ -328,7 +289,7 @@ int load_named(lua_State* L, const char* what, const char* fname) {
     lua_pushfstring(L, "cannot open %s: %s", fname, std::strerror(err));
     return LUA_ERRFILE;
   }
-  const int status = load_stream(L, f, std::string("@") + fname);
+  const int status = load_source(L, f, std::string("@") + fname);
   std::fclose(f);
   if (status != LUA_OK) explain_binary(L, -1, fname);
   return status;
@@ -385,7 +346,7 @@ int load_module(lua_State* L, const Context& c, const std::string& name, const s
   if (!refused.empty())
     return luaL_error(L, "%s", not_allowed("require '" + name + "'", path, false, ": " + refused).c_str());
   if (!f) return LUA_ERRFILE;
-  const int status = load_stream(L, f, "@" + path);
+  const int status = load_source(L, f, "@" + path);
   std::fclose(f);
   return status;
 }

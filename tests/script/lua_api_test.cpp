@@ -195,6 +195,17 @@ TEST(LuaApi, SyntaxErrorNamesTheLine) {
   expect_error("local a = 1\nlocal b = = 2\n", "scene.lua:2:", {});
 }
 
+// Lua's parser reports a script nested past its 200 C levels as a bare "C stack overflow", with no
+// file or line (issue 45 §9); the line is the one the parser had reached, whoever loads the file
+TEST(LuaApi, NestingTooDeepNamesTheLine) {
+  const std::string deep = "local t = " + std::string(300, '{') + std::string(300, '}') + "\n";
+  expect_error("local a = 1\n\n" + deep, "scene.lua:3: C stack overflow", {"nests deeper", "200 levels"});
+  const std::string other = (temp_dir() / "deep.lua").string();
+  std::ofstream(other) << "\n" << deep;
+  expect_error("dofile('" + other + "')\n", "deep.lua:2: C stack overflow", {"nests deeper"});
+  expect_error("local f, err = loadfile('" + other + "')\nerror(err, 0)\n", "deep.lua:2: C stack overflow", {});
+}
+
 TEST(LuaApi, UnknownIntegratorListsTheValidOnes) {
   expect_error(scene_text("") + "s:run{ t_end = 0.001, integrator = 'euler' }\n", "scene.lua:8:",
                {"unknown integrator 'euler'", "esdirk32"});
