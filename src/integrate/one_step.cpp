@@ -66,7 +66,7 @@ class OneStep final : public Integrator {
     if (const std::string bad = sys_.problem->check(t, y_.data()); !bad.empty())
       throw DivergenceError(t, "the state at t = " + rounded_text(t, 9) + " s: " + bad);
     y_prev_ = y_, f_prev_ = f_;
-    ic_.clear();  // the held step is the point t: no interior
+    ic_.clear(), iz_.clear();  // the held step is the point t: no interior
     // first step (Hairer II.4, simplified): make the first-order term small against the
     // tolerance; at most 1 ms, a small part of any belt's period of interest. A restart after a
     // jump (a change of μ or of a law) starts the same way, and no longer than the last step:
