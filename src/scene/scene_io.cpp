@@ -77,6 +77,33 @@ Route read_route(CheckpointReader& r, size_t np) {
   return route;
 }
 
+// the parameter of an input's name: "belt.EA" is itself, "pulley.driver.radius" is pulley.radius
+// for a pulley of the model; nullptr when none
+const Parameter* input_parameter(const std::string& name, const Model& m) {
+  for (const Pulley& p : m.pulleys) {
+    const std::string pre = "pulley." + p.name + ".";
+    if (name.compare(0, pre.size(), pre) == 0) return find_parameter("pulley." + name.substr(pre.size()));
+  }
+  // a spray zone's: "spray.2.radius" is spray.radius
+  const size_t dot = name.find('.', 6);
+  if (name.compare(0, 6, "spray.") == 0 && dot != std::string::npos && dot > 6 &&
+      name.find_first_not_of("0123456789", 6) == dot)
+    return find_parameter("spray." + name.substr(dot + 1));
+  // a friction segment's: "friction.segments.2.from" is friction.segments.from, ".law" and the
+  // law's keys are the friction table's
+  const std::string_view seg = "friction.segments.";
+  const size_t end = name.find('.', seg.size());
+  if (name.compare(0, seg.size(), seg) == 0 && end != std::string::npos && end > seg.size() &&
+      name.find_first_not_of("0123456789", seg.size()) == end) {
+    const std::string key = name.substr(end + 1);
+    if (key == "from" || key == "to") return find_parameter("friction.segments." + key);
+    return key == "dv" || key == "segments" ? nullptr : find_parameter("friction." + key);
+  }
+  return find_parameter(name);
+}
+
+}  // namespace
+
 // the scene's definition as its model and route give it back: what validate(SceneDef) checks
 // of a script's scene, it checks of a checkpoint's. The belt is given per SDE (as built) and by
 // its rest length; the element count needs no allow_large (every element's values are in the
@@ -108,7 +135,7 @@ SceneDef definition(const Scene& sc) {
   b.reading = StiffnessReading::per_sde;
   b.k = m.belt.k, b.c = m.belt.c, b.kt = m.belt.kt, b.ct = m.belt.ct;
   b.e_tra = m.belt.e_tra, b.e_tor = m.belt.e_tor;
-  b.mass_per_length = m.belt.mass / m.belt.pitch;
+  b.mass_per_length = m.belt.mass / m.belt.rigid_length;  // the build's m = ρ·l0 (build::set_rest_length)
   b.mu_per_element = sc.drive.mu;
   d.contact = m.contact;
   d.friction = m.friction;
@@ -118,33 +145,6 @@ SceneDef definition(const Scene& sc) {
   d.spray = sc.drive.spray.zones;
   return d;
 }
-
-// the parameter of an input's name: "belt.EA" is itself, "pulley.driver.radius" is pulley.radius
-// for a pulley of the model; nullptr when none
-const Parameter* input_parameter(const std::string& name, const Model& m) {
-  for (const Pulley& p : m.pulleys) {
-    const std::string pre = "pulley." + p.name + ".";
-    if (name.compare(0, pre.size(), pre) == 0) return find_parameter("pulley." + name.substr(pre.size()));
-  }
-  // a spray zone's: "spray.2.radius" is spray.radius
-  const size_t dot = name.find('.', 6);
-  if (name.compare(0, 6, "spray.") == 0 && dot != std::string::npos && dot > 6 &&
-      name.find_first_not_of("0123456789", 6) == dot)
-    return find_parameter("spray." + name.substr(dot + 1));
-  // a friction segment's: "friction.segments.2.from" is friction.segments.from, ".law" and the
-  // law's keys are the friction table's
-  const std::string_view seg = "friction.segments.";
-  const size_t end = name.find('.', seg.size());
-  if (name.compare(0, seg.size(), seg) == 0 && end != std::string::npos && end > seg.size() &&
-      name.find_first_not_of("0123456789", seg.size()) == end) {
-    const std::string key = name.substr(end + 1);
-    if (key == "from" || key == "to") return find_parameter("friction.segments." + key);
-    return key == "dv" || key == "segments" ? nullptr : find_parameter("friction." + key);
-  }
-  return find_parameter(name);
-}
-
-}  // namespace
 
 // ---- the drive -----------------------------------------------------------------------------
 

@@ -24,6 +24,11 @@
 namespace beltsim {
 
 void write_scene(CheckpointWriter& w, const Scene& sc);
+// the definition a built scene gives back: what the scenario gave that the scene keeps (the
+// pulleys, arms, couplings, the belt per SDE and by its rest length, mass per rest length, μ per
+// element, contact per element, friction, spray zones); what validate(SceneDef) checks of a
+// script's scene it checks of a checkpoint's. allow_large is set: the file's size bounds a scene read.
+SceneDef definition(const Scene& sc);
 Scene read_scene(CheckpointReader& r);
 
 // the drive: each pulley's torque and speed laws and which of them drives it, μ per element,

@@ -331,6 +331,63 @@ TEST(SceneIo, DriveRoundTrip) {
   }
 }
 
+// The definition a built scene gives back (what a checkpoint's scene is validated as) is the one
+// it was built from in every field the scene keeps: the pulleys, the tensioner arm, a one-way
+// coupling, the belt's per-SDE values, contact, friction and gravity; and the belt's mass per
+// metre of rest length, which the build multiplies by an element's rest length l0 (m = ρ·l0,
+// build::set_rest_length), not by its pitch: the belt at rest is stretched, l > l0.
+TEST(SceneIo, TheDefinitionIsTheOneTheSceneWasBuiltFrom) {
+  SceneDef d = presets::automotive_tensioner();
+  CouplingDef& cd = d.pulleys[2].coupling.emplace();
+  cd.inertia = 2e-3, cd.stiffness = 40, cd.one_way = true;
+  d.track_energy = true;
+  const Scene sc = build_scene(d);
+  const Belt& belt = sc.model.belt;
+  ASSERT_GT(belt.pitch / belt.rigid_length - 1, 1e-4);  // stretched: per pitch and per l0 differ
+  const SceneDef back = definition(sc);
+  // ρ·l0/l0: two roundings, each within half an ulp of the value
+  EXPECT_NEAR(back.belt.mass_per_length, d.belt.mass_per_length, 4e-16 * d.belt.mass_per_length);
+  ASSERT_EQ(back.pulleys.size(), d.pulleys.size());
+  for (size_t j = 0; j < d.pulleys.size(); ++j) {
+    const PulleyDef &a = d.pulleys[j], &b = back.pulleys[j];
+    EXPECT_EQ(b.name, a.name);
+    EXPECT_EQ(b.centre, a.centre) << a.name;
+    EXPECT_EQ(b.radius, a.radius) << a.name;
+    EXPECT_EQ(b.inertia, a.inertia) << a.name;
+    EXPECT_EQ(b.wrap, a.wrap) << a.name;
+    EXPECT_EQ(b.kinematic, a.kinematic) << a.name;
+    EXPECT_EQ(b.tensioner.has_value(), a.tensioner.has_value()) << a.name;
+    EXPECT_EQ(b.coupling.has_value(), a.coupling.has_value()) << a.name;
+  }
+  const TensionerDef &t = *d.pulleys[1].tensioner, &tb = *back.pulleys[1].tensioner;
+  EXPECT_EQ(tb.pivot, t.pivot);
+  for (const auto& [x, y] : {std::pair{tb.inertia, t.inertia},
+                             {tb.stiffness, t.stiffness},
+                             {tb.damping, t.damping},
+                             {tb.friction_torque, t.friction_torque},
+                             {tb.friction_speed, t.friction_speed},
+                             {tb.asymmetric, t.asymmetric}})
+    EXPECT_EQ(x, y);
+  const CouplingDef& cb = *back.pulleys[2].coupling;
+  for (const auto& [x, y] : {std::pair{cb.inertia, cd.inertia},
+                             {cb.stiffness, cd.stiffness},
+                             {cb.damping, cd.damping},
+                             {cb.hub_inertia, cd.hub_inertia},
+                             {cb.lock_damping, cd.lock_damping},
+                             {cb.drag_torque, cd.drag_torque}})
+    EXPECT_EQ(x, y);
+  EXPECT_EQ(cb.one_way, cd.one_way);
+  EXPECT_EQ(back.belt.elements, d.belt.elements);
+  EXPECT_EQ(back.belt.k, belt.k);
+  EXPECT_EQ(back.belt.ct, belt.ct);
+  EXPECT_EQ(back.belt.rest_length, belt.rigid_length * belt.n);
+  EXPECT_EQ(back.contact.c1, sc.model.contact.c1);
+  EXPECT_EQ(back.friction.dv, d.friction.dv);
+  EXPECT_EQ(back.gravity, d.gravity);
+  EXPECT_EQ(back.track_energy, d.track_energy);
+  EXPECT_EQ(back.belt.mu_per_element, sc.drive.mu);
+}
+
 // the keys are the scenario's Lua names
 TEST(SceneIo, KeysAreTheLuaNames) {
   const std::string text = scene_text(dry_scene());
