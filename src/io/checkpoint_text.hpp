@@ -29,8 +29,9 @@
 
 namespace beltsim {
 
-// Raised whenever anything a checkpoint holds changes (src/scene/scene_io.cpp,
-// src/sim/checkpoint.cpp, the integrators' save and load): a reader refuses every other version.
+// Raised whenever anything a checkpoint holds changes (the scene's fields, scene/scene_fields.hpp;
+// the run's state, sim/state_io.cpp; the settings, sim/checkpoint.cpp): a reader refuses every
+// other version.
 inline constexpr int kCheckpointVersion = 10;
 inline constexpr const char* kCheckpointMagic = "beltsim-checkpoint";
 

@@ -1,5 +1,5 @@
 // The fields of a built scene's structs, each struct's listed once, as MuJoCo's mjxmacro.h lists
-// mjModel's: the checkpoint's writer and reader (scene_io.cpp), the definition a built scene
+// mjModel's: the checkpoint's writer and reader (field_io.cpp, scene_io.cpp), the definition a built scene
 // gives back (definition(), scene_io.hpp) and the comparison of two scenes (scene_difference)
 // all expand these lists. A field is
 //
@@ -9,7 +9,7 @@
 //
 // key: the checkpoint's, after the struct's prefix ("arm." + "pivot"); where the scenario has the
 // field it is the scenario's Lua name (scene/parameters.hpp). unit: SI, "" for a number without one.
-// kind: how the checkpoint's text holds it (scene_io.cpp, put_<kind> and get_<kind>):
+// kind: how the checkpoint's text holds it (field_io.cpp, put_<kind> and get_<kind>):
 //   real        a finite number              real_inf   a finite number or inf
 //   integer     an int                       sign       -1, 0 or 1
 //   flag        true or false                text       a quoted string
