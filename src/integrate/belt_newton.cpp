@@ -23,4 +23,8 @@ double BeltNewtonAids::overshoot(double t, const double* z, const double* dz) {
   return friction_overshoot(model_, drive_, pairs(t, z), z, dz + model_.n_coord());
 }
 
+double BeltNewtonAids::unstable_rate(double t, const double* z) {
+  return falling_friction_rate(model_, pairs(t, z));
+}
+
 }  // namespace beltsim

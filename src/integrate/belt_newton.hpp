@@ -22,6 +22,7 @@ class BeltNewtonAids final : public NewtonAids {
   void predict(double t, double dt, double* z) override;
   uint64_t branches(double t, const double* y) override;
   double overshoot(double t, const double* z, const double* dz) override;
+  double unstable_rate(double t, const double* z) override;
 
  private:
   // the pairs of the contact records of the state y at t

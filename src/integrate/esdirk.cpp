@@ -10,6 +10,10 @@
 // recovered without a further evaluation as F_i = (Z - ψ_i)·s. The error estimate
 // h·Σ (b_j - b̂_j)·F_j is filtered through (I - h·γ·J)^-1 (Shampine; Hairer & Wanner IV.8),
 // which keeps it meaningful on the stiff components.
+// A converged stage with h·γ·ρ > 1, ρ the fastest growth of a single variable at it
+// (NewtonAids::unstable_rate: an element slipping on a falling friction curve), has lost that
+// growth and may be a root the motion never visits (newton_aids.cpp, Falling friction): the step is
+// refused, and every step is kept to h·γ·ρ <= kGrowth, ρ the largest of its stages.
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -29,6 +33,14 @@ class Esdirk final : public Stepper {
   int order() const override { return tab_.order; }
   int embedded_order() const override { return tab_.embedded_order; }
   void attach(const StepController& ctl) override { ctl_ = &ctl; }
+  double h_limit() const override { return h_limit_; }
+  // the stage values strictly inside the step, where the tableau says they serve (trbdf2's
+  // trapezoidal stage at 2γ)
+  void interior(std::vector<double>& c, std::vector<Eigen::VectorXd>& Z) const override {
+    const int k = tab_.interior_stages ? tab_.stages - 2 : 0;
+    c.resize(k), Z.resize(k);
+    for (int i = 0; i < k; ++i) c[i] = tab_.c[i + 1], Z[i] = stage_[i + 1];
+  }
   bool needs_linear_solver() const override { return true; }
 
   bool step(const OdeSystem& sys, double t, const Eigen::VectorXd& y, const Eigen::VectorXd& f0, double h,
@@ -39,9 +51,12 @@ class Esdirk final : public Stepper {
     const int s = tab.stages;
     const double sh = 1.0 / (h * tab.gamma);
     F_.resize(s);
+    stage_.resize(s);
     F_[0] = f0;
     Z_ = y;
     have_jac_ = false;
+    h_limit_ = kInf;
+    double rho = 0;  // the fastest growth of the stages so far
     for (int i = 1; i < s; ++i) {
       const double ti = t + tab.c[i] * h;
       psi_ = y;
@@ -53,8 +68,15 @@ class Esdirk final : public Stepper {
       // elements, each a failed iteration and often a shortened step.
       aids_->predict(t + tab.c[i - 1] * h, (tab.c[i] - tab.c[i - 1]) * h, Z_.data());
       if (!newton(sys, ti, sh, n)) return false;
+      rho = std::max(rho, aids_->unstable_rate(ti, Z_.data()));
+      if (rho > sh) {
+        h_limit_ = kGrowth / (tab.gamma * rho);
+        return false;
+      }
       F_[i] = (Z_ - psi_) * sh;
+      if (i + 1 < s) stage_[i] = Z_;
     }
+    if (rho > 0) h_limit_ = kGrowth / (tab.gamma * rho);
     y1 = Z_;
     raw_.setZero(n);
     for (int j = 0; j < s; ++j) raw_ += (h * (tab.b[j] - tab.b_hat[j])) * F_[j];
@@ -185,13 +207,19 @@ class Esdirk final : public Stepper {
     return false;
   }
 
+  static constexpr double kInf = std::numeric_limits<double>::infinity();
+  // the largest h·γ·ρ a step is planned for, from the growth its predecessor met: below the
+  // refusal at 1, since the growth changes from step to step as elements reach the falling curve
+  static constexpr double kGrowth = 0.7;
   const EsdirkTableau& tab_;
   const StepController* ctl_ = nullptr;
+  double h_limit_ = kInf;  // h_limit() of the last step
   NewtonAids no_aids_;                 // for a system without aids: each does nothing
   NewtonAids* aids_ = &no_aids_;
   bool have_jac_ = false;  // a Jacobian taken in this step is factored (all stages share h·γ)
   uint64_t jac_sig_ = 0;   // the branches it was taken on
   std::vector<Eigen::VectorXd> F_;
+  std::vector<Eigen::VectorXd> stage_;  // the stage values of the last step (interior)
   Eigen::VectorXd Z_, Zt_, psi_, G_, Gt_, dZ_, raw_, rhs_, Fz_, Ft_;
 };
 

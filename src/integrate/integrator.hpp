@@ -17,6 +17,7 @@
 #include <memory>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 #include <Eigen/Core>
 
@@ -50,6 +51,8 @@ struct IntegratorState {
   std::string method;                                      // the stepper's name: a state fits only its own method
   double t = 0, t_prev = 0;                                // [s] the held step
   Eigen::VectorXd y, f, y_prev, f_prev;                    // the solution and its derivative at the step's two ends
+  std::vector<double> interior_c;           // the nodes inside the held step, in (0, 1) (Stepper::interior)
+  std::vector<Eigen::VectorXd> interior;    // the states there
   double h = 0;                                            // [s] the next step's size
   double h_used = 0;                                       // [s] the last step's
   double h_cap = std::numeric_limits<double>::infinity();  // [s] the cap after a step that failed

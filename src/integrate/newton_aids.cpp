@@ -50,6 +50,21 @@
 // iterate: (δV - δV_C)·t̂ - δΩ·r, with δV_C the pulley centre's (a tensioner arm's speed times its
 // length) and δΩ the pulley's (none for a kinematic pulley).
 //
+// Falling friction (falling_friction_rate): an element in contact, slipping at v_T, feels the
+// tangential force -μ(v_T)·N; with everything else held its slip velocity obeys
+//   m·dv_T/dt = -μ(v_T)·N + ...,   so   ∂(dv_T/dt)/∂v_T = -μ'(v_T)·N/m = ρ.
+// On Threlfall's curve μ' >= 0 and ρ <= 0. Where a curve falls (Stribeck's past its peak, about
+// v_s; LuGre's at a held bristle deflection) ρ > 0: the slip runs away at that rate until the
+// element sticks or slides fast, within microseconds on the paper's drive (μ' ≈ -22 s/m at v_s =
+// 0.01 m/s on a dry stretch, N ≈ 100 N, m ≈ 2 g: ρ ≈ 1e6 1/s). An implicit stage solves
+// v - h·γ·a(v) = ψ, whose slope in that element's v_T is 1 - h·γ·ρ: past h·γ·ρ = 1 the slope
+// turns negative, the stage damps the runaway the motion has (superstability) and Newton may settle
+// on a root the motion never visits: elements held on the falling curve at slip speeds they
+// would leave. On the half-wet drive under Stribeck's law that was the whole error: rtol 1e-5
+// 7 % off in the span tensions where 1e-3 was 2.3 % (the integrator's own error estimate, a
+// difference of two such solutions, cannot see it). The stepper refuses a stage past
+// h·γ·ρ = 1 and keeps the next step below it (esdirk.cpp).
+//
 // Kinematic predictor (kinematic_predict): an implicit stage at t + dt starts Newton from the
 // previous stage's value, taken at t. An element wrapped on a pulley moves round it by
 // |v|·dt ≈ 1.2 mm in a stage at rtol 1e-3 (3.4 m/s, dt ≈ 0.35 ms), so left where it was it is
@@ -330,6 +345,13 @@ double friction_overshoot(const Model& m, const Drive& d, const ContactView& pai
     const double past = x0 >= 1 ? 1 - x1 : x0 <= -1 ? x1 + 1 : std::abs(x1) - 1;
     worst = std::max(worst, past);
   }
+  return worst;
+}
+
+double falling_friction_rate(const Model& m, const ContactView& pairs) {
+  double worst = 0;
+  for (const ContactPair& c : pairs)
+    if (c.touching && c.nl.pushing && c.fl.dmu < 0) worst = std::max(worst, -c.fl.dmu * c.nl.N / m.belt.mass);
   return worst;
 }
 

@@ -45,6 +45,9 @@ int friction_local_solve(const Model& m, const Drive& d, const ContactView& pair
 // of the band |v_T| < Δv, out of the piece it is on (0: every element stays on its piece; the
 // pairs' friction laws give v_T at (q, v); LuGre's bristles have no band and are left out).
 double friction_overshoot(const Model& m, const Drive& d, const ContactView& pairs, const double* q, const double* dv);
+// the largest rate at which an element's slip velocity grows on a falling friction curve with
+// everything else held, -μ'·N/m over the pairs in contact (see newton_aids.cpp); 0 when none falls
+double falling_friction_rate(const Model& m, const ContactView& pairs);
 // on[i]: the first pulley element i presses on in the pass (-1: none)
 void pressed_pulleys(const Model& m, const ContactView& pairs, std::vector<int>& on);
 

@@ -2,6 +2,7 @@
 // stepper / controller / driver). Butcher and Rosenbrock tables are data in tableau.cpp.
 #pragma once
 
+#include <limits>
 #include <memory>
 #include <string>
 #include <vector>
@@ -30,6 +31,17 @@ class Stepper {
   // then shrinks h as for a rejected step.
   virtual bool step(const OdeSystem& sys, double t, const Eigen::VectorXd& y, const Eigen::VectorXd& f0, double h,
                     Eigen::VectorXd& y1, Eigen::VectorXd& err) = 0;
+  // after step(): the longest step the method can take from here and stay faithful to what
+  // grows (NewtonAids::unstable_rate); infinity when nothing bounds it. A step refused (false)
+  // with h above it was refused for that alone: the driver retries at this size
+  virtual double h_limit() const { return std::numeric_limits<double>::infinity(); }
+  // after a step that returned true: the states the method solved for inside it, Z[i] at
+  // t + c[i]·h with 0 < c[i] < 1 (an implicit method's stage values), for a dense output through
+  // states alone (OneStep); none by default
+  virtual void interior(std::vector<double>& c, std::vector<Eigen::VectorXd>& Z) const {
+    c.clear();
+    Z.clear();
+  }
 };
 
 // "esdirk32" (L-stable ESDIRK 3(2) with semi-smooth Newton, Kennedy & Carpenter 2003),

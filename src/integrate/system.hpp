@@ -112,6 +112,11 @@ class NewtonAids {
   // the kink's resolution (for the belt: slip velocities past the edge of the friction band, in
   // band widths); 0 when it leaves every law on the piece z lies on
   virtual double overshoot(double, const double*, const double*) { return 0; }
+  // the fastest growth at z of a single variable with everything else held [1/s]: for the belt,
+  // an element's slip velocity on a falling friction curve (see newton_aids.cpp, Falling
+  // friction); 0 when nothing grows. An implicit stage with h·γ·rate > 1 has lost its solution's
+  // growth and may sit on a root the motion never visits (esdirk.cpp)
+  virtual double unstable_rate(double, const double*) { return 0; }
 };
 
 // What an integrator is given (none of it owned): the problem, and optionally a linear solver

@@ -87,6 +87,7 @@ const EsdirkTableau& trbdf2() {
     e.b = e.a[2];
     e.b_hat = {(1 - w) / 3, (3 * w + 1) / 3, g / 3};
     e.c = {0.0, 2 * g, 1.0};
+    e.interior_stages = true;
     return e;
   }();
   return t;

@@ -114,6 +114,11 @@ void write_integrator(CheckpointWriter& w, const IntegratorState& s) {
   auto vec = [&](const char* k, const Eigen::VectorXd& v) { w.line(k, v.data(), static_cast<size_t>(v.size())); };
   vec("integrator.y", s.y), vec("integrator.f", s.f), vec("integrator.y_prev", s.y_prev);
   vec("integrator.f_prev", s.f_prev);
+  // the held step's interior states, one after the other
+  w.line("integrator.interior_c", s.interior_c);
+  std::vector<double> z;
+  for (const Eigen::VectorXd& v : s.interior) z.insert(z.end(), v.data(), v.data() + v.size());
+  w.line("integrator.interior", z);
   const WorkCounters& c = s.counters;
   w.line("integrator.counters",
          std::vector<long>{c.steps, c.rejected, c.rhs, c.jacobians, c.factorizations, c.solves, c.kink_restarts});
@@ -145,6 +150,15 @@ void read_integrator(CheckpointReader& r, size_t n, IntegratorState& s) {
   };
   vec("integrator.y", s.y), vec("integrator.f", s.f), vec("integrator.y_prev", s.y_prev);
   vec("integrator.f_prev", s.f_prev);
+  s.interior_c = r.line_doubles("integrator.interior_c", 8);
+  for (double c : s.interior_c)
+    if (!(c > 0 && c < 1)) r.fail("an interior node must lie strictly inside the step, in (0, 1)");
+  const size_t k = s.interior_c.size();
+  const std::vector<double> z = r.line_doubles("integrator.interior", k * n);
+  if (z.size() != k * n)
+    r.fail(std::to_string(z.size()) + " values for " + std::to_string(k) + " states of " + std::to_string(n));
+  for (size_t i = 0; i < k; ++i)
+    s.interior.push_back(Eigen::Map<const Eigen::VectorXd>(z.data() + i * n, static_cast<Eigen::Index>(n)));
   const std::vector<long> c = r.line_longs("integrator.counters", 0, LONG_MAX, 7);
   if (c.size() != 7) r.fail("7 counts expected");
   WorkCounters& w = s.counters;
@@ -154,7 +168,7 @@ void read_integrator(CheckpointReader& r, size_t n, IntegratorState& s) {
   if (count.size() != kWarningKinds) r.fail(std::to_string(kWarningKinds) + " counts expected");
   const std::vector<double> first_t = r.line_doubles("integrator.warnings.first_t", kWarningKinds);
   if (first_t.size() != kWarningKinds) r.fail(std::to_string(kWarningKinds) + " times expected");
-  for (size_t k = 0; k < kWarningKinds; ++k) w.warnings.stat[k] = {count[k], first_t[k]};
+  for (size_t j = 0; j < kWarningKinds; ++j) w.warnings.stat[j] = {count[j], first_t[j]};
 }
 
 }  // namespace

@@ -1,7 +1,8 @@
 // A run's state in memory (sim/sim_state.hpp: Simulation::get_state, set_state): taken at a pause
-// or while the run goes on, and set back, the run continues as it did the first time, bit for bit
-// in its state, its CSV files, its kept samples and its counters; a state that does not fit is
-// refused naming the field or the file, and changes nothing.
+// or while the run goes on, and set back (as it is, or through a checkpoint's text), the run
+// continues as it did the first time, bit for bit in its state, its CSV files, its kept samples and
+// its counters; a state that does not fit is refused naming the field or the file, and changes
+// nothing.
 #include "sim/sim_state.hpp"
 
 #include <gtest/gtest.h>
@@ -11,9 +12,11 @@
 #include <filesystem>
 #include <optional>
 
+#include "io/checkpoint_text.hpp"
 #include "scene/presets.hpp"
 #include "scene/scene.hpp"
 #include "sim/simulation.hpp"
+#include "sim/state_io.hpp"
 #include "support/files.hpp"
 #include "support/scratch.hpp"
 #include "support/warning_guard.hpp"
@@ -90,29 +93,50 @@ void expect_same(const Ending& a, const Ending& b) {
   EXPECT_EQ(a.steps, b.steps);
 }
 
+// the state through a checkpoint's text (sim/state_io.hpp) and back
+SimState through_text(const Simulation& s, const SimState& state) {
+  CheckpointWriter w;
+  write_state(w, s.model(), state);
+  CheckpointReader r(w.finish());
+  SimState back = read_state(r, s.scene());
+  r.finish();
+  return back;
+}
+
 // taken at a pause (inside a step, off the sample grid, with changed laws and μ and an event
-// still ahead), the run goes on to 30 ms; set back, it goes to 30 ms again: the same ending, the
-// CSV cut back to the rows written when the state was taken
+// still ahead), the run goes on to 30 ms; set back, in memory or through the checkpoint's text,
+// it goes to 30 ms again: the same ending, the CSV cut back to the rows written when the state was
+// taken. With esdirk32 (a Hermite dense output) and trbdf2 (through its stage values, kept in the
+// integrator's state).
 TEST(SimState, SetBackTheRunContinuesBitForBit) {
   // the paper's dry drive has failed implicit steps from 0.036 s (esdirk32)
   test::expect_warnings({WarningKind::failed_step});
-  Simulation s(dry(), settings(temp("pause")));
-  change(s);
-  s.run_to(0.0137);
-  const SimState at = s.get_state();
-  EXPECT_EQ(at.now(), 0.0137);
-  s.run_to(0.03);
-  const Ending first = ending(s);
-  ASSERT_EQ(s.drive().mu[12], 0.8);  // the event ran
-  s.set_state(at);
-  EXPECT_EQ(s.now(), 0.0137);
-  EXPECT_EQ(s.drive().mu[12], 0.3);
-  EXPECT_EQ(s.drive().pulleys[0].torque.constant, -20.0);
-  EXPECT_EQ(slurp(fs::path(s.csv_path())), first.csv.substr(0, static_cast<size_t>(at.outputs.csv_bytes)));
-  EXPECT_EQ(s.samples().size(), static_cast<size_t>(at.outputs.rows));
-  s.run_to(0.03);
-  expect_same(ending(s), first);
-  EXPECT_EQ(s.drive().mu[12], 0.8);
+  for (const char* integrator : {"esdirk32", "trbdf2"}) {
+    SCOPED_TRACE(integrator);
+    RunSettings rs = settings(temp(std::string("pause_") + integrator));
+    rs.integrator = integrator;
+    Simulation s(dry(), rs);
+    change(s);
+    s.run_to(0.0137);
+    const SimState at = s.get_state();
+    const Eigen::VectorXd y_at = s.state();  // (read from the held step's dense output)
+    EXPECT_EQ(at.now(), 0.0137);
+    s.run_to(0.03);
+    const Ending first = ending(s);
+    ASSERT_EQ(s.drive().mu[12], 0.8);  // the event ran
+    for (const bool text : {false, true}) {
+      s.set_state(text ? through_text(s, at) : at);
+      EXPECT_EQ(s.now(), 0.0137);
+      EXPECT_TRUE(same_bits(s.state(), y_at));
+      EXPECT_EQ(s.drive().mu[12], 0.3);
+      EXPECT_EQ(s.drive().pulleys[0].torque.constant, -20.0);
+      EXPECT_EQ(slurp(fs::path(s.csv_path())), first.csv.substr(0, static_cast<size_t>(at.outputs.csv_bytes)));
+      EXPECT_EQ(s.samples().size(), static_cast<size_t>(at.outputs.rows));
+      s.run_to(0.03);
+      expect_same(ending(s), first);
+      EXPECT_EQ(s.drive().mu[12], 0.8);
+    }
+  }
 }
 
 // taken from run_to's progress while the run goes on (as a live view takes it), between two
