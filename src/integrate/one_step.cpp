@@ -188,7 +188,9 @@ class OneStep final : public Integrator {
     IntegratorState s;
     s.method = st_->name(), s.t = t_, s.t_prev = t_prev_;
     s.y = y_, s.f = f_, s.y_prev = y_prev_, s.f_prev = f_prev_;
-    s.interior_c = ic_, s.interior = iz_;
+    // the states at the held step's nodes (after a restart there are none; iz_ may hold the step
+    // before's)
+    s.interior_c = ic_, s.interior.assign(iz_.begin(), iz_.begin() + static_cast<std::ptrdiff_t>(ic_.size()));
     s.h = h_, s.h_used = h_used_, s.h_cap = cap_, s.started = started_;
     s.worst = worst_, s.at_floor = at_floor_, s.failed_in_a_row = failed_in_a_row_;
     s.counters = sys_.problem->counters;
