@@ -105,12 +105,6 @@ std::vector<std::string> state_files(const std::vector<std::string>& given) {
   return files;
 }
 
-std::string scene_text(const Scene& sc) {
-  CheckpointWriter w;
-  write_scene(w, sc);
-  return w.finish();
-}
-
 }  // namespace
 
 int cmd_render(const RenderOptions& o) {
@@ -124,7 +118,6 @@ int cmd_render(const RenderOptions& o) {
     // the first state gives the scene and the frame settings of every picture
     const std::unique_ptr<Simulation> first = Simulation::open_checkpoint(files.front());
     const FrameSettings f = settings(o, first->settings());
-    const std::string scene = scene_text(first->scene());
     if (o.video) {
       FrameSettings v = f;
       v.png_dir.clear(), v.video_path = *o.video;
@@ -133,9 +126,9 @@ int cmd_render(const RenderOptions& o) {
     for (size_t k = 0; k < files.size(); ++k) {
       std::unique_ptr<Simulation> other = k == 0 ? nullptr : Simulation::open_checkpoint(files[k]);
       const Simulation& s = k == 0 ? *first : *other;
-      if (k > 0 && scene_text(s.scene()) != scene)
-        throw std::runtime_error(files[k] + ": a state of another scene than " + files.front() +
-                                 "'s (one render draws the states of one scene)");
+      if (const std::string d = k == 0 ? "" : scene_difference(s.scene(), first->scene()); !d.empty())
+        throw std::runtime_error(files[k] + ": a state of another scene than " + files.front() + "'s (its " + d +
+                                 " differs; one render draws the states of one scene)");
       if (o.out) {
         const std::string png =
             several ? (std::filesystem::path(*o.out) / std::filesystem::path(files[k]).stem()).string() + ".png"

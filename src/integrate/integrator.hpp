@@ -13,9 +13,11 @@
 //   y_prev(), y() the solution at the ends of the last step, where the stage equations hold
 #pragma once
 
+#include <limits>
 #include <memory>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 #include <Eigen/Core>
 
@@ -23,9 +25,6 @@
 #include "integrate/system.hpp"
 
 namespace beltsim {
-
-class CheckpointReader;
-class CheckpointWriter;
 
 // A run that could not continue: NaN/Inf, runaway, or a step size that collapsed.
 struct DivergenceError : std::runtime_error {
@@ -36,6 +35,33 @@ struct DivergenceError : std::runtime_error {
 // the advice every message of a run that diverged or made no progress ends with
 inline constexpr const char* kDivergenceHint =
     "try an implicit integrator (esdirk32, or cvode), a looser rtol or atol, or more damping of that component";
+
+// A part of a run's state that does not fit what it is set into (another method's, a state of
+// another size, a time outside the held step): `key` names the field as a checkpoint writes it
+// ("integrator.t"), the message says why. Nothing was changed.
+struct StateError : std::invalid_argument {
+  StateError(std::string field, const std::string& what) : std::invalid_argument(what), key(std::move(field)) {}
+  std::string key;
+};
+
+// A one-step integrator's state between steps, as plain data (Integrator::get_state): what a
+// continuation needs to take the same steps, bit for bit, as the run it was taken from
+// (sim/state_io.hpp writes it into checkpoints).
+struct IntegratorState {
+  std::string method;                                      // the stepper's name: a state fits only its own method
+  double t = 0, t_prev = 0;                                // [s] the held step
+  Eigen::VectorXd y, f, y_prev, f_prev;                    // the solution and its derivative at the step's two ends
+  std::vector<double> interior_c;           // the nodes inside the held step, in (0, 1) (Stepper::interior)
+  std::vector<Eigen::VectorXd> interior;    // the states there
+  double h = 0;                                            // [s] the next step's size
+  double h_used = 0;                                       // [s] the last step's
+  double h_cap = std::numeric_limits<double>::infinity();  // [s] the cap after a step that failed
+  bool started = false;
+  int worst = -1;            // the component with the largest error in the last estimate (-1: none)
+  long at_floor = 0;         // accepted steps in a row at the rounding floor of t
+  long failed_in_a_row = 0;  // implicit iterations in a row that did not converge
+  WorkCounters counters;     // the system's counts and warnings so far
+};
 
 class Integrator {
  public:
@@ -51,10 +77,10 @@ class Integrator {
   virtual std::string stiffest() const { return ""; }
   // checkpoints (bit-identical continuation); false when the method cannot export its state
   virtual bool can_save() const { return false; }
-  // (in a checkpoint's text, io/checkpoint_text.hpp; load refuses a state that does not fit the
-  // system, CheckpointError naming the line)
-  virtual void save(CheckpointWriter&) const {}
-  virtual void load(CheckpointReader&) {}
+  // its state (can_save only: std::logic_error otherwise), and a state set back: set_state
+  // refuses one that does not fit the method or the system (StateError, nothing changed)
+  virtual IntegratorState get_state() const { throw std::logic_error(name() + " cannot export its state"); }
+  virtual void set_state(const IntegratorState&) { throw std::logic_error(name() + " cannot take a state"); }
 
   double t() const { return t_; }
   double t_prev() const { return t_prev_; }

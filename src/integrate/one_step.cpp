@@ -19,7 +19,6 @@
 
 #include "integrate/integrator.hpp"
 #include "integrate/stepper.hpp"
-#include "io/checkpoint_text.hpp"
 #include "io/number_text.hpp"
 
 namespace beltsim {
@@ -185,63 +184,49 @@ class OneStep final : public Integrator {
   std::string stiffest() const override { return worst_ < 0 ? std::string() : sys_.problem->describe(worst_); }
 
   bool can_save() const override { return true; }
-  void save(CheckpointWriter& w) const override {
-    w.line("integrator.state", st_->name());
-    w.line("integrator.t", t_);
-    w.line("integrator.t_prev", t_prev_);
-    w.line("integrator.h", h_);
-    w.line("integrator.h_used", h_used_);
-    w.line("integrator.h_cap", cap_);
-    w.line("integrator.started", started_);
-    auto vec = [&](const char* k, const Eigen::VectorXd& v) { w.line(k, v.data(), static_cast<size_t>(v.size())); };
-    vec("integrator.y", y_), vec("integrator.f", f_), vec("integrator.y_prev", y_prev_), vec("integrator.f_prev", f_prev_);
-    // the held step's interior states, one after the other
-    w.line("integrator.interior_c", ic_);
-    std::vector<double> z;
-    for (const Eigen::VectorXd& v : iz_) z.insert(z.end(), v.data(), v.data() + v.size());
-    w.line("integrator.interior", z);
-    // the one kind of warning a one-step method counts
-    const WorkCounters& c = sys_.problem->counters;
-    const WarningStat& failed = c.warnings[WarningKind::failed_step];
-    w.line("integrator.counters",
-           std::vector<long>{c.steps, c.rejected, c.rhs, c.jacobians, c.factorizations, c.solves, failed.count});
-    w.line("integrator.failed_first_t", failed.first_t);
+  IntegratorState get_state() const override {
+    IntegratorState s;
+    s.method = st_->name(), s.t = t_, s.t_prev = t_prev_;
+    s.y = y_, s.f = f_, s.y_prev = y_prev_, s.f_prev = f_prev_;
+    // the states at the held step's nodes (after a restart there are none; iz_ may hold the step
+    // before's)
+    s.interior_c = ic_, s.interior.assign(iz_.begin(), iz_.begin() + static_cast<std::ptrdiff_t>(ic_.size()));
+    s.h = h_, s.h_used = h_used_, s.h_cap = cap_, s.started = started_;
+    s.worst = worst_, s.at_floor = at_floor_, s.failed_in_a_row = failed_in_a_row_;
+    s.counters = sys_.problem->counters;
+    return s;
   }
-  void load(CheckpointReader& r) override {
-    if (r.line_str("integrator.state") != st_->name()) r.fail("the state of another integrator than " + st_->name());
-    t_ = r.line_num("integrator.t");
-    t_prev_ = r.line_num("integrator.t_prev");
-    if (!(t_prev_ <= t_)) r.fail("the step's start lies after its end");
-    h_ = r.line_num("integrator.h");
-    if (!(h_ >= 0)) r.fail("a step size must be >= 0");
-    h_used_ = r.line_num("integrator.h_used");
-    if (!(h_used_ >= 0)) r.fail("a step size must be >= 0");
-    r.open("integrator.h_cap");
-    cap_ = r.num_or_infinity();
-    r.close();
-    if (!(cap_ > 0)) r.fail("a step size cap must be > 0");
-    started_ = r.line_bool("integrator.started");
-    const size_t n = static_cast<size_t>(sys_.problem->size());
-    auto vec = [&](const char* k, Eigen::VectorXd& v) {
-      const std::vector<double> x = r.line_doubles(k, n);
-      if (x.size() != n) r.fail(std::to_string(x.size()) + " values for a state of " + std::to_string(n));
-      v = Eigen::Map<const Eigen::VectorXd>(x.data(), static_cast<Eigen::Index>(n));
-    };
-    vec("integrator.y", y_), vec("integrator.f", f_), vec("integrator.y_prev", y_prev_), vec("integrator.f_prev", f_prev_);
-    ic_ = r.line_doubles("integrator.interior_c", 8);
-    for (double c : ic_)
-      if (!(c > 0 && c < 1)) r.fail("an interior node must lie strictly inside the step, in (0, 1)");
-    const std::vector<double> z = r.line_doubles("integrator.interior", ic_.size() * n);
-    if (z.size() != ic_.size() * n) r.fail(std::to_string(z.size()) + " values for " + std::to_string(ic_.size()) + " states of " + std::to_string(n));
-    iz_.resize(ic_.size());
-    for (size_t i = 0; i < ic_.size(); ++i) iz_[i] = Eigen::Map<const Eigen::VectorXd>(z.data() + i * n, static_cast<Eigen::Index>(n));
-    const std::vector<long> c = r.line_longs("integrator.counters", 0, LONG_MAX, 7);
-    if (c.size() != 7) r.fail("7 counts expected");
-    WorkCounters& w = sys_.problem->counters;
-    WarningStat& failed = w.warnings[WarningKind::failed_step];
-    w.steps = c[0], w.rejected = c[1], w.rhs = c[2], w.jacobians = c[3], w.factorizations = c[4], w.solves = c[5];
-    failed.count = c[6];
-    failed.first_t = r.line_num("integrator.failed_first_t");
+  void set_state(const IntegratorState& s) override {
+    const Eigen::Index n = sys_.problem->size();
+    if (s.method != st_->name())
+      throw StateError("integrator.state", "the state of " + s.method + ", not of " + st_->name());
+    if (!(s.t_prev <= s.t)) throw StateError("integrator.t_prev", "the step's start lies after its end");
+    for (const auto& [key, h] : {std::pair{"integrator.h", s.h}, {"integrator.h_used", s.h_used}})
+      if (!(h >= 0)) throw StateError(key, "a step size must be >= 0");
+    if (!(s.h_cap > 0)) throw StateError("integrator.h_cap", "a step size cap must be > 0");
+    for (const auto& [key, v] : {std::pair{"integrator.y", &s.y},
+                                 {"integrator.f", &s.f},
+                                 {"integrator.y_prev", &s.y_prev},
+                                 {"integrator.f_prev", &s.f_prev}})
+      if (v->size() != n)
+        throw StateError(key, std::to_string(v->size()) + " values for a state of " + std::to_string(n));
+    for (double c : s.interior_c)
+      if (!(c > 0 && c < 1))
+        throw StateError("integrator.interior_c", "an interior node must lie strictly inside the step, in (0, 1)");
+    if (s.interior.size() != s.interior_c.size())
+      throw StateError("integrator.interior", std::to_string(s.interior.size()) + " interior states for " +
+                                                  std::to_string(s.interior_c.size()) + " nodes");
+    for (const Eigen::VectorXd& z : s.interior)
+      if (z.size() != n)
+        throw StateError("integrator.interior",
+                         std::to_string(z.size()) + " values for a state of " + std::to_string(n));
+    if (s.worst < -1 || s.worst >= n) throw StateError("integrator.worst", "not a component of the state");
+    t_ = s.t, t_prev_ = s.t_prev;
+    y_ = s.y, f_ = s.f, y_prev_ = s.y_prev, f_prev_ = s.f_prev;
+    ic_ = s.interior_c, iz_ = s.interior;
+    h_ = s.h, h_used_ = s.h_used, cap_ = s.h_cap, started_ = s.started;
+    worst_ = s.worst, at_floor_ = s.at_floor, failed_in_a_row_ = s.failed_in_a_row;
+    sys_.problem->counters = s.counters;
   }
 
  private:

@@ -4,6 +4,8 @@
 #include <chrono>
 #include <cmath>
 
+#include "io/number_text.hpp"
+
 namespace beltsim {
 
 namespace {
@@ -244,21 +246,46 @@ Timeline::Result Timeline::run_to(double T, const std::atomic<bool>* stop, const
   return r;
 }
 
-std::vector<long> Timeline::positions() const {
-  std::vector<long> k;
-  for (const Periodic& p : periodic_) k.push_back(p.k);
-  return k;
+Timeline::State Timeline::get_state() const {
+  State s{now_, {}, {}};
+  for (const Periodic& p : periodic_) s.next.push_back(p.k);
+  for (const When& w : when_) s.when.push_back({w.last, w.crossing});
+  return s;
 }
 
-void Timeline::set_positions(const std::vector<long>& k) {
-  for (size_t i = 0; i < periodic_.size() && i < k.size(); ++i) periodic_[i].k = k[i];
+void Timeline::check_state(const State& s, double t_prev, double t) const {
+  if (companion_) throw std::logic_error("a schedule with a companion integrator cannot take a state");
+  if (!(t_prev <= s.now && s.now <= t))
+    throw StateError("now", "the time " + number_text(s.now) + " s lies outside the integrator's held step [" +
+                                number_text(t_prev) + ", " + number_text(t) + "] s");
+  for (size_t i = 0; i < periodic_.size() && i < s.next.size(); ++i) {
+    // due next: everything before now delivered, and at most what falls at now still ahead
+    Periodic p = periodic_[i];
+    p.k = s.next[i];
+    const double next = p.time();
+    p.k--;
+    if (s.next[i] < 0 || !(next >= s.now) || (s.next[i] > 0 && !(p.time() <= s.now)))
+      throw StateError("streams", "position " + std::to_string(s.next[i]) + " of stream " + std::to_string(i + 1) +
+                                      " does not fit the time " + number_text(s.now) + " s");
+  }
+  for (size_t i = 0; i < when_.size() && i < s.when.size(); ++i)
+    if (const double c = s.when[i].crossing; !std::isnan(c) && !(c > s.now && c <= t))
+      throw StateError("when.crossing", "a located crossing must lie after now in the held step");
 }
 
-void Timeline::resume_at(double t) {
+void Timeline::set_state(const State& s) {
   started_ = true;
-  now_ = t;
-  integ_.dense(t, y_now_);
-  for (When& w : when_) w.last = w.cond(t, y_now_);
+  in_actions_ = dirty_ = have_new_state_ = false;
+  now_ = s.now;
+  integ_.dense(now_, y_now_);
+  for (size_t i = 0; i < periodic_.size() && i < s.next.size(); ++i) periodic_[i].k = s.next[i];
+  for (size_t i = 0; i < when_.size(); ++i) {
+    When& w = when_[i];
+    if (i < s.when.size())
+      w.last = s.when[i].last, w.crossing = s.when[i].crossing;
+    else
+      w.last = w.cond(now_, y_now_), w.crossing = std::numeric_limits<double>::quiet_NaN();
+  }
 }
 
 }  // namespace beltsim

@@ -94,11 +94,28 @@ class Timeline {
   double now() const { return now_; }
   const Eigen::VectorXd& state() const { return y_now_; }
   const Integrator& integrator() const { return integ_; }
-  // next k of every stream and every-action, for checkpoints (in the order added)
-  std::vector<long> positions() const;
-  void set_positions(const std::vector<long>& k);
-  // the state right after a checkpoint's load: now() and the integrator's own
-  void resume_at(double t);
+
+  // The schedule's state, as plain data (a run's state, sim/sim_state.hpp): where it stands, the
+  // next index of every stream and every-action and each condition's value and located crossing,
+  // in the order added. The actions, outputs and conditions themselves are not state.
+  struct WhenState {
+    bool last = false;                                           // its value at now
+    double crossing = std::numeric_limits<double>::quiet_NaN();  // in the held step, NaN: none
+  };
+  struct State {
+    double now = 0;               // [s]
+    std::vector<long> next;       // of every stream and every-action
+    std::vector<WhenState> when;  // of every condition
+  };
+  State get_state() const;
+  // refuses (StateError naming "now", "streams" or "when") a state that does not fit an integrator
+  // holding the step [t_prev, t]: now inside it, each index the one due next at now, a crossing
+  // after now in it. Entries past those added are ignored (a resumed run's script adds its
+  // callbacks after).
+  void check_state(const State& s, double t_prev, double t) const;
+  // the state set (after check_state, once the integrator holds its state): the solution at now
+  // from the integrator's held step; a condition added but not in the state is evaluated there
+  void set_state(const State& s);
   // called with the time just before the integrator (re)starts there (start, a change, an
   // action's restart): the system learns which side of a jump at that time it starts on
   void on_restart(std::function<void(double t)> fn) { on_restart_ = std::move(fn); }

@@ -180,6 +180,13 @@ void CheckpointReader::open(std::string_view key) {
   const std::string_view got = line_.substr(0, pos_);
   if (got != key) fail("expected '" + std::string(key) + "', got '" + shown(got) + "'");
   key_ = key;
+  if (const auto at = lines_of_.find(key); at != lines_of_.end()) at->second = line_no_;
+  else lines_of_.emplace(key, line_no_);
+}
+
+int CheckpointReader::line_of(std::string_view key) const {
+  const auto at = lines_of_.find(key);
+  return at == lines_of_.end() ? 0 : at->second;
 }
 
 bool CheckpointReader::next_is(std::string_view key) const {

@@ -2,7 +2,7 @@
 // the scene, the drive, the integrator's state), so that the whole file has one format and one
 // version.
 //
-//   beltsim-checkpoint 9             <- what it is, and the format version
+//   beltsim-checkpoint 10            <- what it is, and the format version
 //   integrator "esdirk32"            <- a key, then its values, one field per line
 //   rtol 1e-04
 //   probe 2 0 75                     <- sequences: the count, then the values
@@ -29,9 +29,10 @@
 
 namespace beltsim {
 
-// Raised whenever anything a checkpoint holds changes (src/scene/scene_io.cpp,
-// src/sim/checkpoint.cpp, the integrators' save and load): a reader refuses every other version.
-inline constexpr int kCheckpointVersion = 9;
+// Raised whenever anything a checkpoint holds changes (the scene's fields, scene/scene_fields.hpp;
+// the run's state, sim/state_io.cpp; the settings, sim/checkpoint.cpp): a reader refuses every
+// other version.
+inline constexpr int kCheckpointVersion = 10;
 inline constexpr const char* kCheckpointMagic = "beltsim-checkpoint";
 
 // A checkpoint that cannot be read: "line N: reason".
@@ -122,6 +123,9 @@ class CheckpointReader {
   bool intact() const { return intact_; }
   int line_number() const { return line_no_; }
   const std::string& key() const { return key_; }
+  // the line that last opened with `key`, 0 when none did (a check made after a part is read
+  // names the line of the value it refuses)
+  int line_of(std::string_view key) const;
   // "line N: 'key': what" for the line being read (CheckpointError)
   [[noreturn]] void fail(const std::string& what) const;
   [[noreturn]] void fail_at(int line, std::string_view key, const std::string& what) const;
@@ -147,6 +151,7 @@ class CheckpointReader {
   size_t pos_ = 0;           // in line_
   std::string key_;
   bool intact_ = false;
+  std::map<std::string, int, std::less<>> lines_of_;  // line_of
 };
 
 }  // namespace beltsim

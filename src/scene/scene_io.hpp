@@ -13,8 +13,9 @@
 // for what a single line gets wrong, and CheckpointError naming the lines of the scene for what
 // the validation refuses.
 //
-// Adding a field to Scene, Model, Drive, Pulley, TimeSpeedLaw, Belt, Contact, Friction, Route or
-// ElementSite means adding it here and raising kCheckpointVersion.
+// The fields of each struct are listed once, in scene/scene_fields.hpp: the writer, the reader,
+// the definition a scene gives back and the comparison of two scenes all follow those lists.
+// Adding a field means adding it there and raising kCheckpointVersion.
 #pragma once
 
 #include "io/checkpoint_text.hpp"
@@ -24,6 +25,11 @@
 namespace beltsim {
 
 void write_scene(CheckpointWriter& w, const Scene& sc);
+// the definition a built scene gives back: what the scenario gave that the scene keeps (the
+// pulleys, arms, couplings, the belt per SDE and by its rest length, mass per rest length, μ per
+// element, contact per element, friction, spray zones); what validate(SceneDef) checks of a
+// script's scene it checks of a checkpoint's. allow_large is set: the file's size bounds a scene read.
+SceneDef definition(const Scene& sc);
 Scene read_scene(CheckpointReader& r);
 
 // the drive: each pulley's torque and speed laws and which of them drives it, μ per element,
@@ -31,5 +37,10 @@ Scene read_scene(CheckpointReader& r);
 void write_drive(CheckpointWriter& w, const Model& m, const Drive& d);
 // the drive of the model's scene (its pulleys' names, its element count): validated
 Drive read_drive(CheckpointReader& r, const Model& m);
+
+// the key of the first field in which two scenes (two drives) differ, bit for bit ("belt.sde.k",
+// "pulley.centre [1]"), "" when they are the same in every field a checkpoint holds
+std::string scene_difference(const Scene& a, const Scene& b);
+std::string drive_difference(const Drive& a, const Drive& b);
 
 }  // namespace beltsim

@@ -60,9 +60,9 @@ void IntervalMeans::start(double t) {
   covered_ = from_ = t;
 }
 
-void IntervalMeans::restore(std::vector<double> integral, double from, double covered) {
-  acc_ = std::move(integral);
-  from_ = from, covered_ = covered;
+void IntervalMeans::set_state(const State& s) {
+  acc_ = s.integral;
+  from_ = s.from, covered_ = s.covered;
 }
 
 }  // namespace beltsim

@@ -42,11 +42,14 @@ class IntervalMeans {
   // the next interval starts at t
   void start(double t);
 
-  // checkpoints: the integral so far, the interval's start and how far the integral reaches
-  const std::vector<double>& integral() const { return acc_; }
-  double from() const { return from_; }
-  double covered() const { return covered_; }
-  void restore(std::vector<double> integral, double from, double covered);
+  // its state (a run's state, sim/sim_state.hpp): the integral so far, the interval's start and
+  // how far the integral reaches (the caller checks that it fits: size(), from <= covered <= now)
+  struct State {
+    std::vector<double> integral;
+    double from = 0, covered = 0;  // [s]
+  };
+  State get_state() const { return {acc_, from_, covered_}; }
+  void set_state(const State& s);
 
  private:
   struct StepEnd {

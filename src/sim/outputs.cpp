@@ -1,6 +1,12 @@
 #include "sim/outputs.hpp"
 
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <cerrno>
 #include <cmath>
+#include <cstring>
 #include <exception>
 #include <sstream>
 
@@ -167,6 +173,11 @@ void Outputs::open(bool append) {
   }
   if (rs_.keep_states) states_ = std::make_unique<OutputDir>(dir, "states");
   if (!append) write_parameters(scene_, rs_, dir);
+  open_rows(append);
+}
+
+void Outputs::open_rows(bool append) {
+  const OutputDir& dir = *dir_;
   csv_ = std::make_unique<CsvWriter>(dir, "timeseries.csv", timeseries_columns(scene_, rs_.probes.size()), append);
   events_ = std::make_unique<RowFile>(dir, "events.csv", append);
   if (!append) events_->write("t,what,value\n");
@@ -198,6 +209,7 @@ void Outputs::close(const Warnings& w, const std::string& rows) {
   } catch (...) {
     if (!failed) failed = std::current_exception();
   }
+  if (dir_) last_ = get_state();
   states_.reset();
   dir_.reset();  // the folder is free for another simulation: this one writes nothing more
   if (failed) std::rethrow_exception(failed);
@@ -250,6 +262,77 @@ long Outputs::bytes(const char* name) const { return std::max(0L, dir_->size(nam
 
 long Outputs::frames_written() const { return frames_before_ + (sink_ ? sink_->frames_written() : 0); }
 
-void Outputs::continue_from(long rows, long frames) { rows_ = rows, frames_before_ = frames; }
+Outputs::State Outputs::get_state() const {
+  State s = last_;
+  s.rows = rows_, s.frames = frames_written();
+  if (dir_)
+    s.csv_bytes = bytes("timeseries.csv"), s.events_bytes = bytes("events.csv"),
+    s.snapshots_bytes = has_snapshots() ? bytes("snapshots.csv") : 0;
+  return s;
+}
+
+namespace {
+
+// An output cut back to `bytes`: the position must lie past its header line, on the end of a row,
+// within the file as it is now.
+void check_cut(const std::string& path, long bytes) {
+  const int fd = ::open(path.c_str(), O_RDONLY | O_NONBLOCK | O_NOFOLLOW | O_CLOEXEC);
+  if (fd < 0) throw std::runtime_error("the run's output " + path + " cannot be read: " + std::strerror(errno));
+  struct Closer {
+    int fd;
+    ~Closer() { ::close(fd); }
+  } closer{fd};
+  struct stat st {};
+  if (::fstat(fd, &st) != 0 || !S_ISREG(st.st_mode))
+    throw std::runtime_error("the run's output " + path + " is not a regular file");
+  if (st.st_size < bytes)
+    throw std::runtime_error("the run's output " + path + " (" + std::to_string(st.st_size) +
+                             " bytes) is shorter than when the checkpoint was taken (" + std::to_string(bytes) + ")");
+  // the header: the first line, read in pieces up to the position
+  long header = -1;
+  char buf[4096];
+  for (long at = 0; at < bytes && header < 0;) {
+    const ssize_t n = ::pread(fd, buf, sizeof buf, at);
+    if (n <= 0) break;
+    if (const void* nl = std::memchr(buf, '\n', static_cast<size_t>(n)))
+      header = at + (static_cast<const char*>(nl) - buf) + 1;
+    at += n;
+  }
+  if (header < 0 || bytes < header)
+    throw std::runtime_error("the checkpoint continues " + path + " from byte " + std::to_string(bytes) +
+                             ", inside its header line: cutting it there would lose the header");
+  char last = 0;
+  if (::pread(fd, &last, 1, bytes - 1) != 1 || last != '\n')
+    throw std::runtime_error("the checkpoint continues " + path + " from byte " + std::to_string(bytes) +
+                             ", which is not the end of a row");
+}
+
+}  // namespace
+
+// the files a state cuts, with their sizes in it
+std::vector<std::pair<const char*, long>> Outputs::cuts(const State& s) const {
+  std::vector<std::pair<const char*, long>> c{{"timeseries.csv", s.csv_bytes}, {"events.csv", s.events_bytes}};
+  if (has_snapshots()) c.push_back({"snapshots.csv", s.snapshots_bytes});
+  return c;
+}
+
+void Outputs::check_state(const State& s) const {
+  if (sink_ && s.frames != frames_written())
+    throw std::runtime_error("the run has drawn " + std::to_string(frames_written()) + " frames, the state " +
+                             std::to_string(s.frames) + ": frames drawn cannot be taken back");
+  if (!dir_) return;
+  for (const auto& [name, bytes] : cuts(s)) check_cut(path(name), bytes);
+}
+
+void Outputs::set_state(const State& s) {
+  if (dir_) {
+    for (const auto& [name, bytes] : cuts(s)) dir_->truncate(name, bytes);
+    if (csv_) open_rows(true);  // written on at their new ends (a file opened to be emptied writes at its own offset)
+  }
+  rows_ = s.rows;
+  if (samples_.size() > static_cast<size_t>(s.rows)) samples_.resize(static_cast<size_t>(s.rows));
+  frames_before_ = s.frames - (sink_ ? sink_->frames_written() : 0);
+  last_ = s;
+}
 
 }  // namespace beltsim

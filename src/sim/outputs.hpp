@@ -12,6 +12,7 @@
 
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <Eigen/Core>
@@ -69,8 +70,22 @@ class Outputs {
   long rows() const { return rows_; }        // samples written
   long frames_written() const;
   const std::vector<std::vector<double>>& samples() const { return samples_; }  // keep_samples
-  // a resumed run's counts so far
-  void continue_from(long rows, long frames);
+
+  // Where the outputs stand (a run's state, sim/sim_state.hpp): the counts so far and the sizes of
+  // the files (as measured in the claimed folder; before it is claimed and after close, the last
+  // set or measured).
+  struct State {
+    long rows = 0;                                              // samples written
+    long frames = 0;                                            // frames drawn
+    long csv_bytes = 0, events_bytes = 0, snapshots_bytes = 0;  // 0 for a file that is not there
+  };
+  State get_state() const;
+  // std::runtime_error naming the file when the claimed folder's files cannot be cut back to the
+  // state's sizes (shorter, not a regular file, a size inside the header or not at a row's end), or
+  // when frames drawn since would have to be taken back from a video; nothing is touched
+  void check_state(const State& s) const;
+  // the counts set, the claimed folder's files cut to the state's sizes (check_state first)
+  void set_state(const State& s);
 
  private:
   const Scene& scene_;
@@ -84,6 +99,9 @@ class Outputs {
   std::vector<std::vector<double>> samples_;
   long rows_ = 0;
   long frames_before_ = 0;  // frames written before a resume
+  State last_;              // the sizes set or measured last (get_state without the folder)
+  std::vector<std::pair<const char*, long>> cuts(const State& s) const;
+  void open_rows(bool append);  // timeseries.csv, events.csv, snapshots.csv
 };
 
 }  // namespace beltsim

@@ -65,12 +65,12 @@ Simulation::Simulation(const Scene& sc, const RunSettings& rs, bool fresh) : sce
     tl_->add_when([this, n](double, const Eigen::VectorXd& y) { return spray_changed(drive_.spray, n, y.data()); },
                   [this](double t) { spray_at(t); });
   }
-  if (!fresh) return;  // resume() fills in the rest
+  add_streams();
+  if (!fresh) return;  // a checkpoint's load sets the state (checkpoint.cpp)
 
   out_->open(false);
   for (size_t z = 0; z < drive_.spray.zones.size(); ++z)
     if (drive_.spray.zones[z].on) write_event(0.0, spray_name(static_cast<int>(z)), "on");
-  add_streams();
   set_landings();
   try {
     tl_->start(0.0, scene_.y0);
@@ -87,8 +87,8 @@ Simulation::~Simulation() {
   }
 }
 
-// the outputs' streams, in an order checkpoints rely on: samples, frames, snapshots every dt,
-// snapshots at listed times
+// the outputs' streams, the timeline's first (a state holds their positions in this order, the
+// one place it is written): samples, frames, snapshots every dt, snapshots at listed times
 void Simulation::add_streams() {
   tl_->add_stream(0.0, rs_.sample_dt, [this](double t, const Eigen::VectorXd& y) { sample(t, y); });
   if (const std::optional<FrameSettings> f = frame_times(rs_))
@@ -97,6 +97,7 @@ void Simulation::add_streams() {
     tl_->add_stream(0.0, rs_.snapshot_every, [this](double t, const Eigen::VectorXd& y) { snapshot(t, y); });
   if (!rs_.snapshot_times.empty())
     tl_->add_times(rs_.snapshot_times, [this](double t, const Eigen::VectorXd& y) { snapshot(t, y); });
+  n_streams_ = tl_->get_state().next.size();
 }
 
 bool Simulation::has_snapshots() const { return out_->has_snapshots(); }

@@ -25,6 +25,7 @@
 #include "sim/outputs.hpp"
 #include "sim/run_check.hpp"
 #include "sim/run_settings.hpp"
+#include "sim/sim_state.hpp"
 
 namespace beltsim {
 
@@ -153,7 +154,22 @@ class Simulation {
   bool cancel(int id);
   int callbacks() const { return callbacks_; }
 
-  // ---- checkpoints ------------------------------------------------------------------------
+  // ---- the state (sim/sim_state.hpp; MuJoCo's mj_getState, mj_setState) ---------------------
+  // Everything a continuation needs, as plain data, at now(): at a pause, or inside a callback or
+  // an output (a kept state is taken inside its frame's output). Throws std::invalid_argument
+  // (cannot_save) for an integrator whose state cannot be exported.
+  SimState get_state() const;
+  // Puts a state of this run (its scene, settings and callbacks) back, between run_to calls:
+  // continuing from it gives, bit for bit, what continuing from where it was taken gave. Checks
+  // first that it fits (StateError naming the field: the sizes, each stream's position at its
+  // time, now inside the integrator's held step, the integrator's method) and that the outputs can
+  // be cut back to it (std::runtime_error naming the file: shorter than the state's size, a size
+  // not at a row's end, frames drawn since), and changes nothing when it refuses; then cuts the
+  // CSV files back to the state's sizes and notes "set_state" in events.csv. A checked run
+  // (RunSettings::check) is refused (std::logic_error): its companion's state is not part of it.
+  void set_state(const SimState& s);
+
+  // ---- checkpoints (the settings, the scene and the state in text: sim/state_io.hpp) ---------
   // state, integrator state, laws, μ, pending events, output positions. Callbacks are not saved
   // (their count is): the resumed simulation needs them registered again by the script. Throws
   // std::invalid_argument (cannot_save) for an integrator whose state cannot be saved.
@@ -175,6 +191,11 @@ class Simulation {
   // resume (outputs: continue them) or open_checkpoint (no outputs)
   static std::unique_ptr<Simulation> load(const std::string& path, const FrameSinkFactory& factory, int* callbacks,
                                           const std::function<void(const RunSettings&)>& vet, bool outputs);
+  // set_state's parts: whether the state fits (StateError; the integrator's state and the outputs'
+  // files are checked by Integrator::set_state and Outputs::check_state), and the state set but
+  // the integrator's
+  void check_state(const SimState& s) const;
+  void apply_state(const SimState& s);
   // the checkpoint of now (save, and a kept state at a frame time: inside the frame stream's
   // output, now() is that time and the integrator holds the step that crosses it)
   std::string checkpoint_text() const;
@@ -202,6 +223,7 @@ class Simulation {
   std::unique_ptr<IntervalMeans> means_;
   std::unique_ptr<Outputs> out_;
   std::unique_ptr<RunCheck> check_;  // with RunSettings::check
+  size_t n_streams_ = 0;             // the output streams (add_streams), the timeline's first
   std::vector<MuEvent> pending_;  // timed μ changes still ahead
   double E0_ = 0;
   double wall_ = 0;

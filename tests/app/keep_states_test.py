@@ -168,8 +168,8 @@ class KeepStates(unittest.TestCase):
         other = os.path.join("other", "states", "state_00000.ckpt")
         code, out, err = run(["render", first, other, "--out", "mixed"], self.dir)
         self.assertEqual(code, 1)
-        self.assertEqual(err, "beltsim render: %s: a state of another scene than %s's (one render draws the states "
-                              "of one scene)\n" % (other, first))
+        self.assertEqual(err, "beltsim render: %s: a state of another scene than %s's (its belt.elements differs; one "
+                              "render draws the states of one scene)\n" % (other, first))
         self.assertEqual(self.listing("mixed"), ["state_00000.png"])
 
 

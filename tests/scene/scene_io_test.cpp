@@ -8,6 +8,7 @@
 
 #include <cmath>
 #include <cstring>
+#include <functional>
 #include <limits>
 #include <map>
 #include <set>
@@ -30,149 +31,9 @@ using test::line_of;
 using test::resealed;
 using test::with_line;
 
-bool same(double a, double b) { return std::memcmp(&a, &b, sizeof a) == 0; }
-
-#define EXPECT_SAME(a, b) EXPECT_TRUE(same(a, b)) << #a << ": " << (a) << " vs " << (b)
-
-void expect_same(const Vec2& a, const Vec2& b, const char* what) {
-  EXPECT_TRUE(same(a.x(), b.x()) && same(a.y(), b.y())) << what;
-}
-void expect_same(const double* a, const double* b, size_t na, size_t nb, const char* what) {
-  ASSERT_EQ(na, nb) << what;
-  for (size_t i = 0; i < na; ++i) EXPECT_TRUE(same(a[i], b[i])) << what << "[" << i << "]: " << a[i] << " vs " << b[i];
-}
-void expect_same(const std::vector<double>& a, const std::vector<double>& b, const char* what) {
-  expect_same(a.data(), b.data(), a.size(), b.size(), what);
-}
-void expect_same(const Eigen::VectorXd& a, const Eigen::VectorXd& b, const char* what) {
-  expect_same(a.data(), b.data(), a.size(), b.size(), what);
-}
-void expect_same(const std::map<std::string, double>& a, const std::map<std::string, double>& b, const char* what) {
-  ASSERT_EQ(a.size(), b.size()) << what;
-  for (auto i = a.begin(), j = b.begin(); i != a.end(); ++i, ++j) {
-    EXPECT_EQ(i->first, j->first) << what;
-    EXPECT_TRUE(same(i->second, j->second)) << what << "[" << i->first << "]";
-  }
-}
-
-void expect_same(const TimeSpeedLaw& a, const TimeSpeedLaw& b) {
-  EXPECT_SAME(a.constant, b.constant);
-  EXPECT_SAME(a.per_speed, b.per_speed);
-  expect_same(a.t, b.t, "law.t");
-  expect_same(a.value, b.value, "law.value");
-  expect_same(a.omega, b.omega, "law.omega");
-  expect_same(a.omega_value, b.omega_value, "law.omega_value");
-  ASSERT_EQ(a.ramps.size(), b.ramps.size());
-  for (size_t k = 0; k < a.ramps.size(); ++k) {
-    EXPECT_SAME(a.ramps[k].t0, b.ramps[k].t0);
-    EXPECT_SAME(a.ramps[k].t1, b.ramps[k].t1);
-    EXPECT_SAME(a.ramps[k].from, b.ramps[k].from);
-    EXPECT_SAME(a.ramps[k].to, b.ramps[k].to);
-    EXPECT_EQ(a.ramps[k].cosine, b.ramps[k].cosine);
-  }
-  ASSERT_EQ(a.sines.size(), b.sines.size());
-  for (size_t k = 0; k < a.sines.size(); ++k) {
-    EXPECT_SAME(a.sines[k].mean, b.sines[k].mean);
-    EXPECT_SAME(a.sines[k].amplitude, b.sines[k].amplitude);
-    EXPECT_SAME(a.sines[k].frequency, b.sines[k].frequency);
-    EXPECT_SAME(a.sines[k].phase, b.sines[k].phase);
-  }
-  ASSERT_EQ(a.harmonics.size(), b.harmonics.size());
-  for (size_t k = 0; k < a.harmonics.size(); ++k) {
-    EXPECT_SAME(a.harmonics[k].order, b.harmonics[k].order);
-    EXPECT_SAME(a.harmonics[k].amplitude, b.harmonics[k].amplitude);
-    EXPECT_SAME(a.harmonics[k].phase, b.harmonics[k].phase);
-    EXPECT_SAME(a.harmonics[k].mean_speed, b.harmonics[k].mean_speed);
-  }
-}
-
-void expect_same(const Model& a, const Model& b) {
-  ASSERT_EQ(a.pulleys.size(), b.pulleys.size());
-  for (size_t j = 0; j < a.pulleys.size(); ++j) {
-    const Pulley &p = a.pulleys[j], &q = b.pulleys[j];
-    EXPECT_EQ(p.name, q.name);
-    expect_same(p.centre, q.centre, "pulley.centre");
-    EXPECT_SAME(p.radius, q.radius);
-    EXPECT_SAME(p.inertia, q.inertia);
-    EXPECT_EQ(p.wrap, q.wrap);
-  }
-  EXPECT_EQ(a.belt.n, b.belt.n);
-  EXPECT_SAME(a.belt.pitch, b.belt.pitch);
-  EXPECT_SAME(a.belt.rigid_length, b.belt.rigid_length);
-  EXPECT_SAME(a.belt.mass, b.belt.mass);
-  EXPECT_SAME(a.belt.rot_inertia, b.belt.rot_inertia);
-  EXPECT_SAME(a.belt.k, b.belt.k);
-  EXPECT_SAME(a.belt.c, b.belt.c);
-  EXPECT_SAME(a.belt.kt, b.belt.kt);
-  EXPECT_SAME(a.belt.ct, b.belt.ct);
-  EXPECT_SAME(a.belt.e_tra, b.belt.e_tra);
-  EXPECT_SAME(a.belt.e_tor, b.belt.e_tor);
-  EXPECT_SAME(a.contact.c1, b.contact.c1);
-  EXPECT_SAME(a.contact.c2, b.contact.c2);
-  EXPECT_SAME(a.contact.b, b.contact.b);
-  EXPECT_SAME(a.contact.p_max, b.contact.p_max);
-  EXPECT_SAME(a.friction.dv, b.friction.dv);
-  EXPECT_EQ(a.friction.law, b.friction.law);
-  EXPECT_SAME(a.friction.static_ratio, b.friction.static_ratio);
-  EXPECT_SAME(a.friction.stribeck_speed, b.friction.stribeck_speed);
-  EXPECT_SAME(a.friction.exponent, b.friction.exponent);
-  EXPECT_SAME(a.friction.viscous, b.friction.viscous);
-  EXPECT_SAME(a.gravity, b.gravity);
-  EXPECT_EQ(a.track_energy, b.track_energy);
-}
-
-void expect_same(const Drive& a, const Drive& b) {
-  ASSERT_EQ(a.pulleys.size(), b.pulleys.size());
-  for (size_t j = 0; j < a.pulleys.size(); ++j) {
-    const PulleyDrive &p = a.pulleys[j], &q = b.pulleys[j];
-    EXPECT_EQ(p.kinematic, q.kinematic);
-    expect_same(p.torque, q.torque);
-    expect_same(p.speed, q.speed);
-  }
-  expect_same(a.mu, b.mu, "mu");
-  EXPECT_SAME(a.restart_time, b.restart_time);
-}
-
-void expect_same(const Scene& a, const Scene& b) {
-  expect_same(a.model, b.model);
-  expect_same(a.drive, b.drive);
-  expect_same(a.y0, b.y0, "y0");
-  ASSERT_EQ(a.route.spans.size(), b.route.spans.size());
-  for (size_t k = 0; k < a.route.spans.size(); ++k) {
-    expect_same(a.route.spans[k].from, b.route.spans[k].from, "span.from");
-    expect_same(a.route.spans[k].to, b.route.spans[k].to, "span.to");
-    EXPECT_SAME(a.route.spans[k].length, b.route.spans[k].length);
-  }
-  ASSERT_EQ(a.route.arcs.size(), b.route.arcs.size());
-  for (size_t k = 0; k < a.route.arcs.size(); ++k) {
-    const Route::Arc &p = a.route.arcs[k], &q = b.route.arcs[k];
-    expect_same(p.centre, q.centre, "arc.centre");
-    EXPECT_SAME(p.radius, q.radius);
-    EXPECT_EQ(p.sense, q.sense);
-    EXPECT_SAME(p.start_angle, q.start_angle);
-    EXPECT_SAME(p.angle, q.angle);
-  }
-  EXPECT_SAME(a.route.length, b.route.length);
-  EXPECT_EQ(a.route_names, b.route_names);
-  EXPECT_EQ(a.route_pulleys, b.route_pulleys);
-  expect_same(a.penetration, b.penetration, "penetration");
-  EXPECT_EQ(a.reading, b.reading);
-  EXPECT_SAME(a.static_tension, b.static_tension);
-  EXPECT_SAME(a.static_residual, b.static_residual);
-  EXPECT_EQ(a.static_retried, b.static_retried);
-  EXPECT_EQ(a.span_sde, b.span_sde);
-  ASSERT_EQ(a.sites.size(), b.sites.size());
-  for (size_t i = 0; i < a.sites.size(); ++i) {
-    const ElementSite &p = a.sites[i], &q = b.sites[i];
-    EXPECT_EQ(p.index, q.index);
-    expect_same(p.centre, q.centre, "site.centre");
-    EXPECT_SAME(p.s, q.s);
-    EXPECT_SAME(p.length, q.length);
-    EXPECT_EQ(p.pulley, q.pulley);
-    expect_same(p.meets, q.meets, "site.meets");
-    expect_same(p.leaves, q.leaves, "site.leaves");
-  }
-}
+// every field a checkpoint holds is the same, bit for bit (the fields' lists, scene/scene_fields.hpp)
+void expect_same(const Scene& a, const Scene& b) { EXPECT_EQ(scene_difference(a, b), ""); }
+void expect_same(const Drive& a, const Drive& b) { EXPECT_EQ(drive_difference(a, b), ""); }
 
 std::string scene_text(const Scene& sc) {
   CheckpointWriter w;
@@ -327,8 +188,87 @@ TEST(SceneIo, DriveRoundTrip) {
     read_drive(r2, other);
     ADD_FAILURE() << "read a drive of other pulleys";
   } catch (const CheckpointError& e) {
-    EXPECT_EQ(std::string(e.what()), "line 3: 'pulley.drive': expected the drive of pulley 'driver'");
+    EXPECT_EQ(std::string(e.what()), "line " + std::to_string(line_of(text, "belt.mu")) + ": 'belt.mu': " +
+                                         std::to_string(sc.model.n_el()) + " values for 60 elements");
   }
+}
+
+// The definition a built scene gives back (what a checkpoint's scene is validated as) is the one
+// it was built from in every field the scene keeps: the pulleys, the tensioner arm, a one-way
+// coupling, the belt's per-SDE values, contact, friction and gravity; and the belt's mass per
+// metre of rest length, which the build multiplies by an element's rest length l0 (m = ρ·l0,
+// build::set_rest_length), not by its pitch: the belt at rest is stretched, l > l0.
+TEST(SceneIo, TheDefinitionIsTheOneTheSceneWasBuiltFrom) {
+  SceneDef d = presets::automotive_tensioner();
+  CouplingDef& cd = d.pulleys[2].coupling.emplace();
+  cd.inertia = 2e-3, cd.stiffness = 40, cd.one_way = true;
+  d.track_energy = true;
+  const Scene sc = build_scene(d);
+  const Belt& belt = sc.model.belt;
+  ASSERT_GT(belt.pitch / belt.rigid_length - 1, 1e-4);  // stretched: per pitch and per l0 differ
+  const SceneDef back = definition(sc);
+  // ρ·l0/l0: two roundings, each within half an ulp of the value
+  EXPECT_NEAR(back.belt.mass_per_length, d.belt.mass_per_length, 4e-16 * d.belt.mass_per_length);
+  ASSERT_EQ(back.pulleys.size(), d.pulleys.size());
+  for (size_t j = 0; j < d.pulleys.size(); ++j) {
+    const PulleyDef &a = d.pulleys[j], &b = back.pulleys[j];
+    EXPECT_EQ(b.name, a.name);
+    EXPECT_EQ(b.centre, a.centre) << a.name;
+    EXPECT_EQ(b.radius, a.radius) << a.name;
+    EXPECT_EQ(b.inertia, a.inertia) << a.name;
+    EXPECT_EQ(b.wrap, a.wrap) << a.name;
+    EXPECT_EQ(b.kinematic, a.kinematic) << a.name;
+    EXPECT_EQ(b.tensioner.has_value(), a.tensioner.has_value()) << a.name;
+    EXPECT_EQ(b.coupling.has_value(), a.coupling.has_value()) << a.name;
+  }
+  const TensionerDef &t = *d.pulleys[1].tensioner, &tb = *back.pulleys[1].tensioner;
+  EXPECT_EQ(tb.pivot, t.pivot);
+  for (const auto& [x, y] : {std::pair{tb.inertia, t.inertia},
+                             {tb.stiffness, t.stiffness},
+                             {tb.damping, t.damping},
+                             {tb.friction_torque, t.friction_torque},
+                             {tb.friction_speed, t.friction_speed},
+                             {tb.asymmetric, t.asymmetric}})
+    EXPECT_EQ(x, y);
+  const CouplingDef& cb = *back.pulleys[2].coupling;
+  for (const auto& [x, y] : {std::pair{cb.inertia, cd.inertia},
+                             {cb.stiffness, cd.stiffness},
+                             {cb.damping, cd.damping},
+                             {cb.hub_inertia, cd.hub_inertia},
+                             {cb.lock_damping, cd.lock_damping},
+                             {cb.drag_torque, cd.drag_torque}})
+    EXPECT_EQ(x, y);
+  EXPECT_EQ(cb.one_way, cd.one_way);
+  EXPECT_EQ(back.belt.elements, d.belt.elements);
+  EXPECT_EQ(back.belt.k, belt.k);
+  EXPECT_EQ(back.belt.ct, belt.ct);
+  EXPECT_EQ(back.belt.rest_length, belt.rigid_length * belt.n);
+  EXPECT_EQ(back.contact.c1, sc.model.contact.c1);
+  EXPECT_EQ(back.friction.dv, d.friction.dv);
+  EXPECT_EQ(back.gravity, d.gravity);
+  EXPECT_EQ(back.track_energy, d.track_energy);
+  EXPECT_EQ(back.belt.mu_per_element, sc.drive.mu);
+}
+
+// the comparison (scene_difference, the fields' lists) names the first field that differs, bit for
+// bit: a -0 for a 0 too, in the state, a law, an element site
+TEST(SceneIo, TheDifferenceNamesTheFirstFieldThatDiffers) {
+  const Scene& sc = automotive();
+  EXPECT_EQ(scene_difference(sc, sc), "");
+  auto changed = [&](const std::function<void(Scene&)>& change) {
+    Scene other = sc;
+    change(other);
+    return scene_difference(sc, other);
+  };
+  EXPECT_EQ(changed([](Scene& s) { s.model.belt.k *= 1 + 1e-16 * 4; }), "belt.sde.k");
+  EXPECT_EQ(changed([](Scene& s) { s.model.pulleys[2].centre.y() += 1e-9; }), "pulley.centre [2]");
+  EXPECT_EQ(changed([](Scene& s) { s.model.friction.release_time = 1; }), "friction.release_time");
+  EXPECT_EQ(changed([](Scene& s) { s.y0[4] = s.y0[4] == 0 ? -0.0 : -s.y0[4]; }), "y0");
+  EXPECT_EQ(changed([](Scene& s) { s.drive.pulleys[0].torque.constant += 1; }), "pulley.torque [0]");
+  EXPECT_EQ(changed([](Scene& s) { s.drive.mu[7] = 0.5; }), "belt.mu");
+  EXPECT_EQ(changed([](Scene& s) { s.sites[9].leaves.begin()->second += 1; }), "site.leaves [9]");
+  EXPECT_EQ(changed([](Scene& s) { s.static_retried = !s.static_retried; }), "static_retried");
+  EXPECT_EQ(changed([](Scene& s) { s.inputs.pop_back(); }), "input. (count)");
 }
 
 // the keys are the scenario's Lua names
@@ -379,8 +319,10 @@ TEST(SceneIo, WrongKeywordOrVersionIsRefused) {
                 " only: resume it with the beltsim that wrote it, or run the scene again from its script");
   // version 5 held each input's unit and note; 6 takes them from the parameter table; 7 holds spray zones, the
   // friction law and the couplings; 8 LuGre's parameters, the bristles' deflections and the run's keep_states;
-  // 9 the frames' paths as given (relative ones inside the output folder), not joined to the folder
-  for (const int v : {5, 6, 7, 8})
+  // 9 the frames' paths as given (relative ones inside the output folder), not joined to the folder; 10 each
+  // struct's fields by its list (scene/scene_fields.hpp) and each part of the run's state by its struct
+  // (sim/state_io.hpp)
+  for (const int v : {5, 6, 7, 8, 9})
     EXPECT_EQ(read_error("beltsim-checkpoint " + std::to_string(v) + "\nscene 4\n"),
               "line 1: a version " + std::to_string(v) +
                   " checkpoint; this beltsim reads version " + std::to_string(kCheckpointVersion) +
@@ -485,8 +427,7 @@ TEST(SceneIo, CountsAreBoundedByTheTextAndTheScene) {
       "line " + std::to_string(line_of(text, "sites")) + ": 'sites': expected an integer, got '99999999999999999999'");
   // the element count must agree with every per-element list
   EXPECT_EQ(read_error(resealed(with_line(text, "belt.elements", "belt.elements 59"))),
-            "line " + std::to_string(line_of(text, "belt.mu")) + ": 'belt.mu': 60 values, more than the 59 this " +
-                "checkpoint's scene has room for");
+            "line " + std::to_string(line_of(text, "belt.mu")) + ": 'belt.mu': 60 values for 59 elements");
 }
 
 // the scene is checked as a script's scene is (validate(SceneDef)), with the scenario's names
@@ -509,11 +450,12 @@ TEST(SceneIo, SceneIsValidatedAsAScriptsScene) {
                 std::string(rule_text(Rule::friction_coefficient)) + " (got -0.5)");
   EXPECT_EQ(read_error(resealed(with_line(text, "belt.mu", "belt.mu 2 0.3 0.3"))),
             "line " + std::to_string(line_of(text, "belt.mu")) + ": 'belt.mu': 2 values for 60 elements");
-  // a law a script could not give
-  EXPECT_EQ(read_error(resealed(with_line(text, "pulley.torque.table", "pulley.torque.table 2 0.1 1 0.05 2"))),
-            "line " + std::to_string(line_of(text, "pulley.torque.harmonics")) +
-                ": 'pulley.torque.harmonics': pulley 'driver'.torque.table entry 2 must be larger than the entry "
-                "before it (got 0.05 s)");
+  // a law a script could not give: the lines of its pulley's drive
+  EXPECT_EQ(read_error(resealed(with_line(with_line(text, "pulley.torque.table.t", "pulley.torque.table.t 2 0.1 0.05"),
+                                          "pulley.torque.table.value", "pulley.torque.table.value 2 1 2"))),
+            "lines " + std::to_string(line_of(text, "pulley.drive")) + " to " +
+                std::to_string(line_of(text, "pulley.speed.harmonics")) +
+                ": pulley 'driver'.torque.table entry 2 must be larger than the entry before it (got 0.05 s)");
 }
 
 }  // namespace
