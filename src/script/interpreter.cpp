@@ -32,6 +32,7 @@ Interpreter::Interpreter(const Safety& safety)
     luaL_openlibs(L_);
   else
     open_sandbox(L_, ctx_.get());
+  guard_limits(L_);  // also trusted: the limits hold for every script
   ctx_->law_host->L = L_;
   open_beltsim(L_, ctx_.get());
   install_hook(L_);

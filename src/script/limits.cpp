@@ -41,18 +41,18 @@ void hook(lua_State* L, lua_Debug* ar) {
   Limits& g = limits_of(L);
   const int count = lua_gethookcount(L);
   g.used += static_cast<std::uint64_t>(count);
-  std::string why;
-  if (g.interrupt.load(std::memory_order_relaxed)) {
-    why = "interrupted!";
-  } else if (g.max_instructions != 0 && g.used > g.max_instructions) {
-    why = "the instruction limit was reached: more than " + std::to_string(g.max_instructions) +
-          " Lua instructions in one call (a script run or a console command, with the callbacks it runs; a loop "
-          "that never ends?); --max-instructions N raises it, 0 removes it";
-  } else if (g.over_memory) {
-    g.over_memory = false;
-    why = "the Lua heap reached its limit of " + mib(g.max_bytes) +
-          " MiB; --max-lua-memory MiB raises it, 0 removes it";
+  if (g.fired.empty()) {
+    if (g.max_instructions != 0 && g.used > g.max_instructions) {
+      g.fired = "the instruction limit was reached: more than " + std::to_string(g.max_instructions) +
+                " Lua instructions in one call (a script run or a console command, with the callbacks it runs; a "
+                "loop that never ends?); --max-instructions N raises it, 0 removes it";
+    } else if (g.over_memory) {
+      g.over_memory = false;
+      g.fired = "the Lua heap reached its limit of " + mib(g.max_bytes) +
+                " MiB; --max-lua-memory MiB raises it, 0 removes it";
+    }
   }
+  const std::string why = g.interrupt.load(std::memory_order_relaxed) ? "interrupted!" : g.fired;
   if (why.empty()) {
     if (!permanent(g))
       lua_sethook(L, nullptr, 0, 0);  // armed for nothing (an interrupt already cleared)
@@ -69,6 +69,35 @@ void hook(lua_State* L, lua_Debug* ar) {
     where = std::string(ar->short_src) + ":" + std::to_string(ar->currentline) + ": ";
   lua_pushstring(L, (where + why).c_str());
   lua_error(L);  // a C++ exception (liblua5.4-c++): the strings are destroyed
+}
+
+// the script's message handler (upvalue 1), unless a limit fired: Lua calls a handler with hooks
+// off for an error the hook raised (its code could run for ever there), and that error is the
+// limit's own, given back as it is
+int guarded_handler(lua_State* L) {
+  if (limit_fired(L)) return 1;
+  lua_pushvalue(L, lua_upvalueindex(1));
+  lua_insert(L, 1);
+  lua_call(L, lua_gettop(L) - 1, 1);
+  return 1;
+}
+
+int xpcall_done(lua_State* L, int /*status*/, lua_KContext /*ctx*/) { return lua_gettop(L); }
+
+// xpcall(f, msgh, ...): Lua's (upvalue 1) with msgh guarded; none once a limit fired
+int l_xpcall(lua_State* L) {
+  const Limits& g = limits_of(L);
+  if (g.interrupt.load(std::memory_order_relaxed)) return luaL_error(L, "interrupted!");
+  if (!g.fired.empty()) return luaL_error(L, "%s", g.fired.c_str());
+  luaL_checktype(L, 2, LUA_TFUNCTION);
+  const int n = lua_gettop(L);
+  lua_pushvalue(L, 2);
+  lua_pushcclosure(L, guarded_handler, 1);
+  lua_replace(L, 2);
+  lua_pushvalue(L, lua_upvalueindex(1));
+  lua_insert(L, 1);
+  lua_callk(L, n, LUA_MULTRET, 0, xpcall_done);  // f may yield (in a coroutine)
+  return xpcall_done(L, LUA_OK, 0);
 }
 
 }  // namespace
@@ -127,6 +156,7 @@ void begin_call(lua_State* L) {
   g.used = 0;
   g.over_memory = false;
   g.refused = 0;
+  g.fired.clear();
   g.interrupt.store(false);
   if (permanent(g))
     lua_sethook(g.main, hook, LUA_MASKCOUNT, kSlice);
@@ -139,6 +169,17 @@ void clear_interrupt(lua_State* L) { limits_of(L).interrupt.store(false); }
 void interrupt(Limits& g) {
   g.interrupt.store(true);
   if (!permanent(g)) arm(g);
+}
+
+bool limit_fired(lua_State* L) {
+  const Limits& g = limits_of(L);
+  return !g.fired.empty() || g.interrupt.load(std::memory_order_relaxed);
+}
+
+void guard_limits(lua_State* L) {
+  lua_getglobal(L, "xpcall");
+  lua_pushcclosure(L, l_xpcall, 1);
+  lua_setglobal(L, "xpcall");
 }
 
 bool memory_message(lua_State* L, int status, const std::string& where, std::string& msg) {

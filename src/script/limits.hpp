@@ -5,8 +5,11 @@
 // callbacks of a live simulation count against the command that runs them) and raises an error
 // naming file:line when the budget is spent. The same hook honours Ctrl-C: the console's signal
 // handler calls interrupt(), which sets a flag, and the hook raises "interrupted!" at the next
-// slice of instructions. Once either fires, the hook runs at every instruction and raises again
-// each time until the host call ends, so a `pcall` in a loop cannot swallow it for ever.
+// slice of instructions. Once a limit or Ctrl-C fires, the hook runs at every instruction and
+// raises again each time until the host call ends, so a `pcall` in a loop cannot swallow it for
+// ever. Lua calls a message handler with hooks off when the error was raised by the hook, where no
+// limit could stop it: guard_limits' xpcall gives such an error back unchanged without running the
+// script's handler, and refuses to start once a limit fired.
 // Any count hook halves the speed of pure Lua code (Lua 5.4 then traps every instruction), so
 // without an instruction limit (max_instructions = 0) there is no permanent hook: interrupt() and
 // the allocator arm the same hook for the next instruction when they need it.
@@ -36,6 +39,7 @@ struct Limits {
   bool retried = false;                // an allocation was refused once: the next one is Lua's retry
   bool over_memory = false;            // a small allocation went past the limit: the hook raises
   std::size_t refused = 0;             // size of the last allocation refused outright (bytes)
+  std::string fired;                   // the limit that fired in this host call ("": none); raised again
   std::atomic<bool> interrupt{false};  // Ctrl-C: set from a signal handler, cleared by the host
   lua_State* main = nullptr;
 };
@@ -51,6 +55,11 @@ void begin_call(lua_State* L);
 void clear_interrupt(lua_State* L);
 // Ctrl-C: "interrupted!" at the next slice of instructions (async-signal-safe)
 void interrupt(Limits& g);
+// a limit fired in this host call, or Ctrl-C is pending: no more Lua code is to run in it
+bool limit_fired(lua_State* L);
+// replaces xpcall (both in the sandbox and with --trusted) with one whose message handler does not
+// run once a limit fired (see above)
+void guard_limits(lua_State* L);
 // true when `status`/the error object on the stack top is a memory error; then `msg` is the
 // message naming the limit (prefixed with `where`, e.g. the script's name)
 bool memory_message(lua_State* L, int status, const std::string& where, std::string& msg);
