@@ -1,6 +1,7 @@
-// The limits on every call into Lua (src/script/limits.cpp; docs/limits-and-safety.md): an
-// instruction limit and a memory limit with clear messages, Ctrl-C through the same hook, and none
-// of them escaped through a message handler.
+// The limits on every call into Lua (src/script/limits.cpp, lua_clock.cpp;
+// docs/limits-and-safety.md): an instruction limit, a memory limit and wall-time and CPU-time
+// limits with clear messages, Ctrl-C through the same hook, none of them escaped through a message
+// handler or a long C function, and beltsim's own work not counted against a call's time.
 #include <gtest/gtest.h>
 
 #include <atomic>
@@ -13,6 +14,7 @@
 #include "lua.h"
 #include "run_script.hpp"
 #include "script/interpreter.hpp"
+#include "script/lua_clock.hpp"
 #include "support/scenes.hpp"
 #include "support/scratch.hpp"
 
@@ -159,6 +161,131 @@ TEST(Limits, XpcallIsLuasOtherwise) {
           "assert(not ok4 and e:find(\"bad argument #2 to 'xpcall'\"), e)\n",
           s),
       "");
+}
+
+// ---- time --------------------------------------------------------------------------------------
+
+// The forms of Lua code and long C functions that stop in the process: every one stops with the
+// limit's message, with and without a permanent hook (an instruction limit). (A string pattern
+// that backtracks ends the process instead: tests/app/time_limits_test.py.)
+TEST(TimeLimits, EveryLongCallStops) {
+  const std::string loop = "function() while true do end end";
+  const std::vector<std::string> forms{
+      "while true do end",
+      "while true do pcall(" + loop + ") end",
+      "xpcall(error, " + loop + ")",
+      "coroutine.wrap(" + loop + ")()",
+      "table.move({}, 1, 2^62, 2)",
+      "local t = {} for i = 1, 1e5 do t[i] = {} end while true do collectgarbage() end",
+      "while true do local s = ('x'):rep(2^24) end",
+      "local s = ('x'):rep(2^24) while true do local u = s:upper() end",
+      "coroutine.wrap(function() while true do pcall(string.rep, 'x', 2^24) end end)()",
+  };
+  for (const std::uint64_t instructions : {std::uint64_t(10'000'000'000), std::uint64_t(0)}) {
+    Safety s;
+    s.max_instructions = instructions;
+    s.max_lua_wall = 0.2;
+    for (const std::string& form : forms)
+      expect_has(run("local x = 1\n" + form + "\n", s),
+                 {"limits.lua", "the wall-time limit of a Lua call was reached: more than 0.2 s", "--max-lua-wall"});
+  }
+}
+
+// in a coroutine the hook comes every 1000 instructions: 300 full collections of a heap of a
+// million tables (10 ms each here) would pass the grace after the limit
+TEST(TimeLimits, CollectionsInACoroutineStop) {
+  Safety s;
+  s.max_lua_wall = 1;  // past the making of the heap (0.2 s here)
+  expect_has(run("local x = 1\n"
+                 "coroutine.wrap(function() local t = {} for i = 1, 1e6 do t[i] = {} end "
+                 "while true do collectgarbage() end end)()\n",
+                 s),
+             {"limits.lua:2: ", "the wall-time limit of a Lua call was reached", "--max-lua-wall"});
+}
+
+TEST(TimeLimits, TheCpuLimitStopsALoop) {
+  Safety s;
+  s.max_instructions = 0;
+  s.max_lua_wall = 0;
+  s.max_lua_cpu = 0.2;
+  expect_has(run("local x = 1\nwhile true do end\n", s),
+             {"limits.lua:2: the CPU-time limit of a Lua call was reached: more than 0.2 s", "--max-lua-cpu"});
+}
+
+TEST(TimeLimits, EachCallHasItsOwnTime) {
+  Safety s;
+  s.max_lua_wall = 0.3;
+  Interpreter lua(s);
+  // about 0.2 s of Lua code each (0.1 s of CPU measured here): the calls pass one by one
+  const std::string part = "local t0 = os.clock() while os.clock() - t0 < 0.1 do end\n";
+  EXPECT_EQ(run(lua, part), "");
+  EXPECT_EQ(run(lua, part), "");
+  EXPECT_NE(run(lua, part + part + part + part).find("wall-time limit"), std::string::npos);
+  EXPECT_EQ(run(lua, part), "") << "the next call has its time again";
+}
+
+// a run is beltsim's work, and each call of a law or callback in it a call of its own: a run that
+// takes many times the limit, with a Lua law and a callback, passes
+TEST(TimeLimits, BeltsimsOwnWorkIsNotCounted) {
+  Safety s;
+  s.max_lua_wall = 0.05;  // five looks of the clock
+  s.max_lua_cpu = 0.05;
+  beltsim::test::TwoPulley p;
+  p.driver = "torque = function(t, w) return -70 * math.min(t / 0.3, 1) end";
+  const auto t0 = std::chrono::steady_clock::now();
+  EXPECT_EQ(run(beltsim::test::two_pulley(p) + "local sim = s:start{ progress = false }\n"
+                                               "local n = 0\n"
+                                               "sim:every(0.001, function() n = n + 1 end)\n"
+                                               "sim:run_to(0.5)\n"
+                                               "assert(n > 100, n)\n",
+                s),
+            "");
+  EXPECT_GT(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(), 10 * s.max_lua_wall)
+      << "the script was too quick to show anything";
+}
+
+TEST(TimeLimits, ALawOrACallbackThatLoopsIsStopped) {
+  Safety s;
+  s.max_instructions = 0;
+  s.max_lua_wall = 0.2;
+  beltsim::test::TwoPulley p;
+  p.driver = "torque = function(t, w) if t > 0.001 then while true do end end return -70 end";
+  expect_has(run(beltsim::test::two_pulley(p) + "s:run{ t_end = 0.01, progress = false }\n", s),
+             {"limits.lua:3: ", "wall-time limit", "--max-lua-wall"});
+  expect_has(run(kScene + "local sim = s:start{ progress = false }\n"
+                          "sim:every(0.001, function() while true do end end)\n"
+                          "sim:run_to(0.01)\n",
+                 s),
+             {"limits.lua:9: ", "wall-time limit", "--max-lua-wall"});
+}
+
+// the clock's charging, from looks given here: only time in Lua code counts, a call's own
+TEST(CallClock, ChargesLuaTimeToTheCallUnderWay) {
+  using M = LuaMode;
+  CallClock c;
+  const auto look = [&](M mode, std::uint64_t call, int depth, double t, bool steady = true) {
+    return c.look({mode, call, depth, t, t / 2, steady}, 1.0, 0.0);
+  };
+  EXPECT_EQ(look(M::kOutside, 0, 0, 0), TimeUp::kNone);
+  EXPECT_EQ(look(M::kLua, 1, 0, 0.1), TimeUp::kNone);   // a new call: from the next look on
+  EXPECT_EQ(look(M::kLua, 1, 0, 0.6), TimeUp::kNone);   // 0.5 s
+  EXPECT_EQ(look(M::kWork, 1, 0, 5.0), TimeUp::kNone);  // beltsim's own work: not counted
+  EXPECT_EQ(look(M::kLua, 2, 1, 5.1), TimeUp::kNone);   // a law: a call of its own
+  EXPECT_EQ(look(M::kLua, 2, 1, 6.0), TimeUp::kNone);   // 0.9 s of the law's
+  EXPECT_EQ(look(M::kLua, 3, 1, 6.5), TimeUp::kNone);   // the next law: its own time again
+  EXPECT_EQ(look(M::kLua, 3, 1, 7.2), TimeUp::kNone);
+  EXPECT_EQ(look(M::kLua, 1, 0, 7.3), TimeUp::kNone);  // back in the script: 0.6 s
+  EXPECT_EQ(look(M::kLua, 1, 0, 7.6), TimeUp::kNone);  // 0.9 s
+  // the host went to its own work and back in between: the call may have run only the last
+  // kLookEvery of the 0.3 s
+  EXPECT_EQ(look(M::kLua, 1, 0, 7.9, false), TimeUp::kNone);
+  EXPECT_EQ(look(M::kLua, 1, 0, 8.0), TimeUp::kWall);  // 1.01 s
+  EXPECT_EQ(look(M::kOutside, 0, 0, 8.0), TimeUp::kNone);
+  EXPECT_EQ(look(M::kLua, 4, 0, 8.1), TimeUp::kNone);  // the next call from the host
+  EXPECT_EQ(look(M::kLua, 4, 0, 8.9), TimeUp::kNone);
+  // the CPU clock, charged the same way: 0.4 s so far (half the wall time here), then 0.25, 0.4
+  EXPECT_EQ(c.look({M::kLua, 4, 0, 9.5, 4.7, true}, 0.0, 1.0), TimeUp::kNone);
+  EXPECT_EQ(c.look({M::kLua, 4, 0, 10.0, 5.1, true}, 0.0, 1.0), TimeUp::kCpu);
 }
 
 // a global function running() for the script to call as its loop starts: it sets *flag
