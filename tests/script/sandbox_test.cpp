@@ -2,7 +2,9 @@
 // every forbidden function raises an error naming file:line and --trusted; files only under the
 // output folder (read, write) and the script's folder (read); no precompiled chunk anywhere; the
 // API's userdata keep their metatables and fail cleanly once finalised.
+#include <fcntl.h>
 #include <gtest/gtest.h>
+#include <sys/wait.h>
 #include <unistd.h>
 
 #include <filesystem>
@@ -11,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "io/output_dir.hpp"
 #include "run_script.hpp"
 #include "script/interpreter.hpp"
 #include "support/files.hpp"
@@ -227,6 +230,61 @@ TEST(Sandbox, BeltsimsOwnPathsStayInTheFolders) {
   }
   fs::remove_all(elsewhere);
   fs::remove_all(scripts() / "r");
+}
+
+// One writer per folder, against a script's own writes too: a folder that another beltsim holds
+// (a child process holds its lock here, as a running simulation does) takes no write from a
+// script, by any function, and its files stay as they were; reading it is allowed, and so is
+// writing into the folder of this process's own simulation
+TEST(Sandbox, AFolderAnotherBeltsimWritesIsNotWrittenByAScript) {
+  const fs::path held = out() / "held";
+  fs::remove_all(held);
+  fs::create_directories(held / "frames");
+  beltsim::test::spit(held / "timeseries.csv", "t,x\n0,1\n");
+  int locked[2], done[2];
+  ASSERT_EQ(::pipe2(locked, O_CLOEXEC), 0);
+  ASSERT_EQ(::pipe2(done, O_CLOEXEC), 0);
+  const pid_t pid = ::fork();
+  ASSERT_GE(pid, 0);
+  if (pid == 0) {  // the other beltsim: holds the folder until the test closes `done`
+    ::close(done[1]);
+    OutputDir d(held.string());
+    d.lock();
+    char c = 1;
+    if (::write(locked[1], &c, 1) != 1) _exit(1);
+    _exit(::read(done[0], &c, 1) == 0 ? 0 : 1);
+  }
+  ::close(locked[1]);
+  ::close(done[0]);
+  char c = 0;
+  ASSERT_EQ(::read(locked[0], &c, 1), 1);
+  const std::string ts = q(held / "timeseries.csv");
+  const std::string holder =
+      "the folder " + held.string() + " is in use by another beltsim (process " + std::to_string(pid) + ")";
+  for (const std::string& write :
+       {"io.open(" + ts + ", 'a')", "io.open(" + ts + ", 'w')", "io.open(" + ts + ", 'r+')", "io.output(" + ts + ")",
+        "io.open(" + q(held / "new.txt") + ", 'w')", "io.open(" + q(held / "frames" / "f.png") + ", 'wb')",
+        "io.open(" + q(held / "sub" / "new.txt") + ", 'w')"})
+    expect_has(run("local x = 1\n" + write + "\n"),
+               {"sandbox.lua:2: ", ": writing '", "' is not allowed in a scenario script: " + holder, "--trusted"});
+  // beltsim's own writes for the script
+  expect_has(run(kScene + "local sim = s:start{ progress = false }\nsim:save(" + q(held / "a.ckpt") + ")\n"),
+             {"sandbox.lua:9: sim:save: writing '", holder});
+  EXPECT_EQ(run("assert(io.open(" + ts + "):read('a') == 't,x\\n0,1\\n')\n"), "");
+  ::close(done[1]);
+  int status = 0;
+  ASSERT_EQ(::waitpid(pid, &status, 0), pid);
+  EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0);
+  EXPECT_EQ(slurp(held / "timeseries.csv"), "t,x\n0,1\n");
+  for (const char* made : {"new.txt", "frames/f.png", "sub", "a.ckpt"}) EXPECT_FALSE(fs::exists(held / made)) << made;
+  // its holder gone, the folder takes writes again (the lock file stays in it)
+  EXPECT_EQ(run("assert(io.open(" + q(held / "new.txt") + ", 'w')):close()\n"), "");
+  // this process's own simulation writing there does not stop the script's writes
+  EXPECT_EQ(run(kScene + "local sim = s:start{ out = " + q(held) + ", progress = false }\n"
+                         "assert(io.open(" + q(held / "notes.txt") + ", 'w')):close()\n"
+                         "sim:close()\n"),
+            "");
+  fs::remove_all(held);
 }
 
 TEST(Sandbox, RequireLoadsLuaFilesFromTheScriptsFolder) {
