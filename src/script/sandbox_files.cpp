@@ -135,14 +135,15 @@ std::string sandbox_reason(const BeneathError& e, const std::string& at) {
   return "";
 }
 
-// a folder on the way from the place's folder to the file it names (both included) that another
-// beltsim holds, its simulation writing there (io/output_dir.hpp), said as a refusal; "" when
-// none. A folder still missing holds nothing, nor what would be made below it.
-std::string held_on_the_way(const Place& pl) {
+// a folder on the way from the place's folder to the file it names (both included; to the folder
+// it names, with `folder`) that another beltsim holds, its simulation writing there
+// (io/output_dir.hpp), said as a refusal; "" when none. A folder still missing holds nothing, nor
+// what would be made below it.
+std::string held_on_the_way(const Place& pl, bool folder = false) {
   BeneathError e;
   FolderFd dir(open_root(pl, false, &e));
   std::string at = trimmed_path(pl.root), name;
-  std::istringstream folders(split_path(pl.rel).first);
+  std::istringstream folders(folder ? pl.rel : split_path(pl.rel).first);
   while (dir.get() >= 0) {
     if (const std::string who = folder_holder(dir.get()); !who.empty())
       return "the folder " + at + " is in use by " + who + " (one writer per folder: its simulation writes there)";
@@ -466,12 +467,13 @@ void wrap(lua_State* L, Context* ctx, const char* field, lua_CFunction f) {
 
 }  // namespace
 
-std::string path_refusal(const Context& c, const std::string& what, const std::string& path, bool write, bool outputs) {
+std::string path_refusal(const Context& c, const std::string& what, const std::string& path, bool write, bool outputs,
+                         Written written) {
   if (c.trusted) return "";
   const std::optional<Place> pl = place(c, path, write, outputs);
   if (!pl) return outside(c, what, path, write, outputs);
   std::string why = link_on_the_way(*pl);
-  if (why.empty() && write) why = held_on_the_way(*pl);
+  if (why.empty() && write && written != Written::kRunFolder) why = held_on_the_way(*pl, written == Written::kFolder);
   return why.empty() ? "" : not_allowed(what, path, write, ": " + why);
 }
 

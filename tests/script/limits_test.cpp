@@ -228,8 +228,8 @@ TEST(TimeLimits, EachCallHasItsOwnTime) {
 // takes many times the limit, with a Lua law and a callback, passes
 TEST(TimeLimits, BeltsimsOwnWorkIsNotCounted) {
   Safety s;
-  s.max_lua_wall = 0.05;  // five looks of the clock
-  s.max_lua_cpu = 0.05;
+  s.max_lua_cpu = 0.05;  // five looks of the clock; CPU time, which a busy machine does not stretch
+  s.max_lua_wall = 1;
   beltsim::test::TwoPulley p;
   p.driver = "torque = function(t, w) return -70 * math.min(t / 0.3, 1) end";
   const auto t0 = std::chrono::steady_clock::now();
@@ -240,7 +240,7 @@ TEST(TimeLimits, BeltsimsOwnWorkIsNotCounted) {
                                                "assert(n > 100, n)\n",
                 s),
             "");
-  EXPECT_GT(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(), 10 * s.max_lua_wall)
+  EXPECT_GT(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(), 10 * s.max_lua_cpu)
       << "the script was too quick to show anything";
 }
 

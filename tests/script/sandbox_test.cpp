@@ -267,9 +267,11 @@ TEST(Sandbox, AFolderAnotherBeltsimWritesIsNotWrittenByAScript) {
         "io.open(" + q(held / "sub" / "new.txt") + ", 'w')"})
     expect_has(run("local x = 1\n" + write + "\n"),
                {"sandbox.lua:2: ", ": writing '", "' is not allowed in a scenario script: " + holder, "--trusted"});
-  // beltsim's own writes for the script
+  // beltsim's own writes for the script (a run there is refused by its own lock: outputs_test.py)
   expect_has(run(kScene + "local sim = s:start{ progress = false }\nsim:save(" + q(held / "a.ckpt") + ")\n"),
              {"sandbox.lua:9: sim:save: writing '", holder});
+  expect_has(run(kScene + "s:start{ progress = false, frames = { png = " + q(held / "frames") + " } }\n"),
+             {"sandbox.lua:8: start.frames.png: writing '", holder});
   EXPECT_EQ(run("assert(io.open(" + ts + "):read('a') == 't,x\\n0,1\\n')\n"), "");
   ::close(done[1]);
   int status = 0;
