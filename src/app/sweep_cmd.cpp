@@ -98,6 +98,8 @@ std::vector<std::string> sweep_args(const std::string& file, const std::string& 
   if (raw.trusted) a.push_back("--trusted");
   if (raw.max_instructions) a.insert(a.end(), {"--max-instructions", *raw.max_instructions});
   if (raw.max_lua_memory) a.insert(a.end(), {"--max-lua-memory", *raw.max_lua_memory});
+  if (raw.max_lua_wall) a.insert(a.end(), {"--max-lua-wall", *raw.max_lua_wall});
+  if (raw.max_lua_cpu) a.insert(a.end(), {"--max-lua-cpu", *raw.max_lua_cpu});
   return a;
 }
 

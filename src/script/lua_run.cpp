@@ -11,17 +11,17 @@
 #include <string>
 #include <vector>
 
+#include "io/number_text.hpp"
 #include "io/suggest.hpp"
 #include "render/recorder.hpp"
 #include "scene/validate.hpp"
 #include "script/context.hpp"
 #include "script/lua_api.hpp"
+#include "script/lua_clock.hpp"
 #include "script/lua_scene.hpp"
 #include "script/lua_sim.hpp"
 #include "script/progress.hpp"
 #include "script/sandbox.hpp"
-#include "script/signals.hpp"
-#include "io/number_text.hpp"
 
 namespace beltsim::script {
 
@@ -433,7 +433,7 @@ int l_scene_run(lua_State* L) {
   std::string error;
   RunResult res;
   try {
-    const HostWork work;  // beltsim's own work, not Lua code (signals.hpp)
+    const HostWork work;  // beltsim's own work, not Lua code (lua_clock.hpp)
     ProgressLine line(progress);
     res = run(*sc, rs, ctx->stop, line.callback());
   } catch (const DivergenceError& e) {
@@ -495,6 +495,7 @@ int l_scene_start(lua_State* L) {
   std::unique_ptr<Simulation> sim;
   std::string error;
   try {
+    const HostWork work;  // beltsim's own work, not Lua code (lua_clock.hpp)
     sim = std::make_unique<Simulation>(*sc, rs);
   } catch (const std::invalid_argument& e) {  // "key: reason"
     error = std::string("start.") + e.what();
