@@ -34,6 +34,11 @@ namespace {
 constexpr double kFloorUlps = 1024;
 constexpr long kFloorSteps = 10000;
 constexpr long kFailedInARow = 10;
+// [s] the longest first step, of a run and after a restart (start())
+constexpr double kFirstStepMax = 1e-3;
+// a step that would stop just short of a landing is stretched onto it: at most kLandStretch times
+// its length, plus kLandSlack of max(1 s, t) for the landing's rounding
+constexpr double kLandStretch = 1.1, kLandSlack = 1e-12;
 
 class OneStep final : public Integrator {
  public:
@@ -66,7 +71,7 @@ class OneStep final : public Integrator {
     // draws the pulleys swinging to +4.8 rad/s between samples, which the step's ends never show).
     const double d0 = ctl_.weighted_norm(y_, y_), d1 = ctl_.weighted_norm(y_, f_);
     double h0 = (d0 < 1e-5 || d1 < 1e-5 || !std::isfinite(d0 / d1)) ? 1e-6 : 0.01 * d0 / d1;
-    h0 = std::min({h0, h_max_, 1e-3});
+    h0 = std::min({h0, h_max_, kFirstStepMax});
     if (!started_) {
       h_ = h0;
       started_ = true;
@@ -81,7 +86,7 @@ class OneStep final : public Integrator {
       double h = h_;
       // land on t_land; a step that would stop just short of it is stretched onto it, so no
       // sliver of a step is left between (at most 10 % longer than the controller asked)
-      if (t_ + 1.1 * h >= t_land - 1e-12 * std::max(1.0, std::abs(t_land))) h = t_land - t_, lands = true;
+      if (t_ + kLandStretch * h >= t_land - kLandSlack * std::max(1.0, std::abs(t_land))) h = t_land - t_, lands = true;
       const bool ok = st_->step(sys_, t_, y_, f_, h, y1_, err_);
       int worst = worst_;
       const double e = ok ? ctl_.error_norm(lands ? t_land : t_ + h, y_, y1_, err_, &worst) : 1e300;
@@ -151,6 +156,28 @@ class OneStep final : public Integrator {
     }
   }
 
+  // The last step and the next as step() and start() make them, from a run that began at t = 0:
+  // the last one's length is the distance of its ends (unless a restart put both ends at its
+  // end); it was at most kGrowMax times the one before it, which lay in [0, t_prev], or the
+  // first step, and a landing stretched it by at most kLandStretch; the next is at most kGrowMax
+  // times the last, or a first step after a restart. A step's end far past the checkpoint's time
+  // (its dense output spanning it) is refused so.
+  void check_steps(CheckpointReader& r, int h_line) const {
+    if (t_ != t_prev_ && h_used_ != t_ - t_prev_)
+      r.fail("the last step's length must be the distance between its ends, integrator.t - integrator.t_prev = " +
+             number_text(t_ - t_prev_) + " s (got " + number_text(h_used_) + " s)");
+    const double longest =
+        kLandStretch * std::max(kFirstStepMax, StepController::kGrowMax * t_prev_) + kLandSlack * std::max(1.0, t_);
+    if (!(h_used_ <= longest))
+      r.fail("a step of " + number_text(h_used_) + " s from t = " + number_text(t_prev_) +
+             " s is longer than any this integrator takes from there (" + number_text(longest) + " s)");
+    const double next = std::max(kFirstStepMax, StepController::kGrowMax * h_used_);
+    if (!(h_ <= next))
+      r.fail_at(h_line, "integrator.h",
+                "a next step of " + number_text(h_) + " s after one of " + number_text(h_used_) +
+                    " s is longer than this integrator proposes (at most " + number_text(next) + " s)");
+  }
+
   WorkCounters work() const override { return sys_.problem->counters; }
   std::string stiffest() const override { return worst_ < 0 ? std::string() : sys_.problem->describe(worst_); }
 
@@ -176,11 +203,14 @@ class OneStep final : public Integrator {
     if (r.line_str("integrator.state") != st_->name()) r.fail("the state of another integrator than " + st_->name());
     t_ = r.line_num("integrator.t");
     t_prev_ = r.line_num("integrator.t_prev");
+    if (!(t_prev_ >= 0)) r.fail("a run starts at t = 0 s: no step starts before it");
     if (!(t_prev_ <= t_)) r.fail("the step's start lies after its end");
     h_ = r.line_num("integrator.h");
+    const int h_line = r.line_number();
     if (!(h_ >= 0)) r.fail("a step size must be >= 0");
     h_used_ = r.line_num("integrator.h_used");
     if (!(h_used_ >= 0)) r.fail("a step size must be >= 0");
+    check_steps(r, h_line);
     r.open("integrator.h_cap");
     cap_ = r.num_or_infinity();
     r.close();
@@ -200,6 +230,9 @@ class OneStep final : public Integrator {
     w.steps = c[0], w.rejected = c[1], w.rhs = c[2], w.jacobians = c[3], w.factorizations = c[4], w.solves = c[5];
     failed.count = c[6];
     failed.first_t = r.line_num("integrator.failed_first_t");
+    if (failed.count == 0 ? failed.first_t != -1 : !(failed.first_t >= 0 && failed.first_t <= t_))
+      r.fail(failed.count == 0 ? "-1 expected: no step failed"
+                               : "the first failed step must lie in [0 s, integrator.t]");
   }
 
  private:

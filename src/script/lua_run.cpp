@@ -11,6 +11,8 @@
 #include <string>
 #include <vector>
 
+#include "integrate/integrator.hpp"
+#include "io/number_text.hpp"
 #include "io/suggest.hpp"
 #include "render/recorder.hpp"
 #include "scene/validate.hpp"
@@ -21,7 +23,6 @@
 #include "script/progress.hpp"
 #include "script/sandbox.hpp"
 #include "script/signals.hpp"
-#include "io/number_text.hpp"
 
 namespace beltsim::script {
 
@@ -288,8 +289,7 @@ const RunKey kRunKeys[] = {
      }},
     {"atol", false, [](lua_State* L, int v, const Scene&, RunSettings& rs, bool&, const std::string& w) {
        rs.atol = to_number(L, v, w + ".atol");
-       if (!(rs.atol > 0 && std::isfinite(rs.atol)))
-         fail(L, w + ".atol: must be > 0 and finite (leave it out to mean rtol) (got " + std::to_string(rs.atol) + ")");
+       if (const std::string bad = atol_problem(rs.atol); !bad.empty()) fail(L, w + ".atol: " + bad);
      }},
     {"sample", false, [](lua_State* L, int v, const Scene&, RunSettings& rs, bool&, const std::string& w) {
        rs.sample_dt = to_number(L, v, w + ".sample");

@@ -279,9 +279,20 @@ std::unique_ptr<Simulation> Simulation::load(const std::string& path, const Fram
   try {
     CheckpointReader r(read_checkpoint_file(path));
     r.line_choice("part", {"settings"});
+    const int settings_from = r.line_number() + 1;
     RunSettings rs = read_settings(r);
+    const int settings_to = r.line_number();
+    if (rs.frames) rs.frame_factory = factory;
     r.line_choice("part", {"scene"});
     const Scene sc = read_scene(r);
+    // the settings by the one check of a script's (run_settings.hpp), once the scene they name is read
+    std::string refused;
+    try {
+      check(sc, rs, false);
+    } catch (const std::invalid_argument& e) {
+      refused = e.what();
+    }
+    if (!refused.empty()) r.fail_lines(settings_from, settings_to, "the run settings: " + refused);
     r.line_choice("part", {"drive"});
     Drive drive = read_drive(r, sc.model);
     r.line_choice("part", {"outputs"});
@@ -311,19 +322,21 @@ std::unique_ptr<Simulation> Simulation::load(const std::string& path, const Fram
         if (!(w >= 0 && w <= 1)) r.fail("a share of the new μ must be in [0, 1] (got " + number_text(w) + ")");
     }
     const long rows = r.line_int("rows", 0, LONG_MAX);
+    const int rows_line = r.line_number();
     const long csv_bytes = r.line_int("csv_bytes", 0, LONG_MAX);
     const long events_bytes = r.line_int("events_bytes", 0, LONG_MAX);
     const long snapshots_bytes = r.line_int("snapshots_bytes", 0, LONG_MAX);
     const double mean_from = r.line_num("mean_from"), mean_covered = r.line_num("mean_covered");
-    if (!(mean_from <= mean_covered && mean_covered <= now)) r.fail("the interval means must cover a time up to now");
+    if (!(0 <= mean_from && mean_from <= mean_covered && mean_covered <= now))
+      r.fail("the interval means must cover a time in [0 s, now]");
     std::vector<double> mean_acc = r.line_doubles("mean_acc", 2 * sc.model.pulleys.size() + sc.route.spans.size());
     const long frames = r.line_int("frames_written", 0, LONG_MAX);
+    const int frames_line = r.line_number();
     n_callbacks = r.line_int("callbacks", 0, INT_MAX);
     const double wall = r.line_num("wall");
     if (!(wall >= 0)) r.fail("a wall time >= 0 s expected");
     r.line_choice("part", {"integrator"});
 
-    if (rs.frames) rs.frame_factory = factory;
     try {
       s.reset(new Simulation(sc, rs, false));
     } catch (const std::invalid_argument& e) {
@@ -340,6 +353,16 @@ std::unique_ptr<Simulation> Simulation::load(const std::string& path, const Fram
         r.fail_at(streams_line, "streams", "position " + std::to_string(positions[i]) + " of output stream " + std::to_string(i + 1) +
                               " does not fit the time " + number_text(now) + " s");
     positions.resize(expected.size());
+    // the counts of what was written by now: at most the samples and frame times up to now
+    if (rows > expected[0])
+      r.fail_at(rows_line, "rows",
+                std::to_string(rows) + " samples written by t = " + number_text(now) + " s, at most " +
+                    std::to_string(expected[0]) + " at a sample every " + number_text(rs.sample_dt) + " s");
+    const long frame_times_passed = frame_times(rs) ? expected[1] : 0;
+    if (frames > frame_times_passed)
+      r.fail_at(frames_line, "frames_written",
+                std::to_string(frames) + " frames written by t = " + number_text(now) + " s, at most the " +
+                    std::to_string(frame_times_passed) + " frame times by then");
 
     if (mean_acc.size() != s->means_->size()) r.fail("interval means do not fit the scene");
     if (drive.spray.zones.size() != sc.drive.spray.zones.size())

@@ -30,7 +30,7 @@ struct RunSettings {
   double t_end = 1.0;                 // [s] (batch runs only)
   std::string integrator = "trbdf2";   // docs/integration.md, "The accuracy contract"
   double rtol = 1e-4;                 // relative tolerance of the error control
-  double atol = -1;                   // absolute, per natural unit of each component; < 0: = rtol
+  double atol = -1;  // absolute, per natural unit of each component; -1 (Tolerances::kAtolUnset): = rtol
   double sample_dt = 1e-3;            // [s] interval of the time-series samples
   std::string out_dir = "out";
   // the probed elements (the paper's "selected" one): columns probe.* for one, probe<k>.* (k = 1,
