@@ -130,25 +130,45 @@ bool parse_field(const std::string& text, double& out) {
   return r.ec == std::errc() && r.ptr == s.data() + s.size();
 }
 
-// the lines of a stream one at a time, without their '\n' (POSIX getline, one buffer for all)
-class LineReader {
+// The rows of a CSV stream one at a time (POSIX getline, one buffer for all): a row is a line
+// without its '\n' (and a '\r' before it), and runs on over the line breaks inside a quoted cell
+// (csv_text writes a value with one so: a sweep's values and figures, summary.csv).
+class RowReader {
  public:
-  explicit LineReader(std::FILE* f) : f_(f) {}
-  ~LineReader() { std::free(buf_); }
-  LineReader(const LineReader&) = delete;
-  LineReader& operator=(const LineReader&) = delete;
+  explicit RowReader(std::FILE* f) : f_(f) {}
+  ~RowReader() { std::free(buf_); }
+  RowReader(const RowReader&) = delete;
+  RowReader& operator=(const RowReader&) = delete;
   // false at the end of the file
-  bool next(std::string& line) {
-    const ssize_t n = ::getline(&buf_, &cap_, f_);
-    if (n <= 0) return false;
-    line.assign(buf_, static_cast<size_t>(n) - (buf_[n - 1] == '\n' ? 1 : 0));
+  bool next(std::string& row) {
+    if (!line(row)) return false;
+    bool quoted = false;
+    for (size_t from = 0;;) {
+      for (size_t i = from; i < row.size(); ++i) quoted = quoted != (row[i] == '"');
+      if (!quoted) break;
+      from = row.size() + 1;
+      std::string more;
+      if (!line(more)) break;  // a quote left open at the end: the cells say what is wrong
+      row += '\n';
+      row += more;
+    }
+    if (!row.empty() && row.back() == '\r') row.pop_back();
     return true;
   }
+  int lines() const { return lines_; }  // read so far: the number of the row's last line
 
  private:
+  bool line(std::string& s) {
+    const ssize_t n = ::getline(&buf_, &cap_, f_);
+    if (n <= 0) return false;
+    s.assign(buf_, static_cast<size_t>(n) - (buf_[n - 1] == '\n' ? 1 : 0));
+    ++lines_;
+    return true;
+  }
   std::FILE* f_;
   char* buf_ = nullptr;
   size_t cap_ = 0;
+  int lines_ = 0;
 };
 
 std::string joined(const std::vector<std::string>& names) {
@@ -269,11 +289,8 @@ Table read_timeseries_csv(const std::string& path, const std::vector<std::string
   t.path = path;
   std::string line;
   std::vector<bool> wanted;  // per column: read its fields (with `only`: named there)
-  int number_of_line = 0;
-  LineReader lines(f.stream());
-  while (lines.next(line)) {
-    ++number_of_line;
-    if (!line.empty() && line.back() == '\r') line.pop_back();
+  RowReader rows(f.stream());
+  for (int number_of_line = 1; rows.next(line); number_of_line = rows.lines() + 1) {
     if (trim(line).empty()) continue;
     std::vector<std::string> fields = csv_fields(line);
     const std::string where = path + ":" + std::to_string(number_of_line) + ": ";
@@ -318,9 +335,8 @@ std::vector<Mark> read_event_marks(const std::string& events_csv) {
   }
   std::string line;
   bool header = true;
-  LineReader lines(f->stream());
-  while (lines.next(line)) {
-    if (!line.empty() && line.back() == '\r') line.pop_back();
+  RowReader rows(f->stream());
+  while (rows.next(line)) {
     if (std::exchange(header, false)) continue;
     const std::vector<std::string> fields = csv_fields(line);
     double t = 0;
@@ -340,7 +356,7 @@ namespace {
 bool is_summary(const std::string& csv_path) {
   InputFile f(csv_path);
   std::string line;
-  if (!LineReader(f.stream()).next(line)) return false;
+  if (!RowReader(f.stream()).next(line)) return false;
   const std::vector<std::string> names = csv_fields(line);
   return names.size() > 2 && names[0] == "point" && std::find(names.begin(), names.end(), "status") != names.end();
 }
