@@ -296,8 +296,7 @@ const RunKey kRunKeys[] = {
      }},
     {"out", false, [](lua_State* L, int v, const Scene&, RunSettings& rs, bool&, const std::string& w) {
        rs.out_dir = to_string(L, v, w + ".out");
-       if (rs.out_dir.empty())  // it would silently be the folder beltsim runs in
-         fail(L, w + ".out: an empty path (leave it out for out/<script>, or give '.' for the folder beltsim runs in)");
+       if (const std::string bad = out_dir_problem(rs.out_dir); !bad.empty()) fail(L, w + ".out: " + bad);
      }},
     {"probe", false, [](lua_State* L, int v, const Scene& sc, RunSettings& rs, bool&, const std::string& w) {
        rs.probes = read_probes(L, v, sc, w + ".probe");

@@ -275,6 +275,7 @@ TEST(Checkpoint, ForgeriesAreRefused) {
   refused(with_line(t, "atol", "atol -2"),
           settings + "atol: must be > 0 and finite, or left out to mean rtol (got -2)");
   refused(with_line(t, "atol", "atol nan"), "'atol': expected a finite number, got nan");
+  refused(with_line(t, "out", "out \"\""), settings + "out: an empty path");
   // two pulleys of one name: the driven pulley renamed wherever the text names it
   std::string twins = t;
   for (const std::string from : {"name \"driven\"", "drive \"driven\"", "\"driver\" \"driven\"", "pulley.driven."}) {
