@@ -191,6 +191,38 @@ std::vector<long> next_outputs(const RunSettings& rs, double now) {
   return k;
 }
 
+// the settings by the one check of a script's (run_settings.hpp), once the scene they name is read;
+// a refusal names the settings' lines, from to to
+void check_read_settings(const CheckpointReader& r, const Scene& sc, const RunSettings& rs, int from, int to) {
+  std::string refused;
+  try {
+    check(sc, rs, false);
+  } catch (const std::invalid_argument& e) {
+    refused = e.what();
+  }
+  if (!refused.empty()) r.fail_lines(from, to, "the run settings: " + refused);
+}
+
+// a count read from the checkpoint, and its line
+struct Count {
+  long n;
+  int line;
+};
+
+// the counts of what was written by `now`: at most the samples and frame times up to then
+// (expected: next_outputs at now)
+void check_counts(const CheckpointReader& r, const RunSettings& rs, double now, const std::vector<long>& expected,
+                  Count rows, Count frames) {
+  if (rows.n > expected[0])
+    r.fail_at(rows.line, "rows",
+              std::to_string(rows.n) + " samples written by t = " + number_text(now) + " s, at most " +
+                  std::to_string(expected[0]) + " at a sample every " + number_text(rs.sample_dt) + " s");
+  const long frame_times_passed = frame_times(rs) ? expected[1] : 0;
+  if (frames.n > frame_times_passed)
+    r.fail_at(frames.line, "frames_written",
+              std::to_string(frames.n) + " frames written by t = " + number_text(now) + " s, at most the " +
+                  std::to_string(frame_times_passed) + " frame times by then");
+}
 
 }  // namespace
 
@@ -274,14 +306,7 @@ std::unique_ptr<Simulation> Simulation::load(const std::string& path, const Fram
     if (rs.frames) rs.frame_factory = factory;
     r.line_choice("part", {"scene"});
     const Scene sc = read_scene(r);
-    // the settings by the one check of a script's (run_settings.hpp), once the scene they name is read
-    std::string refused;
-    try {
-      check(sc, rs, false);
-    } catch (const std::invalid_argument& e) {
-      refused = e.what();
-    }
-    if (!refused.empty()) r.fail_lines(settings_from, settings_to, "the run settings: " + refused);
+    check_read_settings(r, sc, rs, settings_from, settings_to);
     r.line_choice("part", {"drive"});
     Drive drive = read_drive(r, sc.model);
     r.line_choice("part", {"outputs"});
@@ -342,16 +367,7 @@ std::unique_ptr<Simulation> Simulation::load(const std::string& path, const Fram
         r.fail_at(streams_line, "streams", "position " + std::to_string(positions[i]) + " of output stream " + std::to_string(i + 1) +
                               " does not fit the time " + number_text(now) + " s");
     positions.resize(expected.size());
-    // the counts of what was written by now: at most the samples and frame times up to now
-    if (rows > expected[0])
-      r.fail_at(rows_line, "rows",
-                std::to_string(rows) + " samples written by t = " + number_text(now) + " s, at most " +
-                    std::to_string(expected[0]) + " at a sample every " + number_text(rs.sample_dt) + " s");
-    const long frame_times_passed = frame_times(rs) ? expected[1] : 0;
-    if (frames > frame_times_passed)
-      r.fail_at(frames_line, "frames_written",
-                std::to_string(frames) + " frames written by t = " + number_text(now) + " s, at most the " +
-                    std::to_string(frame_times_passed) + " frame times by then");
+    check_counts(r, rs, now, expected, {rows, rows_line}, {frames, frames_line});
 
     if (mean_acc.size() != s->means_->size()) r.fail("interval means do not fit the scene");
     if (drive.spray.zones.size() != sc.drive.spray.zones.size())
