@@ -121,7 +121,8 @@ CLI::App* add_compare_command(CLI::App& app, CompareOptions& o) {
       "levels). CSVs: columns matched by name; a and b agree when |a - b| <= atol + rtol*max(|a|, |b|);\n"
       "rows aligned on the 't' column, B interpolated linearly onto A's times when they differ (said\n"
       "on stderr). Prints one line; exit 0 when they match, 1 when they differ, 2 on bad usage or a\n"
-      "file that cannot be read.");
+      "file that cannot be read (only regular files are), 3 when the difference image could not be\n"
+      "written (the line still says whether they match).");
   return c;
 }
 

@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "integrate/integrator.hpp"
 #include "io/number_text.hpp"
 #include "io/suggest.hpp"
 #include "render/recorder.hpp"
@@ -22,6 +23,7 @@
 #include "script/lua_sim.hpp"
 #include "script/progress.hpp"
 #include "script/sandbox.hpp"
+#include "script/signals.hpp"
 
 namespace beltsim::script {
 
@@ -288,16 +290,14 @@ const RunKey kRunKeys[] = {
      }},
     {"atol", false, [](lua_State* L, int v, const Scene&, RunSettings& rs, bool&, const std::string& w) {
        rs.atol = to_number(L, v, w + ".atol");
-       if (!(rs.atol > 0 && std::isfinite(rs.atol)))
-         fail(L, w + ".atol: must be > 0 and finite (leave it out to mean rtol) (got " + std::to_string(rs.atol) + ")");
+       if (const std::string bad = atol_problem(rs.atol); !bad.empty()) fail(L, w + ".atol: " + bad);
      }},
     {"sample", false, [](lua_State* L, int v, const Scene&, RunSettings& rs, bool&, const std::string& w) {
        rs.sample_dt = to_number(L, v, w + ".sample");
      }},
     {"out", false, [](lua_State* L, int v, const Scene&, RunSettings& rs, bool&, const std::string& w) {
        rs.out_dir = to_string(L, v, w + ".out");
-       if (rs.out_dir.empty())  // it would silently be the folder beltsim runs in
-         fail(L, w + ".out: an empty path (leave it out for out/<script>, or give '.' for the folder beltsim runs in)");
+       if (const std::string bad = out_dir_problem(rs.out_dir); !bad.empty()) fail(L, w + ".out: " + bad);
      }},
     {"probe", false, [](lua_State* L, int v, const Scene& sc, RunSettings& rs, bool&, const std::string& w) {
        rs.probes = read_probes(L, v, sc, w + ".probe");
