@@ -1,13 +1,12 @@
 #include "render/draw_list.hpp"
 
-#include "model/observables.hpp"
-
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <limits>
 
 #include "model/forces.hpp"
+#include "model/observables.hpp"
 #include "render/text.hpp"
 #include "scene/scene.hpp"
 
@@ -162,11 +161,21 @@ void default_range(const Scene& sc, FrameQuantity q, double& lo, double& hi) {
   double mu_max = 0;
   for (double mu : sc.drive.mu) mu_max = std::max(mu_max, mu);
   switch (q) {
-    case FrameQuantity::tension: lo = 0, hi = nice_up(2 * T0); break;
-    case FrameQuantity::normal: lo = 0, hi = nice_up(4 * N0); break;
-    case FrameQuantity::friction: lo = -nice_up(2 * N0), hi = nice_up(2 * N0); break;
-    case FrameQuantity::slip: lo = -0.05, hi = 0.05; break;
-    case FrameQuantity::mu: lo = 0, hi = mu_max > 0 ? mu_max : 1; break;
+    case FrameQuantity::tension:
+      lo = 0, hi = nice_up(2 * T0);
+      break;
+    case FrameQuantity::normal:
+      lo = 0, hi = nice_up(4 * N0);
+      break;
+    case FrameQuantity::friction:
+      lo = -nice_up(2 * N0), hi = nice_up(2 * N0);
+      break;
+    case FrameQuantity::slip:
+      lo = -0.05, hi = 0.05;
+      break;
+    case FrameQuantity::mu:
+      lo = 0, hi = mu_max > 0 ? mu_max : 1;
+      break;
   }
 }
 
@@ -174,11 +183,16 @@ namespace {
 // the frame's quantity of one element (NaN where undefined: contact quantities off the pulleys)
 double quantity_of(const ElementObs& o, FrameQuantity q) {
   switch (q) {
-    case FrameQuantity::tension: return o.tension;
-    case FrameQuantity::mu: return o.mu;
-    case FrameQuantity::normal: return o.state == ContactState::free ? kNaN : o.normal;
-    case FrameQuantity::friction: return o.friction;
-    case FrameQuantity::slip: return o.slip;
+    case FrameQuantity::tension:
+      return o.tension;
+    case FrameQuantity::mu:
+      return o.mu;
+    case FrameQuantity::normal:
+      return o.state == ContactState::free ? kNaN : o.normal;
+    case FrameQuantity::friction:
+      return o.friction;
+    case FrameQuantity::slip:
+      return o.slip;
   }
   return kNaN;
 }
@@ -217,10 +231,14 @@ FrameBuilder::FrameBuilder(const Scene& sc, const FrameSettings& fs, Font* font)
   const double line = 1.4 * font_px_;
   panel_ = std::max(0.17 * fs.width, 11.0 * font_px_);
   double widest = 0;
-  for (const Pulley& p : m.pulleys)
-    widest = std::max(widest, font_ ? static_cast<double>(font_->width(p.name + ": \u03c9 = \u2212000.00 rad/s, slip "
-                                                                                 "\u2212000.000 m/s   ", font_px_))
-                                    : 30.0 * font_px_);
+  for (const Pulley& p : m.pulleys) {
+    std::string longest = p.name + ": \u03c9 = \u2212000.00 rad/s, slip \u2212000.000 m/s";
+    if (p.arm >= 0) longest += ", arm \u22120.000 rad";
+    if (p.coupling >= 0) longest += ", rotor \u2212000.00 rad/s";
+    longest += "   ";
+    widest = std::max(widest, font_ ? static_cast<double>(font_->width(longest, font_px_))
+                                    : (30.0 + (p.arm >= 0) * 8 + (p.coupling >= 0) * 10) * font_px_);
+  }
   columns_ = std::max(1, static_cast<int>((fs.width - panel_) / widest));
   top_ = (1.5 + (m.n_p() + columns_ - 1) / columns_) * line;
   const Vec2 area0(0, top_), area1(fs.width - panel_, fs.height);
@@ -332,7 +350,8 @@ void FrameBuilder::build(double t, const double* y, DrawList& out, const Drive* 
     el.wet = obs[i].mu < mu_dry;  // the μ it has now: a spray zone's water included
     el.slipping = obs[i].state == ContactState::slip;
     el.centre = P(Cd[i]);
-    el.corners[0] = P(A - h * oa), el.corners[1] = P(B - h * ob), el.corners[2] = P(B + h * ob), el.corners[3] = P(A + h * oa);
+    el.corners[0] = P(A - h * oa), el.corners[1] = P(B - h * ob), el.corners[2] = P(B + h * ob),
+    el.corners[3] = P(A + h * oa);
     // dark edge, then the colour inset by a pixel so the elements read one by one
     out.band(el.corners[0], el.corners[1], el.corners[2], el.corners[3], kEdge);
     const double in = std::min(0.9 * px, 0.2 * h), along = std::min(0.6 * px, 0.2 * len);
@@ -465,8 +484,8 @@ void FrameBuilder::draw_pulleys(const double* q, DrawList& out) const {
   }
 }
 
-void FrameBuilder::draw_text_and_legend(double t, const Observation& seen, double mu_dry, bool arrows,
-                                        double arrow_w, DrawList& out) const {
+void FrameBuilder::draw_text_and_legend(double t, const Observation& seen, double mu_dry, bool arrows, double arrow_w,
+                                        DrawList& out) const {
   const Model& m = sc_.model;
   const double area_right = fs_.width - panel_;
   // text band: time, colour quantity, magnification; each pulley's speed and slip
@@ -475,12 +494,14 @@ void FrameBuilder::draw_text_and_legend(double t, const Observation& seen, doubl
   const double x0 = 0.6 * font_px_;
   Rgba paper = out.background;  // the boxes under the text
   paper.a = 0.85f;
-  std::string head = "t = " + format("%.4f", t) + " s      colour: " + qi.label + (*qi.unit ? std::string(" [") + qi.unit + "]" : "");
+  std::string head =
+      "t = " + format("%.4f", t) + " s      colour: " + qi.label + (*qi.unit ? std::string(" [") + qi.unit + "]" : "");
   if (fs_.magnify != 1) head += "      deformation \u00d7" + format("%g", fs_.magnify);
   out.boxed_text(Vec2(x0, line), head, font_px_, kInk, paper);
   const double col_w = (fs_.width - panel_) / columns_;
   for (int j = 0; j < m.n_p(); ++j)
-    out.boxed_text(Vec2(x0 + (j % columns_) * col_w, line * (2 + j / columns_)), pulley_text(j, seen.pulleys[j]), font_px_, kInk, paper);
+    out.boxed_text(Vec2(x0 + (j % columns_) * col_w, line * (2 + j / columns_)), pulley_text(j, seen.pulleys[j]),
+                   font_px_, kInk, paper);
 
   // colour bar: bands from lo (bottom) to hi (top), edges labelled where they fit, on the
   // background's colour (in a zoomed view the drawing reaches under the panel)
@@ -492,7 +513,8 @@ void FrameBuilder::draw_text_and_legend(double t, const Observation& seen, doubl
   // (frames too small for a bar of at least four lines get a short one below the text band)
   const double bar_bot = std::max(fs_.height - 6.2 * line, bar_top + 4.0 * line);  // room for 5 legend lines
   out.boxed_text(Vec2(panel_x, bar_top - 1.6 * line), qi.label, font_px_, kInk, paper);
-  out.boxed_text(Vec2(panel_x, bar_top - 0.6 * line), *qi.unit ? std::string("[") + qi.unit + "]" : "[\u2013]", font_px_, kInk, paper);
+  out.boxed_text(Vec2(panel_x, bar_top - 0.6 * line), *qi.unit ? std::string("[") + qi.unit + "]" : "[\u2013]",
+                 font_px_, kInk, paper);
   const int bands = scale_.levels > 0 ? scale_.levels : 64;
   const double bh = (bar_bot - bar_top) / bands;
   for (int k = 0; k < bands; ++k) {
@@ -508,7 +530,7 @@ void FrameBuilder::draw_text_and_legend(double t, const Observation& seen, doubl
     const double yk = bar_bot - (bar_bot - bar_top) * k / edges;
     out.line(Vec2(panel_x + bar_w, yk), Vec2(panel_x + bar_w + 0.4 * font_px_, yk), 1.2, kInk);
     out.boxed_text(Vec2(panel_x + bar_w + 0.6 * font_px_, yk + 0.35 * font_px_), tick(val, scale_.hi - scale_.lo),
-             font_px_, kInk, paper);
+                   font_px_, kInk, paper);
   }
   // legend
   double ly = bar_bot + 1.3 * line;
@@ -529,14 +551,21 @@ void FrameBuilder::draw_text_and_legend(double t, const Observation& seen, doubl
     out.boxed_text(Vec2(panel_x + bar_w + 0.5 * font_px_, ly), "belt travel", font_px_, kInk, paper);
     ly += line;
   }
-  if (fs_.quantity != FrameQuantity::tension && fs_.quantity != FrameQuantity::mu) swatch(scale_.none, "off the pulleys");
+  if (fs_.quantity != FrameQuantity::tension && fs_.quantity != FrameQuantity::mu)
+    swatch(scale_.none, "off the pulleys");
 }
 
 // "driver: ω = −57.05 rad/s, slip −0.021 m/s": the pulley's speed and its slip_speed (belt minus
-// rim, model/observables.hpp: the sign of the elements' slip colours)
+// rim, model/observables.hpp: the sign of the elements' slip colours); on a tensioner arm ", arm
+// 2.572 rad" (the arm's angle, as the CSV's arm_angle), with a coupled rotor ", rotor −185.11
+// rad/s" (its speed, as rotor_speed)
 std::string FrameBuilder::pulley_text(int j, const PulleyObs& o) const {
-  return sc_.model.pulleys[j].name + ": \u03c9 = " + format("%.2f", o.omega) + " rad/s, slip " +
-         format("%+.3f", o.slip_speed) + " m/s";
+  const Pulley& p = sc_.model.pulleys[j];
+  std::string text =
+      p.name + ": \u03c9 = " + format("%.2f", o.omega) + " rad/s, slip " + format("%+.3f", o.slip_speed) + " m/s";
+  if (p.arm >= 0) text += ", arm " + format("%.3f", o.arm_angle) + " rad";
+  if (p.coupling >= 0) text += ", rotor " + format("%.2f", o.rotor_speed) + " rad/s";
+  return text;
 }
 
 }  // namespace beltsim::render

@@ -1,6 +1,8 @@
 // The draw list without GL: element quads where the state puts the elements, colours from the
 // colour map, magnification about the nominal path, wet and slip marks, pulley names off the belt,
 // colour-map properties.
+#include "render/draw_list.hpp"
+
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -10,7 +12,6 @@
 #include "model/forces.hpp"
 #include "model/observables.hpp"
 #include "render/colormap.hpp"
-#include "render/draw_list.hpp"
 #include "render/render_scenes.hpp"
 #include "render/text.hpp"
 
@@ -26,7 +27,8 @@ double luminance(Rgba c) {
 
 TEST(ColourMap, ViridisLightnessRisesDivergingIsSymmetric) {
   for (int k = 1; k <= 64; ++k)
-    EXPECT_GT(luminance(colour_at(ColourMap::viridis, k / 64.0)), luminance(colour_at(ColourMap::viridis, (k - 1) / 64.0)));
+    EXPECT_GT(luminance(colour_at(ColourMap::viridis, k / 64.0)),
+              luminance(colour_at(ColourMap::viridis, (k - 1) / 64.0)));
   for (int k = 0; k < 32; ++k) {
     // lightness rises to the grey middle and falls after it, equally on both sides (within 2 L*
     // units: the anchors are symmetric in L*, the interpolation between them in sRGB nearly so)
@@ -51,11 +53,11 @@ Eigen::Vector3d lab(Rgba c) {
 // ΔE) than half the diverging map's distance from its grey middle to either end (ΔE 87, so 43;
 // the orange used before came within 40 of the map's warm side, magenta stays 61 away)
 TEST(ColourMap, SlipMarkIsNoColourOfEitherMap) {
-  const double half = 0.5 * (lab(colour_at(ColourMap::diverging, 0)) - lab(colour_at(ColourMap::diverging, 0.5))).norm();
+  const double half =
+      0.5 * (lab(colour_at(ColourMap::diverging, 0)) - lab(colour_at(ColourMap::diverging, 0.5))).norm();
   EXPECT_NEAR(half, 43.4, 0.5);
   for (ColourMap map : {ColourMap::viridis, ColourMap::diverging})
-    for (int k = 0; k <= 256; ++k)
-      EXPECT_GT((lab(kSlipColour) - lab(colour_at(map, k / 256.0))).norm(), half) << k;
+    for (int k = 0; k <= 256; ++k) EXPECT_GT((lab(kSlipColour) - lab(colour_at(map, k / 256.0))).norm(), half) << k;
 }
 
 TEST(ColourMap, BandsAndNaN) {
@@ -143,7 +145,8 @@ TEST_F(Fixture, ColoursComeFromTheColourMap) {
     EXPECT_FLOAT_EQ(el.colour.g, want.g);
     // a triangle of that colour is in the list
     bool found = false;
-    for (const SolidVertex& sv : dl.triangles) found = found || (sv.c.r == want.r && sv.c.g == want.g && sv.c.b == want.b);
+    for (const SolidVertex& sv : dl.triangles)
+      found = found || (sv.c.r == want.r && sv.c.g == want.g && sv.c.b == want.b);
     EXPECT_TRUE(found);
     if (!seen[el.band]) seen[el.band] = true, bands_seen++;
   }
@@ -269,6 +272,39 @@ TEST_F(Fixture, TextAndColourBarSayWhatIsShown) {
   EXPECT_TRUE(has("driver: \u03c9 = \u221260.60 rad/s, slip \u22120.06"));
   EXPECT_TRUE(has("driven: \u03c9 = \u221259.40 rad/s, slip +0.06"));
   for (const char* s : {"SDE tension", "[N]", "0", "1000", "wet (\u03bc < 1)", "slipping"}) EXPECT_TRUE(has(s)) << s;
+}
+
+// a pulley on a tensioner arm shows the arm's angle, one with a coupled rotor the rotor's speed;
+// expected from the layout (the arm's angle is that of the pulley's centre seen from the pivot)
+// and from the speed written into the state, not from the observables
+TEST_F(Fixture, HeaderShowsTheArmAngleAndTheRotorSpeed) {
+  SceneDef d = presets::paper_dry();
+  TensionerDef arm;
+  arm.pivot = d.pulleys[1].centre + Vec2(0.06, 0.08);  // the arm at atan2(-0.08, -0.06) = -2.214 rad
+  arm.inertia = 1e-3;
+  arm.stiffness = 30;
+  d.pulleys[1].tensioner = arm;
+  CouplingDef c;
+  c.inertia = 2e-3;
+  c.stiffness = 15;
+  d.pulleys[1].coupling = c;
+  const Scene sc = test::moving_scene(d);
+  Eigen::VectorXd y = test::moving_state(sc);
+  y[sc.model.n_coord() + sc.model.rotor_coord(0)] = -123.45;
+  FrameBuilder b(sc, fs(), &font);
+  DrawList dl;
+  b.build(0.125, y.data(), dl);
+  std::string line;
+  for (const std::string& t : dl.texts)
+    if (t.rfind("driven: ", 0) == 0) line = t;
+  const std::string arm_text = ", arm \u2212" + std::to_string(std::atan2(0.08, 0.06) - M_PI).substr(1, 5) + " rad";
+  EXPECT_NE(line.find(arm_text), std::string::npos) << line << " lacks " << arm_text;
+  EXPECT_NE(line.find(", rotor \u2212123.45 rad/s"), std::string::npos) << line;
+  for (const std::string& t : dl.texts) {
+    if (t.rfind("driver: ", 0) == 0) {
+      EXPECT_EQ(t.find("arm"), std::string::npos) << t;
+    }
+  }
 }
 
 // arrows beside the belt point along the route's direction of travel: one at each span's middle,
@@ -403,8 +439,10 @@ TEST_F(Fixture, PulleyNamesStayOffTheBelt) {
       const Vec2 mid = 0.5 * (box->lo + box->hi), c = b.camera().to_px(sc->model.centre(j, sc->y0.data()));
       ((mid - c).norm() < p.radius * b.camera().scale ? inside : beside) += 1;
     }
-    if (sc == &wet()) EXPECT_EQ(inside, 2);  // the paper's two large pulleys
-    else EXPECT_GT(beside, 0);               // the automotive drive's small ones
+    if (sc == &wet())
+      EXPECT_EQ(inside, 2);  // the paper's two large pulleys
+    else
+      EXPECT_GT(beside, 0);  // the automotive drive's small ones
   }
 }
 
