@@ -178,6 +178,20 @@ std::optional<CommandLine> parse_command_line(int argc, char** argv, int* status
   plot->footer("Prints the PNG's path; on a terminal also shows the picture (BELTSIM_TERM_IMAGES=off|symbols|\n"
                "sixel|kitty|iterm forces a mode). Columns of two units share the plot on two y axes.");
 
+  CLI::App* summary = app.add_subcommand("summary", "review figures of a run over a time window");
+  summary->add_option("DIR", cl.csv, "a run's output folder (its timeseries.csv and parameters.csv)")->required();
+  summary->add_option("--from", raw.from, "the window's start [s] (default: the first sample)")->type_name("T0");
+  summary->add_option("--to", raw.to, "the window's end [s] (default: the last sample)")->type_name("T1");
+  summary->add_option("--csv", raw.csv_out, "also write the figures to this CSV (a header and one row)")
+      ->type_name("FILE")
+      ->check(kNotEmpty);
+  summary->add_option("--plot", raw.plot_out, "also draw the window's span tensions, arm angles and rotor speeds")
+      ->type_name("PNG")
+      ->check(kNotEmpty);
+  summary->footer("Per span the tension's mean, min and max; per pulley its mean speed, slip, slip arc, capstan\n"
+                  "margin (T1/T2 against e^(mu*theta)) and hub load; tensioner arms' swing, decouplers' overruns,\n"
+                  "the belt's power loss by channel (with energy = true). docs/summary.md says how each is made.");
+
   add_render_command(app, cl.render);
   add_compare_command(app, cl.compare);
 
@@ -230,7 +244,7 @@ std::optional<CommandLine> parse_command_line(int argc, char** argv, int* status
     return cl;
   }
   if (!words.empty() && words[0] == "help") words[0] = "--help";
-  const std::vector<std::string> commands{"run", "wp", "plot", "render", "compare", "console", "sweep"};
+  const std::vector<std::string> commands{"run", "wp", "plot", "summary", "render", "compare", "console", "sweep"};
   if (!words.empty() && !words[0].empty() && words[0][0] == '-' && words[0] != "-h" && words[0] != "--help" &&
       words[0] != "--version") {
     std::fprintf(stderr, "beltsim: unknown option '%s' before the command\nRun 'beltsim --help' for the usage.\n",

@@ -29,9 +29,9 @@
 namespace beltsim::app {
 
 struct CommandLine {
-  std::string command;  // run, wp, plot, render, compare, console, sweep or help-parameters
+  std::string command;  // run, wp, plot, summary, render, compare, console, sweep or help-parameters
   Raw raw;
-  std::string script, csv;                  // run, wp, sweep: the file; plot: the CSV
+  std::string script, csv;                  // run, wp, sweep: the file; plot: the CSV; summary: the folder
   std::optional<std::string> console_script;
   std::vector<std::string> columns;         // plot
   std::vector<std::string> console_args;    // console: the words after --

@@ -18,6 +18,8 @@ int cmd_console(const std::optional<std::string>& script, const std::vector<std:
                 const script::Overrides& o, const script::Safety& s, const Environment& env);
 int cmd_plot(const std::string& csv, const std::vector<std::string>& columns, const Raw& raw,
              term::ImageMode images);
+// `beltsim summary DIR [--from T0] [--to T1] [--csv FILE] [--plot PNG]` (plot/summary.hpp)
+int cmd_summary(const std::string& dir, const Raw& raw);
 int cmd_sweep(const std::string& file, const Raw& raw, const script::Safety& s);
 
 }  // namespace beltsim::app

@@ -53,6 +53,7 @@ int main(int argc, char** argv) {
   try {
     if (c == "render") return with_outputs(cmd_render(cl->render));
     if (c == "compare") return with_outputs(cmd_compare(cl->compare));
+    if (c == "summary") return with_outputs(cmd_summary(cl->csv, raw));
     if (c == "plot") return with_outputs(cmd_plot(cl->csv, cl->columns, raw, env.images));  // a signal ends it at once: nothing to close
     beltsim::script::install_stop_signals();
     if (c == "run") return with_outputs(cmd_run(cl->script, overrides(raw), safety(raw)));

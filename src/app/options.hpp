@@ -24,7 +24,8 @@ struct Raw {
   std::optional<std::string> out, t_end, integrator, rtol, max_wall;
   bool no_frames = false, check = false;
   std::optional<std::string> integrators, rtols, ref_rtol, wall_limit, metric;  // wp
-  std::optional<std::string> from;                                      // plot
+  std::optional<std::string> from;                                      // plot, summary
+  std::optional<std::string> to, csv_out, plot_out;                     // summary
   bool trusted = false;                                                 // run, wp, console, sweep
   std::optional<std::string> max_instructions, max_lua_memory, max_lua_wall, max_lua_cpu;
   std::vector<std::string> set;  // run, console, wp: --set KEY=VALUE; sweep: --set KEY=V1,V2,..

@@ -1,0 +1,40 @@
+// `beltsim summary DIR`: a run's review figures over a window, printed as a table, and on request
+// written to a CSV and drawn (commands.hpp, plot/summary.hpp).
+#include <cmath>
+#include <cstdio>
+
+#include "app/commands.hpp"
+#include "io/output_dir.hpp"
+#include "plot/summary.hpp"
+
+namespace beltsim::app {
+
+int cmd_summary(const std::string& dir, const Raw& raw) {
+  const double from = raw.from ? number("--from", *raw.from) : -INFINITY;
+  const double to = raw.to ? number("--to", *raw.to) : INFINITY;
+  if (raw.from && raw.to && !(from <= to)) throw UsageError("--from " + *raw.from + " lies after --to " + *raw.to);
+  plot::Summary s;
+  try {
+    s = plot::summarize(dir, from, to);
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "beltsim summary: %s\n", e.what());
+    return 1;
+  }
+  std::fputs(plot::summary_table(s).c_str(), stdout);
+  std::fflush(stdout);
+  for (const auto& [file, write] :
+       {std::pair{raw.csv_out, &plot::write_summary_csv}, std::pair{raw.plot_out, &plot::plot_summary}}) {
+    if (!file) continue;
+    try {
+      write(s, *file);
+    } catch (const std::exception& e) {
+      std::fprintf(stderr, "beltsim summary: %s\n", e.what());
+      mark_output_failure_shown(e.what());
+      return 1;
+    }
+    std::printf("%s\n", file->c_str());
+  }
+  return 0;
+}
+
+}  // namespace beltsim::app

@@ -1,0 +1,296 @@
+// The review figures of a run's outputs over a window (summary.hpp); the table, the CSV and the
+// plot are in summary_report.cpp.
+#include "plot/summary.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <map>
+#include <optional>
+#include <sstream>
+#include <stdexcept>
+
+#include "io/csv_writer.hpp"
+#include "io/input_file.hpp"
+#include "io/number_text.hpp"
+#include "plot/plot.hpp"
+
+namespace beltsim::plot {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+// parameters.csv's values by name (`name,value,unit,source,note`)
+struct Parameters {
+  std::string path;
+  std::map<std::string, std::string> values;
+  double number(const std::string& name) const {
+    const auto it = values.find(name);
+    if (it == values.end()) throw std::runtime_error(path + " has no row '" + name + "'");
+    const std::optional<double> v = parse_number(it->second);
+    if (!v) throw std::runtime_error(path + ": " + name + " is not a number: '" + it->second + "'");
+    return *v;
+  }
+};
+
+Parameters read_parameters(const std::string& path) {
+  Parameters p{path, {}};
+  std::string text;
+  try {
+    InputFile f(path);
+    text = f.read_rest();
+  } catch (const InputFileError& e) {
+    throw std::runtime_error(e.what());
+  }
+  const std::vector<std::vector<std::string>> rows = csv_rows(text);
+  if (rows.empty() || rows[0].size() < 2 || rows[0][0] != "name" || rows[0][1] != "value")
+    throw std::runtime_error(path + ":1: not a parameters.csv (its header must start name,value)");
+  for (size_t k = 1; k < rows.size(); ++k)
+    if (rows[k].size() >= 2) p.values[rows[k][0]] = rows[k][1];
+  return p;
+}
+
+struct Stats {
+  double mean = NAN, min = NAN, max = NAN;
+};
+
+// over the finite values of c in rows [r0, r1)
+Stats stats(const std::vector<double>& c, size_t r0, size_t r1) {
+  Stats s;
+  double sum = 0;
+  size_t n = 0;
+  for (size_t r = r0; r < r1; ++r) {
+    if (!std::isfinite(c[r])) continue;
+    sum += c[r], ++n;
+    s.min = n == 1 ? c[r] : std::min(s.min, c[r]);
+    s.max = n == 1 ? c[r] : std::max(s.max, c[r]);
+  }
+  if (n) s.mean = sum / static_cast<double>(n);
+  return s;
+}
+
+struct Window {
+  const Table& t;
+  size_t r0, r1;  // the rows [r0, r1) with from <= t <= to
+  Stats of(const std::string& column) const { return stats(t.column(column), r0, r1); }
+  const std::vector<double>& time() const { return t.column("t"); }
+};
+
+// the pulleys in the CSV's order (their `<name>.omega` columns) and the spans as (from, to) pairs
+// of them: span_<a>_<b> split where both halves are pulleys' names
+struct Layout {
+  std::vector<std::string> pulleys;
+  std::vector<std::pair<std::string, std::string>> spans;
+};
+
+Layout layout(const Table& t) {
+  Layout l;
+  const std::string omega = ".omega", tension = ".tension";
+  auto ends = [](const std::string& s, const std::string& e) {
+    return s.size() > e.size() && s.compare(s.size() - e.size(), e.size(), e) == 0;
+  };
+  for (const std::string& n : t.names)
+    if (ends(n, omega)) l.pulleys.push_back(n.substr(0, n.size() - omega.size()));
+  for (const std::string& n : t.names) {
+    if (n.rfind("span_", 0) != 0 || !ends(n, tension)) continue;
+    const std::string ab = n.substr(5, n.size() - 5 - tension.size());
+    for (const std::string& a : l.pulleys) {
+      if (ab.rfind(a + "_", 0) != 0) continue;
+      const std::string b = ab.substr(a.size() + 1);
+      if (std::find(l.pulleys.begin(), l.pulleys.end(), b) != l.pulleys.end()) l.spans.push_back({a, b});
+    }
+  }
+  return l;
+}
+
+std::string span_name(const std::pair<std::string, std::string>& s) {
+  return "span_" + s.first + "_" + s.second;
+}
+
+// the intervals of the window where x < 0, their ends interpolated linearly between samples
+std::vector<std::pair<double, double>> negative_intervals(const std::vector<double>& t, const std::vector<double>& x,
+                                                          size_t r0, size_t r1) {
+  std::vector<std::pair<double, double>> out;
+  bool in = false;
+  double start = 0;
+  for (size_t r = r0; r < r1; ++r) {
+    const bool neg = x[r] < 0;
+    if (neg == in) continue;
+    // the crossing between the samples r - 1 and r (at the window's first sample: there)
+    double at = t[r];
+    if (r > r0 && std::isfinite(x[r - 1]) && std::isfinite(x[r]) && x[r - 1] != x[r])
+      at = t[r - 1] + (t[r] - t[r - 1]) * x[r - 1] / (x[r - 1] - x[r]);
+    if (neg) {
+      start = at;
+    } else {
+      out.push_back({start, at});
+    }
+    in = neg;
+  }
+  if (in) out.push_back({start, t[r1 - 1]});
+  return out;
+}
+
+void add(Summary& s, const std::string& section, const std::string& item, const std::string& quantity, double v,
+         const std::string& unit) {
+  s.figures.push_back({section, item, quantity, v, unit});
+}
+
+// the loss channels' power over the window, when the run tracked them
+void add_losses(Summary& s, const Window& w, const Layout& l) {
+  const char* channels[] = {"axial", "bending", "contact", "friction"};
+  for (const char* c : channels)
+    if (!w.t.has(std::string("energy.dissipated_") + c)) return;
+  s.losses = true;
+  const std::vector<double>& t = w.time();
+  const double span = t[w.r1 - 1] - t[w.r0];
+  double total = 0;
+  for (const char* c : channels) {
+    const std::vector<double>& e = w.t.column(std::string("energy.dissipated_") + c);
+    const double p = span > 0 ? (e[w.r1 - 1] - e[w.r0]) / span : NAN;
+    total += p;
+    add(s, "loss", "", c, p, "W");
+  }
+  add(s, "loss", "", "total", total, "W");
+  double input = 0;
+  for (size_t r = w.r0; r < w.r1; ++r)
+    for (const std::string& p : l.pulleys) {
+      const std::string speed = w.t.has(p + ".rotor_speed") ? p + ".rotor_speed" : p + ".omega";
+      const double power = w.t.column(p + ".torque")[r] * w.t.column(speed)[r];
+      if (power > 0) input += power;
+    }
+  input /= static_cast<double>(w.r1 - w.r0);
+  add(s, "loss", "", "input", input, "W");
+  add(s, "loss", "", "share", input > 0 ? total / input : NAN, "");
+}
+
+// each pulley's wrap: the measured slip arc, the capstan ratio of the spans either side against
+// e^{μθ}, and the hub load against the span tensions' resultant
+void add_wraps(Summary& s, const Window& w, const Layout& l, const Parameters& prm, double belt_speed) {
+  const double mass = prm.number("belt.mass_per_length"), mu = prm.number("belt.mu_min");
+  const double centrifugal = mass * belt_speed * belt_speed;
+  std::map<std::string, Stats> tension;
+  for (const auto& sp : l.spans) tension[span_name(sp)] = w.of(span_name(sp) + ".tension");
+  for (const std::string& p : l.pulleys) {
+    const double theta = prm.number("pulley." + p + ".wrap_angle") * M_PI / 180;
+    double t_in = NAN, t_out = NAN;
+    for (const auto& sp : l.spans) {
+      if (sp.second == p) t_in = tension[span_name(sp)].mean;
+      if (sp.first == p) t_out = tension[span_name(sp)].mean;
+    }
+    const double t1 = std::max(t_in, t_out), t2 = std::min(t_in, t_out);
+    const double ratio = t2 - centrifugal > 0 ? (t1 - centrifugal) / (t2 - centrifugal) : INFINITY;
+    const double limit = std::exp(mu * theta);
+    const std::vector<double>& slip = w.t.column(p + ".slip_arc");
+    const std::vector<double>& contact = w.t.column(p + ".contact_arc");
+    double worst = 0;
+    for (size_t r = w.r0; r < w.r1; ++r)
+      if (contact[r] > 0) worst = std::max(worst, slip[r] / contact[r]);
+    const double contact_mean = w.of(p + ".contact_arc").mean;
+    add(s, "wraps", p, "wrap", theta, "rad");
+    add(s, "wraps", p, "mu", mu, "");
+    add(s, "wraps", p, "slip_arc_share", contact_mean > 0 ? w.of(p + ".slip_arc").mean / contact_mean : NAN, "");
+    add(s, "wraps", p, "slip_arc_share_max", worst, "");
+    add(s, "wraps", p, "slip_arc_share_capstan", std::log(ratio) / (mu * theta), "");
+    add(s, "wraps", p, "capstan_ratio", ratio, "");
+    add(s, "wraps", p, "capstan_limit", limit, "");
+    add(s, "wraps", p, "capstan_margin", limit / ratio, "");
+    const Stats hub = w.of(p + ".hub_load");
+    add(s, "hubs", p, "hub_load_mean", hub.mean, "N");
+    add(s, "hubs", p, "hub_load_max", hub.max, "N");
+    add(s, "hubs", p, "hub_load_spans", std::sqrt(t1 * t1 + t2 * t2 - 2 * t1 * t2 * std::cos(theta)), "N");
+  }
+}
+
+void add_arms_and_rotors(Summary& s, const Window& w, const Layout& l) {
+  for (const std::string& p : l.pulleys) {
+    if (!w.t.has(p + ".arm_angle")) continue;
+    const Stats a = w.of(p + ".arm_angle"), rate = w.of(p + ".arm_rate");
+    add(s, "arms", p, "arm_angle_mean", a.mean, "rad");
+    add(s, "arms", p, "arm_angle_min", a.min, "rad");
+    add(s, "arms", p, "arm_angle_max", a.max, "rad");
+    add(s, "arms", p, "arm_angle_swing", a.max - a.min, "rad");
+    add(s, "arms", p, "arm_rate_peak", std::max(std::abs(rate.min), std::abs(rate.max)), "rad/s");
+  }
+  for (const std::string& p : l.pulleys) {
+    if (!w.t.has(p + ".rotor_speed")) continue;
+    const double sense = w.of(p + ".omega").mean < 0 ? -1 : 1;
+    const std::vector<double>& torque = w.t.column(p + ".coupling_torque");
+    std::vector<double> x(torque.size());
+    for (size_t r = 0; r < x.size(); ++r) x[r] = sense * torque[r];
+    Overrun o{p, negative_intervals(w.time(), x, w.r0, w.r1)};
+    double total = 0, longest = 0;
+    for (const auto& [a, b] : o.intervals) total += b - a, longest = std::max(longest, b - a);
+    add(s, "rotors", p, "rotor_speed_mean", w.of(p + ".rotor_speed").mean, "rad/s");
+    add(s, "rotors", p, "overrun_count", static_cast<double>(o.intervals.size()), "");
+    add(s, "rotors", p, "overrun_time", total, "s");
+    add(s, "rotors", p, "overrun_longest", longest, "s");
+    s.overruns.push_back(std::move(o));
+  }
+}
+
+}  // namespace
+
+Summary summarize(const std::string& dir, double from, double to) {
+  if (!(from <= to)) {
+    std::ostringstream m;
+    m << "summary: the window's start " << from << " s lies after its end " << to << " s";
+    throw std::runtime_error(m.str());
+  }
+  Summary s;
+  s.dir = dir;
+  const Table table = read_timeseries_csv((fs::path(dir) / "timeseries.csv").string());
+  const Parameters prm = read_parameters((fs::path(dir) / "parameters.csv").string());
+  const std::vector<double>& t = table.column("t");
+  size_t r0 = 0;
+  while (r0 < t.size() && t[r0] < from) ++r0;
+  size_t r1 = r0;
+  while (r1 < t.size() && t[r1] <= to) ++r1;
+  if (r1 == r0) {
+    std::ostringstream m;
+    m << table.path << " has no samples with t in [" << from << ", " << to << "] s";
+    if (t.empty())
+      m << " (it has no rows)";
+    else
+      m << " (its samples run from t = " << t.front() << " to " << t.back() << " s)";
+    throw std::runtime_error(m.str());
+  }
+  const Window w{table, r0, r1};
+  const Layout l = layout(table);
+  if (l.pulleys.empty()) throw std::runtime_error(table.path + " has no <pulley>.omega column");
+  // the belt's mean speed along the travel, from the first pulley: its rim's speed plus the slip
+  const std::string& p0 = l.pulleys[0];
+  const double radius = prm.number("pulley." + p0 + ".radius");
+  const std::vector<double>& omega = table.column(p0 + ".omega");
+  const std::vector<double>& slip = table.column(p0 + ".slip_speed");
+  double sum = 0;
+  size_t n = 0;
+  for (size_t r = r0; r < r1; ++r)
+    if (std::isfinite(slip[r])) sum += std::abs(omega[r]) * radius + slip[r], ++n;
+  const double belt_speed = n ? sum / static_cast<double>(n) : NAN;
+
+  add(s, "window", "", "from", t[r0], "s");
+  add(s, "window", "", "to", t[r1 - 1], "s");
+  add(s, "window", "", "rows", static_cast<double>(r1 - r0), "");
+  add(s, "window", "", "belt_speed", belt_speed, "m/s");
+  for (const auto& sp : l.spans) {
+    const Stats st = w.of(span_name(sp) + ".tension");
+    add(s, "spans", span_name(sp), "tension_mean", st.mean, "N");
+    add(s, "spans", span_name(sp), "tension_min", st.min, "N");
+    add(s, "spans", span_name(sp), "tension_max", st.max, "N");
+  }
+  for (const std::string& p : l.pulleys) {
+    const double loss = w.of(p + ".slip_speed").mean;
+    add(s, "pulleys", p, "omega_mean", w.of(p + ".omega").mean, "rad/s");
+    add(s, "pulleys", p, "slip_speed_mean", loss, "m/s");
+    add(s, "pulleys", p, "speed_loss", loss / belt_speed, "");
+    add(s, "pulleys", p, "creep_mean", w.of(p + ".creep").mean, "");
+  }
+  add_wraps(s, w, l, prm, belt_speed);
+  add_arms_and_rotors(s, w, l);
+  add_losses(s, w, l);
+  return s;
+}
+
+}  // namespace beltsim::plot

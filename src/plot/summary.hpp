@@ -1,0 +1,72 @@
+// A run's review figures over a time window, from its output folder (timeseries.csv and
+// parameters.csv, docs/outputs.md): `beltsim summary DIR` and a run's `r:summary{}` (docs/summary.md).
+//
+// Every figure is one Figure (section, item, quantity, value, unit); the printed table, the CSV and
+// the Lua table are all made from that one list. Over the window's samples (t in [from, to]):
+//   spans    span_<a>_<b>: tension_mean, tension_min, tension_max [N]
+//   pulleys  omega_mean [rad/s]; slip_speed_mean [m/s] (belt minus rim, as the CSV's slip_speed);
+//            speed_loss = slip_speed_mean / belt speed; creep_mean
+//   wraps    wrap [rad] and mu from parameters.csv (the pitch line's wrap at t = 0, belt.mu_min);
+//            slip_arc_share = mean slip_arc / mean contact_arc, slip_arc_share_max (the worst
+//            sample); capstan_ratio = (T1 − m'v²)/(T2 − m'v²) of the mean tensions of the spans
+//            either side (T1 the larger); capstan_limit = e^{μθ}; capstan_margin = limit / ratio
+//            (below 1 the wrap cannot hold the ratio: gross slip); slip_arc_share_capstan =
+//            ln(ratio)/(μθ), the creep theory's share of the wrap that slips
+//   hubs     hub_load_mean, hub_load_max [N] (the CSV's hub_load); hub_load_spans [N] =
+//            √(T1² + T2² − 2·T1·T2·cos θ), the resultant of the mean span tensions at the wrap θ
+//   arms     arm_angle_mean, _min, _max, arm_angle_swing = max − min [rad], arm_rate_peak [rad/s]
+//   rotors   rotor_speed_mean [rad/s]; overrun_count, overrun_time [s], overrun_longest [s]: the
+//            intervals where s·coupling_torque < 0, s the sign of the pulley's mean speed (the
+//            rotor runs ahead and the coupling holds it back: a one-way clutch open, a two-way
+//            spring driving the pulley), their ends interpolated linearly between samples
+//   loss     (with the energy.* columns, `energy = true`) axial, bending, contact, friction,
+//            total [W]: the channels' dissipated energy over the window / its duration; input [W]:
+//            the mean of Σ max(0, M·ω) over the pulleys (ω the rotor's where coupled); share =
+//            total / input
+//   window   from, to [s] (the first and last sample's times), rows, belt_speed [m/s] (the mean
+//            of |ω|·R + slip_speed of the first pulley: the belt's mean speed along the travel)
+#pragma once
+
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace beltsim::plot {
+
+struct Figure {
+  std::string section, item;  // item "" in the sections of one item (window, loss)
+  std::string quantity;
+  double value;
+  std::string unit;  // "" for none
+};
+
+struct Overrun {
+  std::string pulley;
+  std::vector<std::pair<double, double>> intervals;  // [s] from, to
+};
+
+struct Summary {
+  std::string dir;
+  std::vector<Figure> figures;
+  std::vector<Overrun> overruns;  // one per coupled pulley
+  bool losses = false;            // the run carried the energy.* columns
+};
+
+// Throws std::runtime_error naming the file (and line) for a missing or unreadable file, a
+// parameters.csv row the figures need, a window with no samples or from > to.
+Summary summarize(const std::string& dir, double from, double to);
+
+// the table printed by `beltsim summary`: a header line, then per section its items as rows and
+// its quantities as columns with their units, numbers to 4 significant digits
+std::string summary_table(const Summary& s);
+
+// the CSV's header names, "<item or section>.<quantity>_<unit>" (units as wp.csv's: N, rad_s,
+// m_s, W, s, rad; none for a count or a ratio), and its one row
+std::vector<std::string> summary_columns(const Summary& s);
+void write_summary_csv(const Summary& s, const std::string& path);
+
+// span tensions, arm angles and coupled pulleys' and rotors' speeds over the window, through
+// plot_png; the overruns' starts and the run's events as marks
+void plot_summary(const Summary& s, const std::string& png);
+
+}  // namespace beltsim::plot

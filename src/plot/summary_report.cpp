@@ -1,0 +1,131 @@
+// A summary's figures as a table, a CSV and a plot (summary.hpp).
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <stdexcept>
+
+#include "io/csv_writer.hpp"
+#include "plot/plot.hpp"
+#include "plot/summary.hpp"
+
+namespace beltsim::plot {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+std::string four_digits(double v) {
+  char b[32];
+  std::snprintf(b, sizeof b, "%.4g", v);
+  return b;
+}
+
+std::string with_unit(const Figure& f) {
+  return f.quantity + (f.unit.empty() ? "" : " [" + f.unit + "]");
+}
+
+double window_value(const Summary& s, const std::string& quantity) {
+  for (const Figure& f : s.figures)
+    if (f.section == "window" && f.quantity == quantity) return f.value;
+  return NAN;
+}
+
+// one section: its items as rows, its quantities (in their first order) as columns
+void section_table(const Summary& s, const std::string& section, std::string& out) {
+  std::vector<std::string> items, quantities;
+  for (const Figure& f : s.figures) {
+    if (f.section != section) continue;
+    if (std::find(items.begin(), items.end(), f.item) == items.end()) items.push_back(f.item);
+    if (std::find(quantities.begin(), quantities.end(), with_unit(f)) == quantities.end())
+      quantities.push_back(with_unit(f));
+  }
+  if (items.empty()) return;
+  size_t first = section.size();
+  for (const std::string& i : items) first = std::max(first, i.size());
+  std::vector<size_t> width;
+  for (const std::string& q : quantities) width.push_back(std::max<size_t>(q.size(), 10));
+  char b[256];
+  out += "\n" + section + std::string(first - section.size(), ' ');
+  for (size_t k = 0; k < quantities.size(); ++k)
+    std::snprintf(b, sizeof b, "  %*s", static_cast<int>(width[k]), quantities[k].c_str()), out += b;
+  out += "\n";
+  for (const std::string& i : items) {
+    out += i + std::string(first - i.size(), ' ');
+    for (size_t k = 0; k < quantities.size(); ++k) {
+      std::string cell = "";
+      for (const Figure& f : s.figures)
+        if (f.section == section && f.item == i && with_unit(f) == quantities[k]) cell = four_digits(f.value);
+      std::snprintf(b, sizeof b, "  %*s", static_cast<int>(width[k]), cell.c_str()), out += b;
+    }
+    out += "\n";
+  }
+}
+
+}  // namespace
+
+std::string summary_table(const Summary& s) {
+  std::string out = "summary of " + s.dir + " over t = " + four_digits(window_value(s, "from")) + " to " +
+                    four_digits(window_value(s, "to")) + " s (" + four_digits(window_value(s, "rows")) +
+                    " samples), belt speed " + four_digits(window_value(s, "belt_speed")) + " m/s\n";
+  for (const char* section : {"spans", "pulleys", "wraps", "hubs", "arms", "rotors", "loss"})
+    section_table(s, section, out);
+  for (const Overrun& o : s.overruns) {
+    out += "\n" + o.pulley + " overruns (s):";
+    if (o.intervals.empty()) out += " none";
+    for (size_t k = 0; k < o.intervals.size() && k < 20; ++k)
+      out += (k ? ", " : " ") + four_digits(o.intervals[k].first) + " to " + four_digits(o.intervals[k].second);
+    if (o.intervals.size() > 20) out += ", and " + std::to_string(o.intervals.size() - 20) + " more";
+    out += "\n";
+  }
+  if (!s.losses) out += "\nloss: not recorded (the run has no energy.* columns: give energy = true to beltsim.scene)\n";
+  return out;
+}
+
+std::vector<std::string> summary_columns(const Summary& s) {
+  std::vector<std::string> names;
+  for (const Figure& f : s.figures) {
+    std::string unit = f.unit;
+    std::replace(unit.begin(), unit.end(), '/', '_');
+    names.push_back((f.item.empty() ? f.section : f.item) + "." + f.quantity + (unit.empty() ? "" : "_" + unit));
+  }
+  return names;
+}
+
+void write_summary_csv(const Summary& s, const std::string& path) {
+  std::vector<double> row;
+  for (const Figure& f : s.figures) row.push_back(f.value);
+  CsvWriter w(path, summary_columns(s));
+  w.row(row);
+}
+
+void plot_summary(const Summary& s, const std::string& png) {
+  const double from = window_value(s, "from"), to = window_value(s, "to");
+  const Table t = read_timeseries_csv((fs::path(s.dir) / "timeseries.csv").string());
+  const std::vector<double>& time = t.column("t");
+  PlotSpec spec;
+  spec.title = "summary of " + s.dir;
+  spec.file = png;
+  auto series = [&](const std::string& column, const std::string& unit) {
+    Series out{column, unit, {}, {}};
+    const std::vector<double>& y = t.column(column);
+    for (size_t r = 0; r < time.size(); ++r)
+      if (time[r] >= from && time[r] <= to) out.t.push_back(time[r]), out.y.push_back(y[r]);
+    spec.series.push_back(std::move(out));
+  };
+  for (const Figure& f : s.figures)
+    if (f.section == "spans" && f.quantity == "tension_mean") series(f.item + ".tension", "N");
+  for (const Figure& f : s.figures)
+    if (f.section == "arms" && f.quantity == "arm_angle_mean") series(f.item + ".arm_angle", "rad");
+  for (const Overrun& o : s.overruns) {
+    series(o.pulley + ".omega", "rad/s");
+    series(o.pulley + ".rotor_speed", "rad/s");
+    for (size_t k = 0; k < o.intervals.size() && k < 20; ++k)
+      spec.marks.push_back({o.intervals[k].first, o.pulley + " overruns"});
+  }
+  for (const Mark& m : read_event_marks((fs::path(s.dir) / "events.csv").string()))
+    if (m.x >= from && m.x <= to) spec.marks.push_back(m);
+  plot_png(spec);
+}
+
+}  // namespace beltsim::plot
