@@ -249,7 +249,13 @@ Summary summarize(const std::string& dir, double from, double to) {
   while (r1 < t.size() && t[r1] <= to) ++r1;
   if (r1 == r0) {
     std::ostringstream m;
-    m << table.path << " has no samples with t in [" << from << ", " << to << "] s";
+    m << table.path << " has no samples with ";
+    if (std::isinf(to))
+      m << "t >= " << from << " s";
+    else if (std::isinf(from))
+      m << "t <= " << to << " s";
+    else
+      m << "t in [" << from << ", " << to << "] s";
     if (t.empty())
       m << " (it has no rows)";
     else

@@ -21,6 +21,7 @@
 #include "script/lua_clock.hpp"
 #include "script/lua_scene.hpp"
 #include "script/lua_sim.hpp"
+#include "script/lua_summary.hpp"
 #include "script/progress.hpp"
 #include "script/sandbox.hpp"
 #include "script/signals.hpp"
@@ -471,6 +472,7 @@ int l_scene_run(lua_State* L) {
     lua_pushnumber(L, res.omega[j]), lua_setfield(L, -2, sc->model.pulleys[j].name.c_str());
   lua_setfield(L, -2, "omega");
   if (res.check.on) push_check(L, res.check), lua_setfield(L, -2, "check");
+  set_results_methods(L, ctx);
   lua_pushvalue(L, -1);
   lua_setfield(L, LUA_REGISTRYINDEX, kLastRun);
   return 1;

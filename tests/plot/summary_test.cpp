@@ -1,0 +1,148 @@
+// The review figures of plot/summary.hpp on a small output folder written by hand: each expected
+// value is worked out here from the numbers written and the definitions in docs/summary.md.
+#include "plot/summary.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include "plot/plot.hpp"
+#include "support/scratch.hpp"
+
+namespace beltsim::plot {
+namespace {
+
+namespace fs = std::filesystem;
+
+// two pulleys: a (R = 0.05 m, wrap 120°, on an arm) and b (R = 0.1 m, a coupled rotor), the belt
+// 0.1 kg/m, μ 0.8; four samples 0.1 s apart
+fs::path folder(const std::string& name, bool parameters = true) {
+  const fs::path d = test::scratch_dir("beltsim summary test") / name;
+  fs::create_directories(d);
+  std::ofstream ts(d / "timeseries.csv");
+  ts << "t,a.omega,a.torque,a.hub_load,a.contact_arc,a.slip_arc,a.creep,a.slip_speed,"
+        "b.omega,b.torque,b.hub_load,b.contact_arc,b.slip_arc,b.creep,b.slip_speed,"
+        "a.arm_angle,a.arm_rate,b.rotor_angle,b.rotor_speed,b.windup,b.coupling_torque,"
+        "span_a_b.tension,span_a_b.tension_mean,span_b_a.tension,span_b_a.tension_mean,"
+        "energy.mechanical,energy.work_torques,energy.dissipated_axial,energy.dissipated_bending,"
+        "energy.dissipated_contact,energy.dissipated_friction\n"
+        "0,10,2,300,0.1,0.01,nan,0.01,5,-1,330,0.2,0,0.01,0.001,1.0,0,0,5,0,1,100,nan,50,nan,0,0,0,0,0,0\n"
+        "0.1,10,2,310,0.1,0.02,0.01,0.02,5,-1,330,0.2,0,0.01,0.001,1.2,-3,0,5,0,-1,200,0,60,0,0,0,0,1,0,0\n"
+        "0.2,10,2,350,0.1,0.05,0.03,0.04,5,-1,330,0.2,0,0.01,0.001,0.9,2,0,5,0,-3,400,0,80,0,0,0,0,2,0,0\n"
+        "0.3,10,2,320,0.1,0.01,0.01,0.01,5,-1,330,0.2,0,0.01,0.001,1.1,0,0,5,0,1,300,0,100,0,0,0,0,3,0,0\n";
+  if (parameters) {
+    std::ofstream p(d / "parameters.csv");
+    p << "name,value,unit,source,note\n"
+         "belt.mass_per_length,0.1,kg/m,given,\"per metre, of belt\"\n"
+         "belt.mu_min,0.8,,derived,\n"
+         "pulley.a.radius,0.05,m,given,x\n"
+         "pulley.a.wrap_angle,120,deg,derived,of the pitch line\n"
+         "pulley.b.radius,0.1,m,given,x\n"
+         "pulley.b.wrap_angle,240,deg,derived,of the pitch line\n";
+  }
+  return d;
+}
+
+double figure(const Summary& s, const std::string& item, const std::string& quantity) {
+  for (const Figure& f : s.figures)
+    if ((f.item.empty() ? f.section : f.item) == item && f.quantity == quantity) return f.value;
+  ADD_FAILURE() << "no figure " << item << "." << quantity;
+  return NAN;
+}
+
+// the window [0.1, 0.25] s holds the samples at 0.1 and 0.2 s
+TEST(Summary, TensionsSlipAndCapstanOverAWindow) {
+  const Summary s = summarize(folder("window").string(), 0.1, 0.25);
+  EXPECT_EQ(figure(s, "window", "rows"), 2);
+  EXPECT_EQ(figure(s, "window", "from"), 0.1);
+  EXPECT_EQ(figure(s, "window", "to"), 0.2);
+  EXPECT_DOUBLE_EQ(figure(s, "span_a_b", "tension_mean"), (200 + 400) / 2.0);
+  EXPECT_EQ(figure(s, "span_a_b", "tension_min"), 200);
+  EXPECT_EQ(figure(s, "span_a_b", "tension_max"), 400);
+  EXPECT_DOUBLE_EQ(figure(s, "span_b_a", "tension_mean"), 70);
+  // the belt: a's rim 10 rad/s · 0.05 m plus its slip, (0.02 + 0.04)/2 m/s
+  const double v = 0.5 + 0.03;
+  EXPECT_DOUBLE_EQ(figure(s, "window", "belt_speed"), v);
+  EXPECT_DOUBLE_EQ(figure(s, "a", "slip_speed_mean"), 0.03);
+  EXPECT_DOUBLE_EQ(figure(s, "a", "speed_loss"), 0.03 / v);
+  EXPECT_DOUBLE_EQ(figure(s, "a", "creep_mean"), 0.02);
+  // slip arc: 0.035 m of 0.1 m in the mean, 0.5 at the worst sample
+  EXPECT_DOUBLE_EQ(figure(s, "a", "slip_arc_share"), 0.35);
+  EXPECT_DOUBLE_EQ(figure(s, "a", "slip_arc_share_max"), 0.5);
+  // capstan on a: in from b at 70 N, out to b at 300 N, the centrifugal m'v² taken off both
+  const double c = 0.1 * v * v, theta = 120 * M_PI / 180;
+  const double ratio = (300 - c) / (70 - c), limit = std::exp(0.8 * theta);
+  EXPECT_DOUBLE_EQ(figure(s, "a", "wrap"), theta);
+  EXPECT_NEAR(figure(s, "a", "capstan_ratio"), ratio, 1e-12 * ratio);
+  EXPECT_NEAR(figure(s, "a", "capstan_limit"), limit, 1e-12 * limit);
+  EXPECT_NEAR(figure(s, "a", "capstan_margin"), limit / ratio, 1e-12 * limit);
+  EXPECT_NEAR(figure(s, "a", "slip_arc_share_capstan"), std::log(ratio) / (0.8 * theta), 1e-12);
+  // the resultant of 300 N and 70 N 120° of wrap apart: √(300² + 70² + 300·70)
+  EXPECT_NEAR(figure(s, "a", "hub_load_spans"), std::sqrt(90000.0 + 4900 + 21000), 1e-9);
+  EXPECT_DOUBLE_EQ(figure(s, "a", "hub_load_mean"), 330);
+  EXPECT_EQ(figure(s, "a", "hub_load_max"), 350);
+}
+
+// over every sample: the coupling torque on b's rotor (b turning +) is 1, -1, -3, 1 N·m: the rotor
+// overruns from the zero crossing at 0.05 s to the one at 0.2 + 0.1·3/4 = 0.275 s
+TEST(Summary, ArmOverrunsAndLosses) {
+  const Summary s = summarize(folder("all").string(), -INFINITY, INFINITY);
+  ASSERT_EQ(s.overruns.size(), 1u);
+  ASSERT_EQ(s.overruns[0].intervals.size(), 1u);
+  EXPECT_NEAR(s.overruns[0].intervals[0].first, 0.05, 1e-15);
+  EXPECT_NEAR(s.overruns[0].intervals[0].second, 0.275, 1e-15);
+  EXPECT_EQ(figure(s, "b", "overrun_count"), 1);
+  EXPECT_NEAR(figure(s, "b", "overrun_time"), 0.225, 1e-15);
+  EXPECT_DOUBLE_EQ(figure(s, "a", "arm_angle_swing"), 1.2 - 0.9);
+  EXPECT_EQ(figure(s, "a", "arm_angle_max"), 1.2);
+  EXPECT_EQ(figure(s, "a", "arm_rate_peak"), 3);
+  // 3 J in the bending dampers over 0.3 s; a puts in 2 N·m · 10 rad/s, b's load takes power
+  ASSERT_TRUE(s.losses);
+  EXPECT_NEAR(figure(s, "loss", "bending"), 10, 1e-12);
+  EXPECT_NEAR(figure(s, "loss", "total"), 10, 1e-12);
+  EXPECT_DOUBLE_EQ(figure(s, "loss", "input"), 20);
+  EXPECT_NEAR(figure(s, "loss", "share"), 0.5, 1e-12);
+}
+
+TEST(Summary, CsvReadsBackWithUnitsInTheHeader) {
+  const fs::path d = folder("csv");
+  const Summary s = summarize(d.string(), 0.1, 0.25);
+  write_summary_csv(s, (d / "summary.csv").string());
+  const Table t = read_timeseries_csv((d / "summary.csv").string());
+  EXPECT_EQ(t.names.size(), s.figures.size());
+  EXPECT_EQ(t.column("span_a_b.tension_mean_N")[0], 300);
+  EXPECT_DOUBLE_EQ(t.column("window.belt_speed_m_s")[0], 0.53);
+  EXPECT_EQ(t.column("a.omega_mean_rad_s")[0], 10);
+  EXPECT_EQ(t.column("a.capstan_margin").size(), 1u);
+  const std::string table = summary_table(s);
+  EXPECT_NE(table.find("tension_mean [N]"), std::string::npos) << table;
+  // negative on both samples: overrunning from the window's start to its end
+  EXPECT_NE(table.find("b overruns (s): 0.1 to 0.2\n"), std::string::npos) << table;
+}
+
+TEST(Summary, ErrorsNameTheFileAndTheWindow) {
+  const fs::path d = folder("errors");
+  auto message = [&](const std::string& dir, double from, double to) {
+    try {
+      summarize(dir, from, to);
+    } catch (const std::exception& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  EXPECT_EQ(message(d.string(), 0.31, 0.4), (d / "timeseries.csv").string() +
+                                                " has no samples with t in [0.31, 0.4] s (its samples run from t = 0 "
+                                                "to 0.3 s)");
+  EXPECT_EQ(message(d.string(), 1, INFINITY),
+            (d / "timeseries.csv").string() + " has no samples with t >= 1 s (its samples run from t = 0 to 0.3 s)");
+  EXPECT_NE(message(d.string(), 0.2, 0.1).find("lies after its end"), std::string::npos);
+  const fs::path bare = folder("no_parameters", false);
+  EXPECT_NE(message(bare.string(), 0, 1).find((bare / "parameters.csv").string()), std::string::npos);
+  EXPECT_NE(message((d / "none").string(), 0, 1).find((d / "none" / "timeseries.csv").string()), std::string::npos);
+}
+
+}  // namespace
+}  // namespace beltsim::plot
