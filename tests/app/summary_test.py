@@ -1,0 +1,163 @@
+#!/usr/bin/env python3
+"""`beltsim summary DIR` and `r:summary{}` (docs/summary.md) on a run of three pulleys at the corners
+of a triangle, checked against what a user works out by hand: the free idler's hub load against
+2T·sin(θ/2), the capstan limit e^{μθ} with θ from the layout's geometry, a span's mean tension over
+the window from timeseries.csv's rows; the CLI's and Lua's figures the same; bad options and an
+empty window refused. With the argument `automotive`: scripts/automotive_decoupler.lua (tensioner
+arm, one-way decoupler, a speed drop at 0.4 s) shows the arm's rows and the alternator's overrun."""
+import csv
+import math
+import os
+import shutil
+import subprocess
+import sys
+import tempfile
+import unittest
+
+BELTSIM = None
+SOURCE = None
+
+# three pulleys of r = 0.05 m at A (0, 0), C (0.15, 0.2), B (0.3, 0), the belt outside them all:
+# the wrap at each corner is π minus the triangle's angle there
+TRIANGLE = """
+local drive = beltsim.scene {
+  pulleys = {
+    { name = "driver", centre = {0.0, 0.0}, radius = 0.05, inertia = 0.01,
+      speed = { beltsim.ramp{ t1 = 0.05, to = -60, shape = "cosine" } } },
+    { name = "idler", centre = {0.15, 0.2}, radius = 0.05, inertia = 1e-4 },
+    { name = "load", centre = {0.3, 0.0}, radius = 0.05, inertia = 0.01, torque = { per_speed = -0.1 } },
+  },
+  belt = { preset = "6PK", elements = 80, pretension = 300, direction = "cw" },
+  energy = true,
+}
+local r = drive:run { t_end = 0.2, sample = 1e-3, progress = false, out = "tri" }
+local s = r:summary { from = 0.1, csv = "lua_summary.csv" }
+print(string.format("%.17g %.17g %s", s.spans.span_load_driver.tension_mean, s.hubs.idler.hub_load_mean, s.csv))
+"""
+CORNER = math.atan2(0.2, 0.15)  # the triangle's angle at A and at B
+WRAP = {"driver": math.pi - CORNER, "load": math.pi - CORNER, "idler": math.pi - (math.pi - 2 * CORNER)}
+
+
+def run(args, cwd):
+    p = subprocess.run([BELTSIM] + args, capture_output=True, text=True, cwd=cwd, timeout=600)
+    return p.returncode, p.stdout, p.stderr
+
+
+def one_row(path):
+    with open(path, newline="") as f:
+        rows = list(csv.DictReader(f))
+    assert len(rows) == 1, path
+    return {k: float(v) for k, v in rows[0].items()}
+
+
+class Triangle(unittest.TestCase):
+    @classmethod
+    def setUpClass(cls):
+        cls.dir = tempfile.mkdtemp(prefix="beltsim_summary_")
+        with open(os.path.join(cls.dir, "tri.lua"), "w") as f:
+            f.write(TRIANGLE)
+        code, cls.lua_out, err = run(["run", "tri.lua"], cls.dir)
+        assert code == 0, err
+        cls.out = os.path.join(cls.dir, "tri")
+        code, cls.table, err = run(["summary", cls.out, "--from", "0.1", "--csv", "s.csv", "--plot", "s.png"],
+                                   cls.dir)
+        assert code == 0, err
+        cls.s = one_row(os.path.join(cls.dir, "s.csv"))
+        with open(os.path.join(cls.out, "timeseries.csv"), newline="") as f:
+            cls.rows = [{k: float(v) for k, v in r.items()} for r in csv.DictReader(f)]
+        cls.window = [r for r in cls.rows if r["t"] >= 0.1]
+
+    @classmethod
+    def tearDownClass(cls):
+        shutil.rmtree(cls.dir, True)
+
+    def test_mean_tension_is_the_windows_mean(self):
+        for span in ["span_driver_idler", "span_idler_load", "span_load_driver"]:
+            values = [r[span + ".tension"] for r in self.window]
+            self.assertAlmostEqual(self.s[span + ".tension_mean_N"], sum(values) / len(values), delta=1e-9)
+            self.assertEqual(self.s[span + ".tension_max_N"], max(values))
+        self.assertEqual(self.s["window.rows"], len(self.window))
+
+    def test_free_idler_hub_load_is_2T_sin_half_wrap(self):
+        # the idler carries no torque: both its spans hold T; the belt's bending stiffness and the
+        # 7 elements on its wrap put the contact forces' sum within a few % of 2T·sin(θ/2)
+        # (docs/outputs.md: hub_load)
+        t = sum(r["span_driver_idler.tension"] + r["span_idler_load.tension"] for r in self.window) / (2 * len(self.window))
+        expected = 2 * t * math.sin(WRAP["idler"] / 2)
+        self.assertLess(abs(self.s["idler.hub_load_mean_N"] / expected - 1), 0.03, (self.s["idler.hub_load_mean_N"], expected))
+
+    def test_capstan_limit_from_the_layout(self):
+        for p in ["driver", "idler", "load"]:
+            # μ = 1 (the belt's default): e^{μθ} with θ from the triangle; parameters.csv's wrap
+            # angle is written to 17 digits
+            self.assertAlmostEqual(self.s[p + ".capstan_limit"] / math.exp(WRAP[p]), 1, delta=1e-12)
+        # the driver's spans: in from the load (tight), out to the idler (slack)
+        tight = self.s["span_load_driver.tension_mean_N"]
+        slack = self.s["span_driver_idler.tension_mean_N"]
+        c = 0.1152 * self.s["window.belt_speed_m_s"] ** 2  # the 6PK's m'v²
+        self.assertAlmostEqual(self.s["driver.capstan_ratio"], (tight - c) / (slack - c), delta=1e-12)
+
+    def test_lua_and_cli_read_the_same_numbers(self):
+        tension, hub, path = self.lua_out.split()
+        self.assertEqual(float(tension), self.s["span_load_driver.tension_mean_N"])
+        self.assertEqual(float(hub), self.s["idler.hub_load_mean_N"])
+        self.assertEqual(path, os.path.join("tri", "lua_summary.csv"))
+        self.assertEqual(one_row(os.path.join(self.dir, path)), self.s)
+
+    def test_table_and_plot(self):
+        for part in ["tension_mean [N]", "hub_load_spans [N]", "capstan_margin", "bending [W]"]:
+            self.assertIn(part, self.table)
+        with open(os.path.join(self.dir, "s.png"), "rb") as f:
+            self.assertEqual(f.read(8), b"\x89PNG\r\n\x1a\n")
+
+    def test_bad_usage(self):
+        code, out, err = run(["summary", self.out, "--from", "5"], self.dir)
+        self.assertEqual(code, 1)
+        self.assertIn(os.path.join(self.out, "timeseries.csv") + " has no samples with t >= 5 s (its samples run "
+                      "from t = 0 to 0.2 s)", err)
+        code, out, err = run(["summary", self.out, "--frm", "0.1"], self.dir)
+        self.assertEqual(code, 2)
+        self.assertIn("--from", err)
+        code, out, err = run(["summary", self.out, "--from", "0.2", "--to", "0.1"], self.dir)
+        self.assertEqual(code, 2)
+        self.assertIn("--from 0.2 lies after --to 0.1", err)
+        code, out, err = run(["summary", os.path.join(self.dir, "nothing")], self.dir)
+        self.assertEqual(code, 1)
+        self.assertIn(os.path.join(self.dir, "nothing", "timeseries.csv"), err)
+
+    def test_lua_unknown_key_names_the_line(self):
+        with open(os.path.join(self.dir, "bad.lua"), "w") as f:
+            f.write(TRIANGLE.replace('out = "tri" }', 'out = "bad" }')
+                    .replace("r:summary { from = 0.1,", "r:summary { form = 0.1,"))
+        code, out, err = run(["run", "bad.lua"], self.dir)
+        self.assertEqual(code, 1)
+        self.assertIn("bad.lua:13: unknown key 'form' in r:summary (did you mean 'from'?)", err)
+
+
+class Automotive(unittest.TestCase):
+    def test_arm_and_overrun_rows(self):
+        d = tempfile.mkdtemp(prefix="beltsim_summary_auto_")
+        self.addCleanup(shutil.rmtree, d, True)
+        out = os.path.join(d, "auto")
+        code, _, err = run(["run", os.path.join(SOURCE, "scripts", "automotive_decoupler.lua"), "--out", out], d)
+        self.assertEqual(code, 0, err)
+        code, table, err = run(["summary", out, "--from", "0.3", "--csv", "s.csv"], d)
+        self.assertEqual(code, 0, err)
+        s = one_row(os.path.join(d, "s.csv"))
+        # the arm moves when the crankshaft drops to 600 rpm at 0.4-0.43 s
+        self.assertGreater(s["tensioner.arm_angle_swing_rad"], 0)
+        self.assertIn("arm_angle_swing [rad]", table)
+        # the alternator's rotor runs on after the drop: one overrun, starting after 0.4 s
+        self.assertGreaterEqual(s["alternator.overrun_count"], 1)
+        line = [l for l in table.splitlines() if l.startswith("alternator overruns (s): ")][0]
+        first = float(line.split(": ")[1].split(" to ")[0])
+        self.assertGreater(first, 0.4, line)
+        self.assertLess(first, 0.45, line)
+
+
+if __name__ == "__main__":
+    BELTSIM = os.path.abspath(sys.argv[1])
+    SOURCE = os.path.abspath(sys.argv[2])
+    which = sys.argv[3] if len(sys.argv) > 3 else "Triangle"
+    suite = unittest.TestLoader().loadTestsFromTestCase(Automotive if which == "automotive" else Triangle)
+    sys.exit(0 if unittest.TextTestRunner(verbosity=2).run(suite).wasSuccessful() else 1)
