@@ -83,8 +83,9 @@ const std::vector<HelpEntry>& api_help() {
       {"show", "sim:show{ quantity, range, levels, magnify, view, size, file } -> png",
        "renders the belt as it is now (tension, normal, friction, slip, mu)"},
       {"plot", "sim:plot{ \"driver.omega\", ..., from = t0 [s], file } -> png", "time histories sampled so far"},
-      {"summary", "sim:summary{ from [s], to [s], csv, plot } or r:summary{...} -> { spans, pulleys, wraps, ... }",
-       "review figures over a window: tensions, slip, capstan margins, hub loads, arm, overruns (docs/summary.md)"},
+      {"summary", "sim:summary{ from [s], to [s], csv, plot } -> { spans, pulleys, wraps, hubs, ... }",
+       "review figures over a window: tensions, slip, capstan margins, hub loads, arm, overruns; also r:summary{...} "
+       "on scene:run's results (docs/summary.md)"},
       {"save", "sim:save(path) -> path", "a checkpoint: state, integrator, laws, μ, pending events, output positions"},
       {"resume", "beltsim.resume(path) -> sim", "continues a checkpoint (bit for bit); callbacks must be added again"},
       {"close", "sim:close()", "flushes the CSV files and finalises the video"},
