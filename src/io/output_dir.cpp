@@ -125,7 +125,7 @@ OutputDir::OutputDir(OutputDir&& o) noexcept : path_(std::move(o.path_)), fd_(o.
 
 OutputDir& OutputDir::operator=(OutputDir&& o) noexcept {
   if (this != &o) {
-    if (lock_fd_ >= 0) ::close(lock_fd_);
+    unlock();
     if (fd_ >= 0) ::close(fd_);
     path_ = std::move(o.path_);
     fd_ = o.fd_, lock_fd_ = o.lock_fd_;
@@ -135,7 +135,7 @@ OutputDir& OutputDir::operator=(OutputDir&& o) noexcept {
 }
 
 OutputDir::~OutputDir() {
-  if (lock_fd_ >= 0) ::close(lock_fd_);  // releases the lock
+  unlock();
   if (fd_ >= 0) ::close(fd_);
   fd_ = lock_fd_ = -1;
 }
@@ -196,25 +196,53 @@ void OutputDir::lock() {
                              "its own (out = ...) or close the other first");
 }
 
+namespace {
+// the file open as fd is the one named `name` in the folder dir
+bool same_file(int dir, const char* name, int fd) {
+  struct stat a {
+  }, b{};
+  return ::fstat(fd, &a) == 0 && ::fstatat(dir, name, &b, AT_SYMLINK_NOFOLLOW) == 0 && a.st_dev == b.st_dev &&
+         a.st_ino == b.st_ino;
+}
+}  // namespace
+
 std::string OutputDir::try_lock() {
   if (lock_fd_ >= 0) return "";
-  const int fd = open_own(kLockName, O_RDWR, false);
-  struct flock whole {};
-  whole.l_type = F_WRLCK;
-  whole.l_whence = SEEK_SET;  // the whole file (l_len 0)
-  if (::fcntl(fd, F_OFD_SETLK, &whole) != 0) {
-    const int err = errno;
-    const std::string who = lock_holder(fd);
+  int fd = -1;
+  // the holder before us removes the file while it still holds the lock (unlock): a claim that
+  // opened the file before that gets its lock on a removed file, and opens the new one again
+  for (int attempt = 0;; ++attempt) {
+    fd = open_own(kLockName, O_RDWR, false);
+    struct flock whole {};
+    whole.l_type = F_WRLCK;
+    whole.l_whence = SEEK_SET;  // the whole file (l_len 0)
+    if (::fcntl(fd, F_OFD_SETLK, &whole) != 0) {
+      const int err = errno;
+      const std::string who = lock_holder(fd);
+      ::close(fd);
+      if (err != EAGAIN && err != EACCES)
+        throw std::runtime_error("cannot lock the output folder " + path_ + ": " + std::strerror(err));
+      return who;
+    }
+    if (same_file(fd_, kLockName, fd)) break;
     ::close(fd);
-    if (err != EAGAIN && err != EACCES)
-      throw std::runtime_error("cannot lock the output folder " + path_ + ": " + std::strerror(err));
-    return who;
+    if (attempt == 1000)
+      throw std::runtime_error("cannot lock the output folder " + path_ + ": its " + kLockName +
+                               " was removed under every claim (1000 tries)");
   }
   // who holds it, for the messages; the lock is the OFD lock, and holds without this text
   const std::string pid = std::to_string(::getpid()) + "\n";
   if (::ftruncate(fd, 0) == 0 && ::pwrite(fd, pid.data(), pid.size(), 0) < 0) errno = 0;
   lock_fd_ = fd;
   return "";
+}
+
+void OutputDir::unlock() {
+  if (lock_fd_ < 0) return;
+  // removed while held, so no other claim can hold the file at that name meanwhile; then released
+  if (same_file(fd_, kLockName, lock_fd_)) ::unlinkat(fd_, kLockName, 0);
+  ::close(lock_fd_);
+  lock_fd_ = -1;
 }
 
 std::string folder_holder(int dir) {

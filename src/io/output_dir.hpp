@@ -68,7 +68,8 @@ class OutputDir {
 
   // claims the folder for one writer: an exclusive lock on DIR/.beltsim.lock (opened as any
   // output; an open file description's lock, fcntl F_OFD_SETLK, which another one of this
-  // process is refused too), held until this object is destroyed (or the process ends). Throws
+  // process is refused too), held until this object is destroyed (or the process ends), which
+  // removes the file (a process killed leaves it, holding no lock, for the next claim). Throws
   // std::runtime_error naming the folder when another simulation, of this process or another,
   // holds it.
   void lock();
@@ -78,6 +79,7 @@ class OutputDir {
   std::string try_lock();
 
  private:
+  void unlock();  // the lock file removed and the lock released, when this object holds it
   OutputDir() = default;
   int open_own(const std::string& name, int flags, bool empty) const;
   std::string path_;

@@ -116,7 +116,7 @@ class KeepStates(unittest.TestCase):
                                              'keep_states = true }\n')
         code, out, err = run(["run", "bare.lua"], self.dir)
         self.assertEqual(code, 0, err)
-        self.assertEqual(self.listing("bare"), [".beltsim.lock", "events.csv", "parameters.csv", "states",
+        self.assertEqual(self.listing("bare"), ["events.csv", "parameters.csv", "states",
                                                 "timeseries.csv"])
         names = self.listing(os.path.join("bare", "states"))
         self.assertEqual([state_time(os.path.join(self.dir, "bare", "states", n)) for n in names],

@@ -103,9 +103,16 @@ TEST(Outputs, OneSimulationPerFolder) {
   EXPECT_EQ(what_of([&] { run(dry_scene(), batch); }), in_use(out));
   EXPECT_EQ(slurp(out / "timeseries.csv"), rows);
   EXPECT_EQ(slurp(out / "parameters.csv"), params);
-  // released at close
+  EXPECT_TRUE(fs::exists(out / ".beltsim.lock"));
+  // released at close, its file removed (issue 44: it was left in every output folder)
   a->close();
+  EXPECT_FALSE(fs::exists(out / ".beltsim.lock"));
   EXPECT_EQ(what_of([&] { run(dry_scene(), batch); }), "");
+  EXPECT_FALSE(fs::exists(out / ".beltsim.lock"));
+  // a lock file a killed process left holds no lock: the next simulation takes the folder
+  std::ofstream(out / ".beltsim.lock") << "99999\n";
+  EXPECT_EQ(what_of([&] { run(dry_scene(), batch); }), "");
+  EXPECT_FALSE(fs::exists(out / ".beltsim.lock"));
 }
 
 TEST(Outputs, ACheckpointResumedTwiceIsRefusedTheSecondTime) {
