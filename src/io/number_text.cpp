@@ -17,7 +17,15 @@ void append_number(std::string& out, double v) {
   out.append(buf, r.ptr);
 }
 
-void append_value(std::string& out, double v) { append_number(out, v == 0 ? 0.0 : v); }
+void append_value(std::string& out, double v) {
+  append_number(out, v == 0 ? 0.0 : v);
+}
+
+std::string value_text(double v) {
+  std::string s;
+  append_value(s, v);
+  return s;
+}
 
 std::string number_text(double v) {
   std::string s;

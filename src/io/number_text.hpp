@@ -15,6 +15,8 @@ std::string number_text(double v);
 // a value in a results file (timeseries.csv, snapshots.csv): as append_number, with -0 written as
 // 0 (a quantity that is zero has no sign for a reader; checkpoints keep it, append_number)
 void append_value(std::string& out, double v);
+// the same as a string: every number of parameters.csv and events.csv
+std::string value_text(double v);
 
 // v rounded to that many significant digits (as printf's %.<digits>g, '.' whatever the locale),
 // for messages, where a reader wants "0.1" rather than every digit of the double

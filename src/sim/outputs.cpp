@@ -38,15 +38,16 @@ void write_parameters(const Scene& sc, const RunSettings& rs, const OutputDir& d
   // source: "given" by the scenario, "default" taken, "derived" by the build from those, or "run"
   f << "name,value,unit,source,note\n";
   auto row = [&](const std::string& name, double v, const std::string& unit, const std::string& note) {
-    f << csv_text(name) << ',' << number_text(v) << ',' << csv_text(unit) << ",derived," << csv_text(note) << '\n';
+    f << csv_text(name) << ',' << value_text(v) << ',' << csv_text(unit) << ",derived," << csv_text(note) << '\n';
   };
-  auto text = [&](const std::string& name, const std::string& v, const std::string& note, const std::string& unit = "") {
+  auto text = [&](const std::string& name, const std::string& v, const std::string& note,
+                  const std::string& unit = "") {
     f << csv_text(name) << ',' << csv_text(v) << ',' << csv_text(unit) << ",derived," << csv_text(note) << '\n';
   };
   for (const SceneInput& in : sc.inputs) {
     f << csv_text(in.name) << ',';
     if (in.text.empty())
-      f << number_text(in.value);
+      f << value_text(in.value);
     else
       f << csv_text(in.text);
     f << ',' << csv_text(in.unit) << ',' << (in.given ? "given" : "default") << ',' << csv_text(in.note) << '\n';
@@ -113,10 +114,10 @@ void write_parameters(const Scene& sc, const RunSettings& rs, const OutputDir& d
   }
   // the run's settings (source "run")
   f << "run.integrator," << csv_text(rs.integrator) << ",,run,\n";
-  f << "run.rtol," << number_text(rs.rtol) << ",,run,\n";
-  f << "run.atol," << number_text(Tolerances{rs.rtol, rs.atol}.absolute()) << ",,run,"
+  f << "run.rtol," << value_text(rs.rtol) << ",,run,\n";
+  f << "run.atol," << value_text(Tolerances{rs.rtol, rs.atol}.absolute()) << ",,run,"
     << csv_text(std::string("per natural size: ") + BeltProblem::kNaturalSizes) << "\n";
-  f << "run.sample_dt," << number_text(rs.sample_dt) << ",s,run,\n";
+  f << "run.sample_dt," << value_text(rs.sample_dt) << ",s,run,\n";
   f << "run.check," << (rs.check ? 1 : 0) << ",,run,"
     << csv_text("1: the run estimates its own error (check.* below, at its end)") << '\n';
   write_file_whole(dir, "parameters.csv", f.str());
@@ -128,8 +129,7 @@ std::vector<std::string> timeseries_columns(const Scene& sc, size_t probes) {
   std::vector<std::string> c{"t"};
   for (const Pulley& p : sc.model.pulleys)
     for (const char* q : {".omega", ".torque", ".belt_torque", ".hub_load", ".torque_mean", ".belt_torque_mean",
-                          ".contact_arc", ".slip_arc", ".stick_arc", ".creep", ".slip_speed",
-                          ".creep_pitch"})
+                          ".contact_arc", ".slip_arc", ".stick_arc", ".creep", ".slip_speed", ".creep_pitch"})
       c.push_back(p.name + q);
   for (const Pulley& p : sc.model.pulleys)
     if (p.arm >= 0) c.push_back(p.name + ".arm_angle"), c.push_back(p.name + ".arm_rate");
@@ -200,8 +200,9 @@ void Outputs::close(const Warnings& w, const std::string& rows) {
       for (const WarningKindInfo& i : warning_kinds()) {
         const WarningStat& s = w[i.kind];
         f << "warning." << i.name << ".count," << s.count << ",,derived," << csv_text(i.description) << '\n'
-          << "warning." << i.name << ".first_t," << (s.count > 0 ? number_text(s.first_t) : std::string())
-          << ",s,derived," << "simulated time it first fired (empty: never)\n";
+          << "warning." << i.name << ".first_t," << (s.count > 0 ? value_text(s.first_t) : std::string())
+          << ",s,derived,"
+          << "simulated time it first fired (empty: never)\n";
       }
       f << rows;
       RowFile(*dir_, "parameters.csv", true).write(f.str());
@@ -223,7 +224,7 @@ void Outputs::sample(std::vector<double> row) {
 
 void Outputs::event(double t, const std::string& what, const std::string& text) {
   if (!events_) return;
-  events_->write(number_text(t) + ',' + csv_text(what) + ',' + csv_text(text) + '\n');
+  events_->write(value_text(t) + ',' + csv_text(what) + ',' + csv_text(text) + '\n');
 }
 
 // all rows by one write(2) (io/row_file.hpp): the file holds whole snapshots. Columns in SI
@@ -254,13 +255,21 @@ void Outputs::keep_state(const std::string& name, const std::string& checkpoint)
   write_file_whole(*states_, name, checkpoint);
 }
 
-bool Outputs::has_snapshots() const { return rs_.snapshot_every > 0 || !rs_.snapshot_times.empty(); }
+bool Outputs::has_snapshots() const {
+  return rs_.snapshot_every > 0 || !rs_.snapshot_times.empty();
+}
 
-std::string Outputs::path(const char* name) const { return output_path(rs_, name); }
+std::string Outputs::path(const char* name) const {
+  return output_path(rs_, name);
+}
 
-long Outputs::bytes(const char* name) const { return std::max(0L, dir_->size(name)); }
+long Outputs::bytes(const char* name) const {
+  return std::max(0L, dir_->size(name));
+}
 
-long Outputs::frames_written() const { return frames_before_ + (sink_ ? sink_->frames_written() : 0); }
+long Outputs::frames_written() const {
+  return frames_before_ + (sink_ ? sink_->frames_written() : 0);
+}
 
 Outputs::State Outputs::get_state() const {
   State s = last_;

@@ -16,7 +16,9 @@ namespace {
 constexpr double kSpeedFloor = 1.0;
 }  // namespace
 
-double check_rtol(const RunSettings& rs) { return rs.rtol / kCheckTighten; }
+double check_rtol(const RunSettings& rs) {
+  return rs.rtol / kCheckTighten;
+}
 
 RunCheck::RunCheck(const Scene& sc, const Drive& drive, const RunSettings& rs)
     : sc_(sc),
@@ -52,9 +54,8 @@ void RunCheck::sample(double t, const Eigen::VectorXd& y, const Eigen::VectorXd*
   rs_.on_warning("check: at t = " + rounded_text(t) + " s the estimated error so far of the " +
                  (speeds ? "pulley speeds" : "span tensions") + " is " +
                  rounded_text(speeds ? est_.err_speed : est_.err_tension, 3) +
-                 " (relative to their largest values so far), past " + rounded_text(kCheckLimit) +
-                 "×rtol = " + rounded_text(est_.limit()) +
-                 ": this run's answer is not within its tolerance; try a tighter rtol");
+                 " (relative to their largest values so far), past " + rounded_text(kCheckLimit) + "×rtol = " +
+                 rounded_text(est_.limit()) + ": this run's answer is not within its tolerance; try a tighter rtol");
 }
 
 std::string RunCheck::line() const {
@@ -68,7 +69,8 @@ std::string RunCheck::line() const {
   else if (est_.warned_t >= 0)
     s += "; it passed " + rounded_text(kCheckLimit) + "×rtol at t = " + rounded_text(est_.warned_t) +
          " s, relative to the smaller values then";
-  if (!est_.failed.empty()) s += "; the companion stopped early, the estimate covers the run up to then: " + est_.failed;
+  if (!est_.failed.empty())
+    s += "; the companion stopped early, the estimate covers the run up to then: " + est_.failed;
   return s;
 }
 
@@ -77,14 +79,14 @@ std::string RunCheck::parameter_rows() const {
   auto row = [&](const char* name, const std::string& v, const char* note) {
     f << name << ',' << v << ",,derived," << csv_text(note) << '\n';
   };
-  row("check.rtol", number_text(check_rtol(rs_)), "the companion solution's rtol (its atol likewise a tenth)");
-  row("check.err_speed", number_text(est_.err_speed),
+  row("check.rtol", value_text(check_rtol(rs_)), "the companion solution's rtol (its atol likewise a tenth)");
+  row("check.err_speed", value_text(est_.err_speed),
       "estimated error of the pulley speeds: max over pulleys and samples of |run - companion|, relative to the "
       "companion's largest |speed| of that pulley (at least 1 rad/s)");
-  row("check.err_tension", number_text(est_.err_tension), "the same for the span tensions");
-  row("check.limit", number_text(est_.limit()), "10×rtol: past it the run warned");
+  row("check.err_tension", value_text(est_.err_tension), "the same for the span tensions");
+  row("check.limit", value_text(est_.limit()), "10×rtol: past it the run warned");
   row("check.over", est_.over() ? "1" : "0", "1: the estimate over the run is past the limit");
-  row("check.warned_t", est_.warned_t >= 0 ? number_text(est_.warned_t) : std::string(),
+  row("check.warned_t", est_.warned_t >= 0 ? value_text(est_.warned_t) : std::string(),
       "simulated time [s] the estimate so far first passed the limit, when the run warned (empty: never)");
   row("check.failed", csv_text(est_.failed), "why the companion stopped early (empty: it did not)");
   return f.str();

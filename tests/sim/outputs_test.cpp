@@ -115,6 +115,20 @@ TEST(Outputs, OneSimulationPerFolder) {
   EXPECT_FALSE(fs::exists(out / ".beltsim.lock"));
 }
 
+// a zero is written 0 in parameters.csv too (issue 44: the CSVs held -0): a centre given at y = -0
+TEST(Outputs, ParametersHoldNoNegativeZero) {
+  const fs::path out = fresh("negative_zero") / "out";
+  SceneDef d = presets::paper_dry();
+  d.pulleys[1].centre = {0.29, -0.0};
+  {
+    Simulation s(build_scene(d), settings(out));
+    s.run_to(0.001);
+  }
+  const std::string p = slurp(out / "parameters.csv");
+  EXPECT_NE(p.find("\npulley.driven.centre_y,0,m,derived,"), std::string::npos) << p;
+  EXPECT_EQ(p.find(",-0,"), std::string::npos) << p;
+}
+
 TEST(Outputs, ACheckpointResumedTwiceIsRefusedTheSecondTime) {
   const fs::path out = fresh("resume_twice") / "out";
   const std::string ck = (out.parent_path() / "run.ckpt").string();
