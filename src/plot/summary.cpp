@@ -292,6 +292,7 @@ Summary summarize(const std::string& dir, double from, double to) {
     add(s, "pulleys", p, "slip_speed_mean", loss, "m/s");
     add(s, "pulleys", p, "speed_loss", loss / belt_speed, "");
     add(s, "pulleys", p, "creep_mean", w.of(p + ".creep").mean, "");
+    add(s, "pulleys", p, "creep_pitch_mean", w.of(p + ".creep_pitch").mean, "");
   }
   add_wraps(s, w, l, prm, belt_speed);
   add_arms_and_rotors(s, w, l);

@@ -5,7 +5,7 @@
 // the Lua table are all made from that one list. Over the window's samples (t in [from, to]):
 //   spans    span_<a>_<b>: tension_mean, tension_min, tension_max [N]
 //   pulleys  omega_mean [rad/s]; slip_speed_mean [m/s] (belt minus rim, as the CSV's slip_speed);
-//            speed_loss = slip_speed_mean / belt speed; creep_mean
+//            speed_loss = slip_speed_mean / belt speed; creep_mean, creep_pitch_mean
 //   wraps    wrap [rad] and mu from parameters.csv (the pitch line's wrap at t = 0, belt.mu_min);
 //            slip_arc_share = mean slip_arc / mean contact_arc, slip_arc_share_max (the worst
 //            sample); capstan_ratio = (T1 − m'v²)/(T2 − m'v²) of the mean tensions of the spans

@@ -65,11 +65,17 @@ std::vector<std::string> coarse_wraps(const Scene& sc) {
     const int needed = static_cast<int>(std::ceil(kWrapElementsWarn / on * n));
     std::ostringstream m;
     m.precision(3);
-    m << "pulley '" << sc.route_names[k] << "': its wrap (" << sc.route.arcs[k].angle * 180 / M_PI << "° of r = "
-      << sc.route.arcs[k].radius << " m) holds " << on << " elements of " << 1e3 * sc.model.belt.pitch
-      << " mm; its slip arc, belt torque and the span tensions beside it need about "
-      << kWrapElementsWarn << " or more: belt.elements = " << needed << " or more";
-    if (per_element) m << ", with the contact given per length (contact.c1_per_length, ...) so that refining keeps the answer";
+    // what the coarse wrap costs: its slip arc moves in steps of a whole element; measured on the
+    // paper's drive (docs/model.md, element count), 15.5 elements a wrap are 16 % off a fine
+    // belt's slip arc and 14 % off its slack span
+    m << "pulley '" << sc.route_names[k] << "': its wrap (" << sc.route.arcs[k].angle * 180 / M_PI
+      << "° of r = " << sc.route.arcs[k].radius << " m) holds " << on << " elements of " << 1e3 * sc.model.belt.pitch
+      << " mm, each " << 100 / on << " % of the wrap: its slip arc moves in such steps, and its belt torque and the "
+      << "span tensions beside it are as coarse (the paper's drive, at 15 elements a wrap, is 16 % off a fine belt "
+         "in the slip arc and 14 % in the slack span); about "
+      << kWrapElementsWarn << " or more resolve it: belt.elements = " << needed << " or more";
+    if (per_element)
+      m << ", with the contact given per length (contact.c1_per_length, ...) so that refining keeps the answer";
     m << " (docs/model.md, element count)";
     out.push_back(m.str());
   }

@@ -23,16 +23,16 @@ fs::path folder(const std::string& name, bool parameters = true) {
   const fs::path d = test::scratch_dir("beltsim summary test") / name;
   fs::create_directories(d);
   std::ofstream ts(d / "timeseries.csv");
-  ts << "t,a.omega,a.torque,a.hub_load,a.contact_arc,a.slip_arc,a.creep,a.slip_speed,"
-        "b.omega,b.torque,b.hub_load,b.contact_arc,b.slip_arc,b.creep,b.slip_speed,"
+  ts << "t,a.omega,a.torque,a.hub_load,a.contact_arc,a.slip_arc,a.creep,a.slip_speed,a.creep_pitch,"
+        "b.omega,b.torque,b.hub_load,b.contact_arc,b.slip_arc,b.creep,b.slip_speed,b.creep_pitch,"
         "a.arm_angle,a.arm_rate,b.rotor_angle,b.rotor_speed,b.windup,b.coupling_torque,"
         "span_a_b.tension,span_a_b.tension_mean,span_b_a.tension,span_b_a.tension_mean,"
         "energy.mechanical,energy.work_torques,energy.dissipated_axial,energy.dissipated_bending,"
         "energy.dissipated_contact,energy.dissipated_friction\n"
-        "0,10,2,300,0.1,0.01,nan,0.01,5,-1,330,0.2,0,0.01,0.001,1.0,0,0,5,0,1,100,nan,50,nan,0,0,0,0,0,0\n"
-        "0.1,10,2,310,0.1,0.02,0.01,0.02,5,-1,330,0.2,0,0.01,0.001,1.2,-3,0,5,0,-1,200,0,60,0,0,0,0,1,0,0\n"
-        "0.2,10,2,350,0.1,0.05,0.03,0.04,5,-1,330,0.2,0,0.01,0.001,0.9,2,0,5,0,-3,400,0,80,0,0,0,0,2,0,0\n"
-        "0.3,10,2,320,0.1,0.01,0.01,0.01,5,-1,330,0.2,0,0.01,0.001,1.1,0,0,5,0,1,300,0,100,0,0,0,0,3,0,0\n";
+        "0,10,2,300,0.1,0.01,nan,0.01,nan,5,-1,330,0.2,0,0.01,0.001,0.012,1.0,0,0,5,0,1,100,nan,50,nan,0,0,0,0,0,0\n"
+        "0.1,10,2,310,0.1,0.02,0.01,0.02,0.02,5,-1,330,0.2,0,0.01,0.001,0.012,1.2,-3,0,5,0,-1,200,0,60,0,0,0,0,1,0,0\n"
+        "0.2,10,2,350,0.1,0.05,0.03,0.04,0.05,5,-1,330,0.2,0,0.01,0.001,0.012,0.9,2,0,5,0,-3,400,0,80,0,0,0,0,2,0,0\n"
+        "0.3,10,2,320,0.1,0.01,0.01,0.01,0.02,5,-1,330,0.2,0,0.01,0.001,0.012,1.1,0,0,5,0,1,300,0,100,0,0,0,0,3,0,0\n";
   if (parameters) {
     std::ofstream p(d / "parameters.csv");
     p << "name,value,unit,source,note\n"
@@ -69,6 +69,7 @@ TEST(Summary, TensionsSlipAndCapstanOverAWindow) {
   EXPECT_DOUBLE_EQ(figure(s, "a", "slip_speed_mean"), 0.03);
   EXPECT_DOUBLE_EQ(figure(s, "a", "speed_loss"), 0.03 / v);
   EXPECT_DOUBLE_EQ(figure(s, "a", "creep_mean"), 0.02);
+  EXPECT_DOUBLE_EQ(figure(s, "a", "creep_pitch_mean"), 0.035);
   // slip arc: 0.035 m of 0.1 m in the mean, 0.5 at the worst sample
   EXPECT_DOUBLE_EQ(figure(s, "a", "slip_arc_share"), 0.35);
   EXPECT_DOUBLE_EQ(figure(s, "a", "slip_arc_share_max"), 0.5);

@@ -1,12 +1,14 @@
 // The stages of build_scene (scene/build.hpp), each on the paper's two-pulley drive, where each
 // has an answer known in closed form.
+#include "scene/build.hpp"
+
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cmath>
+#include <sstream>
 #include <string>
 
-#include "scene/build.hpp"
 #include "scene/parameters.hpp"
 #include "scene/presets.hpp"
 #include "scene/validate.hpp"
@@ -355,8 +357,8 @@ namespace beltsim {
 // paper's two-pulley drive (π·0.1 m over 60 pitches of 0.0202 m ≈ 15.5 each)
 TEST(BuildStages, CoarseWrapsAreNamedWithTheElementCountThatResolvesThem) {
   const Scene sc = build_scene(presets::automotive_wet());
-  const int k = static_cast<int>(std::find(sc.route_names.begin(), sc.route_names.end(), "tensioner") -
-                                 sc.route_names.begin());
+  const int k =
+      static_cast<int>(std::find(sc.route_names.begin(), sc.route_names.end(), "tensioner") - sc.route_names.begin());
   ASSERT_LT(k, static_cast<int>(sc.route_names.size()));
   EXPECT_NEAR(sc.wrap_elements(k), sc.route.arcs[k].radius * sc.route.arcs[k].angle / sc.model.belt.pitch, 1e-12);
   EXPECT_NEAR(sc.wrap_elements(k), 3.9, 0.1);
@@ -366,6 +368,11 @@ TEST(BuildStages, CoarseWrapsAreNamedWithTheElementCountThatResolvesThem) {
   // 10 elements on the tensioner need 150·10/3.89 ≈ 386 elements
   const int needed = static_cast<int>(std::ceil(kWrapElementsWarn / sc.wrap_elements(k) * sc.model.n_el()));
   EXPECT_NE(w[0].find("belt.elements = " + std::to_string(needed)), std::string::npos) << w[0];
+  // what the coarse wrap costs: each of its 3.89 elements is 25.7 % of it (issue 44 §6)
+  std::ostringstream step;
+  step.precision(3);
+  step << ", each " << 100 / sc.wrap_elements(k) << " % of the wrap: its slip arc moves in such steps";
+  EXPECT_NE(w[0].find(step.str()), std::string::npos) << w[0];
   SceneDef fine = presets::automotive_wet();
   fine.belt.elements = needed + 2;
   const Scene f = build_scene(fine);
@@ -398,7 +405,7 @@ TEST(BuildStages, LightPulleysAreRefusedWithTheBeltsInertiaOnTheWrap) {
   const std::string e = error_of([&] { build_scene(d); });
   EXPECT_NE(e.find("pulley 'driven'.inertia"), std::string::npos) << e;
   EXPECT_NE(e.find("below 1 %"), std::string::npos) << e;
-  EXPECT_NE(e.find("0.0003"), std::string::npos) << e;  // the belt's inertia on the wrap
+  EXPECT_NE(e.find("0.0003"), std::string::npos) << e;          // the belt's inertia on the wrap
   d.pulleys[1].inertia = 2 * build::kWrapInertiaMin * on_wrap;  // the wrap is a little over 180°: 2x clears it
   EXPECT_EQ(error_of([&] { build_scene(d); }), "");
   d.pulleys[1].inertia = 1e-12;
