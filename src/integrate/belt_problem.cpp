@@ -28,6 +28,11 @@ double BeltProblem::atol_scale(int k) const {
   return vel ? 1.0 : 0.1;
 }
 
+bool BeltProblem::in_state_norm(int k) const {
+  const int N = model_.n_coord(), ne = 3 * model_.n_el();
+  return !(k >= N && k < N + ne);
+}
+
 double BeltProblem::resolution(int k) const {
   // an element's velocity (x, y) and a pulley's surface speed: the friction band Δv
   const int N = model_.n_coord(), ne = 3 * model_.n_el();

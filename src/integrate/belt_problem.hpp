@@ -29,6 +29,9 @@ class BeltProblem final : public OdeProblem {
   void answer(double t, const double* y, double* a) override;
   void answer_error(double t, const double* y, const double* e, double* da) override;
   double answer_scale(int k) const override;
+  // every component but the elements' velocities (x, y, spin): their error is held through the
+  // elements' positions and angles, the pulley speeds and the span tensions (StepController)
+  bool in_state_norm(int k) const override;
   std::string describe_answer(int k) const override;
   int switch_count() const override;
   // from the contact records of (t, y) with every pair (model/contacts.hpp), kept in the workspace

@@ -5,7 +5,7 @@
 
 namespace beltsim {
 
-StepController::StepController(OdeProblem& sys, const Tolerances& tol, int q, int p)
+StepController::StepController(OdeProblem& sys, const Tolerances& tol, int q, int p, bool reduced)
     : sys_(sys), rtol_(tol.rtol), exponent_(1.0 / (q + 1)) {
   const double tighter = p > 0 ? std::min(1.0, std::pow(tol.rtol / kProportionalFrom, 1.0 / p)) : 1.0;
   rtol_ *= tighter;
@@ -13,6 +13,10 @@ StepController::StepController(OdeProblem& sys, const Tolerances& tol, int q, in
   atol_.resize(sys.size());
   for (int k = 0; k < sys.size(); ++k) atol_[k] = atol * sys.atol_scale(k);
   const int na = sys.answer_size();
+  in_norm_.setOnes(sys.size());
+  if (na > 0 && reduced)
+    for (int k = 0; k < sys.size(); ++k) in_norm_[k] = sys.in_state_norm(k) ? 1.0 : 0.0;
+  n_in_norm_ = std::max(1.0, in_norm_.sum());
   aatol_.resize(na), a0_.resize(na), a1_.resize(na), da_.resize(na);
   for (int a = 0; a < na; ++a) aatol_[a] = atol * sys.answer_scale(a);
 }
@@ -23,10 +27,10 @@ double StepController::error_norm(double t1, const Eigen::VectorXd& y0, const Ei
   for (Eigen::Index k = 0; k < err.size(); ++k) {
     const double w = atol_[k] + rtol_ * std::max(std::abs(y0[k]), std::abs(y1[k]));
     const double r = err[k] / w;
-    sum += r * r;
+    sum += in_norm_[k] * r * r;
     if (worst && std::abs(r) > big) big = std::abs(r), *worst = static_cast<int>(k);
   }
-  double e = std::sqrt(sum / static_cast<double>(err.size()));
+  double e = std::sqrt(sum / n_in_norm_);
   if (aatol_.size() > 0) {
     e /= kStateLooseness;
     sys_.answer(t1, y0.data(), a0_.data());

@@ -4,7 +4,7 @@
 // The error norm measures the answer users read, each quantity on its own, and the state as a
 // whole more loosely:
 //   w_k = atol·scale_k + rtol·max(|y0_k|, |y1_k|)          (state component k)
-//   e_state  = sqrt(mean((err_k/w_k)²))
+//   e_state  = sqrt(mean over the components in the state norm of (err_k/w_k)²)
 //   W_a = atol·ascale_a + rtol·max(|A_a(y0)|, |A_a(y1)|)   (answer quantity a: OdeProblem::answer)
 //   e_answer = max_a |δA_a| / W_a,   δA = A(y1) - A(y1 - err)
 //   ‖err‖ = max(e_answer, e_state / kStateLooseness)
@@ -13,7 +13,14 @@
 // speed among 6n element states), and holds the element states, whose local vibration no output
 // depends on, as tightly as the answer: e_answer holds each answer quantity to the tolerance, and
 // the state norm keeps only what the iteration and the answer's future need (docs/integration.md,
-// "Error control"). A problem without an answer is controlled by e_state alone, unscaled.
+// "Error control"). With an answer, the problem may leave components out of the state norm
+// when its method is L-stable (OdeProblem::in_state_norm: the belt elements' velocities, as Adams' index-3 form leaves
+// velocities out of its error test): an element vibrating at ω (rocking undamped at its bending
+// frequency, bouncing on its contact spring) carries a velocity error ω times its position's, and a
+// norm that holds that velocity holds the step to the vibration's period, which no answer depends
+// on; the positions, held, bound what the velocity error carries, and the answer holds the pulley
+// speeds and the span tensions, whose dampers read the elements' velocities.
+// A problem without an answer is controlled by e_state alone, unscaled, over every component.
 #pragma once
 
 #include <Eigen/Core>
@@ -41,7 +48,9 @@ class StepController {
   // its global error falls in proportion to rtol (Hairer, Nørsett & Wanner I, II.4: tolerance
   // proportionality). At and above it, the rtol given.
   static constexpr double kProportionalFrom = 1e-4;
-  StepController(OdeProblem& sys, const Tolerances& tol, int q, int p = 0);
+  // reduced: leave out of the state norm what the problem leaves out (OdeProblem::in_state_norm;
+  // an L-stable method's controller)
+  StepController(OdeProblem& sys, const Tolerances& tol, int q, int p = 0, bool reduced = false);
   // the error norm of a step from y0 to y1 at t1 with the error estimate err; worst: the state
   // component with the largest weighted error
   double error_norm(double t1, const Eigen::VectorXd& y0, const Eigen::VectorXd& y1, const Eigen::VectorXd& err,
@@ -56,6 +65,8 @@ class StepController {
  private:
   OdeProblem& sys_;
   Eigen::VectorXd atol_;
+  Eigen::VectorXd in_norm_;  // 1 for a component in the state norm, else 0
+  double n_in_norm_ = 0;     // their number
   Eigen::VectorXd aatol_, a0_, a1_, da_;  // the answer's atol, its values at y0 and y1, its error
   double rtol_;
   double exponent_;

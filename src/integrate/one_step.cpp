@@ -52,7 +52,7 @@ class OneStep final : public Integrator {
  public:
   OneStep(std::unique_ptr<Stepper> owned, Stepper& st, const OdeSystem& sys, const Tolerances& tol, double h_max)
       : owned_(std::move(owned)), st_(&st), sys_(sys), ctl_(*sys.problem, tol, std::min(st.order(), st.embedded_order()),
-              st.order() < st.embedded_order() ? st.order() : 0),
+              st.order() < st.embedded_order() ? st.order() : 0, st.l_stable()),
         h_max_(h_max > 0 ? h_max : std::numeric_limits<double>::infinity()) {
     if (st.needs_linear_solver() && !sys.linear)
       throw std::invalid_argument("integrator: " + st.name() + " is implicit and needs a linear solver; the system has none");

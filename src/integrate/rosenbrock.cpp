@@ -16,6 +16,7 @@ class Rosenbrock final : public Stepper {
   Rosenbrock(std::string name, const RosenbrockTableau& tab) : name_(std::move(name)), tab_(tab) {}
   std::string name() const override { return name_; }
   int order() const override { return 3; }
+  bool l_stable() const override { return true; }
   int embedded_order() const override { return 2; }
 
   bool needs_linear_solver() const override { return true; }

@@ -26,6 +26,10 @@ class Stepper {
   // linearly implicit methods solve with the system's LinearSolver (an integrator refuses a
   // system without one); explicit methods read only the problem
   virtual bool needs_linear_solver() const { return false; }
+  // L-stable: a component far faster than the step is damped, not carried (its error dies out
+  // within the step). Only such a method may leave a problem's fast components out of the state
+  // norm (OdeProblem::in_state_norm): an explicit method's error in them would grow unseen.
+  virtual bool l_stable() const { return false; }
   // One step of size h from (t, y) with f0 = F(t, y). Writes y1 and the error estimate err.
   // Returns false when the step cannot be taken at all (e.g. a singular matrix): the driver
   // then shrinks h as for a rejected step.

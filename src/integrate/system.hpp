@@ -61,6 +61,9 @@ class OdeProblem {
   virtual void answer(double, const double*, double*) {}
   virtual void answer_error(double, const double*, const double*, double*) {}
   virtual double answer_scale(int) const { return 1.0; }
+  // whether component k's error counts in the state's part of the error norm beside the answer
+  // (StepController; only when the problem has an answer)
+  virtual bool in_state_norm(int) const { return true; }
   virtual std::string describe_answer(int k) const { return "answer " + std::to_string(k); }
 
   // diagnostics: a name for component k ("element 12 y velocity") and a check of a state that

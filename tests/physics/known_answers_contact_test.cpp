@@ -208,6 +208,10 @@ TEST(KnownAnswers, LugreHoldsASubLimitLoadWithoutDrift) {
 // After 10 ms the start-up ripple has decayed below 0.5 % (measured); bound 1 % of the load,
 // which the centrifugal term exceeds 17-fold.
 TEST(KnownAnswers, CentrifugalTensionUnloadsThePulleys) {
+  // the steps, not held to the elements' vibration (their velocities are out of the error norm),
+  // grow until the implicit iteration fails on an element entering a wrap at 30 m/s: a few steps
+  // retried at a fifth of their size
+  test::expect_warnings({WarningKind::failed_step});
   SceneDef d = presets::paper_dry();
   const double v = 30.0, rho = 0.096;
   for (PulleyDef& p : d.pulleys) {

@@ -340,6 +340,10 @@ SpanVibration vibrate_span(double v) {
 // extra bending stiffness of about 0.03 N·m², more than EI itself. Measured: without b_tor the gap
 // halves (1.122 against 1.078), without EI as well it closes (above).
 TEST(KnownAnswers, MovingSpanVibratesSlower) {
+  // the steps, not held to the elements' vibration (their velocities are out of the error norm),
+  // grow until the implicit iteration fails on the nearly flexible belt (EI 1e-6 N·m², undamped)
+  // now and then: those steps are retried at a fifth of their size
+  test::expect_warnings({WarningKind::failed_step});
   const double v = 30.0, rho = 0.096;
   const SpanVibration rest = vibrate_span(0.0), moving = vibrate_span(v);
   ASSERT_GT(rest.f, 0.0);
