@@ -24,6 +24,7 @@
 #include "script/progress.hpp"
 #include "script/sandbox.hpp"
 #include "script/signals.hpp"
+#include "sim/run_table.hpp"
 
 namespace beltsim::script {
 
@@ -271,91 +272,59 @@ std::vector<int> read_probes(lua_State* L, int v, const Scene& sc, const std::st
   return out;
 }
 
-// the keys of scene:run{} and scene:start{} with their readers (one table: the key check and
-// the reading cannot drift apart)
-struct RunKey {
-  const char* key;
-  bool batch_only;
-  void (*read)(lua_State* L, int v, const Scene& sc, RunSettings& rs, bool& progress, const std::string& w);
-};
-const RunKey kRunKeys[] = {
-    {"t_end", true, [](lua_State* L, int v, const Scene&, RunSettings& rs, bool&, const std::string& w) {
-       rs.t_end = to_number(L, v, w + ".t_end");
-     }},
-    {"integrator", false, [](lua_State* L, int v, const Scene&, RunSettings& rs, bool&, const std::string& w) {
-       rs.integrator = to_string(L, v, w + ".integrator");
-     }},
-    {"rtol", false, [](lua_State* L, int v, const Scene&, RunSettings& rs, bool&, const std::string& w) {
-       rs.rtol = to_number(L, v, w + ".rtol");
-     }},
-    {"atol", false, [](lua_State* L, int v, const Scene&, RunSettings& rs, bool&, const std::string& w) {
-       rs.atol = to_number(L, v, w + ".atol");
-       if (const std::string bad = atol_problem(rs.atol); !bad.empty()) fail(L, w + ".atol: " + bad);
-     }},
-    {"sample", false, [](lua_State* L, int v, const Scene&, RunSettings& rs, bool&, const std::string& w) {
-       rs.sample_dt = to_number(L, v, w + ".sample");
-     }},
-    {"out", false, [](lua_State* L, int v, const Scene&, RunSettings& rs, bool&, const std::string& w) {
-       rs.out_dir = to_string(L, v, w + ".out");
-       if (const std::string bad = out_dir_problem(rs.out_dir); !bad.empty()) fail(L, w + ".out: " + bad);
-     }},
-    {"probe", false, [](lua_State* L, int v, const Scene& sc, RunSettings& rs, bool&, const std::string& w) {
-       rs.probes = read_probes(L, v, sc, w + ".probe");
-     }},
-    {"snapshots", false, [](lua_State* L, int v, const Scene&, RunSettings& rs, bool&, const std::string& w) {
-       const std::string ww = w + ".snapshots";
-       require_table(L, v, ww);
-       check_keys(L, v, ww, {"times", "every"});
-       if (field(L, v, "every")) {
-         rs.snapshot_every = to_number(L, -1, ww + ".every");
-         if (!(rs.snapshot_every > 0 && std::isfinite(rs.snapshot_every)))
-           fail(L, ww + ".every: must be > 0 s and finite (got " + std::to_string(rs.snapshot_every) + " s)");
-         lua_pop(L, 1);
-       }
-       if (field(L, v, "times")) {
-         const int tt = lua_gettop(L);
-         require_table(L, tt, ww + ".times");
-         const size_t n = check_sequence(L, tt, ww + ".times").size();
-         for (size_t k = 1; k <= n; ++k) {
-           lua_rawgeti(L, tt, static_cast<lua_Integer>(k));
-           rs.snapshot_times.push_back(to_number(L, -1, ww + ".times[" + std::to_string(k) + "]"));
-           lua_pop(L, 1);
-         }
-         lua_pop(L, 1);
-       }
-       if (rs.snapshot_every == 0 && rs.snapshot_times.empty())
-         fail(L, ww + ": give times = {t1, t2, ...} [s] and/or every = dt [s]");
-     }},
-    {"progress", false, [](lua_State* L, int v, const Scene&, RunSettings&, bool& progress, const std::string& w) {
-       if (lua_type(L, v) != LUA_TBOOLEAN) fail(L, w + ".progress: boolean expected, got " + type_name(L, v));
-       progress = lua_toboolean(L, v);
-     }},
-    {"events", true, [](lua_State* L, int v, const Scene& sc, RunSettings& rs, bool&, const std::string&) {
-       rs.mu_events = read_events(L, v, sc);
-     }},
-    {"max_wall", false, [](lua_State* L, int v, const Scene&, RunSettings& rs, bool&, const std::string& w) {
-       rs.wall_limit = to_number(L, v, w + ".max_wall");
-       if (!(rs.wall_limit > 0 && std::isfinite(rs.wall_limit)))
-         fail(L, w + ".max_wall: must be > 0 s and finite (got " + std::to_string(rs.wall_limit) + ")");
-     }},
-    {"check", false, [](lua_State* L, int v, const Scene&, RunSettings& rs, bool&, const std::string& w) {
-       if (lua_type(L, v) != LUA_TBOOLEAN) fail(L, w + ".check: boolean expected, got " + type_name(L, v));
-       rs.check = lua_toboolean(L, v);
-     }},
-    {"allow_large", false, [](lua_State* L, int v, const Scene&, RunSettings& rs, bool&, const std::string& w) {
-       if (lua_type(L, v) != LUA_TBOOLEAN) fail(L, w + ".allow_large: boolean expected, got " + type_name(L, v));
-       rs.allow_large = lua_toboolean(L, v);
-     }},
-    // before frames: with it, frames may give only the times (neither png nor video)
-    {"keep_states", false, [](lua_State* L, int v, const Scene&, RunSettings& rs, bool&, const std::string& w) {
-       if (lua_type(L, v) != LUA_TBOOLEAN) fail(L, w + ".keep_states: boolean expected, got " + type_name(L, v));
-       rs.keep_states = lua_toboolean(L, v);
-     }},
-    {"frames", false, [](lua_State* L, int v, const Scene&, RunSettings& rs, bool&, const std::string& w) {
-       if (!(lua_type(L, v) == LUA_TBOOLEAN && !lua_toboolean(L, v)))
-         rs.frames = to_frames(L, v, w + ".frames", {}, rs.keep_states);
-     }},
-};
+// snapshots = { times = {t1, t2, ...}, every = dt } [s]
+void read_snapshots(lua_State* L, int v, RunSettings& rs, const std::string& ww) {
+  require_table(L, v, ww);
+  check_keys(L, v, ww, {"times", "every"});
+  if (field(L, v, "every")) {
+    rs.snapshot_every = to_number(L, -1, ww + ".every");
+    if (!(rs.snapshot_every > 0 && std::isfinite(rs.snapshot_every)))
+      fail(L, ww + ".every: must be > 0 s and finite (got " + rounded_text(rs.snapshot_every) + " s)");
+    lua_pop(L, 1);
+  }
+  if (field(L, v, "times")) {
+    const int tt = lua_gettop(L);
+    require_table(L, tt, ww + ".times");
+    const size_t n = check_sequence(L, tt, ww + ".times").size();
+    for (size_t k = 1; k <= n; ++k) {
+      lua_rawgeti(L, tt, static_cast<lua_Integer>(k));
+      rs.snapshot_times.push_back(to_number(L, -1, ww + ".times[" + std::to_string(k) + "]"));
+      lua_pop(L, 1);
+    }
+    lua_pop(L, 1);
+  }
+  if (rs.snapshot_every == 0 && rs.snapshot_times.empty())
+    fail(L, ww + ": give times = {t1, t2, ...} [s] and/or every = dt [s]");
+}
+
+// the value at v of setting s (a key of scene:run{} or scene:start{}, sim/run_table.hpp), named
+// w.<key>: a number, flag or text by its kind into its slot, checked at once by its rule; a list or
+// table by its own reader
+void read_setting(lua_State* L, int v, const Scene& sc, const RunSetting& s, RunSettings& rs, const std::string& w) {
+  const std::string what = w + "." + std::string(s.key);
+  const RunSlot slot = run_slot(s, rs);
+  if (auto* x = std::get_if<double*>(&slot)) **x = to_number(L, v, what);
+  if (auto* t = std::get_if<std::string*>(&slot)) **t = to_string(L, v, what);
+  if (auto* f = std::get_if<bool*>(&slot)) {
+    if (lua_type(L, v) != LUA_TBOOLEAN) fail(L, what + ": boolean expected, got " + type_name(L, v));
+    **f = lua_toboolean(L, v);
+  }
+  if (const std::string bad = run_problem(s, rs, true); !bad.empty()) fail(L, what + ": " + bad);
+  if (s.kind != RunKind::other) return;
+  if (s.key == "probe")
+    rs.probes = read_probes(L, v, sc, what);
+  else if (s.key == "snapshots")
+    read_snapshots(L, v, rs, what);
+  else if (s.key == "events")
+    rs.mu_events = read_events(L, v, sc);
+  else if (s.key == "frames") {
+    // (keep_states comes before frames in the table: with it, frames may give only the times)
+    if (!(lua_type(L, v) == LUA_TBOOLEAN && !lua_toboolean(L, v)))
+      rs.frames = to_frames(L, v, what, {}, rs.keep_states);
+  } else {
+    throw std::logic_error("scene:run: no reader for the run setting '" + std::string(s.key) + "'");
+  }
+}
 
 }  // namespace
 
@@ -363,17 +332,13 @@ RunSettings read_run_settings(lua_State* L, int idx, const Scene& sc, Context* c
   const std::string w = batch ? "run" : "start";
   RunSettings rs;
   rs.out_dir = ctx->default_out;
-  bool pr = true;
   if (!lua_isnoneornil(L, idx)) {
     idx = lua_absindex(L, idx);
     require_table(L, idx, w);
-    std::vector<std::string> keys;
-    for (const RunKey& k : kRunKeys)
-      if (batch || !k.batch_only) keys.push_back(k.key);
-    check_keys(L, idx, w, keys);
-    for (const RunKey& k : kRunKeys) {
-      if ((!batch && k.batch_only) || !field(L, idx, k.key)) continue;
-      k.read(L, lua_gettop(L), sc, rs, pr, w);
+    check_keys(L, idx, w, run_keys(batch));
+    for (const RunSetting& s : run_settings()) {
+      if (!(s.where & (batch ? kRunKey : kStartKey)) || !field(L, idx, std::string(s.key).c_str())) continue;
+      read_setting(L, lua_gettop(L), sc, s, rs, w);
       lua_pop(L, 1);
     }
   }
@@ -382,17 +347,13 @@ RunSettings read_run_settings(lua_State* L, int idx, const Scene& sc, Context* c
   if (o.no_frames && rs.keep_states && rs.frames) rs.frames->png_dir.clear(), rs.frames->video_path.clear();
   if (o.no_frames && !rs.keep_states) rs.frames.reset();
   rs.frame_factory = render::make_frame_recorder;
-  if (o.out) rs.out_dir = *o.out;
-  if (o.t_end) rs.t_end = *o.t_end;
-  if (o.integrator) rs.integrator = *o.integrator;
-  if (o.rtol) rs.rtol = *o.rtol;
-  if (o.max_wall) rs.wall_limit = *o.max_wall;
-  if (o.check) rs.check = true;
+  // the command line's settings over the script's (checked when they were read, app/options.cpp)
+  for (const std::string& key : o.given) copy_run_setting(*find_run_setting(key), o.run, rs);
   // the check's warning while the run goes on (sim/run_check.hpp)
   rs.on_warning = [](const std::string& m) { std::fprintf(stderr, "beltsim: warning: %s\n", m.c_str()); };
   // the files of the run lie where the sandbox lets the script's own files lie
   if (const std::string r = run_paths_refusal(*ctx, w, rs); !r.empty()) fail(L, r);
-  if (progress) *progress = pr;
+  if (progress) *progress = rs.progress;
   return rs;
 }
 
@@ -420,7 +381,7 @@ int l_scene_run(lua_State* L) {
   bool progress = true;
   RunSettings rs = read_run_settings(L, 2, *sc, ctx, true, &progress);
   check_unread_args(L, *ctx, "run");
-  for (const std::string& note : drop_after_end(rs, ctx->overrides.t_end ? "--t-end" : nullptr))
+  for (const std::string& note : drop_after_end(rs, ctx->overrides.has("t_end") ? "--t-end" : nullptr))
     std::fprintf(stderr, "beltsim: %s\n", note.c_str());
   if (ctx->capture) {
     ctx->capture->scene = *sc;
@@ -485,12 +446,13 @@ int l_scene_start(lua_State* L) {
   const RunSettings rs = read_run_settings(L, 2, *sc, ctx, false, &progress);
   check_unread_args(L, *ctx, "start");
   // a live simulation runs to the times its script names: said once, before anything runs
-  if (ctx->overrides.t_end && !ctx->t_end_warned) {
+  if (ctx->overrides.has("t_end") && !ctx->t_end_warned) {
     ctx->t_end_warned = true;
     std::fprintf(stderr,
                  "beltsim: warning: --t-end %s s shortens scene:run only; %s's simulation (scene:start) runs to the "
                  "times its sim:run_to and sim:advance name\n",
-                 rounded_text(*ctx->overrides.t_end).c_str(), ctx->script.empty() ? "the console" : ctx->script.c_str());
+                 rounded_text(ctx->overrides.run.t_end).c_str(),
+                 ctx->script.empty() ? "the console" : ctx->script.c_str());
   }
   std::unique_ptr<Simulation> sim;
   std::string error;

@@ -287,7 +287,7 @@ sweep::PointResult run_script_point(Interpreter& lua, const std::string& script,
                                     const std::string& point_dir) {
   lua_State* L = lua.state();
   Context& ctx = lua.context();
-  ctx.overrides.out = point_dir;
+  ctx.overrides.run.out_dir = point_dir, ctx.overrides.give("out");
   ctx.overrides.set.clear();
   for (const auto& [name, v] : p.params) {
     ScriptArg a;

@@ -26,6 +26,7 @@ struct MuEvent {
   std::vector<double> share;
 };
 
+// (each setting's key, unit, default, rule and more: sim/run_table.hpp)
 struct RunSettings {
   double t_end = 1.0;                 // [s] (batch runs only)
   std::string integrator = "trbdf2";   // docs/integration.md, "The accuracy contract"
@@ -48,6 +49,7 @@ struct RunSettings {
   // collapse of the rate happens at a known moment.
   std::function<double()> wall_clock;
   bool keep_samples = false;          // keep the rows of timeseries.csv in memory (samples())
+  bool progress = true;               // the progress line on a terminal (script/progress.hpp)
   bool allow_large = false;           // past the output limits (check_volume)
   std::vector<MuEvent> mu_events;     // in any order
   // frames (PNG and/or video) at their own times; relative paths are taken inside out_dir. The
