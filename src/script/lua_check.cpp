@@ -12,13 +12,19 @@
 namespace beltsim::script {
 
 [[noreturn]] void fail(lua_State* L, const std::string& msg) {
+  fail_at(L, message_path(msg), msg);
+}
+
+[[noreturn]] void fail_at(lua_State* L, const KeyPath& path, const std::string& msg) {
   // "file:line:" of the calling script line, or of the line in the call's table constructor
-  // where the key the message names was written (key_line.hpp)
+  // where the key `path` was written (key_line.hpp)
   lua_Debug ar;
   std::optional<int> line;
   if (lua_getstack(L, 1, &ar) && lua_getinfo(L, "Sl", &ar) && ar.currentline > 0 && ar.source[0] == '@') {
     try {
-      line = key_line_in_file(ar.source + 1, ar.currentline, message_path(msg));
+      // (a list position last names an entry, not a key: the call's line)
+      if (!path.chain.empty() && path.chain.back().find_first_not_of("0123456789") != std::string::npos)
+        line = key_line_in_file(ar.source + 1, ar.currentline, path);
     } catch (const std::exception&) {  // (no memory for the text): the call's line
     }
   }

@@ -237,12 +237,13 @@ void add_law(lua_State* L, int idx, const std::string& what, bool speed, Context
   }
   // a table's own check first, so that its errors name its own key
   std::string error;
+  KeyPath about;
   try {
     validate_law(what, own, speed);
   } catch (const ParameterError& e) {
-    error = e.what();
+    error = e.what(), about = e.path;
   }
-  if (!error.empty()) fail(L, error);
+  if (!error.empty()) fail_at(L, about, error);
   law += own;
   for (lua_Integer k = 1; k <= n; ++k) {
     lua_rawgeti(L, idx, k);
@@ -319,12 +320,13 @@ TimeSpeedLaw to_law(lua_State* L, int idx, const std::string& what, bool speed, 
   TimeSpeedLaw law;
   add_law(L, idx, what, speed, ctx, law, 0);
   std::string error;
+  KeyPath about;
   try {
     validate_law(what, law, speed);  // the sum: a speed table summed into a speed law, say
   } catch (const ParameterError& e) {
-    error = e.what();
+    error = e.what(), about = e.path;
   }
-  if (!error.empty()) fail(L, error);
+  if (!error.empty()) fail_at(L, about, error);
   return law;
 }
 

@@ -144,12 +144,17 @@ FrameSettings to_frames(lua_State* L, int idx, const std::string& w, const std::
   if (!extra.empty()) f.png_dir = ".";  // sim:show: one picture, written by its caller
   f.video_path = output("video", "frames.mp4");
   std::string error;
+  KeyPath about;
   try {
     validate(f, times_only);
-  } catch (const std::invalid_argument& e) {
-    error = w.substr(0, w.rfind('.') == std::string::npos ? 0 : w.rfind('.') + 1) + e.what();
+  } catch (const ParameterError& e) {
+    // e names frames.<key>: under the table that holds these frames (run.frames, start.frames)
+    about = parse_path(w);
+    if (!about.chain.empty()) about.chain.pop_back();
+    about.chain.insert(about.chain.end(), e.path.chain.begin(), e.path.chain.end());
+    error = parameter_message(path_text(about), e.reason, e.value, e.unit);
   }
-  if (!error.empty()) fail(L, error);
+  if (!error.empty()) fail_at(L, about, error);
   return f;
 }
 
@@ -309,7 +314,8 @@ void read_setting(lua_State* L, int v, const Scene& sc, const RunSetting& s, Run
     if (lua_type(L, v) != LUA_TBOOLEAN) fail(L, what + ": boolean expected, got " + type_name(L, v));
     **f = lua_toboolean(L, v);
   }
-  if (const std::string bad = run_problem(s, rs, true); !bad.empty()) fail(L, what + ": " + bad);
+  if (const std::string bad = run_problem(s, rs, true); !bad.empty())
+    fail_at(L, KeyPath{"", {w, std::string(s.key)}}, what + ": " + bad);
   if (s.kind != RunKind::other) return;
   if (s.key == "probe")
     rs.probes = read_probes(L, v, sc, what);
@@ -367,6 +373,14 @@ void push_check(lua_State* L, const CheckEstimate& c) {
   if (!c.failed.empty()) lua_pushstring(L, c.failed.c_str()), lua_setfield(L, -2, "failed");
 }
 
+// the message of an error about a run setting (sim/run_settings.hpp, check), its path set in
+// `about` under the call's table (run.sample, start.frames.fps): made here, where it is reported
+std::string setting_error(const char* table, const ParameterError& e, KeyPath& about) {
+  about = e.path;
+  about.chain.insert(about.chain.begin(), table);
+  return parameter_message(path_text(about), e.reason, e.value, e.unit);
+}
+
 // scene:run{ t_end=, integrator=, rtol=, atol=, sample=, out=, probe=, progress=, events=, frames=, check= } -> result
 // = scene:start{...}, sim:run_to(t_end), sim:close()
 std::string wall_limit_text(double limit, double t, double target, const std::string& outputs) {
@@ -392,6 +406,7 @@ int l_scene_run(lua_State* L) {
   }
 
   std::string error;
+  KeyPath about;  // the setting an error is about: its line is the key's (lua_check.hpp, fail_at)
   RunResult res;
   try {
     const HostWork work;  // beltsim's own work, not Lua code (lua_clock.hpp)
@@ -400,16 +415,17 @@ int l_scene_run(lua_State* L) {
   } catch (const DivergenceError& e) {
     error = std::string(e.what()) + " (the samples up to then are in " + rs.out_dir + "/timeseries.csv)";
     ctx->divergence = {e.t, e.what()};
-  } catch (const std::invalid_argument& e) {
-    error = std::string("run.") + e.what();  // names the key: run.sample, run.frames.t_start, ...
+  } catch (const ParameterError& e) {
+    error = setting_error("run", e, about);
   } catch (const std::exception& e) {
     error = e.what();
   }
   if (res.over_wall_limit) {
     // not silent: the outputs are finalised (run() closed them) and the script stops here
-    error = "run.max_wall: the run " + wall_limit_text(rs.wall_limit, res.t_reached, rs.t_end, res.csv_path);
+    about = KeyPath{"", {"run", "max_wall"}};
+    error = path_text(about) + ": the run " + wall_limit_text(rs.wall_limit, res.t_reached, rs.t_end, res.csv_path);
   }
-  if (!error.empty()) fail(L, error);
+  if (!error.empty()) fail_at(L, about, error);
   if (res.interrupted) ctx->interrupted = true;
   if (!res.warning_summary.empty()) std::fprintf(stderr, "beltsim: %s\n", res.warning_summary.c_str());
   if (!res.check_line.empty())
@@ -456,15 +472,16 @@ int l_scene_start(lua_State* L) {
   }
   std::unique_ptr<Simulation> sim;
   std::string error;
+  KeyPath about;
   try {
     const HostWork work;  // beltsim's own work, not Lua code (lua_clock.hpp)
     sim = std::make_unique<Simulation>(*sc, rs);
-  } catch (const std::invalid_argument& e) {  // "key: reason"
-    error = std::string("start.") + e.what();
+  } catch (const ParameterError& e) {
+    error = setting_error("start", e, about);
   } catch (const std::exception& e) {  // an output that cannot be written, a folder in use
     error = std::string("start: ") + e.what();
   }
-  if (!error.empty()) fail(L, error);
+  if (!error.empty()) fail_at(L, about, error);
   push_simulation(L, std::move(sim), ctx, progress);
   return 1;
 }

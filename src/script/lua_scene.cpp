@@ -24,6 +24,7 @@
 #include "scene/parameters.hpp"
 #include "scene/validate.hpp"
 #include "script/context.hpp"
+#include "script/key_line.hpp"
 #include "script/lua_api.hpp"
 #include "script/lua_clock.hpp"
 #include "script/lua_law.hpp"
@@ -447,18 +448,19 @@ int l_scene(lua_State* L) {
   *box = nullptr;
   luaL_setmetatable(L, kSceneMeta);
   std::string error;
+  KeyPath about;  // the parameter an error is about: its line is the key's (lua_check.hpp, fail_at)
   try {
     const HostWork work;  // beltsim's own work, not Lua code (lua_clock.hpp); its laws are calls of their own
     *box = new Scene(build_scene(d, ctx ? ctx->stop : nullptr));
   } catch (const ParameterError& e) {
-    error = e.what();
+    error = e.what(), about = e.path;
   } catch (const BuildInterrupted& e) {
     ctx->interrupted = true;
     error = e.what();
   } catch (const std::exception& e) {  // a Lua law that failed while the static state was sought
-    error = e.what();
+    error = e.what(), about = message_path(error);  // ("pulley 'driven'.torque (function at ...)")
   }
-  if (!error.empty()) fail(L, error);
+  if (!error.empty()) fail_at(L, about, error);
   report_scene(**box);
   return 1;
 }
