@@ -31,12 +31,11 @@ namespace beltsim::script {
 void check_range(lua_State* L, const Scene& sc, std::optional<double> from, std::optional<double> to,
                  const std::string& what) {
   const double length = sc.sites.empty() ? 0 : sc.sites[0].length;
-  if (from.has_value() != to.has_value()) fail(L, what + ": give both from and to (m along the belt), or neither");
+  if (from.has_value() != to.has_value()) fail_on(L, what, "give both from and to (m along the belt), or neither");
   for (const auto& [v, name] : {std::pair{from, "from"}, std::pair{to, "to"}})
     if (v && !(*v >= 0 && *v <= length)) {
-      std::ostringstream m;
-      m << what << "." << name << ": must be in [0, " << length << "] m, the belt's length (got " << *v << " m)";
-      fail(L, m.str());
+      fail_on(L, what + "." + name,
+              "must be in [0, " + rounded_text(length) + "] m, the belt's length (got " + rounded_text(*v) + " m)");
     }
 }
 
@@ -45,7 +44,7 @@ std::vector<double> mu_over(lua_State* L, int mu_idx, const Scene& sc, std::opti
   mu_idx = lua_absindex(L, mu_idx);
   check_range(L, sc, from, to, what);
   if (lua_type(L, mu_idx) != LUA_TNUMBER && !lua_isfunction(L, mu_idx))
-    fail(L, what + ".mu: number or function(site) expected, got " + type_name(L, mu_idx));
+    fail_on(L, what + ".mu", std::string("number or function(site) expected, got ") + type_name(L, mu_idx));
   std::vector<double> out(sc.sites.size(), std::nan(""));
   for (const ElementSite& site : sc.sites) {
     if (from) {
@@ -63,9 +62,7 @@ std::vector<double> mu_over(lua_State* L, int mu_idx, const Scene& sc, std::opti
       mu = lua_tonumber(L, mu_idx);
     }
     if (const std::string bad = mu_problem(mu); !bad.empty()) {
-      std::ostringstream m;
-      m << what << ".mu: " << bad << " (got " << mu << " for element " << site.index << ")";
-      fail(L, m.str());
+      fail_on(L, what + ".mu", bad + " (got " + rounded_text(mu) + " for element " + std::to_string(site.index) + ")");
     }
     out[site.index] = mu;
   }
@@ -89,7 +86,8 @@ FrameSettings to_frames(lua_State* L, int idx, const std::string& w, const std::
   if (field(L, idx, "png_every")) f.png_every = to_integer(L, -1, w + ".png_every"), lua_pop(L, 1);
   auto pair = [&](const char* key, const char* what) -> std::optional<std::pair<double, double>> {
     if (!field(L, idx, key)) return std::nullopt;
-    if (!lua_istable(L, -1) || lua_rawlen(L, -1) != 2) fail(L, w + "." + key + ": " + what + " expected, got " + type_name(L, -1));
+    if (!lua_istable(L, -1) || lua_rawlen(L, -1) != 2)
+      fail_on(L, w + "." + key, std::string(what) + " expected, got " + type_name(L, -1));
     double a[2];
     for (int k = 0; k < 2; ++k) {
       lua_rawgeti(L, -1, k + 1);
@@ -103,9 +101,9 @@ FrameSettings to_frames(lua_State* L, int idx, const std::string& w, const std::
     // checked before the cast to int (a huge value would not fit)
     if (s->first != std::floor(s->first) || s->second != std::floor(s->second) || !(s->first >= 16 && s->first <= 8192) ||
         !(s->second >= 16 && s->second <= 8192)) {
-      std::ostringstream m;
-      m << w << ".size: whole numbers of pixels in 16..8192 expected (got {" << s->first << ", " << s->second << "})";
-      fail(L, m.str());
+      fail_on(L, w + ".size",
+              std::string("whole numbers of pixels in 16..8192 expected (got {") + rounded_text(s->first) + ", " +
+                  rounded_text(s->second) + "})");
     }
     f.width = static_cast<int>(s->first), f.height = static_cast<int>(s->second);
   }
@@ -117,7 +115,9 @@ FrameSettings to_frames(lua_State* L, int idx, const std::string& w, const std::
       names.push_back(i.key);
       if (*q == i.key) f.quantity = i.q, found = true;
     }
-    if (!found) fail(L, w + ".quantity: unknown quantity '" + *q + "'" + did_you_mean(*q, names) + "; one of: " + join(names));
+    if (!found)
+      fail_on(L, w + ".quantity",
+              std::string("unknown quantity '") + *q + "'" + did_you_mean(*q, names) + "; one of: " + join(names));
   }
   if (field(L, idx, "view")) {
     require_table(L, -1, w + ".view");
@@ -136,7 +136,7 @@ FrameSettings to_frames(lua_State* L, int idx, const std::string& w, const std::
     else if (lua_type(L, -1) == LUA_TSTRING)
       r = lua_tostring(L, -1);
     else
-      fail(L, w + "." + key + ": true, false or a path expected, got " + type_name(L, -1));
+      fail_on(L, w + "." + key, std::string("true, false or a path expected, got ") + type_name(L, -1));
     lua_pop(L, 1);
     return r;
   };
@@ -178,11 +178,9 @@ std::vector<double> wet_shares(const Scene& sc, double from, double to, double t
 std::optional<double> read_transition(lua_State* L, int idx, bool has_range, const std::string& what) {
   const auto transition = opt_number(L, idx, "transition", what);
   if (!transition) return transition;
-  if (!has_range) fail(L, what + ".transition: a transition needs the wet stretch's from and to [m]");
+  if (!has_range) fail_on(L, what + ".transition", "a transition needs the wet stretch's from and to [m]");
   if (!(*transition >= 0 && std::isfinite(*transition))) {
-    std::ostringstream m;
-    m << what << ".transition: must be >= 0 and finite (got " << *transition << " m)";
-    fail(L, m.str());
+    fail_on(L, what + ".transition", std::string("must be >= 0 and finite (got ") + rounded_text(*transition) + " m)");
   }
   return transition;
 }
@@ -207,12 +205,12 @@ std::vector<MuEvent> read_events(lua_State* L, int idx, const Scene& sc) {
     check_keys(L, e, what, {"t", "mu", "from", "to", "transition"});
     MuEvent ev;
     const auto t = opt_number(L, e, "t", what);
-    if (!t) fail(L, what + ".t: the event's time is missing");
-    if (const std::string bad = event_time_problem(*t); !bad.empty()) fail(L, what + ".t: " + bad);
+    if (!t) fail_on(L, what + ".t", "the event's time is missing");
+    if (const std::string bad = event_time_problem(*t); !bad.empty()) fail_on(L, what + ".t", bad);
     ev.t = *t;
     const auto from = opt_number(L, e, "from", what), to = opt_number(L, e, "to", what);
     const auto transition = read_transition(L, e, from.has_value(), what);
-    if (!field(L, e, "mu")) fail(L, what + ".mu: the new friction coefficient is missing");
+    if (!field(L, e, "mu")) fail_on(L, what + ".mu", "the new friction coefficient is missing");
     if (transition && *transition > 0) {
       // the new μ on every element the ramps reach, each with its share (wet_share)
       check_range(L, sc, from, to, what);
@@ -252,7 +250,7 @@ std::vector<int> read_probes(lua_State* L, int v, const Scene& sc, const std::st
     return r;
   };
   const size_t n = check_sequence(L, v, w).size();
-  if (n == 0) fail(L, w + ": an element number, a point {x, y} or a list of them expected, got an empty table");
+  if (n == 0) fail_on(L, w, "an element number, a point {x, y} or a list of them expected, got an empty table");
   if (n == 2 && !(is_int(1) && is_int(2))) {
     bool numbers = true;
     for (int k = 1; k <= 2; ++k) {
@@ -270,7 +268,8 @@ std::vector<int> read_probes(lua_State* L, int v, const Scene& sc, const std::st
     lua_pop(L, 1);
     for (size_t j = 0; j < out.size(); ++j)
       if (out[j] == i)
-        fail(L, wk + ": element " + std::to_string(i) + " is probed already (entry " + std::to_string(j + 1) +
+        fail_on(L, wk,
+                std::string("element ") + std::to_string(i) + " is probed already (entry " + std::to_string(j + 1) +
                     "); a point is written with decimals, e.g. {0.0, 0.1}");
     out.push_back(i);
   }
@@ -284,7 +283,8 @@ void read_snapshots(lua_State* L, int v, RunSettings& rs, const std::string& ww)
   if (field(L, v, "every")) {
     rs.snapshot_every = to_number(L, -1, ww + ".every");
     if (!(rs.snapshot_every > 0 && std::isfinite(rs.snapshot_every)))
-      fail(L, ww + ".every: must be > 0 s and finite (got " + rounded_text(rs.snapshot_every) + " s)");
+      fail_on(L, ww + ".every",
+              std::string("must be > 0 s and finite (got ") + rounded_text(rs.snapshot_every) + " s)");
     lua_pop(L, 1);
   }
   if (field(L, v, "times")) {
@@ -299,7 +299,7 @@ void read_snapshots(lua_State* L, int v, RunSettings& rs, const std::string& ww)
     lua_pop(L, 1);
   }
   if (rs.snapshot_every == 0 && rs.snapshot_times.empty())
-    fail(L, ww + ": give times = {t1, t2, ...} [s] and/or every = dt [s]");
+    fail_on(L, ww, "give times = {t1, t2, ...} [s] and/or every = dt [s]");
 }
 
 // the value at v of setting s (a key of scene:run{} or scene:start{}, sim/run_table.hpp), named
@@ -311,7 +311,7 @@ void read_setting(lua_State* L, int v, const Scene& sc, const RunSetting& s, Run
   if (auto* x = std::get_if<double*>(&slot)) **x = to_number(L, v, what);
   if (auto* t = std::get_if<std::string*>(&slot)) **t = to_string(L, v, what);
   if (auto* f = std::get_if<bool*>(&slot)) {
-    if (lua_type(L, v) != LUA_TBOOLEAN) fail(L, what + ": boolean expected, got " + type_name(L, v));
+    if (lua_type(L, v) != LUA_TBOOLEAN) fail_on(L, what, std::string("boolean expected, got ") + type_name(L, v));
     **f = lua_toboolean(L, v);
   }
   if (const std::string bad = run_problem(s, rs, true); !bad.empty())
