@@ -55,7 +55,7 @@ void add_run_option(CLI::App* c, Raw& raw, const RunSetting& s, const char* out_
   const std::string key(s.key), option(s.option);
   std::string help = s.key == "out" ? std::string(out_help) : std::string(s.note);
   if (!s.unit.empty()) help += " [" + std::string(s.unit) + "]";
-  if (s.key == "integrator") help += "; one of: " + integrator_list() + " (default " + RunSettings{}.integrator + ")";
+  if (s.key == "integrator") help = "one of: " + integrator_list() + " (default " + RunSettings{}.integrator + ")";
   if (s.kind == RunKind::flag) {
     c->add_flag(option, raw.run_flags[key], help);
     return;

@@ -105,7 +105,7 @@ script::Overrides overrides(const Raw& raw) {
     if (it == raw.run.end() || !it->second) continue;
     if (auto* x = std::get_if<double*>(&v)) **x = number(option, *it->second);
     if (auto* t = std::get_if<std::string*>(&v)) **t = *it->second;
-    if (const std::string bad = run_problem(s, o.run, true); !bad.empty()) throw UsageError(option + " " + bad);
+    if (const std::string bad = run_problem(s, o.run, true); !bad.empty()) throw UsageError(option + (s.kind == RunKind::text ? ": " : " ") + bad);
     o.give(key);
   }
   o.no_frames = raw.no_frames;
