@@ -64,7 +64,7 @@ WpResult run_row(const Row& row, const std::string& integrator, const std::vecto
   script::Captured cap;
   script::Interpreter lua(script::Safety{});
   script::Overrides o;
-  o.t_end = row.t_end;
+  o.run.t_end = row.t_end, o.give("t_end");
   o.no_frames = true;
   o.set = script::parse_sets(split(row.sets, ' '));
   lua.set_overrides(o);

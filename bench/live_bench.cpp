@@ -35,7 +35,7 @@ double run_script(const std::string& body) {
   std::ofstream(p) << kScene << body;
   beltsim::script::Interpreter lua;
   beltsim::script::Overrides o;
-  o.out = (dir / "out").string();
+  o.run.out_dir = (dir / "out").string(), o.give("out");
   lua.set_overrides(o);
   const auto t0 = std::chrono::steady_clock::now();
   lua.run_file(p.string());

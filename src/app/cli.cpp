@@ -3,10 +3,12 @@
 #include <CLI/CLI.hpp>
 
 #include <algorithm>
+#include <cctype>
 #include <cstdio>
 
 #include "io/suggest.hpp"
 #include "sim/frames.hpp"
+#include "sim/run_table.hpp"
 
 namespace beltsim::app {
 
@@ -48,23 +50,31 @@ void add_safety(CLI::App* c, Raw& raw) {
       ->type_name("S");
 }
 
-void add_out_and_t_end(CLI::App* c, Raw& raw, const char* out_help) {
-  c->add_option("--out", raw.out, out_help)->type_name("DIR")->check(kNotEmpty);
-  c->add_option("--t-end", raw.t_end, "end time [s] (> 0)")->type_name("T");
+// the option of a run setting (sim/run_table.hpp), its help from the table (out_help for --out)
+void add_run_option(CLI::App* c, Raw& raw, const RunSetting& s, const char* out_help) {
+  const std::string key(s.key), option(s.option);
+  std::string help = s.key == "out" ? std::string(out_help) : std::string(s.note);
+  if (!s.unit.empty()) help += " [" + std::string(s.unit) + "]";
+  if (s.key == "integrator") help = "one of: " + integrator_list() + " (default " + RunSettings{}.integrator + ")";
+  if (s.kind == RunKind::flag) {
+    c->add_flag(option, raw.run_flags[key], help);
+    return;
+  }
+  std::string type = key;
+  std::transform(type.begin(), type.end(), type.begin(), [](unsigned char ch) { return std::toupper(ch); });
+  CLI::Option* o = c->add_option(option, raw.run[key], help)->type_name(type);
+  if (s.key == "out") o->check(kNotEmpty);
 }
 
+void add_out_and_t_end(CLI::App* c, Raw& raw, const char* out_help) {
+  for (const char* key : {"out", "t_end"}) add_run_option(c, raw, *find_run_setting(key), out_help);
+}
+
+// every run setting the command line overrides (the table's options)
 void add_run_overrides(CLI::App* c, Raw& raw) {
-  add_out_and_t_end(c, raw, "output folder (default: out/<script name>)");
-  c->add_option("--integrator", raw.integrator, "one of: " + integrator_list() + " (default " + RunSettings{}.integrator + ")")->type_name("NAME");
-  c->add_option("--rtol", raw.rtol, "relative tolerance of the step-size control, in (0, 1)")->type_name("R");
-  c->add_option("--max-wall", raw.max_wall,
-                "wall-time limit of each run [s]: a run past it stops at its last step, outputs closed, with an "
-                "error (exit 1)")
-      ->type_name("S");
+  for (const RunSetting& s : run_settings())
+    if (!s.option.empty()) add_run_option(c, raw, s, "output folder (default: out/<script name>)");
   c->add_flag("--no-frames", raw.no_frames, "render no frames and no video, whatever the script asks");
-  c->add_flag("--check", raw.check,
-              "every run estimates its own error against a companion solution at rtol/10 (about 3x the cost): "
-              "reported at its end and in parameters.csv (check.*), a warning past 10x rtol");
   add_set(c, raw);
   add_safety(c, raw);
 }
@@ -132,10 +142,11 @@ std::optional<CommandLine> parse_command_line(int argc, char** argv, int* status
   CLI::App app{"beltsim: belt transmissions, the discrete model of K. Kubas; scenarios are Lua scripts.", "beltsim"};
   app.set_version_flag("--version", "beltsim 0.1.0");
   app.require_subcommand(1);
-  app.footer("Exit status: 0 on success, 1 on a script, parameter, run or plot error or an output that\n"
-             "could not be written, 2 on bad usage, 130 after Ctrl-C, 143 after SIGTERM, 129 after SIGHUP\n"
-             "(outputs closed). 'beltsim COMMAND --help' describes a command; 'beltsim help parameters' lists\n"
-             "the scene's parameters with their units and defaults.");
+  app.footer(
+      "Exit status: 0 on success, 1 on a script, parameter, run or plot error or an output that\n"
+      "could not be written, 2 on bad usage, 130 after Ctrl-C, 143 after SIGTERM, 129 after SIGHUP\n"
+      "(outputs closed). 'beltsim COMMAND --help' describes a command; 'beltsim help parameters' lists\n"
+      "the scene's parameters with their units and defaults, 'beltsim help run-settings' the run's.");
   const auto fail = [&](int s) {
     *status = s;
     return std::optional<CommandLine>();
@@ -241,6 +252,11 @@ std::optional<CommandLine> parse_command_line(int argc, char** argv, int* status
   if (words.size() == 2 && words[0] == "help" && words[1] == "parameters") {
     // the scene's parameter tables, as docs/lua-api.md holds them (scene/parameters.hpp)
     cl.command = "help-parameters";
+    return cl;
+  }
+  if (words.size() == 2 && words[0] == "help" && words[1] == "run-settings") {
+    // the run settings' table, as docs/lua-api.md holds it (sim/run_table.hpp)
+    cl.command = "help-run-settings";
     return cl;
   }
   if (!words.empty() && words[0] == "help") words[0] = "--help";

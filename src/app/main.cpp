@@ -15,6 +15,7 @@
 #include "io/output_dir.hpp"
 #include "scene/parameters.hpp"
 #include "script/signals.hpp"
+#include "sim/run_table.hpp"
 
 namespace {
 
@@ -36,6 +37,10 @@ int main(int argc, char** argv) {
   if (cl->command == "help-parameters") {
     // the scene's parameter tables, as docs/lua-api.md holds them (scene/parameters.hpp)
     std::fputs(beltsim::parameters_markdown().c_str(), stdout);
+    return 0;
+  }
+  if (cl->command == "help-run-settings") {
+    std::fputs(beltsim::run_settings_markdown().c_str(), stdout);
     return 0;
   }
 

@@ -8,6 +8,7 @@
 #include "integrate/integrator.hpp"
 #include "integrate/stepper.hpp"
 #include "script/script_args.hpp"
+#include "sim/run_table.hpp"
 
 namespace beltsim::app {
 
@@ -91,28 +92,23 @@ script::Safety safety(const Raw& raw) {
 
 script::Overrides overrides(const Raw& raw) {
   script::Overrides o;
-  o.out = raw.out;
-  if (raw.t_end) {
-    const double x = number("--t-end", *raw.t_end);
-    if (!(x > 0)) throw UsageError("--t-end must be > 0 s, got " + *raw.t_end);
-    o.t_end = x;
-  }
-  if (raw.integrator) {
-    known_integrator(*raw.integrator);
-    o.integrator = raw.integrator;
-  }
-  if (raw.rtol) {
-    const double x = number("--rtol", *raw.rtol);
-    if (const std::string bad = rtol_problem(x); !bad.empty()) throw UsageError("--rtol " + bad);
-    o.rtol = x;
-  }
-  if (raw.max_wall) {
-    const double x = number("--max-wall", *raw.max_wall);
-    if (!(x > 0)) throw UsageError("--max-wall must be > 0 s, got " + *raw.max_wall);
-    o.max_wall = x;
+  // each option of the run-settings table given, read by its kind and checked by its setting's rule
+  for (const RunSetting& s : run_settings()) {
+    if (s.option.empty()) continue;
+    const std::string key(s.key), option(s.option);
+    const RunSlot v = run_slot(s, o.run);
+    if (auto* f = std::get_if<bool*>(&v)) {
+      if (const auto it = raw.run_flags.find(key); it != raw.run_flags.end() && it->second) **f = true, o.give(key);
+      continue;
+    }
+    const auto it = raw.run.find(key);
+    if (it == raw.run.end() || !it->second) continue;
+    if (auto* x = std::get_if<double*>(&v)) **x = number(option, *it->second);
+    if (auto* t = std::get_if<std::string*>(&v)) **t = *it->second;
+    if (const std::string bad = run_problem(s, o.run, true); !bad.empty()) throw UsageError(option + (s.kind == RunKind::text ? ": " : " ") + bad);
+    o.give(key);
   }
   o.no_frames = raw.no_frames;
-  o.check = raw.check;
   try {
     o.set = script::parse_sets(raw.set);
   } catch (const std::invalid_argument& e) {

@@ -3,6 +3,7 @@
 // problem a UsageError (exit status 2 with the pointer to the command's --help).
 #pragma once
 
+#include <map>
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -21,8 +22,12 @@ struct UsageError : std::runtime_error {
 // the options as typed: text, turned into numbers and checked by the readers below and the
 // commands, so every number goes through decimal()
 struct Raw {
-  std::optional<std::string> out, t_end, integrator, rtol, max_wall;
-  bool no_frames = false, check = false;
+  // run, console, wp: the run settings' options (sim/run_table.hpp), by the setting's key ("t_end"):
+  // a number's or text's as typed, a flag's "1"
+  std::map<std::string, std::optional<std::string>> run;
+  std::map<std::string, bool> run_flags;
+  bool no_frames = false;
+  std::optional<std::string> out;                                               // plot, sweep
   std::optional<std::string> integrators, rtols, ref_rtol, wall_limit, metric;  // wp
   std::optional<std::string> from;                                      // plot, summary
   std::optional<std::string> to, csv_out, plot_out;                     // summary
@@ -40,7 +45,7 @@ int whole_number(const std::string& option, const std::string& text, int lo);
 std::string integrator_list();
 
 script::Safety safety(const Raw& raw);
-// --out, --t-end, --integrator, --rtol, --max-wall, --no-frames, --check and --set of run and console
+// the run settings' options (--out, --t-end, ...: sim/run_table.hpp), --no-frames and --set of run, console and wp
 script::Overrides overrides(const Raw& raw);
 // wp's --integrators, --rtols, --ref-rtol and --wall-limit
 WpSettings wp_settings(const Raw& raw);

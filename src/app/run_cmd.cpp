@@ -47,7 +47,7 @@ int cmd_wp(const std::string& script, const script::Overrides& o, const script::
     script::Interpreter lua(s);
     const script::Interruptible on_signal(lua);
     script::Overrides captured;  // --t-end and --set reach the script; --out is wp's own folder
-    captured.t_end = o.t_end;
+    if (o.has("t_end")) captured.run.t_end = o.run.t_end, captured.give("t_end");
     captured.set = o.set;
     lua.set_overrides(captured);
     lua.set_capture(&cap);
@@ -57,7 +57,7 @@ int cmd_wp(const std::string& script, const script::Overrides& o, const script::
     for (const std::string& m : lua.unread_args(script))
       std::fprintf(stderr, "beltsim wp: warning: %s (before its first scene:run{})\n", m.c_str());
     wps.base = cap.settings;
-    wps.base.out_dir = o.out ? *o.out : (fs::path("out") / fs::path(script).stem() / "wp").string();
+    wps.base.out_dir = o.has("out") ? o.run.out_dir : (fs::path("out") / fs::path(script).stem() / "wp").string();
     const WpResult r = work_precision(*cap.scene, wps, &stop_flag());
     const std::string png = (fs::path(wps.base.out_dir) / "wp.png").string();
     std::string drawn;

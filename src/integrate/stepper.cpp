@@ -19,16 +19,21 @@ std::vector<std::string> integrator_names() {
 
 namespace {
 [[noreturn]] void unknown(const std::string& name) {
-  std::string valid;
-  for (const auto& n : integrator_names()) valid += (valid.empty() ? "" : ", ") + n;
-  throw std::invalid_argument("integrator: unknown integrator '" + name + "' (valid: " + valid + ")");
+  throw std::invalid_argument("integrator: " + integrator_problem(name));
 }
 }  // namespace
 
+std::string integrator_problem(const std::string& name) {
+  std::string valid;
+  for (const auto& n : integrator_names()) {
+    if (n == name) return "";
+    valid += (valid.empty() ? "" : ", ") + n;
+  }
+  return "unknown integrator '" + name + "' (valid: " + valid + ")";
+}
+
 void check_integrator(const std::string& name) {
-  for (const auto& n : integrator_names())
-    if (n == name) return;
-  unknown(name);
+  if (!integrator_problem(name).empty()) unknown(name);
 }
 
 std::unique_ptr<Stepper> make_stepper(const std::string& name) {

@@ -55,8 +55,10 @@ class Stepper {
 std::unique_ptr<Stepper> make_stepper(const std::string& name);
 std::vector<std::string> stepper_names();
 // every integrator a run accepts: the steppers and the CVODE peers ("cvode", "cvode-fd",
-// integrate/cvode.hpp); check_integrator throws std::invalid_argument listing them
+// integrate/cvode.hpp); integrator_problem says why a name is none of them ("unknown integrator
+// 'x' (valid: ...)", "" when it is one), check_integrator throws it (std::invalid_argument)
 std::vector<std::string> integrator_names();
+std::string integrator_problem(const std::string& name);
 void check_integrator(const std::string& name);
 
 }  // namespace beltsim

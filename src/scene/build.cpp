@@ -20,6 +20,7 @@
 #include <Eigen/SparseLU>
 
 #include "integrate/warnings.hpp"
+#include "io/number_text.hpp"
 #include "model/forces.hpp"
 #include "model/rhs.hpp"
 #include "model/sparse.hpp"
@@ -82,11 +83,10 @@ void check_wraps(const Route& route, const std::vector<std::string>& names, int 
   for (size_t k = 0; k < route.arcs.size(); ++k) {
     const double on_wrap = route.arcs[k].length() / pitch;
     if (on_wrap < 3.0) {
-      std::ostringstream s;
-      s << "belt.elements: too few elements for the wrap on pulley '" << names[k] << "' ("
-        << route.arcs[k].angle * 180 / M_PI << " deg holds " << on_wrap << " elements, at least 3 needed; got "
-        << elements << " elements)";
-      throw ParameterError(s.str());
+      throw ParameterError("belt.elements", "too few elements for the wrap on pulley '" + names[k] + "' (" +
+                                                rounded_text(route.arcs[k].angle * 180 / M_PI, 6) + " deg holds " +
+                                                rounded_text(on_wrap, 6) + " elements, at least 3 needed; got " +
+                                                std::to_string(elements) + " elements)");
     }
   }
 }
@@ -103,14 +103,14 @@ void check_inertias(const Route& route, const RouteOrder& order, const std::vect
     const double r = route.arcs[k].radius;
     const double on_wrap = mass_per_length * route.arcs[k].length() * r * r;  // [kg·m²]
     if (pulleys[j].inertia < kWrapInertiaMin * on_wrap) {
-      std::ostringstream s;
-      s.precision(3);
-      s << "pulley '" << order.names[k] << "'.inertia: " << pulleys[j].inertia
-        << " kg·m² is below 1 % of the belt's inertia on its wrap (" << on_wrap << " kg·m²: "
-        << mass_per_length * route.arcs[k].length() << " kg at r = " << r
-        << " m); the step-size control cannot follow so light a pulley and its speed comes out wrong: give at least "
-        << kWrapInertiaMin * on_wrap << " kg·m² (docs/model.md, light pulleys)";
-      throw ParameterError(s.str());
+      throw ParameterError(
+          "pulley '" + order.names[k] + "'.inertia",
+          rounded_text(pulleys[j].inertia, 3) + " kg·m² is below 1 % of the belt's inertia on its wrap (" +
+              rounded_text(on_wrap, 3) + " kg·m²: " + rounded_text(mass_per_length * route.arcs[k].length(), 3) +
+              " kg at r = " + rounded_text(r, 3) +
+              " m); the step-size control cannot follow so light a pulley and its speed comes out wrong: give at "
+              "least " +
+              rounded_text(kWrapInertiaMin * on_wrap, 3) + " kg·m² (docs/model.md, light pulleys)");
     }
   }
 }
@@ -172,12 +172,12 @@ void check_sag(const Route& route, const BeltDef& bd, double gravity, double ten
   for (const Route::Span& sp : route.spans) longest = std::max(longest, sp.length);
   const double weight = bd.mass_per_length * std::abs(gravity) * longest;
   if (!(weight <= tension)) {
-    std::ostringstream s;
-    s.precision(6);
-    s << "makes the belt's weight over its longest span (ρ·g·L = " << weight << " N over " << longest
-      << " m) larger than its tension at rest (" << tension << " N): the belt would hang rather than span its "
-      << "pulleys; lower gravity or belt.mass_per_length, or tension the belt more";
-    reject("gravity", s.str(), gravity);
+    reject("gravity",
+           "makes the belt's weight over its longest span (ρ·g·L = " + rounded_text(weight, 6) + " N over " +
+               rounded_text(longest, 6) + " m) larger than its tension at rest (" + rounded_text(tension, 6) +
+               " N): the belt would hang rather than span its pulleys; lower gravity or belt.mass_per_length, or "
+               "tension the belt more",
+           gravity);
   }
 }
 
@@ -205,11 +205,10 @@ std::vector<double> penetrations(const RouteOrder& order, const Contact& c, doub
   for (size_t k = 0; k < order.circles.size(); ++k) {
     const double p0 = static_penetration(c, pitch, order.circles[k].radius, tension);
     if (!std::isfinite(p0)) {
-      std::ostringstream s;
-      s.precision(6);
-      s << "gives no finite static penetration on '" << order.names[k] << "' with contact.c2 = " << d.contact.c2
-        << " N/m (beyond double precision)";
-      reject("contact.c1", s.str(), d.contact.c1);
+      reject("contact.c1",
+             "gives no finite static penetration on '" + order.names[k] +
+                 "' with contact.c2 = " + rounded_text(d.contact.c2, 6) + " N/m (beyond double precision)",
+             d.contact.c1);
     }
     if (p0 >= 0.5 * order.circles[k].radius)
       reject("contact stiffness", "lets the belt sink more than half the radius of '" + order.names[k] + "'", p0, "m");
@@ -485,13 +484,13 @@ void check_finite(const Scene& sc, const SceneDef& d, double tension) {
                                 {"the static residual", sc.static_residual}})
     if (bad.empty() && !std::isfinite(v)) bad = std::string(name) + " is " + (std::isnan(v) ? "NaN" : "infinite");
   if (!bad.empty()) {
-    std::ostringstream msg;
-    msg.precision(6);
-    msg << "scene: the belt's static initial state is not finite (" << bad << "): the parameters are beyond what "
-        << "double precision resolves (the values that scale it: gravity = " << d.gravity << " m/s², the tension at rest = "
-        << tension << " N, per-SDE k = " << b.k << " N/m, contact.c1 = " << d.contact.c1
-        << " N/m², belt.mass_per_length = " << d.belt.mass_per_length << " kg/m)";
-    throw ParameterError(msg.str());
+    throw ParameterError(
+        "scene", "the belt's static initial state is not finite (" + bad +
+                     "): the parameters are beyond what double precision resolves (the values that "
+                     "scale it: gravity = " +
+                     rounded_text(d.gravity, 6) + " m/s², the tension at rest = " + rounded_text(tension, 6) +
+                     " N, per-SDE k = " + rounded_text(b.k, 6) + " N/m, contact.c1 = " + rounded_text(d.contact.c1, 6) +
+                     " N/m², belt.mass_per_length = " + rounded_text(d.belt.mass_per_length, 6) + " kg/m)");
   }
 }
 

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <sstream>
 
+#include "io/number_text.hpp"
 #include "scene/validate.hpp"
 
 namespace beltsim {
@@ -30,11 +31,10 @@ Route make_route(const std::vector<RouteCircle>& c, int loop_sense, const std::v
     const double d = D.norm();
     const double rho = b.sense * b.radius - a.sense * a.radius;
     if (!(d > std::abs(rho))) {
-      std::ostringstream s;
-      s << "route: no belt span can join '" << names[k] << "' to '" << names[(k + 1) % m]
-        << "': their centres are " << d << " m apart, too close for radii " << a.radius << " m and " << b.radius
-        << " m with these wrap sides";
-      throw ParameterError(s.str());
+      throw ParameterError("route", "no belt span can join '" + names[k] + "' to '" + names[(k + 1) % m] +
+                                        "': their centres are " + rounded_text(d, 6) +
+                                        " m apart, too close for radii " + rounded_text(a.radius, 6) + " m and " +
+                                        rounded_text(b.radius, 6) + " m with these wrap sides");
     }
     const double omega = angle_of(D) + std::acos(rho / d);
     const Vec2 w(std::cos(omega), std::sin(omega));
@@ -59,12 +59,12 @@ Route make_route(const std::vector<RouteCircle>& c, int loop_sense, const std::v
   }
   // a simple closed loop turns exactly once, in the loop's sense
   if (std::abs(turning - loop_sense * 2 * M_PI) > 1e-6) {
-    std::ostringstream s;
-    s << "route: the belt path around";
-    for (const auto& nm : names) s << " '" << nm << "'";
-    s << " does not close into a simple loop (it turns " << turning * 180 / M_PI << " deg instead of "
-      << loop_sense * 360 << " deg); check the order of the pulleys and which side each is wrapped on";
-    throw ParameterError(s.str());
+    std::string around = "the belt path around";
+    for (const auto& nm : names) around.append(" '").append(nm).append("'");
+    throw ParameterError("route", around + " does not close into a simple loop (it turns " +
+                                      rounded_text(turning * 180 / M_PI, 6) + " deg instead of " +
+                                      std::to_string(loop_sense * 360) +
+                                      " deg); check the order of the pulleys and which side each is wrapped on");
   }
   // the spans must not cross each other, nor cut through a pulley they do not leave or meet
   auto cross2 = [](const Vec2& a, const Vec2& b) { return a.x() * b.y() - a.y() * b.x(); };
@@ -78,18 +78,18 @@ Route make_route(const std::vector<RouteCircle>& c, int loop_sense, const std::v
   for (size_t a = 0; a < m; ++a) {
     for (size_t b = a + 1; b < m; ++b)
       if (segments_cross(r.spans[a], r.spans[b]))
-        throw ParameterError("route: the belt would cross itself (span '" + names[a] + "' to '" + names[(a + 1) % m] +
-                             "' crosses span '" + names[b] + "' to '" + names[(b + 1) % m] +
-                             "'); check the order of the pulleys and their wrap sides");
+        throw ParameterError("route", "the belt would cross itself (span '" + names[a] + "' to '" + names[(a + 1) % m] +
+                                          "' crosses span '" + names[b] + "' to '" + names[(b + 1) % m] +
+                                          "'); check the order of the pulleys and their wrap sides");
     for (size_t k = 0; k < m; ++k) {
       if (k == a || k == (a + 1) % m) continue;
       const Route::Span& sp = r.spans[a];
       const Vec2 d = sp.to - sp.from;
       const double u = std::clamp((c[k].centre - sp.from).dot(d) / d.squaredNorm(), 0.0, 1.0);
       if ((sp.from + u * d - c[k].centre).norm() < c[k].radius)
-        throw ParameterError("route: the span from '" + names[a] + "' to '" + names[(a + 1) % m] +
-                             "' would cut through pulley '" + names[k] +
-                             "'; check the order of the pulleys and their wrap sides");
+        throw ParameterError("route", "the span from '" + names[a] + "' to '" + names[(a + 1) % m] +
+                                          "' would cut through pulley '" + names[k] +
+                                          "'; check the order of the pulleys and their wrap sides");
     }
   }
   r.length = 0;

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <sstream>
 
+#include "io/number_text.hpp"
 #include "model/contacts.hpp"
 #include "model/forces.hpp"
 #include "scene/bending_loss.hpp"
@@ -154,11 +155,9 @@ Scene build_at(const SceneDef& d, const std::atomic<bool>* stop) {
   const std::string lost = build::settle(sc, bd, tension.rest > 0, stop);
   build::check_finite(sc, d, tension.tension);
   if (!lost.empty()) {
-    std::ostringstream msg;
-    msg << "belt.elements: could not find the belt's static initial state with " << n
-        << " elements (the iteration left pulley '" << lost << "' untouched); a few elements more or "
-        << "fewer usually works";
-    throw ParameterError(msg.str());
+    throw ParameterError("belt.elements", "could not find the belt's static initial state with " + std::to_string(n) +
+                                              " elements (the iteration left pulley '" + lost +
+                                              "' untouched); a few elements more or fewer usually works");
   }
   build::balance_arms(sc);
   // spray zones: those spraying at t = 0 wet the elements inside them

@@ -8,6 +8,7 @@
 // sets the tension: build_scene scales the pretension by P/|M_b| until they agree.
 #include <cmath>
 
+#include "io/number_text.hpp"
 #include "model/contacts.hpp"
 #include "model/forces.hpp"
 #include "model/observables.hpp"
@@ -24,8 +25,9 @@ void validate_tensioner(const PulleyDef& p) {
   require_finite(w + "pivot y", t.pivot.y(), "m");
   require_positive(w + "pivot's distance from the pulley's centre", (p.centre - t.pivot).norm(), "m");
   if (p.kinematic)
-    throw ParameterError("pulley '" + p.name + "': a pulley on a tensioner arm turns freely; give it a torque (or none), "
-                         "not a prescribed speed");
+    throw ParameterError(
+        "pulley '" + p.name + "'",
+        "a pulley on a tensioner arm turns freely; give it a torque (or none), not a prescribed speed");
 }
 
 void make_arms(const SceneDef& d, Model& m) {
@@ -72,8 +74,8 @@ void balance_arms(Scene& sc) {
     Arm& arm = m.arms[a];
     const double Mb = arm_belt_moment(sc, contacts, a);
     if (!(Mb != 0)) {
-      throw ParameterError("pulley '" + m.pulleys[arm.pulley].name +
-                           "'.tensioner: the belt has no moment about the pivot at the installed angle (the pivot "
+      throw ParameterError("pulley '" + m.pulleys[arm.pulley].name + "'.tensioner",
+                           "the belt has no moment about the pivot at the installed angle (the pivot "
                            "lies on the line of the hub load); move the pivot");
     }
     arm.free_angle = sc.y0[m.arm_coord(a)] - Mb / arm.stiffness;
@@ -88,14 +90,15 @@ std::optional<double> tensioner_preload(const SceneDef& d) {
     if (!p.tensioner || !p.tensioner->sets_tension()) continue;
     const TensionerDef& t = *p.tensioner;
     const std::string w = "pulley '" + p.name + "'.tensioner";
-    if (t.preload && t.angle0) throw ParameterError(w + ": give preload [N·m] or angle0 [rad], not both");
+    if (t.preload && t.angle0) throw ParameterError(w, "give preload [N·m] or angle0 [rad], not both");
     if (preload)
-      throw ParameterError(w + ": only one tensioner can set the belt's tension by its preload or angle0 ('" + setter +
-                           "' does already); leave them out here and the spring's free angle holds the belt's tension");
+      throw ParameterError(
+          w, "only one tensioner can set the belt's tension by its preload or angle0 ('" + setter +
+                 "' does already); leave them out here and the spring's free angle holds the belt's tension");
     for (const char* key : {"belt.pretension", "belt.rest_length", "belt.strain"})
       if (d.given.count(key))
-        throw ParameterError(w + ": its preload or angle0 sets the belt's tension at rest; leave out " + key +
-                             " or the tensioner's preload/angle0");
+        throw ParameterError(w, std::string("its preload or angle0 sets the belt's tension at rest; leave out ") + key +
+                                    " or the tensioner's preload/angle0");
     if (t.preload) {
       preload = *t.preload;  // > 0: the parameter table's rule (validate)
     } else {
@@ -103,8 +106,8 @@ std::optional<double> tensioner_preload(const SceneDef& d) {
       const double psi = std::atan2(c.y(), c.x());
       preload = t.stiffness * std::abs(psi - *t.angle0);
       if (!(*preload > 0))
-        throw ParameterError(w + ".angle0: the spring's free angle equals the installed angle (" + std::to_string(psi) +
-                             " rad): the spring would hold no tension");
+        throw ParameterError(w + ".angle0", "the spring's free angle equals the installed angle (" + rounded_text(psi) +
+                                                " rad): the spring would hold no tension");
     }
     setter = p.name;
   }

@@ -8,17 +8,41 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "io/number_text.hpp"
 #include "io/suggest.hpp"
 #include "scene/parameters.hpp"
 #include "scene/scene.hpp"
 
 namespace beltsim {
 
+std::string parameter_message(const std::string& path, const std::string& reason, std::optional<double> value,
+                              const std::string& unit) {
+  std::string m = path;
+  if (!value) return m.append(": ").append(reason);
+  return m.append(" ")
+      .append(reason)
+      .append(" (got ")
+      .append(rounded_text(*value, 6))
+      .append(unit.empty() ? "" : " ")
+      .append(unit)
+      .append(")");
+}
+
+ParameterError::ParameterError(const std::string& message) : std::invalid_argument(message), reason(message) {}
+
+ParameterError::ParameterError(KeyPath path_, const std::string& message)
+    : std::invalid_argument(message), path(std::move(path_)), reason(message) {}
+
+ParameterError::ParameterError(const std::string& path_, std::string reason_, std::optional<double> value_,
+                               std::string unit_)
+    : std::invalid_argument(parameter_message(path_, reason_, value_, unit_)),
+      path(parse_path(path_)),
+      reason(std::move(reason_)),
+      value(value_),
+      unit(std::move(unit_)) {}
+
 void reject(const std::string& what, const std::string& rule, double value, const std::string& unit) {
-  std::ostringstream s;
-  s.precision(6);
-  s << what << ' ' << rule << " (got " << value << (unit.empty() ? "" : " ") << unit << ")";
-  throw ParameterError(s.str());
+  throw ParameterError(what, rule, value, unit);
 }
 
 void reject(std::string_view dotted, const std::string& rule, double value) {
@@ -98,10 +122,7 @@ void check_spray(const SceneDef& d) {
       check_rule(*find_parameter(std::string("spray.") + key), w + "." + key, v);
     }
     if (!(z.to > z.from)) {
-      std::ostringstream from;
-      from.precision(6);
-      from << "must be after from (" << z.from << " s)";
-      reject(w + ".to", from.str(), z.to, "s");
+      reject(w + ".to", "must be after from (" + rounded_text(z.from, 6) + " s)", z.to, "s");
     }
   }
 }
@@ -114,7 +135,7 @@ void validate_law(const std::string& what, const TimeSpeedLaw& law, bool speed) 
   require_finite(what + ".per_speed", law.per_speed, unit + "·s/rad");
   auto table = [&](const std::string& name, const std::vector<double>& x, const std::vector<double>& y,
                    const char* xunit) {
-    if (x.size() != y.size()) throw ParameterError(what + "." + name + ": the two columns differ in length");
+    if (x.size() != y.size()) throw ParameterError(what + "." + name, "the two columns differ in length");
     for (size_t k = 0; k < x.size(); ++k) {
       require_finite(what + "." + name + " entry " + std::to_string(k + 1) + " (first)", x[k], xunit);
       require_finite(what + "." + name + " entry " + std::to_string(k + 1) + " (second)", y[k], unit);
@@ -148,7 +169,7 @@ void validate_law(const std::string& what, const TimeSpeedLaw& law, bool speed) 
     require_finite(what + ".mean_speed", h.mean_speed, "rad/s");
   }
   if (speed && (law.per_speed != 0 || !law.omega.empty()))
-    throw ParameterError(what + ": a prescribed speed cannot depend on the speed (per_speed, per_speed_table)");
+    throw ParameterError(what, "a prescribed speed cannot depend on the speed (per_speed, per_speed_table)");
 }
 
 void validate(const SceneDef& d) {
@@ -166,7 +187,7 @@ void validate(const SceneDef& d) {
     if (p.coupling) check_rules(d, "pulley.coupling", &p);
     if (p.kinematic) {
       validate_law(w + ".speed", p.speed, true);
-      if (!p.torque.is_zero()) throw ParameterError(w + ": give either a torque or a prescribed speed, not both");
+      if (!p.torque.is_zero()) throw ParameterError(w, "give either a torque or a prescribed speed, not both");
     } else {
       validate_law(w + ".torque", p.torque, false);
     }
@@ -176,10 +197,9 @@ void validate(const SceneDef& d) {
       const PulleyDef &p = d.pulleys[a], &q = d.pulleys[b];
       const double dist = (p.centre - q.centre).norm();
       if (dist <= p.radius + q.radius) {
-        std::ostringstream s;
-        s << "pulleys '" << p.name << "' and '" << q.name << "' overlap: centres " << dist
-          << " m apart, radii add up to " << p.radius + q.radius << " m";
-        throw ParameterError(s.str());
+        throw ParameterError(KeyPath{"", {"pulleys"}},
+                             "pulleys '" + p.name + "' and '" + q.name + "' overlap: centres " + rounded_text(dist, 6) +
+                                 " m apart, radii add up to " + rounded_text(p.radius + q.radius, 6) + " m");
       }
     }
   const BeltDef& b = d.belt;
@@ -188,20 +208,21 @@ void validate(const SceneDef& d) {
   // 2400 elements take minutes per simulated second); past this a scene is surely a mistake
   constexpr int kMaxElements = 20000;
   if (b.elements > kMaxElements && !d.allow_large) {
-    std::ostringstream s;
-    s << "belt.elements: " << b.elements << " elements are more than the limit of " << kMaxElements
-      << " (about " << static_cast<long>(b.elements) * 2 / 1000 << " MB of state and Jacobian, and hours per simulated"
-      << " second); set allow_large = true in the scene to go past";
-    throw ParameterError(s.str());
+    throw ParameterError("belt.elements", std::to_string(b.elements) + " elements are more than the limit of " +
+                                              std::to_string(kMaxElements) + " (about " +
+                                              std::to_string(static_cast<long>(b.elements) * 2 / 1000) +
+                                              " MB of state and Jacobian, and hours per simulated second); set "
+                                              "allow_large = true in the scene to go past");
   }
   // allow_large or not: the sparse Jacobian's entries are counted in int (Eigen's index type)
   constexpr int kMostElements = 1000000;
   if (b.elements > kMostElements)
-    throw ParameterError("belt.elements: " + std::to_string(b.elements) + " elements are more than beltsim can hold (" +
-                         std::to_string(kMostElements) + ", allow_large or not)");
-  if (b.loop_sense != 1 && b.loop_sense != -1) throw ParameterError("belt.direction must be 'cw' or 'ccw'");
+    throw ParameterError("belt.elements", std::to_string(b.elements) + " elements are more than beltsim can hold (" +
+                                              std::to_string(kMostElements) + ", allow_large or not)");
+  if (b.loop_sense != 1 && b.loop_sense != -1)
+    throw ParameterError(KeyPath{"", {"belt", "direction"}}, "belt.direction must be 'cw' or 'ccw'");
   if (b.reading == StiffnessReading::per_sde && b.bending_viscosity)
-    throw ParameterError("belt.bending_viscosity: a rigidity; with per-SDE values (sde) give ct");
+    throw ParameterError("belt.bending_viscosity", "a rigidity; with per-SDE values (sde) give ct");
   check_rules(d, "belt.sde", nullptr);
   if (!(b.rib_angle < 180)) reject("belt.rib_angle", "must be < 180 (the ribs' included angle)", b.rib_angle, "°");
   if (!b.mu_per_element.empty()) {
@@ -214,19 +235,23 @@ void validate(const SceneDef& d) {
     std::set<std::string> seen;
     for (const std::string& nm : b.route) {
       if (!names.count(nm))
-        throw ParameterError("belt.route names an unknown pulley '" + nm + "'" +
-                             did_you_mean(nm, std::vector<std::string>(names.begin(), names.end())));
-      if (!seen.insert(nm).second) throw ParameterError("belt.route visits pulley '" + nm + "' twice");
+        throw ParameterError(KeyPath{"", {"belt", "route"}},
+                             "belt.route names an unknown pulley '" + nm + "'" +
+                                 did_you_mean(nm, std::vector<std::string>(names.begin(), names.end())));
+      if (!seen.insert(nm).second)
+        throw ParameterError(KeyPath{"", {"belt", "route"}}, "belt.route visits pulley '" + nm + "' twice");
     }
-    if (seen.size() != names.size()) throw ParameterError("belt.route must visit every pulley once");
+    if (seen.size() != names.size())
+      throw ParameterError(KeyPath{"", {"belt", "route"}}, "belt.route must visit every pulley once");
   }
   check_rules(d, "contact", nullptr);
   check_rules(d, "friction", nullptr);
   check_rules(d, "scene", nullptr);
   check_spray(d);
   if (d.friction_segments.size() > kMaxFrictionSegments)
-    throw ParameterError("friction.segments: " + std::to_string(d.friction_segments.size()) +
-                         " segments are more than the limit of " + std::to_string(kMaxFrictionSegments));
+    throw ParameterError("friction.segments", std::to_string(d.friction_segments.size()) +
+                                                  " segments are more than the limit of " +
+                                                  std::to_string(kMaxFrictionSegments));
   for (size_t k = 0; k < d.friction_segments.size(); ++k) {
     const FrictionSegment& g = d.friction_segments[k];
     const std::string w = "friction.segments[" + std::to_string(k + 1) + "]";

@@ -161,7 +161,8 @@ int run_console(const std::optional<std::string>& script, const std::vector<std:
     }
   }
   // --out wins, as for the runs; the finalisers below run with a fresh budget (~Interpreter)
-  const bool written = write_session(o.out ? *o.out : ctx.default_out, script, script_text, args, o.set, commands);
+  const bool written =
+      write_session(o.has("out") ? o.run.out_dir : ctx.default_out, script, script_text, args, o.set, commands);
   // the interpreter's end closes every simulation (their finalisers flush and finalise outputs)
   if (terminating()) return stopped_status();
   if (!written) return 1;

@@ -9,6 +9,7 @@
 #include <optional>
 #include <stdexcept>
 #include <string>
+#include <string_view>
 #include <utility>
 #include <vector>
 
@@ -41,13 +42,20 @@ struct Safety {
 
 // Command-line values that override what a script asks of scene:run{}.
 struct Overrides {
-  std::optional<std::string> out;
-  std::optional<double> t_end;
-  std::optional<std::string> integrator;
-  std::optional<double> rtol;
-  std::optional<double> max_wall;  // [s] --max-wall: RunSettings::wall_limit of every run
-  bool no_frames = false;  // ignore the scripts' frames = {...} (no rendering, no video)
-  bool check = false;      // --check: every run estimates its own error (RunSettings::check)
+  // the run settings given on the command line (the table's options, sim/run_table.hpp: --out,
+  // --t-end, --integrator, --rtol, --max-wall, --check), each over every run's own: their keys in
+  // `given`, their values in `run`
+  std::vector<std::string> given;
+  RunSettings run;
+  bool has(std::string_view key) const {
+    for (const std::string& k : given)
+      if (k == key) return true;
+    return false;
+  }
+  void give(std::string_view key) {
+    if (!has(key)) given.emplace_back(key);
+  }
+  bool no_frames = false;      // ignore the scripts' frames = {...} (no rendering, no video)
   std::vector<ScriptArg> set;  // --set KEY=VALUE: beltsim.args (not an override of run{})
 };
 

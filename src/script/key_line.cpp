@@ -286,70 +286,20 @@ bool matches(const std::vector<Table>& tables, const Occurrence& o, const KeyPat
 }  // namespace
 
 KeyPath message_path(std::string_view m) {
-  KeyPath p;
   std::string_view rest = m;
   std::string unknown;  // "unknown key 'K' in WHERE": the path is WHERE.K
   if (constexpr std::string_view u = "unknown key '"; rest.substr(0, u.size()) == u) {
     const size_t e = rest.find('\'', u.size());
-    if (e == std::string_view::npos || rest.substr(e, 5) != "' in ") return p;
+    if (e == std::string_view::npos || rest.substr(e, 5) != "' in ") return {};
     unknown = std::string(rest.substr(u.size(), e - u.size()));
     rest = rest.substr(e + 5);
   }
-  if (constexpr std::string_view pn = "pulley ";
-      rest.substr(0, pn.size()) == pn && rest.size() > pn.size() && digit(rest[pn.size()])) {
-    // "pulley 2": the second entry of `pulleys` (its name not read yet)
-    const size_t e = digits_end(rest, pn.size());
-    p.chain = {"pulleys", std::string(rest.substr(pn.size(), e - pn.size()))};
-    rest = e < rest.size() && rest[e] == '.' ? rest.substr(e + 1) : std::string_view{};
-  } else if (constexpr std::string_view pu = "pulley '"; rest.substr(0, pu.size()) == pu) {
-    const size_t e = rest.find('\'', pu.size());
-    if (e == std::string_view::npos) return p;
-    p.pulley = std::string(rest.substr(pu.size(), e - pu.size()));
-    rest = rest.substr(e + 1);
-    if (!rest.empty() && (rest[0] == '.' || (rest[0] == ' ' && unknown.empty())))
-      rest = rest.substr(1);
-    else
-      rest = {};
-  }
-  // name ( .name | .digits | [digits] )*
-  size_t i = 0;
-  while (i < rest.size()) {
-    size_t b = i;
-    if (ident_start(rest[i])) {
-      while (i < rest.size() && ident_char(rest[i])) ++i;
-    } else if (!p.chain.empty() && digit(rest[i])) {
-      i = digits_end(rest, i);
-    } else {
-      break;
-    }
-    p.chain.emplace_back(rest.substr(b, i - b));
-    // "spray 2.radius": the second entry of the list `spray`
-    if (p.chain.size() == 1 && i < rest.size() && rest[i] == ' ') {
-      const size_t e = digits_end(rest, i + 1);
-      if (e > i + 1 && e + 1 < rest.size() && rest[e] == '.') {
-        p.chain.emplace_back(rest.substr(i + 1, e - i - 1));
-        i = e;
-      }
-    }
-    if (i + 1 < rest.size() && rest[i] == '.') {
-      ++i;
-    } else if (i < rest.size() && rest[i] == '[') {
-      const size_t e = rest.find(']', i);
-      if (e == std::string_view::npos || !is_digits(rest.substr(i + 1, e - i - 1))) break;
-      p.chain.emplace_back(rest.substr(i + 1, e - i - 1));
-      i = e + 1;
-      if (i + 1 < rest.size() && rest[i] == '.')
-        ++i;
-      else
-        break;
-    } else {
-      break;
-    }
-  }
+  KeyPath p = parse_path(rest, unknown.empty());
   if (!unknown.empty()) {
-    if (p.chain.empty() && p.pulley.empty()) return {};
+    if (p.empty()) return {};
     p.chain.push_back(unknown);
   }
+  // a list position last names an entry, not a key
   if (!p.chain.empty() && is_digits(p.chain.back())) p.chain.clear();
   return p;
 }

@@ -24,13 +24,11 @@
 #include <string_view>
 #include <vector>
 
+#include "scene/key_path.hpp"
+
 namespace beltsim::script {
 
-// a key's path as the error messages spell it
-struct KeyPath {
-  std::string pulley;              // "driver" of "pulley 'driver'.radius"; empty when none
-  std::vector<std::string> chain;  // {"belt", "sde", "k"}; list positions as digits ("2")
-};
+using beltsim::KeyPath;  // (scene/key_path.hpp)
 
 // the path at the start of an error message, or an empty chain when it names none:
 //   "belt.mass_per_length must be > 0 (got -1 kg/m)"  -> belt.mass_per_length

@@ -6,6 +6,7 @@
 #include <cstdlib>
 #include <cstring>
 
+#include "io/number_text.hpp"
 #include "lauxlib.h"
 #include "lualib.h"
 
@@ -34,9 +35,7 @@ void arm(Limits& g) {
 }
 
 std::string mib(std::size_t bytes) {
-  char b[32];
-  std::snprintf(b, sizeof b, "%.6g", static_cast<double>(bytes) / (1 << 20));
-  return b;
+  return rounded_text(static_cast<double>(bytes) / (1 << 20), 6);
 }
 
 // the margin past the limit that small allocations may use while the hook comes round to
@@ -261,8 +260,7 @@ void guard_limits(lua_State* L) {
 
 std::string time_message(const Limits& g, TimeUp up) {
   const bool wall = up == TimeUp::kWall;
-  char s[32];
-  std::snprintf(s, sizeof s, "%g", wall ? g.max_wall : g.max_cpu);
+  const std::string s = rounded_text(wall ? g.max_wall : g.max_cpu, 6);
   return std::string("the ") + (wall ? "wall-time" : "CPU-time") + " limit of a Lua call was reached: more than " + s +
          " s of " + (wall ? "wall" : "CPU") +
          " time in one call (a script run, a console command, a sweep point, a callback or a law, beltsim's own "

@@ -26,7 +26,7 @@ int l_belts_index(lua_State* L) {
                 type_name(L, 2));
   const std::string name = lua_tostring(L, 2);
   const BeltPreset* p = find_belt_preset(name);
-  if (!p) fail(L, "beltsim.belts: no preset '" + name + "'" + belt_preset_hint(name));
+  if (!p) fail_on(L, "beltsim.belts", std::string("no preset '") + name + "'" + belt_preset_hint(name));
   push_preset(L, *p);
   return 1;
 }

@@ -6,19 +6,30 @@
 #include <string_view>
 #include <utility>
 
+#include "io/number_text.hpp"
 #include "io/suggest.hpp"
 #include "script/key_line.hpp"
 
 namespace beltsim::script {
 
 [[noreturn]] void fail(lua_State* L, const std::string& msg) {
+  fail_at(L, message_path(msg), msg);
+}
+
+[[noreturn]] void fail_on(lua_State* L, const std::string& what, const std::string& reason) {
+  fail_at(L, parse_path(what), what + ": " + reason);
+}
+
+[[noreturn]] void fail_at(lua_State* L, const KeyPath& path, const std::string& msg) {
   // "file:line:" of the calling script line, or of the line in the call's table constructor
-  // where the key the message names was written (key_line.hpp)
+  // where the key `path` was written (key_line.hpp)
   lua_Debug ar;
   std::optional<int> line;
   if (lua_getstack(L, 1, &ar) && lua_getinfo(L, "Sl", &ar) && ar.currentline > 0 && ar.source[0] == '@') {
     try {
-      line = key_line_in_file(ar.source + 1, ar.currentline, message_path(msg));
+      // (a list position last names an entry, not a key: the call's line)
+      if (!path.chain.empty() && path.chain.back().find_first_not_of("0123456789") != std::string::npos)
+        line = key_line_in_file(ar.source + 1, ar.currentline, path);
     } catch (const std::exception&) {  // (no memory for the text): the call's line
     }
   }
@@ -41,12 +52,16 @@ void check_keys(lua_State* L, int idx, const std::string& where, const std::vect
   lua_pushnil(L);
   while (lua_next(L, idx)) {
     lua_pop(L, 1);
-    if (lua_type(L, -1) != LUA_TSTRING) fail(L, where + ": expected named keys (key = value), got a list entry");
+    if (lua_type(L, -1) != LUA_TSTRING) fail_on(L, where, "expected named keys (key = value), got a list entry");
     const std::string key = lua_tostring(L, -1);
     bool ok = false;
     for (const auto& a : allowed) ok = ok || a == key;
-    if (!ok)
-      fail(L, "unknown key '" + key + "' in " + where + did_you_mean(key, allowed) + "; valid keys: " + join(allowed));
+    if (!ok) {
+      KeyPath path = parse_path(where, false);  // (the key's line: in `where`'s table)
+      if (!path.empty()) path.chain.push_back(key);
+      fail_at(L, path,
+              "unknown key '" + key + "' in " + where + did_you_mean(key, allowed) + "; valid keys: " + join(allowed));
+    }
   }
 }
 
@@ -68,9 +83,9 @@ double to_number(lua_State* L, int idx, const std::string& what) {
     size_t len = 0;
     const char* c = lua_tolstring(L, idx, &len);
     const std::string text(c, std::min({len, kShown, std::string_view(c, len).find('\0')}));
-    fail(L, what + ": number expected, got string '" + text + (text.size() < len ? "...'" : "'"));
+    fail_on(L, what, std::string("number expected, got string '") + text + (text.size() < len ? "...'" : "'"));
   }
-  if (lua_type(L, idx) != LUA_TNUMBER) fail(L, what + ": number expected, got " + type_name(L, idx));
+  if (lua_type(L, idx) != LUA_TNUMBER) fail_on(L, what, std::string("number expected, got ") + type_name(L, idx));
   return lua_tonumber(L, idx);
 }
 
@@ -82,11 +97,11 @@ std::optional<double> opt_number(lua_State* L, int t, const char* key, const std
 }
 
 std::string to_string(lua_State* L, int idx, const std::string& what) {
-  if (lua_type(L, idx) != LUA_TSTRING) fail(L, what + ": string expected, got " + type_name(L, idx));
+  if (lua_type(L, idx) != LUA_TSTRING) fail_on(L, what, std::string("string expected, got ") + type_name(L, idx));
   size_t len = 0;
   const char* c = lua_tolstring(L, idx, &len);
   std::string s(c, len);
-  if (s.find('\0') != std::string::npos) fail(L, what + ": a string without NUL characters expected");
+  if (s.find('\0') != std::string::npos) fail_on(L, what, "a string without NUL characters expected");
   return s;
 }
 
@@ -99,7 +114,8 @@ std::optional<std::string> opt_string(lua_State* L, int t, const char* key, cons
 
 std::optional<bool> opt_bool(lua_State* L, int t, const char* key, const std::string& where) {
   if (!field(L, t, key)) return std::nullopt;
-  if (lua_type(L, -1) != LUA_TBOOLEAN) fail(L, where + "." + key + ": boolean expected, got " + type_name(L, -1));
+  if (lua_type(L, -1) != LUA_TBOOLEAN)
+    fail_on(L, where + "." + key, std::string("boolean expected, got ") + type_name(L, -1));
   const bool b = lua_toboolean(L, -1);
   lua_pop(L, 1);
   return b;
@@ -108,30 +124,28 @@ std::optional<bool> opt_bool(lua_State* L, int t, const char* key, const std::st
 int to_integer(lua_State* L, int idx, const std::string& what) {
   const double v = to_number(L, idx, what);
   if (v != std::floor(v) || std::abs(v) > 1e9) {
-    std::ostringstream s;
-    s << what << ": a whole number expected (got " << v << ")";
-    fail(L, s.str());
+    fail_on(L, what, std::string("a whole number expected (got ") + rounded_text(v) + ")");
   }
   return static_cast<int>(v);
 }
 
 void require_table(lua_State* L, int idx, const std::string& what) {
-  if (!lua_istable(L, idx)) fail(L, what + ": table expected, got " + type_name(L, idx));
+  if (!lua_istable(L, idx)) fail_on(L, what, std::string("table expected, got ") + type_name(L, idx));
 }
 
 Vec2 to_vec2(lua_State* L, int idx, const std::string& what) {
   idx = lua_absindex(L, idx);
   if (!lua_istable(L, idx) || lua_rawlen(L, idx) != 2)
-    fail(L, what + ": a point {x, y} in metres expected, got " + type_name(L, idx));
+    fail_on(L, what, std::string("a point {x, y} in metres expected, got ") + type_name(L, idx));
   Vec2 v;
   for (int k = 0; k < 2; ++k) {
     lua_rawgeti(L, idx, k + 1);
     v[k] = to_number(L, -1, what);
     lua_pop(L, 1);
     if (!std::isfinite(v[k])) {
-      std::ostringstream m;
-      m << what << ": a finite point {x, y} in metres expected (got " << (k ? "y" : "x") << " = " << v[k] << ")";
-      fail(L, m.str());
+      fail_on(L, what,
+              std::string("a finite point {x, y} in metres expected (got ") + (k ? "y" : "x") + " = " +
+                  rounded_text(v[k]) + ")");
     }
   }
   return v;
@@ -146,9 +160,9 @@ std::vector<lua_Integer> check_sequence(lua_State* L, int idx, const std::string
     lua_pop(L, 1);
     count++;
     if (!lua_isinteger(L, -1) || lua_tointeger(L, -1) < 1 || lua_tointeger(L, -1) > n)
-      fail(L, what + ": a list without holes or named keys expected");
+      fail_on(L, what, "a list without holes or named keys expected");
   }
-  if (count != n) fail(L, what + ": a list without holes expected (an entry is nil)");
+  if (count != n) fail_on(L, what, "a list without holes expected (an entry is nil)");
   std::vector<lua_Integer> k(static_cast<size_t>(n));
   for (lua_Integer i = 0; i < n; ++i) k[static_cast<size_t>(i)] = i + 1;
   return k;
@@ -169,7 +183,7 @@ void check_args(lua_State* L, const std::string& function, std::initializer_list
     s << sig << ": expected " << required;
     if (max > required) s << " to " << max;
     s << " argument" << (max == 1 && required == 1 ? "" : "s") << ", got " << n;
-    fail(L, s.str());
+    fail_at(L, {}, s.str());  // (about the call, not a key)
   }
   int k = 0;
   for (const Arg& a : args) {
@@ -189,7 +203,8 @@ void check_args(lua_State* L, const std::string& function, std::initializer_list
     std::string expected;
     for (size_t i = 0; i < names.size(); ++i)
       expected += (i == 0 ? "" : i + 1 == names.size() ? " or " : ", ") + names[i];
-    fail(L, sig + ": argument " + std::to_string(k) + " (" + a.name + "): " + expected + " expected, got " +
+    fail_at(L, {},
+            sig + ": argument " + std::to_string(k) + " (" + a.name + "): " + expected + " expected, got " +
                 type_name(L, idx));
   }
 }
@@ -210,7 +225,8 @@ int index_methods(lua_State* L) {
     if (lua_type(L, -1) == LUA_TSTRING) names.push_back(lua_tostring(L, -1));
   }
   std::sort(names.begin(), names.end());
-  fail(L, kind + " has no field or method '" + name + "'" + did_you_mean(name, names) + "; methods: " + join(names));
+  fail_at(L, {},
+          kind + " has no field or method '" + name + "'" + did_you_mean(name, names) + "; methods: " + join(names));
 }
 
 }  // namespace beltsim::script

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "model/model.hpp"
+#include "scene/key_path.hpp"
 
 // not lua.hpp: its extern "C" would not match the C++-compiled library
 #include "lauxlib.h"
@@ -16,7 +17,12 @@
 
 namespace beltsim::script {
 
+// a Lua error "file:line: msg", the line the one of the calling script, or of the key `path` in the
+// call's table constructor (key_line.hpp); fail finds the path at the start of msg (message_path)
+[[noreturn]] void fail_at(lua_State* L, const KeyPath& path, const std::string& msg);
 [[noreturn]] void fail(lua_State* L, const std::string& msg);
+// "what: reason" about the key `what` names (a path: "run.sample", "pulley 'a'.radius"), its line the key's
+[[noreturn]] void fail_on(lua_State* L, const std::string& what, const std::string& reason);
 bool has(lua_State* L, int idx, const char* key);
 // every key of the table at idx must be one of `allowed` (a misspelt one gets a suggestion,
 // io/suggest.hpp)

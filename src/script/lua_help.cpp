@@ -31,7 +31,7 @@ int l_help(lua_State* L) {
       return 0;
     }
   }
-  fail(L, "help: nothing is called '" + name + "'" + did_you_mean(name, names));
+  fail_on(L, "help", std::string("nothing is called '") + name + "'" + did_you_mean(name, names));
 }
 
 }  // namespace

@@ -102,11 +102,12 @@ void read_pairs(lua_State* L, int idx, const std::string& what, const char* pair
   require_table(L, idx, what);
   check_sequence(L, idx, what);
   const lua_Integer n = static_cast<lua_Integer>(lua_rawlen(L, idx));
-  if (n < 1) fail(L, what + ": at least one " + pair + " pair expected");
+  if (n < 1) fail_on(L, what, std::string("at least one ") + pair + " pair expected");
   for (lua_Integer k = 1; k <= n; ++k) {
     const std::string w = what + " entry " + std::to_string(k) + " (" + pair + ")";
     lua_rawgeti(L, idx, k);
-    if (!lua_istable(L, -1) || lua_rawlen(L, -1) != 2) fail(L, w + ": two numbers expected, got " + type_name(L, -1));
+    if (!lua_istable(L, -1) || lua_rawlen(L, -1) != 2)
+      fail_on(L, w, std::string("two numbers expected, got ") + type_name(L, -1));
     x.push_back(number_at(L, lua_gettop(L), 1, w));
     y.push_back(number_at(L, lua_gettop(L), 2, w));
     lua_pop(L, 1);
@@ -129,7 +130,8 @@ Ramp read_ramp(lua_State* L, int idx, const std::string& what) {
   r.to = required(L, idx, "to", what);
   if (const auto s = opt_string(L, idx, "shape", what)) {
     if (*s != "linear" && *s != "cosine")
-      fail(L, what + ".shape: 'linear' or 'cosine' expected, got '" + *s + "'" + did_you_mean(*s, {"linear", "cosine"}));
+      fail_on(L, what + ".shape",
+              std::string("'linear' or 'cosine' expected, got '") + *s + "'" + did_you_mean(*s, {"linear", "cosine"}));
     r.cosine = *s == "cosine";
   }
   if (!(r.t1 > r.t0)) {
@@ -165,13 +167,13 @@ void read_harmonics(lua_State* L, int idx, const std::string& what, double mean_
   require_table(L, idx, what);
   check_sequence(L, idx, what);
   const lua_Integer n = static_cast<lua_Integer>(lua_rawlen(L, idx));
-  if (n < 1) fail(L, what + ": at least one {order, amplitude, phase} expected");
+  if (n < 1) fail_on(L, what, "at least one {order, amplitude, phase} expected");
   for (lua_Integer k = 1; k <= n; ++k) {
     const std::string w = what + " entry " + std::to_string(k) + " ({order, amplitude, phase})";
     lua_rawgeti(L, idx, k);
     const int e = lua_gettop(L);
     if (!lua_istable(L, e) || lua_rawlen(L, e) < 2 || lua_rawlen(L, e) > 3)
-      fail(L, w + ": two or three numbers expected, got " + type_name(L, e));
+      fail_on(L, w, std::string("two or three numbers expected, got ") + type_name(L, e));
     Harmonic h;
     h.order = number_at(L, e, 1, w);
     h.amplitude = number_at(L, e, 2, w);
@@ -187,7 +189,9 @@ constexpr int kMaxDepth = 16;
 // adds the law at idx to `law`
 void add_law(lua_State* L, int idx, const std::string& what, bool speed, Context* ctx, TimeSpeedLaw& law, int depth) {
   idx = lua_absindex(L, idx);
-  if (depth > kMaxDepth) fail(L, what + ": laws nested deeper than " + std::to_string(kMaxDepth) + " (a table that holds itself?)");
+  if (depth > kMaxDepth)
+    fail_on(L, what,
+            std::string("laws nested deeper than ") + std::to_string(kMaxDepth) + " (a table that holds itself?)");
   switch (lua_type(L, idx)) {
     case LUA_TNUMBER:
       law.constant += lua_tonumber(L, idx);
@@ -201,7 +205,8 @@ void add_law(lua_State* L, int idx, const std::string& what, bool speed, Context
     case LUA_TTABLE:
       break;
     default:
-      fail(L, what + ": a number, a law table or function(t" + (speed ? ")" : ", omega)") + " expected, got " +
+      fail_on(L, what,
+              std::string("a number, a law table or function(t") + (speed ? ")" : ", omega)") + " expected, got " +
                   type_name(L, idx));
   }
   // the keys: named terms, and a list of laws 1..n
@@ -215,7 +220,7 @@ void add_law(lua_State* L, int idx, const std::string& what, bool speed, Context
         fail(L, "unknown key '" + key + "' in " + what + did_you_mean(key, kLawKeys) + "; valid keys: " + join(kLawKeys) +
                     ", and laws as a list (summed)");
     } else if (!lua_isinteger(L, -1) || lua_tointeger(L, -1) < 1 || lua_tointeger(L, -1) > n) {
-      fail(L, what + ": named terms and a list of laws without holes expected");
+      fail_on(L, what, "named terms and a list of laws without holes expected");
     }
   }
   TimeSpeedLaw own;
@@ -229,20 +234,21 @@ void add_law(lua_State* L, int idx, const std::string& what, bool speed, Context
   if (field(L, idx, "sine")) own.sines.push_back(read_sine(L, lua_gettop(L), what + ".sine")), lua_pop(L, 1);
   const auto mean_speed = opt_number(L, idx, "mean_speed", what);
   if (field(L, idx, "harmonics")) {
-    if (!mean_speed) fail(L, what + ".harmonics: mean_speed [rad/s] is required beside it (the orders are of it)");
+    if (!mean_speed) fail_on(L, what + ".harmonics", "mean_speed [rad/s] is required beside it (the orders are of it)");
     read_harmonics(L, lua_gettop(L), what + ".harmonics", *mean_speed, own.harmonics);
     lua_pop(L, 1);
   } else if (mean_speed) {
-    fail(L, what + ".mean_speed: only for harmonics (the orders' speed), and no harmonics are given");
+    fail_on(L, what + ".mean_speed", "only for harmonics (the orders' speed), and no harmonics are given");
   }
   // a table's own check first, so that its errors name its own key
   std::string error;
+  KeyPath about;
   try {
     validate_law(what, own, speed);
   } catch (const ParameterError& e) {
-    error = e.what();
+    error = e.what(), about = e.path;
   }
-  if (!error.empty()) fail(L, error);
+  if (!error.empty()) fail_at(L, about, error);
   law += own;
   for (lua_Integer k = 1; k <= n; ++k) {
     lua_rawgeti(L, idx, k);
@@ -319,12 +325,13 @@ TimeSpeedLaw to_law(lua_State* L, int idx, const std::string& what, bool speed, 
   TimeSpeedLaw law;
   add_law(L, idx, what, speed, ctx, law, 0);
   std::string error;
+  KeyPath about;
   try {
     validate_law(what, law, speed);  // the sum: a speed table summed into a speed law, say
   } catch (const ParameterError& e) {
-    error = e.what();
+    error = e.what(), about = e.path;
   }
-  if (!error.empty()) fail(L, error);
+  if (!error.empty()) fail_at(L, about, error);
   return law;
 }
 

@@ -25,18 +25,18 @@
 #include "script/progress.hpp"
 #include "script/sandbox.hpp"
 #include "script/signals.hpp"
+#include "sim/run_table.hpp"
 
 namespace beltsim::script {
 
 void check_range(lua_State* L, const Scene& sc, std::optional<double> from, std::optional<double> to,
                  const std::string& what) {
   const double length = sc.sites.empty() ? 0 : sc.sites[0].length;
-  if (from.has_value() != to.has_value()) fail(L, what + ": give both from and to (m along the belt), or neither");
+  if (from.has_value() != to.has_value()) fail_on(L, what, "give both from and to (m along the belt), or neither");
   for (const auto& [v, name] : {std::pair{from, "from"}, std::pair{to, "to"}})
     if (v && !(*v >= 0 && *v <= length)) {
-      std::ostringstream m;
-      m << what << "." << name << ": must be in [0, " << length << "] m, the belt's length (got " << *v << " m)";
-      fail(L, m.str());
+      fail_on(L, what + "." + name,
+              "must be in [0, " + rounded_text(length) + "] m, the belt's length (got " + rounded_text(*v) + " m)");
     }
 }
 
@@ -45,7 +45,7 @@ std::vector<double> mu_over(lua_State* L, int mu_idx, const Scene& sc, std::opti
   mu_idx = lua_absindex(L, mu_idx);
   check_range(L, sc, from, to, what);
   if (lua_type(L, mu_idx) != LUA_TNUMBER && !lua_isfunction(L, mu_idx))
-    fail(L, what + ".mu: number or function(site) expected, got " + type_name(L, mu_idx));
+    fail_on(L, what + ".mu", std::string("number or function(site) expected, got ") + type_name(L, mu_idx));
   std::vector<double> out(sc.sites.size(), std::nan(""));
   for (const ElementSite& site : sc.sites) {
     if (from) {
@@ -63,9 +63,7 @@ std::vector<double> mu_over(lua_State* L, int mu_idx, const Scene& sc, std::opti
       mu = lua_tonumber(L, mu_idx);
     }
     if (const std::string bad = mu_problem(mu); !bad.empty()) {
-      std::ostringstream m;
-      m << what << ".mu: " << bad << " (got " << mu << " for element " << site.index << ")";
-      fail(L, m.str());
+      fail_on(L, what + ".mu", bad + " (got " + rounded_text(mu) + " for element " + std::to_string(site.index) + ")");
     }
     out[site.index] = mu;
   }
@@ -89,7 +87,8 @@ FrameSettings to_frames(lua_State* L, int idx, const std::string& w, const std::
   if (field(L, idx, "png_every")) f.png_every = to_integer(L, -1, w + ".png_every"), lua_pop(L, 1);
   auto pair = [&](const char* key, const char* what) -> std::optional<std::pair<double, double>> {
     if (!field(L, idx, key)) return std::nullopt;
-    if (!lua_istable(L, -1) || lua_rawlen(L, -1) != 2) fail(L, w + "." + key + ": " + what + " expected, got " + type_name(L, -1));
+    if (!lua_istable(L, -1) || lua_rawlen(L, -1) != 2)
+      fail_on(L, w + "." + key, std::string(what) + " expected, got " + type_name(L, -1));
     double a[2];
     for (int k = 0; k < 2; ++k) {
       lua_rawgeti(L, -1, k + 1);
@@ -103,9 +102,9 @@ FrameSettings to_frames(lua_State* L, int idx, const std::string& w, const std::
     // checked before the cast to int (a huge value would not fit)
     if (s->first != std::floor(s->first) || s->second != std::floor(s->second) || !(s->first >= 16 && s->first <= 8192) ||
         !(s->second >= 16 && s->second <= 8192)) {
-      std::ostringstream m;
-      m << w << ".size: whole numbers of pixels in 16..8192 expected (got {" << s->first << ", " << s->second << "})";
-      fail(L, m.str());
+      fail_on(L, w + ".size",
+              std::string("whole numbers of pixels in 16..8192 expected (got {") + rounded_text(s->first) + ", " +
+                  rounded_text(s->second) + "})");
     }
     f.width = static_cast<int>(s->first), f.height = static_cast<int>(s->second);
   }
@@ -117,7 +116,9 @@ FrameSettings to_frames(lua_State* L, int idx, const std::string& w, const std::
       names.push_back(i.key);
       if (*q == i.key) f.quantity = i.q, found = true;
     }
-    if (!found) fail(L, w + ".quantity: unknown quantity '" + *q + "'" + did_you_mean(*q, names) + "; one of: " + join(names));
+    if (!found)
+      fail_on(L, w + ".quantity",
+              std::string("unknown quantity '") + *q + "'" + did_you_mean(*q, names) + "; one of: " + join(names));
   }
   if (field(L, idx, "view")) {
     require_table(L, -1, w + ".view");
@@ -136,7 +137,7 @@ FrameSettings to_frames(lua_State* L, int idx, const std::string& w, const std::
     else if (lua_type(L, -1) == LUA_TSTRING)
       r = lua_tostring(L, -1);
     else
-      fail(L, w + "." + key + ": true, false or a path expected, got " + type_name(L, -1));
+      fail_on(L, w + "." + key, std::string("true, false or a path expected, got ") + type_name(L, -1));
     lua_pop(L, 1);
     return r;
   };
@@ -144,12 +145,17 @@ FrameSettings to_frames(lua_State* L, int idx, const std::string& w, const std::
   if (!extra.empty()) f.png_dir = ".";  // sim:show: one picture, written by its caller
   f.video_path = output("video", "frames.mp4");
   std::string error;
+  KeyPath about;
   try {
     validate(f, times_only);
-  } catch (const std::invalid_argument& e) {
-    error = w.substr(0, w.rfind('.') == std::string::npos ? 0 : w.rfind('.') + 1) + e.what();
+  } catch (const ParameterError& e) {
+    // e names frames.<key>: under the table that holds these frames (run.frames, start.frames)
+    about = parse_path(w);
+    if (!about.chain.empty()) about.chain.pop_back();
+    about.chain.insert(about.chain.end(), e.path.chain.begin(), e.path.chain.end());
+    error = parameter_message(path_text(about), e.reason, e.value, e.unit);
   }
-  if (!error.empty()) fail(L, error);
+  if (!error.empty()) fail_at(L, about, error);
   return f;
 }
 
@@ -173,11 +179,9 @@ std::vector<double> wet_shares(const Scene& sc, double from, double to, double t
 std::optional<double> read_transition(lua_State* L, int idx, bool has_range, const std::string& what) {
   const auto transition = opt_number(L, idx, "transition", what);
   if (!transition) return transition;
-  if (!has_range) fail(L, what + ".transition: a transition needs the wet stretch's from and to [m]");
+  if (!has_range) fail_on(L, what + ".transition", "a transition needs the wet stretch's from and to [m]");
   if (!(*transition >= 0 && std::isfinite(*transition))) {
-    std::ostringstream m;
-    m << what << ".transition: must be >= 0 and finite (got " << *transition << " m)";
-    fail(L, m.str());
+    fail_on(L, what + ".transition", std::string("must be >= 0 and finite (got ") + rounded_text(*transition) + " m)");
   }
   return transition;
 }
@@ -202,12 +206,12 @@ std::vector<MuEvent> read_events(lua_State* L, int idx, const Scene& sc) {
     check_keys(L, e, what, {"t", "mu", "from", "to", "transition"});
     MuEvent ev;
     const auto t = opt_number(L, e, "t", what);
-    if (!t) fail(L, what + ".t: the event's time is missing");
-    if (const std::string bad = event_time_problem(*t); !bad.empty()) fail(L, what + ".t: " + bad);
+    if (!t) fail_on(L, what + ".t", "the event's time is missing");
+    if (const std::string bad = event_time_problem(*t); !bad.empty()) fail_on(L, what + ".t", bad);
     ev.t = *t;
     const auto from = opt_number(L, e, "from", what), to = opt_number(L, e, "to", what);
     const auto transition = read_transition(L, e, from.has_value(), what);
-    if (!field(L, e, "mu")) fail(L, what + ".mu: the new friction coefficient is missing");
+    if (!field(L, e, "mu")) fail_on(L, what + ".mu", "the new friction coefficient is missing");
     if (transition && *transition > 0) {
       // the new μ on every element the ramps reach, each with its share (wet_share)
       check_range(L, sc, from, to, what);
@@ -247,7 +251,7 @@ std::vector<int> read_probes(lua_State* L, int v, const Scene& sc, const std::st
     return r;
   };
   const size_t n = check_sequence(L, v, w).size();
-  if (n == 0) fail(L, w + ": an element number, a point {x, y} or a list of them expected, got an empty table");
+  if (n == 0) fail_on(L, w, "an element number, a point {x, y} or a list of them expected, got an empty table");
   if (n == 2 && !(is_int(1) && is_int(2))) {
     bool numbers = true;
     for (int k = 1; k <= 2; ++k) {
@@ -265,98 +269,69 @@ std::vector<int> read_probes(lua_State* L, int v, const Scene& sc, const std::st
     lua_pop(L, 1);
     for (size_t j = 0; j < out.size(); ++j)
       if (out[j] == i)
-        fail(L, wk + ": element " + std::to_string(i) + " is probed already (entry " + std::to_string(j + 1) +
+        fail_on(L, wk,
+                std::string("element ") + std::to_string(i) + " is probed already (entry " + std::to_string(j + 1) +
                     "); a point is written with decimals, e.g. {0.0, 0.1}");
     out.push_back(i);
   }
   return out;
 }
 
-// the keys of scene:run{} and scene:start{} with their readers (one table: the key check and
-// the reading cannot drift apart)
-struct RunKey {
-  const char* key;
-  bool batch_only;
-  void (*read)(lua_State* L, int v, const Scene& sc, RunSettings& rs, bool& progress, const std::string& w);
-};
-const RunKey kRunKeys[] = {
-    {"t_end", true, [](lua_State* L, int v, const Scene&, RunSettings& rs, bool&, const std::string& w) {
-       rs.t_end = to_number(L, v, w + ".t_end");
-     }},
-    {"integrator", false, [](lua_State* L, int v, const Scene&, RunSettings& rs, bool&, const std::string& w) {
-       rs.integrator = to_string(L, v, w + ".integrator");
-     }},
-    {"rtol", false, [](lua_State* L, int v, const Scene&, RunSettings& rs, bool&, const std::string& w) {
-       rs.rtol = to_number(L, v, w + ".rtol");
-     }},
-    {"atol", false, [](lua_State* L, int v, const Scene&, RunSettings& rs, bool&, const std::string& w) {
-       rs.atol = to_number(L, v, w + ".atol");
-       if (const std::string bad = atol_problem(rs.atol); !bad.empty()) fail(L, w + ".atol: " + bad);
-     }},
-    {"sample", false, [](lua_State* L, int v, const Scene&, RunSettings& rs, bool&, const std::string& w) {
-       rs.sample_dt = to_number(L, v, w + ".sample");
-     }},
-    {"out", false, [](lua_State* L, int v, const Scene&, RunSettings& rs, bool&, const std::string& w) {
-       rs.out_dir = to_string(L, v, w + ".out");
-       if (const std::string bad = out_dir_problem(rs.out_dir); !bad.empty()) fail(L, w + ".out: " + bad);
-     }},
-    {"probe", false, [](lua_State* L, int v, const Scene& sc, RunSettings& rs, bool&, const std::string& w) {
-       rs.probes = read_probes(L, v, sc, w + ".probe");
-     }},
-    {"snapshots", false, [](lua_State* L, int v, const Scene&, RunSettings& rs, bool&, const std::string& w) {
-       const std::string ww = w + ".snapshots";
-       require_table(L, v, ww);
-       check_keys(L, v, ww, {"times", "every"});
-       if (field(L, v, "every")) {
-         rs.snapshot_every = to_number(L, -1, ww + ".every");
-         if (!(rs.snapshot_every > 0 && std::isfinite(rs.snapshot_every)))
-           fail(L, ww + ".every: must be > 0 s and finite (got " + std::to_string(rs.snapshot_every) + " s)");
-         lua_pop(L, 1);
-       }
-       if (field(L, v, "times")) {
-         const int tt = lua_gettop(L);
-         require_table(L, tt, ww + ".times");
-         const size_t n = check_sequence(L, tt, ww + ".times").size();
-         for (size_t k = 1; k <= n; ++k) {
-           lua_rawgeti(L, tt, static_cast<lua_Integer>(k));
-           rs.snapshot_times.push_back(to_number(L, -1, ww + ".times[" + std::to_string(k) + "]"));
-           lua_pop(L, 1);
-         }
-         lua_pop(L, 1);
-       }
-       if (rs.snapshot_every == 0 && rs.snapshot_times.empty())
-         fail(L, ww + ": give times = {t1, t2, ...} [s] and/or every = dt [s]");
-     }},
-    {"progress", false, [](lua_State* L, int v, const Scene&, RunSettings&, bool& progress, const std::string& w) {
-       if (lua_type(L, v) != LUA_TBOOLEAN) fail(L, w + ".progress: boolean expected, got " + type_name(L, v));
-       progress = lua_toboolean(L, v);
-     }},
-    {"events", true, [](lua_State* L, int v, const Scene& sc, RunSettings& rs, bool&, const std::string&) {
-       rs.mu_events = read_events(L, v, sc);
-     }},
-    {"max_wall", false, [](lua_State* L, int v, const Scene&, RunSettings& rs, bool&, const std::string& w) {
-       rs.wall_limit = to_number(L, v, w + ".max_wall");
-       if (!(rs.wall_limit > 0 && std::isfinite(rs.wall_limit)))
-         fail(L, w + ".max_wall: must be > 0 s and finite (got " + std::to_string(rs.wall_limit) + ")");
-     }},
-    {"check", false, [](lua_State* L, int v, const Scene&, RunSettings& rs, bool&, const std::string& w) {
-       if (lua_type(L, v) != LUA_TBOOLEAN) fail(L, w + ".check: boolean expected, got " + type_name(L, v));
-       rs.check = lua_toboolean(L, v);
-     }},
-    {"allow_large", false, [](lua_State* L, int v, const Scene&, RunSettings& rs, bool&, const std::string& w) {
-       if (lua_type(L, v) != LUA_TBOOLEAN) fail(L, w + ".allow_large: boolean expected, got " + type_name(L, v));
-       rs.allow_large = lua_toboolean(L, v);
-     }},
-    // before frames: with it, frames may give only the times (neither png nor video)
-    {"keep_states", false, [](lua_State* L, int v, const Scene&, RunSettings& rs, bool&, const std::string& w) {
-       if (lua_type(L, v) != LUA_TBOOLEAN) fail(L, w + ".keep_states: boolean expected, got " + type_name(L, v));
-       rs.keep_states = lua_toboolean(L, v);
-     }},
-    {"frames", false, [](lua_State* L, int v, const Scene&, RunSettings& rs, bool&, const std::string& w) {
-       if (!(lua_type(L, v) == LUA_TBOOLEAN && !lua_toboolean(L, v)))
-         rs.frames = to_frames(L, v, w + ".frames", {}, rs.keep_states);
-     }},
-};
+// snapshots = { times = {t1, t2, ...}, every = dt } [s]
+void read_snapshots(lua_State* L, int v, RunSettings& rs, const std::string& ww) {
+  require_table(L, v, ww);
+  check_keys(L, v, ww, {"times", "every"});
+  if (field(L, v, "every")) {
+    rs.snapshot_every = to_number(L, -1, ww + ".every");
+    if (!(rs.snapshot_every > 0 && std::isfinite(rs.snapshot_every)))
+      fail_on(L, ww + ".every",
+              std::string("must be > 0 s and finite (got ") + rounded_text(rs.snapshot_every) + " s)");
+    lua_pop(L, 1);
+  }
+  if (field(L, v, "times")) {
+    const int tt = lua_gettop(L);
+    require_table(L, tt, ww + ".times");
+    const size_t n = check_sequence(L, tt, ww + ".times").size();
+    for (size_t k = 1; k <= n; ++k) {
+      lua_rawgeti(L, tt, static_cast<lua_Integer>(k));
+      rs.snapshot_times.push_back(to_number(L, -1, ww + ".times[" + std::to_string(k) + "]"));
+      lua_pop(L, 1);
+    }
+    lua_pop(L, 1);
+  }
+  if (rs.snapshot_every == 0 && rs.snapshot_times.empty())
+    fail_on(L, ww, "give times = {t1, t2, ...} [s] and/or every = dt [s]");
+}
+
+// the value at v of setting s (a key of scene:run{} or scene:start{}, sim/run_table.hpp), named
+// w.<key>: a number, flag or text by its kind into its slot, checked at once by its rule; a list or
+// table by its own reader
+void read_setting(lua_State* L, int v, const Scene& sc, const RunSetting& s, RunSettings& rs, const std::string& w) {
+  const std::string what = w + "." + std::string(s.key);
+  const RunSlot slot = run_slot(s, rs);
+  if (auto* x = std::get_if<double*>(&slot)) **x = to_number(L, v, what);
+  if (auto* t = std::get_if<std::string*>(&slot)) **t = to_string(L, v, what);
+  if (auto* f = std::get_if<bool*>(&slot)) {
+    if (lua_type(L, v) != LUA_TBOOLEAN) fail_on(L, what, std::string("boolean expected, got ") + type_name(L, v));
+    **f = lua_toboolean(L, v);
+  }
+  if (const std::string bad = run_problem(s, rs, true); !bad.empty())
+    fail_at(L, KeyPath{"", {w, std::string(s.key)}}, what + ": " + bad);
+  if (s.kind != RunKind::other) return;
+  if (s.key == "probe")
+    rs.probes = read_probes(L, v, sc, what);
+  else if (s.key == "snapshots")
+    read_snapshots(L, v, rs, what);
+  else if (s.key == "events")
+    rs.mu_events = read_events(L, v, sc);
+  else if (s.key == "frames") {
+    // (keep_states comes before frames in the table: with it, frames may give only the times)
+    if (!(lua_type(L, v) == LUA_TBOOLEAN && !lua_toboolean(L, v)))
+      rs.frames = to_frames(L, v, what, {}, rs.keep_states);
+  } else {
+    throw std::logic_error("scene:run: no reader for the run setting '" + std::string(s.key) + "'");
+  }
+}
 
 }  // namespace
 
@@ -364,17 +339,13 @@ RunSettings read_run_settings(lua_State* L, int idx, const Scene& sc, Context* c
   const std::string w = batch ? "run" : "start";
   RunSettings rs;
   rs.out_dir = ctx->default_out;
-  bool pr = true;
   if (!lua_isnoneornil(L, idx)) {
     idx = lua_absindex(L, idx);
     require_table(L, idx, w);
-    std::vector<std::string> keys;
-    for (const RunKey& k : kRunKeys)
-      if (batch || !k.batch_only) keys.push_back(k.key);
-    check_keys(L, idx, w, keys);
-    for (const RunKey& k : kRunKeys) {
-      if ((!batch && k.batch_only) || !field(L, idx, k.key)) continue;
-      k.read(L, lua_gettop(L), sc, rs, pr, w);
+    check_keys(L, idx, w, run_keys(batch));
+    for (const RunSetting& s : run_settings()) {
+      if (!(s.where & (batch ? kRunKey : kStartKey)) || !field(L, idx, std::string(s.key).c_str())) continue;
+      read_setting(L, lua_gettop(L), sc, s, rs, w);
       lua_pop(L, 1);
     }
   }
@@ -383,17 +354,13 @@ RunSettings read_run_settings(lua_State* L, int idx, const Scene& sc, Context* c
   if (o.no_frames && rs.keep_states && rs.frames) rs.frames->png_dir.clear(), rs.frames->video_path.clear();
   if (o.no_frames && !rs.keep_states) rs.frames.reset();
   rs.frame_factory = render::make_frame_recorder;
-  if (o.out) rs.out_dir = *o.out;
-  if (o.t_end) rs.t_end = *o.t_end;
-  if (o.integrator) rs.integrator = *o.integrator;
-  if (o.rtol) rs.rtol = *o.rtol;
-  if (o.max_wall) rs.wall_limit = *o.max_wall;
-  if (o.check) rs.check = true;
+  // the command line's settings over the script's (checked when they were read, app/options.cpp)
+  for (const std::string& key : o.given) copy_run_setting(*find_run_setting(key), o.run, rs);
   // the check's warning while the run goes on (sim/run_check.hpp)
   rs.on_warning = [](const std::string& m) { std::fprintf(stderr, "beltsim: warning: %s\n", m.c_str()); };
   // the files of the run lie where the sandbox lets the script's own files lie
   if (const std::string r = run_paths_refusal(*ctx, w, rs); !r.empty()) fail(L, r);
-  if (progress) *progress = pr;
+  if (progress) *progress = rs.progress;
   return rs;
 }
 
@@ -405,6 +372,14 @@ void push_check(lua_State* L, const CheckEstimate& c) {
   lua_pushboolean(L, c.over()), lua_setfield(L, -2, "over");
   if (c.warned_t >= 0) lua_pushnumber(L, c.warned_t), lua_setfield(L, -2, "warned_t");
   if (!c.failed.empty()) lua_pushstring(L, c.failed.c_str()), lua_setfield(L, -2, "failed");
+}
+
+// the message of an error about a run setting (sim/run_settings.hpp, check), its path set in
+// `about` under the call's table (run.sample, start.frames.fps): made here, where it is reported
+std::string setting_error(const char* table, const ParameterError& e, KeyPath& about) {
+  about = e.path;
+  about.chain.insert(about.chain.begin(), table);
+  return parameter_message(path_text(about), e.reason, e.value, e.unit);
 }
 
 // scene:run{ t_end=, integrator=, rtol=, atol=, sample=, out=, probe=, progress=, events=, frames=, check= } -> result
@@ -421,7 +396,7 @@ int l_scene_run(lua_State* L) {
   bool progress = true;
   RunSettings rs = read_run_settings(L, 2, *sc, ctx, true, &progress);
   check_unread_args(L, *ctx, "run");
-  for (const std::string& note : drop_after_end(rs, ctx->overrides.t_end ? "--t-end" : nullptr))
+  for (const std::string& note : drop_after_end(rs, ctx->overrides.has("t_end") ? "--t-end" : nullptr))
     std::fprintf(stderr, "beltsim: %s\n", note.c_str());
   if (ctx->capture) {
     ctx->capture->scene = *sc;
@@ -432,6 +407,7 @@ int l_scene_run(lua_State* L) {
   }
 
   std::string error;
+  KeyPath about;  // the setting an error is about: its line is the key's (lua_check.hpp, fail_at)
   RunResult res;
   try {
     const HostWork work;  // beltsim's own work, not Lua code (lua_clock.hpp)
@@ -440,16 +416,17 @@ int l_scene_run(lua_State* L) {
   } catch (const DivergenceError& e) {
     error = std::string(e.what()) + " (the samples up to then are in " + rs.out_dir + "/timeseries.csv)";
     ctx->divergence = {e.t, e.what()};
-  } catch (const std::invalid_argument& e) {
-    error = std::string("run.") + e.what();  // names the key: run.sample, run.frames.t_start, ...
+  } catch (const ParameterError& e) {
+    error = setting_error("run", e, about);
   } catch (const std::exception& e) {
     error = e.what();
   }
   if (res.over_wall_limit) {
     // not silent: the outputs are finalised (run() closed them) and the script stops here
-    error = "run.max_wall: the run " + wall_limit_text(rs.wall_limit, res.t_reached, rs.t_end, res.csv_path);
+    about = KeyPath{"", {"run", "max_wall"}};
+    error = path_text(about) + ": the run " + wall_limit_text(rs.wall_limit, res.t_reached, rs.t_end, res.csv_path);
   }
-  if (!error.empty()) fail(L, error);
+  if (!error.empty()) fail_at(L, about, error);
   if (res.interrupted) ctx->interrupted = true;
   if (!res.warning_summary.empty()) std::fprintf(stderr, "beltsim: %s\n", res.warning_summary.c_str());
   if (!res.check_line.empty())
@@ -487,24 +464,26 @@ int l_scene_start(lua_State* L) {
   const RunSettings rs = read_run_settings(L, 2, *sc, ctx, false, &progress);
   check_unread_args(L, *ctx, "start");
   // a live simulation runs to the times its script names: said once, before anything runs
-  if (ctx->overrides.t_end && !ctx->t_end_warned) {
+  if (ctx->overrides.has("t_end") && !ctx->t_end_warned) {
     ctx->t_end_warned = true;
     std::fprintf(stderr,
                  "beltsim: warning: --t-end %s s shortens scene:run only; %s's simulation (scene:start) runs to the "
                  "times its sim:run_to and sim:advance name\n",
-                 rounded_text(*ctx->overrides.t_end).c_str(), ctx->script.empty() ? "the console" : ctx->script.c_str());
+                 rounded_text(ctx->overrides.run.t_end).c_str(),
+                 ctx->script.empty() ? "the console" : ctx->script.c_str());
   }
   std::unique_ptr<Simulation> sim;
   std::string error;
+  KeyPath about;
   try {
     const HostWork work;  // beltsim's own work, not Lua code (lua_clock.hpp)
     sim = std::make_unique<Simulation>(*sc, rs);
-  } catch (const std::invalid_argument& e) {  // "key: reason"
-    error = std::string("start.") + e.what();
+  } catch (const ParameterError& e) {
+    error = setting_error("start", e, about);
   } catch (const std::exception& e) {  // an output that cannot be written, a folder in use
     error = std::string("start: ") + e.what();
   }
-  if (!error.empty()) fail(L, error);
+  if (!error.empty()) fail_at(L, about, error);
   push_simulation(L, std::move(sim), ctx, progress);
   return 1;
 }

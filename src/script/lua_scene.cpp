@@ -24,6 +24,7 @@
 #include "scene/parameters.hpp"
 #include "scene/validate.hpp"
 #include "script/context.hpp"
+#include "script/key_line.hpp"
 #include "script/lua_api.hpp"
 #include "script/lua_clock.hpp"
 #include "script/lua_law.hpp"
@@ -91,13 +92,14 @@ void read_friction_law(lua_State* L, int idx, const std::string& w, SceneDef& d)
     else if (*v == "lugre")
       d.friction.law = FrictionKind::lugre;
     else
-      fail(L, w + ".law: 'threlfall', 'stribeck' or 'lugre' expected, got '" + *v + "'");
+      fail_on(L, w + ".law", std::string("'threlfall', 'stribeck' or 'lugre' expected, got '") + *v + "'");
   }
   // a law's own parameters with another law: a mistake the run would silently ignore
   for (const Parameter* par : parameters_of("friction"))
     if (par->applies && !par->applies(d) && has(L, idx, std::string(par->key).c_str()))
-      fail(L, w + "." + std::string(par->key) + ": a parameter of another law; this " +
-                  (w == "friction" ? "scene's" : "segment's") + " law is '" + friction_law_name(d.friction.law) + "'");
+      fail_on(L, w + "." + std::string(par->key),
+              std::string("a parameter of another law; this ") + (w == "friction" ? "scene's" : "segment's") +
+                  " law is '" + friction_law_name(d.friction.law) + "'");
   PulleyDef none;
   read_numbers(L, idx, "friction", w, d, none);
 }
@@ -119,7 +121,7 @@ void read_friction_segments(lua_State* L, int idx, SceneDef& d) {
     check_keys(L, g, w, allowed);
     FrictionSegment& seg = d.friction_segments.emplace_back();
     const auto from = opt_number(L, g, "from", w), to = opt_number(L, g, "to", w);
-    if (!from || !to) fail(L, w + ": from and to [m] (where the segment begins and ends along the belt) are required");
+    if (!from || !to) fail_on(L, w, "from and to [m] (where the segment begins and ends along the belt) are required");
     seg.from = *from, seg.to = *to;
     SceneDef own;  // the segment's law, from the scene's
     own.friction = d.friction;
@@ -136,12 +138,12 @@ void read_tensioner(lua_State* L, int idx, const std::string& w, SceneDef& d, Pu
   require_table(L, idx, w);
   check_keys(L, idx, w, keys_of("pulley.tensioner"));
   TensionerDef& t = p.tensioner.emplace();
-  if (!field(L, idx, "pivot")) fail(L, w + ": a pivot {x, y} [m] is required");
+  if (!field(L, idx, "pivot")) fail_on(L, w, "a pivot {x, y} [m] is required");
   t.pivot = to_vec2(L, -1, w + ".pivot");
   lua_pop(L, 1);
-  if (!has(L, idx, "inertia")) fail(L, w + ": the arm's inertia about the pivot [kg·m²] is required");
-  if (!has(L, idx, "stiffness")) fail(L, w + ": the spring's stiffness [N·m/rad] is required");
-  if (has(L, idx, "preload") && has(L, idx, "angle0")) fail(L, w + ": give preload [N·m] or angle0 [rad], not both");
+  if (!has(L, idx, "inertia")) fail_on(L, w, "the arm's inertia about the pivot [kg·m²] is required");
+  if (!has(L, idx, "stiffness")) fail_on(L, w, "the spring's stiffness [N·m/rad] is required");
+  if (has(L, idx, "preload") && has(L, idx, "angle0")) fail_on(L, w, "give preload [N·m] or angle0 [rad], not both");
   read_numbers(L, idx, "pulley.tensioner", w, d, p);
 }
 
@@ -160,7 +162,7 @@ void read_spray(lua_State* L, int idx, SceneDef& d) {
     require_table(L, z, w);
     check_keys(L, z, w, keys_of("spray"));
     SprayZone& zone = d.spray.emplace_back();
-    if (!field(L, z, "centre")) fail(L, w + ": a centre {x, y} [m] is required");
+    if (!field(L, z, "centre")) fail_on(L, w, "a centre {x, y} [m] is required");
     zone.centre = to_vec2(L, -1, w + ".centre");
     lua_pop(L, 1);
     zone.from = parameter_default("spray.from");
@@ -176,7 +178,7 @@ void read_spray(lua_State* L, int idx, SceneDef& d) {
       if (auto v = opt_number(L, z, key.c_str(), w)) {
         *slot = *v;
       } else if (!par->fallback && key != "to") {
-        fail(L, w + ": " + key + (par->unit.empty() ? "" : " [" + std::string(par->unit) + "]") + " is required");
+        fail_on(L, w, key + (par->unit.empty() ? "" : " [" + std::string(par->unit) + "]") + " is required");
       }
     }
     note_given(L, z, "spray." + std::to_string(k) + ".", d.given);
@@ -190,8 +192,8 @@ void read_coupling(lua_State* L, int idx, const std::string& w, SceneDef& d, Pul
   require_table(L, idx, w);
   check_keys(L, idx, w, keys_of("pulley.coupling"));
   CouplingDef& c = p.coupling.emplace();
-  if (!has(L, idx, "inertia")) fail(L, w + ": the rotor's inertia [kg·m²] is required");
-  if (!has(L, idx, "stiffness")) fail(L, w + ": the decoupler spring's stiffness [N·m/rad] is required");
+  if (!has(L, idx, "inertia")) fail_on(L, w, "the rotor's inertia [kg·m²] is required");
+  if (!has(L, idx, "stiffness")) fail_on(L, w, "the decoupler spring's stiffness [N·m/rad] is required");
   if (auto v = opt_bool(L, idx, "one_way", w)) c.one_way = *v;
   read_numbers(L, idx, "pulley.coupling", w, d, p);
 }
@@ -202,18 +204,18 @@ PulleyDef to_pulley(lua_State* L, int idx, const std::string& what, SceneDef& d,
   check_keys(L, idx, what, keys_of("pulley"));
   PulleyDef p;
   const auto name = opt_string(L, idx, "name", what);
-  if (!name) fail(L, what + ": a name is required");
+  if (!name) fail_on(L, what, "a name is required");
   p.name = *name;
   const std::string w = "pulley '" + p.name + "'";
   bool centred = false;
-  if (has(L, idx, "centre") && has(L, idx, "center")) fail(L, w + ": give centre or center, not both");
+  if (has(L, idx, "centre") && has(L, idx, "center")) fail_on(L, w, "give centre or center, not both");
   for (const char* key : {"centre", "center"})
     if (field(L, idx, key)) {
       p.centre = to_vec2(L, -1, w + "." + key);
       lua_pop(L, 1);
       centred = true;
     }
-  if (!centred) fail(L, w + ": a centre {x, y} [m] is required");
+  if (!centred) fail_on(L, w, "a centre {x, y} [m] is required");
   read_numbers(L, idx, "pulley", w, d, p);
   if (auto v = opt_string(L, idx, "wrap", w)) {
     if (*v == "inside")
@@ -221,7 +223,7 @@ PulleyDef to_pulley(lua_State* L, int idx, const std::string& what, SceneDef& d,
     else if (*v == "back")
       p.wrap = WrapSide::back;
     else
-      fail(L, w + ".wrap: 'inside' or 'back' expected, got '" + *v + "'");
+      fail_on(L, w + ".wrap", std::string("'inside' or 'back' expected, got '") + *v + "'");
   }
   if (field(L, idx, "torque")) {
     p.torque = to_law(L, -1, w + ".torque", false, ctx);
@@ -250,15 +252,17 @@ void read_belt(lua_State* L, int idx, SceneDef& d, std::unique_ptr<LuaRef>& mu_f
   check_keys(L, idx, "belt", keys_of("belt"));
   {  // the tension at rest: exactly one of three ways (the paper's 500 N pretension when none)
     const int ways = has(L, idx, "pretension") + has(L, idx, "rest_length") + has(L, idx, "strain");
-    if (ways > 1) fail(L, "belt: give one of pretension [N], rest_length [m] or strain, not " + std::to_string(ways));
+    if (ways > 1)
+      fail_on(L, "belt",
+              std::string("give one of pretension [N], rest_length [m] or strain, not ") + std::to_string(ways));
   }
   const bool rigidities = has(L, idx, "EA") || has(L, idx, "EI") || has(L, idx, "axial_damping") ||
                           has(L, idx, "bending_damping") || has(L, idx, "bending_viscosity");
   if (has(L, idx, "bending_damping") && has(L, idx, "bending_viscosity"))
-    fail(L, "belt: give bending_damping [N·m·s/rad per SDE] or bending_viscosity [N·m²·s per length], not both");
+    fail_on(L, "belt", "give bending_damping [N·m·s/rad per SDE] or bending_viscosity [N·m²·s per length], not both");
   if (auto name = opt_string(L, idx, "preset", "belt")) {  // its values first: the table's own override them
     const BeltPreset* p = find_belt_preset(*name);
-    if (!p) fail(L, "belt.preset: no preset '" + *name + "'" + belt_preset_hint(*name));
+    if (!p) fail_on(L, "belt.preset", std::string("no preset '") + *name + "'" + belt_preset_hint(*name));
     b.preset = *name;
     apply_belt_preset(*p, d, [&](const std::string& key) { return has(L, idx, key.c_str()); });
   }
@@ -272,30 +276,36 @@ void read_belt(lua_State* L, int idx, SceneDef& d, std::unique_ptr<LuaRef>& mu_f
     else if (*v == "ccw")
       b.loop_sense = 1;
     else
-      fail(L, "belt.direction: 'cw' or 'ccw' expected, got '" + *v + "'");
+      fail_on(L, "belt.direction", std::string("'cw' or 'ccw' expected, got '") + *v + "'");
   }
   if (field(L, idx, "route")) {
     const int r = lua_gettop(L);
     require_table(L, r, "belt.route");
     check_sequence(L, r, "belt.route");
-    if (lua_rawlen(L, r) < 2) fail(L, "belt.route: at least two pulley names expected (leave route out for the order of pulleys)");
+    if (lua_rawlen(L, r) < 2)
+      fail_on(L, "belt.route", "at least two pulley names expected (leave route out for the order of pulleys)");
     for (lua_Integer k = 1; k <= static_cast<lua_Integer>(lua_rawlen(L, r)); ++k) {
       lua_rawgeti(L, r, k);
-      if (lua_type(L, -1) != LUA_TSTRING) fail(L, "belt.route: pulley names expected, got " + std::string(type_name(L, -1)));
+      if (lua_type(L, -1) != LUA_TSTRING)
+        fail_on(L, "belt.route", std::string("pulley names expected, got ") + std::string(type_name(L, -1)));
       b.route.push_back(lua_tostring(L, -1));
       lua_pop(L, 1);
     }
     lua_pop(L, 1);
   }
   if (field(L, idx, "sde")) {
-    if (rigidities) fail(L, "belt: give either rigidities (EA, EI, axial_damping, bending_damping or bending_viscosity) or per-SDE values (sde), not both");
+    if (rigidities)
+      fail_on(L, "belt",
+              "give either rigidities (EA, EI, axial_damping, bending_damping or bending_viscosity) or per-SDE values "
+              "(sde), not both");
     const int s = lua_gettop(L);
     require_table(L, s, "belt.sde");
     check_keys(L, s, "belt.sde", keys_of("belt.sde"));
     b.reading = StiffnessReading::per_sde;
     read_numbers(L, s, "belt.sde", "belt.sde", d, none);
     for (const std::string& key : keys_of("belt.sde"))
-      if (!has(L, s, key.c_str())) fail(L, "belt.sde: all of k, c, kt, ct are required (" + key + " is missing)");
+      if (!has(L, s, key.c_str()))
+        fail_on(L, "belt.sde", std::string("all of k, c, kt, ct are required (") + key + " is missing)");
     lua_pop(L, 1);
   }
   if (field(L, idx, "mu")) {
@@ -318,7 +328,8 @@ void read_belt(lua_State* L, int idx, SceneDef& d, std::unique_ptr<LuaRef>& mu_f
       };
     } else if (lua_istable(L, m)) {
       check_sequence(L, m, "belt.mu");
-      if (lua_rawlen(L, m) == 0) fail(L, "belt.mu: an empty list; give a number, one μ per element, or a function(site)");
+      if (lua_rawlen(L, m) == 0)
+        fail_on(L, "belt.mu", "an empty list; give a number, one μ per element, or a function(site)");
       for (lua_Integer k = 1; k <= static_cast<lua_Integer>(lua_rawlen(L, m)); ++k) {
         lua_rawgeti(L, m, k);
         b.mu_per_element.push_back(to_number(L, -1, "belt.mu entry " + std::to_string(k)));
@@ -330,7 +341,7 @@ void read_belt(lua_State* L, int idx, SceneDef& d, std::unique_ptr<LuaRef>& mu_f
     lua_pop(L, 1);
   }
   if (b.mu_flank) {  // the effective coefficient of the wedge from the flanks' (docs/model.md, The rib wedge)
-    if (has(L, idx, "mu")) fail(L, "belt: give mu (the effective coefficient) or mu_flank, not both");
+    if (has(L, idx, "mu")) fail_on(L, "belt", "give mu (the effective coefficient) or mu_flank, not both");
     std::ostringstream m;
     if (!(b.rib_angle > 0 && b.rib_angle < 180))
       m << "belt.rib_angle: must be > 0 and < 180 (the ribs' included angle) (got " << b.rib_angle << " °)";
@@ -387,7 +398,7 @@ int l_scene(lua_State* L) {
   check_keys(L, 1, "scene", keys_of("scene"));
   auto* ctx = static_cast<Context*>(lua_touserdata(L, lua_upvalueindex(1)));
   SceneDef d;
-  if (!field(L, 1, "pulleys")) fail(L, "scene: a list of pulleys is required");
+  if (!field(L, 1, "pulleys")) fail_on(L, "scene", "a list of pulleys is required");
   require_table(L, -1, "scene.pulleys");
   const int pl = lua_gettop(L);
   for (lua_Integer k = 1; k <= static_cast<lua_Integer>(lua_rawlen(L, pl)); ++k) {
@@ -447,18 +458,19 @@ int l_scene(lua_State* L) {
   *box = nullptr;
   luaL_setmetatable(L, kSceneMeta);
   std::string error;
+  KeyPath about;  // the parameter an error is about: its line is the key's (lua_check.hpp, fail_at)
   try {
     const HostWork work;  // beltsim's own work, not Lua code (lua_clock.hpp); its laws are calls of their own
     *box = new Scene(build_scene(d, ctx ? ctx->stop : nullptr));
   } catch (const ParameterError& e) {
-    error = e.what();
+    error = e.what(), about = e.path;
   } catch (const BuildInterrupted& e) {
     ctx->interrupted = true;
     error = e.what();
   } catch (const std::exception& e) {  // a Lua law that failed while the static state was sought
-    error = e.what();
+    error = e.what(), about = message_path(error);  // ("pulley 'driven'.torque (function at ...)")
   }
-  if (!error.empty()) fail(L, error);
+  if (!error.empty()) fail_at(L, about, error);
   report_scene(**box);
   return 1;
 }

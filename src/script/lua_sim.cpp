@@ -412,7 +412,7 @@ int l_index(lua_State* L) {
   auto* box = static_cast<SimBox*>(luaL_checkudata(L, 1, kSimMeta));
   const char* key = lua_tostring(L, 2);
   if (key && std::string(key) == "t") {
-    if (!box->sim) fail(L, "sim.t: this simulation has been finalised");
+    if (!box->sim) fail_on(L, "sim.t", "this simulation has been finalised");
     lua_pushnumber(L, box->sim->now());
     return 1;
   }

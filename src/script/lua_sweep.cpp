@@ -33,11 +33,11 @@ std::vector<std::string> sorted_names(lua_State* L, int idx, const std::string& 
   while (lua_next(L, idx)) {
     lua_pop(L, 1);
     if (lua_type(L, -1) != LUA_TSTRING || !is_name(lua_tostring(L, -1)))
-      fail(L, what + ": the parameters are named by Lua names (p.NAME), got a key " + type_name(L, -1));
+      fail_on(L, what, std::string("the parameters are named by Lua names (p.NAME), got a key ") + type_name(L, -1));
     names.emplace_back(lua_tostring(L, -1));
   }
   std::sort(names.begin(), names.end());
-  if (names.empty()) fail(L, what + ": name at least one parameter");
+  if (names.empty()) fail_on(L, what, "name at least one parameter");
   return names;
 }
 
@@ -46,7 +46,7 @@ sweep::Value to_value(lua_State* L, int idx, const std::string& what) {
     case LUA_TNUMBER: {
       if (lua_isinteger(L, idx)) return static_cast<long long>(lua_tointeger(L, idx));
       const double x = lua_tonumber(L, idx);
-      if (!std::isfinite(x)) fail(L, what + ": a finite number expected, got " + number_text(x));
+      if (!std::isfinite(x)) fail_on(L, what, std::string("a finite number expected, got ") + number_text(x));
       return x;
     }
     case LUA_TBOOLEAN:
@@ -54,7 +54,7 @@ sweep::Value to_value(lua_State* L, int idx, const std::string& what) {
     case LUA_TSTRING:
       return to_string(L, idx, what);
     default:
-      fail(L, what + ": a number, string or boolean expected, got " + type_name(L, idx));
+      fail_on(L, what, std::string("a number, string or boolean expected, got ") + type_name(L, idx));
   }
 }
 
@@ -65,7 +65,7 @@ std::vector<sweep::Point> read_grid(lua_State* L, int g) {
   for (const std::string& name : grid.names) {
     const std::string w = "sweep.grid." + name;
     lua_getfield(L, g, name.c_str());
-    if (!lua_istable(L, -1)) fail(L, w + ": a list of values expected, got " + type_name(L, -1));
+    if (!lua_istable(L, -1)) fail_on(L, w, std::string("a list of values expected, got ") + type_name(L, -1));
     const size_t n = check_sequence(L, lua_gettop(L), w).size();
     std::vector<sweep::Value> values;
     for (size_t k = 1; k <= n; ++k) {
@@ -87,7 +87,7 @@ std::vector<sweep::Point> read_samples(lua_State* L, int s) {
   require_table(L, s, "sweep.samples");
   check_keys(L, s, "sweep.samples", {"n", "ranges", "seed"});
   sweep::Samples samples;
-  if (!field(L, s, "n")) fail(L, "sweep.samples.n: the number of points is missing");
+  if (!field(L, s, "n")) fail_on(L, "sweep.samples.n", "the number of points is missing");
   if (!lua_isinteger(L, -1)) fail(L, std::string("sweep.samples.n: a whole number expected, got ") + type_name(L, -1));
   samples.n = static_cast<long long>(lua_tointeger(L, -1));
   lua_pop(L, 1);
@@ -97,19 +97,20 @@ std::vector<sweep::Point> read_samples(lua_State* L, int s) {
     samples.seed = static_cast<std::uint64_t>(lua_tointeger(L, -1));
     lua_pop(L, 1);
   }
-  if (!field(L, s, "ranges")) fail(L, "sweep.samples.ranges: { NAME = {lo, hi}, ... } is missing");
+  if (!field(L, s, "ranges")) fail_on(L, "sweep.samples.ranges", "{ NAME = {lo, hi}, ... } is missing");
   const int r = lua_gettop(L);
   require_table(L, r, "sweep.samples.ranges");
   samples.names = sorted_names(L, r, "sweep.samples.ranges");
   for (const std::string& name : samples.names) {
     const std::string w = "sweep.samples.ranges." + name;
     lua_getfield(L, r, name.c_str());
-    if (!lua_istable(L, -1) || lua_rawlen(L, -1) != 2) fail(L, w + ": {lo, hi} expected, got " + type_name(L, -1));
+    if (!lua_istable(L, -1) || lua_rawlen(L, -1) != 2)
+      fail_on(L, w, std::string("{lo, hi} expected, got ") + type_name(L, -1));
     double b[2];
     for (int k = 0; k < 2; ++k) {
       lua_rawgeti(L, -1, k + 1);
       b[k] = to_number(L, -1, w);
-      if (!std::isfinite(b[k])) fail(L, w + ": finite bounds expected");
+      if (!std::isfinite(b[k])) fail_on(L, w, "finite bounds expected");
       lua_pop(L, 1);
     }
     lua_pop(L, 1);
@@ -129,8 +130,8 @@ int l_sweep(lua_State* L) {
   check_args(L, "beltsim.sweep", {{"{grid | samples, run}", kTable}});
   check_keys(L, 1, "sweep", {"grid", "samples", "run"});
   const bool grid = has(L, 1, "grid"), samples = has(L, 1, "samples");
-  if (grid == samples) fail(L, "sweep: give grid = {...} or samples = {...}, one of them");
-  if (!field(L, 1, "run")) fail(L, "sweep.run: function(p) expected, got nil");
+  if (grid == samples) fail_on(L, "sweep", "give grid = {...} or samples = {...}, one of them");
+  if (!field(L, 1, "run")) fail_on(L, "sweep.run", "function(p) expected, got nil");
   if (!lua_isfunction(L, -1)) fail(L, std::string("sweep.run: function(p) expected, got ") + type_name(L, -1));
   lua_pop(L, 1);
   field(L, 1, grid ? "grid" : "samples");
@@ -287,7 +288,7 @@ sweep::PointResult run_script_point(Interpreter& lua, const std::string& script,
                                     const std::string& point_dir) {
   lua_State* L = lua.state();
   Context& ctx = lua.context();
-  ctx.overrides.out = point_dir;
+  ctx.overrides.run.out_dir = point_dir, ctx.overrides.give("out");
   ctx.overrides.set.clear();
   for (const auto& [name, v] : p.params) {
     ScriptArg a;

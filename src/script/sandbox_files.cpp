@@ -64,7 +64,9 @@ std::optional<std::string> below(const fs::path& p, const fs::path& root) {
   return rest.string();
 }
 
-std::string out_folder(const Context& c) { return c.overrides.out ? *c.overrides.out : c.default_out; }
+std::string out_folder(const Context& c) {
+  return c.overrides.has("out") ? c.overrides.run.out_dir : c.default_out;
+}
 
 // a path a script names, in one of the sandbox's folders
 struct Place {

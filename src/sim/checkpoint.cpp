@@ -29,6 +29,7 @@
 #include "io/number_text.hpp"
 #include "io/output_dir.hpp"
 #include "scene/scene_io.hpp"
+#include "sim/run_table.hpp"
 #include "sim/simulation.hpp"
 #include "sim/state_io.hpp"
 
@@ -41,18 +42,7 @@ namespace {
 // allow_large; past this a file is surely not a checkpoint.
 constexpr long kMaxCheckpointBytes = 1L << 30;
 
-void write_settings(CheckpointWriter& w, const RunSettings& rs) {
-  w.line("integrator", rs.integrator);
-  w.line("rtol", rs.rtol);
-  w.line("atol", rs.atol);
-  w.line("sample", rs.sample_dt);
-  w.line("out", std::filesystem::absolute(rs.out_dir).string());
-  w.line("probe", rs.probes);
-  w.line("snapshots.every", rs.snapshot_every);
-  w.line("snapshots.times", rs.snapshot_times);
-  w.line("keep_samples", rs.keep_samples);
-  w.line("allow_large", rs.allow_large);
-  w.line("keep_states", rs.keep_states);
+void write_frames(CheckpointWriter& w, const RunSettings& rs) {
   w.line("frames", rs.frames.has_value());
   if (!rs.frames) return;
   const FrameSettings& f = *rs.frames;
@@ -74,21 +64,8 @@ void write_settings(CheckpointWriter& w, const RunSettings& rs) {
   w.line("frames.t_start", f.t_start);
 }
 
-// (checked by the Simulation's constructor as a script's settings are)
-RunSettings read_settings(CheckpointReader& r) {
-  RunSettings rs;
-  rs.integrator = r.line_str("integrator");
-  rs.rtol = r.line_num("rtol");
-  rs.atol = r.line_num("atol");
-  rs.sample_dt = r.line_num("sample");
-  rs.out_dir = r.line_str("out");
-  rs.probes = r.line_ints("probe", INT_MIN, INT_MAX);
-  rs.snapshot_every = r.line_num("snapshots.every");
-  rs.snapshot_times = r.line_doubles("snapshots.times");
-  rs.keep_samples = r.line_bool("keep_samples");
-  rs.allow_large = r.line_bool("allow_large");
-  rs.keep_states = r.line_bool("keep_states");
-  if (!r.line_bool("frames")) return rs;
+void read_frames(CheckpointReader& r, RunSettings& rs) {
+  if (!r.line_bool("frames")) return;
   FrameSettings& f = rs.frames.emplace();
   f.fps = r.line_num("frames.fps");
   f.slowdown = r.line_num("frames.slowdown");
@@ -110,6 +87,53 @@ RunSettings read_settings(CheckpointReader& r) {
   f.png_every = static_cast<int>(r.line_int("frames.png_every", INT_MIN, INT_MAX));
   f.video_path = r.line_str("frames.video");
   f.t_start = r.line_num("frames.t_start");
+}
+
+// The settings a checkpoint keeps (kSaved in sim/run_table.hpp), in the table's order: a number,
+// flag or text by its slot, a list or table by its own lines.
+void write_settings(CheckpointWriter& w, const RunSettings& rs) {
+  for (const RunSetting& s : run_settings()) {
+    if (!(s.where & kSaved)) continue;
+    const RunSlot v = run_slot(s, rs);
+    if (auto* x = std::get_if<double*>(&v))
+      w.line(s.key, **x);
+    else if (auto* b = std::get_if<bool*>(&v))
+      w.line(s.key, **b);
+    // the output folder absolute: a run resumed from another folder writes where this one did
+    else if (auto* t = std::get_if<std::string*>(&v))
+      w.line(s.key, s.key == "out" ? std::filesystem::absolute(**t).string() : **t);
+    else if (s.key == "probe")
+      w.line("probe", rs.probes);
+    else if (s.key == "snapshots")
+      w.line("snapshots.every", rs.snapshot_every), w.line("snapshots.times", rs.snapshot_times);
+    else if (s.key == "frames")
+      write_frames(w, rs);
+    else
+      throw std::logic_error("checkpoint: no writer for the run setting '" + std::string(s.key) + "'");
+  }
+}
+
+// (checked by the Simulation's constructor as a script's settings are)
+RunSettings read_settings(CheckpointReader& r) {
+  RunSettings rs;
+  for (const RunSetting& s : run_settings()) {
+    if (!(s.where & kSaved)) continue;
+    const RunSlot v = run_slot(s, rs);
+    if (auto* x = std::get_if<double*>(&v))
+      **x = r.line_num(s.key);
+    else if (auto* b = std::get_if<bool*>(&v))
+      **b = r.line_bool(s.key);
+    else if (auto* t = std::get_if<std::string*>(&v))
+      **t = r.line_str(s.key);
+    else if (s.key == "probe")
+      rs.probes = r.line_ints("probe", INT_MIN, INT_MAX);
+    else if (s.key == "snapshots")
+      rs.snapshot_every = r.line_num("snapshots.every"), rs.snapshot_times = r.line_doubles("snapshots.times");
+    else if (s.key == "frames")
+      read_frames(r, rs);
+    else
+      throw std::logic_error("checkpoint: no reader for the run setting '" + std::string(s.key) + "'");
+  }
   return rs;
 }
 

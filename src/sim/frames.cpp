@@ -1,9 +1,12 @@
 #include "sim/frames.hpp"
 
 #include <cmath>
-
-#include <sstream>
 #include <stdexcept>
+#include <string>
+#include <type_traits>
+
+#include "io/number_text.hpp"
+#include "scene/validate.hpp"
 
 namespace beltsim {
 
@@ -27,9 +30,14 @@ const FrameQuantityInfo& frame_quantity_info(FrameQuantity q) {
 namespace {
 template <class T>
 [[noreturn]] void bad(const std::string& key, const std::string& reason, const T& value, const char* unit = "") {
-  std::ostringstream s;
-  s << "frames." << key << ": " << reason << " (got " << value << unit << ")";
-  throw std::invalid_argument(s.str());
+  std::string got;
+  if constexpr (std::is_floating_point_v<T>)
+    got = rounded_text(value);
+  else if constexpr (std::is_integral_v<T>)
+    got = std::to_string(value);
+  else
+    got = value;
+  throw ParameterError("frames." + key, reason + " (got " + got + unit + ")");
 }
 }  // namespace
 
@@ -39,14 +47,11 @@ void validate(const FrameSettings& f, bool times_only) {
   if (!(f.slowdown > 0 && f.slowdown < 1e9)) bad("slowdown", "must be > 0 video seconds per simulated second", f.slowdown);
   for (int v : {f.width, f.height})
     if (v < 16 || v > 8192 || v % 2) {
-      std::ostringstream s;
-      s << f.width << "x" << f.height;
-      bad("size", "width and height must be even and in 16..8192 px (H.264 in yuv420p)", s.str());
+      bad("size", "width and height must be even and in 16..8192 px (H.264 in yuv420p)",
+          std::to_string(f.width) + "x" + std::to_string(f.height));
     }
   if (f.range_lo && f.range_hi && !(*f.range_lo < *f.range_hi)) {
-    std::ostringstream s;
-    s << "{" << *f.range_lo << ", " << *f.range_hi << "}";
-    bad("range", "needs lo < hi", s.str());
+    bad("range", "needs lo < hi", "{" + rounded_text(*f.range_lo) + ", " + rounded_text(*f.range_hi) + "}");
   }
   if (!(f.levels == 0 || (f.levels >= 2 && f.levels <= 64))) bad("levels", "must be 0 (continuous) or 2..64", f.levels);
   if (!(f.magnify > 0 && f.magnify <= 1e4)) bad("magnify", "must be in (0, 1e4]", f.magnify);
@@ -59,7 +64,7 @@ void validate(const FrameSettings& f, bool times_only) {
   if (!(f.t_start >= 0 && std::isfinite(f.t_start))) bad("t_start", "must be >= 0 and finite", f.t_start, " s");
   if (!times_only && !f.draws())
     bad("png", "neither png nor video asked for: nothing to write (keep_states = true keeps the states at these times)",
-        "none");
+        std::string("none"));
 }
 
 }  // namespace beltsim

@@ -10,12 +10,12 @@
 #include <exception>
 #include <sstream>
 
-#include "integrate/belt_problem.hpp"
 #include "integrate/controller.hpp"
 #include "io/csv_writer.hpp"
 #include "io/output_dir.hpp"
 #include "scene/law_text.hpp"
 #include "scene/scene.hpp"
+#include "sim/run_table.hpp"
 
 namespace beltsim {
 
@@ -112,14 +112,10 @@ void write_parameters(const Scene& sc, const RunSettings& rs, const OutputDir& d
     f << name << ".element," << rs.probes[k] << ",,run,"
       << csv_text("a selected element; " + name + ".sde_force is its left SDE") << '\n';
   }
-  // the run's settings (source "run")
-  f << "run.integrator," << csv_text(rs.integrator) << ",,run,\n";
-  f << "run.rtol," << value_text(rs.rtol) << ",,run,\n";
-  f << "run.atol," << value_text(Tolerances{rs.rtol, rs.atol}.absolute()) << ",,run,"
-    << csv_text(std::string("per natural size: ") + BeltProblem::kNaturalSizes) << "\n";
-  f << "run.sample_dt," << value_text(rs.sample_dt) << ",s,run,\n";
-  f << "run.check," << (rs.check ? 1 : 0) << ",,run,"
-    << csv_text("1: the run estimates its own error (check.* below, at its end)") << '\n';
+  // every setting the run used (source "run"), from the run-settings table (sim/run_table.hpp)
+  for (const RunSetting& s : run_settings())
+    f << "run." << s.key << "," << csv_text(run_value_text(s, rs)) << "," << s.unit << ",run,"
+      << csv_text(std::string(s.note)) << '\n';
   write_file_whole(dir, "parameters.csv", f.str());
 }
 

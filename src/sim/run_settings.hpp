@@ -26,6 +26,7 @@ struct MuEvent {
   std::vector<double> share;
 };
 
+// (each setting's key, unit, default, rule and more: sim/run_table.hpp)
 struct RunSettings {
   double t_end = 1.0;                 // [s] (batch runs only)
   std::string integrator = "trbdf2";   // docs/integration.md, "The accuracy contract"
@@ -48,6 +49,7 @@ struct RunSettings {
   // collapse of the rate happens at a known moment.
   std::function<double()> wall_clock;
   bool keep_samples = false;          // keep the rows of timeseries.csv in memory (samples())
+  bool progress = true;               // the progress line on a terminal (script/progress.hpp)
   bool allow_large = false;           // past the output limits (check_volume)
   std::vector<MuEvent> mu_events;     // in any order
   // frames (PNG and/or video) at their own times; relative paths are taken inside out_dir. The
@@ -88,8 +90,9 @@ std::string out_dir_problem(const std::string& dir);
 // Checks settings for a run of sc: the output folder (out_dir_problem), integrator and tolerances, sample interval,
 // probes, snapshot times, events (one μ per element, event_time_problem), frames (validate(FrameSettings), a renderer
 // to draw them; frames that draw nothing only with keep_states). A batch run (batch) also checks t_end and what must
-// come before it (frames.t_start, snapshot times, events). Throws std::invalid_argument naming the key, the reason and
-// the value.
+// come before it (frames.t_start, snapshot times, events). Each number and text by its rule in the run-settings table
+// (sim/run_table.hpp). Throws ParameterError (scene/validate.hpp) with the key's path and the reason, the value in its
+// words; the caller names the table (run, start).
 void check(const Scene& sc, const RunSettings& rs, bool batch);
 
 // What a run that ends at settings.t_end cannot reach is removed, one note for each, for the caller
@@ -101,7 +104,7 @@ void check(const Scene& sc, const RunSettings& rs, bool batch);
 // by itself (negative, not finite) is kept for check() to refuse.
 std::vector<std::string> drop_after_end(RunSettings& settings, const char* shortened_by = nullptr);
 
-// Refuses (std::invalid_argument with the figures) to integrate from t0 to t1 when that would
+// Refuses (ParameterError on the key, with the figures) to integrate from t0 to t1 when that would
 // write more than 1e7 samples (a timeseries.csv of gigabytes) or render more than 1e5 frames (an
 // hour of video at 30 fps) or keep more than 1e5 states, unless settings.allow_large.
 // refuses an every() callback that a run from t0 to t1 would call more than 1e7 times (a period

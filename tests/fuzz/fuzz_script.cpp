@@ -112,9 +112,9 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     safety.max_lua_memory = std::size_t(64) << 20;
     beltsim::script::Interpreter lua(safety);
     beltsim::script::Overrides o;
-    o.out = f.out.string();  // every run's outputs, whatever the script's out = says
-    o.t_end = 2e-3;          // scene:run{}: a few steps
-    o.max_wall = 0.5;        // [s] each sim:run_to / advance / run (the watchdog's own limit)
+    o.run.out_dir = f.out.string(), o.give("out");  // every run's outputs, whatever the script's out = says
+    o.run.t_end = 2e-3, o.give("t_end");            // scene:run{}: a few steps
+    o.run.wall_limit = 0.5, o.give("max_wall");     // [s] each sim:run_to / advance / run (the watchdog's own limit)
     o.no_frames = true;      // frames = {...} is read and checked, not rendered
     lua.set_overrides(o);
     {

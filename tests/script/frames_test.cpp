@@ -117,7 +117,7 @@ TEST(Frames, DivergenceLeavesAPlayableVideo) {
   const fs::path out = temp_dir() / "runaway";
   Interpreter lua;
   Overrides o;
-  o.out = out.string();
+  o.run.out_dir = out.string(), o.give("out");
   lua.set_overrides(o);
   std::string msg;
   try {
@@ -186,7 +186,7 @@ TEST(Frames, CtrlCLeavesAFinishedVideo) {
   std::atomic<bool> stop{false};
   Interpreter lua;
   Overrides o;
-  o.out = out.string();
+  o.run.out_dir = out.string(), o.give("out");
   lua.set_overrides(o);
   lua.set_stop_flag(&stop);
   // Ctrl-C once the run is under way with its first frame rendered: the time series has rows

@@ -5,9 +5,13 @@
 
 #include <gtest/gtest.h>
 
+#include <optional>
 #include <string>
 
 #include "run_script.hpp"
+#include "scene/presets.hpp"
+#include "scene/scene.hpp"
+#include "scene/validate.hpp"
 #include "script/interpreter.hpp"
 #include "support/scratch.hpp"
 
@@ -120,6 +124,55 @@ TEST(KeyLine, ScriptErrorsNameTheLineOfTheKey) {
   EXPECT_EQ(run("local b = { pretension = -5 }\nlocal s = beltsim.scene {\n" + pulleys + "  belt = b,\n}\n")
                 .rfind(file + ":2: belt.pretension must be > 0", 0),
             0u);
+}
+
+// An error carries what it is about (scene/validate.hpp, ParameterError): the parameter's path and
+// the value as fields, so the line comes from the path and not from the message's words. A scene
+// key's error and a run key's (one found by the reader, one by the run's check) name the key's line;
+// and an error reworded so that no path starts it still finds that line through its field.
+TEST(KeyLine, TheLineComesFromTheErrorsPathNotItsWords) {
+  const auto dir = beltsim::test::scratch_dir("beltsim_key_line_test");
+  auto run = [&](const std::string& text) {
+    Interpreter lua;
+    return test::run_script(lua, dir / "drive.lua", text, dir / "out");
+  };
+  const std::string pulleys =
+      "  pulleys = {\n"
+      "    { name = 'driver', centre = {0, 0}, radius = 0.1, torque = -1 },\n"
+      "    { name = 'driven', centre = {0.29, 0}, radius = 0.1 },\n"
+      "  },\n";
+  const std::string file = (dir / "drive.lua").string();
+  const std::string scene =
+      "local s = beltsim.scene {\n" + pulleys + "  belt = {\n    mass_per_length = -1,\n  },\n}\n";
+  EXPECT_EQ(run(scene).rfind(file + ":7: belt.mass_per_length must be > 0 (got -1 kg/m)", 0), 0u) << run(scene);
+  const std::string ok = "local s = beltsim.scene {\n" + pulleys + "}\n";
+  // (frames.t_start after t_end: refused by the run's check, not by the reader)
+  const std::string late =
+      ok + "s:run {\n  t_end = 0.01,\n  frames = {\n    png = true,\n    t_start = 0.5,\n  },\n}\n";
+  EXPECT_EQ(run(late).rfind(file + ":11: run.frames.t_start: must be <= t_end = 0.01 s (got 0.5 s)", 0), 0u)
+      << run(late);
+  const std::string atol = ok + "s:run {\n  t_end = 0.01,\n  atol = -1e-9,\n}\n";
+  EXPECT_EQ(run(atol).rfind(file + ":9: run.atol: must be > 0 and finite, or left out to mean rtol (got -1e-09)", 0),
+            0u)
+      << run(atol);
+
+  // the fields of the scene's error, as validate() throws it
+  SceneDef d = presets::paper_dry();
+  d.belt.mass_per_length = -1;
+  std::optional<ParameterError> e;
+  try {
+    validate(d);
+  } catch (const ParameterError& x) {
+    e = x;
+  }
+  ASSERT_TRUE(e.has_value());
+  EXPECT_EQ(path_text(e->path), "belt.mass_per_length");
+  EXPECT_EQ(e->value, -1.0);
+  EXPECT_EQ(e->unit, "kg/m");
+  // reworded: its words name no key, its path still finds the line
+  const ParameterError reworded(e->path, "the mass of the belt per metre cannot be negative");
+  EXPECT_TRUE(message_path(reworded.what()).chain.empty() || message_path(reworded.what()).chain[0] != "belt");
+  EXPECT_EQ(key_line(scene, 1, reworded.path), 7);
 }
 
 }  // namespace key_line_test

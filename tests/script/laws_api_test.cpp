@@ -41,7 +41,7 @@ std::string run_text(const std::string& text, std::vector<double>* numbers = nul
                      const fs::path& out = temp_dir() / "out") {
   Interpreter lua(safety);
   Overrides o;
-  o.out = out.string();
+  o.run.out_dir = out.string(), o.give("out");
   lua.set_overrides(o);
   std::ofstream(temp_dir() / "laws.lua") << text;
   try {

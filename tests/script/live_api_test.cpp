@@ -387,7 +387,7 @@ TEST(LiveApi, BadCallsNameFileLineAndWhat) {
 TEST(LiveApi, TEndSaysItDoesNotShortenALiveSimulation) {
   Interpreter lua;
   Overrides o;
-  o.t_end = 0.001;
+  o.run.t_end = 0.001, o.give("t_end");
   lua.set_overrides(o);
   testing::internal::CaptureStderr();
   const std::string msg = test::run_script(lua, temp_dir() / "live.lua",

@@ -63,19 +63,30 @@ TEST(LuaApi, SilentMisreadingsAreErrors) {
            {ok_scene + "s:run{ t_end = 0.01, probe = {0/0, 0} }\n", "a finite point"},
            {ok_scene + "s:run{ t_end = 0.01, events = { {t = 0.001, mu = 0.5}, nil, {t = 0.002, mu = 0.5} } }\n",
             "run.events: a list without holes"},
-           {ok_scene + "s:run{ t_end = 0.01, events = { {t = 0.001, mu = '0.5'} } }\n", "number or function(site) expected"},
+           {ok_scene + "s:run{ t_end = 0.01, events = { {t = 0.001, mu = '0.5'} } }\n",
+            "number or function(site) expected"},
            {ok_scene + "s:run{ t_end = 0.01, atol = -1 }\n", "run.atol: must be > 0"},
-           {ok_scene + "s:run{ t_end = 0.01, rtol = 1e-15 }\n", "run.rtol: must be in [1e-12, 1) (got 1e-15): double precision"},
+           // a value in a message as given, not rounded to six decimals ("got -0.000000")
+           {ok_scene + "s:run{ t_end = 0.01, atol = -1e-9 }\n",
+            "run.atol: must be > 0 and finite, or left out to mean rtol (got -1e-09)"},
+           {ok_scene + "s:run{ t_end = 0.01, max_wall = -1e-9 }\n",
+            "run.max_wall: must be > 0 s and finite (got -1e-09 s)"},
+           {ok_scene + "s:run{ t_end = 0.01, snapshots = { every = -1e-9 } }\n",
+            "run.snapshots.every: must be > 0 s and finite (got -1e-09 s)"},
+           {ok_scene + "s:run{ t_end = 0.01, rtol = 1e-15 }\n",
+            "run.rtol: must be in [1e-12, 1) (got 1e-15): double precision"},
            {ok_scene + "s:run{ t_end = 0.01, rtol = 0 }\n", "run.rtol: must be in [1e-12, 1) (got 0)"},
            {ok_scene + "s:run{ t_end = 0.01, integrator = 'esdirk32\\0x' }\n", "without NUL"},
            {ok_scene + "s:run{ t_end = 0.01, frames = { size = {1e300, 720}, png = true } }\n", "16..8192"},
            {ok_scene + "s:run{ t_end = 0.01, frames = { view = { width = 1e-300 }, png = true } }\n", "view.width"},
-           {ok_scene + "s:run{ t_end = 0.01, frames = { view = { centre = {0/0, 0} }, png = true } }\n", "a finite point"},
+           {ok_scene + "s:run{ t_end = 0.01, frames = { view = { centre = {0/0, 0} }, png = true } }\n",
+            "a finite point"},
            {ok_scene + "s:run{ t_end = 1, sample = 1e-12 }\n", "would write 1e+12 rows"},
            {ok_scene + "s:start{ sample = 1e-12 }:run_to(1)\n", "set allow_large = true"},
            {ok_scene + "local sim = s:start{ progress = false }\nsim:every(1e-12, function() end)\nsim:run_to(0.01)\n",
             "every: a callback every 1e-12 s would be called"},
-           {ok_scene + "s:run{ t_end = 0.02, frames = { slowdown = 1e6, png = true } }\n", "would render 600000 frames"},
+           {ok_scene + "s:run{ t_end = 0.02, frames = { slowdown = 1e6, png = true } }\n",
+            "would render 600000 frames"},
            {"beltsim.scene { pulleys = { { name = 'a', centre = {0, 0} }, { name = 'b', centre = {0.3, 0} } },\n"
             " belt = { elements = 1000000 } }\n",
             "more than the limit of 20000"},
@@ -380,8 +391,8 @@ TEST(LuaApi, PaperDryScriptWritesTheTimeSeries) {
   const fs::path out = temp_dir() / "paper_dry";
   Interpreter lua;
   Overrides o;
-  o.out = out.string();
-  o.t_end = 0.1;
+  o.run.out_dir = out.string(), o.give("out");
+  o.run.t_end = 0.1, o.give("t_end");
   lua.set_overrides(o);
   ASSERT_NO_THROW(lua.run_file(std::string(BELTSIM_SOURCE_DIR) + "/scripts/paper_dry.lua"));
   std::ifstream csv(out / "timeseries.csv");

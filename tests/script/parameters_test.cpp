@@ -15,6 +15,7 @@
 #include "io/number_text.hpp"
 #include "run_script.hpp"
 #include "script/interpreter.hpp"
+#include "sim/run_table.hpp"
 #include "support/files.hpp"
 #include "support/scratch.hpp"
 
@@ -217,6 +218,21 @@ TEST(Parameters, TheDocsHoldTheTable) {
       << "docs/lua-api.md's parameter tables differ from the code's: put the output of 'beltsim help parameters' "
          "between the markers";
   EXPECT_EQ(docs.find(begin, b + 1), std::string::npos) << "one copy of the tables";
+}
+
+// docs/lua-api.md holds the run-settings table between its markers, exactly (regenerate it with
+// `beltsim help run-settings`): no key, unit, default, option or checkpoint mark differs from the code's
+TEST(Parameters, TheDocsHoldTheRunSettingsTable) {
+  const std::string docs = slurp(fs::path(BELTSIM_SOURCE_DIR) / "docs" / "lua-api.md");
+  const std::string begin = "<!-- run settings: begin (beltsim help run-settings) -->\n",
+                    end = "<!-- run settings: end -->";
+  const size_t b = docs.find(begin), e = docs.find(end);
+  ASSERT_NE(b, std::string::npos);
+  ASSERT_NE(e, std::string::npos);
+  EXPECT_EQ(docs.substr(b + begin.size(), e - b - begin.size()), run_settings_markdown())
+      << "docs/lua-api.md's run-settings table differs from the code's: put the output of 'beltsim help "
+         "run-settings' between the markers";
+  EXPECT_EQ(docs.find(begin, b + 1), std::string::npos) << "one copy of the table";
 }
 
 // friction.law takes the three words and names a fourth; a law's own parameter under another law is

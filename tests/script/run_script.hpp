@@ -20,7 +20,7 @@ inline std::string run_script(Interpreter& lua, const std::filesystem::path& pat
   std::ofstream(path) << text;
   if (!out.empty()) {
     Overrides o;
-    o.out = out.string();
+    o.run.out_dir = out.string(), o.give("out");
     lua.set_overrides(o);
   }
   try {

@@ -25,6 +25,7 @@
 #include "scene/parameters.hpp"
 #include "scene/presets.hpp"
 #include "scene/scene.hpp"
+#include "sim/run_table.hpp"
 #include "sim/simulation.hpp"
 #include "support/checkpoint_edit.hpp"
 #include "support/files.hpp"
@@ -172,6 +173,43 @@ TEST(Checkpoint, ResumesTheSavedText) {
   EXPECT_TRUE(o.resumed) << o.message << o.failure;
 }
 
+// a checkpoint keeps every setting the run-settings table marks kept (sim/run_table.hpp): each set
+// to a value other than its default, saved, and read back the same
+TEST(Checkpoint, KeepsEveryRunSettingTheTableMarksKept) {
+  const Scene sc = build_scene(presets::paper_dry());
+  RunSettings rs;
+  rs.integrator = "esdirk32";
+  rs.rtol = 3e-4;
+  rs.atol = 2e-5;
+  rs.sample_dt = 5e-4;
+  rs.out_dir = fs::absolute(dir() / "all_settings").string();
+  fs::remove_all(rs.out_dir);
+  rs.probes = {3, 7};
+  rs.snapshot_every = 2e-3;
+  rs.snapshot_times = {1e-3, 5e-3};
+  rs.keep_samples = true;
+  rs.allow_large = true;
+  rs.keep_states = true;
+  rs.frames.emplace();  // the times alone (kept states), so no renderer is needed
+  rs.frames->fps = 60, rs.frames->slowdown = 50, rs.frames->t_start = 1e-3;
+  const fs::path ck = dir() / "all_settings.ckpt";
+  {
+    Simulation s(sc, rs);
+    s.run_to(2e-3);
+    s.save(ck.string());
+  }
+  const RunSettings back = Simulation::open_checkpoint(ck.string())->settings();
+  const RunSettings fallback;
+  int kept = 0;
+  for (const RunSetting& s : run_settings()) {
+    if (!(s.where & kSaved)) continue;
+    ++kept;
+    EXPECT_NE(run_value_text(s, rs), run_value_text(s, fallback)) << s.key << ": the test sets it to its default";
+    EXPECT_EQ(run_value_text(s, back), run_value_text(s, rs)) << s.key;
+  }
+  EXPECT_GE(kept, 11);  // (the eleven a checkpoint kept before the table)
+}
+
 // a FIFO or a device would block or never end; a folder is not a file; a huge file is not read
 TEST(Checkpoint, ReadsOnlyRegularFilesOfBoundedSize) {
   const fs::path fifo = dir() / "fifo";
@@ -256,7 +294,7 @@ TEST(Checkpoint, SceneAndSettingsAreValidated) {
   std::string mu = "belt.mu 60 -1";
   for (int i = 1; i < 60; ++i) mu += " 0.3";
   refused("belt.mu", mu, "'belt.mu': belt.mu of element 0 must be in [0, 10]: a friction coefficient");
-  refused("sample", "sample 0", "the run settings: sample: the sample interval must be > 0 s and finite (got 0 s)");
+  refused("sample", "sample 0", "the run settings: sample: must be > 0 s and finite (got 0 s)");
   refused("integrator", "integrator \"euler\"", "the run settings: ");
 }
 

@@ -6,11 +6,16 @@
 
 #include <cmath>
 #include <filesystem>
+#include <map>
 
+#include "io/csv_writer.hpp"
+#include "io/number_text.hpp"
 #include "scene/presets.hpp"
 #include "scene/scene.hpp"
+#include "sim/run_table.hpp"
 #include "sim/simulation.hpp"
 #include "support/dry_scene.hpp"
+#include "support/files.hpp"
 #include "support/scratch.hpp"
 
 namespace beltsim {
@@ -101,6 +106,37 @@ TEST(RunSettings, ARunLeavesOutWhatComesAfterItsEnd) {
   rs.snapshot_times = {0.01};
   EXPECT_TRUE(drop_after_end(rs).empty());
   EXPECT_EQ(rs.snapshot_times.size(), 1u);
+}
+
+// parameters.csv records every setting the run used, one row run.<key> for each of the table's
+// (sim/run_table.hpp) with the value the run had
+TEST(RunSettings, ParametersCsvRecordsEverySetting) {
+  RunSettings rs = with_event(0.002, "every_setting");
+  rs.integrator = "esdirk32";
+  rs.rtol = 3e-4;
+  rs.atol = 2e-5;
+  rs.sample_dt = 5e-4;
+  rs.probes = {3, 7};
+  rs.snapshot_every = 1e-3;
+  rs.wall_limit = 60;
+  rs.check = true;
+  rs.allow_large = true;
+  Simulation(dry_scene(), rs).run_to(0.001);
+  std::map<std::string, std::vector<std::string>> rows;
+  for (const auto& r : csv_rows(test::slurp(fs::path(rs.out_dir) / "parameters.csv"))) rows[r[0]] = r;
+  for (const RunSetting& s : run_settings()) {
+    const std::string name = "run." + std::string(s.key);
+    ASSERT_TRUE(rows.count(name)) << name << " is not in parameters.csv";
+    EXPECT_EQ(rows[name][1], run_value_text(s, rs)) << name;
+    EXPECT_EQ(rows[name][2], s.unit) << name;
+    EXPECT_EQ(rows[name][3], "run") << name;
+  }
+  // the values set above, read back
+  EXPECT_EQ(parse_number(rows["run.rtol"][1]), 3e-4);
+  EXPECT_EQ(parse_number(rows["run.atol"][1]), 2e-5);
+  EXPECT_EQ(parse_number(rows["run.max_wall"][1]), 60);
+  EXPECT_EQ(rows["run.probe"][1], "3 7");
+  EXPECT_EQ(rows["run.integrator"][1], "esdirk32");
 }
 
 }  // namespace
