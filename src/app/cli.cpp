@@ -198,6 +198,7 @@ std::optional<CommandLine> parse_command_line(int argc, char** argv, int* status
       ->type_name("K");
   sweep->add_flag("--list", raw.list, "print the points (CSV) and run nothing");
   sweep->add_flag("--collect", raw.collect, "merge the points' results into summary.csv and run nothing");
+  sweep->add_flag("--rerun", raw.rerun, "run every point again, done or not (with --slurm: every point in the array)");
   sweep->add_option("--set", raw.set,
                     "the quick form: FILE is an ordinary script and each KEY=V1,V2,.. one parameter "
                     "(beltsim.args.KEY); the lists are crossed, the first varying slowest (repeatable)")
@@ -212,8 +213,9 @@ std::optional<CommandLine> parse_command_line(int argc, char** argv, int* status
       ->type_name("M");
   add_safety(sweep, raw);
   sweep->footer("Each point runs in a process of its own with its folder DIR/<point>/ (point.csv: its parameters,\n"
-                "status and figures; log.txt: its messages); DIR/summary.csv merges them. Run again: only the\n"
-                "points not ok run. Exit status 0 when every point is ok, 1 otherwise. docs/sweeps.md.");
+                "status, what defined it and figures; log.txt: its messages); DIR/summary.csv merges them. Run\n"
+                "again: only the points not ok, or run with another sweep file, script file, program or --set\n"
+                "and --trusted than now, run. Exit status 0 when every point is ok, 1 otherwise. docs/sweeps.md.");
 
   // `beltsim console ... -- ARGS`: everything after the first -- belongs to the script
   std::vector<std::string> words(argv + 1, argv + argc);

@@ -56,7 +56,7 @@ TEST(SweepResults, PointValuesReadBackExactly) {
     EXPECT_TRUE(back->ok());
     EXPECT_EQ(back->figures, r.figures);
   }
-  const SummaryCounts c = write_summary(dir, points);
+  const SummaryCounts c = write_summary(dir, points, {});
   EXPECT_EQ(c.ok, static_cast<int>(points.size()));
   const auto rows = csv_rows(test::slurp(dir + "/summary.csv"));
   ASSERT_EQ(rows.size(), points.size() + 1);
