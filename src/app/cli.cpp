@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cstdio>
 
+#include "beltsim_version.hpp"
 #include "io/suggest.hpp"
 #include "sim/frames.hpp"
 
@@ -130,7 +131,7 @@ CLI::App* add_compare_command(CLI::App& app, CompareOptions& o) {
 
 std::optional<CommandLine> parse_command_line(int argc, char** argv, int* status) {
   CLI::App app{"beltsim: belt transmissions, the discrete model of K. Kubas; scenarios are Lua scripts.", "beltsim"};
-  app.set_version_flag("--version", "beltsim 0.1.0");
+  app.set_version_flag("--version", std::string("beltsim ") + kBeltsimVersion);
   app.require_subcommand(1);
   app.footer("Exit status: 0 on success, 1 on a script, parameter, run or plot error or an output that\n"
              "could not be written, 2 on bad usage, 130 after Ctrl-C, 143 after SIGTERM, 129 after SIGHUP\n"
