@@ -64,9 +64,7 @@ std::vector<std::string> Interpreter::unread_args(const std::string& script) con
   return unread_arg_messages(*ctx_, script);
 }
 void Interpreter::interrupt() { script::interrupt(*limits_); }
-const std::vector<LoadedFile>& Interpreter::loaded_files() const {
-  return ctx_->loaded;
-}
+const std::vector<LoadedFile>& Interpreter::loaded_files() const { return ctx_->loaded; }
 
 void Interpreter::run_file(const std::string& path, int nresults) {
   Context* ctx = ctx_.get();

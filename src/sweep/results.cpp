@@ -112,7 +112,10 @@ Results current_results(const std::string& dir, const std::vector<Point>& points
   Results results;
   for (const Point& p : points) {
     PointCheck c = check_point(dir, p, now);
-    if (c.result && !c.changed.empty()) c.result = PointResult{kOutdated + c.changed, {}, ""};
+    // (a failure whose inputs are not known, written for a point whose process died, keeps its
+    // status: it runs again in any case)
+    if (c.result && !c.changed.empty() && (c.result->ok() || !c.result->inputs.empty()))
+      c.result = PointResult{kOutdated + c.changed, {}, ""};
     results.push_back(std::move(c.result));
   }
   return results;

@@ -69,7 +69,8 @@ struct SummaryCounts {
   int ok = 0, failed = 0, not_run = 0;
 };
 // what DIR holds of each point: its result, nullopt when it has none; a result with other
-// inputs than now's as the status "outdated: why" without figures
+// inputs than now's as the status "outdated: why" without figures (but a failure recorded
+// without its inputs, that of a point whose process died, as it is)
 using Results = std::vector<std::optional<PointResult>>;
 Results current_results(const std::string& dir, const std::vector<Point>& points, Definition& now);
 // DIR/summary.csv written whole from results[k] of points[k] (an outdated point counted not run)
