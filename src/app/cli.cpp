@@ -223,8 +223,8 @@ std::optional<CommandLine> parse_command_line(int argc, char** argv, int* status
   sweep->footer(
       "Each point runs in a process of its own with its folder DIR/<point>/ (point.csv: its parameters,\n"
       "status, what defined it and figures; log.txt: its messages); DIR/summary.csv merges them. Run\n"
-      "again: only the points not ok, or run with another sweep file, script file, program or --set\n"
-      "and --trusted than now, run. Exit status 0 when every point is ok, 1 otherwise. docs/sweeps.md.");
+      "again: only the points not ok, or run with another sweep file, script file, program or\n"
+      "--trusted than now, run. Exit status 0 when every point is ok, 1 otherwise. docs/sweeps.md.");
 
   // `beltsim console ... -- ARGS`: everything after the first -- belongs to the script
   std::vector<std::string> words(argv + 1, argv + argc);

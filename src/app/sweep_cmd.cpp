@@ -38,29 +38,20 @@ int processors() {
   return n > 0 ? static_cast<int>(n) : 1;
 }
 
-// the options as typed that change a point's result: the --set lists and --trusted (the limits
-// only decide whether a point fails, and a failed point runs again anyway)
-std::vector<std::string> result_options(const Raw& raw) {
-  std::vector<std::string> a;
-  for (const std::string& s : raw.set) a.insert(a.end(), {"--set", s});
-  if (raw.trusted) a.push_back("--trusted");
-  return a;
-}
-
-// what defines a point now, bar its files (sweep/inputs.hpp)
+// what defines a point now, bar its files (sweep/inputs.hpp): the program and, of the options,
+// --trusted. The --set lists are the grid: each point's own values are its parameters, matched
+// already (sweep/results.hpp), so a value added to a list reruns no other point; the limits only
+// decide whether a point fails, and a failed point runs again anyway.
 beltsim::sweep::Definition definition(const Raw& raw) {
-  std::string options;
-  for (const std::string& o : result_options(raw))
-    options += (options.empty() ? "" : " ") + beltsim::sweep::shell_quoted(o);
-  return {beltsim::sweep::program_identity(), options, {}};
+  return {beltsim::sweep::program_identity(), raw.trusted ? "--trusted" : "", {}};
 }
 
 // the arguments that give a point's process the same sweep: the file, the folder, the --set
 // lists and the safety options as typed
 std::vector<std::string> sweep_args(const std::string& file, const std::string& dir, const Raw& raw) {
   std::vector<std::string> a{"sweep", file, "--out", dir};
-  const std::vector<std::string> o = result_options(raw);
-  a.insert(a.end(), o.begin(), o.end());
+  for (const std::string& s : raw.set) a.insert(a.end(), {"--set", s});
+  if (raw.trusted) a.push_back("--trusted");
   if (raw.max_instructions) a.insert(a.end(), {"--max-instructions", *raw.max_instructions});
   if (raw.max_lua_memory) a.insert(a.end(), {"--max-lua-memory", *raw.max_lua_memory});
   if (raw.max_lua_wall) a.insert(a.end(), {"--max-lua-wall", *raw.max_lua_wall});

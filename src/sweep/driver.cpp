@@ -77,25 +77,46 @@ class Progress {
   std::string last_;
 };
 
-}  // namespace
+// summary.csv as the points stand, rewritten as they finish, so that a sweep killed outright
+// (kill -9, a node lost) leaves it true to what finished; the writing kept to a tenth of the time
+// or less (a sweep of very many points writes it less often)
+struct LiveSummary {
+  const std::vector<Point>& points;
+  Results results;
+  const OutputDir& top;
+  Clock::time_point next{};
+  std::optional<PointResult>& of(const Point& p) { return results[static_cast<std::size_t>(&p - points.data())]; }
+  void write() {
+    const Clock::time_point t0 = Clock::now();
+    if (t0 < next) return;
+    write_summary(top, points, results);
+    const Clock::time_point t1 = Clock::now();
+    next = t1 + 9 * (t1 - t0);
+  }
+};
 
-std::string this_program() {
-  std::error_code ec;
-  const auto p = std::filesystem::read_symlink("/proc/self/exe", ec);
-  if (ec) throw std::runtime_error("cannot find this program's path (/proc/self/exe): " + ec.message());
-  return p.string();
+// the lines that say what this run does before it starts: the points that run again for a change
+// of their inputs, with why; --rerun; the points done already
+void say_plan(Progress& progress, const DriverSettings& s, std::size_t total, const DriverReport& report,
+              const std::vector<std::pair<std::string, int>>& reasons, std::size_t todo) {
+  for (const auto& [why, n] : reasons)
+    progress.say("sweep " + s.name + ": " + std::to_string(n) + (n == 1 ? " point runs" : " points run") +
+                 " again: " + why);
+  if (s.rerun)
+    progress.say("sweep " + s.name + ": --rerun: all " + std::to_string(total) + " points run again");
+  else if (report.already_done > 0)
+    progress.say("sweep " + s.name + ": " + std::to_string(report.already_done) + " of " + std::to_string(total) +
+                 " points done already (" + s.dir + "), " + std::to_string(todo) + " to run");
 }
 
-DriverReport run_points(const std::vector<Point>& points, const DriverSettings& s, const OutputDir& top) {
-  DriverReport report;
+// the points to run: every one with rerun, else those not done; the points done counted in the
+// report, and why the outdated ones run again, with how many for each reason
+std::vector<const Point*> points_to_run(const std::vector<Point>& points, const Results& results, bool rerun,
+                                        DriverReport& report, std::vector<std::pair<std::string, int>>& reasons) {
   std::vector<const Point*> todo;
-  Definition now = s.definition;
-  // what summary.csv says of each point, kept as they finish
-  Results results = current_results(s.dir, points, now);
-  std::vector<std::pair<std::string, int>> reasons;  // why done points run again, and how many
   for (std::size_t k = 0; k < points.size(); ++k) {
     const auto& r = results[k];
-    if (!s.rerun && r && r->ok()) {
+    if (!rerun && r && r->ok()) {
       ++report.already_done;
       continue;
     }
@@ -109,30 +130,28 @@ DriverReport run_points(const std::vector<Point>& points, const DriverSettings& 
     else
       ++it->second;
   }
-  // summary.csv rewritten as points finish, so that a sweep killed outright (kill -9, a node
-  // lost) leaves it true to what finished; the writing kept to a tenth of the time or less (a
-  // sweep of very many points writes it less often)
-  Clock::time_point next_summary{};
-  const auto summary_now = [&] {
-    const Clock::time_point t0 = Clock::now();
-    if (t0 < next_summary) return;
-    write_summary(top, points, results);
-    const Clock::time_point t1 = Clock::now();
-    next_summary = t1 + 9 * (t1 - t0);
-  };
-  const auto slot = [&](const Point& p) -> std::optional<PointResult>& {
-    return results[static_cast<std::size_t>(&p - points.data())];
-  };
+  return todo;
+}
+
+}  // namespace
+
+std::string this_program() {
+  std::error_code ec;
+  const auto p = std::filesystem::read_symlink("/proc/self/exe", ec);
+  if (ec) throw std::runtime_error("cannot find this program's path (/proc/self/exe): " + ec.message());
+  return p.string();
+}
+
+DriverReport run_points(const std::vector<Point>& points, const DriverSettings& s, const OutputDir& top) {
+  DriverReport report;
+  Definition now = s.definition;
+  LiveSummary summary(points, current_results(s.dir, points, now), top);
+  std::vector<std::pair<std::string, int>> reasons;
+  const std::vector<const Point*> todo = points_to_run(points, summary.results, s.rerun, report, reasons);
+  const auto slot = [&](const Point& p) -> std::optional<PointResult>& { return summary.of(p); };
+  const auto summary_now = [&] { summary.write(); };
   Progress progress(s, static_cast<int>(points.size()), report.already_done);
-  for (const auto& [why, n] : reasons)
-    progress.say("sweep " + s.name + ": " + std::to_string(n) + (n == 1 ? " point runs" : " points run") +
-                 " again: " + why);
-  if (s.rerun)
-    progress.say("sweep " + s.name + ": --rerun: all " + std::to_string(points.size()) + " points run again");
-  else if (report.already_done > 0)
-    progress.say("sweep " + s.name + ": " + std::to_string(report.already_done) + " of " +
-                 std::to_string(points.size()) + " points done already (" + s.dir + "), " +
-                 std::to_string(todo.size()) + " to run");
+  say_plan(progress, s, points.size(), report, reasons, todo.size());
   std::map<pid_t, Running> running;
   std::size_t next = 0;
   bool forwarded = false;

@@ -312,6 +312,13 @@ class Sweep(unittest.TestCase):
         for r in summary[1:]:
             self.assertEqual(r[2], "outdated: the file %s has changed" % self.path("editable.lua"))
 
+    def test_a_value_added_to_a_set_list_runs_that_point_alone(self):
+        # the --set lists are the grid, not what defines a point: its values are its parameters
+        self.run_beltsim("sweep", PLAIN, "--set", "pretension=300,500")
+        p = self.run_beltsim("sweep", PLAIN, "--set", "pretension=300,500,700")
+        self.assertIn("2 of 3 points done already", p.stderr)
+        self.assertNotIn("run again", p.stderr)
+
     def test_slurm_with_nothing_left_leaves_the_job_scripts(self):
         # --slurm --time, the points then run (here, as the array's tasks would), --slurm again
         self.run_beltsim("sweep", GRID, "--slurm", "--time", "10")
