@@ -220,11 +220,10 @@ std::optional<CommandLine> parse_command_line(int argc, char** argv, int* status
   sweep->add_option("--max-parallel", raw.max_parallel, "with --slurm: tasks running at once (--array=..%M)")
       ->type_name("M");
   add_safety(sweep, raw);
-  sweep->footer(
-      "Each point runs in a process of its own with its folder DIR/<point>/ (point.csv: its parameters,\n"
-      "status, what defined it and figures; log.txt: its messages); DIR/summary.csv merges them. Run\n"
-      "again: only the points not ok, or run with another sweep file, script file, program or\n"
-      "--trusted than now, run. Exit status 0 when every point is ok, 1 otherwise. docs/sweeps.md.");
+  sweep->footer("Each point runs in a process of its own with its folder DIR/<point>/ (point.csv: its parameters,\n"
+                "status, inputs and figures; log.txt: its messages); DIR/summary.csv merges them. Run again:\n"
+                "the points not ok, or run with other files, program or --trusted, run. Exit status 0 when\n"
+                "every point is ok, 1 otherwise. docs/sweeps.md.");
 
   // `beltsim console ... -- ARGS`: everything after the first -- belongs to the script
   std::vector<std::string> words(argv + 1, argv + argc);
