@@ -6,6 +6,7 @@
 #include <cctype>
 #include <cstdio>
 
+#include "beltsim_version.hpp"
 #include "io/suggest.hpp"
 #include "sim/frames.hpp"
 #include "sim/run_table.hpp"
@@ -119,20 +120,27 @@ CLI::App* add_compare_command(CLI::App& app, CompareOptions& o) {
                 "PNG: the difference image, always written (default: A_diff.png beside A, written when they differ)")
       ->type_name("PNG");
   c->add_option("--rtol", o.rtol, "CSV: relative tolerance (default 1e-6)")->type_name("R");
-  c->add_option("--atol", o.atol, "CSV: absolute tolerance (default 1e-12)")->type_name("A");
+  c->add_option("--atol", o.atol,
+                "CSV: absolute tolerance, of every column (A) or of the columns of a unit (UNIT=A: N, N.m, m, m/s, "
+                "rad, rad/s, J, s, 1); default rtol times the unit's scale (repeatable)")
+      ->type_name("[UNIT=]A")
+      ->allow_extra_args(false);
   c->add_option("--col-tol", o.col_tol, "CSV: a column's own tolerances (repeatable)")
       ->type_name("NAME=RTOL[,ATOL]")
       ->allow_extra_args(false);
   c->add_option("--skip", o.skip, "CSV: a column left out of the comparison (repeatable)")
       ->type_name("NAME")
       ->allow_extra_args(false);
+  c->add_flag("--failing", o.failing, "CSV: after the line, a line for each failing column");
   c->footer(
       "PNGs: the golden images' metric (a pixel differs when any channel differs by more than L\n"
-      "levels). CSVs: columns matched by name; a and b agree when |a - b| <= atol + rtol*max(|a|, |b|);\n"
-      "rows aligned on the 't' column, B interpolated linearly onto A's times when they differ (said\n"
-      "on stderr). Prints one line; exit 0 when they match, 1 when they differ, 2 on bad usage or a\n"
-      "file that cannot be read (only regular files are), 3 when the difference image could not be\n"
-      "written (the line still says whether they match).");
+      "levels). CSVs: columns matched by name; a and b agree when |a - b| <= atol + rtol*max(|a|, |b|),\n"
+      "atol by the column's unit (100 N, 10 N.m, 10 rad/s, 1 rad, 0.1 m, 1 m/s, 10 J, 1 s, 0.01 for a\n"
+      "ratio, times rtol, unless given); NaN against a number is reported apart; rows aligned on the\n"
+      "'t' column, B interpolated linearly onto A's times when they differ (said on stderr). Prints\n"
+      "one line (--failing: and one per failing column); exit 0 when they match, 1 when they differ,\n"
+      "2 on bad usage or a file that cannot be read (only regular files are), 3 when the difference\n"
+      "image could not be written (the line still says whether they match).");
   return c;
 }
 
@@ -140,7 +148,7 @@ CLI::App* add_compare_command(CLI::App& app, CompareOptions& o) {
 
 std::optional<CommandLine> parse_command_line(int argc, char** argv, int* status) {
   CLI::App app{"beltsim: belt transmissions, the discrete model of K. Kubas; scenarios are Lua scripts.", "beltsim"};
-  app.set_version_flag("--version", "beltsim 0.1.0");
+  app.set_version_flag("--version", std::string("beltsim ") + kBeltsimVersion);
   app.require_subcommand(1);
   app.footer(
       "Exit status: 0 on success, 1 on a script, parameter, run or plot error or an output that\n"
@@ -223,6 +231,7 @@ std::optional<CommandLine> parse_command_line(int argc, char** argv, int* status
       ->type_name("K");
   sweep->add_flag("--list", raw.list, "print the points (CSV) and run nothing");
   sweep->add_flag("--collect", raw.collect, "merge the points' results into summary.csv and run nothing");
+  sweep->add_flag("--rerun", raw.rerun, "run every point again, done or not (with --slurm: every point in the array)");
   sweep->add_option("--set", raw.set,
                     "the quick form: FILE is an ordinary script and each KEY=V1,V2,.. one parameter "
                     "(beltsim.args.KEY); the lists are crossed, the first varying slowest (repeatable)")
@@ -237,8 +246,9 @@ std::optional<CommandLine> parse_command_line(int argc, char** argv, int* status
       ->type_name("M");
   add_safety(sweep, raw);
   sweep->footer("Each point runs in a process of its own with its folder DIR/<point>/ (point.csv: its parameters,\n"
-                "status and figures; log.txt: its messages); DIR/summary.csv merges them. Run again: only the\n"
-                "points not ok run. Exit status 0 when every point is ok, 1 otherwise. docs/sweeps.md.");
+                "status, inputs and figures; log.txt: its messages); DIR/summary.csv merges them. Run again:\n"
+                "the points not ok, or run with other files, program or --trusted, run. Exit status 0 when\n"
+                "every point is ok, 1 otherwise. docs/sweeps.md.");
 
   // `beltsim console ... -- ARGS`: everything after the first -- belongs to the script
   std::vector<std::string> words(argv + 1, argv + argc);

@@ -11,6 +11,7 @@
 #include "io/input_file.hpp"
 #include "io/output_dir.hpp"
 #include "io/png_writer.hpp"
+#include "io/units.hpp"
 #include "plot/csv_compare.hpp"
 #include "script/script_args.hpp"
 
@@ -59,8 +60,11 @@ std::string size_text(const Image& i) {
 }
 
 int compare_pngs(const CompareOptions& o) {
-  for (const auto& [given, name] :
-       {std::pair{bool(o.rtol), "--rtol"}, {bool(o.atol), "--atol"}, {!o.col_tol.empty(), "--col-tol"}, {!o.skip.empty(), "--skip"}})
+  for (const auto& [given, name] : {std::pair{bool(o.rtol), "--rtol"},
+                                    {!o.atol.empty(), "--atol"},
+                                    {!o.col_tol.empty(), "--col-tol"},
+                                    {!o.skip.empty(), "--skip"},
+                                    {o.failing, "--failing"}})
     if (given) throw UsageError(std::string(name) + " is for CSV files; " + o.a + " and " + o.b + " are PNGs");
   ImageTolerance tol;
   if (o.tol) tol.level_tol = static_cast<int>(whole("--tol", *o.tol, 255));
@@ -107,18 +111,26 @@ int compare_csvs(const CompareOptions& o) {
        {std::pair{bool(o.tol), "--tol"}, {bool(o.max_bad), "--max-bad"}, {bool(o.diff), "--diff"}})
     if (given) throw UsageError(std::string(name) + " is for PNG files; " + o.a + " and " + o.b + " are not PNGs");
   plot::CsvTolerance tol;
-  if (o.rtol) tol.all.rtol = non_negative("--rtol", *o.rtol);
-  if (o.atol) tol.all.atol = non_negative("--atol", *o.atol);
+  if (o.rtol) tol.rtol = non_negative("--rtol", *o.rtol);
+  for (const std::string& item : o.atol) {
+    const size_t eq = item.find('=');
+    if (eq == std::string::npos) {
+      if (tol.atol) throw UsageError("--atol A is given twice; give it once (and --atol UNIT=A for a unit's own)");
+      tol.atol = non_negative("--atol", item);
+      continue;
+    }
+    const std::string unit = typed_unit(item.substr(0, eq));
+    if (tol.unit_atol.count(unit)) throw UsageError("--atol " + item + ": the unit '" + unit + "' is given twice");
+    tol.unit_atol[unit] = non_negative("--atol " + item.substr(0, eq), item.substr(eq + 1));
+  }
   for (const std::string& item : o.col_tol) {
     const size_t eq = item.find('=');
     if (eq == std::string::npos || eq == 0)
       throw UsageError("--col-tol needs NAME=RTOL or NAME=RTOL,ATOL, got '" + item + "'");
     const std::string name = item.substr(0, eq), value = item.substr(eq + 1);
     const size_t comma = value.find(',');
-    plot::ColumnTolerance ct = tol.all;
-    ct.rtol = non_negative("--col-tol " + name, value.substr(0, comma));
-    if (comma != std::string::npos) ct.atol = non_negative("--col-tol " + name, value.substr(comma + 1));
-    tol.columns[name] = ct;
+    tol.column_rtol[name] = non_negative("--col-tol " + name, value.substr(0, comma));
+    if (comma != std::string::npos) tol.column_atol[name] = non_negative("--col-tol " + name, value.substr(comma + 1));
   }
   tol.skip.insert(o.skip.begin(), o.skip.end());
   plot::Table a, b;
@@ -138,6 +150,8 @@ int compare_csvs(const CompareOptions& o) {
   }
   if (!c.note.empty()) std::fprintf(stderr, "beltsim compare: %s\n", c.note.c_str());
   std::printf("%s: %s\n", c.match ? "match" : "differ", c.reason.c_str());
+  if (o.failing)
+    for (const std::string& line : plot::failing_lines(c)) std::printf("%s\n", line.c_str());
   return c.match ? 0 : 1;
 }
 

@@ -13,8 +13,10 @@ namespace beltsim::app {
 struct CompareOptions {
   std::string a, b;
   std::optional<std::string> tol, max_bad, diff;  // PNGs
-  std::optional<std::string> rtol, atol;          // CSVs
+  std::optional<std::string> rtol;                // CSVs
+  std::vector<std::string> atol;                  // CSVs: A (every column) or UNIT=A
   std::vector<std::string> col_tol;               // CSVs: NAME=RTOL[,ATOL]
+  bool failing = false;                           // CSVs: a line for each failing column
   std::vector<std::string> skip;                  // CSVs: columns left out
 };
 

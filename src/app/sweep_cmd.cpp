@@ -16,6 +16,7 @@
 #include "script/script_args.hpp"
 #include "script/signals.hpp"
 #include "sweep/driver.hpp"
+#include "sweep/inputs.hpp"
 #include "sweep/results.hpp"
 #include "sweep/slurm.hpp"
 
@@ -35,6 +36,14 @@ int processors() {
   if (sched_getaffinity(0, sizeof set, &set) == 0 && CPU_COUNT(&set) > 0) return CPU_COUNT(&set);
   const long n = sysconf(_SC_NPROCESSORS_ONLN);
   return n > 0 ? static_cast<int>(n) : 1;
+}
+
+// what defines a point now, bar its files (sweep/inputs.hpp): the program and, of the options,
+// --trusted. The --set lists are the grid: each point's own values are its parameters, matched
+// already (sweep/results.hpp), so a value added to a list reruns no other point; the limits only
+// decide whether a point fails, and a failed point runs again anyway.
+beltsim::sweep::Definition definition(const Raw& raw) {
+  return {beltsim::sweep::program_identity(), raw.trusted ? "--trusted" : "", {}};
 }
 
 // the arguments that give a point's process the same sweep: the file, the folder, the --set
@@ -65,6 +74,7 @@ beltsim::sweep::SlurmSettings slurm_settings(const std::string& file, const std:
   ss.partition = raw.partition;
   ss.time = raw.time;
   if (raw.max_parallel) ss.max_parallel = whole_number("--max-parallel", *raw.max_parallel, 1);
+  ss.rerun = raw.rerun;
   try {
     beltsim::sweep::check_slurm_settings(ss);
   } catch (const std::invalid_argument& e) {
@@ -84,6 +94,8 @@ int sweep(const std::string& file, const Raw& raw, const script::Safety& s) {
     throw UsageError("--submit, --partition, --time and --max-parallel go with --slurm");
   if (int(point >= 0) + int(raw.list) + int(raw.collect) + int(raw.slurm) > 1)
     throw UsageError("give one of --point, --list, --collect and --slurm");
+  if (raw.rerun && (point >= 0 || raw.list || raw.collect))
+    throw UsageError("--rerun goes with running the points or --slurm (--point runs its point in any case)");
   std::optional<sw::SlurmSettings> slurm;
   if (raw.slurm) slurm = slurm_settings(file, dir, name, raw);
   std::vector<sw::Point> points;
@@ -122,9 +134,13 @@ int sweep(const std::string& file, const Raw& raw, const script::Safety& s) {
       const std::string point_dir = (fs::path(dir) / p.id).string();
       std::fprintf(stderr, "beltsim sweep: point %s of %zu (%s)\n", p.id.c_str(), points.size(),
                    sw::params_text(p).c_str());
-      const sw::PointResult r = sw::unique_columns(p, quick ? script::run_script_point(lua, file, p, point_dir)
-                                                            : script::run_sweep_point(lua, file, p, point_dir));
+      sw::PointResult r = sw::unique_columns(p, quick ? script::run_script_point(lua, file, p, point_dir)
+                                                      : script::run_sweep_point(lua, file, p, point_dir));
       if (lua.interrupted() || stop_signal() != 0) return stopped_status();  // not a result: it runs again
+      const sw::Definition d = definition(raw);
+      sw::Inputs in{d.program, d.options, {}};
+      for (const script::LoadedFile& f : lua.loaded_files()) in.files.emplace_back(f.path, f.sha256);
+      r.inputs = sw::inputs_text(in);
       sw::write_point_result(dir, p, r);
       std::fprintf(stderr, "beltsim sweep: point %s: %s\n", p.id.c_str(), r.status.c_str());
       return r.ok() ? 0 : 1;
@@ -138,19 +154,21 @@ int sweep(const std::string& file, const Raw& raw, const script::Safety& s) {
 
   const OutputDir top = sw::claim_sweep_folder(dir);  // held to the end: one sweep at a time on the folder
   const auto summary = [&] {
-    const sw::SummaryCounts c = sw::write_summary(dir, points);
+    const sw::SummaryCounts c = sw::write_summary(dir, points, definition(raw));
     std::fprintf(stderr, "beltsim sweep: %s/%s: %d ok, %d failed, %d not run\n", dir.c_str(), sw::kSummaryFile, c.ok,
                  c.failed, c.not_run);
     return c.failed + c.not_run == 0 ? 0 : 1;
   };
   if (raw.collect) return summary();
   if (slurm) {
+    slurm->definition = definition(raw);
     const sw::SlurmJobs j = sw::write_slurm_jobs(points, *slurm);
-    std::printf("%s\n%s\n", j.array_script.c_str(), j.collect_script.c_str());
     if (j.array.empty()) {
-      std::fprintf(stderr, "beltsim sweep: every point is done: nothing to submit\n");
+      std::fprintf(stderr,
+                   "beltsim sweep: every point is done: nothing to submit (the job scripts left as they were)\n");
       return summary();
     }
+    std::printf("%s\n%s\n", j.array_script.c_str(), j.collect_script.c_str());
     if (!raw.submit) {
       std::fprintf(stderr, "beltsim sweep: submit with\n  jid=$(sbatch --parsable %s)\n  sbatch --dependency=afterany:$jid %s\n",
                    sw::shell_quoted(j.array_script).c_str(), sw::shell_quoted(j.collect_script).c_str());
@@ -168,6 +186,8 @@ int sweep(const std::string& file, const Raw& raw, const script::Safety& s) {
   ds.dir = dir;
   ds.name = name;
   ds.jobs = jobs;
+  ds.definition = definition(raw);
+  ds.rerun = raw.rerun;
   ds.stop = &stop_flag();
   ds.stop_signal = [] { return stop_signal(); };
   sw::DriverReport r;

@@ -61,7 +61,43 @@ constexpr std::array<std::pair<std::string_view, std::string_view>, 46> kUnits{{
     {"dissipated_friction", "J"},
 }};
 
+// unit -> scale (header: unit_scale). Each is the size of the quantity on the paper's drive and
+// on an accessory drive, at the low end of each range (a value near 0 is compared at a size the
+// quantity takes): span tensions and hub loads 100 N to 2 kN, pulley torques 10 to 100 N·m,
+// pulley speeds 10 rad/s (100 rpm, starting) to 600 rad/s, arcs and positions 0.05 to 0.5 m, slip speeds 0.01 to 1 m/s,
+// energies 10 to 1000 J; angles in radians; creep and slip ratios of 1e-3 to 3e-2 (dimensionless)
+constexpr std::array<std::pair<std::string_view, double>, 9> kScales{{
+    {"s", 1},
+    {"rad/s", 10},
+    {"rad", 1},
+    {"N·m", 10},
+    {"N", 100},
+    {"m", 0.1},
+    {"m/s", 1},
+    {"J", 10},
+    {"", 1e-2},
+}};
+
 }  // namespace
+
+std::string header_unit(std::string_view header) {
+  const std::size_t open = header.rfind('[');
+  if (!header.empty() && header.back() == ']' && open != std::string_view::npos)
+    return typed_unit(header.substr(open + 1, header.size() - open - 2));
+  return unit_of(header);
+}
+
+double unit_scale(std::string_view unit) {
+  for (const auto& [name, scale] : kScales)
+    if (name == unit) return scale;
+  return 1;
+}
+
+std::string typed_unit(std::string_view typed) {
+  if (typed == "N.m" || typed == "N*m" || typed == "Nm" || typed == "N m") return "N·m";
+  if (typed == "1" || typed == "-") return "";
+  return std::string(typed);
+}
 
 std::string unit_of(std::string_view column) {
   const size_t dot = column.rfind('.');

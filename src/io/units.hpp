@@ -13,4 +13,18 @@ namespace beltsim {
 
 std::string unit_of(std::string_view column);
 
+// the unit a CSV header names: the one between brackets at its end ("hub load [N]" -> "N"),
+// else unit_of(header)
+std::string header_unit(std::string_view header);
+
+// a magnitude typical of the unit in a belt drive, from a car's accessory drive to an
+// industrial one: `beltsim compare` takes rtol times it as a column's absolute tolerance, so that
+// one rtol means the same in every unit and a value near 0 is compared at that scale (docs/
+// testing-your-scenario.md). 1 for a unit it does not know.
+double unit_scale(std::string_view unit);
+
+// a unit as typed on a command line, in the form of unit_of: "N.m", "N*m" and "Nm" are "N·m";
+// "1" and "-" the dimensionless ""
+std::string typed_unit(std::string_view typed);
+
 }  // namespace beltsim

@@ -7,6 +7,7 @@
 
 #include "io/number_text.hpp"
 #include "io/suggest.hpp"
+#include "io/units.hpp"
 
 namespace beltsim::plot {
 
@@ -55,9 +56,119 @@ std::string some(const std::vector<std::string>& names) {
 
 }  // namespace
 
-const ColumnTolerance& CsvTolerance::of(const std::string& column) const {
-  const auto it = columns.find(column);
-  return it == columns.end() ? all : it->second;
+ColumnTolerance CsvTolerance::of(const std::string& column) const {
+  const std::string unit = header_unit(column);
+  ColumnTolerance t;
+  const auto r = column_rtol.find(column);
+  t.rtol = r != column_rtol.end() && r->second ? *r->second : rtol;
+  const auto a = column_atol.find(column);
+  const auto u = unit_atol.find(unit);
+  if (a != column_atol.end() && a->second)
+    t.atol = *a->second;
+  else if (u != unit_atol.end())
+    t.atol = u->second;
+  else if (atol)
+    t.atol = *atol;
+  else
+    t.atol = t.rtol * unit_scale(unit);
+  return t;
+}
+
+namespace {
+
+// one column compared: ya against yb (B's values at A's rows)
+ColumnResult compare_column(const std::string& name, const ColumnTolerance& ct, const std::vector<double>& ya,
+                            const std::vector<double>& yb, const std::vector<double>* t) {
+  ColumnResult r{name, header_unit(name), ct, -1, {}, 0, {}};
+  for (std::size_t i = 0; i < ya.size(); ++i) {
+    const double x = ya[i], y = yb[i];
+    const ValueAt at{i + 1, t ? (*t)[i] : 0, x, y};
+    if (std::isnan(x) != std::isnan(y)) {
+      if (r.nan_rows++ == 0) r.first_nan = at;
+      continue;
+    }
+    double ratio = 0;  // both NaN, or equal (also equal infinities)
+    if (!std::isnan(x) && x != y) {
+      const double allowed = ct.atol + ct.rtol * std::max(std::abs(x), std::abs(y));
+      ratio = allowed > 0 ? std::abs(x - y) / allowed : std::numeric_limits<double>::infinity();
+      if (std::isnan(ratio)) ratio = std::numeric_limits<double>::infinity();  // inf against a finite value
+    }
+    if (ratio > r.ratio) r.ratio = ratio, r.worst = at;
+  }
+  return r;
+}
+
+std::string where(const ValueAt& v, bool timed) {
+  return (timed ? "at t = " + num(v.t) + " s (row " + std::to_string(v.row) + ")" : "at row " + std::to_string(v.row)) +
+         ": " + num(v.a) + " vs " + num(v.b);
+}
+
+std::string tols_text(const ColumnResult& r) {
+  return "rtol " + num(r.tol.rtol) + ", atol " + num(r.tol.atol) + (r.unit.empty() ? "" : " " + r.unit);
+}
+
+std::string times_text(double ratio) {
+  return std::isinf(ratio) ? std::string("beyond any tolerance") : num(ratio) + " times its tolerance";
+}
+
+// "NaN against a number at 3 times, the first at t = 0 s (row 1): 0 vs nan"
+std::string nan_text(const ColumnResult& r, bool timed) {
+  return "NaN against a number at " + std::to_string(r.nan_rows) + (timed ? " time" : " row") +
+         (r.nan_rows == 1 ? "" : "s") + ", the first " + where(r.first_nan, timed);
+}
+
+// the one line of a comparison that ran to its end
+std::string reason_text(const CsvComparison& c, std::size_t rows, const std::set<std::string>& skip) {
+  std::vector<std::string> numeric, nans;
+  const ColumnResult* first_nan = nullptr;
+  for (const ColumnResult& r : c.failing) {
+    if (r.ratio > 1) numeric.push_back(r.name);
+    if (r.nan_rows == 0) continue;
+    nans.push_back(r.name);
+    if (!first_nan || r.first_nan.row < first_nan->first_nan.row) first_nan = &r;
+  }
+  const std::string left_out =
+      skip.empty() ? "" : " (left out: " + some(std::vector<std::string>(skip.begin(), skip.end())) + ")";
+  const std::string of = " of " + std::to_string(c.compared) + " columns";
+  if (c.worst.name.empty() && nans.empty())
+    return "no values to compare (" + std::to_string(c.compared) + " columns, " + std::to_string(rows) + " rows)";
+  const std::string at = c.worst.name + " " + where(c.worst.worst, c.timed);
+  if (c.match) {
+    const std::string agree = std::to_string(c.compared) + " columns" + left_out + " agree at " + std::to_string(rows) +
+                              (c.timed ? " times" : " rows");
+    if (c.worst.ratio == 0) return agree + ": every value equal";
+    return agree + "; closest to its tolerance: " + at + ", " + num(c.worst.ratio) + " of its tolerance (" +
+           tols_text(c.worst) + ")";
+  }
+  std::string line;
+  if (!numeric.empty())
+    line = std::to_string(numeric.size()) + of + " differ (" + some(numeric) + "); worst: " + at +
+           ", |a - b| = " + num(std::abs(c.worst.worst.a - c.worst.worst.b)) + ", " + times_text(c.worst.ratio) + " (" +
+           tols_text(c.worst) + ")";
+  if (!nans.empty()) {
+    if (!line.empty()) line += "; and ";
+    const std::size_t n = numeric.empty() ? c.compared : nans.size();  // the number before "columns"
+    const std::string columns = n == 1 ? " column" : " columns";
+    line += "NaN against a number in " + std::to_string(nans.size()) +
+            (numeric.empty() ? " of " + std::to_string(c.compared) + columns : columns) + " (" + some(nans) +
+            "), the first in " + first_nan->name + " " + where(first_nan->first_nan, c.timed);
+    if (numeric.empty()) line += "; every number within its tolerance";
+  }
+  return line;
+}
+
+}  // namespace
+
+std::vector<std::string> failing_lines(const CsvComparison& c) {
+  std::vector<std::string> lines;
+  for (const ColumnResult& r : c.failing) {
+    const std::string head = "  " + r.name + " [" + (r.unit.empty() ? "1" : r.unit) + "]: ";
+    if (r.ratio > 1)
+      lines.push_back(head + "worst " + where(r.worst, c.timed) + ", |a - b| = " +
+                      num(std::abs(r.worst.a - r.worst.b)) + ", " + times_text(r.ratio) + " (" + tols_text(r) + ")");
+    if (r.nan_rows > 0) lines.push_back(head + nan_text(r, c.timed));
+  }
+  return lines;
 }
 
 CsvComparison compare_csv(const Table& a, const Table& b, const CsvTolerance& tol) {
@@ -66,7 +177,7 @@ CsvComparison compare_csv(const Table& a, const Table& b, const CsvTolerance& to
       throw std::invalid_argument(option + " " + name + ": " + a.path + " has no column '" + name + "'" +
                                   did_you_mean(name, a.names) + "; its columns: " + join(a.names));
   };
-  for (const auto& [name, t] : tol.columns) require("--col-tol", name);
+  for (const auto& [name, t] : tol.column_rtol) require("--col-tol", name);
   for (const std::string& name : tol.skip) require("--skip", name);
   CsvComparison c;
   const std::vector<std::string> a_only = only_in(a, b), b_only = only_in(b, a);
@@ -78,9 +189,9 @@ CsvComparison compare_csv(const Table& a, const Table& b, const CsvTolerance& to
   }
   const std::size_t rows = a.columns.empty() ? 0 : a.columns[0].size();
   const std::size_t rows_b = b.columns.empty() ? 0 : b.columns[0].size();
-  const bool timed = a.has(kTime);
+  c.timed = a.has(kTime);
   bool interpolated = false;
-  if (timed) {
+  if (c.timed) {
     check_increasing(a);
     check_increasing(b);
     const std::vector<double>&ta = a.column(kTime), &tb = b.column(kTime);
@@ -100,65 +211,23 @@ CsvComparison compare_csv(const Table& a, const Table& b, const CsvTolerance& to
                " in " + b.path + " (no 't' column to align them on)";
     return c;
   }
-  c.worst_ratio = -1;
+  const std::vector<double>* t = c.timed ? &a.column(kTime) : nullptr;
+  c.worst.ratio = -1;
   for (std::size_t k = 0; k < a.names.size(); ++k) {
     const std::string& name = a.names[k];
-    if ((timed && name == kTime) || tol.skip.count(name)) continue;
-    const std::vector<double>&ya = a.columns[k], &yb = b.column(name);
-    const ColumnTolerance& ct = tol.of(name);
-    bool failed = false;
-    for (std::size_t i = 0; i < rows; ++i) {
-      const double x = ya[i], y = interpolated ? interpolate(b.column(kTime), yb, a.column(kTime)[i]) : yb[i];
-      double ratio;
-      if (std::isnan(x) && std::isnan(y))
-        ratio = 0;
-      else if (std::isnan(x) || std::isnan(y))
-        ratio = std::numeric_limits<double>::infinity();
-      else if (x == y)
-        ratio = 0;  // also equal infinities
-      else {
-        const double allowed = ct.atol + ct.rtol * std::max(std::abs(x), std::abs(y));
-        ratio = allowed > 0 ? std::abs(x - y) / allowed : std::numeric_limits<double>::infinity();
-        if (std::isnan(ratio)) ratio = std::numeric_limits<double>::infinity();  // inf against a finite value
-      }
-      failed = failed || ratio > 1;
-      if (ratio > c.worst_ratio) {
-        c.worst_ratio = ratio, c.worst_column = name, c.worst_row = i + 1;
-        c.worst_t = timed ? a.column(kTime)[i] : 0, c.worst_a = x, c.worst_b = y;
-      }
-    }
-    if (failed) c.failing_columns.push_back(name);
+    if ((c.timed && name == kTime) || tol.skip.count(name)) continue;
+    ++c.compared;
+    std::vector<double> yb = b.column(name);
+    if (interpolated)
+      for (std::size_t i = 0; i < rows; ++i) yb[i] = interpolate(b.column(kTime), b.column(name), (*t)[i]);
+    yb.resize(rows);
+    const ColumnResult r = compare_column(name, tol.of(name), a.columns[k], yb, t);
+    if (r.ratio > c.worst.ratio) c.worst = r;
+    if (r.failed()) c.failing.push_back(r);
   }
-  c.match = c.failing_columns.empty();
-  std::size_t compared = a.names.size() - (timed ? 1 : 0);
-  for (const std::string& name : tol.skip) compared -= name != kTime;
-  if (c.worst_column.empty()) {
-    c.reason = "no values to compare (" + std::to_string(compared) + " columns, " + std::to_string(rows) + " rows)";
-    c.worst_ratio = 0;
-    return c;
-  }
-  const ColumnTolerance& wt = tol.of(c.worst_column);
-  const std::string left_out =
-      tol.skip.empty() ? "" : " (left out: " + some(std::vector<std::string>(tol.skip.begin(), tol.skip.end())) + ")";
-  const std::string agree =
-      std::to_string(compared) + " columns" + left_out + " agree at " + std::to_string(rows) + (timed ? " times" : " rows");
-  const std::string at = c.worst_column + (timed ? " at t = " + num(c.worst_t) + " s (row " : " at row ") +
-                         std::to_string(c.worst_row) + (timed ? ")" : "") + ": " + num(c.worst_a) + " vs " +
-                         num(c.worst_b);
-  const std::string tols = "rtol " + num(wt.rtol) + ", atol " + num(wt.atol);
-  if (c.match && c.worst_ratio == 0) {
-    c.reason = agree + ": every value equal";
-  } else if (c.match) {
-    c.reason =
-        agree + "; closest to its tolerance: " + at + ", " + num(c.worst_ratio) + " of its tolerance (" + tols + ")";
-  } else {
-    c.reason = std::to_string(c.failing_columns.size()) + " of " + std::to_string(compared) + " columns differ (" +
-               some(c.failing_columns) + "); worst: " + at + ", |a - b| = " + num(std::abs(c.worst_a - c.worst_b)) +
-               ", " +
-               (std::isinf(c.worst_ratio) ? std::string("beyond any tolerance")
-                                          : num(c.worst_ratio) + " times its tolerance") +
-               " (" + tols + ")";
-  }
+  if (c.worst.ratio < 0) c.worst = ColumnResult{};  // no number compared
+  c.match = c.failing.empty();
+  c.reason = reason_text(c, rows, tol.skip);
   return c;
 }
 

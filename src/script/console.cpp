@@ -7,6 +7,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "beltsim_version.hpp"
 #include "lauxlib.h"
 #include "lua.h"
 #include "script/console_input.hpp"
@@ -117,7 +118,8 @@ int run_console(const std::optional<std::string>& script, const std::vector<std:
   }
 
   if (interactive) {
-    std::printf("beltsim 0.1.0 console (Lua 5.4): help() lists the API; Ctrl-C stops a run, Ctrl-D leaves\n");
+    std::printf("beltsim %s console (Lua 5.4): help() lists the API; Ctrl-C stops a run, Ctrl-D leaves\n",
+                kBeltsimVersion);
     std::fflush(stdout);
   }
   std::vector<std::string> commands;

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "script/interpreter.hpp"
+#include "script/load_source.hpp"
 #include "script/lua_law.hpp"
 
 namespace beltsim::script {
@@ -40,6 +41,9 @@ struct Context {
   std::vector<std::string> args_read;
   // the last run that diverged: its time and message (a sweep point's status, lua_sweep.hpp)
   std::optional<std::pair<double, std::string>> divergence;
+  // the script files loaded so far (the scenario, dofile, loadfile, require), for a sweep point's
+  // record of what defines it
+  std::vector<LoadedFile> loaded;
   bool args_warned = false;  // the unread --set keys were reported at a run's start
   bool t_end_warned = false;  // --t-end was said not to shorten scene:start's simulations
   // the state Lua laws call into (emptied when the interpreter closes it)

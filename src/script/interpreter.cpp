@@ -64,7 +64,7 @@ std::vector<std::string> Interpreter::unread_args(const std::string& script) con
   return unread_arg_messages(*ctx_, script);
 }
 void Interpreter::interrupt() { script::interrupt(*limits_); }
-
+const std::vector<LoadedFile>& Interpreter::loaded_files() const { return ctx_->loaded; }
 
 void Interpreter::run_file(const std::string& path, int nresults) {
   Context* ctx = ctx_.get();
@@ -89,7 +89,7 @@ void Interpreter::run_file(const std::string& path, int nresults) {
   // errors read "path:line:"
   std::FILE* f = std::fopen(path.c_str(), "r");
   if (!f) throw ScriptError("cannot open " + path + ": " + std::strerror(errno));
-  const int status = load_source(L_, f, "@" + path);
+  const int status = load_source(L_, f, "@" + path, &ctx->loaded);
   std::fclose(f);
   if (status != LUA_OK) {
     std::string msg;

@@ -13,6 +13,7 @@
 #include <utility>
 #include <vector>
 
+#include "script/load_source.hpp"
 #include "script/script_args.hpp"
 #include "sim/simulation.hpp"
 
@@ -95,6 +96,8 @@ class Interpreter {
   // Ctrl-C for Lua code: raises "interrupted!" at the next slice of instructions (async-signal-safe:
   // one atomic store)
   void interrupt();
+  // the script files loaded so far (script/load_source.hpp), in the order loaded
+  const std::vector<LoadedFile>& loaded_files() const;
   lua_State* state() { return L_; }
   Context& context();
 

@@ -4,6 +4,7 @@
 
 #include <cstdio>
 #include <string>
+#include <vector>
 
 struct lua_State;
 
@@ -14,6 +15,12 @@ namespace beltsim::script {
 // chunk. Returns lua_load's status with the function or the message on the stack. Every message
 // names the file and line: Lua's parser reports running out of C levels (a script nested more than
 // 200 deep) as a bare "C stack overflow", which gets the line the parser had reached.
-int load_source(lua_State* L, std::FILE* f, const std::string& chunkname);
+// When loaded is given, a file's chunk ("@path") loaded without error is added to it (once): its
+// absolute path and the SHA-256 of all its bytes, what a sweep point records of the files that
+// define it (sweep/inputs.hpp).
+struct LoadedFile {
+  std::string path, sha256;
+};
+int load_source(lua_State* L, std::FILE* f, const std::string& chunkname, std::vector<LoadedFile>* loaded = nullptr);
 
 }  // namespace beltsim::script

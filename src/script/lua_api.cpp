@@ -13,6 +13,7 @@
 #include <type_traits>
 #include <variant>
 
+#include "beltsim_version.hpp"
 #include "io/suggest.hpp"
 #include "script/context.hpp"
 #include "script/lua_check.hpp"
@@ -106,7 +107,7 @@ void open_beltsim(lua_State* L, Context* ctx) {
   open_sim(L, ctx);
   open_help(L);
   open_sweep(L, ctx);
-  lua_pushstring(L, "0.1.0"), lua_setfield(L, -2, "version");
+  lua_pushstring(L, kBeltsimVersion), lua_setfield(L, -2, "version");
   push_args(L, ctx);
   lua_setfield(L, -2, "args");
   // beltsim.<misspelt>: an error with a suggestion, not a nil to call

@@ -314,7 +314,7 @@ int load_named(lua_State* L, const char* what, const char* fname) {
     lua_pushfstring(L, "cannot open %s: %s", fname, std::strerror(err));
     return LUA_ERRFILE;
   }
-  const int status = load_source(L, f, std::string("@") + fname);
+  const int status = load_source(L, f, std::string("@") + fname, &ctx_up(L).loaded);
   std::fclose(f);
   if (status != LUA_OK) explain_binary(L, -1, fname);
   return status;
@@ -357,7 +357,7 @@ int l_dofile(lua_State* L) {
 // the module file rel (name.lua) of the script's folder loaded: a status and the function or the
 // message on the stack, nothing and LUA_ERRFILE when there is no such file; what the sandbox
 // refuses (a link on the way) raises
-int load_module(lua_State* L, const Context& c, const std::string& name, const std::string& rel) {
+int load_module(lua_State* L, Context& c, const std::string& name, const std::string& rel) {
   const std::string path = joined(c.script_dir, rel);
   std::string refused;
   std::FILE* f = nullptr;
@@ -371,14 +371,14 @@ int load_module(lua_State* L, const Context& c, const std::string& name, const s
   if (!refused.empty())
     return luaL_error(L, "%s", not_allowed("require '" + name + "'", path, false, ": " + refused).c_str());
   if (!f) return LUA_ERRFILE;
-  const int status = load_source(L, f, "@" + path);
+  const int status = load_source(L, f, "@" + path, &c.loaded);
   std::fclose(f);
   return status;
 }
 
 // require(name): a Lua file name.lua (dots are folders) in the script's folder, run once
 int l_require(lua_State* L) {
-  const Context& c = ctx_up(L);
+  Context& c = ctx_up(L);
   const std::string name = luaL_checkstring(L, 1);
   lua_settop(L, 1);
   luaL_getsubtable(L, LUA_REGISTRYINDEX, LUA_LOADED_TABLE);  // 2

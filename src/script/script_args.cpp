@@ -93,7 +93,7 @@ sweep::Grid set_grid(const std::vector<std::string>& sets) {
                                   "=V1,V2,..");
     if (sweep::reserved_name(key))
       throw std::invalid_argument("--set " + kv + ": a parameter may not be named '" + key +
-                                  "': point.csv and summary.csv have a column of that name; give it another");
+                                  "': point.csv has a column of that name; give it another");
     std::vector<sweep::Value> values;
     for (const std::string& item : list_items(kv, list)) {
       try {

@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "io/output_dir.hpp"
+#include "sweep/inputs.hpp"
 #include "sweep/points.hpp"
 
 namespace beltsim::sweep {
@@ -27,19 +28,23 @@ struct DriverSettings {
   std::string dir;                      // the sweep's output folder
   std::string name;                     // for the progress line
   int jobs = 1;
+  Definition definition;                    // what defines a point now: a point done with other inputs runs again
+  bool rerun = false;                       // every point runs, done or not (--rerun)
   const std::atomic<bool>* stop = nullptr;  // raised by a stop signal
   std::function<int()> stop_signal;         // the signal received (forwarded to the children)
 };
 
 struct DriverReport {
-  int already_done = 0;                 // ok before this run
+  int already_done = 0;                 // ok before this run, with the inputs of now
+  int outdated = 0;                     // run before with other inputs (running again)
   int ok = 0, failed = 0, not_run = 0;  // of the points run now
   bool stopped = false;
 };
 
 // the folder of the executable running now (/proc/self/exe)
 std::string this_program();
-// runs every point not done yet; throws std::runtime_error when a process cannot be started or
+// runs every point not done yet (every point with rerun), saying on stderr which run again for a
+// change in their inputs and what changed; throws std::runtime_error when a process cannot be started or
 // waited for, after stopping the points running (SIGTERM) and
 // waiting for them; top is s.dir, claimed by the caller (claim_sweep_folder, sweep/results.hpp)
 DriverReport run_points(const std::vector<Point>& points, const DriverSettings& s, const OutputDir& top);

@@ -36,7 +36,7 @@ std::string point_id(int index, int count) {
 }
 
 bool reserved_name(const std::string& name) {
-  return name == "point" || name == "status";
+  return name == "point" || name == "status" || name == "inputs";
 }
 
 namespace {
@@ -45,9 +45,9 @@ namespace {
 void check_names(const std::vector<std::string>& names, const std::string& what) {
   for (const std::string& n : names)
     if (reserved_name(n))
-      throw std::invalid_argument(what + "." + n + ": a parameter may not be named '" + n +
-                                  "': point.csv and summary.csv have a column of that name (and one named '" +
-                                  (n == "point" ? "status" : "point") + "'); give it another");
+      throw std::invalid_argument(
+          what + "." + n + ": a parameter may not be named '" + n +
+          "': point.csv has a column of that name (point, status and inputs are taken); give it another");
 }
 
 }  // namespace

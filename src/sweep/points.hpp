@@ -41,8 +41,8 @@ struct Samples {
 };
 
 std::string point_id(int index, int count);
-// "point" and "status", the names of the columns point.csv and summary.csv have besides the
-// parameters and the figures: no parameter takes one
+// "point", "status" and "inputs", the names of the columns point.csv has besides the parameters
+// and the figures: no parameter takes one
 bool reserved_name(const std::string& name);
 // throws std::invalid_argument for an empty grid (a name without values), one of more than
 // kMaxPoints points, or a reserved name

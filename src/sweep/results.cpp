@@ -13,13 +13,14 @@ namespace beltsim::sweep {
 
 namespace {
 
-std::string header(const Point& p) {
+// point.csv's columns and summary.csv's, without the figures
+std::string header(const Point& p, bool inputs) {
   std::string h = "point";
   for (const auto& [name, v] : p.params) {
     h += ',';
     h += csv_text(name);
   }
-  return h + ",status";
+  return h + (inputs ? ",status,inputs" : ",status");
 }
 
 std::string row(const Point& p, const std::string& status) {
@@ -43,7 +44,7 @@ std::string error_status(const std::string& message) {
 void write_point_result(const std::string& dir, const Point& p, const PointResult& r) {
   const OutputDir top(dir);
   const OutputDir folder(top, p.id);
-  std::string h = header(p), v = row(p, r.status);
+  std::string h = header(p, true), v = row(p, r.status) + "," + csv_text(r.inputs);
   for (const auto& [name, text] : r.figures) {
     h += ',';
     h += csv_text(name);
@@ -69,19 +70,29 @@ std::optional<PointResult> read_point_result(const std::string& dir, const Point
     if (names[k + 1] != p.params[k].first || values[k + 1] != value_text(p.params[k].second)) return std::nullopt;
   PointResult r;
   r.status = values[n + 1];
-  for (std::size_t k = n + 2; k < names.size(); ++k) r.figures.emplace_back(names[k], values[k]);
+  std::size_t k = n + 2;
+  if (k < names.size() && names[k] == "inputs") r.inputs = values[k++];  // (none: an older beltsim's)
+  for (; k < names.size(); ++k) r.figures.emplace_back(names[k], values[k]);
   return r;
 }
 
+PointCheck check_point(const std::string& dir, const Point& p, Definition& now) {
+  PointCheck c;
+  c.result = read_point_result(dir, p);
+  if (c.result) c.changed = changed_inputs(c.result->inputs, now);
+  return c;
+}
+
 PointResult unique_columns(const Point& p, PointResult r) {
-  std::vector<std::string> taken{"point", "status"};
+  std::vector<std::string> taken{"point", "status", "inputs"};
   for (const auto& [name, v] : p.params) taken.push_back(name);
   for (const auto& [name, text] : r.figures) {
     if (std::find(taken.begin(), taken.end(), name) != taken.end())
       return {error_status("run(p) returned the figure '" + name +
-                           "', a name point.csv and summary.csv already have for a column (point, status, a "
-                           "parameter or an earlier figure); give it another"),
-              {}};
+                           "', a name point.csv and summary.csv already have for a column (point, status, "
+                           "inputs, a parameter or an earlier figure); give it another"),
+              {},
+              r.inputs};
     taken.push_back(name);
   }
   return r;
@@ -97,23 +108,34 @@ OutputDir claim_sweep_folder(const std::string& dir) {
   return top;
 }
 
-SummaryCounts write_summary(const std::string& dir, const std::vector<Point>& points) {
-  SummaryCounts counts;
-  std::vector<std::optional<PointResult>> results;
-  std::vector<std::string> figures;
+Results current_results(const std::string& dir, const std::vector<Point>& points, Definition& now) {
+  Results results;
   for (const Point& p : points) {
-    results.push_back(read_point_result(dir, p));
-    if (!results.back()) {
+    PointCheck c = check_point(dir, p, now);
+    // (a failure whose inputs are not known, written for a point whose process died, keeps its
+    // status: it runs again in any case)
+    if (c.result && !c.changed.empty() && (c.result->ok() || !c.result->inputs.empty()))
+      c.result = PointResult{kOutdated + c.changed, {}, ""};
+    results.push_back(std::move(c.result));
+  }
+  return results;
+}
+
+SummaryCounts write_summary(const OutputDir& top, const std::vector<Point>& points, const Results& results) {
+  SummaryCounts counts;
+  std::vector<std::string> figures;
+  for (const auto& r : results) {
+    if (!r || r->outdated()) {
       ++counts.not_run;
       continue;
     }
-    ++(results.back()->ok() ? counts.ok : counts.failed);
-    for (const auto& [name, text] : results.back()->figures)
+    ++(r->ok() ? counts.ok : counts.failed);
+    for (const auto& [name, text] : r->figures)
       if (std::find(figures.begin(), figures.end(), name) == figures.end()) figures.push_back(name);
   }
   std::string text;
   if (!points.empty()) {
-    text = header(points[0]);
+    text = header(points[0], false);
     for (const std::string& f : figures) {
       text += ',';
       text += csv_text(f);
@@ -131,9 +153,12 @@ SummaryCounts write_summary(const std::string& dir, const std::vector<Point>& po
     }
     text += "\n";
   }
-  const OutputDir top(dir);
   write_file_whole(top, kSummaryFile, text);
   return counts;
+}
+
+SummaryCounts write_summary(const std::string& dir, const std::vector<Point>& points, Definition now) {
+  return write_summary(OutputDir(dir), points, current_results(dir, points, now));
 }
 
 }  // namespace beltsim::sweep

@@ -2,15 +2,17 @@
 //
 // A point's folder DIR/<id>/ holds what its runs wrote and, written last and whole (created
 // unnamed, then renamed: io/output_dir.hpp), point.csv: a header and one row,
-//   point,<parameter>...,status,<figure>...
+//   point,<parameter>...,status,inputs,<figure>...
 // Cells are quoted as CSV (csv_text), so a value with commas, quotes or line breaks reads back
-// exactly. The status is "ok", "diverged at t = T s" or "error: message" (one line). A point is done when
-// its point.csv says ok for the same parameters; any other point runs again when the sweep does.
+// exactly. The status is "ok", "diverged at t = T s" or "error: message" (one line); inputs is what defined
+// the point (sweep/inputs.hpp). A point is done when its point.csv says ok for the same parameters
+// and the same inputs as now; any other point runs again when the sweep does.
 // A sweep that runs its points, merges the summary or writes its Slurm jobs holds DIR first
 // (claim_sweep_folder): a second one on the same folder is refused rather than run the points the
 // first is running.
-// summary.csv merges every point's row in the points' order (a point with no point.csv: "not run";
-// the figures are the union of every point's, in the order they first come).
+// summary.csv merges every point's row in the points' order, without the inputs (a point with no
+// point.csv: "not run"; one run with other inputs than now: "outdated: why", without figures; the
+// figures are the union of every point's, in the order they first come).
 #pragma once
 
 #include <optional>
@@ -19,14 +21,19 @@
 #include <vector>
 
 #include "io/output_dir.hpp"
+#include "sweep/inputs.hpp"
 #include "sweep/points.hpp"
 
 namespace beltsim::sweep {
 
+// the status summary.csv gives a point run with other inputs than now's, before why
+inline constexpr const char* kOutdated = "outdated: ";
 struct PointResult {
   std::string status = "ok";
   std::vector<std::pair<std::string, std::string>> figures;  // name, text (numbers in full precision)
+  std::string inputs = "";  // inputs_text (sweep/inputs.hpp); "" when unknown (a point whose process died)
   bool ok() const { return status == "ok"; }
+  bool outdated() const { return status.rfind(kOutdated, 0) == 0; }
 };
 
 inline constexpr const char* kPointFile = "point.csv";
@@ -41,6 +48,14 @@ void write_point_result(const std::string& dir, const Point& p, const PointResul
 // parameters (the sweep changed)
 std::optional<PointResult> read_point_result(const std::string& dir, const Point& p);
 
+// a point's result in DIR as it stands now
+struct PointCheck {
+  std::optional<PointResult> result;  // nullopt: no point.csv for these parameters
+  std::string changed;                // why its inputs are not now's (changed_inputs); "" when they are
+  bool done() const { return result && result->ok() && changed.empty(); }
+};
+PointCheck check_point(const std::string& dir, const Point& p, Definition& now);
+
 // r, or when a figure's name is one point.csv and summary.csv already have for a column (point,
 // status, a parameter, an earlier figure) a failed result that names it: a file would hold two
 // columns of one name
@@ -53,7 +68,14 @@ OutputDir claim_sweep_folder(const std::string& dir);
 struct SummaryCounts {
   int ok = 0, failed = 0, not_run = 0;
 };
-// DIR/summary.csv written whole from every point's point.csv
-SummaryCounts write_summary(const std::string& dir, const std::vector<Point>& points);
+// what DIR holds of each point: its result, nullopt when it has none; a result with other
+// inputs than now's as the status "outdated: why" without figures (but a failure recorded
+// without its inputs, that of a point whose process died, as it is)
+using Results = std::vector<std::optional<PointResult>>;
+Results current_results(const std::string& dir, const std::vector<Point>& points, Definition& now);
+// DIR/summary.csv written whole from results[k] of points[k] (an outdated point counted not run)
+SummaryCounts write_summary(const OutputDir& top, const std::vector<Point>& points, const Results& results);
+// the same from every point's point.csv
+SummaryCounts write_summary(const std::string& dir, const std::vector<Point>& points, Definition now);
 
 }  // namespace beltsim::sweep

@@ -251,20 +251,19 @@ void check_slurm_settings(const SlurmSettings& s) {
 SlurmJobs write_slurm_jobs(const std::vector<Point>& points, const SlurmSettings& s) {
   check_slurm_settings(s);
   std::vector<int> todo;
-  for (const Point& p : points) {
-    const auto r = read_point_result(s.dir, p);
-    if (!r || !r->ok()) todo.push_back(p.index);
-  }
+  Definition now = s.definition;
+  for (const Point& p : points)
+    if (s.rerun || !check_point(s.dir, p, now).done()) todo.push_back(p.index);
   SlurmJobs jobs;
   jobs.array = index_ranges(todo);
+  // nothing to run: an array without --array would be one task with no point to run
+  if (todo.empty()) return jobs;
   const OutputDir top(s.dir);
   std::string a = header(s, "sweep " + s.name + ": " + std::to_string(todo.size()) + " of " +
                                 std::to_string(points.size()) + " points, one array task each");
-  if (!todo.empty()) {
-    a += "#SBATCH --array=" + jobs.array;
-    if (s.max_parallel > 0) a += '%' + std::to_string(s.max_parallel);
-    a += '\n';
-  }
+  a += "#SBATCH --array=" + jobs.array;
+  if (s.max_parallel > 0) a += '%' + std::to_string(s.max_parallel);
+  a += '\n';
   a += "#SBATCH --output=" + sbatch_word(output_pattern(s.dir, kArrayOutput)) + "\n";
   std::vector<std::string> point = s.point_args;
   point.push_back("--point");

@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "sweep/capture.hpp"
+#include "sweep/inputs.hpp"
 #include "sweep/points.hpp"
 
 namespace beltsim::sweep {
@@ -32,10 +33,12 @@ struct SlurmSettings {
   std::optional<std::string> partition;   // --partition
   std::optional<std::string> time;        // --time, Slurm's format (minutes, MM:SS, HH:MM:SS, D-HH)
   int max_parallel = 0;                   // the array's %M; 0: as many as Slurm gives
+  Definition definition;                  // what defines a point now (a point done otherwise runs again)
+  bool rerun = false;                     // every point in the array (--rerun)
 };
 
 struct SlurmJobs {
-  std::string array_script, collect_script;  // the files written
+  std::string array_script, collect_script;  // the files written ("" when none was)
   std::string array;                         // the --array value ("" when every point is done)
 };
 
@@ -49,7 +52,8 @@ std::string shell_quoted(const std::string& s);
 // --output path), a path or name longer than slurmctld takes, a partition list or a time not in
 // Slurm's forms, a time Slurm reads as no limit (0, -1)
 void check_slurm_settings(const SlurmSettings& s);
-// writes both scripts for the points not done (sweep/results.hpp)
+// writes both scripts for the points not done (sweep/results.hpp); when every point is done,
+// neither (the scripts of an earlier --slurm are left as they were) and the array is ""
 SlurmJobs write_slurm_jobs(const std::vector<Point>& points, const SlurmSettings& s);
 // each sbatch's time and output bound: it answers in a second or two, one short line
 inline constexpr CaptureLimits kSbatchLimits{120, 65536};

@@ -109,6 +109,9 @@ class Pngs(Base):
         code, out, err = self.compare("a.png", "a.png", "--rtol", "1e-3")
         self.assertEqual(code, 2)
         self.assertIn("--rtol is for CSV files; a.png and a.png are PNGs", err)
+        code, out, err = self.compare("a.png", "a.png", "--failing")
+        self.assertEqual(code, 2)
+        self.assertIn("--failing is for CSV files", err)
         code, out, err = self.compare("a.png", "a.png", "--skip", "t")
         self.assertEqual(code, 2)
         self.assertIn("--skip is for CSV files", err)
@@ -153,16 +156,18 @@ class Csvs(Base):
         code, out, err = self.compare("a.csv", "b.csv")
         self.assertEqual(code, 1, err)
         self.assertEqual(out, "differ: 1 of 2 columns differ (driver.omega); worst: driver.omega at t = 0.07 s "
-                              "(row 8): 0.7 vs 0.7007, |a - b| = 0.0007, 999 times its tolerance "
-                              "(rtol 1e-06, atol 1e-12)\n")
+                              "(row 8): 0.7 vs 0.7007, |a - b| = 0.0007, 65.4163 times its tolerance "
+                              "(rtol 1e-06, atol 1e-05 rad/s)\n")
         # the tolerances: 1e-3 relative is within rtol 1e-3, for all columns or that one
         self.assertEqual(self.compare("a.csv", "b.csv", "--rtol", "1.001e-3")[0], 0)
         self.assertEqual(self.compare("a.csv", "b.csv", "--atol", "7.1e-4")[0], 0)
         self.assertEqual(self.compare("a.csv", "b.csv", "--col-tol", "driver.omega=1.001e-3")[0], 0)
         self.assertEqual(self.compare("a.csv", "b.csv", "--col-tol", "driver.omega=0,7.1e-4")[0], 0)
         self.assertEqual(self.compare("a.csv", "b.csv", "--col-tol", "driven.omega=1e-2")[0], 1)
-        code, out, err = self.compare("a.csv", "b.csv", "--rtol", "5e-4")
-        self.assertIn("1.998 times its tolerance (rtol 0.0005, atol 1e-12)", out)
+        code, out, err = self.compare("a.csv", "b.csv", "--rtol", "5e-4", "--atol", "0")
+        self.assertIn("1.998 times its tolerance (rtol 0.0005, atol 0 rad/s)", out)
+        # the default atol is rtol times 10 rad/s: 0.005 rad/s at rtol 5e-4 covers 0.0007
+        self.assertEqual(self.compare("a.csv", "b.csv", "--rtol", "5e-4")[0], 0)
 
     def test_a_nan_against_a_number_differs(self):
         rows = self.rows([i * 0.01 for i in range(11)])
@@ -170,14 +175,78 @@ class Csvs(Base):
         write_csv(self.path("b.csv"), self.HEADER, rows)
         code, out, err = self.compare("a.csv", "b.csv", "--rtol", "0.5")
         self.assertEqual(code, 1, err)
-        self.assertIn("worst: driven.omega at t = 0.03 s (row 4): 1.03 vs nan", out)
-        self.assertIn("beyond any tolerance", out)
+        self.assertEqual(out, "differ: NaN against a number in 1 of 2 columns (driven.omega), the first in "
+                              "driven.omega at t = 0.03 s (row 4): 1.03 vs nan; every number within its tolerance\n")
         write_csv(self.path("a2.csv"), self.HEADER, rows)
         self.assertEqual(self.compare("a2.csv", "b.csv")[0], 0, "NaN against NaN agrees")
         # a column left out: the rest is compared, and the line says what was left out
         code, out, err = self.compare("a.csv", "b.csv", "--skip", "driven.omega")
         self.assertEqual(code, 0, err)
         self.assertIn("1 columns (left out: driven.omega) agree at 11 times", out)
+
+    def test_nan_mismatches_are_reported_apart_from_the_numbers(self):
+        # 0 against nan at t = 0 (a mean not defined yet in one run), and a real shift later: the
+        # worst is the shift, the NaN said after it
+        rows = self.rows([i * 0.01 for i in range(11)], bump=(1, 6, 1.01))
+        rows[0][2] = "nan"
+        write_csv(self.path("b.csv"), self.HEADER, rows)
+        code, out, err = self.compare("a.csv", "b.csv")
+        self.assertEqual(code, 1, err)
+        self.assertTrue(out.startswith("differ: 1 of 2 columns differ (driver.omega); worst: driver.omega at "
+                                       "t = 0.06 s (row 7): 0.6 vs 0.606,"), out)
+        self.assertTrue(out.endswith("; and NaN against a number in 1 column (driven.omega), the first in "
+                                     "driven.omega at t = 0 s (row 1): 1 vs nan\n"), out)
+
+    def test_tolerances_by_unit(self):
+        # an arc 10 % off and a tension 0.1 % off: one atol of 0.1 for every column (the old recipe)
+        # leaves the arc, in metres, untested; by unit, rtol 1e-2 is 1 mm on the arc and 1 N on the
+        # tension, so the arc fails and the tension passes
+        header = ["t", "driver.contact_arc", "span_a_b.tension", "driver.creep"]
+        a = [[t, 0.3, 500 + t, 0.01] for t in (0, 0.01, 0.02)]
+        b = [[t, 0.33 if t == 0.01 else 0.3, 500.5 + t, 0.01] for t in (0, 0.01, 0.02)]
+        write_csv(self.path("x.csv"), header, a)
+        write_csv(self.path("y.csv"), header, b)
+        self.assertEqual(self.compare("x.csv", "y.csv", "--rtol", "1e-2", "--atol", "0.1")[0], 0)
+        code, out, err = self.compare("x.csv", "y.csv", "--rtol", "1e-2")
+        self.assertEqual(code, 1, err)
+        self.assertIn("1 of 3 columns differ (driver.contact_arc)", out)
+        self.assertIn("(rtol 0.01, atol 0.001 m)", out)
+        # a unit's own atol, typed N.m or N·m alike; a column's own before it
+        self.assertEqual(self.compare("x.csv", "y.csv", "--rtol", "1e-2", "--atol", "m=0.05")[0], 0)
+        self.assertEqual(self.compare("x.csv", "y.csv", "--rtol", "1e-2", "--col-tol", "driver.contact_arc=0.2")[0], 0)
+        code, out, err = self.compare("x.csv", "y.csv", "--rtol", "0", "--atol", "N=0.4", "--atol", "m=1")
+        self.assertIn("worst: span_a_b.tension", out)
+        self.assertIn("(rtol 0, atol 0.4 N)", out)
+        # units written in the header, between brackets
+        write_csv(self.path("u.csv"), ["t", "gap [m]", "load [N]"], [[0, 0.3, 500], [1, 0.3, 500]])
+        write_csv(self.path("v.csv"), ["t", "gap [m]", "load [N]"], [[0, 0.3003, 500.5], [1, 0.3, 500]])
+        code, out, err = self.compare("u.csv", "v.csv", "--rtol", "1e-3")
+        self.assertEqual(code, 0, out + err)
+        self.assertIn("closest to its tolerance: load [N] at t = 0 s (row 1)", out)
+        self.assertIn("(rtol 0.001, atol 0.1 N)", out)
+        for args, message in [(["--atol", "1", "--atol", "2"], "--atol A is given twice"),
+                              (["--atol", "N=1", "--atol", "N=2"], "the unit 'N' is given twice"),
+                              (["--atol", "N=-1"], "--atol N must be >= 0, got -1")]:
+            code, out, err = self.compare("x.csv", "y.csv", *args)
+            self.assertEqual(code, 2, err)
+            self.assertIn(message, err)
+
+    def test_every_failing_column_on_request(self):
+        # seven columns off: the line names five and the count of the rest; --failing lists each
+        header = ["t"] + ["p%d.omega" % k for k in range(7)] + ["p0.creep"]
+        write_csv(self.path("x.csv"), header, [[0] + [10] * 7 + [0.01], [1] + [10] * 7 + [0.01]])
+        write_csv(self.path("y.csv"), header, [[0] + [10] * 7 + [0.01], [1] + [11 + k for k in range(7)] + ["nan"]])
+        code, out, err = self.compare("x.csv", "y.csv")
+        self.assertEqual(code, 1, err)
+        self.assertEqual(len(out.splitlines()), 1)
+        self.assertIn("7 of 8 columns differ (p0.omega, p1.omega, p2.omega, p3.omega, p4.omega and 2 more)", out)
+        code, out, err = self.compare("x.csv", "y.csv", "--failing")
+        lines = out.splitlines()
+        self.assertEqual(len(lines), 9, out)
+        for k in range(7):
+            self.assertTrue(lines[1 + k].startswith("  p%d.omega [rad/s]: worst at t = 1 s (row 2): 10 vs %d," % (k, 11 + k)),
+                            lines[1 + k])
+        self.assertEqual(lines[8], "  p0.creep [1]: NaN against a number at 1 time, the first at t = 1 s (row 2): 0.01 vs nan")
 
     def test_mismatched_headers_differ_naming_the_columns(self):
         write_csv(self.path("b.csv"), ["t", "driver.omega", "idler.omega"], self.rows([i * 0.01 for i in range(11)]))

@@ -82,16 +82,21 @@ std::string joined(const std::vector<std::string>& cells) {
   return s;
 }
 
+// what defined the points: a program and options of this harness's, no files
+const sw::Inputs kInputs{"fuzz_sweep", "--set 'k=1,2'", {}};
+
 // point.csv of each point reads back as written, for the point's own parameters
 void check_points(const std::string& dir, const std::vector<sw::Point>& points, const sw::PointResult& given) {
   for (const sw::Point& p : points) {
-    const sw::PointResult r = sw::unique_columns(p, given);  // as the sweep does before it writes
+    sw::PointResult r = sw::unique_columns(p, given);  // as the sweep does before it writes
+    r.inputs = sw::inputs_text(kInputs);
     sw::write_point_result(dir, p, r);
     const std::optional<sw::PointResult> back = sw::read_point_result(dir, p);
     if (!back)
       finding("point " + p.id + "'s point.csv does not read back for its parameters (" + sw::params_text(p) + ")",
               slurp(fs::path(dir) / p.id / sw::kPointFile), "nothing");
     if (back->status != r.status) finding("point " + p.id + "'s status", r.status, back->status);
+    if (back->inputs != r.inputs) finding("point " + p.id + "'s inputs", r.inputs, back->inputs);
     if (back->figures != r.figures)
       finding("point " + p.id + "'s figures", std::to_string(r.figures.size()), std::to_string(back->figures.size()));
   }
@@ -100,7 +105,7 @@ void check_points(const std::string& dir, const std::vector<sw::Point>& points, 
 // summary.csv: a header and a row per point with each parameter's text, the status and the figures,
 // as CSV and as `beltsim plot` reads it
 void check_summary(const std::string& dir, const std::vector<sw::Point>& points) {
-  sw::write_summary(dir, points);
+  sw::write_summary(dir, points, sw::Definition{kInputs.program, kInputs.options, {}});
   const std::string path = (fs::path(dir) / sw::kSummaryFile).string();
   const std::vector<std::vector<std::string>> rows = beltsim::csv_rows(slurp(path));
   if (rows.size() != points.size() + 1)

@@ -47,16 +47,35 @@ TEST(SweepResults, PointValuesReadBackExactly) {
   std::vector<Value> values;
   for (const std::string& v : kAwkward) values.emplace_back(v);
   const std::vector<Point> points = grid_points(Grid{{"how"}, {values}});
+  // what defined the points: a file with a comma, a quote and a space in its path
+  const Inputs in{"test program", "--set 'a=1,\"2\"'", {{dir + "/a \"b\",c.lua", std::string(64, 'f')}}};
   for (const Point& p : points) {
     PointResult r;
     r.figures = {{"echo", value_text(p.params[0].second) + "\r\n!"}, {"n\nl", "x"}};
+    r.inputs = inputs_text(in);
     write_point_result(dir, p, r);
     const auto back = read_point_result(dir, p);
     ASSERT_TRUE(back) << test::slurp(dir + "/" + p.id + "/point.csv");
     EXPECT_TRUE(back->ok());
     EXPECT_EQ(back->figures, r.figures);
+    EXPECT_EQ(back->inputs, r.inputs);
+    const auto parsed = parse_inputs(back->inputs);
+    ASSERT_TRUE(parsed);
+    EXPECT_EQ(parsed->files, in.files);
+    EXPECT_EQ(parsed->options, in.options);
   }
-  const SummaryCounts c = write_summary(dir, points);
+  // the file is not there: no point is done now, each outdated, saying why
+  Definition now{"test program", in.options, {}};
+  const SummaryCounts gone = write_summary(dir, points, now);
+  EXPECT_EQ(gone.not_run, static_cast<int>(points.size()));
+  EXPECT_EQ(check_point(dir, points[0], now).changed,
+            "the file " + in.files[0].first + ", which the point loaded, is gone or unreadable");
+  now.hashes[in.files[0].first] = in.files[0].second;  // as if it were there with these bytes
+  EXPECT_EQ(check_point(dir, points[0], now).changed, "");
+  now.program = "another";
+  EXPECT_EQ(check_point(dir, points[0], now).changed, "the program has changed (was test program)");
+  now.program = "test program";
+  const SummaryCounts c = write_summary(dir, points, now);
   EXPECT_EQ(c.ok, static_cast<int>(points.size()));
   const auto rows = csv_rows(test::slurp(dir + "/summary.csv"));
   ASSERT_EQ(rows.size(), points.size() + 1);
@@ -68,7 +87,7 @@ TEST(SweepResults, PointValuesReadBackExactly) {
 // point.csv and summary.csv have the columns point, the parameters, status, the figures: a
 // parameter may not take the name of another column, and a point whose figure does fails, saying so
 TEST(SweepResults, EveryColumnHasItsOwnName) {
-  for (const char* name : {"point", "status"}) {
+  for (const char* name : {"point", "status", "inputs"}) {
     EXPECT_THROW(grid_points(Grid{{"mu", name}, {{Value(1LL)}, {Value(2LL)}}}), std::invalid_argument) << name;
     EXPECT_THROW(sample_points(Samples{2, {name}, {{0, 1}}, 1}), std::invalid_argument) << name;
   }

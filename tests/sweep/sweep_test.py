@@ -61,6 +61,27 @@ return beltsim.sweep {
 """
 
 
+# a sweep whose driven pulley's damping is in the sweep file and its belt's mass in a module it
+# loads (require): editing either changes every point's figures
+EDITABLE = """
+local belt = require "belt_params"
+return beltsim.sweep {
+  grid = { pretension = {300, 400, 500, 600} },
+  run = function(p)
+    local drive = beltsim.scene {
+      pulleys = {
+        { name = "driver", centre = {0.0, 0.0}, radius = 0.1, inertia = 0.025, torque = beltsim.ramp(0.01, -20.0) },
+        { name = "driven", centre = {0.29, 0.0}, radius = 0.1, inertia = 0.025, torque = { per_speed = DAMPING } },
+      },
+      belt = { elements = 40, pretension = p.pretension, mu = 1, mass_per_length = belt.mass },
+    }
+    local r = drive:run { t_end = 0.1, sample = 1e-3, progress = false }
+    return { slip = r.omega.driver - r.omega.driven, steps = r.steps }
+  end,
+}
+"""
+
+
 def alive(pid):
     """the process runs (not gone, not a zombie)"""
     try:
@@ -116,8 +137,9 @@ class Sweep(unittest.TestCase):
         self.assertEqual(rows(self.path("alone", "summary.csv")), summary)
         # full precision: each figure reads back as the point's own value
         for r in summary[1:]:
-            point = rows(self.path("out", "grid", r[0], "point.csv"))
-            self.assertEqual(dict(zip(summary[0], r)), dict(zip(point[0], point[1])))
+            point = dict(zip(*rows(self.path("out", "grid", r[0], "point.csv"))))
+            self.assertIn(GRID, point.pop("inputs"))
+            self.assertEqual(dict(zip(summary[0], r)), point)
         slip = [float(r[summary[0].index("slip")]) for r in summary[1:]]
         self.assertEqual(len(set(slip)), 6, "the points gave the same figures")
 
@@ -228,6 +250,91 @@ class Sweep(unittest.TestCase):
         self.assertEqual(summary[0], ["point", "k", "status"])
         self.assertTrue(summary[1][2].startswith("error: ") and "'k'" in summary[1][2], summary[1][2])
 
+    def write_editable(self, damping, density):
+        with open(self.path("editable.lua"), "w") as f:
+            f.write(EDITABLE.replace("DAMPING", damping))
+        with open(self.path("belt_params.lua"), "w") as f:
+            f.write("return { density = %s }\n" % density)
+
+    def read(self, *parts):
+        with open(self.path(*parts), "rb") as f:
+            return f.read()
+
+    def test_a_resumed_sweep_after_an_edit_equals_an_uninterrupted_one(self):
+        # a sweep stopped after its first point, a file that defines it edited, the same command
+        # again: its summary.csv is byte for byte that of the edited sweep run whole elsewhere
+        for n, edit in enumerate((("-0.7", "0.096"), ("-0.5", "0.11"))):  # the sweep file, the module it loads
+            with self.subTest(edit=edit):
+                resumed, whole = "resumed%d" % n, "whole%d" % n
+                self.write_editable("-0.5", "0.096")
+                args = ["sweep", "editable.lua", "--jobs", "1", "--out", resumed]
+                proc = subprocess.Popen([BELTSIM, *args], cwd=self.dir, stderr=subprocess.PIPE, text=True)
+                self.wait_for(self.path(resumed, "0", "point.csv"), proc)
+                proc.send_signal(signal.SIGINT)
+                proc.communicate(timeout=LIMIT)
+                self.write_editable(*edit)
+                p = self.run_beltsim(*args)
+                self.run_beltsim("sweep", "editable.lua", "--jobs", "2", "--out", whole)
+                self.assertEqual(self.read(resumed, "summary.csv"), self.read(whole, "summary.csv"))
+                changed = self.path("editable.lua" if edit[0] != "-0.5" else "belt_params.lua")
+                self.assertRegex(p.stderr, r"sweep editable: [1-4] points? runs? again: the file %s has changed"
+                                 % changed)
+                self.assertNotIn("done already", p.stderr)
+
+    def test_what_else_defines_a_point_reruns_it(self):
+        # the same sweep file: an edit that changes nothing of its text keeps every point; another
+        # program (the executable with a byte added, which runs the same), --trusted and --rerun
+        # run them all again, saying why
+        self.write_editable("-0.5", "0.096")
+        self.run_beltsim("sweep", "editable.lua", "--jobs", "2")
+        os.utime(self.path("editable.lua"))
+        p = self.run_beltsim("sweep", "editable.lua", "--jobs", "2")
+        self.assertIn("4 of 4 points done already", p.stderr)
+        other = self.path("beltsim-copy")
+        shutil.copy(BELTSIM, other)
+        with open(other, "ab") as f:
+            f.write(b"\0")
+        p = subprocess.run([other, "sweep", "editable.lua", "--jobs", "2"], cwd=self.dir, capture_output=True,
+                           text=True, timeout=300)
+        self.assertEqual(p.returncode, 0, p.stderr)
+        self.assertIn("4 points run again: the program has changed", p.stderr)
+        p = self.run_beltsim("sweep", "editable.lua", "--jobs", "2", "--trusted")
+        self.assertIn("4 points run again: the program has changed", p.stderr)  # back to this one
+        p = self.run_beltsim("sweep", "editable.lua", "--jobs", "2")
+        self.assertIn("4 points run again: the options have changed (were '--trusted', now '')", p.stderr)
+        p = self.run_beltsim("sweep", "editable.lua", "--jobs", "2", "--rerun")
+        self.assertIn("--rerun: all 4 points run again", p.stderr)
+        # --collect after an edit: the points are not the sweep's any more
+        self.write_editable("-0.7", "0.096")
+        self.run_beltsim("sweep", "editable.lua", "--collect", ok=(1,))
+        summary = rows(self.path("out", "editable", "summary.csv"))
+        self.assertEqual(summary[0], ["point", "pretension", "status"])
+        for r in summary[1:]:
+            self.assertEqual(r[2], "outdated: the file %s has changed" % self.path("editable.lua"))
+
+    def test_a_value_added_to_a_set_list_runs_that_point_alone(self):
+        # the --set lists are the grid, not what defines a point: its values are its parameters
+        self.run_beltsim("sweep", PLAIN, "--set", "pretension=300,500")
+        p = self.run_beltsim("sweep", PLAIN, "--set", "pretension=300,500,700")
+        self.assertIn("2 of 3 points done already", p.stderr)
+        self.assertNotIn("run again", p.stderr)
+
+    def test_slurm_with_nothing_left_leaves_the_job_scripts(self):
+        # --slurm --time, the points then run (here, as the array's tasks would), --slurm again
+        self.run_beltsim("sweep", GRID, "--slurm", "--time", "10")
+        before = self.read("out", "grid", "sweep.sbatch")
+        self.assertIn(b"#SBATCH --array=0-5\n", before)
+        self.run_beltsim("sweep", GRID, "--jobs", "2")
+        p = self.run_beltsim("sweep", GRID, "--slurm")
+        self.assertIn("nothing to submit", p.stderr)
+        self.assertEqual(p.stdout, "")
+        self.assertEqual(self.read("out", "grid", "sweep.sbatch"), before)
+        # an edit: every point in the array again
+        with open(GRID) as f, open(self.path("grid.lua"), "w") as g:
+            g.write(f.read().replace("per_speed = -0.5", "per_speed = -0.6"))
+        self.run_beltsim("sweep", "grid.lua", "--out", "out/grid", "--slurm", "--time", "10")
+        self.assertIn(b"#SBATCH --array=0-5\n", self.read("out", "grid", "sweep.sbatch"))
+
     def finished_points(self):
         return [k for k in range(8) if os.path.exists(self.path("out", "plain", str(k), "point.csv"))]
 
@@ -241,11 +348,22 @@ class Sweep(unittest.TestCase):
         proc.communicate(timeout=LIMIT)
         before = os.stat(first).st_ino
         done = self.finished_points()
+        # summary.csv as the points stood when the sweep ended, however it ended
+        summary = rows(self.path("out", "plain", "summary.csv"))
+        self.assertEqual([k for k in range(8) if summary[k + 1][4] == "ok"], done)
+        self.assertEqual([r[4] for r in summary[1:] if r[4] != "ok"], ["not run"] * (8 - len(done)))
         p = self.run_beltsim(*args[1:])
         self.assertIn("%d of 8 points done already" % len(done), p.stderr)
         self.assertEqual(os.stat(first).st_ino, before, "a finished point ran again")
-        summary = rows(self.path("out", "plain", "summary.csv"))
-        self.assertEqual([r[4] for r in summary[1:]], ["ok"] * 8)
+        # the summary of the sweep run whole (in a folder of its own, so that the paths among the
+        # figures are the same), every cell but the wall time
+        os.mkdir(self.path("whole"))
+        p = subprocess.run(args, cwd=self.path("whole"), capture_output=True, text=True, timeout=300)
+        self.assertEqual(p.returncode, 0, p.stderr)
+        resumed, whole = rows(self.path("out", "plain", "summary.csv")), rows(self.path("whole", "out", "plain",
+                                                                                         "summary.csv"))
+        wall = whole[0].index("wall")
+        self.assertEqual([r[:wall] + r[wall + 1:] for r in resumed], [r[:wall] + r[wall + 1:] for r in whole])
         return proc.returncode
 
     def test_ctrl_c_stops_cleanly_and_the_rest_runs_later(self):

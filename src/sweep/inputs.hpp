@@ -1,0 +1,41 @@
+// What defines a sweep point's result besides its parameters (docs/sweeps.md, "Resuming"): the
+// program, the command's options that change results, and every script file the point loaded
+// (the sweep file and what it loaded with dofile, loadfile and require), each with the SHA-256 of
+// its bytes. A point records them in its point.csv (the column `inputs`, sweep/results.hpp); a
+// resumed sweep counts a point done only when each is as it is now, and says what changed
+// otherwise.
+#pragma once
+
+#include <map>
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace beltsim::sweep {
+
+struct Inputs {
+  std::string program;                                     // program_identity()
+  std::string options;                                     // the options as typed that change results ("" for none)
+  std::vector<std::pair<std::string, std::string>> files;  // absolute path, SHA-256 (hex)
+};
+
+// as point.csv holds it, a line each: "program: ...", "options: ...", then "file SHA256 PATH"
+std::string inputs_text(const Inputs& in);
+// nullopt when text is not in that form
+std::optional<Inputs> parse_inputs(const std::string& text);
+
+// "beltsim VERSION, executable SHA256": a rebuilt program is another program
+std::string program_identity();
+
+// what defines a point now, bar its files (read as needed, once each)
+struct Definition {
+  std::string program, options;
+  std::map<std::string, std::string> hashes;  // path -> SHA-256 now ("" when unreadable)
+};
+
+// "" when recorded is what defines the point now, else why not, one phrase for a message:
+// "the file /a/b.lua has changed", "the program has changed (was ...)"
+std::string changed_inputs(const std::string& recorded, Definition& now);
+
+}  // namespace beltsim::sweep

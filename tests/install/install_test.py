@@ -1,0 +1,113 @@
+#!/usr/bin/env python3
+"""Installing beltsim (docs/install.md): `cmake --install` into a scratch prefix, and the Debian
+package CPack makes, unpacked with `dpkg -x` into a scratch root (the machine's own /usr is left
+alone, so no `dpkg -i`): each has the program, the example scripts and the docs, and the program
+runs an installed example (frames, video and the time series) from a folder outside the source
+tree. The package's dependencies must be Debian packages this (Debian) machine has, in the
+versions asked: `dpkg -i` here would take it.
+
+usage: install_test.py BUILD_DIR BELTSIM
+"""
+import os
+import re
+import shutil
+import subprocess
+import sys
+import tempfile
+import unittest
+
+BUILD = None
+BELTSIM = None
+SOURCE = os.path.abspath(os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", ".."))
+
+
+def run(args, **kw):
+    p = subprocess.run(args, capture_output=True, text=True, timeout=600, **kw)
+    if p.returncode != 0:
+        raise AssertionError("%s failed (%d):\n%s%s" % (" ".join(args), p.returncode, p.stdout, p.stderr))
+    return p
+
+
+def installed(name):
+    """the version of package name installed here, None when it is not"""
+    p = subprocess.run(["dpkg-query", "-W", "-f", "${Status}\t${Version}", name], capture_output=True, text=True)
+    if p.returncode != 0 or not p.stdout.startswith("install ok installed"):
+        return None
+    return p.stdout.split("\t")[1]
+
+
+def satisfied(alternative):
+    """'name (>= 1.2)' or 'name' by a package installed here"""
+    m = re.fullmatch(r"([a-z0-9][a-z0-9+.-]+)(?::any)?(?:\s*\((<<|<=|=|>=|>>)\s*([^)]+)\))?", alternative.strip())
+    if not m:
+        raise AssertionError("not a Debian dependency: %r" % alternative)
+    version = installed(m.group(1))
+    if version is None or not m.group(2):
+        return version is not None
+    op = {"<<": "lt", "<=": "le", "=": "eq", ">=": "ge", ">>": "gt"}[m.group(2)]
+    return subprocess.run(["dpkg", "--compare-versions", version, op, m.group(3)]).returncode == 0
+
+
+class Install(unittest.TestCase):
+    def setUp(self):
+        self.dir = tempfile.mkdtemp(prefix="beltsim_install_")
+        self.addCleanup(shutil.rmtree, self.dir, True)
+
+    def path(self, *parts):
+        return os.path.join(self.dir, *parts)
+
+    def check_tree(self, root):
+        """root/bin/beltsim, the examples and the docs; the program runs an example outside the
+        source tree"""
+        program = os.path.join(root, "bin", "beltsim")
+        self.assertTrue(os.access(program, os.X_OK), program)
+        with open(os.path.join(SOURCE, "CMakeLists.txt")) as f:
+            version = re.search(r"project\(beltsim VERSION ([0-9.]+)", f.read())
+        self.assertEqual(run([program, "--version"]).stdout.strip(), "beltsim " + version.group(1))
+        share = os.path.join(root, "share")
+        for f in ("beltsim/examples/paper_dry.lua", "beltsim/examples/automotive_tensioner.lua",
+                  "beltsim/single_node_slurm.py", "doc/beltsim/README.md", "doc/beltsim/sweeps.md",
+                  "doc/beltsim/install.md", "doc/beltsim/examples/tutorial/drive.lua"):
+            self.assertTrue(os.path.isfile(os.path.join(share, f)), f)
+        ldd = run(["ldd", program]).stdout
+        self.assertNotIn("not found", ldd)
+        # the example copied to a folder of its own, run there: 3 frames, the video, the series
+        work = tempfile.mkdtemp(prefix="scenario_", dir=self.dir)
+        self.assertFalse(os.path.realpath(work).startswith(SOURCE + os.sep))
+        shutil.copy(os.path.join(share, "beltsim", "examples", "paper_dry.lua"), work)
+        p = run([program, "run", "paper_dry.lua", "--t-end", "0.01"], cwd=work)
+        out = os.path.join(work, "out", "paper_dry")
+        with open(os.path.join(out, "timeseries.csv")) as f:
+            self.assertGreater(len(f.readlines()), 5)
+        self.assertTrue(os.path.getsize(os.path.join(out, "paper_dry.mp4")) > 1000, p.stdout)
+        self.assertTrue(os.listdir(os.path.join(out, "frames")), p.stdout)
+
+    def test_cmake_install(self):
+        prefix = self.path("prefix")
+        run(["cmake", "--install", BUILD, "--prefix", prefix])
+        self.check_tree(prefix)
+
+    def test_debian_package(self):
+        run(["cpack", "-G", "DEB", "-B", self.path("pkg"), "--config", os.path.join(BUILD, "CPackConfig.cmake")],
+            cwd=BUILD)
+        debs = [f for f in os.listdir(self.path("pkg")) if f.endswith(".deb")]
+        self.assertEqual(len(debs), 1, debs)
+        deb = self.path("pkg", debs[0])
+        info = run(["dpkg-deb", "-f", deb, "Package", "Depends"]).stdout
+        self.assertIn("Package: beltsim", info)
+        depends = info.split("Depends:", 1)[1].strip()
+        for name in ("liblua5.4-0", "libsundials-cvode6", "libosmesa6", "libnettle8", "fonts-dejavu-core"):
+            self.assertIn(name, depends)
+        for group in depends.split(","):
+            self.assertTrue(any(satisfied(a) for a in group.split("|")),
+                            "no Debian package installed here satisfies %r" % group.strip())
+        root = self.path("root")
+        run(["dpkg-deb", "-x", deb, root])
+        self.assertEqual(sorted(os.listdir(os.path.join(root, "usr"))), ["bin", "share"])
+        self.check_tree(os.path.join(root, "usr"))
+
+
+if __name__ == "__main__":
+    BUILD = os.path.abspath(sys.argv.pop(1))
+    BELTSIM = os.path.abspath(sys.argv.pop(1))
+    unittest.main(verbosity=2)
