@@ -55,6 +55,11 @@ void add_run_overrides(CLI::App* c, Raw& raw) {
                 "error (exit 1)")
       ->type_name("S");
   c->add_flag("--no-frames", raw.no_frames, "render no frames and no video, whatever the script asks");
+  c->add_option("--serve", raw.serve,
+                "watch and steer the run from a browser: a page on 127.0.0.1:PORT (default: a free port), its "
+                "address printed at the start (docs/live-view.md)")
+      ->expected(0, 1)
+      ->type_name("[PORT]");
   c->add_flag("--check", raw.check,
               "every run estimates its own error against a companion solution at rtol/10 (about 3x the cost): "
               "reported at its end and in parameters.csv (check.*), a warning past 10x rtol");

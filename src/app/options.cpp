@@ -102,6 +102,10 @@ script::Overrides overrides(const Raw& raw) {
     if (!(x > 0)) throw UsageError("--max-wall must be > 0 s, got " + *raw.max_wall);
     o.max_wall = x;
   }
+  if (raw.serve) {
+    o.serve = raw.serve->empty() ? 0 : whole_number("--serve", *raw.serve, 0);
+    if (*o.serve > 65535) throw UsageError("--serve: a port in 0..65535 (0: a free one), got " + *raw.serve);
+  }
   o.no_frames = raw.no_frames;
   o.check = raw.check;
   try {

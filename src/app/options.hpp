@@ -21,7 +21,7 @@ struct UsageError : std::runtime_error {
 // the options as typed: text, turned into numbers and checked by the readers below and the
 // commands, so every number goes through decimal()
 struct Raw {
-  std::optional<std::string> out, t_end, integrator, rtol, max_wall;
+  std::optional<std::string> out, t_end, integrator, rtol, max_wall, serve;
   bool no_frames = false, check = false;
   std::optional<std::string> integrators, rtols, ref_rtol, wall_limit, metric;  // wp
   std::optional<std::string> from;                                      // plot

@@ -79,6 +79,7 @@ int run_console(const std::optional<std::string>& script, const std::vector<std:
   Interpreter lua(safety);
   lua.set_overrides(o);
   lua.set_stop_flag(&stop_flag());
+  if (o.serve) lua.serve(*o.serve);
   const Interruptible on_signal(lua);
   lua_State* L = lua.state();
   Context& ctx = lua.context();

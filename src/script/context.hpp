@@ -12,6 +12,10 @@
 #include "script/interpreter.hpp"
 #include "script/lua_law.hpp"
 
+namespace beltsim::live {
+class LiveServer;
+}
+
 namespace beltsim::script {
 
 // the registry field holding the result table of the last scene:run{} (a sweep point of the quick form)
@@ -42,6 +46,8 @@ struct Context {
   std::optional<std::pair<double, std::string>> divergence;
   bool args_warned = false;  // the unread --set keys were reported at a run's start
   bool t_end_warned = false;  // --t-end was said not to shorten scene:start's simulations
+  // the live view of --serve (Interpreter::serve): every run of the session feeds it
+  std::shared_ptr<live::LiveServer> serve;
   // the state Lua laws call into (emptied when the interpreter closes it)
   std::shared_ptr<LawHost> law_host = std::make_shared<LawHost>();
 };

@@ -18,6 +18,7 @@
 #include "script/lua_api.hpp"
 #include "script/lua_scene.hpp"
 #include "script/lua_sim.hpp"
+#include "script/live_feed.hpp"
 #include "script/progress.hpp"
 #include "script/sandbox.hpp"
 #include "script/signals.hpp"
@@ -435,7 +436,8 @@ int l_scene_run(lua_State* L) {
   try {
     const HostWork work;  // beltsim's own work, not Lua code (signals.hpp)
     ProgressLine line(progress);
-    res = run(*sc, rs, ctx->stop, line.callback());
+    LiveFeed feed(ctx->serve.get());
+    res = run(*sc, rs, ctx->stop, feed.callback(line.callback()), [&](const Simulation* sim) { feed.watch(sim); });
   } catch (const DivergenceError& e) {
     error = std::string(e.what()) + " (the samples up to then are in " + rs.out_dir + "/timeseries.csv)";
     ctx->divergence = {e.t, e.what()};

@@ -257,8 +257,10 @@ class Simulation {
 std::string cannot_save(const std::string& integrator);
 
 // A batch run: start, run_to(t_end), close. Throws as Simulation does; first drops the events
-// after t_end (drop_after_end) and checks the settings (check).
+// after t_end (drop_after_end) and checks the settings (check). watch (when set) sees the
+// simulation once it has started, and nullptr when run_to has returned or thrown (the simulation
+// still there): the live view's feed (script/live_feed.hpp).
 RunResult run(const Scene& scene, const RunSettings& settings, const std::atomic<bool>* stop = nullptr,
-              const RunProgress& progress = {});
+              const RunProgress& progress = {}, const std::function<void(const Simulation*)>& watch = {});
 
 }  // namespace beltsim

@@ -1,0 +1,89 @@
+// The live view's page (@TOKEN@ stands for the token, put in by the server): plain HTML and JavaScript of ours; the
+// plots are Debian's dygraphs, served by beltsim from where Debian installs it (live_server.cpp).
+#include "live/live_server.hpp"
+
+namespace beltsim::live {
+
+const char* page_html() {
+  return R"html(<!DOCTYPE html>
+<html lang="en">
+<head>
+<meta charset="utf-8">
+<title>beltsim live</title>
+<link rel="stylesheet" href="dygraph.css?token=@TOKEN@">
+<style>
+body { font-family: sans-serif; margin: 1em; }
+#bar span { margin-right: 1.5em; }
+#bar b { font-variant-numeric: tabular-nums; }
+#plot { width: 100%; height: 420px; }
+#columns label { margin-right: 1em; white-space: nowrap; }
+</style>
+</head>
+<body>
+<div id="bar">
+<span>run <b id="name">-</b></span>
+<span>t = <b id="t">-</b> s</span>
+<span>wall / simulated <b id="ratio">-</b></span>
+<span>step <b id="h">-</b> s</span>
+<span>status <b id="status">connecting</b></span>
+</div>
+<div id="plot"></div>
+<div id="columns"></div>
+<script src="dygraph.js?token=@TOKEN@"></script>
+<script>
+"use strict";
+const q = "?token=@TOKEN@";
+let columns = [], data = [], graph = null, drawn = true, shown = [];
+function fmt(x, digits) { return x === null ? "-" : Number(x).toPrecision(digits); }
+// the columns plotted at first: pulley speeds, span tensions, slip
+function chosen(name) { return /\.omega$|tension|slip/.test(name); }
+function setup() {
+  const box = document.getElementById("columns");
+  box.innerHTML = "";
+  shown = columns.map(chosen);
+  if (!shown.some(x => x)) shown = columns.map((c, k) => k < 4);
+  columns.forEach((c, k) => {
+    const l = document.createElement("label"), cb = document.createElement("input");
+    cb.type = "checkbox"; cb.checked = shown[k]; cb.dataset.column = c;
+    cb.onchange = () => { shown[k] = cb.checked; if (graph) graph.setVisibility(k, cb.checked); };
+    l.appendChild(cb); l.appendChild(document.createTextNode(" " + c)); box.appendChild(l);
+  });
+  if (graph) graph.destroy();
+  graph = null;
+}
+function draw() {
+  drawn = true;
+  if (data.length === 0 || columns.length === 0) return;
+  if (!graph) {
+    graph = new Dygraph(document.getElementById("plot"), data,
+                        { labels: ["t"].concat(columns), visibility: shown, xlabel: "t [s]", legend: "always",
+                          labelsSeparateLines: false });
+  } else {
+    graph.updateOptions({ file: data });
+  }
+}
+const es = new EventSource("events" + q);
+es.addEventListener("run", e => {
+  const r = JSON.parse(e.data);
+  document.getElementById("name").textContent = r.name || "-";
+  columns = r.columns; data = []; setup();
+});
+es.addEventListener("samples", e => {
+  const rows = JSON.parse(e.data);
+  if (rows.length === 0) return;
+  for (const r of rows) data.push([r[0]].concat(r.slice(3)));
+  const last = rows[rows.length - 1];
+  document.getElementById("t").textContent = fmt(last[0], 6);
+  document.getElementById("ratio").textContent = fmt(last[1], 3);
+  document.getElementById("h").textContent = fmt(last[2], 3);
+  if (drawn) { drawn = false; requestAnimationFrame(draw); }
+});
+es.addEventListener("status", e => { document.getElementById("status").textContent = JSON.parse(e.data); });
+es.onerror = () => { document.getElementById("status").textContent = "disconnected (the run has ended?)"; };
+</script>
+</body>
+</html>
+)html";
+}
+
+}  // namespace beltsim::live

@@ -1,0 +1,121 @@
+#!/usr/bin/env python3
+"""The live view's server (docs/live-view.md, src/live/): `beltsim run S.lua --serve` answers 403
+without the token printed at its start, serves the page and its plotting library with it and
+nothing else, streams samples whose t advances, and a client that disconnects mid-run leaves the
+run to finish whole (timeseries.csv to t_end, exit 0). Each step waits for what it needs (the
+address on stderr, the stream's events); no sleeps.
+
+usage: live_test.py BELTSIM
+"""
+import http.client
+import json
+import os
+import shutil
+import subprocess
+import sys
+import tempfile
+import unittest
+import urllib.parse
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "support"))
+from scenes import two_pulley  # noqa: E402
+
+BELTSIM = None
+T_END = 1.0  # [s] long enough (several seconds of wall time) for the stream to be read mid-run
+SAMPLE = 1e-3  # [s] the runs' sample interval: timeseries.csv has T_END / SAMPLE + 1 rows
+
+
+def events(resp):
+    """the stream's events as (name, data) pairs, as they arrive"""
+    name, data = "message", []
+    while True:
+        line = resp.readline()
+        if not line:
+            return
+        line = line.decode().rstrip("\n")
+        if line == "":
+            if data:
+                yield name, "\n".join(data)
+            name, data = "message", []
+        elif line.startswith("event: "):
+            name = line[7:]
+        elif line.startswith("data: "):
+            data.append(line[6:])
+
+
+class Live(unittest.TestCase):
+    def setUp(self):
+        self.dir = tempfile.mkdtemp(prefix="beltsim_live_")
+        self.addCleanup(shutil.rmtree, self.dir, True)
+        with open(os.path.join(self.dir, "s.lua"), "w") as f:
+            f.write(two_pulley(elements=40) + "drive:run { t_end = %r, sample = %r }\n" % (T_END, SAMPLE))
+        self.proc = subprocess.Popen([BELTSIM, "run", "s.lua", "--serve", "--out", "out"], cwd=self.dir,
+                                     stdout=subprocess.DEVNULL, stderr=subprocess.PIPE)
+        self.addCleanup(self.stop)
+        self.stderr = []
+        for line in self.proc.stderr:
+            line = line.decode()
+            self.stderr.append(line)
+            if "live view at " in line:
+                self.url = urllib.parse.urlsplit(line.split("live view at ")[1].strip())
+                break
+        else:
+            self.fail("no address printed: " + "".join(self.stderr))
+        self.token = urllib.parse.parse_qs(self.url.query)["token"][0]
+
+    def stop(self):
+        if self.proc.poll() is None:
+            self.proc.kill()
+        self.proc.wait()
+        self.proc.stderr.close()
+
+    def get(self, path):
+        c = http.client.HTTPConnection(self.url.hostname, self.url.port, timeout=30)
+        c.request("GET", path)
+        r = c.getresponse()
+        body = r.read()
+        c.close()
+        return r.status, body
+
+    def test_token_page_stream_and_a_client_that_leaves(self):
+        self.assertEqual(self.url.hostname, "127.0.0.1")  # bound to loopback unless host is given
+        for path in ["/", "/events", "/dygraph.js", "/?token=" + self.token[:-1], "/?token="]:
+            self.assertEqual(self.get(path)[0], 403, path)
+        q = "?token=" + self.token
+        status, page = self.get("/" + q)
+        self.assertEqual(status, 200)
+        self.assertIn(b"dygraph.js" + q.encode(), page)
+        self.assertEqual(self.get("/dygraph.js" + q)[0], 200)
+        self.assertIn(b"Dygraph", self.get("/dygraph.js" + q)[1])
+        for path in ["/%2e%2e/%2e%2e/etc/passwd", "/dygraph.min.js", "/index.js", "/src/dygraph.js"]:
+            self.assertEqual(self.get(path + q)[0], 404, path)
+
+        c = http.client.HTTPConnection(self.url.hostname, self.url.port, timeout=60)
+        c.request("GET", "/events" + q)
+        r = c.getresponse()
+        self.assertEqual(r.status, 200)
+        self.assertEqual(r.getheader("Content-Type"), "text/event-stream")
+        columns, times = None, []
+        for name, data in events(r):
+            if name == "run":
+                columns = json.loads(data)["columns"]
+            elif name == "samples":
+                for row in json.loads(data):
+                    self.assertEqual(len(row), 3 + len(columns))  # t, wall/simulated, step, the columns
+                    times.append(row[0])
+            if len(times) >= 5 and times[-1] > times[0]:
+                break
+        self.assertIn("driver.omega", columns)
+        self.assertEqual(times, sorted(times))
+        self.assertLess(times[-1], T_END)  # read mid-run
+        c.close()  # the client leaves mid-run
+
+        self.assertEqual(self.proc.wait(timeout=300), 0, "".join(self.stderr) + self.proc.stderr.read().decode())
+        with open(os.path.join(self.dir, "out", "timeseries.csv")) as f:
+            rows = f.read().splitlines()
+        self.assertEqual(len(rows), 1 + round(T_END / SAMPLE) + 1)  # the header, t = 0 .. T_END
+        self.assertAlmostEqual(float(rows[-1].split(",")[0]), T_END, places=12)
+
+
+if __name__ == "__main__":
+    BELTSIM = os.path.abspath(sys.argv.pop(1))
+    unittest.main()
