@@ -13,6 +13,8 @@ namespace beltsim {
 void write_png(const std::string& path, const Image& img);
 // DIR/NAME
 void write_png(const OutputDir& dir, const std::string& name, const Image& img);
+// the PNG file's bytes, in memory (the live view's frames); errors name `what`
+std::string encode_png(const Image& img, const std::string& what);
 // reads any 8-bit or 16-bit PNG (grey, palette, alpha are converted) as 8-bit RGB
 Image read_png(const std::string& path);
 

@@ -141,6 +141,12 @@ void LiveServer::set_status(const std::string& status) {
   cv_.notify_all();
 }
 
+void LiveServer::set_frame(std::string png) {
+  auto f = std::make_shared<const std::string>(std::move(png));
+  const std::lock_guard<std::mutex> lock(m_);
+  frame_ = std::move(f);
+}
+
 int LiveServer::clients() const {
   const std::lock_guard<std::mutex> lock(m_);
   return clients_;
@@ -201,6 +207,20 @@ void LiveServer::routes() {
         [this](const httplib::Request&, httplib::Response& res) { res.set_content(assets_js_, "text/javascript"); });
   h.Get("/dygraph.css",
         [this](const httplib::Request&, httplib::Response& res) { res.set_content(assets_css_, "text/css"); });
+  h.Get("/frame.png", [this](const httplib::Request&, httplib::Response& res) {
+    std::shared_ptr<const std::string> f;
+    {
+      const std::lock_guard<std::mutex> lock(m_);
+      f = frame_;
+    }
+    res.set_header("Cache-Control", "no-store");
+    if (!f) {
+      res.status = 503;
+      res.set_content("no frame yet\n", "text/plain");
+      return;
+    }
+    res.set_content(*f, "image/png");
+  });
   h.Get("/events", [this](const httplib::Request&, httplib::Response& res) {
     {
       const std::lock_guard<std::mutex> lock(m_);

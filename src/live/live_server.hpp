@@ -57,6 +57,8 @@ class LiveServer {
   void publish(Sample s);
   // the run's state as the page shows it ("running", "paused", "finished", ...)
   void set_status(const std::string& status);
+  // the latest frame (a PNG file's bytes): the page's picture; the frame before is dropped
+  void set_frame(std::string png);
   // the number of streams open now
   int clients() const;
 
@@ -92,8 +94,9 @@ class LiveServer {
   const void* key_ = nullptr;
   std::string run_name_, status_ = "waiting";
   std::vector<std::string> columns_;
-  std::deque<Entry> history_, recent_;  // thinned from the start; the last kBehind
-  size_t thin_ = 1, skipped_ = 0;       // keep one sample in thin_ (the history thinned as it grows)
+  std::shared_ptr<const std::string> frame_;  // the latest frame, sent as it is when asked for
+  std::deque<Entry> history_, recent_;        // thinned from the start; the last kBehind
+  size_t thin_ = 1, skipped_ = 0;             // keep one sample in thin_ (the history thinned as it grows)
 };
 
 // the page (live/page.cpp)

@@ -16,6 +16,7 @@ body { font-family: sans-serif; margin: 1em; }
 #bar span { margin-right: 1.5em; }
 #bar b { font-variant-numeric: tabular-nums; }
 #plot { width: 100%; height: 420px; }
+#frame { display: block; max-width: 100%; height: auto; background: #222; }
 #columns label { margin-right: 1em; white-space: nowrap; }
 </style>
 </head>
@@ -27,6 +28,7 @@ body { font-family: sans-serif; margin: 1em; }
 <span>step <b id="h">-</b> s</span>
 <span>status <b id="status">connecting</b></span>
 </div>
+<img id="frame" alt="the belt as the renderer draws it (frames come while a page is open)" width="960" height="540">
 <div id="plot"></div>
 <div id="columns"></div>
 <script src="dygraph.js?token=@TOKEN@"></script>
@@ -79,6 +81,13 @@ es.addEventListener("samples", e => {
   if (drawn) { drawn = false; requestAnimationFrame(draw); }
 });
 es.addEventListener("status", e => { document.getElementById("status").textContent = JSON.parse(e.data); });
+// the latest frame, asked for again when one has arrived (a slow link gets fewer, never a queue)
+const img = document.getElementById("frame");
+let frames = 0;
+function next(delay) { setTimeout(() => { img.src = "frame.png" + q + "&n=" + (++frames); }, delay); }
+img.onload = () => next(66);
+img.onerror = () => next(500);
+next(0);
 es.onerror = () => { document.getElementById("status").textContent = "disconnected (the run has ended?)"; };
 </script>
 </body>

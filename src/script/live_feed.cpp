@@ -2,7 +2,54 @@
 
 #include <cstdio>
 
+#include "io/png_writer.hpp"
+#include "render/recorder.hpp"
+
 namespace beltsim::script {
+
+FrameThread::FrameThread(const Scene& scene, live::LiveServer* server)
+    : server_(server), thread_([this, &scene] { loop(scene); }) {}
+
+FrameThread::~FrameThread() {
+  {
+    const std::lock_guard<std::mutex> lock(m_);
+    stop_ = true;
+  }
+  cv_.notify_all();
+  thread_.join();
+}
+
+void FrameThread::offer(const Simulation& sim) {
+  Snapshot s{sim.now(), sim.state(), Drive(), sim.observation()};
+  s.drive.mu = sim.drive().mu;
+  s.drive.spray = sim.drive().spray;
+  {
+    const std::lock_guard<std::mutex> lock(m_);
+    next_ = std::move(s);  // the one not drawn yet is dropped
+  }
+  cv_.notify_all();
+}
+
+void FrameThread::loop(const Scene& scene) {
+  FrameSettings fs;
+  fs.width = 960, fs.height = 540;
+  try {
+    render::FrameDrawer drawer(scene, fs);
+    for (;;) {
+      Snapshot s;
+      {
+        std::unique_lock<std::mutex> lock(m_);
+        cv_.wait(lock, [&] { return stop_ || next_; });
+        if (!next_) return;  // stopped, all drawn
+        s = std::move(*next_);
+        next_.reset();
+      }
+      server_->set_frame(encode_png(drawer.draw(s.t, s.y.data(), s.drive, &s.obs), "live view frame"));
+    }
+  } catch (const std::exception& e) {  // no GL: the page goes on without pictures
+    std::fprintf(stderr, "beltsim: live view: no frames: %s\n", e.what());
+  }
+}
 
 void LiveFeed::watch(const Simulation* sim, const char* at_end) {
   if (!server_) return;
@@ -10,10 +57,12 @@ void LiveFeed::watch(const Simulation* sim, const char* at_end) {
     if (!sim_) return;
     try {
       publish(0);
-    } catch (const std::exception& e) {  // a Lua law that fails on reading: the run's error says it
+      if (frames_) frames_->offer(*sim_);  // the picture where it stands
+    } catch (const std::exception& e) {    // a Lua law that fails on reading: the run's error says it
       std::fprintf(stderr, "beltsim: live view: %s\n", e.what());
     }
     server_->set_status(at_end_);
+    frames_.reset();  // the last offered drawn, before the simulation (its scene) goes
     sim_ = nullptr;
     return;
   }
@@ -41,6 +90,13 @@ RunProgress LiveFeed::callback(RunProgress inner) {
     if (sim_ && wall - last_wall_ >= kInterval) {
       last_wall_ = wall;
       publish(wall);
+    }
+    if (sim_ && wall - last_frame_ >= kFrameInterval) {
+      last_frame_ = wall;
+      if (server_->clients() > 0) {
+        if (!frames_) frames_ = std::make_unique<FrameThread>(sim_->scene(), server_);
+        frames_->offer(*sim_);
+      }
     }
   };
 }

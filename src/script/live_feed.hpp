@@ -4,10 +4,44 @@
 // never touch the simulation.
 #pragma once
 
+#include <condition_variable>
+#include <memory>
+#include <mutex>
+#include <optional>
+#include <thread>
+
 #include "live/live_server.hpp"
 #include "sim/simulation.hpp"
 
 namespace beltsim::script {
+
+// The renderer on a thread of its own: draws the latest snapshot offered (t, state, μ, spray
+// zones, observation: copies taken by the owning loop, never the live simulation) into a PNG for
+// the server; a snapshot not yet drawn when the next comes is dropped. Its GL context is made,
+// used and destroyed on that thread. The scene must outlive it.
+class FrameThread {
+ public:
+  FrameThread(const Scene& scene, live::LiveServer* server);
+  ~FrameThread();  // draws the snapshot offered last if not yet drawn, stops, joins
+  FrameThread(const FrameThread&) = delete;
+  FrameThread& operator=(const FrameThread&) = delete;
+  void offer(const Simulation& sim);  // on the owning loop: a snapshot of now
+
+ private:
+  struct Snapshot {
+    double t = 0;
+    Eigen::VectorXd y;
+    Drive drive;  // μ and spray only: a law (Lua code) is never copied to this thread
+    Observation obs;
+  };
+  void loop(const Scene& scene);
+  live::LiveServer* server_;
+  std::mutex m_;
+  std::condition_variable cv_;
+  std::optional<Snapshot> next_;
+  bool stop_ = false;
+  std::thread thread_;
+};
 
 class LiveFeed {
  public:
@@ -24,14 +58,16 @@ class LiveFeed {
   // inner, and the feed
   RunProgress callback(RunProgress inner);
 
-  static constexpr double kInterval = 0.05;  // [s] of wall time between two samples
+  static constexpr double kInterval = 0.05;           // [s] of wall time between two samples
+  static constexpr double kFrameInterval = 1.0 / 15;  // [s] between two frames (while a page is open)
 
  private:
   void publish(double wall);
   live::LiveServer* server_;
   const Simulation* sim_ = nullptr;
   const char* at_end_ = "finished";
-  double last_wall_ = -1, last_t_ = 0, h_ = 0;
+  double last_wall_ = -1, last_frame_ = -1, last_t_ = 0, h_ = 0;
+  std::unique_ptr<FrameThread> frames_;  // made when a page is first open during a run
 };
 
 }  // namespace beltsim::script

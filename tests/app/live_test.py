@@ -1,7 +1,8 @@
 #!/usr/bin/env python3
 """The live view's server (docs/live-view.md, src/live/): `beltsim run S.lua --serve` answers 403
 without the token printed at its start, serves the page and its plotting library with it and
-nothing else, streams samples whose t advances, and a client that disconnects mid-run leaves the
+nothing else, streams samples whose t advances and the renderer's frames (PNG) while a page is
+open, and a client that disconnects mid-run leaves the
 run to finish whole (timeseries.csv to t_end, exit 0). Each step waits for what it needs (the
 address on stderr, the stream's events); no sleeps.
 
@@ -11,6 +12,7 @@ import http.client
 import json
 import os
 import shutil
+import struct
 import subprocess
 import sys
 import tempfile
@@ -94,7 +96,7 @@ class Live(unittest.TestCase):
         r = c.getresponse()
         self.assertEqual(r.status, 200)
         self.assertEqual(r.getheader("Content-Type"), "text/event-stream")
-        columns, times = None, []
+        columns, times, frame = None, [], None
         for name, data in events(r):
             if name == "run":
                 columns = json.loads(data)["columns"]
@@ -102,9 +104,18 @@ class Live(unittest.TestCase):
                 for row in json.loads(data):
                     self.assertEqual(len(row), 3 + len(columns))  # t, wall/simulated, step, the columns
                     times.append(row[0])
-            if len(times) >= 5 and times[-1] > times[0]:
+                # the renderer's latest frame, drawn on its own thread while a page is open (503
+                # until the first is drawn)
+                status, body = self.get("/frame.png" + q)
+                if status == 200:
+                    frame = body
+                else:
+                    self.assertEqual(status, 503)
+            if len(times) >= 5 and times[-1] > times[0] and frame:
                 break
         self.assertIn("driver.omega", columns)
+        self.assertEqual(frame[:8], b"\x89PNG\r\n\x1a\n")
+        self.assertEqual(struct.unpack(">II", frame[16:24]), (960, 540))  # IHDR: width, height
         self.assertEqual(times, sorted(times))
         self.assertLess(times[-1], T_END)  # read mid-run
         c.close()  # the client leaves mid-run
