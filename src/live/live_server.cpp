@@ -3,7 +3,9 @@
 #include <httplib.h>
 
 #include <chrono>
+#include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <fstream>
 #include <random>
 #include <sstream>
@@ -96,7 +98,8 @@ std::string LiveServer::url() const {
   return "http://" + settings_.host + ":" + std::to_string(port_) + "/?token=" + token_;
 }
 
-void LiveServer::begin_run(const void* key, const std::string& name, std::vector<std::string> columns) {
+void LiveServer::begin_run(const void* key, const std::string& name, std::vector<std::string> columns,
+                           std::vector<std::string> pulleys) {
   {
     const std::lock_guard<std::mutex> lock(m_);
     ++status_serial_;
@@ -106,6 +109,7 @@ void LiveServer::begin_run(const void* key, const std::string& name, std::vector
     ++run_;
     run_name_ = name;
     columns_ = std::move(columns);
+    pulleys_ = std::move(pulleys);
     history_.clear(), recent_.clear();
     thin_ = 1, skipped_ = 0;
   }
@@ -147,6 +151,21 @@ void LiveServer::set_frame(std::string png) {
   frame_ = std::move(f);
 }
 
+std::optional<Command> LiveServer::take(bool wait) {
+  std::unique_lock<std::mutex> lock(m_);
+  if (wait) cv_.wait_for(lock, std::chrono::milliseconds(200), [&] { return stopping_ || !commands_.empty(); });
+  if (commands_.empty()) return std::nullopt;
+  Command c = std::move(commands_.front());
+  commands_.pop_front();
+  --pending_;
+  return c;
+}
+
+bool LiveServer::stopping() const {
+  const std::lock_guard<std::mutex> lock(m_);
+  return stopping_;
+}
+
 int LiveServer::clients() const {
   const std::lock_guard<std::mutex> lock(m_);
   return clients_;
@@ -165,6 +184,8 @@ std::string LiveServer::stream_text(Cursor& c) {
     add_string(out, run_name_);
     out += ",\"columns\":[";
     for (size_t k = 0; k < columns_.size(); ++k) out += k ? "," : "", add_string(out, columns_[k]);
+    out += "],\"pulleys\":[";
+    for (size_t k = 0; k < pulleys_.size(); ++k) out += k ? "," : "", add_string(out, pulleys_[k]);
     out += "]}\n\nevent: samples\ndata: [";
     for (size_t k = 0; k < history_.size(); ++k) out += k ? "," : "", add_row(out, history_[k].s);
     out += "]\n\n";
@@ -220,6 +241,37 @@ void LiveServer::routes() {
       return;
     }
     res.set_content(*f, "image/png");
+  });
+  h.Post("/control", [this](const httplib::Request& req, httplib::Response& res) {
+    Command c;
+    c.what = req.get_param_value("do");
+    c.pulley = req.get_param_value("pulley");
+    const std::string v = req.get_param_value("value");
+    char* end = nullptr;
+    c.value = std::strtod(v.c_str(), &end);
+    std::string bad;
+    if (c.what != "pause" && c.what != "continue" && c.what != "torque")
+      bad = "do must be pause, continue or torque, got '" + c.what + "'";
+    else if (c.what == "torque" && (c.pulley.empty() || v.empty() || *end != '\0' || !std::isfinite(c.value)))
+      bad = "torque needs pulley=NAME and value=N·m (a finite number), got pulley='" + c.pulley + "' value='" + v + "'";
+    if (!bad.empty()) {
+      res.status = 400;
+      res.set_content(bad + "\n", "text/plain");
+      return;
+    }
+    {
+      const std::lock_guard<std::mutex> lock(m_);
+      if (commands_.size() >= kCommands) {
+        res.status = 503;
+        res.set_content("too many controls waiting\n", "text/plain");
+        return;
+      }
+      commands_.push_back(std::move(c));
+      ++pending_;
+    }
+    cv_.notify_all();
+    res.status = 202;
+    res.set_content("queued\n", "text/plain");
   });
   h.Get("/events", [this](const httplib::Request&, httplib::Response& res) {
     {

@@ -7,11 +7,13 @@
 // (?token=...) printed at the start, or gets 403.
 #pragma once
 
+#include <atomic>
 #include <condition_variable>
 #include <cstdint>
 #include <deque>
 #include <memory>
 #include <mutex>
+#include <optional>
 #include <string>
 #include <thread>
 #include <vector>
@@ -27,6 +29,13 @@ struct ServeSettings {
   int port = 0;                    // 0: a free port
   // where the page's plotting library lives (Debian's libjs-dygraphs)
   std::string assets = "/usr/share/javascript/dygraphs";
+};
+
+// a control from the page (POST /control?do=...): pause, continue, torque (pulley, value [N·m])
+struct Command {
+  std::string what;
+  std::string pulley;
+  double value = 0;
 };
 
 // one sample as the page gets it
@@ -53,12 +62,19 @@ class LiveServer {
   // ---- from the owning loop ----------------------------------------------------------------
   // a run starts: its name (the output folder) and the columns its samples carry; the history is
   // cleared unless key (the run's identity) is that of the run before (a live simulation going on)
-  void begin_run(const void* key, const std::string& name, std::vector<std::string> columns);
+  void begin_run(const void* key, const std::string& name, std::vector<std::string> columns,
+                 std::vector<std::string> pulleys);
   void publish(Sample s);
   // the run's state as the page shows it ("running", "paused", "finished", ...)
   void set_status(const std::string& status);
   // the latest frame (a PNG file's bytes): the page's picture; the frame before is dropped
   void set_frame(std::string png);
+  // a control is waiting (cheap: one atomic load, for every step)
+  bool commands_pending() const { return pending_.load(std::memory_order_relaxed) > 0; }
+  // the next control, in the order they came; wait: up to 0.2 s for one
+  std::optional<Command> take(bool wait);
+  // the server is being stopped
+  bool stopping() const;
   // the number of streams open now
   int clients() const;
 
@@ -66,6 +82,8 @@ class LiveServer {
   static constexpr size_t kHistory = 4000;
   // a client further behind than this many samples skips to the latest
   static constexpr size_t kBehind = 200;
+  // controls waiting beyond this many are refused (503)
+  static constexpr size_t kCommands = 64;
 
  private:
   struct Entry {
@@ -93,7 +111,9 @@ class LiveServer {
   std::uint64_t run_ = 1, seq_ = 0, status_serial_ = 1;
   const void* key_ = nullptr;
   std::string run_name_, status_ = "waiting";
-  std::vector<std::string> columns_;
+  std::vector<std::string> columns_, pulleys_;
+  std::deque<Command> commands_;
+  std::atomic<int> pending_{0};
   std::shared_ptr<const std::string> frame_;  // the latest frame, sent as it is when asked for
   std::deque<Entry> history_, recent_;        // thinned from the start; the last kBehind
   size_t thin_ = 1, skipped_ = 0;             // keep one sample in thin_ (the history thinned as it grows)

@@ -28,6 +28,11 @@ body { font-family: sans-serif; margin: 1em; }
 <span>step <b id="h">-</b> s</span>
 <span>status <b id="status">connecting</b></span>
 </div>
+<div id="controls">
+<button id="pause">Pause</button> <button id="continue">Continue</button>
+<span>torque of <select id="pulley"></select> <input id="torque" type="number" step="any" size="8"> N·m
+<button id="settorque">Set</button></span> <span id="reply"></span>
+</div>
 <img id="frame" alt="the belt as the renderer draws it (frames come while a page is open)" width="960" height="540">
 <div id="plot"></div>
 <div id="columns"></div>
@@ -69,6 +74,9 @@ es.addEventListener("run", e => {
   const r = JSON.parse(e.data);
   document.getElementById("name").textContent = r.name || "-";
   columns = r.columns; data = []; setup();
+  const sel = document.getElementById("pulley");
+  sel.innerHTML = "";
+  for (const p of r.pulleys || []) { const o = document.createElement("option"); o.textContent = p; sel.appendChild(o); }
 });
 es.addEventListener("samples", e => {
   const rows = JSON.parse(e.data);
@@ -88,6 +96,15 @@ function next(delay) { setTimeout(() => { img.src = "frame.png" + q + "&n=" + (+
 img.onload = () => next(66);
 img.onerror = () => next(500);
 next(0);
+// controls: queued by the server, applied by the run between two steps (its status says so)
+function control(params) {
+  fetch("control" + q + "&" + new URLSearchParams(params), { method: "POST" })
+    .then(r => r.text()).then(t => { document.getElementById("reply").textContent = t; });
+}
+document.getElementById("pause").onclick = () => control({ do: "pause" });
+document.getElementById("continue").onclick = () => control({ do: "continue" });
+document.getElementById("settorque").onclick = () => control({
+  do: "torque", pulley: document.getElementById("pulley").value, value: document.getElementById("torque").value });
 es.onerror = () => { document.getElementById("status").textContent = "disconnected (the run has ended?)"; };
 </script>
 </body>

@@ -2,8 +2,10 @@
 
 #include <cstdio>
 
+#include "io/number_text.hpp"
 #include "io/png_writer.hpp"
 #include "render/recorder.hpp"
+#include "scene/law_text.hpp"
 
 namespace beltsim::script {
 
@@ -51,7 +53,7 @@ void FrameThread::loop(const Scene& scene) {
   }
 }
 
-void LiveFeed::watch(const Simulation* sim, const char* at_end) {
+void LiveFeed::watch(Simulation* sim, const char* at_end) {
   if (!server_) return;
   if (!sim) {
     if (!sim_) return;
@@ -69,7 +71,9 @@ void LiveFeed::watch(const Simulation* sim, const char* at_end) {
   sim_ = sim, at_end_ = at_end;
   std::vector<std::string> columns = sim->columns();
   if (!columns.empty() && columns.front() == "t") columns.erase(columns.begin());
-  server_->begin_run(sim, sim->out_dir(), std::move(columns));
+  std::vector<std::string> pulleys;
+  for (const Pulley& p : sim->model().pulleys) pulleys.push_back(p.name);
+  server_->begin_run(sim, sim->out_dir(), std::move(columns), std::move(pulleys));
   last_t_ = sim->now(), last_wall_ = -1;
 }
 void LiveFeed::publish(double wall) {
@@ -82,11 +86,53 @@ void LiveFeed::publish(double wall) {
   server_->publish(std::move(s));
 }
 
+std::string LiveFeed::apply(const live::Command& c) {
+  if (c.what != "torque") return "";
+  const int j = sim_->scene().find_pulley(c.pulley);
+  if (j < 0) return "no pulley '" + c.pulley + "'";
+  TimeSpeedLaw law;
+  law.constant = c.value;
+  try {
+    sim_->set_torque(j, law, law_text(law));  // in events.csv, as sim:set_torque writes it
+  } catch (const std::exception& e) {
+    return e.what();
+  }
+  return "";
+}
+
+void LiveFeed::apply_controls(double wall) {
+  bool paused = false;
+  for (;;) {
+    const std::optional<live::Command> c = server_->take(paused);
+    if (stop_ && stop_->load()) break;
+    if (!c) {
+      if (!paused || server_->stopping()) break;
+      continue;
+    }
+    std::string said;
+    if (c->what == "pause") {
+      paused = true;
+    } else if (c->what == "continue") {
+      paused = false;
+    } else {
+      said = apply(*c);
+      publish(wall);
+    }
+    const std::string at = " at t = " + rounded_text(sim_->now(), 6) + " s";
+    if (!said.empty())
+      server_->set_status("refused: " + said);
+    else
+      server_->set_status(paused ? "paused" + at : c->what == "torque" ? "running (torque set" + at + ")" : "running");
+    if (!paused && !server_->commands_pending()) break;
+  }
+}
+
 RunProgress LiveFeed::callback(RunProgress inner) {
   if (!server_) return inner;
   return [this, inner](double t, double target, const WorkCounters& w, double wall) {
     if (inner) inner(t, target, w, wall);
     h_ = t - last_t_, last_t_ = t;
+    if (sim_ && server_->commands_pending()) apply_controls(wall);
     if (sim_ && wall - last_wall_ >= kInterval) {
       last_wall_ = wall;
       publish(wall);

@@ -45,8 +45,9 @@ class FrameThread {
 
 class LiveFeed {
  public:
-  // server null: no feed (callback() returns inner)
-  explicit LiveFeed(live::LiveServer* server) : server_(server) {}
+  // server null: no feed (callback() returns inner); stop: Ctrl-C and the signals, which end a
+  // pause from the page too
+  LiveFeed(live::LiveServer* server, const std::atomic<bool>* stop) : server_(server), stop_(stop) {}
   ~LiveFeed() { watch(nullptr); }
   LiveFeed(const LiveFeed&) = delete;
   LiveFeed& operator=(const LiveFeed&) = delete;
@@ -54,7 +55,7 @@ class LiveFeed {
   // a run of sim starts (for the page a new run, its history cleared, unless the server fed this
   // simulation last); at_end: the page's status after it ("paused", "finished"). watch(nullptr):
   // the run has ended, publishes where it stands (the simulation must still exist)
-  void watch(const Simulation* sim, const char* at_end = "finished");
+  void watch(Simulation* sim, const char* at_end = "finished");
   // inner, and the feed
   RunProgress callback(RunProgress inner);
 
@@ -63,8 +64,14 @@ class LiveFeed {
 
  private:
   void publish(double wall);
+  // the page's controls, between two steps: a pause holds the run here (the controls that come
+  // meanwhile applied) until continue, or Ctrl-C, or the server's end
+  void apply_controls(double wall);
+  // one control; "" or why it was refused
+  std::string apply(const live::Command& c);
   live::LiveServer* server_;
-  const Simulation* sim_ = nullptr;
+  const std::atomic<bool>* stop_;
+  Simulation* sim_ = nullptr;
   const char* at_end_ = "finished";
   double last_wall_ = -1, last_frame_ = -1, last_t_ = 0, h_ = 0;
   std::unique_ptr<FrameThread> frames_;  // made when a page is first open during a run

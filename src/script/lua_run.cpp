@@ -436,8 +436,8 @@ int l_scene_run(lua_State* L) {
   try {
     const HostWork work;  // beltsim's own work, not Lua code (signals.hpp)
     ProgressLine line(progress);
-    LiveFeed feed(ctx->serve.get());
-    res = run(*sc, rs, ctx->stop, feed.callback(line.callback()), [&](const Simulation* sim) { feed.watch(sim); });
+    LiveFeed feed(ctx->serve.get(), ctx->stop);
+    res = run(*sc, rs, ctx->stop, feed.callback(line.callback()), [&](Simulation* sim) { feed.watch(sim); });
   } catch (const DivergenceError& e) {
     error = std::string(e.what()) + " (the samples up to then are in " + rs.out_dir + "/timeseries.csv)";
     ctx->divergence = {e.t, e.what()};

@@ -58,7 +58,7 @@ int run_to(lua_State* L, SimBox& box, double t, const char* what) {
       SimBox& b;
       ~Done() { b.running = false; }
     } done{box};
-    LiveFeed feed(box.serve ? box.serve.get() : box.ctx->serve.get());
+    LiveFeed feed(box.serve ? box.serve.get() : box.ctx->serve.get(), box.ctx->stop);
     feed.watch(box.sim.get(), "paused");
     a = box.sim->run_to(t, box.ctx->stop, feed.callback(line.callback()));
   }, box.ctx);

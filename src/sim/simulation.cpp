@@ -508,7 +508,7 @@ bool Simulation::cancel(int id) {
 }
 
 RunResult run(const Scene& sc, const RunSettings& settings, const std::atomic<bool>* stop,
-              const RunProgress& progress, const std::function<void(const Simulation*)>& watch) {
+              const RunProgress& progress, const std::function<void(Simulation*)>& watch) {
   RunSettings rs = settings;
   std::vector<std::string> skipped = drop_after_end(rs);
   check(sc, rs, true);
@@ -523,7 +523,7 @@ RunResult run(const Scene& sc, const RunSettings& settings, const std::atomic<bo
   {
     if (watch) watch(&sim);
     const struct Unwatch {
-      const std::function<void(const Simulation*)>& w;
+      const std::function<void(Simulation*)>& w;
       ~Unwatch() {
         if (w) w(nullptr);
       }

@@ -261,6 +261,6 @@ std::string cannot_save(const std::string& integrator);
 // simulation once it has started, and nullptr when run_to has returned or thrown (the simulation
 // still there): the live view's feed (script/live_feed.hpp).
 RunResult run(const Scene& scene, const RunSettings& settings, const std::atomic<bool>* stop = nullptr,
-              const RunProgress& progress = {}, const std::function<void(const Simulation*)>& watch = {});
+              const RunProgress& progress = {}, const std::function<void(Simulation*)>& watch = {});
 
 }  // namespace beltsim

@@ -78,6 +78,50 @@ class Live(unittest.TestCase):
         c.close()
         return r.status, body
 
+    def post(self, query):
+        c = http.client.HTTPConnection(self.url.hostname, self.url.port, timeout=30)
+        c.request("POST", "/control?token=" + self.token + "&" + query, body=b"")
+        r = c.getresponse()
+        body = r.read()
+        c.close()
+        return r.status, body.decode()
+
+    def test_controls_pause_torque_continue(self):
+        """the page's controls reach the run between two steps: pause holds it (the stream's status
+        says where), a torque lands in events.csv at that time, continue lets it finish whole"""
+        self.assertEqual(self.post("do=pause")[0], 202)
+        c = http.client.HTTPConnection(self.url.hostname, self.url.port, timeout=60)
+        c.request("GET", "/events?token=" + self.token)
+        r = c.getresponse()
+        paused_at, statuses = None, []
+        for name, data in events(r):
+            if name != "status":
+                continue
+            status = json.loads(data)
+            statuses.append(status)
+            if status.startswith("paused at t = ") and paused_at is None:
+                paused_at = float(status.split("= ")[1].split(" ")[0])
+                self.assertEqual(self.post("do=torque&pulley=nope&value=1"), (202, "queued\n"))
+                self.assertEqual(self.post("do=torque&pulley=driven&value=-65")[0], 202)
+            elif status.startswith("refused: no pulley 'nope'"):
+                pass
+            elif status.startswith("paused at") and "refused: no pulley 'nope'" in statuses:
+                break  # the torque applied while paused
+        self.assertEqual(self.post("do=jump")[0], 400)
+        self.assertEqual(self.post("do=torque&pulley=driven&value=x")[0], 400)
+        self.assertEqual(self.post("do=continue")[0], 202)
+        c.close()
+        self.assertEqual(self.proc.wait(timeout=300), 0, self.proc.stderr.read().decode())
+        with open(os.path.join(self.dir, "out", "events.csv")) as f:
+            rows = [line.split(",") for line in f.read().splitlines()[1:]]
+        torque = [row for row in rows if row[1] == "driven.torque"]
+        self.assertEqual(len(torque), 1, rows)
+        # where the page said it was paused (its status gives t to 6 significant digits)
+        self.assertLessEqual(abs(float(torque[0][0]) - paused_at), 5e-6 * paused_at)
+        self.assertEqual(float(torque[0][2]), -65)
+        with open(os.path.join(self.dir, "out", "timeseries.csv")) as f:
+            self.assertEqual(len(f.read().splitlines()), 1 + round(T_END / SAMPLE) + 1)
+
     def test_token_page_stream_and_a_client_that_leaves(self):
         self.assertEqual(self.url.hostname, "127.0.0.1")  # bound to loopback unless host is given
         for path in ["/", "/events", "/dygraph.js", "/?token=" + self.token[:-1], "/?token="]:
