@@ -116,8 +116,9 @@ void LiveFeed::apply_controls(double wall) {
       paused = false;
     } else {
       said = apply(*c);
-      publish(wall);
     }
+    publish(wall);  // the page's t, plot and picture where the run stands
+    if (frames_) frames_->offer(*sim_);
     const std::string at = " at t = " + rounded_text(sim_->now(), 6) + " s";
     if (!said.empty())
       server_->set_status("refused: " + said);
