@@ -4,8 +4,9 @@
 #                                build the program alone, run the paper's dry scenario
 #   bash scripts/setup.sh test   install that and what the tests add (debian-packages-test.txt),
 #                                build everything and run the test suite in build/, then the quick
-#                                tests again and 60 s of fuzzing in one clang-14 build with ASan +
-#                                UBSan and libFuzzer's instrumentation in build-san/
+#                                tests again and 60 s of fuzzing (three targets in turn) in one
+#                                clang-14 build with ASan + UBSan and libFuzzer's instrumentation in
+#                                build-san/
 #   bash scripts/setup.sh build  install both lists and build everything, running nothing
 # Idempotent: packages already present are not touched, and apt is not consulted at all when
 # nothing is missing; the build is incremental (ccache when available).
@@ -78,31 +79,49 @@ case "$mode" in
       export LSAN_OPTIONS=suppressions=$here/tests/lsan.supp:print_suppressions=0
       CXX=clang++-14 cmake $(generator "$san_dir") -S . -B "$san_dir" -DCMAKE_BUILD_TYPE=Release -DBELTSIM_FUZZ=ON \
         -DBELTSIM_BUILD_TESTS=ON -DBELTSIM_BUILD_BENCH=OFF >/dev/null
-      targets=(beltsim_fuzz)
+      targets=(beltsim_fuzz beltsim_fuzz_checkpoint beltsim_fuzz_sweep)
       if [ "${BELTSIM_SANITIZE:-1}" != 0 ]; then
         targets+=(beltsim beltsim_tests_quick beltsim_tests_script beltsim_tests_render beltsim_tests_plot
-                  beltsim_fuzz_replay beltsim_fuzz_checkpoint_replay)
+                  beltsim_fuzz_replay beltsim_fuzz_checkpoint_replay beltsim_fuzz_sweep_replay)
       fi
       cmake --build "$san_dir" -j "$jobs" --target "${targets[@]}"
       stage_done "built $san_dir/"
     fi
-    # fuzzing: the scene API fed random scripts (tests/fuzz/fuzz_script.cpp) by libFuzzer,
-    # seeded with scripts/*.lua and the kept findings, for BELTSIM_FUZZ_SECONDS (default 60; 0
-    # skips). It runs on one core beside the sanitizer tests, which cannot keep both cores busy
-    # to the end. A crash, sanitizer report, uncaught exception or hang (-timeout) fails the run:
-    # its input is printed and kept in build-san/findings/ (fix it, then add it to
-    # tests/fuzz/regressions/).
+    # fuzzing, for BELTSIM_FUZZ_SECONDS in all (default 60; 0 skips), three targets in turn on one
+    # core beside the sanitizer tests, which cannot keep both cores busy to the end: the scene API
+    # fed random scripts (tests/fuzz/fuzz_script.cpp, half the time, seeded with scripts/*.lua and
+    # the kept findings), checkpoints resumed (fuzz_checkpoint.cpp, a quarter, seeded with saved
+    # ones) and a sweep's values through its files (fuzz_sweep.cpp, the rest). A crash, sanitizer
+    # report, uncaught exception or hang (-timeout) fails the run: its input is printed and kept in
+    # build-san/fuzz/<target>/findings/ (fix it, then add it to the target's seeds).
     fuzz_pid=""
     if [ "$fuzz_seconds" != 0 ]; then
-      mkdir -p "$san_dir/corpus" "$san_dir/seeds" "$san_dir/findings"
-      rm -f "$san_dir"/findings/*
-      cp scripts/*.lua tests/fuzz/regressions/* "$san_dir/seeds/" 2>/dev/null || true
-      # -close_fd_mask=1: the scripts' print() output is not wanted; the reports go to stderr
-      "$san_dir/tests/beltsim_fuzz" -max_total_time="$fuzz_seconds" -timeout=30 -rss_limit_mb=4096 \
-          -dict=tests/fuzz/lua.dict -close_fd_mask=1 -artifact_prefix="$san_dir/findings/" \
-          "$san_dir/corpus" "$san_dir/seeds" 2>"$san_dir/fuzz.log" &
+      script_s=$((fuzz_seconds / 2)); checkpoint_s=$((fuzz_seconds / 4))
+      ((script_s > 0)) || script_s=1; ((checkpoint_s > 0)) || checkpoint_s=1
+      sweep_s=$((fuzz_seconds - script_s - checkpoint_s)); ((sweep_s > 0)) || sweep_s=1
+      # fuzz NAME SECONDS BINARY SEEDS...: one target, its corpus, seeds, findings and log in
+      # build-san/fuzz/NAME/ (-close_fd_mask=1: the scripts' print() output is not wanted; the
+      # reports go to stderr)
+      fuzz() {
+        local name=$1 seconds=$2 binary=$3 dir=$san_dir/fuzz/$1
+        shift 3
+        mkdir -p "$dir/corpus" "$dir/seeds" "$dir/findings"
+        rm -f "$dir"/findings/*
+        cp "$@" "$dir/seeds/" 2>/dev/null || true
+        local dict=()
+        if [ "$name" = script ]; then dict=(-dict=tests/fuzz/lua.dict); fi
+        "$san_dir/tests/$binary" -max_total_time="$seconds" -timeout=30 -rss_limit_mb=4096 "${dict[@]}" \
+            -close_fd_mask=1 -artifact_prefix="$dir/findings/" "$dir/corpus" "$dir/seeds" 2>"$dir/fuzz.log" &
+        fuzzer=$!
+        wait "$fuzzer"  # (a TERM to the subshell below ends it at once, and its trap ends the fuzzer)
+      }
+      (fuzzer=""
+       trap 'kill "$fuzzer" 2>/dev/null; exit 1' TERM
+       fuzz script "$script_s" beltsim_fuzz scripts/*.lua tests/fuzz/regressions/* &&
+         fuzz checkpoint "$checkpoint_s" beltsim_fuzz_checkpoint tests/fuzz/checkpoints/* &&
+         fuzz sweep "$sweep_s" beltsim_fuzz_sweep tests/fuzz/sweeps/*) &
       fuzz_pid=$!
-      # the fuzzer does not outlive this script (a failed test, Ctrl-C)
+      # the fuzzers do not outlive this script (a failed test, Ctrl-C)
       trap 'kill "$fuzz_pid" 2>/dev/null || true' EXIT
     fi
     tests_ok=1
@@ -115,19 +134,29 @@ case "$mode" in
     fi
     if [ -n "$fuzz_pid" ]; then
       if ! wait "$fuzz_pid"; then
-        tail -n 60 "$san_dir/fuzz.log" >&2
-        for f in "$san_dir"/findings/*; do
-          [ -f "$f" ] || continue
-          echo "setup: the fuzzer's finding $f (bytes as text, cat -v):" >&2
-          cat -v "$f" >&2
-          echo >&2
+        for name in script checkpoint sweep; do
+          found=0
+          for f in "$san_dir/fuzz/$name"/findings/*; do
+            [ -f "$f" ] || continue
+            found=1
+            echo "setup: the $name fuzzer's finding $f (bytes as text, cat -v):" >&2
+            cat -v "$f" >&2
+            echo >&2
+          done
+          if ((found)) || ! grep -qE '^Done|DONE' "$san_dir/fuzz/$name/fuzz.log" 2>/dev/null; then
+            [ -f "$san_dir/fuzz/$name/fuzz.log" ] && tail -n 60 "$san_dir/fuzz/$name/fuzz.log" >&2
+            echo "setup: the $name fuzzer found a crash, a sanitizer report or a hang (the log:" \
+                 "$san_dir/fuzz/$name/fuzz.log)" >&2
+            break
+          fi
         done
-        echo "setup: the fuzzer found a crash, a sanitizer report or a hang (the log: $san_dir/fuzz.log)" >&2
         exit 1
       fi
       trap - EXIT
-      grep -E '^Done|^#[0-9]+.*DONE' "$san_dir/fuzz.log" | tail -n 1
-      stage_done "fuzzing (${fuzz_seconds} s from the tests' start) found nothing; waited for it"
+      for name in script checkpoint sweep; do
+        echo "$name: $(grep -E '^Done|^#[0-9]+.*DONE' "$san_dir/fuzz/$name/fuzz.log" | tail -n 1)"
+      done
+      stage_done "fuzzing (${script_s} + ${checkpoint_s} + ${sweep_s} s from the tests' start) found nothing; waited for it"
     fi
     if [ "$tests_ok" = 0 ]; then
       echo "setup: tests failed in $san_dir/ (above)" >&2

@@ -39,6 +39,13 @@ void add_safety(CLI::App* c, Raw& raw) {
       ->type_name("N");
   c->add_option("--max-lua-memory", raw.max_lua_memory, "Lua heap limit in MiB (default 4096; 0: no limit)")
       ->type_name("MiB");
+  c->add_option("--max-lua-wall", raw.max_lua_wall,
+                "wall time of each call into Lua (a script run, console command, callback, law; beltsim's own work "
+                "not counted) in s (default 600; 0: no limit)")
+      ->type_name("S");
+  c->add_option("--max-lua-cpu", raw.max_lua_cpu,
+                "CPU time of each call into Lua, as --max-lua-wall, in s (default 120; 0: no limit)")
+      ->type_name("S");
 }
 
 void add_out_and_t_end(CLI::App* c, Raw& raw, const char* out_help) {
@@ -119,7 +126,8 @@ CLI::App* add_compare_command(CLI::App& app, CompareOptions& o) {
       "levels). CSVs: columns matched by name; a and b agree when |a - b| <= atol + rtol*max(|a|, |b|);\n"
       "rows aligned on the 't' column, B interpolated linearly onto A's times when they differ (said\n"
       "on stderr). Prints one line; exit 0 when they match, 1 when they differ, 2 on bad usage or a\n"
-      "file that cannot be read.");
+      "file that cannot be read (only regular files are), 3 when the difference image could not be\n"
+      "written (the line still says whether they match).");
   return c;
 }
 

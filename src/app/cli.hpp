@@ -13,7 +13,8 @@
 //   beltsim console [SCRIPT] [--out DIR] [--t-end T] [--integrator NAME] [--rtol R] [--max-wall S]
 //                            [--no-frames] [--set KEY=VALUE]... [SAFETY] [-- ARGS...]
 //   beltsim help parameters
-//   SAFETY: [--trusted] [--max-instructions N] [--max-lua-memory MiB] (docs/limits-and-safety.md)
+//   SAFETY: [--trusted] [--max-instructions N] [--max-lua-memory MiB] [--max-lua-wall S] [--max-lua-cpu S]
+//           (docs/limits-and-safety.md)
 // An option a command does not take is an error.
 #pragma once
 

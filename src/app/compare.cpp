@@ -1,15 +1,14 @@
 #include "app/compare.hpp"
 
-#include <cerrno>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
-#include <fstream>
 #include <stdexcept>
 
 #include "app/options.hpp"
 #include "io/image_compare.hpp"
+#include "io/input_file.hpp"
 #include "io/output_dir.hpp"
 #include "io/png_writer.hpp"
 #include "plot/csv_compare.hpp"
@@ -20,6 +19,9 @@ namespace beltsim::app {
 namespace {
 
 namespace fs = std::filesystem;
+
+// compared, but the difference image could not be written (the exit status)
+constexpr int kDiffNotWritten = 3;
 
 // a file that cannot be read or is not a PNG or CSV of numbers (exit 2)
 struct Unreadable : std::runtime_error {
@@ -39,15 +41,17 @@ long whole(const std::string& option, const std::string& text, double hi) {
   return static_cast<long>(x);
 }
 
-// true for a PNG (by its signature); throws Unreadable naming the file when it cannot be read
+// true for a PNG (by its signature); throws Unreadable naming the file when it cannot be read (a
+// regular file only: io/input_file.hpp)
 bool is_png(const std::string& path) {
-  if (fs::is_directory(path)) throw Unreadable("cannot read " + path + ": it is a folder");
-  std::ifstream f(path, std::ios::binary);
-  if (!f) throw Unreadable("cannot read " + path + ": " + std::strerror(errno));
-  static const unsigned char sig[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
-  unsigned char head[8] = {};
-  f.read(reinterpret_cast<char*>(head), 8);
-  return f.gcount() == 8 && std::memcmp(head, sig, 8) == 0;
+  try {
+    InputFile f(path);
+    static const unsigned char sig[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
+    unsigned char head[8] = {};
+    return std::fread(head, 1, 8, f.stream()) == 8 && std::memcmp(head, sig, 8) == 0;
+  } catch (const InputFileError& e) {
+    throw Unreadable(e.what());
+  }
 }
 
 std::string size_text(const Image& i) {
@@ -76,6 +80,7 @@ int compare_pngs(const CompareOptions& o) {
   }
   const bool match = c.match(tol);
   std::string diff_note;
+  bool diff_failed = false;
   if (!match || o.diff) {
     const fs::path pa(o.a);
     const std::string path = o.diff ? *o.diff : (pa.parent_path() / (pa.stem().string() + "_diff.png")).string();
@@ -85,13 +90,16 @@ int compare_pngs(const CompareOptions& o) {
     } catch (const std::exception& e) {
       std::fprintf(stderr, "beltsim compare: %s\n", e.what());
       mark_output_failure_shown(e.what());
+      diff_failed = true;
     }
   }
   std::printf("%s: %ld of %s pixels differ by more than %d levels (%ld allowed); largest difference %d levels%s%s\n",
               match ? "match" : "differ", c.bad, size_text(a).c_str(), tol.level_tol, tol.max_bad_pixels, c.worst,
               c.worst ? (" at x = " + std::to_string(c.worst_x) + ", y = " + std::to_string(c.worst_y)).c_str() : "",
               diff_note.c_str());
-  return match ? 0 : 1;
+  // one meaning per status: 3 whenever the difference image could not be written, the line
+  // above saying whether they match (docs/testing-your-scenario.md)
+  return diff_failed ? kDiffNotWritten : match ? 0 : 1;
 }
 
 int compare_csvs(const CompareOptions& o) {

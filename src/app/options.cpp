@@ -3,6 +3,7 @@
 #include <cmath>
 #include <cstdint>
 #include <sstream>
+#include <tuple>
 
 #include "integrate/integrator.hpp"
 #include "integrate/stepper.hpp"
@@ -76,6 +77,14 @@ script::Safety safety(const Raw& raw) {
     s.max_lua_memory = static_cast<std::size_t>(x * (1 << 20));
     if (x > 0 && s.max_lua_memory < (std::size_t(1) << 20))
       throw UsageError("--max-lua-memory must be at least 1 MiB (0: no limit), got " + *raw.max_lua_memory);
+  }
+  for (auto [option, text, value] : {std::tuple{"--max-lua-wall", &raw.max_lua_wall, &s.max_lua_wall},
+                                     std::tuple{"--max-lua-cpu", &raw.max_lua_cpu, &s.max_lua_cpu}}) {
+    if (!*text) continue;
+    const double x = number(option, **text);
+    if (!(x >= 0 && x <= 1e9))
+      throw UsageError(std::string(option) + " must be in [0, 1e9] s (0: no limit), got " + **text);
+    *value = x;
   }
   return s;
 }

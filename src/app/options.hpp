@@ -26,7 +26,7 @@ struct Raw {
   std::optional<std::string> integrators, rtols, ref_rtol, wall_limit, metric;  // wp
   std::optional<std::string> from;                                      // plot
   bool trusted = false;                                                 // run, wp, console, sweep
-  std::optional<std::string> max_instructions, max_lua_memory;
+  std::optional<std::string> max_instructions, max_lua_memory, max_lua_wall, max_lua_cpu;
   std::vector<std::string> set;  // run, console, wp: --set KEY=VALUE; sweep: --set KEY=V1,V2,..
   std::optional<std::string> jobs, point, partition, time, max_parallel;  // sweep
   bool list = false, collect = false, slurm = false, submit = false;

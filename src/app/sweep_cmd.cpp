@@ -7,7 +7,6 @@
 #include <cstdio>
 #include <filesystem>
 #include <optional>
-#include <variant>
 
 #include "app/commands.hpp"
 #include "io/csv_writer.hpp"
@@ -38,58 +37,6 @@ int processors() {
   return n > 0 ? static_cast<int>(n) : 1;
 }
 
-
-// the items of the list V1,V2,.. of --set kv, split at its commas; an item that starts with "
-// runs to the next " followed by a comma or the list's end, commas and all (--set reads "..." as a
-// string)
-std::vector<std::string> list_items(const std::string& kv, const std::string& list) {
-  std::vector<std::string> items;
-  for (std::size_t from = 0;;) {
-    std::size_t end = list.find(',', from);
-    if (from < list.size() && list[from] == '"') {
-      end = from;
-      do {
-        end = list.find('"', end + 1);
-        if (end == std::string::npos)
-          throw UsageError("--set " + kv + ": a value that opens a quote (\") must close it before a comma or the end");
-      } while (end + 1 < list.size() && list[end + 1] != ',');
-      ++end;
-    }
-    if (end == std::string::npos) end = list.size();
-    items.push_back(list.substr(from, end - from));
-    if (end == list.size()) return items;
-    from = end + 1;
-  }
-}
-
-// the quick form's grid: each --set KEY=V1,V2,.. a parameter, crossed in the order given (the
-// first varies slowest); each value read as --set reads one
-sweep::Grid set_grid(const std::vector<std::string>& sets) {
-  sweep::Grid g;
-  for (const std::string& kv : sets) {
-    const std::size_t eq = kv.find('=');
-    if (eq == std::string::npos) throw UsageError("--set " + kv + ": KEY=V1,V2,.. expected");
-    const std::string key = kv.substr(0, eq), list = kv.substr(eq + 1);
-    if (std::find(g.names.begin(), g.names.end(), key) != g.names.end())
-      throw UsageError("--set " + key + " is given twice; give its values in one list: --set " + key + "=V1,V2,..");
-    if (sweep::reserved_name(key))
-      throw UsageError("--set " + kv + ": a parameter may not be named '" + key +
-                       "': point.csv and summary.csv have a column of that name; give it another");
-    std::vector<sweep::Value> values;
-    for (const std::string& item : list_items(kv, list)) {
-      try {
-        const script::ScriptArg a = script::parse_set(key + "=" + item);
-        std::visit([&](const auto& x) { values.emplace_back(x); }, a.value);
-      } catch (const std::invalid_argument& e) {
-        throw UsageError(std::string(e.what()) + " (in --set " + kv + ")");
-      }
-    }
-    g.names.push_back(key);
-    g.values.push_back(std::move(values));
-  }
-  return g;
-}
-
 // the arguments that give a point's process the same sweep: the file, the folder, the --set
 // lists and the safety options as typed
 std::vector<std::string> sweep_args(const std::string& file, const std::string& dir, const Raw& raw) {
@@ -98,6 +45,8 @@ std::vector<std::string> sweep_args(const std::string& file, const std::string& 
   if (raw.trusted) a.push_back("--trusted");
   if (raw.max_instructions) a.insert(a.end(), {"--max-instructions", *raw.max_instructions});
   if (raw.max_lua_memory) a.insert(a.end(), {"--max-lua-memory", *raw.max_lua_memory});
+  if (raw.max_lua_wall) a.insert(a.end(), {"--max-lua-wall", *raw.max_lua_wall});
+  if (raw.max_lua_cpu) a.insert(a.end(), {"--max-lua-cpu", *raw.max_lua_cpu});
   return a;
 }
 
@@ -138,7 +87,12 @@ int sweep(const std::string& file, const Raw& raw, const script::Safety& s) {
   std::optional<sw::SlurmSettings> slurm;
   if (raw.slurm) slurm = slurm_settings(file, dir, name, raw);
   std::vector<sw::Point> points;
-  const sw::Grid grid = quick ? set_grid(raw.set) : sw::Grid{};
+  sw::Grid grid;
+  try {
+    if (quick) grid = script::set_grid(raw.set);
+  } catch (const std::invalid_argument& e) {
+    throw UsageError(e.what());
+  }
   try {
     script::Interpreter lua(s);
     const script::Interruptible on_signal(lua);

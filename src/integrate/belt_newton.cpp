@@ -24,6 +24,9 @@ double BeltNewtonAids::overshoot(double t, const double* z, const double* dz) {
 }
 
 double BeltNewtonAids::unstable_rate(double t, const double* z) {
+  // Threlfall's curve never falls: a belt under it alone has nothing to look for, not even the
+  // comparison of the state with its contact records
+  if (!model_.any_law(FrictionKind::stribeck) && !model_.any_law(FrictionKind::lugre)) return 0;
   return falling_friction_rate(model_, pairs(t, z));
 }
 

@@ -53,10 +53,10 @@ double StepController::propose(double h, double e) const {
   // safety 0.7, not the textbook 0.9: a rejected step costs a whole implicit step, and on the
   // belt's friction kinks 0.9 aims too close to the limit: 0.7 takes more steps but rejects fewer
   // (docs/integration.md, "Step-size control").
-  constexpr double safety = 0.7, shrink = 0.2, grow = 5.0;
-  if (e <= 0) return h * grow;
+  constexpr double safety = 0.7, shrink = 0.2;
+  if (e <= 0) return h * kGrowMax;
   const double factor = safety * std::pow(e, -exponent_);
-  return h * std::clamp(factor, shrink, grow);  // (after a rejection, e > 1: factor < 0.7)
+  return h * std::clamp(factor, shrink, kGrowMax);  // (after a rejection, e > 1: factor < 0.7)
 }
 
 }  // namespace beltsim

@@ -23,8 +23,9 @@
 namespace beltsim {
 
 struct Tolerances {
+  static constexpr double kAtolUnset = -1;  // atol left out: the same as rtol
   double rtol = 1e-6;
-  double atol = -1;  // per unit of each component's natural size; < 0: same as rtol
+  double atol = kAtolUnset;  // per unit of each component's natural size; kAtolUnset: same as rtol
   double absolute() const { return atol < 0 ? rtol : atol; }  // the atol in force
 };
 
@@ -46,8 +47,9 @@ class StepController {
   double error_norm(double t1, const Eigen::VectorXd& y0, const Eigen::VectorXd& y1, const Eigen::VectorXd& err,
                     int* worst = nullptr);
   double rtol() const { return rtol_; }  // the tolerance in force
-  // next step size after a step with error norm e (accepted when e <= 1)
+  // next step size after a step with error norm e (accepted when e <= 1): at most kGrowMax·h
   double propose(double h, double e) const;
+  static constexpr double kGrowMax = 5.0;
   // the state norm at the full tolerance (Newton's convergence test, the first step)
   double weighted_norm(const Eigen::VectorXd& y, const Eigen::VectorXd& v) const;
 

@@ -23,11 +23,16 @@ std::string rtol_problem(double rtol) {
   return "";
 }
 
+std::string atol_problem(double atol) {
+  if (atol > 0 && std::isfinite(atol)) return "";
+  return "must be > 0 and finite, or left out to mean rtol (got " + rounded_text(atol, 9) + ")";
+}
+
 void check_tolerances(const Tolerances& tol) {
   if (const std::string bad = rtol_problem(tol.rtol); !bad.empty()) throw std::invalid_argument("rtol: " + bad);
-  if (!(tol.atol < 0 || (tol.atol > 0 && std::isfinite(tol.atol))) || std::isnan(tol.atol))
-    throw std::invalid_argument("atol: must be > 0 and finite, or left out to mean rtol (got " + rounded_text(tol.atol, 9) +
-                                ")");
+  // (the unset value alone stands for rtol: a checkpoint's atol -2 is no tolerance a run was given)
+  if (tol.atol == Tolerances::kAtolUnset) return;
+  if (const std::string bad = atol_problem(tol.atol); !bad.empty()) throw std::invalid_argument("atol: " + bad);
 }
 
 }  // namespace beltsim

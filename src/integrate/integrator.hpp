@@ -107,7 +107,10 @@ std::unique_ptr<Integrator> make_one_step(std::unique_ptr<Stepper> stepper, cons
 constexpr double kRtolMin = 1e-12;
 // what is wrong with rtol as a relative tolerance ("" when nothing): the one rule for every reader
 std::string rtol_problem(double rtol);
-// checks rtol (rtol_problem) and atol (< 0: same as rtol; else finite); throws std::invalid_argument
+// what is wrong with atol as a given absolute tolerance ("" when nothing): the one rule for every reader
+std::string atol_problem(double atol);
+// checks rtol (rtol_problem) and atol (Tolerances::kAtolUnset: same as rtol; else atol_problem);
+// throws std::invalid_argument
 void check_tolerances(const Tolerances& tol);
 
 // cubic Hermite interpolation on [t0, t0 + h]

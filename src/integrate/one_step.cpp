@@ -42,6 +42,11 @@ namespace {
 constexpr double kFloorUlps = 1024;
 constexpr long kFloorSteps = 10000;
 constexpr long kFailedInARow = 10;
+// [s] the longest first step, of a run and after a restart (start())
+constexpr double kFirstStepMax = 1e-3;
+// a step that would stop just short of a landing is stretched onto it: at most kLandStretch times
+// its length, plus kLandSlack of max(1 s, t) for the landing's rounding
+constexpr double kLandStretch = 1.1, kLandSlack = 1e-12;
 
 class OneStep final : public Integrator {
  public:
@@ -75,7 +80,7 @@ class OneStep final : public Integrator {
     // draws the pulleys swinging to +4.8 rad/s between samples, which the step's ends never show).
     const double d0 = ctl_.weighted_norm(y_, y_), d1 = ctl_.weighted_norm(y_, f_);
     double h0 = (d0 < 1e-5 || d1 < 1e-5 || !std::isfinite(d0 / d1)) ? 1e-6 : 0.01 * d0 / d1;
-    h0 = std::min({h0, h_max_, 1e-3});
+    h0 = std::min({h0, h_max_, kFirstStepMax});
     if (!started_) {
       h_ = h0;
       started_ = true;
@@ -90,7 +95,7 @@ class OneStep final : public Integrator {
       double h = h_;
       // land on t_land; a step that would stop just short of it is stretched onto it, so no
       // sliver of a step is left between (at most 10 % longer than the controller asked)
-      if (t_ + 1.1 * h >= t_land - 1e-12 * std::max(1.0, std::abs(t_land))) h = t_land - t_, lands = true;
+      if (t_ + kLandStretch * h >= t_land - kLandSlack * std::max(1.0, std::abs(t_land))) h = t_land - t_, lands = true;
       const bool ok = st_->step(sys_, t_, y_, f_, h, y1_, err_);
       int worst = worst_;
       const double e = ok ? ctl_.error_norm(lands ? t_land : t_ + h, y_, y1_, err_, &worst) : 1e300;
@@ -180,6 +185,30 @@ class OneStep final : public Integrator {
     }
   }
 
+  // The last step and the next as step() and start() make them, from a run that began at t = 0:
+  // the last one's length is the distance of its ends (unless a restart put both ends at its
+  // end); it was at most kGrowMax times the one before it, which lay in [0, t_prev], or the
+  // first step, and a landing stretched it by at most kLandStretch; the next is at most kGrowMax
+  // times the last, or a first step after a restart. A step's end far past the checkpoint's time
+  // (its dense output spanning it) is refused so.
+  static void check_steps(const IntegratorState& s) {
+    if (s.t != s.t_prev && s.h_used != s.t - s.t_prev)
+      throw StateError("integrator.h_used",
+                       "the last step's length must be the distance between its ends, integrator.t - integrator.t_prev = " +
+                           number_text(s.t - s.t_prev) + " s (got " + number_text(s.h_used) + " s)");
+    const double longest = kLandStretch * std::max(kFirstStepMax, StepController::kGrowMax * s.t_prev) +
+                           kLandSlack * std::max(1.0, s.t);
+    if (!(s.h_used <= longest))
+      throw StateError("integrator.h_used", "a step of " + number_text(s.h_used) + " s from t = " +
+                                                number_text(s.t_prev) + " s is longer than any this integrator takes from there (" +
+                                                number_text(longest) + " s)");
+    const double next = std::max(kFirstStepMax, StepController::kGrowMax * s.h_used);
+    if (!(s.h <= next))
+      throw StateError("integrator.h", "a next step of " + number_text(s.h) + " s after one of " +
+                                           number_text(s.h_used) + " s is longer than this integrator proposes (at most " +
+                                           number_text(next) + " s)");
+  }
+
   WorkCounters work() const override { return sys_.problem->counters; }
   std::string stiffest() const override { return worst_ < 0 ? std::string() : sys_.problem->describe(worst_); }
 
@@ -200,10 +229,16 @@ class OneStep final : public Integrator {
     const Eigen::Index n = sys_.problem->size();
     if (s.method != st_->name())
       throw StateError("integrator.state", "the state of " + s.method + ", not of " + st_->name());
+    if (!(s.t_prev >= 0)) throw StateError("integrator.t_prev", "a run starts at t = 0 s: no step starts before it");
     if (!(s.t_prev <= s.t)) throw StateError("integrator.t_prev", "the step's start lies after its end");
     for (const auto& [key, h] : {std::pair{"integrator.h", s.h}, {"integrator.h_used", s.h_used}})
       if (!(h >= 0)) throw StateError(key, "a step size must be >= 0");
+    check_steps(s);
     if (!(s.h_cap > 0)) throw StateError("integrator.h_cap", "a step size cap must be > 0");
+    const WarningStat& failed = s.counters.warnings[WarningKind::failed_step];
+    if (failed.count == 0 ? failed.first_t != -1 : !(failed.first_t >= 0 && failed.first_t <= s.t))
+      throw StateError("integrator.failed_first_t", failed.count == 0 ? "-1 expected: no step failed"
+                                                                     : "the first failed step must lie in [0 s, integrator.t]");
     for (const auto& [key, v] : {std::pair{"integrator.y", &s.y},
                                  {"integrator.f", &s.f},
                                  {"integrator.y_prev", &s.y_prev},

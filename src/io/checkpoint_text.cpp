@@ -162,8 +162,8 @@ void CheckpointReader::fail_at(int line, std::string_view key, const std::string
                                   (key.empty() ? "" : "'" + std::string(key) + "': ") + what));
 }
 
-void CheckpointReader::fail_lines(int from, const std::string& what) const {
-  throw CheckpointError(with_note("lines " + std::to_string(from) + " to " + std::to_string(line_no_) + ": " + what));
+void CheckpointReader::fail_lines(int from, int to, const std::string& what) const {
+  throw CheckpointError(with_note("lines " + std::to_string(from) + " to " + std::to_string(to) + ": " + what));
 }
 
 void CheckpointReader::open(std::string_view key) {

@@ -130,7 +130,9 @@ class CheckpointReader {
   [[noreturn]] void fail(const std::string& what) const;
   [[noreturn]] void fail_at(int line, std::string_view key, const std::string& what) const;
   // "lines FROM to N: what" for a whole part read so far (a scene the validation refuses)
-  [[noreturn]] void fail_lines(int from, const std::string& what) const;
+  [[noreturn]] void fail_lines(int from, const std::string& what) const { fail_lines(from, line_no_, what); }
+  // "lines FROM to TO: what" for a part read before (run settings refused once the scene is read)
+  [[noreturn]] void fail_lines(int from, int to, const std::string& what) const;
 
  private:
   template <class T>

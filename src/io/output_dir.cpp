@@ -1,11 +1,11 @@
 #include "io/output_dir.hpp"
 
 #include <fcntl.h>
-#include <sys/file.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
 #include <cerrno>
+#include <cstdlib>
 #include <cstring>
 #include <mutex>
 #include <stdexcept>
@@ -39,6 +39,18 @@ std::string said(const BeneathError& e) {
 void check_name(const std::string& dir, const std::string& name) {
   if (name.empty() || name == "." || name == ".." || name.find('/') != std::string::npos)
     output_error(dir + "/" + name, "not a file name");
+}
+
+constexpr const char* kThisBeltsim = "another simulation of this beltsim";
+
+// who holds the lock file open as fd, from the process id its holder wrote in it
+std::string lock_holder(int fd) {
+  char buf[32] = {0};
+  const ssize_t n = ::pread(fd, buf, sizeof buf - 1, 0);
+  const long pid = n > 0 ? std::strtol(buf, nullptr, 10) : 0;
+  return pid == static_cast<long>(::getpid()) ? kThisBeltsim
+         : pid > 0                            ? "another beltsim (process " + std::to_string(pid) + ")"
+                                              : "another beltsim";
 }
 
 void write_all(int fd, std::string_view text, const std::string& path) {
@@ -123,7 +135,7 @@ OutputDir& OutputDir::operator=(OutputDir&& o) noexcept {
 }
 
 OutputDir::~OutputDir() {
-  if (lock_fd_ >= 0) ::close(lock_fd_);  // releases the flock
+  if (lock_fd_ >= 0) ::close(lock_fd_);  // releases the lock
   if (fd_ >= 0) ::close(fd_);
   fd_ = lock_fd_ = -1;
 }
@@ -187,23 +199,40 @@ void OutputDir::lock() {
 std::string OutputDir::try_lock() {
   if (lock_fd_ >= 0) return "";
   const int fd = open_own(kLockName, O_RDWR, false);
-  if (::flock(fd, LOCK_EX | LOCK_NB) != 0) {
+  struct flock whole {};
+  whole.l_type = F_WRLCK;
+  whole.l_whence = SEEK_SET;  // the whole file (l_len 0)
+  if (::fcntl(fd, F_OFD_SETLK, &whole) != 0) {
     const int err = errno;
-    char buf[32] = {0};
-    const ssize_t n = ::pread(fd, buf, sizeof buf - 1, 0);
+    const std::string who = lock_holder(fd);
     ::close(fd);
-    if (err != EWOULDBLOCK)
+    if (err != EAGAIN && err != EACCES)
       throw std::runtime_error("cannot lock the output folder " + path_ + ": " + std::strerror(err));
-    const long pid = n > 0 ? std::strtol(buf, nullptr, 10) : 0;
-    return pid == static_cast<long>(::getpid()) ? "another simulation of this beltsim"
-           : pid > 0                            ? "another beltsim (process " + std::to_string(pid) + ")"
-                                                : "another beltsim";
+    return who;
   }
-  // who holds it, for the message above; the lock is the flock, and holds without this text
+  // who holds it, for the messages; the lock is the OFD lock, and holds without this text
   const std::string pid = std::to_string(::getpid()) + "\n";
   if (::ftruncate(fd, 0) == 0 && ::pwrite(fd, pid.data(), pid.size(), 0) < 0) errno = 0;
   lock_fd_ = fd;
   return "";
+}
+
+std::string folder_holder(int dir) {
+  const int fd = ::openat(dir, kLockName, O_RDONLY | O_NOFOLLOW | O_NONBLOCK | O_CLOEXEC);
+  if (fd < 0) return "";  // never claimed
+  std::string who;
+  struct stat st {};
+  struct flock whole {};
+  whole.l_type = F_WRLCK;
+  whole.l_whence = SEEK_SET;
+  // a query, not a claim: a simulation starting meanwhile is not refused because of it
+  if (::fstat(fd, &st) == 0 && S_ISREG(st.st_mode) && ::fcntl(fd, F_OFD_GETLK, &whole) == 0 &&
+      whole.l_type != F_UNLCK) {
+    who = lock_holder(fd);
+    if (who == kThisBeltsim) who = "";
+  }
+  ::close(fd);
+  return who;
 }
 
 OutputPlace output_place(const std::string& path, bool make_folder) {

@@ -66,8 +66,9 @@ class OutputDir {
   // NAME removed (a link itself, never its target); no error when there is none
   void remove(const std::string& name) const;
 
-  // claims the folder for one writer: an exclusive flock(2) on DIR/.beltsim.lock (opened as any
-  // output), held until this object is destroyed (or the process ends). Throws
+  // claims the folder for one writer: an exclusive lock on DIR/.beltsim.lock (opened as any
+  // output; an open file description's lock, fcntl F_OFD_SETLK, which another one of this
+  // process is refused too), held until this object is destroyed (or the process ends). Throws
   // std::runtime_error naming the folder when another simulation, of this process or another,
   // holds it.
   void lock();
@@ -83,6 +84,12 @@ class OutputDir {
   int fd_ = -1;
   int lock_fd_ = -1;
 };
+
+// who holds the folder open as `dir` (any descriptor of it, O_PATH too) when another process does:
+// "another beltsim (process N)" ("" when nobody does, or this process). Only asked (F_OFD_GETLK),
+// never claimed: a scenario script's writes into a folder another beltsim writes are refused with
+// it (script/sandbox_files.cpp)
+std::string folder_holder(int dir);
 
 // The folder and the name of a path a caller gave: OutputDir(parent), the last component. The
 // folder is made when missing only with make_folder; errors name the path.

@@ -7,31 +7,52 @@
 #include <stdexcept>
 #include <vector>
 
+#include "io/input_file.hpp"
+
 namespace beltsim {
 
 namespace {
 
-struct File {
-  std::FILE* f;
-  ~File() {
-    if (f) std::fclose(f);
-  }
-};
-
-// libpng's error callback must not return: it keeps the message and longjmps back to the setjmp in
-// the caller (a C++ exception must not cross libpng's C frames), which then throws.
+// libpng's error callback must not return: it adds the message to the ones kept and longjmps back
+// to the setjmp in the caller (a C++ exception must not cross libpng's C frames), which then throws.
 void on_error(png_structp png, png_const_charp msg) {
   auto* where = static_cast<std::string*>(png_get_error_ptr(png));
-  if (where) *where = msg;
+  if (where) *where += msg;
   png_longjmp(png, 1);
 }
 void on_warning(png_structp, png_const_charp) {}
+// a reader's warnings are kept for its error's message: libpng says why a header is invalid
+// ("Image width exceeds user limit in IHDR") as a warning before the error ("Invalid IHDR data")
+void keep_warning(png_structp png, png_const_charp msg) {
+  auto* where = static_cast<std::string*>(png_get_error_ptr(png));
+  if (where) *where += std::string(msg) + "; ";
+}
 
 // libpng's output callback: the bytes collected in memory, written whole at the end
 void append_bytes(png_structp png, png_bytep data, png_size_t n) {
   static_cast<std::string*>(png_get_io_ptr(png))->append(reinterpret_cast<const char*>(data), n);
 }
 void no_flush(png_structp) {}
+
+// Deflate's densest code, a match of 258 bytes in two bits, packs at most 1032 bytes of data into
+// one byte: a PNG of N bytes holds at most 1032·N bytes of rows (a row being its filter byte and
+// its pixels), whatever its header claims.
+constexpr double kDeflateMaxRatio = 1032;
+
+// why a PNG's header cannot be believed ("" when it can): more pixels than kMaxPngPixels, or rows
+// of more bytes than its file can hold
+std::string png_size_problem(png_uint_32 width, png_uint_32 height, size_t row_bytes, long file_bytes) {
+  const std::string size = std::to_string(width) + "x" + std::to_string(height);
+  if (static_cast<double>(width) * height > kMaxPngPixels)
+    return "its header claims " + size + " pixels, more than the " + std::to_string(kMaxPngPixels) +
+           " beltsim reads (its own pictures are far smaller)";
+  const double rows = static_cast<double>(height) * (1.0 + static_cast<double>(row_bytes));
+  if (rows > kDeflateMaxRatio * static_cast<double>(file_bytes))
+    return "its header claims " + size + " pixels (" + std::to_string(static_cast<long long>(rows)) +
+           " bytes of rows), more than its " + std::to_string(file_bytes) +
+           " bytes can hold (deflate packs at most 1032 bytes into one): not a whole PNG";
+  return "";
+}
 
 }  // namespace
 
@@ -82,10 +103,9 @@ void write_png(const OutputDir& dir, const std::string& name, const Image& img) 
 }
 
 Image read_png(const std::string& path) {
-  File file{std::fopen(path.c_str(), "rb")};
-  if (!file.f) throw std::runtime_error("cannot read " + path);
+  InputFile file(path);  // a regular file only: a FIFO or a device is not read
   std::string error;
-  png_structp png = png_create_read_struct(PNG_LIBPNG_VER_STRING, &error, on_error, on_warning);
+  png_structp png = png_create_read_struct(PNG_LIBPNG_VER_STRING, &error, on_error, keep_warning);
   png_infop info = png ? png_create_info_struct(png) : nullptr;
   if (!info) {
     png_destroy_read_struct(&png, nullptr, nullptr);
@@ -95,10 +115,22 @@ Image read_png(const std::string& path) {
   std::vector<png_bytep> rows;
   if (setjmp(png_jmpbuf(png))) {
     png_destroy_read_struct(&png, &info, nullptr);
+    if (error.find("exceeds user limit") != std::string::npos)
+      error += " (beltsim reads at most " + std::to_string(kMaxPngSide) + " pixels a side)";
     throw std::runtime_error("read_png " + path + ": " + error);
   }
-  png_init_io(png, file.f);
+  png_init_io(png, file.stream());
+  // the header's size is checked before any row is allocated: libpng refuses sides past the limit
+  // as it reads the header, and ancillary chunks (text, profiles) past 8 MB
+  png_set_user_limits(png, kMaxPngSide, kMaxPngSide);
+  png_set_chunk_malloc_max(png, 8u << 20);
   png_read_info(png, info);
+  if (const std::string bad = png_size_problem(png_get_image_width(png, info), png_get_image_height(png, info),
+                                               png_get_rowbytes(png, info), file.size());
+      !bad.empty()) {
+    png_destroy_read_struct(&png, &info, nullptr);
+    throw std::runtime_error("read_png " + path + ": " + bad);
+  }
   const int type = png_get_color_type(png, info);
   if (png_get_bit_depth(png, info) == 16) png_set_strip_16(png);
   if (type == PNG_COLOR_TYPE_PALETTE) png_set_palette_to_rgb(png);

@@ -15,7 +15,14 @@ void write_png(const std::string& path, const Image& img);
 void write_png(const OutputDir& dir, const std::string& name, const Image& img);
 // the PNG file's bytes, in memory (the live view's frames); errors name `what`
 std::string encode_png(const Image& img, const std::string& what);
-// reads any 8-bit or 16-bit PNG (grey, palette, alpha are converted) as 8-bit RGB
+// The largest PNG read: kMaxPngSide pixels a side (libpng's user limit) and kMaxPngPixels in all
+// (300 MB as 8-bit RGB; beltsim's own frames are at most 8192x8192, its plots 20000 a side and
+// 1280x720 by default)
+inline constexpr unsigned kMaxPngSide = 20000;
+inline constexpr long kMaxPngPixels = 100'000'000;
+// reads any 8-bit or 16-bit PNG (grey, palette, alpha are converted) as 8-bit RGB: only a regular
+// file (io/input_file.hpp), and only a header whose size lies within the limits above and within
+// what the file's bytes can hold, checked before anything of that size is allocated
 Image read_png(const std::string& path);
 
 }  // namespace beltsim

@@ -1,19 +1,24 @@
 #include "plot/plot.hpp"
 
 #include <algorithm>
+#include <cerrno>
 #include <charconv>
 #include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
 #include <filesystem>
-#include <fstream>
+#include <optional>
 #include <sstream>
 #include <stdexcept>
 #include <utility>
 
 #include "io/csv_writer.hpp"
+#include "io/input_file.hpp"
+#include "io/number_text.hpp"
 #include "io/suggest.hpp"
 #include "io/units.hpp"
 #include "plot/gnuplot.hpp"
-#include "io/number_text.hpp"
 
 namespace beltsim::plot {
 
@@ -125,6 +130,47 @@ bool parse_field(const std::string& text, double& out) {
   return r.ec == std::errc() && r.ptr == s.data() + s.size();
 }
 
+// The rows of a CSV stream one at a time (POSIX getline, one buffer for all): a row is a line
+// without its '\n' (and a '\r' before it), and runs on over the line breaks inside a quoted cell
+// (csv_text writes a value with one so: a sweep's values and figures, summary.csv).
+class RowReader {
+ public:
+  explicit RowReader(std::FILE* f) : f_(f) {}
+  ~RowReader() { std::free(buf_); }
+  RowReader(const RowReader&) = delete;
+  RowReader& operator=(const RowReader&) = delete;
+  // false at the end of the file
+  bool next(std::string& row) {
+    if (!line(row)) return false;
+    bool quoted = false;
+    for (size_t from = 0;;) {
+      for (size_t i = from; i < row.size(); ++i) quoted = quoted != (row[i] == '"');
+      if (!quoted) break;
+      from = row.size() + 1;
+      std::string more;
+      if (!line(more)) break;  // a quote left open at the end: the cells say what is wrong
+      row += '\n';
+      row += more;
+    }
+    if (!row.empty() && row.back() == '\r') row.pop_back();
+    return true;
+  }
+  int lines() const { return lines_; }  // read so far: the number of the row's last line
+
+ private:
+  bool line(std::string& s) {
+    const ssize_t n = ::getline(&buf_, &cap_, f_);
+    if (n <= 0) return false;
+    s.assign(buf_, static_cast<size_t>(n) - (buf_[n - 1] == '\n' ? 1 : 0));
+    ++lines_;
+    return true;
+  }
+  std::FILE* f_;
+  char* buf_ = nullptr;
+  size_t cap_ = 0;
+  int lines_ = 0;
+};
+
 std::string joined(const std::vector<std::string>& names) {
   std::string s;
   for (const auto& n : names) s += (s.empty() ? "" : ", ") + n;
@@ -226,27 +272,25 @@ void plot_png(const PlotSpec& spec) {
 }
 
 bool Table::has(std::string_view name) const {
-  return std::find(names.begin(), names.end(), name) != names.end();
+  return index.count(std::string(name)) > 0;
 }
 
 const std::vector<double>& Table::column(std::string_view name) const {
-  const auto it = std::find(names.begin(), names.end(), name);
-  if (it == names.end())
+  const auto it = index.find(std::string(name));
+  if (it == index.end())
     throw std::runtime_error(path + " has no column '" + std::string(name) + "'" + did_you_mean(std::string(name), names) +
                              "; its columns: " + joined(names));
-  return columns[it - names.begin()];
+  return columns[it->second];
 }
 
 Table read_timeseries_csv(const std::string& path, const std::vector<std::string>* only) {
-  std::ifstream f(path, std::ios::binary);
-  if (!f) throw std::runtime_error("cannot read " + path);
+  InputFile f(path);
   Table t;
   t.path = path;
   std::string line;
-  int number_of_line = 0;
-  while (std::getline(f, line)) {
-    ++number_of_line;
-    if (!line.empty() && line.back() == '\r') line.pop_back();
+  std::vector<bool> wanted;  // per column: read its fields (with `only`: named there)
+  RowReader rows(f.stream());
+  for (int number_of_line = 1; rows.next(line); number_of_line = rows.lines() + 1) {
     if (trim(line).empty()) continue;
     std::vector<std::string> fields = csv_fields(line);
     const std::string where = path + ":" + std::to_string(number_of_line) + ": ";
@@ -254,8 +298,10 @@ Table read_timeseries_csv(const std::string& path, const std::vector<std::string
       for (auto& s : fields) {
         s = trim(s);
         if (s.empty()) throw std::runtime_error(where + "the header has an empty column name");
-        if (t.has(s)) throw std::runtime_error(where + "the header names '" + s + "' twice");
+        if (!t.index.emplace(s, t.names.size()).second)
+          throw std::runtime_error(where + "the header names '" + s + "' twice");
         t.names.push_back(s);
+        wanted.push_back(!only || std::find(only->begin(), only->end(), s) != only->end());
       }
       t.columns.resize(t.names.size());
       continue;
@@ -265,7 +311,7 @@ Table read_timeseries_csv(const std::string& path, const std::vector<std::string
                                std::to_string(fields.size()));
     for (size_t k = 0; k < fields.size(); ++k) {
       double v = std::nan("");
-      if (only && std::find(only->begin(), only->end(), t.names[k]) == only->end()) {
+      if (!wanted[k]) {
         t.columns[k].push_back(v);
         continue;
       }
@@ -274,19 +320,23 @@ Table read_timeseries_csv(const std::string& path, const std::vector<std::string
       t.columns[k].push_back(v);
     }
   }
-  if (f.bad()) throw std::runtime_error("cannot read " + path);
+  if (std::ferror(f.stream())) throw std::runtime_error("cannot read " + path + ": " + std::strerror(errno));
   if (t.names.empty()) throw std::runtime_error(path + " is empty (no header line)");
   return t;
 }
 
 std::vector<Mark> read_event_marks(const std::string& events_csv) {
   std::vector<Mark> marks;
-  std::ifstream f(events_csv, std::ios::binary);
-  if (!f) return marks;
+  std::optional<InputFile> f;
+  try {
+    f.emplace(events_csv);
+  } catch (const InputFileError&) {
+    return marks;  // none, or not a regular file: no marks
+  }
   std::string line;
   bool header = true;
-  while (std::getline(f, line)) {
-    if (!line.empty() && line.back() == '\r') line.pop_back();
+  RowReader rows(f->stream());
+  while (rows.next(line)) {
     if (std::exchange(header, false)) continue;
     const std::vector<std::string> fields = csv_fields(line);
     double t = 0;
@@ -304,9 +354,9 @@ namespace {
 
 // a sweep's summary.csv: the header starts "point," and names a status column
 bool is_summary(const std::string& csv_path) {
-  std::ifstream f(csv_path, std::ios::binary);
+  InputFile f(csv_path);
   std::string line;
-  if (!std::getline(f, line)) return false;
+  if (!RowReader(f.stream()).next(line)) return false;
   const std::vector<std::string> names = csv_fields(line);
   return names.size() > 2 && names[0] == "point" && std::find(names.begin(), names.end(), "status") != names.end();
 }

@@ -11,6 +11,7 @@
 
 #include <string>
 #include <string_view>
+#include <unordered_map>
 #include <vector>
 
 namespace beltsim::plot {
@@ -47,6 +48,7 @@ struct Table {
   std::string path;
   std::vector<std::string> names;
   std::vector<std::vector<double>> columns;  // columns[k] belongs to names[k]
+  std::unordered_map<std::string, size_t> index;  // names[k] -> k (a lookup in constant time)
 
   bool has(std::string_view name) const;
   // throws std::runtime_error "<path> has no column 'x'; its columns: a, b, ..."
@@ -54,8 +56,9 @@ struct Table {
 };
 
 // Throws std::runtime_error "<path>:<line>: <reason>" for a bad row (wrong field count, a field
-// that is not a decimal number) and for a missing, empty or unreadable file. With `only`, the
-// fields of the other columns are not read (NaN): text such as a sweep's status may stand there.
+// that is not a decimal number) and for a missing, empty or unreadable file (a regular file only:
+// io/input_file.hpp). With `only`, the fields of the other columns are not read (NaN): text such
+// as a sweep's status may stand there. Time linear in the file's size, however many columns.
 Table read_timeseries_csv(const std::string& path, const std::vector<std::string>* only = nullptr);
 
 // The events of a run as marks: the rows `t,what,value` of an events.csv (outputs.hpp), labelled

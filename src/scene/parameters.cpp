@@ -250,7 +250,7 @@ constexpr Parameter kParameters[] = {
      [](SceneDef& d, PulleyDef&) -> Slot { return &d.contact.p_max; }, nullptr, nullptr},
 
     // ---- friction = {...} ----
-    {"friction", "dv", K::number, "m/s", 1e-5, "", W::paper, R::positive,
+    {"friction", "dv", K::number, "m/s", 1e-5, "", W::paper, R::slip_band,
      "the paper's Δv, the slip speed at which μ reaches its kinetic value",
      [](SceneDef& d, PulleyDef&) -> Slot { return &d.friction.dv; }, nullptr, nullptr},
     {"friction", "law", K::other, "", {}, "`\"threlfall\"`", W::paper, R::none,
@@ -332,6 +332,7 @@ std::string_view doc_range(Rule r) {
     case Rule::exponent: return "≥ 1";
     case Rule::at_least_three: return "≥ 3";
     case Rule::friction_coefficient: return "0 … 10";
+    case Rule::slip_band: return "> 0, ≤ 1";
     case Rule::finite: return "finite";
     case Rule::none: break;
   }
@@ -401,6 +402,9 @@ std::string_view rule_text(Rule r) {
     case Rule::friction_coefficient:
       return "must be in [0, 10]: a friction coefficient (a rib's effective one stays below 5; a larger one only "
              "shrinks the steps, the friction band's stiffness growing with it)";
+    case Rule::slip_band:
+      return "must be in (0, 1] m/s: μ reaches μ_i only at a slip of dv and a loaded belt creeps at up to dv, so a "
+             "band as wide as belt speeds (a few m/s and up) is no friction (the paper's is 1e-5 m/s)";
     case Rule::finite: return "must be a finite number";
     case Rule::none: break;
   }

@@ -34,12 +34,21 @@ enum class Kind {
 };
 
 // the range a number must lie in; every rule also requires a finite number
-enum class Rule { none, finite, positive, non_negative, exponent, at_least_three, friction_coefficient };
+enum class Rule { none, finite, positive, non_negative, exponent, at_least_three, friction_coefficient, slip_band };
 
 // The largest friction coefficient accepted (Rule::friction_coefficient): a poly-V rib's effective
 // coefficient μ/sin(β/2) stays below 5 (rubber on steel, μ up to 1.5, over sin 20°); a larger one
 // changes no answer but shrinks the steps, the friction band's stiffness μ·N/Δv growing with it.
 constexpr double kMuMax = 10;
+
+// [m/s] The widest friction band accepted (Rule::slip_band, friction.dv). Within |v_T| < Δv the
+// regularised laws give μ_i·v_T/Δv: an element reaches its kinetic μ only at a slip of Δv, and a
+// belt carrying a load creeps at up to Δv on every pulley (docs/friction.md). Belts run at a few m/s
+// and up (the paper's drive 7 m/s, cars' 10-50 m/s) and creep at about 1 % of that, so a band of
+// 1 m/s already lets the drive slip tenfold more than a belt does; a band as wide as the belt's
+// speed (dv = 1e300 ran so) transmits next to nothing: no friction in effect. The paper's is
+// 1e-5 m/s, the known answers' widest 0.05 m/s.
+constexpr double kDvMax = 1;
 
 // where a parameter's value lives in a SceneDef (a pulley's in its PulleyDef)
 using Slot = std::variant<std::monostate, double*, int*, std::optional<double>*>;

@@ -53,12 +53,13 @@ void require_non_negative(const std::string& what, double value, const std::stri
 void check_rule(const Parameter& par, const std::string& what, double v) {
   const std::string unit(par.unit);
   require_finite(what, v, unit);
-  const bool ok = par.rule == Rule::positive         ? v > 0
-                  : par.rule == Rule::non_negative   ? v >= 0
-                  : par.rule == Rule::exponent       ? v >= 1
-                  : par.rule == Rule::at_least_three ? v >= 3
+  const bool ok = par.rule == Rule::positive               ? v > 0
+                  : par.rule == Rule::non_negative         ? v >= 0
+                  : par.rule == Rule::exponent             ? v >= 1
+                  : par.rule == Rule::at_least_three       ? v >= 3
                   : par.rule == Rule::friction_coefficient ? v >= 0 && v <= kMuMax
-                                                     : true;
+                  : par.rule == Rule::slip_band            ? v > 0 && v <= kDvMax
+                                                           : true;
   if (!ok) reject(what, std::string(rule_text(par.rule)), v, unit);
 }
 

@@ -5,7 +5,7 @@
 #include "lauxlib.h"
 #include "lua.h"
 #include "script/limits.hpp"
-#include "script/signals.hpp"
+#include "script/lua_clock.hpp"
 
 namespace beltsim::script {
 
@@ -40,7 +40,7 @@ bool docall(lua_State* L, int nargs, int nresults, CallError* error, const std::
   lua_insert(L, fn);
   int status = LUA_OK;
   {
-    const InsideLua inside;  // the watchdog's view (signals.hpp)
+    const InsideLua inside(L, where.c_str());  // the clock's and the watchdog's view (lua_clock.hpp)
     status = lua_pcall(L, nargs, nresults, fn);
   }
   if (status == LUA_OK) {

@@ -29,6 +29,8 @@ Interpreter::Interpreter(const Safety& safety)
   // made by luaL_newstate's, also realloc/free: they are counted from the collector's total)
   limits_->max_instructions = safety.max_instructions;
   limits_->max_bytes = safety.max_lua_memory;
+  limits_->max_wall = safety.max_lua_wall;
+  limits_->max_cpu = safety.max_lua_cpu;
   limits_->bytes = static_cast<std::size_t>(lua_gc(L_, LUA_GCCOUNT, 0)) * 1024 +
                    static_cast<std::size_t>(lua_gc(L_, LUA_GCCOUNTB, 0));
   lua_setallocf(L_, limited_alloc, limits_.get());
@@ -37,15 +39,21 @@ Interpreter::Interpreter(const Safety& safety)
     luaL_openlibs(L_);
   else
     open_sandbox(L_, ctx_.get());
+  guard_limits(L_);  // also trusted: the limits hold for every script
   ctx_->law_host->L = L_;
   open_beltsim(L_, ctx_.get());
   install_hook(L_);
+  if (safety.max_lua_wall > 0 || safety.max_lua_cpu > 0) start_lua_clock();
 }
 
 Interpreter::~Interpreter() {
   begin_call(L_);  // the finalisers lua_close runs get a budget of their own
-  lua_close(L_);
+  {
+    const InsideLua closing(L_, "closing the Lua state");  // and their time (lua_clock.hpp)
+    lua_close(L_);
+  }
   ctx_->law_host->L = nullptr;  // laws kept elsewhere (a captured scene) must not call into it
+  forget_limits(limits_.get());
 }
 
 void Interpreter::set_overrides(const Overrides& o) { ctx_->overrides = o; }

@@ -33,6 +33,10 @@ struct Safety {
   std::uint64_t max_instructions = 10'000'000'000;
   // bytes of Lua heap; 0: no limit
   std::size_t max_lua_memory = std::size_t(4) << 30;
+  // [s] wall time and CPU time of each call into Lua (a script run, a console command, a sweep
+  // point, a callback, a law), beltsim's own work in it not counted; 0: no limit
+  double max_lua_wall = 600;
+  double max_lua_cpu = 120;
 };
 
 // Command-line values that override what a script asks of scene:run{}.

@@ -5,11 +5,14 @@
 // callbacks of a live simulation count against the command that runs them) and raises an error
 // naming file:line when the budget is spent. The same hook honours Ctrl-C: the console's signal
 // handler calls interrupt(), which sets a flag, and the hook raises "interrupted!" at the next
-// slice of instructions. Once either fires, the hook runs at every instruction and raises again
-// each time until the host call ends, so a `pcall` in a loop cannot swallow it for ever.
+// slice of instructions. Once a limit or Ctrl-C fires, the hook runs at every instruction and
+// raises again each time until the host call ends, so a `pcall` in a loop cannot swallow it for
+// ever. Lua calls a message handler with hooks off when the error was raised by the hook, where no
+// limit could stop it: guard_limits' xpcall gives such an error back unchanged without running the
+// script's handler, and refuses to start once a limit fired.
 // Any count hook halves the speed of pure Lua code (Lua 5.4 then traps every instruction), so
-// without an instruction limit (max_instructions = 0) there is no permanent hook: interrupt() and
-// the allocator arm the same hook for the next instruction when they need it.
+// without an instruction limit or a time limit there is no permanent hook: interrupt() and the
+// allocator arm the same hook for the next instruction when they need it.
 //
 // Memory: a lua_Alloc that counts the bytes of the Lua heap. An allocation that would pass the
 // limit is first refused once (Lua then collects garbage, without finalisers, and asks again);
@@ -17,6 +20,9 @@
 // error with file:line at its next slice, while one that would take the heap past the limit plus
 // a margin (a quarter of the limit, at most 256 MiB) is refused: Lua's "not enough memory",
 // which the host rewrites with memory_message() (Lua gives no file:line for memory errors).
+//
+// Time: the wall time and CPU time of each call into Lua, without beltsim's own work in it, timed
+// by lua_clock.hpp, which also says what happens past them.
 #pragma once
 
 #include <atomic>
@@ -25,17 +31,21 @@
 #include <string>
 
 #include "lua.h"
+#include "script/lua_clock.hpp"
 
 namespace beltsim::script {
 
 struct Limits {
   std::uint64_t max_instructions = 0;  // per call from the host; 0: none
   std::size_t max_bytes = 0;           // Lua heap; 0: none
+  double max_wall = 0, max_cpu = 0;    // [s] per call into Lua (lua_clock.hpp); 0: none
   std::uint64_t used = 0;              // instructions since the host's call began
   std::size_t bytes = 0;               // the Lua heap now
   bool retried = false;                // an allocation was refused once: the next one is Lua's retry
   bool over_memory = false;            // a small allocation went past the limit: the hook raises
   std::size_t refused = 0;             // size of the last allocation refused outright (bytes)
+  bool time_refused = false;           // an allocation was refused because the call's time was up
+  std::string fired;                   // the limit that fired in this host call ("": none); raised again
   std::atomic<bool> interrupt{false};  // Ctrl-C: set from a signal handler, cleared by the host
   lua_State* main = nullptr;
 };
@@ -51,6 +61,17 @@ void begin_call(lua_State* L);
 void clear_interrupt(lua_State* L);
 // Ctrl-C: "interrupted!" at the next slice of instructions (async-signal-safe)
 void interrupt(Limits& g);
+// a limit fired in this host call, or Ctrl-C is pending: no more Lua code is to run in it
+bool limit_fired(lua_State* L);
+// replaces xpcall (both in the sandbox and with --trusted) with one whose message handler does not
+// run once a limit fired (see above), and table.move and collectgarbage, which can run long in C,
+// with ones that raise a limit that fired or a time that is up (table.move between slices of its
+// range)
+void guard_limits(lua_State* L);
+// the message of a time limit passed (without a place)
+std::string time_message(const Limits& g, TimeUp up);
+// the call's time is up (called by the clock's thread): the hook raises at the next instruction
+void time_is_up(Limits& g);
 // true when `status`/the error object on the stack top is a memory error; then `msg` is the
 // message naming the limit (prefixed with `where`, e.g. the script's name)
 bool memory_message(lua_State* L, int status, const std::string& where, std::string& msg);

@@ -11,18 +11,20 @@
 #include <string>
 #include <vector>
 
+#include "integrate/integrator.hpp"
+#include "io/number_text.hpp"
 #include "io/suggest.hpp"
 #include "render/recorder.hpp"
 #include "scene/validate.hpp"
 #include "script/context.hpp"
 #include "script/lua_api.hpp"
+#include "script/lua_clock.hpp"
 #include "script/lua_scene.hpp"
 #include "script/lua_sim.hpp"
 #include "script/live_feed.hpp"
 #include "script/progress.hpp"
 #include "script/sandbox.hpp"
 #include "script/signals.hpp"
-#include "io/number_text.hpp"
 
 namespace beltsim::script {
 
@@ -289,16 +291,14 @@ const RunKey kRunKeys[] = {
      }},
     {"atol", false, [](lua_State* L, int v, const Scene&, RunSettings& rs, bool&, const std::string& w) {
        rs.atol = to_number(L, v, w + ".atol");
-       if (!(rs.atol > 0 && std::isfinite(rs.atol)))
-         fail(L, w + ".atol: must be > 0 and finite (leave it out to mean rtol) (got " + std::to_string(rs.atol) + ")");
+       if (const std::string bad = atol_problem(rs.atol); !bad.empty()) fail(L, w + ".atol: " + bad);
      }},
     {"sample", false, [](lua_State* L, int v, const Scene&, RunSettings& rs, bool&, const std::string& w) {
        rs.sample_dt = to_number(L, v, w + ".sample");
      }},
     {"out", false, [](lua_State* L, int v, const Scene&, RunSettings& rs, bool&, const std::string& w) {
        rs.out_dir = to_string(L, v, w + ".out");
-       if (rs.out_dir.empty())  // it would silently be the folder beltsim runs in
-         fail(L, w + ".out: an empty path (leave it out for out/<script>, or give '.' for the folder beltsim runs in)");
+       if (const std::string bad = out_dir_problem(rs.out_dir); !bad.empty()) fail(L, w + ".out: " + bad);
      }},
     {"probe", false, [](lua_State* L, int v, const Scene& sc, RunSettings& rs, bool&, const std::string& w) {
        rs.probes = read_probes(L, v, sc, w + ".probe");
@@ -434,7 +434,7 @@ int l_scene_run(lua_State* L) {
   std::string error;
   RunResult res;
   try {
-    const HostWork work;  // beltsim's own work, not Lua code (signals.hpp)
+    const HostWork work;  // beltsim's own work, not Lua code (lua_clock.hpp)
     ProgressLine line(progress);
     LiveFeed feed(ctx->serve.get(), ctx->stop);
     res = run(*sc, rs, ctx->stop, feed.callback(line.callback()), [&](Simulation* sim) { feed.watch(sim); });
@@ -497,6 +497,7 @@ int l_scene_start(lua_State* L) {
   std::unique_ptr<Simulation> sim;
   std::string error;
   try {
+    const HostWork work;  // beltsim's own work, not Lua code (lua_clock.hpp)
     sim = std::make_unique<Simulation>(*sc, rs);
   } catch (const std::invalid_argument& e) {  // "key: reason"
     error = std::string("start.") + e.what();

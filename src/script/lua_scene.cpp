@@ -25,6 +25,7 @@
 #include "scene/validate.hpp"
 #include "script/context.hpp"
 #include "script/lua_api.hpp"
+#include "script/lua_clock.hpp"
 #include "script/lua_law.hpp"
 #include "script/lua_run.hpp"
 
@@ -447,6 +448,7 @@ int l_scene(lua_State* L) {
   luaL_setmetatable(L, kSceneMeta);
   std::string error;
   try {
+    const HostWork work;  // beltsim's own work, not Lua code (lua_clock.hpp); its laws are calls of their own
     *box = new Scene(build_scene(d, ctx ? ctx->stop : nullptr));
   } catch (const ParameterError& e) {
     error = e.what();

@@ -14,20 +14,20 @@
 #include <sstream>
 
 #include "integrate/stepper.hpp"
+#include "io/number_text.hpp"
 #include "io/suggest.hpp"
 #include "io/units.hpp"
+#include "scene/law_text.hpp"
 #include "script/context.hpp"
 #include "script/limits.hpp"
 #include "script/live_feed.hpp"
 #include "script/lua_check.hpp"
-#include "scene/law_text.hpp"
+#include "script/lua_clock.hpp"
 #include "script/lua_law.hpp"
 #include "script/lua_run.hpp"
 #include "script/progress.hpp"
 #include "script/sandbox.hpp"
-#include "script/signals.hpp"
 #include "script/sim_box.hpp"
-#include "io/number_text.hpp"
 
 namespace beltsim::script {
 
@@ -301,7 +301,7 @@ int l_log(lua_State* L) {
 // calls the function in ref with the simulation; nret results left on the stack
 void call_back(SimBox& box, const LuaRef& ref, int nret) {
   lua_State* L = box.L;
-  const InsideLua lua;  // back in Lua code, inside the run (signals.hpp)
+  const InsideLua lua(L);  // back in Lua code, inside the run: a call of its own (lua_clock.hpp)
   ref.push(L);
   lua_pushvalue(L, 1);  // the simulation: index 1 of the running method
   lua_call(L, 1, nret);

@@ -77,15 +77,16 @@ void wrap_global(lua_State* L, Context* ctx, const char* name, lua_CFunction f) 
 
 }  // namespace
 
-std::string output_refusal(const Context& c, const std::string& what, const std::string& path, bool write) {
-  return path_refusal(c, what, path, write, true);
+std::string output_refusal(const Context& c, const std::string& what, const std::string& path, bool write,
+                           Written written) {
+  return path_refusal(c, what, path, write, true, written);
 }
 
 std::string run_paths_refusal(const Context& c, const std::string& what, const RunSettings& rs) {
-  std::string r = output_refusal(c, what + ".out", rs.out_dir, true);
+  std::string r = output_refusal(c, what + ".out", rs.out_dir, true, Written::kRunFolder);
   if (r.empty() && rs.frames) {
     if (!rs.frames->png_dir.empty())
-      r = output_refusal(c, what + ".frames.png", output_path(rs, rs.frames->png_dir), true);
+      r = output_refusal(c, what + ".frames.png", output_path(rs, rs.frames->png_dir), true, Written::kFolder);
     if (r.empty() && !rs.frames->video_path.empty())
       r = output_refusal(c, what + ".frames.video", output_path(rs, rs.frames->video_path), true);
   }

@@ -14,6 +14,7 @@
 
 #include <string>
 
+#include "script/sandbox_files.hpp"  // Written
 #include "sim/simulation.hpp"
 
 struct lua_State;
@@ -27,12 +28,14 @@ void open_sandbox(lua_State* L, Context* ctx);
 
 // The files beltsim itself writes or reads for a script (a run's out and frames paths, sim:save,
 // sim:show{file}, sim:plot{file}; beltsim.resume reads) lie under the output folder or the
-// script's folder, as for io.open, with no symbolic link on their way below the folder (checked
-// here; beltsim's own writers then open them as any output, io/output_dir.hpp). "" when allowed
+// script's folder, as for io.open, with no symbolic link on their way below the folder and, when
+// written, no folder another beltsim holds on their way (checked here; beltsim's own writers then
+// open them as any output, io/output_dir.hpp; a run locks its own folder). "" when allowed
 // (always with --trusted), else the message:
 // "WHAT: writing 'path' is not allowed in a scenario script (the sandbox: ...); beltsim --trusted
 // allows it".
-std::string output_refusal(const Context& c, const std::string& what, const std::string& path, bool write);
+std::string output_refusal(const Context& c, const std::string& what, const std::string& path, bool write,
+                           Written written = Written::kFile);
 // the same for every path of a run's settings (out, frames.png, frames.video; relative frame
 // paths are inside out); what: "run", "start", "resume"
 std::string run_paths_refusal(const Context& c, const std::string& what, const RunSettings& rs);

@@ -13,9 +13,11 @@
 #include <cstring>
 #include <filesystem>
 #include <optional>
+#include <sstream>
 #include <string>
 
 #include "io/beneath.hpp"
+#include "io/output_dir.hpp"
 #include "script/context.hpp"
 #include "script/docall.hpp"
 #include "script/load_source.hpp"
@@ -134,6 +136,27 @@ std::string sandbox_reason(const BeneathError& e, const std::string& at) {
   return "";
 }
 
+// a folder on the way from the place's folder to the file it names (both included; to the folder
+// it names, with `folder`) that another beltsim holds, its simulation writing there
+// (io/output_dir.hpp), said as a refusal; "" when none. A folder still missing holds nothing, nor
+// what would be made below it.
+std::string held_on_the_way(const Place& pl, bool folder = false) {
+  BeneathError e;
+  FolderFd dir(open_root(pl, false, &e));
+  std::string at = trimmed_path(pl.root), name;
+  std::istringstream folders(folder ? pl.rel : split_path(pl.rel).first);
+  while (dir.get() >= 0) {
+    if (const std::string who = folder_holder(dir.get()); !who.empty())
+      return "the folder " + at + " is in use by " + who + " (one writer per folder: its simulation writes there)";
+    do
+      if (!std::getline(folders, name, '/')) return "";
+    while (name.empty() || name == ".");
+    dir = FolderFd(folder_at(dir.get(), name, false, &e));
+    at = joined(at, name);
+  }
+  return "";
+}
+
 // the file `path` opened for a script as m says (a write makes the missing folders under the
 // output folder): a descriptor, or -1 with *err the system's error (Lua's own answers for a
 // missing file, a permission); what the sandbox refuses raises "file:line: WHAT: ... not allowed"
@@ -141,9 +164,9 @@ int open_in_sandbox(lua_State* L, const Context& c, const char* what, const char
   const std::optional<Place> pl = place(c, path, m.write, false);
   if (!pl) return luaL_error(L, "%s", outside(c, what, path, m.write, false).c_str());
   m.make_folders = m.write;
-  std::string refused;
+  std::string refused = m.write ? held_on_the_way(*pl) : "";
   int fd = -1;
-  {
+  if (refused.empty()) {
     BeneathError e;
     const FolderFd root(open_root(*pl, m.write, &e));
     if (root.get() >= 0) fd = file_beneath(root.get(), pl->rel, m, &e);
@@ -405,12 +428,14 @@ void wrap(lua_State* L, Context* ctx, const char* field, lua_CFunction f) {
 
 }  // namespace
 
-std::string path_refusal(const Context& c, const std::string& what, const std::string& path, bool write, bool outputs) {
+std::string path_refusal(const Context& c, const std::string& what, const std::string& path, bool write, bool outputs,
+                         Written written) {
   if (c.trusted) return "";
   const std::optional<Place> pl = place(c, path, write, outputs);
   if (!pl) return outside(c, what, path, write, outputs);
-  const std::string link = link_on_the_way(*pl);
-  return link.empty() ? "" : not_allowed(what, path, write, ": " + link);
+  std::string why = link_on_the_way(*pl);
+  if (why.empty() && write && written != Written::kRunFolder) why = held_on_the_way(*pl, written == Written::kFolder);
+  return why.empty() ? "" : not_allowed(what, path, write, ": " + why);
 }
 
 void explain_binary(lua_State* L, int idx, const char* what) {

@@ -14,11 +14,18 @@ struct Context;
 
 inline constexpr const char* kHow = "beltsim --trusted allows it (docs/limits-and-safety.md)";
 
+// what a path written names, for the folders another beltsim holds (held_on_the_way): a file (the
+// folders on the way to it), a folder files are written in (it too), a run's output folder (none:
+// the run's own lock names who holds it)
+enum class Written { kFile, kFolder, kRunFolder };
+
 // "" when the sandbox lets a script read (or write) path, else why not, as
 // "WHAT: reading|writing 'path' is not allowed in a scenario script (the sandbox: ...); --trusted";
 // outputs: the path is one beltsim writes for the script (allowed under the script's folder too),
-// and a symbolic link already on its way beneath the folder is refused
-std::string path_refusal(const Context& c, const std::string& what, const std::string& path, bool write, bool outputs);
+// and a symbolic link already on its way beneath the folder is refused; a write into a folder
+// another beltsim process holds is refused
+std::string path_refusal(const Context& c, const std::string& what, const std::string& path, bool write, bool outputs,
+                         Written written = Written::kFile);
 
 // the file functions of io (the io table on the stack top) and the global loadfile, dofile and
 // require replaced by ones that open their files in the sandbox

@@ -1,7 +1,8 @@
 #include "script/script_args.hpp"
 
-#include <charconv>
+#include <algorithm>
 #include <cctype>
+#include <charconv>
 #include <cmath>
 #include <stdexcept>
 
@@ -51,6 +52,61 @@ ScriptArg parse_set(const std::string& kv) {
     a.value = v;
   }
   return a;
+}
+
+namespace {
+
+// the items of the list V1,V2,.. of --set kv, split at its commas; an item that starts with "
+// runs to the next " followed by a comma or the list's end, commas and all (--set reads "..." as a
+// string)
+std::vector<std::string> list_items(const std::string& kv, const std::string& list) {
+  std::vector<std::string> items;
+  for (std::size_t from = 0;;) {
+    std::size_t end = list.find(',', from);
+    if (from < list.size() && list[from] == '"') {
+      end = from;
+      do {
+        end = list.find('"', end + 1);
+        if (end == std::string::npos)
+          throw std::invalid_argument("--set " + kv +
+                                      ": a value that opens a quote (\") must close it before a comma or the end");
+      } while (end + 1 < list.size() && list[end + 1] != ',');
+      ++end;
+    }
+    if (end == std::string::npos) end = list.size();
+    items.push_back(list.substr(from, end - from));
+    if (end == list.size()) return items;
+    from = end + 1;
+  }
+}
+
+}  // namespace
+
+sweep::Grid set_grid(const std::vector<std::string>& sets) {
+  sweep::Grid g;
+  for (const std::string& kv : sets) {
+    const std::size_t eq = kv.find('=');
+    if (eq == std::string::npos) throw std::invalid_argument("--set " + kv + ": KEY=V1,V2,.. expected");
+    const std::string key = kv.substr(0, eq), list = kv.substr(eq + 1);
+    if (std::find(g.names.begin(), g.names.end(), key) != g.names.end())
+      throw std::invalid_argument("--set " + key + " is given twice; give its values in one list: --set " + key +
+                                  "=V1,V2,..");
+    if (sweep::reserved_name(key))
+      throw std::invalid_argument("--set " + kv + ": a parameter may not be named '" + key +
+                                  "': point.csv and summary.csv have a column of that name; give it another");
+    std::vector<sweep::Value> values;
+    for (const std::string& item : list_items(kv, list)) {
+      try {
+        const ScriptArg a = parse_set(key + "=" + item);
+        std::visit([&](const auto& x) { values.emplace_back(x); }, a.value);
+      } catch (const std::invalid_argument& e) {
+        throw std::invalid_argument(std::string(e.what()) + " (in --set " + kv + ")");
+      }
+    }
+    g.names.push_back(key);
+    g.values.push_back(std::move(values));
+  }
+  return g;
 }
 
 std::vector<ScriptArg> parse_sets(const std::vector<std::string>& kvs) {

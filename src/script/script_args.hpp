@@ -16,6 +16,8 @@
 #include <variant>
 #include <vector>
 
+#include "sweep/points.hpp"
+
 namespace beltsim::script {
 
 struct ScriptArg {
@@ -30,5 +32,10 @@ std::optional<double> decimal(const std::string& s);
 ScriptArg parse_set(const std::string& key_value);
 // all of them; a key given twice is an error too
 std::vector<ScriptArg> parse_sets(const std::vector<std::string>& key_values);
+// the quick form of `beltsim sweep` (docs/sweeps.md): each --set KEY=V1,V2,.. a parameter of the
+// grid, crossed in the order given (the first varies slowest), each value read as parse_set reads
+// one; an item that starts with " runs to the next " followed by a comma or the list's end, commas
+// and all. Throws std::invalid_argument naming the --set.
+sweep::Grid set_grid(const std::vector<std::string>& sets);
 
 }  // namespace beltsim::script

@@ -18,8 +18,6 @@ namespace beltsim::script {
 
 namespace {
 
-enum Mode : int { kOutside = 0, kLua = 1, kWork = 2 };
-
 // Atomics, not volatile sig_atomic_t: the watchdog thread reads them while the handler (on the
 // main thread, see on_signal) writes them; lock-free, so safe in a handler
 std::atomic<bool> g_stop{false};
@@ -27,8 +25,6 @@ std::atomic<int> g_first{0};    // the first stop signal of the process
 std::atomic<int> g_pending{0};  // the stop under way (a console command's Ctrl-C is done with at its end)
 std::atomic<bool> g_at_prompt{false}, g_prompt_sigint{false};
 std::atomic<Interpreter*> g_lua{nullptr};
-std::atomic<int> g_mode{kOutside};
-std::atomic<unsigned> g_mode_changes{0};
 int g_wake[2] = {-1, -1};  // the handler writes the signal's number, the watchdog reads it
 pthread_t g_main;          // the thread that installed the handlers: the one that runs Lua
 static_assert(std::atomic<int>::is_always_lock_free && std::atomic<bool>::is_always_lock_free &&
@@ -90,8 +86,8 @@ bool stuck_in_lua(Still still, Tick tick) {
   clock::time_point since;
   while (still()) {
     tick();
-    const unsigned changes = g_mode_changes.load();
-    if (g_mode.load() != kLua) {
+    const unsigned changes = lua_mode_changes();
+    if (lua_mode() != LuaMode::kLua) {
       inside = false;
     } else if (!inside || changes != seen) {
       inside = true;
@@ -202,21 +198,6 @@ Interruptible::Interruptible(Interpreter& lua) {
 Interruptible::~Interruptible() {
   const std::lock_guard<std::mutex> lock(lua_mutex());
   g_lua.store(nullptr);
-}
-
-InsideLua::InsideLua() : saved_(g_mode.exchange(kLua)) {
-  g_mode_changes.fetch_add(1);
-}
-InsideLua::~InsideLua() {
-  g_mode.store(saved_);
-  g_mode_changes.fetch_add(1);
-}
-HostWork::HostWork() : saved_(g_mode.exchange(kWork)) {
-  g_mode_changes.fetch_add(1);
-}
-HostWork::~HostWork() {
-  g_mode.store(saved_);
-  g_mode_changes.fetch_add(1);
 }
 
 }  // namespace beltsim::script

@@ -11,14 +11,15 @@
 // SIGTERM or SIGHUP, when the host has been inside Lua code (a docall, not beltsim's own C++ work
 // such as a run or a video's finalisation) for kGrace without returning, it takes the signal's
 // default action; meanwhile it interrupts Lua again every few milliseconds, so that Lua code that
-// goes on after a stopped run stops too. This covers what the Lua hook cannot: an xpcall message
-// handler or a finaliser (Lua runs them with hooks off) and one long C call such as a backtracking
-// string pattern. After a Ctrl-C that Lua has not honoured within kGrace it says that a second one
-// ends beltsim.
+// goes on after a stopped run stops too. This covers what the Lua hook cannot: one long C call such
+// as a backtracking string pattern, or a finaliser with --trusted (Lua runs them with hooks off).
+// After a Ctrl-C that Lua has not honoured within kGrace it says that a second one ends beltsim.
 #pragma once
 
 #include <atomic>
 #include <chrono>
+
+#include "script/lua_clock.hpp"  // InsideLua, HostWork: what the host is doing
 
 namespace beltsim::script {
 
@@ -54,30 +55,6 @@ class Interruptible {
   ~Interruptible();
   Interruptible(const Interruptible&) = delete;
   Interruptible& operator=(const Interruptible&) = delete;
-};
-
-// what the host is doing, for the watchdog: running Lua code (InsideLua: docall, a callback) or
-// its own C++ work called from Lua (HostWork: a run, which polls the stop flag, or closing the
-// outputs). Nested guards restore the outer state.
-class InsideLua {
- public:
-  InsideLua();
-  ~InsideLua();
-  InsideLua(const InsideLua&) = delete;
-  InsideLua& operator=(const InsideLua&) = delete;
-
- private:
-  int saved_;
-};
-class HostWork {
- public:
-  HostWork();
-  ~HostWork();
-  HostWork(const HostWork&) = delete;
-  HostWork& operator=(const HostWork&) = delete;
-
- private:
-  int saved_;
 };
 
 }  // namespace beltsim::script

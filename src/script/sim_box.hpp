@@ -13,6 +13,7 @@
 #include "script/lua_check.hpp"
 #include "script/signals.hpp"
 #include "live/live_server.hpp"
+#include "script/lua_clock.hpp"
 #include "sim/simulation.hpp"
 
 namespace beltsim::script {
@@ -51,7 +52,7 @@ template <class F>
 void guarded(lua_State* L, const char* what, F&& f, Context* ctx = nullptr) {
   std::string error;
   try {
-    const HostWork work;  // beltsim's own work, not Lua code (signals.hpp)
+    const HostWork work;  // beltsim's own work, not Lua code (lua_clock.hpp)
     f();
   } catch (const DivergenceError& e) {
     error = std::string(what) + ": " + e.what();

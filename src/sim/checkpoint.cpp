@@ -25,6 +25,8 @@
 #include "integrate/belt_system.hpp"
 #include "integrate/timeline.hpp"
 #include "io/checkpoint_text.hpp"
+#include "io/input_file.hpp"
+#include "io/number_text.hpp"
 #include "io/output_dir.hpp"
 #include "scene/scene_io.hpp"
 #include "sim/simulation.hpp"
@@ -112,32 +114,32 @@ RunSettings read_settings(CheckpointReader& r) {
 }
 
 // the whole of a regular file of at most kMaxCheckpointBytes: a FIFO, a device (/dev/zero) or a
-// folder is refused at once, without blocking on it or reading from it
+// folder is refused at once, without blocking on it or reading from it (io/input_file.hpp)
 std::string read_checkpoint_file(const std::string& path) {
-  const int fd = ::open(path.c_str(), O_RDONLY | O_NONBLOCK | O_CLOEXEC);
-  if (fd < 0) throw CheckpointError("cannot read it: " + std::string(std::strerror(errno)));
-  struct Closer {
-    int fd;
-    ~Closer() { ::close(fd); }
-  } closer{fd};
-  struct stat st {};
-  if (::fstat(fd, &st) != 0) throw CheckpointError("cannot read it: " + std::string(std::strerror(errno)));
-  if (!S_ISREG(st.st_mode)) throw CheckpointError("not a regular file, so not a checkpoint");
-  if (st.st_size > kMaxCheckpointBytes)
-    throw CheckpointError(std::to_string(st.st_size) + " bytes, more than any checkpoint (at most " +
-                             std::to_string(kMaxCheckpointBytes) + ")");
-  std::string text(static_cast<size_t>(st.st_size), '\0');
-  size_t got = 0;
-  while (got < text.size()) {
-    const ssize_t n = ::read(fd, text.data() + got, text.size() - got);
-    if (n < 0 && errno == EINTR) continue;
-    if (n < 0) throw CheckpointError("cannot read it: " + std::string(std::strerror(errno)));
-    if (n == 0) break;  // it shrank while read
-    got += static_cast<size_t>(n);
+  std::string text;
+  try {
+    InputFile file(path);
+    if (file.size() > kMaxCheckpointBytes)
+      throw CheckpointError(std::to_string(file.size()) + " bytes, more than any checkpoint (at most " +
+                            std::to_string(kMaxCheckpointBytes) + ")");
+    text = file.read_rest();
+  } catch (const InputFileError& e) {
+    throw CheckpointError(e.not_regular ? "not a regular file, so not a checkpoint" : "cannot read it: " + e.reason);
   }
-  text.resize(got);
   if (text.empty()) throw CheckpointError("an empty file, not a checkpoint");
   return text;
+}
+
+// the settings by the one check of a script's (run_settings.hpp), once the scene they name is read;
+// a refusal names the settings' lines, from to to
+void check_read_settings(const CheckpointReader& r, const Scene& sc, const RunSettings& rs, int from, int to) {
+  std::string refused;
+  try {
+    check(sc, rs, false);
+  } catch (const std::invalid_argument& e) {
+    refused = e.what();
+  }
+  if (!refused.empty()) r.fail_lines(from, to, "the run settings: " + refused);
 }
 
 }  // namespace
@@ -188,9 +190,13 @@ std::unique_ptr<Simulation> Simulation::load(const std::string& path, const Fram
   try {
     CheckpointReader r(read_checkpoint_file(path));
     r.line_choice("part", {"settings"});
+    const int settings_from = r.line_number() + 1;
     RunSettings rs = read_settings(r);
+    const int settings_to = r.line_number();
+    if (rs.frames) rs.frame_factory = factory;
     r.line_choice("part", {"scene"});
     const Scene sc = read_scene(r);
+    check_read_settings(r, sc, rs, settings_from, settings_to);
     st = read_state(r, sc);
     r.finish();
     if (rs.frames) rs.frame_factory = factory, rs.frames->first_number = st.outputs.frames;

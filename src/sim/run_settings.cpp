@@ -31,8 +31,13 @@ std::optional<FrameSettings> frame_times(const RunSettings& rs) {
   return std::nullopt;
 }
 
+std::string out_dir_problem(const std::string& dir) {
+  return dir.empty() ? "an empty path (leave it out for out/<script>, or give '.' for the folder beltsim runs in)" : "";
+}
+
 void check(const Scene& sc, const RunSettings& rs, bool batch) {
   const Model& m = sc.model;
+  if (const std::string bad = out_dir_problem(rs.out_dir); !bad.empty()) throw std::invalid_argument("out: " + bad);
   if (batch) {
     if (!(rs.t_end > 0 && std::isfinite(rs.t_end)))
       throw std::invalid_argument("t_end: must be > 0 s and finite (got " + rounded_text(rs.t_end) + " s)");

@@ -30,7 +30,7 @@ struct RunSettings {
   double t_end = 1.0;                 // [s] (batch runs only)
   std::string integrator = "trbdf2";   // docs/integration.md, "The accuracy contract"
   double rtol = 1e-4;                 // relative tolerance of the error control
-  double atol = -1;                   // absolute, per natural unit of each component; < 0: = rtol
+  double atol = -1;  // absolute, per natural unit of each component; -1 (Tolerances::kAtolUnset): = rtol
   double sample_dt = 1e-3;            // [s] interval of the time-series samples
   std::string out_dir = "out";
   // the probed elements (the paper's "selected" one): columns probe.* for one, probe<k>.* (k = 1,
@@ -81,10 +81,15 @@ std::string output_path(const RunSettings& settings, const std::string& path);
 // 0.05 s (got 0.1 s)"; "" when it can.
 std::string event_time_problem(double t, double t_end = std::numeric_limits<double>::infinity());
 
-// Checks settings for a run of sc: integrator and tolerances, sample interval, probes, snapshot times, events (one μ
-// per element, event_time_problem), frames (validate(FrameSettings), a renderer to draw them; frames that draw nothing
-// only with keep_states). A batch run (batch) also checks t_end and what must come before it (frames.t_start, snapshot
-// times, events). Throws std::invalid_argument naming the key, the reason and the value.
+// why dir cannot be a run's output folder ("" when it can): an empty path, which would silently
+// be the folder beltsim runs in
+std::string out_dir_problem(const std::string& dir);
+
+// Checks settings for a run of sc: the output folder (out_dir_problem), integrator and tolerances, sample interval,
+// probes, snapshot times, events (one μ per element, event_time_problem), frames (validate(FrameSettings), a renderer
+// to draw them; frames that draw nothing only with keep_states). A batch run (batch) also checks t_end and what must
+// come before it (frames.t_start, snapshot times, events). Throws std::invalid_argument naming the key, the reason and
+// the value.
 void check(const Scene& sc, const RunSettings& rs, bool batch);
 
 // What a run that ends at settings.t_end cannot reach is removed, one note for each, for the caller

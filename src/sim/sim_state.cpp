@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "integrate/belt_system.hpp"
+#include "io/number_text.hpp"
 #include "sim/simulation.hpp"
 
 namespace beltsim {
@@ -55,6 +56,17 @@ void Simulation::check_state(const SimState& s) const {
                                     " output streams of its settings and " + std::to_string(s.callbacks) +
                                     " callbacks");
   tl_->check_state(s.schedule, s.integrator.t_prev, s.integrator.t);
+  // what was written by now: at most the samples and frame times due by then (the streams'
+  // positions, in add_streams' order: samples, then frames when the run draws them)
+  if (s.outputs.rows > s.schedule.next[0])
+    throw StateError("rows", std::to_string(s.outputs.rows) + " samples written by t = " + number_text(s.now()) +
+                                 " s, at most " + std::to_string(s.schedule.next[0]) + " at a sample every " +
+                                 number_text(rs_.sample_dt) + " s");
+  const long frame_count = frame_times(rs_) ? s.schedule.next[1] : 0;
+  if (s.outputs.frames > frame_count)
+    throw StateError("frames_written", std::to_string(s.outputs.frames) + " frames written by t = " +
+                                           number_text(s.now()) + " s, at most the " + std::to_string(frame_count) +
+                                           " frame times by then");
 }
 
 void Simulation::apply_state(const SimState& s) {

@@ -400,6 +400,11 @@ class ConsoleTest(unittest.TestCase):
         self.assertIn("stdin:1: the instruction limit was reached: more than 10000000", err)
         self.assertIn("--max-instructions", err)
         self.assertIn("after\n", out, err)
+        # the time limit too: the command stops, the console goes on
+        r = self.piped(["while true do end", 'print("after")'], flags=["--max-lua-wall", "0.3"])
+        out, err = r.stdout.decode(), r.stderr.decode()
+        self.assertIn("stdin:1: the wall-time limit of a Lua call was reached: more than 0.3 s", err)
+        self.assertIn("after\n", out, err)
         r = subprocess.run([BELTSIM, "run", "scenario.lua", "--max-instructions", "-1"], cwd=self.tmp,
                            env=child_env(self.tmp), stdout=subprocess.PIPE, stderr=subprocess.PIPE, timeout=60)
         self.assertEqual(r.returncode, 2, r.stderr.decode())

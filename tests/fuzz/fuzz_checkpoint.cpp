@@ -7,8 +7,9 @@
 // is a finding: a crash, a sanitizer report, another exception, a hang or an allocation past
 // libFuzzer's -rss_limit_mb.
 //
-// Built as beltsim_fuzz_checkpoint with BELTSIM_FUZZ, and as beltsim_fuzz_checkpoint_replay (the
-// normal build) which runs the seeds through it as a ctest test.
+// Built as beltsim_fuzz_checkpoint with BELTSIM_FUZZ (scripts/setup.sh test fuzzes with it), and
+// as beltsim_fuzz_checkpoint_replay (the normal build) which runs the seeds through it as a ctest
+// test with --each-accepted: every seed must resume and run (BeltsimFuzzRefusal says why not).
 #include <cstddef>
 #include <cstdint>
 #include <cstdio>
@@ -41,6 +42,8 @@ struct Folder {
   }
 };
 
+std::string g_refusal;  // why the last input was refused, "" when it resumed and ran
+
 std::string sealed(std::string text) {
   if (text.size() >= 2 && text.back() == '\n') {
     const size_t last = text.rfind('\n', text.size() - 2);
@@ -53,8 +56,13 @@ std::string sealed(std::string text) {
 
 }  // namespace
 
+extern "C" const char* BeltsimFuzzRefusal() {
+  return g_refusal.c_str();
+}
+
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   static const Folder f;
+  g_refusal.clear();
   std::string text(reinterpret_cast<const char*>(data), size);
   for (size_t at; (at = text.find("@OUT@")) != std::string::npos;) text.replace(at, 5, f.out.string());
   {
@@ -72,10 +80,13 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     auto sim = beltsim::Simulation::resume(f.input.string(), {}, nullptr, vet);
     try {
       sim->run_to(sim->now() + 1e-4);
-    } catch (const beltsim::DivergenceError&) {
+    } catch (const beltsim::DivergenceError& e) {
+      g_refusal = std::string("resumed, then diverged: ") + e.what();
     }
-  } catch (const std::runtime_error&) {
-  } catch (const std::invalid_argument&) {
+  } catch (const std::runtime_error& e) {
+    g_refusal = e.what();
+  } catch (const std::invalid_argument& e) {
+    g_refusal = e.what();
   }
   std::error_code ec;
   fs::remove_all(f.out, ec);

@@ -91,10 +91,17 @@ class Watchdog {
   std::thread thread_;
 };
 
+std::string g_refusal;  // the ScriptError of the last input, "" when it ran through
+
 }  // namespace
+
+extern "C" const char* BeltsimFuzzRefusal() {
+  return g_refusal.c_str();
+}
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   static const Folder f;
+  g_refusal.clear();
   {
     std::ofstream in(f.input, std::ios::binary | std::ios::trunc);
     in.write(reinterpret_cast<const char*>(data), static_cast<std::streamsize>(size));
@@ -116,8 +123,8 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
       try {
         lua.run_file(f.prelude.string());
         lua.run_file(f.input.string());
-      } catch (const beltsim::script::ScriptError&) {
-        // the expected outcome of a bad input
+      } catch (const beltsim::script::ScriptError& e) {
+        g_refusal = e.what();  // the expected outcome of a bad input
       }
       lua.set_stop_flag(nullptr);
     }

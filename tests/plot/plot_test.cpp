@@ -106,6 +106,19 @@ TEST(Csv, ABadRowNamesFileAndLine) {
   expect_error([&] { read_timeseries_csv(write(d / "empty.csv", "")); }, {"empty"});
 }
 
+// a quoted cell may hold line breaks, as csv_text writes a sweep's text values and figures into
+// summary.csv: the row runs on to its closing quote, and a later row's line number counts them
+TEST(Csv, AQuotedLineBreakStaysInsideItsRow) {
+  const fs::path d = dir("quoted");
+  const std::string csv =
+      write(d / "summary.csv", "point,note,x,status\n0,\"one\ntwo\r\nthree\",1,ok\r\n1,\"a,b\",2,ok\n2,c,z,ok\n");
+  const std::vector<std::string> only{"x"};
+  expect_error([&] { read_timeseries_csv(csv, &only); }, {csv + ":6:", "column 'x'", "'z' is not a number"});
+  const Table t =
+      read_timeseries_csv(write(d / "ok.csv", "point,note,x,status\n0,\"one\ntwo\",1,ok\n1,\"a,b\",2,ok\n"), &only);
+  EXPECT_EQ(t.column("x"), (std::vector<double>{1, 2}));
+}
+
 TEST(Plot, TwoSeriesFromACsvGiveAPngOfTheSizeAsked) {
   const fs::path d = dir("two");
   const std::string csv = small_csv(d);

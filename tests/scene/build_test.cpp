@@ -7,6 +7,7 @@
 #include <string>
 
 #include "scene/build.hpp"
+#include "scene/parameters.hpp"
 #include "scene/presets.hpp"
 #include "scene/validate.hpp"
 #include "support/parameter_error.hpp"
@@ -329,6 +330,22 @@ TEST(BuildStages, CheckFiniteNamesWhatIsNot) {
 }
 
 }  // namespace
+// a friction band as wide as belt speeds is no friction (issue 45 §5: dv = 1e300 ran with none in
+// effect): refused with the reason above kDvMax, the paper's and the known answers' bands accepted
+TEST(BuildStages, AFrictionBandAsWideAsBeltSpeedsIsRefused) {
+  SceneDef d = presets::paper_dry();
+  for (const auto& [dv, text] : {std::pair{1e300, "1e+300"}, std::pair{1.5, "1.5"}}) {
+    d.friction.dv = dv;
+    const std::string e = error_of([&] { validate(d); });
+    EXPECT_EQ(e.rfind("friction.dv must be in (0, 1] m/s: ", 0), 0u) << e;
+    EXPECT_NE(e.find(std::string("(got ") + text + " m/s)"), std::string::npos) << e;
+  }
+  for (const double dv : {1e-5, 0.05, kDvMax}) {
+    d.friction.dv = dv;
+    EXPECT_EQ(error_of([&] { validate(d); }), "") << dv;
+  }
+}
+
 }  // namespace beltsim
 
 namespace beltsim {

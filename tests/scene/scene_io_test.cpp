@@ -439,7 +439,7 @@ TEST(SceneIo, SceneIsValidatedAsAScriptsScene) {
   EXPECT_EQ(read_error(resealed(with_line(text, "contact.p_max", "contact.p_max 0"))),
             lines + "contact.p_max must be > 0 (got 0 m)");
   EXPECT_EQ(read_error(resealed(with_line(text, "friction.dv", "friction.dv 0"))),
-            lines + "friction.dv must be > 0 (got 0 m/s)");
+            lines + "friction.dv " + std::string(rule_text(Rule::slip_band)) + " (got 0 m/s)");
   EXPECT_EQ(read_error(resealed(with_line(text, "belt.sde.k", "belt.sde.k -5"))),
             lines + "belt.sde.k must be > 0 (got -5 N/m)");
   // μ (in the drive, read first): negative, or a list of the wrong length

@@ -98,6 +98,7 @@ std::pair<std::string, std::string> breaking(Rule r) {
     case Rule::exponent: return {"0.5", "0.5"};
     case Rule::at_least_three: return {"2", "2"};
     case Rule::friction_coefficient: return {"11", "11"};
+    case Rule::slip_band: return {"2", "2"};
     case Rule::finite: return {"1/0", "inf"};
     case Rule::none: break;
   }

@@ -1,9 +1,12 @@
 // Shared by the Lua API tests: write a script's text to a file, run it, and return the error.
 #pragma once
 
+#include <gtest/gtest.h>
+
 #include <filesystem>
 #include <fstream>
 #include <string>
+#include <vector>
 
 #include "script/interpreter.hpp"
 #include "support/warning_guard.hpp"  // a run's warnings fail the test unless expect_warnings declares them
@@ -26,6 +29,11 @@ inline std::string run_script(Interpreter& lua, const std::filesystem::path& pat
     return e.what();
   }
   return "";
+}
+
+// every part is in msg
+inline void expect_has(const std::string& msg, const std::vector<std::string>& parts) {
+  for (const auto& p : parts) EXPECT_NE(msg.find(p), std::string::npos) << "'" << p << "' not in: " << msg;
 }
 
 }  // namespace beltsim::script::test

@@ -21,6 +21,8 @@
 #include <sstream>
 
 #include "io/checkpoint_text.hpp"
+#include "io/number_text.hpp"
+#include "scene/parameters.hpp"
 #include "scene/presets.hpp"
 #include "scene/scene.hpp"
 #include "sim/simulation.hpp"
@@ -248,13 +250,60 @@ TEST(Checkpoint, SceneAndSettingsAreValidated) {
   };
   refused("pulley.inertia", "pulley.inertia -0.025", "the scene: pulley 'driver'.inertia must be > 0 (got -0.025 kg·m²)");
   refused("contact.p_max", "contact.p_max 0", "the scene: contact.p_max must be > 0 (got 0 m)");
-  refused("friction.dv", "friction.dv 0", "the scene: friction.dv must be > 0 (got 0 m/s)");
+  refused("friction.dv", "friction.dv 0",
+          "the scene: friction.dv " + std::string(rule_text(Rule::slip_band)) + " (got 0 m/s)");
   refused("belt.mu", "belt.mu 3 0.3 0.3 0.3", "'belt.mu': 3 values for 60 elements");
   std::string mu = "belt.mu 60 -1";
   for (int i = 1; i < 60; ++i) mu += " 0.3";
   refused("belt.mu", mu, "'belt.mu': belt.mu of element 0 must be in [0, 10]: a friction coefficient");
   refused("sample", "sample 0", "the run settings: sample: the sample interval must be > 0 s and finite (got 0 s)");
   refused("integrator", "integrator \"euler\"", "the run settings: ");
+}
+
+// forgeries sealed with a matching checksum (issue 45 §5): settings a script could not give, a
+// scene a script could not give, a time outside the run and counts the run cannot have reached
+TEST(Checkpoint, ForgeriesAreRefused) {
+  const std::string& t = saved().text;
+  auto refused = [&](const std::string& text, const std::string& expected) {
+    SCOPED_TRACE(expected);
+    const std::string m = refusal(resealed(text));
+    EXPECT_NE(m.find(expected), std::string::npos) << m;
+    EXPECT_EQ(m.rfind(prefix(), 0), 0u) << m;
+  };
+  const std::string settings =
+      prefix() + "lines 3 to " + std::to_string(line_of(t, "part scene", "\n") - 1) + ": the run settings: ";
+  refused(with_line(t, "atol", "atol -2"),
+          settings + "atol: must be > 0 and finite, or left out to mean rtol (got -2)");
+  refused(with_line(t, "atol", "atol nan"), "'atol': expected a finite number, got nan");
+  refused(with_line(t, "out", "out \"\""), settings + "out: an empty path");
+  // two pulleys of one name: the driven pulley renamed wherever the text names it
+  std::string twins = t;
+  for (const std::string from : {"name \"driven\"", "drive \"driven\"", "\"driver\" \"driven\"", "pulley.driven."}) {
+    const std::string to = std::string(from).replace(from.find("driven"), 6, "driver");
+    for (size_t at; (at = twins.find(from)) != std::string::npos;) twins.replace(at, from.size(), to);
+  }
+  refused(twins, "the scene: two pulleys are named 'driver'");
+  refused(with_line(t, "friction.dv", "friction.dv 1e300"), "the scene: friction.dv must be in (0, 1] m/s: ");
+  // the integrator's step: its end far past the checkpoint's time (its dense output would span
+  // it), alone and with the step's length to match; the next step far longer than the last
+  const std::string h_used = "line " + std::to_string(line_of(t, "integrator.h_used")) + ": 'integrator.h_used': ";
+  refused(with_line(t, "integrator.t", "integrator.t 1e300"),
+          h_used + "the last step's length must be the distance between its ends, integrator.t - integrator.t_prev = ");
+  const double t_prev = std::stod(test::value_of(t, "integrator.t_prev"));
+  refused(
+      with_line(with_line(t, "integrator.t", "integrator.t 1e300"), "integrator.h_used",
+                "integrator.h_used " + number_text(1e300 - t_prev)),
+      h_used + "a step of 1e+300 s from t = " + number_text(t_prev) + " s is longer than any this integrator takes");
+  refused(
+      with_line(t, "integrator.h", "integrator.h 1e300"),
+      "line " + std::to_string(line_of(t, "integrator.h")) + ": 'integrator.h': a next step of 1e+300 s after one of ");
+  // counts the run cannot have reached by its time at its sample interval and frame rate
+  refused(with_line(t, "frames_written", "frames_written 99999999999"),
+          "line " + std::to_string(line_of(t, "frames_written")) +
+              ": 'frames_written': 99999999999 frames written by t = 0.0137 s, at most the 0 frame times by then");
+  refused(with_line(t, "rows", "rows 99999999999"),
+          "line " + std::to_string(line_of(t, "rows")) +
+              ": 'rows': 99999999999 samples written by t = 0.0137 s, at most 14 at a sample every 0.001 s");
 }
 
 // the outputs are cut at the saved positions only when those are row ends past the header, and

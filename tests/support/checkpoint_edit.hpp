@@ -31,6 +31,14 @@ inline std::string with_line(const std::string& text, const std::string& key, co
   return text.substr(0, at + 1) + line + text.substr(end);
 }
 
+// what follows `key ` on the first line that opens with it ("" when none)
+inline std::string value_of(const std::string& text, const std::string& key) {
+  const size_t at = text.find("\n" + key + " ");
+  if (at == std::string::npos) return "";
+  const size_t from = at + key.size() + 2;
+  return text.substr(from, text.find('\n', from) - from);
+}
+
 // the 1-based number of the first line that opens with key + after (never the first line)
 inline int line_of(const std::string& text, const std::string& key, const std::string& after = " ") {
   const size_t at = text.find("\n" + key + after);
