@@ -12,6 +12,7 @@ import http.client
 import json
 import os
 import shutil
+import socket
 import struct
 import subprocess
 import sys
@@ -172,6 +173,42 @@ class Live(unittest.TestCase):
             rows = f.read().splitlines()
         self.assertEqual(len(rows), 1 + round(T_END / SAMPLE) + 1)  # the header, t = 0 .. T_END
         self.assertAlmostEqual(float(rows[-1].split(",")[0]), T_END, places=12)
+
+
+class ServeOption(unittest.TestCase):
+    """--serve takes a port only when a number follows it (or with =): `run --serve S.lua` serves
+    on a free port and runs S.lua, it does not read S.lua as the port"""
+
+    def setUp(self):
+        self.dir = tempfile.mkdtemp(prefix="beltsim_serve_")
+        self.addCleanup(shutil.rmtree, self.dir, True)
+        with open(os.path.join(self.dir, "s.lua"), "w") as f:
+            f.write(two_pulley(elements=20) + "drive:run { t_end = 0.01, progress = false }\n")
+
+    def served_port(self, args):
+        p = subprocess.run([BELTSIM] + args, cwd=self.dir, input="", capture_output=True, text=True, timeout=120)
+        self.assertEqual(p.returncode, 0, " ".join(args) + ": " + p.stderr)
+        self.assertIn("live view at http://127.0.0.1:", p.stderr)
+        return urllib.parse.urlsplit(p.stderr.split("live view at ")[1].split()[0]).port
+
+    def free_port(self):
+        with socket.socket() as s:
+            s.bind(("127.0.0.1", 0))
+            return s.getsockname()[1]
+
+    def test_a_port_only_when_a_number_follows(self):
+        for args in [["run", "--serve", "s.lua"], ["run", "s.lua", "--serve"],
+                     ["run", "--serve", "s.lua", "--out", "o"], ["console", "--serve", "s.lua"]]:
+            self.assertGreater(self.served_port(args), 0)
+        port = self.free_port()
+        self.assertEqual(self.served_port(["run", "s.lua", "--serve", str(port)]), port)
+        port = self.free_port()
+        self.assertEqual(self.served_port(["run", "--serve=%d" % port, "s.lua"]), port)
+        port = self.free_port()
+        self.assertEqual(self.served_port(["run", "--serve", str(port), "s.lua"]), port)
+        p = subprocess.run([BELTSIM, "run", "s.lua", "--serve=x"], cwd=self.dir, capture_output=True, text=True)
+        self.assertEqual(p.returncode, 2, p.stderr)
+        self.assertIn("--serve", p.stderr)
 
 
 if __name__ == "__main__":
