@@ -68,7 +68,47 @@ void add_row(std::string& out, const Sample& s) {
   out += ']';
 }
 
+// s as a finite number into x; false when it is not one (empty, text after it, inf, nan)
+bool finite_number(const std::string& s, double& x) {
+  char* end = nullptr;
+  x = std::strtod(s.c_str(), &end);
+  return !s.empty() && *end == '\0' && std::isfinite(x);
+}
+
 }  // namespace
+
+std::string read_command(const std::function<std::string(const char*)>& param, Command& c) {
+  c.what = param("do");
+  c.pulley = param("pulley");
+  c.name = param("name");
+  const std::string v = param("value"), from = param("from"), to = param("to");
+  if (c.what == "pause" || c.what == "continue") return "";
+  if (c.what == "torque") {
+    if (c.pulley.empty() || !finite_number(v, c.value))
+      return "torque needs pulley=NAME and value=N·m (a finite number), got pulley='" + c.pulley + "' value='" + v +
+             "'";
+    return "";
+  }
+  if (c.what == "run_to") {
+    if (!finite_number(v, c.value)) return "run_to needs value=t [s] (a finite number), got value='" + v + "'";
+    return "";
+  }
+  if (c.what == "wet") {
+    if (!finite_number(from, c.from) || !finite_number(to, c.to) || !finite_number(v, c.value))
+      return "wet needs from=s0 and to=s1 [m] and value=mu (finite numbers), got from='" + from + "' to='" + to +
+             "' value='" + v + "'";
+    return "";
+  }
+  if (c.what == "save") {
+    // a bare file name in the run's folder: no path, no hidden file
+    const bool plain = !c.name.empty() && c.name.size() <= 100 && c.name[0] != '.' &&
+                       c.name.find_first_not_of("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789._-") ==
+                           std::string::npos;
+    if (!plain) return "save needs name=FILE (letters, digits, '.', '_', '-'; no folder), got name='" + c.name + "'";
+    return "";
+  }
+  return "do must be pause, continue, run_to, torque, wet or save, got '" + c.what + "'";
+}
 
 LiveServer::LiveServer(const ServeSettings& s) : settings_(s), token_(random_token()) {
   // the two files the page loads, read once: no request reaches the file system
@@ -145,10 +185,15 @@ void LiveServer::set_status(const std::string& status) {
   cv_.notify_all();
 }
 
-void LiveServer::set_frame(std::string png) {
+void LiveServer::set_frame(std::string png, double t) {
   auto f = std::make_shared<const std::string>(std::move(png));
-  const std::lock_guard<std::mutex> lock(m_);
-  frame_ = std::move(f);
+  {
+    const std::lock_guard<std::mutex> lock(m_);
+    frame_ = std::move(f);
+    frame_t_ = t;
+    ++frame_serial_;
+  }
+  cv_.notify_all();
 }
 
 std::optional<Command> LiveServer::take(bool wait) {
@@ -174,8 +219,9 @@ int LiveServer::clients() const {
 // what a stream sends next (waits up to half a second for something new; "" when nothing came)
 std::string LiveServer::stream_text(Cursor& c) {
   std::unique_lock<std::mutex> lock(m_);
-  cv_.wait_for(lock, std::chrono::milliseconds(500),
-               [&] { return stopping_ || c.run != run_ || c.seq != seq_ || c.status != status_serial_; });
+  cv_.wait_for(lock, std::chrono::milliseconds(500), [&] {
+    return stopping_ || c.run != run_ || c.seq != seq_ || c.status != status_serial_ || c.frame != frame_serial_;
+  });
   if (stopping_) return {};
   std::string out;
   if (c.run != run_) {  // a new run (or a new client): the columns, then the history
@@ -203,6 +249,12 @@ std::string LiveServer::stream_text(Cursor& c) {
     c.status = status_serial_;
     out += "event: status\ndata: ";
     add_string(out, status_);
+    out += "\n\n";
+  }
+  if (c.frame != frame_serial_) {  // a new picture: the page asks for it
+    c.frame = frame_serial_;
+    out += "event: frame\ndata: ";
+    add_number(out, frame_t_);
     out += "\n\n";
   }
   if (out.empty()) out = ": idle\n\n";  // a comment: finds a closed client
@@ -244,16 +296,7 @@ void LiveServer::routes() {
   });
   h.Post("/control", [this](const httplib::Request& req, httplib::Response& res) {
     Command c;
-    c.what = req.get_param_value("do");
-    c.pulley = req.get_param_value("pulley");
-    const std::string v = req.get_param_value("value");
-    char* end = nullptr;
-    c.value = std::strtod(v.c_str(), &end);
-    std::string bad;
-    if (c.what != "pause" && c.what != "continue" && c.what != "torque")
-      bad = "do must be pause, continue or torque, got '" + c.what + "'";
-    else if (c.what == "torque" && (c.pulley.empty() || v.empty() || *end != '\0' || !std::isfinite(c.value)))
-      bad = "torque needs pulley=NAME and value=N·m (a finite number), got pulley='" + c.pulley + "' value='" + v + "'";
+    const std::string bad = read_command([&req](const char* key) { return req.get_param_value(key); }, c);
     if (!bad.empty()) {
       res.status = 400;
       res.set_content(bad + "\n", "text/plain");

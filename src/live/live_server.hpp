@@ -11,6 +11,7 @@
 #include <condition_variable>
 #include <cstdint>
 #include <deque>
+#include <functional>
 #include <memory>
 #include <mutex>
 #include <optional>
@@ -31,12 +32,17 @@ struct ServeSettings {
   std::string assets = "/usr/share/javascript/dygraphs";
 };
 
-// a control from the page (POST /control?do=...): pause, continue, torque (pulley, value [N·m])
+// a control from the page (POST /control?do=...): pause, continue, run_to (value: t [s]), torque
+// (pulley, value [N·m]), wet (from, to [m], value: μ), save (name: a bare file name)
 struct Command {
   std::string what;
   std::string pulley;
   double value = 0;
+  double from = 0, to = 0;
+  std::string name;
 };
+// the control of a request's parameters (param: its value, "" when absent); "" or why it is refused
+std::string read_command(const std::function<std::string(const char*)>& param, Command& c);
 
 // one sample as the page gets it
 struct Sample {
@@ -67,8 +73,9 @@ class LiveServer {
   void publish(Sample s);
   // the run's state as the page shows it ("running", "paused", "finished", ...)
   void set_status(const std::string& status);
-  // the latest frame (a PNG file's bytes): the page's picture; the frame before is dropped
-  void set_frame(std::string png);
+  // the latest frame (a PNG file's bytes), drawn at t: the page's picture (the stream says
+  // "event: frame" with its t); the frame before is dropped
+  void set_frame(std::string png, double t);
   // a control is waiting (cheap: one atomic load, for every step)
   bool commands_pending() const { return pending_.load(std::memory_order_relaxed) > 0; }
   // the next control, in the order they came; wait: up to 0.2 s for one
@@ -92,7 +99,7 @@ class LiveServer {
   };
   // where one stream stands: the run, the last sample and the status it was sent
   struct Cursor {
-    std::uint64_t run = 0, seq = 0, status = 0;
+    std::uint64_t run = 0, seq = 0, status = 0, frame = 0;
   };
   void routes();
   std::string stream_text(Cursor& c);
@@ -115,8 +122,10 @@ class LiveServer {
   std::deque<Command> commands_;
   std::atomic<int> pending_{0};
   std::shared_ptr<const std::string> frame_;  // the latest frame, sent as it is when asked for
-  std::deque<Entry> history_, recent_;        // thinned from the start; the last kBehind
-  size_t thin_ = 1, skipped_ = 0;             // keep one sample in thin_ (the history thinned as it grows)
+  std::uint64_t frame_serial_ = 0;
+  double frame_t_ = 0;
+  std::deque<Entry> history_, recent_;  // thinned from the start; the last kBehind
+  size_t thin_ = 1, skipped_ = 0;       // keep one sample in thin_ (the history thinned as it grows)
 };
 
 // the page (live/page.cpp)

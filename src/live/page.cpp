@@ -17,7 +17,7 @@ body { font-family: sans-serif; margin: 1em; }
 #bar b { font-variant-numeric: tabular-nums; }
 #plot { width: 100%; height: 420px; }
 #frame { display: block; max-width: 100%; height: auto; background: #222; }
-#columns label { margin-right: 1em; white-space: nowrap; }
+#columns label, #controls span { margin-right: 1em; white-space: nowrap; }
 </style>
 </head>
 <body>
@@ -30,8 +30,13 @@ body { font-family: sans-serif; margin: 1em; }
 </div>
 <div id="controls">
 <button id="pause">Pause</button> <button id="continue">Continue</button>
+<span>run to t = <input id="target" type="number" step="any" size="6"> s <button id="runto">Run</button></span>
 <span>torque of <select id="pulley"></select> <input id="torque" type="number" step="any" size="8"> N·m
-<button id="settorque">Set</button></span> <span id="reply"></span>
+<button id="settorque">Set</button></span>
+<span>wet s from <input id="from" type="number" step="any" size="6"> to <input id="to" type="number" step="any"
+size="6"> m, μ <input id="mu" type="number" step="any" size="5"> <button id="wet">Wet</button></span>
+<span>checkpoint <input id="ckpt" type="text" size="12" value="live.ckpt"> <button id="save">Save</button></span>
+<span id="reply"></span>
 </div>
 <img id="frame" alt="the belt as the renderer draws it (frames come while a page is open)" width="960" height="540">
 <div id="plot"></div>
@@ -89,22 +94,31 @@ es.addEventListener("samples", e => {
   if (drawn) { drawn = false; requestAnimationFrame(draw); }
 });
 es.addEventListener("status", e => { document.getElementById("status").textContent = JSON.parse(e.data); });
-// the latest frame, asked for again when one has arrived (a slow link gets fewer, never a queue)
+// the latest frame, asked for when the stream says one was drawn and the one before has arrived
+// (a slow link gets fewer, never a queue); the picture's t is in its data-t once shown
 const img = document.getElementById("frame");
-let frames = 0;
-function next(delay) { setTimeout(() => { img.src = "frame.png" + q + "&n=" + (++frames); }, delay); }
-img.onload = () => next(66);
-img.onerror = () => next(500);
-next(0);
-// controls: queued by the server, applied by the run between two steps (its status says so)
+let frames = 0, loading = null, latest = null;
+function load() {
+  if (loading !== null || latest === null) return;
+  loading = latest; latest = null;
+  img.src = "frame.png" + q + "&n=" + (++frames);
+}
+img.onload = () => { img.dataset.t = loading; loading = null; load(); };
+img.onerror = () => { loading = null; load(); };
+es.addEventListener("frame", e => { latest = JSON.parse(e.data); load(); });
+// controls: queued by the server, applied by the run between two steps, as the console's commands
+// are (its status says so)
 function control(params) {
   fetch("control" + q + "&" + new URLSearchParams(params), { method: "POST" })
     .then(r => r.text()).then(t => { document.getElementById("reply").textContent = t; });
 }
 document.getElementById("pause").onclick = () => control({ do: "pause" });
 document.getElementById("continue").onclick = () => control({ do: "continue" });
-document.getElementById("settorque").onclick = () => control({
-  do: "torque", pulley: document.getElementById("pulley").value, value: document.getElementById("torque").value });
+const val = id => document.getElementById(id).value;
+document.getElementById("runto").onclick = () => control({ do: "run_to", value: val("target") });
+document.getElementById("settorque").onclick = () => control({ do: "torque", pulley: val("pulley"), value: val("torque") });
+document.getElementById("wet").onclick = () => control({ do: "wet", from: val("from"), to: val("to"), value: val("mu") });
+document.getElementById("save").onclick = () => control({ do: "save", name: val("ckpt") });
 es.onerror = () => { document.getElementById("status").textContent = "disconnected (the run has ended?)"; };
 </script>
 </body>

@@ -11,6 +11,7 @@
 #include <thread>
 
 #include "live/live_server.hpp"
+#include "script/context.hpp"
 #include "sim/simulation.hpp"
 
 namespace beltsim::script {
@@ -45,35 +46,53 @@ class FrameThread {
 
 class LiveFeed {
  public:
-  // server null: no feed (callback() returns inner); stop: Ctrl-C and the signals, which end a
-  // pause from the page too
-  LiveFeed(live::LiveServer* server, const std::atomic<bool>* stop) : server_(server), stop_(stop) {}
+  // server null: no feed (run_to is Simulation::run_to); stop: Ctrl-C and the signals, which end a
+  // pause from the page too; record (when set): the page's changes and the run's end, for the
+  // console's session.lua, on the simulation whose userdata is key (null: a scene:run{}'s)
+  LiveFeed(live::LiveServer* server, const std::atomic<bool>* stop, std::vector<PageChange>* record = nullptr,
+           const void* key = nullptr)
+      : server_(server), stop_(stop), record_(record), key_(key) {}
   ~LiveFeed() { watch(nullptr); }
   LiveFeed(const LiveFeed&) = delete;
   LiveFeed& operator=(const LiveFeed&) = delete;
 
-  // a run of sim starts (for the page a new run, its history cleared, unless the server fed this
-  // simulation last); at_end: the page's status after it ("paused", "finished"). watch(nullptr):
-  // the run has ended, publishes where it stands (the simulation must still exist)
-  void watch(Simulation* sim, const char* at_end = "finished");
-  // inner, and the feed
-  RunProgress callback(RunProgress inner);
+  // sim.run_to(t, stop, inner) with the page fed (samples, frames) and its controls applied on
+  // this thread, between two run_to calls, as a console's commands are: a control stops the run
+  // at its last step (Simulation::run_to's stop), is applied, and the run goes on to t unless a
+  // pause holds it (pause, run to a time: paused there; a torque, a wet stretch, a checkpoint: as
+  // sim:set_torque, sim:wet, sim:save). at_end: the page's status after it ("paused", "finished")
+  Simulation::Advance run_to(Simulation& sim, double t, const RunProgress& inner, const char* at_end = "finished");
 
   static constexpr double kInterval = 0.05;           // [s] of wall time between two samples
   static constexpr double kFrameInterval = 1.0 / 15;  // [s] between two frames (while a page is open)
 
  private:
+  // a run of sim starts (for the page a new run, its history cleared, unless the server fed this
+  // simulation last); watch(nullptr): the run has ended, publishes where it stands (the
+  // simulation must still exist)
+  void watch(Simulation* sim, const char* at_end = "finished");
+  // inner, the feed, and the stop when a control or Ctrl-C came
+  RunProgress callback(RunProgress inner);
   void publish(double wall);
-  // the page's controls, between two steps: a pause holds the run here (the controls that come
-  // meanwhile applied) until continue, or Ctrl-C, or the server's end
-  void apply_controls(double wall);
-  // one control; "" or why it was refused
+  // the picture where the run stands, when a page is open
+  void offer_frame();
+  // the page's controls, between two run_to calls: a pause holds the run here (the controls that
+  // come meanwhile applied) until continue, a run to a time, Ctrl-C or the server's end
+  void apply_controls(bool paused);
+  // one change (torque, wet, save); "" or why it was refused
   std::string apply(const live::Command& c);
+  void record(double t, const std::string& call);
   live::LiveServer* server_;
   const std::atomic<bool>* stop_;
+  std::vector<PageChange>* record_;
+  const void* key_;
+  std::atomic<bool> halt_{false};  // the run_to under way stops at its last step
   Simulation* sim_ = nullptr;
   const char* at_end_ = "finished";
+  double target_ = 0;  // the page's run to t (0: none)
+  double wall_ = 0;    // [s] of the run_to calls before the one under way
   double last_wall_ = -1, last_frame_ = -1, last_t_ = 0, h_ = 0;
+  bool changed_ = false;                 // the page changed the simulation during run_to
   std::unique_ptr<FrameThread> frames_;  // made when a page is first open during a run
 };
 

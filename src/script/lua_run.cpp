@@ -28,16 +28,39 @@
 
 namespace beltsim::script {
 
-void check_range(lua_State* L, const Scene& sc, std::optional<double> from, std::optional<double> to,
-                 const std::string& what) {
+std::string range_problem(const Scene& sc, std::optional<double> from, std::optional<double> to,
+                          const std::string& what) {
   const double length = sc.sites.empty() ? 0 : sc.sites[0].length;
-  if (from.has_value() != to.has_value()) fail(L, what + ": give both from and to (m along the belt), or neither");
+  if (from.has_value() != to.has_value()) return what + ": give both from and to (m along the belt), or neither";
   for (const auto& [v, name] : {std::pair{from, "from"}, std::pair{to, "to"}})
     if (v && !(*v >= 0 && *v <= length)) {
       std::ostringstream m;
       m << what << "." << name << ": must be in [0, " << length << "] m, the belt's length (got " << *v << " m)";
-      fail(L, m.str());
+      return m.str();
     }
+  return "";
+}
+
+void check_range(lua_State* L, const Scene& sc, std::optional<double> from, std::optional<double> to,
+                 const std::string& what) {
+  if (const std::string bad = range_problem(sc, from, to, what); !bad.empty()) fail(L, bad);
+}
+
+bool in_stretch(const ElementSite& site, double from, double to) {
+  return from <= to ? (site.s >= from && site.s <= to) : (site.s >= from || site.s <= to);
+}
+
+std::string wet_text(std::optional<double> mu, std::optional<double> from, std::optional<double> to,
+                     std::optional<double> transition) {
+  std::ostringstream text;
+  text << "mu = ";
+  if (mu)
+    text << *mu;
+  else
+    text << "function";
+  if (from) text << " on s in [" << *from << ", " << *to << "] m";
+  if (transition && *transition > 0) text << ", transition " << *transition << " m";
+  return text.str();
 }
 
 std::vector<double> mu_over(lua_State* L, int mu_idx, const Scene& sc, std::optional<double> from,
@@ -48,10 +71,7 @@ std::vector<double> mu_over(lua_State* L, int mu_idx, const Scene& sc, std::opti
     fail(L, what + ".mu: number or function(site) expected, got " + type_name(L, mu_idx));
   std::vector<double> out(sc.sites.size(), std::nan(""));
   for (const ElementSite& site : sc.sites) {
-    if (from) {
-      const bool in = *from <= *to ? (site.s >= *from && site.s <= *to) : (site.s >= *from || site.s <= *to);
-      if (!in) continue;
-    }
+    if (from && !in_stretch(site, *from, *to)) continue;
     double mu = 0;
     if (lua_isfunction(L, mu_idx)) {
       lua_pushvalue(L, mu_idx);
@@ -436,8 +456,9 @@ int l_scene_run(lua_State* L) {
   try {
     const HostWork work;  // beltsim's own work, not Lua code (lua_clock.hpp)
     ProgressLine line(progress);
-    LiveFeed feed(ctx->serve.get(), ctx->stop);
-    res = run(*sc, rs, ctx->stop, feed.callback(line.callback()), [&](Simulation* sim) { feed.watch(sim); });
+    LiveFeed feed(ctx->serve.get(), ctx->stop, &ctx->page_changes);
+    res = run(*sc, rs, ctx->stop, line.callback(),
+              [&](Simulation& sim, double t) { return feed.run_to(sim, t, line.callback()); });
   } catch (const DivergenceError& e) {
     error = std::string(e.what()) + " (the samples up to then are in " + rs.out_dir + "/timeseries.csv)";
     ctx->divergence = {e.t, e.what()};

@@ -58,9 +58,9 @@ int run_to(lua_State* L, SimBox& box, double t, const char* what) {
       SimBox& b;
       ~Done() { b.running = false; }
     } done{box};
-    LiveFeed feed(box.serve ? box.serve.get() : box.ctx->serve.get(), box.ctx->stop);
-    feed.watch(box.sim.get(), "paused");
-    a = box.sim->run_to(t, box.ctx->stop, feed.callback(line.callback()));
+    LiveFeed feed(box.serve ? box.serve.get() : box.ctx->serve.get(), box.ctx->stop, &box.ctx->page_changes,
+                  lua_topointer(L, 1));
+    a = feed.run_to(*box.sim, t, line.callback(), "paused");
   }, box.ctx);
   if (a.over_wall_limit) {
     // not silent: an error naming the limit and the time reached (outputs flushed; the
@@ -244,16 +244,10 @@ int l_wet(lua_State* L) {
   } else {
     mu = mu_over(L, lua_gettop(L), s.scene(), from, to, "sim:wet");
   }
-  std::ostringstream text;
-  text << "mu = ";
-  if (lua_type(L, -1) == LUA_TNUMBER)
-    text << lua_tonumber(L, -1);
-  else
-    text << "function";
-  if (from) text << " on s in [" << *from << ", " << *to << "] m";
-  if (transition && *transition > 0) text << ", transition " << *transition << " m";
+  const std::string text = wet_text(
+      lua_type(L, -1) == LUA_TNUMBER ? std::optional<double>(lua_tonumber(L, -1)) : std::nullopt, from, to, transition);
   lua_pop(L, 1);
-  apply_mu(L, s, mu, "wet", text.str());
+  apply_mu(L, s, mu, "wet", text);
   return 1;
 }
 
