@@ -2,11 +2,14 @@
 """The live view in a real browser (headless Chromium through selenium and chromium-driver, all
 Debian): the page of a running dry scenario shows t advancing, Pause holds the run (the status says
 where), a torque set on the page lands in events.csv at that time, Continue lets the run finish
-whole. A screenshot of the page is left in the test's folder when BELTSIM_KEEP is set. Each step
-waits for what the page shows (WebDriverWait), no sleeps. Exit 77 (skipped) without selenium or
-chromium-driver.
+whole. The picture of the run paused at a run-to time asked for before the run began (t = 0.05 s,
+so always the same state) is compared with tests/golden/live_page_frame.png by the goldens'
+metric (`beltsim compare`, io/image_compare.hpp). Each step waits for what the page shows
+(WebDriverWait), no sleeps. Exit 77 (skipped) without selenium or chromium-driver.
 
-usage: browser_test.py BELTSIM
+usage: browser_test.py BELTSIM [--update-golden]
+  --update-golden (the target update_browser_golden): writes the golden picture and the README's
+  screenshot of the page (media/live-view.png) instead of comparing
 """
 import os
 import shutil
@@ -14,6 +17,8 @@ import subprocess
 import sys
 import tempfile
 import unittest
+import urllib.parse
+import urllib.request
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "support"))
 from scenes import two_pulley  # noqa: E402
 
@@ -27,6 +32,11 @@ except ImportError:
     sys.exit(77)
 
 BELTSIM = None
+UPDATE = False
+ROOT = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..")
+GOLDEN = os.path.join(ROOT, "tests", "golden", "live_page_frame.png")
+SCREENSHOT = os.path.join(ROOT, "media", "live-view.png")
+T_SHOT = 0.05  # [s] the run-to time of the golden picture
 DRIVER = shutil.which("chromedriver")
 T_END = 2.0  # [s] several seconds of wall time: the page is read mid-run
 WAIT = 60  # [s] at most for what the page should show
@@ -43,7 +53,8 @@ class Browser(unittest.TestCase):
         o = webdriver.ChromeOptions()
         for a in ["--headless", "--no-sandbox", "--disable-gpu", "--disable-background-networking",
                   "--disable-component-update", "--disable-sync", "--no-first-run",
-                  "--user-data-dir=" + os.path.join(self.dir, "chromium"), "--window-size=1280,1200"]:
+                  "--user-data-dir=" + os.path.join(self.dir, "chromium"), "--window-size=1280,1200",
+                  "--force-device-scale-factor=1", "--force-color-profile=srgb"]:
             o.add_argument(a)
         self.browser = webdriver.Chrome(service=Service(DRIVER), options=o)
         self.addCleanup(self.browser.quit)
@@ -68,9 +79,26 @@ class Browser(unittest.TestCase):
 
     def test_watch_pause_torque_continue(self):
         b = self.browser
+        # a run to T_SHOT, asked for before the run begins (the address is printed before the
+        # script runs): the run pauses at T_SHOT exactly, the same state every time
+        q = urllib.parse.urlsplit(self.url).query
+        post = urllib.request.Request(self.url.split("?")[0] + "control?" + q + "&do=run_to&value=%r" % T_SHOT,
+                                      data=b"", method="POST")
+        self.assertEqual(urllib.request.urlopen(post, timeout=30).status, 202)
         b.get(self.url)
         wait = WebDriverWait(b, WAIT, poll_frequency=0.05)
-        wait.until(lambda _: self.text("t") not in ("", "-"))
+        wait.until(lambda _: self.text("status") == "paused at t = %g s" % T_SHOT)
+        frame = b.find_element(By.ID, "frame")
+        wait.until(lambda _: frame.get_attribute("data-t") == repr(T_SHOT))  # the picture of that t shown
+        shot = os.path.join(self.dir, "frame.png")
+        frame.screenshot(shot)
+        if UPDATE:
+            shutil.copy(shot, GOLDEN)
+        else:
+            c = subprocess.run([BELTSIM, "compare", shot, GOLDEN], capture_output=True, text=True)
+            self.assertEqual(c.returncode, 0, c.stdout + c.stderr + " (the difference image: " + self.dir + ")")
+        b.find_element(By.ID, "continue").click()
+        wait.until(lambda _: self.text("status") == "running")
         t0 = float(self.text("t"))
         wait.until(lambda _: float(self.text("t")) > t0)  # t advances
         b.find_element(By.ID, "pause").click()
@@ -87,7 +115,8 @@ class Browser(unittest.TestCase):
             with open(events) as f:
                 return [r.split(",") for r in f.read().splitlines()[1:] if r.split(",")[1] == "driven.torque"]
         wait.until(lambda _: torque_rows())
-        b.save_screenshot(os.path.join(self.dir, "live.png"))
+        if UPDATE:  # the README's picture of the page
+            b.save_screenshot(SCREENSHOT)
         b.find_element(By.ID, "continue").click()
         self.assertEqual(self.proc.wait(timeout=300), 0)
         rows = torque_rows()
@@ -99,6 +128,9 @@ class Browser(unittest.TestCase):
 
 if __name__ == "__main__":
     BELTSIM = os.path.abspath(sys.argv.pop(1))
+    if "--update-golden" in sys.argv:
+        sys.argv.remove("--update-golden")
+        UPDATE = True
     if not DRIVER:
         print("skipped: chromium-driver is not installed")
         sys.exit(77)
