@@ -76,6 +76,13 @@ void add_run_overrides(CLI::App* c, Raw& raw) {
   for (const RunSetting& s : run_settings())
     if (!s.option.empty()) add_run_option(c, raw, s, "output folder (default: out/<script name>)");
   c->add_flag("--no-frames", raw.no_frames, "render no frames and no video, whatever the script asks");
+  // its value only as --serve=PORT: join_serve_port makes every --serve that ("--serve 8080" when a
+  // number follows, "--serve=0" else), so a script after it is never read as the port
+  c->add_option("--serve", raw.serve,
+                "watch and steer the run from a browser: a page on 127.0.0.1:PORT (default: a free port), its "
+                "address printed at the start (docs/live-view.md)")
+      ->expected(0, 1)
+      ->type_name("[PORT]");
   add_set(c, raw);
   add_safety(c, raw);
 }
@@ -142,6 +149,18 @@ CLI::App* add_compare_command(CLI::App& app, CompareOptions& o) {
       "2 on bad usage or a file that cannot be read (only regular files are), 3 when the difference\n"
       "image could not be written (the line still says whether they match).");
   return c;
+}
+
+// `--serve 8080` as `--serve=8080`, a --serve not followed by a number as `--serve=0` (a free port):
+// the word after --serve is its port only when it is a number (CLI11 would take any word)
+void join_serve_port(std::vector<std::string>& words) {
+  for (size_t i = 0; i < words.size(); ++i) {
+    if (words[i] != "--serve") continue;
+    const bool port = i + 1 < words.size() && !words[i + 1].empty() &&
+                      words[i + 1].find_first_not_of("0123456789") == std::string::npos;
+    words[i] += "=" + (port ? words[i + 1] : std::string("0"));
+    if (port) words.erase(words.begin() + static_cast<std::ptrdiff_t>(i) + 1);
+  }
 }
 
 }  // namespace
@@ -259,6 +278,7 @@ std::optional<CommandLine> parse_command_line(int argc, char** argv, int* status
       words.erase(dd, words.end());
     }
   }
+  join_serve_port(words);
   if (words.size() == 2 && words[0] == "help" && words[1] == "parameters") {
     // the scene's parameter tables, as docs/lua-api.md holds them (scene/parameters.hpp)
     cl.command = "help-parameters";

@@ -108,6 +108,10 @@ script::Overrides overrides(const Raw& raw) {
     if (const std::string bad = run_problem(s, o.run, true); !bad.empty()) throw UsageError(option + (s.kind == RunKind::text ? ": " : " ") + bad);
     o.give(key);
   }
+  if (raw.serve) {
+    o.serve = raw.serve->empty() ? 0 : whole_number("--serve", *raw.serve, 0);
+    if (*o.serve > 65535) throw UsageError("--serve: a port in 0..65535 (0: a free one), got " + *raw.serve);
+  }
   o.no_frames = raw.no_frames;
   try {
     o.set = script::parse_sets(raw.set);

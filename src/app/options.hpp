@@ -28,6 +28,7 @@ struct Raw {
   std::map<std::string, bool> run_flags;
   bool no_frames = false;
   std::optional<std::string> out;                                               // plot, sweep
+  std::optional<std::string> serve;  // run, console: --serve [PORT]
   std::optional<std::string> integrators, rtols, ref_rtol, wall_limit, metric;  // wp
   std::optional<std::string> from;                                      // plot, summary
   std::optional<std::string> to, csv_out, plot_out;                     // summary

@@ -23,6 +23,7 @@ int cmd_run(const std::string& script, const script::Overrides& o, const script:
     const script::Interruptible on_signal(lua);
     lua.set_overrides(o);
     lua.set_stop_flag(&stop_flag());
+    if (o.serve) lua.serve(*o.serve);
     lua.run_file(script);
     if (lua.interrupted() || stop_signal() != 0) return stopped_status();
     // a --set the script never read: the run did not use what was asked of it

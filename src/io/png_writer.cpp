@@ -61,24 +61,22 @@ void write_png(const std::string& path, const Image& img) {
   write_png(p.dir, p.name, img);
 }
 
-void write_png(const OutputDir& dir, const std::string& name, const Image& img) {
-  const std::string path = dir.file(name);
+std::string encode_png(const Image& img, const std::string& what) {
   if (img.width <= 0 || img.height <= 0 || img.rgb.size() != static_cast<size_t>(3) * img.width * img.height)
-    throw std::runtime_error("write_png " + path + ": empty or inconsistent image");
-  WholeFile file(dir, name);  // refuses a link before any work
+    throw std::runtime_error(what + ": empty or inconsistent image");
   std::string bytes;
   std::string error;
   png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, &error, on_error, on_warning);
   png_infop info = png ? png_create_info_struct(png) : nullptr;
   if (!info) {
     png_destroy_write_struct(&png, nullptr);
-    throw std::runtime_error("write_png " + path + ": out of memory");
+    throw std::runtime_error(what + ": out of memory");
   }
   std::vector<png_bytep> rows(img.height);
   for (int y = 0; y < img.height; ++y) rows[y] = const_cast<png_bytep>(img.pixel(0, y));
   if (setjmp(png_jmpbuf(png))) {
     png_destroy_write_struct(&png, &info);
-    throw std::runtime_error("write_png " + path + ": " + error);
+    throw std::runtime_error(what + ": " + error);
   }
   png_set_write_fn(png, &bytes, append_bytes, no_flush);
   // frames are written while the simulation waits: zlib level 3 and the Sub filter only (not
@@ -92,7 +90,15 @@ void write_png(const OutputDir& dir, const std::string& name, const Image& img) 
   png_write_image(png, rows.data());
   png_write_end(png, nullptr);
   png_destroy_write_struct(&png, &info);
-  file.write(bytes);
+  return bytes;
+}
+
+void write_png(const OutputDir& dir, const std::string& name, const Image& img) {
+  const std::string path = dir.file(name);
+  if (img.width <= 0 || img.height <= 0 || img.rgb.size() != static_cast<size_t>(3) * img.width * img.height)
+    throw std::runtime_error("write_png " + path + ": empty or inconsistent image");
+  WholeFile file(dir, name);  // refuses a link before any work
+  file.write(encode_png(img, "write_png " + path));
   file.commit();
 }
 

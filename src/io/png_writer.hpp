@@ -13,6 +13,8 @@ namespace beltsim {
 void write_png(const std::string& path, const Image& img);
 // DIR/NAME
 void write_png(const OutputDir& dir, const std::string& name, const Image& img);
+// the PNG file's bytes, in memory (the live view's frames); errors name `what`
+std::string encode_png(const Image& img, const std::string& what);
 // The largest PNG read: kMaxPngSide pixels a side (libpng's user limit) and kMaxPngPixels in all
 // (300 MB as 8-bit RGB; beltsim's own frames are at most 8192x8192, its plots 20000 a side and
 // 1280x720 by default)

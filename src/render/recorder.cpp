@@ -65,16 +65,30 @@ std::unique_ptr<FrameSink> make_frame_recorder(const Scene& sc, const FrameSetti
   return std::make_unique<FrameRecorder>(sc, fs);
 }
 
+struct FrameDrawer::Parts {
+  Parts(const Scene& sc, const FrameSettings& fs)
+      : builder(sc, fs, &font), ctx(make_gl_context(default_gl_backend())), gl(*ctx, fs.width, fs.height) {}
+  Font font;
+  FrameBuilder builder;
+  std::unique_ptr<GlContext> ctx;
+  GlRenderer gl;
+  DrawList list;
+};
+
+FrameDrawer::FrameDrawer(const Scene& sc, const FrameSettings& fs) : p_(std::make_unique<Parts>(sc, fs)) {}
+FrameDrawer::~FrameDrawer() = default;
+
+Image FrameDrawer::draw(double t, const double* y, const Drive& drive, const Observation* obs) {
+  Image image;
+  p_->builder.build(t, y, p_->list, &drive, obs);
+  p_->gl.render(p_->list, image);
+  return image;
+}
+
 void render_snapshot(const Scene& sc, const FrameSettings& fs, double t, const double* y, const Drive& drive,
                      const std::string& png, const Observation* obs) {
-  Font font;
-  FrameBuilder builder(sc, fs, &font);
-  auto ctx = make_gl_context(default_gl_backend());
-  GlRenderer gl(*ctx, fs.width, fs.height);
-  DrawList list;
-  Image image;
-  builder.build(t, y, list, &drive, obs);
-  gl.render(list, image);
+  FrameDrawer drawer(sc, fs);
+  const Image image = drawer.draw(t, y, drive, obs);
   const OutputPlace place = output_place(png, true);  // its folder made when missing
   write_png(place.dir, place.name, image);
 }

@@ -6,6 +6,7 @@
 #include <memory>
 #include <string>
 
+#include "io/image.hpp"
 #include "sim/frames.hpp"
 
 namespace beltsim {
@@ -17,6 +18,24 @@ namespace beltsim::render {
 // Creates the GL context (BELTSIM_GL: osmesa or egl), the renderer and the writers. Throws
 // std::runtime_error with a clear message when any of them cannot be created.
 std::unique_ptr<FrameSink> make_frame_recorder(const Scene& scene, const FrameSettings& settings);
+
+// Frames of one scene drawn one after another into images, with a GL context of its own: made,
+// used and destroyed on one thread (a GL context is current on one thread; the live view's frame
+// thread). The scene must outlive it. Throws std::runtime_error as make_frame_recorder does.
+class FrameDrawer {
+ public:
+  FrameDrawer(const Scene& scene, const FrameSettings& settings);
+  ~FrameDrawer();
+  FrameDrawer(const FrameDrawer&) = delete;
+  FrameDrawer& operator=(const FrameDrawer&) = delete;
+  // the frame of state y at t with the drive's μ and spray zones; obs: what is observed there
+  // (null: computed from y and the drive, whose laws it then evaluates)
+  Image draw(double t, const double* y, const Drive& drive, const Observation* obs);
+
+ private:
+  struct Parts;
+  std::unique_ptr<Parts> p_;
+};
 
 // One frame of the state y at time t (drive: as it is now) written to a PNG file, with a GL
 // context of its own (Lua sim:show). Throws std::runtime_error.

@@ -80,6 +80,7 @@ int run_console(const std::optional<std::string>& script, const std::vector<std:
   Interpreter lua(safety);
   lua.set_overrides(o);
   lua.set_stop_flag(&stop_flag());
+  if (o.serve) lua.serve(*o.serve);
   const Interruptible on_signal(lua);
   lua_State* L = lua.state();
   Context& ctx = lua.context();
@@ -153,8 +154,8 @@ int run_console(const std::optional<std::string>& script, const std::vector<std:
         std::fprintf(stderr, "%s\n", lua_tostring(L, -1));
         lua_pop(L, 1);
         failed = true;
-      } else if (ctx.stopped_runs.clear(), execute(L)) {
-        commands.push_back(replayable(L, chunk, expression, ctx.stopped_runs));
+      } else if (ctx.stopped_runs.clear(), ctx.page_changes.clear(), execute(L)) {
+        commands.push_back(replayable(L, chunk, expression, ctx.stopped_runs, ctx.page_changes));
       } else {
         failed = true;
       }

@@ -7,6 +7,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <regex>
 #include <sstream>
 
@@ -112,15 +113,31 @@ std::string as_statements(lua_State* L, const std::string& chunk, bool expressio
 
 // a command whose run Ctrl-C stopped becomes run_to(where it stopped), so the replay stops at the
 // same step end (and gives the same outputs)
-std::string replayable(lua_State* L, const std::string& chunk, bool expression, const StoppedRuns& stopped) {
-  if (stopped.empty()) return as_statements(L, chunk, expression);
+// A command during which the live view's page changed a simulation becomes, the same way, the runs
+// to where each change came and the changes, in the order they were applied (page_changes holds
+// the ends of its runs too)
+std::string replayable(lua_State* L, const std::string& chunk, bool expression, const StoppedRuns& stopped,
+                       const std::vector<PageChange>& page) {
+  if (stopped.empty() && page.empty()) return as_statements(L, chunk, expression);
   std::string out = "-- " + chunk;
   for (size_t k = 0; k < out.size(); ++k)
     if (out[k] == '\n') out.insert(k + 1, "-- ");
-  out += "  -- stopped by Ctrl-C";
+  out += page.empty() ? "  -- stopped by Ctrl-C" : "  -- changed from the live view while it ran";
+  const auto sim_name = [L](const void* p) {
+    const std::string name = p ? global_named(L, p) : "";
+    return name.empty() ? "-- (a simulation not held by a global) sim" : name;
+  };
+  std::map<const void*, double> at;  // where each simulation stands in the replay
+  for (const PageChange& c : page) {
+    const std::string name = sim_name(c.sim);
+    const auto it = at.find(c.sim);
+    if (it == at.end() || it->second != c.t) out += "\n" + name + ":run_to(" + number_text(c.t) + ")";
+    at[c.sim] = c.t;
+    if (!c.call.empty()) out += "\n" + name + ":" + c.call;
+  }
   for (const auto& [p, t] : stopped) {
-    const std::string name = global_named(L, p);
-    out += "\n" + (name.empty() ? "-- (a simulation not held by a global)" : name) + ":run_to(" + number_text(t) + ")";
+    const auto it = at.find(p);
+    if (it == at.end() || it->second != t) out += "\n" + sim_name(p) + ":run_to(" + number_text(t) + ")";
   }
   return out;
 }

@@ -11,6 +11,7 @@
 #include <utility>
 #include <vector>
 
+#include "script/context.hpp"
 #include "script/script_args.hpp"
 
 struct lua_State;
@@ -21,8 +22,10 @@ namespace beltsim::script {
 using StoppedRuns = std::vector<std::pair<const void*, double>>;
 
 // the command `chunk` (compiled as an expression when `expression`) as session.lua replays it;
-// the globals of L name the simulations in `stopped`
-std::string replayable(lua_State* L, const std::string& chunk, bool expression, const StoppedRuns& stopped);
+// the globals of L name the simulations in `stopped` and `page` (the live view's changes while
+// the command ran, context.hpp)
+std::string replayable(lua_State* L, const std::string& chunk, bool expression, const StoppedRuns& stopped,
+                       const std::vector<PageChange>& page);
 
 // writes <dir>/session.lua, or session_2.lua, ... when an earlier session's is there (nothing when
 // no command ran); false, with the reason on stderr, when it cannot be written

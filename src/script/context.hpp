@@ -13,7 +13,20 @@
 #include "script/load_source.hpp"
 #include "script/lua_law.hpp"
 
+namespace beltsim::live {
+class LiveServer;
+}
+
 namespace beltsim::script {
+
+// a change the live view's page made (script/live_feed.hpp), as the console's session.lua replays
+// it: on the simulation with this userdata (null: a scene:run{}'s, which no statement names) at t,
+// the method call after "NAME:" (set_torque("driven", -65)); "" for where the run stood at its end
+struct PageChange {
+  const void* sim = nullptr;
+  double t = 0;
+  std::string call;
+};
 
 // the registry field holding the result table of the last scene:run{} (a sweep point of the quick form)
 inline constexpr const char* kLastRun = "beltsim.last_run";
@@ -37,6 +50,10 @@ struct Context {
   // runs stopped by Ctrl-C: the simulation's userdata and where it stopped (the console writes
   // sim:run_to(t) into session.lua instead of the command, so that the replay stops there too)
   std::vector<std::pair<const void*, double>> stopped_runs;
+  // the page's changes during the command running now, with the ends of that command's runs
+  // while a page could change them (the console writes them into session.lua instead of the
+  // command, as for Ctrl-C)
+  std::vector<PageChange> page_changes;
   // the keys of beltsim.args the running script has read (given with --set or not), in order
   std::vector<std::string> args_read;
   // the last run that diverged: its time and message (a sweep point's status, lua_sweep.hpp)
@@ -46,6 +63,8 @@ struct Context {
   std::vector<LoadedFile> loaded;
   bool args_warned = false;  // the unread --set keys were reported at a run's start
   bool t_end_warned = false;  // --t-end was said not to shorten scene:start's simulations
+  // the live view of --serve (Interpreter::serve): every run of the session feeds it
+  std::shared_ptr<live::LiveServer> serve;
   // the state Lua laws call into (emptied when the interpreter closes it)
   std::shared_ptr<LawHost> law_host = std::make_shared<LawHost>();
 };

@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <fstream>
 
+#include "live/live_server.hpp"
 #include "script/context.hpp"
 #include "script/docall.hpp"
 #include "script/limits.hpp"
@@ -59,6 +60,15 @@ void Interpreter::set_overrides(const Overrides& o) { ctx_->overrides = o; }
 void Interpreter::set_stop_flag(const std::atomic<bool>* stop) { ctx_->stop = stop; }
 void Interpreter::set_capture(Captured* c) { ctx_->capture = c; }
 Context& Interpreter::context() { return *ctx_; }
+
+std::string Interpreter::serve(int port) {
+  live::ServeSettings ss;
+  ss.port = port;
+  ctx_->serve = std::make_shared<live::LiveServer>(ss);
+  const std::string url = ctx_->serve->url();
+  std::fprintf(stderr, "beltsim: live view at %s\n", url.c_str());
+  return url;
+}
 bool Interpreter::interrupted() const { return ctx_->interrupted; }
 std::vector<std::string> Interpreter::unread_args(const std::string& script) const {
   return unread_arg_messages(*ctx_, script);

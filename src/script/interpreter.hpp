@@ -58,6 +58,7 @@ struct Overrides {
   }
   bool no_frames = false;      // ignore the scripts' frames = {...} (no rendering, no video)
   std::vector<ScriptArg> set;  // --set KEY=VALUE: beltsim.args (not an override of run{})
+  std::optional<int> serve;    // --serve [PORT]: the live view on 127.0.0.1 (0: a free port)
 };
 
 // What a script asked of its first scene:run{} (for `beltsim wp`, which runs the scene itself).
@@ -83,6 +84,9 @@ class Interpreter {
 
   void set_overrides(const Overrides& o);
   void set_stop_flag(const std::atomic<bool>* stop);
+  // starts the live view (live/live_server.hpp) that every run of this interpreter feeds, until
+  // it ends; prints its address on stderr and returns it. Throws std::runtime_error when it cannot.
+  std::string serve(int port);
   // capture mode: the first scene:run{} stores its scene and settings here and ends the script
   void set_capture(Captured* c);
   // runs a scenario script (loaded as text only); throws ScriptError. With nresults > 0 the first

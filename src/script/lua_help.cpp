@@ -88,6 +88,8 @@ const std::vector<HelpEntry>& api_help() {
        "on scene:run's results (docs/summary.md)"},
       {"save", "sim:save(path) -> path", "a checkpoint: state, integrator, laws, μ, pending events, output positions"},
       {"resume", "beltsim.resume(path) -> sim", "continues a checkpoint (bit for bit); callbacks must be added again"},
+      {"serve", "sim:serve{ port = 0, host = \"127.0.0.1\" } -> url",
+       "the live view of this simulation in a browser, until it closes (docs/live-view.md)"},
       {"close", "sim:close()", "flushes the CSV files and finalises the video"},
       {"rpm", "beltsim.rpm(n) -> [rad/s]", "revolutions per minute to rad/s"},
       {"belts", "beltsim.belts[\"6PK\"] -> { preset, mass_per_length, EA, EI, ... }",

@@ -21,6 +21,7 @@
 #include "script/lua_clock.hpp"
 #include "script/lua_scene.hpp"
 #include "script/lua_sim.hpp"
+#include "script/live_feed.hpp"
 #include "script/lua_summary.hpp"
 #include "script/progress.hpp"
 #include "script/sandbox.hpp"
@@ -29,15 +30,40 @@
 
 namespace beltsim::script {
 
-void check_range(lua_State* L, const Scene& sc, std::optional<double> from, std::optional<double> to,
-                 const std::string& what) {
+std::string range_problem(const Scene& sc, std::optional<double> from, std::optional<double> to,
+                          const std::string& what, std::string* key) {
   const double length = sc.sites.empty() ? 0 : sc.sites[0].length;
-  if (from.has_value() != to.has_value()) fail_on(L, what, "give both from and to (m along the belt), or neither");
+  if (key) *key = what;
+  if (from.has_value() != to.has_value()) return "give both from and to (m along the belt), or neither";
   for (const auto& [v, name] : {std::pair{from, "from"}, std::pair{to, "to"}})
     if (v && !(*v >= 0 && *v <= length)) {
-      fail_on(L, what + "." + name,
-              "must be in [0, " + rounded_text(length) + "] m, the belt's length (got " + rounded_text(*v) + " m)");
+      if (key) *key = what + "." + name;
+      return "must be in [0, " + rounded_text(length) + "] m, the belt's length (got " + rounded_text(*v) + " m)";
     }
+  return "";
+}
+
+void check_range(lua_State* L, const Scene& sc, std::optional<double> from, std::optional<double> to,
+                 const std::string& what) {
+  std::string key;
+  if (const std::string bad = range_problem(sc, from, to, what, &key); !bad.empty()) fail_on(L, key, bad);
+}
+
+bool in_stretch(const ElementSite& site, double from, double to) {
+  return from <= to ? (site.s >= from && site.s <= to) : (site.s >= from || site.s <= to);
+}
+
+std::string wet_text(std::optional<double> mu, std::optional<double> from, std::optional<double> to,
+                     std::optional<double> transition) {
+  std::ostringstream text;
+  text << "mu = ";
+  if (mu)
+    text << *mu;
+  else
+    text << "function";
+  if (from) text << " on s in [" << *from << ", " << *to << "] m";
+  if (transition && *transition > 0) text << ", transition " << *transition << " m";
+  return text.str();
 }
 
 std::vector<double> mu_over(lua_State* L, int mu_idx, const Scene& sc, std::optional<double> from,
@@ -48,10 +74,7 @@ std::vector<double> mu_over(lua_State* L, int mu_idx, const Scene& sc, std::opti
     fail_on(L, what + ".mu", std::string("number or function(site) expected, got ") + type_name(L, mu_idx));
   std::vector<double> out(sc.sites.size(), std::nan(""));
   for (const ElementSite& site : sc.sites) {
-    if (from) {
-      const bool in = *from <= *to ? (site.s >= *from && site.s <= *to) : (site.s >= *from || site.s <= *to);
-      if (!in) continue;
-    }
+    if (from && !in_stretch(site, *from, *to)) continue;
     double mu = 0;
     if (lua_isfunction(L, mu_idx)) {
       lua_pushvalue(L, mu_idx);
@@ -412,7 +435,9 @@ int l_scene_run(lua_State* L) {
   try {
     const HostWork work;  // beltsim's own work, not Lua code (lua_clock.hpp)
     ProgressLine line(progress);
-    res = run(*sc, rs, ctx->stop, line.callback());
+    LiveFeed feed(ctx->serve.get(), ctx->stop, &ctx->page_changes);
+    res = run(*sc, rs, ctx->stop, line.callback(),
+              [&](Simulation& sim, double t) { return feed.run_to(sim, t, line.callback()); });
   } catch (const DivergenceError& e) {
     error = std::string(e.what()) + " (the samples up to then are in " + rs.out_dir + "/timeseries.csv)";
     ctx->divergence = {e.t, e.what()};

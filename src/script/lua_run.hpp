@@ -15,8 +15,11 @@ namespace beltsim::script {
 
 struct Context;
 
-// a stretch [from, to] of the belt: both or neither given, each in [0, the belt's length] (a Lua
-// error naming `what` otherwise)
+// a stretch [from, to] of the belt: both or neither given, each in [0, the belt's length]; "" or
+// the problem's reason, with the key it is about (`what`, or what.from / what.to) in *key
+// (check_range: a Lua error on that key)
+std::string range_problem(const Scene& sc, std::optional<double> from, std::optional<double> to,
+                          const std::string& what, std::string* key = nullptr);
 void check_range(lua_State* L, const Scene& sc, std::optional<double> from, std::optional<double> to,
                  const std::string& what);
 // μ of each element from the value at mu_idx (a number or function(site)), on the elements whose
@@ -24,6 +27,11 @@ void check_range(lua_State* L, const Scene& sc, std::optional<double> from, std:
 // them); NaN for the others. Checks the range and every value (>= 0, finite).
 std::vector<double> mu_over(lua_State* L, int mu_idx, const Scene& sc, std::optional<double> from,
                             std::optional<double> to, const std::string& what);
+// the element's start position s lies in [from, to] (wrapping round when from > to)
+bool in_stretch(const ElementSite& site, double from, double to);
+// the text of a wet stretch in events.csv ("mu = 0.2 on s in [0.1, 0.3] m"; mu absent: a function)
+std::string wet_text(std::optional<double> mu, std::optional<double> from, std::optional<double> to,
+                     std::optional<double> transition);
 // The share of the wet μ an element at belt coordinate s takes with a transition of length tau
 // [m] about each end of [from, to] (wrapping round the belt of length len when from > to): 1 inside
 // farther than tau/2 from both ends, 0 outside farther than tau/2, linear across the ends; tau = 0

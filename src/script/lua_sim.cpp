@@ -20,6 +20,7 @@
 #include "scene/law_text.hpp"
 #include "script/context.hpp"
 #include "script/limits.hpp"
+#include "script/live_feed.hpp"
 #include "script/lua_check.hpp"
 #include "script/lua_clock.hpp"
 #include "script/lua_law.hpp"
@@ -58,7 +59,9 @@ int run_to(lua_State* L, SimBox& box, double t, const char* what) {
       SimBox& b;
       ~Done() { b.running = false; }
     } done{box};
-    a = box.sim->run_to(t, box.ctx->stop, line.callback());
+    LiveFeed feed(box.serve ? box.serve.get() : box.ctx->serve.get(), box.ctx->stop, &box.ctx->page_changes,
+                  lua_topointer(L, 1));
+    a = feed.run_to(*box.sim, t, line.callback(), "paused");
   }, box.ctx);
   if (a.over_wall_limit) {
     // not silent: an error naming the limit and the time reached (outputs flushed; the
@@ -242,16 +245,10 @@ int l_wet(lua_State* L) {
   } else {
     mu = mu_over(L, lua_gettop(L), s.scene(), from, to, "sim:wet");
   }
-  std::ostringstream text;
-  text << "mu = ";
-  if (lua_type(L, -1) == LUA_TNUMBER)
-    text << lua_tonumber(L, -1);
-  else
-    text << "function";
-  if (from) text << " on s in [" << *from << ", " << *to << "] m";
-  if (transition && *transition > 0) text << ", transition " << *transition << " m";
+  const std::string text = wet_text(
+      lua_type(L, -1) == LUA_TNUMBER ? std::optional<double>(lua_tonumber(L, -1)) : std::nullopt, from, to, transition);
   lua_pop(L, 1);
-  apply_mu(L, s, mu, "wet", text.str());
+  apply_mu(L, s, mu, "wet", text);
   return 1;
 }
 
@@ -356,6 +353,34 @@ int l_cancel(lua_State* L) {
   return 1;
 }
 
+// sim:serve{ port = 0, host = "127.0.0.1" } -> url: the live view of this simulation's runs
+// (docs/live-view.md), until it closes. A host other than this machine's loopback needs --trusted.
+int l_serve(lua_State* L) {
+  SimBox* box = check_box(L, "serve");
+  check_args(L, "sim:serve", {{"{port, host}", kTable, true}}, 2);
+  live::ServeSettings ss;
+  if (lua_istable(L, 2)) {
+    check_keys(L, 2, "sim:serve", {"port", "host"});
+    if (const auto port = opt_number(L, 2, "port", "sim:serve")) {
+      if (!(*port >= 0 && *port <= 65535 && *port == std::floor(*port)))
+        fail(L, "sim:serve: port must be an integer in 0..65535 (0: a free one), got " + rounded_text(*port));
+      ss.port = static_cast<int>(*port);
+    }
+    if (field(L, 2, "host")) {
+      if (lua_type(L, -1) != LUA_TSTRING) fail(L, std::string("sim:serve: host must be a string, got ") + type_name(L, -1));
+      ss.host = lua_tostring(L, -1);
+      lua_pop(L, 1);
+    }
+  }
+  if (!box->ctx->trusted && ss.host != "127.0.0.1" && ss.host != "::1" && ss.host != "localhost")
+    fail(L, "sim:serve: host '" + ss.host + "' opens the live view to other machines; only a --trusted script may");
+  if (box->serve) fail(L, "sim:serve: this simulation is served already, at " + box->serve->url());
+  guarded(L, "sim:serve", [&] { box->serve = std::make_shared<live::LiveServer>(ss); });
+  std::fprintf(stderr, "beltsim: live view at %s\n", box->serve->url().c_str());
+  lua_pushstring(L, box->serve->url().c_str());
+  return 1;
+}
+
 // sim:close(): flush the CSV files, finalise the video
 int l_close(lua_State* L) {
   SimBox* box = check_box(L, "close");
@@ -366,6 +391,7 @@ int l_close(lua_State* L) {
             "sim:advance returns");
   const bool was_open = !box->sim->closed();
   guarded(L, "sim:close", [&] { box->sim->close(); });
+  box->serve.reset();
   if (was_open) {
     if (const std::string w = box->sim->warning_summary(); !w.empty()) std::fprintf(stderr, "beltsim: %s\n", w.c_str());
     if (const std::string c = box->sim->check_line(); !c.empty())
@@ -385,6 +411,7 @@ int l_gc(lua_State* L) {
   }
   // emptied rather than destroyed: a finaliser that runs later (another object's __gc) may still
   // reach this userdata, and must find "finalised" (sim == nullptr), not a dead object
+  box->serve.reset();
   box->sim.reset();
   box->refs.clear();
   return 0;
@@ -405,7 +432,7 @@ const luaL_Reg kMethods[] = {
     {"span", l_span},       {"energy", l_energy},         {"stats", l_stats},         {"set_torque", l_set_torque},
     {"set_speed", l_set_speed}, {"set_arm", l_set_arm}, {"set_rotor", l_set_rotor}, {"wet", l_wet},           {"spray", l_spray},       {"set_mu", l_set_mu},       {"log", l_log},
     {"every", l_every},     {"when", l_when},             {"cancel", l_cancel},       {"show", l_show},
-    {"plot", l_plot},       {"summary", l_sim_summary}, {"save", l_save},             {"close", l_close},           {nullptr, nullptr}};
+    {"plot", l_plot},       {"summary", l_sim_summary}, {"save", l_save},             {"serve", l_serve},             {"close", l_close},           {nullptr, nullptr}};
 
 // sim.t is the current time; sim.<method> the methods
 int l_index(lua_State* L) {

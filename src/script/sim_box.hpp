@@ -11,6 +11,8 @@
 #include "integrate/integrator.hpp"
 #include "script/context.hpp"
 #include "script/lua_check.hpp"
+#include "script/signals.hpp"
+#include "live/live_server.hpp"
 #include "script/lua_clock.hpp"
 #include "sim/simulation.hpp"
 
@@ -26,6 +28,7 @@ struct SimBox {
   std::map<int, std::unique_ptr<LuaRef>> refs;  // callbacks by id (a when has two: -id for its condition)
   long shows = 0;
   bool running = false;  // inside run_to: its callbacks may run Lua code that calls this simulation
+  std::shared_ptr<live::LiveServer> serve;  // sim:serve{}: stops when the simulation closes
 };
 
 inline SimBox* check_box(lua_State* L, const char* method) {

@@ -508,7 +508,7 @@ bool Simulation::cancel(int id) {
 }
 
 RunResult run(const Scene& sc, const RunSettings& settings, const std::atomic<bool>* stop,
-              const RunProgress& progress) {
+              const RunProgress& progress, const Advancer& advance) {
   RunSettings rs = settings;
   std::vector<std::string> skipped = drop_after_end(rs);
   check(sc, rs, true);
@@ -519,7 +519,7 @@ RunResult run(const Scene& sc, const RunSettings& settings, const std::atomic<bo
   res.csv_path = sim.csv_path();
   res.parameters_path = (std::filesystem::path(rs.out_dir) / "parameters.csv").string();
   // the wall-time limit stops the run as Ctrl-C does (Simulation::run_to)
-  const Simulation::Advance a = sim.run_to(rs.t_end, stop, progress);
+  const Simulation::Advance a = advance ? advance(sim, rs.t_end) : sim.run_to(rs.t_end, stop, progress);
   sim.close();
   res.t_reached = a.t;
   res.over_wall_limit = a.over_wall_limit;

@@ -257,8 +257,11 @@ class Simulation {
 std::string cannot_save(const std::string& integrator);
 
 // A batch run: start, run_to(t_end), close. Throws as Simulation does; first drops the events
-// after t_end (drop_after_end) and checks the settings (check).
+// after t_end (drop_after_end) and checks the settings (check). advance (when set) runs the
+// simulation to t_end in place of run_to(t_end, stop, progress): the live view's feed, which
+// applies the page's controls between run_to calls (script/live_feed.hpp).
+using Advancer = std::function<Simulation::Advance(Simulation& sim, double t_end)>;
 RunResult run(const Scene& scene, const RunSettings& settings, const std::atomic<bool>* stop = nullptr,
-              const RunProgress& progress = {});
+              const RunProgress& progress = {}, const Advancer& advance = {});
 
 }  // namespace beltsim

@@ -1,0 +1,343 @@
+#include "live/live_server.hpp"
+
+#include <httplib.h>
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <fstream>
+#include <random>
+#include <sstream>
+#include <stdexcept>
+
+namespace beltsim::live {
+
+namespace {
+
+// 128 bits from the system's random source, in hex
+std::string random_token() {
+  std::random_device rd;
+  std::string t;
+  char hex[9];
+  for (int k = 0; k < 4; ++k) std::snprintf(hex, sizeof hex, "%08x", static_cast<unsigned>(rd())), t += hex;
+  return t;
+}
+
+std::string read_asset(const std::string& dir, const char* name) {
+  const std::string path = dir + "/" + name;
+  std::ifstream in(path, std::ios::binary);
+  if (!in)
+    throw std::runtime_error("live view: cannot read " + path +
+                             " (the page's plotting library: install the Debian "
+                             "package libjs-dygraphs)");
+  std::ostringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+// s as a JSON string, appended to out
+void add_string(std::string& out, const std::string& s) {
+  out += '"';
+  for (const char c : s) {
+    if (c == '"' || c == '\\')
+      out += '\\', out += c;
+    else if (static_cast<unsigned char>(c) < 0x20)
+      out += ' ';
+    else
+      out += c;
+  }
+  out += '"';
+}
+
+void add_number(std::string& out, double x) {
+  if (!std::isfinite(x)) {
+    out += "null";
+    return;
+  }
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.9g", x);
+  out += buf;
+}
+
+// [t, ratio, h, values...]
+void add_row(std::string& out, const Sample& s) {
+  out += '[';
+  add_number(out, s.t), out += ',', add_number(out, s.ratio), out += ',', add_number(out, s.h);
+  for (const double v : s.values) out += ',', add_number(out, v);
+  out += ']';
+}
+
+// s as a finite number into x; false when it is not one (empty, text after it, inf, nan)
+bool finite_number(const std::string& s, double& x) {
+  char* end = nullptr;
+  x = std::strtod(s.c_str(), &end);
+  return !s.empty() && *end == '\0' && std::isfinite(x);
+}
+
+}  // namespace
+
+std::string read_command(const std::function<std::string(const char*)>& param, Command& c) {
+  c.what = param("do");
+  c.pulley = param("pulley");
+  c.name = param("name");
+  const std::string v = param("value"), from = param("from"), to = param("to");
+  if (c.what == "pause" || c.what == "continue") return "";
+  if (c.what == "torque") {
+    if (c.pulley.empty() || !finite_number(v, c.value))
+      return "torque needs pulley=NAME and value=N·m (a finite number), got pulley='" + c.pulley + "' value='" + v +
+             "'";
+    return "";
+  }
+  if (c.what == "run_to") {
+    if (!finite_number(v, c.value)) return "run_to needs value=t [s] (a finite number), got value='" + v + "'";
+    return "";
+  }
+  if (c.what == "wet") {
+    if (!finite_number(from, c.from) || !finite_number(to, c.to) || !finite_number(v, c.value))
+      return "wet needs from=s0 and to=s1 [m] and value=mu (finite numbers), got from='" + from + "' to='" + to +
+             "' value='" + v + "'";
+    return "";
+  }
+  if (c.what == "save") {
+    // a bare file name in the run's folder: no path, no hidden file
+    const bool plain = !c.name.empty() && c.name.size() <= 100 && c.name[0] != '.' &&
+                       c.name.find_first_not_of("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789._-") ==
+                           std::string::npos;
+    if (!plain) return "save needs name=FILE (letters, digits, '.', '_', '-'; no folder), got name='" + c.name + "'";
+    return "";
+  }
+  return "do must be pause, continue, run_to, torque, wet or save, got '" + c.what + "'";
+}
+
+LiveServer::LiveServer(const ServeSettings& s) : settings_(s), token_(random_token()) {
+  // the two files the page loads, read once: no request reaches the file system
+  assets_js_ = read_asset(s.assets, "dygraph.js");
+  assets_css_ = read_asset(s.assets, "dygraph.css");
+  http_ = std::make_unique<httplib::Server>();
+  routes();
+  const std::string where = s.host + ":" + std::to_string(s.port);
+  port_ = s.port == 0 ? http_->bind_to_any_port(s.host) : (http_->bind_to_port(s.host, s.port) ? s.port : -1);
+  if (port_ <= 0) throw std::runtime_error("live view: cannot listen on " + where + " (in use, or not this machine's)");
+  thread_ = std::thread([this] { http_->listen_after_bind(); });
+  // stop() before the thread has begun to listen would leave it listening: wait for it
+  while (!http_->is_running()) std::this_thread::yield();
+}
+
+LiveServer::~LiveServer() {
+  {
+    const std::lock_guard<std::mutex> lock(m_);
+    stopping_ = true;
+  }
+  cv_.notify_all();
+  http_->stop();
+  if (thread_.joinable()) thread_.join();
+}
+
+std::string LiveServer::url() const {
+  return "http://" + settings_.host + ":" + std::to_string(port_) + "/?token=" + token_;
+}
+
+void LiveServer::begin_run(const void* key, const std::string& name, std::vector<std::string> columns,
+                           std::vector<std::string> pulleys) {
+  {
+    const std::lock_guard<std::mutex> lock(m_);
+    ++status_serial_;
+    status_ = "running";
+    if (key == key_) return;
+    key_ = key;
+    ++run_;
+    run_name_ = name;
+    columns_ = std::move(columns);
+    pulleys_ = std::move(pulleys);
+    history_.clear(), recent_.clear();
+    thin_ = 1, skipped_ = 0;
+  }
+  cv_.notify_all();
+}
+
+void LiveServer::publish(Sample s) {
+  {
+    const std::lock_guard<std::mutex> lock(m_);
+    ++seq_;
+    if (recent_.size() >= kBehind) recent_.pop_front();
+    recent_.push_back({seq_, s});
+    if (++skipped_ >= thin_) {
+      skipped_ = 0;
+      history_.push_back({seq_, std::move(s)});
+      if (history_.size() >= kHistory) {  // keep every other one, and from now one in twice as many
+        std::deque<Entry> kept;
+        for (size_t k = 0; k < history_.size(); k += 2) kept.push_back(std::move(history_[k]));
+        history_ = std::move(kept);
+        thin_ *= 2;
+      }
+    }
+  }
+  cv_.notify_all();
+}
+
+void LiveServer::set_status(const std::string& status) {
+  {
+    const std::lock_guard<std::mutex> lock(m_);
+    status_ = status;
+    ++status_serial_;
+  }
+  cv_.notify_all();
+}
+
+void LiveServer::set_frame(std::string png, double t) {
+  auto f = std::make_shared<const std::string>(std::move(png));
+  {
+    const std::lock_guard<std::mutex> lock(m_);
+    frame_ = std::move(f);
+    frame_t_ = t;
+    ++frame_serial_;
+  }
+  cv_.notify_all();
+}
+
+std::optional<Command> LiveServer::take(bool wait) {
+  std::unique_lock<std::mutex> lock(m_);
+  if (wait) cv_.wait_for(lock, std::chrono::milliseconds(200), [&] { return stopping_ || !commands_.empty(); });
+  if (commands_.empty()) return std::nullopt;
+  Command c = std::move(commands_.front());
+  commands_.pop_front();
+  --pending_;
+  return c;
+}
+
+bool LiveServer::stopping() const {
+  const std::lock_guard<std::mutex> lock(m_);
+  return stopping_;
+}
+
+int LiveServer::clients() const {
+  const std::lock_guard<std::mutex> lock(m_);
+  return clients_;
+}
+
+// what a stream sends next (waits up to half a second for something new; "" when nothing came)
+std::string LiveServer::stream_text(Cursor& c) {
+  std::unique_lock<std::mutex> lock(m_);
+  cv_.wait_for(lock, std::chrono::milliseconds(500), [&] {
+    return stopping_ || c.run != run_ || c.seq != seq_ || c.status != status_serial_ || c.frame != frame_serial_;
+  });
+  if (stopping_) return {};
+  std::string out;
+  if (c.run != run_) {  // a new run (or a new client): the columns, then the history
+    c.run = run_;
+    out += "event: run\ndata: {\"name\":";
+    add_string(out, run_name_);
+    out += ",\"columns\":[";
+    for (size_t k = 0; k < columns_.size(); ++k) out += k ? "," : "", add_string(out, columns_[k]);
+    out += "],\"pulleys\":[";
+    for (size_t k = 0; k < pulleys_.size(); ++k) out += k ? "," : "", add_string(out, pulleys_[k]);
+    out += "]}\n\nevent: samples\ndata: [";
+    for (size_t k = 0; k < history_.size(); ++k) out += k ? "," : "", add_row(out, history_[k].s);
+    out += "]\n\n";
+    c.seq = history_.empty() ? 0 : history_.back().seq;
+  }
+  if (c.seq != seq_ && !recent_.empty()) {  // what came since (a slow client skips what it missed)
+    out += "event: samples\ndata: [";
+    bool any = false;
+    for (const Entry& e : recent_)
+      if (e.seq > c.seq) out += any ? "," : "", add_row(out, e.s), any = true;
+    out += "]\n\n";
+    c.seq = seq_;
+  }
+  if (c.status != status_serial_) {
+    c.status = status_serial_;
+    out += "event: status\ndata: ";
+    add_string(out, status_);
+    out += "\n\n";
+  }
+  if (c.frame != frame_serial_) {  // a new picture: the page asks for it
+    c.frame = frame_serial_;
+    out += "event: frame\ndata: ";
+    add_number(out, frame_t_);
+    out += "\n\n";
+  }
+  if (out.empty()) out = ": idle\n\n";  // a comment: finds a closed client
+  return out;
+}
+
+void LiveServer::routes() {
+  httplib::Server& h = *http_;
+  h.set_keep_alive_timeout(1);
+  h.set_pre_routing_handler([this](const httplib::Request& req, httplib::Response& res) {
+    if (req.get_param_value("token") == token_) return httplib::Server::HandlerResponse::Unhandled;
+    res.status = 403;
+    res.set_content("403: this page needs the address beltsim printed, with its token\n", "text/plain");
+    return httplib::Server::HandlerResponse::Handled;
+  });
+  h.Get("/", [this](const httplib::Request&, httplib::Response& res) {
+    std::string page = page_html();
+    for (size_t at = page.find("@TOKEN@"); at != std::string::npos; at = page.find("@TOKEN@", at))
+      page.replace(at, 7, token_);
+    res.set_content(page, "text/html");
+  });
+  h.Get("/dygraph.js",
+        [this](const httplib::Request&, httplib::Response& res) { res.set_content(assets_js_, "text/javascript"); });
+  h.Get("/dygraph.css",
+        [this](const httplib::Request&, httplib::Response& res) { res.set_content(assets_css_, "text/css"); });
+  h.Get("/frame.png", [this](const httplib::Request&, httplib::Response& res) {
+    std::shared_ptr<const std::string> f;
+    {
+      const std::lock_guard<std::mutex> lock(m_);
+      f = frame_;
+    }
+    res.set_header("Cache-Control", "no-store");
+    if (!f) {
+      res.status = 503;
+      res.set_content("no frame yet\n", "text/plain");
+      return;
+    }
+    res.set_content(*f, "image/png");
+  });
+  h.Post("/control", [this](const httplib::Request& req, httplib::Response& res) {
+    Command c;
+    const std::string bad = read_command([&req](const char* key) { return req.get_param_value(key); }, c);
+    if (!bad.empty()) {
+      res.status = 400;
+      res.set_content(bad + "\n", "text/plain");
+      return;
+    }
+    {
+      const std::lock_guard<std::mutex> lock(m_);
+      if (commands_.size() >= kCommands) {
+        res.status = 503;
+        res.set_content("too many controls waiting\n", "text/plain");
+        return;
+      }
+      commands_.push_back(std::move(c));
+      ++pending_;
+    }
+    cv_.notify_all();
+    res.status = 202;
+    res.set_content("queued\n", "text/plain");
+  });
+  h.Get("/events", [this](const httplib::Request&, httplib::Response& res) {
+    {
+      const std::lock_guard<std::mutex> lock(m_);
+      ++clients_;
+    }
+    auto cursor = std::make_shared<Cursor>();
+    res.set_header("Cache-Control", "no-cache");
+    res.set_chunked_content_provider(
+        "text/event-stream",
+        [this, cursor](size_t, httplib::DataSink& sink) {
+          const std::string text = stream_text(*cursor);
+          if (text.empty()) {  // stopping
+            sink.done();
+            return true;
+          }
+          return sink.write(text.data(), text.size());
+        },
+        [this](bool) {
+          const std::lock_guard<std::mutex> lock(m_);
+          --clients_;
+        });
+  });
+}
+
+}  // namespace beltsim::live

@@ -1,0 +1,231 @@
+#include "script/live_feed.hpp"
+
+#include <sys/resource.h>
+#include <sys/syscall.h>
+#include <unistd.h>
+
+#include <cstdio>
+
+#include "io/number_text.hpp"
+#include "io/png_writer.hpp"
+#include "render/recorder.hpp"
+#include "scene/law_text.hpp"
+#include "scene/validate.hpp"
+#include "script/console_print.hpp"
+#include "script/lua_run.hpp"
+
+namespace beltsim::script {
+
+FrameThread::FrameThread(const Scene& scene, live::LiveServer* server)
+    : server_(server), thread_([this, &scene] { loop(scene); }) {}
+
+FrameThread::~FrameThread() {
+  {
+    const std::lock_guard<std::mutex> lock(m_);
+    stop_ = true;
+  }
+  cv_.notify_all();
+  thread_.join();
+}
+
+void FrameThread::offer(const Simulation& sim) {
+  Snapshot s{sim.now(), sim.state(), Drive(), sim.observation()};
+  s.drive.mu = sim.drive().mu;
+  s.drive.spray = sim.drive().spray;
+  {
+    const std::lock_guard<std::mutex> lock(m_);
+    next_ = std::move(s);  // the one not drawn yet is dropped
+  }
+  cv_.notify_all();
+}
+
+void FrameThread::loop(const Scene& scene) {
+  // below the run on a busy machine: the pictures give way (fewer of them), not the run. Linux
+  // gives each thread its own nice value; a failure leaves it as it was
+  setpriority(PRIO_PROCESS, static_cast<id_t>(syscall(SYS_gettid)), 10);
+  FrameSettings fs;
+  fs.width = 960, fs.height = 540;
+  try {
+    render::FrameDrawer drawer(scene, fs);
+    for (;;) {
+      Snapshot s;
+      {
+        std::unique_lock<std::mutex> lock(m_);
+        cv_.wait(lock, [&] { return stop_ || next_; });
+        if (!next_) return;  // stopped, all drawn
+        s = std::move(*next_);
+        next_.reset();
+      }
+      server_->set_frame(encode_png(drawer.draw(s.t, s.y.data(), s.drive, &s.obs), "live view frame"), s.t);
+    }
+  } catch (const std::exception& e) {  // no GL: the page goes on without pictures
+    std::fprintf(stderr, "beltsim: live view: no frames: %s\n", e.what());
+  }
+}
+
+void LiveFeed::watch(Simulation* sim, const char* at_end) {
+  if (!server_) return;
+  if (!sim) {
+    if (!sim_) return;
+    try {
+      publish(0);
+      offer_frame();                     // the picture where it stands
+    } catch (const std::exception& e) {  // a Lua law that fails on reading: the run's error says it
+      std::fprintf(stderr, "beltsim: live view: %s\n", e.what());
+    }
+    server_->set_status(at_end_);
+    frames_.reset();  // the last offered drawn, before the simulation (its scene) goes
+    sim_ = nullptr;
+    return;
+  }
+  sim_ = sim, at_end_ = at_end;
+  std::vector<std::string> columns = sim->columns();
+  if (!columns.empty() && columns.front() == "t") columns.erase(columns.begin());
+  std::vector<std::string> pulleys;
+  for (const Pulley& p : sim->model().pulleys) pulleys.push_back(p.name);
+  server_->begin_run(sim, sim->out_dir(), std::move(columns), std::move(pulleys));
+  last_t_ = sim->now(), last_wall_ = -1;
+}
+
+void LiveFeed::publish(double wall) {
+  live::Sample s;
+  s.t = sim_->now();
+  s.ratio = s.t > 0 ? (sim_->wall() + wall) / s.t : 0;
+  s.h = h_;
+  s.values = sim_->sample_row();
+  if (!s.values.empty()) s.values.erase(s.values.begin());  // t
+  server_->publish(std::move(s));
+}
+
+void LiveFeed::offer_frame() {
+  if (!frames_ && server_->clients() > 0) frames_ = std::make_unique<FrameThread>(sim_->scene(), server_);
+  if (frames_) frames_->offer(*sim_);
+}
+
+void LiveFeed::record(double t, const std::string& call) {
+  changed_ = true;
+  if (record_) record_->push_back({key_, t, call});
+}
+
+std::string LiveFeed::apply(const live::Command& c) {
+  Simulation& s = *sim_;
+  const double t = s.now();
+  try {
+    if (c.what == "torque") {
+      const int j = s.scene().find_pulley(c.pulley);
+      if (j < 0) return "no pulley '" + c.pulley + "'";
+      TimeSpeedLaw law;
+      law.constant = c.value;
+      s.set_torque(j, law, law_text(law));  // in events.csv, as sim:set_torque writes it
+      record(t, "set_torque(" + quoted(c.pulley.data(), c.pulley.size()) + ", " + number_text(c.value) + ")");
+    } else if (c.what == "wet") {  // as sim:wet{ from, to, mu } (lua_sim.cpp)
+      std::string key;
+      if (const std::string bad = range_problem(s.scene(), c.from, c.to, "wet", &key); !bad.empty())
+        return key + ": " + bad;
+      if (const std::string bad = mu_problem(c.value); !bad.empty()) return "wet.mu: " + bad;
+      std::vector<double> mu(s.scene().sites.size(), std::nan(""));
+      for (const ElementSite& site : s.scene().sites)
+        if (in_stretch(site, c.from, c.to)) mu[site.index] = c.value;
+      s.set_mu(mu, "wet", wet_text(c.value, c.from, c.to, std::nullopt));
+      record(t, "wet { from = " + number_text(c.from) + ", to = " + number_text(c.to) +
+                    ", mu = " + number_text(c.value) + " }");
+    } else if (c.what == "save") {  // as sim:save(name): a bare name, in the run's folder
+      const std::string path = output_path(s.settings(), c.name);
+      s.save(path);
+      const std::string note = "checkpoint " + c.name + " saved from the live view";
+      s.log_event("note", note);  // as sim:log writes it
+      record(t, "save(" + quoted(c.name.data(), c.name.size()) + ")");
+      record(t, "log(" + quoted(note.data(), note.size()) + ")");
+    }
+  } catch (const std::exception& e) {
+    return e.what();
+  }
+  return "";
+}
+
+void LiveFeed::apply_controls(bool paused) {
+  for (;;) {
+    const std::optional<live::Command> c = server_->take(paused);
+    if (stop_ && stop_->load()) return;
+    if (!c) {
+      if (!paused || server_->stopping()) return;
+      if (!frames_ && server_->clients() > 0) offer_frame();  // a page opened during the pause
+      continue;
+    }
+    std::string said;
+    if (c->what == "pause") {
+      paused = true;
+    } else if (c->what == "continue") {
+      paused = false;
+    } else if (c->what == "run_to") {
+      if (c->value > sim_->now())
+        target_ = c->value, paused = false;
+      else
+        said = "run to " + rounded_text(c->value, 6) + " s: not after now";
+    } else {
+      said = apply(*c);
+    }
+    publish(wall_);  // the page's t, plot and picture where the run stands
+    offer_frame();
+    const std::string at = " at t = " + rounded_text(sim_->now(), 6) + " s";
+    if (!said.empty())
+      server_->set_status("refused: " + said);
+    else if (c->what == "pause" || c->what == "continue" || c->what == "run_to")
+      server_->set_status(paused ? "paused" + at : "running");
+    else
+      server_->set_status((paused ? "paused" : "running") + at + " (" + c->what + " applied)");
+    if (!paused && !server_->commands_pending()) return;
+  }
+}
+
+Simulation::Advance LiveFeed::run_to(Simulation& sim, double t, const RunProgress& inner, const char* at_end) {
+  if (!server_) return sim.run_to(t, stop_, inner);
+  watch(&sim, at_end);
+  const struct Unwatch {
+    LiveFeed& f;
+    ~Unwatch() { f.watch(nullptr); }
+  } unwatch{*this};
+  const RunProgress progress = callback(inner);
+  Simulation::Advance total;
+  wall_ = 0, changed_ = false;
+  for (;;) {
+    halt_ = false;
+    const bool to_target = target_ > sim.now() && target_ < t;
+    const Simulation::Advance a = sim.run_to(to_target ? target_ : t, &halt_, progress);
+    total.t = a.t, total.steps += a.steps, total.wall += a.wall, wall_ = total.wall;
+    if (a.over_wall_limit || (stop_ && stop_->load())) {
+      total.interrupted = a.interrupted, total.over_wall_limit = a.over_wall_limit;
+      break;
+    }
+    const bool at_target = to_target && a.t >= target_;
+    if (at_target) target_ = 0;
+    if (!at_target && a.t >= t) break;
+    server_->set_status(at_target ? "paused at t = " + rounded_text(a.t, 6) + " s" : "running");
+    apply_controls(at_target);
+    if (stop_ && stop_->load()) {  // Ctrl-C during a pause: the run stops where it stands
+      total.interrupted = true;
+      break;
+    }
+  }
+  if (changed_ && record_) record_->push_back({key_, total.t, ""});
+  return total;
+}
+
+RunProgress LiveFeed::callback(RunProgress inner) {
+  return [this, inner](double t, double target, const WorkCounters& w, double wall) {
+    if (inner) inner(t, target, w, wall);
+    wall += wall_;  // this run's wall time across the run_to calls a control split it into
+    h_ = t - last_t_, last_t_ = t;
+    if (server_->commands_pending() || (stop_ && stop_->load())) halt_ = true;
+    if (wall - last_wall_ >= kInterval) {
+      last_wall_ = wall;
+      publish(wall);
+    }
+    if (wall - last_frame_ >= kFrameInterval) {
+      last_frame_ = wall;
+      if (server_->clients() > 0) offer_frame();
+    }
+  };
+}
+
+}  // namespace beltsim::script

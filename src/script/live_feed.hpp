@@ -1,0 +1,99 @@
+// The owning loop's side of the live view (live/live_server.hpp): a run's progress callback that
+// also publishes the simulation's sample to the page, at most 20 times a wall second whatever the
+// step rate. It runs on the thread that runs the simulation, between steps; the server's threads
+// never touch the simulation.
+#pragma once
+
+#include <condition_variable>
+#include <memory>
+#include <mutex>
+#include <optional>
+#include <thread>
+
+#include "live/live_server.hpp"
+#include "script/context.hpp"
+#include "sim/simulation.hpp"
+
+namespace beltsim::script {
+
+// The renderer on a thread of its own: draws the latest snapshot offered (t, state, μ, spray
+// zones, observation: copies taken by the owning loop, never the live simulation) into a PNG for
+// the server; a snapshot not yet drawn when the next comes is dropped. Its GL context is made,
+// used and destroyed on that thread. The scene must outlive it.
+class FrameThread {
+ public:
+  FrameThread(const Scene& scene, live::LiveServer* server);
+  ~FrameThread();  // draws the snapshot offered last if not yet drawn, stops, joins
+  FrameThread(const FrameThread&) = delete;
+  FrameThread& operator=(const FrameThread&) = delete;
+  void offer(const Simulation& sim);  // on the owning loop: a snapshot of now
+
+ private:
+  struct Snapshot {
+    double t = 0;
+    Eigen::VectorXd y;
+    Drive drive;  // μ and spray only: a law (Lua code) is never copied to this thread
+    Observation obs;
+  };
+  void loop(const Scene& scene);
+  live::LiveServer* server_;
+  std::mutex m_;
+  std::condition_variable cv_;
+  std::optional<Snapshot> next_;
+  bool stop_ = false;
+  std::thread thread_;
+};
+
+class LiveFeed {
+ public:
+  // server null: no feed (run_to is Simulation::run_to); stop: Ctrl-C and the signals, which end a
+  // pause from the page too; record (when set): the page's changes and the run's end, for the
+  // console's session.lua, on the simulation whose userdata is key (null: a scene:run{}'s)
+  LiveFeed(live::LiveServer* server, const std::atomic<bool>* stop, std::vector<PageChange>* record = nullptr,
+           const void* key = nullptr)
+      : server_(server), stop_(stop), record_(record), key_(key) {}
+  ~LiveFeed() { watch(nullptr); }
+  LiveFeed(const LiveFeed&) = delete;
+  LiveFeed& operator=(const LiveFeed&) = delete;
+
+  // sim.run_to(t, stop, inner) with the page fed (samples, frames) and its controls applied on
+  // this thread, between two run_to calls, as a console's commands are: a control stops the run
+  // at its last step (Simulation::run_to's stop), is applied, and the run goes on to t unless a
+  // pause holds it (pause, run to a time: paused there; a torque, a wet stretch, a checkpoint: as
+  // sim:set_torque, sim:wet, sim:save). at_end: the page's status after it ("paused", "finished")
+  Simulation::Advance run_to(Simulation& sim, double t, const RunProgress& inner, const char* at_end = "finished");
+
+  static constexpr double kInterval = 0.05;           // [s] of wall time between two samples
+  static constexpr double kFrameInterval = 1.0 / 15;  // [s] between two frames (while a page is open)
+
+ private:
+  // a run of sim starts (for the page a new run, its history cleared, unless the server fed this
+  // simulation last); watch(nullptr): the run has ended, publishes where it stands (the
+  // simulation must still exist)
+  void watch(Simulation* sim, const char* at_end = "finished");
+  // inner, the feed, and the stop when a control or Ctrl-C came
+  RunProgress callback(RunProgress inner);
+  void publish(double wall);
+  // the picture where the run stands, when a page is open
+  void offer_frame();
+  // the page's controls, between two run_to calls: a pause holds the run here (the controls that
+  // come meanwhile applied) until continue, a run to a time, Ctrl-C or the server's end
+  void apply_controls(bool paused);
+  // one change (torque, wet, save); "" or why it was refused
+  std::string apply(const live::Command& c);
+  void record(double t, const std::string& call);
+  live::LiveServer* server_;
+  const std::atomic<bool>* stop_;
+  std::vector<PageChange>* record_;
+  const void* key_;
+  std::atomic<bool> halt_{false};  // the run_to under way stops at its last step
+  Simulation* sim_ = nullptr;
+  const char* at_end_ = "finished";
+  double target_ = 0;  // the page's run to t (0: none)
+  double wall_ = 0;    // [s] of the run_to calls before the one under way
+  double last_wall_ = -1, last_frame_ = -1, last_t_ = 0, h_ = 0;
+  bool changed_ = false;                 // the page changed the simulation during run_to
+  std::unique_ptr<FrameThread> frames_;  // made when a page is first open during a run
+};
+
+}  // namespace beltsim::script

@@ -1,0 +1,333 @@
+#!/usr/bin/env python3
+"""The live view's server (docs/live-view.md, src/live/): `beltsim run S.lua --serve` answers 403
+without the token printed at its start, serves the page and its plotting library with it and
+nothing else, streams samples whose t advances and the renderer's frames (PNG) while a page is
+open, and a client that disconnects mid-run leaves the
+run to finish whole (timeseries.csv to t_end, exit 0). Each step waits for what it needs (the
+address on stderr, the stream's events); no sleeps.
+
+usage: live_test.py BELTSIM
+"""
+import http.client
+import json
+import os
+import shutil
+import socket
+import struct
+import subprocess
+import sys
+import tempfile
+import unittest
+import urllib.parse
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "support"))
+from scenes import two_pulley  # noqa: E402
+
+BELTSIM = None
+T_END = 1.0  # [s] long enough (several seconds of wall time) for the stream to be read mid-run
+SAMPLE = 1e-3  # [s] the runs' sample interval: timeseries.csv has T_END / SAMPLE + 1 rows
+
+
+def events(resp):
+    """the stream's events as (name, data) pairs, as they arrive"""
+    name, data = "message", []
+    while True:
+        line = resp.readline()
+        if not line:
+            return
+        line = line.decode().rstrip("\n")
+        if line == "":
+            if data:
+                yield name, "\n".join(data)
+            name, data = "message", []
+        elif line.startswith("event: "):
+            name = line[7:]
+        elif line.startswith("data: "):
+            data.append(line[6:])
+
+
+def status_t(t):
+    """t as the page's status gives it (6 significant digits, as %g)"""
+    return "%.6g" % t
+
+
+def events_csv(out):
+    with open(os.path.join(out, "events.csv")) as f:
+        return [line.split(",") for line in f.read().splitlines()[1:]]
+
+
+class Live(unittest.TestCase):
+    def setUp(self):
+        self.dir = tempfile.mkdtemp(prefix="beltsim_live_")
+        self.addCleanup(shutil.rmtree, self.dir, True)
+        with open(os.path.join(self.dir, "s.lua"), "w") as f:
+            f.write(two_pulley(elements=40) + "drive:run { t_end = %r, sample = %r }\n" % (T_END, SAMPLE))
+        self.proc = subprocess.Popen([BELTSIM, "run", "s.lua", "--serve", "--out", "out"], cwd=self.dir,
+                                     stdout=subprocess.DEVNULL, stderr=subprocess.PIPE)
+        self.addCleanup(self.stop)
+        self.stderr = []
+        for line in self.proc.stderr:
+            line = line.decode()
+            self.stderr.append(line)
+            if "live view at " in line:
+                self.url = urllib.parse.urlsplit(line.split("live view at ")[1].strip())
+                break
+        else:
+            self.fail("no address printed: " + "".join(self.stderr))
+        self.token = urllib.parse.parse_qs(self.url.query)["token"][0]
+
+    def stop(self):
+        if self.proc.poll() is None:
+            self.proc.kill()
+        self.proc.wait()
+        self.proc.stderr.close()
+
+    def get(self, path):
+        c = http.client.HTTPConnection(self.url.hostname, self.url.port, timeout=30)
+        c.request("GET", path)
+        r = c.getresponse()
+        body = r.read()
+        c.close()
+        return r.status, body
+
+    def post(self, query):
+        c = http.client.HTTPConnection(self.url.hostname, self.url.port, timeout=30)
+        c.request("POST", "/control?token=" + self.token + "&" + query, body=b"")
+        r = c.getresponse()
+        body = r.read()
+        c.close()
+        return r.status, body.decode()
+
+    def statuses(self, stream):
+        """the stream's statuses as they come, and None for each frame event (self.frames: their t)
+        and each samples event (self.t: the last sample's t)"""
+        self.frames, self.t = [], None
+        for name, data in events(stream):
+            if name == "frame":
+                self.frames.append(json.loads(data))
+                yield None
+            elif name == "samples" and json.loads(data):
+                self.t = json.loads(data)[-1][0]
+                yield None
+            elif name == "status":
+                yield json.loads(data)
+
+    def wait_status(self, it, prefix):
+        for status in it:
+            if status is not None and status.startswith(prefix):
+                return status
+        self.fail("the stream ended before a status " + prefix)
+
+    def test_controls_pause_frame_torque_wet_save_run_to(self):
+        """the page's controls reach the run between two run_to calls on the thread that runs it:
+        pause holds it (the stream's status says where, and a frame of that t comes), a torque, a
+        wet stretch and a checkpoint land in events.csv at that time, a run to t pauses exactly
+        there, continue lets it finish whole"""
+        c = http.client.HTTPConnection(self.url.hostname, self.url.port, timeout=60)
+        c.request("GET", "/events?token=" + self.token)
+        it = self.statuses(c.getresponse())
+        for _ in it:  # the run under way
+            if self.t:
+                break
+        self.assertEqual(self.post("do=pause")[0], 202)
+        status = self.wait_status(it, "paused at t = ")
+        paused_at = float(status.split("= ")[1].split(" ")[0])
+        # the picture of the paused run: a frame event with its t (the renderer's thread draws the
+        # state offered at the pause), then /frame.png; no timing involved
+        self.assertGreater(paused_at, 0)
+        for _ in it:
+            if self.frames and abs(self.frames[-1] - paused_at) <= 5e-6 * paused_at:
+                break
+        status, frame = self.get("/frame.png?token=" + self.token)
+        self.assertEqual(status, 200)
+        self.assertEqual(frame[:8], b"\x89PNG\r\n\x1a\n")
+        self.assertEqual(struct.unpack(">II", frame[16:24]), (960, 540))  # IHDR: width, height
+
+        self.assertEqual(self.post("do=torque&pulley=nope&value=1"), (202, "queued\n"))
+        self.wait_status(it, "refused: no pulley 'nope'")
+        self.assertEqual(self.post("do=torque&pulley=driven&value=-65")[0], 202)
+        self.wait_status(it, "paused at t = %s s (torque applied)" % status_t(paused_at))
+        self.assertEqual(self.post("do=wet&from=0.1&to=99&value=0.05")[0], 202)
+        self.assertIn("wet.to: must be in [0, ", self.wait_status(it, "refused: "))
+        self.assertEqual(self.post("do=wet&from=0.1&to=0.3&value=0.05")[0], 202)
+        self.wait_status(it, "paused at t = %s s (wet applied)" % status_t(paused_at))
+        self.assertEqual(self.post("do=save&name=live.ckpt")[0], 202)
+        self.wait_status(it, "paused at t = %s s (save applied)" % status_t(paused_at))
+        target = round(paused_at + 0.1, 3)
+        self.assertEqual(self.post("do=run_to&value=%r" % target)[0], 202)
+        self.wait_status(it, "paused at t = %s s" % status_t(target))
+        self.assertEqual(self.post("do=torque&pulley=driven&value=-60")[0], 202)  # where it paused
+        self.wait_status(it, "paused at t = %s s (torque applied)" % status_t(target))
+        for bad in ["do=jump", "do=torque&pulley=driven&value=x", "do=wet&from=0.1&value=0.2",
+                    "do=save&name=../x.ckpt", "do=save&name=.x", "do=run_to&value=inf"]:
+            self.assertEqual(self.post(bad)[0], 400, bad)
+        self.assertEqual(self.post("do=continue")[0], 202)
+        c.close()
+        self.assertEqual(self.proc.wait(timeout=300), 0, self.proc.stderr.read().decode())
+        rows = events_csv(os.path.join(self.dir, "out"))
+        torque = [row for row in rows if row[1] == "driven.torque"]
+        self.assertEqual([float(row[2]) for row in torque], [-65, -60], rows)
+        # where the page said it was paused (its status gives t to 6 significant digits)
+        self.assertLessEqual(abs(float(torque[0][0]) - paused_at), 5e-6 * paused_at)
+        self.assertEqual(float(torque[1][0]), target)  # a run to t stops at t exactly
+        wet = [row for row in rows if row[1] == "wet"]
+        self.assertEqual(len(wet), 1, rows)
+        self.assertEqual(wet[0][0], torque[0][0])
+        self.assertIn("mu = 0.05 on s in [0.1, 0.3] m", ",".join(wet[0][2:]))
+        note = [row for row in rows if row[1] == "note"]
+        self.assertEqual([(n[0], n[2]) for n in note], [(torque[0][0], "checkpoint live.ckpt saved from the live view")])
+        with open(os.path.join(self.dir, "out", "live.ckpt")) as f:
+            self.assertIn("settings", f.read(4000))
+        with open(os.path.join(self.dir, "out", "timeseries.csv")) as f:
+            self.assertEqual(len(f.read().splitlines()), 1 + round(T_END / SAMPLE) + 1)
+
+    def test_token_page_stream_and_a_client_that_leaves(self):
+        self.assertEqual(self.url.hostname, "127.0.0.1")  # bound to loopback unless host is given
+        for path in ["/", "/events", "/dygraph.js", "/?token=" + self.token[:-1], "/?token="]:
+            self.assertEqual(self.get(path)[0], 403, path)
+        q = "?token=" + self.token
+        status, page = self.get("/" + q)
+        self.assertEqual(status, 200)
+        self.assertIn(b"dygraph.js" + q.encode(), page)
+        self.assertEqual(self.get("/dygraph.js" + q)[0], 200)
+        self.assertIn(b"Dygraph", self.get("/dygraph.js" + q)[1])
+        for path in ["/%2e%2e/%2e%2e/etc/passwd", "/dygraph.min.js", "/index.js", "/src/dygraph.js"]:
+            self.assertEqual(self.get(path + q)[0], 404, path)
+
+        c = http.client.HTTPConnection(self.url.hostname, self.url.port, timeout=60)
+        c.request("GET", "/events" + q)
+        r = c.getresponse()
+        self.assertEqual(r.status, 200)
+        self.assertEqual(r.getheader("Content-Type"), "text/event-stream")
+        columns, times = None, []
+        for name, data in events(r):
+            if name == "run":
+                columns = json.loads(data)["columns"]
+            elif name == "samples":
+                for row in json.loads(data):
+                    self.assertEqual(len(row), 3 + len(columns))  # t, wall/simulated, step, the columns
+                    times.append(row[0])
+            if len(times) >= 5 and times[-1] > times[0]:
+                break
+        self.assertIn("driver.omega", columns)
+        self.assertEqual(times, sorted(times))
+        self.assertLess(times[-1], T_END)  # read mid-run
+        c.close()  # the client leaves mid-run
+
+        self.assertEqual(self.proc.wait(timeout=300), 0, "".join(self.stderr) + self.proc.stderr.read().decode())
+        with open(os.path.join(self.dir, "out", "timeseries.csv")) as f:
+            rows = f.read().splitlines()
+        self.assertEqual(len(rows), 1 + round(T_END / SAMPLE) + 1)  # the header, t = 0 .. T_END
+        self.assertAlmostEqual(float(rows[-1].split(",")[0]), T_END, places=12)
+
+
+class ServeOption(unittest.TestCase):
+    """--serve takes a port only when a number follows it (or with =): `run --serve S.lua` serves
+    on a free port and runs S.lua, it does not read S.lua as the port"""
+
+    def setUp(self):
+        self.dir = tempfile.mkdtemp(prefix="beltsim_serve_")
+        self.addCleanup(shutil.rmtree, self.dir, True)
+        with open(os.path.join(self.dir, "s.lua"), "w") as f:
+            f.write(two_pulley(elements=20) + "drive:run { t_end = 0.01, progress = false }\n")
+
+    def served_port(self, args):
+        p = subprocess.run([BELTSIM] + args, cwd=self.dir, input="", capture_output=True, text=True, timeout=120)
+        self.assertEqual(p.returncode, 0, " ".join(args) + ": " + p.stderr)
+        self.assertIn("live view at http://127.0.0.1:", p.stderr)
+        return urllib.parse.urlsplit(p.stderr.split("live view at ")[1].split()[0]).port
+
+    def free_port(self):
+        with socket.socket() as s:
+            s.bind(("127.0.0.1", 0))
+            return s.getsockname()[1]
+
+    def test_a_port_only_when_a_number_follows(self):
+        for args in [["run", "--serve", "s.lua"], ["run", "s.lua", "--serve"],
+                     ["run", "--serve", "s.lua", "--out", "o"], ["console", "--serve", "s.lua"]]:
+            self.assertGreater(self.served_port(args), 0)
+        port = self.free_port()
+        self.assertEqual(self.served_port(["run", "s.lua", "--serve", str(port)]), port)
+        port = self.free_port()
+        self.assertEqual(self.served_port(["run", "--serve=%d" % port, "s.lua"]), port)
+        port = self.free_port()
+        self.assertEqual(self.served_port(["run", "--serve", str(port), "s.lua"]), port)
+        p = subprocess.run([BELTSIM, "run", "s.lua", "--serve=x"], cwd=self.dir, capture_output=True, text=True)
+        self.assertEqual(p.returncode, 2, p.stderr)
+        self.assertIn("--serve", p.stderr)
+
+
+class ConsoleAndPage(unittest.TestCase):
+    """a console's simulation changed from the page while a command runs it: the page's changes are
+    applied on the console's thread between two run_to calls, before the console's next command
+    (never interleaved), and session.lua replays them where they came: the replay's events.csv and
+    timeseries.csv are the session's, byte for byte"""
+
+    def test_page_changes_in_events_and_session(self):
+        d = tempfile.mkdtemp(prefix="beltsim_live_console_")
+        self.addCleanup(shutil.rmtree, d, True)
+        with open(os.path.join(d, "c.lua"), "w") as f:
+            f.write(two_pulley(elements=40) + "sim = drive:start { out = \"out\", sample = %r }\n" % SAMPLE)
+        proc = subprocess.Popen([BELTSIM, "console", "c.lua", "--serve"], cwd=d, stdin=subprocess.PIPE,
+                                stdout=subprocess.DEVNULL, stderr=subprocess.PIPE)
+        self.addCleanup(proc.kill)
+        # the console's commands are waiting on its input before the page does anything
+        proc.stdin.write(b"sim:run_to(0.6)\nsim:set_torque('driven', -30)\n")
+        proc.stdin.close()
+        for line in proc.stderr:
+            if b"live view at " in line:
+                url = urllib.parse.urlsplit(line.decode().split("live view at ")[1].strip())
+                break
+        live = Live()
+        live.url, live.token = url, urllib.parse.parse_qs(url.query)["token"][0]
+        c = http.client.HTTPConnection(url.hostname, url.port, timeout=60)
+        c.request("GET", "/events?token=" + live.token)
+        it = live.statuses(c.getresponse())
+        for _ in it:
+            if live.t:
+                break
+        self.assertEqual(live.post("do=pause")[0], 202)
+        paused_at = float(live.wait_status(it, "paused at t = ").split("= ")[1].split(" ")[0])
+        self.assertEqual(live.post("do=torque&pulley=driven&value=-65")[0], 202)
+        self.assertEqual(live.post("do=wet&from=0.1&to=0.3&value=0.05")[0], 202)
+        live.wait_status(it, "paused at t = %s s (wet applied)" % status_t(paused_at))
+        self.assertEqual(live.post("do=continue")[0], 202)
+        c.close()
+        err = proc.stderr.read().decode()
+        self.assertEqual(proc.wait(timeout=300), 0, err)
+        rows = events_csv(os.path.join(d, "out"))
+        changes = [(row[1], row[2]) for row in rows if row[1] in ("driven.torque", "wet")]
+        self.assertEqual([c[0] for c in changes], ["driven.torque", "wet", "driven.torque"], rows)
+        self.assertEqual([float(c[1]) for c in changes if c[0] == "driven.torque"], [-65, -30])
+        t = [float(row[0]) for row in rows if row[1] in ("driven.torque", "wet")]
+        self.assertLessEqual(abs(t[0] - paused_at), 5e-6 * paused_at)
+        self.assertEqual((t[1], t[2]), (t[0], 0.6))
+        session = err.split("the session's commands are in ")[1].split("\n")[0]
+        with open(os.path.join(d, session)) as f:
+            text = f.read()
+        at = [text.index("\n" + s + "\n") for s in [
+            "sim:run_to(%r)" % t[0], 'sim:set_torque("driven", -65)', "sim:wet { from = 0.1, to = 0.3, mu = 0.05 }",
+            "sim:run_to(0.6)", "sim:set_torque('driven', -30)"]]
+        self.assertEqual(at, sorted(at), text)
+        # the replay: the same outputs
+        r = os.path.join(d, "replay")
+        os.mkdir(r)
+        shutil.copy(os.path.join(d, session), os.path.join(r, "session.lua"))
+        p = subprocess.run([BELTSIM, "run", "session.lua"], cwd=r, capture_output=True, text=True, timeout=300)
+        self.assertEqual(p.returncode, 0, p.stderr)
+        with open(os.path.join(d, "out", "events.csv")) as a, open(os.path.join(r, "out", "events.csv")) as b:
+            self.assertEqual(a.read(), b.read())
+        # every sample but the interval means of the sample interval that holds the page's change
+        # (a known gap, docs/live-view.md: the session's mean there differs from the replay's)
+        with open(os.path.join(d, "out", "timeseries.csv")) as a, open(os.path.join(r, "out", "timeseries.csv")) as b:
+            a, b = a.read().splitlines(), b.read().splitlines()
+        self.assertEqual(len(a), len(b))
+        head = a[0].split(",")
+        plain = [k for k, h in enumerate(head) if not h.endswith("_mean")]
+        for x, y in zip(a, b):
+            x, y = x.split(","), y.split(",")
+            self.assertEqual([x[k] for k in plain], [y[k] for k in plain], x[0])
+
+
+if __name__ == "__main__":
+    BELTSIM = os.path.abspath(sys.argv.pop(1))
+    unittest.main()
