@@ -22,7 +22,7 @@ RunResult run_light_belt(int elements) {
   script::Captured cap;
   script::Interpreter lua(script::Safety{});
   script::Overrides o;
-  if (const char* t = std::getenv("BELTSIM_LIGHT_BELT_T")) o.t_end = std::atof(t);
+  if (const char* t = std::getenv("BELTSIM_LIGHT_BELT_T")) o.run.t_end = std::atof(t), o.give("t_end");
   o.no_frames = true;
   o.set = script::parse_sets({"n=" + std::to_string(elements)});
   lua.set_overrides(o);

@@ -55,7 +55,7 @@ double run_served(Serve how, long* frames) {
   std::ofstream(p) << kServeScene;
   beltsim::script::Interpreter lua;
   beltsim::script::Overrides o;
-  o.out = (dir / "out").string();
+  o.run.out_dir = (dir / "out").string(), o.give("out");
   lua.set_overrides(o);
   std::string url;
   if (how != Serve::no) url = lua.serve(0);
