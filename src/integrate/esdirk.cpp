@@ -111,7 +111,7 @@ class Esdirk final : public Stepper {
   //   elements that would slip right across the friction band land in it). While corrections are
   //   taken whole, the reseat changes the correction and the rest of it is kept; once the line
   //   search guards the iteration, it moves the iterate and the iteration starts again from there;
-  // - the first kFullSteps corrections are taken whole unless longer than kFullNorm tolerances (a
+  // - the first kFullSteps corrections are taken whole unless long (kFullNorm below; a
   //   full step that carries an element from stick to slip raises the residual until the next
   //   Jacobian sees the new branch); after that, and for a longer one, a backtracking line search
   //   on ‖G‖ guards against cycling between the two sides of a kink.
@@ -119,12 +119,16 @@ class Esdirk final : public Stepper {
   bool newton(const OdeSystem& sys, double t, double s, int n) {
     constexpr int max_iter = 12;
     constexpr int kFullSteps = 3;
-    // a correction longer than kFullNorm tolerances is not taken whole even among the first
-    // kFullSteps: the iterate is far from the stage's root (a light element's contact or spring
-    // force swung by a long step), the Jacobian there holds for a small part of the way, and the
-    // whole correction flings the element across many branches, from which the iteration seldom
-    // comes back; the line search shortens it. On the light belt of scripts/light_belt.lua the
-    // first corrections of a stage are some 7e3 tolerances at the steps its answer allows
+    // a correction longer than kFullNorm tolerances, or than the state's own size (1/rtol
+    // tolerances: each component moved by |y| or its natural size in the root mean square), is
+    // not taken whole even among the first kFullSteps: the iterate is far from the stage's root (a
+    // light element's contact or spring force swung by a long step), the Jacobian there holds for
+    // a small part of the way, and the whole correction flings the element across many branches,
+    // from which the iteration seldom comes back; the line search shortens it. On the light belt
+    // of scripts/light_belt.lua the first corrections of a stage are some 7e3 tolerances at rtol
+    // 1e-3. The state's size bounds it at loose tolerances: at rtol 1e-2, 1e3 tolerances let the
+    // light belt take 7 times the steps of rtol 1e-3 over its first 0.1 s; a bound of the state's
+    // size alone, 1e4 tolerances at 1e-4, took 5 times the steps at 240 elements over 2.45 s
     // (commit message).
     constexpr double kFullNorm = 1e3;
     constexpr double kRate = 0.3;
@@ -192,7 +196,7 @@ class Esdirk final : public Stepper {
         Z_ += dZ_;
         return true;
       }
-      const bool whole = it < kFullSteps && step_norm <= kFullNorm;
+      const bool whole = it < kFullSteps && step_norm <= std::min(kFullNorm, 1 / ctl_->rtol());
       if (whole) {
         aids_->reseat(t, Z_.data(), dZ_.data(), true);
       } else if (aids_->reseat(t, Z_.data(), dZ_.data(), false)) {
