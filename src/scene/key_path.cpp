@@ -4,8 +4,6 @@
 
 namespace beltsim {
 
-namespace {
-
 bool ident_start(char c) {
   return std::isalpha(static_cast<unsigned char>(c)) || c == '_';
 }
@@ -19,6 +17,9 @@ size_t digits_end(std::string_view s, size_t i) {
   while (i < s.size() && digit(s[i])) ++i;
   return i;
 }
+
+namespace {
+
 bool is_digits(std::string_view s) {
   return !s.empty() && digits_end(s, 0) == s.size();
 }

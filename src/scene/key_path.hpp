@@ -24,4 +24,12 @@ std::string path_text(const KeyPath& p);
 // name_after_space: "pulley 'driver' inertia" is pulley 'driver'.inertia.
 KeyPath parse_path(std::string_view text, bool name_after_space = true);
 
+// the characters of a Lua name and a number, as parse_path and the script's key scan
+// (script/key_line.cpp) read them: a name's first character, its others, a decimal digit; the end
+// of the run of digits of s that starts at i
+bool ident_start(char c);
+bool ident_char(char c);
+bool digit(char c);
+size_t digits_end(std::string_view s, size_t i);
+
 }  // namespace beltsim

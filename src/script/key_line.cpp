@@ -15,21 +15,6 @@ namespace beltsim::script {
 
 namespace {
 
-bool ident_start(char c) {
-  return std::isalpha(static_cast<unsigned char>(c)) || c == '_';
-}
-bool ident_char(char c) {
-  return std::isalnum(static_cast<unsigned char>(c)) || c == '_';
-}
-bool digit(char c) {
-  return std::isdigit(static_cast<unsigned char>(c));
-}
-// the end of the run of digits of s that starts at i
-size_t digits_end(std::string_view s, size_t i) {
-  while (i < s.size() && digit(s[i])) ++i;
-  return i;
-}
-
 // Lua's tokens, as far as tables need them: a name, a string's contents, a number, or the
 // punctuation itself ("{", "=", "==", "..")
 struct Token {

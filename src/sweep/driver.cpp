@@ -145,7 +145,7 @@ std::string this_program() {
 DriverReport run_points(const std::vector<Point>& points, const DriverSettings& s, const OutputDir& top) {
   DriverReport report;
   Definition now = s.definition;
-  LiveSummary summary(points, current_results(s.dir, points, now), top);
+  LiveSummary summary{points, current_results(s.dir, points, now), top};
   std::vector<std::pair<std::string, int>> reasons;
   const std::vector<const Point*> todo = points_to_run(points, summary.results, s.rerun, report, reasons);
   const auto slot = [&](const Point& p) -> std::optional<PointResult>& { return summary.of(p); };
