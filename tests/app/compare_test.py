@@ -401,4 +401,6 @@ def find_pytest():
 if __name__ == "__main__":
     BELTSIM = os.path.abspath(sys.argv.pop(1))
     PYTEST = find_pytest()
-    unittest.main(verbosity=2)
+    run = unittest.main(verbosity=2, exit=False).result
+    # a skipped recipe (no pytest) is a skip for CTest (SKIP_RETURN_CODE 77), not a pass
+    sys.exit(1 if not run.wasSuccessful() else 77 if run.skipped else 0)

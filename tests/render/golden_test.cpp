@@ -7,7 +7,7 @@
 // alternate NAME_1.png beside NAME.png (accepted as well, as VTK does).
 // On failure the actual image and a difference image (differing pixels red on grey) are
 // written to the build tree (tests/golden_out/). To update the goldens on purpose:
-//   BELTSIM_UPDATE_GOLDEN=1 ctest --test-dir build -L golden
+//   ninja -C build update_golden    (this program with BELTSIM_UPDATE_GOLDEN=1; ctest unsets it)
 // then look at the new tests/golden/*.png before committing them.
 #include <gtest/gtest.h>
 
@@ -76,7 +76,7 @@ class Golden : public ::testing::Test {
       write_png(golden.string(), img);
       GTEST_SKIP() << "updated " << golden.string() << ": nothing compared";
     }
-    ASSERT_TRUE(fs::exists(golden)) << golden << " missing: run with BELTSIM_UPDATE_GOLDEN=1 to create it";
+    ASSERT_TRUE(fs::exists(golden)) << golden << " missing: ninja -C build update_golden creates it";
     ImageComparison best = compare(img, read_png(golden.string()));
     const fs::path alt = golden.parent_path() / (name + "_1.png");
     if (best.bad > kMaxBadPixels && fs::exists(alt)) {
