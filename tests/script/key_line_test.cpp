@@ -5,6 +5,7 @@
 
 #include <gtest/gtest.h>
 
+#include <filesystem>
 #include <optional>
 #include <string>
 
@@ -97,20 +98,30 @@ TEST(KeyLine, FindsTheKeyWhoseTablesMatchThePath) {
             std::nullopt);
 }
 
+// the two pulleys of the scripts below (lines 2 to 5 of a script that opens beltsim.scene on line 1)
+const std::string kPulleys =
+    "  pulleys = {\n"
+    "    { name = 'driver', centre = {0, 0}, radius = 0.1, torque = -1 },\n"
+    "    { name = 'driven', centre = {0.29, 0}, radius = 0.1 },\n"
+    "  },\n";
+
+// a scratch folder whose drive.lua each run() writes and runs; the error text it returns
+struct ScriptDir {
+  std::filesystem::path dir = beltsim::test::scratch_dir("beltsim_key_line_test");
+  std::string file = (dir / "drive.lua").string();
+  std::string run(const std::string& text) const {
+    Interpreter lua;
+    return test::run_script(lua, dir / "drive.lua", text, dir / "out");
+  }
+};
+
 // through the interpreter: the message names the key's line; a value that the scan cannot place
 // keeps the call's line
 TEST(KeyLine, ScriptErrorsNameTheLineOfTheKey) {
-  const auto dir = beltsim::test::scratch_dir("beltsim_key_line_test");
-  auto run = [&](const std::string& text) {
-    Interpreter lua;
-    return test::run_script(lua, dir / "drive.lua", text, dir / "out");
-  };
-  const std::string pulleys =
-      "  pulleys = {\n"
-      "    { name = 'driver', centre = {0, 0}, radius = 0.1, torque = -1 },\n"
-      "    { name = 'driven', centre = {0.29, 0}, radius = 0.1 },\n"
-      "  },\n";
-  const std::string file = (dir / "drive.lua").string();
+  const ScriptDir sd;
+  const std::string& pulleys = kPulleys;
+  const std::string& file = sd.file;
+  auto run = [&](const std::string& text) { return sd.run(text); };
   EXPECT_EQ(run("local s = beltsim.scene {\n" + pulleys + "  belt = {\n    pretension = -5,\n  },\n}\n")
                 .rfind(file + ":7: belt.pretension must be > 0 (got -5 N)", 0),
             0u);
@@ -131,17 +142,10 @@ TEST(KeyLine, ScriptErrorsNameTheLineOfTheKey) {
 // key's error and a run key's (one found by the reader, one by the run's check) name the key's line;
 // and an error reworded so that no path starts it still finds that line through its field.
 TEST(KeyLine, TheLineComesFromTheErrorsPathNotItsWords) {
-  const auto dir = beltsim::test::scratch_dir("beltsim_key_line_test");
-  auto run = [&](const std::string& text) {
-    Interpreter lua;
-    return test::run_script(lua, dir / "drive.lua", text, dir / "out");
-  };
-  const std::string pulleys =
-      "  pulleys = {\n"
-      "    { name = 'driver', centre = {0, 0}, radius = 0.1, torque = -1 },\n"
-      "    { name = 'driven', centre = {0.29, 0}, radius = 0.1 },\n"
-      "  },\n";
-  const std::string file = (dir / "drive.lua").string();
+  const ScriptDir sd;
+  const std::string& pulleys = kPulleys;
+  const std::string& file = sd.file;
+  auto run = [&](const std::string& text) { return sd.run(text); };
   const std::string scene =
       "local s = beltsim.scene {\n" + pulleys + "  belt = {\n    mass_per_length = -1,\n  },\n}\n";
   EXPECT_EQ(run(scene).rfind(file + ":7: belt.mass_per_length must be > 0 (got -1 kg/m)", 0), 0u) << run(scene);
