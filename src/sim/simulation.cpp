@@ -309,7 +309,7 @@ Simulation::Advance Simulation::run_to(double t, const std::atomic<bool>* stop, 
   };
   try {
     const Timeline::Result r = tl_->run_to(t, stop, pr, poll);
-    a.t = r.t, a.steps = r.steps, a.wall = r.wall, a.interrupted = r.interrupted;
+    a.t = r.t, a.steps = r.steps, a.wall = clock() - start, a.interrupted = r.interrupted;
   } catch (const DivergenceError& e) {
     failed_ = e.what();
     wall_ += clock() - start;
