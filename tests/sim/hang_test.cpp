@@ -11,6 +11,7 @@
 
 #include "integrate/make_integrator.hpp"
 #include "integrate/timeline.hpp"
+#include "scene/build.hpp"
 #include "scene/presets.hpp"
 #include "scene/scene.hpp"
 #include "sim/simulation.hpp"
@@ -210,9 +211,10 @@ TEST(NoHang, StopBetweenOutputsOfOneStep) {
 
 // Ctrl-C during a long build: the build of a 5000-element belt (seconds of placement and static
 // solve) polls the stop flag from its first bisection step on and ends with BuildInterrupted, no
-// scene made. The flag is set before the build, so that where the stop lands does not depend on
-// the machine's speed; how often the build polls is in scene.hpp (every bisection step, Newton
-// iteration and line-search trial).
+// scene made, and so does the static solve on its own (its Newton iterations, from a state moved
+// off the static one). The flag is set before the call, so that where the stop lands does not
+// depend on the machine's speed; how often the build polls is in scene.hpp (every bisection
+// step, Newton iteration and line-search trial).
 TEST(NoHang, StopFlagEndsALongSceneBuild) {
   SceneDef d = presets::paper_dry();
   d.belt.elements = 5000;
@@ -226,6 +228,10 @@ TEST(NoHang, StopFlagEndsALongSceneBuild) {
     EXPECT_NE(msg.find("interrupted"), std::string::npos) << msg;
     EXPECT_NE(msg.find("5000 elements"), std::string::npos) << msg;
   }
+  const Scene& sc = dry_scene();
+  Eigen::VectorXd y = sc.y0;
+  y[1] += 1e-4;  // the first element 0.1 mm off its place: accelerations of 1e3 m/s² and more
+  EXPECT_THROW(build::static_solve(sc.model, sc.drive, y, 0, &stop), BuildInterrupted);
 }
 
 }  // namespace
