@@ -103,16 +103,15 @@ TEST(LuaApi, SilentMisreadingsAreErrors) {
 // absurd but finite values: the message names the parameter and its value (gravity = 1e308 used
 // to get "a few elements more or fewer usually works"; contact.c1 = 1e308 a route with radii -nan)
 TEST(LuaApi, AbsurdButFiniteValuesNameTheParameter) {
+  // the test scene with 60 elements and scene_keys on line 7
   auto with = [](const std::string& scene_keys) {
-    return "beltsim.scene {\n"
-           "  pulleys = { { name = 'driver', centre = {0, 0}, radius = 0.1 },\n"
-           "              { name = 'driven', centre = {0.29, 0}, radius = 0.1 } },\n"
-           "  belt = { elements = 60, pretension = 500, direction = 'cw', mass_per_length = 0.096 },\n" +
-           scene_keys + "\n}\n";
+    beltsim::test::TwoPulley p;
+    p.elements = 60, p.extra = scene_keys;
+    return beltsim::test::two_pulley(p);
   };
   for (const std::string g : {"1e308", "-1e308", "2e4"}) {
     const std::string msg = run_text(with("gravity = " + g + ","));
-    EXPECT_NE(msg.find("scene.lua:5: gravity makes the belt's weight over its longest span"), std::string::npos) << msg;
+    EXPECT_NE(msg.find("scene.lua:7: gravity makes the belt's weight over its longest span"), std::string::npos) << msg;
     EXPECT_NE(msg.find("larger than its tension at rest (500 N)"), std::string::npos) << msg;
     EXPECT_NE(msg.find("(got " + std::string(g == "2e4" ? "20000" : g == "1e308" ? "1e+308" : "-1e+308") + " m/s²)"),
               std::string::npos)
@@ -122,7 +121,7 @@ TEST(LuaApi, AbsurdButFiniteValuesNameTheParameter) {
   // the limit is the belt's weight over the 0.29 m span against the pretension: 1.8e4 m/s² here
   EXPECT_EQ(run_text(with("gravity = 1.7e4,")), "");
   const std::string msg = run_text(with("contact = { c1 = 1e308 },"));
-  EXPECT_NE(msg.find("scene.lua:5: contact.c1 gives no finite static penetration on 'driver' with contact.c2 = 650000 "
+  EXPECT_NE(msg.find("scene.lua:7: contact.c1 gives no finite static penetration on 'driver' with contact.c2 = 650000 "
                      "N/m (beyond double precision) (got 1e+308 N/m²)"),
             std::string::npos)
       << msg;
