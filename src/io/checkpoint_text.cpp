@@ -371,14 +371,6 @@ std::map<std::string, double> CheckpointReader::line_map(std::string_view k, siz
   return end_with(std::move(m));
 }
 
-void CheckpointReader::line_pairs(std::string_view k, std::vector<double>& x, std::vector<double>& y) {
-  open(k);
-  const size_t n = count(2);
-  x.resize(n), y.resize(n);
-  for (size_t i = 0; i < n; ++i) x[i] = num(), y[i] = num();
-  close();
-}
-
 void CheckpointReader::finish() {
   key_.clear();
   if (next_ < body_end_) {

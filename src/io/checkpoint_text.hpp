@@ -2,7 +2,7 @@
 // the scene, the drive, the integrator's state), so that the whole file has one format and one
 // version.
 //
-//   beltsim-checkpoint 10            <- what it is, and the format version
+//   beltsim-checkpoint 11            <- what it is, and the format version
 //   integrator "esdirk32"            <- a key, then its values, one field per line
 //   rtol 1e-04
 //   probe 2 0 75                     <- sequences: the count, then the values
@@ -32,7 +32,7 @@ namespace beltsim {
 // Raised whenever anything a checkpoint holds changes (the scene's fields, scene/scene_fields.hpp;
 // the run's state, sim/state_io.cpp; the settings, sim/checkpoint.cpp): a reader refuses every
 // other version.
-inline constexpr int kCheckpointVersion = 10;
+inline constexpr int kCheckpointVersion = 11;
 inline constexpr const char* kCheckpointMagic = "beltsim-checkpoint";
 
 // A checkpoint that cannot be read: "line N: reason".
@@ -115,12 +115,9 @@ class CheckpointReader {
   std::vector<long> line_longs(std::string_view key, long lo, long hi, size_t most = SIZE_MAX);
   std::vector<std::string> line_strs(std::string_view key, size_t most = SIZE_MAX);
   std::map<std::string, double> line_map(std::string_view key, size_t most = SIZE_MAX);
-  void line_pairs(std::string_view key, std::vector<double>& x, std::vector<double>& y);
 
   // the checksum line is next, it matches the text before it, and nothing follows
   void finish();
-  // false when the text does not match its checksum (read on, to name a damaged line if one is)
-  bool intact() const { return intact_; }
   int line_number() const { return line_no_; }
   const std::string& key() const { return key_; }
   // the line that last opened with `key`, 0 when none did (a check made after a part is read
@@ -152,7 +149,7 @@ class CheckpointReader {
   std::string_view line_;    // its text, without the '\n'
   size_t pos_ = 0;           // in line_
   std::string key_;
-  bool intact_ = false;
+  bool intact_ = false;  // the text matches its checksum (read on, to name a damaged line if not)
   std::map<std::string, int, std::less<>> lines_of_;  // line_of
 };
 

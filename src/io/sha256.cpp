@@ -31,12 +31,6 @@ std::string Sha256::hex() {
   return h;
 }
 
-std::string sha256_hex(std::string_view text) {
-  Sha256 h;
-  h.update(text);
-  return h.hex();
-}
-
 std::string file_sha256(const std::string& path) {
   std::ifstream f(path, std::ios::binary);
   if (!f) return "";

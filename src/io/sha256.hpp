@@ -26,7 +26,6 @@ class Sha256 {
   std::unique_ptr<State> s_;
 };
 
-std::string sha256_hex(std::string_view text);
 // the hash of the file's bytes; "" when it cannot be read (missing, a folder, unreadable)
 std::string file_sha256(const std::string& path);
 

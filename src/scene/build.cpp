@@ -398,13 +398,9 @@ double static_solve(const Model& m, const Drive& dr, Eigen::VectorXd& y, double 
   return residual(y);
 }
 
-double span_tension(const Model& m, const Route& route, const Eigen::VectorXd& y, std::vector<int>& span_sde) {
-  span_sde.clear();
+double span_tension(const Model& m, const Route& route, const Eigen::VectorXd& y) {
   double tension = 0;
-  for (const Route::Span& sp : route.spans) {
-    span_sde.push_back(beltsim::span_sde(m, sp, y.data()));
-    tension += span_force(m, sp, y.data());
-  }
+  for (const Route::Span& sp : route.spans) tension += span_force(m, sp, y.data());
   return tension / static_cast<double>(route.spans.size());
 }
 
@@ -431,7 +427,7 @@ std::string settle(Scene& sc, const BeltDef& bd, bool rest_given, const std::ato
     for (int it = 0; it < kPasses; ++it) {
       at_rest.belt = b;
       sc.static_residual = static_solve(at_rest, held, sc.y0, max_move, stop);
-      sc.static_tension = span_tension(m, sc.route, sc.y0, sc.span_sde);
+      sc.static_tension = span_tension(m, sc.route, sc.y0);
       // the rest length given: the tension is what it gives, once converged
       if (rest_given) {
         if (sc.static_residual < kConverged) break;

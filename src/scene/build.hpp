@@ -105,12 +105,11 @@ void set_start_speeds(const Model& m, const Drive& dr, Eigen::VectorXd& y);
 // limits how far one step moves any element centre (a trust region).
 double static_solve(const Model& m, const Drive& dr, Eigen::VectorXd& y, double max_move,
                     const std::atomic<bool>* stop);
-// the mean SDE force on the spans of sc.route in the state y [N], and the SDE nearest each span's
-// midpoint into span_sde
-double span_tension(const Model& m, const Route& route, const Eigen::VectorXd& y, std::vector<int>& span_sde);
+// the mean SDE force on the spans of sc.route in the state y [N]
+double span_tension(const Model& m, const Route& route, const Eigen::VectorXd& y);
 // from the placement in sc.y0 and sc.model.belt: static_solve with every pulley held, the rest
 // length corrected until the spans carry the pretension (rest_given: left as it is); fills y0,
-// the belt, static_residual, static_tension and span_sde; when the plain iteration does not
+// the belt, static_residual and static_tension; when the plain iteration does not
 // converge or leaves a pulley, repeats it with a trust region of a tenth of a pitch per step
 // (static_retried). Returns the name of a route pulley the belt left untouched, empty when none.
 std::string settle(Scene& sc, const BeltDef& bd, bool rest_given, const std::atomic<bool>* stop);

@@ -184,7 +184,6 @@ struct Scene {
   double static_tension = 0;       // mean SDE force on the spans after the static solve [N]
   double static_residual = 0;      // max |acceleration| of the initial state [m/s²]
   bool static_retried = false;     // the static start needed its trust-region retry (scene.cpp)
-  std::vector<int> span_sde;       // for each span, the SDE nearest its midpoint at t = 0
   std::vector<ElementSite> sites; // where each element starts (as belt.mu functions see it)
   int find_pulley(const std::string& name) const;
   // per pulley: +1 when the belt goes round it anticlockwise, -1 clockwise (from the route)

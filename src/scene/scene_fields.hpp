@@ -195,7 +195,6 @@ namespace beltsim {
   D(reading, reading, "reading", "")                  \
   D(real, static_tension, "static_tension", "N")      \
   D(real, static_residual, "static_residual", "m/s²") \
-  D(flag, static_retried, "static_retried", "")       \
-  D(integers, span_sde, "span_sde", "")
+  D(flag, static_retried, "static_retried", "")
 
 }  // namespace beltsim

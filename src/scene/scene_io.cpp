@@ -284,9 +284,6 @@ void read_placement(CheckpointReader& r, Scene& sc) {
                 "entry " + std::to_string(k + 1) + " is not pulley '" + sc.route_names[k] + "'");
   }
   one_each(r, "penetration", sc.penetration.size(), np, "values", "pulleys");
-  one_each(r, "span_sde", sc.span_sde.size(), np, "elements", "spans");
-  for (int i : sc.span_sde)
-    if (i < 0 || i >= m.n_el()) r.fail_at(r.line_of("span_sde"), "span_sde", std::to_string(i) + " is not an element");
   get_list(r, "inputs", "input.", sc.inputs, SIZE_MAX, [&](size_t, SceneInput& e) {
     const Parameter* par = input_parameter(e.name, m);
     if (!par) r.fail_at(r.line_of("input.name"), "input.name", "'" + e.name + "' is not a scene parameter");

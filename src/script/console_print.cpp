@@ -146,13 +146,6 @@ void pretty_into(lua_State* L, int idx, std::string& out, int depth, std::set<co
 
 }  // namespace
 
-std::string pretty(lua_State* L, int idx) {
-  std::set<const void*> seen;
-  std::string s;
-  pretty_into(L, idx, s, 0, seen);
-  return s;
-}
-
 int print_values(lua_State* L) {
   const int n = lua_gettop(L);
   std::string line;

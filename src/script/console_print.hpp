@@ -9,8 +9,6 @@ struct lua_State;
 
 namespace beltsim::script {
 
-// the value at idx as the console shows it
-std::string pretty(lua_State* L, int idx);
 // a lua_CFunction: prints its arguments as the console shows values, separated by tabs, on stdout
 int print_values(lua_State* L);
 // s as a Lua string literal ("..." with escapes)

@@ -103,7 +103,6 @@ void Simulation::add_streams() {
 bool Simulation::has_snapshots() const { return out_->has_snapshots(); }
 std::string Simulation::csv_path() const { return out_->path("timeseries.csv"); }
 std::string Simulation::snapshots_path() const { return out_->path("snapshots.csv"); }
-std::string Simulation::events_path() const { return out_->path("events.csv"); }
 long Simulation::frames_written() const { return out_->frames_written(); }
 const std::vector<std::vector<double>>& Simulation::samples() const { return out_->samples(); }
 const std::string& Simulation::integrator_name() const { return rs_.integrator; }
@@ -309,7 +308,7 @@ Simulation::Advance Simulation::run_to(double t, const std::atomic<bool>* stop, 
   };
   try {
     const Timeline::Result r = tl_->run_to(t, stop, pr, poll);
-    a.t = r.t, a.steps = r.steps, a.wall = r.wall, a.interrupted = r.interrupted;
+    a.t = r.t, a.steps = r.steps, a.wall = clock() - start, a.interrupted = r.interrupted;
   } catch (const DivergenceError& e) {
     failed_ = e.what();
     wall_ += clock() - start;

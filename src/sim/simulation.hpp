@@ -120,7 +120,6 @@ class Simulation {
   std::vector<double> sample_row() const;    // the row timeseries.csv would get now
   const std::string& out_dir() const { return rs_.out_dir; }
   std::string csv_path() const;
-  std::string events_path() const;
   std::string snapshots_path() const;  // written only when snapshots are asked for
   bool has_snapshots() const;
   long frames_written() const;

@@ -25,8 +25,9 @@ FPS, SLOWDOWN = 30, 10  # the frames' defaults: a frame every 1/300 s of simulat
 
 SCENE = two_pulley(elements=60)
 # 3 s of simulated time: about 10 s of wall time with 320x240 frames, so every signal below comes
-# in the middle of the run
-RUN = SCENE + 'drive:run { t_end = 3, progress = false, frames = { size = {320, 240}, video = "v.mp4" } }\n'
+# in the middle of the run; a stopped run's outputs end before it
+T_END = 3
+RUN = SCENE + 'drive:run { t_end = %d, progress = false, frames = { size = {320, 240}, video = "v.mp4" } }\n' % T_END
 START = SCENE + 'sim = drive:start { progress = false, frames = { size = {320, 240}, video = "v.mp4" } }\n'
 
 failures = []
@@ -130,18 +131,19 @@ def outputs_whole(out, label):
 
 
 def stop_and_wait(p, sigs):
-    """sends the signals back to back; returns (exit status, seconds from the first to the exit)"""
-    t0 = time.monotonic()
+    """sends the signals back to back; returns the exit status"""
     for s in sigs:
         p.send_signal(s)
     p.wait(timeout=30)
-    return p.returncode, time.monotonic() - t0
+    return p.returncode
 
 
 # ---- SIGTERM: stops at the last finished step, 143, outputs closed --------------------------------
 # The stop takes 0.02-0.06 s (measured, also with the other tests busy on both cores: the step
 # under way, the encoder's look-ahead drained, the trailer); a second signal ended it in 0.01-0.22 s.
-# The 2 s allowed is far beyond both and far below the 7 s the run had left.
+# No wall time is asserted (a loaded machine stretches it): that the run stopped rather than ran on
+# is read from its outputs, which end before the 3 s it was asked for (about 7 s of wall time away
+# when the signal comes); a run that never stops fails by wait()'s timeout.
 def sigterm_run():
     out = os.path.join(TMP, "term")
     p = start(["run", script("run", RUN)], out)
@@ -150,20 +152,19 @@ def sigterm_run():
     # first, and a signal then would stop the build instead)
     csv_path = os.path.join(out, "timeseries.csv")
     wait_for(lambda: rows(csv_path) > 100, 60, "the run's first 100 rows")
-    status, took = stop_and_wait(p, [signal.SIGTERM])
+    status = stop_and_wait(p, [signal.SIGTERM])
     err = p.stderr.read()
     check(status == 143, "SIGTERM: exit status 143 (got %s, stderr %r)" % (status, err))
     check("beltsim: terminated; the outputs written so far are kept" in err, "SIGTERM: the message (%r)" % err)
-    check(took < 2.0, "SIGTERM: stopped in %.2f s" % took)
     outputs_whole(out, "SIGTERM")
     n, t = video_frames(os.path.join(out, "v.mp4")), last_t(os.path.join(out, "timeseries.csv"))
+    check(t < T_END, "SIGTERM: stopped, not run on: the CSV reaches %.3f s of %g" % (t, T_END))
     # the run stopped at a step end t_s: rows (1 ms apart) reach t <= t_s < t + 1 ms, frames
     # (1/300 s apart) count floor(300 t_s) + 1, so the video has every frame rendered when it has
     # floor(300 t) + 1 of them, or one more
     want = int(t * FPS * SLOWDOWN + 1e-9) + 1
     check(n >= 1 and want <= n <= want + 1,
           "SIGTERM: the video plays every frame rendered: %d, the CSV reaches %.3f s (%d frames)" % (n, t, want))
-    return took
 
 
 # ---- SIGKILL: nothing runs, whole rows all the same; the video plays its finished fragments ------
@@ -193,9 +194,8 @@ def second_signal():
     out = os.path.join(TMP, "twice")
     p = start(["run", script("run", RUN)], out)
     wait_for(lambda: rows(os.path.join(out, "timeseries.csv")) > 10, 10, "the first rows")
-    status, took = stop_and_wait(p, [signal.SIGTERM, signal.SIGINT])
+    status = stop_and_wait(p, [signal.SIGTERM, signal.SIGINT])
     check(status in (-signal.SIGINT, -signal.SIGTERM), "second signal: ended by the default action (%s)" % status)
-    check(took < 2.0, "second signal: ended in %.2f s" % took)
     outputs_whole(out, "second signal")
 
 
@@ -203,14 +203,16 @@ def second_signal():
 def console():
     out = os.path.join(TMP, "console")
     p = start(["console", script("start", START)], out, stdin=subprocess.PIPE, stdout=subprocess.DEVNULL, cwd=TMP)
-    p.stdin.write("sim:run_to(3)\nprint('not reached')\n")
+    p.stdin.write("sim:run_to(%d)\nprint('not reached')\n" % T_END)
     p.stdin.flush()  # stdin stays open: the console would wait for more after the run
     wait_for(lambda: rows(os.path.join(out, "timeseries.csv")) > 100, 10, "the console's run")
-    status, took = stop_and_wait(p, [signal.SIGTERM])
+    status = stop_and_wait(p, [signal.SIGTERM])
     err = p.stderr.read()
     check(status == 143, "console SIGTERM: exit status 143 (got %s, stderr %r)" % (status, err))
-    check("terminated" in err and took < 2.0, "console SIGTERM: the message, in %.2f s" % took)
+    check("terminated" in err, "console SIGTERM: the message (%r)" % err)
     outputs_whole(out, "console SIGTERM")
+    t = last_t(os.path.join(out, "timeseries.csv"))
+    check(t < T_END, "console SIGTERM: stopped, not run on: the CSV reaches %.3f s of %g" % (t, T_END))
     check(video_frames(os.path.join(out, "v.mp4")) >= 1, "console SIGTERM: the video plays")
     # (session.lua goes to out/<script>/ in the working directory whatever --out says)
     sessions = [os.path.join(d, "session.lua") for d in (out, os.path.join(TMP, "out", "start"))]

@@ -48,8 +48,8 @@ double driver_speed_after(double torque) {
 }
 
 TEST(KnownAnswers, CapstanLimitOfTheWetDrive) {
+  // r·2·T0·(e^{μπ} - 1)/(e^{μπ} + 1) with the scene's r = 0.1 m, T0 = 500 N, μ = 0.2 (30.4 N·m)
   const double limit = 0.1 * 2 * 500 * (std::exp(0.2 * M_PI) - 1) / (std::exp(0.2 * M_PI) + 1);
-  EXPECT_NEAR(limit, 30.4, 0.05);
   EXPECT_LT(std::abs(driver_speed_after(0.95 * limit)), 0.5);
   EXPECT_LT(driver_speed_after(1.05 * limit), -1.0) << "the driver should run away clockwise";
 }
@@ -260,9 +260,12 @@ TEST(KnownAnswers, CentrifugalTensionUnloadsThePulleys) {
 // 1 ms apart. (The driven pulley's speed ripples at the element passing frequency, 99.2 Hz: the
 // mean of samples 5 ms apart takes its second harmonic at 1.7 Hz, ±0.01 rad/s over a 0.2 s
 // window.) Measured (rtol 1e-6; rtol 1e-7 changes the losses by less than 0.1 %): Threlfall's
-// 0.05815 rad/s against 0.05770 (+0.8 %), Stribeck's (μ_s = 1.5·μ, v_s = 0.01 m/s) 0.06265
-// against 0.06338 (-1.2 %), LuGre's (σ0 = 1e5 1/m) 0.05929 against 0.05862 (+1.1 %): bound 3 %,
-// twice the largest deviation.
+// 0.05830 rad/s against 0.05782 (+0.8 %), Stribeck's (μ_s = 1.5·μ, v_s = 0.01 m/s) 0.06277
+// against 0.06302 (-0.4 %), LuGre's (σ0 = 1e5 1/m) 0.05929 against 0.05861 (+1.1 %): bound 3 %,
+// twice the largest deviation. That check reads T_j and v_T,j from the run itself, so it tests
+// the model's consistency with the formula, not the loss: the independent prediction is the
+// formula with the spans' tensions (the tensions between the pulleys, which the load sets, and no
+// slip), asserted by expect_creep_loss.
 struct Creep {
   double loss = 0;           // ω1 - |ω2| [rad/s]
   double expected = 0;       // the formula above [rad/s]
@@ -335,17 +338,30 @@ Creep creep_run(const Friction& f) {
   return c;
 }
 
+// The loss against the formula with the spans' tensions (Creep::span_tensions): the loss lies over
+// it by the rise of the stuck belt's tension at each wrap's entry, which the spans' tensions leave
+// out (above), and with soft bristles by their creep through the wraps. Measured (rtol 1e-6) over
+// it by 15.7 % (Threlfall's), 24.1 % (Stribeck's), 17.7 % and 13.3 % (LuGre's, σ0 = 1e5 and 1e4
+// 1/m): bounds 0 and 30 %, the largest excess with a quarter of it again for the laws' and the
+// bristles' other settings.
+void expect_creep_loss(const Creep& c) {
+  EXPECT_GT(c.loss, c.span_tensions) << "the loss lies over the spans' prediction";
+  EXPECT_LT(c.loss, 1.3 * c.span_tensions) << "the spans' prediction is within 30 % of the loss";
+}
+
 TEST(KnownAnswers, CreepSpeedLossMatchesTheTensionDifference) {
   // the drive's first stick-slip changes cost esdirk32 a failed step (shortened and retried)
   test::expect_warnings({WarningKind::failed_step});
   const Creep c = creep_run(SceneDef{}.friction);
   EXPECT_NEAR(c.loss, c.expected, 0.03 * c.expected);
+  expect_creep_loss(c);
 }
 
 TEST(KnownAnswers, CreepSpeedLossIsTheSameWithStribecksLaw) {
   test::expect_warnings({WarningKind::failed_step});
   const Creep c = creep_run(stribeck_friction(1.5, 0.01));
   EXPECT_NEAR(c.loss, c.expected, 0.03 * c.expected);
+  expect_creep_loss(c);
 }
 
 // LuGre's law: an element sticks by its bristle deflection z = μ/σ0, and the belt creeps through
@@ -366,6 +382,8 @@ TEST(KnownAnswers, CreepSpeedLossWithLugresLawComesFromTheBristles) {
   const Creep s = creep_run(stiff), c = creep_run(soft);
   EXPECT_NEAR(s.loss, s.expected, 0.03 * s.expected);
   EXPECT_NEAR(c.loss, c.expected, 0.03 * c.expected);
+  expect_creep_loss(s);
+  expect_creep_loss(c);
   EXPECT_LT(std::abs(s.expected - s.stuck_only), 0.02 * s.expected) << "stiff bristles hold the middle of the wraps";
   EXPECT_GT(c.expected - c.stuck_only, 0.07 * c.expected) << "soft bristles let the belt creep through the wraps";
   EXPECT_LT(c.rise[0], 0.5 * s.rise[0]);

@@ -21,8 +21,9 @@ namespace fs = std::filesystem;
 
 fs::path temp_dir() { return beltsim::test::scratch_dir("beltsim_live_api_test"); }
 
-// the paper's two-pulley drive (40 elements: quick); `driver` is the driver's drive
-std::string scene(const std::string& driver = "torque = beltsim.ramp(0.3, -70)") {
+// the test scene (tests/support/two_pulley.lua: 40 elements, quick); `driver`: the driver's drive
+// ("": the file's)
+std::string scene(const std::string& driver = "") {
   beltsim::test::TwoPulley p;
   p.driver = driver;
   return beltsim::test::two_pulley(p) +
@@ -218,11 +219,10 @@ TEST(LiveApi, SprayZoneReadSwitchedAndRefused) {
 // for bit; the Lua table reads one_way as a boolean.
 TEST(LiveApi, CoupledRotorReadChangedAndCheckpointed) {
   const std::string out = (temp_dir() / "rotor").string();
-  EXPECT_EQ(run_text("local s = beltsim.scene{ pulleys = {\n"
-                     "  { name = 'driver', centre = {0, 0}, torque = beltsim.ramp(0.3, -70.0) },\n"
-                     "  { name = 'driven', centre = {0.29, 0}, torque = { per_speed = -0.5 },\n"
-                     "    coupling = { inertia = 0.01, stiffness = 50, damping = 0.2, one_way = true } } },\n"
-                     "  belt = { direction = 'cw' } }\n"
+  beltsim::test::TwoPulley coupled;
+  coupled.driven = "torque = { per_speed = -0.5 },\n"
+                   "      coupling = { inertia = 0.01, stiffness = 50, damping = 0.2, one_way = true }";
+  EXPECT_EQ(run_text(beltsim::test::two_pulley(coupled) +
                      "local sim = s:start{ out = '" + out + "', progress = false }\n"
                      "local p = sim:pulley('driven')\n"
                      "assert(p.rotor_speed == 0 and p.windup == 0 and p.coupling_torque == 0, 'relaxed at rest')\n"
@@ -249,13 +249,19 @@ TEST(LiveApi, CoupledRotorReadChangedAndCheckpointed) {
   EXPECT_NE(events.find("driven.rotor"), std::string::npos) << events;
 }
 
+// the test scene with 240 elements (a transition of 0.05 m spans several) and the driver's torque
+// a constant 1 N·m
+std::string wet_scene() {
+  beltsim::test::TwoPulley p;
+  p.driver = "torque = -1", p.elements = 240;
+  return beltsim::test::two_pulley(p);
+}
+
 // sim:wet's transition (issue 27 §4): μ ramps linearly from the belt's μ to the wet one across the
 // transition's length about each end of [from, to]; 0 is the sharp boundary of no transition.
 TEST(LiveApi, WetTransitionRampsMuAcrossItsLength) {
   const std::string out = (temp_dir() / "transition").string();
-  EXPECT_EQ(run_text("local s = beltsim.scene{ pulleys = {\n"
-                     "  { name = 'driver', centre = {0, 0}, torque = -1 },\n"
-                     "  { name = 'driven', centre = {0.29, 0} } }, belt = { elements = 240 } }\n"
+  EXPECT_EQ(run_text(wet_scene() +
                      "local sim = s:start{ out = '" + out + "', progress = false }\n"
                      "local n = s:info().elements\n"
                      "sim:wet{ from = 0.3, to = 0.6, mu = 0.2, transition = 0.05 }\n"
@@ -289,9 +295,7 @@ TEST(LiveApi, WetTransitionRampsMuAcrossItsLength) {
 // shares are in the checkpoint).
 TEST(LiveApi, EventTransitionRampsMuWhenTheEventComes) {
   const std::string out = (temp_dir() / "event_transition").string();
-  EXPECT_EQ(run_text("local s = beltsim.scene{ pulleys = {\n"
-                     "  { name = 'driver', centre = {0, 0}, torque = -1 },\n"
-                     "  { name = 'driven', centre = {0.29, 0} } }, belt = { elements = 240 } }\n"
+  EXPECT_EQ(run_text(wet_scene() +
                      "local ev = { { t = 1e-4, mu = 0.5 },\n"
                      "             { t = 2e-4, mu = 0.2, from = 0.3, to = 0.6, transition = 0.05 } }\n"
                      "local function check(sim, n)\n"
@@ -327,12 +331,18 @@ TEST(LiveApi, EventTransitionRampsMuWhenTheEventComes) {
 // together, or a rib angle of 180°, are refused with the reason and the value.
 TEST(LiveApi, RibWedgeGivesTheEffectiveMu) {
   const std::string out = (temp_dir() / "wedge").string();
-  const std::string pulleys = "pulleys = { { name = 'a', centre = {0, 0}, torque = -1 }, { name = 'b', centre = {0.29, 0} } }";
-  EXPECT_EQ(run_text("local s = beltsim.scene{ " + pulleys + ", belt = { mu_flank = 0.5 } }\n"
+  // the test scene with the driver's torque a constant 1 N·m and more keys of the belt; its belt
+  // table is on line 6
+  const auto with_belt = [](const std::string& assign, const std::string& belt) {
+    beltsim::test::TwoPulley p;
+    p.assign = assign, p.driver = "torque = -1", p.belt = belt;
+    return beltsim::test::two_pulley(p);
+  };
+  EXPECT_EQ(run_text(with_belt("local s = ", "mu_flank = 0.5") +
                      "local sim = s:start{ out = '" + out + "', progress = false }\n"
                      "local mu = sim:element(7).mu\n"
-                     "assert(math.abs(mu - 0.5 / math.sin(math.rad(20))) < 1e-15, mu)\n"
-                     "local t = beltsim.scene{ " + pulleys + ", belt = { mu_flank = 0.5, rib_angle = 60 } }\n"
+                     "assert(math.abs(mu - 0.5 / math.sin(math.rad(20))) < 1e-15, mu)\n" +
+                     with_belt("local t = ", "mu_flank = 0.5, rib_angle = 60") +
                      "local u = t:start{ out = '" + out + "_60', progress = false }\n"
                      "assert(math.abs(u:element(7).mu - 1.0) < 1e-15, u:element(7).mu)\n"
                      "sim:close() u:close()\n"),
@@ -342,14 +352,14 @@ TEST(LiveApi, RibWedgeGivesTheEffectiveMu) {
   EXPECT_NE(csv.find("\nbelt.rib_angle,40,°,default,"), std::string::npos) << csv;
   EXPECT_NE(csv.find("\nbelt.mu_flank,0.5,,given,"), std::string::npos) << csv;
   EXPECT_NE(csv.find("\nbelt.mu,1.4619"), std::string::npos) << csv;
-  EXPECT_NE(run_text("beltsim.scene{ " + pulleys + ", belt = { mu = 1, mu_flank = 0.5 } }")
-                .find(":1: belt: give mu (the effective coefficient) or mu_flank, not both"),
+  EXPECT_NE(run_text(with_belt("", "mu = 1, mu_flank = 0.5"))
+                .find(":6: belt: give mu (the effective coefficient) or mu_flank, not both"),
             std::string::npos);
-  EXPECT_NE(run_text("beltsim.scene{ " + pulleys + ", belt = { mu_flank = 0.5, rib_angle = 180 } }")
-                .find(":1: belt.rib_angle: must be > 0 and < 180 (the ribs' included angle) (got 180 °)"),
+  EXPECT_NE(run_text(with_belt("", "mu_flank = 0.5, rib_angle = 180"))
+                .find(":6: belt.rib_angle: must be > 0 and < 180 (the ribs' included angle) (got 180 °)"),
             std::string::npos);
-  EXPECT_NE(run_text("beltsim.scene{ " + pulleys + ", belt = { rib_angle = 200 } }")
-                .find(":1: belt.rib_angle must be < 180 (the ribs' included angle) (got 200 °)"),
+  EXPECT_NE(run_text(with_belt("", "rib_angle = 200"))
+                .find(":6: belt.rib_angle must be < 180 (the ribs' included angle) (got 200 °)"),
             std::string::npos);
 }
 

@@ -119,7 +119,7 @@ TEST(Outputs, OneSimulationPerFolder) {
 TEST(Outputs, ParametersHoldNoNegativeZero) {
   const fs::path out = fresh("negative_zero") / "out";
   SceneDef d = presets::paper_dry();
-  d.pulleys[1].centre = {0.29, -0.0};
+  d.pulleys[1].centre.y() = -0.0;
   {
     Simulation s(build_scene(d), settings(out));
     s.run_to(0.001);

@@ -67,20 +67,29 @@ TEST(WorkPrecision, ErrorsShrinkWithTheToleranceAndFilesAreWritten) {
   EXPECT_EQ(std::string(magic + 1, 3), "PNG");
 }
 
+// The runs' clock is the test's (RunSettings::wall_clock): 1 ms per look, so that the 0.2 s limit
+// stops the rkf45 run at its 201st look whatever the machine's speed, and the reference (no
+// limit) finishes
 TEST(WorkPrecision, ARunOverItsWallLimitIsUnfinished) {
   const Scene sc = build_scene(presets::paper_dry());
   WpSettings ws;
-  ws.integrators = {"rkf45"};  // explicit: ~1e-9 s steps, cannot do 20 ms in 0.2 s
+  ws.integrators = {"rkf45"};
   ws.rtols = {1e-3};
   ws.ref_rtol = 1e-5;
   ws.wall_limit = 0.2;
   ws.base.t_end = 0.02;
   ws.base.out_dir = out_dir("limit").string();
+  long looks = 0;
+  ws.base.wall_clock = [&] { return 1e-3 * static_cast<double>(looks++); };
   const WpResult r = work_precision(sc, ws);
   ASSERT_EQ(r.rows.size(), 1u);
+  EXPECT_TRUE(r.reference.finished);
   EXPECT_FALSE(r.rows[0].finished);
+  EXPECT_GT(r.rows[0].t_reached, 0.0);
   EXPECT_LT(r.rows[0].t_reached, 0.02);
-  EXPECT_LT(r.rows[0].wall, 5.0);
+  // stopped at the look past the limit (0.201 s), with one more look for the total
+  EXPECT_GT(r.rows[0].wall, 0.2);
+  EXPECT_LE(r.rows[0].wall, 0.2025);
   EXPECT_EQ(r.rows[0].note, "wall-time limit");
 }
 

@@ -1,37 +1,65 @@
 // The test scenes in Lua, one definition for every test that runs one.
 //
-// two_pulley: the paper's two-pulley drive (scripts/paper_dry.lua's geometry: two pulleys of
-// 0.1 m, 0.29 m apart, the belt at 500 N turning clockwise), with what a test varies. Its text
-// has 7 lines (8 with `extra`): a script's next line is line 8 (9), which the tests' expected
-// messages name.
+// two_pulley: the scene of tests/support/two_pulley.lua (the Python tests read the same file,
+// support/scenes.py), with what a test varies. Its text has 7 lines (8 with `extra`): a script's
+// next line is line 8 (9), which the tests' expected messages name.
 //
 // runaway: a frictionless belt leaves the driver free to spin up under 1e6 N·m (4e7 rad/s² on
 // 0.025 kg·m²), past the runaway check (1e5 rad/s) after 2.5 ms; 7 lines.
 #pragma once
 
+#include <fstream>
+#include <regex>
+#include <sstream>
+#include <stdexcept>
 #include <string>
 
 namespace beltsim::test {
 
+// what a test varies; an empty string or 0 keeps the file's
 struct TwoPulley {
-  std::string assign = "local s = ";                        // what the scene's value goes to
-  std::string driver = "torque = beltsim.ramp(0.3, -70)";   // the driver's keys after its geometry
-  std::string driven_at = "centre = {0.29, 0}, radius = 0.1";
-  std::string driven = "torque = { per_speed = -0.955 }";  // the driven pulley's keys after its geometry
-  int elements = 40;
+  std::string assign;     // what the scene's value goes to (the file's: "local s = ")
+  std::string driver;     // the driver's keys after its geometry
+  std::string driven_at;  // the driven pulley's centre and radius
+  std::string driven;     // the driven pulley's keys after its geometry
+  int elements = 0;
   std::string belt;   // more keys of the belt table
   std::string extra;  // a line of more keys of the scene table
 };
 
+// the file's lines from "local s = " on
+inline const std::string& two_pulley_text() {
+  static const std::string text = [] {
+    const std::string path = std::string(BELTSIM_SOURCE_DIR) + "/tests/support/two_pulley.lua";
+    std::ifstream f(path);
+    std::stringstream ss;
+    ss << f.rdbuf();
+    const std::string t = ss.str();
+    const size_t at = t.find("local s = ");
+    if (!f || at == std::string::npos) throw std::runtime_error(path + ": cannot read it, or no line 'local s = '");
+    return t.substr(at);
+  }();
+  return text;
+}
+
+// group `g` of the one match of `re` in s replaced by `with` (nothing when `with` is empty)
+inline void replace_group(std::string& s, const char* re, int g, const std::string& with) {
+  if (with.empty()) return;
+  std::smatch m;
+  if (!std::regex_search(s, m, std::regex(re))) throw std::runtime_error(std::string("two_pulley.lua: no ") + re);
+  s.replace(static_cast<size_t>(m.position(g)), static_cast<size_t>(m.length(g)), with);
+}
+
 inline std::string two_pulley(const TwoPulley& p = {}) {
-  return p.assign + "beltsim.scene {\n"
-         "  pulleys = {\n"
-         "    { name = 'driver', centre = {0, 0}, radius = 0.1, " + p.driver + " },\n"
-         "    { name = 'driven', " + p.driven_at + ", " + p.driven + " },\n"
-         "  },\n"
-         "  belt = { elements = " + std::to_string(p.elements) + ", pretension = 500, direction = 'cw'" +
-         (p.belt.empty() ? "" : ", " + p.belt) + " },\n" +
-         (p.extra.empty() ? "" : "  " + p.extra + "\n") + "}\n";
+  std::string s = two_pulley_text();
+  replace_group(s, "^(local s = )", 1, p.assign);
+  replace_group(s, "name = 'driver', centre = \\{[^}]*\\}, radius = [^,]*, (.*) \\},", 1, p.driver);
+  replace_group(s, "name = 'driven', (centre = \\{[^}]*\\}, radius = [^,]*), (.*) \\},", 2, p.driven);
+  replace_group(s, "name = 'driven', (centre = \\{[^}]*\\}, radius = [^,]*),", 1, p.driven_at);
+  replace_group(s, "elements = ([0-9]+)", 1, p.elements ? std::to_string(p.elements) : "");
+  replace_group(s, "belt = \\{.*()\\s\\},", 1, p.belt.empty() ? "" : ", " + p.belt);
+  replace_group(s, "\\n()\\}\\n$", 1, p.extra.empty() ? "" : "  " + p.extra + "\n");
+  return s;
 }
 
 inline std::string runaway() {
