@@ -1,6 +1,8 @@
 #include "live/live_server.hpp"
 
 #include <httplib.h>
+#include <sys/eventfd.h>
+#include <unistd.h>
 
 #include <chrono>
 #include <cmath>
@@ -119,6 +121,8 @@ LiveServer::LiveServer(const ServeSettings& s) : settings_(s), token_(random_tok
   const std::string where = s.host + ":" + std::to_string(s.port);
   port_ = s.port == 0 ? http_->bind_to_any_port(s.host) : (http_->bind_to_port(s.host, s.port) ? s.port : -1);
   if (port_ <= 0) throw std::runtime_error("live view: cannot listen on " + where + " (in use, or not this machine's)");
+  wake_fd_ = eventfd(0, EFD_NONBLOCK | EFD_CLOEXEC);
+  if (wake_fd_ < 0) throw std::runtime_error("live view: cannot make an eventfd");
   thread_ = std::thread([this] { http_->listen_after_bind(); });
   // stop() before the thread has begun to listen would leave it listening: wait for it
   while (!http_->is_running()) std::this_thread::yield();
@@ -132,6 +136,12 @@ LiveServer::~LiveServer() {
   cv_.notify_all();
   http_->stop();
   if (thread_.joinable()) thread_.join();
+  if (wake_fd_ >= 0) close(wake_fd_);
+}
+
+void LiveServer::clear_wake() {
+  std::uint64_t n;
+  if (read(wake_fd_, &n, sizeof n) < 0) return;  // EAGAIN: nothing came
 }
 
 std::string LiveServer::url() const {
@@ -313,6 +323,8 @@ void LiveServer::routes() {
       ++pending_;
     }
     cv_.notify_all();
+    const std::uint64_t one = 1;
+    [[maybe_unused]] const ssize_t w = write(wake_fd_, &one, sizeof one);  // fails only when full: readable
     res.status = 202;
     res.set_content("queued\n", "text/plain");
   });

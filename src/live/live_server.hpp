@@ -84,6 +84,10 @@ class LiveServer {
   bool stopping() const;
   // the number of streams open now
   int clients() const;
+  // readable when a control has come (an eventfd): a console waiting at its prompt polls it beside
+  // its input; clear_wake() reads it empty
+  int wake_fd() const { return wake_fd_; }
+  void clear_wake();
 
   // the history kept for a client that connects later is thinned to at most this many samples
   static constexpr size_t kHistory = 4000;
@@ -107,6 +111,7 @@ class LiveServer {
   ServeSettings settings_;
   std::string token_, assets_js_, assets_css_;
   int port_ = 0;
+  int wake_fd_ = -1;
   std::unique_ptr<httplib::Server> http_;
   std::thread thread_;
 

@@ -165,17 +165,44 @@ void LiveFeed::apply_controls(bool paused) {
     } else {
       said = apply(*c);
     }
-    publish(wall_);  // the page's t, plot and picture where the run stands
-    offer_frame();
-    const std::string at = " at t = " + rounded_text(sim_->now(), 6) + " s";
-    if (!said.empty())
-      server_->set_status("refused: " + said);
-    else if (c->what == "pause" || c->what == "continue" || c->what == "run_to")
-      server_->set_status(paused ? "paused" + at : "running");
-    else
-      server_->set_status((paused ? "paused" : "running") + at + " (" + c->what + " applied)");
+    report(*c, said, paused);
     if (!paused && !server_->commands_pending()) return;
   }
+}
+
+void LiveFeed::report(const live::Command& c, const std::string& said, bool paused) {
+  publish(wall_);  // the page's t, plot and picture where the run stands
+  offer_frame();
+  const std::string at = " at t = " + rounded_text(sim_->now(), 6) + " s";
+  if (!said.empty())
+    server_->set_status("refused: " + said);
+  else if (c.what == "pause" || c.what == "continue" || c.what == "run_to")
+    server_->set_status(paused ? "paused" + at : "running");
+  else
+    server_->set_status((paused ? "paused" : "running") + at + " (" + c.what + " applied)");
+}
+
+void LiveFeed::apply_waiting(Simulation* sim) {
+  if (!server_) return;
+  while (const std::optional<live::Command> c = server_->take(false)) {
+    if (!sim) {
+      server_->set_status("refused: " + c->what + ": no simulation to change (the run has ended)");
+      continue;
+    }
+    sim_ = sim;
+    std::string said;
+    if (c->what == "continue" || c->what == "run_to")
+      said = c->what + ": the console runs the simulation (sim:run_to at its prompt)";
+    else if (c->what != "pause")
+      said = apply(*c);
+    try {
+      report(*c, said, true);
+    } catch (const std::exception& e) {  // a Lua law that fails on reading: the next run's error says it
+      std::fprintf(stderr, "beltsim: live view: %s\n", e.what());
+    }
+  }
+  frames_.reset();  // the picture drawn, before the simulation can go
+  sim_ = nullptr;
 }
 
 Simulation::Advance LiveFeed::run_to(Simulation& sim, double t, const RunProgress& inner, const char* at_end) {
@@ -188,6 +215,8 @@ Simulation::Advance LiveFeed::run_to(Simulation& sim, double t, const RunProgres
   const RunProgress progress = callback(inner);
   Simulation::Advance total;
   wall_ = 0, changed_ = false;
+  // what came before this run (a console's prompt, a script's start): applied where it stands
+  if (server_->commands_pending()) apply_controls(false);
   for (;;) {
     halt_ = false;
     const bool to_target = target_ > sim.now() && target_ < t;

@@ -62,6 +62,11 @@ class LiveFeed {
   // pause holds it (pause, run to a time: paused there; a torque, a wet stretch, a checkpoint: as
   // sim:set_torque, sim:wet, sim:save). at_end: the page's status after it ("paused", "finished")
   Simulation::Advance run_to(Simulation& sim, double t, const RunProgress& inner, const char* at_end = "finished");
+  // the controls that came while no run goes on (a console waiting at its prompt), applied now on
+  // the thread that owns sim, where it stands: a torque, a wet stretch, a checkpoint as in a pause;
+  // continue and run to t are refused (the console runs it), as is everything when sim is null
+  // (the run the page showed has ended)
+  void apply_waiting(Simulation* sim);
 
   static constexpr double kInterval = 0.05;           // [s] of wall time between two samples
   static constexpr double kFrameInterval = 1.0 / 15;  // [s] between two frames (while a page is open)
@@ -79,6 +84,8 @@ class LiveFeed {
   // the page's controls, between two run_to calls: a pause holds the run here (the controls that
   // come meanwhile applied) until continue, a run to a time, Ctrl-C or the server's end
   void apply_controls(bool paused);
+  // the page's picture, plot and status after the control c (said: "" or why it was refused)
+  void report(const live::Command& c, const std::string& said, bool paused);
   // one change (torque, wet, save); "" or why it was refused
   std::string apply(const live::Command& c);
   void record(double t, const std::string& call);

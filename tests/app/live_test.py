@@ -17,6 +17,7 @@ import struct
 import subprocess
 import sys
 import tempfile
+import time
 import unittest
 import urllib.parse
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "support"))
@@ -36,8 +37,9 @@ def events(resp):
             return
         line = line.decode().rstrip("\n")
         if line == "":
-            if data:
-                yield name, "\n".join(data)
+            # a comment alone (the server's ": idle" every half second) is yielded too, so that a
+            # reader can give up on what never comes
+            yield (name, "\n".join(data)) if data else ("idle", None)
             name, data = "message", []
         elif line.startswith("event: "):
             name = line[7:]
@@ -102,7 +104,9 @@ class Live(unittest.TestCase):
         and each samples event (self.t: the last sample's t)"""
         self.frames, self.t = [], None
         for name, data in events(stream):
-            if name == "frame":
+            if name == "idle":
+                yield None
+            elif name == "frame":
                 self.frames.append(json.loads(data))
                 yield None
             elif name == "samples" and json.loads(data):
@@ -111,10 +115,15 @@ class Live(unittest.TestCase):
             elif name == "status":
                 yield json.loads(data)
 
-    def wait_status(self, it, prefix):
+    def wait_status(self, it, prefix, within=None):
+        """the first status starting with prefix; within: at most that many seconds of wall time
+        for a status that may never come (a bound on a failure, not a wait for timing)"""
+        end = time.monotonic() + within if within else None
         for status in it:
             if status is not None and status.startswith(prefix):
                 return status
+            if end and time.monotonic() > end:
+                self.fail("no status %r within %g s" % (prefix, within))
         self.fail("the stream ended before a status " + prefix)
 
     def test_controls_pause_frame_torque_wet_save_run_to(self):
@@ -325,6 +334,59 @@ class ConsoleAndPage(unittest.TestCase):
             x, y = x.split(","), y.split(",")
             self.assertEqual([(h, u) for h, u, v in zip(head, x, y) if u != v],
                              [(h, v) for h, u, v in zip(head, x, y) if u != v], x[0])
+    def test_a_change_at_the_prompt_applies_there(self):
+        """a torque sent from the page while the console waits at its prompt after sim:run_to(T)
+        is applied there, at T (no run needed): the status says so, the console's next
+        inspection reads it, events.csv has it at T, session.lua has it before the next run and
+        its replay gives the same events.csv and timeseries.csv"""
+        d = tempfile.mkdtemp(prefix="beltsim_live_prompt_")
+        self.addCleanup(shutil.rmtree, d, True)
+        with open(os.path.join(d, "c.lua"), "w") as f:
+            f.write(two_pulley(elements=40) + "sim = drive:start { out = \"out\", sample = %r }\n" % SAMPLE)
+        proc = subprocess.Popen([BELTSIM, "console", "c.lua", "--serve"], cwd=d, stdin=subprocess.PIPE,
+                                stdout=subprocess.PIPE, stderr=subprocess.PIPE)
+        self.addCleanup(proc.kill)
+        for line in proc.stderr:
+            if b"live view at " in line:
+                url = urllib.parse.urlsplit(line.decode().split("live view at ")[1].strip())
+                break
+        live = Live()
+        live.url, live.token = url, urllib.parse.parse_qs(url.query)["token"][0]
+        c = http.client.HTTPConnection(url.hostname, url.port, timeout=60)
+        c.request("GET", "/events?token=" + live.token)
+        it = live.statuses(c.getresponse())
+        t_pause = 0.05
+        proc.stdin.write(b"sim:run_to(%r)\n" % t_pause)
+        proc.stdin.flush()
+        live.wait_status(it, "paused")  # sim:run_to has returned: the console is at its prompt
+        self.assertEqual(live.post("do=torque&pulley=driven&value=-65")[0], 202)
+        # applied at the prompt, not after the first step of the console's next run (before the
+        # fix nothing came until the console ran again)
+        live.wait_status(it, "paused at t = %s s (torque applied)" % status_t(t_pause), within=30)
+        c.close()
+        proc.stdin.write(b"print('torque', sim:pulley('driven').torque)\nsim:run_to(0.1)\n")
+        proc.stdin.close()
+        out = proc.stdout.read().decode()
+        err = proc.stderr.read().decode()
+        self.assertEqual(proc.wait(timeout=300), 0, err)
+        self.assertIn("torque\t-65", out)
+        rows = [r for r in events_csv(os.path.join(d, "out")) if r[1] == "driven.torque"]
+        self.assertEqual([(float(r[0]), float(r[2])) for r in rows], [(t_pause, -65)])
+        session = err.split("the session's commands are in ")[1].split("\n")[0]
+        with open(os.path.join(d, session)) as f:
+            text = f.read()
+        at = [text.index("\n" + s) for s in [
+            "sim:run_to(%r)" % t_pause, 'sim:set_torque("driven", -65)', "print('torque'", "sim:run_to(0.1)"]]
+        self.assertEqual(at, sorted(at), text)
+        r = os.path.join(d, "replay")
+        os.mkdir(r)
+        shutil.copy(os.path.join(d, session), os.path.join(r, "session.lua"))
+        p = subprocess.run([BELTSIM, "run", "session.lua"], cwd=r, capture_output=True, text=True, timeout=300)
+        self.assertEqual(p.returncode, 0, p.stderr)
+        for name in ["events.csv", "timeseries.csv"]:
+            with open(os.path.join(d, "out", name)) as a, open(os.path.join(r, "out", name)) as b:
+                self.assertEqual(a.read(), b.read(), name)
+
 
 if __name__ == "__main__":
     BELTSIM = os.path.abspath(sys.argv.pop(1))
