@@ -195,11 +195,25 @@ void LiveServer::set_status(const std::string& status) {
   cv_.notify_all();
 }
 
-void LiveServer::set_frame(std::string png, double t) {
-  auto f = std::make_shared<const std::string>(std::move(png));
+void LiveServer::set_frame(std::string jpeg, double t, const std::vector<ElementAt>& elements, double length) {
+  auto f = std::make_shared<const std::string>(std::move(jpeg));
+  std::string json = "{\"t\":";
+  add_number(json, t);
+  json += ",\"length\":";
+  add_number(json, length);
+  json += ",\"elements\":[";
+  char buf[64];
+  for (size_t k = 0; k < elements.size(); ++k) {
+    // s to the last bit: a stretch picked from it holds the element at its end (lua_run.hpp in_stretch)
+    std::snprintf(buf, sizeof buf, "%s[%.1f,%.1f,%.17g]", k ? "," : "", elements[k].x, elements[k].y, elements[k].s);
+    json += buf;
+  }
+  json += "]}";
+  auto j = std::make_shared<const std::string>(std::move(json));
   {
     const std::lock_guard<std::mutex> lock(m_);
     frame_ = std::move(f);
+    frame_json_ = std::move(j);
     frame_t_ = t;
     ++frame_serial_;
   }
@@ -290,20 +304,22 @@ void LiveServer::routes() {
         [this](const httplib::Request&, httplib::Response& res) { res.set_content(assets_js_, "text/javascript"); });
   h.Get("/dygraph.css",
         [this](const httplib::Request&, httplib::Response& res) { res.set_content(assets_css_, "text/css"); });
-  h.Get("/frame.png", [this](const httplib::Request&, httplib::Response& res) {
-    std::shared_ptr<const std::string> f;
-    {
-      const std::lock_guard<std::mutex> lock(m_);
-      f = frame_;
-    }
-    res.set_header("Cache-Control", "no-store");
-    if (!f) {
-      res.status = 503;
-      res.set_content("no frame yet\n", "text/plain");
-      return;
-    }
-    res.set_content(*f, "image/png");
-  });
+  // the latest frame and its elements' places (a frame's t is in both: the page matches them)
+  for (const bool json : {false, true})
+    h.Get(json ? "/frame.json" : "/frame.jpg", [this, json](const httplib::Request&, httplib::Response& res) {
+      std::shared_ptr<const std::string> f;
+      {
+        const std::lock_guard<std::mutex> lock(m_);
+        f = json ? frame_json_ : frame_;
+      }
+      res.set_header("Cache-Control", "no-store");
+      if (!f) {
+        res.status = 503;
+        res.set_content("no frame yet\n", "text/plain");
+        return;
+      }
+      res.set_content(*f, json ? "application/json" : "image/jpeg");
+    });
   h.Post("/control", [this](const httplib::Request& req, httplib::Response& res) {
     Command c;
     const std::string bad = read_command([&req](const char* key) { return req.get_param_value(key); }, c);

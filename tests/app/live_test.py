@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """The live view's server (docs/live-view.md, src/live/): `beltsim run S.lua --serve` answers 403
 without the token printed at its start, serves the page and its plotting library with it and
-nothing else, streams samples whose t advances and the renderer's frames (PNG) while a page is
+nothing else, streams samples whose t advances and the renderer's frames (JPEG) while a page is
 open, and a client that disconnects mid-run leaves the
 run to finish whole (timeseries.csv to t_end, exit 0). Each step waits for what it needs (the
 address on stderr, the stream's events); no sleeps.
@@ -141,15 +141,24 @@ class Live(unittest.TestCase):
         status = self.wait_status(it, "paused at t = ")
         paused_at = float(status.split("= ")[1].split(" ")[0])
         # the picture of the paused run: a frame event with its t (the renderer's thread draws the
-        # state offered at the pause), then /frame.png; no timing involved
+        # state offered at the pause), then /frame.jpg and where its elements are (/frame.json); no
+        # timing involved
         self.assertGreater(paused_at, 0)
         for _ in it:
             if self.frames and abs(self.frames[-1] - paused_at) <= 5e-6 * paused_at:
                 break
-        status, frame = self.get("/frame.png?token=" + self.token)
+        status, frame = self.get("/frame.jpg?token=" + self.token)
         self.assertEqual(status, 200)
-        self.assertEqual(frame[:8], b"\x89PNG\r\n\x1a\n")
-        self.assertEqual(struct.unpack(">II", frame[16:24]), (960, 540))  # IHDR: width, height
+        self.assertEqual(frame[:2], b"\xff\xd8")  # a JPEG's start of image
+        sof = frame.index(b"\xff\xc0")  # baseline start of frame: precision, height, width
+        self.assertEqual(struct.unpack(">HH", frame[sof + 5:sof + 9]), (540, 960))
+        status, placed = self.get("/frame.json?token=" + self.token)
+        placed = json.loads(placed)
+        self.assertEqual(placed["t"], self.frames[-1])
+        self.assertEqual(len(placed["elements"]), 40)
+        for x, y, s in placed["elements"]:  # in the picture, each at its belt coordinate
+            self.assertTrue(0 <= x < 960 and 0 <= y < 540 and 0 <= s < placed["length"], (x, y, s))
+        self.assertEqual(sorted(e[2] for e in placed["elements"])[0], 0)  # element 0 at s = 0
 
         self.assertEqual(self.post("do=torque&pulley=nope&value=1"), (202, "queued\n"))
         self.wait_status(it, "refused: no pulley 'nope'")
@@ -191,7 +200,7 @@ class Live(unittest.TestCase):
 
     def test_token_page_stream_and_a_client_that_leaves(self):
         self.assertEqual(self.url.hostname, "127.0.0.1")  # bound to loopback unless host is given
-        for path in ["/", "/events", "/dygraph.js", "/?token=" + self.token[:-1], "/?token="]:
+        for path in ["/", "/events", "/dygraph.js", "/frame.jpg", "/frame.json", "/?token=" + self.token[:-1], "/?token="]:
             self.assertEqual(self.get(path)[0], 403, path)
         q = "?token=" + self.token
         status, page = self.get("/" + q)
