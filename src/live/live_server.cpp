@@ -230,6 +230,11 @@ std::optional<Command> LiveServer::take(bool wait) {
   return c;
 }
 
+bool LiveServer::frame_wanted() const {
+  const std::lock_guard<std::mutex> lock(m_);
+  return fetched_serial_ == frame_serial_;
+}
+
 bool LiveServer::stopping() const {
   const std::lock_guard<std::mutex> lock(m_);
   return stopping_;
@@ -311,6 +316,7 @@ void LiveServer::routes() {
       {
         const std::lock_guard<std::mutex> lock(m_);
         f = json ? frame_json_ : frame_;
+        if (!json) fetched_serial_ = frame_serial_;
       }
       res.set_header("Cache-Control", "no-store");
       if (!f) {

@@ -83,6 +83,8 @@ class LiveServer {
   // `length` [m] long): the page's picture (the stream says "event: frame" with its t, the page
   // gets /frame.jpg and /frame.json); the frame before is dropped
   void set_frame(std::string jpeg, double t, const std::vector<ElementAt>& elements, double length);
+  // the latest frame has been fetched by a page (or there is none yet): a next one is worth drawing
+  bool frame_wanted() const;
   // a control is waiting (cheap: one atomic load, for every step)
   bool commands_pending() const { return pending_.load(std::memory_order_relaxed) > 0; }
   // the next control, in the order they came; wait: up to 0.2 s for one
@@ -135,7 +137,7 @@ class LiveServer {
   std::atomic<int> pending_{0};
   std::shared_ptr<const std::string> frame_;  // the latest frame, sent as it is when asked for
   std::shared_ptr<const std::string> frame_json_;  // its t and elements (/frame.json)
-  std::uint64_t frame_serial_ = 0;
+  std::uint64_t frame_serial_ = 0, fetched_serial_ = 0;  // the latest frame's, the last one fetched
   double frame_t_ = 0;
   std::deque<Entry> history_, recent_;  // thinned from the start; the last kBehind
   size_t thin_ = 1, skipped_ = 0;       // keep one sample in thin_ (the history thinned as it grows)

@@ -4,6 +4,8 @@
 #include <sys/syscall.h>
 #include <unistd.h>
 
+#include <algorithm>
+#include <chrono>
 #include <cstdio>
 
 #include "io/number_text.hpp"
@@ -59,11 +61,13 @@ void FrameThread::loop(const Scene& scene) {
         s = std::move(*next_);
         next_.reset();
       }
+      const auto start = std::chrono::steady_clock::now();
       // JPEG at quality 90: a fifth of PNG's CPU (jpeg_writer.hpp), the picture as sharp to the eye
       std::string jpeg = encode_jpeg(drawer.draw(s.t, s.y.data(), s.drive, &s.obs), 90, "live view frame");
       const std::vector<render::ElementDraw>& drawn = drawer.drawn_elements();
       for (size_t i = 0; i < drawn.size() && i < at.size(); ++i) at[i].x = drawn[i].centre.x(), at[i].y = drawn[i].centre.y();
       server_->set_frame(std::move(jpeg), s.t, at, length);
+      cost_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     }
   } catch (const std::exception& e) {  // no GL: the page goes on without pictures
     std::fprintf(stderr, "beltsim: live view: no frames: %s\n", e.what());
@@ -257,9 +261,12 @@ RunProgress LiveFeed::callback(RunProgress inner) {
       last_wall_ = wall;
       publish(wall);
     }
-    if (wall - last_frame_ >= kFrameInterval) {
+    // a frame when a page is open and has taken the last one, at most 15 a wall second and with
+    // at most kFrameShare of the wall time spent drawing them
+    const double cost = frames_ ? frames_->cost() : 0;
+    if (wall - last_frame_ >= std::max(kFrameInterval, cost / kFrameShare)) {
       last_frame_ = wall;
-      if (server_->clients() > 0) offer_frame();
+      if (server_->clients() > 0 && server_->frame_wanted()) offer_frame();
     }
   };
 }

@@ -4,6 +4,7 @@
 // never touch the simulation.
 #pragma once
 
+#include <atomic>
 #include <condition_variable>
 #include <memory>
 #include <mutex>
@@ -27,6 +28,8 @@ class FrameThread {
   FrameThread(const FrameThread&) = delete;
   FrameThread& operator=(const FrameThread&) = delete;
   void offer(const Simulation& sim);  // on the owning loop: a snapshot of now
+  // [s] of wall time the last frame took to draw and encode (0 before the first)
+  double cost() const { return cost_.load(std::memory_order_relaxed); }
 
  private:
   struct Snapshot {
@@ -41,6 +44,7 @@ class FrameThread {
   std::condition_variable cv_;
   std::optional<Snapshot> next_;
   bool stop_ = false;
+  std::atomic<double> cost_{0};
   std::thread thread_;
 };
 
@@ -70,6 +74,9 @@ class LiveFeed {
 
   static constexpr double kInterval = 0.05;           // [s] of wall time between two samples
   static constexpr double kFrameInterval = 1.0 / 15;  // [s] between two frames (while a page is open)
+  // at most this share of the wall time goes to drawing frames while the run goes on: a frame that
+  // takes longer (a loaded machine, a large belt) spaces the next ones out
+  static constexpr double kFrameShare = 0.04;
 
  private:
   // a run of sim starts (for the page a new run, its history cleared, unless the server fed this
