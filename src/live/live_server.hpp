@@ -135,8 +135,8 @@ class LiveServer {
   std::vector<std::string> columns_, pulleys_;
   std::deque<Command> commands_;
   std::atomic<int> pending_{0};
-  std::shared_ptr<const std::string> frame_;  // the latest frame, sent as it is when asked for
-  std::shared_ptr<const std::string> frame_json_;  // its t and elements (/frame.json)
+  std::shared_ptr<const std::string> frame_;             // the latest frame, sent as it is when asked for
+  std::shared_ptr<const std::string> frame_json_;        // its t and elements (/frame.json)
   std::uint64_t frame_serial_ = 0, fetched_serial_ = 0;  // the latest frame's, the last one fetched
   double frame_t_ = 0;
   std::deque<Entry> history_, recent_;  // thinned from the start; the last kBehind

@@ -78,7 +78,9 @@ struct FrameDrawer::Parts {
 FrameDrawer::FrameDrawer(const Scene& sc, const FrameSettings& fs) : p_(std::make_unique<Parts>(sc, fs)) {}
 FrameDrawer::~FrameDrawer() = default;
 
-const std::vector<ElementDraw>& FrameDrawer::drawn_elements() const { return p_->list.elements; }
+const std::vector<ElementDraw>& FrameDrawer::drawn_elements() const {
+  return p_->list.elements;
+}
 
 Image FrameDrawer::draw(double t, const double* y, const Drive& drive, const Observation* obs) {
   Image image;

@@ -9,8 +9,8 @@
 
 #include "beltsim_version.hpp"
 #include "lauxlib.h"
-#include "lua.h"
 #include "live/live_server.hpp"
+#include "lua.h"
 #include "script/console_input.hpp"
 #include "script/console_print.hpp"
 #include "script/console_session.hpp"

@@ -147,7 +147,8 @@ std::string replayable(lua_State* L, const std::string& chunk, bool expression, 
 std::string at_prompt(lua_State* L, const std::vector<PageChange>& page) {
   std::string out;
   for (const PageChange& c : page)
-    if (!c.call.empty()) out += (out.empty() ? "" : "\n") + sim_name(L, c.sim) + ":" + c.call + "  -- from the live view";
+    if (!c.call.empty())
+      out += (out.empty() ? "" : "\n") + sim_name(L, c.sim) + ":" + c.call + "  -- from the live view";
   return out;
 }
 

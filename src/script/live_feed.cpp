@@ -8,8 +8,8 @@
 #include <chrono>
 #include <cstdio>
 
-#include "io/number_text.hpp"
 #include "io/jpeg_writer.hpp"
+#include "io/number_text.hpp"
 #include "render/recorder.hpp"
 #include "scene/law_text.hpp"
 #include "scene/validate.hpp"
@@ -65,7 +65,8 @@ void FrameThread::loop(const Scene& scene) {
       // JPEG at quality 90: a fifth of PNG's CPU (jpeg_writer.hpp), the picture as sharp to the eye
       std::string jpeg = encode_jpeg(drawer.draw(s.t, s.y.data(), s.drive, &s.obs), 90, "live view frame");
       const std::vector<render::ElementDraw>& drawn = drawer.drawn_elements();
-      for (size_t i = 0; i < drawn.size() && i < at.size(); ++i) at[i].x = drawn[i].centre.x(), at[i].y = drawn[i].centre.y();
+      for (size_t i = 0; i < drawn.size() && i < at.size(); ++i)
+        at[i].x = drawn[i].centre.x(), at[i].y = drawn[i].centre.y();
       server_->set_frame(std::move(jpeg), s.t, at, length);
       cost_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     }
