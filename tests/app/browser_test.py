@@ -83,6 +83,36 @@ class Browser(unittest.TestCase):
     def value(self, id_):
         return self.browser.find_element(By.ID, id_).get_attribute("value")
 
+    def check_legend(self, wait):
+        """the legend names the checked columns, before and after a check box is changed, and no two
+        shown series look alike (at least 60 levels apart in RGB: dygraphs' own hues gave
+        driver.slip_speed and driven.omega 23 levels apart)"""
+        b = self.browser
+
+        def checked():
+            return [e.get_attribute("data-column") for e in b.find_elements(By.CSS_SELECTOR, "#columns input")
+                    if e.is_selected()]
+
+        def legend():
+            return b.execute_script("return document.getElementById('legend').innerText").split()
+        wait.until(lambda _: legend() == checked() and len(checked()) > 3)
+        b.find_element(By.CSS_SELECTOR, "#columns input[data-column='driver.omega']").click()
+        b.find_element(By.CSS_SELECTOR, "#columns input[data-column='driven.torque']").click()
+        wait.until(lambda _: legend() == checked())
+        self.assertNotIn("driver.omega", checked())
+        self.assertIn("driven.torque", checked())
+
+        def rgb(c):  # "#rrggbb" or "rgb(r,g,b)"
+            if c.startswith("#"):
+                return [int(c[k:k + 2], 16) for k in (1, 3, 5)]
+            return [int(v) for v in c[c.index("(") + 1:-1].split(",")]
+        colours = [rgb(c) for c in b.execute_script("return graph.getColors()")]
+        self.assertEqual(len(colours), len(checked()))
+        for i in range(len(colours)):
+            for j in range(i):
+                d = sum((x - y) ** 2 for x, y in zip(colours[i], colours[j])) ** 0.5
+                self.assertGreaterEqual(d, 60, (checked()[i], checked()[j], colours[i], colours[j]))
+
     def pick_stretch(self, wait):
         """drags on the paused picture from element 30 to element 3 of the 40 (past the belt's
         start at s = 0, the short way round): the form gets their s, Wet lands the stretch in
@@ -140,6 +170,7 @@ class Browser(unittest.TestCase):
             c = subprocess.run([BELTSIM, "compare", shot, GOLDEN], capture_output=True, text=True)
             self.assertEqual(c.returncode, 0, c.stdout + c.stderr + " (the difference image: " + self.dir + ")")
         self.pick_stretch(wait)
+        self.check_legend(wait)
         b.find_element(By.ID, "continue").click()
         wait.until(lambda _: self.text("status") == "running")
         t0 = float(self.text("t"))
