@@ -1,6 +1,8 @@
 #include "live/live_server.hpp"
 
 #include <httplib.h>
+#include <sys/eventfd.h>
+#include <unistd.h>
 
 #include <chrono>
 #include <cmath>
@@ -119,6 +121,8 @@ LiveServer::LiveServer(const ServeSettings& s) : settings_(s), token_(random_tok
   const std::string where = s.host + ":" + std::to_string(s.port);
   port_ = s.port == 0 ? http_->bind_to_any_port(s.host) : (http_->bind_to_port(s.host, s.port) ? s.port : -1);
   if (port_ <= 0) throw std::runtime_error("live view: cannot listen on " + where + " (in use, or not this machine's)");
+  wake_fd_ = eventfd(0, EFD_NONBLOCK | EFD_CLOEXEC);
+  if (wake_fd_ < 0) throw std::runtime_error("live view: cannot make an eventfd");
   thread_ = std::thread([this] { http_->listen_after_bind(); });
   // stop() before the thread has begun to listen would leave it listening: wait for it
   while (!http_->is_running()) std::this_thread::yield();
@@ -132,6 +136,12 @@ LiveServer::~LiveServer() {
   cv_.notify_all();
   http_->stop();
   if (thread_.joinable()) thread_.join();
+  if (wake_fd_ >= 0) close(wake_fd_);
+}
+
+void LiveServer::clear_wake() {
+  std::uint64_t n;
+  if (read(wake_fd_, &n, sizeof n) < 0) return;  // EAGAIN: nothing came
 }
 
 std::string LiveServer::url() const {
@@ -185,11 +195,25 @@ void LiveServer::set_status(const std::string& status) {
   cv_.notify_all();
 }
 
-void LiveServer::set_frame(std::string png, double t) {
-  auto f = std::make_shared<const std::string>(std::move(png));
+void LiveServer::set_frame(std::string jpeg, double t, const std::vector<ElementAt>& elements, double length) {
+  auto f = std::make_shared<const std::string>(std::move(jpeg));
+  std::string json = "{\"t\":";
+  add_number(json, t);
+  json += ",\"length\":";
+  add_number(json, length);
+  json += ",\"elements\":[";
+  char buf[64];
+  for (size_t k = 0; k < elements.size(); ++k) {
+    // s to the last bit: a stretch picked from it holds the element at its end (lua_run.hpp in_stretch)
+    std::snprintf(buf, sizeof buf, "%s[%.1f,%.1f,%.17g]", k ? "," : "", elements[k].x, elements[k].y, elements[k].s);
+    json += buf;
+  }
+  json += "]}";
+  auto j = std::make_shared<const std::string>(std::move(json));
   {
     const std::lock_guard<std::mutex> lock(m_);
     frame_ = std::move(f);
+    frame_json_ = std::move(j);
     frame_t_ = t;
     ++frame_serial_;
   }
@@ -204,6 +228,11 @@ std::optional<Command> LiveServer::take(bool wait) {
   commands_.pop_front();
   --pending_;
   return c;
+}
+
+bool LiveServer::frame_wanted() const {
+  const std::lock_guard<std::mutex> lock(m_);
+  return fetched_serial_ == frame_serial_;
 }
 
 bool LiveServer::stopping() const {
@@ -280,20 +309,23 @@ void LiveServer::routes() {
         [this](const httplib::Request&, httplib::Response& res) { res.set_content(assets_js_, "text/javascript"); });
   h.Get("/dygraph.css",
         [this](const httplib::Request&, httplib::Response& res) { res.set_content(assets_css_, "text/css"); });
-  h.Get("/frame.png", [this](const httplib::Request&, httplib::Response& res) {
-    std::shared_ptr<const std::string> f;
-    {
-      const std::lock_guard<std::mutex> lock(m_);
-      f = frame_;
-    }
-    res.set_header("Cache-Control", "no-store");
-    if (!f) {
-      res.status = 503;
-      res.set_content("no frame yet\n", "text/plain");
-      return;
-    }
-    res.set_content(*f, "image/png");
-  });
+  // the latest frame and its elements' places (a frame's t is in both: the page matches them)
+  for (const bool json : {false, true})
+    h.Get(json ? "/frame.json" : "/frame.jpg", [this, json](const httplib::Request&, httplib::Response& res) {
+      std::shared_ptr<const std::string> f;
+      {
+        const std::lock_guard<std::mutex> lock(m_);
+        f = json ? frame_json_ : frame_;
+        if (!json) fetched_serial_ = frame_serial_;
+      }
+      res.set_header("Cache-Control", "no-store");
+      if (!f) {
+        res.status = 503;
+        res.set_content("no frame yet\n", "text/plain");
+        return;
+      }
+      res.set_content(*f, json ? "application/json" : "image/jpeg");
+    });
   h.Post("/control", [this](const httplib::Request& req, httplib::Response& res) {
     Command c;
     const std::string bad = read_command([&req](const char* key) { return req.get_param_value(key); }, c);
@@ -313,6 +345,8 @@ void LiveServer::routes() {
       ++pending_;
     }
     cv_.notify_all();
+    const std::uint64_t one = 1;
+    [[maybe_unused]] const ssize_t w = write(wake_fd_, &one, sizeof one);  // fails only when full: readable
     res.status = 202;
     res.set_content("queued\n", "text/plain");
   });

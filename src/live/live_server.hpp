@@ -44,6 +44,12 @@ struct Command {
 // the control of a request's parameters (param: its value, "" when absent); "" or why it is refused
 std::string read_command(const std::function<std::string(const char*)>& param, Command& c);
 
+// where the renderer drew an element in a frame (its centre, in pixels from the picture's top left)
+// and its belt coordinate s [m] (scene.hpp ElementSite::s): the page picks a stretch on the picture
+struct ElementAt {
+  double x = 0, y = 0, s = 0;
+};
+
 // one sample as the page gets it
 struct Sample {
   double t = 0;                // [s] simulated time
@@ -73,9 +79,12 @@ class LiveServer {
   void publish(Sample s);
   // the run's state as the page shows it ("running", "paused", "finished", ...)
   void set_status(const std::string& status);
-  // the latest frame (a PNG file's bytes), drawn at t: the page's picture (the stream says
-  // "event: frame" with its t); the frame before is dropped
-  void set_frame(std::string png, double t);
+  // the latest frame (a JPEG file's bytes), drawn at t, with where its elements are on it (the belt
+  // `length` [m] long): the page's picture (the stream says "event: frame" with its t, the page
+  // gets /frame.jpg and /frame.json); the frame before is dropped
+  void set_frame(std::string jpeg, double t, const std::vector<ElementAt>& elements, double length);
+  // the latest frame has been fetched by a page (or there is none yet): a next one is worth drawing
+  bool frame_wanted() const;
   // a control is waiting (cheap: one atomic load, for every step)
   bool commands_pending() const { return pending_.load(std::memory_order_relaxed) > 0; }
   // the next control, in the order they came; wait: up to 0.2 s for one
@@ -84,6 +93,10 @@ class LiveServer {
   bool stopping() const;
   // the number of streams open now
   int clients() const;
+  // readable when a control has come (an eventfd): a console waiting at its prompt polls it beside
+  // its input; clear_wake() reads it empty
+  int wake_fd() const { return wake_fd_; }
+  void clear_wake();
 
   // the history kept for a client that connects later is thinned to at most this many samples
   static constexpr size_t kHistory = 4000;
@@ -107,6 +120,7 @@ class LiveServer {
   ServeSettings settings_;
   std::string token_, assets_js_, assets_css_;
   int port_ = 0;
+  int wake_fd_ = -1;
   std::unique_ptr<httplib::Server> http_;
   std::thread thread_;
 
@@ -121,8 +135,9 @@ class LiveServer {
   std::vector<std::string> columns_, pulleys_;
   std::deque<Command> commands_;
   std::atomic<int> pending_{0};
-  std::shared_ptr<const std::string> frame_;  // the latest frame, sent as it is when asked for
-  std::uint64_t frame_serial_ = 0;
+  std::shared_ptr<const std::string> frame_;             // the latest frame, sent as it is when asked for
+  std::shared_ptr<const std::string> frame_json_;        // its t and elements (/frame.json)
+  std::uint64_t frame_serial_ = 0, fetched_serial_ = 0;  // the latest frame's, the last one fetched
   double frame_t_ = 0;
   std::deque<Entry> history_, recent_;  // thinned from the start; the last kBehind
   size_t thin_ = 1, skipped_ = 0;       // keep one sample in thin_ (the history thinned as it grows)

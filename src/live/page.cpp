@@ -16,7 +16,9 @@ body { font-family: sans-serif; margin: 1em; }
 #bar span { margin-right: 1.5em; }
 #bar b { font-variant-numeric: tabular-nums; }
 #plot { width: 100%; height: 420px; }
-#frame { display: block; max-width: 100%; height: auto; background: #222; }
+#legend { min-height: 1.4em; margin: 0.3em 0; }
+#legend span { margin-right: 1em; white-space: nowrap; }
+#frame { display: block; max-width: 100%; height: auto; background: #222; cursor: crosshair; }
 #columns label, #controls span { margin-right: 1em; white-space: nowrap; }
 </style>
 </head>
@@ -38,7 +40,9 @@ size="6"> m, μ <input id="mu" type="number" step="any" size="5"> <button id="we
 <span>checkpoint <input id="ckpt" type="text" size="12" value="live.ckpt"> <button id="save">Save</button></span>
 <span id="reply"></span>
 </div>
-<img id="frame" alt="the belt as the renderer draws it (frames come while a page is open)" width="960" height="540">
+<img id="frame" alt="the belt as the renderer draws it (frames come while a page is open)" width="960" height="540"
+ draggable="false" title="drag along the belt (or click an element) to choose the stretch to wet">
+<div id="legend"></div>
 <div id="plot"></div>
 <div id="columns"></div>
 <script src="dygraph.js?token=@TOKEN@"></script>
@@ -49,6 +53,16 @@ let columns = [], data = [], graph = null, drawn = true, shown = [];
 function fmt(x, digits) { return x === null ? "-" : Number(x).toPrecision(digits); }
 // the columns plotted at first: pulley speeds, span tensions, slip
 function chosen(name) { return /\.omega$|tension|slip/.test(name); }
+// the shown series' colours, given in the order they are shown, so that no two shown look alike
+// (dygraphs' own spread its hues over every column, shown or not: neighbours came out the same)
+const palette = ["#1f77b4", "#d62728", "#2ca02c", "#ff7f0e", "#9467bd", "#8c564b", "#e377c2", "#17becf",
+                 "#7f7f7f", "#bcbd22", "#000080", "#800000", "#008080", "#808000", "#ff00ff", "#00a000"];
+function series() {
+  const s = {};
+  let n = 0;
+  columns.forEach((c, k) => { if (shown[k]) s[c] = { color: palette[n++ % palette.length] }; });
+  return s;
+}
 function setup() {
   const box = document.getElementById("columns");
   box.innerHTML = "";
@@ -57,7 +71,10 @@ function setup() {
   columns.forEach((c, k) => {
     const l = document.createElement("label"), cb = document.createElement("input");
     cb.type = "checkbox"; cb.checked = shown[k]; cb.dataset.column = c;
-    cb.onchange = () => { shown[k] = cb.checked; if (graph) graph.setVisibility(k, cb.checked); };
+    cb.onchange = () => {
+      shown[k] = cb.checked;
+      if (graph) graph.updateOptions({ visibility: shown.slice(), series: series() });
+    };
     l.appendChild(cb); l.appendChild(document.createTextNode(" " + c)); box.appendChild(l);
   });
   if (graph) graph.destroy();
@@ -68,8 +85,8 @@ function draw() {
   if (data.length === 0 || columns.length === 0) return;
   if (!graph) {
     graph = new Dygraph(document.getElementById("plot"), data,
-                        { labels: ["t"].concat(columns), visibility: shown, xlabel: "t [s]", legend: "always",
-                          labelsSeparateLines: false });
+                        { labels: ["t"].concat(columns), visibility: shown.slice(), series: series(), xlabel: "t [s]",
+                          legend: "always", labelsDiv: document.getElementById("legend"), labelsSeparateLines: false });
   } else {
     graph.updateOptions({ file: data });
   }
@@ -101,11 +118,49 @@ let frames = 0, loading = null, latest = null;
 function load() {
   if (loading !== null || latest === null) return;
   loading = latest; latest = null;
-  img.src = "frame.png" + q + "&n=" + (++frames);
+  img.src = "frame.jpg" + q + "&n=" + (++frames);
 }
-img.onload = () => { img.dataset.t = loading; loading = null; load(); };
+// where the shown picture's elements are (/frame.json, the one of the same t), for picking
+let placed = null;
+function place() {
+  const t = img.dataset.t;
+  fetch("frame.json" + q).then(r => r.ok ? r.json() : null).then(j => {
+    if (j && String(j.t) === t && img.dataset.t === t) placed = j;
+  }).catch(() => {});
+}
+img.onload = () => { img.dataset.t = loading; loading = null; placed = null; place(); load(); };
 img.onerror = () => { loading = null; load(); };
 es.addEventListener("frame", e => { latest = JSON.parse(e.data); load(); });
+// picking the wet stretch on the picture: the element nearest where the mouse went down and the
+// one nearest where it came up (the same for a click) give s0 and s1 of the wet form, the shorter
+// way round the belt between them; the stretch is wetted with the form's Wet, as any change
+function nearest(e) {
+  if (!placed) return null;
+  const r = img.getBoundingClientRect();
+  const x = (e.clientX - r.left) * img.naturalWidth / r.width, y = (e.clientY - r.top) * img.naturalHeight / r.height;
+  let best = null, d2 = 20 * 20;  // [px of the picture] at most this far from an element's centre
+  for (const el of placed.elements) {
+    const d = (el[0] - x) ** 2 + (el[1] - y) ** 2;
+    if (d <= d2) { d2 = d; best = el[2]; }
+  }
+  return best;
+}
+let down = null;
+img.onmousedown = e => { e.preventDefault(); down = nearest(e); };
+img.onmouseup = e => {
+  const a = down, b = nearest(e), L = placed ? placed.length : 0;
+  down = null;
+  if (a === null || b === null) {
+    document.getElementById("reply").textContent = placed ? "no element there: pick on the belt"
+                                                          : "the picture is moving: pause to pick";
+    return;
+  }
+  const forward = ((b - a) % L + L) % L;  // [m] from a to b in the direction of travel
+  const [s0, s1] = forward <= L / 2 ? [a, b] : [b, a];
+  document.getElementById("from").value = s0;
+  document.getElementById("to").value = s1;
+  document.getElementById("reply").textContent = "picked s from " + fmt(s0, 4) + " to " + fmt(s1, 4) + " m";
+};
 // controls: queued by the server, applied by the run between two steps, as the console's commands
 // are (its status says so)
 function control(params) {

@@ -78,6 +78,10 @@ struct FrameDrawer::Parts {
 FrameDrawer::FrameDrawer(const Scene& sc, const FrameSettings& fs) : p_(std::make_unique<Parts>(sc, fs)) {}
 FrameDrawer::~FrameDrawer() = default;
 
+const std::vector<ElementDraw>& FrameDrawer::drawn_elements() const {
+  return p_->list.elements;
+}
+
 Image FrameDrawer::draw(double t, const double* y, const Drive& drive, const Observation* obs) {
   Image image;
   p_->builder.build(t, y, p_->list, &drive, obs);

@@ -9,6 +9,7 @@
 
 #include "beltsim_version.hpp"
 #include "lauxlib.h"
+#include "live/live_server.hpp"
 #include "lua.h"
 #include "script/console_input.hpp"
 #include "script/console_print.hpp"
@@ -16,6 +17,7 @@
 #include "script/context.hpp"
 #include "script/docall.hpp"
 #include "script/limits.hpp"
+#include "script/live_feed.hpp"
 #include "script/signals.hpp"
 
 namespace beltsim::script {
@@ -126,6 +128,16 @@ int run_console(const std::optional<std::string>& script, const std::vector<std:
   std::vector<std::string> commands;
   {
     ConsoleInput input(interactive, settings.history, L);
+    if (ctx.serve) {
+      // the page's changes while the console waits at its prompt: applied as they come, on this
+      // thread (no command runs), to the simulation the page shows, and recorded in session.lua
+      input.on_wake(ctx.serve->wake_fd(), [&] {
+        ctx.serve->clear_wake();
+        std::vector<PageChange> changes;
+        LiveFeed(ctx.serve.get(), ctx.stop, &changes, ctx.page_key).apply_waiting(ctx.page_sim);
+        if (const std::string s = at_prompt(L, changes); !s.empty()) commands.push_back(s);
+      });
+    }
     std::string chunk, line;
     while (!terminating()) {
       const ConsoleInput::Got got = input.read(chunk.empty() ? "> " : ">> ", line);

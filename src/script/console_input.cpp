@@ -18,6 +18,8 @@ namespace beltsim::script {
 namespace {
 
 bool g_cancelled = false;  // Ctrl-C dropped the line being read
+int g_wake_fd = -1;        // ConsoleInput::on_wake
+std::function<void()> g_on_wake;
 
 // one character of input. The stop signals are blocked except while waiting in ppoll, so one that
 // comes while readline is busy (echoing, redrawing) is seen at the next wait instead of being
@@ -39,12 +41,16 @@ int next_char(FILE* f) {
       if (rl_line_buffer) rl_replace_line("", 0);
       return '\n';
     }
-    pollfd p{fileno(f), POLLIN, 0};
-    const int r = ppoll(&p, 1, nullptr, &orig);  // the signals may arrive only while waiting here
+    pollfd p[2] = {{fileno(f), POLLIN, 0}, {g_wake_fd, POLLIN, 0}};
+    const int r = ppoll(p, g_wake_fd >= 0 ? 2 : 1, nullptr, &orig);  // the signals may arrive only while waiting here
     sigprocmask(SIG_SETMASK, &orig, nullptr);
     if (r < 0) {
       if (errno == EINTR) continue;
       return EOF;
+    }
+    if (g_wake_fd >= 0 && (p[1].revents & POLLIN)) {
+      g_on_wake();
+      if (!(p[0].revents & (POLLIN | POLLHUP))) continue;
     }
     unsigned char c;
     const ssize_t n = ::read(fileno(f), &c, 1);
@@ -71,7 +77,13 @@ ConsoleInput::ConsoleInput(bool interactive, const std::string& history, lua_Sta
 }
 
 ConsoleInput::~ConsoleInput() {
+  on_wake(-1, nullptr);
   if (interactive_) complete_from(nullptr);
+}
+
+void ConsoleInput::on_wake(int fd, std::function<void()> f) {
+  g_wake_fd = fd;
+  g_on_wake = std::move(f);
 }
 
 ConsoleInput::Got ConsoleInput::read(const char* prompt, std::string& line) {

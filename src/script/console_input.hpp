@@ -3,6 +3,7 @@
 // signals (signals.hpp): Ctrl-C drops the line being typed, SIGTERM and SIGHUP end the input.
 #pragma once
 
+#include <functional>
 #include <string>
 
 struct lua_State;
@@ -21,6 +22,9 @@ class ConsoleInput {
   // the next line (without its line end): Got::line; Got::cancelled when Ctrl-C dropped it;
   // Got::end at the end of the input (Ctrl-D, the pipe's end, SIGTERM, SIGHUP)
   Got read(const char* prompt, std::string& line);
+  // while waiting for input, fd readable (the live view's controls, live_server.hpp wake_fd) runs
+  // f on this thread, and the wait goes on; fd < 0: none
+  void on_wake(int fd, std::function<void()> f);
 
  private:
   bool interactive_;

@@ -109,6 +109,12 @@ std::string as_statements(lua_State* L, const std::string& chunk, bool expressio
   return c;
 }
 
+// the global naming the simulation whose userdata is p, in a statement of session.lua
+std::string sim_name(lua_State* L, const void* p) {
+  const std::string name = p ? global_named(L, p) : "";
+  return name.empty() ? "-- (a simulation not held by a global) sim" : name;
+}
+
 }  // namespace
 
 // a command whose run Ctrl-C stopped becomes run_to(where it stopped), so the replay stops at the
@@ -123,13 +129,9 @@ std::string replayable(lua_State* L, const std::string& chunk, bool expression, 
   for (size_t k = 0; k < out.size(); ++k)
     if (out[k] == '\n') out.insert(k + 1, "-- ");
   out += page.empty() ? "  -- stopped by Ctrl-C" : "  -- changed from the live view while it ran";
-  const auto sim_name = [L](const void* p) {
-    const std::string name = p ? global_named(L, p) : "";
-    return name.empty() ? "-- (a simulation not held by a global) sim" : name;
-  };
   std::map<const void*, double> at;  // where each simulation stands in the replay
   for (const PageChange& c : page) {
-    const std::string name = sim_name(c.sim);
+    const std::string name = sim_name(L, c.sim);
     const auto it = at.find(c.sim);
     if (it == at.end() || it->second != c.t) out += "\n" + name + ":run_to(" + number_text(c.t) + ")";
     at[c.sim] = c.t;
@@ -137,8 +139,16 @@ std::string replayable(lua_State* L, const std::string& chunk, bool expression, 
   }
   for (const auto& [p, t] : stopped) {
     const auto it = at.find(p);
-    if (it == at.end() || it->second != t) out += "\n" + sim_name(p) + ":run_to(" + number_text(t) + ")";
+    if (it == at.end() || it->second != t) out += "\n" + sim_name(L, p) + ":run_to(" + number_text(t) + ")";
   }
+  return out;
+}
+
+std::string at_prompt(lua_State* L, const std::vector<PageChange>& page) {
+  std::string out;
+  for (const PageChange& c : page)
+    if (!c.call.empty())
+      out += (out.empty() ? "" : "\n") + sim_name(L, c.sim) + ":" + c.call + "  -- from the live view";
   return out;
 }
 

@@ -27,6 +27,9 @@ using StoppedRuns = std::vector<std::pair<const void*, double>>;
 std::string replayable(lua_State* L, const std::string& chunk, bool expression, const StoppedRuns& stopped,
                        const std::vector<PageChange>& page);
 
+// the live view's changes applied while the console waited at its prompt, as statements ("" for none)
+std::string at_prompt(lua_State* L, const std::vector<PageChange>& page);
+
 // writes <dir>/session.lua, or session_2.lua, ... when an earlier session's is there (nothing when
 // no command ran); false, with the reason on stderr, when it cannot be written
 bool write_session(const std::string& dir, const std::optional<std::string>& script, std::string script_text,

@@ -13,6 +13,9 @@
 #include "script/load_source.hpp"
 #include "script/lua_law.hpp"
 
+namespace beltsim {
+class Simulation;
+}
 namespace beltsim::live {
 class LiveServer;
 }
@@ -65,6 +68,11 @@ struct Context {
   bool t_end_warned = false;  // --t-end was said not to shorten scene:start's simulations
   // the live view of --serve (Interpreter::serve): every run of the session feeds it
   std::shared_ptr<live::LiveServer> serve;
+  // the live simulation that page showed last (sim:run_to), and its userdata: the page's changes
+  // made while the console waits at its prompt go to it (null once it is finalised or a
+  // scene:run{} has run since)
+  Simulation* page_sim = nullptr;
+  const void* page_key = nullptr;
   // the state Lua laws call into (emptied when the interpreter closes it)
   std::shared_ptr<LawHost> law_host = std::make_shared<LawHost>();
 };

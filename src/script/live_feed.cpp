@@ -4,10 +4,12 @@
 #include <sys/syscall.h>
 #include <unistd.h>
 
+#include <algorithm>
+#include <chrono>
 #include <cstdio>
 
+#include "io/jpeg_writer.hpp"
 #include "io/number_text.hpp"
-#include "io/png_writer.hpp"
 #include "render/recorder.hpp"
 #include "scene/law_text.hpp"
 #include "scene/validate.hpp"
@@ -45,6 +47,9 @@ void FrameThread::loop(const Scene& scene) {
   setpriority(PRIO_PROCESS, static_cast<id_t>(syscall(SYS_gettid)), 10);
   FrameSettings fs;
   fs.width = 960, fs.height = 540;
+  std::vector<live::ElementAt> at(scene.sites.size());
+  for (const ElementSite& site : scene.sites) at.at(site.index).s = site.s;
+  const double length = scene.sites.empty() ? 0 : scene.sites[0].length;
   try {
     render::FrameDrawer drawer(scene, fs);
     for (;;) {
@@ -56,7 +61,14 @@ void FrameThread::loop(const Scene& scene) {
         s = std::move(*next_);
         next_.reset();
       }
-      server_->set_frame(encode_png(drawer.draw(s.t, s.y.data(), s.drive, &s.obs), "live view frame"), s.t);
+      const auto start = std::chrono::steady_clock::now();
+      // JPEG at quality 90: a fifth of PNG's CPU (jpeg_writer.hpp), the picture as sharp to the eye
+      std::string jpeg = encode_jpeg(drawer.draw(s.t, s.y.data(), s.drive, &s.obs), 90, "live view frame");
+      const std::vector<render::ElementDraw>& drawn = drawer.drawn_elements();
+      for (size_t i = 0; i < drawn.size() && i < at.size(); ++i)
+        at[i].x = drawn[i].centre.x(), at[i].y = drawn[i].centre.y();
+      server_->set_frame(std::move(jpeg), s.t, at, length);
+      cost_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     }
   } catch (const std::exception& e) {  // no GL: the page goes on without pictures
     std::fprintf(stderr, "beltsim: live view: no frames: %s\n", e.what());
@@ -165,17 +177,44 @@ void LiveFeed::apply_controls(bool paused) {
     } else {
       said = apply(*c);
     }
-    publish(wall_);  // the page's t, plot and picture where the run stands
-    offer_frame();
-    const std::string at = " at t = " + rounded_text(sim_->now(), 6) + " s";
-    if (!said.empty())
-      server_->set_status("refused: " + said);
-    else if (c->what == "pause" || c->what == "continue" || c->what == "run_to")
-      server_->set_status(paused ? "paused" + at : "running");
-    else
-      server_->set_status((paused ? "paused" : "running") + at + " (" + c->what + " applied)");
+    report(*c, said, paused);
     if (!paused && !server_->commands_pending()) return;
   }
+}
+
+void LiveFeed::report(const live::Command& c, const std::string& said, bool paused) {
+  publish(wall_);  // the page's t, plot and picture where the run stands
+  offer_frame();
+  const std::string at = " at t = " + rounded_text(sim_->now(), 6) + " s";
+  if (!said.empty())
+    server_->set_status("refused: " + said);
+  else if (c.what == "pause" || c.what == "continue" || c.what == "run_to")
+    server_->set_status(paused ? "paused" + at : "running");
+  else
+    server_->set_status((paused ? "paused" : "running") + at + " (" + c.what + " applied)");
+}
+
+void LiveFeed::apply_waiting(Simulation* sim) {
+  if (!server_) return;
+  while (const std::optional<live::Command> c = server_->take(false)) {
+    if (!sim) {
+      server_->set_status("refused: " + c->what + ": no simulation to change (the run has ended)");
+      continue;
+    }
+    sim_ = sim;
+    std::string said;
+    if (c->what == "continue" || c->what == "run_to")
+      said = c->what + ": the console runs the simulation (sim:run_to at its prompt)";
+    else if (c->what != "pause")
+      said = apply(*c);
+    try {
+      report(*c, said, true);
+    } catch (const std::exception& e) {  // a Lua law that fails on reading: the next run's error says it
+      std::fprintf(stderr, "beltsim: live view: %s\n", e.what());
+    }
+  }
+  frames_.reset();  // the picture drawn, before the simulation can go
+  sim_ = nullptr;
 }
 
 Simulation::Advance LiveFeed::run_to(Simulation& sim, double t, const RunProgress& inner, const char* at_end) {
@@ -188,6 +227,8 @@ Simulation::Advance LiveFeed::run_to(Simulation& sim, double t, const RunProgres
   const RunProgress progress = callback(inner);
   Simulation::Advance total;
   wall_ = 0, changed_ = false;
+  // what came before this run (a console's prompt, a script's start): applied where it stands
+  if (server_->commands_pending()) apply_controls(false);
   for (;;) {
     halt_ = false;
     const bool to_target = target_ > sim.now() && target_ < t;
@@ -198,7 +239,7 @@ Simulation::Advance LiveFeed::run_to(Simulation& sim, double t, const RunProgres
       break;
     }
     const bool at_target = to_target && a.t >= target_;
-    if (at_target) target_ = 0;
+    if (at_target) target_ = 0, publish(wall_), offer_frame();  // the page's t and picture where it pauses
     if (!at_target && a.t >= t) break;
     server_->set_status(at_target ? "paused at t = " + rounded_text(a.t, 6) + " s" : "running");
     apply_controls(at_target);
@@ -221,9 +262,12 @@ RunProgress LiveFeed::callback(RunProgress inner) {
       last_wall_ = wall;
       publish(wall);
     }
-    if (wall - last_frame_ >= kFrameInterval) {
+    // a frame when a page is open and has taken the last one, at most 15 a wall second and with
+    // at most kFrameShare of the wall time spent drawing them
+    const double cost = frames_ ? frames_->cost() : 0;
+    if (wall - last_frame_ >= std::max(kFrameInterval, cost / kFrameShare)) {
       last_frame_ = wall;
-      if (server_->clients() > 0) offer_frame();
+      if (server_->clients() > 0 && server_->frame_wanted()) offer_frame();
     }
   };
 }

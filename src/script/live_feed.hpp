@@ -4,6 +4,7 @@
 // never touch the simulation.
 #pragma once
 
+#include <atomic>
 #include <condition_variable>
 #include <memory>
 #include <mutex>
@@ -27,6 +28,8 @@ class FrameThread {
   FrameThread(const FrameThread&) = delete;
   FrameThread& operator=(const FrameThread&) = delete;
   void offer(const Simulation& sim);  // on the owning loop: a snapshot of now
+  // [s] of wall time the last frame took to draw and encode (0 before the first)
+  double cost() const { return cost_.load(std::memory_order_relaxed); }
 
  private:
   struct Snapshot {
@@ -41,6 +44,7 @@ class FrameThread {
   std::condition_variable cv_;
   std::optional<Snapshot> next_;
   bool stop_ = false;
+  std::atomic<double> cost_{0};
   std::thread thread_;
 };
 
@@ -62,9 +66,17 @@ class LiveFeed {
   // pause holds it (pause, run to a time: paused there; a torque, a wet stretch, a checkpoint: as
   // sim:set_torque, sim:wet, sim:save). at_end: the page's status after it ("paused", "finished")
   Simulation::Advance run_to(Simulation& sim, double t, const RunProgress& inner, const char* at_end = "finished");
+  // the controls that came while no run goes on (a console waiting at its prompt), applied now on
+  // the thread that owns sim, where it stands: a torque, a wet stretch, a checkpoint as in a pause;
+  // continue and run to t are refused (the console runs it), as is everything when sim is null
+  // (the run the page showed has ended)
+  void apply_waiting(Simulation* sim);
 
   static constexpr double kInterval = 0.05;           // [s] of wall time between two samples
   static constexpr double kFrameInterval = 1.0 / 15;  // [s] between two frames (while a page is open)
+  // at most this share of the wall time goes to drawing frames while the run goes on: a frame that
+  // takes longer (a loaded machine, a large belt) spaces the next ones out
+  static constexpr double kFrameShare = 0.04;
 
  private:
   // a run of sim starts (for the page a new run, its history cleared, unless the server fed this
@@ -79,6 +91,8 @@ class LiveFeed {
   // the page's controls, between two run_to calls: a pause holds the run here (the controls that
   // come meanwhile applied) until continue, a run to a time, Ctrl-C or the server's end
   void apply_controls(bool paused);
+  // the page's picture, plot and status after the control c (said: "" or why it was refused)
+  void report(const live::Command& c, const std::string& said, bool paused);
   // one change (torque, wet, save); "" or why it was refused
   std::string apply(const live::Command& c);
   void record(double t, const std::string& call);

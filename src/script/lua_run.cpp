@@ -436,6 +436,7 @@ int l_scene_run(lua_State* L) {
     const HostWork work;  // beltsim's own work, not Lua code (lua_clock.hpp)
     ProgressLine line(progress);
     LiveFeed feed(ctx->serve.get(), ctx->stop, &ctx->page_changes);
+    ctx->page_sim = nullptr;  // the page shows this run now, which ends with this call
     res = run(*sc, rs, ctx->stop, line.callback(),
               [&](Simulation& sim, double t) { return feed.run_to(sim, t, line.callback()); });
   } catch (const DivergenceError& e) {

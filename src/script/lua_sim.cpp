@@ -61,6 +61,7 @@ int run_to(lua_State* L, SimBox& box, double t, const char* what) {
     } done{box};
     LiveFeed feed(box.serve ? box.serve.get() : box.ctx->serve.get(), box.ctx->stop, &box.ctx->page_changes,
                   lua_topointer(L, 1));
+    if (!box.serve && box.ctx->serve) box.ctx->page_sim = box.sim.get(), box.ctx->page_key = lua_topointer(L, 1);
     a = feed.run_to(*box.sim, t, line.callback(), "paused");
   }, box.ctx);
   if (a.over_wall_limit) {
@@ -411,6 +412,7 @@ int l_gc(lua_State* L) {
   }
   // emptied rather than destroyed: a finaliser that runs later (another object's __gc) may still
   // reach this userdata, and must find "finalised" (sim == nullptr), not a dead object
+  if (box->ctx && box->ctx->page_sim == box->sim.get()) box->ctx->page_sim = nullptr;
   box->serve.reset();
   box->sim.reset();
   box->refs.clear();

@@ -379,8 +379,10 @@ void Simulation::log_event(const std::string& what, const std::string& text) {
   write_event(now(), what, text);
 }
 
+void Simulation::before_change() { means_->cover(now(), serial_); }
+
 void Simulation::changed(const Eigen::VectorXd* y) {
-  means_->cover(now(), serial_);  // the held step, as it was, up to the change
+  before_change();  // the held step, as it was, up to the change
   serial_++;
   set_landings();
   tl_->changed(y);
@@ -388,6 +390,7 @@ void Simulation::changed(const Eigen::VectorXd* y) {
 
 void Simulation::set_torque(int j, const TimeSpeedLaw& law, const std::string& text) {
   require_open("set_torque");
+  before_change();
   PulleyDrive& p = drive_.pulleys.at(j);
   p.torque = law;
   const bool was_kinematic = p.kinematic;
@@ -405,6 +408,7 @@ void Simulation::set_torque(int j, const TimeSpeedLaw& law, const std::string& t
 
 void Simulation::set_speed(int j, const TimeSpeedLaw& law, const std::string& text) {
   require_open("set_speed");
+  before_change();
   PulleyDrive& p = drive_.pulleys.at(j);
   p.speed = law;
   p.speed.per_speed = 0;
@@ -454,6 +458,7 @@ void Simulation::set_mu(const std::vector<double>& mu, const std::string& what, 
     if (const std::string bad = std::isnan(mu[i]) ? "" : mu_problem(mu[i]); !bad.empty())
       throw std::invalid_argument(what + ": μ " + bad + " (got " + rounded_text(mu[i]) + " for element " +
                                   std::to_string(i) + ")");
+  before_change();
   for (size_t i = 0; i < mu.size(); ++i)
     if (!std::isnan(mu[i])) drive_.mu[i] = mu[i];
   write_event(now(), what, text);
@@ -475,6 +480,7 @@ void Simulation::set_spray(int z, bool enabled) {
   if (z < 0 || z >= static_cast<int>(drive_.spray.zones.size()))
     throw std::invalid_argument("spray: no zone " + std::to_string(z + 1) + " (the scene has " +
                                 std::to_string(drive_.spray.zones.size()) + ")");
+  before_change();
   drive_.spray.zones[z].enabled = enabled;
   write_event(now(), spray_name(z), enabled ? "enabled" : "disabled");
   spray_at(now());

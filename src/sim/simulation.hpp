@@ -205,6 +205,9 @@ class Simulation {
   void add_streams();
   void write_event(double t, const std::string& what, const std::string& text);
   void changed(const Eigen::VectorXd* y = nullptr);
+  // the interval means up to now with the drive as it is: called before a change touches the
+  // drive (the held step's ends not yet observed would be observed with the new drive)
+  void before_change();
   // the spray zones at t: each zone on or off by its window, the elements' records brought to the
   // state (events.csv has the zones switching); restarts the integrator when something changed
   void spray_at(double t);

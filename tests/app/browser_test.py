@@ -1,8 +1,9 @@
 #!/usr/bin/env python3
 """The live view in a real browser (headless Chromium through selenium and chromium-driver, all
 Debian): the page of a running dry scenario shows t advancing, Pause holds the run (the status says
-where), a torque set on the page lands in events.csv at that time, Continue lets the run finish
-whole. The picture of the run paused at a run-to time asked for before the run began (t = 0.05 s,
+where), a stretch dragged out on the picture fills the wet form with those elements' belt
+coordinates and Wet lands it in events.csv, a torque set on the page lands in events.csv at that
+time, Continue lets the run finish whole. The picture of the run paused at a run-to time asked for before the run began (t = 0.05 s,
 so always the same state) is compared with tests/golden/live_page_frame.png by the goldens'
 metric (`beltsim compare`, io/image_compare.hpp). Each step waits for what the page shows
 (WebDriverWait), no sleeps. Exit 77 (skipped) without selenium or chromium-driver.
@@ -11,6 +12,7 @@ usage: browser_test.py BELTSIM [--update-golden]
   --update-golden (the target update_browser_golden): writes the golden picture and the README's
   screenshot of the page (media/live-view.png) instead of comparing
 """
+import json
 import os
 import shutil
 import subprocess
@@ -25,6 +27,7 @@ from scenes import two_pulley  # noqa: E402
 try:
     from selenium import webdriver
     from selenium.webdriver.chrome.service import Service
+    from selenium.webdriver.common.action_chains import ActionChains
     from selenium.webdriver.common.by import By
     from selenium.webdriver.support.ui import Select, WebDriverWait
 except ImportError:
@@ -53,7 +56,7 @@ class Browser(unittest.TestCase):
         o = webdriver.ChromeOptions()
         for a in ["--headless", "--no-sandbox", "--disable-gpu", "--disable-background-networking",
                   "--disable-component-update", "--disable-sync", "--no-first-run",
-                  "--user-data-dir=" + os.path.join(self.dir, "chromium"), "--window-size=1280,1200",
+                  "--user-data-dir=" + os.path.join(self.dir, "chromium"), "--window-size=1280,1500",
                   "--force-device-scale-factor=1", "--force-color-profile=srgb"]:
             o.add_argument(a)
         self.browser = webdriver.Chrome(service=Service(DRIVER), options=o)
@@ -77,6 +80,75 @@ class Browser(unittest.TestCase):
     def text(self, id_):
         return self.browser.find_element(By.ID, id_).text
 
+    def value(self, id_):
+        return self.browser.find_element(By.ID, id_).get_attribute("value")
+
+    def check_legend(self, wait):
+        """the legend names the checked columns, before and after a check box is changed, and no two
+        shown series look alike (at least 60 levels apart in RGB: dygraphs' own hues gave
+        driver.slip_speed and driven.omega 23 levels apart)"""
+        b = self.browser
+
+        def checked():
+            return [e.get_attribute("data-column") for e in b.find_elements(By.CSS_SELECTOR, "#columns input")
+                    if e.is_selected()]
+
+        def legend():
+            return b.execute_script("return document.getElementById('legend').innerText").split()
+        wait.until(lambda _: legend() == checked() and len(checked()) > 3)
+        b.find_element(By.CSS_SELECTOR, "#columns input[data-column='driver.omega']").click()
+        b.find_element(By.CSS_SELECTOR, "#columns input[data-column='driven.torque']").click()
+        wait.until(lambda _: legend() == checked())
+        self.assertNotIn("driver.omega", checked())
+        self.assertIn("driven.torque", checked())
+
+        def rgb(c):  # "#rrggbb" or "rgb(r,g,b)"
+            if c.startswith("#"):
+                return [int(c[k:k + 2], 16) for k in (1, 3, 5)]
+            return [int(v) for v in c[c.index("(") + 1:-1].split(",")]
+        colours = [rgb(c) for c in b.execute_script("return graph.getColors()")]
+        self.assertEqual(len(colours), len(checked()))
+        for i in range(len(colours)):
+            for j in range(i):
+                d = sum((x - y) ** 2 for x, y in zip(colours[i], colours[j])) ** 0.5
+                self.assertGreaterEqual(d, 60, (checked()[i], checked()[j], colours[i], colours[j]))
+
+    def pick_stretch(self, wait):
+        """drags on the paused picture from element 30 to element 3 of the 40 (past the belt's
+        start at s = 0, the short way round): the form gets their s, Wet lands the stretch in
+        events.csv at the paused time; a click off the belt fills nothing"""
+        b, frame = self.browser, self.browser.find_element(By.ID, "frame")
+        # where the renderer drew the elements in the picture the page shows (the same frame: its t)
+        q = urllib.parse.urlsplit(self.url).query
+        with urllib.request.urlopen(self.url.split("?")[0] + "frame.json?" + q, timeout=30) as r:
+            placed = json.load(r)
+        self.assertEqual(repr(placed["t"]), frame.get_attribute("data-t"))
+        el = placed["elements"]
+        self.assertEqual(len(el), 40)
+        wait.until(lambda _: b.execute_script("return placed !== null"))
+        w, h = frame.size["width"], frame.size["height"]
+
+        def offset(x, y):  # picture pixels to an offset from the shown picture's centre (selenium 4)
+            return x * w / 960 - w / 2, y * h / 540 - h / 2
+        a, z = el[30], el[3]
+        ActionChains(b).move_to_element_with_offset(frame, *offset(a[0], a[1])).click_and_hold() \
+            .move_to_element_with_offset(frame, *offset(z[0], z[1])).release().perform()
+        wait.until(lambda _: self.value("from") != "")
+        # the stretch from element 30 forward past s = 0 to element 3 (wrapping: from > to)
+        self.assertEqual((float(self.value("from")), float(self.value("to"))), (a[2], z[2]))
+        self.assertGreater(a[2], z[2])
+        b.find_element(By.ID, "mu").send_keys("0.05")
+        b.find_element(By.ID, "wet").click()
+        wait.until(lambda _: self.text("status").endswith("(wet applied)"))
+        with open(os.path.join(self.dir, "out", "events.csv")) as f:
+            wet = [r for r in f.read().splitlines() if r.split(",")[1] == "wet"]
+        self.assertEqual(len(wet), 1)
+        self.assertEqual(float(wet[0].split(",")[0]), T_SHOT)
+        self.assertIn("mu = 0.05 on s in [%.6g, %.6g] m" % (a[2], z[2]), wet[0])
+        # off the belt (the picture's top left, its text band): the form is left as it was
+        ActionChains(b).move_to_element_with_offset(frame, *offset(4, 4)).click().perform()
+        wait.until(lambda _: self.text("reply") == "no element there: pick on the belt")
+
     def test_watch_pause_torque_continue(self):
         b = self.browser
         # a run to T_SHOT, asked for before the run begins (the address is printed before the
@@ -97,6 +169,8 @@ class Browser(unittest.TestCase):
         else:
             c = subprocess.run([BELTSIM, "compare", shot, GOLDEN], capture_output=True, text=True)
             self.assertEqual(c.returncode, 0, c.stdout + c.stderr + " (the difference image: " + self.dir + ")")
+        self.pick_stretch(wait)
+        self.check_legend(wait)
         b.find_element(By.ID, "continue").click()
         wait.until(lambda _: self.text("status") == "running")
         t0 = float(self.text("t"))
