@@ -80,6 +80,7 @@ std::vector<int> coordinate_groups(const Scene& sc, const Drive& d, double t, co
   const int n = m.n_el(), spans = static_cast<int>(sc.route.spans.size());
   names.clear();
   for (int k = 0; k < spans; ++k) names.push_back(span_name(sc, k));
+  for (const Pulley& p : m.pulleys) names.push_back("wrap_" + p.name);
   for (const Pulley& p : m.pulleys) names.push_back("pulley_" + p.name);
   for (const Arm& a : m.arms) names.push_back("arm_" + m.pulleys[a.pulley].name);
   for (const Coupling& c : m.couplings) names.push_back("rotor_" + m.pulleys[c.pulley].name);
@@ -101,10 +102,10 @@ std::vector<int> coordinate_groups(const Scene& sc, const Drive& d, double t, co
     for (int r = 0; r < 3; ++r) g[3 * i + r] = group;
   }
   for (int j = 0; j < m.n_p(); ++j)
-    if (!d.pulleys[j].kinematic) g[m.pulley_coord(j)] = spans + j;
-  for (int a = 0; a < m.n_arm(); ++a) g[m.arm_coord(a)] = spans + m.n_p() + a;
+    if (!d.pulleys[j].kinematic) g[m.pulley_coord(j)] = spans + m.n_p() + j;
+  for (int a = 0; a < m.n_arm(); ++a) g[m.arm_coord(a)] = spans + 2 * m.n_p() + a;
   for (int c = 0; c < m.n_coupling(); ++c) {
-    g[m.rotor_coord(c)] = spans + m.n_p() + m.n_arm() + c;
+    g[m.rotor_coord(c)] = spans + 2 * m.n_p() + m.n_arm() + c;
     if (m.couplings[c].one_way) g[m.hub_coord(c)] = g[m.rotor_coord(c)];
   }
   return g;

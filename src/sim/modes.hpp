@@ -58,8 +58,8 @@ struct ModeAnalysis {
   double element_rate = 0;  // ν [1/s]: elements passing a fixed point per second (0 when !transport)
   int states = 0;           // size of the matrix analysed
   // span_<a>_<b> (the route's spans, as timeseries.csv names them: the elements on no pulley,
-  // by the nearest span), pulley_<p> (its rotation and the belt on its wrap), arm_<p>, rotor_<p>
-  // (a coupled rotor and its clutch hub)
+  // by the nearest span), wrap_<p> (the elements on pulley p), pulley_<p> (its rotation; none for
+  // a kinematic pulley, which does not move), arm_<p>, rotor_<p> (a coupled rotor and its clutch hub)
   std::vector<std::string> groups;
   std::vector<Mode> modes;  // by frequency
 };
