@@ -1,6 +1,8 @@
 // The Campbell diagram (docs/modes.md): the modes' frequencies over the crankshaft's speed, one
-// marker per mode coloured by where its energy lies (spans, pulleys, arms, rotors; damped modes,
-// ζ > 0.2, hollow), and a line per engine order k: f = k·rpm/60. Drawn by gnuplot (gnuplot.hpp).
+// marker per mode coloured by where its energy lies (spans, the belt on a pulley, pulleys, arms,
+// rotors; hollow when damped, ζ > 0.2, a cross when growing, ζ < 0), and a line per engine order
+// k: f = k·rpm/60, up to twice the highest order's frequency at the highest speed. Drawn by gnuplot
+// (gnuplot.hpp).
 #pragma once
 
 #include <string>

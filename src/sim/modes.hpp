@@ -36,7 +36,9 @@ struct ModeSettings {
   double f_max = 2000;    // [Hz] higher modes are left out (the elements' own axial, bending and contact ringing)
   double zeta_max = 0.9;  // modes damped more are left out (nearly critically damped: the friction's stiff
                           // rate law between the belt and its pulleys, whose real eigenvalues split in pairs)
-  bool transport = true;  // false: J alone (the material frame: the belt's points held where they are)
+  bool transport = true;
+  bool balance = true;  // balance the matrix before the eigensolver (modes.cpp; false for tests)  // false: J alone
+                        // (the material frame: the belt's points held where they are)
 };
 
 struct Mode {
