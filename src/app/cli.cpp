@@ -208,6 +208,31 @@ std::optional<CommandLine> parse_command_line(int argc, char** argv, int* status
   wp->footer("Runs the script's scene with each integrator at every tolerance, each against the\n"
              "reference. Writes DIR/wp.csv, DIR/wp.png (log-log, gnuplot) and DIR/<integrator>-<rtol>/.");
 
+  CLI::App* modes = app.add_subcommand("modes", "natural frequencies, damping and mode shapes; a Campbell diagram");
+  modes->add_option("SCRIPT", cl.script, "the scenario (Lua): its first scene:run{} gives the scene and settings")
+      ->required();
+  add_out_and_t_end(modes, raw, "output folder (default: out/<script name>/modes)");
+  modes->add_option("--at", raw.at, "the operating point: run the scene to T first (default: its t_end; 0: at rest)")
+      ->type_name("T");
+  modes->add_option("--fmin", raw.fmin, "leave out modes below this frequency (default 1)")->type_name("HZ");
+  modes->add_option("--fmax", raw.fmax, "leave out modes above this frequency (default 2000)")->type_name("HZ");
+  modes->add_option("--shapes", raw.shapes, "draw the first N modes to DIR/shapes/mode_NN_<f>Hz.png (default 6)")
+      ->type_name("N");
+  modes->add_flag("--video", raw.video, "also a video of each drawn mode's cycles (.mp4 beside its PNG)");
+  modes->add_option("--campbell", raw.campbell, "sweep this pulley's speed (held at each) for a Campbell diagram")
+      ->type_name("PULLEY");
+  modes->add_option("--rpm", raw.rpm, "with --campbell: the speeds, FROM:TO:COUNT")->type_name("A:B:N");
+  modes->add_option("--orders", raw.orders, "with --campbell: the engine orders drawn (default 2,4)")
+      ->type_name("K1,K2,..");
+  modes->add_option("--settle", raw.settle, "with --campbell: the run at each speed before its modes (default 0.3)")
+      ->type_name("S");
+  add_set(modes, raw);
+  add_safety(modes, raw);
+  modes->footer("Linearizes the drive about its state at T in the space-fixed frame and writes DIR/modes.csv\n"
+                "(frequency, damping ratio, each span's, wrap's, pulley's, arm's and rotor's share of the mode's\n"
+                "kinetic energy) and the mode shapes' pictures. With --campbell: DIR/campbell.csv and\n"
+                "DIR/campbell.png. docs/modes.md says how, and what the numbers are checked against.");
+
   CLI::App* plot = app.add_subcommand("plot", "draw columns of a timeseries.csv to a PNG");
   plot->add_option("CSV", cl.csv, "a timeseries.csv written by run")->required();
   plot->add_option("COLUMNS", cl.columns, "columns to draw (default: every <pulley>.omega)");
@@ -290,7 +315,7 @@ std::optional<CommandLine> parse_command_line(int argc, char** argv, int* status
     return cl;
   }
   if (!words.empty() && words[0] == "help") words[0] = "--help";
-  const std::vector<std::string> commands{"run", "wp", "plot", "summary", "render", "compare", "console", "sweep"};
+  const std::vector<std::string> commands{"run", "wp", "modes", "plot", "summary", "render", "compare", "console", "sweep"};
   if (!words.empty() && !words[0].empty() && words[0][0] == '-' && words[0] != "-h" && words[0] != "--help" &&
       words[0] != "--version") {
     std::fprintf(stderr, "beltsim: unknown option '%s' before the command\nRun 'beltsim --help' for the usage.\n",

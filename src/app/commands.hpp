@@ -20,6 +20,8 @@ int cmd_plot(const std::string& csv, const std::vector<std::string>& columns, co
              term::ImageMode images);
 // `beltsim summary DIR [--from T0] [--to T1] [--csv FILE] [--plot PNG]` (plot/summary.hpp)
 int cmd_summary(const std::string& dir, const Raw& raw);
+// `beltsim modes SCRIPT [--at T] [--campbell PULLEY --rpm A:B:N]` (sim/modes.hpp, docs/modes.md)
+int cmd_modes(const std::string& script, const script::Overrides& o, const script::Safety& s, const Raw& raw);
 int cmd_sweep(const std::string& file, const Raw& raw, const script::Safety& s);
 
 }  // namespace beltsim::app

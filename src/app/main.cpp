@@ -62,6 +62,7 @@ int main(int argc, char** argv) {
     if (c == "plot") return with_outputs(cmd_plot(cl->csv, cl->columns, raw, env.images));  // a signal ends it at once: nothing to close
     beltsim::script::install_stop_signals();
     if (c == "run") return with_outputs(cmd_run(cl->script, overrides(raw), safety(raw)));
+    if (c == "modes") return with_outputs(cmd_modes(cl->script, overrides(raw), safety(raw), raw));
     if (c == "sweep") return with_outputs(cmd_sweep(cl->script, raw, safety(raw)));
     if (c == "console")
       return with_outputs(cmd_console(cl->console_script, cl->console_args, overrides(raw), safety(raw), env));

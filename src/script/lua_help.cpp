@@ -86,6 +86,11 @@ const std::vector<HelpEntry>& api_help() {
       {"summary", "sim:summary{ from [s], to [s], csv, plot } -> { spans, pulleys, wraps, hubs, ... }",
        "review figures over a window: tensions, slip, capstan margins, hub loads, arm, overruns; also r:summary{...} "
        "on scene:run's results (docs/summary.md)"},
+      {"modes",
+       "sim:modes{ fmin [Hz], fmax [Hz], transport, csv, shapes, video } -> { [k] = { frequency, damping, where, "
+       "share }, ... }",
+       "natural frequencies, damping ratios and where each mode's energy is, about the state now; shapes = N draws "
+       "the first N (docs/modes.md)"},
       {"save", "sim:save(path) -> path", "a checkpoint: state, integrator, laws, μ, pending events, output positions"},
       {"resume", "beltsim.resume(path) -> sim", "continues a checkpoint (bit for bit); callbacks must be added again"},
       {"serve", "sim:serve{ port = 0, host = \"127.0.0.1\" } -> url",

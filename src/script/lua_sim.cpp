@@ -434,7 +434,7 @@ const luaL_Reg kMethods[] = {
     {"span", l_span},       {"energy", l_energy},         {"stats", l_stats},         {"set_torque", l_set_torque},
     {"set_speed", l_set_speed}, {"set_arm", l_set_arm}, {"set_rotor", l_set_rotor}, {"wet", l_wet},           {"spray", l_spray},       {"set_mu", l_set_mu},       {"log", l_log},
     {"every", l_every},     {"when", l_when},             {"cancel", l_cancel},       {"show", l_show},
-    {"plot", l_plot},       {"summary", l_sim_summary}, {"save", l_save},             {"serve", l_serve},             {"close", l_close},           {nullptr, nullptr}};
+    {"plot", l_plot},       {"summary", l_sim_summary}, {"modes", l_modes}, {"save", l_save},             {"serve", l_serve},             {"close", l_close},           {nullptr, nullptr}};
 
 // sim.t is the current time; sim.<method> the methods
 int l_index(lua_State* L) {

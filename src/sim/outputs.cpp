@@ -26,10 +26,6 @@ std::string probe_name(size_t k, size_t probes) {
   return probes == 1 ? std::string("probe") : "probe" + std::to_string(k + 1);
 }
 
-std::string span_name(const Scene& sc, size_t k) {
-  return "span_" + sc.route_names[k] + "_" + sc.route_names[(k + 1) % sc.route_names.size()];
-}
-
 void write_parameters(const Scene& sc, const RunSettings& rs, const OutputDir& dir) {
   const Model& m = sc.model;
   const Belt& b = m.belt;
@@ -120,6 +116,10 @@ void write_parameters(const Scene& sc, const RunSettings& rs, const OutputDir& d
 }
 
 }  // namespace
+
+std::string span_name(const Scene& sc, size_t k) {
+  return "span_" + sc.route_names[k] + "_" + sc.route_names[(k + 1) % sc.route_names.size()];
+}
 
 std::vector<std::string> timeseries_columns(const Scene& sc, size_t probes) {
   std::vector<std::string> c{"t"};

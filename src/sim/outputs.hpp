@@ -10,12 +10,11 @@
 // simulation alone from open() to close() (io/output_dir.hpp).
 #pragma once
 
+#include <Eigen/Core>
 #include <memory>
 #include <string>
 #include <utility>
 #include <vector>
-
-#include <Eigen/Core>
 
 #include "integrate/warnings.hpp"
 #include "model/drive.hpp"
@@ -31,6 +30,8 @@ struct Scene;
 
 // the column names of timeseries.csv for a scene with that many probes (documented in docs/outputs.md)
 std::vector<std::string> timeseries_columns(const Scene& scene, size_t probes = 1);
+// route span k's name in the columns: span_<a>_<b>, the pulleys it runs from and to
+std::string span_name(const Scene& sc, size_t k);
 
 class Outputs {
  public:

@@ -1,0 +1,181 @@
+// `beltsim modes SCRIPT`: the modes of the script's drive about an operating point, or over the
+// crankshaft's speed (a Campbell diagram) (commands.hpp, sim/modes.hpp, docs/modes.md).
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <sstream>
+
+#include "app/commands.hpp"
+#include "io/csv_writer.hpp"
+#include "io/number_text.hpp"
+#include "io/output_dir.hpp"
+#include "plot/campbell_plot.hpp"
+#include "render/mode_frames.hpp"
+#include "script/docall.hpp"
+#include "script/signals.hpp"
+#include "sim/campbell.hpp"
+#include "sim/simulation.hpp"
+
+namespace beltsim::app {
+
+namespace fs = std::filesystem;
+
+using script::stop_flag;
+using script::stop_signal;
+using script::stopped_status;
+
+namespace {
+
+// "A:B:N": N speeds from A to B evenly spaced (N >= 2), or one speed "A"
+std::vector<double> speeds(const std::string& text) {
+  std::vector<std::string> parts;
+  std::stringstream in(text);
+  for (std::string p; std::getline(in, p, ':');) parts.push_back(p);
+  if (parts.size() == 1) return {number("--rpm", parts[0])};
+  if (parts.size() != 3) throw UsageError("--rpm takes FROM:TO:COUNT (e.g. 800:6000:14), got '" + text + "'");
+  const double a = number("--rpm", parts[0]), b = number("--rpm", parts[1]);
+  const int n = whole_number("--rpm", parts[2], 2);
+  std::vector<double> out;
+  for (int k = 0; k < n; ++k) out.push_back(a + (b - a) * k / (n - 1));
+  return out;
+}
+
+std::vector<double> orders(const std::string& text) {
+  std::vector<double> out;
+  std::stringstream in(text);
+  for (std::string p; std::getline(in, p, ',');) {
+    const double o = number("--orders", p);
+    if (!(o > 0)) throw UsageError("--orders takes positive engine orders (e.g. 2,4), got '" + p + "'");
+    out.push_back(o);
+  }
+  return out;
+}
+
+// the groups holding at least a fifth of the mode's energy, largest first: "arm_tensioner 54 %, ..."
+std::string where(const ModeAnalysis& a, const Mode& m) {
+  std::vector<std::pair<double, std::string>> g;
+  for (size_t k = 0; k < a.groups.size(); ++k)
+    if (m.participation[k] >= 0.2) g.emplace_back(m.participation[k], a.groups[k]);
+  std::sort(g.rbegin(), g.rend());
+  std::string s;
+  for (const auto& [share, name] : g) {
+    char buf[64];
+    std::snprintf(buf, sizeof buf, "%.0f %%", 100 * share);
+    s += (s.empty() ? "" : ", ") + name + " " + buf;
+  }
+  return s;
+}
+
+void print_table(const ModeAnalysis& a) {
+  std::printf("t = %s s, belt speed %.3g m/s, %d states: %zu modes\n", number_text(a.t).c_str(), a.belt_speed, a.states,
+              a.modes.size());
+  std::printf("%5s %10s %8s  %s\n", "mode", "f [Hz]", "zeta", "where the kinetic energy is");
+  for (size_t k = 0; k < a.modes.size(); ++k)
+    std::printf("%5zu %10.2f %8.4f  %s\n", k + 1, a.modes[k].frequency, a.modes[k].damping,
+                where(a, a.modes[k]).c_str());
+}
+
+ModeSettings mode_settings(const Raw& raw) {
+  ModeSettings s;
+  if (raw.fmin) s.f_min = number("--fmin", *raw.fmin);
+  if (raw.fmax) s.f_max = number("--fmax", *raw.fmax);
+  if (!(s.f_min >= 0) || !(s.f_max > s.f_min))
+    throw UsageError("--fmin must be >= 0 and below --fmax (got " + number_text(s.f_min) + " and " +
+                     number_text(s.f_max) + " Hz)");
+  return s;
+}
+
+int point_modes(const std::string& script, const Scene& sc, RunSettings rs, const Raw& raw, const ModeSettings& ms) {
+  const double at = raw.at ? number("--at", *raw.at) : rs.t_end;
+  if (!(at >= 0)) throw UsageError("--at must be a time >= 0 [s], got '" + *raw.at + "'");
+  const int shapes = raw.shapes ? whole_number("--shapes", *raw.shapes, 0) : 6;
+  rs.t_end = at;
+  rs.frames.reset();
+  Simulation sim(sc, rs);
+  sim.run_to(at, &stop_flag());
+  if (stop_signal() != 0) return stopped_status();
+  const Eigen::VectorXd y = sim.state();
+  const Drive d = sim.drive();
+  const ModeAnalysis a = analyze_modes(sc, d, sim.now(), y, ms);
+  sim.close();
+  std::printf("modes of %s\n", script.c_str());
+  print_table(a);
+  const std::string csv = (fs::path(rs.out_dir) / "modes.csv").string();
+  {
+    CsvWriter w(csv, mode_columns(a));
+    for (size_t k = 0; k < a.modes.size(); ++k) w.row(mode_row(a, k));
+  }
+  std::printf("%s\n", csv.c_str());
+  render::ModePictures p;
+  p.dir = (fs::path(rs.out_dir) / "shapes").string();
+  p.count = shapes;
+  p.video = raw.video;
+  for (const std::string& f : render::draw_modes(sc, d, y, a, p)) std::printf("%s\n", f.c_str());
+  return 0;
+}
+
+int campbell_modes(const std::string& script, const Scene& sc, const RunSettings& rs, const Raw& raw,
+                   const ModeSettings& ms) {
+  CampbellSettings cs;
+  cs.pulley = sc.find_pulley(*raw.campbell);
+  if (cs.pulley < 0) throw UsageError("--campbell: the scene has no pulley '" + *raw.campbell + "'");
+  if (!raw.rpm) throw UsageError("--campbell needs --rpm FROM:TO:COUNT");
+  cs.rpm = speeds(*raw.rpm);
+  if (raw.settle) cs.settle = number("--settle", *raw.settle);
+  cs.modes = ms;
+  const std::vector<double> ord = orders(raw.orders.value_or("2,4"));
+  const std::vector<CampbellPoint> pts = campbell(sc, rs, cs, &stop_flag(), [](const CampbellPoint& p) {
+    std::fprintf(stderr, "beltsim modes: %s rpm: %zu modes\n", number_text(p.rpm).c_str(), p.analysis.modes.size());
+  });
+  if (stop_signal() != 0) return stopped_status();
+  const std::string csv = (fs::path(rs.out_dir) / "campbell.csv").string();
+  const std::string png = (fs::path(rs.out_dir) / "campbell.png").string();
+  write_campbell_csv(pts, csv);
+  std::printf("%s\n", csv.c_str());
+  try {
+    plot::plot_campbell_png(
+        pts, ord, "Campbell diagram of " + fs::path(script).filename().string() + " over '" + *raw.campbell + "' speed",
+        png);
+    std::printf("%s\n", png.c_str());
+  } catch (const std::exception& e) {  // the CSV is the result; the picture is a convenience
+    std::fprintf(stderr, "beltsim modes: no plot: %s\n", e.what());
+    mark_output_failure_shown(e.what());
+  }
+  return 0;
+}
+
+}  // namespace
+
+int cmd_modes(const std::string& script, const script::Overrides& o, const script::Safety& s, const Raw& raw) {
+  try {
+    const ModeSettings ms = mode_settings(raw);
+    script::Captured cap;
+    script::Interpreter lua(s);
+    const script::Interruptible on_signal(lua);
+    script::Overrides captured;  // --set reaches the script; --out is the command's own folder
+    captured.set = o.set;
+    lua.set_overrides(captured);
+    lua.set_capture(&cap);
+    lua.run_file(script);
+    if (!cap.scene) throw std::runtime_error(script + ": the script never calls scene:run{}");
+    for (const std::string& m : lua.unread_args(script))
+      std::fprintf(stderr, "beltsim modes: warning: %s (before its first scene:run{})\n", m.c_str());
+    RunSettings rs = cap.settings;
+    if (o.has("t_end")) rs.t_end = o.run.t_end;
+    rs.out_dir = o.has("out") ? o.run.out_dir : (fs::path("out") / fs::path(script).stem() / "modes").string();
+    if (raw.campbell) return campbell_modes(script, *cap.scene, rs, raw, ms);
+    return point_modes(script, *cap.scene, rs, raw, ms);
+  } catch (const UsageError&) {
+    throw;
+  } catch (const script::ScriptError& e) {
+    std::fprintf(stderr, "beltsim: %s\n%s", e.what(), script::shown_traceback(e.traceback).c_str());
+    return stop_signal() != 0 ? stopped_status() : 1;
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "beltsim: %s\n", e.what());
+    mark_output_failure_shown(e.what());
+    return stop_signal() != 0 ? stopped_status() : 1;
+  }
+}
+
+}  // namespace beltsim::app

@@ -1,0 +1,29 @@
+// Pictures of a drive's mode shapes (sim/modes.hpp, docs/modes.md): each mode drawn by the frame
+// renderer at its largest deflection, as a PNG, and on request as a short video of its cycles.
+#pragma once
+
+#include <Eigen/Core>
+#include <string>
+#include <vector>
+
+#include "sim/modes.hpp"
+
+namespace beltsim::render {
+
+struct ModePictures {
+  std::string dir;          // where the files go (made when missing)
+  int count = 6;            // the first `count` modes of the analysis
+  bool video = false;       // also a video of each: three cycles, 24 frames each, at 24 frames/s
+  double amplitude = 0.03;  // the largest point displacement drawn, as a share of the layout's size
+  int width = 1280, height = 720;
+};
+
+// Draws the modes of `a` (analysed at the state y of the drive d) into DIR/mode_NN_<f>Hz.png (NN
+// from 01, the mode's number in modes.csv; f its frequency) and the videos asked for (.mp4 beside
+// them); returns the paths written. The belt is
+// coloured by the tension of the deflected state (which spans stretch). Throws std::runtime_error
+// (the renderer's, the writers', naming the file).
+std::vector<std::string> draw_modes(const Scene& sc, const Drive& d, const Eigen::VectorXd& y, const ModeAnalysis& a,
+                                    const ModePictures& p);
+
+}  // namespace beltsim::render

@@ -1,0 +1,237 @@
+#include "sim/modes.hpp"
+
+#include <Eigen/Eigenvalues>
+#include <Eigen/SparseCore>
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+#include "model/contacts.hpp"
+#include "model/observables.hpp"
+#include "model/rhs.hpp"
+#include "model/sparse.hpp"
+#include "model/workspace.hpp"
+#include "sim/outputs.hpp"
+
+namespace beltsim {
+
+namespace {
+
+double segment_distance(const Vec2& p, const Vec2& a, const Vec2& b) {
+  const Vec2 ab = b - a;
+  const double s = std::clamp((p - a).dot(ab) / std::max(ab.squaredNorm(), 1e-300), 0.0, 1.0);
+  return (p - (a + s * ab)).norm();
+}
+
+// ν: the elements passing a fixed point per second, the mean over the elements of their speed
+// along the ring (towards the next element) over their spacing; and the belt's mean speed
+void element_rate(const Model& m, const Eigen::VectorXd& y, double& nu, double& speed) {
+  const int n = m.n_el(), N = m.n_coord();
+  nu = speed = 0;
+  for (int i = 0; i < n; ++i) {
+    const int a = (i + n - 1) % n, b = (i + 1) % n;
+    const Vec2 chord(y[3 * b] - y[3 * a], y[3 * b + 1] - y[3 * a + 1]);
+    const double along = Vec2(y[N + 3 * i], y[N + 3 * i + 1]).dot(chord) / chord.norm();
+    speed += along;
+    nu += along / (0.5 * chord.norm());
+  }
+  nu /= n;
+  speed /= n;
+}
+
+// the size of the displacement each coordinate's unit motion gives a point: 1 for an element's x
+// and y (taken together), a pulley's radius, an arm's length, a rotor's pulley's radius; 0 for an
+// element's angle (its centre does not move)
+double lever(const Model& m, int k) {
+  const int ne = 3 * m.n_el();
+  if (k < ne) return k % 3 == 2 ? 0.0 : 1.0;
+  if (k < ne + m.n_p()) return m.pulleys[k - ne].radius;
+  if (k < ne + m.n_p() + m.n_arm()) return m.arms[k - ne - m.n_p()].length;
+  for (int c = 0; c < m.n_coupling(); ++c)
+    if (k == m.rotor_coord(c) || (m.couplings[c].one_way && k == m.hub_coord(c)))
+      return m.pulleys[m.couplings[c].pulley].radius;
+  return 0;
+}
+
+// the q part of eigenvector v scaled so that the largest point displacement is 1 m, real and
+// positive in its largest component
+Eigen::VectorXcd normalised_shape(const Model& m, const Eigen::VectorXcd& v) {
+  const int N = m.n_coord(), ne = 3 * m.n_el();
+  Eigen::VectorXcd q = v.head(N);
+  double best = 0;
+  int ref = 0;
+  for (int k = 0; k < N; ++k) {
+    if (k < ne && k % 3 != 0) continue;  // an element's point is looked at once, at its x
+    const double size = k < ne ? std::hypot(std::abs(q[k]), std::abs(q[k + 1])) : lever(m, k) * std::abs(q[k]);
+    if (size <= best) continue;
+    best = size;
+    ref = k < ne && std::abs(q[k + 1]) > std::abs(q[k]) ? k + 1 : k;
+  }
+  if (best == 0) return q;
+  const std::complex<double> c = q[ref];
+  return q * (std::conj(c) / std::abs(c)) / best;
+}
+
+// Balancing (Parlett & Reinsch, as LAPACK's dgebal without its permutations): A ← D⁻¹·A·D with D
+// diagonal powers of 2 that make each row's and column's off-diagonal norms alike. The drive's
+// matrix mixes positions and speeds, element and pulley coordinates, and stiffnesses over 10 decades
+// (contact 10¹⁰ s⁻² against a span's 10⁵): balanced, the eigenvalues keep their accuracy. Returns D.
+Eigen::VectorXd balance(Eigen::MatrixXd& A) {
+  const Eigen::Index n = A.rows();
+  Eigen::VectorXd D = Eigen::VectorXd::Ones(n);
+  for (bool changed = true; changed;) {
+    changed = false;
+    for (Eigen::Index i = 0; i < n; ++i) {
+      const double c = A.col(i).cwiseAbs().sum() - std::abs(A(i, i));
+      const double r = A.row(i).cwiseAbs().sum() - std::abs(A(i, i));
+      if (c == 0 || r == 0) continue;
+      double f = 1, cc = c;
+      while (cc < r / 2) cc *= 2, f *= 2;
+      while (cc >= 2 * r) cc /= 2, f /= 2;
+      if ((cc + r / f) < 0.95 * (c + r)) {
+        changed = true;
+        D[i] *= f;
+        A.row(i) /= f;
+        A.col(i) *= f;
+      }
+    }
+  }
+  return D;
+}
+
+}  // namespace
+
+std::vector<int> coordinate_groups(const Scene& sc, const Drive& d, double t, const Eigen::VectorXd& y,
+                                   std::vector<std::string>& names) {
+  const Model& m = sc.model;
+  const int n = m.n_el(), spans = static_cast<int>(sc.route.spans.size());
+  names.clear();
+  for (int k = 0; k < spans; ++k) names.push_back(span_name(sc, k));
+  for (const Pulley& p : m.pulleys) names.push_back("wrap_" + p.name);
+  for (const Pulley& p : m.pulleys) names.push_back("pulley_" + p.name);
+  for (const Arm& a : m.arms) names.push_back("arm_" + m.pulleys[a.pulley].name);
+  for (const Coupling& c : m.couplings) names.push_back("rotor_" + m.pulleys[c.pulley].name);
+  std::vector<int> g(m.n_coord(), -1);
+  Workspace ws(m, false);
+  const ContactRecords& rec = contacts_at(m, d, t, y.data(), ws);
+  for (int i = 0; i < n; ++i) {
+    int group = element_contact(rec, i).pulley;
+    if (group >= 0) {
+      group += spans;
+    } else {
+      const Vec2 p(y[3 * i], y[3 * i + 1]);
+      double near = INFINITY;
+      for (int k = 0; k < spans; ++k) {
+        const double dist = segment_distance(p, sc.route.spans[k].from, sc.route.spans[k].to);
+        if (dist < near) near = dist, group = k;
+      }
+    }
+    for (int r = 0; r < 3; ++r) g[3 * i + r] = group;
+  }
+  for (int j = 0; j < m.n_p(); ++j)
+    if (!d.pulleys[j].kinematic) g[m.pulley_coord(j)] = spans + m.n_p() + j;
+  for (int a = 0; a < m.n_arm(); ++a) g[m.arm_coord(a)] = spans + 2 * m.n_p() + a;
+  for (int c = 0; c < m.n_coupling(); ++c) {
+    g[m.rotor_coord(c)] = spans + 2 * m.n_p() + m.n_arm() + c;
+    if (m.couplings[c].one_way) g[m.hub_coord(c)] = g[m.rotor_coord(c)];
+  }
+  return g;
+}
+
+ModeAnalysis analyze_modes(const Scene& sc, const Drive& d, double t, const Eigen::VectorXd& y, const ModeSettings& s) {
+  if (!(s.f_min >= 0) || !(s.f_max > s.f_min))
+    throw std::invalid_argument("modes: f_min must be >= 0 and below f_max (got " + std::to_string(s.f_min) + " and " +
+                                std::to_string(s.f_max) + " Hz)");
+  const Model& m = sc.model;
+  if (y.size() != m.n_state()) throw std::invalid_argument("modes: the state has the wrong size");
+  const int n = m.n_el(), N = m.n_coord(), nz = m.n_bristle();
+  ModeAnalysis out;
+  out.t = t;
+  // J of the state without the energy integrals: [q | v | z]
+  Workspace ws(m, false);
+  Jacobian J;
+  J.resize(m);
+  jacobian(m, d, t, y.data(), J, &ws);
+  Eigen::SparseMatrix<double> Js;
+  assemble_ode_jacobian(m, d, J.K, J.C, nz ? &J.B : nullptr, Js);
+  const int S = 2 * N + nz;
+  std::vector<int> keep(S);
+  for (int k = 0; k < 2 * N; ++k) keep[k] = k;
+  for (int k = 0; k < nz; ++k) keep[2 * N + k] = m.bristle_offset() + k;
+  const Eigen::MatrixXd full = Eigen::MatrixXd(Js);
+  Eigen::MatrixXd A(S, S);
+  for (int r = 0; r < S; ++r)
+    for (int c = 0; c < S; ++c) A(r, c) = full(keep[r], keep[c]);
+  double nu = 0;
+  element_rate(m, y, nu, out.belt_speed);
+  if (s.transport) {
+    // −ν·(U_{i+1} − U_{i−1})/2 on every element row of q, v and z
+    out.element_rate = nu;
+    auto transport = [&](int first, int per) {
+      for (int i = 0; i < n; ++i)
+        for (int r = 0; r < per; ++r) {
+          const int row = first + per * i + r;
+          A(row, first + per * ((i + 1) % n) + r) -= 0.5 * nu;
+          A(row, first + per * ((i + n - 1) % n) + r) += 0.5 * nu;
+        }
+    };
+    transport(0, 3);
+    transport(N, 3);
+    if (nz) transport(2 * N, 1);
+  }
+  out.states = S;
+  const Eigen::VectorXd D = s.balance ? balance(A) : Eigen::VectorXd::Ones(S);
+  Eigen::EigenSolver<Eigen::MatrixXd> es(A, true);
+  if (es.info() != Eigen::Success) throw std::runtime_error("modes: the eigensolver did not converge");
+  const std::vector<int> group = coordinate_groups(sc, d, t, y, out.groups);
+  const int G = static_cast<int>(out.groups.size());
+  for (int k = 0; k < S; ++k) {
+    const std::complex<double> lambda = es.eigenvalues()[k];
+    const double f = lambda.imag() / (2 * M_PI);
+    if (!(f >= s.f_min && f <= s.f_max)) continue;
+    Mode md;
+    md.lambda = lambda;
+    md.frequency = f;
+    md.damping = -lambda.real() / std::abs(lambda);
+    if (!(md.damping <= s.zeta_max)) continue;
+    const Eigen::VectorXcd v = D.cast<std::complex<double>>().cwiseProduct(es.eigenvectors().col(k));
+    md.participation.assign(G, 0.0);
+    double total = 0;
+    for (int c = 0; c < N; ++c) {
+      if (group[c] < 0) continue;
+      const double e = m.mass_of(c) * std::norm(v[N + c]);
+      md.participation[group[c]] += e;
+      total += e;
+    }
+    if (total > 0)
+      for (double& p : md.participation) p /= total;
+    md.dominant =
+        static_cast<int>(std::max_element(md.participation.begin(), md.participation.end()) - md.participation.begin());
+    md.shape = normalised_shape(m, v);
+    out.modes.push_back(std::move(md));
+  }
+  std::sort(out.modes.begin(), out.modes.end(), [](const Mode& a, const Mode& b) { return a.frequency < b.frequency; });
+  return out;
+}
+
+Eigen::VectorXd mode_state(const Eigen::VectorXd& y, const Mode& m, double amplitude, double phase) {
+  Eigen::VectorXd out = y;
+  const std::complex<double> turn = std::polar(amplitude, phase);
+  for (Eigen::Index k = 0; k < m.shape.size(); ++k) out[k] += (m.shape[k] * turn).real();
+  return out;
+}
+
+std::vector<std::string> mode_columns(const ModeAnalysis& a) {
+  std::vector<std::string> c{"mode", "frequency_Hz", "damping_ratio", "decay_1_s"};
+  for (const std::string& g : a.groups) c.push_back(g);
+  return c;
+}
+
+std::vector<double> mode_row(const ModeAnalysis& a, size_t k) {
+  const Mode& m = a.modes[k];
+  std::vector<double> r{static_cast<double>(k + 1), m.frequency, m.damping, -m.lambda.real()};
+  r.insert(r.end(), m.participation.begin(), m.participation.end());
+  return r;
+}
+
+}  // namespace beltsim
