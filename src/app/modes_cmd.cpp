@@ -74,6 +74,12 @@ void print_table(const ModeAnalysis& a) {
   for (size_t k = 0; k < a.modes.size(); ++k)
     std::printf("%5zu %10.2f %8.4f  %s\n", k + 1, a.modes[k].frequency, a.modes[k].damping,
                 where(a, a.modes[k]).c_str());
+  if (a.belt_speed != 0)
+    std::fprintf(stderr,
+                 "beltsim modes: warning: the belt moves (%.3g m/s): the modes of a running drive are not verified "
+                 "(only the known answers at rest are); read its pulley, wrap and arm modes as unverified and its span "
+                 "modes with care (docs/modes.md, Limits)\n",
+                 a.belt_speed);
 }
 
 ModeSettings mode_settings(const Raw& raw) {
