@@ -6,7 +6,7 @@
 #include <memory>
 #include <string>
 
-#include "io/image.hpp"
+#include "media/image.hpp"
 #include "sim/frames.hpp"
 
 namespace beltsim {

@@ -7,7 +7,7 @@
 #include <cstdio>
 
 #include "io/number_text.hpp"
-#include "io/png_writer.hpp"
+#include "media/png_writer.hpp"
 #include "render/recorder.hpp"
 #include "scene/law_text.hpp"
 #include "scene/validate.hpp"

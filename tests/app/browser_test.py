@@ -4,7 +4,7 @@ Debian): the page of a running dry scenario shows t advancing, Pause holds the r
 where), a torque set on the page lands in events.csv at that time, Continue lets the run finish
 whole. The picture of the run paused at a run-to time asked for before the run began (t = 0.05 s,
 so always the same state) is compared with tests/golden/live_page_frame.png by the goldens'
-metric (`beltsim compare`, io/image_compare.hpp). Each step waits for what the page shows
+metric (`beltsim compare`, media/image_compare.hpp). Each step waits for what the page shows
 (WebDriverWait), no sleeps. Exit 77 (skipped) without selenium or chromium-driver.
 
 usage: browser_test.py BELTSIM [--update-golden]
