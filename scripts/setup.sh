@@ -3,10 +3,10 @@
 #   bash scripts/setup.sh run    install what the program needs (scripts/debian-packages.txt),
 #                                build the program alone, run the paper's dry scenario
 #   bash scripts/setup.sh test   install that and what the tests add (debian-packages-test.txt),
-#                                build everything and run the test suite in build/, then the quick
-#                                tests again and 60 s of fuzzing (three targets in turn) in one
-#                                clang-14 build with ASan + UBSan and libFuzzer's instrumentation in
-#                                build-san/
+#                                run every test once: all but the quick ones in build/ (built
+#                                without the quick tests' programs), then the quick tests and 60 s
+#                                of fuzzing (three targets in turn) in one clang-14 build with
+#                                ASan + UBSan and libFuzzer's instrumentation in build-san/
 #   bash scripts/setup.sh build  install both lists and build everything, running nothing
 # Idempotent: packages already present are not touched, and apt is not consulted at all when
 # nothing is missing; the build is incremental (ccache when available).
@@ -55,7 +55,13 @@ if [ "$mode" = run ]; then
   cmake --build "$build_dir" -j "$jobs" --target beltsim
 else
   cmake $(generator "$build_dir") -S . -B "$build_dir" -DCMAKE_BUILD_TYPE=Release -DBELTSIM_BUILD_TESTS=ON -DBELTSIM_BUILD_BENCH=ON >/dev/null
-  cmake --build "$build_dir" -j "$jobs"
+  if [ "$mode" = test ] && [ "${BELTSIM_SANITIZE:-1}" != 0 ]; then
+    # every test runs once: the quick ones under the sanitizers below, so here everything but
+    # their programs (tests/CMakeLists.txt, BELTSIM_QUICK_PROGRAMS)
+    cmake --build "$build_dir" -j "$jobs" --target beltsim_all_but_quick
+  else
+    cmake --build "$build_dir" -j "$jobs"
+  fi
 fi
 stage_done "built $build_dir/"
 
@@ -65,9 +71,13 @@ case "$mode" in
     "$build_dir/beltsim" run scripts/paper_dry.lua
     ;;
   test)
-    ctest --test-dir "$build_dir" --output-on-failure -j "$jobs"
+    # every test but the quick ones, which run in the sanitizer build below (all of them here
+    # when BELTSIM_SANITIZE=0)
+    not_quick=(-LE quick)
+    if [ "${BELTSIM_SANITIZE:-1}" = 0 ]; then not_quick=(); fi
+    ctest --test-dir "$build_dir" "${not_quick[@]}" --output-on-failure -j "$jobs"
     stage_done "tests in $build_dir/ passed"
-    # the quick tests again and the fuzzer, in one build with clang-14, AddressSanitizer +
+    # the quick tests and the fuzzer, in one build with clang-14, AddressSanitizer +
     # UndefinedBehaviorSanitizer and libFuzzer's coverage instrumentation (build-san/: only what
     # they run). The first finding stops a test. BELTSIM_SANITIZE=0 skips the quick tests there,
     # BELTSIM_FUZZ_SECONDS=0 the fuzzing, both together the build.
@@ -81,8 +91,7 @@ case "$mode" in
         -DBELTSIM_BUILD_TESTS=ON -DBELTSIM_BUILD_BENCH=OFF >/dev/null
       targets=(beltsim_fuzz beltsim_fuzz_checkpoint beltsim_fuzz_sweep)
       if [ "${BELTSIM_SANITIZE:-1}" != 0 ]; then
-        targets+=(beltsim beltsim_tests_quick beltsim_tests_script beltsim_tests_render beltsim_tests_plot
-                  beltsim_fuzz_replay beltsim_fuzz_checkpoint_replay beltsim_fuzz_sweep_replay)
+        targets+=(beltsim_quick_programs)
       fi
       cmake --build "$san_dir" -j "$jobs" --target "${targets[@]}"
       stage_done "built $san_dir/"

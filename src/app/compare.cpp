@@ -7,11 +7,11 @@
 #include <stdexcept>
 
 #include "app/options.hpp"
-#include "io/image_compare.hpp"
 #include "io/input_file.hpp"
 #include "io/output_dir.hpp"
-#include "io/png_writer.hpp"
 #include "io/units.hpp"
+#include "media/image_compare.hpp"
+#include "media/png_writer.hpp"
 #include "plot/csv_compare.hpp"
 #include "script/script_args.hpp"
 

@@ -1,4 +1,4 @@
-// `beltsim compare A B`: two PNGs by the golden images' metric (io/image_compare.hpp), or two CSV
+// `beltsim compare A B`: two PNGs by the golden images' metric (media/image_compare.hpp), or two CSV
 // files column by column (plot/csv_compare.hpp). One line on stdout says why they match or
 // differ; exit status 0 when they match, 1 when they differ, 2 for bad usage or a file that
 // cannot be read (the message names it).

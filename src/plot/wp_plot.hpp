@@ -1,7 +1,7 @@
 // The picture of `beltsim wp`: error against wall time, log-log, one line per integrator with
 // its points labelled by their rtol where a label overlaps no other label or point; the error is
 // the metric's when the study has one, else the largest speed error; runs that did not finish are
-// crosses at their wall time in a band above the errors. Kept out of the engine (beltsim_core
+// crosses at their wall time in a band above the errors. Kept out of the engine (beltsim_sim
 // launches no process): work_precision() writes the CSV, this draws the result.
 //
 // Two stages: wp_layout() computes what is drawn and where (no gnuplot, for tests), and

@@ -8,7 +8,7 @@
 #include <memory>
 #include <string>
 
-#include "io/image.hpp"
+#include "media/image.hpp"
 #include "render/draw_list.hpp"
 #include "render/gl_context.hpp"
 

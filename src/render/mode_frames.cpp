@@ -5,8 +5,8 @@
 #include <cstdio>
 #include <filesystem>
 
-#include "io/png_writer.hpp"
-#include "io/video_writer.hpp"
+#include "media/png_writer.hpp"
+#include "media/video_writer.hpp"
 #include "render/recorder.hpp"
 
 namespace beltsim::render {

@@ -2,8 +2,8 @@
 
 #include <cstdio>
 
-#include "io/png_writer.hpp"
-#include "io/video_writer.hpp"
+#include "media/png_writer.hpp"
+#include "media/video_writer.hpp"
 #include "render/draw_list.hpp"
 #include "render/gl_renderer.hpp"
 #include "render/text.hpp"

@@ -6,7 +6,7 @@
 #include <memory>
 #include <string>
 
-#include "io/image.hpp"
+#include "media/image.hpp"
 #include "render/draw_list.hpp"
 #include "sim/frames.hpp"
 

@@ -14,6 +14,7 @@
 #include "script/lua_check.hpp"
 #include "script/lua_law.hpp"
 #include "script/lua_api.hpp"
+#include "script/lua_args.hpp"
 #include "script/sandbox.hpp"
 
 #include "lauxlib.h"

@@ -8,7 +8,7 @@
 #include <chrono>
 #include <cstdio>
 
-#include "io/jpeg_writer.hpp"
+#include "media/jpeg_writer.hpp"
 #include "io/number_text.hpp"
 #include "render/recorder.hpp"
 #include "scene/law_text.hpp"

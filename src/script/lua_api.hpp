@@ -1,9 +1,7 @@
-// Lua bindings of the scene builder and the runner (LÖVE's wrap_* pattern: the C++ classes know
-// nothing of Lua; this file translates tables to SceneDef / RunSettings and back).
+// The Lua API's global table `beltsim`: the bindings of the scene, its runs, the live simulation,
+// the sweeps, help and beltsim.args put together (LÖVE's wrap_* pattern: the C++ classes know
+// nothing of Lua; the bindings translate tables to SceneDef / RunSettings and back).
 #pragma once
-
-#include <string>
-#include <vector>
 
 struct lua_State;
 
@@ -13,14 +11,5 @@ struct Context;  // per-interpreter settings (overrides, default output folder, 
 
 // registers the global table `beltsim` (with beltsim.args, the --set parameters)
 void open_beltsim(lua_State* L, Context* ctx);
-// the --set keys the script has not read (beltsim.args.KEY) so far, one message each naming the
-// key, a suggestion among the keys it read, and those keys
-// (so_far: said at a run's start, "has not been read ... before this run")
-std::vector<std::string> unread_arg_messages(const Context& ctx, const std::string& script, bool so_far = false);
-// at the start of a script's first run: a warning on stderr for each --set key not read so far
-// (a long run is not wasted on a misspelt key; the error comes after the script)
-// the first call that integrates (scene:run, scene:start) fails, before integrating, when a
-// --set key has not been read by then (call names it in the message); in the console it warns
-void check_unread_args(lua_State* L, Context& ctx, const char* call);
 
 }  // namespace beltsim::script

@@ -1,6 +1,6 @@
-// Lua bindings of a scene's runs (see lua_run.hpp): the settings of scene:run{} and
-// scene:start{} read from their tables (every key checked, as in lua_scene.cpp), the μ events and
-// frames among them, and the run's results handed back to the script.
+// The run settings of scene:run{} and scene:start{} (see lua_run.hpp) read from their tables
+// (every key checked, as in lua_scene.cpp), the μ events and frames among them, and the readers
+// the live simulation's methods share.
 #include "script/lua_run.hpp"
 
 #include <cmath>
@@ -17,15 +17,8 @@
 #include "render/recorder.hpp"
 #include "scene/validate.hpp"
 #include "script/context.hpp"
-#include "script/lua_api.hpp"
-#include "script/lua_clock.hpp"
 #include "script/lua_scene.hpp"
-#include "script/lua_sim.hpp"
-#include "script/live_feed.hpp"
-#include "script/lua_summary.hpp"
-#include "script/progress.hpp"
 #include "script/sandbox.hpp"
-#include "script/signals.hpp"
 #include "sim/run_table.hpp"
 
 namespace beltsim::script {
@@ -397,121 +390,9 @@ void push_check(lua_State* L, const CheckEstimate& c) {
   if (!c.failed.empty()) lua_pushstring(L, c.failed.c_str()), lua_setfield(L, -2, "failed");
 }
 
-// the message of an error about a run setting (sim/run_settings.hpp, check), its path set in
-// `about` under the call's table (run.sample, start.frames.fps): made here, where it is reported
-std::string setting_error(const char* table, const ParameterError& e, KeyPath& about) {
-  about = e.path;
-  about.chain.insert(about.chain.begin(), table);
-  return parameter_message(path_text(about), e.reason, e.value, e.unit);
-}
-
-// scene:run{ t_end=, integrator=, rtol=, atol=, sample=, out=, probe=, progress=, events=, frames=, check= } -> result
-// = scene:start{...}, sim:run_to(t_end), sim:close()
 std::string wall_limit_text(double limit, double t, double target, const std::string& outputs) {
   return "stopped at its wall-time limit (max_wall = " + rounded_text(limit) + " s) at t = " + rounded_text(t) +
          " s of " + rounded_text(target) + " s; the outputs up to then are in " + outputs;
-}
-
-int l_scene_run(lua_State* L) {
-  const Scene* sc = check_scene(L, 1, "run");
-  check_args(L, "scene:run", {{"{t_end, integrator, ...}", kTable, true}}, 2);
-  auto* ctx = static_cast<Context*>(lua_touserdata(L, lua_upvalueindex(1)));
-  bool progress = true;
-  RunSettings rs = read_run_settings(L, 2, *sc, ctx, true, &progress);
-  check_unread_args(L, *ctx, "run");
-  for (const std::string& note : drop_after_end(rs, ctx->overrides.has("t_end") ? "--t-end" : nullptr))
-    std::fprintf(stderr, "beltsim: %s\n", note.c_str());
-  if (ctx->capture) {
-    ctx->capture->scene = *sc;
-    ctx->capture->settings = rs;
-    ctx->captured = true;
-    lua_pushliteral(L, "scene captured");
-    return lua_error(L);
-  }
-
-  std::string error;
-  KeyPath about;  // the setting an error is about: its line is the key's (lua_check.hpp, fail_at)
-  RunResult res;
-  try {
-    const HostWork work;  // beltsim's own work, not Lua code (lua_clock.hpp)
-    ProgressLine line(progress);
-    LiveFeed feed(ctx->serve.get(), ctx->stop, &ctx->page_changes);
-    ctx->page_sim = nullptr;  // the page shows this run now, which ends with this call
-    res = run(*sc, rs, ctx->stop, line.callback(),
-              [&](Simulation& sim, double t) { return feed.run_to(sim, t, line.callback()); });
-  } catch (const DivergenceError& e) {
-    error = std::string(e.what()) + " (the samples up to then are in " + rs.out_dir + "/timeseries.csv)";
-    ctx->divergence = {e.t, e.what()};
-  } catch (const ParameterError& e) {
-    error = setting_error("run", e, about);
-  } catch (const std::exception& e) {
-    error = e.what();
-  }
-  if (res.over_wall_limit) {
-    // not silent: the outputs are finalised (run() closed them) and the script stops here
-    about = KeyPath{"", {"run", "max_wall"}};
-    error = path_text(about) + ": the run " + wall_limit_text(rs.wall_limit, res.t_reached, rs.t_end, res.csv_path);
-  }
-  if (!error.empty()) fail_at(L, about, error);
-  if (res.interrupted) ctx->interrupted = true;
-  if (!res.warning_summary.empty()) std::fprintf(stderr, "beltsim: %s\n", res.warning_summary.c_str());
-  if (!res.check_line.empty())
-    std::fprintf(stderr, "beltsim: %s%s\n", res.check.over() ? "warning: " : "", res.check_line.c_str());
-
-  lua_newtable(L);
-  lua_pushnumber(L, res.t_reached), lua_setfield(L, -2, "t");
-  lua_pushboolean(L, res.interrupted), lua_setfield(L, -2, "interrupted");
-  lua_pushnumber(L, res.wall_seconds), lua_setfield(L, -2, "wall");
-  lua_pushinteger(L, res.work.steps), lua_setfield(L, -2, "steps");
-  lua_pushinteger(L, res.work.rejected), lua_setfield(L, -2, "rejected");
-  lua_pushinteger(L, res.work.rhs), lua_setfield(L, -2, "rhs");
-  lua_pushinteger(L, res.work.jacobians), lua_setfield(L, -2, "jacobians");
-  lua_pushinteger(L, res.work.factorizations), lua_setfield(L, -2, "factorizations");
-  lua_pushstring(L, res.csv_path.c_str()), lua_setfield(L, -2, "csv");
-  lua_pushstring(L, res.parameters_path.c_str()), lua_setfield(L, -2, "parameters");
-  lua_pushinteger(L, res.frames), lua_setfield(L, -2, "frames");
-  lua_newtable(L);
-  for (int j = 0; j < sc->model.n_p(); ++j)
-    lua_pushnumber(L, res.omega[j]), lua_setfield(L, -2, sc->model.pulleys[j].name.c_str());
-  lua_setfield(L, -2, "omega");
-  if (res.check.on) push_check(L, res.check), lua_setfield(L, -2, "check");
-  set_results_methods(L, ctx);
-  lua_pushvalue(L, -1);
-  lua_setfield(L, LUA_REGISTRYINDEX, kLastRun);
-  return 1;
-}
-
-// scene:start{ integrator=, rtol=, atol=, sample=, out=, probe=, progress=, frames= } -> sim at t = 0
-int l_scene_start(lua_State* L) {
-  const Scene* sc = check_scene(L, 1, "start");
-  check_args(L, "scene:start", {{"{integrator, rtol, ...}", kTable, true}}, 2);
-  auto* ctx = static_cast<Context*>(lua_touserdata(L, lua_upvalueindex(1)));
-  bool progress = true;
-  const RunSettings rs = read_run_settings(L, 2, *sc, ctx, false, &progress);
-  check_unread_args(L, *ctx, "start");
-  // a live simulation runs to the times its script names: said once, before anything runs
-  if (ctx->overrides.has("t_end") && !ctx->t_end_warned) {
-    ctx->t_end_warned = true;
-    std::fprintf(stderr,
-                 "beltsim: warning: --t-end %s s shortens scene:run only; %s's simulation (scene:start) runs to the "
-                 "times its sim:run_to and sim:advance name\n",
-                 rounded_text(ctx->overrides.run.t_end).c_str(),
-                 ctx->script.empty() ? "the console" : ctx->script.c_str());
-  }
-  std::unique_ptr<Simulation> sim;
-  std::string error;
-  KeyPath about;
-  try {
-    const HostWork work;  // beltsim's own work, not Lua code (lua_clock.hpp)
-    sim = std::make_unique<Simulation>(*sc, rs);
-  } catch (const ParameterError& e) {
-    error = setting_error("start", e, about);
-  } catch (const std::exception& e) {  // an output that cannot be written, a folder in use
-    error = std::string("start: ") + e.what();
-  }
-  if (!error.empty()) fail_at(L, about, error);
-  push_simulation(L, std::move(sim), ctx, progress);
-  return 1;
 }
 
 }  // namespace beltsim::script

@@ -1,6 +1,6 @@
-// Lua bindings of a scene's runs: scene:run{} and scene:start{}, the run settings they share (one
-// table of keys and readers), and the readers of μ and frames that the live simulation's methods
-// use too. The C++ classes know nothing of Lua.
+// The run settings of scene:run{} and scene:start{} (lua_scene_run.hpp) read from their tables (one
+// table of keys and readers), and the readers of μ, wet stretches and frames that the live
+// simulation's methods (lua_sim.hpp) use too. The C++ classes know nothing of Lua.
 #pragma once
 
 #include <optional>
@@ -49,16 +49,11 @@ FrameSettings to_frames(lua_State* L, int idx, const std::string& where, const s
 // the settings of scene:run{} (batch) or scene:start{} (live), command-line overrides applied
 RunSettings read_run_settings(lua_State* L, int idx, const Scene& sc, Context* ctx, bool batch, bool* progress);
 
-// scene:run{...} -> result table; scene:start{...} -> sim at t = 0. Each takes the Context as its
-// first upvalue (open_scene registers them).
 // "stopped at its wall-time limit (max_wall = LIMIT s) at t = T s of TARGET s; the outputs up to
 // then are in DIR": a run's or a live simulation's call's message, after the caller's name
 std::string wall_limit_text(double limit, double t, double target, const std::string& outputs);
 
 // pushes a checked run's estimate (sim/run_check.hpp) as { speed, tension, limit, over, warned_t, failed }
 void push_check(lua_State* L, const CheckEstimate& c);
-
-int l_scene_run(lua_State* L);
-int l_scene_start(lua_State* L);
 
 }  // namespace beltsim::script

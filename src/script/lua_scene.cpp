@@ -25,10 +25,8 @@
 #include "scene/validate.hpp"
 #include "script/context.hpp"
 #include "script/key_line.hpp"
-#include "script/lua_api.hpp"
 #include "script/lua_clock.hpp"
 #include "script/lua_law.hpp"
-#include "script/lua_run.hpp"
 
 namespace beltsim::script {
 
@@ -558,6 +556,14 @@ int l_integrators(lua_State* L) {
 
 }  // namespace
 
+void add_scene_method(lua_State* L, const char* name, lua_CFunction f, Context* ctx) {
+  luaL_getmetatable(L, kSceneMeta);
+  lua_getfield(L, -1, "methods");
+  lua_pushlightuserdata(L, ctx);
+  lua_pushcclosure(L, f, 1), lua_setfield(L, -2, name);
+  lua_pop(L, 2);
+}
+
 void open_scene(lua_State* L, Context* ctx) {
   luaL_newmetatable(L, kSceneMeta);
   lua_pushcfunction(L, l_scene_gc), lua_setfield(L, -2, "__gc");
@@ -566,10 +572,6 @@ void open_scene(lua_State* L, Context* ctx) {
   lua_newtable(L);
   lua_pushcfunction(L, l_scene_info), lua_setfield(L, -2, "info");
   lua_pushcfunction(L, l_scene_element_near), lua_setfield(L, -2, "element_near");
-  lua_pushlightuserdata(L, ctx);
-  lua_pushcclosure(L, l_scene_run, 1), lua_setfield(L, -2, "run");
-  lua_pushlightuserdata(L, ctx);
-  lua_pushcclosure(L, l_scene_start, 1), lua_setfield(L, -2, "start");
   lua_pushvalue(L, -1);
   lua_setfield(L, -3, "methods");  // for the console's completion (read raw)
   lua_pushstring(L, "scene");

@@ -11,7 +11,7 @@
 #include <exception>
 #include <string_view>
 
-#include "io/png_writer.hpp"
+#include "media/png_writer.hpp"
 
 extern char** environ;
 

@@ -5,7 +5,7 @@ where), a stretch dragged out on the picture fills the wet form with those eleme
 coordinates and Wet lands it in events.csv, a torque set on the page lands in events.csv at that
 time, Continue lets the run finish whole. The picture of the run paused at a run-to time asked for before the run began (t = 0.05 s,
 so always the same state) is compared with tests/golden/live_page_frame.png by the goldens'
-metric (`beltsim compare`, io/image_compare.hpp). Each step waits for what the page shows
+metric (`beltsim compare`, media/image_compare.hpp). Each step waits for what the page shows
 (WebDriverWait), no sleeps. Exit 77 (skipped) without selenium or chromium-driver.
 
 usage: browser_test.py BELTSIM [--update-golden]

@@ -10,8 +10,8 @@
 #include <map>
 #include <string>
 
-#include "io/png_writer.hpp"
-#include "io/video_writer.hpp"
+#include "media/png_writer.hpp"
+#include "media/video_writer.hpp"
 #include "support/scratch.hpp"
 
 namespace beltsim {

@@ -16,8 +16,8 @@
 #include <vector>
 
 #include "io/number_text.hpp"
-#include "io/png_writer.hpp"
 #include "io/units.hpp"
+#include "media/png_writer.hpp"
 #include "plot/gnuplot.hpp"
 #include "plot/plot.hpp"
 #include "plot/wp_plot.hpp"

@@ -1,5 +1,5 @@
 // Golden images: small deterministic frames rendered with OSMesa (llvmpipe, pinned by the test's
-// GALLIUM_DRIVER=llvmpipe) compared with tests/golden/*.png by the goldens' metric (io/image_compare.hpp,
+// GALLIUM_DRIVER=llvmpipe) compared with tests/golden/*.png by the goldens' metric (media/image_compare.hpp,
 // also `beltsim compare`): a pixel differs when any channel differs by more than 16 of 255 levels;
 // an image fails when more than 12 pixels differ. The tests below check that the metric catches a
 // colour map one band off and an element shifted by half its thickness. A FreeType or font upgrade
@@ -16,8 +16,8 @@
 
 #include <cmath>
 
-#include "io/image_compare.hpp"
-#include "io/png_writer.hpp"
+#include "media/image_compare.hpp"
+#include "media/png_writer.hpp"
 #include "plot/plot.hpp"
 #include "render/recorder.hpp"
 #include "sim/simulation.hpp"

@@ -13,7 +13,7 @@
 #include <string>
 #include <thread>
 
-#include "io/video_writer.hpp"
+#include "media/video_writer.hpp"
 #include "render/gl_context.hpp"
 #include "script/interpreter.hpp"
 #include "run_script.hpp"

@@ -9,7 +9,7 @@
 #include <filesystem>
 #include <string>
 
-#include "io/png_writer.hpp"
+#include "media/png_writer.hpp"
 #include "term/term_image.hpp"
 #include "support/scratch.hpp"
 

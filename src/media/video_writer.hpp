@@ -8,7 +8,7 @@
 #include <memory>
 #include <string>
 
-#include "io/image.hpp"
+#include "media/image.hpp"
 
 namespace beltsim {
 

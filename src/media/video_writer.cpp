@@ -1,4 +1,4 @@
-#include "io/video_writer.hpp"
+#include "media/video_writer.hpp"
 
 #include <fcntl.h>
 #include <unistd.h>

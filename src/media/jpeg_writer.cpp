@@ -1,4 +1,4 @@
-#include "io/jpeg_writer.hpp"
+#include "media/jpeg_writer.hpp"
 
 #include <turbojpeg.h>
 

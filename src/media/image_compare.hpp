@@ -12,7 +12,7 @@
 //   leaves room for that on every pixel, and 12 pixels for a few edge pixels whose coverage flips.
 #pragma once
 
-#include "io/image.hpp"
+#include "media/image.hpp"
 
 namespace beltsim {
 

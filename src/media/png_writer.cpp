@@ -1,4 +1,4 @@
-#include "io/png_writer.hpp"
+#include "media/png_writer.hpp"
 
 #include <png.h>
 

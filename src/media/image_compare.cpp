@@ -1,4 +1,4 @@
-#include "io/image_compare.hpp"
+#include "media/image_compare.hpp"
 
 #include <algorithm>
 #include <cstdlib>

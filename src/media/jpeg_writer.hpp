@@ -6,7 +6,7 @@
 
 #include <string>
 
-#include "io/image.hpp"
+#include "media/image.hpp"
 
 namespace beltsim {
 

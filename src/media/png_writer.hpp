@@ -5,8 +5,8 @@
 
 #include <string>
 
-#include "io/image.hpp"
 #include "io/output_dir.hpp"
+#include "media/image.hpp"
 
 namespace beltsim {
 
