@@ -237,6 +237,27 @@ class Live(unittest.TestCase):
         self.assertEqual(len(rows), 1 + round(T_END / SAMPLE) + 1)  # the header, t = 0 .. T_END
         self.assertAlmostEqual(float(rows[-1].split(",")[0]), T_END, places=12)
 
+    def test_a_client_that_reads_nothing_does_not_hold_the_run(self):
+        # a page that stopped reading: the stream and a pipeline of picture requests asked for on
+        # sockets with the smallest receive buffer, never read; the server's writes to them fill
+        # and block, and the run must go on to its end with its outputs whole (the cost of such a
+        # client is BM_Serve's "stalled" case, bench/serve_bench.cpp)
+        q = "?token=" + self.token
+        held = []
+        for request in ["GET /events%s HTTP/1.1\r\nHost: x\r\n\r\n" % q,
+                        "GET /frame.jpg%s HTTP/1.1\r\nHost: x\r\n\r\n" % q * 200]:
+            s = socket.socket()
+            s.setsockopt(socket.SOL_SOCKET, socket.SO_RCVBUF, 1024)
+            s.connect((self.url.hostname, self.url.port))
+            s.sendall(request.encode())
+            held.append(s)
+        self.addCleanup(lambda: [s.close() for s in held])
+        self.assertEqual(self.proc.wait(timeout=300), 0, "".join(self.stderr) + self.proc.stderr.read().decode())
+        with open(os.path.join(self.dir, "out", "timeseries.csv")) as f:
+            rows = f.read().splitlines()
+        self.assertEqual(len(rows), 1 + round(T_END / SAMPLE) + 1)  # the header, t = 0 .. T_END
+        self.assertAlmostEqual(float(rows[-1].split(",")[0]), T_END, places=12)
+
 
 class ServeOption(unittest.TestCase):
     """--serve takes a port only when a number follows it (or with =): `run --serve S.lua` serves
