@@ -14,9 +14,9 @@
 // rasteriser threads and the server's count) and their ratios cpu_served/plain,
 // cpu_watched/plain, which a loaded machine's noise disturbs far less than wall time (on a busy
 // 2-core machine each CPU second of the live view is taken from the run).
+#include <arpa/inet.h>
 #include <benchmark/benchmark.h>
 #include <httplib.h>
-#include <arpa/inet.h>
 #include <netinet/in.h>
 #include <sys/resource.h>
 #include <sys/socket.h>

@@ -13,6 +13,12 @@
 namespace beltsim::app {
 
 int cmd_run(const std::string& script, const script::Overrides& o, const script::Safety& s);
+// runs script in lua up to its first scene:run{}, which it captures (the script stops there):
+// --set reaches the script, and --t-end too when t_end_to_script; a key the script reads after that
+// point cannot be known and is a warning of `command` ("wp"). Throws when the script never calls
+// scene:run{}. lua stays the caller's: a scene's Lua laws live in it.
+script::Captured capture_first_run(script::Interpreter& lua, const std::string& script, const script::Overrides& o,
+                                   const char* command, bool t_end_to_script);
 int cmd_wp(const std::string& script, const script::Overrides& o, const script::Safety& s, WpSettings wps);
 int cmd_console(const std::optional<std::string>& script, const std::vector<std::string>& args,
                 const script::Overrides& o, const script::Safety& s, const Environment& env);

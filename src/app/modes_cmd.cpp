@@ -156,17 +156,9 @@ int campbell_modes(const std::string& script, const Scene& sc, const RunSettings
 int cmd_modes(const std::string& script, const script::Overrides& o, const script::Safety& s, const Raw& raw) {
   try {
     const ModeSettings ms = mode_settings(raw);
-    script::Captured cap;
     script::Interpreter lua(s);
     const script::Interruptible on_signal(lua);
-    script::Overrides captured;  // --set reaches the script; --out is the command's own folder
-    captured.set = o.set;
-    lua.set_overrides(captured);
-    lua.set_capture(&cap);
-    lua.run_file(script);
-    if (!cap.scene) throw std::runtime_error(script + ": the script never calls scene:run{}");
-    for (const std::string& m : lua.unread_args(script))
-      std::fprintf(stderr, "beltsim modes: warning: %s (before its first scene:run{})\n", m.c_str());
+    const script::Captured cap = capture_first_run(lua, script, o, "modes", false);
     RunSettings rs = cap.settings;
     if (o.has("t_end")) rs.t_end = o.run.t_end;
     rs.out_dir = o.has("out") ? o.run.out_dir : (fs::path("out") / fs::path(script).stem() / "modes").string();

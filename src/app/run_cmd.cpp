@@ -41,22 +41,27 @@ int cmd_run(const std::string& script, const script::Overrides& o, const script:
   return 0;
 }
 
+script::Captured capture_first_run(script::Interpreter& lua, const std::string& script, const script::Overrides& o,
+                                   const char* command, bool t_end_to_script) {
+  script::Captured cap;
+  script::Overrides captured;  // --out is the command's own folder
+  if (t_end_to_script && o.has("t_end")) captured.run.t_end = o.run.t_end, captured.give("t_end");
+  captured.set = o.set;
+  lua.set_overrides(captured);
+  lua.set_capture(&cap);
+  lua.run_file(script);
+  if (!cap.scene) throw std::runtime_error(script + ": the script never calls scene:run{}");
+  for (const std::string& m : lua.unread_args(script))
+    std::fprintf(stderr, "beltsim %s: warning: %s (before its first scene:run{})\n", command, m.c_str());
+  return cap;
+}
+
 int cmd_wp(const std::string& script, const script::Overrides& o, const script::Safety& s,
            WpSettings wps) {
   try {
-    script::Captured cap;
     script::Interpreter lua(s);
     const script::Interruptible on_signal(lua);
-    script::Overrides captured;  // --t-end and --set reach the script; --out is wp's own folder
-    if (o.has("t_end")) captured.run.t_end = o.run.t_end, captured.give("t_end");
-    captured.set = o.set;
-    lua.set_overrides(captured);
-    lua.set_capture(&cap);
-    lua.run_file(script);
-    if (!cap.scene) throw std::runtime_error(script + ": the script never calls scene:run{}");
-    // the script stops at its first scene:run{}: a key read after it cannot be known (a warning)
-    for (const std::string& m : lua.unread_args(script))
-      std::fprintf(stderr, "beltsim wp: warning: %s (before its first scene:run{})\n", m.c_str());
+    const script::Captured cap = capture_first_run(lua, script, o, "wp", true);
     wps.base = cap.settings;
     wps.base.out_dir = o.has("out") ? o.run.out_dir : (fs::path("out") / fs::path(script).stem() / "wp").string();
     const WpResult r = work_precision(*cap.scene, wps, &stop_flag());
