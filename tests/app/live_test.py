@@ -83,6 +83,14 @@ class Live(unittest.TestCase):
         self.proc.wait()
         self.proc.stderr.close()
 
+    def assert_run_whole(self):
+        """the run ends with exit 0 and every sample of timeseries.csv written"""
+        self.assertEqual(self.proc.wait(timeout=300), 0, "".join(self.stderr) + self.proc.stderr.read().decode())
+        with open(os.path.join(self.dir, "out", "timeseries.csv")) as f:
+            rows = f.read().splitlines()
+        self.assertEqual(len(rows), 1 + round(T_END / SAMPLE) + 1)  # the header, t = 0 .. T_END
+        self.assertAlmostEqual(float(rows[-1].split(",")[0]), T_END, places=12)
+
     def get(self, path):
         c = http.client.HTTPConnection(self.url.hostname, self.url.port, timeout=30)
         c.request("GET", path)
@@ -231,11 +239,7 @@ class Live(unittest.TestCase):
         self.assertLess(times[-1], T_END)  # read mid-run
         c.close()  # the client leaves mid-run
 
-        self.assertEqual(self.proc.wait(timeout=300), 0, "".join(self.stderr) + self.proc.stderr.read().decode())
-        with open(os.path.join(self.dir, "out", "timeseries.csv")) as f:
-            rows = f.read().splitlines()
-        self.assertEqual(len(rows), 1 + round(T_END / SAMPLE) + 1)  # the header, t = 0 .. T_END
-        self.assertAlmostEqual(float(rows[-1].split(",")[0]), T_END, places=12)
+        self.assert_run_whole()
 
     def test_a_client_that_reads_nothing_does_not_hold_the_run(self):
         # a page that stopped reading: the stream and a pipeline of picture requests asked for on
@@ -252,11 +256,7 @@ class Live(unittest.TestCase):
             s.sendall(request.encode())
             held.append(s)
         self.addCleanup(lambda: [s.close() for s in held])
-        self.assertEqual(self.proc.wait(timeout=300), 0, "".join(self.stderr) + self.proc.stderr.read().decode())
-        with open(os.path.join(self.dir, "out", "timeseries.csv")) as f:
-            rows = f.read().splitlines()
-        self.assertEqual(len(rows), 1 + round(T_END / SAMPLE) + 1)  # the header, t = 0 .. T_END
-        self.assertAlmostEqual(float(rows[-1].split(",")[0]), T_END, places=12)
+        self.assert_run_whole()
 
 
 class ServeOption(unittest.TestCase):
@@ -301,17 +301,19 @@ class ConsoleAndPage(unittest.TestCase):
     (never interleaved), and session.lua replays them where they came: the replay's events.csv and
     timeseries.csv are the session's, byte for byte"""
 
-    def test_page_changes_in_events_and_session(self):
-        d = tempfile.mkdtemp(prefix="beltsim_live_console_")
+    def console(self, prefix, stdout):
+        """a console on the two-pulley drive's simulation (sim) with --serve, in a folder of its own"""
+        d = tempfile.mkdtemp(prefix=prefix)
         self.addCleanup(shutil.rmtree, d, True)
         with open(os.path.join(d, "c.lua"), "w") as f:
             f.write(two_pulley(elements=40) + "sim = drive:start { out = \"out\", sample = %r }\n" % SAMPLE)
         proc = subprocess.Popen([BELTSIM, "console", "c.lua", "--serve"], cwd=d, stdin=subprocess.PIPE,
-                                stdout=subprocess.DEVNULL, stderr=subprocess.PIPE)
+                                stdout=stdout, stderr=subprocess.PIPE)
         self.addCleanup(proc.kill)
-        # the console's commands are waiting on its input before the page does anything
-        proc.stdin.write(b"sim:run_to(0.6)\nsim:set_torque('driven', -30)\n")
-        proc.stdin.close()
+        return d, proc
+
+    def page(self, proc):
+        """the console's page: a Live on its address, the stream's connection and its statuses"""
         for line in proc.stderr:
             if b"live view at " in line:
                 url = urllib.parse.urlsplit(line.decode().split("live view at ")[1].strip())
@@ -320,7 +322,23 @@ class ConsoleAndPage(unittest.TestCase):
         live.url, live.token = url, urllib.parse.parse_qs(url.query)["token"][0]
         c = http.client.HTTPConnection(url.hostname, url.port, timeout=60)
         c.request("GET", "/events?token=" + live.token)
-        it = live.statuses(c.getresponse())
+        return live, c, live.statuses(c.getresponse())
+
+    def replay(self, d, session):
+        """session (relative to d) run alone in d/replay, which it returns"""
+        r = os.path.join(d, "replay")
+        os.mkdir(r)
+        shutil.copy(os.path.join(d, session), os.path.join(r, "session.lua"))
+        p = subprocess.run([BELTSIM, "run", "session.lua"], cwd=r, capture_output=True, text=True, timeout=300)
+        self.assertEqual(p.returncode, 0, p.stderr)
+        return r
+
+    def test_page_changes_in_events_and_session(self):
+        d, proc = self.console("beltsim_live_console_", subprocess.DEVNULL)
+        # the console's commands are waiting on its input before the page does anything
+        proc.stdin.write(b"sim:run_to(0.6)\nsim:set_torque('driven', -30)\n")
+        proc.stdin.close()
+        live, c, it = self.page(proc)
         for _ in it:
             if live.t:
                 break
@@ -348,11 +366,7 @@ class ConsoleAndPage(unittest.TestCase):
             "sim:run_to(0.6)", "sim:set_torque('driven', -30)"]]
         self.assertEqual(at, sorted(at), text)
         # the replay: the same outputs
-        r = os.path.join(d, "replay")
-        os.mkdir(r)
-        shutil.copy(os.path.join(d, session), os.path.join(r, "session.lua"))
-        p = subprocess.run([BELTSIM, "run", "session.lua"], cwd=r, capture_output=True, text=True, timeout=300)
-        self.assertEqual(p.returncode, 0, p.stderr)
+        r = self.replay(d, session)
         with open(os.path.join(d, "out", "events.csv")) as a, open(os.path.join(r, "out", "events.csv")) as b:
             self.assertEqual(a.read(), b.read())
         # every sample, the interval means of the sample interval that holds the page's change too
@@ -369,22 +383,8 @@ class ConsoleAndPage(unittest.TestCase):
         is applied there, at T (no run needed): the status says so, the console's next
         inspection reads it, events.csv has it at T, session.lua has it before the next run and
         its replay gives the same events.csv and timeseries.csv"""
-        d = tempfile.mkdtemp(prefix="beltsim_live_prompt_")
-        self.addCleanup(shutil.rmtree, d, True)
-        with open(os.path.join(d, "c.lua"), "w") as f:
-            f.write(two_pulley(elements=40) + "sim = drive:start { out = \"out\", sample = %r }\n" % SAMPLE)
-        proc = subprocess.Popen([BELTSIM, "console", "c.lua", "--serve"], cwd=d, stdin=subprocess.PIPE,
-                                stdout=subprocess.PIPE, stderr=subprocess.PIPE)
-        self.addCleanup(proc.kill)
-        for line in proc.stderr:
-            if b"live view at " in line:
-                url = urllib.parse.urlsplit(line.decode().split("live view at ")[1].strip())
-                break
-        live = Live()
-        live.url, live.token = url, urllib.parse.parse_qs(url.query)["token"][0]
-        c = http.client.HTTPConnection(url.hostname, url.port, timeout=60)
-        c.request("GET", "/events?token=" + live.token)
-        it = live.statuses(c.getresponse())
+        d, proc = self.console("beltsim_live_prompt_", subprocess.PIPE)
+        live, c, it = self.page(proc)
         t_pause = 0.05
         proc.stdin.write(b"sim:run_to(%r)\n" % t_pause)
         proc.stdin.flush()
@@ -408,11 +408,7 @@ class ConsoleAndPage(unittest.TestCase):
         at = [text.index("\n" + s) for s in [
             "sim:run_to(%r)" % t_pause, 'sim:set_torque("driven", -65)', "print('torque'", "sim:run_to(0.1)"]]
         self.assertEqual(at, sorted(at), text)
-        r = os.path.join(d, "replay")
-        os.mkdir(r)
-        shutil.copy(os.path.join(d, session), os.path.join(r, "session.lua"))
-        p = subprocess.run([BELTSIM, "run", "session.lua"], cwd=r, capture_output=True, text=True, timeout=300)
-        self.assertEqual(p.returncode, 0, p.stderr)
+        r = self.replay(d, session)
         for name in ["events.csv", "timeseries.csv"]:
             with open(os.path.join(d, "out", name)) as a, open(os.path.join(r, "out", name)) as b:
                 self.assertEqual(a.read(), b.read(), name)
