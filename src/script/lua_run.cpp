@@ -381,11 +381,13 @@ RunSettings read_run_settings(lua_State* L, int idx, const Scene& sc, Context* c
 }
 
 void push_check(lua_State* L, const CheckEstimate& c) {
-  lua_createtable(L, 0, 6);
+  lua_createtable(L, 0, 8);
   lua_pushnumber(L, c.err_speed), lua_setfield(L, -2, "speed");
   lua_pushnumber(L, c.err_tension), lua_setfield(L, -2, "tension");
   lua_pushnumber(L, c.limit()), lua_setfield(L, -2, "limit");
   lua_pushboolean(L, c.over()), lua_setfield(L, -2, "over");
+  lua_pushnumber(L, c.steps_ratio), lua_setfield(L, -2, "steps_ratio");
+  lua_pushboolean(L, c.shared()), lua_setfield(L, -2, "shared");
   if (c.warned_t >= 0) lua_pushnumber(L, c.warned_t), lua_setfield(L, -2, "warned_t");
   if (!c.failed.empty()) lua_pushstring(L, c.failed.c_str()), lua_setfield(L, -2, "failed");
 }

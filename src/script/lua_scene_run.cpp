@@ -77,7 +77,7 @@ int l_scene_run(lua_State* L) {
   if (res.interrupted) ctx->interrupted = true;
   if (!res.warning_summary.empty()) std::fprintf(stderr, "beltsim: %s\n", res.warning_summary.c_str());
   if (!res.check_line.empty())
-    std::fprintf(stderr, "beltsim: %s%s\n", res.check.over() ? "warning: " : "", res.check_line.c_str());
+    std::fprintf(stderr, "beltsim: %s%s\n", res.check.warns() ? "warning: " : "", res.check_line.c_str());
 
   lua_newtable(L);
   lua_pushnumber(L, res.t_reached), lua_setfield(L, -2, "t");

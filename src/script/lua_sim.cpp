@@ -396,7 +396,7 @@ int l_close(lua_State* L) {
   if (was_open) {
     if (const std::string w = box->sim->warning_summary(); !w.empty()) std::fprintf(stderr, "beltsim: %s\n", w.c_str());
     if (const std::string c = box->sim->check_line(); !c.empty())
-      std::fprintf(stderr, "beltsim: %s%s\n", box->sim->check_estimate().over() ? "warning: " : "", c.c_str());
+      std::fprintf(stderr, "beltsim: %s%s\n", box->sim->check_estimate().warns() ? "warning: " : "", c.c_str());
   }
   box->refs.clear();
   return 0;

@@ -36,7 +36,8 @@ RunCheck::RunCheck(const Scene& sc, const Drive& drive, const RunSettings& rs)
 
 RunCheck::~RunCheck() = default;
 
-void RunCheck::sample(double t, const Eigen::VectorXd& y, const Eigen::VectorXd* yc, const std::string& failed) {
+void RunCheck::sample(double t, const Eigen::VectorXd& y, const Eigen::VectorXd* yc, const std::string& failed,
+                      long run_steps) {
   if (!yc) {
     est_.failed = failed;
     return;
@@ -47,6 +48,7 @@ void RunCheck::sample(double t, const Eigen::VectorXd& y, const Eigen::VectorXd*
   tension_.add(t_.data(), sc_t_.data());
   est_.err_speed = speed_.error();
   est_.err_tension = tension_.error();
+  if (run_steps > 0) est_.steps_ratio = static_cast<double>(sys_->problem.counters.steps) / run_steps;
   if (est_.warned_t >= 0 || !est_.over()) return;
   est_.warned_t = t;
   if (!rs_.on_warning) return;
@@ -69,6 +71,11 @@ std::string RunCheck::line() const {
   else if (est_.warned_t >= 0)
     s += "; it passed " + rounded_text(kCheckLimit) + "×rtol at t = " + rounded_text(est_.warned_t) +
          " s, relative to the smaller values then";
+  if (est_.shared())
+    s += "; the companion took only " + rounded_text(est_.steps_ratio, 2) +
+         " times the run's steps (where the tolerance sets the steps, 2 to 4 times): something else sets them "
+         "(a falling friction curve's growth limit, failed iterations, the first step's limit), the two solutions "
+         "share that error and the estimate may be low; compare with a run at a tighter rtol";
   if (!est_.failed.empty())
     s += "; the companion stopped early, the estimate covers the run up to then: " + est_.failed;
   return s;
@@ -86,6 +93,10 @@ std::string RunCheck::parameter_rows() const {
   row("check.err_tension", value_text(est_.err_tension), "the same for the span tensions");
   row("check.limit", value_text(est_.limit()), "10×rtol: past it the run warned");
   row("check.over", est_.over() ? "1" : "0", "1: the estimate over the run is past the limit");
+  row("check.steps_ratio", value_text(est_.steps_ratio),
+      "the companion's accepted steps over the run's; below 1.3 the two share their steps and the estimate may be "
+      "low (where the tolerance sets the steps, 2 to 4)");
+  row("check.shared", est_.shared() ? "1" : "0", "1: the steps ratio is below 1.3, the closing line warned");
   row("check.warned_t", est_.warned_t >= 0 ? value_text(est_.warned_t) : std::string(),
       "simulated time [s] the estimate so far first passed the limit, when the run warned (empty: never)");
   row("check.failed", csv_text(est_.failed), "why the companion stopped early (empty: it did not)");

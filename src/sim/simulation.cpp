@@ -228,7 +228,7 @@ void Simulation::sample(double t, const Eigen::VectorXd& y) {
   }
   out_->sample(std::move(row));
   means_->start(t);  // the next interval starts here
-  if (check_) check_->sample(t, y, tl_->companion_state(), tl_->companion_failed());
+  if (check_) check_->sample(t, y, tl_->companion_state(), tl_->companion_failed(), sys_->problem.counters.steps);
 }
 
 void Simulation::snapshot(double t, const Eigen::VectorXd& y) {

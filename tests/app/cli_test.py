@@ -178,6 +178,32 @@ class Errors(unittest.TestCase):
         self.assertIn("\ncheck.err_speed,", text)
         self.assertIn("\ncheck.err_tension,", text)
 
+    def test_check_says_when_its_estimate_may_be_low(self):
+        # the companion at a tenth of the tolerance takes 2-4 times the run's steps where the
+        # tolerance sets them (the dry drive: 3.9 at rtol 1e-3), about as many where something
+        # else does (the light belt's first 0.1 s at rtol 1e-2: 1.02; its estimate of the speeds
+        # was 3.1e-5 against a true 5.1e-4, docs/integration.md), and then the closing line warns
+        scripts = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "scripts")
+        for script, sets, rtol, shared in [("light_belt.lua", ["--set", "n=60"], "1e-2", True),
+                                           ("paper_dry.lua", [], "1e-3", False)]:
+            out_dir = os.path.join(self.dir, script)
+            code, out, err = run(["run", os.path.join(scripts, script)] + sets +
+                                 ["--t-end", "0.1", "--rtol", rtol, "--check", "--no-frames", "--out", out_dir],
+                                 cwd=self.dir)
+            self.assertEqual(code, 0, err)
+            with open(os.path.join(out_dir, "parameters.csv")) as f:
+                rows = dict(line.split(",", 2)[:2] for line in f.read().splitlines() if line.startswith("check."))
+            ratio = float(rows["check.steps_ratio"])
+            if shared:
+                self.assertLess(ratio, 1.3, script)
+                self.assertEqual(rows["check.shared"], "1")
+                self.assertRegex(err, r"beltsim: warning: check: .*; the companion took only [0-9.]+ times the "
+                                 r"run's steps .* the estimate may be low")
+            else:
+                self.assertGreater(ratio, 2, script)
+                self.assertEqual(rows["check.shared"], "0")
+                self.assertNotIn("may be low", err)
+
     def test_a_set_key_that_is_a_reserved_word(self):
         path = self.script("print(beltsim.args['and'])\n")
         for key in ["and", "end", "nil", "goto"]:
