@@ -10,8 +10,10 @@
 //               does (the next when one has arrived, 66 ms later): frames drawn at up to 15/s
 //   stalled     --serve and a page that stopped reading: the stream and 200 picture requests asked
 //               for on sockets with the smallest receive buffer, never read
-// BM_ServeIdle: plain, again, served; 0.5 s simulated (about 0.7 s of CPU: the server's start,
-// about 2 ms, weighs 0.3 %), 30 rounds. BM_Serve: plain, watched, stalled; 2 s simulated (the
+// BM_ServeIdle: plain, again, served; 0.3 s simulated (about 0.45 s of CPU, of which the script's
+// set-up, the same in each case, takes 30 ms; the server's start, about 2 ms, weighs 0.5 %), 100
+// rounds: one run's CPU time differs from the next one's by some 4 % on a shared machine, whatever
+// the run's length, and many short rounds narrow the median's interval most for the CPU spent. BM_Serve: plain, watched, stalled; 2 s simulated (the
 // renderer's start, about 0.1 s of CPU once per run, weighs as little as in the long runs a page
 // watches), 4 rounds.
 // Counters: the plain run's median wall and CPU seconds; for each other case the median over the
@@ -208,11 +210,11 @@ void serve_rounds(benchmark::State& state, const std::vector<std::pair<Serve, co
 }
 
 // with no page open: the served run against the plain one, and the plain run again (what the
-// ratio of two identical runs shows: the resolution), short runs in many rounds
+// ratio of two identical runs shows: the resolution), short runs in many rounds (see the top)
 void BM_ServeIdle(benchmark::State& state) {
   serve_rounds(state, {{Serve::no, "plain"}, {Serve::again, "again"}, {Serve::served, "served"}});
 }
-BENCHMARK(BM_ServeIdle)->Unit(benchmark::kSecond)->Arg(500)->Iterations(30);
+BENCHMARK(BM_ServeIdle)->Unit(benchmark::kSecond)->Arg(300)->Iterations(100);
 
 // a page open: long runs (the renderer's start, once per run, weighs as in the long runs a page
 // watches)
