@@ -1,19 +1,29 @@
 // The live view's cost (docs/live-view.md), side by side in one run, each case a fresh interpreter
-// running the same batch run (the paper's dry drive, 60 elements, 2 s: several seconds of wall
-// time, so that the renderer's start, about 0.1 s of CPU once per run, weighs as little as in the
-// long runs a page watches; esdirk32 at rtol 1e-4, no frames to files); the three cases
-// interleaved in every iteration, in an order rotated from one to the next:
+// running the same batch run (the paper's dry drive, 60 elements; trbdf2 at rtol 1e-4, no frames
+// to files), the cases run in rounds: each case once a round, in an order rotated from one round to
+// the next:
 //   plain       no --serve
+//   again       no --serve, the plain run again: the ratio of two identical runs, what the machine
+//               resolves
 //   served      --serve, no page open: the samples published at 20 a wall second, nothing drawn
 //   watched     --serve and one client reading the stream and asking for the picture as a page
 //               does (the next when one has arrived, 66 ms later): frames drawn at up to 15/s
 //   stalled     --serve and a page that stopped reading: the stream and 200 picture requests asked
 //               for on sockets with the smallest receive buffer, never read
-// Counters: the mean wall seconds of each and served/plain, watched/plain, stalled/plain; the CPU seconds beltsim
-// spent in each (every thread of the process but the client's own: the frame thread, Mesa's
-// rasteriser threads and the server's count) and their ratios cpu_served/plain,
-// cpu_watched/plain, which a loaded machine's noise disturbs far less than wall time (on a busy
-// 2-core machine each CPU second of the live view is taken from the run).
+// The server is started, and has answered a request, before a run's clock starts: its start (about
+// 2 ms of CPU once, whatever the run's length) is reported apart (start_cpu_ms, the last case's).
+// BM_ServeIdle: plain, again, served; 0.3 s simulated (about 0.3 s of CPU, of which the script's
+// set-up, the same in each case, takes 30 ms), 100 rounds: one run's CPU time differs from the next
+// one's by some 4 % on a shared machine, whatever the run's length, and many short rounds narrow
+// the median's interval most for the CPU spent.
+// BM_Serve: plain, watched, stalled; 2 s simulated (the renderer's start, about 0.1 s of CPU once
+// per run, weighs as little as in the long runs a page watches), 4 rounds.
+// Counters: the plain run's median wall and CPU seconds; for each other case the median over the
+// rounds of its wall time over the plain run's of the same round (served/plain, ...), and of its CPU
+// time (cpu_served/plain: every thread of the process but the client's own, the frame thread,
+// Mesa's rasteriser threads and the server's included), with that median's 95 % confidence
+// interval (cpu_served/plain_lo95, _hi95). On a busy 2-core machine each CPU second of the live
+// view is taken from the run, and wall time is mostly the other users' load.
 #include <arpa/inet.h>
 #include <benchmark/benchmark.h>
 #include <httplib.h>
@@ -23,8 +33,10 @@
 #include <time.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <atomic>
 #include <chrono>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <string>
@@ -41,10 +53,9 @@ const char* kServeScene =
     "local s = beltsim.scene { pulleys = {\n"
     "  { name = 'driver', centre = {0, 0}, radius = 0.1, torque = beltsim.ramp(0.3, -70) },\n"
     "  { name = 'driven', centre = {0.29, 0}, radius = 0.1, torque = { per_speed = -70 / beltsim.rpm(700) } } },\n"
-    "  belt = { elements = 60, pretension = 500, direction = 'cw' } }\n"
-    "s:run{ t_end = 2, progress = false }\n";
+    "  belt = { elements = 60, pretension = 500, direction = 'cw' } }\n";
 
-enum class Serve { no, served, watched, stalled };
+enum class Serve { no, again, served, watched, stalled };
 
 // [s] of CPU this thread has used
 double thread_cpu() {
@@ -103,20 +114,29 @@ std::vector<int> stall(const std::string& url) {
 }
 
 struct Cost {
-  double wall = 0, cpu = 0;  // [s]
+  double wall = 0, cpu = 0;  // [s] the run's
+  double start = 0;          // [s] of CPU: the server's start (served cases)
 };
 
-Cost run_served(Serve how, long* frames) {
+Cost run_served(Serve how, double t_end, long* frames) {
   const fs::path dir = fs::temp_directory_path() / ("beltsim_serve_bench_" + std::to_string(getpid()));
   fs::create_directories(dir);
   const fs::path p = dir / "serve.lua";
-  std::ofstream(p) << kServeScene;
+  std::ofstream(p) << kServeScene << "s:run{ t_end = " << t_end << ", progress = false }\n";
   beltsim::script::Interpreter lua;
   beltsim::script::Overrides o;
   o.run.out_dir = (dir / "out").string(), o.give("out");
   lua.set_overrides(o);
   std::string url;
-  if (how != Serve::no) url = lua.serve(0);
+  Cost c;
+  if (how == Serve::served || how == Serve::watched || how == Serve::stalled) {
+    // the server started and answering (cpp-httplib's workers made) before the run's clock starts:
+    // its start, once per run whatever the run's length, is reported apart
+    const double cpu = process_cpu();
+    url = lua.serve(0);
+    httplib::Client(url.substr(7, url.find("/?token=") - 7)).Get("/");  // 403: no token, no client
+    c.start = process_cpu() - cpu;
+  }
   std::atomic<bool> done{false};
   std::atomic<double> client_cpu{0};
   std::thread client;
@@ -125,7 +145,6 @@ Cost run_served(Serve how, long* frames) {
   const double cpu0 = process_cpu();
   const auto t0 = std::chrono::steady_clock::now();
   lua.run_file(p.string());
-  Cost c;
   c.wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   c.cpu = process_cpu() - cpu0;
   done = true;
@@ -137,40 +156,82 @@ Cost run_served(Serve how, long* frames) {
   return c;
 }
 
-void BM_Serve(benchmark::State& state) {
-  double plain = 0, served = 0, watched = 0, stalled = 0, cpu_plain = 0, cpu_served = 0, cpu_watched = 0,
-         cpu_stalled = 0;
-  long n = 0, frames = 0;
-  // a first run, not counted, and the cases' order rotated from one iteration to the next: the
-  // first run of a process and the first of each three cases were the slowest (on the quiet machine the
-  // plain run, always first, took 11 % more CPU than the served one after it), and each case is
-  // first equally often
-  long unused = 0;
-  run_served(Serve::no, &unused);
-  const Serve order[4] = {Serve::no, Serve::served, Serve::watched, Serve::stalled};
-  for (auto _ : state) {
-    for (int k = 0; k < 4; ++k) {
-      const Serve how = order[(k + n) % 4];
-      const Cost c = run_served(how, &frames);
-      if (how == Serve::no) plain += c.wall, cpu_plain += c.cpu;
-      if (how == Serve::served) served += c.wall, cpu_served += c.cpu;
-      if (how == Serve::watched) watched += c.wall, cpu_watched += c.cpu;
-      if (how == Serve::stalled) stalled += c.wall, cpu_stalled += c.cpu;
-    }
-    n++;
-  }
-  state.counters["cpu_plain_s"] = cpu_plain / n;
-  state.counters["cpu_served/plain"] = cpu_served / cpu_plain;
-  state.counters["cpu_watched/plain"] = cpu_watched / cpu_plain;
-  state.counters["plain_s"] = plain / n;
-  state.counters["served_s"] = served / n;
-  state.counters["watched_s"] = watched / n;
-  state.counters["served/plain"] = served / plain;
-  state.counters["watched/plain"] = watched / plain;
-  state.counters["frames_per_s"] = frames / watched;
-  state.counters["stalled/plain"] = stalled / plain;
-  state.counters["cpu_stalled/plain"] = cpu_stalled / cpu_plain;
+// the median of x and the 95 % confidence interval of it (distribution-free: the order statistics
+// of ranks n/2 -+ 0.98 sqrt(n), the normal approximation of the binomial; [min, max] for a few)
+struct Median {
+  double mid = 0, lo = 0, hi = 0;
+};
+Median median(std::vector<double> x) {
+  std::sort(x.begin(), x.end());
+  const size_t n = x.size();
+  const double half = 0.98 * std::sqrt(static_cast<double>(n));
+  Median m;
+  m.mid = n % 2 ? x[n / 2] : 0.5 * (x[n / 2 - 1] + x[n / 2]);
+  m.lo = x[static_cast<size_t>(std::max(0.0, std::floor(0.5 * n - half) - 1))];
+  m.hi = x[std::min(n - 1, static_cast<size_t>(std::ceil(0.5 * n + 1 + half) - 1))];
+  return m;
 }
-BENCHMARK(BM_Serve)->Unit(benchmark::kSecond)->Iterations(4);
+
+// state.range(0): the runs' simulated time [ms]; the cases compared with the plain run
+void serve_rounds(benchmark::State& state, const std::vector<std::pair<Serve, const char*>>& cases) {
+  const double t_end = 1e-3 * static_cast<double>(state.range(0));
+  const size_t n = cases.size();
+  std::vector<std::vector<Cost>> runs(n);  // runs[case][round]
+  long frames = 0, unused = 0;
+  double watched_wall = 0;
+  // a first run, not counted, and the cases' order rotated from one round to the next: the first
+  // run of a process and the first of each round were the slowest (on the quiet machine the plain
+  // run, always first, took 11 % more CPU than the served one after it), and each case is first
+  // equally often
+  run_served(Serve::no, t_end, &unused);
+  long round = 0;
+  for (auto _ : state) {
+    for (size_t k = 0; k < n; ++k) {
+      const size_t i = (k + static_cast<size_t>(round)) % n;
+      const Cost c = run_served(cases[i].first, t_end, &frames);
+      runs[i].push_back(c);
+      if (cases[i].first == Serve::watched) watched_wall += c.wall;
+    }
+    round++;
+  }
+  // each case against the plain run of the same round: the median of those ratios and its 95 %
+  // confidence interval, which says what this machine resolves now
+  const auto of = [&](size_t i, double Cost::*m) {
+    std::vector<double> x;
+    for (const Cost& c : runs[i]) x.push_back(c.*m);
+    return median(x).mid;
+  };
+  state.counters["plain_s"] = of(0, &Cost::wall);
+  state.counters["cpu_plain_s"] = of(0, &Cost::cpu);
+  state.counters["start_cpu_ms"] = 1e3 * of(n - 1, &Cost::start);
+  for (size_t i = 1; i < n; ++i) {
+    std::vector<double> wall, cpu;
+    for (size_t r = 0; r < runs[i].size(); ++r) {
+      wall.push_back(runs[i][r].wall / runs[0][r].wall);
+      cpu.push_back(runs[i][r].cpu / runs[0][r].cpu);
+    }
+    const std::string name = cases[i].second;
+    const Median c = median(cpu);
+    state.counters[name + "/plain"] = median(wall).mid;
+    state.counters["cpu_" + name + "/plain"] = c.mid;
+    state.counters["cpu_" + name + "/plain_lo95"] = c.lo;
+    state.counters["cpu_" + name + "/plain_hi95"] = c.hi;
+  }
+  if (watched_wall > 0) state.counters["frames_per_s"] = static_cast<double>(frames) / watched_wall;
+}
+
+// with no page open: the served run against the plain one, and the plain run again (what the
+// ratio of two identical runs shows: the resolution), short runs in many rounds (see the top)
+void BM_ServeIdle(benchmark::State& state) {
+  serve_rounds(state, {{Serve::no, "plain"}, {Serve::again, "again"}, {Serve::served, "served"}});
+}
+BENCHMARK(BM_ServeIdle)->Unit(benchmark::kSecond)->Arg(300)->Iterations(100);
+
+// a page open: long runs (the renderer's start, once per run, weighs as in the long runs a page
+// watches)
+void BM_Serve(benchmark::State& state) {
+  serve_rounds(state, {{Serve::no, "plain"}, {Serve::watched, "watched"}, {Serve::stalled, "stalled"}});
+}
+BENCHMARK(BM_Serve)->Unit(benchmark::kSecond)->Arg(2000)->Iterations(4);
 
 }  // namespace
