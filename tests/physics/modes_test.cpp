@@ -149,6 +149,10 @@ TEST(Modes, RunningSpanFollowsWickertMote) {
   EXPECT_NEAR(std::abs(vb), v, 0.01 * v);
   EXPECT_NEAR(T0, T1, 0.01 * T);
   EXPECT_NEAR(fv[0], expected, 0.02 * expected);
+  for (const Mode& md : a.modes)  // the command marks it checked (the axially moving string)
+    if (md.frequency == fv[0]) {
+      EXPECT_TRUE(mode_checked(a, md));
+    }
 }
 
 // 2. The two free pulleys of the paper's drive at rest (J = 0.025 kg·m² each, r = 0.1 m) turn
