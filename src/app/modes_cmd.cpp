@@ -100,22 +100,27 @@ void print_table(const Scene& sc, const ModeAnalysis& a) {
                             .c_str());
 }
 
-// --check K1,K2: each listed mode pushed and run on (sim/mode_check.hpp)
-void check_modes(const Scene& sc, const Drive& d, const Eigen::VectorXd& y, const ModeAnalysis& a,
-                 const std::string& list) {
+// --check K1,K2: the mode numbers (from 1, as listed), read before the run
+std::vector<size_t> check_list(const Raw& raw) {
   std::vector<size_t> ks;
-  std::stringstream in(list);
-  for (std::string p; std::getline(in, p, ',');) {
-    const int k = whole_number("--check", p, 1);
-    if (static_cast<size_t>(k) > a.modes.size())
-      throw UsageError("--check: there is no mode " + p + " (" + std::to_string(a.modes.size()) + " listed)");
-    ks.push_back(k - 1);
-  }
+  if (!raw.check) return ks;
+  std::stringstream in(*raw.check);
+  for (std::string p; std::getline(in, p, ',');) ks.push_back(static_cast<size_t>(whole_number("--check", p, 1)));
+  return ks;
+}
+
+// each listed mode pushed and run on (sim/mode_check.hpp)
+void check_modes(const Scene& sc, const Drive& d, const Eigen::VectorXd& y, const ModeAnalysis& a,
+                 const std::vector<size_t>& ks) {
+  for (size_t k : ks)
+    if (k > a.modes.size())
+      throw UsageError("--check: there is no mode " + std::to_string(k) + " (" + std::to_string(a.modes.size()) +
+                       " listed)");
   for (size_t k : ks) {
-    const Mode& m = a.modes[k];
-    const ModeCheck c = check_mode(sc, d, a.t, y, a, k);
-    std::printf("check of mode %zu (%.2f Hz, zeta %.4f): pushed and run on, watched at %s: ", k + 1, m.frequency,
-                m.damping, c.where.c_str());
+    const Mode& m = a.modes[k - 1];
+    const ModeCheck c = check_mode(sc, d, a.t, y, a, k - 1);
+    std::printf("check of mode %zu (%.2f Hz, zeta %.4f): pushed and run on, watched at %s: ", k, m.frequency, m.damping,
+                c.where.c_str());
     if (std::isnan(c.frequency))
       std::printf("no oscillation between %.3g and %.3g Hz", 0.25 * m.frequency, 4 * m.frequency);
     else
@@ -139,6 +144,7 @@ int point_modes(const std::string& script, const Scene& sc, RunSettings rs, cons
   const double at = raw.at ? number("--at", *raw.at) : rs.t_end;
   if (!(at >= 0)) throw UsageError("--at must be a time >= 0 [s], got '" + *raw.at + "'");
   const int shapes = raw.shapes ? whole_number("--shapes", *raw.shapes, 0) : 6;
+  const std::vector<size_t> checks = check_list(raw);
   rs.t_end = at;
   rs.frames.reset();
   Simulation sim(sc, rs);
@@ -150,7 +156,6 @@ int point_modes(const std::string& script, const Scene& sc, RunSettings rs, cons
   sim.close();
   std::printf("modes of %s\n", script.c_str());
   print_table(sc, a);
-  if (raw.check) check_modes(sc, d, y, a, *raw.check);
   const std::string csv = (fs::path(rs.out_dir) / "modes.csv").string();
   {
     CsvWriter w(csv, mode_columns(a));
@@ -162,6 +167,7 @@ int point_modes(const std::string& script, const Scene& sc, RunSettings rs, cons
   p.count = shapes;
   p.video = raw.video;
   for (const std::string& f : render::draw_modes(sc, d, y, a, p)) std::printf("%s\n", f.c_str());
+  check_modes(sc, d, y, a, checks);
   return 0;
 }
 
@@ -206,6 +212,8 @@ int cmd_modes(const std::string& script, const script::Overrides& o, const scrip
     RunSettings rs = cap.settings;
     if (o.has("t_end")) rs.t_end = o.run.t_end;
     rs.out_dir = o.has("out") ? o.run.out_dir : (fs::path("out") / fs::path(script).stem() / "modes").string();
+    if (raw.campbell && raw.check)
+      throw UsageError("--check checks the modes of one operating point (--at), not with --campbell");
     if (raw.campbell) return campbell_modes(script, *cap.scene, rs, raw, ms);
     return point_modes(script, *cap.scene, rs, raw, ms);
   } catch (const UsageError&) {

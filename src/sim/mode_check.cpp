@@ -89,10 +89,15 @@ std::vector<std::pair<cplx, double>> prony(const std::vector<double>& x, double 
   for (int j = 0; j < p; ++j) C(0, j) = a[j];
   for (int j = 1; j < p; ++j) C(j, j - 1) = 1;
   const Eigen::VectorXcd z = Eigen::EigenSolver<Eigen::MatrixXd>(C).eigenvalues();
+  // the amplitudes, each pole's column scaled to norm 1 (a spurious growing pole's column would
+  // otherwise be larger than the others by e^(Re s·window) and leave them none)
   Eigen::MatrixXcd V(K, p);
   for (int k = 0; k < K; ++k)
     for (int j = 0; j < p; ++j) V(k, j) = std::pow(z[j], k);
-  const Eigen::VectorXcd c = V.colPivHouseholderQr().solve(Eigen::VectorXd::Map(x.data(), K).cast<cplx>());
+  const Eigen::VectorXd norm = V.colwise().norm().transpose();
+  for (int j = 0; j < p; ++j) V.col(j) /= norm[j];
+  const Eigen::VectorXcd c =
+      V.colPivHouseholderQr().solve(Eigen::VectorXd::Map(x.data(), K).cast<cplx>()).cwiseQuotient(norm.cast<cplx>());
   std::vector<std::pair<cplx, double>> out;
   for (int j = 0; j < p; ++j)
     if (z[j].imag() > 0) out.emplace_back(std::log(z[j]) / dt, 2 * std::abs(c[j]));
