@@ -1,6 +1,7 @@
 #include "app/cli.hpp"
 
 #include <CLI/CLI.hpp>
+
 #include <algorithm>
 #include <cctype>
 #include <cstdio>
@@ -18,9 +19,8 @@ namespace {
 // runs in
 const CLI::Validator kNotEmpty(
     [](std::string& v) {
-      return v.empty() ? std::string(
-                             "an empty path (leave --out out for its default, or give '.' for the folder "
-                             "beltsim runs in)")
+      return v.empty() ? std::string("an empty path (leave --out out for its default, or give '.' for the folder "
+                                     "beltsim runs in)")
                        : std::string();
     },
     "");
@@ -184,17 +184,16 @@ std::optional<CommandLine> parse_command_line(int argc, char** argv, int* status
   CLI::App* run = app.add_subcommand("run", "run a Lua scenario script");
   run->add_option("SCRIPT", cl.script, "the scenario (Lua)")->required();
   add_run_overrides(run, raw);
-  run->footer(
-      "The options override the script's scene:run{} settings. Writes DIR/timeseries.csv (samples\n"
-      "at fixed times) and DIR/parameters.csv, and the frames (PNG) and video (MP4) a script asks\n"
-      "for with scene:run{ frames = {...} }.");
+  run->footer("The options override the script's scene:run{} settings. Writes DIR/timeseries.csv (samples\n"
+              "at fixed times) and DIR/parameters.csv, and the frames (PNG) and video (MP4) a script asks\n"
+              "for with scene:run{ frames = {...} }.");
 
   CLI::App* wp = app.add_subcommand("wp", "error against run time of integrators");
   wp->add_option("SCRIPT", cl.script, "the scenario (Lua): its first scene:run{} gives the scene")->required();
   add_out_and_t_end(wp, raw, "output folder (default: out/<script name>/wp)");
-  wp->add_option(
-        "--integrators", raw.integrators,
-        "those to study, separated by commas (default: esdirk32,trbdf2,cvode; any of: " + integrator_list() + ")")
+  wp->add_option("--integrators", raw.integrators,
+                 "those to study, separated by commas (default: esdirk32,trbdf2,cvode; any of: " + integrator_list() +
+                     ")")
       ->type_name("A,B,..");
   wp->add_option("--rtols", raw.rtols, "tolerances (default 1e-2,1e-3,1e-4,1e-5,1e-6)")->type_name("R1,R2,..");
   wp->add_option("--ref-rtol", raw.ref_rtol, "tolerance of the esdirk32 reference run (default 1e-7)")->type_name("R");
@@ -206,9 +205,8 @@ std::optional<CommandLine> parse_command_line(int argc, char** argv, int* status
       ->type_name("COLUMN");
   add_set(wp, raw);
   add_safety(wp, raw);
-  wp->footer(
-      "Runs the script's scene with each integrator at every tolerance, each against the\n"
-      "reference. Writes DIR/wp.csv, DIR/wp.png (log-log, gnuplot) and DIR/<integrator>-<rtol>/.");
+  wp->footer("Runs the script's scene with each integrator at every tolerance, each against the\n"
+             "reference. Writes DIR/wp.csv, DIR/wp.png (log-log, gnuplot) and DIR/<integrator>-<rtol>/.");
 
   CLI::App* modes = app.add_subcommand("modes", "natural frequencies, damping and mode shapes; a Campbell diagram");
   modes->add_option("SCRIPT", cl.script, "the scenario (Lua): its first scene:run{} gives the scene and settings")
@@ -220,9 +218,8 @@ std::optional<CommandLine> parse_command_line(int argc, char** argv, int* status
   modes->add_option("--fmax", raw.fmax, "leave out modes above this frequency (default 2000)")->type_name("HZ");
   modes->add_option("--shapes", raw.shapes, "draw the first N modes to DIR/shapes/mode_NN_<f>Hz.png (default 6)")
       ->type_name("N");
-  modes
-      ->add_option("--check", raw.check,
-                   "run the drive on from a push along these modes (numbers as listed) and compare (docs/modes.md)")
+  modes->add_option("--check", raw.check,
+                    "run the drive on from a push along these modes (numbers as listed) and compare (docs/modes.md)")
       ->type_name("K1,K2,..");
   modes->add_flag("--video", raw.video, "also a video of each drawn mode's cycles (.mp4 beside its PNG)");
   modes->add_option("--campbell", raw.campbell, "sweep this pulley's speed (held at each) for a Campbell diagram")
@@ -234,20 +231,18 @@ std::optional<CommandLine> parse_command_line(int argc, char** argv, int* status
       ->type_name("S");
   add_set(modes, raw);
   add_safety(modes, raw);
-  modes->footer(
-      "Linearizes the drive about its state at T in the space-fixed frame and writes DIR/modes.csv\n"
-      "(frequency, damping ratio, each span's, wrap's, pulley's, arm's and rotor's share of the mode's\n"
-      "kinetic energy) and the mode shapes' pictures. With --campbell: DIR/campbell.csv and\n"
-      "DIR/campbell.png. docs/modes.md says how, and what the numbers are checked against.");
+  modes->footer("Linearizes the drive about its state at T in the space-fixed frame and writes DIR/modes.csv\n"
+                "(frequency, damping ratio, each span's, wrap's, pulley's, arm's and rotor's share of the mode's\n"
+                "kinetic energy) and the mode shapes' pictures. With --campbell: DIR/campbell.csv and\n"
+                "DIR/campbell.png. docs/modes.md says how, and what the numbers are checked against.");
 
   CLI::App* plot = app.add_subcommand("plot", "draw columns of a timeseries.csv to a PNG");
   plot->add_option("CSV", cl.csv, "a timeseries.csv written by run")->required();
   plot->add_option("COLUMNS", cl.columns, "columns to draw (default: every <pulley>.omega)");
   plot->add_option("--out", raw.out, "the PNG (default: plot.png beside the CSV)")->type_name("PNG")->check(kNotEmpty);
   plot->add_option("--from", raw.from, "draw samples with t >= T only [s]")->type_name("T");
-  plot->footer(
-      "Prints the PNG's path; on a terminal also shows the picture (BELTSIM_TERM_IMAGES=off|symbols|\n"
-      "sixel|kitty|iterm forces a mode). Columns of two units share the plot on two y axes.");
+  plot->footer("Prints the PNG's path; on a terminal also shows the picture (BELTSIM_TERM_IMAGES=off|symbols|\n"
+               "sixel|kitty|iterm forces a mode). Columns of two units share the plot on two y axes.");
 
   CLI::App* summary = app.add_subcommand("summary", "review figures of a run over a time window");
   summary->add_option("DIR", cl.csv, "a run's output folder (its timeseries.csv and parameters.csv)")->required();
@@ -259,10 +254,9 @@ std::optional<CommandLine> parse_command_line(int argc, char** argv, int* status
   summary->add_option("--plot", raw.plot_out, "also draw the window's span tensions, arm angles and rotor speeds")
       ->type_name("PNG")
       ->check(kNotEmpty);
-  summary->footer(
-      "Per span the tension's mean, min and max; per pulley its mean speed, slip, slip arc, capstan\n"
-      "margin (T1/T2 against e^(mu*theta)) and hub load; tensioner arms' swing, decouplers' overruns,\n"
-      "the belt's power loss by channel (with energy = true). docs/summary.md says how each is made.");
+  summary->footer("Per span the tension's mean, min and max; per pulley its mean speed, slip, slip arc, capstan\n"
+                  "margin (T1/T2 against e^(mu*theta)) and hub load; tensioner arms' swing, decouplers' overruns,\n"
+                  "the belt's power loss by channel (with energy = true). docs/summary.md says how each is made.");
 
   add_render_command(app, cl.render);
   add_compare_command(app, cl.compare);
@@ -285,10 +279,9 @@ std::optional<CommandLine> parse_command_line(int argc, char** argv, int* status
   sweep->add_flag("--list", raw.list, "print the points (CSV) and run nothing");
   sweep->add_flag("--collect", raw.collect, "merge the points' results into summary.csv and run nothing");
   sweep->add_flag("--rerun", raw.rerun, "run every point again, done or not (with --slurm: every point in the array)");
-  sweep
-      ->add_option("--set", raw.set,
-                   "the quick form: FILE is an ordinary script and each KEY=V1,V2,.. one parameter "
-                   "(beltsim.args.KEY); the lists are crossed, the first varying slowest (repeatable)")
+  sweep->add_option("--set", raw.set,
+                    "the quick form: FILE is an ordinary script and each KEY=V1,V2,.. one parameter "
+                    "(beltsim.args.KEY); the lists are crossed, the first varying slowest (repeatable)")
       ->type_name("KEY=V1,V2,..")
       ->allow_extra_args(false);
   sweep->add_flag("--slurm", raw.slurm, "write DIR/sweep.sbatch (a job array) and DIR/collect.sbatch, run nothing");
@@ -299,11 +292,10 @@ std::optional<CommandLine> parse_command_line(int argc, char** argv, int* status
   sweep->add_option("--max-parallel", raw.max_parallel, "with --slurm: tasks running at once (--array=..%M)")
       ->type_name("M");
   add_safety(sweep, raw);
-  sweep->footer(
-      "Each point runs in a process of its own with its folder DIR/<point>/ (point.csv: its parameters,\n"
-      "status, inputs and figures; log.txt: its messages); DIR/summary.csv merges them. Run again:\n"
-      "the points not ok, or run with other files, program or --trusted, run. Exit status 0 when\n"
-      "every point is ok, 1 otherwise. docs/sweeps.md.");
+  sweep->footer("Each point runs in a process of its own with its folder DIR/<point>/ (point.csv: its parameters,\n"
+                "status, inputs and figures; log.txt: its messages); DIR/summary.csv merges them. Run again:\n"
+                "the points not ok, or run with other files, program or --trusted, run. Exit status 0 when\n"
+                "every point is ok, 1 otherwise. docs/sweeps.md.");
 
   // `beltsim console ... -- ARGS`: everything after the first -- belongs to the script
   std::vector<std::string> words(argv + 1, argv + argc);
@@ -326,8 +318,7 @@ std::optional<CommandLine> parse_command_line(int argc, char** argv, int* status
     return cl;
   }
   if (!words.empty() && words[0] == "help") words[0] = "--help";
-  const std::vector<std::string> commands{"run",    "wp",      "modes",   "plot", "summary",
-                                          "render", "compare", "console", "sweep"};
+  const std::vector<std::string> commands{"run", "wp", "modes", "plot", "summary", "render", "compare", "console", "sweep"};
   if (!words.empty() && !words[0].empty() && words[0][0] == '-' && words[0] != "-h" && words[0] != "--help" &&
       words[0] != "--version") {
     std::fprintf(stderr, "beltsim: unknown option '%s' before the command\nRun 'beltsim --help' for the usage.\n",

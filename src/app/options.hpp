@@ -28,17 +28,17 @@ struct Raw {
   std::map<std::string, bool> run_flags;
   bool no_frames = false;
   std::optional<std::string> out;                                               // plot, sweep
-  std::optional<std::string> serve;                                             // run, console: --serve [PORT]
+  std::optional<std::string> serve;  // run, console: --serve [PORT]
   std::optional<std::string> integrators, rtols, ref_rtol, wall_limit, metric;  // wp
-  std::optional<std::string> from;                                              // plot, summary
-  std::optional<std::string> to, csv_out, plot_out;                             // summary
-  bool trusted = false;                                                         // run, wp, console, sweep
+  std::optional<std::string> from;                                      // plot, summary
+  std::optional<std::string> to, csv_out, plot_out;                     // summary
+  bool trusted = false;                                                 // run, wp, console, sweep
   std::optional<std::string> max_instructions, max_lua_memory, max_lua_wall, max_lua_cpu;
   std::vector<std::string> set;  // run, console, wp: --set KEY=VALUE; sweep: --set KEY=V1,V2,..
   std::optional<std::string> jobs, point, partition, time, max_parallel;  // sweep
   bool list = false, collect = false, slurm = false, submit = false, rerun = false;
   std::optional<std::string> at, fmin, fmax, shapes, campbell, rpm, orders, settle, check;  // modes
-  bool video = false;                                                                       // modes
+  bool video = false;                                                                 // modes
 };
 
 double number(const std::string& option, const std::string& text);

@@ -19,11 +19,10 @@ struct Samples {
 };
 
 inline Samples simulate(const Model& m, const Drive& dr, const Eigen::VectorXd& y0, double t_end, double sample_dt,
-                        const char* method, double rtol, double t0 = 0) {
+                        const char* method, double rtol) {
   BeltSystem sys(m, dr);
   auto stepper = make_stepper(method);
   DriveOptions opt;
-  opt.t0 = t0;
   opt.t_end = t_end;
   opt.sample_dt = sample_dt;
   opt.events = dr.breakpoints();
