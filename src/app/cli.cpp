@@ -218,6 +218,9 @@ std::optional<CommandLine> parse_command_line(int argc, char** argv, int* status
   modes->add_option("--fmax", raw.fmax, "leave out modes above this frequency (default 2000)")->type_name("HZ");
   modes->add_option("--shapes", raw.shapes, "draw the first N modes to DIR/shapes/mode_NN_<f>Hz.png (default 6)")
       ->type_name("N");
+  modes->add_option("--check", raw.check,
+                    "run the drive on from a push along these modes (numbers as listed) and compare (docs/modes.md)")
+      ->type_name("K1,K2,..");
   modes->add_flag("--video", raw.video, "also a video of each drawn mode's cycles (.mp4 beside its PNG)");
   modes->add_option("--campbell", raw.campbell, "sweep this pulley's speed (held at each) for a Campbell diagram")
       ->type_name("PULLEY");

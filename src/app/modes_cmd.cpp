@@ -15,6 +15,7 @@
 #include "script/docall.hpp"
 #include "script/signals.hpp"
 #include "sim/campbell.hpp"
+#include "sim/mode_check.hpp"
 #include "sim/simulation.hpp"
 
 namespace beltsim::app {
@@ -67,19 +68,66 @@ std::string where(const ModeAnalysis& a, const Mode& m) {
   return s;
 }
 
-void print_table(const ModeAnalysis& a) {
+void print_table(const Scene& sc, const ModeAnalysis& a) {
   std::printf("t = %s s, belt speed %.3g m/s, %d states: %zu modes\n", number_text(a.t).c_str(), a.belt_speed, a.states,
               a.modes.size());
   std::printf("%5s %10s %8s  %s\n", "mode", "f [Hz]", "zeta", "where the kinetic energy is");
-  for (size_t k = 0; k < a.modes.size(); ++k)
-    std::printf("%5zu %10.2f %8.4f  %s\n", k + 1, a.modes[k].frequency, a.modes[k].damping,
-                where(a, a.modes[k]).c_str());
-  if (a.belt_speed != 0)
-    std::fprintf(stderr,
-                 "beltsim modes: warning: the belt moves (%.3g m/s): the modes of a running drive are not verified "
-                 "(only the known answers at rest are); read its pulley, wrap and arm modes as unverified and its span "
-                 "modes with care (docs/modes.md, Limits)\n",
-                 a.belt_speed);
+  size_t unchecked = 0;
+  for (size_t k = 0; k < a.modes.size(); ++k) {
+    const bool checked = mode_checked(a, a.modes[k]);
+    unchecked += !checked;
+    std::printf("%5zu %10.2f %8.4f  %s%s\n", k + 1, a.modes[k].frequency, a.modes[k].damping,
+                where(a, a.modes[k]).c_str(), checked ? "" : "  *");
+  }
+  if (unchecked == 0) return;
+  // at speed: what is checked and what is not (docs/modes.md, "A running drive")
+  std::string sliding;
+  for (size_t j = 0; j < a.slip_arc.size(); ++j)
+    if (a.slip_arc[j] > 0) {
+      char buf[96];
+      std::snprintf(buf, sizeof buf, "%s%s %.3g m", sliding.empty() ? "" : ", ", sc.model.pulleys[j].name.c_str(),
+                    a.slip_arc[j]);
+      sliding += buf;
+    }
+  std::printf(
+      "* not checked at %.3g m/s: only a running span's lightly damped modes (-0.01 < zeta < 0.05) are (the "
+      "axially moving string);%s check a mode in time with --check K (docs/modes.md, A running drive)\n",
+      a.belt_speed,
+      sliding.empty() ? ""
+                      : (" the belt slides on slip arcs (" + sliding +
+                         "), where the linearization gives pulley, wrap and damped span modes that a run "
+                         "pushed along them does not show, and growing ones (zeta < 0) that do not grow;")
+                            .c_str());
+}
+
+// --check K1,K2: the mode numbers (from 1, as listed), read before the run
+std::vector<size_t> check_list(const Raw& raw) {
+  std::vector<size_t> ks;
+  if (!raw.check) return ks;
+  std::stringstream in(*raw.check);
+  for (std::string p; std::getline(in, p, ',');) ks.push_back(static_cast<size_t>(whole_number("--check", p, 1)));
+  return ks;
+}
+
+// each listed mode pushed and run on (sim/mode_check.hpp)
+void check_modes(const Scene& sc, const Drive& d, const Eigen::VectorXd& y, const ModeAnalysis& a,
+                 const std::vector<size_t>& ks) {
+  for (size_t k : ks)
+    if (k > a.modes.size())
+      throw UsageError("--check: there is no mode " + std::to_string(k) + " (" + std::to_string(a.modes.size()) +
+                       " listed)");
+  for (size_t k : ks) {
+    const Mode& m = a.modes[k - 1];
+    const ModeCheck c = check_mode(sc, d, a.t, y, a, k - 1);
+    std::printf("check of mode %zu (%.2f Hz, zeta %.4f): pushed and run on, watched at %s: ", k, m.frequency, m.damping,
+                c.where.c_str());
+    if (std::isnan(c.frequency))
+      std::printf("no oscillation between %.3g and %.3g Hz", 0.25 * m.frequency, 4 * m.frequency);
+    else
+      std::printf("%.2f Hz, zeta %.4f", c.frequency, c.damping);
+    std::printf("; off the mode's motion by %.0f %% (RMS) over its first period: %s\n", 100 * c.misfit,
+                c.agrees ? "agrees" : "does NOT agree");
+  }
 }
 
 ModeSettings mode_settings(const Raw& raw) {
@@ -96,6 +144,7 @@ int point_modes(const std::string& script, const Scene& sc, RunSettings rs, cons
   const double at = raw.at ? number("--at", *raw.at) : rs.t_end;
   if (!(at >= 0)) throw UsageError("--at must be a time >= 0 [s], got '" + *raw.at + "'");
   const int shapes = raw.shapes ? whole_number("--shapes", *raw.shapes, 0) : 6;
+  const std::vector<size_t> checks = check_list(raw);
   rs.t_end = at;
   rs.frames.reset();
   Simulation sim(sc, rs);
@@ -106,7 +155,7 @@ int point_modes(const std::string& script, const Scene& sc, RunSettings rs, cons
   const ModeAnalysis a = analyze_modes(sc, d, sim.now(), y, ms);
   sim.close();
   std::printf("modes of %s\n", script.c_str());
-  print_table(a);
+  print_table(sc, a);
   const std::string csv = (fs::path(rs.out_dir) / "modes.csv").string();
   {
     CsvWriter w(csv, mode_columns(a));
@@ -118,6 +167,7 @@ int point_modes(const std::string& script, const Scene& sc, RunSettings rs, cons
   p.count = shapes;
   p.video = raw.video;
   for (const std::string& f : render::draw_modes(sc, d, y, a, p)) std::printf("%s\n", f.c_str());
+  check_modes(sc, d, y, a, checks);
   return 0;
 }
 
@@ -162,6 +212,8 @@ int cmd_modes(const std::string& script, const script::Overrides& o, const scrip
     RunSettings rs = cap.settings;
     if (o.has("t_end")) rs.t_end = o.run.t_end;
     rs.out_dir = o.has("out") ? o.run.out_dir : (fs::path("out") / fs::path(script).stem() / "modes").string();
+    if (raw.campbell && raw.check)
+      throw UsageError("--check checks the modes of one operating point (--at), not with --campbell");
     if (raw.campbell) return campbell_modes(script, *cap.scene, rs, raw, ms);
     return point_modes(script, *cap.scene, rs, raw, ms);
   } catch (const UsageError&) {

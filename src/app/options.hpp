@@ -37,7 +37,7 @@ struct Raw {
   std::vector<std::string> set;  // run, console, wp: --set KEY=VALUE; sweep: --set KEY=V1,V2,..
   std::optional<std::string> jobs, point, partition, time, max_parallel;  // sweep
   bool list = false, collect = false, slurm = false, submit = false, rerun = false;
-  std::optional<std::string> at, fmin, fmax, shapes, campbell, rpm, orders, settle;  // modes
+  std::optional<std::string> at, fmin, fmax, shapes, campbell, rpm, orders, settle, check;  // modes
   bool video = false;                                                                 // modes
 };
 

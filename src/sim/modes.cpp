@@ -53,11 +53,11 @@ double lever(const Model& m, int k) {
   return 0;
 }
 
-// the q part of eigenvector v scaled so that the largest point displacement is 1 m, real and
+// eigenvector v scaled so that the largest point displacement is 1 m, real and
 // positive in its largest component
 Eigen::VectorXcd normalised_shape(const Model& m, const Eigen::VectorXcd& v) {
   const int N = m.n_coord(), ne = 3 * m.n_el();
-  Eigen::VectorXcd q = v.head(N);
+  const Eigen::VectorXcd q = v.head(N);
   double best = 0;
   int ref = 0;
   for (int k = 0; k < N; ++k) {
@@ -67,9 +67,9 @@ Eigen::VectorXcd normalised_shape(const Model& m, const Eigen::VectorXcd& v) {
     best = size;
     ref = k < ne && std::abs(q[k + 1]) > std::abs(q[k]) ? k + 1 : k;
   }
-  if (best == 0) return q;
+  if (best == 0) return v;
   const std::complex<double> c = q[ref];
-  return q * (std::conj(c) / std::abs(c)) / best;
+  return v * (std::conj(c) / std::abs(c)) / best;
 }
 
 // Balancing (Parlett & Reinsch, as LAPACK's dgebal without its permutations): A ← D⁻¹·A·D with D
@@ -207,11 +207,23 @@ ModeAnalysis analyze_modes(const Scene& sc, const Drive& d, double t, const Eige
       for (double& p : md.participation) p /= total;
     md.dominant =
         static_cast<int>(std::max_element(md.participation.begin(), md.participation.end()) - md.participation.begin());
-    md.shape = normalised_shape(m, v);
+    md.vector = normalised_shape(m, v);
+    md.shape = md.vector.head(N);
     out.modes.push_back(std::move(md));
   }
   std::sort(out.modes.begin(), out.modes.end(), [](const Mode& a, const Mode& b) { return a.frequency < b.frequency; });
+  Observation obs;
+  observe(m, d, sc.senses(), t, y.data(), obs);
+  for (const PulleyObs& p : obs.pulleys) out.slip_arc.push_back(p.slip_arc);
   return out;
+}
+
+bool mode_checked(const ModeAnalysis& a, const Mode& m) {
+  if (std::abs(a.belt_speed) < 1e-3) return true;
+  double spans = 0;
+  for (size_t g = 0; g < a.groups.size(); ++g)
+    if (a.groups[g].rfind("span_", 0) == 0) spans += m.participation[g];
+  return spans > 0.6 && m.damping > -0.01 && m.damping < 0.05;
 }
 
 Eigen::VectorXd mode_state(const Eigen::VectorXd& y, const Mode& m, double amplitude, double phase) {

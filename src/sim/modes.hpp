@@ -51,6 +51,9 @@ struct Mode {
   // displacement of a point (an element's centre, a pulley's rim, an arm's pulley centre) is 1 m
   // and real there: q(t) = q0 + a·Re(shape·e^{iωt}) moves that point by a
   Eigen::VectorXcd shape;
+  // the whole eigenvector in the analysed layout [q | v | z] (z: the bristles, Model::bristles),
+  // scaled as shape (its q part is shape): y + a·Re(vector·e^{λt}) is the mode's motion in time
+  Eigen::VectorXcd vector;
   int dominant = 0;  // the group with the largest share
 };
 
@@ -64,7 +67,16 @@ struct ModeAnalysis {
   // a kinematic pulley, which does not move), arm_<p>, rotor_<p> (a coupled rotor and its clutch hub)
   std::vector<std::string> groups;
   std::vector<Mode> modes;  // by frequency
+  // [m] each pulley's slip arc at the state (PulleyObs::slip_arc: its elements sliding, saturated
+  // friction), by pulley index
+  std::vector<double> slip_arc;
 };
+
+// Whether mode m of a is of a kind checked against a known answer (docs/modes.md): every mode at
+// rest (|belt speed| below 1e-3 m/s), and at speed a span's lightly damped mode (more than 60 % of
+// its energy in the spans, −0.01 < ζ < 0.05: the axially moving string). Any other mode of a running
+// drive is not: check_mode (sim/mode_check.hpp) checks one in time.
+bool mode_checked(const ModeAnalysis& a, const Mode& m);
 
 // the modes of the drive d at the state y at time t (y: Model::n_state values). Throws
 // std::runtime_error when the eigensolver fails, std::invalid_argument for settings out of range.

@@ -53,6 +53,26 @@ class Modes(unittest.TestCase):
         self.assertEqual(len(shapes), 2)
         self.assertTrue(shapes[0].startswith("mode_01_") and shapes[0].endswith("Hz.png"), shapes)
 
+    def test_check_in_time(self):
+        # the pulleys' torsional mode at rest, pushed and run on, moves as the linearization says;
+        # a mode number past the list is refused, the modes found so far kept
+        out_dir = os.path.join(self.dir, "k")
+        code, out, err = run(["modes", self.script, "--at", "0", "--out", out_dir, "--shapes", "0"], cwd=self.dir)
+        self.assertEqual(code, 0, err)
+        with open(os.path.join(out_dir, "modes.csv")) as f:
+            rows = list(csv.DictReader(f))
+        torsion = [r for r in rows if float(r["pulley_driver"]) + float(r["pulley_driven"]) > 0.8][0]["mode"]
+        code, out, err = run(["modes", self.script, "--at", "0", "--out", out_dir, "--shapes", "0",
+                              "--check", torsion], cwd=self.dir)
+        self.assertEqual(code, 0, err)
+        self.assertRegex(out, r"check of mode %s \([0-9.]+ Hz, zeta [0-9.]+\): pushed and run on, watched at "
+                              r"[a-z_]+ (angle|middle): [0-9.]+ Hz, zeta [0-9.]+; .*: agrees\n" % torsion)
+        code, out, err = run(["modes", self.script, "--at", "0", "--out", out_dir, "--shapes", "0",
+                              "--check", str(len(rows) + 1)], cwd=self.dir)
+        self.assertEqual(code, 2, err)
+        self.assertIn("--check: there is no mode %d (%d listed)" % (len(rows) + 1, len(rows)), err)
+        self.assertTrue(os.path.isfile(os.path.join(out_dir, "modes.csv")))
+
     def test_campbell(self):
         out_dir = os.path.join(self.dir, "c")
         code, out, err = run(["modes", self.script, "--out", out_dir, "--campbell", "driver", "--rpm", "200:400:2",
@@ -69,7 +89,10 @@ class Modes(unittest.TestCase):
                               (["--campbell", "driver"], "--campbell needs --rpm FROM:TO:COUNT"),
                               (["--campbell", "driver", "--rpm", "1:2"], "--rpm takes FROM:TO:COUNT"),
                               (["--fmin", "10", "--fmax", "5"], "--fmin must be >= 0 and below --fmax"),
-                              (["--at", "-1"], "--at must be a time >= 0")]:
+                              (["--at", "-1"], "--at must be a time >= 0"),
+                              (["--check", "0"], "--check must be a whole number >= 1, got 0"),
+                              (["--check", "1", "--campbell", "driver", "--rpm", "1:2:2"],
+                               "--check checks the modes of one operating point (--at), not with --campbell")]:
             code, out, err = run(["modes", self.script, "--out", os.path.join(self.dir, "x")] + args, cwd=self.dir)
             self.assertEqual(code, 2, err)
             self.assertIn(message, err)

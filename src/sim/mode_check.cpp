@@ -1,0 +1,162 @@
+#include "sim/mode_check.hpp"
+
+#include <Eigen/Eigenvalues>
+#include <Eigen/QR>
+#include <algorithm>
+#include <cmath>
+#include <complex>
+#include <functional>
+#include <vector>
+
+#include "integrate/belt_system.hpp"
+#include "integrate/driver.hpp"
+#include "integrate/stepper.hpp"
+#include "sim/outputs.hpp"
+
+namespace beltsim {
+
+namespace {
+
+using cplx = std::complex<double>;
+
+// the belt's displacement normal to span k at its middle: where the elements' polygon crosses the
+// span's normal line there [m] (NaN when it does not)
+double span_middle(const Scene& sc, const Eigen::VectorXd& y, int k) {
+  const Route::Span& sp = sc.route.spans[k];
+  const Vec2 mid = 0.5 * (sp.from + sp.to), t = (sp.to - sp.from).normalized(), nrm(-t.y(), t.x());
+  const int n = sc.model.n_el();
+  double best = NAN, near = INFINITY;
+  for (int i = 0; i < n; ++i) {
+    const int j = (i + 1) % n;
+    const Vec2 a(y[3 * i], y[3 * i + 1]), b(y[3 * j], y[3 * j + 1]);
+    const double sa = (a - mid).dot(t), sb = (b - mid).dot(t);
+    if ((sa <= 0) == (sb <= 0)) continue;
+    const double w = sa / (sa - sb), off = ((1 - w) * (a - mid) + w * (b - mid)).dot(nrm);
+    if (std::abs(off) < near) near = std::abs(off), best = off;
+  }
+  return best;
+}
+
+// what can be watched in the space-fixed frame: its name, the mode's predicted complex amplitude
+// there and how to read it from a state
+struct Watch {
+  std::string name;
+  cplx predicted;
+  std::function<double(const Eigen::VectorXd&)> read;
+};
+
+Watch where_it_moves(const Scene& sc, const Drive& d, const Eigen::VectorXd& y, const Mode& md) {
+  const Model& m = sc.model;
+  std::vector<Watch> all;
+  auto coordinate = [&](const std::string& name, int k, double lever) {
+    all.push_back(
+        {name + " angle", md.vector[k] * lever, [k, lever](const Eigen::VectorXd& s) { return s[k] * lever; }});
+  };
+  for (int j = 0; j < m.n_p(); ++j)
+    if (!d.pulleys[j].kinematic) coordinate("pulley_" + m.pulleys[j].name, m.pulley_coord(j), m.pulleys[j].radius);
+  for (int a = 0; a < m.n_arm(); ++a)
+    coordinate("arm_" + m.pulleys[m.arms[a].pulley].name, m.arm_coord(a), m.arms[a].length);
+  for (int c = 0; c < m.n_coupling(); ++c)
+    coordinate("rotor_" + m.pulleys[m.couplings[c].pulley].name, m.rotor_coord(c),
+               m.pulleys[m.couplings[c].pulley].radius);
+  for (int k = 0; k < static_cast<int>(sc.route.spans.size()); ++k) {
+    const Route::Span& sp = sc.route.spans[k];
+    const Vec2 mid = 0.5 * (sp.from + sp.to), t = (sp.to - sp.from).normalized(), nrm(-t.y(), t.x());
+    int near = 0;  // the element (the slot) nearest the middle now
+    for (int i = 1; i < m.n_el(); ++i)
+      if ((Vec2(y[3 * i], y[3 * i + 1]) - mid).norm() < (Vec2(y[3 * near], y[3 * near + 1]) - mid).norm()) near = i;
+    all.push_back({span_name(sc, k) + " middle", md.vector[3 * near] * nrm.x() + md.vector[3 * near + 1] * nrm.y(),
+                   [&sc, k](const Eigen::VectorXd& s) { return span_middle(sc, s, k); }});
+  }
+  return *std::max_element(all.begin(), all.end(), [](const Watch& a, const Watch& b) {
+    return std::abs(a.predicted) < std::abs(b.predicted);
+  });
+}
+
+// Prony: x_k (spacing dt) as a sum of p damped exponentials, by linear prediction in least squares;
+// the poles s [1/s] with Im s > 0 and their amplitudes
+std::vector<std::pair<cplx, double>> prony(const std::vector<double>& x, double dt, int p) {
+  const int K = static_cast<int>(x.size());
+  if (K < 2 * p) return {};
+  Eigen::MatrixXd A(K - p, p);
+  Eigen::VectorXd b(K - p);
+  for (int k = p; k < K; ++k) {
+    for (int j = 0; j < p; ++j) A(k - p, j) = x[k - 1 - j];
+    b[k - p] = x[k];
+  }
+  const Eigen::VectorXd a = A.colPivHouseholderQr().solve(b);
+  Eigen::MatrixXd C = Eigen::MatrixXd::Zero(p, p);
+  for (int j = 0; j < p; ++j) C(0, j) = a[j];
+  for (int j = 1; j < p; ++j) C(j, j - 1) = 1;
+  const Eigen::VectorXcd z = Eigen::EigenSolver<Eigen::MatrixXd>(C).eigenvalues();
+  // the amplitudes, each pole's column scaled to norm 1 (a spurious growing pole's column would
+  // otherwise be larger than the others by e^(Re s·window) and leave them none)
+  Eigen::MatrixXcd V(K, p);
+  for (int k = 0; k < K; ++k)
+    for (int j = 0; j < p; ++j) V(k, j) = std::pow(z[j], k);
+  const Eigen::VectorXd norm = V.colwise().norm().transpose();
+  for (int j = 0; j < p; ++j) V.col(j) /= norm[j];
+  const Eigen::VectorXcd c =
+      V.colPivHouseholderQr().solve(Eigen::VectorXd::Map(x.data(), K).cast<cplx>()).cwiseQuotient(norm.cast<cplx>());
+  std::vector<std::pair<cplx, double>> out;
+  for (int j = 0; j < p; ++j)
+    if (z[j].imag() > 0) out.emplace_back(std::log(z[j]) / dt, 2 * std::abs(c[j]));
+  return out;
+}
+
+// the watched value of a run from (t, y) over `window`, sampled every dt
+std::vector<double> watch(const Scene& sc, const Drive& d, double t, const Eigen::VectorXd& y, double window, double dt,
+                          double rtol, const Watch& w) {
+  BeltSystem sys(sc.model, d);
+  auto stepper = make_stepper("esdirk32");
+  DriveOptions opt;
+  opt.t0 = t;
+  opt.t_end = t + window;
+  opt.sample_dt = dt;
+  opt.events = d.breakpoints();
+  Eigen::VectorXd state = y;
+  std::vector<double> out;
+  drive(sys, *stepper, Tolerances{rtol, Tolerances::kAtolUnset}, opt, state,
+        [&](double, const Eigen::VectorXd& s) { out.push_back(w.read(s)); });
+  return out;
+}
+
+}  // namespace
+
+ModeCheck check_mode(const Scene& sc, const Drive& d, double t, const Eigen::VectorXd& y, const ModeAnalysis& a,
+                     size_t k, const ModeCheckSettings& s) {
+  const Model& m = sc.model;
+  const Mode& md = a.modes.at(k);
+  const Watch w = where_it_moves(sc, d, y, md);
+  Eigen::VectorXd pushed = y;
+  const int N = m.n_coord();
+  for (int c = 0; c < 2 * N; ++c) pushed[c] += s.push * md.vector[c].real();
+  for (int c = 0; c < m.n_bristle(); ++c) pushed[m.bristle_offset() + c] += s.push * md.vector[2 * N + c].real();
+  const double dt = 1 / (40 * md.frequency), window = s.periods / md.frequency;
+  const std::vector<double> plain = watch(sc, d, t, y, window, dt, s.rtol, w);
+  const std::vector<double> moved = watch(sc, d, t, pushed, window, dt, s.rtol, w);
+  std::vector<double> diff;
+  for (size_t i = 0; i + 1 < std::min(plain.size(), moved.size()); ++i) diff.push_back((moved[i] - plain[i]) / s.push);
+  ModeCheck out;
+  out.where = w.name;
+  double err = 0, size = 0;
+  for (size_t i = 0; i < diff.size() && i * dt <= 1 / md.frequency; ++i) {
+    const double predicted = (w.predicted * std::exp(md.lambda * (i * dt))).real();
+    err += (diff[i] - predicted) * (diff[i] - predicted);
+    size += predicted * predicted;
+  }
+  out.misfit = size > 0 ? std::sqrt(err / size) : NAN;
+  // the strongest oscillation between a quarter and four times the mode's frequency
+  double strongest = 0;
+  for (const auto& [pole, amplitude] : prony(diff, dt, 8)) {
+    const double f = pole.imag() / (2 * M_PI);
+    if (f < 0.25 * md.frequency || f > 4 * md.frequency || amplitude <= strongest) continue;
+    strongest = amplitude;
+    out.frequency = f;
+    out.damping = -pole.real() / std::abs(pole);
+  }
+  out.agrees = out.misfit <= s.max_misfit;
+  return out;
+}
+
+}  // namespace beltsim
