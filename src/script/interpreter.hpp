@@ -64,6 +64,9 @@ struct Overrides {
 // What a script asked of its first scene:run{} (for `beltsim wp`, which runs the scene itself).
 struct Captured {
   std::optional<Scene> scene;
+  // the definition beltsim.scene{} read for it (what the tests build the scripts' scenes from);
+  // empty when its belt.mu is a Lua function, which cannot be called once the interpreter is gone
+  std::optional<SceneDef> definition;
   RunSettings settings;
 };
 

@@ -1,44 +1,52 @@
-#include "scene/presets.hpp"
+// The tests' scenes (support/presets.hpp): the paper's drive read from scripts/paper_dry.lua.
+#include "support/presets.hpp"
 
 #include <cmath>
+#include <stdexcept>
+
+#include "script/interpreter.hpp"
+#include "script/script_args.hpp"
 
 namespace beltsim::presets {
 
 namespace {
-TimeSpeedLaw ramp(double t1, double value) {
-  TimeSpeedLaw law;
-  law.t = {0.0, t1};
-  law.value = {0.0, value};
-  return law;
-}
 TimeSpeedLaw viscous(double per_speed) {
   TimeSpeedLaw law;
   law.per_speed = per_speed;
   return law;
 }
-// 70 N·m at 700 rpm, opposing rotation
-constexpr double kResistance = 70.0 / (700.0 * 2.0 * M_PI / 60.0);
 }  // namespace
 
+SceneDef script_scene(const std::string& script, const std::vector<std::string>& set) {
+  const std::string path = std::string(BELTSIM_SOURCE_DIR) + "/" + script;
+  script::Overrides o;
+  o.no_frames = true;
+  o.set = script::parse_sets(set);
+  script::Captured cap;
+  script::Interpreter lua;
+  lua.set_overrides(o);
+  lua.set_capture(&cap);
+  lua.run_file(path);
+  if (!cap.scene) throw std::runtime_error(path + ": the script never calls scene:run{}");
+  if (!cap.definition)
+    throw std::runtime_error(path + ": its scene's belt.mu is a Lua function: no definition to build");
+  return *cap.definition;
+}
+
 SceneDef paper_dry() {
-  SceneDef d;
-  PulleyDef driver;
-  driver.name = "driver";
-  driver.centre = {0, 0};
-  driver.torque = ramp(0.3, -70.0);
-  PulleyDef driven;
-  driven.name = "driven";
-  driven.centre = {0.29, 0};
-  driven.torque = viscous(-kResistance);
-  d.pulleys = {driver, driven};
-  d.belt.loop_sense = -1;
+  static const SceneDef d = [] {
+    SceneDef s = script_scene("scripts/paper_dry.lua");
+    s.track_energy = false;
+    return s;
+  }();
   return d;
 }
 
 SceneDef paper_wet() {
   SceneDef d = paper_dry();
   // wet (μ = 0.2) where the element centres start at x > l_p/2
-  d.belt.mu_at = [](const ElementSite& e) { return e.centre.x() > 0.145 ? 0.2 : 1.0; };
+  const double half = d.pulleys[1].centre.x() / 2;
+  d.belt.mu_at = [half](const ElementSite& e) { return e.centre.x() > half ? 0.2 : 1.0; };
   return d;
 }
 
@@ -54,11 +62,11 @@ SceneDef automotive_wet() {
     return p;
   };
   PulleyDef crank = pulley("crankshaft", {0.09, -0.27}, 0.080, WrapSide::inside, 0.02);
-  crank.torque = ramp(0.3, -70.0);
+  crank.torque = paper_dry().pulleys[0].torque;  // the paper's torques (Fig. 7)
   PulleyDef idler = pulley("tensioner", {0.015, -0.12}, 0.031, WrapSide::back, 5e-5);
   PulleyDef alt = pulley("alternator", {0, 0}, 0.027, WrapSide::inside, 2e-3);
   PulleyDef pump = pulley("pump", {0.16, -0.06}, 0.056, WrapSide::inside, 1e-3);
-  pump.torque = viscous(-kResistance);
+  pump.torque = paper_dry().pulleys[1].torque;
   d.pulleys = {crank, idler, alt, pump};
   d.belt.elements = 150;
   d.belt.pretension = 280;
