@@ -9,9 +9,10 @@
 #include <utility>
 #include <vector>
 
-#include "script/interpreter.hpp"
 #include "script/load_source.hpp"
-#include "script/lua_law.hpp"
+#include "script/overrides.hpp"
+
+struct lua_State;
 
 namespace beltsim {
 class Simulation;
@@ -29,6 +30,12 @@ struct PageChange {
   const void* sim = nullptr;
   double t = 0;
   std::string call;
+};
+
+// The state a Lua law calls into. The interpreter empties it once the state is closed: a law may
+// outlive its interpreter in a captured scene (beltsim wp), and must then neither call nor unref.
+struct LawHost {
+  lua_State* L = nullptr;  // the main thread
 };
 
 // the registry field holding the result table of the last scene:run{} (a sweep point of the quick form)
