@@ -50,27 +50,23 @@ SceneDef paper_wet() {
   return d;
 }
 
+namespace {
+// tests/support/automotive_scene.lua's drive (the layout of tests/support/automotive.lua), with the
+// paper's torques (Fig. 7) on the crankshaft and the pump
+SceneDef automotive(bool arm) {
+  SceneDef d = script_scene("tests/support/automotive_scene.lua",
+                            arm ? std::vector<std::string>{"arm=true"} : std::vector<std::string>{});
+  d.pulleys[0].torque = paper_dry().pulleys[0].torque;
+  d.pulleys[3].torque = paper_dry().pulleys[1].torque;
+  // its 280 N as if not given: the tests set the tension at rest by a tensioner's preload instead
+  d.given.erase("belt.pretension");
+  return d;
+}
+}  // namespace
+
 SceneDef automotive_wet() {
-  SceneDef d;
-  auto pulley = [](const char* name, Vec2 c, double r, WrapSide w, double inertia) {
-    PulleyDef p;
-    p.name = name;
-    p.centre = c;
-    p.radius = r;
-    p.wrap = w;
-    p.inertia = inertia;
-    return p;
-  };
-  PulleyDef crank = pulley("crankshaft", {0.09, -0.27}, 0.080, WrapSide::inside, 0.02);
-  crank.torque = paper_dry().pulleys[0].torque;  // the paper's torques (Fig. 7)
-  PulleyDef idler = pulley("tensioner", {0.015, -0.12}, 0.031, WrapSide::back, 5e-5);
-  PulleyDef alt = pulley("alternator", {0, 0}, 0.027, WrapSide::inside, 2e-3);
-  PulleyDef pump = pulley("pump", {0.16, -0.06}, 0.056, WrapSide::inside, 1e-3);
-  pump.torque = paper_dry().pulleys[1].torque;
-  d.pulleys = {crank, idler, alt, pump};
-  d.belt.elements = 150;
-  d.belt.pretension = 280;
-  d.belt.loop_sense = -1;
+  static const SceneDef fixed = automotive(false);
+  SceneDef d = fixed;
   // wet 30 % of the belt, its leading end where the belt leaves the pump, extending upstream
   d.belt.mu_at = [](const ElementSite& e) {
     const double lead = e.leaves.at("pump");
@@ -82,14 +78,13 @@ SceneDef automotive_wet() {
 }
 
 SceneDef automotive_tensioner() {
-  SceneDef d = automotive_wet();
-  d.belt.mu_at = nullptr;
-  TensionerDef& t = d.pulleys[1].tensioner.emplace();
-  t.pivot = {0.075, -0.14};
-  t.inertia = 1e-3;
-  t.stiffness = 30;
-  t.damping = 0.05;
-  t.friction_torque = 0.5;
+  static const SceneDef d = [] {
+    SceneDef s = automotive(true);
+    TensionerDef& t = *s.pulleys[1].tensioner;
+    t.damping = 0.05;
+    t.friction_torque = 0.5;
+    return s;
+  }();
   return d;
 }
 

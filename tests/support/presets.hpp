@@ -1,6 +1,7 @@
 // The scenes the tests and benchmarks build in C++. The paper's drive is scripts/paper_dry.lua's,
 // read through the interpreter as `beltsim run` reads it (its first scene:run{} captured, nothing
-// simulated): the script is its one definition. The automotive drives are the tests' own.
+// simulated): the script is its one definition. The automotive drive is tests/support/automotive.lua's,
+// which the Lua tests' scripts use too.
 #pragma once
 
 #include <string>
