@@ -51,9 +51,6 @@ struct Context {
   bool interrupted = false;
   Captured* capture = nullptr;  // capture mode (see Interpreter::set_capture)
   bool captured = false;        // the script was ended by a capture
-  // in capture mode: the last scene beltsim.scene{} built and its definition (Captured::definition)
-  const Scene* defined = nullptr;
-  std::optional<SceneDef> definition;
   // a picture made by sim:show or sim:plot: the console shows it in the terminal; a script run
   // prints its path (empty: print the path)
   std::function<void(const std::string& png)> on_picture;

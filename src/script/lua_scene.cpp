@@ -451,6 +451,12 @@ int l_scene(lua_State* L) {
   if (auto v = opt_bool(L, 1, "energy", "scene")) d.track_energy = *v;
   if (auto v = opt_bool(L, 1, "allow_large", "scene")) d.allow_large = *v;
 
+  if (ctx && ctx->capture && ctx->capture->definition_only) {  // Captured: the definition, nothing built
+    if (!mu_fn) ctx->capture->definition = d;
+    ctx->captured = true;
+    lua_pushliteral(L, "scene captured");
+    return lua_error(L);
+  }
   auto** box = static_cast<Scene**>(lua_newuserdatauv(L, sizeof(Scene*), 0));
   *box = nullptr;
   luaL_setmetatable(L, kSceneMeta);
@@ -468,11 +474,6 @@ int l_scene(lua_State* L) {
     error = e.what(), about = message_path(error);  // ("pulley 'driven'.torque (function at ...)")
   }
   if (!error.empty()) fail_at(L, about, error);
-  if (ctx && ctx->capture) {
-    ctx->defined = *box;
-    ctx->definition.reset();
-    if (!mu_fn) ctx->definition = d;
-  }
   report_scene(**box);
   return 1;
 }

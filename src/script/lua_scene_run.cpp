@@ -44,7 +44,6 @@ int l_scene_run(lua_State* L) {
     std::fprintf(stderr, "beltsim: %s\n", note.c_str());
   if (ctx->capture) {
     ctx->capture->scene = *sc;
-    if (ctx->defined == sc) ctx->capture->definition = ctx->definition;
     ctx->capture->settings = rs;
     ctx->captured = true;
     lua_pushliteral(L, "scene captured");

@@ -37,10 +37,12 @@ struct Overrides {
 // What a script asked of its first scene:run{} (for `beltsim wp`, which runs the scene itself).
 struct Captured {
   std::optional<Scene> scene;
-  // the definition beltsim.scene{} read for it (what the tests build the scripts' scenes from);
-  // empty when its belt.mu is a Lua function, which cannot be called once the interpreter is gone
-  std::optional<SceneDef> definition;
   RunSettings settings;
+  // with definition_only (set by the caller), the script ends at its first beltsim.scene{} instead,
+  // nothing built: `definition` is what it read (what the tests build the scripts' scenes from),
+  // left empty when its belt.mu is a Lua function, which cannot be called once the interpreter is gone
+  bool definition_only = false;
+  std::optional<SceneDef> definition;
 };
 
 }  // namespace beltsim::script

@@ -23,13 +23,13 @@ SceneDef script_scene(const std::string& script, const std::vector<std::string>&
   o.no_frames = true;
   o.set = script::parse_sets(set);
   script::Captured cap;
+  cap.definition_only = true;
   script::Interpreter lua;
   lua.set_overrides(o);
   lua.set_capture(&cap);
   lua.run_file(path);
-  if (!cap.scene) throw std::runtime_error(path + ": the script never calls scene:run{}");
   if (!cap.definition)
-    throw std::runtime_error(path + ": its scene's belt.mu is a Lua function: no definition to build");
+    throw std::runtime_error(path + ": no beltsim.scene{}, or its belt.mu is a Lua function: no definition to build");
   return *cap.definition;
 }
 

@@ -1,6 +1,6 @@
 // The scenes the tests and benchmarks build in C++. The paper's drive is scripts/paper_dry.lua's,
-// read through the interpreter as `beltsim run` reads it (its first scene:run{} captured, nothing
-// simulated): the script is its one definition. The automotive drive is tests/support/automotive.lua's,
+// read through the interpreter as `beltsim run` reads it (its first beltsim.scene{} captured, nothing
+// built): the script is its one definition. The automotive drive is tests/support/automotive.lua's,
 // which the Lua tests' scripts use too.
 #pragma once
 
@@ -11,7 +11,7 @@
 
 namespace beltsim::presets {
 
-// the definition of the scene that the script's first scene:run{} runs, with --set KEY=VALUE
+// the definition of the script's first beltsim.scene{}, with --set KEY=VALUE
 // values; throws std::runtime_error naming the script when it cannot give one
 SceneDef script_scene(const std::string& script, const std::vector<std::string>& set = {});
 
