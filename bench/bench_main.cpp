@@ -12,8 +12,8 @@
 #include "integrate/stepper.hpp"
 #include "model/contact_law.hpp"
 #include "model/rhs.hpp"
-#include "scene/presets.hpp"
 #include "sim/simulation.hpp"
+#include "support/presets.hpp"
 
 namespace beltsim {
 namespace {
@@ -242,7 +242,8 @@ const Scene& variant_scene(int which) {
 
 void BM_Simulate100msWith(benchmark::State& state, int which) {
   const Scene& sc = variant_scene(which);
-  const std::string out = (std::filesystem::temp_directory_path() / ("beltsim_bench_with_" + std::to_string(getpid()))).string();
+  const std::string out =
+      (std::filesystem::temp_directory_path() / ("beltsim_bench_with_" + std::to_string(getpid()))).string();
   for (auto _ : state) {
     // a Simulation: its schedule holds the spray zones' entry test
     RunSettings rs;

@@ -27,7 +27,7 @@
 #include "integrate/cvode.hpp"
 #include "integrate/driver.hpp"
 #include "integrate/stepper.hpp"
-#include "scene/presets.hpp"
+#include "support/presets.hpp"
 
 // every heap allocation of the process is counted: malloc itself is interposed (Eigen allocates
 // with malloc directly; operator new goes through it too), forwarding to glibc's own

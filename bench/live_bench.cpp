@@ -7,7 +7,6 @@
 // A simulation without callbacks runs no Lua while integrating, so batch and paused should
 // cost the same. Scene: the paper's dry drive, 0.1 s, esdirk32 at rtol 1e-4, no frames.
 #include <benchmark/benchmark.h>
-
 #include <unistd.h>
 
 #include <chrono>
@@ -17,16 +16,18 @@
 #include <string>
 
 #include "script/interpreter.hpp"
+#include "support/scenes.hpp"
 
 namespace {
 
 namespace fs = std::filesystem;
 
-const char* kScene =
-    "local s = beltsim.scene { pulleys = {\n"
-    "  { name = 'driver', centre = {0, 0}, radius = 0.1, torque = beltsim.ramp(0.3, -70) },\n"
-    "  { name = 'driven', centre = {0.29, 0}, radius = 0.1, torque = { per_speed = -70 / beltsim.rpm(700) } } },\n"
-    "  belt = { elements = 60, pretension = 500, direction = 'cw' } }\n";
+// the paper's drive at 60 elements (the tests' scene, tests/support/two_pulley.lua)
+const std::string kScene = [] {
+  beltsim::test::TwoPulley p;
+  p.elements = 60;
+  return beltsim::test::two_pulley(p);
+}();
 
 double run_script(const std::string& body) {
   const fs::path dir = fs::temp_directory_path() / ("beltsim_live_bench_" + std::to_string(getpid()));

@@ -21,7 +21,7 @@
 #include "render/draw_list.hpp"
 #include "render/gl_renderer.hpp"
 #include "render/text.hpp"
-#include "scene/presets.hpp"
+#include "support/presets.hpp"
 
 namespace beltsim {
 namespace {

@@ -44,16 +44,19 @@
 #include <vector>
 
 #include "script/interpreter.hpp"
+#include "support/scenes.hpp"
 
 namespace {
 
 namespace fs = std::filesystem;
 
-const char* kServeScene =
-    "local s = beltsim.scene { pulleys = {\n"
-    "  { name = 'driver', centre = {0, 0}, radius = 0.1, torque = beltsim.ramp(0.3, -70) },\n"
-    "  { name = 'driven', centre = {0.29, 0}, radius = 0.1, torque = { per_speed = -70 / beltsim.rpm(700) } } },\n"
-    "  belt = { elements = 60, pretension = 500, direction = 'cw' } }\n";
+// the paper's drive at 60 elements (the tests' scene, tests/support/two_pulley.lua); each case
+// appends its own run
+const std::string kServeScene = [] {
+  beltsim::test::TwoPulley p;
+  p.elements = 60;
+  return beltsim::test::two_pulley(p);
+}();
 
 enum class Serve { no, again, served, watched, stalled };
 

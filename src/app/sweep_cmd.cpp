@@ -12,9 +12,9 @@
 #include "io/csv_writer.hpp"
 #include "io/output_dir.hpp"
 #include "script/docall.hpp"
-#include "script/lua_sweep.hpp"
 #include "script/script_args.hpp"
 #include "script/signals.hpp"
+#include "script/sweep_run.hpp"
 #include "sweep/driver.hpp"
 #include "sweep/inputs.hpp"
 #include "sweep/results.hpp"
@@ -170,8 +170,9 @@ int sweep(const std::string& file, const Raw& raw, const script::Safety& s) {
     }
     std::printf("%s\n%s\n", j.array_script.c_str(), j.collect_script.c_str());
     if (!raw.submit) {
-      std::fprintf(stderr, "beltsim sweep: submit with\n  jid=$(sbatch --parsable %s)\n  sbatch --dependency=afterany:$jid %s\n",
-                   sw::shell_quoted(j.array_script).c_str(), sw::shell_quoted(j.collect_script).c_str());
+      std::fprintf(
+          stderr, "beltsim sweep: submit with\n  jid=$(sbatch --parsable %s)\n  sbatch --dependency=afterany:$jid %s\n",
+          sw::shell_quoted(j.array_script).c_str(), sw::shell_quoted(j.collect_script).c_str());
       return 0;
     }
     const auto [array, collect] = sw::submit_slurm_jobs(j);

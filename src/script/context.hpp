@@ -9,9 +9,10 @@
 #include <utility>
 #include <vector>
 
-#include "script/interpreter.hpp"
 #include "script/load_source.hpp"
-#include "script/lua_law.hpp"
+#include "script/overrides.hpp"
+
+struct lua_State;
 
 namespace beltsim {
 class Simulation;
@@ -31,19 +32,25 @@ struct PageChange {
   std::string call;
 };
 
+// The state a Lua law calls into. The interpreter empties it once the state is closed: a law may
+// outlive its interpreter in a captured scene (beltsim wp), and must then neither call nor unref.
+struct LawHost {
+  lua_State* L = nullptr;  // the main thread
+};
+
 // the registry field holding the result table of the last scene:run{} (a sweep point of the quick form)
 inline constexpr const char* kLastRun = "beltsim.last_run";
 
 struct Context {
   Overrides overrides;
-  std::string default_out = "out";        // out/<script name> while a script runs
-  std::string script_dir;                 // the running script's folder ("" in a console without one)
-  std::string script;                     // the running script's path ("" in a console without one)
-  bool trusted = false;                   // full libraries (Safety::trusted)
+  std::string default_out = "out";  // out/<script name> while a script runs
+  std::string script_dir;           // the running script's folder ("" in a console without one)
+  std::string script;               // the running script's path ("" in a console without one)
+  bool trusted = false;             // full libraries (Safety::trusted)
   const std::atomic<bool>* stop = nullptr;
   bool interrupted = false;
-  Captured* capture = nullptr;            // capture mode (see Interpreter::set_capture)
-  bool captured = false;                  // the script was ended by a capture
+  Captured* capture = nullptr;  // capture mode (see Interpreter::set_capture)
+  bool captured = false;        // the script was ended by a capture
   // a picture made by sim:show or sim:plot: the console shows it in the terminal; a script run
   // prints its path (empty: print the path)
   std::function<void(const std::string& png)> on_picture;
@@ -64,7 +71,7 @@ struct Context {
   // the script files loaded so far (the scenario, dofile, loadfile, require), for a sweep point's
   // record of what defines it
   std::vector<LoadedFile> loaded;
-  bool args_warned = false;  // the unread --set keys were reported at a run's start
+  bool args_warned = false;   // the unread --set keys were reported at a run's start
   bool t_end_warned = false;  // --t-end was said not to shorten scene:start's simulations
   // the live view of --serve (Interpreter::serve): every run of the session feeds it
   std::shared_ptr<live::LiveServer> serve;

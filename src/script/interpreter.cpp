@@ -34,7 +34,7 @@ Interpreter::Interpreter(const Safety& safety)
   limits_->max_cpu = safety.max_lua_cpu;
   limits_->bytes = static_cast<std::size_t>(lua_gc(L_, LUA_GCCOUNT, 0)) * 1024 +
                    static_cast<std::size_t>(lua_gc(L_, LUA_GCCOUNTB, 0));
-  lua_setallocf(L_, limited_alloc, limits_.get());
+  use_limits(L_, *limits_);
   ctx_->trusted = safety.trusted;
   if (safety.trusted)
     luaL_openlibs(L_);

@@ -14,8 +14,7 @@
 #include <vector>
 
 #include "script/load_source.hpp"
-#include "script/script_args.hpp"
-#include "sim/simulation.hpp"
+#include "script/overrides.hpp"
 
 struct lua_State;
 
@@ -39,32 +38,6 @@ struct Safety {
   // point, a callback, a law), beltsim's own work in it not counted; 0: no limit
   double max_lua_wall = 600;
   double max_lua_cpu = 120;
-};
-
-// Command-line values that override what a script asks of scene:run{}.
-struct Overrides {
-  // the run settings given on the command line (the table's options, sim/run_table.hpp: --out,
-  // --t-end, --integrator, --rtol, --max-wall, --check), each over every run's own: their keys in
-  // `given`, their values in `run`
-  std::vector<std::string> given;
-  RunSettings run;
-  bool has(std::string_view key) const {
-    for (const std::string& k : given)
-      if (k == key) return true;
-    return false;
-  }
-  void give(std::string_view key) {
-    if (!has(key)) given.emplace_back(key);
-  }
-  bool no_frames = false;      // ignore the scripts' frames = {...} (no rendering, no video)
-  std::vector<ScriptArg> set;  // --set KEY=VALUE: beltsim.args (not an override of run{})
-  std::optional<int> serve;    // --serve [PORT]: the live view on 127.0.0.1 (0: a free port)
-};
-
-// What a script asked of its first scene:run{} (for `beltsim wp`, which runs the scene itself).
-struct Captured {
-  std::optional<Scene> scene;
-  RunSettings settings;
 };
 
 // A script error, already in "file:line: message" form, with Lua's traceback of where it was

@@ -40,7 +40,9 @@ std::string mib(std::size_t bytes) {
 
 // the margin past the limit that small allocations may use while the hook comes round to
 // raising the error
-std::size_t margin(std::size_t max) { return std::min<std::size_t>(max / 4, std::size_t(256) << 20); }
+std::size_t margin(std::size_t max) {
+  return std::min<std::size_t>(max / 4, std::size_t(256) << 20);
+}
 
 // the limit that fired in this host call, noting one passed just now ("": none; Ctrl-C is apart)
 const std::string& check_fired(Limits& g) {
@@ -101,7 +103,9 @@ int guarded_handler(lua_State* L) {
   return 1;
 }
 
-int xpcall_done(lua_State* L, int /*status*/, lua_KContext /*ctx*/) { return lua_gettop(L); }
+int xpcall_done(lua_State* L, int /*status*/, lua_KContext /*ctx*/) {
+  return lua_gettop(L);
+}
 
 // xpcall(f, msgh, ...): Lua's (upvalue 1) with msgh guarded; none once a limit fired
 int l_xpcall(lua_State* L) {
@@ -162,10 +166,8 @@ int l_table_move(lua_State* L) {
   return 1;
 }
 
-}  // namespace
-
 void* limited_alloc(void* ud, void* ptr, size_t osize, size_t nsize) {
-  auto* g = static_cast<Limits*>(ud);
+  auto* g = static_cast<Limits*>(static_cast<TimeLimits*>(ud));
   const std::size_t old = ptr ? osize : 0;  // without a block, osize is the kind of object
   if (nsize == 0) {
     std::free(ptr);
@@ -206,10 +208,21 @@ void* limited_alloc(void* ud, void* ptr, size_t osize, size_t nsize) {
   return p;
 }
 
+}  // namespace
+
 Limits& limits_of(lua_State* L) {
   void* ud = nullptr;
   lua_getallocf(L, &ud);
-  return *static_cast<Limits*>(ud);
+  return *static_cast<Limits*>(static_cast<TimeLimits*>(ud));
+}
+
+void use_limits(lua_State* L, Limits& g) {
+  lua_setallocf(L, limited_alloc, static_cast<TimeLimits*>(&g));
+}
+
+Limits::Limits() {
+  // the call's time is up (the clock's thread): the hook raises at the next instruction
+  time_is_up = [](TimeLimits& t) { arm(static_cast<Limits&>(t)); };
 }
 
 void install_hook(lua_State* L) {
@@ -232,7 +245,9 @@ void begin_call(lua_State* L) {
     lua_sethook(g.main, nullptr, 0, 0);
 }
 
-void clear_interrupt(lua_State* L) { limits_of(L).interrupt.store(false); }
+void clear_interrupt(lua_State* L) {
+  limits_of(L).interrupt.store(false);
+}
 
 void interrupt(Limits& g) {
   g.interrupt.store(true);
@@ -256,21 +271,6 @@ void guard_limits(lua_State* L) {
   lua_pushcclosure(L, l_table_move, 1);
   lua_setfield(L, -2, "move");
   lua_pop(L, 1);
-}
-
-std::string time_message(const Limits& g, TimeUp up) {
-  const bool wall = up == TimeUp::kWall;
-  const std::string s = rounded_text(wall ? g.max_wall : g.max_cpu, 6);
-  return std::string("the ") + (wall ? "wall-time" : "CPU-time") + " limit of a Lua call was reached: more than " + s +
-         " s of " + (wall ? "wall" : "CPU") +
-         " time in one call (a script run, a console command, a sweep point, a callback or a law, beltsim's own "
-         "work in it not counted; a loop or a string pattern that never ends" +
-         (wall ? ", or a read that waits" : "") + "?); " + (wall ? "--max-lua-wall" : "--max-lua-cpu") +
-         " S raises it, 0 removes it";
-}
-
-void time_is_up(Limits& g) {
-  arm(g);
 }
 
 bool memory_message(lua_State* L, int status, const std::string& where, std::string& msg) {

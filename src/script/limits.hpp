@@ -35,10 +35,11 @@
 
 namespace beltsim::script {
 
-struct Limits {
+// with the time limits, max_wall and max_cpu [s] per call into Lua (lua_clock.hpp; 0: none)
+struct Limits : TimeLimits {
+  Limits();
   std::uint64_t max_instructions = 0;  // per call from the host; 0: none
   std::size_t max_bytes = 0;           // Lua heap; 0: none
-  double max_wall = 0, max_cpu = 0;    // [s] per call into Lua (lua_clock.hpp); 0: none
   std::uint64_t used = 0;              // instructions since the host's call began
   std::size_t bytes = 0;               // the Lua heap now
   bool retried = false;                // an allocation was refused once: the next one is Lua's retry
@@ -50,8 +51,9 @@ struct Limits {
   lua_State* main = nullptr;
 };
 
-// the allocator (ud: the Limits)
-void* limited_alloc(void* ud, void* ptr, size_t osize, size_t nsize);
+// L's blocks from here on through the allocator that counts them against g (its data: g as the
+// clock's TimeLimits)
+void use_limits(lua_State* L, Limits& g);
 Limits& limits_of(lua_State* L);
 // installs the hook on L (the main thread) once, after the state is made
 void install_hook(lua_State* L);
@@ -68,10 +70,6 @@ bool limit_fired(lua_State* L);
 // with ones that raise a limit that fired or a time that is up (table.move between slices of its
 // range)
 void guard_limits(lua_State* L);
-// the message of a time limit passed (without a place)
-std::string time_message(const Limits& g, TimeUp up);
-// the call's time is up (called by the clock's thread): the hook raises at the next instruction
-void time_is_up(Limits& g);
 // true when `status`/the error object on the stack top is a memory error; then `msg` is the
 // message naming the limit (prefixed with `where`, e.g. the script's name)
 bool memory_message(lua_State* L, int status, const std::string& where, std::string& msg);

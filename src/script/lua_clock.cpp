@@ -14,7 +14,8 @@
 #include <string>
 #include <thread>
 
-#include "script/limits.hpp"
+#include "io/number_text.hpp"
+#include "lua.h"
 
 namespace beltsim::script {
 
@@ -47,8 +48,8 @@ std::atomic<int> g_expired_kind{0};       // its TimeUp
 std::atomic<std::uint64_t> g_overdue{0};  // the call still in Lua code kRefuseAfter after it (0: none)
 std::atomic<clockid_t> g_cpu_clock{CLOCK_THREAD_CPUTIME_ID};  // of the thread that runs Lua
 std::atomic<bool> g_cpu_known{false};
-std::atomic<Limits*> g_limits{nullptr};  // the limits of the call under way
-char g_what[512] = "";                   // the outermost call's name (a script's path, "stdin")
+std::atomic<TimeLimits*> g_limits{nullptr};  // the limits of the call under way
+char g_what[512] = "";                       // the outermost call's name (a script's path, "stdin")
 static_assert(std::atomic<std::uint64_t>::is_always_lock_free && std::atomic<clockid_t>::is_always_lock_free);
 
 // the clock's use of g_limits against the interpreter going away (never destroyed: the thread may
@@ -66,7 +67,7 @@ double cpu_seconds() {
 
 // the C function under way did not return after the limit: the process ends (write(2) only on
 // stderr; stdout is flushed unless the Lua thread holds it, as in a write that blocks)
-[[noreturn]] void end_process(const Limits& g, TimeUp up) {
+[[noreturn]] void end_process(const TimeLimits& g, TimeUp up) {
   std::string m = "\nbeltsim: ";
   if (g_what[0]) m += std::string(g_what) + ": ";
   m += time_message(g, up) +
@@ -98,7 +99,7 @@ void clock_thread() {
     const double wall = std::chrono::duration<double>(clock::now() - t0).count();
     if (const double c = cpu_seconds(); c >= 0) cpu = c;
     const std::lock_guard<std::mutex> lock(limits_mutex());
-    Limits* g = g_limits.load();
+    TimeLimits* g = g_limits.load();
     const TimeUp up =
         calls.look({mode_of(s), call_of(s), depth_of(s), wall, cpu, steady}, g ? g->max_wall : 0, g ? g->max_cpu : 0);
     if (!g) continue;
@@ -106,7 +107,7 @@ void clock_thread() {
       g_expired_kind.store(static_cast<int>(up));
       g_expired.store(call_of(s));
       stuck_since = -1;
-      time_is_up(*g);
+      if (g->time_is_up) g->time_is_up(*g);
     }
     if (g_expired.load() != call_of(s) || mode_of(s) != LuaMode::kLua) {
       stuck_since = -1;
@@ -152,7 +153,7 @@ void start_lua_clock() {
   });
 }
 
-void forget_limits(const Limits* limits) {
+void forget_limits(const TimeLimits* limits) {
   const std::lock_guard<std::mutex> lock(limits_mutex());
   if (g_limits.load() == limits) g_limits.store(nullptr);
 }
@@ -169,7 +170,9 @@ InsideLua::InsideLua(lua_State* L, const char* what) : saved_(g_state.load(std::
     } else {
       depth = depth_of(saved_) + 1;
     }
-    saved_limits_ = g_limits.exchange(&limits_of(L));
+    void* ud = nullptr;
+    lua_getallocf(L, &ud);  // the state's limits (use_limits)
+    saved_limits_ = g_limits.exchange(static_cast<TimeLimits*>(ud));
     g_state.store(pack(++g_calls, depth, LuaMode::kLua));
   }
   g_changes.fetch_add(1);
@@ -189,6 +192,17 @@ HostWork::HostWork() : saved_(g_state.load(std::memory_order_relaxed)) {
 HostWork::~HostWork() {
   g_state.store(saved_);
   g_changes.fetch_add(1);
+}
+
+std::string time_message(const TimeLimits& g, TimeUp up) {
+  const bool wall = up == TimeUp::kWall;
+  const std::string s = rounded_text(wall ? g.max_wall : g.max_cpu, 6);
+  return std::string("the ") + (wall ? "wall-time" : "CPU-time") + " limit of a Lua call was reached: more than " + s +
+         " s of " + (wall ? "wall" : "CPU") +
+         " time in one call (a script run, a console command, a sweep point, a callback or a law, beltsim's own "
+         "work in it not counted; a loop or a string pattern that never ends" +
+         (wall ? ", or a read that waits" : "") + "?); " + (wall ? "--max-lua-wall" : "--max-lua-cpu") +
+         " S raises it, 0 removes it";
 }
 
 TimeUp CallClock::look(const Look& now, double max_wall, double max_cpu) {

@@ -21,13 +21,12 @@
 
 #include <chrono>
 #include <cstdint>
+#include <string>
 #include <vector>
 
 struct lua_State;
 
 namespace beltsim::script {
-
-struct Limits;
 
 enum class LuaMode : int { kOutside = 0, kLua = 1, kWork = 2 };
 enum class TimeUp : int { kNone = 0, kWall = 1, kCpu = 2 };
@@ -35,6 +34,16 @@ enum class TimeUp : int { kNone = 0, kWall = 1, kCpu = 2 };
 inline constexpr std::chrono::seconds kGraceAfterLimit{2};
 inline constexpr std::chrono::milliseconds kLookEvery{10};  // the clock's looks (the limits are kept to this)
 inline constexpr std::size_t kLargeBlock = std::size_t(1) << 20;
+
+// The time limits of one interpreter's calls into Lua, as the clock reads them (limits.hpp's Limits
+// holds them): its Lua state's allocator data points to them (use_limits), and when a call passes
+// one the clock's thread calls time_is_up, which makes the hook raise its error.
+struct TimeLimits {
+  double max_wall = 0, max_cpu = 0;  // [s] per call into Lua; 0: none
+  void (*time_is_up)(TimeLimits&) = nullptr;
+};
+// the message of a time limit passed (without a place)
+std::string time_message(const TimeLimits& t, TimeUp up);
 
 // what the host is doing (for the stop signals' watchdog, signals.hpp): the mode, and a counter
 // that changes at every change of it
@@ -49,7 +58,7 @@ bool time_overdue();
 // starts the clock's thread (once per process; later calls do nothing)
 void start_lua_clock();
 // the interpreter that owns these limits is going away: the clock no longer looks at them
-void forget_limits(const Limits* limits);
+void forget_limits(const TimeLimits* limits);
 
 // the host is running Lua code (docall, a callback) for the guard's lifetime; `what` names a new
 // call for the message that ends the process (nullptr: the call under way's name is kept)
@@ -62,7 +71,7 @@ class InsideLua {
 
  private:
   std::uint64_t saved_;
-  Limits* saved_limits_ = nullptr;
+  TimeLimits* saved_limits_ = nullptr;
   bool new_call_ = false;
 };
 

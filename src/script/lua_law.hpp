@@ -14,12 +14,6 @@ namespace beltsim::script {
 
 struct Context;
 
-// The state a Lua law calls into. The interpreter empties it once the state is closed: a law may
-// outlive its interpreter in a captured scene (beltsim wp), and must then neither call nor unref.
-struct LawHost {
-  lua_State* L = nullptr;  // the main thread
-};
-
 // a torque law [N·m] (speed = false) or a prescribed speed [rad/s] from the value at idx,
 // checked (validate_law) with errors naming `what` and the script's file:line
 TimeSpeedLaw to_law(lua_State* L, int idx, const std::string& what, bool speed, Context* ctx);

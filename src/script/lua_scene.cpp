@@ -56,13 +56,11 @@ void push_site(lua_State* L, const ElementSite& e) {
   }
 }
 
-
 namespace {
 
 // every number of the parameter table's `table` that the Lua table at idx gives (scene/parameters.hpp),
 // into d (a pulley's into p); `where` names the table in errors ("belt", "pulley 'driver'")
-void read_numbers(lua_State* L, int idx, std::string_view table, const std::string& where, SceneDef& d,
-                  PulleyDef& p) {
+void read_numbers(lua_State* L, int idx, std::string_view table, const std::string& where, SceneDef& d, PulleyDef& p) {
   for (const Parameter* par : parameters_of(table)) {
     if (par->kind == Kind::other) continue;
     const std::string key(par->key);
@@ -351,7 +349,6 @@ void read_belt(lua_State* L, int idx, SceneDef& d, std::unique_ptr<LuaRef>& mu_f
   }
 }
 
-
 // the string keys of the table at idx, as prefix..key, into `given` (SceneDef::given)
 void note_given(lua_State* L, int idx, const std::string& prefix, std::set<std::string>& given) {
   idx = lua_absindex(L, idx);
@@ -385,7 +382,8 @@ void report_scene(const Scene& sc) {
   if (std::none_of(sc.inputs.begin(), sc.inputs.end(),
                    [](const SceneInput& in) { return in.name == "belt.pretension"; })) {
     const Belt& b = sc.model.belt;
-    std::fprintf(stderr, "beltsim: belt: rest length %.6g m on a %.6g m route (strain %.4g %%): static span tension %.6g N\n",
+    std::fprintf(stderr,
+                 "beltsim: belt: rest length %.6g m on a %.6g m route (strain %.4g %%): static span tension %.6g N\n",
                  b.rigid_length * b.n, sc.route.length, 100 * (b.pitch / b.rigid_length - 1), sc.static_tension);
   }
 }
@@ -424,7 +422,8 @@ int l_scene(lua_State* L) {
     // each constant per element (the paper's) or per metre of pitch, not both
     for (const char* k : {"c1", "c2", "damping"})
       if (has(L, c, k) && has(L, c, (std::string(k) + "_per_length").c_str()))
-        fail(L, std::string("contact: give ") + k + " (per element) or " + k + "_per_length (per metre of belt), not both");
+        fail(L, std::string("contact: give ") + k + " (per element) or " + k +
+                    "_per_length (per metre of belt), not both");
     PulleyDef none;
     read_numbers(L, c, "contact", "contact", d, none);
     note_given(L, c, "contact.", d.given);
@@ -452,6 +451,12 @@ int l_scene(lua_State* L) {
   if (auto v = opt_bool(L, 1, "energy", "scene")) d.track_energy = *v;
   if (auto v = opt_bool(L, 1, "allow_large", "scene")) d.allow_large = *v;
 
+  if (ctx && ctx->capture && ctx->capture->definition_only) {  // Captured: the definition, nothing built
+    if (!mu_fn) ctx->capture->definition = d;
+    ctx->captured = true;
+    lua_pushliteral(L, "scene captured");
+    return lua_error(L);
+  }
   auto** box = static_cast<Scene**>(lua_newuserdatauv(L, sizeof(Scene*), 0));
   *box = nullptr;
   luaL_setmetatable(L, kSceneMeta);
@@ -465,7 +470,7 @@ int l_scene(lua_State* L) {
   } catch (const BuildInterrupted& e) {
     ctx->interrupted = true;
     error = e.what();
-  } catch (const std::exception& e) {  // a Lua law that failed while the static state was sought
+  } catch (const std::exception& e) {               // a Lua law that failed while the static state was sought
     error = e.what(), about = message_path(error);  // ("pulley 'driven'.torque (function at ...)")
   }
   if (!error.empty()) fail_at(L, about, error);

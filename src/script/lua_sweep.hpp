@@ -1,15 +1,12 @@
 // Lua side of sweeps (docs/sweeps.md): beltsim.sweep{ grid = {...} | samples = {...}, run = fn },
-// the sweep a sweep file returns, and one point run in an interpreter: the sweep file's run(p), or
-// an ordinary script with the point's parameters as --set values (the quick form of the command
-// line). The processes, the resumption and the summary are Lua-free (src/sweep/).
+// the sweep a sweep file returns (its points run in an interpreter: sweep_run.hpp). The processes,
+// the resumption and the summary are Lua-free (src/sweep/).
 #pragma once
 
 #include <string>
 #include <vector>
 
-#include "script/interpreter.hpp"
 #include "sweep/points.hpp"
-#include "sweep/results.hpp"
 
 struct lua_State;
 
@@ -17,23 +14,13 @@ namespace beltsim::script {
 
 struct Context;
 
+// the userdata beltsim.sweep{} returns: its points
+inline constexpr const char* kSweepMeta = "beltsim.Sweep";
+struct SweepBox {
+  std::vector<sweep::Point> points;
+};
+
 // adds beltsim.sweep to the table on the top of the stack
 void open_sweep(lua_State* L, Context* ctx);
-
-// runs the sweep file and returns its points; throws ScriptError ("file:line: why") when it fails
-// or does not return beltsim.sweep{...}
-std::vector<sweep::Point> load_sweep(Interpreter& lua, const std::string& path);
-
-// run(p) of the sweep loaded last by load_sweep, its runs writing to point_dir unless they say
-// otherwise. The result's figures are what run(p) returned (nested tables flattened with dots:
-// omega.driver); an error gives an "error: ..." or "diverged at t = T s" status. The caller checks
-// lua.interrupted() and the stop signal: a stopped point is not a result.
-sweep::PointResult run_sweep_point(Interpreter& lua, const std::string& path, const sweep::Point& p,
-                                   const std::string& point_dir);
-
-// the quick form: the script run with the point's parameters as its --set values and its runs'
-// folder point_dir; the figures are the result table of its last scene:run{}
-sweep::PointResult run_script_point(Interpreter& lua, const std::string& script, const sweep::Point& p,
-                                    const std::string& point_dir);
 
 }  // namespace beltsim::script

@@ -11,7 +11,6 @@
 #include "integrate/integrator.hpp"
 #include "script/context.hpp"
 #include "script/lua_check.hpp"
-#include "script/signals.hpp"
 #include "live/live_server.hpp"
 #include "script/lua_clock.hpp"
 #include "sim/simulation.hpp"

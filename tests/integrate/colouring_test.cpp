@@ -1,15 +1,16 @@
 // Column colouring and the coloured difference-quotient Jacobian of the CVODE peer (cvode-fd):
 // the colouring of a known pattern, a valid colouring of the belt's pattern, and the difference
 // quotients against the analytic Jacobian on the paper's dry drive.
+#include "integrate/colouring.hpp"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
 
 #include "integrate/belt_system.hpp"
-#include "integrate/colouring.hpp"
 #include "integrate/driver.hpp"
 #include "integrate/stepper.hpp"
-#include "scene/presets.hpp"
+#include "support/presets.hpp"
 
 namespace beltsim {
 namespace {

@@ -11,7 +11,7 @@
 #include "integrate/belt_system.hpp"
 #include "integrate/cvode.hpp"
 #include "integrate/stepper.hpp"
-#include "scene/presets.hpp"
+#include "support/presets.hpp"
 #include "support/warning_guard.hpp"
 
 namespace beltsim {

@@ -6,17 +6,18 @@
 // slip velocity that grows linearly along each wrap (as over a slip arc): each element that travels
 // half a pitch or more takes the state found where it lands. The bounds are rounding (1e-12 of the
 // sizes).
+#include "integrate/newton_aids.hpp"
+
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cmath>
 
-#include "integrate/newton_aids.hpp"
 #include "model/contact_law.hpp"
 #include "model/contacts.hpp"
 #include "model/forces.hpp"
 #include "model/workspace.hpp"
-#include "scene/presets.hpp"
+#include "support/presets.hpp"
 
 namespace beltsim {
 namespace {
@@ -262,7 +263,8 @@ TEST(FrictionLocalSolve, ZeroesTheTangentialResidualOfWholeWraps) {
     for (const ContactPair& c : pairs)
       if (c.touching && c.nl.pushing && on[c.i] < 0) {
         on[c.i] = c.j, tang[c.i] = c.nl.t;
-        wk[c.i] = (z[N + 3 * c.i] - y[N + 3 * c.i]) * c.nl.t.x() + (z[N + 3 * c.i + 1] - y[N + 3 * c.i + 1]) * c.nl.t.y();
+        wk[c.i] =
+            (z[N + 3 * c.i] - y[N + 3 * c.i]) * c.nl.t.x() + (z[N + 3 * c.i + 1] - y[N + 3 * c.i + 1]) * c.nl.t.y();
         // the position moved with the velocity, by w/s along the tangent
         EXPECT_NEAR(z[3 * c.i] - y[3 * c.i], wk[c.i] / s * c.nl.t.x(), 1e-15);
       }

@@ -15,7 +15,7 @@
 #include "integrate/ring_solver.hpp"
 #include "model/rhs.hpp"
 #include "model/sparse.hpp"
-#include "scene/presets.hpp"
+#include "support/presets.hpp"
 
 namespace beltsim {
 namespace {

@@ -4,15 +4,16 @@
 // function's sign tells the piece the laws themselves report, and along a straight path in
 // the state each function changes by no more than its slope times the path step (no jumps
 // where the laws change piece, which CVODE's rootfinding needs).
+#include "integrate/switches.hpp"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <random>
 
-#include "integrate/switches.hpp"
 #include "model/contact_law.hpp"
 #include "model/contacts.hpp"
-#include "scene/presets.hpp"
+#include "support/presets.hpp"
 
 namespace beltsim {
 namespace {
@@ -30,7 +31,8 @@ Pieces pieces(const Model& m, const Drive& dr, double t, const double* q, const 
   pc.contact = true;
   pc.deep = nl.p > m.contact.p_max;
   pc.pushing = nl.pushing;
-  if (nl.pushing) pc.band = std::abs(friction_law(dr.mu[i], m.friction.dv, nl, V, dr.omega(m, j, t, v)).vT) < m.friction.dv;
+  if (nl.pushing)
+    pc.band = std::abs(friction_law(dr.mu[i], m.friction.dv, nl, V, dr.omega(m, j, t, v)).vT) < m.friction.dv;
   return pc;
 }
 
@@ -47,7 +49,8 @@ Eigen::VectorXd random_state(const Model& m, const Eigen::VectorXd& y0, std::mt1
     const Vec2 P(y[3 * i], y[3 * i + 1]);
     int j = 0;
     for (int k = 1; k < m.n_p(); ++k)
-      if ((P - m.pulleys[k].centre).norm() - m.pulleys[k].radius < (P - m.pulleys[j].centre).norm() - m.pulleys[j].radius)
+      if ((P - m.pulleys[k].centre).norm() - m.pulleys[k].radius <
+          (P - m.pulleys[j].centre).norm() - m.pulleys[j].radius)
         j = k;
     const Pulley& pl = m.pulleys[j];
     const Vec2 n = (P - pl.centre).normalized(), t = perp(n);

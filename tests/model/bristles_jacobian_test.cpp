@@ -3,17 +3,16 @@
 // the force rows as at the top of jacobian_test.cpp; the deflections' rows below).
 #include <gtest/gtest.h>
 
+#include <Eigen/SparseCore>
 #include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <random>
 
-#include <Eigen/SparseCore>
-
 #include "model/jacobian_check.hpp"
 #include "model/rhs.hpp"
 #include "model/sparse.hpp"
-#include "scene/presets.hpp"
+#include "support/presets.hpp"
 
 namespace beltsim {
 namespace {
@@ -69,7 +68,10 @@ void expect_ode_jacobian_matches(const Model& m, const Drive& dr, double t, cons
     const double floor = 1e-4 * an.middleRows(first, count).cwiseAbs().maxCoeff();
     const double e = column_error(an.middleRows(first, count), fd.middleRows(first, count), &col, floor);
     EXPECT_LT(e, bristle_rows ? 1e-5 : 1e-6) << (bristle_rows ? "∂ż/∂y" : "∂v̇/∂y") << ", column " << col << " ("
-                       << (col >= zo ? "a deflection" : col >= N ? "a velocity" : "a position") << ")";
+                                             << (col >= zo  ? "a deflection"
+                                                 : col >= N ? "a velocity"
+                                                            : "a position")
+                                             << ")";
   }
   // ∂ż/∂t
   const double dt = 1e-7;
@@ -157,8 +159,8 @@ TEST(Jacobian, ASegmentOverTheWholeBeltIsTheScenesLaw) {
     seg.friction_segments = {{0.0, 1e9, whole.friction}};
     const Scene a = build_scene(whole), b = build_scene(seg);
     ASSERT_EQ(a.model.n_state(), b.model.n_state());
-    const Eigen::VectorXd y = a.model.n_bristle() ? with_deflections(a, running_state(a, 0.1, 30.0, 7), 3)
-                                                  : running_state(a, 0.1, 30.0, 7);
+    const Eigen::VectorXd y =
+        a.model.n_bristle() ? with_deflections(a, running_state(a, 0.1, 30.0, 7), 3) : running_state(a, 0.1, 30.0, 7);
     Eigen::VectorXd da(y.size()), db(y.size());
     rhs(a.model, a.drive, 0.1, y.data(), da.data());
     rhs(b.model, b.drive, 0.1, y.data(), db.data());

@@ -2,16 +2,17 @@
 // another state (or at the same pointer after the state moved in place) gets a pass of its own,
 // a belt split in two halves gives every pulley the whole belt's pairs in element order, and the
 // questions about one pulley or one element read the records that observe() reads.
+#include "model/contacts.hpp"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <cstring>
 
-#include "model/contacts.hpp"
 #include "model/jacobian_check.hpp"
 #include "model/observables.hpp"
 #include "model/rhs.hpp"
-#include "scene/presets.hpp"
+#include "support/presets.hpp"
 
 namespace beltsim {
 namespace {

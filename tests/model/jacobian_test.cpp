@@ -26,7 +26,7 @@
 #include "model/forces.hpp"
 #include "model/jacobian_check.hpp"
 #include "model/rhs.hpp"
-#include "scene/presets.hpp"
+#include "support/presets.hpp"
 
 namespace beltsim {
 namespace {
@@ -269,7 +269,7 @@ TEST(Jacobian, NonUnitExponents) {
   d.belt.e_tra = 1.3;
   d.belt.e_tor = 1.2;
   d.belt.reading = StiffnessReading::per_sde;
-  d.belt.k = 2e8;   // k·gap^1.3 carries the pretension at a gap of ≈ 2e-4 m
+  d.belt.k = 2e8;  // k·gap^1.3 carries the pretension at a gap of ≈ 2e-4 m
   d.belt.c = 1000;
   d.belt.kt = 1.3;
   d.belt.ct = 0.05;

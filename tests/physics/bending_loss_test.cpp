@@ -1,11 +1,12 @@
 // The bending dampers' power estimated before a run (scene/bending_loss.hpp) against the power a
 // run measures (the energy channel of the torsional SDE dampers, energy.dissipated_bending).
+#include "scene/bending_loss.hpp"
+
 #include <gtest/gtest.h>
 
 #include "helpers.hpp"
 #include "scene/belt_presets.hpp"
-#include "scene/bending_loss.hpp"
-#include "scene/presets.hpp"
+#include "support/presets.hpp"
 #include "support/warning_guard.hpp"
 
 namespace beltsim {

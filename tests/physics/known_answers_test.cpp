@@ -15,7 +15,7 @@
 #include "model/observables.hpp"
 #include "model/rhs.hpp"
 #include "physics/helpers.hpp"
-#include "scene/presets.hpp"
+#include "support/presets.hpp"
 #include "sim/simulation.hpp"
 #include "support/warning_guard.hpp"
 #include "support/scratch.hpp"

@@ -6,7 +6,7 @@
 #include <cmath>
 
 #include "physics/helpers.hpp"
-#include "scene/presets.hpp"
+#include "support/presets.hpp"
 #include "support/warning_guard.hpp"
 
 namespace beltsim {

@@ -11,7 +11,7 @@
 
 #include "model/forces.hpp"
 #include "physics/helpers.hpp"
-#include "scene/presets.hpp"
+#include "support/presets.hpp"
 #include "support/warning_guard.hpp"
 
 namespace beltsim {

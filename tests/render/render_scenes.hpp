@@ -8,8 +8,8 @@
 #include "model/contacts.hpp"
 #include "model/forces.hpp"
 #include "model/observables.hpp"
-#include "scene/presets.hpp"
 #include "scene/scene.hpp"
+#include "support/presets.hpp"
 
 namespace beltsim::test {
 

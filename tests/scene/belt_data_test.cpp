@@ -6,8 +6,8 @@
 
 #include <cmath>
 
-#include "scene/presets.hpp"
 #include "scene/validate.hpp"
+#include "support/presets.hpp"
 #include "support/warning_guard.hpp"
 
 namespace beltsim {

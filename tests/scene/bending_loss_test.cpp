@@ -10,8 +10,8 @@
 
 #include "scene/belt_presets.hpp"
 #include "scene/parameters.hpp"
-#include "scene/presets.hpp"
 #include "scene/scene.hpp"
+#include "support/presets.hpp"
 #include "support/warning_guard.hpp"
 
 namespace beltsim {

@@ -10,9 +10,9 @@
 #include <string>
 
 #include "scene/parameters.hpp"
-#include "scene/presets.hpp"
 #include "scene/validate.hpp"
 #include "support/parameter_error.hpp"
+#include "support/presets.hpp"
 
 namespace beltsim {
 namespace {

@@ -10,10 +10,10 @@
 
 #include "model/forces.hpp"
 #include "model/rhs.hpp"
-#include "scene/presets.hpp"
 #include "scene/validate.hpp"
-#include "support/parameter_error.hpp"
 #include "sim/simulation.hpp"
+#include "support/parameter_error.hpp"
+#include "support/presets.hpp"
 #include "support/scratch.hpp"
 #include "support/warning_guard.hpp"
 

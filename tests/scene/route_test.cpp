@@ -5,8 +5,8 @@
 #include <cmath>
 
 #include "scene/build.hpp"
-#include "scene/presets.hpp"
 #include "scene/validate.hpp"
+#include "support/presets.hpp"
 
 namespace beltsim {
 namespace {
@@ -115,7 +115,8 @@ TEST(Validate, AMuListOfTheWrongLengthSaysHowManyItNeeds) {
     FAIL() << "a mu list of 4 values for " << d.belt.elements << " elements was accepted";
   } catch (const ParameterError& e) {
     EXPECT_STREQ(e.what(), ("belt.mu per element needs one value per element (" + std::to_string(d.belt.elements) +
-                            ") (got 4 values)").c_str());
+                            ") (got 4 values)")
+                               .c_str());
   }
 }
 

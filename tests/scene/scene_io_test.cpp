@@ -18,7 +18,7 @@
 #include "io/checkpoint_text.hpp"
 #include "io/number_text.hpp"
 #include "scene/parameters.hpp"
-#include "scene/presets.hpp"
+#include "support/presets.hpp"
 #include "scene/scene.hpp"
 #include "support/checkpoint_edit.hpp"
 #include "support/dry_scene.hpp"

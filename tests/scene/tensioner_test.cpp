@@ -9,9 +9,9 @@
 #include "model/forces.hpp"
 #include "model/observables.hpp"
 #include "model/rhs.hpp"
-#include "scene/presets.hpp"
 #include "scene/validate.hpp"
 #include "support/parameter_error.hpp"
+#include "support/presets.hpp"
 
 namespace beltsim {
 namespace {
@@ -105,7 +105,8 @@ TEST(Tensioner, ErrorsNameTheParameter) {
   };
   EXPECT_NE(with([](SceneDef& d) { d.pulleys[1].tensioner->stiffness = 0; }).find("tensioner.stiffness must be > 0"),
             std::string::npos);
-  EXPECT_NE(with([](SceneDef& d) { d.pulleys[1].tensioner->inertia = -1; }).find("tensioner.inertia"), std::string::npos);
+  EXPECT_NE(with([](SceneDef& d) { d.pulleys[1].tensioner->inertia = -1; }).find("tensioner.inertia"),
+            std::string::npos);
   EXPECT_NE(with([](SceneDef& d) {
               d.pulleys[1].tensioner->preload = 5.0;
               d.given.insert("belt.pretension");

@@ -10,10 +10,10 @@
 #include <string>
 
 #include "run_script.hpp"
-#include "scene/presets.hpp"
 #include "scene/scene.hpp"
 #include "scene/validate.hpp"
 #include "script/interpreter.hpp"
+#include "support/presets.hpp"
 #include "support/scratch.hpp"
 
 namespace beltsim::script {

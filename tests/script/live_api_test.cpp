@@ -134,14 +134,9 @@ TEST(LiveApi, WhenFindsTheCrossing) {
 // sim:energy its spring's energy, sim:set_arm moves it, and a checkpoint carries it (the resumed run gives the same bits).
 TEST(LiveApi, TensionerArmReadChangedAndCheckpointed) {
   const std::string out = (temp_dir() / "arm").string();
-  EXPECT_EQ(run_text("local s = beltsim.scene{ pulleys = {\n"
-                     "  { name = 'crankshaft', centre = {0.09, -0.27}, radius = 0.080, inertia = 0.02,\n"
-                     "    torque = beltsim.ramp(0.3, -70.0) },\n"
-                     "  { name = 'tensioner', centre = {0.015, -0.12}, radius = 0.031, inertia = 5e-5, wrap = 'back',\n"
-                     "    tensioner = { pivot = {0.075, -0.14}, inertia = 1e-3, stiffness = 30, damping = 0.05 } },\n"
-                     "  { name = 'alternator', centre = {0.0, 0.0}, radius = 0.027, inertia = 2e-3 },\n"
-                     "  { name = 'pump', centre = {0.16, -0.06}, radius = 0.056, inertia = 1e-3, torque = { per_speed = -0.5 } } },\n"
-                     "  belt = { elements = 150, pretension = 280, direction = 'cw' } }\n"
+  EXPECT_EQ(run_text(beltsim::test::automotive_text() +
+                     "local s = beltsim.scene(automotive { crank = beltsim.ramp(0.3, -70.0), arm = { damping = 0.05 },\n"
+                     "  pump = { per_speed = -0.5 }, belt = { pretension = 280 } })\n"
                      "local sim = s:start{ out = '" + out + "', progress = false }\n"
                      "local p = sim:pulley('tensioner')\n"
                      "assert(math.abs(p.arm_angle - math.atan(-0.12 + 0.14, 0.015 - 0.075)) < 1e-15, 'installed angle')\n"

@@ -477,14 +477,9 @@ TEST(LuaApi, BeltDataAndTheDefaultsTaken) {
 TEST(LuaApi, ATensionersPreloadSetsTheTensionAndTheArmIsListed) {
   beltsim::test::expect_warnings({WarningKind::failed_step});
   const std::string text =
-      "local s = beltsim.scene{ pulleys = {\n"
-      "  { name = 'crankshaft', centre = {0.09, -0.27}, radius = 0.080, inertia = 0.02, torque = -1 },\n"
-      "  { name = 'tensioner', centre = {0.015, -0.12}, radius = 0.031, inertia = 5e-5, wrap = 'back',\n"
-      "    tensioner = { pivot = {0.075, -0.14}, inertia = 1e-3, stiffness = 30, preload = 6 } },\n"
-      "  { name = 'alternator', centre = {0.0, 0.0}, radius = 0.027, inertia = 2e-3 },\n"
-      "  { name = 'pump', centre = {0.16, -0.06}, radius = 0.056, inertia = 1e-3 } },\n"
-      "  belt = { elements = 150, direction = 'cw' },\n"
-      "  spray = { { centre = {0.5, 0.5}, radius = 0.01, mu = 0.2, drying_length = 1 } } }\n"
+      beltsim::test::automotive_text() +
+      "local s = beltsim.scene(automotive { crank = -1, arm = { preload = 6 },\n"
+      "  spray = { { centre = {0.5, 0.5}, radius = 0.01, mu = 0.2, drying_length = 1 } } })\n"
       "s:run{ t_end = 0.0005, progress = false }\n";
   testing::internal::CaptureStderr();
   const std::string msg = run_text(text);

@@ -23,7 +23,7 @@
 #include "io/checkpoint_text.hpp"
 #include "io/number_text.hpp"
 #include "scene/parameters.hpp"
-#include "scene/presets.hpp"
+#include "support/presets.hpp"
 #include "scene/scene.hpp"
 #include "sim/run_table.hpp"
 #include "sim/simulation.hpp"

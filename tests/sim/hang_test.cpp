@@ -12,10 +12,10 @@
 #include "integrate/make_integrator.hpp"
 #include "integrate/timeline.hpp"
 #include "scene/build.hpp"
-#include "scene/presets.hpp"
 #include "scene/scene.hpp"
 #include "sim/simulation.hpp"
 #include "support/dry_scene.hpp"
+#include "support/presets.hpp"
 #include "support/scratch.hpp"
 #include "support/warning_guard.hpp"
 
@@ -195,8 +195,8 @@ TEST(NoHang, StopBetweenOutputsOfOneStep) {
     const Timeline::Result r = tl.run_to(2e-6, &stop);
     if (stop_at_100) {
       EXPECT_TRUE(r.interrupted);
-      EXPECT_EQ(got.size(), 200u);                  // no output after the stop
-      EXPECT_LT(tl.now(), tl.integrator().t());     // inside the held step
+      EXPECT_EQ(got.size(), 200u);               // no output after the stop
+      EXPECT_LT(tl.now(), tl.integrator().t());  // inside the held step
       EXPECT_EQ(tl.now(), got[198]);
       stop.store(false);
       EXPECT_FALSE(tl.run_to(2e-6, &stop).interrupted);

@@ -12,11 +12,11 @@
 #include <sstream>
 
 #include "io/output_dir.hpp"
-#include "scene/presets.hpp"
 #include "scene/scene.hpp"
 #include "sim/simulation.hpp"
 #include "support/dry_scene.hpp"
 #include "support/files.hpp"
+#include "support/presets.hpp"
 #include "support/scratch.hpp"
 #include "support/warning_guard.hpp"
 

@@ -16,10 +16,10 @@
 #include <vector>
 
 #include "io/number_text.hpp"
-#include "scene/presets.hpp"
 #include "sim/run_error.hpp"
 #include "sim/simulation.hpp"
 #include "support/files.hpp"
+#include "support/presets.hpp"
 #include "support/scratch.hpp"
 #include "support/warning_guard.hpp"
 
@@ -127,9 +127,12 @@ TEST(RunCheck, WarnsPastTenTimesRtolOnceAndSaysSoAtTheEnd) {
   EXPECT_GT(r.check.err_speed, 10 * 1e-2);  // measured 0.366
   EXPECT_TRUE(r.check.over());
   ASSERT_EQ(said.size(), 1u);
-  EXPECT_EQ(said[0].rfind("check: at t = " + rounded_text(r.check.warned_t) + " s the estimated error so far of the "
-                          "pulley speeds is ", 0),
-            0u) << said[0];
+  EXPECT_EQ(said[0].rfind("check: at t = " + rounded_text(r.check.warned_t) +
+                              " s the estimated error so far of the "
+                              "pulley speeds is ",
+                          0),
+            0u)
+      << said[0];
   EXPECT_NE(said[0].find("past 10×rtol = 0.1"), std::string::npos) << said[0];
   EXPECT_GT(r.check.warned_t, 0);
   EXPECT_LE(r.check.warned_t, 0.05);

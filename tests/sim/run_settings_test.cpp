@@ -10,7 +10,6 @@
 
 #include "io/csv_writer.hpp"
 #include "io/number_text.hpp"
-#include "scene/presets.hpp"
 #include "scene/scene.hpp"
 #include "sim/run_table.hpp"
 #include "sim/simulation.hpp"
@@ -93,7 +92,8 @@ TEST(RunSettings, ARunLeavesOutWhatComesAfterItsEnd) {
   ASSERT_EQ(notes.size(), 3u);
   EXPECT_EQ(notes[0], "events: the event at 0.01 s (wet) is at or after t_end = 0.004 s (from --t-end): skipped");
   EXPECT_EQ(notes[1], "snapshots: the snapshot at 0.01 s is after t_end = 0.004 s (from --t-end): skipped");
-  EXPECT_EQ(notes[2], "frames: they start at 0.01 s, after t_end = 0.004 s (from --t-end): none drawn and no states kept");
+  EXPECT_EQ(notes[2],
+            "frames: they start at 0.01 s, after t_end = 0.004 s (from --t-end): none drawn and no states kept");
   EXPECT_TRUE(rs.mu_events.empty());
   EXPECT_EQ(rs.snapshot_times, std::vector<double>{0.002});
   EXPECT_FALSE(rs.frames.has_value());

@@ -13,11 +13,11 @@
 #include <optional>
 
 #include "io/checkpoint_text.hpp"
-#include "scene/presets.hpp"
 #include "scene/scene.hpp"
 #include "sim/simulation.hpp"
 #include "sim/state_io.hpp"
 #include "support/files.hpp"
+#include "support/presets.hpp"
 #include "support/scratch.hpp"
 #include "support/warning_guard.hpp"
 

@@ -15,10 +15,10 @@
 
 #include "io/csv_writer.hpp"
 #include "io/number_text.hpp"
-#include "scene/presets.hpp"
 #include "scene/scene.hpp"
 #include "support/dry_scene.hpp"
 #include "support/files.hpp"
+#include "support/presets.hpp"
 #include "support/scratch.hpp"
 #include "support/warning_guard.hpp"
 
@@ -168,7 +168,8 @@ TEST(Live, CoincidentEventsAndKinks) {
     RunSettings rs = settings(integ, temp("coincident_" + integ));
     rs.t_end = 0.0006;  // rkf45 is stability-limited (steps of ~1e-9 s): a short stretch
     std::vector<double> mu(sc.model.n_el(), 0.5);
-    rs.mu_events = {{0.0004, mu, "a", "", {}}, {0.0004, mu, "b", "", {}}, {0.0002, mu, "c", "", {}}, {0.0002, mu, "d", "", {}}};
+    rs.mu_events = {
+        {0.0004, mu, "a", "", {}}, {0.0004, mu, "b", "", {}}, {0.0002, mu, "c", "", {}}, {0.0002, mu, "d", "", {}}};
     RunResult r;
     ASSERT_NO_THROW(r = run(sc, rs)) << integ;
     EXPECT_EQ(r.t_reached, 0.0006);
@@ -511,8 +512,10 @@ TEST(Live, IntervalMeansAreExactFromTheSteps) {
     for (double x : v) s += (x - m) * (x - m);
     return std::sqrt(s / v.size());
   };
-  std::printf("identity: worst %.3g N·m from the steps, %.3g N·m from the samples; driver torque spread %.3g N·m, "
-              "its mean's %.3g N·m\n", worst_steps, worst_samples, spread(inst), spread(mean));
+  std::printf(
+      "identity: worst %.3g N·m from the steps, %.3g N·m from the samples; driver torque spread %.3g N·m, "
+      "its mean's %.3g N·m\n",
+      worst_steps, worst_samples, spread(inst), spread(mean));
   EXPECT_LT(worst_steps, 0.05) << "N·m";
   EXPECT_GT(worst_samples, 0.05) << "N·m: the samples' trapezoid should not pass (else the test cannot tell)";
   EXPECT_LT(spread(mean), 0.3 * spread(inst)) << "N·m";

@@ -12,10 +12,10 @@
 
 #include "model/forces.hpp"
 #include "scene/parameters.hpp"
-#include "scene/presets.hpp"
 #include "scene/scene.hpp"
 #include "scene/validate.hpp"
 #include "sim/simulation.hpp"
+#include "support/presets.hpp"
 #include "support/scratch.hpp"
 #include "support/warning_guard.hpp"
 

@@ -1,6 +1,8 @@
 // `beltsim wp`: the study runs every integrator and tolerance against one reference, records
 // the work, and its errors shrink as the tolerance tightens; a run over its wall-time limit is
 // recorded as unfinished; the CSV and the PNG are written.
+#include "sim/work_precision.hpp"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -9,10 +11,9 @@
 #include <string>
 
 #include "plot/wp_plot.hpp"
-#include "scene/presets.hpp"
-#include "sim/work_precision.hpp"
-#include "support/warning_guard.hpp"
+#include "support/presets.hpp"
 #include "support/scratch.hpp"
+#include "support/warning_guard.hpp"
 
 namespace beltsim {
 namespace {
@@ -44,7 +45,7 @@ TEST(WorkPrecision, ErrorsShrinkWithTheToleranceAndFilesAreWritten) {
     EXPECT_TRUE(row.finished) << row.integrator << " " << row.rtol;
     EXPECT_GT(row.work.steps, 0);
     EXPECT_GT(row.work.jacobians, 0);
-    EXPECT_GT(row.err_speed, 0);  // not the reference itself
+    EXPECT_GT(row.err_speed, 0);    // not the reference itself
     EXPECT_LT(row.err_speed, 0.5);  // a run that went wrong is off by the order of the speed itself
   }
   EXPECT_LT(2 * r.rows[1].err_speed, r.rows[0].err_speed);  // esdirk32 1e-4 against 1e-2

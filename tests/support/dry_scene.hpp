@@ -1,8 +1,8 @@
-// The paper's dry drive (scene/presets.hpp), built once for every test of a program that runs it.
+// The paper's dry drive (support/presets.hpp), built once for every test of a program that runs it.
 #pragma once
 
-#include "scene/presets.hpp"
 #include "scene/scene.hpp"
+#include "support/presets.hpp"
 
 namespace beltsim::test {
 

@@ -4,6 +4,9 @@
 // support/scenes.py), with what a test varies. Its text has 7 lines (8 with `extra`): a script's
 // next line is line 8 (9), which the tests' expected messages name.
 //
+// automotive_text: tests/support/automotive.lua as a local function automotive(o), which makes the
+// automotive drive's table (its keys there), for a script that follows it.
+//
 // runaway: a frictionless belt leaves the driver free to spin up under 1e6 N·m (4e7 rad/s² on
 // 0.025 kg·m²), past the runaway check (1e5 rad/s) after 2.5 ms; 7 lines.
 #pragma once
@@ -27,19 +30,29 @@ struct TwoPulley {
   std::string extra;  // a line of more keys of the scene table
 };
 
+// the text of tests/support/NAME
+inline std::string support_text(const std::string& name) {
+  const std::string path = std::string(BELTSIM_SOURCE_DIR) + "/tests/support/" + name;
+  std::ifstream f(path);
+  std::stringstream ss;
+  ss << f.rdbuf();
+  if (!f) throw std::runtime_error(path + ": cannot read it");
+  return ss.str();
+}
+
 // the file's lines from "local s = " on
 inline const std::string& two_pulley_text() {
   static const std::string text = [] {
-    const std::string path = std::string(BELTSIM_SOURCE_DIR) + "/tests/support/two_pulley.lua";
-    std::ifstream f(path);
-    std::stringstream ss;
-    ss << f.rdbuf();
-    const std::string t = ss.str();
+    const std::string t = support_text("two_pulley.lua");
     const size_t at = t.find("local s = ");
-    if (!f || at == std::string::npos) throw std::runtime_error(path + ": cannot read it, or no line 'local s = '");
+    if (at == std::string::npos) throw std::runtime_error("tests/support/two_pulley.lua: no line 'local s = '");
     return t.substr(at);
   }();
   return text;
+}
+
+inline std::string automotive_text() {
+  return "local automotive = (function()\n" + support_text("automotive.lua") + "end)()\n";
 }
 
 // group `g` of the one match of `re` in s replaced by `with` (nothing when `with` is empty)

@@ -23,23 +23,19 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 GRID = os.path.join(HERE, "grid.lua")
 BAD = os.path.join(HERE, "bad_point.lua")
 PLAIN = os.path.join(HERE, "plain.lua")
+DRIVE = os.path.join(HERE, "drive.lua")  # the scene of every sweep here (require "drive")
 LIMIT = 60.0
 # points 0 (scene:run) and 2 (sim:run_to) of this sweep diverge at once (a torque of 1e12 N·m)
 DIVERGES = """
+local drive = require "drive"
 return beltsim.sweep {
   grid = { how = {"run", "start"}, torque = {-1e12, 0} },
   run = function(p)
-    local drive = beltsim.scene {
-      pulleys = {
-        { name = "driver", centre = {0.0, 0.0}, radius = 0.1, inertia = 0.025, torque = p.torque },
-        { name = "driven", centre = {0.29, 0.0}, radius = 0.1, inertia = 0.025, torque = { per_speed = -0.5 } },
-      },
-      belt = { elements = 40, pretension = 500, mu = 1 },
-    }
+    local s = beltsim.scene(drive { torque = p.torque })
     if p.how == "run" then
-      drive:run { t_end = 0.01, sample = 1e-3, progress = false, max_wall = 60 }
+      s:run { t_end = 0.01, sample = 1e-3, progress = false, max_wall = 60 }
     else
-      local sim = drive:start { sample = 1e-3, progress = false, max_wall = 60 }
+      local sim = s:start { sample = 1e-3, progress = false, max_wall = 60 }
       sim:run_to(0.01)
     end
   end,
@@ -65,17 +61,12 @@ return beltsim.sweep {
 # loads (require): editing either changes every point's figures
 EDITABLE = """
 local belt = require "belt_params"
+local drive = require "drive"
 return beltsim.sweep {
   grid = { pretension = {300, 400, 500, 600} },
   run = function(p)
-    local drive = beltsim.scene {
-      pulleys = {
-        { name = "driver", centre = {0.0, 0.0}, radius = 0.1, inertia = 0.025, torque = beltsim.ramp(0.01, -20.0) },
-        { name = "driven", centre = {0.29, 0.0}, radius = 0.1, inertia = 0.025, torque = { per_speed = DAMPING } },
-      },
-      belt = { elements = 40, pretension = p.pretension, mu = 1, mass_per_length = belt.mass },
-    }
-    local r = drive:run { t_end = 0.1, sample = 1e-3, progress = false }
+    local s = beltsim.scene(drive { pretension = p.pretension, per_speed = DAMPING, mass_per_length = belt.mass })
+    local r = s:run { t_end = 0.1, sample = 1e-3, progress = false }
     return { slip = r.omega.driver - r.omega.driven, steps = r.steps }
   end,
 }
@@ -171,6 +162,7 @@ class Sweep(unittest.TestCase):
         script = self.path("div.lua")
         with open(script, "w") as f:
             f.write(DIVERGES)
+        shutil.copy(DRIVE, self.dir)
         for k in (0, 2):
             p = self.run_beltsim("sweep", script, "--point", str(k), ok=(1,))
             status = rows(self.path("out", "div", str(k), "point.csv"))[1][3]
@@ -251,6 +243,7 @@ class Sweep(unittest.TestCase):
         self.assertTrue(summary[1][2].startswith("error: ") and "'k'" in summary[1][2], summary[1][2])
 
     def write_editable(self, damping, density):
+        shutil.copy(DRIVE, self.dir)
         with open(self.path("editable.lua"), "w") as f:
             f.write(EDITABLE.replace("DAMPING", damping))
         with open(self.path("belt_params.lua"), "w") as f:
@@ -331,7 +324,8 @@ class Sweep(unittest.TestCase):
         self.assertEqual(self.read("out", "grid", "sweep.sbatch"), before)
         # an edit: every point in the array again
         with open(GRID) as f, open(self.path("grid.lua"), "w") as g:
-            g.write(f.read().replace("per_speed = -0.5", "per_speed = -0.6"))
+            g.write(f.read().replace("mu = p.mu", "mu = 0.9 * p.mu"))
+        shutil.copy(DRIVE, self.dir)
         self.run_beltsim("sweep", "grid.lua", "--out", "out/grid", "--slurm", "--time", "10")
         self.assertIn(b"#SBATCH --array=0-5\n", self.read("out", "grid", "sweep.sbatch"))
 

@@ -1,14 +1,23 @@
-// The paper's scenes as SceneDefs, shared by tests and benchmarks (the Lua scripts in scripts/
-// describe the same scenes through the scripting API).
+// The scenes the tests and benchmarks build in C++. The paper's drive is scripts/paper_dry.lua's,
+// read through the interpreter as `beltsim run` reads it (its first beltsim.scene{} captured, nothing
+// built): the script is its one definition. The automotive drive is tests/support/automotive.lua's,
+// which the Lua tests' scripts use too.
 #pragma once
+
+#include <string>
+#include <vector>
 
 #include "scene/scene.hpp"
 
 namespace beltsim::presets {
 
-// Two-pulley drive of paper §3 (docs/model.md, Our choices): driver at the origin, driven at (0.29, 0),
+// the definition of the script's first beltsim.scene{}, with --set KEY=VALUE
+// values; throws std::runtime_error naming the script when it cannot give one
+SceneDef script_scene(const std::string& script, const std::vector<std::string>& set = {});
+
+// Two-pulley drive of paper §3 (scripts/paper_dry.lua): driver at the origin, driven at (0.29, 0),
 // r = 0.1 m, 60 elements, 500 N, belt travelling clockwise; M_d1 = -70·min(t/0.3, 1) N·m,
-// M_d2 = -0.955·Ω N·m.
+// M_d2 = -0.955·Ω N·m; without the energy the script tracks (the state is the belt's and pulleys')
 SceneDef paper_dry();
 // The same with μ = 0.2 on the half of the belt whose centres start at x > l_p/2.
 SceneDef paper_wet();

@@ -1,0 +1,48 @@
+// What the command line gives an interpreter over its scripts' own requests (Overrides), and what
+// capture mode takes from a script's first scene:run{} (Captured): the interpreter (interpreter.hpp)
+// and the bindings (context.hpp) read both.
+#pragma once
+
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "scene/scene.hpp"
+#include "script/script_args.hpp"
+#include "sim/run_settings.hpp"
+
+namespace beltsim::script {
+
+// Command-line values that override what a script asks of scene:run{}.
+struct Overrides {
+  // the run settings given on the command line (the table's options, sim/run_table.hpp: --out,
+  // --t-end, --integrator, --rtol, --max-wall, --check), each over every run's own: their keys in
+  // `given`, their values in `run`
+  std::vector<std::string> given;
+  RunSettings run;
+  bool has(std::string_view key) const {
+    for (const std::string& k : given)
+      if (k == key) return true;
+    return false;
+  }
+  void give(std::string_view key) {
+    if (!has(key)) given.emplace_back(key);
+  }
+  bool no_frames = false;      // ignore the scripts' frames = {...} (no rendering, no video)
+  std::vector<ScriptArg> set;  // --set KEY=VALUE: beltsim.args (not an override of run{})
+  std::optional<int> serve;    // --serve [PORT]: the live view on 127.0.0.1 (0: a free port)
+};
+
+// What a script asked of its first scene:run{} (for `beltsim wp`, which runs the scene itself).
+struct Captured {
+  std::optional<Scene> scene;
+  RunSettings settings;
+  // with definition_only (set by the caller), the script ends at its first beltsim.scene{} instead,
+  // nothing built: `definition` is what it read (what the tests build the scripts' scenes from),
+  // left empty when its belt.mu is a Lua function, which cannot be called once the interpreter is gone
+  bool definition_only = false;
+  std::optional<SceneDef> definition;
+};
+
+}  // namespace beltsim::script

@@ -1,0 +1,175 @@
+// One sweep point run in an interpreter (sweep_run.hpp).
+#include "script/sweep_run.hpp"
+
+#include <variant>
+
+#include "io/number_text.hpp"
+#include "script/context.hpp"
+#include "script/docall.hpp"
+#include "script/limits.hpp"
+#include "script/lua_check.hpp"
+#include "script/lua_sweep.hpp"
+#include "sweep/results.hpp"
+
+namespace beltsim::script {
+
+namespace {
+
+constexpr const char* kLoadedSweep = "beltsim.loaded_sweep";  // registry: the sweep load_sweep read
+
+void push_value(lua_State* L, const sweep::Value& v) {
+  std::visit(
+      [L](const auto& x) {
+        using T = std::decay_t<decltype(x)>;
+        if constexpr (std::is_same_v<T, long long>)
+          lua_pushinteger(L, static_cast<lua_Integer>(x));
+        else if constexpr (std::is_same_v<T, double>)
+          lua_pushnumber(L, x);
+        else if constexpr (std::is_same_v<T, bool>)
+          lua_pushboolean(L, x);
+        else
+          lua_pushlstring(L, x.data(), x.size());
+      },
+      v);
+}
+
+// the table at idx as figures: NAME = number | string | boolean | table (NAME.KEY ...), keys sorted
+void flatten(lua_State* L, int idx, const std::string& prefix, std::vector<std::pair<std::string, std::string>>& out,
+             int depth) {
+  idx = lua_absindex(L, idx);
+  std::vector<std::string> keys;
+  lua_pushnil(L);
+  while (lua_next(L, idx)) {
+    lua_pop(L, 1);
+    if (lua_type(L, -1) == LUA_TNUMBER && lua_isinteger(L, -1))
+      keys.push_back(std::to_string(lua_tointeger(L, -1)));
+    else if (lua_type(L, -1) == LUA_TSTRING)
+      keys.emplace_back(lua_tostring(L, -1));
+    else
+      throw std::runtime_error("run(p) returned " + (prefix.empty() ? std::string("a table") : prefix) +
+                               " with a key that is not a name: " + type_name(L, -1));
+  }
+  std::sort(keys.begin(), keys.end());
+  for (const std::string& k : keys) {
+    const std::string name = prefix + k;
+    lua_pushstring(L, k.c_str());
+    if (lua_rawget(L, idx) == LUA_TNIL) {  // an integer key
+      lua_pop(L, 1);
+      lua_rawgeti(L, idx, std::stoll(k));
+    }
+    switch (lua_type(L, -1)) {
+      case LUA_TNUMBER:
+        out.emplace_back(
+            name, lua_isinteger(L, -1) ? std::to_string(lua_tointeger(L, -1)) : number_text(lua_tonumber(L, -1)));
+        break;
+      case LUA_TBOOLEAN:
+        out.emplace_back(name, lua_toboolean(L, -1) ? "true" : "false");
+        break;
+      case LUA_TSTRING:
+        out.emplace_back(name, lua_tostring(L, -1));
+        break;
+      case LUA_TTABLE:
+        if (depth > 8) throw std::runtime_error("run(p) returned tables nested deeper than 8 at " + name);
+        flatten(L, -1, name + ".", out, depth + 1);
+        break;
+      default:
+        throw std::runtime_error("run(p) returned " + name + " = a " + type_name(L, -1) +
+                                 ": numbers, strings, booleans or tables of them expected");
+    }
+    lua_pop(L, 1);
+  }
+}
+
+// the status of a failed call: the run's divergence when that is what ended it
+std::string failed_status(const Context& ctx, const std::string& message) {
+  if (ctx.divergence && message.find(ctx.divergence->second) != std::string::npos)
+    return "diverged at t = " + number_text(ctx.divergence->first) + " s";
+  return sweep::error_status(message);
+}
+
+}  // namespace
+
+std::vector<sweep::Point> load_sweep(Interpreter& lua, const std::string& path) {
+  lua_State* L = lua.state();
+  lua.run_file(path, 1);
+  auto* box = static_cast<SweepBox*>(luaL_testudata(L, -1, kSweepMeta));
+  if (!box) {
+    const std::string got = type_name(L, -1);
+    lua_settop(L, 0);
+    throw ScriptError(path + ": a sweep file ends with `return beltsim.sweep{...}`; it returned " + got);
+  }
+  std::vector<sweep::Point> points = box->points;
+  lua_setfield(L, LUA_REGISTRYINDEX, kLoadedSweep);
+  lua_settop(L, 0);
+  return points;
+}
+
+sweep::PointResult run_sweep_point(Interpreter& lua, const std::string& path, const sweep::Point& p,
+                                   const std::string& point_dir) {
+  lua_State* L = lua.state();
+  Context& ctx = lua.context();
+  ctx.default_out = point_dir;
+  ctx.divergence.reset();
+  begin_call(L);
+  lua_getfield(L, LUA_REGISTRYINDEX, kLoadedSweep);
+  lua_getiuservalue(L, -1, 1);
+  lua_remove(L, -2);
+  lua_createtable(L, 0, static_cast<int>(p.params.size()));
+  for (const auto& [name, v] : p.params) push_value(L, v), lua_setfield(L, -2, name.c_str());
+  CallError error;
+  if (!docall(L, 1, 1, &error, path)) {
+    lua_settop(L, 0);
+    return {failed_status(ctx, error.message), {}};
+  }
+  sweep::PointResult r;
+  try {
+    if (!lua_isnil(L, -1)) {
+      if (!lua_istable(L, -1))
+        throw std::runtime_error(std::string("run(p) returned a ") + type_name(L, -1) +
+                                 ": a table of figures (or nothing) expected");
+      flatten(L, -1, "", r.figures, 0);
+    }
+  } catch (const std::runtime_error& e) {
+    r = {sweep::error_status(path + ": " + e.what()), {}};
+  }
+  lua_settop(L, 0);
+  return r;
+}
+
+sweep::PointResult run_script_point(Interpreter& lua, const std::string& script, const sweep::Point& p,
+                                    const std::string& point_dir) {
+  lua_State* L = lua.state();
+  Context& ctx = lua.context();
+  ctx.overrides.run.out_dir = point_dir, ctx.overrides.give("out");
+  ctx.overrides.set.clear();
+  for (const auto& [name, v] : p.params) {
+    ScriptArg a;
+    a.key = name;
+    a.text = sweep::value_text(v);
+    std::visit([&](const auto& x) { a.value = x; }, v);
+    ctx.overrides.set.push_back(std::move(a));
+  }
+  ctx.divergence.reset();
+  lua_pushnil(L);
+  lua_setfield(L, LUA_REGISTRYINDEX, kLastRun);
+  try {
+    lua.run_file(script, 1);
+  } catch (const ScriptError& e) {
+    return {failed_status(ctx, e.what()), {}};
+  }
+  const bool sweep_file = luaL_testudata(L, -1, kSweepMeta) != nullptr;
+  lua_settop(L, 0);
+  if (sweep_file)
+    return {sweep::error_status(script + " is a sweep file (it returns beltsim.sweep{...}): the --set lists of "
+                                         "`beltsim sweep` are for ordinary scripts"),
+            {}};
+  std::string unread;
+  for (const std::string& m : lua.unread_args(script)) unread += (unread.empty() ? "" : "; ") + m;
+  if (!unread.empty()) return {sweep::error_status(unread), {}};
+  sweep::PointResult r;
+  if (lua_getfield(L, LUA_REGISTRYINDEX, kLastRun) == LUA_TTABLE) flatten(L, -1, "", r.figures, 0);
+  lua_settop(L, 0);
+  return r;
+}
+
+}  // namespace beltsim::script

@@ -1,0 +1,31 @@
+// One point of a sweep run in an interpreter (docs/sweeps.md): the sweep file's run(p), or an
+// ordinary script with the point's parameters as --set values (the quick form of the command
+// line). The sweep's points are read by the binding of beltsim.sweep (lua_sweep.hpp).
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "script/interpreter.hpp"
+#include "sweep/points.hpp"
+#include "sweep/results.hpp"
+
+namespace beltsim::script {
+
+// runs the sweep file and returns its points; throws ScriptError ("file:line: why") when it fails
+// or does not return beltsim.sweep{...}
+std::vector<sweep::Point> load_sweep(Interpreter& lua, const std::string& path);
+
+// run(p) of the sweep loaded last by load_sweep, its runs writing to point_dir unless they say
+// otherwise. The result's figures are what run(p) returned (nested tables flattened with dots:
+// omega.driver); an error gives an "error: ..." or "diverged at t = T s" status. The caller checks
+// lua.interrupted() and the stop signal: a stopped point is not a result.
+sweep::PointResult run_sweep_point(Interpreter& lua, const std::string& path, const sweep::Point& p,
+                                   const std::string& point_dir);
+
+// the quick form: the script run with the point's parameters as its --set values and its runs'
+// folder point_dir; the figures are the result table of its last scene:run{}
+sweep::PointResult run_script_point(Interpreter& lua, const std::string& script, const sweep::Point& p,
+                                    const std::string& point_dir);
+
+}  // namespace beltsim::script
