@@ -6,7 +6,7 @@
 #include <cstdio>
 
 #include "physics/helpers.hpp"
-#include "scene/presets.hpp"
+#include "support/presets.hpp"
 #include "sim/mode_check.hpp"
 #include "sim/modes.hpp"
 #include "support/warning_guard.hpp"
