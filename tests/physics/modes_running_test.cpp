@@ -6,9 +6,9 @@
 #include <cstdio>
 
 #include "physics/helpers.hpp"
-#include "support/presets.hpp"
 #include "sim/mode_check.hpp"
 #include "sim/modes.hpp"
+#include "support/presets.hpp"
 #include "support/warning_guard.hpp"
 
 namespace beltsim {
