@@ -9,6 +9,7 @@
 #include <stdexcept>
 
 #include "io/output_dir.hpp"
+#include "media/shared_library.hpp"
 
 extern "C" {
 #include <libavcodec/avcodec.h>
@@ -18,6 +19,62 @@ extern "C" {
 }
 
 namespace beltsim {
+
+namespace {
+
+// the functions of FFmpeg used here, from its libraries opened at the first video
+// (media/shared_library.hpp: not linked, so that a run without a video does not load FFmpeg and
+// the hundred libraries its codecs pull in); the sonames and Debian packages from the headers'
+// major versions
+// clang-format off
+#define BELTSIM_AVUTIL_FUNCTIONS(X)                                                                       \
+  X(av_dict_free) X(av_dict_set) X(av_frame_alloc) X(av_frame_free) X(av_frame_get_buffer)                \
+  X(av_frame_make_writable) X(av_free) X(av_freep) X(av_log_set_level) X(av_malloc) X(av_opt_set)          \
+  X(av_strerror)
+#define BELTSIM_AVCODEC_FUNCTIONS(X)                                                                      \
+  X(av_packet_alloc) X(av_packet_free) X(av_packet_rescale_ts) X(avcodec_alloc_context3)                  \
+  X(avcodec_find_encoder) X(avcodec_find_encoder_by_name) X(avcodec_free_context) X(avcodec_open2)        \
+  X(avcodec_parameters_from_context) X(avcodec_receive_packet) X(avcodec_send_frame)
+#define BELTSIM_AVFORMAT_FUNCTIONS(X)                                                                     \
+  X(av_interleaved_write_frame) X(av_write_trailer) X(avformat_alloc_output_context2)                     \
+  X(avformat_free_context) X(avformat_new_stream) X(avformat_write_header) X(avio_alloc_context)          \
+  X(avio_context_free) X(avio_flush) X(avio_seek)
+#define BELTSIM_SWSCALE_FUNCTIONS(X)                                                                      \
+  X(sws_scale) X(sws_freeContext) X(sws_getContext) X(sws_getCoefficients) X(sws_setColorspaceDetails)
+// clang-format on
+#define BELTSIM_DECLARE(name) decltype(&::name) name = nullptr;
+#define BELTSIM_LOAD(name) name = reinterpret_cast<decltype(&::name)>(shared_library_symbol(library, soname, #name));
+#define BELTSIM_OPEN(lib, LIB, FUNCTIONS)                                                \
+  {                                                                                      \
+    const char* soname = #lib ".so." AV_STRINGIFY(LIB##_VERSION_MAJOR);                  \
+    void* library = open_shared_library(soname, #lib AV_STRINGIFY(LIB##_VERSION_MAJOR)); \
+    FUNCTIONS(BELTSIM_LOAD)                                                              \
+  }
+
+struct FfmpegApi {
+  BELTSIM_AVUTIL_FUNCTIONS(BELTSIM_DECLARE)
+  BELTSIM_AVCODEC_FUNCTIONS(BELTSIM_DECLARE)
+  BELTSIM_AVFORMAT_FUNCTIONS(BELTSIM_DECLARE)
+  BELTSIM_SWSCALE_FUNCTIONS(BELTSIM_DECLARE)
+  FfmpegApi() {
+    BELTSIM_OPEN(libavutil, LIBAVUTIL, BELTSIM_AVUTIL_FUNCTIONS)
+    BELTSIM_OPEN(libavcodec, LIBAVCODEC, BELTSIM_AVCODEC_FUNCTIONS)
+    BELTSIM_OPEN(libavformat, LIBAVFORMAT, BELTSIM_AVFORMAT_FUNCTIONS)
+    BELTSIM_OPEN(libswscale, LIBSWSCALE, BELTSIM_SWSCALE_FUNCTIONS)
+  }
+};
+
+#undef BELTSIM_DECLARE
+#undef BELTSIM_LOAD
+#undef BELTSIM_OPEN
+
+// opened once, on the first call (a failure throws, and the next call tries again)
+const FfmpegApi& ff() {
+  static const FfmpegApi api;
+  return api;
+}
+
+}  // namespace
 
 // the file under the muxer: a descriptor opened by OutputDir (never through a link) written by
 // the AVIOContext's callbacks; the first write error is kept (errno)
@@ -33,7 +90,7 @@ std::atomic<long> g_encoders{0};
 
 std::string av_message(int err) {
   char buf[AV_ERROR_MAX_STRING_SIZE] = {0};
-  av_strerror(err, buf, sizeof buf);
+  ff().av_strerror(err, buf, sizeof buf);
   return buf;
 }
 
@@ -91,7 +148,7 @@ struct VideoWriter::Impl {
   // last whole fragment, which plays; the error names the file
   void check_written() {
     if (file.error == 0 && fmt->pb->error == 0) {
-      whole_end = avio_tell(fmt->pb);
+      whole_end = ff().avio_seek(fmt->pb, 0, SEEK_CUR);
       return;
     }
     const int err = file.error ? file.error : EIO;
@@ -104,15 +161,15 @@ struct VideoWriter::Impl {
 
   // send a frame (or nullptr to flush) and write every packet the encoder has ready
   void encode(AVFrame* f) {
-    int r = avcodec_send_frame(enc, f);
+    int r = ff().avcodec_send_frame(enc, f);
     if (r < 0) fail("encoding failed", r);
     for (;;) {
-      r = avcodec_receive_packet(enc, pkt);
+      r = ff().avcodec_receive_packet(enc, pkt);
       if (r == AVERROR(EAGAIN) || r == AVERROR_EOF) return;
       if (r < 0) fail("encoding failed", r);
-      av_packet_rescale_ts(pkt, enc->time_base, stream->time_base);
+      ff().av_packet_rescale_ts(pkt, enc->time_base, stream->time_base);
       pkt->stream_index = stream->index;
-      r = av_interleaved_write_frame(fmt, pkt);  // takes the packet's reference
+      r = ff().av_interleaved_write_frame(fmt, pkt);  // takes the packet's reference
       if (r < 0 && file.error == 0) fail("writing failed", r);
       check_written();
     }
@@ -121,20 +178,20 @@ struct VideoWriter::Impl {
   void close_io() {
     if (!io_open) return;
     io_open = false;
-    avio_flush(fmt->pb);
-    av_freep(&fmt->pb->buffer);
-    avio_context_free(&fmt->pb);
+    ff().avio_flush(fmt->pb);
+    ff().av_freep(&fmt->pb->buffer);
+    ff().avio_context_free(&fmt->pb);
     if (file.fd >= 0) ::close(file.fd);
     file.fd = -1;
   }
 
   void release() {
     close_io();
-    sws_freeContext(sws), sws = nullptr;
-    av_packet_free(&pkt);
-    av_frame_free(&frame);
-    avcodec_free_context(&enc);
-    avformat_free_context(fmt), fmt = nullptr;
+    ff().sws_freeContext(sws), sws = nullptr;
+    ff().av_packet_free(&pkt);
+    ff().av_frame_free(&frame);
+    ff().avcodec_free_context(&enc);
+    ff().avformat_free_context(fmt), fmt = nullptr;
   }
 };
 
@@ -143,22 +200,22 @@ VideoWriter::VideoWriter(const std::string& path, const VideoOptions& opt) : imp
   d.path = path;
   d.opt = opt;
   // FFmpeg and x264 report their settings at the info level: keep the terminal for warnings
-  static const bool quiet = (av_log_set_level(AV_LOG_WARNING), true);
+  static const bool quiet = (ff().av_log_set_level(AV_LOG_WARNING), true);
   (void)quiet;
   try {
     if (opt.width <= 0 || opt.height <= 0 || opt.width % 2 || opt.height % 2)
       d.fail("width and height must be even and positive (got " + std::to_string(opt.width) + "x" +
              std::to_string(opt.height) + ")");
     if (opt.fps <= 0 || opt.fps > 240) d.fail("frame rate must be in 1..240 (got " + std::to_string(opt.fps) + ")");
-    int r = avformat_alloc_output_context2(&d.fmt, nullptr, "mp4", path.c_str());
+    int r = ff().avformat_alloc_output_context2(&d.fmt, nullptr, "mp4", path.c_str());
     if (r < 0 || !d.fmt) d.fail("cannot create the MP4 muxer", r);
-    const AVCodec* codec = avcodec_find_encoder_by_name("libx264");
-    if (!codec) codec = avcodec_find_encoder(AV_CODEC_ID_H264);
+    const AVCodec* codec = ff().avcodec_find_encoder_by_name("libx264");
+    if (!codec) codec = ff().avcodec_find_encoder(AV_CODEC_ID_H264);
     if (!codec) d.fail("no H.264 encoder in this FFmpeg build (libx264 expected)");
-    d.stream = avformat_new_stream(d.fmt, nullptr);
-    d.enc = avcodec_alloc_context3(codec);
-    d.pkt = av_packet_alloc();
-    d.frame = av_frame_alloc();
+    d.stream = ff().avformat_new_stream(d.fmt, nullptr);
+    d.enc = ff().avcodec_alloc_context3(codec);
+    d.pkt = ff().av_packet_alloc();
+    d.frame = ff().av_frame_alloc();
     if (!d.stream || !d.enc || !d.pkt || !d.frame) d.fail("out of memory");
     AVCodecContext* c = d.enc;
     c->width = opt.width;
@@ -172,29 +229,29 @@ VideoWriter::VideoWriter(const std::string& path, const VideoOptions& opt) : imp
     c->colorspace = AVCOL_SPC_BT709;
     c->color_range = AVCOL_RANGE_MPEG;
     if (d.fmt->oformat->flags & AVFMT_GLOBALHEADER) c->flags |= AV_CODEC_FLAG_GLOBAL_HEADER;
-    av_opt_set(c->priv_data, "preset", opt.preset.c_str(), 0);
-    av_opt_set(c->priv_data, "crf", std::to_string(opt.crf).c_str(), 0);
-    if ((r = avcodec_open2(c, codec, nullptr)) < 0) d.fail("cannot open the H.264 encoder", r);
+    ff().av_opt_set(c->priv_data, "preset", opt.preset.c_str(), 0);
+    ff().av_opt_set(c->priv_data, "crf", std::to_string(opt.crf).c_str(), 0);
+    if ((r = ff().avcodec_open2(c, codec, nullptr)) < 0) d.fail("cannot open the H.264 encoder", r);
     g_encoders++;
-    if ((r = avcodec_parameters_from_context(d.stream->codecpar, c)) < 0) d.fail("codec parameters", r);
+    if ((r = ff().avcodec_parameters_from_context(d.stream->codecpar, c)) < 0) d.fail("codec parameters", r);
     d.stream->time_base = c->time_base;
     d.stream->avg_frame_rate = c->framerate;
 
     d.frame->format = c->pix_fmt;
     d.frame->width = c->width;
     d.frame->height = c->height;
-    if ((r = av_frame_get_buffer(d.frame, 0)) < 0) d.fail("frame buffer", r);
+    if ((r = ff().av_frame_get_buffer(d.frame, 0)) < 0) d.fail("frame buffer", r);
     d.frame->color_primaries = c->color_primaries;
     d.frame->color_trc = c->color_trc;
     d.frame->colorspace = c->colorspace;
     d.frame->color_range = c->color_range;
-    d.sws = sws_getContext(opt.width, opt.height, AV_PIX_FMT_RGB24, opt.width, opt.height, AV_PIX_FMT_YUV420P,
-                           SWS_BICUBIC, nullptr, nullptr, nullptr);
+    d.sws = ff().sws_getContext(opt.width, opt.height, AV_PIX_FMT_RGB24, opt.width, opt.height, AV_PIX_FMT_YUV420P,
+                                SWS_BICUBIC, nullptr, nullptr, nullptr);
     if (!d.sws) d.fail("cannot create the RGB to YUV converter");
     // full-range sRGB in, BT.709 TV-range YUV out: without this swscale uses BT.601 and the
     // colours shift
-    const int* bt709 = sws_getCoefficients(SWS_CS_ITU709);
-    sws_setColorspaceDetails(d.sws, bt709, 1, bt709, 0, 0, 1 << 16, 1 << 16);
+    const int* bt709 = ff().sws_getCoefficients(SWS_CS_ITU709);
+    ff().sws_setColorspaceDetails(d.sws, bt709, 1, bt709, 0, 0, 1 << 16, 1 << 16);
 
     {
       OutputPlace place = output_place(path);
@@ -203,10 +260,10 @@ VideoWriter::VideoWriter(const std::string& path, const VideoOptions& opt) : imp
       d.name = place.name;
     }
     constexpr int kBuffer = 32768;
-    auto* buffer = static_cast<unsigned char*>(av_malloc(kBuffer));
-    d.fmt->pb = buffer ? avio_alloc_context(buffer, kBuffer, 1, &d.file, nullptr, write_packet, seek) : nullptr;
+    auto* buffer = static_cast<unsigned char*>(ff().av_malloc(kBuffer));
+    d.fmt->pb = buffer ? ff().avio_alloc_context(buffer, kBuffer, 1, &d.file, nullptr, write_packet, seek) : nullptr;
     if (!d.fmt->pb) {
-      av_free(buffer);
+      ff().av_free(buffer);
       ::close(d.file.fd), d.file.fd = -1;
       d.fail("out of memory");
     }
@@ -216,10 +273,10 @@ VideoWriter::VideoWriter(const std::string& path, const VideoOptions& opt) : imp
     d.fmt->flags |= AVFMT_FLAG_FLUSH_PACKETS;
     d.io_open = true;
     AVDictionary* mux = nullptr;
-    av_dict_set(&mux, "movflags", "frag_keyframe+empty_moov+default_base_moof", 0);
-    r = avformat_write_header(d.fmt, &mux);
-    av_dict_free(&mux);
-    if (r >= 0) avio_flush(d.fmt->pb);
+    ff().av_dict_set(&mux, "movflags", "frag_keyframe+empty_moov+default_base_moof", 0);
+    r = ff().avformat_write_header(d.fmt, &mux);
+    ff().av_dict_free(&mux);
+    if (r >= 0) ff().avio_flush(d.fmt->pb);
     if (r < 0 || d.file.error || d.fmt->pb->error) {
       // nothing playable was written: no file is left
       const int err = d.file.error;
@@ -228,7 +285,7 @@ VideoWriter::VideoWriter(const std::string& path, const VideoOptions& opt) : imp
       if (err) output_error(path, std::strerror(err));
       d.fail("cannot write the header", r);
     }
-    d.whole_end = avio_tell(d.fmt->pb);
+    d.whole_end = ff().avio_seek(d.fmt->pb, 0, SEEK_CUR);
     d.open = true;
   } catch (...) {
     d.release();
@@ -250,11 +307,11 @@ void VideoWriter::add(const Image& img) {
   if (img.width != d.opt.width || img.height != d.opt.height)
     d.fail("frame of " + std::to_string(img.width) + "x" + std::to_string(img.height) + " in a video of " +
            std::to_string(d.opt.width) + "x" + std::to_string(d.opt.height));
-  int r = av_frame_make_writable(d.frame);
+  int r = ff().av_frame_make_writable(d.frame);
   if (r < 0) d.fail("frame buffer", r);
   const uint8_t* src[1] = {img.rgb.data()};
   const int stride[1] = {3 * img.width};
-  sws_scale(d.sws, src, stride, 0, img.height, d.frame->data, d.frame->linesize);
+  ff().sws_scale(d.sws, src, stride, 0, img.height, d.frame->data, d.frame->linesize);
   d.frame->pts = d.n++;
   d.encode(d.frame);
 }
@@ -265,8 +322,8 @@ void VideoWriter::close() {
   d.open = false;  // whatever happens below, do not try twice
   try {
     d.encode(nullptr);
-    const int r = av_write_trailer(d.fmt);
-    if (d.file.error == 0 && d.fmt->pb->error == 0) avio_flush(d.fmt->pb);
+    const int r = ff().av_write_trailer(d.fmt);
+    if (d.file.error == 0 && d.fmt->pb->error == 0) ff().avio_flush(d.fmt->pb);
     if (d.file.error || d.fmt->pb->error) d.check_written();  // throws, the video cut to its whole fragments
     if (r < 0) d.fail("cannot write the trailer", r);
   } catch (...) {

@@ -10,11 +10,56 @@
 #include <stdexcept>
 #include <vector>
 
+#include "media/shared_library.hpp"
+
 namespace beltsim::render {
 
 namespace {
 
 std::atomic<long> g_contexts{0};
+
+// the functions of OSMesa and EGL used here, from their libraries opened at the first context
+// (media/shared_library.hpp: not linked, so that a run without frames does not load Mesa)
+// clang-format off
+#define BELTSIM_OSMESA_FUNCTIONS(X)                                                                       \
+  X(OSMesaCreateContextAttribs) X(OSMesaDestroyContext) X(OSMesaGetProcAddress) X(OSMesaMakeCurrent)
+#define BELTSIM_EGL_FUNCTIONS(X)                                                                          \
+  X(eglGetProcAddress) X(eglGetError) X(eglInitialize) X(eglBindAPI) X(eglChooseConfig)                   \
+  X(eglCreateContext) X(eglMakeCurrent) X(eglDestroyContext) X(eglTerminate)
+// clang-format on
+#define BELTSIM_DECLARE(name) decltype(&::name) name = nullptr;
+#define BELTSIM_LOAD(name) name = reinterpret_cast<decltype(&::name)>(shared_library_symbol(library, soname, #name));
+
+struct OsMesaApi {
+  BELTSIM_OSMESA_FUNCTIONS(BELTSIM_DECLARE)
+  OsMesaApi() {
+    const char* soname = "libOSMesa.so.8";
+    void* library = open_shared_library(soname, "libosmesa6");
+    BELTSIM_OSMESA_FUNCTIONS(BELTSIM_LOAD)
+  }
+};
+
+struct EglApi {
+  BELTSIM_EGL_FUNCTIONS(BELTSIM_DECLARE)
+  EglApi() {
+    const char* soname = "libEGL.so.1";
+    void* library = open_shared_library(soname, "libegl1");
+    BELTSIM_EGL_FUNCTIONS(BELTSIM_LOAD)
+  }
+};
+
+#undef BELTSIM_DECLARE
+#undef BELTSIM_LOAD
+
+// opened once, on the first call (a failure throws, and the next call tries again)
+const OsMesaApi& osmesa() {
+  static const OsMesaApi api;
+  return api;
+}
+const EglApi& egl() {
+  static const EglApi api;
+  return api;
+}
 
 class OsMesaContext final : public GlContext {
  public:
@@ -22,7 +67,7 @@ class OsMesaContext final : public GlContext {
     const int attribs[] = {OSMESA_FORMAT, OSMESA_RGBA, OSMESA_DEPTH_BITS, 0, OSMESA_STENCIL_BITS, 0,
                            OSMESA_ACCUM_BITS, 0, OSMESA_PROFILE, OSMESA_CORE_PROFILE,
                            OSMESA_CONTEXT_MAJOR_VERSION, major, OSMESA_CONTEXT_MINOR_VERSION, minor, 0};
-    ctx_ = OSMesaCreateContextAttribs(attribs, nullptr);
+    ctx_ = osmesa().OSMesaCreateContextAttribs(attribs, nullptr);
     if (!ctx_)
       throw std::runtime_error("cannot create an OpenGL " + std::to_string(major) + "." + std::to_string(minor) +
                                " core context with OSMesa (OSMesaCreateContextAttribs failed; Debian package "
@@ -32,10 +77,10 @@ class OsMesaContext final : public GlContext {
     make_current();
     g_contexts++;
   }
-  ~OsMesaContext() override { OSMesaDestroyContext(ctx_); }
-  void* proc(const char* name) const override { return reinterpret_cast<void*>(OSMesaGetProcAddress(name)); }
+  ~OsMesaContext() override { osmesa().OSMesaDestroyContext(ctx_); }
+  void* proc(const char* name) const override { return reinterpret_cast<void*>(osmesa().OSMesaGetProcAddress(name)); }
   void make_current() override {
-    if (!OSMesaMakeCurrent(ctx_, buffer_.data(), GL_UNSIGNED_BYTE, 16, 16))
+    if (!osmesa().OSMesaMakeCurrent(ctx_, buffer_.data(), GL_UNSIGNED_BYTE, 16, 16))
       throw std::runtime_error("OSMesaMakeCurrent failed");
   }
   GlBackend backend() const override { return GlBackend::osmesa; }
@@ -50,37 +95,38 @@ class EglContext final : public GlContext {
   EglContext(int major, int minor) {
     auto fail = [&](const std::string& step) {
       throw std::runtime_error("cannot create an OpenGL " + std::to_string(major) + "." + std::to_string(minor) +
-                               " core context with EGL (surfaceless Mesa platform): " +
-                               step + " failed (EGL error 0x" + hex(eglGetError()) +
+                               " core context with EGL (surfaceless Mesa platform): " + step + " failed (EGL error 0x" +
+                               hex(egl().eglGetError()) +
                                "; Debian packages libegl1, libegl-mesa0, libgl1-mesa-dri; try BELTSIM_GL=osmesa)");
     };
-    auto get_display = reinterpret_cast<PFNEGLGETPLATFORMDISPLAYEXTPROC>(eglGetProcAddress("eglGetPlatformDisplayEXT"));
+    auto get_display =
+        reinterpret_cast<PFNEGLGETPLATFORMDISPLAYEXTPROC>(egl().eglGetProcAddress("eglGetPlatformDisplayEXT"));
     if (!get_display) fail("eglGetPlatformDisplayEXT");
     dpy_ = get_display(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY, nullptr);
     if (dpy_ == EGL_NO_DISPLAY) fail("eglGetPlatformDisplayEXT(EGL_PLATFORM_SURFACELESS_MESA)");
     EGLint egl_major = 0, egl_minor = 0;
-    if (!eglInitialize(dpy_, &egl_major, &egl_minor)) fail("eglInitialize");
-    if (!eglBindAPI(EGL_OPENGL_API)) fail("eglBindAPI(EGL_OPENGL_API)");
+    if (!egl().eglInitialize(dpy_, &egl_major, &egl_minor)) fail("eglInitialize");
+    if (!egl().eglBindAPI(EGL_OPENGL_API)) fail("eglBindAPI(EGL_OPENGL_API)");
     const EGLint cfg_attr[] = {EGL_RENDERABLE_TYPE, EGL_OPENGL_BIT, EGL_SURFACE_TYPE, EGL_PBUFFER_BIT, EGL_NONE};
     EGLConfig cfg = nullptr;
     EGLint n = 0;
-    if (!eglChooseConfig(dpy_, cfg_attr, &cfg, 1, &n) || n < 1) fail("eglChooseConfig");
+    if (!egl().eglChooseConfig(dpy_, cfg_attr, &cfg, 1, &n) || n < 1) fail("eglChooseConfig");
     const EGLint ctx_attr[] = {EGL_CONTEXT_MAJOR_VERSION, major, EGL_CONTEXT_MINOR_VERSION, minor,
                                EGL_CONTEXT_OPENGL_PROFILE_MASK, EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT, EGL_NONE};
-    ctx_ = eglCreateContext(dpy_, cfg, EGL_NO_CONTEXT, ctx_attr);
+    ctx_ = egl().eglCreateContext(dpy_, cfg, EGL_NO_CONTEXT, ctx_attr);
     if (ctx_ == EGL_NO_CONTEXT) fail("eglCreateContext");
     make_current();
     g_contexts++;
   }
   ~EglContext() override {
-    eglMakeCurrent(dpy_, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
-    eglDestroyContext(dpy_, ctx_);
-    eglTerminate(dpy_);
+    egl().eglMakeCurrent(dpy_, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
+    egl().eglDestroyContext(dpy_, ctx_);
+    egl().eglTerminate(dpy_);
   }
-  void* proc(const char* name) const override { return reinterpret_cast<void*>(eglGetProcAddress(name)); }
+  void* proc(const char* name) const override { return reinterpret_cast<void*>(egl().eglGetProcAddress(name)); }
   void make_current() override {
-    if (!eglMakeCurrent(dpy_, EGL_NO_SURFACE, EGL_NO_SURFACE, ctx_))
-      throw std::runtime_error("eglMakeCurrent (surfaceless) failed (EGL error 0x" + hex(eglGetError()) + ")");
+    if (!egl().eglMakeCurrent(dpy_, EGL_NO_SURFACE, EGL_NO_SURFACE, ctx_))
+      throw std::runtime_error("eglMakeCurrent (surfaceless) failed (EGL error 0x" + hex(egl().eglGetError()) + ")");
   }
   GlBackend backend() const override { return GlBackend::egl; }
 

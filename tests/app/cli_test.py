@@ -20,6 +20,17 @@ def run(args, stdin=None, cwd=None):
     return p.returncode, p.stdout, p.stderr
 
 
+class Start(unittest.TestCase):
+    def test_video_and_gl_libraries_are_opened_when_needed_not_at_start(self):
+        # FFmpeg's and Mesa's libraries pull in over a hundred others, whose loading took most of
+        # the start of every beltsim process: they are opened by the first video or GL context
+        # (src/media/shared_library.hpp), not linked
+        p = subprocess.run(["ldd", BELTSIM], capture_output=True, text=True, timeout=60)
+        self.assertEqual(p.returncode, 0, p.stderr)
+        for library in ("libavcodec", "libavformat", "libswscale", "libOSMesa", "libEGL", "libLLVM"):
+            self.assertNotIn(library, p.stdout)
+
+
 class SetOption(unittest.TestCase):
     def setUp(self):
         self.dir = tempfile.mkdtemp(prefix="beltsim_cli_")
