@@ -242,12 +242,12 @@ class Sweep(unittest.TestCase):
         self.assertEqual(summary[0], ["point", "k", "status"])
         self.assertTrue(summary[1][2].startswith("error: ") and "'k'" in summary[1][2], summary[1][2])
 
-    def write_editable(self, damping, density):
+    def write_editable(self, damping, mass):
         shutil.copy(DRIVE, self.dir)
         with open(self.path("editable.lua"), "w") as f:
             f.write(EDITABLE.replace("DAMPING", damping))
         with open(self.path("belt_params.lua"), "w") as f:
-            f.write("return { density = %s }\n" % density)
+            f.write("return { mass = %s }\n" % mass)  # kg/m: the belt's mass per length
 
     def read(self, *parts):
         with open(self.path(*parts), "rb") as f:
