@@ -75,7 +75,7 @@ int l_modes(lua_State* L) {
   lua_setfield(L, -2, "pictures");
   for (size_t k = 0; k < a.modes.size(); ++k) {
     const Mode& m = a.modes[k];
-    lua_createtable(L, 0, 5);
+    lua_createtable(L, 0, 6);
     set_number(L, "frequency", m.frequency);
     set_number(L, "damping", m.damping);
     set_number(L, "decay", -m.lambda.real());
@@ -84,6 +84,8 @@ int l_modes(lua_State* L) {
     lua_createtable(L, 0, static_cast<int>(a.groups.size()));
     for (size_t g = 0; g < a.groups.size(); ++g) set_number(L, a.groups[g].c_str(), m.participation[g]);
     lua_setfield(L, -2, "share");
+    // of a kind checked against a known answer (the command's table marks the others with *)
+    lua_pushboolean(L, mode_checked(a, m)), lua_setfield(L, -2, "checked");
     lua_rawseti(L, -2, static_cast<lua_Integer>(k + 1));
   }
   return 1;
