@@ -12,3 +12,10 @@ void* open_shared_library(const char* soname, const char* debian_package);
 void* shared_library_symbol(void* library, const char* soname, const char* name);
 
 }  // namespace beltsim
+
+// For a table of a library's functions written as an X-macro list: BELTSIM_SHARED_DECLARE(f) a
+// member pointer of f's own type, BELTSIM_SHARED_LOAD(f) its address from `library`, whose file
+// name is `soname` (both names in scope where the list is expanded)
+#define BELTSIM_SHARED_DECLARE(name) decltype(&::name) name = nullptr;
+#define BELTSIM_SHARED_LOAD(name) \
+  name = reinterpret_cast<decltype(&::name)>(::beltsim::shared_library_symbol(library, soname, #name));

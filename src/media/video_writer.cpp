@@ -42,20 +42,18 @@ namespace {
 #define BELTSIM_SWSCALE_FUNCTIONS(X)                                                                      \
   X(sws_scale) X(sws_freeContext) X(sws_getContext) X(sws_getCoefficients) X(sws_setColorspaceDetails)
 // clang-format on
-#define BELTSIM_DECLARE(name) decltype(&::name) name = nullptr;
-#define BELTSIM_LOAD(name) name = reinterpret_cast<decltype(&::name)>(shared_library_symbol(library, soname, #name));
 #define BELTSIM_OPEN(lib, LIB, FUNCTIONS)                                                \
   {                                                                                      \
     const char* soname = #lib ".so." AV_STRINGIFY(LIB##_VERSION_MAJOR);                  \
     void* library = open_shared_library(soname, #lib AV_STRINGIFY(LIB##_VERSION_MAJOR)); \
-    FUNCTIONS(BELTSIM_LOAD)                                                              \
+    FUNCTIONS(BELTSIM_SHARED_LOAD)                                                       \
   }
 
 struct FfmpegApi {
-  BELTSIM_AVUTIL_FUNCTIONS(BELTSIM_DECLARE)
-  BELTSIM_AVCODEC_FUNCTIONS(BELTSIM_DECLARE)
-  BELTSIM_AVFORMAT_FUNCTIONS(BELTSIM_DECLARE)
-  BELTSIM_SWSCALE_FUNCTIONS(BELTSIM_DECLARE)
+  BELTSIM_AVUTIL_FUNCTIONS(BELTSIM_SHARED_DECLARE)
+  BELTSIM_AVCODEC_FUNCTIONS(BELTSIM_SHARED_DECLARE)
+  BELTSIM_AVFORMAT_FUNCTIONS(BELTSIM_SHARED_DECLARE)
+  BELTSIM_SWSCALE_FUNCTIONS(BELTSIM_SHARED_DECLARE)
   FfmpegApi() {
     BELTSIM_OPEN(libavutil, LIBAVUTIL, BELTSIM_AVUTIL_FUNCTIONS)
     BELTSIM_OPEN(libavcodec, LIBAVCODEC, BELTSIM_AVCODEC_FUNCTIONS)
@@ -64,8 +62,6 @@ struct FfmpegApi {
   }
 };
 
-#undef BELTSIM_DECLARE
-#undef BELTSIM_LOAD
 #undef BELTSIM_OPEN
 
 // opened once, on the first call (a failure throws, and the next call tries again)

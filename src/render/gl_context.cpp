@@ -27,29 +27,25 @@ std::atomic<long> g_contexts{0};
   X(eglGetProcAddress) X(eglGetError) X(eglInitialize) X(eglBindAPI) X(eglChooseConfig)                   \
   X(eglCreateContext) X(eglMakeCurrent) X(eglDestroyContext) X(eglTerminate)
 // clang-format on
-#define BELTSIM_DECLARE(name) decltype(&::name) name = nullptr;
-#define BELTSIM_LOAD(name) name = reinterpret_cast<decltype(&::name)>(shared_library_symbol(library, soname, #name));
 
 struct OsMesaApi {
-  BELTSIM_OSMESA_FUNCTIONS(BELTSIM_DECLARE)
+  BELTSIM_OSMESA_FUNCTIONS(BELTSIM_SHARED_DECLARE)
   OsMesaApi() {
     const char* soname = "libOSMesa.so.8";
     void* library = open_shared_library(soname, "libosmesa6");
-    BELTSIM_OSMESA_FUNCTIONS(BELTSIM_LOAD)
+    BELTSIM_OSMESA_FUNCTIONS(BELTSIM_SHARED_LOAD)
   }
 };
 
 struct EglApi {
-  BELTSIM_EGL_FUNCTIONS(BELTSIM_DECLARE)
+  BELTSIM_EGL_FUNCTIONS(BELTSIM_SHARED_DECLARE)
   EglApi() {
     const char* soname = "libEGL.so.1";
     void* library = open_shared_library(soname, "libegl1");
-    BELTSIM_EGL_FUNCTIONS(BELTSIM_LOAD)
+    BELTSIM_EGL_FUNCTIONS(BELTSIM_SHARED_LOAD)
   }
 };
 
-#undef BELTSIM_DECLARE
-#undef BELTSIM_LOAD
 
 // opened once, on the first call (a failure throws, and the next call tries again)
 const OsMesaApi& osmesa() {
