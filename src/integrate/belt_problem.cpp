@@ -33,6 +33,10 @@ bool BeltProblem::in_state_norm(int k) const {
   return !(k >= N && k < N + ne);
 }
 
+bool BeltProblem::held_each(int k) const {
+  return k >= model_.bristle_offset() && model_.friction_of(k - model_.bristle_offset()).law == FrictionKind::lugre;
+}
+
 double BeltProblem::resolution(int k) const {
   // an element's velocity (x, y) and a pulley's surface speed: the friction band Δv
   const int N = model_.n_coord(), ne = 3 * model_.n_el();

@@ -32,6 +32,11 @@ class BeltProblem final : public OdeProblem {
   // every component but the elements' velocities (x, y, spin): their error is held through the
   // elements' positions and angles, the pulley speeds and the span tensions (StepController)
   bool in_state_norm(int k) const override;
+  // the LuGre bristles' deflections: each is a friction force's state (σ0·z of μ's part), which
+  // the answer's span tensions and pulley speeds integrate; in the state norm, 10 times looser and
+  // averaged over the whole belt, their error drifted the driver's speed while it slipped on a
+  // LuGre stretch, by 5e-4 at rtol 1e-3 and 1e-4 alike (docs/integration.md)
+  bool held_each(int k) const override;
   std::string describe_answer(int k) const override;
   int switch_count() const override;
   // from the contact records of (t, y) with every pair (model/contacts.hpp), kept in the workspace

@@ -16,6 +16,9 @@ StepController::StepController(OdeProblem& sys, const Tolerances& tol, int q, in
   in_norm_.setOnes(sys.size());
   if (na > 0 && reduced)
     for (int k = 0; k < sys.size(); ++k) in_norm_[k] = sys.in_state_norm(k) ? 1.0 : 0.0;
+  if (na > 0)
+    for (int k = 0; k < sys.size(); ++k)
+      if (sys.held_each(k)) held_.push_back(k), in_norm_[k] = 0.0;
   n_in_norm_ = std::max(1.0, in_norm_.sum());
   aatol_.resize(na), a0_.resize(na), a1_.resize(na), da_.resize(na);
   for (int a = 0; a < na; ++a) aatol_[a] = atol * sys.answer_scale(a);
@@ -33,6 +36,8 @@ double StepController::error_norm(double t1, const Eigen::VectorXd& y0, const Ei
   double e = std::sqrt(sum / n_in_norm_);
   if (aatol_.size() > 0) {
     e /= kStateLooseness;
+    for (int k : held_)
+      e = std::max(e, std::abs(err[k]) / (atol_[k] + rtol_ * std::max(std::abs(y0[k]), std::abs(y1[k]))));
     sys_.answer(t1, y0.data(), a0_.data());
     sys_.answer(t1, y1.data(), a1_.data());
     sys_.answer_error(t1, y1.data(), err.data(), da_.data());

@@ -7,7 +7,8 @@
 //   e_state  = sqrt(mean over the components in the state norm of (err_k/w_k)²)
 //   W_a = atol·ascale_a + rtol·max(|A_a(y0)|, |A_a(y1)|)   (answer quantity a: OdeProblem::answer)
 //   e_answer = max_a |δA_a| / W_a,   δA = A(y1) - A(y1 - err)
-//   ‖err‖ = max(e_answer, e_state / kStateLooseness)
+//   e_held   = max over the components held each on their own (OdeProblem::held_each) of |err_k|/w_k
+//   ‖err‖ = max(e_answer, e_held, e_state / kStateLooseness)
 //   h_new = h·min(grow, max(shrink, 0.7·‖err‖^(-1/(q+1))))   with q the lower of the two orders
 // The mean over all the states lets one quantity's error be √n times the tolerance (a pulley's
 // speed among 6n element states), and holds the element states, whose local vibration no output
@@ -24,6 +25,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <vector>
 
 #include "integrate/system.hpp"
 
@@ -67,6 +69,7 @@ class StepController {
   Eigen::VectorXd atol_;
   Eigen::VectorXd in_norm_;  // 1 for a component in the state norm, else 0
   double n_in_norm_ = 0;     // their number
+  std::vector<int> held_;    // the components held each on their own (OdeProblem::held_each)
   Eigen::VectorXd aatol_, a0_, a1_, da_;  // the answer's atol, its values at y0 and y1, its error
   double rtol_;
   double exponent_;

@@ -64,6 +64,9 @@ class OdeProblem {
   // whether component k's error counts in the state's part of the error norm beside the answer
   // (StepController; only when the problem has an answer)
   virtual bool in_state_norm(int) const { return true; }
+  // whether component k's error is held on its own at the full tolerance, as an answer quantity's
+  // is, rather than in the state norm (StepController; only when the problem has an answer)
+  virtual bool held_each(int) const { return false; }
   virtual std::string describe_answer(int k) const { return "answer " + std::to_string(k); }
 
   // diagnostics: a name for component k ("element 12 y velocity") and a check of a state that
