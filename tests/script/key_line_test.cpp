@@ -14,6 +14,7 @@
 #include "scene/validate.hpp"
 #include "script/interpreter.hpp"
 #include "support/presets.hpp"
+#include "support/scenes.hpp"
 #include "support/scratch.hpp"
 
 namespace beltsim::script {
@@ -48,6 +49,8 @@ TEST(KeyLine, MessagePathsAsTheErrorsSpellThem) {
   EXPECT_EQ(chain("(an error object that is a table value)"), "");
 }
 
+// a scene of its own: the layout is what these lines test (keys a comment, a string, a function's
+// table or a name written later could be mistaken for), so it is written out here
 const std::string kScene =
     "-- a scene with what could mislead a scan\n"                                           // 1
     "local k = 3000\n"                                                                      // 2
@@ -98,12 +101,16 @@ TEST(KeyLine, FindsTheKeyWhoseTablesMatchThePath) {
             std::nullopt);
 }
 
-// the two pulleys of the scripts below (lines 2 to 5 of a script that opens beltsim.scene on line 1)
-const std::string kPulleys =
-    "  pulleys = {\n"
-    "    { name = 'driver', centre = {0, 0}, radius = 0.1, torque = -1 },\n"
-    "    { name = 'driven', centre = {0.29, 0}, radius = 0.1 },\n"
-    "  },\n";
+// The test scene (support/scenes.hpp: its beltsim.scene on line 1, the pulleys on lines 2 to 5)
+// with `belt_lines` for its belt line 6 and `before` ahead of `local s = `. The tests below are
+// about the line an error names, so the belt is each test's own, its key on a line of its own;
+// with no belt lines the scene's closing brace is line 6.
+std::string with_belt(const std::string& belt_lines, const std::string& before = "") {
+  beltsim::test::TwoPulley p;
+  p.belt_lines = belt_lines;
+  if (!before.empty()) p.assign = before + "local s = ";
+  return beltsim::test::two_pulley(p);
+}
 
 // a scratch folder whose drive.lua each run() writes and runs; the error text it returns
 struct ScriptDir {
@@ -119,20 +126,16 @@ struct ScriptDir {
 // keeps the call's line
 TEST(KeyLine, ScriptErrorsNameTheLineOfTheKey) {
   const ScriptDir sd;
-  const std::string& pulleys = kPulleys;
   const std::string& file = sd.file;
   auto run = [&](const std::string& text) { return sd.run(text); };
-  EXPECT_EQ(run("local s = beltsim.scene {\n" + pulleys + "  belt = {\n    pretension = -5,\n  },\n}\n")
+  EXPECT_EQ(run(with_belt("  belt = {\n    pretension = -5,\n  },\n"))
                 .rfind(file + ":7: belt.pretension must be > 0 (got -5 N)", 0),
             0u);
-  EXPECT_EQ(run("local s = beltsim.scene {\n" + pulleys + "  belt = { pretention = 5 },\n}\n")
-                .rfind(file + ":6: unknown key 'pretention' in belt", 0),
+  EXPECT_EQ(run(with_belt("  belt = { pretention = 5 },\n")).rfind(file + ":6: unknown key 'pretention' in belt", 0),
             0u);
-  EXPECT_EQ(run("local s = beltsim.scene {\n" + pulleys + "}\ns:run {\n  t_end = 0.01,\n  sample = -1,\n}\n")
-                .rfind(file + ":9: run.sample", 0),
-            0u);
+  EXPECT_EQ(run(with_belt("") + "s:run {\n  t_end = 0.01,\n  sample = -1,\n}\n").rfind(file + ":9: run.sample", 0), 0u);
   // a belt table made elsewhere: the call's line
-  EXPECT_EQ(run("local b = { pretension = -5 }\nlocal s = beltsim.scene {\n" + pulleys + "  belt = b,\n}\n")
+  EXPECT_EQ(run(with_belt("  belt = b,\n", "local b = { pretension = -5 }\n"))
                 .rfind(file + ":2: belt.pretension must be > 0", 0),
             0u);
 }
@@ -143,13 +146,11 @@ TEST(KeyLine, ScriptErrorsNameTheLineOfTheKey) {
 // and an error reworded so that no path starts it still finds that line through its field.
 TEST(KeyLine, TheLineComesFromTheErrorsPathNotItsWords) {
   const ScriptDir sd;
-  const std::string& pulleys = kPulleys;
   const std::string& file = sd.file;
   auto run = [&](const std::string& text) { return sd.run(text); };
-  const std::string scene =
-      "local s = beltsim.scene {\n" + pulleys + "  belt = {\n    mass_per_length = -1,\n  },\n}\n";
+  const std::string scene = with_belt("  belt = {\n    mass_per_length = -1,\n  },\n");
   EXPECT_EQ(run(scene).rfind(file + ":7: belt.mass_per_length must be > 0 (got -1 kg/m)", 0), 0u) << run(scene);
-  const std::string ok = "local s = beltsim.scene {\n" + pulleys + "}\n";
+  const std::string ok = with_belt("");
   // (frames.t_start after t_end: refused by the run's check, not by the reader)
   const std::string late =
       ok + "s:run {\n  t_end = 0.01,\n  frames = {\n    png = true,\n    t_start = 0.5,\n  },\n}\n";

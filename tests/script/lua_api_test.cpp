@@ -51,6 +51,12 @@ TEST(LuaApi, SilentMisreadingsAreErrors) {
     std::string text, expect;
   };
   const std::string ok_scene = scene_text("");
+  // the test scene with n elements and a line of more scene keys
+  auto with_elements = [](int n, const std::string& scene_keys) {
+    beltsim::test::TwoPulley p;
+    p.elements = n, p.extra = scene_keys;
+    return beltsim::test::two_pulley(p);
+  };
   for (const Case& c : std::vector<Case>{
            {scene_text("mu = {}"), "belt.mu: an empty list"},
            {scene_text("EA = 1e308"), "belt.EA (per SDE: EA / l0) is beyond what double precision integrates"},
@@ -87,11 +93,8 @@ TEST(LuaApi, SilentMisreadingsAreErrors) {
             "every: a callback every 1e-12 s would be called"},
            {ok_scene + "s:run{ t_end = 0.02, frames = { slowdown = 1e6, png = true } }\n",
             "would render 600000 frames"},
-           {"beltsim.scene { pulleys = { { name = 'a', centre = {0, 0} }, { name = 'b', centre = {0.3, 0} } },\n"
-            " belt = { elements = 1000000 } }\n",
-            "more than the limit of 20000"},
-           {"beltsim.scene { pulleys = { { name = 'a', centre = {0, 0} }, { name = 'b', centre = {0.3, 0} } },\n"
-            " belt = { elements = 1000001 }, allow_large = true }\n",
+           {with_elements(1000000, ""), "more than the limit of 20000"},
+           {with_elements(1000001, "allow_large = true"),
             "1000001 elements are more than beltsim can hold (1000000, allow_large or not)"},
        }) {
     const std::string msg = run_text(c.text);
@@ -172,7 +175,8 @@ TEST(LuaApi, TooFewElementsForTheWrap) {
 }
 
 TEST(LuaApi, RouteThatCannotClose) {
-  // four pulleys at the corners of a square visited diagonally: the spans would cross
+  // four pulleys at the corners of a square visited diagonally: the spans would cross (a layout of
+  // its own, which no other test uses)
   const std::string text =
       "beltsim.scene {\n"
       "  pulleys = {\n"
@@ -434,17 +438,17 @@ TEST(LuaApi, BeltDataAndTheDefaultsTaken) {
   expect_error(scene_text("strain = 0.01"), "scene.lua:", {"give one of pretension [N], rest_length [m] or strain"});
   expect_error(scene_text("bending_damping = 0.05, bending_viscosity = 1e-3"), "scene.lua:",
                {"bending_damping", "bending_viscosity", "not both"});
-  expect_error("beltsim.scene { pulleys = { { name = 'a', centre = {0, 0} }, { name = 'b', centre = {0.3, 0} } },\n"
-               " contact = { c2 = 6.5e5, c2_per_length = 3e7 } }\n",
-               "scene.lua:2:", {"c2 (per element) or c2_per_length (per metre of belt), not both"});
-  const std::string text =
-      "local s = beltsim.scene {\n"
-      "  pulleys = { { name = 'driver', centre = {0, 0}, radius = 0.1, torque = 1 },\n"
-      "              { name = 'driven', centre = {0.29, 0}, radius = 0.1 } },\n"
+  beltsim::test::TwoPulley both;
+  both.extra = "contact = { c2 = 6.5e5, c2_per_length = 3e7 }";  // line 7
+  expect_error(beltsim::test::two_pulley(both),
+               "scene.lua:7:", {"c2 (per element) or c2_per_length (per metre of belt), not both"});
+  // the test scene with a belt tensioned by its rest length and some of the paper's values given
+  beltsim::test::TwoPulley rest;
+  rest.driver = "torque = 1";
+  rest.belt_lines =
       "  belt = { elements = 60, rest_length = 1.19, EA = 1.52e5, EI = 0.026, axial_damping = 20.5 },\n"
-      "  contact = { c2_per_length = 3.2e7 },\n"
-      "}\n"
-      "s:run{ t_end = 0.001, progress = false }\n";
+      "  contact = { c2_per_length = 3.2e7 },\n";
+  const std::string text = beltsim::test::two_pulley(rest) + "s:run{ t_end = 0.001, progress = false }\n";
   testing::internal::CaptureStderr();
   const std::string msg = run_text(text);
   const std::string err = testing::internal::GetCapturedStderr();

@@ -17,6 +17,7 @@
 #include "script/interpreter.hpp"
 #include "sim/run_table.hpp"
 #include "support/files.hpp"
+#include "support/scenes.hpp"
 #include "support/scratch.hpp"
 
 namespace beltsim::script {
@@ -31,9 +32,12 @@ fs::path temp_dir() { return beltsim::test::scratch_dir("beltsim_parameters_test
 // A two-pulley scene (pulleys 'a' and 'b') with the given values as Lua expressions, each under its
 // dotted key ("belt.EA", "belt.sde.k", "pulley.radius": pulley a's, "pulley.tensioner.stiffness":
 // pulley a's arm, pivoted 0.1 m above its centre, "pulley.coupling.stiffness": pulley a's
-// coupling, "gravity"; a friction law's own parameters with that law), then a run of one
-// millisecond writing parameters.csv.
-std::string scene_with(std::map<std::string, std::string> values) {
+// coupling, "gravity"; a friction law's own parameters with that law) and `friction` (more keys of
+// the friction table, as Lua writes them), then a run of one millisecond writing parameters.csv.
+// The scene of this file's tests, not the shared test scene (support/scenes.hpp): it gives nothing
+// but the values under test (no radius, pretension or element count), which the tests find in
+// parameters.csv as given and the rest as defaults.
+std::string scene_with(std::map<std::string, std::string> values, const std::string& friction = "") {
   // a friction law's own parameters (those that apply to some laws only) come with LuGre's, which
   // takes them all
   for (const auto& [dotted, v] : std::map<std::string, std::string>(values)) {
@@ -68,8 +72,8 @@ std::string scene_with(std::map<std::string, std::string> values) {
          tables["contact"] +
          "},\n"
          "  friction = { " +
-         tables["friction"] +
-         "},\n"
+         tables["friction"] + friction +
+         " },\n"
          "  " +
          tables["scene"] + spray +
          "\n"
@@ -257,14 +261,11 @@ TEST(Parameters, FrictionLawWordsAndTheirParameters) {
 // in parameters.csv; a missing end, a misspelt key, another law's parameter and a value past its
 // rule are refused with file:line and the segment's number
 TEST(Parameters, FrictionSegments) {
-  const std::string at = (temp_dir() / "scene.lua").string() + ":1: ";
-  auto scene = [](const std::string& friction) {
-    return "local s = beltsim.scene { pulleys = { { name = 'a', centre = {0, 0}, torque = -1 }, "
-           "{ name = 'b', centre = {0.29, 0} } }, friction = { " +
-           friction + " } }\ns:run { t_end = 1e-3, progress = false }\n";
-  };
-  EXPECT_EQ(run_text(scene("static_ratio = 1.4, law = 'stribeck', segments = { { from = 0.1, to = 0.3, "
-                           "stribeck_speed = 0.05 }, { from = 0.5, to = 0.7, law = 'lugre', bristle_damping = 0.1 } }")),
+  auto scene = [](const std::string& segments) { return scene_with({}, "segments = " + segments); };
+  const std::string at = at_line_of(scene("{}"), "segments =");  // the friction table's line
+  EXPECT_EQ(run_text(scene_with({{"friction.static_ratio", "1.4"}, {"friction.law", "'stribeck'"}},
+                                "segments = { { from = 0.1, to = 0.3, stribeck_speed = 0.05 }, "
+                                "{ from = 0.5, to = 0.7, law = 'lugre', bristle_damping = 0.1 } }")),
             "");
   const std::string csv = slurp(temp_dir() / "out" / "parameters.csv");
   // (a segment's law starts from the friction table's: what that table gave, the segment was given)
@@ -274,17 +275,21 @@ TEST(Parameters, FrictionSegments) {
                           "friction.segments.2.bristle_damping,0.1,s/m,given",
                           "friction.segments.2.bristle_stiffness,1e+05,1/m,default"})
     EXPECT_NE(csv.find(std::string("\n") + row), std::string::npos) << row << " in\n" << csv;
-  EXPECT_EQ(run_text(scene("segments = { { from = 0.1, law = 'stribeck' } }")),
-            at + "friction.segments[1]: from and to [m] (where the segment begins and ends along the belt) are required");
-  EXPECT_EQ(run_text(scene("segments = { { from = 0.1, to = 0.2, dv = 1e-4 } }")).rfind(
-                at + "unknown key 'dv' in friction.segments[1]", 0),
+  // (about no key but a list position: the line of the beltsim.scene call, as key_line_test's
+  // MessagePathsAsTheErrorsSpellThem has it)
+  EXPECT_EQ(
+      run_text(scene("{ { from = 0.1, law = 'stribeck' } }")),
+      at_line_of(scene("{}"), "beltsim.scene {") +
+          "friction.segments[1]: from and to [m] (where the segment begins and ends along the belt) are required");
+  EXPECT_EQ(run_text(scene("{ { from = 0.1, to = 0.2, dv = 1e-4 } }"))
+                .rfind(at + "unknown key 'dv' in friction.segments[1]", 0),
             0u);
-  EXPECT_EQ(run_text(scene("segments = { { from = 0.1, to = 0.2, law = 'stribeck', bristle_damping = 1 } }")),
+  EXPECT_EQ(run_text(scene("{ { from = 0.1, to = 0.2, law = 'stribeck', bristle_damping = 1 } }")),
             at + "friction.segments[1].bristle_damping: a parameter of another law; this segment's law is 'stribeck'");
-  EXPECT_EQ(run_text(scene("segments = { { from = 0.1, to = 0.2 }, { from = 0.1, to = 0.2, law = 'lugre', "
+  EXPECT_EQ(run_text(scene("{ { from = 0.1, to = 0.2 }, { from = 0.1, to = 0.2, law = 'lugre', "
                            "release_time = 0 } }")),
             at + "friction.segments[2].release_time must be > 0 (got 0 s)");
-  EXPECT_EQ(run_text(scene("segments = { { from = -0.1, to = 0.2 } }")),
+  EXPECT_EQ(run_text(scene("{ { from = -0.1, to = 0.2 } }")),
             at + "friction.segments[1].from must be >= 0 (got -0.1 m)");
 }
 
@@ -317,24 +322,30 @@ TEST(Parameters, ABeltPresetGivesItsValues) {
 TEST(Parameters, BeltsTablesAndTheBendingLossInInfo) {
   // the 5PK preset's softer bending: the static start's retry (scene/bending_loss_test.cpp)
   beltsim::test::expect_warnings({WarningKind::static_retry});
-  const std::string paper =
-      "pulleys = { { name = 'a', centre = {0, 0}, radius = 0.1, torque = beltsim.ramp(0.3, -70) },\n"
-      "            { name = 'b', centre = {0.29, 0}, radius = 0.1, torque = { per_speed = -0.955 } } }";
-  EXPECT_EQ(run_text("local b = beltsim.belts['6PK']\n"
-                     "assert(b.preset == '6PK' and b.EI == 0.004704 and b.bending_viscosity == 8.4e-7)\n"
-                     "b.EI = 1\n"
-                     "assert(beltsim.belts['6PK'].EI == 0.004704, 'a new table each time')\n"
-                     "local names = {}\n"
-                     "for name in pairs(beltsim.belts) do names[#names + 1] = name end\n"
-                     "assert(table.concat(names, ' ') == '3PK 4PK 5PK 6PK 7PK 8PK')\n"
-                     "local i = beltsim.scene { " + paper + " }:info()\n"
-                     "assert(i.bending_loss.share > 0.05 and #i.warnings == 1, i.warnings[1])\n"
-                     "assert(i.warnings[1]:find('bending dampers', 1, true))\n"
-                     "local p = beltsim.scene { " + paper + ", belt = beltsim.belts['5PK'] }:info()\n"
-                     "assert(p.bending_loss.share < 0.05 and #p.warnings == 0, p.warnings[1])\n"
-                     "beltsim.belts['9PK'] = b\n"),
-            (temp_dir() / "scene.lua").string() +
-                ":15: beltsim.belts is read-only: change the table beltsim.belts[name] returns (a new one each time)");
+  // the test scene (support/scenes.hpp) with no belt table (the defaults: the paper's belt) and with
+  // the 5PK preset's
+  beltsim::test::TwoPulley own, pk5;
+  own.assign = "local paper = ", own.belt_lines = "";
+  pk5.assign = "local paper_5pk = ", pk5.belt_lines = "  belt = beltsim.belts['5PK'],\n";
+  const std::string text =
+      "local b = beltsim.belts['6PK']\n"
+      "assert(b.preset == '6PK' and b.EI == 0.004704 and b.bending_viscosity == 8.4e-7)\n"
+      "b.EI = 1\n"
+      "assert(beltsim.belts['6PK'].EI == 0.004704, 'a new table each time')\n"
+      "local names = {}\n"
+      "for name in pairs(beltsim.belts) do names[#names + 1] = name end\n"
+      "assert(table.concat(names, ' ') == '3PK 4PK 5PK 6PK 7PK 8PK')\n" +
+      beltsim::test::two_pulley(own) +
+      "local i = paper:info()\n"
+      "assert(i.bending_loss.share > 0.05 and #i.warnings == 1, i.warnings[1])\n"
+      "assert(i.warnings[1]:find('bending dampers', 1, true))\n" +
+      beltsim::test::two_pulley(pk5) +
+      "local p = paper_5pk:info()\n"
+      "assert(p.bending_loss.share < 0.05 and #p.warnings == 0, p.warnings[1])\n"
+      "beltsim.belts['9PK'] = b\n";
+  EXPECT_EQ(run_text(text),
+            at_line_of(text, "beltsim.belts['9PK'] = b") +
+                "beltsim.belts is read-only: change the table beltsim.belts[name] returns (a new one each time)");
 }
 
 }  // namespace parameters_test

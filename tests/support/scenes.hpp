@@ -2,16 +2,18 @@
 //
 // two_pulley: the scene of tests/support/two_pulley.lua (the Python tests read the same file,
 // support/scenes.py), with what a test varies. Its text has 7 lines (8 with `extra`): a script's
-// next line is line 8 (9), which the tests' expected messages name.
+// next line is line 8 (9), which the tests' expected messages name; with `belt_lines`, the belt's
+// line 6 is those lines.
 //
 // automotive_text: tests/support/automotive.lua as a local function automotive(o), which makes the
 // automotive drive's table (its keys there), for a script that follows it.
 //
-// runaway: a frictionless belt leaves the driver free to spin up under 1e6 N·m (4e7 rad/s² on
-// 0.025 kg·m²), past the runaway check (1e5 rad/s) after 2.5 ms; 7 lines.
+// runaway: the test scene with a frictionless belt, which leaves the driver free to spin up under
+// 1e6 N·m (4e7 rad/s² on 0.025 kg·m²), past the runaway check (1e5 rad/s) after 2.5 ms; 7 lines.
 #pragma once
 
 #include <fstream>
+#include <optional>
 #include <regex>
 #include <sstream>
 #include <stdexcept>
@@ -28,6 +30,9 @@ struct TwoPulley {
   int elements = 0;
   std::string belt;   // more keys of the belt table
   std::string extra;  // a line of more keys of the scene table
+  // the lines that stand for the file's belt line (its table written out over several lines, a
+  // belt made elsewhere, none: ""); the file's line when not set, and then `elements` and `belt`
+  std::optional<std::string> belt_lines;
 };
 
 // the text of tests/support/NAME
@@ -72,17 +77,19 @@ inline std::string two_pulley(const TwoPulley& p = {}) {
   replace_group(s, "elements = ([0-9]+)", 1, p.elements ? std::to_string(p.elements) : "");
   replace_group(s, "belt = \\{.*()\\s\\},", 1, p.belt.empty() ? "" : ", " + p.belt);
   replace_group(s, "\\n()\\}\\n$", 1, p.extra.empty() ? "" : "  " + p.extra + "\n");
+  if (p.belt_lines) {
+    std::smatch m;
+    if (!std::regex_search(s, m, std::regex("\n(  belt = \\{.*\\},\n)")))
+      throw std::runtime_error("two_pulley.lua: no belt line");
+    s.replace(static_cast<size_t>(m.position(1)), static_cast<size_t>(m.length(1)), *p.belt_lines);
+  }
   return s;
 }
 
 inline std::string runaway() {
-  return "local s = beltsim.scene {\n"
-         "  pulleys = {\n"
-         "    { name = 'driver', centre = {0, 0}, radius = 0.1, torque = 1e6 },\n"
-         "    { name = 'driven', centre = {0.29, 0}, radius = 0.1 },\n"
-         "  },\n"
-         "  belt = { mu = 0 },\n"
-         "}\n";
+  TwoPulley p;
+  p.driver = "torque = 1e6", p.belt_lines = "  belt = { mu = 0 },\n";
+  return two_pulley(p);
 }
 
 }  // namespace beltsim::test
