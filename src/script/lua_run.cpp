@@ -381,10 +381,11 @@ RunSettings read_run_settings(lua_State* L, int idx, const Scene& sc, Context* c
 }
 
 void push_check(lua_State* L, const CheckEstimate& c) {
-  lua_createtable(L, 0, 8);
+  lua_createtable(L, 0, 9);
   lua_pushnumber(L, c.err_speed), lua_setfield(L, -2, "speed");
   lua_pushnumber(L, c.err_tension), lua_setfield(L, -2, "tension");
-  lua_pushnumber(L, c.limit()), lua_setfield(L, -2, "limit");
+  lua_pushnumber(L, c.speed_limit()), lua_setfield(L, -2, "limit_speed");
+  lua_pushnumber(L, c.tension_limit()), lua_setfield(L, -2, "limit_tension");
   lua_pushboolean(L, c.over()), lua_setfield(L, -2, "over");
   lua_pushnumber(L, c.steps_ratio), lua_setfield(L, -2, "steps_ratio");
   lua_pushboolean(L, c.shared()), lua_setfield(L, -2, "shared");

@@ -53,7 +53,8 @@ RunSettings read_run_settings(lua_State* L, int idx, const Scene& sc, Context* c
 // then are in DIR": a run's or a live simulation's call's message, after the caller's name
 std::string wall_limit_text(double limit, double t, double target, const std::string& outputs);
 
-// pushes a checked run's estimate (sim/run_check.hpp) as { speed, tension, limit, over, warned_t, failed }
+// pushes a checked run's estimate (sim/run_check.hpp) as { speed, tension, limit_speed,
+// limit_tension, over, steps_ratio, shared, warned_t, failed }
 void push_check(lua_State* L, const CheckEstimate& c);
 
 }  // namespace beltsim::script

@@ -14,6 +14,15 @@ namespace {
 // [rad/s] the least scale of a pulley's speed: the size its absolute tolerance is per
 // (BeltProblem::kNaturalSizes)
 constexpr double kSpeedFloor = 1.0;
+
+// "pulley speeds is 0.0042 (relative to their largest values ...), past 3×rtol = 0.003": the
+// speeds' estimate (else the span tensions') past factor·rtol; over_run: relative to the whole run's
+std::string past(const CheckEstimate& e, bool speeds, double factor, bool over_run) {
+  return std::string(speeds ? "pulley speeds" : "span tensions") + " is " +
+         rounded_text(speeds ? e.err_speed : e.err_tension, 3) + " (relative to their largest values " +
+         (over_run ? "over the run" : "so far") + "), past " + rounded_text(factor) + "×rtol = " +
+         rounded_text(factor * e.rtol);
+}
 }  // namespace
 
 double check_rtol(const RunSettings& rs) {
@@ -49,15 +58,11 @@ void RunCheck::sample(double t, const Eigen::VectorXd& y, const Eigen::VectorXd*
   est_.err_speed = speed_.error();
   est_.err_tension = tension_.error();
   if (run_steps > 0) est_.steps_ratio = static_cast<double>(sys_->problem.counters.steps) / run_steps;
-  if (est_.warned_t >= 0 || !est_.over()) return;
+  if (est_.warned_t >= 0 || !est_.alarm()) return;
   est_.warned_t = t;
   if (!rs_.on_warning) return;
-  const bool speeds = est_.err_speed > est_.limit();
-  rs_.on_warning("check: at t = " + rounded_text(t) + " s the estimated error so far of the " +
-                 (speeds ? "pulley speeds" : "span tensions") + " is " +
-                 rounded_text(speeds ? est_.err_speed : est_.err_tension, 3) +
-                 " (relative to their largest values so far), past " + rounded_text(kCheckLimit) + "×rtol = " +
-                 rounded_text(est_.limit()) + ": this run's answer is not within its tolerance; try a tighter rtol");
+  rs_.on_warning("check: at t = " + rounded_text(t) + " s the estimated error so far of the " + past(est_, est_.err_speed > kCheckAlarm * est_.rtol, kCheckAlarm, false) +
+                 ": this run's answer is not within its tolerance; try a tighter rtol");
 }
 
 std::string RunCheck::line() const {
@@ -66,10 +71,11 @@ std::string RunCheck::line() const {
                   " (relative to their largest values over the run; rtol " + rounded_text(rs_.rtol) +
                   ", companion at " + rounded_text(check_rtol(rs_)) + ")";
   if (est_.over())
-    s += "; past " + rounded_text(kCheckLimit) + "×rtol = " + rounded_text(est_.limit()) +
+    s += "; the estimate of the " +
+         past(est_, est_.speeds_over(), est_.speeds_over() ? kCheckSpeedLimit : kCheckTensionLimit, true) +
          ": do not trust this run's answer at this tolerance";
   else if (est_.warned_t >= 0)
-    s += "; it passed " + rounded_text(kCheckLimit) + "×rtol at t = " + rounded_text(est_.warned_t) +
+    s += "; it passed " + rounded_text(kCheckAlarm) + "×rtol at t = " + rounded_text(est_.warned_t) +
          " s, relative to the smaller values then";
   if (est_.shared())
     s += "; the companion took only " + rounded_text(est_.steps_ratio, 2) +
@@ -91,14 +97,15 @@ std::string RunCheck::parameter_rows() const {
       "estimated error of the pulley speeds: max over pulleys and samples of |run - companion|, relative to the "
       "companion's largest |speed| of that pulley (at least 1 rad/s)");
   row("check.err_tension", value_text(est_.err_tension), "the same for the span tensions");
-  row("check.limit", value_text(est_.limit()), "10×rtol: past it the run warned");
-  row("check.over", est_.over() ? "1" : "0", "1: the estimate over the run is past the limit");
+  row("check.limit_speed", value_text(est_.speed_limit()), "3×rtol: past it in the speeds the run warned");
+  row("check.limit_tension", value_text(est_.tension_limit()), "10×rtol: past it in the span tensions the run warned");
+  row("check.over", est_.over() ? "1" : "0", "1: the estimate over the run is past a limit");
   row("check.steps_ratio", value_text(est_.steps_ratio),
       "the companion's accepted steps over the run's; below 1.3 the two share their steps and the estimate may be "
       "low (where the tolerance sets the steps, 2 to 4)");
   row("check.shared", est_.shared() ? "1" : "0", "1: the steps ratio is below 1.3, the closing line warned");
   row("check.warned_t", est_.warned_t >= 0 ? value_text(est_.warned_t) : std::string(),
-      "simulated time [s] the estimate so far first passed the limit, when the run warned (empty: never)");
+      "simulated time [s] the estimate so far first passed 10×rtol, when the run warned (empty: never)");
   row("check.failed", csv_text(est_.failed), "why the companion stopped early (empty: it did not)");
   return f.str();
 }

@@ -180,7 +180,7 @@ class Errors(unittest.TestCase):
             self.assertIn("\nrun.check,0,,run,", f.read())
         code, out, err = run(["run", path, "--check", "--rtol", "1e-2"], cwd=self.dir)
         self.assertEqual(code, 0, err)
-        # (a warning when past 10×rtol: the first 10 ms of this coarse belt at 1e-2 are, 0.6 of the speeds)
+        # (a warning when past 3×rtol in the speeds: the first 10 ms of this coarse belt at 1e-2 are, 0.6 of the speeds)
         self.assertRegex(err, "beltsim: (warning: )?check: estimated error of the pulley speeds ")
         self.assertIn("(relative to their largest values over the run; rtol 0.01, companion at 0.001)", err)
         with open(params) as f:

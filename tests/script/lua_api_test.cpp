@@ -525,7 +525,7 @@ TEST(LuaApi, CheckIsABooleanAndHandsBackTheEstimate) {
                {"start.check: boolean expected, got string"});
   EXPECT_EQ(run_text(scene_text("") +
                      "local r = s:run{ t_end = 0.01, check = true, progress = false }\n"
-                     "assert(r.check.speed >= 0 and r.check.tension >= 0 and r.check.limit == 10 * 1e-4, 'check')\n"
+                     "assert(r.check.speed >= 0 and r.check.tension >= 0 and r.check.limit_speed == 3 * 1e-4 and r.check.limit_tension == 10 * 1e-4, 'check')\n"
                      "assert(type(r.check.over) == 'boolean', 'over')\n"
                      "local sim = s:start{ check = true, progress = false }\n"
                      "sim:run_to(0.005)\n"
