@@ -55,6 +55,9 @@ std::string changed_inputs(const std::string& recorded, Definition& now) {
   if (in->program != now.program) return "the program has changed (was " + in->program + ")";
   if (in->options != now.options)
     return "the options have changed (were '" + in->options + "', now '" + now.options + "')";
+  if (!now.sweep_file.empty() && (in->files.empty() || in->files.front().first != now.sweep_file))
+    return "the sweep file has changed (was " + (in->files.empty() ? std::string("none") : in->files.front().first) +
+           ", now " + now.sweep_file + ")";
   for (const auto& [path, hash] : in->files) {
     auto it = now.hashes.find(path);
     if (it == now.hashes.end()) it = now.hashes.emplace(path, file_sha256(path)).first;
