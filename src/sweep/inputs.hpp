@@ -33,8 +33,8 @@ struct Definition {
   std::string program, options;
   std::map<std::string, std::string> hashes;  // path -> SHA-256 now ("" when unreadable)
   // the sweep file (the quick form's script) as a point records it, its first file: absolute,
-  // lexically normal; "" when not checked. A point run from another file is not this sweep's,
-  // whatever that file's files hash to now
+  // lexically normal; "" when not checked. A point run from another file (not the same one by
+  // another path) is not this sweep's, whatever the files it loaded hash to now
   std::string sweep_file;
 };
 

@@ -303,7 +303,12 @@ class Sweep(unittest.TestCase):
         p = self.run_beltsim("sweep", "copy.lua", "--jobs", "2", "--out", "out/editable")
         self.assertIn("4 points run again: the sweep file has changed (was %s, now %s)"
                       % (self.path("editable.lua"), self.path("copy.lua")), p.stderr)
-        self.run_beltsim("sweep", "editable.lua", "--jobs", "2")
+        p = self.run_beltsim("sweep", "editable.lua", "--jobs", "2")
+        self.assertIn("4 points run again: the sweep file has changed", p.stderr)
+        # the same file by another path (a symlinked folder): done already
+        os.symlink(self.dir, self.path("link"))
+        p = self.run_beltsim("sweep", "link/editable.lua", "--jobs", "2", "--out", "out/editable")
+        self.assertIn("4 of 4 points done already", p.stderr)
         # --collect after an edit: the points are not the sweep's any more
         self.write_editable("-0.7", "0.096")
         self.run_beltsim("sweep", "editable.lua", "--collect", ok=(1,))
