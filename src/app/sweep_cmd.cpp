@@ -41,9 +41,13 @@ int processors() {
 // what defines a point now, bar its files (sweep/inputs.hpp): the program and, of the options,
 // --trusted. The --set lists are the grid: each point's own values are its parameters, matched
 // already (sweep/results.hpp), so a value added to a list reruns no other point; the limits only
-// decide whether a point fails, and a failed point runs again anyway.
-beltsim::sweep::Definition definition(const Raw& raw) {
-  return {beltsim::sweep::program_identity(), raw.trusted ? "--trusted" : "", {}};
+// decide whether a point fails, and a failed point runs again anyway. The sweep file: a point
+// run from another is not this sweep's (its path as the loader records it, script/load_source).
+beltsim::sweep::Definition definition(const Raw& raw, const std::string& file) {
+  return {beltsim::sweep::program_identity(),
+          raw.trusted ? "--trusted" : "",
+          {},
+          fs::absolute(file).lexically_normal().string()};
 }
 
 // the arguments that give a point's process the same sweep: the file, the folder, the --set
@@ -137,7 +141,7 @@ int sweep(const std::string& file, const Raw& raw, const script::Safety& s) {
       sw::PointResult r = sw::unique_columns(p, quick ? script::run_script_point(lua, file, p, point_dir)
                                                       : script::run_sweep_point(lua, file, p, point_dir));
       if (lua.interrupted() || stop_signal() != 0) return stopped_status();  // not a result: it runs again
-      const sw::Definition d = definition(raw);
+      const sw::Definition d = definition(raw, file);
       sw::Inputs in{d.program, d.options, {}};
       for (const script::LoadedFile& f : lua.loaded_files()) in.files.emplace_back(f.path, f.sha256);
       r.inputs = sw::inputs_text(in);
@@ -154,20 +158,21 @@ int sweep(const std::string& file, const Raw& raw, const script::Safety& s) {
 
   const OutputDir top = sw::claim_sweep_folder(dir);  // held to the end: one sweep at a time on the folder
   const auto summary = [&] {
-    const sw::SummaryCounts c = sw::write_summary(dir, points, definition(raw));
+    const sw::SummaryCounts c = sw::write_summary(dir, points, definition(raw, file));
     std::fprintf(stderr, "beltsim sweep: %s/%s: %d ok, %d failed, %d not run\n", dir.c_str(), sw::kSummaryFile, c.ok,
                  c.failed, c.not_run);
     return c.failed + c.not_run == 0 ? 0 : 1;
   };
   if (raw.collect) return summary();
   if (slurm) {
-    slurm->definition = definition(raw);
+    slurm->definition = definition(raw, file);
     const sw::SlurmJobs j = sw::write_slurm_jobs(points, *slurm);
     if (j.array.empty()) {
       std::fprintf(stderr,
                    "beltsim sweep: every point is done: nothing to submit (the job scripts left as they were)\n");
       return summary();
     }
+    for (const std::string& line : sw::reason_lines(name, j.reasons)) std::fprintf(stderr, "%s\n", line.c_str());
     std::printf("%s\n%s\n", j.array_script.c_str(), j.collect_script.c_str());
     if (!raw.submit) {
       std::fprintf(
@@ -187,7 +192,7 @@ int sweep(const std::string& file, const Raw& raw, const script::Safety& s) {
   ds.dir = dir;
   ds.name = name;
   ds.jobs = jobs;
-  ds.definition = definition(raw);
+  ds.definition = definition(raw, file);
   ds.rerun = raw.rerun;
   ds.stop = &stop_flag();
   ds.stop_signal = [] { return stop_signal(); };

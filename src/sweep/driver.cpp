@@ -98,10 +98,8 @@ struct LiveSummary {
 // the lines that say what this run does before it starts: the points that run again for a change
 // of their inputs, with why; --rerun; the points done already
 void say_plan(Progress& progress, const DriverSettings& s, std::size_t total, const DriverReport& report,
-              const std::vector<std::pair<std::string, int>>& reasons, std::size_t todo) {
-  for (const auto& [why, n] : reasons)
-    progress.say("sweep " + s.name + ": " + std::to_string(n) + (n == 1 ? " point runs" : " points run") +
-                 " again: " + why);
+              const Reasons& reasons, std::size_t todo) {
+  for (const std::string& line : reason_lines(s.name, reasons)) progress.say(line);
   if (s.rerun)
     progress.say("sweep " + s.name + ": --rerun: all " + std::to_string(total) + " points run again");
   else if (report.already_done > 0)
@@ -109,10 +107,10 @@ void say_plan(Progress& progress, const DriverSettings& s, std::size_t total, co
                  " points done already (" + s.dir + "), " + std::to_string(todo) + " to run");
 }
 
-// the points to run: every one with rerun, else those not done; the points done counted in the
-// report, and why the outdated ones run again, with how many for each reason
+// the points to run: every one with rerun, else those not done; the points done and those run
+// again for a change of their inputs counted in the report
 std::vector<const Point*> points_to_run(const std::vector<Point>& points, const Results& results, bool rerun,
-                                        DriverReport& report, std::vector<std::pair<std::string, int>>& reasons) {
+                                        DriverReport& report) {
   std::vector<const Point*> todo;
   for (std::size_t k = 0; k < points.size(); ++k) {
     const auto& r = results[k];
@@ -121,14 +119,7 @@ std::vector<const Point*> points_to_run(const std::vector<Point>& points, const 
       continue;
     }
     todo.push_back(&points[k]);
-    if (!r || !r->outdated()) continue;
-    ++report.outdated;
-    const std::string why = r->status.substr(std::string(kOutdated).size());
-    auto it = std::find_if(reasons.begin(), reasons.end(), [&](const auto& x) { return x.first == why; });
-    if (it == reasons.end())
-      reasons.emplace_back(why, 1);
-    else
-      ++it->second;
+    if (r && r->outdated()) ++report.outdated;
   }
   return todo;
 }
@@ -146,8 +137,8 @@ DriverReport run_points(const std::vector<Point>& points, const DriverSettings& 
   DriverReport report;
   Definition now = s.definition;
   LiveSummary summary{points, current_results(s.dir, points, now), top};
-  std::vector<std::pair<std::string, int>> reasons;
-  const std::vector<const Point*> todo = points_to_run(points, summary.results, s.rerun, report, reasons);
+  const Reasons reasons = rerun_reasons(summary.results);
+  const std::vector<const Point*> todo = points_to_run(points, summary.results, s.rerun, report);
   const auto slot = [&](const Point& p) -> std::optional<PointResult>& { return summary.of(p); };
   const auto summary_now = [&] { summary.write(); };
   Progress progress(s, static_cast<int>(points.size()), report.already_done);

@@ -1,5 +1,6 @@
 #include "sweep/inputs.hpp"
 
+#include <filesystem>
 #include <sstream>
 
 #include "beltsim_version.hpp"
@@ -16,6 +17,12 @@ constexpr const char* kFile = "file ";
 
 bool starts(const std::string& s, const std::string& prefix) {
   return s.compare(0, prefix.size(), prefix) == 0;
+}
+
+// the same path, or two paths of one file (a symlinked folder, a hard link)
+bool same_file(const std::string& a, const std::string& b) {
+  std::error_code ec;
+  return a == b || (std::filesystem::equivalent(a, b, ec) && !ec);
 }
 
 }  // namespace
@@ -55,6 +62,9 @@ std::string changed_inputs(const std::string& recorded, Definition& now) {
   if (in->program != now.program) return "the program has changed (was " + in->program + ")";
   if (in->options != now.options)
     return "the options have changed (were '" + in->options + "', now '" + now.options + "')";
+  if (!now.sweep_file.empty() && (in->files.empty() || !same_file(in->files.front().first, now.sweep_file)))
+    return "the sweep file has changed (was " + (in->files.empty() ? std::string("none") : in->files.front().first) +
+           ", now " + now.sweep_file + ")";
   for (const auto& [path, hash] : in->files) {
     auto it = now.hashes.find(path);
     if (it == now.hashes.end()) it = now.hashes.emplace(path, file_sha256(path)).first;

@@ -32,10 +32,15 @@ std::string program_identity();
 struct Definition {
   std::string program, options;
   std::map<std::string, std::string> hashes;  // path -> SHA-256 now ("" when unreadable)
+  // the sweep file (the quick form's script) as a point records it, its first file: absolute,
+  // lexically normal; "" when not checked. A point run from another file (not the same one by
+  // another path) is not this sweep's, whatever the files it loaded hash to now
+  std::string sweep_file;
 };
 
 // "" when recorded is what defines the point now, else why not, one phrase for a message:
-// "the file /a/b.lua has changed", "the program has changed (was ...)"
+// "the file /a/b.lua has changed", "the program has changed (was ...)", "the sweep file has
+// changed (was /a/grid.lua, now /b/grid.lua)"
 std::string changed_inputs(const std::string& recorded, Definition& now);
 
 }  // namespace beltsim::sweep

@@ -121,6 +121,28 @@ Results current_results(const std::string& dir, const std::vector<Point>& points
   return results;
 }
 
+Reasons rerun_reasons(const Results& results) {
+  Reasons reasons;
+  for (const auto& r : results) {
+    if (!r || !r->outdated()) continue;
+    const std::string why = r->status.substr(std::string(kOutdated).size());
+    auto it = std::find_if(reasons.begin(), reasons.end(), [&](const auto& x) { return x.first == why; });
+    if (it == reasons.end())
+      reasons.emplace_back(why, 1);
+    else
+      ++it->second;
+  }
+  return reasons;
+}
+
+std::vector<std::string> reason_lines(const std::string& name, const Reasons& reasons) {
+  std::vector<std::string> lines;
+  for (const auto& [why, n] : reasons)
+    lines.push_back("sweep " + name + ": " + std::to_string(n) + (n == 1 ? " point runs" : " points run") +
+                    " again: " + why);
+  return lines;
+}
+
 SummaryCounts write_summary(const OutputDir& top, const std::vector<Point>& points, const Results& results) {
   SummaryCounts counts;
   std::vector<std::string> figures;

@@ -52,7 +52,6 @@ std::optional<PointResult> read_point_result(const std::string& dir, const Point
 struct PointCheck {
   std::optional<PointResult> result;  // nullopt: no point.csv for these parameters
   std::string changed;                // why its inputs are not now's (changed_inputs); "" when they are
-  bool done() const { return result && result->ok() && changed.empty(); }
 };
 PointCheck check_point(const std::string& dir, const Point& p, Definition& now);
 
@@ -73,6 +72,13 @@ struct SummaryCounts {
 // without its inputs, that of a point whose process died, as it is)
 using Results = std::vector<std::optional<PointResult>>;
 Results current_results(const std::string& dir, const std::vector<Point>& points, Definition& now);
+// why the points with other inputs than now's run again: each reason (the status after
+// "outdated: ") with how many points it holds for, in the order first met
+using Reasons = std::vector<std::pair<std::string, int>>;
+Reasons rerun_reasons(const Results& results);
+// what a sweep says of them before it runs them (or puts them in a Slurm array), a line each:
+// "sweep NAME: 6 points run again: the file /a/b.lua has changed"
+std::vector<std::string> reason_lines(const std::string& name, const Reasons& reasons);
 // DIR/summary.csv written whole from results[k] of points[k] (an outdated point counted not run)
 SummaryCounts write_summary(const OutputDir& top, const std::vector<Point>& points, const Results& results);
 // the same from every point's point.csv

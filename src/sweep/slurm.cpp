@@ -252,10 +252,12 @@ SlurmJobs write_slurm_jobs(const std::vector<Point>& points, const SlurmSettings
   check_slurm_settings(s);
   std::vector<int> todo;
   Definition now = s.definition;
-  for (const Point& p : points)
-    if (s.rerun || !check_point(s.dir, p, now).done()) todo.push_back(p.index);
+  const Results results = current_results(s.dir, points, now);
+  for (std::size_t k = 0; k < points.size(); ++k)
+    if (s.rerun || !results[k] || !results[k]->ok()) todo.push_back(points[k].index);
   SlurmJobs jobs;
   jobs.array = index_ranges(todo);
+  jobs.reasons = rerun_reasons(results);
   // nothing to run: an array without --array would be one task with no point to run
   if (todo.empty()) return jobs;
   const OutputDir top(s.dir);

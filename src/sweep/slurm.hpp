@@ -20,6 +20,7 @@
 #include "sweep/capture.hpp"
 #include "sweep/inputs.hpp"
 #include "sweep/points.hpp"
+#include "sweep/results.hpp"
 
 namespace beltsim::sweep {
 
@@ -40,6 +41,7 @@ struct SlurmSettings {
 struct SlurmJobs {
   std::string array_script, collect_script;  // the files written ("" when none was)
   std::string array;                         // the --array value ("" when every point is done)
+  Reasons reasons;                           // why points done before are in it again (rerun_reasons)
 };
 
 // "0-3,7,9-12" for the sorted indices

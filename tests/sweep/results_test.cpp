@@ -65,7 +65,7 @@ TEST(SweepResults, PointValuesReadBackExactly) {
     EXPECT_EQ(parsed->options, in.options);
   }
   // the file is not there: no point is done now, each outdated, saying why
-  Definition now{"test program", in.options, {}};
+  Definition now{"test program", in.options, {}, {}};
   const SummaryCounts gone = write_summary(dir, points, now);
   EXPECT_EQ(gone.not_run, static_cast<int>(points.size()));
   EXPECT_EQ(check_point(dir, points[0], now).changed,

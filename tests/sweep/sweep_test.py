@@ -297,6 +297,18 @@ class Sweep(unittest.TestCase):
         self.assertIn("4 points run again: the options have changed (were '--trusted', now '')", p.stderr)
         p = self.run_beltsim("sweep", "editable.lua", "--jobs", "2", "--rerun")
         self.assertIn("--rerun: all 4 points run again", p.stderr)
+        # an edited copy of the sweep file run into the same folder: not the points' sweep file
+        with open(self.path("editable.lua")) as f, open(self.path("copy.lua"), "w") as g:
+            g.write(f.read().replace("-0.5", "-0.7"))
+        p = self.run_beltsim("sweep", "copy.lua", "--jobs", "2", "--out", "out/editable")
+        self.assertIn("4 points run again: the sweep file has changed (was %s, now %s)"
+                      % (self.path("editable.lua"), self.path("copy.lua")), p.stderr)
+        p = self.run_beltsim("sweep", "editable.lua", "--jobs", "2")
+        self.assertIn("4 points run again: the sweep file has changed", p.stderr)
+        # the same file by another path (a symlinked folder): done already
+        os.symlink(self.dir, self.path("link"))
+        p = self.run_beltsim("sweep", "link/editable.lua", "--jobs", "2", "--out", "out/editable")
+        self.assertIn("4 of 4 points done already", p.stderr)
         # --collect after an edit: the points are not the sweep's any more
         self.write_editable("-0.7", "0.096")
         self.run_beltsim("sweep", "editable.lua", "--collect", ok=(1,))
@@ -322,12 +334,25 @@ class Sweep(unittest.TestCase):
         self.assertIn("nothing to submit", p.stderr)
         self.assertEqual(p.stdout, "")
         self.assertEqual(self.read("out", "grid", "sweep.sbatch"), before)
-        # an edit: every point in the array again
+        # the sweep from an edited copy, into the same folder: every point in the array again (the
+        # job scripts rewritten, with this --time), saying why as a local run does
         with open(GRID) as f, open(self.path("grid.lua"), "w") as g:
             g.write(f.read().replace("mu = p.mu", "mu = 0.9 * p.mu"))
         shutil.copy(DRIVE, self.dir)
-        self.run_beltsim("sweep", "grid.lua", "--out", "out/grid", "--slurm", "--time", "10")
-        self.assertIn(b"#SBATCH --array=0-5\n", self.read("out", "grid", "sweep.sbatch"))
+        p = self.run_beltsim("sweep", "grid.lua", "--out", "out/grid", "--slurm", "--time", "20")
+        after = self.read("out", "grid", "sweep.sbatch")
+        self.assertIn(b"#SBATCH --array=0-5\n", after)
+        self.assertIn(b"#SBATCH --time=20\n", after)
+        self.assertIn("sweep grid: 6 points run again: the sweep file has changed (was %s, now %s)"
+                      % (GRID, self.path("grid.lua")), p.stderr)
+        # an edit of the file it loads: the reason named too
+        with open(self.path("drive.lua"), "a") as f:
+            f.write("-- edited\n")
+        self.run_beltsim("sweep", "grid.lua", "--out", "out/grid", "--jobs", "2")
+        with open(self.path("drive.lua"), "a") as f:
+            f.write("-- edited again\n")
+        p = self.run_beltsim("sweep", "grid.lua", "--out", "out/grid", "--slurm")
+        self.assertIn("sweep grid: 6 points run again: the file %s has changed" % self.path("drive.lua"), p.stderr)
 
     def finished_points(self):
         return [k for k in range(4) if os.path.exists(self.path("out", "plain", str(k), "point.csv"))]
