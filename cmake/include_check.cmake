@@ -78,8 +78,7 @@ endif()
 set(known_cycles
     "scene/belt_presets scene/bending_loss scene/build scene/parameters scene/route scene/scene scene/validate"
     "sim/outputs sim/run_check sim/run_settings sim/run_table"
-    "sim/sim_state sim/simulation"
-    "sweep/driver sweep/inputs sweep/results")
+    "sim/sim_state sim/simulation")
 
 # the line of src/FILE where the text INCLUDE stands, in OUT
 function(include_line file include out)
