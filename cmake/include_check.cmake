@@ -77,8 +77,7 @@ endif()
 # it is: a cycle that grows, shrinks or is new is an error, and so is a line here that is no cycle.
 set(known_cycles
     "scene/belt_presets scene/bending_loss scene/build scene/parameters scene/route scene/scene scene/validate"
-    "sim/outputs sim/run_check sim/run_settings sim/run_table"
-    "sim/sim_state sim/simulation")
+    "sim/outputs sim/run_check sim/run_settings sim/run_table")
 
 # the line of src/FILE where the text INCLUDE stands, in OUT
 function(include_line file include out)
