@@ -6,8 +6,7 @@
 #       a layer not linked) is an error naming the file, the line and what the layer links. Inside
 #       a layer, no include cycle: a file and its header are one module (src/script/lua_api.cpp and
 #       .hpp are script/lua_api), and no module may reach itself through the includes of its
-#       layer's modules; a cycle is an error naming each include of one turn round it, unless it is
-#       one of those listed below as already there (known_cycles)
+#       layer's modules; a cycle is an error naming each include of one turn round it
 #   cmake -DTABLE=<layers.cmake> -DREADME=<README.md> -P include_check.cmake
 #       the README's Layout table lists each layer with its folder and the layers it links as
 #       CMakeLists.txt links them
@@ -71,16 +70,6 @@ if(DEFINED README)
   endif()
   return()
 endif()
-
-# The include cycles inside a layer that were there when the cycle check came (issue 46 §5), each
-# as its modules in sorted order; to be untangled as src/script's were (c55b52e). Each must stay as
-# it is: a cycle that grows, shrinks or is new is an error, and so is a line here that is no cycle.
-set(known_cycles
-    "model/contacts model/workspace"
-    "scene/belt_presets scene/bending_loss scene/build scene/parameters scene/route scene/scene scene/validate"
-    "sim/outputs sim/run_check sim/run_settings sim/run_table"
-    "sim/sim_state sim/simulation"
-    "sweep/driver sweep/inputs sweep/results")
 
 # the line of src/FILE where the text INCLUDE stands, in OUT
 function(include_line file include out)
@@ -188,9 +177,6 @@ foreach(m IN LISTS left)
     continue()
   endif()
   list(APPEND cycles "${key}")
-  if(key IN_LIST known_cycles)
-    continue()
-  endif()
   # one turn round it, from m back to m, each include where it is written
   set(turn "")
   set(at ${m})
@@ -212,12 +198,6 @@ foreach(m IN LISTS left)
     string(STRIP "${include}" include)
     string(APPEND errors "\n    src/${file}:${line}: ${include}")
   endforeach()
-endforeach()
-foreach(key IN LISTS known_cycles)
-  if(NOT key IN_LIST cycles)
-    string(APPEND errors "\n  cmake/include_check.cmake: known_cycles lists \"${key}\", which is no cycle now: "
-                         "remove it (or list the cycle there is now)")
-  endif()
 endforeach()
 
 if(errors)

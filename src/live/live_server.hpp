@@ -45,7 +45,7 @@ struct Command {
 std::string read_command(const std::function<std::string(const char*)>& param, Command& c);
 
 // where the renderer drew an element in a frame (its centre, in pixels from the picture's top left)
-// and its belt coordinate s [m] (scene.hpp ElementSite::s): the page picks a stretch on the picture
+// and its belt coordinate s [m] (scene/scene_types.hpp, ElementSite::s): the page picks a stretch on the picture
 struct ElementAt {
   double x = 0, y = 0, s = 0;
 };

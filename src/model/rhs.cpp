@@ -6,6 +6,7 @@
 
 #include "model/bristles.hpp"
 #include "model/contact_law.hpp"
+#include "model/contacts.hpp"
 #include "model/forces.hpp"
 
 namespace beltsim {

@@ -1,13 +1,13 @@
 // Workspace: the scratch of the evaluations of the model (MuJoCo's mjData without the state),
 // owned by whoever evaluates (an integrator's system, a test) and filled stage by stage. A stage
 // reads only what an earlier stage wrote for the same state: the contact records say which state
-// they are of (contacts.hpp), and the axes memo checks its angles.
+// they are of (contact_records.hpp), and the axes memo checks its angles.
 #pragma once
 
 #include <memory>
 #include <vector>
 
-#include "model/contacts.hpp"
+#include "model/contact_records.hpp"
 #include "model/forces.hpp"
 #include "model/model.hpp"
 #include "model/two_way.hpp"

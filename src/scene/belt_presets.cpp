@@ -8,7 +8,7 @@
 #include "io/number_text.hpp"
 #include "io/suggest.hpp"
 #include "scene/parameters.hpp"
-#include "scene/scene.hpp"
+#include "scene/scene_types.hpp"
 
 namespace beltsim {
 

@@ -6,7 +6,8 @@
 #include <sstream>
 #include <vector>
 
-#include "scene/scene.hpp"
+#include "scene/parameters.hpp"
+#include "scene/scene_types.hpp"
 
 namespace beltsim {
 

@@ -13,7 +13,7 @@
 #include "model/contacts.hpp"
 #include "model/model.hpp"
 #include "scene/route.hpp"
-#include "scene/scene.hpp"
+#include "scene/scene_types.hpp"
 
 namespace beltsim::build {
 

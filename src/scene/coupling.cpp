@@ -1,4 +1,4 @@
-// The coupled rotors of a scene (CouplingDef in scene.hpp; the coupling's law at the top of
+// The coupled rotors of a scene (CouplingDef in scene_types.hpp; the coupling's law at the top of
 // model/coupling.cpp). Each rotor's coordinates follow the arms'; a one-way coupling's clutch hub
 // follows its rotor. A one-way clutch drives the rotor in the sense its pulley turns as the belt
 // travels (the belt's direction of travel, reversed on a pulley wrapped on the belt's back). At

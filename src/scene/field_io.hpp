@@ -44,7 +44,7 @@ BELTSIM_FIELD_IO(PulleyDrive)
 #undef BELTSIM_FIELD_IO
 
 // a law, its tables, ramps, sines and harmonics. A law held by Lua code cannot be written:
-// std::runtime_error naming it. (The laws' own rules are validate_law's, scene.hpp.)
+// std::runtime_error naming it. (The laws' own rules are validate_law's, validate.hpp.)
 void put(CheckpointWriter& w, const std::string& pre, const TimeSpeedLaw& law);
 void get(CheckpointReader& r, const std::string& pre, TimeSpeedLaw& law);
 std::string difference(const std::string& pre, const TimeSpeedLaw& a, const TimeSpeedLaw& b);

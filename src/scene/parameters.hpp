@@ -13,6 +13,8 @@
 #include <variant>
 #include <vector>
 
+#include "scene/parameter_default.hpp"
+
 namespace beltsim {
 
 struct SceneDef;
@@ -82,8 +84,7 @@ std::vector<const Parameter*> parameters_of(std::string_view table);
 std::vector<std::string> keys_of(std::string_view table);
 // the parameter of a dotted key ("contact.damping", "pulley.inertia"); nullptr when none
 const Parameter* find_parameter(std::string_view dotted);
-// the default of a number parameter; throws std::logic_error for a key without one (a bug)
-double parameter_default(std::string_view dotted);
+// the default of a number parameter: parameter_default (scene/parameter_default.hpp)
 
 // the value a parameter has in d (p: the pulley's), nullopt when it has no number there (an
 // optional not given, a parameter read by its own code)

@@ -5,7 +5,7 @@
 #include <sstream>
 
 #include "io/number_text.hpp"
-#include "scene/validate.hpp"
+#include "scene/parameter_error.hpp"
 
 namespace beltsim {
 

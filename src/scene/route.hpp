@@ -39,7 +39,7 @@ struct Route {
   }
 };
 
-// Throws ParameterError (scene/validate.hpp) when a span has no tangent (circles too close) or the
+// Throws ParameterError (scene/parameter_error.hpp) when a span has no tangent (circles too close) or the
 // route does not close into a simple loop turning once in the loop's sense.
 Route make_route(const std::vector<RouteCircle>& circles, int loop_sense, const std::vector<std::string>& names);
 

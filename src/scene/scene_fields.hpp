@@ -156,7 +156,7 @@ namespace beltsim {
   D(real, t_wet, "t_wet", "s")             \
   D(real, rate, "rate", "1/s")
 
-// ---- the scene (scene/scene.hpp, scene/route.hpp) -------------------------------------------
+// ---- the scene (scene/scene_types.hpp, scene/route.hpp) -------------------------------------
 
 #define BELTSIM_SPAN_FIELDS(X, D) \
   D(point, from, "from", "m")     \

@@ -8,7 +8,7 @@
 //
 // Reading checks as it goes that every count fits the text that holds it and the scene it
 // belongs to (the pulleys, the elements, the state's size), then validates the scene as a
-// script's scene is validated (validate(SceneDef), scene.hpp) and the drive with the same rules
+// script's scene is validated (validate(SceneDef), validate.hpp) and the drive with the same rules
 // (validate_law, μ >= 0 per element). Errors are CheckpointError ("line N: ...") for the text and
 // for what a single line gets wrong, and CheckpointError naming the lines of the scene for what
 // the validation refuses.

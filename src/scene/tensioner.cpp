@@ -1,4 +1,4 @@
-// The tensioner arms of a scene (TensionerDef in scene.hpp; the arm's law at the top of
+// The tensioner arms of a scene (TensionerDef in scene_types.hpp; the arm's law at the top of
 // model/tensioner.cpp). Arm a holds its pulley's centre c at the installed angle
 // ψ_i = atan2(c - pivot), length L = |c - pivot|. In the static state the belt's moment about the
 // pivot, M_b = g·H (H the belt's hub load on the pulley, g = ∂c/∂ψ), is held by the spring:

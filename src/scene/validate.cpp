@@ -1,4 +1,4 @@
-// Parameter checks: the helpers (validate.hpp), the laws' and the whole SceneDef's (scene.hpp):
+// Parameter checks (validate.hpp): the helpers, the laws' and the whole SceneDef's:
 // each number's range from the parameter table (scene/parameters.hpp), what relates several here.
 #include "scene/validate.hpp"
 
@@ -11,35 +11,9 @@
 #include "io/number_text.hpp"
 #include "io/suggest.hpp"
 #include "scene/parameters.hpp"
-#include "scene/scene.hpp"
+#include "scene/scene_types.hpp"
 
 namespace beltsim {
-
-std::string parameter_message(const std::string& path, const std::string& reason, std::optional<double> value,
-                              const std::string& unit) {
-  std::string m = path;
-  if (!value) return m.append(": ").append(reason);
-  return m.append(" ")
-      .append(reason)
-      .append(" (got ")
-      .append(rounded_text(*value, 6))
-      .append(unit.empty() ? "" : " ")
-      .append(unit)
-      .append(")");
-}
-
-ParameterError::ParameterError(const std::string& message) : std::invalid_argument(message), reason(message) {}
-
-ParameterError::ParameterError(KeyPath path_, const std::string& message)
-    : std::invalid_argument(message), path(std::move(path_)), reason(message) {}
-
-ParameterError::ParameterError(const std::string& path_, std::string reason_, std::optional<double> value_,
-                               std::string unit_)
-    : std::invalid_argument(parameter_message(path_, reason_, value_, unit_)),
-      path(parse_path(path_)),
-      reason(std::move(reason_)),
-      value(value_),
-      unit(std::move(unit_)) {}
 
 void reject(const std::string& what, const std::string& rule, double value, const std::string& unit) {
   throw ParameterError(what, rule, value, unit);

@@ -1,4 +1,6 @@
-// Parameter errors: thrown before anything is simulated, with the reason and the offending value.
+// The checks of a scene's parameters, each throwing a ParameterError (scene/parameter_error.hpp)
+// with the reason and the offending value: the helpers, a law's (validate_law) and a whole
+// SceneDef's (validate).
 #pragma once
 
 #include <cstddef>
@@ -7,36 +9,14 @@
 #include <string>
 #include <string_view>
 
-#include "scene/key_path.hpp"
+#include "scene/parameter_error.hpp"
 
 namespace beltsim {
 
 struct Parameter;
 struct Friction;
-
-// What an error is about, as fields for the one who reports it (script/lua_scene.cpp finds the
-// line the key was written on from `path`, not from the message's words): the parameter's path
-// ("belt.sde.k", "pulley 'driver'.radius", "friction.segments[2].mu"), the reason, and the
-// value with its unit when it is a number.
-struct ParameterError : std::invalid_argument {
-  // about no one parameter ("two pulleys are named 'a'"): the message alone, an empty path
-  explicit ParameterError(const std::string& message);
-  // about the parameter at `path` (path_text's spelling, scene/key_path.hpp): "path: reason", or
-  // "path must be > 0 (got -1 kg/m)" for a rule and a value
-  ParameterError(const std::string& path, std::string reason, std::optional<double> value = std::nullopt,
-                 std::string unit = "");
-  // about the parameter at `path`, in words of its own ("pulleys 'a' and 'b' overlap: ...")
-  ParameterError(KeyPath path, const std::string& message);
-  KeyPath path;
-  std::string reason;
-  std::optional<double> value;
-  std::string unit;
-};
-
-// "path: reason", or "path must be > 0 (got -1 kg/m)" for a rule and a value: the message of an
-// error about `path`; numbers through rounded_text (io/number_text.hpp)
-std::string parameter_message(const std::string& path, const std::string& reason, std::optional<double> value,
-                              const std::string& unit);
+struct SceneDef;
+struct TimeSpeedLaw;
 
 // "what must be > 0 (got value unit)"
 [[noreturn]] void reject(const std::string& what, const std::string& rule, double value, const std::string& unit);
@@ -53,6 +33,11 @@ void check_rule(const Parameter& par, const std::string& what, double v);
 // a friction law's numbers by the rules of the parameter table's "friction" entries, named
 // "<label>.<key>" ("friction.segments[2].static_ratio")
 void check_friction_law(const Friction& f, const std::string& label);
+// Same checks as build_scene's, without building (used by the builder; exposed for tests).
+void validate(const SceneDef& def);
+// a torque law [N·m] (speed = false) or a prescribed speed [rad/s]: every value finite, tables
+// increasing, ramps forward; a speed cannot depend on the speed. Throws ParameterError naming `what`.
+void validate_law(const std::string& what, const TimeSpeedLaw& law, bool speed);
 inline constexpr size_t kMaxFrictionSegments = 255;  // Model::law_of holds a segment's number in a byte
 
 }  // namespace beltsim

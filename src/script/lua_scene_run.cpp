@@ -23,7 +23,7 @@ namespace beltsim::script {
 
 namespace {
 
-// the message of an error about a run setting (sim/run_settings.hpp, check), its path set in
+// the message of an error about a run setting (sim/settings_check.hpp, check), its path set in
 // `about` under the call's table (run.sample, start.frames.fps): made here, where it is reported
 std::string setting_error(const char* table, const ParameterError& e, KeyPath& about) {
   about = e.path;

@@ -30,6 +30,7 @@
 #include "io/output_dir.hpp"
 #include "scene/scene_io.hpp"
 #include "sim/run_table.hpp"
+#include "sim/settings_check.hpp"
 #include "sim/simulation.hpp"
 #include "sim/state_io.hpp"
 
@@ -154,7 +155,7 @@ std::string read_checkpoint_file(const std::string& path) {
   return text;
 }
 
-// the settings by the one check of a script's (run_settings.hpp), once the scene they name is read;
+// the settings by the one check of a script's (settings_check.hpp), once the scene they name is read;
 // a refusal names the settings' lines, from to to
 void check_read_settings(const CheckpointReader& r, const Scene& sc, const RunSettings& rs, int from, int to) {
   std::string refused;

@@ -1,5 +1,6 @@
-// What a run is asked to do (plain data) and the one check of it: Simulation's constructor, a
-// batch run, a checkpoint's reader and the Lua reader of run.events all check through here.
+// What a run is asked to do (plain data) and what follows from it alone: the frame times, the
+// outputs' paths, an event's time, what a run cannot reach. The one check of it against its scene
+// is sim/settings_check.hpp's.
 #pragma once
 
 #include <functional>
@@ -87,14 +88,6 @@ std::string event_time_problem(double t, double t_end = std::numeric_limits<doub
 // be the folder beltsim runs in
 std::string out_dir_problem(const std::string& dir);
 
-// Checks settings for a run of sc: the output folder (out_dir_problem), integrator and tolerances, sample interval,
-// probes, snapshot times, events (one μ per element, event_time_problem), frames (validate(FrameSettings), a renderer
-// to draw them; frames that draw nothing only with keep_states). A batch run (batch) also checks t_end and what must
-// come before it (frames.t_start, snapshot times, events). Each number and text by its rule in the run-settings table
-// (sim/run_table.hpp). Throws ParameterError (scene/validate.hpp) with the key's path and the reason, the value in its
-// words; the caller names the table (run, start).
-void check(const Scene& sc, const RunSettings& rs, bool batch);
-
 // What a run that ends at settings.t_end cannot reach is removed, one note for each, for the caller
 // to print: timed μ events at or after t_end ("events: the event at 0.1 s (wet) is at or after
 // t_end = 0.05 s: skipped"). When t_end was shortened from outside the script (`shortened_by`:
@@ -103,13 +96,5 @@ void check(const Scene& sc, const RunSettings& rs, bool batch);
 // name it. Otherwise those are the script's own contradiction, for check() to refuse. A time wrong
 // by itself (negative, not finite) is kept for check() to refuse.
 std::vector<std::string> drop_after_end(RunSettings& settings, const char* shortened_by = nullptr);
-
-// Refuses (ParameterError on the key, with the figures) to integrate from t0 to t1 when that would
-// write more than 1e7 samples (a timeseries.csv of gigabytes) or render more than 1e5 frames (an
-// hour of video at 30 fps) or keep more than 1e5 states, unless settings.allow_large.
-// refuses an every() callback that a run from t0 to t1 would call more than 1e7 times (a period
-// far below what the run resolves makes it crawl without a word), unless allow_large is set
-void check_calls(const RunSettings& rs, double t0, double t1, double every_dt);
-void check_volume(const Scene& scene, const RunSettings& settings, double t0, double t1);
 
 }  // namespace beltsim

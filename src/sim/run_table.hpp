@@ -3,7 +3,7 @@
 // the command-line option that overrides it, whether a checkpoint keeps it and where its value
 // lives in a RunSettings, as kParameters is for the scene (scene/parameters.hpp). The Lua reader
 // (script/lua_run.cpp), the command line's overrides (app/options.cpp, app/cli.cpp), the check
-// (check(), run_settings.hpp), parameters.csv's run.* rows (sim/outputs.cpp), the checkpoint's
+// (check(), settings_check.hpp), parameters.csv's run.* rows (sim/outputs.cpp), the checkpoint's
 // settings (sim/checkpoint.cpp) and the run-settings table of docs/lua-api.md
 // (run_settings_markdown) all come from it.
 #pragma once

@@ -14,6 +14,7 @@
 #include "model/forces.hpp"
 #include "scene/validate.hpp"
 #include "sim/interval_means.hpp"
+#include "sim/settings_check.hpp"
 
 namespace beltsim {
 

@@ -126,13 +126,6 @@ std::vector<const Point*> points_to_run(const std::vector<Point>& points, const 
 
 }  // namespace
 
-std::string this_program() {
-  std::error_code ec;
-  const auto p = std::filesystem::read_symlink("/proc/self/exe", ec);
-  if (ec) throw std::runtime_error("cannot find this program's path (/proc/self/exe): " + ec.message());
-  return p.string();
-}
-
 DriverReport run_points(const std::vector<Point>& points, const DriverSettings& s, const OutputDir& top) {
   DriverReport report;
   Definition now = s.definition;

@@ -41,8 +41,6 @@ struct DriverReport {
   bool stopped = false;
 };
 
-// the folder of the executable running now (/proc/self/exe)
-std::string this_program();
 // runs every point not done yet (every point with rerun), saying on stderr which run again for a
 // change in their inputs and what changed; throws std::runtime_error when a process cannot be started or
 // waited for, after stopping the points running (SIGTERM) and

@@ -2,10 +2,10 @@
 
 #include <filesystem>
 #include <sstream>
+#include <stdexcept>
 
 #include "beltsim_version.hpp"
 #include "io/sha256.hpp"
-#include "sweep/driver.hpp"
 
 namespace beltsim::sweep {
 
@@ -47,6 +47,13 @@ std::optional<Inputs> parse_inputs(const std::string& text) {
     in.files.emplace_back(line.substr(space + 1), line.substr(at, 64));
   }
   return in;
+}
+
+std::string this_program() {
+  std::error_code ec;
+  const auto p = std::filesystem::read_symlink("/proc/self/exe", ec);
+  if (ec) throw std::runtime_error("cannot find this program's path (/proc/self/exe): " + ec.message());
+  return p.string();
 }
 
 std::string program_identity() {

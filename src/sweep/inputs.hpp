@@ -25,6 +25,8 @@ std::string inputs_text(const Inputs& in);
 // nullopt when text is not in that form
 std::optional<Inputs> parse_inputs(const std::string& text);
 
+// the path of the executable running now (/proc/self/exe)
+std::string this_program();
 // "beltsim VERSION, executable SHA256": a rebuilt program is another program
 std::string program_identity();
 

@@ -1,4 +1,4 @@
-// The one check of a run's settings (sim/run_settings.hpp): an event's time is judged by
+// The one check of a run's settings (sim/settings_check.hpp): an event's time is judged by
 // event_time_problem wherever it comes from (a live simulation, a batch run, run.events in Lua).
 #include "sim/run_settings.hpp"
 
@@ -12,6 +12,7 @@
 #include "io/number_text.hpp"
 #include "scene/scene.hpp"
 #include "sim/run_table.hpp"
+#include "sim/settings_check.hpp"
 #include "sim/simulation.hpp"
 #include "support/dry_scene.hpp"
 #include "support/files.hpp"

@@ -1,11 +1,10 @@
 // A live simulation's state (sim/sim_state.hpp): taken from each part, checked against this run,
-// and set back.
-#include "sim/sim_state.hpp"
-
+// and set back: Simulation's get_state, check_state, apply_state and set_state (sim/simulation.hpp).
 #include <cmath>
 
 #include "integrate/belt_system.hpp"
 #include "io/number_text.hpp"
+#include "sim/sim_state.hpp"
 #include "sim/simulation.hpp"
 
 namespace beltsim {
