@@ -3,10 +3,10 @@
 #   bash scripts/setup.sh run    install what the program needs (scripts/debian-packages.txt),
 #                                build the program alone, run the paper's dry scenario
 #   bash scripts/setup.sh test   install that and what the tests add (debian-packages-test.txt),
-#                                run every test once: all but the quick ones in build/ (built
-#                                without the quick tests' programs), then the quick tests and 60 s
-#                                of fuzzing (three targets in turn) in one clang-14 build with
-#                                ASan + UBSan and libFuzzer's instrumentation in build-san/
+#                                run every test once: the quick tests in one clang-14 build with
+#                                ASan + UBSan and libFuzzer's instrumentation in build-san/, and
+#                                beside them 60 s of fuzzing (three targets in turn), then all but
+#                                the quick tests in build/ (built without the quick tests' programs)
 #   bash scripts/setup.sh build  install both lists and build everything, running nothing
 # Idempotent: packages already present are not touched, and apt is not consulted at all when
 # nothing is missing; the build is incremental (ccache when available).
@@ -71,12 +71,6 @@ case "$mode" in
     "$build_dir/beltsim" run scripts/paper_dry.lua
     ;;
   test)
-    # every test but the quick ones, which run in the sanitizer build below (all of them here
-    # when BELTSIM_SANITIZE=0)
-    not_quick=(-LE quick)
-    if [ "${BELTSIM_SANITIZE:-1}" = 0 ]; then not_quick=(); fi
-    ctest --test-dir "$build_dir" "${not_quick[@]}" --output-on-failure -j "$jobs"
-    stage_done "tests in $build_dir/ passed"
     # the quick tests and the fuzzer, in one build with clang-14, AddressSanitizer +
     # UndefinedBehaviorSanitizer and libFuzzer's coverage instrumentation (build-san/: only what
     # they run). The first finding stops a test. BELTSIM_SANITIZE=0 skips the quick tests there,
@@ -96,6 +90,21 @@ case "$mode" in
       cmake --build "$san_dir" -j "$jobs" --target "${targets[@]}"
       stage_done "built $san_dir/"
     fi
+    # what runs beside the sanitizer tests (the fuzzing, then build/'s tests) does not outlive
+    # this script (a failed test, Ctrl-C); build/'s tests run in a session of their own, ended with
+    # them
+    release_pid="" fuzz_pid=""
+    beside_end() {
+      [ -z "$fuzz_pid" ] || kill "$fuzz_pid" 2>/dev/null
+      [ -z "$release_pid" ] || kill -- -"$release_pid" 2>/dev/null
+      true
+    }
+    trap beside_end EXIT
+    if [ "${BELTSIM_SANITIZE:-1}" = 0 ]; then
+      # every test in build/, on both cores, before the fuzzing
+      ctest --test-dir "$build_dir" --output-on-failure -j "$jobs"
+      stage_done "tests in $build_dir/ passed"
+    fi
     # fuzzing, for BELTSIM_FUZZ_SECONDS in all (default 60; 0 skips), three targets in turn on one
     # core beside the sanitizer tests, which cannot keep both cores busy to the end: the scene API
     # fed random scripts (tests/fuzz/fuzz_script.cpp, half the time, seeded with scripts/*.lua and
@@ -103,7 +112,6 @@ case "$mode" in
     # ones) and a sweep's values through its files (fuzz_sweep.cpp, the rest). A crash, sanitizer
     # report, uncaught exception or hang (-timeout) fails the run: its input is printed and kept in
     # build-san/fuzz/<target>/findings/ (fix it, then add it to the target's seeds).
-    fuzz_pid=""
     if [ "$fuzz_seconds" != 0 ]; then
       script_s=$((fuzz_seconds / 2)); checkpoint_s=$((fuzz_seconds / 4))
       ((script_s > 0)) || script_s=1; ((checkpoint_s > 0)) || checkpoint_s=1
@@ -130,8 +138,17 @@ case "$mode" in
          fuzz checkpoint "$checkpoint_s" beltsim_fuzz_checkpoint tests/fuzz/checkpoints/* &&
          fuzz sweep "$sweep_s" beltsim_fuzz_sweep tests/fuzz/sweeps/*) &
       fuzz_pid=$!
-      # the fuzzers do not outlive this script (a failed test, Ctrl-C)
-      trap 'kill "$fuzz_pid" 2>/dev/null || true' EXIT
+    fi
+    # every test but the quick ones in build/, one at a time on the fuzzing's core once it is done
+    # (at once without it): beside the sanitizer tests, not before them, since alone they kept one
+    # core idle for half their time (browser and the creep test are most of it) and each stage's
+    # end left one idle. Their output goes to build/ctest.log, shown when they end. (A poll for the
+    # fuzzing's end: this shell reaps its job as it ends.)
+    if [ "${BELTSIM_SANITIZE:-1}" != 0 ]; then
+      setsid bash -c 'while kill -0 "$1" 2>/dev/null; do sleep 1; done
+                      exec ctest --test-dir "$2" -LE quick --output-on-failure -j 1' _ "$fuzz_pid" "$build_dir" \
+        >"$build_dir/ctest.log" 2>&1 &
+      release_pid=$!
     fi
     tests_ok=1
     if [ "${BELTSIM_SANITIZE:-1}" != 0 ]; then
@@ -139,6 +156,19 @@ case "$mode" in
         stage_done "tests in $san_dir/ passed"
       else
         tests_ok=0
+      fi
+    fi
+    if [ -n "$release_pid" ]; then
+      release_ok=1
+      wait "$release_pid" || release_ok=0
+      release_pid=""
+      echo "setup: the tests in $build_dir/ (beside the above; $build_dir/ctest.log):"
+      cat "$build_dir/ctest.log"
+      if ((release_ok)); then
+        stage_done "tests in $build_dir/ passed; waited for them"
+      else
+        echo "setup: tests failed in $build_dir/ (above)" >&2
+        exit 1
       fi
     fi
     if [ -n "$fuzz_pid" ]; then
@@ -161,7 +191,7 @@ case "$mode" in
         done
         exit 1
       fi
-      trap - EXIT
+      fuzz_pid=""
       for name in script checkpoint sweep; do
         echo "$name: $(grep -E '^Done|^#[0-9]+.*DONE' "$san_dir/fuzz/$name/fuzz.log" | tail -n 1)"
       done
