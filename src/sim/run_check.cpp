@@ -61,7 +61,9 @@ void RunCheck::sample(double t, const Eigen::VectorXd& y, const Eigen::VectorXd*
   if (est_.warned_t >= 0 || !est_.alarm()) return;
   est_.warned_t = t;
   if (!rs_.on_warning) return;
-  rs_.on_warning("check: at t = " + rounded_text(t) + " s the estimated error so far of the " + past(est_, est_.err_speed > kCheckAlarm * est_.rtol, kCheckAlarm, false) +
+  const bool speeds = est_.err_speed > kCheckAlarm * est_.rtol;
+  rs_.on_warning("check: at t = " + rounded_text(t) + " s the estimated error so far of the " +
+                 past(est_, speeds, kCheckAlarm, false) +
                  ": this run's answer is not within its tolerance; try a tighter rtol");
 }
 
