@@ -17,6 +17,21 @@ std::vector<std::string> integrator_names() {
   return names;
 }
 
+std::string contract_miss(const std::string& name) {
+  // measured by beltsim wp on the paper's dry drive over 0.3 s at rtol 1e-3 and 1e-4 against esdirk32
+  // at 1e-7 (docs/integration.md, The accuracy contract)
+  if (name == "esdirk32")
+    return "its error estimate is that of its embedded order-2 solution and misses errors the answer carries (on "
+           "the paper's dry drive its span tensions were 2.9e-2 off at rtol 1e-3 and 8.0e-3 at 1e-4)";
+  if (name == "ros34pw2")
+    return "one Jacobian a step carries the wrong friction branch across a stick/slip change (on the paper's dry "
+           "drive its span tensions were 12-14 % off at rtol 1e-3 and 1e-4)";
+  if (name == "rkf45")
+    return "an explicit method chatters inside the friction band (on the paper's dry drive its span tensions were "
+           "11-14 % off at rtol 1e-3 and 1e-4, in 0.8-1.3 million steps for 0.3 s)";
+  return "";
+}
+
 namespace {
 [[noreturn]] void unknown(const std::string& name) {
   throw std::invalid_argument("integrator: " + integrator_problem(name));
