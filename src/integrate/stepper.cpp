@@ -17,9 +17,9 @@ std::vector<std::string> integrator_names() {
   return names;
 }
 
-std::string contract_miss(const std::string& name) {
-  // measured by beltsim wp on the paper's dry drive over 0.3 s at rtol 1e-3 and 1e-4 against esdirk32
-  // at 1e-7 (docs/integration.md, The accuracy contract)
+std::string contract_miss(const std::string& name, double rtol) {
+  // measured by beltsim wp on the paper's dry drive over 0.3 s and its half-wet one over 0.5 s, at
+  // rtol 1e-3 and 1e-4 against esdirk32 at 1e-7 (docs/integration.md, Integrators)
   if (name == "esdirk32")
     return "its error estimate is that of its embedded order-2 solution and misses errors the answer carries (on "
            "the paper's dry drive its span tensions were 2.9e-2 off at rtol 1e-3 and 8.0e-3 at 1e-4)";
@@ -29,6 +29,9 @@ std::string contract_miss(const std::string& name) {
   if (name == "rkf45")
     return "an explicit method chatters inside the friction band (on the paper's dry drive its span tensions were "
            "11-14 % off at rtol 1e-3 and 1e-4, in 0.8-1.3 million steps for 0.3 s)";
+  if ((name == "cvode" || name == "cvode-fd") && rtol < 1e-3)
+    return "below rtol 1e-3 its error no longer falls with the tolerance: the kinks of the friction and contact "
+           "laws set its steps (on the paper's drives its span tensions were 7.0e-4 and 1.4e-3 off at rtol 1e-4)";
   return "";
 }
 

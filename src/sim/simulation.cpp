@@ -42,12 +42,11 @@ Simulation::Simulation(const Scene& sc, const RunSettings& rs) : Simulation(sc, 
 
 Simulation::Simulation(const Scene& sc, const RunSettings& rs, bool fresh) : scene_(sc), rs_(rs), drive_(sc.drive) {
   check(scene_, rs_, false);
-  if (const std::string why = contract_miss(rs_.integrator); !why.empty() && !rs_.check && rs_.on_warning)
+  if (const std::string why = contract_miss(rs_.integrator, rs_.rtol); !why.empty() && !rs_.check && rs_.on_warning)
     rs_.on_warning("integrator " + rs_.integrator +
                    " does not keep the accuracy contract (the pulley speeds within 3×rtol and the span tensions "
                    "within 10×rtol; docs/integration.md): " +
-                   why + ". trbdf2 (the default) and cvode keep it; check = true (--check) has this run estimate "
-                   "its own error");
+                   why + ". trbdf2 (the default) keeps it; check = true (--check) has this run estimate its own error");
   sense_ = scene_.senses();
   sys_ = std::make_unique<BeltSystem>(model_, drive_);
   sys_->problem.set_spans(scene_.route.span_middles());  // the answer's span tensions
