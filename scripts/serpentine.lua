@@ -5,6 +5,8 @@
 -- (4e-5 to 1e-4 kg·m²). Used by docs/integration.md for the cost of a step:
 --   beltsim run scripts/serpentine.lua --set n=200 --set t_end=0.3
 -- Parameters (--set KEY=VALUE): n element count (default 200), t_end [s] (default 0.3).
+-- Its review figures at speed, belt power loss by channel among them (docs/summary.md):
+--   beltsim summary out/serpentine --from 0.2
 -- SI units; counter-clockwise positive.
 
 local n = tonumber(beltsim.args.n) or 200
@@ -31,6 +33,7 @@ local drive = beltsim.scene {
   belt = { preset = "6PK", elements = n, pretension = 300, direction = "cw" },
   contact = { c1_per_length = 3.0256e9 / pitch60, c2_per_length = 6.5e5 / pitch60,
               damping_per_length = 300 / pitch60, p_max = 1e-3 },
+  energy = true,  -- the work and dissipation per channel: beltsim summary's belt power loss rows
 }
 
 local r = drive:run { t_end = tonumber(beltsim.args.t_end) or 0.3, sample = 5e-4 }

@@ -254,9 +254,11 @@ std::optional<CommandLine> parse_command_line(int argc, char** argv, int* status
   summary->add_option("--plot", raw.plot_out, "also draw the window's span tensions, arm angles and rotor speeds")
       ->type_name("PNG")
       ->check(kNotEmpty);
-  summary->footer("Per span the tension's mean, min and max; per pulley its mean speed, slip, slip arc, capstan\n"
-                  "margin (T1/T2 against e^(mu*theta)) and hub load; tensioner arms' swing, decouplers' overruns,\n"
-                  "the belt's power loss by channel (with energy = true). docs/summary.md says how each is made.");
+  summary->footer(
+      "Per span the tension's mean, min and max; per pulley its mean speed, slip, slip arc, capstan\n"
+      "margin (T1/T2 against e^(mu*theta) at each sample, mu that of the wrap's elements then: its\n"
+      "least and mean) and hub load; tensioner arms' swing, decouplers' overruns,\n"
+      "the belt's power loss by channel (with energy = true). docs/summary.md says how each is made.");
 
   add_render_command(app, cl.render);
   add_compare_command(app, cl.compare);

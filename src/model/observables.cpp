@@ -192,14 +192,17 @@ void classify_contact(const Model& m, Observation& o) {
       }
     }
   }
-  for (PulleyObs& p : o.pulleys) p.contact_arc = p.slip_arc = p.stick_arc = 0;
+  for (PulleyObs& p : o.pulleys) p.contact_arc = p.slip_arc = p.stick_arc = p.mu = 0;
   const double l = m.belt.pitch;
   for (const ElementObs& x : e) {
     if (x.state == ContactState::free) continue;
     PulleyObs& p = o.pulleys[x.pulley];
     p.contact_arc += l;
+    p.mu += x.mu * l;
     (x.state == ContactState::slip ? p.slip_arc : p.stick_arc) += l;
   }
+  for (PulleyObs& p : o.pulleys)
+    p.mu = p.contact_arc > 0 ? p.mu / p.contact_arc : std::numeric_limits<double>::quiet_NaN();
 }
 
 void blend_contact(const Model& m, const Drive& d, double theta, const Observation& a, const Observation& b,

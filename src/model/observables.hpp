@@ -86,6 +86,10 @@ struct PulleyObs {
   // p̄ the mean penetration of the elements in contact with it (0 when none); NaN while
   // |v_belt| <= Δv. The rim speed at the radius where the belt's centre line rides.
   double creep_pitch = 0;
+  // the mean friction coefficient of the elements in contact with it now (NaN when none): the
+  // wrap's μ, so that e^{mu·θ} is Euler–Eytelwein's e^{∫μ dθ} on a wrap whose elements differ
+  // (a wetted stretch, a spray zone's drying elements)
+  double mu = 0;
 };
 
 // What one element feels from the pulleys, in the pulleys' own frame (sums over its pairs in the

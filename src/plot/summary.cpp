@@ -165,23 +165,44 @@ void add_losses(Summary& s, const Window& w, const Layout& l) {
   add(s, "loss", "", "share", input > 0 ? total / input : NAN, "");
 }
 
+// the wrap's capstan margin at each sample of the window: e^{μθ} against (T1 − m'v²)/(T2 − m'v²),
+// μ the mean μ of the elements on the wrap then (`<p>.mu`: a wetted stretch moves through the
+// wrap), T1 ≥ T2 the tensions of the spans either side and v the belt's speed then; NaN where no
+// element touches the pulley. Its minimum and mean over the window are the review's figures.
+std::vector<double> capstan_margins(const Window& w, const std::vector<double>& mu, const std::vector<double>& a,
+                                    const std::vector<double>& b, const std::vector<double>& speed, double mass,
+                                    double theta) {
+  std::vector<double> margin(w.r1 - w.r0, NAN);
+  for (size_t r = w.r0; r < w.r1; ++r) {
+    const double t1 = std::max(a[r], b[r]), t2 = std::min(a[r], b[r]), c = mass * speed[r] * speed[r];
+    const double ratio = t2 - c > 0 ? (t1 - c) / (t2 - c) : INFINITY;
+    if (std::isfinite(mu[r])) margin[r - w.r0] = std::exp(mu[r] * theta) / ratio;
+  }
+  return margin;
+}
+
 // each pulley's wrap: the measured slip arc, the capstan ratio of the spans either side against
 // e^{μθ}, and the hub load against the span tensions' resultant
-void add_wraps(Summary& s, const Window& w, const Layout& l, const Parameters& prm, double belt_speed) {
-  const double mass = prm.number("belt.mass_per_length"), mu = prm.number("belt.mu_min");
+void add_wraps(Summary& s, const Window& w, const Layout& l, const Parameters& prm, const std::vector<double>& speed,
+               double belt_speed) {
+  const double mass = prm.number("belt.mass_per_length");
   const double centrifugal = mass * belt_speed * belt_speed;
-  std::map<std::string, Stats> tension;
-  for (const auto& sp : l.spans) tension[span_name(sp)] = w.of(span_name(sp) + ".tension");
   for (const std::string& p : l.pulleys) {
     const double theta = prm.number("pulley." + p + ".wrap_angle") * M_PI / 180;
-    double t_in = NAN, t_out = NAN;
+    std::string in, out;  // the spans that run onto and off the pulley
     for (const auto& sp : l.spans) {
-      if (sp.second == p) t_in = tension[span_name(sp)].mean;
-      if (sp.first == p) t_out = tension[span_name(sp)].mean;
+      if (sp.second == p) in = span_name(sp);
+      if (sp.first == p) out = span_name(sp);
     }
+    const std::vector<double> none(w.time().size(), NAN);  // a pulley whose span names are not found
+    const std::vector<double>& a = in.empty() ? none : w.t.column(in + ".tension");
+    const std::vector<double>& b = out.empty() ? none : w.t.column(out + ".tension");
+    const double t_in = stats(a, w.r0, w.r1).mean, t_out = stats(b, w.r0, w.r1).mean;
     const double t1 = std::max(t_in, t_out), t2 = std::min(t_in, t_out);
     const double ratio = t2 - centrifugal > 0 ? (t1 - centrifugal) / (t2 - centrifugal) : INFINITY;
-    const double limit = std::exp(mu * theta);
+    const Stats mu = w.of(p + ".mu");
+    const std::vector<double> margins = capstan_margins(w, w.t.column(p + ".mu"), a, b, speed, mass, theta);
+    const Stats margin = stats(margins, 0, margins.size());
     const std::vector<double>& slip = w.t.column(p + ".slip_arc");
     const std::vector<double>& contact = w.t.column(p + ".contact_arc");
     double worst = 0;
@@ -189,13 +210,15 @@ void add_wraps(Summary& s, const Window& w, const Layout& l, const Parameters& p
       if (contact[r] > 0) worst = std::max(worst, slip[r] / contact[r]);
     const double contact_mean = w.of(p + ".contact_arc").mean;
     add(s, "wraps", p, "wrap", theta, "rad");
-    add(s, "wraps", p, "mu", mu, "");
+    add(s, "wraps", p, "mu", mu.mean, "");
+    add(s, "wraps", p, "mu_min", mu.min, "");
     add(s, "wraps", p, "slip_arc_share", contact_mean > 0 ? w.of(p + ".slip_arc").mean / contact_mean : NAN, "");
     add(s, "wraps", p, "slip_arc_share_max", worst, "");
-    add(s, "wraps", p, "slip_arc_share_capstan", std::log(ratio) / (mu * theta), "");
+    add(s, "wraps", p, "slip_arc_share_capstan", std::log(ratio) / (mu.mean * theta), "");
     add(s, "wraps", p, "capstan_ratio", ratio, "");
-    add(s, "wraps", p, "capstan_limit", limit, "");
-    add(s, "wraps", p, "capstan_margin", limit / ratio, "");
+    add(s, "wraps", p, "capstan_limit", std::exp(mu.mean * theta), "");
+    add(s, "wraps", p, "capstan_margin", margin.min, "");
+    add(s, "wraps", p, "capstan_margin_mean", margin.mean, "");
     const Stats hub = w.of(p + ".hub_load");
     add(s, "hubs", p, "hub_load_mean", hub.mean, "N");
     add(s, "hubs", p, "hub_load_max", hub.max, "N");
@@ -270,11 +293,9 @@ Summary summarize(const std::string& dir, double from, double to) {
   const double radius = prm.number("pulley." + p0 + ".radius");
   const std::vector<double>& omega = table.column(p0 + ".omega");
   const std::vector<double>& slip = table.column(p0 + ".slip_speed");
-  double sum = 0;
-  size_t n = 0;
-  for (size_t r = r0; r < r1; ++r)
-    if (std::isfinite(slip[r])) sum += std::abs(omega[r]) * radius + slip[r], ++n;
-  const double belt_speed = n ? sum / static_cast<double>(n) : NAN;
+  std::vector<double> speed(t.size(), NAN);
+  for (size_t r = r0; r < r1; ++r) speed[r] = std::abs(omega[r]) * radius + slip[r];
+  const double belt_speed = stats(speed, r0, r1).mean;
 
   add(s, "window", "", "from", t[r0], "s");
   add(s, "window", "", "to", t[r1 - 1], "s");
@@ -294,7 +315,7 @@ Summary summarize(const std::string& dir, double from, double to) {
     add(s, "pulleys", p, "creep_mean", w.of(p + ".creep").mean, "");
     add(s, "pulleys", p, "creep_pitch_mean", w.of(p + ".creep_pitch").mean, "");
   }
-  add_wraps(s, w, l, prm, belt_speed);
+  add_wraps(s, w, l, prm, speed, belt_speed);
   add_arms_and_rotors(s, w, l);
   add_losses(s, w, l);
   return s;

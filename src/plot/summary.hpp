@@ -6,12 +6,14 @@
 //   spans    span_<a>_<b>: tension_mean, tension_min, tension_max [N]
 //   pulleys  omega_mean [rad/s]; slip_speed_mean [m/s] (belt minus rim, as the CSV's slip_speed);
 //            speed_loss = slip_speed_mean / belt speed; creep_mean, creep_pitch_mean
-//   wraps    wrap [rad] and mu from parameters.csv (the pitch line's wrap at t = 0, belt.mu_min);
+//   wraps    wrap [rad] from parameters.csv (the pitch line's wrap at t = 0); mu, mu_min: the mean
+//            and least of the wrap's μ (<p>.mu, the mean μ of the elements on it at a sample);
 //            slip_arc_share = mean slip_arc / mean contact_arc, slip_arc_share_max (the worst
 //            sample); capstan_ratio = (T1 − m'v²)/(T2 − m'v²) of the mean tensions of the spans
-//            either side (T1 the larger); capstan_limit = e^{μθ}; capstan_margin = limit / ratio
-//            (below 1 the wrap cannot hold the ratio: gross slip); slip_arc_share_capstan =
-//            ln(ratio)/(μθ), the creep theory's share of the wrap that slips
+//            either side (T1 the larger); capstan_limit = e^{μθ} (μ = mu); capstan_margin, _mean:
+//            the least and the mean over the samples of e^{μθ}/ratio with each sample's μ,
+//            tensions and belt speed (below 1 the wrap cannot hold the ratio: gross slip);
+//            slip_arc_share_capstan = ln(ratio)/(μθ), the creep theory's share of the wrap that slips
 //   hubs     hub_load_mean, hub_load_max [N] (the CSV's hub_load); hub_load_spans [N] =
 //            √(T1² + T2² − 2·T1·T2·cos θ), the resultant of the mean span tensions at the wrap θ
 //   arms     arm_angle_mean, _min, _max, arm_angle_swing = max − min [rad], arm_rate_peak [rad/s]

@@ -56,12 +56,14 @@ const std::vector<HelpEntry>& api_help() {
       {"t", "sim.t", "the current simulated time [s]"},
       {"pulley", "sim:pulley(name)",
        "{ omega [rad/s], angle [rad], torque, belt_torque [N·m], hub_load [N], contact_arc, slip_arc, "
-       "stick_arc [m], creep, slip_speed [m/s], creep_pitch; arm_angle [rad], arm_rate [rad/s] on a tensioner arm; rotor_angle [rad], "
+       "stick_arc [m], creep, slip_speed [m/s], creep_pitch, mu (of the elements on it); arm_angle [rad], arm_rate "
+       "[rad/s] on a tensioner arm; rotor_angle [rad], "
        "rotor_speed [rad/s], windup [rad], coupling_torque [N·m] with a coupling }"},
       {"element", "sim:element(i)",
        "{ x, y [m], phi [rad], s [m], tension, normal, friction [N], slip [m/s], mu, pulley, state } of element i "
        "(0-based)"},
-      {"elements", "sim:elements{ pulley = name } -> { i... }", "the elements (0-based) in contact with the pulley now"},
+      {"elements", "sim:elements{ pulley = name } -> { i... }",
+       "the elements (0-based) in contact with the pulley now"},
       {"span", "sim:span(a, b) -> [N]", "tension of the span between pulleys a and b"},
       {"energy", "sim:energy() -> { ... [J] }", "kinetic, spring, contact, gravity energy (and tracked work)"},
       {"stats", "sim:stats()", "steps, rejected, rhs, jacobians, factorizations, wall [s], frames, ..."},

@@ -372,7 +372,7 @@ class Recipes(Base):
         p = self.ctest(self.example(off=True))
         self.assertNotEqual(p.returncode, 0, p.stdout)
         self.assertIn("67% tests passed, 1 tests failed out of 3", p.stdout)
-        self.assertIn("differ: 1 of 32 columns differ (driver.omega); worst: driver.omega", p.stdout)
+        self.assertIn("differ: 1 of 34 columns differ (driver.omega); worst: driver.omega", p.stdout)
 
     def pytest(self, source):
         env = dict(os.environ, BELTSIM=BELTSIM, PYTHONDONTWRITEBYTECODE="1")
@@ -388,7 +388,7 @@ class Recipes(Base):
         p = self.pytest(self.example(off=True))
         self.assertEqual(p.returncode, 1, p.stdout + p.stderr)
         self.assertIn("1 failed, 1 passed", p.stdout)
-        self.assertIn("differ: 1 of 32 columns differ (driver.omega)", p.stdout)
+        self.assertIn("differ: 1 of 34 columns differ (driver.omega)", p.stdout)
 
 
 def find_pytest():

@@ -3,7 +3,8 @@
 of a triangle, checked against what a user works out by hand: the free idler's hub load against
 2T·sin(θ/2), the capstan limit e^{μθ} with θ from the layout's geometry, a span's mean tension over
 the window from timeseries.csv's rows; the CLI's and Lua's figures the same; bad options and an
-empty window refused. With the argument `automotive`: scripts/automotive_decoupler.lua (tensioner
+empty window refused. A drive wetted mid-run: the wrap's μ is the wet one, and the wrap that slips
+whole shows a capstan margin of 1 (Euler–Eytelwein with the wet μ). With the argument `automotive`: scripts/automotive_decoupler.lua (tensioner
 arm, one-way decoupler, a speed drop at 0.4 s) shows the arm's rows and the alternator's overrun."""
 import csv
 import math
@@ -134,6 +135,78 @@ class Triangle(unittest.TestCase):
         self.assertIn("bad.lua:13: unknown key 'form' in r:summary (did you mean 'from'?)", err)
 
 
+# the paper's two pulleys (equal: each wrap is π), a kinematic driver at 700 rpm and a speed-
+# proportional load of 70 N·m at 700 rpm; dry (μ = 1) until 0.2 s, then WET: the driver's wrap
+# slips whole on μ = 0.2 and the load pulley slows until its load matches what the wrap can pass
+WET = """
+local drive = beltsim.scene {
+  pulleys = {
+    { name = "driver", centre = {0.0, 0.0}, radius = 0.1, inertia = 0.025,
+      speed = { beltsim.ramp{ t1 = 0.1, to = -beltsim.rpm(700), shape = "cosine" } } },
+    { name = "driven", centre = {0.29, 0.0}, radius = 0.1, inertia = 0.025,
+      torque = { per_speed = -70.0 / beltsim.rpm(700) } },
+  },
+  belt = { elements = 60, pretension = 500, direction = "cw", mu = 1.0 },
+}
+local sim = drive:start { sample = 1e-3, progress = false, out = "OUT", snapshots = { times = { 0.3, 0.35, 0.4 } } }
+sim:run_to(0.2)
+WET
+sim:run_to(0.4)
+sim:close()
+"""
+
+
+class Wet(unittest.TestCase):
+    @classmethod
+    def setUpClass(cls):
+        cls.dir = tempfile.mkdtemp(prefix="beltsim_summary_wet_")
+        # the whole belt wet, and its first half only (0 to 0.6 m of the 1.2 m belt)
+        for name, wet in [("all", "sim:set_mu(0.2)"), ("half", "sim:wet { from = 0, to = 0.6, mu = 0.2 }")]:
+            with open(os.path.join(cls.dir, name + ".lua"), "w") as f:
+                f.write(WET.replace("OUT", name).replace("WET", wet))
+            code, _, err = run(["run", name + ".lua"], cls.dir)
+            assert code == 0, err
+
+    @classmethod
+    def tearDownClass(cls):
+        shutil.rmtree(cls.dir, True)
+
+    def summary(self, name):
+        code, _, err = run(["summary", name, "--from", "0.3", "--csv", name + ".csv"], self.dir)
+        self.assertEqual(code, 0, err)
+        return one_row(os.path.join(self.dir, name + ".csv"))
+
+    def test_margin_of_a_wrap_slipping_on_the_wet_mu(self):
+        s = self.summary("all")
+        self.assertEqual(s["driver.slip_arc_share"], 1)  # the driver's whole wrap in gross slip
+        self.assertAlmostEqual(s["driver.mu"], 0.2, delta=1e-12)  # the μ set_mu gave, not the dry 1
+        self.assertAlmostEqual(s["driver.capstan_limit"] / math.exp(0.2 * math.pi), 1, delta=1e-12)
+        # a wrap slipping whole holds e^{μθ} of its span tensions' ratio (Euler–Eytelwein): a margin
+        # of 1. Measured 1.029 to 1.036 (the tensions are taken mid-span and the belt resists bending
+        # onto the pulley); 0.08 is twice that. The dry μ would give 12.
+        self.assertLess(abs(s["driver.capstan_margin_mean"] - 1), 0.08, s["driver.capstan_margin_mean"])
+        self.assertLess(abs(s["driver.capstan_margin"] - 1), 0.08, s["driver.capstan_margin"])
+
+    def test_wrap_mu_is_the_mean_of_its_elements(self):
+        # the wet half moves round the drive: at each snapshot the CSV's <pulley>.mu is the mean μ
+        # of the elements snapshots.csv puts on that pulley
+        with open(os.path.join(self.dir, "half", "snapshots.csv"), newline="") as f:
+            snaps = list(csv.DictReader(f))
+        with open(os.path.join(self.dir, "half", "timeseries.csv"), newline="") as f:
+            rows = {r["t"]: r for r in csv.DictReader(f)}
+        seen = set()
+        for t in ["0.3", "0.35", "0.4"]:
+            for p in ["driver", "driven"]:
+                mu = [float(e["mu"]) for e in snaps if e["t"] == t and e["pulley"] == p]
+                self.assertAlmostEqual(float(rows[t][p + ".mu"]), sum(mu) / len(mu), delta=1e-12)
+                seen.add(round(sum(mu) / len(mu), 6))
+        self.assertGreater(len(seen), 2, seen)  # the wraps' μ changes as the wet half moves
+        s = self.summary("half")
+        mu = [float(r["driver.mu"]) for t, r in rows.items() if float(t) >= 0.3]
+        self.assertAlmostEqual(s["driver.mu"], sum(mu) / len(mu), delta=1e-12)
+        self.assertEqual(s["driver.mu_min"], min(mu))
+
+
 class Automotive(unittest.TestCase):
     def test_arm_and_overrun_rows(self):
         d = tempfile.mkdtemp(prefix="beltsim_summary_auto_")
@@ -159,5 +232,7 @@ if __name__ == "__main__":
     BELTSIM = os.path.abspath(sys.argv[1])
     SOURCE = os.path.abspath(sys.argv[2])
     which = sys.argv[3] if len(sys.argv) > 3 else "Triangle"
-    suite = unittest.TestLoader().loadTestsFromTestCase(Automotive if which == "automotive" else Triangle)
+    loader = unittest.TestLoader()
+    suite = (loader.loadTestsFromTestCase(Automotive) if which == "automotive" else
+             unittest.TestSuite([loader.loadTestsFromTestCase(Triangle), loader.loadTestsFromTestCase(Wet)]))
     sys.exit(0 if unittest.TextTestRunner(verbosity=2).run(suite).wasSuccessful() else 1)

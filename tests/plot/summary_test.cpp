@@ -18,21 +18,25 @@ namespace {
 namespace fs = std::filesystem;
 
 // two pulleys: a (R = 0.05 m, wrap 120°, on an arm) and b (R = 0.1 m, a coupled rotor), the belt
-// 0.1 kg/m, μ 0.8; four samples 0.1 s apart
+// 0.1 kg/m, μ 0.8 (0.4 on a's wrap at 0.2 s: a wet stretch passing); four samples 0.1 s apart
 fs::path folder(const std::string& name, bool parameters = true) {
   const fs::path d = test::scratch_dir("beltsim summary test") / name;
   fs::create_directories(d);
   std::ofstream ts(d / "timeseries.csv");
-  ts << "t,a.omega,a.torque,a.hub_load,a.contact_arc,a.slip_arc,a.creep,a.slip_speed,a.creep_pitch,"
-        "b.omega,b.torque,b.hub_load,b.contact_arc,b.slip_arc,b.creep,b.slip_speed,b.creep_pitch,"
+  ts << "t,a.omega,a.torque,a.hub_load,a.contact_arc,a.slip_arc,a.creep,a.slip_speed,a.creep_pitch,a.mu,"
+        "b.omega,b.torque,b.hub_load,b.contact_arc,b.slip_arc,b.creep,b.slip_speed,b.creep_pitch,b.mu,"
         "a.arm_angle,a.arm_rate,b.rotor_angle,b.rotor_speed,b.windup,b.coupling_torque,"
         "span_a_b.tension,span_a_b.tension_mean,span_b_a.tension,span_b_a.tension_mean,"
         "energy.mechanical,energy.work_torques,energy.dissipated_axial,energy.dissipated_bending,"
         "energy.dissipated_contact,energy.dissipated_friction\n"
-        "0,10,2,300,0.1,0.01,nan,0.01,nan,5,-1,330,0.2,0,0.01,0.001,0.012,1.0,0,0,5,0,1,100,nan,50,nan,0,0,0,0,0,0\n"
-        "0.1,10,2,310,0.1,0.02,0.01,0.02,0.02,5,-1,330,0.2,0,0.01,0.001,0.012,1.2,-3,0,5,0,-1,200,0,60,0,0,0,0,1,0,0\n"
-        "0.2,10,2,350,0.1,0.05,0.03,0.04,0.05,5,-1,330,0.2,0,0.01,0.001,0.012,0.9,2,0,5,0,-3,400,0,80,0,0,0,0,2,0,0\n"
-        "0.3,10,2,320,0.1,0.01,0.01,0.01,0.02,5,-1,330,0.2,0,0.01,0.001,0.012,1.1,0,0,5,0,1,300,0,100,0,0,0,0,3,0,0\n";
+        "0,10,2,300,0.1,0.01,nan,0.01,nan,0.8,5,-1,330,0.2,0,0.01,0.001,0.012,0.8,1.0,0,0,5,0,1,100,nan,50,nan,0,0,0,0,"
+        "0,0\n"
+        "0.1,10,2,310,0.1,0.02,0.01,0.02,0.02,0.8,5,-1,330,0.2,0,0.01,0.001,0.012,0.8,1.2,-3,0,5,0,-1,200,0,60,0,0,0,0,"
+        "1,0,0\n"
+        "0.2,10,2,350,0.1,0.05,0.03,0.04,0.05,0.4,5,-1,330,0.2,0,0.01,0.001,0.012,0.8,0.9,2,0,5,0,-3,400,0,80,0,0,0,0,"
+        "2,0,0\n"
+        "0.3,10,2,320,0.1,0.01,0.01,0.01,0.02,0.8,5,-1,330,0.2,0,0.01,0.001,0.012,0.8,1.1,0,0,5,0,1,300,0,100,0,0,0,0,"
+        "3,0,0\n";
   if (parameters) {
     std::ofstream p(d / "parameters.csv");
     p << "name,value,unit,source,note\n"
@@ -73,14 +77,22 @@ TEST(Summary, TensionsSlipAndCapstanOverAWindow) {
   // slip arc: 0.035 m of 0.1 m in the mean, 0.5 at the worst sample
   EXPECT_DOUBLE_EQ(figure(s, "a", "slip_arc_share"), 0.35);
   EXPECT_DOUBLE_EQ(figure(s, "a", "slip_arc_share_max"), 0.5);
-  // capstan on a: in from b at 70 N, out to b at 300 N, the centrifugal m'v² taken off both
+  // capstan on a: in from b at 70 N, out to b at 300 N, the centrifugal m'v² taken off both; the
+  // wrap's μ 0.8 then 0.4, 0.6 in the mean
   const double c = 0.1 * v * v, theta = 120 * M_PI / 180;
-  const double ratio = (300 - c) / (70 - c), limit = std::exp(0.8 * theta);
+  const double ratio = (300 - c) / (70 - c), limit = std::exp(0.6 * theta);
   EXPECT_DOUBLE_EQ(figure(s, "a", "wrap"), theta);
+  EXPECT_DOUBLE_EQ(figure(s, "a", "mu"), 0.6);
+  EXPECT_EQ(figure(s, "a", "mu_min"), 0.4);
   EXPECT_NEAR(figure(s, "a", "capstan_ratio"), ratio, 1e-12 * ratio);
   EXPECT_NEAR(figure(s, "a", "capstan_limit"), limit, 1e-12 * limit);
-  EXPECT_NEAR(figure(s, "a", "capstan_margin"), limit / ratio, 1e-12 * limit);
-  EXPECT_NEAR(figure(s, "a", "slip_arc_share_capstan"), std::log(ratio) / (0.8 * theta), 1e-12);
+  EXPECT_NEAR(figure(s, "a", "slip_arc_share_capstan"), std::log(ratio) / (0.6 * theta), 1e-12);
+  // each sample's margin, with that sample's tensions, belt speed and μ: at 0.1 s 200 N / 60 N at
+  // 0.52 m/s and μ 0.8; at 0.2 s 400 N / 80 N at 0.54 m/s and μ 0.4, the smaller
+  const double c1 = 0.1 * 0.52 * 0.52, c2 = 0.1 * 0.54 * 0.54;
+  const double m1 = std::exp(0.8 * theta) * (60 - c1) / (200 - c1), m2 = std::exp(0.4 * theta) * (80 - c2) / (400 - c2);
+  EXPECT_NEAR(figure(s, "a", "capstan_margin"), m2, 1e-12 * m2);
+  EXPECT_NEAR(figure(s, "a", "capstan_margin_mean"), (m1 + m2) / 2, 1e-12 * m1);
   // the resultant of 300 N and 70 N 120° of wrap apart: √(300² + 70² + 300·70)
   EXPECT_NEAR(figure(s, "a", "hub_load_spans"), std::sqrt(90000.0 + 4900 + 21000), 1e-9);
   EXPECT_DOUBLE_EQ(figure(s, "a", "hub_load_mean"), 330);

@@ -308,9 +308,8 @@ TEST(LuaApi, ProbesSnapshotsAndArcs) {
                                       "snapshots = { times = {0.001, 0.003}, every = 0.002 } }\n"),
             "");
   for (const char* c : {"probe1.sde_force", "probe2.slip_velocity", "probe3.normal_force", "driver.slip_arc",
-                        "driven.contact_arc", "driver.stick_arc", "driven.creep", "driver.slip_speed", "driven.creep_pitch",
-                        "driver.torque_mean",
-                        "span_driver_driven.tension_mean"})
+                        "driven.contact_arc", "driver.stick_arc", "driven.creep", "driver.slip_speed",
+                        "driven.creep_pitch", "driver.mu", "driver.torque_mean", "span_driver_driven.tension_mean"})
     column_of(csv, c);
   std::ifstream snaps(temp_dir() / "out" / "snapshots.csv");
   std::string line;
