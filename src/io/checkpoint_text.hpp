@@ -2,7 +2,7 @@
 // the scene, the drive, the integrator's state), so that the whole file has one format and one
 // version.
 //
-//   beltsim-checkpoint 11            <- what it is, and the format version
+//   beltsim-checkpoint 12            <- what it is, and the format version
 //   integrator "esdirk32"            <- a key, then its values, one field per line
 //   rtol 1e-04
 //   probe 2 0 75                     <- sequences: the count, then the values
@@ -32,7 +32,7 @@ namespace beltsim {
 // Raised whenever anything a checkpoint holds changes (the scene's fields, scene/scene_fields.hpp;
 // the run's state, sim/state_io.cpp; the settings, sim/checkpoint.cpp): a reader refuses every
 // other version.
-inline constexpr int kCheckpointVersion = 11;
+inline constexpr int kCheckpointVersion = 12;
 inline constexpr const char* kCheckpointMagic = "beltsim-checkpoint";
 
 // A checkpoint that cannot be read: "line N: reason".
