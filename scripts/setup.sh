@@ -13,7 +13,7 @@
 #                                install both lists, build the program, make its Debian package
 #                                and install it with apt in a minimal Debian made by debootstrap,
 #                                running an example there (ctest -L clean_machine; root, the
-#                                network, about 3 min: not part of test)
+#                                network, 3.5-6 min: not part of test)
 # Idempotent: packages already present are not touched, and apt is not consulted at all when
 # nothing is missing; the build is incremental (ccache when available).
 set -euo pipefail
@@ -80,7 +80,9 @@ case "$mode" in
     "$build_dir/beltsim" run scripts/paper_dry.lua
     ;;
   clean-machine-test)
-    ctest --test-dir "$build_dir" -L clean_machine --output-on-failure
+    # -V: its stages and their times as they end (the output of apt and of the runs is shown on a
+    # failure only)
+    ctest --test-dir "$build_dir" -L clean_machine -V
     stage_done "the package installed and run on a clean machine"
     ;;
   test)

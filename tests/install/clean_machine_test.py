@@ -12,7 +12,7 @@ at the end, pass or fail, and at the start if a killed run left it.
 Needs root (debootstrap, chroot), debootstrap (scripts/debian-packages-test.txt) and the Debian
 archive on the network (BELTSIM_DEBIAN_MIRROR, default http://deb.debian.org/debian, and
 BELTSIM_DEBIAN_SECURITY for its security updates); without root or debootstrap it is skipped
-(77). About 3 min on two cores (label clean_machine: scripts/setup.sh clean-machine-test).
+(77). 3.5-6 min on two cores (label clean_machine: scripts/setup.sh clean-machine-test).
 
 usage: clean_machine_test.py BUILD_DIR
 """

@@ -4,7 +4,8 @@ package CPack makes, unpacked with `dpkg -x` into a scratch root (the machine's 
 alone, so no `dpkg -i`): each has the program, the example scripts and the docs, and the program
 runs an installed example (frames, video and the time series) from a folder outside the source
 tree. The package's dependencies must be Debian packages this (Debian) machine has, in the
-versions asked: `dpkg -i` here would take it.
+versions asked: `dpkg -i` here would take it. (That the package installs where nothing else is:
+clean_machine_test.py.)
 
 usage: install_test.py BUILD_DIR BELTSIM
 """
