@@ -12,6 +12,7 @@ usage: install_test.py BUILD_DIR BELTSIM
 import os
 import re
 import shutil
+import signal
 import subprocess
 import sys
 import tempfile
@@ -23,10 +24,19 @@ SOURCE = os.path.abspath(os.path.join(os.path.dirname(os.path.abspath(__file__))
 
 
 def run(args, **kw):
-    p = subprocess.run(args, capture_output=True, text=True, timeout=600, **kw)
+    """args run to their end (10 min at most), in a session of their own: a timeout or an exception
+    here (the clean machine's test ends on a TERM) ends them and all they started (debootstrap's
+    and apt's dpkg) before the test removes their folder"""
+    with subprocess.Popen(args, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, start_new_session=True,
+                          **kw) as p:
+        try:
+            out, err = p.communicate(timeout=600)
+        except BaseException:
+            os.killpg(p.pid, signal.SIGKILL)
+            raise
     if p.returncode != 0:
-        raise AssertionError("%s failed (%d):\n%s%s" % (" ".join(args), p.returncode, p.stdout, p.stderr))
-    return p
+        raise AssertionError("%s failed (%d):\n%s%s" % (" ".join(args), p.returncode, out, err))
+    return subprocess.CompletedProcess(args, p.returncode, out, err)
 
 
 def installed(name):
