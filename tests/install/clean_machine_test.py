@@ -66,25 +66,32 @@ class CleanInstall(unittest.TestCase):
         self.dir = os.path.join(BUILD, "clean_machine")
         remove(self.dir)  # a killed run's
         os.makedirs(self.dir)
-        self.addCleanup(remove, self.dir)
+        self.addCleanup(self.finish)
         self.root = os.path.join(self.dir, "root")
+        self.last = time.monotonic()
 
     def chroot(self, *command, **kw):
         return run(["chroot", self.root] + CHROOT_ENV + list(command), **kw)
 
-    def timed(self, what, *args, **kw):
-        start = time.monotonic()
-        p = run(*args, **kw)
-        print("%s: %.0f s" % (what, time.monotonic() - start), flush=True)
-        return p
+    def finish(self):
+        self.last = time.monotonic()
+        remove(self.dir)
+        self.lap("the folder removed")
+
+    def lap(self, what):
+        """what was done since the last lap, and how long it took"""
+        now = time.monotonic()
+        print("%s: %.0f s" % (what, now - self.last), flush=True)
+        self.last = now
 
     def test_install_and_run(self):
         deb = make_package(BUILD, os.path.join(self.dir, "pkg"))
+        self.lap("cpack")
         mirror = os.environ.get("BELTSIM_DEBIAN_MIRROR", "http://deb.debian.org/debian")
         security = os.environ.get("BELTSIM_DEBIAN_SECURITY", "http://deb.debian.org/debian-security")
         suite = codename()
-        self.timed("debootstrap --variant=minbase " + suite,
-                   ["debootstrap", "--variant=minbase", suite, self.root, mirror])
+        run(["debootstrap", "--variant=minbase", suite, self.root, mirror])
+        self.lap("debootstrap --variant=minbase " + suite)
         # Debian's archive alone, with its updates (the build's libraries may come from them)
         with open(os.path.join(self.root, "etc/apt/sources.list"), "w") as f:
             f.write("deb %s %s main\ndeb %s %s-updates main\ndeb %s %s-security main\n" %
@@ -96,10 +103,10 @@ class CleanInstall(unittest.TestCase):
         os.chmod(os.path.join(self.root, "usr/sbin/policy-rc.d"), 0o755)
         self.assertFalse(os.path.exists(os.path.join(self.root, "usr/bin/beltsim")))
         shutil.copy(deb, os.path.join(self.root, "tmp"))
-        self.timed("apt-get update", ["chroot", self.root] + CHROOT_ENV + ["apt-get", "update", "-q"])
-        self.timed("apt-get install ./" + os.path.basename(deb),
-                   ["chroot", self.root] + CHROOT_ENV +
-                   ["apt-get", "install", "-y", "-q", "--no-install-recommends", "/tmp/" + os.path.basename(deb)])
+        self.chroot("apt-get", "update", "-q")
+        self.lap("apt-get update")
+        self.chroot("apt-get", "install", "-y", "-q", "--no-install-recommends", "/tmp/" + os.path.basename(deb))
+        self.lap("apt-get install ./" + os.path.basename(deb))
         status = self.chroot("dpkg-query", "-W", "-f", "${Status} ${Version}", "beltsim").stdout
         self.assertEqual(status, "install ok installed " + project_version())
 
@@ -123,6 +130,7 @@ class CleanInstall(unittest.TestCase):
         self.chroot(*sh, "beltsim", "plot", "out/paper_dry/timeseries.csv", "--out", "plot.png")
         with open(os.path.join(work, "plot.png"), "rb") as f:
             self.assertEqual(f.read(8), b"\x89PNG\r\n\x1a\n")
+        self.lap("beltsim --version, ldd, run (OSMesa, EGL), compare, plot")
 
 
 if __name__ == "__main__":
