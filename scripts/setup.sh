@@ -3,11 +3,17 @@
 #   bash scripts/setup.sh run    install what the program needs (scripts/debian-packages.txt),
 #                                build the program alone, run the paper's dry scenario
 #   bash scripts/setup.sh test   install that and what the tests add (debian-packages-test.txt),
-#                                run every test once: the quick tests in one clang-14 build with
-#                                ASan + UBSan and libFuzzer's instrumentation in build-san/, and
-#                                beside them 60 s of fuzzing (three targets in turn), then all but
-#                                the quick tests in build/ (built without the quick tests' programs)
+#                                run every test once but clean_machine's (below): the quick tests
+#                                in one clang-14 build with ASan + UBSan and libFuzzer's
+#                                instrumentation in build-san/, and beside them 60 s of fuzzing
+#                                (three targets in turn), then all but the quick tests in build/
+#                                (built without the quick tests' programs)
 #   bash scripts/setup.sh build  install both lists and build everything, running nothing
+#   bash scripts/setup.sh clean-machine-test
+#                                install both lists, build the program, make its Debian package
+#                                and install it with apt in a minimal Debian made by debootstrap,
+#                                running an example there (ctest -L clean_machine; root, the
+#                                network, 3.5-6 min: not part of test)
 # Idempotent: packages already present are not touched, and apt is not consulted at all when
 # nothing is missing; the build is incremental (ccache when available).
 set -euo pipefail
@@ -18,8 +24,8 @@ cd "$here"
 build_dir=${BELTSIM_BUILD_DIR:-build}
 
 case "$mode" in
-  run|test|build) ;;
-  *) echo "usage: bash scripts/setup.sh run|test|build" >&2; exit 2 ;;
+  run|test|build|clean-machine-test) ;;
+  *) echo "usage: bash scripts/setup.sh run|test|build|clean-machine-test" >&2; exit 2 ;;
 esac
 
 # --- packages -------------------------------------------------------------------------------
@@ -55,7 +61,10 @@ if [ "$mode" = run ]; then
   cmake --build "$build_dir" -j "$jobs" --target beltsim
 else
   cmake $(generator "$build_dir") -S . -B "$build_dir" -DCMAKE_BUILD_TYPE=Release -DBELTSIM_BUILD_TESTS=ON -DBELTSIM_BUILD_BENCH=ON >/dev/null
-  if [ "$mode" = test ] && [ "${BELTSIM_SANITIZE:-1}" != 0 ]; then
+  if [ "$mode" = clean-machine-test ]; then
+    # the package holds the program alone
+    cmake --build "$build_dir" -j "$jobs" --target beltsim
+  elif [ "$mode" = test ] && [ "${BELTSIM_SANITIZE:-1}" != 0 ]; then
     # every test runs once: the quick ones under the sanitizers below, so here everything but
     # their programs (tests/CMakeLists.txt, BELTSIM_QUICK_PROGRAMS)
     cmake --build "$build_dir" -j "$jobs" --target beltsim_all_but_quick
@@ -69,6 +78,12 @@ stage_done "built $build_dir/"
 case "$mode" in
   run)
     "$build_dir/beltsim" run scripts/paper_dry.lua
+    ;;
+  clean-machine-test)
+    # -V: its stages and their times as they end (the output of apt and of the runs is shown on a
+    # failure only)
+    ctest --test-dir "$build_dir" -L clean_machine -V
+    stage_done "the package installed and run on a clean machine"
     ;;
   test)
     # the quick tests and the fuzzer, in one build with clang-14, AddressSanitizer +
@@ -105,8 +120,8 @@ case "$mode" in
     }
     trap beside_end EXIT
     if [ "${BELTSIM_SANITIZE:-1}" = 0 ]; then
-      # every test in build/, on both cores, before the fuzzing
-      ctest --test-dir "$build_dir" --output-on-failure -j "$jobs"
+      # every test in build/ (but clean_machine's), on both cores, before the fuzzing
+      ctest --test-dir "$build_dir" -LE clean_machine --output-on-failure -j "$jobs"
       stage_done "tests in $build_dir/ passed"
     fi
     # fuzzing, for BELTSIM_FUZZ_SECONDS in all (default 60; 0 skips), three targets in turn on one
@@ -143,14 +158,14 @@ case "$mode" in
          fuzz sweep "$sweep_s" beltsim_fuzz_sweep tests/fuzz/sweeps/*) &
       fuzz_pid=$!
     fi
-    # every test but the quick ones in build/, one at a time on the fuzzing's core once it is done
+    # every test but the quick ones (and clean_machine's) in build/, one at a time on the fuzzing's core once it is done
     # (at once without it): beside the sanitizer tests, not before them, since alone they kept one
     # core idle for half their time (browser and the creep test are most of it) and each stage's
     # end left one idle. Their output goes to build/ctest.log, shown when they end. (A poll for the
     # fuzzing's end: this shell reaps its job as it ends.)
     if [ "${BELTSIM_SANITIZE:-1}" != 0 ]; then
       setsid bash -c 'while kill -0 "$1" 2>/dev/null; do sleep 1; done
-                      exec ctest --test-dir "$2" -LE quick --output-on-failure -j 1' _ "$fuzz_pid" "$build_dir" \
+                      exec ctest --test-dir "$2" -LE "quick|clean_machine" --output-on-failure -j 1' _ "$fuzz_pid" "$build_dir" \
         >"$build_dir/ctest.log" 2>&1 &
       release_pid=$!
     fi

@@ -4,13 +4,15 @@ package CPack makes, unpacked with `dpkg -x` into a scratch root (the machine's 
 alone, so no `dpkg -i`): each has the program, the example scripts and the docs, and the program
 runs an installed example (frames, video and the time series) from a folder outside the source
 tree. The package's dependencies must be Debian packages this (Debian) machine has, in the
-versions asked: `dpkg -i` here would take it.
+versions asked: `dpkg -i` here would take it. (That the package installs where nothing else is:
+clean_machine_test.py.)
 
 usage: install_test.py BUILD_DIR BELTSIM
 """
 import os
 import re
 import shutil
+import signal
 import subprocess
 import sys
 import tempfile
@@ -22,10 +24,19 @@ SOURCE = os.path.abspath(os.path.join(os.path.dirname(os.path.abspath(__file__))
 
 
 def run(args, **kw):
-    p = subprocess.run(args, capture_output=True, text=True, timeout=600, **kw)
+    """args run to their end (10 min at most), in a session of their own: a timeout or an exception
+    here (the clean machine's test ends on a TERM) ends them and all they started (debootstrap's
+    and apt's dpkg) before the test removes their folder"""
+    with subprocess.Popen(args, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, start_new_session=True,
+                          **kw) as p:
+        try:
+            out, err = p.communicate(timeout=600)
+        except BaseException:
+            os.killpg(p.pid, signal.SIGKILL)
+            raise
     if p.returncode != 0:
-        raise AssertionError("%s failed (%d):\n%s%s" % (" ".join(args), p.returncode, p.stdout, p.stderr))
-    return p
+        raise AssertionError("%s failed (%d):\n%s%s" % (" ".join(args), p.returncode, out, err))
+    return subprocess.CompletedProcess(args, p.returncode, out, err)
 
 
 def installed(name):
@@ -48,6 +59,41 @@ def satisfied(alternative):
     return subprocess.run(["dpkg", "--compare-versions", version, op, m.group(3)]).returncode == 0
 
 
+def project_version():
+    """the version of CMakeLists.txt's project(), which `beltsim --version` prints"""
+    with open(os.path.join(SOURCE, "CMakeLists.txt")) as f:
+        return re.search(r"project\(beltsim VERSION ([0-9.]+)", f.read()).group(1)
+
+
+def make_package(build, folder):
+    """the Debian package of CPack, made from build's CPackConfig.cmake into folder: its path"""
+    run(["cpack", "-G", "DEB", "-B", folder, "--config", os.path.join(build, "CPackConfig.cmake")], cwd=build)
+    debs = [f for f in os.listdir(folder) if f.endswith(".deb")]
+    if len(debs) != 1:
+        raise AssertionError("cpack made %r in %s, not one .deb" % (debs, folder))
+    return os.path.join(folder, debs[0])
+
+
+def check_outputs(test, out, log):
+    """out, the folder of a run of paper_dry.lua: the time series, the frames and the video
+    (ffprobe finds its video stream where ffmpeg is installed, the test packages' list has it)"""
+    with open(os.path.join(out, "timeseries.csv")) as f:
+        test.assertGreater(len(f.readlines()), 5)
+    frames = os.listdir(os.path.join(out, "frames"))
+    test.assertTrue(frames, log)
+    for frame in frames:
+        with open(os.path.join(out, "frames", frame), "rb") as f:
+            test.assertEqual(f.read(8), b"\x89PNG\r\n\x1a\n", frame)
+    video = os.path.join(out, "paper_dry.mp4")
+    test.assertTrue(os.path.getsize(video) > 1000, log)
+    with open(video, "rb") as f:
+        test.assertEqual(f.read(8)[4:], b"ftyp", video)
+    if shutil.which("ffprobe"):
+        probe = run(["ffprobe", "-v", "error", "-select_streams", "v", "-show_entries", "stream=codec_name",
+                     "-of", "csv=p=0", video]).stdout.split()
+        test.assertEqual(probe, ["h264"], video)
+
+
 class Install(unittest.TestCase):
     def setUp(self):
         self.dir = tempfile.mkdtemp(prefix="beltsim_install_")
@@ -61,9 +107,7 @@ class Install(unittest.TestCase):
         source tree"""
         program = os.path.join(root, "bin", "beltsim")
         self.assertTrue(os.access(program, os.X_OK), program)
-        with open(os.path.join(SOURCE, "CMakeLists.txt")) as f:
-            version = re.search(r"project\(beltsim VERSION ([0-9.]+)", f.read())
-        self.assertEqual(run([program, "--version"]).stdout.strip(), "beltsim " + version.group(1))
+        self.assertEqual(run([program, "--version"]).stdout.strip(), "beltsim " + project_version())
         share = os.path.join(root, "share")
         for f in ("beltsim/examples/paper_dry.lua", "beltsim/examples/automotive_tensioner.lua",
                   "beltsim/single_node_slurm.py", "doc/beltsim/README.md", "doc/beltsim/sweeps.md",
@@ -76,11 +120,7 @@ class Install(unittest.TestCase):
         self.assertFalse(os.path.realpath(work).startswith(SOURCE + os.sep))
         shutil.copy(os.path.join(share, "beltsim", "examples", "paper_dry.lua"), work)
         p = run([program, "run", "paper_dry.lua", "--t-end", "0.01"], cwd=work)
-        out = os.path.join(work, "out", "paper_dry")
-        with open(os.path.join(out, "timeseries.csv")) as f:
-            self.assertGreater(len(f.readlines()), 5)
-        self.assertTrue(os.path.getsize(os.path.join(out, "paper_dry.mp4")) > 1000, p.stdout)
-        self.assertTrue(os.listdir(os.path.join(out, "frames")), p.stdout)
+        check_outputs(self, os.path.join(work, "out", "paper_dry"), p.stdout)
 
     def test_cmake_install(self):
         prefix = self.path("prefix")
@@ -88,11 +128,7 @@ class Install(unittest.TestCase):
         self.check_tree(prefix)
 
     def test_debian_package(self):
-        run(["cpack", "-G", "DEB", "-B", self.path("pkg"), "--config", os.path.join(BUILD, "CPackConfig.cmake")],
-            cwd=BUILD)
-        debs = [f for f in os.listdir(self.path("pkg")) if f.endswith(".deb")]
-        self.assertEqual(len(debs), 1, debs)
-        deb = self.path("pkg", debs[0])
+        deb = make_package(BUILD, self.path("pkg"))
         info = run(["dpkg-deb", "-f", deb, "Package", "Depends"]).stdout
         self.assertIn("Package: beltsim", info)
         depends = info.split("Depends:", 1)[1].strip()
