@@ -33,13 +33,10 @@ std::vector<std::string> coarse_wraps(const Scene& sc) {
     // the wrap's contact forces hold, those that depend on where it slips do not
     m << "pulley '" << sc.route_names[k] << "': its wrap (" << sc.route.arcs[k].angle * 180 / M_PI
       << "° of r = " << sc.route.arcs[k].radius << " m) holds " << on << " elements of " << 1e3 * sc.model.belt.pitch
-      << " mm, each " << 100 / on << " % of the wrap. What that costs, measured on automotive_tensioner.lua's 51° "
-      << "idler at 3.9 elements against 20: its hub load and arm angle hold (0.1 % in the mean, the hub load's peak "
-         "4 % high), the spans beside it hold their mean (1 %) but their extremes lie up to 9 % further out, and what "
-         "the slip decides is off: a slip arc twice as long, the idler's slip of the wrong sign, the belt's power loss "
-         "20 % high. About "
-      << kWrapElementsWarn << " elements a wrap put the loads and the loss within 2 % and the slip arc within 10 %: "
-      << "belt.elements = " << needed << " or more";
+      << " mm, each " << 100 / on << " % of the wrap. On so coarse a wrap the hub load and arm angle hold but what "
+      << "the slip decides does not (measured on a 51° idler at 3.9 elements against 20: a slip arc twice as long, "
+      << "the belt's power loss 20 % high). belt.elements = " << needed << " or more puts " << kWrapElementsWarn
+      << " on it: the loads and the loss within 2 %, the slip arc within 10 %";
     if (per_element)
       m << ", with the contact given per length (contact.c1_per_length, ...) so that refining keeps the answer";
     m << " (docs/model.md, element count)";

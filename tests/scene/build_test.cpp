@@ -369,7 +369,7 @@ TEST(BuildStages, CoarseWrapsAreNamedWithTheElementCountThatResolvesThem) {
   // the review's figures as measured on automotive_tensioner.lua (docs/model.md; issue 44 §6)
   std::ostringstream step;
   step.precision(3);
-  step << ", each " << 100 / sc.wrap_elements(k) << " % of the wrap. What that costs, measured on ";
+  step << ", each " << 100 / sc.wrap_elements(k) << " % of the wrap. On so coarse a wrap ";
   EXPECT_NE(w[0].find(step.str()), std::string::npos) << w[0];
   for (const char* cost : {"hub load and arm angle hold", "a slip arc twice as long", "power loss 20 % high"})
     EXPECT_NE(w[0].find(cost), std::string::npos) << w[0];
