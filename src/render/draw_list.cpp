@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <limits>
 
 #include "model/forces.hpp"
@@ -28,8 +29,14 @@ std::string format(const char* f, double v) {
   char b[64];
   std::snprintf(b, sizeof b, f, v);
   std::string s = b;
-  // a typographic minus
-  if (!s.empty() && s[0] == '-') s = "\u2212" + s.substr(1);
+  // a value that rounds to zero has no sign ("slip -0.000" for a slip of -2e-5 m/s), or "+" where
+  // the format asks for one; else a typographic minus
+  if (!s.empty() && s[0] == '-') {
+    if (s.find_first_of("123456789") == std::string::npos)
+      s = std::strchr(f, '+') ? "+" + s.substr(1) : s.substr(1);
+    else
+      s = "\u2212" + s.substr(1);
+  }
   return s;
 }
 

@@ -307,6 +307,31 @@ TEST_F(Fixture, HeaderShowsTheArmAngleAndTheRotorSpeed) {
   }
 }
 
+// a value that rounds to zero is written without a minus (issue 44: a frame's header read "slip
+// -0.000 m/s" on an alternator whose belt and rim ran within 0.5 mm/s): a rotor at -1e-4 rad/s
+// reads 0.00, one at -0.006 rad/s -0.01
+TEST_F(Fixture, HeaderWritesNoMinusOnAZero) {
+  SceneDef d = presets::paper_dry();
+  CouplingDef c;
+  c.inertia = 2e-3;
+  c.stiffness = 15;
+  d.pulleys[1].coupling = c;
+  const Scene sc = test::moving_scene(d);
+  Eigen::VectorXd y = test::moving_state(sc);
+  FrameBuilder b(sc, fs(), &font);
+  auto driven_line = [&](double rotor_speed) {
+    y[sc.model.n_coord() + sc.model.rotor_coord(0)] = rotor_speed;
+    DrawList dl;
+    b.build(0.125, y.data(), dl);
+    for (const std::string& t : dl.texts)
+      if (t.rfind("driven: ", 0) == 0) return t;
+    return std::string();
+  };
+  const std::string zero = driven_line(-1e-4), small = driven_line(-0.006);
+  EXPECT_NE(zero.find(", rotor 0.00 rad/s"), std::string::npos) << zero;
+  EXPECT_NE(small.find(", rotor \u22120.01 rad/s"), std::string::npos) << small;
+}
+
 // arrows beside the belt point along the route's direction of travel: one at each span's middle,
 // outside the loop; in a view of one pulley's rim, one beside the visible belt
 TEST_F(Fixture, ArrowsShowTheDirectionOfTravel) {
