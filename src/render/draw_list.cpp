@@ -501,8 +501,8 @@ void FrameBuilder::draw_text_and_legend(double t, const Observation& seen, doubl
   const double x0 = 0.6 * font_px_;
   Rgba paper = out.background;  // the boxes under the text
   paper.a = 0.85f;
-  std::string head =
-      "t = " + format("%.4f", t) + " s      colour: " + qi.label + (*qi.unit ? std::string(" [") + qi.unit + "]" : "");
+  std::string head = (fs_.caption.empty() ? "" : fs_.caption + "      ") + "t = " + format("%.4f", t) +
+                     " s      colour: " + qi.label + (*qi.unit ? std::string(" [") + qi.unit + "]" : "");
   if (fs_.magnify != 1) head += "      deformation \u00d7" + format("%g", fs_.magnify);
   out.boxed_text(Vec2(x0, line), head, font_px_, kInk, paper);
   const double col_w = (fs_.width - panel_) / columns_;

@@ -47,6 +47,9 @@ struct FrameSettings {
   std::string video_path;      // "" : no video; else an MP4 file
   double t_start = 0;          // [s] first frame time (frames at t_start + k / (fps·slowdown))
   long first_number = 0;       // number of the first frame written (a resumed run numbers on)
+  // a title before the time in the text band (a mode's number and frequency,
+  // render/mode_frames.cpp); "" none. Not a run's key, not in a checkpoint
+  std::string caption;
 
   // simulated time between frames [s]
   double frame_dt() const { return 1.0 / (fps * slowdown); }

@@ -307,6 +307,24 @@ TEST_F(Fixture, HeaderShowsTheArmAngleAndTheRotorSpeed) {
   }
 }
 
+// a caption (a mode's picture: render/mode_frames.cpp) heads the text band, before the time
+TEST_F(Fixture, CaptionHeadsTheText) {
+  const Scene& sc = wet();
+  const Eigen::VectorXd y = test::moving_state(sc);
+  FrameSettings f = fs();
+  DrawList plain, captioned;
+  FrameBuilder(sc, f, &font).build(0.125, y.data(), plain);
+  f.caption = "mode 3: 134.01 Hz, \u03b6 0.0914";
+  FrameBuilder(sc, f, &font).build(0.125, y.data(), captioned);
+  auto head = [](const DrawList& dl) {
+    for (const std::string& t : dl.texts)
+      if (t.find("t = 0.1250 s") != std::string::npos) return t;
+    return std::string();
+  };
+  EXPECT_EQ(head(plain).rfind("t = 0.1250 s", 0), 0u) << head(plain);
+  EXPECT_EQ(head(captioned).rfind("mode 3: 134.01 Hz, \u03b6 0.0914      t = 0.1250 s", 0), 0u) << head(captioned);
+}
+
 // a value that rounds to zero is written without a minus (issue 44: a frame's header read "slip
 // -0.000 m/s" on an alternator whose belt and rim ran within 0.5 mm/s): a rotor at -1e-4 rad/s
 // reads 0.00, one at -0.006 rad/s -0.01
