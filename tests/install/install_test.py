@@ -110,9 +110,25 @@ class Install(unittest.TestCase):
         self.assertEqual(run([program, "--version"]).stdout.strip(), "beltsim " + project_version())
         share = os.path.join(root, "share")
         for f in ("beltsim/examples/paper_dry.lua", "beltsim/examples/automotive_tensioner.lua",
-                  "beltsim/single_node_slurm.py", "doc/beltsim/README.md", "doc/beltsim/sweeps.md",
-                  "doc/beltsim/install.md", "doc/beltsim/examples/tutorial/drive.lua"):
+                  "beltsim/single_node_slurm.py", "doc/beltsim/README.md", "doc/beltsim/docs/sweeps.md",
+                  "doc/beltsim/docs/install.md", "doc/beltsim/docs/examples/tutorial/drive.lua"):
             self.assertTrue(os.path.isfile(os.path.join(share, f)), f)
+        # every relative link and image of the installed README and docs resolves there
+        doc = os.path.join(share, "doc", "beltsim")
+        broken = []
+        for folder, _, names in os.walk(doc):
+            for name in names:
+                if not name.endswith(".md"):
+                    continue
+                page = os.path.join(folder, name)
+                with open(page, encoding="utf-8") as f:
+                    text = f.read()
+                for target in re.findall(r"\]\(([^)#\s]+)(?:#[^)]*)?\)", text):
+                    if "://" in target or target.startswith("mailto:"):
+                        continue
+                    if not os.path.exists(os.path.normpath(os.path.join(folder, target))):
+                        broken.append(os.path.relpath(page, doc) + ": " + target)
+        self.assertEqual(broken, [])
         ldd = run(["ldd", program]).stdout
         self.assertNotIn("not found", ldd)
         # the example copied to a folder of its own, run there: 3 frames, the video, the series
