@@ -70,11 +70,16 @@ std::string summary_table(const Summary& s) {
                     " samples), belt speed " + four_digits(window_value(s, "belt_speed")) + " m/s\n";
   for (const char* section : {"spans", "pulleys", "wraps", "hubs", "arms", "rotors", "loss"})
     section_table(s, section, out);
+  // an interval that reaches an end of the window began before it or goes on after it
+  const double from = window_value(s, "from"), to = window_value(s, "to");
   for (const Overrun& o : s.overruns) {
     out += "\n" + o.pulley + " overruns (s):";
     if (o.intervals.empty()) out += " none";
-    for (size_t k = 0; k < o.intervals.size() && k < 20; ++k)
-      out += (k ? ", " : " ") + four_digits(o.intervals[k].first) + " to " + four_digits(o.intervals[k].second);
+    for (size_t k = 0; k < o.intervals.size() && k < 20; ++k) {
+      const auto [a, b] = o.intervals[k];
+      out += (k ? ", " : " ") + four_digits(a) + (a <= from ? " (open at the window's start)" : "") + " to " +
+             four_digits(b) + (b >= to ? " (open at the window's end)" : "");
+    }
     if (o.intervals.size() > 20) out += ", and " + std::to_string(o.intervals.size() - 20) + " more";
     out += "\n";
   }

@@ -133,7 +133,12 @@ TEST(Summary, CsvReadsBackWithUnitsInTheHeader) {
   const std::string table = summary_table(s);
   EXPECT_NE(table.find("tension_mean [N]"), std::string::npos) << table;
   // negative on both samples: overrunning from the window's start to its end
-  EXPECT_NE(table.find("b overruns (s): 0.1 to 0.2\n"), std::string::npos) << table;
+  EXPECT_NE(table.find("b overruns (s): 0.1 (open at the window's start) to 0.2 (open at the window's end)\n"),
+            std::string::npos)
+      << table;
+  // over every sample the overrun (0.05 to 0.275 s) lies inside the window (0 to 0.3 s)
+  EXPECT_NE(summary_table(summarize(d.string(), -INFINITY, INFINITY)).find("b overruns (s): 0.05 to 0.275\n"),
+            std::string::npos);
 }
 
 TEST(Summary, ErrorsNameTheFileAndTheWindow) {
