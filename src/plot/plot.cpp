@@ -261,6 +261,10 @@ void plot_png(const PlotSpec& spec) {
       } else {
         g << "set ytics autofreq\n";
       }
+      // room above the curves for the legend (a line of about 17 pixels a series, and its box),
+      // so that it covers none of them: the range grows upwards by the legend's share of the panel
+      const double key = std::min(0.6, (17.0 * static_cast<double>(groups[p].series.size()) + 22) / panel_px);
+      g << "set offsets 0, 0, graph " << number_text(key / (1 - key)) << ", 0\n";
       if (!spec.points) mark_lines(g, spec, t0, t1, p == 0 ? 0.9 * panel_px : 0);
       plot_command(g, spec, groups[p].series, false, {}, false);
     }
