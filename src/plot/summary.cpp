@@ -200,8 +200,11 @@ void add_wraps(Summary& s, const Window& w, const Layout& l, const Parameters& p
     const double t_in = stats(a, w.r0, w.r1).mean, t_out = stats(b, w.r0, w.r1).mean;
     const double t1 = std::max(t_in, t_out), t2 = std::min(t_in, t_out);
     const double ratio = t2 - centrifugal > 0 ? (t1 - centrifugal) / (t2 - centrifugal) : INFINITY;
-    const Stats mu = w.of(p + ".mu");
-    const std::vector<double> margins = capstan_margins(w, w.t.column(p + ".mu"), a, b, speed, mass, theta);
+    // a run written before the wraps' μ was a column: the belt's least μ at its start, throughout
+    const std::vector<double> start_mu(w.time().size(), s.mu_per_sample ? NAN : prm.number("belt.mu_min"));
+    const std::vector<double>& mu_t = s.mu_per_sample ? w.t.column(p + ".mu") : start_mu;
+    const Stats mu = stats(mu_t, w.r0, w.r1);
+    const std::vector<double> margins = capstan_margins(w, mu_t, a, b, speed, mass, theta);
     const Stats margin = stats(margins, 0, margins.size());
     const std::vector<double>& slip = w.t.column(p + ".slip_arc");
     const std::vector<double>& contact = w.t.column(p + ".contact_arc");
@@ -288,6 +291,7 @@ Summary summarize(const std::string& dir, double from, double to) {
   const Window w{table, r0, r1};
   const Layout l = layout(table);
   if (l.pulleys.empty()) throw std::runtime_error(table.path + " has no <pulley>.omega column");
+  s.mu_per_sample = table.has(l.pulleys[0] + ".mu");
   // the belt's mean speed along the travel, from the first pulley: its rim's speed plus the slip
   const std::string& p0 = l.pulleys[0];
   const double radius = prm.number("pulley." + p0 + ".radius");

@@ -52,6 +52,7 @@ struct Summary {
   std::vector<Figure> figures;
   std::vector<Overrun> overruns;  // one per coupled pulley
   bool losses = false;            // the run carried the energy.* columns
+  bool mu_per_sample = true;      // the run carried the wraps' <pulley>.mu (else: belt.mu_min throughout)
 };
 
 // Throws std::runtime_error naming the file (and line) for a missing or unreadable file, a

@@ -84,6 +84,10 @@ std::string summary_table(const Summary& s) {
     out += "\n";
   }
   if (!s.losses) out += "\nloss: not recorded (the run has no energy.* columns: give energy = true to beltsim.scene)\n";
+  if (!s.mu_per_sample)
+    out += "\nmu: the belt's least mu at the start (parameters.csv belt.mu_min) on every wrap and sample: the run "
+           "has no <pulley>.mu columns (it was written by an older beltsim), so a stretch wetted during it is not "
+           "seen in the capstan margins; run it again for the mu each wrap had\n";
   return out;
 }
 

@@ -141,6 +141,34 @@ TEST(Summary, CsvReadsBackWithUnitsInTheHeader) {
             std::string::npos);
 }
 
+// a run written before the wraps' μ was a column (no a.mu, b.mu): the belt's least μ at the start
+// (parameters.csv belt.mu_min, 0.8) on every wrap, and the table says so; with the columns a's wrap
+// reads the wet stretch's 0.4 at 0.2 s
+TEST(Summary, ARunWithoutTheWrapsMuReadsTheStartsMuAndSaysSo) {
+  const fs::path d = folder("no_mu");
+  const Table full = read_timeseries_csv((d / "timeseries.csv").string());
+  std::ofstream ts(d / "timeseries.csv");
+  std::vector<size_t> keep;
+  for (size_t c = 0; c < full.names.size(); ++c)
+    if (full.names[c] != "a.mu" && full.names[c] != "b.mu") keep.push_back(c);
+  for (size_t k = 0; k < keep.size(); ++k) ts << (k ? "," : "") << full.names[keep[k]];
+  ts << "\n";
+  for (size_t r = 0; r < full.column("t").size(); ++r) {
+    for (size_t k = 0; k < keep.size(); ++k) ts << (k ? "," : "") << full.column(full.names[keep[k]])[r];
+    ts << "\n";
+  }
+  ts.close();
+  const Summary s = summarize(d.string(), -INFINITY, INFINITY);
+  EXPECT_FALSE(s.mu_per_sample);
+  EXPECT_EQ(figure(s, "a", "mu_min"), 0.8);
+  EXPECT_EQ(figure(s, "a", "mu"), 0.8);
+  EXPECT_NE(summary_table(s).find("run it again for the mu each wrap had"), std::string::npos) << summary_table(s);
+  const Summary with = summarize(folder("with_mu").string(), -INFINITY, INFINITY);
+  EXPECT_TRUE(with.mu_per_sample);
+  EXPECT_EQ(figure(with, "a", "mu_min"), 0.4);
+  EXPECT_EQ(summary_table(with).find("run it again"), std::string::npos);
+}
+
 TEST(Summary, ErrorsNameTheFileAndTheWindow) {
   const fs::path d = folder("errors");
   auto message = [&](const std::string& dir, double from, double to) {
