@@ -277,6 +277,21 @@ TEST_F(Fixture, TextAndColourBarSayWhatIsShown) {
 // a pulley on a tensioner arm shows the arm's angle, one with a coupled rotor the rotor's speed;
 // expected from the layout (the arm's angle is that of the pulley's centre seen from the pivot)
 // and from the speed written into the state, not from the observables
+// the driven pulley of d coupled to a rotor (2e-3 kg·m², 15 N·m/rad)
+void add_rotor(SceneDef& d) {
+  CouplingDef c;
+  c.inertia = 2e-3;
+  c.stiffness = 15;
+  d.pulleys[1].coupling = c;
+}
+
+// the header's line of the pulley whose name starts it ("driven: ...")
+std::string header_line(const DrawList& dl, const std::string& pulley) {
+  for (const std::string& t : dl.texts)
+    if (t.rfind(pulley + ": ", 0) == 0) return t;
+  return std::string();
+}
+
 TEST_F(Fixture, HeaderShowsTheArmAngleAndTheRotorSpeed) {
   SceneDef d = presets::paper_dry();
   TensionerDef arm;
@@ -284,27 +299,18 @@ TEST_F(Fixture, HeaderShowsTheArmAngleAndTheRotorSpeed) {
   arm.inertia = 1e-3;
   arm.stiffness = 30;
   d.pulleys[1].tensioner = arm;
-  CouplingDef c;
-  c.inertia = 2e-3;
-  c.stiffness = 15;
-  d.pulleys[1].coupling = c;
+  add_rotor(d);
   const Scene sc = test::moving_scene(d);
   Eigen::VectorXd y = test::moving_state(sc);
   y[sc.model.n_coord() + sc.model.rotor_coord(0)] = -123.45;
   FrameBuilder b(sc, fs(), &font);
   DrawList dl;
   b.build(0.125, y.data(), dl);
-  std::string line;
-  for (const std::string& t : dl.texts)
-    if (t.rfind("driven: ", 0) == 0) line = t;
+  const std::string line = header_line(dl, "driven");
   const std::string arm_text = ", arm \u2212" + std::to_string(std::atan2(0.08, 0.06) - M_PI).substr(1, 5) + " rad";
   EXPECT_NE(line.find(arm_text), std::string::npos) << line << " lacks " << arm_text;
   EXPECT_NE(line.find(", rotor \u2212123.45 rad/s"), std::string::npos) << line;
-  for (const std::string& t : dl.texts) {
-    if (t.rfind("driver: ", 0) == 0) {
-      EXPECT_EQ(t.find("arm"), std::string::npos) << t;
-    }
-  }
+  EXPECT_EQ(header_line(dl, "driver").find("arm"), std::string::npos) << header_line(dl, "driver");
 }
 
 // a caption (a mode's picture: render/mode_frames.cpp) heads the text band, before the time
@@ -330,10 +336,7 @@ TEST_F(Fixture, CaptionHeadsTheText) {
 // reads 0.00, one at -0.006 rad/s -0.01
 TEST_F(Fixture, HeaderWritesNoMinusOnAZero) {
   SceneDef d = presets::paper_dry();
-  CouplingDef c;
-  c.inertia = 2e-3;
-  c.stiffness = 15;
-  d.pulleys[1].coupling = c;
+  add_rotor(d);
   const Scene sc = test::moving_scene(d);
   Eigen::VectorXd y = test::moving_state(sc);
   FrameBuilder b(sc, fs(), &font);
@@ -341,9 +344,7 @@ TEST_F(Fixture, HeaderWritesNoMinusOnAZero) {
     y[sc.model.n_coord() + sc.model.rotor_coord(0)] = rotor_speed;
     DrawList dl;
     b.build(0.125, y.data(), dl);
-    for (const std::string& t : dl.texts)
-      if (t.rfind("driven: ", 0) == 0) return t;
-    return std::string();
+    return header_line(dl, "driven");
   };
   const std::string zero = driven_line(-1e-4), small = driven_line(-0.006);
   EXPECT_NE(zero.find(", rotor 0.00 rad/s"), std::string::npos) << zero;
