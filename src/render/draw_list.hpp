@@ -137,6 +137,8 @@ class FrameBuilder {
   // obs: what is observed at t (contact forces from the integrator's step ends), null to observe y
   void build(double t, const double* y, DrawList& out, const Drive* drive = nullptr,
              const Observation* obs = nullptr) const;
+  // the title before the time in the text band (FrameSettings::caption), for the next builds
+  void set_caption(std::string caption) { fs_.caption = std::move(caption); }
   const Camera& camera() const { return cam_; }
   const ColourScale& scale() const { return scale_; }
   // world position at which an element centre p is drawn (nominal point + magnify·deviation);

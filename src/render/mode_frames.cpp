@@ -29,6 +29,7 @@ std::vector<std::string> draw_modes(const Scene& sc, const Drive& d, const Eigen
   fs.width = p.width;
   fs.height = p.height;
   fs.png_dir = p.dir;  // (draws() only: the files are written here)
+  FrameDrawer drawer(sc, fs);  // one GL context for every mode
   std::error_code ec;
   fs::create_directories(p.dir, ec);
   if (ec) throw std::runtime_error("cannot make " + p.dir + ": " + ec.message());
@@ -39,8 +40,7 @@ std::vector<std::string> draw_modes(const Scene& sc, const Drive& d, const Eigen
     const std::string base = (fs::path(p.dir) / name).string();
     char caption[96];
     std::snprintf(caption, sizeof caption, "mode %d: %.2f Hz, \u03b6 %.4f", k + 1, m.frequency, m.damping);
-    fs.caption = caption;
-    FrameDrawer drawer(sc, fs);
+    drawer.set_caption(caption);
     const Eigen::VectorXd peak = mode_state(y, m, amplitude, 0.0);
     write_png(base + ".png", drawer.draw(a.t, peak.data(), d, nullptr));
     written.push_back(base + ".png");

@@ -82,6 +82,10 @@ const std::vector<ElementDraw>& FrameDrawer::drawn_elements() const {
   return p_->list.elements;
 }
 
+void FrameDrawer::set_caption(const std::string& caption) {
+  p_->builder.set_caption(caption);
+}
+
 Image FrameDrawer::draw(double t, const double* y, const Drive& drive, const Observation* obs) {
   Image image;
   p_->builder.build(t, y, p_->list, &drive, obs);

@@ -32,6 +32,8 @@ class FrameDrawer {
   // the frame of state y at t with the drive's μ and spray zones; obs: what is observed there
   // (null: computed from y and the drive, whose laws it then evaluates)
   Image draw(double t, const double* y, const Drive& drive, const Observation* obs);
+  // the title of the next frames' text band (FrameSettings::caption), the GL context kept
+  void set_caption(const std::string& caption);
   // the elements as the last draw placed them (centres in pixels from the top left), by index
   const std::vector<ElementDraw>& drawn_elements() const;
 
