@@ -201,7 +201,8 @@ void add_wraps(Summary& s, const Window& w, const Layout& l, const Parameters& p
     const double t1 = std::max(t_in, t_out), t2 = std::min(t_in, t_out);
     const double ratio = t2 - centrifugal > 0 ? (t1 - centrifugal) / (t2 - centrifugal) : INFINITY;
     // a run written before the wraps' μ was a column: the belt's least μ at its start, throughout
-    const std::vector<double> start_mu(w.time().size(), s.mu_per_sample ? NAN : prm.number("belt.mu_min"));
+    std::vector<double> start_mu;
+    if (!s.mu_per_sample) start_mu.assign(w.time().size(), prm.number("belt.mu_min"));
     const std::vector<double>& mu_t = s.mu_per_sample ? w.t.column(p + ".mu") : start_mu;
     const Stats mu = stats(mu_t, w.r0, w.r1);
     const std::vector<double> margins = capstan_margins(w, mu_t, a, b, speed, mass, theta);
