@@ -94,67 +94,101 @@ constexpr long kHeadroom = 512L << 20;
 
 struct Outcome {
   bool resumed = false;
-  std::string message;  // why it was refused
-  std::string failure;  // a crash, a hang, a refusal without words: what happened
+  std::string message;     // why it was refused
+  std::string failure;     // a crash, a hang, a refusal without words: what happened
+  bool untouched = true;   // the outputs were as the run left them after the refusal
 };
 
-// resumes the checkpoint at `path` in a child process (address space and time bounded) and runs
-// it on for 2 ms
-Outcome resume_in_child(const fs::path& path) {
-  int fds[2];
-  if (pipe(fds) != 0) return {false, "", "pipe failed"};
+// What a child reports of each checkpoint it tried, on its pipe: this header, then `length` bytes
+// of the refusal's message.
+struct Record {
+  int32_t code;  // 0 resumed, 3 refused with the message
+  int32_t untouched;
+  uint32_t length;
+};
+
+// Resumes each checkpoint of `paths` in turn in a child process (address space bounded; each
+// resume given 30 s) and runs it on for 2 ms, the outputs restored before each. One child takes
+// as many as it can: a fork of a process under AddressSanitizer costs some 0.2 s (its stack depot
+// is locked, and so copied page by page, at every fork), so a child per checkpoint made the
+// mutants below a minute of the sanitizer tests. A checkpoint that kills or hangs the child is
+// that checkpoint's failure, and a new child takes the ones after it.
+std::vector<Outcome> resume_in_child(const std::vector<fs::path>& paths) {
+  saved();  // made here, not in a child
+  std::vector<Outcome> out(paths.size());
   long pages = 0;
   std::ifstream("/proc/self/statm") >> pages;
-  const pid_t pid = fork();
-  if (pid == 0) {
-    close(fds[0]);
-#if !defined(__SANITIZE_ADDRESS__)
-    // (the sanitizers map terabytes of shadow memory, and stop a huge allocation themselves)
-    const rlim_t limit = static_cast<rlim_t>(pages * sysconf(_SC_PAGESIZE) + kHeadroom);
-    const rlimit rl{limit, limit};
-    setrlimit(RLIMIT_AS, &rl);
-#endif
-    alarm(30);
-    std::string msg;
-    int code = 0;
-    try {
-      auto s = Simulation::resume(path.string(), {});
-      try {
-        s->run_to(s->now() + 2e-3);
-      } catch (const DivergenceError&) {
-        // a state changed on purpose may diverge: that is said, and is not a finding
-      }
-    } catch (const std::exception& e) {
-      msg = e.what();
-      code = 3;
+  for (size_t next = 0; next < paths.size();) {
+    int fds[2];
+    if (pipe(fds) != 0) {
+      out[next++].failure = "pipe failed";
+      continue;
     }
-    if (!msg.empty() && write(fds[1], msg.data(), msg.size()) < 0) code = 4;
-    _exit(code);  // (no exit handlers: they belong to the parent)
+    const pid_t pid = fork();
+    if (pid == 0) {
+      close(fds[0]);
+#if !defined(__SANITIZE_ADDRESS__)
+      // (the sanitizers map terabytes of shadow memory, and stop a huge allocation themselves)
+      const rlim_t limit = static_cast<rlim_t>(pages * sysconf(_SC_PAGESIZE) + kHeadroom);
+      const rlimit rl{limit, limit};
+      setrlimit(RLIMIT_AS, &rl);
+#endif
+      for (size_t i = next; i < paths.size(); ++i) {
+        alarm(30);
+        saved().restore();
+        std::string msg;
+        Record r{0, 1, 0};
+        try {
+          auto s = Simulation::resume(paths[i].string(), {});
+          try {
+            s->run_to(s->now() + 2e-3);
+          } catch (const DivergenceError&) {
+            // a state changed on purpose may diverge: that is said, and is not a finding
+          }
+        } catch (const std::exception& e) {
+          msg = e.what();
+          r.code = 3;
+          r.untouched = saved().outputs_untouched();
+        }
+        r.length = static_cast<uint32_t>(msg.size());
+        if (write(fds[1], &r, sizeof r) != sizeof r ||
+            write(fds[1], msg.data(), msg.size()) != static_cast<ssize_t>(msg.size()))
+          _exit(4);
+      }
+      _exit(0);  // (no exit handlers: they belong to the parent)
+    }
+    close(fds[1]);
+    std::string bytes;
+    char buf[4096];
+    for (ssize_t n; (n = read(fds[0], buf, sizeof buf)) > 0;) bytes.append(buf, static_cast<size_t>(n));
+    close(fds[0]);
+    int status = 0;
+    waitpid(pid, &status, 0);
+    for (size_t at = 0; at + sizeof(Record) <= bytes.size() && next < paths.size(); ++next) {
+      Record r;
+      std::memcpy(&r, bytes.data() + at, sizeof r);
+      at += sizeof r;
+      Outcome& o = out[next];
+      o.message = bytes.substr(at, r.length);
+      at += r.length;
+      o.resumed = r.code == 0;
+      o.untouched = r.untouched != 0;
+      if (r.code == 3 && o.message.empty()) o.failure = "refused without a message";
+    }
+    if (next < paths.size() && !(WIFEXITED(status) && WEXITSTATUS(status) == 0)) {
+      // the checkpoint it was on when it died
+      out[next++].failure = WIFSIGNALED(status) ? std::string("killed by signal ") + strsignal(WTERMSIG(status))
+                                                 : "exit status " + std::to_string(WEXITSTATUS(status));
+    }
   }
-  close(fds[1]);
-  std::string msg;
-  char buf[4096];
-  for (ssize_t n; (n = read(fds[0], buf, sizeof buf)) > 0;) msg.append(buf, static_cast<size_t>(n));
-  close(fds[0]);
-  int status = 0;
-  waitpid(pid, &status, 0);
-  Outcome o;
-  o.message = msg;
-  if (WIFSIGNALED(status)) {
-    o.failure = std::string("killed by signal ") + strsignal(WTERMSIG(status));
-  } else if (WEXITSTATUS(status) == 0) {
-    o.resumed = true;
-  } else if (WEXITSTATUS(status) != 3 || msg.empty()) {
-    o.failure = "exit status " + std::to_string(WEXITSTATUS(status)) + " with '" + msg + "'";
-  }
-  return o;
+  return out;
 }
 
+fs::path mutant_path(int m = -1) { return dir() / (m < 0 ? "mutant.txt" : "mutant_" + std::to_string(m) + ".txt"); }
+
 Outcome resume_text(const std::string& text) {
-  const fs::path p = dir() / "mutant.txt";
-  spit(p, text);
-  saved().restore();
-  return resume_in_child(p);
+  spit(mutant_path(), text);
+  return resume_in_child({mutant_path()})[0];
 }
 
 // the message of a refusal of `text` (a failure of the test when it resumes or crashes)
@@ -162,11 +196,11 @@ std::string refusal(const std::string& text) {
   const Outcome o = resume_text(text);
   EXPECT_TRUE(o.failure.empty()) << o.failure;
   EXPECT_FALSE(o.resumed);
-  EXPECT_TRUE(saved().outputs_untouched());
+  EXPECT_TRUE(o.untouched);
   return o.message;
 }
 
-std::string prefix() { return (dir() / "mutant.txt").string() + ": "; }
+std::string prefix(int m = -1) { return mutant_path(m).string() + ": "; }
 
 TEST(Checkpoint, ResumesTheSavedText) {
   const Outcome o = resume_text(saved().text);
@@ -400,7 +434,12 @@ TEST(Checkpoint, MutantsResumeOrAreRefusedWithAMessage) {
   std::mt19937 rng(20240531);
   auto pick = [&](size_t n) { return std::uniform_int_distribution<size_t>(0, n - 1)(rng); };
   constexpr int kMutants = 300;
-  int resumed = 0, refused = 0;
+  struct Mutant {
+    int m;
+    bool sealed;
+    std::string what;
+  };
+  std::vector<Mutant> mutants;
   for (int m = 0; m < kMutants; ++m) {
     std::vector<std::string> l = lines;
     std::string text, what;
@@ -448,17 +487,26 @@ TEST(Checkpoint, MutantsResumeOrAreRefusedWithAMessage) {
     const bool sealed = m % 2 == 1;
     if (sealed) text = resealed(text);
     if (text == t) continue;
-    SCOPED_TRACE("mutant " + std::to_string(m) + (sealed ? " (sealed again): " : ": ") + what);
-    const Outcome o = resume_text(text);
+    spit(mutant_path(m), text);
+    mutants.push_back({m, sealed, what});
+  }
+  std::vector<fs::path> paths;
+  for (const Mutant& mu : mutants) paths.push_back(mutant_path(mu.m));
+  const std::vector<Outcome> outcomes = resume_in_child(paths);
+  int resumed = 0, refused = 0;
+  for (size_t k = 0; k < mutants.size(); ++k) {
+    const Mutant& mu = mutants[k];
+    const Outcome& o = outcomes[k];
+    SCOPED_TRACE("mutant " + std::to_string(mu.m) + (mu.sealed ? " (sealed again): " : ": ") + mu.what);
     EXPECT_TRUE(o.failure.empty()) << o.failure;
     if (o.resumed) {
       ++resumed;
-      EXPECT_TRUE(sealed) << "a damaged checkpoint resumed";
+      EXPECT_TRUE(mu.sealed) << "a damaged checkpoint resumed";
     } else if (o.failure.empty()) {
       ++refused;
       EXPECT_FALSE(raw(o.message)) << o.message;
-      EXPECT_EQ(o.message.rfind(prefix(), 0), 0u) << o.message;  // names the file
-      EXPECT_TRUE(saved().outputs_untouched()) << o.message;
+      EXPECT_EQ(o.message.rfind(prefix(mu.m), 0), 0u) << o.message;  // names the file
+      EXPECT_TRUE(o.untouched) << o.message;
     }
   }
   std::printf("checkpoint mutants: %d resumed, %d refused\n", resumed, refused);
