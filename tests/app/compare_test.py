@@ -374,6 +374,16 @@ class Recipes(Base):
         self.assertIn("67% tests passed, 1 tests failed out of 3", p.stdout)
         self.assertIn("differ: 1 of 34 columns differ (driver.omega); worst: driver.omega", p.stdout)
 
+    def test_the_example_runs_without_a_warning_of_the_contract(self):
+        # a user's first run of the example they copy does not start by saying its integrator
+        # misses the accuracy contract (src/integrate/stepper.cpp, contract_miss)
+        code, out, err = run(["run", os.path.join(self.example(), "my_drive.lua"), "--no-frames", "--out",
+                              self.path("out")])
+        self.assertEqual(code, 0, err)
+        self.assertNotIn("does not keep the accuracy contract", err)
+        with open(self.path(os.path.join("out", "timeseries.csv"))) as f:
+            self.assertTrue(f.read().splitlines()[-1].startswith("0.05,"))  # it ran to its end
+
     def pytest(self, source):
         env = dict(os.environ, BELTSIM=BELTSIM, PYTHONDONTWRITEBYTECODE="1")
         return subprocess.run(PYTEST + ["-p", "no:cacheprovider", "-q", os.path.join(source, "test_my_drive.py")],

@@ -11,7 +11,6 @@ local drive = beltsim.scene {
 drive:run {
   t_end = 0.05,
   sample = 1e-3,
-  integrator = "esdirk32",
   rtol = 1e-5,
   progress = false,
   -- one picture at the end (frame 15 of 0.05 s at 300 frames per simulated second)
