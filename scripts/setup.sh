@@ -112,10 +112,10 @@ case "$mode" in
     # what runs beside the sanitizer tests (the fuzzing, then build/'s tests) does not outlive
     # this script (a failed test, Ctrl-C); build/'s tests run in a session of their own, ended with
     # them
-    release_pid="" fuzz_pid=""
+    fuzz_pid="" lane_pids=()
     beside_end() {
       [ -z "$fuzz_pid" ] || kill "$fuzz_pid" 2>/dev/null
-      [ -z "$release_pid" ] || kill -- -"$release_pid" 2>/dev/null
+      for p in "${lane_pids[@]}"; do kill -- -"$p" 2>/dev/null; done
       true
     }
     trap beside_end EXIT
@@ -158,16 +158,18 @@ case "$mode" in
          fuzz sweep "$sweep_s" beltsim_fuzz_sweep tests/fuzz/sweeps/*) &
       fuzz_pid=$!
     fi
-    # every test but the quick ones (and clean_machine's) in build/, one at a time on the fuzzing's core once it is done
-    # (at once without it): beside the sanitizer tests, not before them, since alone they kept one
-    # core idle for half their time (browser and the creep test are most of it) and each stage's
-    # end left one idle. Their output goes to build/ctest.log, shown when they end. (A poll for the
-    # fuzzing's end: this shell reaps its job as it ends.)
+    # build/'s tests, beside the sanitizer tests, one at a time in two lanes, each starting when a
+    # core comes free: the physics, golden, browser, slurm and install tests once the fuzzing is
+    # done (at once without it), the app tests (the program's workflows through Python, tens of
+    # seconds each) once the sanitizer tests are. Their output goes to build/ctest.log and
+    # build/ctest-app.log, shown when they end. (A poll for the fuzzing's end: this shell reaps its
+    # job as it ends.)
+    lane_logs=()
     if [ "${BELTSIM_SANITIZE:-1}" != 0 ]; then
       setsid bash -c 'while kill -0 "$1" 2>/dev/null; do sleep 1; done
-                      exec ctest --test-dir "$2" -LE "quick|clean_machine" --output-on-failure -j 1' _ "$fuzz_pid" "$build_dir" \
+                      exec ctest --test-dir "$2" -LE "quick|app|clean_machine" --output-on-failure -j 1' _ "$fuzz_pid" "$build_dir" \
         >"$build_dir/ctest.log" 2>&1 &
-      release_pid=$!
+      lane_pids+=($!) lane_logs+=("$build_dir/ctest.log")
     fi
     tests_ok=1
     if [ "${BELTSIM_SANITIZE:-1}" != 0 ]; then
@@ -176,13 +178,16 @@ case "$mode" in
       else
         tests_ok=0
       fi
+      setsid ctest --test-dir "$build_dir" -L app --output-on-failure -j 1 >"$build_dir/ctest-app.log" 2>&1 &
+      lane_pids+=($!) lane_logs+=("$build_dir/ctest-app.log")
     fi
-    if [ -n "$release_pid" ]; then
-      release_ok=1
-      wait "$release_pid" || release_ok=0
-      release_pid=""
-      echo "setup: the tests in $build_dir/ (beside the above; $build_dir/ctest.log):"
-      cat "$build_dir/ctest.log"
+    release_ok=1
+    for i in "${!lane_pids[@]}"; do
+      wait "${lane_pids[$i]}" || release_ok=0
+      echo "setup: tests in $build_dir/ (${lane_logs[$i]}):"
+      cat "${lane_logs[$i]}"
+    done
+    if ((${#lane_pids[@]})); then
       if ((release_ok)); then
         stage_done "tests in $build_dir/ passed; waited for them"
       else
