@@ -196,7 +196,9 @@ std::optional<CommandLine> parse_command_line(int argc, char** argv, int* status
                      ")")
       ->type_name("A,B,..");
   wp->add_option("--rtols", raw.rtols, "tolerances (default 1e-2,1e-3,1e-4,1e-5,1e-6)")->type_name("R1,R2,..");
-  wp->add_option("--ref-rtol", raw.ref_rtol, "tolerance of the esdirk32 reference run (default 1e-7)")->type_name("R");
+  wp->add_option("--ref-integrator", raw.ref_integrator, "integrator of the reference run (default trbdf2)")
+      ->type_name("NAME");
+  wp->add_option("--ref-rtol", raw.ref_rtol, "tolerance of the reference run (default 1e-7)")->type_name("R");
   wp->add_option("--wall-limit", raw.wall_limit, "a run taking longer is stopped, unfinished (default 120)")
       ->type_name("S");
   wp->add_option("--metric", raw.metric,

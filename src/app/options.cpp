@@ -133,6 +133,10 @@ WpSettings wp_settings(const Raw& raw) {
     if (wps.integrators.empty()) throw UsageError("--integrators needs names separated by commas");
   }
   if (raw.rtols) wps.rtols = tolerances("--rtols", *raw.rtols);
+  if (raw.ref_integrator) {
+    known_integrator(*raw.ref_integrator);
+    wps.ref_integrator = *raw.ref_integrator;
+  }
   if (raw.ref_rtol) {
     const double x = number("--ref-rtol", *raw.ref_rtol);
     if (const std::string bad = rtol_problem(x); !bad.empty()) throw UsageError("--ref-rtol " + bad);

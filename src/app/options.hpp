@@ -29,7 +29,7 @@ struct Raw {
   bool no_frames = false;
   std::optional<std::string> out;                                               // plot, sweep
   std::optional<std::string> serve;  // run, console: --serve [PORT]
-  std::optional<std::string> integrators, rtols, ref_rtol, wall_limit, metric;  // wp
+  std::optional<std::string> integrators, rtols, ref_integrator, ref_rtol, wall_limit, metric;  // wp
   std::optional<std::string> from;                                      // plot, summary
   std::optional<std::string> to, csv_out, plot_out;                     // summary
   bool trusted = false;                                                 // run, wp, console, sweep

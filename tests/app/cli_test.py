@@ -169,6 +169,21 @@ class Errors(unittest.TestCase):
             self.assertIn(what, err)
             self.assertNotIn("ran", out)
 
+    def test_wp_names_its_reference_and_takes_another(self):
+        # trbdf2 by default (sim/work_precision.hpp); --ref-integrator another, an unknown one refused
+        path = self.script(two_pulley(elements=30) + 'drive:run { t_end = 0.005, progress = false }\n')
+        for extra, reference in [([], "reference:trbdf2"), (["--ref-integrator", "esdirk32"], "reference:esdirk32")]:
+            out_dir = os.path.join(self.dir, "wp" + str(len(extra)))
+            code, out, err = run(["wp", path, "--integrators", "trbdf2", "--rtols", "1e-2", "--ref-rtol", "1e-4",
+                                  "--out", out_dir] + extra, cwd=self.dir)
+            self.assertEqual(code, 0, err)
+            with open(os.path.join(out_dir, "wp.csv")) as f:
+                names = [line.split(",")[0] for line in f.read().splitlines()[1:]]
+            self.assertIn(reference, names)
+        code, out, err = run(["wp", path, "--ref-integrator", "bogus"], cwd=self.dir)
+        self.assertEqual(code, 2, err)
+        self.assertIn("unknown integrator 'bogus' (valid: esdirk32, trbdf2", err)
+
     def test_check_estimates_the_error_of_each_run(self):
         # --check: each run ends with its estimate, written to parameters.csv (sim/run_check.hpp)
         path = self.script(two_pulley(elements=30) + 'drive:run { t_end = 0.01, progress = false, out = "out" }\n')

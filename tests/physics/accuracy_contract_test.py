@@ -30,7 +30,12 @@ class AccuracyContract(unittest.TestCase):
         for row in rows():
             with self.subTest(row=row["row"]), tempfile.TemporaryDirectory() as out:
                 cmd = [BELTSIM, "wp", os.path.join(ROOT, row["script"]), "--t-end", row["t_end"],
-                       "--integrators", "trbdf2", "--rtols", str(RTOL), "--out", out]
+                       "--integrators", "trbdf2", "--rtols", str(RTOL), "--out", out,
+                       # the matrix's reference (docs/integration.md): its own error, 1.6e-5 of the
+                       # span tensions and 8e-7 of the speeds on the paper's dry second, is under
+                       # 1 % of the contract's bounds at rtol 1e-3, and it takes a third of
+                       # trbdf2's time at 1e-7
+                       "--ref-integrator", "esdirk32"]
                 for s in row["set"].split():
                     cmd += ["--set", s]
                 p = subprocess.run(cmd, capture_output=True, text=True, cwd=out, timeout=600)

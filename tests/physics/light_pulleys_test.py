@@ -60,6 +60,7 @@ class LightPulleys(unittest.TestCase):
             with self.subTest(share=share), tempfile.TemporaryDirectory() as out:
                 p = subprocess.run([BELTSIM, "wp", SCRIPT, "--set", f"inertia={inertia:.6g}", "--t-end", "0.1",
                                     "--integrators", ",".join(INTEGRATORS), "--rtols", "1e-2,1e-3",
+                                    "--ref-integrator", "esdirk32",  # as accuracy_contract_test.py
                                     "--out", out], capture_output=True, text=True, cwd=out, timeout=900)
                 self.assertEqual(p.returncode, 0, p.stderr)
                 with open(os.path.join(out, "wp.csv"), newline="") as f:
