@@ -107,11 +107,12 @@ class Browser(unittest.TestCase):
                 return [int(c[k:k + 2], 16) for k in (1, 3, 5)]
             return [int(v) for v in c[c.index("(") + 1:-1].split(",")]
         colours = [rgb(c) for c in b.execute_script("return graph.getColors()")]
-        self.assertEqual(len(colours), len(checked()))
+        names = checked()  # (once: each call asks the browser about every check box, 34 s in all)
+        self.assertEqual(len(colours), len(names))
         for i in range(len(colours)):
             for j in range(i):
                 d = sum((x - y) ** 2 for x, y in zip(colours[i], colours[j])) ** 0.5
-                self.assertGreaterEqual(d, 60, (checked()[i], checked()[j], colours[i], colours[j]))
+                self.assertGreaterEqual(d, 60, (names[i], names[j], colours[i], colours[j]))
 
     def pick_stretch(self, wait):
         """drags on the paused picture from element 30 to element 3 of the 40 (past the belt's
