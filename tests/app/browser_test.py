@@ -41,7 +41,7 @@ GOLDEN = os.path.join(ROOT, "tests", "golden", "live_page_frame.png")
 SCREENSHOT = os.path.join(ROOT, "media", "live-view.png")
 T_SHOT = 0.05  # [s] the run-to time of the golden picture
 DRIVER = shutil.which("chromedriver")
-T_END = 2.0  # [s] several seconds of wall time: the page is read mid-run
+T_END = 1.0  # [s] a few seconds of wall time: the page pauses the run before its end
 WAIT = 60  # [s] at most for what the page should show
 
 
