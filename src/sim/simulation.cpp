@@ -47,6 +47,7 @@ Simulation::Simulation(const Scene& sc, const RunSettings& rs, bool fresh) : sce
                    " does not keep the accuracy contract (the pulley speeds within 3×rtol and the span tensions "
                    "within 10×rtol; docs/integration.md): " +
                    why + ". trbdf2 (the default) keeps it; check = true (--check) has this run estimate its own error");
+  warn_contract_misses();
   sense_ = scene_.senses();
   sys_ = std::make_unique<BeltSystem>(model_, drive_);
   sys_->problem.set_spans(scene_.route.span_middles());  // the answer's span tensions
@@ -393,6 +394,19 @@ void Simulation::changed(const Eigen::VectorXd* y) {
   serial_++;
   set_landings();
   tl_->changed(y);
+  warn_contract_misses();
+}
+
+void Simulation::warn_contract_misses() {
+  if (rs_.check || !rs_.on_warning) return;
+  for (const std::string& why : scene_contract_misses(model_, drive_, rs_.rtol)) {
+    if (std::find(misses_warned_.begin(), misses_warned_.end(), why) != misses_warned_.end()) continue;
+    misses_warned_.push_back(why);
+    rs_.on_warning("at rtol " + rounded_text(rs_.rtol) +
+                   " this drive may not keep the accuracy contract (the pulley speeds within 3×rtol and the span "
+                   "tensions within 10×rtol; docs/integration.md): " +
+                   why + ". check = true (--check) has the run estimate its own error and say whether it does");
+  }
 }
 
 void Simulation::set_torque(int j, const TimeSpeedLaw& law, const std::string& text) {

@@ -205,6 +205,9 @@ class Simulation {
   void add_streams();
   void write_event(double t, const std::string& what, const std::string& text);
   void changed(const Eigen::VectorXd* y = nullptr);
+  // warns, once each, of what the drive now has that the accuracy contract was measured not to
+  // hold with at this rtol (scene_contract_misses), unless the run checks its own error
+  void warn_contract_misses();
   // the interval means up to now with the drive as it is: called before a change touches the
   // drive (the held step's ends not yet observed would be observed with the new drive)
   void before_change();
@@ -235,6 +238,7 @@ class Simulation {
   bool closed_ = false;
   bool running_ = false;          // inside run_to (callbacks may read and change, not run or save)
   std::string failed_;            // why it cannot continue (a divergence)
+  std::vector<std::string> misses_warned_;  // warn_contract_misses()' warnings given
   // the state the reads see when it is not the integrator's now: an output's time, or the time a
   // when-condition is evaluated at (set for a scope by a guard, simulation.cpp)
   struct View {

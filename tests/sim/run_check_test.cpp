@@ -193,6 +193,53 @@ TEST(RunCheck, AnIntegratorOutsideTheContractSaysSoAtTheStart) {
   }
 }
 
+// a drive with what the contract was measured not to hold with (scene_contract_misses: Stribeck's law
+// or an overrunning decoupler below rtol 1e-3, μ changing along the belt above 1e-4) says so as the
+// run starts, or when a stretch is wetted, once; not where the matrix's rows kept it, nor when the
+// run checks its own error
+TEST(RunCheck, ADriveOutsideTheContractSaysSo) {
+  SceneDef stribeck = presets::paper_dry(), decoupled = presets::paper_dry();
+  stribeck.belt.elements = decoupled.belt.elements = 30;
+  stribeck.friction.law = FrictionKind::stribeck;
+  decoupled.pulleys[1].coupling = CouplingDef{.inertia = 0.01, .stiffness = 50, .one_way = true};
+  const Scene scenes[] = {build_scene(stribeck), build_scene(decoupled)};
+  const char* const words[] = {"Stribeck's law", "an overrunning decoupler"};
+  for (int k = 0; k < 2; ++k) {
+    for (const double rtol : {1e-3, 1e-4}) {
+      for (const bool check : {false, true}) {
+        std::vector<std::string> said;
+        RunSettings rs = settings(rtol, "drive_" + std::to_string(k), check);
+        rs.on_warning = [&](const std::string& m) { said.push_back(m); };
+        const Simulation sim(scenes[k], rs);
+        if (rtol >= 1e-3 || check) {
+          EXPECT_TRUE(said.empty()) << words[k] << " at " << rtol << ": " << said[0];
+          continue;
+        }
+        ASSERT_EQ(said.size(), 1u) << words[k];
+        EXPECT_EQ(said[0].rfind("at rtol 0.0001 this drive may not keep the accuracy contract", 0), 0u) << said[0];
+        EXPECT_NE(said[0].find(words[k]), std::string::npos) << said[0];
+      }
+    }
+  }
+  for (const double rtol : {1e-3, 1e-4}) {
+    std::vector<std::string> said;
+    RunSettings rs = settings(rtol, "wetted", false);
+    rs.on_warning = [&](const std::string& m) { said.push_back(m); };
+    Simulation sim(small_scene(), rs);
+    EXPECT_TRUE(said.empty()) << said[0];  // dry
+    std::vector<double> mu(30, std::nan(""));
+    for (int i = 0; i < 10; ++i) mu[i] = 0.1;
+    sim.set_mu(mu, "wet", "test");
+    sim.set_mu(mu, "wet", "again");
+    if (rtol <= 1e-4) {
+      EXPECT_TRUE(said.empty()) << said[0];
+      continue;
+    }
+    ASSERT_EQ(said.size(), 1u);  // once
+    EXPECT_NE(said[0].find("where μ changes along the belt"), std::string::npos) << said[0];
+  }
+}
+
 TEST(RunCheck, ParametersCsvHoldsTheFigures) {
   test::expect_warnings({WarningKind::failed_step});
   const RunResult r = run(small_scene(), settings(1e-3, "parameters", true));
