@@ -115,7 +115,7 @@ case "$mode" in
     fuzz_pid="" lane_pids=()
     beside_end() {
       [ -z "$fuzz_pid" ] || kill "$fuzz_pid" 2>/dev/null
-      for p in "${lane_pids[@]}"; do kill -- -"$p" 2>/dev/null; done
+      for p in "${lane_pids[@]}"; do kill -- -"$p" 2>/dev/null || true; done
       true
     }
     trap beside_end EXIT
@@ -187,7 +187,8 @@ case "$mode" in
       echo "setup: tests in $build_dir/ (${lane_logs[$i]}):"
       cat "${lane_logs[$i]}"
     done
-    if ((${#lane_pids[@]})); then
+    lanes=${#lane_pids[@]} lane_pids=()  # (ended: nothing for beside_end to stop)
+    if ((lanes)); then
       if ((release_ok)); then
         stage_done "tests in $build_dir/ passed; waited for them"
       else
