@@ -42,11 +42,6 @@ Simulation::Simulation(const Scene& sc, const RunSettings& rs) : Simulation(sc, 
 
 Simulation::Simulation(const Scene& sc, const RunSettings& rs, bool fresh) : scene_(sc), rs_(rs), drive_(sc.drive) {
   check(scene_, rs_, false);
-  if (const std::string why = contract_miss(rs_.integrator, rs_.rtol); !why.empty() && !rs_.check && rs_.on_warning)
-    rs_.on_warning("integrator " + rs_.integrator +
-                   " does not keep the accuracy contract (the pulley speeds within 3×rtol and the span tensions "
-                   "within 10×rtol; docs/integration.md): " +
-                   why + ". trbdf2 (the default) keeps it; check = true (--check) has this run estimate its own error");
   warn_contract_misses();
   sense_ = scene_.senses();
   sys_ = std::make_unique<BeltSystem>(model_, drive_);
@@ -399,13 +394,20 @@ void Simulation::changed(const Eigen::VectorXd* y) {
 
 void Simulation::warn_contract_misses() {
   if (rs_.check || !rs_.on_warning) return;
-  for (const std::string& why : scene_contract_misses(model_, drive_, rs_.rtol)) {
-    if (std::find(misses_warned_.begin(), misses_warned_.end(), why) != misses_warned_.end()) continue;
-    misses_warned_.push_back(why);
-    rs_.on_warning("at rtol " + rounded_text(rs_.rtol) +
-                   " this drive may not keep the accuracy contract (the pulley speeds within 3×rtol and the span "
-                   "tensions within 10×rtol; docs/integration.md): " +
-                   why + ". check = true (--check) has the run estimate its own error and say whether it does");
+  const std::string contract =
+      "the accuracy contract (the pulley speeds within 3×rtol and the span tensions within 10×rtol; "
+      "docs/integration.md): ";
+  std::vector<std::string> misses;
+  if (const std::string why = contract_miss(rs_.integrator, rs_.rtol); !why.empty())
+    misses.push_back("integrator " + rs_.integrator + " does not keep " + contract + why +
+                     ". trbdf2 (the default) keeps it; check = true (--check) has this run estimate its own error");
+  for (const std::string& why : scene_contract_misses(model_, drive_, rs_.rtol))
+    misses.push_back("at rtol " + rounded_text(rs_.rtol) + " this drive may not keep " + contract + why +
+                     ". check = true (--check) has the run estimate its own error and say whether it does");
+  for (const std::string& m : misses) {
+    if (std::find(misses_warned_.begin(), misses_warned_.end(), m) != misses_warned_.end()) continue;
+    misses_warned_.push_back(m);
+    rs_.on_warning(m);
   }
 }
 

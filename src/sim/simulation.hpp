@@ -205,8 +205,9 @@ class Simulation {
   void add_streams();
   void write_event(double t, const std::string& what, const std::string& text);
   void changed(const Eigen::VectorXd* y = nullptr);
-  // warns, once each, of what the drive now has that the accuracy contract was measured not to
-  // hold with at this rtol (scene_contract_misses), unless the run checks its own error
+  // warns, once each, that the run's integrator (contract_miss) or what the drive now has
+  // (scene_contract_misses) was measured not to keep the accuracy contract at this rtol, unless
+  // the run checks its own error
   void warn_contract_misses();
   // the interval means up to now with the drive as it is: called before a change touches the
   // drive (the held step's ends not yet observed would be observed with the new drive)
