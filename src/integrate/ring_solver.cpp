@@ -1,5 +1,6 @@
 #include "integrate/ring_solver.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 #include <Eigen/LU>
@@ -24,6 +25,8 @@ void RingSolver::resize(int n, int np) {
     ch.Dinv.resize(l), ch.Lam.resize(l), ch.U.resize(l);
     ch.F.resize(mb_, 3 * l), ch.Y.resize(3 * l, mb_);
     ch.z.resize(3 * l);
+    ch.f_lo.resize(np), ch.f_hi.resize(np);
+    ch.start.resize(mb_);
     if (split) ch.FY.resize(mb_, mb_), ch.Fz.resize(mb_);
   }
   G_.resize(mb_, mb_), rb_.resize(mb_), xb_.resize(mb_);
@@ -67,13 +70,29 @@ bool RingSolver::factor_chain(Chain& ch, const Model& m, double alpha, double be
   ch.F.block<3, 3>(3 * kb, 3 * (nt - 1)) += block(C.lower[(b + 1) % n], K.lower[(b + 1) % n]);
   E.block<3, 3>(0, 3 * ka) += block(C.lower[a], K.lower[a]);
   E.block<3, 3>(3 * (nt - 1), 3 * kb) += block(C.upper[b], K.upper[b]);
-  for (int j = 0; j < np; ++j)
-    for (int t = 0; t < nt; ++t)
+  // E's pulley columns and F's pulley rows, and the blocks where each is non-zero
+  for (int j = 0; j < np; ++j) {
+    int e_lo = nt, f_lo = nt, f_hi = 0;
+    for (int t = 0; t < nt; ++t) {
+      bool e_nz = false, f_nz = false;
       for (int r = 0; r < 3; ++r) {
         const int row = 3 * elem(t) + r;
-        E(3 * t + r, pb + j) = -beta * C.elem_pulley(row, j) - K.elem_pulley(row, j);
-        ch.F(pb + j, 3 * t + r) = -beta * C.pulley_elem(j, row) - K.pulley_elem(j, row);
+        const double e = -beta * C.elem_pulley(row, j) - K.elem_pulley(row, j);
+        const double f = -beta * C.pulley_elem(j, row) - K.pulley_elem(j, row);
+        E(3 * t + r, pb + j) = e;
+        ch.F(pb + j, 3 * t + r) = f;
+        e_nz |= e != 0, f_nz |= f != 0;
       }
+      if (e_nz) e_lo = std::min(e_lo, t);
+      if (f_nz) f_lo = std::min(f_lo, t), f_hi = t + 1;
+    }
+    ch.f_lo[j] = f_lo, ch.f_hi[j] = std::max(f_hi, f_lo);
+    ch.start[pb + j] = e_lo;
+  }
+  // the border elements' columns of E: the left neighbour's in the first block, the right one's
+  // in the last
+  for (int k = 0; k < nb_; ++k)
+    for (int c = 0; c < 3; ++c) ch.start[3 * k + c] = k == ka ? 0 : k == kb ? nt - 1 : nt;
 
   // block Thomas on the chain
   for (int t = 0; t < nt; ++t) {
@@ -92,18 +111,10 @@ bool RingSolver::factor_chain(Chain& ch, const Model& m, double alpha, double be
     if (!invertible || !std::isfinite(det) || std::abs(det) <= 1e-300) return false;
     ch.U[t] = (t + 1 < nt) ? block(C.upper[i], K.upper[i]) : Mat3::Zero();
   }
-  // Y = T⁻¹·E. Split, the columns of the border element after the chain are zero but in its last
-  // block, and the forward sweep would leave them so: they take the backward sweep only
-  if (nb_ == 2 && ka != kb)
-    solve_T(ch, ch.Y.data(), mb, 3 * nt, 3 * kb, 3 * kb + 3);
-  else
-    solve_T(ch, ch.Y.data(), mb, 3 * nt);
-  if (nb_ == 2) {
-    // F·Y: the element rows of F touch the two end blocks only (nt ≥ 2 here)
-    ch.FY.topRows(pb).noalias() = ch.F.topLeftCorner(pb, 3) * ch.Y.topRows<3>();
-    ch.FY.topRows(pb).noalias() += ch.F.topRightCorner(pb, 3) * ch.Y.bottomRows<3>();
-    ch.FY.bottomRows(np).noalias() = ch.F.bottomRows(np) * ch.Y;
-  }
+  // Y = T⁻¹·E, each column's forward sweep from its first non-zero block (a pulley's column from
+  // its wrap; split, the border element after the chain from the last block)
+  solve_T(ch, ch.Y.data(), mb, 3 * nt, ch.start.data());
+  if (nb_ == 2) f_times(ch, ch.Y, ch.FY, false);
   return true;
 }
 
@@ -138,8 +149,7 @@ bool RingSolver::factor(const Model& m, const Drive& d, double alpha, double bet
     if (!ch.ok) return false;
   // S = G - F·Y in place
   if (nb_ == 1) {
-    // coefficient-wise (a 5×5 result: the blocked product costs more)
-    G_.noalias() -= chains_[0].F.lazyProduct(chains_[0].Y);
+    f_times(chains_[0], chains_[0].Y, G_, true);
   } else {
     for (const Chain& ch : chains_) G_ -= ch.FY;
   }
@@ -147,30 +157,45 @@ bool RingSolver::factor(const Model& m, const Drive& d, double alpha, double bet
   return std::isfinite(S_.matrixLU().norm()) && std::abs(S_.determinant()) > 0;
 }
 
-void RingSolver::solve_T(const Chain& ch, double* z, int cols, int stride, int skip_lo, int skip_hi) {
+void RingSolver::solve_T(const Chain& ch, double* z, int cols, int stride, const int* start) {
   const int nt = ch.len;
   using V3 = Eigen::Map<Eigen::Vector3d>;
+  auto first = [&](int c) { return start ? start[c] : 0; };
   // the columns side by side, block by block: each column's arithmetic is that of a lone sweep,
   // but the independent columns overlap in the pipeline (a lone sweep waits on its previous block)
-  for (int t = 1; t < nt; ++t) {
-    for (int c = 0; c < skip_lo; ++c) {
+  for (int t = 1; t < nt; ++t)
+    for (int c = 0; c < cols; ++c) {
+      if (t <= first(c)) continue;
       double* zc = z + c * stride;
       V3(zc + 3 * t) -= ch.Lam[t] * V3(zc + 3 * (t - 1));
     }
-    for (int c = skip_hi; c < cols; ++c) {
-      double* zc = z + c * stride;
-      V3(zc + 3 * t) -= ch.Lam[t] * V3(zc + 3 * (t - 1));
-    }
-  }
   for (int c = 0; c < cols; ++c) {
+    if (first(c) >= nt) continue;  // a zero column stays zero
     double* zc = z + c * stride;
     V3(zc + 3 * (nt - 1)) = ch.Dinv[nt - 1] * V3(zc + 3 * (nt - 1)).eval();
   }
   for (int t = nt - 2; t >= 0; --t)
     for (int c = 0; c < cols; ++c) {
+      if (first(c) >= nt) continue;
       double* zc = z + c * stride;
       V3(zc + 3 * t) = ch.Dinv[t] * (V3(zc + 3 * t) - ch.U[t] * V3(zc + 3 * (t + 1)));
     }
+}
+
+template <class X, class Out>
+void RingSolver::f_times(const Chain& ch, const X& x, Out&& out, bool subtract) const {
+  const int pb = 3 * nb_, nt = ch.len;
+  const double sign = subtract ? -1.0 : 1.0;
+  // the border elements' rows: their neighbours are the chain's first and last elements
+  if (!subtract) out.topRows(pb).setZero();
+  out.topRows(pb).noalias() += sign * (ch.F.topLeftCorner(pb, 3) * x.topRows(3));
+  if (nt > 1) out.topRows(pb).noalias() += sign * (ch.F.topRightCorner(pb, 3) * x.bottomRows(3));
+  for (int j = 0; j < np_; ++j) {
+    const int lo = ch.f_lo[j], len = ch.f_hi[j] - lo;
+    if (!subtract) out.row(pb + j).setZero();
+    if (len > 0)
+      out.row(pb + j).noalias() += sign * (ch.F.row(pb + j).segment(3 * lo, 3 * len) * x.middleRows(3 * lo, 3 * len));
+  }
 }
 
 void RingSolver::solve(const double* r, double* x) {
@@ -183,12 +208,12 @@ void RingSolver::solve(const double* r, double* x) {
     Chain& ch = chains_[0];
     for (int k = 0; k < 3 * ch.len; ++k) ch.z[k] = r[3 * ch.first + k];
     solve_T(ch, ch.z.data());
-    rb_.noalias() -= ch.F * ch.z;
+    f_times(ch, ch.z, rb_, true);
   } else {
     each_chain([&](Chain& ch) {
       for (int k = 0; k < 3 * ch.len; ++k) ch.z[k] = r[3 * ch.first + k];
       solve_T(ch, ch.z.data());
-      ch.Fz.noalias() = ch.F * ch.z;
+      f_times(ch, ch.z, ch.Fz, false);
     });
     for (const Chain& ch : chains_) rb_ -= ch.Fz;
   }

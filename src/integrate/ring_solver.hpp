@@ -8,8 +8,11 @@
 //         [ F  G ]      G: element 0, the pulleys, the tensioner arms and the coupled rotors (dense, m×m)
 // T is factorised by block LU (block Thomas: Δ_1 = D_1, Λ_i = L_i·Δ_{i-1}⁻¹, Δ_i = D_i - Λ_i·U_{i-1});
 // then Y = T⁻¹·E (m columns) and the Schur complement S = G - F·Y, factorised densely. A solve is
-// x_T = T⁻¹·r_T - Y·x_b with S·x_b = r_b - F·T⁻¹·r_T. Cost per factorisation ≈ n·(27 + 9m)
-// multiply-adds beyond the block inversions. No pivoting across blocks: A = s²M - sC - K is block
+// x_T = T⁻¹·r_T - Y·x_b with S·x_b = r_b - F·T⁻¹·r_T. A pulley's row of F and column of E are
+// zero outside its wrap: F·Y and F·z take the blocks of the wrap only, and T⁻¹·E's forward sweep
+// of a column starts at its wrap. Cost per factorisation ≈ n·(27 + 9m) multiply-adds beyond the
+// block inversions at most (the dense F·Y alone was n·3m², the serpentine drive's largest part).
+// No pivoting across blocks: A = s²M - sC - K is block
 // diagonally dominant for the step sizes the implicit methods use (s²M and the dampers and
 // springs all add to the diagonal blocks); the 3×3 blocks are factorised with partial pivoting.
 //
@@ -50,6 +53,11 @@ class RingSolver {
     int first = 0, len = 0;
     std::vector<Mat3> Dinv, Lam, U;
     Eigen::MatrixXd F, Y;     // m×3len, 3len×m (Y first holds E)
+    // F's and E's pulley rows and columns (pb + j, after the border elements') are non-zero on
+    // the elements of the pulley's wrap only: F's row is zero outside blocks f_lo[j]..f_hi[j]-1
+    // (f_lo = f_hi: all of it), and column c of E before block start[c] (all of it when start[c] =
+    // len), which solve_T's forward sweep skips
+    std::vector<int> f_lo, f_hi, start;
     Eigen::MatrixXd FY;       // m×m, F·Y (split only)
     Eigen::VectorXd z, Fz;    // a solve's T⁻¹·r_T and F·z (split only)
     bool ok = true;
@@ -67,9 +75,13 @@ class RingSolver {
   int border_of(int i) const;
   bool factor_chain(Chain& ch, const Model& m, double alpha, double beta, const BlockMatrix& C,
                     const BlockMatrix& K) const;
-  // in place: z = T_c⁻¹·z for `cols` columns `stride` apart; the columns skip_lo..skip_hi-1
-  // (zero but in their last block) take the backward sweep only
-  static void solve_T(const Chain& ch, double* z, int cols = 1, int stride = 0, int skip_lo = 0, int skip_hi = 0);
+  // in place: z = T_c⁻¹·z for `cols` columns `stride` apart; column c is zero before its block
+  // start[c] (all of it when start[c] = len: it stays zero), which the forward sweep skips
+  // (no start: every column from block 0)
+  static void solve_T(const Chain& ch, double* z, int cols = 1, int stride = 0, const int* start = nullptr);
+  // F·X over the non-zero blocks of F's rows (X with 3len rows): out = F·X, or out -= F·X
+  template <class X, class Out>
+  void f_times(const Chain& ch, const X& x, Out&& out, bool subtract) const;
   // runs f(chain) for each chain: at once through two_ when split and given
   template <class F>
   void each_chain(F&& f);
