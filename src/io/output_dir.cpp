@@ -184,6 +184,11 @@ long OutputDir::size(const std::string& name) const {
   return static_cast<long>(st.st_size);
 }
 
+bool OutputDir::has(const std::string& name) const {
+  struct stat st {};
+  return ::fstatat(fd_, name.c_str(), &st, AT_SYMLINK_NOFOLLOW) == 0;
+}
+
 void OutputDir::remove(const std::string& name) const {
   ::unlinkat(fd_, name.c_str(), 0);
 }

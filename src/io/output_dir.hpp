@@ -63,6 +63,8 @@ class OutputDir {
   void truncate(const std::string& name, long bytes) const;
   // the size of NAME (not through a link), -1 when there is none
   long size(const std::string& name) const;
+  // whether NAME exists in the folder (a file, a folder or a link, never followed)
+  bool has(const std::string& name) const;
   // NAME removed (a link itself, never its target); no error when there is none
   void remove(const std::string& name) const;
 

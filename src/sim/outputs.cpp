@@ -172,6 +172,24 @@ void Outputs::open(bool append) {
   open_rows(append);
 }
 
+std::vector<std::string> Outputs::earlier_outputs() const {
+  const FrameSettings* f = sink_ && rs_.frames ? &*rs_.frames : nullptr;
+  const struct {
+    const char* name;
+    bool written;
+  } own[] = {{"snapshots.csv", has_snapshots()},
+             {"frames.mp4", f && f->video_path == "frames.mp4"},
+             {"frames/", f && f->png_dir == "frames"},
+             {"states/", rs_.keep_states}};
+  std::vector<std::string> left;
+  for (const auto& o : own) {
+    std::string name = o.name;
+    if (name.back() == '/') name.pop_back();
+    if (!o.written && dir_->has(name)) left.push_back(o.name);
+  }
+  return left;
+}
+
 void Outputs::open_rows(bool append) {
   const OutputDir& dir = *dir_;
   csv_ = std::make_unique<CsvWriter>(dir, "timeseries.csv", timeseries_columns(scene_, rs_.probes.size()), append);

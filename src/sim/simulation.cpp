@@ -72,6 +72,13 @@ Simulation::Simulation(const Scene& sc, const RunSettings& rs, bool fresh) : sce
   if (!fresh) return;  // a checkpoint's load sets the state (checkpoint.cpp)
 
   out_->open(false);
+  if (const std::vector<std::string> left = out_->earlier_outputs(); !left.empty() && rs_.on_warning) {
+    std::string names;
+    for (size_t k = 0; k < left.size(); ++k) names += (k ? k + 1 < left.size() ? ", " : " and " : "") + left[k];
+    rs_.on_warning("the output folder " + rs_.out_dir + " holds an earlier run's " + names +
+                   ", which this run does not write: they are not this run's outputs (give each run "
+                   "its own --out or out = ..., or remove them)");
+  }
   for (size_t z = 0; z < drive_.spray.zones.size(); ++z)
     if (drive_.spray.zones[z].on) write_event(0.0, spray_name(static_cast<int>(z)), "on");
   set_landings();

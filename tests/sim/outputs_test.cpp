@@ -115,6 +115,38 @@ TEST(Outputs, OneSimulationPerFolder) {
   EXPECT_FALSE(fs::exists(out / ".beltsim.lock"));
 }
 
+// a run into a folder that holds an earlier run's outputs it does not write says so as it starts
+// (a user's console session beside an earlier batch run's snapshots and video found them mixed,
+// without a word)
+TEST(Outputs, AnEarlierRunsOutputsThisRunDoesNotWriteAreNamed) {
+  const fs::path out = fresh("earlier") / "out";
+  std::vector<std::string> said;
+  auto runs = [&](bool snapshots) {
+    said.clear();
+    RunSettings rs = settings(out);
+    rs.t_end = 0.002;
+    if (!snapshots) rs.snapshot_every = 0;
+    rs.on_warning = [&](const std::string& m) {  // (esdirk32's contract warning aside)
+      if (m.rfind("the output folder", 0) == 0) said.push_back(m);
+    };
+    run(dry_scene(), rs);
+  };
+  runs(true);
+  EXPECT_TRUE(said.empty()) << said[0];
+  fs::create_directories(out / "frames");  // an earlier run's PNG folder and video
+  std::ofstream(out / "frames.mp4") << "x";
+  runs(false);
+  ASSERT_EQ(said.size(), 1u);
+  EXPECT_EQ(said[0], "the output folder " + out.string() +
+                         " holds an earlier run's snapshots.csv, frames.mp4 and frames/, which this run does not "
+                         "write: they are not this run's outputs (give each run its own --out or out = ..., or "
+                         "remove them)");
+  fs::remove_all(out / "frames");
+  fs::remove(out / "frames.mp4");
+  runs(true);  // it writes snapshots.csv again
+  EXPECT_TRUE(said.empty()) << said[0];
+}
+
 // a zero is written 0 in parameters.csv too (issue 44: the CSVs held -0): a centre given at y = -0
 TEST(Outputs, ParametersHoldNoNegativeZero) {
   const fs::path out = fresh("negative_zero") / "out";
