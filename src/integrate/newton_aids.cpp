@@ -187,9 +187,11 @@ int solve_block(LocalSolveScratch& w, int lo, int L, double diag, double band) {
     // φ'(α) is increasing and piecewise linear; safeguarded Newton on φ' from α = 1
     double c0 = d_om * (J > 0 ? w.lin_omega + J * om : 0), dAd = J * d_om * d_om;
     for (int k = 0; k < L; ++k) c0 += dir[k] * (lin[k] + Aw(x, k)), dAd += dir[k] * Aw(dir, k);
-    auto dphi = [&](double al, double& curv) {
+    // (piece: a hash of the piece every element's slip is on at α, where φ' is linear)
+    auto dphi = [&](double al, double& curv, uint64_t& piece_at) {
       double val = c0 + al * dAd;
       curv = dAd;
+      piece_at = 0;
       for (int k = 0; k < L; ++k) {
         const double du = dir[k] - r[k] * d_om;
         if (du == 0) continue;
@@ -197,23 +199,31 @@ int solve_block(LocalSolveScratch& w, int lo, int L, double diag, double band) {
         if (std::abs(yk) < 1) {
           val += B[k] * du * yk;
           curv += B[k] * du * du / band;
+          piece_at = piece_at * 3 + 1;
         } else {
           val += B[k] * du * (yk > 0 ? 1 : -1);
+          piece_at = piece_at * 3 + (yk > 0 ? 2 : 0);
         }
       }
       return val;
     };
     double lo_a = 0, hi_a = 1, curv = 0;
-    double val = dphi(1, curv);
-    for (int grow = 0; val < 0 && grow < 30; ++grow) lo_a = hi_a, hi_a *= 4, val = dphi(hi_a, curv);
+    uint64_t at = 0;
+    double val = dphi(1, curv, at);
+    for (int grow = 0; val < 0 && grow < 30; ++grow) lo_a = hi_a, hi_a *= 4, val = dphi(hi_a, curv, at);
     double alpha = hi_a;
     for (int ls = 0; ls < 60 && val != 0 && hi_a - lo_a > 1e-14 * hi_a; ++ls) {
       (val < 0 ? lo_a : hi_a) = alpha;
       double next = alpha - val / curv;
-      if (!(next > lo_a && next < hi_a)) next = 0.5 * (lo_a + hi_a);
+      const bool newton = next > lo_a && next < hi_a;
+      if (!newton) next = 0.5 * (lo_a + hi_a);
       if (next == alpha) break;
+      const uint64_t was = at;
       alpha = next;
-      val = dphi(alpha, curv);
+      val = dphi(alpha, curv, at);
+      // a Newton step that stayed on its piece landed on the zero of φ' there: φ' is linear on a
+      // piece, so what is left of val is rounding, which further steps would only dither on
+      if (newton && at == was) break;
     }
     bool same = true;
     const double om1 = om + alpha * d_om;
