@@ -321,7 +321,19 @@ std::optional<CommandLine> parse_command_line(int argc, char** argv, int* status
     cl.command = "help-run-settings";
     return cl;
   }
-  if (!words.empty() && words[0] == "help") words[0] = "--help";
+  if (!words.empty() && words[0] == "help") {
+    // `beltsim help` alone is --help; a topic it does not have is bad usage, not the general help
+    const std::vector<std::string> topics{"parameters", "run-settings"};
+    if (words.size() > 1) {
+      const std::string asked = join(std::vector<std::string>(words.begin() + 1, words.end()), " ");
+      std::fprintf(stderr,
+                   "beltsim: help has no topic '%s'%s (topics: %s)\nRun 'beltsim --help' for the usage, "
+                   "'beltsim COMMAND --help' for a command's.\n",
+                   asked.c_str(), did_you_mean(asked, topics).c_str(), join(topics).c_str());
+      return fail(2);
+    }
+    words[0] = "--help";
+  }
   const std::vector<std::string> commands{"run", "wp", "modes", "plot", "summary", "render", "compare", "console", "sweep"};
   if (!words.empty() && !words[0].empty() && words[0][0] == '-' && words[0] != "-h" && words[0] != "--help" &&
       words[0] != "--version") {

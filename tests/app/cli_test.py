@@ -96,6 +96,19 @@ class HelpParameters(unittest.TestCase):
                   encoding="utf-8") as f:
             self.assertIn(out, f.read())
 
+    def test_a_topic_it_does_not_have_is_bad_usage(self):
+        # once printed the general help and exited 0, so a typo looked like an answer
+        for args, what in [(["help", "foo"], "beltsim: help has no topic 'foo' (topics: parameters, run-settings)"),
+                           (["help", "parameter"], "help has no topic 'parameter' (did you mean 'parameters'?)"),
+                           (["help", "parameters", "x"], "help has no topic 'parameters x'")]:
+            code, out, err = run(args)
+            self.assertEqual(code, 2, err)
+            self.assertIn(what, err)
+            self.assertEqual(out, "")
+        code, out, err = run(["help"])  # alone: the general help
+        self.assertEqual(code, 0, err)
+        self.assertIn("Usage: beltsim", out)
+
 
 SCENE = two_pulley(elements=30) + 'local sim = drive:start { progress = false, out = "out" }\n'
 
