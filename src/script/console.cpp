@@ -112,7 +112,7 @@ int run_console(const std::optional<std::string>& script, const std::vector<std:
       lua.run_file(*script);
       for (const std::string& m : lua.unread_args(*script)) std::fprintf(stderr, "beltsim: warning: %s\n", m.c_str());
     } catch (const ScriptError& e) {
-      std::fprintf(stderr, "%s\n%s", e.what(), shown_traceback(e.traceback).c_str());
+      std::fprintf(stderr, "beltsim: %s\n%s", e.what(), shown_traceback(e.traceback).c_str());  // as run's
       failed = true;
     }
     command_done();
@@ -145,7 +145,7 @@ int run_console(const std::optional<std::string>& script, const std::vector<std:
         if (interactive) {
           std::printf("\n");
         } else if (!chunk.empty() && !terminating()) {
-          std::fprintf(stderr, "stdin: unfinished input at the end: %s\n", chunk.c_str());
+          std::fprintf(stderr, "beltsim: stdin: unfinished input at the end: %s\n", chunk.c_str());
           failed = true;
         }
         break;

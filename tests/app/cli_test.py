@@ -164,6 +164,19 @@ class Errors(unittest.TestCase):
         self.assertIn("%s:10: sim:close: this simulation is running" % path, err)
         self.assertNotIn("nil value", err)
 
+    def test_run_and_console_report_a_script_alike(self):
+        # the console's once came without the "beltsim: " of every other message of the program
+        bad = self.script("error('boom')\n", "bad.lua")
+        for script, what in [("missing.lua", "beltsim: cannot open missing.lua: No such file or directory\n"),
+                             (bad, "beltsim: " + bad + ":1: boom\n")]:
+            for command in ("run", "console"):
+                code, out, err = run([command, script], stdin="", cwd=self.dir)
+                self.assertEqual(code, 1, command + ": " + err)
+                self.assertTrue(err.startswith(what), command + ": " + err)
+        code, out, err = run(["console"], stdin="for i = 1, 2 do\n", cwd=self.dir)
+        self.assertEqual(code, 1, err)
+        self.assertIn("beltsim: stdin: unfinished input at the end: for i = 1, 2 do\n", err)
+
     def test_a_folder_as_the_script(self):
         os.mkdir(os.path.join(self.dir, "scenario.lua"))
         for cmd in ["run", "wp"]:
