@@ -134,7 +134,8 @@ std::vector<std::string> run_keys(bool batch) {
 std::string run_value_text(const RunSetting& s, const RunSettings& rs) {
   if (s.csv) return s.csv(rs);
   const RunSlot v = run_slot(s, rs);
-  if (auto* x = std::get_if<double*>(&v)) return value_text(**x);
+  // a number at its "not given" value reads as the docs' default (max_wall's 0: "none", not 0 s)
+  if (auto* x = std::get_if<double*>(&v)) return **x == s.unset ? std::string(s.fallback) : value_text(**x);
   if (auto* b = std::get_if<bool*>(&v)) return **b ? "1" : "0";
   if (auto* t = std::get_if<std::string*>(&v)) return **t;
   return "";

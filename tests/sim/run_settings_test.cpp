@@ -140,5 +140,17 @@ TEST(RunSettings, ParametersCsvRecordsEverySetting) {
   EXPECT_EQ(rows["run.integrator"][1], "esdirk32");
 }
 
+// a setting left unset reads as the run-settings table's default says, not as the number that
+// stands for it: no wall-time limit is "none", where 0 would read as a limit of 0 s
+TEST(RunSettings, ParametersCsvWritesAnUnsetLimitAsNone) {
+  RunSettings rs = with_event(0.002, "unset_limit");
+  Simulation(dry_scene(), rs).run_to(0.001);
+  std::map<std::string, std::vector<std::string>> rows;
+  for (const auto& r : csv_rows(test::slurp(fs::path(rs.out_dir) / "parameters.csv"))) rows[r[0]] = r;
+  EXPECT_EQ(rows["run.max_wall"][1], "none");
+  EXPECT_NE(run_settings_markdown().find("| `max_wall` | s | none |"), std::string::npos)
+      << "the table's default is no longer \"none\": " << run_settings_markdown();
+}
+
 }  // namespace
 }  // namespace beltsim
