@@ -45,6 +45,15 @@ inline Simulation& live(lua_State* L, const char* method, std::initializer_list<
   return *box->sim;
 }
 
+// "what: message", the call named once where the C++ message begins with the same name
+// ("sim:run_to" and "run_to: -1 s is before now (0 s)" -> "sim:run_to: -1 s is before now (0 s)")
+inline std::string call_error(const char* what, const std::string& message) {
+  const std::string w(what);
+  const std::string name = w.substr(w.rfind(':') == std::string::npos ? 0 : w.rfind(':') + 1);
+  if (message.compare(0, name.size() + 2, name + ": ") == 0) return w + message.substr(name.size());
+  return w + ": " + message;
+}
+
 // a C++ call whose exceptions become Lua errors once the catch block is left
 // (a divergence is noted in ctx, when given, for a sweep point's status: lua_sweep.hpp)
 template <class F>
@@ -54,10 +63,10 @@ void guarded(lua_State* L, const char* what, F&& f, Context* ctx = nullptr) {
     const HostWork work;  // beltsim's own work, not Lua code (lua_clock.hpp)
     f();
   } catch (const DivergenceError& e) {
-    error = std::string(what) + ": " + e.what();
+    error = call_error(what, e.what());
     if (ctx) ctx->divergence = {e.t, e.what()};
   } catch (const std::exception& e) {
-    error = std::string(what) + ": " + e.what();
+    error = call_error(what, e.what());
   }
   if (!error.empty()) fail(L, error);
 }

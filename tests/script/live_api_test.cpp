@@ -366,6 +366,7 @@ TEST(LiveApi, BadCallsNameFileLineAndWhat) {
            {"sim:advance(0.1, 2)", "sim:advance(dt): expected 1 argument, got 2"},
            {"sim:advance(-1)", "dt must be >= 0 s"},
            {"sim:run_to('x')", "number expected, got string"},
+           {"sim:run_to(-1)", "sim:run_to: -1 s is before now (0 s)"},  // the call named once
            {"sim:pulley('drivn')", "did you mean 'driven'"},
            {"sim:element(40)", "must be in 0..39"},
            {"sim:span('driver', 'driver')", "not joined by a span"},
