@@ -15,7 +15,7 @@ namespace {
 int l_help(lua_State* L) {
   check_args(L, "help", {{"name", kString, true}});
   if (lua_isnoneornil(L, 1)) {
-    std::printf("beltsim API (help(\"name\") for one entry; SI units throughout):\n");
+    std::printf("beltsim API (help(\"name\") for one entry; SI units, but belt.rib_angle in degrees):\n");
     for (const HelpEntry& h : api_help()) std::printf("  %-48s %s\n", h.call, h.text);
     std::fflush(stdout);
     return 0;
