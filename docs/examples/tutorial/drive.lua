@@ -19,7 +19,7 @@ if beltsim.args.live then
 else
   local result = drive:run {
     t_end = 0.3,
-    frames = { size = {640, 360}, quantity = "tension", range = {0, 800},
+    frames = { size = {640, 360}, quantity = "tension", range = {200, 350},
                png = true, png_every = 15, video = true },
   }
   print(string.format("t = %.2f s: crankshaft %.1f, alternator %.1f, idler %.1f rad/s",
