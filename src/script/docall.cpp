@@ -70,14 +70,17 @@ bool docall(lua_State* L, int nargs, int nresults, CallError* error, const std::
 std::string shown_traceback(const std::string& traceback, int frames) {
   std::istringstream in(traceback);
   std::string line, out;
-  int kept = 0;
+  int kept = 0, in_lua = 0;
   while (std::getline(in, line)) {
     if (line.rfind('\t', 0) != 0) continue;                     // "stack traceback:"
     if (line.find("[C]: in ?") != std::string::npos) continue;  // the host's own frame
+    if (line.rfind("\t[C]:", 0) != 0) ++in_lua;
     if (++kept > frames) continue;
     out += line + "\n";
   }
-  if (kept <= 1) return "";
+  // an error in the script's top level, or in a beltsim function it called there (a scene's key):
+  // the message's file:line is the whole story
+  if (in_lua <= 1) return "";
   if (kept > frames) out += "\t(" + std::to_string(kept - frames) + " more)\n";
   return "stack traceback:\n" + out;
 }

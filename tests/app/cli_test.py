@@ -157,6 +157,14 @@ class Errors(unittest.TestCase):
         self.assertIn("%s:13: in function <%s:13>" % (path, path), err)  # the callback
         self.assertIn("%s:14: in main chunk" % path, err)                 # its run_to
 
+    def test_an_input_error_at_the_top_level_has_no_traceback(self):
+        # its file:line says it all; "[C]: in field 'scene'" and "in main chunk" below it were noise
+        path = self.script("beltsim.scene {\n  pulleys = {},\n  belt = { pretenson = 300 },\n}\n")
+        code, out, err = run(["run", path], cwd=self.dir)
+        self.assertEqual(code, 1, err)
+        self.assertIn("%s:3: unknown key 'pretenson' in belt (did you mean 'pretension'?)" % path, err)
+        self.assertNotIn("traceback", err)
+
     def test_close_inside_a_callback_is_refused_with_its_line(self):
         path = self.script(SCENE + "sim:every(0.001, function(s) s:close() end)\nsim:run_to(0.003)\n")
         code, out, err = run(["run", path], cwd=self.dir)
