@@ -455,6 +455,17 @@ int l_index(lua_State* L) {
               "; fields: t; methods: " + join(std::vector<std::string>(names.begin() + 1, names.end())));
 }
 
+// sim.KEY = value: nothing of a simulation is set by assignment; its time moves by running it
+int l_newindex(lua_State* L) {
+  luaL_checkudata(L, 1, kSimMeta);
+  const char* key = lua_tostring(L, 2);
+  if (key && std::string(key) == "t")
+    fail(L, "sim.t is read-only: the simulation's time moves by running it (sim:run_to(t), sim:advance(dt))");
+  fail(L, std::string("sim.") + (key ? key : luaL_typename(L, 2)) +
+              " cannot be set: a simulation has no fields to set but through its methods (sim:set_torque, "
+              "sim:wet, ...; help() lists them)");
+}
+
 }  // namespace
 
 std::vector<std::string> argument_names(lua_State* L, int idx, const std::string& method, bool in_table, int arg,
@@ -499,6 +510,7 @@ void open_sim(lua_State* L, Context* ctx) {
   lua_pushcfunction(L, l_gc), lua_setfield(L, -2, "__gc");
   lua_pushcfunction(L, l_tostring), lua_setfield(L, -2, "__tostring");
   lua_pushcfunction(L, l_index), lua_setfield(L, -2, "__index");
+  lua_pushcfunction(L, l_newindex), lua_setfield(L, -2, "__newindex");
   lua_pushliteral(L, "beltsim.Simulation"), lua_setfield(L, -2, "__metatable");
   luaL_newlib(L, kMethods);
   lua_setfield(L, -2, "methods");

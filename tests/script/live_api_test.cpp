@@ -378,6 +378,9 @@ TEST(LiveApi, BadCallsNameFileLineAndWhat) {
            {"sim:show{quantiy = 'mu'}", "did you mean 'quantity'"},
            {"sim:plot{'driver.omga'}", "did you mean 'driver.omega'"},
            {"sim:close(); sim:advance(0.1)", "the simulation is closed"},
+           // an assignment says what to do instead (it said 'attempt to index a beltsim.Simulation value')
+           {"sim.t = 5", "sim.t is read-only: the simulation's time moves by running it (sim:run_to(t)"},
+           {"sim.mu = 0.3", "sim.mu cannot be set: a simulation has no fields to set but through its methods"},
            {"s:start{ t_end = 1 }", "unknown key 't_end' in start"},
            {"sim:every(0.001, function(sim) sim:advance(0.1) end); sim:run_to(0.01)", "already running"},
            {"sim:every(0.001, function(sim) sim:save('x') end); sim:run_to(0.01)", "not inside a callback"},
