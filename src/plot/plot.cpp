@@ -84,7 +84,9 @@ std::string shortened(const std::string& s, size_t n) {
 // reading upwards to the top, shortened to `label_px` (none for 0)
 void mark_lines(std::ostringstream& g, const PlotSpec& spec, double x0, double x1, double label_px) {
   const size_t chars = static_cast<size_t>(std::max(0.0, label_px / 7.0));  // 9 pt: under 7 pixels a character
-  g << "unset arrow\nunset label\n";
+  // each label on a box of its own, two thirds white: readable where it crosses a curve, which
+  // still shows through
+  g << "unset arrow\nunset label\nset style textbox opaque noborder fillcolor rgb '#50ffffff'\n";
   int k = 0;
   for (const Mark& m : spec.marks) {
     if (!(m.x >= x0 && m.x <= x1)) continue;
@@ -93,7 +95,7 @@ void mark_lines(std::ostringstream& g, const PlotSpec& spec, double x0, double x
       << ", graph 1 nohead dt 2 lw 1 lc rgb '#777777' back\n";
     if (chars >= 4)
       g << "set label " << k << " " << gnuplot_string(shortened(m.label, chars)) << " at " << number_text(m.x)
-        << ", graph 0.98 right rotate by 90 offset 1,0 font ',9' tc rgb '#555555' front\n";
+        << ", graph 0.98 right rotate by 90 offset 1,0 font ',9' tc rgb '#555555' front boxed\n";
   }
 }
 
@@ -180,14 +182,20 @@ std::string joined(const std::vector<std::string>& names) {
 }  // namespace
 
 void plot_png(const PlotSpec& spec) {
-  if (spec.series.empty()) throw std::runtime_error("plot " + spec.file + ": no series to draw");
   if (spec.file.empty()) throw std::runtime_error("plot: no output file given");
-  if (spec.width < 16 || spec.height < 16 || spec.width > 20000 || spec.height > 20000)
-    throw std::runtime_error("plot " + spec.file + ": size " + std::to_string(spec.width) + "x" +
-                             std::to_string(spec.height) + " is outside 16..20000 pixels");
   const fs::path parent = fs::path(spec.file).parent_path();
   if (!parent.empty() && !fs::is_directory(parent))
     throw std::runtime_error("cannot write " + spec.file + ": the folder " + parent.string() + " does not exist");
+  const PrivateOutput out;  // gnuplot writes there; the picture is then written to spec.file
+  run_gnuplot(plot_script(spec, out.path()));
+  out.deliver(spec.file, "plot");
+}
+
+std::string plot_script(const PlotSpec& spec, const std::string& png) {
+  if (spec.series.empty()) throw std::runtime_error("plot " + spec.file + ": no series to draw");
+  if (spec.width < 16 || spec.height < 16 || spec.width > 20000 || spec.height > 20000)
+    throw std::runtime_error("plot " + spec.file + ": size " + std::to_string(spec.width) + "x" +
+                             std::to_string(spec.height) + " is outside 16..20000 pixels");
   std::vector<Group> groups;
   for (size_t k = 0; k < spec.series.size(); ++k) {
     const Series& s = spec.series[k];
@@ -202,12 +210,11 @@ void plot_png(const PlotSpec& spec) {
     g->series.push_back(static_cast<int>(k));
   }
 
-  const PrivateOutput out;  // gnuplot writes there; the picture is then written to spec.file
   std::ostringstream g;
   g << "set encoding utf8\n"
     << "set terminal pngcairo size " << spec.width << "," << spec.height
     << " font 'DejaVu Sans,12' linewidth 1 noenhanced\n"
-    << "set output " << gnuplot_string(out.path()) << "\n";
+    << "set output " << gnuplot_string(png) << "\n";
   for (size_t k = 0; k < spec.series.size(); ++k) datablock(g, static_cast<int>(k), spec.series[k]);
   // one time axis for every series (and every panel)
   double t0 = INFINITY, t1 = -INFINITY;
@@ -245,9 +252,12 @@ void plot_png(const PlotSpec& spec) {
     for (size_t p = 0; p < groups.size(); ++p) {
       if (p + 1 == groups.size()) g << "set format x '% h'\nset xlabel " << gnuplot_string(spec.x_label) << "\n";
       // the label along the axis when it fits the panel's height (under 8 pixels a character at 12 pt),
-      // else the unit alone (the legend names the series)
+      // else the quantity and its unit ("tension [N]" for span_alt_pump.tension), else the unit
+      // alone (the legend names the series)
+      auto fits = [&](const std::string& l) { return 8.0 * static_cast<double>(l.size()) <= panel_px; };
       std::string label = axis_label(spec, groups[p]);
-      if (8.0 * static_cast<double>(label.size()) > panel_px) label = with_unit("", groups[p].unit);
+      if (!fits(label)) label = with_unit(last_component(spec.series[groups[p].series[0]].name), groups[p].unit);
+      if (!fits(label)) label = with_unit("", groups[p].unit);
       g << "set ylabel " << gnuplot_string(label) << "\n";
       // about four tic intervals however short the panel
       double lo = INFINITY, hi = -INFINITY;
@@ -271,8 +281,7 @@ void plot_png(const PlotSpec& spec) {
     g << "unset multiplot\n";
   }
   g << "set output\n";
-  run_gnuplot(g.str());
-  out.deliver(spec.file, "plot");
+  return g.str();
 }
 
 bool Table::has(std::string_view name) const {

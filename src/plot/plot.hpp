@@ -41,6 +41,8 @@ struct PlotSpec {
 // finite values or t and y of different lengths, a missing folder, gnuplot missing or failing
 // (with gnuplot's own message).
 void plot_png(const PlotSpec& spec);
+// the gnuplot script plot_png runs, drawing spec into the PNG file `png`
+std::string plot_script(const PlotSpec& spec, const std::string& png);
 
 // A CSV file as columns: the first line is the header of names, every later line holds one
 // number per name ("nan" or an empty field: NaN).

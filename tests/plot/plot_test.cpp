@@ -178,6 +178,28 @@ TEST(Plot, ThreeUnitsGiveStackedPanels) {
   EXPECT_EQ(read_png((d / "p.png").string()).width, 1280);
 }
 
+// a stacked panel whose series' name is too long for its height is labelled by its quantity and
+// unit ("tension [N]"), not by the unit alone (a user read a bare "[N]"); event labels sit on a
+// box of their own, readable across a curve
+TEST(Plot, APanelTooShortForItsSeriesNameIsLabelledByItsQuantity) {
+  PlotSpec spec;
+  spec.file = "unused.png";
+  auto series = [](const std::string& name, const std::string& unit) {
+    Series s;
+    s.name = name, s.unit = unit, s.t = {0, 0.1, 0.2}, s.y = {1, 2, 3};
+    return s;
+  };
+  spec.series = {series("alt.omega", "rad/s"), series("alt.torque", "N·m"),
+                 series("span_alternator_pump.tension", "N")};
+  spec.marks = {{0.1, "wet mu = 0.25 on s in [0.1, 0.4] m"}};
+  const std::string g = plot_script(spec, "p.png");
+  EXPECT_NE(g.find("set ylabel 'alt.omega [rad/s]'"), std::string::npos) << g;
+  EXPECT_NE(g.find("set ylabel 'tension [N]'"), std::string::npos) << g;
+  EXPECT_EQ(g.find("set ylabel '[N]'"), std::string::npos) << g;
+  EXPECT_NE(g.find("set style textbox opaque"), std::string::npos) << g;
+  EXPECT_NE(g.find("front boxed"), std::string::npos) << g;
+}
+
 // events.csv's rows as marks: one per time, labels "what value" shortened, a cut row left out
 TEST(Plot, EventsBecomeMarks) {
   const fs::path d = dir("events");
