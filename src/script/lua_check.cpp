@@ -135,8 +135,10 @@ void require_table(lua_State* L, int idx, const std::string& what) {
 
 Vec2 to_vec2(lua_State* L, int idx, const std::string& what) {
   idx = lua_absindex(L, idx);
-  if (!lua_istable(L, idx) || lua_rawlen(L, idx) != 2)
-    fail_on(L, what, std::string("a point {x, y} in metres expected, got ") + type_name(L, idx));
+  if (!lua_istable(L, idx)) fail_on(L, what, std::string("a point {x, y} in metres expected, got ") + type_name(L, idx));
+  if (const lua_Unsigned n = lua_rawlen(L, idx); n != 2)  // {0.25}: a coordinate left out
+    fail_on(L, what,
+            "a point {x, y} in metres expected, got a table of " + std::to_string(n) + (n == 1 ? " value" : " values"));
   Vec2 v;
   for (int k = 0; k < 2; ++k) {
     lua_rawgeti(L, idx, k + 1);

@@ -203,6 +203,9 @@ TEST(LuaApi, WrongTypeSaysWhatWasExpected) {
   expect_error(scene_text("EA = string.rep('x', 100)"), "scene.lua:6:",
                {"belt.EA: number expected, got string '" + std::string(40, 'x') + "...'"});
   expect_error(scene_text("elements = {}"), "scene.lua:6:", {"belt.elements: number expected, got table"});
+  // a point with a coordinate left out says how many it got (it said "got table")
+  const std::string one = run_text(scene_text("", "centre = {0.29}, radius = 0.1"));
+  EXPECT_NE(one.find("centre: a point {x, y} in metres expected, got a table of 1 value"), std::string::npos) << one;
 }
 
 TEST(LuaApi, SyntaxErrorNamesTheLine) {
