@@ -7,7 +7,7 @@
 #                                in one clang-14 build with ASan + UBSan and libFuzzer's
 #                                instrumentation in build-san/, and beside them 60 s of fuzzing
 #                                (three targets in turn), then all but the quick tests in build/
-#                                (built without the quick tests' programs)
+#                                (built without the quick tests' programs and the benchmarks)
 #   bash scripts/setup.sh build  install both lists and build everything, running nothing
 #   bash scripts/setup.sh clean-machine-test
 #                                install both lists, build the program, make its Debian package
@@ -66,7 +66,8 @@ else
     cmake --build "$build_dir" -j "$jobs" --target beltsim
   elif [ "$mode" = test ] && [ "${BELTSIM_SANITIZE:-1}" != 0 ]; then
     # every test runs once: the quick ones under the sanitizers below, so here everything but
-    # their programs (tests/CMakeLists.txt, BELTSIM_QUICK_PROGRAMS)
+    # their programs and the benchmarks, which no test runs (tests/CMakeLists.txt,
+    # BELTSIM_QUICK_PROGRAMS)
     cmake --build "$build_dir" -j "$jobs" --target beltsim_all_but_quick
   else
     cmake --build "$build_dir" -j "$jobs"
