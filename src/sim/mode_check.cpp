@@ -96,8 +96,15 @@ std::vector<std::pair<cplx, double>> prony(const std::vector<double>& x, double 
     for (int j = 0; j < p; ++j) V(k, j) = std::pow(z[j], k);
   const Eigen::VectorXd norm = V.colwise().norm().transpose();
   for (int j = 0; j < p; ++j) V.col(j) /= norm[j];
+  // V c = x in least squares as the real system [Re V, -Im V; Im V, Re V] [Re c; Im c] = [x; 0], the
+  // same minimum: the real QR above again rather than a complex one (9 s more of GCC's time)
+  Eigen::MatrixXd R(2 * K, 2 * p);
+  R << V.real(), -V.imag(), V.imag(), V.real();
+  Eigen::VectorXd rhs = Eigen::VectorXd::Zero(2 * K);
+  rhs.head(K) = Eigen::VectorXd::Map(x.data(), K);
+  const Eigen::VectorXd re_im = R.colPivHouseholderQr().solve(rhs);
   const Eigen::VectorXcd c =
-      V.colPivHouseholderQr().solve(Eigen::VectorXd::Map(x.data(), K).cast<cplx>()).cwiseQuotient(norm.cast<cplx>());
+      (re_im.head(p).cast<cplx>() + cplx(0, 1) * re_im.tail(p).cast<cplx>()).cwiseQuotient(norm.cast<cplx>());
   std::vector<std::pair<cplx, double>> out;
   for (int j = 0; j < p; ++j)
     if (z[j].imag() > 0) out.emplace_back(std::log(z[j]) / dt, 2 * std::abs(c[j]));
