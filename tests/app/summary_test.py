@@ -212,7 +212,10 @@ class Automotive(unittest.TestCase):
         d = tempfile.mkdtemp(prefix="beltsim_summary_auto_")
         self.addCleanup(shutil.rmtree, d, True)
         out = os.path.join(d, "auto")
-        code, _, err = run(["run", os.path.join(SOURCE, "scripts", "automotive_decoupler.lua"), "--out", out], d)
+        # the rows read here, not the run's accuracy: at rtol 1e-3 to 0.5 s the overrun is the same
+        # (0.4174 to 0.4671 s, as at the script's rtol 1e-4 to 0.6 s), in 11 s of CPU instead of 28
+        code, _, err = run(["run", os.path.join(SOURCE, "scripts", "automotive_decoupler.lua"), "--out", out,
+                            "--rtol", "1e-3", "--t-end", "0.5"], d)
         self.assertEqual(code, 0, err)
         code, table, err = run(["summary", out, "--from", "0.3", "--csv", "s.csv"], d)
         self.assertEqual(code, 0, err)
