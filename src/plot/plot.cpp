@@ -42,13 +42,19 @@ std::string with_unit(const std::string& what, const std::string& unit) {
   return what.empty() ? "[" + unit + "]" : what + " [" + unit + "]";
 }
 
+// the quantity every series of the group is ("omega" for driver.omega and driven.omega), "" when
+// they differ
+std::string shared_quantity(const PlotSpec& spec, const Group& g) {
+  const std::string q = last_component(spec.series[g.series[0]].name);
+  for (int k : g.series)
+    if (last_component(spec.series[k].name) != q) return "";
+  return q;
+}
+
 // "name [unit]" for one series, "omega [rad/s]" for several of one quantity, else the names
 std::string axis_label(const PlotSpec& spec, const Group& g) {
   if (g.series.size() == 1) return with_unit(spec.series[g.series[0]].name, g.unit);
-  const std::string q = last_component(spec.series[g.series[0]].name);
-  bool same = true;
-  for (int k : g.series) same = same && last_component(spec.series[k].name) == q;
-  if (same) return with_unit(q, g.unit);
+  if (const std::string q = shared_quantity(spec, g); !q.empty()) return with_unit(q, g.unit);
   std::string names;
   for (int k : g.series) names += (names.empty() ? "" : ", ") + spec.series[k].name;
   return with_unit(names, g.unit);
@@ -252,11 +258,11 @@ std::string plot_script(const PlotSpec& spec, const std::string& png) {
     for (size_t p = 0; p < groups.size(); ++p) {
       if (p + 1 == groups.size()) g << "set format x '% h'\nset xlabel " << gnuplot_string(spec.x_label) << "\n";
       // the label along the axis when it fits the panel's height (under 8 pixels a character at 12 pt),
-      // else the quantity and its unit ("tension [N]" for span_alt_pump.tension), else the unit
-      // alone (the legend names the series)
+      // else the quantity and its unit ("tension [N]" for span_alt_pump.tension) when the panel's
+      // series share it, else the unit alone (the legend names the series)
       auto fits = [&](const std::string& l) { return 8.0 * static_cast<double>(l.size()) <= panel_px; };
       std::string label = axis_label(spec, groups[p]);
-      if (!fits(label)) label = with_unit(last_component(spec.series[groups[p].series[0]].name), groups[p].unit);
+      if (!fits(label)) label = with_unit(shared_quantity(spec, groups[p]), groups[p].unit);
       if (!fits(label)) label = with_unit("", groups[p].unit);
       g << "set ylabel " << gnuplot_string(label) << "\n";
       // about four tic intervals however short the panel

@@ -198,6 +198,11 @@ TEST(Plot, APanelTooShortForItsSeriesNameIsLabelledByItsQuantity) {
   EXPECT_EQ(g.find("set ylabel '[N]'"), std::string::npos) << g;
   EXPECT_NE(g.find("set style textbox opaque"), std::string::npos) << g;
   EXPECT_NE(g.find("front boxed"), std::string::npos) << g;
+  // two quantities of one unit: not the first one's name for both, the unit alone
+  spec.series.push_back(series("probe.sde_force", "N"));
+  const std::string two = plot_script(spec, "p.png");
+  EXPECT_EQ(two.find("set ylabel 'tension [N]'"), std::string::npos) << two;
+  EXPECT_NE(two.find("set ylabel '[N]'"), std::string::npos) << two;
 }
 
 // events.csv's rows as marks: one per time, labels "what value" shortened, a cut row left out
