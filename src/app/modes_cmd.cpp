@@ -72,32 +72,31 @@ void print_table(const Scene& sc, const ModeAnalysis& a) {
   std::printf("t = %s s, belt speed %.3g m/s, %d states: %zu modes\n", number_text(a.t).c_str(), a.belt_speed, a.states,
               a.modes.size());
   std::printf("%5s %10s %8s  %s\n", "mode", "f [Hz]", "zeta", "where the kinetic energy is");
-  size_t unchecked = 0;
-  for (size_t k = 0; k < a.modes.size(); ++k) {
-    const bool checked = mode_checked(a, a.modes[k]);
-    unchecked += !checked;
-    std::printf("%5zu %10.2f %8.4f  %s%s\n", k + 1, a.modes[k].frequency, a.modes[k].damping,
-                where(a, a.modes[k]).c_str(), checked ? "" : "  *");
-  }
-  if (unchecked == 0) return;
-  // at speed: what is checked and what is not (docs/modes.md, "A running drive")
-  std::string sliding;
-  for (size_t j = 0; j < a.slip_arc.size(); ++j)
-    if (a.slip_arc[j] > 0) {
-      char buf[96];
-      std::snprintf(buf, sizeof buf, "%s%s %.3g m", sliding.empty() ? "" : ", ", sc.model.pulleys[j].name.c_str(),
-                    a.slip_arc[j]);
-      sliding += buf;
-    }
+  for (size_t k = 0; k < a.modes.size(); ++k)
+    std::printf("%5zu %10.2f %8.4f  %s\n", k + 1, a.modes[k].frequency, a.modes[k].damping,
+                where(a, a.modes[k]).c_str());
+  if (a.period == 0) return;
+  // a running belt: the modes of its motion over one element passing (docs/modes.md, A running drive)
   std::printf(
-      "* not checked at %.3g m/s: only a running span's lightly damped modes (-0.01 < zeta < 0.05) are (the "
-      "axially moving string);%s check a mode in time with --check K (docs/modes.md, A running drive)\n",
-      a.belt_speed,
-      sliding.empty() ? ""
-                      : (" the belt slides on slip arcs (" + sliding +
-                         "), where the linearization gives pulley, wrap and damped span modes that a run "
-                         "pushed along them does not show, and growing ones (zeta < 0) that do not grow;")
-                            .c_str());
+      "modes of the drive's motion over one element passing (%.3g ms, %.4g elements a second); over it the motion "
+      "repeats itself within %.2g %% of a pitch and %.2g %% of the belt's speed\n",
+      1e3 * a.period, 1 / a.period, 100 * a.position_defect, 100 * a.velocity_defect);
+  if (a.velocity_defect > kSteadyVelocity || a.position_defect > kSteadyPosition)
+    std::fprintf(stderr,
+                 "beltsim modes: warning: the drive is not steady at t = %s s: over one element passing its motion "
+                 "is off its own repeat by %.2g %% of a pitch and %.2g %% of the belt's speed (steady: below %.2g and "
+                 "%.2g %%); the modes are those of that passing's motion: take a time where the drive runs steadily "
+                 "(docs/modes.md, A running drive)\n",
+                 number_text(a.t).c_str(), 100 * a.position_defect, 100 * a.velocity_defect, 100 * kSteadyPosition,
+                 100 * kSteadyVelocity);
+  if (a.forced >= 0)
+    std::fprintf(
+        stderr,
+        "beltsim modes: warning: the drive is forced at t = %s s: pulley %s's law changes at %.2g of its value "
+        "a second, so its motion changes from one passing to the next and the modes are those of one "
+        "passing's; for the modes at a steady speed take --campbell, which holds the speed steady, or the "
+        "scene without its forcing (docs/modes.md, A running drive)\n",
+        number_text(a.t).c_str(), sc.model.pulleys[a.forced].name.c_str(), a.forcing_rate);
 }
 
 // --check K1,K2: the mode numbers (from 1, as listed), read before the run

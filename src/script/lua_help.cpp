@@ -91,8 +91,8 @@ const std::vector<HelpEntry>& api_help() {
       {"modes",
        "sim:modes{ fmin [Hz], fmax [Hz], transport, csv, shapes, video } -> { [k] = { frequency, damping, where, "
        "share }, ... }",
-       "natural frequencies, damping ratios and where each mode's energy is, about the state now; shapes = N draws "
-       "the first N (docs/modes.md)"},
+       "natural frequencies, damping ratios and where each mode's energy is, about the state now (a running belt: "
+       "of its motion over one element passing, m.period); shapes = N draws the first N (docs/modes.md)"},
       {"save", "sim:save(path) -> path", "a checkpoint: state, integrator, laws, μ, pending events, output positions"},
       {"resume", "beltsim.resume(path) -> sim", "continues a checkpoint (bit for bit); callbacks must be added again"},
       {"serve", "sim:serve{ port = 0, host = \"127.0.0.1\" } -> url",

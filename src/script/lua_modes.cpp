@@ -13,6 +13,7 @@
 namespace beltsim::script {
 
 // sim:modes{ fmin, fmax, transport, csv = "modes.csv", shapes = N, video = bool } -> { t, belt_speed,
+// period, position_defect, velocity_defect, forced,
 // groups = {...}, csv, pictures = {...}, [k] = { frequency, damping, decay, where, share = { group = s } } }
 int l_modes(lua_State* L) {
   const char* where = "sim:modes";
@@ -57,6 +58,15 @@ int l_modes(lua_State* L) {
   lua_createtable(L, static_cast<int>(a.modes.size()), 6);
   set_number(L, "t", a.t);
   set_number(L, "belt_speed", a.belt_speed);
+  // a running belt's passing (0: at rest or slow, the state's Jacobian) and how far its motion
+  // over it is from repeating itself
+  set_number(L, "period", a.period);
+  set_number(L, "position_defect", a.position_defect);
+  set_number(L, "velocity_defect", a.velocity_defect);
+  if (a.forced >= 0) {  // the pulley whose law changes in time now (ModeAnalysis::forced)
+    lua_pushstring(L, s.scene().model.pulleys[a.forced].name.c_str());
+    lua_setfield(L, -2, "forced");
+  }
   lua_createtable(L, static_cast<int>(a.groups.size()), 0);
   for (size_t g = 0; g < a.groups.size(); ++g) {
     lua_pushstring(L, a.groups[g].c_str());
@@ -84,8 +94,6 @@ int l_modes(lua_State* L) {
     lua_createtable(L, 0, static_cast<int>(a.groups.size()));
     for (size_t g = 0; g < a.groups.size(); ++g) set_number(L, a.groups[g].c_str(), m.participation[g]);
     lua_setfield(L, -2, "share");
-    // of a kind checked against a known answer (the command's table marks the others with *)
-    lua_pushboolean(L, mode_checked(a, m)), lua_setfield(L, -2, "checked");
     lua_rawseti(L, -2, static_cast<lua_Integer>(k + 1));
   }
   return 1;

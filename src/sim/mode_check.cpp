@@ -139,7 +139,10 @@ ModeCheck check_mode(const Scene& sc, const Drive& d, double t, const Eigen::Vec
   const int N = m.n_coord();
   for (int c = 0; c < 2 * N; ++c) pushed[c] += s.push * md.vector[c].real();
   for (int c = 0; c < m.n_bristle(); ++c) pushed[m.bristle_offset() + c] += s.push * md.vector[2 * N + c].real();
-  const double dt = 1 / (40 * md.frequency), window = s.periods / md.frequency;
+  const double window = s.periods / md.frequency;
+  // samples 40 a period of the mode; of a Floquet mode (a.period > 0) at whole passings too
+  const int per_passing = a.period > 0 ? static_cast<int>(std::ceil(a.period * 40 * md.frequency)) : 0;
+  const double dt = a.period > 0 ? a.period / per_passing : 1 / (40 * md.frequency);
   const std::vector<double> plain = watch(sc, d, t, y, window, dt, s.rtol, w);
   const std::vector<double> moved = watch(sc, d, t, pushed, window, dt, s.rtol, w);
   std::vector<double> diff;
@@ -147,18 +150,30 @@ ModeCheck check_mode(const Scene& sc, const Drive& d, double t, const Eigen::Vec
   ModeCheck out;
   out.where = w.name;
   double err = 0, size = 0;
-  for (size_t i = 0; i < diff.size() && i * dt <= 1 / md.frequency; ++i) {
+  auto compare = [&](size_t i) {
     const double predicted = (w.predicted * std::exp(md.lambda * (i * dt))).real();
     err += (diff[i] - predicted) * (diff[i] - predicted);
     size += predicted * predicted;
+  };
+  if (a.period > 0) {
+    // a Floquet mode is V·e^{λt} times a motion of the passing's period: exact at whole passings,
+    // where the drive stands as it stood; at those over its first period, and at least three
+    const double over = std::max(1 / md.frequency, 3 * a.period) * (1 + 1e-9);
+    for (size_t i = 0; i < diff.size() && i * dt <= over; i += per_passing) compare(i);
+  } else {
+    for (size_t i = 0; i < diff.size() && i * dt <= 1 / md.frequency; ++i) compare(i);
   }
   out.misfit = size > 0 ? std::sqrt(err / size) : NAN;
-  // the strongest oscillation between a quarter and four times the mode's frequency
+  // the strongest oscillation between a quarter and four times the mode's frequency: the largest
+  // RMS over the window (a heavily damped pole fitting the first samples' transient may carry a
+  // large amplitude but little of the difference)
   double strongest = 0;
+  const double span = dt * static_cast<double>(diff.size());
   for (const auto& [pole, amplitude] : prony(diff, dt, 8)) {
-    const double f = pole.imag() / (2 * M_PI);
-    if (f < 0.25 * md.frequency || f > 4 * md.frequency || amplitude <= strongest) continue;
-    strongest = amplitude;
+    const double f = pole.imag() / (2 * M_PI), x = 2 * pole.real() * span;
+    const double rms = amplitude * std::sqrt(std::abs(x) < 1e-9 ? 1.0 : std::expm1(x) / x);
+    if (f < 0.25 * md.frequency || f > 4 * md.frequency || rms <= strongest) continue;
+    strongest = rms;
     out.frequency = f;
     out.damping = -pole.real() / std::abs(pole);
   }

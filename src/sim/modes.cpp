@@ -11,6 +11,8 @@
 #include "model/rhs.hpp"
 #include "model/sparse.hpp"
 #include "model/workspace.hpp"
+#include "sim/balance.hpp"
+#include "sim/floquet.hpp"
 #include "sim/outputs.hpp"
 
 namespace beltsim {
@@ -72,33 +74,6 @@ Eigen::VectorXcd normalised_shape(const Model& m, const Eigen::VectorXcd& v) {
   return v * (std::conj(c) / std::abs(c)) / best;
 }
 
-// Balancing (Parlett & Reinsch, as LAPACK's dgebal without its permutations): A ← D⁻¹·A·D with D
-// diagonal powers of 2 that make each row's and column's off-diagonal norms alike. The drive's
-// matrix mixes positions and speeds, element and pulley coordinates, and stiffnesses over 10 decades
-// (contact 10¹⁰ s⁻² against a span's 10⁵): balanced, the eigenvalues keep their accuracy. Returns D.
-Eigen::VectorXd balance(Eigen::MatrixXd& A) {
-  const Eigen::Index n = A.rows();
-  Eigen::VectorXd D = Eigen::VectorXd::Ones(n);
-  for (bool changed = true; changed;) {
-    changed = false;
-    for (Eigen::Index i = 0; i < n; ++i) {
-      const double c = A.col(i).cwiseAbs().sum() - std::abs(A(i, i));
-      const double r = A.row(i).cwiseAbs().sum() - std::abs(A(i, i));
-      if (c == 0 || r == 0) continue;
-      double f = 1, cc = c;
-      while (cc < r / 2) cc *= 2, f *= 2;
-      while (cc >= 2 * r) cc /= 2, f /= 2;
-      if ((cc + r / f) < 0.95 * (c + r)) {
-        changed = true;
-        D[i] *= f;
-        A.row(i) /= f;
-        A.col(i) *= f;
-      }
-    }
-  }
-  return D;
-}
-
 }  // namespace
 
 std::vector<int> coordinate_groups(const Scene& sc, const Drive& d, double t, const Eigen::VectorXd& y,
@@ -158,35 +133,66 @@ ModeAnalysis analyze_modes(const Scene& sc, const Drive& d, double t, const Eige
   std::vector<int> keep(S);
   for (int k = 0; k < 2 * N; ++k) keep[k] = k;
   for (int k = 0; k < nz; ++k) keep[2 * N + k] = m.bristle_offset() + k;
-  const Eigen::MatrixXd full = Eigen::MatrixXd(Js);
-  Eigen::MatrixXd A(S, S);
-  for (int r = 0; r < S; ++r)
-    for (int c = 0; c < S; ++c) A(r, c) = full(keep[r], keep[c]);
   double nu = 0;
   element_rate(m, y, nu, out.belt_speed);
-  if (s.transport) {
-    // −ν·(U_{i+1} − U_{i−1})/2 on every element row of q, v and z
-    out.element_rate = nu;
-    auto transport = [&](int first, int per) {
-      for (int i = 0; i < n; ++i)
-        for (int r = 0; r < per; ++r) {
-          const int row = first + per * i + r;
-          A(row, first + per * ((i + 1) % n) + r) -= 0.5 * nu;
-          A(row, first + per * ((i + n - 1) % n) + r) += 0.5 * nu;
-        }
-    };
-    transport(0, 3);
-    transport(N, 3);
-    if (nz) transport(2 * N, 1);
-  }
   out.states = S;
-  const Eigen::VectorXd D = s.balance ? balance(A) : Eigen::VectorXd::Ones(S);
-  Eigen::EigenSolver<Eigen::MatrixXd> es(A, true);
-  if (es.info() != Eigen::Success) throw std::runtime_error("modes: the eigensolver did not converge");
+  // the eigenvalues and eigenvectors: J's own at rest (or in the material frame), the Floquet
+  // modes of the motion over one element passing when the belt runs
+  std::vector<std::complex<double>> lambdas;
+  Eigen::MatrixXcd vectors;
+  if (s.transport && s.floquet && std::abs(nu) >= kFloquetRate) {
+    out.element_rate = nu;
+    // decays up to that of ζ = zeta_max at f_max
+    const double max_decay = 2 * M_PI * s.f_max * s.zeta_max / std::sqrt(1 - s.zeta_max * s.zeta_max);
+    FloquetModes fm = floquet_modes(sc, d, t, y, nu, s.f_max, max_decay, keep);
+    out.period = fm.period;
+    out.position_defect = fm.position_defect;
+    out.velocity_defect = fm.velocity_defect;
+    lambdas = std::move(fm.lambda);
+    vectors = std::move(fm.vectors);
+  } else {
+    const Eigen::MatrixXd full(Js);
+    Eigen::MatrixXd A(S, S);
+    for (int r = 0; r < S; ++r)
+      for (int c = 0; c < S; ++c) A(r, c) = full(keep[r], keep[c]);
+    if (s.transport) {
+      // −ν·(U_{i+1} − U_{i−1})/2 on every element row of q, v and z
+      out.element_rate = nu;
+      auto transport = [&](int first, int per) {
+        for (int i = 0; i < n; ++i)
+          for (int r = 0; r < per; ++r) {
+            const int row = first + per * i + r;
+            A(row, first + per * ((i + 1) % n) + r) -= 0.5 * nu;
+            A(row, first + per * ((i + n - 1) % n) + r) += 0.5 * nu;
+          }
+      };
+      transport(0, 3);
+      transport(N, 3);
+      if (nz) transport(2 * N, 1);
+    }
+    const Eigen::VectorXd D = s.balance ? balance_matrix(A) : Eigen::VectorXd::Ones(S);
+    Eigen::EigenSolver<Eigen::MatrixXd> es(A, true);
+    if (es.info() != Eigen::Success) throw std::runtime_error("modes: the eigensolver did not converge");
+    lambdas.assign(es.eigenvalues().begin(), es.eigenvalues().end());
+    vectors = D.cast<std::complex<double>>().asDiagonal() * es.eigenvectors();
+  }
+  for (int j = 0; j < m.n_p() && out.forced < 0 && out.period > 0; ++j) {
+    const PulleyDrive& p = d.pulleys[j];
+    const double omega = d.omega(m, j, t, y.data() + N);
+    const TimeSpeedLaw& law = p.kinematic ? p.speed : p.torque;
+    // its fastest change within kForcingWindow of t, against its value at t (a ripple's phase at t
+    // is not what matters)
+    const double value = std::max(std::abs(law.eval(t, omega)), 1e-9);
+    double rate = 0;
+    for (int k = -20; k <= 20; ++k)
+      if (const double tk = t + k * kForcingWindow / 20; tk >= 0)
+        rate = std::max(rate, std::abs(law.d_time(tk, omega)) / value);
+    if (rate > kForcingRate) out.forced = j, out.forcing_rate = rate;
+  }
   const std::vector<int> group = coordinate_groups(sc, d, t, y, out.groups);
   const int G = static_cast<int>(out.groups.size());
-  for (int k = 0; k < S; ++k) {
-    const std::complex<double> lambda = es.eigenvalues()[k];
+  for (size_t k = 0; k < lambdas.size(); ++k) {
+    const std::complex<double> lambda = lambdas[k];
     const double f = lambda.imag() / (2 * M_PI);
     if (!(f >= s.f_min && f <= s.f_max)) continue;
     Mode md;
@@ -194,7 +200,7 @@ ModeAnalysis analyze_modes(const Scene& sc, const Drive& d, double t, const Eige
     md.frequency = f;
     md.damping = -lambda.real() / std::abs(lambda);
     if (!(md.damping <= s.zeta_max)) continue;
-    const Eigen::VectorXcd v = D.cast<std::complex<double>>().cwiseProduct(es.eigenvectors().col(k));
+    const Eigen::VectorXcd v = vectors.col(static_cast<Eigen::Index>(k));
     md.participation.assign(G, 0.0);
     double total = 0;
     for (int c = 0; c < N; ++c) {
@@ -216,14 +222,6 @@ ModeAnalysis analyze_modes(const Scene& sc, const Drive& d, double t, const Eige
   observe(m, d, sc.senses(), t, y.data(), obs);
   for (const PulleyObs& p : obs.pulleys) out.slip_arc.push_back(p.slip_arc);
   return out;
-}
-
-bool mode_checked(const ModeAnalysis& a, const Mode& m) {
-  if (std::abs(a.belt_speed) < 1e-3) return true;
-  double spans = 0;
-  for (size_t g = 0; g < a.groups.size(); ++g)
-    if (a.groups[g].rfind("span_", 0) == 0) spans += m.participation[g];
-  return spans > 0.6 && m.damping > -0.01 && m.damping < 0.05;
 }
 
 Eigen::VectorXd mode_state(const Eigen::VectorXd& y, const Mode& m, double amplitude, double phase) {

@@ -2,22 +2,23 @@
 // of motion at a state and its eigen-analysis (natural frequencies, damping ratios, mode shapes,
 // and where each mode's kinetic energy lies: which spans, pulleys, arms and rotors move).
 //
-// The belt's elements are Lagrangian: they travel with the belt. The Jacobian J of the right-hand
-// side at a running state, taken as it stands, gives the modes of a belt whose material points are
-// held where they are (a span of a running belt would ring at the fixed string's k·c/(2L)). The
-// modes a sensor fixed in space sees are those of the perturbation in the space-fixed (Eulerian)
-// frame: with the elements passing a fixed point at ν elements per second (ν = the mean over the
-// elements of their speed along the belt over their spacing), the perturbation U of the elements'
-// states as a function of the element slot obeys
+// At rest the modes are those of the right-hand side's Jacobian J at the state. The belt's
+// elements are Lagrangian: they travel with the belt, and a running drive in its steady state is
+// not a fixed point but, in the space-fixed frame, a motion that repeats itself every element
+// passing (T = 1/ν, ν elements passing a fixed point per second, the mean over the elements of
+// their speed along the belt over their spacing). A running belt's modes are the Floquet modes of
+// that motion (sim/floquet.hpp). A slow one's (ν < kFloquetRate) are those of J with the transport
+// of the space-fixed (Eulerian) frame added: the perturbation U of the elements' states as a
+// function of the element slot obeys
 //   ∂U/∂t = J·U − ν·D·U,   (D·U)_i = (U_{i+1} − U_{i−1})/2
 // (a material derivative d/dt = ∂/∂t + ν·∂/∂i; central differences along the ring, which add no
-// damping). The pulleys', arms' and rotors' coordinates are not transported. At rest ν = 0 and it
-// is J. On a straight span it is the axially moving string (Wickert & Mote):
-// f_k = k·(c² − v²)/(2L·c), c² = T/m′.
+// damping; the pulleys', arms' and rotors' coordinates are not transported). On a straight span it
+// is the axially moving string (Wickert & Mote): f_k = k·(c² − v²)/(2L·c), c² = T/m′; on a wrap that
+// slips it gives modes the drive does not have (docs/modes.md).
 //
-// The eigenvalues λ of that matrix (Eigen's dense EigenSolver; the energy integrals are left out:
-// they feed nothing back) with Im λ > 0 are the oscillating modes: f = Im λ/2π, ζ = −Re λ/|λ|.
-// Real eigenvalues (overdamped motion) and the zero ones (the pulleys' angles are cyclic; the belt's
+// The eigenvalues λ (Eigen's dense EigenSolver; the energy integrals are left out: they feed
+// nothing back) with Im λ > 0 are the oscillating modes: f = Im λ/2π, ζ = −Re λ/|λ|. Real
+// eigenvalues (overdamped motion) and the zero ones (the pulleys' angles are cyclic; the belt's
 // position along the ring is held by friction, a rate law) are not modes; below f_min neither.
 #pragma once
 
@@ -31,14 +32,28 @@
 
 namespace beltsim {
 
+// [1/s] the element rate from which a running belt's modes are its motion's Floquet modes: a
+// passing of at most 50 ms (below, the passing's run would cost more than the modes are worth, and
+// the transport term's error, ν·(pitch)·(k·pitch)², is small)
+constexpr double kFloquetRate = 20;
+// a motion that repeats itself less closely over a passing is not steady (the command warns):
+// a velocity defect of 1 % (the paper's drive at 0.5 s: 0.06 %; a belt set running on held
+// pulleys: 52 %), a position defect of 5 % of a pitch (0.3 %; 27 %)
+constexpr double kSteadyVelocity = 0.01, kSteadyPosition = 0.05;
+// [1/s] a law changing faster than this, relative to its value, within kForcingWindow [s] of the
+// time, forces the drive (a crankshaft's ±4 rad/s of 2nd-order ripple on 84 rad/s: 8 /s)
+constexpr double kForcingRate = 1, kForcingWindow = 0.05;
+
 struct ModeSettings {
   double f_min = 1;       // [Hz] lower modes are left out (the cyclic and frictional zero modes)
   double f_max = 2000;    // [Hz] higher modes are left out (the elements' own axial, bending and contact ringing)
   double zeta_max = 0.9;  // modes damped more are left out (nearly critically damped: the friction's stiff
                           // rate law between the belt and its pulleys, whose real eigenvalues split in pairs)
-  bool transport = true;
-  bool balance = true;  // balance the matrix before the eigensolver (modes.cpp; false for tests)  // false: J alone
-                        // (the material frame: the belt's points held where they are)
+  bool transport = true;  // false: J alone (the material frame: the belt's points held where they are)
+  // a running belt (ν ≥ kFloquetRate): the Floquet modes of its motion over one element passing
+  // (floquet.hpp); false, or a slower belt: the state's Jacobian with the transport term
+  bool floquet = true;
+  bool balance = true;  // balance the matrix before the eigensolver (modes.cpp; false for tests)
 };
 
 struct Mode {
@@ -61,7 +76,15 @@ struct ModeAnalysis {
   double t = 0;             // [s] the state's time
   double belt_speed = 0;    // [m/s] the elements' mean speed along the belt
   double element_rate = 0;  // ν [1/s]: elements passing a fixed point per second (0 when !transport)
-  int states = 0;           // size of the matrix analysed
+  double period = 0;        // [s] the passing analysed (floquet.hpp), 1/|ν|; 0: the state's Jacobian alone
+  // over that passing, how far the motion is from repeating itself (FloquetModes)
+  double position_defect = 0, velocity_defect = 0;
+  // a pulley whose law changes in time near t (a speed's harmonics, a ramp; -1: none) and how
+  // fast, relative to its value [1/s] (kForcingRate): it changes the motion from one passing to the
+  // next
+  int forced = -1;
+  double forcing_rate = 0;
+  int states = 0;  // size of the matrix analysed
   // span_<a>_<b> (the route's spans, as timeseries.csv names them: the elements on no pulley,
   // by the nearest span), wrap_<p> (the elements on pulley p), pulley_<p> (its rotation; none for
   // a kinematic pulley, which does not move), arm_<p>, rotor_<p> (a coupled rotor and its clutch hub)
@@ -71,12 +94,6 @@ struct ModeAnalysis {
   // friction), by pulley index
   std::vector<double> slip_arc;
 };
-
-// Whether mode m of a is of a kind checked against a known answer (docs/modes.md): every mode at
-// rest (|belt speed| below 1e-3 m/s), and at speed a span's lightly damped mode (more than 60 % of
-// its energy in the spans, −0.01 < ζ < 0.05: the axially moving string). Any other mode of a running
-// drive is not: check_mode (sim/mode_check.hpp) checks one in time.
-bool mode_checked(const ModeAnalysis& a, const Mode& m);
 
 // the modes of the drive d at the state y at time t (y: Model::n_state values). Throws
 // std::runtime_error when the eigensolver fails, std::invalid_argument for settings out of range.

@@ -105,18 +105,20 @@ class Modes(unittest.TestCase):
                     'local m = sim:modes { fmax = 500, csv = "modes.csv", shapes = 1 }\n'
                     'for k, mode in ipairs(m) do print(k, mode.frequency, mode.damping, mode.where) end\n'
                     'print(m.csv, #m.pictures, m.groups[1])\n'
-                    # at rest every mode is of a checked kind; at speed (0.15 s: 3.4 m/s, the
-                    # belt slipping on the driver) the pulleys' and wraps' are not (sim/modes.hpp)
-                    'local all = true\nfor _, mode in ipairs(m) do all = all and mode.checked end\n'
-                    'sim:run_to(0.15)\nlocal unchecked = 0\n'
-                    'for _, mode in ipairs(sim:modes { fmax = 500 }) do if not mode.checked then unchecked = unchecked + 1 end end\n'
-                    'print("checked at rest", all, "unchecked at speed", unchecked > 0)\n'
+                    # at rest the state's own modes (no passing); at speed (0.15 s: 3.4 m/s) the
+                    # Floquet modes of one element passing, the driver's torque still ramping: the
+                    # drive is forced and speeds up by more than 1 % over the passing (measured
+                    # 12 %; sim/modes.hpp, sim/floquet.hpp)
+                    'print("at rest", m.period, m.forced)\n'
+                    'sim:run_to(0.15)\nlocal r = sim:modes { fmax = 500 }\n'
+                    'print("at speed", r.period > 0, r.velocity_defect > 0.01, r.forced, r.velocity_defect)\n'
                     'sim:modes { shapes = 1.5 }\n')
         code, out, err = run(["run", path], cwd=self.dir)
         self.assertEqual(code, 1, err)
         self.assertIn("o/modes.csv\t1\tspan_driver_driven", out)
-        self.assertIn("checked at rest\ttrue\tunchecked at speed\ttrue", out)
-        self.assertIn("l.lua:19: sim:modes: shapes must be a whole number of modes to draw, 0 to 1000 (got 1.5)", err)
+        self.assertIn("at rest\t0.0\tnil", out)
+        self.assertIn("at speed\ttrue\ttrue\tdriver\t", out)
+        self.assertIn("l.lua:17: sim:modes: shapes must be a whole number of modes to draw, 0 to 1000 (got 1.5)", err)
         self.assertTrue(os.path.isfile(os.path.join(self.dir, "o", "modes.csv")))
 
 

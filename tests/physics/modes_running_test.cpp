@@ -21,18 +21,21 @@ double share(const ModeAnalysis& a, const Mode& m, const std::string& prefix) {
   return s;
 }
 
-// On the slipping drive the linearization lists 30 modes under 2 kHz, none of a kind checked at
-// speed (mode_checked). Pushed (1e-8 m) and run on (six periods), the difference against the
-// predicted motion over the first period (RMS), measured:
-// - the two pulleys turning against each other: 102.11 Hz, ζ 0.083 in the list; in time (the
-//   driver's angle) 99.29 Hz, ζ 0.116, off by 0.14: agrees;
-// - the tight span (858 N) 168.58 Hz, ζ 0.221; in time 174.5 Hz, ζ 0.127 (Prony on the span's
-//   middle, rippled by the element passing), off by 0.08: agrees (Wickert & Mote give 162 to 174 Hz
-//   for ends at the tangent points or a pitch inside; the paper's bending damper damps it);
-// - the growing modes, 53.33 Hz ζ −0.034 and 68.95 Hz ζ −0.051: off by 1.35 and 0.81; the run
-//   shows 91 Hz, ζ 0.18 and 0.12: they do not exist (a run pushed by twisting the pulleys grows
-//   nothing over 0.3 s either: it rings at 98.6 Hz, ζ 0.117).
-// Bound: agrees at a misfit of at most 0.25 (ModeCheckSettings::max_misfit).
+// On the slipping drive (slip arcs of 0.18 and 0.08 m) the Floquet modes of the motion over one
+// element passing (2.94 ms) list 28 modes under 180 Hz, none growing (the least damped ζ 0.065;
+// the state's Jacobian with a transport term, the method before, listed growing ones at 53 and
+// 69 Hz that a run does not show). Pushed (1e-8 m) and run on, the difference against the mode's
+// motion at whole passings (where the Floquet mode is exact) over its first period, measured with
+// `beltsim modes scripts/paper_dry.lua --at 0.5 --check 1,...,28`: 27 of the 28 agree (misfits
+// 1-22 %; the most damped, 26.9 Hz ζ 0.72, 25 %). Checked here (this state, rtol 1e-6):
+// - the two pulleys turning against each other: 98.87 Hz, ζ 0.112; in time (the driver's angle)
+//   98.60 Hz, ζ 0.106 (Prony over six periods), misfit 3 %;
+// - the next of the family it heads (modes about a belt circulation frequency, v/L = 5.7 Hz, apart:
+//   strain carried round the loop in the sticking arcs): 107.08 Hz, ζ 0.127, misfit 9 %;
+// - the tight span (858 N): 164.32 Hz, ζ 0.203, misfit 7 % (Wickert & Mote give 162 to 174 Hz for
+//   ends at the tangent points or a pitch inside).
+// Bounds: agrees at a misfit of at most 0.25 (ModeCheckSettings::max_misfit); the torsional mode's
+// frequency in time within 2 % and its ζ within 0.02 (a pulley's angle, six clean periods).
 TEST(ModesRunning, TheSlippingDrivesModesCheckedInTime) {
   test::expect_warnings({WarningKind::failed_step});
   const Scene sc = build_scene(presets::paper_dry());
@@ -43,31 +46,28 @@ TEST(ModesRunning, TheSlippingDrivesModesCheckedInTime) {
   ASSERT_EQ(a.slip_arc.size(), 2u);
   EXPECT_GT(a.slip_arc[0], 0);
   EXPECT_GT(a.slip_arc[1], 0);
+  EXPECT_GT(a.period, 0);
+  EXPECT_LT(a.position_defect, kSteadyPosition);
+  EXPECT_LT(a.velocity_defect, kSteadyVelocity);
   size_t torsion = a.modes.size(), tight = a.modes.size();
-  std::vector<size_t> growing;
   for (size_t k = 0; k < a.modes.size(); ++k) {
     const Mode& m = a.modes[k];
-    EXPECT_FALSE(mode_checked(a, m)) << m.frequency << " Hz";
-    if (m.damping < 0) growing.push_back(k);
-    if (share(a, m, "pulley_") > 0.9 && m.damping > 0 && m.damping < 0.2 &&
-        (torsion == a.modes.size() || m.damping > a.modes[torsion].damping))
+    EXPECT_GT(m.damping, 0) << m.frequency << " Hz grows";
+    if (share(a, m, "pulley_") > 0.9 && (torsion == a.modes.size() || m.damping < a.modes[torsion].damping))
       torsion = k;
     if (share(a, m, "span_driven_driver") > 0.9 && tight == a.modes.size()) tight = k;
   }
-  ASSERT_LT(torsion, a.modes.size());
+  ASSERT_LT(torsion + 1, a.modes.size());
   ASSERT_LT(tight, a.modes.size());
-  ASSERT_GE(growing.size(), 1u);
-  for (size_t k : {torsion, tight}) {
+  for (size_t k : {torsion, torsion + 1, tight}) {
     const ModeCheck c = check_mode(sc, sc.drive, t0, y, a, k);
     std::printf("mode %.2f Hz zeta %.4f: in time at %s %.2f Hz zeta %.4f, misfit %.2f\n", a.modes[k].frequency,
                 a.modes[k].damping, c.where.c_str(), c.frequency, c.damping, c.misfit);
     EXPECT_TRUE(c.agrees);
-  }
-  for (size_t k : growing) {
-    const ModeCheck c = check_mode(sc, sc.drive, t0, y, a, k);
-    std::printf("growing mode %.2f Hz zeta %.4f: in time at %s %.2f Hz zeta %.4f, misfit %.2f\n", a.modes[k].frequency,
-                a.modes[k].damping, c.where.c_str(), c.frequency, c.damping, c.misfit);
-    EXPECT_FALSE(c.agrees);
+    if (k == torsion) {
+      EXPECT_NEAR(c.frequency, a.modes[k].frequency, 0.02 * a.modes[k].frequency);
+      EXPECT_NEAR(c.damping, a.modes[k].damping, 0.02);
+    }
   }
 }
 

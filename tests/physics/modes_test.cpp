@@ -85,9 +85,11 @@ TEST(Modes, SpanFollowsTheAxiallyMovingString) {
   // f0[0] and f0[1]: the first mode of each span (equal tensions: a pair); f0[2] the second
   EXPECT_NEAR(f0[2] / f0[0], 2.0, 0.015 * 2.0);
 
+  ModeSettings instant;  // (a belt set running on held pulleys is not a steady motion: see below)
+  instant.floquet = false;
   for (const double v : {0.4 * c, -0.4 * c}) {  // either way round the ring
     const Eigen::VectorXd y = testing::rigid_motion(sc, v);
-    const ModeAnalysis av = analyze_modes(sc, sc.drive, 0.0, y);
+    const ModeAnalysis av = analyze_modes(sc, sc.drive, 0.0, y, instant);
     const std::vector<double> fv = span_modes(av);
     ASSERT_GE(fv.size(), 1u);
     const double expected = 1 - v * v / (c * c);
@@ -100,6 +102,13 @@ TEST(Modes, SpanFollowsTheAxiallyMovingString) {
     ASSERT_GE(ff.size(), 1u);
     EXPECT_GT(std::abs(ff[0] / f0[0] - expected), 0.1 * expected) << "material frame: " << ff[0] << " Hz";
   }
+  // The Floquet analysis (the default at speed) runs the drive over one element passing: the belt
+  // of the rest state set running on held pulleys does not repeat its motion (measured: 27 % of a
+  // pitch, 52 % of its speed; a steady drive 0.3 % and 0.06 %), and the analysis says so
+  const ModeAnalysis af = analyze_modes(sc, sc.drive, 0.0, testing::rigid_motion(sc, 0.4 * c));
+  EXPECT_GT(af.period, 0);
+  EXPECT_GT(af.velocity_defect, kSteadyVelocity);
+  EXPECT_GT(af.position_defect, kSteadyPosition);
 }
 
 // 1b. A RUNNING drive in its steady state: the driver held at v = 0.4·c (c² = T/ρ at the
@@ -109,9 +118,11 @@ TEST(Modes, SpanFollowsTheAxiallyMovingString) {
 // tension T and its span ends) is J's own first span mode (the material frame, transport = false:
 // the belt's points held, checked against the string in 1.), so f(v) = f_material·(1 − v²/c²) with
 // c² = T/ρ from the running spans' measured tension, v the belt speed.
-// Measured (120 elements, 28.87 m/s, T 497.3 N): 102.75 Hz against 121.85·0.8391 = 102.25 Hz
-// (+0.5 %; 0.12 ms later, in another place of the element passing, +0.8 %), as the transport's own
-// error in 1. (+0.7 % at 120 elements); bound 2 %. The material frame's own 121.85 Hz is 19 % off.
+// Measured (120 elements, 28.86 m/s, T 497.8 N): the Floquet modes of the motion over one passing
+// (the default at speed, sim/floquet.hpp) give 103.85 Hz against 121.95·0.8393 = 102.36 Hz (+1.5 %;
+// the state's Jacobian with the transport term gave +0.5 %, and +0.8 % 0.12 ms later). The expected
+// value rests on the material frame at one instant, whose span ends move by up to a pitch (2.6 % of
+// the span) over a passing; bound 2 %. The material frame's own 121.95 Hz is 19 % off.
 // With 60 elements: +2.3 %, the spans' tensions 467/474 N (not yet steady at 0.2 s). The running
 // span is longer than at rest: 121.85 Hz at 497 N is c/(2·0.295 m), where at rest 126.16 Hz is
 // c/(2·0.286 m) (L = 0.290 m between the tangent points; the lighter contact lets the belt leave
@@ -149,10 +160,11 @@ TEST(Modes, RunningSpanFollowsWickertMote) {
   EXPECT_NEAR(std::abs(vb), v, 0.01 * v);
   EXPECT_NEAR(T0, T1, 0.01 * T);
   EXPECT_NEAR(fv[0], expected, 0.02 * expected);
-  for (const Mode& md : a.modes)  // the command marks it checked (the axially moving string)
-    if (md.frequency == fv[0]) {
-      EXPECT_TRUE(mode_checked(a, md));
-    }
+  // the motion is steady: it repeats itself over the passing (measured 0.25 % of a pitch, 0.25 %
+  // of the speed)
+  EXPECT_GT(a.period, 0);
+  EXPECT_LT(a.position_defect, kSteadyPosition);
+  EXPECT_LT(a.velocity_defect, kSteadyVelocity);
 }
 
 // 2. The two free pulleys of the paper's drive at rest (J = 0.025 kg·m² each, r = 0.1 m) turn
