@@ -7,13 +7,11 @@
 #include <memory>
 #include <stdexcept>
 
-#include "integrate/belt_system.hpp"
-#include "integrate/driver.hpp"
-#include "integrate/stepper.hpp"
 #include "model/rhs.hpp"
 #include "model/sparse.hpp"
 #include "model/workspace.hpp"
 #include "sim/balance.hpp"
+#include "sim/run_on.hpp"
 
 namespace beltsim {
 
@@ -52,16 +50,8 @@ std::vector<Eigen::VectorXd> passing_motion(const Model& m, const Drive& d, doub
                                             double T, int steps) {
   const double h = T / steps;
   std::vector<Eigen::VectorXd> ys;
-  BeltSystem sys(m, d);
-  auto stepper = make_stepper("esdirk32");
-  DriveOptions opt;
-  opt.t0 = t0;
-  opt.t_end = t0 + T;
-  opt.sample_dt = h;
-  opt.events = d.breakpoints();
-  Eigen::VectorXd state = y0;
   double last = -INFINITY;
-  drive(sys, *stepper, Tolerances{1e-9, Tolerances::kAtolUnset}, opt, state, [&](double t, const Eigen::VectorXd& y) {
+  run_on(m, d, t0, y0, T, h, 1e-9, [&](double t, const Eigen::VectorXd& y) {
     if (t - last < 0.5 * h) return;  // (t_end's sample when it falls on the grid's last point)
     last = t;
     ys.push_back(y);

@@ -8,10 +8,8 @@
 #include <functional>
 #include <vector>
 
-#include "integrate/belt_system.hpp"
-#include "integrate/driver.hpp"
-#include "integrate/stepper.hpp"
 #include "sim/outputs.hpp"
+#include "sim/run_on.hpp"
 
 namespace beltsim {
 
@@ -114,17 +112,8 @@ std::vector<std::pair<cplx, double>> prony(const std::vector<double>& x, double 
 // the watched value of a run from (t, y) over `window`, sampled every dt
 std::vector<double> watch(const Scene& sc, const Drive& d, double t, const Eigen::VectorXd& y, double window, double dt,
                           double rtol, const Watch& w) {
-  BeltSystem sys(sc.model, d);
-  auto stepper = make_stepper("esdirk32");
-  DriveOptions opt;
-  opt.t0 = t;
-  opt.t_end = t + window;
-  opt.sample_dt = dt;
-  opt.events = d.breakpoints();
-  Eigen::VectorXd state = y;
   std::vector<double> out;
-  drive(sys, *stepper, Tolerances{rtol, Tolerances::kAtolUnset}, opt, state,
-        [&](double, const Eigen::VectorXd& s) { out.push_back(w.read(s)); });
+  run_on(sc.model, d, t, y, window, dt, rtol, [&](double, const Eigen::VectorXd& s) { out.push_back(w.read(s)); });
   return out;
 }
 
