@@ -2,7 +2,7 @@
 # Rebuilds the pictures of media/ from the paper's three scripts, after building
 # (`bash scripts/setup.sh build`); idempotent (the same code gives the same files).
 #
-#   bash media/make_media.sh          everything (about seven minutes)
+#   bash media/make_media.sh          everything (about nine minutes)
 #   bash media/make_media.sh paper    only the paper's figures, media/paper/figNN.png, and the
 #                                     measured values in docs/paper.md (about a minute)
 #
@@ -72,6 +72,10 @@ if [ "$what" = all ]; then
     "$b" plot "$tmp/decoupler_$k/timeseries.csv" alternator.omega alternator.rotor_speed alternator.coupling_torque \
       --from 0.3 --out "media/automotive_decoupler_$k.png" >/dev/null
   done
+  # docs/modes.md: the automotive drive's Campbell diagram (about two minutes)
+  "$b" modes scripts/automotive_tensioner.lua --campbell crankshaft --rpm 800:3200:4 --orders 2,4 \
+    --out "$tmp/campbell" >/dev/null
+  cp "$tmp/campbell/campbell.png" media/campbell_automotive.png
   # docs/tutorial.md: a frame of the tutorial's run, and its console session's sim:show
   "$b" run docs/examples/tutorial/drive.lua --out "$tmp/tutorial" >/dev/null
   cp "$tmp/tutorial/frames/frame_00075.png" media/tutorial_drive.png
