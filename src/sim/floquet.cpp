@@ -1,6 +1,5 @@
 #include "sim/floquet.hpp"
 
-#include <Eigen/Eigenvalues>
 #include <Eigen/KLUSupport>
 #include <Eigen/SparseCore>
 #include <cmath>
@@ -10,7 +9,7 @@
 #include "model/rhs.hpp"
 #include "model/sparse.hpp"
 #include "model/workspace.hpp"
-#include "sim/balance.hpp"
+#include "sim/eigen.hpp"
 #include "sim/run_on.hpp"
 
 namespace beltsim {
@@ -165,22 +164,20 @@ FloquetModes floquet_modes(const Scene& sc, const Drive& d, double t0, const Eig
   for (int k = 1; k <= out.steps; ++k) bdf.advance(k, X, Xm);
   Eigen::MatrixXd M(S, S);
   for (int r = 0; r < S; ++r) M.row(L.element(r) ? L.row(r, (L.slot(r) + step + L.n) % L.n) : r) = X.row(r);
-  const Eigen::VectorXd D = balance_matrix(M);
-  Eigen::EigenSolver<Eigen::MatrixXd> es(M, true);
-  if (es.info() != Eigen::Success) throw std::runtime_error("floquet: the eigensolver did not converge");
+  const EigenPairs es = eigen_pairs(std::move(M), true, true, "floquet");
 
   // the candidates: multipliers above rounding and within max_decay, each with its turn
   const double floor = std::max(std::exp(-max_decay * T), 1e-12);
   std::vector<int> cand;
   for (int k = 0; k < S; ++k)
-    if (std::abs(es.eigenvalues()[k]) > floor) cand.push_back(k);
+    if (std::abs(es.values[k]) > floor) cand.push_back(k);
   const int c = static_cast<int>(cand.size());
   Eigen::MatrixXcd W(S, c);
-  for (int j = 0; j < c; ++j) W.col(j) = D.cast<cplx>().cwiseProduct(es.eigenvectors().col(cand[j]));
+  for (int j = 0; j < c; ++j) W.col(j) = es.vectors.col(cand[j]);
   const std::vector<double> turned = turns(m, L, step, bdf, W);
   std::vector<int> kept;
   for (int j = 0; j < c; ++j) {
-    const cplx mu = es.eigenvalues()[cand[j]];
+    const cplx mu = es.values[cand[j]];
     // the turn followed, rounded to arg μ plus whole turns
     const double whole = std::round((turned[j] - std::arg(mu)) / (2 * M_PI));
     const cplx lambda(std::log(std::abs(mu)) / T, (std::arg(mu) + 2 * M_PI * whole) / T);

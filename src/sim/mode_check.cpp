@@ -1,6 +1,5 @@
 #include "sim/mode_check.hpp"
 
-#include <Eigen/Eigenvalues>
 #include <Eigen/QR>
 #include <algorithm>
 #include <cmath>
@@ -8,6 +7,7 @@
 #include <functional>
 #include <vector>
 
+#include "sim/eigen.hpp"
 #include "sim/outputs.hpp"
 #include "sim/run_on.hpp"
 
@@ -86,7 +86,7 @@ std::vector<std::pair<cplx, double>> prony(const std::vector<double>& x, double 
   Eigen::MatrixXd C = Eigen::MatrixXd::Zero(p, p);
   for (int j = 0; j < p; ++j) C(0, j) = a[j];
   for (int j = 1; j < p; ++j) C(j, j - 1) = 1;
-  const Eigen::VectorXcd z = Eigen::EigenSolver<Eigen::MatrixXd>(C).eigenvalues();
+  const Eigen::VectorXcd z = eigen_pairs(C, false, false, "prony").values;
   // the amplitudes, each pole's column scaled to norm 1 (a spurious growing pole's column would
   // otherwise be larger than the others by e^(Re s·window) and leave them none)
   Eigen::MatrixXcd V(K, p);

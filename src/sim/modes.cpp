@@ -1,6 +1,5 @@
 #include "sim/modes.hpp"
 
-#include <Eigen/Eigenvalues>
 #include <Eigen/SparseCore>
 #include <algorithm>
 #include <cmath>
@@ -11,7 +10,7 @@
 #include "model/rhs.hpp"
 #include "model/sparse.hpp"
 #include "model/workspace.hpp"
-#include "sim/balance.hpp"
+#include "sim/eigen.hpp"
 #include "sim/floquet.hpp"
 #include "sim/outputs.hpp"
 
@@ -170,11 +169,9 @@ ModeAnalysis analyze_modes(const Scene& sc, const Drive& d, double t, const Eige
       transport(N, 3);
       if (nz) transport(2 * N, 1);
     }
-    const Eigen::VectorXd D = s.balance ? balance_matrix(A) : Eigen::VectorXd::Ones(S);
-    Eigen::EigenSolver<Eigen::MatrixXd> es(A, true);
-    if (es.info() != Eigen::Success) throw std::runtime_error("modes: the eigensolver did not converge");
-    lambdas.assign(es.eigenvalues().begin(), es.eigenvalues().end());
-    vectors = D.cast<std::complex<double>>().asDiagonal() * es.eigenvectors();
+    EigenPairs es = eigen_pairs(std::move(A), true, s.balance, "modes");
+    lambdas.assign(es.values.begin(), es.values.end());
+    vectors = std::move(es.vectors);
   }
   for (int j = 0; j < m.n_p() && out.forced < 0 && out.period > 0; ++j) {
     const PulleyDrive& p = d.pulleys[j];

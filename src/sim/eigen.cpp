@@ -1,6 +1,8 @@
-#include "sim/balance.hpp"
+#include "sim/eigen.hpp"
 
+#include <Eigen/Eigenvalues>
 #include <cmath>
+#include <string>
 
 namespace beltsim {
 
@@ -25,6 +27,16 @@ Eigen::VectorXd balance_matrix(Eigen::MatrixXd& A) {
     }
   }
   return D;
+}
+
+EigenPairs eigen_pairs(Eigen::MatrixXd A, bool vectors, bool balance, const char* what) {
+  const Eigen::VectorXd D = balance ? balance_matrix(A) : Eigen::VectorXd::Ones(A.rows());
+  Eigen::EigenSolver<Eigen::MatrixXd> es(A, vectors);
+  if (es.info() != Eigen::Success) throw std::runtime_error(std::string(what) + ": the eigensolver did not converge");
+  EigenPairs out;
+  out.values = es.eigenvalues();
+  if (vectors) out.vectors = D.cast<std::complex<double>>().asDiagonal() * es.eigenvectors();
+  return out;
 }
 
 }  // namespace beltsim
