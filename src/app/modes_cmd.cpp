@@ -92,7 +92,7 @@ void print_table(const Scene& sc, const ModeAnalysis& a) {
   if (a.forced >= 0)
     std::fprintf(
         stderr,
-        "beltsim modes: warning: the drive is forced at t = %s s: pulley %s's law changes at %.2g of its value "
+        "beltsim modes: warning: the drive is forced at t = %s s: pulley %s's law changes at up to %.2g times its value "
         "a second, so its motion changes from one passing to the next and the modes are those of one "
         "passing's; for the modes at a steady speed take --campbell, which holds the speed steady, or the "
         "scene without its forcing (docs/modes.md, A running drive)\n",
