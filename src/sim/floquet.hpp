@@ -19,8 +19,8 @@
 //
 // Φ is integrated with BDF2 (implicit Euler for its first step) on equal steps of at most
 // 1/(40·f_max): L-stable, so the belt's stiff contact and friction motion (10⁴ to 10¹⁰ s⁻¹) is
-// damped out as it is in the drive, and second order, so a mode at f_max turns 0.5 % too slowly and
-// one at f_max/10 by 5e-5 (BDF2's phase error (ωh)²·2/9 per radian).
+// damped out as it is in the drive, and second order, so a mode at f_max is 0.5 % off in frequency and
+// one at f_max/10 5e-5 off (BDF2's phase error, (2/9)·(ωh)³ a step).
 //
 // What it replaces: the state's Jacobian with a transport term (the material derivative taken
 // at one instant, modes.hpp) is the same on a straight span (the axially moving string), but on a

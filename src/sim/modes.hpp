@@ -33,8 +33,9 @@
 namespace beltsim {
 
 // [1/s] the element rate from which a running belt's modes are its motion's Floquet modes: a
-// passing of at most 50 ms (below, the passing's run would cost more than the modes are worth, and
-// the transport term's error, ν·(pitch)·(k·pitch)², is small)
+// passing of at most 50 ms. The passing takes 40·f_max·T steps (4 000 at 50 ms and 2 kHz), each a
+// factorisation and solves of the whole state: a slower belt's would take minutes (a choice of
+// cost; the transport term it falls back on is not checked on a slipping wrap, docs/modes.md)
 constexpr double kFloquetRate = 20;
 // a motion that repeats itself less closely over a passing is not steady (the command warns):
 // a velocity defect of 1 % (the paper's drive at 0.5 s: 0.06 %; a belt set running on held
