@@ -2,6 +2,7 @@
 
 #include <Eigen/Eigenvalues>
 #include <cmath>
+#include <stdexcept>
 #include <string>
 
 namespace beltsim {

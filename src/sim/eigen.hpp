@@ -4,7 +4,6 @@
 #pragma once
 
 #include <Eigen/Core>
-#include <stdexcept>
 
 namespace beltsim {
 

@@ -14,26 +14,26 @@
 
 namespace beltsim {
 
-namespace {
-
-using Sparse = Eigen::SparseMatrix<double>;
-using cplx = std::complex<double>;
-
-// ∂ẏ/∂y at (t, y) over the kept coordinates
-Sparse ode_matrix(const Model& m, const Drive& d, double t, const Eigen::VectorXd& y, const std::vector<int>& keep) {
+Eigen::SparseMatrix<double> ode_matrix(const Model& m, const Drive& d, double t, const Eigen::VectorXd& y,
+                                       const std::vector<int>& keep) {
   Workspace ws(m, false);
   Jacobian J;
   J.resize(m);
   jacobian(m, d, t, y.data(), J, &ws);
-  Sparse full;
+  Eigen::SparseMatrix<double> full;
   assemble_ode_jacobian(m, d, J.K, J.C, m.n_bristle() ? &J.B : nullptr, full);
   const int S = static_cast<int>(keep.size());
   std::vector<Eigen::Triplet<double>> tr;
   for (int k = 0; k < S; ++k) tr.emplace_back(k, keep[k], 1.0);
-  Sparse sel(S, full.rows());
+  Eigen::SparseMatrix<double> sel(S, full.rows());
   sel.setFromTriplets(tr.begin(), tr.end());
   return sel * full * sel.transpose();
 }
+
+namespace {
+
+using Sparse = Eigen::SparseMatrix<double>;
+using cplx = std::complex<double>;
 
 // The kept layout's element rows: q's and v's three per element, z's one. slot(r) is the element
 // whose row r is, row(r, i) the same row of element i

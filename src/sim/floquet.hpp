@@ -30,6 +30,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <Eigen/SparseCore>
 #include <complex>
 #include <vector>
 
@@ -50,6 +51,11 @@ struct FloquetModes {
   std::vector<std::complex<double>> lambda;
   Eigen::MatrixXcd vectors;
 };
+
+// ∂ẏ/∂y of the drive d of m at (t, y) (the right-hand side's analytic Jacobian, as the implicit
+// integrators use it) over the coordinates `keep` of the state, in that order
+Eigen::SparseMatrix<double> ode_matrix(const Model& m, const Drive& d, double t, const Eigen::VectorXd& y,
+                                       const std::vector<int>& keep);
 
 // The Floquet modes of the drive d of sc about its motion from (t0, y0), the elements passing at
 // nu per second (signed: > 0 when element i runs towards element i + 1), over the coordinates

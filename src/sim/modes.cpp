@@ -1,14 +1,11 @@
 #include "sim/modes.hpp"
 
-#include <Eigen/SparseCore>
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
 #include "model/contacts.hpp"
 #include "model/observables.hpp"
-#include "model/rhs.hpp"
-#include "model/sparse.hpp"
 #include "model/workspace.hpp"
 #include "sim/eigen.hpp"
 #include "sim/floquet.hpp"
@@ -121,13 +118,7 @@ ModeAnalysis analyze_modes(const Scene& sc, const Drive& d, double t, const Eige
   const int n = m.n_el(), N = m.n_coord(), nz = m.n_bristle();
   ModeAnalysis out;
   out.t = t;
-  // J of the state without the energy integrals: [q | v | z]
-  Workspace ws(m, false);
-  Jacobian J;
-  J.resize(m);
-  jacobian(m, d, t, y.data(), J, &ws);
-  Eigen::SparseMatrix<double> Js;
-  assemble_ode_jacobian(m, d, J.K, J.C, nz ? &J.B : nullptr, Js);
+  // the state without the energy integrals: [q | v | z]
   const int S = 2 * N + nz;
   std::vector<int> keep(S);
   for (int k = 0; k < 2 * N; ++k) keep[k] = k;
@@ -150,10 +141,7 @@ ModeAnalysis analyze_modes(const Scene& sc, const Drive& d, double t, const Eige
     lambdas = std::move(fm.lambda);
     vectors = std::move(fm.vectors);
   } else {
-    const Eigen::MatrixXd full(Js);
-    Eigen::MatrixXd A(S, S);
-    for (int r = 0; r < S; ++r)
-      for (int c = 0; c < S; ++c) A(r, c) = full(keep[r], keep[c]);
+    Eigen::MatrixXd A(ode_matrix(m, d, t, y, keep));  // J of the state
     if (s.transport) {
       // −ν·(U_{i+1} − U_{i−1})/2 on every element row of q, v and z
       out.element_rate = nu;
