@@ -160,15 +160,18 @@ case "$mode" in
       fuzz_pid=$!
     fi
     # build/'s tests, beside the sanitizer tests, one at a time in two lanes, each starting when a
-    # core comes free: the physics, golden, browser, slurm and install tests once the fuzzing is
-    # done (at once without it), the app tests (the program's workflows through Python, tens of
-    # seconds each) once the sanitizer tests are. Their output goes to build/ctest.log and
-    # build/ctest-app.log, shown when they end. (A poll for the fuzzing's end: this shell reaps its
-    # job as it ends.)
+    # core comes free: the physics, golden, browser and install tests once the fuzzing is done (at
+    # once without it), the app tests (the program's workflows through Python, tens of seconds
+    # each) once the sanitizer tests are; and the Slurm test, which mostly waits, at once. Their
+    # output goes to build/ctest.log, build/ctest-slurm.log and build/ctest-app.log, shown when
+    # they end. (A poll for the fuzzing's end: this shell reaps its job as it ends.)
     lane_logs=()
     if [ "${BELTSIM_SANITIZE:-1}" != 0 ]; then
+      # (the Slurm test waits on its daemons and its jobs for most of its 13 s: 1.5 s of CPU)
+      setsid ctest --test-dir "$build_dir" -L slurm --output-on-failure -j 1 >"$build_dir/ctest-slurm.log" 2>&1 &
+      lane_pids+=($!) lane_logs+=("$build_dir/ctest-slurm.log")
       setsid bash -c 'while kill -0 "$1" 2>/dev/null; do sleep 1; done
-                      exec ctest --test-dir "$2" -LE "quick|app|clean_machine" --output-on-failure -j 1' _ "$fuzz_pid" "$build_dir" \
+                      exec ctest --test-dir "$2" -LE "quick|app|slurm|clean_machine" --output-on-failure -j 1' _ "$fuzz_pid" "$build_dir" \
         >"$build_dir/ctest.log" 2>&1 &
       lane_pids+=($!) lane_logs+=("$build_dir/ctest.log")
     fi
