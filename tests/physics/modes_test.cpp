@@ -185,8 +185,18 @@ TEST(Modes, ASpanModeAboveHalfThePassingRateIsNotAliased) {
   s.f_max = 500;
   const ModeAnalysis a = analyze_modes(sc, sc.drive, t0, y, s);
   ASSERT_GT(a.period, 0);
-  const std::vector<double> fv = span_modes(a);
-  ASSERT_GE(fv.size(), 1u);
+  // the first span mode above half the fixed string's fundamental c/2L at this tension: the
+  // material frame's analysis can also list a near-rigid motion of the belt as a span mode (1.0 Hz
+  // at one instant of the passing when the run reached t0 in two legs)
+  const double T = 0.5 * (mean_span_tension(sc, sc.drive, t0, y, 0) + mean_span_tension(sc, sc.drive, t0, y, 1));
+  const double c = std::sqrt(T / kRho), floor = 0.5 * c / (2 * 0.29);
+  const auto first_above = [&](const ModeAnalysis& m) {
+    for (const double f : span_modes(m))
+      if (f > floor) return f;
+    return 0.0;
+  };
+  const double f1 = first_above(a);
+  ASSERT_GT(f1, 0);
   // the material frame's first span mode, the mean over eight instants of one passing (it moves by
   // some 5 % over a passing as the span's ends do)
   s.transport = false;
@@ -195,18 +205,17 @@ TEST(Modes, ASpanModeAboveHalfThePassingRateIsNotAliased) {
   int instants = 0;
   for (size_t k = 0; k < over.t.size() && instants < 8; ++k) {
     if (over.t[k] < t0) continue;
-    const std::vector<double> f = span_modes(analyze_modes(sc, sc.drive, over.t[k], over.y[k], s));
-    ASSERT_GE(f.size(), 1u);
-    fm += f[0], ++instants;
+    const double f = first_above(analyze_modes(sc, sc.drive, over.t[k], over.y[k], s));
+    ASSERT_GT(f, 0);
+    fm += f, ++instants;
   }
   ASSERT_EQ(instants, 8);
   fm /= instants;
-  const double T = 0.5 * (mean_span_tension(sc, sc.drive, t0, y, 0) + mean_span_tension(sc, sc.drive, t0, y, 1));
-  const double c = std::sqrt(T / kRho), expected = fm * (1 - a.belt_speed * a.belt_speed / (c * c));
+  const double expected = fm * (1 - a.belt_speed * a.belt_speed / (c * c));
   std::printf("slow string: v %.3f m/s, passing rate %.1f 1/s, f1 %.3f Hz against %.3f Hz (%+.2f %%)\n", a.belt_speed,
-              1 / a.period, fv[0], expected, 100 * (fv[0] / expected - 1));
-  EXPECT_GT(fv[0], 0.5 / a.period);  // above ν/2: turned through more than half a turn a passing
-  EXPECT_NEAR(fv[0], expected, 0.02 * expected);
+              1 / a.period, f1, expected, 100 * (f1 / expected - 1));
+  EXPECT_GT(f1, 0.5 / a.period);  // above ν/2: turned through more than half a turn a passing
+  EXPECT_NEAR(f1, expected, 0.02 * expected);
 }
 
 // 2. The two free pulleys of the paper's drive at rest (J = 0.025 kg·m² each, r = 0.1 m) turn
