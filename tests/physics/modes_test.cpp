@@ -189,10 +189,10 @@ TEST(Modes, ASpanModeAboveHalfThePassingRateIsNotAliased) {
   // material frame's analysis can also list a near-rigid motion of the belt as a span mode (1.0 Hz
   // at one instant of the passing when the run reached t0 in two legs)
   const double T = 0.5 * (mean_span_tension(sc, sc.drive, t0, y, 0) + mean_span_tension(sc, sc.drive, t0, y, 1));
-  const double c = std::sqrt(T / kRho), floor = 0.5 * c / (2 * 0.29);
+  const double c = std::sqrt(T / kRho), lowest = 0.5 * c / (2 * 0.29);
   const auto first_above = [&](const ModeAnalysis& m) {
     for (const double f : span_modes(m))
-      if (f > floor) return f;
+      if (f > lowest) return f;
     return 0.0;
   };
   const double f1 = first_above(a);
