@@ -115,9 +115,13 @@ void check_modes(const Scene& sc, const Drive& d, const Eigen::VectorXd& y, cons
     if (k > a.modes.size())
       throw UsageError("--check: there is no mode " + std::to_string(k) + " (" + std::to_string(a.modes.size()) +
                        " listed)");
-  for (size_t k : ks) {
+  std::vector<size_t> index;
+  for (size_t k : ks) index.push_back(k - 1);
+  const std::vector<ModeCheck> checks = check_modes(sc, d, a.t, y, a, index);
+  for (size_t i = 0; i < ks.size(); ++i) {
+    const size_t k = ks[i];
     const Mode& m = a.modes[k - 1];
-    const ModeCheck c = check_mode(sc, d, a.t, y, a, k - 1);
+    const ModeCheck& c = checks[i];
     std::printf("check of mode %zu (%.2f Hz, zeta %.4f): pushed and run on, watched at %s: ", k, m.frequency, m.damping,
                 c.where.c_str());
     if (std::isnan(c.frequency))

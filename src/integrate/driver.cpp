@@ -13,6 +13,7 @@ DriveResult drive(Integrator& integ, const DriveOptions& opt, Eigen::VectorXd& y
   if (opt.sample_dt > 0)
     tl.add_stream(opt.t0, opt.sample_dt, [&](double t, const Eigen::VectorXd& yy) { last_sample = t, sample(t, yy); });
   if (opt.frame && opt.frame_dt > 0) tl.add_stream(opt.frame_t0, opt.frame_dt, opt.frame);
+  for (const DriveOptions::Stream& s : opt.streams) tl.add_stream(opt.t0, s.dt, s.fn);
   std::vector<Timeline::Landing> landings;
   for (double e : opt.events)
     if (e > opt.t0 && e < opt.t_end)
@@ -27,7 +28,8 @@ DriveResult drive(Integrator& integ, const DriveOptions& opt, Eigen::VectorXd& y
   tl.start(opt.t0, y);
   const Timeline::Result r = tl.run_to(opt.t_end, opt.stop, progress);
   y = tl.state();
-  if (!r.interrupted && last_sample < opt.t_end - 1e-12 * std::max(1.0, std::abs(opt.t_end))) sample(r.t, y);
+  if (opt.sample_dt > 0 && !r.interrupted && last_sample < opt.t_end - 1e-12 * std::max(1.0, std::abs(opt.t_end)))
+    sample(r.t, y);
   DriveResult res;
   res.work = integ.work();
   res.t_reached = r.t;

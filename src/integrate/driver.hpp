@@ -19,7 +19,7 @@ namespace beltsim {
 
 struct DriveOptions {
   double t0 = 0, t_end = 1;
-  double sample_dt = 1e-3;          // [s] samples at t0 + k·sample_dt and at t_end
+  double sample_dt = 1e-3;          // [s] samples at t0 + k·sample_dt and at t_end (0: none)
   std::vector<double> events;       // [s] times the integrator must land on exactly
   double h_max = 0;                 // [s] largest step (0: t_end - t0)
   const std::atomic<bool>* stop = nullptr;  // set from elsewhere (Ctrl-C) to end the run early
@@ -31,6 +31,13 @@ struct DriveOptions {
   double frame_dt = 0;
   double frame_t0 = 0;
   std::function<void(double t, const Eigen::VectorXd& y)> frame;
+  // further output streams, each at t0 + k·dt <= t_end (the plain run that several mode checks
+  // share, sim/mode_check.cpp)
+  struct Stream {
+    double dt;
+    std::function<void(double t, const Eigen::VectorXd& y)> fn;
+  };
+  std::vector<Stream> streams;
 };
 
 struct DriveResult {

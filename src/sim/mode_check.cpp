@@ -117,30 +117,42 @@ std::vector<double> watch(const Scene& sc, const Drive& d, double t, const Eigen
   return out;
 }
 
-}  // namespace
+// one mode's check made ready: where it is watched, the pushed state, the runs' length and samples
+struct Plan {
+  Watch w;
+  Eigen::VectorXd pushed;
+  double window = 0;
+  double dt = 0;
+  int per_passing = 0;  // samples per element passing (a Floquet mode), else 0
+};
 
-ModeCheck check_mode(const Scene& sc, const Drive& d, double t, const Eigen::VectorXd& y, const ModeAnalysis& a,
-                     size_t k, const ModeCheckSettings& s) {
+Plan plan(const Scene& sc, const Drive& d, const Eigen::VectorXd& y, const ModeAnalysis& a, const Mode& md,
+          const ModeCheckSettings& s) {
   const Model& m = sc.model;
-  const Mode& md = a.modes.at(k);
-  const Watch w = where_it_moves(sc, d, y, md);
-  Eigen::VectorXd pushed = y;
+  Plan p{where_it_moves(sc, d, y, md), y};
   const int N = m.n_coord();
-  for (int c = 0; c < 2 * N; ++c) pushed[c] += s.push * md.vector[c].real();
-  for (int c = 0; c < m.n_bristle(); ++c) pushed[m.bristle_offset() + c] += s.push * md.vector[2 * N + c].real();
-  const double window = s.periods / md.frequency;
+  for (int c = 0; c < 2 * N; ++c) p.pushed[c] += s.push * md.vector[c].real();
+  for (int c = 0; c < m.n_bristle(); ++c) p.pushed[m.bristle_offset() + c] += s.push * md.vector[2 * N + c].real();
+  p.window = s.periods / md.frequency;
   // samples 40 a period of the mode; of a Floquet mode (a.period > 0) at whole passings too
-  const int per_passing = a.period > 0 ? static_cast<int>(std::ceil(a.period * 40 * md.frequency)) : 0;
-  const double dt = a.period > 0 ? a.period / per_passing : 1 / (40 * md.frequency);
-  const std::vector<double> plain = watch(sc, d, t, y, window, dt, s.rtol, w);
-  const std::vector<double> moved = watch(sc, d, t, pushed, window, dt, s.rtol, w);
+  p.per_passing = a.period > 0 ? static_cast<int>(std::ceil(a.period * 40 * md.frequency)) : 0;
+  p.dt = a.period > 0 ? a.period / p.per_passing : 1 / (40 * md.frequency);
+  return p;
+}
+
+// the check of mode md from the plain run's and the pushed run's watched values (the pushed run's
+// last sample is its window's end, on the grid or off it: left out, as the plain run's samples
+// may go on past it)
+ModeCheck judge(const Plan& p, const Mode& md, const ModeAnalysis& a, const std::vector<double>& plain,
+                const std::vector<double>& moved, const ModeCheckSettings& s) {
+  const double dt = p.dt;
   std::vector<double> diff;
-  for (size_t i = 0; i + 1 < std::min(plain.size(), moved.size()); ++i) diff.push_back((moved[i] - plain[i]) / s.push);
+  for (size_t i = 0; i + 1 < moved.size() && i < plain.size(); ++i) diff.push_back((moved[i] - plain[i]) / s.push);
   ModeCheck out;
-  out.where = w.name;
+  out.where = p.w.name;
   double err = 0, size = 0;
   auto compare = [&](size_t i) {
-    const double predicted = (w.predicted * std::exp(md.lambda * (i * dt))).real();
+    const double predicted = (p.w.predicted * std::exp(md.lambda * (i * dt))).real();
     err += (diff[i] - predicted) * (diff[i] - predicted);
     size += predicted * predicted;
   };
@@ -148,7 +160,7 @@ ModeCheck check_mode(const Scene& sc, const Drive& d, double t, const Eigen::Vec
     // a Floquet mode is V·e^{λt} times a motion of the passing's period: exact at whole passings,
     // where the drive stands as it stood; at those over its first period, and at least three
     const double over = std::max(1 / md.frequency, 3 * a.period) * (1 + 1e-9);
-    for (size_t i = 0; i < diff.size() && i * dt <= over; i += per_passing) compare(i);
+    for (size_t i = 0; i < diff.size() && i * dt <= over; i += p.per_passing) compare(i);
   } else {
     for (size_t i = 0; i < diff.size() && i * dt <= 1 / md.frequency; ++i) compare(i);
   }
@@ -168,6 +180,39 @@ ModeCheck check_mode(const Scene& sc, const Drive& d, double t, const Eigen::Vec
   }
   out.agrees = out.misfit <= s.max_misfit;
   return out;
+}
+
+}  // namespace
+
+std::vector<ModeCheck> check_modes(const Scene& sc, const Drive& d, double t, const Eigen::VectorXd& y,
+                                   const ModeAnalysis& a, const std::vector<size_t>& ks, const ModeCheckSettings& s) {
+  std::vector<Plan> plans;
+  double longest = 0;
+  for (size_t k : ks) {
+    plans.push_back(plan(sc, d, y, a, a.modes.at(k), s));
+    longest = std::max(longest, plans.back().window);
+  }
+  // one plain run for all the modes, as long as the longest window, each mode's point watched on
+  // its own grid (the samples come from the dense output: the run's steps do not depend on them)
+  std::vector<std::vector<double>> plain(ks.size());
+  std::vector<DriveOptions::Stream> grids;
+  for (size_t i = 0; i < ks.size(); ++i)
+    grids.push_back({plans[i].dt, [&plain, &plans, i](double, const Eigen::VectorXd& st) {
+                       plain[i].push_back(plans[i].w.read(st));
+                     }});
+  if (!ks.empty()) run_on(sc.model, d, t, y, longest, s.rtol, std::move(grids));
+  std::vector<ModeCheck> out;
+  for (size_t i = 0; i < ks.size(); ++i) {
+    const Plan& p = plans[i];
+    const std::vector<double> moved = watch(sc, d, t, p.pushed, p.window, p.dt, s.rtol, p.w);
+    out.push_back(judge(p, a.modes[ks[i]], a, plain[i], moved, s));
+  }
+  return out;
+}
+
+ModeCheck check_mode(const Scene& sc, const Drive& d, double t, const Eigen::VectorXd& y, const ModeAnalysis& a,
+                     size_t k, const ModeCheckSettings& s) {
+  return check_modes(sc, d, t, y, a, {k}, s).front();
 }
 
 }  // namespace beltsim

@@ -1,14 +1,14 @@
 // A mode checked in time (docs/modes.md, "Checking a mode in time"): the drive is run on from its
-// operating point twice, as it is and pushed along the mode (y + a·Re(eigenvector): positions,
-// velocities and bristles, the point that moves most moved by a), and the difference of the two
-// runs is watched in the space-fixed frame where the mode moves most: a free pulley's, an arm's or
-// a rotor's angle, or the belt's displacement normal to a span at its middle (where the polygon of
-// elements crosses the span's normal there). The linearization predicts that difference as
-// a·Re(V·e^{λt}) (V the eigenvector's value there; a running drive's Floquet mode exactly at whole
-// element passings, where the drive stands as it stood); the check reports how far the observed
-// difference is from that over the mode's first period (at the whole passings in it, at least
-// three, on a running drive), and the frequency and damping of the oscillation the difference
-// holds (a Prony fit, sim/mode_check.cpp).
+// operating point twice, as it is (one run for all the modes checked together) and pushed along the
+// mode (y + a·Re(eigenvector): positions, velocities and bristles, the point that moves most moved
+// by a), and the difference of the two runs is watched in the space-fixed frame where the mode
+// moves most: a free pulley's, an arm's or a rotor's angle, or the belt's displacement normal to a
+// span at its middle (where the polygon of elements crosses the span's normal there). The
+// linearization predicts that difference as a·Re(V·e^{λt}) (V the eigenvector's value there; a
+// running drive's Floquet mode exactly at whole element passings, where the drive stands as it
+// stood); the check reports how far the observed difference is from that over the mode's first
+// period (at the whole passings in it, at least three, on a running drive), and the frequency and
+// damping of the oscillation the difference holds (a Prony fit, sim/mode_check.cpp).
 //
 // The push is small: with a = 1e-8 m the velocities it gives (λ·a, 6e-6 m/s at 100 Hz) stay within
 // the friction band Δv of the sticking elements (1e-5 m/s by default) and the runs' differences
@@ -18,6 +18,7 @@
 
 #include <Eigen/Core>
 #include <string>
+#include <vector>
 
 #include "model/drive.hpp"
 #include "scene/scene.hpp"
@@ -45,8 +46,13 @@ struct ModeCheck {
   bool agrees = false;     // misfit <= the settings' max_misfit
 };
 
-// Mode k of the analysis a, taken at (t, y) of the drive d of sc: pushed and run on. Throws what a
-// run throws (a failed integration).
+// Modes ks (indices into a.modes) of the analysis a, taken at (t, y) of the drive d of sc: each
+// pushed and run on, beside one plain run for them all. Throws what a run throws (a failed
+// integration).
+std::vector<ModeCheck> check_modes(const Scene& sc, const Drive& d, double t, const Eigen::VectorXd& y,
+                                   const ModeAnalysis& a, const std::vector<size_t>& ks,
+                                   const ModeCheckSettings& s = {});
+// mode k alone
 ModeCheck check_mode(const Scene& sc, const Drive& d, double t, const Eigen::VectorXd& y, const ModeAnalysis& a,
                      size_t k, const ModeCheckSettings& s = {});
 

@@ -59,8 +59,11 @@ TEST(ModesRunning, TheSlippingDrivesModesCheckedInTime) {
   }
   ASSERT_LT(torsion + 1, a.modes.size());
   ASSERT_LT(tight, a.modes.size());
-  for (size_t k : {torsion, torsion + 1, tight}) {
-    const ModeCheck c = check_mode(sc, sc.drive, t0, y, a, k);
+  const std::vector<size_t> ks{torsion, torsion + 1, tight};
+  const std::vector<ModeCheck> checks = check_modes(sc, sc.drive, t0, y, a, ks);
+  for (size_t i = 0; i < ks.size(); ++i) {
+    const size_t k = ks[i];
+    const ModeCheck& c = checks[i];
     std::printf("mode %.2f Hz zeta %.4f: in time at %s %.2f Hz zeta %.4f, misfit %.2f\n", a.modes[k].frequency,
                 a.modes[k].damping, c.where.c_str(), c.frequency, c.damping, c.misfit);
     EXPECT_TRUE(c.agrees);
