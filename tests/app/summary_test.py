@@ -212,10 +212,11 @@ class Automotive(unittest.TestCase):
         d = tempfile.mkdtemp(prefix="beltsim_summary_auto_")
         self.addCleanup(shutil.rmtree, d, True)
         out = os.path.join(d, "auto")
-        # the rows read here, not the run's accuracy: at rtol 1e-3 to 0.5 s the overrun is the same
-        # (0.4174 to 0.4671 s, as at the script's rtol 1e-4 to 0.6 s), in 11 s of CPU instead of 28
+        # the rows read here, not the run's accuracy: at rtol 1e-2 to 0.5 s the overrun starts as at
+        # the script's rtol 1e-4 to 0.6 s (0.4174 to 0.4676 s; 0.4174 to 0.4671 s at 1e-3 and 1e-4),
+        # in 9.7 s of CPU instead of 18.3 at 1e-3 (side by side, 2026-11-30)
         code, _, err = run(["run", os.path.join(SOURCE, "scripts", "automotive_decoupler.lua"), "--out", out,
-                            "--rtol", "1e-3", "--t-end", "0.5"], d)
+                            "--rtol", "1e-2", "--t-end", "0.5"], d)
         self.assertEqual(code, 0, err)
         code, table, err = run(["summary", out, "--from", "0.3", "--csv", "s.csv"], d)
         self.assertEqual(code, 0, err)
