@@ -19,7 +19,7 @@ std::vector<std::string> integrator_names() {
 
 std::string contract_miss(const std::string& name, double rtol) {
   // measured by beltsim wp on the paper's dry drive over 0.3 s and its half-wet one over 0.5 s, at
-  // rtol 1e-3 and 1e-4 against esdirk32 at 1e-7 (docs/integration.md, Integrators)
+  // rtol 1e-3 and 1e-4 against esdirk32 at 1e-7 (the table at the top of docs/integration.md)
   if (name == "esdirk32")
     return "its error estimate is that of its embedded order-2 solution and misses errors the answer carries (on "
            "the paper's dry drive its span tensions were 2.9e-2 off at rtol 1e-3 and 8.0e-3 at 1e-4)";

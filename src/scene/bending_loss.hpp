@@ -1,5 +1,5 @@
 // The bending dampers' share of the power a drive transmits, estimated before it runs
-// (docs/model.md, "Bending loss on small pulleys"), and the warning of the run's first lines when
+// (docs/model.md, "Bending loss"), and the warning of the run's first lines when
 // it is large (scene_warnings, scene:info().warnings).
 //
 // Speeds: the laws' steady values (a ramp's end value, a table's last value, a sine's mean; the

@@ -1,4 +1,4 @@
-// Script parameters from the command line (README.md, "Command line"): `--set KEY=VALUE`, read by the
+// Script parameters from the command line (docs/cli.md, "Script parameters"): `--set KEY=VALUE`, read by the
 // script as beltsim.args.KEY. Lua-free: the command line parses them, the bindings hand them out.
 //
 // KEY is a Lua name ([A-Za-z_][A-Za-z0-9_]*). VALUE is read as

@@ -176,12 +176,12 @@ TEST(NoHang, RateCollapseStops) {
 // in each step; the stop set by the 100th ends the call there, and going on delivers exactly
 // what one call would have (pausing changes nothing)
 TEST(NoHang, StopBetweenOutputsOfOneStep) {
-  struct Smooth : OdeProblem {
+  struct Cosine : OdeProblem {
     int size() const override { return 1; }
     void rhs(double t, const double*, double* dy) override { dy[0] = std::cos(t); }
   };
   auto outputs = [](bool stop_at_100, std::vector<double>& got) {
-    Smooth sys;
+    Cosine sys;
     auto integ = make_integrator("rkf45", sys, Tolerances{1e-6, 1e-6});
     Timeline tl(*integ);
     std::atomic<bool> stop{false};
