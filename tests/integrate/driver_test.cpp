@@ -79,5 +79,45 @@ TEST(Frames, ARunEndingOnAFrameTimeEndsWithThatFrame) {
   EXPECT_EQ(stream_time(0, 1e-3, 350), 0.35);
 }
 
+// further streams (DriveOptions::streams; a mode check's plain run watched on each mode's grid):
+// each delivers at t0 + k·dt up to t_end, from the dense output, so the run's steps and values do
+// not depend on them, and with no sample stream (sample_dt = 0) nothing else is delivered
+TEST(Frames, FurtherStreamsAtTheirOwnTimesAndTheSameSteps) {
+  auto go = [](std::vector<double> dts, std::vector<Frames>& got, long& steps) {
+    Oscillator sys;
+    auto st = make_stepper("rkf45");
+    DriveOptions o;
+    o.t0 = 0.1;
+    o.t_end = 2.0;
+    o.sample_dt = 0;
+    got.assign(dts.size(), {});
+    for (size_t i = 0; i < dts.size(); ++i)
+      o.streams.push_back({dts[i], [&got, i](double t, const Eigen::VectorXd& y) {
+                             got[i].t.push_back(t), got[i].y0.push_back(y[0]);
+                           }});
+    Eigen::VectorXd y(2);
+    y << std::cos(0.1), -std::sin(0.1);
+    bool sampled = false;
+    steps = drive(sys, *st, Tolerances{1e-10, 1e-10}, o, y, [&](double, const Eigen::VectorXd&) {
+              sampled = true;
+            }).work.steps;
+    EXPECT_FALSE(sampled);
+  };
+  std::vector<Frames> both, first, second;
+  long s_both = 0, s_first = 0, s_second = 0;
+  go({1.0 / 30, 0.07}, both, s_both);
+  go({1.0 / 30}, first, s_first);
+  go({0.07}, second, s_second);
+  EXPECT_EQ(s_both, s_first);
+  EXPECT_EQ(s_both, s_second);
+  ASSERT_EQ(both[0].t.size(), static_cast<size_t>(std::floor(1.9 * 30)) + 1);
+  ASSERT_EQ(both[1].t.size(), static_cast<size_t>(std::floor(1.9 / 0.07)) + 1);
+  EXPECT_EQ(both[0].t, first[0].t);
+  EXPECT_EQ(both[0].y0, first[0].y0);  // to the bit: the same steps, the same dense output
+  EXPECT_EQ(both[1].t, second[0].t);
+  EXPECT_EQ(both[1].y0, second[0].y0);
+  for (size_t k = 0; k < both[1].t.size(); ++k) EXPECT_NEAR(both[1].y0[k], std::cos(both[1].t[k]), 1e-6);
+}
+
 }  // namespace
 }  // namespace beltsim
