@@ -39,8 +39,8 @@ struct Setup {
     auto st = make_stepper("esdirk32");
     DriveOptions o;
     o.t_end = 0.25, o.sample_dt = 0.25, o.events = sc.drive.breakpoints();
-    o.frame_t0 = 0.05, o.frame_dt = 1.0 / 300;
-    o.frame = [&](double tf, const Eigen::VectorXd& yf) { t.push_back(tf), y.push_back(yf); };
+    o.streams.push_back(
+        {0.05, 1.0 / 300, [&](double tf, const Eigen::VectorXd& yf) { t.push_back(tf), y.push_back(yf); }});
     Eigen::VectorXd y0 = sc.y0;
     drive(sys, *st, Tolerances{1e-5, -1}, o, y0, [](double, const Eigen::VectorXd&) {});
     fs.width = 1280, fs.height = 720, fs.magnify = 10, fs.png_dir = std::string(1, 'x');  // not = "x": GCC 12 -O3 gives a false -Wrestrict there (GCC PR 105329)

@@ -12,8 +12,7 @@ DriveResult drive(Integrator& integ, const DriveOptions& opt, Eigen::VectorXd& y
   double last_sample = -std::numeric_limits<double>::infinity();
   if (opt.sample_dt > 0)
     tl.add_stream(opt.t0, opt.sample_dt, [&](double t, const Eigen::VectorXd& yy) { last_sample = t, sample(t, yy); });
-  if (opt.frame && opt.frame_dt > 0) tl.add_stream(opt.frame_t0, opt.frame_dt, opt.frame);
-  for (const DriveOptions::Stream& s : opt.streams) tl.add_stream(opt.t0, s.dt, s.fn);
+  for (const DriveOptions::Stream& s : opt.streams) tl.add_stream(s.t0, s.dt, s.fn);
   std::vector<Timeline::Landing> landings;
   for (double e : opt.events)
     if (e > opt.t0 && e < opt.t_end)

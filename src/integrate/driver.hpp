@@ -1,7 +1,7 @@
 // drive(): a whole run from t0 to t_end in one call, for tests, benchmarks and the
 // work-precision study. It is the live schedule (integrate/timeline.hpp) run to t_end with the
 // integrator landing on t_end: samples at t0 + k·sample_dt (and one at t_end when it is off
-// that grid), frames at frame_t0 + k·frame_dt, events landed on exactly.
+// that grid), further streams (frames) at their own t0 + k·dt, events landed on exactly.
 #pragma once
 
 #include <atomic>
@@ -26,15 +26,11 @@ struct DriveOptions {
   // called on landing at each event time, after that time's sample: it may change the system
   // (a wetted stretch of belt) or the state; the integrator then restarts from there
   std::function<void(double t, Eigen::VectorXd& y)> on_event;
-  // a second output stream at its own exact times (frames): frame_t0 + k·frame_dt <= t_end
-  // (0 or no frame function: none)
-  double frame_dt = 0;
-  double frame_t0 = 0;
-  std::function<void(double t, const Eigen::VectorXd& y)> frame;
-  // further output streams, each at t0 + k·dt <= t_end (the plain run that several mode checks
-  // share, sim/mode_check.cpp)
+  // further output streams at their own exact times, each at t0 + k·dt <= t_end, in this order
+  // at a shared time (frames; the plain run that several mode checks share, sim/mode_check.cpp)
   struct Stream {
-    double dt;
+    double t0;  // [s]
+    double dt;  // [s]
     std::function<void(double t, const Eigen::VectorXd& y)> fn;
   };
   std::vector<Stream> streams;

@@ -197,7 +197,7 @@ std::vector<ModeCheck> check_modes(const Scene& sc, const Drive& d, double t, co
   std::vector<std::vector<double>> plain(ks.size());
   std::vector<DriveOptions::Stream> grids;
   for (size_t i = 0; i < ks.size(); ++i)
-    grids.push_back({plans[i].dt, [&plain, &plans, i](double, const Eigen::VectorXd& st) {
+    grids.push_back({t, plans[i].dt, [&plain, &plans, i](double, const Eigen::VectorXd& st) {
                        plain[i].push_back(plans[i].w.read(st));
                      }});
   if (!ks.empty()) run_on(sc.model, d, t, y, longest, s.rtol, std::move(grids));

@@ -16,8 +16,8 @@ namespace beltsim {
 // what a run throws.
 void run_on(const Model& m, const Drive& d, double t0, const Eigen::VectorXd& y0, double window, double dt, double rtol,
             const SampleFn& sample);
-// the same run sampled on several grids, each at t0 + k·dt <= t0 + window (and not at the window's
-// end off its grid)
+// the same run sampled on several grids, each at its t0 + k·dt <= t0 + window (and not at the
+// window's end off its grid)
 void run_on(const Model& m, const Drive& d, double t0, const Eigen::VectorXd& y0, double window, double rtol,
             std::vector<DriveOptions::Stream> grids);
 

@@ -1,5 +1,5 @@
-// Frames at exact times (issue 5, point 4): the driver's second dense-output stream delivers
-// states at frame_t0 + k·frame_dt whatever the steps, with the accuracy of the dense output.
+// Frames at exact times (issue 5, point 4): the driver's further dense-output streams deliver
+// states at their t0 + k·dt whatever the steps, with the accuracy of the dense output.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -32,10 +32,8 @@ Frames run(double h_max, double t0, double dt, double t_end = 2.0) {
   o.t_end = t_end;
   o.sample_dt = 0.5;
   o.h_max = h_max;
-  o.frame_dt = dt;
-  o.frame_t0 = t0;
   Frames f;
-  o.frame = [&](double t, const Eigen::VectorXd& y) { f.t.push_back(t), f.y0.push_back(y[0]); };
+  o.streams.push_back({t0, dt, [&](double t, const Eigen::VectorXd& y) { f.t.push_back(t), f.y0.push_back(y[0]); }});
   Eigen::VectorXd y(2);
   y << 1, 0;
   drive(sys, *st, Tolerances{1e-10, 1e-10}, o, y, [](double, const Eigen::VectorXd&) {});
@@ -79,8 +77,8 @@ TEST(Frames, ARunEndingOnAFrameTimeEndsWithThatFrame) {
   EXPECT_EQ(stream_time(0, 1e-3, 350), 0.35);
 }
 
-// further streams (DriveOptions::streams; a mode check's plain run watched on each mode's grid):
-// each delivers at t0 + k·dt up to t_end, from the dense output, so the run's steps and values do
+// several streams (a mode check's plain run watched on each mode's grid): each delivers at
+// t0 + k·dt up to t_end, from the dense output, so the run's steps and values do
 // not depend on them, and with no sample stream (sample_dt = 0) nothing else is delivered
 TEST(Frames, FurtherStreamsAtTheirOwnTimesAndTheSameSteps) {
   auto go = [](std::vector<double> dts, std::vector<Frames>& got, long& steps) {
@@ -92,7 +90,7 @@ TEST(Frames, FurtherStreamsAtTheirOwnTimesAndTheSameSteps) {
     o.sample_dt = 0;
     got.assign(dts.size(), {});
     for (size_t i = 0; i < dts.size(); ++i)
-      o.streams.push_back({dts[i], [&got, i](double t, const Eigen::VectorXd& y) {
+      o.streams.push_back({o.t0, dts[i], [&got, i](double t, const Eigen::VectorXd& y) {
                              got[i].t.push_back(t), got[i].y0.push_back(y[0]);
                            }});
     Eigen::VectorXd y(2);
