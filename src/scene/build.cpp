@@ -223,6 +223,13 @@ Route centre_path(const RouteOrder& order, const std::vector<double>& penetratio
   return make_route(inner, loop_sense, order.names);
 }
 
+// Whether a bisection step on [lo, hi] at its midpoint mid is its last that can change anything:
+// mid has rounded to an end (or the ends met), so after this step's assignment every later step
+// takes the same midpoint and leaves [lo, hi] as it is. The bisections below run a fixed count of
+// steps, which on short intervals goes past the doubles' resolution; they stop here instead, with
+// the same result.
+static bool at_resolution(double mid, double lo, double hi) { return mid == lo || mid == hi || lo == hi; }
+
 double walk(const Route& path, int n, double h, double gap, std::vector<double>* s_out) {
   double s_prev = 0;
   if (s_out) s_out->assign(1, 0.0);
@@ -236,7 +243,9 @@ double walk(const Route& path, int n, double h, double gap, std::vector<double>*
       path.eval(mid, C, T);
       const Vec2 d = C - h * T - Bp;
       const double sigma = d.dot((T + Tp).normalized());
+      const bool last = at_resolution(mid, lo, hi);
       (sigma < gap ? lo : hi) = mid;
+      if (last) break;
     }
     s_prev = 0.5 * (lo + hi);
     if (s_out && i < n) s_out->push_back(s_prev);
@@ -253,7 +262,9 @@ double close_loop(const Route& path, int n, const BeltDef& bd, const TensionAtRe
     for (int it = 0; it < 100; ++it) {
       poll_stop(stop, n);
       const double g = 0.5 * (lo + hi);
+      const bool last = at_resolution(g, lo, hi);
       (walk(path, n, 0.5 * t.rest, g, nullptr) < path.length ? lo : hi) = g;
+      if (last) break;
     }
     return 0.5 * (lo + hi);
   }
@@ -264,7 +275,9 @@ double close_loop(const Route& path, int n, const BeltDef& bd, const TensionAtRe
   for (int it = 0; it < 100; ++it) {
     poll_stop(stop, n);  // each walk is O(n): 25 ms at 5000 elements
     const double le = 0.5 * (lo + hi);
+    const bool last = at_resolution(le, lo, hi);
     (walk(path, n, 0.5 * le, gap_for(le), nullptr) < path.length ? lo : hi) = le;
+    if (last) break;
   }
   set_rest_length(b, bd, 0.5 * (lo + hi));
   return gap_for(b.rigid_length);
