@@ -380,9 +380,10 @@ double static_solve(const Model& m, const Drive& dr, Eigen::VectorXd& y, double 
   for (int it = 0; it < 30 && res > 1e-9; ++it) {
     poll_stop(stop, m.n_el());
     jacobian(m, dr, 0.0, y.data(), J);
-    assemble(m, dr, 0.0, 0.0, J.C, J.K, ne, A);  // A = -K_ee
+    assemble(m, dr, 0.0, 0.0, J.C, J.K, ne, A);  // A = -K_ee, the same pattern at every call
     poll_stop(stop, m.n_el());
-    lu.compute(A);
+    if (it == 0) lu.analyzePattern(A);
+    lu.factorize(A);
     poll_stop(stop, m.n_el());
     if (lu.info() != Eigen::Success) break;
     Eigen::VectorXd dq = lu.solve(f.head(ne));
