@@ -2,10 +2,12 @@
 -- SI units; counter-clockwise positive. Parameters not given here take the paper's values
 -- (docs/lua-api.md); the pulley inertias are ours (docs/model.md).
 -- Parameters (--set KEY=VALUE), for variants of the drive (the accuracy matrix of
--- docs/integration.md): elements (default 60), inertia of both pulleys [kg·m²] (default 0.025).
+-- docs/integration.md): elements (default 60), inertia of both pulleys [kg·m²] (default 0.025),
+-- sample, the interval of the time series' rows [s] (default 1e-3).
 
 local elements = beltsim.args.elements or 60
 local inertia = beltsim.args.inertia or 0.025
+local sample = beltsim.args.sample or 1e-3
 
 local drive = beltsim.scene {
   pulleys = {
@@ -36,7 +38,7 @@ local drive = beltsim.scene {
 -- the paper's selected element starts where the upper span meets the driven pulley
 local result = drive:run {
   t_end = 1.0,
-  sample = 1e-3,
+  sample = sample,
   probe = {0.29, 0.1},
   -- a 10 s clip, ten times slower than life (a frame every 3.3 ms of simulated time: the belt
   -- moves about one element per frame at full speed), coloured by the SDE tension so that its
