@@ -37,6 +37,10 @@ class BeltProblem final : public OdeProblem {
   // averaged over the whole belt, their error drifted the driver's speed while it slipped on a
   // LuGre stretch, by 5e-4 at rtol 1e-3 and 1e-4 alike (docs/integration.md)
   bool held_each(int k) const override;
+  // the speeds and arm angles: a span tension reads the SDE's damper, so the elements' velocities,
+  // which cross the friction band's and the contact's kinks inside a step (docs/integration.md,
+  // Dense output)
+  bool checked_inside(int k) const override;
   std::string describe_answer(int k) const override;
   int switch_count() const override;
   // from the contact records of (t, y) with every pair (model/contacts.hpp), kept in the workspace

@@ -22,6 +22,19 @@ StepController::StepController(OdeProblem& sys, const Tolerances& tol, int q, in
   n_in_norm_ = std::max(1.0, in_norm_.sum());
   aatol_.resize(na), a0_.resize(na), a1_.resize(na), da_.resize(na);
   for (int a = 0; a < na; ++a) aatol_[a] = atol * sys.answer_scale(a);
+  for (int a = 0; a < na; ++a)
+    if (sys.checked_inside(a)) inside_.push_back(a);
+}
+
+double StepController::interior_norm(double t, const Eigen::VectorXd& y0, const Eigen::VectorXd& Z,
+                                     const Eigen::VectorXd& e) {
+  if (inside_.empty()) return 0;
+  sys_.answer(t, y0.data(), a0_.data());
+  sys_.answer(t, Z.data(), a1_.data());
+  sys_.answer_error(t, Z.data(), e.data(), da_.data());
+  double n = 0;
+  for (int a : inside_) n = std::max(n, std::abs(da_[a]) / (aatol_[a] + rtol_ * std::max(std::abs(a0_[a]), std::abs(a1_[a]))));
+  return std::isfinite(n) ? n : 1e300;
 }
 
 double StepController::error_norm(double t1, const Eigen::VectorXd& y0, const Eigen::VectorXd& y1,

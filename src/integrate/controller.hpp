@@ -57,6 +57,10 @@ class StepController {
   // component with the largest weighted error
   double error_norm(double t1, const Eigen::VectorXd& y0, const Eigen::VectorXd& y1, const Eigen::VectorXd& err,
                     int* worst = nullptr);
+  // the error norm inside a step: at t + c·h, where the dense output reads the state Z with the
+  // estimated error e, the largest of the answer's quantities checked inside a step
+  // (OdeProblem::checked_inside), each against its tolerance as in error_norm; 0 without an answer
+  double interior_norm(double t, const Eigen::VectorXd& y0, const Eigen::VectorXd& Z, const Eigen::VectorXd& e);
   double rtol() const { return rtol_; }  // the tolerance in force
   // next step size after a step with error norm e (accepted when e <= 1): at most kGrowMax·h
   double propose(double h, double e) const;
@@ -70,6 +74,7 @@ class StepController {
   Eigen::VectorXd in_norm_;  // 1 for a component in the state norm, else 0
   double n_in_norm_ = 0;     // their number
   std::vector<int> held_;    // the components held each on their own (OdeProblem::held_each)
+  std::vector<int> inside_;  // the answer's quantities checked inside a step (OdeProblem::checked_inside)
   Eigen::VectorXd aatol_, a0_, a1_, da_;  // the answer's atol, its values at y0 and y1, its error
   double rtol_;
   double exponent_;

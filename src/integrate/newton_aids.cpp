@@ -75,7 +75,11 @@
 // predictor moves each pressing element as the wrap moves it: a rotation about the pulley centre
 // C by θ = ((P - C) × V)/|P - C|²·dt, applied to P - C, to V and (as +θ) to the element angle, which
 // keeps its penetration, slip velocity and spin as they are; a free element moves by V·dt (its
-// angle by φ̇·dt), exact for a span in uniform motion; a pulley's angle by Ω·dt.
+// angle by φ̇·dt), exact for a span in uniform motion; a pulley's angle by Ω·dt. On a pulley whose
+// speed is prescribed, Ω changes over the stage, so the slip velocity v_T = V·t̂ - Ω·r is kept by
+// adding (Ω(t + dt) - Ω(t))·r·t̂ to V (keep_slip): without it the whole wrap of a crankshaft
+// with a firing pulsation started Newton slipping at some 300 bands, and the iteration took a
+// Jacobian for each of the stick/slip changes on the way back.
 //
 // Convective predictor (convective_predict): the kinematic predictor carries each element's
 // own state along its motion, so whatever it was (sticking, out of contact) it stays. But in a drive
@@ -392,12 +396,25 @@ void kinematic_move(const Model& m, int on, double dt, int i, double* q, double*
 void advance_pulleys(const Model& m, const Drive& d, double t, double dt, double* q, const double* v) {
   for (int j = 0; j < m.n_p(); ++j) q[m.pulley_coord(j)] += dt * d.omega(m, j, t, v);
 }
+
+// element i, moved onto pulley j (-1: none) at t + dt, keeps its slip velocity v_T = V·t̂ - Ω·r
+// when Ω is prescribed and changes over the stage: V gains (Ω(t + dt) - Ω(t))·r along t̂ (a pulley
+// whose speed is a state keeps it in the prediction, and so does the element)
+void keep_slip(const Model& m, const Drive& d, double t, double dt, int j, int i, const double* q, double* v) {
+  if (j < 0 || !d.kinematic(j)) return;
+  const double dom = d.omega(m, j, t + dt, v) - d.omega(m, j, t, v);
+  const Vec2 e = Vec2(q[3 * i], q[3 * i + 1]) - m.centre(j, q);  // r·n; r·t̂ = (-e_y, e_x)
+  v[3 * i] -= dom * e.y(), v[3 * i + 1] += dom * e.x();
+}
 }  // namespace
 
 void kinematic_predict(const Model& m, const Drive& d, double t, double dt, const ContactView& pairs, double* q,
                        double* v, PredictScratch& w) {
   pressed_pulleys(m, pairs, w.on);
-  for (int i = 0; i < m.belt.n; ++i) kinematic_move(m, w.on[i], dt, i, q, v);
+  for (int i = 0; i < m.belt.n; ++i) {
+    kinematic_move(m, w.on[i], dt, i, q, v);
+    keep_slip(m, d, t, dt, w.on[i], i, q, v);
+  }
   advance_pulleys(m, d, t, dt, q, v);
 }
 
@@ -426,6 +443,7 @@ void convective_predict(const Model& m, const Drive& d, double t, double dt, con
     double rest = V.norm() * std::abs(dt);
     if (rest < reach) {
       kinematic_move(m, w.on[i], dt, i, q, v);
+      keep_slip(m, d, t, dt, w.on[i], i, q, v);
       continue;
     }
     // the direction of the element's motion along the belt
@@ -451,6 +469,7 @@ void convective_predict(const Model& m, const Drive& d, double t, double dt, con
     }
     if (f < 0) {  // a walk round half the belt: the kinematic prediction
       kinematic_move(m, w.on[i], dt, i, q, v);
+      keep_slip(m, d, t, dt, w.on[i], i, q, v);
       continue;
     }
     Vec2 P1, V1;
@@ -473,6 +492,7 @@ void convective_predict(const Model& m, const Drive& d, double t, double dt, con
     q[3 * i + 2] = q0[3 * i + 2] + wrap_angle(phi - q0[3 * i + 2]);
     v[3 * i] = V1.x(), v[3 * i + 1] = V1.y();
     v[3 * i + 2] = (1 - f) * v0[3 * a + 2] + f * v0[3 * b + 2];
+    if (w.on[a] >= 0 && w.on[a] == w.on[b]) keep_slip(m, d, t, dt, w.on[a], i, q, v);
   }
 }
 

@@ -67,6 +67,9 @@ class OdeProblem {
   // whether component k's error is held on its own at the full tolerance, as an answer quantity's
   // is, rather than in the state norm (StepController; only when the problem has an answer)
   virtual bool held_each(int) const { return false; }
+  // whether answer quantity k's error is also checked inside a step, where the dense output
+  // gives the samples, besides at the step's end (StepController::interior_norm)
+  virtual bool checked_inside(int) const { return true; }
   virtual std::string describe_answer(int k) const { return "answer " + std::to_string(k); }
 
   // diagnostics: a name for component k ("element 12 y velocity") and a check of a state that

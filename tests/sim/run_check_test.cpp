@@ -194,9 +194,9 @@ TEST(RunCheck, AnIntegratorOutsideTheContractSaysSoAtTheStart) {
 }
 
 // a drive with what the contract was measured not to hold with (scene_contract_misses: Stribeck's law
-// or an overrunning decoupler below rtol 1e-3, μ changing along the belt above 1e-4) says so as the
-// run starts, or when a stretch is wetted, once; not where the matrix's rows kept it, nor when the
-// run checks its own error
+// below rtol 1e-3, an overrunning decoupler at and below 1e-3, μ changing along the belt above 1e-3)
+// says so as the run starts, or when a stretch is wetted, once; not where the matrix's rows kept it,
+// nor when the run checks its own error
 TEST(RunCheck, ADriveOutsideTheContractSaysSo) {
   SceneDef stribeck = presets::paper_dry(), decoupled = presets::paper_dry();
   stribeck.belt.elements = decoupled.belt.elements = 30;
@@ -211,17 +211,19 @@ TEST(RunCheck, ADriveOutsideTheContractSaysSo) {
         RunSettings rs = settings(rtol, "drive_" + std::to_string(k), check);
         rs.on_warning = [&](const std::string& m) { said.push_back(m); };
         const Simulation sim(scenes[k], rs);
-        if (rtol >= 1e-3 || check) {
+        const double from = k == 0 ? 1e-3 : 1e-2;  // the rtol from which the matrix's row keeps the contract
+        if (rtol >= from || check) {
           EXPECT_TRUE(said.empty()) << words[k] << " at " << rtol << ": " << said[0];
           continue;
         }
         ASSERT_EQ(said.size(), 1u) << words[k];
-        EXPECT_EQ(said[0].rfind("at rtol 0.0001 this drive may not keep the accuracy contract", 0), 0u) << said[0];
+        EXPECT_EQ(said[0].rfind("at rtol " + rounded_text(rtol) + " this drive may not keep the accuracy contract", 0), 0u)
+            << said[0];
         EXPECT_NE(said[0].find(words[k]), std::string::npos) << said[0];
       }
     }
   }
-  for (const double rtol : {1e-3, 1e-4}) {
+  for (const double rtol : {1e-2, 1e-3}) {
     std::vector<std::string> said;
     RunSettings rs = settings(rtol, "wetted", false);
     rs.on_warning = [&](const std::string& m) { said.push_back(m); };
@@ -231,7 +233,7 @@ TEST(RunCheck, ADriveOutsideTheContractSaysSo) {
     for (int i = 0; i < 10; ++i) mu[i] = 0.1;
     sim.set_mu(mu, "wet", "test");
     sim.set_mu(mu, "wet", "again");
-    if (rtol <= 1e-4) {
+    if (rtol <= 1e-3) {
       EXPECT_TRUE(said.empty()) << said[0];
       continue;
     }
