@@ -129,8 +129,7 @@ int sde_nearest(const Model& m, const double* q, const Vec2& point) {
   const int n = m.belt.n;
   int best = 0;
   double bd = std::numeric_limits<double>::max();
-  for (int i = 0; i < n; ++i) {
-    const int a = (i + n - 1) % n;
+  for (int i = 0, a = n - 1; i < n; a = i++) {  // SDE i joins elements a = i - 1 (mod n) and i
     const Vec2 c(0.5 * (q[3 * a] + q[3 * i]), 0.5 * (q[3 * a + 1] + q[3 * i + 1]));
     const double d = (c - point).squaredNorm();
     if (d < bd) bd = d, best = i;
