@@ -97,12 +97,13 @@ class Esdirk final : public Stepper {
     sys.linear->solve(raw_.data(), err.data());
     sys.problem->counters.solves++;
     err *= sh;
-    if (tab.interior_stages) interior_defect(sys, t, y, h, sh, n);
     return y1.allFinite();
   }
 
-  bool interior_error(double& c, const Eigen::VectorXd*& Z, const Eigen::VectorXd*& e) const override {
+  bool interior_error(const OdeSystem& sys, double t, const Eigen::VectorXd& y, double h, double& c,
+                      const Eigen::VectorXd*& Z, const Eigen::VectorXd*& e) override {
     if (!tab_.interior_stages) return false;
+    interior_defect(sys, t, y, h, 1.0 / (h * tab_.gamma), static_cast<int>(y.size()));
     c = tab_.c[1], Z = &stage_[1], e = &eint_;
     return true;
   }
