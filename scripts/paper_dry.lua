@@ -41,7 +41,7 @@ local result = drive:run {
   sample = sample,
   probe = {0.29, 0.1},
   -- a 10 s clip, ten times slower than life (a frame every 3.3 ms of simulated time: the belt
-  -- moves about one element per frame at full speed), coloured by the SDE tension so that its
+  -- moves about one element per frame at full speed), coloured by the belt tension so that its
   -- fall round each pulley shows; the belt's deviation from its path magnified ten times; a
   -- PNG every 0.1 s of simulated time (every 30th frame)
   frames = {

@@ -12,7 +12,7 @@ namespace beltsim {
 
 const std::vector<FrameQuantityInfo>& frame_quantities() {
   static const std::vector<FrameQuantityInfo> q{
-      {FrameQuantity::tension, "tension", "SDE tension", "N", false},
+      {FrameQuantity::tension, "tension", "belt tension", "N", false},
       {FrameQuantity::normal, "normal", "normal force", "N", false},
       {FrameQuantity::friction, "friction", "friction force", "N", true},
       {FrameQuantity::slip, "slip", "slip velocity", "m/s", true},

@@ -265,13 +265,13 @@ TEST_F(Fixture, TextAndColourBarSayWhatIsShown) {
     return false;
   };
   EXPECT_TRUE(has("t = 0.1250 s"));
-  EXPECT_TRUE(has("colour: SDE tension [N]"));
+  EXPECT_TRUE(has("colour: belt tension [N]"));
   EXPECT_TRUE(has("deformation \u00d720"));
   // the driver's rim runs 1 % ahead of the belt's 6 m/s mean speed (moving_state): ω = −60.6 rad/s;
   // slip is belt minus rim, as the elements' slip colours (SignedQuantitiesUseTheDivergingMap...)
   EXPECT_TRUE(has("driver: \u03c9 = \u221260.60 rad/s, slip \u22120.06"));
   EXPECT_TRUE(has("driven: \u03c9 = \u221259.40 rad/s, slip +0.06"));
-  for (const char* s : {"SDE tension", "[N]", "0", "1000", "wet (\u03bc < 1)", "slipping"}) EXPECT_TRUE(has(s)) << s;
+  for (const char* s : {"belt tension", "[N]", "0", "1000", "wet (\u03bc < 1)", "slipping"}) EXPECT_TRUE(has(s)) << s;
 }
 
 // a pulley on a tensioner arm shows the arm's angle, one with a coupled rotor the rotor's speed;

@@ -15,7 +15,7 @@ namespace beltsim::test {
 
 // The belt running at v_belt (m/s) along its axes, ±3 % speed ripple round the loop; the
 // driver's rim 1 % faster than v_belt, the driven's 1 % slower; a longitudinal wave of the
-// element positions that makes the SDE tension vary by about ±300 N round the loop; on the
+// element positions that makes the belt tension vary by about ±300 N round the loop; on the
 // free spans a transverse wave of 0.3 mm (a job for `magnify`). Δv = 5 mm/s so that the friction
 // law has a stick zone at these slip speeds.
 inline Scene moving_scene(SceneDef def) {
