@@ -159,7 +159,9 @@ double BeltProblem::answer_scale(int k) const {
   return k < speeds ? 1.0 : 100.0;
 }
 
-bool BeltProblem::checked_inside(int k) const { return k < model_.n_p() + model_.n_arm() + model_.n_coupling(); }
+bool BeltProblem::checked_inside(int k) const {
+  return k < model_.n_p() + model_.n_arm() + model_.n_coupling();
+}
 
 std::string BeltProblem::describe_answer(int k) const {
   const int np = model_.n_p(), na = model_.n_arm(), nc = model_.n_coupling();

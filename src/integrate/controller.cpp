@@ -33,7 +33,8 @@ double StepController::interior_norm(double t, const Eigen::VectorXd& y0, const 
   sys_.answer(t, Z.data(), a1_.data());
   sys_.answer_error(t, Z.data(), e.data(), da_.data());
   double n = 0;
-  for (int a : inside_) n = std::max(n, std::abs(da_[a]) / (aatol_[a] + rtol_ * std::max(std::abs(a0_[a]), std::abs(a1_[a]))));
+  for (int a : inside_)
+    n = std::max(n, std::abs(da_[a]) / (aatol_[a] + rtol_ * std::max(std::abs(a0_[a]), std::abs(a1_[a]))));
   return std::isfinite(n) ? n : 1e300;
 }
 

@@ -228,7 +228,9 @@ Route centre_path(const RouteOrder& order, const std::vector<double>& penetratio
 // takes the same midpoint and leaves [lo, hi] as it is. The bisections below run a fixed count of
 // steps, which on short intervals goes past the doubles' resolution; they stop here instead, with
 // the same result.
-static bool at_resolution(double mid, double lo, double hi) { return mid == lo || mid == hi || lo == hi; }
+static bool at_resolution(double mid, double lo, double hi) {
+  return mid == lo || mid == hi || lo == hi;
+}
 
 double walk(const Route& path, int n, double h, double gap, std::vector<double>* s_out) {
   double s_prev = 0;

@@ -217,7 +217,8 @@ TEST(RunCheck, ADriveOutsideTheContractSaysSo) {
           continue;
         }
         ASSERT_EQ(said.size(), 1u) << words[k];
-        EXPECT_EQ(said[0].rfind("at rtol " + rounded_text(rtol) + " this drive may not keep the accuracy contract", 0), 0u)
+        EXPECT_EQ(said[0].rfind("at rtol " + rounded_text(rtol) + " this drive may not keep the accuracy contract", 0),
+                  0u)
             << said[0];
         EXPECT_NE(said[0].find(words[k]), std::string::npos) << said[0];
       }
