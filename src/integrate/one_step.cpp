@@ -101,7 +101,7 @@ class OneStep final : public Integrator {
       double e = ok ? ctl_.error_norm(lands ? t_land : t_ + h, y_, y1_, err_, &worst) : 1e300;
       double ci = 0;
       const Eigen::VectorXd *zi = nullptr, *ei = nullptr;
-      if (e <= 1.0 && st_->interior_error(sys_, t_, y_, h, ci, zi, ei))
+      if (ok && st_->interior_error(sys_, t_, y_, h, ci, zi, ei))
         e = std::max(e, ctl_.interior_norm(t_ + ci * h, y_, *zi, *ei));
       worst_ = worst;
       const double ulp = std::numeric_limits<double>::epsilon() * std::max(1.0, std::abs(t_));

@@ -46,10 +46,10 @@ class Stepper {
     c.clear();
     Z.clear();
   }
-  // after a step that returned true, with its t, y and h (the driver asks only when the step's
-  // end passed its test): the estimated error e of the dense output at t + c·h, where it reads the
-  // state Z (the driver holds the answer there to the tolerance as at the step's end:
-  // StepController::interior_norm); false when the method estimates none
+  // after a step that returned true, with its t, y and h: the estimated error e of the dense
+  // output at t + c·h, where it reads the state Z (the driver holds the answer there to the
+  // tolerance as at the step's end: StepController::interior_norm); false when the method
+  // estimates none
   virtual bool interior_error(const OdeSystem& sys, double t, const Eigen::VectorXd& y, double h, double& c,
                               const Eigen::VectorXd*& Z, const Eigen::VectorXd*& e) {
     (void)sys, (void)t, (void)y, (void)h, (void)c, (void)Z, (void)e;
