@@ -376,8 +376,28 @@ void pressed_pulleys(const Model& m, const ContactView& pairs, std::vector<int>&
 }
 
 namespace {
+// the pulley each element presses on (w.on) and each pulley's change of speed over the stage
+// (w.dom): a prescribed speed's Ω(t + dt) - Ω(t), 0 for a speed that is a state (the prediction
+// keeps it)
+void prepare(const Model& m, const Drive& d, double t, double dt, const ContactView& pairs, const double* v,
+             PredictScratch& w) {
+  pressed_pulleys(m, pairs, w.on);
+  w.dom.assign(m.n_p(), 0.0);
+  for (int j = 0; j < m.n_p(); ++j)
+    if (d.kinematic(j)) w.dom[j] = d.omega(m, j, t + dt, v) - d.omega(m, j, t, v);
+}
+
+// element i, on pulley j at t + dt, keeps its slip velocity v_T = V·t̂ - Ω·r when Ω changes by
+// dom over the stage: V gains dom·r along t̂
+void keep_slip(const Model& m, int j, double dom, int i, const double* q, double* v) {
+  if (dom == 0) return;
+  const Vec2 e = Vec2(q[3 * i], q[3 * i + 1]) - m.centre(j, q);  // r·n; r·t̂ = (-e_y, e_x)
+  v[3 * i] -= dom * e.y(), v[3 * i + 1] += dom * e.x();
+}
+
 // element i moved by kinematic_predict, given the pulley it presses on (-1: none)
-void kinematic_move(const Model& m, int on, double dt, int i, double* q, double* v) {
+void kinematic_move(const Model& m, const PredictScratch& w, double dt, int i, double* q, double* v) {
+  const int on = w.on[i];
   const Vec2 P(q[3 * i], q[3 * i + 1]), V(v[3 * i], v[3 * i + 1]);
   if (on < 0) {
     q[3 * i] += dt * V.x(), q[3 * i + 1] += dt * V.y(), q[3 * i + 2] += dt * v[3 * i + 2];
@@ -391,30 +411,18 @@ void kinematic_move(const Model& m, int on, double dt, int i, double* q, double*
   q[3 * i + 2] += th;
   v[3 * i] = c * V.x() - s * V.y();
   v[3 * i + 1] = s * V.x() + c * V.y();
+  keep_slip(m, on, w.dom[on], i, q, v);
 }
 
 void advance_pulleys(const Model& m, const Drive& d, double t, double dt, double* q, const double* v) {
   for (int j = 0; j < m.n_p(); ++j) q[m.pulley_coord(j)] += dt * d.omega(m, j, t, v);
 }
-
-// element i, moved onto pulley j (-1: none) at t + dt, keeps its slip velocity v_T = V·t̂ - Ω·r
-// when Ω is prescribed and changes over the stage: V gains (Ω(t + dt) - Ω(t))·r along t̂ (a pulley
-// whose speed is a state keeps it in the prediction, and so does the element)
-void keep_slip(const Model& m, const Drive& d, double t, double dt, int j, int i, const double* q, double* v) {
-  if (j < 0 || !d.kinematic(j)) return;
-  const double dom = d.omega(m, j, t + dt, v) - d.omega(m, j, t, v);
-  const Vec2 e = Vec2(q[3 * i], q[3 * i + 1]) - m.centre(j, q);  // r·n; r·t̂ = (-e_y, e_x)
-  v[3 * i] -= dom * e.y(), v[3 * i + 1] += dom * e.x();
-}
 }  // namespace
 
 void kinematic_predict(const Model& m, const Drive& d, double t, double dt, const ContactView& pairs, double* q,
                        double* v, PredictScratch& w) {
-  pressed_pulleys(m, pairs, w.on);
-  for (int i = 0; i < m.belt.n; ++i) {
-    kinematic_move(m, w.on[i], dt, i, q, v);
-    keep_slip(m, d, t, dt, w.on[i], i, q, v);
-  }
+  prepare(m, d, t, dt, pairs, v, w);
+  for (int i = 0; i < m.belt.n; ++i) kinematic_move(m, w, dt, i, q, v);
   advance_pulleys(m, d, t, dt, q, v);
 }
 
@@ -433,7 +441,7 @@ void convective_predict(const Model& m, const Drive& d, double t, double dt, con
   w.v0.assign(v, v + 3 * n);
   const double* q0 = w.q0.data();
   const double* v0 = w.v0.data();
-  pressed_pulleys(m, pairs, w.on);
+  prepare(m, d, t, dt, pairs, v, w);
   advance_pulleys(m, d, t, dt, q, v);
   auto pos = [q0](int k) { return Vec2(q0[3 * k], q0[3 * k + 1]); };
   auto vel = [v0](int k) { return Vec2(v0[3 * k], v0[3 * k + 1]); };
@@ -442,8 +450,7 @@ void convective_predict(const Model& m, const Drive& d, double t, double dt, con
     const Vec2 V = vel(i);
     double rest = V.norm() * std::abs(dt);
     if (rest < reach) {
-      kinematic_move(m, w.on[i], dt, i, q, v);
-      keep_slip(m, d, t, dt, w.on[i], i, q, v);
+      kinematic_move(m, w, dt, i, q, v);
       continue;
     }
     // the direction of the element's motion along the belt
@@ -468,8 +475,7 @@ void convective_predict(const Model& m, const Drive& d, double t, double dt, con
       rest -= seg;
     }
     if (f < 0) {  // a walk round half the belt: the kinematic prediction
-      kinematic_move(m, w.on[i], dt, i, q, v);
-      keep_slip(m, d, t, dt, w.on[i], i, q, v);
+      kinematic_move(m, w, dt, i, q, v);
       continue;
     }
     Vec2 P1, V1;
@@ -492,7 +498,7 @@ void convective_predict(const Model& m, const Drive& d, double t, double dt, con
     q[3 * i + 2] = q0[3 * i + 2] + wrap_angle(phi - q0[3 * i + 2]);
     v[3 * i] = V1.x(), v[3 * i + 1] = V1.y();
     v[3 * i + 2] = (1 - f) * v0[3 * a + 2] + f * v0[3 * b + 2];
-    if (w.on[a] >= 0 && w.on[a] == w.on[b]) keep_slip(m, d, t, dt, w.on[a], i, q, v);
+    if (w.on[a] >= 0 && w.on[a] == w.on[b]) keep_slip(m, w.on[a], w.dom[w.on[a]], i, q, v);
   }
 }
 

@@ -54,8 +54,9 @@ void pressed_pulleys(const Model& m, const ContactView& pairs, std::vector<int>&
 // Newton's starting point for a stage dt after the state (q, v) at t (see newton_aids.cpp): each
 // element pressing on a pulley turns about the pulley's centre with its own angular velocity
 // about it, carrying its velocity round with it; every other element moves on in a straight
-// line; pulley angles advance at their speeds. Velocities keep their size. pairs: the records of
-// the contact stage of (q, v) at t, read before anything moves.
+// line; pulley angles advance at their speeds. Velocities keep their size, but on a pulley whose
+// speed is prescribed an element keeps its slip (it gains the pulley's change of speed times its
+// radius). pairs: the records of the contact stage of (q, v) at t, read before anything moves.
 struct PredictScratch;
 void kinematic_predict(const Model& m, const Drive& d, double t, double dt, const ContactView& pairs, double* q,
                        double* v, PredictScratch& w);
@@ -67,7 +68,8 @@ void kinematic_predict(const Model& m, const Drive& d, double t, double dt, cons
 // w holds copies of the state at t between calls, so the step loop allocates nothing once sized.
 struct PredictScratch {
   std::vector<double> q0, v0;
-  std::vector<int> on;  // the pulley each element presses on at t (-1: none)
+  std::vector<int> on;      // the pulley each element presses on at t (-1: none)
+  std::vector<double> dom;  // each pulley's prescribed change of speed over the stage (0: none)
 };
 void convective_predict(const Model& m, const Drive& d, double t, double dt, const ContactView& pairs, double* q,
                         double* v, PredictScratch& w);
