@@ -80,6 +80,16 @@
 // adding (Ω(t + dt) - Ω(t))·r·t̂ to V (keep_slip): without it the whole wrap of a crankshaft
 // with a firing pulsation started Newton slipping at some 300 bands, and the iteration took a
 // Jacobian for each of the stick/slip changes on the way back.
+// On a tensioner arm the centre moves: C(t) = c0 with velocity V_C = vc0, and the arm, turned at
+// its rate ψ̇ over dt, holds it at c1 with velocity vc1 at t + dt. The rotation is that of the
+// element relative to the centre, θ = ((P - c0) × (V - vc0))/|P - c0|²·dt, and the element lands
+// at c1 + R(θ)·(P - c0) with velocity vc1 + R(θ)·(V - vc0), which keeps its penetration and slip
+// velocity relative to the moving centre. Rotated with its absolute velocity about a centre held
+// where it was, the serpentine's tensioner wrap (arm at 0.7 rad/s on a 63 mm lever, V_C ≈ 44 mm/s)
+// started every stage slipping at a few bands; Newton's first correction, on the slipping
+// branch, left the pulley 0.6–1 rad/s off its root, and the iteration swung the wrap by ±7 000
+// bands between the local solve and Newton's corrections until the line search halved one (three
+// Jacobians a stage). The arms', rotors' and hubs' angles advance at their rates, as the pulleys'.
 //
 // Convective predictor (convective_predict): the kinematic predictor carries each element's
 // own state along its motion, so whatever it was (sticking, out of contact) it stays. But in a drive
@@ -92,11 +102,12 @@
 // d = |V|·dt ≥ l/2, this predictor walks d along the belt as it was at t, in the direction of the
 // element's motion (element to element, along the arc r̄·|Δθ| between two elements on one pulley,
 // along the chord otherwise), and gives the element the state found there: interpolated between
-// the two elements it lands between, about the pulley's centre (radius, angle, radial and tangential
-// velocity) when both press on the same pulley, linearly otherwise; the angle φ by its wrapped
-// difference, kept on the element's own branch of 2π. This is exact for a steady state whose fields are
-// linear between elements, and for a wrap turning rigidly at a constant radius
-// (tests/integrate/predictor_test.cpp). On a coarse belt the interpolation across a pitch is the
+// the two elements it lands between, about the pulley's centre (radius, angle, radial and
+// tangential velocity, relative to the centre and its motion on an arm, as above) when both press
+// on the same pulley, linearly otherwise; the angle φ by its wrapped difference, kept on the
+// element's own branch of 2π. This is exact for a steady state whose fields are linear between
+// elements, and for a wrap turning rigidly at a constant radius
+// (tests/integrate/newton_aids_test.cpp). On a coarse belt the interpolation across a pitch is the
 // larger error (20 mm pitches at 60 elements, the wrap ends' chords), so elements that travel
 // less than half a pitch keep the kinematic prediction.
 //
@@ -379,50 +390,67 @@ namespace {
 // the pulley each element presses on (w.on) and each pulley's change of speed over the stage
 // (w.dom): a prescribed speed's Ω(t + dt) - Ω(t), 0 for a speed that is a state (the prediction
 // keeps it)
-void prepare(const Model& m, const Drive& d, double t, double dt, const ContactView& pairs, const double* v,
+void prepare(const Model& m, const Drive& d, double t, double dt, const ContactView& pairs, double* q, const double* v,
              PredictScratch& w) {
   pressed_pulleys(m, pairs, w.on);
-  w.dom.assign(m.n_p(), 0.0);
-  for (int j = 0; j < m.n_p(); ++j)
+  const int np = m.n_p();
+  w.dom.assign(np, 0.0);
+  w.c0.resize(np), w.vc0.resize(np), w.c1.resize(np), w.vc1.resize(np);
+  for (int j = 0; j < np; ++j) {
     if (d.kinematic(j)) w.dom[j] = d.omega(m, j, t + dt, v) - d.omega(m, j, t, v);
+    w.c0[j] = w.c1[j] = m.centre(j, q);
+    w.vc0[j] = w.vc1[j] = m.centre_velocity(j, q, v);
+    if (const int a = m.pulleys[j].arm; a >= 0) {  // the arm turned at its rate
+      double& psi = q[m.arm_coord(a)];
+      const double psi0 = psi;
+      psi += dt * v[m.arm_coord(a)];
+      w.c1[j] = m.centre(j, q), w.vc1[j] = m.centre_velocity(j, q, v);
+      psi = psi0;
+    }
+  }
 }
 
 // element i, on pulley j at t + dt, keeps its slip velocity v_T = V·t̂ - Ω·r when Ω changes by
 // dom over the stage: V gains dom·r along t̂
-void keep_slip(const Model& m, int j, double dom, int i, const double* q, double* v) {
+void keep_slip(const PredictScratch& w, int j, int i, const double* q, double* v) {
+  const double dom = w.dom[j];
   if (dom == 0) return;
-  const Vec2 e = Vec2(q[3 * i], q[3 * i + 1]) - m.centre(j, q);  // r·n; r·t̂ = (-e_y, e_x)
+  const Vec2 e = Vec2(q[3 * i], q[3 * i + 1]) - w.c1[j];  // r·n; r·t̂ = (-e_y, e_x)
   v[3 * i] -= dom * e.y(), v[3 * i + 1] += dom * e.x();
 }
 
 // element i moved by kinematic_predict, given the pulley it presses on (-1: none)
-void kinematic_move(const Model& m, const PredictScratch& w, double dt, int i, double* q, double* v) {
+void kinematic_move(const PredictScratch& w, double dt, int i, double* q, double* v) {
   const int on = w.on[i];
   const Vec2 P(q[3 * i], q[3 * i + 1]), V(v[3 * i], v[3 * i + 1]);
   if (on < 0) {
     q[3 * i] += dt * V.x(), q[3 * i + 1] += dt * V.y(), q[3 * i + 2] += dt * v[3 * i + 2];
     return;
   }
-  const Vec2 C = m.centre(on, q), d = P - C;
-  const double th = (d.x() * V.y() - d.y() * V.x()) / d.squaredNorm() * dt;
+  // relative to the centre, which moves from c0 to c1 on a tensioner arm
+  const Vec2 d = P - w.c0[on], U = V - w.vc0[on], C = w.c1[on], Vc = w.vc1[on];
+  const double th = (d.x() * U.y() - d.y() * U.x()) / d.squaredNorm() * dt;
   const double c = std::cos(th), s = std::sin(th);
   q[3 * i] = C.x() + c * d.x() - s * d.y();
   q[3 * i + 1] = C.y() + s * d.x() + c * d.y();
   q[3 * i + 2] += th;
-  v[3 * i] = c * V.x() - s * V.y();
-  v[3 * i + 1] = s * V.x() + c * V.y();
-  keep_slip(m, on, w.dom[on], i, q, v);
+  v[3 * i] = Vc.x() + c * U.x() - s * U.y();
+  v[3 * i + 1] = Vc.y() + s * U.x() + c * U.y();
+  keep_slip(w, on, i, q, v);
 }
 
+// the pulleys' angles, and the arms', rotors' and hubs' (the coordinates after the pulleys'),
+// each at its rate
 void advance_pulleys(const Model& m, const Drive& d, double t, double dt, double* q, const double* v) {
   for (int j = 0; j < m.n_p(); ++j) q[m.pulley_coord(j)] += dt * d.omega(m, j, t, v);
+  for (int k = m.pulley_coord(0) + m.n_p(); k < m.n_coord(); ++k) q[k] += dt * v[k];
 }
 }  // namespace
 
 void kinematic_predict(const Model& m, const Drive& d, double t, double dt, const ContactView& pairs, double* q,
                        double* v, PredictScratch& w) {
-  prepare(m, d, t, dt, pairs, v, w);
-  for (int i = 0; i < m.belt.n; ++i) kinematic_move(m, w, dt, i, q, v);
+  prepare(m, d, t, dt, pairs, q, v, w);
+  for (int i = 0; i < m.belt.n; ++i) kinematic_move(w, dt, i, q, v);
   advance_pulleys(m, d, t, dt, q, v);
 }
 
@@ -441,7 +469,7 @@ void convective_predict(const Model& m, const Drive& d, double t, double dt, con
   w.v0.assign(v, v + 3 * n);
   const double* q0 = w.q0.data();
   const double* v0 = w.v0.data();
-  prepare(m, d, t, dt, pairs, v, w);
+  prepare(m, d, t, dt, pairs, q, v, w);
   advance_pulleys(m, d, t, dt, q, v);
   auto pos = [q0](int k) { return Vec2(q0[3 * k], q0[3 * k + 1]); };
   auto vel = [v0](int k) { return Vec2(v0[3 * k], v0[3 * k + 1]); };
@@ -450,7 +478,7 @@ void convective_predict(const Model& m, const Drive& d, double t, double dt, con
     const Vec2 V = vel(i);
     double rest = V.norm() * std::abs(dt);
     if (rest < reach) {
-      kinematic_move(m, w, dt, i, q, v);
+      kinematic_move(w, dt, i, q, v);
       continue;
     }
     // the direction of the element's motion along the belt
@@ -462,7 +490,7 @@ void convective_predict(const Model& m, const Drive& d, double t, double dt, con
       const bool arc = w.on[a] >= 0 && w.on[a] == w.on[b];
       double seg;
       if (arc) {
-        const Vec2 C = m.centre(w.on[a], q), da = pos(a) - C, db = pos(b) - C;
+        const Vec2 C = w.c0[w.on[a]], da = pos(a) - C, db = pos(b) - C;
         dth = std::atan2(cross(da, db), da.dot(db));
         seg = 0.5 * (da.norm() + db.norm()) * std::abs(dth);
       } else {
@@ -475,20 +503,22 @@ void convective_predict(const Model& m, const Drive& d, double t, double dt, con
       rest -= seg;
     }
     if (f < 0) {  // a walk round half the belt: the kinematic prediction
-      kinematic_move(m, w, dt, i, q, v);
+      kinematic_move(w, dt, i, q, v);
       continue;
     }
     Vec2 P1, V1;
     if (w.on[a] >= 0 && w.on[a] == w.on[b]) {
-      const Vec2 C = m.centre(w.on[a], q), da = pos(a) - C, db = pos(b) - C;
+      // about the centre, relative to its motion (c0 at t, c1 at t + dt on a tensioner arm)
+      const int j = w.on[a];
+      const Vec2 da = pos(a) - w.c0[j], db = pos(b) - w.c0[j], ua = vel(a) - w.vc0[j], ub = vel(b) - w.vc0[j];
       const double ra = da.norm(), rb = db.norm();
       const Vec2 ea = da / ra, eb = db / rb;
       const double c = std::cos(f * dth), s = std::sin(f * dth);
       const Vec2 e(c * ea.x() - s * ea.y(), s * ea.x() + c * ea.y());
-      const double vr = (1 - f) * vel(a).dot(ea) + f * vel(b).dot(eb);
-      const double vt = (1 - f) * cross(ea, vel(a)) + f * cross(eb, vel(b));
-      P1 = C + ((1 - f) * ra + f * rb) * e;
-      V1 = vr * e + vt * Vec2(-e.y(), e.x());
+      const double vr = (1 - f) * ua.dot(ea) + f * ub.dot(eb);
+      const double vt = (1 - f) * cross(ea, ua) + f * cross(eb, ub);
+      P1 = w.c1[j] + ((1 - f) * ra + f * rb) * e;
+      V1 = w.vc1[j] + vr * e + vt * Vec2(-e.y(), e.x());
     } else {
       P1 = (1 - f) * pos(a) + f * pos(b);
       V1 = (1 - f) * vel(a) + f * vel(b);
@@ -498,7 +528,7 @@ void convective_predict(const Model& m, const Drive& d, double t, double dt, con
     q[3 * i + 2] = q0[3 * i + 2] + wrap_angle(phi - q0[3 * i + 2]);
     v[3 * i] = V1.x(), v[3 * i + 1] = V1.y();
     v[3 * i + 2] = (1 - f) * v0[3 * a + 2] + f * v0[3 * b + 2];
-    if (w.on[a] >= 0 && w.on[a] == w.on[b]) keep_slip(m, w.on[a], w.dom[w.on[a]], i, q, v);
+    if (w.on[a] >= 0 && w.on[a] == w.on[b]) keep_slip(w, w.on[a], i, q, v);
   }
 }
 

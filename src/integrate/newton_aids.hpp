@@ -70,6 +70,9 @@ struct PredictScratch {
   std::vector<double> q0, v0;
   std::vector<int> on;      // the pulley each element presses on at t (-1: none)
   std::vector<double> dom;  // each pulley's prescribed change of speed over the stage (0: none)
+  // each pulley's centre and its velocity at t (c0, vc0) and at t + dt (c1, vc1): they differ on
+  // a tensioner arm, which the prediction turns at its rate
+  std::vector<Vec2> c0, vc0, c1, vc1;
 };
 void convective_predict(const Model& m, const Drive& d, double t, double dt, const ContactView& pairs, double* q,
                         double* v, PredictScratch& w);

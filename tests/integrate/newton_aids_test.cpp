@@ -80,6 +80,58 @@ TEST(KinematicPredictor, TurnsAWrapWithItsPulleyAndMovesSpansOn) {
   EXPECT_NEAR(z.segment(N, N).norm(), y.segment(N, N).norm(), 1e-9);
 }
 
+// A wrap turning rigidly with a pulley on a tensioner arm that swings: relative to the pulley's
+// centre c and its velocity V_c = g·ψ̇ each pressing element moves as Ω × (P - c). The prediction
+// turns the arm by ψ̇·dt and each element about the moving centre by Ω·dt: it keeps the element's
+// radius about the centre (its penetration) and its velocity relative to the centre's motion (its
+// slip velocity). A rotation about the centre as it was, with the element's absolute velocity,
+// misses by V_c·dt in place and by about |V_c|/r·dt in angle.
+TEST(KinematicPredictor, TurnsAWrapAboutTheMovingCentreOfATensionerArm) {
+  const Scene sc = build_scene(presets::automotive_tensioner());
+  const Model& m = sc.model;
+  const Drive& dr = sc.drive;
+  const int N = m.n_coord();
+  ASSERT_EQ(m.n_arm(), 1);
+  int jt = -1;
+  for (int j = 0; j < m.n_p(); ++j)
+    if (m.pulleys[j].arm >= 0) jt = j;
+  ASSERT_GE(jt, 0);
+  Eigen::VectorXd y = sc.y0;
+  const int ka = m.arm_coord(m.pulleys[jt].arm);
+  const double Omega = 150.0, psi_rate = 0.7, dt = 2e-5;
+  y[N + ka] = psi_rate;
+  y[N + m.pulley_coord(jt)] = Omega;
+  const Vec2 c0 = m.centre(jt, y.data()), vc0 = m.centre_velocity(jt, y.data(), y.data() + N);
+  ASSERT_GT(vc0.norm(), 0.03);  // the arm's 63 mm at 0.7 rad/s
+  ContactRecords at_y;
+  fill_contacts(m, dr, 0.5, y.data(), at_y);
+  std::vector<int> on;
+  int wrapped = 0;
+  for (const ContactPair& c : at_y.pairs())
+    if (c.j == jt && c.touching && c.nl.pushing) {
+      const Vec2 d = Vec2(y[c.i * 3], y[c.i * 3 + 1]) - c0, V = vc0 + Omega * Vec2(-d.y(), d.x());
+      y[N + 3 * c.i] = V.x(), y[N + 3 * c.i + 1] = V.y();
+      on.push_back(c.i), ++wrapped;
+    }
+  ASSERT_GE(wrapped, 2);
+  fill_contacts(m, dr, 0.5, y.data(), at_y);  // the velocities changed: the records again
+  Eigen::VectorXd z = y;
+  PredictScratch w;
+  kinematic_predict(m, dr, 0.5, dt, at_y.pairs(), z.data(), z.data() + N, w);
+  EXPECT_NEAR(z[ka], y[ka] + psi_rate * dt, 1e-15);
+  const Vec2 c1 = m.centre(jt, z.data()), vc1 = m.centre_velocity(jt, z.data(), z.data() + N);
+  EXPECT_GT((c1 - c0).norm(), 0.9 * vc0.norm() * dt);
+  for (int i : on) {
+    const Vec2 d = Vec2(y[3 * i], y[3 * i + 1]) - c0, d1 = Vec2(z[3 * i], z[3 * i + 1]) - c1;
+    const double th = Omega * dt, c = std::cos(th), s = std::sin(th);
+    EXPECT_LT((d1 - Vec2(c * d.x() - s * d.y(), s * d.x() + c * d.y())).norm(), 1e-12) << "element " << i;
+    EXPECT_NEAR(d1.norm(), d.norm(), 1e-12) << "element " << i << ": the penetration is kept";
+    EXPECT_NEAR(z[3 * i + 2], y[3 * i + 2] + th, 1e-12) << "element " << i;
+    const Vec2 V1(z[N + 3 * i], z[N + 3 * i + 1]);
+    EXPECT_LT((V1 - vc1 - Omega * Vec2(-d1.y(), d1.x())).norm(), 1e-12) << "element " << i << ": no slip";
+  }
+}
+
 // The paper's belt set running steadily at V0 along its route: every element of a wrap at the
 // wrap's mean radius r0, angle φ = θ + const, spin Ω = V0/r0, and a slip velocity a·(θ - θ_first)
 // along the wrap on top of the rigid turning; the spans' elements moving along the span at V0.
