@@ -27,8 +27,8 @@ void Timeline::start(double t0, const Eigen::VectorXd& y0) {
   process(t0);
 }
 
-int Timeline::add_stream(double t0, double dt, Output fn) {
-  Periodic p{next_id_++, true, t0, dt, 0, std::move(fn), {}, false, {}};
+int Timeline::add_stream(double t0, double dt, Output fn, bool landed) {
+  Periodic p{next_id_++, true, landed, t0, dt, 0, std::move(fn), {}, false, {}};
   if (started_)
     while (p.time() <= now_) p.k++;  // what was due before it was added is not delivered
   periodic_.push_back(std::move(p));
@@ -36,7 +36,7 @@ int Timeline::add_stream(double t0, double dt, Output fn) {
 }
 
 int Timeline::add_times(std::vector<double> times, Output fn) {
-  Periodic p{next_id_++, true, 0.0, 0.0, 0, std::move(fn), {}, true, std::move(times)};
+  Periodic p{next_id_++, true, false, 0.0, 0.0, 0, std::move(fn), {}, true, std::move(times)};
   if (started_)
     while (p.time() <= now_) p.k++;
   periodic_.push_back(std::move(p));
@@ -44,7 +44,7 @@ int Timeline::add_times(std::vector<double> times, Output fn) {
 }
 
 int Timeline::add_every(double dt, Action fn) {
-  periodic_.push_back({next_id_++, false, now_, dt, 1, {}, std::move(fn), false, {}});
+  periodic_.push_back({next_id_++, false, false, now_, dt, 1, {}, std::move(fn), false, {}});
   return periodic_.back().id;
 }
 
@@ -156,19 +156,31 @@ void Timeline::process(double p) {
   if (landed && !dirty_ && companion_ && companion_failed_.empty() && p == companion_->t()) companion_->kink();
 }
 
+double Timeline::next_landing(const Integrator& integ) const {
+  const double after = integ.t(), last = integ.t() - integ.t_prev();
+  double land = kInf;
+  for (const Landing& l : landings_)
+    if (l.t > after) {
+      land = l.t;
+      break;
+    }
+  for (const Periodic& s : periodic_) {
+    // a landed stream whose interval holds two of the last step or more: longer steps come near
+    // or past its times, which their dense output gives; landing on each would make the stream,
+    // not the tolerance, set the steps (up to twice as many)
+    if (!s.landed || !(2 * last <= s.dt)) continue;
+    long k = s.k;  // the stream's next time after `after` (the companion may be behind now_)
+    while (stream_time(s.t0, s.dt, k) <= after) ++k;
+    land = std::min(land, stream_time(s.t0, s.dt, k));
+  }
+  return land;
+}
+
 void Timeline::companion_to(double p) {
   if (!companion_ || !companion_failed_.empty() || p == companion_at_) return;
   try {
     // its own steps, landing where the main one lands (the landings ahead of now_ are those ahead of it)
-    while (companion_->t() < p) {
-      double land = kInf;
-      for (const Landing& l : landings_)
-        if (l.t > companion_->t()) {
-          land = l.t;
-          break;
-        }
-      companion_->step(land);
-    }
+    while (companion_->t() < p) companion_->step(next_landing(*companion_));
     companion_->dense(p, y_companion_);
     companion_at_ = p;
   } catch (const DivergenceError& e) {
@@ -236,7 +248,7 @@ Timeline::Result Timeline::run_to(double T, const std::atomic<bool>* stop, const
       break;
     }
     if (step_hook_) step_hook_(now_);
-    integ_.step(landings_.empty() ? kInf : landings_.front().t);
+    integ_.step(next_landing(integ_));
     if (!when_.empty()) check_conditions();
     if (progress) progress(integ_.t(), integ_.work());
   }

@@ -1,6 +1,8 @@
 // The one schedule of a run, the same for every integrator: what happens at which simulated time.
 //
-//   streams    outputs at t0 + k·dt (samples, frames), read from the dense output
+//   streams    outputs at t0 + k·dt (samples, frames), read from the dense output; a stream added
+//              as landed (the samples) is one the integrator lands on as on a landing, so each of
+//              its outputs is a step's end, whose error the step control measures
 //   every      actions at t0 + k·dt, k >= 1 (a controller); they may change the system
 //   landings   known times the integrator lands on exactly (kinks and jumps of the laws, timed
 //              changes such as wetting), each with an optional action
@@ -69,8 +71,8 @@ class Timeline {
   explicit Timeline(Integrator& integ) : integ_(integ) {}
   // starts the integrator at (t0, y0) and delivers what is due at t0
   void start(double t0, const Eigen::VectorXd& y0);
-  // ids are > 0 and never reused
-  int add_stream(double t0, double dt, Output fn);
+  // ids are > 0 and never reused; landed: the integrator's steps end on the stream's times
+  int add_stream(double t0, double dt, Output fn, bool landed = false);
   int add_times(std::vector<double> times, Output fn);  // outputs at these times (sorted)
   int add_every(double dt, Action fn);  // first at now() + dt
   int add_when(Condition cond, Action action);
@@ -131,6 +133,7 @@ class Timeline {
   struct Periodic {
     int id;
     bool output;  // a stream; else an every-action
+    bool landed;  // a stream the integrator lands on
     double t0, dt;
     long k;       // next index
     Output out;
@@ -153,6 +156,9 @@ class Timeline {
   void restart(double p, const Eigen::VectorXd& y);
   void check_conditions();
   void companion_to(double p);  // brings the companion to p (no-op once it failed)
+  // where integ's next step is to land: the first landing after its time, or a landed stream's
+  // next time when the stream's interval holds two of integ's last step or more
+  double next_landing(const Integrator& integ) const;
 
   Integrator& integ_;
   std::vector<Periodic> periodic_;

@@ -98,9 +98,13 @@ Simulation::~Simulation() {
 }
 
 // the outputs' streams, the timeline's first (a state holds their positions in this order, the
-// one place it is written): samples, frames, snapshots every dt, snapshots at listed times
+// one place it is written): samples, frames, snapshots every dt, snapshots at listed times. The
+// samples are landed on: every row of timeseries.csv is a step's end, whose error the step control
+// measures (docs/integration.md, Samples at step ends); frames and snapshots read the dense output,
+// so drawing a run does not change its steps
 void Simulation::add_streams() {
-  tl_->add_stream(0.0, rs_.sample_dt, [this](double t, const Eigen::VectorXd& y) { sample(t, y); });
+  tl_->add_stream(
+      0.0, rs_.sample_dt, [this](double t, const Eigen::VectorXd& y) { sample(t, y); }, true);
   if (const std::optional<FrameSettings> f = frame_times(rs_))
     tl_->add_stream(f->t_start, f->frame_dt(), [this](double t, const Eigen::VectorXd& y) { frame(t, y); });
   if (rs_.snapshot_every > 0)
