@@ -387,9 +387,17 @@ void pressed_pulleys(const Model& m, const ContactView& pairs, std::vector<int>&
 }
 
 namespace {
-// the pulley each element presses on (w.on) and each pulley's change of speed over the stage
-// (w.dom): a prescribed speed's Ω(t + dt) - Ω(t), 0 for a speed that is a state (the prediction
-// keeps it)
+// the pulleys' angles, and the arms', rotors' and hubs' (the coordinates after the pulleys'),
+// each at its rate
+void advance_pulleys(const Model& m, const Drive& d, double t, double dt, double* q, const double* v) {
+  for (int j = 0; j < m.n_p(); ++j) q[m.pulley_coord(j)] += dt * d.omega(m, j, t, v);
+  for (int k = m.pulley_coord(0) + m.n_p(); k < m.n_coord(); ++k) q[k] += dt * v[k];
+}
+
+// the pulley each element presses on (w.on), each pulley's change of speed over the stage (w.dom:
+// a prescribed speed's Ω(t + dt) - Ω(t), 0 for a speed that is a state, which the prediction
+// keeps) and its centre with its velocity before and after (w.c0, w.vc0, w.c1, w.vc1: they differ
+// on a tensioner arm); the pulleys and arms are moved on (advance_pulleys) in between
 void prepare(const Model& m, const Drive& d, double t, double dt, const ContactView& pairs, double* q, const double* v,
              PredictScratch& w) {
   pressed_pulleys(m, pairs, w.on);
@@ -398,16 +406,10 @@ void prepare(const Model& m, const Drive& d, double t, double dt, const ContactV
   w.c0.resize(np), w.vc0.resize(np), w.c1.resize(np), w.vc1.resize(np);
   for (int j = 0; j < np; ++j) {
     if (d.kinematic(j)) w.dom[j] = d.omega(m, j, t + dt, v) - d.omega(m, j, t, v);
-    w.c0[j] = w.c1[j] = m.centre(j, q);
-    w.vc0[j] = w.vc1[j] = m.centre_velocity(j, q, v);
-    if (const int a = m.pulleys[j].arm; a >= 0) {  // the arm turned at its rate
-      double& psi = q[m.arm_coord(a)];
-      const double psi0 = psi;
-      psi += dt * v[m.arm_coord(a)];
-      w.c1[j] = m.centre(j, q), w.vc1[j] = m.centre_velocity(j, q, v);
-      psi = psi0;
-    }
+    w.c0[j] = m.centre(j, q), w.vc0[j] = m.centre_velocity(j, q, v);
   }
+  advance_pulleys(m, d, t, dt, q, v);
+  for (int j = 0; j < np; ++j) w.c1[j] = m.centre(j, q), w.vc1[j] = m.centre_velocity(j, q, v);
 }
 
 // element i, on pulley j at t + dt, keeps its slip velocity v_T = V·t̂ - Ω·r when Ω changes by
@@ -438,20 +440,12 @@ void kinematic_move(const PredictScratch& w, double dt, int i, double* q, double
   v[3 * i + 1] = Vc.y() + s * U.x() + c * U.y();
   keep_slip(w, on, i, q, v);
 }
-
-// the pulleys' angles, and the arms', rotors' and hubs' (the coordinates after the pulleys'),
-// each at its rate
-void advance_pulleys(const Model& m, const Drive& d, double t, double dt, double* q, const double* v) {
-  for (int j = 0; j < m.n_p(); ++j) q[m.pulley_coord(j)] += dt * d.omega(m, j, t, v);
-  for (int k = m.pulley_coord(0) + m.n_p(); k < m.n_coord(); ++k) q[k] += dt * v[k];
-}
 }  // namespace
 
 void kinematic_predict(const Model& m, const Drive& d, double t, double dt, const ContactView& pairs, double* q,
                        double* v, PredictScratch& w) {
   prepare(m, d, t, dt, pairs, q, v, w);
   for (int i = 0; i < m.belt.n; ++i) kinematic_move(w, dt, i, q, v);
-  advance_pulleys(m, d, t, dt, q, v);
 }
 
 void convective_predict(const Model& m, const Drive& d, double t, double dt, const ContactView& pairs, double* q,
@@ -470,7 +464,6 @@ void convective_predict(const Model& m, const Drive& d, double t, double dt, con
   const double* q0 = w.q0.data();
   const double* v0 = w.v0.data();
   prepare(m, d, t, dt, pairs, q, v, w);
-  advance_pulleys(m, d, t, dt, q, v);
   auto pos = [q0](int k) { return Vec2(q0[3 * k], q0[3 * k + 1]); };
   auto vel = [v0](int k) { return Vec2(v0[3 * k], v0[3 * k + 1]); };
   auto cross = [](const Vec2& a, const Vec2& b) { return a.x() * b.y() - a.y() * b.x(); };

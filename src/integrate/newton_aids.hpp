@@ -53,10 +53,12 @@ void pressed_pulleys(const Model& m, const ContactView& pairs, std::vector<int>&
 
 // Newton's starting point for a stage dt after the state (q, v) at t (see newton_aids.cpp): each
 // element pressing on a pulley turns about the pulley's centre with its own angular velocity
-// about it, carrying its velocity round with it; every other element moves on in a straight
-// line; pulley angles advance at their speeds. Velocities keep their size, but on a pulley whose
-// speed is prescribed an element keeps its slip (it gains the pulley's change of speed times its
-// radius). pairs: the records of the contact stage of (q, v) at t, read before anything moves.
+// about it, carrying its velocity round with it (relative to the centre and its motion, on a
+// tensioner arm, which turns at its rate); every other element moves on in a straight line;
+// pulley, arm, rotor and hub angles advance at their rates. Velocities keep their size, but on a
+// pulley whose speed is prescribed an element keeps its slip (it gains the pulley's change of
+// speed times its radius). pairs: the records of the contact stage of (q, v) at t, read before
+// anything moves.
 struct PredictScratch;
 void kinematic_predict(const Model& m, const Drive& d, double t, double dt, const ContactView& pairs, double* q,
                        double* v, PredictScratch& w);
