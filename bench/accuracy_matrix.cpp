@@ -1,4 +1,4 @@
-// The accuracy matrix (docs/integration.md, "The accuracy contract"): every row of
+// The accuracy matrix (docs/accuracy.md, "The accuracy contract"): every row of
 // bench/accuracy_matrix.csv (a script, its --set parameters and a window of simulated time) run as
 // `beltsim wp` runs it, with the default integrator at rtol 1e-2, 1e-3 and 1e-4 against esdirk32
 // at rtol 1e-7 on the same samples; for each: the largest relative error of the pulley speeds and
@@ -75,7 +75,7 @@ WpResult run_row(const Row& row, const std::string& integrator, const std::vecto
   wps.integrators = {integrator};
   wps.rtols = rtols;
   wps.wall_limit = 600;
-  // the matrix's reference (docs/integration.md): its own error, 1.6e-5 of the span tensions on the
+  // the matrix's reference (docs/accuracy.md): its own error, 1.6e-5 of the span tensions on the
   // paper's dry second, is under 2 % of the contract's bounds at rtol 1e-4
   wps.ref_integrator = "esdirk32";
   wps.base = cap.settings;

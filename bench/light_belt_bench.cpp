@@ -1,7 +1,7 @@
 // The light undamped belt of scripts/light_belt.lua (a datasheet belt with no bending damping on two
 // small pulleys, 2.45 s of start-up and steady drive) at 60 and 240 elements, side by side, with the
 // run default integrator and tolerance: the steps and the wall time of each and their ratios
-// (240 over 60). The goal (docs/integration.md, "The accuracy contract"): the 240-element run
+// (240 over 60). The goal (docs/accuracy.md, "The accuracy contract"): the 240-element run
 // within 1.5 times the 60-element run's steps, in at most 30 s on the 2-core machine. Quote
 // BM_Rhs beside the wall times: the machine's speed varies from hour to hour.
 // Environment: BELTSIM_LIGHT_BELT_T (the window, default the script's 2.45 s).

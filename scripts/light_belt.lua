@@ -2,7 +2,7 @@
 -- speed ramps to 12 rad/s, the driven pulley carries a load torque of −2·ω and a 25 N·m ramp.
 -- Nothing damps the elements' own rotation, so they ring at their bending frequencies while the
 -- drive runs: a scene whose answer (pulley speeds, span tensions) does not depend on that ringing,
--- used by the accuracy matrix (docs/integration.md).
+-- used by the accuracy matrix (docs/accuracy.md).
 --   beltsim run scripts/light_belt.lua --set n=240     element count (default 60)
 -- SI units; counter-clockwise positive.
 

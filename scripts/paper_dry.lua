@@ -2,7 +2,7 @@
 -- SI units; counter-clockwise positive. Parameters not given here take the paper's values
 -- (docs/lua-api.md); the pulley inertias are ours (docs/model.md).
 -- Parameters (--set KEY=VALUE), for variants of the drive (the accuracy matrix of
--- docs/integration.md): elements (default 60), inertia of both pulleys [kg·m²] (default 0.025),
+-- docs/accuracy.md): elements (default 60), inertia of both pulleys [kg·m²] (default 0.025),
 -- sample, the interval of the time series' rows [s] (default 1e-3).
 
 local elements = beltsim.args.elements or 60

@@ -2,7 +2,7 @@
 -- per-length forms: the crankshaft at 800 rpm with its second-order firing pulsation, a
 -- spring-loaded tensioner arm, the alternator behind a one-way decoupler, a back-side idler,
 -- the water pump and the AC compressor. The idlers and the alternator's pulley are light
--- (4e-5 to 1e-4 kg·m²). Used by docs/integration.md for the cost of a step:
+-- (4e-5 to 1e-4 kg·m²). Used by docs/accuracy.md for the cost of a step:
 --   beltsim run scripts/serpentine.lua --set n=200 --set t_end=0.3
 -- Parameters (--set KEY=VALUE): n element count (default 200), t_end [s] (default 0.3).
 -- Its review figures at speed, belt power loss by channel among them (docs/summary.md):

@@ -35,7 +35,7 @@ class BeltProblem final : public OdeProblem {
   // the LuGre bristles' deflections: each is a friction force's state (σ0·z of μ's part), which
   // the answer's span tensions and pulley speeds integrate; in the state norm, 10 times looser and
   // averaged over the whole belt, their error drifted the driver's speed while it slipped on a
-  // LuGre stretch, by 5e-4 at rtol 1e-3 and 1e-4 alike (docs/integration.md)
+  // LuGre stretch, by 5e-4 at rtol 1e-3 and 1e-4 alike (docs/accuracy.md)
   bool held_each(int k) const override;
   // the speeds and arm angles: a span tension reads the SDE's damper, so the elements' velocities,
   // which cross the friction band's and the contact's kinks inside a step (docs/integration.md,

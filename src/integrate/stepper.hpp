@@ -70,7 +70,7 @@ std::vector<std::string> integrator_names();
 std::string integrator_problem(const std::string& name);
 void check_integrator(const std::string& name);
 // why a run by this integrator at rtol may miss the accuracy contract (the pulley speeds within
-// 3·rtol and the span tensions within 10·rtol of the converged answer; docs/integration.md), as
+// 3·rtol and the span tensions within 10·rtol of the converged answer; docs/accuracy.md), as
 // measured; "" where it keeps it (trbdf2; the CVODE peers from rtol 1e-3 up)
 std::string contract_miss(const std::string& name, double rtol);
 

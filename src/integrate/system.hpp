@@ -68,7 +68,8 @@ class OdeProblem {
   // is, rather than in the state norm (StepController; only when the problem has an answer)
   virtual bool held_each(int) const { return false; }
   // whether answer quantity k's error is also checked inside a step, where the dense output
-  // gives the samples, besides at the step's end (StepController::interior_norm)
+  // gives what falls between step ends (samples among long steps, frames, pauses), besides at the
+  // step's end (StepController::interior_norm)
   virtual bool checked_inside(int) const { return true; }
   virtual std::string describe_answer(int k) const { return "answer " + std::to_string(k); }
 

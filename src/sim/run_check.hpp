@@ -47,12 +47,12 @@ struct Model;
 constexpr double kCheckTighten = 10;  // the companion's tolerance: rtol / kCheckTighten
 
 // What the drive has that the default integrator was measured not to keep the accuracy contract
-// with at this rtol (the matrix's rows, docs/integration.md): a sentence for each, none when the
+// with at this rtol (the matrix's rows, docs/accuracy.md): a sentence for each, none when the
 // contract held on every row like it. A run that does not check its own error warns of each when
 // it starts, and of one that a change brings (a stretch wetted, a spray zone) when it is made.
 std::vector<std::string> scene_contract_misses(const Model& m, const Drive& d, double rtol);
 
-// a run's closing line warns past the accuracy contract's bounds (docs/integration.md): the pulley
+// a run's closing line warns past the accuracy contract's bounds (docs/accuracy.md): the pulley
 // speeds past kCheckSpeedLimit·rtol, the span tensions past kCheckTensionLimit·rtol. While it runs,
 // relative to the largest values so far (small in a start-up), it warns once when either passes
 // kCheckAlarm·rtol: at the contract's 3·rtol the speeds' estimate so far passed it in the first

@@ -30,7 +30,7 @@ struct MuEvent {
 // (each setting's key, unit, default, rule and more: sim/run_table.hpp)
 struct RunSettings {
   double t_end = 1.0;                 // [s] (batch runs only)
-  std::string integrator = "trbdf2";   // docs/integration.md, "The accuracy contract"
+  std::string integrator = "trbdf2";   // docs/accuracy.md, "The accuracy contract"
   double rtol = 1e-4;                 // relative tolerance of the error control
   double atol = -1;  // absolute, per natural unit of each component; -1 (Tolerances::kAtolUnset): = rtol
   double sample_dt = 1e-3;            // [s] interval of the time-series samples
@@ -63,7 +63,7 @@ struct RunSettings {
   // default frame settings' times (every 1/300 s from t = 0). One-step integrators only.
   bool keep_states = false;
   // estimate the run's own error against a companion solution at rtol/10 advanced in lockstep
-  // (sim/run_check.hpp): about 3 times the run's cost (docs/integration.md). A checkpoint keeps
+  // (sim/run_check.hpp): about 3 times the run's cost (docs/accuracy.md). A checkpoint keeps
   // the run alone: a resumed run is not checked.
   bool check = false;
   // messages of a run while it runs (the check's estimate past 10×rtol), for the caller to show;

@@ -407,7 +407,7 @@ void Simulation::warn_contract_misses() {
   if (rs_.check || !rs_.on_warning) return;
   const std::string contract =
       "the accuracy contract (the pulley speeds within 3×rtol and the span tensions within 10×rtol; "
-      "docs/integration.md): ";
+      "docs/accuracy.md): ";
   std::vector<std::string> misses;
   if (const std::string why = contract_miss(rs_.integrator, rs_.rtol); !why.empty())
     misses.push_back("integrator " + rs_.integrator + " does not keep " + contract + why +

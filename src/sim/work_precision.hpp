@@ -32,7 +32,7 @@ struct WpSettings {
   // the reference: trbdf2 at 1e-7 is within 4.6e-8 of the pulley speeds and 6.5e-7 of the span
   // tensions of trbdf2 at 1e-8 on the paper's dry second; esdirk32 at 1e-7 within 8.0e-7 and
   // 1.6e-5, more than trbdf2's own error at rtol 1e-6 (7.0e-6), the tightest of the default rtols
-  // (docs/integration.md, The reference)
+  // (docs/accuracy.md, The reference)
   std::string ref_integrator = "trbdf2";
   double ref_rtol = 1e-7;
   double wall_limit = 120;                // [s] per run (the reference has none)

@@ -242,7 +242,7 @@ class Errors(unittest.TestCase):
         # the companion at a tenth of the tolerance takes 2-4 times the run's steps where the
         # tolerance sets them (the dry drive: 3.9 at rtol 1e-3), about as many where something
         # else does (the half-wet drive's first 50 ms under Stribeck's law at rtol 1e-2, whose
-        # steps follow the falling curve's growth: 1.01; docs/integration.md), and then the
+        # steps follow the falling curve's growth: 1.01; docs/accuracy.md), and then the
         # closing line warns
         scripts = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "scripts")
         for script, sets, t_end, rtol, shared in [("paper_wet.lua", ["--set", "friction=stribeck"], "0.05", "1e-2", True),

@@ -1,4 +1,4 @@
-// What the step-size control rests on, for every one-step method (docs/integration.md, "The
+// What the step-size control rests on, for every one-step method (docs/accuracy.md, "The
 // accuracy contract"):
 //   - the embedded estimate measures the true local error: from the exact solution at t0, one step
 //     of h; the estimate's ratio to the true error of the solution the estimate is of (the

@@ -1,4 +1,4 @@
-"""The accuracy contract on the cheap rows of the accuracy matrix (docs/integration.md).
+"""The accuracy contract on the cheap rows of the accuracy matrix (docs/accuracy.md).
 
 Every row of bench/accuracy_matrix.csv marked test = 1 is run as a user reruns it, with
 `beltsim wp SCRIPT --set ... --t-end T --integrators trbdf2 --rtols 1e-3` (trbdf2: the run
@@ -31,7 +31,7 @@ class AccuracyContract(unittest.TestCase):
             with self.subTest(row=row["row"]), tempfile.TemporaryDirectory() as out:
                 cmd = [BELTSIM, "wp", os.path.join(ROOT, row["script"]), "--t-end", row["t_end"],
                        "--integrators", "trbdf2", "--rtols", str(RTOL), "--out", out,
-                       # the matrix's reference (docs/integration.md): its own error, 1.6e-5 of the
+                       # the matrix's reference (docs/accuracy.md): its own error, 1.6e-5 of the
                        # span tensions and 8e-7 of the speeds on the paper's dry second, is under
                        # 1 % of the contract's bounds at rtol 1e-3, and it takes a third of
                        # trbdf2's time at 1e-7

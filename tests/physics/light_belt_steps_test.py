@@ -1,4 +1,4 @@
-"""Steps set by the answer, not by the elements' own vibration (docs/integration.md).
+"""Steps set by the answer, not by the elements' own vibration (docs/accuracy.md).
 
 scripts/light_belt.lua (a light belt with no bending damping: its elements rock at their bending
 frequencies while the drive runs) through its start-up, 0.3 s, at 60 and at 240 elements with the

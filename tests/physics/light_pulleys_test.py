@@ -1,4 +1,4 @@
-"""Light pulleys just above the inertia floor, every integrator that can run them (docs/integration.md).
+"""Light pulleys just above the inertia floor, every integrator that can run them (docs/accuracy.md).
 
 The scene checks refuse a pulley under 1 % of the belt's inertia on its wrap (3.02e-6 kg·m² on the
 paper's dry drive). Both pulleys at 1.01 %, 2 % and 10 % of it, the first 0.1 s (the start-up,

@@ -32,7 +32,7 @@ double speed_error(const Model& m, const Samples& run, const Samples& ref) {
 
 // The first 0.5 s of the dry drive (the start-up, and the drive settling at its speed), sampled
 // every millisecond, against esdirk32 at rtol 1e-4 (its own error is 1e-4 of the speed against
-// rtol 1e-7, docs/integration.md). Measured: 5.1e-3, 6.1e-3, 6.2e-3 and 5.7e-3 at rtol 1.4e-2,
+// rtol 1e-7, docs/accuracy.md). Measured: 5.1e-3, 6.1e-3, 6.2e-3 and 5.7e-3 at rtol 1.4e-2,
 // 1.2e-2, 1e-2 and 8e-3; with Newton stopped on the norm of its correction alone 1.9e-2, 2.1e-2,
 // 2.0e-2 and 2.1e-2 (spikes of a few milliseconds after a stage left with an element's slip
 // velocity carried past the edge of the friction band).

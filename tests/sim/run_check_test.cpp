@@ -169,7 +169,7 @@ TEST(RunCheck, WarnsPastTheContractOnceAndSaysSoAtTheEnd) {
 }
 
 // A run by an integrator that the accuracy contract's measurement found outside it (esdirk32,
-// ros34pw2, rkf45; CVODE below rtol 1e-3: docs/integration.md) says so as it starts, unless it
+// ros34pw2, rkf45; CVODE below rtol 1e-3: docs/accuracy.md) says so as it starts, unless it
 // checks its own error; one that keeps it (trbdf2, CVODE at 1e-3) says nothing
 TEST(RunCheck, AnIntegratorOutsideTheContractSaysSoAtTheStart) {
   for (const std::string name : {"esdirk32", "ros34pw2", "rkf45", "trbdf2", "cvode"}) {
