@@ -169,8 +169,12 @@ inline void contact_pass_with(const Model& m, const Drive& d, double t, const do
     const double omega = d.omega(m, j, t, v);
     // on a tensioner arm the centre moves: the laws see the element relative to it
     const Vec2 centre = m.centre(j, q), vc = m.centre_velocity(j, q, v);
+    const double R2 = pl.radius * pl.radius;
     for (int i = span.lo; i < span.hi; ++i) {
-      const Vec2 P(q[3 * i], q[3 * i + 1]), V = Vec2(v[3 * i], v[3 * i + 1]) - vc;
+      const Vec2 P(q[3 * i], q[3 * i + 1]);
+      // most pairs are apart: dismissed by normal_law's own test before a record is built
+      if (which == Pairs::touching && (P - centre).squaredNorm() >= R2) continue;
+      const Vec2 V = Vec2(v[3 * i], v[3 * i + 1]) - vc;
       ContactPair c;
       c.touching = normal_law(m.contact, P, V, centre, pl.radius, c.nl);
       if (!c.touching) {
