@@ -70,10 +70,15 @@ bool RingSolver::factor_chain(Chain& ch, const Model& m, double alpha, double be
   ch.F.block<3, 3>(3 * kb, 3 * (nt - 1)) += block(C.lower[(b + 1) % n], K.lower[(b + 1) % n]);
   E.block<3, 3>(0, 3 * ka) += block(C.lower[a], K.lower[a]);
   E.block<3, 3>(3 * (nt - 1), 3 * kb) += block(C.upper[b], K.upper[b]);
-  // E's pulley columns and F's pulley rows, and the blocks where each is non-zero
-  for (int j = 0; j < np; ++j) {
-    int e_lo = nt, f_lo = nt, f_hi = 0;
-    for (int t = 0; t < nt; ++t) {
+  // E's pulley columns and F's pulley rows, and the blocks where each is non-zero: zero but where
+  // C or K marks an element's border entries (BlockMatrix::border_cols)
+  E.rightCols(np).setZero();
+  ch.F.bottomRows(np).setZero();
+  for (int j = 0; j < np; ++j) ch.start[pb + j] = nt, ch.f_lo[j] = nt, ch.f_hi[j] = 0;
+  for (int t = 0; t < nt; ++t) {
+    const uint64_t cols = C.border_cols[elem(t)] | K.border_cols[elem(t)];
+    for (int j = 0; j < np; ++j) {
+      if (np <= 64 ? !((cols >> j) & 1) : !cols) continue;
       bool e_nz = false, f_nz = false;
       for (int r = 0; r < 3; ++r) {
         const int row = 3 * elem(t) + r;
@@ -83,12 +88,11 @@ bool RingSolver::factor_chain(Chain& ch, const Model& m, double alpha, double be
         ch.F(pb + j, 3 * t + r) = f;
         e_nz |= e != 0, f_nz |= f != 0;
       }
-      if (e_nz) e_lo = std::min(e_lo, t);
-      if (f_nz) f_lo = std::min(f_lo, t), f_hi = t + 1;
+      if (e_nz) ch.start[pb + j] = std::min(ch.start[pb + j], t);
+      if (f_nz) ch.f_lo[j] = std::min(ch.f_lo[j], t), ch.f_hi[j] = t + 1;
     }
-    ch.f_lo[j] = f_lo, ch.f_hi[j] = std::max(f_hi, f_lo);
-    ch.start[pb + j] = e_lo;
   }
+  for (int j = 0; j < np; ++j) ch.f_hi[j] = std::max(ch.f_hi[j], ch.f_lo[j]);
   // the border elements' columns of E: the left neighbour's in the first block, the right one's
   // in the last
   for (int k = 0; k < nb_; ++k)

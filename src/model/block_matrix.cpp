@@ -11,7 +11,21 @@ void BlockMatrix::resize(int n_el, int n_p) {
   elem_pulley.setZero(3 * n, np);
   pulley_elem.setZero(np, 3 * n);
   pulley_pulley.setZero(np, np);
+  border_cols.assign(n, 0);
 }
+
+namespace {
+// calls f(b) for each border column b < np of the mask (every column when np > 64)
+template <class F>
+void each_col(uint64_t mask, int np, F&& f) {
+  if (np > 64) {
+    if (mask)
+      for (int b = 0; b < np; ++b) f(b);
+    return;
+  }
+  for (; mask; mask &= mask - 1) f(__builtin_ctzll(mask));
+}
+}  // namespace
 
 void BlockMatrix::set_zero() {
   set_zero_elements(0, n);
@@ -23,9 +37,12 @@ void BlockMatrix::set_zero_elements(int lo, int hi) {
     diag[i].setZero();
     lower[i].setZero();
     upper[i].setZero();
+    each_col(border_cols[i], np, [&](int b) {
+      elem_pulley.block<3, 1>(3 * i, b).setZero();
+      pulley_elem.block<1, 3>(b, 3 * i).setZero();
+    });
+    border_cols[i] = 0;
   }
-  elem_pulley.middleRows(3 * lo, 3 * (hi - lo)).setZero();
-  pulley_elem.middleCols(3 * lo, 3 * (hi - lo)).setZero();
 }
 
 void BlockMatrix::multiply(const double* x, double* y) const {
@@ -35,24 +52,25 @@ void BlockMatrix::multiply(const double* x, double* y) const {
 
 void BlockMatrix::multiply_elements(const double* x, double* y, int lo, int hi) const {
   using Vec3 = Eigen::Vector3d;
-  Eigen::Map<const Eigen::VectorXd> xp(x + 3 * n, np);
-  Eigen::Map<Eigen::VectorXd> ye(y + 3 * lo, 3 * (hi - lo));
   for (int i = lo; i < hi; ++i) {
     const int im = (i + n - 1) % n, ip = (i + 1) % n;
-    Eigen::Map<Vec3>(y + 3 * i) = diag[i] * Eigen::Map<const Vec3>(x + 3 * i) +
-                                  lower[i] * Eigen::Map<const Vec3>(x + 3 * im) +
-                                  upper[i] * Eigen::Map<const Vec3>(x + 3 * ip);
+    Eigen::Map<Vec3> yi(y + 3 * i);
+    yi = diag[i] * Eigen::Map<const Vec3>(x + 3 * i) + lower[i] * Eigen::Map<const Vec3>(x + 3 * im) +
+         upper[i] * Eigen::Map<const Vec3>(x + 3 * ip);
+    each_col(border_cols[i], np, [&](int b) { yi += elem_pulley.block<3, 1>(3 * i, b) * x[3 * n + b]; });
   }
-  // noalias: matrix-vector products straight into the output, no temporaries (no allocation)
-  ye.noalias() += elem_pulley.middleRows(3 * lo, 3 * (hi - lo)) * xp;
 }
 
 void BlockMatrix::multiply_pulleys(const double* x, double* y) const {
   const int ne = 3 * n;
-  Eigen::Map<const Eigen::VectorXd> xe(x, ne), xp(x + ne, np);
+  Eigen::Map<const Eigen::VectorXd> xp(x + ne, np);
   Eigen::Map<Eigen::VectorXd> yp(y + ne, np);
-  yp.noalias() = pulley_elem * xe;
-  yp.noalias() += pulley_pulley * xp;
+  // noalias: the product straight into the output, no temporary (no allocation)
+  yp.noalias() = pulley_pulley * xp;
+  for (int i = 0; i < n; ++i)
+    each_col(border_cols[i], np, [&](int b) {
+      yp[b] += pulley_elem.block<1, 3>(b, 3 * i).dot(Eigen::Map<const Eigen::Vector3d>(x + 3 * i));
+    });
 }
 
 Eigen::MatrixXd BlockMatrix::to_dense() const {

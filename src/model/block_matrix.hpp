@@ -10,11 +10,14 @@
 //
 // The border (np columns and rows here) holds the pulleys and then the tensioner arms
 // (Model::n_border). Storage is dense per block so that the pattern never changes while integrating.
+// An element's Pi row and Ri column are non-zero only where it touches a pulley (that pulley's
+// column, and its arm's): the code that writes them marks the pair (mark), and clearing and the
+// products visit the marked entries only (border_cols), a few of the np·3n of a long belt.
 #pragma once
 
-#include <vector>
-
 #include <Eigen/Core>
+#include <cstdint>
+#include <vector>
 
 namespace beltsim {
 
@@ -26,7 +29,12 @@ struct BlockMatrix {
   Eigen::MatrixXd elem_pulley;                   // 3n × np
   Eigen::MatrixXd pulley_elem;                   // np × 3n
   Eigen::MatrixXd pulley_pulley;                 // np × np
+  // per element, the border columns b its Pi row and Ri column may be non-zero in: bit b (all bits
+  // when np > 64); clear bits mean zero entries
+  std::vector<uint64_t> border_cols;
 
+  // the writer of element i's entries in border column b says so before (or as) it writes them
+  void mark(int i, int b) { border_cols[i] |= np <= 64 ? uint64_t{1} << b : ~uint64_t{0}; }
   void resize(int n_el, int n_p);
   void set_zero();
   // the rows of elements lo..hi-1 (their blocks and pulley columns) and their pulley-row columns

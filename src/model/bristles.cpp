@@ -118,6 +118,8 @@ void bristle_eliminate(const Model& m, const BristleJacobian& B, double s, const
     for (int b = 0; b < nb; ++b) {
       // element rows × border columns, border rows × element and border columns
       const double hq = B.dq_b(i, b), hv = B.dv_b(i, b), zb = D[i] * B.F_b(b, i);
+      if (hq == 0.0 && hv == 0.0 && zb == 0.0) continue;  // adds nothing
+      K_eff.mark(i, b), C_eff.mark(i, b);
       for (int r = 0; r < 2; ++r) {
         K_eff.elem_pulley(3 * i + r, b) += Fi[r] * hq;
         C_eff.elem_pulley(3 * i + r, b) += Fi[r] * hv;

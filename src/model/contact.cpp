@@ -104,6 +104,7 @@ void contact_jacobian(const Model& m, const Drive& d, double t, const double* q,
         }
         continue;
       }
+      K.mark(i, j), C.mark(i, j);
       C.elem_pulley.block<2, 1>(3 * i, j) += J.dF_dOmega;
       K.pulley_elem.block<1, 2>(j, 3 * i) += J.dM_dP;
       C.pulley_elem.block<1, 2>(j, 3 * i) += J.dM_dV;

@@ -77,6 +77,7 @@ void arm_pair_jacobian(const Model& m, int a, const double* q, const double* v, 
   const Vec2 dF_dpsi = -dF_dP * g + rate * (dF_dV * h);
   const Vec2 dF_drate = -dF_dV * g;
   // element rows
+  K.mark(i, b), C.mark(i, b);
   K.elem_pulley.block<2, 1>(3 * i, b) += dF_dpsi;
   C.elem_pulley.block<2, 1>(3 * i, b) += dF_drate;
   // arm row

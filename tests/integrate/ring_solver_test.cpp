@@ -133,6 +133,52 @@ TEST(RingSolver, SplitGivesTheSameBitsOnOneOrTwoThreads) {
 // direct solve is a small multiple of the rounding unit (measured: at most 4.4e-13, at s = 1e2); bound 1e-11.
 // Under LuGre's law the bristles' rows are eliminated first (model/bristles.hpp): the same bound,
 // with deflections up to the static limit.
+// the largest residual of (s·I - J)·x = r, J the ODE Jacobian assembled whole, each row relative
+// to the sum of the magnitudes it adds
+double shifted_residual(BeltSystem& sys, const Eigen::SparseMatrix<double>& J, double s, std::mt19937& rng) {
+  const int M = static_cast<int>(J.rows());
+  std::uniform_real_distribution<double> u(-1, 1);
+  Eigen::VectorXd r(sys.problem.size()), x(sys.problem.size());
+  for (int k = 0; k < sys.problem.size(); ++k) r[k] = u(rng);
+  sys.linear.solve(r.data(), x.data());
+  const Eigen::VectorXd res = s * x.head(M) - J * x.head(M) - r.head(M);
+  const Eigen::VectorXd scale = (s * x.head(M)).cwiseAbs() + J.cwiseAbs() * x.head(M).cwiseAbs() + r.head(M).cwiseAbs();
+  return res.cwiseAbs().cwiseQuotient(scale).maxCoeff();
+}
+
+// One solver taken through states with different contacts (as an integration takes it) solves
+// each state's system as the whole Jacobian gives it: the element–pulley entries are cleared and
+// multiplied where their writers mark them (BlockMatrix::border_cols), and an entry written but not
+// marked, or one left from an earlier state, fails this. The reference is a new system's
+// Jacobian, assembled whole (sparse_jacobian reads every entry). Scenes with every writer: the
+// contact pairs, a tensioner arm's column, LuGre's bristles, on one chain and on a split ring.
+TEST(RingSolver, ReusedAcrossStatesSolvesEachStatesSystem) {
+  std::vector<SceneDef> defs{presets::automotive_tensioner(), refined(60), refined(600)};
+  defs[1].friction.law = FrictionKind::lugre;
+  for (const SceneDef& d : defs) {
+    const Scene sc = build_scene(d);
+    const Model& m = sc.model;
+    std::mt19937 rng(11);
+    std::uniform_real_distribution<double> w(-1, 1);
+    BeltSystem reused(sc.model, sc.drive);
+    for (int k = 0; k < 3; ++k) {
+      Eigen::VectorXd y = moving_state(sc, rng);
+      const int N = m.n_coord();
+      for (int i = 0; i < m.n_el(); ++i) y[3 * i + 1] += 2e-4 * w(rng);  // contacts made and lost
+      for (int i = 0; i < m.n_bristle(); ++i) y[m.bristle_offset() + i] = w(rng) * 1.3 / m.friction.bristle_stiffness;
+      for (int a = 0; a < m.n_arm(); ++a) y[N + m.arm_coord(a)] = 2 * w(rng);
+      BeltSystem fresh(sc.model, sc.drive);
+      Eigen::SparseMatrix<double> J;
+      ASSERT_TRUE(fresh.linear.sparse_jacobian(0.1, y.data(), J));
+      ASSERT_TRUE(reused.linear.prepare_jacobian(0.1, y.data()));
+      for (double s : {1e2, 1e5}) {
+        ASSERT_TRUE(reused.linear.factor(s));
+        EXPECT_LT(shifted_residual(reused, J, s, rng), 1e-11) << m.n_el() << " elements, state " << k << ", s = " << s;
+      }
+    }
+  }
+}
+
 TEST(RingSolver, BeltLinearSolverSolvesTheShiftedSystem) {
   for (const bool bristles : {false, true})
   for (int n : {60, 600}) {
@@ -149,18 +195,9 @@ TEST(RingSolver, BeltLinearSolverSolvesTheShiftedSystem) {
     Eigen::SparseMatrix<double> J;
     ASSERT_TRUE(sys.linear.sparse_jacobian(0.1, y.data(), J));
     ASSERT_TRUE(sys.linear.prepare_jacobian(0.1, y.data()));
-    const int M = static_cast<int>(J.rows());
-    std::uniform_real_distribution<double> u(-1, 1);
     for (double s : {1e2, 1e5}) {
       ASSERT_TRUE(sys.linear.factor(s));
-      Eigen::VectorXd r(sys.problem.size()), x(sys.problem.size());
-      for (int k = 0; k < sys.problem.size(); ++k) r[k] = u(rng);
-      sys.linear.solve(r.data(), x.data());
-      const Eigen::VectorXd res = s * x.head(M) - J * x.head(M) - r.head(M);
-      const Eigen::VectorXd scale =
-          (s * x.head(M)).cwiseAbs() + J.cwiseAbs() * x.head(M).cwiseAbs() + r.head(M).cwiseAbs();
-      const double err = res.cwiseAbs().cwiseQuotient(scale).maxCoeff();
-      EXPECT_LT(err, 1e-11) << n << " elements, s = " << s << (bristles ? ", LuGre" : "");
+      EXPECT_LT(shifted_residual(sys, J, s, rng), 1e-11) << n << " elements, s = " << s << (bristles ? ", LuGre" : "");
     }
   }
 }
