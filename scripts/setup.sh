@@ -66,8 +66,8 @@ else
     cmake --build "$build_dir" -j "$jobs" --target beltsim
   elif [ "$mode" = test ] && [ "${BELTSIM_SANITIZE:-1}" != 0 ]; then
     # every test runs once: the quick ones under the sanitizers below, so here everything but
-    # their programs and the benchmarks, which no test runs (tests/CMakeLists.txt,
-    # BELTSIM_QUICK_PROGRAMS)
+    # their programs (tests/CMakeLists.txt, BELTSIM_QUICK_PROGRAMS), the benchmarks included
+    # (bench_runs starts them)
     cmake --build "$build_dir" -j "$jobs" --target beltsim_all_but_quick
   else
     cmake --build "$build_dir" -j "$jobs"
