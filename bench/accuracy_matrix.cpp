@@ -18,6 +18,7 @@
 #include <string>
 #include <vector>
 
+#include "capture.hpp"
 #include "script/interpreter.hpp"
 #include "script/script_args.hpp"
 #include "sim/work_precision.hpp"
@@ -61,16 +62,10 @@ bool wanted(const std::string& name) {
 }
 
 WpResult run_row(const Row& row, const std::string& integrator, const std::vector<double>& rtols) {
-  script::Captured cap;
-  script::Interpreter lua(script::Safety{});
   script::Overrides o;
   o.run.t_end = row.t_end, o.give("t_end");
-  o.no_frames = true;
   o.set = script::parse_sets(split(row.sets, ' '));
-  lua.set_overrides(o);
-  lua.set_capture(&cap);
-  lua.run_file(BELTSIM_SOURCE_DIR "/" + row.script);
-  if (!cap.scene) throw std::runtime_error(row.script + " never calls scene:run{}");
+  const script::Captured cap = capture_run(row.script, o);
   WpSettings wps;
   wps.integrators = {integrator};
   wps.rtols = rtols;

@@ -10,45 +10,30 @@
 //                           first come within 0.1 %), its errors against trbdf2 at rtol 1e-6 as
 //                           `beltsim wp` measures them. Goal: within 0.1 % in at most 0.1 s.
 #include <benchmark/benchmark.h>
-#include <time.h>
 
 #include <cmath>
 #include <cstdlib>
-#include <stdexcept>
+#include <ctime>
 #include <string>
 
-#include "script/interpreter.hpp"
-#include "script/script_args.hpp"
+#include "capture.hpp"
 #include "sim/simulation.hpp"
 #include "sim/work_precision.hpp"
 
 namespace beltsim {
 namespace {
 
+// CPU seconds of the process so far (std::clock, as bench_runs.cpp: on a shared machine the wall
+// time includes other jobs' turns)
 double cpu_seconds() {
-  timespec ts{};
-  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
-  return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
-}
-
-// the scene and settings of a script's scene:run{}, without frames
-script::Captured capture(const std::string& script) {
-  script::Captured cap;
-  script::Interpreter lua(script::Safety{});
-  script::Overrides o;
-  o.no_frames = true;
-  lua.set_overrides(o);
-  lua.set_capture(&cap);
-  lua.run_file(BELTSIM_SOURCE_DIR "/" + script);
-  if (!cap.scene) throw std::runtime_error(script + " never calls scene:run{}");
-  return cap;
+  return static_cast<double>(std::clock()) / CLOCKS_PER_SEC;
 }
 
 void BM_SerpentineAtSpeed(benchmark::State& state) {
   const double rtol = std::pow(10.0, -static_cast<double>(state.range(0)));
   const char* tv = std::getenv("BELTSIM_SERPENTINE_T");
   const double window = tv ? std::atof(tv) : 0.05, t0 = 0.2;
-  const script::Captured cap = capture("scripts/serpentine.lua");
+  const script::Captured cap = capture_run("scripts/serpentine.lua");
   for (auto _ : state) {
     RunSettings s = cap.settings;
     s.rtol = rtol;
@@ -73,7 +58,7 @@ void BM_SerpentineAtSpeed(benchmark::State& state) {
 BENCHMARK(BM_SerpentineAtSpeed)->Arg(3)->Arg(4)->Unit(benchmark::kSecond)->Iterations(1);
 
 void BM_DrySecond(benchmark::State& state) {
-  const script::Captured cap = capture("scripts/paper_dry.lua");
+  const script::Captured cap = capture_run("scripts/paper_dry.lua");
   for (auto _ : state) {
     WpSettings wps;
     wps.integrators = {"trbdf2"};

@@ -8,9 +8,9 @@
 #include <benchmark/benchmark.h>
 
 #include <cstdlib>
-#include <stdexcept>
 #include <string>
 
+#include "capture.hpp"
 #include "script/interpreter.hpp"
 #include "script/script_args.hpp"
 #include "sim/simulation.hpp"
@@ -19,16 +19,10 @@ namespace beltsim {
 namespace {
 
 RunResult run_light_belt(int elements) {
-  script::Captured cap;
-  script::Interpreter lua(script::Safety{});
   script::Overrides o;
   if (const char* t = std::getenv("BELTSIM_LIGHT_BELT_T")) o.run.t_end = std::atof(t), o.give("t_end");
-  o.no_frames = true;
   o.set = script::parse_sets({"n=" + std::to_string(elements)});
-  lua.set_overrides(o);
-  lua.set_capture(&cap);
-  lua.run_file(BELTSIM_SOURCE_DIR "/scripts/light_belt.lua");
-  if (!cap.scene) throw std::runtime_error("scripts/light_belt.lua never calls scene:run{}");
+  const script::Captured cap = capture_run("scripts/light_belt.lua", o);
   RunSettings s = cap.settings;
   s.out_dir = "out/light_belt_bench/n" + std::to_string(elements);
   return run(*cap.scene, s);
