@@ -182,8 +182,9 @@ class Esdirk final : public Stepper {
     // 1e-2), since the friction band is a fixed width (Δv = 1e-5 m/s on the paper's drive, 1.4e-6
     // of its belt speed) and at loose tolerances the velocity tolerance is thousands of bands wide.
     // On the paper's drive at rtol 1e-3 trbdf2 took 942 steps over 0.3 s at 1e-2 and 551-567 at
-    // 1e-4 and 1e-3; at rtol 1e-4, 1e-2 took 20-24 % fewer right-hand sides than 1e-4 on the dry
-    // and automotive drives and the serpentine, for the same steps and errors (commit message).
+    // 1e-4 and 1e-3; at rtol 1e-4, 1e-2 took 18-24 % fewer right-hand sides than 1e-4 on the dry
+    // and automotive drives, the light pulleys and the serpentine, for the same steps and errors
+    // (commit message).
     // (at tolerances near the rounding of the state, a correction at the rounding noise of the
     // residual, a thousand units of rounding of the state on the belt's stiff stages, is as
     // converged as it gets: the bound never falls below that)
