@@ -76,9 +76,7 @@ bool RingSolver::factor_chain(Chain& ch, const Model& m, double alpha, double be
   ch.F.bottomRows(np).setZero();
   for (int j = 0; j < np; ++j) ch.start[pb + j] = nt, ch.f_lo[j] = nt, ch.f_hi[j] = 0;
   for (int t = 0; t < nt; ++t) {
-    const uint64_t cols = C.border_cols[elem(t)] | K.border_cols[elem(t)];
-    for (int j = 0; j < np; ++j) {
-      if (np <= 64 ? !((cols >> j) & 1) : !cols) continue;
+    BlockMatrix::each_col(C.border_cols[elem(t)] | K.border_cols[elem(t)], np, [&](int j) {
       bool e_nz = false, f_nz = false;
       for (int r = 0; r < 3; ++r) {
         const int row = 3 * elem(t) + r;
@@ -90,7 +88,7 @@ bool RingSolver::factor_chain(Chain& ch, const Model& m, double alpha, double be
       }
       if (e_nz) ch.start[pb + j] = std::min(ch.start[pb + j], t);
       if (f_nz) ch.f_lo[j] = std::min(ch.f_lo[j], t), ch.f_hi[j] = t + 1;
-    }
+    });
   }
   for (int j = 0; j < np; ++j) ch.f_hi[j] = std::max(ch.f_hi[j], ch.f_lo[j]);
   // the border elements' columns of E: the left neighbour's in the first block, the right one's

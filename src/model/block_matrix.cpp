@@ -14,19 +14,6 @@ void BlockMatrix::resize(int n_el, int n_p) {
   border_cols.assign(n, 0);
 }
 
-namespace {
-// calls f(b) for each border column b < np of the mask (every column when np > 64)
-template <class F>
-void each_col(uint64_t mask, int np, F&& f) {
-  if (np > 64) {
-    if (mask)
-      for (int b = 0; b < np; ++b) f(b);
-    return;
-  }
-  for (; mask; mask &= mask - 1) f(__builtin_ctzll(mask));
-}
-}  // namespace
-
 void BlockMatrix::set_zero() {
   set_zero_elements(0, n);
   pulley_pulley.setZero();

@@ -35,6 +35,17 @@ struct BlockMatrix {
 
   // the writer of element i's entries in border column b says so before (or as) it writes them
   void mark(int i, int b) { border_cols[i] |= np <= 64 ? uint64_t{1} << b : ~uint64_t{0}; }
+  // calls f(b) for each border column b of a mask of border_cols (or a union of them), in
+  // ascending order (every column of the np when np > 64 and the mask is not empty)
+  template <class F>
+  static void each_col(uint64_t mask, int np, F&& f) {
+    if (np > 64) {
+      if (mask)
+        for (int b = 0; b < np; ++b) f(b);
+      return;
+    }
+    for (; mask; mask &= mask - 1) f(__builtin_ctzll(mask));
+  }
   void resize(int n_el, int n_p);
   void set_zero();
   // the rows of elements lo..hi-1 (their blocks and pulley columns) and their pulley-row columns
