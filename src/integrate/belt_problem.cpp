@@ -129,25 +129,40 @@ int BeltProblem::answer_size() const {
   return model_.n_p() + model_.n_arm() + model_.n_coupling() + static_cast<int>(spans_.size());
 }
 
-void BeltProblem::answer(double, const double* y, double* a) {
-  const int N = model_.n_coord();
-  for (int j = 0; j < model_.n_p(); ++j) *a++ = y[N + model_.pulley_coord(j)];
-  for (int r = 0; r < model_.n_arm(); ++r) *a++ = y[model_.arm_coord(r)];
-  for (int c = 0; c < model_.n_coupling(); ++c) *a++ = y[N + model_.rotor_coord(c)];
-  for (const Vec2& p : spans_) *a++ = sde_axial_force(model_, y, y + N, sde_nearest(model_, y, p));
+int BeltProblem::head() const {
+  return model_.n_p() + model_.n_arm() + model_.n_coupling();
 }
 
-void BeltProblem::answer_error(double, const double* y, const double* e, double* da) {
+int BeltProblem::span_sdes(const double* y, int count) {
+  const int ns = std::max(0, count - head());
+  nearest_.resize(static_cast<size_t>(ns));
+  if (ns > 0) sde_nearest(model_, y, spans_.data(), ns, nearest_.data());
+  return ns;
+}
+
+void BeltProblem::answer(double, const double* y, double* a, int count) {
   const int N = model_.n_coord();
-  for (int j = 0; j < model_.n_p(); ++j) *da++ = e[N + model_.pulley_coord(j)];
-  for (int r = 0; r < model_.n_arm(); ++r) *da++ = e[model_.arm_coord(r)];
-  for (int c = 0; c < model_.n_coupling(); ++c) *da++ = e[N + model_.rotor_coord(c)];
-  if (spans_.empty()) return;
+  double* const end = a + std::min(count, head());
+  for (int j = 0; j < model_.n_p() && a < end; ++j) *a++ = y[N + model_.pulley_coord(j)];
+  for (int r = 0; r < model_.n_arm() && a < end; ++r) *a++ = y[model_.arm_coord(r)];
+  for (int c = 0; c < model_.n_coupling() && a < end; ++c) *a++ = y[N + model_.rotor_coord(c)];
+  const int ns = span_sdes(y, count);
+  for (int k = 0; k < ns; ++k) *a++ = sde_axial_force(model_, y, y + N, nearest_[k]);
+}
+
+void BeltProblem::answer_error(double, const double* y, const double* e, double* da, int count) {
+  const int N = model_.n_coord();
+  double* const end = da + std::min(count, head());
+  for (int j = 0; j < model_.n_p() && da < end; ++j) *da++ = e[N + model_.pulley_coord(j)];
+  for (int r = 0; r < model_.n_arm() && da < end; ++r) *da++ = e[model_.arm_coord(r)];
+  for (int c = 0; c < model_.n_coupling() && da < end; ++c) *da++ = e[N + model_.rotor_coord(c)];
+  const int ns = span_sdes(y, count);
+  if (ns == 0) return;
   y_minus_e_.resize(static_cast<size_t>(2 * N));
   for (int k = 0; k < 2 * N; ++k) y_minus_e_[k] = y[k] - e[k];
   const double* z = y_minus_e_.data();
-  for (const Vec2& p : spans_) {
-    const int i = sde_nearest(model_, y, p);
+  for (int k = 0; k < ns; ++k) {
+    const int i = nearest_[k];
     *da++ = sde_axial_force(model_, y, y + N, i) - sde_axial_force(model_, z, z + N, i);
   }
 }

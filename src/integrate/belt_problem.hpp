@@ -26,8 +26,8 @@ class BeltProblem final : public OdeProblem {
   // (the middles of the route's spans: the span tensions users read) [rad/s, rad, N]
   void set_spans(std::vector<Vec2> spans) { spans_ = std::move(spans); }
   int answer_size() const override;
-  void answer(double t, const double* y, double* a) override;
-  void answer_error(double t, const double* y, const double* e, double* da) override;
+  void answer(double t, const double* y, double* a, int count) override;
+  void answer_error(double t, const double* y, const double* e, double* da, int count) override;
   double answer_scale(int k) const override;
   // every component but the elements' velocities (x, y, spin): their error is held through the
   // elements' positions and angles, the pulley speeds and the span tensions (StepController)
@@ -60,6 +60,11 @@ class BeltProblem final : public OdeProblem {
   Workspace ws_;
   std::vector<Vec2> spans_;    // where the answer's span tensions are taken
   std::vector<double> y_minus_e_;  // answer_error's scratch
+  std::vector<int> nearest_;       // answer's and answer_error's: the SDE nearest each span's point
+  // the answer's quantities before the span tensions (speeds, arm angles); the tensions are
+  // answer quantities count - head of them (nearest_ filled for them)
+  int head() const;
+  int span_sdes(const double* y, int count);
 };
 
 }  // namespace beltsim

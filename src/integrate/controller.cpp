@@ -29,9 +29,11 @@ StepController::StepController(OdeProblem& sys, const Tolerances& tol, int q, in
 double StepController::interior_norm(double t, const Eigen::VectorXd& y0, const Eigen::VectorXd& Z,
                                      const Eigen::VectorXd& e) {
   if (inside_.empty()) return 0;
-  sys_.answer(t, y0.data(), a0_.data());
-  sys_.answer(t, Z.data(), a1_.data());
-  sys_.answer_error(t, Z.data(), e.data(), da_.data());
+  // the quantities up to the last one checked inside (the span tensions after them are not)
+  const int count = inside_.back() + 1;
+  sys_.answer(t, y0.data(), a0_.data(), count);
+  sys_.answer(t, Z.data(), a1_.data(), count);
+  sys_.answer_error(t, Z.data(), e.data(), da_.data(), count);
   double n = 0;
   for (int a : inside_)
     n = std::max(n, std::abs(da_[a]) / (aatol_[a] + rtol_ * std::max(std::abs(a0_[a]), std::abs(a1_[a]))));
@@ -52,9 +54,10 @@ double StepController::error_norm(double t1, const Eigen::VectorXd& y0, const Ei
     e /= kStateLooseness;
     for (int k : held_)
       e = std::max(e, std::abs(err[k]) / (atol_[k] + rtol_ * std::max(std::abs(y0[k]), std::abs(y1[k]))));
-    sys_.answer(t1, y0.data(), a0_.data());
-    sys_.answer(t1, y1.data(), a1_.data());
-    sys_.answer_error(t1, y1.data(), err.data(), da_.data());
+    const int na = static_cast<int>(da_.size());
+    sys_.answer(t1, y0.data(), a0_.data(), na);
+    sys_.answer(t1, y1.data(), a1_.data(), na);
+    sys_.answer_error(t1, y1.data(), err.data(), da_.data(), na);
     for (Eigen::Index a = 0; a < da_.size(); ++a) {
       const double w = aatol_[a] + rtol_ * std::max(std::abs(a0_[a]), std::abs(a1_[a]));
       e = std::max(e, std::abs(da_[a]) / w);

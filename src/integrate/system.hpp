@@ -54,12 +54,13 @@ class OdeProblem {
   virtual void switches(double, const double*, double*) {}
   // The answer: the quantities users read of a state (for the belt: the speeds of the pulleys,
   // arms and rotors and the span tensions), which the step-size control holds to the tolerance
-  // each on its own (StepController). answer(t, y, a) writes them; answer_error(t, y, e, da) the
-  // change of each when the state y moves by -e (the error estimate e of a step ending at y);
-  // answer_scale(k) is quantity k's natural size, the unit of atol for it.
+  // each on its own (StepController). answer(t, y, a, count) writes the first count of them
+  // (count <= answer_size()); answer_error(t, y, e, da, count) the change of each when the state y
+  // moves by -e (the error estimate e of a step ending at y); answer_scale(k) is quantity k's
+  // natural size, the unit of atol for it.
   virtual int answer_size() const { return 0; }
-  virtual void answer(double, const double*, double*) {}
-  virtual void answer_error(double, const double*, const double*, double*) {}
+  virtual void answer(double, const double*, double*, int) {}
+  virtual void answer_error(double, const double*, const double*, double*, int) {}
   virtual double answer_scale(int) const { return 1.0; }
   // whether component k's error counts in the state's part of the error norm beside the answer
   // (StepController; only when the problem has an answer)

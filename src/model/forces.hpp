@@ -81,8 +81,11 @@ double sde_axial_force(const Model& m, const double* q, const double* v, int i);
 void sde_axial_forces(const Model& m, const double* q, const double* v, double* out);
 // gap vector d of SDE i (end A of element i minus end B of element i-1) [m]
 Vec2 sde_gap(const Model& m, const double* q, int i);
-// the SDE whose middle (between the centres of its two elements) is nearest a point
+// the SDE whose middle (between the centres of its two elements) is nearest a point; the first
+// such SDE in index order when two are as near
 int sde_nearest(const Model& m, const double* q, const Vec2& point);
+// the same for `count` points in one pass over the SDEs: out[k] for points[k]
+void sde_nearest(const Model& m, const double* q, const Vec2* points, int count, int* out);
 
 // torsional SDE (paper eq. 6), bending.cpp
 void bending_forces(const Model& m, const double* q, const double* v, double* f, double* e_rate, const Span& span);

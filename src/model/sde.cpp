@@ -27,11 +27,12 @@
 // per element than forming the dense 2×6 D and its 6×6 products, for the forces and for the
 // Jacobian (callgrind over `beltsim wp` of the dry second; the sine and cosine of the element's
 // angle are about 150 of each).
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
-#include <type_traits>
 #include <limits>
+#include <type_traits>
 
 #include "model/forces.hpp"
 
@@ -126,15 +127,26 @@ Vec2 spring(const Belt& b, const Vec2& d) {
 Vec2 sde_gap(const Model& m, const double* q, int i) { return make_pair(m, q, nullptr, i).d; }
 
 int sde_nearest(const Model& m, const double* q, const Vec2& point) {
-  const int n = m.belt.n;
   int best = 0;
-  double bd = std::numeric_limits<double>::max();
-  for (int i = 0, a = n - 1; i < n; a = i++) {  // SDE i joins elements a = i - 1 (mod n) and i
-    const Vec2 c(0.5 * (q[3 * a] + q[3 * i]), 0.5 * (q[3 * a + 1] + q[3 * i + 1]));
-    const double d = (c - point).squaredNorm();
-    if (d < bd) bd = d, best = i;
-  }
+  sde_nearest(m, q, &point, 1, &best);
   return best;
+}
+
+void sde_nearest(const Model& m, const double* q, const Vec2* points, int count, int* out) {
+  constexpr int kBatch = 8;  // points per pass, their best distances in registers
+  for (int k0 = 0; k0 < count; k0 += kBatch) {
+    const int nk = std::min(kBatch, count - k0);
+    double bd[kBatch];
+    for (int k = 0; k < nk; ++k) bd[k] = std::numeric_limits<double>::max(), out[k0 + k] = 0;
+    const int n = m.belt.n;
+    for (int i = 0, a = n - 1; i < n; a = i++) {  // SDE i joins elements a = i - 1 (mod n) and i
+      const Vec2 c(0.5 * (q[3 * a] + q[3 * i]), 0.5 * (q[3 * a + 1] + q[3 * i + 1]));
+      for (int k = 0; k < nk; ++k) {
+        const double d = (c - points[k0 + k]).squaredNorm();
+        if (d < bd[k]) bd[k] = d, out[k0 + k] = i;
+      }
+    }
+  }
 }
 
 namespace {

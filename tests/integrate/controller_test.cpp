@@ -23,8 +23,8 @@ class HeldProblem final : public OdeProblem {
     for (int k = 0; k < n_; ++k) dy[k] = 0;
   }
   int answer_size() const override { return 1; }
-  void answer(double, const double* y, double* a) override { a[0] = y[0]; }
-  void answer_error(double, const double*, const double* e, double* da) override { da[0] = e[0]; }
+  void answer(double, const double* y, double* a, int) override { a[0] = y[0]; }
+  void answer_error(double, const double*, const double* e, double* da, int) override { da[0] = e[0]; }
   bool held_each(int k) const override { return hold_ && k == held_; }
 
  private:
