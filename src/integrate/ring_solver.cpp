@@ -23,9 +23,9 @@ void RingSolver::resize(int n, int np) {
   for (Chain& ch : chains_) {
     const int l = ch.len;
     ch.Dinv.resize(l), ch.Lam.resize(l), ch.U.resize(l);
-    ch.F.resize(mb_, 3 * l), ch.Y.resize(3 * l, mb_);
+    ch.F.setZero(mb_, 3 * l), ch.Y.resize(3 * l, mb_);
     ch.z.resize(3 * l);
-    ch.f_lo.resize(np), ch.f_hi.resize(np);
+    ch.f_lo.assign(np, 0), ch.f_hi.assign(np, 0);
     ch.start.resize(mb_);
     if (split) ch.FY.resize(mb_, mb_), ch.Fz.resize(mb_);
   }
@@ -56,13 +56,18 @@ bool RingSolver::factor_chain(Chain& ch, const Model& m, double alpha, double be
   // couplings to the border, E written into Y (Y = T⁻¹·E in place below): the chain's first
   // element to its left neighbour, its last to its right one (both border elements); the pulley
   // columns of E and rows of F are written whole
+  // F is zero but where the last factorisation wrote it: its border elements' rows in the first
+  // and last blocks (all f_times reads of them) and its pulley rows between f_lo and f_hi, which
+  // are cleared here (a column at a time, F's rows are strided, costs a call per column)
   Eigen::MatrixXd& E = ch.Y;
-  if (nb_ == 1) {  // fixed sizes: the rows of F are strided
+  if (nb_ == 1) {  // fixed sizes
     E.leftCols<3>().setZero();
-    ch.F.topRows<3>().setZero();
+    ch.F.topLeftCorner<3, 3>().setZero();
+    ch.F.topRightCorner<3, 3>().setZero();
   } else {
     E.leftCols<6>().setZero();
-    ch.F.topRows<6>().setZero();
+    ch.F.topLeftCorner<6, 3>().setZero();
+    ch.F.topRightCorner<6, 3>().setZero();
   }
   const int a = elem(0), b = elem(nt - 1);
   const int ka = border_of((a + n - 1) % n), kb = border_of((b + 1) % n);
@@ -73,7 +78,7 @@ bool RingSolver::factor_chain(Chain& ch, const Model& m, double alpha, double be
   // E's pulley columns and F's pulley rows, and the blocks where each is non-zero: zero but where
   // C or K marks an element's border entries (BlockMatrix::border_cols)
   E.rightCols(np).setZero();
-  ch.F.bottomRows(np).setZero();
+  for (int j = 0; j < np; ++j) ch.F.row(pb + j).segment(3 * ch.f_lo[j], 3 * (ch.f_hi[j] - ch.f_lo[j])).setZero();
   for (int j = 0; j < np; ++j) ch.start[pb + j] = nt, ch.f_lo[j] = nt, ch.f_hi[j] = 0;
   for (int t = 0; t < nt; ++t) {
     BlockMatrix::each_col(C.border_cols[elem(t)] | K.border_cols[elem(t)], np, [&](int j) {
