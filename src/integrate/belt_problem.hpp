@@ -61,9 +61,10 @@ class BeltProblem final : public OdeProblem {
   std::vector<Vec2> spans_;    // where the answer's span tensions are taken
   std::vector<double> y_minus_e_;  // answer_error's scratch
   std::vector<int> nearest_;       // answer's and answer_error's: the SDE nearest each span's point
-  // the answer's quantities before the span tensions (speeds, arm angles); the tensions are
-  // answer quantities count - head of them (nearest_ filled for them)
+  // the number of answer quantities before the span tensions (speeds, arm angles, rotor speeds)
   int head() const;
+  // fills nearest_ at y for the span tensions among the first `count` answer quantities and
+  // returns how many there are
   int span_sdes(const double* y, int count);
 };
 

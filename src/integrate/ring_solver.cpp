@@ -54,11 +54,11 @@ bool RingSolver::factor_chain(Chain& ch, const Model& m, double alpha, double be
   auto elem = [&](int t) { return ch.first + t; };
 
   // couplings to the border, E written into Y (Y = T⁻¹·E in place below): the chain's first
-  // element to its left neighbour, its last to its right one (both border elements); the pulley
-  // columns of E and rows of F are written whole
-  // F is zero but where the last factorisation wrote it: its border elements' rows in the first
-  // and last blocks (all f_times reads of them) and its pulley rows between f_lo and f_hi, which
-  // are cleared here (a column at a time, F's rows are strided, costs a call per column)
+  // element to its left neighbour, its last to its right one (both border elements). E's columns
+  // are written whole. F stays zero but where a factorisation writes it: its border elements' rows
+  // in the first and last blocks (the only blocks f_times reads of them) and its pulley rows
+  // between f_lo and f_hi, which are cleared before they are written again (clearing whole rows
+  // of the column-major F took a memset per column)
   Eigen::MatrixXd& E = ch.Y;
   if (nb_ == 1) {  // fixed sizes
     E.leftCols<3>().setZero();
