@@ -3,9 +3,10 @@
 // does not take is an error. Exit status: 0 on success, 1 on a script, parameter, run or plot
 // error or an output that could not be written (message on stderr, outputs written so far kept;
 // compare: 0 when the files match, 1 when they differ, 2 when they could not be compared, 3 when
-// the difference image could not be written), 2 on bad usage (or an environment
-// variable it cannot read), 130 when stopped by Ctrl-C (SIGINT), 143 by SIGTERM and 129 by SIGHUP
-// (outputs closed; script/signals.hpp).
+// the difference image could not be written), 2 on bad usage (or an environment variable it
+// cannot read, or a CPU without the instruction set it was built for: isa_check.cpp), 130 when
+// stopped by Ctrl-C (SIGINT), 143 by SIGTERM and 129 by SIGHUP (outputs closed;
+// script/signals.hpp).
 #include <cstdio>
 #include <string>
 
