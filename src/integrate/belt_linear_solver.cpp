@@ -28,6 +28,9 @@ bool BeltLinearSolver::sparse_jacobian(double t, const double* y, Eigen::SparseM
 
 bool BeltLinearSolver::factor(double s) {
   s_ = s;
+  const int N = model_.n_coord();
+  mass_.resize(N);
+  for (int k = 0; k < N; ++k) mass_[k] = drive_.mass(model_, k);
   TwoWay* two = ws_.halves ? &ws_.halves->two : nullptr;
   if (!model_.n_bristle()) {
     K_ = &J_.K;
@@ -51,7 +54,7 @@ void BeltLinearSolver::solve(const double* r, double* u) {
     bristle_load(model_, J_.B, D_, r_z, fz_.data());
   }
   auto rows = [&](int lo, int hi) {
-    for (int k = lo; k < hi; ++k) rhs_[k] = s * drive_.mass(model_, k) * r[N + k] + kr_[k];
+    for (int k = lo; k < hi; ++k) rhs_[k] = s * mass_[k] * r[N + k] + kr_[k];
     if (model_.n_bristle())
       for (int k = lo; k < hi; ++k) rhs_[k] += s * fz_[k];
   };

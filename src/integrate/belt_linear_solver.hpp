@@ -40,6 +40,7 @@ class BeltLinearSolver final : public LinearSolver {
   const BlockMatrix* K_ = nullptr;
   RingSolver solver_;
   Eigen::VectorXd rhs_, kr_, uv_, fz_;
+  Eigen::VectorXd mass_;  // Drive::mass of every coordinate when the matrix was factored
 };
 
 }  // namespace beltsim
