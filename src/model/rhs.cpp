@@ -92,7 +92,10 @@ void rhs(const Model& m, const Drive& d, double t, const double* y, double* dy, 
   // accelerations
   double* a = dy + N;
   all_forces(m, d, t, y, a, e_rate, *w);
-  for (int k = 0; k < N; ++k) a[k] /= d.mass(m, k);
+  // (Drive::mass, the elements' written out: this loop is in every evaluation)
+  const double me = m.belt.mass, je = m.belt.rot_inertia;
+  for (int i = 0; i < m.n_el(); ++i) a[3 * i] /= me, a[3 * i + 1] /= me, a[3 * i + 2] /= je;
+  for (int k = 3 * m.n_el(); k < N; ++k) a[k] /= d.mass(m, k);
   // the bristles' deflections
   if (const double* z = m.bristles(y)) bristle_rates(m, z, w->contacts.pairs(), dy + m.bristle_offset());
 }
