@@ -39,7 +39,7 @@ double spring_slope(const Belt& b, double delta) {
 void bending_forces(const Model& m, const double* q, const double* v, double* f, double* e_rate, const Span& span) {
   const Belt& b = m.belt;
   for_pairs(b.n, span, [&](int i, const auto& own) __attribute__((always_inline)) {
-    const int a = (i + b.n - 1) % b.n;
+    const int a = before(i, b.n);
     const double delta = wrap_angle(q[3 * i + 2] - q[3 * a + 2]);
     const double rate = v[3 * i + 2] - v[3 * a + 2];
     const double M = spring(b, delta) + b.ct * rate;
@@ -55,7 +55,7 @@ void bending_jacobian(const Model& m, const double* q, const double*, BlockMatri
                       const Span& span) {
   const Belt& b = m.belt;
   for_pairs(b.n, span, [&](int i, const auto& own) __attribute__((always_inline)) {
-    const int a = (i + b.n - 1) % b.n;
+    const int a = before(i, b.n);
     const double ks = spring_slope(b, wrap_angle(q[3 * i + 2] - q[3 * a + 2]));
     // only the (φ, φ) entries of the pair's four blocks (the formulas at the top), written in
     // place: adding whole 6×6 pair blocks would make the Jacobian a third slower (BM_Jacobian)
@@ -74,7 +74,7 @@ double bending_potential(const Model& m, const double* q) {
   const Belt& b = m.belt;
   double u = 0;
   for (int i = 0; i < b.n; ++i) {
-    const int a = (i + b.n - 1) % b.n;
+    const int a = before(i, b.n);
     const double delta = std::abs(wrap_angle(q[3 * i + 2] - q[3 * a + 2]));
     u += b.e_tor == 1.0 ? 0.5 * b.kt * delta * delta : b.kt * std::pow(delta, b.e_tor + 1.0) / (b.e_tor + 1.0);
   }

@@ -63,7 +63,7 @@ template <class Own = WholeBelt>
                                              const Own& own = Own{}) {
   const int n = m.belt.n;
   Pair s;
-  s.a = (i + n - 1) % n;
+  s.a = before(i, n);
   s.b = i;
   s.h = 0.5 * m.belt.rigid_length;
   const double* qa = q + 3 * s.a;
