@@ -1,8 +1,8 @@
-// A program built for x86-64-v3 (CMakeLists.txt, BELTSIM_X86_64_V3) stops with a word, instead of
-// "Illegal instruction", on a CPU without AVX2, FMA or BMI2 (a Debian package built on a newer
-// machine and installed on older cluster nodes). This file is built for the x86-64 baseline, and
-// its constructor runs before every C++ static initialiser of the program (priority 101), any of
-// which the compiler may have written with those instructions.
+// A program built for x86-64-v3 (cmake/instruction_set.cmake, BELTSIM_X86_64_V3) stops with a
+// word, instead of "Illegal instruction", on a CPU without AVX2, FMA or BMI2 (a Debian package
+// built on a newer machine and installed on older cluster nodes). This file is built for the
+// x86-64 baseline, and its constructor runs before every C++ static initialiser of the program
+// (priority 101), any of which the compiler may have written with those instructions.
 #include <unistd.h>
 
 #include <cstring>
