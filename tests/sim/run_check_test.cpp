@@ -194,7 +194,7 @@ TEST(RunCheck, AnIntegratorOutsideTheContractSaysSoAtTheStart) {
 }
 
 // a drive with what the contract was measured not to hold with (scene_contract_misses: Stribeck's law
-// below rtol 1e-3, an overrunning decoupler at and below 1e-3, μ changing along the belt above 1e-4)
+// below rtol 1e-3, an overrunning decoupler at and below 1e-3, μ changing along the belt at any rtol)
 // says so as the run starts, or when a stretch is wetted, once; not where the matrix's rows kept it,
 // nor when the run checks its own error
 TEST(RunCheck, ADriveOutsideTheContractSaysSo) {
@@ -234,10 +234,6 @@ TEST(RunCheck, ADriveOutsideTheContractSaysSo) {
     for (int i = 0; i < 10; ++i) mu[i] = 0.1;
     sim.set_mu(mu, "wet", "test");
     sim.set_mu(mu, "wet", "again");
-    if (rtol <= 1e-4) {
-      EXPECT_TRUE(said.empty()) << said[0];
-      continue;
-    }
     ASSERT_EQ(said.size(), 1u);  // once
     EXPECT_NE(said[0].find("where μ changes along the belt"), std::string::npos) << said[0];
   }
