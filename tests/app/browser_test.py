@@ -55,8 +55,13 @@ class Browser(unittest.TestCase):
         self.dir = tempfile.mkdtemp(prefix="beltsim_browser_")
         if not os.environ.get("BELTSIM_KEEP"):
             self.addCleanup(shutil.rmtree, self.dir, True)
+        # the run starts once the test has queued its run to T_SHOT (the file `go`): asked for after
+        # the address is printed but with the run already going, the run to T_SHOT lost the race on
+        # a loaded machine now and then (the run past T_SHOT, the page's request refused)
+        self.go = os.path.join(self.dir, "go")
         with open(os.path.join(self.dir, "s.lua"), "w") as f:
-            f.write(two_pulley(elements=40) + "drive:run { t_end = %r, sample = 1e-3 }\n" % T_END)
+            f.write(two_pulley(elements=40) + "while not io.open(%r) do os.execute('sleep 0.02') end\n" % self.go +
+                    "drive:run { t_end = %r, sample = 1e-3 }\n" % T_END)
         # the browser first: its start (seconds) is not the run's time
         o = webdriver.ChromeOptions()
         for a in ["--headless", "--no-sandbox", "--disable-gpu", "--disable-background-networking",
@@ -66,7 +71,7 @@ class Browser(unittest.TestCase):
             o.add_argument(a)
         self.browser = webdriver.Chrome(service=Service(DRIVER), options=o)
         self.addCleanup(self.browser.quit)
-        self.proc = subprocess.Popen([BELTSIM, "run", "s.lua", "--serve", "--out", "out"], cwd=self.dir,
+        self.proc = subprocess.Popen([BELTSIM, "run", "s.lua", "--trusted", "--serve", "--out", "out"], cwd=self.dir,
                                      stdout=subprocess.DEVNULL, stderr=subprocess.PIPE)
         self.addCleanup(self.stop)
         for line in self.proc.stderr:
@@ -157,12 +162,13 @@ class Browser(unittest.TestCase):
 
     def test_watch_pause_torque_continue(self):
         b = self.browser
-        # a run to T_SHOT, asked for before the run begins (the address is printed before the
-        # script runs): the run pauses at T_SHOT exactly, the same state every time
+        # a run to T_SHOT, asked for before the run begins (the script waits for `go`): the run
+        # pauses at T_SHOT exactly, the same state every time
         q = urllib.parse.urlsplit(self.url).query
         post = urllib.request.Request(self.url.split("?")[0] + "control?" + q + "&do=run_to&value=%r" % T_SHOT,
                                       data=b"", method="POST")
         self.assertEqual(urllib.request.urlopen(post, timeout=30).status, 202)
+        open(self.go, "w").close()
         b.get(self.url)
         wait = WebDriverWait(b, WAIT, poll_frequency=0.05)
         wait.until(lambda _: self.text("status") == "paused at t = %g s" % T_SHOT)
