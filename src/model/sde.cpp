@@ -57,7 +57,9 @@ inline Vec2 element_axis(const double* q, int k, AxisMemo* memo, const Own& own)
   std::memcpy(&a, &phi, sizeof a);
   std::memcpy(&b, &memo->phi[k], sizeof b);
   if (a == b) return {memo->c[k], memo->s[k]};
-  const Vec2 e = axis(phi);
+  const double g = axis_anchor(phi);
+  if (g != memo->g[k]) memo->g[k] = g, memo->cg[k] = std::cos(g), memo->sg[k] = std::sin(g);
+  const Vec2 e = turned_axis(memo->cg[k], memo->sg[k], phi - g);  // axis(phi), bit for bit
   memo->phi[k] = phi, memo->c[k] = e.x(), memo->s[k] = e.y();
   return e;
 }
