@@ -22,18 +22,34 @@ namespace beltsim {
 // (Jacobian.AxisIsCosineAndSine). An element turns by less than 1/128 rad over most steps, so its
 // anchor's cosine and sine (AxisMemo) serve many evaluations in a row: on the serpentine drive at
 // speed the sines and cosines took a fifth of the instructions they took computed afresh.
-inline Vec2 turned_axis(double c0, double s0, double d) {
-  if (d == 0) return {c0, s0};  // on the anchor: its cosine and sine (sin(-0.0) = -0.0 among them)
+// (each multiply-add written as one fused operation where the machine has it, __FMA__: the
+// compiler's own fusing, which may differ between a loop it vectorises and one it does not, then
+// finds nothing to fuse, and AxisMemo::update's loop gives axis()'s bits)
+// turn_off_anchor: δ != 0 (at δ = 0 the sign of a zero sine may differ); turn: any δ
+inline void turn_off_anchor(double c0, double s0, double d, double& c, double& s) {
   const double d2 = d * d;
+#ifdef __FMA__
+  const double cd = std::fma(-d2, std::fma(-d2, 1.0 / 24, 0.5), 1.0);
+  const double sd = d * std::fma(-d2, std::fma(-d2, 1.0 / 120, 1.0 / 6), 1.0);
+  const double ck = std::fma(c0, cd, -(s0 * sd)), sk = std::fma(s0, cd, c0 * sd);
+#else
   const double cd = 1 - d2 * (0.5 - d2 * (1.0 / 24)), sd = d * (1 - d2 * (1.0 / 6 - d2 * (1.0 / 120)));
-  return {c0 * cd - s0 * sd, s0 * cd + c0 * sd};
+  const double ck = c0 * cd - s0 * sd, sk = s0 * cd + c0 * sd;
+#endif
+  c = ck, s = sk;
+}
+inline void turn(double c0, double s0, double d, double& c, double& s) {
+  turn_off_anchor(c0, s0, d, c, s);
+  if (d == 0) c = c0, s = s0;  // on the anchor: its cosine and sine (sin(-0.0) = -0.0 among them)
 }
 inline double axis_anchor(double phi) {
   return std::nearbyint(phi * 128) * (1.0 / 128);
 }
 inline Vec2 axis(double phi) {
   const double g = axis_anchor(phi);
-  return turned_axis(std::cos(g), std::sin(g), phi - g);
+  Vec2 e;
+  turn(std::cos(g), std::sin(g), phi - g, e.x(), e.y());
+  return e;
 }
 inline Vec2 perp(const Vec2& a) { return {-a.y(), a.x()}; }
 inline double cross(const Vec2& a, const Vec2& b) { return a.x() * b.y() - a.y() * b.x(); }
@@ -46,7 +62,8 @@ double wrap_angle(double a);
 // and its local friction solve moves only velocities, so those evaluations read their axes from
 // the memo (sde.cpp); the axes read are the same bits as those computed afresh.
 // A different angle with the same anchor φ_g (axis, above) turns the anchor's cosine and sine,
-// kept here too, instead of taking new ones.
+// kept here too, instead of taking new ones. sde_forces and sde_jacobian bring their span's
+// axes up to date first (update), then read them.
 struct AxisMemo {
   std::vector<double> phi, c, s;  // per element: the angle, cos φ, sin φ
   std::vector<double> g, cg, sg;  // per element: the anchor φ_g, cos φ_g, sin φ_g
@@ -58,6 +75,10 @@ struct AxisMemo {
     phi.assign(n, nan), c.assign(n, nan), s.assign(n, nan);
     g.assign(n, nan), cg.assign(n, nan), sg.assign(n, nan);
   }
+  // the axes of elements lo..hi-1 at the angles of q, axis() bit for bit: a new anchor's cosine
+  // and sine where an angle left its cell, then every axis turned from its anchor in one loop
+  // without branches, which the compiler vectorises (sde.cpp)
+  void update(const double* q, int lo, int hi);
 };
 
 // The elements lo..hi-1 one call of a law evaluates for (rhs.cpp splits a long belt in two

@@ -46,22 +46,12 @@ struct Pair {
   Vec2 A, B;           // D's φ columns, -h·e'_a and -h·e'_b
 };
 
-// the axis of element k, from the memo when it holds the same angle (bit for bit: cos and sin of
-// -0.0 and 0.0 differ in the sign of a zero), else taken and written to it; an element outside
-// `own` (a half of the belt evaluating its edge pair) leaves the memo to the other half
+// the axis of element k, from the memo (brought up to date for the span by AxisMemo::update);
+// an element outside `own` (a half of the belt evaluating its edge pair) is the other half's
 template <class Own>
-inline Vec2 element_axis(const double* q, int k, AxisMemo* memo, const Own& own) {
-  const double phi = q[3 * k + 2];
-  if (!memo || !own.owns(k)) return axis(phi);
-  std::uint64_t a, b;
-  std::memcpy(&a, &phi, sizeof a);
-  std::memcpy(&b, &memo->phi[k], sizeof b);
-  if (a == b) return {memo->c[k], memo->s[k]};
-  const double g = axis_anchor(phi);
-  if (g != memo->g[k]) memo->g[k] = g, memo->cg[k] = std::cos(g), memo->sg[k] = std::sin(g);
-  const Vec2 e = turned_axis(memo->cg[k], memo->sg[k], phi - g);  // axis(phi), bit for bit
-  memo->phi[k] = phi, memo->c[k] = e.x(), memo->s[k] = e.y();
-  return e;
+inline Vec2 element_axis(const double* q, int k, const AxisMemo* memo, const Own& own) {
+  if (!memo || !own.owns(k)) return axis(q[3 * k + 2]);
+  return {memo->c[k], memo->s[k]};
 }
 
 // ea: the axis of element i-1 when the caller has it (loops over the SDEs in order pass the
@@ -126,6 +116,23 @@ Vec2 spring(const Belt& b, const Vec2& d) {
 
 }  // namespace
 
+void AxisMemo::update(const double* q, int lo, int hi) {
+  for (int k = lo; k < hi; ++k) {
+    const double a = q[3 * k + 2], ga = axis_anchor(a);
+    phi[k] = a;
+    if (ga != g[k]) g[k] = ga, cg[k] = std::cos(ga), sg[k] = std::sin(ga);  // (a NaN angle: NaN)
+  }
+  const double* __restrict pk = phi.data(), * __restrict gk = g.data(), * __restrict ck = cg.data(), * __restrict sk = sg.data();
+  double* __restrict co = c.data(), * __restrict si = s.data();
+  for (int k = lo; k < hi; ++k) {  // (no branch: vectorised)
+    double ek, fk;
+    turn_off_anchor(ck[k], sk[k], pk[k] - gk[k], ek, fk);
+    co[k] = ek, si[k] = fk;
+  }
+  for (int k = lo; k < hi; ++k)  // turn's case of an angle on its anchor
+    if (pk[k] == gk[k]) co[k] = ck[k], si[k] = sk[k];
+}
+
 Vec2 sde_gap(const Model& m, const double* q, int i) { return make_pair(m, q, nullptr, i).d; }
 
 int sde_nearest(const Model& m, const double* q, const Vec2& point) {
@@ -175,6 +182,7 @@ void sde_axial_forces(const Model& m, const double* q, const double* v, double* 
 void sde_forces(const Model& m, const double* q, const double* v, double* f, double* e_rate, AxisMemo* memo,
                 const Span& span) {
   const Belt& b = m.belt;
+  if (memo) memo->update(q, span.lo, span.hi);
   Vec2 prev;
   int prev_i = -2;  // the pair whose eb is in prev
   for_pairs(b.n, span, [&](int i, const auto& own) __attribute__((always_inline)) {
@@ -198,6 +206,7 @@ void sde_forces(const Model& m, const double* q, const double* v, double* f, dou
 void sde_jacobian(const Model& m, const double* q, const double* v, BlockMatrix& K, BlockMatrix& C, AxisMemo* memo,
                   const Span& span) {
   const Belt& b = m.belt;
+  if (memo) memo->update(q, span.lo, span.hi);
   Vec2 prev;
   int prev_i = -2;
   for_pairs(b.n, span, [&](int i, const auto& own) __attribute__((always_inline)) {

@@ -122,6 +122,22 @@ TEST(Jacobian, AxisIsCosineAndSine) {
   EXPECT_LE(worst, 4.4e-16);
   EXPECT_EQ(axis(5.0 / 128).y(), std::sin(5.0 / 128));  // on an anchor: its own sine
   EXPECT_TRUE(std::signbit(axis(-0.0).y()));
+  // the memo's vectorised update gives axis() bit for bit, twice over (anchors kept, anchors new)
+  const int n = static_cast<int>(phis.size());
+  std::vector<double> q(3 * n);
+  AxisMemo memo;
+  memo.fit(n);
+  for (double shift : {0.0, 1e-3}) {
+    for (int k = 0; k < n; ++k) q[3 * k + 2] = phis[k] + shift;
+    memo.update(q.data(), 0, n);
+    int differ = 0;
+    for (int k = 0; k < n; ++k) {
+      const Vec2 e = axis(q[3 * k + 2]);
+      differ +=
+          std::memcmp(&e.x(), &memo.c[k], sizeof(double)) != 0 || std::memcmp(&e.y(), &memo.s[k], sizeof(double)) != 0;
+    }
+    EXPECT_EQ(differ, 0) << "shift " << shift;
+  }
 }
 
 // A long belt's right-hand side and Jacobian evaluated in two halves at once (rhs.hpp, Halves):
