@@ -56,14 +56,10 @@ inline double cross(const Vec2& a, const Vec2& b) { return a.x() * b.y() - a.y()
 // angle difference in (-pi, pi]: phi grows by 2·pi per lap, the SDE sees only the bend
 double wrap_angle(double a);
 
-// The elements' axes e(φ_i) of an evaluation, kept with the angles they belong to: an evaluation
-// at the same angles (to the bit) reads them instead of taking the sines and cosines again. The
-// Newton iteration takes its Jacobians at the iterate whose right-hand side it has just evaluated,
-// and its local friction solve moves only velocities, so those evaluations read their axes from
-// the memo (sde.cpp); the axes read are the same bits as those computed afresh.
-// A different angle with the same anchor φ_g (axis, above) turns the anchor's cosine and sine,
-// kept here too, instead of taking new ones. sde_forces and sde_jacobian bring their span's
-// axes up to date first (update), then read them.
+// The elements' axes e(φ_i) of the last evaluation and each element's anchor φ_g (axis, above)
+// with its cosine and sine. sde_forces and sde_jacobian bring their span's axes up to date first
+// (update: a new sine and cosine only for an angle that left its anchor's cell, which most do not
+// between one evaluation and the next), then read them; the axes are axis()'s bits.
 struct AxisMemo {
   std::vector<double> phi, c, s;  // per element: the angle, cos φ, sin φ
   std::vector<double> g, cg, sg;  // per element: the anchor φ_g, cos φ_g, sin φ_g
