@@ -29,8 +29,6 @@
 // angle are about 150 of each).
 #include <algorithm>
 #include <cmath>
-#include <cstdint>
-#include <cstring>
 #include <limits>
 #include <type_traits>
 
