@@ -118,7 +118,8 @@ void AxisMemo::update(const double* q, int lo, int hi) {
   for (int k = lo; k < hi; ++k) {
     const double a = q[3 * k + 2], ga = axis_anchor(a);
     phi[k] = a;
-    if (ga != g[k]) g[k] = ga, cg[k] = std::cos(ga), sg[k] = std::sin(ga);  // (a NaN angle: NaN)
+    // (a new anchor also when only a zero's sign changes: sin(-0.0) is -0.0; a NaN angle: NaN)
+    if (ga != g[k] || std::signbit(ga) != std::signbit(g[k])) g[k] = ga, cg[k] = std::cos(ga), sg[k] = std::sin(ga);
   }
   const double* __restrict pk = phi.data(), * __restrict gk = g.data(), * __restrict ck = cg.data(), * __restrict sk = sg.data();
   double* __restrict co = c.data(), * __restrict si = s.data();

@@ -97,8 +97,8 @@ TEST(Jacobian, AxisMemoChangesNoResult) {
     EXPECT_EQ(std::memcmp(K.data(), Kref.data(), sizeof(double) * K.size()), 0);
     EXPECT_EQ(std::memcmp(C.data(), Cref.data(), sizeof(double) * C.size()), 0);
   }
-  // the memo holds the last state's axes, the sign of the zero angle's sine included (the angles
-  // are compared bit for bit: -0.0 == 0.0 would have kept the sine of 0.0)
+  // the memo holds the last state's axes, the sign of the zero angle's sine included (the anchors
+  // are compared with their signs: -0.0 == 0.0 would have kept the sine of 0.0)
   EXPECT_TRUE(std::signbit(memo.s[4]));
   EXPECT_EQ(memo.c[0], axis(y3[2]).x());
 }
@@ -122,13 +122,17 @@ TEST(Jacobian, AxisIsCosineAndSine) {
   EXPECT_LE(worst, 4.4e-16);
   EXPECT_EQ(axis(5.0 / 128).y(), std::sin(5.0 / 128));  // on an anchor: its own sine
   EXPECT_TRUE(std::signbit(axis(-0.0).y()));
-  // the memo's vectorised update gives axis() bit for bit, twice over (anchors kept, anchors new)
+  // the memo's vectorised update gives axis() bit for bit, three times over (anchors new, kept with
+  // the angles negated, new)
   const int n = static_cast<int>(phis.size());
   std::vector<double> q(3 * n);
   AxisMemo memo;
   memo.fit(n);
-  for (double shift : {0.0, 1e-3}) {
-    for (int k = 0; k < n; ++k) q[3 * k + 2] = phis[k] + shift;
+  // (the angles negated after the first pass: 0.0 becomes -0.0 on an anchor the memo holds as 0.0)
+  for (double sign_shift : {0.0, -1.0, 1e-3}) {
+    const double shift = sign_shift < 0 ? 0.0 : sign_shift, sign = sign_shift < 0 ? -1.0 : 1.0;
+    for (int k = 0; k < n; ++k)
+      q[3 * k + 2] = shift != 0 ? sign * phis[k] + shift : sign * phis[k];  // (-0.0 + 0.0 is 0.0)
     memo.update(q.data(), 0, n);
     int differ = 0;
     for (int k = 0; k < n; ++k) {
@@ -136,7 +140,7 @@ TEST(Jacobian, AxisIsCosineAndSine) {
       differ +=
           std::memcmp(&e.x(), &memo.c[k], sizeof(double)) != 0 || std::memcmp(&e.y(), &memo.s[k], sizeof(double)) != 0;
     }
-    EXPECT_EQ(differ, 0) << "shift " << shift;
+    EXPECT_EQ(differ, 0) << "sign " << sign << ", shift " << shift;
   }
 }
 
