@@ -40,7 +40,7 @@ void BlockMatrix::multiply(const double* x, double* y) const {
 void BlockMatrix::multiply_elements(const double* x, double* y, int lo, int hi) const {
   using Vec3 = Eigen::Vector3d;
   for (int i = lo; i < hi; ++i) {
-    const int im = i > 0 ? i - 1 : n - 1, ip = i + 1 < n ? i + 1 : 0;  // (no integer division in a solve)
+    const int im = before(i, n), ip = after(i, n);
     Eigen::Map<Vec3> yi(y + 3 * i);
     yi = diag[i] * Eigen::Map<const Vec3>(x + 3 * i) + lower[i] * Eigen::Map<const Vec3>(x + 3 * im) +
          upper[i] * Eigen::Map<const Vec3>(x + 3 * ip);

@@ -23,6 +23,15 @@ namespace beltsim {
 
 using Mat3 = Eigen::Matrix3d;
 
+// the elements before and after element i (0 <= i < n) on the ring, without an integer division
+// (they are in every evaluation and every solve)
+inline int before(int i, int n) {
+  return i > 0 ? i - 1 : n - 1;
+}
+inline int after(int i, int n) {
+  return i + 1 < n ? i + 1 : 0;
+}
+
 struct BlockMatrix {
   int n = 0, np = 0;
   std::vector<Mat3> diag, lower, upper;          // n each: (i,i), (i,i-1), (i,i+1)

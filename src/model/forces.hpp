@@ -102,10 +102,6 @@ template <class Visit>
   for (int i = s.lo; i < s.hi; ++i) visit(i, s);
   if (s.hi < n) visit(s.hi, s);  // its end a is element hi-1
 }
-// the element before element i (0 <= i < n) on the ring, without an integer division
-inline int before(int i, int n) {
-  return i > 0 ? i - 1 : n - 1;
-}
 template <class Visit>
 void for_pairs(int n, const Span& s, Visit&& visit) {
   if (!s.whole(n)) return for_pairs_of_span(n, s, visit);  // out of line: the whole loop stays lean
