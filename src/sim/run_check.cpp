@@ -27,8 +27,8 @@ std::string past(const CheckEstimate& e, bool speeds, double factor, bool over_r
 
 std::vector<std::string> scene_contract_misses(const Model& m, const Drive& d, double rtol) {
   // measured with trbdf2 against esdirk32 at rtol 1e-7 (beltsim wp on the rows of
-  // bench/accuracy_matrix.csv, 2026-11-30; the wet row's tolerances
-  // 2026-12-01); the bounds: speeds 3·rtol, span tensions 10·rtol
+  // bench/accuracy_matrix.csv, 2026-11-30; the wet row at 24 tolerances, 2026-12-01); the bounds:
+  // speeds 3·rtol, span tensions 10·rtol
   std::vector<std::string> out;
   if (m.any_law(FrictionKind::stribeck) && rtol < 1e-3)
     out.push_back(
