@@ -70,9 +70,10 @@ bool RingSolver::factor_chain(Chain& ch, const Model& m, double alpha, double be
     ch.F.topRightCorner<6, 3>().setZero();
   }
   const int a = elem(0), b = elem(nt - 1);
-  const int ka = border_of((a + n - 1) % n), kb = border_of((b + 1) % n);
-  ch.F.block<3, 3>(3 * ka, 0) += block(C.upper[(a + n - 1) % n], K.upper[(a + n - 1) % n]);
-  ch.F.block<3, 3>(3 * kb, 3 * (nt - 1)) += block(C.lower[(b + 1) % n], K.lower[(b + 1) % n]);
+  const int left = before(a, n), right = after(b, n);
+  const int ka = border_of(left), kb = border_of(right);
+  ch.F.block<3, 3>(3 * ka, 0) += block(C.upper[left], K.upper[left]);
+  ch.F.block<3, 3>(3 * kb, 3 * (nt - 1)) += block(C.lower[right], K.lower[right]);
   E.block<3, 3>(0, 3 * ka) += block(C.lower[a], K.lower[a]);
   E.block<3, 3>(3 * (nt - 1), 3 * kb) += block(C.upper[b], K.upper[b]);
   // E's pulley columns and F's pulley rows, and the blocks where each is non-zero: zero but where

@@ -64,7 +64,7 @@ Eigen::MatrixXd BlockMatrix::to_dense() const {
   const int ne = 3 * n;
   Eigen::MatrixXd d = Eigen::MatrixXd::Zero(size(), size());
   for (int i = 0; i < n; ++i) {
-    const int im = (i + n - 1) % n, ip = (i + 1) % n;
+    const int im = before(i, n), ip = after(i, n);
     d.block<3, 3>(3 * i, 3 * i) += diag[i];
     d.block<3, 3>(3 * i, 3 * im) += lower[i];
     d.block<3, 3>(3 * i, 3 * ip) += upper[i];

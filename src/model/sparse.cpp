@@ -15,8 +15,8 @@ void assemble(const Model& m, const Drive& d, double alpha, double beta, const B
   };
   for (int i = 0; i < n; ++i) {
     block(i, i, C.diag[i], K.diag[i]);
-    block(i, (i + n - 1) % n, C.lower[i], K.lower[i]);
-    block(i, (i + 1) % n, C.upper[i], K.upper[i]);
+    block(i, before(i, n), C.lower[i], K.lower[i]);
+    block(i, after(i, n), C.upper[i], K.upper[i]);
   }
   for (int k = 0; k < ne; ++k) t.emplace_back(k, k, alpha * d.mass(m, k));
   if (rows > ne) {
@@ -55,8 +55,8 @@ void assemble_ode_jacobian(const Model& m, const Drive& d, const BlockMatrix& K,
   };
   for (int i = 0; i < n; ++i) {
     block(i, i, C.diag[i], K.diag[i]);
-    block(i, (i + n - 1) % n, C.lower[i], K.lower[i]);
-    block(i, (i + 1) % n, C.upper[i], K.upper[i]);
+    block(i, before(i, n), C.lower[i], K.lower[i]);
+    block(i, after(i, n), C.upper[i], K.upper[i]);
   }
   for (int j = 0; j < np; ++j) {
     const double inv_p = 1.0 / d.mass(m, ne + j);
