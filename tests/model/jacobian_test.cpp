@@ -22,6 +22,7 @@
 #include <cmath>
 #include <cstring>
 #include <random>
+#include <utility>
 #include <vector>
 
 #include "model/contact_law.hpp"
@@ -129,8 +130,7 @@ TEST(Jacobian, AxisIsCosineAndSine) {
   AxisMemo memo;
   memo.fit(n);
   // (the angles negated after the first pass: 0.0 becomes -0.0 on an anchor the memo holds as 0.0)
-  for (double sign_shift : {0.0, -1.0, 1e-3}) {
-    const double shift = sign_shift < 0 ? 0.0 : sign_shift, sign = sign_shift < 0 ? -1.0 : 1.0;
+  for (const auto& [sign, shift] : {std::pair{1.0, 0.0}, {-1.0, 0.0}, {1.0, 1e-3}}) {
     for (int k = 0; k < n; ++k)
       q[3 * k + 2] = shift != 0 ? sign * phis[k] + shift : sign * phis[k];  // (-0.0 + 0.0 is 0.0)
     memo.update(q.data(), 0, n);
