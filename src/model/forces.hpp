@@ -73,7 +73,8 @@ struct AxisMemo {
   }
   // the axes of elements lo..hi-1 at the angles of q, axis() bit for bit: a new anchor's cosine
   // and sine where an angle left its cell, then every axis turned from its anchor in one loop
-  // without branches, which the compiler vectorises (sde.cpp)
+  // without branches, which the compiler vectorises (sde.cpp); nothing when the angles are those
+  // of the last update
   void update(const double* q, int lo, int hi);
 };
 

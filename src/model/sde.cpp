@@ -28,7 +28,9 @@
 // Jacobian (callgrind over `beltsim wp` of the dry second; the sine and cosine of the element's
 // angle are about 150 of each).
 #include <algorithm>
+#include <bit>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 #include <type_traits>
 
@@ -115,6 +117,11 @@ Vec2 spring(const Belt& b, const Vec2& d) {
 }  // namespace
 
 void AxisMemo::update(const double* q, int lo, int hi) {
+  // the angles of the last update, bit for bit (sde_jacobian at the state sde_forces has just
+  // read): the axes stand; a changed angle is usually the first one, so the test costs little
+  int same = lo;
+  while (same < hi && std::bit_cast<std::uint64_t>(q[3 * same + 2]) == std::bit_cast<std::uint64_t>(phi[same])) ++same;
+  if (same == hi) return;
   for (int k = lo; k < hi; ++k) {
     const double a = q[3 * k + 2], ga = axis_anchor(a);
     phi[k] = a;
