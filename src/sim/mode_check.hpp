@@ -10,6 +10,9 @@
 // period (at the whole passings in it, at least three, on a running drive), and the frequency and
 // damping of the oscillation the difference holds (a Prony fit, sim/mode_check.cpp).
 //
+// Both runs start with every pulley's angle brought within ±π by whole turns (a coupled rotor's
+// with it), which the drive's motion does not depend on: the error control weighs an angle by its
+// size, and a pulley many turns round carried a noise of some 3 % of the push's response.
 // The push is small: with a = 1e-8 m the velocities it gives (λ·a, 6e-6 m/s at 100 Hz) stay within
 // the friction band Δv of the sticking elements (1e-5 m/s by default) and the runs' differences
 // (rtol 1e-10) are far above the integrator's noise; on the paper's dry drive the response to 1e-8

@@ -28,14 +28,19 @@ double share(const ModeAnalysis& a, const Mode& m, const std::string& prefix) {
 // motion at whole passings (where the Floquet mode is exact) over its first period, measured with
 // `beltsim modes scripts/paper_dry.lua --at 0.5 --check 1,...,28`: 27 of the 28 agree (misfits
 // 1-22 %; the most damped, 26.9 Hz ζ 0.72, 25 %). Checked here (this state, rtol 1e-6):
-// - the two pulleys turning against each other: 98.87 Hz, ζ 0.112; in time (the driver's angle)
-//   98.60 Hz, ζ 0.106 (Prony over six periods), misfit 3 %;
+// - the two pulleys turning against each other: 98.93 Hz, ζ 0.112; in time (the driver's angle)
+//   98.65 Hz, ζ 0.105 (Prony over six periods), misfit 1 %;
 // - the next of the family it heads (modes about a belt circulation frequency, v/L = 5.7 Hz, apart:
-//   strain carried round the loop in the sticking arcs): 107.08 Hz, ζ 0.127, misfit 9 %;
-// - the tight span (858 N): 164.32 Hz, ζ 0.203, misfit 7 % (Wickert & Mote give 162 to 174 Hz for
+//   strain carried round the loop in the sticking arcs): 107.04 Hz, ζ 0.129, misfit 9 %;
+// - the tight span (858 N): 164.47 Hz, ζ 0.202, misfit 4 % (Wickert & Mote give 162 to 174 Hz for
 //   ends at the tangent points or a pitch inside).
-// Bounds: agrees at a misfit of at most 0.25 (ModeCheckSettings::max_misfit); the torsional mode's
-// frequency in time within 2 % and its ζ within 0.02 (a pulley's angle, six clean periods).
+// Bounds: agrees at a misfit of at most 0.25 (ModeCheckSettings::max_misfit), the torsional mode at
+// 0.15: over eight operating points that are equally valid (this one; esdirk32 at rtol 1e-7, 5e-7
+// and 2e-6; trbdf2 at 1e-4, 1e-6 and 1e-7; this one with the Newton residual's rounding changed)
+// its misfit measured 0.01-0.09. Its fitted oscillation (Prony over six periods, which the verdict
+// does not rest on: past three periods the difference is mostly the other modes and the passing's
+// ripple) measured 97.5-103.3 Hz against 98.8-99.0 and ζ within 0.014 of the analysed one: bounds 6 %
+// and 0.03.
 TEST(ModesRunning, TheSlippingDrivesModesCheckedInTime) {
   test::expect_warnings({WarningKind::failed_step});
   const Scene sc = build_scene(presets::paper_dry());
@@ -68,8 +73,9 @@ TEST(ModesRunning, TheSlippingDrivesModesCheckedInTime) {
                 a.modes[k].damping, c.where.c_str(), c.frequency, c.damping, c.misfit);
     EXPECT_TRUE(c.agrees);
     if (k == torsion) {
-      EXPECT_NEAR(c.frequency, a.modes[k].frequency, 0.02 * a.modes[k].frequency);
-      EXPECT_NEAR(c.damping, a.modes[k].damping, 0.02);
+      EXPECT_LE(c.misfit, 0.15);
+      EXPECT_NEAR(c.frequency, a.modes[k].frequency, 0.06 * a.modes[k].frequency);
+      EXPECT_NEAR(c.damping, a.modes[k].damping, 0.03);
     }
   }
 }
