@@ -529,6 +529,18 @@ void FrameBuilder::draw_text_and_legend(double t, const Observation& seen, doubl
     const Rgba col = colour_at(scale_.map, (k + 0.5) / bands);
     out.quad(Vec2(panel_x, y0), Vec2(panel_x + bar_w, y0), Vec2(panel_x + bar_w, y1), Vec2(panel_x, y1), col);
   }
+  // values beyond the bar's ends (their elements drawn in its end colours): a triangle of that
+  // colour at that end, pointing away, in the gap to the text above or below
+  double v_lo = INFINITY, v_hi = -INFINITY;
+  for (const ElementDraw& el : out.elements)
+    if (std::isfinite(el.value)) v_lo = std::min(v_lo, el.value), v_hi = std::max(v_hi, el.value);
+  const double tip = 0.45 * font_px_;
+  if (v_hi > scale_.hi)
+    out.triangle(Vec2(panel_x, bar_top), Vec2(panel_x + bar_w, bar_top), Vec2(panel_x + 0.5 * bar_w, bar_top - tip),
+                 scale_.colour(v_hi));
+  if (v_lo < scale_.lo)
+    out.triangle(Vec2(panel_x, bar_bot), Vec2(panel_x + 0.5 * bar_w, bar_bot + tip), Vec2(panel_x + bar_w, bar_bot),
+                 scale_.colour(v_lo));
   const int edges = scale_.levels > 0 ? scale_.levels : 4;
   int every = 1;
   while (every < edges && (bar_bot - bar_top) / edges * every < 1.3 * font_px_) every *= 2;

@@ -274,6 +274,28 @@ TEST_F(Fixture, TextAndColourBarSayWhatIsShown) {
   for (const char* s : {"belt tension", "[N]", "0", "1000", "wet (\u03bc < 1)", "slipping"}) EXPECT_TRUE(has(s)) << s;
 }
 
+// values beyond the colour bar's ends are marked by a triangle at that end in their colour (the
+// bar's bands and the elements' quads are the same in number whatever the range, so the marks are
+// the only triangles a narrower range adds)
+TEST_F(Fixture, ColourBarMarksValuesBeyondItsEnds) {
+  const Scene& sc = wet();
+  const Eigen::VectorXd y = test::moving_state(sc);
+  auto build = [&](double lo, double hi, DrawList& dl) {
+    FrameSettings f = fs();
+    f.range_lo = lo, f.range_hi = hi;
+    FrameBuilder(sc, f, &font).build(0.1, y.data(), dl);
+  };
+  DrawList all, above, both;
+  build(-1e4, 1e4, all);
+  double v_lo = INFINITY, v_hi = -INFINITY;
+  for (const ElementDraw& el : all.elements) v_lo = std::min(v_lo, el.value), v_hi = std::max(v_hi, el.value);
+  ASSERT_LT(v_lo + 10, v_hi);
+  build(v_lo - 1, v_hi - 1, above);
+  build(v_lo + 1, v_hi - 1, both);
+  EXPECT_EQ(above.triangles.size(), all.triangles.size() + 3);
+  EXPECT_EQ(both.triangles.size(), all.triangles.size() + 6);
+}
+
 // a pulley on a tensioner arm shows the arm's angle, one with a coupled rotor the rotor's speed;
 // expected from the layout (the arm's angle is that of the pulley's centre seen from the pivot)
 // and from the speed written into the state, not from the observables
