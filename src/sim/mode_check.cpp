@@ -183,9 +183,8 @@ ModeCheck judge(const Plan& p, const Mode& md, const ModeAnalysis& a, const std:
 }
 
 // y with every pulley's angle brought within ±π by whole turns, a coupled rotor's (and its clutch
-// hub's) turned with it. Nothing in the drive depends on a pulley's turns but a coupling's twist,
-// which this keeps; the error control weighs an angle by its size, and the paper's driver at 0.5 s,
-// 34 rad round, had its angle held to some 3e-9 rad: 3 % of the difference a push of 1e-8 m makes
+// hub's) turned with it, which keeps the coupling's twist: nothing else in the drive depends on a
+// pulley's turns (why the runs start there: mode_check.hpp)
 Eigen::VectorXd turns_taken_off(const Model& m, Eigen::VectorXd y) {
   for (int j = 0; j < m.n_p(); ++j) {
     const double turns = 2 * M_PI * std::round(y[m.pulley_coord(j)] / (2 * M_PI));

@@ -274,9 +274,8 @@ TEST_F(Fixture, TextAndColourBarSayWhatIsShown) {
   for (const char* s : {"belt tension", "[N]", "0", "1000", "wet (\u03bc < 1)", "slipping"}) EXPECT_TRUE(has(s)) << s;
 }
 
-// values beyond the colour bar's ends are marked by a triangle at that end in their colour (the
-// bar's bands and the elements' quads are the same in number whatever the range, so the marks are
-// the only triangles a narrower range adds)
+// values beyond the colour bar's ends are marked by a triangle at that end (the bar's bands and the elements' quads are
+// the same in number whatever the range, so the marks are the only triangles a narrower range adds)
 TEST_F(Fixture, ColourBarMarksValuesBeyondItsEnds) {
   const Scene& sc = wet();
   const Eigen::VectorXd y = test::moving_state(sc);
