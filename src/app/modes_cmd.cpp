@@ -1,6 +1,5 @@
 // `beltsim modes SCRIPT`: the modes of the script's drive about an operating point, or over the
 // crankshaft's speed (a Campbell diagram) (commands.hpp, sim/modes.hpp, docs/modes.md).
-#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -53,28 +52,13 @@ std::vector<double> orders(const std::string& text) {
   return out;
 }
 
-// the groups holding at least a fifth of the mode's energy, largest first: "arm_tensioner 54 %, ..."
-std::string where(const ModeAnalysis& a, const Mode& m) {
-  std::vector<std::pair<double, std::string>> g;
-  for (size_t k = 0; k < a.groups.size(); ++k)
-    if (m.participation[k] >= 0.2) g.emplace_back(m.participation[k], a.groups[k]);
-  std::sort(g.rbegin(), g.rend());
-  std::string s;
-  for (const auto& [share, name] : g) {
-    char buf[64];
-    std::snprintf(buf, sizeof buf, "%.0f %%", 100 * share);
-    s += (s.empty() ? "" : ", ") + name + " " + buf;
-  }
-  return s;
-}
-
 void print_table(const Scene& sc, const ModeAnalysis& a) {
   std::printf("t = %s s, belt speed %.3g m/s, %d states: %zu modes\n", number_text(a.t).c_str(), a.belt_speed, a.states,
               a.modes.size());
   std::printf("%5s %10s %8s  %s\n", "mode", "f [Hz]", "zeta", "where the kinetic energy is");
   for (size_t k = 0; k < a.modes.size(); ++k)
     std::printf("%5zu %10.2f %8.4f  %s\n", k + 1, a.modes[k].frequency, a.modes[k].damping,
-                where(a, a.modes[k]).c_str());
+                where_text(a.groups, a.modes[k].participation).c_str());
   if (a.period == 0) return;
   // a running belt: the modes of its motion over one element passing (docs/modes.md, A running drive)
   std::printf(

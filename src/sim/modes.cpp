@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <stdexcept>
 
 #include "model/contacts.hpp"
@@ -227,6 +228,23 @@ std::vector<double> mode_row(const ModeAnalysis& a, size_t k) {
   std::vector<double> r{static_cast<double>(k + 1), m.frequency, m.damping, -m.lambda.real()};
   r.insert(r.end(), m.participation.begin(), m.participation.end());
   return r;
+}
+
+std::string where_text(const std::vector<std::string>& groups, const std::vector<double>& participation) {
+  std::vector<std::pair<double, std::string>> g;
+  for (size_t k = 0; k < groups.size() && k < participation.size(); ++k) g.emplace_back(participation[k], groups[k]);
+  std::stable_sort(g.begin(), g.end(), [](const auto& a, const auto& b) { return a.first > b.first; });
+  size_t n = 0;
+  while (n < g.size() && g[n].first >= kWhereShare) ++n;
+  const bool spread = n == 0;
+  if (spread) n = std::min(kWhereSpread, g.size());
+  std::string s = spread && n > 0 ? "spread: " : "";
+  for (size_t k = 0; k < n; ++k) {
+    char buf[32];
+    std::snprintf(buf, sizeof buf, " %.0f %%", 100 * g[k].first);
+    s += (k ? ", " : "") + g[k].second + buf;
+  }
+  return s;
 }
 
 }  // namespace beltsim

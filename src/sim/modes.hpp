@@ -113,4 +113,11 @@ Eigen::VectorXd mode_state(const Eigen::VectorXd& y, const Mode& m, double ampli
 std::vector<std::string> mode_columns(const ModeAnalysis& a);
 std::vector<double> mode_row(const ModeAnalysis& a, size_t k);
 
+// where a mode's kinetic energy is, for the table of `beltsim modes`: the groups holding at least
+// kWhereShare of it, largest first ("arm_tensioner 54 %, pulley_idler 21 %"); when none does, the
+// energy is spread and the kWhereSpread largest are given after "spread: " (so no row is blank)
+constexpr double kWhereShare = 0.2;
+constexpr size_t kWhereSpread = 2;
+std::string where_text(const std::vector<std::string>& groups, const std::vector<double>& participation);
+
 }  // namespace beltsim
