@@ -238,6 +238,30 @@ def full_disk():
     check(whole_rows(csv) == "" and os.path.getsize(csv) > limit - 1024, "full disk: the rows that fitted, whole")
 
 
+# ---- the video cannot grow: frames are written on a thread of their own (render/recorder.cpp),
+# so the failure comes back to the run from there. Exit 1, the message names the video, which
+# plays its whole fragments, and the CSV holds whole rows --------------------------------------
+def full_disk_video():
+    out = os.path.join(TMP, "full_video")
+    limit = 200 * 1024  # at 640x360 the video passes it before 0.4 s simulated, the CSV after 1 s
+    run = script("full_video", SCENE + 'drive:run { t_end = 1, progress = false, frames = { size = {640, 360}, '
+                                       'video = "v.mp4", png_every = 1000 } }\n')
+
+    def limited():
+        signal.signal(signal.SIGXFSZ, signal.SIG_IGN)
+        resource.setrlimit(resource.RLIMIT_FSIZE, (limit, limit))
+
+    p = start(["run", run], out, preexec_fn=limited)
+    p.wait(timeout=60)
+    err = p.stderr.read()
+    video = os.path.join(out, "v.mp4")
+    check(p.returncode == 1, "full disk, video: exit status 1 (got %s)" % p.returncode)
+    check("cannot write %s: File too large" % video in err, "full disk, video: the message names it: %r" % err[-400:])
+    n = video_frames(video)
+    check(n >= FPS, "full disk, video: it plays its whole fragments: %d frames (>= %d)" % (n, FPS))
+    check(whole_rows(os.path.join(out, "timeseries.csv")) == "", "full disk, video: the CSV's rows whole")
+
+
 # ---- a file system that is full: a 128 KiB tmpfs (root and mount(2) needed: skipped with the
 # reason otherwise). Exit 1, the message names the file and "No space left on device", and what
 # was written before is kept: the CSV is, row for row, the start of the same run's CSV on a disk
@@ -287,7 +311,7 @@ def full_file_system():
         subprocess.run(["umount", mnt])
 
 
-CASES = (sigterm_run, sigkill_run, second_signal, console, full_disk, full_file_system)
+CASES = (sigterm_run, sigkill_run, second_signal, console, full_disk, full_disk_video, full_file_system)
 names = sys.argv[2:] or [c.__name__ for c in CASES if c is not full_file_system]
 unknown = [n for n in names if n not in [c.__name__ for c in CASES]]
 if unknown:
