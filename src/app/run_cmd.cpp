@@ -32,6 +32,7 @@ int cmd_run(const std::string& script, const script::Overrides& o, const script:
     if (!unread.empty()) return 1;
   } catch (const script::ScriptError& e) {
     std::fprintf(stderr, "beltsim: %s\n%s", e.what(), script::shown_traceback(e.traceback).c_str());
+    mark_output_failure_shown(e.what());  // an output lost, named here with the script's line: not again at exit
     return stop_signal() != 0 ? stopped_status() : 1;
   } catch (const std::exception& e) {
     std::fprintf(stderr, "beltsim: %s\n", e.what());
