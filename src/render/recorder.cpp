@@ -21,11 +21,10 @@ namespace {
 
 // Writes the rendered frames (PNG files, the video) on a thread of its own, so that encoding a
 // frame (most of a frame's cost: x264 and the RGB to YUV conversion) overlaps the integration and
-// the rendering of the next: on the 2-core machine the paper's dry drive with its 301 frames takes
-// 4.8-5.7 s instead of 6.2-7.4 s with the writes in line (1.8 s of it integrating). At most
-// kQueued frames wait; a frame's buffer comes back for the next one. A write that fails stops the
-// writing and its error is rethrown on the run's thread, at its next frame or when the run drains
-// or finishes the queue; the frames before it are on disk as before.
+// the rendering of the next. At most kQueued frames wait; a written frame's buffer is reused. A
+// write that fails stops the writing: the frames queued after it are dropped, and its error is
+// rethrown on the run's thread at every frame queued from then on (as a video writer that failed
+// refuses every frame after), or by finish() when no frame followed it.
 class FrameWriter {
  public:
   using Write = std::function<void(const Image&, long)>;
@@ -36,7 +35,7 @@ class FrameWriter {
       stop_ = true;
     }
     wake_.notify_all();
-    thread_.join();
+    thread_.join();  // after writing what is queued
   }
   FrameWriter(const FrameWriter&) = delete;
   FrameWriter& operator=(const FrameWriter&) = delete;
@@ -49,36 +48,36 @@ class FrameWriter {
     spare_.pop_back();
     return img;
   }
-  // queues frame `number`; waits while kQueued frames wait; rethrows a failed write not yet
-  // reported (and then queues nothing: the writing has stopped)
+  // queues frame `number`; waits while kQueued frames wait; rethrows a failed write
   void push(Image img, long number) {
     std::unique_lock<std::mutex> lock(m_);
     done_.wait(lock, [&] { return queue_.size() < kQueued || error_; });
     if (error_) {
-      if (std::exception_ptr e = take_error()) std::rethrow_exception(e);
-      return;
+      reported_ = true;
+      std::rethrow_exception(error_);
     }
     queue_.push_back({std::move(img), number});
     lock.unlock();
     wake_.notify_one();
   }
-  // waits until every queued frame is written (or dropped after a failure: the writer thread then
-  // touches nothing of the run's); returns a failed write not yet reported, which counts as
-  // reported from then on
-  std::exception_ptr drain() {
+  // waits until every queued frame is written (or dropped after a failure); returns the frames
+  // written so far
+  long wait() {
     std::unique_lock<std::mutex> lock(m_);
     done_.wait(lock, [&] { return queue_.empty() && !busy_; });
-    return take_error();
+    return written_;
   }
-
- private:
-  static constexpr size_t kQueued = 2;
-  // (under the lock) the failed write's error the first time, null after
-  std::exception_ptr take_error() {
+  // wait(), then the failed write's error if no push() has rethrown it (and from then on none)
+  std::exception_ptr finish() {
+    wait();
+    std::lock_guard<std::mutex> lock(m_);
     if (reported_) return nullptr;
     reported_ = error_ != nullptr;
     return error_;
   }
+
+ private:
+  static constexpr std::size_t kQueued = 2;
   struct Item {
     Image img;
     long number;
@@ -90,10 +89,11 @@ class FrameWriter {
       if (queue_.empty()) return;  // stop_, and nothing left to write
       Item it = std::move(queue_.front());
       queue_.pop_front();
+      const bool drop = error_ != nullptr;  // after a failure the rest of the queue is dropped
       busy_ = true;
       lock.unlock();
       std::exception_ptr failed;
-      if (!error_seen_) {  // after a failure the rest of the queue is dropped
+      if (!drop) {
         try {
           write_(it.img, it.number);
         } catch (...) {
@@ -102,20 +102,21 @@ class FrameWriter {
       }
       lock.lock();
       busy_ = false;
-      if (failed) error_ = failed, error_seen_ = true;
+      if (failed) error_ = failed;
+      if (!drop && !failed) written_++;
       spare_.push_back(std::move(it.img));
       done_.notify_all();
     }
   }
   Write write_;
   std::mutex m_;
-  std::condition_variable wake_, done_;  // a frame queued or stop; a frame written
+  std::condition_variable wake_, done_;  // a frame queued or stop; a frame written or dropped
   std::deque<Item> queue_;
   std::vector<Image> spare_;
-  std::exception_ptr error_;
-  bool error_seen_ = false;  // the writer thread's own copy of "error_ is set", read without the lock
-  bool reported_ = false;    // error_ has been rethrown or returned once
+  std::exception_ptr error_;  // the first failed write's
+  bool reported_ = false;     // error_ has been rethrown or returned
   bool busy_ = false, stop_ = false;
+  long written_ = 0;
   std::thread thread_;  // last: it starts once the members above are made
 };
 
@@ -136,7 +137,6 @@ class FrameRecorder final : public FrameSink {
     }
     writer_ = std::make_unique<FrameWriter>([this](const Image& img, long number) { write(img, number); });
   }
-  ~FrameRecorder() override { writer_.reset(); }  // the thread ends before the writers it uses go
   void frame(double t, const double* y, const Drive& drive, const Observation* obs) override {
     builder_.build(t, y, list_, &drive, obs);
     ctx_->make_current();  // another context (a snapshot's) may have been current since
@@ -145,17 +145,19 @@ class FrameRecorder final : public FrameSink {
     writer_->push(std::move(image), fs_.first_number + n_);
     n_++;
   }
-  // the video is closed even after a failed write, so that what was written plays
+  // the video is closed even after a failed write, so that what was written plays; the failed
+  // write's error comes first
   void finish() override {
-    const std::exception_ptr failed = writer_->drain();
-    if (video_) video_->close();
+    const std::exception_ptr failed = writer_->finish();
+    try {
+      if (video_) video_->close();
+    } catch (...) {
+      if (!failed) throw;
+    }
     if (failed) std::rethrow_exception(failed);
   }
-  // the frames rendered, each written (it waits for the queue)
-  long frames_written() const override {
-    if (const std::exception_ptr failed = writer_->drain()) std::rethrow_exception(failed);
-    return n_;
-  }
+  // the frames written (it waits for those queued)
+  long frames_written() const override { return writer_->wait(); }
 
  private:
   // on the writer's thread
@@ -175,8 +177,9 @@ class FrameRecorder final : public FrameSink {
   std::unique_ptr<OutputDir> png_dir_;
   std::unique_ptr<VideoWriter> video_;
   DrawList list_;
-  std::unique_ptr<FrameWriter> writer_;  // last: made once the writers it calls are
-  long n_ = 0;
+  long n_ = 0;  // frames rendered (the next one's number is fs_.first_number + n_)
+  // last: destroyed first, so that its thread has ended before the writers it calls go
+  std::unique_ptr<FrameWriter> writer_;
 };
 
 }  // namespace
