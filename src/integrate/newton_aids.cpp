@@ -119,6 +119,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "model/block_matrix.hpp"
 #include "model/contact_law.hpp"
 #include "model/forces.hpp"
 
@@ -475,7 +476,7 @@ void convective_predict(const Model& m, const Drive& d, double t, double dt, con
       continue;
     }
     // the direction of the element's motion along the belt
-    const int dir = (V.dot(pos((i + 1) % n) - pos((i + n - 1) % n)) >= 0) == (dt > 0) ? 1 : n - 1;
+    const int dir = (V.dot(pos(after(i, n)) - pos(before(i, n))) >= 0) == (dt > 0) ? 1 : n - 1;
     int a = i, b = i;
     double f = -1, dth = 0;
     for (int walked = 0; walked < n / 2; ++walked, a = b) {

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 
+#include "model/block_matrix.hpp"
 #include "model/contacts.hpp"
 #include "model/forces.hpp"
 
@@ -142,7 +143,7 @@ void observe(const Model& m, const Drive& d, const std::vector<int>& sense, doub
   for (const ContactPair& c : pairs) sums.add(c);
   double vb = 0;
   for (int i = 0; i < n; ++i) {
-    out.elements[i] = element_with(d, sense, t, y, i, out.contact[i], out.work[i], out.work[(i + 1) % n]);
+    out.elements[i] = element_with(d, sense, t, y, i, out.contact[i], out.work[i], out.work[after(i, n)]);
     vb += axis(y[3 * i + 2]).dot(Vec2(v[3 * i], v[3 * i + 1]));
   }
   out.belt_speed = vb / m.n_el();

@@ -6,6 +6,7 @@
 #include <cstring>
 #include <limits>
 
+#include "model/block_matrix.hpp"
 #include "model/forces.hpp"
 #include "model/observables.hpp"
 #include "render/text.hpp"
@@ -339,13 +340,13 @@ void FrameBuilder::build(double t, const double* y, DrawList& out, const Drive* 
   std::vector<Vec2> Cd(n), J(n), O(n);
   for (int i = 0; i < n; ++i) Cd[i] = displayed(Vec2(q[3 * i], q[3 * i + 1]));
   for (int i = 0; i < n; ++i) {
-    const Vec2& prev = Cd[(i + n - 1) % n];
+    const Vec2& prev = Cd[before(i, n)];
     J[i] = 0.5 * (prev + Cd[i]);
     const Vec2 d = (Cd[i] - prev).normalized();
     O[i] = -loop_sense * perp(d);  // outer (back) side: left of the travel for a clockwise loop
   }
   for (int i = 0; i < n; ++i) {
-    const int k = (i + 1) % n;
+    const int k = after(i, n);
     const Vec2 A = J[i], B = J[k];
     const Vec2 oa = O[i], ob = O[k];
     const Vec2 d = (B - A).normalized();
@@ -389,7 +390,7 @@ void FrameBuilder::build(double t, const double* y, DrawList& out, const Drive* 
   // an arrow beside element i, on the belt's outer side or else its inner side, if it is in view
   // (and, when `clear`, crosses no pulley's name)
   auto travel_arrow = [&](int i, bool clear) {
-    const Vec2 d = (Cd[(i + 1) % n] - Cd[(i + n - 1) % n]).normalized();
+    const Vec2 d = (Cd[after(i, n)] - Cd[before(i, n)]).normalized();
     const Vec2 u = (P(Cd[i] + d) - P(Cd[i])).normalized();
     for (double side : {1.0, -1.0}) {
       const Vec2 mid = P(Cd[i] + side * gap * O[i]);

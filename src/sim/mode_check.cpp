@@ -7,6 +7,7 @@
 #include <functional>
 #include <vector>
 
+#include "model/block_matrix.hpp"
 #include "sim/eigen.hpp"
 #include "sim/outputs.hpp"
 #include "sim/run_on.hpp"
@@ -25,7 +26,7 @@ double span_middle(const Scene& sc, const Eigen::VectorXd& y, int k) {
   const int n = sc.model.n_el();
   double best = NAN, near = INFINITY;
   for (int i = 0; i < n; ++i) {
-    const int j = (i + 1) % n;
+    const int j = after(i, n);
     const Vec2 a(y[3 * i], y[3 * i + 1]), b(y[3 * j], y[3 * j + 1]);
     const double sa = (a - mid).dot(t), sb = (b - mid).dot(t);
     if ((sa <= 0) == (sb <= 0)) continue;

@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <stdexcept>
 
+#include "model/block_matrix.hpp"
 #include "model/contacts.hpp"
 #include "model/observables.hpp"
 #include "model/workspace.hpp"
@@ -28,7 +29,7 @@ void element_rate(const Model& m, const Eigen::VectorXd& y, double& nu, double& 
   const int n = m.n_el(), N = m.n_coord();
   nu = speed = 0;
   for (int i = 0; i < n; ++i) {
-    const int a = (i + n - 1) % n, b = (i + 1) % n;
+    const int a = before(i, n), b = after(i, n);
     const Vec2 chord(y[3 * b] - y[3 * a], y[3 * b + 1] - y[3 * a + 1]);
     const double along = Vec2(y[N + 3 * i], y[N + 3 * i + 1]).dot(chord) / chord.norm();
     speed += along;
@@ -150,8 +151,8 @@ ModeAnalysis analyze_modes(const Scene& sc, const Drive& d, double t, const Eige
         for (int i = 0; i < n; ++i)
           for (int r = 0; r < per; ++r) {
             const int row = first + per * i + r;
-            A(row, first + per * ((i + 1) % n) + r) -= 0.5 * nu;
-            A(row, first + per * ((i + n - 1) % n) + r) += 0.5 * nu;
+            A(row, first + per * after(i, n) + r) -= 0.5 * nu;
+            A(row, first + per * before(i, n) + r) += 0.5 * nu;
           }
       };
       transport(0, 3);
