@@ -151,10 +151,12 @@ void DrawList::arrow(Vec2 tail, Vec2 tip, double w, double head, Rgba col) {
 // ---- quantities -------------------------------------------------------------------------------
 
 namespace {
-// the smallest of 1, 2, 2.5, 5 × 10^k that is >= 0.97·x (round colour-bar ends)
+// the smallest of 1, 1.2, 1.6, 2, 2.5, 3, 4, 5, 6, 8 × 10^k that is >= 0.97·x (round colour-bar
+// ends whose quarters, the bar's ticks, are round too; steps of at most 1.33 leave at least 3/4 of
+// the bar to the values: 1, 2, 2.5, 5 put a 300 N pretension's 600 N at 1000 N)
 double nice_up(double x) {
   const double p = std::pow(10.0, std::floor(std::log10(x)));
-  for (double m : {1.0, 2.0, 2.5, 5.0, 10.0})
+  for (double m : {1.0, 1.2, 1.6, 2.0, 2.5, 3.0, 4.0, 5.0, 6.0, 8.0, 10.0})
     if (m * p >= 0.97 * x) return m * p;  // 3 % slack: 2·500.4 N still ends at 1000
   return 10 * p;
 }

@@ -118,8 +118,8 @@ struct Camera {
   Vec2 to_px(const Vec2& w) const { return {area_centre.x() + scale * (w.x() - centre.x()), area_centre.y() - scale * (w.y() - centre.y())}; }
 };
 
-// The default colour-bar range of a quantity for a scene (ends rounded up to 1, 2, 2.5 or 5 ×
-// 10^k): tension 0..2·static tension; normal force 0..4·N0, N0 = T0·pitch/r the static normal
+// The default colour-bar range of a quantity for a scene (ends rounded up to 1, 1.2, 1.6, 2,
+// 2.5, 3, 4, 5, 6 or 8 × 10^k): tension 0..2·static tension; normal force 0..4·N0, N0 = T0·pitch/r the static normal
 // force of an element on the largest pulley; friction ±2·N0; slip ±0.05 m/s; μ 0..largest μ.
 void default_range(const Scene& scene, FrameQuantity q, double& lo, double& hi);
 

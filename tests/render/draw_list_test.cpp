@@ -274,6 +274,31 @@ TEST_F(Fixture, TextAndColourBarSayWhatIsShown) {
   for (const char* s : {"belt tension", "[N]", "0", "1000", "wet (\u03bc < 1)", "slipping"}) EXPECT_TRUE(has(s)) << s;
 }
 
+// the default bar's end is a round number (its quarters, the ticks, round too) at most a third
+// above twice the pretension, so the spans fill at least 3/4 of the bar: a 300 N pretension's
+// 600 N ends at 600 N, not at 1000 N where every span took the bar's lowest colours
+TEST_F(Fixture, DefaultTensionRangeEndsRoundJustAboveTwiceThePretension) {
+  Scene sc = wet();
+  double lo = 0, hi = 0;
+  for (double T0 : {300.0, 500.4, 37.0, 1234.0, 7.9, 2600.0}) {
+    sc.static_tension = T0;
+    default_range(sc, FrameQuantity::tension, lo, hi);
+    EXPECT_EQ(lo, 0);
+    EXPECT_GE(hi, 0.97 * 2 * T0) << T0;
+    EXPECT_LE(hi, 1.34 * 2 * T0) << T0;
+    const double mant = hi / std::pow(10.0, std::floor(std::log10(hi)));
+    bool round = false;
+    for (double m : {1.0, 1.2, 1.6, 2.0, 2.5, 3.0, 4.0, 5.0, 6.0, 8.0}) round = round || std::abs(mant - m) < 1e-9;
+    EXPECT_TRUE(round) << hi;
+  }
+  sc.static_tension = 300;
+  default_range(sc, FrameQuantity::tension, lo, hi);
+  EXPECT_DOUBLE_EQ(hi, 600);
+  sc.static_tension = 500.4;  // the paper's drive: 2·500.4 N within 3 % of 1000 N
+  default_range(sc, FrameQuantity::tension, lo, hi);
+  EXPECT_DOUBLE_EQ(hi, 1000);
+}
+
 // values beyond the colour bar's ends are marked by a triangle at that end (the bar's bands and the elements' quads are
 // the same in number whatever the range, so the marks are the only triangles a narrower range adds)
 TEST_F(Fixture, ColourBarMarksValuesBeyondItsEnds) {
