@@ -47,7 +47,7 @@ constexpr Parameter kParameters[] = {
      nullptr},
     {"pulley", "center", K::other, "m", {}, "", W::none, R::none, "the same as centre (one of the two)", nullptr,
      nullptr, nullptr},
-    {"pulley", "radius", K::number, "m", 0.1, "", W::paper, R::positive, "contact (pitch) radius r_p",
+    {"pulley", "radius", K::number, "m", 0.1, "", W::paper, R::pulley_radius, "contact (pitch) radius r_p",
      [](SceneDef&, PulleyDef& p) -> Slot { return &p.radius; }, nullptr, nullptr},
     {"pulley", "inertia", K::number, "kg·m²", 0.025, "", W::ours, R::positive,
      "moment of inertia about its axis (the default is a steel disc of r = 0.1 m, 20 mm wide)",
@@ -372,6 +372,8 @@ std::string_view rule_text(Rule r) {
     case Rule::slip_band:
       return "must be in (0, 1] m/s: μ reaches μ_i only at a slip of dv and a loaded belt creeps at up to dv, so a "
              "band as wide as belt speeds (a few m/s and up) is no friction (the paper's is 1e-5 m/s)";
+    case Rule::pulley_radius:
+      return "must be at most 5 m: lengths are in metres (a 100 mm radius is 0.1); belt pulleys are smaller";
     case Rule::finite: return "must be a finite number";
     case Rule::none: break;
   }

@@ -36,7 +36,17 @@ enum class Kind {
 };
 
 // the range a number must lie in; every rule also requires a finite number
-enum class Rule { none, finite, positive, non_negative, exponent, at_least_three, friction_coefficient, slip_band };
+enum class Rule {
+  none,
+  finite,
+  positive,
+  non_negative,
+  exponent,
+  at_least_three,
+  friction_coefficient,
+  slip_band,
+  pulley_radius
+};
 
 // The largest friction coefficient accepted (Rule::friction_coefficient): a poly-V rib's effective
 // coefficient μ/sin(β/2) stays below 5 (rubber on steel, μ up to 1.5, over sin 20°); a larger one
@@ -51,6 +61,13 @@ constexpr double kMuMax = 10;
 // speed (dv = 1e300 ran so) transmits next to nothing: no friction in effect. The paper's is
 // 1e-5 m/s, the known answers' widest 0.05 m/s.
 constexpr double kDvMax = 1;
+
+// [m] The largest pulley radius accepted (Rule::pulley_radius). Lengths are in metres; a scenario
+// written in millimetres (radius = 100 for 0.1 m) would otherwise be refused later for a reason
+// that sends its writer the wrong way (the pulleys' inertias below 1 % of the belt's on the wrap).
+// Belt pulleys stay well below it: a car's 0.03-0.1 m, an industrial drive's up to about 1 m, a
+// conveyor's drum about 1 m.
+constexpr double kRadiusMax = 5;
 
 // where a parameter's value lives in a SceneDef (a pulley's in its PulleyDef)
 using Slot = std::variant<std::monostate, double*, int*, std::optional<double>*>;

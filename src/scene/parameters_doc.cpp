@@ -34,6 +34,8 @@ std::string_view doc_range(Rule r) {
     case Rule::at_least_three: return "≥ 3";
     case Rule::friction_coefficient: return "0 … 10";
     case Rule::slip_band: return "> 0, ≤ 1";
+    case Rule::pulley_radius:
+      return "> 0, ≤ 5";
     case Rule::finite: return "finite";
     case Rule::none: break;
   }

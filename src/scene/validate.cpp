@@ -57,8 +57,13 @@ void check_rule(const Parameter& par, const std::string& what, double v) {
                   : par.rule == Rule::at_least_three       ? v >= 3
                   : par.rule == Rule::friction_coefficient ? v >= 0 && v <= kMuMax
                   : par.rule == Rule::slip_band            ? v > 0 && v <= kDvMax
+                  : par.rule == Rule::pulley_radius        ? v > 0 && v <= kRadiusMax
                                                            : true;
-  if (!ok) reject(what, std::string(rule_text(par.rule)), v, unit);
+  // (a radius at or below zero is told so; the rule's text is for one too large: written in mm)
+  if (!ok)
+    reject(what,
+           std::string(par.rule == Rule::pulley_radius && v <= 0 ? rule_text(Rule::positive) : rule_text(par.rule)), v,
+           unit);
 }
 
 namespace {

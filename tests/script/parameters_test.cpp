@@ -104,6 +104,8 @@ std::pair<std::string, std::string> breaking(Rule r) {
     case Rule::at_least_three: return {"2", "2"};
     case Rule::friction_coefficient: return {"11", "11"};
     case Rule::slip_band: return {"2", "2"};
+    case Rule::pulley_radius:
+      return {"100", "100"};
     case Rule::finite: return {"1/0", "inf"};
     case Rule::none: break;
   }
