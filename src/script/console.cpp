@@ -2,10 +2,14 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <cstring>
+#include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <sstream>
+#include <vector>
 
 #include "beltsim_version.hpp"
 #include "lauxlib.h"
@@ -74,6 +78,52 @@ bool execute(lua_State* L) {
   return true;
 }
 
+// the global table's string keys, sorted
+std::vector<std::string> global_names(lua_State* L) {
+  std::vector<std::string> names;
+  lua_pushglobaltable(L);
+  lua_pushnil(L);
+  while (lua_next(L, -2) != 0) {
+    if (lua_type(L, -2) == LUA_TSTRING) names.emplace_back(lua_tostring(L, -2));
+    lua_pop(L, 1);
+  }
+  lua_pop(L, 1);
+  std::sort(names.begin(), names.end());
+  return names;
+}
+
+// what the banner says of the script's globals: the names it left, or how to leave one (a
+// script's locals end with it, and a batch script such as paper_dry.lua keeps none)
+std::string globals_line(const std::string& script, const std::vector<std::string>& before,
+                         const std::vector<std::string>& after) {
+  std::vector<std::string> added;
+  std::set_difference(after.begin(), after.end(), before.begin(), before.end(), std::back_inserter(added));
+  const std::string name = std::filesystem::path(script).filename().string();
+  if (added.empty())
+    return name +
+           " left no globals (its locals end with it): write sim = drive:start{...} without `local` to "
+           "keep a simulation here, as scripts/live_dry.lua does\n";
+  std::string s = "globals from " + name + ":";
+  for (size_t k = 0; k < added.size(); ++k) s += (k ? ", " : " ") + added[k];
+  return s + "\n";
+}
+
+// a bare word lua.c's users type (Python's): `help` runs help(), `exit` and `quit` leave as Ctrl-D
+// does, unless the session gave the name a value of its own
+enum class Word { none, help, leave };
+Word bare_word(lua_State* L, const std::string& chunk) {
+  const size_t b = chunk.find_first_not_of(" \t"), e = chunk.find_last_not_of(" \t");
+  const std::string w = b == std::string::npos ? "" : chunk.substr(b, e - b + 1);
+  const bool help = w == "help", leave = w == "exit" || w == "quit" || w == "exit()" || w == "quit()";
+  if (!help && !leave) return Word::none;
+  const std::string global = w.substr(0, 4);
+  lua_getglobal(L, global.c_str());
+  const int type = lua_type(L, -1);
+  lua_pop(L, 1);
+  if (help) return type == LUA_TFUNCTION ? Word::help : Word::none;  // the API's help, not a value of the user's
+  return type == LUA_TNIL ? Word::leave : Word::none;
+}
+
 }  // namespace
 
 int run_console(const std::optional<std::string>& script, const std::vector<std::string>& args, const Overrides& o,
@@ -103,7 +153,9 @@ int run_console(const std::optional<std::string>& script, const std::vector<std:
 
   bool failed = false;
   std::string script_text;  // as it was when the session began, for session.lua
+  std::string globals;      // the banner's line on the script's globals
   if (script) {
+    const std::vector<std::string> before = global_names(L);
     std::ifstream in(*script, std::ios::binary);
     std::ostringstream text;
     text << in.rdbuf();
@@ -111,6 +163,7 @@ int run_console(const std::optional<std::string>& script, const std::vector<std:
     try {
       lua.run_file(*script);
       for (const std::string& m : lua.unread_args(*script)) std::fprintf(stderr, "beltsim: warning: %s\n", m.c_str());
+      globals = globals_line(*script, before, global_names(L));
     } catch (const ScriptError& e) {
       std::fprintf(stderr, "beltsim: %s\n%s", e.what(), shown_traceback(e.traceback).c_str());  // as run's
       failed = true;
@@ -121,8 +174,8 @@ int run_console(const std::optional<std::string>& script, const std::vector<std:
   }
 
   if (interactive) {
-    std::printf("beltsim %s console (Lua 5.4): help() lists the API; Ctrl-C stops a run, Ctrl-D leaves\n",
-                kBeltsimVersion);
+    std::printf("beltsim %s console (Lua 5.4): help() lists the API; Ctrl-C stops a run, Ctrl-D leaves\n%s",
+                kBeltsimVersion, globals.c_str());
     std::fflush(stdout);
   }
   std::vector<std::string> commands;
@@ -159,6 +212,9 @@ int run_console(const std::optional<std::string>& script, const std::vector<std:
         chunk.clear();
         continue;
       }
+      const Word word = bare_word(L, chunk);
+      if (word == Word::leave) break;
+      if (word == Word::help) chunk = "help()";
       bool expression = false;
       const Compile c = compile(L, chunk, expression);
       if (c == Compile::incomplete) continue;

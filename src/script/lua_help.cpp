@@ -16,7 +16,13 @@ int l_help(lua_State* L) {
   check_args(L, "help", {{"name", kString, true}});
   if (lua_isnoneornil(L, 1)) {
     std::printf("beltsim API (help(\"name\") for one entry; SI units, but belt.rib_angle in degrees):\n");
-    for (const HelpEntry& h : api_help()) std::printf("  %-48s %s\n", h.call, h.text);
+    for (const HelpEntry& h : api_help()) {
+      // padded to 48 characters, not bytes: "N·m" is one character more in UTF-8
+      const std::string call = h.call;
+      size_t chars = 0;
+      for (const char c : call) chars += (static_cast<unsigned char>(c) & 0xC0) != 0x80;
+      std::printf("  %s%s %s\n", call.c_str(), std::string(chars < 48 ? 48 - chars : 0, ' ').c_str(), h.text);
+    }
     std::fflush(stdout);
     return 0;
   }

@@ -62,6 +62,8 @@ class ConsoleTest(unittest.TestCase):
         banner = c.screen
         self.assertIn("help()", banner, c.transcript())
         self.assertIn("Ctrl-D", banner, c.transcript())
+        # the script's globals are named (its local drive is not one)
+        self.assertIn("globals from scenario.lua: sim\n", banner, c.transcript())
         out = c.command("6*7")
         self.assertRegex(out, r"\n42\n", c.transcript())
         out = c.command("return 6*7")
@@ -476,6 +478,31 @@ class ConsoleTest(unittest.TestCase):
         mark = c.complete_nothing('x = "dr')
         c.send("\x03")
         c.wait_prompt(mark)
+
+    # 19
+    # Python's bare words: help lists the API, exit leaves as Ctrl-D does (session written, status 0);
+    # a script that keeps no globals is told how to keep one
+    def test_bare_help_and_exit_and_a_script_without_globals(self):
+        c = self.console()
+        out = c.command("help")
+        self.assertIn("sim:advance(dt [s])", out, c.transcript())
+        self.assertNotIn("function: 0x", out, c.transcript())
+        # padded by characters: the N·m entry lines up with the others
+        lines = [ln for ln in out.splitlines() if ln.startswith("  sim:set_torque(") or ln.startswith("  sim:set_speed(")]
+        self.assertEqual(len(lines), 2, c.transcript())
+        self.assertEqual(lines[0].index(" a new torque"), lines[1].index(" a prescribed"), c.transcript())
+        c.send("exit\r")
+        deadline = time.monotonic() + TIMEOUT
+        while c.pump(deadline - time.monotonic()):
+            if time.monotonic() > deadline:
+                self.fail("the console did not end after exit" + c.transcript())
+        self.assertEqual(c._reap(deadline), 0, c.transcript())
+        self.assertTrue(os.path.exists(os.path.join(self.tmp, "out", "scenario", "session.lua")), c.transcript())
+        with open(os.path.join(self.tmp, "local.lua"), "w") as f:
+            f.write("local x = 1\n")
+        c = Console(BELTSIM, self, self.tmp, script="local.lua")
+        self.consoles.append(c)
+        self.assertIn("local.lua left no globals", c.screen, c.transcript())
 
 
 def main():

@@ -40,11 +40,11 @@ def child_env(tmp):
 class Console:
     """beltsim console on a pseudo-terminal (the pty is its controlling terminal, so ^C is SIGINT)."""
 
-    def __init__(self, beltsim, test, tmp, args=()):
+    def __init__(self, beltsim, test, tmp, args=(), script="scenario.lua"):
         self.test = test
         self.raw = ""
         self.status = None
-        argv = [beltsim, "console", "scenario.lua"] + (["--"] + list(args) if args else [])
+        argv = [beltsim, "console", script] + (["--"] + list(args) if args else [])
         env = child_env(tmp)
         pid, fd = pty.fork()
         if pid == 0:  # the child: the pty's slave is its stdin, stdout, stderr and controlling terminal
