@@ -52,18 +52,21 @@ namespace {
 int run_to(lua_State* L, SimBox& box, double t, const char* what) {
   Simulation::Advance a;
   bool interrupted = false;
-  guarded(L, what, [&] {
-    ProgressLine line(box.progress);
-    box.running = true;
-    struct Done {
-      SimBox& b;
-      ~Done() { b.running = false; }
-    } done{box};
-    LiveFeed feed(box.serve ? box.serve.get() : box.ctx->serve.get(), box.ctx->stop, &box.ctx->page_changes,
-                  lua_topointer(L, 1));
-    if (!box.serve && box.ctx->serve) box.ctx->page_sim = box.sim.get(), box.ctx->page_key = lua_topointer(L, 1);
-    a = feed.run_to(*box.sim, t, line.callback(), "paused");
-  }, box.ctx);
+  guarded(
+      L, what,
+      [&] {
+        ProgressLine line(box.progress, box.sim->stats().steps);
+        box.running = true;
+        struct Done {
+          SimBox& b;
+          ~Done() { b.running = false; }
+        } done{box};
+        LiveFeed feed(box.serve ? box.serve.get() : box.ctx->serve.get(), box.ctx->stop, &box.ctx->page_changes,
+                      lua_topointer(L, 1));
+        if (!box.serve && box.ctx->serve) box.ctx->page_sim = box.sim.get(), box.ctx->page_key = lua_topointer(L, 1);
+        a = feed.run_to(*box.sim, t, line.callback(), "paused");
+      },
+      box.ctx);
   if (a.over_wall_limit) {
     // not silent: an error naming the limit and the time reached (outputs flushed; the
     // simulation can go on with another call)

@@ -10,7 +10,8 @@
 
 namespace beltsim::script {
 
-ProgressLine::ProgressLine(bool enabled) : enabled_(enabled), tty_(isatty(STDERR_FILENO)) {}
+ProgressLine::ProgressLine(bool enabled, long steps_before)
+    : enabled_(enabled), tty_(isatty(STDERR_FILENO)), steps_before_(steps_before) {}
 
 ProgressLine::~ProgressLine() {
   if (drawn_ && tty_) std::fputc('\n', stderr);
@@ -30,8 +31,8 @@ RunProgress ProgressLine::callback() {
     const double left = done > 0 ? std::max(0.0, wall * todo / done) : NAN;
     const double pct = target > t0_ ? 100 * done / (target - t0_) : 100;
     std::fprintf(stderr, "%sbeltsim: t = %.4f s of %.4g s (%.0f %%), %s elapsed, about %s left, %ld steps%s",
-                 tty_ ? "\r" : "", t, target, pct, duration_text(wall).c_str(), duration_text(left).c_str(), w.steps,
-                 tty_ ? "   " : "\n");
+                 tty_ ? "\r" : "", t, target, pct, duration_text(wall).c_str(), duration_text(left).c_str(),
+                 w.steps - steps_before_, tty_ ? "   " : "\n");
     std::fflush(stderr);
   };
 }

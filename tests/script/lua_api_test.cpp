@@ -552,5 +552,21 @@ TEST(Progress, NeverPastTheTarget) {
   EXPECT_EQ(text.find("-0 s"), std::string::npos) << text;
 }
 
+// the steps shown are the integration's own, as the call returns them: a live simulation's
+// earlier steps are not counted (sim:run_to(3) from t = 0.75 s showed 25 813 steps and returned
+// 21 108)
+TEST(Progress, CountsTheStepsOfThisIntegration) {
+  ProgressLine line(true, 4705);
+  const RunProgress show = line.callback();
+  WorkCounters w;
+  testing::internal::CaptureStderr();
+  w.steps = 4706;
+  show(0.75, 3, w, 0.0);
+  w.steps = 25813;
+  show(2.5, 3, w, 11.0);
+  const std::string text = testing::internal::GetCapturedStderr();
+  EXPECT_NE(text.find(", 21108 steps"), std::string::npos) << text;
+}
+
 }  // namespace lua_api_test
 }  // namespace beltsim::script
