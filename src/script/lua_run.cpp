@@ -48,6 +48,7 @@ bool in_stretch(const ElementSite& site, double from, double to) {
 
 std::string wet_text(std::optional<double> mu, std::optional<double> from, std::optional<double> to,
                      std::optional<double> transition) {
+  // (six significant digits: a text to read, in a plot's event line among others)
   std::ostringstream text;
   text << "mu = ";
   if (mu)
@@ -238,16 +239,10 @@ std::vector<MuEvent> read_events(lua_State* L, int idx, const Scene& sc) {
     } else {
       ev.mu = mu_over(L, lua_gettop(L), sc, from, to, what);
     }
-    std::ostringstream text;
-    text << "scheduled: mu = ";
-    if (lua_type(L, -1) == LUA_TNUMBER)
-      text << number_text(lua_tonumber(L, -1));
-    else
-      text << "function";
-    if (from) text << " on s in [" << number_text(*from) << ", " << number_text(*to) << "] m";
-    if (transition && *transition > 0) text << ", transition " << number_text(*transition) << " m";
-    ev.what = "event";
-    ev.text = text.str();
+    // recorded as sim:wet and sim:set_mu record theirs (events.csv, the plots' event lines)
+    ev.what = from ? "wet" : "set_mu";
+    ev.text = wet_text(lua_type(L, -1) == LUA_TNUMBER ? std::optional<double>(lua_tonumber(L, -1)) : std::nullopt, from,
+                       to, transition);
     lua_pop(L, 2);  // mu, the event table
     out.push_back(std::move(ev));
   }

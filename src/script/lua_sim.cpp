@@ -274,13 +274,8 @@ int l_set_mu(lua_State* L) {
     text = "list";
   } else {
     mu = mu_over(L, 2, s.scene(), std::nullopt, std::nullopt, "sim:set_mu");
-    std::ostringstream t;
-    t << "mu = ";
-    if (lua_type(L, 2) == LUA_TNUMBER)
-      t << lua_tonumber(L, 2);
-    else
-      t << "function";
-    text = t.str();
+    text = wet_text(lua_type(L, 2) == LUA_TNUMBER ? std::optional<double>(lua_tonumber(L, 2)) : std::nullopt,
+                    std::nullopt, std::nullopt, std::nullopt);
   }
   apply_mu(L, s, mu, "set_mu", text);
   return 1;

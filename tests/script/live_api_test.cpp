@@ -321,6 +321,36 @@ TEST(LiveApi, EventTransitionRampsMuWhenTheEventComes) {
             "");
 }
 
+// a timed event is written to events.csv as the same change made live is (sim:wet, sim:set_mu): a
+// plot's event line then reads "wet mu = 0.2 on s in [0.3, 0.6] m", where it read "event scheduled:
+// mu = ..." cut off at 40 characters
+TEST(LiveApi, TimedEventsAreRecordedAsTheLiveChangesAre) {
+  const std::string out = (temp_dir() / "event_record").string();
+  EXPECT_EQ(run_text(wet_scene() + "s:run{ t_end = 3e-4, out = '" + out +
+                     "_timed', progress = false, frames = false,\n"
+                     "       events = { { t = 1e-4, mu = 0.5 }, { t = 2e-4, mu = 0.2, from = 0.3, to = 0.6 } } }\n"
+                     "local sim = s:start{ out = '" +
+                     out +
+                     "_live', progress = false }\n"
+                     "sim:set_mu(0.5)\n"
+                     "sim:wet{ from = 0.3, to = 0.6, mu = 0.2 }\n"
+                     "sim:close()\n"
+                     "local function changes(dir)\n"
+                     "  local r = {}\n"
+                     "  for line in io.lines(dir .. '/events.csv') do\n"
+                     "    local what, value = line:match('^[^,]*,([^,]*),(.*)$')\n"
+                     "    if what ~= 'what' then r[#r + 1] = what .. ' ' .. value end\n"
+                     "  end\n"
+                     "  return table.concat(r, '; ')\n"
+                     "end\n"
+                     "local timed, live = changes('" +
+                     out + "_timed'), changes('" + out +
+                     "_live')\n"
+                     "assert(timed == live, timed .. ' | ' .. live)\n"
+                     "assert(timed == 'set_mu mu = 0.5; wet \"mu = 0.2 on s in [0.3, 0.6] m\"', timed)\n"),
+            "");
+}
+
 // belt.mu_flank (issue 27 §4): the effective μ of the rib wedge is mu_flank/sin(rib_angle/2), with
 // the PK belt's 40° by default (0.5/sin 20° = 1.4619); parameters.csv states both; mu and mu_flank
 // together, or a rib angle of 180°, are refused with the reason and the value.
