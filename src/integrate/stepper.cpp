@@ -2,6 +2,8 @@
 
 #include <stdexcept>
 
+#include "io/suggest.hpp"
+
 namespace beltsim {
 
 std::unique_ptr<Stepper> make_rkf45();
@@ -42,12 +44,10 @@ namespace {
 }  // namespace
 
 std::string integrator_problem(const std::string& name) {
-  std::string valid;
-  for (const auto& n : integrator_names()) {
+  const std::vector<std::string> names = integrator_names();
+  for (const auto& n : names)
     if (n == name) return "";
-    valid += (valid.empty() ? "" : ", ") + n;
-  }
-  return "unknown integrator '" + name + "' (valid: " + valid + ")";
+  return "unknown integrator '" + name + "'" + did_you_mean(name, names) + " (valid: " + join(names) + ")";
 }
 
 void check_integrator(const std::string& name) {

@@ -217,6 +217,10 @@ class Errors(unittest.TestCase):
         code, out, err = run(["wp", path, "--ref-integrator", "bogus"], cwd=self.dir)
         self.assertEqual(code, 2, err)
         self.assertIn("unknown integrator 'bogus' (valid: esdirk32, trbdf2", err)
+        # a slip of the finger is named as every other misspelt name is
+        code, out, err = run(["wp", path, "--ref-integrator", "trbdf"], cwd=self.dir)
+        self.assertEqual(code, 2, err)
+        self.assertIn("unknown integrator 'trbdf' (did you mean 'trbdf2'?) (valid: esdirk32", err)
 
     def test_check_estimates_the_error_of_each_run(self):
         # --check: each run ends with its estimate, written to parameters.csv (sim/run_check.hpp)
