@@ -5,6 +5,7 @@
 #include <functional>
 #include <memory>
 #include <optional>
+#include <set>
 #include <string>
 #include <utility>
 #include <vector>
@@ -44,6 +45,9 @@ inline constexpr const char* kLastRun = "beltsim.last_run";
 struct Context {
   Overrides overrides;
   std::string default_out = "out";  // out/<script name> while a script runs
+  // the output folders of the runs started so far in this command (absolute, normalised): a run
+  // into one of them replaces an earlier run's outputs, and says so (read_run_settings)
+  std::set<std::string> run_dirs;
   std::string script_dir;           // the running script's folder ("" in a console without one)
   std::string script;               // the running script's path ("" in a console without one)
   bool trusted = false;             // full libraries (Safety::trusted)

@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <memory>
 #include <optional>
 #include <sstream>
@@ -371,6 +372,15 @@ RunSettings read_run_settings(lua_State* L, int idx, const Scene& sc, Context* c
   rs.on_warning = [](const std::string& m) { std::fprintf(stderr, "beltsim: warning: %s\n", m.c_str()); };
   // the files of the run lie where the sandbox lets the script's own files lie
   if (const std::string r = run_paths_refusal(*ctx, w, rs); !r.empty()) fail(L, r);
+  // a second run into a folder this command has run into replaces the first one's outputs: said,
+  // as the console's scenario's run, replaced by a simulation a dofile at the prompt started
+  // without out, was not. (A folder holds one run's outputs, docs/outputs.md.)
+  std::error_code ec;
+  std::filesystem::path dir = std::filesystem::absolute(rs.out_dir, ec).lexically_normal();
+  if (!dir.has_filename()) dir = dir.parent_path();  // "out/two/" is "out/two"
+  if (!ec && !ctx->run_dirs.insert(dir.string()).second)
+    rs.on_warning(w + ": the output folder " + rs.out_dir + " holds the outputs of an earlier run of this command, " +
+                  "which this one replaces (give each run its own folder: out = ..., or --out)");
   if (progress) *progress = rs.progress;
   return rs;
 }

@@ -307,6 +307,20 @@ class Errors(unittest.TestCase):
                       "beltsim runs in)", err)
         self.assertEqual(sorted(os.listdir(self.dir)), ["s.lua", "t.csv"])
 
+    def test_a_second_run_into_a_folder_says_it_replaces_the_first(self):
+        # the console's scenario ran into out/s, and a simulation started at the prompt without an
+        # out replaced its outputs without a word: each later run into a folder of an earlier one says so
+        path = self.script(two_pulley(elements=30) +
+                           'drive:run { t_end = 0.002, progress = false }\n'
+                           'drive:run { t_end = 0.002, progress = false, out = "other" }\n'
+                           'local sim = drive:start { progress = false, out = "out/s/" }\n'
+                           'sim:close()\n')
+        code, out, err = run(["run", path], cwd=self.dir)
+        self.assertEqual(code, 0, err)
+        self.assertEqual(err.count("holds the outputs of an earlier run of this command"), 1, err)
+        self.assertIn("beltsim: warning: start: the output folder out/s/ holds the outputs of an earlier run of this "
+                      "command, which this one replaces (give each run its own folder: out = ..., or --out)", err)
+
 
 if __name__ == "__main__":
     BELTSIM = sys.argv.pop(1)
