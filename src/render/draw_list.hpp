@@ -5,7 +5,7 @@
 //
 // A frame shows
 // - pulleys: disc, rim, six spokes and one red marker spoke (rotation and slip show as the marks
-//   turn), the name at the hub;
+//   turn), the name below the hub, or beside the pulley where it does not fit on the disc;
 // - the belt element by element: a band through the element centres, each element a quad from
 //   the joint with its predecessor to the joint with its successor, coloured by the chosen
 //   quantity on a banded colour map; the centres' deviation from the nominal path (the pitch
@@ -158,6 +158,15 @@ class FrameBuilder {
   int font_px_ = 14;
   int columns_ = 1;             // pulley lines per row of the text band
   double top_ = 0, panel_ = 0;  // [px] height of the text band, width of the colour-bar panel
+  // where each pulley's name goes, from its centre [px] (chosen once, so it stays put frame to
+  // frame): on the disc or beside it; none when it has no place in view
+  struct NamePlace {
+    bool shown = false, on_disc = false;
+    Vec2 offset{0, 0};
+    DrawList::Align align = DrawList::centre;
+  };
+  std::vector<NamePlace> names_;
+  void place_names();
   std::string pulley_text(int j, const PulleyObs& o) const;
   // a pixel inside the drawing area (below the text band, left of the colour-bar panel)
   bool in_view(const Vec2& p_px) const;

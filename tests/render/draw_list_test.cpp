@@ -1,6 +1,6 @@
 // The draw list without GL: element quads where the state puts the elements, colours from the
-// colour map, magnification about the nominal path, wet and slip marks, pulley names off the belt,
-// colour-map properties.
+// colour map, magnification about the nominal path, wet and slip marks, pulley names off the belt
+// and by their own pulley, colour-map properties.
 #include "render/draw_list.hpp"
 
 #include <gtest/gtest.h>
@@ -533,6 +533,55 @@ TEST_F(Fixture, PulleyNamesStayOffTheBelt) {
       EXPECT_EQ(inside, 2);  // the paper's two large pulleys
     else
       EXPECT_GT(beside, 0);  // the automotive drive's small ones
+  }
+}
+
+// on scripts/serpentine.lua's layout, where the small idler stands beside the alternator, each
+// name is nearer its own pulley than any other, on no other pulley and on no other name (the
+// idler's went beside it on the side away from the drive's middle, onto the alternator)
+TEST_F(Fixture, PulleyNamesSitByTheirOwnPulley) {
+  SceneDef d;
+  auto pulley = [](const char* name, Vec2 c, double r, WrapSide w) {
+    PulleyDef p;
+    p.name = name, p.centre = c, p.radius = r, p.wrap = w;
+    return p;
+  };
+  d.pulleys = {pulley("crankshaft", {0.09, -0.27}, 0.08, WrapSide::inside),
+               pulley("tensioner", {0.015, -0.12}, 0.031, WrapSide::back),
+               pulley("alternator", {0, 0}, 0.027, WrapSide::inside),
+               pulley("idler", {0.08, 0.01}, 0.03, WrapSide::back),
+               pulley("pump", {0.16, -0.06}, 0.056, WrapSide::inside),
+               pulley("compressor", {0.24, -0.21}, 0.06, WrapSide::inside)};
+  d.belt.elements = 200;
+  d.belt.pretension = 300;
+  d.belt.loop_sense = -1;
+  const Scene sc = test::moving_scene(d);
+  for (int width : {640, 1280}) {
+    FrameSettings f = fs();
+    f.width = width, f.height = width * 9 / 16;
+    FrameBuilder b(sc, f, &font);
+    DrawList dl;
+    b.build(0, sc.y0.data(), dl);
+    std::vector<const DrawList::TextBox*> names;
+    for (const Pulley& p : sc.model.pulleys)
+      for (const DrawList::TextBox& t : dl.boxes)
+        if (t.text == p.name) names.push_back(&t);
+    ASSERT_EQ(names.size(), sc.model.pulleys.size()) << width;
+    // from a box to pulley k's rim [px], negative inside the disc
+    auto to_rim = [&](const DrawList::TextBox& t, int k) {
+      const Vec2 c = b.camera().to_px(sc.model.centre(k, sc.y0.data()));
+      const Vec2 gap = (t.lo - c).cwiseMax(c - t.hi).cwiseMax(0);
+      return gap.norm() - sc.model.pulleys[k].radius * b.camera().scale;
+    };
+    for (int j = 0; j < sc.model.n_p(); ++j)
+      for (int k = 0; k < sc.model.n_p(); ++k) {
+        if (k == j) continue;
+        const DrawList::TextBox &t = *names[j], &o = *names[k];
+        EXPECT_GT(to_rim(t, k), 0) << width << ": " << t.text << " on " << o.text;
+        EXPECT_LT(to_rim(t, j), to_rim(t, k)) << width << ": " << t.text << " nearer " << o.text;
+        EXPECT_TRUE(t.hi.x() < o.lo.x() || o.hi.x() < t.lo.x() || t.hi.y() < o.lo.y() || o.hi.y() < t.lo.y())
+            << width << ": " << t.text << " over " << o.text;
+      }
   }
 }
 
