@@ -137,9 +137,16 @@ std::string replayable(lua_State* L, const std::string& chunk, bool expression, 
     at[c.sim] = c.t;
     if (!c.call.empty()) out += "\n" + name + ":" + c.call;
   }
+  // a command that kept the stopped run's result (r = sim:advance(20)) keeps it in the replay too
+  static const std::regex kept(R"(^\s*((local\s+)?[A-Za-z_][A-Za-z0-9_.]*\s*=\s*)([A-Za-z_][A-Za-z0-9_]*)\s*:\s*)"
+                               R"((advance|run_to)\s*\([^\n]*\)\s*;?\s*$)");
+  std::smatch m;
+  const bool keep = page.empty() && stopped.size() == 1 && std::regex_match(chunk, m, kept) &&
+                    m[3].str() == sim_name(L, stopped[0].first);
   for (const auto& [p, t] : stopped) {
     const auto it = at.find(p);
-    if (it == at.end() || it->second != t) out += "\n" + sim_name(L, p) + ":run_to(" + number_text(t) + ")";
+    if (it == at.end() || it->second != t)
+      out += "\n" + (keep ? m[1].str() : "") + sim_name(L, p) + ":run_to(" + number_text(t) + ")";
   }
   return out;
 }

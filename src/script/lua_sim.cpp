@@ -55,7 +55,7 @@ int run_to(lua_State* L, SimBox& box, double t, const char* what) {
   guarded(
       L, what,
       [&] {
-        ProgressLine line(box.progress, box.sim->stats().steps);
+        ProgressLine line(box.progress, box.sim->stats().steps, &box.ctx->progress_ended);
         box.running = true;
         struct Done {
           SimBox& b;

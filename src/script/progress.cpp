@@ -10,11 +10,14 @@
 
 namespace beltsim::script {
 
-ProgressLine::ProgressLine(bool enabled, long steps_before)
-    : enabled_(enabled), tty_(isatty(STDERR_FILENO)), steps_before_(steps_before) {}
+ProgressLine::ProgressLine(bool enabled, long steps_before, bool* ended)
+    : enabled_(enabled), tty_(isatty(STDERR_FILENO)), steps_before_(steps_before), ended_(ended) {}
 
 ProgressLine::~ProgressLine() {
-  if (drawn_ && tty_) std::fputc('\n', stderr);
+  if (drawn_ && tty_) {
+    std::fputc('\n', stderr);
+    if (ended_) *ended_ = true;
+  }
 }
 
 RunProgress ProgressLine::callback() {

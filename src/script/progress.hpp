@@ -11,7 +11,9 @@ namespace beltsim::script {
 
 class ProgressLine {
  public:
-  explicit ProgressLine(bool enabled, long steps_before = 0);
+  // ended: set when the destructor ends a line it drew (the console then knows the cursor is at a
+  // line's start after a run that Ctrl-C stopped)
+  explicit ProgressLine(bool enabled, long steps_before = 0, bool* ended = nullptr);
   ~ProgressLine();  // ends the line if one was drawn
   ProgressLine(const ProgressLine&) = delete;
   ProgressLine& operator=(const ProgressLine&) = delete;
@@ -21,6 +23,7 @@ class ProgressLine {
   bool enabled_, tty_, drawn_ = false;
   double last_ = 0, t0_ = -1;
   long steps_before_ = 0;
+  bool* ended_ = nullptr;
 };
 
 }  // namespace beltsim::script

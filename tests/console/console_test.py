@@ -139,7 +139,7 @@ class ConsoleTest(unittest.TestCase):
     def test_ctrl_c_stops_a_run(self):
         c = self.console()
         mark = len(c.screen)
-        c.send("sim:advance(10)\r")
+        c.send("r = sim:advance(10)\r")
         # ^C once the run is under way, seen in its output (0.1 s simulated: 100 rows of 1 ms), not
         # after a wait of wall time, which a loaded machine may spend on the scene's build
         csv = os.path.join(self.tmp, "out", "timeseries.csv")
@@ -159,8 +159,8 @@ class ConsoleTest(unittest.TestCase):
         self.assertIsNone(PROMPT.search(c.screen, mark), "the 10 s run ended before ^C" + c.transcript())
         c.send("\x03")
         c.wait_prompt(mark, timeout=5)
-        out = c.screen[mark:]
-        self.assertRegex(out, r"interrupted = true", c.transcript())
+        out = c.command("r.interrupted")
+        self.assertRegex(out, r"\ntrue\n", c.transcript())
         out = c.command("sim.t")
         m = re.search(r"\n([0-9.eE+-]+)\n", out)
         self.assertTrue(m, "sim.t printed no number" + c.transcript())
@@ -175,6 +175,15 @@ class ConsoleTest(unittest.TestCase):
         self.assertGreater(len(lines), 3, text[-300:])
         self.assertEqual(last.count(","), header.count(","), "incomplete last row %r" % last)
         self.assertLessEqual(float(last.split(",")[0]), t + 1e-12)
+        # the replay stops where the run stopped and keeps its result in r, as the session did
+        self.assertEqual(c.eof(), 0, c.transcript())
+        with open(os.path.join(self.tmp, "out", "scenario", "session.lua")) as f:
+            lines = f.read().splitlines()
+        self.assertIn("-- r = sim:advance(10)  -- stopped by Ctrl-C", lines)
+        kept = [ln for ln in lines if ln.startswith("r = sim:run_to(")]
+        self.assertEqual(len(kept), 1, lines)
+        # (the console prints sim.t to 10 significant digits)
+        self.assertAlmostEqual(float(kept[0][len("r = sim:run_to("):-1]) / t, 1, delta=1e-9, msg=lines)
 
     # 8
     def test_ctrl_d_writes_session_lua(self):
