@@ -78,6 +78,13 @@ TEST(ColourMap, BandsAndNaN) {
   EXPECT_NE(b.g, c.g);
 }
 
+// a pulley of a scene built in a test
+PulleyDef pulley(const char* name, Vec2 c, double r, WrapSide w) {
+  PulleyDef p;
+  p.name = name, p.centre = c, p.radius = r, p.wrap = w;
+  return p;
+}
+
 struct Fixture : ::testing::Test {
   static const Scene& wet() {
     static const Scene sc = test::moving_scene(presets::paper_wet());
@@ -453,11 +460,6 @@ TEST_F(Fixture, ArrowsShowTheDirectionOfTravel) {
 // side (it was drawn through the name "idler")
 TEST_F(Fixture, TravelArrowsStayOffThePulleyNames) {
   SceneDef d;
-  auto pulley = [](const char* name, Vec2 c, double r, WrapSide w) {
-    PulleyDef p;
-    p.name = name, p.centre = c, p.radius = r, p.wrap = w;
-    return p;
-  };
   d.pulleys = {
       pulley("crank", {0, 0}, 0.08, WrapSide::inside), pulley("tensioner", {-0.108, 0.07}, 0.032, WrapSide::back),
       pulley("pump", {-0.1, 0.18}, 0.05, WrapSide::inside), pulley("idler", {0.01, 0.235}, 0.03, WrapSide::back),
@@ -541,11 +543,6 @@ TEST_F(Fixture, PulleyNamesStayOffTheBelt) {
 // idler's went beside it on the side away from the drive's middle, onto the alternator)
 TEST_F(Fixture, PulleyNamesSitByTheirOwnPulley) {
   SceneDef d;
-  auto pulley = [](const char* name, Vec2 c, double r, WrapSide w) {
-    PulleyDef p;
-    p.name = name, p.centre = c, p.radius = r, p.wrap = w;
-    return p;
-  };
   d.pulleys = {pulley("crankshaft", {0.09, -0.27}, 0.08, WrapSide::inside),
                pulley("tensioner", {0.015, -0.12}, 0.031, WrapSide::back),
                pulley("alternator", {0, 0}, 0.027, WrapSide::inside),
