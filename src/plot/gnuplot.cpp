@@ -132,4 +132,13 @@ std::string run_gnuplot(const std::string& script) {
   throw std::runtime_error("gnuplot failed (" + how + "): " + (out.empty() ? "no message" : out));
 }
 
+const char* const kLineColours[10] = {"#1f77b4", "#ff7f0e", "#2ca02c", "#d62728", "#9467bd",
+                                      "#8c564b", "#e377c2", "#7f7f7f", "#bcbd22", "#17becf"};
+
+std::string line_colours_script() {
+  std::string s;
+  for (int k = 0; k < 10; ++k) s += "set linetype " + std::to_string(k + 1) + " lc rgb '" + kLineColours[k] + "'\n";
+  return s + "set linetype cycle 10\n";
+}
+
 }  // namespace beltsim::plot

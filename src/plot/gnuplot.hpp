@@ -34,6 +34,12 @@ class PrivateOutput {
   std::string dir_, file_;
 };
 
+// The lines' colours of every plot, in order (Tableau's ten: dark enough on white, where gnuplot's
+// own fifth, #f0e442, is a yellow a reader hardly sees), and the gnuplot lines that give the
+// linetypes 1..10 these colours
+extern const char* const kLineColours[10];
+std::string line_colours_script();
+
 // A gnuplot string literal holding `text` as it is: single quotes, in which gnuplot processes
 // no escapes, with each ' doubled; line breaks become spaces (a literal is one line).
 std::string gnuplot_string(std::string_view text);

@@ -220,7 +220,8 @@ std::string plot_script(const PlotSpec& spec, const std::string& png) {
   g << "set encoding utf8\n"
     << "set terminal pngcairo size " << spec.width << "," << spec.height
     << " font 'DejaVu Sans,12' linewidth 1 noenhanced\n"
-    << "set output " << gnuplot_string(png) << "\n";
+    << "set output " << gnuplot_string(png) << "\n"
+    << line_colours_script();
   for (size_t k = 0; k < spec.series.size(); ++k) datablock(g, static_cast<int>(k), spec.series[k]);
   // one time axis for every series (and every panel)
   double t0 = INFINITY, t1 = -INFINITY;

@@ -19,10 +19,8 @@ constexpr double kLeft = 0.10, kRight = 0.70, kBottom = 0.10, kTop = 0.90;
 constexpr double kCharPx = 6.0, kLabelPx = 12.0;  // a label's character width and height at 8 pt
 constexpr double kPointPx = 5.0;                  // half the size of a point's mark
 
-// one colour per integrator, its points and its rtol labels alike
-const char* const kColours[] = {"#1f77b4", "#ff7f0e", "#2ca02c", "#d62728", "#9467bd",
-                                "#8c564b", "#e377c2", "#7f7f7f", "#bcbd22", "#17becf"};
-constexpr size_t kNumColours = sizeof kColours / sizeof kColours[0];
+// one colour per integrator, its points and its rtol labels alike (gnuplot.hpp's)
+constexpr size_t kNumColours = sizeof kLineColours / sizeof kLineColours[0];
 
 // an rtol as the user gave it (1e-4 reads 0.0001, as %g writes it)
 std::string tol_text(double r) { return rounded_text(r, 6); }
@@ -75,7 +73,7 @@ void collect_points(const WpResult& res, WpLayout& l) {
   const size_t n_int = std::max<size_t>(1, res.integrators.size());
   for (size_t k = 0; k < res.integrators.size(); ++k) {
     const std::string& name = res.integrators[k];
-    WpLayout::Series s{name, kColours[k % kNumColours], 5 + 2 * static_cast<int>(k % 4)};
+    WpLayout::Series s{name, kLineColours[k % kNumColours], 5 + 2 * static_cast<int>(k % 4)};
     for (const WpRow& r : res.rows)
       if (r.integrator == name && r.finished && shown_error(res, r) > 0) {
         add_point(l, r.wall, shown_error(res, r), tol_text(r.rtol), k, true);
