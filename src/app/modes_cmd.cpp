@@ -179,7 +179,7 @@ int campbell_modes(const std::string& script, const Scene& sc, const RunSettings
   try {
     plot::plot_campbell_png(
         pts, ord, "Campbell diagram of " + fs::path(script).filename().string() + " over '" + *raw.campbell + "' speed",
-        png);
+        *raw.campbell, png);
     std::printf("%s\n", png.c_str());
   } catch (const std::exception& e) {  // the CSV is the result; the picture is a convenience
     std::fprintf(stderr, "beltsim modes: no plot: %s\n", e.what());

@@ -1,6 +1,7 @@
 #include "plot/campbell_plot.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <sstream>
 
 #include "io/number_text.hpp"
@@ -31,7 +32,7 @@ int damping_class(double zeta) {
 }  // namespace
 
 std::string campbell_script(const std::vector<CampbellPoint>& points, const std::vector<double>& orders,
-                            const std::string& title, const std::string& output) {
+                            const std::string& title, const std::string& pulley, const std::string& output) {
   double rpm_hi = 0, f_hi = 0, f_max = 0;
   for (const CampbellPoint& p : points) {
     rpm_hi = std::max(rpm_hi, p.rpm);
@@ -48,9 +49,23 @@ std::string campbell_script(const std::vector<CampbellPoint>& points, const std:
     << "set output " << gnuplot_string(output) << "\n"
     << "set grid lc rgb '#dddddd'\n"
     << "set xrange [0:" << number_text(rpm_hi) << "]\nset yrange [0:" << number_text(f_hi) << "]\n"
-    << "set xlabel 'crankshaft speed [rpm]'\nset ylabel 'frequency [Hz]'\n"
+    << "set xlabel " << gnuplot_string(pulley + " speed [rpm]") << " noenhanced\nset ylabel 'frequency [Hz]'\n"
     << "set title " << gnuplot_string(title) << " noenhanced\n"
     << "set key outside right top noenhanced\n";
+  // the modes above the axis, said on the picture: a reader would take the picture for all of them
+  size_t above = 0, all = 0;
+  double f_top = 0;
+  for (const CampbellPoint& p : points)
+    for (const Mode& m : p.analysis.modes) {
+      ++all;
+      if (m.frequency > f_hi) ++above, f_top = std::max(f_top, m.frequency);
+    }
+  if (above > 0)
+    g << "set label "
+      << gnuplot_string(std::to_string(above) + " of " + std::to_string(all) + " modes lie above " +
+                        number_text(std::round(f_hi)) + " Hz, up to " + number_text(std::round(f_top)) +
+                        " Hz: campbell.csv lists them")
+      << " at graph 0.02, graph 0.97 left front font ',10' tc rgb '#444444' noenhanced\n";
   std::ostringstream plots;
   const char* sep = "";
   static const char* suffix[] = {"", " (ζ > 0.2)", " (ζ < 0)"};
@@ -81,9 +96,9 @@ std::string campbell_script(const std::vector<CampbellPoint>& points, const std:
 }
 
 void plot_campbell_png(const std::vector<CampbellPoint>& points, const std::vector<double>& orders,
-                       const std::string& title, const std::string& png) {
+                       const std::string& title, const std::string& pulley, const std::string& png) {
   const PrivateOutput out;
-  run_gnuplot(campbell_script(points, orders, title, out.path()));
+  run_gnuplot(campbell_script(points, orders, title, pulley, out.path()));
   out.deliver(png, "modes");
 }
 

@@ -12,10 +12,13 @@
 
 namespace beltsim::plot {
 
-// the gnuplot script (for tests) and the picture; throws std::runtime_error as run_gnuplot does
+// the gnuplot script (for tests) and the picture; throws std::runtime_error as run_gnuplot does.
+// pulley: the pulley whose speed is swept (the speed axis's name). The frequency axis ends at
+// twice the highest order's line at the highest speed; the modes above it are counted in a note
+// on the picture (the CSV holds them all).
 std::string campbell_script(const std::vector<CampbellPoint>& points, const std::vector<double>& orders,
-                            const std::string& title, const std::string& output);
+                            const std::string& title, const std::string& pulley, const std::string& output);
 void plot_campbell_png(const std::vector<CampbellPoint>& points, const std::vector<double>& orders,
-                       const std::string& title, const std::string& png);
+                       const std::string& title, const std::string& pulley, const std::string& png);
 
 }  // namespace beltsim::plot

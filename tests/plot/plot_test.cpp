@@ -2,6 +2,8 @@
 // the size asked (read back with libpng), a missing column listing the valid ones, paths and
 // titles with quotes and spaces, gnuplot missing or failing, and the wp picture and its layout
 // (labels clear of each other, of the points and of the lines; crowded ones left out).
+#include "plot/plot.hpp"
+
 #include <gtest/gtest.h>
 #include <unistd.h>
 
@@ -9,8 +11,8 @@
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
-#include <functional>
 #include <fstream>
+#include <functional>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -18,8 +20,8 @@
 #include "io/number_text.hpp"
 #include "io/units.hpp"
 #include "media/png_writer.hpp"
+#include "plot/campbell_plot.hpp"
 #include "plot/gnuplot.hpp"
-#include "plot/plot.hpp"
 #include "plot/wp_plot.hpp"
 #include "support/scratch.hpp"
 
@@ -482,6 +484,30 @@ TEST(WpLayout, OneDecadeStudy) {
   EXPECT_DOUBLE_EQ(l.y_lo, 1e-3);
   EXPECT_DOUBLE_EQ(l.y_hi, 1e-2);
   expect_labels_clear(l);
+}
+
+// the Campbell diagram's speed axis names the pulley swept (it said 'crankshaft' for any), and the
+// modes above its frequency axis (twice the highest order at the top speed) are counted on it
+TEST(Campbell, NamesThePulleyAndCountsTheModesAboveTheAxis) {
+  auto point = [](double rpm, std::vector<double> freqs) {
+    CampbellPoint p;
+    p.rpm = rpm;
+    p.analysis.groups = {"span_a_b"};
+    for (double f : freqs) {
+      Mode m;
+      m.frequency = f, m.damping = 0.1, m.participation = {1.0};
+      p.analysis.modes.push_back(m);
+    }
+    return p;
+  };
+  // orders 2 and 4 at 600 rpm: the axis ends at 2·40 Hz = 80 Hz (84 with its 5 %)
+  const std::string g =
+      campbell_script({point(300, {20, 60}), point(600, {70, 120, 186})}, {2, 4}, "t", "driver", "x.png");
+  EXPECT_NE(g.find("set xlabel 'driver speed [rpm]'"), std::string::npos) << g;
+  EXPECT_EQ(g.find("crankshaft"), std::string::npos) << g;
+  EXPECT_NE(g.find("2 of 5 modes lie above 84 Hz, up to 186 Hz: campbell.csv lists them"), std::string::npos) << g;
+  const std::string none = campbell_script({point(600, {20, 60})}, {2, 4}, "t", "driver", "x.png");
+  EXPECT_EQ(none.find("lie above"), std::string::npos) << none;
 }
 
 }  // namespace
