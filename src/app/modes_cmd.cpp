@@ -65,6 +65,20 @@ void print_table(const Scene& sc, const ModeAnalysis& a) {
       "modes of the drive's motion over one element passing (%.3g ms, %.4g elements a second); over it the motion "
       "repeats itself within %.2g %% of a pitch and %.2g %% of the belt's speed\n",
       1e3 * a.period, 1 / a.period, 100 * a.position_defect, 100 * a.velocity_defect);
+  // modes whose Floquet multiplier is real and negative: at exactly half the passing rate, where
+  // the passing locks a mode near it (docs/modes.md, Modes at half the passing rate)
+  std::string locked;
+  const double half = 0.5 / a.period;
+  for (size_t k = 0; k < a.modes.size(); ++k)
+    if (std::abs(a.modes[k].frequency - half) <= 1e-9 * half)
+      locked += (locked.empty() ? "" : ", ") + std::to_string(k + 1);
+  if (!locked.empty())
+    std::printf(
+        "mode%s %s at half the passing rate, %.2f Hz: a real negative Floquet multiplier (the motion flips "
+        "sign from one passing to the next), where the passing locks a mode of the drive near that frequency; "
+        "the drive's own frequency there is unknown, and a belt of more elements passes faster and frees it "
+        "(docs/modes.md)\n",
+        locked.find(',') == std::string::npos ? "" : "s", locked.c_str(), half);
   if (a.velocity_defect > kSteadyVelocity || a.position_defect > kSteadyPosition)
     std::fprintf(stderr,
                  "beltsim modes: warning: the drive is not steady at t = %s s: over one element passing its motion "
