@@ -84,6 +84,25 @@ class Modes(unittest.TestCase):
         self.assertTrue(os.path.getsize(os.path.join(out_dir, "campbell.png")) > 1000)
         self.assertTrue(os.path.isfile(os.path.join(out_dir, "rpm_400", "timeseries.csv")))
 
+    def test_modes_locked_at_half_the_passing_rate_are_named(self):
+        # the paper's dry drive at 0.5 s on 60 elements: the passing (340.5 a second) locks modes of
+        # its slack span at ν/2 = 170.27 Hz (docs/modes.md); the note under the table names exactly
+        # those of modes.csv at ν/2
+        script = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "scripts", "paper_dry.lua")
+        out_dir = os.path.join(self.dir, "h")
+        code, out, err = run(["modes", script, "--at", "0.5", "--shapes", "0", "--fmax", "200", "--out", out_dir],
+                             cwd=self.dir)
+        self.assertEqual(code, 0, err)
+        passing = [ln for ln in out.splitlines() if "elements a second" in ln]
+        self.assertEqual(len(passing), 1, out)
+        nu = float(passing[0].split("ms, ")[1].split(" elements")[0])
+        with open(os.path.join(out_dir, "modes.csv")) as f:
+            half = [r["mode"] for r in csv.DictReader(f) if abs(float(r["frequency_Hz"]) - nu / 2) < 1e-3 * nu]
+        self.assertGreaterEqual(len(half), 2, out)  # a pair split on the negative axis at least
+        note = [ln for ln in out.splitlines() if "at half the passing rate" in ln]
+        self.assertEqual(len(note), 1, out)
+        self.assertTrue(note[0].startswith("modes " + ", ".join(half) + " at half the passing rate"), note[0])
+
     def test_bad_options(self):
         for args, message in [(["--campbell", "crank", "--rpm", "1:2:3"], "--campbell: the scene has no pulley 'crank'"),
                               (["--campbell", "driver"], "--campbell needs --rpm FROM:TO:COUNT"),
