@@ -212,7 +212,7 @@ std::string plot_script(const PlotSpec& spec, const std::string& png) {
     for (size_t i = 0; i < s.t.size() && !any; ++i) any = std::isfinite(s.t[i]) && std::isfinite(s.y[i]);
     if (!any) throw std::runtime_error("plot " + spec.file + ": series '" + s.name + "' has no finite values");
     auto g = std::find_if(groups.begin(), groups.end(), [&](const Group& x) { return x.unit == s.unit; });
-    if (g == groups.end()) g = groups.insert(groups.end(), Group{s.unit, {}});
+    if (g == groups.end() || s.unknown_unit) g = groups.insert(groups.end(), Group{s.unit, {}});
     g->series.push_back(static_cast<int>(k));
   }
 
@@ -391,13 +391,21 @@ void plot_summary(const std::string& csv_path, const std::vector<std::string>& c
   PlotSpec spec;
   spec.file = out_png;
   spec.points = true;
-  spec.x_label = with_unit(columns[0], unit_of(columns[0]));
+  // a sweep's parameters and figures are its own names: their unit is the one a header gives in
+  // brackets ("hub load [N]"), else not known (unit_of's table would read "slip" as an element's,
+  // m/s, for a user's difference of speeds)
+  auto bracketed = [](const std::string& h) { return !h.empty() && h.back() == ']'; };
+  spec.x_label = columns[0];
   const std::filesystem::path cp(csv_path);
   spec.title = cp.has_parent_path() && cp.parent_path().has_filename()
                    ? (cp.parent_path().filename() / cp.filename()).string()
                    : cp.filename().string();
-  for (size_t k = 1; k < columns.size(); ++k)
-    spec.series.push_back(Series{columns[k], unit_of(columns[k]), x, table.column(columns[k])});
+  for (size_t k = 1; k < columns.size(); ++k) {
+    const std::string& h = columns[k];
+    const bool known = bracketed(h);
+    const std::string name = known ? trim(h.substr(0, h.rfind('['))) : h;  // the unit drawn once
+    spec.series.push_back(Series{name, known ? header_unit(h) : "", x, table.column(h), !known});
+  }
   plot_png(spec);
 }
 

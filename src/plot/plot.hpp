@@ -19,6 +19,9 @@ namespace beltsim::plot {
 struct Series {
   std::string name, unit;   // unit "" for none
   std::vector<double> t, y;  // same length; t in s
+  // the unit is not known (a sweep's own figure): the series gets an axis of its own, where two
+  // such series could differ by any scale
+  bool unknown_unit = false;
 };
 
 // a vertical line across the plot at x with a label beside it (a run's event)

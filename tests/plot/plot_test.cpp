@@ -207,6 +207,27 @@ TEST(Plot, APanelTooShortForItsSeriesNameIsLabelledByItsQuantity) {
   EXPECT_NE(two.find("set ylabel '[N]'"), std::string::npos) << two;
 }
 
+// a sweep's own figures have no known unit: each gets an axis of its own (a speed of -4 rad/s drew
+// as a flat line at 0 beside loads of 1000 N on one shared axis), where series of one known unit
+// share theirs
+TEST(Plot, SeriesOfUnknownUnitsGetAxesOfTheirOwn) {
+  PlotSpec spec;
+  spec.file = "unused.png";
+  auto series = [](const std::string& name, const std::string& unit, bool unknown) {
+    Series s;
+    s.name = name, s.unit = unit, s.t = {300, 500, 700}, s.y = {1, 2, 3}, s.unknown_unit = unknown;
+    return s;
+  };
+  spec.series = {series("omega.driver", "", true), series("hub_load_mean", "", true)};
+  const std::string own = plot_script(spec, "p.png");
+  EXPECT_NE(own.find("set y2tics"), std::string::npos) << own;
+  spec.series = {series("a.omega", "rad/s", false), series("b.omega", "rad/s", false)};
+  const std::string shared = plot_script(spec, "p.png");
+  EXPECT_EQ(shared.find("set y2tics"), std::string::npos) << shared;
+  spec.series = {series("slip", "", true), series("omega.driver", "", true), series("s.hub_load_mean", "", true)};
+  EXPECT_NE(plot_script(spec, "p.png").find("set multiplot layout 3,1"), std::string::npos);
+}
+
 // events.csv's rows as marks: one per time, labels "what value" shortened, a cut row left out
 TEST(Plot, EventsBecomeMarks) {
   const fs::path d = dir("events");
