@@ -4,7 +4,9 @@
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
+#include <set>
 #include <stdexcept>
+#include <string>
 
 #include "app/options.hpp"
 #include "io/input_file.hpp"
@@ -140,6 +142,16 @@ int compare_csvs(const CompareOptions& o) {
   } catch (const std::exception& e) {
     throw Unreadable(e.what());
   }
+  // a unit no column has (a typo, "nm" for N·m) would leave every tolerance as it was, silently
+  std::set<std::string> units;
+  for (const std::string& name : a.names) units.insert(header_unit(name));
+  for (const auto& [unit, value] : tol.unit_atol)
+    if (!units.count(unit)) {
+      std::string have;
+      for (const std::string& u : units) have += (have.empty() ? "" : ", ") + (u.empty() ? std::string("1") : u);
+      throw UsageError("--atol " + unit + "=...: no column of " + o.a + " has the unit '" + unit +
+                       "' (its units: " + have + ")");
+    }
   plot::CsvComparison c;
   try {
     c = plot::compare_csv(a, b, tol);

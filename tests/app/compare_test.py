@@ -226,7 +226,10 @@ class Csvs(Base):
         self.assertIn("(rtol 0.001, atol 0.1 N)", out)
         for args, message in [(["--atol", "1", "--atol", "2"], "--atol A is given twice"),
                               (["--atol", "N=1", "--atol", "N=2"], "the unit 'N' is given twice"),
-                              (["--atol", "N=-1"], "--atol N must be >= 0, got -1")]:
+                              (["--atol", "N=-1"], "--atol N must be >= 0, got -1"),
+                              # a unit no column has (a typo of N·m) changed nothing, silently
+                              (["--atol", "nm=100"], "--atol nm=...: no column of x.csv has the unit 'nm' (its "
+                               "units: 1, N, m, s)")]:
             code, out, err = self.compare("x.csv", "y.csv", *args)
             self.assertEqual(code, 2, err)
             self.assertIn(message, err)
