@@ -156,7 +156,27 @@ int sweep(const std::string& file, const Raw& raw, const script::Safety& s) {
     throw UsageError(e.what());
   }
 
+  // a summary merged over a folder that holds no point of this sweep replaced another sweep's
+  // summary.csv with rows of 'outdated' or 'not run', or wrote one into a run's folder: refused
+  // (the folder's existence before it is claimed, the points once no other sweep holds it)
+  std::error_code ec;
+  if (raw.collect && !fs::is_directory(dir, ec))
+    throw std::runtime_error("--collect: " + dir + " is not a folder: nothing to collect");
   const OutputDir top = sw::claim_sweep_folder(dir);  // held to the end: one sweep at a time on the folder
+  if (raw.collect) {
+    int found = 0;
+    for (const sw::Point& p : points)
+      if (const std::optional<sw::PointResult> r = sw::read_point_result(dir, p)) {
+        ++found;
+        const std::optional<sw::Inputs> in = sw::parse_inputs(r->inputs);
+        if (in && !in->files.empty() && !sw::same_file(in->files.front().first, file))
+          throw std::runtime_error("--collect: " + dir + " holds the points of " + in->files.front().first +
+                                   ", not of " + file + ": give " + file + "'s own folder (--out)");
+      }
+    if (found == 0)
+      throw std::runtime_error("--collect: no point of " + file + " has run in " + dir +
+                               " (a sweep's folder holds a folder for each point): nothing to collect");
+  }
   const auto summary = [&] {
     const sw::SummaryCounts c = sw::write_summary(dir, points, definition(raw, file));
     std::fprintf(stderr, "beltsim sweep: %s/%s: %d ok, %d failed, %d not run\n", dir.c_str(), sw::kSummaryFile, c.ok,

@@ -20,10 +20,6 @@ bool starts(const std::string& s, const std::string& prefix) {
 }
 
 // the same path, or two paths of one file (a symlinked folder, a hard link)
-bool same_file(const std::string& a, const std::string& b) {
-  std::error_code ec;
-  return a == b || (std::filesystem::equivalent(a, b, ec) && !ec);
-}
 
 }  // namespace
 
@@ -79,6 +75,12 @@ std::string changed_inputs(const std::string& recorded, Definition& now) {
     if (it->second != hash) return "the file " + path + " has changed";
   }
   return "";
+}
+
+// the same file: the same path, or two paths to one file
+bool same_file(const std::string& a, const std::string& b) {
+  std::error_code ec;
+  return a == b || (std::filesystem::equivalent(a, b, ec) && !ec);
 }
 
 }  // namespace beltsim::sweep

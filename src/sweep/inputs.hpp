@@ -44,5 +44,7 @@ struct Definition {
 // "the file /a/b.lua has changed", "the program has changed (was ...)", "the sweep file has
 // changed (was /a/grid.lua, now /b/grid.lua)"
 std::string changed_inputs(const std::string& recorded, Definition& now);
+// the same file: the same path, or two paths to one file (std::filesystem::equivalent)
+bool same_file(const std::string& a, const std::string& b);
 
 }  // namespace beltsim::sweep

@@ -456,6 +456,30 @@ class Sweep(unittest.TestCase):
         for w in words:
             self.assertIn(w, last)
 
+    def test_collect_refuses_a_folder_of_no_point_of_the_sweep(self):
+        # --collect over another sweep's folder replaced its summary.csv with 'outdated' rows; over a
+        # run's folder or a missing one it wrote a summary of 'not run' rows
+        self.run_beltsim("sweep", GRID, "--point", "0", "--out", "grid")
+        before = rows(self.path("grid", "0", "point.csv"))
+        shutil.copy(DRIVE, self.dir)
+        shutil.copy(GRID, self.path("other.lua"))  # another sweep file of the same points
+        p = self.run_beltsim("sweep", "other.lua", "--collect", "--out", "grid", ok=(1,))
+        self.assert_one_line_error(p, "--collect: grid holds the points of %s, not of other.lua" % GRID)
+        p = self.run_beltsim("sweep", BAD, "--collect", "--out", "grid", ok=(1,))  # points of other parameters
+        self.assert_one_line_error(p, "--collect: no point of %s has run in grid" % BAD)
+        self.assertFalse(os.path.exists(self.path("grid", "summary.csv")))
+        self.assertEqual(rows(self.path("grid", "0", "point.csv")), before)
+        os.makedirs(self.path("run"))
+        p = self.run_beltsim("sweep", GRID, "--collect", "--out", "run", ok=(1,))
+        self.assert_one_line_error(p, "--collect: no point of %s has run in run" % GRID, "nothing to collect")
+        self.assertEqual(os.listdir(self.path("run")), [])
+        p = self.run_beltsim("sweep", GRID, "--collect", "--out", "none", ok=(1,))
+        self.assert_one_line_error(p, "--collect: none is not a folder: nothing to collect")
+        self.assertFalse(os.path.exists(self.path("none")))
+        # the sweep's own folder, one point run: merged, the others not run
+        p = self.run_beltsim("sweep", GRID, "--collect", "--out", "grid", ok=(1,))
+        self.assertIn("1 ok, 0 failed, 5 not run", p.stderr)
+
     def test_sbatch_missing_is_an_error_not_an_abort(self):
         empty = self.path("bin")
         os.mkdir(empty)
