@@ -96,6 +96,9 @@ sweep::Grid set_grid(const std::vector<std::string>& sets) {
                                   "': point.csv has a column of that name; give it another");
     std::vector<sweep::Value> values;
     for (const std::string& item : list_items(kv, list)) {
+      // (a typo, 300,,500: a point with an empty string failed when its run read the value)
+      if (item.empty())
+        throw std::invalid_argument("--set " + kv + ": an empty value in the list (write \"\" for an empty string)");
       try {
         const ScriptArg a = parse_set(key + "=" + item);
         std::visit([&](const auto& x) { values.emplace_back(x); }, a.value);

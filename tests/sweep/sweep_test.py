@@ -204,6 +204,12 @@ class Sweep(unittest.TestCase):
             self.assertEqual(a.read(), b.read())
         p = self.run_beltsim("sweep", PLAIN, "--set", "mu=0.3,1x", ok=(2,))  # a number's typo
         self.assertIn("1x", p.stderr)
+        # an empty item (300,,500; a trailing comma) before anything runs, where its point failed
+        # when its run read the empty string
+        for bad in ("pretension=300,,500", "pretension=300,"):
+            p = self.run_beltsim("sweep", PLAIN, "--set", bad, ok=(2,))
+            self.assertIn("--set %s: an empty value in the list (write \"\" for an empty string)" % bad, p.stderr)
+        self.assertEqual(self.run_beltsim("sweep", PLAIN, "--set", 'how="",a', "--list").stdout.splitlines()[1], "0,")
 
     def test_a_quoted_set_value_keeps_its_commas(self):
         # "..." around a value of a --set list, as --set reads a string: its commas are its own
