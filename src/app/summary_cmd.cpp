@@ -2,6 +2,8 @@
 // written to a CSV and drawn (commands.hpp, plot/summary.hpp).
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
+#include <string>
 
 #include "app/commands.hpp"
 #include "io/output_dir.hpp"
@@ -9,7 +11,22 @@
 
 namespace beltsim::app {
 
-int cmd_summary(const std::string& dir, const Raw& raw) {
+int cmd_summary(const std::string& given, const Raw& raw) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  // the run's timeseries.csv given for its folder: the folder ("cannot read
+  // DIR/timeseries.csv/timeseries.csv: Not a directory" said nothing useful)
+  const std::string dir = fs::path(given).filename() == "timeseries.csv" && fs::is_regular_file(given, ec)
+                              ? fs::path(given).parent_path().lexically_normal().string()
+                              : given;
+  // a sweep's folder holds a run's folder per point, not a run's outputs
+  if (!fs::exists(fs::path(dir) / "timeseries.csv", ec) && fs::exists(fs::path(dir) / "summary.csv", ec)) {
+    std::fprintf(stderr,
+                 "beltsim summary: %s is a sweep's folder (its summary.csv holds the sweep's figures): give the folder "
+                 "of one of its points, %s/<point>\n",
+                 dir.c_str(), dir.c_str());
+    return 1;
+  }
   const double from = raw.from ? number("--from", *raw.from) : -INFINITY;
   const double to = raw.to ? number("--to", *raw.to) : INFINITY;
   if (raw.from && raw.to && !(from <= to)) throw UsageError("--from " + *raw.from + " lies after --to " + *raw.to);

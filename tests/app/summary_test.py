@@ -125,6 +125,19 @@ class Triangle(unittest.TestCase):
         code, out, err = run(["summary", os.path.join(self.dir, "nothing")], self.dir)
         self.assertEqual(code, 1)
         self.assertIn(os.path.join(self.dir, "nothing", "timeseries.csv"), err)
+        # the run's timeseries.csv for its folder: the same table
+        code, out, err = run(["summary", os.path.join(self.out, "timeseries.csv"), "--from", "0.1"], self.dir)
+        self.assertEqual(code, 0, err)
+        self.assertEqual(out, self.table.replace("\ns.csv\ns.png\n", "\n"))
+        # a sweep's folder: its points' folders hold the runs
+        sweep = os.path.join(self.dir, "sweep")
+        os.makedirs(sweep, exist_ok=True)
+        with open(os.path.join(sweep, "summary.csv"), "w") as f:
+            f.write("point,pretension,status\n0,300,ok\n")
+        code, out, err = run(["summary", sweep], self.dir)
+        self.assertEqual(code, 1)
+        self.assertIn("%s is a sweep's folder (its summary.csv holds the sweep's figures): give the folder of one of "
+                      "its points, %s/<point>" % (sweep, sweep), err)
 
     def test_lua_unknown_key_names_the_line(self):
         with open(os.path.join(self.dir, "bad.lua"), "w") as f:
