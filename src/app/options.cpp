@@ -1,7 +1,9 @@
 #include "app/options.hpp"
 
+#include <cctype>
 #include <cmath>
 #include <cstdint>
+#include <filesystem>
 #include <sstream>
 #include <tuple>
 
@@ -16,6 +18,12 @@ double number(const std::string& option, const std::string& text) {
   const auto x = script::decimal(text);
   if (!x) throw UsageError(option + " needs a finite decimal number, got '" + text + "'");
   return *x;
+}
+
+void require_png(const std::string& option, const std::string& path) {
+  std::string ext = std::filesystem::path(path).extension().string();
+  for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  if (ext != ".png") throw UsageError(option + " " + path + ": beltsim draws PNG pictures: give a name ending in .png");
 }
 
 namespace {

@@ -42,6 +42,8 @@ struct Raw {
 };
 
 double number(const std::string& option, const std::string& text);
+// a picture's path: its name ends in .png (any case), the only kind beltsim draws (x.jpg got PNG bytes)
+void require_png(const std::string& option, const std::string& path);
 // a whole number in [lo, 1e9]
 int whole_number(const std::string& option, const std::string& text, int lo);
 // the integrators' names, separated by commas (for the help)

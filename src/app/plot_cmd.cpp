@@ -17,6 +17,7 @@ namespace fs = std::filesystem;
 int cmd_plot(const std::string& csv, const std::vector<std::string>& columns, const Raw& raw,
              term::ImageMode images) {
   const double from = raw.from ? number("--from", *raw.from) : -INFINITY;
+  if (raw.out) require_png("--out", *raw.out);
   const std::string png = raw.out ? *raw.out : (fs::path(csv).parent_path() / "plot.png").string();
   try {
     plot::plot_csv(csv, columns, from, png);

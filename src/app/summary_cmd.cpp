@@ -13,6 +13,7 @@ namespace beltsim::app {
 
 int cmd_summary(const std::string& given, const Raw& raw) {
   namespace fs = std::filesystem;
+  if (raw.plot_out) require_png("--plot", *raw.plot_out);
   std::error_code ec;
   // the run's timeseries.csv given for its folder: the folder ("cannot read
   // DIR/timeseries.csv/timeseries.csv: Not a directory" said nothing useful)

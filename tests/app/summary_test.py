@@ -125,6 +125,14 @@ class Triangle(unittest.TestCase):
         code, out, err = run(["summary", os.path.join(self.dir, "nothing")], self.dir)
         self.assertEqual(code, 1)
         self.assertIn(os.path.join(self.dir, "nothing", "timeseries.csv"), err)
+        # a picture is a PNG: another name wrote PNG bytes under it
+        for args in (["summary", self.out, "--plot", "s.jpg"], ["plot", os.path.join(self.out, "timeseries.csv"),
+                                                                 "--out", "p.JPEG"]):
+            code, out, err = run(args, self.dir)
+            self.assertEqual(code, 2, err)
+            self.assertIn("beltsim: %s %s: beltsim draws PNG pictures: give a name ending in .png" % tuple(args[-2:]),
+                          err)
+            self.assertFalse(os.path.exists(os.path.join(self.dir, args[-1])))
         # the run's timeseries.csv for its folder: the same table
         code, out, err = run(["summary", os.path.join(self.out, "timeseries.csv"), "--from", "0.1"], self.dir)
         self.assertEqual(code, 0, err)
