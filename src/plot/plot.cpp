@@ -425,6 +425,12 @@ void plot_csv(const std::string& csv_path, const std::vector<std::string>& colum
                                joined(table.names));
   }
   for (const auto& name : wanted) table.column(name);  // every unknown name fails before plotting
+  // (a sweep's summary takes its x column first; a time series is drawn against t, which drawn as
+  // a column of its own was a line of t against t)
+  if (std::find(wanted.begin(), wanted.end(), "t") != wanted.end())
+    throw std::runtime_error(csv_path +
+                             " is a time series: its columns are drawn against t, so name only the "
+                             "columns to draw (t is not one)");
   PlotSpec spec;
   spec.file = out_png;
   // the run's folder and the file: which run it is, without the machine's own path

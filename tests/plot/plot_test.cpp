@@ -160,6 +160,18 @@ TEST(Plot, AMissingColumnSuggestsAndListsTheValidOnes) {
   EXPECT_FALSE(fs::exists(d / "x.png"));
 }
 
+// t named among a time series' columns (as a sweep summary's x column comes first) drew t against t
+TEST(Plot, TimeIsNotAColumnOfATimeSeries) {
+  const fs::path d = dir("t_column");
+  const std::string csv = small_csv(d);
+  expect_error(
+      [&] {
+        plot_csv(csv, {"t", "driver.omega"}, 0, (d / "x.png").string());
+      },
+      {"is a time series: its columns are drawn against t, so name only the columns to draw (t is not one)"});
+  EXPECT_FALSE(fs::exists(d / "x.png"));
+}
+
 TEST(Plot, QuotesAndSpacesInPathsAndTitles) {
   const fs::path d = dir("it's a \"quoted\" folder");
   const std::string csv = small_csv(d);
