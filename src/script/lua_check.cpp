@@ -65,7 +65,25 @@ void check_keys(lua_State* L, int idx, const std::string& where, const std::vect
   }
 }
 
-const char* type_name(lua_State* L, int idx) { return luaL_typename(L, idx); }
+std::string type_name(lua_State* L, int idx) {
+  // with the value where it is short: an error that says "got number 2.5" or "got string 'abc'"
+  // shows what was given, where "got number" left the reader to find it
+  constexpr size_t kShown = 40;
+  switch (lua_type(L, idx)) {
+    case LUA_TNUMBER:
+      return std::string("number ") + number_text(lua_tonumber(L, idx));
+    case LUA_TBOOLEAN:
+      return lua_toboolean(L, idx) ? "boolean true" : "boolean false";
+    case LUA_TSTRING: {
+      size_t len = 0;
+      const char* c = lua_tolstring(L, idx, &len);
+      const std::string text(c, std::min({len, kShown, std::string_view(c, len).find('\0')}));
+      return "string '" + text + (text.size() < len ? "...'" : "'");
+    }
+    default:
+      return luaL_typename(L, idx);
+  }
+}
 
 // value of t[key] pushed; returns false (and pushes nothing) when nil
 bool field(lua_State* L, int idx, const char* key) {
@@ -78,14 +96,8 @@ bool field(lua_State* L, int idx, const char* key) {
 }
 
 double to_number(lua_State* L, int idx, const std::string& what) {
-  if (lua_type(L, idx) == LUA_TSTRING) {  // its text too: a number in quotes, a --set value given as "25"
-    constexpr size_t kShown = 40;
-    size_t len = 0;
-    const char* c = lua_tolstring(L, idx, &len);
-    const std::string text(c, std::min({len, kShown, std::string_view(c, len).find('\0')}));
-    fail_on(L, what, std::string("number expected, got string '") + text + (text.size() < len ? "...'" : "'"));
-  }
-  if (lua_type(L, idx) != LUA_TNUMBER) fail_on(L, what, std::string("number expected, got ") + type_name(L, idx));
+  // (a string's text shown too: a number in quotes, a --set value given as "25")
+  if (lua_type(L, idx) != LUA_TNUMBER) fail_on(L, what, "number expected, got " + type_name(L, idx));
   return lua_tonumber(L, idx);
 }
 

@@ -27,7 +27,9 @@ bool has(lua_State* L, int idx, const char* key);
 // every key of the table at idx must be one of `allowed` (a misspelt one gets a suggestion,
 // io/suggest.hpp)
 void check_keys(lua_State* L, int idx, const std::string& where, const std::vector<std::string>& allowed);
-const char* type_name(lua_State* L, int idx);
+// a value's type for an error, with the value when it is a number, a boolean or a string (its
+// first 40 characters): "number 2.5", "string 'abc'", "table"
+std::string type_name(lua_State* L, int idx);
 // value of t[key] pushed; returns false (and pushes nothing) when nil
 bool field(lua_State* L, int idx, const char* key);
 double to_number(lua_State* L, int idx, const std::string& what);

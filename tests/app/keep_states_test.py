@@ -138,7 +138,7 @@ class KeepStates(unittest.TestCase):
 
     def test_bad_settings(self):
         for name, run_keys, message in [
-                ("b1.lua", "keep_states = 1", "run.keep_states: boolean expected, got number"),
+                ("b1.lua", "keep_states = 1", "run.keep_states: boolean expected, got number 1"),
                 ("b2.lua", 'keep_states = true, integrator = "cvode"',
                  "keep_states: cvode keeps a multistep history that SUNDIALS cannot export"),
                 ("b3.lua", "frames = { slowdown = 5 }", "neither png nor video asked for"),

@@ -521,10 +521,10 @@ TEST(LuaApi, MaxWallStopsARunWithAnError) {
 // estimate back in result.check and sim:stats().check
 TEST(LuaApi, CheckIsABooleanAndHandsBackTheEstimate) {
   beltsim::test::expect_warnings({WarningKind::failed_step});
-  expect_error(scene_text("") + "s:run{ t_end = 0.01, check = 1 }\n", "scene.lua:8:",
-               {"run.check: boolean expected, got number"});
-  expect_error(scene_text("") + "local sim = s:start{ check = 'yes' }\n", "scene.lua:8:",
-               {"start.check: boolean expected, got string"});
+  expect_error(scene_text("") + "s:run{ t_end = 0.01, check = 1 }\n",
+               "scene.lua:8:", {"run.check: boolean expected, got number 1"});  // the value given, shown
+  expect_error(scene_text("") + "local sim = s:start{ check = 'yes' }\n",
+               "scene.lua:8:", {"start.check: boolean expected, got string 'yes'"});
   EXPECT_EQ(run_text(scene_text("") +
                      "local r = s:run{ t_end = 0.01, check = true, progress = false }\n"
                      "assert(r.check.speed >= 0 and r.check.tension >= 0 and r.check.limit_speed == 3 * 1e-4 and r.check.limit_tension == 10 * 1e-4, 'check')\n"
