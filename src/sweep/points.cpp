@@ -24,8 +24,11 @@ std::string value_text(const Value& v) {
 }
 
 std::string params_text(const Point& p) {
+  // a string quoted, as --set writes one: "300" read as text is not the number 300 the line shows
   std::string s;
-  for (const auto& [name, v] : p.params) s += (s.empty() ? "" : ", ") + name + "=" + value_text(v);
+  for (const auto& [name, v] : p.params)
+    s += (s.empty() ? "" : ", ") + name + "=" +
+         (std::holds_alternative<std::string>(v) ? "\"" + value_text(v) + "\"" : value_text(v));
   return s;
 }
 

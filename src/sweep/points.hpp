@@ -23,7 +23,7 @@ struct Point {
   std::vector<std::pair<std::string, Value>> params;  // in the sweep's order of names
 };
 
-// the point's parameters for messages: "a=1, b=x" (values as value_text)
+// the point's parameters for messages: "a=1, b=\"x\"" (values as value_text, strings quoted)
 std::string params_text(const Point& p);
 
 // names[k] takes the values values[k]; the first name varies slowest, the last fastest

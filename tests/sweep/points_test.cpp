@@ -37,7 +37,7 @@ TEST(SweepPoints, NumbersKeepFullPrecision) {
 
 TEST(SweepPoints, ParametersForMessagesAreNamedInTheSweepsOrder) {
   const std::vector<Point> p = grid_points(Grid{{"mu", "how"}, {{Value(0.1 + 0.2)}, {Value(std::string("run"))}}});
-  EXPECT_EQ(params_text(p[0]), "mu=0.30000000000000004, how=run");
+  EXPECT_EQ(params_text(p[0]), "mu=0.30000000000000004, how=\"run\"");  // a string quoted
   EXPECT_EQ(params_text(Point{}), "");
 }
 
