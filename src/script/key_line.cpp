@@ -308,8 +308,9 @@ std::optional<int> key_line(std::string_view text, int call_line, const KeyPath&
   };
   const std::vector<std::string> prefix(path.chain.begin(), path.chain.end() - 1);
   std::set<int> lines = lines_of(prefix);
-  // a leading "scene" or "run" names the call's own table
-  if (lines.empty() && !prefix.empty() && (prefix[0] == "scene" || prefix[0] == "run"))
+  // a leading "scene", "run", "start" or "sweep" names the call's own table
+  if (lines.empty() && !prefix.empty() &&
+      (prefix[0] == "scene" || prefix[0] == "run" || prefix[0] == "start" || prefix[0] == "sweep"))
     lines = lines_of({prefix.begin() + 1, prefix.end()});
   if (lines.size() != 1) return std::nullopt;
   return *lines.begin();

@@ -79,12 +79,11 @@ std::vector<sweep::Point> read_samples(lua_State* L, int s) {
   check_keys(L, s, "sweep.samples", {"n", "ranges", "seed"});
   sweep::Samples samples;
   if (!field(L, s, "n")) fail_on(L, "sweep.samples.n", "the number of points is missing");
-  if (!lua_isinteger(L, -1)) fail(L, std::string("sweep.samples.n: a whole number expected, got ") + type_name(L, -1));
+  if (!lua_isinteger(L, -1)) fail_on(L, "sweep.samples.n", "a whole number expected, got " + type_name(L, -1));
   samples.n = static_cast<long long>(lua_tointeger(L, -1));
   lua_pop(L, 1);
   if (field(L, s, "seed")) {
-    if (!lua_isinteger(L, -1))
-      fail(L, std::string("sweep.samples.seed: a whole number expected, got ") + type_name(L, -1));
+    if (!lua_isinteger(L, -1)) fail_on(L, "sweep.samples.seed", "a whole number expected, got " + type_name(L, -1));
     samples.seed = static_cast<std::uint64_t>(lua_tointeger(L, -1));
     lua_pop(L, 1);
   }

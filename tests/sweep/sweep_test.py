@@ -188,8 +188,13 @@ class Sweep(unittest.TestCase):
             f.write("return beltsim.sweep {\n  samples = { n = 0, ranges = { mu = {0.2, 0.8} } },\n"
                     "  run = function(p) end }\n")
         p = self.run_beltsim("sweep", script, "--list", ok=(1,))
-        self.assertIn(script + ":1:", p.stderr)
-        self.assertIn("samples.n", p.stderr)
+        self.assertIn(script + ":2: sweep.samples.n: must be a whole number in 1..1000000 (got 0)", p.stderr)
+        # a value of the wrong type: the line of its key, and the value
+        with open(script, "w") as f:
+            f.write("return beltsim.sweep {\n  samples = {\n    n = 2.5,\n    ranges = { mu = {0.2, 0.8} } },\n"
+                    "  run = function(p) end }\n")
+        p = self.run_beltsim("sweep", script, "--list", ok=(1,))
+        self.assertIn(script + ":3: sweep.samples.n: a whole number expected, got number 2.5", p.stderr)
 
     def test_set_lists_cross_over_a_script(self):
         self.run_beltsim("sweep", PLAIN, "--set", "pretension=300,500", "--set", "mu=0.3,1")
