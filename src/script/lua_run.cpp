@@ -374,15 +374,29 @@ RunSettings read_run_settings(lua_State* L, int idx, const Scene& sc, Context* c
   if (const std::string r = run_paths_refusal(*ctx, w, rs); !r.empty()) fail(L, r);
   // a second run into a folder this command has run into replaces the first one's outputs: said,
   // as the console's scenario's run, replaced by a simulation a dofile at the prompt started
-  // without out, was not. (A folder holds one run's outputs, docs/outputs.md.)
-  std::error_code ec;
-  std::filesystem::path dir = std::filesystem::absolute(rs.out_dir, ec).lexically_normal();
-  if (!dir.has_filename()) dir = dir.parent_path();  // "out/two/" is "out/two"
-  if (!ec && !ctx->run_dirs.insert(dir.string()).second)
+  // without out, was not. (A folder holds one run's outputs, docs/outputs.md.) The folders are
+  // those of runs whose outputs opened (record_run_dir), not of runs refused before
+  if (ctx->run_dirs.count(run_dir_key(rs.out_dir)))
     rs.on_warning(w + ": the output folder " + rs.out_dir + " holds the outputs of an earlier run of this command, " +
-                  "which this one replaces (give each run its own folder: out = ..., or --out)");
+                  "which this one replaces (" +
+                  (ctx->overrides.has("out") ? std::string("--out puts every run of the script into that one folder: "
+                                                           "leave it out and give each run its own out = ...")
+                                             : std::string("give each run its own folder: out = ..., or --out")) +
+                  ")");
   if (progress) *progress = rs.progress;
   return rs;
+}
+
+std::string run_dir_key(const std::string& out_dir) {
+  std::error_code ec;
+  std::filesystem::path dir = std::filesystem::absolute(out_dir, ec).lexically_normal();
+  if (ec) return out_dir;
+  if (!dir.has_filename()) dir = dir.parent_path();  // "out/two/" is "out/two"
+  return dir.string();
+}
+
+void record_run_dir(Context* ctx, const std::string& out_dir) {
+  ctx->run_dirs.insert(run_dir_key(out_dir));
 }
 
 void push_check(lua_State* L, const CheckEstimate& c) {

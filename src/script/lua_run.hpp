@@ -53,6 +53,11 @@ RunSettings read_run_settings(lua_State* L, int idx, const Scene& sc, Context* c
 // then are in DIR": a run's or a live simulation's call's message, after the caller's name
 std::string wall_limit_text(double limit, double t, double target, const std::string& outputs);
 
+// the key of an output folder in Context::run_dirs (absolute, normalised, no trailing /), and its
+// record once a run's outputs have opened there (scene:run, scene:start)
+std::string run_dir_key(const std::string& out_dir);
+void record_run_dir(Context* ctx, const std::string& out_dir);
+
 // pushes a checked run's estimate (sim/run_check.hpp) as { speed, tension, limit_speed,
 // limit_tension, over, steps_ratio, shared, warned_t, failed }
 void push_check(lua_State* L, const CheckEstimate& c);

@@ -58,8 +58,10 @@ int l_scene_run(lua_State* L) {
     ProgressLine line(progress);
     LiveFeed feed(ctx->serve.get(), ctx->stop, &ctx->page_changes);
     ctx->page_sim = nullptr;  // the page shows this run now, which ends with this call
-    res = run(*sc, rs, ctx->stop, line.callback(),
-              [&](Simulation& sim, double t) { return feed.run_to(sim, t, line.callback()); });
+    res = run(*sc, rs, ctx->stop, line.callback(), [&](Simulation& sim, double t) {
+      record_run_dir(ctx, rs.out_dir);  // its outputs are open
+      return feed.run_to(sim, t, line.callback());
+    });
   } catch (const DivergenceError& e) {
     error = std::string(e.what()) + " (the samples up to then are in " + rs.out_dir + "/timeseries.csv)";
     ctx->divergence = {e.t, e.what()};
@@ -125,6 +127,7 @@ int l_scene_start(lua_State* L) {
   try {
     const HostWork work;  // beltsim's own work, not Lua code (lua_clock.hpp)
     sim = std::make_unique<Simulation>(*sc, rs);
+    record_run_dir(ctx, rs.out_dir);
   } catch (const ParameterError& e) {
     error = setting_error("start", e, about);
   } catch (const std::exception& e) {  // an output that cannot be written, a folder in use

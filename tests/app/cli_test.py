@@ -310,7 +310,9 @@ class Errors(unittest.TestCase):
     def test_a_second_run_into_a_folder_says_it_replaces_the_first(self):
         # the console's scenario ran into out/s, and a simulation started at the prompt without an
         # out replaced its outputs without a word: each later run into a folder of an earlier one says so
+        # (a run refused before its outputs opened uses no folder: a retry into it is no replacement)
         path = self.script(two_pulley(elements=30) +
+                           'pcall(drive.run, drive, { t_end = 0.002, progress = false, snapshots = { times = {5} } })\n'
                            'drive:run { t_end = 0.002, progress = false }\n'
                            'drive:run { t_end = 0.002, progress = false, out = "other" }\n'
                            'local sim = drive:start { progress = false, out = "out/s/" }\n'
@@ -320,6 +322,12 @@ class Errors(unittest.TestCase):
         self.assertEqual(err.count("holds the outputs of an earlier run of this command"), 1, err)
         self.assertIn("beltsim: warning: start: the output folder out/s/ holds the outputs of an earlier run of this "
                       "command, which this one replaces (give each run its own folder: out = ..., or --out)", err)
+        # --out puts every run into one folder: the advice is to leave it out
+        code, out, err = run(["run", path, "--out", "o"], cwd=self.dir)
+        self.assertEqual(code, 0, err)
+        self.assertEqual(err.count("holds the outputs of an earlier run of this command"), 2, err)
+        self.assertIn("(--out puts every run of the script into that one folder: leave it out and give each run its "
+                      "own out = ...)", err)
 
 
 if __name__ == "__main__":
