@@ -70,14 +70,21 @@ std::string type_name(lua_State* L, int idx) {
   // shows what was given, where "got number" left the reader to find it
   constexpr size_t kShown = 40;
   switch (lua_type(L, idx)) {
-    case LUA_TNUMBER:
-      return std::string("number ") + number_text(lua_tonumber(L, idx));
+    case LUA_TNUMBER: {
+      // as Lua writes it: a float of whole value with ".0" (n = 6/2 is "3.0", which is no integer)
+      std::string text = number_text(lua_tonumber(L, idx));
+      if (!lua_isinteger(L, idx) && text.find_first_of(".eEni") == std::string::npos) text += ".0";
+      return "number " + text;
+    }
     case LUA_TBOOLEAN:
       return lua_toboolean(L, idx) ? "boolean true" : "boolean false";
     case LUA_TSTRING: {
       size_t len = 0;
       const char* c = lua_tolstring(L, idx, &len);
-      const std::string text(c, std::min({len, kShown, std::string_view(c, len).find('\0')}));
+      size_t cut = std::min({len, kShown, std::string_view(c, len).find('\0')});
+      while (cut < len && cut > 0 && (static_cast<unsigned char>(c[cut]) & 0xC0) == 0x80)
+        --cut;  // not inside a UTF-8 character
+      const std::string text(c, cut);
       return "string '" + text + (text.size() < len ? "...'" : "'");
     }
     default:

@@ -202,7 +202,16 @@ TEST(LuaApi, WrongTypeSaysWhatWasExpected) {
   expect_error(scene_text("EA = '1.5e5'"), "scene.lua:6:", {"belt.EA: number expected, got string '1.5e5'"});
   expect_error(scene_text("EA = string.rep('x', 100)"), "scene.lua:6:",
                {"belt.EA: number expected, got string '" + std::string(40, 'x') + "...'"});
+  // cut before a UTF-8 character that would not fit whole: 13 of the three-byte '∞' are 39 bytes
+  expect_error(scene_text("EA = string.rep('\u221e', 20)"),
+               "scene.lua:6:", {"belt.EA: number expected, got string '" + [] {
+                 std::string s;
+                 for (int k = 0; k < 13; ++k) s += "\u221e";
+                 return s;
+               }() + "...'"});
   expect_error(scene_text("elements = {}"), "scene.lua:6:", {"belt.elements: number expected, got table"});
+  // a boolean and a float of whole value as Lua writes them
+  expect_error(scene_text("EA = true"), "scene.lua:6:", {"belt.EA: number expected, got boolean true"});
   // a point with a coordinate left out says how many it got (it said "got table")
   const std::string one = run_text(scene_text("", "centre = {0.29}, radius = 0.1"));
   EXPECT_NE(one.find("centre: a point {x, y} in metres expected, got a table of 1 value"), std::string::npos) << one;

@@ -195,6 +195,10 @@ class Sweep(unittest.TestCase):
                     "  run = function(p) end }\n")
         p = self.run_beltsim("sweep", script, "--list", ok=(1,))
         self.assertIn(script + ":3: sweep.samples.n: a whole number expected, got number 2.5", p.stderr)
+        with open(script, "w") as f:  # a float of whole value, as Lua writes it: no integer
+            f.write("return beltsim.sweep { samples = { n = 6 / 2, ranges = { mu = {0.2, 0.8} } }, run = function(p) end }\n")
+        p = self.run_beltsim("sweep", script, "--list", ok=(1,))
+        self.assertIn("sweep.samples.n: a whole number expected, got number 3.0", p.stderr)
 
     def test_set_lists_cross_over_a_script(self):
         self.run_beltsim("sweep", PLAIN, "--set", "pretension=300,500", "--set", "mu=0.3,1")
