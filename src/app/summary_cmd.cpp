@@ -17,9 +17,11 @@ int cmd_summary(const std::string& given, const Raw& raw) {
   std::error_code ec;
   // the run's timeseries.csv given for its folder: the folder ("cannot read
   // DIR/timeseries.csv/timeseries.csv: Not a directory" said nothing useful)
-  const std::string dir = fs::path(given).filename() == "timeseries.csv" && fs::is_regular_file(given, ec)
-                              ? fs::path(given).parent_path().lexically_normal().string()
-                              : given;
+  std::string dir = given;
+  if (fs::path(given).filename() == "timeseries.csv" && fs::is_regular_file(given, ec)) {
+    dir = fs::path(given).parent_path().lexically_normal().string();
+    if (dir.empty()) dir = ".";  // the one in the folder beltsim runs in
+  }
   // a sweep's folder holds a run's folder per point, not a run's outputs
   if (!fs::exists(fs::path(dir) / "timeseries.csv", ec) && fs::exists(fs::path(dir) / "summary.csv", ec)) {
     std::fprintf(stderr,

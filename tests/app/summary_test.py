@@ -137,6 +137,9 @@ class Triangle(unittest.TestCase):
         code, out, err = run(["summary", os.path.join(self.out, "timeseries.csv"), "--from", "0.1"], self.dir)
         self.assertEqual(code, 0, err)
         self.assertEqual(out, self.table.replace("\ns.csv\ns.png\n", "\n"))
+        code, out, err = run(["summary", "timeseries.csv", "--from", "0.1"], self.out)  # in the run's folder
+        self.assertEqual(code, 0, err)
+        self.assertTrue(out.startswith("summary of . over"), out)
         # a sweep's folder: its points' folders hold the runs
         sweep = os.path.join(self.dir, "sweep")
         os.makedirs(sweep, exist_ok=True)
