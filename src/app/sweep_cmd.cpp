@@ -6,7 +6,10 @@
 #include <algorithm>
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <optional>
+#include <stdexcept>
 
 #include "app/commands.hpp"
 #include "io/csv_writer.hpp"
@@ -165,7 +168,18 @@ int sweep(const std::string& file, const Raw& raw, const script::Safety& s) {
   const OutputDir top = sw::claim_sweep_folder(dir);  // held to the end: one sweep at a time on the folder
   if (raw.collect) {
     int found = 0;
-    for (const sw::Point& p : points)
+    // the sweep's own folder whose points all died before writing a result (a Slurm array
+    // cancelled or timed out): its job scripts naming this sweep file, or a point's folder without
+    // a point.csv, are there, and the summary says 'not run' for each
+    bool ours = false;
+    {
+      std::ifstream job(fs::path(dir) / "sweep.sbatch");
+      const std::string text{std::istreambuf_iterator<char>(job), std::istreambuf_iterator<char>()};
+      ours = !text.empty() && text.find(fs::absolute(file).lexically_normal().string()) != std::string::npos;
+    }
+    for (const sw::Point& p : points) {
+      ours = ours ||
+             (fs::is_directory(fs::path(dir) / p.id, ec) && !fs::exists(fs::path(dir) / p.id / sw::kPointFile, ec));
       if (const std::optional<sw::PointResult> r = sw::read_point_result(dir, p)) {
         ++found;
         const std::optional<sw::Inputs> in = sw::parse_inputs(r->inputs);
@@ -173,7 +187,8 @@ int sweep(const std::string& file, const Raw& raw, const script::Safety& s) {
           throw std::runtime_error("--collect: " + dir + " holds the points of " + in->files.front().first +
                                    ", not of " + file + ": give " + file + "'s own folder (--out)");
       }
-    if (found == 0)
+    }
+    if (found == 0 && !ours)
       throw std::runtime_error("--collect: no point of " + file + " has run in " + dir +
                                " (a sweep's folder holds a folder for each point): nothing to collect");
   }

@@ -491,6 +491,18 @@ class Sweep(unittest.TestCase):
         p = self.run_beltsim("sweep", GRID, "--collect", "--out", "none", ok=(1,))
         self.assert_one_line_error(p, "--collect: none is not a folder: nothing to collect")
         self.assertFalse(os.path.exists(self.path("none")))
+        # the sweep's own folder whose points all died before a result (a Slurm array cancelled): its
+        # job scripts or a point's folder are there, and every point is 'not run'
+        for what in ("sweep.sbatch", "3"):
+            os.makedirs(self.path("died"), exist_ok=True)
+            if what == "3":
+                os.makedirs(self.path("died", "3"))
+            else:
+                with open(self.path("died", what), "w") as f:
+                    f.write("srun beltsim sweep '%s' --out ... --point $SLURM_ARRAY_TASK_ID\n" % GRID)
+            p = self.run_beltsim("sweep", GRID, "--collect", "--out", "died", ok=(1,))
+            self.assertIn("0 ok, 0 failed, 6 not run", p.stderr)
+            shutil.rmtree(self.path("died"))
         # the sweep's own folder, one point run: merged, the others not run
         p = self.run_beltsim("sweep", GRID, "--collect", "--out", "grid", ok=(1,))
         self.assertIn("1 ok, 0 failed, 5 not run", p.stderr)
