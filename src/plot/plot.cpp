@@ -30,6 +30,7 @@ namespace fs = std::filesystem;
 struct Group {
   std::string unit;
   std::vector<int> series;
+  bool unknown = false;  // a series of unknown unit, alone (Series::unknown_unit)
 };
 
 std::string last_component(const std::string& name) {
@@ -211,8 +212,9 @@ std::string plot_script(const PlotSpec& spec, const std::string& png) {
     bool any = false;
     for (size_t i = 0; i < s.t.size() && !any; ++i) any = std::isfinite(s.t[i]) && std::isfinite(s.y[i]);
     if (!any) throw std::runtime_error("plot " + spec.file + ": series '" + s.name + "' has no finite values");
-    auto g = std::find_if(groups.begin(), groups.end(), [&](const Group& x) { return x.unit == s.unit; });
-    if (g == groups.end() || s.unknown_unit) g = groups.insert(groups.end(), Group{s.unit, {}});
+    auto g = std::find_if(groups.begin(), groups.end(),
+                          [&](const Group& x) { return x.unit == s.unit && !x.unknown && !s.unknown_unit; });
+    if (g == groups.end()) g = groups.insert(groups.end(), Group{s.unit, {}, s.unknown_unit});
     g->series.push_back(static_cast<int>(k));
   }
 
@@ -381,7 +383,10 @@ bool is_summary(const std::string& csv_path) {
   return names.size() > 2 && names[0] == "point" && std::find(names.begin(), names.end(), "status") != names.end();
 }
 
-void plot_summary(const std::string& csv_path, const std::vector<std::string>& columns, const std::string& out_png) {
+}  // namespace
+
+PlotSpec summary_spec(const std::string& csv_path, const std::vector<std::string>& columns,
+                      const std::string& out_png) {
   if (columns.size() < 2)
     throw std::runtime_error(csv_path + " is a sweep's summary: name the x column and at least one y column, e.g. "
                              "beltsim plot " + csv_path + " pretension slip");
@@ -406,7 +411,13 @@ void plot_summary(const std::string& csv_path, const std::vector<std::string>& c
     const std::string name = known ? trim(h.substr(0, h.rfind('['))) : h;  // the unit drawn once
     spec.series.push_back(Series{name, known ? header_unit(h) : "", x, table.column(h), !known});
   }
-  plot_png(spec);
+  return spec;
+}
+
+namespace {
+
+void plot_summary(const std::string& csv_path, const std::vector<std::string>& columns, const std::string& out_png) {
+  plot_png(summary_spec(csv_path, columns, out_png));
 }
 
 }  // namespace

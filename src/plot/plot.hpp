@@ -40,6 +40,10 @@ struct PlotSpec {
   std::vector<Mark> marks = {};    // drawn where they fall inside the x range (every panel; labels on the top one)
 };
 
+// The plot of columns of a sweep's summary.csv (x the first, a mark per point): a figure's unit
+// is the one in brackets at the end of its name, else unknown (its own axis)
+PlotSpec summary_spec(const std::string& csv_path, const std::vector<std::string>& columns, const std::string& out_png);
+
 // Writes spec.file. Throws std::runtime_error naming the problem: no series, a series with no
 // finite values or t and y of different lengths, a missing folder, gnuplot missing or failing
 // (with gnuplot's own message).

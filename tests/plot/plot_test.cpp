@@ -240,6 +240,28 @@ TEST(Plot, SeriesOfUnknownUnitsGetAxesOfTheirOwn) {
   EXPECT_NE(plot_script(spec, "p.png").find("set multiplot layout 3,1"), std::string::npos);
 }
 
+// a sweep summary's columns: a unit from brackets only ("slip" is no element's slip in m/s here);
+// a bracketed dimensionless figure shares no axis with one of unknown unit
+TEST(Plot, ASweepSummarysUnitsComeFromBracketsOnly) {
+  const fs::path d = dir("summary_units");
+  const std::string csv = write(d / "summary.csv",
+                                "point,pretension,status,slip,load [N],ratio [1]\n0,300,ok,-0.03,600,0.1\n"
+                                "1,500,ok,-0.02,1000,0.2\n");
+  const PlotSpec spec = summary_spec(csv, {"pretension", "slip", "load [N]", "ratio [1]"}, (d / "p.png").string());
+  ASSERT_EQ(spec.series.size(), 3u);
+  EXPECT_EQ(spec.series[0].name, "slip");
+  EXPECT_EQ(spec.series[0].unit, "");
+  EXPECT_TRUE(spec.series[0].unknown_unit);
+  EXPECT_EQ(spec.series[1].name, "load");
+  EXPECT_EQ(spec.series[1].unit, "N");
+  EXPECT_FALSE(spec.series[1].unknown_unit);
+  EXPECT_EQ(spec.series[2].unit, "");
+  EXPECT_FALSE(spec.series[2].unknown_unit);
+  EXPECT_EQ(spec.x_label, "pretension");
+  // three axes: slip's own, N, and the dimensionless ratio's (not slip's)
+  EXPECT_NE(plot_script(spec, "p.png").find("set multiplot layout 3,1"), std::string::npos);
+}
+
 // events.csv's rows as marks: one per time, labels "what value" shortened, a cut row left out
 TEST(Plot, EventsBecomeMarks) {
   const fs::path d = dir("events");
