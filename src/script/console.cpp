@@ -222,14 +222,16 @@ int run_console(const std::optional<std::string>& script, const std::vector<std:
         std::fprintf(stderr, "%s\n", lua_tostring(L, -1));
         lua_pop(L, 1);
         failed = true;
-      } else if (ctx.stopped_runs.clear(), ctx.page_changes.clear(), ctx.progress_ended = false, execute(L)) {
+      } else if (ctx.stopped_runs.clear(), ctx.page_changes.clear(), ctx.progress_ended = false,
+                 ctx.interrupted = false, execute(L)) {
         commands.push_back(replayable(L, chunk, expression, ctx.stopped_runs, ctx.page_changes));
       } else {
         failed = true;
       }
       // the terminal echoed ^C where the run was stopped; unless a progress line ended there, the
       // next prompt would follow it on that line ("^C> ")
-      if (interactive && tty_out && !ctx.stopped_runs.empty() && !ctx.progress_ended) std::printf("\n");
+      // (a live simulation's run or a scene:run, both of which set ctx.interrupted)
+      if (interactive && tty_out && ctx.interrupted && !ctx.progress_ended) std::printf("\n");
       command_done();
       chunk.clear();
     }

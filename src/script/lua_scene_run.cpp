@@ -55,7 +55,7 @@ int l_scene_run(lua_State* L) {
   RunResult res;
   try {
     const HostWork work;  // beltsim's own work, not Lua code (lua_clock.hpp)
-    ProgressLine line(progress);
+    ProgressLine line(progress, 0, &ctx->progress_ended);
     LiveFeed feed(ctx->serve.get(), ctx->stop, &ctx->page_changes);
     ctx->page_sim = nullptr;  // the page shows this run now, which ends with this call
     res = run(*sc, rs, ctx->stop, line.callback(), [&](Simulation& sim, double t) {
