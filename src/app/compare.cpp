@@ -149,7 +149,8 @@ int compare_csvs(const CompareOptions& o) {
     if (!units.count(unit)) {
       std::string have;
       for (const std::string& u : units) have += (have.empty() ? "" : ", ") + (u.empty() ? std::string("1") : u);
-      throw UsageError("--atol " + unit + "=...: no column of " + o.a + " has the unit '" + unit +
+      const std::string shown = unit.empty() ? "1" : unit;  // the dimensionless, as typed
+      throw UsageError("--atol " + shown + "=...: no column of " + o.a + " has the unit '" + shown +
                        "' (its units: " + have + ")");
     }
   plot::CsvComparison c;

@@ -9,6 +9,7 @@
 
 #include "integrate/integrator.hpp"
 #include "integrate/stepper.hpp"
+#include "io/output_dir.hpp"
 #include "script/script_args.hpp"
 #include "sim/run_table.hpp"
 
@@ -21,9 +22,7 @@ double number(const std::string& option, const std::string& text) {
 }
 
 void require_png(const std::string& option, const std::string& path) {
-  std::string ext = std::filesystem::path(path).extension().string();
-  for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-  if (ext != ".png") throw UsageError(option + " " + path + ": beltsim draws PNG pictures: give a name ending in .png");
+  if (const std::string bad = png_name_problem(path); !bad.empty()) throw UsageError(option + " " + path + ": " + bad);
 }
 
 namespace {

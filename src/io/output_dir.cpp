@@ -4,9 +4,11 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <cctype>
 #include <cerrno>
 #include <cstdlib>
 #include <cstring>
+#include <filesystem>
 #include <mutex>
 #include <stdexcept>
 
@@ -348,6 +350,12 @@ void write_file_whole(const OutputDir& dir, const std::string& name, std::string
 void write_file_whole(const std::string& path, std::string_view text) {
   const OutputPlace p = output_place(path, false);
   write_file_whole(p.dir, p.name, text);
+}
+
+std::string png_name_problem(const std::string& path) {
+  std::string ext = std::filesystem::path(path).extension().string();
+  for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return ext == ".png" ? "" : "beltsim draws PNG pictures: give a name ending in .png";
 }
 
 }  // namespace beltsim

@@ -136,4 +136,8 @@ void write_file_whole(const OutputDir& dir, const std::string& name, std::string
 // the same for a path (its folder must exist)
 void write_file_whole(const std::string& path, std::string_view text);
 
+// "" when a picture's path names a PNG file (.png, any case), the only kind beltsim draws, else
+// why not (a user's x.jpg got PNG bytes under that name)
+std::string png_name_problem(const std::string& path);
+
 }  // namespace beltsim

@@ -4,6 +4,7 @@
 #include <filesystem>
 
 #include "io/number_text.hpp"
+#include "io/output_dir.hpp"
 #include "io/suggest.hpp"
 #include "plot/plot.hpp"
 #include "render/recorder.hpp"
@@ -42,6 +43,8 @@ int l_show(lua_State* L) {
     require_table(L, 2, "sim:show");
     fs = to_frames(L, 2, "sim:show", {"quantity", "range", "levels", "magnify", "view", "size", "file"});
     if (auto f = opt_string(L, 2, "file", "sim:show")) file = *f;
+    if (const std::string bad = png_name_problem(file); !file.empty() && !bad.empty())
+      fail_on(L, "sim:show.file", "'" + file + "': " + bad);
   }
   if (file.empty()) file = "show_" + time_tag(s.now()) + ".png";
   file = output_path(s.settings(), file);
@@ -86,6 +89,8 @@ int l_plot(lua_State* L) {
     }
     if (auto v = opt_number(L, 2, "from", "sim:plot")) from = *v;
     if (auto f = opt_string(L, 2, "file", "sim:plot")) file = *f;
+    if (const std::string bad = png_name_problem(file); !file.empty() && !bad.empty())
+      fail_on(L, "sim:plot.file", "'" + file + "': " + bad);
   }
   const std::vector<std::string> valid = s.columns();
   for (const std::string& c : columns) {

@@ -7,6 +7,7 @@
 #include <optional>
 #include <string>
 
+#include "io/output_dir.hpp"
 #include "plot/summary.hpp"
 #include "script/context.hpp"
 #include "script/lua_check.hpp"
@@ -78,6 +79,8 @@ int summary(lua_State* L, const Context& ctx, const std::string& what, const std
     if (auto v = opt_number(L, idx, "to", what)) to = *v;
     csv = opt_string(L, idx, "csv", what);
     png = opt_string(L, idx, "plot", what);
+    if (const std::string bad = png ? png_name_problem(*png) : ""; !bad.empty())
+      fail_on(L, what + ".plot", "'" + *png + "': " + bad);
   }
   if (!(from <= to))
     fail(L, what + ": from = " + std::to_string(from) + " s lies after to = " + std::to_string(to) + " s");

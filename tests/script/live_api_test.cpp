@@ -407,6 +407,11 @@ TEST(LiveApi, BadCallsNameFileLineAndWhat) {
            {"sim:every(0, function() end)", "the interval must be > 0 s"},
            {"sim:show{quantiy = 'mu'}", "did you mean 'quantity'"},
            {"sim:plot{'driver.omga'}", "did you mean 'driver.omega'"},
+           // a picture is a PNG: another name got PNG bytes
+           {"sim:plot{'driver.omega', file = 'p.jpg'}",
+            "sim:plot.file: 'p.jpg': beltsim draws PNG pictures: give a name ending in .png"},
+           {"sim:show{file = 's.gif'}", "sim:show.file: 's.gif': beltsim draws PNG pictures"},
+           {"sim:summary{plot = 's.jpg'}", "sim:summary.plot: 's.jpg': beltsim draws PNG pictures"},
            {"sim:close(); sim:advance(0.1)", "the simulation is closed"},
            // an assignment says what to do instead (it said 'attempt to index a beltsim.Simulation value')
            {"sim.t = 5", "sim.t is read-only: the simulation's time moves by running it (sim:run_to(t)"},
