@@ -75,9 +75,9 @@ void print_table(const Scene& sc, const ModeAnalysis& a) {
   if (!locked.empty())
     std::printf(
         "mode%s %s at half the passing rate, %.2f Hz: a real negative Floquet multiplier (the motion flips "
-        "sign from one passing to the next), where the passing locks a mode of the drive near that frequency; "
-        "the drive's own frequency there is unknown, and a belt of more elements passes faster and frees it "
-        "(docs/modes.md)\n",
+        "sign from one passing to the next), where the passing locks a mode of the drive near that frequency "
+        "(a parametric resonance of the element belt); the drive as modelled rings there, and a belt of more "
+        "elements passes faster and frees it (docs/modes.md)\n",
         locked.find(',') == std::string::npos ? "" : "s", locked.c_str(), half);
   if (a.velocity_defect > kSteadyVelocity || a.position_defect > kSteadyPosition)
     std::fprintf(stderr,
