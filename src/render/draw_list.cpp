@@ -241,16 +241,36 @@ FrameBuilder::FrameBuilder(const Scene& sc, const FrameSettings& fs, Font* font)
   const double line = 1.4 * font_px_;
   panel_ = std::max(0.17 * fs.width, 11.0 * font_px_);
   double widest = 0;
+  std::vector<double> widths;
   for (const Pulley& p : m.pulleys) {
     std::string longest = p.name + ": \u03c9 = \u2212000.00 rad/s, slip \u2212000.000 m/s";
     if (p.arm >= 0) longest += ", arm \u22120.000 rad";
     if (p.coupling >= 0) longest += ", rotor \u2212000.00 rad/s";
     longest += "   ";
-    widest = std::max(widest, font_ ? static_cast<double>(font_->width(longest, font_px_))
-                                    : (30.0 + (p.arm >= 0) * 8 + (p.coupling >= 0) * 10) * font_px_);
+    widths.push_back(font_ ? static_cast<double>(font_->width(longest, font_px_))
+                           : (30.0 + (p.arm >= 0) * 8 + (p.coupling >= 0) * 10) * font_px_);
+    widest = std::max(widest, widths.back());
   }
+  const int np = m.n_p();
+  const double x0 = 0.6 * font_px_;
   columns_ = std::max(1, static_cast<int>((fs.width - panel_) / widest));
-  top_ = (1.5 + (m.n_p() + columns_ - 1) / columns_) * line;
+  line_at_.clear();
+  for (int j = 0; j < np; ++j) line_at_.push_back({x0 + (j % columns_) * (fs.width - panel_) / columns_, j / columns_});
+  // three pulleys or more in one column (a decoupled alternator's rotor or an arm lengthens a
+  // line): two columns across the whole width, above the bar, where they fit, the first half of
+  // the pulleys in the first (six lines took a quarter of a serpentine drive's frame from it)
+  if (columns_ == 1 && np > 2) {
+    const int rows = (np + 1) / 2;
+    double first = 0, second = 0;
+    for (int j = 0; j < np; ++j) (j < rows ? first : second) = std::max(j < rows ? first : second, widths[j]);
+    if (x0 + first + second <= fs.width) {
+      columns_ = 2, band_wide_ = true;
+      for (int j = 0; j < np; ++j) line_at_[j] = {j < rows ? x0 : x0 + first, j < rows ? j : j - rows};
+    }
+  }
+  int rows = 0;
+  for (const auto& [x, row] : line_at_) rows = std::max(rows, row + 1);
+  top_ = (1.5 + rows) * line;
   const Vec2 area0(0, top_), area1(fs.width - panel_, fs.height);
   cam_.area_centre = 0.5 * (area0 + area1);
   Vec2 lo_w(1e300, 1e300), hi_w(-1e300, -1e300);
@@ -593,15 +613,15 @@ void FrameBuilder::draw_text_and_legend(double t, const Observation& seen, doubl
                      " s      colour: " + qi.label + (*qi.unit ? std::string(" [") + qi.unit + "]" : "");
   if (fs_.magnify != 1) head += "      deformation \u00d7" + format("%g", fs_.magnify);
   out.boxed_text(Vec2(x0, line), head, font_px_, kInk, paper);
-  const double col_w = (fs_.width - panel_) / columns_;
   for (int j = 0; j < m.n_p(); ++j)
-    out.boxed_text(Vec2(x0 + (j % columns_) * col_w, line * (2 + j / columns_)), pulley_text(j, seen.pulleys[j]),
-                   font_px_, kInk, paper);
+    out.boxed_text(Vec2(line_at_[j].first, line * (2 + line_at_[j].second)), pulley_text(j, seen.pulleys[j]), font_px_,
+                   kInk, paper);
 
   // colour bar: bands from lo (bottom) to hi (top), edges labelled where they fit, on the
   // background's colour (in a zoomed view the drawing reaches under the panel)
-  out.quad(Vec2(area_right, 0), Vec2(fs_.width, 0), Vec2(fs_.width, fs_.height), Vec2(area_right, fs_.height),
-           out.background);
+  const double panel_top = band_wide_ ? top_ : 0;  // (under a wide text band, from its bottom)
+  out.quad(Vec2(area_right, panel_top), Vec2(fs_.width, panel_top), Vec2(fs_.width, fs_.height),
+           Vec2(area_right, fs_.height), out.background);
   const double panel_x = fs_.width - panel_ + 0.5 * font_px_;
   const double bar_w = std::max(8.0, 0.022 * fs_.width);
   const double bar_top = top_ + 2.2 * line;

@@ -157,6 +157,9 @@ class FrameBuilder {
   std::vector<double> sink_;    // per route arc: static penetration of its pulley [m]
   int font_px_ = 14;
   int columns_ = 1;             // pulley lines per row of the text band
+  // each pulley's line in the text band: its x [px] and its row (0: the first under the time line)
+  std::vector<std::pair<double, int>> line_at_;
+  bool band_wide_ = false;      // the text band runs over the panel's width too (above the bar)
   double top_ = 0, panel_ = 0;  // [px] height of the text band, width of the colour-bar panel
   // where each pulley's name goes, from its centre [px] (chosen once, so it stays put frame to
   // frame): on the disc or beside it; none when it has no place in view

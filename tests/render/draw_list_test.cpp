@@ -582,6 +582,62 @@ TEST_F(Fixture, PulleyNamesSitByTheirOwnPulley) {
   }
 }
 
+// the pulleys' lines of the text band: inside the frame, none over another or over the colour
+// bar's texts, in at most two rows per line at 1280×720 for the serpentine's six pulleys with a
+// tensioner arm (one column of six took a quarter of the frame from the drawing)
+TEST_F(Fixture, PulleyLinesShareTheTextBandWithoutOverlap) {
+  SceneDef d;
+  d.pulleys = {pulley("crankshaft", {0.09, -0.27}, 0.08, WrapSide::inside),
+               pulley("tensioner", {0.015, -0.12}, 0.031, WrapSide::back),
+               pulley("alternator", {0, 0}, 0.027, WrapSide::inside),
+               pulley("idler", {0.08, 0.01}, 0.03, WrapSide::back),
+               pulley("pump", {0.16, -0.06}, 0.056, WrapSide::inside),
+               pulley("compressor", {0.24, -0.21}, 0.06, WrapSide::inside)};
+  d.pulleys[1].tensioner = TensionerDef{};
+  d.pulleys[1].tensioner->pivot = {0.075, -0.14};
+  d.pulleys[1].tensioner->inertia = 1e-3, d.pulleys[1].tensioner->stiffness = 30;
+  d.belt.elements = 200;
+  d.belt.pretension = 300;
+  d.belt.loop_sense = -1;
+  const Scene sc = test::moving_scene(d);
+  for (int width : {640, 960, 1280}) {
+    FrameSettings f = fs();
+    f.width = width, f.height = width * 9 / 16;
+    FrameBuilder b(sc, f, &font);
+    DrawList dl;
+    b.build(0, sc.y0.data(), dl);
+    std::vector<const DrawList::TextBox*> lines, others;
+    for (const DrawList::TextBox& t : dl.boxes) {
+      bool line = false;
+      for (const Pulley& p : sc.model.pulleys) line = line || t.text.rfind(p.name + ": ", 0) == 0;
+      (line ? lines : others).push_back(&t);
+    }
+    ASSERT_EQ(lines.size(), sc.model.pulleys.size()) << width;
+    double bottom = 0;
+    for (const DrawList::TextBox* t : lines) {
+      EXPECT_GE(t->lo.x(), 0) << width << ": " << t->text;
+      EXPECT_LE(t->hi.x(), width) << width << ": " << t->text;
+      bottom = std::max(bottom, t->hi.y());
+      auto apart = [](const DrawList::TextBox* a, const DrawList::TextBox* c) {
+        return a->hi.x() <= c->lo.x() || c->hi.x() <= a->lo.x() || a->hi.y() <= c->lo.y() || c->hi.y() <= a->lo.y();
+      };
+      for (const DrawList::TextBox* o : lines) {
+        if (o != t) {
+          EXPECT_TRUE(apart(t, o)) << width << ": " << t->text << " over " << o->text;
+        }
+      }
+      for (const DrawList::TextBox* o : others) {  // below the time line: the bar's, the names'
+        if (o->lo.y() > 2 * f.height / 40.0 * 1.4) {
+          EXPECT_TRUE(apart(t, o)) << width << ": " << t->text << " over " << o->text;
+        }
+      }
+    }
+    if (width == 1280) {
+      EXPECT_LT(bottom, 5 * 1.4 * 18) << "more than three rows of pulley lines";
+    }
+  }
+}
+
 TEST(Text, Utf8AndGlyphs) {
   EXPECT_EQ(decode_utf8("t = \u03c9 \u00d7"), std::u32string(U"t = \u03c9 \u00d7"));
   Font f;
