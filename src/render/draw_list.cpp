@@ -485,9 +485,15 @@ void FrameBuilder::build(double t, const double* y, DrawList& out, const Drive* 
     const double in = std::min(0.9 * px, 0.2 * h), along = std::min(0.6 * px, 0.2 * len);
     out.band(P(A + along * d - (h - in) * oa), P(B - along * d - (h - in) * ob), P(B - along * d + (h - in) * ob),
              P(A + along * d + (h - in) * oa), el.colour);
+    // a wet element: two dashes along its back, a broken line no colour map's fill is (the slip
+    // map's blue beside a solid blue band read alike)
     if (el.wet)
-      out.band(P(A + (h + 0.3 * px) * oa), P(B + (h + 0.3 * px) * ob), P(B + (h + band_w) * ob),
-               P(A + (h + band_w) * oa), kWet);
+      for (const auto& [s0, s1] : {std::pair{0.08, 0.42}, std::pair{0.58, 0.92}}) {
+        const Vec2 a = A + s0 * (B - A), b = A + s1 * (B - A);
+        const Vec2 oa0 = (oa + s0 * (ob - oa)).normalized(), ob0 = (oa + s1 * (ob - oa)).normalized();
+        out.band(P(a + (h + 0.3 * px) * oa0), P(b + (h + 0.3 * px) * ob0), P(b + (h + band_w) * ob0),
+                 P(a + (h + band_w) * oa0), kWet);
+      }
     if (el.slipping)
       out.band(P(A - (h + band_w) * oa), P(B - (h + band_w) * ob), P(B - (h + 0.3 * px) * ob),
                P(A - (h + 0.3 * px) * oa), kSlip);
@@ -670,7 +676,16 @@ void FrameBuilder::draw_text_and_legend(double t, const Observation& seen, doubl
   if (qi.is_signed) out.boxed_text(Vec2(panel_x, ly), "+ : along travel", font_px_, kInk, paper), ly += line;
   bool any_wet = false;
   for (const ElementDraw& el : out.elements) any_wet = any_wet || el.wet;
-  if (any_wet) swatch(kWet, "wet (\u03bc < " + format("%g", mu_dry) + ")");
+  if (any_wet) {  // dashed, as on the belt
+    for (int k = 0; k < 3; ++k) {
+      const double d0 = panel_x + bar_w * k / 3.0, d1 = d0 + 0.6 * bar_w / 3.0;
+      out.quad(Vec2(d0, ly - 0.5 * font_px_), Vec2(d1, ly - 0.5 * font_px_), Vec2(d1, ly - 0.2 * font_px_),
+               Vec2(d0, ly - 0.2 * font_px_), kWet);
+    }
+    out.boxed_text(Vec2(panel_x + bar_w + 0.5 * font_px_, ly), "wet (\u03bc < " + format("%g", mu_dry) + ")", font_px_,
+                   kInk, paper);
+    ly += line;
+  }
   swatch(kSlip, "slipping");
   if (arrows) {
     out.arrow(Vec2(panel_x, ly - 0.35 * font_px_), Vec2(panel_x + bar_w, ly - 0.35 * font_px_), arrow_w,
