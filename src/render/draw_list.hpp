@@ -10,7 +10,7 @@
 //   the joint with its predecessor to the joint with its successor, coloured by the chosen
 //   quantity on a banded colour map; the centres' deviation from the nominal path (the pitch
 //   line, sunk by the static penetration on each pulley) magnified by `magnify`;
-// - wet elements (μ below the belt's largest μ) with a blue band along the outer (back) edge;
+// - wet elements (μ below the belt's largest μ) with a dashed blue line along the outer (back) edge;
 // - elements that slip (model/observables.hpp: |slip| > Δv, outside the friction band) with a
 //   magenta band along the inner edge (a colour neither colour map has), so stick and slip arcs
 //   read at a glance whatever the quantity;
@@ -18,7 +18,8 @@
 //   each span (in a view that shows no span's middle, beside the visible element nearest the
 //   centre);
 // - a colour bar with the quantity, its unit, its range and band edges; a legend;
-// - time, each pulley's speed and its slip (belt speed minus rim speed) as text.
+// - time, each pulley's speed and its slip (belt speed minus rim speed) as text, the pulleys' lines
+//   in columns beside the colour bar, or in two across the whole width above it.
 // Text stands on a box of the background's colour, so it stays readable where the belt runs under
 // it (zoomed views).
 #pragma once
