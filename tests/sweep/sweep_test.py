@@ -2,9 +2,9 @@
 """`beltsim sweep` (docs/sweeps.md) through the program itself: the grid's order and ids, --list,
 --point, a failing point among good ones, the --set cross form, the summary against the points
 run one by one, resumption after a Ctrl-C and after a kill (only the points not done run again),
-`beltsim plot` on a summary, errors after the points are known (a folder that cannot be written,
-sbatch missing) said in one line with nothing finished lost, and a second sweep on a folder in use
-refused. Waits are for events (a point's point.csv, a file the test writes), never fixed sleeps.
+`beltsim plot` on a summary (errors after the points are known, --collect's refusals and a folder
+in use: sweep_errors_test.py). Waits are for events (a point's point.csv, a file the test
+writes), never fixed sleeps.
 
 usage: sweep_test.py BELTSIM
 """
@@ -42,19 +42,6 @@ return beltsim.sweep {
 }
 """  # [s] for one event; the points take a fraction of a second each
 
-# each point waits until the file GATE exists (the script's folder is readable in the sandbox)
-GATED = """
-return beltsim.sweep {
-  grid = { k = {0, 1} },
-  run = function(p)
-    while true do
-      local f = io.open(%r)
-      if f then f:close() break end
-    end
-    return { twice = 2 * p.k }
-  end,
-}
-"""
 
 
 # a sweep whose driven pulley's damping is in the sweep file and its belt's mass in a module it
@@ -87,7 +74,9 @@ def rows(path):
         return list(csv.reader(f))
 
 
-class Sweep(unittest.TestCase):
+class SweepCase(unittest.TestCase):
+    """a test's own folder, beltsim run in it, waits (sweep_errors_test.py's tests too)"""
+
     def setUp(self):
         self.dir = tempfile.mkdtemp(prefix="beltsim_sweep_")
         self.addCleanup(shutil.rmtree, self.dir, True)
@@ -107,6 +96,8 @@ class Sweep(unittest.TestCase):
             self.assertLess(time.monotonic(), end, "no " + path)
             time.sleep(0.005)
 
+
+class Sweep(SweepCase):
     def test_grid_order_and_ids(self):
         # names in alphabetical order, the last varying fastest; ids 0..n-1
         out = self.run_beltsim("sweep", GRID, "--list").stdout.splitlines()
@@ -442,173 +433,6 @@ class Sweep(unittest.TestCase):
         self.assertGreater(os.path.getsize(png), 5000)
         p = self.run_beltsim("plot", "out/grid/summary.csv", "pretension", ok=(1,))
         self.assertIn("name the x column", p.stderr)
-
-    def gated(self):
-        """the GATED sweep in this test's folder and its gate"""
-        script, gate = self.path("gated.lua"), self.path("go")
-        with open(script, "w") as f:
-            f.write(GATED % gate)
-        return script, gate
-
-    def processes_here(self):
-        """the processes (not zombies) working in this test's folder: the sweep's and its points'"""
-        found = []
-        for pid in os.listdir("/proc"):
-            try:
-                if pid.isdigit() and os.readlink("/proc/%s/cwd" % pid) == self.dir and alive(int(pid)):
-                    found.append(int(pid))
-            except OSError:  # ended meanwhile, or not ours to read
-                pass
-        return found
-
-    def assert_one_line_error(self, p, *words):
-        self.assertEqual(p.returncode, 1, p.stderr)
-        self.assertNotIn("terminate", p.stderr)
-        # the error, said once, on the last line (after the notes of a point's run)
-        last = p.stderr.splitlines()[-1]
-        self.assertTrue(last.startswith("beltsim: "), p.stderr)
-        self.assertEqual(p.stderr.count(last[len("beltsim: "):]), 1, p.stderr)
-        for w in words:
-            self.assertIn(w, last)
-
-    def test_collect_refuses_a_folder_of_no_point_of_the_sweep(self):
-        # --collect over another sweep's folder replaced its summary.csv with 'outdated' rows; over a
-        # run's folder or a missing one it wrote a summary of 'not run' rows
-        self.run_beltsim("sweep", GRID, "--point", "0", "--out", "grid")
-        before = rows(self.path("grid", "0", "point.csv"))
-        shutil.copy(DRIVE, self.dir)
-        shutil.copy(GRID, self.path("other.lua"))  # another sweep file of the same points
-        p = self.run_beltsim("sweep", "other.lua", "--collect", "--out", "grid", ok=(1,))
-        self.assert_one_line_error(p, "--collect: grid holds the points of %s, not of other.lua" % GRID)
-        p = self.run_beltsim("sweep", BAD, "--collect", "--out", "grid", ok=(1,))  # points of other parameters
-        self.assert_one_line_error(p, "--collect: no point of %s has run in grid" % BAD)
-        self.assertFalse(os.path.exists(self.path("grid", "summary.csv")))
-        self.assertEqual(rows(self.path("grid", "0", "point.csv")), before)
-        os.makedirs(self.path("run"))
-        p = self.run_beltsim("sweep", GRID, "--collect", "--out", "run", ok=(1,))
-        self.assert_one_line_error(p, "--collect: no point of %s has run in run" % GRID, "nothing to collect")
-        self.assertEqual(os.listdir(self.path("run")), [])
-        p = self.run_beltsim("sweep", GRID, "--collect", "--out", "none", ok=(1,))
-        self.assert_one_line_error(p, "--collect: none is not a folder: nothing to collect")
-        self.assertFalse(os.path.exists(self.path("none")))
-        # the sweep's own folder whose points all died before a result (a Slurm array cancelled): its
-        # job scripts or a point's folder are there, and every point is 'not run'
-        for what in ("sweep.sbatch", "3"):
-            os.makedirs(self.path("died"), exist_ok=True)
-            if what == "3":
-                os.makedirs(self.path("died", "3"))
-            else:
-                with open(self.path("died", what), "w") as f:
-                    f.write("srun beltsim sweep '%s' --out ... --point $SLURM_ARRAY_TASK_ID\n" % GRID)
-            p = self.run_beltsim("sweep", GRID, "--collect", "--out", "died", ok=(1,))
-            self.assertIn("0 ok, 0 failed, 6 not run", p.stderr)
-            shutil.rmtree(self.path("died"))
-        # the sweep's own folder, one point run: merged, the others not run
-        p = self.run_beltsim("sweep", GRID, "--collect", "--out", "grid", ok=(1,))
-        self.assertIn("1 ok, 0 failed, 5 not run", p.stderr)
-
-    def test_sbatch_missing_is_an_error_not_an_abort(self):
-        empty = self.path("bin")
-        os.mkdir(empty)
-        p = subprocess.run([BELTSIM, "sweep", GRID, "--slurm", "--submit"], cwd=self.dir, capture_output=True,
-                           text=True, timeout=300, env=dict(os.environ, PATH=empty))
-        self.assert_one_line_error(p, "sbatch", "PATH")
-        self.assertTrue(os.path.exists(self.path("out", "grid", "sweep.sbatch")))
-
-    def test_slurm_scripts_quote_every_value_or_refuse_it(self):
-        # a folder whose name the shell (a space, ', #, $) and Slurm's --output pattern (%x, the
-        # job's name) would both read otherwise: quoted for each, and for the submit hint
-        folder = self.path("mu%x 'q' #1 $HOME")
-        p = self.run_beltsim("sweep", GRID, "--slurm", "--out", folder)
-        with open(os.path.join(folder, "sweep.sbatch")) as f:
-            self.assertIn('\n#SBATCH --output="%s/slurm-%%A_%%a.out"\n' % folder.replace("%", "%%"), f.read())
-        for name in ("sweep.sbatch", "collect.sbatch"):
-            check = subprocess.run(["sh", "-n", os.path.join(folder, name)], capture_output=True, text=True)
-            self.assertEqual(check.returncode, 0, check.stderr)
-        quoted = "'%s/sweep.sbatch'" % folder.replace("'", "'\\''")
-        self.assertIn("jid=$(sbatch --parsable %s)" % quoted, p.stderr)
-        # a line break in --out, in the sweep file's path or its name would end a line of the
-        # script and run the rest as a command: refused, nothing made
-        odd = self.path("x\ntouch pwned")
-        os.mkdir(odd)
-        shutil.copy(GRID, os.path.join(odd, "grid.lua"))
-        shutil.copy(GRID, self.path("g\nrid.lua"))
-        for args in ([GRID, "--out", "a\nb"], [GRID, "--out", "a\r\nb"], [GRID, "--out", "x\n#SBATCH --wrap=touch pwned"],
-                     [os.path.join(odd, "grid.lua"), "--out", "odd"], [self.path("g\nrid.lua"), "--out", "odd"]):
-            p = self.run_beltsim("sweep", *args, "--slurm", ok=(2,))
-            self.assertIn("control character", p.stderr)
-            self.assertNotIn("\ntouch", p.stderr)
-        self.assertEqual(sorted(os.listdir(self.dir)), sorted(["g\nrid.lua", "mu%x 'q' #1 $HOME", "x\ntouch pwned"]))
-        # times and partitions Slurm would not take, or would take as no limit
-        for args in (["--time", "-1"], ["--time=0"], ["--time", "1-2-3"], ["--partition=-x"], ["--partition", "a,,b"]):
-            p = self.run_beltsim("sweep", GRID, "--slurm", "--out", "t", *args, ok=(2,))
-            self.assertIn(args[0].split("=")[0] + ":", p.stderr)
-        self.assertFalse(os.path.exists(self.path("t")))
-
-    def test_an_sbatch_that_prints_megabytes_is_an_error_of_one_short_line(self):
-        # 50 MB of digits on one line was taken whole as a job id
-        fake = self.path("bin")
-        os.mkdir(fake)
-        with open(os.path.join(fake, "sbatch"), "w") as f:
-            f.write("#!/bin/sh\nhead -c 50000000 /dev/zero | tr '\\0' 7\n")
-        os.chmod(os.path.join(fake, "sbatch"), 0o755)
-        p = subprocess.run([BELTSIM, "sweep", GRID, "--slurm", "--submit"], cwd=self.dir, capture_output=True,
-                           text=True, timeout=300, env=dict(os.environ, PATH=fake + ":" + os.environ["PATH"]))
-        self.assert_one_line_error(p, "sbatch", "printed more than 65536 bytes")
-        self.assertLess(len(p.stderr), 2000)
-        self.assertEqual(p.stdout.count("\n"), 2, p.stdout)  # the scripts' paths, no job ids
-
-    def test_a_folder_that_cannot_be_written_is_an_error_not_an_abort(self):
-        with open(self.path("blocker"), "w") as f:
-            f.write("a file, not a folder\n")
-        for mode in ([], ["--collect"], ["--slurm"]):
-            p = self.run_beltsim("sweep", GRID, "--out", "blocker/sweep", *mode, ok=(0, 1, 2, 134, -6))
-            self.assert_one_line_error(p, "blocker/sweep")
-        # a point's result that cannot be written (its name taken by a folder)
-        os.makedirs(self.path("out", "grid", "4", "point.csv"))
-        p = self.run_beltsim("sweep", GRID, "--point", "4", ok=(0, 1, 2, 134, -6))
-        self.assert_one_line_error(p, "point.csv")
-
-    def test_a_point_that_cannot_start_stops_the_sweep_and_keeps_what_finished(self):
-        # point 1's log.txt is a folder: point 0 finishes first (one job), then the sweep stops
-        os.makedirs(self.path("out", "plain", "1", "log.txt"))
-        args = ["sweep", PLAIN, "--set", "pretension=300,500,700"]
-        p = self.run_beltsim(*args, "--jobs", "1", ok=(0, 1, 134, -6))
-        self.assert_one_line_error(p, "out/plain/1/log.txt")
-        summary = rows(self.path("out", "plain", "summary.csv"))
-        self.assertEqual([r[2] for r in summary[1:]], ["ok", "not run", "not run"])
-        # two jobs: point 0 runs (and waits) when point 1 cannot start; it is stopped and reaped
-        # before the sweep ends, and the folder is left as a stop leaves it
-        script, gate = self.gated()
-        os.makedirs(self.path("out", "gated", "1", "log.txt"))
-        p = self.run_beltsim("sweep", script, "--jobs", "2", ok=(0, 1, 134, -6))
-        self.assert_one_line_error(p, "out/gated/1/log.txt")
-        self.assertEqual(self.processes_here(), [], "a point's process outlived the sweep")
-        summary = rows(self.path("out", "gated", "summary.csv"))
-        self.assertEqual([r[2] for r in summary[1:]], ["not run", "not run"])
-        # the cause gone, the sweep runs to its end
-        os.rmdir(self.path("out", "gated", "1", "log.txt"))
-        with open(gate, "w"):
-            pass
-        self.run_beltsim("sweep", script, "--jobs", "2")
-        self.assertEqual([r[2] for r in rows(self.path("out", "gated", "summary.csv"))[1:]], ["ok", "ok"])
-
-    def test_a_second_sweep_on_a_folder_in_use_is_refused(self):
-        script, gate = self.gated()
-        first = subprocess.Popen([BELTSIM, "sweep", script, "--jobs", "1"], cwd=self.dir, stderr=subprocess.PIPE,
-                                 text=True)
-        self.addCleanup(first.kill)
-        self.wait_for(self.path("out", "gated", "0", "log.txt"), first)
-        for mode in ([], ["--collect"], ["--slurm"]):
-            p = self.run_beltsim("sweep", script, "--jobs", "1", *mode, ok=(0, 1, 2))
-            self.assert_one_line_error(p, "out/gated", "another sweep is running there")
-        self.assertIsNone(first.poll(), "the first sweep ended while the second was refused")
-        with open(gate, "w"):
-            pass
-        _, err = first.communicate(timeout=LIMIT)
-        self.assertEqual(first.returncode, 0, err)
-        self.assertEqual([r[2] for r in rows(self.path("out", "gated", "summary.csv"))[1:]], ["ok", "ok"])
-        self.assertFalse(os.path.exists(self.path("out", "gated", "sweep.sbatch")), "the refused --slurm wrote")
 
 
 if __name__ == "__main__":
