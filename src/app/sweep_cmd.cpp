@@ -90,6 +90,39 @@ beltsim::sweep::SlurmSettings slurm_settings(const std::string& file, const std:
   return ss;
 }
 
+// --collect over a folder that holds no point of this sweep (another sweep's, a run's) is refused,
+// as is one another sweep file's points fill (std::runtime_error); the sweep's own folder whose
+// points all died before writing a result is collected
+void check_collect_folder(const std::string& dir, const std::string& file,
+                          const std::vector<beltsim::sweep::Point>& points) {
+  namespace sw = beltsim::sweep;
+  std::error_code ec;
+  int found = 0;
+  // the sweep's own folder whose points all died before writing a result (a Slurm array
+  // cancelled or timed out): its job scripts naming this sweep file, or a point's folder without
+  // a point.csv, are there, and the summary says 'not run' for each
+  bool ours = false;
+  {
+    std::ifstream job(fs::path(dir) / "sweep.sbatch");
+    const std::string text{std::istreambuf_iterator<char>(job), std::istreambuf_iterator<char>()};
+    ours = !text.empty() && text.find(fs::absolute(file).lexically_normal().string()) != std::string::npos;
+  }
+  for (const sw::Point& p : points) {
+    ours =
+        ours || (fs::is_directory(fs::path(dir) / p.id, ec) && !fs::exists(fs::path(dir) / p.id / sw::kPointFile, ec));
+    if (const std::optional<sw::PointResult> r = sw::read_point_result(dir, p)) {
+      ++found;
+      const std::optional<sw::Inputs> in = sw::parse_inputs(r->inputs);
+      if (in && !in->files.empty() && !sw::same_file(in->files.front().first, file))
+        throw std::runtime_error("--collect: " + dir + " holds the points of " + in->files.front().first + ", not of " +
+                                 file + ": give " + file + "'s own folder (--out)");
+    }
+  }
+  if (found == 0 && !ours)
+    throw std::runtime_error("--collect: no point of " + file + " has run in " + dir +
+                             " (a sweep's folder holds a folder for each point): nothing to collect");
+}
+
 int sweep(const std::string& file, const Raw& raw, const script::Safety& s) {
   namespace sw = beltsim::sweep;
   const std::string dir = raw.out ? *raw.out : (fs::path("out") / fs::path(file).stem()).string();
@@ -166,32 +199,7 @@ int sweep(const std::string& file, const Raw& raw, const script::Safety& s) {
   if (raw.collect && !fs::is_directory(dir, ec))
     throw std::runtime_error("--collect: " + dir + " is not a folder: nothing to collect");
   const OutputDir top = sw::claim_sweep_folder(dir);  // held to the end: one sweep at a time on the folder
-  if (raw.collect) {
-    int found = 0;
-    // the sweep's own folder whose points all died before writing a result (a Slurm array
-    // cancelled or timed out): its job scripts naming this sweep file, or a point's folder without
-    // a point.csv, are there, and the summary says 'not run' for each
-    bool ours = false;
-    {
-      std::ifstream job(fs::path(dir) / "sweep.sbatch");
-      const std::string text{std::istreambuf_iterator<char>(job), std::istreambuf_iterator<char>()};
-      ours = !text.empty() && text.find(fs::absolute(file).lexically_normal().string()) != std::string::npos;
-    }
-    for (const sw::Point& p : points) {
-      ours = ours ||
-             (fs::is_directory(fs::path(dir) / p.id, ec) && !fs::exists(fs::path(dir) / p.id / sw::kPointFile, ec));
-      if (const std::optional<sw::PointResult> r = sw::read_point_result(dir, p)) {
-        ++found;
-        const std::optional<sw::Inputs> in = sw::parse_inputs(r->inputs);
-        if (in && !in->files.empty() && !sw::same_file(in->files.front().first, file))
-          throw std::runtime_error("--collect: " + dir + " holds the points of " + in->files.front().first +
-                                   ", not of " + file + ": give " + file + "'s own folder (--out)");
-      }
-    }
-    if (found == 0 && !ours)
-      throw std::runtime_error("--collect: no point of " + file + " has run in " + dir +
-                               " (a sweep's folder holds a folder for each point): nothing to collect");
-  }
+  if (raw.collect) check_collect_folder(dir, file, points);
   const auto summary = [&] {
     const sw::SummaryCounts c = sw::write_summary(dir, points, definition(raw, file));
     std::fprintf(stderr, "beltsim sweep: %s/%s: %d ok, %d failed, %d not run\n", dir.c_str(), sw::kSummaryFile, c.ok,
