@@ -414,17 +414,9 @@ PlotSpec summary_spec(const std::string& csv_path, const std::vector<std::string
   return spec;
 }
 
-namespace {
-
-void plot_summary(const std::string& csv_path, const std::vector<std::string>& columns, const std::string& out_png) {
-  plot_png(summary_spec(csv_path, columns, out_png));
-}
-
-}  // namespace
-
 void plot_csv(const std::string& csv_path, const std::vector<std::string>& columns, double from_t,
               const std::string& out_png) {
-  if (is_summary(csv_path)) return plot_summary(csv_path, columns, out_png);
+  if (is_summary(csv_path)) return plot_png(summary_spec(csv_path, columns, out_png));
   const Table table = read_timeseries_csv(csv_path);
   const std::vector<double>& t = table.column("t");
   std::vector<std::string> wanted = columns;

@@ -228,9 +228,8 @@ int run_console(const std::optional<std::string>& script, const std::vector<std:
       } else {
         failed = true;
       }
-      // the terminal echoed ^C where the run was stopped; unless a progress line ended there, the
-      // next prompt would follow it on that line ("^C> ")
-      // (a live simulation's run or a scene:run, both of which set ctx.interrupted)
+      // the terminal echoed ^C where a run (a live simulation's or a scene:run) was stopped; unless
+      // a progress line ended that line, the next prompt would follow it there ("^C> ")
       if (interactive && tty_out && ctx.interrupted && !ctx.progress_ended) std::printf("\n");
       command_done();
       chunk.clear();
