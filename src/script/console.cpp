@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "beltsim_version.hpp"
+#include "io/output_dir.hpp"
 #include "lauxlib.h"
 #include "live/live_server.hpp"
 #include "lua.h"
@@ -53,9 +54,11 @@ Compile compile(lua_State* L, const std::string& chunk, bool& expression) {
   return Compile::error;
 }
 
+// an output lost that the message names is not named again at exit (main.cpp)
 void report(const CallError& e, const char* prefix = "") {
   std::fprintf(stderr, "%s%s\n%s", prefix, e.message.c_str(), shown_traceback(e.traceback).c_str());
   std::fflush(stderr);
+  mark_output_failure_shown(e.message);
 }
 
 // runs the compiled chunk on the stack top and prints its results, each a call through docall
@@ -166,6 +169,7 @@ int run_console(const std::optional<std::string>& script, const std::vector<std:
       globals = globals_line(*script, before, global_names(L));
     } catch (const ScriptError& e) {
       std::fprintf(stderr, "beltsim: %s\n%s", e.what(), shown_traceback(e.traceback).c_str());  // as run's
+      mark_output_failure_shown(e.what());
       failed = true;
     }
     command_done();

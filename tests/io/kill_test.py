@@ -238,6 +238,31 @@ def full_disk():
     check(whole_rows(csv) == "" and os.path.getsize(csv) > limit - 1024, "full disk: the rows that fitted, whole")
 
 
+
+# ---- the same in the console: the error at the prompt names the file once, and the exit does not
+# name it again (it did, as an output lost that no message had shown); exit 1 ---------------------
+def full_disk_console():
+    out = os.path.join(TMP, "full_console")
+    limit = 64 * 1024
+    start_text = SCENE + 'sim = drive:start { progress = false }\n'
+
+    def limited():
+        signal.signal(signal.SIGXFSZ, signal.SIG_IGN)
+        resource.setrlimit(resource.RLIMIT_FSIZE, (limit, limit))
+
+    p = start(["console", script("full_console", start_text)], out, stdin=subprocess.PIPE,
+              stdout=subprocess.DEVNULL, cwd=TMP, preexec_fn=limited)
+    p.stdin.write("sim:run_to(1)\n")
+    p.stdin.close()
+    p.wait(timeout=60)
+    err = p.stderr.read()
+    csv = os.path.join(out, "timeseries.csv")
+    check(p.returncode == 1, "full disk, console: exit status 1 (got %s)" % p.returncode)
+    check(err.count("cannot write %s: File too large" % csv) == 1,
+          "full disk, console: the message names the file, once: %r" % err[-600:])
+    check(whole_rows(csv) == "", "full disk, console: the rows that fitted, whole")
+
+
 # ---- the video cannot grow: frames are written on a thread of their own (render/recorder.cpp),
 # so the failure comes back to the run from there. Exit 1, the message names the video, which
 # plays its whole fragments, and the CSV holds whole rows --------------------------------------
@@ -312,7 +337,8 @@ def full_file_system():
         subprocess.run(["umount", mnt])
 
 
-CASES = (sigterm_run, sigkill_run, second_signal, console, full_disk, full_disk_video, full_file_system)
+CASES = (sigterm_run, sigkill_run, second_signal, console, full_disk, full_disk_console, full_disk_video,
+         full_file_system)
 names = sys.argv[2:] or [c.__name__ for c in CASES if c is not full_file_system]
 unknown = [n for n in names if n not in [c.__name__ for c in CASES]]
 if unknown:
