@@ -142,16 +142,17 @@ int compare_csvs(const CompareOptions& o) {
   } catch (const std::exception& e) {
     throw Unreadable(e.what());
   }
-  // a unit no column has (a typo, "nm" for N·m) would leave every tolerance as it was, silently
+  // a unit no compared column has (a typo, "nm" for N·m) would leave every tolerance as it was, silently
   std::set<std::string> units;
-  for (const std::string& name : a.names) units.insert(header_unit(name));
+  for (const std::string& name : a.names)
+    if (!tol.skip.count(name)) units.insert(header_unit(name));
   for (const auto& [unit, value] : tol.unit_atol)
     if (!units.count(unit)) {
       std::string have;
       for (const std::string& u : units) have += (have.empty() ? "" : ", ") + (u.empty() ? std::string("1") : u);
       const std::string shown = unit.empty() ? "1" : unit;  // the dimensionless, as typed
-      throw UsageError("--atol " + shown + "=...: no column of " + o.a + " has the unit '" + shown +
-                       "' (its units: " + have + ")");
+      throw UsageError("--atol " + shown + "=...: no column of " + o.a + (tol.skip.empty() ? "" : " left in") +
+                       " has the unit '" + shown + "' (its units: " + have + ")");
     }
   plot::CsvComparison c;
   try {

@@ -229,7 +229,10 @@ class Csvs(Base):
                               (["--atol", "N=-1"], "--atol N must be >= 0, got -1"),
                               # a unit no column has (a typo of N·m) changed nothing, silently
                               (["--atol", "nm=100"], "--atol nm=...: no column of x.csv has the unit 'nm' (its "
-                               "units: 1, N, m, s)")]:
+                               "units: 1, N, m, s)"),
+                              # a unit only a left-out column has would change nothing either
+                              (["--atol", "m=1", "--skip", "driver.contact_arc"], "--atol m=...: no column of x.csv "
+                               "left in has the unit 'm' (its units: 1, N, s)")]:
             code, out, err = self.compare("x.csv", "y.csv", *args)
             self.assertEqual(code, 2, err)
             self.assertIn(message, err)
