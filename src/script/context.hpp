@@ -79,6 +79,7 @@ struct Context {
   std::vector<LoadedFile> loaded;
   bool args_warned = false;   // the unread --set keys were reported at a run's start
   bool t_end_warned = false;  // --t-end was said not to shorten scene:start's simulations
+  bool resume_warned = false;  // the run options were said not to apply to beltsim.resume
   // the live view of --serve (Interpreter::serve): every run of the session feeds it
   std::shared_ptr<live::LiveServer> serve;
   // the live simulation that page showed last (sim:run_to), and its userdata: the page's changes

@@ -100,7 +100,9 @@ const std::vector<HelpEntry>& api_help() {
        "natural frequencies, damping ratios and where each mode's energy is, about the state now (a running belt: "
        "of its motion over one element passing, m.period); shapes = N draws the first N (docs/modes.md)"},
       {"save", "sim:save(path) -> path", "a checkpoint: state, integrator, laws, μ, pending events, output positions"},
-      {"resume", "beltsim.resume(path) -> sim", "continues a checkpoint (bit for bit); callbacks must be added again"},
+      {"resume", "beltsim.resume(path, { progress, rewind }) -> sim",
+       "continues a checkpoint (bit for bit); callbacks must be added again; results written after it are cut only "
+       "with rewind = true"},
       {"serve", "sim:serve{ port = 0, host = \"127.0.0.1\" } -> url",
        "the live view of this simulation in a browser, until it closes (docs/live-view.md)"},
       {"close", "sim:close()", "flushes the CSV files and finalises the video"},

@@ -1,5 +1,6 @@
 // What a live simulation writes to files and reads back: sim:show (a frame of the belt now),
 // sim:plot (time histories so far), sim:save (a checkpoint) and beltsim.resume (sim_box.hpp).
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 
@@ -125,15 +126,32 @@ int l_save(lua_State* L) {
   return 1;
 }
 
-// beltsim.resume(path [, { progress = bool }]) -> the saved simulation, continuing
+// beltsim.resume(path [, { progress = bool, rewind = bool }]) -> the saved simulation, continuing
 int l_resume(lua_State* L) {
-  check_args(L, "beltsim.resume", {{"path", kString}, {"{progress}", kTable, true}});
+  check_args(L, "beltsim.resume", {{"path", kString}, {"{progress, rewind}", kTable, true}});
   auto* ctx = static_cast<Context*>(lua_touserdata(L, lua_upvalueindex(1)));
-  bool progress = true;
+  bool progress = true, rewind = false;
   if (!lua_isnoneornil(L, 2)) {
     require_table(L, 2, "beltsim.resume");
-    check_keys(L, 2, "beltsim.resume", {"progress"});
+    check_keys(L, 2, "beltsim.resume", {"progress", "rewind"});
     if (auto v = opt_bool(L, 2, "progress", "beltsim.resume")) progress = *v;
+    if (auto v = opt_bool(L, 2, "rewind", "beltsim.resume")) rewind = *v;
+  }
+  // the command line's run options (--out, --rtol, --no-frames, ...) are scene:run's and
+  // scene:start's: a resumed simulation keeps the checkpoint's settings. Said once, before it runs
+  if (!ctx->resume_warned && (!ctx->overrides.given.empty() || ctx->overrides.no_frames)) {
+    ctx->resume_warned = true;
+    std::string options;
+    const size_t count = ctx->overrides.given.size() + (ctx->overrides.no_frames ? 1 : 0);
+    for (std::string k : ctx->overrides.given) {
+      std::replace(k.begin(), k.end(), '_', '-');
+      options += (options.empty() ? "--" : ", --") + k;
+    }
+    if (ctx->overrides.no_frames) options += options.empty() ? "--no-frames" : ", --no-frames";
+    std::fprintf(stderr,
+                 "beltsim: warning: %s %s to scene:run and scene:start only; the simulation beltsim.resume "
+                 "continues keeps its checkpoint's settings (its folder, integrator, tolerances and frames)\n",
+                 options.c_str(), count == 1 ? "applies" : "apply");
   }
   std::unique_ptr<Simulation> sim;
   int callbacks = 0;
@@ -143,7 +161,7 @@ int l_resume(lua_State* L) {
     if (const std::string r = run_paths_refusal(*ctx, "resume", rs); !r.empty()) throw std::invalid_argument(r);
   };
   guarded(L, "beltsim.resume",
-          [&] { sim = Simulation::resume(lua_tostring(L, 1), render::make_frame_recorder, &callbacks, vet); });
+          [&] { sim = Simulation::resume(lua_tostring(L, 1), render::make_frame_recorder, &callbacks, vet, rewind); });
   std::fprintf(stderr, "beltsim: %s resumed at t = %s s; its outputs go on in %s\n", lua_tostring(L, 1),
                rounded_text(sim->now()).c_str(), sim->out_dir().c_str());
   if (callbacks > 0)

@@ -196,8 +196,8 @@ std::string Simulation::checkpoint_text() const {
 }
 
 std::unique_ptr<Simulation> Simulation::resume(const std::string& path, const FrameSinkFactory& factory, int* callbacks,
-                                               const std::function<void(const RunSettings&)>& vet) {
-  return load(path, factory, callbacks, vet, true);
+                                               const std::function<void(const RunSettings&)>& vet, bool rewind) {
+  return load(path, factory, callbacks, vet, true, rewind);
 }
 
 std::unique_ptr<Simulation> Simulation::open_checkpoint(const std::string& path) {
@@ -208,7 +208,8 @@ std::unique_ptr<Simulation> Simulation::open_checkpoint(const std::string& path)
 }
 
 std::unique_ptr<Simulation> Simulation::load(const std::string& path, const FrameSinkFactory& factory, int* callbacks,
-                                             const std::function<void(const RunSettings&)>& vet, bool outputs) {
+                                             const std::function<void(const RunSettings&)>& vet, bool outputs,
+                                             bool rewind) {
   const std::string where = path + ": ";  // the caller says what it was doing (beltsim.resume, render)
   std::unique_ptr<Simulation> s;
   SimState st;
@@ -259,6 +260,14 @@ std::unique_ptr<Simulation> Simulation::load(const std::string& path, const Fram
   } catch (const std::runtime_error& e) {
     throw std::runtime_error(where + e.what());
   }
+  // a run's results after the checkpoint are not dropped unasked (a kept state of a finished run,
+  // or a copy of its folder, whose checkpoints name the run's own folder)
+  if (const std::string later = s->out_->later_results(st.outputs); !later.empty() && !rewind)
+    throw std::runtime_error(where + "resuming at t = " + rounded_text(st.now()) +
+                             " s would cut the run's results after it (" + later +
+                             (s->rs_.frames ? "; its frames after it would be drawn again" : "") +
+                             "); resume with rewind = true to drop them and continue from the checkpoint, or run "
+                             "the scene again to keep them");
   s->apply_state(st);
   if (s->rs_.frames) {
     FrameSettings& f = *s->rs_.frames;

@@ -8,6 +8,7 @@
 #include <cmath>
 #include <cstring>
 #include <exception>
+#include <fstream>
 #include <sstream>
 
 #include "integrate/controller.hpp"
@@ -345,6 +346,20 @@ void Outputs::check_state(const State& s) const {
                              std::to_string(s.frames) + ": frames drawn cannot be taken back");
   if (!dir_) return;
   for (const auto& [name, bytes] : cuts(s)) check_cut(path(name), bytes);
+}
+
+std::string Outputs::later_results(const State& s) const {
+  if (!dir_) return {};
+  std::ifstream in(path("timeseries.csv"), std::ios::binary);
+  if (!in || !in.seekg(s.csv_bytes)) return {};
+  long rows = 0;
+  std::string line, last;
+  while (std::getline(in, line))
+    if (!line.empty()) ++rows, last = line;
+  if (rows == 0) return {};
+  const std::string t = last.substr(0, last.find(','));
+  return std::to_string(rows) + (rows == 1 ? " row" : " rows") + " of " + path("timeseries.csv") +
+         " after it, to t = " + t + " s";
 }
 
 void Outputs::set_state(const State& s) {

@@ -89,6 +89,9 @@ class Outputs {
   // state's sizes (shorter, not a regular file, a size inside the header or not at a row's end), or
   // when frames drawn since would have to be taken back from a video; nothing is touched
   void check_state(const State& s) const;
+  // what cutting the claimed folder's files back to the state would drop ("61 rows of
+  // timeseries.csv after it, to t = 0.1 s"); empty when they end where the state left them
+  std::string later_results(const State& s) const;
   // the counts set, the claimed folder's files cut to the state's sizes (check_state first)
   void set_state(const State& s);
 

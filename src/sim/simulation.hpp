@@ -174,13 +174,16 @@ class Simulation {
   // std::invalid_argument (cannot_save) for an integrator whose state cannot be saved.
   void save(const std::string& path) const;
   // continues a saved simulation: its outputs are continued in place (the CSV files truncated to
-  // the saved rows; frames numbered on, the video in a new file <name>_resumed_<t>.mp4).
+  // the saved rows; frames numbered on, the video in a new file <name>_resumed_<t>.mp4). Results
+  // written after the checkpoint (the run went on, or a kept state of a finished run) are cut only
+  // with rewind; without it the resume is refused, naming what it would drop.
   // callbacks (if not null) receives the number of callbacks the saved simulation had.
   // vet (if set) sees the saved settings (outputs resolved) before any output is touched, and may
   // throw to refuse them (a sandboxed script's checkpoint naming files outside its folders).
   static std::unique_ptr<Simulation> resume(const std::string& path, const FrameSinkFactory& factory,
                                             int* callbacks = nullptr,
-                                            const std::function<void(const RunSettings&)>& vet = {});
+                                            const std::function<void(const RunSettings&)>& vet = {},
+                                            bool rewind = false);
   // a saved simulation at its time, to read (state, drive, observation) and draw: no output is
   // opened or touched, and it cannot run (it is closed). Throws std::runtime_error as resume does.
   static std::unique_ptr<Simulation> open_checkpoint(const std::string& path);
@@ -189,7 +192,8 @@ class Simulation {
   Simulation(const Scene& scene, const RunSettings& settings, bool fresh);
   // resume (outputs: continue them) or open_checkpoint (no outputs)
   static std::unique_ptr<Simulation> load(const std::string& path, const FrameSinkFactory& factory, int* callbacks,
-                                          const std::function<void(const RunSettings&)>& vet, bool outputs);
+                                          const std::function<void(const RunSettings&)>& vet, bool outputs,
+                                          bool rewind = false);
   // set_state's parts: whether the state fits (StateError; the integrator's state and the outputs'
   // files are checked by Integrator::set_state and Outputs::check_state), and the state set but
   // the integrator's

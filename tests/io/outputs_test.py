@@ -206,6 +206,10 @@ def one_writer():
     # the first one says what it continued, from when, and where its outputs go
     check("beltsim: %s resumed at t = 0.002 s; its outputs go on in %s\n" % (ck, out) in err,
           "a resumed checkpoint is announced with its time and folder: %r" % err[-600:])
+    # --out was the script's scene:start's; the resumed simulation keeps its checkpoint's folder
+    check("beltsim: warning: --out applies to scene:run and scene:start only; the simulation beltsim.resume continues "
+          "keeps its checkpoint's settings" in err, "the command line's options are said not to reach a resume: %r"
+          % err[-600:])
 
 
 # ---- §6 outputs that cannot be written -----------------------------------------------------------

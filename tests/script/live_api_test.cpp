@@ -134,37 +134,43 @@ TEST(LiveApi, WhenFindsTheCrossing) {
 // sim:energy its spring's energy, sim:set_arm moves it, and a checkpoint carries it (the resumed run gives the same bits).
 TEST(LiveApi, TensionerArmReadChangedAndCheckpointed) {
   const std::string out = (temp_dir() / "arm").string();
-  EXPECT_EQ(run_text(beltsim::test::automotive_text() +
-                     "local s = beltsim.scene(automotive { crank = beltsim.ramp(0.3, -70.0), arm = { damping = 0.05 },\n"
-                     "  pump = { per_speed = -0.5 }, belt = { pretension = 280 } })\n"
-                     "local sim = s:start{ out = '" + out + "', progress = false }\n"
-                     "local p = sim:pulley('tensioner')\n"
-                     "assert(math.abs(p.arm_angle - math.atan(-0.12 + 0.14, 0.015 - 0.075)) < 1e-15, 'installed angle')\n"
-                     "assert(p.arm_rate == 0, 'at rest')\n"
-                     "assert(sim:pulley('pump').arm_angle == nil, 'no arm')\n"
-                     "sim:advance(0.002)\n"
-                     "-- sim:energy's parts add up to the mechanical energy, the arm's spring among them\n"
-                     "local e = sim:energy()\n"
-                     "local parts = e.kinetic + e.sde + e.bending + e.contact + e.gravity + e.arm + e.coupling\n"
-                     "assert(math.abs(parts - e.mechanical) <= 1e-12 * math.abs(e.mechanical), parts .. ' ' .. e.mechanical)\n"
-                     "assert(e.arm > 0 and e.coupling == 0, 'arm ' .. e.arm .. ', coupling ' .. e.coupling)\n"
-                     "local a = sim:pulley('tensioner').arm_angle + 1e-4\n"
-                     "sim:set_arm('tensioner', { angle = a, rate = 0.5 })\n"
-                     "p = sim:pulley('tensioner')\n"
-                     "assert(p.arm_angle == a and p.arm_rate == 0.5, 'set_arm')\n"
-                     "local ok, err = pcall(sim.set_arm, sim, 'pump', { angle = 0 })\n"
-                     "assert(not ok and err:find(\"pulley 'pump' has no tensioner arm\"), err)\n"
-                     "local path = sim:save('" + out + "/arm.chk')\n"
-                     "sim:advance(0.002)\n"
-                     "local later = sim:pulley('tensioner')\n"
-                     "assert(later.arm_angle ~= a, 'the arm moves')\n"
-                     "sim:close()\n"
-                     "local r = beltsim.resume(path)\n"
-                     "r:advance(0.002)\n"
-                     "local again = r:pulley('tensioner')\n"
-                     "assert(again.arm_angle == later.arm_angle and again.arm_rate == later.arm_rate, 'resumed bits')\n"
-                     "r:close()\n"),
-            "");
+  EXPECT_EQ(
+      run_text(
+          beltsim::test::automotive_text() +
+          "local s = beltsim.scene(automotive { crank = beltsim.ramp(0.3, -70.0), arm = { damping = 0.05 },\n"
+          "  pump = { per_speed = -0.5 }, belt = { pretension = 280 } })\n"
+          "local sim = s:start{ out = '" +
+          out +
+          "', progress = false }\n"
+          "local p = sim:pulley('tensioner')\n"
+          "assert(math.abs(p.arm_angle - math.atan(-0.12 + 0.14, 0.015 - 0.075)) < 1e-15, 'installed angle')\n"
+          "assert(p.arm_rate == 0, 'at rest')\n"
+          "assert(sim:pulley('pump').arm_angle == nil, 'no arm')\n"
+          "sim:advance(0.002)\n"
+          "-- sim:energy's parts add up to the mechanical energy, the arm's spring among them\n"
+          "local e = sim:energy()\n"
+          "local parts = e.kinetic + e.sde + e.bending + e.contact + e.gravity + e.arm + e.coupling\n"
+          "assert(math.abs(parts - e.mechanical) <= 1e-12 * math.abs(e.mechanical), parts .. ' ' .. e.mechanical)\n"
+          "assert(e.arm > 0 and e.coupling == 0, 'arm ' .. e.arm .. ', coupling ' .. e.coupling)\n"
+          "local a = sim:pulley('tensioner').arm_angle + 1e-4\n"
+          "sim:set_arm('tensioner', { angle = a, rate = 0.5 })\n"
+          "p = sim:pulley('tensioner')\n"
+          "assert(p.arm_angle == a and p.arm_rate == 0.5, 'set_arm')\n"
+          "local ok, err = pcall(sim.set_arm, sim, 'pump', { angle = 0 })\n"
+          "assert(not ok and err:find(\"pulley 'pump' has no tensioner arm\"), err)\n"
+          "local path = sim:save('" +
+          out +
+          "/arm.chk')\n"
+          "sim:advance(0.002)\n"
+          "local later = sim:pulley('tensioner')\n"
+          "assert(later.arm_angle ~= a, 'the arm moves')\n"
+          "sim:close()\n"
+          "local r = beltsim.resume(path, { rewind = true })  -- (the rows after it)\n"
+          "r:advance(0.002)\n"
+          "local again = r:pulley('tensioner')\n"
+          "assert(again.arm_angle == later.arm_angle and again.arm_rate == later.arm_rate, 'resumed bits')\n"
+          "r:close()\n"),
+      "");
 }
 
 // A spray zone from Lua: the elements inside it at the start take its μ, sim:spray reads it and
@@ -217,8 +223,8 @@ TEST(LiveApi, CoupledRotorReadChangedAndCheckpointed) {
   beltsim::test::TwoPulley coupled;
   coupled.driven = "torque = { per_speed = -0.5 },\n"
                    "      coupling = { inertia = 0.01, stiffness = 50, damping = 0.2, one_way = true }";
-  EXPECT_EQ(run_text(beltsim::test::two_pulley(coupled) +
-                     "local sim = s:start{ out = '" + out + "', progress = false }\n"
+  EXPECT_EQ(run_text(beltsim::test::two_pulley(coupled) + "local sim = s:start{ out = '" + out +
+                     "', progress = false }\n"
                      "local p = sim:pulley('driven')\n"
                      "assert(p.rotor_speed == 0 and p.windup == 0 and p.coupling_torque == 0, 'relaxed at rest')\n"
                      "assert(sim:pulley('driver').rotor_speed == nil, 'no coupling')\n"
@@ -228,12 +234,14 @@ TEST(LiveApi, CoupledRotorReadChangedAndCheckpointed) {
                      "assert(p.rotor_speed == -3.0, 'set_rotor')\n"
                      "local ok, err = pcall(sim.set_rotor, sim, 'driver', { speed = 0 })\n"
                      "assert(not ok and err:find(\"pulley 'driver' has no coupling\"), err)\n"
-                     "local path = sim:save('" + out + "/rotor.chk')\n"
+                     "local path = sim:save('" +
+                     out +
+                     "/rotor.chk')\n"
                      "sim:advance(0.002)\n"
                      "local later = sim:pulley('driven')\n"
                      "assert(later.rotor_speed ~= -3.0, 'the rotor moves')\n"
                      "sim:close()\n"
-                     "local r = beltsim.resume(path)\n"
+                     "local r = beltsim.resume(path, { rewind = true })  -- (the rows after it)\n"
                      "r:advance(0.002)\n"
                      "local again = r:pulley('driven')\n"
                      "assert(again.rotor_speed == later.rotor_speed and again.windup == later.windup, 'resumed bits')\n"
@@ -300,22 +308,31 @@ TEST(LiveApi, EventTransitionRampsMuWhenTheEventComes) {
                      "    local d = math.min(e.s - 0.3, 0.6 - e.s)\n"
                      "    local w = math.max(0, math.min(1, 0.5 + d / 0.05))\n"
                      "    local want = 0.5 + w * (0.2 - 0.5)\n"
-                     "    assert(math.abs(e.mu - want) < 1e-12, ('element %d at s = %g: mu %g, want %g'):format(i, e.s, e.mu, want))\n"
+                     "    assert(math.abs(e.mu - want) < 1e-12, ('element %d at s = %g: mu %g, want %g'):format(i, "
+                     "e.s, e.mu, want))\n"
                      "    if w > 0 and w < 1 then ramped = ramped + 1 end\n"
                      "  end\n"
                      "  assert(ramped >= 8, 'elements on the ramps: ' .. ramped)\n"
                      "end\n"
-                     "s:run{ t_end = 3.5e-4, out = '" + out + "', progress = false, events = ev, keep_states = true,\n"
+                     "s:run{ t_end = 3.5e-4, out = '" +
+                     out +
+                     "', progress = false, events = ev, keep_states = true,\n"
                      "       frames = { fps = 10, slowdown = 1 / 1.5e-3 } }\n"
-                     "local after = beltsim.resume('" + out + "/states/state_00002.ckpt')\n"
+                     "local after = beltsim.resume('" +
+                     out +
+                     "/states/state_00002.ckpt', { rewind = true })\n"
                      "check(after, 240)\n"
                      "after:close()\n"
-                     "local between = beltsim.resume('" + out + "/states/state_00001.ckpt')\n"
+                     "local between = beltsim.resume('" +
+                     out +
+                     "/states/state_00001.ckpt', { rewind = true })\n"
                      "assert(between:element(0).mu == 0.5, between:element(0).mu)\n"
                      "between:run_to(2.5e-4)\n"
                      "check(between, 240)\n"
                      "between:close()\n"
-                     "local ok, err = pcall(s.run, s, { t_end = 1e-4, out = '" + out + "_bad', progress = false,\n"
+                     "local ok, err = pcall(s.run, s, { t_end = 1e-4, out = '" +
+                     out +
+                     "_bad', progress = false,\n"
                      "  events = { { t = 1e-4, mu = 0.2, transition = 0.05 } } })\n"
                      "assert(not ok and err:find('run.events%[1%].transition: a transition needs'), err)\n"),
             "");

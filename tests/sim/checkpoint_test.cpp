@@ -139,7 +139,7 @@ std::vector<Outcome> resume_in_child(const std::vector<fs::path>& paths) {
         std::string msg;
         Record r{0, 1, 0};
         try {
-          auto s = Simulation::resume(paths[i].string(), {});
+          auto s = Simulation::resume(paths[i].string(), {}, nullptr, {}, true);  // (the run went on to 0.02 s)
           try {
             s->run_to(s->now() + 2e-3);
           } catch (const DivergenceError&) {
@@ -205,6 +205,25 @@ std::string prefix(int m = -1) { return mutant_path(m).string() + ": "; }
 TEST(Checkpoint, ResumesTheSavedText) {
   const Outcome o = resume_text(saved().text);
   EXPECT_TRUE(o.resumed) << o.message << o.failure;
+}
+
+// the run went on past its checkpoint: resuming it would cut those rows, which is refused, naming
+// them, unless asked (rewind); refused, nothing is touched
+TEST(Checkpoint, ResultsAfterTheCheckpointAreCutOnlyWhenAsked) {
+  saved().restore();
+  const std::string ck = saved().ck.string(), csv = (saved().out / "timeseries.csv").string();
+  const std::string m = test::what_of([&] { Simulation::resume(ck, {}); });
+  EXPECT_NE(m.find(ck + ": resuming at t = 0.0137 s would cut the run's results after it (7 rows of " + csv +
+                   " after it, to t = 0.02 s); "),
+            std::string::npos)
+      << m;
+  EXPECT_NE(m.find("resume with rewind = true"), std::string::npos) << m;
+  EXPECT_TRUE(saved().outputs_untouched());
+  auto s = Simulation::resume(ck, {}, nullptr, {}, true);
+  s->close();
+  EXPECT_EQ(slurp(csv), saved().outputs.at("timeseries.csv").substr(0, slurp(csv).size()));
+  EXPECT_LT(slurp(csv).size(), saved().outputs.at("timeseries.csv").size());
+  saved().restore();
 }
 
 // a checkpoint keeps every setting the run-settings table marks kept (sim/run_table.hpp): each set
