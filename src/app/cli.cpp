@@ -139,6 +139,9 @@ CLI::App* add_compare_command(CLI::App& app, CompareOptions& o) {
       ->type_name("NAME")
       ->allow_extra_args(false);
   c->add_flag("--failing", o.failing, "CSV: after the line, a line for each failing column");
+  c->add_flag("--partial", o.partial,
+              "CSV: A may span a part of B's times (a short run against the first part of a long one); without it "
+              "the two must start and end at the same times");
   c->footer(
       "PNGs: the golden images' metric (a pixel differs when any channel differs by more than L\n"
       "levels). CSVs: columns matched by name; a and b agree when |a - b| <= atol + rtol*max(|a|, |b|),\n"

@@ -66,7 +66,8 @@ int compare_pngs(const CompareOptions& o) {
                                     {!o.atol.empty(), "--atol"},
                                     {!o.col_tol.empty(), "--col-tol"},
                                     {!o.skip.empty(), "--skip"},
-                                    {o.failing, "--failing"}})
+                                    {o.failing, "--failing"},
+                                    {o.partial, "--partial"}})
     if (given) throw UsageError(std::string(name) + " is for CSV files; " + o.a + " and " + o.b + " are PNGs");
   ImageTolerance tol;
   if (o.tol) tol.level_tol = static_cast<int>(whole("--tol", *o.tol, 255));
@@ -135,6 +136,7 @@ int compare_csvs(const CompareOptions& o) {
     if (comma != std::string::npos) tol.column_atol[name] = non_negative("--col-tol " + name, value.substr(comma + 1));
   }
   tol.skip.insert(o.skip.begin(), o.skip.end());
+  tol.partial = o.partial;
   plot::Table a, b;
   try {
     a = plot::read_timeseries_csv(o.a);

@@ -18,6 +18,7 @@ struct CompareOptions {
   std::vector<std::string> col_tol;               // CSVs: NAME=RTOL[,ATOL]
   bool failing = false;                           // CSVs: a line for each failing column
   std::vector<std::string> skip;                  // CSVs: columns left out
+  bool partial = false;                           // CSVs: A may span a part of B's times
 };
 
 int cmd_compare(const CompareOptions& o);

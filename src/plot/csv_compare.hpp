@@ -31,6 +31,7 @@ struct CsvTolerance {
   std::map<std::string, double> unit_atol;                                // by unit (io/units.hpp's form): before atol
   std::map<std::string, std::optional<double>> column_rtol, column_atol;  // by column: before both
   std::set<std::string> skip;  // columns left out (both files must still have them)
+  bool partial = false;        // A's times may span a part of B's (else both span the same times)
   // column's tolerances; its unit from its header (header_unit)
   ColumnTolerance of(const std::string& column) const;
 };

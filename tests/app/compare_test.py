@@ -115,6 +115,9 @@ class Pngs(Base):
         code, out, err = self.compare("a.png", "a.png", "--skip", "t")
         self.assertEqual(code, 2)
         self.assertIn("--skip is for CSV files", err)
+        code, out, err = self.compare("a.png", "a.png", "--partial")
+        self.assertEqual(code, 2)
+        self.assertIn("--partial is for CSV files", err)
 
     def test_a_png_and_a_csv_cannot_be_compared(self):
         write_csv(self.path("b.csv"), ["t"], [[0]])
@@ -285,9 +288,16 @@ class Csvs(Base):
         self.assertEqual(code, 1, err)
         self.assertEqual(out, "differ: the times differ and b.csv (t in [0, 0.05] s, 6 rows) does not cover "
                               "a.csv's [0, 0.1] s\n")
-        # the other way round: A's times lie within B's
+        # the other way round: A's times lie within B's. A run that ends early (a golden test's
+        # scenario shortened by mistake) differs, unless --partial asks for the part it spans
         code, out, err = self.compare("b.csv", "a.csv")
+        self.assertEqual(code, 1, out + err)
+        self.assertEqual(out, "differ: the times differ: b.csv spans t in [0, 0.05] s, a.csv [0, 0.1] s (--partial "
+                              "compares b.csv with the part of a.csv it spans)\n")
+        code, out, err = self.compare("b.csv", "a.csv", "--partial")
         self.assertEqual(code, 0, out + err)
+        self.assertIn("b.csv spans a part of a.csv's times", err)
+        self.assertTrue(out.startswith("match: 2 columns agree at 6 times"), out)
 
     def test_times_that_do_not_increase_are_an_error_naming_the_file(self):
         write_csv(self.path("b.csv"), self.HEADER, self.rows([0, 0.01, 0.01, 0.02]))
