@@ -62,13 +62,15 @@ void report(const CallError& e, const char* prefix = "") {
 }
 
 // runs the compiled chunk on the stack top and prints its results, each a call through docall
-// within the command's instruction budget. True when the chunk ran without error.
-bool execute(lua_State* L) {
+// within the command's instruction budget. True when the chunk ran without error (else `failure`
+// holds the error's message).
+bool execute(lua_State* L, std::string& failure) {
   const int base = lua_gettop(L) - 1;  // below the chunk
   begin_call(L);                       // the instruction budget is per command; no Ctrl-C pending
   CallError error;
   if (!docall(L, 0, LUA_MULTRET, &error, "stdin")) {
     report(error);
+    failure = error.message;
     return false;
   }
   if (lua_gettop(L) > base) {
@@ -195,7 +197,7 @@ int run_console(const std::optional<std::string>& script, const std::vector<std:
         if (const std::string s = at_prompt(L, changes); !s.empty()) commands.push_back(s);
       });
     }
-    std::string chunk, line;
+    std::string chunk, line, failure;
     while (!terminating()) {
       const ConsoleInput::Got got = input.read(chunk.empty() ? "> " : ">> ", line);
       if (got == ConsoleInput::Got::end) {
@@ -227,9 +229,12 @@ int run_console(const std::optional<std::string>& script, const std::vector<std:
         lua_pop(L, 1);
         failed = true;
       } else if (ctx.stopped_runs.clear(), ctx.page_changes.clear(), ctx.progress_ended = false,
-                 ctx.interrupted = false, execute(L)) {
+                 ctx.interrupted = false, execute(L, failure)) {
         commands.push_back(replayable(L, chunk, expression, ctx.stopped_runs, ctx.page_changes));
       } else {
+        // it ran up to its error: what it changed before (a run stopped where its callback raised)
+        // is replayed too
+        commands.push_back(failed_replayable(L, chunk, expression, failure, ctx.stopped_runs, ctx.page_changes));
         failed = true;
       }
       // the terminal echoed ^C where a run (a live simulation's or a scene:run) was stopped; unless

@@ -151,6 +151,19 @@ std::string replayable(lua_State* L, const std::string& chunk, bool expression, 
   return out;
 }
 
+std::string failed_replayable(lua_State* L, const std::string& chunk, bool expression, const std::string& error,
+                              const StoppedRuns& stopped, const std::vector<PageChange>& page) {
+  std::string said = error.substr(0, error.find('\n'));
+  said = "-- failed at the prompt: " + said;
+  if (!stopped.empty() || !page.empty()) return said + "\n" + replayable(L, chunk, expression, stopped, page);
+  const std::string out = said + "\npcall(function()\n" + as_statements(L, chunk, expression) + "\nend)";
+  if (compiles(L, out)) return out;
+  std::string c = "-- (not replayable) " + chunk;
+  for (size_t k = 0; k < c.size(); ++k)
+    if (c[k] == '\n') c.insert(k + 1, "-- ");
+  return said + "\n" + c;
+}
+
 std::string at_prompt(lua_State* L, const std::vector<PageChange>& page) {
   std::string out;
   for (const PageChange& c : page)
@@ -173,7 +186,7 @@ bool write_session(const std::string& dir, const std::optional<std::string>& scr
   }
   const std::string path = (fs::path(dir) / name).string();
   std::ostringstream f;  // written whole at the end (io/output_dir.hpp: never through a link)
-  f << "-- The commands of a beltsim console session that ran without error, in order.\n"
+  f << "-- The commands of a beltsim console session, in order (one that raised an error under pcall).\n"
     << "-- Replay with: beltsim run " << shell_word(path);
   // beltsim.args as in the session, each --set quoted for the shell
   for (const ScriptArg& a : sets) f << " --set " << shell_word(a.key + "=" + a.text);

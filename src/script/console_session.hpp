@@ -29,6 +29,12 @@ std::string replayable(lua_State* L, const std::string& chunk, bool expression, 
 
 // the live view's changes applied while the console waited at its prompt, as statements ("" for none)
 std::string at_prompt(lua_State* L, const std::vector<PageChange>& page);
+// a command that raised an error after it may have changed something (a run stopped by an error in
+// its callback at t = 0.03 s stays there): replayed as it ran, inside pcall, so that the replay
+// takes the same way and goes on; with its error as a comment. Stopped or page-changed runs are
+// replayed as replayable() says.
+std::string failed_replayable(lua_State* L, const std::string& chunk, bool expression, const std::string& error,
+                              const StoppedRuns& stopped, const std::vector<PageChange>& page);
 
 // writes <dir>/session.lua, or session_2.lua, ... when an earlier session's is there (nothing when
 // no command ran); false, with the reason on stderr, when it cannot be written

@@ -202,7 +202,10 @@ class ConsoleTest(unittest.TestCase):
         self.assertIn("y = 2", lines)
         self.assertIn("sim:advance(0.001)", lines)
         self.assertLess(lines.index("y = 2"), lines.index("sim:advance(0.001)"))
-        self.assertNotIn("nosuch()", lines)  # only the commands that ran without error
+        # a command that failed is replayed under pcall (it may have changed something first)
+        at = lines.index("nosuch()")
+        self.assertEqual(lines[at - 2:at + 2], ["-- failed at the prompt: stdin:1: attempt to call a nil value (global "
+                                                "'nosuch')", "pcall(function()", "nosuch()", "end)"])
 
     # 8b
     def test_sighup_closes_like_sigterm(self):
@@ -290,6 +293,33 @@ class ConsoleTest(unittest.TestCase):
         self.assertEqual(replayed, series, "the replay's timeseries.csv differs; session.lua:\n" + text)
         with open(os.path.join(out_console, "events.csv")) as f:
             self.assertIn("\n0.003,wet,", f.read())
+
+    # 10c
+    def test_session_replays_a_command_that_failed_after_it_ran(self):
+        # an `every` callback raises at t = 0.003 s: the run stops there and the next command goes on
+        # from there; the failed command is replayed (under pcall), so the replay reaches the same
+        # outputs (it was left out, and the replay ran the first run to its end)
+        out_console = os.path.join(self.tmp, "out_console")
+        r = self.piped(["n = 0", "sim:every(0.001, function(s) n = n + 1; if n == 3 then error('boom') end end)",
+                        "sim:run_to(0.006)", "sim:run_to(0.008)", "print('t', sim.t, 'n', n)"], args=[out_console])
+        out, err = r.stdout.decode(), r.stderr.decode()
+        self.assertEqual(r.returncode, 1, out + err)
+        self.assertIn("boom", err)
+        self.assertIn("t\t0.008\tn\t8", out)
+        session = os.path.join(self.tmp, re.search(r"the session's commands are in (\S+)", err).group(1))
+        with open(session) as f:
+            text = f.read()
+        self.assertIn("-- failed at the prompt: ", text)
+        self.assertIn("\npcall(function()\nsim:run_to(0.006)\nend)\n", text)
+        with open(os.path.join(out_console, "timeseries.csv"), "rb") as f:
+            series = f.read()
+        shutil.move(out_console, out_console + "_kept")
+        r = subprocess.run([BELTSIM, "run", "--trusted", session], cwd=self.tmp, env=child_env(self.tmp),
+                           stdout=subprocess.PIPE, stderr=subprocess.PIPE, timeout=60)
+        self.assertEqual(r.returncode, 0, (r.stdout + r.stderr).decode() + "\nsession.lua:\n" + text)
+        self.assertIn("t\t0.008\tn\t8", r.stdout.decode())
+        with open(os.path.join(out_console, "timeseries.csv"), "rb") as f:
+            self.assertEqual(f.read(), series, "the replay's timeseries.csv differs; session.lua:\n" + text)
 
     # 10b
     def test_a_second_session_keeps_the_first_ones_record(self):
