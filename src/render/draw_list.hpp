@@ -10,7 +10,8 @@
 //   the joint with its predecessor to the joint with its successor, coloured by the chosen
 //   quantity on a banded colour map; the centres' deviation from the nominal path (the pitch
 //   line, sunk by the static penetration on each pulley) magnified by `magnify`;
-// - wet elements (μ below the belt's largest μ) with a dashed blue line along the outer (back) edge;
+// - wet elements (μ below the largest μ of the belt as the scene built it) with a dashed blue line along the outer
+// (back) edge;
 // - elements that slip (model/observables.hpp: |slip| > Δv, outside the friction band) with a
 //   magenta band along the inner edge (a colour neither colour map has), so stick and slip arcs
 //   read at a glance whatever the quantity;

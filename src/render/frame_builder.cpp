@@ -253,9 +253,9 @@ void FrameBuilder::build(double t, const double* y, DrawList& out, const Drive* 
   if (!given) observe(m, dr, sense_, t, y, own);
   const Observation& seen = given ? *given : own;
   const std::vector<ElementObs>& obs = seen.elements;
-  // dry: the largest μ the belt had at the start or has now (events may wet or dry it)
-  double mu_dry = mu_dry_;
-  for (double mu : dr.mu) mu_dry = std::max(mu_dry, mu);
+  // dry: the largest μ the belt had as the scene built it. A stretch an event raises above it
+  // (contamination that grips harder) is not wet, and does not make the rest of the belt wet
+  const double mu_dry = mu_dry_;
   int loop_sense = -1;
   for (int j = 0; j < m.n_p(); ++j)
     if (m.pulleys[j].wrap == WrapSide::inside) loop_sense = sense_[j];

@@ -212,6 +212,12 @@ TEST_F(Fixture, WetMarksFollowTheDriveAsItIsNow) {
     EXPECT_EQ(after.elements[i].wet, i < 10);
     EXPECT_DOUBLE_EQ(after.elements[i].value, now.mu[i]);
   }
+  // a stretch raised above the scene's μ is not wet, nor is the rest of the belt (both were marked
+  // wet, μ below the raised 1.5: a user trial)
+  for (int i = 0; i < 10; ++i) now.mu[i] = 1.5;
+  DrawList raised;
+  b.build(0, y.data(), raised, &now);
+  for (int i = 0; i < sc.model.n_el(); ++i) EXPECT_FALSE(raised.elements[i].wet) << i;
 }
 
 TEST_F(Fixture, SignedQuantitiesUseTheDivergingMapWithTheSignAlongTravel) {
