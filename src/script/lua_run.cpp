@@ -194,6 +194,16 @@ std::vector<double> wet_shares(const Scene& sc, double from, double to, double t
   return share;
 }
 
+void check_transition(lua_State* L, const Scene& sc, double from, double to, double tau, const std::string& what) {
+  const double len = sc.sites.empty() ? 0 : sc.sites[0].length;
+  const double stretch = to >= from ? to - from : len - from + to;
+  if (tau > stretch)
+    fail_on(L, what + ".transition",
+            "must be at most the stretch's length, " + rounded_text(stretch, 6) +
+                " m, for its elements to reach the new mu (it ramps across the transition about each end) (got " +
+                rounded_text(tau) + " m)");
+}
+
 std::optional<double> read_transition(lua_State* L, int idx, bool has_range, const std::string& what) {
   const auto transition = opt_number(L, idx, "transition", what);
   if (!transition) return transition;
@@ -233,6 +243,7 @@ std::vector<MuEvent> read_events(lua_State* L, int idx, const Scene& sc) {
     if (transition && *transition > 0) {
       // the new μ on every element the ramps reach, each with its share (wet_share)
       check_range(L, sc, from, to, what);
+      check_transition(L, sc, *from, *to, *transition, what);
       ev.mu = mu_over(L, lua_gettop(L), sc, std::nullopt, std::nullopt, what);
       ev.share = wet_shares(sc, *from, *to, *transition);
       for (size_t i = 0; i < ev.mu.size(); ++i)

@@ -39,6 +39,9 @@ std::string wet_text(std::optional<double> mu, std::optional<double> from, std::
 double wet_share(double s, double from, double to, double len, double tau);
 // wet_share of every element (by index) at its start position
 std::vector<double> wet_shares(const Scene& sc, double from, double to, double tau);
+// a transition longer than the stretch [from, to] (wrapping) leaves no element at the new μ: refused
+// naming `what`.transition, the stretch's length and the value
+void check_transition(lua_State* L, const Scene& sc, double from, double to, double tau, const std::string& what);
 // the transition = tau [m] of a wet stretch's table at idx (sim:wet, run.events): absent, or >= 0
 // and finite with the stretch's from and to
 std::optional<double> read_transition(lua_State* L, int idx, bool has_range, const std::string& what);

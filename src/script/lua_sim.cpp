@@ -155,6 +155,10 @@ int l_spray(lua_State* L) {
                 std::to_string(sp.zones.size()) + " spray zones, numbered from 1)");
   const int z = static_cast<int>(k - 1);
   if (lua_gettop(L) >= 3) {
+    // an explicit nil (sim:spray(1, beltsim.args.on) with the argument unset) switched the zone off
+    if (lua_isnil(L, 3))
+      fail(L,
+           "sim:spray: enabled must be true or false, got nil (leave it out to read zone " + std::to_string(k) + ")");
     const bool on = lua_toboolean(L, 3);
     guarded(L, "sim:spray", [&] { s.set_spray(z, on); });
     return 0;
@@ -240,6 +244,7 @@ int l_wet(lua_State* L) {
   if (transition && *transition > 0) {
     // μ ramps linearly from the belt's μ now to the wet one across `transition` about each end
     check_range(L, s.scene(), from, to, "sim:wet");
+    check_transition(L, s.scene(), *from, *to, *transition, "sim:wet");
     mu = mu_over(L, lua_gettop(L), s.scene(), std::nullopt, std::nullopt, "sim:wet");
     const std::vector<double> share = wet_shares(s.scene(), *from, *to, *transition);
     for (size_t i = 0; i < mu.size(); ++i) {
@@ -329,8 +334,15 @@ int l_when(lua_State* L) {
     id = s.when(
         [box, c] {
           call_back(*box, *c, 1);
-          const bool v = lua_toboolean(box->L, -1);
-          lua_pop(box->L, 1);
+          lua_State* K = box->L;
+          if (!lua_isboolean(K, -1)) {
+            // 0 is true in Lua: a condition returning 1 or 0 fired at once or never, without a word
+            // (the error is named by the line of the running call, as any callback's)
+            const std::string got = type_name(K, -1);
+            luaL_error(K, "sim:when: the condition returned %s; it must return true or false", got.c_str());
+          }
+          const bool v = lua_toboolean(K, -1);
+          lua_pop(K, 1);
           return v;
         },
         [box, a] { call_back(*box, *a, 0); });

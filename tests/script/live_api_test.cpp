@@ -180,27 +180,34 @@ TEST(LiveApi, SprayZoneReadSwitchedAndRefused) {
   const std::string out = (temp_dir() / "spray").string();
   beltsim::test::TwoPulley p;
   p.extra = "spray = { { centre = {0.145, 0.1}, radius = 0.03, mu = 0.2, drying_length = 1 } },";
-  EXPECT_EQ(run_text(beltsim::test::two_pulley(p) +
-                     "local sim = s:start{ out = '" + out + "', progress = false }\n"
-                     "local z = sim:spray(1)\n"
-                     "assert(z.on and z.enabled and z.inside > 0 and z.drying == 0, 'on from the start')\n"
-                     "local inside = 0\n"
-                     "for i = 0, 39 do\n"
-                     "  local e = sim:element(i)\n"
-                     "  local r = math.sqrt((e.x - 0.145)^2 + (e.y - 0.1)^2)\n"
-                     "  if r < 0.03 then inside = inside + 1; assert(e.mu == 0.2, 'wet ' .. i) else assert(e.mu == 1, 'dry ' .. i) end\n"
-                     "end\n"
-                     "assert(inside == z.inside, inside .. ' inside, the zone says ' .. z.inside)\n"
-                     "sim:advance(0.001)\n"
-                     "sim:spray(1, false)\n"
-                     "z = sim:spray(1)\n"
-                     "assert(not z.on and not z.enabled and z.inside == 0 and z.drying >= inside, 'off')\n"
-                     "local ok, err = pcall(sim.spray, sim, 2)\n"
-                     "assert(not ok and err:find('no zone 2 %(the scene has 1 spray zones'), err)\n"
-                     "sim:close()\n"
-                     "local f = io.open('" + out + "/events.csv'):read('a')\n"
-                     "assert(f:find('0,spray1,on') and f:find('spray1,disabled') and f:find('spray1,off'), f)\n"),
-            "");
+  EXPECT_EQ(
+      run_text(
+          beltsim::test::two_pulley(p) + "local sim = s:start{ out = '" + out +
+          "', progress = false }\n"
+          "local z = sim:spray(1)\n"
+          "assert(z.on and z.enabled and z.inside > 0 and z.drying == 0, 'on from the start')\n"
+          "local inside = 0\n"
+          "for i = 0, 39 do\n"
+          "  local e = sim:element(i)\n"
+          "  local r = math.sqrt((e.x - 0.145)^2 + (e.y - 0.1)^2)\n"
+          "  if r < 0.03 then inside = inside + 1; assert(e.mu == 0.2, 'wet ' .. i) else assert(e.mu == 1, 'dry ' .. "
+          "i) end\n"
+          "end\n"
+          "assert(inside == z.inside, inside .. ' inside, the zone says ' .. z.inside)\n"
+          "sim:advance(0.001)\n"
+          "sim:spray(1, false)\n"
+          "z = sim:spray(1)\n"
+          "assert(not z.on and not z.enabled and z.inside == 0 and z.drying >= inside, 'off')\n"
+          "local ok, err = pcall(sim.spray, sim, 2)\n"
+          "assert(not ok and err:find('no zone 2 %(the scene has 1 spray zones'), err)\n"
+          "ok, err = pcall(sim.spray, sim, 1, nil)  -- (it switched the zone off)\n"
+          "assert(not ok and err:find('enabled must be true or false, got nil %(leave it out to read zone 1%)'), err)\n"
+          "sim:close()\n"
+          "local f = io.open('" +
+          out +
+          "/events.csv'):read('a')\n"
+          "assert(f:find('0,spray1,on') and f:find('spray1,disabled') and f:find('spray1,off'), f)\n"),
+      "");
   for (const auto& [zone, expect] : std::vector<std::pair<std::string, std::string>>{
            {"{ centre = {0, 0}, mu = 0.2, drying_length = 1 }", "spray 1: radius [m] is required"},
            {"{ centre = {0, 0}, radius = 0.1, mu = 0.2 }", "spray 1: drying_length [m] is required"},
@@ -264,32 +271,41 @@ std::string wet_scene() {
 // transition's length about each end of [from, to]; 0 is the sharp boundary of no transition.
 TEST(LiveApi, WetTransitionRampsMuAcrossItsLength) {
   const std::string out = (temp_dir() / "transition").string();
-  EXPECT_EQ(run_text(wet_scene() +
-                     "local sim = s:start{ out = '" + out + "', progress = false }\n"
-                     "local n = s:info().elements\n"
-                     "sim:wet{ from = 0.3, to = 0.6, mu = 0.2, transition = 0.05 }\n"
-                     "local ramped = 0\n"
-                     "for i = 0, n - 1 do\n"
-                     "  local e = sim:element(i)\n"
-                     "  local d = math.min(e.s - 0.3, 0.6 - e.s)  -- > 0 inside\n"
-                     "  local w = math.max(0, math.min(1, 0.5 + d / 0.05))\n"
-                     "  local want = 1 + w * (0.2 - 1)\n"
-                     "  assert(math.abs(e.mu - want) < 1e-12, ('element %d at s = %g: mu %g, want %g'):format(i, e.s, e.mu, want))\n"
-                     "  if w > 0 and w < 1 then ramped = ramped + 1 end\n"
-                     "  if d > 0.025 then assert(e.mu == 0.2) elseif d < -0.025 then assert(e.mu == 1) end\n"
-                     "end\n"
-                     "assert(ramped >= 8, 'elements on the ramps: ' .. ramped)\n"
-                     "sim:set_mu(1)\n"
-                     "sim:wet{ from = 0.3, to = 0.6, mu = 0.2, transition = 0 }\n"
-                     "local sharp = {}\n"
-                     "for i = 0, n - 1 do sharp[i] = sim:element(i).mu end\n"
-                     "sim:set_mu(1)\n"
-                     "sim:wet{ from = 0.3, to = 0.6, mu = 0.2 }\n"
-                     "for i = 0, n - 1 do assert(sim:element(i).mu == sharp[i], 'transition 0 is no transition') end\n"
-                     "local ok, err = pcall(sim.wet, sim, { from = 0.3, to = 0.6, mu = 0.2, transition = -0.01 })\n"
-                     "assert(not ok and err:find('sim:wet.transition: must be >= 0 and finite %(got %-0.01 m%)'), err)\n"
-                     "sim:close()\n"),
-            "");
+  EXPECT_EQ(
+      run_text(wet_scene() + "local sim = s:start{ out = '" + out +
+               "', progress = false }\n"
+               "local n = s:info().elements\n"
+               "sim:wet{ from = 0.3, to = 0.6, mu = 0.2, transition = 0.05 }\n"
+               "local ramped = 0\n"
+               "for i = 0, n - 1 do\n"
+               "  local e = sim:element(i)\n"
+               "  local d = math.min(e.s - 0.3, 0.6 - e.s)  -- > 0 inside\n"
+               "  local w = math.max(0, math.min(1, 0.5 + d / 0.05))\n"
+               "  local want = 1 + w * (0.2 - 1)\n"
+               "  assert(math.abs(e.mu - want) < 1e-12, ('element %d at s = %g: mu %g, want %g'):format(i, e.s, e.mu, "
+               "want))\n"
+               "  if w > 0 and w < 1 then ramped = ramped + 1 end\n"
+               "  if d > 0.025 then assert(e.mu == 0.2) elseif d < -0.025 then assert(e.mu == 1) end\n"
+               "end\n"
+               "assert(ramped >= 8, 'elements on the ramps: ' .. ramped)\n"
+               "sim:set_mu(1)\n"
+               "sim:wet{ from = 0.3, to = 0.6, mu = 0.2, transition = 0 }\n"
+               "local sharp = {}\n"
+               "for i = 0, n - 1 do sharp[i] = sim:element(i).mu end\n"
+               "sim:set_mu(1)\n"
+               "sim:wet{ from = 0.3, to = 0.6, mu = 0.2 }\n"
+               "for i = 0, n - 1 do assert(sim:element(i).mu == sharp[i], 'transition 0 is no transition') end\n"
+               "local ok, err = pcall(sim.wet, sim, { from = 0.3, to = 0.6, mu = 0.2, transition = -0.01 })\n"
+               "assert(not ok and err:find('sim:wet.transition: must be >= 0 and finite %(got %-0.01 m%)'), err)\n"
+               "-- longer than the stretch: no element would reach mu 0.2 (it changed the whole belt a little)\n"
+               "ok, err = pcall(sim.wet, sim, { from = 0.3, to = 0.6, mu = 0.2, transition = 10 })\n"
+               "assert(not ok and err:find(\"sim:wet.transition: must be at most the stretch's length, 0.3 m, \" ..\n"
+               "  'for its elements to reach the new mu %(it ramps across the transition about each end%) %(got 10 "
+               "m%)'), err)\n"
+               "ok, err = pcall(sim.wet, sim, { from = 1.1, to = 0.1, mu = 0.2, transition = 0.5 })  -- wrapping\n"
+               "assert(not ok and err:find(\"stretch's length, 0.2%d* m\"), err)\n"
+               "sim:close()\n"),
+      "");
 }
 
 // The same transition on a run's events: μ ramps from the belt's μ when the event comes (here 0.5,
@@ -482,6 +498,19 @@ TEST(LiveApi, WhenAlreadyTrueFiresOnlyAfterItHasBeenFalse) {
                      "assert(sim:pulley('driver').omega < -2, 'the driver reached ' .. sim:pulley('driver').omega)\n"
                      "assert(later == 1, 'the condition that was false in between fired ' .. later .. ' times')\n"),
             "");
+}
+
+// a condition must return a boolean: 0 is true in Lua, so one returning 1 or 0 fired at once or
+// never, without a word (a user trial); nil and strings alike. Refused naming the value
+TEST(LiveApi, WhenConditionsReturnBooleans) {
+  for (const auto& [cond, got] : std::vector<std::pair<std::string, std::string>>{
+           {"return sim.t > 0.002 and 1 or 0", "number 0"}, {"", "nil"}, {"return 'no'", "string 'no'"}}) {
+    const std::string err = run_text(scene() + "sim:when(function(sim) " + cond +
+                                     " end, function() end)\n"
+                                     "sim:run_to(0.004)\n");
+    EXPECT_NE(err.find("sim:when: the condition returned " + got + "; it must return true or false"), std::string::npos)
+        << cond << ": " << err;
+  }
 }
 
 }  // namespace live_api_test
