@@ -32,9 +32,14 @@ struct DivergenceError : std::runtime_error {
   double t;
 };
 
-// the advice every message of a run that diverged or made no progress ends with
-inline constexpr const char* kDivergenceHint =
-    "try an implicit integrator (esdirk32, or cvode), a looser rtol or atol, or more damping of that component";
+// the advice every message of a run that diverged or made no progress ends with: an explicit method
+// (rkf45) is told of the implicit ones; an implicit one (all others) has already tried that
+inline std::string divergence_hint(bool implicit) {
+  return implicit ? "check the scene's largest values (a torque, a stiffness or a speed far beyond the drive's), or "
+                    "give that component more damping; a looser rtol or atol may carry the run past it"
+                  : "try an implicit integrator (trbdf2, the default), a looser rtol or atol, or more damping of "
+                    "that component";
+}
 
 // A part of a run's state that does not fit what it is set into (another method's, a state of
 // another size, a time outside the held step): `key` names the field as a checkpoint writes it
@@ -67,6 +72,7 @@ class Integrator {
  public:
   virtual ~Integrator() = default;
   virtual std::string name() const = 0;
+  virtual bool implicit() const { return true; }  // false: an explicit method (rkf45)
   virtual void start(double t, const Eigen::VectorXd& y) = 0;
   virtual void step(double t_land) = 0;  // throws DivergenceError
   virtual void kink() {}

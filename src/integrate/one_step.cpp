@@ -61,6 +61,7 @@ class OneStep final : public Integrator {
     f_.resize(n), y1_.resize(n), f1_.resize(n), err_.resize(n), y_prev_.resize(n), f_prev_.resize(n);
   }
   std::string name() const override { return st_->name(); }
+  bool implicit() const override { return st_->needs_linear_solver(); }
 
   void start(double t, const Eigen::VectorXd& y) override {
     t_ = t_prev_ = t;
@@ -123,18 +124,21 @@ class OneStep final : public Integrator {
           throw DivergenceError(t_, "no progress at t = " + rounded_text(t_, 9) + " s: the implicit iteration failed " +
                                         std::to_string(failed_in_a_row_) + " times in a row (step size now " +
                                         rounded_text(h_, 9) + " s); " + largest_error(worst) + "; " +
-                                        kDivergenceHint);
+                                        divergence_hint(st_->needs_linear_solver()));
         if (!(h_ >= 16 * ulp))
-          throw DivergenceError(t_, "the step size collapsed to " + rounded_text(h_, 9) + " s at t = " + rounded_text(t_, 9) +
-                                        " s; " + largest_error(worst) + "; " + kDivergenceHint);
+          throw DivergenceError(t_, "the step size collapsed to " + rounded_text(h_, 9) +
+                                        " s at t = " + rounded_text(t_, 9) + " s; " + largest_error(worst) + "; " +
+                                        divergence_hint(st_->needs_linear_solver()));
         continue;
       }
       failed_in_a_row_ = 0;
       if (h <= kFloorUlps * ulp && !lands) {
         if (++at_floor_ >= kFloorSteps)
-          throw DivergenceError(t_, "no progress at t = " + rounded_text(t_, 9) + " s: the step size has stayed at the "
-                                    "rounding floor of t (" + rounded_text(h, 9) + " s) for " + std::to_string(at_floor_) +
-                                    " steps; " + largest_error(worst) + "; " + kDivergenceHint);
+          throw DivergenceError(t_, "no progress at t = " + rounded_text(t_, 9) +
+                                        " s: the step size has stayed at the "
+                                        "rounding floor of t (" +
+                                        rounded_text(h, 9) + " s) for " + std::to_string(at_floor_) + " steps; " +
+                                        largest_error(worst) + "; " + divergence_hint(st_->needs_linear_solver()));
       } else {
         at_floor_ = 0;
       }
@@ -162,7 +166,7 @@ class OneStep final : public Integrator {
   // step failed from the start) no component can be named
   std::string largest_error(int worst) const {
     return worst < 0 ? "no step was taken, so no component has an error estimate (the forces of the initial state, "
-                       "or their Jacobian, are beyond what the iteration solves: check the largest parameters)"
+                       "or their Jacobian, are beyond what the iteration solves)"
                      : "the largest error is in " + sys_.problem->describe(worst);
   }
 

@@ -313,7 +313,7 @@ Simulation::Advance Simulation::run_to(double t, const std::atomic<bool>* stop, 
                     " s simulated in the last " + rounded_text(wall - win_wall) + " s of wall time, against " +
                     rounded_text(best_rate_) + " s per second earlier in this run; the largest error is in " +
                     (worst.empty() ? std::string("a component the integrator does not name") : worst) + "; " +
-                    kDivergenceHint);
+                    divergence_hint(integ_->implicit()));
       }
       best_rate_ = std::max(best_rate_, rate);
       win_wall = wall, win_t = tt;
