@@ -1,13 +1,17 @@
 #include "live/live_server.hpp"
 
 #include <httplib.h>
+#include <netdb.h>
 #include <sys/eventfd.h>
+#include <sys/socket.h>
 #include <unistd.h>
 
+#include <cerrno>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <fstream>
 #include <random>
 #include <sstream>
@@ -70,6 +74,35 @@ void add_row(std::string& out, const Sample& s) {
   out += ']';
 }
 
+// why host:port cannot be bound, as a bind of its own finds it (cpp-httplib says only that it failed)
+std::string bind_problem(const std::string& host, int port) {
+  addrinfo hints{}, *found = nullptr;
+  hints.ai_socktype = SOCK_STREAM;
+  hints.ai_flags = AI_NUMERICSERV;
+  if (const int e = getaddrinfo(host.c_str(), std::to_string(port).c_str(), &hints, &found); e != 0)
+    return "host '" + host + "': " + gai_strerror(e);
+  int error = 0;
+  for (const addrinfo* a = found; a; a = a->ai_next) {
+    const int sock = socket(a->ai_family, a->ai_socktype | SOCK_CLOEXEC, a->ai_protocol);
+    if (sock < 0) {
+      error = errno;
+      continue;
+    }
+    const int yes = 1;
+    setsockopt(sock, SOL_SOCKET, SO_REUSEADDR, &yes, sizeof yes);
+    const bool bound = bind(sock, a->ai_addr, a->ai_addrlen) == 0 && listen(sock, 1) == 0;
+    if (!bound) error = errno;
+    close(sock);
+    if (bound) break;
+  }
+  freeaddrinfo(found);
+  if (error == EADDRINUSE) return "port " + std::to_string(port) + " is in use";
+  if (error == EADDRNOTAVAIL) return "'" + host + "' is not an address of this machine";
+  if (error == EACCES) return "port " + std::to_string(port) + " needs privileges (ports below 1024)";
+  if (error != 0) return std::strerror(error);
+  return "cpp-httplib could not listen there";
+}
+
 // s as a finite number into x; false when it is not one (empty, text after it, inf, nan)
 bool finite_number(const std::string& s, double& x) {
   char* end = nullptr;
@@ -117,10 +150,18 @@ LiveServer::LiveServer(const ServeSettings& s) : settings_(s), token_(random_tok
   assets_js_ = read_asset(s.assets, "dygraph.js");
   assets_css_ = read_asset(s.assets, "dygraph.css");
   http_ = std::make_unique<httplib::Server>();
+  // cpp-httplib's default options add SO_REUSEPORT, with which a second server (another beltsim,
+  // or a second sim:serve) bound the same port and the kernel split the requests between the two:
+  // SO_REUSEADDR alone, which lets a port whose last server has just ended be bound again
+  http_->set_socket_options([](int sock) {
+    const int yes = 1;
+    setsockopt(sock, SOL_SOCKET, SO_REUSEADDR, &yes, sizeof yes);
+  });
   routes();
   const std::string where = s.host + ":" + std::to_string(s.port);
   port_ = s.port == 0 ? http_->bind_to_any_port(s.host) : (http_->bind_to_port(s.host, s.port) ? s.port : -1);
-  if (port_ <= 0) throw std::runtime_error("live view: cannot listen on " + where + " (in use, or not this machine's)");
+  if (port_ <= 0)
+    throw std::runtime_error("live view: cannot listen on " + where + ": " + bind_problem(s.host, s.port));
   wake_fd_ = eventfd(0, EFD_NONBLOCK | EFD_CLOEXEC);
   if (wake_fd_ < 0) throw std::runtime_error("live view: cannot make an eventfd");
   thread_ = std::thread([this] { http_->listen_after_bind(); });

@@ -300,6 +300,31 @@ class ServeOption(unittest.TestCase):
         self.assertEqual(p.returncode, 2, p.stderr)
         self.assertIn("--serve", p.stderr)
 
+    def test_a_port_in_use_is_refused(self):
+        """a second live view on a port one already listens on is refused, naming the port: from
+        another process (--serve PORT) and from the same console (sim:serve{ port = PORT }). Both
+        had bound it (cpp-httplib's SO_REUSEPORT) and the requests were split between them"""
+        port = self.free_port()
+        with open(os.path.join(self.dir, "c.lua"), "w") as f:
+            f.write(two_pulley(elements=20) + "sim = drive:start { out = 'c', progress = false }\n")
+        holder = subprocess.Popen([BELTSIM, "console", "c.lua", "--serve", str(port)], cwd=self.dir,
+                                  stdin=subprocess.PIPE, stdout=subprocess.PIPE, stderr=subprocess.PIPE)
+        self.addCleanup(lambda: (holder.kill(), holder.wait(), [f.close() for f in (holder.stdin, holder.stdout,
+                                                                                   holder.stderr)]))
+        for line in holder.stderr:  # it listens once it has printed its address
+            if b"live view at " in line:
+                break
+        p = subprocess.run([BELTSIM, "run", "s.lua", "--serve", str(port)], cwd=self.dir, capture_output=True,
+                           text=True, timeout=120)
+        self.assertEqual(p.returncode, 1, p.stderr)
+        self.assertIn("port %d is in use" % port, p.stderr)
+        self.assertNotIn("live view at", p.stderr)
+        # the same console: a simulation of its own served on that port
+        out, err = holder.communicate(b"print(pcall(sim.serve, sim, { port = %d }))\n" % port, timeout=120)
+        self.assertEqual(holder.returncode, 0, err)
+        self.assertIn("false\tsim:serve: live view: cannot listen on 127.0.0.1:%d: port %d is in use" % (port, port),
+                      out.decode())
+
 
 class ConsoleAndPage(unittest.TestCase):
     """a console's simulation changed from the page while a command runs it: the page's changes are
