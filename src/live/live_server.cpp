@@ -103,11 +103,27 @@ std::string bind_problem(const std::string& host, int port) {
   return "cpp-httplib could not listen there";
 }
 
-// s as a finite number into x; false when it is not one (empty, text after it, inf, nan)
+// s as a finite decimal number into x ([+-]digits[.digits][e[+-]digits]); false when it is not one
+// (empty, spaces, text after it, hex, inf, nan: strtod alone read "0x10" as 16)
 bool finite_number(const std::string& s, double& x) {
-  char* end = nullptr;
-  x = std::strtod(s.c_str(), &end);
-  return !s.empty() && *end == '\0' && std::isfinite(x);
+  size_t k = 0, digits = 0;
+  const auto run = [&] {
+    size_t n = 0;
+    while (k < s.size() && s[k] >= '0' && s[k] <= '9') ++k, ++n;
+    return n;
+  };
+  if (k < s.size() && (s[k] == '+' || s[k] == '-')) ++k;
+  digits = run();
+  if (k < s.size() && s[k] == '.') ++k, digits += run();
+  if (digits == 0) return false;
+  if (k < s.size() && (s[k] == 'e' || s[k] == 'E')) {
+    ++k;
+    if (k < s.size() && (s[k] == '+' || s[k] == '-')) ++k;
+    if (run() == 0) return false;
+  }
+  if (k != s.size()) return false;
+  x = std::strtod(s.c_str(), nullptr);
+  return std::isfinite(x);
 }
 
 }  // namespace
@@ -120,18 +136,18 @@ std::string read_command(const std::function<std::string(const char*)>& param, C
   if (c.what == "pause" || c.what == "continue") return "";
   if (c.what == "torque") {
     if (c.pulley.empty() || !finite_number(v, c.value))
-      return "torque needs pulley=NAME and value=N·m (a finite number), got pulley='" + c.pulley + "' value='" + v +
-             "'";
+      return "torque needs pulley=NAME and value=N·m (a finite decimal number), got pulley='" + c.pulley + "' value='" +
+             v + "'";
     return "";
   }
   if (c.what == "run_to") {
-    if (!finite_number(v, c.value)) return "run_to needs value=t [s] (a finite number), got value='" + v + "'";
+    if (!finite_number(v, c.value)) return "run_to needs value=t [s] (a finite decimal number), got value='" + v + "'";
     return "";
   }
   if (c.what == "wet") {
     if (!finite_number(from, c.from) || !finite_number(to, c.to) || !finite_number(v, c.value))
-      return "wet needs from=s0 and to=s1 [m] and value=mu (finite numbers), got from='" + from + "' to='" + to +
-             "' value='" + v + "'";
+      return "wet needs from=s0 and to=s1 [m] and value=mu (finite decimal numbers), got from='" + from + "' to='" +
+             to + "' value='" + v + "'";
     return "";
   }
   if (c.what == "save") {

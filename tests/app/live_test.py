@@ -192,6 +192,14 @@ class Live(unittest.TestCase):
         for bad in ["do=jump", "do=torque&pulley=driven&value=x", "do=wet&from=0.1&value=0.2",
                     "do=save&name=../x.ckpt", "do=save&name=.x", "do=run_to&value=inf"]:
             self.assertEqual(self.post(bad)[0], 400, bad)
+        # decimal numbers only (strtod read 0x10 as 16), refused naming the value
+        for bad in ["do=torque&pulley=driven&value=0x10", "do=run_to&value=0x1p-1", "do=wet&from=0X0&to=0.1&value=0.2",
+                    "do=torque&pulley=driven&value=%205", "do=torque&pulley=driven&value=nan"]:
+            status, said = self.post(bad)
+            self.assertEqual(status, 400, bad)
+            self.assertIn("decimal", said, bad)
+        status, said = self.post("do=torque&pulley=driven&value=0x10")
+        self.assertIn("value='0x10'", said)
         self.assertEqual(self.post("do=continue")[0], 202)
         c.close()
         self.assertEqual(self.proc.wait(timeout=300), 0, self.proc.stderr.read().decode())
