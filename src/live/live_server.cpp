@@ -196,6 +196,11 @@ LiveServer::~LiveServer() {
   if (wake_fd_ >= 0) close(wake_fd_);
 }
 
+void LiveServer::wake() {
+  const std::uint64_t one = 1;
+  [[maybe_unused]] const ssize_t w = write(wake_fd_, &one, sizeof one);  // fails only when full: readable
+}
+
 void LiveServer::clear_wake() {
   std::uint64_t n;
   if (read(wake_fd_, &n, sizeof n) < 0) return;  // EAGAIN: nothing came
@@ -350,12 +355,64 @@ std::string LiveServer::stream_text(Cursor& c) {
 void LiveServer::routes() {
   httplib::Server& h = *http_;
   h.set_keep_alive_timeout(1);
-  h.set_pre_routing_handler([this](const httplib::Request& req, httplib::Response& res) {
-    if (req.get_param_value("token") == token_) return httplib::Server::HandlerResponse::Unhandled;
-    res.status = 403;
-    res.set_content("403: this page needs the address beltsim printed, with its token\n", "text/plain");
-    return httplib::Server::HandlerResponse::Handled;
+  // a control (POST /control): queued for the loop that owns the simulation, or refused (400) naming
+  // what is wrong
+  const auto control = [this](const httplib::Request& req, httplib::Response& res) {
+    Command c;
+    const std::string bad = read_command([&req](const char* key) { return req.get_param_value(key); }, c);
+    if (!bad.empty()) {
+      res.status = 400;
+      res.set_content(bad + "\n", "text/plain");
+      return;
+    }
+    {
+      const std::lock_guard<std::mutex> lock(m_);
+      if (commands_.size() >= kCommands) {
+        res.status = 503;
+        res.set_content("too many controls waiting\n", "text/plain");
+        return;
+      }
+      commands_.push_back(std::move(c));
+      ++pending_;
+    }
+    cv_.notify_all();
+    wake();
+    res.status = 202;
+    res.set_content("queued\n", "text/plain");
+  };
+  h.set_pre_routing_handler([this, control](const httplib::Request& req, httplib::Response& res) {
+    if (req.get_param_value("token") != token_) {
+      res.status = 403;
+      res.set_content("403: this page needs the address beltsim printed, with its token\n", "text/plain");
+      return httplib::Server::HandlerResponse::Handled;
+    }
+    // a POST without a body says so with no Content-Length at all (curl -X POST URL): cpp-httplib
+    // would read a body until the client closes, and answer 400 after its read timeout. A control
+    // has everything in its query: answered here, before any body is read
+    if (req.method == "POST" && req.path == "/control" && !req.has_header("Content-Length") &&
+        !req.has_header("Transfer-Encoding")) {
+      control(req, res);
+      return httplib::Server::HandlerResponse::Handled;
+    }
+    return httplib::Server::HandlerResponse::Unhandled;
   });
+  // an error cpp-httplib answers itself has an empty body: say what it is
+  h.set_error_handler(httplib::Server::HandlerWithResponse([](const httplib::Request& req, httplib::Response& res) {
+    if (!res.body.empty()) return httplib::Server::HandlerResponse::Unhandled;
+    std::string said = std::to_string(res.status) + ": ";
+    if (res.status == 404)
+      said += "not served: " + req.method + " " + req.path +
+              " (the live view serves GET /, /dygraph.js, /dygraph.css, /frame.jpg, /frame.json, /events and "
+              "POST /control)";
+    else if (res.status == 400)
+      said += "the request could not be read (a body needs its Content-Length; a control needs none)";
+    else if (res.status == 413)
+      said += "the request is too large";
+    else
+      said += "the request was not served";
+    res.set_content(said + "\n", "text/plain");
+    return httplib::Server::HandlerResponse::Handled;
+  }));
   h.Get("/", [this](const httplib::Request&, httplib::Response& res) {
     std::string page = page_html();
     for (size_t at = page.find("@TOKEN@"); at != std::string::npos; at = page.find("@TOKEN@", at))
@@ -383,30 +440,7 @@ void LiveServer::routes() {
       }
       res.set_content(*f, json ? "application/json" : "image/jpeg");
     });
-  h.Post("/control", [this](const httplib::Request& req, httplib::Response& res) {
-    Command c;
-    const std::string bad = read_command([&req](const char* key) { return req.get_param_value(key); }, c);
-    if (!bad.empty()) {
-      res.status = 400;
-      res.set_content(bad + "\n", "text/plain");
-      return;
-    }
-    {
-      const std::lock_guard<std::mutex> lock(m_);
-      if (commands_.size() >= kCommands) {
-        res.status = 503;
-        res.set_content("too many controls waiting\n", "text/plain");
-        return;
-      }
-      commands_.push_back(std::move(c));
-      ++pending_;
-    }
-    cv_.notify_all();
-    const std::uint64_t one = 1;
-    [[maybe_unused]] const ssize_t w = write(wake_fd_, &one, sizeof one);  // fails only when full: readable
-    res.status = 202;
-    res.set_content("queued\n", "text/plain");
-  });
+  h.Post("/control", control);
   h.Get("/events", [this](const httplib::Request&, httplib::Response& res) {
     {
       const std::lock_guard<std::mutex> lock(m_);

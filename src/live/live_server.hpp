@@ -115,6 +115,7 @@ class LiveServer {
     std::uint64_t run = 0, seq = 0, status = 0, frame = 0;
   };
   void routes();
+  void wake();  // wake_fd readable
   std::string stream_text(Cursor& c);
 
   ServeSettings settings_;
