@@ -16,6 +16,7 @@
 #include <random>
 #include <sstream>
 #include <stdexcept>
+#include <utility>
 
 namespace beltsim::live {
 
@@ -199,6 +200,11 @@ LiveServer::~LiveServer() {
 void LiveServer::wake() {
   const std::uint64_t one = 1;
   [[maybe_unused]] const ssize_t w = write(wake_fd_, &one, sizeof one);  // fails only when full: readable
+}
+
+bool LiveServer::take_page_opened() {
+  const std::lock_guard<std::mutex> lock(m_);
+  return std::exchange(page_opened_, false);
 }
 
 void LiveServer::clear_wake() {
@@ -445,7 +451,9 @@ void LiveServer::routes() {
     {
       const std::lock_guard<std::mutex> lock(m_);
       ++clients_;
+      page_opened_ = true;
     }
+    wake();  // a console at its prompt draws the picture for it
     auto cursor = std::make_shared<Cursor>();
     res.set_header("Cache-Control", "no-cache");
     res.set_chunked_content_provider(

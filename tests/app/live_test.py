@@ -131,8 +131,12 @@ class Live(unittest.TestCase):
     def statuses(self, stream):
         """the stream's statuses as they come, and None for each frame event (self.frames: their t)
         and each samples event (self.t: the last sample's t)"""
-        self.frames, self.t = [], None
+        self.frames, self.t, self.run, self.status = [], None, None, None
         for name, data in events(stream):
+            if name == "run":
+                self.run = json.loads(data)
+            if name == "status":
+                self.status = json.loads(data)
             if name == "idle":
                 yield None
             elif name == "frame":
@@ -362,14 +366,15 @@ class ConsoleAndPage(unittest.TestCase):
     (never interleaved), and session.lua replays them where they came: the replay's events.csv and
     timeseries.csv are the session's, byte for byte"""
 
-    def console(self, prefix, stdout):
-        """a console on the two-pulley drive's simulation (sim) with --serve, in a folder of its own"""
+    def console(self, prefix, stdout, serve=True):
+        """a console on the two-pulley drive's simulation (sim) with --serve (unless not serve), in a
+        folder of its own"""
         d = tempfile.mkdtemp(prefix=prefix)
         self.addCleanup(shutil.rmtree, d, True)
         with open(os.path.join(d, "c.lua"), "w") as f:
             f.write(two_pulley(elements=40) + "sim = drive:start { out = \"out\", sample = %r }\n" % SAMPLE)
-        proc = subprocess.Popen([BELTSIM, "console", "c.lua", "--serve"], cwd=d, stdin=subprocess.PIPE,
-                                stdout=stdout, stderr=subprocess.PIPE)
+        proc = subprocess.Popen([BELTSIM, "console", "c.lua"] + (["--serve"] if serve else []), cwd=d,
+                                stdin=subprocess.PIPE, stdout=stdout, stderr=subprocess.PIPE)
         self.addCleanup(proc.kill)
         return d, proc
 
@@ -449,7 +454,9 @@ class ConsoleAndPage(unittest.TestCase):
         t_pause = 0.05
         proc.stdin.write(b"sim:run_to(%r)\n" % t_pause)
         proc.stdin.flush()
-        live.wait_status(it, "paused")  # sim:run_to has returned: the console is at its prompt
+        # sim:run_to has returned: the console is at its prompt (the page said "paused" at t = 0
+        # already, where the console waited before it)
+        self.page_at_the_prompt(live, it, t_pause)
         self.assertEqual(live.post("do=torque&pulley=driven&value=-65")[0], 202)
         # applied at the prompt, not after the first step of the console's next run (before the
         # fix nothing came until the console ran again)
@@ -473,6 +480,64 @@ class ConsoleAndPage(unittest.TestCase):
         for name in ["events.csv", "timeseries.csv"]:
             with open(os.path.join(d, "out", name)) as a, open(os.path.join(r, "out", name)) as b:
                 self.assertEqual(a.read(), b.read(), name)
+
+    def page_at_the_prompt(self, live, it, t):
+        """the page of a simulation at the console's prompt at t: its run (its pulleys), the
+        sample of t, the status "paused", and the picture of t (a JPEG; /frame.jpg answered 503
+        "no frame yet" there)"""
+        end = time.monotonic() + 60  # a bound on a failure: the frame thread's start takes 0.1 s
+        for _ in it:
+            if live.t == t and live.frames and live.frames[-1] == t and live.status == "paused":
+                break
+            self.assertLess(time.monotonic(), end, (live.run, live.t, live.frames, live.status))
+        self.assertEqual(live.run["pulleys"], ["driver", "driven"])
+        self.assertIn("driver.omega", live.run["columns"])
+        status, frame = live.get("/frame.jpg?token=" + live.token)
+        self.assertEqual((status, frame[:2]), (200, b"\xff\xd8"))
+
+    def change_at_the_prompt(self, d, proc, live, it, t):
+        """a torque sent from the page at the prompt: applied there (the status, the console's next
+        print, events.csv at t)"""
+        self.assertEqual(live.post("do=torque&pulley=driven&value=-65"), (202, "queued\n"))
+        live.wait_status(it, "paused at t = %s s (torque applied)" % status_t(t), within=30)
+        proc.stdin.write(b"print('torque', sim:pulley('driven').torque)\n")
+        proc.stdin.close()
+        out = proc.stdout.read().decode()
+        err = proc.stderr.read().decode()
+        self.assertEqual(proc.wait(timeout=300), 0, err)
+        self.assertIn("torque\t-65", out)
+        rows = [r for r in events_csv(os.path.join(d, "out")) if r[1] == "driven.torque"]
+        self.assertEqual([(float(r[0]), float(r[2])) for r in rows], [(t, -65)])
+        return err
+
+    def test_a_page_before_the_first_run(self):
+        """console S.lua --serve, S.lua starts sim and nothing has run: the page shows sim at t = 0
+        (its pulleys, its sample, its picture) and a change from the page is applied to it at the
+        prompt (it was refused: 'no simulation to change (the run has ended)'), recorded in
+        session.lua"""
+        d, proc = self.console("beltsim_live_first_", subprocess.PIPE)
+        live, c, it = self.page(proc)
+        self.page_at_the_prompt(live, it, 0)
+        err = self.change_at_the_prompt(d, proc, live, it, 0)
+        session = err.split("the session's commands are in ")[1].split("\n")[0]
+        with open(os.path.join(d, session)) as f:
+            self.assertIn('\nsim:set_torque("driven", -65)  -- from the live view\n', f.read())
+        c.close()
+
+    def test_sim_serve_at_the_prompt(self):
+        """sim:serve{} typed at the prompt, then sim:run_to(T): a torque from its page is applied
+        at the prompt at T (it stayed queued until the next run_to)"""
+        d, proc = self.console("beltsim_live_served_", subprocess.PIPE, serve=False)
+        t = 0.05
+        proc.stdin.write(b"sim:serve{}\n")
+        proc.stdin.flush()
+        live, c, it = self.page(proc)
+        self.page_at_the_prompt(live, it, 0)
+        proc.stdin.write(b"sim:run_to(%r)\n" % t)
+        proc.stdin.flush()
+        self.page_at_the_prompt(live, it, t)
+        self.change_at_the_prompt(d, proc, live, it, t)
+        c.close()
 
 
 if __name__ == "__main__":
