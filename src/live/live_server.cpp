@@ -1,17 +1,22 @@
 #include "live/live_server.hpp"
 
 #include <httplib.h>
+#include <netdb.h>
 #include <sys/eventfd.h>
+#include <sys/socket.h>
 #include <unistd.h>
 
+#include <cerrno>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <fstream>
 #include <random>
 #include <sstream>
 #include <stdexcept>
+#include <utility>
 
 namespace beltsim::live {
 
@@ -70,11 +75,56 @@ void add_row(std::string& out, const Sample& s) {
   out += ']';
 }
 
-// s as a finite number into x; false when it is not one (empty, text after it, inf, nan)
+// why host:port cannot be bound, as a bind of its own finds it (cpp-httplib says only that it failed)
+std::string bind_problem(const std::string& host, int port) {
+  addrinfo hints{}, *found = nullptr;
+  hints.ai_socktype = SOCK_STREAM;
+  hints.ai_flags = AI_NUMERICSERV;
+  if (const int e = getaddrinfo(host.c_str(), std::to_string(port).c_str(), &hints, &found); e != 0)
+    return "host '" + host + "': " + gai_strerror(e);
+  int error = 0;
+  for (const addrinfo* a = found; a; a = a->ai_next) {
+    const int sock = socket(a->ai_family, a->ai_socktype | SOCK_CLOEXEC, a->ai_protocol);
+    if (sock < 0) {
+      error = errno;
+      continue;
+    }
+    const int yes = 1;
+    setsockopt(sock, SOL_SOCKET, SO_REUSEADDR, &yes, sizeof yes);
+    const bool bound = bind(sock, a->ai_addr, a->ai_addrlen) == 0 && listen(sock, 1) == 0;
+    if (!bound) error = errno;
+    close(sock);
+    if (bound) break;
+  }
+  freeaddrinfo(found);
+  if (error == EADDRINUSE) return "port " + std::to_string(port) + " is in use";
+  if (error == EADDRNOTAVAIL) return "'" + host + "' is not an address of this machine";
+  if (error == EACCES) return "port " + std::to_string(port) + " needs privileges (ports below 1024)";
+  if (error != 0) return std::strerror(error);
+  return "cpp-httplib could not listen there";
+}
+
+// s as a finite decimal number into x ([+-]digits[.digits][e[+-]digits]); false when it is not one
+// (empty, spaces, text after it, hex, inf, nan: strtod alone read "0x10" as 16)
 bool finite_number(const std::string& s, double& x) {
-  char* end = nullptr;
-  x = std::strtod(s.c_str(), &end);
-  return !s.empty() && *end == '\0' && std::isfinite(x);
+  size_t k = 0, digits = 0;
+  const auto run = [&] {
+    size_t n = 0;
+    while (k < s.size() && s[k] >= '0' && s[k] <= '9') ++k, ++n;
+    return n;
+  };
+  if (k < s.size() && (s[k] == '+' || s[k] == '-')) ++k;
+  digits = run();
+  if (k < s.size() && s[k] == '.') ++k, digits += run();
+  if (digits == 0) return false;
+  if (k < s.size() && (s[k] == 'e' || s[k] == 'E')) {
+    ++k;
+    if (k < s.size() && (s[k] == '+' || s[k] == '-')) ++k;
+    if (run() == 0) return false;
+  }
+  if (k != s.size()) return false;
+  x = std::strtod(s.c_str(), nullptr);
+  return std::isfinite(x);
 }
 
 }  // namespace
@@ -87,18 +137,18 @@ std::string read_command(const std::function<std::string(const char*)>& param, C
   if (c.what == "pause" || c.what == "continue") return "";
   if (c.what == "torque") {
     if (c.pulley.empty() || !finite_number(v, c.value))
-      return "torque needs pulley=NAME and value=N·m (a finite number), got pulley='" + c.pulley + "' value='" + v +
-             "'";
+      return "torque needs pulley=NAME and value=N·m (a finite decimal number), got pulley='" + c.pulley + "' value='" +
+             v + "'";
     return "";
   }
   if (c.what == "run_to") {
-    if (!finite_number(v, c.value)) return "run_to needs value=t [s] (a finite number), got value='" + v + "'";
+    if (!finite_number(v, c.value)) return "run_to needs value=t [s] (a finite decimal number), got value='" + v + "'";
     return "";
   }
   if (c.what == "wet") {
     if (!finite_number(from, c.from) || !finite_number(to, c.to) || !finite_number(v, c.value))
-      return "wet needs from=s0 and to=s1 [m] and value=mu (finite numbers), got from='" + from + "' to='" + to +
-             "' value='" + v + "'";
+      return "wet needs from=s0 and to=s1 [m] and value=mu (finite decimal numbers), got from='" + from + "' to='" +
+             to + "' value='" + v + "'";
     return "";
   }
   if (c.what == "save") {
@@ -117,10 +167,18 @@ LiveServer::LiveServer(const ServeSettings& s) : settings_(s), token_(random_tok
   assets_js_ = read_asset(s.assets, "dygraph.js");
   assets_css_ = read_asset(s.assets, "dygraph.css");
   http_ = std::make_unique<httplib::Server>();
+  // cpp-httplib's default options add SO_REUSEPORT, with which a second server (another beltsim,
+  // or a second sim:serve) bound the same port and the kernel split the requests between the two:
+  // SO_REUSEADDR alone, which lets a port whose last server has just ended be bound again
+  http_->set_socket_options([](int sock) {
+    const int yes = 1;
+    setsockopt(sock, SOL_SOCKET, SO_REUSEADDR, &yes, sizeof yes);
+  });
   routes();
   const std::string where = s.host + ":" + std::to_string(s.port);
   port_ = s.port == 0 ? http_->bind_to_any_port(s.host) : (http_->bind_to_port(s.host, s.port) ? s.port : -1);
-  if (port_ <= 0) throw std::runtime_error("live view: cannot listen on " + where + " (in use, or not this machine's)");
+  if (port_ <= 0)
+    throw std::runtime_error("live view: cannot listen on " + where + ": " + bind_problem(s.host, s.port));
   wake_fd_ = eventfd(0, EFD_NONBLOCK | EFD_CLOEXEC);
   if (wake_fd_ < 0) throw std::runtime_error("live view: cannot make an eventfd");
   thread_ = std::thread([this] { http_->listen_after_bind(); });
@@ -137,6 +195,16 @@ LiveServer::~LiveServer() {
   http_->stop();
   if (thread_.joinable()) thread_.join();
   if (wake_fd_ >= 0) close(wake_fd_);
+}
+
+void LiveServer::wake() {
+  const std::uint64_t one = 1;
+  [[maybe_unused]] const ssize_t w = write(wake_fd_, &one, sizeof one);  // fails only when full: readable
+}
+
+bool LiveServer::take_page_opened() {
+  const std::lock_guard<std::mutex> lock(m_);
+  return std::exchange(page_opened_, false);
 }
 
 void LiveServer::clear_wake() {
@@ -293,12 +361,64 @@ std::string LiveServer::stream_text(Cursor& c) {
 void LiveServer::routes() {
   httplib::Server& h = *http_;
   h.set_keep_alive_timeout(1);
-  h.set_pre_routing_handler([this](const httplib::Request& req, httplib::Response& res) {
-    if (req.get_param_value("token") == token_) return httplib::Server::HandlerResponse::Unhandled;
-    res.status = 403;
-    res.set_content("403: this page needs the address beltsim printed, with its token\n", "text/plain");
-    return httplib::Server::HandlerResponse::Handled;
+  // a control (POST /control): queued for the loop that owns the simulation, or refused (400) naming
+  // what is wrong
+  const auto control = [this](const httplib::Request& req, httplib::Response& res) {
+    Command c;
+    const std::string bad = read_command([&req](const char* key) { return req.get_param_value(key); }, c);
+    if (!bad.empty()) {
+      res.status = 400;
+      res.set_content(bad + "\n", "text/plain");
+      return;
+    }
+    {
+      const std::lock_guard<std::mutex> lock(m_);
+      if (commands_.size() >= kCommands) {
+        res.status = 503;
+        res.set_content("too many controls waiting\n", "text/plain");
+        return;
+      }
+      commands_.push_back(std::move(c));
+      ++pending_;
+    }
+    cv_.notify_all();
+    wake();
+    res.status = 202;
+    res.set_content("queued\n", "text/plain");
+  };
+  h.set_pre_routing_handler([this, control](const httplib::Request& req, httplib::Response& res) {
+    if (req.get_param_value("token") != token_) {
+      res.status = 403;
+      res.set_content("403: this page needs the address beltsim printed, with its token\n", "text/plain");
+      return httplib::Server::HandlerResponse::Handled;
+    }
+    // a POST without a body says so with no Content-Length at all (curl -X POST URL): cpp-httplib
+    // would read a body until the client closes, and answer 400 after its read timeout. A control
+    // has everything in its query: answered here, before any body is read
+    if (req.method == "POST" && req.path == "/control" && !req.has_header("Content-Length") &&
+        !req.has_header("Transfer-Encoding")) {
+      control(req, res);
+      return httplib::Server::HandlerResponse::Handled;
+    }
+    return httplib::Server::HandlerResponse::Unhandled;
   });
+  // an error cpp-httplib answers itself has an empty body: say what it is
+  h.set_error_handler(httplib::Server::HandlerWithResponse([](const httplib::Request& req, httplib::Response& res) {
+    if (!res.body.empty()) return httplib::Server::HandlerResponse::Unhandled;
+    std::string said = std::to_string(res.status) + ": ";
+    if (res.status == 404)
+      said += "not served: " + req.method + " " + req.path +
+              " (the live view serves GET /, /dygraph.js, /dygraph.css, /frame.jpg, /frame.json, /events and "
+              "POST /control)";
+    else if (res.status == 400)
+      said += "the request could not be read (a body needs its Content-Length; a control needs none)";
+    else if (res.status == 413)
+      said += "the request is too large";
+    else
+      said += "the request was not served";
+    res.set_content(said + "\n", "text/plain");
+    return httplib::Server::HandlerResponse::Handled;
+  }));
   h.Get("/", [this](const httplib::Request&, httplib::Response& res) {
     std::string page = page_html();
     for (size_t at = page.find("@TOKEN@"); at != std::string::npos; at = page.find("@TOKEN@", at))
@@ -326,35 +446,14 @@ void LiveServer::routes() {
       }
       res.set_content(*f, json ? "application/json" : "image/jpeg");
     });
-  h.Post("/control", [this](const httplib::Request& req, httplib::Response& res) {
-    Command c;
-    const std::string bad = read_command([&req](const char* key) { return req.get_param_value(key); }, c);
-    if (!bad.empty()) {
-      res.status = 400;
-      res.set_content(bad + "\n", "text/plain");
-      return;
-    }
-    {
-      const std::lock_guard<std::mutex> lock(m_);
-      if (commands_.size() >= kCommands) {
-        res.status = 503;
-        res.set_content("too many controls waiting\n", "text/plain");
-        return;
-      }
-      commands_.push_back(std::move(c));
-      ++pending_;
-    }
-    cv_.notify_all();
-    const std::uint64_t one = 1;
-    [[maybe_unused]] const ssize_t w = write(wake_fd_, &one, sizeof one);  // fails only when full: readable
-    res.status = 202;
-    res.set_content("queued\n", "text/plain");
-  });
+  h.Post("/control", control);
   h.Get("/events", [this](const httplib::Request&, httplib::Response& res) {
     {
       const std::lock_guard<std::mutex> lock(m_);
       ++clients_;
+      page_opened_ = true;
     }
+    wake();  // a console at its prompt draws the picture for it
     auto cursor = std::make_shared<Cursor>();
     res.set_header("Cache-Control", "no-cache");
     res.set_chunked_content_provider(

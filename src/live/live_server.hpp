@@ -97,6 +97,9 @@ class LiveServer {
   // its input; clear_wake() reads it empty
   int wake_fd() const { return wake_fd_; }
   void clear_wake();
+  // a page has opened its stream since the last call (it also makes wake_fd readable): a console
+  // at its prompt draws the picture where the simulation stands for it
+  bool take_page_opened();
 
   // the history kept for a client that connects later is thinned to at most this many samples
   static constexpr size_t kHistory = 4000;
@@ -115,6 +118,7 @@ class LiveServer {
     std::uint64_t run = 0, seq = 0, status = 0, frame = 0;
   };
   void routes();
+  void wake();  // wake_fd readable
   std::string stream_text(Cursor& c);
 
   ServeSettings settings_;
@@ -128,6 +132,7 @@ class LiveServer {
   std::condition_variable cv_;
   bool stopping_ = false;
   int clients_ = 0;
+  bool page_opened_ = false;
   // the run's number (a stream that has sent none is at 0), the last sample's, the status's
   std::uint64_t run_ = 1, seq_ = 0, status_serial_ = 1;
   const void* key_ = nullptr;

@@ -187,16 +187,30 @@ int run_console(const std::optional<std::string>& script, const std::vector<std:
   std::vector<std::string> commands;
   {
     ConsoleInput input(interactive, settings.history, L);
-    if (ctx.serve) {
-      // the page's changes while the console waits at its prompt: applied as they come, on this
-      // thread (no command runs), to the simulation the page shows, and recorded in session.lua
-      input.on_wake(ctx.serve->wake_fd(), [&] {
-        ctx.serve->clear_wake();
-        std::vector<PageChange> changes;
-        LiveFeed(ctx.serve.get(), ctx.stop, &changes, ctx.page_key).apply_waiting(ctx.page_sim);
-        if (const std::string s = at_prompt(L, changes); !s.empty()) commands.push_back(s);
-      });
-    }
+    // the pages' changes while the console waits at its prompt (--serve's, and each sim:serve{}'s):
+    // applied as they come, on this thread (no command runs), to the simulation each page shows,
+    // and recorded in session.lua; a page that opens gets the picture of now
+    input.on_wake(
+        [&] {
+          std::vector<int> fds;
+          if (ctx.serve) fds.push_back(ctx.serve->wake_fd());
+          for (const auto& [key, served] : ctx.served) fds.push_back(served.first->wake_fd());
+          return fds;
+        },
+        [&] {
+          std::vector<PageChange> changes;
+          if (ctx.serve) {
+            ctx.serve->clear_wake();
+            LiveFeed(ctx.serve.get(), ctx.stop, &changes, ctx.page_key).apply_waiting(ctx.page_sim);
+          }
+          // a copy: a change cannot close a simulation, but the map must not move under the loop
+          const auto served = ctx.served;
+          for (const auto& [key, s] : served) {
+            s.first->clear_wake();
+            LiveFeed(s.first, ctx.stop, &changes, key).apply_waiting(s.second);
+          }
+          if (const std::string s = at_prompt(L, changes); !s.empty()) commands.push_back(s);
+        });
     std::string chunk, line, failure;
     while (!terminating()) {
       const ConsoleInput::Got got = input.read(chunk.empty() ? "> " : ">> ", line);

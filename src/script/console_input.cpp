@@ -9,6 +9,7 @@
 #include <csignal>
 #include <cstdio>
 #include <cstdlib>
+#include <vector>
 
 #include "script/console_complete.hpp"
 #include "script/signals.hpp"
@@ -18,7 +19,7 @@ namespace beltsim::script {
 namespace {
 
 bool g_cancelled = false;  // Ctrl-C dropped the line being read
-int g_wake_fd = -1;        // ConsoleInput::on_wake
+std::function<std::vector<int>()> g_wake_fds;  // ConsoleInput::on_wake
 std::function<void()> g_on_wake;
 
 // one character of input. The stop signals are blocked except while waiting in ppoll, so one that
@@ -41,14 +42,18 @@ int next_char(FILE* f) {
       if (rl_line_buffer) rl_replace_line("", 0);
       return '\n';
     }
-    pollfd p[2] = {{fileno(f), POLLIN, 0}, {g_wake_fd, POLLIN, 0}};
-    const int r = ppoll(p, g_wake_fd >= 0 ? 2 : 1, nullptr, &orig);  // the signals may arrive only while waiting here
+    std::vector<pollfd> p{{fileno(f), POLLIN, 0}};
+    if (g_wake_fds)
+      for (const int fd : g_wake_fds()) p.push_back({fd, POLLIN, 0});
+    const int r = ppoll(p.data(), p.size(), nullptr, &orig);  // the signals may arrive only while waiting here
     sigprocmask(SIG_SETMASK, &orig, nullptr);
     if (r < 0) {
       if (errno == EINTR) continue;
       return EOF;
     }
-    if (g_wake_fd >= 0 && (p[1].revents & POLLIN)) {
+    bool woken = false;
+    for (size_t k = 1; k < p.size(); ++k) woken = woken || (p[k].revents & POLLIN);
+    if (woken) {
       g_on_wake();
       if (!(p[0].revents & (POLLIN | POLLHUP))) continue;
     }
@@ -77,12 +82,12 @@ ConsoleInput::ConsoleInput(bool interactive, const std::string& history, lua_Sta
 }
 
 ConsoleInput::~ConsoleInput() {
-  on_wake(-1, nullptr);
+  on_wake(nullptr, nullptr);
   if (interactive_) complete_from(nullptr);
 }
 
-void ConsoleInput::on_wake(int fd, std::function<void()> f) {
-  g_wake_fd = fd;
+void ConsoleInput::on_wake(std::function<std::vector<int>()> fds, std::function<void()> f) {
+  g_wake_fds = std::move(fds);
   g_on_wake = std::move(f);
 }
 

@@ -5,6 +5,7 @@
 
 #include <functional>
 #include <string>
+#include <vector>
 
 struct lua_State;
 
@@ -22,9 +23,10 @@ class ConsoleInput {
   // the next line (without its line end): Got::line; Got::cancelled when Ctrl-C dropped it;
   // Got::end at the end of the input (Ctrl-D, the pipe's end, SIGTERM, SIGHUP)
   Got read(const char* prompt, std::string& line);
-  // while waiting for input, fd readable (the live view's controls, live_server.hpp wake_fd) runs
-  // f on this thread, and the wait goes on; fd < 0: none
-  void on_wake(int fd, std::function<void()> f);
+  // while waiting for input, one of the descriptors fds() gives readable (the live views'
+  // controls, live_server.hpp wake_fd; asked anew for each wait) runs f on this thread, and the
+  // wait goes on; fds null: none
+  void on_wake(std::function<std::vector<int>()> fds, std::function<void()> f);
 
  private:
   bool interactive_;

@@ -3,6 +3,7 @@
 
 #include <atomic>
 #include <functional>
+#include <map>
 #include <memory>
 #include <optional>
 #include <set>
@@ -87,6 +88,11 @@ struct Context {
   // scene:run{} has run since)
   Simulation* page_sim = nullptr;
   const void* page_key = nullptr;
+  // a run has fed that page (sim:run_to, scene:run{}): until then it shows the simulation started last
+  bool page_ran = false;
+  // the simulations served by sim:serve{} (each its own page), by their userdata: the console
+  // applies their pages' changes at its prompt as it does --serve's
+  std::map<const void*, std::pair<live::LiveServer*, Simulation*>> served;
   // the state Lua laws call into (emptied when the interpreter closes it)
   std::shared_ptr<LawHost> law_host = std::make_shared<LawHost>();
 };

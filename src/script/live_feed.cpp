@@ -213,8 +213,24 @@ void LiveFeed::apply_waiting(Simulation* sim) {
       std::fprintf(stderr, "beltsim: live view: %s\n", e.what());
     }
   }
+  // a page opened while no run goes on: the picture where the simulation stands (a frame drawn
+  // at the end of a run may be older: a change at the prompt since, or none drawn with no page)
+  if (sim && server_->take_page_opened()) {
+    sim_ = sim;
+    try {
+      offer_frame();
+    } catch (const std::exception& e) {
+      std::fprintf(stderr, "beltsim: live view: %s\n", e.what());
+    }
+  }
   frames_.reset();  // the picture drawn, before the simulation can go
   sim_ = nullptr;
+}
+
+void LiveFeed::show(Simulation& sim) {
+  if (!server_) return;
+  watch(&sim, "paused");
+  watch(nullptr);  // the sample and the picture of now, the status
 }
 
 Simulation::Advance LiveFeed::run_to(Simulation& sim, double t, const RunProgress& inner, const char* at_end) {

@@ -69,8 +69,12 @@ class LiveFeed {
   // the controls that came while no run goes on (a console waiting at its prompt), applied now on
   // the thread that owns sim, where it stands: a torque, a wet stretch, a checkpoint as in a pause;
   // continue and run to t are refused (the console runs it), as is everything when sim is null
-  // (the run the page showed has ended)
+  // (the run the page showed has ended). A page that has opened since gets the picture of now
   void apply_waiting(Simulation* sim);
+  // sim, which is not running, becomes what the page shows (a simulation just started, or just
+  // served): its name, columns and pulleys, the sample of now, the status "paused", and its picture
+  // when a page is open; apply_waiting draws it for a page that opens later
+  void show(Simulation& sim);
 
   static constexpr double kInterval = 0.05;           // [s] of wall time between two samples
   static constexpr double kFrameInterval = 1.0 / 15;  // [s] between two frames (while a page is open)

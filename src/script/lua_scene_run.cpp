@@ -58,6 +58,7 @@ int l_scene_run(lua_State* L) {
     ProgressLine line(progress, 0, &ctx->progress_ended);
     LiveFeed feed(ctx->serve.get(), ctx->stop, &ctx->page_changes);
     ctx->page_sim = nullptr;  // the page shows this run now, which ends with this call
+    if (ctx->serve) ctx->page_ran = true;
     res = run(*sc, rs, ctx->stop, line.callback(), [&](Simulation& sim, double t) {
       record_run_dir(ctx, rs.out_dir);  // its outputs are open
       return feed.run_to(sim, t, line.callback());

@@ -63,7 +63,8 @@ int run_to(lua_State* L, SimBox& box, double t, const char* what) {
         } done{box};
         LiveFeed feed(box.serve ? box.serve.get() : box.ctx->serve.get(), box.ctx->stop, &box.ctx->page_changes,
                       lua_topointer(L, 1));
-        if (!box.serve && box.ctx->serve) box.ctx->page_sim = box.sim.get(), box.ctx->page_key = lua_topointer(L, 1);
+        if (!box.serve && box.ctx->serve)
+          box.ctx->page_sim = box.sim.get(), box.ctx->page_key = lua_topointer(L, 1), box.ctx->page_ran = true;
         a = feed.run_to(*box.sim, t, line.callback(), "paused");
       },
       box.ctx);
@@ -388,6 +389,10 @@ int l_serve(lua_State* L) {
   if (box->serve) fail(L, "sim:serve: this simulation is served already, at " + box->serve->url());
   guarded(L, "sim:serve", [&] { box->serve = std::make_shared<live::LiveServer>(ss); });
   std::fprintf(stderr, "beltsim: live view at %s\n", box->serve->url().c_str());
+  // the page shows the simulation where it stands until it runs; a console applies the page's
+  // changes at its prompt
+  box->ctx->served[lua_topointer(L, 1)] = {box->serve.get(), box->sim.get()};
+  guarded(L, "sim:serve", [&] { LiveFeed(box->serve.get(), box->ctx->stop).show(*box->sim); });
   lua_pushstring(L, box->serve->url().c_str());
   return 1;
 }
@@ -402,6 +407,7 @@ int l_close(lua_State* L) {
             "sim:advance returns");
   const bool was_open = !box->sim->closed();
   guarded(L, "sim:close", [&] { box->sim->close(); });
+  box->ctx->served.erase(lua_topointer(L, 1));
   box->serve.reset();
   if (was_open) {
     if (const std::string w = box->sim->warning_summary(); !w.empty()) std::fprintf(stderr, "beltsim: %s\n", w.c_str());
@@ -423,6 +429,7 @@ int l_gc(lua_State* L) {
   // emptied rather than destroyed: a finaliser that runs later (another object's __gc) may still
   // reach this userdata, and must find "finalised" (sim == nullptr), not a dead object
   if (box->ctx && box->ctx->page_sim == box->sim.get()) box->ctx->page_sim = nullptr;
+  if (box->ctx) box->ctx->served.erase(lua_topointer(L, 1));
   box->serve.reset();
   box->sim.reset();
   box->refs.clear();
@@ -513,6 +520,16 @@ void push_simulation(lua_State* L, std::unique_ptr<Simulation> sim, Context* ctx
   box->ctx = ctx;
   box->progress = progress;
   luaL_setmetatable(L, kSimMeta);
+  // --serve's page, before a run has fed it, shows the simulation started last (a console's
+  // prompt applies the page's changes to it)
+  if (ctx && ctx->serve && !ctx->page_ran) {
+    ctx->page_sim = box->sim.get(), ctx->page_key = lua_topointer(L, -1);
+    try {
+      LiveFeed(ctx->serve.get(), ctx->stop).show(*box->sim);
+    } catch (const std::exception& e) {
+      std::fprintf(stderr, "beltsim: live view: %s\n", e.what());
+    }
+  }
 }
 
 void open_sim(lua_State* L, Context* ctx) {

@@ -113,11 +113,30 @@ class Live(unittest.TestCase):
         c.close()
         return r.status, body.decode()
 
+    def post_without_body(self, query, headers=b""):
+        """a POST with no body and, unless headers give one, no Content-Length (curl -X POST URL):
+        the status and the answer"""
+        with socket.create_connection((self.url.hostname, self.url.port), timeout=30) as s:
+            s.sendall(b"POST /control?token=%s&%s HTTP/1.1\r\nHost: x\r\nConnection: close\r\n%s\r\n" %
+                      (self.token.encode(), query.encode(), headers))
+            answer = b""
+            while True:
+                got = s.recv(4096)
+                if not got:
+                    break
+                answer += got
+        head, _, body = answer.partition(b"\r\n\r\n")
+        return int(head.split()[1]), body.decode()
+
     def statuses(self, stream):
         """the stream's statuses as they come, and None for each frame event (self.frames: their t)
         and each samples event (self.t: the last sample's t)"""
-        self.frames, self.t = [], None
+        self.frames, self.t, self.run, self.status = [], None, None, None
         for name, data in events(stream):
+            if name == "run":
+                self.run = json.loads(data)
+            if name == "status":
+                self.status = json.loads(data)
             if name == "idle":
                 yield None
             elif name == "frame":
@@ -151,7 +170,8 @@ class Live(unittest.TestCase):
         for _ in it:  # the run under way
             if self.t:
                 break
-        self.assertEqual(self.post("do=pause")[0], 202)
+        # as docs/live-view.md's example is sent (curl -X POST, no body): it was a bare 400
+        self.assertEqual(self.post_without_body("do=pause"), (202, "queued\n"))
         status = self.wait_status(it, "paused at t = ")
         paused_at = float(status.split("= ")[1].split(" ")[0])
         # the picture of the paused run: a frame event with its t (the renderer's thread draws the
@@ -192,6 +212,18 @@ class Live(unittest.TestCase):
         for bad in ["do=jump", "do=torque&pulley=driven&value=x", "do=wet&from=0.1&value=0.2",
                     "do=save&name=../x.ckpt", "do=save&name=.x", "do=run_to&value=inf"]:
             self.assertEqual(self.post(bad)[0], 400, bad)
+        # decimal numbers only (strtod read 0x10 as 16), refused naming the value
+        for bad in ["do=torque&pulley=driven&value=0x10", "do=run_to&value=0x1p-1", "do=wet&from=0X0&to=0.1&value=0.2",
+                    "do=torque&pulley=driven&value=%205", "do=torque&pulley=driven&value=nan"]:
+            status, said = self.post(bad)
+            self.assertEqual(status, 400, bad)
+            self.assertIn("decimal", said, bad)
+        status, said = self.post("do=torque&pulley=driven&value=0x10")
+        self.assertIn("value='0x10'", said)
+        # a body announced and never sent: cpp-httplib's own 400 (after its read timeout, 5 s;
+        # the run is paused), which had an empty body
+        status, said = self.post_without_body("do=jump", b"Content-Length: 3\r\n")
+        self.assertEqual((status, said.split(" (")[0]), (400, "400: the request could not be read"))
         self.assertEqual(self.post("do=continue")[0], 202)
         c.close()
         self.assertEqual(self.proc.wait(timeout=300), 0, self.proc.stderr.read().decode())
@@ -223,7 +255,9 @@ class Live(unittest.TestCase):
         self.assertEqual(self.get("/dygraph.js" + q)[0], 200)
         self.assertIn(b"Dygraph", self.get("/dygraph.js" + q)[1])
         for path in ["/%2e%2e/%2e%2e/etc/passwd", "/dygraph.min.js", "/index.js", "/src/dygraph.js"]:
-            self.assertEqual(self.get(path + q)[0], 404, path)
+            status, said = self.get(path + q)
+            self.assertEqual(status, 404, path)
+            self.assertIn(b"404: not served", said, path)  # every error says what it is
 
         c = http.client.HTTPConnection(self.url.hostname, self.url.port, timeout=60)
         c.request("GET", "/events" + q)
@@ -300,6 +334,31 @@ class ServeOption(unittest.TestCase):
         self.assertEqual(p.returncode, 2, p.stderr)
         self.assertIn("--serve", p.stderr)
 
+    def test_a_port_in_use_is_refused(self):
+        """a second live view on a port one already listens on is refused, naming the port: from
+        another process (--serve PORT) and from the same console (sim:serve{ port = PORT }). Both
+        had bound it (cpp-httplib's SO_REUSEPORT) and the requests were split between them"""
+        port = self.free_port()
+        with open(os.path.join(self.dir, "c.lua"), "w") as f:
+            f.write(two_pulley(elements=20) + "sim = drive:start { out = 'c', progress = false }\n")
+        holder = subprocess.Popen([BELTSIM, "console", "c.lua", "--serve", str(port)], cwd=self.dir,
+                                  stdin=subprocess.PIPE, stdout=subprocess.PIPE, stderr=subprocess.PIPE)
+        self.addCleanup(lambda: (holder.kill(), holder.wait(), [f.close() for f in (holder.stdin, holder.stdout,
+                                                                                   holder.stderr)]))
+        for line in holder.stderr:  # it listens once it has printed its address
+            if b"live view at " in line:
+                break
+        p = subprocess.run([BELTSIM, "run", "s.lua", "--serve", str(port)], cwd=self.dir, capture_output=True,
+                           text=True, timeout=120)
+        self.assertEqual(p.returncode, 1, p.stderr)
+        self.assertIn("port %d is in use" % port, p.stderr)
+        self.assertNotIn("live view at", p.stderr)
+        # the same console: a simulation of its own served on that port
+        out, err = holder.communicate(b"print(pcall(sim.serve, sim, { port = %d }))\n" % port, timeout=120)
+        self.assertEqual(holder.returncode, 0, err)
+        self.assertIn("false\tsim:serve: live view: cannot listen on 127.0.0.1:%d: port %d is in use" % (port, port),
+                      out.decode())
+
 
 class ConsoleAndPage(unittest.TestCase):
     """a console's simulation changed from the page while a command runs it: the page's changes are
@@ -307,14 +366,15 @@ class ConsoleAndPage(unittest.TestCase):
     (never interleaved), and session.lua replays them where they came: the replay's events.csv and
     timeseries.csv are the session's, byte for byte"""
 
-    def console(self, prefix, stdout):
-        """a console on the two-pulley drive's simulation (sim) with --serve, in a folder of its own"""
+    def console(self, prefix, stdout, serve=True):
+        """a console on the two-pulley drive's simulation (sim) with --serve (unless not serve), in a
+        folder of its own"""
         d = tempfile.mkdtemp(prefix=prefix)
         self.addCleanup(shutil.rmtree, d, True)
         with open(os.path.join(d, "c.lua"), "w") as f:
             f.write(two_pulley(elements=40) + "sim = drive:start { out = \"out\", sample = %r }\n" % SAMPLE)
-        proc = subprocess.Popen([BELTSIM, "console", "c.lua", "--serve"], cwd=d, stdin=subprocess.PIPE,
-                                stdout=stdout, stderr=subprocess.PIPE)
+        proc = subprocess.Popen([BELTSIM, "console", "c.lua"] + (["--serve"] if serve else []), cwd=d,
+                                stdin=subprocess.PIPE, stdout=stdout, stderr=subprocess.PIPE)
         self.addCleanup(proc.kill)
         return d, proc
 
@@ -394,7 +454,9 @@ class ConsoleAndPage(unittest.TestCase):
         t_pause = 0.05
         proc.stdin.write(b"sim:run_to(%r)\n" % t_pause)
         proc.stdin.flush()
-        live.wait_status(it, "paused")  # sim:run_to has returned: the console is at its prompt
+        # sim:run_to has returned: the console is at its prompt (the page said "paused" at t = 0
+        # already, where the console waited before it)
+        self.page_at_the_prompt(live, it, t_pause)
         self.assertEqual(live.post("do=torque&pulley=driven&value=-65")[0], 202)
         # applied at the prompt, not after the first step of the console's next run (before the
         # fix nothing came until the console ran again)
@@ -418,6 +480,64 @@ class ConsoleAndPage(unittest.TestCase):
         for name in ["events.csv", "timeseries.csv"]:
             with open(os.path.join(d, "out", name)) as a, open(os.path.join(r, "out", name)) as b:
                 self.assertEqual(a.read(), b.read(), name)
+
+    def page_at_the_prompt(self, live, it, t):
+        """the page of a simulation at the console's prompt at t: its run (its pulleys), the
+        sample of t, the status "paused", and the picture of t (a JPEG; /frame.jpg answered 503
+        "no frame yet" there)"""
+        end = time.monotonic() + 60  # a bound on a failure: the frame thread's start takes 0.1 s
+        for _ in it:
+            if live.t == t and live.frames and live.frames[-1] == t and live.status == "paused":
+                break
+            self.assertLess(time.monotonic(), end, (live.run, live.t, live.frames, live.status))
+        self.assertEqual(live.run["pulleys"], ["driver", "driven"])
+        self.assertIn("driver.omega", live.run["columns"])
+        status, frame = live.get("/frame.jpg?token=" + live.token)
+        self.assertEqual((status, frame[:2]), (200, b"\xff\xd8"))
+
+    def change_at_the_prompt(self, d, proc, live, it, t):
+        """a torque sent from the page at the prompt: applied there (the status, the console's next
+        print, events.csv at t)"""
+        self.assertEqual(live.post("do=torque&pulley=driven&value=-65"), (202, "queued\n"))
+        live.wait_status(it, "paused at t = %s s (torque applied)" % status_t(t), within=30)
+        proc.stdin.write(b"print('torque', sim:pulley('driven').torque)\n")
+        proc.stdin.close()
+        out = proc.stdout.read().decode()
+        err = proc.stderr.read().decode()
+        self.assertEqual(proc.wait(timeout=300), 0, err)
+        self.assertIn("torque\t-65", out)
+        rows = [r for r in events_csv(os.path.join(d, "out")) if r[1] == "driven.torque"]
+        self.assertEqual([(float(r[0]), float(r[2])) for r in rows], [(t, -65)])
+        return err
+
+    def test_a_page_before_the_first_run(self):
+        """console S.lua --serve, S.lua starts sim and nothing has run: the page shows sim at t = 0
+        (its pulleys, its sample, its picture) and a change from the page is applied to it at the
+        prompt (it was refused: 'no simulation to change (the run has ended)'), recorded in
+        session.lua"""
+        d, proc = self.console("beltsim_live_first_", subprocess.PIPE)
+        live, c, it = self.page(proc)
+        self.page_at_the_prompt(live, it, 0)
+        err = self.change_at_the_prompt(d, proc, live, it, 0)
+        session = err.split("the session's commands are in ")[1].split("\n")[0]
+        with open(os.path.join(d, session)) as f:
+            self.assertIn('\nsim:set_torque("driven", -65)  -- from the live view\n', f.read())
+        c.close()
+
+    def test_sim_serve_at_the_prompt(self):
+        """sim:serve{} typed at the prompt, then sim:run_to(T): a torque from its page is applied
+        at the prompt at T (it stayed queued until the next run_to)"""
+        d, proc = self.console("beltsim_live_served_", subprocess.PIPE, serve=False)
+        t = 0.05
+        proc.stdin.write(b"sim:serve{}\n")
+        proc.stdin.flush()
+        live, c, it = self.page(proc)
+        self.page_at_the_prompt(live, it, 0)
+        proc.stdin.write(b"sim:run_to(%r)\n" % t)
+        proc.stdin.flush()
+        self.page_at_the_prompt(live, it, t)
+        self.change_at_the_prompt(d, proc, live, it, t)
+        c.close()
 
 
 if __name__ == "__main__":
