@@ -32,7 +32,10 @@ std::string range_problem(const Scene& sc, std::optional<double> from, std::opti
   for (const auto& [v, name] : {std::pair{from, "from"}, std::pair{to, "to"}})
     if (v && !(*v >= 0 && *v <= length)) {
       if (key) *key = what + "." + name;
-      return "must be in [0, " + rounded_text(length) + "] m, the belt's length (got " + rounded_text(*v) + " m)";
+      return "must be in [0, " + rounded_text(length) +
+             "] m, the length the belt coordinate s runs over (scene:info()'s "
+             "s_length) (got " +
+             rounded_text(*v) + " m)";
     }
   return "";
 }

@@ -502,6 +502,9 @@ int l_scene_info(lua_State* L) {
   set_number(L, "kt", b.kt);
   set_number(L, "ct", b.ct);
   set_number(L, "route_length", sc->route.length);
+  // the length the belt coordinate s runs over (the path the elements' centres were laid on,
+  // pressed into the pulleys): what a wet stretch's from and to take, what belt.mu's functions read
+  set_number(L, "s_length", sc->sites.empty() ? 0.0 : sc->sites[0].length);
   set_number(L, "static_tension", sc->static_tension);
   set_number(L, "static_residual", sc->static_residual);
   lua_newtable(L);

@@ -304,6 +304,15 @@ TEST(LiveApi, WetTransitionRampsMuAcrossItsLength) {
                "m%)'), err)\n"
                "ok, err = pcall(sim.wet, sim, { from = 1.1, to = 0.1, mu = 0.2, transition = 0.5 })  -- wrapping\n"
                "assert(not ok and err:find(\"stretch's length, 0.2%d* m\"), err)\n"
+               "-- from and to run over [0, s_length], which info() gives (route_length, round the rims, is longer)\n"
+               "local L = s:info().s_length\n"
+               "assert(L > 1.2 and L < s:info().route_length, L)\n"
+               "local said = sim:wet{ from = 0, to = L, mu = 0.5 }\nassert(said:find(n .. ' of ' .. n .. ' elements'), "
+               "said)\n"
+               "ok, err = pcall(sim.wet, sim, { from = 0, to = s:info().route_length, mu = 0.5 })\n"
+               "assert(not ok and err:find(\"sim:wet.to: must be in %[0, \" .. string.format('%.6f', L):sub(1, 6) .. "
+               "\"%d*%] m, the length the belt coordinate s runs \" ..\n"
+               "  \"over %(scene:info%(%)'s s_length%)\"), err)\n"
                "sim:close()\n"),
       "");
 }
