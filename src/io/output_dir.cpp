@@ -347,8 +347,8 @@ void write_file_whole(const OutputDir& dir, const std::string& name, std::string
   f.commit();
 }
 
-void write_file_whole(const std::string& path, std::string_view text) {
-  const OutputPlace p = output_place(path, false);
+void write_file_whole(const std::string& path, std::string_view text, bool make_folder) {
+  const OutputPlace p = output_place(path, make_folder);
   write_file_whole(p.dir, p.name, text);
 }
 

@@ -133,8 +133,8 @@ class WholeFile {
 
 // text written whole to DIR/NAME (WholeFile)
 void write_file_whole(const OutputDir& dir, const std::string& name, std::string_view text);
-// the same for a path (its folder must exist)
-void write_file_whole(const std::string& path, std::string_view text);
+// the same for a path (its folder must exist, or is made with its missing parents with make_folder)
+void write_file_whole(const std::string& path, std::string_view text, bool make_folder = false);
 
 // "" when a picture's path names a PNG file (.png, any case), the only kind beltsim draws, else
 // why not (a user's x.jpg got PNG bytes under that name)

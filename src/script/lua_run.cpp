@@ -156,6 +156,14 @@ FrameSettings to_frames(lua_State* L, int idx, const std::string& w, const std::
       r = lua_tostring(L, -1);
     else
       fail_on(L, w + "." + key, std::string("true, false or a path expected, got ") + type_name(L, -1));
+    // "" would be no output, or the output folder itself: refused rather than guessed (it read
+    // "neither png nor video asked for", naming png for an empty video)
+    if (lua_type(L, -1) == LUA_TSTRING && r.empty()) {
+      fail_on(L, w + "." + key,
+              std::string(key) == "png"
+                  ? "an empty folder name (true for the folder frames, false or leave it out for no PNGs)"
+                  : "an empty file name (true for frames.mp4, false or leave it out for no video)");
+    }
     lua_pop(L, 1);
     return r;
   };

@@ -68,6 +68,10 @@ TEST(Frames, BadOptionsStopBeforeSimulating) {
       {"fps = 30", "neither png nor video asked for"},
       {"levels = 1, png = true", "run.frames.levels: must be 0 (continuous) or 2..64 (got 1)"},
       {"t_start = 5, png = true", "run.frames.t_start: must be <= t_end"},
+      // an empty name is refused naming its key (it read "run.frames.png: neither png nor video
+      // asked for ... (got none)" for both)
+      {"video = ''", "run.frames.video: an empty file name"},
+      {"png = ''", "run.frames.png: an empty folder name"},
   };
   for (const Case& c : cases) {
     const fs::path out = temp_dir() / "bad";
