@@ -358,4 +358,10 @@ std::string png_name_problem(const std::string& path) {
   return ext == ".png" ? "" : "beltsim draws PNG pictures: give a name ending in .png";
 }
 
+std::string video_name_problem(const std::string& path) {
+  std::string ext = std::filesystem::path(path).extension().string();
+  for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return ext == ".mp4" ? "" : "beltsim writes MP4 videos (H.264): give a name ending in .mp4";
+}
+
 }  // namespace beltsim
