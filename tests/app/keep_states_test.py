@@ -184,17 +184,19 @@ class KeepStates(unittest.TestCase):
         os.makedirs(os.path.join(self.dir, "empty"), exist_ok=True)
         code, out, err = run(["render", "empty", "--out", "x"], self.dir)
         self.assertEqual((code, err), (1, "beltsim render: empty: no states in it (no *.ckpt files)\n"))
-        # a state of another scene (80 elements) among them: refused, the PNGs before it kept
+        # a state of another scene (80 elements) among them: refused before anything is written (the
+        # PNGs before it were left, and a video of one frame)
         self.script("other.lua", two_pulley(80, inertia=0.025) + 'drive:run { t_end = 0.001, progress = false, out = "other", '
                                               'keep_states = true }\n')
         self.assertEqual(run(["run", "other.lua"], self.dir)[0], 0)
         first = os.path.join("out", "states", "state_00000.ckpt")
         other = os.path.join("other", "states", "state_00000.ckpt")
-        code, out, err = run(["render", first, other, "--out", "mixed"], self.dir)
+        code, out, err = run(["render", first, other, "--out", "mixed", "--video", "mixed.mp4"], self.dir)
         self.assertEqual(code, 1)
         self.assertEqual(err, "beltsim render: %s: a state of another scene than %s's (its belt.elements differs; one "
                               "render draws the states of one scene)\n" % (other, first))
-        self.assertEqual(self.listing("mixed"), ["state_00000.png"])
+        self.assertFalse(os.path.exists(os.path.join(self.dir, "mixed")))
+        self.assertFalse(os.path.exists(os.path.join(self.dir, "mixed.mp4")))
 
 
 if __name__ == "__main__":
