@@ -94,15 +94,18 @@ CLI::App* add_render_command(CLI::App& app, RenderOptions& o) {
                 "a checkpoint (sim:save), a kept state (OUT/states/state_NNNNN.ckpt), several of them, or a folder of "
                 "them (its *.ckpt files)")
       ->required();
-  c->add_option("--out", o.out, "the PNG to write; for several states, the folder of their PNGs")
+  c->add_option("--out", o.out,
+                "the PNG to write (a name ending in .png); for several states, or a name ending in /, the folder of "
+                "their PNGs")
       ->type_name("PNG|DIR")
       ->check(kNotEmpty);
-  c->add_option("--video", o.video, "an MP4 of the states, one frame each, at the run's frames per second")
+  c->add_option("--video", o.video,
+                "an MP4 of the states (a name ending in .mp4), one frame each, at the run's frames per second")
       ->type_name("MP4");
   std::string names;
   for (const auto& i : frame_quantities()) names += (names.empty() ? "" : ", ") + std::string(i.key);
   c->add_option("--quantity", o.quantity, "colour the belt by: " + names)->type_name("Q");
-  c->add_option("--size", o.size, "picture size in pixels, even, 16..8192")->type_name("WxH");
+  c->add_option("--size", o.size, "picture size in pixels, 16..8192 (even with --video)")->type_name("WxH");
   c->add_option("--view", o.view, "camera centre [m] and visible width [m] (default: the whole layout)")
       ->type_name("X,Y,W");
   c->add_option("--magnify", o.magnify, "factor on the belt's deviation from its path")->type_name("M");
@@ -110,8 +113,9 @@ CLI::App* add_render_command(CLI::App& app, RenderOptions& o) {
   c->footer(
       "Draws with the renderer of a run's frames, at each state's time, with the run's frame settings\n"
       "(the first state's; the defaults when it drew none) changed by the options. Several states:\n"
-      "--out DIR gets DIR/<state name>.png each, --video one frame each, in the order given (a\n"
-      "folder's in the order of their numbers). Prints the path of each file written.");
+      "--out DIR gets DIR/<state name>.png each (so does --out DIR/ for one state), --video one frame\n"
+      "each, in the order given (a folder's in the order of their numbers). Every state is read and\n"
+      "checked before anything is written. Prints the path of each file written.");
   return c;
 }
 

@@ -112,23 +112,42 @@ int cmd_render(const RenderOptions& o) {
   try {
     if (!o.out && !o.video)
       throw UsageError("--out is required (the PNG, or a folder for several states), or --video MP4");
+    if (o.video) {
+      if (const std::string bad = video_name_problem(*o.video); !bad.empty())
+        throw UsageError("--video " + *o.video + ": " + bad);
+    }
     const std::vector<std::string> files = state_files(o.states);
     std::error_code ec;
-    const bool several = files.size() > 1 || std::filesystem::is_directory(o.states.front(), ec);
+    // --out names a folder for several states, or when it ends in / (a name ending in / is a
+    // folder: it was written as a PNG file of that name, the / dropped)
+    const bool several = files.size() > 1 || std::filesystem::is_directory(o.states.front(), ec) ||
+                         (o.out && !o.out->empty() && o.out->back() == '/');
+    if (o.out && !several) require_png("--out", *o.out);
     // the first state gives the scene and the frame settings of every picture
     const std::unique_ptr<Simulation> first = Simulation::open_checkpoint(files.front());
     const FrameSettings f = settings(o, first->settings());
+    FrameSettings v = f;
     if (o.video) {
-      FrameSettings v = f;
       v.png_dir.clear(), v.video_path = *o.video;
-      video = render::make_frame_recorder(first->scene(), v);
+      // a video's size is even (H.264 in yuv420p); PNGs take any
+      if (v.width % 2 || v.height % 2) {
+        const std::string size = std::to_string(v.width) + "x" + std::to_string(v.height);
+        throw UsageError((o.size ? "--size " + size : "the run's frames.size " + size + " (--size sets it)") +
+                         ": width and height must be even for --video (H.264 in yuv420p)");
+      }
     }
+    // every state read and checked before anything is written: a state of another scene among
+    // them left the PNGs before it, or a video of one frame, behind a failed render
+    for (size_t k = 1; k < files.size(); ++k) {
+      const std::unique_ptr<Simulation> s = Simulation::open_checkpoint(files[k]);
+      if (const std::string d = scene_difference(s->scene(), first->scene()); !d.empty())
+        throw std::runtime_error(files[k] + ": a state of another scene than " + files.front() + "'s (its " + d +
+                                 " differs; one render draws the states of one scene)");
+    }
+    if (o.video) video = render::make_frame_recorder(first->scene(), v);
     for (size_t k = 0; k < files.size(); ++k) {
       std::unique_ptr<Simulation> other = k == 0 ? nullptr : Simulation::open_checkpoint(files[k]);
       const Simulation& s = k == 0 ? *first : *other;
-      if (const std::string d = k == 0 ? "" : scene_difference(s.scene(), first->scene()); !d.empty())
-        throw std::runtime_error(files[k] + ": a state of another scene than " + files.front() + "'s (its " + d +
-                                 " differs; one render draws the states of one scene)");
       if (o.out) {
         const std::string png =
             several ? (std::filesystem::path(*o.out) / std::filesystem::path(files[k]).stem()).string() + ".png"

@@ -34,6 +34,7 @@ std::string number_text(double v) {
 }
 
 std::string rounded_text(double v, int digits) {
+  if (std::isnan(v)) return "nan";  // to_chars writes a NaN with its sign bit set "-nan" (Lua's 0/0 on x86)
   char buf[64];  // %.17g's longest, "-2.2250738585072014e-308", has 24
   const auto r = std::to_chars(buf, buf + sizeof buf, v, std::chars_format::general, std::clamp(digits, 1, 17));
   return std::string(buf, r.ptr);

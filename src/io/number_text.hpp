@@ -19,7 +19,8 @@ void append_value(std::string& out, double v);
 std::string value_text(double v);
 
 // v rounded to that many significant digits (as printf's %.<digits>g, '.' whatever the locale),
-// for messages, where a reader wants "0.1" rather than every digit of the double
+// for messages, where a reader wants "0.1" rather than every digit of the double; "nan" for every
+// NaN, as number_text
 std::string rounded_text(double v, int digits = 10);
 
 // the whole of s as one decimal number ("1", "-2.5e-3", "inf", "-inf", "nan"): no blanks, no

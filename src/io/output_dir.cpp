@@ -347,8 +347,8 @@ void write_file_whole(const OutputDir& dir, const std::string& name, std::string
   f.commit();
 }
 
-void write_file_whole(const std::string& path, std::string_view text) {
-  const OutputPlace p = output_place(path, false);
+void write_file_whole(const std::string& path, std::string_view text, bool make_folder) {
+  const OutputPlace p = output_place(path, make_folder);
   write_file_whole(p.dir, p.name, text);
 }
 
@@ -356,6 +356,12 @@ std::string png_name_problem(const std::string& path) {
   std::string ext = std::filesystem::path(path).extension().string();
   for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
   return ext == ".png" ? "" : "beltsim draws PNG pictures: give a name ending in .png";
+}
+
+std::string video_name_problem(const std::string& path) {
+  std::string ext = std::filesystem::path(path).extension().string();
+  for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return ext == ".mp4" ? "" : "beltsim writes MP4 videos (H.264): give a name ending in .mp4";
 }
 
 }  // namespace beltsim

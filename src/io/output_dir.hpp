@@ -133,11 +133,14 @@ class WholeFile {
 
 // text written whole to DIR/NAME (WholeFile)
 void write_file_whole(const OutputDir& dir, const std::string& name, std::string_view text);
-// the same for a path (its folder must exist)
-void write_file_whole(const std::string& path, std::string_view text);
+// the same for a path (its folder must exist, or is made with its missing parents with make_folder)
+void write_file_whole(const std::string& path, std::string_view text, bool make_folder = false);
 
 // "" when a picture's path names a PNG file (.png, any case), the only kind beltsim draws, else
 // why not (a user's x.jpg got PNG bytes under that name)
 std::string png_name_problem(const std::string& path);
+// the same for a video's path: "" when it names an MP4 file (.mp4, any case), the only kind
+// beltsim writes (a user's clip.avi, or --video clip.png, got MP4 bytes under that name)
+std::string video_name_problem(const std::string& path);
 
 }  // namespace beltsim

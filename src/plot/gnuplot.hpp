@@ -26,8 +26,8 @@ class PrivateOutput {
   PrivateOutput& operator=(const PrivateOutput&) = delete;
   // where gnuplot writes (its `set output`)
   const std::string& path() const { return file_; }
-  // what gnuplot wrote, written whole to dest; throws "WHO: gnuplot reported no error but wrote
-  // no DEST" when it wrote nothing, "cannot write DEST: reason" when dest cannot be written
+  // what gnuplot wrote, written whole to dest (its missing folders made); throws "WHO: gnuplot reported no error but
+  // wrote no DEST" when it wrote nothing, "cannot write DEST: reason" when dest cannot be written
   void deliver(const std::string& dest, const std::string& who) const;
 
  private:

@@ -24,8 +24,6 @@ namespace beltsim::plot {
 
 namespace {
 
-namespace fs = std::filesystem;
-
 // series that share a unit, in the order of their first appearance
 struct Group {
   std::string unit;
@@ -190,9 +188,6 @@ std::string joined(const std::vector<std::string>& names) {
 
 void plot_png(const PlotSpec& spec) {
   if (spec.file.empty()) throw std::runtime_error("plot: no output file given");
-  const fs::path parent = fs::path(spec.file).parent_path();
-  if (!parent.empty() && !fs::is_directory(parent))
-    throw std::runtime_error("cannot write " + spec.file + ": the folder " + parent.string() + " does not exist");
   const PrivateOutput out;  // gnuplot writes there; the picture is then written to spec.file
   run_gnuplot(plot_script(spec, out.path()));
   out.deliver(spec.file, "plot");

@@ -44,9 +44,9 @@ struct PlotSpec {
 // is the one in brackets at the end of its name, else unknown (its own axis)
 PlotSpec summary_spec(const std::string& csv_path, const std::vector<std::string>& columns, const std::string& out_png);
 
-// Writes spec.file. Throws std::runtime_error naming the problem: no series, a series with no
-// finite values or t and y of different lengths, a missing folder, gnuplot missing or failing
-// (with gnuplot's own message).
+// Writes spec.file, its missing folders made (as every output's). Throws std::runtime_error naming
+// the problem: no series, a series with no finite values or t and y of different lengths, a file
+// that cannot be written, gnuplot missing or failing (with gnuplot's own message).
 void plot_png(const PlotSpec& spec);
 // the gnuplot script plot_png runs, drawing spec into the PNG file `png`
 std::string plot_script(const PlotSpec& spec, const std::string& png);

@@ -159,6 +159,14 @@ FrameSettings to_frames(lua_State* L, int idx, const std::string& w, const std::
       r = lua_tostring(L, -1);
     else
       fail_on(L, w + "." + key, std::string("true, false or a path expected, got ") + type_name(L, -1));
+    // "" would be no output, or the output folder itself: refused rather than guessed (it read
+    // "neither png nor video asked for", naming png for an empty video)
+    if (lua_type(L, -1) == LUA_TSTRING && r.empty()) {
+      fail_on(L, w + "." + key,
+              std::string(key) == "png"
+                  ? "an empty folder name (true for the folder frames, false or leave it out for no PNGs)"
+                  : "an empty file name (true for frames.mp4, false or leave it out for no video)");
+    }
     lua_pop(L, 1);
     return r;
   };
@@ -170,11 +178,13 @@ FrameSettings to_frames(lua_State* L, int idx, const std::string& w, const std::
   try {
     validate(f, times_only);
   } catch (const ParameterError& e) {
-    // e names frames.<key>: under the table that holds these frames (run.frames, start.frames)
-    about = parse_path(w);
-    if (!about.chain.empty()) about.chain.pop_back();
-    about.chain.insert(about.chain.end(), e.path.chain.begin(), e.path.chain.end());
-    error = parameter_message(path_text(about), e.reason, e.value, e.unit);
+    // e names frames.<key>: its key under the table that holds these frames (run.frames.size,
+    // start.frames.size; sim:show.size, which is no frames table)
+    KeyPath key = e.path;
+    if (!key.chain.empty()) key.chain.erase(key.chain.begin());
+    const std::string name = w + "." + path_text(key);
+    about = parse_path(name);
+    error = parameter_message(name, e.reason, e.value, e.unit);
   }
   if (!error.empty()) fail_at(L, about, error);
   return f;

@@ -26,6 +26,9 @@ void picture(lua_State* L, SimBox& box, const std::string& png) {
   (void)L;
 }
 
+// an empty file = "" (it was taken as no name given: the default one)
+const char* const kEmptyPicture = "an empty file name (leave file out for the default name in the output folder)";
+
 std::string time_tag(double t) {
   char b[32];
   std::snprintf(b, sizeof b, "%.6f", t);
@@ -43,7 +46,10 @@ int l_show(lua_State* L) {
   if (!lua_isnoneornil(L, 2)) {
     require_table(L, 2, "sim:show");
     fs = to_frames(L, 2, "sim:show", {"quantity", "range", "levels", "magnify", "view", "size", "file"});
-    if (auto f = opt_string(L, 2, "file", "sim:show")) file = *f;
+    if (auto f = opt_string(L, 2, "file", "sim:show")) {
+      if (f->empty()) fail_on(L, "sim:show.file", kEmptyPicture);
+      file = *f;
+    }
     if (const std::string bad = png_name_problem(file); !file.empty() && !bad.empty())
       fail_on(L, "sim:show.file", "'" + file + "': " + bad);
   }
@@ -89,7 +95,10 @@ int l_plot(lua_State* L) {
       lua_pop(L, 1);
     }
     if (auto v = opt_number(L, 2, "from", "sim:plot")) from = *v;
-    if (auto f = opt_string(L, 2, "file", "sim:plot")) file = *f;
+    if (auto f = opt_string(L, 2, "file", "sim:plot")) {
+      if (f->empty()) fail_on(L, "sim:plot.file", kEmptyPicture);
+      file = *f;
+    }
     if (const std::string bad = png_name_problem(file); !file.empty() && !bad.empty())
       fail_on(L, "sim:plot.file", "'" + file + "': " + bad);
   }
@@ -117,6 +126,8 @@ int l_save(lua_State* L) {
   Simulation& s = live(L, "save", {{"path", kString}});
   if (lua_type(L, 2) != LUA_TSTRING) fail(L, std::string("sim:save: a file name expected, got ") + type_name(L, 2));
   std::string path = lua_tostring(L, 2);
+  // (it was taken as the output folder: "cannot write out/x: it is a folder")
+  if (path.empty()) fail(L, "sim:save: an empty file name (give the checkpoint's, e.g. sim:save(\"state.ckpt\"))");
   if (std::filesystem::path(path).parent_path().empty()) path = output_path(s.settings(), path);  // a bare name
   if (const std::string r = output_refusal(*static_cast<SimBox*>(lua_touserdata(L, 1))->ctx, "sim:save", path, true);
       !r.empty())

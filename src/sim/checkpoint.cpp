@@ -180,8 +180,8 @@ void Simulation::save(const std::string& path) const {
   if (running_ || view_.y) throw std::logic_error("save: not inside a callback (save between run_to calls)");
   if (!integ_->can_save()) throw std::invalid_argument("save: " + cannot_save(rs_.integrator));
   // written whole (io/output_dir.hpp): a checkpoint is never half a file, and no part of one is
-  // left behind when it cannot be written
-  write_file_whole(path, checkpoint_text());
+  // left behind when it cannot be written; its missing folders made, as for every output
+  write_file_whole(path, checkpoint_text(), true);
 }
 
 std::string Simulation::checkpoint_text() const {

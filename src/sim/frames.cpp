@@ -1,11 +1,13 @@
 #include "sim/frames.hpp"
 
 #include <cmath>
+#include <filesystem>
 #include <stdexcept>
 #include <string>
 #include <type_traits>
 
 #include "io/number_text.hpp"
+#include "io/output_dir.hpp"
 #include "scene/validate.hpp"
 
 namespace beltsim {
@@ -39,15 +41,28 @@ template <class T>
     got = value;
   throw ParameterError("frames." + key, reason + " (got " + got + unit + ")");
 }
+// a and b name one place, as text ("frames" and "./frames/")
+bool same_path(const std::string& a, const std::string& b) {
+  auto normal = [](const std::string& p) {
+    std::string n = std::filesystem::path(p).lexically_normal().string();
+    while (n.size() > 1 && n.back() == '/') n.pop_back();
+    return n;
+  };
+  return normal(a) == normal(b);
+}
 }  // namespace
 
 void validate(const FrameSettings& f, bool times_only) {
   if (!(f.fps > 0 && f.fps <= 240)) bad("fps", "must be in (0, 240]", f.fps);
   if (f.fps != std::floor(f.fps)) bad("fps", "must be a whole number of frames per second", f.fps);
   if (!(f.slowdown > 0 && f.slowdown < 1e9)) bad("slowdown", "must be > 0 video seconds per simulated second", f.slowdown);
+  // odd sizes are a video's problem only (H.264 in yuv420p halves each chroma plane); a PNG takes any
+  const bool video = !f.video_path.empty();
   for (int v : {f.width, f.height})
-    if (v < 16 || v > 8192 || v % 2) {
-      bad("size", "width and height must be even and in 16..8192 px (H.264 in yuv420p)",
+    if (v < 16 || v > 8192 || (video && v % 2)) {
+      bad("size",
+          video ? "width and height must be even and in 16..8192 px (H.264 in yuv420p)"
+                : "width and height must be in 16..8192 px",
           std::to_string(f.width) + "x" + std::to_string(f.height));
     }
   if (f.range_lo && f.range_hi && !(*f.range_lo < *f.range_hi)) {
@@ -62,6 +77,11 @@ void validate(const FrameSettings& f, bool times_only) {
   if (f.range_hi && !std::isfinite(*f.range_hi)) bad("range", "must be finite", *f.range_hi);
   if (f.png_every < 1) bad("png_every", "must be >= 1", f.png_every);
   if (!(f.t_start >= 0 && std::isfinite(f.t_start))) bad("t_start", "must be >= 0 and finite", f.t_start, " s");
+  if (video && !f.png_dir.empty() && same_path(f.video_path, f.png_dir))
+    bad("video", "the same name as png's folder of PNGs: the two names collide (give the video a name of its own)",
+        f.video_path);
+  if (const std::string why = video ? video_name_problem(f.video_path) : ""; !why.empty())
+    bad("video", why, f.video_path);
   if (!times_only && !f.draws())
     bad("png", "neither png nor video asked for: nothing to write (keep_states = true keeps the states at these times)",
         std::string("none"));

@@ -35,7 +35,7 @@ const FrameQuantityInfo& frame_quantity_info(FrameQuantity q);
 struct FrameSettings {
   double fps = 30;             // frames per second of video
   double slowdown = 10;        // seconds of video per simulated second (10: ten times slower than life)
-  int width = 1280, height = 720;  // [px], even (H.264 in yuv420p)
+  int width = 1280, height = 720;  // [px], even for a video (H.264 in yuv420p)
   FrameQuantity quantity = FrameQuantity::tension;
   std::optional<double> range_lo, range_hi;  // colour-bar range; unset: the quantity's default for the scene
   int levels = 10;             // colour bands (0: continuous)
@@ -73,9 +73,10 @@ class FrameSink {
 using FrameSinkFactory =
     std::function<std::unique_ptr<FrameSink>(const Scene& scene, const FrameSettings& settings)>;
 
-// Checks the settings (width and height even and in 16..8192, fps in (0, 240], slowdown > 0,
-// magnify > 0, a range with lo < hi, levels 0 or 2..64, png_every >= 1, at least one output unless
-// times_only: the times of a run's kept states); throws std::invalid_argument "frames.KEY: reason
+// Checks the settings (width and height in 16..8192, even with a video, fps in (0, 240], slowdown > 0,
+// magnify > 0, a range with lo < hi, levels 0 or 2..64, png_every >= 1, a video's name ending in
+// .mp4 and not png's folder's, at least one output unless times_only: the times of a run's kept
+// states); throws std::invalid_argument "frames.KEY: reason
 // (got value)".
 void validate(const FrameSettings& f, bool times_only = false);
 

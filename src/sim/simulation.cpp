@@ -49,6 +49,12 @@ Simulation::Simulation(const Scene& sc, const RunSettings& rs, bool fresh) : sce
   integ_ = make_integrator(rs_.integrator, *sys_, Tolerances{rs_.rtol, rs_.atol});
   if (rs_.keep_states && !integ_->can_save())
     throw std::invalid_argument("keep_states: " + cannot_save(rs_.integrator));
+  // a kept state is a checkpoint, which holds no Lua code: refused before anything is written
+  // (the first kept state, at t = 0, failed after the run had begun its outputs)
+  for (size_t j = 0; j < drive_.pulleys.size(); ++j) {
+    keep_states_law(static_cast<int>(j), "torque", drive_.pulleys[j].torque);
+    keep_states_law(static_cast<int>(j), "speed", drive_.pulleys[j].speed);
+  }
   tl_ = std::make_unique<Timeline>(*integ_);
   if (rs_.check) {
     check_ = std::make_unique<RunCheck>(scene_, drive_, rs_);
@@ -422,8 +428,17 @@ void Simulation::warn_contract_misses() {
   }
 }
 
+void Simulation::keep_states_law(int j, const char* what, const TimeSpeedLaw& law) const {
+  if (!rs_.keep_states || !law.fn) return;
+  throw std::invalid_argument("keep_states: pulley " + model_.pulleys[j].name + "'s " + what + " law is Lua code (" +
+                              law.fn->describe() +
+                              "), which a kept state (a checkpoint) cannot hold; give the law as a table "
+                              "(constant, ramps, sines, ...) or keep no states");
+}
+
 void Simulation::set_torque(int j, const TimeSpeedLaw& law, const std::string& text) {
   require_open("set_torque");
+  keep_states_law(j, "torque", law);
   before_change();
   PulleyDrive& p = drive_.pulleys.at(j);
   p.torque = law;
@@ -442,6 +457,7 @@ void Simulation::set_torque(int j, const TimeSpeedLaw& law, const std::string& t
 
 void Simulation::set_speed(int j, const TimeSpeedLaw& law, const std::string& text) {
   require_open("set_speed");
+  keep_states_law(j, "speed", law);
   before_change();
   PulleyDrive& p = drive_.pulleys.at(j);
   p.speed = law;

@@ -128,6 +128,7 @@ class Simulation {
   // ---- changes at now() (each restarts the integrator there and is written to events.csv) ----
   // the law replaces the pulley's drive: a torque law makes it free, a speed law kinematic
   // (its speed jumps to the law's value now)
+  // (a Lua law is refused with keep_states, std::invalid_argument: a kept state cannot hold it)
   void set_torque(int j, const TimeSpeedLaw& law, const std::string& text);
   void set_speed(int j, const TimeSpeedLaw& law, const std::string& text);
   // moves pulley j's tensioner arm to `angle` [rad] and/or sets its rate [rad/s] now (a jump of
@@ -216,6 +217,9 @@ class Simulation {
   // the interval means up to now with the drive as it is: called before a change touches the
   // drive (the held step's ends not yet observed would be observed with the new drive)
   void before_change();
+  // with keep_states, std::invalid_argument naming keep_states when pulley j's law `what` (torque,
+  // speed) is Lua code, which no kept state can hold
+  void keep_states_law(int j, const char* what, const TimeSpeedLaw& law) const;
   // the spray zones at t: each zone on or off by its window, the elements' records brought to the
   // state (events.csv has the zones switching); restarts the integrator when something changed
   void spray_at(double t);

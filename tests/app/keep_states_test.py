@@ -150,6 +150,30 @@ class KeepStates(unittest.TestCase):
             self.assertIn(message, err)
             self.assertIn(name + ":", err)
 
+    def test_a_lua_law_is_refused_before_anything_is_written(self):
+        # a kept state is a checkpoint, which holds no Lua code: refused naming keep_states, with
+        # no t = 0 row, frame or states/ written (the first kept state had failed after they were)
+        lua_law = two_pulley(40, inertia=0.025).replace("torque = { per_speed = -0.955 }",
+                                                         "torque = function(t, w) return -0.955 * w end")
+        self.script("lua_law.lua", lua_law + 'drive:run { t_end = 0.01, progress = false, out = "lua_law", '
+                                             'keep_states = true, frames = { png = true } }\n')
+        code, out, err = run(["run", "lua_law.lua"], self.dir)
+        self.assertEqual(code, 1, err)
+        self.assertIn("lua_law.lua:9: keep_states: pulley driven's torque law is Lua code (function at lua_law.lua:5), "
+                      "which a kept state (a checkpoint) cannot hold", err)
+        self.assertFalse(os.path.exists(os.path.join(self.dir, "lua_law")), self.listing("lua_law")
+                         if os.path.exists(os.path.join(self.dir, "lua_law")) else "")
+        # a law set to Lua code while such a run goes on: refused, the drive unchanged
+        self.script("set_law.lua", two_pulley(40, inertia=0.025) + 'local sim = drive:start { progress = false, '
+                    'out = "set_law", keep_states = true }\nsim:run_to(0.004)\n'
+                    'sim:set_torque("driven", function(t, w) return 0 end)\n')
+        code, out, err = run(["run", "set_law.lua"], self.dir)
+        self.assertEqual(code, 1, err)
+        self.assertIn("set_law.lua:11: ", err)
+        self.assertIn("keep_states: pulley driven's torque law is Lua code (function at set_law.lua:11)", err)
+        with open(os.path.join(self.dir, "set_law", "events.csv")) as f:
+            self.assertNotIn("driven.torque", f.read())
+
     def test_bad_render_usage_and_states(self):
         code, out, err = run(["render", os.path.join("out", "states")], self.dir)
         self.assertEqual(code, 2)
@@ -160,17 +184,19 @@ class KeepStates(unittest.TestCase):
         os.makedirs(os.path.join(self.dir, "empty"), exist_ok=True)
         code, out, err = run(["render", "empty", "--out", "x"], self.dir)
         self.assertEqual((code, err), (1, "beltsim render: empty: no states in it (no *.ckpt files)\n"))
-        # a state of another scene (80 elements) among them: refused, the PNGs before it kept
+        # a state of another scene (80 elements) among them: refused before anything is written (the
+        # PNGs before it were left, and a video of one frame)
         self.script("other.lua", two_pulley(80, inertia=0.025) + 'drive:run { t_end = 0.001, progress = false, out = "other", '
                                               'keep_states = true }\n')
         self.assertEqual(run(["run", "other.lua"], self.dir)[0], 0)
         first = os.path.join("out", "states", "state_00000.ckpt")
         other = os.path.join("other", "states", "state_00000.ckpt")
-        code, out, err = run(["render", first, other, "--out", "mixed"], self.dir)
+        code, out, err = run(["render", first, other, "--out", "mixed", "--video", "mixed.mp4"], self.dir)
         self.assertEqual(code, 1)
         self.assertEqual(err, "beltsim render: %s: a state of another scene than %s's (its belt.elements differs; one "
                               "render draws the states of one scene)\n" % (other, first))
-        self.assertEqual(self.listing("mixed"), ["state_00000.png"])
+        self.assertFalse(os.path.exists(os.path.join(self.dir, "mixed")))
+        self.assertFalse(os.path.exists(os.path.join(self.dir, "mixed.mp4")))
 
 
 if __name__ == "__main__":

@@ -84,18 +84,40 @@ class Render(unittest.TestCase):
         self.assertEqual(self.render("--out", "x.png")[0], 0)
         self.assertEqual((self.bytes(csv), self.bytes(events)), before)
 
+    def test_an_odd_size_for_a_png(self):
+        code, out, err = self.render("--out", "odd.png", "--size", "321x181")
+        self.assertEqual((code, out), (0, "odd.png\n"), err)
+        with open(os.path.join(self.dir, "odd.png"), "rb") as f:
+            head = f.read(24)
+        self.assertEqual((int.from_bytes(head[16:20], "big"), int.from_bytes(head[20:24], "big")), (321, 181))
+
+    def test_a_name_ending_in_a_slash_is_a_folder(self):
+        # one state with --out DIR/: DIR/<state name>.png (it wrote a PNG file named DIR)
+        code, out, err = self.render("--out", "pics_dir/")
+        self.assertEqual((code, out), (0, os.path.join("pics_dir", "state.png") + "\n"), err)
+        self.assertTrue(os.path.isfile(os.path.join(self.dir, "pics_dir", "state.png")))
+
     def test_bad_options_and_files(self):
         for args, message in [
                 (["--out", "x.png", "--quantity", "tensoin"], "--quantity: unknown quantity 'tensoin' (did you mean "
                                                               "'tension'?)"),
                 (["--out", "x.png", "--size", "640"], "--size needs WxH in pixels, e.g. 640x360, got '640'"),
-                (["--out", "x.png", "--size", "641x360"], "frames.size"),
+                (["--out", "x.png", "--size", "16x8193"], "--size needs whole numbers of pixels in 16..8192"),
+                # an odd size is a video's problem only (below: PNGs take it)
+                (["--video", "x.mp4", "--size", "641x360"], "--size 641x360: width and height must be even for "
+                                                            "--video (H.264 in yuv420p)"),
+                # a picture is a PNG and a video an MP4: the bytes were written under any name
+                (["--out", "pics.mp4"], "--out pics.mp4: beltsim draws PNG pictures: give a name ending in .png"),
+                (["--video", "clip.png"], "--video clip.png: beltsim writes MP4 videos (H.264): give a name ending "
+                                          "in .mp4"),
                 (["--out", "x.png", "--view", "0,0"], "--view needs X,Y,WIDTH in metres"),
                 (["--out", "x.png", "--rtol", "1e-3"], "render does not take: --rtol"),
                 ([], "--out is required")]:
             code, out, err = self.render(*args)
             self.assertEqual(code, 2, args)
             self.assertIn(message, err)
+        for name in ("x.mp4", "pics.mp4", "clip.png"):
+            self.assertFalse(os.path.exists(os.path.join(self.dir, name)), name)
         code, out, err = run(["render", "missing.txt", "--out", "x.png"], self.dir)
         self.assertEqual(code, 1)
         self.assertIn("beltsim render: missing.txt", err)

@@ -33,6 +33,14 @@ TEST(NumberText, RoundedIsPrintfG) {
   EXPECT_EQ(number_text(0.1 + 0.2), "0.30000000000000004");
 }
 
+// a NaN reads "nan" in a message whatever its sign bit: Lua's 0/0 is a negative NaN on x86, which
+// to_chars wrote "-nan" (a user trial: "view.centre: ... (got x = -nan)")
+TEST(NumberText, ANanHasNoSign) {
+  EXPECT_EQ(rounded_text(-std::nan("")), "nan");
+  EXPECT_EQ(rounded_text(std::nan(""), 3), "nan");
+  EXPECT_EQ(number_text(-std::nan("")), "nan");
+}
+
 // a results file writes a zero without its sign (issue 44: the CSVs held "-0"); a checkpoint's
 // number keeps it, so that a resumed run starts from the same bits
 TEST(NumberText, AValueOfZeroHasNoSign) {

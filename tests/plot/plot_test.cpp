@@ -316,8 +316,10 @@ TEST(Plot, ClearErrors) {
   spec.series[0].y = {NAN, NAN};
   expect_error([&] { plot_png(spec); }, {"'a' has no finite values"});
   spec.series[0].y = {1, 2};
+  // a missing folder is made, as for every output (it was "the folder ... does not exist")
   spec.file = (d / "no such folder" / "x.png").string();
-  expect_error([&] { plot_png(spec); }, {"does not exist"});
+  plot_png(spec);
+  EXPECT_TRUE(fs::is_regular_file(spec.file));
 }
 
 TEST(Gnuplot, ItsOwnMessageWhenAScriptFails) {

@@ -68,6 +68,19 @@ TEST(Frames, BadOptionsStopBeforeSimulating) {
       {"fps = 30", "neither png nor video asked for"},
       {"levels = 1, png = true", "run.frames.levels: must be 0 (continuous) or 2..64 (got 1)"},
       {"t_start = 5, png = true", "run.frames.t_start: must be <= t_end"},
+      // an empty name is refused naming its key (it read "run.frames.png: neither png nor video
+      // asked for ... (got none)" for both)
+      {"video = ''", "run.frames.video: an empty file name"},
+      {"png = ''", "run.frames.png: an empty folder name"},
+      // a video is an MP4: another name got MP4 bytes
+      {"video = 'clip.avi'",
+       "run.frames.video: beltsim writes MP4 videos (H.264): give a name ending in .mp4 "
+       "(got clip.avi)"},
+      // one name for both (it read "cannot write out/.../frames: Is a directory")
+      {"png = 'frames', video = 'frames'",
+       "run.frames.video: the same name as png's folder of PNGs: the two names "
+       "collide"},
+      {"png = true, video = './frames/'", "the two names collide"},
   };
   for (const Case& c : cases) {
     const fs::path out = temp_dir() / "bad";
@@ -107,6 +120,28 @@ TEST(Frames, PngAndVideoOnePerFrameTime) {
   EXPECT_EQ(probe(out / "clip.mp4", "stream=codec_name"), "h264");
   EXPECT_EQ(probe(out / "clip.mp4", "stream=nb_read_frames"), "7");
   EXPECT_EQ(probe(out / "clip.mp4", "stream=width"), "320");
+}
+
+// a PNG's width and height from its IHDR chunk ({0, 0} when it is no PNG)
+std::pair<int, int> png_size(const fs::path& file) {
+  std::ifstream in(file, std::ios::binary);
+  unsigned char b[24] = {};
+  if (!in.read(reinterpret_cast<char*>(b), sizeof b)) return {0, 0};
+  auto be = [&](int at) { return (b[at] << 24) | (b[at + 1] << 16) | (b[at + 2] << 8) | b[at + 3]; };
+  return {be(16), be(20)};
+}
+
+// odd sizes are only a video's problem (H.264 in yuv420p): PNGs alone take them (they were refused
+// citing H.264 with no video asked for); a video still refuses them
+TEST(Frames, OddSizesForPngsOnly) {
+  const fs::path out = temp_dir() / "odd";
+  fs::remove_all(out);
+  EXPECT_EQ(run("s:run{ t_end = 0.004, frames = { size = {321, 181}, png = true } }", out), "");
+  EXPECT_EQ(png_size(out / "frames" / "frame_00000.png"), std::make_pair(321, 181));
+  EXPECT_NE(run("s:run{ t_end = 0.004, frames = { size = {321, 181}, png = true, video = true } }", out)
+                .find("run.frames.size: width and height must be even and in 16..8192 px (H.264 in yuv420p) (got "
+                      "321x181)"),
+            std::string::npos);
 }
 
 // the runaway of lua_api_test's divergence test, with a video: the error leaves it finalised

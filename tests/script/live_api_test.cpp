@@ -454,6 +454,14 @@ TEST(LiveApi, BadCallsNameFileLineAndWhat) {
             "sim:plot.file: 'p.jpg': beltsim draws PNG pictures: give a name ending in .png"},
            {"sim:show{file = 's.gif'}", "sim:show.file: 's.gif': beltsim draws PNG pictures"},
            {"sim:summary{plot = 's.jpg'}", "sim:summary.plot: 's.jpg': beltsim draws PNG pictures"},
+           // an empty name is refused naming its key (save took the output folder for the file, show
+           // the default name)
+           {"sim:save('')", "sim:save: an empty file name"},
+           {"sim:show{file = ''}", "sim:show.file: an empty file name"},
+           {"sim:plot{file = ''}", "sim:plot.file: an empty file name"},
+           // sim:show's keys are its own (they read frames.magnify, frames.range)
+           {"sim:show{magnify = -1}", "sim:show.magnify: must be in (0, 1e4] (got -1)"},
+           {"sim:show{range = {1, 0}}", "sim:show.range: needs lo < hi (got {1, 0})"},
            {"sim:close(); sim:advance(0.1)", "the simulation is closed"},
            // an assignment says what to do instead (it said 'attempt to index a beltsim.Simulation value')
            {"sim.t = 5", "sim.t is read-only: the simulation's time moves by running it (sim:run_to(t)"},
@@ -466,6 +474,24 @@ TEST(LiveApi, BadCallsNameFileLineAndWhat) {
     EXPECT_NE(msg.find("live.lua:9:"), std::string::npos) << c.call << " -> " << msg;
     EXPECT_NE(msg.find(c.expect), std::string::npos) << c.call << " -> " << msg;
   }
+}
+
+// the folders of a picture's or a checkpoint's path are made when missing, as sim:show's always
+// were (sim:plot's said "the folder ... does not exist", sim:save's "... is missing"); a picture
+// without a video takes an odd size
+TEST(LiveApi, MissingFoldersAreMade) {
+  const fs::path out = temp_dir() / "out";
+  fs::remove_all(out);
+  EXPECT_EQ(run_text(scene() +
+                     "sim:run_to(0.004)\n"
+                     "sim:show{ file = 'pics/a.png', size = {321, 181} }\n"
+                     "sim:plot{ file = 'p/q.png' }\n"
+                     "sim:save('" +
+                     (out / "sub" / "dir" / "x.ckpt").string() +
+                     "')\n"
+                     "sim:close()\n"),
+            "");
+  for (const char* f : {"pics/a.png", "p/q.png", "sub/dir/x.ckpt"}) EXPECT_TRUE(fs::is_regular_file(out / f)) << f;
 }
 
 // --t-end shortens scene:run; a live simulation runs to the times its script names, and says so
