@@ -439,8 +439,23 @@ void FrameBuilder::draw_text_and_legend(double t, const Observation& seen, doubl
   const double panel_x = fs_.width - panel_ + 0.5 * font_px_;
   const double bar_w = std::max(8.0, 0.022 * fs_.width);
   const double bar_top = top_ + 2.2 * line;
-  // (frames too small for a bar of at least four lines get a short one below the text band)
-  const double bar_bot = std::max(fs_.height - 6.2 * line, bar_top + 4.0 * line);  // room for 5 legend lines
+  // the legend's lines below the bar (at most five): the bar leaves room for five where it is four
+  // lines long or more, the same in every frame of a run whatever its legend holds. A smaller frame
+  // gets a shorter bar (two lines at least) and, where its legend still does not fit, loses the
+  // lines a reader needs least first: the sign's, the travel arrow's (the arrows on the spans show
+  // it), the grey of the free spans (a 320x180 frame's legend ran off its bottom)
+  bool any_wet = false;
+  for (const ElementDraw& el : out.elements) any_wet = any_wet || el.wet;
+  bool sign_line = qi.is_signed, arrow_line = arrows,
+       off_swatch = fs_.quantity != FrameQuantity::tension && fs_.quantity != FrameQuantity::mu;
+  double bar_bot = fs_.height - 6.2 * line;
+  if (bar_bot < bar_top + 4.0 * line) {
+    const int room = static_cast<int>(std::floor((fs_.height - bar_top) / line - 3.2));
+    for (bool* drop : {&sign_line, &arrow_line, &off_swatch})
+      if (sign_line + any_wet + 1 + arrow_line + off_swatch > room) *drop = false;
+    const int legend_lines = sign_line + any_wet + 1 + arrow_line + off_swatch;
+    bar_bot = std::max(fs_.height - (legend_lines + 1.2) * line, bar_top + 2.0 * line);
+  }
   out.boxed_text(Vec2(panel_x, bar_top - 1.6 * line), qi.label, font_px_, kInk, paper);
   out.boxed_text(Vec2(panel_x, bar_top - 0.6 * line), *qi.unit ? std::string("[") + qi.unit + "]" : "[\u2013]",
                  font_px_, kInk, paper);
@@ -466,7 +481,20 @@ void FrameBuilder::draw_text_and_legend(double t, const Observation& seen, doubl
   const int edges = scale_.levels > 0 ? scale_.levels : 4;
   int every = 1;
   while (every < edges && (bar_bot - bar_top) / edges * every < 1.3 * font_px_) every *= 2;
-  for (int k = 0; k <= edges; k += every) {
+  // labelled: both ends and a zero edge always (a short bar read 0.030 / -0.010 / -0.050 for
+  // -0.05..0.05: no top, no zero), then every `every`-th edge clear of those by `every`
+  std::vector<int> labelled{0, edges};
+  const double zero = -scale_.lo / (scale_.hi - scale_.lo) * edges;
+  if (scale_.lo < 0 && scale_.hi > 0 && std::abs(zero - std::round(zero)) < 1e-9) {
+    const int kz = static_cast<int>(std::round(zero));
+    if (kz >= every && edges - kz >= every) labelled.push_back(kz);
+  }
+  for (int k = every; k < edges; k += every) {
+    bool clear = true;
+    for (int c : labelled) clear = clear && std::abs(k - c) >= every;
+    if (clear) labelled.push_back(k);
+  }
+  for (int k : labelled) {
     const double val = scale_.lo + (scale_.hi - scale_.lo) * k / edges;
     const double yk = bar_bot - (bar_bot - bar_top) * k / edges;
     out.line(Vec2(panel_x + bar_w, yk), Vec2(panel_x + bar_w + 0.4 * font_px_, yk), 1.2, kInk);
@@ -481,9 +509,7 @@ void FrameBuilder::draw_text_and_legend(double t, const Observation& seen, doubl
     out.boxed_text(Vec2(panel_x + bar_w + 0.5 * font_px_, ly), what, font_px_, kInk, paper);
     ly += line;
   };
-  if (qi.is_signed) out.boxed_text(Vec2(panel_x, ly), "+ : along travel", font_px_, kInk, paper), ly += line;
-  bool any_wet = false;
-  for (const ElementDraw& el : out.elements) any_wet = any_wet || el.wet;
+  if (sign_line) out.boxed_text(Vec2(panel_x, ly), "+ : along travel", font_px_, kInk, paper), ly += line;
   if (any_wet) {  // dashed, as on the belt
     for (int k = 0; k < 3; ++k) {
       const double d0 = panel_x + bar_w * k / 3.0, d1 = d0 + 0.6 * bar_w / 3.0;
@@ -495,14 +521,13 @@ void FrameBuilder::draw_text_and_legend(double t, const Observation& seen, doubl
     ly += line;
   }
   swatch(kSlip, "slipping");
-  if (arrows) {
+  if (arrow_line) {
     out.arrow(Vec2(panel_x, ly - 0.35 * font_px_), Vec2(panel_x + bar_w, ly - 0.35 * font_px_), arrow_w,
               std::min(0.8 * font_px_, 0.6 * bar_w), kInk);
     out.boxed_text(Vec2(panel_x + bar_w + 0.5 * font_px_, ly), "belt travel", font_px_, kInk, paper);
     ly += line;
   }
-  if (fs_.quantity != FrameQuantity::tension && fs_.quantity != FrameQuantity::mu)
-    swatch(scale_.none, "off the pulleys");
+  if (off_swatch) swatch(scale_.none, "off the pulleys");
 }
 
 // "driver: ω = −57.05 rad/s, slip −0.021 m/s": the pulley's speed and its slip_speed (belt minus

@@ -234,5 +234,34 @@ TEST_F(Fixture, PulleyLinesShareTheTextBandWithoutOverlap) {
   }
 }
 
+// a small frame's legend stays inside it, losing the lines a reader needs least (a 320x180 frame's
+// ran off its bottom: a user trial), and its colour bar keeps both end labels and zero (it read
+// 0.030 / -0.010 / -0.050 for -0.05..0.05); 640x360 keeps every line
+TEST_F(Fixture, ASmallFramesLegendStaysInsideWithTheBarsEnds) {
+  const Scene& sc = wet();
+  const Eigen::VectorXd y = test::moving_state(sc);
+  for (const auto& [w, h] : {std::pair{320, 180}, std::pair{640, 360}}) {
+    FrameSettings f = fs();
+    f.width = w, f.height = h;
+    f.quantity = FrameQuantity::slip;
+    FrameBuilder b(sc, f, &font);
+    DrawList dl;
+    b.build(0, y.data(), dl);
+    bool wet = false, top = false, bottom = false, zero = false;
+    for (const DrawList::TextBox& t : dl.boxes) {
+      EXPECT_LE(t.hi.y(), h) << w << "x" << h << ": " << t.text;
+      wet = wet || t.text.rfind("wet (", 0) == 0;
+      top = top || t.text == "0.050";
+      bottom = bottom || t.text == "\u22120.050" || t.text == "-0.050";
+      zero = zero || t.text == "0.000";
+    }
+    EXPECT_TRUE(wet && top && bottom && zero)
+        << w << "x" << h << ": wet " << wet << ", ends " << top << bottom << ", zero " << zero;
+    bool sign = false;
+    for (const std::string& t : dl.texts) sign = sign || t == "+ : along travel";
+    EXPECT_EQ(sign, w == 640) << w << "x" << h;
+  }
+}
+
 }  // namespace
 }  // namespace beltsim::render
