@@ -371,6 +371,20 @@ void Outputs::check_state(const State& s) const {
                              std::to_string(s.frames) + ": frames drawn cannot be taken back");
   if (!dir_) return;
   for (const auto& [name, bytes] : cuts(s)) check_cut(path(name), bytes);
+  // the rows kept must be this run's: another scene's run into the folder since the save writes
+  // another header (its rows would go on under ours, or be cut at a row end by chance)
+  std::string want;
+  for (const std::string& c : timeseries_columns(scene_, rs_.probes.size())) {
+    if (!want.empty()) want += ',';
+    want += csv_text(c);
+  }
+  std::ifstream in(path("timeseries.csv"), std::ios::binary);
+  std::string have;
+  std::getline(in, have);
+  if (have != want)
+    throw std::runtime_error("the run's output " + path("timeseries.csv") +
+                             " is not this run's: its header is not the one this simulation writes (another run has "
+                             "written the folder since the checkpoint was saved)");
 }
 
 std::string Outputs::later_results(const State& s) const {

@@ -226,6 +226,22 @@ TEST(Checkpoint, ResultsAfterTheCheckpointAreCutOnlyWhenAsked) {
   saved().restore();
 }
 
+// the rows kept must be this run's: a folder another scene's run wrote since the save (whose rows
+// may end where the checkpoint's do, by chance) is refused by its header, nothing touched
+TEST(Checkpoint, AnotherRunsTimeseriesIsRefused) {
+  saved().restore();
+  const std::string ck = saved().ck.string(), csv = (saved().out / "timeseries.csv").string();
+  std::string other = saved().outputs.at("timeseries.csv");
+  other[0] = 'T';  // the same sizes and row ends, another header
+  test::spit(csv, other);
+  const std::string m = test::what_of([&] { Simulation::resume(ck, {}, nullptr, {}, true); });
+  EXPECT_NE(m.find("the run's output " + csv + " is not this run's: its header is not the one this simulation writes"),
+            std::string::npos)
+      << m;
+  EXPECT_EQ(slurp(csv), other);
+  saved().restore();
+}
+
 // a checkpoint keeps every setting the run-settings table marks kept (sim/run_table.hpp): each set
 // to a value other than its default, saved, and read back the same
 TEST(Checkpoint, KeepsEveryRunSettingTheTableMarksKept) {
