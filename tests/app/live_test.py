@@ -444,6 +444,7 @@ class ConsoleAndPage(unittest.TestCase):
             x, y = x.split(","), y.split(",")
             self.assertEqual([(h, u) for h, u, v in zip(head, x, y) if u != v],
                              [(h, v) for h, u, v in zip(head, x, y) if u != v], x[0])
+
     def test_a_change_at_the_prompt_applies_there(self):
         """a torque sent from the page while the console waits at its prompt after sim:run_to(T)
         is applied there, at T (no run needed): the status says so, the console's next
@@ -457,19 +458,9 @@ class ConsoleAndPage(unittest.TestCase):
         # sim:run_to has returned: the console is at its prompt (the page said "paused" at t = 0
         # already, where the console waited before it)
         self.page_at_the_prompt(live, it, t_pause)
-        self.assertEqual(live.post("do=torque&pulley=driven&value=-65")[0], 202)
         # applied at the prompt, not after the first step of the console's next run (before the
         # fix nothing came until the console ran again)
-        live.wait_status(it, "paused at t = %s s (torque applied)" % status_t(t_pause), within=30)
-        c.close()
-        proc.stdin.write(b"print('torque', sim:pulley('driven').torque)\nsim:run_to(0.1)\n")
-        proc.stdin.close()
-        out = proc.stdout.read().decode()
-        err = proc.stderr.read().decode()
-        self.assertEqual(proc.wait(timeout=300), 0, err)
-        self.assertIn("torque\t-65", out)
-        rows = [r for r in events_csv(os.path.join(d, "out")) if r[1] == "driven.torque"]
-        self.assertEqual([(float(r[0]), float(r[2])) for r in rows], [(t_pause, -65)])
+        err = self.change_at_the_prompt(d, proc, live, it, t_pause, then=b"sim:run_to(0.1)\n", stream=c)
         session = err.split("the session's commands are in ")[1].split("\n")[0]
         with open(os.path.join(d, session)) as f:
             text = f.read()
@@ -495,12 +486,15 @@ class ConsoleAndPage(unittest.TestCase):
         status, frame = live.get("/frame.jpg?token=" + live.token)
         self.assertEqual((status, frame[:2]), (200, b"\xff\xd8"))
 
-    def change_at_the_prompt(self, d, proc, live, it, t):
+    def change_at_the_prompt(self, d, proc, live, it, t, then=b"", stream=None):
         """a torque sent from the page at the prompt: applied there (the status, the console's next
-        print, events.csv at t)"""
+        print, events.csv at t); `then`: the console's commands after the print; `stream`: the
+        page's stream, closed before them"""
         self.assertEqual(live.post("do=torque&pulley=driven&value=-65"), (202, "queued\n"))
         live.wait_status(it, "paused at t = %s s (torque applied)" % status_t(t), within=30)
-        proc.stdin.write(b"print('torque', sim:pulley('driven').torque)\n")
+        if stream:
+            stream.close()
+        proc.stdin.write(b"print('torque', sim:pulley('driven').torque)\n" + then)
         proc.stdin.close()
         out = proc.stdout.read().decode()
         err = proc.stderr.read().decode()

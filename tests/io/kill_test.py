@@ -68,6 +68,14 @@ def whole_rows(path):
     return ""
 
 
+def size_limit(limit):
+    """a child's file-size limit (a full disk: write(2) fails with EFBIG, SIGXFSZ ignored)"""
+    def limited():
+        signal.signal(signal.SIGXFSZ, signal.SIG_IGN)
+        resource.setrlimit(resource.RLIMIT_FSIZE, (limit, limit))
+    return limited
+
+
 def rows(path):
     try:
         with open(path) as f:
@@ -225,11 +233,8 @@ def full_disk():
     out = os.path.join(TMP, "full")
     limit = 64 * 1024  # parameters.csv (3 KiB) fits; timeseries.csv reaches it in about 0.4 s simulated
 
-    def limited():
-        signal.signal(signal.SIGXFSZ, signal.SIG_IGN)  # write(2) fails with EFBIG instead
-        resource.setrlimit(resource.RLIMIT_FSIZE, (limit, limit))
 
-    p = start(["run", script("run", RUN), "--no-frames"], out, preexec_fn=limited)
+    p = start(["run", script("run", RUN), "--no-frames"], out, preexec_fn=size_limit(limit))
     p.wait(timeout=60)
     err = p.stderr.read()
     csv = os.path.join(out, "timeseries.csv")
@@ -246,12 +251,9 @@ def full_disk_console():
     limit = 64 * 1024
     start_text = SCENE + 'sim = drive:start { progress = false }\n'
 
-    def limited():
-        signal.signal(signal.SIGXFSZ, signal.SIG_IGN)
-        resource.setrlimit(resource.RLIMIT_FSIZE, (limit, limit))
 
     p = start(["console", script("full_console", start_text)], out, stdin=subprocess.PIPE,
-              stdout=subprocess.DEVNULL, cwd=TMP, preexec_fn=limited)
+              stdout=subprocess.DEVNULL, cwd=TMP, preexec_fn=size_limit(limit))
     p.stdin.write("sim:run_to(1)\n")
     p.stdin.close()
     p.wait(timeout=60)
@@ -272,11 +274,8 @@ def full_disk_video():
     run = script("full_video", SCENE + 'drive:run { t_end = 1, progress = false, frames = { size = {640, 360}, '
                                        'video = "v.mp4", png_every = 1000 } }\n')
 
-    def limited():
-        signal.signal(signal.SIGXFSZ, signal.SIG_IGN)
-        resource.setrlimit(resource.RLIMIT_FSIZE, (limit, limit))
 
-    p = start(["run", run], out, preexec_fn=limited)
+    p = start(["run", run], out, preexec_fn=size_limit(limit))
     p.wait(timeout=60)
     err = p.stderr.read()
     video = os.path.join(out, "v.mp4")
