@@ -233,7 +233,6 @@ def full_disk():
     out = os.path.join(TMP, "full")
     limit = 64 * 1024  # parameters.csv (3 KiB) fits; timeseries.csv reaches it in about 0.4 s simulated
 
-
     p = start(["run", script("run", RUN), "--no-frames"], out, preexec_fn=size_limit(limit))
     p.wait(timeout=60)
     err = p.stderr.read()
@@ -250,7 +249,6 @@ def full_disk_console():
     out = os.path.join(TMP, "full_console")
     limit = 64 * 1024
     start_text = SCENE + 'sim = drive:start { progress = false }\n'
-
 
     p = start(["console", script("full_console", start_text)], out, stdin=subprocess.PIPE,
               stdout=subprocess.DEVNULL, cwd=TMP, preexec_fn=size_limit(limit))
@@ -273,7 +271,6 @@ def full_disk_video():
     limit = 200 * 1024  # at 640x360 the video passes it before 0.4 s simulated, the CSV after 1 s
     run = script("full_video", SCENE + 'drive:run { t_end = 1, progress = false, frames = { size = {640, 360}, '
                                        'video = "v.mp4", png_every = 1000 } }\n')
-
 
     p = start(["run", run], out, preexec_fn=size_limit(limit))
     p.wait(timeout=60)
