@@ -89,7 +89,7 @@ void default_range(const Scene& sc, FrameQuantity q, double& lo, double& hi) {
       lo = -0.05, hi = 0.05;
       break;
     case FrameQuantity::mu:
-      lo = 0, hi = mu_max > 0 ? mu_max : 1;
+      lo = 0, hi = mu_max > 0 ? nice_up(mu_max) : 1;  // (a flank's 1.0233 read 0.10, 0.20, 0.31 ...)
       break;
   }
 }
@@ -516,8 +516,8 @@ void FrameBuilder::draw_text_and_legend(double t, const Observation& seen, doubl
       out.quad(Vec2(d0, ly - 0.5 * font_px_), Vec2(d1, ly - 0.5 * font_px_), Vec2(d1, ly - 0.2 * font_px_),
                Vec2(d0, ly - 0.2 * font_px_), kWet);
     }
-    out.boxed_text(Vec2(panel_x + bar_w + 0.5 * font_px_, ly), "wet (\u03bc < " + format("%g", mu_dry) + ")", font_px_,
-                   kInk, paper);
+    out.boxed_text(Vec2(panel_x + bar_w + 0.5 * font_px_, ly), "wet (\u03bc < " + format("%.3g", mu_dry) + ")",
+                   font_px_, kInk, paper);
     ly += line;
   }
   swatch(kSlip, "slipping");
