@@ -134,7 +134,9 @@ std::string bending_loss_warning(const Scene& sc) {
   const std::optional<BendingLoss> e = estimate_bending_loss(sc);
   if (!e || !(e->share() > kBendingLossWarn)) return "";
   // the key that sets the bending damping, as the scene's inputs name it
-  std::string key = "belt.bending_damping", value;
+  std::string key = "belt.bending_damping", value, preset;
+  for (const SceneInput& in : sc.inputs)
+    if (in.name == "belt.preset") preset = in.text;
   for (const SceneInput& in : sc.inputs)
     if (in.name == "belt.bending_damping" || in.name == "belt.bending_viscosity" || in.name == "belt.sde.ct") {
       std::ostringstream s;
@@ -149,10 +151,15 @@ std::string bending_loss_warning(const Scene& sc) {
   m.precision(3);
   m << key << value << ": the belt's bending dampers will take about " << power_text(e->dissipated)
     << " at the drive's steady speeds (belt " << e->belt_speed << " m/s), " << 100 * e->share() << " % of the "
-    << power_text(e->transmitted)
-    << " its pulleys transmit, where a PK belt loses a few per cent in all: give the belt's own bending loss, "
-       "e.g. belt = beltsim.belts[\"6PK\"] (docs/belts.md), or a smaller "
-    << key << " (docs/model.md, bending loss)";
+    << power_text(e->transmitted) << " its pulleys transmit, where a PK belt loses a few per cent in all: ";
+  // the preset's own bending loss: the belt is what it is, the drive transmits little (a light load,
+  // or a load law the pulley's speed never reaches); advising the preset it uses was no help
+  if (!preset.empty() && key == "belt.bending_viscosity")
+    m << "the " << preset << " preset's own bending loss on a drive that transmits little; check the pulleys' "
+      << "loads (a load table on the other side of zero speed gives none) (docs/belts.md)";
+  else
+    m << "give the belt's own bending loss, e.g. belt = beltsim.belts[\"6PK\"] (docs/belts.md), or a smaller " << key
+      << " (docs/model.md, bending loss)";
   return m.str();
 }
 

@@ -74,6 +74,24 @@ TEST(BendingLoss, APresetOnTheSameDriveDoesNotWarn) {
   EXPECT_EQ(bending_warning(sc), "");
 }
 
+// The preset on a drive that transmits a tenth as much: its own loss is then past 5 %, and the
+// warning says so instead of advising the preset the belt already is (a user trial)
+TEST(BendingLoss, APresetsOwnLossOnALightDriveIsSaidAsSuch) {
+  test::expect_warnings({WarningKind::static_retry});
+  SceneDef d = with_preset(presets::automotive_accessories(), "6PK");
+  for (PulleyDef& p : d.pulleys)
+    if (p.torque.per_speed != 0) p.torque.per_speed /= 10;
+  const Scene sc = build_scene(d);
+  const std::optional<BendingLoss> e = estimate_bending_loss(sc);
+  ASSERT_TRUE(e);
+  EXPECT_GT(e->share(), kBendingLossWarn);
+  const std::string w = bending_warning(sc);
+  EXPECT_NE(w.find("the 6PK preset's own bending loss on a drive that transmits little; check the pulleys' loads"),
+            npos)
+      << w;
+  EXPECT_EQ(w.find("belt = beltsim.belts"), npos) << w;
+}
+
 // A bending viscosity given names its own key; a damping given equal to the paper's says so
 TEST(BendingLoss, TheWarningNamesTheKeyTheScenarioGave) {
   SceneDef d = presets::automotive_accessories();
