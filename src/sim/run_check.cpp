@@ -1,5 +1,6 @@
 #include "sim/run_check.hpp"
 
+#include <cstdio>
 #include <sstream>
 
 #include "integrate/belt_system.hpp"
@@ -92,9 +93,19 @@ void RunCheck::sample(double t, const Eigen::VectorXd& y, const Eigen::VectorXd*
                  ": this run's answer is not within its tolerance; try a tighter rtol");
 }
 
+namespace {
+// two significant digits, a trailing zero kept: 4.0e-05, 0.00030 (rounded_text's 4e-05 and 0.0003
+// read as one digit)
+std::string two_digits(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%#.2g", v);
+  return buf;
+}
+}  // namespace
+
 std::string RunCheck::line() const {
-  std::string s = "check: estimated error of the pulley speeds " + rounded_text(est_.err_speed, 2) +
-                  ", of the span tensions " + rounded_text(est_.err_tension, 2) +
+  std::string s = "check: estimated error of the pulley speeds " + two_digits(est_.err_speed) +
+                  ", of the span tensions " + two_digits(est_.err_tension) +
                   " (relative to their largest values over the run; rtol " + rounded_text(rs_.rtol) +
                   ", companion at " + rounded_text(check_rtol(rs_)) + ")";
   if (est_.over())
