@@ -142,7 +142,9 @@ FrameBuilder::FrameBuilder(const Scene& sc, const FrameSettings& fs, Font* font)
 
   // layout: a text band at the top (the time line, then the pulleys' lines in as many columns
   // as fit), the colour-bar panel at the right, the drive in the rest
-  font_px_ = std::max(10, static_cast<int>(std::lround(fs.height / 40.0)));
+  // the font from the height, or from three quarters of the width where that is less: a portrait
+  // frame's lines ran off its right edge at a font taken from its height alone
+  font_px_ = std::max(10, static_cast<int>(std::lround(std::min<double>(fs.height, 0.75 * fs.width) / 40.0)));
   const double line = 1.4 * font_px_;
   panel_ = std::max(0.17 * fs.width, 11.0 * font_px_);
   double widest = 0;
@@ -183,6 +185,7 @@ FrameBuilder::FrameBuilder(const Scene& sc, const FrameSettings& fs, Font* font)
     lo_w = lo_w.cwiseMin(p.centre - Vec2(p.radius, p.radius));
     hi_w = hi_w.cwiseMax(p.centre + Vec2(p.radius, p.radius));
   }
+  for (const Arm& a : m.arms) lo_w = lo_w.cwiseMin(a.pivot), hi_w = hi_w.cwiseMax(a.pivot);  // (drawn)
   const Vec2 size = hi_w - lo_w;
   const double fit = 0.88 * std::min((area1.x() - area0.x()) / size.x(), (area1.y() - area0.y()) / size.y());
   cam_.centre = fs.view_centre ? *fs.view_centre : Vec2(0.5 * (lo_w + hi_w));

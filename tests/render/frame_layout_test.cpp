@@ -234,6 +234,31 @@ TEST_F(Fixture, PulleyLinesShareTheTextBandWithoutOverlap) {
   }
 }
 
+// a portrait frame: its text inside it (the font from the height ran the pulleys' lines off the
+// right edge at 720x1280) and the tensioner arm's pivot in view (it was left out of the fit and
+// drawn off the left edge): a user trial
+TEST_F(Fixture, APortraitFrameKeepsItsTextAndTheArmInView) {
+  SceneDef d = serpentine_layout();
+  d.pulleys[1].tensioner = TensionerDef{};
+  d.pulleys[1].tensioner->pivot = {0.075, -0.14};
+  d.pulleys[1].tensioner->inertia = 1e-3, d.pulleys[1].tensioner->stiffness = 30;
+  const Scene sc = test::moving_scene(d);
+  for (const auto& [w, h] : {std::pair{720, 1280}, std::pair{360, 640}, std::pair{1280, 720}}) {
+    FrameSettings f = fs();
+    f.width = w, f.height = h;
+    FrameBuilder b(sc, f, &font);
+    DrawList dl;
+    b.build(0, sc.y0.data(), dl);
+    for (const DrawList::TextBox& t : dl.boxes) {
+      EXPECT_GE(t.lo.x(), 0) << w << "x" << h << ": " << t.text;
+      EXPECT_LE(t.hi.x(), w) << w << "x" << h << ": " << t.text;
+    }
+    const Vec2 pivot = b.camera().to_px(sc.model.arms.at(0).pivot);
+    EXPECT_GT(pivot.x(), 0) << w << "x" << h;
+    EXPECT_LT(pivot.x(), w) << w << "x" << h;
+  }
+}
+
 // a small frame's legend stays inside it, losing the lines a reader needs least (a 320x180 frame's
 // ran off its bottom: a user trial), and its colour bar keeps both end labels and zero (it read
 // 0.030 / -0.010 / -0.050 for -0.05..0.05); 640x360 keeps every line
