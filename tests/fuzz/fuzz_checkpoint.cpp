@@ -10,18 +10,21 @@
 // Built as beltsim_fuzz_checkpoint with BELTSIM_FUZZ (scripts/setup.sh test fuzzes with it), and
 // as beltsim_fuzz_checkpoint_replay (the normal build) which runs the seeds through it as a ctest
 // test with --each-accepted: every seed must resume and run (BeltsimFuzzRefusal says why not).
+#include <unistd.h>
+
 #include <cstddef>
 #include <cstdint>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <stdexcept>
 #include <string>
 #include <system_error>
 
-#include <unistd.h>
-
 #include "io/checkpoint_text.hpp"
+#include "io/csv_writer.hpp"
+#include "sim/outputs.hpp"
 #include "sim/simulation.hpp"
 
 namespace {
@@ -69,9 +72,35 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     std::ofstream in(f.input, std::ios::binary | std::ios::trunc);
     in << sealed(text);
   }
-  // the outputs a resume continues: a header and a row each, for the positions to fall on
+  // the outputs a resume continues: a header and a row each, for the positions to fall on.
+  // timeseries.csv needs the header the checkpoint's run writes (resume checks it): its csv_bytes
+  // is taken as counted from that header's end (the seeds' 4: "0\n" twice), the line rewritten
+  // and the rows made to end there (a mutant's huge count is left as it is, and refused)
   fs::create_directories(f.out);
-  for (const char* name : {"timeseries.csv", "events.csv", "snapshots.csv"}) std::ofstream(f.out / name) << "t\n0\n";
+  for (const char* name : {"events.csv", "snapshots.csv"}) std::ofstream(f.out / name) << "t\n0\n";
+  std::string series = "t\n0\n";
+  try {
+    const auto seen = beltsim::Simulation::open_checkpoint(f.input.string());
+    std::string header;
+    for (const std::string& c : beltsim::timeseries_columns(seen->scene(), seen->settings().probes.size())) {
+      if (!header.empty()) header += ',';
+      header += beltsim::csv_text(c);
+    }
+    header += '\n';
+    series = header + "0\n";
+    const size_t at = text.find("\ncsv_bytes ");
+    const long rows = at == std::string::npos ? -1 : std::atol(text.c_str() + at + 11);
+    if (rows >= 1 && rows < (1L << 20)) {
+      series = header + std::string(static_cast<size_t>(rows - 1), '0') + "\n";
+      const size_t end = text.find('\n', at + 1);
+      text.replace(at + 11, end - (at + 11), std::to_string(header.size() + static_cast<size_t>(rows)));
+      std::ofstream in(f.input, std::ios::binary | std::ios::trunc);
+      in << sealed(text);
+    }
+  } catch (const std::exception&) {
+    // refused already: resume refuses it the same way below
+  }
+  std::ofstream(f.out / "timeseries.csv") << series;
   // outputs elsewhere are refused, as the sandbox refuses a script's
   const auto vet = [&](const beltsim::RunSettings& rs) {
     if (fs::path(rs.out_dir) != f.out) throw std::invalid_argument("outputs outside the fuzz folder");
