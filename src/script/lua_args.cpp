@@ -100,7 +100,7 @@ std::vector<std::string> unread_arg_messages(const Context& ctx, const std::stri
   for (const ScriptArg& a : ctx.overrides.set) {
     if (std::find(ctx.args_read.begin(), ctx.args_read.end(), a.key) != ctx.args_read.end()) continue;
     out.push_back("--set " + a.key + "=" + a.text + (so_far ? " has not been read by " : " was never read by ") +
-                  script + (so_far ? " before its first run" : "") + did_you_mean(a.key, ctx.args_read) +
+                  script + (so_far ? " before its first run or start" : "") + did_you_mean(a.key, ctx.args_read) +
                   "; keys it read: " + (ctx.args_read.empty() ? std::string("none") : join(ctx.args_read)));
   }
   return out;
@@ -115,7 +115,11 @@ void check_unread_args(lua_State* L, Context& ctx, const char* call) {
     if (ctx.interactive) std::fprintf(stderr, "beltsim: warning: %s\n", m.c_str());
     all += (all.empty() ? "" : "; ") + m;
   }
-  if (!all.empty() && !ctx.interactive) fail(L, std::string(call) + ": nothing was integrated: " + all);
+  // (scene:start integrates nothing itself: its refusal says what it did not do)
+  if (!all.empty() && !ctx.interactive)
+    fail(L, std::string(call) +
+                (std::string(call) == "start" ? ": the simulation was not started: " : ": nothing was integrated: ") +
+                all);
 }
 
 }  // namespace beltsim::script

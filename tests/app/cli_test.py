@@ -62,8 +62,16 @@ class SetOption(unittest.TestCase):
         code, out, err = run(["run", path, "--set", "elements=30", "--set", "rtoll=1e-3"], cwd=self.dir)
         self.assertEqual(code, 1, err)
         self.assertIn("run: nothing was integrated: --set rtoll=1e-3 has not been read by " + path +
-                      " before its first run", err)
+                      " before its first run or start", err)
         self.assertFalse(os.path.exists(os.path.join(self.dir, "out", "timeseries.csv")), err)
+        # scene:start integrates nothing itself: its refusal says it did not start (a user read 'nothing
+        # was integrated' from a call that never integrates)
+        with open(path, "w") as f:
+            f.write("local e = beltsim.args.elements or 30\n" + SCENE.replace("elements = 30", "elements = e"))
+        code, out, err = run(["run", path, "--set", "elements=30", "--set", "rtoll=1e-3"], cwd=self.dir)
+        self.assertEqual(code, 1, err)
+        self.assertIn("start: the simulation was not started: --set rtoll=1e-3 has not been read by " + path +
+                      " before its first run or start", err)
 
     def test_values_that_start_like_numbers_must_be_numbers(self):
         for value in ["0x10", "1e", "-inf", "+nan", "2s", ".5.5"]:
