@@ -68,13 +68,18 @@ CsvWriter::CsvWriter(const OutputDir& dir, const std::string& name, const std::v
   start(header, append);
 }
 
+std::string csv_header(const std::vector<std::string>& names) {
+  std::string line;
+  for (size_t k = 0; k < names.size(); ++k) {
+    if (k) line += ',';
+    line += csv_text(names[k]);
+  }
+  return line;
+}
+
 void CsvWriter::start(const std::vector<std::string>& header, bool append) {
   if (append) return;
-  for (size_t k = 0; k < header.size(); ++k) {
-    if (k) line_ += ',';
-    line_ += csv_text(header[k]);
-  }
-  line_ += '\n';
+  line_ = csv_header(header) + '\n';
   file_.write(line_);
 }
 

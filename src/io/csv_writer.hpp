@@ -35,6 +35,8 @@ class CsvWriter {
 
 // one cell: quotes text containing a comma, quote, line feed or carriage return
 std::string csv_text(const std::string& s);
+// the header line of those column names, as CsvWriter writes it (without its line end)
+std::string csv_header(const std::vector<std::string>& names);
 // the rows of a CSV text, each a line's cells with csv_text's quoting undone
 // ("a,\"b,\"\"c\"\"\"" is a and b,"c"); a quoted cell may hold line breaks; the last row may end
 // without one

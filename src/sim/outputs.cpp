@@ -323,8 +323,10 @@ Outputs::State Outputs::get_state() const {
 namespace {
 
 // An output cut back to `bytes`: the position must lie past its header line, on the end of a row,
-// within the file as it is now.
-void check_cut(const std::string& path, long bytes) {
+// within the file as it is now; with `header`, its header line must be that one (the run's own:
+// another scene's run into the folder since the save writes another, and its rows would go on
+// under ours, or be cut at a row end by chance).
+void check_cut(const std::string& path, long bytes, const std::string* want = nullptr) {
   const int fd = ::open(path.c_str(), O_RDONLY | O_NONBLOCK | O_NOFOLLOW | O_CLOEXEC);
   if (fd < 0) throw std::runtime_error("the run's output " + path + " cannot be read: " + std::strerror(errno));
   struct Closer {
@@ -350,6 +352,14 @@ void check_cut(const std::string& path, long bytes) {
   if (header < 0 || bytes < header)
     throw std::runtime_error("the checkpoint continues " + path + " from byte " + std::to_string(bytes) +
                              ", inside its header line: cutting it there would lose the header");
+  if (want) {
+    std::string have(want->size(), '\0');
+    if (header - 1 != static_cast<long>(want->size()) ||
+        ::pread(fd, have.data(), have.size(), 0) != static_cast<ssize_t>(have.size()) || have != *want)
+      throw std::runtime_error("the run's output " + path +
+                               " is not this run's: its header is not the one this simulation writes (another run "
+                               "has written the folder since the checkpoint was saved)");
+  }
   char last = 0;
   if (::pread(fd, &last, 1, bytes - 1) != 1 || last != '\n')
     throw std::runtime_error("the checkpoint continues " + path + " from byte " + std::to_string(bytes) +
@@ -370,21 +380,9 @@ void Outputs::check_state(const State& s) const {
     throw std::runtime_error("the run has drawn " + std::to_string(frames_written()) + " frames, the state " +
                              std::to_string(s.frames) + ": frames drawn cannot be taken back");
   if (!dir_) return;
-  for (const auto& [name, bytes] : cuts(s)) check_cut(path(name), bytes);
-  // the rows kept must be this run's: another scene's run into the folder since the save writes
-  // another header (its rows would go on under ours, or be cut at a row end by chance)
-  std::string want;
-  for (const std::string& c : timeseries_columns(scene_, rs_.probes.size())) {
-    if (!want.empty()) want += ',';
-    want += csv_text(c);
-  }
-  std::ifstream in(path("timeseries.csv"), std::ios::binary);
-  std::string have;
-  std::getline(in, have);
-  if (have != want)
-    throw std::runtime_error("the run's output " + path("timeseries.csv") +
-                             " is not this run's: its header is not the one this simulation writes (another run has "
-                             "written the folder since the checkpoint was saved)");
+  const std::string series = csv_header(timeseries_columns(scene_, rs_.probes.size()));
+  for (const auto& [name, bytes] : cuts(s))
+    check_cut(path(name), bytes, std::string(name) == "timeseries.csv" ? &series : nullptr);
 }
 
 std::string Outputs::later_results(const State& s) const {

@@ -81,12 +81,8 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   std::string series = "t\n0\n";
   try {
     const auto seen = beltsim::Simulation::open_checkpoint(f.input.string());
-    std::string header;
-    for (const std::string& c : beltsim::timeseries_columns(seen->scene(), seen->settings().probes.size())) {
-      if (!header.empty()) header += ',';
-      header += beltsim::csv_text(c);
-    }
-    header += '\n';
+    const std::string header =
+        beltsim::csv_header(beltsim::timeseries_columns(seen->scene(), seen->settings().probes.size())) + '\n';
     series = header + "0\n";
     const size_t at = text.find("\ncsv_bytes ");
     const long rows = at == std::string::npos ? -1 : std::atol(text.c_str() + at + 11);
