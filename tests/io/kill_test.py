@@ -76,6 +76,13 @@ def size_limit(limit):
     return limited
 
 
+def too_large(p, err, path, what):
+    """a run stopped by a file that cannot grow: exit status 1, and the message names the file once"""
+    check(p.returncode == 1, "%s: exit status 1 (got %s)" % (what, p.returncode))
+    check(err.count("cannot write %s: File too large" % path) == 1,
+          "%s: the message names the file, once: %r" % (what, err[-600:]))
+
+
 def rows(path):
     try:
         with open(path) as f:
@@ -237,8 +244,7 @@ def full_disk():
     p.wait(timeout=60)
     err = p.stderr.read()
     csv = os.path.join(out, "timeseries.csv")
-    check(p.returncode == 1, "full disk: exit status 1 (got %s)" % p.returncode)
-    check(err.count("cannot write %s: File too large" % csv) == 1, "full disk: the message names the file, once: %r" % err[-400:])
+    too_large(p, err, csv, "full disk")
     check(whole_rows(csv) == "" and os.path.getsize(csv) > limit - 1024, "full disk: the rows that fitted, whole")
 
 
@@ -257,9 +263,7 @@ def full_disk_console():
     p.wait(timeout=60)
     err = p.stderr.read()
     csv = os.path.join(out, "timeseries.csv")
-    check(p.returncode == 1, "full disk, console: exit status 1 (got %s)" % p.returncode)
-    check(err.count("cannot write %s: File too large" % csv) == 1,
-          "full disk, console: the message names the file, once: %r" % err[-600:])
+    too_large(p, err, csv, "full disk, console")
     check(whole_rows(csv) == "", "full disk, console: the rows that fitted, whole")
 
 
@@ -276,9 +280,7 @@ def full_disk_video():
     p.wait(timeout=60)
     err = p.stderr.read()
     video = os.path.join(out, "v.mp4")
-    check(p.returncode == 1, "full disk, video: exit status 1 (got %s)" % p.returncode)
-    check(err.count("cannot write %s: File too large" % video) == 1,
-          "full disk, video: the message names it, once: %r" % err[-400:])
+    too_large(p, err, video, "full disk, video")
     n = video_frames(video)
     check(n >= FPS, "full disk, video: it plays its whole fragments: %d frames (>= %d)" % (n, FPS))
     check(whole_rows(os.path.join(out, "timeseries.csv")) == "", "full disk, video: the CSV's rows whole")

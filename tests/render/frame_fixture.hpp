@@ -32,6 +32,15 @@ inline SceneDef serpentine_layout() {
   return d;
 }
 
+// the same with the tensioner on its arm (scripts/serpentine.lua's pivot, inertia and spring)
+inline SceneDef serpentine_with_arm() {
+  SceneDef d = serpentine_layout();
+  d.pulleys[1].tensioner = TensionerDef{};
+  d.pulleys[1].tensioner->pivot = {0.075, -0.14};
+  d.pulleys[1].tensioner->inertia = 1e-3, d.pulleys[1].tensioner->stiffness = 30;
+  return d;
+}
+
 struct Fixture : ::testing::Test {
   static const Scene& wet() {
     static const Scene sc = test::moving_scene(presets::paper_wet());

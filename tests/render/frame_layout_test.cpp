@@ -17,6 +17,7 @@ namespace {
 using test_frames::Fixture;
 using test_frames::pulley;
 using test_frames::serpentine_layout;
+using test_frames::serpentine_with_arm;
 
 // arrows beside the belt point along the route's direction of travel: one at each span's middle,
 // outside the loop; in a view of one pulley's rim, one beside the visible belt
@@ -191,11 +192,7 @@ TEST_F(Fixture, PulleyNamesSitByTheirOwnPulley) {
 // bar's texts, in at most three rows at 1280×720 for the serpentine's six pulleys with a tensioner
 // arm (one column of six took a quarter of the frame from the drawing)
 TEST_F(Fixture, PulleyLinesShareTheTextBandWithoutOverlap) {
-  SceneDef d = serpentine_layout();
-  d.pulleys[1].tensioner = TensionerDef{};
-  d.pulleys[1].tensioner->pivot = {0.075, -0.14};
-  d.pulleys[1].tensioner->inertia = 1e-3, d.pulleys[1].tensioner->stiffness = 30;
-  const Scene sc = test::moving_scene(d);
+  const Scene sc = test::moving_scene(serpentine_with_arm());
   for (int width : {640, 960, 1280}) {
     FrameSettings f = fs();
     f.width = width, f.height = width * 9 / 16;
@@ -238,11 +235,7 @@ TEST_F(Fixture, PulleyLinesShareTheTextBandWithoutOverlap) {
 // right edge at 720x1280) and the tensioner arm's pivot in view (it was left out of the fit and
 // drawn off the left edge): a user trial
 TEST_F(Fixture, APortraitFrameKeepsItsTextAndTheArmInView) {
-  SceneDef d = serpentine_layout();
-  d.pulleys[1].tensioner = TensionerDef{};
-  d.pulleys[1].tensioner->pivot = {0.075, -0.14};
-  d.pulleys[1].tensioner->inertia = 1e-3, d.pulleys[1].tensioner->stiffness = 30;
-  const Scene sc = test::moving_scene(d);
+  const Scene sc = test::moving_scene(serpentine_with_arm());
   for (const auto& [w, h] : {std::pair{720, 1280}, std::pair{360, 640}, std::pair{1280, 720}}) {
     FrameSettings f = fs();
     f.width = w, f.height = h;
