@@ -1,6 +1,5 @@
 // What a live simulation writes to files and reads back: sim:show (a frame of the belt now),
 // sim:plot (time histories so far), sim:save (a checkpoint) and beltsim.resume (sim_box.hpp).
-#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 
@@ -13,6 +12,7 @@
 #include "script/lua_sim.hpp"
 #include "script/sandbox.hpp"
 #include "script/sim_box.hpp"
+#include "sim/run_table.hpp"
 
 namespace beltsim::script {
 
@@ -154,10 +154,8 @@ int l_resume(lua_State* L) {
     ctx->resume_warned = true;
     std::string options;
     const size_t count = ctx->overrides.given.size() + (ctx->overrides.no_frames ? 1 : 0);
-    for (std::string k : ctx->overrides.given) {
-      std::replace(k.begin(), k.end(), '_', '-');
-      options += (options.empty() ? "--" : ", --") + k;
-    }
+    for (const std::string& k : ctx->overrides.given)  // (the option each key comes from: sim/run_table.hpp)
+      options += (options.empty() ? "" : ", ") + std::string(find_run_setting(k)->option);
     if (ctx->overrides.no_frames) options += options.empty() ? "--no-frames" : ", --no-frames";
     std::fprintf(stderr,
                  "beltsim: warning: %s %s to scene:run and scene:start only; the simulation beltsim.resume "
