@@ -124,11 +124,11 @@ class OneStep final : public Integrator {
           throw DivergenceError(t_, "no progress at t = " + rounded_text(t_, 9) + " s: the implicit iteration failed " +
                                         std::to_string(failed_in_a_row_) + " times in a row (step size now " +
                                         rounded_text(h_, 9) + " s); " + largest_error(worst) + "; " +
-                                        divergence_hint(st_->needs_linear_solver()));
+                                        divergence_hint(implicit()));
         if (!(h_ >= 16 * ulp))
           throw DivergenceError(t_, "the step size collapsed to " + rounded_text(h_, 9) +
                                         " s at t = " + rounded_text(t_, 9) + " s; " + largest_error(worst) + "; " +
-                                        divergence_hint(st_->needs_linear_solver()));
+                                        divergence_hint(implicit()));
         continue;
       }
       failed_in_a_row_ = 0;
@@ -138,7 +138,7 @@ class OneStep final : public Integrator {
                                         " s: the step size has stayed at the "
                                         "rounding floor of t (" +
                                         rounded_text(h, 9) + " s) for " + std::to_string(at_floor_) + " steps; " +
-                                        largest_error(worst) + "; " + divergence_hint(st_->needs_linear_solver()));
+                                        largest_error(worst) + "; " + divergence_hint(implicit()));
       } else {
         at_floor_ = 0;
       }

@@ -133,12 +133,12 @@ std::optional<BendingLoss> estimate_bending_loss(const Scene& sc) {
 std::string bending_loss_warning(const Scene& sc) {
   const std::optional<BendingLoss> e = estimate_bending_loss(sc);
   if (!e || !(e->share() > kBendingLossWarn)) return "";
-  // the key that sets the bending damping, as the scene's inputs name it
+  // the key that sets the bending damping, as the scene's inputs name it, and the belt's preset
   std::string key = "belt.bending_damping", value, preset;
   for (const SceneInput& in : sc.inputs)
-    if (in.name == "belt.preset") preset = in.text;
-  for (const SceneInput& in : sc.inputs)
-    if (in.name == "belt.bending_damping" || in.name == "belt.bending_viscosity" || in.name == "belt.sde.ct") {
+    if (in.name == "belt.preset") {
+      preset = in.text;
+    } else if (in.name == "belt.bending_damping" || in.name == "belt.bending_viscosity" || in.name == "belt.sde.ct") {
       std::ostringstream s;
       s.precision(3);
       const Parameter* par = find_parameter(in.name);

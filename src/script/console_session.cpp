@@ -86,6 +86,14 @@ bool has_word(const std::string& text, const char* word) {
   return std::regex_search(text, std::regex(std::string("\\b") + word + "\\b"));
 }
 
+// text as Lua comments, each line after "-- "
+std::string commented(const std::string& text) {
+  std::string c = "-- " + text;
+  for (size_t k = 0; k < c.size(); ++k)
+    if (c[k] == '\n') c.insert(k + 1, "-- ");
+  return c;
+}
+
 // the command as statements valid anywhere in session.lua, doing what it did at the prompt
 std::string as_statements(lua_State* L, const std::string& chunk, bool expression) {
   std::string out;
@@ -103,10 +111,7 @@ std::string as_statements(lua_State* L, const std::string& chunk, bool expressio
   }
   if (compiles(L, out)) return out;
   // not expected: kept as a comment rather than break the replay
-  std::string c = "-- (not replayable) " + chunk;
-  for (size_t k = 0; k < c.size(); ++k)
-    if (c[k] == '\n') c.insert(k + 1, "-- ");
-  return c;
+  return commented("(not replayable) " + chunk);
 }
 
 // the global naming the simulation whose userdata is p, in a statement of session.lua
@@ -125,9 +130,7 @@ std::string sim_name(lua_State* L, const void* p) {
 std::string replayable(lua_State* L, const std::string& chunk, bool expression, const StoppedRuns& stopped,
                        const std::vector<PageChange>& page) {
   if (stopped.empty() && page.empty()) return as_statements(L, chunk, expression);
-  std::string out = "-- " + chunk;
-  for (size_t k = 0; k < out.size(); ++k)
-    if (out[k] == '\n') out.insert(k + 1, "-- ");
+  std::string out = commented(chunk);
   out += page.empty() ? "  -- stopped by Ctrl-C" : "  -- changed from the live view while it ran";
   std::map<const void*, double> at;  // where each simulation stands in the replay
   for (const PageChange& c : page) {
@@ -158,10 +161,7 @@ std::string failed_replayable(lua_State* L, const std::string& chunk, bool expre
   if (!stopped.empty() || !page.empty()) return said + "\n" + replayable(L, chunk, expression, stopped, page);
   const std::string out = said + "\npcall(function()\n" + as_statements(L, chunk, expression) + "\nend)";
   if (compiles(L, out)) return out;
-  std::string c = "-- (not replayable) " + chunk;
-  for (size_t k = 0; k < c.size(); ++k)
-    if (c[k] == '\n') c.insert(k + 1, "-- ");
-  return said + "\n" + c;
+  return said + "\n" + commented("(not replayable) " + chunk);
 }
 
 std::string at_prompt(lua_State* L, const std::vector<PageChange>& page) {
