@@ -154,7 +154,7 @@ class FrameBuilder {
   Camera cam_;
   ColourScale scale_;
   double thickness_ = 0;        // [m] drawn belt thickness
-  double mu_dry_ = 0;           // the largest μ at the start: elements below it are wet
+  double mu_dry_ = 0;           // the largest μ of the belt as the scene built it: elements below it are wet
   std::vector<int> sense_;      // per pulley: +1 the belt wraps it anticlockwise, -1 clockwise
   std::vector<double> sink_;    // per route arc: static penetration of its pulley [m]
   int font_px_ = 14;
@@ -178,8 +178,7 @@ class FrameBuilder {
   // build's stages: tensioner arms and pulleys with their names; the text band, colour bar and
   // legend (arrows: whether the belt got direction-of-travel arrows, arrow_w their width [px])
   void draw_pulleys(const double* q, DrawList& out) const;
-  void draw_text_and_legend(double t, const Observation& seen, double mu_dry, bool arrows, double arrow_w,
-                            DrawList& out) const;
+  void draw_text_and_legend(double t, const Observation& seen, bool arrows, double arrow_w, DrawList& out) const;
 };
 
 }  // namespace beltsim::render

@@ -256,9 +256,6 @@ void FrameBuilder::build(double t, const double* y, DrawList& out, const Drive* 
   if (!given) observe(m, dr, sense_, t, y, own);
   const Observation& seen = given ? *given : own;
   const std::vector<ElementObs>& obs = seen.elements;
-  // dry: the largest μ the belt had as the scene built it. A stretch an event raises above it
-  // (contamination that grips harder) is not wet, and does not make the rest of the belt wet
-  const double mu_dry = mu_dry_;
   int loop_sense = -1;
   for (int j = 0; j < m.n_p(); ++j)
     if (m.pulleys[j].wrap == WrapSide::inside) loop_sense = sense_[j];
@@ -286,7 +283,10 @@ void FrameBuilder::build(double t, const double* y, DrawList& out, const Drive* 
     el.value = quantity_of(obs[i], fs_.quantity);
     el.band = scale_.band(el.value);
     el.colour = scale_.colour(el.value);
-    el.wet = obs[i].mu < mu_dry;  // the μ it has now: a spray zone's water included
+    // the μ it has now (a spray zone's water included) below the belt's as the scene built it: a
+    // stretch an event raises above that (contamination that grips harder) is not wet, and does not
+    // make the rest of the belt wet
+    el.wet = obs[i].mu < mu_dry_;
     el.slipping = obs[i].state == ContactState::slip;
     el.centre = P(Cd[i]);
     el.corners[0] = P(A - h * oa), el.corners[1] = P(B - h * ob), el.corners[2] = P(B + h * ob),
@@ -365,7 +365,7 @@ void FrameBuilder::build(double t, const double* y, DrawList& out, const Drive* 
       if ((arrows = travel_arrow(i, false))) break;
   }
 
-  draw_text_and_legend(t, seen, mu_dry, arrows, arrow_w, out);
+  draw_text_and_legend(t, seen, arrows, arrow_w, out);
 }
 
 bool FrameBuilder::in_view(const Vec2& p_px) const {
@@ -416,7 +416,7 @@ void FrameBuilder::draw_pulleys(const double* q, DrawList& out) const {
   }
 }
 
-void FrameBuilder::draw_text_and_legend(double t, const Observation& seen, double mu_dry, bool arrows, double arrow_w,
+void FrameBuilder::draw_text_and_legend(double t, const Observation& seen, bool arrows, double arrow_w,
                                         DrawList& out) const {
   const Model& m = sc_.model;
   const double area_right = fs_.width - panel_;
@@ -519,7 +519,7 @@ void FrameBuilder::draw_text_and_legend(double t, const Observation& seen, doubl
       out.quad(Vec2(d0, ly - 0.5 * font_px_), Vec2(d1, ly - 0.5 * font_px_), Vec2(d1, ly - 0.2 * font_px_),
                Vec2(d0, ly - 0.2 * font_px_), kWet);
     }
-    out.boxed_text(Vec2(panel_x + bar_w + 0.5 * font_px_, ly), "wet (\u03bc < " + format("%.3g", mu_dry) + ")",
+    out.boxed_text(Vec2(panel_x + bar_w + 0.5 * font_px_, ly), "wet (\u03bc < " + format("%.3g", mu_dry_) + ")",
                    font_px_, kInk, paper);
     ly += line;
   }
