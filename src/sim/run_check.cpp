@@ -24,6 +24,14 @@ std::string past(const CheckEstimate& e, bool speeds, double factor, bool over_r
          (over_run ? "over the run" : "so far") + "), past " + rounded_text(factor) + "×rtol = " +
          rounded_text(factor * e.rtol);
 }
+
+// two significant digits, a trailing zero kept: 4.0e-05, 0.00030 (rounded_text's 4e-05 and 0.0003
+// read as one digit)
+std::string two_digits(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%#.2g", v);
+  return buf;
+}
 }  // namespace
 
 std::vector<std::string> scene_contract_misses(const Model& m, const Drive& d, double rtol) {
@@ -94,16 +102,6 @@ void RunCheck::sample(double t, const Eigen::VectorXd& y, const Eigen::VectorXd*
                  past(est_, speeds, kCheckAlarm, false) +
                  ": this run's answer is not within its tolerance; try a tighter rtol");
 }
-
-namespace {
-// two significant digits, a trailing zero kept: 4.0e-05, 0.00030 (rounded_text's 4e-05 and 0.0003
-// read as one digit)
-std::string two_digits(double v) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%#.2g", v);
-  return buf;
-}
-}  // namespace
 
 std::string RunCheck::line() const {
   std::string s = "check: estimated error of the pulley speeds " + two_digits(est_.err_speed) +
