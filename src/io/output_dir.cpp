@@ -352,16 +352,21 @@ void write_file_whole(const std::string& path, std::string_view text, bool make_
   write_file_whole(p.dir, p.name, text);
 }
 
-std::string png_name_problem(const std::string& path) {
+namespace {
+// the path's extension in lower case (".PNG" is ".png")
+std::string extension(const std::string& path) {
   std::string ext = std::filesystem::path(path).extension().string();
   for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-  return ext == ".png" ? "" : "beltsim draws PNG pictures: give a name ending in .png";
+  return ext;
+}
+}  // namespace
+
+std::string png_name_problem(const std::string& path) {
+  return extension(path) == ".png" ? "" : "beltsim draws PNG pictures: give a name ending in .png";
 }
 
 std::string video_name_problem(const std::string& path) {
-  std::string ext = std::filesystem::path(path).extension().string();
-  for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-  return ext == ".mp4" ? "" : "beltsim writes MP4 videos (H.264): give a name ending in .mp4";
+  return extension(path) == ".mp4" ? "" : "beltsim writes MP4 videos (H.264): give a name ending in .mp4";
 }
 
 }  // namespace beltsim
