@@ -30,14 +30,17 @@ double shown_error(const WpResult& res, const WpRow& r) {
   return res.metric.empty() ? r.err_speed : r.err_metric;
 }
 
-// whole decades around the positive values (one decade when they all lie in one)
+// whole decades around the positive values (one decade when they all lie in one), with a margin:
+// a value within kMargin of a decade's end takes the next decade, so that its mark and label are
+// not cut by the axis (CVODE's runs at 9.6 s sat on the edge of a range ending at 10 s)
+constexpr double kMargin = 1.15;  // 6 % of a decade, some 12 px on the picture's three decades
 void decades(const std::vector<double>& v, double& lo, double& hi) {
   double a = INFINITY, b = 0;
   for (double x : v)
     if (x > 0 && std::isfinite(x)) a = std::min(a, x), b = std::max(b, x);
   if (!(b > 0)) a = b = 1;
-  lo = std::pow(10.0, std::floor(std::log10(a)));
-  hi = std::pow(10.0, std::ceil(std::log10(b)));
+  lo = std::pow(10.0, std::floor(std::log10(a / kMargin)));
+  hi = std::pow(10.0, std::ceil(std::log10(b * kMargin)));
   if (hi <= lo) hi = 10 * lo;
 }
 
@@ -49,6 +52,7 @@ void set_ranges(const WpResult& res, WpLayout& l) {
   std::vector<double> walls, errors;
   for (const WpRow& r : res.rows) {
     if (r.finished && shown_error(res, r) > 0) walls.push_back(r.wall), errors.push_back(shown_error(res, r));
+    if (r.finished && res.metric.empty() && r.err_tension > 0) walls.push_back(r.wall), errors.push_back(r.err_tension);
     if (!r.finished) walls.push_back(std::max(r.wall, 1e-3)), l.unfinished = true;
   }
   if (errors.empty())
@@ -61,10 +65,10 @@ void set_ranges(const WpResult& res, WpLayout& l) {
   l.area_w = (kRight - kLeft) * kWidth, l.area_h = (kTop - kBottom) * kHeight;
 }
 
-void add_point(WpLayout& l, double x, double y, std::string text, size_t k, bool finished) {
+void add_point(WpLayout& l, double x, double y, std::string text, size_t k, bool finished, bool tension = false) {
   const double px = l.area_w * std::log(x / l.x_lo) / std::log(l.x_hi / l.x_lo);
   const double py = l.area_h * std::log(y / l.y_lo) / std::log(l.y_hi / l.y_lo);
-  l.points.push_back({x, y, px, py, std::move(text), k, finished});
+  l.points.push_back({x, y, px, py, std::move(text), k, finished, tension});
 }
 
 // each integrator's finished runs, then its unfinished ones on a row of their own above the
@@ -79,6 +83,10 @@ void collect_points(const WpResult& res, WpLayout& l) {
         add_point(l, r.wall, shown_error(res, r), tol_text(r.rtol), k, true);
         s.any_finished = true;
       }
+    if (res.metric.empty())
+      for (const WpRow& r : res.rows)
+        if (r.integrator == name && r.finished && r.err_tension > 0)
+          add_point(l, r.wall, r.err_tension, tol_text(r.rtol), k, true, true);
     const double y_row = l.y_errors * std::pow(10.0, (k + 0.5) / static_cast<double>(n_int));
     const size_t first_unfinished = l.points.size();
     for (const WpRow& r : res.rows) {
@@ -103,7 +111,8 @@ void collect_obstacles(WpLayout& l) {
   for (size_t i = 0; i < p.size(); ++i) {
     const double x = p[i].px, y = p[i].py;
     l.marks.push_back({x - kPointPx, y - kPointPx, x + kPointPx, y + kPointPx});
-    if (i + 1 < p.size() && p[i + 1].series == p[i].series && p[i].finished && p[i + 1].finished) {
+    if (i + 1 < p.size() && p[i + 1].series == p[i].series && p[i].finished && p[i + 1].finished &&
+        p[i + 1].tension == p[i].tension) {
       const double x1 = p[i + 1].px, y1 = p[i + 1].py;
       const int n = static_cast<int>(std::hypot(x1 - x, y1 - y) / 3);
       for (int s = 1; s < n; ++s) {
@@ -116,12 +125,14 @@ void collect_obstacles(WpLayout& l) {
 
 // rtol labels where they overlap no other label, point or line and stay inside the plot area:
 // above, below, right, left of their point, then the diagonals, then further out; a label with
-// no free place is left out
+// no free place is left out. The span tensions' points go unlabelled: each lies at the wall time
+// of the labelled speed point of its run
 void place_labels(WpLayout& l) {
   std::vector<WpLayout::Box> taken = l.marks;
   taken.insert(taken.end(), l.line_boxes.begin(), l.line_boxes.end());
   for (size_t i = 0; i < l.points.size(); ++i) {
     const WpLayout::Point& p = l.points[i];
+    if (p.tension) continue;
     const double x = p.px, y = p.py;
     const double w = kCharPx * static_cast<double>(p.text.size()) + 2, h = kLabelPx;
     const double side = 0.5 * w + kPointPx + 2, up = 0.5 * h + kPointPx + 1;
@@ -146,8 +157,8 @@ void place_labels(WpLayout& l) {
 WpLayout wp_layout(const WpResult& res) {
   WpLayout l;
   l.title = res.title;
-  l.y_title = res.metric.empty() ? "largest relative error in the pulley speeds over the run"
-                                 : "relative error of " + res.metric + " at t_end";
+  l.y_title =
+      res.metric.empty() ? "largest relative error over the run" : "relative error of " + res.metric + " at t_end";
   set_ranges(res, l);
   collect_points(res, l);
   collect_obstacles(l);
@@ -173,24 +184,38 @@ std::string wp_script(const WpLayout& l, const std::string& output) {
   if (l.unfinished)
     g << "set arrow from graph 0, first " << number_text(l.y_errors) << " to graph 1, first " << number_text(l.y_errors)
       << " nohead dt 2 lc rgb '#999999'\n";
-  // each integrator's finished runs ($fK) and crosses of its unfinished ones ($uK)
+  // each integrator's finished runs ($fK: speeds or the metric; $tK: span tensions) and crosses of
+  // its unfinished ones ($uK)
   std::ostringstream plots;
+  bool any_tension = false;
   for (size_t k = 0; k < l.series.size(); ++k) {
     const WpLayout::Series& s = l.series[k];
-    for (const bool finished : {true, false}) {
-      g << (finished ? "$f" : "$u") << k << " << EOD\n";
+    bool tension = false;
+    for (const char* block : {"$f", "$t", "$u"}) {
+      g << block << k << " << EOD\n";
       for (const WpLayout::Point& p : l.points)
-        if (p.series == k && p.finished == finished) g << number_text(p.x) << ' ' << number_text(p.y) << '\n';
+        if (p.series == k && p.finished == (block[1] != 'u') && p.tension == (block[1] == 't')) {
+          g << number_text(p.x) << ' ' << number_text(p.y) << '\n';
+          tension |= p.tension;
+        }
       g << "EOD\n";
     }
+    any_tension |= tension;
     const std::string colour = gnuplot_string(s.colour);
     const std::string style = "linespoints lw 2 lc rgb " + colour + " pt " + std::to_string(s.point_type);
     plots << (k ? ", \\\n     " : "")
           << (s.any_finished ? "$f" + std::to_string(k) + " using 1:2 with " : std::string("keyentry with ")) << style
           << " title " << gnuplot_string(s.any_finished ? s.name : s.name + " (no run finished)");
+    // the open mark of the same shape (gnuplot's point type one below the filled one)
+    if (tension)
+      plots << ", \\\n     $t" << k << " using 1:2 with linespoints lw 1.5 dt 2 lc rgb " << colour << " pt "
+            << s.point_type - 1 << " notitle";
     if (s.any_unfinished)
       plots << ", \\\n     $u" << k << " using 1:2 with points pt 2 ps 2 lw 2 lc rgb " << colour << " notitle";
   }
+  if (any_tension)
+    plots << ", \\\n     keyentry with linespoints lw 2 pt 5 lc rgb '#444444' title 'pulley speeds'"
+          << ", \\\n     keyentry with linespoints lw 1.5 dt 2 pt 4 lc rgb '#444444' title 'span tensions'";
   if (l.unfinished) plots << ", \\\n     keyentry with points pt 2 ps 2 lw 2 lc rgb '#444444' title 'did not finish'";
   for (const WpLayout::Label& a : l.labels) {
     const WpLayout::Point& p = l.points[a.point];

@@ -1,6 +1,8 @@
 // The picture of `beltsim wp`: error against wall time, log-log, one line per integrator with
 // its points labelled by their rtol where a label overlaps no other label or point; the error is
-// the metric's when the study has one, else the largest speed error; runs that did not finish are
+// the metric's when the study has one, else the largest speed error (solid line, filled marks)
+// and, unlabelled, the largest span-tension error (dashed, open marks: the accuracy contract holds
+// the speeds to 3·rtol and the tensions to 10·rtol, docs/accuracy.md); runs that did not finish are
 // crosses at their wall time in a band above the errors. Kept out of the engine (beltsim_sim
 // launches no process): work_precision() writes the CSV, this draws the result.
 //
@@ -40,6 +42,7 @@ struct WpLayout {
     std::string text;  // its label: the rtol, or the unfinished runs' rtols ("1e-05, 1e-06")
     size_t series;     // index in `series` (and in WpResult::integrators)
     bool finished;
+    bool tension = false;  // a span-tension error (no label; dashed); else the speeds' or the metric's
   };
   // a placed label: centred at (px, py) of its point plus (dx, dy), within `box`
   struct Label {
@@ -57,8 +60,8 @@ struct WpLayout {
   std::vector<Point> points;      // by series; within one the finished runs in the rows' order
   std::vector<Box> marks;         // each point's mark, as points
   std::vector<Box> line_boxes;    // small boxes along each line from a finished point to the next
-  std::vector<Label> labels;      // in the points' order
-  std::vector<size_t> left_out;   // the points whose label found no free place
+  std::vector<Label> labels;      // in the points' order (the span tensions' points have none)
+  std::vector<size_t> left_out;   // the points with a label that found no free place
 };
 
 // The layout of the picture of r. Throws std::runtime_error when no run finished or no finished

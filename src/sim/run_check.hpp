@@ -59,6 +59,7 @@ std::vector<std::string> scene_contract_misses(const Model& m, const Drive& d, d
 // milliseconds of the paper's dry drive at every rtol from 1e-3 to 1e-4
 constexpr double kCheckSpeedLimit = 3;
 constexpr double kCheckTensionLimit = 10;
+constexpr double kContractRtol = 1e-3;  // the contract is promised at this rtol and below
 constexpr double kCheckAlarm = 10;
 // below this ratio of the companion's steps to the run's the two share their steps (above; the
 // rows where the tolerance set the steps measured 2.2 to 4.4, those where it did not 0.75 to 1.2)

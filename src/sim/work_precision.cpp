@@ -10,9 +10,10 @@
 
 #include "integrate/stepper.hpp"
 #include "io/csv_writer.hpp"
+#include "io/number_text.hpp"
 #include "io/row_file.hpp"
 #include "io/suggest.hpp"
-#include "io/number_text.hpp"
+#include "sim/run_check.hpp"
 #include "sim/run_error.hpp"
 
 namespace beltsim {
@@ -50,26 +51,33 @@ ErrorMeter meter(const std::vector<std::vector<double>>& run, const std::vector<
 void write_csv(const WpResult& res, const std::string& path) {
   std::ostringstream f;  // the table whole, then renamed over the last one: a kill never leaves part of it
   f << "integrator,rtol,finished,t_reached_s,wall_s,steps,rejected,rhs,jacobians,factorizations,solves,"
-       "err_speed,err_speed_end,err_tension,metric,err_metric,note\n";
+       "err_speed,err_speed_end,err_tension,metric,err_metric,within_contract,note\n";
   const auto num = [](double v) { return number_text(v); };
-  auto row = [&](const WpRow& r) {
+  auto row = [&](const WpRow& r, bool reference) {
     f << r.integrator << ',' << num(r.rtol) << ',' << (r.finished ? 1 : 0) << ',' << num(r.t_reached) << ','
       << num(r.wall) << ','
       << r.work.steps << ',' << r.work.rejected << ',' << r.work.rhs << ',' << r.work.jacobians << ','
       << r.work.factorizations << ',' << r.work.solves << ',';
     if (r.finished)
       f << num(r.err_speed) << ',' << num(r.err_speed_end) << ',' << num(r.err_tension) << ',' << num(r.metric) << ','
-        << num(r.err_metric);
+        << num(r.err_metric) << ','
+        << (reference            ? ""
+            : within_contract(r) ? "1"
+                                 : "0");
     else
-      f << ",,,,";
+      f << ",,,,,";
     f << ',' << csv_text(r.note) << '\n';
   };
-  row(res.reference);
-  for (const WpRow& r : res.rows) row(r);
+  row(res.reference, true);
+  for (const WpRow& r : res.rows) row(r, false);
   write_file_whole(path, f.str());
 }
 
 }  // namespace
+
+bool within_contract(const WpRow& r) {
+  return r.finished && r.err_speed <= kCheckSpeedLimit * r.rtol && r.err_tension <= kCheckTensionLimit * r.rtol;
+}
 
 std::string large_errors(const WpRow& r, const std::string& metric) {
   std::string s;
@@ -166,6 +174,15 @@ WpResult work_precision(const Scene& sc, const WpSettings& ws, const std::atomic
         row.err_speed = es.error();
         row.err_speed_end = es.error_last();
         row.err_tension = meter(rr.samples, ref_run.samples, tension).error();
+        const bool speeds_past = row.err_speed > kCheckSpeedLimit * rtol,
+                   tensions_past = row.err_tension > kCheckTensionLimit * rtol;
+        std::fprintf(
+            stderr, "beltsim wp:   errors: speeds %.2g, span tensions %.2g: %s%s\n", row.err_speed, row.err_tension,
+            !speeds_past && !tensions_past ? "within the contract's 3·rtol and 10·rtol"
+            : speeds_past && tensions_past ? "both past the contract's 3·rtol and 10·rtol"
+            : speeds_past                  ? "the speeds past the contract's 3·rtol"
+                                           : "the span tensions past the contract's 10·rtol",
+            (speeds_past || tensions_past) && rtol > kContractRtol ? " (promised at rtol 1e-3 and below)" : "");
         row.metric = row.err_metric = std::numeric_limits<double>::quiet_NaN();
         if (metric >= 0 && !rr.samples.empty() && !ref_run.samples.empty()) {
           const double m = rr.samples.back()[metric], m_ref = ref_run.samples.back()[metric];

@@ -60,6 +60,11 @@ struct WpResult {
   std::string metric;                     // the metric's column ("" for none: the plot shows err_speed)
 };
 
+// a finished run kept the accuracy contract's bounds (docs/accuracy.md; sim/run_check.hpp): its
+// pulley speeds within kCheckSpeedLimit·rtol and its span tensions within kCheckTensionLimit·rtol
+// of their largest values (the contract promises that for rtol <= 1e-3)
+bool within_contract(const WpRow& r);
+
 // The errors of a finished run above kWpErrorWarning ("speed error 13.2 %, driven.creep error
 // 31.9 %"), or "" (metric: the study's, "" for none)
 std::string large_errors(const WpRow& r, const std::string& metric);

@@ -424,7 +424,9 @@ bool crosses(const WpLayout::Box& box, double ax, double ay, double bx, double b
 // overlaps no other label, no point's mark and no line (its boxes, and the line itself)
 void expect_labels_clear(const WpLayout& l) {
   ASSERT_EQ(l.marks.size(), l.points.size());
-  EXPECT_EQ(l.labels.size() + l.left_out.size(), l.points.size());
+  const auto labelled =
+      std::count_if(l.points.begin(), l.points.end(), [](const WpLayout::Point& p) { return !p.tension; });
+  EXPECT_EQ(static_cast<long>(l.labels.size() + l.left_out.size()), labelled);
   for (size_t j = 0; j < l.points.size(); ++j) {  // the marks are where the points are
     EXPECT_DOUBLE_EQ(l.marks[j].x0 + l.marks[j].x1, 2 * l.points[j].px);
     EXPECT_DOUBLE_EQ(l.marks[j].y0 + l.marks[j].y1, 2 * l.points[j].py);
@@ -441,7 +443,7 @@ void expect_labels_clear(const WpLayout& l) {
     for (const WpLayout::Box& t : l.line_boxes) EXPECT_FALSE(b.overlaps(t)) << what << " overlaps a line";
     for (size_t j = 0; j + 1 < l.points.size(); ++j) {
       const WpLayout::Point &p = l.points[j], &q = l.points[j + 1];
-      if (p.series == q.series && p.finished && q.finished) {
+      if (p.series == q.series && p.finished && q.finished && p.tension == q.tension) {
         EXPECT_FALSE(crosses(b, p.px, p.py, q.px, q.py)) << what << " on the line " << p.text << " - " << q.text;
       }
     }
@@ -541,6 +543,45 @@ TEST(WpLayout, OneDecadeStudy) {
   EXPECT_DOUBLE_EQ(l.y_lo, 1e-3);
   EXPECT_DOUBLE_EQ(l.y_hi, 1e-2);
   expect_labels_clear(l);
+}
+
+// the span tensions' errors: a dashed line of open marks per integrator beside its speeds', no
+// labels, inside the axes' range; a study with a metric shows the metric alone
+TEST(WpLayout, SpanTensionsAreDashedUnlabelledAndInRange) {
+  WpResult r = spread_study();
+  for (WpRow& w : r.rows) w.err_tension = 30 * w.err_speed;  // (the contract's 10·rtol against 3·rtol)
+  const WpLayout l = wp_layout(r);
+  ASSERT_EQ(l.points.size(), 2 * r.rows.size());
+  size_t tensions = 0;
+  for (size_t i = 0; i < l.points.size(); ++i) {
+    const WpLayout::Point& p = l.points[i];
+    if (!p.tension) continue;
+    ++tensions;
+    EXPECT_GE(p.y, l.y_lo);
+    EXPECT_LE(p.y, l.y_hi);
+    for (const WpLayout::Label& a : l.labels) EXPECT_NE(a.point, i) << "a span tension's point is labelled";
+  }
+  EXPECT_EQ(tensions, r.rows.size());
+  expect_labels_clear(l);
+  const std::string script = wp_script(l, "x.png");
+  for (size_t k = 0; k < r.integrators.size(); ++k)
+    EXPECT_NE(script.find("$t" + std::to_string(k) + " using 1:2 with linespoints lw 1.5 dt 2"), std::string::npos);
+  EXPECT_NE(script.find("title 'span tensions'"), std::string::npos);
+  r.metric = "driven.creep";
+  for (WpRow& w : r.rows) w.err_metric = w.err_speed;
+  const WpLayout m = wp_layout(r);
+  EXPECT_EQ(m.points.size(), r.rows.size());
+  EXPECT_EQ(wp_script(m, "x.png").find("span tensions"), std::string::npos);
+}
+
+// a run whose wall time lies just below a decade's end takes the next decade: its mark is not cut
+// by the axis
+TEST(WpLayout, APointNearADecadesEndIsNotOnTheAxis) {
+  WpResult r = study(1, 3, 0.5, 0.5, 0, 0.05, 0.8, 0);
+  r.rows.back().wall = 9.6;
+  const WpLayout l = wp_layout(r);
+  EXPECT_DOUBLE_EQ(l.x_hi, 100);
+  EXPECT_DOUBLE_EQ(l.x_lo, 0.1);
 }
 
 // the Campbell diagram's speed axis names the pulley swept (it said 'crankshaft' for any), and the

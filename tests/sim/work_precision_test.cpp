@@ -55,8 +55,18 @@ TEST(WorkPrecision, ErrorsShrinkWithTheToleranceAndFilesAreWritten) {
   std::string line;
   std::getline(csv, line);
   EXPECT_EQ(line.rfind("integrator,rtol,finished,t_reached_s,wall_s,steps,rejected,rhs,jacobians", 0), 0u);
+  EXPECT_NE(line.find(",within_contract,note"), std::string::npos) << line;
   int lines = 0;
-  while (std::getline(csv, line)) ++lines;
+  while (std::getline(csv, line)) {
+    // each run's within_contract (the second column from the end, before an empty note) is the row's
+    if (lines > 0) {
+      const WpRow& row = r.rows[lines - 1];
+      EXPECT_EQ(line.substr(line.size() - 3), within_contract(row) ? ",1," : ",0,") << line;
+    } else {
+      EXPECT_EQ(line.substr(line.size() - 2), ",,") << line;  // the reference: its own errors, 0
+    }
+    ++lines;
+  }
   EXPECT_EQ(lines, 5);
   // the plot (drawn by beltsim_plot from the result, as `beltsim wp` does) is a PNG
   EXPECT_EQ(r.integrators, ws.integrators);
@@ -66,6 +76,20 @@ TEST(WorkPrecision, ErrorsShrinkWithTheToleranceAndFilesAreWritten) {
   char magic[8] = {};
   png.read(magic, 8);
   EXPECT_EQ(std::string(magic + 1, 3), "PNG");
+}
+
+// the contract's bounds (docs/accuracy.md): speeds within 3·rtol and span tensions within 10·rtol,
+// both; an unfinished run keeps nothing
+TEST(WorkPrecision, WithinContractTakesBothBounds) {
+  WpRow r;
+  r.finished = true, r.rtol = 1e-3, r.err_speed = 3e-3, r.err_tension = 1e-2;
+  EXPECT_TRUE(within_contract(r));
+  r.err_speed = 3.1e-3;
+  EXPECT_FALSE(within_contract(r));
+  r.err_speed = 1e-4, r.err_tension = 1.1e-2;
+  EXPECT_FALSE(within_contract(r));
+  r.err_tension = 1e-4, r.finished = false;
+  EXPECT_FALSE(within_contract(r));
 }
 
 // The runs' clock is the test's (RunSettings::wall_clock): 1 ms per look, so that the 0.2 s limit
@@ -130,7 +154,7 @@ TEST(WorkPrecision, AMetricIsComparedAtTheEnd) {
   std::ifstream csv(r.csv_path);
   std::string header;
   std::getline(csv, header);
-  EXPECT_NE(header.find(",err_tension,metric,err_metric,note"), std::string::npos) << header;
+  EXPECT_NE(header.find(",err_tension,metric,err_metric,within_contract,note"), std::string::npos) << header;
 }
 
 // a finished run whose error passes 10 % is named with the errors that do
