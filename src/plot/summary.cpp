@@ -55,7 +55,8 @@ struct Stats {
   double mean = NAN, min = NAN, max = NAN;
 };
 
-// over the finite values of c in rows [r0, r1)
+// over the finite values of c in rows [r0, r1); the mean clamped into [min, max], where rounding of
+// the sum can leave it (three 0.8s: 0.8000000000000002)
 Stats stats(const std::vector<double>& c, size_t r0, size_t r1) {
   Stats s;
   double sum = 0;
@@ -66,7 +67,7 @@ Stats stats(const std::vector<double>& c, size_t r0, size_t r1) {
     s.min = n == 1 ? c[r] : std::min(s.min, c[r]);
     s.max = n == 1 ? c[r] : std::max(s.max, c[r]);
   }
-  if (n) s.mean = sum / static_cast<double>(n);
+  if (n) s.mean = std::clamp(sum / static_cast<double>(n), s.min, s.max);
   return s;
 }
 

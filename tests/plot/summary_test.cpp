@@ -169,6 +169,15 @@ TEST(Summary, ARunWithoutTheWrapsMuReadsTheStartsMuAndSaysSo) {
   EXPECT_EQ(summary_table(with).find("run it again"), std::string::npos);
 }
 
+// a mean lies within its values: b's μ is 0.8 in every row, and the sum of three 0.8s divided by
+// three rounds to 0.8000000000000002, above its own largest value (the trial's 0.7999999999999986
+// below mu_min 0.8000000000000003)
+TEST(Summary, AMeanOfEqualValuesIsThatValue) {
+  const Summary s = summarize(folder("equal").string(), 0.1, 0.3);
+  EXPECT_EQ(figure(s, "b", "mu"), 0.8);
+  EXPECT_EQ(figure(s, "b", "mu_min"), 0.8);
+}
+
 TEST(Summary, ErrorsNameTheFileAndTheWindow) {
   const fs::path d = folder("errors");
   auto message = [&](const std::string& dir, double from, double to) {
