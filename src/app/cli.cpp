@@ -220,7 +220,8 @@ std::optional<CommandLine> parse_command_line(int argc, char** argv, int* status
   CLI::App* modes = app.add_subcommand("modes", "natural frequencies, damping and mode shapes; a Campbell diagram");
   modes->add_option("SCRIPT", cl.script, "the scenario (Lua): its first scene:run{} gives the scene and settings")
       ->required();
-  add_out_and_t_end(modes, raw, "output folder (default: out/<script name>/modes)");
+  // no --t-end: the operating point is --at's (it defaults to the script's t_end)
+  add_run_option(modes, raw, *find_run_setting("out"), "output folder (default: out/<script name>/modes)");
   modes->add_option("--at", raw.at, "the operating point: run the scene to T first (default: its t_end; 0: at rest)")
       ->type_name("T");
   modes->add_option("--fmin", raw.fmin, "leave out modes below this frequency (default 1)")->type_name("HZ");

@@ -211,7 +211,6 @@ int cmd_modes(const std::string& script, const script::Overrides& o, const scrip
     const script::Interruptible on_signal(lua);
     const script::Captured cap = capture_first_run(lua, script, o, "modes", false);
     RunSettings rs = cap.settings;
-    if (o.has("t_end")) rs.t_end = o.run.t_end;
     rs.out_dir = o.has("out") ? o.run.out_dir : (fs::path("out") / fs::path(script).stem() / "modes").string();
     if (raw.campbell && raw.check)
       throw UsageError("--check checks the modes of one operating point (--at), not with --campbell");

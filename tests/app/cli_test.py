@@ -150,7 +150,9 @@ class Errors(unittest.TestCase):
                            (["run", "x.lua", "--tend", "1"], "run does not take: --tend 1 (did you mean '--t-end'?)"),
                            (["run", "x.lua", "--no-frame"], "run does not take: --no-frame (did you mean '--no-frames'?)"),
                            (["wp", "x.lua", "--rtol=1e-3"], "wp does not take: --rtol=1e-3 (did you mean '--rtols'?)"),
-                           (["run", "x.lua", "--zzz"], "run does not take: --zzz\n")]:
+                           (["run", "x.lua", "--zzz"], "run does not take: --zzz\n"),
+                           # modes' operating point is --at: a --t-end beside it would be a second name for it
+                           (["modes", "x.lua", "--t-end", "1"], "modes does not take: --t-end 1")]:
             code, out, err = run(args, cwd=self.dir)
             self.assertEqual(code, 2, err)
             self.assertIn(what, err)
