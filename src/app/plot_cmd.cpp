@@ -20,7 +20,8 @@ int cmd_plot(const std::string& csv, const std::vector<std::string>& columns, co
   if (raw.out) require_png("--out", *raw.out);
   const std::string png = raw.out ? *raw.out : (fs::path(csv).parent_path() / "plot.png").string();
   try {
-    plot::plot_csv(csv, columns, from, png);
+    if (const std::string w = plot::left_out_warning(plot::plot_csv(csv, columns, from, png)); !w.empty())
+      std::fprintf(stderr, "beltsim plot: warning: %s\n", w.c_str());
   } catch (const std::exception& e) {
     std::fprintf(stderr, "beltsim: %s\n", e.what());
     mark_output_failure_shown(e.what());

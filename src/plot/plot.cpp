@@ -378,7 +378,33 @@ bool is_summary(const std::string& csv_path) {
   return names.size() > 2 && names[0] == "point" && std::find(names.begin(), names.end(), "status") != names.end();
 }
 
+// leaves out the series with no finite (t, y) pair and returns their names; fails when that is
+// every series
+std::vector<std::string> drop_empty(PlotSpec& spec, const std::string& csv_path) {
+  std::vector<std::string> dropped;
+  std::vector<Series> kept;
+  for (Series& s : spec.series) {
+    bool any = false;
+    for (size_t i = 0; i < s.t.size() && i < s.y.size() && !any; ++i)
+      any = std::isfinite(s.t[i]) && std::isfinite(s.y[i]);
+    if (any)
+      kept.push_back(std::move(s));
+    else
+      dropped.push_back(s.name);
+  }
+  if (kept.empty())
+    throw std::runtime_error(csv_path + ": no finite value to draw in " + joined(dropped) +
+                             (dropped.size() == 1 ? "" : " (any of them)"));
+  spec.series = std::move(kept);
+  return dropped;
+}
+
 }  // namespace
+
+std::string left_out_warning(const std::vector<std::string>& names) {
+  if (names.empty()) return "";
+  return "left out of the plot, with no finite value to draw: " + joined(names);
+}
 
 PlotSpec summary_spec(const std::string& csv_path, const std::vector<std::string>& columns,
                       const std::string& out_png) {
@@ -409,9 +435,14 @@ PlotSpec summary_spec(const std::string& csv_path, const std::vector<std::string
   return spec;
 }
 
-void plot_csv(const std::string& csv_path, const std::vector<std::string>& columns, double from_t,
-              const std::string& out_png) {
-  if (is_summary(csv_path)) return plot_png(summary_spec(csv_path, columns, out_png));
+std::vector<std::string> plot_csv(const std::string& csv_path, const std::vector<std::string>& columns, double from_t,
+                                  const std::string& out_png) {
+  if (is_summary(csv_path)) {
+    PlotSpec spec = summary_spec(csv_path, columns, out_png);
+    std::vector<std::string> dropped = drop_empty(spec, csv_path);
+    plot_png(spec);
+    return dropped;
+  }
   const Table table = read_timeseries_csv(csv_path);
   const std::vector<double>& t = table.column("t");
   std::vector<std::string> wanted = columns;
@@ -451,7 +482,9 @@ void plot_csv(const std::string& csv_path, const std::vector<std::string>& colum
     spec.series.push_back(std::move(s));
   }
   spec.marks = read_event_marks((cp.parent_path() / "events.csv").string());
+  std::vector<std::string> dropped = drop_empty(spec, csv_path);
   plot_png(spec);
+  return dropped;
 }
 
 }  // namespace beltsim::plot

@@ -80,8 +80,13 @@ std::vector<Mark> read_event_marks(const std::string& events_csv);
 // events of the events.csv beside it, if there is one, as vertical lines with their labels.
 // A sweep's summary.csv (its header starts "point," and has a status column; sweep/results.hpp)
 // is drawn as points: the first of `columns` is the x axis, the others y (from_t is not used); a
-// point without a value (failed, not run) is left out.
-void plot_csv(const std::string& csv_path, const std::vector<std::string>& columns, double from_t,
-              const std::string& out_png);
+// point without a value (failed, not run) is left out. A column with no finite value there (a
+// creep undefined at rest, a figure every point failed to give) is left out of the picture and
+// named in the result; when every column is, it fails naming them.
+std::vector<std::string> plot_csv(const std::string& csv_path, const std::vector<std::string>& columns, double from_t,
+                                  const std::string& out_png);
+
+// the warning for plot_csv's left-out columns ("" for none)
+std::string left_out_warning(const std::vector<std::string>& names);
 
 }  // namespace beltsim::plot

@@ -115,7 +115,10 @@ int l_plot(lua_State* L) {
   if (file.empty()) file = "plot_" + time_tag(s.now()) + ".png";
   file = output_path(s.settings(), file);
   if (const std::string r = output_refusal(*box.ctx, "sim:plot", file, true); !r.empty()) fail(L, r);
-  guarded(L, "sim:plot", [&] { plot::plot_csv(s.csv_path(), columns, from, file); });
+  guarded(L, "sim:plot", [&] {
+    if (const std::string w = plot::left_out_warning(plot::plot_csv(s.csv_path(), columns, from, file)); !w.empty())
+      std::fprintf(stderr, "beltsim: warning: sim:plot: %s\n", w.c_str());
+  });
   picture(L, box, file);
   lua_pushstring(L, file.c_str());
   return 1;

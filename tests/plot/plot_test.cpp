@@ -160,6 +160,23 @@ TEST(Plot, AMissingColumnSuggestsAndListsTheValidOnes) {
   EXPECT_FALSE(fs::exists(d / "x.png"));
 }
 
+// a column with no finite value (a creep undefined at rest; a figure every point of a sweep failed
+// to give) is left out and named, the rest drawn (it failed the whole picture); all of them: an error
+TEST(Plot, AColumnWithoutAFiniteValueIsLeftOutAndNamed) {
+  const fs::path d = dir("nan_column");
+  const std::string csv = write(d / "timeseries.csv", "t,driver.omega,driver.creep\n0,1,nan\n0.1,2,nan\n");
+  EXPECT_EQ(plot_csv(csv, {"driver.omega", "driver.creep"}, 0, (d / "x.png").string()),
+            std::vector<std::string>{"driver.creep"});
+  EXPECT_EQ(read_png((d / "x.png").string()).width, 1280);
+  EXPECT_EQ(left_out_warning({"driver.creep"}), "left out of the plot, with no finite value to draw: driver.creep");
+  EXPECT_EQ(left_out_warning({}), "");
+  EXPECT_TRUE(plot_csv(csv, {"driver.omega"}, 0, (d / "y.png").string()).empty());
+  expect_error([&] { plot_csv(csv, {"driver.creep"}, 0, (d / "z.png").string()); },
+               {"no finite value to draw in driver.creep"});
+  const std::string sweep = write(d / "summary.csv", "point,mu,status,slip,x\n0,0.3,ok,1,\n1,0.5,\"error: boom\",,\n");
+  EXPECT_EQ(plot_csv(sweep, {"mu", "slip", "x"}, 0, (d / "s.png").string()), std::vector<std::string>{"x"});
+}
+
 // t named among a time series' columns (as a sweep summary's x column comes first) drew t against t
 TEST(Plot, TimeIsNotAColumnOfATimeSeries) {
   const fs::path d = dir("t_column");
