@@ -242,11 +242,47 @@ class Sweep(SweepCase):
         p = self.run_beltsim("sweep", PLAIN, "--set", "point=1,2", "--list", ok=(2,))
         self.assertIn("--set point=1,2", p.stderr)
         with open(script, "w") as f:
-            f.write("return beltsim.sweep { grid = { k = {1} }, run = function(p) return { k = 2, status = 3 } end }\n")
+            f.write("return beltsim.sweep { grid = { k = {1} }, run = function(p) return { k = p.k, status = 3 } end }\n")
         self.run_beltsim("sweep", script, ok=(1,))
         summary = rows(self.path("out", "odd", "summary.csv"))
         self.assertEqual(summary[0], ["point", "k", "status"])
         self.assertTrue(summary[1][2].startswith("error: ") and "'k'" in summary[1][2], summary[1][2])
+
+    def test_a_parameter_misspelt_or_never_read_fails_the_point(self):
+        # p.pretension read where the grid says pretention was nil, the scene's default for every
+        # point, each ok; a parameter run(p) never reads decided nothing either
+        script = self.path("typo.lua")
+        with open(script, "w") as f:
+            f.write("return beltsim.sweep {\n"
+                    "  grid = { pretention = {300, 600}, mu = {1} },\n"
+                    "  run = function(p)\n"
+                    "    return { mu = p.mu, f = p.pretension }\n"
+                    "  end,\n"
+                    "}\n")
+        p = self.run_beltsim("sweep", script, "--jobs", "1", ok=(1,))
+        status = [r[3] for r in rows(self.path("out", "typo", "summary.csv"))[1:]]
+        self.assertEqual(status, ["error: %s:4: p.pretension: the point has no parameter 'pretension' (did you mean "
+                                  "'pretention'?); its parameters: mu, pretention" % script] * 2)
+        self.assertIn("point 0 (mu=1, pretention=300): error: ", p.stderr)
+        with open(script, "w") as f:
+            f.write("return beltsim.sweep { grid = { a = {1, 2}, b = {'x'} }, run = function(p)\n"
+                    "  return { twice = 2 * p.a } end }\n")
+        self.run_beltsim("sweep", script, "--jobs", "1", ok=(1,))
+        status = [r[3] for r in rows(self.path("out", "typo", "summary.csv"))[1:]]
+        self.assertEqual(status, ["error: %s: run(p) never read p.b: a parameter that decides nothing makes points "
+                                  "that differ in name only; read it in run(p), or take it out of the sweep" % script] * 2)
+        # pairs(p) lists the parameters (each read so); a key run(p) sets is its own
+        with open(script, "w") as f:
+            f.write("return beltsim.sweep { grid = { a = {1, 2}, b = {'x'} }, run = function(p)\n"
+                    "  local s = {}\n"
+                    "  for k, v in pairs(p) do s[#s + 1] = k .. '=' .. tostring(v) end\n"
+                    "  table.sort(s)\n"
+                    "  p.c = 3\n"
+                    "  return { all = table.concat(s, ';'), c = p.c } end }\n")
+        self.run_beltsim("sweep", script, "--jobs", "1")
+        self.assertEqual(rows(self.path("out", "typo", "summary.csv")),
+                         [["point", "a", "b", "status", "all", "c"], ["0", "1", "x", "ok", "a=1;b=x", "3"],
+                          ["1", "2", "x", "ok", "a=2;b=x", "3"]])
 
     def write_editable(self, damping, mass):
         shutil.copy(DRIVE, self.dir)
