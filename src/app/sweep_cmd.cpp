@@ -152,6 +152,11 @@ int sweep(const std::string& file, const Raw& raw, const script::Safety& s) {
     if (quick) {
       if (!fs::is_regular_file(file)) throw script::ScriptError(file + ": no such script");
       points = sw::grid_points(grid);
+      // a sweep file given --set lists: refused before a point runs or anything is written (each
+      // point failed, and a finished sweep's summary.csv and point.csv were replaced by errors).
+      // Not for --list, which runs nothing (and prints the points on stdout), nor --point, whose
+      // sweep has made the check
+      if (!raw.list && point < 0) script::check_ordinary_script(lua, file, points[0]);
     } else {
       points = script::load_sweep(lua, file);
     }
@@ -185,6 +190,8 @@ int sweep(const std::string& file, const Raw& raw, const script::Safety& s) {
       std::fprintf(stderr, "beltsim sweep: point %s: %s\n", p.id.c_str(), r.status.c_str());
       return r.ok() ? 0 : 1;
     }
+  } catch (const script::WrongFileKind& e) {
+    throw UsageError(e.what());
   } catch (const script::ScriptError& e) {
     std::fprintf(stderr, "beltsim: %s\n%s", e.what(), script::shown_traceback(e.traceback).c_str());
     return stop_signal() != 0 ? stopped_status() : 1;

@@ -168,6 +168,18 @@ std::vector<std::string> point_unread(lua_State* L, int idx, const sweep::Point&
   return unread;
 }
 
+// the point's parameters as the script's --set values (beltsim.args)
+void set_point_args(Context& ctx, const sweep::Point& p) {
+  ctx.overrides.set.clear();
+  for (const auto& [name, v] : p.params) {
+    ScriptArg a;
+    a.key = name;
+    a.text = sweep::value_text(v);
+    std::visit([&](const auto& x) { a.value = x; }, v);
+    ctx.overrides.set.push_back(std::move(a));
+  }
+}
+
 // the status of a failed call: the run's divergence when that is what ended it
 std::string failed_status(const Context& ctx, const std::string& message) {
   if (ctx.divergence && message.find(ctx.divergence->second) != std::string::npos)
@@ -240,14 +252,7 @@ sweep::PointResult run_script_point(Interpreter& lua, const std::string& script,
   lua_State* L = lua.state();
   Context& ctx = lua.context();
   ctx.overrides.run.out_dir = point_dir, ctx.overrides.give("out");
-  ctx.overrides.set.clear();
-  for (const auto& [name, v] : p.params) {
-    ScriptArg a;
-    a.key = name;
-    a.text = sweep::value_text(v);
-    std::visit([&](const auto& x) { a.value = x; }, v);
-    ctx.overrides.set.push_back(std::move(a));
-  }
+  set_point_args(ctx, p);
   ctx.divergence.reset();
   lua_pushnil(L);
   lua_setfield(L, LUA_REGISTRYINDEX, kLastRun);
@@ -269,6 +274,27 @@ sweep::PointResult run_script_point(Interpreter& lua, const std::string& script,
   if (lua_getfield(L, LUA_REGISTRYINDEX, kLastRun) == LUA_TTABLE) flatten(L, -1, "", r.figures, 0);
   lua_settop(L, 0);
   return r;
+}
+
+void check_ordinary_script(Interpreter& lua, const std::string& script, const sweep::Point& p) {
+  lua_State* L = lua.state();
+  set_point_args(lua.context(), p);
+  Captured probe;
+  probe.until_run = true;
+  lua.set_capture(&probe);
+  bool sweep_file = false;
+  try {
+    lua.run_file(script, 1);
+    sweep_file = luaL_testudata(L, -1, kSweepMeta) != nullptr;
+  } catch (const ScriptError&) {  // (its points say it)
+  }
+  lua_settop(L, 0);
+  lua.set_capture(nullptr);
+  lua.context().overrides.set.clear();
+  if (sweep_file)
+    throw WrongFileKind(script + " is a sweep file (it returns beltsim.sweep{...}): its points are its grid or " +
+                        "samples; --set lists are for an ordinary script (the quick form): run `beltsim sweep " +
+                        script + "` without them");
 }
 
 }  // namespace beltsim::script

@@ -211,6 +211,23 @@ class Sweep(SweepCase):
             self.assertIn("--set %s: an empty value in the list (write \"\" for an empty string)" % bad, p.stderr)
         self.assertEqual(self.run_beltsim("sweep", PLAIN, "--set", 'how="",a', "--list").stdout.splitlines()[1], "0,")
 
+    def test_set_lists_on_a_sweep_file_are_refused_before_anything_is_written(self):
+        # each point failed ("is a sweep file"), and a finished sweep's summary.csv and point.csv
+        # were replaced by errors
+        script = self.path("twice.lua")
+        with open(script, "w") as f:
+            f.write("return beltsim.sweep { grid = { mu = {0.3, 1} }, run = function(p) return { twice = 2 * p.mu } end }\n")
+        self.run_beltsim("sweep", script, "--jobs", "1")
+        before = {name: self.read("out", "twice", *name) for name in (("summary.csv",), ("0", "point.csv"))}
+        for out in ([], ["--out", "elsewhere"], ["--slurm"]):
+            p = self.run_beltsim("sweep", script, "--set", "mu=0.3,1", *out, ok=(2,))
+            self.assertIn("beltsim: %s is a sweep file (it returns beltsim.sweep{...}): its points are its grid or "
+                          "samples; --set lists are for an ordinary script (the quick form): run `beltsim sweep %s` "
+                          "without them\n" % (script, script), p.stderr)
+        self.assertEqual({name: self.read("out", "twice", *name) for name in before}, before)
+        self.assertEqual(sorted(os.listdir(self.path("out", "twice"))), ["0", "1", "summary.csv"])
+        self.assertFalse(os.path.exists(self.path("elsewhere")))
+
     def test_a_quoted_set_value_keeps_its_commas(self):
         # "..." around a value of a --set list, as --set reads a string: its commas are its own
         out = self.run_beltsim("sweep", PLAIN, "--set", 'how="a,b",c,"d"', "--set", 'x="1,2"', "--list").stdout
