@@ -14,6 +14,7 @@
 #include "app/commands.hpp"
 #include "io/csv_writer.hpp"
 #include "io/output_dir.hpp"
+#include "io/suggest.hpp"
 #include "script/docall.hpp"
 #include "script/script_args.hpp"
 #include "script/signals.hpp"
@@ -123,6 +124,22 @@ void check_collect_folder(const std::string& dir, const std::string& file,
                              " (a sweep's folder holds a folder for each point): nothing to collect");
 }
 
+// the quick form into a folder that holds another study (points of other parameters: the default
+// folder out/<script> is every study's of the script) is refused, rather than replace that study's
+// summary.csv and run its points' folders again (std::runtime_error)
+void check_same_study(const std::string& dir, const std::vector<beltsim::sweep::Point>& points) {
+  const std::vector<std::string> earlier = beltsim::sweep::study_parameters(dir);
+  std::vector<std::string> now;
+  for (const auto& [name, v] : points[0].params) now.push_back(name);
+  std::vector<std::string> a = earlier, b = now;
+  std::sort(a.begin(), a.end());
+  std::sort(b.begin(), b.end());
+  if (earlier.empty() || a == b) return;
+  throw std::runtime_error(dir + " holds another study (its points vary " + join(earlier) + ", these vary " +
+                           join(now) + "), whose summary.csv and points this one would replace: give it a folder of " +
+                           "its own (--out DIR), or remove " + dir + " first");
+}
+
 int sweep(const std::string& file, const Raw& raw, const script::Safety& s) {
   namespace sw = beltsim::sweep;
   const std::string dir = raw.out ? *raw.out : (fs::path("out") / fs::path(file).stem()).string();
@@ -206,6 +223,7 @@ int sweep(const std::string& file, const Raw& raw, const script::Safety& s) {
   if (raw.collect && !fs::is_directory(dir, ec))
     throw std::runtime_error("--collect: " + dir + " is not a folder: nothing to collect");
   const OutputDir top = sw::claim_sweep_folder(dir);  // held to the end: one sweep at a time on the folder
+  if (quick && !raw.collect) check_same_study(dir, points);
   if (raw.collect) check_collect_folder(dir, file, points);
   const auto summary = [&] {
     const sw::SummaryCounts c = sw::write_summary(dir, points, definition(raw, file));

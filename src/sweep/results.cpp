@@ -98,6 +98,36 @@ PointResult unique_columns(const Point& p, PointResult r) {
   return r;
 }
 
+namespace {
+
+// the parameters' names in the header of a point.csv or summary.csv (empty when it is not one)
+std::vector<std::string> header_parameters(const std::filesystem::path& file) {
+  std::ifstream f(file, std::ios::binary);
+  if (!f) return {};
+  std::ostringstream text;
+  text << f.rdbuf();
+  const std::vector<std::vector<std::string>> rows = csv_rows(text.str());
+  if (rows.empty() || rows[0].empty() || rows[0][0] != "point") return {};
+  const auto status = std::find(rows[0].begin(), rows[0].end(), "status");
+  if (status == rows[0].end()) return {};
+  return std::vector<std::string>(rows[0].begin() + 1, status);
+}
+
+}  // namespace
+
+std::vector<std::string> study_parameters(const std::string& dir) {
+  namespace fs = std::filesystem;
+  if (std::vector<std::string> names = header_parameters(fs::path(dir) / kSummaryFile); !names.empty()) return names;
+  std::error_code ec;
+  std::vector<fs::path> folders;
+  for (fs::directory_iterator it(dir, ec), end; !ec && it != end; it.increment(ec))
+    if (it->is_directory(ec)) folders.push_back(it->path());
+  std::sort(folders.begin(), folders.end());
+  for (const fs::path& f : folders)
+    if (std::vector<std::string> names = header_parameters(f / kPointFile); !names.empty()) return names;
+  return {};
+}
+
 OutputDir claim_sweep_folder(const std::string& dir) {
   OutputDir top(dir);
   const std::string who = top.try_lock();

@@ -60,6 +60,10 @@ PointCheck check_point(const std::string& dir, const Point& p, Definition& now);
 // columns of one name
 PointResult unique_columns(const Point& p, PointResult r);
 
+// the names of the parameters of the study DIR holds: the columns of its summary.csv between
+// `point` and `status`, else of the first point.csv in a folder of it; empty when it holds neither
+std::vector<std::string> study_parameters(const std::string& dir);
+
 // DIR, made when missing and claimed for this process until the object is destroyed (the lock
 // of io/output_dir.hpp); throws std::runtime_error naming DIR when another sweep holds it
 OutputDir claim_sweep_folder(const std::string& dir);

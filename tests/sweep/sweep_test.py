@@ -383,6 +383,20 @@ class Sweep(SweepCase):
         self.assertIn("2 of 3 points done already", p.stderr)
         self.assertNotIn("run again", p.stderr)
 
+    def test_a_quick_study_of_other_parameters_is_refused_its_folder(self):
+        # out/<script> is every quick study's of the script: one of other --set names replaced the
+        # earlier study's summary.csv and points without a word
+        self.run_beltsim("sweep", PLAIN, "--set", "pretension=300,500")
+        before = self.read("out", "plain", "summary.csv")
+        for lists in (["--set", "mu=0.3,1"], ["--set", "pretension=300,500", "--set", "mu=0.3,1"]):
+            p = self.run_beltsim("sweep", PLAIN, *lists, ok=(1,))
+            self.assertIn("beltsim: out/plain holds another study (its points vary pretension, these vary %s), whose "
+                          "summary.csv and points this one would replace: give it a folder of its own (--out DIR), "
+                          "or remove out/plain first\n" % ("mu" if len(lists) == 2 else "pretension, mu"), p.stderr)
+            self.assertEqual(self.read("out", "plain", "summary.csv"), before)
+        self.run_beltsim("sweep", PLAIN, "--set", "mu=0.3,1", "--out", "out/plain_mu")
+        self.assertEqual(rows(self.path("out", "plain_mu", "summary.csv"))[0][:3], ["point", "mu", "status"])
+
     def test_slurm_with_nothing_left_leaves_the_job_scripts(self):
         # --slurm --time, the points then run (here, as the array's tasks would), --slurm again
         self.run_beltsim("sweep", GRID, "--slurm", "--time", "10")
