@@ -44,7 +44,7 @@ int processors() {
 
 // what defines a point now, bar its files (sweep/inputs.hpp): the program and, of the options,
 // --trusted. The --set lists are the grid: each point's own values are its parameters, matched
-// already (sweep/results.hpp), so a value added to a list reruns no other point; the limits only
+// already (sweep/results.hpp); the limits only
 // decide whether a point fails, and a failed point runs again anyway. The sweep file: a point
 // run from another is not this sweep's (its path as the loader records it, script/load_source).
 beltsim::sweep::Definition definition(const Raw& raw, const std::string& file) {
@@ -241,6 +241,8 @@ int sweep(const std::string& file, const Raw& raw, const script::Safety& s) {
       return summary();
     }
     for (const std::string& line : sw::reason_lines(name, j.reasons)) std::fprintf(stderr, "%s\n", line.c_str());
+    if (const std::string line = sw::moved_line(name, top, sw::move_stale_folders(top, points)); !line.empty())
+      std::fprintf(stderr, "%s\n", line.c_str());
     std::printf("%s\n%s\n", j.array_script.c_str(), j.collect_script.c_str());
     if (!raw.submit) {
       std::fprintf(

@@ -136,6 +136,8 @@ DriverReport run_points(const std::vector<Point>& points, const DriverSettings& 
   const auto summary_now = [&] { summary.write(); };
   Progress progress(s, static_cast<int>(points.size()), report.already_done);
   say_plan(progress, s, points.size(), report, reasons, todo.size());
+  if (const std::string line = moved_line(s.name, top, move_stale_folders(top, points)); !line.empty())
+    progress.say(line);
   std::map<pid_t, Running> running;
   std::size_t next = 0;
   bool forwarded = false;

@@ -397,6 +397,24 @@ class Sweep(SweepCase):
         self.run_beltsim("sweep", PLAIN, "--set", "mu=0.3,1", "--out", "out/plain_mu")
         self.assertEqual(rows(self.path("out", "plain_mu", "summary.csv"))[0][:3], ["point", "mu", "status"])
 
+    def test_points_numbered_otherwise_run_again_saying_why(self):
+        # a point's folder is its number: a value added inside a list, or ids widened (0..5 to
+        # 00..11), renumbers points, which ran again without a word, and left the old folders
+        # beside the new ones
+        args = ["sweep", PLAIN, "--jobs", "2", "--set", "pretension=300,500"]
+        self.run_beltsim(*args, "--set", "mu=0.3,1")
+        p = self.run_beltsim(*args, "--set", "mu=0.3,0.5,1")
+        self.assertIn("sweep plain: 3 points run again: the points were numbered otherwise when they ran (a value "
+                      "added or removed before them in a list, or wider ids); a point's files name its folder, so its "
+                      "results are not moved to its new number\n", p.stderr)
+        self.assertIn("1 of 6 points done already", p.stderr)
+        p = self.run_beltsim("sweep", PLAIN, "--jobs", "2", "--set", "pretension=300,500,700,900", "--set", "mu=0.3,0.5,1")
+        self.assertIn("sweep plain: 6 points run again: the points were numbered otherwise", p.stderr)
+        self.assertIn("sweep plain: 6 folders of no point now moved to out/plain/earlier/: 0, 1, 2, 3, 4, 5\n", p.stderr)
+        self.assertEqual(sorted(os.listdir(self.path("out", "plain"))),
+                         ["%02d" % k for k in range(12)] + ["earlier", "summary.csv"])
+        self.assertEqual([r[3] for r in rows(self.path("out", "plain", "summary.csv"))[1:]], ["ok"] * 12)
+
     def test_slurm_with_nothing_left_leaves_the_job_scripts(self):
         # --slurm --time, the points then run (here, as the array's tasks would), --slurm again
         self.run_beltsim("sweep", GRID, "--slurm", "--time", "10")
