@@ -180,11 +180,16 @@ void set_point_args(Context& ctx, const sweep::Point& p) {
   }
 }
 
-// the status of a failed call: the run's divergence when that is what ended it
+// the status of a failed call: the run's divergence when that is what ended it, with the whole
+// message (file:line, the cause, where the samples are) after its time, less the message's own
+// "the run diverged at t = ... s: " (the time in full precision is before it)
 std::string failed_status(const Context& ctx, const std::string& message) {
-  if (ctx.divergence && message.find(ctx.divergence->second) != std::string::npos)
-    return "diverged at t = " + number_text(ctx.divergence->first) + " s";
-  return sweep::error_status(message);
+  if (!ctx.divergence || message.find(ctx.divergence->second) == std::string::npos) return sweep::error_status(message);
+  std::string m = message;
+  if (const std::size_t at = m.find("the run diverged at t = "); at != std::string::npos)
+    if (const std::size_t end = m.find(" s: ", at); end != std::string::npos) m.erase(at, end + 4 - at);
+  return "diverged at t = " + number_text(ctx.divergence->first) +
+         " s: " + sweep::error_status(m).substr(std::string("error: ").size());
 }
 
 }  // namespace

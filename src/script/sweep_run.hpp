@@ -23,7 +23,7 @@ std::vector<sweep::Point> load_sweep(Interpreter& lua, const std::string& path);
 
 // run(p) of the sweep loaded last by load_sweep, its runs writing to point_dir unless they say
 // otherwise. The result's figures are what run(p) returned (nested tables flattened with dots:
-// omega.driver); an error gives an "error: ..." or "diverged at t = T s" status. The caller checks
+// omega.driver); an error gives an "error: ..." or "diverged at t = T s: ..." status. The caller checks
 // lua.interrupted() and the stop signal: a stopped point is not a result.
 sweep::PointResult run_sweep_point(Interpreter& lua, const std::string& path, const sweep::Point& p,
                                    const std::string& point_dir);

@@ -4,7 +4,7 @@
 // unnamed, then renamed: io/output_dir.hpp), point.csv: a header and one row,
 //   point,<parameter>...,status,inputs,<figure>...
 // Cells are quoted as CSV (csv_text), so a value with commas, quotes or line breaks reads back
-// exactly. The status is "ok", "diverged at t = T s" or "error: message" (one line); inputs is what defined
+// exactly. The status is "ok", "diverged at t = T s: message" or "error: message" (one line); inputs is what defined
 // the point (sweep/inputs.hpp). A point is done when its point.csv says ok for the same parameters
 // and the same inputs as now; any other point runs again when the sweep does.
 // A sweep that runs its points, merges the summary or writes its Slurm jobs holds DIR first
