@@ -264,6 +264,7 @@ int sweep(const std::string& file, const Raw& raw, const script::Safety& s) {
   ds.jobs = jobs;
   ds.definition = definition(raw, file);
   ds.rerun = raw.rerun;
+  ds.quick = quick;
   ds.stop = &stop_flag();
   ds.stop_signal = [] { return stop_signal(); };
   sw::DriverReport r;

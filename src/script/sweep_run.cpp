@@ -219,6 +219,10 @@ sweep::PointResult run_sweep_point(Interpreter& lua, const std::string& path, co
   lua_getfield(L, LUA_REGISTRYINDEX, kLoadedSweep);
   lua_getiuservalue(L, -1, 1);
   lua_remove(L, -2);
+  lua_Debug ar;  // where run is defined, for a result that is none
+  lua_pushvalue(L, -1);
+  const std::string where =
+      lua_getinfo(L, ">S", &ar) && ar.linedefined > 0 ? path + ":" + std::to_string(ar.linedefined) : path;
   push_point(L, p);  // run, read, p
   lua_pushvalue(L, -2);
   lua_insert(L, -4);
@@ -231,6 +235,11 @@ sweep::PointResult run_sweep_point(Interpreter& lua, const std::string& path, co
   }
   sweep::PointResult r;
   try {
+    // (a run(p) that forgot its return was ok with no figures)
+    if (lua_isnil(L, -1)) {
+      lua_settop(L, 0);
+      return {sweep::error_status(where + ": run(p) returned nil; return a table of figures"), {}};
+    }
     // a parameter that decided nothing: the points differ in its value and in nothing else
     if (const std::vector<std::string> unread = point_unread(L, read, p); !unread.empty())
       throw std::runtime_error(
@@ -239,12 +248,9 @@ sweep::PointResult run_sweep_point(Interpreter& lua, const std::string& path, co
                                 "run(p), or take it out of the sweep"
                               : ": parameters that decide nothing make points that differ in name only; read them in "
                                 "run(p), or take them out of the sweep"));
-    if (!lua_isnil(L, -1)) {
-      if (!lua_istable(L, -1))
-        throw std::runtime_error(std::string("run(p) returned a ") + type_name(L, -1) +
-                                 ": a table of figures (or nothing) expected");
-      flatten(L, -1, "", r.figures, 0);
-    }
+    if (!lua_istable(L, -1))
+      throw std::runtime_error(std::string("run(p) returned a ") + type_name(L, -1) + ": a table of figures expected");
+    flatten(L, -1, "", r.figures, 0);
   } catch (const std::runtime_error& e) {
     r = {sweep::error_status(path + ": " + e.what()), {}};
   }

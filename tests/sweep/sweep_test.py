@@ -306,6 +306,25 @@ class Sweep(SweepCase):
                          [["point", "a", "b", "status", "all", "c"], ["0", "1", "x", "ok", "a=1;b=x", "3"],
                           ["1", "2", "x", "ok", "a=2;b=x", "3"]])
 
+    def test_a_run_that_returns_nothing_fails_and_an_empty_table_is_said(self):
+        # a run(p) that forgot its return was ok with no figures, without a word
+        script = self.path("none.lua")
+        with open(script, "w") as f:
+            f.write("return beltsim.sweep {\n  grid = { k = {1, 2} },\n  run = function(p)\n"
+                    "    local twice = 2 * p.k\n  end,\n}\n")
+        p = self.run_beltsim("sweep", script, "--jobs", "1", ok=(1,))
+        self.assertEqual([r[2] for r in rows(self.path("out", "none", "summary.csv"))[1:]],
+                         ["error: %s:3: run(p) returned nil; return a table of figures" % script] * 2)
+        with open(script, "w") as f:
+            f.write("return beltsim.sweep { grid = { k = {1, 2} }, run = function(p) local _ = p.k return {} end }\n")
+        p = self.run_beltsim("sweep", script, "--jobs", "1")
+        self.assertEqual(rows(self.path("out", "none", "summary.csv")), [["point", "k", "status"], ["0", "1", "ok"],
+                                                                        ["1", "2", "ok"]])
+        warning = ("sweep none: warning: point 0 (k=1) is ok with no figures: run(p) returned an empty table (said of "
+                   "the first such point only)\n")
+        self.assertIn(warning, p.stderr)
+        self.assertEqual(p.stderr.count("with no figures"), 1, p.stderr)
+
     def write_editable(self, damping, mass):
         shutil.copy(DRIVE, self.dir)
         with open(self.path("editable.lua"), "w") as f:
