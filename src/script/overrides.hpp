@@ -44,10 +44,11 @@ struct Captured {
   bool definition_only = false;
   std::optional<SceneDef> definition;
   // with until_run (set by the caller), the script ends at its first scene:run{}, scene:start{} or
-  // beltsim.resume instead, before anything is integrated or written (and scenes are built without
-  // their report on stderr): `run_at` is "FILE:LINE: scene:run", left empty when it called none
-  // (what `beltsim sweep` learns of a file before it runs its points)
+  // beltsim.resume instead, before anything is integrated or written: `run_at` is "FILE:LINE:
+  // scene:run", left empty when it called none (what `beltsim sweep` learns of a file before it
+  // runs its points); with quiet too, scenes are built without their report on stderr
   bool until_run = false;
+  bool quiet = false;
   std::string run_at;
 };
 

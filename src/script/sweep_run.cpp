@@ -196,12 +196,33 @@ std::string failed_status(const Context& ctx, const std::string& message) {
 
 std::vector<sweep::Point> load_sweep(Interpreter& lua, const std::string& path) {
   lua_State* L = lua.state();
-  lua.run_file(path, 1);
+  const std::string quick = "for a study of an ordinary script, give its parameters as --set lists: beltsim sweep " +
+                            path + " --set NAME=V1,V2,..";
+  // a simulation run as the file loads would run in every point's process as well, into out/<file>:
+  // an ordinary script given without --set lists, which ran whole before it was refused
+  Captured probe;
+  probe.until_run = true;
+  lua.set_capture(&probe);
+  try {
+    lua.run_file(path, 1);
+  } catch (...) {
+    lua.set_capture(nullptr);
+    throw;
+  }
+  lua.set_capture(nullptr);
+  if (!probe.run_at.empty()) {
+    lua_settop(L, 0);
+    throw WrongFileKind(probe.run_at + ": " + path + " runs a simulation as it loads: it is an ordinary script, " +
+                        "not a sweep file (which returns beltsim.sweep{...} and runs its simulations in run(p)); " +
+                        "nothing was run. For a study of it, give its parameters as --set lists: beltsim sweep " +
+                        path + " --set NAME=V1,V2,..");
+  }
   auto* box = static_cast<SweepBox*>(luaL_testudata(L, -1, kSweepMeta));
   if (!box) {
     const std::string got = type_name(L, -1);
     lua_settop(L, 0);
-    throw ScriptError(path + ": a sweep file ends with `return beltsim.sweep{...}`; it returned " + got);
+    throw ScriptError(path + ": a sweep file ends with `return beltsim.sweep{...}`; it returned " + got + " (" + quick +
+                      ")");
   }
   std::vector<sweep::Point> points = box->points;
   lua_setfield(L, LUA_REGISTRYINDEX, kLoadedSweep);
@@ -291,7 +312,7 @@ void check_ordinary_script(Interpreter& lua, const std::string& script, const sw
   lua_State* L = lua.state();
   set_point_args(lua.context(), p);
   Captured probe;
-  probe.until_run = true;
+  probe.until_run = probe.quiet = true;
   lua.set_capture(&probe);
   bool sweep_file = false;
   try {

@@ -12,13 +12,15 @@
 
 namespace beltsim::script {
 
-// the file is not of the kind the command's form needs: a sweep file given --set lists (bad usage)
+// the file is not of the kind the command's form needs (bad usage): a sweep file given --set lists,
+// an ordinary script without them
 struct WrongFileKind : ScriptError {
   using ScriptError::ScriptError;
 };
 
 // runs the sweep file and returns its points; throws ScriptError ("file:line: why") when it fails
-// or does not return beltsim.sweep{...}
+// or does not return beltsim.sweep{...}, WrongFileKind when it calls scene:run{}, scene:start{} or
+// beltsim.resume as it loads (an ordinary script: the file ends there, nothing run)
 std::vector<sweep::Point> load_sweep(Interpreter& lua, const std::string& path);
 
 // run(p) of the sweep loaded last by load_sweep, its runs writing to point_dir unless they say

@@ -233,6 +233,24 @@ class Sweep(SweepCase):
         self.assertEqual(sorted(os.listdir(self.path("out", "twice"))), ["0", "1", "summary.csv"])
         self.assertFalse(os.path.exists(self.path("elsewhere")))
 
+    def test_an_ordinary_script_without_set_lists_is_refused_before_it_runs(self):
+        # it ran whole, into out/<script> whatever --out said, and was refused after
+        for args in (["--out", "there"], ["--list"], ["--slurm"]):
+            p = self.run_beltsim("sweep", PLAIN, *args, ok=(2,))
+            self.assertIn("beltsim: %s:4: scene:run: %s runs a simulation as it loads: it is an ordinary script, not a "
+                          "sweep file (which returns beltsim.sweep{...} and runs its simulations in run(p)); nothing "
+                          "was run. For a study of it, give its parameters as --set lists: beltsim sweep %s --set "
+                          "NAME=V1,V2,..\n" % (PLAIN, PLAIN, PLAIN), p.stderr)
+            self.assertEqual(p.stdout, "")
+        script = self.path("start.lua")
+        with open(script, "w") as f:
+            f.write("local drive = require 'drive'\nlocal s = beltsim.scene(drive {})\n"
+                    "local sim = s:start { sample = 1e-3, progress = false }\nsim:run_to(0.01)\n")
+        shutil.copy(DRIVE, self.dir)
+        p = self.run_beltsim("sweep", script, ok=(2,))
+        self.assertIn("beltsim: %s:3: scene:start: %s runs a simulation as it loads" % (script, script), p.stderr)
+        self.assertEqual(sorted(os.listdir(self.dir)), ["drive.lua", "start.lua"])
+
     def test_a_quoted_set_value_keeps_its_commas(self):
         # "..." around a value of a --set list, as --set reads a string: its commas are its own
         out = self.run_beltsim("sweep", PLAIN, "--set", 'how="a,b",c,"d"', "--set", 'x="1,2"', "--list").stdout
