@@ -381,6 +381,14 @@ std::optional<CommandLine> parse_command_line(int argc, char** argv, int* status
       msg = (sub ? name + " does not take: " : "unexpected: ") + extra + hint +
             (name == "console" ? " (arguments for the script go after --)" : "");
     }
+    // an option of one value given more than once: CLI11 says "--t-end: At Most 1 required but
+    // received 2"
+    if (constexpr std::string_view at_most = ": At Most 1 required but received ";
+        dynamic_cast<const CLI::ArgumentMismatch*>(&e) && msg.find(at_most) != std::string::npos) {
+      const std::string option = msg.substr(0, msg.find(at_most)),
+                        times = msg.substr(msg.find(at_most) + at_most.size());
+      msg = option + " given " + (times == "2" ? std::string("twice") : times + " times") + ": give it once";
+    }
     std::fprintf(stderr, "beltsim: %s\nRun 'beltsim%s --help' for the usage.\n", msg.c_str(),
                  name.empty() ? "" : (" " + name).c_str());
     return fail(2);

@@ -62,10 +62,11 @@ std::string integrator_list() {
 }
 
 int whole_number(const std::string& option, const std::string& text, int lo) {
-  const double x = number(option, text);
-  if (!(x == std::floor(x) && x >= lo && x <= 1e9))
+  // (a word is refused as what is wanted, a whole number: "needs a finite decimal number" misled)
+  const auto x = script::decimal(text);
+  if (!x || !(*x == std::floor(*x) && *x >= lo && *x <= 1e9))
     throw UsageError(option + " must be a whole number >= " + std::to_string(lo) + ", got " + text);
-  return static_cast<int>(x);
+  return static_cast<int>(*x);
 }
 
 script::Safety safety(const Raw& raw) {

@@ -14,6 +14,7 @@
 #include "app/commands.hpp"
 #include "io/csv_writer.hpp"
 #include "io/output_dir.hpp"
+#include "io/suggest.hpp"
 #include "script/docall.hpp"
 #include "script/script_args.hpp"
 #include "script/signals.hpp"
@@ -43,7 +44,7 @@ int processors() {
 
 // what defines a point now, bar its files (sweep/inputs.hpp): the program and, of the options,
 // --trusted. The --set lists are the grid: each point's own values are its parameters, matched
-// already (sweep/results.hpp), so a value added to a list reruns no other point; the limits only
+// already (sweep/results.hpp); the limits only
 // decide whether a point fails, and a failed point runs again anyway. The sweep file: a point
 // run from another is not this sweep's (its path as the loader records it, script/load_source).
 beltsim::sweep::Definition definition(const Raw& raw, const std::string& file) {
@@ -123,6 +124,22 @@ void check_collect_folder(const std::string& dir, const std::string& file,
                              " (a sweep's folder holds a folder for each point): nothing to collect");
 }
 
+// the quick form into a folder that holds another study (points of other parameters: the default
+// folder out/<script> is every study's of the script) is refused, rather than replace that study's
+// summary.csv and run its points' folders again (std::runtime_error)
+void check_same_study(const std::string& dir, const std::vector<beltsim::sweep::Point>& points) {
+  const std::vector<std::string> earlier = beltsim::sweep::study_parameters(dir);
+  std::vector<std::string> now;
+  for (const auto& [name, v] : points[0].params) now.push_back(name);
+  std::vector<std::string> a = earlier, b = now;
+  std::sort(a.begin(), a.end());
+  std::sort(b.begin(), b.end());
+  if (earlier.empty() || a == b) return;
+  throw std::runtime_error(dir + " holds another study (its points vary " + join(earlier) + ", these vary " +
+                           join(now) + "), whose summary.csv and points this one would replace: give it a folder of " +
+                           "its own (--out DIR), or remove " + dir + " first");
+}
+
 int sweep(const std::string& file, const Raw& raw, const script::Safety& s) {
   namespace sw = beltsim::sweep;
   const std::string dir = raw.out ? *raw.out : (fs::path("out") / fs::path(file).stem()).string();
@@ -152,6 +169,11 @@ int sweep(const std::string& file, const Raw& raw, const script::Safety& s) {
     if (quick) {
       if (!fs::is_regular_file(file)) throw script::ScriptError(file + ": no such script");
       points = sw::grid_points(grid);
+      // a sweep file given --set lists: refused before a point runs or anything is written (each
+      // point failed, and a finished sweep's summary.csv and point.csv were replaced by errors).
+      // Not for --list, which runs nothing (and prints the points on stdout), nor --point, whose
+      // sweep has made the check
+      if (!raw.list && point < 0) script::check_ordinary_script(lua, file, points[0]);
     } else {
       points = script::load_sweep(lua, file);
     }
@@ -185,6 +207,8 @@ int sweep(const std::string& file, const Raw& raw, const script::Safety& s) {
       std::fprintf(stderr, "beltsim sweep: point %s: %s\n", p.id.c_str(), r.status.c_str());
       return r.ok() ? 0 : 1;
     }
+  } catch (const script::WrongFileKind& e) {
+    throw UsageError(e.what());
   } catch (const script::ScriptError& e) {
     std::fprintf(stderr, "beltsim: %s\n%s", e.what(), script::shown_traceback(e.traceback).c_str());
     return stop_signal() != 0 ? stopped_status() : 1;
@@ -199,6 +223,7 @@ int sweep(const std::string& file, const Raw& raw, const script::Safety& s) {
   if (raw.collect && !fs::is_directory(dir, ec))
     throw std::runtime_error("--collect: " + dir + " is not a folder: nothing to collect");
   const OutputDir top = sw::claim_sweep_folder(dir);  // held to the end: one sweep at a time on the folder
+  if (quick && !raw.collect) check_same_study(dir, points);
   if (raw.collect) check_collect_folder(dir, file, points);
   const auto summary = [&] {
     const sw::SummaryCounts c = sw::write_summary(dir, points, definition(raw, file));
@@ -216,6 +241,8 @@ int sweep(const std::string& file, const Raw& raw, const script::Safety& s) {
       return summary();
     }
     for (const std::string& line : sw::reason_lines(name, j.reasons)) std::fprintf(stderr, "%s\n", line.c_str());
+    if (const std::string line = sw::moved_line(name, top, sw::move_stale_folders(top, points)); !line.empty())
+      std::fprintf(stderr, "%s\n", line.c_str());
     std::printf("%s\n%s\n", j.array_script.c_str(), j.collect_script.c_str());
     if (!raw.submit) {
       std::fprintf(
@@ -237,6 +264,7 @@ int sweep(const std::string& file, const Raw& raw, const script::Safety& s) {
   ds.jobs = jobs;
   ds.definition = definition(raw, file);
   ds.rerun = raw.rerun;
+  ds.quick = quick;
   ds.stop = &stop_flag();
   ds.stop_signal = [] { return stop_signal(); };
   sw::DriverReport r;

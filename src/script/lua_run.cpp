@@ -423,6 +423,15 @@ void record_run_dir(Context* ctx, const std::string& out_dir) {
   ctx->run_dirs.insert(run_dir_key(out_dir));
 }
 
+void end_if_probing(lua_State* L, Context* ctx, const char* call) {
+  if (!ctx || !ctx->capture || !ctx->capture->until_run) return;
+  luaL_where(L, 1);
+  ctx->capture->run_at = lua_tostring(L, -1) + std::string(call);
+  ctx->captured = true;
+  lua_pushliteral(L, "scene captured");
+  lua_error(L);
+}
+
 void push_check(lua_State* L, const CheckEstimate& c) {
   lua_createtable(L, 0, 9);
   lua_pushnumber(L, c.err_speed), lua_setfield(L, -2, "speed");

@@ -61,6 +61,10 @@ std::string wall_limit_text(double limit, double t, double target, const std::st
 std::string run_dir_key(const std::string& out_dir);
 void record_run_dir(Context* ctx, const std::string& out_dir);
 
+// with Captured::until_run: ends the script at this call (scene:run, scene:start,
+// beltsim.resume), noting where; nothing otherwise
+void end_if_probing(lua_State* L, Context* ctx, const char* call);
+
 // pushes a checked run's estimate (sim/run_check.hpp) as { speed, tension, limit_speed,
 // limit_tension, over, steps_ratio, shared, warned_t, failed }
 void push_check(lua_State* L, const CheckEstimate& c);

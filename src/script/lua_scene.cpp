@@ -474,7 +474,7 @@ int l_scene(lua_State* L) {
     error = e.what(), about = message_path(error);  // ("pulley 'driven'.torque (function at ...)")
   }
   if (!error.empty()) fail_at(L, about, error);
-  report_scene(**box);
+  if (!(ctx && ctx->capture && ctx->capture->quiet)) report_scene(**box);
   return 1;
 }
 

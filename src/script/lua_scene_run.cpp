@@ -37,6 +37,7 @@ int l_scene_run(lua_State* L) {
   const Scene* sc = check_scene(L, 1, "run");
   check_args(L, "scene:run", {{"{t_end, integrator, ...}", kTable, true}}, 2);
   auto* ctx = static_cast<Context*>(lua_touserdata(L, lua_upvalueindex(1)));
+  end_if_probing(L, ctx, "scene:run");
   bool progress = true;
   RunSettings rs = read_run_settings(L, 2, *sc, ctx, true, &progress);
   check_unread_args(L, *ctx, "run");
@@ -110,6 +111,7 @@ int l_scene_start(lua_State* L) {
   const Scene* sc = check_scene(L, 1, "start");
   check_args(L, "scene:start", {{"{integrator, rtol, ...}", kTable, true}}, 2);
   auto* ctx = static_cast<Context*>(lua_touserdata(L, lua_upvalueindex(1)));
+  end_if_probing(L, ctx, "scene:start");
   bool progress = true;
   const RunSettings rs = read_run_settings(L, 2, *sc, ctx, false, &progress);
   check_unread_args(L, *ctx, "start");

@@ -43,6 +43,13 @@ struct Captured {
   // left empty when its belt.mu is a Lua function, which cannot be called once the interpreter is gone
   bool definition_only = false;
   std::optional<SceneDef> definition;
+  // with until_run (set by the caller), the script ends at its first scene:run{}, scene:start{} or
+  // beltsim.resume instead, before anything is integrated or written: `run_at` is "FILE:LINE:
+  // scene:run", left empty when it called none (what `beltsim sweep` learns of a file before it
+  // runs its points); with quiet too, scenes are built without their report on stderr
+  bool until_run = false;
+  bool quiet = false;
+  std::string run_at;
 };
 
 }  // namespace beltsim::script

@@ -136,9 +136,12 @@ DriverReport run_points(const std::vector<Point>& points, const DriverSettings& 
   const auto summary_now = [&] { summary.write(); };
   Progress progress(s, static_cast<int>(points.size()), report.already_done);
   say_plan(progress, s, points.size(), report, reasons, todo.size());
+  if (const std::string line = moved_line(s.name, top, move_stale_folders(top, points)); !line.empty())
+    progress.say(line);
   std::map<pid_t, Running> running;
   std::size_t next = 0;
   bool forwarded = false;
+  bool said_no_figures = false;  // a point ok without figures: said once
 
   const auto launch = [&](const Point& p) {
     const OutputDir folder(top, p.id);
@@ -217,6 +220,13 @@ DriverReport run_points(const std::vector<Point>& points, const DriverSettings& 
     progress.finished(seconds, result->ok());
     if (result->ok()) {
       ++report.ok;
+      if (result->figures.empty() && !said_no_figures) {
+        said_no_figures = true;
+        progress.say("sweep " + s.name + ": warning: point " + p.id + " (" + params_text(p) +
+                     ") is ok with no figures: " +
+                     (s.quick ? "the script made no scene:run{}" : "run(p) returned an empty table") +
+                     " (said of the first such point only)");
+      }
     } else {
       ++report.failed;
       progress.say("sweep " + s.name + ": point " + p.id + " (" + params_text(p) + "): " + result->status);

@@ -30,6 +30,7 @@ struct DriverSettings {
   int jobs = 1;
   Definition definition;                    // what defines a point now: a point done with other inputs runs again
   bool rerun = false;                       // every point runs, done or not (--rerun)
+  bool quick = false;                       // the quick form (--set lists over an ordinary script)
   const std::atomic<bool>* stop = nullptr;  // raised by a stop signal
   std::function<int()> stop_signal;         // the signal received (forwarded to the children)
 };

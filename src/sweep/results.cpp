@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <sstream>
 #include <stdexcept>
 
@@ -54,26 +55,74 @@ void write_point_result(const std::string& dir, const Point& p, const PointResul
   write_file_whole(folder, kPointFile, h + "\n" + v + "\n");
 }
 
-std::optional<PointResult> read_point_result(const std::string& dir, const Point& p) {
-  std::ifstream f(std::filesystem::path(dir) / p.id / kPointFile, std::ios::binary);
+namespace {
+
+// a point.csv as written: its id, its parameters (name, value as text) in its order, its result
+struct PointFile {
+  std::string id;
+  std::vector<std::pair<std::string, std::string>> params;
+  PointResult result;
+};
+
+std::optional<PointFile> read_point_file(const std::filesystem::path& path) {
+  std::ifstream f(path, std::ios::binary);
   if (!f) return std::nullopt;
   std::ostringstream text;
   text << f.rdbuf();
   const std::vector<std::vector<std::string>> rows = csv_rows(text.str());
   if (rows.size() != 2) return std::nullopt;
   const std::vector<std::string>&names = rows[0], &values = rows[1];
-  const std::size_t n = p.params.size();
-  if (names.size() != values.size() || names.size() < n + 2 || names[0] != "point" || values[0] != p.id ||
-      names[n + 1] != "status")
+  const auto status = std::find(names.begin(), names.end(), "status");  // (no parameter takes the name)
+  if (names.size() != values.size() || names.empty() || names[0] != "point" || status == names.end())
     return std::nullopt;
-  for (std::size_t k = 0; k < n; ++k)
-    if (names[k + 1] != p.params[k].first || values[k + 1] != value_text(p.params[k].second)) return std::nullopt;
-  PointResult r;
-  r.status = values[n + 1];
+  PointFile pf;
+  pf.id = values[0];
+  const auto n = static_cast<std::size_t>(status - names.begin()) - 1;
+  for (std::size_t k = 0; k < n; ++k) pf.params.emplace_back(names[k + 1], values[k + 1]);
+  pf.result.status = values[n + 1];
   std::size_t k = n + 2;
-  if (k < names.size() && names[k] == "inputs") r.inputs = values[k++];  // (none: an older beltsim's)
-  for (; k < names.size(); ++k) r.figures.emplace_back(names[k], values[k]);
-  return r;
+  if (k < names.size() && names[k] == "inputs") pf.result.inputs = values[k++];  // (none: an older beltsim's)
+  for (; k < names.size(); ++k) pf.result.figures.emplace_back(names[k], values[k]);
+  return pf;
+}
+
+// a point's parameters as text, in the order of their names: the same for the same point under
+// another number or another order of the --set lists
+using Signature = std::vector<std::pair<std::string, std::string>>;
+Signature signature(Signature params) {
+  std::sort(params.begin(), params.end());
+  return params;
+}
+Signature signature(const Point& p) {
+  Signature s;
+  for (const auto& [name, v] : p.params) s.emplace_back(name, value_text(v));
+  return signature(std::move(s));
+}
+
+// the folders of DIR named as a point's id is (digits), sorted
+std::vector<std::string> numbered_folders(const std::string& dir) {
+  namespace fs = std::filesystem;
+  std::vector<std::string> names;
+  std::error_code ec;
+  for (fs::directory_iterator it(dir, ec), end; !ec && it != end; it.increment(ec)) {
+    const std::string name = it->path().filename().string();
+    if (!name.empty() && name.find_first_not_of("0123456789") == std::string::npos &&
+        it->symlink_status(ec).type() == fs::file_type::directory)
+      names.push_back(name);
+  }
+  std::sort(names.begin(), names.end());
+  return names;
+}
+
+}  // namespace
+
+std::optional<PointResult> read_point_result(const std::string& dir, const Point& p) {
+  std::optional<PointFile> pf = read_point_file(std::filesystem::path(dir) / p.id / kPointFile);
+  if (!pf || pf->id != p.id || pf->params.size() != p.params.size()) return std::nullopt;
+  for (std::size_t k = 0; k < p.params.size(); ++k)
+    if (pf->params[k].first != p.params[k].first || pf->params[k].second != value_text(p.params[k].second))
+      return std::nullopt;
+  return std::move(pf->result);
 }
 
 PointCheck check_point(const std::string& dir, const Point& p, Definition& now) {
@@ -98,6 +147,36 @@ PointResult unique_columns(const Point& p, PointResult r) {
   return r;
 }
 
+namespace {
+
+// the parameters' names in the header of a point.csv or summary.csv (empty when it is not one)
+std::vector<std::string> header_parameters(const std::filesystem::path& file) {
+  std::ifstream f(file, std::ios::binary);
+  if (!f) return {};
+  std::ostringstream text;
+  text << f.rdbuf();
+  const std::vector<std::vector<std::string>> rows = csv_rows(text.str());
+  if (rows.empty() || rows[0].empty() || rows[0][0] != "point") return {};
+  const auto status = std::find(rows[0].begin(), rows[0].end(), "status");
+  if (status == rows[0].end()) return {};
+  return std::vector<std::string>(rows[0].begin() + 1, status);
+}
+
+}  // namespace
+
+std::vector<std::string> study_parameters(const std::string& dir) {
+  namespace fs = std::filesystem;
+  if (std::vector<std::string> names = header_parameters(fs::path(dir) / kSummaryFile); !names.empty()) return names;
+  std::error_code ec;
+  std::vector<fs::path> folders;
+  for (fs::directory_iterator it(dir, ec), end; !ec && it != end; it.increment(ec))
+    if (it->is_directory(ec)) folders.push_back(it->path());
+  std::sort(folders.begin(), folders.end());
+  for (const fs::path& f : folders)
+    if (std::vector<std::string> names = header_parameters(f / kPointFile); !names.empty()) return names;
+  return {};
+}
+
 OutputDir claim_sweep_folder(const std::string& dir) {
   OutputDir top(dir);
   const std::string who = top.try_lock();
@@ -110,15 +189,56 @@ OutputDir claim_sweep_folder(const std::string& dir) {
 
 Results current_results(const std::string& dir, const std::vector<Point>& points, Definition& now) {
   Results results;
+  // the ok results in DIR's numbered folders by their parameters, read once a point has none of
+  // its own: those of points that ran under another number
+  std::optional<std::map<Signature, PointFile>> elsewhere;
   for (const Point& p : points) {
     PointCheck c = check_point(dir, p, now);
     // (a failure whose inputs are not known, written for a point whose process died, keeps its
     // status: it runs again in any case)
     if (c.result && !c.changed.empty() && (c.result->ok() || !c.result->inputs.empty()))
       c.result = PointResult{kOutdated + c.changed, {}, ""};
+    if (!c.result) {
+      if (!elsewhere) {
+        elsewhere.emplace();
+        for (const std::string& folder : numbered_folders(dir))
+          if (std::optional<PointFile> pf = read_point_file(std::filesystem::path(dir) / folder / kPointFile);
+              pf && pf->id == folder && pf->result.ok())
+            elsewhere->emplace(signature(pf->params), std::move(*pf));
+      }
+      const auto it = elsewhere->find(signature(p));
+      if (it != elsewhere->end() && it->second.id != p.id) {
+        const std::string why = changed_inputs(it->second.result.inputs, now);
+        c.result = PointResult{kOutdated + (why.empty() ? std::string(kRenumbered) : why), {}, ""};
+      }
+    }
     results.push_back(std::move(c.result));
   }
   return results;
+}
+
+std::vector<std::string> move_stale_folders(const OutputDir& top, const std::vector<Point>& points) {
+  namespace fs = std::filesystem;
+  std::vector<std::string> ids;
+  for (const Point& p : points) ids.push_back(p.id);
+  std::sort(ids.begin(), ids.end());
+  std::vector<std::string> moved;
+  std::optional<OutputDir> earlier;
+  std::error_code ec;
+  for (const std::string& name : numbered_folders(top.path())) {
+    const fs::path from = fs::path(top.path()) / name;
+    if (std::binary_search(ids.begin(), ids.end(), name) ||
+        !(fs::exists(from / kPointFile, ec) || fs::exists(from / "log.txt", ec)))
+      continue;
+    if (!earlier) earlier.emplace(top, kEarlierFolder);
+    std::string to = name;
+    for (int k = 2; fs::symlink_status(fs::path(earlier->path()) / to, ec).type() != fs::file_type::not_found; ++k)
+      to = name + "-" + std::to_string(k);
+    fs::rename(from, fs::path(earlier->path()) / to, ec);
+    if (ec) output_error(earlier->file(to), "cannot move " + from.string() + " there: " + ec.message());
+    moved.push_back(name);
+  }
+  return moved;
 }
 
 Reasons rerun_reasons(const Results& results) {
@@ -141,6 +261,16 @@ std::vector<std::string> reason_lines(const std::string& name, const Reasons& re
     lines.push_back("sweep " + name + ": " + std::to_string(n) + (n == 1 ? " point runs" : " points run") +
                     " again: " + why);
   return lines;
+}
+
+std::string moved_line(const std::string& name, const OutputDir& top, const std::vector<std::string>& moved) {
+  if (moved.empty()) return "";
+  std::string names;
+  for (std::size_t k = 0; k < moved.size() && k < 10; ++k) names += (k ? ", " : "") + moved[k];
+  if (moved.size() > 10) names += ", ...";
+  return "sweep " + name + ": " + std::to_string(moved.size()) +
+         (moved.size() == 1 ? " folder of no point now moved to " : " folders of no point now moved to ") +
+         top.file(kEarlierFolder) + "/: " + names;
 }
 
 SummaryCounts write_summary(const OutputDir& top, const std::vector<Point>& points, const Results& results) {

@@ -4,7 +4,7 @@
 // unnamed, then renamed: io/output_dir.hpp), point.csv: a header and one row,
 //   point,<parameter>...,status,inputs,<figure>...
 // Cells are quoted as CSV (csv_text), so a value with commas, quotes or line breaks reads back
-// exactly. The status is "ok", "diverged at t = T s" or "error: message" (one line); inputs is what defined
+// exactly. The status is "ok", "diverged at t = T s: message" or "error: message" (one line); inputs is what defined
 // the point (sweep/inputs.hpp). A point is done when its point.csv says ok for the same parameters
 // and the same inputs as now; any other point runs again when the sweep does.
 // A sweep that runs its points, merges the summary or writes its Slurm jobs holds DIR first
@@ -28,6 +28,14 @@ namespace beltsim::sweep {
 
 // the status summary.csv gives a point run with other inputs than now's, before why
 inline constexpr const char* kOutdated = "outdated: ";
+// why a point whose result is in another folder runs again (after kOutdated): its folder is its
+// number in the sweep's order, and its files name that folder (parameters.csv, the quick form's
+// figures csv and parameters, any path run(p) returned), so a result is not moved to a new number
+inline constexpr const char* kRenumbered =
+    "the points were numbered otherwise when they ran (a value added or removed before them in a list, or "
+    "wider ids); a point's files name its folder, so its results are not moved to its new number";
+// DIR's folder of the folders of points no point of the sweep has now (move_stale_folders)
+inline constexpr const char* kEarlierFolder = "earlier";
 struct PointResult {
   std::string status = "ok";
   std::vector<std::pair<std::string, std::string>> figures;  // name, text (numbers in full precision)
@@ -60,6 +68,10 @@ PointCheck check_point(const std::string& dir, const Point& p, Definition& now);
 // columns of one name
 PointResult unique_columns(const Point& p, PointResult r);
 
+// the names of the parameters of the study DIR holds: the columns of its summary.csv between
+// `point` and `status`, else of the first point.csv in a folder of it; empty when it holds neither
+std::vector<std::string> study_parameters(const std::string& dir);
+
 // DIR, made when missing and claimed for this process until the object is destroyed (the lock
 // of io/output_dir.hpp); throws std::runtime_error naming DIR when another sweep holds it
 OutputDir claim_sweep_folder(const std::string& dir);
@@ -69,9 +81,19 @@ struct SummaryCounts {
 };
 // what DIR holds of each point: its result, nullopt when it has none; a result with other
 // inputs than now's as the status "outdated: why" without figures (but a failure recorded
-// without its inputs, that of a point whose process died, as it is)
+// without its inputs, that of a point whose process died, as it is); a point with none in its
+// folder whose parameters have an ok result in another numbered folder (it ran under another
+// number) as "outdated: " + kRenumbered, or why its inputs are not now's
 using Results = std::vector<std::optional<PointResult>>;
 Results current_results(const std::string& dir, const std::vector<Point>& points, Definition& now);
+// the numbered folders of DIR (top) that are no point's of now and hold a point's point.csv or
+// log.txt (a point removed from the sweep, or numbered otherwise before), moved into
+// DIR/earlier/ (as NAME, or NAME-2, ... when taken), so that they are not taken for results; their
+// names, sorted. output_error when one cannot be moved
+std::vector<std::string> move_stale_folders(const OutputDir& top, const std::vector<Point>& points);
+// what a sweep says of them: "sweep NAME: 9 folders of no point now moved to DIR/earlier/: 0, 1, ..."
+// ("" when none)
+std::string moved_line(const std::string& name, const OutputDir& top, const std::vector<std::string>& moved);
 // why the points with other inputs than now's run again: each reason (the status after
 // "outdated: ") with how many points it holds for, in the order first met
 using Reasons = std::vector<std::pair<std::string, int>>;

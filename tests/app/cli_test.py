@@ -157,6 +157,18 @@ class Errors(unittest.TestCase):
             self.assertEqual(code, 2, err)
             self.assertIn(what, err)
 
+    def test_an_option_given_twice_or_a_word_for_a_count(self):
+        # CLI11's own "--t-end: At Most 1 required but received 2"; a word for a whole number was
+        # said to need "a finite decimal number"
+        for args, what in [(["run", "x.lua", "--t-end", "0.05", "--t-end", "0.1"], "beltsim: --t-end given twice: give it once\n"),
+                           (["run", "x.lua", "--rtol", "1e-3", "--rtol", "1e-4", "--rtol", "1e-5"],
+                            "beltsim: --rtol given 3 times: give it once\n"),
+                           (["sweep", "x.lua", "--jobs", "two"], "beltsim: --jobs must be a whole number >= 1, got two\n"),
+                           (["sweep", "x.lua", "--point", "1.5"], "beltsim: --point must be a whole number >= 0, got 1.5\n")]:
+            code, out, err = run(args, cwd=self.dir)
+            self.assertEqual(code, 2, err)
+            self.assertIn(what, err)
+
     def test_an_error_in_a_callback_names_its_line_with_a_traceback(self):
         path = self.script(SCENE + "local function check(s)\n  error('too fast')\nend\n"
                            "sim:every(0.001, function(s) check(s) end)\nsim:run_to(0.003)\n")

@@ -105,5 +105,52 @@ TEST(SweepResults, EveryColumnHasItsOwnName) {
   }
 }
 
+// a point is matched by its folder, its number in the sweep's order: one that ran under another
+// number (a value added inside a list) runs again, saying why, and the folders of numbers no point
+// has now (the ids widened: 0..8 to 00..11) are moved out of the way, not taken for results
+TEST(SweepResults, RenumberedPointsRunAgainAndStaleFoldersMoveAside) {
+  const std::string dir = results_folder("renumbered");
+  const Inputs in{"test program", "", {}};
+  const auto write_all = [&](const std::vector<Point>& points) {
+    for (const Point& p : points) write_point_result(dir, p, PointResult{"ok", {{"x", p.id}}, inputs_text(in)});
+  };
+  write_all(grid_points(Grid{{"mu"}, {{Value(0.3), Value(1.0)}}}));  // 0: 0.3, 1: 1
+  Definition now{in.program, in.options, {}, {}};
+  const std::vector<Point> added = grid_points(Grid{{"mu"}, {{Value(0.3), Value(0.5), Value(1.0)}}});
+  const Results r = current_results(dir, added, now);
+  ASSERT_EQ(r.size(), 3u);
+  EXPECT_TRUE(r[0] && r[0]->ok());
+  EXPECT_FALSE(r[1]);  // new: its folder holds mu = 1
+  ASSERT_TRUE(r[2]);
+  EXPECT_EQ(r[2]->status, std::string(kOutdated) + kRenumbered);
+  EXPECT_EQ(rerun_reasons(r), (Reasons{{kRenumbered, 1}}));
+  now.program = "another";  // its result's inputs not now's: that is the reason
+  EXPECT_EQ(current_results(dir, added, now)[2]->status,
+            std::string(kOutdated) + "the program has changed (was test program)");
+  now.program = in.program;
+
+  // ids widened: 0..10 to 00..11; a folder of no point (7, with a log only), "notes" and a
+  // numbered folder of the user's are left where they are but for 7
+  write_all(grid_points(Grid{{"k"}, {{Value(1LL), Value(2LL)}}}));
+  std::vector<Value> twelve;
+  for (long long k = 0; k < 12; ++k) twelve.emplace_back(k);
+  const std::vector<Point> wide = grid_points(Grid{{"k"}, {twelve}});
+  fs::create_directories(dir + "/7");
+  test::spit(dir + "/7/log.txt", "beltsim sweep: point 7 of 8\n");
+  fs::create_directories(dir + "/notes");
+  fs::create_directories(dir + "/2024");
+  fs::create_directories(dir + "/earlier/0");  // from before: 0 goes in as 0-2
+  const OutputDir top(dir);
+  EXPECT_EQ(move_stale_folders(top, wide), (std::vector<std::string>{"0", "1", "7"}));
+  EXPECT_TRUE(fs::exists(dir + "/earlier/0-2/point.csv"));
+  EXPECT_TRUE(fs::exists(dir + "/earlier/1/point.csv"));
+  EXPECT_TRUE(fs::exists(dir + "/earlier/7/log.txt"));
+  EXPECT_FALSE(fs::exists(dir + "/0"));
+  EXPECT_TRUE(fs::is_directory(dir + "/notes"));
+  EXPECT_TRUE(fs::is_directory(dir + "/2024"));
+  EXPECT_EQ(moved_line("s", top, {"0", "1"}), "sweep s: 2 folders of no point now moved to " + dir + "/earlier/: 0, 1");
+  EXPECT_EQ(move_stale_folders(top, wide), std::vector<std::string>{});
+}
+
 }  // namespace
 }  // namespace beltsim::sweep

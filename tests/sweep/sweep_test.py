@@ -10,6 +10,7 @@ usage: sweep_test.py BELTSIM
 """
 import csv
 import os
+import re
 import shutil
 import signal
 import subprocess
@@ -157,8 +158,12 @@ class Sweep(SweepCase):
         for k in (0, 2):
             p = self.run_beltsim("sweep", script, "--point", str(k), ok=(1,))
             status = rows(self.path("out", "div", str(k), "point.csv"))[1][3]
-            self.assertRegex(status, r"^diverged at t = [0-9.e+-]+ s$")
-            self.assertIn("point %d: diverged at t =" % k, p.stderr)
+            # the time, then the whole message (it said the time alone): file:line, the cause, the samples
+            run = r" \(the samples up to then are in out/div/0/timeseries.csv\)" if k == 0 else ""
+            self.assertRegex(status, r"^diverged at t = [0-9.e+-]+ s: %s:[0-9]+: (sim:run_to: )?pulley 'driver' "
+                                     r"runs away at -?[0-9.e+]+ rad/s%s$" % (re.escape(script), run))
+            self.assertNotIn("the run diverged", status)
+            self.assertIn("point %d: %s\n" % (k, status), p.stderr)  # (its log.txt in a sweep)
 
     def test_samples_are_listed_in_their_ranges(self):
         script = self.path("samples.lua")
@@ -211,6 +216,41 @@ class Sweep(SweepCase):
             self.assertIn("--set %s: an empty value in the list (write \"\" for an empty string)" % bad, p.stderr)
         self.assertEqual(self.run_beltsim("sweep", PLAIN, "--set", 'how="",a', "--list").stdout.splitlines()[1], "0,")
 
+    def test_set_lists_on_a_sweep_file_are_refused_before_anything_is_written(self):
+        # each point failed ("is a sweep file"), and a finished sweep's summary.csv and point.csv
+        # were replaced by errors
+        script = self.path("twice.lua")
+        with open(script, "w") as f:
+            f.write("return beltsim.sweep { grid = { mu = {0.3, 1} }, run = function(p) return { twice = 2 * p.mu } end }\n")
+        self.run_beltsim("sweep", script, "--jobs", "1")
+        before = {name: self.read("out", "twice", *name) for name in (("summary.csv",), ("0", "point.csv"))}
+        for out in ([], ["--out", "elsewhere"], ["--slurm"]):
+            p = self.run_beltsim("sweep", script, "--set", "mu=0.3,1", *out, ok=(2,))
+            self.assertIn("beltsim: %s is a sweep file (it returns beltsim.sweep{...}): its points are its grid or "
+                          "samples; --set lists are for an ordinary script (the quick form): run `beltsim sweep %s` "
+                          "without them\n" % (script, script), p.stderr)
+        self.assertEqual({name: self.read("out", "twice", *name) for name in before}, before)
+        self.assertEqual(sorted(os.listdir(self.path("out", "twice"))), ["0", "1", "summary.csv"])
+        self.assertFalse(os.path.exists(self.path("elsewhere")))
+
+    def test_an_ordinary_script_without_set_lists_is_refused_before_it_runs(self):
+        # it ran whole, into out/<script> whatever --out said, and was refused after
+        for args in (["--out", "there"], ["--list"], ["--slurm"]):
+            p = self.run_beltsim("sweep", PLAIN, *args, ok=(2,))
+            self.assertIn("beltsim: %s:4: scene:run: %s runs a simulation as it loads: it is an ordinary script, not a "
+                          "sweep file (which returns beltsim.sweep{...} and runs its simulations in run(p)); nothing "
+                          "was run. For a study of it, give its parameters as --set lists: beltsim sweep %s --set "
+                          "NAME=V1,V2,..\n" % (PLAIN, PLAIN, PLAIN), p.stderr)
+            self.assertEqual(p.stdout, "")
+        script = self.path("start.lua")
+        with open(script, "w") as f:
+            f.write("local drive = require 'drive'\nlocal s = beltsim.scene(drive {})\n"
+                    "local sim = s:start { sample = 1e-3, progress = false }\nsim:run_to(0.01)\n")
+        shutil.copy(DRIVE, self.dir)
+        p = self.run_beltsim("sweep", script, ok=(2,))
+        self.assertIn("beltsim: %s:3: scene:start: %s runs a simulation as it loads" % (script, script), p.stderr)
+        self.assertEqual(sorted(os.listdir(self.dir)), ["drive.lua", "start.lua"])
+
     def test_a_quoted_set_value_keeps_its_commas(self):
         # "..." around a value of a --set list, as --set reads a string: its commas are its own
         out = self.run_beltsim("sweep", PLAIN, "--set", 'how="a,b",c,"d"', "--set", 'x="1,2"', "--list").stdout
@@ -242,11 +282,66 @@ class Sweep(SweepCase):
         p = self.run_beltsim("sweep", PLAIN, "--set", "point=1,2", "--list", ok=(2,))
         self.assertIn("--set point=1,2", p.stderr)
         with open(script, "w") as f:
-            f.write("return beltsim.sweep { grid = { k = {1} }, run = function(p) return { k = 2, status = 3 } end }\n")
+            f.write("return beltsim.sweep { grid = { k = {1} }, run = function(p) return { k = p.k, status = 3 } end }\n")
         self.run_beltsim("sweep", script, ok=(1,))
         summary = rows(self.path("out", "odd", "summary.csv"))
         self.assertEqual(summary[0], ["point", "k", "status"])
         self.assertTrue(summary[1][2].startswith("error: ") and "'k'" in summary[1][2], summary[1][2])
+
+    def test_a_parameter_misspelt_or_never_read_fails_the_point(self):
+        # p.pretension read where the grid says pretention was nil, the scene's default for every
+        # point, each ok; a parameter run(p) never reads decided nothing either
+        script = self.path("typo.lua")
+        with open(script, "w") as f:
+            f.write("return beltsim.sweep {\n"
+                    "  grid = { pretention = {300, 600}, mu = {1} },\n"
+                    "  run = function(p)\n"
+                    "    return { mu = p.mu, f = p.pretension }\n"
+                    "  end,\n"
+                    "}\n")
+        p = self.run_beltsim("sweep", script, "--jobs", "1", ok=(1,))
+        status = [r[3] for r in rows(self.path("out", "typo", "summary.csv"))[1:]]
+        self.assertEqual(status, ["error: %s:4: p.pretension: the point has no parameter 'pretension' (did you mean "
+                                  "'pretention'?); its parameters: mu, pretention" % script] * 2)
+        self.assertIn("point 0 (mu=1, pretention=300): error: ", p.stderr)
+        with open(script, "w") as f:
+            f.write("return beltsim.sweep { grid = { a = {1, 2}, b = {'x'} }, run = function(p)\n"
+                    "  return { twice = 2 * p.a } end }\n")
+        self.run_beltsim("sweep", script, "--jobs", "1", ok=(1,))
+        status = [r[3] for r in rows(self.path("out", "typo", "summary.csv"))[1:]]
+        self.assertEqual(status, ["error: %s: run(p) never read p.b: a parameter that decides nothing makes points "
+                                  "that differ in name only; read it in run(p), or take it out of the sweep" % script] * 2)
+        # pairs(p) lists the parameters (each read so); a key run(p) sets is its own
+        with open(script, "w") as f:
+            f.write("return beltsim.sweep { grid = { a = {1, 2}, b = {'x'} }, run = function(p)\n"
+                    "  local s = {}\n"
+                    "  for k, v in pairs(p) do s[#s + 1] = k .. '=' .. tostring(v) end\n"
+                    "  table.sort(s)\n"
+                    "  p.c = 3\n"
+                    "  return { all = table.concat(s, ';'), c = p.c } end }\n")
+        self.run_beltsim("sweep", script, "--jobs", "1")
+        self.assertEqual(rows(self.path("out", "typo", "summary.csv")),
+                         [["point", "a", "b", "status", "all", "c"], ["0", "1", "x", "ok", "a=1;b=x", "3"],
+                          ["1", "2", "x", "ok", "a=2;b=x", "3"]])
+
+    def test_a_run_that_returns_nothing_fails_and_an_empty_table_is_said(self):
+        # a run(p) that forgot its return was ok with no figures, without a word
+        script = self.path("none.lua")
+        with open(script, "w") as f:
+            f.write("return beltsim.sweep {\n  grid = { k = {1, 2} },\n  run = function(p)\n"
+                    "    local twice = 2 * p.k\n  end,\n}\n")
+        p = self.run_beltsim("sweep", script, "--jobs", "1", ok=(1,))
+        self.assertEqual([r[2] for r in rows(self.path("out", "none", "summary.csv"))[1:]],
+                         ["error: %s:3: run(p) returned nil; return a table of figures" % script] * 2)
+        with open(script, "w") as f:
+            f.write("return beltsim.sweep { grid = { k = {1, 2} }, run = function(p) local _ = p.k return {} end }\n")
+        p = self.run_beltsim("sweep", script, "--jobs", "1")
+        self.assertEqual(rows(self.path("out", "none", "summary.csv")), [["point", "k", "status"], ["0", "1", "ok"],
+                                                                        ["1", "2", "ok"]])
+        warning = ("sweep none: warning: point 0 (k=1) is ok with no figures: run(p) returned an empty table (said of "
+                   "the first such point only)\n")
+        self.assertIn(warning, p.stderr)
+        self.assertEqual(p.stderr.count("with no figures"), 1, p.stderr)
 
     def write_editable(self, damping, mass):
         shutil.copy(DRIVE, self.dir)
@@ -329,6 +424,38 @@ class Sweep(SweepCase):
         p = self.run_beltsim("sweep", PLAIN, "--set", "pretension=300,500,700")
         self.assertIn("2 of 3 points done already", p.stderr)
         self.assertNotIn("run again", p.stderr)
+
+    def test_a_quick_study_of_other_parameters_is_refused_its_folder(self):
+        # out/<script> is every quick study's of the script: one of other --set names replaced the
+        # earlier study's summary.csv and points without a word
+        self.run_beltsim("sweep", PLAIN, "--set", "pretension=300,500")
+        before = self.read("out", "plain", "summary.csv")
+        for lists in (["--set", "mu=0.3,1"], ["--set", "pretension=300,500", "--set", "mu=0.3,1"]):
+            p = self.run_beltsim("sweep", PLAIN, *lists, ok=(1,))
+            self.assertIn("beltsim: out/plain holds another study (its points vary pretension, these vary %s), whose "
+                          "summary.csv and points this one would replace: give it a folder of its own (--out DIR), "
+                          "or remove out/plain first\n" % ("mu" if len(lists) == 2 else "pretension, mu"), p.stderr)
+            self.assertEqual(self.read("out", "plain", "summary.csv"), before)
+        self.run_beltsim("sweep", PLAIN, "--set", "mu=0.3,1", "--out", "out/plain_mu")
+        self.assertEqual(rows(self.path("out", "plain_mu", "summary.csv"))[0][:3], ["point", "mu", "status"])
+
+    def test_points_numbered_otherwise_run_again_saying_why(self):
+        # a point's folder is its number: a value added inside a list, or ids widened (0..5 to
+        # 00..11), renumbers points, which ran again without a word, and left the old folders
+        # beside the new ones
+        args = ["sweep", PLAIN, "--jobs", "2", "--set", "pretension=300,500"]
+        self.run_beltsim(*args, "--set", "mu=0.3,1")
+        p = self.run_beltsim(*args, "--set", "mu=0.3,0.5,1")
+        self.assertIn("sweep plain: 3 points run again: the points were numbered otherwise when they ran (a value "
+                      "added or removed before them in a list, or wider ids); a point's files name its folder, so its "
+                      "results are not moved to its new number\n", p.stderr)
+        self.assertIn("1 of 6 points done already", p.stderr)
+        p = self.run_beltsim("sweep", PLAIN, "--jobs", "2", "--set", "pretension=300,500,700,900", "--set", "mu=0.3,0.5,1")
+        self.assertIn("sweep plain: 6 points run again: the points were numbered otherwise", p.stderr)
+        self.assertIn("sweep plain: 6 folders of no point now moved to out/plain/earlier/: 0, 1, 2, 3, 4, 5\n", p.stderr)
+        self.assertEqual(sorted(os.listdir(self.path("out", "plain"))),
+                         ["%02d" % k for k in range(12)] + ["earlier", "summary.csv"])
+        self.assertEqual([r[3] for r in rows(self.path("out", "plain", "summary.csv"))[1:]], ["ok"] * 12)
 
     def test_slurm_with_nothing_left_leaves_the_job_scripts(self):
         # --slurm --time, the points then run (here, as the array's tasks would), --slurm again
