@@ -354,10 +354,16 @@ class ServeOption(unittest.TestCase):
         self.assertIn("port %d is in use" % port, p.stderr)
         self.assertNotIn("live view at", p.stderr)
         # the same console: a simulation of its own served on that port
-        out, err = holder.communicate(b"print(pcall(sim.serve, sim, { port = %d }))\n" % port, timeout=120)
+        out, err = holder.communicate(b"print(pcall(sim.serve, sim, { port = %d }))\nhelp('serve')\n" % port,
+                                      timeout=120)
         self.assertEqual(holder.returncode, 0, err)
         self.assertIn("false\tsim:serve: live view: cannot listen on 127.0.0.1:%d: port %d is in use" % (port, port),
                       out.decode())
+        # and the help says so: help("serve") at the console, --serve in run's and console's --help
+        self.assertIn("a port in use is refused", out.decode())
+        for command in ["run", "console"]:
+            p = subprocess.run([BELTSIM, command, "--help"], capture_output=True, text=True, timeout=60)
+            self.assertIn("a port in use is refused", " ".join(p.stdout.split()), command)
 
 
 class ConsoleAndPage(unittest.TestCase):
