@@ -84,6 +84,7 @@ int l_scene_run(lua_State* L) {
   if (!res.warning_summary.empty()) std::fprintf(stderr, "beltsim: %s\n", res.warning_summary.c_str());
   if (!res.check_line.empty())
     std::fprintf(stderr, "beltsim: %s%s\n", res.check.warns() ? "warning: " : "", res.check_line.c_str());
+  if (!res.unapplied.empty()) std::fprintf(stderr, "beltsim: %s\n", res.unapplied.c_str());
 
   lua_newtable(L);
   lua_pushnumber(L, res.t_reached), lua_setfield(L, -2, "t");
