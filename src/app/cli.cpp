@@ -80,7 +80,7 @@ void add_run_overrides(CLI::App* c, Raw& raw) {
   // number follows, "--serve=0" else), so a script after it is never read as the port
   c->add_option("--serve", raw.serve,
                 "watch and steer the run from a browser: a page on 127.0.0.1:PORT (default: a free port), its "
-                "address printed at the start (docs/live-view.md)")
+                "address printed at the start; a port in use is refused (docs/live-view.md)")
       ->expected(0, 1)
       ->type_name("[PORT]");
   add_set(c, raw);

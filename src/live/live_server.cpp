@@ -222,6 +222,7 @@ void LiveServer::begin_run(const void* key, const std::string& name, std::vector
     const std::lock_guard<std::mutex> lock(m_);
     ++status_serial_;
     status_ = "running";
+    refusal_.clear();
     if (key == key_) return;
     key_ = key;
     ++run_;
@@ -259,6 +260,17 @@ void LiveServer::set_status(const std::string& status) {
     const std::lock_guard<std::mutex> lock(m_);
     status_ = status;
     ++status_serial_;
+  }
+  cv_.notify_all();
+}
+
+void LiveServer::refuse_controls(const std::string& why) {
+  {
+    const std::lock_guard<std::mutex> lock(m_);
+    refusal_ = why;
+    for (const Command& c : commands_) status_ = "refused: " + c.what + ": " + why, ++status_serial_;
+    pending_ -= static_cast<int>(commands_.size());
+    commands_.clear();
   }
   cv_.notify_all();
 }
@@ -361,8 +373,8 @@ std::string LiveServer::stream_text(Cursor& c) {
 void LiveServer::routes() {
   httplib::Server& h = *http_;
   h.set_keep_alive_timeout(1);
-  // a control (POST /control): queued for the loop that owns the simulation, or refused (400) naming
-  // what is wrong
+  // a control (POST /control): queued for the loop that owns the simulation, or refused naming what
+  // is wrong (400), or that there is nothing left to change (409, refuse_controls)
   const auto control = [this](const httplib::Request& req, httplib::Response& res) {
     Command c;
     const std::string bad = read_command([&req](const char* key) { return req.get_param_value(key); }, c);
@@ -373,6 +385,11 @@ void LiveServer::routes() {
     }
     {
       const std::lock_guard<std::mutex> lock(m_);
+      if (!refusal_.empty()) {  // nothing left to change: said now, not after "queued"
+        res.status = 409;
+        res.set_content("refused: " + c.what + ": " + refusal_ + "\n", "text/plain");
+        return;
+      }
       if (commands_.size() >= kCommands) {
         res.status = 503;
         res.set_content("too many controls waiting\n", "text/plain");

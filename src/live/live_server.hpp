@@ -79,6 +79,10 @@ class LiveServer {
   void publish(Sample s);
   // the run's state as the page shows it ("running", "paused", "finished", ...)
   void set_status(const std::string& status);
+  // the run the page shows has ended and left no simulation to change (a scene:run{} done): until
+  // the next begin_run every control is refused at once (409, "refused: torque: WHY"), and those
+  // waiting are dropped, the status saying so
+  void refuse_controls(const std::string& why);
   // the latest frame (a JPEG file's bytes), drawn at t, with where its elements are on it (the belt
   // `length` [m] long): the page's picture (the stream says "event: frame" with its t, the page
   // gets /frame.jpg and /frame.json); the frame before is dropped
@@ -139,6 +143,7 @@ class LiveServer {
   std::string run_name_, status_ = "waiting";
   std::vector<std::string> columns_, pulleys_;
   std::deque<Command> commands_;
+  std::string refusal_;  // refuse_controls' reason ("": controls are queued)
   std::atomic<int> pending_{0};
   std::shared_ptr<const std::string> frame_;             // the latest frame, sent as it is when asked for
   std::shared_ptr<const std::string> frame_json_;        // its t and elements (/frame.json)

@@ -75,6 +75,13 @@ void datablock(std::ostringstream& g, int k, const Series& s) {
   g << "EOD\n";
 }
 
+// the characters (UTF-8 code points) of s
+size_t code_points(const std::string& s) {
+  size_t n = 0;
+  for (const char c : s) n += (static_cast<unsigned char>(c) & 0xC0) != 0x80;
+  return n;
+}
+
 // at most n characters (UTF-8 code points) of s, the last an ellipsis when it was longer
 std::string shortened(const std::string& s, size_t n) {
   size_t chars = 0, cut = 0;
@@ -85,22 +92,57 @@ std::string shortened(const std::string& s, size_t n) {
   return chars <= n ? s : s.substr(0, cut) + "…";
 }
 
+// the marks inside [x0, x1], those at one time in one (an event and an overrun that begin at the
+// window's start share a line and a label: two labels there were drawn over each other)
+std::vector<Mark> shown_marks(const PlotSpec& spec, double x0, double x1) {
+  std::vector<Mark> shown;
+  for (const Mark& m : spec.marks) {
+    if (!(m.x >= x0 && m.x <= x1)) continue;
+    const auto same = std::find_if(shown.begin(), shown.end(), [&](const Mark& o) { return o.x == m.x; });
+    if (same == shown.end())
+      shown.push_back(m);
+    else
+      same->label += "; " + m.label;
+  }
+  return shown;
+}
+
+// the legend inside a panel's top left (or right), as a mark's label must keep clear of it: its
+// width and the panel's width in pixels, and the share of the panel's height it takes from the top
+struct LegendBox {
+  double width_px = 0, panel_width_px = 1, height_share = 0;
+  bool right = false;
+  // whether the label of a mark at the share `at` of the panel's width, reading up from the top
+  // right of its line (about 22 pixels wide), would cross it
+  bool covers(double at) const {
+    const double x = at * panel_width_px;
+    return width_px > 0 && (right ? x + 30 > panel_width_px - width_px : x < width_px);
+  }
+};
+
 // the marks inside [x0, x1]: dashed grey lines on every panel, their labels right of the line,
-// reading upwards to the top, shortened to `label_px` (none for 0)
-void mark_lines(std::ostringstream& g, const PlotSpec& spec, double x0, double x1, double label_px) {
-  const size_t chars = static_cast<size_t>(std::max(0.0, label_px / 7.0));  // 9 pt: under 7 pixels a character
+// reading upwards to the top, shortened to `label_px` (none for 0). A label that would cross the
+// legend (a mark under it) reads upwards to just below it instead, shortened to the height left there
+void mark_lines(std::ostringstream& g, const PlotSpec& spec, double x0, double x1, double label_px,
+                const LegendBox& legend = {}) {
+  // 9 pt: under 7 pixels a character
+  const auto fitting = [](double px) { return static_cast<size_t>(std::max(0.0, px / 7.0)); };
+  const double top = 1 - legend.height_share - 0.03;  // below the legend, in the panel's share
+  const size_t below = fitting(label_px / 0.9 * (top - 0.05));
   // each label on a box of its own, two thirds white: readable where it crosses a curve, which
   // still shows through
   g << "unset arrow\nunset label\nset style textbox opaque noborder fillcolor rgb '#50ffffff'\n";
   int k = 0;
-  for (const Mark& m : spec.marks) {
-    if (!(m.x >= x0 && m.x <= x1)) continue;
+  for (const Mark& m : shown_marks(spec, x0, x1)) {
     ++k;
     g << "set arrow " << k << " from " << number_text(m.x) << ", graph 0 to " << number_text(m.x)
       << ", graph 1 nohead dt 2 lw 1 lc rgb '#777777' back\n";
+    const bool under = legend.covers(x1 > x0 ? (m.x - x0) / (x1 - x0) : 0);
+    const size_t chars = under ? below : fitting(label_px);
     if (chars >= 4)
       g << "set label " << k << " " << gnuplot_string(shortened(m.label, chars)) << " at " << number_text(m.x)
-        << ", graph 0.98 right rotate by 90 offset 1,0 font ',9' tc rgb '#555555' front boxed\n";
+        << ", graph " << (under ? number_text(top) : std::string("0.98"))
+        << " right rotate by 90 offset 1,0 font ',9' tc rgb '#555555' front boxed\n";
   }
 }
 
@@ -246,11 +288,27 @@ std::string plot_script(const PlotSpec& spec, const std::string& png) {
                  groups.size() == 2);
   } else {
     // one panel per unit, stacked, aligned, the time axis numbered and labelled on the lowest only;
-    // each panel's legend inside at its top left
+    // each panel's legend inside at its top left (or right, below)
     const double top = spec.title.empty() ? 0.97 : 0.93;
     g << "set multiplot layout " << groups.size() << ",1 margins 0.1,0.97,0.09," << top << " spacing 0,0.03";
     if (!spec.title.empty()) g << " title " << gnuplot_string(spec.title);
-    g << "\nset key inside left top Left reverse opaque box\nset format x ''\nunset xlabel\n";
+    // the legends on the left, unless the top panel's (the one with the marks' labels) would cover
+    // labels there (an event at the window's start) and fewer on the right: then on the right
+    size_t longest = 0;
+    for (int k : groups[0].series) longest = std::max(longest, code_points(spec.series[k].name));
+    // a sample line and the margins, about 9 pixels a character at 12 pt
+    LegendBox legend{9.0 * static_cast<double>(longest) + 120, spec.width * (0.97 - 0.1)};
+    int left = 0, right = 0;
+    for (const Mark& m : spec.points ? std::vector<Mark>{} : shown_marks(spec, t0, t1)) {
+      const double at = t1 > t0 ? (m.x - t0) / (t1 - t0) : 0;
+      left += legend.covers(at);
+      legend.right = true;
+      right += legend.covers(at);
+      legend.right = false;
+    }
+    legend.right = right < left;
+    g << "\nset key inside " << (legend.right ? "right" : "left")
+      << " top Left reverse opaque box\nset format x ''\nunset xlabel\n";
     const double n = static_cast<double>(groups.size());
     const double panel_px = spec.height * (top - 0.09 - 0.03 * (n - 1)) / n;
     for (size_t p = 0; p < groups.size(); ++p) {
@@ -279,7 +337,8 @@ std::string plot_script(const PlotSpec& spec, const std::string& png) {
       // so that it covers none of them: the range grows upwards by the legend's share of the panel
       const double key = std::min(0.6, (17.0 * static_cast<double>(groups[p].series.size()) + 22) / panel_px);
       g << "set offsets 0, 0, graph " << number_text(key / (1 - key)) << ", 0\n";
-      if (!spec.points) mark_lines(g, spec, t0, t1, p == 0 ? 0.9 * panel_px : 0);
+      legend.height_share = key;
+      if (!spec.points) mark_lines(g, spec, t0, t1, p == 0 ? 0.9 * panel_px : 0, legend);
       plot_command(g, spec, groups[p].series, false, {}, false);
     }
     g << "unset multiplot\n";

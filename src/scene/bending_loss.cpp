@@ -54,7 +54,7 @@ std::optional<double> belt_force(const Scene& sc, const std::vector<WrapSeen>& w
 
 // the belt's steady speed along its travel (signed): a kinematic pulley's, else the balance of
 // the free pulleys' torques
-std::optional<double> steady_belt_speed(const Scene& sc, const std::vector<WrapSeen>& wraps) {
+std::optional<double> belt_speed(const Scene& sc, const std::vector<WrapSeen>& wraps) {
   for (const WrapSeen& w : wraps) {
     const PulleyDrive& p = sc.drive.pulleys[w.pulley];
     if (!p.kinematic) continue;
@@ -104,10 +104,14 @@ std::string power_text(double watts) {
 
 }  // namespace
 
+std::optional<double> steady_belt_speed(const Scene& sc) {
+  return belt_speed(sc, wraps_of(sc));
+}
+
 std::optional<BendingLoss> estimate_bending_loss(const Scene& sc) {
   const Belt& b = sc.model.belt;
   const std::vector<WrapSeen> wraps = wraps_of(sc);
-  const std::optional<double> v = steady_belt_speed(sc, wraps);
+  const std::optional<double> v = belt_speed(sc, wraps);
   if (!v || !(sc.static_tension > 0)) return std::nullopt;
   BendingLoss out;
   out.belt_speed = std::abs(*v);

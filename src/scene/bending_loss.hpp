@@ -43,6 +43,11 @@ struct BendingLoss {
 // belt without bending damping).
 std::optional<BendingLoss> estimate_bending_loss(const Scene& sc);
 
+// The belt's steady speed along its travel [m/s], signed (> 0: the way belt.direction says), as the
+// estimate finds it (above); nullopt when it cannot be found. Pulley j then turns at
+// sense_j·v/R_j (Scene::senses()).
+std::optional<double> steady_belt_speed(const Scene& sc);
+
 // Above this share of the transmitted power the run's first lines warn: a PK belt's whole loss is
 // a few per cent (published efficiencies 95–98 %, docs/belts.md).
 inline constexpr double kBendingLossWarn = 0.05;

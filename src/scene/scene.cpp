@@ -45,8 +45,37 @@ std::vector<std::string> coarse_wraps(const Scene& sc) {
   return out;
 }
 
+std::vector<std::string> wrong_side_maps(const Scene& sc) {
+  std::vector<std::string> out;
+  // the sense each pulley turns in: at the drive's steady speeds when they can be found, else as
+  // the belt travels the way belt.direction says (the sense a one-way clutch drives in)
+  const std::optional<double> v = steady_belt_speed(sc);
+  const bool steady = v && *v != 0 && std::isfinite(*v);
+  const std::vector<int> sense = sc.senses();
+  for (int j = 0; j < sc.model.n_p(); ++j) {
+    const TimeSpeedLaw& law = sc.drive.pulleys[j].torque;
+    if (sc.drive.pulleys[j].kinematic || law.omega.empty()) continue;
+    const int turns = steady && *v < 0 ? -sense[j] : sense[j];  // +1: anticlockwise, Ω > 0
+    const bool first = turns < 0;                               // the value it holds: M_1 below Ω_1
+    if (first ? law.omega.front() < 0 : law.omega.back() > 0) continue;
+    std::ostringstream m;
+    m.precision(6);
+    const char* way = turns < 0 ? "clockwise (Ω < 0)" : "anticlockwise (Ω > 0)";
+    m << "pulley '" << sc.model.pulleys[j].name << "'.torque: per_speed_table's speeds lie in [" << law.omega.front()
+      << ", " << law.omega.back() << "] rad/s, but the pulley turns " << way
+      << (steady ? " at the drive's steady speeds" : " as the belt travels the way belt.direction gives")
+      << ": the table gives its " << (first ? "first" : "last") << " torque, "
+      << (first ? law.omega_value.front() : law.omega_value.back())
+      << " N·m, at every speed on that side of zero (the speeds are signed: " << (turns < 0 ? "a " : "an anti")
+      << "clockwise pulley's are " << (turns < 0 ? "negative" : "positive") << "; docs/lua-api.md, Laws)";
+    out.push_back(m.str());
+  }
+  return out;
+}
+
 std::vector<std::string> scene_warnings(const Scene& sc) {
   std::vector<std::string> out = coarse_wraps(sc);
+  for (std::string& w : wrong_side_maps(sc)) out.push_back(std::move(w));
   for (int j = 0; j < sc.model.n_p(); ++j) {
     const PulleyDrive& p = sc.drive.pulleys[j];
     if (p.kinematic || !(p.torque.per_speed > 0)) continue;

@@ -21,10 +21,16 @@ inline constexpr double kWrapElementsWarn = 10;
 // and the belt.elements that would put kWrapElementsWarn on it. Empty when none.
 std::vector<std::string> coarse_wraps(const Scene& sc);
 
+// One line per free pulley whose torque's per_speed_table lies wholly on the other side of zero
+// from the speeds the pulley turns at (its sense at the drive's steady speeds, bending_loss.hpp's
+// steady_belt_speed, else as belt.direction says): the table then gives one torque throughout.
+std::vector<std::string> wrong_side_maps(const Scene& sc);
+
 // What the run's first lines warn of (scene:info().warnings lists the same): the coarse wraps,
-// each free pulley whose torque grows with its speed (per_speed > 0, an energy source: the speed
-// grows as exp(per_speed·t/J) unless the belt holds it back), and bending dampers that will take
-// more than a few per cent of the power the drive transmits (scene/bending_loss.hpp).
+// the speed maps on the wrong side of zero (wrong_side_maps), each free pulley whose torque grows
+// with its speed (per_speed > 0, an energy source: the speed grows as exp(per_speed·t/J) unless
+// the belt holds it back), and bending dampers that will take more than a few per cent of the
+// power the drive transmits (scene/bending_loss.hpp).
 std::vector<std::string> scene_warnings(const Scene& sc);
 
 // Validates every parameter (ParameterError with the reason and the value) and builds the scene.

@@ -104,7 +104,8 @@ const std::vector<HelpEntry>& api_help() {
        "continues a checkpoint (bit for bit); callbacks must be added again; results written after it are cut only "
        "with rewind = true"},
       {"serve", "sim:serve{ port = 0, host = \"127.0.0.1\" } -> url",
-       "the live view of this simulation in a browser, until it closes (docs/live-view.md)"},
+       "the live view of this simulation in a browser, until it closes; a port in use is refused, naming it "
+       "(docs/live-view.md)"},
       {"close", "sim:close()", "flushes the CSV files and finalises the video"},
       {"rpm", "beltsim.rpm(n) -> [rad/s]", "revolutions per minute to rad/s"},
       {"belts", "beltsim.belts[\"6PK\"] -> { preset, mass_per_length, EA, EI, ... }",

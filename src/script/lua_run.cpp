@@ -399,14 +399,17 @@ RunSettings read_run_settings(lua_State* L, int idx, const Scene& sc, Context* c
   // a second run into a folder this command has run into replaces the first one's outputs: said,
   // as the console's scenario's run, replaced by a simulation a dofile at the prompt started
   // without out, was not. (A folder holds one run's outputs, docs/outputs.md.) The folders are
-  // those of runs whose outputs opened (record_run_dir), not of runs refused before
+  // those of runs whose outputs opened (record_run_dir), not of runs refused before; said once
+  // the run holds the folder, so that a folder in use is refused alone
   if (ctx->run_dirs.count(run_dir_key(rs.out_dir)))
-    rs.on_warning(w + ": the output folder " + rs.out_dir + " holds the outputs of an earlier run of this command, " +
-                  "which this one replaces (" +
-                  (ctx->overrides.has("out") ? std::string("--out puts every run of the script into that one folder: "
-                                                           "leave it out and give each run its own out = ...")
-                                             : std::string("give each run its own folder: out = ..., or --out")) +
-                  ")");
+    rs.on_claimed = [warn = rs.on_warning,
+                     m = w + ": the output folder " + rs.out_dir +
+                         " holds the outputs of an earlier run of this command, which this one replaces (" +
+                         (ctx->overrides.has("out")
+                              ? std::string("--out puts every run of the script into that one folder: "
+                                            "leave it out and give each run its own out = ...")
+                              : std::string("give each run its own folder: out = ..., or --out")) +
+                         ")"] { warn(m); };
   if (progress) *progress = rs.progress;
   return rs;
 }

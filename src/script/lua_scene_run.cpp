@@ -77,11 +77,15 @@ int l_scene_run(lua_State* L) {
     about = KeyPath{"", {"run", "max_wall"}};
     error = path_text(about) + ": the run " + wall_limit_text(rs.wall_limit, res.t_reached, rs.t_end, res.csv_path);
   }
+  // the page showed this run, which has ended: a change from it is refused at once (no simulation
+  // is left to change; a console's prompt refused it only after it had been answered "queued")
+  if (ctx->serve) ctx->serve->refuse_controls("no simulation to change (the run has ended)");
   if (!error.empty()) fail_at(L, about, error);
   if (res.interrupted) ctx->interrupted = true;
   if (!res.warning_summary.empty()) std::fprintf(stderr, "beltsim: %s\n", res.warning_summary.c_str());
   if (!res.check_line.empty())
     std::fprintf(stderr, "beltsim: %s%s\n", res.check.warns() ? "warning: " : "", res.check_line.c_str());
+  if (!res.unapplied.empty()) std::fprintf(stderr, "beltsim: %s\n", res.unapplied.c_str());
 
   lua_newtable(L);
   lua_pushnumber(L, res.t_reached), lua_setfield(L, -2, "t");

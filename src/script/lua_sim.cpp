@@ -413,6 +413,8 @@ int l_close(lua_State* L) {
     if (const std::string w = box->sim->warning_summary(); !w.empty()) std::fprintf(stderr, "beltsim: %s\n", w.c_str());
     if (const std::string c = box->sim->check_line(); !c.empty())
       std::fprintf(stderr, "beltsim: %s%s\n", box->sim->check_estimate().warns() ? "warning: " : "", c.c_str());
+    if (const std::string u = box->sim->unapplied_warnings(); !u.empty())
+      std::fprintf(stderr, "beltsim: %s\n", u.c_str());
   }
   box->refs.clear();
   return 0;

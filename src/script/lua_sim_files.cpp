@@ -35,6 +35,16 @@ std::string time_tag(double t) {
   return b;
 }
 
+// the default path of a picture of kind `stem` at time t in the output folder: STEM_<t>.png, or
+// when this simulation has written that one (a second picture at the same time) STEM_<t>_2.png, _3 ...
+std::string picture_path(const SimBox& box, const std::string& stem, double t) {
+  const std::string base = stem + "_" + time_tag(t);
+  std::string path = output_path(box.sim->settings(), base + ".png");
+  for (int k = 2; box.pictures.count(path); ++k)
+    path = output_path(box.sim->settings(), base + "_" + std::to_string(k) + ".png");
+  return path;
+}
+
 }  // namespace
 
 // sim:show{ quantity, range, levels, magnify, view, size, file } -> path of the PNG
@@ -53,12 +63,12 @@ int l_show(lua_State* L) {
     if (const std::string bad = png_name_problem(file); !file.empty() && !bad.empty())
       fail_on(L, "sim:show.file", "'" + file + "': " + bad);
   }
-  if (file.empty()) file = "show_" + time_tag(s.now()) + ".png";
-  file = output_path(s.settings(), file);
+  file = file.empty() ? picture_path(box, "show", s.now()) : output_path(s.settings(), file);
   if (const std::string r = output_refusal(*box.ctx, "sim:show", file, true); !r.empty()) fail(L, r);
   guarded(L, "sim:show", [&] { render::render_snapshot(s.scene(), fs, s.now(), s.state().data(), s.drive(), file, &s.observation());
   });
   box.shows++;
+  box.pictures.insert(file);
   picture(L, box, file);
   lua_pushstring(L, file.c_str());
   return 1;
@@ -112,13 +122,13 @@ int l_plot(lua_State* L) {
       fail(L, "sim:plot: no column '" + c + "'" + did_you_mean(c, valid) + "; columns: " + list);
     }
   }
-  if (file.empty()) file = "plot_" + time_tag(s.now()) + ".png";
-  file = output_path(s.settings(), file);
+  file = file.empty() ? picture_path(box, "plot", s.now()) : output_path(s.settings(), file);
   if (const std::string r = output_refusal(*box.ctx, "sim:plot", file, true); !r.empty()) fail(L, r);
   guarded(L, "sim:plot", [&] {
     if (const std::string w = plot::left_out_warning(plot::plot_csv(s.csv_path(), columns, from, file)); !w.empty())
       std::fprintf(stderr, "beltsim: warning: sim:plot: %s\n", w.c_str());
   });
+  box.pictures.insert(file);
   picture(L, box, file);
   lua_pushstring(L, file.c_str());
   return 1;

@@ -6,12 +6,13 @@
 #include <initializer_list>
 #include <map>
 #include <memory>
+#include <set>
 #include <string>
 
 #include "integrate/integrator.hpp"
+#include "live/live_server.hpp"
 #include "script/context.hpp"
 #include "script/lua_check.hpp"
-#include "live/live_server.hpp"
 #include "script/lua_clock.hpp"
 #include "sim/simulation.hpp"
 
@@ -26,6 +27,9 @@ struct SimBox {
   lua_State* L = nullptr;  // the state whose running method has the simulation at index 1
   std::map<int, std::unique_ptr<LuaRef>> refs;  // callbacks by id (a when has two: -id for its condition)
   long shows = 0;
+  // the paths of the pictures sim:show and sim:plot have written: a default name among them
+  // (a second show_<t>.png at the same time) gives way to the next free one (show_<t>_2.png)
+  std::set<std::string> pictures;
   bool running = false;  // inside run_to: its callbacks may run Lua code that calls this simulation
   std::shared_ptr<live::LiveServer> serve;  // sim:serve{}: stops when the simulation closes
 };

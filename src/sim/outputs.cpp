@@ -175,6 +175,7 @@ const OutputDir& Outputs::claim() {
     auto dir = std::make_unique<OutputDir>(rs_.out_dir);
     dir->lock();
     dir_ = std::move(dir);
+    if (rs_.on_claimed) rs_.on_claimed();
   }
   return *dir_;
 }

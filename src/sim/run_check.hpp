@@ -51,6 +51,8 @@ constexpr double kCheckTighten = 10;  // the companion's tolerance: rtol / kChec
 // contract held on every row like it. A run that does not check its own error warns of each when
 // it starts, and of one that a change brings (a stretch wetted, a spray zone) when it is made.
 std::vector<std::string> scene_contract_misses(const Model& m, const Drive& d, double rtol);
+// whether those hold the overrunning decoupler's (a one-way coupling at rtol <= 1e-3)
+bool decoupler_contract_miss(const Model& m, double rtol);
 
 // a run's closing line warns past the accuracy contract's bounds (docs/accuracy.md): the pulley
 // speeds past kCheckSpeedLimit·rtol, the span tensions past kCheckTensionLimit·rtol. While it runs,

@@ -69,6 +69,10 @@ struct RunSettings {
   // messages of a run while it runs (the check's estimate past 10×rtol), for the caller to show;
   // empty: none shown (parameters.csv and the result still hold them)
   std::function<void(const std::string&)> on_warning;
+  // called once the output folder is claimed for this run, before anything in it is written (a
+  // folder in use is refused before it): scene:run's and scene:start's word that the run replaces
+  // an earlier one's outputs; empty: nothing
+  std::function<void()> on_claimed;
 };
 
 // The times frames are drawn and states kept at, t_start + k·frame_dt(): the frames' settings, the

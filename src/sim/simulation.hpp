@@ -52,6 +52,7 @@ struct RunResult {
   std::string warning_summary;        // Simulation::warning_summary()
   CheckEstimate check;                // the error estimate (check.on with RunSettings::check)
   std::string check_line;             // Simulation::check_line()
+  std::string unapplied;              // Simulation::unapplied_warnings()
 };
 
 class Simulation {
@@ -97,6 +98,11 @@ class Simulation {
   // the closing line of a checked run ("check: estimated error of the pulley speeds ..."), ""
   // unless checked
   std::string check_line() const;
+  // the line a run's end adds when a warning of its start did not apply to it: the overrunning
+  // decoupler's (warn_contract_misses) when no one-way clutch overran at any sample since t = 0
+  // (the summary's overrun_count 0, docs/summary.md); "" otherwise, and for a resumed run (its
+  // samples before the checkpoint are not seen)
+  std::string unapplied_warnings() const;
 
   // ---- reading (at now(), or at the time a when-condition is evaluated) ----------------------
   double now() const;
@@ -248,6 +254,9 @@ class Simulation {
   bool running_ = false;          // inside run_to (callbacks may read and change, not run or save)
   std::string failed_;            // why it cannot continue (a divergence)
   std::vector<std::string> misses_warned_;  // warn_contract_misses()' warnings given
+  bool decoupler_warned_ = false;           // the overrunning decoupler's among them
+  bool from_start_ = true;                  // its samples since t = 0 were seen here (not resumed)
+  bool overran_ = false;                    // a one-way clutch overran at one of them (σ < 0, model/coupling.cpp)
   // the state the reads see when it is not the integrator's now: an output's time, or the time a
   // when-condition is evaluated at (set for a scope by a guard, simulation.cpp)
   struct View {

@@ -351,6 +351,19 @@ class Errors(unittest.TestCase):
         self.assertIn("(--out puts every run of the script into that one folder: leave it out and give each run its "
                       "own out = ...)", err)
 
+    def test_a_run_into_a_folder_in_use_is_refused_without_the_replacement_warning(self):
+        # a second scene:start{} into the folder of a live simulation said first that it replaced
+        # the earlier run's outputs, then was refused: the refusal comes alone
+        path = self.script(two_pulley(elements=30) +
+                           'local a = drive:start { progress = false, out = "o" }\n'
+                           'local ok, e = pcall(drive.start, drive, { progress = false, out = "o" })\n'
+                           'print(e)\n'
+                           'a:close()\n')
+        code, out, err = run(["run", path], cwd=self.dir)
+        self.assertEqual(code, 0, err)
+        self.assertIn("start: the output folder o is in use by another simulation of this beltsim", out)
+        self.assertNotIn("which this one replaces", err)
+
 
 if __name__ == "__main__":
     BELTSIM = sys.argv.pop(1)

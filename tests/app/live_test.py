@@ -354,10 +354,16 @@ class ServeOption(unittest.TestCase):
         self.assertIn("port %d is in use" % port, p.stderr)
         self.assertNotIn("live view at", p.stderr)
         # the same console: a simulation of its own served on that port
-        out, err = holder.communicate(b"print(pcall(sim.serve, sim, { port = %d }))\n" % port, timeout=120)
+        out, err = holder.communicate(b"print(pcall(sim.serve, sim, { port = %d }))\nhelp('serve')\n" % port,
+                                      timeout=120)
         self.assertEqual(holder.returncode, 0, err)
         self.assertIn("false\tsim:serve: live view: cannot listen on 127.0.0.1:%d: port %d is in use" % (port, port),
                       out.decode())
+        # and the help says so: help("serve") at the console, --serve in run's and console's --help
+        self.assertIn("a port in use is refused", out.decode())
+        for command in ["run", "console"]:
+            p = subprocess.run([BELTSIM, command, "--help"], capture_output=True, text=True, timeout=60)
+            self.assertIn("a port in use is refused", " ".join(p.stdout.split()), command)
 
 
 class ConsoleAndPage(unittest.TestCase):
@@ -516,6 +522,33 @@ class ConsoleAndPage(unittest.TestCase):
         session = err.split("the session's commands are in ")[1].split("\n")[0]
         with open(os.path.join(d, session)) as f:
             self.assertIn('\nsim:set_torque("driven", -65)  -- from the live view\n', f.read())
+        c.close()
+
+    def test_a_change_after_a_batch_run_is_refused_at_once(self):
+        """console S.lua --serve, S.lua's scene:run{} has ended: a change from the page is refused
+        at once (409, naming why; it was answered "queued" and refused later in the status), until
+        a run begins again: then it is queued and applied at the prompt"""
+        d = tempfile.mkdtemp(prefix="beltsim_live_ended_")
+        self.addCleanup(shutil.rmtree, d, True)
+        with open(os.path.join(d, "c.lua"), "w") as f:
+            f.write(two_pulley(elements=40) + "drive:run { t_end = 0.002, out = 'first', progress = false }\n"
+                    "the_drive = drive\n")
+        proc = subprocess.Popen([BELTSIM, "console", "c.lua", "--serve"], cwd=d, stdin=subprocess.PIPE,
+                                stdout=subprocess.PIPE, stderr=subprocess.PIPE)
+        self.addCleanup(proc.kill)
+        live, c, it = self.page(proc)
+        proc.stdin.write(b"print('ready')\n")  # the console is at its prompt: the run has ended
+        proc.stdin.flush()
+        self.assertEqual(proc.stdout.readline(), b"ready\n")
+        for query in ["do=torque&pulley=driven&value=-65", "do=pause", "do=save&name=x.ckpt"]:
+            self.assertEqual(live.post(query), (409, "refused: %s: no simulation to change (the run has ended)\n" %
+                                                 query.split("&")[0][3:]))
+        self.assertEqual(live.post("do=torque&pulley=driven&value=x")[0], 400)  # a bad one says what is wrong
+        t = 0.002
+        proc.stdin.write(b"sim = the_drive:start { out = 'out', progress = false }\nsim:run_to(%r)\n" % t)
+        proc.stdin.flush()
+        self.page_at_the_prompt(live, it, t)
+        self.change_at_the_prompt(d, proc, live, it, t)
         c.close()
 
     def test_sim_serve_at_the_prompt(self):

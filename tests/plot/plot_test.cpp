@@ -236,6 +236,45 @@ TEST(Plot, APanelTooShortForItsSeriesNameIsLabelledByItsQuantity) {
   EXPECT_NE(two.find("set ylabel '[N]'"), std::string::npos) << two;
 }
 
+// stacked panels: an event's label at the window's very start was drawn under the top panel's
+// legend (inside, top left), unreadable. The legends go to the right when labels on the left would
+// cross them and fewer on the right; a label the legend still covers reads up to just below it.
+// Marks at one time (an event and an overrun beginning at the window's start) share one label
+TEST(Plot, ALabelAtTheWindowsStartIsClearOfTheLegend) {
+  PlotSpec spec;
+  spec.file = "unused.png";
+  auto series = [](const std::string& name, const std::string& unit) {
+    Series s;
+    s.name = name, s.unit = unit, s.t = {0, 0.1, 0.2}, s.y = {1, 2, 3};
+    return s;
+  };
+  spec.series = {series("span_compressor_crankshaft.tension", "N"), series("tensioner.arm_angle", "rad"),
+                 series("alternator.omega", "rad/s")};
+  const auto label_at = [](const std::string& g, int k) {
+    const std::string head = "set label " + std::to_string(k) + " ";
+    const size_t at = g.find(head);
+    return at == std::string::npos ? std::string() : g.substr(at, g.find('\n', at) - at);
+  };
+  spec.marks = {{0.1, "driven.torque -5"}};  // in the middle: as before, the legends on the left
+  std::string g = plot_script(spec, "p.png");
+  EXPECT_NE(g.find("set key inside left top"), std::string::npos) << g;
+  EXPECT_NE(label_at(g, 1).find("at 0.1, graph 0.98 right"), std::string::npos) << label_at(g, 1);
+  spec.marks = {{0, "alternator overruns"}, {0.1, "driven.torque -5"}, {0, "driven.torque -7"}};
+  g = plot_script(spec, "p.png");
+  EXPECT_NE(g.find("set key inside right top"), std::string::npos) << g;
+  // (one label, shortened to the panel's height)
+  EXPECT_EQ(label_at(g, 1).rfind("set label 1 'alternator overruns; dri\u2026' at 0, graph 0.98 right", 0), 0u)
+      << label_at(g, 1);
+  EXPECT_NE(label_at(g, 2).find("at 0.1, graph 0.98 right"), std::string::npos) << label_at(g, 2);
+  EXPECT_EQ(label_at(g, 3), "");
+  // one at each end: the legends stay on the left, the start's label below the legend
+  spec.marks = {{0, "driven.torque -7"}, {0.2, "driven.torque -5"}};
+  g = plot_script(spec, "p.png");
+  EXPECT_NE(g.find("set key inside left top"), std::string::npos) << g;
+  EXPECT_EQ(label_at(g, 1).find("graph 0.98"), std::string::npos) << label_at(g, 1);
+  EXPECT_NE(label_at(g, 2).find("at 0.2, graph 0.98 right"), std::string::npos) << label_at(g, 2);
+}
+
 // a sweep's own figures have no known unit: each gets an axis of its own (a speed of -4 rad/s drew
 // as a flat line at 0 beside loads of 1000 N on one shared axis), where series of one known unit
 // share theirs

@@ -436,4 +436,45 @@ TEST(BuildStages, HugeMuIsRefusedAndAnEnergySourceIsWarnedOf) {
   EXPECT_NE(w[0].find("pulley 'driven'.torque: per_speed = 0.5"), std::string::npos) << w[0];
 }
 
+// a speed map whose speeds all lie on the other side of zero from the way its pulley turns gives
+// one torque throughout (a load of 0 N·m, silently): warned of, naming the pulley, the map's
+// speeds and the sense, that of the drive's steady speeds (else belt.direction's)
+TEST(BuildStages, ASpeedMapOnTheOtherSideOfZeroIsWarnedOf) {
+  SceneDef d = presets::paper_dry();
+  d.belt.bending_damping = 0;  // its own warning (bending_loss_test.cpp)
+  const auto map_warnings = [&](std::vector<double> omega, std::vector<double> value) {
+    d.pulleys[1].torque = TimeSpeedLaw{};
+    d.pulleys[1].torque.omega = std::move(omega), d.pulleys[1].torque.omega_value = std::move(value);
+    return scene_warnings(build_scene(d));
+  };
+  // the driver's torque turns the belt clockwise; the map written for positive speeds loads nothing,
+  // so no steady speed balances: the sense is belt.direction's
+  std::vector<std::string> w = map_warnings({0, 100}, {0, -70});
+  ASSERT_EQ(w.size(), 1u);
+  EXPECT_EQ(w[0],
+            "pulley 'driven'.torque: per_speed_table's speeds lie in [0, 100] rad/s, but the pulley turns "
+            "clockwise (Ω < 0) as the belt travels the way belt.direction gives: the table gives its first "
+            "torque, 0 N·m, at every speed on that side of zero (the speeds are signed: a clockwise pulley's "
+            "are negative; docs/lua-api.md, Laws)");
+  EXPECT_TRUE(map_warnings({-100, 0}, {70, 0}).empty());    // the same load, signed: the steady speed balances
+  EXPECT_TRUE(map_warnings({-10, 100}, {7, -70}).empty());  // across zero: it loads
+  // a kinematic driver sets the sense: clockwise, warned of at the steady speeds; anticlockwise
+  // (against belt.direction), the positive map fits
+  d.pulleys[0].kinematic = true;
+  d.pulleys[0].torque = TimeSpeedLaw{};
+  d.pulleys[0].speed = TimeSpeedLaw{};
+  d.pulleys[0].speed.constant = -50;
+  w = map_warnings({0, 100}, {0, -70});
+  ASSERT_EQ(w.size(), 1u);
+  EXPECT_NE(w[0].find("turns clockwise (Ω < 0) at the drive's steady speeds"), std::string::npos) << w[0];
+  d.pulleys[0].speed.constant = 50;
+  EXPECT_TRUE(map_warnings({0, 100}, {0, -70}).empty());
+  w = map_warnings({-100, 0}, {70, 0});
+  ASSERT_EQ(w.size(), 1u);
+  EXPECT_NE(w[0].find("[-100, 0] rad/s, but the pulley turns anticlockwise (Ω > 0) at the drive's steady speeds: "
+                      "the table gives its last torque, 0 N·m"),
+            std::string::npos)
+      << w[0];
+}
+
 }  // namespace beltsim

@@ -494,6 +494,32 @@ TEST(LiveApi, MissingFoldersAreMade) {
   for (const char* f : {"pics/a.png", "p/q.png", "sub/dir/x.ckpt"}) EXPECT_TRUE(fs::is_regular_file(out / f)) << f;
 }
 
+// two pictures at one time took one default name, the second overwriting the first without a
+// word: the second show_<t>.png of a simulation is show_<t>_2.png (plot_<t>.png alike); a name
+// given with file = stays as given
+TEST(LiveApi, TwoPicturesAtOneTimeKeepBoth) {
+  const fs::path out = temp_dir() / "out";
+  fs::remove_all(out);
+  testing::internal::CaptureStdout();
+  EXPECT_EQ(
+      run_text(scene() + "sim:run_to(0.002)\n"
+                         "local a, b = sim:show{ quantity = 'tension' }, sim:show{ quantity = 'slip' }\n"
+                         "assert(a:match('/show_0.002000.png$') and b:match('/show_0.002000_2.png$'), a .. ' ' .. b)\n"
+                         "local c = sim:show{ file = 'show_0.002000.png' }\n"
+                         "assert(c:match('/show_0.002000.png$'), c)\n"
+                         "assert(sim:show{}:match('/show_0.002000_3.png$'))\n"
+                         "local p, q = sim:plot{}, sim:plot{}\n"
+                         "assert(p:match('/plot_0.002000.png$') and q:match('/plot_0.002000_2.png$'), p .. ' ' .. q)\n"
+                         "sim:run_to(0.003)\n"
+                         "assert(sim:show{}:match('/show_0.003000.png$'))\n"
+                         "sim:close()\n"),
+      "");
+  testing::internal::GetCapturedStdout();
+  for (const char* f : {"show_0.002000.png", "show_0.002000_2.png", "show_0.002000_3.png", "plot_0.002000.png",
+                        "plot_0.002000_2.png", "show_0.003000.png"})
+    EXPECT_TRUE(fs::is_regular_file(out / f)) << f;
+}
+
 // --t-end shortens scene:run; a live simulation runs to the times its script names, and says so
 // once when --t-end was given (the script runs as it would without it)
 TEST(LiveApi, TEndSaysItDoesNotShortenALiveSimulation) {
