@@ -209,17 +209,19 @@ TEST(Plot, ThreeUnitsGiveStackedPanels) {
   EXPECT_EQ(read_png((d / "p.png").string()).width, 1280);
 }
 
+// a series of three samples, 1 to 3 over 0.2 s
+Series series(const std::string& name, const std::string& unit) {
+  Series s;
+  s.name = name, s.unit = unit, s.t = {0, 0.1, 0.2}, s.y = {1, 2, 3};
+  return s;
+}
+
 // a stacked panel whose series' name is too long for its height is labelled by its quantity and
 // unit ("tension [N]"), not by the unit alone (a user read a bare "[N]"); event labels sit on a
 // box of their own, readable across a curve
 TEST(Plot, APanelTooShortForItsSeriesNameIsLabelledByItsQuantity) {
   PlotSpec spec;
   spec.file = "unused.png";
-  auto series = [](const std::string& name, const std::string& unit) {
-    Series s;
-    s.name = name, s.unit = unit, s.t = {0, 0.1, 0.2}, s.y = {1, 2, 3};
-    return s;
-  };
   spec.series = {series("alt.omega", "rad/s"), series("alt.torque", "N·m"),
                  series("span_alternator_pump.tension", "N")};
   spec.marks = {{0.1, "wet mu = 0.25 on s in [0.1, 0.4] m"}};
@@ -243,11 +245,6 @@ TEST(Plot, APanelTooShortForItsSeriesNameIsLabelledByItsQuantity) {
 TEST(Plot, ALabelAtTheWindowsStartIsClearOfTheLegend) {
   PlotSpec spec;
   spec.file = "unused.png";
-  auto series = [](const std::string& name, const std::string& unit) {
-    Series s;
-    s.name = name, s.unit = unit, s.t = {0, 0.1, 0.2}, s.y = {1, 2, 3};
-    return s;
-  };
   spec.series = {series("span_compressor_crankshaft.tension", "N"), series("tensioner.arm_angle", "rad"),
                  series("alternator.omega", "rad/s")};
   const auto label_at = [](const std::string& g, int k) {
