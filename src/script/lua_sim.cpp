@@ -435,6 +435,7 @@ int l_gc(lua_State* L) {
   box->serve.reset();
   box->sim.reset();
   box->refs.clear();
+  box->pictures.clear();  // (the userdata's members are emptied here, never destroyed: every one)
   return 0;
 }
 

@@ -28,7 +28,8 @@ struct SimBox {
   std::map<int, std::unique_ptr<LuaRef>> refs;  // callbacks by id (a when has two: -id for its condition)
   long shows = 0;
   // the paths of the pictures sim:show and sim:plot have written: a default name among them
-  // (a second show_<t>.png at the same time) gives way to the next free one (show_<t>_2.png)
+  // (a second show_<t>.png at the same time) gives way to the next free one (show_<t>_2.png).
+  // A Lua userdata is never destroyed: l_gc empties every member that holds memory
   std::set<std::string> pictures;
   bool running = false;  // inside run_to: its callbacks may run Lua code that calls this simulation
   std::shared_ptr<live::LiveServer> serve;  // sim:serve{}: stops when the simulation closes
