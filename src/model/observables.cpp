@@ -1,5 +1,6 @@
 #include "model/observables.hpp"
 
+#include <algorithm>
 #include <cassert>
 #include <cmath>
 #include <limits>
@@ -35,6 +36,7 @@ struct PairSums {
       deepest[c.i - first] = c.nl.p;
       e.pulley = c.j;
       e.slip = c.fl.vT;
+      e.penetration = c.nl.p;
     }
   }
 };
@@ -74,6 +76,7 @@ ElementObs element_with(const Drive& d, const std::vector<int>& sense, double t,
   const int s = sense[c.pulley];
   o.friction = s * c.friction;
   o.slip = s * c.slip;
+  o.penetration = c.penetration;
   o.state = ContactState::stick;  // which arc: classify_contact
   return o;
 }
@@ -178,9 +181,22 @@ void classify_contact(const Model& m, Observation& o) {
   for (int x = 0; x < n; ++x) {
     // x is an exit: the last element of a contact arc in the direction the belt moves
     if (e[x].state == ContactState::free || on_arc((x + n + dir) % n, x)) continue;
+    // the lift-off zone (observables.hpp): the elements that may lie past the tangent point,
+    // sqrt(2·R·p̄) of span (p̄ the arc's mean penetration), at least the last one
+    double depth = 0;
+    int on = 0;
+    for (int a = x; on < n && on_arc(a, x); a = prev(a)) depth += e[a].penetration, ++on;
+    const int lift = std::max(
+        1, static_cast<int>(std::ceil(std::sqrt(2 * m.pulleys[e[x].pulley].radius * depth / on) / m.belt.pitch)));
     int k = x;
-    if (!saturated(k) && on_arc(prev(k), x)) k = prev(k);  // the last element lifting off
-    if (!saturated(k)) continue;                            // no gross slip on this arc
+    if (!saturated(k) && on_arc(prev(k), x)) k = prev(k);  // the last element lifting off inside the band
+    // a backward run at the exit no longer than the zone, which stops there (not even across a
+    // dip), is the belt lifting off and starts no run
+    auto backward = [&](int a) { return saturated(a) && e[a].slip < 0; };
+    int b = k, run = 0;  // b: the first element behind the backward run
+    while (run <= lift && on_arc(b, x) && backward(b)) ++run, b = prev(b);
+    if (run >= 1 && run <= lift && on_arc(b, x) && !(!saturated(b) && on_arc(prev(b), x) && backward(prev(b)))) k = b;
+    if (!saturated(k)) continue;  // no gross slip on this arc
     const bool forward = e[k].slip > 0;
     auto with = [&](int i) { return saturated(i) && (e[i].slip > 0) == forward; };
     for (int count = 0; count < n && on_arc(k, x); ++count, k = prev(k)) {
@@ -218,6 +234,7 @@ void blend_contact(const Model& m, const Drive& d, double theta, const Observati
     e.normal = mix(ea.normal, eb.normal);
     e.friction = mix(ea.friction, eb.friction);
     e.slip = mix(ea.slip, eb.slip);
+    e.penetration = mix(ea.penetration, eb.penetration);
     e.state = ContactState::stick;
   }
   for (size_t j = 0; j < at.pulleys.size(); ++j) {
