@@ -150,21 +150,9 @@ void observe(const Model& m, const Drive& d, const std::vector<int>& sense, doub
     vb += axis(y[3 * i + 2]).dot(Vec2(v[3 * i], v[3 * i + 1]));
   }
   out.belt_speed = vb / m.n_el();
-  const bool moving = std::abs(out.belt_speed) > m.friction.dv;
-  constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
-  for (int j = 0; j < m.n_p(); ++j) {
-    PulleyObs& p = out.pulleys[j] = pulley_with(m, d, t, y, j, pairs);
-    const double v_rim = sense[j] * p.omega * m.pulleys[j].radius;
-    p.slip_speed = out.belt_speed - v_rim;
-    p.creep = moving ? 1 - v_rim / out.belt_speed : kNaN;
-    double p_sum = 0;
-    int touching = 0;
-    for (const ContactPair& c : pairs)
-      if (c.j == j && c.touching) p_sum += c.nl.p, ++touching;
-    const double v_pitch = sense[j] * p.omega * (m.pulleys[j].radius - (touching ? p_sum / touching : 0.0));
-    p.creep_pitch = moving ? 1 - v_pitch / out.belt_speed : kNaN;
-  }
+  for (int j = 0; j < m.n_p(); ++j) out.pulleys[j] = pulley_with(m, d, t, y, j, pairs);
   classify_contact(m, out);
+  wrap_speeds(m, sense, out);
 }
 
 void classify_contact(const Model& m, Observation& o) {
@@ -222,8 +210,41 @@ void classify_contact(const Model& m, Observation& o) {
     p.mu = p.contact_arc > 0 ? p.mu / p.contact_arc : std::numeric_limits<double>::quiet_NaN();
 }
 
-void blend_contact(const Model& m, const Drive& d, double theta, const Observation& a, const Observation& b,
-                   Observation& at) {
+void wrap_speeds(const Model& m, const std::vector<int>& sense, Observation& o) {
+  const std::vector<ElementObs>& e = o.elements;
+  const int n = static_cast<int>(e.size());
+  constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+  auto rides = [&](int i, int j) { return e[i].state != ContactState::free && e[i].pulley == j; };
+  for (int j = 0; j < static_cast<int>(o.pulleys.size()); ++j) {
+    // the slip summed over the gross-slip arc; the penetrations of all [0] and of the inner [1]
+    // elements riding pulley j (both neighbours ride it too)
+    double slip = 0, depth[2] = {0, 0};
+    int count[2] = {0, 0};
+    for (int i = 0; i < n; ++i) {
+      if (!rides(i, j)) continue;
+      if (e[i].state == ContactState::slip) slip += e[i].slip;
+      const int inner = rides((i + n - 1) % n, j) && rides((i + 1) % n, j);
+      for (int k = 0; k <= inner; ++k) depth[k] += e[i].penetration, ++count[k];
+    }
+    PulleyObs& p = o.pulleys[j];
+    if (count[0] == 0) {
+      p.belt_speed = p.slip_speed = p.creep = p.creep_pitch = kNaN;
+      continue;
+    }
+    const int k = count[1] > 0 ? 1 : 0;
+    const double radius = m.pulleys[j].radius;
+    const double v_rim = sense[j] * p.omega * radius;
+    const double v_pitch = sense[j] * p.omega * (radius - depth[k] / count[k]);
+    p.belt_speed = v_pitch + slip / count[0];
+    p.slip_speed = p.belt_speed - v_rim;
+    const bool moving = std::abs(p.belt_speed) > m.friction.dv;
+    p.creep = moving ? 1 - v_rim / p.belt_speed : kNaN;
+    p.creep_pitch = moving ? 1 - v_pitch / p.belt_speed : kNaN;
+  }
+}
+
+void blend_contact(const Model& m, const Drive& d, const std::vector<int>& sense, double theta, const Observation& a,
+                   const Observation& b, Observation& at) {
   auto mix = [theta](double u, double v) { return (1 - theta) * u + theta * v; };
   for (size_t i = 0; i < at.elements.size(); ++i) {
     const ElementObs &ea = a.elements[i], &eb = b.elements[i];
@@ -247,6 +268,7 @@ void blend_contact(const Model& m, const Drive& d, double theta, const Observati
     if (d.kinematic(k)) p.torque = m.pulleys[j].inertia * d.speed_rate(k, at.t) - p.belt_torque;
   }
   classify_contact(m, at);
+  wrap_speeds(m, sense, at);
 }
 
 }  // namespace beltsim
