@@ -1,5 +1,6 @@
 #include "model/observables.hpp"
 
+#include <algorithm>
 #include <cassert>
 #include <cmath>
 #include <limits>
@@ -35,6 +36,7 @@ struct PairSums {
       deepest[c.i - first] = c.nl.p;
       e.pulley = c.j;
       e.slip = c.fl.vT;
+      e.penetration = c.nl.p;
     }
   }
 };
@@ -74,6 +76,7 @@ ElementObs element_with(const Drive& d, const std::vector<int>& sense, double t,
   const int s = sense[c.pulley];
   o.friction = s * c.friction;
   o.slip = s * c.slip;
+  o.penetration = c.penetration;
   o.state = ContactState::stick;  // which arc: classify_contact
   return o;
 }
@@ -147,21 +150,9 @@ void observe(const Model& m, const Drive& d, const std::vector<int>& sense, doub
     vb += axis(y[3 * i + 2]).dot(Vec2(v[3 * i], v[3 * i + 1]));
   }
   out.belt_speed = vb / m.n_el();
-  const bool moving = std::abs(out.belt_speed) > m.friction.dv;
-  constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
-  for (int j = 0; j < m.n_p(); ++j) {
-    PulleyObs& p = out.pulleys[j] = pulley_with(m, d, t, y, j, pairs);
-    const double v_rim = sense[j] * p.omega * m.pulleys[j].radius;
-    p.slip_speed = out.belt_speed - v_rim;
-    p.creep = moving ? 1 - v_rim / out.belt_speed : kNaN;
-    double p_sum = 0;
-    int touching = 0;
-    for (const ContactPair& c : pairs)
-      if (c.j == j && c.touching) p_sum += c.nl.p, ++touching;
-    const double v_pitch = sense[j] * p.omega * (m.pulleys[j].radius - (touching ? p_sum / touching : 0.0));
-    p.creep_pitch = moving ? 1 - v_pitch / out.belt_speed : kNaN;
-  }
+  for (int j = 0; j < m.n_p(); ++j) out.pulleys[j] = pulley_with(m, d, t, y, j, pairs);
   classify_contact(m, out);
+  wrap_speeds(m, sense, out);
 }
 
 void classify_contact(const Model& m, Observation& o) {
@@ -178,9 +169,22 @@ void classify_contact(const Model& m, Observation& o) {
   for (int x = 0; x < n; ++x) {
     // x is an exit: the last element of a contact arc in the direction the belt moves
     if (e[x].state == ContactState::free || on_arc((x + n + dir) % n, x)) continue;
+    // the lift-off zone (observables.hpp): the elements that may lie past the tangent point,
+    // sqrt(2·R·p̄) of span (p̄ the arc's mean penetration), at least the last one
+    double depth = 0;
+    int on = 0;
+    for (int a = x; on < n && on_arc(a, x); a = prev(a)) depth += e[a].penetration, ++on;
+    const int lift = std::max(
+        1, static_cast<int>(std::ceil(std::sqrt(2 * m.pulleys[e[x].pulley].radius * depth / on) / m.belt.pitch)));
     int k = x;
-    if (!saturated(k) && on_arc(prev(k), x)) k = prev(k);  // the last element lifting off
-    if (!saturated(k)) continue;                            // no gross slip on this arc
+    if (!saturated(k) && on_arc(prev(k), x)) k = prev(k);  // the last element lifting off inside the band
+    // a backward run at the exit no longer than the zone, which stops there (not even across a
+    // dip), is the belt lifting off and starts no run
+    auto backward = [&](int a) { return saturated(a) && e[a].slip < 0; };
+    int b = k, run = 0;  // b: the first element behind the backward run
+    while (run <= lift && on_arc(b, x) && backward(b)) ++run, b = prev(b);
+    if (run >= 1 && run <= lift && on_arc(b, x) && !(!saturated(b) && on_arc(prev(b), x) && backward(prev(b)))) k = b;
+    if (!saturated(k)) continue;  // no gross slip on this arc
     const bool forward = e[k].slip > 0;
     auto with = [&](int i) { return saturated(i) && (e[i].slip > 0) == forward; };
     for (int count = 0; count < n && on_arc(k, x); ++count, k = prev(k)) {
@@ -206,8 +210,41 @@ void classify_contact(const Model& m, Observation& o) {
     p.mu = p.contact_arc > 0 ? p.mu / p.contact_arc : std::numeric_limits<double>::quiet_NaN();
 }
 
-void blend_contact(const Model& m, const Drive& d, double theta, const Observation& a, const Observation& b,
-                   Observation& at) {
+void wrap_speeds(const Model& m, const std::vector<int>& sense, Observation& o) {
+  const std::vector<ElementObs>& e = o.elements;
+  const int n = static_cast<int>(e.size());
+  constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+  auto rides = [&](int i, int j) { return e[i].state != ContactState::free && e[i].pulley == j; };
+  for (int j = 0; j < static_cast<int>(o.pulleys.size()); ++j) {
+    // the slip summed over the gross-slip arc; the penetrations of all [0] and of the inner [1]
+    // elements riding pulley j (both neighbours ride it too)
+    double slip = 0, depth[2] = {0, 0};
+    int count[2] = {0, 0};
+    for (int i = 0; i < n; ++i) {
+      if (!rides(i, j)) continue;
+      if (e[i].state == ContactState::slip) slip += e[i].slip;
+      const int inner = rides((i + n - 1) % n, j) && rides((i + 1) % n, j);
+      for (int k = 0; k <= inner; ++k) depth[k] += e[i].penetration, ++count[k];
+    }
+    PulleyObs& p = o.pulleys[j];
+    if (count[0] == 0) {
+      p.belt_speed = p.slip_speed = p.creep = p.creep_pitch = kNaN;
+      continue;
+    }
+    const int k = count[1] > 0 ? 1 : 0;
+    const double radius = m.pulleys[j].radius;
+    const double v_rim = sense[j] * p.omega * radius;
+    const double v_pitch = sense[j] * p.omega * (radius - depth[k] / count[k]);
+    p.belt_speed = v_pitch + slip / count[0];
+    p.slip_speed = p.belt_speed - v_rim;
+    const bool moving = std::abs(p.belt_speed) > m.friction.dv;
+    p.creep = moving ? 1 - v_rim / p.belt_speed : kNaN;
+    p.creep_pitch = moving ? 1 - v_pitch / p.belt_speed : kNaN;
+  }
+}
+
+void blend_contact(const Model& m, const Drive& d, const std::vector<int>& sense, double theta, const Observation& a,
+                   const Observation& b, Observation& at) {
   auto mix = [theta](double u, double v) { return (1 - theta) * u + theta * v; };
   for (size_t i = 0; i < at.elements.size(); ++i) {
     const ElementObs &ea = a.elements[i], &eb = b.elements[i];
@@ -218,6 +255,7 @@ void blend_contact(const Model& m, const Drive& d, double theta, const Observati
     e.normal = mix(ea.normal, eb.normal);
     e.friction = mix(ea.friction, eb.friction);
     e.slip = mix(ea.slip, eb.slip);
+    e.penetration = mix(ea.penetration, eb.penetration);
     e.state = ContactState::stick;
   }
   for (size_t j = 0; j < at.pulleys.size(); ++j) {
@@ -230,6 +268,7 @@ void blend_contact(const Model& m, const Drive& d, double theta, const Observati
     if (d.kinematic(k)) p.torque = m.pulleys[j].inertia * d.speed_rate(k, at.t) - p.belt_torque;
   }
   classify_contact(m, at);
+  wrap_speeds(m, sense, at);
 }
 
 }  // namespace beltsim

@@ -294,7 +294,7 @@ Summary summarize(const std::string& dir, double from, double to) {
   const Layout l = layout(table);
   if (l.pulleys.empty()) throw std::runtime_error(table.path + " has no <pulley>.omega column");
   s.mu_per_sample = table.has(l.pulleys[0] + ".mu");
-  // the belt's mean speed along the travel, from the first pulley: its rim's speed plus the slip
+  // the belt's speed along the travel on the first pulley's wrap: its rim's speed plus the slip
   const std::string& p0 = l.pulleys[0];
   const double radius = prm.number("pulley." + p0 + ".radius");
   const std::vector<double>& omega = table.column(p0 + ".omega");

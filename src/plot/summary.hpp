@@ -26,7 +26,8 @@
 //            the mean of Σ max(0, M·ω) over the pulleys (ω the rotor's where coupled); share =
 //            total / input
 //   window   from, to [s] (the first and last sample's times), rows, belt_speed [m/s] (the mean
-//            of |ω|·R + slip_speed of the first pulley: the belt's mean speed along the travel)
+//            of |ω|·R + slip_speed of the first pulley: the belt's speed along the travel on its
+//            wrap, model/observables.hpp)
 #pragma once
 
 #include <string>

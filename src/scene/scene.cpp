@@ -36,7 +36,7 @@ std::vector<std::string> coarse_wraps(const Scene& sc) {
       << " mm, each " << 100 / on << " % of the wrap. On so coarse a wrap the hub load and arm angle hold but what "
       << "the slip decides does not (measured on a 51° idler at 3.9 elements against 20: a slip arc twice as long, "
       << "the belt's power loss 20 % high). belt.elements = " << needed << " or more puts " << kWrapElementsWarn
-      << " on it: the loads and the loss within 2 %, the slip arc within 10 %";
+      << " on it: the loads and the loss within 2 %, the slip arc within 20 %";
     if (per_element)
       m << ", with the contact given per length (contact.c1_per_length, ...) so that refining keeps the answer";
     m << " (docs/model.md, element count)";

@@ -187,7 +187,7 @@ const Observation& Simulation::observation() const {
     if (end_b_.t == a && end_b_.serial == serial_) std::swap(end_a_, end_b_);
     const Observation& A = observe_end(end_a_, a, integ_->y_prev());
     const Observation& B = observe_end(end_b_, b, integ_->y());
-    blend_contact(model_, drive_, (t - a) / (b - a), A, B, c.obs);
+    blend_contact(model_, drive_, sense_, (t - a) / (b - a), A, B, c.obs);
   }
   c.t = view_.y ? -1 : t, c.serial = serial_, c.step_end = b;  // a when-condition's view is not kept
   return c.obs;

@@ -462,5 +462,48 @@ TEST(KnownAnswers, SlipArcApproachesEulerEytelwein) {
   EXPECT_LT(err[2], 0.03);
 }
 
+// The creep against the belt on each wrap (model/observables.hpp, PulleyObs::creep_pitch): in
+// steady running < 0 on a driver, > 0 on a driven pulley, 0 on a wrap without a gross-slip arc, as
+// a free idler's is (it carries no torque, so the tension does not change round it). Scene:
+// tests/support/free_idler.lua, the paper's two pulleys loaded to 40 N·m and a free idler of
+// 0.05 m on the tight side; the samples from 0.4 to 0.6 s (62 to 68 rad/s, the torque ramped in
+// by 0.3 s). Measured (the run's default integrator and rtol): driver -2.6e-3 to -2.3e-4 (mean
+// -1.27e-3), driven 0 to +1.0e-3 (mean +5.4e-4; 0 at the samples between its elements' slips),
+// idler 0 at 200 of the 201 samples and +8.4e-5 at one (its last element slipping forwards alone
+// as it lifts off, at N = 3.9 N), mean +4.2e-7. Against the speed of the whole loop (the
+// definition before) the idler read +1.1e-2 on average, nine times the driver's creep, and the
+// driver from -3.5e-3 to +4.0e-3: the belt's speed differs from wrap to wrap by more than a
+// pulley's creep. Bounds: the driver's and the driven's signs at every sample (the driven's >= 0);
+// the idler's mean within a hundredth of the driver's (the measured 4.2e-7 is a thirtieth of
+// that) and 0 at all but 5 % of the samples (measured 0.5 %).
+TEST(KnownAnswers, CreepSignOfEachPulley) {
+  const Scene sc = build_scene(presets::script_scene("tests/support/free_idler.lua"));
+  RunSettings rs;
+  rs.out_dir = (beltsim::test::scratch_dir("beltsim_physics_test") / "free_idler").string();
+  rs.keep_samples = true;
+  rs.t_end = 0.6;
+  const RunResult r = run(sc, rs);
+  const std::vector<std::string> cols = timeseries_columns(sc);
+  auto col = [&](const std::string& name) { return std::find(cols.begin(), cols.end(), name) - cols.begin(); };
+  double mean[3] = {0, 0, 0};
+  int count = 0, idler_creeps = 0;
+  for (const std::vector<double>& row : r.samples) {
+    if (row[0] < 0.4 - 1e-9) continue;
+    const double driver = row[col("driver.creep_pitch")], driven = row[col("driven.creep_pitch")],
+                 idler = row[col("idler.creep_pitch")];
+    EXPECT_LT(driver, 0) << "t = " << row[0];
+    EXPECT_GE(driven, 0) << "t = " << row[0];
+    idler_creeps += idler != 0;
+    mean[0] += driver, mean[1] += driven, mean[2] += idler, count++;
+  }
+  for (double& x : mean) x /= count;
+  std::printf("creep_pitch over 0.4-0.6 s: driver %.3e, driven %.3e, idler %.3e (nonzero at %d of %d samples)\n",
+              mean[0], mean[1], mean[2], idler_creeps, count);
+  EXPECT_EQ(count, 201);
+  EXPECT_GT(mean[1], 0);
+  EXPECT_LT(std::abs(mean[2]), 0.01 * std::abs(mean[0]));
+  EXPECT_LE(idler_creeps, 0.05 * count);
+}
+
 }  // namespace
 }  // namespace beltsim

@@ -345,20 +345,32 @@ TEST(LuaApi, ProbesSnapshotsAndArcs) {
                      "assert(p.contact_arc > 0.25 and p.contact_arc < 0.35, p.contact_arc)\n"
                      "assert(math.abs(p.slip_arc + p.stick_arc - p.contact_arc) < 1e-12)\n"
                      // slip_speed = v_belt - v_rim and creep = 1 - v_rim / v_belt: slip_speed / creep
-                     // is the belt's mean speed, one for both pulleys (to rounding; 9e-4 m/s at 2 ms, > 10·Δv)
+                     // is v_belt, the belt's speed on that pulley's wrap, and v_belt - slip_speed the
+                     // rim's, |ω|·R (to rounding; v_belt 9e-4 m/s at 2 ms, > 10·Δv)
                      "local q = sim:pulley('driven')\n"
                      "local vb, vq = p.slip_speed / p.creep, q.slip_speed / q.creep\n"
-                     "assert(math.abs(vb) > 1e-4 and math.abs(vb - vq) < 1e-9 * math.abs(vb), vb .. ' ' .. vq)\n"
-                     // creep_pitch takes the rim's speed at R - p̄ (p̄ from the elements' centres on the
-                     // driver, radius 0.1 at the origin): creep_pitch - creep = (v_rim - v_pitch) / v_belt
-                     // = v_rim·(p̄/R) / v_belt, v_rim = vb - slip_speed (to rounding)
-                     "local sum, k = 0, 0\n"
+                     "assert(math.abs(vb) > 1e-4 and math.abs(vq) > 1e-4, vb .. ' ' .. vq)\n"
+                     "assert(math.abs(math.abs(vb - p.slip_speed) - math.abs(p.omega) * 0.1) < 1e-9 * math.abs(vb))\n"
+                     "assert(math.abs(math.abs(vq - q.slip_speed) - math.abs(q.omega) * 0.1) < 1e-9 * math.abs(vq))\n"
+                     // creep_pitch takes the rim's speed at R - p̄, p̄ from the centres of the inner
+                     // elements on the driver (radius 0.1 at the origin; both neighbours on it too):
+                     // creep_pitch - creep = (v_rim - v_pitch) / v_belt = v_rim·(p̄/R) / v_belt,
+                     // v_rim = vb - slip_speed (to rounding); and v_belt - v_pitch is the slip summed
+                     // over the driver's gross-slip arc over the elements on it
+                     "local on = function(i) local e = sim:element(i % 60)\n"
+                     "  return e.pulley == 'driver' and e.state ~= 'free' end\n"
+                     "local sum, k, n, slip = 0, 0, 0, 0\n"
                      "for i = 0, 59 do local e = sim:element(i)\n"
-                     "  if e.pulley == 'driver' then sum, k = sum + 0.1 - math.sqrt(e.x^2 + e.y^2), k + 1 end end\n"
+                     "  if on(i) then n = n + 1\n"
+                     "    if e.state == 'slip' then slip = slip + e.slip end\n"
+                     "    if on(i + 59) and on(i + 1) then\n"
+                     "      sum, k = sum + 0.1 - math.sqrt(e.x^2 + e.y^2), k + 1 end end end\n"
                      "assert(k > 10 and sum / k > 1e-6, k .. ' ' .. sum)\n"
                      "local want = (vb - p.slip_speed) * (sum / k / 0.1) / vb\n"
                      "local got = p.creep_pitch - p.creep\n"
-                     "assert(math.abs(got - want) < 1e-6 * math.abs(want), got .. ' vs ' .. want)\n"),
+                     "assert(math.abs(got - want) < 1e-6 * math.abs(want), got .. ' vs ' .. want)\n"
+                     "local v_pitch = (vb - p.slip_speed) * (1 - sum / k / 0.1)\n"
+                     "assert(math.abs(vb - v_pitch - slip / n) < 1e-9 * math.abs(vb))\n"),
             "");
 }
 
