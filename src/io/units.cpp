@@ -8,7 +8,7 @@ namespace beltsim {
 namespace {
 
 // last dotted component → unit (docs/outputs.md; element and pulley fields of the Lua API)
-constexpr std::array<std::pair<std::string_view, std::string_view>, 46> kUnits{{
+constexpr std::array<std::pair<std::string_view, std::string_view>, 47> kUnits{{
     {"t", "s"},
     // pulleys
     {"omega", "rad/s"},
@@ -30,6 +30,7 @@ constexpr std::array<std::pair<std::string_view, std::string_view>, 46> kUnits{{
     {"creep", ""},
     {"slip_speed", "m/s"},
     {"creep_pitch", ""},
+    {"slip_pitch", "m/s"},
     // spans and the probed element
     {"tension", "N"},
     {"tension_mean", "N"},

@@ -228,14 +228,15 @@ void wrap_speeds(const Model& m, const std::vector<int>& sense, Observation& o) 
     }
     PulleyObs& p = o.pulleys[j];
     if (count[0] == 0) {
-      p.belt_speed = p.slip_speed = p.creep = p.creep_pitch = kNaN;
+      p.belt_speed = p.slip_speed = p.slip_pitch = p.creep = p.creep_pitch = kNaN;
       continue;
     }
     const int k = count[1] > 0 ? 1 : 0;
     const double radius = m.pulleys[j].radius;
     const double v_rim = sense[j] * p.omega * radius;
     const double v_pitch = sense[j] * p.omega * (radius - depth[k] / count[k]);
-    p.belt_speed = v_pitch + slip / count[0];
+    p.slip_pitch = slip / count[0];
+    p.belt_speed = v_pitch + p.slip_pitch;
     p.slip_speed = p.belt_speed - v_rim;
     const bool moving = std::abs(p.belt_speed) > m.friction.dv;
     p.creep = moving ? 1 - v_rim / p.belt_speed : kNaN;

@@ -117,6 +117,10 @@ struct PulleyObs {
   // the slack side's speed). A wrap without a gross-slip arc reads 0: a free idler (the same
   // tension either side), or a lightly loaded pulley between two of its elements' slips.
   double creep_pitch = 0;
+  // v_belt - v_pitch [m/s] along the travel: the slip summed over the gross-slip arc / n, the
+  // creep_pitch's speed (creep_pitch·v_belt) and of its sign; 0 on a wrap without a gross-slip
+  // arc, NaN while no element rides the pulley. The frames' header shows it
+  double slip_pitch = 0;
   // the mean friction coefficient of the elements in contact with it now (NaN when none): the
   // wrap's μ, so that e^{mu·θ} is Euler–Eytelwein's e^{∫μ dθ} on a wrap whose elements differ
   // (a wetted stretch, a spray zone's drying elements)

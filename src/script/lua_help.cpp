@@ -62,7 +62,8 @@ const std::vector<HelpEntry>& api_help() {
       {"t", "sim.t", "the current simulated time [s]"},
       {"pulley", "sim:pulley(name)",
        "{ omega [rad/s], angle [rad], torque, belt_torque [N·m], hub_load [N], contact_arc, slip_arc, "
-       "stick_arc [m], creep, slip_speed [m/s], creep_pitch, mu (of the elements on it); arm_angle [rad], arm_rate "
+       "stick_arc [m], creep, slip_speed [m/s], creep_pitch, slip_pitch [m/s], mu (of the elements on it); arm_angle "
+       "[rad], arm_rate "
        "[rad/s] on a tensioner arm; rotor_angle [rad], "
        "rotor_speed [rad/s], windup [rad], coupling_torque [N·m] with a coupling }"},
       {"element", "sim:element(i)",

@@ -12,7 +12,8 @@
 namespace beltsim::script {
 
 // sim:pulley(name) -> { omega [rad/s], angle [rad], torque [N·m], belt_torque [N·m], hub_load [N],
-// contact_arc, slip_arc, stick_arc [m], creep, slip_speed [m/s], creep_pitch, mu; on a tensioner arm
+// contact_arc, slip_arc, stick_arc [m], creep, slip_speed [m/s], creep_pitch,
+// slip_pitch [m/s], mu; on a tensioner arm
 // arm_angle [rad], arm_rate [rad/s]; with a coupling rotor_angle [rad], rotor_speed [rad/s],
 // windup [rad], coupling_torque [N·m] }
 int l_pulley(lua_State* L) {
@@ -32,6 +33,7 @@ int l_pulley(lua_State* L) {
   set_number(L, "creep", p.creep);
   set_number(L, "slip_speed", p.slip_speed);
   set_number(L, "creep_pitch", p.creep_pitch);
+  set_number(L, "slip_pitch", p.slip_pitch);
   set_number(L, "mu", p.mu);
   if (!std::isnan(p.arm_angle)) set_number(L, "arm_angle", p.arm_angle), set_number(L, "arm_rate", p.arm_rate);
   if (!std::isnan(p.rotor_speed)) {

@@ -146,8 +146,9 @@ std::string span_name(const Scene& sc, size_t k) {
 std::vector<std::string> timeseries_columns(const Scene& sc, size_t probes) {
   std::vector<std::string> c{"t"};
   for (const Pulley& p : sc.model.pulleys)
-    for (const char* q : {".omega", ".torque", ".belt_torque", ".hub_load", ".torque_mean", ".belt_torque_mean",
-                          ".contact_arc", ".slip_arc", ".stick_arc", ".creep", ".slip_speed", ".creep_pitch", ".mu"})
+    for (const char* q :
+         {".omega", ".torque", ".belt_torque", ".hub_load", ".torque_mean", ".belt_torque_mean", ".contact_arc",
+          ".slip_arc", ".stick_arc", ".creep", ".slip_speed", ".creep_pitch", ".slip_pitch", ".mu"})
       c.push_back(p.name + q);
   for (const Pulley& p : sc.model.pulleys)
     if (p.arm >= 0) c.push_back(p.name + ".arm_angle"), c.push_back(p.name + ".arm_rate");

@@ -212,7 +212,7 @@ std::vector<double> Simulation::sample_row() const {
   for (size_t j = 0; j < o.pulleys.size(); ++j) {
     const PulleyObs& p = o.pulleys[j];
     row.insert(row.end(), {p.omega, p.torque, p.belt_torque, p.hub_load, mean(2 * j), mean(2 * j + 1), p.contact_arc,
-                           p.slip_arc, p.stick_arc, p.creep, p.slip_speed, p.creep_pitch, p.mu});
+                           p.slip_arc, p.stick_arc, p.creep, p.slip_speed, p.creep_pitch, p.slip_pitch, p.mu});
   }
   for (size_t j = 0; j < o.pulleys.size(); ++j)
     if (m.pulleys[j].arm >= 0) row.insert(row.end(), {o.pulleys[j].arm_angle, o.pulleys[j].arm_rate});

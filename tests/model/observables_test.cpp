@@ -115,6 +115,8 @@ TEST(WrapSpeeds, TheAdhesionArcAtThePitchLineTheSlipArcAtItsOwnSpeed) {
   EXPECT_DOUBLE_EQ(p.slip_speed, v_belt - v_rim);
   EXPECT_DOUBLE_EQ(p.creep, 1 - v_rim / v_belt);
   EXPECT_DOUBLE_EQ(p.creep_pitch, 1 - v_pitch / v_belt);
+  EXPECT_DOUBLE_EQ(p.slip_pitch, (3e-3 + 5e-3) / 6);  // the header's slip: no radial part
+  EXPECT_GT(p.slip_pitch, 0);
   EXPECT_GT(p.creep_pitch, 0);  // driven: the belt leaves faster than the rim
   EXPECT_LT(p.creep, 0);        // its radial part, -p̄/R = -2e-3, outweighs the creep
 }
@@ -125,6 +127,7 @@ TEST(WrapSpeeds, AWrapWithoutGrossSlipReadsNoCreep) {
   const PulleyObs& p = w.o.pulleys[0];
   EXPECT_DOUBLE_EQ(p.slip_arc, 0);
   EXPECT_EQ(p.creep_pitch, 0);
+  EXPECT_EQ(p.slip_pitch, 0);
   EXPECT_NEAR(p.slip_speed, -200 * 2.1e-4, 1e-12);  // the radial part alone: -ω·p̄ of the inner two
   EXPECT_DOUBLE_EQ(p.belt_speed, 200 * (0.1 - 2.1e-4));
 }
@@ -132,10 +135,12 @@ TEST(WrapSpeeds, AWrapWithoutGrossSlipReadsNoCreep) {
 TEST(WrapSpeeds, AWrapNoElementTouchesReadsNaN) {
   const Wrap w({}, {});
   const PulleyObs& p = w.o.pulleys[0];
-  EXPECT_TRUE(std::isnan(p.belt_speed) && std::isnan(p.slip_speed) && std::isnan(p.creep) && std::isnan(p.creep_pitch));
+  EXPECT_TRUE(std::isnan(p.belt_speed) && std::isnan(p.slip_speed) && std::isnan(p.creep) &&
+              std::isnan(p.creep_pitch) && std::isnan(p.slip_pitch));
   // a driver: the slip arc backwards; a wrap of two elements takes both for p̄
   const Wrap d({1e-6, -2e-3, -4e-3}, {2e-4, 2e-4, 1e-4});
   EXPECT_LT(d.o.pulleys[0].creep_pitch, 0);
+  EXPECT_LT(d.o.pulleys[0].slip_pitch, 0);
   const Wrap two({1e-6, 2e-6}, {1e-4, 3e-4});
   EXPECT_DOUBLE_EQ(two.o.pulleys[0].belt_speed, 60 * (0.1 - 2e-4));
 }
