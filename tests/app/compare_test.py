@@ -388,7 +388,7 @@ class Recipes(Base):
         p = self.ctest(self.example(off=True))
         self.assertNotEqual(p.returncode, 0, p.stdout)
         self.assertIn("67% tests passed, 1 tests failed out of 3", p.stdout)
-        self.assertIn("differ: 1 of 34 columns differ (driver.omega); worst: driver.omega", p.stdout)
+        self.assertIn("differ: 1 of 36 columns differ (driver.omega); worst: driver.omega", p.stdout)
 
     def test_the_example_runs_without_a_warning_of_the_contract(self):
         # a user's first run of the example they copy does not start by saying its integrator
@@ -414,7 +414,7 @@ class Recipes(Base):
         p = self.pytest(self.example(off=True))
         self.assertEqual(p.returncode, 1, p.stdout + p.stderr)
         self.assertIn("1 failed, 1 passed", p.stdout)
-        self.assertIn("differ: 1 of 34 columns differ (driver.omega)", p.stdout)
+        self.assertIn("differ: 1 of 36 columns differ (driver.omega)", p.stdout)
 
 
 def find_pytest():
