@@ -170,31 +170,18 @@ void join_serve_port(std::vector<std::string>& words) {
   }
 }
 
-}  // namespace
-
-std::optional<CommandLine> parse_command_line(int argc, char** argv, int* status) {
-  CLI::App app{"beltsim: belt transmissions, the discrete model of K. Kubas; scenarios are Lua scripts.", "beltsim"};
-  app.set_version_flag("--version", std::string("beltsim ") + kBeltsimVersion);
-  app.require_subcommand(1);
-  app.footer(
-      "Exit status: 0 on success, 1 on a script, parameter, run or plot error or an output that\n"
-      "could not be written, 2 on bad usage, 130 after Ctrl-C, 143 after SIGTERM, 129 after SIGHUP\n"
-      "(outputs closed). 'beltsim COMMAND --help' describes a command; 'beltsim help parameters' lists\n"
-      "the scene's parameters with their units and defaults, 'beltsim help run-settings' the run's.");
-  const auto fail = [&](int s) {
-    *status = s;
-    return std::optional<CommandLine>();
-  };
-  CommandLine cl;
+void add_run_command(CLI::App& app, CommandLine& cl) {
   Raw& raw = cl.raw;
-
   CLI::App* run = app.add_subcommand("run", "run a Lua scenario script");
   run->add_option("SCRIPT", cl.script, "the scenario (Lua)")->required();
   add_run_overrides(run, raw);
   run->footer("The options override the script's scene:run{} settings. Writes DIR/timeseries.csv (samples\n"
               "at fixed times) and DIR/parameters.csv, and the frames (PNG) and video (MP4) a script asks\n"
               "for with scene:run{ frames = {...} }.");
+}
 
+void add_wp_command(CLI::App& app, CommandLine& cl) {
+  Raw& raw = cl.raw;
   CLI::App* wp = app.add_subcommand("wp", "error against run time of integrators");
   wp->add_option("SCRIPT", cl.script, "the scenario (Lua): its first scene:run{} gives the scene")->required();
   add_out_and_t_end(wp, raw, "output folder (default: out/<script name>/wp)");
@@ -216,7 +203,10 @@ std::optional<CommandLine> parse_command_line(int argc, char** argv, int* status
   add_safety(wp, raw);
   wp->footer("Runs the script's scene with each integrator at every tolerance, each against the\n"
              "reference. Writes DIR/wp.csv, DIR/wp.png (log-log, gnuplot) and DIR/<integrator>-<rtol>/.");
+}
 
+void add_modes_command(CLI::App& app, CommandLine& cl) {
+  Raw& raw = cl.raw;
   CLI::App* modes = app.add_subcommand("modes", "natural frequencies, damping and mode shapes; a Campbell diagram");
   modes->add_option("SCRIPT", cl.script, "the scenario (Lua): its first scene:run{} gives the scene and settings")
       ->required();
@@ -245,7 +235,10 @@ std::optional<CommandLine> parse_command_line(int argc, char** argv, int* status
                 "(frequency, damping ratio, each span's, wrap's, pulley's, arm's and rotor's share of the mode's\n"
                 "kinetic energy) and the mode shapes' pictures. With --campbell: DIR/campbell.csv and\n"
                 "DIR/campbell.png. docs/modes.md says how, and what the numbers are checked against.");
+}
 
+void add_plot_command(CLI::App& app, CommandLine& cl) {
+  Raw& raw = cl.raw;
   CLI::App* plot = app.add_subcommand("plot", "draw columns of a timeseries.csv to a PNG");
   plot->add_option("CSV", cl.csv, "a timeseries.csv written by run")->required();
   plot->add_option("COLUMNS", cl.columns, "columns to draw (default: every <pulley>.omega)");
@@ -253,7 +246,10 @@ std::optional<CommandLine> parse_command_line(int argc, char** argv, int* status
   plot->add_option("--from", raw.from, "draw samples with t >= T only [s]")->type_name("T");
   plot->footer("Prints the PNG's path; on a terminal also shows the picture (BELTSIM_TERM_IMAGES=off|symbols|\n"
                "sixel|kitty|iterm forces a mode). Columns of two units share the plot on two y axes.");
+}
 
+void add_summary_command(CLI::App& app, CommandLine& cl) {
+  Raw& raw = cl.raw;
   CLI::App* summary = app.add_subcommand("summary", "review figures of a run over a time window");
   summary->add_option("DIR", cl.csv, "a run's output folder (its timeseries.csv and parameters.csv)")->required();
   summary->add_option("--from", raw.from, "the window's start [s] (default: the first sample)")->type_name("T0");
@@ -269,15 +265,18 @@ std::optional<CommandLine> parse_command_line(int argc, char** argv, int* status
       "margin (T1/T2 against e^(mu*theta) at each sample, mu that of the wrap's elements then: its\n"
       "least and mean) and hub load; tensioner arms' swing, decouplers' overruns,\n"
       "the belt's power loss by channel (with energy = true). docs/summary.md says how each is made.");
+}
 
-  add_render_command(app, cl.render);
-  add_compare_command(app, cl.compare);
-
+void add_console_command(CLI::App& app, CommandLine& cl) {
+  Raw& raw = cl.raw;
   CLI::App* console = app.add_subcommand("console", "an interactive Lua console with a live simulation");
   console->add_option("SCRIPT", cl.console_script, "a scenario to load first");
   add_run_overrides(console, raw);
   console->footer("Arguments after -- are passed to the script.");
+}
 
+void add_sweep_command(CLI::App& app, CommandLine& cl) {
+  Raw& raw = cl.raw;
   CLI::App* sweep = app.add_subcommand("sweep", "run a sweep: many points, each a run, on every core or on Slurm");
   sweep->add_option("FILE", cl.script, "a sweep file (returns beltsim.sweep{...}), or a script with --set lists")
       ->required();
@@ -308,6 +307,62 @@ std::optional<CommandLine> parse_command_line(int argc, char** argv, int* status
                 "status, inputs and figures; log.txt: its messages); DIR/summary.csv merges them. Run again:\n"
                 "the points not ok, or run with other files, program or --trusted, run. Exit status 0 when\n"
                 "every point is ok, 1 otherwise. docs/sweeps.md.");
+}
+
+// the message of a parse error: an extra word or a misspelt option named with the command's
+// closest option, an option of one value given twice
+std::string parse_error_message(const CLI::App& app, const CLI::ParseError& e) {
+  const CLI::App* sub = app.get_subcommands().empty() ? nullptr : app.get_subcommands().front();
+  const std::string name = sub ? sub->get_name() : "";
+  std::string msg = e.what();
+  if (dynamic_cast<const CLI::ExtrasError*>(&e)) {
+    std::string extra, hint;
+    std::vector<std::string> options;  // the command's own, for a misspelt one
+    if (sub)
+      for (const CLI::Option* o : sub->get_options())
+        for (const std::string& l : o->get_lnames()) options.push_back("--" + l);
+    for (const auto& w : app.remaining(true)) {
+      extra += (extra.empty() ? "" : " ") + w;
+      if (hint.empty() && w.rfind("--", 0) == 0) hint = did_you_mean(w.substr(0, w.find('=')), options);
+    }
+    msg = (sub ? name + " does not take: " : "unexpected: ") + extra + hint +
+          (name == "console" ? " (arguments for the script go after --)" : "");
+  }
+  // an option of one value given more than once: CLI11 says "--t-end: At Most 1 required but
+  // received 2"
+  if (constexpr std::string_view at_most = ": At Most 1 required but received ";
+      dynamic_cast<const CLI::ArgumentMismatch*>(&e) && msg.find(at_most) != std::string::npos) {
+    const std::string option = msg.substr(0, msg.find(at_most)), times = msg.substr(msg.find(at_most) + at_most.size());
+    msg = option + " given " + (times == "2" ? std::string("twice") : times + " times") + ": give it once";
+  }
+  return msg;
+}
+
+}  // namespace
+
+std::optional<CommandLine> parse_command_line(int argc, char** argv, int* status) {
+  CLI::App app{"beltsim: belt transmissions, the discrete model of K. Kubas; scenarios are Lua scripts.", "beltsim"};
+  app.set_version_flag("--version", std::string("beltsim ") + kBeltsimVersion);
+  app.require_subcommand(1);
+  app.footer(
+      "Exit status: 0 on success, 1 on a script, parameter, run or plot error or an output that\n"
+      "could not be written, 2 on bad usage, 130 after Ctrl-C, 143 after SIGTERM, 129 after SIGHUP\n"
+      "(outputs closed). 'beltsim COMMAND --help' describes a command; 'beltsim help parameters' lists\n"
+      "the scene's parameters with their units and defaults, 'beltsim help run-settings' the run's.");
+  const auto fail = [&](int s) {
+    *status = s;
+    return std::optional<CommandLine>();
+  };
+  CommandLine cl;
+  add_run_command(app, cl);
+  add_wp_command(app, cl);
+  add_modes_command(app, cl);
+  add_plot_command(app, cl);
+  add_summary_command(app, cl);
+  add_render_command(app, cl.render);
+  add_compare_command(app, cl.compare);
+  add_console_command(app, cl);
+  add_sweep_command(app, cl);
 
   // `beltsim console ... -- ARGS`: everything after the first -- belongs to the script
   std::vector<std::string> words(argv + 1, argv + argc);
@@ -367,28 +422,7 @@ std::optional<CommandLine> parse_command_line(int argc, char** argv, int* status
   } catch (const CLI::ParseError& e) {
     const CLI::App* sub = app.get_subcommands().empty() ? nullptr : app.get_subcommands().front();
     const std::string name = sub ? sub->get_name() : "";
-    std::string msg = e.what();
-    if (dynamic_cast<const CLI::ExtrasError*>(&e)) {
-      std::string extra, hint;
-      std::vector<std::string> options;  // the command's own, for a misspelt one
-      if (sub)
-        for (const CLI::Option* o : sub->get_options())
-          for (const std::string& l : o->get_lnames()) options.push_back("--" + l);
-      for (const auto& w : app.remaining(true)) {
-        extra += (extra.empty() ? "" : " ") + w;
-        if (hint.empty() && w.rfind("--", 0) == 0) hint = did_you_mean(w.substr(0, w.find('=')), options);
-      }
-      msg = (sub ? name + " does not take: " : "unexpected: ") + extra + hint +
-            (name == "console" ? " (arguments for the script go after --)" : "");
-    }
-    // an option of one value given more than once: CLI11 says "--t-end: At Most 1 required but
-    // received 2"
-    if (constexpr std::string_view at_most = ": At Most 1 required but received ";
-        dynamic_cast<const CLI::ArgumentMismatch*>(&e) && msg.find(at_most) != std::string::npos) {
-      const std::string option = msg.substr(0, msg.find(at_most)),
-                        times = msg.substr(msg.find(at_most) + at_most.size());
-      msg = option + " given " + (times == "2" ? std::string("twice") : times + " times") + ": give it once";
-    }
+    const std::string msg = parse_error_message(app, e);
     std::fprintf(stderr, "beltsim: %s\nRun 'beltsim%s --help' for the usage.\n", msg.c_str(),
                  name.empty() ? "" : (" " + name).c_str());
     return fail(2);
