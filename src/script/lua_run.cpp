@@ -435,6 +435,11 @@ void end_if_probing(lua_State* L, Context* ctx, const char* call) {
   lua_error(L);
 }
 
+void end_if_stopped(lua_State* L, const Context* ctx, const char* call) {
+  if (!ctx || !ctx->stop || !ctx->stop->load(std::memory_order_relaxed)) return;
+  luaL_error(L, "%s: not run: Ctrl-C (or SIGTERM) stopped a run earlier in this script or console command", call);
+}
+
 void push_check(lua_State* L, const CheckEstimate& c) {
   lua_createtable(L, 0, 9);
   lua_pushnumber(L, c.err_speed), lua_setfield(L, -2, "speed");

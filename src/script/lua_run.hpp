@@ -65,6 +65,12 @@ void record_run_dir(Context* ctx, const std::string& out_dir);
 // beltsim.resume), noting where; nothing otherwise
 void end_if_probing(lua_State* L, Context* ctx, const char* call);
 
+// After Ctrl-C or SIGTERM stopped a run, the script may go on to save or report what it has, but
+// no run starts or goes on (scene:run, scene:start, beltsim.resume, sim:run_to, sim:advance): an
+// error before any output is opened, so a later run cannot replace a folder with the one row of
+// a run stopped at its start. The console clears the stop after each command.
+void end_if_stopped(lua_State* L, const Context* ctx, const char* call);
+
 // pushes a checked run's estimate (sim/run_check.hpp) as { speed, tension, limit_speed,
 // limit_tension, over, steps_ratio, shared, warned_t, failed }
 void push_check(lua_State* L, const CheckEstimate& c);

@@ -38,6 +38,7 @@ int l_scene_run(lua_State* L) {
   check_args(L, "scene:run", {{"{t_end, integrator, ...}", kTable, true}}, 2);
   auto* ctx = static_cast<Context*>(lua_touserdata(L, lua_upvalueindex(1)));
   end_if_probing(L, ctx, "scene:run");
+  end_if_stopped(L, ctx, "scene:run");
   bool progress = true;
   RunSettings rs = read_run_settings(L, 2, *sc, ctx, true, &progress);
   check_unread_args(L, *ctx, "run");
@@ -116,6 +117,7 @@ int l_scene_start(lua_State* L) {
   check_args(L, "scene:start", {{"{integrator, rtol, ...}", kTable, true}}, 2);
   auto* ctx = static_cast<Context*>(lua_touserdata(L, lua_upvalueindex(1)));
   end_if_probing(L, ctx, "scene:start");
+  end_if_stopped(L, ctx, "scene:start");
   bool progress = true;
   const RunSettings rs = read_run_settings(L, 2, *sc, ctx, false, &progress);
   check_unread_args(L, *ctx, "start");

@@ -50,6 +50,7 @@ namespace {
 // ---- running ---------------------------------------------------------------------------------
 
 int run_to(lua_State* L, SimBox& box, double t, const char* what) {
+  end_if_stopped(L, box.ctx, what);
   Simulation::Advance a;
   bool interrupted = false;
   guarded(

@@ -142,6 +142,36 @@ class Stop(unittest.TestCase):
         with open(csv) as f:
             self.assertTrue(f.read().endswith("\n"))
 
+    def test_no_run_starts_after_ctrl_c(self):
+        # a script of two runs, Ctrl-C in the first: the script goes on (it may save what it has),
+        # but the second run neither starts nor opens its folder, whose earlier result stays: 130
+        second = os.path.join(self.dir, "second")
+        os.makedirs(second)
+        with open(os.path.join(second, "timeseries.csv"), "w") as f:
+            f.write("t\n0\n0.001\n")  # an earlier result
+        p = self.start(["run", self.script(
+            SCENE + "sim = drive:start { progress = false, out = 'first' }\n" + READY + "\n"
+            "local r = sim:run_to(1000)\n"
+            "print('stopped', r.interrupted) io.stdout:flush()\n"
+            "sim:save('first/stopped.ckpt')\n"
+            "drive:run { t_end = 0.01, progress = false, out = 'second' }\n"
+            "print('second run done')\n")])
+        self.wait_line(p.stdout, "ready")
+        csv = os.path.join(self.dir, "first", "timeseries.csv")
+        deadline = time.monotonic() + 60
+        while os.path.getsize(csv) < 2000:  # some rows: the run is under way
+            self.assertLess(time.monotonic(), deadline, "the run wrote no rows")
+            time.sleep(0.02)
+        status, err = self.ends(p, signal.SIGINT)
+        out = p.stdout.read().decode()
+        self.assertEqual(status, 130, err)
+        self.assertIn("stopped\ttrue", out)
+        self.assertNotIn("second run done", out)
+        self.assertTrue(os.path.exists(os.path.join(self.dir, "first", "stopped.ckpt")), err)
+        self.assertIn("s.lua:%d: scene:run: not run: Ctrl-C (or SIGTERM) stopped a run earlier" % (SCENE.count("\n") + 6), err)
+        with open(os.path.join(second, "timeseries.csv")) as f:
+            self.assertEqual(f.read(), "t\n0\n0.001\n")
+
     def test_sighup_is_handled_as_sigterm(self):
         p = self.start(["run", self.script(
             SCENE + "drive:run { t_end = 3, progress = false, out = 'out', "
