@@ -344,20 +344,31 @@ Simulation::Advance Simulation::run_to(double t, const std::atomic<bool>* stop, 
     a.t = r.t, a.steps = r.steps, a.wall = clock() - start, a.interrupted = r.interrupted;
   } catch (const DivergenceError& e) {
     failed_ = e.what();
+    end_status_ = "diverged", end_note_ = e.what();
     wall_ += clock() - start;
     close();  // CSV flushed, video finalised so it plays
     throw;
   } catch (const LawError& e) {
     // a law's code failed (a Lua law raised or returned no number): the run cannot go on
     failed_ = e.what();
+    end_status_ = "failed", end_note_ = e.what();
     wall_ += clock() - start;
     close();
     throw;
+  } catch (const std::exception& e) {  // a callback raised: the simulation may go on
+    end_status_ = "failed", end_note_ = e.what();
+    wall_ += clock() - start;
+    throw;
   } catch (...) {
+    end_status_ = "failed", end_note_ = "an error in a callback";
     wall_ += clock() - start;
     throw;
   }
   wall_ += a.wall;
+  end_status_ = a.over_wall_limit ? "wall_limit" : a.interrupted ? "interrupted" : "ok";
+  end_note_ = a.over_wall_limit ? "stopped by run.max_wall at the last finished step"
+              : a.interrupted   ? "stopped at the last finished step (Ctrl-C, SIGTERM or a live view's control)"
+                                : "";
   return a;
 }
 
@@ -410,7 +421,14 @@ std::string Simulation::unapplied_warnings() const {
 void Simulation::close() {
   if (closed_) return;
   closed_ = true;
-  out_->close(warnings(), check_ ? check_->parameter_rows() : std::string());
+  // how the run ended, last in parameters.csv: a folder read later tells a finished run from a
+  // stopped one (a run killed outright has no end.* rows)
+  const std::string end =
+      "end.t," + value_text(now()) + ",s,derived,the simulated time the outputs reach\n" + "end.status," + end_status_ +
+      ",,derived," +
+      csv_text(end_note_.empty() ? "how the run ended: ok, interrupted, wall_limit, diverged or failed" : end_note_) +
+      "\n";
+  out_->close(warnings(), (check_ ? check_->parameter_rows() : std::string()) + end);
 }
 
 void Simulation::write_event(double t, const std::string& what, const std::string& text) {

@@ -253,6 +253,9 @@ class Simulation {
   bool closed_ = false;
   bool running_ = false;          // inside run_to (callbacks may read and change, not run or save)
   std::string failed_;            // why it cannot continue (a divergence)
+  // how its last run_to ended, for parameters.csv's end.status and its note (close): ok,
+  // interrupted, wall_limit, diverged or failed (a law or a callback raised)
+  std::string end_status_ = "ok", end_note_;
   std::vector<std::string> misses_warned_;  // warn_contract_misses()' warnings given
   bool decoupler_warned_ = false;           // the overrunning decoupler's among them
   bool from_start_ = true;                  // its samples since t = 0 were seen here (not resumed)

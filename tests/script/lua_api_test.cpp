@@ -257,6 +257,11 @@ TEST(LuaApi, DivergenceNamesTimeAndPulleyAndKeepsTheSamples) {
   while (std::getline(csv, line)) rows++, last = line;
   EXPECT_GE(rows, 1 + 2) << "the header and the samples before the failure";
   EXPECT_LT(std::strtod(last.c_str(), nullptr), t_fail);
+  // the folder says why the run ended: parameters.csv's last row
+  std::ifstream p(temp_dir() / "out" / "parameters.csv");
+  std::string params((std::istreambuf_iterator<char>(p)), std::istreambuf_iterator<char>());
+  EXPECT_NE(params.find("\nend.status,diverged,,derived,the run diverged at t = "), std::string::npos) << params;
+  EXPECT_NE(params.find("pulley 'driver' runs away"), std::string::npos) << params;
 }
 
 // the position of a column of a CSV file (from its header)

@@ -137,6 +137,7 @@ TEST(NoHang, WallLimitStopsABatchRun) {
   std::ifstream p(r.parameters_path);
   const std::string params((std::istreambuf_iterator<char>(p)), std::istreambuf_iterator<char>());
   EXPECT_NE(params.find("warning.failed_step.count"), std::string::npos);
+  EXPECT_NE(params.find("\nend.status,wall_limit,,derived,stopped by run.max_wall"), std::string::npos) << params;
 }
 
 // the rate watchdog on a fake clock: 0.01 s of wall time per poll while the run goes well, then

@@ -563,6 +563,9 @@ TEST(Live, FallbacksAreCountedAndShown) {
   EXPECT_NE(p.find("warning.failed_step.first_t," + number_text(failed.first_t) + ",s,"), std::string::npos) << p;
   EXPECT_NE(p.find("warning.cvode_convergence.count,0,,"), std::string::npos) << p;
   EXPECT_NE(p.find("warning.cvode_convergence.first_t,,s,"), std::string::npos) << p;
+  // then how it ended, last: at the time it reached, as asked
+  EXPECT_NE(p.find("\nend.t," + number_text(s.now()) + ",s,derived,"), std::string::npos) << p;
+  EXPECT_NE(p.find("\nend.status,ok,,derived,"), std::string::npos) << p;
 }
 
 // invalid requests name what is wrong
