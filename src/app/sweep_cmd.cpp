@@ -1,5 +1,6 @@
 // `beltsim sweep FILE`: the points of a sweep run on this machine's processors, one at a time
 // (--point), listed, collected, or written as a Slurm job array (commands.hpp, sweep/).
+#include <fcntl.h>
 #include <sched.h>
 #include <unistd.h>
 
@@ -10,6 +11,7 @@
 #include <iterator>
 #include <optional>
 #include <stdexcept>
+#include <utility>
 
 #include "app/commands.hpp"
 #include "io/csv_writer.hpp"
@@ -41,6 +43,25 @@ int processors() {
   const long n = sysconf(_SC_NPROCESSORS_ONLN);
   return n > 0 ? static_cast<int>(n) : 1;
 }
+
+// stdout sent to stderr while this lives (flushed at both ends)
+class StdoutToStderr {
+ public:
+  StdoutToStderr() {
+    std::fflush(stdout);
+    saved_ = fcntl(1, F_DUPFD_CLOEXEC, 0);
+    if (saved_ >= 0 && dup2(2, 1) < 0) ::close(std::exchange(saved_, -1));
+  }
+  ~StdoutToStderr() {
+    std::fflush(stdout);
+    if (saved_ >= 0) dup2(saved_, 1), ::close(saved_);
+  }
+  StdoutToStderr(const StdoutToStderr&) = delete;
+  StdoutToStderr& operator=(const StdoutToStderr&) = delete;
+
+ private:
+  int saved_ = -1;
+};
 
 // what defines a point now, bar its files (sweep/inputs.hpp): the program and, of the options,
 // --trusted. The --set lists are the grid: each point's own values are its parameters, matched
@@ -169,11 +190,16 @@ int sweep(const std::string& file, const Raw& raw, const script::Safety& s) {
     if (quick) {
       if (!fs::is_regular_file(file)) throw script::ScriptError(file + ": no such script");
       points = sw::grid_points(grid);
-      // a sweep file given --set lists: refused before a point runs or anything is written (each
-      // point failed, and a finished sweep's summary.csv and point.csv were replaced by errors).
-      // Not for --list, which runs nothing (and prints the points on stdout), nor --point, whose
-      // sweep has made the check
-      if (!raw.list && point < 0) script::check_ordinary_script(lua, file, points[0]);
+      // a sweep file given --set lists: refused before a point runs, is listed or anything is
+      // written (each point failed, and a finished sweep's summary.csv and point.csv were replaced
+      // by errors; --list listed the --set lists' points). What the script prints as it is probed
+      // goes to stderr under --list, whose stdout is the points' CSV. --point's run of the script
+      // refuses it the same way (script/sweep_run.hpp)
+      if (point < 0) {
+        std::optional<StdoutToStderr> quiet;
+        if (raw.list) quiet.emplace();
+        script::check_ordinary_script(lua, file, points[0]);
+      }
     } else {
       points = script::load_sweep(lua, file);
     }

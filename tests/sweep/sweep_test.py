@@ -224,14 +224,24 @@ class Sweep(SweepCase):
             f.write("return beltsim.sweep { grid = { mu = {0.3, 1} }, run = function(p) return { twice = 2 * p.mu } end }\n")
         self.run_beltsim("sweep", script, "--jobs", "1")
         before = {name: self.read("out", "twice", *name) for name in (("summary.csv",), ("0", "point.csv"))}
-        for out in ([], ["--out", "elsewhere"], ["--slurm"]):
+        # --list printed the --set lists' points, and --point 0 replaced point 0's point.csv with an error
+        for out in ([], ["--out", "elsewhere"], ["--slurm"], ["--list"], ["--point", "0"]):
             p = self.run_beltsim("sweep", script, "--set", "mu=0.3,1", *out, ok=(2,))
             self.assertIn("beltsim: %s is a sweep file (it returns beltsim.sweep{...}): its points are its grid or "
                           "samples; --set lists are for an ordinary script (the quick form): run `beltsim sweep %s` "
                           "without them\n" % (script, script), p.stderr)
+            self.assertEqual(p.stdout, "")
         self.assertEqual({name: self.read("out", "twice", *name) for name in before}, before)
         self.assertEqual(sorted(os.listdir(self.path("out", "twice"))), ["0", "1", "summary.csv"])
         self.assertFalse(os.path.exists(self.path("elsewhere")))
+        # what an ordinary script prints before its first scene:run (run to tell it from a sweep
+        # file) is not among --list's rows
+        shutil.copy(DRIVE, self.dir)
+        with open(PLAIN) as f, open(self.path("talks.lua"), "w") as g:
+            g.write("print('mu is', beltsim.args.mu)\n" + f.read())
+        p = self.run_beltsim("sweep", "talks.lua", "--set", "mu=0.3,1", "--set", "pretension=500", "--list")
+        self.assertEqual(p.stdout, "point,mu,pretension\n0,0.3,500\n1,1,500\n")
+        self.assertIn("mu is\t0.3\n", p.stderr)
 
     def test_an_ordinary_script_without_set_lists_is_refused_before_it_runs(self):
         # it ran whole, into out/<script> whatever --out said, and was refused after
