@@ -218,6 +218,10 @@ int sweep(const std::string& file, const Raw& raw, const script::Safety& s) {
       if (point >= static_cast<int>(points.size()))
         throw UsageError("--point " + std::to_string(point) + ": the sweep has points 0.." +
                          std::to_string(points.size() - 1));
+      // the quick form's point into a folder of another study replaced that study's point K, as
+      // the whole sweep would have replaced them all (a check that the sweep running its points
+      // has made already, on the folder it holds)
+      if (quick) check_same_study(dir, points);
       const sw::Point& p = points[static_cast<std::size_t>(point)];
       const std::string point_dir = (fs::path(dir) / p.id).string();
       std::fprintf(stderr, "beltsim sweep: point %s of %zu (%s)\n", p.id.c_str(), points.size(),

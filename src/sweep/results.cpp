@@ -149,13 +149,18 @@ PointResult unique_columns(const Point& p, PointResult r) {
 
 namespace {
 
-// the parameters' names in the header of a point.csv or summary.csv (empty when it is not one)
+// the parameters' names in the header of a point.csv or summary.csv (empty when it is not one),
+// read no further than the header (a summary of many points is read by each point's process)
 std::vector<std::string> header_parameters(const std::filesystem::path& file) {
   std::ifstream f(file, std::ios::binary);
   if (!f) return {};
-  std::ostringstream text;
-  text << f.rdbuf();
-  const std::vector<std::vector<std::string>> rows = csv_rows(text.str());
+  std::string header;
+  bool quoted = false;  // (a quoted name may hold a line break)
+  for (char c; f.get(c) && (quoted || c != '\n');) {
+    if (c == '"') quoted = !quoted;
+    header += c;
+  }
+  const std::vector<std::vector<std::string>> rows = csv_rows(header);
   if (rows.empty() || rows[0].empty() || rows[0][0] != "point") return {};
   const auto status = std::find(rows[0].begin(), rows[0].end(), "status");
   if (status == rows[0].end()) return {};

@@ -152,5 +152,20 @@ TEST(SweepResults, RenumberedPointsRunAgainAndStaleFoldersMoveAside) {
   EXPECT_EQ(move_stale_folders(top, wide), std::vector<std::string>{});
 }
 
+// the parameters of the study a folder holds: summary.csv's header (read no further: a quoted name
+// may hold a line break, a row need not be whole), else a point's point.csv, else none
+TEST(SweepResults, StudyParametersAreReadFromTheHeaders) {
+  const std::string dir = results_folder("study");
+  EXPECT_EQ(study_parameters(dir), std::vector<std::string>{});
+  EXPECT_EQ(study_parameters(dir + "/missing"), std::vector<std::string>{});
+  const std::vector<Point> points = grid_points(Grid{{"a\nb", "mu"}, {{Value(1LL)}, {Value(0.3), Value(1.0)}}});
+  write_point_result(dir, points[1], PointResult{"ok", {{"x", "1"}}, ""});
+  EXPECT_EQ(study_parameters(dir), (std::vector<std::string>{"a\nb", "mu"}));
+  test::spit(dir + "/summary.csv", "point,\"p\nq\",status,x\n0,1,ok,\"unfinished");
+  EXPECT_EQ(study_parameters(dir), (std::vector<std::string>{"p\nq"}));
+  test::spit(dir + "/summary.csv", "a,b\n");  // not a summary: the points' folders say
+  EXPECT_EQ(study_parameters(dir), (std::vector<std::string>{"a\nb", "mu"}));
+}
+
 }  // namespace
 }  // namespace beltsim::sweep

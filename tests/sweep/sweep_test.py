@@ -438,14 +438,18 @@ class Sweep(SweepCase):
     def test_a_quick_study_of_other_parameters_is_refused_its_folder(self):
         # out/<script> is every quick study's of the script: one of other --set names replaced the
         # earlier study's summary.csv and points without a word
+        # (--point K, as the sweep's points run or by hand, replaced point K's folder)
         self.run_beltsim("sweep", PLAIN, "--set", "pretension=300,500")
-        before = self.read("out", "plain", "summary.csv")
+        files = ("summary.csv",), ("0", "point.csv"), ("0", "timeseries.csv")
+        before = {f: self.read("out", "plain", *f) for f in files}
         for lists in (["--set", "mu=0.3,1"], ["--set", "pretension=300,500", "--set", "mu=0.3,1"]):
-            p = self.run_beltsim("sweep", PLAIN, *lists, ok=(1,))
-            self.assertIn("beltsim: out/plain holds another study (its points vary pretension, these vary %s), whose "
-                          "summary.csv and points this one would replace: give it a folder of its own (--out DIR), "
-                          "or remove out/plain first\n" % ("mu" if len(lists) == 2 else "pretension, mu"), p.stderr)
-            self.assertEqual(self.read("out", "plain", "summary.csv"), before)
+            for point in ([], ["--point", "0"]):
+                p = self.run_beltsim("sweep", PLAIN, *lists, *point, ok=(1,))
+                self.assertIn("beltsim: out/plain holds another study (its points vary pretension, these vary %s), "
+                              "whose summary.csv and points this one would replace: give it a folder of its own "
+                              "(--out DIR), or remove out/plain first\n" % ("mu" if len(lists) == 2 else "pretension, mu"),
+                              p.stderr)
+                self.assertEqual({f: self.read("out", "plain", *f) for f in files}, before)
         self.run_beltsim("sweep", PLAIN, "--set", "mu=0.3,1", "--out", "out/plain_mu")
         self.assertEqual(rows(self.path("out", "plain_mu", "summary.csv"))[0][:3], ["point", "mu", "status"])
 
