@@ -4,7 +4,6 @@
 #include <sched.h>
 #include <unistd.h>
 
-#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -16,7 +15,6 @@
 #include "app/commands.hpp"
 #include "io/csv_writer.hpp"
 #include "io/output_dir.hpp"
-#include "io/suggest.hpp"
 #include "script/docall.hpp"
 #include "script/script_args.hpp"
 #include "script/signals.hpp"
@@ -149,16 +147,9 @@ void check_collect_folder(const std::string& dir, const std::string& file,
 // folder out/<script> is every study's of the script) is refused, rather than replace that study's
 // summary.csv and run its points' folders again (std::runtime_error)
 void check_same_study(const std::string& dir, const std::vector<beltsim::sweep::Point>& points) {
-  const std::vector<std::string> earlier = beltsim::sweep::study_parameters(dir);
   std::vector<std::string> now;
   for (const auto& [name, v] : points[0].params) now.push_back(name);
-  std::vector<std::string> a = earlier, b = now;
-  std::sort(a.begin(), a.end());
-  std::sort(b.begin(), b.end());
-  if (earlier.empty() || a == b) return;
-  throw std::runtime_error(dir + " holds another study (its points vary " + join(earlier) + ", these vary " +
-                           join(now) + "), whose summary.csv and points this one would replace: give it a folder of " +
-                           "its own (--out DIR), or remove " + dir + " first");
+  if (const std::string r = beltsim::sweep::other_study_refusal(dir, now); !r.empty()) throw std::runtime_error(r);
 }
 
 int sweep(const std::string& file, const Raw& raw, const script::Safety& s) {

@@ -9,6 +9,7 @@
 
 #include "io/csv_writer.hpp"
 #include "io/output_dir.hpp"
+#include "io/suggest.hpp"
 
 namespace beltsim::sweep {
 
@@ -180,6 +181,25 @@ std::vector<std::string> study_parameters(const std::string& dir) {
   for (const fs::path& f : folders)
     if (std::vector<std::string> names = header_parameters(f / kPointFile); !names.empty()) return names;
   return {};
+}
+
+std::string other_study_refusal(const std::string& dir, const std::vector<std::string>& names) {
+  const std::vector<std::string> earlier = study_parameters(dir);
+  std::vector<std::string> a = earlier, b = names;
+  std::sort(a.begin(), a.end());
+  std::sort(b.begin(), b.end());
+  if (earlier.empty() || a == b) return "";
+  return dir + " holds another study (its points vary " + join(earlier) + ", these vary " + join(names) +
+         "), whose summary.csv and points this one would replace: give it a folder of its own (--out DIR), or " +
+         "remove " + dir + " first";
+}
+
+std::string study_folder_refusal(const std::string& what, const std::string& dir) {
+  const std::vector<std::string> names = study_parameters(dir);
+  if (names.empty()) return "";
+  return what + ": the output folder " + dir + " holds a study of `beltsim sweep` (its summary.csv and a folder " +
+         "per point; its points vary " + join(names) + "), among whose files this run's outputs would lie: give " +
+         "the run a folder of its own (--out DIR, or out = ... in the script), or remove " + dir + " first";
 }
 
 OutputDir claim_sweep_folder(const std::string& dir) {

@@ -71,6 +71,14 @@ PointResult unique_columns(const Point& p, PointResult r);
 // the names of the parameters of the study DIR holds: the columns of its summary.csv between
 // `point` and `status`, else of the first point.csv in a folder of it; empty when it holds neither
 std::vector<std::string> study_parameters(const std::string& dir);
+// whether a study's folder may be written, both from study_parameters: "" when it may, else why not.
+// A quick study of the parameters `names` (the default folder out/<script> is every study's of
+// the script): DIR holds no study, or one of the same names (in any order)
+std::string other_study_refusal(const std::string& dir, const std::vector<std::string>& names);
+// a run's outputs, WHAT its key for the message ("run.out"): DIR holds no study. A run's files
+// among a study's would be taken for part of it (and a run into out/<script> is every quick
+// study's default folder)
+std::string study_folder_refusal(const std::string& what, const std::string& dir);
 
 // DIR, made when missing and claimed for this process until the object is destroyed (the lock
 // of io/output_dir.hpp); throws std::runtime_error naming DIR when another sweep holds it
