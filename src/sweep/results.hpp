@@ -97,7 +97,10 @@ Results current_results(const std::string& dir, const std::vector<Point>& points
 // the numbered folders of DIR (top) that are no point's of now and hold a point's point.csv or
 // log.txt (a point removed from the sweep, or numbered otherwise before), moved into
 // DIR/earlier/ (as NAME, or NAME-2, ... when taken), so that they are not taken for results; their
-// names, sorted. output_error when one cannot be moved
+// names, sorted. Before each moves, its point.csv (status, figures) and every parameters.csv in it
+// are rewritten where they name it (DIR/NAME as top names it, or its absolute path) to name it at
+// DIR/earlier/TO; the other files stay as written. output_error when one cannot be rewritten or
+// moved (it is then left where it was, for the next run)
 std::vector<std::string> move_stale_folders(const OutputDir& top, const std::vector<Point>& points);
 // what a sweep says of them: "sweep NAME: 9 folders of no point now moved to DIR/earlier/: 0, 1, ..."
 // ("" when none)

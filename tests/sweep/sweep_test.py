@@ -470,6 +470,14 @@ class Sweep(SweepCase):
         self.assertEqual(sorted(os.listdir(self.path("out", "plain"))),
                          ["%02d" % k for k in range(12)] + ["earlier", "summary.csv"])
         self.assertEqual([r[3] for r in rows(self.path("out", "plain", "summary.csv"))[1:]], ["ok"] * 12)
+        # a moved folder's point.csv and parameters.csv name it where it lies now, not out/plain/1,
+        # where it ran (and where another point's files may lie later)
+        moved = dict(zip(*rows(self.path("out", "plain", "earlier", "1", "point.csv"))))
+        self.assertEqual((moved["point"], moved["pretension"], moved["mu"]), ("1", "300", "0.5"))
+        self.assertEqual((moved["csv"], moved["parameters"]), ("out/plain/earlier/1/timeseries.csv",
+                                                              "out/plain/earlier/1/parameters.csv"))
+        self.assertIn(["run.out", "out/plain/earlier/1", "", "run", "the output folder"],
+                      rows(self.path("out", "plain", "earlier", "1", "parameters.csv")))
 
     def test_slurm_with_nothing_left_leaves_the_job_scripts(self):
         # --slurm --time, the points then run (here, as the array's tasks would), --slurm again
