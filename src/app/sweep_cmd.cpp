@@ -1,20 +1,20 @@
 // `beltsim sweep FILE`: the points of a sweep run on this machine's processors, one at a time
 // (--point), listed, collected, or written as a Slurm job array (commands.hpp, sweep/).
+#include <fcntl.h>
 #include <sched.h>
 #include <unistd.h>
 
-#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
 #include <optional>
 #include <stdexcept>
+#include <utility>
 
 #include "app/commands.hpp"
 #include "io/csv_writer.hpp"
 #include "io/output_dir.hpp"
-#include "io/suggest.hpp"
 #include "script/docall.hpp"
 #include "script/script_args.hpp"
 #include "script/signals.hpp"
@@ -41,6 +41,25 @@ int processors() {
   const long n = sysconf(_SC_NPROCESSORS_ONLN);
   return n > 0 ? static_cast<int>(n) : 1;
 }
+
+// stdout sent to stderr while this lives (flushed at both ends)
+class StdoutToStderr {
+ public:
+  StdoutToStderr() {
+    std::fflush(stdout);
+    saved_ = fcntl(1, F_DUPFD_CLOEXEC, 0);
+    if (saved_ >= 0 && dup2(2, 1) < 0) ::close(std::exchange(saved_, -1));
+  }
+  ~StdoutToStderr() {
+    std::fflush(stdout);
+    if (saved_ >= 0) dup2(saved_, 1), ::close(saved_);
+  }
+  StdoutToStderr(const StdoutToStderr&) = delete;
+  StdoutToStderr& operator=(const StdoutToStderr&) = delete;
+
+ private:
+  int saved_ = -1;
+};
 
 // what defines a point now, bar its files (sweep/inputs.hpp): the program and, of the options,
 // --trusted. The --set lists are the grid: each point's own values are its parameters, matched
@@ -128,16 +147,9 @@ void check_collect_folder(const std::string& dir, const std::string& file,
 // folder out/<script> is every study's of the script) is refused, rather than replace that study's
 // summary.csv and run its points' folders again (std::runtime_error)
 void check_same_study(const std::string& dir, const std::vector<beltsim::sweep::Point>& points) {
-  const std::vector<std::string> earlier = beltsim::sweep::study_parameters(dir);
   std::vector<std::string> now;
   for (const auto& [name, v] : points[0].params) now.push_back(name);
-  std::vector<std::string> a = earlier, b = now;
-  std::sort(a.begin(), a.end());
-  std::sort(b.begin(), b.end());
-  if (earlier.empty() || a == b) return;
-  throw std::runtime_error(dir + " holds another study (its points vary " + join(earlier) + ", these vary " +
-                           join(now) + "), whose summary.csv and points this one would replace: give it a folder of " +
-                           "its own (--out DIR), or remove " + dir + " first");
+  if (const std::string r = beltsim::sweep::other_study_refusal(dir, now); !r.empty()) throw std::runtime_error(r);
 }
 
 int sweep(const std::string& file, const Raw& raw, const script::Safety& s) {
@@ -169,11 +181,16 @@ int sweep(const std::string& file, const Raw& raw, const script::Safety& s) {
     if (quick) {
       if (!fs::is_regular_file(file)) throw script::ScriptError(file + ": no such script");
       points = sw::grid_points(grid);
-      // a sweep file given --set lists: refused before a point runs or anything is written (each
-      // point failed, and a finished sweep's summary.csv and point.csv were replaced by errors).
-      // Not for --list, which runs nothing (and prints the points on stdout), nor --point, whose
-      // sweep has made the check
-      if (!raw.list && point < 0) script::check_ordinary_script(lua, file, points[0]);
+      // a sweep file given --set lists: refused before a point runs, is listed or anything is
+      // written (each point failed, and a finished sweep's summary.csv and point.csv were replaced
+      // by errors; --list listed the --set lists' points). What the script prints as it is probed
+      // goes to stderr under --list, whose stdout is the points' CSV. --point's run of the script
+      // refuses it the same way (script/sweep_run.hpp)
+      if (point < 0) {
+        std::optional<StdoutToStderr> quiet;
+        if (raw.list) quiet.emplace();
+        script::check_ordinary_script(lua, file, points[0]);
+      }
     } else {
       points = script::load_sweep(lua, file);
     }
@@ -192,6 +209,10 @@ int sweep(const std::string& file, const Raw& raw, const script::Safety& s) {
       if (point >= static_cast<int>(points.size()))
         throw UsageError("--point " + std::to_string(point) + ": the sweep has points 0.." +
                          std::to_string(points.size() - 1));
+      // the quick form's point into a folder of another study replaced that study's point K, as
+      // the whole sweep would have replaced them all (a check that the sweep running its points
+      // has made already, on the folder it holds)
+      if (quick) check_same_study(dir, points);
       const sw::Point& p = points[static_cast<std::size_t>(point)];
       const std::string point_dir = (fs::path(dir) / p.id).string();
       std::fprintf(stderr, "beltsim sweep: point %s of %zu (%s)\n", p.id.c_str(), points.size(),

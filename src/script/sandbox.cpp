@@ -6,12 +6,12 @@
 #include <string>
 #include <vector>
 
-#include "script/context.hpp"
-#include "script/sandbox_files.hpp"
-
 #include "lauxlib.h"
 #include "lua.h"
 #include "lualib.h"
+#include "script/context.hpp"
+#include "script/sandbox_files.hpp"
+#include "sweep/results.hpp"
 
 namespace beltsim::script {
 
@@ -84,6 +84,9 @@ std::string output_refusal(const Context& c, const std::string& what, const std:
 
 std::string run_paths_refusal(const Context& c, const std::string& what, const RunSettings& rs) {
   std::string r = output_refusal(c, what + ".out", rs.out_dir, true, Written::kRunFolder);
+  // a sweep's study is no run's folder, whatever the sandbox allows (a run that is captured,
+  // for beltsim wp or modes, writes elsewhere)
+  if (r.empty() && !c.capture) r = sweep::study_folder_refusal(what + ".out", rs.out_dir);
   if (r.empty() && rs.frames) {
     if (!rs.frames->png_dir.empty())
       r = output_refusal(c, what + ".frames.png", output_path(rs, rs.frames->png_dir), true, Written::kFolder);

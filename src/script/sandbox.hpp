@@ -37,7 +37,8 @@ void open_sandbox(lua_State* L, Context* ctx);
 std::string output_refusal(const Context& c, const std::string& what, const std::string& path, bool write,
                            Written written = Written::kFile);
 // the same for every path of a run's settings (out, frames.png, frames.video; relative frame
-// paths are inside out); what: "run", "start", "resume"
+// paths are inside out), and, --trusted or not, an out that holds a sweep's study
+// (sweep::study_folder_refusal) unless the run is captured; what: "run", "start", "resume"
 std::string run_paths_refusal(const Context& c, const std::string& what, const RunSettings& rs);
 
 }  // namespace beltsim::script

@@ -192,6 +192,12 @@ std::string failed_status(const Context& ctx, const std::string& message) {
          " s: " + sweep::error_status(m).substr(std::string("error: ").size());
 }
 
+// the refusal of a sweep file given --set lists (WrongFileKind), whichever form of the command
+std::string sweep_file_given_set_lists(const std::string& script) {
+  return script + " is a sweep file (it returns beltsim.sweep{...}): its points are its grid or samples; --set " +
+         "lists are for an ordinary script (the quick form): run `beltsim sweep " + script + "` without them";
+}
+
 }  // namespace
 
 std::vector<sweep::Point> load_sweep(Interpreter& lua, const std::string& path) {
@@ -295,10 +301,8 @@ sweep::PointResult run_script_point(Interpreter& lua, const std::string& script,
   }
   const bool sweep_file = luaL_testudata(L, -1, kSweepMeta) != nullptr;
   lua_settop(L, 0);
-  if (sweep_file)
-    return {sweep::error_status(script + " is a sweep file (it returns beltsim.sweep{...}): the --set lists of "
-                                         "`beltsim sweep` are for ordinary scripts"),
-            {}};
+  // (a --point given by hand: the sweep that runs its points has refused the file already)
+  if (sweep_file) throw WrongFileKind(sweep_file_given_set_lists(script));
   std::string unread;
   for (const std::string& m : lua.unread_args(script)) unread += (unread.empty() ? "" : "; ") + m;
   if (!unread.empty()) return {sweep::error_status(unread), {}};
@@ -323,10 +327,7 @@ void check_ordinary_script(Interpreter& lua, const std::string& script, const sw
   lua_settop(L, 0);
   lua.set_capture(nullptr);
   lua.context().overrides.set.clear();
-  if (sweep_file)
-    throw WrongFileKind(script + " is a sweep file (it returns beltsim.sweep{...}): its points are its grid or " +
-                        "samples; --set lists are for an ordinary script (the quick form): run `beltsim sweep " +
-                        script + "` without them");
+  if (sweep_file) throw WrongFileKind(sweep_file_given_set_lists(script));
 }
 
 }  // namespace beltsim::script

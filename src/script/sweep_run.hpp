@@ -31,7 +31,8 @@ sweep::PointResult run_sweep_point(Interpreter& lua, const std::string& path, co
                                    const std::string& point_dir);
 
 // the quick form: the script run with the point's parameters as its --set values and its runs'
-// folder point_dir; the figures are the result table of its last scene:run{}
+// folder point_dir; the figures are the result table of its last scene:run{}. Throws
+// WrongFileKind, nothing written, when the script is a sweep file (check_ordinary_script's error)
 sweep::PointResult run_script_point(Interpreter& lua, const std::string& script, const sweep::Point& p,
                                     const std::string& point_dir);
 

@@ -1,6 +1,7 @@
 #include "sweep/results.hpp"
 
 #include <algorithm>
+#include <cctype>
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -9,6 +10,7 @@
 
 #include "io/csv_writer.hpp"
 #include "io/output_dir.hpp"
+#include "io/suggest.hpp"
 
 namespace beltsim::sweep {
 
@@ -42,9 +44,10 @@ std::string error_status(const std::string& message) {
   return "error: " + m;
 }
 
-void write_point_result(const std::string& dir, const Point& p, const PointResult& r) {
-  const OutputDir top(dir);
-  const OutputDir folder(top, p.id);
+namespace {
+
+// point.csv's text
+std::string point_csv(const Point& p, const PointResult& r) {
   std::string h = header(p, true), v = row(p, r.status) + "," + csv_text(r.inputs);
   for (const auto& [name, text] : r.figures) {
     h += ',';
@@ -52,7 +55,15 @@ void write_point_result(const std::string& dir, const Point& p, const PointResul
     v += ',';
     v += csv_text(text);
   }
-  write_file_whole(folder, kPointFile, h + "\n" + v + "\n");
+  return h + "\n" + v + "\n";
+}
+
+}  // namespace
+
+void write_point_result(const std::string& dir, const Point& p, const PointResult& r) {
+  const OutputDir top(dir);
+  const OutputDir folder(top, p.id);
+  write_file_whole(folder, kPointFile, point_csv(p, r));
 }
 
 namespace {
@@ -149,13 +160,18 @@ PointResult unique_columns(const Point& p, PointResult r) {
 
 namespace {
 
-// the parameters' names in the header of a point.csv or summary.csv (empty when it is not one)
+// the parameters' names in the header of a point.csv or summary.csv (empty when it is not one),
+// read no further than the header (a summary of many points is read by each point's process)
 std::vector<std::string> header_parameters(const std::filesystem::path& file) {
   std::ifstream f(file, std::ios::binary);
   if (!f) return {};
-  std::ostringstream text;
-  text << f.rdbuf();
-  const std::vector<std::vector<std::string>> rows = csv_rows(text.str());
+  std::string header;
+  bool quoted = false;  // (a quoted name may hold a line break)
+  for (char c; f.get(c) && (quoted || c != '\n');) {
+    if (c == '"') quoted = !quoted;
+    header += c;
+  }
+  const std::vector<std::vector<std::string>> rows = csv_rows(header);
   if (rows.empty() || rows[0].empty() || rows[0][0] != "point") return {};
   const auto status = std::find(rows[0].begin(), rows[0].end(), "status");
   if (status == rows[0].end()) return {};
@@ -175,6 +191,25 @@ std::vector<std::string> study_parameters(const std::string& dir) {
   for (const fs::path& f : folders)
     if (std::vector<std::string> names = header_parameters(f / kPointFile); !names.empty()) return names;
   return {};
+}
+
+std::string other_study_refusal(const std::string& dir, const std::vector<std::string>& names) {
+  const std::vector<std::string> earlier = study_parameters(dir);
+  std::vector<std::string> a = earlier, b = names;
+  std::sort(a.begin(), a.end());
+  std::sort(b.begin(), b.end());
+  if (earlier.empty() || a == b) return "";
+  return dir + " holds another study (its points vary " + join(earlier) + ", these vary " + join(names) +
+         "), whose summary.csv and points this one would replace: give it a folder of its own (--out DIR), or " +
+         "remove " + dir + " first";
+}
+
+std::string study_folder_refusal(const std::string& what, const std::string& dir) {
+  const std::vector<std::string> names = study_parameters(dir);
+  if (names.empty()) return "";
+  return what + ": the output folder " + dir + " holds a study of `beltsim sweep` (its summary.csv and a folder " +
+         "per point; its points vary " + join(names) + "), among whose files this run's outputs would lie: give " +
+         "the run a folder of its own (--out DIR, or out = ... in the script), or remove " + dir + " first";
 }
 
 OutputDir claim_sweep_folder(const std::string& dir) {
@@ -217,6 +252,120 @@ Results current_results(const std::string& dir, const std::vector<Point>& points
   return results;
 }
 
+namespace {
+
+bool name_char(char c) {
+  return std::isalnum(static_cast<unsigned char>(c)) || c == '.' || c == '_' || c == '-';
+}
+
+// A point's folder moved from DIR/NAME to DIR/earlier/TO: the paths that named it, as the sweep
+// names the folder (DIR as given, and that path normalised and absolute), each with its new form
+struct FolderMove {
+  std::vector<std::pair<std::string, std::string>> forms;  // old, new
+
+  FolderMove(const std::string& top, const std::string& name, const std::string& to) {
+    namespace fs = std::filesystem;
+    const fs::path from = fs::path(top) / name, now = fs::path(top) / kEarlierFolder / to;
+    std::error_code ec;
+    for (const auto& [a, b] :
+         {std::pair{from, now}, std::pair{from.lexically_normal(), now.lexically_normal()},
+          std::pair{fs::absolute(from, ec).lexically_normal(), fs::absolute(now, ec).lexically_normal()}})
+      if (!a.empty() &&
+          std::find_if(forms.begin(), forms.end(), [&](const auto& f) { return f.first == a.string(); }) == forms.end())
+        forms.emplace_back(a.string(), b.string());
+  }
+
+  // text with each of the old paths, where it is a path of its own or the start of one (not
+  // inside a longer name: DIR/1 is not the start of DIR/10 nor the end of /x/DIR/1), in its new form
+  std::string apply(std::string text) const {
+    for (const auto& [from, to] : forms) {
+      std::string out;
+      std::size_t at = 0;
+      for (std::size_t k; (k = text.find(from, at)) != std::string::npos;) {
+        const std::size_t end = k + from.size();
+        const bool whole = (k == 0 || (!name_char(text[k - 1]) && text[k - 1] != '/')) &&
+                           (end == text.size() || !name_char(text[end]));
+        out.append(text, at, k - at).append(whole ? to : from);
+        at = end;
+      }
+      text = out.append(text, at, std::string::npos);
+    }
+    return text;
+  }
+
+  // a CSV text's records that name the folder rewritten (their cells quoted as csv_text does),
+  // every other record kept byte for byte
+  std::string apply_csv(const std::string& text) const {
+    std::string out;
+    std::size_t start = 0;
+    bool quoted = false;
+    for (std::size_t k = 0; k <= text.size(); ++k) {
+      if (k < text.size() && text[k] == '"') quoted = !quoted;
+      if (k < text.size() && (quoted || text[k] != '\n')) continue;
+      const std::string record = text.substr(start, k - start);
+      std::vector<std::string> cells = csv_fields(record);
+      bool changed = false;
+      for (std::string& c : cells) {
+        std::string renamed = apply(c);
+        changed = changed || renamed != c;
+        c = std::move(renamed);
+      }
+      if (changed) {
+        for (std::size_t c = 0; c < cells.size(); ++c) out.append(c ? "," : "").append(csv_text(cells[c]));
+      } else {
+        out += record;
+      }
+      if (k < text.size()) out += '\n';
+      start = k + 1;
+    }
+    return out;
+  }
+};
+
+std::optional<std::string> read_text(const std::filesystem::path& path) {
+  std::ifstream f(path, std::ios::binary);
+  if (!f) return std::nullopt;
+  std::ostringstream text;
+  text << f.rdbuf();
+  return text.str();
+}
+
+// the files of a point's folder (about to move, FolderMove) that beltsim wrote naming it,
+// rewritten to name its new place: point.csv's status and figures (the quick form's csv and
+// parameters, a path run(p) returned, a status naming the point's files), and every
+// parameters.csv in it or its subfolders (run.out). Anything else stays as written (log.txt,
+// checkpoints, the files run(p) wrote itself). output_error when one cannot be written
+void rename_in_folder(const OutputDir& folder, const FolderMove& move, bool top) {
+  namespace fs = std::filesystem;
+  std::vector<std::string> folders;
+  std::error_code ec;
+  for (fs::directory_iterator it(folder.path(), ec), end; !ec && it != end; it.increment(ec)) {
+    const std::string name = it->path().filename().string();
+    const fs::file_type type = it->symlink_status(ec).type();
+    if (type == fs::file_type::directory) folders.push_back(name);
+    if (type != fs::file_type::regular) continue;
+    if (top && name == kPointFile) {
+      std::optional<PointFile> pf = read_point_file(it->path());
+      if (!pf) continue;
+      PointResult r = pf->result;
+      r.status = move.apply(r.status);
+      for (auto& [figure, text] : r.figures) text = move.apply(text);
+      if (r.status == pf->result.status && r.figures == pf->result.figures) continue;
+      Point p;
+      p.id = pf->id;
+      for (const auto& [param, text] : pf->params) p.params.emplace_back(param, Value(text));
+      write_file_whole(folder, kPointFile, point_csv(p, r));
+    } else if (name == "parameters.csv") {
+      const std::optional<std::string> text = read_text(it->path());
+      if (!text) output_error(folder.file(name), "cannot read it to name the folder's new place");
+      if (const std::string renamed = move.apply_csv(*text); renamed != *text) write_file_whole(folder, name, renamed);
+    }
+  }
+  for (const std::string& name : folders) rename_in_folder(OutputDir(folder, name), move, false);
+}
+
+}  // namespace
+
 std::vector<std::string> move_stale_folders(const OutputDir& top, const std::vector<Point>& points) {
   namespace fs = std::filesystem;
   std::vector<std::string> ids;
@@ -234,6 +383,9 @@ std::vector<std::string> move_stale_folders(const OutputDir& top, const std::vec
     std::string to = name;
     for (int k = 2; fs::symlink_status(fs::path(earlier->path()) / to, ec).type() != fs::file_type::not_found; ++k)
       to = name + "-" + std::to_string(k);
+    // its files named as they will lie, before it moves: a rewriting that fails leaves it where
+    // it was, for the next run to move
+    rename_in_folder(OutputDir(top, name), FolderMove(top.path(), name, to), true);
     fs::rename(from, fs::path(earlier->path()) / to, ec);
     if (ec) output_error(earlier->file(to), "cannot move " + from.string() + " there: " + ec.message());
     moved.push_back(name);

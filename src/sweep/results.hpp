@@ -71,6 +71,14 @@ PointResult unique_columns(const Point& p, PointResult r);
 // the names of the parameters of the study DIR holds: the columns of its summary.csv between
 // `point` and `status`, else of the first point.csv in a folder of it; empty when it holds neither
 std::vector<std::string> study_parameters(const std::string& dir);
+// whether a study's folder may be written, both from study_parameters: "" when it may, else why not.
+// A quick study of the parameters `names` (the default folder out/<script> is every study's of
+// the script): DIR holds no study, or one of the same names (in any order)
+std::string other_study_refusal(const std::string& dir, const std::vector<std::string>& names);
+// a run's outputs, WHAT its key for the message ("run.out"): DIR holds no study. A run's files
+// among a study's would be taken for part of it (and a run into out/<script> is every quick
+// study's default folder)
+std::string study_folder_refusal(const std::string& what, const std::string& dir);
 
 // DIR, made when missing and claimed for this process until the object is destroyed (the lock
 // of io/output_dir.hpp); throws std::runtime_error naming DIR when another sweep holds it
@@ -89,7 +97,10 @@ Results current_results(const std::string& dir, const std::vector<Point>& points
 // the numbered folders of DIR (top) that are no point's of now and hold a point's point.csv or
 // log.txt (a point removed from the sweep, or numbered otherwise before), moved into
 // DIR/earlier/ (as NAME, or NAME-2, ... when taken), so that they are not taken for results; their
-// names, sorted. output_error when one cannot be moved
+// names, sorted. Before each moves, its point.csv (status, figures) and every parameters.csv in it
+// are rewritten where they name it (DIR/NAME as top names it, or its absolute path) to name it at
+// DIR/earlier/TO; the other files stay as written. output_error when one cannot be rewritten or
+// moved (it is then left where it was, for the next run)
 std::vector<std::string> move_stale_folders(const OutputDir& top, const std::vector<Point>& points);
 // what a sweep says of them: "sweep NAME: 9 folders of no point now moved to DIR/earlier/: 0, 1, ..."
 // ("" when none)

@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -150,6 +151,61 @@ TEST(SweepResults, RenumberedPointsRunAgainAndStaleFoldersMoveAside) {
   EXPECT_TRUE(fs::is_directory(dir + "/2024"));
   EXPECT_EQ(moved_line("s", top, {"0", "1"}), "sweep s: 2 folders of no point now moved to " + dir + "/earlier/: 0, 1");
   EXPECT_EQ(move_stale_folders(top, wide), std::vector<std::string>{});
+}
+
+// a folder moved to DIR/earlier/ names itself there in point.csv (its status and figures, not its
+// parameters or inputs) and in every parameters.csv in it; a path that only looks like it (DIR/10,
+// /x/DIR/1, DIR/1x, DIR/1.csv) and the other files stay as they were
+TEST(SweepResults, MovedFoldersNameTheirNewPlace) {
+  const std::string dir = results_folder("moved");
+  const std::string one = dir + "/1", ten = dir + "/10", new_one = dir + "/earlier/1";
+  const std::vector<Point> before = grid_points(Grid{{"at"}, {{Value(std::string("b")), Value(one)}}});
+  write_point_result(dir, before[1],
+                     PointResult{"diverged at t = 0.1 s: s.lua:3: runs away (the samples up to then are in " + one +
+                                     "/timeseries.csv)",
+                                 {{"csv", one + "/timeseries.csv"},
+                                  {"folder", one},
+                                  {"quoted", "\"" + one + "\",\n" + one + "/a"},
+                                  {"others", ten + " /x" + one + " " + one + "x " + one + ".csv"}},
+                                 "program: p\noptions: \nfile " + std::string(64, 'a') + " " + one + "/s.lua\n"});
+  const std::string params = "name,value,unit,source,note\nbelt.mu,1,,given,\"a, note\"\nrun.out," + one +
+                             ",,run,the output folder\nrun.frames.png,\"" + one + "/a,b\",,run,\"x\"\"y\"\n";
+  test::spit(one + "/parameters.csv", params);
+  fs::create_directories(one + "/sub");
+  test::spit(one + "/sub/parameters.csv", "run.out," + one + "/sub,,run,\n");
+  test::spit(one + "/log.txt", "the samples are in " + one + "/timeseries.csv\n");
+  const std::vector<Point> now = grid_points(Grid{{"at"}, {{Value(std::string("c"))}}});
+  EXPECT_EQ(move_stale_folders(OutputDir(dir), now), std::vector<std::string>{"1"});
+  const std::optional<PointResult> r = read_point_result(dir + "/earlier", Point{1, "1", before[1].params});
+  ASSERT_TRUE(r);
+  EXPECT_EQ(r->status,
+            "diverged at t = 0.1 s: s.lua:3: runs away (the samples up to then are in " + new_one + "/timeseries.csv)");
+  EXPECT_EQ(r->figures, (std::vector<std::pair<std::string, std::string>>{
+                            {"csv", new_one + "/timeseries.csv"},
+                            {"folder", new_one},
+                            {"quoted", "\"" + new_one + "\",\n" + new_one + "/a"},
+                            {"others", ten + " /x" + one + " " + one + "x " + one + ".csv"}}));
+  EXPECT_EQ(r->inputs, "program: p\noptions: \nfile " + std::string(64, 'a') + " " + one + "/s.lua\n");
+  EXPECT_EQ(test::slurp(new_one + "/parameters.csv"),
+            "name,value,unit,source,note\nbelt.mu,1,,given,\"a, note\"\nrun.out," + new_one +
+                ",,run,the output folder\nrun.frames.png,\"" + new_one + "/a,b\",,run,\"x\"\"y\"\n");
+  EXPECT_EQ(test::slurp(new_one + "/sub/parameters.csv"), "run.out," + new_one + "/sub,,run,\n");
+  EXPECT_EQ(test::slurp(new_one + "/log.txt"), "the samples are in " + one + "/timeseries.csv\n");
+}
+
+// the parameters of the study a folder holds: summary.csv's header (read no further: a quoted name
+// may hold a line break, a row need not be whole), else a point's point.csv, else none
+TEST(SweepResults, StudyParametersAreReadFromTheHeaders) {
+  const std::string dir = results_folder("study");
+  EXPECT_EQ(study_parameters(dir), std::vector<std::string>{});
+  EXPECT_EQ(study_parameters(dir + "/missing"), std::vector<std::string>{});
+  const std::vector<Point> points = grid_points(Grid{{"a\nb", "mu"}, {{Value(1LL)}, {Value(0.3), Value(1.0)}}});
+  write_point_result(dir, points[1], PointResult{"ok", {{"x", "1"}}, ""});
+  EXPECT_EQ(study_parameters(dir), (std::vector<std::string>{"a\nb", "mu"}));
+  test::spit(dir + "/summary.csv", "point,\"p\nq\",status,x\n0,1,ok,\"unfinished");
+  EXPECT_EQ(study_parameters(dir), (std::vector<std::string>{"p\nq"}));
+  test::spit(dir + "/summary.csv", "a,b\n");  // not a summary: the points' folders say
+  EXPECT_EQ(study_parameters(dir), (std::vector<std::string>{"a\nb", "mu"}));
 }
 
 }  // namespace

@@ -98,6 +98,36 @@ class SweepErrors(SweepCase):
         p = self.run_beltsim("sweep", GRID, "--collect", "--out", "grid", ok=(1,))
         self.assertIn("1 ok, 0 failed, 5 not run", p.stderr)
 
+    def test_a_run_into_a_study_is_refused(self):
+        # `beltsim run S.lua` after `beltsim sweep S.lua --set ...` wrote its outputs into out/S,
+        # the study's folder, among its summary.csv and points
+        def tree(top):
+            found = {}
+            for folder, _, files in os.walk(self.path(top)):
+                for name in files:
+                    with open(os.path.join(folder, name), "rb") as f:
+                        found[os.path.relpath(os.path.join(folder, name), self.dir)] = f.read()
+            return found
+
+        self.run_beltsim("sweep", PLAIN, "--set", "pretension=300,500")
+        self.run_beltsim("sweep", GRID, "--point", "1")  # a study of one point, without summary.csv yet
+        before = tree("out")
+        shutil.copy(DRIVE, self.dir)  # (--trusted: require from the folder beltsim runs in)
+        for script, args, folder, names in ((PLAIN, [], "out/plain", "pretension"),
+                                            (PLAIN, ["--out", "out/plain"], "out/plain", "pretension"),
+                                            (PLAIN, ["--out", "out/grid/", "--trusted"], "out/grid/", "mu, pretension")):
+            p = self.run_beltsim("run", script, *args, ok=(1,))
+            self.assertIn("beltsim: %s:4: run.out: the output folder %s holds a study of `beltsim sweep` (its "
+                          "summary.csv and a folder per point; its points vary %s), among whose files this run's "
+                          "outputs would lie: give the run a folder of its own (--out DIR, or out = ... in the "
+                          "script), or remove %s first\n" % (script, folder, names, folder), p.stderr)
+            self.assertEqual(tree("out"), before)
+        # elsewhere it runs; so do wp (its runs go to out/plain/wp) and a point of the study
+        self.run_beltsim("run", PLAIN, "--out", "out/plain_run")
+        self.run_beltsim("wp", PLAIN, "--integrators", "esdirk32", "--rtols", "1e-2", "--ref-rtol", "1e-3")
+        self.assertTrue(os.path.exists(self.path("out", "plain", "wp", "wp.csv")))
+        self.run_beltsim("sweep", PLAIN, "--set", "pretension=300,500", "--point", "1")
+
     def test_sbatch_missing_is_an_error_not_an_abort(self):
         empty = self.path("bin")
         os.mkdir(empty)

@@ -224,14 +224,24 @@ class Sweep(SweepCase):
             f.write("return beltsim.sweep { grid = { mu = {0.3, 1} }, run = function(p) return { twice = 2 * p.mu } end }\n")
         self.run_beltsim("sweep", script, "--jobs", "1")
         before = {name: self.read("out", "twice", *name) for name in (("summary.csv",), ("0", "point.csv"))}
-        for out in ([], ["--out", "elsewhere"], ["--slurm"]):
+        # --list printed the --set lists' points, and --point 0 replaced point 0's point.csv with an error
+        for out in ([], ["--out", "elsewhere"], ["--slurm"], ["--list"], ["--point", "0"]):
             p = self.run_beltsim("sweep", script, "--set", "mu=0.3,1", *out, ok=(2,))
             self.assertIn("beltsim: %s is a sweep file (it returns beltsim.sweep{...}): its points are its grid or "
                           "samples; --set lists are for an ordinary script (the quick form): run `beltsim sweep %s` "
                           "without them\n" % (script, script), p.stderr)
+            self.assertEqual(p.stdout, "")
         self.assertEqual({name: self.read("out", "twice", *name) for name in before}, before)
         self.assertEqual(sorted(os.listdir(self.path("out", "twice"))), ["0", "1", "summary.csv"])
         self.assertFalse(os.path.exists(self.path("elsewhere")))
+        # what an ordinary script prints before its first scene:run (run to tell it from a sweep
+        # file) is not among --list's rows
+        shutil.copy(DRIVE, self.dir)
+        with open(PLAIN) as f, open(self.path("talks.lua"), "w") as g:
+            g.write("print('mu is', beltsim.args.mu)\n" + f.read())
+        p = self.run_beltsim("sweep", "talks.lua", "--set", "mu=0.3,1", "--set", "pretension=500", "--list")
+        self.assertEqual(p.stdout, "point,mu,pretension\n0,0.3,500\n1,1,500\n")
+        self.assertIn("mu is\t0.3\n", p.stderr)
 
     def test_an_ordinary_script_without_set_lists_is_refused_before_it_runs(self):
         # it ran whole, into out/<script> whatever --out said, and was refused after
@@ -428,14 +438,18 @@ class Sweep(SweepCase):
     def test_a_quick_study_of_other_parameters_is_refused_its_folder(self):
         # out/<script> is every quick study's of the script: one of other --set names replaced the
         # earlier study's summary.csv and points without a word
+        # (--point K, as the sweep's points run or by hand, replaced point K's folder)
         self.run_beltsim("sweep", PLAIN, "--set", "pretension=300,500")
-        before = self.read("out", "plain", "summary.csv")
+        files = ("summary.csv",), ("0", "point.csv"), ("0", "timeseries.csv")
+        before = {f: self.read("out", "plain", *f) for f in files}
         for lists in (["--set", "mu=0.3,1"], ["--set", "pretension=300,500", "--set", "mu=0.3,1"]):
-            p = self.run_beltsim("sweep", PLAIN, *lists, ok=(1,))
-            self.assertIn("beltsim: out/plain holds another study (its points vary pretension, these vary %s), whose "
-                          "summary.csv and points this one would replace: give it a folder of its own (--out DIR), "
-                          "or remove out/plain first\n" % ("mu" if len(lists) == 2 else "pretension, mu"), p.stderr)
-            self.assertEqual(self.read("out", "plain", "summary.csv"), before)
+            for point in ([], ["--point", "0"]):
+                p = self.run_beltsim("sweep", PLAIN, *lists, *point, ok=(1,))
+                self.assertIn("beltsim: out/plain holds another study (its points vary pretension, these vary %s), "
+                              "whose summary.csv and points this one would replace: give it a folder of its own "
+                              "(--out DIR), or remove out/plain first\n" % ("mu" if len(lists) == 2 else "pretension, mu"),
+                              p.stderr)
+                self.assertEqual({f: self.read("out", "plain", *f) for f in files}, before)
         self.run_beltsim("sweep", PLAIN, "--set", "mu=0.3,1", "--out", "out/plain_mu")
         self.assertEqual(rows(self.path("out", "plain_mu", "summary.csv"))[0][:3], ["point", "mu", "status"])
 
@@ -456,6 +470,14 @@ class Sweep(SweepCase):
         self.assertEqual(sorted(os.listdir(self.path("out", "plain"))),
                          ["%02d" % k for k in range(12)] + ["earlier", "summary.csv"])
         self.assertEqual([r[3] for r in rows(self.path("out", "plain", "summary.csv"))[1:]], ["ok"] * 12)
+        # a moved folder's point.csv and parameters.csv name it where it lies now, not out/plain/1,
+        # where it ran (and where another point's files may lie later)
+        moved = dict(zip(*rows(self.path("out", "plain", "earlier", "1", "point.csv"))))
+        self.assertEqual((moved["point"], moved["pretension"], moved["mu"]), ("1", "300", "0.5"))
+        self.assertEqual((moved["csv"], moved["parameters"]), ("out/plain/earlier/1/timeseries.csv",
+                                                              "out/plain/earlier/1/parameters.csv"))
+        self.assertIn(["run.out", "out/plain/earlier/1", "", "run", "the output folder"],
+                      rows(self.path("out", "plain", "earlier", "1", "parameters.csv")))
 
     def test_slurm_with_nothing_left_leaves_the_job_scripts(self):
         # --slurm --time, the points then run (here, as the array's tasks would), --slurm again
