@@ -600,6 +600,32 @@ class ConsoleAndPage(unittest.TestCase):
         self.assertEqual(proc.wait(timeout=120), 0)
         c.close()
 
+    def test_a_change_after_close_is_refused_at_once(self):
+        """the simulation the page shows closed at the prompt (sim:close(), or finalised by the
+        collector): the page's status says so and a change is refused at once (409) and reaches
+        no simulation. After sim:close() the console's prompt went on feeding the closed
+        simulation to the page: "queued", then its sample, its picture and "refused: set_torque:
+        the simulation is closed" """
+        for ending, why in [(b"sim:close()", "closed"), (b"sim = nil; collectgarbage()", "finalised")]:
+            d, proc = self.console("beltsim_live_closed_", subprocess.PIPE)
+            live, c, it = self.page(proc)
+            proc.stdin.write(b"sim:run_to(0.01)\n" + ending + b"\nprint('ready')\n")
+            proc.stdin.flush()
+            for line in proc.stdout:
+                if line == b"ready\n":
+                    break
+            live.wait_status(it, "%s at t = 0.01 s" % why, within=30)
+            for query in ["do=torque&pulley=driven&value=-65", "do=save&name=x.ckpt", "do=pause"]:
+                self.assertEqual(live.post(query), (409, "refused: %s: no simulation to change (it is %s)\n" %
+                                                     (query.split("&")[0][3:], why)), ending)
+            c.close()
+            proc.stdin.close()
+            proc.stdout.read()
+            self.assertEqual(proc.wait(timeout=120), 0, proc.stderr.read().decode())
+            proc.stderr.close()
+            self.assertEqual([r for r in events_csv(os.path.join(d, "out")) if r[1] == "driven.torque"], [], ending)
+            self.assertFalse(os.path.exists(os.path.join(d, "out", "x.ckpt")), ending)
+
     def test_sim_serve_at_the_prompt(self):
         """sim:serve{} typed at the prompt, then sim:run_to(T): a torque from its page is applied
         at the prompt at T (it stayed queued until the next run_to)"""
