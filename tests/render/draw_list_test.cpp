@@ -263,15 +263,16 @@ TEST_F(Fixture, TextAndColourBarSayWhatIsShown) {
   EXPECT_TRUE(has("colour: belt tension [N]"));
   EXPECT_TRUE(has("deformation \u00d720"));
   // the driver's rim runs 1 % ahead of the belt's 6 m/s mean speed (moving_state): ω = −60.6 rad/s;
-  // slip is the pulley's slip_speed, the belt on its wrap minus the rim (model/observables.hpp):
-  // here, every element slipping one way or the other (±3 % about 6 m/s), what the run slipping
-  // backwards before the driver's exit and forwards before the driven pulley's gives
+  // slip is the pulley's slip_pitch, the belt on its wrap minus the rim's pitch line
+  // (model/observables.hpp): here, every element slipping one way or the other (±3 % about
+  // 6 m/s), what the run slipping backwards before the driver's exit and forwards before the
+  // driven pulley's gives
   Observation o;
   observe(sc.model, sc.drive, sc.senses(), 0.125, y.data(), o);
-  EXPECT_NEAR(o.pulleys[0].slip_speed, -0.118, 5e-4);
-  EXPECT_NEAR(o.pulleys[1].slip_speed, 0.115, 5e-4);
-  EXPECT_TRUE(has("driver: \u03c9 = \u221260.60 rad/s, slip \u22120.118 m/s"));
-  EXPECT_TRUE(has("driven: \u03c9 = \u221259.40 rad/s, slip +0.115 m/s"));
+  EXPECT_NEAR(o.pulleys[0].slip_pitch, -0.112, 5e-4);
+  EXPECT_NEAR(o.pulleys[1].slip_pitch, 0.121, 5e-4);
+  EXPECT_TRUE(has("driver: \u03c9 = \u221260.60 rad/s, slip \u22120.112 m/s"));
+  EXPECT_TRUE(has("driven: \u03c9 = \u221259.40 rad/s, slip +0.121 m/s"));
   for (const char* s : {"belt tension", "[N]", "0", "1000", "wet (\u03bc < 1)", "slipping"}) EXPECT_TRUE(has(s)) << s;
 }
 
