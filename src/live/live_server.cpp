@@ -216,7 +216,7 @@ std::string LiveServer::url() const {
   return "http://" + settings_.host + ":" + std::to_string(port_) + "/?token=" + token_;
 }
 
-void LiveServer::begin_run(const void* key, const std::string& name, std::vector<std::string> columns,
+void LiveServer::begin_run(std::uint64_t key, const std::string& name, std::vector<std::string> columns,
                            std::vector<std::string> pulleys) {
   {
     const std::lock_guard<std::mutex> lock(m_);

@@ -73,8 +73,10 @@ class LiveServer {
 
   // ---- from the owning loop ----------------------------------------------------------------
   // a run starts: its name (the output folder) and the columns its samples carry; the history is
-  // cleared unless key (the run's identity) is that of the run before (a live simulation going on)
-  void begin_run(const void* key, const std::string& name, std::vector<std::string> columns,
+  // cleared unless key (the simulation's Simulation::id, never 0) is that of the run before (a
+  // live simulation going on). Not its address: a simulation gone leaves it to the next one (two
+  // scene:run{} in a row), whose run kept the first's plot, name and columns
+  void begin_run(std::uint64_t key, const std::string& name, std::vector<std::string> columns,
                  std::vector<std::string> pulleys);
   void publish(Sample s);
   // the run's state as the page shows it ("running", "paused", "finished", ...)
@@ -139,7 +141,7 @@ class LiveServer {
   bool page_opened_ = false;
   // the run's number (a stream that has sent none is at 0), the last sample's, the status's
   std::uint64_t run_ = 1, seq_ = 0, status_serial_ = 1;
-  const void* key_ = nullptr;
+  std::uint64_t key_ = 0;  // the run's simulation (Simulation::id; 0: none yet)
   std::string run_name_, status_ = "waiting";
   std::vector<std::string> columns_, pulleys_;
   std::deque<Command> commands_;

@@ -107,13 +107,16 @@ std::vector<Mark> shown_marks(const PlotSpec& spec, double x0, double x1) {
   return shown;
 }
 
+// [px] the width a mark's label takes beside its line (9 pt, boxed, and the gap to the line)
+constexpr double kMarkLabelPx = 22;
+
 // the legend inside a panel's top left (or right), as a mark's label must keep clear of it: its
 // width and the panel's width in pixels, and the share of the panel's height it takes from the top
 struct LegendBox {
   double width_px = 0, panel_width_px = 1, height_share = 0;
   bool right = false;
   // whether the label of a mark at the share `at` of the panel's width, reading up from the top
-  // right of its line (about 22 pixels wide), would cross it
+  // right of its line (kMarkLabelPx wide), would cross it
   bool covers(double at) const {
     const double x = at * panel_width_px;
     return width_px > 0 && (right ? x + 30 > panel_width_px - width_px : x < width_px);
@@ -121,9 +124,11 @@ struct LegendBox {
 };
 
 // the marks inside [x0, x1]: dashed grey lines on every panel, their labels right of the line,
-// reading upwards to the top, shortened to `label_px` (none for 0). A label that would cross the
-// legend (a mark under it) reads upwards to just below it instead, shortened to the height left there
-void mark_lines(std::ostringstream& g, const PlotSpec& spec, double x0, double x1, double label_px,
+// reading upwards to the top, shortened to `label_px` (none for 0); left of it where the panel
+// (`width_px` wide) has no room for it on the right: a mark at the window's end had its label
+// outside the frame. A label that would cross the legend (a mark under it) reads upwards to just
+// below it instead, shortened to the height left there
+void mark_lines(std::ostringstream& g, const PlotSpec& spec, double x0, double x1, double label_px, double width_px,
                 const LegendBox& legend = {}) {
   // 9 pt: under 7 pixels a character
   const auto fitting = [](double px) { return static_cast<size_t>(std::max(0.0, px / 7.0)); };
@@ -137,12 +142,15 @@ void mark_lines(std::ostringstream& g, const PlotSpec& spec, double x0, double x
     ++k;
     g << "set arrow " << k << " from " << number_text(m.x) << ", graph 0 to " << number_text(m.x)
       << ", graph 1 nohead dt 2 lw 1 lc rgb '#777777' back\n";
-    const bool under = legend.covers(x1 > x0 ? (m.x - x0) / (x1 - x0) : 0);
+    const double at = x1 > x0 ? (m.x - x0) / (x1 - x0) : 0;
+    const bool under = legend.covers(at);
     const size_t chars = under ? below : fitting(label_px);
+    // a label right of its line, boxed, takes about kMarkLabelPx pixels
+    const bool left = (1 - at) * width_px < kMarkLabelPx;
     if (chars >= 4)
       g << "set label " << k << " " << gnuplot_string(shortened(m.label, chars)) << " at " << number_text(m.x)
-        << ", graph " << (under ? number_text(top) : std::string("0.98"))
-        << " right rotate by 90 offset 1,0 font ',9' tc rgb '#555555' front boxed\n";
+        << ", graph " << (under ? number_text(top) : std::string("0.98")) << " right rotate by 90 offset "
+        << (left ? "-0.8" : "1") << ",0 font ',9' tc rgb '#555555' front boxed\n";
   }
 }
 
@@ -283,7 +291,9 @@ std::string plot_script(const PlotSpec& spec, const std::string& png) {
     if (groups.size() == 2) {
       g << "set ytics nomirror\nset y2tics\nset y2label " << gnuplot_string(axis_label(spec, groups[1])) << "\n";
     }
-    if (!spec.points) mark_lines(g, spec, t0, t1, 0.6 * spec.height);
+    // (the panel: the picture's width but for the axes' numbers and labels, about 100 pixels a side
+    // that has them)
+    if (!spec.points) mark_lines(g, spec, t0, t1, 0.6 * spec.height, spec.width - (groups.size() == 2 ? 200.0 : 100.0));
     plot_command(g, spec, all, groups.size() == 2, groups.size() == 2 ? groups[1].series : std::vector<int>{},
                  groups.size() == 2);
   } else {
@@ -338,7 +348,7 @@ std::string plot_script(const PlotSpec& spec, const std::string& png) {
       const double key = std::min(0.6, (17.0 * static_cast<double>(groups[p].series.size()) + 22) / panel_px);
       g << "set offsets 0, 0, graph " << number_text(key / (1 - key)) << ", 0\n";
       legend.height_share = key;
-      if (!spec.points) mark_lines(g, spec, t0, t1, p == 0 ? 0.9 * panel_px : 0, legend);
+      if (!spec.points) mark_lines(g, spec, t0, t1, p == 0 ? 0.9 * panel_px : 0, legend.panel_width_px, legend);
       plot_command(g, spec, groups[p].series, false, {}, false);
     }
     g << "unset multiplot\n";

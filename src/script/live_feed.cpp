@@ -95,7 +95,7 @@ void LiveFeed::watch(Simulation* sim, const char* at_end) {
   if (!columns.empty() && columns.front() == "t") columns.erase(columns.begin());
   std::vector<std::string> pulleys;
   for (const Pulley& p : sim->model().pulleys) pulleys.push_back(p.name);
-  server_->begin_run(sim, sim->out_dir(), std::move(columns), std::move(pulleys));
+  server_->begin_run(sim->id(), sim->out_dir(), std::move(columns), std::move(pulleys));
   last_t_ = sim->now(), last_wall_ = -1;
 }
 

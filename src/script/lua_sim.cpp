@@ -398,6 +398,18 @@ int l_serve(lua_State* L) {
   return 1;
 }
 
+// box's simulation is closed or being finalised (why: "closed", "finalised"): when --serve's page
+// shows it, nothing more is fed to it (the console's prompt fed it a closed simulation's sample,
+// picture and refusals) and the page's controls are refused at once, as after a scene:run{},
+// until the next run or simulation
+void leave_page(SimBox& box, const char* why) {
+  if (!box.ctx || !box.sim || box.ctx->page_sim != box.sim.get()) return;
+  box.ctx->page_sim = nullptr, box.ctx->page_key = nullptr;
+  if (!box.ctx->serve) return;
+  box.ctx->serve->set_status(std::string(why) + " at t = " + rounded_text(box.sim->now(), 6) + " s");
+  box.ctx->serve->refuse_controls(std::string("no simulation to change (it is ") + why + ")");
+}
+
 // sim:close(): flush the CSV files, finalise the video
 int l_close(lua_State* L) {
   SimBox* box = check_box(L, "close");
@@ -407,6 +419,7 @@ int l_close(lua_State* L) {
     fail(L, "sim:close: this simulation is running (this is one of its callbacks); close it after sim:run_to or "
             "sim:advance returns");
   const bool was_open = !box->sim->closed();
+  leave_page(*box, "closed");  // first: a close that fails (an output not written) has closed it too
   guarded(L, "sim:close", [&] { box->sim->close(); });
   box->ctx->served.erase(lua_topointer(L, 1));
   box->serve.reset();
@@ -431,7 +444,7 @@ int l_gc(lua_State* L) {
   }
   // emptied rather than destroyed: a finaliser that runs later (another object's __gc) may still
   // reach this userdata, and must find "finalised" (sim == nullptr), not a dead object
-  if (box->ctx && box->ctx->page_sim == box->sim.get()) box->ctx->page_sim = nullptr;
+  leave_page(*box, "finalised");
   if (box->ctx) box->ctx->served.erase(lua_topointer(L, 1));
   box->serve.reset();
   box->sim.reset();

@@ -43,12 +43,18 @@ class Scoped {
   T saved_;
 };
 
+// Simulation::id(): from 1, never reused (the live view keys a run by it: live/live_server.hpp)
+std::uint64_t next_id() {
+  static std::atomic<std::uint64_t> last{0};
+  return ++last;
+}
+
 }  // namespace
 
 Simulation::Simulation(const Scene& sc, const RunSettings& rs) : Simulation(sc, rs, true) {}
 
 Simulation::Simulation(const Scene& sc, const RunSettings& rs, bool fresh)
-    : scene_(sc), rs_(rs), drive_(sc.drive), from_start_(fresh) {
+    : scene_(sc), rs_(rs), drive_(sc.drive), id_(next_id()), from_start_(fresh) {
   check(scene_, rs_, false);
   warn_contract_misses();
   sense_ = scene_.senses();

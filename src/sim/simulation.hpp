@@ -9,6 +9,7 @@
 #pragma once
 
 #include <atomic>
+#include <cstdint>
 #include <functional>
 #include <map>
 #include <memory>
@@ -125,6 +126,9 @@ class Simulation {
   std::vector<std::string> columns() const;  // of timeseries.csv
   std::vector<double> sample_row() const;    // the row timeseries.csv would get now
   const std::string& out_dir() const { return rs_.out_dir; }
+  // a number no other simulation of this process has had, from 1: its identity where its address
+  // is not one (a simulation gone leaves its address to the next, e.g. scene:run{}'s on the stack)
+  std::uint64_t id() const { return id_; }
   std::string csv_path() const;
   std::string snapshots_path() const;  // written only when snapshots are asked for
   bool has_snapshots() const;
@@ -258,6 +262,7 @@ class Simulation {
   std::string end_status_ = "ok", end_note_;
   std::vector<std::string> misses_warned_;  // warn_contract_misses()' warnings given
   bool decoupler_warned_ = false;           // the overrunning decoupler's among them
+  const std::uint64_t id_;
   bool from_start_ = true;                  // its samples since t = 0 were seen here (not resumed)
   bool overran_ = false;                    // a one-way clutch overran at one of them (σ < 0, model/coupling.cpp)
   // the state the reads see when it is not the integrator's now: an output's time, or the time a

@@ -551,6 +551,81 @@ class ConsoleAndPage(unittest.TestCase):
         self.change_at_the_prompt(d, proc, live, it, t)
         c.close()
 
+    def test_each_run_a_plot_of_its_own(self):
+        """two scene:run{} in a row, the second with columns of its own (two probes): the page gets
+        a run of each, the second's name and columns and its samples alone (from t = 0). The page
+        keyed a run by the simulation's address, and run(){}'s simulation lives on the stack: the
+        second had the first's address, and the page kept the first's name, columns and plot"""
+        d = tempfile.mkdtemp(prefix="beltsim_live_runs_")
+        self.addCleanup(shutil.rmtree, d, True)
+        with open(os.path.join(d, "c.lua"), "w") as f:
+            f.write(two_pulley(elements=40) + "the_drive = drive\n")
+        proc = subprocess.Popen([BELTSIM, "console", "c.lua", "--serve"], cwd=d, stdin=subprocess.PIPE,
+                                stdout=subprocess.DEVNULL, stderr=subprocess.PIPE)
+        self.addCleanup(proc.kill)
+        live, c, _ = self.page(proc)
+        c.close()  # the page's events as they come, not its statuses alone
+        c = http.client.HTTPConnection(live.url.hostname, live.url.port, timeout=60)
+        c.request("GET", "/events?token=" + live.token)
+        stream = events(c.getresponse())
+        runs = []
+        for command, name, t_end in [(b"the_drive:run { t_end = 0.002, out = 'first', progress = false }\n",
+                                      "first", 0.002),
+                                     (b"the_drive:run { t_end = 0.003, out = 'second', probe = { 12, 30 }, "
+                                      b"progress = false }\n", "second", 0.003)]:
+            proc.stdin.write(command)
+            proc.stdin.flush()
+            end = time.monotonic() + 60  # a bound on a failure: the run event never came
+            samples = None  # this run's, from its run event on
+            for name_, data in stream:
+                if name_ == "run":
+                    samples = [] if json.loads(data)["name"] == name else None
+                    runs.append(json.loads(data))
+                elif name_ == "samples" and samples is not None:
+                    samples += [row[0] for row in json.loads(data)]
+                elif name_ == "status" and json.loads(data) == "finished" and samples:
+                    break
+                self.assertLess(time.monotonic(), end, (name, [r["name"] for r in runs]))
+            self.assertEqual(runs[-1]["name"], name)
+            self.assertEqual(samples[0], 0, name)  # its own samples only, from t = 0 to its end
+            self.assertEqual(samples, sorted(samples), name)
+            self.assertAlmostEqual(samples[-1], t_end, places=12)
+        first, second = runs[-2], runs[-1]
+        self.assertEqual(first["name"], "first")
+        self.assertIn("probe.normal_force", first["columns"])
+        self.assertNotIn("probe1.normal_force", first["columns"])
+        self.assertEqual([k for k in ("probe.normal_force", "probe1.normal_force", "probe2.normal_force")
+                          if k in second["columns"]], ["probe1.normal_force", "probe2.normal_force"])
+        proc.stdin.close()
+        self.assertEqual(proc.wait(timeout=120), 0)
+        c.close()
+
+    def test_a_change_after_close_is_refused_at_once(self):
+        """the simulation the page shows closed at the prompt (sim:close(), or finalised by the
+        collector): the page's status says so and a change is refused at once (409) and reaches
+        no simulation. After sim:close() the console's prompt went on feeding the closed
+        simulation to the page: "queued", then its sample, its picture and "refused: set_torque:
+        the simulation is closed" """
+        for ending, why in [(b"sim:close()", "closed"), (b"sim = nil; collectgarbage()", "finalised")]:
+            d, proc = self.console("beltsim_live_closed_", subprocess.PIPE)
+            live, c, it = self.page(proc)
+            proc.stdin.write(b"sim:run_to(0.01)\n" + ending + b"\nprint('ready')\n")
+            proc.stdin.flush()
+            for line in proc.stdout:
+                if line == b"ready\n":
+                    break
+            live.wait_status(it, "%s at t = 0.01 s" % why, within=30)
+            for query in ["do=torque&pulley=driven&value=-65", "do=save&name=x.ckpt", "do=pause"]:
+                self.assertEqual(live.post(query), (409, "refused: %s: no simulation to change (it is %s)\n" %
+                                                     (query.split("&")[0][3:], why)), ending)
+            c.close()
+            proc.stdin.close()
+            proc.stdout.read()
+            self.assertEqual(proc.wait(timeout=120), 0, proc.stderr.read().decode())
+            proc.stderr.close()
+            self.assertEqual([r for r in events_csv(os.path.join(d, "out")) if r[1] == "driven.torque"], [], ending)
+            self.assertFalse(os.path.exists(os.path.join(d, "out", "x.ckpt")), ending)
+
     def test_sim_serve_at_the_prompt(self):
         """sim:serve{} typed at the prompt, then sim:run_to(T): a torque from its page is applied
         at the prompt at T (it stayed queued until the next run_to)"""

@@ -10,6 +10,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <functional>
@@ -341,6 +342,52 @@ TEST(Plot, EventsBesideTheCsvAreDrawn) {
   // a dashed line across the plot (about 600 pixels high, half of them dashes) and its label
   EXPECT_GT(differing(plain_one, marked_one), 200);
   EXPECT_GT(differing(plain_panels, marked_panels), 200);
+}
+
+// an event at the window's very end: its label was drawn right of its line, which is the frame's
+// right edge, outside the frame (over the right margin, or the right axis's numbers). It goes left
+// of the line where it has no room on the right: the picture differs from the plain one only
+// within the frame, one panel and stacked
+TEST(Plot, ALabelAtTheWindowsEndIsInsideTheFrame) {
+  PlotSpec spec;
+  spec.file = "unused.png";
+  spec.series = {series("driver.omega", "rad/s")};
+  spec.marks = {{0.1, "driven.torque -5"}, {0.2, "note checkpoint end.ckpt saved"}};
+  std::string g = plot_script(spec, "p.png");
+  EXPECT_NE(g.find("at 0.1, graph 0.98 right rotate by 90 offset 1,0"), std::string::npos) << g;
+  EXPECT_NE(g.find("at 0.2, graph 0.98 right rotate by 90 offset -0.8,0"), std::string::npos) << g;
+  spec.series.push_back(series("span_driver_driven.tension", "N"));
+  spec.series.push_back(series("probe.slip_velocity", "m/s"));
+  g = plot_script(spec, "p.png");
+  EXPECT_NE(g.find("at 0.1, graph 0.98 right rotate by 90 offset 1,0"), std::string::npos) << g;
+  EXPECT_NE(g.find("at 0.2, graph 0.98 right rotate by 90 offset -0.8,0"), std::string::npos) << g;
+
+  const fs::path d = dir("end_label");
+  const std::string csv = small_csv(d);
+  for (const std::vector<std::string>& columns :
+       {std::vector<std::string>{"driver.omega"},
+        std::vector<std::string>{"driver.omega", "span_driver_driven.tension", "probe.slip_velocity"}}) {
+    fs::remove(d / "events.csv");
+    plot_csv(csv, columns, 0, (d / "plain.png").string());
+    write(d / "events.csv", "t,what,value\n0.1,note,checkpoint end.ckpt saved\n");  // the last sample's t
+    plot_csv(csv, columns, 0, (d / "marked.png").string());
+    const Image plain = read_png((d / "plain.png").string()), marked = read_png((d / "marked.png").string());
+    ASSERT_EQ(plain.rgb.size(), marked.rgb.size());
+    // the frame's right edge: the rightmost column dark over a third of the height
+    int edge = -1;
+    for (int x = 0; x < plain.width; ++x) {
+      int dark = 0;
+      for (int y = 0; y < plain.height; ++y) dark += plain.pixel(x, y)[0] < 100;
+      if (dark > plain.height / 3) edge = x;
+    }
+    ASSERT_GT(edge, plain.width / 2) << columns.size();
+    int differing = 0, right_of_edge = 0;
+    for (int y = 0; y < plain.height; ++y)
+      for (int x = 0; x < plain.width; ++x)
+        if (std::memcmp(plain.pixel(x, y), marked.pixel(x, y), 3) != 0) ++differing, right_of_edge += x > edge;
+    EXPECT_GT(differing, 200) << columns.size();  // the label is drawn
+    EXPECT_EQ(right_of_edge, 0) << columns.size() << " columns, the frame's edge at x = " << edge;
+  }
 }
 
 TEST(Plot, ClearErrors) {
