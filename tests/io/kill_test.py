@@ -325,10 +325,11 @@ def full_file_system():
             params = f.read()
         with open(os.path.join(room, "parameters.csv"), "rb") as f:
             ref_params = f.read()
-        # the model's rows as the run with room has them (the warning.* rows, added at the end, count
-        # what each run met before it ended; run.out is each run's own folder)
+        # the model's rows as the run with room has them (the warning.* and end.* rows, added at the
+        # end, count what each run met before it ended and say how it ended; run.out is each run's
+        # own folder)
         def model_rows(text):
-            return [r for r in text.split(b"\n") if not r.startswith(b"warning.") and not r.startswith(b"run.out,")]
+            return [r for r in text.split(b"\n") if not r.startswith((b"warning.", b"end.", b"run.out,"))]
         check(model_rows(params) == model_rows(ref_params) and len(model_rows(params)) > 40 and params.endswith(b"\n"),
               "full file system: parameters.csv as it was written before the disk filled")
     finally:
