@@ -289,7 +289,8 @@ class CvodeIntegrator final : public Integrator {
     if (ses_.error) std::rethrow_exception(std::exchange(ses_.error, nullptr));
     if (flag < 0)
       throw DivergenceError(t_, "cvode stopped at t = " + rounded_text(t_, 9) + " s: " + CVodeGetReturnFlagName(flag) +
-                                    (ses_.last_error.empty() ? "" : " (" + ses_.last_error + ")"));
+                                    (ses_.last_error.empty() ? "" : " (" + ses_.last_error + ")") + "; " +
+                                    largest_error());
     if (flag == CV_TSTOP_RETURN) t_ret = t_land, tstop_ = std::nan("");  // SUNDIALS 6 clears a reached stop time
     // a kink located: restart there (at the next step, as after a stall), unless the last
     // restart was fewer than kink_gap steps ago (CvodeSettings::kink_gap)
@@ -302,7 +303,8 @@ class CvodeIntegrator final : public Integrator {
     if (!(std::abs(h_now) >= 16 * std::numeric_limits<double>::epsilon() * std::max(1.0, std::abs(t_ret))))
       throw DivergenceError(t_ret, "cvode: the step size collapsed to " + rounded_text(h_now, 9) + " s at t = " +
                                        rounded_text(t_ret, 9) + " s" +
-                                       (ses_.last_error.empty() ? "" : " (" + ses_.last_error + ")"));
+                                       (ses_.last_error.empty() ? "" : " (" + ses_.last_error + ")") + "; " +
+                                       largest_error());
     const double* yr = N_VGetArrayPointer(cv_.y);
     if (const std::string bad = problem_.check(t_ret, yr); !bad.empty())
       throw DivergenceError(t_ret, "the run diverged at t = " + rounded_text(t_ret, 9) + " s: " + bad);
@@ -325,6 +327,23 @@ class CvodeIntegrator final : public Integrator {
 
   // a known kink at t(): restart the BDF history there
   void kink() override { start(t_, y_); }
+
+  // "the largest error is in <component>" for the stop messages, as the one-step methods say it:
+  // the component of the largest weighted local error estimate of CVODE's last attempt
+  std::string largest_error() const {
+    const int n = problem_.size();
+    N_Vector ele = N_VClone(cv_.y), w = N_VClone(cv_.y);
+    int worst = -1;
+    if (ele && w && CVodeGetEstLocalErrors(cv_.mem, ele) == CV_SUCCESS && CVodeGetErrWeights(cv_.mem, w) == CV_SUCCESS) {
+      const double *e = N_VGetArrayPointer(ele), *wt = N_VGetArrayPointer(w);
+      double largest = 0;
+      for (int k = 0; k < n; ++k)
+        if (const double ek = std::abs(e[k] * wt[k]); std::isfinite(ek) && ek > largest) largest = ek, worst = k;
+    }
+    for (N_Vector v : {ele, w})
+      if (v) N_VDestroy(v);
+    return worst < 0 ? "no component has an error estimate" : "the largest error is in " + problem_.describe(worst);
+  }
 
   void dense(double t, Eigen::VectorXd& out) const override {
     if (t >= t_) {
