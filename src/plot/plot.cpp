@@ -154,6 +154,34 @@ void mark_lines(std::ostringstream& g, const PlotSpec& spec, double x0, double x
   }
 }
 
+// the finite values' range of a group's series
+std::pair<double, double> group_range(const PlotSpec& spec, const Group& grp) {
+  double lo = INFINITY, hi = -INFINITY;
+  for (int k : grp.series)
+    for (double y : spec.series[k].y)
+      if (std::isfinite(y)) lo = std::min(lo, y), hi = std::max(hi, y);
+  return {lo, hi};
+}
+
+// An axis ("y" or "y2") whose values differ only in their last digits: a column constant up to
+// rounding (within 1e-9 of its size: a span tension at rest, 500.106 ± 1e-10 N) is drawn flat in
+// the middle of ±1 % about its value, not stretched over the panel's height as if it moved; a
+// range too narrow for gnuplot's six digits to tell the tics apart gets as many digits as do.
+void narrow_axis(std::ostringstream& g, const char* axis, double lo, double hi) {
+  g << "set " << axis << "range [*:*]\nset format " << axis << " '% h'\n";
+  if (!(hi >= lo)) return;  // no finite value
+  const double size = std::max(std::abs(lo), std::abs(hi)), mid = 0.5 * (lo + hi);
+  if (size == 0) return;  // all zero: gnuplot's own range about 0
+  if (hi - lo <= 1e-9 * size) {
+    g << "set " << axis << "range [" << number_text(mid - 0.01 * size) << ":" << number_text(mid + 0.01 * size)
+      << "]\n";
+    return;
+  }
+  // about four tic intervals: the digits that tell size from size + step apart
+  const int digits = static_cast<int>(std::ceil(std::log10(size / ((hi - lo) / 4)))) + 1;
+  if (digits > 6) g << "set format " << axis << " '%." << std::min(digits, 15) << "g'\n";
+}
+
 void plot_command(std::ostringstream& g, const PlotSpec& spec, const std::vector<int>& series, bool second_axis,
                   const std::vector<int>& y2, bool units_in_key) {
   g << "plot ";
@@ -291,6 +319,10 @@ std::string plot_script(const PlotSpec& spec, const std::string& png) {
     if (groups.size() == 2) {
       g << "set ytics nomirror\nset y2tics\nset y2label " << gnuplot_string(axis_label(spec, groups[1])) << "\n";
     }
+    for (size_t a = 0; a < groups.size(); ++a) {
+      const auto [lo, hi] = group_range(spec, groups[a]);
+      narrow_axis(g, a == 0 ? "y" : "y2", lo, hi);
+    }
     // (the panel: the picture's width but for the axes' numbers and labels, about 100 pixels a side
     // that has them)
     if (!spec.points) mark_lines(g, spec, t0, t1, 0.6 * spec.height, spec.width - (groups.size() == 2 ? 200.0 : 100.0));
@@ -332,11 +364,9 @@ std::string plot_script(const PlotSpec& spec, const std::string& png) {
       if (!fits(label)) label = with_unit("", groups[p].unit);
       g << "set ylabel " << gnuplot_string(label) << "\n";
       // about four tic intervals however short the panel
-      double lo = INFINITY, hi = -INFINITY;
-      for (int k : groups[p].series)
-        for (double y : spec.series[k].y)
-          if (std::isfinite(y)) lo = std::min(lo, y), hi = std::max(hi, y);
-      if (hi > lo) {
+      const auto [lo, hi] = group_range(spec, groups[p]);
+      narrow_axis(g, "y", lo, hi);
+      if (hi - lo > 1e-9 * std::max(std::abs(lo), std::abs(hi))) {
         const double raw = (hi - lo) / 4, mag = std::pow(10.0, std::floor(std::log10(raw)));
         const double step = raw <= mag ? mag : raw <= 2 * mag ? 2 * mag : raw <= 5 * mag ? 5 * mag : 10 * mag;
         g << "set ytics " << number_text(step) << "\n";

@@ -450,4 +450,43 @@ TEST(Campbell, NamesThePulleyAndCountsTheModesAboveTheAxis) {
 }
 
 }  // namespace
+// a column constant up to rounding is drawn flat about its value, and a narrow range gets the digits
+// that tell its tics apart (a user read eleven tics all labelled 500.106 over 1e-10 N of noise)
+TEST(Plot, AFlatColumnIsDrawnFlatAndANarrowOneGetsItsDigits) {
+  PlotSpec spec;
+  spec.file = "unused.png";
+  Series flat = series("span_driver_driven.tension", "N");
+  flat.y = {500.106, 500.106 + 1e-10, 500.106 - 1e-10};
+  spec.series = {flat};
+  // the range an axis is set to: ±1 % of 500.106 N
+  auto flat_range = [](const std::string& script, const std::string& axis) {
+    const size_t at = script.find("set " + axis + "range [4");
+    if (at == std::string::npos) return false;
+    char* end = nullptr;
+    const double lo = std::strtod(script.c_str() + at + axis.size() + 11, &end);
+    const double hi = std::strtod(end + 1, nullptr);
+    return std::abs(lo - 495.10494) < 1e-6 && std::abs(hi - 505.10706) < 1e-6;
+  };
+  std::string g = plot_script(spec, "p.png");
+  EXPECT_TRUE(flat_range(g, "y")) << g;
+  // 68.42 rad/s with a ripple of 1e-4 of it: tics 1.7e-3 apart need 6 significant digits,
+  // 1e-6 of it 8
+  Series speed = series("driver.omega", "rad/s");
+  speed.y = {68.42, 68.42 + 6.8e-3, 68.42 - 1e-4};
+  spec.series = {speed};
+  g = plot_script(spec, "p.png");
+  EXPECT_EQ(g.find("set format y '%."), std::string::npos) << g;
+  speed.y = {68.42, 68.42 + 6.8e-5, 68.42};
+  spec.series = {speed};
+  g = plot_script(spec, "p.png");
+  EXPECT_NE(g.find("set format y '%.8g'"), std::string::npos) << g;
+  // stacked panels (three units) and the second axis (two) likewise
+  spec.series = {series("driver.omega", "rad/s"), flat, series("probe.slip_velocity", "m/s")};
+  g = plot_script(spec, "p.png");
+  EXPECT_TRUE(flat_range(g, "y")) << g;
+  spec.series = {series("driver.omega", "rad/s"), flat};
+  g = plot_script(spec, "p.png");
+  EXPECT_TRUE(flat_range(g, "y2")) << g;
+}
+
 }  // namespace beltsim::plot
