@@ -386,6 +386,13 @@ RunSettings read_run_settings(lua_State* L, int idx, const Scene& sc, Context* c
     }
   }
   const Overrides& o = ctx->overrides;
+  // an event at or after the script's own t_end is a mistake in the script, as a snapshot time
+  // after it is: refused with its line (one that --t-end shortens away is left out with a note,
+  // drop_after_end)
+  if (batch && !o.has("t_end"))
+    for (size_t k = 0; k < rs.mu_events.size(); ++k)
+      if (const std::string bad = event_time_problem(rs.mu_events[k].t, rs.t_end); !bad.empty())
+        fail_on(L, w + ".events[" + std::to_string(k + 1) + "].t", bad);
   // --no-frames draws nothing; kept states stay at the frames' times
   if (o.no_frames && rs.keep_states && rs.frames) rs.frames->png_dir.clear(), rs.frames->video_path.clear();
   if (o.no_frames && !rs.keep_states) rs.frames.reset();

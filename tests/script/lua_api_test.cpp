@@ -2,6 +2,7 @@
 // value; unknown keys are errors; the paper's script runs and writes the documented CSV.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -9,9 +10,9 @@
 #include <string>
 #include <vector>
 
+#include "run_script.hpp"
 #include "script/interpreter.hpp"
 #include "script/progress.hpp"
-#include "run_script.hpp"
 #include "support/scenes.hpp"
 #include "support/scratch.hpp"
 
@@ -262,6 +263,37 @@ TEST(LuaApi, DivergenceNamesTimeAndPulleyAndKeepsTheSamples) {
   std::string params((std::istreambuf_iterator<char>(p)), std::istreambuf_iterator<char>());
   EXPECT_NE(params.find("\nend.status,diverged,,derived,the run diverged at t = "), std::string::npos) << params;
   EXPECT_NE(params.find("pulley 'driver' runs away"), std::string::npos) << params;
+}
+
+// CVODE's step that collapses names the component of its largest error, as the one-step methods'
+// stop messages do (a user met "the step size collapsed" alone); a torque step of 1e6 N·m on a
+// driver of 4e-6 kg·m² collapses it before the speed passes the runaway check
+TEST(LuaApi, CvodesCollapseNamesThePulley) {
+  const std::string text =
+      "local drive = beltsim.scene {\n"
+      "  pulleys = {\n"
+      "    { name = 'driver', centre = {0, 0}, radius = 0.1, inertia = 4e-6, torque = beltsim.step(0.02, 0, -1e6) },\n"
+      "    { name = 'driven', centre = {0.29, 0}, radius = 0.1, torque = { per_speed = -0.955 } },\n"
+      "  },\n"
+      "  belt = { elements = 60, pretension = 500 },\n"
+      "}\n"
+      "drive:run { t_end = 0.03, integrator = 'cvode', progress = false }\n";
+  const std::string msg = run_text(text, "collapse.lua");
+  EXPECT_NE(msg.find("collapse.lua:8:"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("pulley 'driver'"), std::string::npos) << msg;
+}
+
+// an event at or after the script's own t_end is refused with its line, as a snapshot time is
+TEST(LuaApi, AnEventAfterTheRunsEndNamesItsLine) {
+  const std::string text = beltsim::test::two_pulley() +
+                           "s:run { t_end = 0.05, progress = false,\n"
+                           "  events = { { t = 0.2, mu = 0.2, from = 0, to = 0.3 } } }\n";
+  const std::string msg = run_text(text, "late.lua");
+  const int line = static_cast<int>(std::count(text.begin(), text.end(), '\n'));  // the events line
+  EXPECT_NE(
+      msg.find("late.lua:" + std::to_string(line) + ": run.events[1].t: must be before t_end = 0.05 s (got 0.2 s)"),
+      std::string::npos)
+      << msg;
 }
 
 // the position of a column of a CSV file (from its header)
