@@ -4,12 +4,14 @@
 
 #include <cmath>
 #include <limits>
+#include <map>
 #include <set>
 #include <sstream>
 #include <stdexcept>
 
 #include "io/number_text.hpp"
 #include "io/suggest.hpp"
+#include "scene/law_text.hpp"
 #include "scene/parameters.hpp"
 #include "scene/scene_types.hpp"
 
@@ -154,10 +156,22 @@ void validate_law(const std::string& what, const TimeSpeedLaw& law, bool speed) 
 void validate(const SceneDef& d) {
   if (d.pulleys.size() < 2)
     reject("scene", "needs at least 2 pulleys", static_cast<double>(d.pulleys.size()), "pulleys");
-  std::set<std::string> names;
-  for (const PulleyDef& p : d.pulleys) {
-    if (p.name.empty()) throw ParameterError("every pulley needs a name");
-    if (!names.insert(p.name).second) throw ParameterError("two pulleys are named '" + p.name + "'");
+  // The errors about a pulley as a whole carry the path of its key (the name, the centre, the
+  // speed) or of its entry in `pulleys`, so that a script's error names that pulley's line
+  // (script/key_line.hpp), not the call's.
+  std::map<std::string, size_t> names;  // each name's first pulley
+  for (size_t k = 0; k < d.pulleys.size(); ++k) {
+    const PulleyDef& p = d.pulleys[k];
+    const std::string entry = std::to_string(k + 1);  // its place in the list `pulleys`
+    if (p.name.empty())
+      throw ParameterError(KeyPath{"", {"pulleys", entry, "name"}},
+                           "pulley " + entry + ".name: every pulley needs a name (name = \"idler\")");
+    if (const auto [first, added] = names.emplace(p.name, k); !added)
+      throw ParameterError(KeyPath{"", {"pulleys", entry, "name"}},
+                           "pulley " + entry + ".name: pulleys " + std::to_string(first->second + 1) + " and " + entry +
+                               " are both named '" + p.name +
+                               "': each needs a name of its own (it names the pulley's columns and its place in "
+                               "belt.route)");
     const std::string w = pulley_label(p);
     require_finite(w + " centre x", p.centre.x(), "m");
     require_finite(w + " centre y", p.centre.y(), "m");
@@ -166,7 +180,12 @@ void validate(const SceneDef& d) {
     if (p.coupling) check_rules(d, "pulley.coupling", &p);
     if (p.kinematic) {
       validate_law(w + ".speed", p.speed, true);
-      if (!p.torque.is_zero()) throw ParameterError(w, "give either a torque or a prescribed speed, not both");
+      if (!p.torque.is_zero())
+        throw ParameterError(KeyPath{p.name, {"speed"}},
+                             w + ".speed: give either a torque or a prescribed speed, not both (got torque = " +
+                                 law_text(p.torque) + " and speed = " + law_text(p.speed) +
+                                 "): a pulley with a prescribed speed takes whatever torque that speed needs; leave "
+                                 "out torque, or speed to let the pulley turn under its torque");
     } else {
       validate_law(w + ".torque", p.torque, false);
     }
@@ -176,9 +195,13 @@ void validate(const SceneDef& d) {
       const PulleyDef &p = d.pulleys[a], &q = d.pulleys[b];
       const double dist = (p.centre - q.centre).norm();
       if (dist <= p.radius + q.radius) {
-        throw ParameterError(KeyPath{"", {"pulleys"}},
-                             "pulleys '" + p.name + "' and '" + q.name + "' overlap: centres " + rounded_text(dist, 6) +
-                                 " m apart, radii add up to " + rounded_text(p.radius + q.radius, 6) + " m");
+        // the later pulley's centre (or center, as it was given): where the overlap was made
+        const bool center = d.given.count("pulley." + q.name + ".center") > 0;
+        throw ParameterError(KeyPath{q.name, {center ? "center" : "centre"}},
+                             pulley_label(q) + "." + (center ? "center" : "centre") + ": pulleys '" + p.name +
+                                 "' and '" + q.name + "' overlap: centres " + rounded_text(dist, 6) +
+                                 " m apart, radii add up to " + rounded_text(p.radius + q.radius, 6) +
+                                 " m; move them apart or make them smaller (lengths are in metres)");
       }
     }
   const BeltDef& b = d.belt;
@@ -211,12 +234,13 @@ void validate(const SceneDef& d) {
     for (double mu : b.mu_per_element) require_mu("belt.mu of an element", mu);
   }
   if (!b.route.empty()) {
+    std::vector<std::string> pulley_names;
+    for (const auto& [name, k] : names) pulley_names.push_back(name);
     std::set<std::string> seen;
     for (const std::string& nm : b.route) {
       if (!names.count(nm))
         throw ParameterError(KeyPath{"", {"belt", "route"}},
-                             "belt.route names an unknown pulley '" + nm + "'" +
-                                 did_you_mean(nm, std::vector<std::string>(names.begin(), names.end())));
+                             "belt.route names an unknown pulley '" + nm + "'" + did_you_mean(nm, pulley_names));
       if (!seen.insert(nm).second)
         throw ParameterError(KeyPath{"", {"belt", "route"}}, "belt.route visits pulley '" + nm + "' twice");
     }

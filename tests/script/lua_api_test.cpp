@@ -162,8 +162,10 @@ TEST(LuaApi, ZeroInertiaIsRejected) {
                {"inertia must be > 0", "got 0 kg·m²"});
 }
 
+// named on the later pulley's line (its centre), not the call's (line 1)
 TEST(LuaApi, OverlappingPulleysAreRejected) {
-  expect_error(scene_text("", "centre = {0.15, 0}, radius = 0.1"), "scene.lua:2:", {"overlap", "0.15 m apart"});
+  expect_error(scene_text("", "centre = {0.15, 0}, radius = 0.1"),
+               "scene.lua:4: pulley 'driven'.centre: ", {"overlap", "0.15 m apart"});
 }
 
 TEST(LuaApi, NonPositivePretensionIsRejected) {
