@@ -152,15 +152,27 @@ TensionAtRest tension_at_rest(const BeltDef& bd, double route_length, Belt& b) {
   if (t.rest > 0) {
     if (!(t.rest < b.pitch)) {
       std::ostringstream s;
+      // (a rest length: a strain <= 0 is refused by its rule)
       s << "is not shorter than the route's pitch line (" << route_length
-        << " m): the belt would hang slack; it must be stretched to be mounted";
+        << " m): the belt would hang slack; it must be stretched to be mounted: lower it below the route's length (a "
+           "PK belt is mounted at a few tenths of a per cent: "
+        << rounded_text(route_length / 1.005, 6) << " m is 0.5 %)";
       reject(t.key, s.str(), t.value);
     }
     set_rest_length(b, bd, t.rest);
   }
   t.tension = t.rest > 0 ? b.k * std::pow(b.pitch - t.rest, b.e_tra) : bd.pretension;
-  if (std::pow(t.tension / b.k, 1.0 / b.e_tra) >= 0.5 * b.pitch)
-    reject(t.key, "stretches each SDE by more than half a pitch: lower it or stiffen the belt", t.value);
+  // the strain at rest against a belt's (scene/validate.hpp); for a pretension T/EA (the rest
+  // length is still the pitch here: k = EA/pitch), which its build then gives within the contact's share
+  const double gap = std::pow(t.tension / b.k, 1.0 / b.e_tra);
+  const StrainAtRest s{t.key,
+                       t.value,
+                       std::string(find_parameter(t.key)->unit),
+                       t.rest > 0 ? b.pitch / t.rest - 1 : gap / b.rigid_length,
+                       t.tension,
+                       b.k * b.rigid_length,
+                       route_length};
+  check_strain_at_rest(s, gap >= 0.5 * b.pitch);
   return t;
 }
 

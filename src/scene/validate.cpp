@@ -60,12 +60,13 @@ void check_rule(const Parameter& par, const std::string& what, double v) {
                   : par.rule == Rule::friction_coefficient ? v >= 0 && v <= kMuMax
                   : par.rule == Rule::slip_band            ? v > 0 && v <= kDvMax
                   : par.rule == Rule::pulley_radius        ? v > 0 && v <= kRadiusMax
+                  : par.rule == Rule::strain               ? v > 0 && v < kStrainMax
                                                            : true;
-  // (a radius at or below zero is told so; the rule's text is for one too large: written in mm)
+  // (a radius or strain at or below zero is told so; the rule's text is for one too large: written
+  // in mm, or as a percentage)
+  const bool too_large_rule = par.rule == Rule::pulley_radius || par.rule == Rule::strain;
   if (!ok)
-    reject(what,
-           std::string(par.rule == Rule::pulley_radius && v <= 0 ? rule_text(Rule::positive) : rule_text(par.rule)), v,
-           unit);
+    reject(what, std::string(too_large_rule && v <= 0 ? rule_text(Rule::positive) : rule_text(par.rule)), v, unit);
 }
 
 namespace {
@@ -262,6 +263,68 @@ void validate(const SceneDef& d) {
     require_non_negative(w + ".to", g.to, "m");
     check_friction_law(g.law, w);
   }
+}
+
+namespace {
+
+std::string percent(double fraction) {
+  return rounded_text(100 * fraction, 3) + " %";
+}
+
+// what a belt takes (kStrainWarn's sources)
+constexpr const char* kBeltStrains =
+    "a PK belt is mounted at a few tenths of a per cent (the paper's 500 N on its EA of 1.52e5 N: 0.33 %) and its "
+    "tight span stays well under 1-2 % in service";
+
+// the rest length that strains the belt by a PK belt's mounting strain, as a hint
+std::string typical_rest_length(double route) {
+  constexpr double kTypical = 0.005;
+  return rounded_text(route / (1 + kTypical), 6) + " m is a strain of " + percent(kTypical);
+}
+
+// "strain is a fraction: 0.009 = 0.9 %" for the value v
+std::string fraction_hint(double v) {
+  return "strain is a fraction: " + rounded_text(v / 100, 6) + " = " + rounded_text(v, 6) + " %";
+}
+
+}  // namespace
+
+void check_strain_at_rest(const StrainAtRest& s, bool past_half_pitch) {
+  const bool too_large = s.strain >= kStrainMax;
+  if (!too_large && !past_half_pitch) return;
+  const std::string limit = too_large ? "more than the " + percent(kStrainMax) + " accepted"
+                                      : "more than the model takes (an SDE stretched by more than half a pitch)";
+  std::string reason;
+  if (s.key == "belt.rest_length") {
+    reason = "is too short for the route: the route is " + rounded_text(s.route, 6) + " m; " +
+             rounded_text(s.value, 6) + " m is a strain of " + percent(s.strain) + " (route / rest length - 1), " +
+             limit + ": raise it towards the route's length (" + typical_rest_length(s.route) + ")";
+  } else if (s.key == "belt.strain") {
+    reason = "is a strain of " + percent(s.strain) + ", " + limit + ": lower it; " + fraction_hint(s.value);
+  } else {
+    reason = "is " + percent(s.strain) + " of the belt's EA (" + rounded_text(s.EA, 6) + " N), a strain at rest of " +
+             percent(s.strain) + ", " + limit + ": lower it (it is in N), or give the belt's own EA";
+  }
+  reject(s.key, reason + "; " + kBeltStrains, s.value);
+}
+
+std::string strain_at_rest_warning(const StrainAtRest& s) {
+  if (!(s.strain > kStrainWarn)) return "";
+  std::string w = s.key + " = " + rounded_text(s.value, 6) + (s.unit.empty() ? "" : " ") + s.unit;
+  if (s.key == "belt.rest_length") w += " on the " + rounded_text(s.route, 6) + " m route";
+  if (s.key == "belt.pretension")
+    w += " is " + percent(s.tension / s.EA) + " of the belt's EA (" + rounded_text(s.EA, 6) + " N): it";
+  w += " stretches the belt " + percent(s.strain) + " at rest (route / rest length - 1)";
+  if (s.key != "belt.pretension")
+    w += ", the spans carrying " + rounded_text(s.tension, 6) + " N (EA = " + rounded_text(s.EA, 6) + " N)";
+  w += std::string(", where ") + kBeltStrains;
+  if (s.key == "belt.strain")
+    w += "; if " + rounded_text(s.value, 6) + " % was meant, " + fraction_hint(s.value);
+  else if (s.key == "belt.rest_length")
+    w += "; check the rest length against the route's (" + typical_rest_length(s.route) + ")";
+  else if (s.key == "belt.pretension")
+    w += "; check the pretension (in N) and EA";
+  return w + " (docs/model.md, limits the scene build enforces)";
 }
 
 void check_friction_law(const Friction& f, const std::string& label) {

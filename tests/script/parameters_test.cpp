@@ -106,6 +106,8 @@ std::pair<std::string, std::string> breaking(Rule r) {
     case Rule::slip_band: return {"2", "2"};
     case Rule::pulley_radius:
       return {"100", "100"};
+    case Rule::strain:
+      return {"0.9", "0.9"};
     case Rule::finite: return {"1/0", "inf"};
     case Rule::none: break;
   }
