@@ -161,11 +161,7 @@ Scene build_at(const SceneDef& d, const std::atomic<bool>* stop) {
 
   const std::string lost = build::settle(sc, bd, tension.rest > 0, stop);
   build::check_finite(sc, d, tension.tension);
-  if (!lost.empty()) {
-    throw ParameterError("belt.elements", "could not find the belt's static initial state with " + std::to_string(n) +
-                                              " elements (the iteration left pulley '" + lost +
-                                              "' untouched); a few elements more or fewer usually works");
-  }
+  build::check_static_state(sc, d, lost, tension.tension);
   build::balance_arms(sc);
   // spray zones: those spraying at t = 0 wet the elements inside them
   if (!d.spray.empty()) {
