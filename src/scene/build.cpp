@@ -152,15 +152,27 @@ TensionAtRest tension_at_rest(const BeltDef& bd, double route_length, Belt& b) {
   if (t.rest > 0) {
     if (!(t.rest < b.pitch)) {
       std::ostringstream s;
+      // (a rest length: a strain <= 0 is refused by its rule)
       s << "is not shorter than the route's pitch line (" << route_length
-        << " m): the belt would hang slack; it must be stretched to be mounted";
+        << " m): the belt would hang slack; it must be stretched to be mounted: lower it below the route's length (a "
+           "PK belt is mounted at a few tenths of a per cent: "
+        << rounded_text(route_length / 1.005, 6) << " m is 0.5 %)";
       reject(t.key, s.str(), t.value);
     }
     set_rest_length(b, bd, t.rest);
   }
   t.tension = t.rest > 0 ? b.k * std::pow(b.pitch - t.rest, b.e_tra) : bd.pretension;
-  if (std::pow(t.tension / b.k, 1.0 / b.e_tra) >= 0.5 * b.pitch)
-    reject(t.key, "stretches each SDE by more than half a pitch: lower it or stiffen the belt", t.value);
+  // the strain at rest against a belt's (scene/validate.hpp); for a pretension T/EA (the rest
+  // length is still the pitch here: k = EA/pitch), which its build then gives within the contact's share
+  const double gap = std::pow(t.tension / b.k, 1.0 / b.e_tra);
+  const StrainAtRest s{t.key,
+                       t.value,
+                       std::string(find_parameter(t.key)->unit),
+                       t.rest > 0 ? b.pitch / t.rest - 1 : gap / b.rigid_length,
+                       t.tension,
+                       b.k * b.rigid_length,
+                       route_length};
+  check_strain_at_rest(s, gap >= 0.5 * b.pitch);
   return t;
 }
 
@@ -433,7 +445,7 @@ std::string settle(Scene& sc, const BeltDef& bd, bool rest_given, const std::ato
   // belt's bending stiffness lifts it off small pulleys, which changes the tension a little).
   // The belt is not changed after the last solve, so the state returned is static for the belt
   // returned (or the residual says it is not, and the trust-region attempt follows).
-  constexpr double kConverged = 1.0;  // [m/s²] against accelerations of 1e5..1e9 in the raw placement
+  constexpr double kConverged = kStaticConverged;
   const Eigen::VectorXd placed = sc.y0;
   const Belt placed_belt = b;
   auto attempt = [&](double max_move) {
@@ -480,6 +492,58 @@ std::string settle(Scene& sc, const BeltDef& bd, bool rest_given, const std::ato
     notify_warning(WarningKind::static_retry, 0.0);
   }
   return lost;
+}
+
+void check_static_state(const Scene& sc, const SceneDef& d, const std::string& lost, double tension) {
+  const bool converged = sc.static_residual < kStaticConverged;
+  if (lost.empty() && converged) return;
+  const Model& m = sc.model;
+  const Belt& b = m.belt;
+  // the belt's SDE: its axial stiffness at the tension at rest (k for e_tra = 1), as the scene gives
+  // it (EA over the pitch; the rest length the failed solve left is no measure)
+  const double sde_k = d.belt.reading == StiffnessReading::rigidity ? d.belt.EA / b.pitch : d.belt.k;
+  const double belt_k = b.e_tra * tension / std::pow(tension / sde_k, 1.0 / b.e_tra);
+  // the stiffest contact on a wrap: dN/dp = 2·c1·p0 + c2 per element at the static penetration
+  double contact_k = 0, c1_share = 0;
+  std::string on;
+  for (size_t k = 0; k < sc.route_pulleys.size(); ++k) {
+    const double p0 = sc.penetration[sc.route_pulleys[k]];
+    if (2 * m.contact.c1 * p0 + m.contact.c2 > contact_k)
+      contact_k = 2 * m.contact.c1 * p0 + m.contact.c2, c1_share = 2 * m.contact.c1 * p0, on = sc.route_names[k];
+  }
+  const std::string what = lost.empty()
+                               ? "the iteration stopped " + rounded_text(sc.static_residual, 3) +
+                                     " m/s² from equilibrium, the spans at " + rounded_text(sc.static_tension, 6) + " N"
+                               : "the iteration left pulley '" + lost + "' untouched";
+  if (contact_k > kStiffContact * belt_k) {
+    // the contact's term that makes it so stiff, as the scene gave it (per element or per length)
+    const bool c1 = c1_share > contact_k - c1_share;
+    const bool per_length = c1 ? d.contact_per_length.c1.has_value() : d.contact_per_length.c2.has_value();
+    const std::string key = std::string("contact.") + (c1 ? "c1" : "c2") + (per_length ? "_per_length" : "");
+    const double value = c1 ? (per_length ? *d.contact_per_length.c1 : d.contact.c1)
+                            : (per_length ? *d.contact_per_length.c2 : d.contact.c2);
+    // the paper's contact on this belt, for scale
+    Contact paper = m.contact;
+    paper.c1 = parameter_default("contact.c1"), paper.c2 = parameter_default("contact.c2");
+    const double r = sc.route.arcs[0].radius;
+    const double paper_k = 2 * paper.c1 * static_penetration(paper, b.pitch, r, tension) + paper.c2;
+    const double most = c1 ? 0 : (per_length ? belt_k / b.pitch : belt_k);
+    reject(key,
+           "makes the contact " + rounded_text(contact_k / belt_k, 3) +
+               " times as stiff as the belt: an element's contact on pulley '" + on + "' is " +
+               rounded_text(contact_k, 3) + " N/m at its static penetration (c2 + 2·c1·p0), the belt's SDE " +
+               rounded_text(belt_k, 3) + " N/m (EA over the pitch); the belt's static initial state was not found (" +
+               what + "). Give a contact softer than the belt" +
+               (most > 0 ? ", below " + rounded_text(most, 3) + " " + std::string(find_parameter(key)->unit) + " here"
+                         : "") +
+               " (the paper's c1 = " + rounded_text(paper.c1, 6) + " N/m², c2 = " + rounded_text(paper.c2, 6) +
+               " N/m per element make it " + rounded_text(paper_k / belt_k, 2) +
+               " times as stiff; docs/model.md, Limits the scene build enforces)",
+           value);
+  }
+  if (!lost.empty())
+    throw ParameterError("belt.elements", "could not find the belt's static initial state with " + std::to_string(b.n) +
+                                              " elements (" + what + "); a few elements more or fewer usually works");
 }
 
 void check_finite(const Scene& sc, const SceneDef& d, double tension) {

@@ -114,8 +114,30 @@ double span_tension(const Model& m, const Route& route, const Eigen::VectorXd& y
 // (static_retried). Returns the name of a route pulley the belt left untouched, empty when none.
 std::string settle(Scene& sc, const BeltDef& bd, bool rest_given, const std::atomic<bool>* stop);
 
+// [m/s²] The largest acceleration a static state is left with (settle), against 1e5..1e9 in the
+// raw placement.
+constexpr double kStaticConverged = 1.0;
+
 // 10. throws when the static state, rest length, tension or residual is not finite
 void check_finite(const Scene& sc, const SceneDef& d, double tension);
+
+// How much stiffer than the belt's SDE (its axial stiffness at the tension at rest) an element's
+// contact (dN/dp = c2 + 2·c1·p0 at the static penetration) may be before a failed static solve
+// is laid to it. The Newton iteration starts from a placement that is off where a span meets a
+// wrap; the contact's force on that error, and the steps that undo it, grow with its stiffness
+// against the belt's, until the iteration wanders along the belt's free sliding mode and stalls
+// or leaves a pulley. On the paper's drive (60 elements, 500 N, gravity on) the paper's contact is
+// 0.16 times as stiff as the SDE; c2 at 3.4 times converged, 4.3 times (120 elements) and 8.5
+// times (60) did not, c2 = 1e14 N/m (1.3e7 times) lost the driver (each a few elements more or
+// fewer alike), and from c2 = 1e14 the rounding of a position (1e-17 m) alone is a force past the
+// residual test.
+constexpr double kStiffContact = 1;
+// 11. throws when the static solve failed: a route pulley left untouched (`lost`), or (with the
+// contact more than kStiffContact times as stiff as the belt) a residual past kStaticConverged,
+// naming the contact constant that makes it so stiff, with its value and the paper's; else,
+// with a pulley lost, belt.elements. An unconverged state of a softer contact is kept (its
+// residual is in scene:info()).
+void check_static_state(const Scene& sc, const SceneDef& d, const std::string& lost, double tension);
 
 // Tensioner arms (scene/tensioner.cpp). validate_tensioner: throws on what the parameter table's
 // rules (validate) do not cover: the pivot, the arm's length, a prescribed speed; make_arms: the

@@ -156,7 +156,7 @@ constexpr Parameter kParameters[] = {
      "the belt's stress-free length (a datasheet's), instead of pretension",
      [](SceneDef& d, PulleyDef&) -> Slot { return &d.belt.rest_length; },
      [](const SceneDef& d) { return d.belt.tensioning == Tensioning::rest_length; }, nullptr},
-    {"belt", "strain", K::number, "", {}, "", W::none, R::positive,
+    {"belt", "strain", K::number, "", {}, "", W::none, R::strain,
      "mounting strain (route pitch length / rest length - 1), instead of pretension",
      [](SceneDef& d, PulleyDef&) -> Slot { return &d.belt.strain; },
      [](const SceneDef& d) { return d.belt.tensioning == Tensioning::strain; }, nullptr},
@@ -374,6 +374,9 @@ std::string_view rule_text(Rule r) {
              "band as wide as belt speeds (a few m/s and up) is no friction (the paper's is 1e-5 m/s)";
     case Rule::pulley_radius:
       return "must be at most 5 m: lengths are in metres (a 100 mm radius is 0.1); belt pulleys are smaller";
+    case Rule::strain:
+      return "must be > 0 and below 0.5: strain is a fraction: 0.009 = 0.9 % (a PK belt is mounted at a few "
+             "tenths of a per cent; no belt stretches by half its length)";
     case Rule::finite: return "must be a finite number";
     case Rule::none: break;
   }

@@ -36,6 +36,8 @@ std::string_view doc_range(Rule r) {
     case Rule::slip_band: return "> 0, ≤ 1";
     case Rule::pulley_radius:
       return "> 0, ≤ 5";
+    case Rule::strain:
+      return "> 0, < 0.5";
     case Rule::finite: return "finite";
     case Rule::none: break;
   }

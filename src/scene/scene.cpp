@@ -73,8 +73,28 @@ std::vector<std::string> wrong_side_maps(const Scene& sc) {
   return out;
 }
 
+std::string strain_warning(const Scene& sc) {
+  StrainAtRest s;
+  for (const SceneInput& in : sc.inputs)
+    if (in.name == "belt.pretension" || in.name == "belt.rest_length" || in.name == "belt.strain")
+      s.key = in.name, s.value = in.value, s.unit = in.unit;
+  // else a tensioner's preload or free angle sets the tension
+  for (const SceneInput& in : sc.inputs)
+    if (s.key.empty() && (in.name.ends_with(".tensioner.preload") || in.name.ends_with(".tensioner.angle0")))
+      s.key = in.name, s.value = in.value, s.unit = in.unit;
+  if (s.key.empty()) return "";
+  const Belt& b = sc.model.belt;
+  s.strain = b.pitch / b.rigid_length - 1;
+  s.tension = sc.static_tension;
+  s.EA = b.k * b.rigid_length;
+  s.route = sc.route.length;
+  return strain_at_rest_warning(s);
+}
+
 std::vector<std::string> scene_warnings(const Scene& sc) {
-  std::vector<std::string> out = coarse_wraps(sc);
+  std::vector<std::string> out;
+  if (std::string strain = strain_warning(sc); !strain.empty()) out.push_back(std::move(strain));
+  for (std::string& w : coarse_wraps(sc)) out.push_back(std::move(w));
   for (std::string& w : wrong_side_maps(sc)) out.push_back(std::move(w));
   for (int j = 0; j < sc.model.n_p(); ++j) {
     const PulleyDrive& p = sc.drive.pulleys[j];
@@ -141,11 +161,7 @@ Scene build_at(const SceneDef& d, const std::atomic<bool>* stop) {
 
   const std::string lost = build::settle(sc, bd, tension.rest > 0, stop);
   build::check_finite(sc, d, tension.tension);
-  if (!lost.empty()) {
-    throw ParameterError("belt.elements", "could not find the belt's static initial state with " + std::to_string(n) +
-                                              " elements (the iteration left pulley '" + lost +
-                                              "' untouched); a few elements more or fewer usually works");
-  }
+  build::check_static_state(sc, d, lost, tension.tension);
   build::balance_arms(sc);
   // spray zones: those spraying at t = 0 wet the elements inside them
   if (!d.spray.empty()) {

@@ -26,7 +26,12 @@ std::vector<std::string> coarse_wraps(const Scene& sc);
 // steady_belt_speed, else as belt.direction says): the table then gives one torque throughout.
 std::vector<std::string> wrong_side_maps(const Scene& sc);
 
-// What the run's first lines warn of (scene:info().warnings lists the same): the coarse wraps,
+// The belt's strain at rest past kStrainWarn (scene/parameters.hpp), with how its tension at rest
+// was given (strain_at_rest_warning, scene/validate.hpp); "" when it is a belt's.
+std::string strain_warning(const Scene& sc);
+
+// What the run's first lines warn of (scene:info().warnings lists the same): a strain at rest past
+// a belt's (strain_warning), the coarse wraps,
 // the speed maps on the wrong side of zero (wrong_side_maps), each free pulley whose torque grows
 // with its speed (per_speed > 0, an energy source: the speed grows as exp(per_speed·t/J) unless
 // the belt holds it back), and bending dampers that will take more than a few per cent of the

@@ -4,12 +4,14 @@
 
 #include <cmath>
 #include <limits>
+#include <map>
 #include <set>
 #include <sstream>
 #include <stdexcept>
 
 #include "io/number_text.hpp"
 #include "io/suggest.hpp"
+#include "scene/law_text.hpp"
 #include "scene/parameters.hpp"
 #include "scene/scene_types.hpp"
 
@@ -58,12 +60,13 @@ void check_rule(const Parameter& par, const std::string& what, double v) {
                   : par.rule == Rule::friction_coefficient ? v >= 0 && v <= kMuMax
                   : par.rule == Rule::slip_band            ? v > 0 && v <= kDvMax
                   : par.rule == Rule::pulley_radius        ? v > 0 && v <= kRadiusMax
+                  : par.rule == Rule::strain               ? v > 0 && v < kStrainMax
                                                            : true;
-  // (a radius at or below zero is told so; the rule's text is for one too large: written in mm)
+  // (a radius or strain at or below zero is told so; the rule's text is for one too large: written
+  // in mm, or as a percentage)
+  const bool too_large_rule = par.rule == Rule::pulley_radius || par.rule == Rule::strain;
   if (!ok)
-    reject(what,
-           std::string(par.rule == Rule::pulley_radius && v <= 0 ? rule_text(Rule::positive) : rule_text(par.rule)), v,
-           unit);
+    reject(what, std::string(too_large_rule && v <= 0 ? rule_text(Rule::positive) : rule_text(par.rule)), v, unit);
 }
 
 namespace {
@@ -154,10 +157,22 @@ void validate_law(const std::string& what, const TimeSpeedLaw& law, bool speed) 
 void validate(const SceneDef& d) {
   if (d.pulleys.size() < 2)
     reject("scene", "needs at least 2 pulleys", static_cast<double>(d.pulleys.size()), "pulleys");
-  std::set<std::string> names;
-  for (const PulleyDef& p : d.pulleys) {
-    if (p.name.empty()) throw ParameterError("every pulley needs a name");
-    if (!names.insert(p.name).second) throw ParameterError("two pulleys are named '" + p.name + "'");
+  // The errors about a pulley as a whole carry the path of its key (the name, the centre, the
+  // speed) or of its entry in `pulleys`, so that a script's error names that pulley's line
+  // (script/key_line.hpp), not the call's.
+  std::map<std::string, size_t> names;  // each name's first pulley
+  for (size_t k = 0; k < d.pulleys.size(); ++k) {
+    const PulleyDef& p = d.pulleys[k];
+    const std::string entry = std::to_string(k + 1);  // its place in the list `pulleys`
+    if (p.name.empty())
+      throw ParameterError(KeyPath{"", {"pulleys", entry, "name"}},
+                           "pulley " + entry + ".name: every pulley needs a name (name = \"idler\")");
+    if (const auto [first, added] = names.emplace(p.name, k); !added)
+      throw ParameterError(KeyPath{"", {"pulleys", entry, "name"}},
+                           "pulley " + entry + ".name: pulleys " + std::to_string(first->second + 1) + " and " + entry +
+                               " are both named '" + p.name +
+                               "': each needs a name of its own (it names the pulley's columns and its place in "
+                               "belt.route)");
     const std::string w = pulley_label(p);
     require_finite(w + " centre x", p.centre.x(), "m");
     require_finite(w + " centre y", p.centre.y(), "m");
@@ -166,7 +181,12 @@ void validate(const SceneDef& d) {
     if (p.coupling) check_rules(d, "pulley.coupling", &p);
     if (p.kinematic) {
       validate_law(w + ".speed", p.speed, true);
-      if (!p.torque.is_zero()) throw ParameterError(w, "give either a torque or a prescribed speed, not both");
+      if (!p.torque.is_zero())
+        throw ParameterError(KeyPath{p.name, {"speed"}},
+                             w + ".speed: give either a torque or a prescribed speed, not both (got torque = " +
+                                 law_text(p.torque) + " and speed = " + law_text(p.speed) +
+                                 "): a pulley with a prescribed speed takes whatever torque that speed needs; leave "
+                                 "out torque, or speed to let the pulley turn under its torque");
     } else {
       validate_law(w + ".torque", p.torque, false);
     }
@@ -176,9 +196,13 @@ void validate(const SceneDef& d) {
       const PulleyDef &p = d.pulleys[a], &q = d.pulleys[b];
       const double dist = (p.centre - q.centre).norm();
       if (dist <= p.radius + q.radius) {
-        throw ParameterError(KeyPath{"", {"pulleys"}},
-                             "pulleys '" + p.name + "' and '" + q.name + "' overlap: centres " + rounded_text(dist, 6) +
-                                 " m apart, radii add up to " + rounded_text(p.radius + q.radius, 6) + " m");
+        // the later pulley's centre (or center, as it was given): where the overlap was made
+        const bool center = d.given.count("pulley." + q.name + ".center") > 0;
+        throw ParameterError(KeyPath{q.name, {center ? "center" : "centre"}},
+                             pulley_label(q) + "." + (center ? "center" : "centre") + ": pulleys '" + p.name +
+                                 "' and '" + q.name + "' overlap: centres " + rounded_text(dist, 6) +
+                                 " m apart, radii add up to " + rounded_text(p.radius + q.radius, 6) +
+                                 " m; move them apart or make them smaller (lengths are in metres)");
       }
     }
   const BeltDef& b = d.belt;
@@ -211,12 +235,13 @@ void validate(const SceneDef& d) {
     for (double mu : b.mu_per_element) require_mu("belt.mu of an element", mu);
   }
   if (!b.route.empty()) {
+    std::vector<std::string> pulley_names;
+    for (const auto& [name, k] : names) pulley_names.push_back(name);
     std::set<std::string> seen;
     for (const std::string& nm : b.route) {
       if (!names.count(nm))
         throw ParameterError(KeyPath{"", {"belt", "route"}},
-                             "belt.route names an unknown pulley '" + nm + "'" +
-                                 did_you_mean(nm, std::vector<std::string>(names.begin(), names.end())));
+                             "belt.route names an unknown pulley '" + nm + "'" + did_you_mean(nm, pulley_names));
       if (!seen.insert(nm).second)
         throw ParameterError(KeyPath{"", {"belt", "route"}}, "belt.route visits pulley '" + nm + "' twice");
     }
@@ -238,6 +263,68 @@ void validate(const SceneDef& d) {
     require_non_negative(w + ".to", g.to, "m");
     check_friction_law(g.law, w);
   }
+}
+
+namespace {
+
+std::string percent(double fraction) {
+  return rounded_text(100 * fraction, 3) + " %";
+}
+
+// what a belt takes (kStrainWarn's sources)
+constexpr const char* kBeltStrains =
+    "a PK belt is mounted at a few tenths of a per cent (the paper's 500 N on its EA of 1.52e5 N: 0.33 %) and its "
+    "tight span stays well under 1-2 % in service";
+
+// the rest length that strains the belt by a PK belt's mounting strain, as a hint
+std::string typical_rest_length(double route) {
+  constexpr double kTypical = 0.005;
+  return rounded_text(route / (1 + kTypical), 6) + " m is a strain of " + percent(kTypical);
+}
+
+// "strain is a fraction: 0.009 = 0.9 %" for the value v
+std::string fraction_hint(double v) {
+  return "strain is a fraction: " + rounded_text(v / 100, 6) + " = " + rounded_text(v, 6) + " %";
+}
+
+}  // namespace
+
+void check_strain_at_rest(const StrainAtRest& s, bool past_half_pitch) {
+  const bool too_large = s.strain >= kStrainMax;
+  if (!too_large && !past_half_pitch) return;
+  const std::string limit = too_large ? "more than the " + percent(kStrainMax) + " accepted"
+                                      : "more than the model takes (an SDE stretched by more than half a pitch)";
+  std::string reason;
+  if (s.key == "belt.rest_length") {
+    reason = "is too short for the route: the route is " + rounded_text(s.route, 6) + " m; " +
+             rounded_text(s.value, 6) + " m is a strain of " + percent(s.strain) + " (route / rest length - 1), " +
+             limit + ": raise it towards the route's length (" + typical_rest_length(s.route) + ")";
+  } else if (s.key == "belt.strain") {
+    reason = "is a strain of " + percent(s.strain) + ", " + limit + ": lower it; " + fraction_hint(s.value);
+  } else {
+    reason = "is " + percent(s.strain) + " of the belt's EA (" + rounded_text(s.EA, 6) + " N), a strain at rest of " +
+             percent(s.strain) + ", " + limit + ": lower it (it is in N), or give the belt's own EA";
+  }
+  reject(s.key, reason + "; " + kBeltStrains, s.value);
+}
+
+std::string strain_at_rest_warning(const StrainAtRest& s) {
+  if (!(s.strain > kStrainWarn)) return "";
+  std::string w = s.key + " = " + rounded_text(s.value, 6) + (s.unit.empty() ? "" : " ") + s.unit;
+  if (s.key == "belt.rest_length") w += " on the " + rounded_text(s.route, 6) + " m route";
+  if (s.key == "belt.pretension")
+    w += " is " + percent(s.tension / s.EA) + " of the belt's EA (" + rounded_text(s.EA, 6) + " N): it";
+  w += " stretches the belt " + percent(s.strain) + " at rest (route / rest length - 1)";
+  if (s.key != "belt.pretension")
+    w += ", the spans carrying " + rounded_text(s.tension, 6) + " N (EA = " + rounded_text(s.EA, 6) + " N)";
+  w += std::string(", where ") + kBeltStrains;
+  if (s.key == "belt.strain")
+    w += "; if " + rounded_text(s.value, 6) + " % was meant, " + fraction_hint(s.value);
+  else if (s.key == "belt.rest_length")
+    w += "; check the rest length against the route's (" + typical_rest_length(s.route) + ")";
+  else if (s.key == "belt.pretension")
+    w += "; check the pretension (in N) and EA";
+  return w + " (docs/model.md, limits the scene build enforces)";
 }
 
 void check_friction_law(const Friction& f, const std::string& label) {

@@ -38,6 +38,25 @@ void validate(const SceneDef& def);
 // a torque law [N·m] (speed = false) or a prescribed speed [rad/s]: every value finite, tables
 // increasing, ramps forward; a speed cannot depend on the speed. Throws ParameterError naming `what`.
 void validate_law(const std::string& what, const TimeSpeedLaw& law, bool speed);
-inline constexpr size_t kMaxFrictionSegments = 255;  // Model::law_of holds a segment's number in a byte
+inline constexpr size_t kMaxFrictionSegments = 255;
+
+// How the belt's tension at rest was given and the strain at rest it gives, for the checks of its
+// size against a belt's (kStrainWarn, kStrainMax: scene/parameters.hpp)
+struct StrainAtRest {
+  std::string key;     // how it was given: "belt.pretension", "belt.rest_length", "belt.strain"
+  double value = 0;    // the value given, in `unit`
+  std::string unit;    // "N", "m", ""
+  double strain = 0;   // route pitch length / rest length - 1 (for a pretension: T/EA, before the build)
+  double tension = 0;  // [N] the spans' tension at rest (0: not known yet)
+  double EA = 0;       // [N] the belt's axial rigidity (per SDE values: k·l0)
+  double route = 0;    // [m] the route's pitch length
+};
+// Throws (ParameterError naming s.key and s.value) when the strain reaches kStrainMax or, with
+// past_half_pitch, an SDE would stretch by more than half a pitch; the message says which way to
+// change the value: a rest length shorter than the route's is raised, a pretension lowered.
+void check_strain_at_rest(const StrainAtRest& s, bool past_half_pitch = false);
+// The run's first lines' warning when the strain passes kStrainWarn: the key and value, the
+// strain, the tension and EA, what a belt takes and what to check; "" when it does not.
+std::string strain_at_rest_warning(const StrainAtRest& s);  // Model::law_of holds a segment's number in a byte
 
 }  // namespace beltsim

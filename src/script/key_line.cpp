@@ -142,6 +142,8 @@ struct Table {
   std::string key;
   int position = 0;  // from 1 in the enclosing list; 0 when keyed or inside an expression
   std::string name;
+  int line = 0;              // where its "{" is
+  std::vector<int> parents;  // ids of the enclosing tables, the outermost (the call's) first
 };
 
 struct Occurrence {
@@ -155,14 +157,14 @@ class ConstructorScan {
  public:
   explicit ConstructorScan(Lexer& lex) : lex_(lex) {}
 
-  void table(const std::string& key, int position) {
+  void table(const std::string& key, int position, int line) {
     // deeper than Lua's parser nests (LUAI_MAXCCALLS, 200): the file is not the script Lua read
     if (open_.size() >= 200) {
       gave_up_ = true;
       return;
     }
     const int id = static_cast<int>(tables_.size());
-    tables_.push_back({key, position, ""});
+    tables_.push_back({key, position, "", line, open_});
     open_.push_back(id);
     int positions = 0;
     for (;;) {
@@ -203,7 +205,7 @@ class ConstructorScan {
       if (t.kind == Token::end) return t;
       if (depth == 0 && (is(t, ",") || is(t, ";") || is(t, "}"))) return t;
       if (is(t, "{")) {
-        table(key, first ? position : 0);
+        table(key, first ? position : 0, t.line);
       } else if (is(t, "(") || is(t, "[")) {
         ++depth;
       } else if (is(t, ")") || is(t, "]")) {
@@ -268,6 +270,22 @@ bool matches(const std::vector<Table>& tables, const Occurrence& o, const KeyPat
   return false;
 }
 
+// whether `path` names a table rather than a key: a list entry ("pulleys[2]") or a pulley
+// ("pulley 'idler'")
+bool names_entry(const KeyPath& path) {
+  return path.chain.empty() ? !path.pulley.empty() : is_digits(path.chain.back());
+}
+
+// whether table t is the one `path` names (names_entry), the tables around it matching `prefix`
+bool is_entry(const std::vector<Table>& tables, const Table& t, const KeyPath& path,
+              const std::vector<std::string>& prefix) {
+  if (path.chain.empty()) return t.name == path.pulley;
+  if (t.position <= 0) return false;
+  // as a key's occurrence whose key is its position ("2")
+  const Occurrence o{std::to_string(t.position), t.line, t.parents};
+  return matches(tables, o, path, prefix);
+}
+
 }  // namespace
 
 KeyPath message_path(std::string_view m) {
@@ -284,34 +302,49 @@ KeyPath message_path(std::string_view m) {
     if (p.empty()) return {};
     p.chain.push_back(unknown);
   }
-  // a list position last names an entry, not a key
-  if (!p.chain.empty() && is_digits(p.chain.back())) p.chain.clear();
   return p;
 }
 
 std::optional<int> key_line(std::string_view text, int call_line, const KeyPath& path) {
-  if (path.chain.empty()) return std::nullopt;
+  if (path.empty()) return std::nullopt;
   Lexer lex(text);
   Token t = lex.next();
   while (t.kind != Token::end && t.line < call_line) t = lex.next();
   while (t.kind != Token::end && t.line == call_line && !is(t, "{")) t = lex.next();
   if (t.kind == Token::end || t.line != call_line) return std::nullopt;
   ConstructorScan scan(lex);
-  scan.table("", 0);
+  scan.table("", 0, t.line);
   if (scan.gave_up()) return std::nullopt;
 
-  const auto lines_of = [&](const std::vector<std::string>& prefix) {
+  // the lines of the keys (or, for a path that names an entry, of the tables) that match `p`
+  const auto lines_of = [&](const KeyPath& p, const std::vector<std::string>& prefix) {
     std::set<int> lines;
-    for (const Occurrence& o : scan.found())
-      if (matches(scan.tables(), o, path, prefix)) lines.insert(o.line);
+    if (names_entry(p)) {
+      for (const Table& tb : scan.tables())
+        if (is_entry(scan.tables(), tb, p, prefix)) lines.insert(tb.line);
+    } else {
+      for (const Occurrence& o : scan.found())
+        if (matches(scan.tables(), o, p, prefix)) lines.insert(o.line);
+    }
     return lines;
   };
-  const std::vector<std::string> prefix(path.chain.begin(), path.chain.end() - 1);
-  std::set<int> lines = lines_of(prefix);
-  // a leading "scene", "run", "start" or "sweep" names the call's own table
-  if (lines.empty() && !prefix.empty() &&
-      (prefix[0] == "scene" || prefix[0] == "run" || prefix[0] == "start" || prefix[0] == "sweep"))
-    lines = lines_of({prefix.begin() + 1, prefix.end()});
+  const auto lines_for = [&](const KeyPath& p) {
+    const std::vector<std::string> prefix(p.chain.begin(), p.chain.end() - (p.chain.empty() ? 0 : 1));
+    std::set<int> lines = lines_of(p, prefix);
+    // a leading "scene", "run", "start" or "sweep" names the call's own table
+    if (lines.empty() && !prefix.empty() &&
+        (prefix[0] == "scene" || prefix[0] == "run" || prefix[0] == "start" || prefix[0] == "sweep"))
+      lines = lines_of(p, {prefix.begin() + 1, prefix.end()});
+    return lines;
+  };
+  std::set<int> lines = lines_for(path);
+  // a key not written in a list entry or a pulley's table (left out, or written as another
+  // spelling): the entry's own line
+  if (lines.empty() && !names_entry(path)) {
+    KeyPath entry = path;
+    entry.chain.pop_back();
+    if (names_entry(entry)) lines = lines_for(entry);
+  }
   if (lines.size() != 1) return std::nullopt;
   return *lines.begin();
 }
@@ -319,7 +352,7 @@ std::optional<int> key_line(std::string_view text, int call_line, const KeyPath&
 std::optional<int> key_line_in_file(const std::string& file, int call_line, const KeyPath& path) {
   constexpr off_t kMaxBytes = 4 << 20;
   struct stat st;
-  if (path.chain.empty() || stat(file.c_str(), &st) != 0 || !S_ISREG(st.st_mode) || st.st_size > kMaxBytes)
+  if (path.empty() || stat(file.c_str(), &st) != 0 || !S_ISREG(st.st_mode) || st.st_size > kMaxBytes)
     return std::nullopt;
   std::ifstream in(file, std::ios::binary);
   const std::string text{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};

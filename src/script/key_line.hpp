@@ -14,9 +14,13 @@
 // the path's: "belt.sde.k" a `k` in an `sde` table in a `belt` table; "pulley 'idler'.tensioner.
 // stiffness" a `stiffness` in a `tensioner` table in the table whose name is "idler";
 // "friction.segments[2].mu" (or "friction.segments.2.mu") a `mu` in the second list entry of
-// `segments` in `friction`. A leading "scene" or "run" names the call's own table. When no key or
-// more than one matches (a value built elsewhere, in a loop, or a call nested in another
-// constructor), there is no answer and the call's line stays.
+// `segments` in `friction`. A leading "scene" or "run" names the call's own table. A path that
+// names a table, not a key, is found at the line its constructor opens on: a list entry
+// ("pulleys[2]", "friction.segments[2]") or a pulley ("pulley 'idler'", the table whose name it
+// is); so is a key that such a table does not hold as written ("pulley 2.name" left out,
+// "pulley 'idler'.centre" written as `center`). When nothing or more than one thing matches (a
+// value built elsewhere, in a loop, or a call nested in another constructor), there is no answer
+// and the call's line stays.
 #pragma once
 
 #include <optional>
@@ -35,10 +39,11 @@ using beltsim::KeyPath;  // (scene/key_path.hpp)
 //   "pulley 'driver' inertia must be > 0 (...)"        -> pulley 'driver', inertia
 //   "unknown key 'radus' in pulley 'driver' (did ...)" -> pulley 'driver', radus
 //   "run.frames.fps must be > 0 (...)"                 -> run.frames.fps
+//   "friction.segments[2]: from and to are required"   -> friction.segments[2] (a list entry)
 KeyPath message_path(std::string_view message);
 
-// the line (from 1) of the one key matching `path` in the table constructor that opens on
-// `call_line` of `text`, or nothing (see above)
+// the line (from 1) of the one key (or list entry, or pulley's table) matching `path` in the table
+// constructor that opens on `call_line` of `text`, or nothing (see above)
 std::optional<int> key_line(std::string_view text, int call_line, const KeyPath& path);
 
 // key_line for the script file `file` (a regular file of at most 4 MB; nothing otherwise)

@@ -27,9 +27,7 @@ namespace beltsim::script {
   std::optional<int> line;
   if (lua_getstack(L, 1, &ar) && lua_getinfo(L, "Sl", &ar) && ar.currentline > 0 && ar.source[0] == '@') {
     try {
-      // (a list position last names an entry, not a key: the call's line)
-      if (!path.chain.empty() && path.chain.back().find_first_not_of("0123456789") != std::string::npos)
-        line = key_line_in_file(ar.source + 1, ar.currentline, path);
+      line = key_line_in_file(ar.source + 1, ar.currentline, path);
     } catch (const std::exception&) {  // (no memory for the text): the call's line
     }
   }

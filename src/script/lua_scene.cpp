@@ -200,7 +200,11 @@ PulleyDef to_pulley(lua_State* L, int idx, const std::string& what, SceneDef& d,
   check_keys(L, idx, what, keys_of("pulley"));
   PulleyDef p;
   const auto name = opt_string(L, idx, "name", what);
-  if (!name) fail_on(L, what, "a name is required");
+  // (the path pulley N.name: the line of its `name =`, or of the pulley's table when none is written)
+  if (!name)
+    fail_on(L, what + ".name",
+            "a name is required, got nil (a string: name = \"idler\"; written without quotes, name = idler reads a "
+            "variable, nil unless the script sets one)");
   p.name = *name;
   const std::string w = "pulley '" + p.name + "'";
   bool centred = false;

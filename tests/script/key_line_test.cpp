@@ -43,8 +43,10 @@ TEST(KeyLine, MessagePathsAsTheErrorsSpellThem) {
   EXPECT_EQ(chain("friction.segments.2.from must be >= 0"), "/friction/segments/2/from");
   EXPECT_EQ(chain("spray 1.radius must be > 0 (got 0 m)"), "/spray/1/radius");
   EXPECT_EQ(chain("run.frames.fps: must be in (0, 240] (got -30)"), "/run/frames/fps");
-  // no key: a path that ends at a list position, a sentence
-  EXPECT_EQ(chain("friction.segments[2]: from and to [m] are required"), "");
+  // a path that ends at a list position names that entry (key_line finds its table's line)
+  EXPECT_EQ(chain("friction.segments[2]: from and to [m] are required"), "/friction/segments/2");
+  EXPECT_EQ(chain("pulley 2.name: a name is required"), "/pulleys/2/name");
+  // no key: a sentence
   EXPECT_EQ(chain("the script is empty"), "/the");  // a word that no table holds as a key
   EXPECT_EQ(chain("(an error object that is a table value)"), "");
 }
@@ -96,6 +98,16 @@ TEST(KeyLine, FindsTheKeyWhoseTablesMatchThePath) {
   EXPECT_EQ(line_of("x = beltsim.scene { " + std::string(100000, '{'), 1, "belt.elements"), std::nullopt);
   // a list position past int: no match, no exception
   EXPECT_EQ(line_of(kScene, 3, "friction.segments[99999999999999999999].mu"), std::nullopt);
+  // a path that names a table: a list entry or a pulley, at the line its constructor opens on; a
+  // key such a table does not hold as written, at that line too (but not in a keyed table's: the
+  // tensioner's, the belt's)
+  EXPECT_EQ(line_of(kScene, 3, "pulley 'idler': a centre {x, y} [m] is required"), 7);
+  EXPECT_EQ(line_of(kScene, 3, "pulley 2.name: a name is required"), 10);
+  EXPECT_EQ(line_of(kScene, 3, "pulley 1.name: a name is required"), 5);
+  EXPECT_EQ(line_of(kScene, 3, "pulley 'idler'.inertia must be > 0"), 7);  // not written: the pulley's line
+  EXPECT_EQ(line_of(kScene, 3, "friction.segments[2]: from and to [m] are required"), 17);
+  EXPECT_EQ(line_of(kScene, 3, "pulley 'idler'.tensioner.damping must be >= 0"), std::nullopt);
+  EXPECT_EQ(line_of(kScene, 3, "pulley 3.name: a name is required"), std::nullopt);  // no third pulley
   // a key written twice in one table: which one?
   EXPECT_EQ(line_of("x = beltsim.scene { belt = { elements = 1,\n elements = 2 } }\n", 1, "belt.elements"),
             std::nullopt);
@@ -138,6 +150,52 @@ TEST(KeyLine, ScriptErrorsNameTheLineOfTheKey) {
   EXPECT_EQ(run(with_belt("  belt = b,\n", "local b = { pretension = -5 }\n"))
                 .rfind(file + ":2: belt.pretension must be > 0", 0),
             0u);
+}
+
+// The errors about a pulley as a whole name that pulley's line (the key at fault in it, or its
+// table when the key is not written), not the line of the beltsim.scene call (1): a name that is
+// nil (written without quotes) or left out, two pulleys of one name, torque and speed both given,
+// two pulleys that overlap (found by validate(), which names the path of the key).
+TEST(KeyLine, PulleyErrorsNameThePulleysLine) {
+  const ScriptDir sd;
+  // the second pulley's name line (6), centre (7) and speed line (9) as given
+  auto scene = [](const std::string& name_line, const std::string& centre, const std::string& speed_line) {
+    std::string text =
+        "local s = beltsim.scene {\n"                              // 1
+        "  pulleys = {\n"                                          // 2
+        "    { name = 'driver', centre = {0, 0}, radius = 0.1,\n"  // 3
+        "      torque = beltsim.ramp(0.3, -70) },\n"               // 4
+        "    {\n"                                                  // 5
+        "      NAME\n"                                             // 6
+        "      centre = CENTRE, radius = 0.1,\n"                   // 7
+        "      torque = -1,\n"                                     // 8
+        "      SPEED },\n"                                         // 9
+        "  },\n"                                                   // 10
+        "  belt = { elements = 40 },\n"                            // 11
+        "}\n";
+    for (const auto& [from, to] : {std::pair{"NAME", name_line}, {"CENTRE", centre}, {"SPEED", speed_line}})
+      text.replace(text.find(from), std::string_view(from).size(), to);
+    return text;
+  };
+  const std::string& file = sd.file;
+  const std::string nil_name = sd.run(scene("name = driven,", "{0.29, 0}", ""));
+  EXPECT_EQ(nil_name.rfind(file + ":6: pulley 2.name: a name is required, got nil", 0), 0u) << nil_name;
+  const std::string no_name = sd.run(scene("", "{0.29, 0}", ""));
+  EXPECT_EQ(no_name.rfind(file + ":5: pulley 2.name: a name is required", 0), 0u) << no_name;
+  const std::string twice = sd.run(scene("name = 'driver',", "{0.29, 0}", ""));
+  EXPECT_EQ(twice.rfind(file + ":6: pulley 2.name: pulleys 1 and 2 are both named 'driver'", 0), 0u) << twice;
+  const std::string both = sd.run(scene("name = 'driven',", "{0.29, 0}", "speed = -40,"));
+  EXPECT_EQ(both.rfind(file + ":9: pulley 'driven'.speed: give either a torque or a prescribed speed, not both (got "
+                              "torque = -1 and speed = -40)",
+                       0),
+            0u)
+      << both;
+  const std::string overlap = sd.run(scene("name = 'driven',", "{0.15, 0}", ""));
+  EXPECT_EQ(overlap.rfind(file + ":7: pulley 'driven'.centre: pulleys 'driver' and 'driven' overlap: centres 0.15 m "
+                                 "apart, radii add up to 0.2 m",
+                          0),
+            0u)
+      << overlap;
 }
 
 // An error carries what it is about (scene/validate.hpp, ParameterError): the parameter's path and

@@ -163,8 +163,20 @@ TEST(LuaApi, ZeroInertiaIsRejected) {
                {"inertia must be > 0", "got 0 kg·m²"});
 }
 
+// named on the later pulley's line (its centre), not the call's (line 1)
 TEST(LuaApi, OverlappingPulleysAreRejected) {
-  expect_error(scene_text("", "centre = {0.15, 0}, radius = 0.1"), "scene.lua:2:", {"overlap", "0.15 m apart"});
+  expect_error(scene_text("", "centre = {0.15, 0}, radius = 0.1"),
+               "scene.lua:4: pulley 'driven'.centre: ", {"overlap", "0.15 m apart"});
+}
+
+// a static solve that fails on a contact far stiffer than the belt names the contact's key on its
+// line (7), with its value, not belt.elements on the belt's line
+TEST(LuaApi, AContactTooStiffForTheStaticStartIsNamed) {
+  beltsim::test::expect_warnings({WarningKind::static_retry});
+  beltsim::test::TwoPulley p;
+  p.extra = "contact = { c2 = 1e14 },";
+  expect_error(beltsim::test::two_pulley(p), "scene.lua:7: contact.c2 makes the contact ",
+               {"times as stiff as the belt", "(got 1e+14 N/m)"});
 }
 
 TEST(LuaApi, NonPositivePretensionIsRejected) {

@@ -106,6 +106,8 @@ std::pair<std::string, std::string> breaking(Rule r) {
     case Rule::slip_band: return {"2", "2"};
     case Rule::pulley_radius:
       return {"100", "100"};
+    case Rule::strain:
+      return {"0.9", "0.9"};
     case Rule::finite: return {"1/0", "inf"};
     case Rule::none: break;
   }
@@ -277,12 +279,11 @@ TEST(Parameters, FrictionSegments) {
                           "friction.segments.2.bristle_damping,0.1,s/m,given",
                           "friction.segments.2.bristle_stiffness,1e+05,1/m,default"})
     EXPECT_NE(csv.find(std::string("\n") + row), std::string::npos) << row << " in\n" << csv;
-  // (about no key but a list position: the line of the beltsim.scene call, as key_line_test's
-  // MessagePathsAsTheErrorsSpellThem has it)
+  // (about no key but a list position: the line of that entry's table, as key_line_test's
+  // MessagePathsAsTheErrorsSpellThem has it; here the friction table's)
   EXPECT_EQ(
       run_text(scene("{ { from = 0.1, law = 'stribeck' } }")),
-      at_line_of(scene("{}"), "beltsim.scene {") +
-          "friction.segments[1]: from and to [m] (where the segment begins and ends along the belt) are required");
+      at + "friction.segments[1]: from and to [m] (where the segment begins and ends along the belt) are required");
   EXPECT_EQ(run_text(scene("{ { from = 0.1, to = 0.2, dv = 1e-4 } }"))
                 .rfind(at + "unknown key 'dv' in friction.segments[1]", 0),
             0u);

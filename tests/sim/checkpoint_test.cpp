@@ -389,7 +389,7 @@ TEST(Checkpoint, ForgeriesAreRefused) {
     const std::string to = std::string(from).replace(from.find("driven"), 6, "driver");
     for (size_t at; (at = twins.find(from)) != std::string::npos;) twins.replace(at, from.size(), to);
   }
-  refused(twins, "the scene: two pulleys are named 'driver'");
+  refused(twins, "the scene: pulley 2.name: pulleys 1 and 2 are both named 'driver'");
   refused(with_line(t, "friction.dv", "friction.dv 1e300"), "the scene: friction.dv must be in (0, 1] m/s: ");
   // the integrator's step: its end far past the checkpoint's time (its dense output would span
   // it), alone and with the step's length to match; the next step far longer than the last
