@@ -196,8 +196,9 @@ std::string Simulation::checkpoint_text() const {
 }
 
 std::unique_ptr<Simulation> Simulation::resume(const std::string& path, const FrameSinkFactory& factory, int* callbacks,
-                                               const std::function<void(const RunSettings&)>& vet, bool rewind) {
-  return load(path, factory, callbacks, vet, true, rewind);
+                                               const std::function<void(const RunSettings&)>& vet, bool rewind,
+                                               const std::function<void(const std::string&)>& warn) {
+  return load(path, factory, callbacks, vet, true, rewind, warn);
 }
 
 std::unique_ptr<Simulation> Simulation::open_checkpoint(const std::string& path) {
@@ -209,7 +210,7 @@ std::unique_ptr<Simulation> Simulation::open_checkpoint(const std::string& path)
 
 std::unique_ptr<Simulation> Simulation::load(const std::string& path, const FrameSinkFactory& factory, int* callbacks,
                                              const std::function<void(const RunSettings&)>& vet, bool outputs,
-                                             bool rewind) {
+                                             bool rewind, const std::function<void(const std::string&)>& warn) {
   const std::string where = path + ": ";  // the caller says what it was doing (beltsim.resume, render)
   std::unique_ptr<Simulation> s;
   SimState st;
@@ -260,6 +261,11 @@ std::unique_ptr<Simulation> Simulation::load(const std::string& path, const Fram
   } catch (const std::runtime_error& e) {
     throw std::runtime_error(where + e.what());
   }
+  if (!st.outputs.fingerprinted && warn)
+    warn(path + ": a version " + std::to_string(kCheckpointOldest) +
+         " checkpoint holds no fingerprint of its outputs, so whether the files in " + s->rs_.out_dir +
+         " up to it are its own run's (not a later run's into the folder) could not be checked; a checkpoint "
+         "saved by this beltsim is checked");
   // a run's results after the checkpoint are not dropped unasked (a kept state of a finished run,
   // or a copy of its folder, whose checkpoints name the run's own folder)
   if (const std::string later = s->out_->later_results(st.outputs); !later.empty() && !rewind)

@@ -12,6 +12,7 @@
 #include "integrate/stepper.hpp"
 #include "integrate/timeline.hpp"
 #include "io/number_text.hpp"
+#include "io/suggest.hpp"
 #include "model/forces.hpp"
 #include "scene/validate.hpp"
 #include "sim/interval_means.hpp"
@@ -20,13 +21,6 @@
 namespace beltsim {
 
 namespace {
-
-// "a", "a and b", "a, b and c"
-std::string and_list(const std::vector<std::string>& names) {
-  std::string list;
-  for (size_t k = 0; k < names.size(); ++k) list += (k ? k + 1 < names.size() ? ", " : " and " : "") + names[k];
-  return list;
-}
 
 // sets a variable for the guard's scope and gives it back its value before, however the scope is
 // left (an exception from a Lua callback included)

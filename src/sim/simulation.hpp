@@ -170,8 +170,9 @@ class Simulation {
   // first that it fits (StateError naming the field: the sizes, each stream's position at its
   // time, now inside the integrator's held step, the integrator's method) and that the outputs can
   // be cut back to it (std::runtime_error naming the file: shorter than the state's size, a size
-  // not at a row's end, frames drawn since), and changes nothing when it refuses; then cuts the
-  // CSV files back to the state's sizes and notes "set_state" in events.csv. A checked run
+  // not at a row's end, not the bytes the state's run wrote, frames drawn since), and changes
+  // nothing when it refuses; then cuts the CSV files back to the state's sizes and notes
+  // "set_state" in events.csv. A checked run
   // (RunSettings::check) is refused (std::logic_error): its companion's state is not part of it.
   void set_state(const SimState& s);
 
@@ -187,10 +188,14 @@ class Simulation {
   // callbacks (if not null) receives the number of callbacks the saved simulation had.
   // vet (if set) sees the saved settings (outputs resolved) before any output is touched, and may
   // throw to refuse them (a sandboxed script's checkpoint naming files outside its folders).
+  // The folder's files up to the checkpoint must be the ones its run wrote: parameters.csv's start, the last row's time
+  // and every byte up to the cuts (a later run into the folder is refused, naming what differs). warn (if set) hears
+  // what could not be checked (a version 12 checkpoint holds no fingerprints).
   static std::unique_ptr<Simulation> resume(const std::string& path, const FrameSinkFactory& factory,
                                             int* callbacks = nullptr,
                                             const std::function<void(const RunSettings&)>& vet = {},
-                                            bool rewind = false);
+                                            bool rewind = false,
+                                            const std::function<void(const std::string&)>& warn = {});
   // a saved simulation at its time, to read (state, drive, observation) and draw: no output is
   // opened or touched, and it cannot run (it is closed). Throws std::runtime_error as resume does.
   static std::unique_ptr<Simulation> open_checkpoint(const std::string& path);
@@ -200,7 +205,8 @@ class Simulation {
   // resume (outputs: continue them) or open_checkpoint (no outputs)
   static std::unique_ptr<Simulation> load(const std::string& path, const FrameSinkFactory& factory, int* callbacks,
                                           const std::function<void(const RunSettings&)>& vet, bool outputs,
-                                          bool rewind = false);
+                                          bool rewind = false,
+                                          const std::function<void(const std::string&)>& warn = {});
   // set_state's parts: whether the state fits (StateError; the integrator's state and the outputs'
   // files are checked by Integrator::set_state and Outputs::check_state), and the state set but
   // the integrator's
