@@ -224,6 +224,18 @@ std::vector<std::string> Outputs::earlier_outputs() const {
     if (name.back() == '/') name.pop_back();
     if (!o.written && dir_->has(name)) left.push_back(o.name);
   }
+  // checkpoints saved into the folder (sim:save("mid.ckpt")): resumed after this run has written
+  // the folder, each is refused (check_state: its outputs are gone), so they are named as it starts
+  std::vector<std::string> checkpoints;
+  std::error_code ec;
+  for (const auto& e : std::filesystem::directory_iterator(dir_->path(), ec)) {
+    const std::string n = e.path().filename().string();
+    if (e.symlink_status(ec).type() == std::filesystem::file_type::regular && n.size() > 5 &&
+        n.compare(n.size() - 5, 5, ".ckpt") == 0)
+      checkpoints.push_back(n);
+  }
+  std::sort(checkpoints.begin(), checkpoints.end());
+  left.insert(left.end(), checkpoints.begin(), checkpoints.end());
   return left;
 }
 

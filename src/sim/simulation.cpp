@@ -81,9 +81,23 @@ Simulation::Simulation(const Scene& sc, const RunSettings& rs, bool fresh)
 
   out_->open(false);
   if (const std::vector<std::string> left = out_->earlier_outputs(); !left.empty() && rs_.on_warning) {
-    rs_.on_warning("the output folder " + rs_.out_dir + " holds an earlier run's " + and_list(left) +
-                   ", which this run does not write: they are not this run's outputs (give each run "
-                   "its own --out or out = ..., or remove them)");
+    // the checkpoints apart (they come last): resumed after this run, each is refused
+    const auto ckpt = std::find_if(left.begin(), left.end(), [](const std::string& n) {
+      return n.size() > 5 && n.compare(n.size() - 5, 5, ".ckpt") == 0;
+    });
+    const std::vector<std::string> files(left.begin(), ckpt), checkpoints(ckpt, left.end());
+    const std::string own = "give each run its own --out or out = ..., or remove ";
+    std::string held;
+    if (!files.empty())
+      held = and_list(files) + ", which this run does not write: they are not this run's outputs (" + own + "them)";
+    if (!checkpoints.empty()) {
+      const bool one = checkpoints.size() == 1;
+      held += std::string(files.empty() ? "" : "; and its ") + (one ? "checkpoint " : "checkpoints ") +
+              and_list(checkpoints) + ": this run replaces the outputs " + (one ? "it continues" : "they continue") +
+              ", so beltsim.resume will refuse " + (one ? "it" : "them") + " unless this run saves its own over " +
+              (one ? "it" : "them") + (files.empty() ? " (" + own + (one ? "it)" : "them)") : "");
+    }
+    rs_.on_warning("the output folder " + rs_.out_dir + " holds an earlier run's " + held);
   }
   for (size_t z = 0; z < drive_.spray.zones.size(); ++z)
     if (drive_.spray.zones[z].on) write_event(0.0, spray_name(static_cast<int>(z)), "on");
