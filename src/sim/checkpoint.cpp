@@ -252,10 +252,23 @@ std::unique_ptr<Simulation> Simulation::load(const std::string& path, const Fram
     return s;
   }
   if (vet) vet(s->rs_);
+  // the folder the checkpoint continues must be there: made anew, it would be left behind empty
+  // by the refusal that follows (its files are missing)
+  if (std::error_code ec; !std::filesystem::is_directory(s->rs_.out_dir, ec)) {
+    std::string hint;
+    const std::filesystem::path beside = std::filesystem::absolute(path).parent_path();
+    if (beside != std::filesystem::path(s->rs_.out_dir) && std::filesystem::exists(beside / "timeseries.csv", ec))
+      hint = " (" + beside.string() + ", where the checkpoint lies, holds a timeseries.csv: if it is that folder " +
+             "moved, move it back to " + s->rs_.out_dir + ")";
+    throw std::runtime_error(where + "the run's output folder " + s->rs_.out_dir +
+                             ", whose files this checkpoint continues, is not there" + hint +
+                             ": put the run's folder back where it was to resume it, or run the scene again; "
+                             "nothing was written");
+  }
   // the outputs continue where the checkpoint left them, once the folder is this simulation's alone
   // (a checkpoint resumed twice: the second is refused before it cuts the first one's files);
   // every one checked before any is cut
-  s->out_->claim();
+  s->out_->claim(false);
   try {
     s->out_->check_state(st.outputs);
   } catch (const std::runtime_error& e) {

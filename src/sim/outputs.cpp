@@ -176,9 +176,9 @@ Outputs::Outputs(const Scene& sc, const RunSettings& rs) : scene_(sc), rs_(rs) {
 
 Outputs::~Outputs() = default;
 
-const OutputDir& Outputs::claim() {
+const OutputDir& Outputs::claim(bool make) {
   if (!dir_) {
-    auto dir = std::make_unique<OutputDir>(rs_.out_dir);
+    auto dir = std::make_unique<OutputDir>(rs_.out_dir, make);
     dir->lock();
     dir_ = std::move(dir);
     if (rs_.on_claimed) rs_.on_claimed();

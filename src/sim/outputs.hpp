@@ -45,9 +45,10 @@ class Outputs {
   Outputs(const Outputs&) = delete;
   Outputs& operator=(const Outputs&) = delete;
 
-  // the output folder, made when missing and claimed (a second simulation on it is refused before
-  // it writes anything; never through a link); a resumed run cuts its files through it
-  const OutputDir& claim();
+  // the output folder, made when missing (unless !make: then refused) and claimed (a second
+  // simulation on it is refused before it writes anything; never through a link); a resumed run
+  // cuts its files through it
+  const OutputDir& claim(bool make = true);
   // the renderer first (it opens the video and the PNG folder, so a bad frames path stops the run
   // before any CSV is written), then parameters.csv (unless append), timeseries.csv, events.csv
   // and snapshots.csv; append continues the files of a resumed run

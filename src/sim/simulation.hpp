@@ -188,9 +188,10 @@ class Simulation {
   // callbacks (if not null) receives the number of callbacks the saved simulation had.
   // vet (if set) sees the saved settings (outputs resolved) before any output is touched, and may
   // throw to refuse them (a sandboxed script's checkpoint naming files outside its folders).
-  // The folder's files up to the checkpoint must be the ones its run wrote: parameters.csv's start, the last row's time
-  // and every byte up to the cuts (a later run into the folder is refused, naming what differs). warn (if set) hears
-  // what could not be checked (a version 12 checkpoint holds no fingerprints).
+  // The folder must be there (a folder moved away is refused, and none is made) and its files up
+  // to the checkpoint the ones its run wrote: parameters.csv's start, the last row's time and every
+  // byte up to the cuts (a later run into the folder is refused, naming what differs). warn (if
+  // set) hears what could not be checked (a version 12 checkpoint holds no fingerprints).
   static std::unique_ptr<Simulation> resume(const std::string& path, const FrameSinkFactory& factory,
                                             int* callbacks = nullptr,
                                             const std::function<void(const RunSettings&)>& vet = {},

@@ -311,6 +311,28 @@ TEST(Checkpoint, OutputsAnotherRunWroteSinceAreRefused) {
   saved().restore();
 }
 
+// a run's folder moved away (archived under another name): the resume is refused, naming the
+// folder and where it may have gone, and no empty folder is made in its place
+TEST(Checkpoint, AFolderMovedAwayIsRefusedAndNotMade) {
+  saved().restore();
+  const fs::path out = saved().out, moved = dir() / "archived";
+  fs::remove_all(moved);
+  fs::rename(out, moved);
+  const std::string ck = (moved / "ck.txt").string();
+  fs::copy_file(saved().ck, ck);
+  const std::string m = test::what_of([&] { Simulation::resume(ck, {}, nullptr, {}, true); });
+  EXPECT_EQ(m, ck + ": the run's output folder " + out.string() +
+                   ", whose files this checkpoint continues, is not there (" + moved.string() +
+                   ", where the checkpoint lies, holds a timeseries.csv: if it is that folder moved, move it back to " +
+                   out.string() +
+                   "): put the run's folder back where it was to resume it, or run the scene again; "
+                   "nothing was written");
+  EXPECT_FALSE(fs::exists(out));
+  fs::remove(ck);
+  fs::rename(moved, out);
+  saved().restore();
+}
+
 // a version 12 checkpoint (no fingerprints of its outputs) is still resumed, saying what it could
 // not check; a checkpoint saved after it holds the fingerprints of the files as they are
 TEST(Checkpoint, AVersion12CheckpointResumesUnchecked) {
