@@ -175,10 +175,25 @@ std::string cannot_save(const std::string& integrator) {
          "trbdf2, ros34pw2, rkf45)";
 }
 
+std::string Simulation::lua_law() const {
+  for (const auto& [drive, whose] : {std::pair{&drive_, ""}, std::pair{&scene_.drive, "the scene's "}})
+    for (size_t j = 0; j < drive->pulleys.size(); ++j)
+      for (const auto& [law, what] :
+           {std::pair{&drive->pulleys[j].torque, "torque"}, std::pair{&drive->pulleys[j].speed, "speed"}})
+        if (law->fn)
+          return std::string(whose) + "pulley '" + model_.pulleys[j].name + "'." + what + " (" + law->fn->describe() +
+                 ")";
+  return "";
+}
+
 void Simulation::save(const std::string& path) const {
   require_open("save");
   if (running_ || view_.y) throw std::logic_error("save: not inside a callback (save between run_to calls)");
   if (!integ_->can_save()) throw std::invalid_argument("save: " + cannot_save(rs_.integrator));
+  if (const std::string law = lua_law(); !law.empty())
+    throw std::invalid_argument("save: " + law +
+                                " is Lua code, which a checkpoint cannot hold: give the law as a table "
+                                "(constant, per_speed, ramps, sines, ...) to save this simulation");
   // written whole (io/output_dir.hpp): a checkpoint is never half a file, and no part of one is
   // left behind when it cannot be written; its missing folders made, as for every output
   write_file_whole(path, checkpoint_text(), true);

@@ -177,9 +177,14 @@ class Simulation {
   void set_state(const SimState& s);
 
   // ---- checkpoints (the settings, the scene and the state in text: sim/state_io.hpp) ---------
+  // "" when the simulation can be saved as far as its laws go, else the first law held by Lua
+  // code, which no checkpoint can hold: "pulley 'driven'.torque (function at x.lua:6)" (the law
+  // now, or the scene's at the start: "the scene's pulley 'driven'.torque ...")
+  std::string lua_law() const;
   // state, integrator state, laws, μ, pending events, output positions. Callbacks are not saved
   // (their count is): the resumed simulation needs them registered again by the script. Throws
-  // std::invalid_argument (cannot_save) for an integrator whose state cannot be saved.
+  // std::invalid_argument (cannot_save) for an integrator whose state cannot be saved, and naming
+  // the pulley and the law (lua_law) for a law held by Lua code.
   void save(const std::string& path) const;
   // continues a saved simulation: its outputs are continued in place (the CSV files truncated to
   // the saved rows; frames numbered on, the video in a new file <name>_resumed_<t>.mp4). Results
