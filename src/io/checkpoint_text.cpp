@@ -29,15 +29,6 @@ std::string hex64(std::uint64_t h) {
 
 }  // namespace
 
-std::uint64_t fnv1a64(std::string_view bytes) {
-  std::uint64_t h = 0xcbf29ce484222325ull;
-  for (unsigned char c : bytes) {
-    h ^= c;
-    h *= 0x100000001b3ull;
-  }
-  return h;
-}
-
 // ---- writing -------------------------------------------------------------------------------
 
 CheckpointWriter::CheckpointWriter() {
@@ -105,6 +96,10 @@ void CheckpointWriter::pairs(std::string_view k, const std::vector<double>& x, c
   text_ += '\n';
 }
 
+void CheckpointWriter::hash(std::string_view k, std::uint64_t h) {
+  word(k, hex64(h));
+}
+
 std::string CheckpointWriter::finish() {
   const std::uint64_t h = fnv1a64(text_);
   text_.append(kChecksumKey);
@@ -128,10 +123,15 @@ CheckpointReader::CheckpointReader(std::string text) : text_(std::move(text)) {
   }
   if (first.substr(0, sp) != magic || version < 0)
     throw CheckpointError("line 1: not a beltsim checkpoint (it begins '" + shown(first) + "')");
-  if (version != kCheckpointVersion)
-    throw CheckpointError("line 1: a version " + std::to_string(version) + " checkpoint; this beltsim reads version " +
-                          std::to_string(kCheckpointVersion) +
+  if (version < kCheckpointOldest || version > kCheckpointVersion)
+    throw CheckpointError("line 1: a version " + std::to_string(version) + " checkpoint; this beltsim reads " +
+                          (kCheckpointOldest == kCheckpointVersion
+                               ? "version " + std::to_string(kCheckpointVersion)
+                               : "versions " + std::to_string(kCheckpointOldest) +
+                                     (kCheckpointOldest + 1 == kCheckpointVersion ? " and " : " to ") +
+                                     std::to_string(kCheckpointVersion)) +
                           " only: resume it with the beltsim that wrote it, or run the scene again from its script");
+  version_ = static_cast<int>(version);
   next_ = eol + 1;
   // the last line: the checksum of everything before it
   const long total = static_cast<long>(std::count(text_.begin(), text_.end(), '\n'));
@@ -369,6 +369,15 @@ std::map<std::string, double> CheckpointReader::line_map(std::string_view k, siz
     m[s] = num();
   }
   return end_with(std::move(m));
+}
+
+std::uint64_t CheckpointReader::line_hash(std::string_view k) {
+  open(k);
+  const std::string w = word();
+  std::uint64_t h = 0;
+  if (w.size() != 16 || std::from_chars(w.data(), w.data() + w.size(), h, 16).ptr != w.data() + w.size())
+    fail("expected 16 hexadecimal digits, got '" + shown(w) + "'");
+  return end_with(h);
 }
 
 void CheckpointReader::finish() {

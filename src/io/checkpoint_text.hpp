@@ -2,7 +2,7 @@
 // the scene, the drive, the integrator's state), so that the whole file has one format and one
 // version.
 //
-//   beltsim-checkpoint 12            <- what it is, and the format version
+//   beltsim-checkpoint 13            <- what it is, and the format version
 //   integrator "esdirk32"            <- a key, then its values, one field per line
 //   rtol 1e-04
 //   probe 2 0 75                     <- sequences: the count, then the values
@@ -27,21 +27,22 @@
 #include <string_view>
 #include <vector>
 
+#include "io/fnv1a64.hpp"
+
 namespace beltsim {
 
 // Raised whenever anything a checkpoint holds changes (the scene's fields, scene/scene_fields.hpp;
 // the run's state, sim/state_io.cpp; the settings, sim/checkpoint.cpp): a reader refuses every
-// other version.
-inline constexpr int kCheckpointVersion = 12;
+// version before kCheckpointOldest and after this one. Version 13 added the outputs' fingerprints
+// (sim/state_io.cpp); a version 12 checkpoint is read without them.
+inline constexpr int kCheckpointVersion = 13;
+inline constexpr int kCheckpointOldest = 12;
 inline constexpr const char* kCheckpointMagic = "beltsim-checkpoint";
 
 // A checkpoint that cannot be read: "line N: reason".
 struct CheckpointError : std::runtime_error {
   using std::runtime_error::runtime_error;
 };
-
-// FNV-1a, 64 bits
-std::uint64_t fnv1a64(std::string_view bytes);
 
 class CheckpointWriter {
  public:
@@ -64,6 +65,8 @@ class CheckpointWriter {
   void line(std::string_view key, const std::map<std::string, double>& m);  // count, then "name" value pairs
   // a table: the count of rows, then x y of each row (x and y of one size)
   void pairs(std::string_view key, const std::vector<double>& x, const std::vector<double>& y);
+  // a 64-bit hash as 16 hexadecimal digits (io/fnv1a64.hpp)
+  void hash(std::string_view key, std::uint64_t h);
 
   // appends the checksum line and hands over the text
   std::string finish();
@@ -77,9 +80,12 @@ class CheckpointWriter {
 
 class CheckpointReader {
  public:
-  // the whole text of a checkpoint. Checks at once that it is one (its first line) of this
-  // version, and that it ends in a checksum line (a file cut short does not).
+  // the whole text of a checkpoint. Checks at once that it is one (its first line) of a version
+  // read (kCheckpointOldest to kCheckpointVersion), and that it ends in a checksum line (a file cut
+  // short does not).
   explicit CheckpointReader(std::string text);
+  // its format version (what an older one lacks is read as absent)
+  int version() const { return version_; }
 
   // the next line, which must open with `key`; its values follow through the calls below
   void open(std::string_view key);
@@ -115,6 +121,8 @@ class CheckpointReader {
   std::vector<long> line_longs(std::string_view key, long lo, long hi, size_t most = SIZE_MAX);
   std::vector<std::string> line_strs(std::string_view key, size_t most = SIZE_MAX);
   std::map<std::string, double> line_map(std::string_view key, size_t most = SIZE_MAX);
+  // 16 hexadecimal digits (CheckpointWriter::hash)
+  std::uint64_t line_hash(std::string_view key);
 
   // the checksum line is next, it matches the text before it, and nothing follows
   void finish();
@@ -142,6 +150,7 @@ class CheckpointReader {
   size_t tokens_left() const;
 
   std::string text_;
+  int version_ = 0;
   size_t next_ = 0;          // where the next line starts
   size_t body_end_ = 0;      // where the checksum line starts
   int lines_ = 0;            // lines of the body, the checksum line excluded

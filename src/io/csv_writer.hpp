@@ -25,6 +25,8 @@ class CsvWriter {
   CsvWriter& operator=(const CsvWriter&) = delete;
   void row(const std::vector<double>& values);
   const std::string& path() const { return file_.path(); }
+  RowFile& file() { return file_; }  // (its bytes' hash)
+  const RowFile& file() const { return file_; }
 
  private:
   void start(const std::vector<std::string>& header, bool append);

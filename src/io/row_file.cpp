@@ -39,7 +39,10 @@ RowFile::~RowFile() {
 void RowFile::write(std::string_view rows) {
   size_t done = 0;
   const int err = write_all(fd_, rows, done);
-  if (err == 0) return;
+  if (err == 0) {
+    hash_ = fnv1a64(rows, hash_);
+    return;
+  }
   // no half row left behind: cut the file back to where this write began
   if (done > 0) {
     const off_t end = ::lseek(fd_, 0, SEEK_CUR);

@@ -13,9 +13,11 @@
 // (tests/io/row_file_test.cpp, tests/io/kill_test.py). Power loss is another matter (no fsync).
 #pragma once
 
+#include <cstdint>
 #include <string>
 #include <string_view>
 
+#include "io/fnv1a64.hpp"
 #include "io/output_dir.hpp"
 
 namespace beltsim {
@@ -34,10 +36,15 @@ class RowFile {
   // one or more whole rows, each ending in '\n', in one write(2)
   void write(std::string_view rows);
   const std::string& path() const { return path_; }
+  // FNV-1a 64 (io/fnv1a64.hpp) of the file's bytes: those written here, after the hash of what
+  // the file held before (an appended file's, set by continue_hash; an emptied file's: none)
+  std::uint64_t hash() const { return hash_; }
+  void continue_hash(std::uint64_t before) { hash_ = before; }
 
  private:
   std::string path_;
   int fd_ = -1;
+  std::uint64_t hash_ = kFnv1a64Empty;
 };
 
 }  // namespace beltsim

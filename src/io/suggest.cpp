@@ -67,4 +67,10 @@ std::string join(const std::vector<std::string>& names, const std::string& sep) 
   return s;
 }
 
+std::string and_list(const std::vector<std::string>& names) {
+  std::string list;
+  for (size_t k = 0; k < names.size(); ++k) list += (k ? k + 1 < names.size() ? ", " : " and " : "") + names[k];
+  return list;
+}
+
 }  // namespace beltsim

@@ -22,5 +22,7 @@ std::vector<std::string> close_names(const std::string& name, const std::vector<
 std::string did_you_mean(const std::string& name, const std::vector<std::string>& valid);
 // "a, b, c"
 std::string join(const std::vector<std::string>& names, const std::string& sep = ", ");
+// "a", "a and b", "a, b and c"
+std::string and_list(const std::vector<std::string>& names);
 
 }  // namespace beltsim

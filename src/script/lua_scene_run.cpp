@@ -143,6 +143,13 @@ int l_scene_start(lua_State* L) {
     error = std::string("start: ") + e.what();
   }
   if (!error.empty()) fail_at(L, about, error);
+  // a checkpoint holds no Lua code: said now, not after a long run at sim:save (keep_states, which
+  // saves all along, refuses such a law at once)
+  if (const std::string law = sim->lua_law(); !law.empty())
+    std::fprintf(stderr,
+                 "beltsim: warning: start: %s is Lua code, which a checkpoint cannot hold: this simulation cannot be "
+                 "saved (sim:save refuses it); give the law as a table to save it\n",
+                 law.c_str());
   push_simulation(L, std::move(sim), ctx, progress);
   return 1;
 }

@@ -184,8 +184,10 @@ int l_resume(lua_State* L) {
   const auto vet = [ctx](const RunSettings& rs) {
     if (const std::string r = run_paths_refusal(*ctx, "resume", rs); !r.empty()) throw std::invalid_argument(r);
   };
-  guarded(L, "beltsim.resume",
-          [&] { sim = Simulation::resume(lua_tostring(L, 1), render::make_frame_recorder, &callbacks, vet, rewind); });
+  const auto warn = [](const std::string& m) { std::fprintf(stderr, "beltsim: warning: %s\n", m.c_str()); };
+  guarded(L, "beltsim.resume", [&] {
+    sim = Simulation::resume(lua_tostring(L, 1), render::make_frame_recorder, &callbacks, vet, rewind, warn);
+  });
   std::fprintf(stderr, "beltsim: %s resumed at t = %s s; its outputs go on in %s\n", lua_tostring(L, 1),
                rounded_text(sim->now()).c_str(), sim->out_dir().c_str());
   if (callbacks > 0)

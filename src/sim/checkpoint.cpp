@@ -175,10 +175,25 @@ std::string cannot_save(const std::string& integrator) {
          "trbdf2, ros34pw2, rkf45)";
 }
 
+std::string Simulation::lua_law() const {
+  for (const auto& [drive, whose] : {std::pair{&drive_, ""}, std::pair{&scene_.drive, "the scene's "}})
+    for (size_t j = 0; j < drive->pulleys.size(); ++j)
+      for (const auto& [law, what] :
+           {std::pair{&drive->pulleys[j].torque, "torque"}, std::pair{&drive->pulleys[j].speed, "speed"}})
+        if (law->fn)
+          return std::string(whose) + "pulley '" + model_.pulleys[j].name + "'." + what + " (" + law->fn->describe() +
+                 ")";
+  return "";
+}
+
 void Simulation::save(const std::string& path) const {
   require_open("save");
   if (running_ || view_.y) throw std::logic_error("save: not inside a callback (save between run_to calls)");
   if (!integ_->can_save()) throw std::invalid_argument("save: " + cannot_save(rs_.integrator));
+  if (const std::string law = lua_law(); !law.empty())
+    throw std::invalid_argument("save: " + law +
+                                " is Lua code, which a checkpoint cannot hold: give the law as a table "
+                                "(constant, per_speed, ramps, sines, ...) to save this simulation");
   // written whole (io/output_dir.hpp): a checkpoint is never half a file, and no part of one is
   // left behind when it cannot be written; its missing folders made, as for every output
   write_file_whole(path, checkpoint_text(), true);
@@ -196,8 +211,9 @@ std::string Simulation::checkpoint_text() const {
 }
 
 std::unique_ptr<Simulation> Simulation::resume(const std::string& path, const FrameSinkFactory& factory, int* callbacks,
-                                               const std::function<void(const RunSettings&)>& vet, bool rewind) {
-  return load(path, factory, callbacks, vet, true, rewind);
+                                               const std::function<void(const RunSettings&)>& vet, bool rewind,
+                                               const std::function<void(const std::string&)>& warn) {
+  return load(path, factory, callbacks, vet, true, rewind, warn);
 }
 
 std::unique_ptr<Simulation> Simulation::open_checkpoint(const std::string& path) {
@@ -209,7 +225,7 @@ std::unique_ptr<Simulation> Simulation::open_checkpoint(const std::string& path)
 
 std::unique_ptr<Simulation> Simulation::load(const std::string& path, const FrameSinkFactory& factory, int* callbacks,
                                              const std::function<void(const RunSettings&)>& vet, bool outputs,
-                                             bool rewind) {
+                                             bool rewind, const std::function<void(const std::string&)>& warn) {
   const std::string where = path + ": ";  // the caller says what it was doing (beltsim.resume, render)
   std::unique_ptr<Simulation> s;
   SimState st;
@@ -251,15 +267,33 @@ std::unique_ptr<Simulation> Simulation::load(const std::string& path, const Fram
     return s;
   }
   if (vet) vet(s->rs_);
+  // the folder the checkpoint continues must be there: made anew, it would be left behind empty
+  // by the refusal that follows (its files are missing)
+  if (std::error_code ec; !std::filesystem::is_directory(s->rs_.out_dir, ec)) {
+    std::string hint;
+    const std::filesystem::path beside = std::filesystem::absolute(path).parent_path();
+    if (beside != std::filesystem::path(s->rs_.out_dir) && std::filesystem::exists(beside / "timeseries.csv", ec))
+      hint = " (" + beside.string() + ", where the checkpoint lies, holds a timeseries.csv: if it is that folder " +
+             "moved, move it back to " + s->rs_.out_dir + ")";
+    throw std::runtime_error(where + "the run's output folder " + s->rs_.out_dir +
+                             ", whose files this checkpoint continues, is not there" + hint +
+                             ": put the run's folder back where it was to resume it, or run the scene again; "
+                             "nothing was written");
+  }
   // the outputs continue where the checkpoint left them, once the folder is this simulation's alone
   // (a checkpoint resumed twice: the second is refused before it cuts the first one's files);
   // every one checked before any is cut
-  s->out_->claim();
+  s->out_->claim(false);
   try {
     s->out_->check_state(st.outputs);
   } catch (const std::runtime_error& e) {
     throw std::runtime_error(where + e.what());
   }
+  if (!st.outputs.fingerprinted && warn)
+    warn(path + ": a version " + std::to_string(kCheckpointOldest) +
+         " checkpoint holds no fingerprint of its outputs, so whether the files in " + s->rs_.out_dir +
+         " up to it are its own run's (not a later run's into the folder) could not be checked; a checkpoint "
+         "saved by this beltsim is checked");
   // a run's results after the checkpoint are not dropped unasked (a kept state of a finished run,
   // or a copy of its folder, whose checkpoints name the run's own folder)
   if (const std::string later = s->out_->later_results(st.outputs); !later.empty() && !rewind)

@@ -11,12 +11,15 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <cstdint>
+#include <limits>
 #include <memory>
 #include <string>
 #include <utility>
 #include <vector>
 
 #include "integrate/warnings.hpp"
+#include "io/fnv1a64.hpp"
 #include "model/drive.hpp"
 #include "model/observables.hpp"
 #include "sim/run_settings.hpp"
@@ -42,16 +45,18 @@ class Outputs {
   Outputs(const Outputs&) = delete;
   Outputs& operator=(const Outputs&) = delete;
 
-  // the output folder, made when missing and claimed (a second simulation on it is refused before
-  // it writes anything; never through a link); a resumed run cuts its files through it
-  const OutputDir& claim();
+  // the output folder, made when missing (unless !make: then refused) and claimed (a second
+  // simulation on it is refused before it writes anything; never through a link); a resumed run
+  // cuts its files through it
+  const OutputDir& claim(bool make = true);
   // the renderer first (it opens the video and the PNG folder, so a bad frames path stops the run
   // before any CSV is written), then parameters.csv (unless append), timeseries.csv, events.csv
   // and snapshots.csv; append continues the files of a resumed run
   void open(bool append);
   // the outputs an earlier run left in the claimed folder that this one does not write:
-  // snapshots.csv, frames.mp4, frames/ and states/ (a folder holds one run's outputs; the
-  // simulation warns of them as it starts)
+  // snapshots.csv, frames.mp4, frames/ and states/, then the checkpoints in it (NAME.ckpt, which
+  // cannot be resumed once this run has written the folder) (a folder holds one run's outputs;
+  // the simulation warns of them as it starts)
   std::vector<std::string> earlier_outputs() const;
   // finishes the video, appends the fallbacks (warning.<name>.count, .first_t) and `rows` (whole
   // rows: a checked run's check.*) to parameters.csv and releases the folder; each output closed
@@ -83,12 +88,28 @@ class Outputs {
     long rows = 0;                                              // samples written
     long frames = 0;                                            // frames drawn
     long csv_bytes = 0, events_bytes = 0, snapshots_bytes = 0;  // 0 for a file that is not there
+    // what the files held, to know them again (a folder another run has written since is not
+    // this run's, whatever its sizes): the time of timeseries.csv's last row (NaN: no row yet),
+    // parameters.csv's size as the run wrote it at its start (its fallbacks are appended at
+    // close), and FNV-1a 64 of each file's bytes up to its size (io/fnv1a64.hpp)
+    double csv_last_t = std::numeric_limits<double>::quiet_NaN();
+    long parameters_bytes = 0;
+    std::uint64_t csv_hash = kFnv1a64Empty, events_hash = kFnv1a64Empty, snapshots_hash = kFnv1a64Empty,
+                  parameters_hash = kFnv1a64Empty;
+    // false for a state read from a version 12 checkpoint, which holds none of these
+    // (with_fingerprints takes them from the files)
+    bool fingerprinted = true;
   };
   State get_state() const;
   // std::runtime_error naming the file when the claimed folder's files cannot be cut back to the
-  // state's sizes (shorter, not a regular file, a size inside the header or not at a row's end), or
-  // when frames drawn since would have to be taken back from a video; nothing is touched
+  // state's sizes (shorter, not a regular file, a size inside the header or not at a row's end),
+  // when they are not the files the state's run wrote (another run has written the folder since:
+  // parameters.csv's start, the last row's time or the bytes up to each size differ), or when
+  // frames drawn since would have to be taken back from a video; nothing is touched
   void check_state(const State& s) const;
+  // a state without fingerprints (fingerprinted false) with those of the claimed folder's files
+  // as they are up to its sizes (check_state first), so that a later save holds them
+  State with_fingerprints(const State& s) const;
   // what cutting the claimed folder's files back to the state would drop ("61 rows of
   // timeseries.csv after it, to t = 0.1 s"); empty when they end where the state left them
   std::string later_results(const State& s) const;
@@ -108,7 +129,12 @@ class Outputs {
   long rows_ = 0;
   long frames_before_ = 0;  // frames written before a resume
   State last_;              // the sizes set or measured last (get_state without the folder)
-  std::vector<std::pair<const char*, long>> cuts(const State& s) const;
+  struct Cut {
+    const char* name;
+    long bytes;
+    std::uint64_t hash;
+  };
+  std::vector<Cut> cuts(const State& s) const;
   void open_rows(bool append);  // timeseries.csv, events.csv, snapshots.csv
 };
 

@@ -12,6 +12,7 @@
 #include "integrate/stepper.hpp"
 #include "integrate/timeline.hpp"
 #include "io/number_text.hpp"
+#include "io/suggest.hpp"
 #include "model/forces.hpp"
 #include "scene/validate.hpp"
 #include "sim/interval_means.hpp"
@@ -20,13 +21,6 @@
 namespace beltsim {
 
 namespace {
-
-// "a", "a and b", "a, b and c"
-std::string and_list(const std::vector<std::string>& names) {
-  std::string list;
-  for (size_t k = 0; k < names.size(); ++k) list += (k ? k + 1 < names.size() ? ", " : " and " : "") + names[k];
-  return list;
-}
 
 // sets a variable for the guard's scope and gives it back its value before, however the scope is
 // left (an exception from a Lua callback included)
@@ -93,9 +87,23 @@ Simulation::Simulation(const Scene& sc, const RunSettings& rs, bool fresh)
 
   out_->open(false);
   if (const std::vector<std::string> left = out_->earlier_outputs(); !left.empty() && rs_.on_warning) {
-    rs_.on_warning("the output folder " + rs_.out_dir + " holds an earlier run's " + and_list(left) +
-                   ", which this run does not write: they are not this run's outputs (give each run "
-                   "its own --out or out = ..., or remove them)");
+    // the checkpoints apart (they come last): resumed after this run, each is refused
+    const auto ckpt = std::find_if(left.begin(), left.end(), [](const std::string& n) {
+      return n.size() > 5 && n.compare(n.size() - 5, 5, ".ckpt") == 0;
+    });
+    const std::vector<std::string> files(left.begin(), ckpt), checkpoints(ckpt, left.end());
+    const std::string own = "give each run its own --out or out = ..., or remove ";
+    std::string held;
+    if (!files.empty())
+      held = and_list(files) + ", which this run does not write: they are not this run's outputs (" + own + "them)";
+    if (!checkpoints.empty()) {
+      const bool one = checkpoints.size() == 1;
+      held += std::string(files.empty() ? "" : "; and its ") + (one ? "checkpoint " : "checkpoints ") +
+              and_list(checkpoints) + ": this run replaces the outputs " + (one ? "it continues" : "they continue") +
+              ", so beltsim.resume will refuse " + (one ? "it" : "them") + " unless this run saves its own over " +
+              (one ? "it" : "them") + (files.empty() ? " (" + own + (one ? "it)" : "them)") : "");
+    }
+    rs_.on_warning("the output folder " + rs_.out_dir + " holds an earlier run's " + held);
   }
   for (size_t z = 0; z < drive_.spray.zones.size(); ++z)
     if (drive_.spray.zones[z].on) write_event(0.0, spray_name(static_cast<int>(z)), "on");

@@ -174,15 +174,21 @@ class Simulation {
   // first that it fits (StateError naming the field: the sizes, each stream's position at its
   // time, now inside the integrator's held step, the integrator's method) and that the outputs can
   // be cut back to it (std::runtime_error naming the file: shorter than the state's size, a size
-  // not at a row's end, frames drawn since), and changes nothing when it refuses; then cuts the
-  // CSV files back to the state's sizes and notes "set_state" in events.csv. A checked run
+  // not at a row's end, not the bytes the state's run wrote, frames drawn since), and changes
+  // nothing when it refuses; then cuts the CSV files back to the state's sizes and notes
+  // "set_state" in events.csv. A checked run
   // (RunSettings::check) is refused (std::logic_error): its companion's state is not part of it.
   void set_state(const SimState& s);
 
   // ---- checkpoints (the settings, the scene and the state in text: sim/state_io.hpp) ---------
+  // "" when the simulation can be saved as far as its laws go, else the first law held by Lua
+  // code, which no checkpoint can hold: "pulley 'driven'.torque (function at x.lua:6)" (the law
+  // now, or the scene's at the start: "the scene's pulley 'driven'.torque ...")
+  std::string lua_law() const;
   // state, integrator state, laws, μ, pending events, output positions. Callbacks are not saved
   // (their count is): the resumed simulation needs them registered again by the script. Throws
-  // std::invalid_argument (cannot_save) for an integrator whose state cannot be saved.
+  // std::invalid_argument (cannot_save) for an integrator whose state cannot be saved, and naming
+  // the pulley and the law (lua_law) for a law held by Lua code.
   void save(const std::string& path) const;
   // continues a saved simulation: its outputs are continued in place (the CSV files truncated to
   // the saved rows; frames numbered on, the video in a new file <name>_resumed_<t>.mp4). Results
@@ -191,10 +197,15 @@ class Simulation {
   // callbacks (if not null) receives the number of callbacks the saved simulation had.
   // vet (if set) sees the saved settings (outputs resolved) before any output is touched, and may
   // throw to refuse them (a sandboxed script's checkpoint naming files outside its folders).
+  // The folder must be there (a folder moved away is refused, and none is made) and its files up
+  // to the checkpoint the ones its run wrote: parameters.csv's start, the last row's time and every
+  // byte up to the cuts (a later run into the folder is refused, naming what differs). warn (if
+  // set) hears what could not be checked (a version 12 checkpoint holds no fingerprints).
   static std::unique_ptr<Simulation> resume(const std::string& path, const FrameSinkFactory& factory,
                                             int* callbacks = nullptr,
                                             const std::function<void(const RunSettings&)>& vet = {},
-                                            bool rewind = false);
+                                            bool rewind = false,
+                                            const std::function<void(const std::string&)>& warn = {});
   // a saved simulation at its time, to read (state, drive, observation) and draw: no output is
   // opened or touched, and it cannot run (it is closed). Throws std::runtime_error as resume does.
   static std::unique_ptr<Simulation> open_checkpoint(const std::string& path);
@@ -204,7 +215,8 @@ class Simulation {
   // resume (outputs: continue them) or open_checkpoint (no outputs)
   static std::unique_ptr<Simulation> load(const std::string& path, const FrameSinkFactory& factory, int* callbacks,
                                           const std::function<void(const RunSettings&)>& vet, bool outputs,
-                                          bool rewind = false);
+                                          bool rewind = false,
+                                          const std::function<void(const std::string&)>& warn = {});
   // set_state's parts: whether the state fits (StateError; the integrator's state and the outputs'
   // files are checked by Integrator::set_state and Outputs::check_state), and the state set but
   // the integrator's

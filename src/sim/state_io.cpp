@@ -2,6 +2,7 @@
 
 #include <climits>
 #include <cmath>
+#include <optional>
 
 #include "io/number_text.hpp"
 #include "scene/scene_io.hpp"
@@ -70,6 +71,13 @@ void write_outputs(CheckpointWriter& w, const SimState& s) {
   w.line("csv_bytes", o.csv_bytes);
   w.line("events_bytes", o.events_bytes);
   w.line("snapshots_bytes", o.snapshots_bytes);
+  // what the files held (version 13): a resume refuses a folder another run has written since
+  w.optional("csv_last_t", std::isnan(o.csv_last_t) ? std::nullopt : std::optional<double>(o.csv_last_t));
+  w.hash("csv_fnv1a64", o.csv_hash);
+  w.hash("events_fnv1a64", o.events_hash);
+  w.hash("snapshots_fnv1a64", o.snapshots_hash);
+  w.line("parameters_bytes", o.parameters_bytes);
+  w.hash("parameters_fnv1a64", o.parameters_hash);
   w.line("mean_from", s.means.from);
   w.line("mean_covered", s.means.covered);
   w.line("mean_acc", s.means.integral);
@@ -84,6 +92,21 @@ void read_outputs(CheckpointReader& r, const Scene& sc, SimState& s) {
   o.csv_bytes = r.line_int("csv_bytes", 0, LONG_MAX);
   o.events_bytes = r.line_int("events_bytes", 0, LONG_MAX);
   o.snapshots_bytes = r.line_int("snapshots_bytes", 0, LONG_MAX);
+  if (r.version() >= 13) {
+    const std::optional<double> t = r.line_optional("csv_last_t");
+    if (t.has_value() != (o.rows > 0))
+      r.fail(o.rows > 0 ? "the time of the last of " + std::to_string(o.rows) + " rows expected, got none"
+                        : "no row written, so no last row's time (none expected)");
+    if (t && !(*t >= 0)) r.fail("a time >= 0 s expected");
+    o.csv_last_t = t.value_or(NAN);
+    o.csv_hash = r.line_hash("csv_fnv1a64");
+    o.events_hash = r.line_hash("events_fnv1a64");
+    o.snapshots_hash = r.line_hash("snapshots_fnv1a64");
+    o.parameters_bytes = r.line_int("parameters_bytes", 0, LONG_MAX);
+    o.parameters_hash = r.line_hash("parameters_fnv1a64");
+  } else {
+    o.fingerprinted = false;  // (a resume takes them from the files, and says it could not check them)
+  }
   IntervalMeans::State& m = s.means;
   m.from = r.line_num("mean_from");
   m.covered = r.line_num("mean_covered");

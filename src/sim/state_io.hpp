@@ -5,7 +5,9 @@
 //   part drive        the drive now (scene_io.hpp: write_drive)
 //   part schedule     now, each stream's and every-action's next index, each condition's value
 //                     and located crossing, the timed μ changes still ahead
-//   part outputs      rows, frames and the files' sizes; the interval means; callbacks, wall time
+//   part outputs      rows, frames and the files' sizes and fingerprints (the last row's time,
+//                     FNV-1a 64 of each file's bytes; from version 13); the interval means;
+//                     callbacks, wall time
 //   part integrator   the held step: its ends, their derivatives, step sizes, counters
 //
 // Reading checks what the text and the scene decide: every count against the lines holding it and

@@ -2,7 +2,8 @@
 // fuzzer's bytes are a checkpoint, resumed by Simulation::resume as beltsim.resume would. "@OUT@"
 // in them stands for this process's output folder (the seeds, tests/fuzz/checkpoints/, are saved
 // checkpoints with their folder written so), and the last line is made the checksum of the rest,
-// so that mutations reach the reader's own checks rather than stopping at the checksum. Every
+// so that mutations reach the reader's own checks rather than stopping at the checksum (and the
+// fingerprints of a version 13 checkpoint's outputs those of the files written here). Every
 // outcome but a refusal (std::runtime_error, or the vet's std::invalid_argument) or a resumed run
 // is a finding: a crash, a sanitizer report, another exception, a hang or an allocation past
 // libFuzzer's -rss_limit_mb.
@@ -16,6 +17,7 @@
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <stdexcept>
@@ -57,6 +59,39 @@ std::string sealed(std::string text) {
   return text + "checksum fnv1a64 " + sum + "\n";
 }
 
+// the value of the text's line `key` replaced (when it has one)
+void set_value(std::string& text, const std::string& key, const std::string& value) {
+  const size_t at = text.find("\n" + key + " ");
+  if (at == std::string::npos) return;
+  const size_t from = at + key.size() + 2, end = text.find('\n', from);
+  text.replace(from, (end == std::string::npos ? text.size() : end) - from, value);
+}
+
+// A version 13 checkpoint's fingerprints of its outputs made those of the files written here
+// (sim/state_io.cpp: csv_last_t, each file's FNV-1a 64 up to its size, parameters.csv's size 0:
+// none written), as csv_bytes is made to fit them; a size past a file is left, and refused
+void fit_fingerprints(std::string& text, const std::string& series, const std::string& rows) {
+  const struct {
+    const char *bytes, *hash;
+    const std::string& content;
+  } files[] = {{"csv_bytes", "csv_fnv1a64", series},
+               {"events_bytes", "events_fnv1a64", rows},
+               {"snapshots_bytes", "snapshots_fnv1a64", rows}};
+  for (const auto& f : files) {
+    const size_t at = text.find(std::string("\n") + f.bytes + " ");
+    if (at == std::string::npos) continue;
+    const long n = std::atol(text.c_str() + at + std::strlen(f.bytes) + 2);
+    if (n < 0 || static_cast<size_t>(n) > f.content.size()) continue;
+    char hex[17];
+    std::snprintf(hex, sizeof hex, "%016llx",
+                  static_cast<unsigned long long>(beltsim::fnv1a64(std::string_view(f.content).substr(0, n))));
+    set_value(text, f.hash, hex);
+  }
+  // the last row's time: "0" (the rows below are zeros), unless there is none
+  if (text.find("\ncsv_last_t none\n") == std::string::npos) set_value(text, "csv_last_t", "0");
+  set_value(text, "parameters_bytes", "0");
+}
+
 }  // namespace
 
 extern "C" const char* BeltsimFuzzRefusal() {
@@ -77,7 +112,8 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   // is taken as counted from that header's end (the seeds' 4: "0\n" twice), the line rewritten
   // and the rows made to end there (a mutant's huge count is left as it is, and refused)
   fs::create_directories(f.out);
-  for (const char* name : {"events.csv", "snapshots.csv"}) std::ofstream(f.out / name) << "t\n0\n";
+  const std::string small = "t\n0\n";
+  for (const char* name : {"events.csv", "snapshots.csv"}) std::ofstream(f.out / name) << small;
   std::string series = "t\n0\n";
   try {
     const auto seen = beltsim::Simulation::open_checkpoint(f.input.string());
@@ -97,6 +133,10 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     // refused already: resume refuses it the same way below
   }
   std::ofstream(f.out / "timeseries.csv") << series;
+  if (const std::string before = text; fit_fingerprints(text, series, small), text != before) {
+    std::ofstream in(f.input, std::ios::binary | std::ios::trunc);
+    in << sealed(text);
+  }
   // outputs elsewhere are refused, as the sandbox refuses a script's
   const auto vet = [&](const beltsim::RunSettings& rs) {
     if (fs::path(rs.out_dir) != f.out) throw std::invalid_argument("outputs outside the fuzz folder");

@@ -242,6 +242,135 @@ TEST(Checkpoint, AnotherRunsTimeseriesIsRefused) {
   saved().restore();
 }
 
+// The outputs up to the checkpoint must be the ones its run wrote, byte for byte: a later run of the
+// same scene into the folder writes the same header, and its rows may end at the checkpoint's byte
+// by chance (a user's rerun with another pretension was spliced to the checkpoint's run so, exit 0,
+// parameters.csv the later run's). Each change below keeps the header, the sizes and the row ends;
+// each is refused with and without rewind, naming the file and what differs, nothing touched.
+TEST(Checkpoint, OutputsAnotherRunWroteSinceAreRefused) {
+  saved().restore();
+  const std::string ck = saved().ck.string();
+  const fs::path out = saved().out;
+  const std::string& series = saved().outputs.at("timeseries.csv");
+  const long cut = std::stol(test::value_of(saved().text, "csv_bytes"));
+  ASSERT_EQ(series[static_cast<size_t>(cut) - 1], '\n');
+  const size_t last_row = series.rfind('\n', static_cast<size_t>(cut) - 2) + 1;
+  const std::string last_t = series.substr(last_row, series.find(',', last_row) - last_row);
+  EXPECT_EQ(test::value_of(saved().text, "csv_last_t"), last_t);
+  const std::string parameters = slurp(out / "parameters.csv");
+  const std::string refusal_end =
+      ". Another run has written the folder since the checkpoint was saved, and continuing would join this "
+      "checkpoint's run to that run's rows. Nothing was changed: resume a checkpoint the later run saved, or run "
+      "the script that saved this one again (each run its own folder: --out or out = ...)";
+  auto refused = [&](const std::string& file, const std::string& changed, const std::string& what) {
+    saved().restore();
+    spit(out / file, changed);
+    for (const bool rewind : {false, true}) {
+      const std::string m = test::what_of([&] { Simulation::resume(ck, {}, nullptr, {}, rewind); });
+      EXPECT_EQ(m, ck + ": the outputs in " + out.string() + " are not the ones this checkpoint's run wrote: " + file +
+                       " (" + what + ")" + refusal_end);
+      EXPECT_EQ(slurp(out / file), changed);
+    }
+    EXPECT_EQ(slurp(out / "parameters.csv"), file == "parameters.csv" ? changed : parameters);
+  };
+  // a digit of a row before the last: the same length, header and row ends
+  std::string other = series;
+  const size_t digit = series.find_last_of("0123456789", last_row - 2);
+  ASSERT_TRUE(digit != std::string::npos && digit > series.find('\n'));
+  other[digit] = other[digit] == '1' ? '2' : '1';
+  refused("timeseries.csv", other,
+          "its first " + std::to_string(cut) + " bytes, to t = " + last_t +
+              " s, are not the ones the checkpoint's run wrote");
+  // the last row's time
+  other = series;
+  other[last_row + last_t.size() - 1] = last_t.back() == '1' ? '2' : '1';
+  const std::string other_t = other.substr(last_row, last_t.size());
+  refused("timeseries.csv", other,
+          "its row ending at byte " + std::to_string(cut) + " is at t = " + other_t +
+              " s, where the checkpoint's run had written its last at t = " + last_t + " s");
+  // a snapshot's value (the one at 0.01 s)
+  other = saved().outputs.at("snapshots.csv");
+  const long snapshots_cut = std::stol(test::value_of(saved().text, "snapshots_bytes"));
+  const size_t e = other.find_last_of("0123456789", static_cast<size_t>(snapshots_cut) - 2);
+  ASSERT_TRUE(e != std::string::npos && e > other.find('\n'));  // (a row's, not the header's)
+  other[e] = other[e] == '1' ? '2' : '1';
+  refused("snapshots.csv", other,
+          "its first " + std::to_string(snapshots_cut) + " bytes are not the ones the checkpoint's run wrote");
+  // parameters.csv: another value (a pretension, say), written at the later run's start
+  other = parameters;
+  const size_t p = other.find_first_of("0123456789", other.find('\n'));
+  other[p] = other[p] == '1' ? '2' : '1';
+  refused("parameters.csv", other,
+          "its first " + test::value_of(saved().text, "parameters_bytes") +
+              " bytes, the parameters the checkpoint's run wrote at its start, differ");
+  spit(out / "parameters.csv", parameters);
+  saved().restore();
+  // as they were: it resumes
+  Simulation::resume(ck, {}, nullptr, {}, true)->close();
+  spit(out / "parameters.csv", parameters);
+  saved().restore();
+}
+
+// a run's folder moved away (archived under another name): the resume is refused, naming the
+// folder and where it may have gone, and no empty folder is made in its place
+TEST(Checkpoint, AFolderMovedAwayIsRefusedAndNotMade) {
+  saved().restore();
+  const fs::path out = saved().out, moved = dir() / "archived";
+  fs::remove_all(moved);
+  fs::rename(out, moved);
+  const std::string ck = (moved / "ck.txt").string();
+  fs::copy_file(saved().ck, ck);
+  const std::string m = test::what_of([&] { Simulation::resume(ck, {}, nullptr, {}, true); });
+  EXPECT_EQ(m, ck + ": the run's output folder " + out.string() +
+                   ", whose files this checkpoint continues, is not there (" + moved.string() +
+                   ", where the checkpoint lies, holds a timeseries.csv: if it is that folder moved, move it back to " +
+                   out.string() +
+                   "): put the run's folder back where it was to resume it, or run the scene again; "
+                   "nothing was written");
+  EXPECT_FALSE(fs::exists(out));
+  fs::remove(ck);
+  fs::rename(moved, out);
+  saved().restore();
+}
+
+// a version 12 checkpoint (no fingerprints of its outputs) is still resumed, saying what it could
+// not check; a checkpoint saved after it holds the fingerprints of the files as they are
+TEST(Checkpoint, AVersion12CheckpointResumesUnchecked) {
+  saved().restore();
+  std::string v12 = saved().text;
+  v12.replace(0, v12.find('\n'), "beltsim-checkpoint 12");
+  for (const char* key :
+       {"csv_last_t", "csv_fnv1a64", "events_fnv1a64", "snapshots_fnv1a64", "parameters_bytes", "parameters_fnv1a64"}) {
+    const size_t at = v12.find(std::string("\n") + key + " ");
+    ASSERT_NE(at, std::string::npos) << key;
+    v12.erase(at + 1, v12.find('\n', at + 1) - at);
+  }
+  const fs::path ck = dir() / "v12.ckpt", again = dir() / "v12_again.ckpt";
+  spit(ck, resealed(v12));
+  std::vector<std::string> said;
+  {
+    auto s = Simulation::resume(ck.string(), {}, nullptr, {}, true, [&](const std::string& m) { said.push_back(m); });
+    s->save(again.string());
+    s->close();
+  }
+  ASSERT_EQ(said.size(), 1u);
+  EXPECT_EQ(said[0], ck.string() +
+                         ": a version 12 checkpoint holds no fingerprint of its outputs, so whether the "
+                         "files in " +
+                         saved().out.string() +
+                         " up to it are its own run's (not a later run's into the folder) could not be checked; a "
+                         "checkpoint saved by this beltsim is checked");
+  // the one saved after it: the fingerprints of the files up to the same point, as the run's own were
+  const std::string text = slurp(again);
+  for (const char* key : {"csv_bytes", "csv_last_t", "csv_fnv1a64", "snapshots_bytes", "snapshots_fnv1a64"})
+    EXPECT_EQ(test::value_of(text, key), test::value_of(saved().text, key)) << key;
+  EXPECT_NE(test::value_of(text, "events_fnv1a64"), test::value_of(saved().text, "events_fnv1a64"));  // "resume"
+  said.clear();
+  Simulation::resume(again.string(), {}, nullptr, {}, true, [&](const std::string& m) { said.push_back(m); })->close();
+  EXPECT_TRUE(said.empty());
+  saved().restore();
+}
+
 // a checkpoint keeps every setting the run-settings table marks kept (sim/run_table.hpp): each set
 // to a value other than its default, saved, and read back the same
 TEST(Checkpoint, KeepsEveryRunSettingTheTableMarksKept) {
@@ -309,9 +438,9 @@ TEST(Checkpoint, ReadsOnlyRegularFilesOfBoundedSize) {
 
 TEST(Checkpoint, OldVersionsAreRefusedNamingBoth) {
   EXPECT_EQ(refusal("beltsim-checkpoint 3\nintegrator 8 esdirk32\n"),
-            prefix() + "line 1: a version 3 checkpoint; this beltsim reads version " +
-                std::to_string(kCheckpointVersion) +
-                " only: resume it with the beltsim that wrote it, or run the scene again from its script");
+            prefix() +
+                "line 1: a version 3 checkpoint; this beltsim reads versions 12 and 13 only: resume it with the "
+                "beltsim that wrote it, or run the scene again from its script");
 }
 
 // the counts of issue 31: a billion streams, pending events, interval means

@@ -147,6 +147,42 @@ TEST(Outputs, AnEarlierRunsOutputsThisRunDoesNotWriteAreNamed) {
   EXPECT_TRUE(said.empty()) << said[0];
 }
 
+// so are the checkpoints an earlier run saved into the folder: this run replaces the outputs they
+// continue, and beltsim.resume refuses them after it (a user's rerun into the folder of a saved
+// run, with another pretension, said nothing of its mid.ckpt, whose resume then spliced the runs)
+TEST(Outputs, AnEarlierRunsCheckpointsAreNamed) {
+  const fs::path out = fresh("earlier_ckpt") / "out";
+  std::vector<std::string> said;
+  auto runs = [&] {
+    said.clear();
+    RunSettings rs = settings(out);
+    rs.t_end = 0.002;
+    rs.on_warning = [&](const std::string& m) {
+      if (m.rfind("the output folder", 0) == 0) said.push_back(m);
+    };
+    run(dry_scene(), rs);
+  };
+  runs();
+  EXPECT_TRUE(said.empty()) << said[0];
+  std::ofstream(out / "mid.ckpt") << "x";
+  fs::create_directories(out / "dir.ckpt");  // a folder of that name: not a checkpoint
+  runs();
+  ASSERT_EQ(said.size(), 1u);
+  EXPECT_EQ(said[0], "the output folder " + out.string() +
+                         " holds an earlier run's checkpoint mid.ckpt: this run replaces the outputs it continues, so "
+                         "beltsim.resume will refuse it unless this run saves its own over it (give each run its own "
+                         "--out or out = ..., or remove it)");
+  std::ofstream(out / "a.ckpt") << "x";
+  std::ofstream(out / "frames.mp4") << "x";
+  runs();
+  ASSERT_EQ(said.size(), 1u);
+  EXPECT_EQ(said[0], "the output folder " + out.string() +
+                         " holds an earlier run's frames.mp4, which this run does not write: they are not this run's "
+                         "outputs (give each run its own --out or out = ..., or remove them); and its checkpoints "
+                         "a.ckpt and mid.ckpt: this run replaces the outputs they continue, so beltsim.resume will "
+                         "refuse them unless this run saves its own over them");
+}
+
 // a fresh run's frames and kept states replace an earlier run's: the numbered files it does not
 // write over (a longer run's last ones) go too, so that a golden test never compares a frame an
 // earlier run left; a file of any other name stays, and a resumed run removes nothing

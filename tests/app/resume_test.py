@@ -1,0 +1,171 @@
+#!/usr/bin/env python3
+"""beltsim.resume and sim:save through the program, as a user's trial met them:
+- a checkpoint resumed (rewind = true) after the same script ran again into its folder with another
+  pretension is refused, naming the files that differ, and nothing is changed (it kept the later
+  run's rows up to the checkpoint and the checkpoint's run's after them, exit 0); the rerun warned
+  of nothing, and now names the checkpoint it leaves behind;
+- a checkpoint whose run's folder was moved away is refused without making an empty folder there;
+- a simulation with a Lua function law says at scene:start that it cannot be saved, and sim:save
+  names the pulley and the law."""
+import hashlib
+import os
+import re
+import shutil
+import subprocess
+import sys
+import tempfile
+import unittest
+
+BELTSIM = None
+
+# the trial's drive: --set save=true saves out/drive/mid.ckpt at 0.1 s and runs on to 0.2 s;
+# --set pretension=P changes the belt
+DRIVE = """
+local save, t_end = beltsim.args.save, beltsim.args.t_end or 0.2
+local drive = beltsim.scene {
+  pulleys = {
+    { name = "driver", centre = {0, 0}, radius = 0.1, torque = beltsim.ramp(0.1, -40) },
+    { name = "driven", centre = {0.29, 0}, radius = 0.1, torque = { per_speed = -0.955 } },
+  },
+  belt = { elements = 60, pretension = beltsim.args.pretension or 500 },
+}
+local sim = drive:start { out = beltsim.args.out or "out/drive", progress = false }
+sim:run_to(0.1)
+if save then sim:save("mid.ckpt") end
+sim:run_to(t_end)
+sim:close()
+"""
+
+RESUME = """
+local sim = beltsim.resume(beltsim.args.ck, { rewind = true, progress = false })
+sim:run_to(0.2)
+sim:close()
+"""
+
+LUA_LAW = """
+local drive = beltsim.scene {
+  pulleys = {
+    { name = "driver", centre = {0, 0}, radius = 0.1, torque = beltsim.ramp(0.1, -40) },
+    { name = "driven", centre = {0.29, 0}, radius = 0.1,
+      torque = function(t, w) return -0.955 * w end },
+  },
+  belt = { elements = 60, pretension = 500 },
+}
+local sim = drive:start { progress = false }
+sim:run_to(0.01)
+print(sim:save("late.ckpt"))
+sim:close()
+"""
+
+
+def run(args, cwd):
+    p = subprocess.run([BELTSIM] + args, capture_output=True, text=True, cwd=cwd, timeout=300)
+    return p.returncode, p.stdout, p.stderr
+
+
+def warnings(err):
+    """the lines of stderr but the scene's defaults"""
+    return [line for line in err.splitlines() if "scene defaults" not in line and "bending" not in line]
+
+
+def digest(folder):
+    """each file of a folder and the hash of its bytes"""
+    d = {}
+    for n in sorted(os.listdir(folder)):
+        if os.path.isfile(os.path.join(folder, n)):
+            with open(os.path.join(folder, n), "rb") as f:
+                d[n] = hashlib.sha256(f.read()).hexdigest()
+    return d
+
+
+def csv_bytes(ckpt):
+    with open(ckpt) as f:
+        return int(re.search(r"^csv_bytes (\d+)$", f.read(), re.M).group(1))
+
+
+class Resume(unittest.TestCase):
+    def setUp(self):
+        self.dir = tempfile.mkdtemp(prefix="beltsim_resume_")
+        for name, text in (("drive.lua", DRIVE), ("resume.lua", RESUME), ("law.lua", LUA_LAW)):
+            with open(os.path.join(self.dir, name), "w") as f:
+                f.write(text)
+
+    def tearDown(self):
+        shutil.rmtree(self.dir, True)
+
+    def test_a_later_run_into_the_folder_is_not_spliced_to_the_checkpoints(self):
+        out = os.path.join(self.dir, "out", "drive")
+        code, _, err = run(["run", "drive.lua", "--set", "save=true"], self.dir)
+        self.assertEqual(code, 0, err)
+        self.assertEqual(warnings(err), [])
+        cut = csv_bytes(os.path.join(out, "mid.ckpt"))
+        # the same script again, another pretension (530.34 N: its rows end at the byte where the
+        # 500 N run's checkpoint cuts, so that only the rows' contents tell the runs apart)
+        code, _, err = run(["run", "drive.lua", "--set", "pretension=530.34"], self.dir)
+        self.assertEqual(code, 0, err)
+        self.assertEqual(warnings(err), [
+            "beltsim: warning: the output folder out/drive holds an earlier run's checkpoint mid.ckpt: this run "
+            "replaces the outputs it continues, so beltsim.resume will refuse it unless this run saves its own over "
+            "it (give each run its own --out or out = ..., or remove it)"])
+        with open(os.path.join(out, "timeseries.csv"), "rb") as f:
+            series = f.read()
+        coincide = len(series) >= cut and series[cut - 1:cut] == b"\n"
+        before = digest(out)
+        code, _, err = run(["run", "resume.lua", "--set", "ck=out/drive/mid.ckpt"], self.dir)
+        self.assertEqual(code, 1, err)
+        self.assertEqual(digest(out), before)  # nothing changed
+        if not coincide:  # (another machine's numbers: refused by the rows' ends already)
+            self.assertIn("beltsim.resume: out/drive/mid.ckpt: ", err)
+            self.skipTest("the 530.34 N run's rows do not end at the checkpoint's byte on this machine")
+        self.assertEqual(warnings(err), [
+            "beltsim: resume.lua:2: beltsim.resume: out/drive/mid.ckpt: the outputs in %s are not the ones this "
+            "checkpoint's run wrote: parameters.csv (its first %d bytes, the parameters the checkpoint's run wrote "
+            "at its start, differ) and timeseries.csv (its first %d bytes, to t = 0.1 s, are not the ones the "
+            "checkpoint's run wrote). Another run has written the folder since the checkpoint was saved, and "
+            "continuing would join this checkpoint's run to that run's rows. Nothing was changed: resume a "
+            "checkpoint the later run saved, or run the script that saved this one again (each run its own "
+            "folder: --out or out = ...)" % (os.path.abspath(out), self.parameters_bytes(out), cut)])
+        # the checkpoint's own run back in the folder: it resumes
+        self.assertEqual(run(["run", "drive.lua"], self.dir)[0], 0)
+        code, _, err = run(["run", "resume.lua", "--set", "ck=out/drive/mid.ckpt"], self.dir)
+        self.assertEqual(code, 0, err)
+        self.assertIn("beltsim: out/drive/mid.ckpt resumed at t = 0.1 s", err)
+
+    def parameters_bytes(self, out):
+        with open(os.path.join(out, "mid.ckpt")) as f:
+            return int(re.search(r"^parameters_bytes (\d+)$", f.read(), re.M).group(1))
+
+    def test_a_folder_moved_away_is_refused_and_not_made_again(self):
+        code, _, err = run(["run", "drive.lua", "--set", "save=true", "--set", "t_end=0.11", "--set", "out=out/ck"],
+                           self.dir)
+        self.assertEqual(code, 0, err)
+        os.rename(os.path.join(self.dir, "out", "ck"), os.path.join(self.dir, "out", "ck_archive"))
+        code, _, err = run(["run", "resume.lua", "--set", "ck=out/ck_archive/mid.ckpt"], self.dir)
+        self.assertEqual(code, 1, err)
+        folder, archive = (os.path.abspath(os.path.join(self.dir, "out", n)) for n in ("ck", "ck_archive"))
+        self.assertEqual(warnings(err), [
+            "beltsim: resume.lua:2: beltsim.resume: out/ck_archive/mid.ckpt: the run's output folder %s, whose "
+            "files this checkpoint continues, is not there (%s, where the checkpoint lies, holds a timeseries.csv: "
+            "if it is that folder moved, move it back to %s): put the run's folder back where it was to resume it, "
+            "or run the scene again; nothing was written" % (folder, archive, folder)])
+        self.assertEqual(sorted(os.listdir(os.path.join(self.dir, "out"))), ["ck_archive"])
+        # moved back, it resumes
+        os.rename(archive, folder)
+        code, _, err = run(["run", "resume.lua", "--set", "ck=out/ck/mid.ckpt"], self.dir)
+        self.assertEqual(code, 0, err)
+
+    def test_a_lua_law_is_named_at_start_and_at_save(self):
+        code, out, err = run(["run", "law.lua"], self.dir)
+        self.assertEqual((code, out), (1, ""), err)
+        self.assertEqual(warnings(err), [
+            "beltsim: warning: start: pulley 'driven'.torque (function at law.lua:6) is Lua code, which a "
+            "checkpoint cannot hold: this simulation cannot be saved (sim:save refuses it); give the law as a table "
+            "to save it",
+            "beltsim: law.lua:12: sim:save: pulley 'driven'.torque (function at law.lua:6) is Lua code, which a "
+            "checkpoint cannot hold: give the law as a table (constant, per_speed, ramps, sines, ...) to save this "
+            "simulation"])
+
+
+if __name__ == "__main__":
+    BELTSIM = os.path.abspath(sys.argv.pop(1))
+    unittest.main(verbosity=2)
