@@ -78,6 +78,13 @@ class Stop(unittest.TestCase):
             seen += chunk
         return seen.decode()
 
+    def wait_rows(self, csv):
+        """waits until csv holds some rows: the run is under way"""
+        deadline = time.monotonic() + 60
+        while os.path.getsize(csv) < 2000:
+            self.assertLess(time.monotonic(), deadline, "the run wrote no rows")
+            time.sleep(0.02)
+
     def ends(self, p, sig, err_so_far=""):
         """sends sig; the exit status and stderr once the process has ended (within LIMIT)"""
         t0 = time.monotonic()
@@ -131,10 +138,7 @@ class Stop(unittest.TestCase):
             "sim:run_to(1000)\nwhile true do end\n")])
         self.wait_line(p.stdout, "ready")
         csv = os.path.join(self.dir, "out", "timeseries.csv")
-        deadline = time.monotonic() + 60
-        while os.path.getsize(csv) < 2000:  # some rows: the run is under way
-            self.assertLess(time.monotonic(), deadline, "the run wrote no rows")
-            time.sleep(0.02)
+        self.wait_rows(csv)
         status, err = self.ends(p, signal.SIGTERM)
         self.assertEqual(status, 143, err)
         self.assertIn("interrupted!", err)
@@ -158,10 +162,7 @@ class Stop(unittest.TestCase):
             "print('second run done')\n")])
         self.wait_line(p.stdout, "ready")
         csv = os.path.join(self.dir, "first", "timeseries.csv")
-        deadline = time.monotonic() + 60
-        while os.path.getsize(csv) < 2000:  # some rows: the run is under way
-            self.assertLess(time.monotonic(), deadline, "the run wrote no rows")
-            time.sleep(0.02)
+        self.wait_rows(csv)
         status, err = self.ends(p, signal.SIGINT)
         out = p.stdout.read().decode()
         self.assertEqual(status, 130, err)
