@@ -267,12 +267,15 @@ struct FolderMove {
     namespace fs = std::filesystem;
     const fs::path from = fs::path(top) / name, now = fs::path(top) / kEarlierFolder / to;
     std::error_code ec;
-    for (const auto& [a, b] :
+    // (a pair, not a structured binding: clang 14 does not capture bindings in a lambda)
+    for (const auto& move :
          {std::pair{from, now}, std::pair{from.lexically_normal(), now.lexically_normal()},
-          std::pair{fs::absolute(from, ec).lexically_normal(), fs::absolute(now, ec).lexically_normal()}})
-      if (!a.empty() &&
-          std::find_if(forms.begin(), forms.end(), [&](const auto& f) { return f.first == a.string(); }) == forms.end())
-        forms.emplace_back(a.string(), b.string());
+          std::pair{fs::absolute(from, ec).lexically_normal(), fs::absolute(now, ec).lexically_normal()}}) {
+      const std::string old_form = move.first.string();
+      if (!old_form.empty() &&
+          std::find_if(forms.begin(), forms.end(), [&](const auto& f) { return f.first == old_form; }) == forms.end())
+        forms.emplace_back(old_form, move.second.string());
+    }
   }
 
   // text with each of the old paths, where it is a path of its own or the start of one (not
