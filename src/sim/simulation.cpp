@@ -11,6 +11,7 @@
 #include "integrate/make_integrator.hpp"
 #include "integrate/stepper.hpp"
 #include "integrate/timeline.hpp"
+#include "io/csv_writer.hpp"
 #include "io/number_text.hpp"
 #include "io/suggest.hpp"
 #include "model/forces.hpp"
