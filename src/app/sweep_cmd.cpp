@@ -163,6 +163,13 @@ int sweep(const std::string& file, const Raw& raw, const script::Safety& s) {
     throw UsageError("--submit, --partition, --time and --max-parallel go with --slurm");
   if (int(point >= 0) + int(raw.list) + int(raw.collect) + int(raw.slurm) > 1)
     throw UsageError("give one of --point, --list, --collect and --slurm");
+  // --jobs sets how many points this process runs at once: with --point (one point, in this
+  // process), --list and --collect (none) and --slurm (Slurm runs them: --max-parallel) it would
+  // be ignored, and a user who asked for 2 would not learn that nothing ran 2 at a time
+  if (raw.jobs && (point >= 0 || raw.list || raw.collect || raw.slurm))
+    throw UsageError("--jobs goes with running the points on this machine" +
+                     std::string(raw.slurm ? " (with --slurm, --max-parallel bounds the tasks running at once)"
+                                           : ": --point runs one point, --list and --collect run none"));
   if (raw.rerun && (point >= 0 || raw.list || raw.collect))
     throw UsageError("--rerun goes with running the points or --slurm (--point runs its point in any case)");
   std::optional<sw::SlurmSettings> slurm;

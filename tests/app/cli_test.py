@@ -169,6 +169,18 @@ class Errors(unittest.TestCase):
             self.assertEqual(code, 2, err)
             self.assertIn(what, err)
 
+    def test_sweep_jobs_outside_a_run_of_the_points_is_refused(self):
+        # --jobs was ignored by --point, --list, --collect and --slurm: a user who asked for 2 at
+        # once learnt nothing
+        for form, what in [(["--point", "0"], "--point runs one point, --list and --collect run none"),
+                           (["--list"], "--point runs one point"), (["--collect"], "--point runs one point"),
+                           (["--slurm"], "with --slurm, --max-parallel bounds the tasks running at once")]:
+            code, out, err = run(["sweep", "x.lua", "--jobs", "2"] + form, cwd=self.dir)
+            self.assertEqual(code, 2, err)
+            self.assertIn("beltsim: --jobs goes with running the points on this machine", err)
+            self.assertIn(what, err)
+            self.assertEqual(os.listdir(self.dir), [], "a refused sweep wrote")
+
     def test_an_error_in_a_callback_names_its_line_with_a_traceback(self):
         path = self.script(SCENE + "local function check(s)\n  error('too fast')\nend\n"
                            "sim:every(0.001, function(s) check(s) end)\nsim:run_to(0.003)\n")

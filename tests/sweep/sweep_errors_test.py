@@ -220,8 +220,8 @@ class SweepErrors(SweepCase):
                                  text=True)
         self.addCleanup(first.kill)
         self.wait_for(self.path("out", "gated", "0", "log.txt"), first)
-        for mode in ([], ["--collect"], ["--slurm"]):
-            p = self.run_beltsim("sweep", script, "--jobs", "1", *mode, ok=(0, 1, 2))
+        for mode in (["--jobs", "1"], ["--collect"], ["--slurm"]):
+            p = self.run_beltsim("sweep", script, *mode, ok=(0, 1, 2))
             self.assert_one_line_error(p, "out/gated", "another sweep is running there")
         self.assertIsNone(first.poll(), "the first sweep ended while the second was refused")
         with open(gate, "w"):
