@@ -24,6 +24,7 @@
 #include "script/limits.hpp"
 #include "script/live_feed.hpp"
 #include "script/signals.hpp"
+#include "sweep/results.hpp"
 
 namespace beltsim::script {
 
@@ -134,6 +135,23 @@ Word bare_word(lua_State* L, const std::string& chunk) {
 int run_console(const std::optional<std::string>& script, const std::vector<std::string>& args, const Overrides& o,
                 const Safety& safety, const ConsoleSettings& settings) {
   const bool interactive = isatty(STDIN_FILENO);
+  // the folder session.lua goes to (the runs' default: out/<script name>, or out/console): one that
+  // holds a study of `beltsim sweep` is refused before the script runs, as a run into it is
+  // (sweep::study_folder_refusal); session.lua among the study's points was read for part of it
+  const std::string session_dir = o.has("out") ? o.run.out_dir
+                                  : script
+                                      ? (std::filesystem::path("out") / std::filesystem::path(*script).stem()).string()
+                                      : "out/console";
+  if (const std::vector<std::string> names = sweep::study_parameters(session_dir); !names.empty()) {
+    std::string varied;
+    for (const std::string& n : names) varied += (varied.empty() ? "" : ", ") + n;
+    std::fprintf(stderr,
+                 "beltsim: console: the folder %s, where this session's runs and session.lua would go, holds a "
+                 "study of `beltsim sweep` (its points vary %s): give the console a folder of its own (--out DIR), "
+                 "or remove %s first\n",
+                 session_dir.c_str(), varied.c_str(), session_dir.c_str());
+    return 1;
+  }
   Interpreter lua(safety);
   lua.set_overrides(o);
   lua.set_stop_flag(&stop_flag());
@@ -258,9 +276,8 @@ int run_console(const std::optional<std::string>& script, const std::vector<std:
       chunk.clear();
     }
   }
-  // --out wins, as for the runs; the finalisers below run with a fresh budget (~Interpreter)
-  const bool written =
-      write_session(o.has("out") ? o.run.out_dir : ctx.default_out, script, script_text, args, o.set, commands);
+  // the finalisers below run with a fresh budget (~Interpreter)
+  const bool written = write_session(session_dir, script, script_text, args, o.set, commands);
   // the interpreter's end closes every simulation (their finalisers flush and finalise outputs)
   if (terminating()) return stopped_status();
   if (!written) return 1;

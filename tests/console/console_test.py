@@ -236,6 +236,24 @@ class ConsoleTest(unittest.TestCase):
         self.assertIn("after boom\n", out, err)
         self.assertEqual(r.returncode, 1, out + err)
 
+    def test_a_study_folder_is_refused_before_the_script_runs(self):
+        # session.lua was written among a study's points (out/scenario, a quick sweep's default)
+        study = os.path.join(self.tmp, "out", "scenario")
+        os.makedirs(study)
+        with open(os.path.join(study, "summary.csv"), "w") as f:
+            f.write("point,pretension,status\n0,300,ok\n")
+        r = self.piped(["print('ran')"])
+        out, err = r.stdout.decode(), r.stderr.decode()
+        self.assertEqual(r.returncode, 1, out + err)
+        self.assertIn("beltsim: console: the folder out/scenario, where this session's runs and session.lua would "
+                      "go, holds a study of `beltsim sweep` (its points vary pretension): give the console a folder "
+                      "of its own (--out DIR)", err)
+        self.assertNotIn("ran", out)
+        self.assertEqual(sorted(os.listdir(study)), ["summary.csv"])
+        r = self.piped(["print('ran')"], flags=["--out", "out/mine"])
+        self.assertEqual(r.returncode, 0, r.stderr.decode())
+        self.assertTrue(os.path.exists(os.path.join(self.tmp, "out", "mine", "session.lua")))
+
     def test_changes_say_what_they_did(self):
         # wet, set_torque and set_mu return one line: which elements (how many, in contact with
         # which pulley now), old -> new; sim:elements{ pulley } lists the elements on a pulley
