@@ -323,14 +323,23 @@ int l_every(lua_State* L) {
   return 1;
 }
 
-// sim:when(function(sim) return condition end, function(sim) ... end) -> id
+// sim:when(function(sim) return condition end, function(sim) ... end, { once = false }) -> id
 int l_when(lua_State* L) {
-  Simulation& s = live(L, "when", {{"condition", kFunction}, {"action", kFunction}});
+  Simulation& s = live(L, "when", {{"condition", kFunction}, {"action", kFunction}, {"{once}", kTable, true}});
   SimBox* box = static_cast<SimBox*>(lua_touserdata(L, 1));
   if (!lua_isfunction(L, 2)) fail(L, std::string("sim:when: a condition function expected, got ") + type_name(L, 2));
   if (!lua_isfunction(L, 3)) fail(L, std::string("sim:when: an action function expected, got ") + type_name(L, 3));
+  // once: the callback is removed after its first action, as sim:cancel(id) inside the action
+  // would (a condition on a noisy quantity, a wrap's creep at its threshold, turns true again
+  // within nanoseconds of the action)
+  bool once = false;
+  if (lua_istable(L, 4)) {
+    check_keys(L, 4, "sim:when", {"once"});
+    once = opt_bool(L, 4, "once", "sim:when").value_or(false);
+  }
   auto cond = std::make_unique<LuaRef>(L, 2), action = std::make_unique<LuaRef>(L, 3);
   const LuaRef *c = cond.get(), *a = action.get();
+  auto own_id = std::make_shared<int>(0);  // the callback's id, for the once-action to remove it
   int id = 0;
   guarded(L, "sim:when", [&] {
     id = s.when(
@@ -347,8 +356,12 @@ int l_when(lua_State* L) {
           lua_pop(K, 1);
           return v;
         },
-        [box, a] { call_back(*box, *a, 0); });
+        [box, a, once, own_id] {
+          call_back(*box, *a, 0);
+          if (once && box->sim->cancel(*own_id)) box->refs.erase(*own_id), box->refs.erase(-*own_id);
+        });
   });
+  *own_id = id;
   box->refs[id] = std::move(action);
   box->refs[-id] = std::move(cond);
   lua_pushinteger(L, id);

@@ -561,6 +561,25 @@ TEST(LiveApi, WhenAlreadyTrueFiresOnlyAfterItHasBeenFalse) {
             "");
 }
 
+// { once = true } removes the callback after its first action: a condition true in every odd
+// millisecond fires five times over 10 ms, once with it (and its id is gone: cancel says false);
+// a misspelt key is refused with its name
+TEST(LiveApi, WhenOnceFiresOnce) {
+  EXPECT_EQ(run_text(scene() + "local n, m = 0, 0\n"
+                               "local function odd(sim) return math.floor(sim.t * 1000 + 1e-9) % 2 == 1 end\n"
+                               "sim:when(odd, function() n = n + 1 end)\n"
+                               "local id = sim:when(odd, function() m = m + 1 end, { once = true })\n"
+                               "sim:run_to(0.0105)\n"
+                               "assert(n == 5, 'the repeating callback fired ' .. n .. ' times')\n"
+                               "assert(m == 1, 'the once callback fired ' .. m .. ' times')\n"
+                               "assert(sim:cancel(id) == false, 'the once callback was still there')\n"),
+            "");
+  const std::string err =
+      run_text(scene() + "sim:when(function() return false end, function() end, { onse = true })\n");
+  EXPECT_NE(err.find("sim:when"), std::string::npos) << err;
+  EXPECT_NE(err.find("onse"), std::string::npos) << err;
+}
+
 // a condition must return a boolean: 0 is true in Lua, so one returning 1 or 0 fired at once or
 // never, without a word (a user trial); nil and strings alike. Refused naming the value
 TEST(LiveApi, WhenConditionsReturnBooleans) {
