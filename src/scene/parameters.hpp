@@ -1,9 +1,9 @@
 // The scene's parameters: one table of every key a scenario's tables take (scene, belt, belt.sde,
-// contact, friction, pulley, pulley.tensioner, pulley.coupling, spray), with its unit, its default and whose that default is,
-// its rule and where its value lives in a SceneDef. The Lua readers (script/lua_scene.cpp), the validation
-// (validate(SceneDef)), the scene's inputs in parameters.csv and the run's first lines
-// (scene_inputs), the checkpoint's inputs (scene_io.cpp) and the parameter tables of
-// docs/lua-api.md (parameters_markdown) all come from it.
+// contact, friction, pulley, pulley.tensioner, pulley.coupling, spray), with its unit, its default
+// and whose that default is, its rule and where its value lives in a SceneDef. The Lua readers
+// (script/lua_scene_parts.cpp), the validation (validate(SceneDef)), the scene's inputs in
+// parameters.csv and the run's first lines (scene_inputs), the checkpoint's inputs (scene_io.cpp)
+// and the parameter tables of docs/lua-api.md (parameters_markdown) all come from it.
 #pragma once
 
 #include <optional>
@@ -32,7 +32,7 @@ enum class Whose {
 enum class Kind {
   number,   // a number, read by the table's reader
   integer,  // a whole number, read by the table's reader
-  other     // a word, a list, a law or a table: read by its own code (script/lua_scene.cpp)
+  other     // a word, a list, a law or a table: read by its own code (script/lua_scene_parts.cpp)
 };
 
 // the range a number must lie in; every rule also requires a finite number
@@ -95,7 +95,7 @@ using Slot = std::variant<std::monostate, double*, int*, std::optional<double>*>
 struct Parameter {
   std::string_view table;  // the scenario's table: "scene", "belt", "belt.sde", "contact", "friction", "pulley",
                            // "pulley.tensioner", "pulley.coupling", "spray" (a spray zone's: its
-                           // numbers have no slot, script/lua_scene.cpp reads them and validate
+                           // numbers have no slot, script/lua_scene_parts.cpp reads them and validate
                            // checks them by their rules)
   std::string_view key;    // the key in that table
   Kind kind;

@@ -18,7 +18,7 @@
 #include "render/recorder.hpp"
 #include "scene/validate.hpp"
 #include "script/context.hpp"
-#include "script/lua_scene.hpp"
+#include "script/lua_scene_parts.hpp"
 #include "script/sandbox.hpp"
 #include "sim/run_table.hpp"
 

@@ -10,8 +10,6 @@ namespace beltsim::script {
 
 struct Context;
 
-// the element's site as the table belt.mu functions get
-void push_site(lua_State* L, const ElementSite& e);
 // the scene at idx (method: for the message when it is not one)
 const Scene* check_scene(lua_State* L, int idx, const char* method);
 

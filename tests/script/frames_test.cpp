@@ -144,7 +144,7 @@ TEST(Frames, OddSizesForPngsOnly) {
             std::string::npos);
 }
 
-// the runaway of lua_api_test's divergence test, with a video: the error leaves it finalised
+// the runaway of lua_api_runs_test's divergence test, with a video: the error leaves it finalised
 TEST(Frames, DivergenceLeavesAPlayableVideo) {
   const fs::path p = temp_dir() / "runaway.lua";
   std::ofstream(p) << beltsim::test::runaway() +
