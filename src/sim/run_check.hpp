@@ -62,6 +62,10 @@ bool decoupler_contract_miss(const Model& m, double rtol);
 constexpr double kCheckSpeedLimit = 3;
 constexpr double kCheckTensionLimit = 10;
 constexpr double kContractRtol = 1e-3;  // the contract is promised at this rtol and below
+// how a warning that a run may not keep it names the contract
+constexpr const char* kContractText =
+    "the accuracy contract (the pulley speeds within 3×rtol and the span tensions within 10×rtol; "
+    "docs/accuracy.md): ";
 constexpr double kCheckAlarm = 10;
 // below this ratio of the companion's steps to the run's the two share their steps (above; the
 // rows where the tolerance set the steps measured 2.2 to 4.4, those where it did not 0.75 to 1.2)

@@ -24,6 +24,7 @@
 #include "scene/scene.hpp"
 #include "sim/frames.hpp"
 #include "sim/outputs.hpp"
+#include "sim/ripple_watch.hpp"
 #include "sim/run_check.hpp"
 #include "sim/run_settings.hpp"
 #include "sim/sim_state.hpp"
@@ -236,6 +237,7 @@ class Simulation {
   // (scene_contract_misses) was measured not to keep the accuracy contract at this rtol, unless
   // the run checks its own error
   void warn_contract_misses();
+  void watch_ripple(const std::vector<double>& row);  // a sample's row: warns once of a ripple (ripple_watch.hpp)
   // the interval means up to now with the drive as it is: called before a change touches the
   // drive (the held step's ends not yet observed would be observed with the new drive)
   void before_change();
@@ -274,6 +276,9 @@ class Simulation {
   std::string end_status_ = "ok", end_note_;
   std::vector<std::string> misses_warned_;  // warn_contract_misses()' warnings given
   bool decoupler_warned_ = false;           // the overrunning decoupler's among them
+  RippleWatch ripple_;                      // the span tensions' ripple at the samples (sim/ripple_watch.hpp)
+  std::vector<size_t> span_cols_;           // each span's .tension column in sample_row (its mean follows)
+  std::vector<std::string> span_names_;     // and its name there
   const std::uint64_t id_;
   bool from_start_ = true;                  // its samples since t = 0 were seen here (not resumed)
   bool overran_ = false;                    // a one-way clutch overran at one of them (σ < 0, model/coupling.cpp)
