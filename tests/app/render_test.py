@@ -111,11 +111,17 @@ class Render(unittest.TestCase):
                 (["--video", "clip.png"], "--video clip.png: beltsim writes MP4 videos (H.264): give a name ending "
                                           "in .mp4"),
                 (["--out", "x.png", "--view", "0,0"], "--view needs X,Y,WIDTH in metres"),
+                # the option as typed, not the run's key (it read "frames.range: needs lo < hi (got {5, 1})")
+                (["--out", "x.png", "--range", "5,1"], "beltsim: --range needs lo < hi, got '5,1'\n"),
+                (["--out", "x.png", "--magnify", "-1"], "beltsim: --magnify must be in (0, 1e4], got '-1'\n"),
+                (["--out", "x.png", "--view", "0,0,0"], "beltsim: --view: the width must be in [1e-6, 1e5] m, "
+                                                        "got '0,0,0'\n"),
                 (["--out", "x.png", "--rtol", "1e-3"], "render does not take: --rtol"),
                 ([], "--out is required")]:
             code, out, err = self.render(*args)
             self.assertEqual(code, 2, args)
             self.assertIn(message, err)
+            self.assertNotIn("frames.", err)
         for name in ("x.mp4", "pics.mp4", "clip.png"):
             self.assertFalse(os.path.exists(os.path.join(self.dir, name)), name)
         code, out, err = run(["render", "missing.txt", "--out", "x.png"], self.dir)
