@@ -96,7 +96,7 @@ CLI::App* add_render_command(CLI::App& app, RenderOptions& o) {
       ->required();
   c->add_option("--out", o.out,
                 "the PNG to write (a name ending in .png); for several states, or a name ending in /, the folder of "
-                "their PNGs")
+                "their PNGs (a name not ending in .png)")
       ->type_name("PNG|DIR")
       ->check(kNotEmpty);
   c->add_option("--video", o.video,

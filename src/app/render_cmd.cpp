@@ -147,11 +147,18 @@ int cmd_render(const RenderOptions& o) {
     const Chosen c = chosen(o);
     const std::vector<std::string> files = state_files(o.states);
     std::error_code ec;
-    // --out names a folder for several states, or when it ends in / (a name ending in / is a
-    // folder: it was written as a PNG file of that name, the / dropped)
+    // --out names a folder for several states (a folder of them too), or when it ends in / (a
+    // name ending in / is a folder: it was written as a PNG file of that name, the / dropped)
     const bool several = files.size() > 1 || std::filesystem::is_directory(o.states.front(), ec) ||
                          (o.out && !o.out->empty() && o.out->back() == '/');
     if (o.out && !several) require_png("--out", *o.out);
+    // a picture's name for the folder of several states' PNGs: it made a folder named x.png
+    if (o.out && several && o.out->back() != '/' && png_name_problem(*o.out).empty())
+      throw UsageError("--out " + *o.out + ": " +
+                       (files.size() > 1 ? std::to_string(files.size()) + " states"
+                                         : "the states of the folder " + o.states.front()) +
+                       " need a folder for their PNGs (DIR/<state name>.png each), and a name ending in .png is "
+                       "a picture's: give --out a folder, or one state file");
     // the first state gives the scene and the frame settings of every picture
     const std::unique_ptr<Simulation> first = Simulation::open_checkpoint(files.front());
     const FrameSettings f = settings(c, first->settings());

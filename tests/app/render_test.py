@@ -97,6 +97,23 @@ class Render(unittest.TestCase):
         self.assertEqual((code, out), (0, os.path.join("pics_dir", "state.png") + "\n"), err)
         self.assertTrue(os.path.isfile(os.path.join(self.dir, "pics_dir", "state.png")))
 
+    def test_several_states_need_a_folder_not_a_pictures_name(self):
+        # several states with --out NAME.png made a folder NAME.png of PNGs: refused, nothing written
+        code, out, err = run(["render", self.checkpoint, self.checkpoint, "--out", "pics/tension.png"], self.dir)
+        self.assertEqual((code, out), (2, ""), err)
+        self.assertIn("beltsim: --out pics/tension.png: 2 states need a folder for their PNGs (DIR/<state name>.png "
+                      "each), and a name ending in .png is a picture's: give --out a folder, or one state file\n", err)
+        self.assertFalse(os.path.exists(os.path.join(self.dir, "pics")))
+        # a folder of states too, whatever it holds
+        os.makedirs(os.path.join(self.dir, "one"), exist_ok=True)
+        shutil.copy(self.checkpoint, os.path.join(self.dir, "one", "state_00006.ckpt"))
+        code, out, err = run(["render", "one", "--out", "one.PNG"], self.dir)
+        self.assertEqual(code, 2, err)
+        self.assertIn("--out one.PNG: the states of the folder one need a folder for their PNGs", err)
+        self.assertFalse(os.path.exists(os.path.join(self.dir, "one.PNG")))
+        code, out, err = run(["render", "one", "--out", "one_pngs"], self.dir)
+        self.assertEqual((code, out), (0, os.path.join("one_pngs", "state_00006.png") + "\n"), err)
+
     def test_bad_options_and_files(self):
         for args, message in [
                 (["--out", "x.png", "--quantity", "tensoin"], "--quantity: unknown quantity 'tensoin' (did you mean "
