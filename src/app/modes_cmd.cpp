@@ -176,13 +176,20 @@ Form read_form(const Raw& raw) {
   return f;
 }
 
+// a mode number of --check past the modes listed: refused after the table, before modes.csv and the
+// shapes are written
+void require_listed(const ModeAnalysis& a, const std::vector<size_t>& ks) {
+  for (size_t k : ks)
+    if (k > a.modes.size()) {
+      std::fflush(stdout);  // the table before the message, in a log of both
+      throw UsageError("--check: there is no mode " + std::to_string(k) + " (" + std::to_string(a.modes.size()) +
+                       " listed)");
+    }
+}
+
 // each listed mode pushed and run on (sim/mode_check.hpp)
 void check_modes(const Scene& sc, const Drive& d, const Eigen::VectorXd& y, const ModeAnalysis& a,
                  const std::vector<size_t>& ks) {
-  for (size_t k : ks)
-    if (k > a.modes.size())
-      throw UsageError("--check: there is no mode " + std::to_string(k) + " (" + std::to_string(a.modes.size()) +
-                       " listed)");
   std::vector<size_t> index;
   for (size_t k : ks) index.push_back(k - 1);
   const std::vector<ModeCheck> checks = check_modes(sc, d, a.t, y, a, index);
@@ -225,6 +232,7 @@ int point_modes(const std::string& script, const Scene& sc, RunSettings rs, cons
   sim.close();
   std::printf("modes of %s\n", script.c_str());
   print_table(sc, a);
+  require_listed(a, form.checks);
   const std::string csv = (fs::path(rs.out_dir) / "modes.csv").string();
   {
     CsvWriter w(csv, mode_columns(a));

@@ -55,7 +55,8 @@ class Modes(unittest.TestCase):
 
     def test_check_in_time(self):
         # the pulleys' torsional mode at rest, pushed and run on, moves as the linearization says;
-        # a mode number past the list is refused, the modes found so far kept
+        # a mode number past the list is refused under the table, before modes.csv and the shapes are
+        # written (they were written first, then refused)
         out_dir = os.path.join(self.dir, "k")
         code, out, err = run(["modes", self.script, "--at", "0", "--out", out_dir, "--shapes", "0"], cwd=self.dir)
         self.assertEqual(code, 0, err)
@@ -67,11 +68,15 @@ class Modes(unittest.TestCase):
         self.assertEqual(code, 0, err)
         self.assertRegex(out, r"check of mode %s \([0-9.]+ Hz, zeta [0-9.]+\): pushed and run on, watched at "
                               r"[a-z_]+ (angle|middle): [0-9.]+ Hz, zeta [0-9.]+; .*: agrees\n" % torsion)
-        code, out, err = run(["modes", self.script, "--at", "0", "--out", out_dir, "--shapes", "0",
-                              "--check", str(len(rows) + 1)], cwd=self.dir)
+        past = os.path.join(self.dir, "past")
+        code, out, err = run(["modes", self.script, "--at", "0", "--out", past, "--shapes", "1",
+                              "--check", "%s,%d" % (torsion, len(rows) + 1)], cwd=self.dir)
         self.assertEqual(code, 2, err)
         self.assertIn("--check: there is no mode %d (%d listed)" % (len(rows) + 1, len(rows)), err)
-        self.assertTrue(os.path.isfile(os.path.join(out_dir, "modes.csv")))
+        self.assertIn("%5d " % len(rows), out)  # the table, to choose from
+        self.assertNotIn("check of mode", out)
+        self.assertFalse(os.path.exists(os.path.join(past, "modes.csv")))
+        self.assertFalse(os.path.exists(os.path.join(past, "shapes")))
 
     def test_campbell(self):
         out_dir = os.path.join(self.dir, "c")
