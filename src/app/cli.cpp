@@ -96,7 +96,7 @@ CLI::App* add_render_command(CLI::App& app, RenderOptions& o) {
       ->required();
   c->add_option("--out", o.out,
                 "the PNG to write (a name ending in .png); for several states, or a name ending in /, the folder of "
-                "their PNGs")
+                "their PNGs (a name not ending in .png)")
       ->type_name("PNG|DIR")
       ->check(kNotEmpty);
   c->add_option("--video", o.video,
@@ -231,10 +231,12 @@ void add_modes_command(CLI::App& app, CommandLine& cl) {
       ->type_name("S");
   add_set(modes, raw);
   add_safety(modes, raw);
-  modes->footer("Linearizes the drive about its state at T in the space-fixed frame and writes DIR/modes.csv\n"
-                "(frequency, damping ratio, each span's, wrap's, pulley's, arm's and rotor's share of the mode's\n"
-                "kinetic energy) and the mode shapes' pictures. With --campbell: DIR/campbell.csv and\n"
-                "DIR/campbell.png. docs/modes.md says how, and what the numbers are checked against.");
+  modes->footer(
+      "Linearizes the drive about its state at T in the space-fixed frame and writes DIR/modes.csv\n"
+      "(frequency, damping ratio, each span's, wrap's, pulley's, arm's and rotor's share of the mode's\n"
+      "kinetic energy) and the mode shapes' pictures. With --campbell: DIR/campbell.csv and\n"
+      "DIR/campbell.png. --at, --shapes, --video and --check go without --campbell, --rpm, --orders\n"
+      "and --settle with it. docs/modes.md says how, and what the numbers are checked against.");
 }
 
 void add_plot_command(CLI::App& app, CommandLine& cl) {

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <optional>
 #include <sstream>
 
 #include "app/commands.hpp"
@@ -27,17 +28,19 @@ using script::stopped_status;
 
 namespace {
 
-// "A:B:N": N speeds from A to B evenly spaced (N >= 2), or one speed "A"
+// "A:B:N": N speeds from A to B evenly spaced (N >= 2), or one speed "A"; each > 0 (the pulley
+// turning the way the belt goes round it)
 std::vector<double> speeds(const std::string& text) {
   std::vector<std::string> parts;
   std::stringstream in(text);
   for (std::string p; std::getline(in, p, ':');) parts.push_back(p);
-  if (parts.size() == 1) return {number("--rpm", parts[0])};
-  if (parts.size() != 3) throw UsageError("--rpm takes FROM:TO:COUNT (e.g. 800:6000:14), got '" + text + "'");
-  const double a = number("--rpm", parts[0]), b = number("--rpm", parts[1]);
-  const int n = whole_number("--rpm", parts[2], 2);
+  if ((parts.size() != 1 && parts.size() != 3) || text.back() == ':')
+    throw UsageError("--rpm takes FROM:TO:COUNT (e.g. 800:6000:14), got '" + text + "'");
+  const double a = number("--rpm", parts[0]), b = parts.size() == 1 ? a : number("--rpm", parts[1]);
+  const int n = parts.size() == 1 ? 1 : whole_number("--rpm", parts[2], 2);
+  if (!(a > 0 && b > 0)) throw UsageError("--rpm takes speeds > 0 rpm, got '" + text + "'");
   std::vector<double> out;
-  for (int k = 0; k < n; ++k) out.push_back(a + (b - a) * k / (n - 1));
+  for (int k = 0; k < n; ++k) out.push_back(n == 1 ? a : a + (b - a) * k / (n - 1));
   return out;
 }
 
@@ -49,6 +52,8 @@ std::vector<double> orders(const std::string& text) {
     if (!(o > 0)) throw UsageError("--orders takes positive engine orders (e.g. 2,4), got '" + p + "'");
     out.push_back(o);
   }
+  if (out.empty() || text.back() == ',')
+    throw UsageError("--orders takes positive engine orders separated by commas (e.g. 2,4), got '" + text + "'");
   return out;
 }
 
@@ -103,16 +108,88 @@ std::vector<size_t> check_list(const Raw& raw) {
   if (!raw.check) return ks;
   std::stringstream in(*raw.check);
   for (std::string p; std::getline(in, p, ',');) ks.push_back(static_cast<size_t>(whole_number("--check", p, 1)));
+  if (ks.empty() || raw.check->back() == ',')
+    throw UsageError("--check takes mode numbers separated by commas (e.g. 12,23), got '" + *raw.check + "'");
   return ks;
+}
+
+// "A", "A and B", "A, B and C"
+std::string and_list(const std::vector<std::string>& names) {
+  std::string out;
+  for (size_t k = 0; k < names.size(); ++k) out += (k == 0 ? "" : k + 1 == names.size() ? " and " : ", ") + names[k];
+  return out;
+}
+
+// the options of the form asked for, read and checked before the script runs: the modes of one
+// operating point (--at, --shapes, --video, --check) or a Campbell diagram (--campbell with
+// --rpm, --orders, --settle)
+struct Form {
+  std::optional<double> at;  // unset: the run's t_end
+  int shapes = 6;
+  std::vector<size_t> checks;
+  std::vector<double> rpm, orders;
+  double settle = CampbellSettings{}.settle;
+};
+
+// The options read; an option the form asked for would leave unused is refused, each one given
+// named: --rpm, --orders and --settle without --campbell, --at, --shapes, --video and --check
+// with it, --video with --shapes 0.
+Form read_form(const Raw& raw) {
+  Form f;
+  if (!raw.campbell) {
+    std::vector<std::string> given;
+    if (raw.rpm) given.emplace_back("--rpm");
+    if (raw.orders) given.emplace_back("--orders");
+    if (raw.settle) given.emplace_back("--settle");
+    if (!given.empty())
+      throw UsageError(and_list(given) + (given.size() == 1 ? " goes" : " go") +
+                       " with --campbell PULLEY (a Campbell diagram): the modes of one operating point (--at) do "
+                       "not use " +
+                       (given.size() == 1 ? "it" : "them"));
+    if (raw.at) {
+      f.at = number("--at", *raw.at);
+      if (!(*f.at >= 0)) throw UsageError("--at must be a time >= 0 [s], got '" + *raw.at + "'");
+    }
+    if (raw.shapes) f.shapes = whole_number("--shapes", *raw.shapes, 0);
+    if (raw.video && f.shapes == 0)
+      throw UsageError("--video makes a video of each mode drawn, and --shapes 0 draws none");
+    f.checks = check_list(raw);
+    return f;
+  }
+  std::vector<std::string> given, why;
+  if (raw.at) given.emplace_back("--at"), why.emplace_back("takes each speed's modes after --settle");
+  if (raw.shapes) given.emplace_back("--shapes");
+  if (raw.video) given.emplace_back("--video");
+  if (raw.shapes || raw.video) why.emplace_back("draws no mode shapes");
+  if (raw.check) given.emplace_back("--check"), why.emplace_back("checks no mode in time");
+  if (!given.empty())
+    throw UsageError(and_list(given) + (given.size() == 1 ? " goes" : " go") +
+                     " with the modes of one operating point (--at), not with --campbell: a Campbell diagram " +
+                     and_list(why));
+  if (!raw.rpm) throw UsageError("--campbell needs --rpm FROM:TO:COUNT");
+  f.rpm = speeds(*raw.rpm);
+  f.orders = orders(raw.orders.value_or("2,4"));
+  if (raw.settle) {
+    f.settle = number("--settle", *raw.settle);
+    if (!(f.settle > 0)) throw UsageError("--settle must be a time > 0 [s], got '" + *raw.settle + "'");
+  }
+  return f;
+}
+
+// a mode number of --check past the modes listed: refused after the table, before modes.csv and the
+// shapes are written
+void require_listed(const ModeAnalysis& a, const std::vector<size_t>& ks) {
+  for (size_t k : ks)
+    if (k > a.modes.size()) {
+      std::fflush(stdout);  // the table before the message, in a log of both
+      throw UsageError("--check: there is no mode " + std::to_string(k) + " (" + std::to_string(a.modes.size()) +
+                       " listed)");
+    }
 }
 
 // each listed mode pushed and run on (sim/mode_check.hpp)
 void check_modes(const Scene& sc, const Drive& d, const Eigen::VectorXd& y, const ModeAnalysis& a,
                  const std::vector<size_t>& ks) {
-  for (size_t k : ks)
-    if (k > a.modes.size())
-      throw UsageError("--check: there is no mode " + std::to_string(k) + " (" + std::to_string(a.modes.size()) +
-                       " listed)");
   std::vector<size_t> index;
   for (size_t k : ks) index.push_back(k - 1);
   const std::vector<ModeCheck> checks = check_modes(sc, d, a.t, y, a, index);
@@ -141,11 +218,9 @@ ModeSettings mode_settings(const Raw& raw) {
   return s;
 }
 
-int point_modes(const std::string& script, const Scene& sc, RunSettings rs, const Raw& raw, const ModeSettings& ms) {
-  const double at = raw.at ? number("--at", *raw.at) : rs.t_end;
-  if (!(at >= 0)) throw UsageError("--at must be a time >= 0 [s], got '" + *raw.at + "'");
-  const int shapes = raw.shapes ? whole_number("--shapes", *raw.shapes, 0) : 6;
-  const std::vector<size_t> checks = check_list(raw);
+int point_modes(const std::string& script, const Scene& sc, RunSettings rs, const Raw& raw, const Form& form,
+                const ModeSettings& ms) {
+  const double at = form.at.value_or(rs.t_end);
   rs.t_end = at;
   rs.frames.reset();
   Simulation sim(sc, rs);
@@ -157,6 +232,7 @@ int point_modes(const std::string& script, const Scene& sc, RunSettings rs, cons
   sim.close();
   std::printf("modes of %s\n", script.c_str());
   print_table(sc, a);
+  require_listed(a, form.checks);
   const std::string csv = (fs::path(rs.out_dir) / "modes.csv").string();
   {
     CsvWriter w(csv, mode_columns(a));
@@ -165,23 +241,22 @@ int point_modes(const std::string& script, const Scene& sc, RunSettings rs, cons
   std::printf("%s\n", csv.c_str());
   render::ModePictures p;
   p.dir = (fs::path(rs.out_dir) / "shapes").string();
-  p.count = shapes;
+  p.count = form.shapes;
   p.video = raw.video;
   for (const std::string& f : render::draw_modes(sc, d, y, a, p)) std::printf("%s\n", f.c_str());
-  check_modes(sc, d, y, a, checks);
+  check_modes(sc, d, y, a, form.checks);
   return 0;
 }
 
-int campbell_modes(const std::string& script, const Scene& sc, const RunSettings& rs, const Raw& raw,
+int campbell_modes(const std::string& script, const Scene& sc, const RunSettings& rs, const Raw& raw, const Form& form,
                    const ModeSettings& ms) {
   CampbellSettings cs;
   cs.pulley = sc.find_pulley(*raw.campbell);
   if (cs.pulley < 0) throw UsageError("--campbell: the scene has no pulley '" + *raw.campbell + "'");
-  if (!raw.rpm) throw UsageError("--campbell needs --rpm FROM:TO:COUNT");
-  cs.rpm = speeds(*raw.rpm);
-  if (raw.settle) cs.settle = number("--settle", *raw.settle);
+  cs.rpm = form.rpm;
+  cs.settle = form.settle;
   cs.modes = ms;
-  const std::vector<double> ord = orders(raw.orders.value_or("2,4"));
+  const std::vector<double>& ord = form.orders;
   const std::vector<CampbellPoint> pts = campbell(sc, rs, cs, &stop_flag(), [](const CampbellPoint& p) {
     std::fprintf(stderr, "beltsim modes: %s rpm: %zu modes\n", number_text(p.rpm).c_str(), p.analysis.modes.size());
   });
@@ -207,15 +282,14 @@ int campbell_modes(const std::string& script, const Scene& sc, const RunSettings
 int cmd_modes(const std::string& script, const script::Overrides& o, const script::Safety& s, const Raw& raw) {
   try {
     const ModeSettings ms = mode_settings(raw);
+    const Form form = read_form(raw);
     script::Interpreter lua(s);
     const script::Interruptible on_signal(lua);
     const script::Captured cap = capture_first_run(lua, script, o, "modes", false);
     RunSettings rs = cap.settings;
     rs.out_dir = o.has("out") ? o.run.out_dir : (fs::path("out") / fs::path(script).stem() / "modes").string();
-    if (raw.campbell && raw.check)
-      throw UsageError("--check checks the modes of one operating point (--at), not with --campbell");
-    if (raw.campbell) return campbell_modes(script, *cap.scene, rs, raw, ms);
-    return point_modes(script, *cap.scene, rs, raw, ms);
+    if (raw.campbell) return campbell_modes(script, *cap.scene, rs, raw, form, ms);
+    return point_modes(script, *cap.scene, rs, raw, form, ms);
   } catch (const UsageError&) {
     throw;
   } catch (const script::ScriptError& e) {

@@ -4,8 +4,10 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <optional>
 #include <sstream>
 #include <stdexcept>
+#include <utility>
 #include <vector>
 
 #include "app/options.hpp"
@@ -36,45 +38,71 @@ std::vector<double> numbers(const std::string& option, const std::string& text, 
   return out;
 }
 
-// the run's frame settings (or the defaults) with the options applied
-FrameSettings settings(const RenderOptions& o, const RunSettings& rs) {
-  FrameSettings f = rs.frames ? *rs.frames : FrameSettings{};
+// the options' values, read and checked before any state is read, each error naming the option
+// as typed
+struct Chosen {
+  std::optional<FrameQuantity> quantity;
+  std::optional<std::pair<int, int>> size;
+  std::optional<Vec2> view_centre;
+  std::optional<double> view_width, magnify;
+  std::optional<std::pair<double, double>> range;
+};
+
+Chosen chosen(const RenderOptions& o) {
+  Chosen c;
   if (o.quantity) {
     std::vector<std::string> names;
-    bool found = false;
     for (const auto& i : frame_quantities()) {
       names.push_back(i.key);
-      if (*o.quantity == i.key) {
-        // a range belongs to its quantity: another quantity gets its own default
-        if (f.quantity != i.q) f.range_lo.reset(), f.range_hi.reset();
-        f.quantity = i.q, found = true;
-      }
+      if (*o.quantity == i.key) c.quantity = i.q;
     }
-    if (!found)
+    if (!c.quantity)
       throw UsageError("--quantity: unknown quantity '" + *o.quantity + "'" + did_you_mean(*o.quantity, names) +
-                  "; one of: " + join(names));
+                       "; one of: " + join(names));
   }
   if (o.size) {
     const auto s = numbers("--size", *o.size, 'x', 2, "WxH in pixels, e.g. 640x360");
     if (s[0] != std::floor(s[0]) || s[1] != std::floor(s[1]) || !(s[0] >= 16 && s[0] <= 8192) ||
         !(s[1] >= 16 && s[1] <= 8192))
       throw UsageError("--size needs whole numbers of pixels in 16..8192, got " + *o.size);
-    f.width = static_cast<int>(s[0]), f.height = static_cast<int>(s[1]);
+    c.size = {static_cast<int>(s[0]), static_cast<int>(s[1])};
   }
   if (o.view) {
     const auto v = numbers("--view", *o.view, ',', 3, "X,Y,WIDTH in metres (the centre and the visible width)");
-    f.view_centre = Vec2(v[0], v[1]);
-    f.view_width = v[2];
+    if (const std::string why = view_width_problem(v[2]); !why.empty())
+      throw UsageError("--view: the width " + why + ", got '" + *o.view + "'");
+    c.view_centre = Vec2(v[0], v[1]), c.view_width = v[2];
   }
-  if (o.magnify) f.magnify = numbers("--magnify", *o.magnify, ',', 1, "a number > 0")[0];
+  if (o.magnify) {
+    c.magnify = numbers("--magnify", *o.magnify, ',', 1, "a number > 0")[0];
+    if (const std::string why = magnify_problem(*c.magnify); !why.empty())
+      throw UsageError("--magnify " + why + ", got '" + *o.magnify + "'");
+  }
   if (o.range) {
     const auto r = numbers("--range", *o.range, ',', 2, "LO,HI in the quantity's unit");
-    f.range_lo = r[0], f.range_hi = r[1];
+    if (const std::string why = range_problem(r[0], r[1]); !why.empty())
+      throw UsageError("--range " + why + ", got '" + *o.range + "'");
+    c.range = {r[0], r[1]};
   }
+  return c;
+}
+
+// the run's frame settings (or the defaults) with the options applied
+FrameSettings settings(const Chosen& c, const RunSettings& rs) {
+  FrameSettings f = rs.frames ? *rs.frames : FrameSettings{};
+  if (c.quantity) {
+    // a range belongs to its quantity: another quantity gets its own default
+    if (f.quantity != *c.quantity) f.range_lo.reset(), f.range_hi.reset();
+    f.quantity = *c.quantity;
+  }
+  if (c.size) f.width = c.size->first, f.height = c.size->second;
+  if (c.view_centre) f.view_centre = c.view_centre, f.view_width = c.view_width;
+  if (c.magnify) f.magnify = *c.magnify;
+  if (c.range) f.range_lo = c.range->first, f.range_hi = c.range->second;
   f.png_dir.assign(1, '.');  // one picture, written by render_snapshot
   f.video_path.clear();
   try {
-    validate(f);
+    validate(f);  // the options are checked already: the run's settings, as the checkpoint holds them
   } catch (const std::invalid_argument& e) {
     throw UsageError(e.what());
   }
@@ -116,16 +144,24 @@ int cmd_render(const RenderOptions& o) {
       if (const std::string bad = video_name_problem(*o.video); !bad.empty())
         throw UsageError("--video " + *o.video + ": " + bad);
     }
+    const Chosen c = chosen(o);
     const std::vector<std::string> files = state_files(o.states);
     std::error_code ec;
-    // --out names a folder for several states, or when it ends in / (a name ending in / is a
-    // folder: it was written as a PNG file of that name, the / dropped)
+    // --out names a folder for several states (a folder of them too), or when it ends in / (a
+    // name ending in / is a folder: it was written as a PNG file of that name, the / dropped)
     const bool several = files.size() > 1 || std::filesystem::is_directory(o.states.front(), ec) ||
                          (o.out && !o.out->empty() && o.out->back() == '/');
     if (o.out && !several) require_png("--out", *o.out);
+    // a picture's name for the folder of several states' PNGs: it made a folder named x.png
+    if (o.out && several && o.out->back() != '/' && png_name_problem(*o.out).empty())
+      throw UsageError("--out " + *o.out + ": " +
+                       (files.size() > 1 ? std::to_string(files.size()) + " states"
+                                         : "the states of the folder " + o.states.front()) +
+                       " need a folder for their PNGs (DIR/<state name>.png each), and a name ending in .png is "
+                       "a picture's: give --out a folder, or one state file");
     // the first state gives the scene and the frame settings of every picture
     const std::unique_ptr<Simulation> first = Simulation::open_checkpoint(files.front());
-    const FrameSettings f = settings(o, first->settings());
+    const FrameSettings f = settings(c, first->settings());
     FrameSettings v = f;
     if (o.video) {
       v.png_dir.clear(), v.video_path = *o.video;

@@ -52,6 +52,20 @@ bool same_path(const std::string& a, const std::string& b) {
 }
 }  // namespace
 
+std::string range_problem(double lo, double hi) {
+  if (!std::isfinite(lo) || !std::isfinite(hi)) return "must be finite";
+  return lo < hi ? "" : "needs lo < hi";
+}
+
+std::string magnify_problem(double magnify) {
+  return magnify > 0 && magnify <= 1e4 ? "" : "must be in (0, 1e4]";
+}
+
+// a view narrower than a micrometre shows nothing one could read; wider than 100 km, likewise
+std::string view_width_problem(double width) {
+  return width >= 1e-6 && width <= 1e5 ? "" : "must be in [1e-6, 1e5] m";
+}
+
 void validate(const FrameSettings& f, bool times_only) {
   if (!(f.fps > 0 && f.fps <= 240)) bad("fps", "must be in (0, 240]", f.fps);
   if (f.fps != std::floor(f.fps)) bad("fps", "must be a whole number of frames per second", f.fps);
@@ -65,14 +79,14 @@ void validate(const FrameSettings& f, bool times_only) {
                 : "width and height must be in 16..8192 px",
           std::to_string(f.width) + "x" + std::to_string(f.height));
     }
-  if (f.range_lo && f.range_hi && !(*f.range_lo < *f.range_hi)) {
-    bad("range", "needs lo < hi", "{" + rounded_text(*f.range_lo) + ", " + rounded_text(*f.range_hi) + "}");
-  }
+  if (f.range_lo && f.range_hi)
+    if (const std::string why = range_problem(*f.range_lo, *f.range_hi); !why.empty())
+      bad("range", why, "{" + rounded_text(*f.range_lo) + ", " + rounded_text(*f.range_hi) + "}");
   if (!(f.levels == 0 || (f.levels >= 2 && f.levels <= 64))) bad("levels", "must be 0 (continuous) or 2..64", f.levels);
-  if (!(f.magnify > 0 && f.magnify <= 1e4)) bad("magnify", "must be in (0, 1e4]", f.magnify);
-  // a view narrower than a micrometre shows nothing one could read; wider than 100 km, likewise
-  if (f.view_width && !(*f.view_width >= 1e-6 && *f.view_width <= 1e5))
-    bad("view.width", "must be in [1e-6, 1e5] m", *f.view_width, " m");
+  if (const std::string why = magnify_problem(f.magnify); !why.empty()) bad("magnify", why, f.magnify);
+  if (f.view_width)
+    if (const std::string why = view_width_problem(*f.view_width); !why.empty())
+      bad("view.width", why, *f.view_width, " m");
   if (f.range_lo && !std::isfinite(*f.range_lo)) bad("range", "must be finite", *f.range_lo);
   if (f.range_hi && !std::isfinite(*f.range_hi)) bad("range", "must be finite", *f.range_hi);
   if (f.png_every < 1) bad("png_every", "must be >= 1", f.png_every);

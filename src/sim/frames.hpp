@@ -73,6 +73,12 @@ class FrameSink {
 using FrameSinkFactory =
     std::function<std::unique_ptr<FrameSink>(const Scene& scene, const FrameSettings& settings)>;
 
+// The rules validate applies to a colour range, a magnify and a view's width, for a caller that
+// names the setting its own way (render's --range): "" when the value is taken, else the reason.
+std::string range_problem(double lo, double hi);
+std::string magnify_problem(double magnify);
+std::string view_width_problem(double width);
+
 // Checks the settings (width and height in 16..8192, even with a video, fps in (0, 240], slowdown > 0,
 // magnify > 0, a range with lo < hi, levels 0 or 2..64, png_every >= 1, a video's name ending in
 // .mp4 and not png's folder's, at least one output unless times_only: the times of a run's kept

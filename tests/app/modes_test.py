@@ -55,7 +55,8 @@ class Modes(unittest.TestCase):
 
     def test_check_in_time(self):
         # the pulleys' torsional mode at rest, pushed and run on, moves as the linearization says;
-        # a mode number past the list is refused, the modes found so far kept
+        # a mode number past the list is refused under the table, before modes.csv and the shapes are
+        # written (they were written first, then refused)
         out_dir = os.path.join(self.dir, "k")
         code, out, err = run(["modes", self.script, "--at", "0", "--out", out_dir, "--shapes", "0"], cwd=self.dir)
         self.assertEqual(code, 0, err)
@@ -67,11 +68,15 @@ class Modes(unittest.TestCase):
         self.assertEqual(code, 0, err)
         self.assertRegex(out, r"check of mode %s \([0-9.]+ Hz, zeta [0-9.]+\): pushed and run on, watched at "
                               r"[a-z_]+ (angle|middle): [0-9.]+ Hz, zeta [0-9.]+; .*: agrees\n" % torsion)
-        code, out, err = run(["modes", self.script, "--at", "0", "--out", out_dir, "--shapes", "0",
-                              "--check", str(len(rows) + 1)], cwd=self.dir)
+        past = os.path.join(self.dir, "past")
+        code, out, err = run(["modes", self.script, "--at", "0", "--out", past, "--shapes", "1",
+                              "--check", "%s,%d" % (torsion, len(rows) + 1)], cwd=self.dir)
         self.assertEqual(code, 2, err)
         self.assertIn("--check: there is no mode %d (%d listed)" % (len(rows) + 1, len(rows)), err)
-        self.assertTrue(os.path.isfile(os.path.join(out_dir, "modes.csv")))
+        self.assertIn("%5d " % len(rows), out)  # the table, to choose from
+        self.assertNotIn("check of mode", out)
+        self.assertFalse(os.path.exists(os.path.join(past, "modes.csv")))
+        self.assertFalse(os.path.exists(os.path.join(past, "shapes")))
 
     def test_campbell(self):
         out_dir = os.path.join(self.dir, "c")
@@ -115,11 +120,46 @@ class Modes(unittest.TestCase):
                               (["--fmin", "10", "--fmax", "5"], "--fmin must be >= 0 and below --fmax"),
                               (["--at", "-1"], "--at must be a time >= 0"),
                               (["--check", "0"], "--check must be a whole number >= 1, got 0"),
+                              (["--campbell", "driver", "--rpm", "0:100:2"], "--rpm takes speeds > 0 rpm, got "
+                                                                             "'0:100:2'"),
+                              (["--campbell", "driver", "--rpm", "100", "--settle", "-1"],
+                               "--settle must be a time > 0 [s], got '-1'"),
+                              (["--campbell", "driver", "--rpm", "100", "--orders", "2,"], "--orders takes positive "
+                                                                                         "engine orders"),
+                              (["--check", ""], "--check takes mode numbers separated by commas"),
                               (["--check", "1", "--campbell", "driver", "--rpm", "1:2:2"],
-                               "--check checks the modes of one operating point (--at), not with --campbell")]:
+                               "--check goes with the modes of one operating point (--at), not with --campbell: a "
+                               "Campbell diagram checks no mode in time")]:
             code, out, err = run(["modes", self.script, "--out", os.path.join(self.dir, "x")] + args, cwd=self.dir)
             self.assertEqual(code, 2, err)
             self.assertIn(message, err)
+
+    def test_an_option_of_the_other_form_is_refused_before_the_script_runs(self):
+        # --rpm, --orders and --settle without --campbell gave an ordinary table, and --at, --shapes
+        # and --video with it were dropped (exit 0): each given is named, exit 2, the script not run
+        script = os.path.join(self.dir, "p.lua")
+        with open(script, "w") as f:
+            f.write('print("the script ran")\n' + two_pulley(elements=40, inertia=0.025) +
+                    "drive:run { t_end = 0.05, progress = false }\n")
+        for args, message in [
+                (["--rpm", "600:3000:3", "--orders", "2", "--settle", "0.1", "--at", "0"],
+                 "--rpm, --orders and --settle go with --campbell PULLEY (a Campbell diagram): the modes of one "
+                 "operating point (--at) do not use them"),
+                (["--settle", "0.1"], "--settle goes with --campbell PULLEY (a Campbell diagram): the modes of one "
+                                      "operating point (--at) do not use it"),
+                (["--campbell", "driver", "--rpm", "600:1200:2", "--at", "0.05", "--shapes", "3", "--video"],
+                 "--at, --shapes and --video go with the modes of one operating point (--at), not with --campbell: "
+                 "a Campbell diagram takes each speed's modes after --settle and draws no mode shapes"),
+                (["--campbell", "driver", "--rpm", "600", "--video", "--check", "1"],
+                 "--video and --check go with the modes of one operating point (--at), not with --campbell: a "
+                 "Campbell diagram draws no mode shapes and checks no mode in time"),
+                (["--shapes", "0", "--video"], "--video makes a video of each mode drawn, and --shapes 0 draws none")]:
+            out_dir = os.path.join(self.dir, "o")
+            code, out, err = run(["modes", script, "--out", out_dir] + args, cwd=self.dir)
+            self.assertEqual(code, 2, args)
+            self.assertIn("beltsim: " + message + "\n", err)
+            self.assertNotIn("the script ran", out)
+            self.assertFalse(os.path.exists(out_dir), args)
 
     def test_lua_call(self):
         path = os.path.join(self.dir, "l.lua")

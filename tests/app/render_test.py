@@ -97,6 +97,23 @@ class Render(unittest.TestCase):
         self.assertEqual((code, out), (0, os.path.join("pics_dir", "state.png") + "\n"), err)
         self.assertTrue(os.path.isfile(os.path.join(self.dir, "pics_dir", "state.png")))
 
+    def test_several_states_need_a_folder_not_a_pictures_name(self):
+        # several states with --out NAME.png made a folder NAME.png of PNGs: refused, nothing written
+        code, out, err = run(["render", self.checkpoint, self.checkpoint, "--out", "pics/tension.png"], self.dir)
+        self.assertEqual((code, out), (2, ""), err)
+        self.assertIn("beltsim: --out pics/tension.png: 2 states need a folder for their PNGs (DIR/<state name>.png "
+                      "each), and a name ending in .png is a picture's: give --out a folder, or one state file\n", err)
+        self.assertFalse(os.path.exists(os.path.join(self.dir, "pics")))
+        # a folder of states too, whatever it holds
+        os.makedirs(os.path.join(self.dir, "one"), exist_ok=True)
+        shutil.copy(self.checkpoint, os.path.join(self.dir, "one", "state_00006.ckpt"))
+        code, out, err = run(["render", "one", "--out", "one.PNG"], self.dir)
+        self.assertEqual(code, 2, err)
+        self.assertIn("--out one.PNG: the states of the folder one need a folder for their PNGs", err)
+        self.assertFalse(os.path.exists(os.path.join(self.dir, "one.PNG")))
+        code, out, err = run(["render", "one", "--out", "one_pngs"], self.dir)
+        self.assertEqual((code, out), (0, os.path.join("one_pngs", "state_00006.png") + "\n"), err)
+
     def test_bad_options_and_files(self):
         for args, message in [
                 (["--out", "x.png", "--quantity", "tensoin"], "--quantity: unknown quantity 'tensoin' (did you mean "
@@ -111,11 +128,17 @@ class Render(unittest.TestCase):
                 (["--video", "clip.png"], "--video clip.png: beltsim writes MP4 videos (H.264): give a name ending "
                                           "in .mp4"),
                 (["--out", "x.png", "--view", "0,0"], "--view needs X,Y,WIDTH in metres"),
+                # the option as typed, not the run's key (it read "frames.range: needs lo < hi (got {5, 1})")
+                (["--out", "x.png", "--range", "5,1"], "beltsim: --range needs lo < hi, got '5,1'\n"),
+                (["--out", "x.png", "--magnify", "-1"], "beltsim: --magnify must be in (0, 1e4], got '-1'\n"),
+                (["--out", "x.png", "--view", "0,0,0"], "beltsim: --view: the width must be in [1e-6, 1e5] m, "
+                                                        "got '0,0,0'\n"),
                 (["--out", "x.png", "--rtol", "1e-3"], "render does not take: --rtol"),
                 ([], "--out is required")]:
             code, out, err = self.render(*args)
             self.assertEqual(code, 2, args)
             self.assertIn(message, err)
+            self.assertNotIn("frames.", err)
         for name in ("x.mp4", "pics.mp4", "clip.png"):
             self.assertFalse(os.path.exists(os.path.join(self.dir, name)), name)
         code, out, err = run(["render", "missing.txt", "--out", "x.png"], self.dir)
