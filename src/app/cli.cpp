@@ -239,11 +239,13 @@ void add_modes_command(CLI::App& app, CommandLine& cl) {
 
 void add_plot_command(CLI::App& app, CommandLine& cl) {
   Raw& raw = cl.raw;
-  CLI::App* plot = app.add_subcommand("plot", "draw columns of a timeseries.csv to a PNG");
-  plot->add_option("CSV", cl.csv, "a timeseries.csv written by run")->required();
-  plot->add_option("COLUMNS", cl.columns, "columns to draw (default: every <pulley>.omega)");
+  CLI::App* plot =
+      app.add_subcommand("plot", "draw columns of a timeseries.csv, or of a sweep's summary.csv, to a PNG");
+  plot->add_option("CSV", cl.csv, "a timeseries.csv written by run, or a sweep's summary.csv")->required();
+  plot->add_option("COLUMNS", cl.columns,
+                   "columns to draw (default: every <pulley>.omega); of a sweep's summary.csv the x column, then y");
   plot->add_option("--out", raw.out, "the PNG (default: plot.png beside the CSV)")->type_name("PNG")->check(kNotEmpty);
-  plot->add_option("--from", raw.from, "draw samples with t >= T only [s]")->type_name("T");
+  plot->add_option("--from", raw.from, "draw samples with t >= T only [s] (a timeseries.csv only)")->type_name("T");
   plot->footer("Prints the PNG's path; on a terminal also shows the picture (BELTSIM_TERM_IMAGES=off|symbols|\n"
                "sixel|kitty|iterm forces a mode). Columns of two units share the plot on two y axes.");
 }
