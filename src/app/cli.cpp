@@ -347,10 +347,11 @@ std::optional<CommandLine> parse_command_line(int argc, char** argv, int* status
   app.set_version_flag("--version", std::string("beltsim ") + kBeltsimVersion);
   app.require_subcommand(1);
   app.footer(
-      "Exit status: 0 on success, 1 on a script, parameter, run or plot error or an output that\n"
-      "could not be written, 2 on bad usage, 130 after Ctrl-C, 143 after SIGTERM, 129 after SIGHUP\n"
-      "(outputs closed). 'beltsim COMMAND --help' describes a command; 'beltsim help parameters' lists\n"
-      "the scene's parameters with their units and defaults, 'beltsim help run-settings' the run's.");
+      "Exit status: 0 on success, 1 on a script, parameter, run or plot error, an input file that is\n"
+      "missing or unreadable (compare: 2) or an output that could not be written, 2 on bad usage,\n"
+      "130 after Ctrl-C, 143 after SIGTERM, 129 after SIGHUP (outputs closed). 'beltsim COMMAND\n"
+      "--help' describes a command; 'beltsim help parameters' lists the scene's parameters with their\n"
+      "units and defaults, 'beltsim help run-settings' the run's.");
   const auto fail = [&](int s) {
     *status = s;
     return std::optional<CommandLine>();

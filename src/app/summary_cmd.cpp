@@ -16,9 +16,10 @@ int cmd_summary(const std::string& given, const Raw& raw) {
   if (raw.plot_out) require_png("--plot", *raw.plot_out);
   std::error_code ec;
   // the run's timeseries.csv given for its folder: the folder ("cannot read
-  // DIR/timeseries.csv/timeseries.csv: Not a directory" said nothing useful)
+  // DIR/timeseries.csv/timeseries.csv: Not a directory" said nothing useful; a missing one is
+  // named as given)
   std::string dir = given;
-  if (fs::path(given).filename() == "timeseries.csv" && fs::is_regular_file(given, ec)) {
+  if (fs::path(given).filename() == "timeseries.csv" && !fs::is_directory(given, ec)) {
     dir = fs::path(given).parent_path().lexically_normal().string();
     if (dir.empty()) dir = ".";  // the one in the folder beltsim runs in
   }
