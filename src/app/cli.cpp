@@ -241,11 +241,13 @@ void add_modes_command(CLI::App& app, CommandLine& cl) {
 
 void add_plot_command(CLI::App& app, CommandLine& cl) {
   Raw& raw = cl.raw;
-  CLI::App* plot = app.add_subcommand("plot", "draw columns of a timeseries.csv to a PNG");
-  plot->add_option("CSV", cl.csv, "a timeseries.csv written by run")->required();
-  plot->add_option("COLUMNS", cl.columns, "columns to draw (default: every <pulley>.omega)");
+  CLI::App* plot =
+      app.add_subcommand("plot", "draw columns of a timeseries.csv, or of a sweep's summary.csv, to a PNG");
+  plot->add_option("CSV", cl.csv, "a timeseries.csv written by run, or a sweep's summary.csv")->required();
+  plot->add_option("COLUMNS", cl.columns,
+                   "columns to draw (default: every <pulley>.omega); of a sweep's summary.csv the x column, then y");
   plot->add_option("--out", raw.out, "the PNG (default: plot.png beside the CSV)")->type_name("PNG")->check(kNotEmpty);
-  plot->add_option("--from", raw.from, "draw samples with t >= T only [s]")->type_name("T");
+  plot->add_option("--from", raw.from, "draw samples with t >= T only [s] (a timeseries.csv only)")->type_name("T");
   plot->footer("Prints the PNG's path; on a terminal also shows the picture (BELTSIM_TERM_IMAGES=off|symbols|\n"
                "sixel|kitty|iterm forces a mode). Columns of two units share the plot on two y axes.");
 }
@@ -347,10 +349,11 @@ std::optional<CommandLine> parse_command_line(int argc, char** argv, int* status
   app.set_version_flag("--version", std::string("beltsim ") + kBeltsimVersion);
   app.require_subcommand(1);
   app.footer(
-      "Exit status: 0 on success, 1 on a script, parameter, run or plot error or an output that\n"
-      "could not be written, 2 on bad usage, 130 after Ctrl-C, 143 after SIGTERM, 129 after SIGHUP\n"
-      "(outputs closed). 'beltsim COMMAND --help' describes a command; 'beltsim help parameters' lists\n"
-      "the scene's parameters with their units and defaults, 'beltsim help run-settings' the run's.");
+      "Exit status: 0 on success, 1 on a script, parameter, run or plot error, an input file that is\n"
+      "missing or unreadable (compare: 2) or an output that could not be written, 2 on bad usage,\n"
+      "130 after Ctrl-C, 143 after SIGTERM, 129 after SIGHUP (outputs closed). 'beltsim COMMAND\n"
+      "--help' describes a command; 'beltsim help parameters' lists the scene's parameters with their\n"
+      "units and defaults, 'beltsim help run-settings' the run's.");
   const auto fail = [&](int s) {
     *status = s;
     return std::optional<CommandLine>();

@@ -1,12 +1,12 @@
 // beltsim: reads the command line (cli.hpp), the environment (environment.hpp), runs the command.
 // Every number on the command line is a finite decimal (no hex, inf or nan); an option a command
 // does not take is an error. Exit status: 0 on success, 1 on a script, parameter, run or plot
-// error or an output that could not be written (message on stderr, outputs written so far kept;
-// compare: 0 when the files match, 1 when they differ, 2 when they could not be compared, 3 when
-// the difference image could not be written), 2 on bad usage (or an environment variable it
-// cannot read, or a CPU without the instruction set it was built for: isa_check.cpp), 130 when
-// stopped by Ctrl-C (SIGINT), 143 by SIGTERM and 129 by SIGHUP (outputs closed;
-// script/signals.hpp).
+// error, an input file that is missing or unreadable, or an output that could not be written
+// (message on stderr, outputs written so far kept; compare: 0 when the files match, 1 when they
+// differ, 2 when they could not be compared, a file unreadable too, 3 when the difference image
+// could not be written), 2 on bad usage (or an environment variable it cannot read, or a CPU
+// without the instruction set it was built for: isa_check.cpp), 130 when stopped by Ctrl-C
+// (SIGINT), 143 by SIGTERM and 129 by SIGHUP (outputs closed; script/signals.hpp).
 #include <cstdio>
 #include <string>
 

@@ -20,8 +20,17 @@ int cmd_plot(const std::string& csv, const std::vector<std::string>& columns, co
   if (raw.out) require_png("--out", *raw.out);
   const std::string png = raw.out ? *raw.out : (fs::path(csv).parent_path() / "plot.png").string();
   try {
+    // a sweep's summary is drawn against a column of its own, so a start time would be ignored
+    // there: refused as bad usage before anything is drawn (a file that cannot be read: exit 1)
+    if (raw.from && plot::is_sweep_summary(csv))
+      throw UsageError("--from: " + csv + " is a sweep's summary, drawn against " +
+                       (columns.empty() ? std::string("the column named first") : "its column " + columns[0]) +
+                       ", not against time, so --from (a start time) does not apply; it is for a run's "
+                       "timeseries.csv");
     if (const std::string w = plot::left_out_warning(plot::plot_csv(csv, columns, from, png)); !w.empty())
       std::fprintf(stderr, "beltsim plot: warning: %s\n", w.c_str());
+  } catch (const UsageError&) {
+    throw;
   } catch (const std::exception& e) {
     std::fprintf(stderr, "beltsim: %s\n", e.what());
     mark_output_failure_shown(e.what());

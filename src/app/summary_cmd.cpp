@@ -16,9 +16,10 @@ int cmd_summary(const std::string& given, const Raw& raw) {
   if (raw.plot_out) require_png("--plot", *raw.plot_out);
   std::error_code ec;
   // the run's timeseries.csv given for its folder: the folder ("cannot read
-  // DIR/timeseries.csv/timeseries.csv: Not a directory" said nothing useful)
+  // DIR/timeseries.csv/timeseries.csv: Not a directory" said nothing useful; a missing one is
+  // named as given)
   std::string dir = given;
-  if (fs::path(given).filename() == "timeseries.csv" && fs::is_regular_file(given, ec)) {
+  if (fs::path(given).filename() == "timeseries.csv" && !fs::is_directory(given, ec)) {
     dir = fs::path(given).parent_path().lexically_normal().string();
     if (dir.empty()) dir = ".";  // the one in the folder beltsim runs in
   }
@@ -42,6 +43,9 @@ int cmd_summary(const std::string& given, const Raw& raw) {
   }
   std::fputs(plot::summary_table(s).c_str(), stdout);
   std::fflush(stdout);
+  // each output asked for is written, its missing folders made; one that cannot be written is
+  // named and fails the exit status, and the other is still written
+  int status = 0;
   for (const auto& [file, write] :
        {std::pair{raw.csv_out, &plot::write_summary_csv}, std::pair{raw.plot_out, &plot::plot_summary}}) {
     if (!file) continue;
@@ -50,11 +54,12 @@ int cmd_summary(const std::string& given, const Raw& raw) {
     } catch (const std::exception& e) {
       std::fprintf(stderr, "beltsim summary: %s\n", e.what());
       mark_output_failure_shown(e.what());
-      return 1;
+      status = 1;
+      continue;
     }
     std::printf("%s\n", file->c_str());
   }
-  return 0;
+  return status;
 }
 
 }  // namespace beltsim::app

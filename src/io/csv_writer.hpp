@@ -16,8 +16,9 @@ namespace beltsim {
 
 class CsvWriter {
  public:
-  // append: continue an existing file (a resumed run) without writing the header again. Throws
-  // std::runtime_error naming the file and the reason (here and in row()).
+  // append: continue an existing file (a resumed run) without writing the header again; the
+  // file's missing folders are made (io/output_dir.hpp, output_place). Throws std::runtime_error
+  // naming the file and the reason (here and in row()).
   CsvWriter(const std::string& path, const std::vector<std::string>& header, bool append = false);
   // DIR/NAME (io/output_dir.hpp: never through a link)
   CsvWriter(const OutputDir& dir, const std::string& name, const std::vector<std::string>& header, bool append);

@@ -270,10 +270,10 @@ std::string folder_holder(int dir) {
   return who;
 }
 
-OutputPlace output_place(const std::string& path, bool make_folder) {
+OutputPlace output_place(const std::string& path) {
   auto [dir, name] = split_path(trimmed_path(path));
   if (name.empty() || name == "." || name == "..") output_error(path, "not a file name");
-  return OutputPlace{OutputDir(dir, make_folder, &path), name};
+  return OutputPlace{OutputDir(dir, true, &path), name};
 }
 
 // ---- files written whole ---------------------------------------------------------------------------
@@ -347,8 +347,8 @@ void write_file_whole(const OutputDir& dir, const std::string& name, std::string
   f.commit();
 }
 
-void write_file_whole(const std::string& path, std::string_view text, bool make_folder) {
-  const OutputPlace p = output_place(path, make_folder);
+void write_file_whole(const std::string& path, std::string_view text) {
+  const OutputPlace p = output_place(path);
   write_file_whole(p.dir, p.name, text);
 }
 

@@ -95,13 +95,14 @@ class OutputDir {
 // it (script/sandbox_files.cpp)
 std::string folder_holder(int dir);
 
-// The folder and the name of a path a caller gave: OutputDir(parent), the last component. The
-// folder is made when missing only with make_folder; errors name the path.
+// The folder and the name of a path a caller gave: OutputDir(parent), made with its missing
+// parents as every output's folder is (docs/outputs.md), and the last component; errors name the
+// path. Every writer of a file named by its path goes through here.
 struct OutputPlace {
   OutputDir dir;
   std::string name;
 };
-OutputPlace output_place(const std::string& path, bool make_folder = false);
+OutputPlace output_place(const std::string& path);
 
 // A file written whole: its bytes go to an unnamed file in the folder (O_TMPFILE; NAME.part where
 // the file system has none), and commit() gives it the name NAME, replacing the old file in one
@@ -133,8 +134,8 @@ class WholeFile {
 
 // text written whole to DIR/NAME (WholeFile)
 void write_file_whole(const OutputDir& dir, const std::string& name, std::string_view text);
-// the same for a path (its folder must exist, or is made with its missing parents with make_folder)
-void write_file_whole(const std::string& path, std::string_view text, bool make_folder = false);
+// the same for a path (output_place: its missing folders made)
+void write_file_whole(const std::string& path, std::string_view text);
 
 // "" when a picture's path names a PNG file (.png, any case), the only kind beltsim draws, else
 // why not (a user's x.jpg got PNG bytes under that name)

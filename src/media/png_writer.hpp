@@ -10,6 +10,7 @@
 
 namespace beltsim {
 
+// its missing folders made (io/output_dir.hpp, output_place)
 void write_png(const std::string& path, const Image& img);
 // DIR/NAME
 void write_png(const OutputDir& dir, const std::string& name, const Image& img);

@@ -23,7 +23,8 @@ struct VideoOptions {
 
 class VideoWriter {
  public:
-  // Throws std::runtime_error naming the path and FFmpeg's reason.
+  // The file's missing folders are made (io/output_dir.hpp, output_place). Throws
+  // std::runtime_error naming the path and FFmpeg's reason.
   VideoWriter(const std::string& path, const VideoOptions& opt);
   ~VideoWriter();
   VideoWriter(const VideoWriter&) = delete;

@@ -78,7 +78,7 @@ void PrivateOutput::deliver(const std::string& dest, const std::string& who) con
   std::ostringstream bytes;
   if (in) bytes << in.rdbuf();
   if (!in || bytes.str().empty()) throw std::runtime_error(who + ": gnuplot reported no error but wrote no " + dest);
-  write_file_whole(dest, bytes.str(), true);
+  write_file_whole(dest, bytes.str());
 }
 
 std::string gnuplot_string(std::string_view text) {

@@ -468,15 +468,6 @@ std::vector<Mark> read_event_marks(const std::string& events_csv) {
 
 namespace {
 
-// a sweep's summary.csv: the header starts "point," and names a status column
-bool is_summary(const std::string& csv_path) {
-  InputFile f(csv_path);
-  std::string line;
-  if (!RowReader(f.stream()).next(line)) return false;
-  const std::vector<std::string> names = csv_fields(line);
-  return names.size() > 2 && names[0] == "point" && std::find(names.begin(), names.end(), "status") != names.end();
-}
-
 // leaves out the series with no finite (t, y) pair and returns their names; fails when that is
 // every series
 std::vector<std::string> drop_empty(PlotSpec& spec, const std::string& csv_path) {
@@ -499,6 +490,14 @@ std::vector<std::string> drop_empty(PlotSpec& spec, const std::string& csv_path)
 }
 
 }  // namespace
+
+bool is_sweep_summary(const std::string& csv_path) {
+  InputFile f(csv_path);
+  std::string line;
+  if (!RowReader(f.stream()).next(line)) return false;
+  const std::vector<std::string> names = csv_fields(line);
+  return names.size() > 2 && names[0] == "point" && std::find(names.begin(), names.end(), "status") != names.end();
+}
 
 std::string left_out_warning(const std::vector<std::string>& names) {
   if (names.empty()) return "";
@@ -536,7 +535,11 @@ PlotSpec summary_spec(const std::string& csv_path, const std::vector<std::string
 
 std::vector<std::string> plot_csv(const std::string& csv_path, const std::vector<std::string>& columns, double from_t,
                                   const std::string& out_png) {
-  if (is_summary(csv_path)) {
+  if (is_sweep_summary(csv_path)) {
+    if (from_t > -INFINITY)
+      throw std::runtime_error(csv_path +
+                               " is a sweep's summary, drawn against a column of its own, not time: "
+                               "a start time does not apply to it");
     PlotSpec spec = summary_spec(csv_path, columns, out_png);
     std::vector<std::string> dropped = drop_empty(spec, csv_path);
     plot_png(spec);

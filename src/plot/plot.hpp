@@ -75,14 +75,19 @@ Table read_timeseries_csv(const std::string& path, const std::vector<std::string
 // No file: none; a row that is not `number,text,text` (a row cut by a kill) is left out.
 std::vector<Mark> read_event_marks(const std::string& events_csv);
 
+// Whether a CSV file is a sweep's summary.csv (or a point's point.csv): its header starts "point,"
+// and names a status column (sweep/results.hpp). Throws as read_timeseries_csv for a file it
+// cannot read.
+bool is_sweep_summary(const std::string& csv_path);
+
 // Plots `columns` of a timeseries.csv (empty: every '<pulley>.omega' column) against its 't'
 // column, samples with t >= from_t only, units from io/units.hpp, titled with the CSV's path; the
 // events of the events.csv beside it, if there is one, as vertical lines with their labels.
-// A sweep's summary.csv (its header starts "point," and has a status column; sweep/results.hpp)
-// is drawn as points: the first of `columns` is the x axis, the others y (from_t is not used); a
-// point without a value (failed, not run) is left out. A column with no finite value there (a
-// creep undefined at rest, a figure every point failed to give) is left out of the picture and
-// named in the result; when every column is, it fails naming them.
+// A sweep's summary.csv (is_sweep_summary) is drawn as points: the first of `columns` is the x
+// axis, the others y; its x is not time, so a from_t above -inf is refused (an error); a point
+// without a value (failed, not run) is left out. A column with no finite value there (a creep
+// undefined at rest, a figure every point failed to give) is left out of the picture and named in
+// the result; when every column is, it fails naming them.
 std::vector<std::string> plot_csv(const std::string& csv_path, const std::vector<std::string>& columns, double from_t,
                                   const std::string& out_png);
 

@@ -129,8 +129,6 @@ class FrameRecorder final : public FrameSink {
     // through a link (io/output_dir.hpp)
     if (!fs.png_dir.empty()) png_dir_ = std::make_unique<OutputDir>(fs.png_dir);
     if (!fs.video_path.empty()) {
-      if (const size_t slash = fs.video_path.rfind('/'); slash != std::string::npos && slash > 0)
-        OutputDir(fs.video_path.substr(0, slash));  // made when missing
       VideoOptions vo;
       vo.width = fs.width, vo.height = fs.height, vo.fps = static_cast<int>(fs.fps);
       video_ = std::make_unique<VideoWriter>(fs.video_path, vo);
@@ -220,7 +218,7 @@ void render_snapshot(const Scene& sc, const FrameSettings& fs, double t, const d
                      const std::string& png, const Observation* obs) {
   FrameDrawer drawer(sc, fs);
   const Image image = drawer.draw(t, y, drive, obs);
-  const OutputPlace place = output_place(png, true);  // its folder made when missing
+  const OutputPlace place = output_place(png);  // its folder made when missing
   write_png(place.dir, place.name, image);
 }
 

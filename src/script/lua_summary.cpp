@@ -3,6 +3,7 @@
 #include "script/lua_summary.hpp"
 
 #include <cmath>
+#include <exception>
 #include <filesystem>
 #include <optional>
 #include <string>
@@ -95,8 +96,19 @@ int summary(lua_State* L, const Context& ctx, const std::string& what, const std
   plot::Summary s;
   guarded(L, what.c_str(), [&] {
     s = plot::summarize(dir, from, to);
-    if (csv) plot::write_summary_csv(s, *csv);
-    if (png) plot::plot_summary(s, *png);
+    // each output asked for is written (its missing folders made); the first that cannot be is
+    // raised once the other has been tried
+    std::exception_ptr failed;
+    const auto attempt = [&failed](const auto& write) {
+      try {
+        write();
+      } catch (const std::exception&) {
+        if (!failed) failed = std::current_exception();
+      }
+    };
+    if (csv) attempt([&] { plot::write_summary_csv(s, *csv); });
+    if (png) attempt([&] { plot::plot_summary(s, *png); });
+    if (failed) std::rethrow_exception(failed);
   });
   push_figures(L, s);
   if (csv) lua_pushstring(L, csv->c_str()), lua_setfield(L, -2, "csv");

@@ -196,7 +196,7 @@ void Simulation::save(const std::string& path) const {
                                 "(constant, per_speed, ramps, sines, ...) to save this simulation");
   // written whole (io/output_dir.hpp): a checkpoint is never half a file, and no part of one is
   // left behind when it cannot be written; its missing folders made, as for every output
-  write_file_whole(path, checkpoint_text(), true);
+  write_file_whole(path, checkpoint_text());
 }
 
 std::string Simulation::checkpoint_text() const {

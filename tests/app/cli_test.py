@@ -219,6 +219,29 @@ class Errors(unittest.TestCase):
         self.assertEqual(code, 1, err)
         self.assertIn("beltsim: stdin: unfinished input at the end: for i = 1, 2 do\n", err)
 
+    def test_a_missing_input_is_exit_1_in_every_command_but_compare(self):
+        # docs/cli.md's rule, as run's for a missing script; compare's 1 means the files differ, so
+        # a file it cannot read is its 2 (plot, summary and render were 1 and compare 2 with no rule
+        # written)
+        for args, what in [(["run", "missing.lua"], "cannot open missing.lua"),
+                           (["console", "missing.lua"], "cannot open missing.lua"),
+                           (["wp", "missing.lua"], "cannot open missing.lua"),
+                           (["modes", "missing.lua"], "cannot open missing.lua"),
+                           (["sweep", "missing.lua"], "cannot open missing.lua"),
+                           (["plot", "missing.csv"], "cannot read missing.csv"),
+                           (["plot", "missing.csv", "--from", "1"], "cannot read missing.csv"),
+                           (["summary", "missing"], "cannot read missing/timeseries.csv"),
+                           (["summary", "missing/timeseries.csv"], "cannot read missing/timeseries.csv: No such"),
+                           (["render", "missing.ckpt", "--out", "x.png"], "missing.ckpt: cannot read it"),
+                           (["compare", "missing.csv", "missing.csv"], "cannot read missing.csv")]:
+            code, out, err = run(args, stdin="", cwd=self.dir)
+            self.assertEqual(code, 2 if args[0] == "compare" else 1, "%s: %s" % (args, err))
+            self.assertIn(what, err, args)
+        self.assertEqual(os.listdir(self.dir), [])
+        code, out, err = run(["--help"])
+        self.assertEqual(code, 0, err)
+        self.assertIn("an input file that is\nmissing or unreadable (compare: 2)", out)
+
     def test_a_folder_as_the_script(self):
         os.mkdir(os.path.join(self.dir, "scenario.lua"))
         for cmd in ["run", "wp"]:

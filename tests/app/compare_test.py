@@ -99,6 +99,13 @@ class Pngs(Base):
         self.assertTrue(out.endswith("; difference image (differing pixels red): d.png\n"), out)
         self.assertTrue(os.path.exists(self.path("d.png")))
 
+    def test_diff_into_missing_folders_makes_them(self):
+        # as every output's (it was status 3, "cannot write new/d.png: new is missing")
+        code, out, err = self.compare("a.png", "a.png", "--diff", "new/sub/d.png")
+        self.assertEqual((code, err), (0, ""))
+        self.assertTrue(out.endswith("; difference image (differing pixels red): new/sub/d.png\n"), out)
+        self.assertTrue(os.path.isfile(self.path("new/sub/d.png")))
+
     def test_different_sizes_differ(self):
         write_png(self.path("b.png"), 60, 80, square(0))
         code, out, err = self.compare("a.png", "b.png")

@@ -98,13 +98,14 @@ class Pngs(Base):
     def test_a_match_whose_difference_image_cannot_be_written_exits_3(self):
         self.write("a.png", grey(8, 8))
         shutil.copy(self.path("a.png"), self.path("b.png"))
-        code, out, err = run(["compare", "a.png", "b.png", "--diff", "no/such/folder/d.png"], self.dir)
+        # (a missing folder is made, as every output's: a file stands where its folder would be)
+        code, out, err = run(["compare", "a.png", "b.png", "--diff", "b.png/d.png"], self.dir)
         self.assertEqual(code, 3, out + err)
         self.assertTrue(out.startswith("match: "), out)
-        self.assertIn("no/such/folder/d.png", err)
+        self.assertIn("b.png/d.png", err)
         # and one that differs: still 3, the line says so
         self.write("c.png", png_bytes(8, 8, b"".join(b"\0" + b"\xff" * 24 for _ in range(8))))
-        code, out, err = run(["compare", "a.png", "c.png", "--diff", "no/such/folder/d.png"], self.dir)
+        code, out, err = run(["compare", "a.png", "c.png", "--diff", "b.png/d.png"], self.dir)
         self.assertEqual(code, 3, out + err)
         self.assertTrue(out.startswith("differ: "), out)
 

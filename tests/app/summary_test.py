@@ -32,7 +32,7 @@ local drive = beltsim.scene {
   energy = true,
 }
 local r = drive:run { t_end = 0.2, sample = 1e-3, progress = false, out = "tri" }
-local s = r:summary { from = 0.1, csv = "lua_summary.csv" }
+local s = r:summary { from = 0.1, csv = "sub/lua_summary.csv" }
 print(string.format("%.17g %.17g %s", s.spans.span_load_driver.tension_mean, s.hubs.idler.hub_load_mean, s.csv))
 """
 CORNER = math.atan2(0.2, 0.15)  # the triangle's angle at A and at B
@@ -102,7 +102,8 @@ class Triangle(unittest.TestCase):
         tension, hub, path = self.lua_out.split()
         self.assertEqual(float(tension), self.s["span_load_driver.tension_mean_N"])
         self.assertEqual(float(hub), self.s["idler.hub_load_mean_N"])
-        self.assertEqual(path, os.path.join("tri", "lua_summary.csv"))
+        # its missing folder made, as for every output (it failed: "tri/sub is missing")
+        self.assertEqual(path, os.path.join("tri", "sub", "lua_summary.csv"))
         self.assertEqual(one_row(os.path.join(self.dir, path)), self.s)
 
     def test_table_and_plot(self):
@@ -110,6 +111,22 @@ class Triangle(unittest.TestCase):
             self.assertIn(part, self.table)
         with open(os.path.join(self.dir, "s.png"), "rb") as f:
             self.assertEqual(f.read(8), b"\x89PNG\r\n\x1a\n")
+
+    def test_outputs_into_missing_folders(self):
+        # --csv failed ("new2 is missing", exit 1) where --plot made its folder, and took the plot with it
+        code, out, err = run(["summary", self.out, "--from", "0.1", "--csv", "new2/s.csv", "--plot", "new3/s.png"],
+                             self.dir)
+        self.assertEqual(code, 0, err)
+        self.assertTrue(out.endswith("\nnew2/s.csv\nnew3/s.png\n"), out)
+        self.assertEqual(one_row(os.path.join(self.dir, "new2", "s.csv")), self.s)
+        self.assertTrue(os.path.isfile(os.path.join(self.dir, "new3", "s.png")))
+        # a CSV that cannot be written is named, and the plot is still drawn
+        os.makedirs(os.path.join(self.dir, "taken.csv"), exist_ok=True)
+        code, out, err = run(["summary", self.out, "--csv", "taken.csv", "--plot", "new4/s.png"], self.dir)
+        self.assertEqual(code, 1, err)
+        self.assertRegex(err, r"^beltsim summary: cannot write (\./)?taken\.csv: Is a directory\n")
+        self.assertTrue(out.endswith("\nnew4/s.png\n"), out)
+        self.assertTrue(os.path.isfile(os.path.join(self.dir, "new4", "s.png")))
 
     def test_bad_usage(self):
         code, out, err = run(["summary", self.out, "--from", "5"], self.dir)

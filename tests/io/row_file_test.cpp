@@ -210,13 +210,36 @@ TEST(RowFile, AFileThatCannotGrowKeepsWholeRows) {
   EXPECT_EQ(torn_rows(text, 4), "");
 }
 
+// a file named by its path gets its missing folders, as every output (`beltsim summary --csv
+// new/s.csv` failed with "new is missing" while --plot new/s.png made its folder)
+TEST(RowFile, AFileNamedByItsPathGetsItsMissingFolders) {
+  const fs::path base = temp_dir() / "made";
+  {
+    CsvWriter w((base / "a" / "b" / "rows.csv").string(), {"x"});
+    w.row({1.5});
+  }
+  EXPECT_EQ(slurp(base / "a" / "b" / "rows.csv"), "x\n1.5\n");
+  write_file_whole((base / "c" / "whole.csv").string(), "y\n");
+  EXPECT_EQ(slurp(base / "c" / "whole.csv"), "y\n");
+  // a regular file where a folder is to be made is named, not replaced
+  write_file_whole((base / "f").string(), "z\n");
+  try {
+    CsvWriter w((base / "f" / "rows.csv").string(), {"x"});
+    FAIL() << "no error";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("cannot write " + (base / "f" / "rows.csv").string()), std::string::npos)
+        << e.what();
+  }
+  EXPECT_EQ(slurp(base / "f"), "z\n");
+}
+
 TEST(RowFile, WholeFileReplacesOrLeavesAlone) {
   const fs::path f = temp_dir() / "whole.csv";
   write_file_whole(f.string(), "a,b\n1,2\n");
   write_file_whole(f.string(), "a,b\n3,4\n");
   EXPECT_EQ(slurp(f), "a,b\n3,4\n");
   EXPECT_FALSE(fs::exists(f.string() + ".part"));
-  EXPECT_THROW(write_file_whole("/nonexistent/dir/x.csv", "a\n"), std::runtime_error);
+  EXPECT_THROW(write_file_whole("/proc/no/such/dir/x.csv", "a\n"), std::runtime_error);  // cannot be made
   try {
     write_file_whole("/dev/full/x.csv", "a\n");
     FAIL() << "no error";

@@ -60,8 +60,12 @@ TEST(Png, RoundTrip) {
   ASSERT_EQ(back.width, 37);
   ASSERT_EQ(back.height, 21);
   EXPECT_EQ(back.rgb, img.rgb);
-  EXPECT_THROW(write_png("/nonexistent/dir/x.png", img), std::runtime_error);
+  EXPECT_THROW(write_png("/proc/no/such/dir/x.png", img), std::runtime_error);  // a folder that cannot be made
   EXPECT_THROW(read_png((temp_dir() / "missing.png").string()), std::runtime_error);
+  // missing folders on the way are made, as for every output
+  const fs::path deep = temp_dir() / "png_made" / "a" / "b.png";
+  write_png(deep.string(), img);
+  EXPECT_EQ(read_png(deep.string()).rgb, img.rgb);
 }
 
 TEST(Video, ReadBackByFfprobe) {
@@ -93,7 +97,9 @@ TEST(Video, RejectsOddSizesAndWrongFrames) {
   o.width = 96;
   VideoWriter v((temp_dir() / "size.mp4").string(), o);
   EXPECT_THROW(v.add(pattern(64, 64, 0)), std::runtime_error);
-  EXPECT_THROW(VideoWriter("/nonexistent/dir/x.mp4", o), std::runtime_error);
+  EXPECT_THROW(VideoWriter("/proc/no/such/dir/x.mp4", o), std::runtime_error);  // a folder that cannot be made
+  VideoWriter made((temp_dir() / "video_made" / "a" / "v.mp4").string(), o);    // missing folders made
+  EXPECT_TRUE(fs::is_directory(temp_dir() / "video_made" / "a"));
 }
 
 // A process killed while writing (no close, no trailer): the fragmented MP4 still plays the

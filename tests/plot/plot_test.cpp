@@ -158,7 +158,22 @@ TEST(Plot, AColumnWithoutAFiniteValueIsLeftOutAndNamed) {
   expect_error([&] { plot_csv(csv, {"driver.creep"}, 0, (d / "z.png").string()); },
                {"no finite value to draw in driver.creep"});
   const std::string sweep = write(d / "summary.csv", "point,mu,status,slip,x\n0,0.3,ok,1,\n1,0.5,\"error: boom\",,\n");
-  EXPECT_EQ(plot_csv(sweep, {"mu", "slip", "x"}, 0, (d / "s.png").string()), std::vector<std::string>{"x"});
+  EXPECT_EQ(plot_csv(sweep, {"mu", "slip", "x"}, -INFINITY, (d / "s.png").string()), std::vector<std::string>{"x"});
+}
+
+// a sweep's summary is drawn against a column of its own: a start time is refused, not ignored (it
+// drew every point whatever the time)
+TEST(Plot, ASweepSummaryTakesNoStartTime) {
+  const fs::path d = dir("summary_from");
+  const std::string sweep = write(d / "summary.csv", "point,mu,status,slip\n0,0.3,ok,1\n1,0.5,ok,2\n");
+  EXPECT_TRUE(is_sweep_summary(sweep));
+  EXPECT_FALSE(is_sweep_summary(small_csv(d)));
+  expect_error(
+      [&] {
+        plot_csv(sweep, {"mu", "slip"}, 400, (d / "s.png").string());
+      },
+      {"is a sweep's summary, drawn against a column of its own, not time"});
+  EXPECT_FALSE(fs::exists(d / "s.png"));
 }
 
 // t named among a time series' columns (as a sweep summary's x column comes first) drew t against t

@@ -476,9 +476,9 @@ TEST(LiveApi, BadCallsNameFileLineAndWhat) {
   }
 }
 
-// the folders of a picture's or a checkpoint's path are made when missing, as sim:show's always
-// were (sim:plot's said "the folder ... does not exist", sim:save's "... is missing"); a picture
-// without a video takes an odd size
+// the folders of a picture's, a checkpoint's or a CSV file's path are made when missing, as
+// sim:show's always were (sim:plot's said "the folder ... does not exist", sim:save's, and
+// sim:summary's and sim:modes' csv, "... is missing"); a picture without a video takes an odd size
 TEST(LiveApi, MissingFoldersAreMade) {
   const fs::path out = temp_dir() / "out";
   fs::remove_all(out);
@@ -486,12 +486,15 @@ TEST(LiveApi, MissingFoldersAreMade) {
                      "sim:run_to(0.004)\n"
                      "sim:show{ file = 'pics/a.png', size = {321, 181} }\n"
                      "sim:plot{ file = 'p/q.png' }\n"
+                     "sim:summary{ csv = 's/t.csv' }\n"
+                     "sim:modes{ csv = 'm/n.csv' }\n"
                      "sim:save('" +
                      (out / "sub" / "dir" / "x.ckpt").string() +
                      "')\n"
                      "sim:close()\n"),
             "");
-  for (const char* f : {"pics/a.png", "p/q.png", "sub/dir/x.ckpt"}) EXPECT_TRUE(fs::is_regular_file(out / f)) << f;
+  for (const char* f : {"pics/a.png", "p/q.png", "s/t.csv", "m/n.csv", "sub/dir/x.ckpt"})
+    EXPECT_TRUE(fs::is_regular_file(out / f)) << f;
 }
 
 // two pictures at one time took one default name, the second overwriting the first without a

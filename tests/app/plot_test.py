@@ -1,0 +1,94 @@
+#!/usr/bin/env python3
+"""`beltsim plot` on the two kinds of CSV it draws (docs/cli.md#plot): a run's timeseries.csv,
+against time, and a sweep's summary.csv, a column against another. An option the form of the
+file would ignore is refused (exit 2) before anything is written: --from on a summary (its x is
+a parameter, not time) once gave the PNG of every point, whatever T."""
+import os
+import shutil
+import subprocess
+import sys
+import tempfile
+import unittest
+
+BELTSIM = None
+
+# a sweep's summary.csv as beltsim sweep writes it (sweep/results.hpp): point, the parameters,
+# status, inputs, the figures
+SUMMARY = """point,mu,pretension,status,inputs,slip
+0,0.3,300,ok,x,0.5
+1,0.3,500,ok,x,0.25
+2,1,300,ok,x,0.125
+3,1,500,ok,x,0.0625
+"""
+
+TIMESERIES = "t,driver.omega,driven.omega\n" + "".join(
+    "%g,%g,%g\n" % (k * 0.01, k, 0.9 * k) for k in range(11))
+
+
+def run(args, cwd):
+    p = subprocess.run([BELTSIM] + args, capture_output=True, text=True, cwd=cwd, timeout=120)
+    return p.returncode, p.stdout, p.stderr
+
+
+class Forms(unittest.TestCase):
+    def setUp(self):
+        self.dir = tempfile.mkdtemp(prefix="beltsim_plot_")
+        for name, text in (("summary.csv", SUMMARY), ("timeseries.csv", TIMESERIES)):
+            with open(os.path.join(self.dir, name), "w") as f:
+                f.write(text)
+
+    def tearDown(self):
+        shutil.rmtree(self.dir, True)
+
+    def exists(self, name):
+        return os.path.exists(os.path.join(self.dir, name))
+
+    def test_a_summary_is_drawn_against_its_first_column(self):
+        code, out, err = run(["plot", "summary.csv", "pretension", "slip", "--out", "all.png"], self.dir)
+        self.assertEqual(code, 0, err)
+        self.assertEqual(out, "all.png\n")
+        self.assertTrue(self.exists("all.png"))
+
+    def test_from_on_a_summary_is_refused_before_anything_is_written(self):
+        # (it was ignored: --from 400 and --from 1e9 gave the bytes of the plot without it)
+        for t in ("400", "1e9"):
+            code, out, err = run(["plot", "summary.csv", "pretension", "slip", "--from", t, "--out", "p.png"],
+                                 self.dir)
+            self.assertEqual(code, 2, err)
+            self.assertIn("beltsim: --from: summary.csv is a sweep's summary, drawn against its column pretension, "
+                          "not against time, so --from (a start time) does not apply", err)
+            self.assertIn("Run 'beltsim plot --help'", err)
+            self.assertEqual(out, "")
+            self.assertFalse(self.exists("p.png"))
+        # with no columns named, the same refusal (not the summary's advice to name them)
+        code, out, err = run(["plot", "summary.csv", "--from", "400"], self.dir)
+        self.assertEqual(code, 2, err)
+        self.assertIn("drawn against the column named first", err)
+        self.assertFalse(self.exists("plot.png"))
+
+    def test_from_on_a_time_series_leaves_out_the_times_before(self):
+        code, out, err = run(["plot", "timeseries.csv", "--from", "0.05", "--out", "late.png"], self.dir)
+        self.assertEqual(code, 0, err)
+        self.assertTrue(self.exists("late.png"))
+        code, out, err = run(["plot", "timeseries.csv", "--from", "1e9", "--out", "none.png"], self.dir)
+        self.assertEqual(code, 1, err)
+        self.assertIn("timeseries.csv has no samples at t >= 1e+09 s (its last is at 0.1 s)", err)
+        self.assertFalse(self.exists("none.png"))
+
+    def test_options_plot_does_not_take(self):
+        for option in ("--to", "--csv"):
+            code, out, err = run(["plot", "summary.csv", "pretension", "slip", option, "1"], self.dir)
+            self.assertEqual(code, 2, err)
+            self.assertIn("plot does not take: " + option, err)
+
+    def test_a_missing_file_is_exit_1_with_or_without_from(self):
+        # (docs/cli.md: a file that cannot be read is exit 1; its kind cannot be known)
+        for extra in ([], ["--from", "1"]):
+            code, out, err = run(["plot", "missing.csv"] + extra, self.dir)
+            self.assertEqual(code, 1, err)
+            self.assertEqual(err, "beltsim: cannot read missing.csv: No such file or directory\n")
+
+
+if __name__ == "__main__":
+    BELTSIM = os.path.abspath(sys.argv.pop(1))
+    unittest.main(verbosity=2)
