@@ -186,7 +186,9 @@ int sweep(const std::string& file, const Raw& raw, const script::Safety& s) {
     const script::Interruptible on_signal(lua);
     lua.set_stop_flag(&stop_flag());
     if (quick) {
-      if (!fs::is_regular_file(file)) throw script::ScriptError(file + ": no such script");
+      if (std::error_code ec; !fs::is_regular_file(file, ec))
+        throw script::ScriptError(
+            file + (fs::exists(file, ec) ? ": not a regular file (a script is read whole, once)" : ": no such script"));
       points = sw::grid_points(grid);
       // a sweep file given --set lists: refused before a point runs, is listed or anything is
       // written (each point failed, and a finished sweep's summary.csv and point.csv were replaced

@@ -6,12 +6,11 @@
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
-#include <fstream>
 #include <iterator>
-#include <sstream>
 #include <vector>
 
 #include "beltsim_version.hpp"
+#include "io/input_file.hpp"
 #include "io/output_dir.hpp"
 #include "lauxlib.h"
 #include "live/live_server.hpp"
@@ -179,10 +178,11 @@ int run_console(const std::optional<std::string>& script, const std::vector<std:
   std::string globals;      // the banner's line on the script's globals
   if (script) {
     const std::vector<std::string> before = global_names(L);
-    std::ifstream in(*script, std::ios::binary);
-    std::ostringstream text;
-    text << in.rdbuf();
-    script_text = text.str();
+    try {  // a regular file only, as run_file reads it (which says why not)
+      InputFile in(*script);
+      script_text = in.read_rest();
+    } catch (const InputFileError&) {
+    }
     try {
       lua.run_file(*script);
       for (const std::string& m : lua.unread_args(*script)) std::fprintf(stderr, "beltsim: warning: %s\n", m.c_str());

@@ -1,25 +1,24 @@
 #include "script/interpreter.hpp"
 
-#include <cerrno>
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
-#include <fstream>
+#include <optional>
 
+#include "io/input_file.hpp"
+#include "lauxlib.h"
 #include "live/live_server.hpp"
+#include "lua.h"
+#include "lualib.h"
 #include "script/context.hpp"
 #include "script/docall.hpp"
 #include "script/limits.hpp"
 #include "script/load_source.hpp"
-#include "script/lua_check.hpp"
-#include "script/lua_law.hpp"
 #include "script/lua_api.hpp"
 #include "script/lua_args.hpp"
+#include "script/lua_check.hpp"
+#include "script/lua_law.hpp"
 #include "script/sandbox.hpp"
-
-#include "lauxlib.h"
-#include "lua.h"
-#include "lualib.h"
 
 namespace beltsim::script {
 
@@ -90,18 +89,20 @@ void Interpreter::run_file(const std::string& path, int nresults) {
   std::error_code ec;
   if (std::filesystem::is_directory(p, ec))
     throw ScriptError(path + ": is a folder, not a script (give the Lua file to run)");
-  {
-    std::ifstream in(path);
-    if (in && in.peek() == std::ifstream::traits_type::eof())
-      throw ScriptError(path + ": the script is empty: nothing to run");
+  // a regular file only (io/input_file.hpp): a FIFO without a writer held the program, deaf to
+  // SIGTERM, and /dev/zero would never end
+  std::optional<InputFile> in;
+  try {
+    in.emplace(path);
+  } catch (const InputFileError& e) {
+    throw ScriptError("cannot open " + path + ": " + e.reason);
   }
+  if (in->size() == 0) throw ScriptError(path + ": the script is empty: nothing to run");
   begin_call(L_);
   // text only: a precompiled chunk is never loaded; the chunk is named "@path", so that its
   // errors read "path:line:"
-  std::FILE* f = std::fopen(path.c_str(), "r");
-  if (!f) throw ScriptError("cannot open " + path + ": " + std::strerror(errno));
-  const int status = load_source(L_, f, "@" + path, &ctx->loaded);
-  std::fclose(f);
+  const int status = load_source(L_, in->stream(), "@" + path, &ctx->loaded);
+  in.reset();
   if (status != LUA_OK) {
     std::string msg;
     if (!memory_message(L_, status, path, msg)) msg = lua_tostring(L_, -1) ? lua_tostring(L_, -1) : path;

@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """`beltsim compare` and `beltsim plot` on files that are not what they claim (issue 45 §7): a PNG
 whose header claims more pixels than its bytes can hold is refused before anything is allocated,
-a FIFO or a device named as a PNG or a CSV file is refused without blocking, a CSV file of many
+a FIFO or a device named as a PNG, a CSV file or a script is refused without blocking, a CSV file of many
 columns is read in time linear in them, and the exit status of compare has one meaning each
 (0 match, 1 differ, 2 not compared, 3 compared but the difference image not written)."""
 import os
@@ -108,6 +108,17 @@ class Pngs(Base):
         code, out, err = run(["compare", "a.png", "c.png", "--diff", "b.png/d.png"], self.dir)
         self.assertEqual(code, 3, out + err)
         self.assertTrue(out.startswith("differ: "), out)
+
+
+class Scripts(Base):
+    def test_a_script_that_is_a_fifo_or_a_device_is_not_read(self):
+        # `beltsim run fifo.lua` blocked in its open, deaf to SIGTERM (a user trial)
+        os.mkfifo(self.path("fifo.lua"))
+        for args in (["run", "fifo.lua"], ["run", "/dev/zero"], ["console", "fifo.lua"], ["wp", "fifo.lua"],
+                     ["sweep", "fifo.lua", "--set", "x=1,2"]):
+            code, out, err = run(args, self.dir, timeout=30)
+            self.assertEqual(code, 1, err)
+            self.assertIn("not a regular file", err)
 
 
 class Csvs(Base):
