@@ -30,9 +30,7 @@ std::vector<std::string> draw_modes(const Scene& sc, const Drive& d, const Eigen
   fs.height = p.height;
   fs.png_dir = p.dir;  // (draws() only: the files are written here)
   FrameDrawer drawer(sc, fs);  // one GL context for every mode
-  std::error_code ec;
-  fs::create_directories(p.dir, ec);
-  if (ec) throw std::runtime_error("cannot make " + p.dir + ": " + ec.message());
+  // (the folder is made by the first picture's writer, never through a link: io/output_dir.hpp)
   for (int k = 0; k < count; ++k) {
     const Mode& m = a.modes[k];
     char name[48];

@@ -11,6 +11,7 @@
 #include "integrate/stepper.hpp"
 #include "io/csv_writer.hpp"
 #include "io/number_text.hpp"
+#include "io/output_dir.hpp"
 #include "io/row_file.hpp"
 #include "io/suggest.hpp"
 #include "sim/run_check.hpp"
@@ -113,7 +114,7 @@ WpResult work_precision(const Scene& sc, const WpSettings& ws, const std::atomic
     }
     metric = static_cast<int>(it - cols.begin());
   }
-  fs::create_directories(ws.base.out_dir);
+  const OutputDir top(ws.base.out_dir);  // made, never through a link (io/output_dir.hpp)
   WpResult res;
   res.csv_path = (fs::path(ws.base.out_dir) / "wp.csv").string();
 

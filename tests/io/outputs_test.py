@@ -142,6 +142,16 @@ def planted_links():
     status, err = beltsim(["wp", script("wp", SCENE + 'drive:run { t_end = 0.01, progress = false }\n'),
                            "--integrators", "rkf45", "--rtols", "1e-3", "--ref-rtol", "1e-5", "--out", out])
     refused("wp.png", status, err, os.path.join(out, "wp.png"), target)
+    # wp's folder itself a link: refused before a run, nothing written through it (it was made
+    # and followed by create_directories)
+    out = fresh("link_wp_folder")
+    elsewhere = fresh("wp_elsewhere")
+    os.symlink(elsewhere, os.path.join(out, "study"))
+    status, err = beltsim(["wp", script("wp", SCENE + 'drive:run { t_end = 0.01, progress = false }\n'),
+                           "--integrators", "rkf45", "--rtols", "1e-3", "--ref-rtol", "1e-5", "--out",
+                           os.path.join(out, "study")])
+    check(status == 1 and LINK in err, "wp folder: refused: %r" % err[-300:])
+    check(os.listdir(elsewhere) == [], "wp folder: nothing written through it")
     # the shape of the attack: a scenario package whose own folder (an allowed output folder) holds
     # events.csv -> the user's start-up file, and a script that logs shell syntax into it
     package = fresh("package")
