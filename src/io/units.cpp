@@ -8,7 +8,7 @@ namespace beltsim {
 namespace {
 
 // last dotted component → unit (docs/outputs.md; element and pulley fields of the Lua API)
-constexpr std::array<std::pair<std::string_view, std::string_view>, 47> kUnits{{
+constexpr std::array<std::pair<std::string_view, std::string_view>, 49> kUnits{{
     {"t", "s"},
     // pulleys
     {"omega", "rad/s"},
@@ -54,6 +54,8 @@ constexpr std::array<std::pair<std::string_view, std::string_view>, 47> kUnits{{
     {"bending", "J"},
     {"contact", "J"},
     {"gravity", "J"},
+    {"arm", "J"},
+    {"coupling", "J"},
     {"mechanical", "J"},
     {"work_torques", "J"},
     {"dissipated_axial", "J"},
