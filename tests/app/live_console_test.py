@@ -62,6 +62,7 @@ class ConsoleAndPage(unittest.TestCase):
         shutil.copy(os.path.join(d, session), os.path.join(r, "session.lua"))
         p = subprocess.run([BELTSIM, "run", "session.lua"], cwd=r, capture_output=True, text=True, timeout=300)
         self.assertEqual(p.returncode, 0, p.stderr)
+        self.replay_stdout = p.stdout
         return r
 
     def test_page_changes_in_events_and_session(self):
@@ -109,6 +110,39 @@ class ConsoleAndPage(unittest.TestCase):
             x, y = x.split(","), y.split(",")
             self.assertEqual([(h, u) for h, u, v in zip(head, x, y) if u != v],
                              [(h, v) for h, u, v in zip(head, x, y) if u != v], x[0])
+
+    def test_an_assignment_changed_from_the_page_replays(self):
+        """`r = sim:run_to(T)` changed from the page while it ran, and a command reading r after it:
+        session.lua keeps the assignment on the run's last part (`r = sim:run_to(T)`), so that the
+        replay exits 0, prints what the console printed and gives its time series byte for byte. It
+        was replayed without `r =`: "attempt to index a nil value (global 'r')", exit 1"""
+        d, proc = self.console("beltsim_live_kept_", subprocess.PIPE)
+        proc.stdin.write(b"r = sim:run_to(0.6)\nprint('r', r.t, r.interrupted)\n")
+        proc.stdin.close()
+        live, c, it = self.page(proc)
+        for _ in it:
+            if live.t:
+                break
+        self.assertEqual(live.post("do=pause")[0], 202)
+        paused_at = live.wait_status(it, "paused at t = ")
+        self.assertEqual(live.post("do=torque&pulley=driven&value=%r" % LOAD)[0], 202)
+        live.wait_status(it, paused_at + " (torque applied)")
+        self.assertEqual(live.post("do=continue")[0], 202)
+        c.close()
+        out = proc.stdout.read().decode()
+        err = proc.stderr.read().decode()
+        self.assertEqual(proc.wait(timeout=300), 0, err)
+        self.assertIn("r\t0.6\tfalse\n", out)
+        session = err.split("the session's commands are in ")[1].split("\n")[0]
+        with open(os.path.join(d, session)) as f:
+            lines = f.read().splitlines()
+        at = lines.index("-- r = sim:run_to(0.6)  -- changed from the live view while it ran")
+        self.assertEqual([lines[at + 2], lines[at + 3]], ['sim:set_torque("driven", %r)' % LOAD, "r = sim:run_to(0.6)"])
+        r = self.replay(d, session)
+        self.assertIn("r\t0.6\tfalse\n", self.replay_stdout)
+        for name in ["events.csv", "timeseries.csv"]:
+            with open(os.path.join(d, "out", name)) as a, open(os.path.join(r, "out", name)) as b:
+                self.assertEqual(a.read(), b.read(), name)
 
     def test_a_change_at_the_prompt_applies_there(self):
         """a torque sent from the page while the console waits at its prompt after sim:run_to(T)
