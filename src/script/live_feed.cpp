@@ -10,6 +10,7 @@
 
 #include "media/jpeg_writer.hpp"
 #include "io/number_text.hpp"
+#include "io/suggest.hpp"
 #include "render/recorder.hpp"
 #include "scene/law_text.hpp"
 #include "scene/validate.hpp"
@@ -125,7 +126,11 @@ std::string LiveFeed::apply(const live::Command& c) {
   try {
     if (c.what == "torque") {
       const int j = s.scene().find_pulley(c.pulley);
-      if (j < 0) return "no pulley '" + c.pulley + "'";
+      if (j < 0) {  // the server refuses it at once (400); a run begun since it came may lack it
+        std::vector<std::string> names;
+        for (const Pulley& p : s.model().pulleys) names.push_back(p.name);
+        return "torque: " + no_such("pulley", c.pulley, names);
+      }
       TimeSpeedLaw law;
       law.constant = c.value;
       s.set_torque(j, law, law_text(law));  // in events.csv, as sim:set_torque writes it

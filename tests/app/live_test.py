@@ -114,8 +114,10 @@ class Live(unittest.TestCase, Page):
             self.assertTrue(0 <= x < 960 and 0 <= y < 540 and 0 <= s < placed["length"], (x, y, s))
         self.assertEqual(sorted(e[2] for e in placed["elements"])[0], 0)  # element 0 at s = 0
 
-        self.assertEqual(self.post("do=torque&pulley=nope&value=1"), (202, "queued\n"))
-        self.wait_status(it, "refused: no pulley 'nope'")
+        # a pulley the run has not: refused at once, in the console's words (it was "queued", then
+        # the status "refused: no pulley 'drivn'")
+        self.assertEqual(self.post("do=torque&pulley=drivn&value=1"),
+                         (400, "torque: no pulley 'drivn' (did you mean 'driven'?); pulleys: driver, driven\n"))
         self.assertEqual(self.post("do=torque&pulley=driven&value=%r" % LOAD)[0], 202)
         self.wait_status(it, "paused at t = %s s (torque applied)" % status_t(paused_at))
         self.assertEqual(self.post("do=wet&from=0.1&to=99&value=0.05")[0], 202)
