@@ -8,9 +8,9 @@
 #include <chrono>
 #include <cstdio>
 
-#include "media/jpeg_writer.hpp"
 #include "io/number_text.hpp"
 #include "io/suggest.hpp"
+#include "media/jpeg_writer.hpp"
 #include "render/recorder.hpp"
 #include "scene/law_text.hpp"
 #include "scene/validate.hpp"
@@ -139,10 +139,12 @@ std::string LiveFeed::apply(const live::Command& c) {
       std::string key;
       if (const std::string bad = range_problem(s.scene(), c.from, c.to, "wet", &key); !bad.empty())
         return key + ": " + bad;
-      if (const std::string bad = mu_problem(c.value); !bad.empty()) return "wet.mu: " + bad;
       std::vector<double> mu(s.scene().sites.size(), std::nan(""));
-      for (const ElementSite& site : s.scene().sites)
-        if (in_stretch(site, c.from, c.to)) mu[site.index] = c.value;
+      for (const ElementSite& site : s.scene().sites) {  // as sim:wet checks and says it (mu_over)
+        if (!in_stretch(site, c.from, c.to)) continue;
+        if (const std::string bad = mu_problem(c.value, site.index); !bad.empty()) return "wet.mu: " + bad;
+        mu[site.index] = c.value;
+      }
       s.set_mu(mu, "wet", wet_text(c.value, c.from, c.to, std::nullopt));
       record(t, "wet { from = " + number_text(c.from) + ", to = " + number_text(c.to) +
                     ", mu = " + number_text(c.value) + " }");

@@ -244,6 +244,28 @@ class ConsoleAndPage(unittest.TestCase):
         self.change_at_the_prompt(d, proc, live, it, t)
         c.close()
 
+    def test_a_refusal_in_the_consoles_words(self):
+        """the page's refusal of a mistake says what the console says of the same one: a pulley that
+        does not exist (400 at once; it was "queued", then "refused: no pulley 'drivn'") and a μ out
+        of range (the status; it lacked "(got -1 for element N)")"""
+        d, proc = self.console("beltsim_live_words_", subprocess.PIPE)
+        live, c, it = self.page(proc)
+        self.page_at_the_prompt(live, it, 0)
+        status, torque = live.post("do=torque&pulley=drivn&value=-40")
+        self.assertEqual(status, 400, torque)
+        self.assertEqual(live.post("do=wet&from=0.1&to=0.3&value=-1"), (202, "queued\n"))
+        wet = live.wait_status(it, "refused: ", within=30)
+        c.close()
+        proc.stdin.write(b"print(select(2, pcall(sim.set_torque, sim, 'drivn', -40)))\n"
+                         b"print(select(2, pcall(sim.wet, sim, { from = 0.1, to = 0.3, mu = -1 })))\n")
+        proc.stdin.close()
+        out = proc.stdout.read().decode().splitlines()
+        self.assertEqual(proc.wait(timeout=120), 0, proc.stderr.read().decode())
+        self.assertEqual(out[-2], "sim:set_torque: no pulley 'drivn' (did you mean 'driven'?); pulleys: driver, driven")
+        self.assertEqual(torque, "torque: " + out[-2][len("sim:set_torque: "):] + "\n")
+        self.assertRegex(out[-1], r"^sim:wet\.mu: .* \(got -1 for element \d+\)$")
+        self.assertEqual(wet, "refused: wet.mu: " + out[-1][len("sim:wet.mu: "):])
+
     def test_each_run_a_plot_of_its_own(self):
         """two scene:run{} in a row, the second with columns of its own (two probes): the page gets
         a run of each, the second's name and columns and its samples alone (from t = 0). The page

@@ -115,13 +115,16 @@ class Live(unittest.TestCase, Page):
         self.assertEqual(sorted(e[2] for e in placed["elements"])[0], 0)  # element 0 at s = 0
 
         # a pulley the run has not: refused at once, in the console's words (it was "queued", then
-        # the status "refused: no pulley 'drivn'")
+        # the status "refused: no pulley 'drivn'"); live_console_test.py compares them
         self.assertEqual(self.post("do=torque&pulley=drivn&value=1"),
                          (400, "torque: no pulley 'drivn' (did you mean 'driven'?); pulleys: driver, driven\n"))
         self.assertEqual(self.post("do=torque&pulley=driven&value=%r" % LOAD)[0], 202)
         self.wait_status(it, "paused at t = %s s (torque applied)" % status_t(paused_at))
         self.assertEqual(self.post("do=wet&from=0.1&to=99&value=0.05")[0], 202)
         self.assertIn("wet.to: must be in [0, ", self.wait_status(it, "refused: "))
+        self.assertEqual(self.post("do=wet&from=0.1&to=0.3&value=-1")[0], 202)  # with the value, as the console
+        self.assertRegex(self.wait_status(it, "refused: "), r"^refused: wet\.mu: must be in \[0, 10\]: .* \(got -1 for "
+                                                          r"element \d+\)$")
         self.assertEqual(self.post("do=wet&from=0.1&to=0.3&value=0.05")[0], 202)
         self.wait_status(it, "paused at t = %s s (wet applied)" % status_t(paused_at))
         self.assertEqual(self.post("do=save&name=live.ckpt")[0], 202)
