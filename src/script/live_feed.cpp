@@ -180,7 +180,7 @@ void LiveFeed::apply_controls(bool paused) {
       if (c->value > sim_->now())
         target_ = c->value, paused = false;
       else
-        said = "run to " + rounded_text(c->value, 6) + " s: not after now";
+        said = "run to " + rounded_text(c->value, 6) + " s: not after now, t = " + rounded_text(sim_->now(), 6) + " s";
     } else {
       said = apply(*c);
     }

@@ -134,6 +134,10 @@ class Live(unittest.TestCase, Page):
         self.wait_status(it, "paused at t = %s s" % status_t(target))
         self.assertEqual(self.post("do=torque&pulley=driven&value=%r" % LOAD_AT_TARGET)[0], 202)  # where it paused
         self.wait_status(it, "paused at t = %s s (torque applied)" % status_t(target))
+        # a run to a time not after now says where now is (it said "not after now" alone)
+        self.assertEqual(self.post("do=run_to&value=%r" % (target - 0.05))[0], 202)
+        self.assertEqual(self.wait_status(it, "refused: "), "refused: run to %s s: not after now, t = %s s" %
+                         (status_t(target - 0.05), status_t(target)))
         for bad in ["do=jump", "do=torque&pulley=driven&value=x", "do=wet&from=0.1&value=0.2",
                     "do=save&name=../x.ckpt", "do=save&name=.x", "do=run_to&value=inf"]:
             self.assertEqual(self.post(bad)[0], 400, bad)
