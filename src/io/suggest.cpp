@@ -61,6 +61,10 @@ std::string did_you_mean(const std::string& name, const std::vector<std::string>
   return s + "?)";
 }
 
+std::string no_such(const std::string& kind, const std::string& name, const std::vector<std::string>& valid) {
+  return "no " + kind + " '" + name + "'" + did_you_mean(name, valid) + "; " + kind + "s: " + join(valid);
+}
+
 std::string join(const std::vector<std::string>& names, const std::string& sep) {
   std::string s;
   for (const std::string& n : names) s += (s.empty() ? "" : sep) + n;

@@ -20,6 +20,10 @@ std::size_t edit_distance(const std::string& a, const std::string& b);
 std::vector<std::string> close_names(const std::string& name, const std::vector<std::string>& valid);
 // " (did you mean 'x'?)", " (did you mean 'x' or 'y'?)", or "" when none is close
 std::string did_you_mean(const std::string& name, const std::vector<std::string>& valid);
+// "no pulley 'drivn' (did you mean 'driven'?); pulleys: driver, driven": `name` is none of `valid`,
+// the `kind` of thing they are, said the same wherever such a name is looked up (the console's
+// sim:set_torque and the live view's torque)
+std::string no_such(const std::string& kind, const std::string& name, const std::vector<std::string>& valid);
 // "a, b, c"
 std::string join(const std::vector<std::string>& names, const std::string& sep = ", ");
 // "a", "a and b", "a, b and c"

@@ -6,6 +6,7 @@
 #include <sys/socket.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <chrono>
 #include <cmath>
@@ -17,6 +18,8 @@
 #include <sstream>
 #include <stdexcept>
 #include <utility>
+
+#include "io/suggest.hpp"
 
 namespace beltsim::live {
 
@@ -374,7 +377,8 @@ void LiveServer::routes() {
   httplib::Server& h = *http_;
   h.set_keep_alive_timeout(1);
   // a control (POST /control): queued for the loop that owns the simulation, or refused naming what
-  // is wrong (400), or that there is nothing left to change (409, refuse_controls)
+  // is wrong (400: a pulley the run has not, in the console's words, too), or that there is nothing
+  // left to change (409, refuse_controls)
   const auto control = [this](const httplib::Request& req, httplib::Response& res) {
     Command c;
     const std::string bad = read_command([&req](const char* key) { return req.get_param_value(key); }, c);
@@ -388,6 +392,12 @@ void LiveServer::routes() {
       if (!refusal_.empty()) {  // nothing left to change: said now, not after "queued"
         res.status = 409;
         res.set_content("refused: " + c.what + ": " + refusal_ + "\n", "text/plain");
+        return;
+      }
+      if (c.what == "torque" && !pulleys_.empty() &&
+          std::find(pulleys_.begin(), pulleys_.end(), c.pulley) == pulleys_.end()) {
+        res.status = 400;
+        res.set_content("torque: " + no_such("pulley", c.pulley, pulleys_) + "\n", "text/plain");
         return;
       }
       if (commands_.size() >= kCommands) {

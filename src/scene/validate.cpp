@@ -41,6 +41,11 @@ std::string mu_problem(double mu) {
   return mu >= 0 && mu <= kMuMax ? "" : std::string(rule_text(Rule::friction_coefficient));
 }
 
+std::string mu_problem(double mu, int element) {
+  const std::string bad = mu_problem(mu);
+  return bad.empty() ? "" : bad + " (got " + rounded_text(mu) + " for element " + std::to_string(element) + ")";
+}
+
 void require_mu(const std::string& what, double mu) {
   if (const std::string bad = mu_problem(mu); !bad.empty()) reject(what, bad, mu, "");
 }

@@ -27,6 +27,9 @@ void require_non_negative(const std::string& what, double value, const std::stri
 void require_finite(const std::string& what, double value, const std::string& unit);
 // a friction coefficient: "" when it is one, else why not (parameters.hpp, kMuMax)
 std::string mu_problem(double mu);
+// as mu_problem, with the value and the element it was given for: "must be in [0, 10]: ... (got -1
+// for element 5)" (sim:wet, sim:set_mu, the live view's wet stretch)
+std::string mu_problem(double mu, int element);
 void require_mu(const std::string& what, double mu);
 // value v of parameter par (scene/parameters.hpp), named `what`, against the parameter's rule
 void check_rule(const Parameter& par, const std::string& what, double v);

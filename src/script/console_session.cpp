@@ -122,43 +122,61 @@ std::string sim_name(lua_State* L, const void* p) {
 
 }  // namespace
 
+namespace {
+
 // a command whose run Ctrl-C stopped becomes run_to(where it stopped), so the replay stops at the
 // same step end (and gives the same outputs)
 // A command during which the live view's page changed a simulation becomes, the same way, the runs
 // to where each change came and the changes, in the order they were applied (page_changes holds
-// the ends of its runs too)
-std::string replayable(lua_State* L, const std::string& chunk, bool expression, const StoppedRuns& stopped,
-                       const std::vector<PageChange>& page) {
-  if (stopped.empty() && page.empty()) return as_statements(L, chunk, expression);
+// the ends of its runs too). keep: a command that kept its run's result (r = sim:advance(20))
+// keeps it in the replay too, on its last run (the run's end: r.t and r.interrupted as at the
+// prompt, r.steps and r.wall those of the last run alone when the page split it)
+std::string stopped_or_changed(lua_State* L, const std::string& chunk, const StoppedRuns& stopped,
+                               const std::vector<PageChange>& page, bool keep) {
   std::string out = commented(chunk);
   out += page.empty() ? "  -- stopped by Ctrl-C" : "  -- changed from the live view while it ran";
-  std::map<const void*, double> at;  // where each simulation stands in the replay
-  for (const PageChange& c : page) {
-    const std::string name = sim_name(L, c.sim);
-    const auto it = at.find(c.sim);
-    if (it == at.end() || it->second != c.t) out += "\n" + name + ":run_to(" + number_text(c.t) + ")";
-    at[c.sim] = c.t;
-    if (!c.call.empty()) out += "\n" + name + ":" + c.call;
-  }
-  // a command that kept the stopped run's result (r = sim:advance(20)) keeps it in the replay too
   static const std::regex kept(R"(^\s*((local\s+)?[A-Za-z_][A-Za-z0-9_.]*\s*=\s*)([A-Za-z_][A-Za-z0-9_]*)\s*:\s*)"
                                R"((advance|run_to)\s*\([^\n]*\)\s*;?\s*$)");
   std::smatch m;
-  const bool keep = page.empty() && stopped.size() == 1 && std::regex_match(chunk, m, kept) &&
-                    m[3].str() == sim_name(L, stopped[0].first);
-  for (const auto& [p, t] : stopped) {
+  // the one simulation the command ran (the one it names), else none whose result is kept
+  const void* sim = !page.empty() ? page[0].sim : !stopped.empty() ? stopped[0].first : nullptr;
+  for (const PageChange& c : page) keep = keep && c.sim == sim;
+  for (const auto& [p, t] : stopped) keep = keep && p == sim;
+  keep = keep && sim && std::regex_match(chunk, m, kept) && m[3].str() == sim_name(L, sim);
+  std::map<const void*, double> at;  // where each simulation stands in the replay
+  bool run_last = false;             // the last statement is a run of sim
+  const auto run = [&](const void* p, double t) {
     const auto it = at.find(p);
-    if (it == at.end() || it->second != t)
-      out += "\n" + (keep ? m[1].str() : "") + sim_name(L, p) + ":run_to(" + number_text(t) + ")";
+    if (it != at.end() && it->second == t) return;
+    out += "\n" + sim_name(L, p) + ":run_to(" + number_text(t) + ")";
+    at[p] = t, run_last = p == sim;
+  };
+  for (const PageChange& c : page) {
+    run(c.sim, c.t);
+    if (!c.call.empty()) out += "\n" + sim_name(L, c.sim) + ":" + c.call, run_last = false;
   }
-  return out;
+  for (const auto& [p, t] : stopped) run(p, t);
+  if (!keep) return out;
+  // the result is the last run's: a run that ended where the page's last change came (Ctrl-C in a
+  // pause) gets one of no steps, to where it stands, to hold it
+  if (!run_last) out += "\n" + sim_name(L, sim) + ":run_to(" + number_text(at[sim]) + ")";
+  return out.insert(out.rfind('\n') + 1, m[1].str());
+}
+
+}  // namespace
+
+std::string replayable(lua_State* L, const std::string& chunk, bool expression, const StoppedRuns& stopped,
+                       const std::vector<PageChange>& page) {
+  if (stopped.empty() && page.empty()) return as_statements(L, chunk, expression);
+  return stopped_or_changed(L, chunk, stopped, page, true);
 }
 
 std::string failed_replayable(lua_State* L, const std::string& chunk, bool expression, const std::string& error,
                               const StoppedRuns& stopped, const std::vector<PageChange>& page) {
   std::string said = error.substr(0, error.find('\n'));
   said = "-- failed at the prompt: " + said;
-  if (!stopped.empty() || !page.empty()) return said + "\n" + replayable(L, chunk, expression, stopped, page);
+  // (an assignment that failed kept nothing: its runs are replayed, the variable left as it was)
+  if (!stopped.empty() || !page.empty()) return said + "\n" + stopped_or_changed(L, chunk, stopped, page, false);
   const std::string out = said + "\npcall(function()\n" + as_statements(L, chunk, expression) + "\nend)";
   if (compiles(L, out)) return out;
   return said + "\n" + commented("(not replayable) " + chunk);

@@ -23,7 +23,8 @@ using StoppedRuns = std::vector<std::pair<const void*, double>>;
 
 // the command `chunk` (compiled as an expression when `expression`) as session.lua replays it;
 // the globals of L name the simulations in `stopped` and `page` (the live view's changes while
-// the command ran, context.hpp)
+// the command ran, context.hpp). A stopped or changed run is replayed as its parts; an assignment
+// of its result (r = sim:run_to(1)) is kept on the last part
 std::string replayable(lua_State* L, const std::string& chunk, bool expression, const StoppedRuns& stopped,
                        const std::vector<PageChange>& page);
 

@@ -8,8 +8,9 @@
 #include <chrono>
 #include <cstdio>
 
-#include "media/jpeg_writer.hpp"
 #include "io/number_text.hpp"
+#include "io/suggest.hpp"
+#include "media/jpeg_writer.hpp"
 #include "render/recorder.hpp"
 #include "scene/law_text.hpp"
 #include "scene/validate.hpp"
@@ -125,7 +126,11 @@ std::string LiveFeed::apply(const live::Command& c) {
   try {
     if (c.what == "torque") {
       const int j = s.scene().find_pulley(c.pulley);
-      if (j < 0) return "no pulley '" + c.pulley + "'";
+      if (j < 0) {  // the server refuses it at once (400); a run begun since it came may lack it
+        std::vector<std::string> names;
+        for (const Pulley& p : s.model().pulleys) names.push_back(p.name);
+        return "torque: " + no_such("pulley", c.pulley, names);
+      }
       TimeSpeedLaw law;
       law.constant = c.value;
       s.set_torque(j, law, law_text(law));  // in events.csv, as sim:set_torque writes it
@@ -134,10 +139,12 @@ std::string LiveFeed::apply(const live::Command& c) {
       std::string key;
       if (const std::string bad = range_problem(s.scene(), c.from, c.to, "wet", &key); !bad.empty())
         return key + ": " + bad;
-      if (const std::string bad = mu_problem(c.value); !bad.empty()) return "wet.mu: " + bad;
       std::vector<double> mu(s.scene().sites.size(), std::nan(""));
-      for (const ElementSite& site : s.scene().sites)
-        if (in_stretch(site, c.from, c.to)) mu[site.index] = c.value;
+      for (const ElementSite& site : s.scene().sites) {  // as sim:wet checks and says it (mu_over)
+        if (!in_stretch(site, c.from, c.to)) continue;
+        if (const std::string bad = mu_problem(c.value, site.index); !bad.empty()) return "wet.mu: " + bad;
+        mu[site.index] = c.value;
+      }
       s.set_mu(mu, "wet", wet_text(c.value, c.from, c.to, std::nullopt));
       record(t, "wet { from = " + number_text(c.from) + ", to = " + number_text(c.to) +
                     ", mu = " + number_text(c.value) + " }");
@@ -173,7 +180,7 @@ void LiveFeed::apply_controls(bool paused) {
       if (c->value > sim_->now())
         target_ = c->value, paused = false;
       else
-        said = "run to " + rounded_text(c->value, 6) + " s: not after now";
+        said = "run to " + rounded_text(c->value, 6) + " s: not after now, t = " + rounded_text(sim_->now(), 6) + " s";
     } else {
       said = apply(*c);
     }

@@ -83,9 +83,7 @@ std::vector<double> mu_over(lua_State* L, int mu_idx, const Scene& sc, std::opti
     } else {
       mu = lua_tonumber(L, mu_idx);
     }
-    if (const std::string bad = mu_problem(mu); !bad.empty()) {
-      fail_on(L, what + ".mu", bad + " (got " + rounded_text(mu) + " for element " + std::to_string(site.index) + ")");
-    }
+    if (const std::string bad = mu_problem(mu, site.index); !bad.empty()) fail_on(L, what + ".mu", bad);
     out[site.index] = mu;
   }
   return out;

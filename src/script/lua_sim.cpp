@@ -38,9 +38,8 @@ int pulley_index(lua_State* L, const Simulation& s, int idx, const char* what) {
   const int j = s.scene().find_pulley(name);
   if (j < 0) {
     std::vector<std::string> names;
-    std::string list;
-    for (const Pulley& p : s.model().pulleys) names.push_back(p.name), list += (list.empty() ? "" : ", ") + p.name;
-    fail(L, std::string(what) + ": no pulley '" + name + "'" + did_you_mean(name, names) + "; pulleys: " + list);
+    for (const Pulley& p : s.model().pulleys) names.push_back(p.name);
+    fail(L, std::string(what) + ": " + no_such("pulley", name, names));
   }
   return j;
 }

@@ -88,9 +88,8 @@ void Simulation::set_mu(const std::vector<double>& mu, const std::string& what, 
     throw std::invalid_argument(what + ": one μ per element expected (" + std::to_string(model_.n_el()) + "), got " +
                                 std::to_string(mu.size()));
   for (size_t i = 0; i < mu.size(); ++i)
-    if (const std::string bad = std::isnan(mu[i]) ? "" : mu_problem(mu[i]); !bad.empty())
-      throw std::invalid_argument(what + ": μ " + bad + " (got " + rounded_text(mu[i]) + " for element " +
-                                  std::to_string(i) + ")");
+    if (const std::string bad = std::isnan(mu[i]) ? "" : mu_problem(mu[i], static_cast<int>(i)); !bad.empty())
+      throw std::invalid_argument(what + ": μ " + bad);
   before_change();
   for (size_t i = 0; i < mu.size(); ++i)
     if (!std::isnan(mu[i])) drive_.mu[i] = mu[i];

@@ -62,6 +62,7 @@ class ConsoleAndPage(unittest.TestCase):
         shutil.copy(os.path.join(d, session), os.path.join(r, "session.lua"))
         p = subprocess.run([BELTSIM, "run", "session.lua"], cwd=r, capture_output=True, text=True, timeout=300)
         self.assertEqual(p.returncode, 0, p.stderr)
+        self.replay_stdout = p.stdout
         return r
 
     def test_page_changes_in_events_and_session(self):
@@ -109,6 +110,39 @@ class ConsoleAndPage(unittest.TestCase):
             x, y = x.split(","), y.split(",")
             self.assertEqual([(h, u) for h, u, v in zip(head, x, y) if u != v],
                              [(h, v) for h, u, v in zip(head, x, y) if u != v], x[0])
+
+    def test_an_assignment_changed_from_the_page_replays(self):
+        """`r = sim:run_to(T)` changed from the page while it ran, and a command reading r after it:
+        session.lua keeps the assignment on the run's last part (`r = sim:run_to(T)`), so that the
+        replay exits 0, prints what the console printed and gives its time series byte for byte. It
+        was replayed without `r =`: "attempt to index a nil value (global 'r')", exit 1"""
+        d, proc = self.console("beltsim_live_kept_", subprocess.PIPE)
+        proc.stdin.write(b"r = sim:run_to(0.6)\nprint('r', r.t, r.interrupted)\n")
+        proc.stdin.close()
+        live, c, it = self.page(proc)
+        for _ in it:
+            if live.t:
+                break
+        self.assertEqual(live.post("do=pause")[0], 202)
+        paused_at = live.wait_status(it, "paused at t = ")
+        self.assertEqual(live.post("do=torque&pulley=driven&value=%r" % LOAD)[0], 202)
+        live.wait_status(it, paused_at + " (torque applied)")
+        self.assertEqual(live.post("do=continue")[0], 202)
+        c.close()
+        out = proc.stdout.read().decode()
+        err = proc.stderr.read().decode()
+        self.assertEqual(proc.wait(timeout=300), 0, err)
+        self.assertIn("r\t0.6\tfalse\n", out)
+        session = err.split("the session's commands are in ")[1].split("\n")[0]
+        with open(os.path.join(d, session)) as f:
+            lines = f.read().splitlines()
+        at = lines.index("-- r = sim:run_to(0.6)  -- changed from the live view while it ran")
+        self.assertEqual([lines[at + 2], lines[at + 3]], ['sim:set_torque("driven", %r)' % LOAD, "r = sim:run_to(0.6)"])
+        r = self.replay(d, session)
+        self.assertIn("r\t0.6\tfalse\n", self.replay_stdout)
+        for name in ["events.csv", "timeseries.csv"]:
+            with open(os.path.join(d, "out", name)) as a, open(os.path.join(r, "out", name)) as b:
+                self.assertEqual(a.read(), b.read(), name)
 
     def test_a_change_at_the_prompt_applies_there(self):
         """a torque sent from the page while the console waits at its prompt after sim:run_to(T)
@@ -209,6 +243,28 @@ class ConsoleAndPage(unittest.TestCase):
         self.page_at_the_prompt(live, it, t)
         self.change_at_the_prompt(d, proc, live, it, t)
         c.close()
+
+    def test_a_refusal_in_the_consoles_words(self):
+        """the page's refusal of a mistake says what the console says of the same one: a pulley that
+        does not exist (400 at once; it was "queued", then "refused: no pulley 'drivn'") and a μ out
+        of range (the status; it lacked "(got -1 for element N)")"""
+        d, proc = self.console("beltsim_live_words_", subprocess.PIPE)
+        live, c, it = self.page(proc)
+        self.page_at_the_prompt(live, it, 0)
+        status, torque = live.post("do=torque&pulley=drivn&value=-40")
+        self.assertEqual(status, 400, torque)
+        self.assertEqual(live.post("do=wet&from=0.1&to=0.3&value=-1"), (202, "queued\n"))
+        wet = live.wait_status(it, "refused: ", within=30)
+        c.close()
+        proc.stdin.write(b"print(select(2, pcall(sim.set_torque, sim, 'drivn', -40)))\n"
+                         b"print(select(2, pcall(sim.wet, sim, { from = 0.1, to = 0.3, mu = -1 })))\n")
+        proc.stdin.close()
+        out = proc.stdout.read().decode().splitlines()
+        self.assertEqual(proc.wait(timeout=120), 0, proc.stderr.read().decode())
+        self.assertEqual(out[-2], "sim:set_torque: no pulley 'drivn' (did you mean 'driven'?); pulleys: driver, driven")
+        self.assertEqual(torque, "torque: " + out[-2][len("sim:set_torque: "):] + "\n")
+        self.assertRegex(out[-1], r"^sim:wet\.mu: .* \(got -1 for element \d+\)$")
+        self.assertEqual(wet, "refused: wet.mu: " + out[-1][len("sim:wet.mu: "):])
 
     def test_each_run_a_plot_of_its_own(self):
         """two scene:run{} in a row, the second with columns of its own (two probes): the page gets

@@ -114,12 +114,17 @@ class Live(unittest.TestCase, Page):
             self.assertTrue(0 <= x < 960 and 0 <= y < 540 and 0 <= s < placed["length"], (x, y, s))
         self.assertEqual(sorted(e[2] for e in placed["elements"])[0], 0)  # element 0 at s = 0
 
-        self.assertEqual(self.post("do=torque&pulley=nope&value=1"), (202, "queued\n"))
-        self.wait_status(it, "refused: no pulley 'nope'")
+        # a pulley the run has not: refused at once, in the console's words (it was "queued", then
+        # the status "refused: no pulley 'drivn'"); live_console_test.py compares them
+        self.assertEqual(self.post("do=torque&pulley=drivn&value=1"),
+                         (400, "torque: no pulley 'drivn' (did you mean 'driven'?); pulleys: driver, driven\n"))
         self.assertEqual(self.post("do=torque&pulley=driven&value=%r" % LOAD)[0], 202)
         self.wait_status(it, "paused at t = %s s (torque applied)" % status_t(paused_at))
         self.assertEqual(self.post("do=wet&from=0.1&to=99&value=0.05")[0], 202)
         self.assertIn("wet.to: must be in [0, ", self.wait_status(it, "refused: "))
+        self.assertEqual(self.post("do=wet&from=0.1&to=0.3&value=-1")[0], 202)  # with the value, as the console
+        self.assertRegex(self.wait_status(it, "refused: "), r"^refused: wet\.mu: must be in \[0, 10\]: .* \(got -1 for "
+                                                          r"element \d+\)$")
         self.assertEqual(self.post("do=wet&from=0.1&to=0.3&value=0.05")[0], 202)
         self.wait_status(it, "paused at t = %s s (wet applied)" % status_t(paused_at))
         self.assertEqual(self.post("do=save&name=live.ckpt")[0], 202)
@@ -129,6 +134,10 @@ class Live(unittest.TestCase, Page):
         self.wait_status(it, "paused at t = %s s" % status_t(target))
         self.assertEqual(self.post("do=torque&pulley=driven&value=%r" % LOAD_AT_TARGET)[0], 202)  # where it paused
         self.wait_status(it, "paused at t = %s s (torque applied)" % status_t(target))
+        # a run to a time not after now says where now is (it said "not after now" alone)
+        self.assertEqual(self.post("do=run_to&value=%r" % (target - 0.05))[0], 202)
+        self.assertEqual(self.wait_status(it, "refused: "), "refused: run to %s s: not after now, t = %s s" %
+                         (status_t(target - 0.05), status_t(target)))
         for bad in ["do=jump", "do=torque&pulley=driven&value=x", "do=wet&from=0.1&value=0.2",
                     "do=save&name=../x.ckpt", "do=save&name=.x", "do=run_to&value=inf"]:
             self.assertEqual(self.post(bad)[0], 400, bad)
