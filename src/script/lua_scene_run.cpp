@@ -87,6 +87,10 @@ int l_scene_run(lua_State* L) {
   if (!res.warning_summary.empty()) say("beltsim: %s\n", res.warning_summary.c_str());
   if (!res.check_line.empty()) say("beltsim: %s%s\n", res.check.warns() ? "warning: " : "", res.check_line.c_str());
   if (!res.unapplied.empty()) say("beltsim: %s\n", res.unapplied.c_str());
+  // the run's last line, said with its progress (progress = false leaves both out): it ended, where, its outputs
+  if (progress)
+    say("beltsim: %s\n",
+        run_end_text(res.t_reached, rs.t_end, res.interrupted, res.work.steps, res.wall_seconds, rs.out_dir).c_str());
 
   lua_newtable(L);
   lua_pushnumber(L, res.t_reached), lua_setfield(L, -2, "t");

@@ -10,6 +10,7 @@
 #include <cstdio>
 
 #include "io/duration_text.hpp"
+#include "io/number_text.hpp"
 
 namespace beltsim::script {
 
@@ -54,6 +55,17 @@ void say(const char* format, ...) {
 
 void before_stdout() {
   if (g_open.load() && same_terminal()) end_progress_line();
+}
+
+std::string run_end_text(double t, double t_end, bool interrupted, long steps, double wall,
+                         const std::string& out_dir) {
+  // two digits of a short run's wall time (0.034 s, 5.2 s, 46 s), minutes as the progress line has them
+  const std::string w = wall < 60 ? rounded_text(wall, 2) + " s" : duration_text(wall);
+  std::string s = std::string(interrupted ? "run stopped" : "run ended") + " at t = " + rounded_text(t, 4) + " s" +
+                  (interrupted ? " of " + rounded_text(t_end, 4) + " s" : "") + " (" + std::to_string(steps) +
+                  " steps, " + w + ")";
+  if (!out_dir.empty()) s += ": " + out_dir + (out_dir.back() == '/' ? "" : "/");
+  return s;
 }
 
 ProgressLine::ProgressLine(bool enabled, long steps_before)

@@ -54,4 +54,8 @@ long progress_lines_ended();
 // is the terminal stderr is
 void before_stdout();
 
+// the line scene:run{} says when it ends (lua_scene_run.cpp): "run ended at t = 0.1 s (1234 steps,
+// 0.8 s): out/my/", "run stopped at ..." for a run Ctrl-C stopped
+std::string run_end_text(double t, double t_end, bool interrupted, long steps, double wall, const std::string& out_dir);
+
 }  // namespace beltsim::script

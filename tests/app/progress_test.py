@@ -1,11 +1,11 @@
 #!/usr/bin/env python3
-"""The progress line (src/script/progress.cpp): `beltsim run` on a pseudo-terminal, where it is
-redrawn in place.
+"""The progress line and the line a run ends with (src/script/progress.cpp): `beltsim run` on a
+pseudo-terminal, where the progress line is redrawn in place, and through a pipe, where it is not.
 
 Usage: progress_test.py PATH/TO/beltsim [unittest options]
 
-A user met a warning printed onto the progress line ("... 10239 steps   beltsim: warning: ..."), and
-a progress line left at "(94 %)" above a run that had ended.
+A user met a warning printed onto the progress line ("... 10239 steps   beltsim: warning: ..."), a
+progress line left at "(94 %)" above a run that had ended, and a batch run that ended in silence.
 The runs here are slowed by Lua code that waits on the CPU clock (in a callback, in a law), so that
 they take seconds, and their progress shows, on a machine of any speed.
 """
@@ -14,6 +14,7 @@ import os
 import pty
 import re
 import shutil
+import subprocess
 import sys
 import tempfile
 import time
@@ -57,6 +58,10 @@ BATCH = ("local next_t = 0\n" + WAIT +
                                 "torque = function(t) if t >= next_t then next_t = next_t + 0.001; wait(0.02) end "
                                 "return -70 * math.min(t / 0.3, 1) end") +
          'drive:run { t_end = 0.15, out = "batch" }\n')
+
+# the README's minimal scenario (a run of a fraction of a second: no progress line)
+MINIMAL = two_pulley(60) + "drive:run { t_end = 0.1 }\n"
+
 
 def on_terminal(argv, cwd, timeout=120):
     """Runs argv with a pseudo-terminal as its stdin, stdout and stderr; returns (exit status, the
@@ -155,6 +160,35 @@ class ProgressTest(unittest.TestCase):
         self.assertEqual(os.waitstatus_to_exitcode(status), 130, text)
         drawn = progress_texts(text)
         self.assertRegex(drawn[-1], r"^beltsim: t = [0-9.]+ s of 10 s \(\d+ %\), [0-9]+ s elapsed, [0-9]+ steps$")
+        self.assertRegex(text, r"\nbeltsim: run stopped at t = [0-9.]+ s of 10 s \([0-9]+ steps, [0-9.]+ s\): long/\r\n")
+
+    def test_a_run_says_where_it_ended(self):
+        # the README's minimal run: one line on stderr names the end, the steps, the time and the outputs
+        name = self.script("my.lua", MINIMAL)
+        p = subprocess.run([BELTSIM, "run", name], cwd=self.dir, env=child_env(self.dir), capture_output=True,
+                           text=True, timeout=120)
+        self.assertEqual(p.returncode, 0, p.stderr)
+        self.assertEqual(p.stdout, "")
+        last = p.stderr.splitlines()[-1]
+        self.assertRegex(last, r"^beltsim: run ended at t = 0\.1 s \([0-9]+ steps, [0-9.]+ s\): out/my/$", p.stderr)
+        # progress = false: neither the progress nor that line
+        quiet = self.script("quiet.lua", MINIMAL.replace("t_end = 0.1", "t_end = 0.1, progress = false"))
+        p = subprocess.run([BELTSIM, "run", quiet], cwd=self.dir, env=child_env(self.dir), capture_output=True,
+                           text=True, timeout=120)
+        self.assertEqual(p.returncode, 0, p.stderr)
+        self.assertNotIn("run ended", p.stderr)
+
+    def test_a_log_has_no_redraws(self):
+        # stderr a pipe (a CI log): no carriage returns, the progress every 10 s only, the end once,
+        # the closing line last
+        name = self.script("batch.lua", BATCH)
+        p = subprocess.run([BELTSIM, "run", name], cwd=self.dir, env=child_env(self.dir), capture_output=True,
+                           text=True, timeout=120)
+        self.assertEqual(p.returncode, 0, p.stderr)
+        self.assertNotIn("\r", p.stderr)
+        self.assertRegex(p.stderr.splitlines()[-1], r"^beltsim: run ended at t = 0\.15 s \([0-9]+ steps, [0-9.]+ s\): "
+                         r"batch/$")
+
 
 if __name__ == "__main__":
     BELTSIM = os.path.abspath(sys.argv.pop(1))
