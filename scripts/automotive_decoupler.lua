@@ -43,4 +43,3 @@ local drive = beltsim.scene {
 local result = drive:run { t_end = tonumber(beltsim.args.t_end) or 0.6, sample = 5e-4 }
 print(string.format("t = %.3f s (%s): crankshaft %.2f, alternator %.2f, pump %.2f rad/s",
   result.t, kind, result.omega.crankshaft, result.omega.alternator, result.omega.pump))
-print("time series: " .. result.csv)

@@ -54,4 +54,3 @@ local drive = build(elements ~= 150 and { c1_per_length = 3.0256e9 / l, c2_per_l
 local result = drive:run { t_end = 0.6, sample = 5e-4 }
 print(string.format("t = %.3f s (%s idler): crankshaft %.2f, alternator %.2f, pump %.2f rad/s",
   result.t, fixed and "fixed" or "arm", result.omega.crankshaft, result.omega.alternator, result.omega.pump))
-print("time series: " .. result.csv)

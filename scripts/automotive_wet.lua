@@ -50,7 +50,6 @@ local result = drive:run {
 }
 print(string.format("t = %.3f s: crankshaft %.2f, alternator %.2f, pump %.2f, tensioner %.2f rad/s",
   result.t, result.omega.crankshaft, result.omega.alternator, result.omega.pump, result.omega.tensioner))
-print("time series: " .. result.csv)
 if result.frames > 0 then
   print(string.format("%d frames: %s/frames/ (PNG, every 30th) and %s/automotive_wet.mp4",
     result.frames, result.csv:match("(.*)/"), result.csv:match("(.*)/")))

@@ -52,9 +52,8 @@ local result = drive:run {
     video = "paper_dry.mp4",
   },
 }
-print(string.format("t = %.3f s: driver %.3f rad/s, driven %.3f rad/s (%d steps, %.1f s wall)",
-  result.t, result.omega.driver, result.omega.driven, result.steps, result.wall))
-print("time series: " .. result.csv)
+print(string.format("t = %.3f s: driver %.3f rad/s, driven %.3f rad/s",
+  result.t, result.omega.driver, result.omega.driven))
 if result.frames > 0 then
   print(string.format("%d frames: %s/frames/ (PNG, every 30th) and %s/paper_dry.mp4",
     result.frames, result.csv:match("(.*)/"), result.csv:match("(.*)/")))

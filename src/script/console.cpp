@@ -22,6 +22,7 @@
 #include "script/docall.hpp"
 #include "script/limits.hpp"
 #include "script/live_feed.hpp"
+#include "script/progress.hpp"
 #include "script/signals.hpp"
 #include "sweep/results.hpp"
 
@@ -56,7 +57,7 @@ Compile compile(lua_State* L, const std::string& chunk, bool& expression) {
 
 // an output lost that the message names is not named again at exit (main.cpp)
 void report(const CallError& e, const char* prefix = "") {
-  std::fprintf(stderr, "%s%s\n%s", prefix, e.message.c_str(), shown_traceback(e.traceback).c_str());
+  say("%s%s\n%s", prefix, e.message.c_str(), shown_traceback(e.traceback).c_str());
   std::fflush(stderr);
   mark_output_failure_shown(e.message);
 }
@@ -144,11 +145,10 @@ int run_console(const std::optional<std::string>& script, const std::vector<std:
   if (const std::vector<std::string> names = sweep::study_parameters(session_dir); !names.empty()) {
     std::string varied;
     for (const std::string& n : names) varied += (varied.empty() ? "" : ", ") + n;
-    std::fprintf(stderr,
-                 "beltsim: console: the folder %s, where this session's runs and session.lua would go, holds a "
-                 "study of `beltsim sweep` (its points vary %s): give the console a folder of its own (--out DIR), "
-                 "or remove %s first\n",
-                 session_dir.c_str(), varied.c_str(), session_dir.c_str());
+    say("beltsim: console: the folder %s, where this session's runs and session.lua would go, holds a "
+        "study of `beltsim sweep` (its points vary %s): give the console a folder of its own (--out DIR), "
+        "or remove %s first\n",
+        session_dir.c_str(), varied.c_str(), session_dir.c_str());
     return 1;
   }
   Interpreter lua(safety);
@@ -185,10 +185,10 @@ int run_console(const std::optional<std::string>& script, const std::vector<std:
     }
     try {
       lua.run_file(*script);
-      for (const std::string& m : lua.unread_args(*script)) std::fprintf(stderr, "beltsim: warning: %s\n", m.c_str());
+      for (const std::string& m : lua.unread_args(*script)) say("beltsim: warning: %s\n", m.c_str());
       globals = globals_line(*script, before, global_names(L));
     } catch (const ScriptError& e) {
-      std::fprintf(stderr, "beltsim: %s\n%s", e.what(), shown_traceback(e.traceback).c_str());  // as run's
+      say("beltsim: %s\n%s", e.what(), shown_traceback(e.traceback).c_str());  // as run's
       mark_output_failure_shown(e.what());
       failed = true;
     }
@@ -230,13 +230,14 @@ int run_console(const std::optional<std::string>& script, const std::vector<std:
           if (const std::string s = at_prompt(L, changes); !s.empty()) commands.push_back(s);
         });
     std::string chunk, line, failure;
+    long ended = 0;  // progress lines ended before the command (progress.hpp)
     while (!terminating()) {
       const ConsoleInput::Got got = input.read(chunk.empty() ? "> " : ">> ", line);
       if (got == ConsoleInput::Got::end) {
         if (interactive) {
           std::printf("\n");
         } else if (!chunk.empty() && !terminating()) {
-          std::fprintf(stderr, "beltsim: stdin: unfinished input at the end: %s\n", chunk.c_str());
+          say("beltsim: stdin: unfinished input at the end: %s\n", chunk.c_str());
           failed = true;
         }
         break;
@@ -257,10 +258,10 @@ int run_console(const std::optional<std::string>& script, const std::vector<std:
       const Compile c = compile(L, chunk, expression);
       if (c == Compile::incomplete) continue;
       if (c == Compile::error) {
-        std::fprintf(stderr, "%s\n", lua_tostring(L, -1));
+        say("%s\n", lua_tostring(L, -1));
         lua_pop(L, 1);
         failed = true;
-      } else if (ctx.stopped_runs.clear(), ctx.page_changes.clear(), ctx.progress_ended = false,
+      } else if (ctx.stopped_runs.clear(), ctx.page_changes.clear(), ended = progress_lines_ended(),
                  ctx.interrupted = false, execute(L, failure)) {
         commands.push_back(replayable(L, chunk, expression, ctx.stopped_runs, ctx.page_changes));
       } else {
@@ -271,7 +272,7 @@ int run_console(const std::optional<std::string>& script, const std::vector<std:
       }
       // the terminal echoed ^C where a run (a live simulation's or a scene:run) was stopped; unless
       // a progress line ended that line, the next prompt would follow it there ("^C> ")
-      if (interactive && tty_out && ctx.interrupted && !ctx.progress_ended) std::printf("\n");
+      if (interactive && tty_out && ctx.interrupted && progress_lines_ended() == ended) std::printf("\n");
       command_done();
       chunk.clear();
     }

@@ -11,11 +11,12 @@
 #include <regex>
 #include <sstream>
 
+#include "io/number_text.hpp"
+#include "io/output_dir.hpp"
 #include "lauxlib.h"
 #include "lua.h"
-#include "io/output_dir.hpp"
 #include "script/console_print.hpp"
-#include "io/number_text.hpp"
+#include "script/progress.hpp"
 
 namespace beltsim::script {
 
@@ -238,11 +239,11 @@ bool write_session(const std::string& dir, const std::optional<std::string>& scr
   try {
     write_file_whole(OutputDir(dir), name, f.str());  // the folder made when missing
   } catch (const std::exception& e) {  // recorded: the exit status says so (app/main.cpp)
-    std::fprintf(stderr, "beltsim: %s\n", e.what());
+    say("beltsim: %s\n", e.what());
     mark_output_failure_shown(e.what());
     return false;
   }
-  std::fprintf(stderr, "beltsim: the session's commands are in %s\n", path.c_str());
+  say("beltsim: the session's commands are in %s\n", path.c_str());
   return true;
 }
 

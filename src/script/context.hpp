@@ -65,8 +65,6 @@ struct Context {
   // runs stopped by Ctrl-C: the simulation's userdata and where it stopped (the console writes
   // sim:run_to(t) into session.lua instead of the command, so that the replay stops there too)
   std::vector<std::pair<const void*, double>> stopped_runs;
-  // a progress line was drawn and ended during the command running now (progress.hpp)
-  bool progress_ended = false;
   // the page's changes during the command running now, with the ends of that command's runs
   // while a page could change them (the console writes them into session.lua instead of the
   // command, as for Ctrl-C)

@@ -18,9 +18,24 @@
 #include "script/lua_args.hpp"
 #include "script/lua_check.hpp"
 #include "script/lua_law.hpp"
+#include "script/progress.hpp"
 #include "script/sandbox.hpp"
 
 namespace beltsim::script {
+
+namespace {
+
+// print, Lua's own (its upvalue) on a line of its own: a progress line open on the terminal stdout
+// shares is ended first (progress.hpp; a script's every callback prints while its run goes on)
+int l_print(lua_State* L) {
+  before_stdout();
+  lua_pushvalue(L, lua_upvalueindex(1));
+  lua_insert(L, 1);
+  lua_call(L, lua_gettop(L) - 1, 0);
+  return 0;
+}
+
+}  // namespace
 
 Interpreter::Interpreter(const Safety& safety)
     : limits_(std::make_unique<Limits>()), ctx_(std::make_unique<Context>()), L_(luaL_newstate()) {
@@ -39,6 +54,9 @@ Interpreter::Interpreter(const Safety& safety)
     luaL_openlibs(L_);
   else
     open_sandbox(L_, ctx_.get());
+  lua_getglobal(L_, "print");
+  lua_pushcclosure(L_, l_print, 1);
+  lua_setglobal(L_, "print");
   guard_limits(L_);  // also trusted: the limits hold for every script
   ctx_->law_host->L = L_;
   open_beltsim(L_, ctx_.get());
@@ -66,7 +84,7 @@ std::string Interpreter::serve(int port) {
   ss.port = port;
   ctx_->serve = std::make_shared<live::LiveServer>(ss);
   const std::string url = ctx_->serve->url();
-  std::fprintf(stderr, "beltsim: live view at %s\n", url.c_str());
+  say("beltsim: live view at %s\n", url.c_str());
   return url;
 }
 bool Interpreter::interrupted() const { return ctx_->interrupted; }

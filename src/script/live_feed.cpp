@@ -16,6 +16,7 @@
 #include "scene/validate.hpp"
 #include "script/console_print.hpp"
 #include "script/lua_run.hpp"
+#include "script/progress.hpp"
 
 namespace beltsim::script {
 
@@ -72,7 +73,7 @@ void FrameThread::loop(const Scene& scene) {
       cost_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     }
   } catch (const std::exception& e) {  // no GL: the page goes on without pictures
-    std::fprintf(stderr, "beltsim: live view: no frames: %s\n", e.what());
+    say("beltsim: live view: no frames: %s\n", e.what());
   }
 }
 
@@ -84,7 +85,7 @@ void LiveFeed::watch(Simulation* sim, const char* at_end) {
       publish(0);
       offer_frame();                     // the picture where it stands
     } catch (const std::exception& e) {  // a Lua law that fails on reading: the run's error says it
-      std::fprintf(stderr, "beltsim: live view: %s\n", e.what());
+      say("beltsim: live view: %s\n", e.what());
     }
     server_->set_status(at_end_);
     frames_.reset();  // the last offered drawn, before the simulation (its scene) goes
@@ -217,7 +218,7 @@ void LiveFeed::apply_waiting(Simulation* sim) {
     try {
       report(*c, said, true);
     } catch (const std::exception& e) {  // a Lua law that fails on reading: the next run's error says it
-      std::fprintf(stderr, "beltsim: live view: %s\n", e.what());
+      say("beltsim: live view: %s\n", e.what());
     }
   }
   // a page opened while no run goes on: the picture where the simulation stands (a frame drawn
@@ -227,7 +228,7 @@ void LiveFeed::apply_waiting(Simulation* sim) {
     try {
       offer_frame();
     } catch (const std::exception& e) {
-      std::fprintf(stderr, "beltsim: live view: %s\n", e.what());
+      say("beltsim: live view: %s\n", e.what());
     }
   }
   frames_.reset();  // the picture drawn, before the simulation can go

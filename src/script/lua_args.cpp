@@ -13,6 +13,7 @@
 #include "io/suggest.hpp"
 #include "script/context.hpp"
 #include "script/lua_check.hpp"
+#include "script/progress.hpp"
 
 namespace beltsim::script {
 
@@ -112,7 +113,7 @@ void check_unread_args(lua_State* L, Context& ctx, const char* call) {
   const std::string script = ctx.script.empty() ? "the console" : ctx.script;
   std::string all;
   for (const std::string& m : unread_arg_messages(ctx, script, true)) {
-    if (ctx.interactive) std::fprintf(stderr, "beltsim: warning: %s\n", m.c_str());
+    if (ctx.interactive) say("beltsim: warning: %s\n", m.c_str());
     all += (all.empty() ? "" : "; ") + m;
   }
   // (scene:start integrates nothing itself: its refusal says what it did not do)

@@ -19,6 +19,7 @@
 #include "scene/validate.hpp"
 #include "script/context.hpp"
 #include "script/lua_scene_parts.hpp"
+#include "script/progress.hpp"
 #include "script/sandbox.hpp"
 #include "sim/run_table.hpp"
 
@@ -398,7 +399,7 @@ RunSettings read_run_settings(lua_State* L, int idx, const Scene& sc, Context* c
   // the command line's settings over the script's (checked when they were read, app/options.cpp)
   for (const std::string& key : o.given) copy_run_setting(*find_run_setting(key), o.run, rs);
   // the check's warning while the run goes on (sim/run_check.hpp)
-  rs.on_warning = [](const std::string& m) { std::fprintf(stderr, "beltsim: warning: %s\n", m.c_str()); };
+  rs.on_warning = [](const std::string& m) { say("beltsim: warning: %s\n", m.c_str()); };
   // the files of the run lie where the sandbox lets the script's own files lie
   if (const std::string r = run_paths_refusal(*ctx, w, rs); !r.empty()) fail(L, r);
   // a second run into a folder this command has run into replaces the first one's outputs: said,

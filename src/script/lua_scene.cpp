@@ -27,6 +27,7 @@
 #include "script/lua_clock.hpp"
 #include "script/lua_law.hpp"
 #include "script/lua_scene_parts.hpp"
+#include "script/progress.hpp"
 
 namespace beltsim::script {
 
@@ -58,17 +59,15 @@ void report_scene(const Scene& sc) {
     taken += (taken.empty() ? "" : ", ") + v.str();
   }
   if (!taken.empty())
-    std::fprintf(stderr, "beltsim: scene defaults (not given; parameters.csv says where each comes from): %s\n",
-                 taken.c_str());
-  for (const std::string& w : scene_warnings(sc)) std::fprintf(stderr, "beltsim: warning: %s\n", w.c_str());
+    say("beltsim: scene defaults (not given; parameters.csv says where each comes from): %s\n", taken.c_str());
+  for (const std::string& w : scene_warnings(sc)) say("beltsim: warning: %s\n", w.c_str());
   // the tension at rest is an input (given or the default) unless the rest length, the strain or a
   // tensioner's preload sets it
   if (std::none_of(sc.inputs.begin(), sc.inputs.end(),
                    [](const SceneInput& in) { return in.name == "belt.pretension"; })) {
     const Belt& b = sc.model.belt;
-    std::fprintf(stderr,
-                 "beltsim: belt: rest length %.6g m on a %.6g m route (strain %.4g %%): static span tension %.6g N\n",
-                 b.rigid_length * b.n, sc.route.length, 100 * (b.pitch / b.rigid_length - 1), sc.static_tension);
+    say("beltsim: belt: rest length %.6g m on a %.6g m route (strain %.4g %%): static span tension %.6g N\n",
+        b.rigid_length * b.n, sc.route.length, 100 * (b.pitch / b.rigid_length - 1), sc.static_tension);
   }
 }
 

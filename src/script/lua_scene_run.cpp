@@ -43,7 +43,7 @@ int l_scene_run(lua_State* L) {
   RunSettings rs = read_run_settings(L, 2, *sc, ctx, true, &progress);
   check_unread_args(L, *ctx, "run");
   for (const std::string& note : drop_after_end(rs, ctx->overrides.has("t_end") ? "--t-end" : nullptr))
-    std::fprintf(stderr, "beltsim: %s\n", note.c_str());
+    say("beltsim: %s\n", note.c_str());
   if (ctx->capture) {
     ctx->capture->scene = *sc;
     ctx->capture->settings = rs;
@@ -57,7 +57,7 @@ int l_scene_run(lua_State* L) {
   RunResult res;
   try {
     const HostWork work;  // beltsim's own work, not Lua code (lua_clock.hpp)
-    ProgressLine line(progress, 0, &ctx->progress_ended);
+    ProgressLine line(progress);
     LiveFeed feed(ctx->serve.get(), ctx->stop, &ctx->page_changes);
     ctx->page_sim = nullptr;  // the page shows this run now, which ends with this call
     if (ctx->serve) ctx->page_ran = true;
@@ -65,6 +65,7 @@ int l_scene_run(lua_State* L) {
       record_run_dir(ctx, rs.out_dir);  // its outputs are open
       return feed.run_to(sim, t, line.callback());
     });
+    line.finish(res.t_reached, res.work.steps, res.wall_seconds);
   } catch (const DivergenceError& e) {
     error = std::string(e.what()) + " (the samples up to then are in " + rs.out_dir + "/timeseries.csv)";
     ctx->divergence = {e.t, e.what()};
@@ -83,10 +84,13 @@ int l_scene_run(lua_State* L) {
   if (ctx->serve) ctx->serve->refuse_controls("no simulation to change (the run has ended)");
   if (!error.empty()) fail_at(L, about, error);
   if (res.interrupted) ctx->interrupted = true;
-  if (!res.warning_summary.empty()) std::fprintf(stderr, "beltsim: %s\n", res.warning_summary.c_str());
-  if (!res.check_line.empty())
-    std::fprintf(stderr, "beltsim: %s%s\n", res.check.warns() ? "warning: " : "", res.check_line.c_str());
-  if (!res.unapplied.empty()) std::fprintf(stderr, "beltsim: %s\n", res.unapplied.c_str());
+  if (!res.warning_summary.empty()) say("beltsim: %s\n", res.warning_summary.c_str());
+  if (!res.check_line.empty()) say("beltsim: %s%s\n", res.check.warns() ? "warning: " : "", res.check_line.c_str());
+  if (!res.unapplied.empty()) say("beltsim: %s\n", res.unapplied.c_str());
+  // the run's last line, said with its progress (progress = false leaves both out): it ended, where, its outputs
+  if (progress)
+    say("beltsim: %s\n",
+        run_end_text(res.t_reached, rs.t_end, res.interrupted, res.work.steps, res.wall_seconds, rs.out_dir).c_str());
 
   lua_newtable(L);
   lua_pushnumber(L, res.t_reached), lua_setfield(L, -2, "t");
@@ -124,11 +128,9 @@ int l_scene_start(lua_State* L) {
   // a live simulation runs to the times its script names: said once, before anything runs
   if (ctx->overrides.has("t_end") && !ctx->t_end_warned) {
     ctx->t_end_warned = true;
-    std::fprintf(stderr,
-                 "beltsim: warning: --t-end %s s shortens scene:run only; %s's simulation (scene:start) runs to the "
-                 "times its sim:run_to and sim:advance name\n",
-                 rounded_text(ctx->overrides.run.t_end).c_str(),
-                 ctx->script.empty() ? "the console" : ctx->script.c_str());
+    say("beltsim: warning: --t-end %s s shortens scene:run only; %s's simulation (scene:start) runs to the "
+        "times its sim:run_to and sim:advance name\n",
+        rounded_text(ctx->overrides.run.t_end).c_str(), ctx->script.empty() ? "the console" : ctx->script.c_str());
   }
   std::unique_ptr<Simulation> sim;
   std::string error;
@@ -146,10 +148,9 @@ int l_scene_start(lua_State* L) {
   // a checkpoint holds no Lua code: said now, not after a long run at sim:save (keep_states, which
   // saves all along, refuses such a law at once)
   if (const std::string law = sim->lua_law(); !law.empty())
-    std::fprintf(stderr,
-                 "beltsim: warning: start: %s is Lua code, which a checkpoint cannot hold: this simulation cannot be "
-                 "saved (sim:save refuses it); give the law as a table to save it\n",
-                 law.c_str());
+    say("beltsim: warning: start: %s is Lua code, which a checkpoint cannot hold: this simulation cannot be "
+        "saved (sim:save refuses it); give the law as a table to save it\n",
+        law.c_str());
   push_simulation(L, std::move(sim), ctx, progress);
   return 1;
 }

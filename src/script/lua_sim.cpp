@@ -55,7 +55,7 @@ int run_to(lua_State* L, SimBox& box, double t, const char* what) {
   guarded(
       L, what,
       [&] {
-        ProgressLine line(box.progress, box.sim->stats().steps, &box.ctx->progress_ended);
+        ProgressLine line(box.progress, box.sim->stats().steps);
         box.running = true;
         struct Done {
           SimBox& b;
@@ -66,6 +66,7 @@ int run_to(lua_State* L, SimBox& box, double t, const char* what) {
         if (!box.serve && box.ctx->serve)
           box.ctx->page_sim = box.sim.get(), box.ctx->page_key = lua_topointer(L, 1), box.ctx->page_ran = true;
         a = feed.run_to(*box.sim, t, line.callback(), "paused");
+        line.finish(a.t, a.steps, a.wall);
       },
       box.ctx);
   if (a.over_wall_limit) {
@@ -401,7 +402,7 @@ int l_serve(lua_State* L) {
     fail(L, "sim:serve: host '" + ss.host + "' opens the live view to other machines; only a --trusted script may");
   if (box->serve) fail(L, "sim:serve: this simulation is served already, at " + box->serve->url());
   guarded(L, "sim:serve", [&] { box->serve = std::make_shared<live::LiveServer>(ss); });
-  std::fprintf(stderr, "beltsim: live view at %s\n", box->serve->url().c_str());
+  say("beltsim: live view at %s\n", box->serve->url().c_str());
   // the page shows the simulation where it stands until it runs; a console applies the page's
   // changes at its prompt
   box->ctx->served[lua_topointer(L, 1)] = {box->serve.get(), box->sim.get()};
@@ -436,11 +437,10 @@ int l_close(lua_State* L) {
   box->ctx->served.erase(lua_topointer(L, 1));
   box->serve.reset();
   if (was_open) {
-    if (const std::string w = box->sim->warning_summary(); !w.empty()) std::fprintf(stderr, "beltsim: %s\n", w.c_str());
+    if (const std::string w = box->sim->warning_summary(); !w.empty()) say("beltsim: %s\n", w.c_str());
     if (const std::string c = box->sim->check_line(); !c.empty())
-      std::fprintf(stderr, "beltsim: %s%s\n", box->sim->check_estimate().warns() ? "warning: " : "", c.c_str());
-    if (const std::string u = box->sim->unapplied_warnings(); !u.empty())
-      std::fprintf(stderr, "beltsim: %s\n", u.c_str());
+      say("beltsim: %s%s\n", box->sim->check_estimate().warns() ? "warning: " : "", c.c_str());
+    if (const std::string u = box->sim->unapplied_warnings(); !u.empty()) say("beltsim: %s\n", u.c_str());
   }
   box->refs.clear();
   return 0;
@@ -452,7 +452,7 @@ int l_gc(lua_State* L) {
   try {
     if (box->sim) box->sim->close();
   } catch (const std::exception& e) {
-    std::fprintf(stderr, "beltsim: closing a simulation: %s\n", e.what());
+    say("beltsim: closing a simulation: %s\n", e.what());
   }
   // emptied rather than destroyed: a finaliser that runs later (another object's __gc) may still
   // reach this userdata, and must find "finalised" (sim == nullptr), not a dead object
@@ -556,7 +556,7 @@ void push_simulation(lua_State* L, std::unique_ptr<Simulation> sim, Context* ctx
     try {
       LiveFeed(ctx->serve.get(), ctx->stop).show(*box->sim);
     } catch (const std::exception& e) {
-      std::fprintf(stderr, "beltsim: live view: %s\n", e.what());
+      say("beltsim: live view: %s\n", e.what());
     }
   }
 }

@@ -10,6 +10,7 @@
 #include "render/recorder.hpp"
 #include "script/lua_run.hpp"
 #include "script/lua_sim.hpp"
+#include "script/progress.hpp"
 #include "script/sandbox.hpp"
 #include "script/sim_box.hpp"
 #include "sim/run_table.hpp"
@@ -19,6 +20,7 @@ namespace beltsim::script {
 namespace {
 
 void picture(lua_State* L, SimBox& box, const std::string& png) {
+  before_stdout();  // drawn from a run's callback, on the progress line's terminal
   if (box.ctx->on_picture)
     box.ctx->on_picture(png);
   else
@@ -126,7 +128,7 @@ int l_plot(lua_State* L) {
   if (const std::string r = output_refusal(*box.ctx, "sim:plot", file, true); !r.empty()) fail(L, r);
   guarded(L, "sim:plot", [&] {
     if (const std::string w = plot::left_out_warning(plot::plot_csv(s.csv_path(), columns, from, file)); !w.empty())
-      std::fprintf(stderr, "beltsim: warning: sim:plot: %s\n", w.c_str());
+      say("beltsim: warning: sim:plot: %s\n", w.c_str());
   });
   box.pictures.insert(file);
   picture(L, box, file);
@@ -172,10 +174,9 @@ int l_resume(lua_State* L) {
     for (const std::string& k : ctx->overrides.given)  // (the option each key comes from: sim/run_table.hpp)
       options += (options.empty() ? "" : ", ") + std::string(find_run_setting(k)->option);
     if (ctx->overrides.no_frames) options += options.empty() ? "--no-frames" : ", --no-frames";
-    std::fprintf(stderr,
-                 "beltsim: warning: %s %s to scene:run and scene:start only; the simulation beltsim.resume "
-                 "continues keeps its checkpoint's settings (its folder, integrator, tolerances and frames)\n",
-                 options.c_str(), count == 1 ? "applies" : "apply");
+    say("beltsim: warning: %s %s to scene:run and scene:start only; the simulation beltsim.resume "
+        "continues keeps its checkpoint's settings (its folder, integrator, tolerances and frames)\n",
+        options.c_str(), count == 1 ? "applies" : "apply");
   }
   std::unique_ptr<Simulation> sim;
   int callbacks = 0;
@@ -184,15 +185,15 @@ int l_resume(lua_State* L) {
   const auto vet = [ctx](const RunSettings& rs) {
     if (const std::string r = run_paths_refusal(*ctx, "resume", rs); !r.empty()) throw std::invalid_argument(r);
   };
-  const auto warn = [](const std::string& m) { std::fprintf(stderr, "beltsim: warning: %s\n", m.c_str()); };
+  const auto warn = [](const std::string& m) { say("beltsim: warning: %s\n", m.c_str()); };
   guarded(L, "beltsim.resume", [&] {
     sim = Simulation::resume(lua_tostring(L, 1), render::make_frame_recorder, &callbacks, vet, rewind, warn);
   });
-  std::fprintf(stderr, "beltsim: %s resumed at t = %s s; its outputs go on in %s\n", lua_tostring(L, 1),
-               rounded_text(sim->now()).c_str(), sim->out_dir().c_str());
+  say("beltsim: %s resumed at t = %s s; its outputs go on in %s\n", lua_tostring(L, 1),
+      rounded_text(sim->now()).c_str(), sim->out_dir().c_str());
   if (callbacks > 0)
-    std::fprintf(stderr, "beltsim: %s had %d callback(s) (every, when); register them again on the resumed simulation\n",
-                 lua_tostring(L, 1), callbacks);
+    say("beltsim: %s had %d callback(s) (every, when); register them again on the resumed simulation\n",
+        lua_tostring(L, 1), callbacks);
   push_simulation(L, std::move(sim), ctx, progress);
   return 1;
 }

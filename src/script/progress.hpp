@@ -1,9 +1,21 @@
-// One progress line on stderr for integrations that take more than a second: simulated time
-// reached of the target, wall time, an estimate of what is left, the steps of this integration (as
-// the call returns them: a simulation's steps before it, steps_before, are not counted). Redrawn in place on a
-// terminal (every 0.5 s), a line every 10 s otherwise. Not part of the engine: the engine reports
-// progress through a callback (sim/simulation.hpp RunProgress) and this prints it.
+// The progress line on stderr and every other line written while it may be on screen.
+//
+// One progress line for integrations that take more than a second: simulated time reached of the
+// target, wall time, an estimate of what is left, the steps of this integration (as the call
+// returns them: a simulation's steps before it, steps_before, are not counted). Redrawn in place
+// on a terminal (every 0.5 s), a line every 10 s otherwise (no carriage returns in a pipe or a
+// log). When the integration ends, the line shows where it ended (t_end and 100 % when it got
+// there, where it stopped when it did not) with its total wall time, and is closed.
+//
+// On a terminal the line is written without its end while the run goes on: this file is the one
+// place that knows whether such a line is open. Whatever else is written while it may be (a warning
+// from the run, a note, an error, a script's print when stdout is the same terminal) goes through
+// say() or end_progress_line() first, so that it starts on a line of its own; the progress line is
+// drawn again below it at its next update. Not part of the engine: the engine reports progress
+// through a callback (sim/simulation.hpp RunProgress) and this prints it.
 #pragma once
+
+#include <string>
 
 #include "sim/simulation.hpp"
 
@@ -11,19 +23,39 @@ namespace beltsim::script {
 
 class ProgressLine {
  public:
-  // ended: set when the destructor ends a line it drew (the console then knows the cursor is at a
-  // line's start after a run that Ctrl-C stopped)
-  explicit ProgressLine(bool enabled, long steps_before = 0, bool* ended = nullptr);
-  ~ProgressLine();  // ends the line if one was drawn
+  explicit ProgressLine(bool enabled, long steps_before = 0);
+  ~ProgressLine();  // shows the end (finish, else the last state reported) and closes the line, if one was drawn
   ProgressLine(const ProgressLine&) = delete;
   ProgressLine& operator=(const ProgressLine&) = delete;
   RunProgress callback();
+  // where the integration ended, as the call returns it: t, its steps (all of them, as
+  // RunProgress counts them), its wall time; shown by the last drawing of the line
+  void finish(double t, long steps, double wall);
 
  private:
+  void draw(bool last);
   bool enabled_, tty_, drawn_ = false;
   double last_ = 0, t0_ = -1;
   long steps_before_ = 0;
-  bool* ended_ = nullptr;
+  // the last state reported (or finish's): what the line shows
+  double t_ = 0, target_ = 0, wall_ = 0;
+  long steps_ = 0;
+  size_t width_ = 0;  // of the text drawn last on the terminal, blanked by a shorter one
 };
+
+// ends the progress line open on the terminal, if one is: what is written next starts on a line of its own
+void end_progress_line();
+// how many open progress lines have been ended so far (by a message or by their run's end): the
+// console reads it round a command to know whether the line the terminal echoed ^C on was ended
+long progress_lines_ended();
+// a message on stderr (printf's format, its own line end included), on a line of its own
+[[gnu::format(printf, 1, 2)]] void say(const char* format, ...);
+// a print to stdout (Lua's print, a picture's path): the progress line is ended first when stdout
+// is the terminal stderr is
+void before_stdout();
+
+// the line scene:run{} says when it ends (lua_scene_run.cpp): "run ended at t = 0.1 s (1234 steps,
+// 0.8 s): out/my/", "run stopped at ..." for a run Ctrl-C stopped
+std::string run_end_text(double t, double t_end, bool interrupted, long steps, double wall, const std::string& out_dir);
 
 }  // namespace beltsim::script

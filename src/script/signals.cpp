@@ -13,6 +13,7 @@
 #include <thread>
 
 #include "script/interpreter.hpp"
+#include "script/progress.hpp"
 
 namespace beltsim::script {
 
@@ -67,7 +68,7 @@ void on_signal(int sig) {
   errno = saved_errno;
 }
 
-void say(const std::string& s) {
+void say_raw(const std::string& s) {
   [[maybe_unused]] const ssize_t n = write(STDERR_FILENO, s.data(), s.size());
 }
 
@@ -118,17 +119,18 @@ void watchdog() {
     if (sig == SIGINT) {
       // a Ctrl-C that Lua does not honour: say what the next one does (once)
       if (stuck_in_lua([] { return g_pending.load() == SIGINT; }, [] {}))
-        say("\nbeltsim: the Lua code under way does not stop (a long C call such as a string pattern, or code that "
+        say_raw(
+            "\nbeltsim: the Lua code under way does not stop (a long C call such as a string pattern, or code that "
             "runs with hooks off); Ctrl-C again ends beltsim\n");
       continue;
     }
     // SIGTERM, SIGHUP: Lua code that goes on after a stopped run is interrupted again; Lua that
     // does not return ends the process
     if (stuck_in_lua([] { return true; }, interrupt_lua)) {
-      say(std::string("\nbeltsim: the Lua code under way did not stop within ") + std::to_string(kGrace.count()) +
-          " ms of " + name(sig) +
-          " (a long C call such as a string pattern, or code that runs with hooks off); "
-          "ending now; the outputs written so far are kept\n");
+      say_raw(std::string("\nbeltsim: the Lua code under way did not stop within ") + std::to_string(kGrace.count()) +
+              " ms of " + name(sig) +
+              " (a long C call such as a string pattern, or code that runs with hooks off); "
+              "ending now; the outputs written so far are kept\n");
       std::signal(sig, SIG_DFL);
       kill(getpid(), sig);
       return;
@@ -173,10 +175,9 @@ bool terminating() {
 
 int stopped_status() {
   const int sig = terminating() ? g_pending.load() : g_first != 0 ? g_first.load() : SIGINT;
-  std::fprintf(stderr, "beltsim: %s; the outputs written so far are kept\n",
-               sig == SIGTERM  ? "terminated"
-               : sig == SIGHUP ? "hung up (SIGHUP)"
-                               : "interrupted");
+  say("beltsim: %s; the outputs written so far are kept\n", sig == SIGTERM  ? "terminated"
+                                                            : sig == SIGHUP ? "hung up (SIGHUP)"
+                                                                            : "interrupted");
   return 128 + sig;
 }
 

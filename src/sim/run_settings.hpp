@@ -50,7 +50,7 @@ struct RunSettings {
   // collapse of the rate happens at a known moment.
   std::function<double()> wall_clock;
   bool keep_samples = false;          // keep the rows of timeseries.csv in memory (samples())
-  bool progress = true;               // the progress line on a terminal (script/progress.hpp)
+  bool progress = true;               // the progress line and scene:run's closing line (script/progress.hpp)
   bool allow_large = false;           // past the output limits (check_volume)
   std::vector<MuEvent> mu_events;     // in any order
   // frames (PNG and/or video) at their own times; relative paths are taken inside out_dir. The

@@ -1,0 +1,195 @@
+#!/usr/bin/env python3
+"""The progress line and the line a run ends with (src/script/progress.cpp): `beltsim run` on a
+pseudo-terminal, where the progress line is redrawn in place, and through a pipe, where it is not.
+
+Usage: progress_test.py PATH/TO/beltsim [unittest options]
+
+A user met a warning printed onto the progress line ("... 10239 steps   beltsim: warning: ..."), a
+progress line left at "(94 %)" above a run that had ended, and a batch run that ended in silence.
+The runs here are slowed by Lua code that waits on the CPU clock (in a callback, in a law), so that
+they take seconds, and their progress shows, on a machine of any speed.
+"""
+
+import os
+import pty
+import re
+import shutil
+import subprocess
+import sys
+import tempfile
+import time
+import unittest
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "console"))
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "support"))
+from pty_console import child_env  # noqa: E402  (tests/console/pty_console.py)
+from scenes import two_pulley  # noqa: E402
+
+BELTSIM = None  # set from argv in main
+
+# each ms of simulated time takes 20 ms of the CPU: 0.15 s simulated take 3 s at least
+WAIT = "local function wait(s) local c = os.clock() while os.clock() - c < s do end end\n"
+
+# a live simulation whose callback prints (stdout) 1.5 s into the run and makes a scene (its notes
+# on stderr) 1 s later, while the progress line is showing; the run goes on for 1.5 s more
+LIVE = (two_pulley(40) + WAIT +
+        'local sim = drive:start { out = "live" }\n'
+        "local c0, printed, made = os.clock(), false, false\n"
+        "sim:every(0.001, function()\n"
+        "  wait(0.02)\n"
+        "  if not printed and os.clock() - c0 > 1.5 then\n"
+        "    printed = true\n"
+        "    print('printed by the callback')\n"
+        "  end\n"
+        "  if not made and os.clock() - c0 > 2.5 then\n"
+        "    made = true\n"
+        "    beltsim.scene { pulleys = { { name = 'a', centre = {0, 0}, radius = 0.1, speed = -10 },\n"
+        "                                { name = 'b', centre = {0.29, 0}, radius = 0.1 } },\n"
+        "                    belt = { elements = 20, pretension = 500, direction = 'cw' } }\n"
+        "  end\n"
+        "end)\n"
+        "sim:run_to(0.2)\n"
+        "sim:close()\n")
+
+# a batch run whose driver's torque law waits 20 ms once per ms of simulated time: 0.15 s simulated
+# take 3 s at least
+BATCH = ("local next_t = 0\n" + WAIT +
+         two_pulley(40).replace("torque = beltsim.ramp(0.3, -70)",
+                                "torque = function(t) if t >= next_t then next_t = next_t + 0.001; wait(0.02) end "
+                                "return -70 * math.min(t / 0.3, 1) end") +
+         'drive:run { t_end = 0.15, out = "batch" }\n')
+
+# the README's minimal scenario (a run of a fraction of a second: no progress line)
+MINIMAL = two_pulley(60) + "drive:run { t_end = 0.1 }\n"
+
+
+def on_terminal(argv, cwd, timeout=120):
+    """Runs argv with a pseudo-terminal as its stdin, stdout and stderr; returns (exit status, the
+    bytes written, as text)."""
+    pid, fd = pty.fork()
+    if pid == 0:
+        try:
+            os.chdir(cwd)
+            os.execve(argv[0], argv, child_env(cwd))
+        except BaseException as e:  # noqa: BLE001 (the child must never return into unittest)
+            os.write(2, ("cannot start %s: %s\n" % (argv[0], e)).encode())
+        finally:
+            os._exit(127)
+    raw, deadline = b"", time.monotonic() + timeout
+    while time.monotonic() < deadline:
+        try:
+            data = os.read(fd, 65536)
+        except OSError:  # EIO: the child has closed the terminal
+            break
+        if not data:
+            break
+        raw += data
+    _, status = os.waitpid(pid, 0)
+    os.close(fd)
+    return os.waitstatus_to_exitcode(status), raw.decode("utf-8", "replace")
+
+
+def progress_texts(raw):
+    """Each drawing of the progress line, in order."""
+    return re.findall(r"beltsim: t = [0-9.]+ s of [^\r\n]*?steps", raw)
+
+
+class ProgressTest(unittest.TestCase):
+    def setUp(self):
+        self.dir = tempfile.mkdtemp(prefix="beltsim_progress_")
+        self.addCleanup(shutil.rmtree, self.dir, True)
+
+    def script(self, name, text):
+        with open(os.path.join(self.dir, name), "w") as f:
+            f.write(text)
+        return name
+
+    def test_a_message_during_a_run_starts_its_own_line(self):
+        code, raw = on_terminal([BELTSIM, "run", self.script("live.lua", LIVE)], self.dir)
+        self.assertEqual(code, 0, raw)
+        drawn = progress_texts(raw)
+        self.assertTrue(drawn, "no progress line: %r" % raw)
+        # every line starts at the start of a line, the run's messages and the script's print too:
+        # none follows the progress line's text on its terminal line
+        printed, noted = raw.find("printed by the callback"), raw.rfind("beltsim: scene defaults")
+        for said, at in [("the print", printed), ("the scene's note", noted)]:
+            self.assertGreater(at, raw.find(drawn[0]), "%s before any progress line: %r" % (said, raw))
+            self.assertEqual(raw[at - 1], "\n", "%s follows %r" % (said, raw[max(0, at - 120):at + 40]))
+        self.assertTrue(re.search(r"beltsim: t = [^\n]*\n[^\n]*printed by the callback", raw), raw)
+        self.assertTrue(re.search(r"beltsim: t = [^\n]*\n[^\n]*scene defaults", raw[printed:]), raw)
+        # and the progress line goes on below them
+        self.assertGreater(raw.rfind("beltsim: t = "), noted, raw)
+
+    def test_the_progress_line_shows_the_end(self):
+        for name, text in [("live.lua", LIVE.replace("sim:run_to(0.2)", "sim:run_to(0.15)")), ("batch.lua", BATCH)]:
+            code, raw = on_terminal([BELTSIM, "run", self.script(name, text)], self.dir)
+            self.assertEqual(code, 0, raw)
+            drawn = progress_texts(raw)
+            self.assertTrue(drawn, "%s: no progress line: %r" % (name, raw))
+            # the last drawing is the end: all of the time, nothing left, then the line is closed
+            self.assertRegex(drawn[-1], r"^beltsim: t = 0\.1500 s of 0\.15 s \(100 %\), [0-9]+ s elapsed, [0-9]+ steps$",
+                             name)
+            self.assertRegex(raw[raw.rfind(drawn[-1]):], r"^[^\r\n]*steps *\r\n", name)
+
+    def test_a_run_stopped_shows_where(self):
+        # Ctrl-C (SIGINT) once the progress shows (the run's own code, no Lua code that ^C would
+        # interrupt): the line shows where it stopped, not what was left
+        path = os.path.join(self.dir, self.script("long.lua", two_pulley(40) + 'drive:run { t_end = 10, out = "long" }\n'))
+        pid, fd = pty.fork()
+        if pid == 0:
+            try:
+                os.chdir(self.dir)
+                os.execve(BELTSIM, [BELTSIM, "run", path], child_env(self.dir))
+            finally:
+                os._exit(127)
+        raw, deadline = b"", time.monotonic() + 60
+        while b"beltsim: t = " not in raw and time.monotonic() < deadline:
+            raw += os.read(fd, 65536)
+        os.write(fd, b"\x03")
+        while True:
+            try:
+                data = os.read(fd, 65536)
+            except OSError:
+                break
+            if not data:
+                break
+            raw += data
+        _, status = os.waitpid(pid, 0)
+        os.close(fd)
+        text = raw.decode("utf-8", "replace")
+        self.assertEqual(os.waitstatus_to_exitcode(status), 130, text)
+        drawn = progress_texts(text)
+        self.assertRegex(drawn[-1], r"^beltsim: t = [0-9.]+ s of 10 s \(\d+ %\), [0-9]+ s elapsed, [0-9]+ steps$")
+        self.assertRegex(text, r"\nbeltsim: run stopped at t = [0-9.]+ s of 10 s \([0-9]+ steps, [0-9.]+ s\): long/\r\n")
+
+    def test_a_run_says_where_it_ended(self):
+        # the README's minimal run: one line on stderr names the end, the steps, the time and the outputs
+        name = self.script("my.lua", MINIMAL)
+        p = subprocess.run([BELTSIM, "run", name], cwd=self.dir, env=child_env(self.dir), capture_output=True,
+                           text=True, timeout=120)
+        self.assertEqual(p.returncode, 0, p.stderr)
+        self.assertEqual(p.stdout, "")
+        last = p.stderr.splitlines()[-1]
+        self.assertRegex(last, r"^beltsim: run ended at t = 0\.1 s \([0-9]+ steps, [0-9.]+ s\): out/my/$", p.stderr)
+        # progress = false: neither the progress nor that line
+        quiet = self.script("quiet.lua", MINIMAL.replace("t_end = 0.1", "t_end = 0.1, progress = false"))
+        p = subprocess.run([BELTSIM, "run", quiet], cwd=self.dir, env=child_env(self.dir), capture_output=True,
+                           text=True, timeout=120)
+        self.assertEqual(p.returncode, 0, p.stderr)
+        self.assertNotIn("run ended", p.stderr)
+
+    def test_a_log_has_no_redraws(self):
+        # stderr a pipe (a CI log): no carriage returns, the progress every 10 s only, the end once,
+        # the closing line last
+        name = self.script("batch.lua", BATCH)
+        p = subprocess.run([BELTSIM, "run", name], cwd=self.dir, env=child_env(self.dir), capture_output=True,
+                           text=True, timeout=120)
+        self.assertEqual(p.returncode, 0, p.stderr)
+        self.assertNotIn("\r", p.stderr)
+        self.assertRegex(p.stderr.splitlines()[-1], r"^beltsim: run ended at t = 0\.15 s \([0-9]+ steps, [0-9.]+ s\): "
+                         r"batch/$")
+
+
+if __name__ == "__main__":
+    BELTSIM = os.path.abspath(sys.argv.pop(1))
+    unittest.main()
