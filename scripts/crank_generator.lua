@@ -16,5 +16,4 @@ local drive = beltsim.scene {
   belt = { preset = "6PK", elements = elements, pretension = 400, direction = "cw" },
 }
 local r = drive:run { t_end = 0.1 }
-print(string.format("%d elements, t = %.3f s: crank %.3f, gen %.3f rad/s; %d steps", elements, r.t, r.omega.crank,
-  r.omega.gen, r.steps))
+print(string.format("%d elements, t = %.3f s: crank %.3f, gen %.3f rad/s", elements, r.t, r.omega.crank, r.omega.gen))
