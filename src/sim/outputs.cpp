@@ -17,6 +17,7 @@
 #include "io/csv_writer.hpp"
 #include "io/output_dir.hpp"
 #include "io/suggest.hpp"
+#include "io/units.hpp"
 #include "scene/law_text.hpp"
 #include "scene/scene.hpp"
 #include "sim/run_table.hpp"
@@ -241,7 +242,19 @@ std::vector<std::string> Outputs::earlier_outputs() const {
 
 void Outputs::open_rows(bool append) {
   const OutputDir& dir = *dir_;
-  csv_ = std::make_unique<CsvWriter>(dir, "timeseries.csv", timeseries_columns(scene_, rs_.probes.size()), append);
+  const std::vector<std::string> columns = timeseries_columns(scene_, rs_.probes.size());
+  {
+    // each column's SI unit (io/units.hpp, the table docs/outputs.md lists), for a reader given the
+    // folder alone (pandas, MATLAB); "1" for a dimensionless one. Written whole, also on resume
+    // (the same columns): a folder of an earlier version gets it
+    std::string units = "column,unit\n";
+    for (const std::string& c : columns) {
+      const std::string u = unit_of(c);
+      units += csv_text(c) + "," + csv_text(u.empty() ? "1" : u) + "\n";
+    }
+    write_file_whole(dir, "timeseries_units.csv", units);
+  }
+  csv_ = std::make_unique<CsvWriter>(dir, "timeseries.csv", columns, append);
   events_ = std::make_unique<RowFile>(dir, "events.csv", append);
   if (!append) events_->write("t,what,value\n");
   if (has_snapshots()) {

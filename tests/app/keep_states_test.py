@@ -117,7 +117,7 @@ class KeepStates(unittest.TestCase):
         code, out, err = run(["run", "bare.lua"], self.dir)
         self.assertEqual(code, 0, err)
         self.assertEqual(self.listing("bare"), ["events.csv", "parameters.csv", "states",
-                                                "timeseries.csv"])
+                                                "timeseries.csv", "timeseries_units.csv"])
         names = self.listing(os.path.join("bare", "states"))
         self.assertEqual([state_time(os.path.join(self.dir, "bare", "states", n)) for n in names],
                          frame_times(0.0, 1.0 / 300.0, 0.01))

@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <fstream>
 #include <functional>
+#include <map>
 #include <memory>
 #include <sstream>
 
@@ -52,7 +53,8 @@ std::string link_refusal(const fs::path& file) {
 }
 
 TEST(Outputs, EveryFixedNameRefusesAPlantedLink) {
-  for (const char* name : {"parameters.csv", "timeseries.csv", "events.csv", "snapshots.csv", ".beltsim.lock"}) {
+  for (const char* name :
+       {"parameters.csv", "timeseries.csv", "timeseries_units.csv", "events.csv", "snapshots.csv", ".beltsim.lock"}) {
     SCOPED_TRACE(name);
     const fs::path base = fresh(std::string("link_") + name), out = base / "out", target = base / "bashrc";
     fs::create_directories(out);
@@ -222,6 +224,36 @@ TEST(Outputs, ParametersHoldNoNegativeZero) {
   const std::string p = slurp(out / "parameters.csv");
   EXPECT_NE(p.find("\npulley.driven.centre_y,0,m,derived,"), std::string::npos) << p;
   EXPECT_EQ(p.find(",-0,"), std::string::npos) << p;
+}
+
+// timeseries_units.csv names each column of timeseries.csv, in its order, with its SI unit ("1" for
+// a dimensionless one): a reader given the folder alone (pandas, MATLAB) needs no docs for them
+TEST(Outputs, TheTimeSeriesUnitsNameEveryColumn) {
+  const fs::path out = fresh("units") / "out";
+  {
+    Simulation s(dry_scene(), settings(out));
+    s.run_to(0.002);
+  }
+  std::istringstream series(slurp(out / "timeseries.csv")), units(slurp(out / "timeseries_units.csv"));
+  std::string header, line;
+  std::getline(series, header);
+  std::getline(units, line);
+  EXPECT_EQ(line, "column,unit");
+  std::string names;
+  std::map<std::string, std::string> unit;
+  while (std::getline(units, line)) {
+    const size_t comma = line.find(',');
+    ASSERT_NE(comma, std::string::npos) << line;
+    names += (names.empty() ? "" : ",") + line.substr(0, comma);
+    unit[line.substr(0, comma)] = line.substr(comma + 1);
+    EXPECT_FALSE(line.substr(comma + 1).empty()) << line;
+  }
+  EXPECT_EQ(names, header);
+  EXPECT_EQ(unit["t"], "s");
+  EXPECT_EQ(unit["driver.omega"], "rad/s");
+  EXPECT_EQ(unit["driver.torque"], "N·m");
+  EXPECT_EQ(unit["driver.creep"], "1");
+  EXPECT_EQ(unit["span_driver_driven.tension"], "N");
 }
 
 TEST(Outputs, ACheckpointResumedTwiceIsRefusedTheSecondTime) {
