@@ -55,6 +55,20 @@ class ConsoleAndPage(unittest.TestCase):
         c.request("GET", "/events?token=" + live.token)
         return live, c, live.statuses(c.getresponse())
 
+    def paused_mid_run(self, prefix, stdout, commands):
+        """a console given `commands` (its input then closed), its page, and the run the commands
+        start paused from the page once it has a sample: (folder, process, page, connection,
+        statuses, the status "paused at t = ... s")"""
+        d, proc = self.console(prefix, stdout)
+        proc.stdin.write(commands)
+        proc.stdin.close()
+        live, c, it = self.page(proc)
+        for _ in it:
+            if live.t:
+                break
+        self.assertEqual(live.post("do=pause")[0], 202)
+        return d, proc, live, c, it, live.wait_status(it, "paused at t = ")
+
     def replay(self, d, session):
         """session (relative to d) run alone in d/replay, which it returns"""
         r = os.path.join(d, "replay")
@@ -66,16 +80,10 @@ class ConsoleAndPage(unittest.TestCase):
         return r
 
     def test_page_changes_in_events_and_session(self):
-        d, proc = self.console("beltsim_live_console_", subprocess.DEVNULL)
         # the console's commands are waiting on its input before the page does anything
-        proc.stdin.write(b"sim:run_to(0.6)\nsim:set_torque('driven', -30)\n")
-        proc.stdin.close()
-        live, c, it = self.page(proc)
-        for _ in it:
-            if live.t:
-                break
-        self.assertEqual(live.post("do=pause")[0], 202)
-        paused_at = float(live.wait_status(it, "paused at t = ").split("= ")[1].split(" ")[0])
+        d, proc, live, c, it, paused = self.paused_mid_run("beltsim_live_console_", subprocess.DEVNULL,
+                                                           b"sim:run_to(0.6)\nsim:set_torque('driven', -30)\n")
+        paused_at = float(paused.split("= ")[1].split(" ")[0])
         self.assertEqual(live.post("do=torque&pulley=driven&value=%r" % LOAD)[0], 202)
         self.assertEqual(live.post("do=wet&from=0.1&to=0.3&value=0.05")[0], 202)
         live.wait_status(it, "paused at t = %s s (wet applied)" % status_t(paused_at))
@@ -116,15 +124,8 @@ class ConsoleAndPage(unittest.TestCase):
         session.lua keeps the assignment on the run's last part (`r = sim:run_to(T)`), so that the
         replay exits 0, prints what the console printed and gives its time series byte for byte. It
         was replayed without `r =`: "attempt to index a nil value (global 'r')", exit 1"""
-        d, proc = self.console("beltsim_live_kept_", subprocess.PIPE)
-        proc.stdin.write(b"r = sim:run_to(0.6)\nprint('r', r.t, r.interrupted)\n")
-        proc.stdin.close()
-        live, c, it = self.page(proc)
-        for _ in it:
-            if live.t:
-                break
-        self.assertEqual(live.post("do=pause")[0], 202)
-        paused_at = live.wait_status(it, "paused at t = ")
+        d, proc, live, c, it, paused_at = self.paused_mid_run("beltsim_live_kept_", subprocess.PIPE,
+                                                              b"r = sim:run_to(0.6)\nprint('r', r.t, r.interrupted)\n")
         self.assertEqual(live.post("do=torque&pulley=driven&value=%r" % LOAD)[0], 202)
         live.wait_status(it, paused_at + " (torque applied)")
         self.assertEqual(live.post("do=continue")[0], 202)

@@ -63,9 +63,9 @@ BATCH = ("local next_t = 0\n" + WAIT +
 MINIMAL = two_pulley(60) + "drive:run { t_end = 0.1 }\n"
 
 
-def on_terminal(argv, cwd, timeout=120):
-    """Runs argv with a pseudo-terminal as its stdin, stdout and stderr; returns (exit status, the
-    bytes written, as text)."""
+def spawn_on_terminal(argv, cwd):
+    """Starts argv with a pseudo-terminal as its stdin, stdout and stderr; returns (pid, the
+    terminal's descriptor)."""
     pid, fd = pty.fork()
     if pid == 0:
         try:
@@ -75,7 +75,13 @@ def on_terminal(argv, cwd, timeout=120):
             os.write(2, ("cannot start %s: %s\n" % (argv[0], e)).encode())
         finally:
             os._exit(127)
-    raw, deadline = b"", time.monotonic() + timeout
+    return pid, fd
+
+
+def read_to_end(pid, fd, raw=b"", timeout=120):
+    """Reads the terminal until the child closes it (or timeout), then reaps the child; returns
+    (exit status, raw and what followed it, as text)."""
+    deadline = time.monotonic() + timeout
     while time.monotonic() < deadline:
         try:
             data = os.read(fd, 65536)
@@ -87,6 +93,13 @@ def on_terminal(argv, cwd, timeout=120):
     _, status = os.waitpid(pid, 0)
     os.close(fd)
     return os.waitstatus_to_exitcode(status), raw.decode("utf-8", "replace")
+
+
+def on_terminal(argv, cwd, timeout=120):
+    """Runs argv on a pseudo-terminal (spawn_on_terminal); returns (exit status, the bytes written,
+    as text)."""
+    pid, fd = spawn_on_terminal(argv, cwd)
+    return read_to_end(pid, fd, timeout=timeout)
 
 
 def progress_texts(raw):
@@ -135,29 +148,13 @@ class ProgressTest(unittest.TestCase):
         # Ctrl-C (SIGINT) once the progress shows (the run's own code, no Lua code that ^C would
         # interrupt): the line shows where it stopped, not what was left
         path = os.path.join(self.dir, self.script("long.lua", two_pulley(40) + 'drive:run { t_end = 10, out = "long" }\n'))
-        pid, fd = pty.fork()
-        if pid == 0:
-            try:
-                os.chdir(self.dir)
-                os.execve(BELTSIM, [BELTSIM, "run", path], child_env(self.dir))
-            finally:
-                os._exit(127)
+        pid, fd = spawn_on_terminal([BELTSIM, "run", path], self.dir)
         raw, deadline = b"", time.monotonic() + 60
         while b"beltsim: t = " not in raw and time.monotonic() < deadline:
             raw += os.read(fd, 65536)
         os.write(fd, b"\x03")
-        while True:
-            try:
-                data = os.read(fd, 65536)
-            except OSError:
-                break
-            if not data:
-                break
-            raw += data
-        _, status = os.waitpid(pid, 0)
-        os.close(fd)
-        text = raw.decode("utf-8", "replace")
-        self.assertEqual(os.waitstatus_to_exitcode(status), 130, text)
+        code, text = read_to_end(pid, fd, raw)
+        self.assertEqual(code, 130, text)
         drawn = progress_texts(text)
         self.assertRegex(drawn[-1], r"^beltsim: t = [0-9.]+ s of 10 s \(\d+ %\), [0-9]+ s elapsed, [0-9]+ steps$")
         self.assertRegex(text, r"\nbeltsim: run stopped at t = [0-9.]+ s of 10 s \([0-9]+ steps, [0-9.]+ s\): long/\r\n")
