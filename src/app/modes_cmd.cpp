@@ -13,6 +13,7 @@
 #include "plot/campbell_plot.hpp"
 #include "render/mode_frames.hpp"
 #include "script/docall.hpp"
+#include "script/interpreter.hpp"
 #include "script/signals.hpp"
 #include "sim/campbell.hpp"
 #include "sim/mode_check.hpp"
@@ -287,7 +288,7 @@ int cmd_modes(const std::string& script, const script::Overrides& o, const scrip
     const script::Interruptible on_signal(lua);
     const script::Captured cap = capture_first_run(lua, script, o, "modes", false);
     RunSettings rs = cap.settings;
-    rs.out_dir = o.has("out") ? o.run.out_dir : (fs::path("out") / fs::path(script).stem() / "modes").string();
+    rs.out_dir = o.has("out") ? o.run.out_dir : (fs::path(script::default_out_dir(script)) / "modes").string();
     if (raw.campbell) return campbell_modes(script, *cap.scene, rs, raw, form, ms);
     return point_modes(script, *cap.scene, rs, raw, form, ms);
   } catch (const UsageError&) {

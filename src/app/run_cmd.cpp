@@ -7,6 +7,7 @@
 #include "plot/wp_plot.hpp"
 #include "script/console.hpp"
 #include "script/docall.hpp"
+#include "script/interpreter.hpp"
 #include "script/signals.hpp"
 
 namespace beltsim::app {
@@ -64,7 +65,7 @@ int cmd_wp(const std::string& script, const script::Overrides& o, const script::
     const script::Interruptible on_signal(lua);
     const script::Captured cap = capture_first_run(lua, script, o, "wp", true);
     wps.base = cap.settings;
-    wps.base.out_dir = o.has("out") ? o.run.out_dir : (fs::path("out") / fs::path(script).stem() / "wp").string();
+    wps.base.out_dir = o.has("out") ? o.run.out_dir : (fs::path(script::default_out_dir(script)) / "wp").string();
     const WpResult r = work_precision(*cap.scene, wps, &stop_flag());
     const std::string png = (fs::path(wps.base.out_dir) / "wp.png").string();
     std::string drawn;

@@ -16,6 +16,7 @@
 #include "io/csv_writer.hpp"
 #include "io/output_dir.hpp"
 #include "script/docall.hpp"
+#include "script/interpreter.hpp"
 #include "script/script_args.hpp"
 #include "script/signals.hpp"
 #include "script/sweep_run.hpp"
@@ -154,7 +155,7 @@ void check_same_study(const std::string& dir, const std::vector<beltsim::sweep::
 
 int sweep(const std::string& file, const Raw& raw, const script::Safety& s) {
   namespace sw = beltsim::sweep;
-  const std::string dir = raw.out ? *raw.out : (fs::path("out") / fs::path(file).stem()).string();
+  const std::string dir = raw.out ? *raw.out : script::default_out_dir(file);
   const std::string name = fs::path(file).stem().string();
   const bool quick = !raw.set.empty();
   const int jobs = raw.jobs ? whole_number("--jobs", *raw.jobs, 1) : processors();

@@ -20,6 +20,7 @@
 #include "script/console_session.hpp"
 #include "script/context.hpp"
 #include "script/docall.hpp"
+#include "script/interpreter.hpp"
 #include "script/limits.hpp"
 #include "script/live_feed.hpp"
 #include "script/progress.hpp"
@@ -138,10 +139,7 @@ int run_console(const std::optional<std::string>& script, const std::vector<std:
   // the folder session.lua goes to (the runs' default: out/<script name>, or out/console): one that
   // holds a study of `beltsim sweep` is refused before the script runs, as a run into it is
   // (sweep::study_folder_refusal); session.lua among the study's points was read for part of it
-  const std::string session_dir = o.has("out") ? o.run.out_dir
-                                  : script
-                                      ? (std::filesystem::path("out") / std::filesystem::path(*script).stem()).string()
-                                      : "out/console";
+  const std::string session_dir = o.has("out") ? o.run.out_dir : script ? default_out_dir(*script) : "out/console";
   if (const std::vector<std::string> names = sweep::study_parameters(session_dir); !names.empty()) {
     std::string varied;
     for (const std::string& n : names) varied += (varied.empty() ? "" : ", ") + n;

@@ -94,10 +94,14 @@ std::vector<std::string> Interpreter::unread_args(const std::string& script) con
 void Interpreter::interrupt() { script::interrupt(*limits_); }
 const std::vector<LoadedFile>& Interpreter::loaded_files() const { return ctx_->loaded; }
 
+std::string default_out_dir(const std::string& script) {
+  return (std::filesystem::path("out") / std::filesystem::path(script).stem()).string();
+}
+
 void Interpreter::run_file(const std::string& path, int nresults) {
   Context* ctx = ctx_.get();
   const std::filesystem::path p(path);
-  ctx->default_out = (std::filesystem::path("out") / p.stem()).string();
+  ctx->default_out = default_out_dir(path);
   ctx->script_dir = p.has_parent_path() ? p.parent_path().string() : ".";
   ctx->script = path;
   ctx->interrupted = false;

@@ -48,6 +48,10 @@ struct ScriptError : std::runtime_error {
   std::string traceback;
 };
 
+// the folder a script's outputs go to unless told otherwise: out/<the script's name without .lua>
+// (a run's, a console session's, a sweep's; wp and modes use a folder inside it)
+std::string default_out_dir(const std::string& script);
+
 class Interpreter {
  public:
   explicit Interpreter(const Safety& safety = {});
