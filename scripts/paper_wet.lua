@@ -34,7 +34,7 @@ local result = drive:run {
   probe = {l_p + 0.1, 0.0},
   -- the friction force each element feels (along the travel: positive where the pulley drives
   -- the belt) shows where the belt grips; the wet half is marked blue along its back, the
-  -- elements that slip orange along their inside
+  -- elements that slip magenta along their inside
   frames = {
     fps = 30, slowdown = 10, size = {1280, 720},
     quantity = "friction", range = {-100, 100},

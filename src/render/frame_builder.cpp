@@ -27,6 +27,8 @@ constexpr Rgba kRim{0.42f, 0.43f, 0.46f, 1};
 constexpr Rgba kSpoke{0.58f, 0.59f, 0.62f, 1};
 constexpr Rgba kMarker{0.80f, 0.10f, 0.12f, 1};
 constexpr Rgba kEdge{0.15f, 0.15f, 0.17f, 1};
+// [px] the shortest element drawn with dark joints at its ends, and with its own two wet dashes
+constexpr double kJointsShown = 4;
 
 std::string format(const char* f, double v) {
   char b[64];
@@ -291,20 +293,29 @@ void FrameBuilder::build(double t, const double* y, DrawList& out, const Drive* 
     el.centre = P(Cd[i]);
     el.corners[0] = P(A - h * oa), el.corners[1] = P(B - h * ob), el.corners[2] = P(B + h * ob),
     el.corners[3] = P(A + h * oa);
-    // dark edge, then the colour inset by a pixel so the elements read one by one
+    // dark edge, then the colour inset by a pixel so the elements read one by one; elements shorter
+    // than kJointsShown pixels are not told apart: their colours meet end to end (a dark joint every
+    // pixel or two drew a moiré of dashes over a 2 400-element belt, hiding its colours)
     out.band(el.corners[0], el.corners[1], el.corners[2], el.corners[3], kEdge);
-    const double in = std::min(0.9 * px, 0.2 * h), along = std::min(0.6 * px, 0.2 * len);
+    const double in = std::min(0.9 * px, 0.2 * h),
+                 along = len >= kJointsShown * px ? std::min(0.6 * px, 0.2 * len) : 0.0;
     out.band(P(A + along * d - (h - in) * oa), P(B - along * d - (h - in) * ob), P(B - along * d + (h - in) * ob),
              P(A + along * d + (h - in) * oa), el.colour);
     // a wet element: two dashes along its back, a broken line no colour map's fill is (the slip
     // map's blue beside a solid blue band read alike)
-    if (el.wet)
+    // (shorter elements: one dash over `run` elements, then a gap of as many, `run` elements kJointsShown pixels
+    // long, the dashes travelling with the belt)
+    const int run = len >= kJointsShown * px ? 1 : static_cast<int>(std::ceil(kJointsShown * px / std::max(len, 1e-3 * px)));
+    if (el.wet && run == 1)
       for (const auto& [s0, s1] : {std::pair{0.08, 0.42}, std::pair{0.58, 0.92}}) {
         const Vec2 a = A + s0 * (B - A), b = A + s1 * (B - A);
         const Vec2 oa0 = (oa + s0 * (ob - oa)).normalized(), ob0 = (oa + s1 * (ob - oa)).normalized();
         out.band(P(a + (h + 0.3 * px) * oa0), P(b + (h + 0.3 * px) * ob0), P(b + (h + band_w) * ob0),
                  P(a + (h + band_w) * oa0), kWet);
       }
+    if (el.wet && run > 1 && (i / run) % 2 == 0)
+      out.band(P(A + (h + 0.3 * px) * oa), P(B + (h + 0.3 * px) * ob), P(B + (h + band_w) * ob), P(A + (h + band_w) * oa),
+               kWet);
     if (el.slipping)
       out.band(P(A - (h + band_w) * oa), P(B - (h + band_w) * ob), P(B - (h + 0.3 * px) * ob),
                P(A - (h + 0.3 * px) * oa), kSlip);

@@ -207,6 +207,32 @@ TEST_F(Golden, ShiftedElementFails) {
   std::printf("shifted element: %ld pixels differ\n", c.bad);
 }
 
+// A belt of 2 400 elements, a quarter of a pixel each at this size: the colour the elements carry
+// is what the belt shows, not the dark joints between them (drawn at every element they covered
+// the belt with a moiré of dashes: the pixels at the elements' centres were the joints' colour
+// almost everywhere). Each element's centre pixel is within 40 levels of its colour.
+TEST_F(Golden, FineBeltShowsItsColours) {
+  SceneDef def = presets::paper_dry();
+  def.belt.elements = 2400;
+  const Scene sc = test::moving_scene(def);
+  const FrameSettings fs = settings(FrameQuantity::tension);
+  FrameBuilder b(sc, fs, font_);
+  DrawList dl;
+  const Eigen::VectorXd y = test::moving_state(sc);
+  b.build(0.25, y.data(), dl);
+  Image img;
+  gl_->render(dl, img);
+  int near = 0;
+  for (const ElementDraw& el : dl.elements) {
+    const std::uint8_t* p = img.pixel(static_cast<int>(el.centre.x()), static_cast<int>(el.centre.y()));
+    const float c[3] = {el.colour.r, el.colour.g, el.colour.b};
+    bool close = true;
+    for (int k = 0; k < 3; ++k) close = close && std::abs(p[k] - 255.0 * c[k]) <= 40;
+    near += close;
+  }
+  EXPECT_GE(near, 0.9 * static_cast<double>(dl.elements.size())) << near << " of " << dl.elements.size();
+}
+
 // The second backend (EGL on Mesa's surfaceless platform, for Mesa >= 25.1 without OSMesa) draws
 // the same pixels as OSMesa (both are llvmpipe here: measured identical). Skipped, saying why,
 // where no EGL context can be made.
