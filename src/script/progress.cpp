@@ -57,6 +57,13 @@ void before_stdout() {
   if (g_open.load() && same_terminal()) end_progress_line();
 }
 
+void before_write(std::FILE* f) {
+  if (f == stdout)
+    before_stdout();
+  else if (f == stderr)
+    end_progress_line();
+}
+
 std::string run_end_text(double t, double t_end, bool interrupted, long steps, double wall,
                          const std::string& out_dir) {
   // two digits of a short run's wall time (0.034 s, 5.2 s, 46 s), minutes as the progress line has them

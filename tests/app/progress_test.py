@@ -51,6 +51,20 @@ LIVE = (two_pulley(40) + WAIT +
         "sim:run_to(0.2)\n"
         "sim:close()\n")
 
+# a live simulation whose callback writes with io.write 1.5 s into the run, with io.stdout:write 1 s
+# later and with io.stderr:write 1 s after that, while the progress line is showing
+WRITES = (two_pulley(40) + WAIT +
+          'local sim = drive:start { out = "writes" }\n'
+          "local c0, written = os.clock(), 0\n"
+          "sim:every(0.001, function()\n"
+          "  wait(0.02)\n"
+          "  if written == 0 and os.clock() - c0 > 1.5 then written = 1; io.write('written by io.write', '\\n') end\n"
+          "  if written == 1 and os.clock() - c0 > 2.5 then written = 2; io.stdout:write('written to io.stdout\\n') end\n"
+          "  if written == 2 and os.clock() - c0 > 3.5 then written = 3; io.stderr:write('written to io.stderr\\n') end\n"
+          "end)\n"
+          "sim:run_to(0.25)\n"
+          "sim:close()\n")
+
 # a batch run whose driver's torque law waits 20 ms once per ms of simulated time: 0.15 s simulated
 # take 3 s at least
 BATCH = ("local next_t = 0\n" + WAIT +
@@ -132,6 +146,20 @@ class ProgressTest(unittest.TestCase):
         self.assertTrue(re.search(r"beltsim: t = [^\n]*\n[^\n]*scene defaults", raw[printed:]), raw)
         # and the progress line goes on below them
         self.assertGreater(raw.rfind("beltsim: t = "), noted, raw)
+
+    def test_a_scripts_writes_start_their_own_line(self):
+        # io.write and a file's write to stdout or stderr, as print: each after a progress line
+        # drawn, at the start of a line of its own, and the progress goes on below them
+        code, raw = on_terminal([BELTSIM, "run", self.script("writes.lua", WRITES)], self.dir)
+        self.assertEqual(code, 0, raw)
+        last = 0
+        for text in ["written by io.write", "written to io.stdout", "written to io.stderr"]:
+            at = raw.find(text)
+            self.assertGreater(at, last, "%s missing or out of order: %r" % (text, raw))
+            self.assertRegex(raw[last:at + len(text)], r"beltsim: t = [^\r\n]*steps *\r?\n" + re.escape(text) + "$",
+                             "%s does not follow a progress line, on a line of its own: %r" % (text, raw))
+            last = at
+        self.assertGreater(raw.rfind("beltsim: t = "), last, raw)
 
     def test_the_progress_line_shows_the_end(self):
         for name, text in [("live.lua", LIVE.replace("sim:run_to(0.2)", "sim:run_to(0.15)")), ("batch.lua", BATCH)]:
