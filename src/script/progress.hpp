@@ -58,8 +58,24 @@ void before_stdout();
 // the progress line's own, the line is ended first; to any other file nothing
 void before_write(std::FILE* f);
 
-// the line scene:run{} says when it ends (lua_scene_run.cpp): "run ended at t = 0.1 s (1234 steps,
-// 0.8 s): out/my/", "run stopped at ..." for a run Ctrl-C stopped
-std::string run_end_text(double t, double t_end, bool interrupted, long steps, double wall, const std::string& out_dir);
+// How a run ended, as it says so: a scene:run{} as it returns (lua_scene_run.cpp), a live
+// simulation as sim:close() closes it (lua_sim.cpp)
+struct RunEnd {
+  std::string warning_summary;  // Simulation::warning_summary
+  std::string check_line;       // Simulation::check_line
+  bool check_warns = false;     // the check's estimate is past the contract's bounds
+  std::string unapplied;        // Simulation::unapplied_warnings
+  bool closing_line = true;     // the line below is said (progress on, and it ran)
+  double t = 0, t_end = 0;      // [s] where it ended, and the time it was to reach
+  bool stopped = false;         // stopped short of t_end (Ctrl-C, SIGTERM, the live view, max_wall)
+  long steps = 0;
+  double wall = 0;  // [s]
+  std::string out_dir;
+};
+// says, each on stderr on a line of its own, the run's fallbacks, its check, the start's warnings
+// that did not apply (each when there is one) and last its closing line: "beltsim: run ended at t =
+// 0.1 s (1234 steps, 0.8 s): out/my/", "beltsim: run stopped at t = 0.4 s of 1 s (...)" for a run
+// stopped short
+void say_run_end(const RunEnd& end);
 
 }  // namespace beltsim::script
