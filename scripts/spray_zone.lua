@@ -40,7 +40,4 @@ sim:every(0.1, function(s)
     s.t, s:pulley("driver").omega, s:pulley("driven").omega, z.on and "on " or "off", z.inside, z.drying))
 end)
 sim:run_to(1.2)
-local st = sim:stats()
-print(string.format("%d steps, %.1f s wall; time series %s/timeseries.csv, spray on/off in events.csv",
-  st.steps, st.wall, st.out))
-sim:close()
+sim:close()  -- says where the run ended, its steps, wall time and folder; the spray's on and off are in events.csv

@@ -133,6 +133,19 @@ std::vector<std::string> state_files(const std::vector<std::string>& given) {
   return files;
 }
 
+// what a state's picture is drawn from (render::render_snapshot, FrameSink::frame), taken from its
+// checkpoint, which is read once; the scene is the first state's, every other one's checked to be
+// the same
+struct StateToDraw {
+  double t = 0;
+  Eigen::VectorXd y;
+  Drive drive;
+  Observation obs;
+};
+StateToDraw to_draw(const Simulation& s) {
+  return {s.now(), s.state(), s.drive(), s.observation()};
+}
+
 }  // namespace
 
 int cmd_render(const RenderOptions& o) {
@@ -172,26 +185,27 @@ int cmd_render(const RenderOptions& o) {
                          ": width and height must be even for --video (H.264 in yuv420p)");
       }
     }
-    // every state read and checked before anything is written: a state of another scene among
-    // them left the PNGs before it, or a video of one frame, behind a failed render
+    // every state read (once) and checked before anything is written: a state of another scene
+    // among them left the PNGs before it, or a video of one frame, behind a failed render
+    std::vector<StateToDraw> states{to_draw(*first)};
     for (size_t k = 1; k < files.size(); ++k) {
       const std::unique_ptr<Simulation> s = Simulation::open_checkpoint(files[k]);
       if (const std::string d = scene_difference(s->scene(), first->scene()); !d.empty())
         throw std::runtime_error(files[k] + ": a state of another scene than " + files.front() + "'s (its " + d +
                                  " differs; one render draws the states of one scene)");
+      states.push_back(to_draw(*s));
     }
     if (o.video) video = render::make_frame_recorder(first->scene(), v);
     for (size_t k = 0; k < files.size(); ++k) {
-      std::unique_ptr<Simulation> other = k == 0 ? nullptr : Simulation::open_checkpoint(files[k]);
-      const Simulation& s = k == 0 ? *first : *other;
+      const StateToDraw& s = states[k];
       if (o.out) {
         const std::string png =
             several ? (std::filesystem::path(*o.out) / std::filesystem::path(files[k]).stem()).string() + ".png"
                     : *o.out;
-        render::render_snapshot(s.scene(), f, s.now(), s.state().data(), s.drive(), png, &s.observation());
+        render::render_snapshot(first->scene(), f, s.t, s.y.data(), s.drive, png, &s.obs);
         std::printf("%s\n", png.c_str());
       }
-      if (video) video->frame(s.now(), s.state().data(), s.drive(), &s.observation());
+      if (video) video->frame(s.t, s.y.data(), s.drive, &s.obs);
     }
     if (video) {
       std::unique_ptr<FrameSink> done = std::move(video);

@@ -38,9 +38,10 @@ std::string said(const BeneathError& e) {
   return e.reason();
 }
 
-void check_name(const std::string& dir, const std::string& name) {
+// `shown`: the file as messages name it (OutputDir::file)
+void check_name(const std::string& shown, const std::string& name) {
   if (name.empty() || name == "." || name == ".." || name.find('/') != std::string::npos)
-    output_error(dir + "/" + name, "not a file name");
+    output_error(shown, "not a file name");
 }
 
 constexpr const char* kThisBeltsim = "another simulation of this beltsim";
@@ -102,7 +103,8 @@ void mark_output_failure_shown(const std::string& message) {
 
 OutputDir::OutputDir(const std::string& path, bool make) : OutputDir(path, make, nullptr) {}
 
-OutputDir::OutputDir(const std::string& path, bool make, const std::string* shown) : path_(trimmed_path(path)) {
+OutputDir::OutputDir(const std::string& path, bool make, const std::string* shown)
+    : path_(trimmed_path(path)), bare_(path.empty()) {
   BeneathError e;
   fd_ = folder_path(path_, make, &e);
   if (fd_ >= 0) return;
@@ -115,13 +117,14 @@ OutputDir::OutputDir(const std::string& path, bool make, const std::string* show
 
 OutputDir::OutputDir(const OutputDir& parent, const std::string& name) {
   path_ = parent.file(name);
-  check_name(parent.path_, name);
+  check_name(path_, name);
   BeneathError e;
   fd_ = folder_at(parent.fd_, name, true, &e);
   if (fd_ < 0) output_error(path_, said(e));
 }
 
-OutputDir::OutputDir(OutputDir&& o) noexcept : path_(std::move(o.path_)), fd_(o.fd_), lock_fd_(o.lock_fd_) {
+OutputDir::OutputDir(OutputDir&& o) noexcept
+    : path_(std::move(o.path_)), bare_(o.bare_), fd_(o.fd_), lock_fd_(o.lock_fd_) {
   o.fd_ = o.lock_fd_ = -1;
 }
 
@@ -129,7 +132,7 @@ OutputDir& OutputDir::operator=(OutputDir&& o) noexcept {
   if (this != &o) {
     unlock();
     if (fd_ >= 0) ::close(fd_);
-    path_ = std::move(o.path_);
+    path_ = std::move(o.path_), bare_ = o.bare_;
     fd_ = o.fd_, lock_fd_ = o.lock_fd_;
     o.fd_ = o.lock_fd_ = -1;
   }
@@ -143,6 +146,7 @@ OutputDir::~OutputDir() {
 }
 
 std::string OutputDir::file(std::string_view name) const {
+  if (bare_) return std::string(name);  // a file given by its bare name, as given ("taken.csv", not "./taken.csv")
   std::string f = path_;
   if (f != "/") f += '/';
   f.append(name);
@@ -156,7 +160,7 @@ int OutputDir::open_file(const std::string& name, bool append) const {
 }
 
 int OutputDir::open_own(const std::string& name, int flags, bool empty) const {
-  check_name(path_, name);
+  check_name(file(name), name);
   FileMode m;
   m.read = (flags & O_ACCMODE) == O_RDWR;
   m.write = m.create = true;
@@ -279,7 +283,7 @@ OutputPlace output_place(const std::string& path) {
 // ---- files written whole ---------------------------------------------------------------------------
 
 WholeFile::WholeFile(const OutputDir& dir, std::string name) : dir_(dir), name_(std::move(name)) {
-  check_name(dir_.path(), name_);
+  check_name(path(), name_);
   struct stat st {};
   if (::fstatat(dir_.fd(), name_.c_str(), &st, AT_SYMLINK_NOFOLLOW) == 0) {
     if (S_ISLNK(st.st_mode)) output_error(path(), kLink);

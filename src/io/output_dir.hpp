@@ -36,8 +36,9 @@ void mark_output_failure_shown(const std::string& message);
 
 class OutputDir {
  public:
-  // the folder PATH ("" is "."), made with its missing parents unless !make; refused when its
-  // last component is a symbolic link or not a folder (output_error)
+  // the folder PATH ("" is ".", whose files file() names by their bare names, as a path without a
+  // folder gives them), made with its missing parents unless !make; refused when its last
+  // component is a symbolic link or not a folder (output_error)
   explicit OutputDir(const std::string& path, bool make = true);
   // the same for the file `shown` (its errors name it)
   OutputDir(const std::string& path, bool make, const std::string* shown);
@@ -51,7 +52,7 @@ class OutputDir {
 
   const std::string& path() const { return path_; }
   int fd() const { return fd_; }
-  // PATH/NAME, for messages
+  // PATH/NAME, for messages (NAME alone in the folder "")
   std::string file(std::string_view name) const;
 
   // a descriptor (O_WRONLY | O_CLOEXEC, the caller closes it) writing NAME, created when missing:
@@ -85,6 +86,7 @@ class OutputDir {
   OutputDir() = default;
   int open_own(const std::string& name, int flags, bool empty) const;
   std::string path_;
+  bool bare_ = false;  // given as "": the working folder of a path without a folder (file())
   int fd_ = -1;
   int lock_fd_ = -1;
 };

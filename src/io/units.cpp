@@ -3,6 +3,9 @@
 #include <array>
 #include <utility>
 
+#include "io/csv_writer.hpp"
+#include "io/output_dir.hpp"
+
 namespace beltsim {
 
 namespace {
@@ -83,11 +86,29 @@ constexpr std::array<std::pair<std::string_view, double>, 9> kScales{{
 
 }  // namespace
 
-std::string header_unit(std::string_view header) {
+std::optional<std::string> bracketed_unit(std::string_view header) {
   const std::size_t open = header.rfind('[');
   if (!header.empty() && header.back() == ']' && open != std::string_view::npos)
     return typed_unit(header.substr(open + 1, header.size() - open - 2));
+  return std::nullopt;
+}
+
+std::string header_unit(std::string_view header) {
+  if (std::optional<std::string> u = bracketed_unit(header)) return *u;
   return unit_of(header);
+}
+
+std::string units_file_name(const std::string& csv) {
+  const std::string stem =
+      csv.size() > 4 && csv.compare(csv.size() - 4, 4, ".csv") == 0 ? csv.substr(0, csv.size() - 4) : csv;
+  return stem + "_units.csv";
+}
+
+void write_units_file(const OutputDir& dir, const std::string& csv, const ColumnUnits& columns) {
+  std::string text = "column,unit\n";
+  for (const auto& [column, unit] : columns)
+    text += csv_text(column) + "," + (unit ? csv_text(unit->empty() ? "1" : *unit) : std::string()) + "\n";
+  write_file_whole(dir, units_file_name(csv), text);
 }
 
 double unit_scale(std::string_view unit) {

@@ -6,16 +6,32 @@
 // dimensionless quantity (μ) and for a name the table does not know.
 #pragma once
 
+#include <optional>
 #include <string>
 #include <string_view>
+#include <utility>
+#include <vector>
 
 namespace beltsim {
 
+class OutputDir;
+
 std::string unit_of(std::string_view column);
 
-// the unit a CSV header names: the one between brackets at its end ("hub load [N]" -> "N"),
-// else unit_of(header)
+// the unit a CSV header names between brackets at its end ("hub load [N]" -> "N", typed_unit's
+// form); nullopt when it names none
+std::optional<std::string> bracketed_unit(std::string_view header);
+// the unit a CSV header names: bracketed_unit's, else unit_of(header)
 std::string header_unit(std::string_view header);
+
+// A CSV file's units file beside it, for a reader given the folder alone (pandas, MATLAB): named
+// after the file ("timeseries.csv" -> "timeseries_units.csv"; units_file_name), written whole, a
+// header "column,unit" and a row per column in the file's order: its unit as unit_of gives it,
+// "1" for a dimensionless number, empty for a column that has none (text, or a sweep's figure
+// whose unit is not known: nullopt). docs/outputs.md, docs/sweeps.md
+using ColumnUnits = std::vector<std::pair<std::string, std::optional<std::string>>>;
+std::string units_file_name(const std::string& csv);
+void write_units_file(const OutputDir& dir, const std::string& csv, const ColumnUnits& columns);
 
 // a magnitude typical of the unit in a belt drive, from a car's accessory drive to an
 // industrial one: `beltsim compare` takes rtol times it as a column's absolute tolerance, so that

@@ -518,7 +518,6 @@ PlotSpec summary_spec(const std::string& csv_path, const std::vector<std::string
   // a sweep's parameters and figures are its own names: their unit is the one a header gives in
   // brackets ("hub load [N]"), else not known (unit_of's table would read "slip" as an element's,
   // m/s, for a user's difference of speeds)
-  auto bracketed = [](const std::string& h) { return !h.empty() && h.back() == ']'; };
   spec.x_label = columns[0];
   const std::filesystem::path cp(csv_path);
   spec.title = cp.has_parent_path() && cp.parent_path().has_filename()
@@ -526,9 +525,9 @@ PlotSpec summary_spec(const std::string& csv_path, const std::vector<std::string
                    : cp.filename().string();
   for (size_t k = 1; k < columns.size(); ++k) {
     const std::string& h = columns[k];
-    const bool known = bracketed(h);
-    const std::string name = known ? trim(h.substr(0, h.rfind('['))) : h;  // the unit drawn once
-    spec.series.push_back(Series{name, known ? header_unit(h) : "", x, table.column(h), !known});
+    const std::optional<std::string> unit = bracketed_unit(h);
+    const std::string name = unit ? trim(h.substr(0, h.rfind('['))) : h;  // the unit drawn once
+    spec.series.push_back(Series{name, unit.value_or(""), x, table.column(h), !unit});
   }
   return spec;
 }

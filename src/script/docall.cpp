@@ -67,6 +67,17 @@ bool docall(lua_State* L, int nargs, int nresults, CallError* error, const std::
   return false;
 }
 
+int call_original(lua_State* L, const char* what) {
+  lua_pushvalue(L, lua_upvalueindex(1));
+  lua_insert(L, 1);
+  CallError e;
+  if (docall(L, lua_gettop(L) - 1, LUA_MULTRET, &e, what)) return lua_gettop(L);
+  luaL_where(L, 1);
+  lua_pushstring(L, e.message.c_str());
+  lua_concat(L, 2);
+  return lua_error(L);
+}
+
 std::string shown_traceback(const std::string& traceback, int frames) {
   std::istringstream in(traceback);
   std::string line, out;

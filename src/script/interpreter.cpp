@@ -35,6 +35,35 @@ int l_print(lua_State* L) {
   return 0;
 }
 
+// io.write(...) and file:write(...), Lua's own (upvalue 1; upvalue 2 true for the method), as
+// print: a progress line open on the terminal is ended first when the file written is stdout or
+// stderr (progress.hpp, before_write). The file and the values are checked here as Lua's write
+// checks them, so that a wrong one is named as the script called it ("bad argument #1 to
+// 'write'"); a closed file is left to Lua's write to refuse
+int l_write(lua_State* L) {
+  const bool method = lua_toboolean(L, lua_upvalueindex(2));
+  const luaL_Stream* file = nullptr;
+  if (method) {
+    file = static_cast<const luaL_Stream*>(luaL_checkudata(L, 1, LUA_FILEHANDLE));
+  } else {
+    lua_getfield(L, LUA_REGISTRYINDEX, "_IO_output");  // io.output()'s file, where liolib keeps it
+    file = static_cast<const luaL_Stream*>(luaL_testudata(L, -1, LUA_FILEHANDLE));
+    lua_pop(L, 1);
+  }
+  for (int i = method ? 2 : 1; i <= lua_gettop(L); ++i)
+    if (lua_type(L, i) != LUA_TNUMBER) luaL_checklstring(L, i, nullptr);
+  if (file && file->closef) before_write(file->f);
+  return call_original(L, method ? "write" : "io.write");
+}
+
+// t[name] = l_write over t[name] (method: a file's write); t on the stack top
+void wrap_write(lua_State* L, const char* name, bool method) {
+  lua_getfield(L, -1, name);
+  lua_pushboolean(L, method);
+  lua_pushcclosure(L, l_write, 2);
+  lua_setfield(L, -2, name);
+}
+
 }  // namespace
 
 Interpreter::Interpreter(const Safety& safety)
@@ -57,6 +86,14 @@ Interpreter::Interpreter(const Safety& safety)
   lua_getglobal(L_, "print");
   lua_pushcclosure(L_, l_print, 1);
   lua_setglobal(L_, "print");
+  // io.write and the files' write as print (io.stdout:write, io.stderr:write)
+  lua_getglobal(L_, LUA_IOLIBNAME);
+  wrap_write(L_, "write", false);
+  lua_pop(L_, 1);
+  luaL_getmetatable(L_, LUA_FILEHANDLE);
+  lua_getfield(L_, -1, "__index");
+  wrap_write(L_, "write", true);
+  lua_pop(L_, 2);
   guard_limits(L_);  // also trusted: the limits hold for every script
   ctx_->law_host->L = L_;
   open_beltsim(L_, ctx_.get());

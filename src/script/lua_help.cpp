@@ -107,7 +107,8 @@ const std::vector<HelpEntry>& api_help() {
       {"serve", "sim:serve{ port = 0, host = \"127.0.0.1\" } -> url",
        "the live view of this simulation in a browser, until it closes; a port in use is refused, naming it "
        "(docs/live-view.md)"},
-      {"close", "sim:close()", "flushes the CSV files and finalises the video"},
+      {"close", "sim:close()",
+       "flushes the CSV files and finalises the video; a simulation that ran says where it ended, as scene:run does"},
       {"rpm", "beltsim.rpm(n) -> [rad/s]", "revolutions per minute to rad/s"},
       {"belts", "beltsim.belts[\"6PK\"] -> { preset, mass_per_length, EA, EI, ... }",
        "a PK belt's values (3PK … 8PK) for the belt table, a new table each time (docs/belts.md)"},

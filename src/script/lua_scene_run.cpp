@@ -84,13 +84,14 @@ int l_scene_run(lua_State* L) {
   if (ctx->serve) ctx->serve->refuse_controls("no simulation to change (the run has ended)");
   if (!error.empty()) fail_at(L, about, error);
   if (res.interrupted) ctx->interrupted = true;
-  if (!res.warning_summary.empty()) say("beltsim: %s\n", res.warning_summary.c_str());
-  if (!res.check_line.empty()) say("beltsim: %s%s\n", res.check.warns() ? "warning: " : "", res.check_line.c_str());
-  if (!res.unapplied.empty()) say("beltsim: %s\n", res.unapplied.c_str());
-  // the run's last line, said with its progress (progress = false leaves both out): it ended, where, its outputs
-  if (progress)
-    say("beltsim: %s\n",
-        run_end_text(res.t_reached, rs.t_end, res.interrupted, res.work.steps, res.wall_seconds, rs.out_dir).c_str());
+  // the run's last lines; its closing line said with its progress (progress = false leaves both out)
+  RunEnd end;
+  end.warning_summary = res.warning_summary, end.check_line = res.check_line, end.check_warns = res.check.warns();
+  end.unapplied = res.unapplied;
+  end.closing_line = progress;
+  end.t = res.t_reached, end.t_end = rs.t_end, end.stopped = res.interrupted;
+  end.steps = res.work.steps, end.wall = res.wall_seconds, end.out_dir = rs.out_dir;
+  say_run_end(end);
 
   lua_newtable(L);
   lua_pushnumber(L, res.t_reached), lua_setfield(L, -2, "t");

@@ -67,6 +67,7 @@ int run_to(lua_State* L, SimBox& box, double t, const char* what) {
           box.ctx->page_sim = box.sim.get(), box.ctx->page_key = lua_topointer(L, 1), box.ctx->page_ran = true;
         a = feed.run_to(*box.sim, t, line.callback(), "paused");
         line.finish(a.t, a.steps, a.wall);
+        box.last_target = t, box.last_stopped = a.interrupted;
       },
       box.ctx);
   if (a.over_wall_limit) {
@@ -423,7 +424,7 @@ void leave_page(SimBox& box, const char* why) {
   box.ctx->serve->refuse_controls(std::string("no simulation to change (it is ") + why + ")");
 }
 
-// sim:close(): flush the CSV files, finalise the video
+// sim:close(): flush the CSV files, finalise the video, and say how the runs ended (as scene:run{} does)
 int l_close(lua_State* L) {
   SimBox* box = check_box(L, "close");
   check_args(L, "sim:close", {}, 2);
@@ -436,11 +437,17 @@ int l_close(lua_State* L) {
   guarded(L, "sim:close", [&] { box->sim->close(); });
   box->ctx->served.erase(lua_topointer(L, 1));
   box->serve.reset();
+  // what a batch run says as it ends; its closing line when the simulation ran here, with its
+  // progress: where it stands, the steps and wall time of its runs
   if (was_open) {
-    if (const std::string w = box->sim->warning_summary(); !w.empty()) say("beltsim: %s\n", w.c_str());
-    if (const std::string c = box->sim->check_line(); !c.empty())
-      say("beltsim: %s%s\n", box->sim->check_estimate().warns() ? "warning: " : "", c.c_str());
-    if (const std::string u = box->sim->unapplied_warnings(); !u.empty()) say("beltsim: %s\n", u.c_str());
+    const Simulation& s = *box->sim;
+    RunEnd end;
+    end.warning_summary = s.warning_summary(), end.check_line = s.check_line();
+    end.check_warns = s.check_estimate().warns(), end.unapplied = s.unapplied_warnings();
+    end.steps = s.stats().steps - box->steps_before, end.wall = s.wall() - box->wall_before;
+    end.closing_line = box->progress && end.steps > 0;
+    end.t = s.now(), end.t_end = box->last_target, end.stopped = box->last_stopped, end.out_dir = s.out_dir();
+    say_run_end(end);
   }
   box->refs.clear();
   return 0;
@@ -548,6 +555,7 @@ void push_simulation(lua_State* L, std::unique_ptr<Simulation> sim, Context* ctx
   box->sim = std::move(sim);
   box->ctx = ctx;
   box->progress = progress;
+  box->steps_before = box->sim->stats().steps, box->wall_before = box->sim->wall();
   luaL_setmetatable(L, kSimMeta);
   // --serve's page, before a run has fed it, shows the simulation started last (a console's
   // prompt applies the page's changes to it)

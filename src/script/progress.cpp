@@ -57,6 +57,16 @@ void before_stdout() {
   if (g_open.load() && same_terminal()) end_progress_line();
 }
 
+void before_write(std::FILE* f) {
+  if (f == stdout)
+    before_stdout();
+  else if (f == stderr)
+    end_progress_line();
+}
+
+namespace {
+
+// say_run_end's closing line, without "beltsim: "
 std::string run_end_text(double t, double t_end, bool interrupted, long steps, double wall,
                          const std::string& out_dir) {
   // two digits of a short run's wall time (0.034 s, 5.2 s, 46 s), minutes as the progress line has them
@@ -66,6 +76,15 @@ std::string run_end_text(double t, double t_end, bool interrupted, long steps, d
                   " steps, " + w + ")";
   if (!out_dir.empty()) s += ": " + out_dir + (out_dir.back() == '/' ? "" : "/");
   return s;
+}
+
+}  // namespace
+
+void say_run_end(const RunEnd& e) {
+  if (!e.warning_summary.empty()) say("beltsim: %s\n", e.warning_summary.c_str());
+  if (!e.check_line.empty()) say("beltsim: %s%s\n", e.check_warns ? "warning: " : "", e.check_line.c_str());
+  if (!e.unapplied.empty()) say("beltsim: %s\n", e.unapplied.c_str());
+  if (e.closing_line) say("beltsim: %s\n", run_end_text(e.t, e.t_end, e.stopped, e.steps, e.wall, e.out_dir).c_str());
 }
 
 ProgressLine::ProgressLine(bool enabled, long steps_before)

@@ -9,12 +9,13 @@
 //
 // On a terminal the line is written without its end while the run goes on: this file is the one
 // place that knows whether such a line is open. Whatever else is written while it may be (a warning
-// from the run, a note, an error, a script's print when stdout is the same terminal) goes through
-// say() or end_progress_line() first, so that it starts on a line of its own; the progress line is
-// drawn again below it at its next update. Not part of the engine: the engine reports progress
+// from the run, a note, an error, a script's print or io.write when stdout is the same terminal, its
+// io.stderr:write) goes through say() or end_progress_line() first, so that it starts on a line of
+// its own; the progress line is drawn again below it at its next update. Not part of the engine: the engine reports progress
 // through a callback (sim/simulation.hpp RunProgress) and this prints it.
 #pragma once
 
+#include <cstdio>
 #include <string>
 
 #include "sim/simulation.hpp"
@@ -53,9 +54,28 @@ long progress_lines_ended();
 // a print to stdout (Lua's print, a picture's path): the progress line is ended first when stdout
 // is the terminal stderr is
 void before_stdout();
+// a script's write to the file f (io.write, file:write): to stdout as before_stdout(); to stderr,
+// the progress line's own, the line is ended first; to any other file nothing
+void before_write(std::FILE* f);
 
-// the line scene:run{} says when it ends (lua_scene_run.cpp): "run ended at t = 0.1 s (1234 steps,
-// 0.8 s): out/my/", "run stopped at ..." for a run Ctrl-C stopped
-std::string run_end_text(double t, double t_end, bool interrupted, long steps, double wall, const std::string& out_dir);
+// How a run ended, as it says so: a scene:run{} as it returns (lua_scene_run.cpp), a live
+// simulation as sim:close() closes it (lua_sim.cpp)
+struct RunEnd {
+  std::string warning_summary;  // Simulation::warning_summary
+  std::string check_line;       // Simulation::check_line
+  bool check_warns = false;     // the check's estimate is past the contract's bounds
+  std::string unapplied;        // Simulation::unapplied_warnings
+  bool closing_line = true;     // the line below is said (progress on, and it ran)
+  double t = 0, t_end = 0;      // [s] where it ended, and the time it was to reach
+  bool stopped = false;         // stopped short of t_end (Ctrl-C, SIGTERM, the live view, max_wall)
+  long steps = 0;
+  double wall = 0;  // [s]
+  std::string out_dir;
+};
+// says, each on stderr on a line of its own, the run's fallbacks, its check, the start's warnings
+// that did not apply (each when there is one) and last its closing line: "beltsim: run ended at t =
+// 0.1 s (1234 steps, 0.8 s): out/my/", "beltsim: run stopped at t = 0.4 s of 1 s (...)" for a run
+// stopped short
+void say_run_end(const RunEnd& end);
 
 }  // namespace beltsim::script

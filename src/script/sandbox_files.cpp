@@ -228,18 +228,6 @@ int push_file(lua_State* L, const char* what, const char* path, const char* mode
   return err;
 }
 
-// calls the original function (upvalue 1) with the arguments; its error gets the script's file:line
-int call_original(lua_State* L, const char* what) {
-  lua_pushvalue(L, lua_upvalueindex(1));
-  lua_insert(L, 1);
-  CallError e;
-  if (docall(L, lua_gettop(L) - 1, LUA_MULTRET, &e, what)) return lua_gettop(L);
-  luaL_where(L, 1);
-  lua_pushstring(L, e.message.c_str());
-  lua_concat(L, 2);
-  return lua_error(L);
-}
-
 // io.open(path [, mode]): the handle, or nil, "path: reason", errno
 int l_open(lua_State* L) {
   const char* path = luaL_checkstring(L, 1);

@@ -32,6 +32,13 @@ struct SimBox {
   // A Lua userdata is never destroyed: l_gc empties every member that holds memory
   std::set<std::string> pictures;
   bool running = false;  // inside run_to: its callbacks may run Lua code that calls this simulation
+  // what sim:close() says of the simulation's runs here (script/progress.hpp, say_run_end): its
+  // steps and integration wall time when it was handed to the script (from its checkpoint when
+  // resumed), the target of its last run_to and whether that run was stopped short of it
+  long steps_before = 0;
+  double wall_before = 0;
+  double last_target = 0;
+  bool last_stopped = false;
   std::shared_ptr<live::LiveServer> serve;  // sim:serve{}: stops when the simulation closes
 };
 

@@ -26,6 +26,10 @@ namespace beltsim {
 
 namespace {
 
+// snapshots.csv's columns (Outputs::snapshot writes them in this order); pulley and state are text
+constexpr const char* kSnapshotColumns[] = {"t",      "element",  "s",    "x",  "y",      "tension",
+                                            "normal", "friction", "slip", "mu", "pulley", "state"};
+
 // a probe's column prefix: "probe" when the run has one, "probe1", "probe2", ... when more
 std::string probe_name(size_t k, size_t probes) {
   return probes == 1 ? std::string("probe") : "probe" + std::to_string(k + 1);
@@ -213,9 +217,10 @@ void Outputs::open(bool append) {
 std::vector<std::string> Outputs::earlier_outputs() const {
   const FrameSettings* f = sink_ && rs_.frames ? &*rs_.frames : nullptr;
   const struct {
-    const char* name;
+    std::string name;
     bool written;
   } own[] = {{"snapshots.csv", has_snapshots()},
+             {units_file_name("snapshots.csv"), has_snapshots()},
              {"frames.mp4", f && f->video_path == "frames.mp4"},
              {"frames/", f && f->png_dir == "frames"},
              {"states/", rs_.keep_states}};
@@ -243,23 +248,27 @@ std::vector<std::string> Outputs::earlier_outputs() const {
 void Outputs::open_rows(bool append) {
   const OutputDir& dir = *dir_;
   const std::vector<std::string> columns = timeseries_columns(scene_, rs_.probes.size());
-  {
-    // each column's SI unit (io/units.hpp, the table docs/outputs.md lists), for a reader given the
-    // folder alone (pandas, MATLAB); "1" for a dimensionless one. Written whole, also on resume
-    // (the same columns): a folder of an earlier version gets it
-    std::string units = "column,unit\n";
-    for (const std::string& c : columns) {
-      const std::string u = unit_of(c);
-      units += csv_text(c) + "," + csv_text(u.empty() ? "1" : u) + "\n";
-    }
-    write_file_whole(dir, "timeseries_units.csv", units);
-  }
+  // each column's SI unit (io/units.hpp, the table docs/outputs.md lists) in timeseries_units.csv
+  // and snapshots_units.csv, written whole, also on resume (the same columns): a folder of an
+  // earlier version gets them
+  ColumnUnits units;
+  for (const std::string& c : columns) units.emplace_back(c, unit_of(c));
+  write_units_file(dir, "timeseries.csv", units);
   csv_ = std::make_unique<CsvWriter>(dir, "timeseries.csv", columns, append);
   events_ = std::make_unique<RowFile>(dir, "events.csv", append);
   if (!append) events_->write("t,what,value\n");
   if (has_snapshots()) {
+    units.clear();
+    std::string header;
+    for (const char* c : kSnapshotColumns) {
+      if (!header.empty()) header += ',';
+      header += c;
+      const bool text = std::string_view(c) == "pulley" || std::string_view(c) == "state";
+      units.emplace_back(c, text ? std::nullopt : std::optional<std::string>(unit_of(c)));
+    }
+    write_units_file(dir, "snapshots.csv", units);
     snapshots_ = std::make_unique<RowFile>(dir, "snapshots.csv", append);
-    if (!append) snapshots_->write("t,element,s,x,y,tension,normal,friction,slip,mu,pulley,state\n");
+    if (!append) snapshots_->write(header + "\n");
   }
   if (append) {  // the files' hashes go on from those of their bytes before (set_state)
     csv_->file().continue_hash(last_.csv_hash);

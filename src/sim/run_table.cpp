@@ -87,7 +87,8 @@ const RunSetting kRunSettings[] = {
      "keep the rows of timeseries.csv in memory (beltsim wp sets it; no key of a script's)",
      [](RunSettings& rs) -> RunSlot { return &rs.keep_samples; }, kNone, nullptr, nullptr, nullptr},
     {"progress", RK::flag, "", "`true`", kBoth, "",
-     "the progress line on stderr and scene:run's closing line (not kept: beltsim.resume takes its own)",
+     "the progress line on stderr and the closing line of scene:run and of sim:close() (not kept: beltsim.resume "
+     "takes its own)",
      [](RunSettings& rs) -> RunSlot { return &rs.progress; }, kNone, nullptr, nullptr, nullptr},
     {"events", RK::other, "", "none", kRunKey, "",
      "μ changed at known times (a live simulation's are in its state, sim:wet)",

@@ -11,6 +11,7 @@
 #include "io/csv_writer.hpp"
 #include "io/output_dir.hpp"
 #include "io/suggest.hpp"
+#include "io/units.hpp"
 
 namespace beltsim::sweep {
 
@@ -441,11 +442,18 @@ SummaryCounts write_summary(const OutputDir& top, const std::vector<Point>& poin
       if (std::find(figures.begin(), figures.end(), name) == figures.end()) figures.push_back(name);
   }
   std::string text;
+  // summary_units.csv: a parameter's or figure's unit when its name ends with one in brackets
+  // (["hub load [N]"]), else none known; point and status are text
+  ColumnUnits units;
   if (!points.empty()) {
     text = header(points[0], false);
+    units.emplace_back("point", std::nullopt);
+    for (const auto& [name, v] : points[0].params) units.emplace_back(name, bracketed_unit(name));
+    units.emplace_back("status", std::nullopt);
     for (const std::string& f : figures) {
       text += ',';
       text += csv_text(f);
+      units.emplace_back(f, bracketed_unit(f));
     }
     text += "\n";
   }
@@ -460,6 +468,7 @@ SummaryCounts write_summary(const OutputDir& top, const std::vector<Point>& poin
     }
     text += "\n";
   }
+  write_units_file(top, kSummaryFile, units);  // first: a column summary.csv names has its row there
   write_file_whole(top, kSummaryFile, text);
   return counts;
 }

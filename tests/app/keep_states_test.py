@@ -2,10 +2,12 @@
 """keep_states = true: a run keeps its whole state at each frame time (OUT/states/state_NNNNN.ckpt,
 NNNNN the frame's number), with or without frames, and `beltsim render` draws them after the run:
 a folder of states to PNGs (each the same picture as the run's frame at that time) or to a video
-(one frame per state), the options' and the states' checks."""
+(one frame per state), each state read once, the options' and the states' checks."""
 import os
+import ctypes
 import re
 import shutil
+import struct
 import subprocess
 import sys
 import tempfile
@@ -22,6 +24,36 @@ drive:run { t_end = 0.02, progress = false, out = "out", integrator = "esdirk32"
   frames = { fps = 30, slowdown = 10, size = {320, 180}, quantity = "tension", range = {0, 1000},
              magnify = 20, png = true, video = false } }
 """
+
+
+class OpenWatch:
+    """counts the openings of each file in a folder while it watches (inotify's IN_OPEN, through
+    libc: no tool to install)"""
+    IN_OPEN, IN_NONBLOCK = 0x20, os.O_NONBLOCK
+
+    def __init__(self, folder):
+        self.libc = ctypes.CDLL(None, use_errno=True)
+        self.fd = self.libc.inotify_init1(self.IN_NONBLOCK)
+        if self.fd < 0 or self.libc.inotify_add_watch(self.fd, os.fsencode(folder), self.IN_OPEN) < 0:
+            raise OSError(ctypes.get_errno(), "inotify on " + folder)
+
+    def counts(self):
+        """{file name: openings} since the watch began (the folder's own openings left out); ends the watch"""
+        data = b""
+        while True:
+            try:
+                data += os.read(self.fd, 65536)
+            except BlockingIOError:
+                break
+        os.close(self.fd)
+        counts, at = {}, 0
+        while at < len(data):
+            _, mask, _, size = struct.unpack_from("iIII", data, at)
+            name = data[at + 16:at + 16 + size].rstrip(b"\0").decode()
+            at += 16 + size
+            if name and mask & self.IN_OPEN:
+                counts[name] = counts.get(name, 0) + 1
+        return counts
 
 
 def run(args, cwd):
@@ -90,6 +122,15 @@ class KeepStates(unittest.TestCase):
         self.assertEqual((code, out), (0, "k4.png\n"), err)
         self.assertEqual(run(["compare", "k4.png", os.path.join("out", "frames", "frame_00004.png")], self.dir)[0], 0)
         self.assertEqual(run(["compare", "k4.png", os.path.join("out", "frames", "frame_00005.png")], self.dir)[0], 1)
+
+    def test_each_state_is_read_once(self):
+        # a render of several states reads each once, to check it and to draw it (each but the
+        # first was read twice), to PNGs and to a video alike
+        for out in (["--out", "once"], ["--video", "once.mp4"]):
+            watch = OpenWatch(self.states)
+            code, _, err = run(["render", os.path.join("out", "states")] + out, self.dir)
+            self.assertEqual(code, 0, err)
+            self.assertEqual(watch.counts(), {"state_%05d.ckpt" % k: 1 for k in range(7)}, out)
 
     def test_the_states_make_a_video_with_a_frame_each(self):
         code, out, err = run(["render", os.path.join("out", "states"), "--video", "v.mp4", "--size", "640x360",

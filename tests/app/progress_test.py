@@ -51,6 +51,20 @@ LIVE = (two_pulley(40) + WAIT +
         "sim:run_to(0.2)\n"
         "sim:close()\n")
 
+# a live simulation whose callback writes with io.write 1.5 s into the run, with io.stdout:write 1 s
+# later and with io.stderr:write 1 s after that, while the progress line is showing
+WRITES = (two_pulley(40) + WAIT +
+          'local sim = drive:start { out = "writes" }\n'
+          "local c0, written = os.clock(), 0\n"
+          "sim:every(0.001, function()\n"
+          "  wait(0.02)\n"
+          "  if written == 0 and os.clock() - c0 > 1.5 then written = 1; io.write('written by io.write', '\\n') end\n"
+          "  if written == 1 and os.clock() - c0 > 2.5 then written = 2; io.stdout:write('written to io.stdout\\n') end\n"
+          "  if written == 2 and os.clock() - c0 > 3.5 then written = 3; io.stderr:write('written to io.stderr\\n') end\n"
+          "end)\n"
+          "sim:run_to(0.25)\n"
+          "sim:close()\n")
+
 # a batch run whose driver's torque law waits 20 ms once per ms of simulated time: 0.15 s simulated
 # take 3 s at least
 BATCH = ("local next_t = 0\n" + WAIT +
@@ -133,6 +147,20 @@ class ProgressTest(unittest.TestCase):
         # and the progress line goes on below them
         self.assertGreater(raw.rfind("beltsim: t = "), noted, raw)
 
+    def test_a_scripts_writes_start_their_own_line(self):
+        # io.write and a file's write to stdout or stderr, as print: each after a progress line
+        # drawn, at the start of a line of its own, and the progress goes on below them
+        code, raw = on_terminal([BELTSIM, "run", self.script("writes.lua", WRITES)], self.dir)
+        self.assertEqual(code, 0, raw)
+        last = 0
+        for text in ["written by io.write", "written to io.stdout", "written to io.stderr"]:
+            at = raw.find(text)
+            self.assertGreater(at, last, "%s missing or out of order: %r" % (text, raw))
+            self.assertRegex(raw[last:at + len(text)], r"beltsim: t = [^\r\n]*steps *\r?\n" + re.escape(text) + "$",
+                             "%s does not follow a progress line, on a line of its own: %r" % (text, raw))
+            last = at
+        self.assertGreater(raw.rfind("beltsim: t = "), last, raw)
+
     def test_the_progress_line_shows_the_end(self):
         for name, text in [("live.lua", LIVE.replace("sim:run_to(0.2)", "sim:run_to(0.15)")), ("batch.lua", BATCH)]:
             code, raw = on_terminal([BELTSIM, "run", self.script(name, text)], self.dir)
@@ -146,18 +174,22 @@ class ProgressTest(unittest.TestCase):
 
     def test_a_run_stopped_shows_where(self):
         # Ctrl-C (SIGINT) once the progress shows (the run's own code, no Lua code that ^C would
-        # interrupt): the line shows where it stopped, not what was left
-        path = os.path.join(self.dir, self.script("long.lua", two_pulley(40) + 'drive:run { t_end = 10, out = "long" }\n'))
-        pid, fd = spawn_on_terminal([BELTSIM, "run", path], self.dir)
-        raw, deadline = b"", time.monotonic() + 60
-        while b"beltsim: t = " not in raw and time.monotonic() < deadline:
-            raw += os.read(fd, 65536)
-        os.write(fd, b"\x03")
-        code, text = read_to_end(pid, fd, raw)
-        self.assertEqual(code, 130, text)
-        drawn = progress_texts(text)
-        self.assertRegex(drawn[-1], r"^beltsim: t = [0-9.]+ s of 10 s \(\d+ %\), [0-9]+ s elapsed, [0-9]+ steps$")
-        self.assertRegex(text, r"\nbeltsim: run stopped at t = [0-9.]+ s of 10 s \([0-9]+ steps, [0-9.]+ s\): long/\r\n")
+        # interrupt): the line shows where it stopped, not what was left; the closing line too, a
+        # batch run's as it returns and a live simulation's as sim:close() closes it
+        for name, run in [("long.lua", 'drive:run { t_end = 10, out = "long" }\n'),
+                          ("long_live.lua", 'local sim = drive:start { out = "long" }\nsim:run_to(10)\nsim:close()\n')]:
+            path = os.path.join(self.dir, self.script(name, two_pulley(40) + run))
+            pid, fd = spawn_on_terminal([BELTSIM, "run", path], self.dir)
+            raw, deadline = b"", time.monotonic() + 60
+            while b"beltsim: t = " not in raw and time.monotonic() < deadline:
+                raw += os.read(fd, 65536)
+            os.write(fd, b"\x03")
+            code, text = read_to_end(pid, fd, raw)
+            self.assertEqual(code, 130, name + ": " + text)
+            drawn = progress_texts(text)
+            self.assertRegex(drawn[-1], r"^beltsim: t = [0-9.]+ s of 10 s \(\d+ %\), [0-9]+ s elapsed, [0-9]+ steps$", name)
+            self.assertRegex(text, r"\nbeltsim: run stopped at t = [0-9.]+ s of 10 s \([0-9]+ steps, [0-9.]+ s\): "
+                             r"long/\r\n", name)
 
     def test_a_run_says_where_it_ended(self):
         # the README's minimal run: one line on stderr names the end, the steps, the time and the outputs
@@ -174,6 +206,28 @@ class ProgressTest(unittest.TestCase):
                            text=True, timeout=120)
         self.assertEqual(p.returncode, 0, p.stderr)
         self.assertNotIn("run ended", p.stderr)
+
+    def test_a_live_simulation_says_where_it_ended(self):
+        # sim:close() of a simulation that ran says what scene:run{} says, once, with the steps and
+        # wall time of its runs (run_to and advance); not for one that did not run, nor with
+        # progress = false
+        name = self.script("live_end.lua", two_pulley(60) +
+                           "local sim = drive:start {}\n"
+                           "local a, b = sim:run_to(0.05), sim:advance(0.05)\n"
+                           "sim:close()\n"
+                           "sim:close()\n"
+                           "print(a.steps + b.steps)\n"
+                           'drive:start { out = "idle" }:close()\n'
+                           'local quiet = drive:start { out = "quiet", progress = false }\n'
+                           "quiet:run_to(0.01)\n"
+                           "quiet:close()\n")
+        p = subprocess.run([BELTSIM, "run", name], cwd=self.dir, env=child_env(self.dir), capture_output=True,
+                           text=True, timeout=120)
+        self.assertEqual(p.returncode, 0, p.stderr)
+        ended = [line for line in p.stderr.splitlines() if "run ended" in line]
+        self.assertEqual(len(ended), 1, p.stderr)
+        self.assertRegex(ended[0], r"^beltsim: run ended at t = 0\.1 s \(%s steps, [0-9.]+ s\): out/live_end/$"
+                         % p.stdout.strip(), p.stderr)
 
     def test_a_log_has_no_redraws(self):
         # stderr a pipe (a CI log): no carriage returns, the progress every 10 s only, the end once,

@@ -236,6 +236,20 @@ class ConsoleTest(unittest.TestCase):
         self.assertIn("after boom\n", out, err)
         self.assertEqual(r.returncode, 1, out + err)
 
+    def test_closing_a_simulation_says_where_it_ended_once(self):
+        # sim:close() says the closing line of its runs, as `beltsim run` does; the console's own
+        # end (the interpreter's, which closes every simulation) does not say it again
+        r = self.piped(["sim:advance(0.002)", "sim:close()", "sim:close()"])
+        out, err = r.stdout.decode(), r.stderr.decode()
+        self.assertEqual(r.returncode, 0, out + err)
+        self.assertEqual(len(re.findall(r"run ended", err)), 1, err)
+        self.assertRegex(err, r"\nbeltsim: run ended at t = 0\.002 s \([0-9]+ steps, [0-9.e-]+ s\): %s/\n"
+                         % re.escape(os.path.join(self.tmp, "out")), err)
+        # a simulation left open at the end closes as before, without a line
+        r = self.piped(["sim:advance(0.002)"])
+        self.assertEqual(r.returncode, 0, r.stderr.decode())
+        self.assertNotIn("run ended", r.stderr.decode())
+
     def test_a_study_folder_is_refused_before_the_script_runs(self):
         # session.lua was written among a study's points (out/scenario, a quick sweep's default)
         study = os.path.join(self.tmp, "out", "scenario")

@@ -3,7 +3,8 @@
 - a symbolic link planted under the name of every file beltsim names itself (timeseries.csv,
   events.csv, snapshots.csv, parameters.csv, frames/frame_00000.png and the frames folder, the video,
   a checkpoint, session.lua, plot.png, wp.png) is refused: exit status 1, the message names the file,
-  the link's target is untouched (as a scenario package shipping `events.csv -> ~/.bashrc` would try);
+  the link's target is untouched (as a scenario package shipping `events.csv -> ~/.bashrc` would try),
+  and a file given by its bare name is named as given (`taken.csv`, not `./taken.csv`);
 - one writer per output folder: a run while a console's simulation holds the folder, two live
   simulations of one script, a checkpoint resumed twice are refused with a clear message;
 - an output that cannot be written (a file-size limit, which fails write(2) as a full disk does)
@@ -160,6 +161,22 @@ def planted_links():
                        'sim:log("$(touch /tmp/pwned)")\nsim:close()\n')
     status, err = beltsim(["run", attack], cwd=package)
     refused("the scenario package", status, err, os.path.join(package, "events.csv"), target, shown="./events.csv")
+    # a file given by its bare name is named as given, not "./taken.csv": beltsim summary's CSV
+    # (written in place) and picture (written whole), each over a planted link and over a folder
+    run_dir = fresh("bare_names_run")
+    status, err = beltsim(["run", script("run", RUN), "--no-frames", "--out", run_dir])
+    check(status == 0, "bare names: the run for them ends well (%r)" % err[-300:])
+    for option, name in (("--csv", "taken.csv"), ("--plot", "taken.png")):
+        here = fresh("bare_" + name)
+        target = plant(here, name)
+        status, err = beltsim(["summary", run_dir, option, name], cwd=here)
+        refused("summary " + option + " " + name, status, err, os.path.join(here, name), target, shown=name)
+        os.remove(os.path.join(here, name))
+        os.mkdir(os.path.join(here, name))
+        status, err = beltsim(["summary", run_dir, option, name], cwd=here)
+        check(status == 1 and re.search(r"beltsim summary: cannot write %s: (Is a directory|it is a folder)\n"
+                                        % re.escape(name), err) is not None,
+              "summary %s %s over a folder: named as given: %r" % (option, name, err[-300:]))
 
 
 def script_in(folder, name, text):

@@ -53,8 +53,8 @@ std::string link_refusal(const fs::path& file) {
 }
 
 TEST(Outputs, EveryFixedNameRefusesAPlantedLink) {
-  for (const char* name :
-       {"parameters.csv", "timeseries.csv", "timeseries_units.csv", "events.csv", "snapshots.csv", ".beltsim.lock"}) {
+  for (const char* name : {"parameters.csv", "timeseries.csv", "timeseries_units.csv", "events.csv", "snapshots.csv",
+                           "snapshots_units.csv", ".beltsim.lock"}) {
     SCOPED_TRACE(name);
     const fs::path base = fresh(std::string("link_") + name), out = base / "out", target = base / "bashrc";
     fs::create_directories(out);
@@ -140,7 +140,8 @@ TEST(Outputs, AnEarlierRunsOutputsThisRunDoesNotWriteAreNamed) {
   runs(false);
   ASSERT_EQ(said.size(), 1u);
   EXPECT_EQ(said[0], "the output folder " + out.string() +
-                         " holds an earlier run's snapshots.csv, frames.mp4 and frames/, which this run does not "
+                         " holds an earlier run's snapshots.csv, snapshots_units.csv, frames.mp4 and frames/, which "
+                         "this run does not "
                          "write: they are not this run's outputs (give each run its own --out or out = ..., or "
                          "remove them)");
   fs::remove_all(out / "frames");
@@ -226,6 +227,27 @@ TEST(Outputs, ParametersHoldNoNegativeZero) {
   EXPECT_EQ(p.find(",-0,"), std::string::npos) << p;
 }
 
+// a units file (io/units.hpp) beside the CSV file `csv` in out: its header is "column,unit", its
+// names in order are the CSV file's header (returned in *names, comma-joined); its units by name
+std::map<std::string, std::string> units_beside(const fs::path& out, const std::string& csv, std::string* names) {
+  std::istringstream data(slurp(out / csv)), units(slurp(out / (csv.substr(0, csv.size() - 4) + "_units.csv")));
+  std::string header, line;
+  std::getline(data, header);
+  std::getline(units, line);
+  EXPECT_EQ(line, "column,unit");
+  std::map<std::string, std::string> unit;
+  names->clear();
+  while (std::getline(units, line)) {
+    const size_t comma = line.find(',');
+    EXPECT_NE(comma, std::string::npos) << line;
+    if (comma == std::string::npos) continue;
+    *names += (names->empty() ? "" : ",") + line.substr(0, comma);
+    unit[line.substr(0, comma)] = line.substr(comma + 1);
+  }
+  EXPECT_EQ(*names, header) << csv;
+  return unit;
+}
+
 // timeseries_units.csv names each column of timeseries.csv, in its order, with its SI unit ("1" for
 // a dimensionless one): a reader given the folder alone (pandas, MATLAB) needs no docs for them
 TEST(Outputs, TheTimeSeriesUnitsNameEveryColumn) {
@@ -234,26 +256,40 @@ TEST(Outputs, TheTimeSeriesUnitsNameEveryColumn) {
     Simulation s(dry_scene(), settings(out));
     s.run_to(0.002);
   }
-  std::istringstream series(slurp(out / "timeseries.csv")), units(slurp(out / "timeseries_units.csv"));
-  std::string header, line;
-  std::getline(series, header);
-  std::getline(units, line);
-  EXPECT_EQ(line, "column,unit");
   std::string names;
-  std::map<std::string, std::string> unit;
-  while (std::getline(units, line)) {
-    const size_t comma = line.find(',');
-    ASSERT_NE(comma, std::string::npos) << line;
-    names += (names.empty() ? "" : ",") + line.substr(0, comma);
-    unit[line.substr(0, comma)] = line.substr(comma + 1);
-    EXPECT_FALSE(line.substr(comma + 1).empty()) << line;
-  }
-  EXPECT_EQ(names, header);
+  std::map<std::string, std::string> unit = units_beside(out, "timeseries.csv", &names);
+  EXPECT_GT(unit.size(), 20u) << names;
+  for (const auto& [name, u] : unit) EXPECT_FALSE(u.empty()) << name;  // every column a number with a unit
   EXPECT_EQ(unit["t"], "s");
   EXPECT_EQ(unit["driver.omega"], "rad/s");
   EXPECT_EQ(unit["driver.torque"], "N·m");
   EXPECT_EQ(unit["driver.creep"], "1");
   EXPECT_EQ(unit["span_driver_driven.tension"], "N");
+}
+
+// snapshots_units.csv does the same for snapshots.csv: SI units, "1" for the element's number and
+// μ, none for the text columns (the pulley's name, the state)
+TEST(Outputs, TheSnapshotsUnitsNameEveryColumn) {
+  const fs::path out = fresh("snapshot_units") / "out";
+  {
+    Simulation s(dry_scene(), settings(out));
+    s.run_to(0.002);
+  }
+  std::string names;
+  const std::map<std::string, std::string> unit = units_beside(out, "snapshots.csv", &names);
+  EXPECT_EQ(unit, (std::map<std::string, std::string>{{"t", "s"},
+                                                      {"element", "1"},
+                                                      {"s", "m"},
+                                                      {"x", "m"},
+                                                      {"y", "m"},
+                                                      {"tension", "N"},
+                                                      {"normal", "N"},
+                                                      {"friction", "N"},
+                                                      {"slip", "m/s"},
+                                                      {"mu", "1"},
+                                                      {"pulley", ""},
+                                                      {"state", ""}}))
+      << names;
 }
 
 TEST(Outputs, ACheckpointResumedTwiceIsRefusedTheSecondTime) {

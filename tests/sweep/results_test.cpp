@@ -85,6 +85,34 @@ TEST(SweepResults, PointValuesReadBackExactly) {
     EXPECT_EQ(rows[k + 1], (std::vector<std::string>{points[k].id, kAwkward[k], "ok", kAwkward[k] + "\r\n!", "x"}));
 }
 
+// summary_units.csv names summary.csv's columns in order (rewritten with it as figures come): the
+// unit a parameter's or figure's name gives in brackets, else none (a sweep's names are its own:
+// "slip" is not read as an element's m/s); point and status are text
+TEST(SweepResults, SummaryUnitsNameEveryColumn) {
+  const std::string dir = results_folder("units");
+  const std::vector<Point> points = grid_points(Grid{{"mu"}, {{Value(0.3), Value(1.0)}}});
+  const Inputs in{"test program", "", {}};
+  write_point_result(dir, points[0], PointResult{"ok", {{"slip", "0.1"}, {"hub load [N]", "800"}}, inputs_text(in)});
+  write_point_result(dir, points[1],
+                     PointResult{"ok", {{"slip", "0.2"}, {"odd,\"name\"\n[N.m]", "3"}}, inputs_text(in)});
+  write_summary(dir, points, Definition{in.program, in.options, {}, {}});
+  const auto summary = csv_rows(test::slurp(dir + "/summary.csv"));
+  const auto units = csv_rows(test::slurp(dir + "/summary_units.csv"));
+  ASSERT_FALSE(summary.empty());
+  ASSERT_EQ(units.size(), summary[0].size() + 1);
+  EXPECT_EQ(units[0], (std::vector<std::string>{"column", "unit"}));
+  std::vector<std::string> names;
+  for (std::size_t k = 1; k < units.size(); ++k) names.push_back(units[k][0]);
+  EXPECT_EQ(names, summary[0]);
+  EXPECT_EQ(units, (std::vector<std::vector<std::string>>{{"column", "unit"},
+                                                          {"point", ""},
+                                                          {"mu", ""},
+                                                          {"status", ""},
+                                                          {"slip", ""},
+                                                          {"hub load [N]", "N"},
+                                                          {"odd,\"name\"\n[N.m]", "N·m"}}));
+}
+
 // point.csv and summary.csv have the columns point, the parameters, status, the figures: a
 // parameter may not take the name of another column, and a point whose figure does fails, saying so
 TEST(SweepResults, EveryColumnHasItsOwnName) {

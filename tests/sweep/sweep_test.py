@@ -232,7 +232,7 @@ class Sweep(SweepCase):
                           "without them\n" % (script, script), p.stderr)
             self.assertEqual(p.stdout, "")
         self.assertEqual({name: self.read("out", "twice", *name) for name in before}, before)
-        self.assertEqual(sorted(os.listdir(self.path("out", "twice"))), ["0", "1", "summary.csv"])
+        self.assertEqual(sorted(os.listdir(self.path("out", "twice"))), ["0", "1", "summary.csv", "summary_units.csv"])
         self.assertFalse(os.path.exists(self.path("elsewhere")))
         # what an ordinary script prints before its first scene:run (run to tell it from a sweep
         # file) is not among --list's rows
@@ -468,7 +468,7 @@ class Sweep(SweepCase):
         self.assertIn("sweep plain: 6 points run again: the points were numbered otherwise", p.stderr)
         self.assertIn("sweep plain: 6 folders of no point now moved to out/plain/earlier/: 0, 1, 2, 3, 4, 5\n", p.stderr)
         self.assertEqual(sorted(os.listdir(self.path("out", "plain"))),
-                         ["%02d" % k for k in range(12)] + ["earlier", "summary.csv"])
+                         ["%02d" % k for k in range(12)] + ["earlier", "summary.csv", "summary_units.csv"])
         self.assertEqual([r[3] for r in rows(self.path("out", "plain", "summary.csv"))[1:]], ["ok"] * 12)
         # a moved folder's point.csv and parameters.csv name it where it lies now, not out/plain/1,
         # where it ran (and where another point's files may lie later)
