@@ -46,20 +46,17 @@ class Progress {
  public:
   Progress(const DriverSettings& s, int total, int done) : s_(s), total_(total), done_(done), tty_(isatty(2)) {}
   void finished(double seconds, bool ok) {
-    ++finished_;
     ++(ok ? done_ : failed_);
-    wall_ += seconds;
+    if (ok) ran_.push_back(seconds);
   }
-  void show(int running, int waiting, bool final_line) {
+  // running: the elapsed times of the points running; waiting: the points to start (none once
+  // stopped, when no estimate is given: the running points are ending)
+  void show(const std::vector<double>& running, int waiting, bool stopped, bool final_line) {
     std::string line = "sweep " + s_.name + ": " + std::to_string(done_) + "/" + std::to_string(total_) + " done, " +
                        std::to_string(failed_) + " failed";
-    if (running > 0) line += ", " + std::to_string(running) + " running";
-    if (finished_ > 0 && running + waiting > 0) {
-      // the mean wall time of the points finished in this run, spread over the processes
-      const double per = wall_ / finished_;
-      const int slots = std::max(1, std::min(s_.jobs, running + waiting));
-      line += ", about " + duration_text(per * (running + waiting) / slots) + " left";
-    }
+    if (!running.empty()) line += ", " + std::to_string(running.size()) + " running";
+    if (const std::optional<double> left = stopped ? std::nullopt : time_left(ran_, running, waiting, s_.jobs))
+      line += ", about " + duration_text(*left) + " left";
     if (tty_)
       std::fprintf(stderr, "\r%s\033[K%s", line.c_str(), final_line ? "\n" : "");
     else if (final_line || line != last_)
@@ -71,8 +68,8 @@ class Progress {
 
  private:
   const DriverSettings& s_;
-  int total_, done_, failed_ = 0, finished_ = 0;
-  double wall_ = 0;
+  int total_, done_, failed_ = 0;
+  std::vector<double> ran_;  // the times of the points that ran to their end (ok) in this run
   bool tty_;
   std::string last_;
 };
@@ -126,6 +123,23 @@ std::vector<const Point*> points_to_run(const std::vector<Point>& points, const 
 
 }  // namespace
 
+std::optional<double> time_left(const std::vector<double>& ran, const std::vector<double>& running, int waiting,
+                                int jobs) {
+  if (ran.empty()) return std::nullopt;
+  double per = 0;
+  for (double t : ran) per += t;
+  per /= static_cast<double>(ran.size());
+  // when each process comes free: the running points' rest, then the waiting points in turn on
+  // the process free first
+  std::vector<double> free(static_cast<std::size_t>(std::max(1, jobs)), 0.0);
+  for (std::size_t k = 0; k < running.size(); ++k)
+    free[k % free.size()] = std::max(free[k % free.size()], per - running[k]);
+  for (int k = 0; k < waiting; ++k) *std::min_element(free.begin(), free.end()) += per;
+  const double left = *std::max_element(free.begin(), free.end());
+  if (left <= 0) return std::nullopt;
+  return left;
+}
+
 DriverReport run_points(const std::vector<Point>& points, const DriverSettings& s, const OutputDir& top) {
   DriverReport report;
   Definition now = s.definition;
@@ -142,6 +156,13 @@ DriverReport run_points(const std::vector<Point>& points, const DriverSettings& 
   std::size_t next = 0;
   bool forwarded = false;
   bool said_no_figures = false;  // a point ok without figures: said once
+
+  const auto show = [&](bool final_line) {
+    std::vector<double> elapsed;
+    for (const auto& [pid, r] : running)
+      elapsed.push_back(std::chrono::duration<double>(Clock::now() - r.start).count());
+    progress.show(elapsed, static_cast<int>(todo.size() - next), forwarded, final_line);
+  };
 
   const auto launch = [&](const Point& p) {
     const OutputDir folder(top, p.id);
@@ -244,7 +265,7 @@ DriverReport run_points(const std::vector<Point>& points, const DriverSettings& 
       }
       while (!forwarded && running.size() < static_cast<std::size_t>(std::max(1, s.jobs)) && next < todo.size())
         launch(*todo[next++]);
-      if (changed) progress.show(static_cast<int>(running.size()), static_cast<int>(todo.size() - next), false);
+      if (changed) show(false);
       changed = false;
       int status = 0;
       const pid_t pid = waitpid(-1, &status, WNOHANG);
@@ -271,11 +292,11 @@ DriverReport run_points(const std::vector<Point>& points, const DriverSettings& 
       else if (errno != EINTR)
         running.erase(running.begin());  // not a child any more: nothing to wait for
     }
-    progress.show(0, 0, true);
+    show(true);
     throw;
   }
   if (forwarded) report.not_run += static_cast<int>(todo.size() - next);
-  progress.show(0, 0, true);
+  show(true);
   return report;
 }
 

@@ -13,6 +13,7 @@
 
 #include <atomic>
 #include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -41,6 +42,14 @@ struct DriverReport {
   int ok = 0, failed = 0, not_run = 0;  // of the points run now
   bool stopped = false;
 };
+
+// the time left [s] that the progress line gives: each point is taken to last the mean of `ran`,
+// the times of the points that ran to their end (ok) in this run; each running one that mean less
+// `running`, its elapsed time (nothing when past it); the `waiting` points start as the `jobs`
+// processes come free. nullopt when there is no basis (`ran` empty) or the figure is 0 (only points
+// running past the mean are left).
+std::optional<double> time_left(const std::vector<double>& ran, const std::vector<double>& running, int waiting,
+                                int jobs);
 
 // runs every point not done yet (every point with rerun), saying on stderr which run again for a
 // change in their inputs and what changed; throws std::runtime_error when a process cannot be started or

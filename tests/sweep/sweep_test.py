@@ -574,6 +574,15 @@ class Sweep(SweepCase):
         self.assertEqual(self.interrupted_then_resumed(kill), -signal.SIGKILL)
         self.assertTrue(children, "no point was running when the sweep was killed")
 
+    def test_the_time_left_comes_from_points_that_ran_to_their_end(self):
+        # point 0 fails at once (a negative mu): its time is no basis for the others', which take
+        # longer, so no estimate is given until a point has run to its end ("about 0 s left")
+        p = self.run_beltsim("sweep", PLAIN, "--jobs", "2", "--set", "mu=-1,0.3,0.6", "--set", "t_end=0.3", ok=(1,))
+        line = re.compile(r"sweep plain: (\d+)/3 done, (\d+) failed.*?(, about .* left)?$")
+        lines = [m.groups() for m in map(line.match, p.stderr.splitlines()) if m]
+        self.assertIn(("0", "1", None), lines, p.stderr)
+        self.assertEqual([g for g in lines if g[0] == "0" and g[2]], [], p.stderr)
+
     def test_plot_of_a_summary(self):
         self.run_beltsim("sweep", GRID)
         p = self.run_beltsim("plot", "out/grid/summary.csv", "pretension", "slip", "steps")
