@@ -2,6 +2,7 @@
 
 #include <fcntl.h>
 #include <sys/prctl.h>
+#include <sys/stat.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -27,9 +28,23 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
+// a file as the file system knows it (device, inode)
+using FileId = std::pair<dev_t, ino_t>;
+
+// the file at path; nullopt when there is none
+std::optional<FileId> file_id(const std::string& path) {
+  struct stat st {};
+  if (::stat(path.c_str(), &st) != 0) return std::nullopt;
+  return FileId{st.st_dev, st.st_ino};
+}
+
 struct Running {
   const Point* point;
   Clock::time_point start;
+  // its point.csv from an earlier run, kept until this run's replaces it: the process writes its
+  // own whole under another name and renames it over the earlier, so a result of this run is
+  // another file
+  std::optional<FileId> earlier;
 };
 
 // the last line of a point's log that is not blank ("" when none)
@@ -44,19 +59,14 @@ std::string last_log_line(const std::string& path) {
 
 class Progress {
  public:
-  Progress(const DriverSettings& s, int total, int done) : s_(s), total_(total), done_(done), tty_(isatty(2)) {}
-  void finished(double seconds, bool ok) {
-    ++(ok ? done_ : failed_);
-    if (ok) ran_.push_back(seconds);
-  }
-  // running: the elapsed times of the points running; waiting: the points to start (none once
-  // stopped, when no estimate is given: the running points are ending)
-  void show(const std::vector<double>& running, int waiting, bool stopped, bool final_line) {
-    std::string line = "sweep " + s_.name + ": " + std::to_string(done_) + "/" + std::to_string(total_) + " done, " +
-                       std::to_string(failed_) + " failed";
-    if (!running.empty()) line += ", " + std::to_string(running.size()) + " running";
-    if (const std::optional<double> left = stopped ? std::nullopt : time_left(ran_, running, waiting, s_.jobs))
-      line += ", about " + duration_text(*left) + " left";
+  Progress(const DriverSettings& s, int total) : s_(s), total_(total), tty_(isatty(2)) {}
+  // standing: the results counted (summary.csv's, but of the points waiting or running); left:
+  // time_left's estimate
+  void show(const SummaryCounts& standing, std::size_t running, std::optional<double> left, bool final_line) {
+    std::string line = "sweep " + s_.name + ": " + std::to_string(standing.ok) + "/" + std::to_string(total_) +
+                       " done, " + std::to_string(standing.failed) + " failed";
+    if (running > 0) line += ", " + std::to_string(running) + " running";
+    if (left) line += ", about " + duration_text(*left) + " left";
     if (tty_)
       std::fprintf(stderr, "\r%s\033[K%s", line.c_str(), final_line ? "\n" : "");
     else if (final_line || line != last_)
@@ -68,8 +78,7 @@ class Progress {
 
  private:
   const DriverSettings& s_;
-  int total_, done_, failed_ = 0;
-  std::vector<double> ran_;  // the times of the points that ran to their end (ok) in this run
+  int total_;
   bool tty_;
   std::string last_;
 };
@@ -148,7 +157,11 @@ DriverReport run_points(const std::vector<Point>& points, const DriverSettings& 
   const std::vector<const Point*> todo = points_to_run(points, summary.results, s.rerun, report);
   const auto slot = [&](const Point& p) -> std::optional<PointResult>& { return summary.of(p); };
   const auto summary_now = [&] { summary.write(); };
-  Progress progress(s, static_cast<int>(points.size()), report.already_done);
+  // the points to run whose run has not ended: the progress line counts their results when it has
+  std::vector<bool> pending(points.size(), false);
+  for (const Point* p : todo) pending[static_cast<std::size_t>(p - points.data())] = true;
+  std::vector<double> ran;  // the times of the points that ran to their end (ok) in this run
+  Progress progress(s, static_cast<int>(points.size()));
   say_plan(progress, s, points.size(), report, reasons, todo.size());
   if (const std::string line = moved_line(s.name, top, move_stale_folders(top, points)); !line.empty())
     progress.say(line);
@@ -158,16 +171,34 @@ DriverReport run_points(const std::vector<Point>& points, const DriverSettings& 
   bool said_no_figures = false;  // a point ok without figures: said once
 
   const auto show = [&](bool final_line) {
+    SummaryCounts standing;
+    for (std::size_t k = 0; k < points.size(); ++k)
+      if (!pending[k]) standing.add(summary.results[k]);
     std::vector<double> elapsed;
     for (const auto& [pid, r] : running)
       elapsed.push_back(std::chrono::duration<double>(Clock::now() - r.start).count());
-    progress.show(elapsed, static_cast<int>(todo.size() - next), forwarded, final_line);
+    // (no estimate once stopped: the running points are ending and no other starts)
+    const std::optional<double> left =
+        forwarded ? std::nullopt : time_left(ran, elapsed, static_cast<int>(todo.size() - next), s.jobs);
+    progress.show(standing, running.size(), left, final_line);
+  };
+
+  // the sweep's end: the points stopped before their run ended count by the result they keep
+  const auto close = [&] {
+    SummaryCounts kept;
+    for (std::size_t k = 0; k < points.size(); ++k)
+      if (pending[k]) kept.add(summary.results[k]), pending[k] = false;
+    if (const int n = kept.ok + kept.failed; n > 0)
+      progress.say("sweep " + s.name + ": stopped before " + std::to_string(n) + (n == 1 ? " point" : " points") +
+                   " ran again: " + (n == 1 ? "it keeps its" : "they keep their") + " earlier " +
+                   (n == 1 ? "result" : "results") + " (" + std::to_string(kept.ok) + " ok, " +
+                   std::to_string(kept.failed) + " failed)");
+    show(true);
   };
 
   const auto launch = [&](const Point& p) {
     const OutputDir folder(top, p.id);
-    folder.remove(kPointFile);  // not done until its process writes it again
-    slot(p).reset();
+    const std::optional<FileId> earlier = file_id(folder.file(kPointFile));
     const int log = folder.open_file("log.txt", false);
     std::vector<std::string> args{s.program};
     args.insert(args.end(), s.point_args.begin(), s.point_args.end());
@@ -208,7 +239,7 @@ DriverReport run_points(const std::vector<Point>& points, const DriverSettings& 
       _exit(127);
     }
     ::close(log);
-    running[pid] = Running{&p, Clock::now()};
+    running[pid] = Running{&p, Clock::now(), earlier};
   };
 
   const auto finish = [&](pid_t pid, int status) {
@@ -216,12 +247,10 @@ DriverReport run_points(const std::vector<Point>& points, const DriverSettings& 
     running.erase(pid);
     const Point& p = *r.point;
     const double seconds = std::chrono::duration<double>(Clock::now() - r.start).count();
-    auto result = read_point_result(s.dir, p);
-    if (!result && forwarded) {  // stopped before it finished: it runs next time
-      ++report.not_run;
-      return;
-    }
-    slot(p) = result;
+    const std::optional<FileId> written = file_id((std::filesystem::path(s.dir) / p.id / kPointFile).string());
+    std::optional<PointResult> result =
+        written && written != r.earlier ? read_point_result(s.dir, p) : std::optional<PointResult>();
+    if (!result && forwarded) return;  // stopped before its end: it keeps its earlier result, if any
     if (!result) {
       const std::string log = (std::filesystem::path(s.dir) / p.id / "log.txt").string();
       std::string why = WIFSIGNALED(status) ? "its process was killed by signal " + std::to_string(WTERMSIG(status))
@@ -237,10 +266,10 @@ DriverReport run_points(const std::vector<Point>& points, const DriverSettings& 
       }
     }
     slot(p) = result;
+    pending[static_cast<std::size_t>(&p - points.data())] = false;
     summary_now();
-    progress.finished(seconds, result->ok());
     if (result->ok()) {
-      ++report.ok;
+      ran.push_back(seconds);
       if (result->figures.empty() && !said_no_figures) {
         said_no_figures = true;
         progress.say("sweep " + s.name + ": warning: point " + p.id + " (" + params_text(p) +
@@ -249,7 +278,6 @@ DriverReport run_points(const std::vector<Point>& points, const DriverSettings& 
                      " (said of the first such point only)");
       }
     } else {
-      ++report.failed;
       progress.say("sweep " + s.name + ": point " + p.id + " (" + params_text(p) + "): " + result->status);
     }
   };
@@ -292,11 +320,10 @@ DriverReport run_points(const std::vector<Point>& points, const DriverSettings& 
       else if (errno != EINTR)
         running.erase(running.begin());  // not a child any more: nothing to wait for
     }
-    show(true);
+    close();
     throw;
   }
-  if (forwarded) report.not_run += static_cast<int>(todo.size() - next);
-  show(true);
+  close();
   return report;
 }
 

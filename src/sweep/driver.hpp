@@ -7,8 +7,13 @@
 // status from here. The children run in process groups of their own: a stop (Ctrl-C, SIGTERM)
 // reaches them from here, once, and the sweep waits for them to close their outputs; when the
 // sweep dies without a word (kill -9) they get SIGTERM (PR_SET_PDEATHSIG).
+// A point that has a result from an earlier run (failed, outdated, or any with --rerun) keeps it
+// while it runs again: the result its process writes at its end replaces it, and a point stopped
+// before its end keeps the earlier one.
 // A progress line on stderr says the points done, failed and running and an estimate of the time
-// left (rewritten in place on a terminal, a line per finished point otherwise).
+// left (rewritten in place on a terminal, a line per finished point otherwise). Done and failed
+// count the results summary.csv holds, a point waiting or running counted when its run ends;
+// the last line, when nothing runs, counts them all, as the summary's closing line does.
 #pragma once
 
 #include <atomic>
@@ -37,9 +42,8 @@ struct DriverSettings {
 };
 
 struct DriverReport {
-  int already_done = 0;                 // ok before this run, with the inputs of now
-  int outdated = 0;                     // run before with other inputs (running again)
-  int ok = 0, failed = 0, not_run = 0;  // of the points run now
+  int already_done = 0;  // ok before this run, with the inputs of now
+  int outdated = 0;      // run before with other inputs (running again)
   bool stopped = false;
 };
 

@@ -432,11 +432,8 @@ SummaryCounts write_summary(const OutputDir& top, const std::vector<Point>& poin
   SummaryCounts counts;
   std::vector<std::string> figures;
   for (const auto& r : results) {
-    if (!r || r->outdated()) {
-      ++counts.not_run;
-      continue;
-    }
-    ++(r->ok() ? counts.ok : counts.failed);
+    counts.add(r);
+    if (!r || r->outdated()) continue;
     for (const auto& [name, text] : r->figures)
       if (std::find(figures.begin(), figures.end(), name) == figures.end()) figures.push_back(name);
   }

@@ -86,6 +86,8 @@ OutputDir claim_sweep_folder(const std::string& dir);
 
 struct SummaryCounts {
   int ok = 0, failed = 0, not_run = 0;
+  // a point's result as summary.csv counts it: ok, failed, or not run (none, or outdated)
+  void add(const std::optional<PointResult>& r) { ++(!r || r->outdated() ? not_run : r->ok() ? ok : failed); }
 };
 // what DIR holds of each point: its result, nullopt when it has none; a result with other
 // inputs than now's as the status "outdated: why" without figures (but a failure recorded

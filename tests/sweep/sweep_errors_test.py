@@ -3,12 +3,14 @@
 folder that holds no point of the sweep (and collecting its own whose points all died), a folder
 that cannot be written, sbatch missing or printing megabytes, a point that cannot start, each said
 in one line with nothing finished lost, Slurm scripts that quote every value, and a second sweep on
-a folder in use refused. The folder, the runs and the waits are sweep_test.py's.
+a folder in use refused, and a --rerun stopped (or a point's process killed) keeping the results
+that should stand. The folder, the runs and the waits are sweep_test.py's.
 
 usage: sweep_errors_test.py BELTSIM
 """
 import os
 import shutil
+import signal
 import subprocess
 import sys
 import unittest
@@ -18,15 +20,18 @@ from sweep_test import BAD, DRIVE, GRID, LIMIT, PLAIN, SweepCase, alive, rows
 
 BELTSIM = None
 
-# each point waits until the file GATE exists (the script's folder is readable in the sandbox)
+# each point k of K (0, 1, ...) waits until the file GATE exists (the script's folder is readable
+# in the sandbox); point FAIL (none when -1) then fails
 GATED = """
+local fail = %d
 return beltsim.sweep {
-  grid = { k = {0, 1} },
+  grid = { k = {%s} },
   run = function(p)
     while true do
       local f = io.open(%r)
       if f then f:close() break end
     end
+    if p.k == fail then error("asked to fail") end
     return { twice = 2 * p.k }
   end,
 }
@@ -34,11 +39,11 @@ return beltsim.sweep {
 
 
 class SweepErrors(SweepCase):
-    def gated(self):
+    def gated(self, points=2, fail=-1):
         """the GATED sweep in this test's folder and its gate"""
         script, gate = self.path("gated.lua"), self.path("go")
         with open(script, "w") as f:
-            f.write(GATED % gate)
+            f.write(GATED % (fail, ", ".join(map(str, range(points))), gate))
         return script, gate
 
     def processes_here(self):
@@ -230,6 +235,42 @@ class SweepErrors(SweepCase):
         self.assertEqual(first.returncode, 0, err)
         self.assertEqual([r[2] for r in rows(self.path("out", "gated", "summary.csv"))[1:]], ["ok", "ok"])
         self.assertFalse(os.path.exists(self.path("out", "gated", "sweep.sbatch")), "the refused --slurm wrote")
+
+    def test_a_stopped_rerun_keeps_the_earlier_results(self):
+        # four points, point 3 failing, run to their end; then --rerun, gated: point 0's process is
+        # killed (its run ended: its result replaced), point 2 starts in its place, and the sweep is
+        # stopped while 1 and 2 wait. The points whose run did not end keep their earlier results
+        # (they were 'not run'), and the last progress line counts what the closing line does
+        script, gate = self.gated(points=4, fail=3)
+        with open(gate, "w"):
+            pass
+        self.run_beltsim("sweep", script, "--jobs", "2", ok=(1,))
+        before = rows(self.path("out", "gated", "summary.csv"))
+        self.assertEqual([r[2] for r in before[1:]], ["ok", "ok", "ok", "error: %s:10: asked to fail" % script])
+        kept = {k: self.read("out", "gated", str(k), "point.csv") for k in (1, 2, 3)}
+        os.remove(gate)
+        proc = subprocess.Popen([BELTSIM, "sweep", script, "--jobs", "2", "--rerun"], cwd=self.dir,
+                                stderr=subprocess.PIPE, text=True)
+        self.addCleanup(proc.kill)
+        self.point_process(proc, 1)
+        os.kill(self.point_process(proc, 0), signal.SIGKILL)
+        self.point_process(proc, 2)
+        proc.send_signal(signal.SIGTERM)
+        _, err = proc.communicate(timeout=LIMIT)
+        self.assertEqual(proc.returncode, 143, err)
+        after = rows(self.path("out", "gated", "summary.csv"))
+        self.assertRegex(after[1][2], r"^error: its process was killed by signal 9 \(out/gated/0/log.txt")
+        self.assertEqual(after[2:], before[2:])
+        self.assertEqual({k: self.read("out", "gated", str(k), "point.csv") for k in (1, 2, 3)}, kept)
+        self.assertIn("sweep gated: stopped before 3 points ran again: they keep their earlier results (2 ok, 1 failed)\n",
+                      err)
+        self.assertEqual(self.assert_counts_agree(err), (2, 2, 0))
+        # a run of the sweep after it: the failed points alone run again
+        with open(gate, "w"):
+            pass
+        p = self.run_beltsim("sweep", script, "--jobs", "2", ok=(1,))
+        self.assertIn("2 of 4 points done already", p.stderr)
+        self.assertEqual([r[2] for r in rows(self.path("out", "gated", "summary.csv"))[1:]], [r[2] for r in before[1:]])
 
 
 if __name__ == "__main__":
