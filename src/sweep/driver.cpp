@@ -2,7 +2,6 @@
 
 #include <fcntl.h>
 #include <sys/prctl.h>
-#include <sys/stat.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -28,23 +27,12 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
-// a file as the file system knows it (device, inode)
-using FileId = std::pair<dev_t, ino_t>;
-
-// the file at path; nullopt when there is none
-std::optional<FileId> file_id(const std::string& path) {
-  struct stat st {};
-  if (::stat(path.c_str(), &st) != 0) return std::nullopt;
-  return FileId{st.st_dev, st.st_ino};
-}
-
 struct Running {
   const Point* point;
   Clock::time_point start;
-  // its point.csv from an earlier run, kept until this run's replaces it: the process writes its
-  // own whole under another name and renames it over the earlier, so a result of this run is
-  // another file
-  std::optional<FileId> earlier;
+  // its earlier folder, which held a point.csv, is kept aside (keep_earlier_folder) until this
+  // run ends: its folder had no point.csv when it started, so one there is this run's
+  bool kept;
 };
 
 // the last line of a point's log that is not blank ("" when none)
@@ -196,9 +184,9 @@ DriverReport run_points(const std::vector<Point>& points, const DriverSettings& 
     show(true);
   };
 
-  const auto launch = [&](const Point& p) {
+  // p's process started, in its folder, its output into log.txt
+  const auto start = [&](const Point& p, bool kept) {
     const OutputDir folder(top, p.id);
-    const std::optional<FileId> earlier = file_id(folder.file(kPointFile));
     const int log = folder.open_file("log.txt", false);
     std::vector<std::string> args{s.program};
     args.insert(args.end(), s.point_args.begin(), s.point_args.end());
@@ -239,7 +227,32 @@ DriverReport run_points(const std::vector<Point>& points, const DriverSettings& 
       _exit(127);
     }
     ::close(log);
-    running[pid] = Running{&p, Clock::now(), earlier};
+    running[pid] = Running{&p, Clock::now(), kept};
+  };
+
+  // the earlier folder of a point whose run again has ended (with a result: removed) or been stopped
+  // (put back); a failure is said and left for the next run of the sweep to settle
+  const auto settle = [&](const Point& p, bool ended) {
+    try {
+      if (ended)
+        drop_earlier_folder(top, p.id);
+      else
+        restore_earlier_folder(top, p.id);
+    } catch (const std::exception& e) {
+      progress.say(std::string("beltsim sweep: ") + e.what() + " (the next run of the sweep settles it)");
+      mark_output_failure_shown(e.what());
+    }
+  };
+
+  const auto launch = [&](const Point& p) {
+    // its earlier folder aside, whole, while it runs in a new one (its files name their folder)
+    const bool kept = keep_earlier_folder(top, p.id);
+    try {
+      start(p, kept);
+    } catch (...) {
+      if (kept) settle(p, false);
+      throw;
+    }
   };
 
   const auto finish = [&](pid_t pid, int status) {
@@ -247,10 +260,12 @@ DriverReport run_points(const std::vector<Point>& points, const DriverSettings& 
     running.erase(pid);
     const Point& p = *r.point;
     const double seconds = std::chrono::duration<double>(Clock::now() - r.start).count();
-    const std::optional<FileId> written = file_id((std::filesystem::path(s.dir) / p.id / kPointFile).string());
-    std::optional<PointResult> result =
-        written && written != r.earlier ? read_point_result(s.dir, p) : std::optional<PointResult>();
-    if (!result && forwarded) return;  // stopped before its end: it keeps its earlier result, if any
+    // (a point.csv there is this run's: an earlier one was moved aside with its folder)
+    std::optional<PointResult> result = read_point_result(s.dir, p);
+    if (!result && forwarded) {  // stopped before its end: it keeps its earlier folder and result, if any
+      if (r.kept) settle(p, false);
+      return;
+    }
     if (!result) {
       const std::string log = (std::filesystem::path(s.dir) / p.id / "log.txt").string();
       std::string why = WIFSIGNALED(status) ? "its process was killed by signal " + std::to_string(WTERMSIG(status))
@@ -265,6 +280,7 @@ DriverReport run_points(const std::vector<Point>& points, const DriverSettings& 
         progress.say(std::string("beltsim sweep: ") + e.what());
       }
     }
+    if (r.kept) settle(p, true);  // a result of this run (a process that died has failed): the earlier one goes
     slot(p) = result;
     pending[static_cast<std::size_t>(&p - points.data())] = false;
     summary_now();

@@ -8,8 +8,10 @@
 // reaches them from here, once, and the sweep waits for them to close their outputs; when the
 // sweep dies without a word (kill -9) they get SIGTERM (PR_SET_PDEATHSIG).
 // A point that has a result from an earlier run (failed, outdated, or any with --rerun) keeps it
-// while it runs again: the result its process writes at its end replaces it, and a point stopped
-// before its end keeps the earlier one.
+// while it runs again: its earlier folder is moved aside whole (keep_earlier_folder,
+// sweep/results.hpp) and the point runs in a new one; the result its process writes at its end (or
+// the error of a process that died) replaces it, the earlier folder removed, and a point stopped
+// before its end gets its earlier folder back, result and files.
 // A progress line on stderr says the points done, failed and running and an estimate of the time
 // left (rewritten in place on a terminal, a line per finished point otherwise). Done and failed
 // count the results summary.csv holds, a point waiting or running counted when its run ends;
