@@ -256,10 +256,17 @@ int sweep(const std::string& file, const Raw& raw, const script::Safety& s) {
   const OutputDir top = sw::claim_sweep_folder(dir);  // held to the end: one sweep at a time on the folder
   if (quick && !raw.collect) check_same_study(dir, points);
   if (raw.collect) check_collect_folder(dir, file, points);
+  // the earlier folders of points a sweep killed outright was running again, put back (or removed
+  // when the run had ended) before the points' results are read
+  for (const std::string& line : sw::settle_earlier_folders(top, name)) std::fprintf(stderr, "%s\n", line.c_str());
+  // the closing line counts the results summary.csv holds, whenever they ran (as the last progress
+  // line does)
   const auto summary = [&] {
     const sw::SummaryCounts c = sw::write_summary(dir, points, definition(raw, file));
-    std::fprintf(stderr, "beltsim sweep: %s/%s: %d ok, %d failed, %d not run\n", dir.c_str(), sw::kSummaryFile, c.ok,
-                 c.failed, c.not_run);
+    std::fprintf(stderr,
+                 "beltsim sweep: %s/%s: %d ok, %d failed, %d not run (the results it holds of the %zu points, "
+                 "whenever they ran)\n",
+                 dir.c_str(), sw::kSummaryFile, c.ok, c.failed, c.not_run, points.size());
     return c.failed + c.not_run == 0 ? 0 : 1;
   };
   if (raw.collect) return summary();

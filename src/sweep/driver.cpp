@@ -30,6 +30,9 @@ using Clock = std::chrono::steady_clock;
 struct Running {
   const Point* point;
   Clock::time_point start;
+  // its earlier folder, which held a point.csv, is kept aside (keep_earlier_folder) until this
+  // run ends: its folder had no point.csv when it started, so one there is this run's
+  bool kept;
 };
 
 // the last line of a point's log that is not blank ("" when none)
@@ -44,22 +47,14 @@ std::string last_log_line(const std::string& path) {
 
 class Progress {
  public:
-  Progress(const DriverSettings& s, int total, int done) : s_(s), total_(total), done_(done), tty_(isatty(2)) {}
-  void finished(double seconds, bool ok) {
-    ++finished_;
-    ++(ok ? done_ : failed_);
-    wall_ += seconds;
-  }
-  void show(int running, int waiting, bool final_line) {
-    std::string line = "sweep " + s_.name + ": " + std::to_string(done_) + "/" + std::to_string(total_) + " done, " +
-                       std::to_string(failed_) + " failed";
+  Progress(const DriverSettings& s, int total) : s_(s), total_(total), tty_(isatty(2)) {}
+  // standing: the results counted (summary.csv's, but of the points waiting or running); left:
+  // time_left's estimate
+  void show(const SummaryCounts& standing, std::size_t running, std::optional<double> left, bool final_line) {
+    std::string line = "sweep " + s_.name + ": " + std::to_string(standing.ok) + "/" + std::to_string(total_) +
+                       " done, " + std::to_string(standing.failed) + " failed";
     if (running > 0) line += ", " + std::to_string(running) + " running";
-    if (finished_ > 0 && running + waiting > 0) {
-      // the mean wall time of the points finished in this run, spread over the processes
-      const double per = wall_ / finished_;
-      const int slots = std::max(1, std::min(s_.jobs, running + waiting));
-      line += ", about " + duration_text(per * (running + waiting) / slots) + " left";
-    }
+    if (left) line += ", about " + duration_text(*left) + " left";
     if (tty_)
       std::fprintf(stderr, "\r%s\033[K%s", line.c_str(), final_line ? "\n" : "");
     else if (final_line || line != last_)
@@ -71,8 +66,7 @@ class Progress {
 
  private:
   const DriverSettings& s_;
-  int total_, done_, failed_ = 0, finished_ = 0;
-  double wall_ = 0;
+  int total_;
   bool tty_;
   std::string last_;
 };
@@ -126,6 +120,23 @@ std::vector<const Point*> points_to_run(const std::vector<Point>& points, const 
 
 }  // namespace
 
+std::optional<double> time_left(const std::vector<double>& ran, const std::vector<double>& running, int waiting,
+                                int jobs) {
+  if (ran.empty()) return std::nullopt;
+  double per = 0;
+  for (double t : ran) per += t;
+  per /= static_cast<double>(ran.size());
+  // when each process comes free: the running points' rest, then the waiting points in turn on
+  // the process free first
+  std::vector<double> free(static_cast<std::size_t>(std::max(1, jobs)), 0.0);
+  for (std::size_t k = 0; k < running.size(); ++k)
+    free[k % free.size()] = std::max(free[k % free.size()], per - running[k]);
+  for (int k = 0; k < waiting; ++k) *std::min_element(free.begin(), free.end()) += per;
+  const double left = *std::max_element(free.begin(), free.end());
+  if (left <= 0) return std::nullopt;
+  return left;
+}
+
 DriverReport run_points(const std::vector<Point>& points, const DriverSettings& s, const OutputDir& top) {
   DriverReport report;
   Definition now = s.definition;
@@ -134,7 +145,11 @@ DriverReport run_points(const std::vector<Point>& points, const DriverSettings& 
   const std::vector<const Point*> todo = points_to_run(points, summary.results, s.rerun, report);
   const auto slot = [&](const Point& p) -> std::optional<PointResult>& { return summary.of(p); };
   const auto summary_now = [&] { summary.write(); };
-  Progress progress(s, static_cast<int>(points.size()), report.already_done);
+  // the points to run whose run has not ended: the progress line counts their results when it has
+  std::vector<bool> pending(points.size(), false);
+  for (const Point* p : todo) pending[static_cast<std::size_t>(p - points.data())] = true;
+  std::vector<double> ran;  // the times of the points that ran to their end (ok) in this run
+  Progress progress(s, static_cast<int>(points.size()));
   say_plan(progress, s, points.size(), report, reasons, todo.size());
   if (const std::string line = moved_line(s.name, top, move_stale_folders(top, points)); !line.empty())
     progress.say(line);
@@ -143,10 +158,35 @@ DriverReport run_points(const std::vector<Point>& points, const DriverSettings& 
   bool forwarded = false;
   bool said_no_figures = false;  // a point ok without figures: said once
 
-  const auto launch = [&](const Point& p) {
+  const auto show = [&](bool final_line) {
+    SummaryCounts standing;
+    for (std::size_t k = 0; k < points.size(); ++k)
+      if (!pending[k]) standing.add(summary.results[k]);
+    std::vector<double> elapsed;
+    for (const auto& [pid, r] : running)
+      elapsed.push_back(std::chrono::duration<double>(Clock::now() - r.start).count());
+    // (no estimate once stopped: the running points are ending and no other starts)
+    const std::optional<double> left =
+        forwarded ? std::nullopt : time_left(ran, elapsed, static_cast<int>(todo.size() - next), s.jobs);
+    progress.show(standing, running.size(), left, final_line);
+  };
+
+  // the sweep's end: the points stopped before their run ended count by the result they keep
+  const auto close = [&] {
+    SummaryCounts kept;
+    for (std::size_t k = 0; k < points.size(); ++k)
+      if (pending[k]) kept.add(summary.results[k]), pending[k] = false;
+    if (const int n = kept.ok + kept.failed; n > 0)
+      progress.say("sweep " + s.name + ": stopped before " + std::to_string(n) + (n == 1 ? " point" : " points") +
+                   " ran again: " + (n == 1 ? "it keeps its" : "they keep their") + " earlier " +
+                   (n == 1 ? "result" : "results") + " (" + std::to_string(kept.ok) + " ok, " +
+                   std::to_string(kept.failed) + " failed)");
+    show(true);
+  };
+
+  // p's process started, in its folder, its output into log.txt
+  const auto start = [&](const Point& p, bool kept) {
     const OutputDir folder(top, p.id);
-    folder.remove(kPointFile);  // not done until its process writes it again
-    slot(p).reset();
     const int log = folder.open_file("log.txt", false);
     std::vector<std::string> args{s.program};
     args.insert(args.end(), s.point_args.begin(), s.point_args.end());
@@ -187,7 +227,32 @@ DriverReport run_points(const std::vector<Point>& points, const DriverSettings& 
       _exit(127);
     }
     ::close(log);
-    running[pid] = Running{&p, Clock::now()};
+    running[pid] = Running{&p, Clock::now(), kept};
+  };
+
+  // the earlier folder of a point whose run again has ended (with a result: removed) or been stopped
+  // (put back); a failure is said and left for the next run of the sweep to settle
+  const auto settle = [&](const Point& p, bool ended) {
+    try {
+      if (ended)
+        drop_earlier_folder(top, p.id);
+      else
+        restore_earlier_folder(top, p.id);
+    } catch (const std::exception& e) {
+      progress.say(std::string("beltsim sweep: ") + e.what() + " (the next run of the sweep settles it)");
+      mark_output_failure_shown(e.what());
+    }
+  };
+
+  const auto launch = [&](const Point& p) {
+    // its earlier folder aside, whole, while it runs in a new one (its files name their folder)
+    const bool kept = keep_earlier_folder(top, p.id);
+    try {
+      start(p, kept);
+    } catch (...) {
+      if (kept) settle(p, false);
+      throw;
+    }
   };
 
   const auto finish = [&](pid_t pid, int status) {
@@ -195,12 +260,12 @@ DriverReport run_points(const std::vector<Point>& points, const DriverSettings& 
     running.erase(pid);
     const Point& p = *r.point;
     const double seconds = std::chrono::duration<double>(Clock::now() - r.start).count();
-    auto result = read_point_result(s.dir, p);
-    if (!result && forwarded) {  // stopped before it finished: it runs next time
-      ++report.not_run;
+    // (a point.csv there is this run's: an earlier one was moved aside with its folder)
+    std::optional<PointResult> result = read_point_result(s.dir, p);
+    if (!result && forwarded) {  // stopped before its end: it keeps its earlier folder and result, if any
+      if (r.kept) settle(p, false);
       return;
     }
-    slot(p) = result;
     if (!result) {
       const std::string log = (std::filesystem::path(s.dir) / p.id / "log.txt").string();
       std::string why = WIFSIGNALED(status) ? "its process was killed by signal " + std::to_string(WTERMSIG(status))
@@ -215,11 +280,12 @@ DriverReport run_points(const std::vector<Point>& points, const DriverSettings& 
         progress.say(std::string("beltsim sweep: ") + e.what());
       }
     }
+    if (r.kept) settle(p, true);  // a result of this run (a process that died has failed): the earlier one goes
     slot(p) = result;
+    pending[static_cast<std::size_t>(&p - points.data())] = false;
     summary_now();
-    progress.finished(seconds, result->ok());
     if (result->ok()) {
-      ++report.ok;
+      ran.push_back(seconds);
       if (result->figures.empty() && !said_no_figures) {
         said_no_figures = true;
         progress.say("sweep " + s.name + ": warning: point " + p.id + " (" + params_text(p) +
@@ -228,7 +294,6 @@ DriverReport run_points(const std::vector<Point>& points, const DriverSettings& 
                      " (said of the first such point only)");
       }
     } else {
-      ++report.failed;
       progress.say("sweep " + s.name + ": point " + p.id + " (" + params_text(p) + "): " + result->status);
     }
   };
@@ -244,7 +309,7 @@ DriverReport run_points(const std::vector<Point>& points, const DriverSettings& 
       }
       while (!forwarded && running.size() < static_cast<std::size_t>(std::max(1, s.jobs)) && next < todo.size())
         launch(*todo[next++]);
-      if (changed) progress.show(static_cast<int>(running.size()), static_cast<int>(todo.size() - next), false);
+      if (changed) show(false);
       changed = false;
       int status = 0;
       const pid_t pid = waitpid(-1, &status, WNOHANG);
@@ -271,11 +336,10 @@ DriverReport run_points(const std::vector<Point>& points, const DriverSettings& 
       else if (errno != EINTR)
         running.erase(running.begin());  // not a child any more: nothing to wait for
     }
-    progress.show(0, 0, true);
+    close();
     throw;
   }
-  if (forwarded) report.not_run += static_cast<int>(todo.size() - next);
-  progress.show(0, 0, true);
+  close();
   return report;
 }
 

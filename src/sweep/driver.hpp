@@ -7,12 +7,20 @@
 // status from here. The children run in process groups of their own: a stop (Ctrl-C, SIGTERM)
 // reaches them from here, once, and the sweep waits for them to close their outputs; when the
 // sweep dies without a word (kill -9) they get SIGTERM (PR_SET_PDEATHSIG).
+// A point that has a result from an earlier run (failed, outdated, or any with --rerun) keeps it
+// while it runs again: its earlier folder is moved aside whole (keep_earlier_folder,
+// sweep/results.hpp) and the point runs in a new one; the result its process writes at its end (or
+// the error of a process that died) replaces it, the earlier folder removed, and a point stopped
+// before its end gets its earlier folder back, result and files.
 // A progress line on stderr says the points done, failed and running and an estimate of the time
-// left (rewritten in place on a terminal, a line per finished point otherwise).
+// left (rewritten in place on a terminal, a line per finished point otherwise). Done and failed
+// count the results summary.csv holds, a point waiting or running counted when its run ends;
+// the last line, when nothing runs, counts them all, as the summary's closing line does.
 #pragma once
 
 #include <atomic>
 #include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -36,11 +44,18 @@ struct DriverSettings {
 };
 
 struct DriverReport {
-  int already_done = 0;                 // ok before this run, with the inputs of now
-  int outdated = 0;                     // run before with other inputs (running again)
-  int ok = 0, failed = 0, not_run = 0;  // of the points run now
+  int already_done = 0;  // ok before this run, with the inputs of now
+  int outdated = 0;      // run before with other inputs (running again)
   bool stopped = false;
 };
+
+// the time left [s] that the progress line gives: each point is taken to last the mean of `ran`,
+// the times of the points that ran to their end (ok) in this run; each running one that mean less
+// `running`, its elapsed time (nothing when past it); the `waiting` points start as the `jobs`
+// processes come free. nullopt when there is no basis (`ran` empty) or the figure is 0 (only points
+// running past the mean are left).
+std::optional<double> time_left(const std::vector<double>& ran, const std::vector<double>& running, int waiting,
+                                int jobs);
 
 // runs every point not done yet (every point with rerun), saying on stderr which run again for a
 // change in their inputs and what changed; throws std::runtime_error when a process cannot be started or

@@ -1,7 +1,13 @@
 #include "sweep/results.hpp"
 
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
 #include <algorithm>
 #include <cctype>
+#include <cerrno>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -397,6 +403,87 @@ std::vector<std::string> move_stale_folders(const OutputDir& top, const std::vec
   return moved;
 }
 
+namespace {
+
+// NAME in top's folder is a folder (not a link to one)
+bool is_folder(const OutputDir& top, const std::string& name) {
+  struct stat st {};
+  return ::fstatat(top.fd(), name.c_str(), &st, AT_SYMLINK_NOFOLLOW) == 0 && S_ISDIR(st.st_mode);
+}
+
+// the folder NAME of top holds a point.csv
+bool holds_result(const OutputDir& top, const std::string& name) {
+  struct stat st {};
+  return ::fstatat(top.fd(), (name + "/" + kPointFile).c_str(), &st, AT_SYMLINK_NOFOLLOW) == 0;
+}
+
+// NAME of top removed with all it holds (links removed, never followed); none is no error
+void remove_folder(const OutputDir& top, const std::string& name) {
+  std::error_code ec;
+  std::filesystem::remove_all(std::filesystem::path(top.path()) / name, ec);
+  if (ec) output_error(top.file(name), "cannot remove it: " + ec.message());
+}
+
+// the folder FROM of top renamed TO, which must not exist
+void rename_folder(const OutputDir& top, const std::string& from, const std::string& to) {
+  if (top.has(to)) output_error(top.file(to), "cannot rename " + top.file(from) + " to it: it exists");
+  if (::renameat(top.fd(), from.c_str(), top.fd(), to.c_str()) != 0)
+    output_error(top.file(to), "cannot rename " + top.file(from) + " to it: " + std::strerror(errno));
+}
+
+}  // namespace
+
+bool keep_earlier_folder(const OutputDir& top, const std::string& id) {
+  if (!is_folder(top, id) || !holds_result(top, id)) return false;
+  rename_folder(top, id, kKeptPrefix + id);
+  return true;
+}
+
+void drop_earlier_folder(const OutputDir& top, const std::string& id) {
+  remove_folder(top, kKeptPrefix + id);
+}
+
+void restore_earlier_folder(const OutputDir& top, const std::string& id) {
+  remove_folder(top, id);
+  rename_folder(top, kKeptPrefix + id, id);
+}
+
+std::vector<std::string> settle_earlier_folders(const OutputDir& top, const std::string& name) {
+  namespace fs = std::filesystem;
+  const std::string prefix = kKeptPrefix;
+  std::vector<std::string> ids;
+  std::error_code ec;
+  for (fs::directory_iterator it(top.path(), ec), end; !ec && it != end; it.increment(ec)) {
+    const std::string n = it->path().filename().string();
+    if (n.size() > prefix.size() && n.compare(0, prefix.size(), prefix) == 0 &&
+        n.find_first_not_of("0123456789", prefix.size()) == std::string::npos && is_folder(top, n))
+      ids.push_back(n.substr(prefix.size()));
+  }
+  std::sort(ids.begin(), ids.end());
+  std::vector<std::string> lines;
+  for (const std::string& id : ids) {
+    const std::string kept = top.file(prefix + id);
+    if (const int fd = ::openat(top.fd(), id.c_str(), O_RDONLY | O_DIRECTORY | O_NOFOLLOW | O_CLOEXEC); fd >= 0) {
+      const std::string who = folder_holder(fd);
+      ::close(fd);
+      if (!who.empty())
+        output_error(kept, "cannot settle it: " + top.file(id) + " is in use by " + who +
+                               " (a point of an earlier sweep still ending?); run the sweep again once it has ended");
+    }
+    if (holds_result(top, id)) {
+      drop_earlier_folder(top, id);
+      lines.push_back("sweep " + name + ": point " + id + " had run again to a result when a sweep ended (killed " +
+                      "outright?) before removing its earlier folder: " + kept + " removed");
+    } else {
+      restore_earlier_folder(top, id);
+      lines.push_back("sweep " + name + ": point " + id + " was running again when a sweep ended (killed outright?): " +
+                      "its earlier folder put back from " + kept + " to " + top.file(id) +
+                      " (the partial one removed), with its earlier result");
+    }
+  }
+  return lines;
+}
+
 Reasons rerun_reasons(const Results& results) {
   Reasons reasons;
   for (const auto& r : results) {
@@ -433,11 +520,8 @@ SummaryCounts write_summary(const OutputDir& top, const std::vector<Point>& poin
   SummaryCounts counts;
   std::vector<std::string> figures;
   for (const auto& r : results) {
-    if (!r || r->outdated()) {
-      ++counts.not_run;
-      continue;
-    }
-    ++(r->ok() ? counts.ok : counts.failed);
+    counts.add(r);
+    if (!r || r->outdated()) continue;
     for (const auto& [name, text] : r->figures)
       if (std::find(figures.begin(), figures.end(), name) == figures.end()) figures.push_back(name);
   }

@@ -86,6 +86,8 @@ OutputDir claim_sweep_folder(const std::string& dir);
 
 struct SummaryCounts {
   int ok = 0, failed = 0, not_run = 0;
+  // a point's result as summary.csv counts it: ok, failed, or not run (none, or outdated)
+  void add(const std::optional<PointResult>& r) { ++(!r || r->outdated() ? not_run : r->ok() ? ok : failed); }
 };
 // what DIR holds of each point: its result, nullopt when it has none; a result with other
 // inputs than now's as the status "outdated: why" without figures (but a failure recorded
@@ -105,6 +107,27 @@ std::vector<std::string> move_stale_folders(const OutputDir& top, const std::vec
 // what a sweep says of them: "sweep NAME: 9 folders of no point now moved to DIR/earlier/: 0, 1, ..."
 // ("" when none)
 std::string moved_line(const std::string& name, const OutputDir& top, const std::vector<std::string>& moved);
+// A point that runs again while its folder holds a point.csv (a result of an earlier run: ok,
+// failed or outdated) runs in a folder of its own: the earlier folder is renamed aside to
+// DIR/.kept-<id> (hidden, and no point's number, so neither the sweep's listing of the folders nor
+// the summary takes it), the point runs in a new DIR/<id> (its files name that folder), and when
+// the run ends with a result (its own, or the error of a process that died) the earlier folder is
+// removed; when it is stopped first, its folder is removed and the earlier one renamed back, whole.
+inline constexpr const char* kKeptPrefix = ".kept-";
+// DIR/<id> renamed to DIR/.kept-<id> when it is a folder that holds a point.csv; whether it was.
+// output_error when it cannot be (a .kept-<id> already there, a rename that fails)
+bool keep_earlier_folder(const OutputDir& top, const std::string& id);
+// the run again ended with a result: DIR/.kept-<id> removed (output_error when it cannot be)
+void drop_earlier_folder(const OutputDir& top, const std::string& id);
+// the run again stopped without one: DIR/<id> removed and DIR/.kept-<id> renamed to it
+// (output_error when either cannot be)
+void restore_earlier_folder(const OutputDir& top, const std::string& id);
+// the folders DIR/.kept-<id> that a sweep ended without settling (killed outright while points
+// ran again), settled as it would have: restored where DIR/<id> holds no point.csv (the run did not
+// end), else removed (it ended with a result); what a sweep NAME says of each, a line each, sorted.
+// output_error when one cannot be, or when a process still holds DIR/<id> (a point of that sweep
+// still ending): nothing is changed of that point
+std::vector<std::string> settle_earlier_folders(const OutputDir& top, const std::string& name);
 // why the points with other inputs than now's run again: each reason (the status after
 // "outdated: ") with how many points it holds for, in the order first met
 using Reasons = std::vector<std::pair<std::string, int>>;

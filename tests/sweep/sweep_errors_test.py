@@ -3,14 +3,18 @@
 folder that holds no point of the sweep (and collecting its own whose points all died), a folder
 that cannot be written, sbatch missing or printing megabytes, a point that cannot start, each said
 in one line with nothing finished lost, Slurm scripts that quote every value, and a second sweep on
-a folder in use refused. The folder, the runs and the waits are sweep_test.py's.
+a folder in use refused, a --rerun stopped (or a point's process killed) keeping the results (and
+their folders) that should stand, and the earlier folders a sweep killed outright left aside settled
+by the next. The folder, the runs and the waits are sweep_test.py's.
 
 usage: sweep_errors_test.py BELTSIM
 """
 import os
 import shutil
+import signal
 import subprocess
 import sys
+import time
 import unittest
 
 import sweep_test
@@ -18,27 +22,40 @@ from sweep_test import BAD, DRIVE, GRID, LIMIT, PLAIN, SweepCase, alive, rows
 
 BELTSIM = None
 
-# each point waits until the file GATE exists (the script's folder is readable in the sandbox)
+# each point k of K (0, 1, ...) runs the drive for as long as the file T_END says (no run when
+# T_END is ""), then waits until the file GATE exists (the script's folder is readable in the
+# sandbox); point FAIL (none when -1), on line FAIL_LINE, then fails
 GATED = """
+local fail, t_end_file = %d, %r
 return beltsim.sweep {
-  grid = { k = {0, 1} },
+  grid = { k = {%s} },
   run = function(p)
+    if t_end_file ~= "" then
+      local f = assert(io.open(t_end_file))
+      local t_end = tonumber(f:read("a"))
+      f:close()
+      beltsim.scene(require "drive" {}):run { t_end = t_end, sample = 1e-3, progress = false }
+    end
     while true do
       local f = io.open(%r)
       if f then f:close() break end
     end
+    if p.k == fail then error("asked to fail") end
     return { twice = 2 * p.k }
   end,
 }
 """
+FAIL_LINE = 16
 
 
 class SweepErrors(SweepCase):
-    def gated(self):
-        """the GATED sweep in this test's folder and its gate"""
+    def gated(self, points=2, fail=-1, t_end=""):
+        """the GATED sweep in this test's folder and its gate (t_end: the file of its runs' length)"""
         script, gate = self.path("gated.lua"), self.path("go")
         with open(script, "w") as f:
-            f.write(GATED % gate)
+            f.write(GATED % (fail, t_end, ", ".join(map(str, range(points))), gate))
+        if t_end:
+            shutil.copy(DRIVE, self.dir)
         return script, gate
 
     def processes_here(self):
@@ -231,6 +248,98 @@ class SweepErrors(SweepCase):
         self.assertEqual([r[2] for r in rows(self.path("out", "gated", "summary.csv"))[1:]], ["ok", "ok"])
         self.assertFalse(os.path.exists(self.path("out", "gated", "sweep.sbatch")), "the refused --slurm wrote")
 
+    def kept_folders(self):
+        """the earlier folders of the points running again (or left by a sweep killed outright)"""
+        return sorted(n for n in os.listdir(self.path("out", "gated")) if n.startswith(".kept-"))
+
+    def wait_until(self, what, proc, test):
+        end = time.monotonic() + LIMIT
+        while not test():
+            self.assertIsNone(proc.poll(), "the sweep ended before " + what)
+            self.assertLess(time.monotonic(), end, "never " + what)
+            time.sleep(0.005)
+
+    def test_a_stopped_rerun_keeps_the_earlier_results(self):
+        # four points, point 3 failing, run to their end, each with a run of 0.02 s; then --rerun
+        # with runs of 0.01 s, gated: point 0's process is killed (its run ended: its result
+        # replaced), point 2 starts in its place, and the sweep is stopped while 1 and 2 wait. The
+        # points whose run did not end keep their earlier results and folders, byte for byte (they
+        # were 'not run'), and the last progress line counts what the closing line does
+        t_end = self.path("t_end")
+        with open(t_end, "w") as f:
+            f.write("0.02")
+        script, gate = self.gated(points=4, fail=3, t_end=t_end)
+        with open(gate, "w"):
+            pass
+        self.run_beltsim("sweep", script, "--jobs", "2", ok=(1,))
+        before = rows(self.path("out", "gated", "summary.csv"))
+        self.assertEqual([r[2] for r in before[1:]],
+                         ["ok", "ok", "ok", "error: %s:%d: asked to fail" % (script, FAIL_LINE)])
+        files = ("point.csv", "log.txt", "timeseries.csv", "parameters.csv")
+        earlier = {k: {n: self.read("out", "gated", str(k), n) for n in files} for k in range(4)}
+        with open(t_end, "w") as f:
+            f.write("0.01")
+        os.remove(gate)
+        proc = subprocess.Popen([BELTSIM, "sweep", script, "--jobs", "2", "--rerun"], cwd=self.dir,
+                                stderr=subprocess.PIPE, text=True)
+        self.addCleanup(proc.kill)
+        self.point_process(proc, 1)
+        # point 1 runs in a folder of its own, its earlier one aside
+        self.wait_until("point 1's run wrote", proc, lambda: os.path.exists(self.path("out", "gated", "1",
+                                                                                      "timeseries.csv")))
+        self.assertIn(".kept-1", self.kept_folders())
+        os.kill(self.point_process(proc, 0), signal.SIGKILL)
+        self.point_process(proc, 2)
+        proc.send_signal(signal.SIGTERM)
+        _, err = proc.communicate(timeout=LIMIT)
+        self.assertEqual(proc.returncode, 143, err)
+        after = rows(self.path("out", "gated", "summary.csv"))
+        self.assertRegex(after[1][2], r"^error: its process was killed by signal 9 \(out/gated/0/log.txt")
+        self.assertEqual(after[2:], before[2:])
+        for k in (1, 2, 3):
+            self.assertEqual({n: self.read("out", "gated", str(k), n) for n in files}, earlier[k], k)
+        # point 0's run ended (its process died): its folder is that run's, saying why
+        self.assertNotEqual(self.read("out", "gated", "0", "log.txt"), earlier[0]["log.txt"])
+        self.assertEqual(self.kept_folders(), [])
+        self.assertIn("sweep gated: stopped before 3 points ran again: they keep their earlier results (2 ok, 1 failed)\n",
+                      err)
+        self.assertEqual(self.assert_counts_agree(err), (2, 2, 0))
+
+        # --rerun again, the sweep killed outright while points 0 and 1 run: their earlier folders
+        # are left aside, their folders partial; and point 2's earlier folder is left beside the
+        # result of its run (as when the sweep is killed between the two)
+        proc = subprocess.Popen([BELTSIM, "sweep", script, "--jobs", "2", "--rerun"], cwd=self.dir,
+                                stderr=subprocess.DEVNULL)
+        self.addCleanup(proc.kill)
+        children = [self.point_process(proc, k) for k in (0, 1)]
+        self.wait_until("point 1's run wrote", proc, lambda: os.path.exists(self.path("out", "gated", "1",
+                                                                                      "timeseries.csv")))
+        proc.kill()
+        proc.wait(timeout=LIMIT)
+        for c in children:
+            end = time.monotonic() + LIMIT
+            while alive(c):
+                self.assertLess(time.monotonic(), end, "point process %d outlived the sweep" % c)
+                time.sleep(0.005)
+        self.assertEqual(self.kept_folders(), [".kept-0", ".kept-1"])
+        self.assertNotIn("point.csv", os.listdir(self.path("out", "gated", "1")))
+        shutil.copytree(self.path("out", "gated", "2"), self.path("out", "gated", ".kept-2"))
+        os.remove(self.path("out", "gated", ".kept-2", "timeseries.csv"))  # (told from the result's)
+        # a run of the sweep after it says what it did with each, and the failed points alone run again
+        with open(gate, "w"):
+            pass
+        p = self.run_beltsim("sweep", script, "--jobs", "2", ok=(1,))
+        for k in (0, 1):
+            self.assertIn("sweep gated: point %d was running again when a sweep ended (killed outright?): its earlier "
+                          "folder put back from out/gated/.kept-%d to out/gated/%d (the partial one removed), with its "
+                          "earlier result\n" % (k, k, k), p.stderr)
+        self.assertIn("sweep gated: point 2 had run again to a result when a sweep ended (killed outright?) before "
+                      "removing its earlier folder: out/gated/.kept-2 removed\n", p.stderr)
+        self.assertIn("2 of 4 points done already", p.stderr)
+        self.assertEqual(self.kept_folders(), [])
+        self.assertEqual([r[2] for r in rows(self.path("out", "gated", "summary.csv"))[1:]], [r[2] for r in before[1:]])
+        for k in (1, 2):
+            self.assertEqual({n: self.read("out", "gated", str(k), n) for n in files}, earlier[k], k)
 
 if __name__ == "__main__":
     BELTSIM = sweep_test.BELTSIM = os.path.abspath(sys.argv.pop(1))

@@ -90,12 +90,48 @@ class SweepCase(unittest.TestCase):
     def path(self, *parts):
         return os.path.join(self.dir, *parts)
 
+    def read(self, *parts):
+        with open(self.path(*parts), "rb") as f:
+            return f.read()
+
     def wait_for(self, path, proc):
         end = time.monotonic() + LIMIT
         while not os.path.exists(path):
             self.assertIsNone(proc.poll(), "the sweep ended before " + path)
             self.assertLess(time.monotonic(), end, "no " + path)
             time.sleep(0.005)
+
+    def point_process(self, proc, k):
+        """the pid of the process of point k of the sweep proc, once it has started"""
+        end = time.monotonic() + LIMIT
+        while True:
+            self.assertIsNone(proc.poll(), "the sweep ended before point %d started" % k)
+            self.assertLess(time.monotonic(), end, "point %d never started" % k)
+            with open("/proc/%d/task/%d/children" % (proc.pid, proc.pid)) as f:
+                for c in f.read().split():
+                    try:
+                        with open("/proc/%s/cmdline" % c, "rb") as g:
+                            if b"\0--point\0%d\0" % k in g.read():
+                                return int(c)
+                    except (FileNotFoundError, ProcessLookupError):  # the child ended meanwhile
+                        pass
+            time.sleep(0.005)
+
+    def assert_counts_agree(self, stderr):
+        """the sweep's last progress line counts what its closing line does: the results
+        summary.csv holds"""
+        lines = stderr.replace("\r", "\n").splitlines()
+        progress = [m for m in map(re.compile(r"sweep \S+: (\d+)/(\d+) done, (\d+) failed(.*)$").match, lines) if m]
+        closing = [m for m in map(re.compile(r"beltsim sweep: .*summary.csv: (\d+) ok, (\d+) failed, (\d+) not run "
+                                             r"\(the results it holds of the (\d+) points, whenever they ran\)$").match,
+                                  lines) if m]
+        self.assertTrue(progress and len(closing) == 1, stderr)
+        done, total, failed, rest = progress[-1].groups()
+        self.assertEqual(rest, "", stderr)  # nothing running, no estimate
+        ok, failed_now, not_run, points = closing[0].groups()
+        self.assertEqual((done, failed, total), (ok, failed_now, points), stderr)
+        self.assertEqual(int(ok) + int(failed_now) + int(not_run), int(points), stderr)
+        return int(ok), int(failed_now), int(not_run)
 
 
 class Sweep(SweepCase):
@@ -360,10 +396,6 @@ class Sweep(SweepCase):
         with open(self.path("belt_params.lua"), "w") as f:
             f.write("return { mass = %s }\n" % mass)  # kg/m: the belt's mass per length
 
-    def read(self, *parts):
-        with open(self.path(*parts), "rb") as f:
-            return f.read()
-
     def test_a_resumed_sweep_after_an_edit_equals_an_uninterrupted_one(self):
         # a sweep stopped after its first point, a file that defines it edited, the same command
         # again: its summary.csv is byte for byte that of the edited sweep run whole elsewhere
@@ -521,9 +553,11 @@ class Sweep(SweepCase):
         first = self.path("out", "plain", "0", "point.csv")
         self.wait_for(first, proc)
         stop(proc)
-        proc.communicate(timeout=LIMIT)
+        _, err = proc.communicate(timeout=LIMIT)
         before = os.stat(first).st_ino
         done = self.finished_points()
+        if proc.returncode != -signal.SIGKILL:  # (killed outright, it says nothing)
+            self.assertEqual(self.assert_counts_agree(err), (len(done), 0, 4 - len(done)))
         # summary.csv as the points stood when the sweep ended, however it ended
         summary = rows(self.path("out", "plain", "summary.csv"))
         self.assertEqual([k for k in range(4) if summary[k + 1][4] == "ok"], done)
@@ -551,17 +585,7 @@ class Sweep(SweepCase):
 
         def kill(proc):
             # the sweep without warning, once point 1 runs: that point gets SIGTERM and ends too
-            end = time.monotonic() + LIMIT
-            while not children:
-                self.assertLess(time.monotonic(), end, "point 1 never started")
-                with open("/proc/%d/task/%d/children" % (proc.pid, proc.pid)) as f:
-                    for c in f.read().split():
-                        try:
-                            with open("/proc/%s/cmdline" % c, "rb") as g:
-                                if b"\0--point\0" + b"1\0" in g.read():
-                                    children.append(int(c))
-                        except (FileNotFoundError, ProcessLookupError):  # the child ended meanwhile
-                            pass
+            children.append(self.point_process(proc, 1))
             proc.kill()
             finished = self.finished_points()
             for c in children:
@@ -573,6 +597,16 @@ class Sweep(SweepCase):
             self.assertEqual(self.finished_points(), finished)
         self.assertEqual(self.interrupted_then_resumed(kill), -signal.SIGKILL)
         self.assertTrue(children, "no point was running when the sweep was killed")
+
+    def test_the_time_left_comes_from_points_that_ran_to_their_end(self):
+        # point 0 fails at once (a negative mu): its time is no basis for the others', which take
+        # longer, so no estimate is given until a point has run to its end ("about 0 s left")
+        p = self.run_beltsim("sweep", PLAIN, "--jobs", "2", "--set", "mu=-1,0.3,0.6", "--set", "t_end=0.3", ok=(1,))
+        line = re.compile(r"sweep plain: (\d+)/3 done, (\d+) failed.*?(, about .* left)?$")
+        lines = [m.groups() for m in map(line.match, p.stderr.splitlines()) if m]
+        self.assertIn(("0", "1", None), lines, p.stderr)
+        self.assertEqual([g for g in lines if g[0] == "0" and g[2]], [], p.stderr)
+        self.assertEqual(self.assert_counts_agree(p.stderr), (2, 1, 0))
 
     def test_plot_of_a_summary(self):
         self.run_beltsim("sweep", GRID)
