@@ -1,5 +1,6 @@
 #include "script/progress.hpp"
 
+#include <sys/ioctl.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
@@ -98,18 +99,46 @@ void ProgressLine::finish(double t, long steps, double wall) {
   t_ = std::min(t, target_), steps_ = steps, wall_ = wall;
 }
 
+// the terminal's width in columns (0: unknown)
+static int terminal_columns() {
+  winsize ws{};
+  return ioctl(STDERR_FILENO, TIOCGWINSZ, &ws) == 0 ? ws.ws_col : 0;
+}
+
+std::string fit_progress_text(const ProgressParts& p, int columns) {
+  // the parts a narrow terminal drops first come last here: the steps, then the elapsed time, then
+  // the estimate (a line longer than the terminal wraps, and each redraw then leaves a line behind)
+  for (int keep = 3; keep >= 0; --keep) {
+    std::string line = p.head;
+    if (keep > 1 && !p.elapsed.empty()) line += ", " + p.elapsed;
+    if (keep > 0 && !p.left.empty()) line += ", " + p.left;
+    if (keep > 2 && !p.steps.empty()) line += ", " + p.steps;
+    if (columns <= 0 || static_cast<int>(line.size()) < columns) return line;
+  }
+  return columns > 1 ? p.head.substr(0, columns - 1) : p.head;
+}
+
+double wall_left(const std::deque<std::pair<double, double>>& seen, double t0, double t, double target, double wall) {
+  // at the rate of the last third of the wall time so far (a run's cost per simulated second
+  // changes as it goes: a start-up ramp is cheaper than the drive at speed), else of all of it
+  double t_ref = t0, w_ref = 0;
+  for (const auto& [w, ts] : seen)
+    if (w <= 2 * wall / 3 && ts < t) t_ref = ts, w_ref = w;
+  const double done = t - t_ref;
+  return done > 0 ? std::max(0.0, (wall - w_ref) * (target - t) / done) : NAN;
+}
+
 void ProgressLine::draw(bool last) {
-  const double done = t_ - t0_, todo = target_ - t_;
+  const double done = t_ - t0_;
   const double pct = target_ > t0_ ? 100 * done / (target_ - t0_) : 100;
   char text[256];
-  int n = std::snprintf(text, sizeof text, "beltsim: t = %.4f s of %.4g s (%.0f %%), %s elapsed, ", t_, target_, pct,
-                        duration_text(wall_).c_str());
-  if (!last) {
-    const double left = done > 0 ? std::max(0.0, wall_ * todo / done) : NAN;
-    n += std::snprintf(text + n, sizeof text - n, "about %s left, ", duration_text(left).c_str());
-  }
-  std::snprintf(text + n, sizeof text - n, "%ld steps", steps_);
-  const std::string line = text;
+  ProgressParts parts;
+  std::snprintf(text, sizeof text, "beltsim: t = %.4f s of %.4g s (%.0f %%)", t_, target_, pct);
+  parts.head = text;
+  parts.elapsed = duration_text(wall_) + " elapsed";
+  if (!last) parts.left = "about " + duration_text(wall_left(seen_, t0_, t_, target_, wall_)) + " left";
+  parts.steps = std::to_string(steps_) + " steps";
+  const std::string line = fit_progress_text(parts, tty_ ? terminal_columns() : 0);
   if (!tty_) {
     std::fprintf(stderr, "%s\n", line.c_str());
   } else {
@@ -137,6 +166,10 @@ RunProgress ProgressLine::callback() {
     if (wall < 1.0 || wall - last_ < (tty_ ? 0.5 : 10.0)) return;
     last_ = wall;
     drawn_ = true;
+    // the times drawn, for the estimate's recent rate: the last two thirds of the run's wall time,
+    // and the one before them
+    seen_.emplace_back(wall, t_);
+    while (seen_.size() > 2 && seen_[1].first <= wall / 3) seen_.pop_front();
     draw(false);
   };
 }

@@ -16,7 +16,9 @@
 #pragma once
 
 #include <cstdio>
+#include <deque>
 #include <string>
+#include <utility>
 
 #include "sim/simulation.hpp"
 
@@ -42,7 +44,21 @@ class ProgressLine {
   double t_ = 0, target_ = 0, wall_ = 0;
   long steps_ = 0;
   size_t width_ = 0;  // of the text drawn last on the terminal, blanked by a shorter one
+  std::deque<std::pair<double, double>> seen_;  // (wall, t) of the line's drawings
 };
+
+// The progress line's parts, and the line a terminal of `columns` columns shows (0: any length):
+// the head always, then as many of the estimate, the elapsed time and the steps as fit, in that
+// order of precedence, each in its place ("beltsim: t = 1.2 s of 30 s (4 %), 10 s elapsed, about
+// 4 min 10 s left, 12000 steps")
+struct ProgressParts {
+  std::string head, elapsed, left, steps;
+};
+std::string fit_progress_text(const ProgressParts& parts, int columns);
+// [s] the progress line's estimate of the wall time left (NaN: no basis yet) of a run from t0 to
+// target now at t after `wall` seconds, from the (wall, t) pairs seen so far: at the rate of the
+// last third of the wall time (from the last pair at or before two thirds of it), else of all of it
+double wall_left(const std::deque<std::pair<double, double>>& seen, double t0, double t, double target, double wall);
 
 // ends the progress line open on the terminal, if one is: what is written next starts on a line of its own
 void end_progress_line();
