@@ -138,6 +138,10 @@ void add(Summary& s, const std::string& section, const std::string& item, const 
   s.figures.push_back({section, item, quantity, v, unit});
 }
 
+void add_count(Summary& s, const std::string& section, const std::string& item, const std::string& quantity, size_t n) {
+  s.figures.push_back({section, item, quantity, static_cast<double>(n), "", true});
+}
+
 // the loss channels' power over the window, when the run tracked them
 void add_losses(Summary& s, const Window& w, const Layout& l) {
   const char* channels[] = {"axial", "bending", "contact", "friction"};
@@ -268,7 +272,7 @@ void add_arms_and_rotors(Summary& s, const Window& w, const Layout& l) {
     double total = 0, longest = 0;
     for (const auto& [a, b] : o.intervals) total += b - a, longest = std::max(longest, b - a);
     add(s, "rotors", p, "rotor_speed_mean", w.of(p + ".rotor_speed").mean, "rad/s");
-    add(s, "rotors", p, "overrun_count", static_cast<double>(o.intervals.size()), "");
+    add_count(s, "rotors", p, "overrun_count", o.intervals.size());
     add(s, "rotors", p, "overrun_time", total, "s");
     add(s, "rotors", p, "overrun_longest", longest, "s");
     s.overruns.push_back(std::move(o));
@@ -322,7 +326,7 @@ Summary summarize(const std::string& dir, double from, double to) {
 
   add(s, "window", "", "from", t[r0], "s");
   add(s, "window", "", "to", t[r1 - 1], "s");
-  add(s, "window", "", "rows", static_cast<double>(r1 - r0), "");
+  add_count(s, "window", "", "rows", r1 - r0);
   add(s, "window", "", "belt_speed", belt_speed, "m/s");
   for (const auto& sp : l.spans) {
     const Stats st = w.of(span_name(sp) + ".tension");

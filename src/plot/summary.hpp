@@ -42,7 +42,8 @@ struct Figure {
   std::string section, item;  // item "" in the sections of one item (window, loss)
   std::string quantity;
   double value;
-  std::string unit;  // "" for none
+  std::string unit;    // "" for none
+  bool count = false;  // a whole number of things (rows, overrun_count): a Lua integer
 };
 
 struct Overrun {
