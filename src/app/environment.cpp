@@ -2,7 +2,10 @@
 
 #include <cstdlib>
 #include <stdexcept>
+#include <string>
+#include <vector>
 
+#include "io/suggest.hpp"
 #include "render/text.hpp"
 
 namespace beltsim::app {
@@ -20,13 +23,15 @@ Environment read_environment() {
   Environment env;
   const std::string gl = variable("BELTSIM_GL");
   const auto backend = render::gl_backend_named(gl);
-  if (!backend) throw std::invalid_argument("BELTSIM_GL=" + gl + " is not one of osmesa, egl");
+  if (const std::vector<std::string> names{"osmesa", "egl"}; !backend)
+    throw std::invalid_argument("BELTSIM_GL=" + gl + " is not one of " + join(names) + did_you_mean(gl, names));
   env.gl = *backend;
   env.font = variable("BELTSIM_FONT");
   const std::string images = variable("BELTSIM_TERM_IMAGES");
   const auto mode = term::image_mode(images);
-  if (!mode)
-    throw std::invalid_argument("BELTSIM_TERM_IMAGES=" + images + " is not one of off, symbols, sixel, kitty, iterm");
+  if (const std::vector<std::string> names{"off", "symbols", "sixel", "kitty", "iterm"}; !mode)
+    throw std::invalid_argument("BELTSIM_TERM_IMAGES=" + images + " is not one of " + join(names) +
+                                did_you_mean(images, names));
   env.images = *mode;
   env.history = variable("BELTSIM_HISTORY");
   if (env.history.empty()) {

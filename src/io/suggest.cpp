@@ -71,10 +71,23 @@ std::string join(const std::vector<std::string>& names, const std::string& sep) 
   return s;
 }
 
-std::string and_list(const std::vector<std::string>& names) {
+namespace {
+
+// "a", "a <last> b", "a, b <last> c"
+std::string list_with(const std::vector<std::string>& names, const std::string& last) {
   std::string list;
-  for (size_t k = 0; k < names.size(); ++k) list += (k ? k + 1 < names.size() ? ", " : " and " : "") + names[k];
+  for (size_t k = 0; k < names.size(); ++k) list += (k ? k + 1 < names.size() ? ", " : last : "") + names[k];
   return list;
+}
+
+}  // namespace
+
+std::string and_list(const std::vector<std::string>& names) {
+  return list_with(names, " and ");
+}
+
+std::string or_list(const std::vector<std::string>& names) {
+  return list_with(names, " or ");
 }
 
 }  // namespace beltsim

@@ -138,11 +138,16 @@ void add(Summary& s, const std::string& section, const std::string& item, const 
   s.figures.push_back({section, item, quantity, v, unit});
 }
 
+void add_count(Summary& s, const std::string& section, const std::string& item, const std::string& quantity, size_t n) {
+  s.figures.push_back({section, item, quantity, static_cast<double>(n), "", true});
+}
+
 // the loss channels' power over the window, when the run tracked them
 void add_losses(Summary& s, const Window& w, const Layout& l) {
   const char* channels[] = {"axial", "bending", "contact", "friction"};
   for (const char* c : channels)
     if (!w.t.has(std::string("energy.dissipated_") + c)) return;
+  if (!w.t.has("energy.mechanical")) return;
   s.losses = true;
   const std::vector<double>& t = w.time();
   const double span = t[w.r1 - 1] - t[w.r0];
@@ -154,15 +159,31 @@ void add_losses(Summary& s, const Window& w, const Layout& l) {
     add(s, "loss", "", c, p, "W");
   }
   add(s, "loss", "", "total", total, "W");
-  double input = 0;
-  for (size_t r = w.r0; r < w.r1; ++r)
-    for (const std::string& p : l.pulleys) {
-      const std::string speed = w.t.has(p + ".rotor_speed") ? p + ".rotor_speed" : p + ".omega";
-      const double power = w.t.column(p + ".torque")[r] * w.t.column(speed)[r];
-      if (power > 0) input += power;
+  // each pulley's mean power M·ω over the window (ω the rotor's where coupled): per interval
+  // between samples its `torque_mean` (the exact mean over the interval, which a kinematic
+  // driver's sampled torque aliases) or, in a run without that column, the mean of the interval's
+  // two sampled torques, times the mean of its two speeds. The pulleys that put power in on the
+  // mean are the drivers (input), those that take it out the loads (output): input − output =
+  // total + stored, stored the change of the mechanical energy over the window / its duration
+  double input = 0, output = 0;
+  for (const std::string& p : l.pulleys) {
+    const std::vector<double>& omega = w.t.column(w.t.has(p + ".rotor_speed") ? p + ".rotor_speed" : p + ".omega");
+    const std::vector<double>& torque = w.t.column(p + ".torque");
+    const std::vector<double>* mean = w.t.has(p + ".torque_mean") ? &w.t.column(p + ".torque_mean") : nullptr;
+    double work = 0;
+    for (size_t r = w.r0 + 1; r < w.r1; ++r) {
+      const double m = mean ? (*mean)[r] : (torque[r - 1] + torque[r]) / 2;
+      work += m * (omega[r - 1] + omega[r]) / 2 * (t[r] - t[r - 1]);
     }
-  input /= static_cast<double>(w.r1 - w.r0);
+    const double power = span > 0 ? work / span : NAN;
+    if (power > 0) input += power;
+    if (power < 0) output -= power;
+  }
+  if (!(span > 0)) input = output = NAN;  // a window of one sample
   add(s, "loss", "", "input", input, "W");
+  add(s, "loss", "", "output", output, "W");
+  const std::vector<double>& mechanical = w.t.column("energy.mechanical");
+  add(s, "loss", "", "stored", span > 0 ? (mechanical[w.r1 - 1] - mechanical[w.r0]) / span : NAN, "W");
   add(s, "loss", "", "share", input > 0 ? total / input : NAN, "");
 }
 
@@ -251,7 +272,7 @@ void add_arms_and_rotors(Summary& s, const Window& w, const Layout& l) {
     double total = 0, longest = 0;
     for (const auto& [a, b] : o.intervals) total += b - a, longest = std::max(longest, b - a);
     add(s, "rotors", p, "rotor_speed_mean", w.of(p + ".rotor_speed").mean, "rad/s");
-    add(s, "rotors", p, "overrun_count", static_cast<double>(o.intervals.size()), "");
+    add_count(s, "rotors", p, "overrun_count", o.intervals.size());
     add(s, "rotors", p, "overrun_time", total, "s");
     add(s, "rotors", p, "overrun_longest", longest, "s");
     s.overruns.push_back(std::move(o));
@@ -305,7 +326,7 @@ Summary summarize(const std::string& dir, double from, double to) {
 
   add(s, "window", "", "from", t[r0], "s");
   add(s, "window", "", "to", t[r1 - 1], "s");
-  add(s, "window", "", "rows", static_cast<double>(r1 - r0), "");
+  add_count(s, "window", "", "rows", r1 - r0);
   add(s, "window", "", "belt_speed", belt_speed, "m/s");
   for (const auto& sp : l.spans) {
     const Stats st = w.of(span_name(sp) + ".tension");

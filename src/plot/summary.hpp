@@ -22,9 +22,11 @@
 //            rotor runs ahead and the coupling holds it back: a one-way clutch open, a two-way
 //            spring driving the pulley), their ends interpolated linearly between samples
 //   loss     (with the energy.* columns, `energy = true`) axial, bending, contact, friction,
-//            total [W]: the channels' dissipated energy over the window / its duration; input [W]:
-//            the mean of Σ max(0, M·ω) over the pulleys (ω the rotor's where coupled); share =
-//            total / input
+//            total [W]: the channels' dissipated energy over the window / its duration; input,
+//            output [W]: the sums of the pulleys' mean powers M·ω over the window (ω the rotor's
+//            where coupled; M the interval means `torque_mean`) that are > 0 (the drivers) and
+//            < 0 (the loads, as a positive power); stored [W]: the change of energy.mechanical
+//            over the window / its duration (input − output = total + stored); share = total / input
 //   window   from, to [s] (the first and last sample's times), rows, belt_speed [m/s] (the mean
 //            of |ω|·R + slip_speed of the first pulley: the belt's speed along the travel on its
 //            wrap, model/observables.hpp)
@@ -40,7 +42,8 @@ struct Figure {
   std::string section, item;  // item "" in the sections of one item (window, loss)
   std::string quantity;
   double value;
-  std::string unit;  // "" for none
+  std::string unit;    // "" for none
+  bool count = false;  // a whole number of things (rows, overrun_count): a Lua integer
 };
 
 struct Overrun {

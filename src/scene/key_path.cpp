@@ -69,10 +69,12 @@ KeyPath parse_path(std::string_view text, bool name_after_space) {
       break;
     }
     p.chain.emplace_back(rest.substr(b, i - b));
-    // "spray 2.radius": the second entry of the list `spray`
+    // "spray 2.radius", and "spray 2" at the text's end or before ':', ';' or " (" ("unknown key
+    // 'x' in spray 2 (did you mean ...)"): the second entry of the list `spray`
     if (p.chain.size() == 1 && i < rest.size() && rest[i] == ' ') {
       const size_t e = digits_end(rest, i + 1);
-      if (e > i + 1 && e + 1 < rest.size() && rest[e] == '.') {
+      const bool ends = e == rest.size() || rest[e] == ':' || rest[e] == ';' || rest.substr(e, 2) == " (";
+      if (e > i + 1 && (ends || (e + 1 < rest.size() && rest[e] == '.'))) {
         p.chain.emplace_back(rest.substr(i + 1, e - i - 1));
         i = e;
       }

@@ -129,6 +129,17 @@ std::optional<std::string> opt_string(lua_State* L, int t, const char* key, cons
   return s;
 }
 
+std::optional<size_t> opt_choice(lua_State* L, int t, const char* key, const std::string& where,
+                                 const std::vector<std::string>& choices) {
+  const std::optional<std::string> v = opt_string(L, t, key, where);
+  if (!v) return std::nullopt;
+  for (size_t k = 0; k < choices.size(); ++k)
+    if (*v == choices[k]) return k;
+  std::vector<std::string> quoted;
+  for (const std::string& c : choices) quoted.push_back("'" + c + "'");
+  fail_on(L, where + "." + key, or_list(quoted) + " expected, got '" + *v + "'" + did_you_mean(*v, choices));
+}
+
 std::optional<bool> opt_bool(lua_State* L, int t, const char* key, const std::string& where) {
   if (!field(L, t, key)) return std::nullopt;
   if (lua_type(L, -1) != LUA_TBOOLEAN)

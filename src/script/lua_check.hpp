@@ -37,6 +37,10 @@ std::optional<double> opt_number(lua_State* L, int t, const char* key, const std
 std::string to_string(lua_State* L, int idx, const std::string& what);  // a string without NUL
 std::optional<std::string> opt_string(lua_State* L, int t, const char* key, const std::string& where);
 std::optional<bool> opt_bool(lua_State* L, int t, const char* key, const std::string& where);
+// the index in `choices` of the string t[key], nothing when nil; another string is an error on
+// where.key: "'cw' or 'ccw' expected, got 'cc' (did you mean 'cw'?)" (io/suggest.hpp)
+std::optional<size_t> opt_choice(lua_State* L, int t, const char* key, const std::string& where,
+                                 const std::vector<std::string>& choices);
 int to_integer(lua_State* L, int idx, const std::string& what);
 void require_table(lua_State* L, int idx, const std::string& what);
 Vec2 to_vec2(lua_State* L, int idx, const std::string& what);  // finite

@@ -128,12 +128,7 @@ Ramp read_ramp(lua_State* L, int idx, const std::string& what) {
   r.t1 = required(L, idx, "t1", what);
   r.from = opt_number(L, idx, "from", what).value_or(0.0);
   r.to = required(L, idx, "to", what);
-  if (const auto s = opt_string(L, idx, "shape", what)) {
-    if (*s != "linear" && *s != "cosine")
-      fail_on(L, what + ".shape",
-              std::string("'linear' or 'cosine' expected, got '") + *s + "'" + did_you_mean(*s, {"linear", "cosine"}));
-    r.cosine = *s == "cosine";
-  }
+  if (const auto k = opt_choice(L, idx, "shape", what, {"linear", "cosine"})) r.cosine = *k == 1;
   if (!(r.t1 > r.t0)) {
     std::ostringstream m;
     m << what << ": t1 must be > t0 (got t0 = " << r.t0 << " s, t1 = " << r.t1 << " s; a jump is beltsim.step)";

@@ -84,16 +84,8 @@ void read_numbers(lua_State* L, int idx, std::string_view table, const std::stri
 
 // a friction table's law and its numbers at idx into d.friction (w: "friction", "friction.segments[2]")
 void read_friction_law(lua_State* L, int idx, const std::string& w, SceneDef& d) {
-  if (auto v = opt_string(L, idx, "law", w)) {
-    if (*v == "threlfall")
-      d.friction.law = FrictionKind::threlfall;
-    else if (*v == "stribeck")
-      d.friction.law = FrictionKind::stribeck;
-    else if (*v == "lugre")
-      d.friction.law = FrictionKind::lugre;
-    else
-      fail_on(L, w + ".law", std::string("'threlfall', 'stribeck' or 'lugre' expected, got '") + *v + "'");
-  }
+  if (auto k = opt_choice(L, idx, "law", w, {"threlfall", "stribeck", "lugre"}))
+    d.friction.law = *k == 0 ? FrictionKind::threlfall : *k == 1 ? FrictionKind::stribeck : FrictionKind::lugre;
   // a law's own parameters with another law: a mistake the run would silently ignore
   for (const Parameter* par : parameters_of("friction"))
     if (par->applies && !par->applies(d) && has(L, idx, std::string(par->key).c_str()))
@@ -192,14 +184,7 @@ PulleyDef to_pulley(lua_State* L, int idx, const std::string& what, SceneDef& d,
     }
   if (!centred) fail_on(L, w, "a centre {x, y} [m] is required");
   read_numbers(L, idx, "pulley", w, d, p);
-  if (auto v = opt_string(L, idx, "wrap", w)) {
-    if (*v == "inside")
-      p.wrap = WrapSide::inside;
-    else if (*v == "back")
-      p.wrap = WrapSide::back;
-    else
-      fail_on(L, w + ".wrap", std::string("'inside' or 'back' expected, got '") + *v + "'");
-  }
+  if (auto k = opt_choice(L, idx, "wrap", w, {"inside", "back"})) p.wrap = *k == 0 ? WrapSide::inside : WrapSide::back;
   if (field(L, idx, "torque")) {
     p.torque = to_law(L, -1, w + ".torque", false, ctx);
     lua_pop(L, 1);
@@ -245,14 +230,7 @@ void read_belt(lua_State* L, int idx, SceneDef& d, std::unique_ptr<LuaRef>& mu_f
   read_numbers(L, idx, "belt", "belt", d, none);
   if (has(L, idx, "rest_length")) b.tensioning = Tensioning::rest_length;
   if (has(L, idx, "strain")) b.tensioning = Tensioning::strain;
-  if (auto v = opt_string(L, idx, "direction", "belt")) {
-    if (*v == "cw")
-      b.loop_sense = -1;
-    else if (*v == "ccw")
-      b.loop_sense = 1;
-    else
-      fail_on(L, "belt.direction", std::string("'cw' or 'ccw' expected, got '") + *v + "'");
-  }
+  if (auto k = opt_choice(L, idx, "direction", "belt", {"cw", "ccw"})) b.loop_sense = *k == 0 ? -1 : 1;
   if (field(L, idx, "route")) {
     const int r = lua_gettop(L);
     require_table(L, r, "belt.route");

@@ -171,8 +171,8 @@ int l_spray(lua_State* L) {
   lua_createtable(L, 0, 4);
   lua_pushboolean(L, sp.zones[z].enabled), lua_setfield(L, -2, "enabled");
   lua_pushboolean(L, sp.zones[z].on), lua_setfield(L, -2, "on");
-  set_number(L, "inside", inside);
-  set_number(L, "drying", drying);
+  lua_pushinteger(L, inside), lua_setfield(L, -2, "inside");
+  lua_pushinteger(L, drying), lua_setfield(L, -2, "drying");
   return 1;
 }
 

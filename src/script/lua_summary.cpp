@@ -28,9 +28,17 @@ constexpr const char* kResultsMeta = "beltsim.run_results";
 void push_figures(lua_State* L, const plot::Summary& s) {
   lua_newtable(L);
   const int top = lua_gettop(L);
+  // a count as a Lua integer (301, not 301.0), the others as floats
+  const auto set = [L](const plot::Figure& f) {
+    if (f.count)
+      lua_pushinteger(L, static_cast<lua_Integer>(f.value));
+    else
+      lua_pushnumber(L, f.value);
+    lua_setfield(L, -2, f.quantity.c_str());
+  };
   for (const plot::Figure& f : s.figures) {
     if (f.section == "window") {
-      set_number(L, f.quantity.c_str(), f.value);
+      set(f);
       continue;
     }
     if (lua_getfield(L, top, f.section.c_str()) != LUA_TTABLE) {
@@ -47,7 +55,7 @@ void push_figures(lua_State* L, const plot::Summary& s) {
         lua_setfield(L, -3, f.item.c_str());
       }
     }
-    set_number(L, f.quantity.c_str(), f.value);
+    set(f);
     lua_settop(L, top);
   }
   for (const plot::Overrun& o : s.overruns) {

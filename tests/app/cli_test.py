@@ -336,8 +336,10 @@ class Errors(unittest.TestCase):
 
     def test_environment_variables_with_unknown_values(self):
         path = self.script("print('ran')\n")
-        for var, value, words in [("BELTSIM_GL", "vulkan", "osmesa, egl"),
-                                  ("BELTSIM_TERM_IMAGES", "ascii-art", "off, symbols, sixel, kitty, iterm")]:
+        for var, value, words in [("BELTSIM_GL", "vulkan", "osmesa, egl\n"),
+                                  ("BELTSIM_TERM_IMAGES", "ascii-art", "off, symbols, sixel, kitty, iterm\n"),
+                                  ("BELTSIM_GL", "elg", "osmesa, egl (did you mean 'egl'?)"),
+                                  ("BELTSIM_TERM_IMAGES", "sixle", "off, symbols, sixel, kitty, iterm (did you mean 'sixel'?)")]:
             p = subprocess.run([BELTSIM, "run", path], capture_output=True, text=True, cwd=self.dir, timeout=60,
                                env=dict(os.environ, **{var: value}))
             self.assertEqual(p.returncode, 2, p.stderr)

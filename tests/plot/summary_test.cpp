@@ -7,7 +7,9 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <string>
+#include <vector>
 
 #include "plot/plot.hpp"
 #include "support/scratch.hpp"
@@ -118,6 +120,52 @@ TEST(Summary, ArmOverrunsAndLosses) {
   EXPECT_NEAR(figure(s, "loss", "total"), 10, 1e-12);
   EXPECT_DOUBLE_EQ(figure(s, "loss", "input"), 20);
   EXPECT_NEAR(figure(s, "loss", "share"), 0.5, 1e-12);
+}
+
+// rewrites d's timeseries.csv with the columns `set` gives (by name, a value per row), added where
+// new
+void set_columns(const fs::path& d, const std::map<std::string, std::vector<double>>& set) {
+  Table t = read_timeseries_csv((d / "timeseries.csv").string());
+  for (const auto& [name, values] : set) {
+    if (!t.has(name)) t.names.push_back(name);
+  }
+  std::ofstream ts(d / "timeseries.csv");
+  for (size_t k = 0; k < t.names.size(); ++k) ts << (k ? "," : "") << t.names[k];
+  ts << "\n";
+  for (size_t r = 0; r < 4; ++r) {
+    for (size_t k = 0; k < t.names.size(); ++k) {
+      const auto it = set.find(t.names[k]);
+      ts << (k ? "," : "") << (it != set.end() ? it->second[r] : t.column(t.names[k])[r]);
+    }
+    ts << "\n";
+  }
+}
+
+// input and output are the drivers' and the loads' net mean power: a's sampled torque swings
+// through 0 (2, -1, 5, -1 N·m at 10 rad/s), the power it gives back counted against it, not
+// clipped (the mean of max(0, M·ω) read 17.5 W)
+TEST(Summary, InputAndOutputAreTheNetMeanPowers) {
+  const fs::path sampled = folder("power_sampled");
+  set_columns(sampled, {{"a.torque", {2, -1, 5, -1}}});
+  const Summary s = summarize(sampled.string(), -INFINITY, INFINITY);
+  // each interval's mean torque times its mean speed: (0.5 + 2 + 2) N·m · 10 rad/s / 3; b's rotor
+  // takes 1 N·m · 5 rad/s
+  EXPECT_NEAR(figure(s, "loss", "input"), 15, 1e-12);
+  EXPECT_NEAR(figure(s, "loss", "output"), 5, 1e-12);
+  EXPECT_NEAR(figure(s, "loss", "share"), 10 / 15.0, 1e-12);
+  // with the interval means: a's 2 N·m (its samples alias it); 1.5 J stored over the 0.3 s:
+  // input − output = the 10 W the dampers take + the 5 W stored
+  const fs::path means = folder("power_means");
+  set_columns(means, {{"a.torque", {2, -1, 5, -1}},
+                      {"a.torque_mean", {NAN, 2, 2, 2}},
+                      {"b.torque_mean", {NAN, -1, -1, -1}},
+                      {"energy.mechanical", {0, 0.5, 1, 1.5}}});
+  const Summary m = summarize(means.string(), -INFINITY, INFINITY);
+  EXPECT_NEAR(figure(m, "loss", "input"), 20, 1e-12);
+  EXPECT_NEAR(figure(m, "loss", "output"), 5, 1e-12);
+  EXPECT_NEAR(figure(m, "loss", "stored"), 5, 1e-12);
+  EXPECT_NEAR(figure(m, "loss", "total"), 10, 1e-12);
+  EXPECT_NEAR(figure(m, "loss", "share"), 0.5, 1e-12);
 }
 
 TEST(Summary, CsvReadsBackWithUnitsInTheHeader) {

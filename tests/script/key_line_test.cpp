@@ -42,6 +42,8 @@ TEST(KeyLine, MessagePathsAsTheErrorsSpellThem) {
   EXPECT_EQ(chain("friction.segments[2].release_time must be > 0 (got 0 s)"), "/friction/segments/2/release_time");
   EXPECT_EQ(chain("friction.segments.2.from must be >= 0"), "/friction/segments/2/from");
   EXPECT_EQ(chain("spray 1.radius must be > 0 (got 0 m)"), "/spray/1/radius");
+  EXPECT_EQ(chain("unknown key 'drying_lenght' in spray 1 (did you mean 'drying_length'?)"), "/spray/1/drying_lenght");
+  EXPECT_EQ(chain("spray 2: a centre {x, y} [m] is required"), "/spray/2");
   EXPECT_EQ(chain("run.frames.fps: must be in (0, 240] (got -30)"), "/run/frames/fps");
   // a path that ends at a list position names that entry (key_line finds its table's line)
   EXPECT_EQ(chain("friction.segments[2]: from and to [m] are required"), "/friction/segments/2");
@@ -150,6 +152,22 @@ TEST(KeyLine, ScriptErrorsNameTheLineOfTheKey) {
   EXPECT_EQ(run(with_belt("  belt = b,\n", "local b = { pretension = -5 }\n"))
                 .rfind(file + ":2: belt.pretension must be > 0", 0),
             0u);
+}
+
+// A spray zone's unknown key names the key's line, as a pulley's does ("in spray 1": the first
+// entry of `spray`); a key left out names the zone's line
+TEST(KeyLine, SprayZoneErrorsNameTheZonesLines) {
+  const ScriptDir sd;
+  const std::string& file = sd.file;
+  const std::string unknown =
+      sd.run(with_belt("  spray = {\n"                                                      // 6
+                       "    { centre = {0.145, 0.1}, radius = 0.03, mu = 0.2, to = 0.5,\n"  // 7
+                       "      drying_lenght = 2 } },\n"));                                  // 8
+  EXPECT_EQ(unknown.rfind(file + ":8: unknown key 'drying_lenght' in spray 1", 0), 0u) << unknown;
+  const std::string centre =
+      sd.run(with_belt("  spray = {\n"                            // 6
+                       "    { radius = 0.03, mu = 0.2 } },\n"));  // 7
+  EXPECT_EQ(centre.rfind(file + ":7: spray 1: a centre {x, y} [m] is required", 0), 0u) << centre;
 }
 
 // The errors about a pulley as a whole name that pulley's line (the key at fault in it, or its

@@ -186,6 +186,7 @@ TEST(LiveApi, SprayZoneReadSwitchedAndRefused) {
           "', progress = false }\n"
           "local z = sim:spray(1)\n"
           "assert(z.on and z.enabled and z.inside > 0 and z.drying == 0, 'on from the start')\n"
+          "assert(math.type(z.inside) == 'integer' and math.type(z.drying) == 'integer', 'counts')\n"
           "local inside = 0\n"
           "for i = 0, 39 do\n"
           "  local e = sim:element(i)\n"
@@ -474,6 +475,21 @@ TEST(LiveApi, BadCallsNameFileLineAndWhat) {
     EXPECT_NE(msg.find("live.lua:9:"), std::string::npos) << c.call << " -> " << msg;
     EXPECT_NE(msg.find(c.expect), std::string::npos) << c.call << " -> " << msg;
   }
+}
+
+// the summary's counts (its rows, a rotor's overruns) are Lua integers, its other figures floats
+TEST(LiveApi, SummaryCountsAreIntegers) {
+  beltsim::test::TwoPulley p;
+  p.driven = "torque = { per_speed = -0.955 }, coupling = { inertia = 1e-3, stiffness = 50, one_way = true }";
+  const std::string out = (temp_dir() / "counts").string();
+  EXPECT_EQ(run_text(beltsim::test::two_pulley(p) + "local r = s:run{ t_end = 0.01, out = '" + out +
+                     "', progress = false }\n"
+                     "local m = r:summary{}\n"
+                     "assert(math.type(m.rows) == 'integer' and m.rows == 11, tostring(m.rows))\n"
+                     "local n = m.rotors.driven.overrun_count\n"
+                     "assert(math.type(n) == 'integer', tostring(n))\n"
+                     "assert(math.type(m.from) == 'float' and math.type(m.rotors.driven.overrun_time) == 'float')\n"),
+            "");
 }
 
 // the folders of a picture's, a checkpoint's or a CSV file's path are made when missing, as

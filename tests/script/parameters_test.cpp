@@ -249,6 +249,8 @@ TEST(Parameters, FrictionLawWordsAndTheirParameters) {
   const std::string at = at_line_of(scene_with({}), "friction = {");  // the friction table's line
   EXPECT_EQ(run_text(scene_with({{"friction.law", "'coulomb'"}})),
             at + "friction.law: 'threlfall', 'stribeck' or 'lugre' expected, got 'coulomb'");
+  EXPECT_EQ(run_text(scene_with({{"friction.law", "'stribek'"}})),
+            at + "friction.law: 'threlfall', 'stribeck' or 'lugre' expected, got 'stribek' (did you mean 'stribeck'?)");
   EXPECT_EQ(run_text(scene_with({{"friction.law", "'stribeck'"}, {"friction.bristle_stiffness", "1e5"}})),
             at + "friction.bristle_stiffness: a parameter of another law; this scene's law is 'stribeck'");
   EXPECT_EQ(run_text(scene_with({{"friction.law", "'threlfall'"}, {"friction.static_ratio", "1.5"}})),
@@ -259,6 +261,22 @@ TEST(Parameters, FrictionLawWordsAndTheirParameters) {
   EXPECT_NE(csv.find("stribeck"), std::string::npos) << csv;
   EXPECT_EQ(run_text(scene_with({{"friction.law", "'lugre'"}, {"friction.static_ratio", "1.5"}})), "");
   EXPECT_NE(slurp(temp_dir() / "out" / "parameters.csv").find("\nfriction.bristle_stiffness,"), std::string::npos);
+}
+
+// the other words a scene takes (a pulley's wrap, the belt's direction, a ramp's shape): a near miss
+// gets a suggestion, as friction.law's, on the key's line
+TEST(Parameters, MisspeltWordsGetASuggestion) {
+  const std::string wrap = scene_with({{"pulley.wrap", "'bakc'"}});
+  EXPECT_EQ(run_text(wrap), at_line_of(wrap, "wrap = ") +
+                                "pulley 'a'.wrap: 'inside' or 'back' expected, got 'bakc' (did you mean 'back'?)");
+  const std::string direction = scene_with({{"belt.direction", "'cww'"}});
+  EXPECT_EQ(run_text(direction), at_line_of(direction, "direction = ") +
+                                     "belt.direction: 'cw' or 'ccw' expected, got 'cww' (did you mean 'cw' or 'ccw'?)");
+  const std::string ok = scene_with({});
+  EXPECT_EQ(run_text(ok.substr(0, ok.find("s:run")) + "local r = beltsim.ramp{ t1 = 1, to = 2, shape = 'cosin' }\n"),
+            at_line_of(ok, "s:run") +
+                "beltsim.ramp.shape: 'linear' or 'cosine' expected, got 'cosin' (did you mean "
+                "'cosine'?)");
 }
 
 // friction.segments: each segment's law starts from the scene's and takes its own keys; their rows
