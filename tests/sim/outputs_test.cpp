@@ -149,6 +149,65 @@ TEST(Outputs, AnEarlierRunsOutputsThisRunDoesNotWriteAreNamed) {
   EXPECT_TRUE(said.empty()) << said[0];
 }
 
+// a sink that draws nothing: a run that asks for frames, for the names of its own video and PNG folder
+class NoPictures final : public FrameSink {
+ public:
+  void frame(double, const double*, const Drive&, const Observation*) override {}
+  void finish() override {}
+  long frames_written() const override { return 0; }
+};
+
+// every video is named, whatever its name, and every PNG folder, but this run's own (a user's second
+// run of scripts/paper_dry.lua with --no-frames said only frames/, while the first run's
+// paper_dry.mp4 stayed beside the new timeseries.csv: the check knew the default name alone)
+TEST(Outputs, AnEarlierRunsVideoAndPngFolderAreNamedWhateverTheirNames) {
+  const fs::path out = fresh("earlier_named") / "out";
+  std::vector<std::string> said;
+  auto runs = [&](const char* video, const char* png) {
+    said.clear();
+    RunSettings rs = settings(out);
+    rs.t_end = 0.002;
+    if (video || png) {
+      rs.frames = FrameSettings{};
+      rs.frames->video_path = video ? video : "";
+      rs.frames->png_dir = png ? png : "";
+      rs.frame_factory = [](const Scene&, const FrameSettings&) { return std::make_unique<NoPictures>(); };
+    }
+    rs.on_warning = [&](const std::string& m) {
+      if (m.rfind("the output folder", 0) == 0) said.push_back(m);
+    };
+    run(dry_scene(), rs);
+  };
+  runs(nullptr, nullptr);
+  EXPECT_TRUE(said.empty()) << said[0];
+  // the first run's video and PNGs, by the names its script gave
+  std::ofstream(out / "paper_dry.mp4") << "x";
+  std::ofstream(out / "clip_resumed_0.1.MP4") << "x";
+  fs::create_directories(out / "pics");
+  std::ofstream(out / "pics" / "frame_00000.png") << "x";
+  fs::create_directories(out / "notes");  // a folder without frames: not an output of a run
+  std::ofstream(out / "notes" / "a.png") << "x";
+  runs(nullptr, nullptr);
+  ASSERT_EQ(said.size(), 1u);
+  EXPECT_EQ(said[0], "the output folder " + out.string() +
+                         " holds an earlier run's clip_resumed_0.1.MP4, paper_dry.mp4 and pics/, which this run does "
+                         "not write: they are not this run's outputs (give each run its own --out or out = ..., or "
+                         "remove them)");
+  // a run that writes that video and that PNG folder itself names only the other video
+  runs("paper_dry.mp4", "pics");
+  ASSERT_EQ(said.size(), 1u);
+  EXPECT_EQ(said[0], "the output folder " + out.string() +
+                         " holds an earlier run's clip_resumed_0.1.MP4, which this run does not write: they are not "
+                         "this run's outputs (give each run its own --out or out = ..., or remove them)");
+  // its video given as an absolute path into the folder, the same (pics/ lost its frames to the run
+  // before, which drew into it)
+  runs((out / "clip_resumed_0.1.MP4").c_str(), nullptr);
+  ASSERT_EQ(said.size(), 1u);
+  EXPECT_EQ(said[0], "the output folder " + out.string() +
+                         " holds an earlier run's paper_dry.mp4, which this run does not write: they are not this "
+                         "run's outputs (give each run its own --out or out = ..., or remove them)");
+}
+
 // so are the checkpoints an earlier run saved into the folder: this run replaces the outputs they
 // continue, and beltsim.resume refuses them after it (a user's rerun into the folder of a saved
 // run, with another pretension, said nothing of its mid.ckpt, whose resume then spliced the runs)
