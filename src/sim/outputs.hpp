@@ -79,6 +79,7 @@ class Outputs {
   std::string path(const char* name) const;  // OUT_DIR/NAME
   long bytes(const char* name) const;        // the size of NAME in the claimed folder, 0 when none
   long rows() const { return rows_; }        // samples written
+  double last_row_t() const { return last_.csv_last_t; }  // the time of timeseries.csv's last row (NaN: none)
   long frames_written() const;
   const std::vector<std::vector<double>>& samples() const { return samples_; }  // keep_samples
 

@@ -458,10 +458,17 @@ void Simulation::close() {
   if (closed_) return;
   closed_ = true;
   // how the run ended, last in parameters.csv: a folder read later tells a finished run from a
-  // stopped one (a run killed outright has no end.* rows)
+  // stopped one (a run killed outright has no end.* rows). Two times: the run's state's, where it
+  // stopped, and the time series' last row's, which a stop between samples leaves behind it
+  const double last_row = out_->last_row_t();
   const std::string end =
-      "end.t," + value_text(now()) + ",s,derived,the simulated time the outputs reach\n" + "end.status," + end_status_ +
-      ",,derived," +
+      "end.t," + value_text(now()) +
+      ",s,derived,the simulated time the run reached: where it stopped (result.t; a checkpoint saved then continues "
+      "from it)\n" +
+      "end.last_row_t," + (std::isnan(last_row) ? std::string() : value_text(last_row)) +
+      ",s,derived,the time of timeseries.csv's last row: the time series reaches it (at most one sample interval "
+      "before end.t; empty: no row)\n" +
+      "end.status," + end_status_ + ",,derived," +
       csv_text(end_note_.empty() ? "how the run ended: ok, interrupted, wall_limit, diverged or failed" : end_note_) +
       "\n";
   out_->close(warnings(), (check_ ? check_->parameter_rows() : std::string()) + end);
