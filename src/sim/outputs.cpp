@@ -31,6 +31,10 @@ std::string probe_name(size_t k, size_t probes) {
   return probes == 1 ? std::string("probe") : "probe" + std::to_string(k + 1);
 }
 
+// the room parameters.csv keeps for the rows appended at close (WholeFile::reserve): the fallbacks'
+// rows take 1.4 KB, a checked run's check.* rows 1.5 KB and the end rows' note up to a message
+constexpr long kParametersTail = 16 * 1024;
+
 // parameters.csv as written at the run's start; returns its text
 std::string write_parameters(const Scene& sc, const RunSettings& rs, const OutputDir& dir) {
   const Model& m = sc.model;
@@ -119,7 +123,12 @@ std::string write_parameters(const Scene& sc, const RunSettings& rs, const Outpu
     f << "run." << s.key << "," << csv_text(run_value_text(s, rs)) << "," << s.unit << ",run,"
       << csv_text(std::string(s.note)) << '\n';
   std::string written = f.str();
-  write_file_whole(dir, "parameters.csv", written);
+  WholeFile file(dir, "parameters.csv");
+  file.write(written);
+  // the rows close() appends (the fallbacks, a check's, how the run ended: about 3 KB) find room
+  // on a disk that has filled meanwhile: a run stopped by a full disk still says how it ended
+  file.reserve(kParametersTail);
+  file.commit();
   return written;
 }
 
