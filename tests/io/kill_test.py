@@ -210,7 +210,14 @@ def second_signal():
     p = start(["run", script("run", RUN)], out)
     wait_for(lambda: rows(os.path.join(out, "timeseries.csv")) > 10, 10, "the first rows")
     status = stop_and_wait(p, [signal.SIGTERM, signal.SIGINT])
+    err = p.stderr.read()
     check(status in (-signal.SIGINT, -signal.SIGTERM), "second signal: ended by the default action (%s)" % status)
+    # not silent: one line says it quit without finishing the outputs, and what they hold (a user's
+    # second Ctrl-C ended with exit 130 and no word, parameters.csv without its end rows)
+    said = re.findall(r"beltsim: (?:Ctrl-C|SIGTERM) while stopping: quitting at once, without finishing the outputs: "
+                      r"their rows so far are kept whole, but parameters\.csv gets no end rows and a video holds "
+                      r"only its finished fragments\n", err)
+    check(len(said) == 1, "second signal: one line says so (%r)" % err[-600:])
     outputs_whole(out, "second signal")
 
 
