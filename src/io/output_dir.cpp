@@ -77,7 +77,7 @@ void note_output_failure(const std::string& message) {
 void output_error(const std::string& path, const std::string& reason) {
   const std::string m = "cannot write " + path + ": " + reason;
   note_output_failure(m);
-  throw std::runtime_error(m);
+  throw OutputError(m);
 }
 
 std::vector<std::string> output_failures() {
@@ -311,6 +311,12 @@ void WholeFile::write(std::string_view text) {
     discard();
     throw;
   }
+}
+
+void WholeFile::reserve(long bytes) {
+  struct stat st {};
+  if (!done_ && ::fstat(fd_, &st) == 0 && ::fallocate(fd_, FALLOC_FL_KEEP_SIZE, st.st_size, bytes) != 0)
+    errno = 0;  // (none taken: the rows appended later may still find room)
 }
 
 void WholeFile::discard() {

@@ -17,13 +17,19 @@
 // the end of the interpreter) still makes the program's exit status non-zero (app/main.cpp).
 #pragma once
 
+#include <stdexcept>
 #include <string>
 #include <string_view>
 #include <vector>
 
 namespace beltsim {
 
-// throws std::runtime_error "cannot write PATH: REASON" after recording it
+// an output that could not be written: "cannot write PATH: REASON" (output_error)
+struct OutputError : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+// throws OutputError "cannot write PATH: REASON" after recording it
 [[noreturn]] void output_error(const std::string& path, const std::string& reason);
 // records a failure that is reported another way (its own message)
 void note_output_failure(const std::string& message);
@@ -121,6 +127,11 @@ class WholeFile {
   std::string path() const { return dir_.file(name_); }
   // all of text (output_error on a failed write)
   void write(std::string_view text);
+  // room for `bytes` more past what is written, taken from the file system now (fallocate,
+  // FALLOC_FL_KEEP_SIZE: the file's size and bytes unchanged), so that rows appended later find it
+  // on a disk that has filled meanwhile (parameters.csv's end rows); nothing where the file system
+  // cannot
+  void reserve(long bytes);
   // closes the file and names it NAME (output_error on failure: then nothing is left)
   void commit();
   // gives up the file: nothing is left of it, NAME keeps its old content

@@ -38,6 +38,24 @@ std::mutex& lua_mutex() {
   return *m;
 }
 
+const char* name(int sig) {
+  return sig == SIGINT ? "Ctrl-C" : sig == SIGHUP ? "SIGHUP" : "SIGTERM";
+}
+
+// the line a second stop signal ends the process with: it quits at once, so the outputs are not
+// closed (docs/outputs.md, Signals). One write(2) of a line built without allocating (safe in a
+// handler)
+void say_quit(int sig) {
+  char line[320];
+  size_t n = 0;
+  for (const char* part : {"\nbeltsim: ", name(sig),
+                           " while stopping: quitting at once, without finishing the outputs: their rows so far are "
+                           "kept whole, but parameters.csv gets no end rows and a video holds only its finished "
+                           "fragments\n"})
+    for (const char* c = part; *c && n < sizeof line; ++c) line[n++] = *c;
+  [[maybe_unused]] const ssize_t w = write(STDERR_FILENO, line, n);
+}
+
 void on_signal(int sig) {
   const int saved_errno = errno;
   // a signal sent to the process may land on any thread that does not block it (the encoder's,
@@ -55,6 +73,7 @@ void on_signal(int sig) {
   }
   int none = 0;
   if (!g_pending.compare_exchange_strong(none, sig)) {  // a stop is under way: this one ends the process
+    say_quit(sig);
     std::signal(sig, SIG_DFL);
     std::raise(sig);  // blocked in this thread until this handler returns, then fatal
     return;
@@ -70,10 +89,6 @@ void on_signal(int sig) {
 
 void say_raw(const std::string& s) {
   [[maybe_unused]] const ssize_t n = write(STDERR_FILENO, s.data(), s.size());
-}
-
-const char* name(int sig) {
-  return sig == SIGINT ? "Ctrl-C" : sig == SIGHUP ? "SIGHUP" : "SIGTERM";
 }
 
 // waits while the host runs Lua code; true when it has been inside one Lua call for kGrace

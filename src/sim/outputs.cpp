@@ -35,6 +35,10 @@ std::string probe_name(size_t k, size_t probes) {
   return probes == 1 ? std::string("probe") : "probe" + std::to_string(k + 1);
 }
 
+// the room parameters.csv keeps for the rows appended at close (WholeFile::reserve): the fallbacks'
+// rows take 1.4 KB, a checked run's check.* rows 1.5 KB and the end rows' note up to a message
+constexpr long kParametersTail = 16 * 1024;
+
 // parameters.csv as written at the run's start; returns its text
 std::string write_parameters(const Scene& sc, const RunSettings& rs, const OutputDir& dir) {
   const Model& m = sc.model;
@@ -123,28 +127,54 @@ std::string write_parameters(const Scene& sc, const RunSettings& rs, const Outpu
     f << "run." << s.key << "," << csv_text(run_value_text(s, rs)) << "," << s.unit << ",run,"
       << csv_text(std::string(s.note)) << '\n';
   std::string written = f.str();
-  write_file_whole(dir, "parameters.csv", written);
+  WholeFile file(dir, "parameters.csv");
+  file.write(written);
+  // the rows close() appends (the fallbacks, a check's, how the run ended: about 3 KB) find room
+  // on a disk that has filled meanwhile: a run stopped by a full disk still says how it ended
+  file.reserve(kParametersTail);
+  file.commit();
   return written;
+}
+
+// a numbered file's name, PREFIX + at least five digits + SUFFIX (frame_00012.png, state_00003.ckpt)
+bool numbered(const std::string& n, const std::string& prefix, const std::string& suffix) {
+  if (n.size() <= prefix.size() + suffix.size() || n.compare(0, prefix.size(), prefix) != 0 ||
+      n.compare(n.size() - suffix.size(), suffix.size(), suffix) != 0)
+    return false;
+  const std::string digits = n.substr(prefix.size(), n.size() - prefix.size() - suffix.size());
+  return digits.size() >= 5 && digits.find_first_not_of("0123456789") == std::string::npos;
+}
+
+// the names of the regular files (never a link) in the folder PATH that `keep` takes, sorted
+template <class Keep>
+std::vector<std::string> files_in(const std::string& path, Keep keep) {
+  std::error_code ec;
+  std::vector<std::string> names;
+  for (const auto& e : std::filesystem::directory_iterator(path, ec)) {
+    const std::string n = e.path().filename().string();
+    if (e.symlink_status(ec).type() == std::filesystem::file_type::regular && keep(n)) names.push_back(n);
+  }
+  std::sort(names.begin(), names.end());
+  return names;
 }
 
 // A fresh run's numbered files (frame_00012.png, state_00003.ckpt) replace an earlier run's in the
 // same folder: those it would not write over (a longer earlier run's last ones) are removed too, so
 // that the folder holds one run's frames, as it holds one run's timeseries.csv (a golden test
-// compared a frame the run no longer drew, left by the run before). Only regular files of names of that form.
+// compared a frame the run no longer drew, left by the run before). Only regular files of names of that form
+// (a link is refused when written).
 void remove_numbered(const OutputDir& dir, const std::string& prefix, const std::string& suffix) {
+  for (const std::string& n : files_in(dir.path(), [&](const std::string& f) { return numbered(f, prefix, suffix); }))
+    dir.remove(n);
+}
+
+// the name of PATH in the folder DIR when it lies directly in it ("v.mp4" for out/v.mp4 and out
+// "out"), else ""
+std::string name_in(const std::string& dir, const std::string& path) {
+  namespace fs = std::filesystem;
   std::error_code ec;
-  std::vector<std::string> names;
-  for (const auto& e : std::filesystem::directory_iterator(dir.path(), ec)) {
-    const std::string n = e.path().filename().string();
-    if (e.symlink_status(ec).type() != std::filesystem::file_type::regular)
-      continue;  // (a link is refused when written)
-    if (n.size() <= prefix.size() + suffix.size() || n.compare(0, prefix.size(), prefix) != 0 ||
-        n.compare(n.size() - suffix.size(), suffix.size(), suffix) != 0)
-      continue;
-    const std::string digits = n.substr(prefix.size(), n.size() - prefix.size() - suffix.size());
-    if (digits.size() >= 5 && digits.find_first_not_of("0123456789") == std::string::npos) names.push_back(n);
-  }
-  for (const std::string& n : names) dir.remove(n);
+  const fs::path p = fs::absolute(path, ec).lexically_normal(), d = fs::absolute(dir, ec).lexically_normal();
+  return (p.parent_path() / "") == (d / "") ? p.filename().string() : std::string();
 }
 
 }  // namespace
@@ -215,33 +245,40 @@ void Outputs::open(bool append) {
 }
 
 std::vector<std::string> Outputs::earlier_outputs() const {
-  const FrameSettings* f = sink_ && rs_.frames ? &*rs_.frames : nullptr;
-  const struct {
-    std::string name;
-    bool written;
-  } own[] = {{"snapshots.csv", has_snapshots()},
-             {units_file_name("snapshots.csv"), has_snapshots()},
-             {"frames.mp4", f && f->video_path == "frames.mp4"},
-             {"frames/", f && f->png_dir == "frames"},
-             {"states/", rs_.keep_states}};
-  std::vector<std::string> left;
-  for (const auto& o : own) {
-    std::string name = o.name;
-    if (name.back() == '/') name.pop_back();
-    if (!o.written && dir_->has(name)) left.push_back(o.name);
+  namespace fs = std::filesystem;
+  const std::string& folder = dir_->path();
+  // this run's own video and PNG folder, when they lie directly in the folder
+  std::string video, pngs;
+  if (sink_ && rs_.frames) {
+    if (!rs_.frames->video_path.empty()) video = name_in(folder, path(rs_.frames->video_path.c_str()));
+    if (!rs_.frames->png_dir.empty()) pngs = name_in(folder, path(rs_.frames->png_dir.c_str()));
   }
+  std::vector<std::string> left;
+  for (const std::string& n : {std::string("snapshots.csv"), units_file_name("snapshots.csv")})
+    if (!has_snapshots() && dir_->has(n)) left.push_back(n);
+  // every video, whatever its name (a script's frames.video, a resumed run's NAME_resumed_T.mp4)
+  for (const std::string& n :
+       files_in(folder, [&](const std::string& f) { return f != video && video_name_problem(f).empty(); }))
+    left.push_back(n);
+  // every PNG folder: frames/ (the default's name) and any other that holds frame_NNNNN.png files
+  // (a script's frames.png, whatever its name)
+  std::error_code ec;
+  std::vector<std::string> png_dirs;
+  for (const auto& e : fs::directory_iterator(folder, ec)) {
+    const std::string n = e.path().filename().string();
+    if (n == pngs || n == "states" || e.symlink_status(ec).type() != fs::file_type::directory) continue;
+    if (n == "frames" ||
+        !files_in(e.path().string(), [](const std::string& f) { return numbered(f, "frame_", ".png"); }).empty())
+      png_dirs.push_back(n + "/");
+  }
+  std::sort(png_dirs.begin(), png_dirs.end());
+  left.insert(left.end(), png_dirs.begin(), png_dirs.end());
+  if (!rs_.keep_states && dir_->has("states")) left.push_back("states/");
   // checkpoints saved into the folder (sim:save("mid.ckpt")): resumed after this run has written
   // the folder, each is refused (check_state: its outputs are gone), so they are named as it starts
-  std::vector<std::string> checkpoints;
-  std::error_code ec;
-  for (const auto& e : std::filesystem::directory_iterator(dir_->path(), ec)) {
-    const std::string n = e.path().filename().string();
-    if (e.symlink_status(ec).type() == std::filesystem::file_type::regular && n.size() > 5 &&
-        n.compare(n.size() - 5, 5, ".ckpt") == 0)
-      checkpoints.push_back(n);
-  }
-  std::sort(checkpoints.begin(), checkpoints.end());
-  left.insert(left.end(), checkpoints.begin(), checkpoints.end());
+  for (const std::string& n :
+       files_in(folder, [](const std::string& f) { return f.size() > 5 && f.compare(f.size() - 5, 5, ".ckpt") == 0; }))
+    left.push_back(n);
   return left;
 }
 

@@ -54,9 +54,10 @@ class Outputs {
   // and snapshots.csv; append continues the files of a resumed run
   void open(bool append);
   // the outputs an earlier run left in the claimed folder that this one does not write:
-  // snapshots.csv, frames.mp4, frames/ and states/, then the checkpoints in it (NAME.ckpt, which
-  // cannot be resumed once this run has written the folder) (a folder holds one run's outputs;
-  // the simulation warns of them as it starts)
+  // snapshots.csv, every video (NAME.mp4, whatever its name, but this run's own), every PNG folder
+  // (frames/, and any other holding frame_NNNNN.png, but this run's own) and states/, then the
+  // checkpoints in it (NAME.ckpt, which cannot be resumed once this run has written the folder)
+  // (a folder holds one run's outputs; the simulation warns of them as it starts)
   std::vector<std::string> earlier_outputs() const;
   // finishes the video, appends the fallbacks (warning.<name>.count, .first_t) and `rows` (whole
   // rows: a checked run's check.*) to parameters.csv and releases the folder; each output closed
@@ -78,6 +79,7 @@ class Outputs {
   std::string path(const char* name) const;  // OUT_DIR/NAME
   long bytes(const char* name) const;        // the size of NAME in the claimed folder, 0 when none
   long rows() const { return rows_; }        // samples written
+  double last_row_t() const { return last_.csv_last_t; }  // the time of timeseries.csv's last row (NaN: none)
   long frames_written() const;
   const std::vector<std::vector<double>>& samples() const { return samples_; }  // keep_samples
 

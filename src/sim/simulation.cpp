@@ -13,6 +13,7 @@
 #include "integrate/timeline.hpp"
 #include "io/csv_writer.hpp"
 #include "io/number_text.hpp"
+#include "io/output_dir.hpp"
 #include "io/suggest.hpp"
 #include "model/forces.hpp"
 #include "scene/validate.hpp"
@@ -326,8 +327,9 @@ std::vector<double> Simulation::energy_integrals() const {
 WorkCounters Simulation::stats() const { return integ_->work(); }
 
 void Simulation::require_open(const char* what) const {
-  if (closed_) throw std::logic_error(std::string(what) + ": the simulation is closed");
+  // (a run that failed is closed too: why it cannot go on first)
   if (!failed_.empty()) throw std::logic_error(std::string(what) + ": the simulation cannot continue: " + failed_);
+  if (closed_) throw std::logic_error(std::string(what) + ": the simulation is closed");
 }
 
 Simulation::Advance Simulation::run_to(double t, const std::atomic<bool>* stop, const RunProgress& progress) {
@@ -391,6 +393,24 @@ Simulation::Advance Simulation::run_to(double t, const std::atomic<bool>* stop, 
     wall_ += clock() - start;
     close();
     throw;
+  } catch (const OutputError& e) {
+    // an output could not be written (a full disk, a file-size limit): the files hold whole rows
+    // (the part of the row that got in was taken out again) but miss this one, so the run cannot
+    // go on. Closed, as a stop closes it (the end rows find the room parameters.csv kept); a
+    // failure there is recorded for the exit status
+    const double row_t = out_->last_row_t();
+    const std::string m =
+        std::string(e.what()) + "; the run stopped at t = " + rounded_text(now()) + " s of " + rounded_text(t) +
+        " s, and the outputs written so far are kept, their rows whole" +
+        (std::isnan(row_t) ? std::string() : " (timeseries.csv up to t = " + rounded_text(row_t) + " s)");
+    failed_ = m;
+    end_status_ = "failed", end_note_ = m;
+    wall_ += clock() - start;
+    try {
+      close();
+    } catch (const std::exception&) {
+    }
+    throw OutputError(m);
   } catch (const std::exception& e) {  // a callback raised: the simulation may go on
     end_status_ = "failed", end_note_ = e.what();
     wall_ += clock() - start;
@@ -458,10 +478,17 @@ void Simulation::close() {
   if (closed_) return;
   closed_ = true;
   // how the run ended, last in parameters.csv: a folder read later tells a finished run from a
-  // stopped one (a run killed outright has no end.* rows)
+  // stopped one (a run killed outright has no end.* rows). Two times: the run's state's, where it
+  // stopped, and the time series' last row's, which a stop between samples leaves behind it
+  const double last_row = out_->last_row_t();
   const std::string end =
-      "end.t," + value_text(now()) + ",s,derived,the simulated time the outputs reach\n" + "end.status," + end_status_ +
-      ",,derived," +
+      "end.t," + value_text(now()) +
+      ",s,derived,the simulated time the run reached: where it stopped (result.t; a checkpoint saved then continues "
+      "from it)\n" +
+      "end.last_row_t," + (std::isnan(last_row) ? std::string() : value_text(last_row)) +
+      ",s,derived,the time of timeseries.csv's last row: the time series reaches it (at most one sample interval "
+      "before end.t; empty: no row)\n" +
+      "end.status," + end_status_ + ",,derived," +
       csv_text(end_note_.empty() ? "how the run ended: ok, interrupted, wall_limit, diverged or failed" : end_note_) +
       "\n";
   out_->close(warnings(), (check_ ? check_->parameter_rows() : std::string()) + end);

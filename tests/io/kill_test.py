@@ -210,7 +210,14 @@ def second_signal():
     p = start(["run", script("run", RUN)], out)
     wait_for(lambda: rows(os.path.join(out, "timeseries.csv")) > 10, 10, "the first rows")
     status = stop_and_wait(p, [signal.SIGTERM, signal.SIGINT])
+    err = p.stderr.read()
     check(status in (-signal.SIGINT, -signal.SIGTERM), "second signal: ended by the default action (%s)" % status)
+    # not silent: one line says it quit without finishing the outputs, and what they hold (a user's
+    # second Ctrl-C ended with exit 130 and no word, parameters.csv without its end rows)
+    said = re.findall(r"beltsim: (?:Ctrl-C|SIGTERM) while stopping: quitting at once, without finishing the outputs: "
+                      r"their rows so far are kept whole, but parameters\.csv gets no end rows and a video holds "
+                      r"only its finished fragments\n", err)
+    check(len(said) == 1, "second signal: one line says so (%r)" % err[-600:])
     outputs_whole(out, "second signal")
 
 
@@ -246,6 +253,23 @@ def full_disk():
     csv = os.path.join(out, "timeseries.csv")
     too_large(p, err, csv, "full disk")
     check(whole_rows(csv) == "" and os.path.getsize(csv) > limit - 1024, "full disk: the rows that fitted, whole")
+    stopped_as_said(err, out, "full disk")
+
+
+def stopped_as_said(err, out, what):
+    """a run stopped by an output that cannot be written says where it stopped and that the outputs
+    so far are kept, and parameters.csv says how it ended (a user's full disk gave neither)"""
+    m = re.search(r"; the run stopped at t = ([0-9.e-]+) s of [0-9.e-]+ s, and the outputs written so far are kept, their "
+                  r"rows whole \(timeseries\.csv up to t = ([0-9.e-]+) s\)", err)
+    check(m is not None, "%s: the message says where the run stopped and what is kept: %r" % (what, err[-600:]))
+    with open(os.path.join(out, "parameters.csv")) as f:
+        params = f.read()
+    last = last_t(os.path.join(out, "timeseries.csv"))
+    check(m is not None and abs(float(m.group(2)) - last) <= 1e-9 * max(1, last),
+          "%s: the message's last row is the CSV's (%s, %r)" % (what, last, m and m.group(2)))
+    check(re.search(r"\nend\.last_row_t,%r,s,derived," % last, params) is not None
+          and "\nend.status,failed,,derived,\"cannot write " in params,
+          "%s: parameters.csv ends with how the run ended: %r" % (what, params[-700:]))
 
 
 
@@ -332,6 +356,8 @@ def full_file_system():
             return [r for r in text.split(b"\n") if not r.startswith((b"warning.", b"end.", b"run.out,"))]
         check(model_rows(params) == model_rows(ref_params) and len(model_rows(params)) > 40 and params.endswith(b"\n"),
               "full file system: parameters.csv as it was written before the disk filled")
+        # its end rows found the room parameters.csv kept for them on the full disk
+        stopped_as_said(err, full, "full file system")
     finally:
         subprocess.run(["umount", mnt])
 

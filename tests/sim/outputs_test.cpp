@@ -4,7 +4,13 @@
 // while one is open, a checkpoint resumed twice are refused before they write or cut anything);
 // a file that cannot be written at close makes close() throw and is recorded.
 #include <gtest/gtest.h>
+#include <sys/resource.h>
+#include <sys/wait.h>
+#include <unistd.h>
 
+#include <csignal>
+#include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <functional>
@@ -148,6 +154,65 @@ TEST(Outputs, AnEarlierRunsOutputsThisRunDoesNotWriteAreNamed) {
   fs::remove(out / "frames.mp4");
   runs(true);  // it writes snapshots.csv again
   EXPECT_TRUE(said.empty()) << said[0];
+}
+
+// a sink that draws nothing: a run that asks for frames, for the names of its own video and PNG folder
+class NoPictures final : public FrameSink {
+ public:
+  void frame(double, const double*, const Drive&, const Observation*) override {}
+  void finish() override {}
+  long frames_written() const override { return 0; }
+};
+
+// every video is named, whatever its name, and every PNG folder, but this run's own (a user's second
+// run of scripts/paper_dry.lua with --no-frames said only frames/, while the first run's
+// paper_dry.mp4 stayed beside the new timeseries.csv: the check knew the default name alone)
+TEST(Outputs, AnEarlierRunsVideoAndPngFolderAreNamedWhateverTheirNames) {
+  const fs::path out = fresh("earlier_named") / "out";
+  std::vector<std::string> said;
+  auto runs = [&](const char* video, const char* png) {
+    said.clear();
+    RunSettings rs = settings(out);
+    rs.t_end = 0.002;
+    if (video || png) {
+      rs.frames = FrameSettings{};
+      rs.frames->video_path = video ? video : "";
+      rs.frames->png_dir = png ? png : "";
+      rs.frame_factory = [](const Scene&, const FrameSettings&) { return std::make_unique<NoPictures>(); };
+    }
+    rs.on_warning = [&](const std::string& m) {
+      if (m.rfind("the output folder", 0) == 0) said.push_back(m);
+    };
+    run(dry_scene(), rs);
+  };
+  runs(nullptr, nullptr);
+  EXPECT_TRUE(said.empty()) << said[0];
+  // the first run's video and PNGs, by the names its script gave
+  std::ofstream(out / "paper_dry.mp4") << "x";
+  std::ofstream(out / "clip_resumed_0.1.MP4") << "x";
+  fs::create_directories(out / "pics");
+  std::ofstream(out / "pics" / "frame_00000.png") << "x";
+  fs::create_directories(out / "notes");  // a folder without frames: not an output of a run
+  std::ofstream(out / "notes" / "a.png") << "x";
+  runs(nullptr, nullptr);
+  ASSERT_EQ(said.size(), 1u);
+  EXPECT_EQ(said[0], "the output folder " + out.string() +
+                         " holds an earlier run's clip_resumed_0.1.MP4, paper_dry.mp4 and pics/, which this run does "
+                         "not write: they are not this run's outputs (give each run its own --out or out = ..., or "
+                         "remove them)");
+  // a run that writes that video and that PNG folder itself names only the other video
+  runs("paper_dry.mp4", "pics");
+  ASSERT_EQ(said.size(), 1u);
+  EXPECT_EQ(said[0], "the output folder " + out.string() +
+                         " holds an earlier run's clip_resumed_0.1.MP4, which this run does not write: they are not "
+                         "this run's outputs (give each run its own --out or out = ..., or remove them)");
+  // its video given as an absolute path into the folder, the same (pics/ lost its frames to the run
+  // before, which drew into it)
+  runs((out / "clip_resumed_0.1.MP4").c_str(), nullptr);
+  ASSERT_EQ(said.size(), 1u);
+  EXPECT_EQ(said[0], "the output folder " + out.string() +
+                         " holds an earlier run's paper_dry.mp4, which this run does not write: they are not this "
+                         "run's outputs (give each run its own --out or out = ..., or remove them)");
 }
 
 // so are the checkpoints an earlier run saved into the folder: this run replaces the outputs they
@@ -325,6 +390,55 @@ TEST(Outputs, AFailureAtCloseIsThrownAndRecorded) {
   EXPECT_EQ(output_failures().back(), e);
   // the folder was released all the same
   EXPECT_EQ(what_of([&] { Simulation b(dry_scene(), settings(out)); }).find("in use"), std::string::npos);
+}
+
+// a disk that fills while the time series is written (here a file-size limit, which fails write(2)
+// the same way): the error says where the run stopped and that the outputs so far are kept, the
+// simulation cannot go on (a row is missing), and parameters.csv says how it ended. A user's full
+// disk said only "big.lua:19: cannot write small/full/timeseries.csv: No space left on device",
+// and parameters.csv had no end rows
+TEST(Outputs, AFullDiskStopsTheRunSayingWhereAndKeepsTheOutputs) {
+  const fs::path out = fresh("full") / "out";
+  RunSettings rs = settings(out);
+  rs.snapshot_every = 0;
+  rs.sample_dt = 1e-4;
+  const long limit = 64 * 1024;  // parameters.csv (7 KB) fits, timeseries.csv passes it at about 0.01 s
+  const std::string csv = (out / "timeseries.csv").string();
+  const pid_t pid = ::fork();
+  ASSERT_GE(pid, 0);
+  if (pid == 0) {
+    ::signal(SIGXFSZ, SIG_IGN);  // past the limit write(2) fails with EFBIG instead
+    const rlimit r{static_cast<rlim_t>(limit), static_cast<rlim_t>(limit)};
+    ::setrlimit(RLIMIT_FSIZE, &r);
+    Simulation s(dry_scene(), rs);
+    std::string e;
+    try {
+      s.run_to(1);
+      _exit(1);  // never stopped
+    } catch (const OutputError& x) {
+      e = x.what();
+    }
+    const std::string want = "cannot write " + csv + ": " + std::strerror(EFBIG) + "; the run stopped at t = ";
+    if (e.compare(0, want.size(), want) != 0 || e.find(" s of 1 s, and the outputs written so far are kept, their "
+                                                       "rows whole (timeseries.csv up to t = ") == std::string::npos) {
+      std::fprintf(stderr, "the message: %s\n", e.c_str());
+      _exit(2);
+    }
+    // the run cannot go on: its time series would miss the row that did not fit
+    const std::string again = what_of([&] { s.run_to(1); });
+    _exit(again.find("the simulation cannot continue: " + e) != std::string::npos ? 0 : 3);
+  }
+  int status = 0;
+  ::waitpid(pid, &status, 0);
+  ASSERT_TRUE(WIFEXITED(status));
+  ASSERT_EQ(WEXITSTATUS(status), 0) << "1: no error, 2: not the expected message, 3: the run went on";
+  const std::string series = slurp(csv), parameters = slurp(out / "parameters.csv");
+  EXPECT_GT(series.size(), static_cast<size_t>(limit) - 1000);
+  EXPECT_EQ(series.back(), '\n');
+  const std::string last = series.substr(series.rfind('\n', series.size() - 2) + 1);
+  EXPECT_NE(parameters.find("\nend.last_row_t," + last.substr(0, last.find(',')) + ",s,"), std::string::npos)
+      << parameters;
+  EXPECT_NE(parameters.find("\nend.status,failed,,derived,\"cannot write " + csv), std::string::npos) << parameters;
 }
 
 }  // namespace

@@ -568,6 +568,47 @@ TEST(Live, FallbacksAreCountedAndShown) {
   EXPECT_NE(p.find("\nend.status,ok,,derived,"), std::string::npos) << p;
 }
 
+// the end rows say where the run stopped (its state's time, result.t) and where its time series
+// ends (the last row's time), apart: a user's Ctrl-C gave end.t,1.4367092823960343 ("the simulated
+// time the outputs reach") while the last row of timeseries.csv was at 1.436
+TEST(Live, TheEndRowsSayWhereTheRunAndItsTimeSeriesEnd) {
+  auto end_rows = [](const std::string& parameters) { return parameters.substr(parameters.find("\nend.t,") + 1); };
+  auto cell = [](const std::string& rows, const std::string& name) {
+    const size_t at = rows.find(name + ",") + name.size() + 1;
+    return rows.substr(at, rows.find(',', at) - at);
+  };
+  {  // a live simulation paused between samples (1 ms apart)
+    const fs::path out = temp("end_rows");
+    Simulation s(dry_scene(), settings("esdirk32", out));
+    s.run_to(0.0105);
+    s.close();
+    const std::string rows = end_rows(slurp((out / "parameters.csv").string()));
+    EXPECT_EQ(cell(rows, "end.t"), "0.0105") << rows;
+    EXPECT_EQ(cell(rows, "end.last_row_t"), "0.01") << rows;
+    EXPECT_EQ(cell(rows, "end.status"), "ok") << rows;
+  }
+  {  // a batch run stopped at a step's end (its wall-time limit on the test's clock, as Ctrl-C stops)
+    test::expect_warnings({WarningKind::failed_step});
+    RunSettings rs = settings("esdirk32", temp("end_rows_stopped"));
+    rs.t_end = 1;
+    rs.sample_dt = 0.01;
+    rs.wall_limit = 0.05;
+    long looks = 0;
+    rs.wall_clock = [&] { return 1e-3 * static_cast<double>(looks++); };
+    const RunResult r = run(dry_scene(), rs);
+    ASSERT_TRUE(r.over_wall_limit);
+    const std::string rows = end_rows(slurp(r.parameters_path));
+    const std::string series = slurp(r.csv_path);
+    const std::string last = series.substr(series.rfind('\n', series.size() - 2) + 1);
+    EXPECT_EQ(cell(rows, "end.t"), number_text(r.t_reached)) << rows;
+    EXPECT_EQ(cell(rows, "end.last_row_t"), last.substr(0, last.find(','))) << rows;
+    const double row_t = std::stod(cell(rows, "end.last_row_t"));
+    EXPECT_LE(row_t, r.t_reached);
+    EXPECT_GT(row_t + rs.sample_dt, r.t_reached);
+    EXPECT_EQ(cell(rows, "end.status"), "wall_limit") << rows;
+  }
+}
+
 // invalid requests name what is wrong
 TEST(Live, BadRequests) {
   Simulation s(dry_scene(), settings("esdirk32", temp("bad")));
