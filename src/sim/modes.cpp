@@ -134,9 +134,10 @@ ModeAnalysis analyze_modes(const Scene& sc, const Drive& d, double t, const Eige
   Eigen::MatrixXcd vectors;
   if (s.transport && s.floquet && std::abs(nu) >= kFloquetRate) {
     out.element_rate = nu;
-    // decays up to that of ζ = zeta_max at f_max
+    // decays up to that of ζ = zeta_max at f_max: a mode it leaves out would be left out below (f
+    // above f_max or ζ above zeta_max)
     const double max_decay = 2 * M_PI * s.f_max * s.zeta_max / std::sqrt(1 - s.zeta_max * s.zeta_max);
-    FloquetModes fm = floquet_modes(sc, d, t, y, nu, s.f_max, max_decay, keep);
+    FloquetModes fm = floquet_modes(sc, d, t, y, nu, max_decay, keep);
     out.period = fm.period;
     out.position_defect = fm.position_defect;
     out.velocity_defect = fm.velocity_defect;
@@ -204,7 +205,11 @@ ModeAnalysis analyze_modes(const Scene& sc, const Drive& d, double t, const Eige
     md.shape = md.vector.head(N);
     out.modes.push_back(std::move(md));
   }
-  std::sort(out.modes.begin(), out.modes.end(), [](const Mode& a, const Mode& b) { return a.frequency < b.frequency; });
+  // by frequency, then by damping: modes locked at half the passing rate share their frequency
+  // exactly, and their number must not depend on the order the eigensolver gives them in
+  std::sort(out.modes.begin(), out.modes.end(), [](const Mode& a, const Mode& b) {
+    return a.frequency != b.frequency ? a.frequency < b.frequency : a.damping < b.damping;
+  });
   Observation obs;
   observe(m, d, sc.senses(), t, y.data(), obs);
   for (const PulleyObs& p : obs.pulleys) out.slip_arc.push_back(p.slip_arc);

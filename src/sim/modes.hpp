@@ -33,7 +33,7 @@
 namespace beltsim {
 
 // [1/s] the element rate from which a running belt's modes are its motion's Floquet modes: a
-// passing of at most 50 ms. The passing takes 40·f_max·T steps (4 000 at 50 ms and 2 kHz), each a
+// passing of at most 50 ms. The passing takes 40·kFloquetResolution·T steps (4 000 at 50 ms), each a
 // factorisation and solves of the whole state: a slower belt's would take minutes (a choice of
 // cost; the transport term it falls back on is not checked on a slipping wrap, docs/modes.md)
 constexpr double kFloquetRate = 20;
@@ -90,7 +90,7 @@ struct ModeAnalysis {
   // by the nearest span), wrap_<p> (the elements on pulley p), pulley_<p> (its rotation; none for
   // a kinematic pulley, which does not move), arm_<p>, rotor_<p> (a coupled rotor and its clutch hub)
   std::vector<std::string> groups;
-  std::vector<Mode> modes;  // by frequency
+  std::vector<Mode> modes;  // by frequency, then damping
   // [m] each pulley's slip arc at the state (PulleyObs::slip_arc: its elements sliding, saturated
   // friction), by pulley index
   std::vector<double> slip_arc;
