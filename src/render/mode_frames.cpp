@@ -4,7 +4,9 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <regex>
 
+#include "io/output_dir.hpp"
 #include "media/png_writer.hpp"
 #include "media/video_writer.hpp"
 #include "render/recorder.hpp"
@@ -13,10 +15,30 @@ namespace beltsim::render {
 
 namespace fs = std::filesystem;
 
+namespace {
+
+// a mode's files: mode_NN_<f>Hz.png and .mp4 (NN from 01, its number; f its frequency)
+std::string mode_file_base(int k, double frequency) {
+  char name[48];
+  std::snprintf(name, sizeof name, "mode_%02d_%.1fHz", k + 1, frequency);
+  return name;
+}
+
+bool is_mode_file(const std::string& name) {
+  static const std::regex form(R"(mode_[0-9]{2,}_[0-9]+\.[0-9]Hz\.(png|mp4))");
+  return std::regex_match(name, form);
+}
+
+}  // namespace
+
 std::vector<std::string> draw_modes(const Scene& sc, const Drive& d, const Eigen::VectorXd& y, const ModeAnalysis& a,
                                     const ModePictures& p) {
   std::vector<std::string> written;
   const int count = std::min<int>(p.count, static_cast<int>(a.modes.size()));
+  // an earlier analysis's pictures and videos go (of another time, or more modes): the folder holds
+  // this one's, none when it draws none (the folder is then not made)
+  std::error_code ec;
+  if (count > 0 || fs::is_directory(fs::symlink_status(p.dir, ec))) remove_numbered(OutputDir(p.dir), is_mode_file);
   if (count <= 0) return written;
   // the layout's size: the extent of the pulleys' rims
   Vec2 lo(INFINITY, INFINITY), hi(-INFINITY, -INFINITY);
@@ -30,12 +52,9 @@ std::vector<std::string> draw_modes(const Scene& sc, const Drive& d, const Eigen
   fs.height = p.height;
   fs.png_dir = p.dir;  // (draws() only: the files are written here)
   FrameDrawer drawer(sc, fs);  // one GL context for every mode
-  // (the folder is made by the first picture's writer, never through a link: io/output_dir.hpp)
   for (int k = 0; k < count; ++k) {
     const Mode& m = a.modes[k];
-    char name[48];
-    std::snprintf(name, sizeof name, "mode_%02d_%.1fHz", k + 1, m.frequency);
-    const std::string base = (fs::path(p.dir) / name).string();
+    const std::string base = (fs::path(p.dir) / mode_file_base(k, m.frequency)).string();
     char caption[96];
     std::snprintf(caption, sizeof caption, "mode %d: %.2f Hz, \u03b6 %.4f", k + 1, m.frequency, m.damping);
     drawer.set_caption(caption);

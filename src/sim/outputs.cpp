@@ -11,6 +11,7 @@
 #include <exception>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <sstream>
 
 #include "integrate/controller.hpp"
@@ -123,24 +124,16 @@ std::string write_parameters(const Scene& sc, const RunSettings& rs, const Outpu
   return written;
 }
 
-// A fresh run's numbered files (frame_00012.png, state_00003.ckpt) replace an earlier run's in the
-// same folder: those it would not write over (a longer earlier run's last ones) are removed too, so
-// that the folder holds one run's frames, as it holds one run's timeseries.csv (a golden test
-// compared a frame the run no longer drew, left by the run before). Only regular files of names of that form.
-void remove_numbered(const OutputDir& dir, const std::string& prefix, const std::string& suffix) {
-  std::error_code ec;
-  std::vector<std::string> names;
-  for (const auto& e : std::filesystem::directory_iterator(dir.path(), ec)) {
-    const std::string n = e.path().filename().string();
-    if (e.symlink_status(ec).type() != std::filesystem::file_type::regular)
-      continue;  // (a link is refused when written)
+// a name PREFIX, at least five digits, SUFFIX (frame_00012.png, state_00003.ckpt): a run's
+// numbered file (remove_numbered)
+std::function<bool(const std::string&)> numbered(std::string prefix, std::string suffix) {
+  return [prefix = std::move(prefix), suffix = std::move(suffix)](const std::string& n) {
     if (n.size() <= prefix.size() + suffix.size() || n.compare(0, prefix.size(), prefix) != 0 ||
         n.compare(n.size() - suffix.size(), suffix.size(), suffix) != 0)
-      continue;
+      return false;
     const std::string digits = n.substr(prefix.size(), n.size() - prefix.size() - suffix.size());
-    if (digits.size() >= 5 && digits.find_first_not_of("0123456789") == std::string::npos) names.push_back(n);
-  }
-  for (const std::string& n : names) dir.remove(n);
+    return digits.size() >= 5 && digits.find_first_not_of("0123456789") == std::string::npos;
+  };
 }
 
 }  // namespace
@@ -195,12 +188,12 @@ void Outputs::open(bool append) {
     FrameSettings f = *rs_.frames;
     for (std::string* p : {&f.png_dir, &f.video_path})
       if (!p->empty()) *p = output_path(rs_, *p);
-    if (!append && !f.png_dir.empty()) remove_numbered(OutputDir(f.png_dir), "frame_", ".png");
+    if (!append && !f.png_dir.empty()) remove_numbered(OutputDir(f.png_dir), numbered("frame_", ".png"));
     sink_ = rs_.frame_factory(scene_, f);
   }
   if (rs_.keep_states) {
     states_ = std::make_unique<OutputDir>(dir, "states");
-    if (!append) remove_numbered(*states_, "state_", ".ckpt");
+    if (!append) remove_numbered(*states_, numbered("state_", ".ckpt"));
   }
   if (!append) {
     const std::string parameters = write_parameters(scene_, rs_, dir);
