@@ -29,6 +29,13 @@ bool is_mode_file(const std::string& name) {
   return std::regex_match(name, form);
 }
 
+// each element's change of tension at phase φ of the mode's cycle, between −1 and 1
+std::vector<double> tension_at(const std::vector<std::complex<double>>& change, double phase) {
+  std::vector<double> v(change.size());
+  for (size_t k = 0; k < v.size(); ++k) v[k] = (change[k] * std::polar(1.0, phase)).real();
+  return v;
+}
+
 }  // namespace
 
 std::vector<std::string> draw_modes(const Scene& sc, const Drive& d, const Eigen::VectorXd& y, const ModeAnalysis& a,
@@ -51,6 +58,8 @@ std::vector<std::string> draw_modes(const Scene& sc, const Drive& d, const Eigen
   fs.width = p.width;
   fs.height = p.height;
   fs.png_dir = p.dir;  // (draws() only: the files are written here)
+  fs.given = FrameSettings::Given{"tension change", "\u00d7 its largest", "+ : stretches"};
+  fs.range_lo = -1, fs.range_hi = 1;
   FrameDrawer drawer(sc, fs);  // one GL context for every mode
   for (int k = 0; k < count; ++k) {
     const Mode& m = a.modes[k];
@@ -58,8 +67,10 @@ std::vector<std::string> draw_modes(const Scene& sc, const Drive& d, const Eigen
     char caption[96];
     std::snprintf(caption, sizeof caption, "mode %d: %.2f Hz, \u03b6 %.4f", k + 1, m.frequency, m.damping);
     drawer.set_caption(caption);
+    const std::vector<std::complex<double>> change = mode_tension_change(sc, d, a.t, y, m);
     const Eigen::VectorXd peak = mode_state(y, m, amplitude, 0.0);
-    write_png(base + ".png", drawer.draw(a.t, peak.data(), d, nullptr));
+    const std::vector<double> at_peak = tension_at(change, 0.0);
+    write_png(base + ".png", drawer.draw(a.t, peak.data(), d, nullptr, &at_peak));
     written.push_back(base + ".png");
     if (!p.video) continue;
     constexpr int kPerCycle = 24, kCycles = 3;
@@ -69,8 +80,10 @@ std::vector<std::string> draw_modes(const Scene& sc, const Drive& d, const Eigen
     vo.fps = kPerCycle;
     VideoWriter video(base + ".mp4", vo);
     for (int f = 0; f < kPerCycle * kCycles; ++f) {
-      const Eigen::VectorXd at = mode_state(y, m, amplitude, 2 * M_PI * f / kPerCycle);
-      video.add(drawer.draw(a.t, at.data(), d, nullptr));
+      const double phase = 2 * M_PI * f / kPerCycle;
+      const Eigen::VectorXd at = mode_state(y, m, amplitude, phase);
+      const std::vector<double> values = tension_at(change, phase);
+      video.add(drawer.draw(a.t, at.data(), d, nullptr, &values));
     }
     video.close();
     written.push_back(base + ".mp4");

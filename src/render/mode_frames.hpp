@@ -21,9 +21,9 @@ struct ModePictures {
 // Draws the modes of `a` (analysed at the state y of the drive d) into DIR/mode_NN_<f>Hz.png (NN
 // from 01, the mode's number in modes.csv; f its frequency) and the videos asked for (.mp4 beside
 // them), after removing DIR's files of those names (an earlier analysis's: remove_numbered,
-// io/output_dir.hpp); returns the paths written. The belt is
-// coloured by the tension of the deflected state (which spans stretch). Throws std::runtime_error
-// (the renderer's, the writers', naming the file).
+// io/output_dir.hpp); returns the paths written. The belt is coloured by the mode's change of
+// tension (which spans stretch, which slacken: linearised, over the largest in its cycle, on a
+// scale from −1 to 1). Throws std::runtime_error (the renderer's, the writers', naming the file).
 std::vector<std::string> draw_modes(const Scene& sc, const Drive& d, const Eigen::VectorXd& y, const ModeAnalysis& a,
                                     const ModePictures& p);
 

@@ -223,6 +223,29 @@ Eigen::VectorXd mode_state(const Eigen::VectorXd& y, const Mode& m, double ampli
   return out;
 }
 
+std::vector<std::complex<double>> mode_tension_change(const Scene& sc, const Drive& d, double t,
+                                                      const Eigen::VectorXd& y, const Mode& m) {
+  constexpr double eps = 1e-7;  // [m] the deflection of the point that moves most
+  const std::vector<int> sense = sc.senses();
+  // the change per metre along Re(shape·e^{iφ}) (central differences)
+  auto along = [&](double phase) {
+    Observation up, down;
+    observe(sc.model, d, sense, t, mode_state(y, m, eps, phase).data(), up);
+    observe(sc.model, d, sense, t, mode_state(y, m, -eps, phase).data(), down);
+    std::vector<double> dt(up.elements.size());
+    for (size_t k = 0; k < dt.size(); ++k) dt[k] = (up.elements[k].tension - down.elements[k].tension) / (2 * eps);
+    return dt;
+  };
+  // Re(c·e^{iφ}) = Re c·cos φ − Im c·sin φ: Re c the change at φ = 0, −Im c at φ = π/2
+  const std::vector<double> at0 = along(0), at90 = along(0.5 * M_PI);
+  std::vector<std::complex<double>> c(at0.size());
+  double largest = 0;
+  for (size_t k = 0; k < c.size(); ++k) largest = std::max(largest, std::abs(c[k] = {at0[k], -at90[k]}));
+  if (largest > 0)
+    for (auto& ck : c) ck /= largest;
+  return c;
+}
+
 std::vector<std::string> mode_columns(const ModeAnalysis& a) {
   std::vector<std::string> c{"mode", "frequency_Hz", "damping_ratio", "decay_1_s"};
   for (const std::string& g : a.groups) c.push_back(g);

@@ -108,6 +108,13 @@ std::vector<int> coordinate_groups(const Scene& sc, const Drive& d, double t, co
 // the state q0 + amplitude·Re(shape·e^{i·phase}) (positions only; the velocities are y's)
 Eigen::VectorXd mode_state(const Eigen::VectorXd& y, const Mode& m, double amplitude, double phase);
 
+// The mode's change of each element's tension (ElementObs::tension) over its cycle, linearised
+// about y: c_k such that the deflection q0 + ε·Re(shape·e^{iφ}) (the velocities y's) changes
+// element k's tension by ε·s·Re(c_k·e^{iφ}), scaled (s) so that the largest |c_k| is 1 (which
+// spans stretch, which slacken: the mode's pictures colour the belt by it, render/mode_frames.hpp)
+std::vector<std::complex<double>> mode_tension_change(const Scene& sc, const Drive& d, double t,
+                                                      const Eigen::VectorXd& y, const Mode& m);
+
 // modes.csv's header and a mode's row: mode, frequency_Hz, damping_ratio, decay_1_s (−Re λ), then
 // the participation of each group
 std::vector<std::string> mode_columns(const ModeAnalysis& a);
