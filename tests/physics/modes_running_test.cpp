@@ -22,12 +22,13 @@ double share(const ModeAnalysis& a, const Mode& m, const std::string& prefix) {
 }
 
 // On the slipping drive (slip arcs of 0.18 and 0.08 m) the Floquet modes of the motion over one
-// element passing (2.94 ms) list 28 modes under 180 Hz, none growing (the least damped ζ 0.065;
+// element passing (2.94 ms) list 30 modes under 180 Hz, none growing (the least damped ζ 0.065;
 // the state's Jacobian with a transport term, the method before, listed growing ones at 53 and
 // 69 Hz that a run does not show). Pushed (1e-8 m) and run on, the difference against the mode's
 // motion at whole passings (where the Floquet mode is exact) over its first period, measured with
-// `beltsim modes scripts/paper_dry.lua --at 0.5 --check 1,...,28`: 27 of the 28 agree (misfits
-// 1-22 %; the most damped, 26.9 Hz ζ 0.72, 25 %). Checked here (this state, rtol 1e-6):
+// `beltsim modes scripts/paper_dry.lua --at 0.5 --fmax 180 --check 1,...,30` (docs/modes.md): 27 of
+// the 30 agree (misfits 1-23 %; three damped ones, ζ 0.30 to 0.63, do not: 28-125 %). Checked
+// here (this state, rtol 1e-6):
 // - the two pulleys turning against each other: 98.93 Hz, ζ 0.112; in time (the driver's angle)
 //   98.65 Hz, ζ 0.105 (Prony over six periods), misfit 1 %;
 // - the next of the family it heads (modes about a belt circulation frequency, v/L = 5.7 Hz, apart:
