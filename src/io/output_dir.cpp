@@ -274,6 +274,16 @@ std::string folder_holder(int dir) {
   return who;
 }
 
+void remove_numbered(const OutputDir& dir, const std::function<bool(const std::string&)>& numbered) {
+  std::error_code ec;
+  std::vector<std::string> names;
+  for (const auto& e : std::filesystem::directory_iterator(dir.path(), ec)) {
+    const std::string n = e.path().filename().string();
+    if (e.symlink_status(ec).type() == std::filesystem::file_type::regular && numbered(n)) names.push_back(n);
+  }
+  for (const std::string& n : names) dir.remove(n);
+}
+
 OutputPlace output_place(const std::string& path) {
   auto [dir, name] = split_path(trimmed_path(path));
   if (name.empty() || name == "." || name == "..") output_error(path, "not a file name");

@@ -17,6 +17,7 @@
 // the end of the interpreter) still makes the program's exit status non-zero (app/main.cpp).
 #pragma once
 
+#include <functional>
 #include <stdexcept>
 #include <string>
 #include <string_view>
@@ -102,6 +103,14 @@ class OutputDir {
 // never claimed: a scenario script's writes into a folder another beltsim writes are refused with
 // it (script/sandbox_files.cpp)
 std::string folder_holder(int dir);
+
+// A fresh run's numbered files (frame_00012.png, state_00003.ckpt, a mode's mode_01_26.8Hz.png)
+// replace an earlier run's in the same folder: those it would not write over (a longer earlier
+// run's last frames, the modes of another time or another count) are removed too, so that the
+// folder holds one run's, as it holds one run's timeseries.csv (a golden test compared a frame the
+// run no longer drew, left by the run before). Removes the regular files of `dir` (never a link:
+// a link is refused when written) whose names `numbered` accepts, and nothing else.
+void remove_numbered(const OutputDir& dir, const std::function<bool(const std::string&)>& numbered);
 
 // The folder and the name of a path a caller gave: OutputDir(parent), made with its missing
 // parents as every output's folder is (docs/outputs.md), and the last component; errors name the

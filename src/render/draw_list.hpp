@@ -136,9 +136,10 @@ class FrameBuilder {
   FrameBuilder(const Scene& scene, const FrameSettings& settings, Font* font);
   // the draw list of the state y at time t (replaces the contents of `out`); drive: the drive as
   // it is now (run events may change μ or a law while running), null for the scene's own
-  // obs: what is observed at t (contact forces from the integrator's step ends), null to observe y
-  void build(double t, const double* y, DrawList& out, const Drive* drive = nullptr,
-             const Observation* obs = nullptr) const;
+  // obs: what is observed at t (contact forces from the integrator's step ends), null to observe y;
+  // values: each element's colour value when the settings give their own (FrameSettings::given)
+  void build(double t, const double* y, DrawList& out, const Drive* drive = nullptr, const Observation* obs = nullptr,
+             const std::vector<double>* values = nullptr) const;
   // the title before the time in the text band (FrameSettings::caption), for the next builds
   void set_caption(std::string caption) { fs_.caption = std::move(caption); }
   const Camera& camera() const { return cam_; }

@@ -139,7 +139,7 @@ FrameBuilder::FrameBuilder(const Scene& sc, const FrameSettings& fs, Font* font)
   if (fs.range_lo) lo = *fs.range_lo;
   if (fs.range_hi) hi = *fs.range_hi;
   if (!(lo < hi)) hi = lo + 1;
-  scale_.map = frame_quantity_info(fs.quantity).is_signed ? ColourMap::diverging : ColourMap::viridis;
+  scale_.map = fs.given || frame_quantity_info(fs.quantity).is_signed ? ColourMap::diverging : ColourMap::viridis;
   scale_.lo = lo, scale_.hi = hi, scale_.levels = fs.levels;
 
   // layout: a text band at the top (the time line, then the pulleys' lines in as many columns
@@ -226,7 +226,8 @@ Vec2 FrameBuilder::displayed(const Vec2& p, Vec2* tangent) const {
   return nominal + fs_.magnify * (p - nominal);
 }
 
-void FrameBuilder::build(double t, const double* y, DrawList& out, const Drive* drive, const Observation* given) const {
+void FrameBuilder::build(double t, const double* y, DrawList& out, const Drive* drive, const Observation* given,
+                         const std::vector<double>* values) const {
   const Model& m = sc_.model;
   const Drive& dr = drive ? *drive : sc_.drive;
   const int n = m.n_el();
@@ -282,7 +283,7 @@ void FrameBuilder::build(double t, const double* y, DrawList& out, const Drive* 
     const Vec2 d = (B - A).normalized();
     const double len = (B - A).norm();
     ElementDraw el;
-    el.value = quantity_of(obs[i], fs_.quantity);
+    el.value = fs_.given && values ? (*values)[i] : quantity_of(obs[i], fs_.quantity);
     el.band = scale_.band(el.value);
     el.colour = scale_.colour(el.value);
     // the μ it has now (a spray zone's water included) below the belt's as the scene built it: a
@@ -432,13 +433,15 @@ void FrameBuilder::draw_text_and_legend(double t, const Observation& seen, bool 
   const Model& m = sc_.model;
   const double area_right = fs_.width - panel_;
   // text band: time, colour quantity, magnification; each pulley's speed and slip
+  // what the colour is: the quantity's name and unit, or those the settings give
   const FrameQuantityInfo& qi = frame_quantity_info(fs_.quantity);
+  const std::string label = fs_.given ? fs_.given->label : qi.label, unit = fs_.given ? fs_.given->unit : qi.unit;
   const double line = 1.4 * font_px_;
   const double x0 = 0.6 * font_px_;
   Rgba paper = out.background;  // the boxes under the text
   paper.a = 0.85f;
   std::string head = (fs_.caption.empty() ? "" : fs_.caption + "      ") + "t = " + format("%.4f", t) +
-                     " s      colour: " + qi.label + (*qi.unit ? std::string(" [") + qi.unit + "]" : "");
+                     " s      colour: " + label + (unit.empty() ? "" : " [" + unit + "]");
   if (fs_.magnify != 1) head += "      deformation \u00d7" + format("%g", fs_.magnify);
   out.boxed_text(Vec2(x0, line), head, font_px_, kInk, paper);
   for (int j = 0; j < m.n_p(); ++j)
@@ -460,8 +463,8 @@ void FrameBuilder::draw_text_and_legend(double t, const Observation& seen, bool 
   // it), the grey of the free spans (a 320x180 frame's legend ran off its bottom)
   bool any_wet = false;
   for (const ElementDraw& el : out.elements) any_wet = any_wet || el.wet;
-  bool sign_line = qi.is_signed, arrow_line = arrows,
-       off_swatch = fs_.quantity != FrameQuantity::tension && fs_.quantity != FrameQuantity::mu;
+  bool sign_line = fs_.given || qi.is_signed, arrow_line = arrows,
+       off_swatch = !fs_.given && fs_.quantity != FrameQuantity::tension && fs_.quantity != FrameQuantity::mu;
   double bar_bot = fs_.height - 6.2 * line;
   if (bar_bot < bar_top + 4.0 * line) {
     const int room = static_cast<int>(std::floor((fs_.height - bar_top) / line - 3.2));
@@ -470,9 +473,9 @@ void FrameBuilder::draw_text_and_legend(double t, const Observation& seen, bool 
     const int legend_lines = sign_line + any_wet + 1 + arrow_line + off_swatch;
     bar_bot = std::max(fs_.height - (legend_lines + 1.2) * line, bar_top + 2.0 * line);
   }
-  out.boxed_text(Vec2(panel_x, bar_top - 1.6 * line), qi.label, font_px_, kInk, paper);
-  out.boxed_text(Vec2(panel_x, bar_top - 0.6 * line), *qi.unit ? std::string("[") + qi.unit + "]" : "[\u2013]",
-                 font_px_, kInk, paper);
+  out.boxed_text(Vec2(panel_x, bar_top - 1.6 * line), label, font_px_, kInk, paper);
+  out.boxed_text(Vec2(panel_x, bar_top - 0.6 * line), unit.empty() ? "[\u2013]" : "[" + unit + "]", font_px_, kInk,
+                 paper);
   const int bands = scale_.levels > 0 ? scale_.levels : 64;
   const double bh = (bar_bot - bar_top) / bands;
   for (int k = 0; k < bands; ++k) {
@@ -523,7 +526,9 @@ void FrameBuilder::draw_text_and_legend(double t, const Observation& seen, bool 
     out.boxed_text(Vec2(panel_x + bar_w + 0.5 * font_px_, ly), what, font_px_, kInk, paper);
     ly += line;
   };
-  if (sign_line) out.boxed_text(Vec2(panel_x, ly), "+ : along travel", font_px_, kInk, paper), ly += line;
+  if (sign_line)
+    out.boxed_text(Vec2(panel_x, ly), fs_.given ? fs_.given->plus : "+ : along travel", font_px_, kInk, paper),
+        ly += line;
   if (any_wet) {  // dashed, as on the belt
     for (int k = 0; k < 3; ++k) {
       const double d0 = panel_x + bar_w * k / 3.0, d1 = d0 + 0.6 * bar_w / 3.0;

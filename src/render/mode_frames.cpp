@@ -4,7 +4,9 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <regex>
 
+#include "io/output_dir.hpp"
 #include "media/png_writer.hpp"
 #include "media/video_writer.hpp"
 #include "render/recorder.hpp"
@@ -13,10 +15,37 @@ namespace beltsim::render {
 
 namespace fs = std::filesystem;
 
+namespace {
+
+// a mode's files: mode_NN_<f>Hz.png and .mp4 (NN from 01, its number; f its frequency)
+std::string mode_file_base(int k, double frequency) {
+  char name[48];
+  std::snprintf(name, sizeof name, "mode_%02d_%.1fHz", k + 1, frequency);
+  return name;
+}
+
+bool is_mode_file(const std::string& name) {
+  static const std::regex form(R"(mode_[0-9]{2,}_[0-9]+\.[0-9]Hz\.(png|mp4))");
+  return std::regex_match(name, form);
+}
+
+// each element's change of tension at phase φ of the mode's cycle, between −1 and 1
+std::vector<double> tension_at(const std::vector<std::complex<double>>& change, double phase) {
+  std::vector<double> v(change.size());
+  for (size_t k = 0; k < v.size(); ++k) v[k] = (change[k] * std::polar(1.0, phase)).real();
+  return v;
+}
+
+}  // namespace
+
 std::vector<std::string> draw_modes(const Scene& sc, const Drive& d, const Eigen::VectorXd& y, const ModeAnalysis& a,
                                     const ModePictures& p) {
   std::vector<std::string> written;
   const int count = std::min<int>(p.count, static_cast<int>(a.modes.size()));
+  // an earlier analysis's pictures and videos go (of another time, or more modes): the folder holds
+  // this one's, none when it draws none (the folder is then not made)
+  std::error_code ec;
+  if (count > 0 || fs::is_directory(fs::symlink_status(p.dir, ec))) remove_numbered(OutputDir(p.dir), is_mode_file);
   if (count <= 0) return written;
   // the layout's size: the extent of the pulleys' rims
   Vec2 lo(INFINITY, INFINITY), hi(-INFINITY, -INFINITY);
@@ -29,18 +58,19 @@ std::vector<std::string> draw_modes(const Scene& sc, const Drive& d, const Eigen
   fs.width = p.width;
   fs.height = p.height;
   fs.png_dir = p.dir;  // (draws() only: the files are written here)
+  fs.given = FrameSettings::Given{"tension change", "\u00d7 its largest", "+ : stretches"};
+  fs.range_lo = -1, fs.range_hi = 1;
   FrameDrawer drawer(sc, fs);  // one GL context for every mode
-  // (the folder is made by the first picture's writer, never through a link: io/output_dir.hpp)
   for (int k = 0; k < count; ++k) {
     const Mode& m = a.modes[k];
-    char name[48];
-    std::snprintf(name, sizeof name, "mode_%02d_%.1fHz", k + 1, m.frequency);
-    const std::string base = (fs::path(p.dir) / name).string();
+    const std::string base = (fs::path(p.dir) / mode_file_base(k, m.frequency)).string();
     char caption[96];
     std::snprintf(caption, sizeof caption, "mode %d: %.2f Hz, \u03b6 %.4f", k + 1, m.frequency, m.damping);
     drawer.set_caption(caption);
+    const std::vector<std::complex<double>> change = mode_tension_change(sc, d, a.t, y, m);
     const Eigen::VectorXd peak = mode_state(y, m, amplitude, 0.0);
-    write_png(base + ".png", drawer.draw(a.t, peak.data(), d, nullptr));
+    const std::vector<double> at_peak = tension_at(change, 0.0);
+    write_png(base + ".png", drawer.draw(a.t, peak.data(), d, nullptr, &at_peak));
     written.push_back(base + ".png");
     if (!p.video) continue;
     constexpr int kPerCycle = 24, kCycles = 3;
@@ -50,8 +80,10 @@ std::vector<std::string> draw_modes(const Scene& sc, const Drive& d, const Eigen
     vo.fps = kPerCycle;
     VideoWriter video(base + ".mp4", vo);
     for (int f = 0; f < kPerCycle * kCycles; ++f) {
-      const Eigen::VectorXd at = mode_state(y, m, amplitude, 2 * M_PI * f / kPerCycle);
-      video.add(drawer.draw(a.t, at.data(), d, nullptr));
+      const double phase = 2 * M_PI * f / kPerCycle;
+      const Eigen::VectorXd at = mode_state(y, m, amplitude, phase);
+      const std::vector<double> values = tension_at(change, phase);
+      video.add(drawer.draw(a.t, at.data(), d, nullptr, &values));
     }
     video.close();
     written.push_back(base + ".mp4");

@@ -11,7 +11,7 @@
 namespace beltsim::render {
 
 struct ModePictures {
-  std::string dir;          // where the files go (made when missing)
+  std::string dir;          // where the files go (made when missing, never through a link)
   int count = 6;            // the first `count` modes of the analysis
   bool video = false;       // also a video of each: three cycles, 24 frames each, at 24 frames/s
   double amplitude = 0.03;  // the largest point displacement drawn, as a share of the layout's size
@@ -20,9 +20,10 @@ struct ModePictures {
 
 // Draws the modes of `a` (analysed at the state y of the drive d) into DIR/mode_NN_<f>Hz.png (NN
 // from 01, the mode's number in modes.csv; f its frequency) and the videos asked for (.mp4 beside
-// them); returns the paths written. The belt is
-// coloured by the tension of the deflected state (which spans stretch). Throws std::runtime_error
-// (the renderer's, the writers', naming the file).
+// them), after removing DIR's files of those names (an earlier analysis's: remove_numbered,
+// io/output_dir.hpp); returns the paths written. The belt is coloured by the mode's change of
+// tension (which spans stretch, which slacken: linearised, over the largest in its cycle, on a
+// scale from −1 to 1). Throws std::runtime_error (the renderer's, the writers', naming the file).
 std::vector<std::string> draw_modes(const Scene& sc, const Drive& d, const Eigen::VectorXd& y, const ModeAnalysis& a,
                                     const ModePictures& p);
 

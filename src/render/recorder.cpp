@@ -207,9 +207,10 @@ void FrameDrawer::set_caption(const std::string& caption) {
   p_->builder.set_caption(caption);
 }
 
-Image FrameDrawer::draw(double t, const double* y, const Drive& drive, const Observation* obs) {
+Image FrameDrawer::draw(double t, const double* y, const Drive& drive, const Observation* obs,
+                        const std::vector<double>* values) {
   Image image;
-  p_->builder.build(t, y, p_->list, &drive, obs);
+  p_->builder.build(t, y, p_->list, &drive, obs, values);
   p_->gl.render(p_->list, image);
   return image;
 }

@@ -30,8 +30,10 @@ class FrameDrawer {
   FrameDrawer(const FrameDrawer&) = delete;
   FrameDrawer& operator=(const FrameDrawer&) = delete;
   // the frame of state y at t with the drive's μ and spray zones; obs: what is observed there
-  // (null: computed from y and the drive, whose laws it then evaluates)
-  Image draw(double t, const double* y, const Drive& drive, const Observation* obs);
+  // (null: computed from y and the drive, whose laws it then evaluates); values: each element's
+  // colour value when the settings give their own (FrameSettings::given)
+  Image draw(double t, const double* y, const Drive& drive, const Observation* obs,
+             const std::vector<double>* values = nullptr);
   // the title of the next frames' text band (FrameSettings::caption), the GL context kept
   void set_caption(const std::string& caption);
   // the elements as the last draw placed them (centres in pixels from the top left), by index

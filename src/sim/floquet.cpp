@@ -145,7 +145,7 @@ std::vector<double> turns(const Model& m, const Layout& L, int step, const Bdf2&
 }  // namespace
 
 FloquetModes floquet_modes(const Scene& sc, const Drive& d, double t0, const Eigen::VectorXd& y0, double nu,
-                           double f_max, double max_decay, const std::vector<int>& keep) {
+                           double max_decay, const std::vector<int>& keep) {
   if (!(nu != 0) || !std::isfinite(nu)) throw std::invalid_argument("floquet: the belt does not run (nu = 0)");
   const Model& m = sc.model;
   const int S = static_cast<int>(keep.size());
@@ -153,7 +153,7 @@ FloquetModes floquet_modes(const Scene& sc, const Drive& d, double t0, const Eig
   const int step = nu > 0 ? 1 : -1;
   FloquetModes out;
   out.period = 1 / std::abs(nu);
-  out.steps = std::max(40, static_cast<int>(std::ceil(out.period * 40 * f_max)));
+  out.steps = std::max(40, static_cast<int>(std::ceil(out.period * 40 * kFloquetResolution)));
   const double T = out.period;
   const std::vector<Eigen::VectorXd> ys = passing_motion(m, d, t0, y0, T, out.steps);
   repeat_defects(L, step, m.belt.pitch, ys.front(), ys.back(), out);

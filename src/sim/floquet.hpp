@@ -18,10 +18,11 @@
 // elements that pass it).
 //
 // Φ is integrated with BDF2 (implicit Euler for its first step) on equal steps of at most
-// 1/(40·f_max): L-stable, so the belt's stiff contact and friction motion (10⁴ to 10¹⁰ s⁻¹) is
-// damped out as it is in the drive, and second order: on y' = iω·y at these steps it puts a mode at
-// f_max 0.8 % low in frequency with a damping ratio of 9e-4 of its own, one at f_max/10 8e-5 low
-// with 1e-6 (the principal root of (1 − ⅔iωh)·r² − (4/3)·r + 1/3 = 0).
+// 1/(40·kFloquetResolution), whatever frequencies are listed: L-stable, so the belt's stiff contact
+// and friction motion (10⁴ to 10¹⁰ s⁻¹) is damped out as it is in the drive, and second order: on
+// y' = iω·y at these steps it puts a mode at kFloquetResolution 0.8 % low in frequency with a
+// damping ratio of 9e-4 of its own, one at a tenth of it 8e-5 low with 1e-6, one at twice it 3 %
+// low (the principal root of (1 − ⅔iωh)·r² − (4/3)·r + 1/3 = 0).
 //
 // What it replaces: the state's Jacobian with a transport term (the material derivative taken
 // at one instant, modes.hpp) is the same on a straight span (the axially moving string), but on a
@@ -38,6 +39,12 @@
 #include "scene/scene.hpp"
 
 namespace beltsim {
+
+// [Hz] the frequency the BDF2 steps resolve (40 steps a period): the steps are the same whatever
+// band of frequencies is listed, so that the band does not change the modes in it (a step taken
+// from the band's top moved the paper's drive's heavily damped modes near half the passing rate
+// across the band's 180 Hz edge, docs/modes.md)
+constexpr double kFloquetResolution = 2000;
 
 struct FloquetModes {
   double period = 0;  // [s] T = 1/|ν|
@@ -63,6 +70,6 @@ Eigen::SparseMatrix<double> ode_matrix(const Model& m, const Drive& d, double t,
 // in v, one bristle per element in z). Modes whose decay rate over the passing exceeds
 // `max_decay` [1/s] are left out (their multipliers are rounding). Throws what a run throws.
 FloquetModes floquet_modes(const Scene& sc, const Drive& d, double t0, const Eigen::VectorXd& y0, double nu,
-                           double f_max, double max_decay, const std::vector<int>& keep);
+                           double max_decay, const std::vector<int>& keep);
 
 }  // namespace beltsim

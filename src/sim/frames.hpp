@@ -50,6 +50,14 @@ struct FrameSettings {
   // a title before the time in the text band (a mode's number and frequency,
   // render/mode_frames.cpp); "" none. Not a run's key, not in a checkpoint
   std::string caption;
+  // the belt coloured by values the caller gives each picture (FrameDrawer::draw's `values`) in
+  // place of `quantity`: their name and unit for the text band and the colour bar, on the diverging
+  // map, and the legend's line saying what + is (a mode's tension change, render/mode_frames.cpp);
+  // unset: the quantity. Not a run's key, not in a checkpoint
+  struct Given {
+    std::string label, unit, plus;
+  };
+  std::optional<Given> given;
 
   // simulated time between frames [s]
   double frame_dt() const { return 1.0 / (fps * slowdown); }

@@ -134,9 +134,10 @@ ModeAnalysis analyze_modes(const Scene& sc, const Drive& d, double t, const Eige
   Eigen::MatrixXcd vectors;
   if (s.transport && s.floquet && std::abs(nu) >= kFloquetRate) {
     out.element_rate = nu;
-    // decays up to that of ζ = zeta_max at f_max
+    // decays up to that of ζ = zeta_max at f_max: a mode it leaves out would be left out below (f
+    // above f_max or ζ above zeta_max)
     const double max_decay = 2 * M_PI * s.f_max * s.zeta_max / std::sqrt(1 - s.zeta_max * s.zeta_max);
-    FloquetModes fm = floquet_modes(sc, d, t, y, nu, s.f_max, max_decay, keep);
+    FloquetModes fm = floquet_modes(sc, d, t, y, nu, max_decay, keep);
     out.period = fm.period;
     out.position_defect = fm.position_defect;
     out.velocity_defect = fm.velocity_defect;
@@ -204,7 +205,11 @@ ModeAnalysis analyze_modes(const Scene& sc, const Drive& d, double t, const Eige
     md.shape = md.vector.head(N);
     out.modes.push_back(std::move(md));
   }
-  std::sort(out.modes.begin(), out.modes.end(), [](const Mode& a, const Mode& b) { return a.frequency < b.frequency; });
+  // by frequency, then by damping: modes locked at half the passing rate share their frequency
+  // exactly, and their number must not depend on the order the eigensolver gives them in
+  std::sort(out.modes.begin(), out.modes.end(), [](const Mode& a, const Mode& b) {
+    return a.frequency != b.frequency ? a.frequency < b.frequency : a.damping < b.damping;
+  });
   Observation obs;
   observe(m, d, sc.senses(), t, y.data(), obs);
   for (const PulleyObs& p : obs.pulleys) out.slip_arc.push_back(p.slip_arc);
@@ -216,6 +221,29 @@ Eigen::VectorXd mode_state(const Eigen::VectorXd& y, const Mode& m, double ampli
   const std::complex<double> turn = std::polar(amplitude, phase);
   for (Eigen::Index k = 0; k < m.shape.size(); ++k) out[k] += (m.shape[k] * turn).real();
   return out;
+}
+
+std::vector<std::complex<double>> mode_tension_change(const Scene& sc, const Drive& d, double t,
+                                                      const Eigen::VectorXd& y, const Mode& m) {
+  constexpr double eps = 1e-7;  // [m] the deflection of the point that moves most
+  const std::vector<int> sense = sc.senses();
+  // the change per metre along Re(shape·e^{iφ}) (central differences)
+  auto along = [&](double phase) {
+    Observation up, down;
+    observe(sc.model, d, sense, t, mode_state(y, m, eps, phase).data(), up);
+    observe(sc.model, d, sense, t, mode_state(y, m, -eps, phase).data(), down);
+    std::vector<double> dt(up.elements.size());
+    for (size_t k = 0; k < dt.size(); ++k) dt[k] = (up.elements[k].tension - down.elements[k].tension) / (2 * eps);
+    return dt;
+  };
+  // Re(c·e^{iφ}) = Re c·cos φ − Im c·sin φ: Re c the change at φ = 0, −Im c at φ = π/2
+  const std::vector<double> at0 = along(0), at90 = along(0.5 * M_PI);
+  std::vector<std::complex<double>> c(at0.size());
+  double largest = 0;
+  for (size_t k = 0; k < c.size(); ++k) largest = std::max(largest, std::abs(c[k] = {at0[k], -at90[k]}));
+  if (largest > 0)
+    for (auto& ck : c) ck /= largest;
+  return c;
 }
 
 std::vector<std::string> mode_columns(const ModeAnalysis& a) {

@@ -33,7 +33,7 @@
 namespace beltsim {
 
 // [1/s] the element rate from which a running belt's modes are its motion's Floquet modes: a
-// passing of at most 50 ms. The passing takes 40·f_max·T steps (4 000 at 50 ms and 2 kHz), each a
+// passing of at most 50 ms. The passing takes 40·kFloquetResolution·T steps (4 000 at 50 ms), each a
 // factorisation and solves of the whole state: a slower belt's would take minutes (a choice of
 // cost; the transport term it falls back on is not checked on a slipping wrap, docs/modes.md)
 constexpr double kFloquetRate = 20;
@@ -90,7 +90,7 @@ struct ModeAnalysis {
   // by the nearest span), wrap_<p> (the elements on pulley p), pulley_<p> (its rotation; none for
   // a kinematic pulley, which does not move), arm_<p>, rotor_<p> (a coupled rotor and its clutch hub)
   std::vector<std::string> groups;
-  std::vector<Mode> modes;  // by frequency
+  std::vector<Mode> modes;  // by frequency, then damping
   // [m] each pulley's slip arc at the state (PulleyObs::slip_arc: its elements sliding, saturated
   // friction), by pulley index
   std::vector<double> slip_arc;
@@ -107,6 +107,13 @@ std::vector<int> coordinate_groups(const Scene& sc, const Drive& d, double t, co
 
 // the state q0 + amplitude·Re(shape·e^{i·phase}) (positions only; the velocities are y's)
 Eigen::VectorXd mode_state(const Eigen::VectorXd& y, const Mode& m, double amplitude, double phase);
+
+// The mode's change of each element's tension (ElementObs::tension) over its cycle, linearised
+// about y: c_k such that the deflection q0 + ε·Re(shape·e^{iφ}) (the velocities y's) changes
+// element k's tension by ε·s·Re(c_k·e^{iφ}), scaled (s) so that the largest |c_k| is 1 (which
+// spans stretch, which slacken: the mode's pictures colour the belt by it, render/mode_frames.hpp)
+std::vector<std::complex<double>> mode_tension_change(const Scene& sc, const Drive& d, double t,
+                                                      const Eigen::VectorXd& y, const Mode& m);
 
 // modes.csv's header and a mode's row: mode, frequency_Hz, damping_ratio, decay_1_s (−Re λ), then
 // the participation of each group

@@ -11,6 +11,7 @@
 #include <exception>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <sstream>
 
 #include "integrate/controller.hpp"
@@ -136,13 +137,16 @@ std::string write_parameters(const Scene& sc, const RunSettings& rs, const Outpu
   return written;
 }
 
-// a numbered file's name, PREFIX + at least five digits + SUFFIX (frame_00012.png, state_00003.ckpt)
-bool numbered(const std::string& n, const std::string& prefix, const std::string& suffix) {
-  if (n.size() <= prefix.size() + suffix.size() || n.compare(0, prefix.size(), prefix) != 0 ||
-      n.compare(n.size() - suffix.size(), suffix.size(), suffix) != 0)
-    return false;
-  const std::string digits = n.substr(prefix.size(), n.size() - prefix.size() - suffix.size());
-  return digits.size() >= 5 && digits.find_first_not_of("0123456789") == std::string::npos;
+// a name PREFIX, at least five digits, SUFFIX (frame_00012.png, state_00003.ckpt): a run's
+// numbered file (remove_numbered)
+std::function<bool(const std::string&)> numbered(std::string prefix, std::string suffix) {
+  return [prefix = std::move(prefix), suffix = std::move(suffix)](const std::string& n) {
+    if (n.size() <= prefix.size() + suffix.size() || n.compare(0, prefix.size(), prefix) != 0 ||
+        n.compare(n.size() - suffix.size(), suffix.size(), suffix) != 0)
+      return false;
+    const std::string digits = n.substr(prefix.size(), n.size() - prefix.size() - suffix.size());
+    return digits.size() >= 5 && digits.find_first_not_of("0123456789") == std::string::npos;
+  };
 }
 
 // the names of the regular files (never a link) in the folder PATH that `keep` takes, sorted
@@ -156,16 +160,6 @@ std::vector<std::string> files_in(const std::string& path, Keep keep) {
   }
   std::sort(names.begin(), names.end());
   return names;
-}
-
-// A fresh run's numbered files (frame_00012.png, state_00003.ckpt) replace an earlier run's in the
-// same folder: those it would not write over (a longer earlier run's last ones) are removed too, so
-// that the folder holds one run's frames, as it holds one run's timeseries.csv (a golden test
-// compared a frame the run no longer drew, left by the run before). Only regular files of names of that form
-// (a link is refused when written).
-void remove_numbered(const OutputDir& dir, const std::string& prefix, const std::string& suffix) {
-  for (const std::string& n : files_in(dir.path(), [&](const std::string& f) { return numbered(f, prefix, suffix); }))
-    dir.remove(n);
 }
 
 // the name of PATH in the folder DIR when it lies directly in it ("v.mp4" for out/v.mp4 and out
@@ -229,12 +223,12 @@ void Outputs::open(bool append) {
     FrameSettings f = *rs_.frames;
     for (std::string* p : {&f.png_dir, &f.video_path})
       if (!p->empty()) *p = output_path(rs_, *p);
-    if (!append && !f.png_dir.empty()) remove_numbered(OutputDir(f.png_dir), "frame_", ".png");
+    if (!append && !f.png_dir.empty()) remove_numbered(OutputDir(f.png_dir), numbered("frame_", ".png"));
     sink_ = rs_.frame_factory(scene_, f);
   }
   if (rs_.keep_states) {
     states_ = std::make_unique<OutputDir>(dir, "states");
-    if (!append) remove_numbered(*states_, "state_", ".ckpt");
+    if (!append) remove_numbered(*states_, numbered("state_", ".ckpt"));
   }
   if (!append) {
     const std::string parameters = write_parameters(scene_, rs_, dir);
@@ -268,7 +262,7 @@ std::vector<std::string> Outputs::earlier_outputs() const {
     const std::string n = e.path().filename().string();
     if (n == pngs || n == "states" || e.symlink_status(ec).type() != fs::file_type::directory) continue;
     if (n == "frames" ||
-        !files_in(e.path().string(), [](const std::string& f) { return numbered(f, "frame_", ".png"); }).empty())
+        !files_in(e.path().string(), numbered("frame_", ".png")).empty())
       png_dirs.push_back(n + "/");
   }
   std::sort(png_dirs.begin(), png_dirs.end());

@@ -53,6 +53,27 @@ class Modes(unittest.TestCase):
         self.assertEqual(len(shapes), 2)
         self.assertTrue(shapes[0].startswith("mode_01_") and shapes[0].endswith("Hz.png"), shapes)
 
+    def test_an_earlier_analysis_pictures_are_removed(self):
+        # the shapes of an earlier analysis (another time, more modes, a video) were left beside this
+        # one's: the folder mixed mode_01_122.6Hz.png and mode_01_26.8Hz.png (docs/outputs.md, a
+        # folder holds one run's outputs); files of other names stay
+        shapes = os.path.join(self.dir, "m", "shapes")
+        os.makedirs(shapes)
+        stale = ["mode_01_26.8Hz.png", "mode_03_134.0Hz.png", "mode_01_26.8Hz.mp4", "mode_12_1287.0Hz.png"]
+        kept = ["mode_01_26.8Hz.png.keep", "my_mode_01_26.8Hz.png", "notes.txt"]
+        for f in stale + kept:
+            with open(os.path.join(shapes, f), "w") as g:
+                g.write("x")
+        args = ["modes", self.script, "--at", "0", "--out", os.path.join(self.dir, "m")]
+        code, out, err = run(args + ["--shapes", "2"], cwd=self.dir)
+        self.assertEqual(code, 0, err)
+        drawn = [os.path.basename(ln) for ln in out.splitlines() if "/shapes/" in ln]
+        self.assertEqual(len(drawn), 2, out)
+        self.assertEqual(sorted(os.listdir(shapes)), sorted(drawn + kept))
+        code, out, err = run(args + ["--shapes", "0"], cwd=self.dir)
+        self.assertEqual(code, 0, err)
+        self.assertEqual(sorted(os.listdir(shapes)), sorted(kept))
+
     def test_check_in_time(self):
         # the pulleys' torsional mode at rest, pushed and run on, moves as the linearization says;
         # a mode number past the list is refused under the table, before modes.csv and the shapes are

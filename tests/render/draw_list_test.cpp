@@ -379,6 +379,46 @@ TEST_F(Fixture, CaptionHeadsTheText) {
   EXPECT_EQ(head(captioned).rfind("mode 3: 134.01 Hz, \u03b6 0.0914      t = 0.1250 s", 0), 0u) << head(captioned);
 }
 
+// values the caller gives (a mode's change of tension: render/mode_frames.cpp) colour the belt in
+// place of the quantity, on the diverging map over the range given, their name, unit and sign said
+// in the text band, on the bar and in the legend; no element is past the bar's ends
+TEST_F(Fixture, GivenValuesColourTheBeltWithTheirOwnBar) {
+  const Scene& sc = wet();
+  const Eigen::VectorXd y = test::moving_state(sc);
+  const int n = sc.model.n_el();
+  std::vector<double> values(n);
+  for (int i = 0; i < n; ++i) values[i] = std::sin(2 * M_PI * i / n);
+  FrameSettings f = fs();
+  DrawList plain, given;
+  FrameBuilder(sc, f, &font).build(0.125, y.data(), plain, nullptr, nullptr, &values);
+  f.given = FrameSettings::Given{"tension change", "\u00d7 its largest", "+ : stretches"};
+  f.range_lo = -1, f.range_hi = 1;
+  const FrameBuilder b(sc, f, &font);
+  b.build(0.125, y.data(), given, nullptr, nullptr, &values);
+  EXPECT_EQ(b.scale().map, ColourMap::diverging);
+  ASSERT_EQ(given.elements.size(), static_cast<size_t>(n));
+  for (int i = 0; i < n; ++i) {
+    EXPECT_EQ(given.elements[i].value, values[i]);
+    EXPECT_NE(plain.elements[i].value, values[i]);  // (without their own bar, the quantity's)
+  }
+  auto has = [](const DrawList& dl, const std::string& part) {
+    for (const std::string& t : dl.texts)
+      if (t.find(part) != std::string::npos) return true;
+    return false;
+  };
+  for (const char* t :
+       {"colour: tension change [\u00d7 its largest]", "[\u00d7 its largest]", "+ : stretches", "\u22121.00", "1.00"})
+    EXPECT_TRUE(has(given, t)) << t;
+  EXPECT_FALSE(has(given, "belt tension"));
+  EXPECT_FALSE(has(given, "+ : along travel"));
+  // no mark of values past the bar's ends: values past both ends add one at each (3 triangles)
+  std::vector<double> past = values;
+  for (double& v : past) v *= 1.5;
+  DrawList over;
+  b.build(0.125, y.data(), over, nullptr, nullptr, &past);
+  EXPECT_EQ(over.triangles.size(), given.triangles.size() + 6);
+}
+
 // a value that rounds to zero is written without a minus (issue 44: a frame's header read "slip
 // -0.000 m/s" on an alternator whose belt and rim ran within 0.5 mm/s): a rotor at -1e-4 rad/s
 // reads 0.00, one at -0.006 rad/s -0.01
