@@ -219,6 +219,27 @@ TEST(Modes, ASpanModeAboveHalfThePassingRateIsNotAliased) {
   EXPECT_NEAR(f1, expected, 0.02 * expected);
 }
 
+// the paper's dry drive with both pulleys free, no gravity, a belt of EI 1e-6 (the spans'
+// transverse modes, 126 Hz, then stay apart from the torsional one) and no bending damper
+Scene torsion_scene() {
+  SceneDef d = presets::paper_dry();  // both pulleys free
+  d.gravity = 0;
+  d.belt.EI = 1e-6;
+  d.belt.bending_damping = 0;
+  return build_scene(d);
+}
+
+// the first of its modes in which the two pulleys take part for more than 0.8 (null: none)
+const Mode* torsional_mode(const ModeAnalysis& a) {
+  const auto group = [&](const char* name) {
+    return static_cast<int>(std::find(a.groups.begin(), a.groups.end(), name) - a.groups.begin());
+  };
+  const int driver = group("pulley_driver"), driven = group("pulley_driven");
+  for (const Mode& md : a.modes)
+    if (md.participation[driver] + md.participation[driven] > 0.8) return &md;
+  return nullptr;
+}
+
 // 2. The two free pulleys of the paper's drive at rest (J = 0.025 kg·m² each, r = 0.1 m) turn
 // against each other on the two spans, each a spring EA/L: K = 2·r²·EA/L, ω² = K·(1/J1 + 1/J2).
 // The belt adds to each pulley's inertia its wrap (ρ·π·r·r²) and a third of each half span's mass
@@ -227,20 +248,9 @@ TEST(Modes, ASpanModeAboveHalfThePassingRateIsNotAliased) {
 // L + l (half a pitch onto each wrap): the lumped model's frequency lies between the two.
 // (Measured: 140.6 Hz, between 139.9 and 144.6 Hz.)
 TEST(Modes, TwoPulleyTorsionalModeIsTheLumpedModel) {
-  SceneDef d = presets::paper_dry();  // both pulleys free
-  d.gravity = 0;
-  d.belt.EI = 1e-6;  // the spans' transverse modes (126 Hz) then stay apart from the torsional one
-  d.belt.bending_damping = 0;
-  const Scene sc = build_scene(d);
+  const Scene sc = torsion_scene();
   const ModeAnalysis a = analyze_modes(sc, sc.drive, 0.0, sc.y0);
-  const int driver = static_cast<int>(std::find(a.groups.begin(), a.groups.end(), "pulley_driver") - a.groups.begin());
-  const int driven = static_cast<int>(std::find(a.groups.begin(), a.groups.end(), "pulley_driven") - a.groups.begin());
-  const Mode* torsion = nullptr;
-  for (const Mode& md : a.modes)
-    if (md.participation[driver] + md.participation[driven] > 0.8) {
-      torsion = &md;
-      break;
-    }
+  const Mode* torsion = torsional_mode(a);
   ASSERT_NE(torsion, nullptr);
   const double r = 0.1, J = 0.025, EA = 1.52e5, L = 0.29, l = sc.model.belt.pitch;
   const double Je = J + kRho * M_PI * r * r * r + 2 * (kRho * L / 2) / 3 * r * r;
@@ -263,20 +273,9 @@ TEST(Modes, TwoPulleyTorsionalModeIsTheLumpedModel) {
 // 0.5). The pictures coloured the deflected state's own tension: at the deflection drawn, 3 % of
 // the layout, it alternated element by element past both ends of the run's bar.
 TEST(Modes, TorsionalModeStretchesOneSpanAndSlackensTheOther) {
-  SceneDef d = presets::paper_dry();
-  d.gravity = 0;
-  d.belt.EI = 1e-6;
-  d.belt.bending_damping = 0;
-  const Scene sc = build_scene(d);
+  const Scene sc = torsion_scene();
   const ModeAnalysis a = analyze_modes(sc, sc.drive, 0.0, sc.y0);
-  const int driver = static_cast<int>(std::find(a.groups.begin(), a.groups.end(), "pulley_driver") - a.groups.begin());
-  const int driven = static_cast<int>(std::find(a.groups.begin(), a.groups.end(), "pulley_driven") - a.groups.begin());
-  const Mode* torsion = nullptr;
-  for (const Mode& md : a.modes)
-    if (md.participation[driver] + md.participation[driven] > 0.8) {
-      torsion = &md;
-      break;
-    }
+  const Mode* torsion = torsional_mode(a);
   ASSERT_NE(torsion, nullptr);
   const std::vector<std::complex<double>> c = mode_tension_change(sc, sc.drive, 0.0, sc.y0, *torsion);
   ASSERT_EQ(c.size(), static_cast<size_t>(sc.model.n_el()));
