@@ -71,10 +71,22 @@ std::string join(const std::vector<std::string>& names, const std::string& sep) 
   return s;
 }
 
-std::string and_list(const std::vector<std::string>& names) {
+namespace {
+// the names joined by ", ", the last by " WORD "
+std::string listed(const std::vector<std::string>& names, const std::string& word) {
   std::string list;
-  for (size_t k = 0; k < names.size(); ++k) list += (k ? k + 1 < names.size() ? ", " : " and " : "") + names[k];
+  for (size_t k = 0; k < names.size(); ++k)
+    list += (k ? k + 1 < names.size() ? ", " : " " + word + " " : "") + names[k];
   return list;
+}
+}  // namespace
+
+std::string and_list(const std::vector<std::string>& names) {
+  return listed(names, "and");
+}
+
+std::string or_list(const std::vector<std::string>& names) {
+  return listed(names, "or");
 }
 
 }  // namespace beltsim

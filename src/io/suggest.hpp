@@ -28,5 +28,7 @@ std::string no_such(const std::string& kind, const std::string& name, const std:
 std::string join(const std::vector<std::string>& names, const std::string& sep = ", ");
 // "a", "a and b", "a, b and c"
 std::string and_list(const std::vector<std::string>& names);
+// "a", "a or b", "a, b or c"
+std::string or_list(const std::vector<std::string>& names);
 
 }  // namespace beltsim
