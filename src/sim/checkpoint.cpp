@@ -210,6 +210,26 @@ std::string Simulation::checkpoint_text() const {
   return w.finish();
 }
 
+double Simulation::kept_state_bytes() const {
+  // the checkpoint of now, with each value of the held step (the state and its derivative at the
+  // step's two ends) that is 0 now counted at the mean width of its values that are not: at the
+  // start the speeds are 0 (written "0"), where a state in motion has about 20 bytes for each.
+  // Measured at 600 elements (trbdf2): 368 kB at t = 0, 550 to 570 kB in motion, this 508 kB; the rest
+  // is the state inside the step that trbdf2 keeps once it has taken one (another 75 kB)
+  const IntegratorState s = integ_->get_state();
+  double zeros = 0, others = 0, width = 0;
+  for (const Eigen::VectorXd* v : {&s.y, &s.f, &s.y_prev, &s.f_prev})
+    for (double x : *v) {
+      if (x == 0) {
+        zeros++;
+      } else {
+        others++, width += static_cast<double>(number_text(x).size());
+      }
+    }
+  const double in_motion = others > 0 ? width / others : 17;
+  return static_cast<double>(checkpoint_text().size()) + zeros * (in_motion - 1);
+}
+
 std::unique_ptr<Simulation> Simulation::resume(const std::string& path, const FrameSinkFactory& factory, int* callbacks,
                                                const std::function<void(const RunSettings&)>& vet, bool rewind,
                                                const std::function<void(const std::string&)>& warn) {

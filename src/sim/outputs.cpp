@@ -2,6 +2,7 @@
 
 #include <fcntl.h>
 #include <sys/stat.h>
+#include <sys/statvfs.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -375,6 +376,7 @@ void Outputs::frame(double t, const Eigen::VectorXd& y, const Drive& drive, cons
 
 void Outputs::keep_state(const std::string& name, const std::string& checkpoint) {
   write_file_whole(*states_, name, checkpoint);
+  kept_bytes_ += static_cast<double>(checkpoint.size());
 }
 
 bool Outputs::has_snapshots() const {
@@ -387,6 +389,16 @@ std::string Outputs::path(const char* name) const {
 
 long Outputs::bytes(const char* name) const {
   return std::max(0L, dir_->size(name));
+}
+
+double Outputs::written_bytes() const {
+  return static_cast<double>(bytes("timeseries.csv") + bytes("snapshots.csv")) + kept_bytes_;
+}
+
+double Outputs::free_bytes() const {
+  struct statvfs fs {};
+  if (::fstatvfs(dir_->fd(), &fs) != 0) return -1;
+  return static_cast<double>(fs.f_bavail) * static_cast<double>(fs.f_frsize);
 }
 
 long Outputs::frames_written() const {

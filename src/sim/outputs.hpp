@@ -78,6 +78,10 @@ class Outputs {
   bool has_snapshots() const;
   std::string path(const char* name) const;  // OUT_DIR/NAME
   long bytes(const char* name) const;        // the size of NAME in the claimed folder, 0 when none
+  // the bytes the outputs hold in the claimed folder (timeseries.csv, snapshots.csv, the states
+  // this simulation kept), and those free on its file system for this process (-1: unknown)
+  double written_bytes() const;
+  double free_bytes() const;
   long rows() const { return rows_; }        // samples written
   double last_row_t() const { return last_.csv_last_t; }  // the time of timeseries.csv's last row (NaN: none)
   long frames_written() const;
@@ -130,6 +134,7 @@ class Outputs {
   std::vector<std::vector<double>> samples_;
   long rows_ = 0;
   long frames_before_ = 0;  // frames written before a resume
+  double kept_bytes_ = 0;   // the bytes of the states kept by this simulation
   State last_;              // the sizes set or measured last (get_state without the folder)
   struct Cut {
     const char* name;

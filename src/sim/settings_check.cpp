@@ -8,6 +8,7 @@
 
 #include "integrate/integrator.hpp"
 #include "io/number_text.hpp"
+#include "io/suggest.hpp"
 #include "scene/scene.hpp"
 #include "scene/validate.hpp"
 #include "sim/outputs.hpp"
@@ -80,24 +81,94 @@ void check_calls(const RunSettings& rs, double t0, double t1, double every_dt) {
                                     " calls: call it less often, or set allow_large = true");
 }
 
+namespace {
+
+// The bytes a value of timeseries.csv and snapshots.csv takes with its comma, in motion: 15.7 to 17.0
+// (the file's bytes over its rows and columns) in 30 runs of four scenes (scripts/paper_dry.lua,
+// serpentine.lua, per_length_dry.lua at 60 to 10000 elements, fine_belt_window.lua), 0.1 to 100 s:
+// most are 17 significant digits ("-68.83646674077144,"), a few short (0, nan, a μ of 1, a torque
+// of -70). The first row, at rest, is no measure of the rest: 249 bytes where the rows in motion
+// take 612 (per_length_dry.lua). A row of snapshots.csv holds 8 such values besides its time,
+// element, pulley and state (131 bytes measured on the paper's drive).
+constexpr double kValueBytes = 17;
+constexpr double kSnapshotValues = 8;
+
+// a size for a message, to two significant digits or the whole units: "629 bytes", "250 kB",
+// "2.2 MB", "6.2 GB", "1234 GB"
+std::string size_text(double bytes) {
+  if (bytes < 1e3) return rounded_text(std::round(bytes)) + " bytes";
+  const double scale = bytes < 1e6 ? 1e3 : bytes < 1e9 ? 1e6 : 1e9;
+  const double x = bytes / scale;
+  const int whole = x < 1 ? 1 : static_cast<int>(std::floor(std::log10(x))) + 1;
+  return rounded_text(x, std::max(2, whole)) + (scale == 1e3 ? " kB" : scale == 1e6 ? " MB" : " GB");
+}
+
+}  // namespace
+
+OutputVolume output_volume(const Scene& sc, const RunSettings& rs, double t0, double t1, double state_bytes) {
+  OutputVolume v;
+  if (!(t1 > t0)) return v;
+  v.rows = (t1 - t0) / rs.sample_dt;
+  v.row_bytes = static_cast<double>(timeseries_columns(sc, rs.probes.size()).size()) * kValueBytes;
+  const double snaps = static_cast<double>(std::count_if(rs.snapshot_times.begin(), rs.snapshot_times.end(),
+                                                         [&](double t) { return t >= t0 && t <= t1; })) +
+                       (rs.snapshot_every > 0 ? (t1 - t0) / rs.snapshot_every : 0.0);
+  v.snapshot_rows = snaps * sc.model.n_el();
+  v.snapshot_row_bytes = kSnapshotValues * kValueBytes;
+  if (const std::optional<FrameSettings> f = frame_times(rs); f && rs.keep_states) {
+    v.states = std::max(0.0, t1 - std::max(t0, f->t_start)) / f->frame_dt();
+    v.state_bytes = state_bytes;
+  }
+  return v;
+}
+
+std::string volume_warning(const OutputVolume& v, double t1, double written, double free, const std::string& out_dir) {
+  const double more = v.bytes(), total = written + more;
+  const bool large = total > kLargeOutputs, no_room = free >= 0 && more > free;
+  if (!large && !no_room) return "";
+  std::vector<std::string> parts, fewer;
+  if (v.rows * v.row_bytes > 0.01 * more) {
+    parts.push_back("timeseries.csv: " + rounded_text(std::round(v.rows)) + " rows of about " + size_text(v.row_bytes));
+    fewer.push_back("sample less often (sample)");
+  }
+  if (v.snapshot_rows * v.snapshot_row_bytes > 0.01 * more) {
+    parts.push_back("snapshots.csv: " + rounded_text(std::round(v.snapshot_rows)) + " rows of about " +
+                    size_text(v.snapshot_row_bytes));
+    fewer.push_back("take fewer snapshots");
+  }
+  if (v.states * v.state_bytes > 0.01 * more) {
+    parts.push_back("states/: " + rounded_text(std::round(v.states)) + " kept states of about " +
+                    size_text(v.state_bytes));
+    fewer.push_back("keep fewer states (frames.fps, frames.slowdown)");
+  }
+  std::string m = "the outputs in " + out_dir + " will grow by about " + size_text(more) +
+                  " by t = " + rounded_text(t1) + " s (" + join(parts, "; ") + ")";
+  if (large)
+    m += (written > 0.01 * total ? ", to about " + size_text(total) : std::string()) + ", past " +
+         size_text(kLargeOutputs) + ": if that is more than meant, stop the run (Ctrl-C) and " + or_list(fewer);
+  if (no_room)
+    m += std::string(large ? "; and that is" : ": that is") + " more than the " + size_text(free) +
+         " free on the file system that holds it: the run will stop with an error when the disk is full (the "
+         "outputs up to then kept); give it a folder with room (--out, out = ...) or free some space";
+  return m;
+}
+
 void check_volume(const Scene& sc, const RunSettings& rs, double t0, double t1) {
   if (rs.allow_large || !(t1 > t0)) return;
   constexpr double kMaxRows = 1e7, kMaxFrames = 1e5;
-  const double rows = (t1 - t0) / rs.sample_dt;
+  const OutputVolume v = output_volume(sc, rs, t0, t1);
   std::ostringstream m;
-  if (rows > kMaxRows) {
-    const double bytes = rows * static_cast<double>(timeseries_columns(sc, rs.probes.size()).size()) * 13;
+  if (v.rows > kMaxRows) {
     m << rounded_text(t1 - t0) << " s at a sample every " << rounded_text(rs.sample_dt) << " s would write "
-      << rounded_text(rows) << " rows (about " << rounded_text(bytes / 1e9) << " GB of timeseries.csv); the limit is "
-      << rounded_text(kMaxRows) << " rows: sample less often, or set allow_large = true";
+      << rounded_text(v.rows) << " rows (about " << size_text(v.rows * v.row_bytes)
+      << " of timeseries.csv); the limit is " << rounded_text(kMaxRows)
+      << " rows: sample less often, or set allow_large = true";
     throw ParameterError("sample", m.str());
   }
-  const double snaps =
-      static_cast<double>(rs.snapshot_times.size()) + (rs.snapshot_every > 0 ? (t1 - t0) / rs.snapshot_every : 0.0);
-  if (snaps * sc.model.n_el() > kMaxRows) {
-    m << rounded_text(snaps) << " snapshots of " << sc.model.n_el() << " elements would write "
-      << rounded_text(snaps * sc.model.n_el()) << " rows of snapshots.csv; the limit is " << rounded_text(kMaxRows)
-      << ": take fewer, or set allow_large = true";
+  if (v.snapshot_rows > kMaxRows) {
+    m << rounded_text(v.snapshot_rows / sc.model.n_el()) << " snapshots of " << sc.model.n_el()
+      << " elements would write " << rounded_text(v.snapshot_rows) << " rows of snapshots.csv; the limit is "
+      << rounded_text(kMaxRows) << ": take fewer, or set allow_large = true";
     throw ParameterError("snapshots", m.str());
   }
   if (const std::optional<FrameSettings> f = frame_times(rs)) {

@@ -340,6 +340,7 @@ Simulation::Advance Simulation::run_to(double t, const std::atomic<bool>* stop, 
   if (running_) throw std::logic_error("run_to: the simulation is already running (called from a callback?)");
   check_volume(scene_, rs_, now(), t);
   for (const auto& [id, dt] : every_dt_) check_calls(rs_, now(), t, dt);
+  warn_volume(t);
   const Scoped<bool> running(running_, true);
   const auto steady = [] {
     return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
@@ -426,6 +427,16 @@ Simulation::Advance Simulation::run_to(double t, const std::atomic<bool>* stop, 
               : a.interrupted   ? "stopped at the last finished step (Ctrl-C, SIGTERM or a live view's control)"
                                 : "";
   return a;
+}
+
+void Simulation::warn_volume(double t) {
+  if (volume_warned_ || !rs_.on_warning) return;
+  if (rs_.keep_states && state_bytes_ < 0) state_bytes_ = kept_state_bytes();
+  const OutputVolume v = output_volume(scene_, rs_, now(), t, std::max(0.0, state_bytes_));
+  const std::string m = volume_warning(v, t, out_->written_bytes(), out_->free_bytes(), rs_.out_dir);
+  if (m.empty()) return;
+  volume_warned_ = true;
+  rs_.on_warning(m);
 }
 
 Warnings Simulation::warnings() const {

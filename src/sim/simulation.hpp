@@ -226,6 +226,11 @@ class Simulation {
   // the checkpoint of now (save, and a kept state at a frame time: inside the frame stream's
   // output, now() is that time and the integrator holds the step that crosses it)
   std::string checkpoint_text() const;
+  // about the bytes of a state kept in motion (keep_states), from the checkpoint of now
+  double kept_state_bytes() const;
+  // warns once, before a run_to to t, of outputs that will be large or more than the disk has
+  // room for (volume_warning, sim/settings_check.hpp)
+  void warn_volume(double t);
   void set_landings();
   void sample(double t, const Eigen::VectorXd& y);
   void frame(double t, const Eigen::VectorXd& y);
@@ -276,6 +281,8 @@ class Simulation {
   std::string end_status_ = "ok", end_note_;
   std::vector<std::string> misses_warned_;  // warn_contract_misses()' warnings given
   bool decoupler_warned_ = false;           // the overrunning decoupler's among them
+  bool volume_warned_ = false;              // warn_volume's warning given
+  double state_bytes_ = -1;                 // kept_state_bytes(), once measured
   RippleWatch ripple_;                      // the span tensions' ripple at the samples (sim/ripple_watch.hpp)
   std::vector<size_t> span_cols_;           // each span's .tension column in sample_row (its mean follows)
   std::vector<std::string> span_names_;     // and its name there

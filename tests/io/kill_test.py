@@ -358,6 +358,12 @@ def full_file_system():
               "full file system: parameters.csv as it was written before the disk filled")
         # its end rows found the room parameters.csv kept for them on the full disk
         stopped_as_said(err, full, "full file system")
+        # and the run said before it ran that its outputs would not fit (statvfs of the folder)
+        check(re.search(r"beltsim: warning: the outputs in %s will grow by about [0-9.]+ kB by t = 0\.4 s "
+                        r"\(timeseries\.csv: 400 rows of about \d+ bytes\): that is more than the [0-9.]+ kB free "
+                        r"on the file system that holds it: the run will stop with an error when the disk is full"
+                        % re.escape(full), err) is not None,
+              "full file system: the warning before the run: %r" % err[-900:])
     finally:
         subprocess.run(["umount", mnt])
 

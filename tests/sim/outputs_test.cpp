@@ -8,6 +8,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <atomic>
 #include <csignal>
 #include <cstdio>
 #include <cstring>
@@ -18,8 +19,10 @@
 #include <memory>
 #include <sstream>
 
+#include "io/number_text.hpp"
 #include "io/output_dir.hpp"
 #include "scene/scene.hpp"
+#include "sim/settings_check.hpp"
 #include "sim/simulation.hpp"
 #include "support/dry_scene.hpp"
 #include "support/files.hpp"
@@ -439,6 +442,90 @@ TEST(Outputs, AFullDiskStopsTheRunSayingWhereAndKeepsTheOutputs) {
   EXPECT_NE(parameters.find("\nend.last_row_t," + last.substr(0, last.find(',')) + ",s,"), std::string::npos)
       << parameters;
   EXPECT_NE(parameters.find("\nend.status,failed,,derived,\"cannot write " + csv), std::string::npos) << parameters;
+}
+
+// the size of a run's time series, estimated before it runs (the 1e7-row refusal's figure, the
+// warning of large outputs), is that of the rows it writes: a user's run read "481 B a row" where
+// the rows took 620 (13 bytes a value; the rows in motion take about 17)
+TEST(Outputs, TheTimeSeriesSizeIsEstimatedAsWritten) {
+  const fs::path out = fresh("estimate") / "out";
+  RunSettings rs = settings(out);
+  rs.snapshot_every = 0;
+  rs.t_end = 0.3;  // the paper's torque ramp: at rest at first, 50 rad/s at the end
+  const RunResult r = run(dry_scene(), rs);
+  const OutputVolume v = output_volume(dry_scene(), rs, 0, rs.t_end);
+  EXPECT_NEAR(v.rows, 300, 1e-9);
+  const double written = static_cast<double>(fs::file_size(r.csv_path));
+  EXPECT_NEAR(v.rows * v.row_bytes / written, 1, 0.06)
+      << v.row_bytes << " bytes a row estimated, " << written / 301 << " written";
+}
+
+// the warnings said before a run whose outputs will be large, or more than its disk has room for
+// (a user's 9.9e6-row run of 6 GB started without a word, as did 2400 elements' kept states at
+// 660 MB a simulated second): said once, before anything is integrated, with the figures
+TEST(Outputs, LargeOutputsAreWarnedOfBeforeTheRun) {
+  const fs::path out = fresh("large") / "out";
+  std::vector<std::string> said;
+  auto starts = [&](RunSettings rs) {
+    said.clear();
+    rs.snapshot_every = 0;
+    rs.on_warning = [&](const std::string& m) {
+      if (m.rfind("the outputs in", 0) == 0) said.push_back(m);
+    };
+    std::atomic<bool> stop{true};  // stopped at its first step: the warning comes before it
+    const RunResult r = run(dry_scene(), rs, &stop);
+    EXPECT_EQ(r.t_reached, 0.0);
+  };
+  RunSettings rs = settings(out);
+  rs.t_end = 9;
+  rs.sample_dt = 1e-6;  // 9e6 rows, 5.7 GB
+  starts(rs);
+  const double row = static_cast<double>(timeseries_columns(dry_scene()).size()) * 17;
+  ASSERT_EQ(said.size(), 1u);
+  EXPECT_EQ(said[0], "the outputs in " + out.string() + " will grow by about 5.7 GB by t = 9 s (timeseries.csv: " +
+                         "9000000 rows of about " + number_text(row) +
+                         " bytes), past 1 GB: if that is more than meant, stop the run (Ctrl-C) and sample less "
+                         "often (sample)");
+  rs.t_end = 1;  // 0.63 GB: none
+  starts(rs);
+  EXPECT_TRUE(said.empty()) << said[0];
+  // kept states: about the size they take in motion (not at rest, where the speeds are "0")
+  RunSettings kept = settings(out);
+  kept.t_end = 0.05;
+  kept.snapshot_every = 0;
+  kept.keep_states = true;
+  run(dry_scene(), kept);
+  const double state = static_cast<double>(fs::file_size(out / "states" / "state_00015.ckpt"));
+  kept.t_end = 300;  // 90 000 states
+  starts(kept);
+  ASSERT_EQ(said.size(), 1u);
+  const std::string head = "the outputs in " + out.string() + " will grow by about ";
+  ASSERT_EQ(said[0].compare(0, head.size(), head), 0) << said[0];
+  const size_t at = said[0].find("states/: 90000 kept states of about ");
+  ASSERT_NE(at, std::string::npos) << said[0];
+  const double estimate = std::stod(said[0].substr(at + 36)) * 1e3;  // "58 kB"
+  EXPECT_NEAR(estimate / state, 1, 0.15) << said[0] << "; a state in motion: " << state << " bytes";
+  EXPECT_NE(said[0].find("keep fewer states (frames.fps, frames.slowdown)"), std::string::npos) << said[0];
+}
+
+// more than the file system has room for: said with the free space, and what comes of it
+TEST(Outputs, OutputsPastTheFreeSpaceAreWarnedOf) {
+  OutputVolume v;
+  v.rows = 100000, v.row_bytes = 629;
+  EXPECT_EQ(volume_warning(v, 1, 0, 1e9, "out/x"), "");
+  EXPECT_EQ(volume_warning(v, 1, 0, 3.1e6, "out/x"),
+            "the outputs in out/x will grow by about 63 MB by t = 1 s (timeseries.csv: 100000 rows of about 629 "
+            "bytes): that is more than the 3.1 MB free on the file system that holds it: the run will stop with an "
+            "error when the disk is full (the outputs up to then kept); give it a folder with room (--out, out = "
+            "...) or free some space");
+  // both, with what the folder holds already
+  v.rows = 2e6;
+  EXPECT_EQ(volume_warning(v, 20, 5e8, 1e9, "out/x"),
+            "the outputs in out/x will grow by about 1.3 GB by t = 20 s (timeseries.csv: 2000000 rows of about 629 "
+            "bytes), to about 1.8 GB, past 1 GB: if that is more than meant, stop the run (Ctrl-C) and sample less "
+            "often (sample); and that is more than the 1 GB free on the file system that holds it: the run will stop "
+            "with an error when the disk is full (the outputs up to then kept); give it a folder with room (--out, "
+            "out = ...) or free some space");
 }
 
 }  // namespace
