@@ -4,6 +4,7 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cctype>
 #include <cerrno>
 #include <cstdlib>
@@ -274,14 +275,19 @@ std::string folder_holder(int dir) {
   return who;
 }
 
-void remove_numbered(const OutputDir& dir, const std::function<bool(const std::string&)>& numbered) {
+std::vector<std::string> regular_files(const std::string& path, const std::function<bool(const std::string&)>& keep) {
   std::error_code ec;
   std::vector<std::string> names;
-  for (const auto& e : std::filesystem::directory_iterator(dir.path(), ec)) {
+  for (const auto& e : std::filesystem::directory_iterator(path, ec)) {
     const std::string n = e.path().filename().string();
-    if (e.symlink_status(ec).type() == std::filesystem::file_type::regular && numbered(n)) names.push_back(n);
+    if (e.symlink_status(ec).type() == std::filesystem::file_type::regular && keep(n)) names.push_back(n);
   }
-  for (const std::string& n : names) dir.remove(n);
+  std::sort(names.begin(), names.end());
+  return names;
+}
+
+void remove_numbered(const OutputDir& dir, const std::function<bool(const std::string&)>& numbered) {
+  for (const std::string& n : regular_files(dir.path(), numbered)) dir.remove(n);
 }
 
 OutputPlace output_place(const std::string& path) {

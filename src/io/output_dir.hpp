@@ -111,6 +111,8 @@ std::string folder_holder(int dir);
 // run no longer drew, left by the run before). Removes the regular files of `dir` (never a link:
 // a link is refused when written) whose names `numbered` accepts, and nothing else.
 void remove_numbered(const OutputDir& dir, const std::function<bool(const std::string&)>& numbered);
+// the names of the regular files (never a link) in the folder `path` that `keep` accepts, sorted
+std::vector<std::string> regular_files(const std::string& path, const std::function<bool(const std::string&)>& keep);
 
 // The folder and the name of a path a caller gave: OutputDir(parent), made with its missing
 // parents as every output's folder is (docs/outputs.md), and the last component; errors name the

@@ -150,19 +150,6 @@ std::function<bool(const std::string&)> numbered(std::string prefix, std::string
   };
 }
 
-// the names of the regular files (never a link) in the folder PATH that `keep` takes, sorted
-template <class Keep>
-std::vector<std::string> files_in(const std::string& path, Keep keep) {
-  std::error_code ec;
-  std::vector<std::string> names;
-  for (const auto& e : std::filesystem::directory_iterator(path, ec)) {
-    const std::string n = e.path().filename().string();
-    if (e.symlink_status(ec).type() == std::filesystem::file_type::regular && keep(n)) names.push_back(n);
-  }
-  std::sort(names.begin(), names.end());
-  return names;
-}
-
 // the name of PATH in the folder DIR when it lies directly in it ("v.mp4" for out/v.mp4 and out
 // "out"), else ""
 std::string name_in(const std::string& dir, const std::string& path) {
@@ -253,7 +240,7 @@ std::vector<std::string> Outputs::earlier_outputs() const {
     if (!has_snapshots() && dir_->has(n)) left.push_back(n);
   // every video, whatever its name (a script's frames.video, a resumed run's NAME_resumed_T.mp4)
   for (const std::string& n :
-       files_in(folder, [&](const std::string& f) { return f != video && video_name_problem(f).empty(); }))
+       regular_files(folder, [&](const std::string& f) { return f != video && video_name_problem(f).empty(); }))
     left.push_back(n);
   // every PNG folder: frames/ (the default's name) and any other that holds frame_NNNNN.png files
   // (a script's frames.png, whatever its name)
@@ -262,8 +249,7 @@ std::vector<std::string> Outputs::earlier_outputs() const {
   for (const auto& e : fs::directory_iterator(folder, ec)) {
     const std::string n = e.path().filename().string();
     if (n == pngs || n == "states" || e.symlink_status(ec).type() != fs::file_type::directory) continue;
-    if (n == "frames" ||
-        !files_in(e.path().string(), numbered("frame_", ".png")).empty())
+    if (n == "frames" || !regular_files(e.path().string(), numbered("frame_", ".png")).empty())
       png_dirs.push_back(n + "/");
   }
   std::sort(png_dirs.begin(), png_dirs.end());
@@ -271,8 +257,8 @@ std::vector<std::string> Outputs::earlier_outputs() const {
   if (!rs_.keep_states && dir_->has("states")) left.push_back("states/");
   // checkpoints saved into the folder (sim:save("mid.ckpt")): resumed after this run has written
   // the folder, each is refused (check_state: its outputs are gone), so they are named as it starts
-  for (const std::string& n :
-       files_in(folder, [](const std::string& f) { return f.size() > 5 && f.compare(f.size() - 5, 5, ".ckpt") == 0; }))
+  for (const std::string& n : regular_files(
+           folder, [](const std::string& f) { return f.size() > 5 && f.compare(f.size() - 5, 5, ".ckpt") == 0; }))
     left.push_back(n);
   return left;
 }
