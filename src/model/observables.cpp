@@ -20,6 +20,10 @@ const char* contact_state_name(ContactState s) {
 }
 
 namespace {
+// the elements' settling onto the rim where the belt runs on: saturated runs of at most this many
+// elements off the gross-slip arc stick (observables.hpp)
+constexpr int kSettlingElements = 3;
+
 // the sums of element contacts over the pairs of a contact stage
 struct PairSums {
   std::vector<ElementContact>& el;  // indexed by element, first..first+size
@@ -183,18 +187,38 @@ void classify_contact(const Model& m, Observation& o) {
     auto backward = [&](int a) { return saturated(a) && e[a].slip < 0; };
     int b = k, run = 0;  // b: the first element behind the backward run
     while (run <= lift && on_arc(b, x) && backward(b)) ++run, b = prev(b);
-    if (run >= 1 && run <= lift && on_arc(b, x) && !(!saturated(b) && on_arc(prev(b), x) && backward(prev(b)))) k = b;
-    if (!saturated(k)) continue;  // no gross slip on this arc
-    const bool forward = e[k].slip > 0;
-    auto with = [&](int i) { return saturated(i) && (e[i].slip > 0) == forward; };
-    for (int count = 0; count < n && on_arc(k, x); ++count, k = prev(k)) {
-      if (with(k)) {
-        e[k].state = ContactState::slip;
-      } else if (!saturated(k) && on_arc(prev(k), x) && with(prev(k))) {
-        e[k].state = ContactState::slip;  // one element dipping through the band inside the arc
-      } else {
-        break;
+    if (run >= 1 && run <= lift && on_arc(b, x) && !(!saturated(b) && on_arc(prev(b), x) && backward(prev(b)))) {
+      k = b;
+      if (!saturated(k) && on_arc(prev(k), x)) k = prev(k);  // lifting off inside the band behind it
+    }
+    // the run of saturated elements in one direction from a (backwards along the belt), one
+    // element dipping through the band inside it included: its length, and with mark its states
+    auto saturated_run = [&](int a, bool mark) {
+      const bool forward = e[a].slip > 0;
+      auto with = [&](int i) { return saturated(i) && (e[i].slip > 0) == forward; };
+      int len = 0;
+      for (int count = 0; count < n && on_arc(a, x); ++count, a = prev(a), ++len) {
+        if (!with(a) && !(!saturated(a) && on_arc(prev(a), x) && with(prev(a)))) break;
+        if (mark) e[a].state = ContactState::slip;
       }
+      return len;
+    };
+    const bool gross = saturated(k), gross_forward = e[k].slip > 0;
+    if (gross) saturated_run(k, true);  // the gross-slip arc
+    // elsewhere on the arc (its entry, its middle) a run longer than the entry's settling, in the
+    // gross-slip arc's direction when there is one, is a slip zone of its own: a wet stretch or a
+    // torque pulse arriving slips where it lands. A run the other way is the entry's tension
+    // overshoot settling back.
+    const int settle = std::max(kSettlingElements, lift);
+    for (int a = x, count = 0; count < n && on_arc(a, x); ++count) {
+      if (e[a].state == ContactState::slip || !saturated(a) || (gross && (e[a].slip > 0) != gross_forward)) {
+        a = prev(a);
+        continue;
+      }
+      const int len = saturated_run(a, false);
+      if (len > settle) saturated_run(a, true);
+      for (int i = 0; i < len; ++i) a = prev(a);
+      count += len - 1;
     }
   }
   for (PulleyObs& p : o.pulleys) p.contact_arc = p.slip_arc = p.stick_arc = p.mu = 0;

@@ -25,7 +25,8 @@
 //            coarse elements each takes a tension step of μN·l and one of them dips through the
 //            band as the belt passes). Nor does the belt lifting off: the last element inside
 //            the band, and a backward run at the exit no longer than the lift-off zone that stops
-//            there (not as the element behind it, not even across a dip). Past the tangent point
+//            there (not as the element behind it, not even across a dip), and an element inside
+//            the band behind such a run. Past the tangent point
 //            an element's centre runs straight along the span yet is still inside the contact
 //            circle for sqrt(2·R·p) (p the wrap's penetration), and against the rim point at its
 //            radius r it moves at ω·a²/r − ω·r (a the wrap's radius): backwards, up to about
@@ -36,11 +37,19 @@
 //            within 9e-6 m/s at N = 73 to 96 N. Without this rule the idler read a gross-slip
 //            arc of 4.7 % of its wrap on average and the tensioner 7.3 % (11 % each at 400
 //            elements); with it 0 and 0 (2.4 and 2.0 % at 400 elements);
+//            and elsewhere on the arc (its entry, its middle), every run of more than three
+//            elements (or the lift-off zone's count, when larger) saturated in the gross-slip
+//            arc's direction (in either, on an arc without one): where a wet stretch or a torque
+//            pulse lands, the belt slips there too (a wet stretch arriving on the tutorial's
+//            crankshaft: 15 saturated elements at its entry carrying 180 N of tension change read
+//            as sticking before);
 //   "stick"  the rest of the contact arc: the adhesion arc. Micro-slip inside the band (friction
 //            below μN, which a Δv of 1e-5 m/s turns into a stiff spring) is sticking, and so is
 //            the short saturated slip of an element settling onto the rim where the belt runs on
 //            (one to three elements, either direction, measured: it takes the entry's tension
-//            overshoot, not the span-to-span change); its `slip` still shows it.
+//            overshoot, not the span-to-span change), and a run against the gross-slip arc's
+//            direction (that overshoot settling back: on a 480-element driven pulley twelve
+//            elements); their `slip` still shows it.
 // Measured (tests/physics, a two-pulley drive): the slip arc approaches R·ln(T1/T2)/μ as the
 // elements are refined, while |slip| > Δv alone counts the entry's settling too, and
 // |F| >= 0.98·μN counts sticking elements whose slip hovers at the band's edge.

@@ -73,6 +73,15 @@ TEST(ContactState, GrossSlipIsTheSaturatedRunBeforeTheExit) {
   EXPECT_EQ(classify("0.....--0", nullptr, nullptr, 6, 1e-3), "0sssssss0");
   EXPECT_EQ(classify("0....+--0", nullptr, nullptr, 6, 1e-3), "0ssssSss0");
   EXPECT_EQ(classify("0....---0", nullptr, nullptr, 6, 1e-3), "0ssssSSS0");
+  // the last element lifting off backwards and the one behind it inside the band: the run behind
+  // them is the gross-slip arc (a 480-element driven pulley read no slip arc at 66 of 151 samples)
+  EXPECT_EQ(classify("0....++++.-0"), "0ssssSSSSss0");
+  // elsewhere on the arc a run longer than the settling (three elements here) in the gross-slip
+  // arc's direction slips: a wet stretch arriving on a driver (a user's 15 elements at the entry)
+  EXPECT_EQ(classify("0-----....------0"), "0SSSSSssssSSSSSS0");
+  EXPECT_EQ(classify("0---....----0"), "0sssssssSSSS0");          // three: settling
+  EXPECT_EQ(classify("0+++++....------0"), "0sssssssssSSSSSS0");  // the other way: the overshoot settling
+  EXPECT_EQ(classify("0..-----....0"), "0ssSSSSSssss0");          // no gross-slip arc: either way
   double slip = 0, contact = 0;
   classify("00+-+....+++++++.+00", &slip, &contact);
   EXPECT_DOUBLE_EQ(slip, 9 * 0.01);     // elements × pitch

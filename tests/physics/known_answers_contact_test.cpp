@@ -402,12 +402,12 @@ TEST(KnownAnswers, CreepSpeedLossWithLugresLawComesFromTheBristles) {
 // samples from 0.12 s to 0.2 s (8 element passings at 60 elements; steady: the averages over
 // 0.15-0.25 s and 0.1-1 s agree within 0.5 %, measured). m'v² = 0.4 N here.
 // Measured (rtol 1e-4), error of the slip arc against R·ln(T1/T2)/μ, driver / driven:
-//    60 elements  +10.7 % / -19.8 %
-//   120 elements   +1.4 % /  -7.8 %
-//   240 elements   -1.4 % /  -1.2 %
+//    60 elements   +9.3 % /  -8.3 %
+//   120 elements   +1.5 % /  -7.8 %
+//   240 elements   -1.1 % /  -1.8 %
 // and with the old criterion (|slip| > Δv) at 240: +9 % / +12 % (it counts the elements settling
 // onto the rim where the belt runs on). Bounds: the mean error over both pulleys falls with each
-// refinement, and is within 3 % at 240 elements (twice the measured 1.4 %).
+// refinement, and is within 3 % at 240 elements (twice the measured 1.45 %).
 TEST(KnownAnswers, SlipArcApproachesEulerEytelwein) {
   // the finer belts meet more stick-slip changes per second: failed steps, shortened and retried
   test::expect_warnings({WarningKind::failed_step});
