@@ -15,7 +15,8 @@
 //            tensions and belt speed (below 1 the wrap cannot hold the ratio: gross slip);
 //            slip_arc_share_capstan = ln(ratio)/(μθ), the creep theory's share of the wrap that slips
 //   hubs     hub_load_mean, hub_load_max [N] (the CSV's hub_load); hub_load_spans [N] =
-//            √(T1² + T2² − 2·T1·T2·cos θ), the resultant of the mean span tensions at the wrap θ
+//            √(F1² + F2² − 2·F1·F2·cos θ), F = T − m'v² of the mean span tensions either side
+//            (v the belt speed): the force the wrap θ exerts on the hub, without the centrifugal
 //   arms     arm_angle_mean, _min, _max, arm_angle_swing = max − min [rad], arm_rate_peak [rad/s]
 //   rotors   rotor_speed_mean [rad/s]; overrun_count, overrun_time [s], overrun_longest [s]: the
 //            intervals where s·coupling_torque < 0, s the sign of the pulley's mean speed (the
