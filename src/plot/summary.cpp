@@ -183,7 +183,9 @@ void add_losses(Summary& s, const Window& w, const Layout& l) {
   add(s, "loss", "", "input", input, "W");
   add(s, "loss", "", "output", output, "W");
   const std::vector<double>& mechanical = w.t.column("energy.mechanical");
-  add(s, "loss", "", "stored", span > 0 ? (mechanical[w.r1 - 1] - mechanical[w.r0]) / span : NAN, "W");
+  const double stored = span > 0 ? (mechanical[w.r1 - 1] - mechanical[w.r0]) / span : NAN;
+  add(s, "loss", "", "stored", stored, "W");
+  s.imbalance = input - output - (total + stored);
   add(s, "loss", "", "share", input > 0 ? total / input : NAN, "");
 }
 
