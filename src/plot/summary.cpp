@@ -183,7 +183,9 @@ void add_losses(Summary& s, const Window& w, const Layout& l) {
   add(s, "loss", "", "input", input, "W");
   add(s, "loss", "", "output", output, "W");
   const std::vector<double>& mechanical = w.t.column("energy.mechanical");
-  add(s, "loss", "", "stored", span > 0 ? (mechanical[w.r1 - 1] - mechanical[w.r0]) / span : NAN, "W");
+  const double stored = span > 0 ? (mechanical[w.r1 - 1] - mechanical[w.r0]) / span : NAN;
+  add(s, "loss", "", "stored", stored, "W");
+  s.imbalance = input - output - (total + stored);
   add(s, "loss", "", "share", input > 0 ? total / input : NAN, "");
 }
 
@@ -248,7 +250,11 @@ void add_wraps(Summary& s, const Window& w, const Layout& l, const Parameters& p
     const Stats hub = w.of(p + ".hub_load");
     add(s, "hubs", p, "hub_load_mean", hub.mean, "N");
     add(s, "hubs", p, "hub_load_max", hub.max, "N");
-    add(s, "hubs", p, "hub_load_spans", std::sqrt(t1 * t1 + t2 * t2 - 2 * t1 * t2 * std::cos(theta)), "N");
+    // the wrap presses on the hub with its spans' tensions less the centrifugal m'v² each: the
+    // belt running round the wrap takes m'v² of its tension to turn its own mass (a tension that
+    // does not press it onto the pulley), so the contact forces sum to the resultant of T − m'v²
+    const double f1 = t1 - centrifugal, f2 = t2 - centrifugal;
+    add(s, "hubs", p, "hub_load_spans", std::sqrt(f1 * f1 + f2 * f2 - 2 * f1 * f2 * std::cos(theta)), "N");
   }
 }
 

@@ -15,7 +15,8 @@
 //            tensions and belt speed (below 1 the wrap cannot hold the ratio: gross slip);
 //            slip_arc_share_capstan = ln(ratio)/(μθ), the creep theory's share of the wrap that slips
 //   hubs     hub_load_mean, hub_load_max [N] (the CSV's hub_load); hub_load_spans [N] =
-//            √(T1² + T2² − 2·T1·T2·cos θ), the resultant of the mean span tensions at the wrap θ
+//            √(F1² + F2² − 2·F1·F2·cos θ), F = T − m'v² of the mean span tensions either side
+//            (v the belt speed): the force the wrap θ exerts on the hub, without the centrifugal
 //   arms     arm_angle_mean, _min, _max, arm_angle_swing = max − min [rad], arm_rate_peak [rad/s]
 //   rotors   rotor_speed_mean [rad/s]; overrun_count, overrun_time [s], overrun_longest [s]: the
 //            intervals where s·coupling_torque < 0, s the sign of the pulley's mean speed (the
@@ -26,7 +27,8 @@
 //            output [W]: the sums of the pulleys' mean powers M·ω over the window (ω the rotor's
 //            where coupled; M the interval means `torque_mean`) that are > 0 (the drivers) and
 //            < 0 (the loads, as a positive power); stored [W]: the change of energy.mechanical
-//            over the window / its duration (input − output = total + stored); share = total / input
+//            over the window / its duration (input − output = total + stored; a run at a loose
+//            tolerance misses it: the table says so, Summary::imbalance); share = total / input
 //   window   from, to [s] (the first and last sample's times), rows, belt_speed [m/s] (the mean
 //            of |ω|·R + slip_speed of the first pulley: the belt's speed along the travel on its
 //            wrap, model/observables.hpp)
@@ -57,6 +59,11 @@ struct Summary {
   std::vector<Overrun> overruns;  // one per coupled pulley
   bool losses = false;            // the run carried the energy.* columns
   bool mu_per_sample = true;      // the run carried the wraps' <pulley>.mu (else: belt.mu_min throughout)
+  // [W] input − output − (total + stored): 0 but for the bias of the interval means of the belt
+  // torques at the run's tolerance, which a kinematic pulley's torque_mean and so input and output
+  // carry (docs/outputs.md, interval means); the table says so past kImbalanceShare of the input
+  double imbalance = 0;
+  static constexpr double kImbalanceShare = 0.02;
 };
 
 // Throws std::runtime_error naming the file (and line) for a missing or unreadable file, a

@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -95,8 +96,9 @@ TEST(Summary, TensionsSlipAndCapstanOverAWindow) {
   const double m1 = std::exp(0.8 * theta) * (60 - c1) / (200 - c1), m2 = std::exp(0.4 * theta) * (80 - c2) / (400 - c2);
   EXPECT_NEAR(figure(s, "a", "capstan_margin"), m2, 1e-12 * m2);
   EXPECT_NEAR(figure(s, "a", "capstan_margin_mean"), (m1 + m2) / 2, 1e-12 * m1);
-  // the resultant of 300 N and 70 N 120° of wrap apart: √(300² + 70² + 300·70)
-  EXPECT_NEAR(figure(s, "a", "hub_load_spans"), std::sqrt(90000.0 + 4900 + 21000), 1e-9);
+  // the resultant of 300 N and 70 N less m'v² each, 120° of wrap apart: √(F1² + F2² + F1·F2)
+  const double f1 = 300 - c, f2 = 70 - c;
+  EXPECT_NEAR(figure(s, "a", "hub_load_spans"), std::sqrt(f1 * f1 + f2 * f2 + f1 * f2), 1e-9);
   EXPECT_DOUBLE_EQ(figure(s, "a", "hub_load_mean"), 330);
   EXPECT_EQ(figure(s, "a", "hub_load_max"), 350);
 }
@@ -120,6 +122,38 @@ TEST(Summary, ArmOverrunsAndLosses) {
   EXPECT_NEAR(figure(s, "loss", "total"), 10, 1e-12);
   EXPECT_DOUBLE_EQ(figure(s, "loss", "input"), 20);
   EXPECT_NEAR(figure(s, "loss", "share"), 0.5, 1e-12);
+  // b's load takes 1 N·m · 5 rad/s: 20 W in, 5 W out, 10 W lost and none stored leave 5 W, 25 % of
+  // the input, unaccounted, which the table names beside the balance (past 2 %: a run at rtol 1e-4
+  // on fixed_centres.lua at 30 m/s missed it by 2.8 %, docs/outputs.md)
+  EXPECT_DOUBLE_EQ(figure(s, "loss", "output"), 5);
+  EXPECT_NEAR(s.imbalance, 5, 1e-12);
+  EXPECT_NE(summary_table(s).find("loss: input - output - (total + stored) = 5 W, 25 % of the input"),
+            std::string::npos)
+      << summary_table(s);
+}
+
+// the same run with b's load taking 2 N·m: 20 W in, 10 W out, 10 W lost; the balance holds and
+// the table has no word on it
+TEST(Summary, ABalancedRunHasNoImbalanceNote) {
+  const fs::path d = folder("balanced");
+  std::ifstream in(d / "timeseries.csv");
+  std::string line, text;
+  std::getline(in, line);
+  text = line + "\n";
+  while (std::getline(in, line)) {
+    std::vector<std::string> f;
+    std::stringstream ss(line);
+    for (std::string x; std::getline(ss, x, ',');) f.push_back(x);
+    f[11] = "-2";  // b.torque
+    for (size_t k = 0; k < f.size(); ++k) text += (k ? "," : "") + f[k];
+    text += "\n";
+  }
+  in.close();
+  std::ofstream(d / "timeseries.csv") << text;
+  const Summary s = summarize(d.string(), -INFINITY, INFINITY);
+  EXPECT_DOUBLE_EQ(figure(s, "loss", "output"), 10);
+  EXPECT_NEAR(s.imbalance, 0, 1e-12);
+  EXPECT_EQ(summary_table(s).find("input - output"), std::string::npos) << summary_table(s);
 }
 
 // rewrites d's timeseries.csv with the columns `set` gives (by name, a value per row), added where
