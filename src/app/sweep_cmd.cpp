@@ -262,7 +262,8 @@ int sweep(const std::string& file, const Raw& raw, const script::Safety& s) {
   // the closing line counts the results summary.csv holds, whenever they ran (as the last progress
   // line does)
   const auto summary = [&] {
-    const sw::SummaryCounts c = sw::write_summary(dir, points, definition(raw, file));
+    const sw::SummaryCounts c =
+        sw::write_summary(dir, points, definition(raw, file), quick ? sw::Figures::kRunResult : sw::Figures::kOwn);
     std::fprintf(stderr,
                  "beltsim sweep: %s/%s: %d ok, %d failed, %d not run (the results it holds of the %zu points, "
                  "whenever they ran)\n",

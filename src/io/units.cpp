@@ -4,6 +4,7 @@
 #include <utility>
 
 #include "io/csv_writer.hpp"
+#include "io/input_file.hpp"
 #include "io/output_dir.hpp"
 
 namespace beltsim {
@@ -67,6 +68,30 @@ constexpr std::array<std::pair<std::string_view, std::string_view>, 49> kUnits{{
     {"dissipated_friction", "J"},
 }};
 
+// scene:run{}'s result table (script/lua_scene_run.cpp, docs/lua-api.md), its fields flattened as
+// a sweep's quick form writes them, each with the name kUnits gives its unit under, or "" for a
+// count or a ratio (dimensionless); a name ending in '.' stands for every field under it
+// (omega.<pulley>). Its text and booleans (interrupted, csv, parameters, check.over, check.shared,
+// check.failed) have no unit and are not here.
+constexpr std::array<std::pair<std::string_view, std::string_view>, 15> kRunResult{{
+    {"t", "t"},
+    {"wall", "wall"},
+    {"steps", ""},
+    {"rejected", ""},
+    {"rhs", ""},
+    {"jacobians", ""},
+    {"factorizations", ""},
+    {"frames", ""},
+    {"omega.", "omega"},
+    // check = true: relative errors and their bounds, the companion's steps over the run's
+    {"check.speed", ""},
+    {"check.tension", ""},
+    {"check.limit_speed", ""},
+    {"check.limit_tension", ""},
+    {"check.steps_ratio", ""},
+    {"check.warned_t", "t"},
+}};
+
 // unit -> scale (header: unit_scale). Each is the size of the quantity on the paper's drive and
 // on an accessory drive, at the low end of each range (a value near 0 is compared at a size the
 // quantity takes): span tensions and hub loads 100 N to 2 kN, pulley torques 10 to 100 N·m,
@@ -111,6 +136,24 @@ void write_units_file(const OutputDir& dir, const std::string& csv, const Column
   write_file_whole(dir, units_file_name(csv), text);
 }
 
+std::optional<ColumnUnits> read_units_file(const std::string& csv) {
+  std::string text;
+  try {
+    text = InputFile(units_file_name(csv)).read_rest();
+  } catch (const InputFileError&) {
+    return std::nullopt;
+  }
+  const std::vector<std::vector<std::string>> rows = csv_rows(text);
+  if (rows.empty() || rows[0] != std::vector<std::string>{"column", "unit"}) return std::nullopt;
+  ColumnUnits columns;
+  for (std::size_t k = 1; k < rows.size(); ++k) {
+    if (rows[k].size() != 2) return std::nullopt;
+    const std::string& unit = rows[k][1];
+    columns.emplace_back(rows[k][0], unit.empty() ? std::nullopt : std::optional<std::string>(typed_unit(unit)));
+  }
+  return columns;
+}
+
 double unit_scale(std::string_view unit) {
   for (const auto& [name, scale] : kScales)
     if (name == unit) return scale;
@@ -123,13 +166,24 @@ std::string typed_unit(std::string_view typed) {
   return std::string(typed);
 }
 
-std::string unit_of(std::string_view column) {
+std::optional<std::string> known_unit(std::string_view column) {
   const size_t dot = column.rfind('.');
   if (dot != std::string_view::npos && column.substr(0, column.find('.')) == "energy") return "J";
   const std::string_view key = dot == std::string_view::npos ? column : column.substr(dot + 1);
   for (const auto& [name, unit] : kUnits)
     if (name == key) return std::string(unit);
-  return "";
+  return std::nullopt;
+}
+
+std::string unit_of(std::string_view column) {
+  return known_unit(column).value_or("");
+}
+
+std::optional<std::string> run_result_unit(std::string_view field) {
+  for (const auto& [name, quantity] : kRunResult)
+    if (name == field || (name.back() == '.' && field.size() > name.size() && field.substr(0, name.size()) == name))
+      return quantity.empty() ? std::string() : known_unit(quantity);
+  return std::nullopt;
 }
 
 }  // namespace beltsim

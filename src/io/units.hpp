@@ -1,6 +1,7 @@
 // The unit of every quantity beltsim writes, in one table: the columns of timeseries.csv
 // (`<pulley>.omega`, `span_<a>_<b>.tension`, `probe.slip_velocity`, `energy.*`, `t`) and the
-// element and pulley fields (`omega`, `angle`, `x`, `phi`, `normal`, `mu`, ...). A column is looked
+// element and pulley fields (`omega`, `angle`, `x`, `phi`, `normal`, `mu`, ...), and the fields of
+// scene:run{}'s result (run_result_unit: the figures of a sweep's quick form). A column is looked
 // up by its last dotted component ("driver.omega" → "omega" → "rad/s"); `energy.*` is J whatever
 // follows the dot. Units are SI, written as in docs/outputs.md ("N·m", UTF-8 middle dot); "" for a
 // dimensionless quantity (μ) and for a name the table does not know.
@@ -17,6 +18,15 @@ namespace beltsim {
 class OutputDir;
 
 std::string unit_of(std::string_view column);
+// unit_of's unit of a name the table knows; nullopt for one it does not ("" is a dimensionless
+// quantity's: μ, creep)
+std::optional<std::string> known_unit(std::string_view column);
+
+// The unit of a field of scene:run{}'s result table (docs/lua-api.md), named as a sweep's quick
+// form flattens it into summary.csv ("omega.driver" rad/s, "steps" "", a count; "check.tension" "",
+// a relative error; "check.warned_t" s), from the same table; nullopt for a text or boolean field
+// (csv, interrupted, check.over) and a name the result table has not (a field a script added)
+std::optional<std::string> run_result_unit(std::string_view field);
 
 // the unit a CSV header names between brackets at its end ("hub load [N]" -> "N", typed_unit's
 // form); nullopt when it names none
@@ -32,6 +42,9 @@ std::string header_unit(std::string_view header);
 using ColumnUnits = std::vector<std::pair<std::string, std::optional<std::string>>>;
 std::string units_file_name(const std::string& csv);
 void write_units_file(const OutputDir& dir, const std::string& csv, const ColumnUnits& columns);
+// the units file beside the CSV file at path csv, as write_units_file wrote it; nullopt when there
+// is none (a folder written before it) or it is not one
+std::optional<ColumnUnits> read_units_file(const std::string& csv);
 
 // a magnitude typical of the unit in a belt drive, from a car's accessory drive to an
 // industrial one: `beltsim compare` takes rtol times it as a column's absolute tolerance, so that

@@ -110,7 +110,16 @@ es.addEventListener("samples", e => {
   document.getElementById("h").textContent = fmt(last[2], 3);
   if (drawn) { drawn = false; requestAnimationFrame(draw); }
 });
-es.addEventListener("status", e => { document.getElementById("status").textContent = JSON.parse(e.data); });
+// the status says what became of each control (applied, refused): the server's answer "queued"
+// beside the controls is cleared by the status that follows it (it stayed there, stale, after the
+// control had been applied); a refusal the server answered at once stays
+let statuses = 0;  // status events so far
+const reply = document.getElementById("reply");
+es.addEventListener("status", e => {
+  document.getElementById("status").textContent = JSON.parse(e.data);
+  statuses++;
+  if (reply.textContent.trim() === "queued") reply.textContent = "";
+});
 // the latest frame, asked for when the stream says one was drawn and the one before has arrived
 // (a slow link gets fewer, never a queue); the picture's t is in its data-t once shown
 const img = document.getElementById("frame");
@@ -151,21 +160,22 @@ img.onmouseup = e => {
   const a = down, b = nearest(e), L = placed ? placed.length : 0;
   down = null;
   if (a === null || b === null) {
-    document.getElementById("reply").textContent = placed ? "no element there: pick on the belt"
-                                                          : "the picture is moving: pause to pick";
+    reply.textContent = placed ? "no element there: pick on the belt" : "the picture is moving: pause to pick";
     return;
   }
   const forward = ((b - a) % L + L) % L;  // [m] from a to b in the direction of travel
   const [s0, s1] = forward <= L / 2 ? [a, b] : [b, a];
   document.getElementById("from").value = s0;
   document.getElementById("to").value = s1;
-  document.getElementById("reply").textContent = "picked s from " + fmt(s0, 4) + " to " + fmt(s1, 4) + " m";
+  reply.textContent = "picked s from " + fmt(s0, 4) + " to " + fmt(s1, 4) + " m";
 };
 // controls: queued by the server, applied by the run between two steps, as the console's commands
-// are (its status says so)
+// are (its status says so); "queued" not shown when the status has changed since the control was
+// sent (the stream can bring it before the answer)
 function control(params) {
+  const sent = statuses;
   fetch("control" + q + "&" + new URLSearchParams(params), { method: "POST" })
-    .then(r => r.text()).then(t => { document.getElementById("reply").textContent = t; });
+    .then(r => r.text().then(t => { reply.textContent = r.status === 202 && statuses !== sent ? "" : t; }));
 }
 document.getElementById("pause").onclick = () => control({ do: "pause" });
 document.getElementById("continue").onclick = () => control({ do: "continue" });

@@ -515,9 +515,18 @@ PlotSpec summary_spec(const std::string& csv_path, const std::vector<std::string
   PlotSpec spec;
   spec.file = out_png;
   spec.points = true;
-  // a sweep's parameters and figures are its own names: their unit is the one a header gives in
-  // brackets ("hub load [N]"), else not known (unit_of's table would read "slip" as an element's,
-  // m/s, for a user's difference of speeds)
+  // each column's unit as summary_units.csv beside it has it (sweep/results.hpp: the quick form's
+  // figures from the program's table, a sweep file's from the brackets its names end with); a
+  // summary written before that file came: the unit a header gives in brackets ("hub load [N]"),
+  // else not known (unit_of's table would read "slip" as an element's, m/s, for a user's
+  // difference of speeds)
+  const std::optional<ColumnUnits> units = read_units_file(csv_path);
+  const auto unit_of_column = [&](const std::string& h) {
+    if (units)
+      for (const auto& [column, unit] : *units)
+        if (column == h) return unit;
+    return bracketed_unit(h);
+  };
   spec.x_label = columns[0];
   const std::filesystem::path cp(csv_path);
   spec.title = cp.has_parent_path() && cp.parent_path().has_filename()
@@ -525,8 +534,8 @@ PlotSpec summary_spec(const std::string& csv_path, const std::vector<std::string
                    : cp.filename().string();
   for (size_t k = 1; k < columns.size(); ++k) {
     const std::string& h = columns[k];
-    const std::optional<std::string> unit = bracketed_unit(h);
-    const std::string name = unit ? trim(h.substr(0, h.rfind('['))) : h;  // the unit drawn once
+    const std::optional<std::string> unit = unit_of_column(h);
+    const std::string name = unit && bracketed_unit(h) ? trim(h.substr(0, h.rfind('['))) : h;  // the unit drawn once
     spec.series.push_back(Series{name, unit.value_or(""), x, table.column(h), !unit});
   }
   return spec;

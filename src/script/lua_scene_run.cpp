@@ -146,12 +146,8 @@ int l_scene_start(lua_State* L) {
     error = std::string("start: ") + e.what();
   }
   if (!error.empty()) fail_at(L, about, error);
-  // a checkpoint holds no Lua code: said now, not after a long run at sim:save (keep_states, which
-  // saves all along, refuses such a law at once)
-  if (const std::string law = sim->lua_law(); !law.empty())
-    say("beltsim: warning: start: %s is Lua code, which a checkpoint cannot hold: this simulation cannot be "
-        "saved (sim:save refuses it); give the law as a table to save it\n",
-        law.c_str());
+  // a Lua law, which no checkpoint can hold, is said where a state is saved (sim:save, the live
+  // view's Save, keep_states), not here: most simulations with one are never saved
   push_simulation(L, std::move(sim), ctx, progress);
   return 1;
 }

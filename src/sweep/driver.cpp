@@ -78,12 +78,13 @@ struct LiveSummary {
   const std::vector<Point>& points;
   Results results;
   const OutputDir& top;
+  Figures figures;
   Clock::time_point next{};
   std::optional<PointResult>& of(const Point& p) { return results[static_cast<std::size_t>(&p - points.data())]; }
   void write() {
     const Clock::time_point t0 = Clock::now();
     if (t0 < next) return;
-    write_summary(top, points, results);
+    write_summary(top, points, results, figures);
     const Clock::time_point t1 = Clock::now();
     next = t1 + 9 * (t1 - t0);
   }
@@ -140,7 +141,7 @@ std::optional<double> time_left(const std::vector<double>& ran, const std::vecto
 DriverReport run_points(const std::vector<Point>& points, const DriverSettings& s, const OutputDir& top) {
   DriverReport report;
   Definition now = s.definition;
-  LiveSummary summary{points, current_results(s.dir, points, now), top};
+  LiveSummary summary{points, current_results(s.dir, points, now), top, s.quick ? Figures::kRunResult : Figures::kOwn};
   const Reasons reasons = rerun_reasons(summary.results);
   const std::vector<const Point*> todo = points_to_run(points, summary.results, s.rerun, report);
   const auto slot = [&](const Point& p) -> std::optional<PointResult>& { return summary.of(p); };

@@ -516,7 +516,8 @@ std::string moved_line(const std::string& name, const OutputDir& top, const std:
          top.file(kEarlierFolder) + "/: " + names;
 }
 
-SummaryCounts write_summary(const OutputDir& top, const std::vector<Point>& points, const Results& results) {
+SummaryCounts write_summary(const OutputDir& top, const std::vector<Point>& points, const Results& results,
+                            Figures named) {
   SummaryCounts counts;
   std::vector<std::string> figures;
   for (const auto& r : results) {
@@ -526,8 +527,8 @@ SummaryCounts write_summary(const OutputDir& top, const std::vector<Point>& poin
       if (std::find(figures.begin(), figures.end(), name) == figures.end()) figures.push_back(name);
   }
   std::string text;
-  // summary_units.csv: a parameter's or figure's unit when its name ends with one in brackets
-  // (["hub load [N]"]), else none known; point and status are text
+  // summary_units.csv: a parameter's unit when its name ends with one in brackets, else none
+  // known; a figure's as its kind of names gives it (Figures); point and status are text
   ColumnUnits units;
   if (!points.empty()) {
     text = header(points[0], false);
@@ -537,7 +538,7 @@ SummaryCounts write_summary(const OutputDir& top, const std::vector<Point>& poin
     for (const std::string& f : figures) {
       text += ',';
       text += csv_text(f);
-      units.emplace_back(f, bracketed_unit(f));
+      units.emplace_back(f, named == Figures::kRunResult ? run_result_unit(f) : bracketed_unit(f));
     }
     text += "\n";
   }
@@ -557,8 +558,8 @@ SummaryCounts write_summary(const OutputDir& top, const std::vector<Point>& poin
   return counts;
 }
 
-SummaryCounts write_summary(const std::string& dir, const std::vector<Point>& points, Definition now) {
-  return write_summary(OutputDir(dir), points, current_results(dir, points, now));
+SummaryCounts write_summary(const std::string& dir, const std::vector<Point>& points, Definition now, Figures figures) {
+  return write_summary(OutputDir(dir), points, current_results(dir, points, now), figures);
 }
 
 }  // namespace beltsim::sweep

@@ -135,9 +135,16 @@ Reasons rerun_reasons(const Results& results);
 // what a sweep says of them before it runs them (or puts them in a Slurm array), a line each:
 // "sweep NAME: 6 points run again: the file /a/b.lua has changed"
 std::vector<std::string> reason_lines(const std::string& name, const Reasons& reasons);
-// DIR/summary.csv written whole from results[k] of points[k] (an outdated point counted not run)
-SummaryCounts write_summary(const OutputDir& top, const std::vector<Point>& points, const Results& results);
+// whose names a sweep's figures are, for the units of summary_units.csv: a sweep file's run(p)
+// names its own (a unit only where the name ends with one in brackets, "hub load [N]": "slip" is
+// no element's m/s there); the quick form's are the fields of scene:run{}'s result table, whose
+// units the program's table has (io/units.hpp, run_result_unit: omega.driver rad/s)
+enum class Figures { kOwn, kRunResult };
+// DIR/summary.csv written whole from results[k] of points[k] (an outdated point counted not run),
+// and DIR/summary_units.csv
+SummaryCounts write_summary(const OutputDir& top, const std::vector<Point>& points, const Results& results,
+                            Figures figures);
 // the same from every point's point.csv
-SummaryCounts write_summary(const std::string& dir, const std::vector<Point>& points, Definition now);
+SummaryCounts write_summary(const std::string& dir, const std::vector<Point>& points, Definition now, Figures figures);
 
 }  // namespace beltsim::sweep

@@ -3,7 +3,8 @@
 Debian): the page of a running dry scenario shows t advancing, Pause holds the run (the status says
 where), a stretch dragged out on the picture fills the wet form with those elements' belt
 coordinates and Wet lands it in events.csv, a torque set on the page lands in events.csv at that
-time, Continue lets the run finish whole. The picture of the run paused at a run-to time asked for before the run began (t = 0.05 s,
+time (the server's "queued" beside the controls cleared once the status says so), Continue lets
+the run finish whole. The picture of the run paused at a run-to time asked for before the run began (t = 0.05 s,
 so always the same state) is compared with tests/golden/live_page_frame.png by the goldens'
 metric (`beltsim compare`, media/image_compare.hpp). Each step waits for what the page shows
 (WebDriverWait), no sleeps. Exit 77 (skipped) without selenium or chromium-driver.
@@ -198,6 +199,7 @@ class Browser(unittest.TestCase):
         b.find_element(By.ID, "target").send_keys(repr(T_README))  # the last with the page's own form
         b.find_element(By.ID, "runto").click()
         wait.until(lambda _: self.text("status") == "paused at t = %g s" % T_README)
+        wait.until(lambda _: self.text("reply") == "")  # the control applied: no "queued" left
         frame = b.find_element(By.ID, "frame")
         wait.until(lambda _: frame.get_attribute("data-t") == repr(T_README))
         wait.until(lambda _: b.execute_script("return graph.xAxisExtremes()[1]") == T_README)
@@ -242,7 +244,10 @@ class Browser(unittest.TestCase):
         Select(b.find_element(By.ID, "pulley")).select_by_visible_text("driven")
         b.find_element(By.ID, "torque").send_keys(LOAD)
         b.find_element(By.ID, "settorque").click()
-        wait.until(lambda _: self.text("reply") == "queued")
+        wait.until(lambda _: self.text("status").endswith("(torque applied)"))
+        # the server's "queued" beside the controls is gone once the status says the torque was
+        # applied (it stayed there, stale: the README's screenshot showed it after the run to t)
+        wait.until(lambda _: self.text("reply") == "")
         events = os.path.join(self.dir, "out", "events.csv")
 
         def torque_rows():

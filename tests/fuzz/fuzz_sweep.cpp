@@ -105,7 +105,7 @@ void check_points(const std::string& dir, const std::vector<sw::Point>& points, 
 // summary.csv: a header and a row per point with each parameter's text, the status and the figures,
 // as CSV and as `beltsim plot` reads it
 void check_summary(const std::string& dir, const std::vector<sw::Point>& points) {
-  sw::write_summary(dir, points, sw::Definition{kInputs.program, kInputs.options, {}, {}});
+  sw::write_summary(dir, points, sw::Definition{kInputs.program, kInputs.options, {}, {}}, sw::Figures::kOwn);
   const std::string path = (fs::path(dir) / sw::kSummaryFile).string();
   const std::vector<std::vector<std::string>> rows = beltsim::csv_rows(slurp(path));
   if (rows.size() != points.size() + 1)

@@ -314,6 +314,31 @@ TEST(Plot, ASweepSummarysUnitsComeFromBracketsOnly) {
   EXPECT_NE(plot_script(spec, "p.png").find("set multiplot layout 3,1"), std::string::npos);
 }
 
+// a summary with its summary_units.csv (a sweep's quick form: the result table's fields, whose
+// units the program knows): each column's unit from that file, so the speeds share an axis in
+// rad/s (they were drawn each on an axis of its own, of unknown unit: no brackets in their names)
+TEST(Plot, ASweepSummarysUnitsComeFromItsUnitsFile) {
+  const fs::path d = dir("summary_units_file");
+  const std::string csv = write(d / "summary.csv",
+                                "point,pretension,status,omega.driven,omega.driver,steps,slip\n"
+                                "0,300,ok,-68,-69,4982,0.4\n1,500,ok,-68.5,-69,4990,0.3\n");
+  write(d / "summary_units.csv",
+        "column,unit\npoint,\npretension,\nstatus,\nomega.driven,rad/s\nomega.driver,rad/s\nsteps,1\nslip,\n");
+  const PlotSpec spec =
+      summary_spec(csv, {"pretension", "omega.driven", "omega.driver", "steps", "slip"}, (d / "p.png").string());
+  ASSERT_EQ(spec.series.size(), 4u);
+  EXPECT_EQ(spec.series[0].name, "omega.driven");
+  for (int k : {0, 1}) {
+    EXPECT_EQ(spec.series[k].unit, "rad/s");
+    EXPECT_FALSE(spec.series[k].unknown_unit);
+  }
+  EXPECT_EQ(spec.series[2].unit, "");  // a count: dimensionless, known
+  EXPECT_FALSE(spec.series[2].unknown_unit);
+  EXPECT_TRUE(spec.series[3].unknown_unit);  // a figure the file gives no unit
+  // three axes: rad/s (both speeds), the count's, slip's own
+  EXPECT_NE(plot_script(spec, "p.png").find("set multiplot layout 3,1"), std::string::npos);
+}
+
 // events.csv's rows as marks: one per time, labels "what value" shortened, a cut row left out
 TEST(Plot, EventsBecomeMarks) {
   const fs::path d = dir("events");

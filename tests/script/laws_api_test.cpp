@@ -347,9 +347,9 @@ TEST(LawsApi, LiveLawChangesAndCheckpoints) {
   const std::string events((std::istreambuf_iterator<char>(ev)), {});
   EXPECT_NE(events.find("{ step = { t = 0.02, from = 0, to = 2 } }"), std::string::npos) << events;
   EXPECT_NE(events.find("{ mean_speed = 50, harmonics = { {2, 1, 0} } }"), std::string::npos) << events;
-  // said as it starts (not only when sim:save fails, after what may be a long run), and the
-  // refusal names the pulley and the law (a user's failed after the run with the function's
-  // file:line alone)
+  // the refusal names the pulley and the law (a user's failed after the run with the function's
+  // file:line alone); said where the state is saved, not at every start: a simulation with a Lua
+  // law that is never saved runs without a word (each start warned, saved or not)
   const std::string text = isolated("speed = 0", "torque = function(t, w) return 0 end") +
                            "local sim = s:start{ progress = false }\n"
                            "sim:save('x.ckpt')\n";
@@ -358,11 +358,7 @@ TEST(LawsApi, LiveLawChangesAndCheckpoints) {
   testing::internal::CaptureStderr();
   const std::string msg = run_text(text);
   const std::string err = testing::internal::GetCapturedStderr();
-  EXPECT_NE(err.find("beltsim: warning: start: pulley 'driven'.torque " + where +
-                     " is Lua code, which a checkpoint cannot hold: this simulation cannot be saved (sim:save "
-                     "refuses it); give the law as a table to save it\n"),
-            std::string::npos)
-      << err;
+  EXPECT_EQ(err.find("warning"), std::string::npos) << err;
   EXPECT_NE(msg.find("laws.lua:10: sim:save: pulley 'driven'.torque " + where +
                      " is Lua code, which a checkpoint cannot hold: give the law as a table (constant, per_speed, "
                      "ramps, sines, ...) to save this simulation"),

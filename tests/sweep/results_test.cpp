@@ -67,7 +67,7 @@ TEST(SweepResults, PointValuesReadBackExactly) {
   }
   // the file is not there: no point is done now, each outdated, saying why
   Definition now{"test program", in.options, {}, {}};
-  const SummaryCounts gone = write_summary(dir, points, now);
+  const SummaryCounts gone = write_summary(dir, points, now, Figures::kOwn);
   EXPECT_EQ(gone.not_run, static_cast<int>(points.size()));
   EXPECT_EQ(check_point(dir, points[0], now).changed,
             "the file " + in.files[0].first + ", which the point loaded, is gone or unreadable");
@@ -76,7 +76,7 @@ TEST(SweepResults, PointValuesReadBackExactly) {
   now.program = "another";
   EXPECT_EQ(check_point(dir, points[0], now).changed, "the program has changed (was test program)");
   now.program = "test program";
-  const SummaryCounts c = write_summary(dir, points, now);
+  const SummaryCounts c = write_summary(dir, points, now, Figures::kOwn);
   EXPECT_EQ(c.ok, static_cast<int>(points.size()));
   const auto rows = csv_rows(test::slurp(dir + "/summary.csv"));
   ASSERT_EQ(rows.size(), points.size() + 1);
@@ -86,8 +86,8 @@ TEST(SweepResults, PointValuesReadBackExactly) {
 }
 
 // summary_units.csv names summary.csv's columns in order (rewritten with it as figures come): the
-// unit a parameter's or figure's name gives in brackets, else none (a sweep's names are its own:
-// "slip" is not read as an element's m/s); point and status are text
+// unit a parameter's or a sweep file's figure's name gives in brackets, else none (a sweep's names
+// are its own: "slip" is not read as an element's m/s); point and status are text
 TEST(SweepResults, SummaryUnitsNameEveryColumn) {
   const std::string dir = results_folder("units");
   const std::vector<Point> points = grid_points(Grid{{"mu"}, {{Value(0.3), Value(1.0)}}});
@@ -95,7 +95,7 @@ TEST(SweepResults, SummaryUnitsNameEveryColumn) {
   write_point_result(dir, points[0], PointResult{"ok", {{"slip", "0.1"}, {"hub load [N]", "800"}}, inputs_text(in)});
   write_point_result(dir, points[1],
                      PointResult{"ok", {{"slip", "0.2"}, {"odd,\"name\"\n[N.m]", "3"}}, inputs_text(in)});
-  write_summary(dir, points, Definition{in.program, in.options, {}, {}});
+  write_summary(dir, points, Definition{in.program, in.options, {}, {}}, Figures::kOwn);
   const auto summary = csv_rows(test::slurp(dir + "/summary.csv"));
   const auto units = csv_rows(test::slurp(dir + "/summary_units.csv"));
   ASSERT_FALSE(summary.empty());
@@ -111,6 +111,49 @@ TEST(SweepResults, SummaryUnitsNameEveryColumn) {
                                                           {"slip", ""},
                                                           {"hub load [N]", "N"},
                                                           {"odd,\"name\"\n[N.m]", "N·m"}}));
+}
+
+// the quick form's figures are scene:run{}'s result table: their units come from the program's
+// table of units (io/units.hpp, run_result_unit), not from their names' brackets, which they have
+// none of (omega.driver had no unit); text and booleans have none, nor does a field a script
+// added to the table (its own name, as a sweep file's)
+TEST(SweepResults, TheQuickFormsUnitsAreTheResultTables) {
+  const std::string dir = results_folder("quick_units");
+  const std::vector<Point> points = grid_points(Grid{{"pretension"}, {{Value(300LL)}}});
+  const Inputs in{"test program", "", {}};
+  write_point_result(dir, points[0],
+                     PointResult{"ok",
+                                 {{"check.speed", "1e-4"},
+                                  {"check.tension", "2e-3"},
+                                  {"check.over", "false"},
+                                  {"check.warned_t", "0.2"},
+                                  {"csv", "out/p/0/timeseries.csv"},
+                                  {"interrupted", "false"},
+                                  {"omega.driven", "-68"},
+                                  {"omega.driver", "-69"},
+                                  {"slip", "0.4"},
+                                  {"steps", "4982"},
+                                  {"t", "1"},
+                                  {"wall", "0.7"}},
+                                 inputs_text(in)});
+  write_summary(dir, points, Definition{in.program, in.options, {}, {}}, Figures::kRunResult);
+  EXPECT_EQ(csv_rows(test::slurp(dir + "/summary_units.csv")),
+            (std::vector<std::vector<std::string>>{{"column", "unit"},
+                                                   {"point", ""},
+                                                   {"pretension", ""},
+                                                   {"status", ""},
+                                                   {"check.speed", "1"},
+                                                   {"check.tension", "1"},
+                                                   {"check.over", ""},
+                                                   {"check.warned_t", "s"},
+                                                   {"csv", ""},
+                                                   {"interrupted", ""},
+                                                   {"omega.driven", "rad/s"},
+                                                   {"omega.driver", "rad/s"},
+                                                   {"slip", ""},
+                                                   {"steps", "1"},
+                                                   {"t", "s"},
+                                                   {"wall", "s"}}));
 }
 
 // point.csv and summary.csv have the columns point, the parameters, status, the figures: a

@@ -239,6 +239,13 @@ class Sweep(SweepCase):
         self.assertEqual([r[:4] for r in summary[1:]], [["0", "300", "0.3", "ok"], ["1", "300", "1", "ok"],
                                                         ["2", "500", "0.3", "ok"], ["3", "500", "1", "ok"]])
         self.assertIn("omega.driver", summary[0])  # the result table of the script's run
+        # its units from the program's table (they came from brackets alone: omega.driver had none)
+        units = dict(rows(self.path("out", "plain", "summary_units.csv"))[1:])
+        self.assertEqual(list(units), summary[0])
+        self.assertEqual(units, {"point": "", "pretension": "", "mu": "", "status": "", "csv": "",
+                                 "factorizations": "1", "frames": "1", "interrupted": "", "jacobians": "1",
+                                 "omega.driven": "rad/s", "omega.driver": "rad/s", "parameters": "", "rejected": "1",
+                                 "rhs": "1", "steps": "1", "t": "s", "wall": "s"})
         # a point is the script run with those values
         self.run_beltsim("run", PLAIN, "--set", "pretension=500", "--set", "mu=0.3", "--out", "direct")
         with open(self.path("direct", "timeseries.csv")) as a, open(self.path("out", "plain", "2", "timeseries.csv")) as b:
