@@ -7,7 +7,9 @@ time (the server's "queued" beside the controls cleared once the status says so)
 the run finish whole. The picture of the run paused at a run-to time asked for before the run began (t = 0.05 s,
 so always the same state) is compared with tests/golden/live_page_frame.png by the goldens'
 metric (`beltsim compare`, media/image_compare.hpp). Each step waits for what the page shows
-(WebDriverWait), no sleeps. Exit 77 (skipped) without selenium or chromium-driver.
+(WebDriverWait, or the page's own script where WebDriver's round trips would be too slow), no
+sleeps, each wait bounded far above what a loaded machine takes. Exit 77 (skipped) without selenium
+or chromium-driver.
 
 usage: browser_test.py BELTSIM [--update-golden]
   --update-golden (the target update_browser_golden): writes the golden picture and the README's
@@ -16,10 +18,12 @@ usage: browser_test.py BELTSIM [--update-golden]
 """
 import json
 import os
+import select
 import shutil
 import subprocess
 import sys
 import tempfile
+import time
 import unittest
 import urllib.parse
 import urllib.request
@@ -31,6 +35,7 @@ try:
     from selenium.webdriver.chrome.service import Service
     from selenium.webdriver.common.action_chains import ActionChains
     from selenium.webdriver.common.by import By
+    from selenium.webdriver.remote.remote_connection import RemoteConnection
     from selenium.webdriver.support.ui import Select, WebDriverWait
 except ImportError:
     print("skipped: python3-selenium is not installed")
@@ -57,7 +62,13 @@ README_COLUMNS = ["span_driver_driven.tension", "span_driven_driver.tension"]
 README_STEP = 1e-3
 DRIVER = shutil.which("chromedriver")
 T_END = 1.0  # [s] a few seconds of wall time: the page pauses the run before its end
+# Bounds on a failure, not waits for timing: each step waits for what it needs to see, and these
+# are far above what a 2-core machine at a load of 20 took (7 to 9 s for the run to T_SHOT and its
+# picture, 12 to 19 s for Chromium's start, 3 to 13 s for the run's end)
 WAIT = 60  # [s] at most for what the page should show
+START = 120  # [s] at most for Chromium's start (chromedriver's own bound is 60 s)
+COMMAND = 180  # [s] at most for one WebDriver command (selenium's own: none)
+RUN = 120  # [s] at most for the run's end once it is let go
 # [N·m] the torque set on the page: a load on the driven pulley, against its clockwise turning
 # (counter-clockwise is positive); its value is not what is checked (it lands in events.csv at the
 # paused time). -65 drove the driven pulley the way the driver does and the drive ran away to
@@ -68,7 +79,9 @@ LOAD = "65"
 class Browser(unittest.TestCase):
     def setUp(self):
         self.dir = tempfile.mkdtemp(prefix="beltsim_browser_")
-        if not os.environ.get("BELTSIM_KEEP"):
+        if os.environ.get("BELTSIM_KEEP"):
+            print("the test's files are kept in %s (BELTSIM_KEEP)" % self.dir, file=sys.stderr)
+        else:
             self.addCleanup(shutil.rmtree, self.dir, True)
         # the run starts once the test has queued its run to T_SHOT (the file `go`): asked for after
         # the address is printed but with the run already going, the run to T_SHOT lost the race on
@@ -79,22 +92,35 @@ class Browser(unittest.TestCase):
                     "drive:run { t_end = %r, sample = 1e-3 }\n" % T_END)
         # the browser first: its start (seconds) is not the run's time
         o = webdriver.ChromeOptions()
+        o.add_experimental_option("browserStartupTimeout", START * 1000)  # [ms]
         for a in ["--headless", "--no-sandbox", "--disable-gpu", "--disable-background-networking",
                   "--disable-component-update", "--disable-sync", "--no-first-run",
                   "--user-data-dir=" + os.path.join(self.dir, "chromium"), "--window-size=1280,1500",
                   "--force-device-scale-factor=1", "--force-color-profile=srgb"]:
             o.add_argument(a)
+        RemoteConnection.set_timeout(COMMAND)
         self.browser = webdriver.Chrome(service=Service(DRIVER), options=o)
         self.addCleanup(self.browser.quit)
+        self.browser.set_script_timeout(WAIT)
         self.proc = subprocess.Popen([BELTSIM, "run", "s.lua", "--trusted", "--serve", "--out", "out"], cwd=self.dir,
                                      stdout=subprocess.DEVNULL, stderr=subprocess.PIPE)
         self.addCleanup(self.stop)
-        for line in self.proc.stderr:
-            if b"live view at " in line:
-                self.url = line.decode().split("live view at ")[1].strip()
-                break
-        else:
-            self.fail("no address printed")
+        self.url = self.address()
+
+    def address(self):
+        """the live view's address, from beltsim's first lines on stderr (within WAIT)"""
+        end, err = time.monotonic() + WAIT, b""
+        while True:
+            at = err.find(b"live view at ")
+            if at >= 0 and b"\n" in err[at:]:
+                return err[at:].split(b"\n")[0][len(b"live view at "):].decode().strip()
+            left = end - time.monotonic()
+            if left <= 0 or not select.select([self.proc.stderr], [], [], left)[0]:
+                self.fail("no address printed within %d s: %r" % (WAIT, err.decode()))
+            chunk = os.read(self.proc.stderr.fileno(), 4096)
+            if not chunk:
+                self.fail("beltsim ended without printing its address: %r" % err.decode())
+            err += chunk
 
     def stop(self):
         if self.proc.poll() is None:
@@ -114,9 +140,9 @@ class Browser(unittest.TestCase):
         driver.slip_speed and driven.omega 23 levels apart)"""
         b = self.browser
 
-        def checked():
-            return [e.get_attribute("data-column") for e in b.find_elements(By.CSS_SELECTOR, "#columns input")
-                    if e.is_selected()]
+        def checked():  # one question to the browser (one for each box took 2 s at a load of 20)
+            return b.execute_script("return Array.from(document.querySelectorAll('#columns input'))"
+                                    ".filter(cb => cb.checked).map(cb => cb.dataset.column);")
 
         def legend():
             return b.execute_script("return document.getElementById('legend').innerText").split()
@@ -132,7 +158,7 @@ class Browser(unittest.TestCase):
                 return [int(c[k:k + 2], 16) for k in (1, 3, 5)]
             return [int(v) for v in c[c.index("(") + 1:-1].split(",")]
         colours = [rgb(c) for c in b.execute_script("return graph.getColors()")]
-        names = checked()  # (once: each call asks the browser about every check box, 34 s in all)
+        names = checked()
         self.assertEqual(len(colours), len(names))
         for i in range(len(colours)):
             for j in range(i):
@@ -141,8 +167,8 @@ class Browser(unittest.TestCase):
 
     def pick_stretch(self, wait):
         """drags on the paused picture from element 30 to element 3 of the 40 (past the belt's
-        start at s = 0, the short way round): the form gets their s, Wet lands the stretch in
-        events.csv at the paused time; a click off the belt fills nothing"""
+        start at s = 0, the short way round): the form gets their s; a click off the belt fills
+        nothing; Wet lands the stretch in events.csv at the paused time"""
         b, frame = self.browser, self.browser.find_element(By.ID, "frame")
         # where the renderer drew the elements in the picture the page shows (the same frame: its t)
         q = urllib.parse.urlsplit(self.url).query
@@ -163,6 +189,13 @@ class Browser(unittest.TestCase):
         # the stretch from element 30 forward past s = 0 to element 3 (wrapping: from > to)
         self.assertEqual((float(self.value("from")), float(self.value("to"))), (a[2], z[2]))
         self.assertGreater(a[2], z[2])
+        # off the belt (the picture's top left, its text band): the form is left as it was. Before
+        # Wet, whose picture of the wet belt empties the page's places while it loads (a click then
+        # reads "the picture is moving") and whose reply ("queued") can come after this one's: the
+        # click after Wet waited out its 60 s once in 9 runs at a load of 20
+        ActionChains(b).move_to_element_with_offset(frame, *offset(4, 4)).click().perform()
+        wait.until(lambda _: self.text("reply") == "no element there: pick on the belt")
+        self.assertEqual((float(self.value("from")), float(self.value("to"))), (a[2], z[2]))
         b.find_element(By.ID, "mu").send_keys("0.05")
         b.find_element(By.ID, "wet").click()
         wait.until(lambda _: self.text("status").endswith("(wet applied)"))
@@ -171,9 +204,6 @@ class Browser(unittest.TestCase):
         self.assertEqual(len(wet), 1)
         self.assertEqual(float(wet[0].split(",")[0]), T_SHOT)
         self.assertIn("mu = 0.05 on s in [%.6g, %.6g] m" % (a[2], z[2]), wet[0])
-        # off the belt (the picture's top left, its text band): the form is left as it was
-        ActionChains(b).move_to_element_with_offset(frame, *offset(4, 4)).click().perform()
-        wait.until(lambda _: self.text("reply") == "no element there: pick on the belt")
 
     def readme_screenshot(self, wait):
         """the README's picture of the page (--update-golden): README_COLUMNS plotted, the run taken
@@ -205,7 +235,7 @@ class Browser(unittest.TestCase):
         wait.until(lambda _: b.execute_script("return graph.xAxisExtremes()[1]") == T_README)
         b.save_screenshot(SCREENSHOT)
         b.find_element(By.ID, "continue").click()
-        self.assertEqual(self.proc.wait(timeout=300), 0)
+        self.assertEqual(self.proc.wait(timeout=RUN), 0)
 
     def test_watch_pause_torque_continue(self):
         b = self.browser
@@ -233,13 +263,32 @@ class Browser(unittest.TestCase):
         if UPDATE:
             self.readme_screenshot(wait)
             return
+        # Continue, then Pause as soon as the page shows the run going on (status "running", t past
+        # T_SHOT): pressed by the page's own script, set to watch before Continue is clicked, as the
+        # page's events arrive. Watched through WebDriver instead (a round trip each look, up to a
+        # second each at a load of 20), the run reached its end (in 3 s) before the Pause, and the
+        # wait for the pause ran out (once in 9 runs there)
+        b.execute_script("""
+            const from = arguments[0], status = document.getElementById("status"), t = document.getElementById("t");
+            window.seenRunning = null;
+            const watch = new MutationObserver(() => {
+              if (status.textContent !== "running" || !(parseFloat(t.textContent) > from)) return;
+              watch.disconnect();
+              window.seenRunning = parseFloat(t.textContent);
+              document.getElementById("pause").click();
+            });
+            watch.observe(document.getElementById("bar"), { childList: true, characterData: true, subtree: true });
+            """, T_SHOT)
         b.find_element(By.ID, "continue").click()
-        wait.until(lambda _: self.text("status") == "running")
-        t0 = float(self.text("t"))
-        wait.until(lambda _: float(self.text("t")) > t0)  # t advances
-        b.find_element(By.ID, "pause").click()
-        wait.until(lambda _: self.text("status").startswith("paused at t = "))
+        # (paused again: the status before Continue said "paused at t = 0.05 s (wet applied)")
+        wait.until(lambda _: b.execute_script("return window.seenRunning !== null && document.getElementById("
+                                              "'status').textContent.startsWith('paused at t = ')")
+                   or self.proc.poll() is not None)
+        self.assertIsNone(self.proc.poll(), "the run ended before the pause: " + self.text("status"))
+        seen = b.execute_script("return window.seenRunning")
+        self.assertGreater(seen, T_SHOT)  # t advances
         paused_at = float(self.text("status").split("= ")[1].split(" ")[0])
+        self.assertGreaterEqual(paused_at, seen)
         self.assertLess(paused_at, T_END)
         Select(b.find_element(By.ID, "pulley")).select_by_visible_text("driven")
         b.find_element(By.ID, "torque").send_keys(LOAD)
@@ -255,7 +304,7 @@ class Browser(unittest.TestCase):
                 return [r.split(",") for r in f.read().splitlines()[1:] if r.split(",")[1] == "driven.torque"]
         wait.until(lambda _: torque_rows())
         b.find_element(By.ID, "continue").click()
-        self.assertEqual(self.proc.wait(timeout=300), 0)
+        self.assertEqual(self.proc.wait(timeout=RUN), 0)
         rows = torque_rows()
         self.assertEqual(len(rows), 1)
         # the page's status gives t to 6 significant digits

@@ -409,7 +409,10 @@ class Recipes(Base):
 
     def pytest(self, source):
         env = dict(os.environ, BELTSIM=BELTSIM, PYTHONDONTWRITEBYTECODE="1")
-        return subprocess.run(PYTEST + ["-p", "no:cacheprovider", "-q", os.path.join(source, "test_my_drive.py")],
+        # its tmp_path under this test's folder (--basetemp): pytest's own, <tmp>/pytest-of-<user>/,
+        # keeps its last three sessions
+        return subprocess.run(PYTEST + ["-p", "no:cacheprovider", "--basetemp", self.path("pytest"), "-q",
+                                        os.path.join(source, "test_my_drive.py")],
                               capture_output=True, text=True, cwd=self.dir, env=env, timeout=300)
 
     def test_the_pytest_recipe(self):

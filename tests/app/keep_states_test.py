@@ -83,14 +83,11 @@ class KeepStates(unittest.TestCase):
     @classmethod
     def setUpClass(cls):
         cls.dir = tempfile.mkdtemp(prefix="beltsim_keep_")
+        cls.addClassCleanup(shutil.rmtree, cls.dir, True)  # also when this fails
         cls.script("keep.lua", KEEP)
         code, out, err = run(["run", "keep.lua"], cls.dir)
         assert code == 0, err
         cls.states = os.path.join(cls.dir, "out", "states")
-
-    @classmethod
-    def tearDownClass(cls):
-        shutil.rmtree(cls.dir, True)
 
     @classmethod
     def script(cls, name, text):

@@ -33,12 +33,10 @@ def run(args, cwd):
 class Forms(unittest.TestCase):
     def setUp(self):
         self.dir = tempfile.mkdtemp(prefix="beltsim_plot_")
+        self.addCleanup(shutil.rmtree, self.dir, True)
         for name, text in (("summary.csv", SUMMARY), ("timeseries.csv", TIMESERIES)):
             with open(os.path.join(self.dir, name), "w") as f:
                 f.write(text)
-
-    def tearDown(self):
-        shutil.rmtree(self.dir, True)
 
     def exists(self, name):
         return os.path.exists(os.path.join(self.dir, name))

@@ -32,16 +32,13 @@ class Render(unittest.TestCase):
     @classmethod
     def setUpClass(cls):
         cls.dir = tempfile.mkdtemp(prefix="beltsim_render_")
+        cls.addClassCleanup(shutil.rmtree, cls.dir, True)  # also when this fails
         with open(os.path.join(cls.dir, "s.lua"), "w") as f:
             f.write(SCENE)
         code, out, err = run(["run", "s.lua"], cls.dir)
         assert code == 0, err
         cls.checkpoint = os.path.join(cls.dir, "out", "state.txt")
         assert os.path.exists(cls.checkpoint), err
-
-    @classmethod
-    def tearDownClass(cls):
-        shutil.rmtree(cls.dir, True)
 
     def render(self, *args):
         return run(["render", self.checkpoint] + list(args), self.dir)

@@ -88,12 +88,10 @@ def csv_bytes(ckpt):
 class Resume(unittest.TestCase):
     def setUp(self):
         self.dir = tempfile.mkdtemp(prefix="beltsim_resume_")
+        self.addCleanup(shutil.rmtree, self.dir, True)
         for name, text in (("drive.lua", DRIVE), ("resume.lua", RESUME), ("law.lua", LUA_LAW)):
             with open(os.path.join(self.dir, name), "w") as f:
                 f.write(text)
-
-    def tearDown(self):
-        shutil.rmtree(self.dir, True)
 
     def test_a_later_run_into_the_folder_is_not_spliced_to_the_checkpoints(self):
         out = os.path.join(self.dir, "out", "drive")

@@ -56,6 +56,7 @@ class Triangle(unittest.TestCase):
     @classmethod
     def setUpClass(cls):
         cls.dir = tempfile.mkdtemp(prefix="beltsim_summary_")
+        cls.addClassCleanup(shutil.rmtree, cls.dir, True)  # also when this fails
         with open(os.path.join(cls.dir, "tri.lua"), "w") as f:
             f.write(TRIANGLE)
         code, cls.lua_out, err = run(["run", "tri.lua"], cls.dir)
@@ -68,10 +69,6 @@ class Triangle(unittest.TestCase):
         with open(os.path.join(cls.out, "timeseries.csv"), newline="") as f:
             cls.rows = [{k: float(v) for k, v in r.items()} for r in csv.DictReader(f)]
         cls.window = [r for r in cls.rows if r["t"] >= 0.1]
-
-    @classmethod
-    def tearDownClass(cls):
-        shutil.rmtree(cls.dir, True)
 
     def test_mean_tension_is_the_windows_mean(self):
         for span in ["span_driver_idler", "span_idler_load", "span_load_driver"]:
@@ -202,16 +199,13 @@ class Wet(unittest.TestCase):
     @classmethod
     def setUpClass(cls):
         cls.dir = tempfile.mkdtemp(prefix="beltsim_summary_wet_")
+        cls.addClassCleanup(shutil.rmtree, cls.dir, True)  # also when this fails
         # the whole belt wet, and its first half only (0 to 0.6 m of the 1.2 m belt)
         for name, wet in [("all", "sim:set_mu(0.2)"), ("half", "sim:wet { from = 0, to = 0.6, mu = 0.2 }")]:
             with open(os.path.join(cls.dir, name + ".lua"), "w") as f:
                 f.write(WET.replace("OUT", name).replace("WET", wet))
             code, _, err = run(["run", name + ".lua"], cls.dir)
             assert code == 0, err
-
-    @classmethod
-    def tearDownClass(cls):
-        shutil.rmtree(cls.dir, True)
 
     def summary(self, name):
         code, _, err = run(["summary", name, "--from", "0.3", "--csv", name + ".csv"], self.dir)

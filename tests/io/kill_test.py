@@ -6,11 +6,13 @@ Every case checks that the CSV files hold only whole rows; the video is read bac
 usage: kill_test.py BELTSIM [CASE...]   (the cases by name; all but full_file_system when none is
 given). Exit status 77 (ctest: skipped) when a case cannot run here, with the reason.
 """
+import atexit
 import csv
 import io
 import os
 import re
 import resource
+import shutil
 import signal
 import subprocess
 import sys
@@ -21,6 +23,7 @@ from scenes import two_pulley  # noqa: E402
 
 BELTSIM = os.path.abspath(sys.argv[1])
 TMP = tempfile.mkdtemp(prefix="beltsim_kill_test_")
+atexit.register(shutil.rmtree, TMP, True)  # at any exit: a failure or an exception too
 FPS, SLOWDOWN = 30, 10  # the frames' defaults: a frame every 1/300 s of simulated time
 
 SCENE = two_pulley(elements=60)
@@ -387,6 +390,5 @@ print("%.1f s" % (time.monotonic() - t0))
 if failures:
     print("%d failed" % len(failures))
     sys.exit(1)
-subprocess.run(["rm", "-rf", TMP])
 if skipped:
     sys.exit(77)

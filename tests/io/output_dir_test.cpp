@@ -7,8 +7,6 @@
 #include "io/output_dir.hpp"
 
 #include <gtest/gtest.h>
-#include <signal.h>
-#include <sys/resource.h>
 #include <sys/stat.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -23,6 +21,7 @@
 
 #include "io/csv_writer.hpp"
 #include "io/row_file.hpp"
+#include "support/file_size_limit.hpp"
 #include "support/files.hpp"
 #include "support/scratch.hpp"
 
@@ -167,20 +166,13 @@ TEST(OutputDir, OneWriterPerFolder) {
 TEST(OutputDir, AFailedWholeWriteLeavesTheOldFileAndNoPart) {
   const fs::path dir = fresh_dir("whole_fails");
   spit(dir / "run.ckpt", "old checkpoint\n");
-  const pid_t pid = ::fork();
-  ASSERT_GE(pid, 0);
-  if (pid == 0) {
-    ::signal(SIGXFSZ, SIG_IGN);
-    const rlimit r{4096, 4096};
-    ::setrlimit(RLIMIT_FSIZE, &r);
+  const int status = test::exit_status_under_file_size_limit(4096, [&] {
     const std::string e = what_of([&] { write_file_whole((dir / "run.ckpt").string(), std::string(10000, 'x')); });
     const std::string want = "cannot write " + (dir / "run.ckpt").string() + ": " + std::strerror(EFBIG);
     const auto failures = output_failures();
-    _exit(e == want && !failures.empty() && failures.back() == want ? 0 : 1);
-  }
-  int status = 0;
-  ::waitpid(pid, &status, 0);
-  EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0) << "not the expected error, or not recorded";
+    return e == want && !failures.empty() && failures.back() == want ? 0 : 1;
+  });
+  EXPECT_EQ(status, 0) << "not the expected error, or not recorded";
   EXPECT_EQ(slurp(dir / "run.ckpt"), "old checkpoint\n");
   std::vector<std::string> names;
   for (const auto& e : fs::directory_iterator(dir)) names.push_back(e.path().filename().string());

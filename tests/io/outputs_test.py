@@ -14,10 +14,12 @@
 
 usage: outputs_test.py BELTSIM
 """
+import atexit
 import os
 import select
 import re
 import resource
+import shutil
 import signal
 import subprocess
 import sys
@@ -28,6 +30,7 @@ from scenes import two_pulley  # noqa: E402
 
 BELTSIM = os.path.abspath(sys.argv[1])
 TMP = tempfile.mkdtemp(prefix="beltsim_outputs_test_")
+atexit.register(shutil.rmtree, TMP, True)  # at any exit: a failure or an exception too
 SECRET = "export PATH=/usr/bin  # the user's own file\n"
 LINK = "it is a symbolic link (beltsim never writes through a link)"
 
@@ -296,4 +299,3 @@ print("%.1f s" % (time.monotonic() - t0))
 if failures:
     print("%d failed" % len(failures))
     sys.exit(1)
-subprocess.run(["rm", "-rf", TMP])

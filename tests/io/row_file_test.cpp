@@ -6,7 +6,6 @@
 
 #include <gtest/gtest.h>
 #include <signal.h>
-#include <sys/resource.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -24,6 +23,7 @@
 #include <vector>
 
 #include "io/csv_writer.hpp"
+#include "support/file_size_limit.hpp"
 #include "support/files.hpp"
 #include "support/scratch.hpp"
 
@@ -185,25 +185,18 @@ TEST(RowFile, AFileThatCannotGrowKeepsWholeRows) {
   const fs::path f = temp_dir() / "limited.csv";
   fs::remove(f);
   const long limit = 10000;
-  const pid_t pid = ::fork();
-  ASSERT_GE(pid, 0);
-  if (pid == 0) {
-    ::signal(SIGXFSZ, SIG_IGN);  // past the limit write(2) fails with EFBIG instead
-    const rlimit r{static_cast<rlim_t>(limit), static_cast<rlim_t>(limit)};
-    ::setrlimit(RLIMIT_FSIZE, &r);
+  const int status = test::exit_status_under_file_size_limit(limit, [&] {
     try {
       CsvWriter w(f.string(), header(4));
       for (int k = 0; k < 100000; ++k) w.row({k * 1e-3, 1.0 / 3, -2.0 / 7, k * 1.1});
     } catch (const std::runtime_error& e) {
       const std::string want = "cannot write " + f.string() + ": " + std::strerror(EFBIG);
-      _exit(e.what() == want ? 0 : 2);
+      return e.what() == want ? 0 : 2;
     }
-    _exit(1);  // never stopped
-  }
-  int status = 0;
-  ::waitpid(pid, &status, 0);
-  ASSERT_TRUE(WIFEXITED(status));
-  EXPECT_EQ(WEXITSTATUS(status), 0) << "1: no error, 2: not the expected message";
+    return 1;  // never stopped
+  });
+  ASSERT_NE(status, test::kNoExitStatus) << "no child, or a child killed by a signal";
+  EXPECT_EQ(status, 0) << "1: no error, 2: not the expected message";
   const std::string text = slurp(f);
   EXPECT_GT(text.size(), static_cast<size_t>(limit) - 100);  // the rows that fitted are kept
   EXPECT_LE(text.size(), static_cast<size_t>(limit));

@@ -4,12 +4,9 @@
 // while one is open, a checkpoint resumed twice are refused before they write or cut anything);
 // a file that cannot be written at close makes close() throw and is recorded.
 #include <gtest/gtest.h>
-#include <sys/resource.h>
-#include <sys/wait.h>
 #include <unistd.h>
 
 #include <atomic>
-#include <csignal>
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
@@ -25,6 +22,7 @@
 #include "sim/settings_check.hpp"
 #include "sim/simulation.hpp"
 #include "support/dry_scene.hpp"
+#include "support/file_size_limit.hpp"
 #include "support/files.hpp"
 #include "support/presets.hpp"
 #include "support/scratch.hpp"
@@ -407,12 +405,9 @@ TEST(Outputs, AFullDiskStopsTheRunSayingWhereAndKeepsTheOutputs) {
   rs.sample_dt = 1e-4;
   const long limit = 64 * 1024;  // parameters.csv (7 KB) fits, timeseries.csv passes it at about 0.01 s
   const std::string csv = (out / "timeseries.csv").string();
-  const pid_t pid = ::fork();
-  ASSERT_GE(pid, 0);
-  if (pid == 0) {
-    ::signal(SIGXFSZ, SIG_IGN);  // past the limit write(2) fails with EFBIG instead
-    const rlimit r{static_cast<rlim_t>(limit), static_cast<rlim_t>(limit)};
-    ::setrlimit(RLIMIT_FSIZE, &r);
+  // the child ends with _exit, not a return: the simulation's destructor would close its outputs,
+  // and they are checked below as the failure left them
+  const int status = test::exit_status_under_file_size_limit(limit, [&]() -> int {
     Simulation s(dry_scene(), rs);
     std::string e;
     try {
@@ -430,11 +425,9 @@ TEST(Outputs, AFullDiskStopsTheRunSayingWhereAndKeepsTheOutputs) {
     // the run cannot go on: its time series would miss the row that did not fit
     const std::string again = what_of([&] { s.run_to(1); });
     _exit(again.find("the simulation cannot continue: " + e) != std::string::npos ? 0 : 3);
-  }
-  int status = 0;
-  ::waitpid(pid, &status, 0);
-  ASSERT_TRUE(WIFEXITED(status));
-  ASSERT_EQ(WEXITSTATUS(status), 0) << "1: no error, 2: not the expected message, 3: the run went on";
+  });
+  ASSERT_EQ(status, 0) << "1: no error, 2: not the expected message, 3: the run went on, " << test::kChildThrew
+                       << ": it threw, " << test::kNoExitStatus << ": no child or one killed by a signal";
   const std::string series = slurp(csv), parameters = slurp(out / "parameters.csv");
   EXPECT_GT(series.size(), static_cast<size_t>(limit) - 1000);
   EXPECT_EQ(series.back(), '\n');

@@ -1,5 +1,6 @@
 // A test program's scratch folder: <tmp>/<prefix>_<pid>, made on first use and removed when the
-// program ends with every test passed (kept after a failure, and its path printed, to look into).
+// program ends, its tests passed or failed (BELTSIM_KEEP set in the environment keeps it, and its
+// path is printed, to look into). A program that crashes or is killed leaves it.
 #pragma once
 
 #include <filesystem>
