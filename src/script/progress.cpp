@@ -2,6 +2,7 @@
 
 #include <sys/ioctl.h>
 #include <sys/stat.h>
+#include <termios.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -9,6 +10,7 @@
 #include <cmath>
 #include <cstdarg>
 #include <cstdio>
+#include <cstdlib>
 
 #include "io/duration_text.hpp"
 #include "io/number_text.hpp"
@@ -31,7 +33,42 @@ bool same_terminal() {
   return same;
 }
 
+// the terminal on stdin while a progress line holds its echo off: its echo flags before (restore_echo)
+tcflag_t g_echo_flags = 0;
+std::atomic<bool> g_echo_off{false};
+constexpr tcflag_t kEchoFlags = ECHO | ECHONL;
+
+// stdin is a terminal whose foreground this process is in (a background process that sets its
+// modes is stopped with SIGTTOU)
+bool terminal_in_foreground() {
+  return isatty(STDIN_FILENO) && tcgetpgrp(STDIN_FILENO) == getpgrp();
+}
+
+// turns the terminal's echo off; true when this call did (false: no terminal in the foreground,
+// its echo already off, or another line holds it off)
+bool echo_off() {
+  termios t{};
+  if (g_echo_off.load() || !terminal_in_foreground() || tcgetattr(STDIN_FILENO, &t) != 0 || !(t.c_lflag & ECHO))
+    return false;
+  static const bool at_exit = std::atexit(restore_echo) == 0;  // exit() from a run (os.exit with --trusted)
+  (void)at_exit;
+  g_echo_flags = t.c_lflag & kEchoFlags;
+  g_echo_off.store(true);  // before the change: a signal that ends the process from here on restores it
+  t.c_lflag &= ~kEchoFlags;
+  if (tcsetattr(STDIN_FILENO, TCSANOW, &t) == 0) return true;  // TCSANOW: what was typed stays
+  g_echo_off.store(false);
+  return false;
+}
+
 }  // namespace
+
+void restore_echo() {
+  if (!g_echo_off.exchange(false)) return;
+  termios t{};  // (only async-signal-safe calls: stdin was a terminal when the echo was turned off)
+  if (tcgetpgrp(STDIN_FILENO) != getpgrp() || tcgetattr(STDIN_FILENO, &t) != 0) return;
+  t.c_lflag = (t.c_lflag & ~kEchoFlags) | g_echo_flags;
+  tcsetattr(STDIN_FILENO, TCSANOW, &t);
+}
 
 void end_progress_line() {
   if (g_open.exchange(false)) {
@@ -93,6 +130,7 @@ ProgressLine::ProgressLine(bool enabled, long steps_before)
 
 ProgressLine::~ProgressLine() {
   if (drawn_) draw(true);
+  if (echo_off_) restore_echo();
 }
 
 void ProgressLine::finish(double t, long steps, double wall) {
@@ -142,6 +180,8 @@ void ProgressLine::draw(bool last) {
   if (!tty_) {
     std::fprintf(stderr, "%s\n", line.c_str());
   } else {
+    // the keys typed from now on would be echoed onto the line: no echo until the line's end (the destructor)
+    if (!last && !echo_off_) echo_off_ = echo_off();
     // on the line it drew (blanking what a longer text left), or on a line of its own after a message
     const size_t blank = g_open.load() && width_ > line.size() ? width_ - line.size() : 0;
     std::fprintf(stderr, "\r%s%s%s", line.c_str(), std::string(blank, ' ').c_str(), last ? "\n" : "");

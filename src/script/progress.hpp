@@ -11,8 +11,15 @@
 // place that knows whether such a line is open. Whatever else is written while it may be (a warning
 // from the run, a note, an error, a script's print or io.write when stdout is the same terminal, its
 // io.stderr:write) goes through say() or end_progress_line() first, so that it starts on a line of
-// its own; the progress line is drawn again below it at its next update. Not part of the engine: the engine reports progress
-// through a callback (sim/simulation.hpp RunProgress) and this prints it.
+// its own; the progress line is drawn again below it at its next update. Not part of the engine: the engine reports
+// progress through a callback (sim/simulation.hpp RunProgress) and this prints it.
+//
+// While the line is drawn on a terminal, the terminal on stdin does not echo what is typed (the
+// keys typed would land on the line: "... 57997 stepsbcllo there"). What is typed is kept by the
+// terminal for whoever reads it next (the console's next prompt, or the shell after `beltsim
+// run`), as a shell keeps it; a Ctrl-C, which the terminal answers by discarding its input, drops
+// it. The echo is restored when the line ends (the run's end, an error or Ctrl-C unwinding through
+// it) and, by restore_echo(), on the ways the process ends without unwinding.
 #pragma once
 
 #include <cstdio>
@@ -38,6 +45,7 @@ class ProgressLine {
  private:
   void draw(bool last);
   bool enabled_, tty_, drawn_ = false;
+  bool echo_off_ = false;  // this line turned the terminal's echo off (restored with the line's end)
   double last_ = 0, t0_ = -1;
   long steps_before_ = 0;
   // the last state reported (or finish's): what the line shows
@@ -65,6 +73,12 @@ void end_progress_line();
 // how many open progress lines have been ended so far (by a message or by their run's end): the
 // console reads it round a command to know whether the line the terminal echoed ^C on was ended
 long progress_lines_ended();
+// the terminal's echo as it was before a progress line turned it off, if one did: for the ways the
+// process ends without unwinding (a second stop signal, the watchdog, a time limit's end; they call it
+// before their _exit or signal). Async-signal-safe. Only the echo is changed back, and only from the
+// terminal's foreground (from the background it would stop the process with SIGTTOU; the shell
+// that holds the terminal then has set it as it wants it)
+void restore_echo();
 // a message on stderr (printf's format, its own line end included), on a line of its own
 [[gnu::format(printf, 1, 2)]] void say(const char* format, ...);
 // a print to stdout (Lua's print, a picture's path): the progress line is ended first when stdout

@@ -19,6 +19,7 @@ import signal
 import subprocess
 import sys
 import tempfile
+import termios
 import time
 import unittest
 
@@ -184,6 +185,39 @@ class ConsoleTest(unittest.TestCase):
         self.assertEqual(len(kept), 1, lines)
         # (the console prints sim.t to 10 significant digits)
         self.assertAlmostEqual(float(kept[0][len("r = sim:run_to("):-1]) / t, 1, delta=1e-9, msg=lines)
+
+    # 7b
+    def test_keys_typed_during_a_run_wait_for_the_next_prompt(self):
+        # a user typed while a run's progress line showed: the keys were echoed onto it ("...
+        # 57997 stepsbcllo there"). The terminal's echo is off while the line shows; what was typed
+        # is the next prompt's, to edit or run; a Ctrl-C (here in the run's callback) drops it (the
+        # terminal discards its input on Ctrl-C), and the echo is back after every run
+        c = self.console()
+        c.command("function slow() local c = os.clock() while os.clock() - c < 0.02 do end end")
+        c.command("id = sim:every(0.001, slow)")
+        for stop in [False, True]:
+            mark = len(c.screen)
+            c.send("r = sim:advance(%s)\r" % ("10" if stop else "0.15"))
+            c.wait_for(re.compile(r"beltsim: t = [^\n]*steps"), what="the progress line", start=mark)
+            self.assertFalse(termios.tcgetattr(c.fd)[3] & termios.ECHO, "the terminal echoes during the run" +
+                             c.transcript())
+            c.send("typed ahead")
+            if stop:
+                time.sleep(0.5)  # what was typed reaches the terminal's input before Ctrl-C
+                c.send("\x03")
+            if stop:
+                c.wait_prompt(mark, timeout=60)  # an empty prompt: dropped with the run
+            else:
+                c.wait_for(re.compile(r"\n> typed ahead$"), 60, "the keys at the next prompt", mark)
+            shown = c.screen[mark:]
+            before = shown[:shown.rfind("\n> ")]  # the run, its progress and its result
+            self.assertNotIn("typed", before, c.transcript())
+            if not stop:
+                c.send("\x15")  # readline's Ctrl-U: the line is emptied
+                out = c.command("r.t")
+                self.assertRegex(out, r"\n0\.15\n", c.transcript())
+        self.assertEqual(c.eof(), 0, c.transcript())
+        self.assertTrue(c.echoed_at_end, "the console left the terminal without echo")
 
     # 8
     def test_ctrl_d_writes_session_lua(self):
