@@ -111,7 +111,7 @@ std::vector<std::string> scene_warnings(const Scene& sc) {
 }
 
 namespace {
-Scene build_at(const SceneDef& d, const std::atomic<bool>* stop) {
+Scene build_at(const SceneDef& d, BuildWatch& watch) {
   const BeltDef& bd = d.belt;
   const int n = bd.elements;
   Scene sc;
@@ -148,7 +148,7 @@ Scene build_at(const SceneDef& d, const std::atomic<bool>* stop) {
   sc.penetration.assign(m.n_p(), 0.0);
   for (size_t k = 0; k < p0.size(); ++k) sc.penetration[order.pulleys[k]] = p0[k];
   const Route path = build::centre_path(order, p0, bd.loop_sense);
-  const double gap = build::close_loop(path, n, bd, tension, b, stop);
+  const double gap = build::close_loop(path, n, bd, tension, b, watch);
   std::vector<double> s;
   build::walk(path, n, 0.5 * b.rigid_length, gap, &s);
   build::set_segment_laws(m, d, s);  // before the state is sized: a LuGre segment adds deflections
@@ -159,7 +159,7 @@ Scene build_at(const SceneDef& d, const std::atomic<bool>* stop) {
   sc.drive.mu = build::element_mu(bd, sc.sites);
   build::set_start_speeds(m, sc.drive, sc.y0);
 
-  const std::string lost = build::settle(sc, bd, tension.rest > 0, stop);
+  const std::string lost = build::settle(sc, bd, tension.rest > 0, watch);
   build::check_finite(sc, d, tension.tension);
   build::check_static_state(sc, d, lost, tension.tension);
   build::balance_arms(sc);
@@ -177,10 +177,17 @@ Scene build_at(const SceneDef& d, const std::atomic<bool>* stop) {
 }  // namespace
 
 Scene build_scene(const SceneDef& d, const std::atomic<bool>* stop) {
+  BuildWatch watch;
+  watch.stop = stop;
+  return build_scene(d, watch);
+}
+
+Scene build_scene(const SceneDef& d, BuildWatch& watch) {
   validate(d);
+  watch.elements = d.belt.elements;
   for (const PulleyDef& p : d.pulleys) build::validate_tensioner(p), build::validate_coupling(p);
   const std::optional<double> preload = build::tensioner_preload(d);
-  if (!preload) return build_at(d, stop);
+  if (!preload) return build_at(d, watch);
   // the preload sets the belt's tension: the belt's moment about the pivot is proportional to it
   // (to a part in 1e3 over a doubling: the wrap angle changes little), so the ratio converges in a
   // few builds
@@ -190,7 +197,7 @@ Scene build_scene(const SceneDef& d, const std::atomic<bool>* stop) {
   SceneDef e = d;
   constexpr double kAgree = 1e-6;  // relative: far below the static state's own residual tension error
   for (int it = 0;; ++it) {
-    Scene sc = build_at(e, stop);
+    Scene sc = build_at(e, watch);
     ContactRecords contacts;
     fill_contacts(sc.model, sc.drive, 0.0, sc.y0.data(), contacts);
     const double Mb = std::abs(build::arm_belt_moment(sc, contacts, sc.model.pulleys[arm].arm));

@@ -40,9 +40,11 @@ std::vector<std::string> scene_warnings(const Scene& sc);
 
 // Validates every parameter (ParameterError with the reason and the value) and builds the scene.
 // The placement and the static solve poll *stop (when given) at every bisection step, Newton
-// iteration and line-search trial and throw BuildInterrupted when it is set: a long build (thousands of elements) ends within a
-// fraction of a second.
+// iteration and line-search trial and throw BuildInterrupted when it is set: a long build
+// (thousands of elements) ends within a fraction of a second.
 Scene build_scene(const SceneDef& def, const std::atomic<bool>* stop = nullptr);
+// The same, watched (scene_types.hpp, BuildWatch): its stop flag polled and its progress told there.
+Scene build_scene(const SceneDef& def, BuildWatch& watch);
 
 // The scene's inputs after defaults, in the order parameters.csv lists them.
 std::vector<SceneInput> scene_inputs(const SceneDef& def);

@@ -166,7 +166,7 @@ double wall_left(const std::deque<std::pair<double, double>>& seen, double t0, d
   return done > 0 ? std::max(0.0, (wall - w_ref) * (target - t) / done) : NAN;
 }
 
-void ProgressLine::draw(bool last) {
+ProgressParts ProgressLine::run_parts(bool last) const {
   const double done = t_ - t0_;
   const double pct = target_ > t0_ ? 100 * done / (target_ - t0_) : 100;
   char text[256];
@@ -176,6 +176,32 @@ void ProgressLine::draw(bool last) {
   parts.elapsed = duration_text(wall_) + " elapsed";
   if (!last) parts.left = "about " + duration_text(wall_left(seen_, t0_, t_, target_, wall_)) + " left";
   parts.steps = std::to_string(steps_) + " steps";
+  return parts;
+}
+
+ProgressParts ProgressLine::build_parts(bool last) const {
+  // no estimate: how many Newton iterations the static state will take is not known before
+  ProgressParts parts;
+  const std::string belt = "(" + std::to_string(elements_) + " elements)";
+  parts.head = built_ ? "beltsim: scene built " + belt : "beltsim: building the scene " + belt + ": " + stage_;
+  parts.elapsed = duration_text(wall_) + " elapsed";
+  if (newton_ > 0 && (built_ || last))
+    parts.steps = std::to_string(newton_) + " Newton iteration" + (newton_ == 1 ? "" : "s");
+  else if (newton_ > 0)
+    parts.steps = "Newton iteration " + std::to_string(newton_) +
+                  (residual_ >= 0 ? ": " + rounded_text(residual_, 2) + " m/s² from equilibrium" : "");
+  return parts;
+}
+
+bool ProgressLine::due(double wall) {
+  if (wall < 1.0 || wall - last_ < (tty_ ? 0.5 : 10.0)) return false;
+  last_ = wall;
+  drawn_ = true;
+  return true;
+}
+
+void ProgressLine::draw(bool last) {
+  const ProgressParts parts = build_ ? build_parts(last) : run_parts(last);
   const std::string line = fit_progress_text(parts, tty_ ? terminal_columns() : 0);
   if (!tty_) {
     std::fprintf(stderr, "%s\n", line.c_str());
@@ -203,15 +229,30 @@ RunProgress ProgressLine::callback() {
     // the integrator's last step may end past the target (the samples and callbacks up to the
     // target are read from its dense output): the line shows the run's progress, at most all of it
     t_ = std::min(t, target), target_ = target, wall_ = wall, steps_ = w.steps - steps_before_;
-    if (wall < 1.0 || wall - last_ < (tty_ ? 0.5 : 10.0)) return;
-    last_ = wall;
-    drawn_ = true;
+    if (!due(wall)) return;
     // the times drawn, for the estimate's recent rate: the last two thirds of the run's wall time,
     // and the one before them
     seen_.emplace_back(wall, t_);
     while (seen_.size() > 2 && seen_[1].first <= wall / 3) seen_.pop_front();
     draw(false);
   };
+}
+
+std::function<void(const BuildWatch&)> ProgressLine::build_callback() {
+  if (!enabled_) return {};
+  build_ = true;
+  start_ = std::chrono::steady_clock::now();
+  return [this](const BuildWatch& w) {
+    elements_ = w.elements, newton_ = w.newton, stage_ = w.stage, residual_ = w.residual;
+    wall_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+    if (due(wall_)) draw(false);
+  };
+}
+
+void ProgressLine::built() {
+  if (!build_) return;
+  built_ = true;
+  wall_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
 }
 
 }  // namespace beltsim::script

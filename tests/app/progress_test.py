@@ -91,6 +91,12 @@ SLOW = (two_pulley(40) + WAIT +
 # a C call that Lua cannot stop (a string pattern that backtracks for minutes)
 STUCK = 'local x = ("a"):rep(3000):find("(.-)(.-)(.-)(.-)b")'
 
+# a scene whose build takes seconds on any machine: its driver's torque law, which the static
+# solve evaluates with every residual (428 times for this belt), waits 8 ms of the CPU
+SLOW_BUILD = (WAIT + two_pulley(40).replace("torque = beltsim.ramp(0.3, -70)",
+                                            "torque = function(t) wait(0.008) return -70 * math.min(t / 0.3, 1) end") +
+              'print("built")\n')
+
 # the README's minimal scenario (a run of a fraction of a second: no progress line)
 MINIMAL = two_pulley(60) + "drive:run { t_end = 0.1 }\n"
 
@@ -288,6 +294,25 @@ class ProgressTest(unittest.TestCase):
                 code, text, echo = to_end_echo(pid, fd, raw)
                 self.assertEqual(code, status, text)
                 self.assertTrue(echo, "%s: the run left the terminal without echo: %r" % (name, text))
+
+    def test_a_long_scene_build_shows_its_progress(self):
+        # a belt of 19 000 elements took 20 s to build without a word: a build that takes more than
+        # a second shows the progress line (its stage, wall time, Newton iterations) and ends it
+        # with the scene built, before the scene's own lines
+        code, raw = on_terminal([BELTSIM, "run", self.script("slow_build.lua", SLOW_BUILD)], self.dir)
+        self.assertEqual(code, 0, raw)
+        drawn = re.findall(r"beltsim: (?:building the scene|scene built) [^\r\n]*", raw)
+        self.assertTrue(drawn, "no progress line of the build: %r" % raw)
+        self.assertRegex(drawn[0], r"^beltsim: building the scene \(40 elements\): static state, [0-9]+ s elapsed, "
+                         r"Newton iteration [0-9]+(: [0-9.e+-]+ m/s² from equilibrium)?$")
+        self.assertRegex(drawn[-1], r"^beltsim: scene built \(40 elements\), [0-9]+ s elapsed, [0-9]+ Newton iterations *$")
+        self.assertLess(raw.index(drawn[-1]), raw.index("beltsim: scene defaults"), raw)
+        self.assertRegex(raw[raw.index(drawn[-1]):], r"^[^\r\n]*\r\nbeltsim: scene defaults", raw)
+        # a quick build says nothing of it
+        code, raw = on_terminal([BELTSIM, "run", self.script("my.lua", MINIMAL)], self.dir)
+        self.assertEqual(code, 0, raw)
+        self.assertNotIn("building the scene", raw)
+        self.assertNotIn("scene built", raw)
 
     def test_a_run_says_where_it_ended(self):
         # the README's minimal run: one line on stderr names the end, the steps, the time and the outputs

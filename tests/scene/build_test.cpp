@@ -9,6 +9,8 @@
 #include <optional>
 #include <sstream>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "scene/parameters.hpp"
 #include "scene/validate.hpp"
@@ -222,7 +224,8 @@ TEST(BuildStages, WalkAndCloseTheLoop) {
   for (int i = 1; i < 8 && at[i] < kD; ++i) EXPECT_NEAR(at[i] - at[i - 1], 2 * h + gap, 1e-15) << i;
 
   const build::TensionAtRest t = build::tension_at_rest(s.d.belt, s.route.length, s.belt);
-  const double g = build::close_loop(s.route, 60, s.d.belt, t, s.belt, nullptr);
+  BuildWatch unwatched;
+  const double g = build::close_loop(s.route, 60, s.d.belt, t, s.belt, unwatched);
   EXPECT_LT(s.belt.rigid_length, s.belt.pitch);
   EXPECT_NEAR(s.d.belt.EA / s.belt.rigid_length * g, 500, 1e-9 * 500);
   EXPECT_NEAR(build::walk(s.route, 60, 0.5 * s.belt.rigid_length, g, nullptr), s.route.length, 1e-12);
@@ -313,9 +316,34 @@ TEST(BuildStages, StaticSolveAndSettle) {
 
   Eigen::VectorXd y = sc.y0;
   y[0] += 1e-4;  // one element 0.1 mm off its rest
-  const double moved = build::static_solve(sc.model, sc.drive, y, 0, nullptr);
+  BuildWatch unwatched;
+  const double moved = build::static_solve(sc.model, sc.drive, y, 0, unwatched);
   EXPECT_LT(moved, 1e-3);
   EXPECT_NEAR(y[0], sc.y0[0], 1e-7);
+}
+
+// A build tells its watcher where it is at every poll (the progress line of a long build,
+// script/progress.hpp): the belt placed first, then the static state, its Newton iterations
+// counted over every pass, the last accepted residual the scene's own
+TEST(BuildStages, ABuildTellsItsProgressAtEveryPoll) {
+  std::vector<std::pair<std::string, int>> told;
+  BuildWatch watch;
+  watch.progress = [&](const BuildWatch& w) {
+    EXPECT_EQ(w.elements, 60);
+    told.emplace_back(w.stage, w.newton);
+  };
+  const Scene sc = build_scene(presets::paper_dry(), watch);
+  ASSERT_FALSE(told.empty());
+  EXPECT_EQ(told.front(), std::make_pair(std::string("placing the belt"), 0));
+  EXPECT_EQ(told.back().first, "static state");
+  const auto first_static =
+      std::find_if(told.begin(), told.end(), [](const auto& t) { return t.first != "placing the belt"; });
+  EXPECT_TRUE(std::all_of(first_static, told.end(), [](const auto& t) { return t.first == "static state"; }));
+  EXPECT_TRUE(
+      std::is_sorted(told.begin(), told.end(), [](const auto& a, const auto& b) { return a.second < b.second; }));
+  EXPECT_EQ(told.back().second, watch.newton);
+  EXPECT_GE(watch.newton, 2);
+  EXPECT_EQ(watch.residual, sc.static_residual);
 }
 
 // A static solve that fails on a contact far stiffer than the belt's SDE names the contact constant
