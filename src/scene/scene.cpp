@@ -91,9 +91,65 @@ std::string strain_warning(const Scene& sc) {
   return strain_at_rest_warning(s);
 }
 
+std::string belt_speed_warning(const Scene& sc) {
+  const Model& m = sc.model;
+  // the fastest: its pulley, speed [rad/s], pitch radius [m] and when it turns so
+  int pulley = -1;
+  double omega = 0, radius = 0;
+  std::string when;
+  const auto consider = [&](int j, double w, double r, const std::string& at) {
+    if (std::isfinite(w) && std::abs(w) * r > std::abs(omega) * radius) pulley = j, omega = w, radius = r, when = at;
+  };
+  bool kinematic = false;
+  for (size_t k = 0; k < sc.route_pulleys.size(); ++k) {
+    const int j = sc.route_pulleys[k];
+    const PulleyDrive& p = sc.drive.pulleys[j];
+    if (!p.kinematic) continue;
+    kinematic = true;
+    const double r = sc.route.arcs[k].radius;
+    consider(j, sc.y0[m.n_coord() + m.pulley_coord(j)], r, "at the start");
+    if (const std::optional<double> steady = steady_value(p.speed, 0.0)) {
+      double peak = std::abs(*steady);
+      for (const Sine& x : p.speed.sines) peak += std::abs(x.amplitude);
+      for (const Harmonic& h : p.speed.harmonics) peak += std::abs(h.amplitude);
+      consider(j, *steady < 0 ? -peak : peak, r, "once its ramps and tables have ended");
+    }
+  }
+  if (!kinematic)
+    if (const std::optional<double> v = steady_belt_speed(sc)) {
+      // the belt at the free pulleys' balance of torques: the smallest pulley turns fastest
+      size_t fastest = 0;
+      for (size_t k = 1; k < sc.route_pulleys.size(); ++k)
+        if (sc.route.arcs[k].radius < sc.route.arcs[fastest].radius) fastest = k;
+      const double r = sc.route.arcs[fastest].radius;
+      consider(sc.route_pulleys[fastest], sc.route.arcs[fastest].sense * *v / r, r,
+               "at the drive's steady speeds (the free pulleys' torques balanced)");
+    }
+  const double v = std::abs(omega) * radius;
+  if (pulley < 0 || !(v > kBeltSpeedWarn)) return "";
+  const Belt& b = m.belt;
+  const double per_length = b.mass / b.rigid_length;  // [kg/m]
+  const double centrifugal = per_length * v * v;
+  const auto num = [](double x) { return rounded_text(x, 5); };
+  const std::string name = "pulley '" + m.pulleys[pulley].name + "'";
+  std::string w = (kinematic ? name + ".speed: " : name + " turns at ") + num(omega) + " rad/s " + when +
+                  ", which moves the belt at " + num(v) + " m/s (pitch radius " + num(radius) +
+                  " m), past what PK belts are rated for (about 50-60 m/s; warned above " + num(kBeltSpeedWarn) +
+                  " m/s): its centrifugal tension m'·v² would be " + num(centrifugal) + " N (m' = " + num(per_length) +
+                  " kg/m), " + num(centrifugal / sc.static_tension) + " times its " + num(sc.static_tension) +
+                  " N at rest";
+  if (kinematic)
+    w += ". Speeds are in rad/s: if " + num(std::abs(omega)) + " rpm was meant, beltsim.rpm(" + num(std::abs(omega)) +
+         ") is " + num(std::abs(omega) * 2 * M_PI / 60) + " rad/s";
+  else
+    w += ". Check the torques: a load too light for the driving torque lets the drive run so fast";
+  return w + " (docs/model.md, limits the scene build enforces)";
+}
+
 std::vector<std::string> scene_warnings(const Scene& sc) {
   std::vector<std::string> out;
   if (std::string strain = strain_warning(sc); !strain.empty()) out.push_back(std::move(strain));
+  if (std::string speed = belt_speed_warning(sc); !speed.empty()) out.push_back(std::move(speed));
   for (std::string& w : coarse_wraps(sc)) out.push_back(std::move(w));
   for (std::string& w : wrong_side_maps(sc)) out.push_back(std::move(w));
   for (int j = 0; j < sc.model.n_p(); ++j) {

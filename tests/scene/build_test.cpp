@@ -522,6 +522,63 @@ TEST(BuildStages, HugeMuIsRefusedAndAnEnergySourceIsWarnedOf) {
   EXPECT_NE(w[0].find("pulley 'driven'.torque: per_speed = 0.5"), std::string::npos) << w[0];
 }
 
+// a belt speed past what PK belts are rated for (kBeltSpeedWarn, 60 m/s) is warned of once, naming
+// the pulley, its speed and the belt's: a user's 5000 rad/s crank (500 m/s) ran without a word. A
+// kinematic pulley's speed at the start and once its ramps have ended (a sine at its peak), a free
+// drive's at the balance of its torques; 50 m/s is within a PK belt's rating
+TEST(BuildStages, ABeltSpeedPastAPkBeltsRatingIsWarnedOfOnce) {
+  SceneDef d = presets::paper_dry();
+  d.belt.bending_damping = 0;  // its own warning (bending_loss_test.cpp), which such speeds raise too
+  const auto speed_warnings = [&](const SceneDef& def) {
+    std::vector<std::string> out;
+    for (const std::string& w : scene_warnings(build_scene(def)))
+      if (w.find("PK belts are rated for") != std::string::npos) out.push_back(w);
+    return out;
+  };
+  SceneDef k = d;
+  k.pulleys[0].kinematic = true;
+  k.pulleys[0].torque = TimeSpeedLaw{};
+  k.pulleys[0].speed.constant = -5000;
+  std::vector<std::string> w = speed_warnings(k);
+  ASSERT_EQ(w.size(), 1u);
+  EXPECT_EQ(w[0],
+            "pulley 'driver'.speed: -5000 rad/s at the start, which moves the belt at 500 m/s (pitch radius 0.1 m), "
+            "past what PK belts are rated for (about 50-60 m/s; warned above 60 m/s): its centrifugal tension m'·v² "
+            "would be 24000 N (m' = 0.096 kg/m), 48 times its 500 N at rest. Speeds are in rad/s: if 5000 rpm was "
+            "meant, beltsim.rpm(5000) is 523.6 rad/s (docs/model.md, limits the scene build enforces)");
+  k.pulleys[0].speed.constant = -500;  // 50 m/s
+  EXPECT_TRUE(speed_warnings(k).empty());
+  // a ramp from rest to 1000 rad/s: its end; a sine about 550 rad/s of 100 rad/s: its peak, 65 m/s
+  k.pulleys[0].speed.constant = 0;
+  k.pulleys[0].speed.ramps.push_back(Ramp{0, 1, 0, -1000});
+  w = speed_warnings(k);
+  ASSERT_EQ(w.size(), 1u);
+  EXPECT_NE(w[0].find("pulley 'driver'.speed: -1000 rad/s once its ramps and tables have ended, which moves the "
+                      "belt at 100 m/s"),
+            std::string::npos)
+      << w[0];
+  k.pulleys[0].speed.ramps.clear();
+  k.pulleys[0].speed.sines.push_back(Sine{550, 100, 10, 0});
+  w = speed_warnings(k);
+  ASSERT_EQ(w.size(), 1u);
+  EXPECT_NE(w[0].find("650 rad/s once its ramps and tables have ended, which moves the belt at 65 m/s"),
+            std::string::npos)
+      << w[0];
+  // free pulleys: a load of 0.03 N·m·s/rad against the driver's 70 N·m balances at 233 m/s
+  SceneDef f = d;
+  f.pulleys[0].torque = TimeSpeedLaw{};
+  f.pulleys[0].torque.constant = -70;
+  f.pulleys[1].torque.per_speed = -0.03;
+  w = speed_warnings(f);
+  ASSERT_EQ(w.size(), 1u);
+  EXPECT_NE(w[0].find("pulley 'driver' turns at -2333.3 rad/s at the drive's steady speeds (the free pulleys' "
+                      "torques balanced), which moves the belt at 233.33 m/s"),
+            std::string::npos)
+      << w[0];
+  EXPECT_NE(w[0].find("Check the torques"), std::string::npos) << w[0];
+  EXPECT_TRUE(speed_warnings(d).empty());  // the paper's drive: 7.3 m/s
+}
+
 // a speed map whose speeds all lie on the other side of zero from the way its pulley turns gives
 // one torque throughout (a load of 0 N·m, silently): warned of, naming the pulley, the map's
 // speeds and the sense, that of the drive's steady speeds (else belt.direction's)
