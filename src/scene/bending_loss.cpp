@@ -11,10 +11,6 @@
 
 namespace beltsim {
 
-namespace {
-
-// a law's value once its ramps and tables have ended, its sines at their means and its harmonics
-// averaged out; nullopt for a law given as code (not evaluated here)
 std::optional<double> steady_value(const TimeSpeedLaw& law, double omega) {
   if (law.fn) return std::nullopt;
   double v = law.constant + law.per_speed * omega;
@@ -24,6 +20,8 @@ std::optional<double> steady_value(const TimeSpeedLaw& law, double omega) {
   for (const Sine& s : law.sines) v += s.mean;
   return v;
 }
+
+namespace {
 
 // one pulley of the route as the estimate sees it
 struct WrapSeen {

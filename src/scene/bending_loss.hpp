@@ -29,6 +29,12 @@
 namespace beltsim {
 
 struct Scene;
+struct TimeSpeedLaw;
+
+// A law's steady value as the estimate reads it (above): once its ramps and tables have ended, its
+// sines at their means and its harmonics averaged out, at speed omega [rad/s]; nullopt for a law
+// given as Lua code (not evaluated here)
+std::optional<double> steady_value(const TimeSpeedLaw& law, double omega);
 
 struct BendingLoss {
   double belt_speed = 0;   // [m/s] at the laws' steady values

@@ -33,11 +33,18 @@ namespace build {
 
 namespace {
 
-void poll_stop(const std::atomic<bool>* stop, int elements) {
-  if (stop && stop->load(std::memory_order_relaxed))
-    throw BuildInterrupted("scene: the build was interrupted while placing the belt and solving its static initial state (" +
-                           std::to_string(elements) + " elements); no scene was made");
+// the build's poll (BuildWatch): stopped, or its progress told in `stage`
+void poll(BuildWatch& w, const char* stage) {
+  if (w.stop && w.stop->load(std::memory_order_relaxed))
+    throw BuildInterrupted(
+        "scene: the build was interrupted while placing the belt and solving its static initial state (" +
+        std::to_string(w.elements) + " elements); no scene was made");
+  w.stage = stage;
+  if (w.progress) w.progress(w);
 }
+
+constexpr const char* kPlacing = "placing the belt";
+constexpr const char* kStatic = "static state";
 
 }  // namespace
 
@@ -267,14 +274,13 @@ double walk(const Route& path, int n, double h, double gap, std::vector<double>*
   return s_prev;
 }
 
-double close_loop(const Route& path, int n, const BeltDef& bd, const TensionAtRest& t, Belt& b,
-                  const std::atomic<bool>* stop) {
+double close_loop(const Route& path, int n, const BeltDef& bd, const TensionAtRest& t, Belt& b, BuildWatch& watch) {
   if (t.rest > 0) {
     double lo = 0, hi = 0.5 * b.pitch;
     if (walk(path, n, 0.5 * t.rest, 0, nullptr) >= path.length)
       reject(t.key, "leaves the belt slack on the pulleys (its contact shortens the path): stretch it more", t.value);
     for (int it = 0; it < 100; ++it) {
-      poll_stop(stop, n);
+      poll(watch, kPlacing);
       const double g = 0.5 * (lo + hi);
       const bool last = at_resolution(g, lo, hi);
       (walk(path, n, 0.5 * t.rest, g, nullptr) < path.length ? lo : hi) = g;
@@ -287,7 +293,7 @@ double close_loop(const Route& path, int n, const BeltDef& bd, const TensionAtRe
   auto gap_for = [&](double l0) { return std::pow(bd.pretension / (rigid ? bd.EA / l0 : bd.k), 1.0 / b.e_tra); };
   double lo = 0.2 * b.pitch, hi = b.pitch;
   for (int it = 0; it < 100; ++it) {
-    poll_stop(stop, n);  // each walk is O(n): 25 ms at 5000 elements
+    poll(watch, kPlacing);  // each walk is O(n): 25 ms at 5000 elements
     const double le = 0.5 * (lo + hi);
     const bool last = at_resolution(le, lo, hi);
     (walk(path, n, 0.5 * le, gap_for(le), nullptr) < path.length ? lo : hi) = le;
@@ -376,8 +382,7 @@ std::vector<double> element_mu(const BeltDef& bd, const std::vector<ElementSite>
   return mu;
 }
 
-double static_solve(const Model& m, const Drive& dr, Eigen::VectorXd& y, double max_move,
-                    const std::atomic<bool>* stop) {
+double static_solve(const Model& m, const Drive& dr, Eigen::VectorXd& y, double max_move, BuildWatch& watch) {
   const int ne = 3 * m.n_el();
   Eigen::VectorXd f(m.n_coord());
   Jacobian J;
@@ -392,13 +397,14 @@ double static_solve(const Model& m, const Drive& dr, Eigen::VectorXd& y, double 
   };
   double res = residual(y);
   for (int it = 0; it < 30 && res > 1e-9; ++it) {
-    poll_stop(stop, m.n_el());
+    ++watch.newton;
+    poll(watch, kStatic);
     jacobian(m, dr, 0.0, y.data(), J);
     assemble(m, dr, 0.0, 0.0, J.C, J.K, ne, A);  // A = -K_ee, the same pattern at every call
-    poll_stop(stop, m.n_el());
+    poll(watch, kStatic);
     if (it == 0) lu.analyzePattern(A);
     lu.factorize(A);
-    poll_stop(stop, m.n_el());
+    poll(watch, kStatic);
     if (lu.info() != Eigen::Success) break;
     Eigen::VectorXd dq = lu.solve(f.head(ne));
     if (max_move > 0) {
@@ -410,13 +416,14 @@ double static_solve(const Model& m, const Drive& dr, Eigen::VectorXd& y, double 
     double step = 1.0;
     bool improved = false;
     for (int ls = 0; ls < 12; ++ls, step *= 0.5) {
-      poll_stop(stop, m.n_el());
+      poll(watch, kStatic);
       Eigen::VectorXd trial = y;
       trial.head(ne) += step * dq;
       const double r = residual(trial);
       if (r < res) {
         y = trial;
         res = r;
+        watch.residual = r;
         improved = true;
         break;
       }
@@ -432,7 +439,7 @@ double span_tension(const Model& m, const Route& route, const Eigen::VectorXd& y
   return tension / static_cast<double>(route.spans.size());
 }
 
-std::string settle(Scene& sc, const BeltDef& bd, bool rest_given, const std::atomic<bool>* stop) {
+std::string settle(Scene& sc, const BeltDef& bd, bool rest_given, BuildWatch& watch) {
   const Model& m = sc.model;
   Belt& b = sc.model.belt;
   // the static state is found with every pulley at rest (a kinematic pulley's prescribed speed
@@ -454,7 +461,7 @@ std::string settle(Scene& sc, const BeltDef& bd, bool rest_given, const std::ato
     constexpr int kPasses = 12;
     for (int it = 0; it < kPasses; ++it) {
       at_rest.belt = b;
-      sc.static_residual = static_solve(at_rest, held, sc.y0, max_move, stop);
+      sc.static_residual = static_solve(at_rest, held, sc.y0, max_move, watch);
       sc.static_tension = span_tension(m, sc.route, sc.y0);
       // the rest length given: the tension is what it gives, once converged
       if (rest_given) {

@@ -3,7 +3,6 @@
 // the key, the reason and the value) when that part cannot be built.
 #pragma once
 
-#include <atomic>
 #include <optional>
 #include <string>
 #include <vector>
@@ -79,8 +78,9 @@ double walk(const Route& path, int n, double h, double gap, std::vector<double>*
 // the SDE gap that closes the loop with n elements (bisection): with the pretension given, the
 // rest length whose gaps carry it (set into b, the gap following it through k = EA/l0); with the
 // rest length given, the gap. Throws when a given rest length leaves the belt slack on the path.
-double close_loop(const Route& path, int n, const BeltDef& bd, const TensionAtRest& t, Belt& b,
-                  const std::atomic<bool>* stop);
+// Polls `watch` (scene_types.hpp) at every bisection step, as static_solve at every Newton
+// iteration and line-search trial (counted in watch.newton, the residual in watch.residual).
+double close_loop(const Route& path, int n, const BeltDef& bd, const TensionAtRest& t, Belt& b, BuildWatch& watch);
 
 // 7. the state at the placement: the elements at rest at arc lengths s along path, each rod along
 // the tangent (angles continuous along the belt), the pulleys at rest
@@ -103,8 +103,7 @@ void set_start_speeds(const Model& m, const Drive& dr, Eigen::VectorXd& y);
 // 9. the static state. static_solve: Newton iterations with a damped step on the elements' static
 // equations of m (pulleys held), from y; returns the final max |acceleration| [m/s²]. max_move > 0
 // limits how far one step moves any element centre (a trust region).
-double static_solve(const Model& m, const Drive& dr, Eigen::VectorXd& y, double max_move,
-                    const std::atomic<bool>* stop);
+double static_solve(const Model& m, const Drive& dr, Eigen::VectorXd& y, double max_move, BuildWatch& watch);
 // the mean SDE force on the spans of sc.route in the state y [N]
 double span_tension(const Model& m, const Route& route, const Eigen::VectorXd& y);
 // from the placement in sc.y0 and sc.model.belt: static_solve with every pulley held, the rest
@@ -112,7 +111,7 @@ double span_tension(const Model& m, const Route& route, const Eigen::VectorXd& y
 // the belt, static_residual and static_tension; when the plain iteration does not
 // converge or leaves a pulley, repeats it with a trust region of a tenth of a pitch per step
 // (static_retried). Returns the name of a route pulley the belt left untouched, empty when none.
-std::string settle(Scene& sc, const BeltDef& bd, bool rest_given, const std::atomic<bool>* stop);
+std::string settle(Scene& sc, const BeltDef& bd, bool rest_given, BuildWatch& watch);
 
 // [m/s²] The largest acceleration a static state is left with (settle), against 1e5..1e9 in the
 // raw placement.

@@ -95,9 +95,65 @@ std::string strain_warning(const Scene& sc) {
   return strain_at_rest_warning(s);
 }
 
+std::string belt_speed_warning(const Scene& sc) {
+  const Model& m = sc.model;
+  // the fastest: its pulley, speed [rad/s], pitch radius [m] and when it turns so
+  int pulley = -1;
+  double omega = 0, radius = 0;
+  std::string when;
+  const auto consider = [&](int j, double w, double r, const std::string& at) {
+    if (std::isfinite(w) && std::abs(w) * r > std::abs(omega) * radius) pulley = j, omega = w, radius = r, when = at;
+  };
+  bool kinematic = false;
+  for (size_t k = 0; k < sc.route_pulleys.size(); ++k) {
+    const int j = sc.route_pulleys[k];
+    const PulleyDrive& p = sc.drive.pulleys[j];
+    if (!p.kinematic) continue;
+    kinematic = true;
+    const double r = sc.route.arcs[k].radius;
+    consider(j, sc.y0[m.n_coord() + m.pulley_coord(j)], r, "at the start");
+    if (const std::optional<double> steady = steady_value(p.speed, 0.0)) {
+      double peak = std::abs(*steady);
+      for (const Sine& x : p.speed.sines) peak += std::abs(x.amplitude);
+      for (const Harmonic& h : p.speed.harmonics) peak += std::abs(h.amplitude);
+      consider(j, *steady < 0 ? -peak : peak, r, "once its ramps and tables have ended");
+    }
+  }
+  if (!kinematic)
+    if (const std::optional<double> v = steady_belt_speed(sc)) {
+      // the belt at the free pulleys' balance of torques: the smallest pulley turns fastest
+      size_t fastest = 0;
+      for (size_t k = 1; k < sc.route_pulleys.size(); ++k)
+        if (sc.route.arcs[k].radius < sc.route.arcs[fastest].radius) fastest = k;
+      const double r = sc.route.arcs[fastest].radius;
+      consider(sc.route_pulleys[fastest], sc.route.arcs[fastest].sense * *v / r, r,
+               "at the drive's steady speeds (the free pulleys' torques balanced)");
+    }
+  const double v = std::abs(omega) * radius;
+  if (pulley < 0 || !(v > kBeltSpeedWarn)) return "";
+  const Belt& b = m.belt;
+  const double per_length = b.mass / b.rigid_length;  // [kg/m]
+  const double centrifugal = per_length * v * v;
+  const auto num = [](double x) { return rounded_text(x, 5); };
+  const std::string name = "pulley '" + m.pulleys[pulley].name + "'";
+  std::string w = (kinematic ? name + ".speed: " : name + " turns at ") + num(omega) + " rad/s " + when +
+                  ", which moves the belt at " + num(v) + " m/s (pitch radius " + num(radius) +
+                  " m), past what PK belts are rated for (about 50-60 m/s; warned above " + num(kBeltSpeedWarn) +
+                  " m/s): its centrifugal tension m'·v² would be " + num(centrifugal) + " N (m' = " + num(per_length) +
+                  " kg/m), " + num(centrifugal / sc.static_tension) + " times its " + num(sc.static_tension) +
+                  " N at rest";
+  if (kinematic)
+    w += ". Speeds are in rad/s: if " + num(std::abs(omega)) + " rpm was meant, beltsim.rpm(" + num(std::abs(omega)) +
+         ") is " + num(std::abs(omega) * 2 * M_PI / 60) + " rad/s";
+  else
+    w += ". Check the torques: a load too light for the driving torque lets the drive run so fast";
+  return w + " (docs/model.md, limits the scene build enforces)";
+}
+
 std::vector<std::string> scene_warnings(const Scene& sc) {
   std::vector<std::string> out;
   if (std::string strain = strain_warning(sc); !strain.empty()) out.push_back(std::move(strain));
+  if (std::string speed = belt_speed_warning(sc); !speed.empty()) out.push_back(std::move(speed));
   for (std::string& w : coarse_wraps(sc)) out.push_back(std::move(w));
   for (std::string& w : wrong_side_maps(sc)) out.push_back(std::move(w));
   for (int j = 0; j < sc.model.n_p(); ++j) {
@@ -115,7 +171,7 @@ std::vector<std::string> scene_warnings(const Scene& sc) {
 }
 
 namespace {
-Scene build_at(const SceneDef& d, const std::atomic<bool>* stop) {
+Scene build_at(const SceneDef& d, BuildWatch& watch) {
   const BeltDef& bd = d.belt;
   const int n = bd.elements;
   Scene sc;
@@ -152,7 +208,7 @@ Scene build_at(const SceneDef& d, const std::atomic<bool>* stop) {
   sc.penetration.assign(m.n_p(), 0.0);
   for (size_t k = 0; k < p0.size(); ++k) sc.penetration[order.pulleys[k]] = p0[k];
   const Route path = build::centre_path(order, p0, bd.loop_sense);
-  const double gap = build::close_loop(path, n, bd, tension, b, stop);
+  const double gap = build::close_loop(path, n, bd, tension, b, watch);
   std::vector<double> s;
   build::walk(path, n, 0.5 * b.rigid_length, gap, &s);
   build::set_segment_laws(m, d, s);  // before the state is sized: a LuGre segment adds deflections
@@ -163,7 +219,7 @@ Scene build_at(const SceneDef& d, const std::atomic<bool>* stop) {
   sc.drive.mu = build::element_mu(bd, sc.sites);
   build::set_start_speeds(m, sc.drive, sc.y0);
 
-  const std::string lost = build::settle(sc, bd, tension.rest > 0, stop);
+  const std::string lost = build::settle(sc, bd, tension.rest > 0, watch);
   build::check_finite(sc, d, tension.tension);
   build::check_static_state(sc, d, lost, tension.tension);
   build::balance_arms(sc);
@@ -181,10 +237,17 @@ Scene build_at(const SceneDef& d, const std::atomic<bool>* stop) {
 }  // namespace
 
 Scene build_scene(const SceneDef& d, const std::atomic<bool>* stop) {
+  BuildWatch watch;
+  watch.stop = stop;
+  return build_scene(d, watch);
+}
+
+Scene build_scene(const SceneDef& d, BuildWatch& watch) {
   validate(d);
+  watch.elements = d.belt.elements;
   for (const PulleyDef& p : d.pulleys) build::validate_tensioner(p), build::validate_coupling(p);
   const std::optional<double> preload = build::tensioner_preload(d);
-  if (!preload) return build_at(d, stop);
+  if (!preload) return build_at(d, watch);
   // the preload sets the belt's tension: the belt's moment about the pivot is proportional to it
   // (to a part in 1e3 over a doubling: the wrap angle changes little), so the ratio converges in a
   // few builds
@@ -194,7 +257,7 @@ Scene build_scene(const SceneDef& d, const std::atomic<bool>* stop) {
   SceneDef e = d;
   constexpr double kAgree = 1e-6;  // relative: far below the static state's own residual tension error
   for (int it = 0;; ++it) {
-    Scene sc = build_at(e, stop);
+    Scene sc = build_at(e, watch);
     ContactRecords contacts;
     fill_contacts(sc.model, sc.drive, 0.0, sc.y0.data(), contacts);
     const double Mb = std::abs(build::arm_belt_moment(sc, contacts, sc.model.pulleys[arm].arm));

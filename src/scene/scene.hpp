@@ -30,8 +30,24 @@ std::vector<std::string> wrong_side_maps(const Scene& sc);
 // was given (strain_at_rest_warning, scene/validate.hpp); "" when it is a belt's.
 std::string strain_warning(const Scene& sc);
 
+// [m/s] Above this belt speed the run's first lines warn (belt_speed_warning): makers rate PK
+// (poly-V) belts for belt speeds up to about 50-60 m/s, so past 60 m/s no PK belt is rated, and
+// the belt's centrifugal tension m'·v² (346 N at 60 m/s on the paper's belt of 0.096 kg/m) is of
+// the order of its tension at rest (docs/model.md, limits the scene build enforces).
+inline constexpr double kBeltSpeedWarn = 60;
+
+// The fastest belt speed the drive's speeds give before it runs, when it passes kBeltSpeedWarn:
+// each kinematic pulley's prescribed speed at the start (the initial state's) and once its ramps
+// and tables have ended, its sines and harmonics at their peaks (bending_loss.hpp steady_value),
+// times its pitch radius; with no kinematic pulley, the steady belt speed the free pulleys' torques
+// balance at (steady_belt_speed), on the pulley it turns fastest. One line naming the pulley, its
+// speed [rad/s], the belt speed [m/s], the threshold and the centrifugal tension against the
+// tension at rest; "" when no speed passes it (or none is known: a law given as Lua code is read
+// at the start only).
+std::string belt_speed_warning(const Scene& sc);
+
 // What the run's first lines warn of (scene:info().warnings lists the same): a strain at rest past
-// a belt's (strain_warning), the coarse wraps,
+// a belt's (strain_warning), a belt speed past a PK belt's rating (belt_speed_warning), the coarse wraps,
 // the speed maps on the wrong side of zero (wrong_side_maps), each free pulley whose torque grows
 // with its speed (per_speed > 0, an energy source: the speed grows as exp(per_speed·t/J) unless
 // the belt holds it back), and bending dampers that will take more than a few per cent of the
@@ -40,9 +56,11 @@ std::vector<std::string> scene_warnings(const Scene& sc);
 
 // Validates every parameter (ParameterError with the reason and the value) and builds the scene.
 // The placement and the static solve poll *stop (when given) at every bisection step, Newton
-// iteration and line-search trial and throw BuildInterrupted when it is set: a long build (thousands of elements) ends within a
-// fraction of a second.
+// iteration and line-search trial and throw BuildInterrupted when it is set: a long build
+// (thousands of elements) ends within a fraction of a second.
 Scene build_scene(const SceneDef& def, const std::atomic<bool>* stop = nullptr);
+// The same, watched (scene_types.hpp, BuildWatch): its stop flag polled and its progress told there.
+Scene build_scene(const SceneDef& def, BuildWatch& watch);
 
 // The scene's inputs after defaults, in the order parameters.csv lists them.
 std::vector<SceneInput> scene_inputs(const SceneDef& def);

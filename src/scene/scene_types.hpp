@@ -3,6 +3,8 @@
 // it (build_scene, scene/scene.hpp): a Model and its initial static state.
 #pragma once
 
+#include <Eigen/Core>
+#include <atomic>
 #include <functional>
 #include <map>
 #include <optional>
@@ -10,8 +12,6 @@
 #include <stdexcept>
 #include <string>
 #include <vector>
-
-#include <Eigen/Core>
 
 #include "model/drive.hpp"
 #include "model/model.hpp"
@@ -202,6 +202,21 @@ double span_force(const Model& m, const Route::Span& sp, const double* y);
 // A scene build stopped by its stop flag (Ctrl-C, SIGTERM).
 struct BuildInterrupted : std::runtime_error {
   using std::runtime_error::runtime_error;
+};
+
+// What a scene build looks at, and tells, at every bisection step of its placement and every
+// Newton iteration and line-search trial of its static solve (scene.hpp, build_scene): a belt of
+// thousands of elements takes seconds to minutes there (19 000 elements: 20-30 s on the project's
+// machine).
+struct BuildWatch {
+  const std::atomic<bool>* stop = nullptr;  // set (Ctrl-C, SIGTERM): the build ends with BuildInterrupted
+  // told at each of those polls, with the fields below (script/progress.hpp draws them once the
+  // build has taken a second); none: nothing told
+  std::function<void(const BuildWatch&)> progress;
+  int elements = 0;        // the belt's
+  const char* stage = "";  // "placing the belt", "static state"
+  int newton = 0;          // Newton iterations of the static solve so far, every pass and retry
+  double residual = -1;    // [m/s²] its largest acceleration after the last of them (-1: none yet)
 };
 
 }  // namespace beltsim

@@ -65,8 +65,9 @@ void report(const CallError& e, const char* prefix = "") {
 
 // runs the compiled chunk on the stack top and prints its results, each a call through docall
 // within the command's instruction budget. True when the chunk ran without error (else `failure`
-// holds the error's message).
-bool execute(lua_State* L, std::string& failure) {
+// holds the error's message); `printed`: it returned values, which were printed.
+bool execute(lua_State* L, std::string& failure, bool& printed) {
+  printed = false;
   const int base = lua_gettop(L) - 1;  // below the chunk
   begin_call(L);                       // the instruction budget is per command; no Ctrl-C pending
   CallError error;
@@ -77,6 +78,7 @@ bool execute(lua_State* L, std::string& failure) {
   }
   if (lua_gettop(L) > base) {
     // the results, printed (a __tostring is Lua code); the command itself has run
+    printed = true;
     lua_pushcfunction(L, print_values);
     lua_insert(L, base + 1);
     if (!docall(L, lua_gettop(L) - base - 1, 0, &error, "stdin")) report(error, "printing the result: ");
@@ -228,6 +230,7 @@ int run_console(const std::optional<std::string>& script, const std::vector<std:
           if (const std::string s = at_prompt(L, changes); !s.empty()) commands.push_back(s);
         });
     std::string chunk, line, failure;
+    bool printed = false;  // the command's values were printed (session.lua prints them again)
     long ended = 0;  // progress lines ended before the command (progress.hpp)
     while (!terminating()) {
       const ConsoleInput::Got got = input.read(chunk.empty() ? "> " : ">> ", line);
@@ -260,8 +263,8 @@ int run_console(const std::optional<std::string>& script, const std::vector<std:
         lua_pop(L, 1);
         failed = true;
       } else if (ctx.stopped_runs.clear(), ctx.page_changes.clear(), ended = progress_lines_ended(),
-                 ctx.interrupted = false, execute(L, failure)) {
-        commands.push_back(replayable(L, chunk, expression, ctx.stopped_runs, ctx.page_changes));
+                 ctx.interrupted = false, execute(L, failure, printed)) {
+        commands.push_back(replayable(L, chunk, expression, printed, ctx.stopped_runs, ctx.page_changes));
       } else {
         // it ran up to its error: what it changed before (a run stopped where its callback raised)
         // is replayed too

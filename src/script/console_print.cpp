@@ -7,11 +7,11 @@
 #include <utility>
 #include <vector>
 
+#include "io/number_text.hpp"
 #include "io/units.hpp"
-
 #include "lauxlib.h"
 #include "lua.h"
-#include "io/number_text.hpp"
+#include "script/progress.hpp"
 
 namespace beltsim::script {
 
@@ -147,6 +147,7 @@ void pretty_into(lua_State* L, int idx, std::string& out, int depth, std::set<co
 }  // namespace
 
 int print_values(lua_State* L) {
+  before_stdout();  // beltsim.print from a run's callback: below the progress line, not on it
   const int n = lua_gettop(L);
   std::string line;
   for (int k = 1; k <= n; ++k) {

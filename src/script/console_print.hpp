@@ -10,6 +10,8 @@ struct lua_State;
 namespace beltsim::script {
 
 // a lua_CFunction: prints its arguments as the console shows values, separated by tabs, on stdout
+// (nothing for none); the console's results, and beltsim.print (session.lua replays with it what
+// the prompt printed)
 int print_values(lua_State* L);
 // s as a Lua string literal ("..." with escapes)
 std::string quoted(const char* s, size_t n);

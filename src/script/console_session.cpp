@@ -95,22 +95,36 @@ std::string commented(const std::string& text) {
   return c;
 }
 
-// the command as statements valid anywhere in session.lua, doing what it did at the prompt
-std::string as_statements(lua_State* L, const std::string& chunk, bool expression) {
+// the command as the prompt showed it typed, as comments: "-- > first line", "-- >> next line"
+std::string typed(const std::string& chunk) {
+  std::string c = "-- > ";
+  for (const char ch : chunk) c += ch == '\n' ? std::string("\n-- >> ") : std::string(1, ch);
+  return c;
+}
+
+// the command as statements valid anywhere in session.lua, doing what it did at the prompt.
+// printed: the prompt printed the values the chunk returned
+std::string as_statements(lua_State* L, const std::string& chunk, bool expression, bool printed) {
   std::string out;
   if (expression) {
-    // a call is a statement as it is; any other expression was printed: it is printed again
+    // a call is a statement as it is (a run, a reading: the replay makes the call, its values
+    // are not printed again); any other expression was typed to see its value, all it did: it
+    // is printed again as the prompt showed it (print() gave "table: 0x55d0..." for a table)
     if (compiles(L, chunk)) return chunk;
-    out = "print(" + chunk + ")";
-    if (!compiles(L, out)) out = "print(" + chunk + "\n)";  // a comment at its end
+    out = "beltsim.print(" + chunk + ")";
+    if (!compiles(L, out)) out = "beltsim.print(" + chunk + "\n)";  // a comment at its end
+    printed = true;
   } else if (has_word(chunk, "return")) {
-    out = "do (function(...)\n" + chunk + "\nend)() end";  // `return` ends the command, not the replay
+    // `return` ends the command, not the replay
+    out = printed ? "beltsim.print((function(...)\n" + chunk + "\nend)())"
+                  : "do (function(...)\n" + chunk + "\nend)() end";
   } else if (has_word(chunk, "local") || chunk.find("::") != std::string::npos) {
     out = "do\n" + chunk + "\nend";  // its locals and labels stay in the command, as at the prompt
   } else {
     out = chunk;
   }
-  if (compiles(L, out)) return out;
+  // a command replayed inside beltsim.print(...) follows its line as it was typed
+  if (compiles(L, out)) return printed && out != chunk ? typed(chunk) + "\n" + out : out;
   // not expected: kept as a comment rather than break the replay
   return commented("(not replayable) " + chunk);
 }
@@ -166,9 +180,9 @@ std::string stopped_or_changed(lua_State* L, const std::string& chunk, const Sto
 
 }  // namespace
 
-std::string replayable(lua_State* L, const std::string& chunk, bool expression, const StoppedRuns& stopped,
-                       const std::vector<PageChange>& page) {
-  if (stopped.empty() && page.empty()) return as_statements(L, chunk, expression);
+std::string replayable(lua_State* L, const std::string& chunk, bool expression, bool printed,
+                       const StoppedRuns& stopped, const std::vector<PageChange>& page) {
+  if (stopped.empty() && page.empty()) return as_statements(L, chunk, expression, printed);
   return stopped_or_changed(L, chunk, stopped, page, true);
 }
 
@@ -178,7 +192,7 @@ std::string failed_replayable(lua_State* L, const std::string& chunk, bool expre
   said = "-- failed at the prompt: " + said;
   // (an assignment that failed kept nothing: its runs are replayed, the variable left as it was)
   if (!stopped.empty() || !page.empty()) return said + "\n" + stopped_or_changed(L, chunk, stopped, page, false);
-  const std::string out = said + "\npcall(function()\n" + as_statements(L, chunk, expression) + "\nend)";
+  const std::string out = said + "\npcall(function()\n" + as_statements(L, chunk, expression, false) + "\nend)";
   if (compiles(L, out)) return out;
   return said + "\n" + commented("(not replayable) " + chunk);
 }
@@ -209,7 +223,8 @@ bool write_session(const std::string& dir, const std::optional<std::string>& scr
     << "-- Replay with: beltsim run " << shell_word(path);
   // beltsim.args as in the session, each --set quoted for the shell
   for (const ScriptArg& a : sets) f << " --set " << shell_word(a.key + "=" + a.text);
-  f << "\n";
+  f << "\n-- An expression the prompt printed (not a call) is printed by beltsim.print, as the prompt\n"
+    << "-- showed it, after the command as it was typed (-- > r).\n";
   // the keys are read by the commands below, after the scenario's first run: read here first,
   // so that the replay's first run does not stop on them as unread (lua_api.hpp, check_unread_args)
   if (!sets.empty()) {

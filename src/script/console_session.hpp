@@ -1,9 +1,12 @@
 // The console's session.lua: the commands that ran without error, in order, as a script that
 // `beltsim run` replays. Each command is written so that it is valid where it stands and does
-// what it did at the prompt: an expression the prompt printed is printed (`print(sim.t)`), a chunk
-// with locals keeps them to itself (`do ... end`), one that returns runs as a function; a run that
-// Ctrl-C stopped becomes run_to(where it stopped). The scenario's text is copied in, so the replay
-// needs no access to the scenario's folder (which the sandbox would refuse).
+// what it did at the prompt: a call is the statement it is; an expression that is not a call and
+// a chunk's returned values, which the prompt printed, are printed as the prompt showed them, by
+// beltsim.print, after a comment with the command as it was typed (`-- > r`, then
+// `beltsim.print(r)`; `print(r)` prints a table's address); a chunk with locals keeps them to
+// itself (`do ... end`), one that returns runs as a function; a run that Ctrl-C stopped becomes
+// run_to(where it stopped). The scenario's text is copied in, so the replay needs no access to
+// the scenario's folder (which the sandbox would refuse).
 #pragma once
 
 #include <optional>
@@ -21,12 +24,13 @@ namespace beltsim::script {
 // runs stopped by Ctrl-C in one command: the simulation's userdata and the time it stopped at
 using StoppedRuns = std::vector<std::pair<const void*, double>>;
 
-// the command `chunk` (compiled as an expression when `expression`) as session.lua replays it;
-// the globals of L name the simulations in `stopped` and `page` (the live view's changes while
-// the command ran, context.hpp). A stopped or changed run is replayed as its parts; an assignment
-// of its result (r = sim:run_to(1)) is kept on the last part
-std::string replayable(lua_State* L, const std::string& chunk, bool expression, const StoppedRuns& stopped,
-                       const std::vector<PageChange>& page);
+// the command `chunk` (compiled as an expression when `expression`; `printed`: the prompt printed
+// the values it gave) as session.lua replays it; the globals of L name the simulations in
+// `stopped` and `page` (the live view's changes while the command ran, context.hpp). A stopped or
+// changed run is replayed as its parts; an assignment of its result (r = sim:run_to(1)) is kept on
+// the last part
+std::string replayable(lua_State* L, const std::string& chunk, bool expression, bool printed,
+                       const StoppedRuns& stopped, const std::vector<PageChange>& page);
 
 // the live view's changes applied while the console waited at its prompt, as statements ("" for none)
 std::string at_prompt(lua_State* L, const std::vector<PageChange>& page);

@@ -5,6 +5,7 @@
 #include "script/lua_api.hpp"
 
 #include "beltsim_version.hpp"
+#include "script/console_print.hpp"
 #include "script/lua_args.hpp"
 #include "script/lua_check.hpp"
 #include "script/lua_help.hpp"
@@ -23,6 +24,7 @@ void open_beltsim(lua_State* L, Context* ctx) {
   open_help(L);
   open_sweep(L, ctx);
   lua_pushstring(L, kBeltsimVersion), lua_setfield(L, -2, "version");
+  lua_pushcfunction(L, print_values), lua_setfield(L, -2, "print");  // values as the console shows them
   push_args(L, ctx);
   lua_setfield(L, -2, "args");
   // beltsim.<misspelt>: an error with a suggestion, not a nil to call

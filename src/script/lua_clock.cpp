@@ -16,6 +16,7 @@
 
 #include "io/number_text.hpp"
 #include "lua.h"
+#include "script/progress.hpp"
 
 namespace beltsim::script {
 
@@ -80,6 +81,7 @@ double cpu_seconds() {
     funlockfile(stdout);
   }
   [[maybe_unused]] const ssize_t n = write(STDERR_FILENO, m.data(), m.size());
+  restore_echo();  // a progress line's (progress.hpp): _exit unwinds nothing
   _exit(1);
 }
 

@@ -121,6 +121,9 @@ const std::vector<HelpEntry>& api_help() {
        "mean + amplitude·sin(2π·frequency·t + phase)"},
       {"args", "beltsim.args.KEY", "a script parameter given as --set KEY=VALUE (nil when not given)"},
       {"integrators", "beltsim.integrators()", "the integrators' names"},
+      {"print", "beltsim.print(...)",
+       "prints its values as the console shows them (tables as readable Lua, units after numbers); session.lua "
+       "replays with it what the prompt printed"},
       {"sweep", "beltsim.sweep{ grid | samples, run = function(p) end } -> sweep",
        "what a sweep file returns for `beltsim sweep`: its points and the run of one point (docs/sweeps.md)"},
       {"help", "help([name])", "this list, or one entry"},

@@ -147,7 +147,13 @@ int l_scene(lua_State* L) {
   KeyPath about;  // the parameter an error is about: its line is the key's (lua_check.hpp, fail_at)
   try {
     const HostWork work;  // beltsim's own work, not Lua code (lua_clock.hpp); its laws are calls of their own
-    *box = new Scene(build_scene(d, ctx ? ctx->stop : nullptr));
+    // a build that takes more than a second (thousands of elements) shows its progress; a quick one nothing
+    ProgressLine line(!(ctx && ctx->capture && ctx->capture->quiet));
+    BuildWatch watch;
+    watch.stop = ctx ? ctx->stop : nullptr;
+    watch.progress = line.build_callback();
+    *box = new Scene(build_scene(d, watch));
+    line.built();
   } catch (const ParameterError& e) {
     error = e.what(), about = e.path;
   } catch (const BuildInterrupted& e) {

@@ -2,6 +2,7 @@
 
 #include <sys/ioctl.h>
 #include <sys/stat.h>
+#include <termios.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -9,6 +10,7 @@
 #include <cmath>
 #include <cstdarg>
 #include <cstdio>
+#include <cstdlib>
 
 #include "io/duration_text.hpp"
 #include "io/number_text.hpp"
@@ -31,7 +33,42 @@ bool same_terminal() {
   return same;
 }
 
+// the terminal on stdin while a progress line holds its echo off: its echo flags before (restore_echo)
+tcflag_t g_echo_flags = 0;
+std::atomic<bool> g_echo_off{false};
+constexpr tcflag_t kEchoFlags = ECHO | ECHONL;
+
+// stdin is a terminal whose foreground this process is in (a background process that sets its
+// modes is stopped with SIGTTOU)
+bool terminal_in_foreground() {
+  return isatty(STDIN_FILENO) && tcgetpgrp(STDIN_FILENO) == getpgrp();
+}
+
+// turns the terminal's echo off; true when this call did (false: no terminal in the foreground,
+// its echo already off, or another line holds it off)
+bool echo_off() {
+  termios t{};
+  if (g_echo_off.load() || !terminal_in_foreground() || tcgetattr(STDIN_FILENO, &t) != 0 || !(t.c_lflag & ECHO))
+    return false;
+  static const bool at_exit = std::atexit(restore_echo) == 0;  // exit() from a run (os.exit with --trusted)
+  (void)at_exit;
+  g_echo_flags = t.c_lflag & kEchoFlags;
+  g_echo_off.store(true);  // before the change: a signal that ends the process from here on restores it
+  t.c_lflag &= ~kEchoFlags;
+  if (tcsetattr(STDIN_FILENO, TCSANOW, &t) == 0) return true;  // TCSANOW: what was typed stays
+  g_echo_off.store(false);
+  return false;
+}
+
 }  // namespace
+
+void restore_echo() {
+  if (!g_echo_off.exchange(false)) return;
+  termios t{};  // (only async-signal-safe calls: stdin was a terminal when the echo was turned off)
+  if (tcgetpgrp(STDIN_FILENO) != getpgrp() || tcgetattr(STDIN_FILENO, &t) != 0) return;
+  t.c_lflag = (t.c_lflag & ~kEchoFlags) | g_echo_flags;
+  tcsetattr(STDIN_FILENO, TCSANOW, &t);
+}
 
 void end_progress_line() {
   if (g_open.exchange(false)) {
@@ -93,6 +130,7 @@ ProgressLine::ProgressLine(bool enabled, long steps_before)
 
 ProgressLine::~ProgressLine() {
   if (drawn_) draw(true);
+  if (echo_off_) restore_echo();
 }
 
 void ProgressLine::finish(double t, long steps, double wall) {
@@ -128,7 +166,7 @@ double wall_left(const std::deque<std::pair<double, double>>& seen, double t0, d
   return done > 0 ? std::max(0.0, (wall - w_ref) * (target - t) / done) : NAN;
 }
 
-void ProgressLine::draw(bool last) {
+ProgressParts ProgressLine::run_parts(bool last) const {
   const double done = t_ - t0_;
   const double pct = target_ > t0_ ? 100 * done / (target_ - t0_) : 100;
   char text[256];
@@ -138,10 +176,38 @@ void ProgressLine::draw(bool last) {
   parts.elapsed = duration_text(wall_) + " elapsed";
   if (!last) parts.left = "about " + duration_text(wall_left(seen_, t0_, t_, target_, wall_)) + " left";
   parts.steps = std::to_string(steps_) + " steps";
+  return parts;
+}
+
+ProgressParts ProgressLine::build_parts(bool last) const {
+  // no estimate: how many Newton iterations the static state will take is not known before
+  ProgressParts parts;
+  const std::string belt = "(" + std::to_string(elements_) + " elements)";
+  parts.head = built_ ? "beltsim: scene built " + belt : "beltsim: building the scene " + belt + ": " + stage_;
+  parts.elapsed = duration_text(wall_) + " elapsed";
+  if (newton_ > 0 && (built_ || last))
+    parts.steps = std::to_string(newton_) + " Newton iteration" + (newton_ == 1 ? "" : "s");
+  else if (newton_ > 0)
+    parts.steps = "Newton iteration " + std::to_string(newton_) +
+                  (residual_ >= 0 ? ": " + rounded_text(residual_, 2) + " m/s² from equilibrium" : "");
+  return parts;
+}
+
+bool ProgressLine::due(double wall) {
+  if (wall < 1.0 || wall - last_ < (tty_ ? 0.5 : 10.0)) return false;
+  last_ = wall;
+  drawn_ = true;
+  return true;
+}
+
+void ProgressLine::draw(bool last) {
+  const ProgressParts parts = build_ ? build_parts(last) : run_parts(last);
   const std::string line = fit_progress_text(parts, tty_ ? terminal_columns() : 0);
   if (!tty_) {
     std::fprintf(stderr, "%s\n", line.c_str());
   } else {
+    // the keys typed from now on would be echoed onto the line: no echo until the line's end (the destructor)
+    if (!last && !echo_off_) echo_off_ = echo_off();
     // on the line it drew (blanking what a longer text left), or on a line of its own after a message
     const size_t blank = g_open.load() && width_ > line.size() ? width_ - line.size() : 0;
     std::fprintf(stderr, "\r%s%s%s", line.c_str(), std::string(blank, ' ').c_str(), last ? "\n" : "");
@@ -163,15 +229,30 @@ RunProgress ProgressLine::callback() {
     // the integrator's last step may end past the target (the samples and callbacks up to the
     // target are read from its dense output): the line shows the run's progress, at most all of it
     t_ = std::min(t, target), target_ = target, wall_ = wall, steps_ = w.steps - steps_before_;
-    if (wall < 1.0 || wall - last_ < (tty_ ? 0.5 : 10.0)) return;
-    last_ = wall;
-    drawn_ = true;
+    if (!due(wall)) return;
     // the times drawn, for the estimate's recent rate: the last two thirds of the run's wall time,
     // and the one before them
     seen_.emplace_back(wall, t_);
     while (seen_.size() > 2 && seen_[1].first <= wall / 3) seen_.pop_front();
     draw(false);
   };
+}
+
+std::function<void(const BuildWatch&)> ProgressLine::build_callback() {
+  if (!enabled_) return {};
+  build_ = true;
+  start_ = std::chrono::steady_clock::now();
+  return [this](const BuildWatch& w) {
+    elements_ = w.elements, newton_ = w.newton, stage_ = w.stage, residual_ = w.residual;
+    wall_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+    if (due(wall_)) draw(false);
+  };
+}
+
+void ProgressLine::built() {
+  if (!build_) return;
+  built_ = true;
+  wall_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
 }
 
 }  // namespace beltsim::script

@@ -2,7 +2,9 @@
 //
 // One progress line for integrations that take more than a second: simulated time reached of the
 // target, wall time, an estimate of what is left, the steps of this integration (as the call
-// returns them: a simulation's steps before it, steps_before, are not counted). Redrawn in place
+// returns them: a simulation's steps before it, steps_before, are not counted); the same line for
+// a scene build that takes more than a second (a belt of thousands of elements): its stage, wall
+// time and Newton iterations (build_callback). Redrawn in place
 // on a terminal (every 0.5 s), a line every 10 s otherwise (no carriage returns in a pipe or a
 // log). When the integration ends, the line shows where it ended (t_end and 100 % when it got
 // there, where it stopped when it did not) with its total wall time, and is closed.
@@ -11,18 +13,33 @@
 // place that knows whether such a line is open. Whatever else is written while it may be (a warning
 // from the run, a note, an error, a script's print or io.write when stdout is the same terminal, its
 // io.stderr:write) goes through say() or end_progress_line() first, so that it starts on a line of
-// its own; the progress line is drawn again below it at its next update. Not part of the engine: the engine reports progress
-// through a callback (sim/simulation.hpp RunProgress) and this prints it.
+// its own; the progress line is drawn again below it at its next update. Not part of the engine: the engine reports
+// progress through a callback (sim/simulation.hpp RunProgress) and this prints it.
+//
+// While the line is drawn on a terminal, the terminal on stdin does not echo what is typed (the
+// keys typed would land on the line: "... 57997 stepsbcllo there"). What is typed is kept by the
+// terminal for whoever reads it next (the console's next prompt, or the shell after `beltsim
+// run`), as a shell keeps it; a Ctrl-C, which the terminal answers by discarding its input, drops
+// it. The echo is restored when the line ends (the run's end, an error or Ctrl-C unwinding through
+// it) and, by restore_echo(), on the ways the process ends without unwinding.
 #pragma once
 
+#include <chrono>
 #include <cstdio>
 #include <deque>
+#include <functional>
 #include <string>
 #include <utility>
 
+#include "scene/scene_types.hpp"
 #include "sim/simulation.hpp"
 
 namespace beltsim::script {
+
+// a progress line's parts (fit_progress_text, below)
+struct ProgressParts {
+  std::string head, elapsed, left, steps;
+};
 
 class ProgressLine {
  public:
@@ -34,10 +51,22 @@ class ProgressLine {
   // where the integration ended, as the call returns it: t, its steps (all of them, as
   // RunProgress counts them), its wall time; shown by the last drawing of the line
   void finish(double t, long steps, double wall);
+  // a scene build's instead (scene_types.hpp BuildWatch::progress), timed from this call: "beltsim:
+  // building the scene (19000 elements): static state, 12 s elapsed, Newton iteration 14: 320 m/s²
+  // from equilibrium"; built() when the build has made its scene, which the last drawing says
+  // ("beltsim: scene built (19000 elements), 21 s elapsed, 38 Newton iterations")
+  std::function<void(const BuildWatch&)> build_callback();
+  void built();
 
  private:
+  // the line is due to be drawn after `wall` seconds (from a second on, every 0.5 s on a
+  // terminal, every 10 s in a log); when it is, it will be
+  bool due(double wall);
+  ProgressParts run_parts(bool last) const;
+  ProgressParts build_parts(bool last) const;
   void draw(bool last);
   bool enabled_, tty_, drawn_ = false;
+  bool echo_off_ = false;  // this line turned the terminal's echo off (restored with the line's end)
   double last_ = 0, t0_ = -1;
   long steps_before_ = 0;
   // the last state reported (or finish's): what the line shows
@@ -45,15 +74,18 @@ class ProgressLine {
   long steps_ = 0;
   size_t width_ = 0;  // of the text drawn last on the terminal, blanked by a shorter one
   std::deque<std::pair<double, double>> seen_;  // (wall, t) of the line's drawings
+  // a build's (build_callback): the last state it told, and whether it made its scene
+  bool build_ = false, built_ = false;
+  std::chrono::steady_clock::time_point start_;
+  int elements_ = 0, newton_ = 0;
+  std::string stage_;
+  double residual_ = -1;
 };
 
 // The progress line's parts, and the line a terminal of `columns` columns shows (0: any length):
 // the head always, then as many of the estimate, the elapsed time and the steps as fit, in that
 // order of precedence, each in its place ("beltsim: t = 1.2 s of 30 s (4 %), 10 s elapsed, about
 // 4 min 10 s left, 12000 steps")
-struct ProgressParts {
-  std::string head, elapsed, left, steps;
-};
 std::string fit_progress_text(const ProgressParts& parts, int columns);
 // [s] the progress line's estimate of the wall time left (NaN: no basis yet) of a run from t0 to
 // target now at t after `wall` seconds, from the (wall, t) pairs seen so far: at the rate of the
@@ -65,6 +97,12 @@ void end_progress_line();
 // how many open progress lines have been ended so far (by a message or by their run's end): the
 // console reads it round a command to know whether the line the terminal echoed ^C on was ended
 long progress_lines_ended();
+// the terminal's echo as it was before a progress line turned it off, if one did: for the ways the
+// process ends without unwinding (a second stop signal, the watchdog, a time limit's end; they call it
+// before their _exit or signal). Async-signal-safe. Only the echo is changed back, and only from the
+// terminal's foreground (from the background it would stop the process with SIGTTOU; the shell
+// that holds the terminal then has set it as it wants it)
+void restore_echo();
 // a message on stderr (printf's format, its own line end included), on a line of its own
 [[gnu::format(printf, 1, 2)]] void say(const char* format, ...);
 // a print to stdout (Lua's print, a picture's path): the progress line is ended first when stdout

@@ -74,6 +74,7 @@ void on_signal(int sig) {
   int none = 0;
   if (!g_pending.compare_exchange_strong(none, sig)) {  // a stop is under way: this one ends the process
     say_quit(sig);
+    restore_echo();  // a progress line's (progress.hpp): the process ends without unwinding
     std::signal(sig, SIG_DFL);
     std::raise(sig);  // blocked in this thread until this handler returns, then fatal
     return;
@@ -146,6 +147,7 @@ void watchdog() {
               " ms of " + name(sig) +
               " (a long C call such as a string pattern, or code that runs with hooks off); "
               "ending now; the outputs written so far are kept\n");
+      restore_echo();
       std::signal(sig, SIG_DFL);
       kill(getpid(), sig);
       return;

@@ -13,10 +13,13 @@ they take seconds, and their progress shows, on a machine of any speed.
 import os
 import pty
 import re
+import select
 import shutil
+import signal
 import subprocess
 import sys
 import tempfile
+import termios
 import time
 import unittest
 
@@ -73,6 +76,27 @@ BATCH = ("local next_t = 0\n" + WAIT +
                                 "return -70 * math.min(t / 0.3, 1) end") +
          'drive:run { t_end = 0.15, out = "batch" }\n')
 
+# a live run of 3 s at least (a callback waits 20 ms per ms of simulated time) whose callback does
+# THEN once, 2.5 s of the CPU into the run (wall time at least as long: the progress line shows),
+# after printing "then now"
+SLOW = (two_pulley(40) + WAIT +
+        'local sim = drive:start { out = "slow" }\n'
+        "local c0, done = os.clock(), false\n"
+        "sim:every(0.001, function()\n"
+        "  wait(0.02)\n"
+        "  if not done and os.clock() - c0 > 2.5 then done = true; print('then now'); THEN end\n"
+        "end)\n"
+        "sim:run_to(0.2)\n"
+        "sim:close()\n")
+# a C call that Lua cannot stop (a string pattern that backtracks for minutes)
+STUCK = 'local x = ("a"):rep(3000):find("(.-)(.-)(.-)(.-)b")'
+
+# a scene whose build takes seconds on any machine: its driver's torque law, which the static
+# solve evaluates with every residual (428 times for this belt), waits 8 ms of the CPU
+SLOW_BUILD = (WAIT + two_pulley(40).replace("torque = beltsim.ramp(0.3, -70)",
+                                            "torque = function(t) wait(0.008) return -70 * math.min(t / 0.3, 1) end") +
+              'print("built")\n')
+
 # the README's minimal scenario (a run of a fraction of a second: no progress line)
 MINIMAL = two_pulley(60) + "drive:run { t_end = 0.1 }\n"
 
@@ -107,6 +131,46 @@ def read_to_end(pid, fd, raw=b"", timeout=120):
     _, status = os.waitpid(pid, 0)
     os.close(fd)
     return os.waitstatus_to_exitcode(status), raw.decode("utf-8", "replace")
+
+
+def echoes(fd):
+    """Whether the terminal (the pseudo-terminal whose master is fd) echoes what is typed."""
+    return bool(termios.tcgetattr(fd)[3] & termios.ECHO)
+
+
+def read_until(fd, raw, text, timeout=60):
+    """Reads the terminal until text (bytes) has come after raw's end; returns what was read, raw included."""
+    start, deadline = len(raw), time.monotonic() + timeout
+    while text not in raw[start:]:
+        if time.monotonic() > deadline:
+            raise AssertionError("no %r within %g s: %r" % (text, timeout, raw))
+        r, _, _ = select.select([fd], [], [], max(0.0, deadline - time.monotonic()))
+        if r:
+            try:
+                data = os.read(fd, 65536)
+            except OSError:
+                data = b""
+            if not data:
+                raise AssertionError("the terminal closed before %r: %r" % (text, raw))
+            raw += data
+    return raw
+
+
+def to_end_echo(pid, fd, raw=b"", timeout=120):
+    """read_to_end, and whether the terminal echoes once the child has gone: (exit status, text, echoes)."""
+    deadline = time.monotonic() + timeout
+    while time.monotonic() < deadline:
+        try:
+            data = os.read(fd, 65536)
+        except OSError:
+            break
+        if not data:
+            break
+        raw += data
+    _, status = os.waitpid(pid, 0)
+    echo = echoes(fd)  # the terminal as the child left it (the master keeps it)
+    os.close(fd)
+    return os.waitstatus_to_exitcode(status), raw.decode("utf-8", "replace"), echo
 
 
 def on_terminal(argv, cwd, timeout=120):
@@ -190,6 +254,65 @@ class ProgressTest(unittest.TestCase):
             self.assertRegex(drawn[-1], r"^beltsim: t = [0-9.]+ s of 10 s \(\d+ %\), [0-9]+ s elapsed, [0-9]+ steps$", name)
             self.assertRegex(text, r"\nbeltsim: run stopped at t = [0-9.]+ s of 10 s \([0-9]+ steps, [0-9.]+ s\): "
                              r"long/\r\n", name)
+
+    def test_keys_typed_during_a_run_are_not_echoed_onto_its_line(self):
+        # a user typed while a run's progress showed: the terminal echoed the keys onto the line
+        # ("... 57997 stepsbcllo there"); the terminal's echo is off while the line shows, on again
+        # after the run, and what was typed is left to the shell (not read by beltsim)
+        path = self.script("slow.lua", SLOW.replace("THEN", "wait(0.5)"))
+        pid, fd = spawn_on_terminal([BELTSIM, "run", path], self.dir)
+        self.assertTrue(echoes(fd), "the terminal did not echo to begin with")
+        raw = read_until(fd, b"", b"beltsim: t = ")
+        self.assertFalse(echoes(fd), "the terminal echoes while the progress line shows: %r" % raw)
+        os.write(fd, b"typed ahead")
+        code, text, echo = to_end_echo(pid, fd, raw)
+        self.assertEqual(code, 0, text)
+        self.assertNotIn("typed ahead", text)
+        self.assertTrue(echo, "the run left the terminal without echo: %r" % text)
+
+    def test_the_echo_comes_back_however_the_run_ends(self):
+        # the progress line showing (the echo off), the run ends by Ctrl-C, by an error in its
+        # callback, by a second Ctrl-C in a C call Lua cannot stop (the process quits at once), by
+        # SIGTERM there (the watchdog ends it), and by the end of the Lua call's wall-time limit
+        # there (_exit): the terminal echoes again each time
+        cases = [("ctrl_c", "wait(1)", [], 130), ("error", 'wait(1); error("boom")', [], 1),
+                 ("second_ctrl_c", STUCK, [], -signal.SIGINT), ("sigterm", STUCK, [], -signal.SIGTERM),
+                 ("time_limit", STUCK, ["--max-lua-wall", "1"], 1)]
+        for name, then, flags, status in cases:
+            with self.subTest(name):
+                path = self.script(name + ".lua", SLOW.replace("THEN", then))
+                pid, fd = spawn_on_terminal([BELTSIM, "run"] + flags + [path], self.dir)
+                raw = read_until(fd, b"", b"then now")
+                self.assertFalse(echoes(fd), "%s: the terminal echoes while the progress line shows: %r" % (name, raw))
+                if name in ("ctrl_c", "second_ctrl_c"):
+                    os.write(fd, b"\x03")
+                if name == "second_ctrl_c":
+                    raw = read_until(fd, raw, b"Ctrl-C again ends beltsim")
+                    os.write(fd, b"\x03")
+                if name == "sigterm":
+                    os.kill(pid, signal.SIGTERM)
+                code, text, echo = to_end_echo(pid, fd, raw)
+                self.assertEqual(code, status, text)
+                self.assertTrue(echo, "%s: the run left the terminal without echo: %r" % (name, text))
+
+    def test_a_long_scene_build_shows_its_progress(self):
+        # a belt of 19 000 elements took 20 s to build without a word: a build that takes more than
+        # a second shows the progress line (its stage, wall time, Newton iterations) and ends it
+        # with the scene built, before the scene's own lines
+        code, raw = on_terminal([BELTSIM, "run", self.script("slow_build.lua", SLOW_BUILD)], self.dir)
+        self.assertEqual(code, 0, raw)
+        drawn = re.findall(r"beltsim: (?:building the scene|scene built) [^\r\n]*", raw)
+        self.assertTrue(drawn, "no progress line of the build: %r" % raw)
+        self.assertRegex(drawn[0], r"^beltsim: building the scene \(40 elements\): static state, [0-9]+ s elapsed, "
+                         r"Newton iteration [0-9]+(: [0-9.e+-]+ m/s² from equilibrium)?$")
+        self.assertRegex(drawn[-1], r"^beltsim: scene built \(40 elements\), [0-9]+ s elapsed, [0-9]+ Newton iterations *$")
+        self.assertLess(raw.index(drawn[-1]), raw.index("beltsim: scene defaults"), raw)
+        self.assertRegex(raw[raw.index(drawn[-1]):], r"^[^\r\n]*\r\nbeltsim: scene defaults", raw)
+        # a quick build says nothing of it
+        code, raw = on_terminal([BELTSIM, "run", self.script("my.lua", MINIMAL)], self.dir)
+        self.assertEqual(code, 0, raw)
+        self.assertNotIn("building the scene", raw)
+        self.assertNotIn("scene built", raw)
 
     def test_a_run_says_where_it_ended(self):
         # the README's minimal run: one line on stderr names the end, the steps, the time and the outputs

@@ -19,6 +19,7 @@ import signal
 import subprocess
 import sys
 import tempfile
+import termios
 import time
 import unittest
 
@@ -184,6 +185,39 @@ class ConsoleTest(unittest.TestCase):
         self.assertEqual(len(kept), 1, lines)
         # (the console prints sim.t to 10 significant digits)
         self.assertAlmostEqual(float(kept[0][len("r = sim:run_to("):-1]) / t, 1, delta=1e-9, msg=lines)
+
+    # 7b
+    def test_keys_typed_during_a_run_wait_for_the_next_prompt(self):
+        # a user typed while a run's progress line showed: the keys were echoed onto it ("...
+        # 57997 stepsbcllo there"). The terminal's echo is off while the line shows; what was typed
+        # is the next prompt's, to edit or run; a Ctrl-C (here in the run's callback) drops it (the
+        # terminal discards its input on Ctrl-C), and the echo is back after every run
+        c = self.console()
+        c.command("function slow() local c = os.clock() while os.clock() - c < 0.02 do end end")
+        c.command("id = sim:every(0.001, slow)")
+        for stop in [False, True]:
+            mark = len(c.screen)
+            c.send("r = sim:advance(%s)\r" % ("10" if stop else "0.15"))
+            c.wait_for(re.compile(r"beltsim: t = [^\n]*steps"), what="the progress line", start=mark)
+            self.assertFalse(termios.tcgetattr(c.fd)[3] & termios.ECHO, "the terminal echoes during the run" +
+                             c.transcript())
+            c.send("typed ahead")
+            if stop:
+                time.sleep(0.5)  # what was typed reaches the terminal's input before Ctrl-C
+                c.send("\x03")
+            if stop:
+                c.wait_prompt(mark, timeout=60)  # an empty prompt: dropped with the run
+            else:
+                c.wait_for(re.compile(r"\n> typed ahead$"), 60, "the keys at the next prompt", mark)
+            shown = c.screen[mark:]
+            before = shown[:shown.rfind("\n> ")]  # the run, its progress and its result
+            self.assertNotIn("typed", before, c.transcript())
+            if not stop:
+                c.send("\x15")  # readline's Ctrl-U: the line is emptied
+                out = c.command("r.t")
+                self.assertRegex(out, r"\n0\.15\n", c.transcript())
+        self.assertEqual(c.eof(), 0, c.transcript())
+        self.assertTrue(c.echoed_at_end, "the console left the terminal without echo")
 
     # 8
     def test_ctrl_d_writes_session_lua(self):
@@ -376,11 +410,14 @@ class ConsoleTest(unittest.TestCase):
     def test_session_replays_expressions_statements_and_chunks(self):
         # bare expressions (printed at the prompt), a chunk that returns, locals, a multi-line
         # chunk and a trailing comment: session.lua is valid Lua and its replay does what the
-        # prompt did (the expressions are printed again)
+        # prompt did: what the prompt printed is printed as the prompt showed it (a user's `r`, a
+        # table, was recorded as print(r), which printed "table: 0x55d0..."), but the values of a
+        # call (the last command's), which the replay makes but does not print
         commands = ["6*7", "sim.t", "return 6*7", "local z = 3", "print(z)",
                     "for i = 1, 2 do", "  print('loop', i)", "end",
                     "function f()", "  return 5", "end", "f() + 1 -- a comment", "sim:advance(0.001)",
-                    "local w = 4 return w"]
+                    "local w = 4 return w", 'r = sim:pulley("driven")', "r", "r.omega, sim.t",
+                    'sim:pulley("driven")']
         r = self.piped(commands, args=[os.path.join(self.tmp, "out_console")])
         out, err = r.stdout.decode(), r.stderr.decode()
         self.assertEqual(r.returncode, 0, out + err)
@@ -389,15 +426,24 @@ class ConsoleTest(unittest.TestCase):
         session = os.path.join(self.tmp, m.group(1))
         with open(session) as f:
             text = f.read()
-        self.assertIn("sim:advance(0.001)\n", text)
+        # what was typed, then what prints it as the prompt did
+        self.assertIn("\n-- > r\nbeltsim.print(r)\n", text)
+        self.assertNotIn("\nprint(r)", text)
+        for call in ["print(z)", "sim:advance(0.001)", 'sim:pulley("driven")']:  # as typed
+            self.assertIn("\n%s\n" % call, text)
         # the scenario's run writes beside it, outside session.lua's folder: --trusted
         r = subprocess.run([BELTSIM, "run", "--trusted", session], cwd=self.tmp, env=child_env(self.tmp),
                            stdout=subprocess.PIPE, stderr=subprocess.PIPE, timeout=60)
         replay = r.stdout.decode()
         self.assertEqual(r.returncode, 0, (r.stdout + r.stderr).decode() + "\nsession.lua:\n" + text)
-        # 6*7, sim.t (0 before the advance), z (local to its own command, as at the prompt), the
-        # loop, f() + 1
-        self.assertEqual(replay.split("\n")[:6], ["42", "0.0", "nil", "loop\t1", "loop\t2", "6"], replay + text)
+        # 6*7, sim.t (0 before the advance), 6*7, z (local to its own command, as at the prompt),
+        # the loop, f() + 1, then (the run's result, printed at the prompt only) w, r's table, its
+        # speed and t; the last command's table at the prompt only
+        self.assertEqual(out.split("\n")[:7], ["42", "0", "42", "nil", "loop\t1", "loop\t2", "6"], out)
+        run = out.index("{\n  interrupted")
+        pulley = out.index("}\n", run) + 2
+        self.assertEqual(replay, out[:run] + out[pulley:out.rindex("{\n  angle")], "session.lua:\n" + text)
+        self.assertIn("\n  omega = ", replay)
 
     # 10b
     def test_session_quotes_set_values(self):

@@ -44,6 +44,7 @@ class Console:
         self.test = test
         self.raw = ""
         self.status = None
+        self.echoed_at_end = None
         argv = [beltsim, "console", script] + (["--"] + list(args) if args else [])
         env = child_env(tmp)
         pid, fd = pty.fork()
@@ -158,6 +159,8 @@ class Console:
         while True:
             pid, status = os.waitpid(self.pid, os.WNOHANG)
             if pid:
+                # whether the terminal echoes as the console left it (the master still holds it)
+                self.echoed_at_end = bool(termios.tcgetattr(self.fd)[3] & termios.ECHO)
                 os.close(self.fd)
                 self.pid = None
                 return os.waitstatus_to_exitcode(status)

@@ -9,6 +9,8 @@
 #include <optional>
 #include <sstream>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "scene/parameters.hpp"
 #include "scene/validate.hpp"
@@ -222,7 +224,8 @@ TEST(BuildStages, WalkAndCloseTheLoop) {
   for (int i = 1; i < 8 && at[i] < kD; ++i) EXPECT_NEAR(at[i] - at[i - 1], 2 * h + gap, 1e-15) << i;
 
   const build::TensionAtRest t = build::tension_at_rest(s.d.belt, s.route.length, s.belt);
-  const double g = build::close_loop(s.route, 60, s.d.belt, t, s.belt, nullptr);
+  BuildWatch unwatched;
+  const double g = build::close_loop(s.route, 60, s.d.belt, t, s.belt, unwatched);
   EXPECT_LT(s.belt.rigid_length, s.belt.pitch);
   EXPECT_NEAR(s.d.belt.EA / s.belt.rigid_length * g, 500, 1e-9 * 500);
   EXPECT_NEAR(build::walk(s.route, 60, 0.5 * s.belt.rigid_length, g, nullptr), s.route.length, 1e-12);
@@ -313,9 +316,34 @@ TEST(BuildStages, StaticSolveAndSettle) {
 
   Eigen::VectorXd y = sc.y0;
   y[0] += 1e-4;  // one element 0.1 mm off its rest
-  const double moved = build::static_solve(sc.model, sc.drive, y, 0, nullptr);
+  BuildWatch unwatched;
+  const double moved = build::static_solve(sc.model, sc.drive, y, 0, unwatched);
   EXPECT_LT(moved, 1e-3);
   EXPECT_NEAR(y[0], sc.y0[0], 1e-7);
+}
+
+// A build tells its watcher where it is at every poll (the progress line of a long build,
+// script/progress.hpp): the belt placed first, then the static state, its Newton iterations
+// counted over every pass, the last accepted residual the scene's own
+TEST(BuildStages, ABuildTellsItsProgressAtEveryPoll) {
+  std::vector<std::pair<std::string, int>> told;
+  BuildWatch watch;
+  watch.progress = [&](const BuildWatch& w) {
+    EXPECT_EQ(w.elements, 60);
+    told.emplace_back(w.stage, w.newton);
+  };
+  const Scene sc = build_scene(presets::paper_dry(), watch);
+  ASSERT_FALSE(told.empty());
+  EXPECT_EQ(told.front(), std::make_pair(std::string("placing the belt"), 0));
+  EXPECT_EQ(told.back().first, "static state");
+  const auto first_static =
+      std::find_if(told.begin(), told.end(), [](const auto& t) { return t.first != "placing the belt"; });
+  EXPECT_TRUE(std::all_of(first_static, told.end(), [](const auto& t) { return t.first == "static state"; }));
+  EXPECT_TRUE(
+      std::is_sorted(told.begin(), told.end(), [](const auto& a, const auto& b) { return a.second < b.second; }));
+  EXPECT_EQ(told.back().second, watch.newton);
+  EXPECT_GE(watch.newton, 2);
+  EXPECT_EQ(watch.residual, sc.static_residual);
 }
 
 // A static solve that fails on a contact far stiffer than the belt's SDE names the contact constant
@@ -495,6 +523,63 @@ TEST(BuildStages, HugeMuIsRefusedAndAnEnergySourceIsWarnedOf) {
   const std::vector<std::string> w = scene_warnings(build_scene(s));
   ASSERT_EQ(w.size(), 1u);
   EXPECT_NE(w[0].find("pulley 'driven'.torque: per_speed = 0.5"), std::string::npos) << w[0];
+}
+
+// a belt speed past what PK belts are rated for (kBeltSpeedWarn, 60 m/s) is warned of once, naming
+// the pulley, its speed and the belt's: a user's 5000 rad/s crank (500 m/s) ran without a word. A
+// kinematic pulley's speed at the start and once its ramps have ended (a sine at its peak), a free
+// drive's at the balance of its torques; 50 m/s is within a PK belt's rating
+TEST(BuildStages, ABeltSpeedPastAPkBeltsRatingIsWarnedOfOnce) {
+  SceneDef d = presets::paper_dry();
+  d.belt.bending_damping = 0;  // its own warning (bending_loss_test.cpp), which such speeds raise too
+  const auto speed_warnings = [&](const SceneDef& def) {
+    std::vector<std::string> out;
+    for (const std::string& w : scene_warnings(build_scene(def)))
+      if (w.find("PK belts are rated for") != std::string::npos) out.push_back(w);
+    return out;
+  };
+  SceneDef k = d;
+  k.pulleys[0].kinematic = true;
+  k.pulleys[0].torque = TimeSpeedLaw{};
+  k.pulleys[0].speed.constant = -5000;
+  std::vector<std::string> w = speed_warnings(k);
+  ASSERT_EQ(w.size(), 1u);
+  EXPECT_EQ(w[0],
+            "pulley 'driver'.speed: -5000 rad/s at the start, which moves the belt at 500 m/s (pitch radius 0.1 m), "
+            "past what PK belts are rated for (about 50-60 m/s; warned above 60 m/s): its centrifugal tension m'·v² "
+            "would be 24000 N (m' = 0.096 kg/m), 48 times its 500 N at rest. Speeds are in rad/s: if 5000 rpm was "
+            "meant, beltsim.rpm(5000) is 523.6 rad/s (docs/model.md, limits the scene build enforces)");
+  k.pulleys[0].speed.constant = -500;  // 50 m/s
+  EXPECT_TRUE(speed_warnings(k).empty());
+  // a ramp from rest to 1000 rad/s: its end; a sine about 550 rad/s of 100 rad/s: its peak, 65 m/s
+  k.pulleys[0].speed.constant = 0;
+  k.pulleys[0].speed.ramps.push_back(Ramp{0, 1, 0, -1000});
+  w = speed_warnings(k);
+  ASSERT_EQ(w.size(), 1u);
+  EXPECT_NE(w[0].find("pulley 'driver'.speed: -1000 rad/s once its ramps and tables have ended, which moves the "
+                      "belt at 100 m/s"),
+            std::string::npos)
+      << w[0];
+  k.pulleys[0].speed.ramps.clear();
+  k.pulleys[0].speed.sines.push_back(Sine{550, 100, 10, 0});
+  w = speed_warnings(k);
+  ASSERT_EQ(w.size(), 1u);
+  EXPECT_NE(w[0].find("650 rad/s once its ramps and tables have ended, which moves the belt at 65 m/s"),
+            std::string::npos)
+      << w[0];
+  // free pulleys: a load of 0.03 N·m·s/rad against the driver's 70 N·m balances at 233 m/s
+  SceneDef f = d;
+  f.pulleys[0].torque = TimeSpeedLaw{};
+  f.pulleys[0].torque.constant = -70;
+  f.pulleys[1].torque.per_speed = -0.03;
+  w = speed_warnings(f);
+  ASSERT_EQ(w.size(), 1u);
+  EXPECT_NE(w[0].find("pulley 'driver' turns at -2333.3 rad/s at the drive's steady speeds (the free pulleys' "
+                      "torques balanced), which moves the belt at 233.33 m/s"),
+            std::string::npos)
+      << w[0];
+  EXPECT_NE(w[0].find("Check the torques"), std::string::npos) << w[0];
+  EXPECT_TRUE(speed_warnings(d).empty());  // the paper's drive: 7.3 m/s
 }
 
 // a speed map whose speeds all lie on the other side of zero from the way its pulley turns gives

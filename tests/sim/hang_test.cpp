@@ -234,7 +234,9 @@ TEST(NoHang, StopFlagEndsALongSceneBuild) {
   const Scene& sc = dry_scene();
   Eigen::VectorXd y = sc.y0;
   y[1] += 1e-4;  // the first element 0.1 mm off its place: accelerations of 1e3 m/s² and more
-  EXPECT_THROW(build::static_solve(sc.model, sc.drive, y, 0, &stop), BuildInterrupted);
+  BuildWatch watch;
+  watch.stop = &stop;
+  EXPECT_THROW(build::static_solve(sc.model, sc.drive, y, 0, watch), BuildInterrupted);
 }
 
 }  // namespace
