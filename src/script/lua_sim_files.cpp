@@ -1,7 +1,6 @@
 // What a live simulation writes to files and reads back: sim:show (a frame of the belt now),
 // sim:plot (time histories so far), sim:save (a checkpoint) and beltsim.resume (sim_box.hpp).
 #include <cstdio>
-#include <filesystem>
 
 #include "io/number_text.hpp"
 #include "io/output_dir.hpp"
@@ -143,7 +142,10 @@ int l_save(lua_State* L) {
   std::string path = lua_tostring(L, 2);
   // (it was taken as the output folder: "cannot write out/x: it is a folder")
   if (path.empty()) fail(L, "sim:save: an empty file name (give the checkpoint's, e.g. sim:save(\"state.ckpt\"))");
-  if (std::filesystem::path(path).parent_path().empty()) path = output_path(s.settings(), path);  // a bare name
+  // inside the output folder as every path beltsim writes for a script (sim/run_settings.hpp): the
+  // same in the console and in its session.lua's replay (a path with a folder was taken from the
+  // folder beltsim ran in, which the replay's sandbox refused)
+  path = output_path(s.settings(), path);
   if (const std::string r = output_refusal(*static_cast<SimBox*>(lua_touserdata(L, 1))->ctx, "sim:save", path, true);
       !r.empty())
     fail(L, r);

@@ -14,6 +14,7 @@
 #include "script/lua_check.hpp"
 #include "script/sandbox.hpp"
 #include "script/sim_box.hpp"
+#include "sim/run_settings.hpp"
 
 namespace beltsim::script {
 
@@ -96,7 +97,7 @@ int summary(lua_State* L, const Context& ctx, const std::string& what, const std
   auto inside = [&](std::optional<std::string>& file) {
     if (!file) return;
     if (file->empty()) fail(L, what + ": an empty path");
-    if (fs::path(*file).is_relative()) *file = (fs::path(dir) / *file).string();
+    *file = output_path(dir, *file);
     if (const std::string r = output_refusal(ctx, what, *file, true); !r.empty()) fail(L, r);
   };
   inside(csv);

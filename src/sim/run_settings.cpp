@@ -13,8 +13,12 @@ std::string event_time_problem(double t, double t_end) {
   return "";
 }
 
+std::string output_path(const std::string& out_dir, const std::string& path) {
+  return (std::filesystem::path(out_dir) / path).string();
+}
+
 std::string output_path(const RunSettings& settings, const std::string& path) {
-  return (std::filesystem::path(settings.out_dir) / path).string();
+  return output_path(settings.out_dir, path);
 }
 
 std::optional<FrameSettings> frame_times(const RunSettings& rs) {

@@ -79,8 +79,12 @@ struct RunSettings {
 // default ones when states are kept without frames; none when neither is asked for.
 std::optional<FrameSettings> frame_times(const RunSettings& settings);
 
-// a path of the run's outputs as seen from the folder beltsim runs in: a relative one lies inside
-// out_dir (frames.png, frames.video, sim:show's and sim:plot's files), an absolute one stays
+// The one rule for a path a script or a console command gives beltsim to write: a relative one
+// lies inside the run's output folder out_dir, an absolute one stays (frames.png, frames.video,
+// sim:save, sim:show's and sim:plot's files, sim:modes' csv, r:summary's csv and plot). The path
+// as seen from the folder beltsim runs in. (A run's `out` itself, and the paths beltsim reads,
+// beltsim.resume's and Lua's own io, are taken from the folder beltsim runs in.)
+std::string output_path(const std::string& out_dir, const std::string& path);
 std::string output_path(const RunSettings& settings, const std::string& path);
 
 // Why t cannot be the time of a timed event in a run that ends at t_end (infinity: a live

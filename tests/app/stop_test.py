@@ -157,7 +157,7 @@ class Stop(unittest.TestCase):
             SCENE + "sim = drive:start { progress = false, out = 'first' }\n" + READY + "\n"
             "local r = sim:run_to(1000)\n"
             "print('stopped', r.interrupted) io.stdout:flush()\n"
-            "sim:save('first/stopped.ckpt')\n"
+            "sim:save('stopped.ckpt')\n"
             "drive:run { t_end = 0.01, progress = false, out = 'second' }\n"
             "print('second run done')\n")])
         self.wait_line(p.stdout, "ready")

@@ -513,6 +513,33 @@ TEST(LiveApi, MissingFoldersAreMade) {
     EXPECT_TRUE(fs::is_regular_file(out / f)) << f;
 }
 
+// one rule for the paths beltsim writes for a script: a relative one lies in the output folder.
+// sim:save's with a folder in it was taken from the folder beltsim ran in (a console session's
+// sim:save("ck/t033.ckpt") went to ./ck/, and its session.lua's replay was refused by the
+// sandbox), while a bare name, sim:show's and sim:plot's went into the output folder
+TEST(LiveApi, RelativePathsAreWrittenInTheOutputFolder) {
+  const fs::path out = temp_dir() / "relative";
+  fs::remove_all(out);
+  fs::remove_all(fs::current_path() / "ck_relative");
+  EXPECT_EQ(run_text(beltsim::test::two_pulley(beltsim::test::TwoPulley{}) + "local o = '" + out.string() +
+                     "'\n"
+                     "local sim = s:start{ out = o, progress = false }\n"
+                     "sim:run_to(0.002)\n"
+                     "local a, b = sim:save('ck_relative/a.ckpt'), sim:save('b.ckpt')\n"
+                     "assert(a == o .. '/ck_relative/a.ckpt', a)\n"
+                     "assert(b == o .. '/b.ckpt', b)\n"
+                     "local c = sim:show{ file = 'ck_relative/a.png', size = {160, 90} }\n"
+                     "assert(c == o .. '/ck_relative/a.png', c)\n"
+                     "sim:close()\n"
+                     "local r = beltsim.resume(a, { progress = false })  -- (read as returned)\n"
+                     "assert(r.t == 0.002, r.t)\n"
+                     "r:close()\n"),
+            "");
+  EXPECT_TRUE(fs::is_regular_file(out / "ck_relative" / "a.ckpt"));
+  EXPECT_TRUE(fs::is_regular_file(out / "b.ckpt"));
+  EXPECT_FALSE(fs::exists(fs::current_path() / "ck_relative"));
+}
+
 // two pictures at one time took one default name, the second overwriting the first without a
 // word: the second show_<t>.png of a simulation is show_<t>_2.png (plot_<t>.png alike); a name
 // given with file = stays as given
