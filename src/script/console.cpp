@@ -23,6 +23,7 @@
 #include "script/interpreter.hpp"
 #include "script/limits.hpp"
 #include "script/live_feed.hpp"
+#include "script/lua_run.hpp"
 #include "script/progress.hpp"
 #include "script/signals.hpp"
 #include "sweep/results.hpp"
@@ -279,7 +280,11 @@ int run_console(const std::optional<std::string>& script, const std::vector<std:
     }
   }
   // the finalisers below run with a fresh budget (~Interpreter)
-  const bool written = write_session(session_dir, script, script_text, args, o.set, commands);
+  // the replay gets --out DIR/replay when every run of the session went into session_dir: a
+  // session whose runs named their own folders is replayed into them again
+  bool runs_in_dir = true;
+  for (const std::string& d : ctx.run_dirs) runs_in_dir = runs_in_dir && d == run_dir_key(session_dir);
+  const bool written = write_session(session_dir, script, script_text, args, o.set, commands, runs_in_dir);
   // the interpreter's end closes every simulation (their finalisers flush and finalise outputs)
   if (terminating()) return stopped_status();
   if (!written) return 1;

@@ -207,7 +207,7 @@ std::string at_prompt(lua_State* L, const std::vector<PageChange>& page) {
 
 bool write_session(const std::string& dir, const std::optional<std::string>& script, std::string script_text,
                    const std::vector<std::string>& args, const std::vector<ScriptArg>& sets,
-                   const std::vector<std::string>& commands) {
+                   const std::vector<std::string>& commands, bool runs_in_dir) {
   if (commands.empty()) return true;
   namespace fs = std::filesystem;
   // never over an earlier session's record (a console resumed in its folder): session_2.lua, ...
@@ -219,11 +219,19 @@ bool write_session(const std::string& dir, const std::optional<std::string>& scr
   }
   const std::string path = (fs::path(dir) / name).string();
   std::ostringstream f;  // written whole at the end (io/output_dir.hpp: never through a link)
+  // the replay's outputs in DIR/replay, beside the session's and apart from every other replay's
+  // (without --out all went to out/session, one session's pictures left among another's)
+  const std::string replay_out = (fs::path(dir) / "replay").string();
   f << "-- The commands of a beltsim console session, in order (one that raised an error under pcall).\n"
     << "-- Replay with: beltsim run " << shell_word(path);
+  if (runs_in_dir) f << " --out " << shell_word(replay_out);
   // beltsim.args as in the session, each --set quoted for the shell
   for (const ScriptArg& a : sets) f << " --set " << shell_word(a.key + "=" + a.text);
-  f << "\n-- An expression the prompt printed (not a call) is printed by beltsim.print, as the prompt\n"
+  f << "\n";
+  if (runs_in_dir)
+    f << "-- (its outputs in " << replay_out << ", beside this session's; its relative paths, sim:save's,\n"
+      << "-- sim:show's and sim:plot's, are taken there, as the session's were in its folder)\n";
+  f << "-- An expression the prompt printed (not a call) is printed by beltsim.print, as the prompt\n"
     << "-- showed it, after the command as it was typed (-- > r).\n";
   // the keys are read by the commands below, after the scenario's first run: read here first,
   // so that the replay's first run does not stop on them as unread (lua_api.hpp, check_unread_args)

@@ -42,9 +42,12 @@ std::string failed_replayable(lua_State* L, const std::string& chunk, bool expre
                               const StoppedRuns& stopped, const std::vector<PageChange>& page);
 
 // writes <dir>/session.lua, or session_2.lua, ... when an earlier session's is there (nothing when
-// no command ran); false, with the reason on stderr, when it cannot be written
+// no command ran); false, with the reason on stderr, when it cannot be written. runs_in_dir: every
+// run of the session wrote into dir (none named a folder of its own), and its replay line gives
+// --out <dir>/replay, so that the replay writes beside the session rather than into out/session,
+// where every session's replay went
 bool write_session(const std::string& dir, const std::optional<std::string>& script, std::string script_text,
                    const std::vector<std::string>& args, const std::vector<ScriptArg>& sets,
-                   const std::vector<std::string>& commands);
+                   const std::vector<std::string>& commands, bool runs_in_dir);
 
 }  // namespace beltsim::script

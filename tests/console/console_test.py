@@ -467,6 +467,41 @@ class ConsoleTest(unittest.TestCase):
         self.assertEqual(r.returncode, 0, (r.stdout + r.stderr).decode() + "\nsession.lua:\n" + text)
         self.assertIn("<" + value + ">", r.stdout.decode(), text)
 
+    # 10d
+    def test_session_with_files_in_subfolders_replays_beside_it(self):
+        # a trial's session (--out out/mycon) saved sim:save("ck/t033.ckpt"): it went to ./ck/ (a path
+        # with a folder was taken from the working folder), and its replay, sandboxed in session.lua's
+        # folder, was refused. Now the relative paths lie in the output folder, the replay line gives
+        # --out out/mycon/replay, and the replay writes the same files there, without --trusted
+        with open(os.path.join(self.tmp, "mydrive.lua"), "w") as f:
+            f.write(two_pulley(40) + "sim = drive:start{}\n")
+        commands = ["sim:advance(0.003)", "print(sim:save('ck/t.ckpt'))", "sim:advance(0.002)",
+                    "print(sim:plot{ file = 'pics/p.png' })"]
+        r = subprocess.run([BELTSIM, "console", "mydrive.lua", "--out", "out/mycon"], cwd=self.tmp,
+                           input="".join(c + "\n" for c in commands).encode(), env=child_env(self.tmp),
+                           stdout=subprocess.PIPE, stderr=subprocess.PIPE, timeout=60)
+        out, err = r.stdout.decode(), r.stderr.decode()
+        self.assertEqual(r.returncode, 0, out + err)
+        self.assertIn("out/mycon/ck/t.ckpt\n", out, err)
+        self.assertTrue(os.path.isfile(os.path.join(self.tmp, "out", "mycon", "ck", "t.ckpt")), out + err)
+        self.assertFalse(os.path.exists(os.path.join(self.tmp, "ck")), out + err)
+        with open(os.path.join(self.tmp, "out", "mycon", "session.lua")) as f:
+            text = f.read()
+        replay = [ln for ln in text.splitlines() if ln.startswith("-- Replay with: beltsim run ")]
+        self.assertEqual(replay, ["-- Replay with: beltsim run out/mycon/session.lua --out out/mycon/replay"], text)
+        cmd = "%s run %s" % (shlex.quote(BELTSIM), replay[0][len("-- Replay with: beltsim run "):])
+        r = subprocess.run(["bash", "-c", cmd], cwd=self.tmp, env=child_env(self.tmp), stdout=subprocess.PIPE, stderr=subprocess.PIPE,
+                           timeout=60)
+        self.assertEqual(r.returncode, 0, (r.stdout + r.stderr).decode() + "\nsession.lua:\n" + text)
+        self.assertIn("out/mycon/replay/ck/t.ckpt\n", r.stdout.decode())
+        for f in ["ck/t.ckpt", "pics/p.png"]:
+            self.assertTrue(os.path.isfile(os.path.join(self.tmp, "out", "mycon", "replay", f)), f)
+        for f in ["timeseries.csv", "events.csv"]:
+            with open(os.path.join(self.tmp, "out", "mycon", f), "rb") as a, \
+                    open(os.path.join(self.tmp, "out", "mycon", "replay", f), "rb") as b:
+                self.assertEqual(a.read(), b.read(), f)
+        self.assertFalse(os.path.exists(os.path.join(self.tmp, "out", "session")))
+
     # 11
     def test_ctrl_c_stops_lua_code(self):
         c = self.console()
