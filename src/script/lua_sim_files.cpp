@@ -12,6 +12,7 @@
 #include "script/progress.hpp"
 #include "script/sandbox.hpp"
 #include "script/sim_box.hpp"
+#include "sim/outputs.hpp"
 #include "sim/run_table.hpp"
 
 namespace beltsim::script {
@@ -30,19 +31,12 @@ void picture(lua_State* L, SimBox& box, const std::string& png) {
 // an empty file = "" (it was taken as no name given: the default one)
 const char* const kEmptyPicture = "an empty file name (leave file out for the default name in the output folder)";
 
-std::string time_tag(double t) {
-  char b[32];
-  std::snprintf(b, sizeof b, "%.6f", t);
-  return b;
-}
-
 // the default path of a picture of kind `stem` at time t in the output folder: STEM_<t>.png, or
 // when this simulation has written that one (a second picture at the same time) STEM_<t>_2.png, _3 ...
+// (sim/outputs.hpp picture_name, whose names a later run in the folder names as an earlier run's)
 std::string picture_path(const SimBox& box, const std::string& stem, double t) {
-  const std::string base = stem + "_" + time_tag(t);
-  std::string path = output_path(box.sim->settings(), base + ".png");
-  for (int k = 2; box.pictures.count(path); ++k)
-    path = output_path(box.sim->settings(), base + "_" + std::to_string(k) + ".png");
+  std::string path = output_path(box.sim->settings(), picture_name(stem, t));
+  for (int k = 2; box.pictures.count(path); ++k) path = output_path(box.sim->settings(), picture_name(stem, t, k));
   return path;
 }
 

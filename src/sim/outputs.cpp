@@ -8,12 +8,14 @@
 #include <algorithm>
 #include <cerrno>
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 #include <exception>
 #include <filesystem>
 #include <fstream>
 #include <functional>
 #include <sstream>
+#include <string_view>
 
 #include "integrate/controller.hpp"
 #include "io/csv_writer.hpp"
@@ -161,6 +163,32 @@ std::string name_in(const std::string& dir, const std::string& path) {
 
 }  // namespace
 
+std::string picture_name(const std::string& kind, double t, int k) {
+  char b[32];
+  std::snprintf(b, sizeof b, "%.6f", t);
+  return kind + "_" + b + (k > 1 ? "_" + std::to_string(k) : std::string()) + ".png";
+}
+
+bool is_picture_name(const std::string& name) {
+  std::string_view n = name;
+  const auto digits = [&n] {  // takes the digits at n's start: how many
+    size_t k = 0;
+    while (k < n.size() && n[k] >= '0' && n[k] <= '9') ++k;
+    n.remove_prefix(k);
+    return k;
+  };
+  if (!(n.substr(0, 5) == "show_" || n.substr(0, 5) == "plot_")) return false;
+  n.remove_prefix(5);
+  if (digits() == 0 || n.substr(0, 1) != ".") return false;
+  n.remove_prefix(1);
+  if (digits() != 6) return false;
+  if (n.substr(0, 1) == "_") {
+    n.remove_prefix(1);
+    if (digits() == 0) return false;
+  }
+  return n == ".png";
+}
+
 std::string span_name(const Scene& sc, size_t k) {
   return "span_" + sc.route_names[k] + "_" + sc.route_names[(k + 1) % sc.route_names.size()];
 }
@@ -242,24 +270,37 @@ std::vector<std::string> Outputs::earlier_outputs() const {
   for (const std::string& n :
        regular_files(folder, [&](const std::string& f) { return f != video && video_name_problem(f).empty(); }))
     left.push_back(n);
+  // the pictures sim:show and sim:plot drew into the folder by their default names (show_<t>.png,
+  // plot_<t>_2.png; one a script named, file = "a.png", may be any file of the user's): many are
+  // named by the first few and their count (a console session draws dozens)
+  const std::vector<std::string> pictures = regular_files(folder, is_picture_name);
+  constexpr size_t kNamed = 3;
+  for (size_t k = 0; k < pictures.size() && (k < kNamed || pictures.size() == kNamed + 1); ++k)
+    left.push_back(pictures[k]);
+  if (pictures.size() > kNamed + 1) left.push_back(std::to_string(pictures.size() - kNamed) + " more pictures");
   // every PNG folder: frames/ (the default's name) and any other that holds frame_NNNNN.png files
-  // (a script's frames.png, whatever its name)
+  // (a script's frames.png, whatever its name); and the checkpoints saved into a subfolder
+  // (sim:save("ck/mid.ckpt")), named with those in the folder, but in a subfolder that is a run's
+  // output folder itself (a console session's replay/, with its own parameters.csv)
+  const auto checkpoint = [](const std::string& f) { return f.size() > 5 && f.compare(f.size() - 5, 5, ".ckpt") == 0; };
   std::error_code ec;
-  std::vector<std::string> png_dirs;
+  std::vector<std::string> png_dirs, checkpoints;
   for (const auto& e : fs::directory_iterator(folder, ec)) {
     const std::string n = e.path().filename().string();
     if (n == pngs || n == "states" || e.symlink_status(ec).type() != fs::file_type::directory) continue;
     if (n == "frames" || !regular_files(e.path().string(), numbered("frame_", ".png")).empty())
       png_dirs.push_back(n + "/");
+    if (fs::symlink_status(e.path() / "parameters.csv", ec).type() == fs::file_type::not_found)
+      for (const std::string& c : regular_files(e.path().string(), checkpoint)) checkpoints.push_back(n + "/" + c);
   }
   std::sort(png_dirs.begin(), png_dirs.end());
   left.insert(left.end(), png_dirs.begin(), png_dirs.end());
   if (!rs_.keep_states && dir_->has("states")) left.push_back("states/");
   // checkpoints saved into the folder (sim:save("mid.ckpt")): resumed after this run has written
   // the folder, each is refused (check_state: its outputs are gone), so they are named as it starts
-  for (const std::string& n : regular_files(
-           folder, [](const std::string& f) { return f.size() > 5 && f.compare(f.size() - 5, 5, ".ckpt") == 0; }))
-    left.push_back(n);
+  for (const std::string& n : regular_files(folder, checkpoint)) left.push_back(n);
+  std::sort(checkpoints.begin(), checkpoints.end());
+  left.insert(left.end(), checkpoints.begin(), checkpoints.end());
   return left;
 }
 

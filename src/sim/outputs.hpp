@@ -35,6 +35,11 @@ struct Scene;
 std::vector<std::string> timeseries_columns(const Scene& scene, size_t probes = 1);
 // route span k's name in the columns: span_<a>_<b>, the pulleys it runs from and to
 std::string span_name(const Scene& sc, size_t k);
+// the default name of a picture of `kind` ("show", "plot": sim:show's, sim:plot's) drawn at t:
+// KIND_<t>.png (t to 6 decimals), the k-th at one time (k >= 2) KIND_<t>_k.png
+std::string picture_name(const std::string& kind, double t, int k = 1);
+// whether a file's name is one of those
+bool is_picture_name(const std::string& name);
 
 class Outputs {
  public:
@@ -54,9 +59,12 @@ class Outputs {
   // and snapshots.csv; append continues the files of a resumed run
   void open(bool append);
   // the outputs an earlier run left in the claimed folder that this one does not write:
-  // snapshots.csv, every video (NAME.mp4, whatever its name, but this run's own), every PNG folder
-  // (frames/, and any other holding frame_NNNNN.png, but this run's own) and states/, then the
-  // checkpoints in it (NAME.ckpt, which cannot be resumed once this run has written the folder)
+  // snapshots.csv, every video (NAME.mp4, whatever its name, but this run's own), the pictures of
+  // sim:show and sim:plot by their default names (is_picture_name; past four, three and "N more
+  // pictures"), every PNG folder (frames/, and any other holding frame_NNNNN.png, but this run's
+  // own) and states/, then the checkpoints in it and in its subfolders (NAME.ckpt, SUB/NAME.ckpt;
+  // not in a subfolder that is a run's output folder itself), which cannot be resumed once this
+  // run has written the folder
   // (a folder holds one run's outputs; the simulation warns of them as it starts)
   std::vector<std::string> earlier_outputs() const;
   // finishes the video, appends the fallbacks (warning.<name>.count, .first_t) and `rows` (whole

@@ -252,6 +252,49 @@ TEST(Outputs, AnEarlierRunsCheckpointsAreNamed) {
                          "refuse them unless this run saves its own over them");
 }
 
+// and so are the pictures sim:show and sim:plot drew by their default names, and the checkpoints
+// saved into a subfolder (a trial's replays of two console sessions went into one folder, the
+// first's show_0.100000.png left among the second's without a word); a PNG of another name may be
+// the user's, and a subfolder with its own parameters.csv is another run's folder (replay/)
+TEST(Outputs, AnEarlierRunsPicturesAndCheckpointsInSubfoldersAreNamed) {
+  const fs::path out = fresh("earlier_pictures") / "out";
+  std::vector<std::string> said;
+  auto runs = [&] {
+    said.clear();
+    RunSettings rs = settings(out);
+    rs.t_end = 0.002;
+    rs.on_warning = [&](const std::string& m) {
+      if (m.rfind("the output folder", 0) == 0) said.push_back(m);
+    };
+    run(dry_scene(), rs);
+  };
+  runs();
+  EXPECT_TRUE(said.empty()) << said[0];
+  for (const char* f : {"show_0.100000.png", "plot_0.250000.png", "a.png", "show_1.png", "show_0.1000000.png"})
+    std::ofstream(out / f) << "x";
+  fs::create_directories(out / "ck");
+  std::ofstream(out / "ck" / "mid.ckpt") << "x";
+  fs::create_directories(out / "replay");  // a replay's folder: its own run's
+  std::ofstream(out / "replay" / "parameters.csv") << "x";
+  std::ofstream(out / "replay" / "late.ckpt") << "x";
+  runs();
+  ASSERT_EQ(said.size(), 1u);
+  EXPECT_EQ(said[0], "the output folder " + out.string() +
+                         " holds an earlier run's plot_0.250000.png and show_0.100000.png, which this run does not "
+                         "write: they are not this run's outputs (give each run its own --out or out = ..., or remove "
+                         "them); and its checkpoint ck/mid.ckpt: this run replaces the outputs it continues, so "
+                         "beltsim.resume will refuse it unless this run saves its own over it");
+  // past four, three and their count
+  for (const char* f : {"show_0.200000.png", "show_0.200000_2.png", "show_0.300000.png"}) std::ofstream(out / f) << "x";
+  fs::remove(out / "ck" / "mid.ckpt");
+  runs();
+  ASSERT_EQ(said.size(), 1u);
+  EXPECT_EQ(said[0], "the output folder " + out.string() +
+                         " holds an earlier run's plot_0.250000.png, show_0.100000.png, show_0.200000.png and 2 more "
+                         "pictures, which this run does not write: they are not this run's outputs (give each run its "
+                         "own --out or out = ..., or remove them)");
+}
+
 // a fresh run's frames and kept states replace an earlier run's: the numbered files it does not
 // write over (a longer run's last ones) go too, so that a golden test never compares a frame an
 // earlier run left; a file of any other name stays, and a resumed run removes nothing
