@@ -173,7 +173,7 @@ int OutputDir::open_own(const std::string& name, int flags, bool empty) const {
   return fd;
 }
 
-void OutputDir::truncate(const std::string& name, long bytes) const {
+void OutputDir::truncate(const std::string& name, long bytes, long room) const {
   const std::string p = file(name);
   const long have = size(name);
   if (have < 0) output_error(p, "the run's output is missing");
@@ -181,6 +181,7 @@ void OutputDir::truncate(const std::string& name, long bytes) const {
   const int fd = open_file(name, true);
   const int r = ::ftruncate(fd, bytes);
   const int err = errno;
+  if (r == 0 && room > 0 && ::fallocate(fd, FALLOC_FL_KEEP_SIZE, bytes, room) != 0) errno = 0;  // (as reserve)
   ::close(fd);
   if (r != 0) output_error(p, std::strerror(err));
 }

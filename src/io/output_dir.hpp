@@ -67,8 +67,9 @@ class OutputDir {
   // regular file, or has another hard link.
   int open_file(const std::string& name, bool append) const;
   // NAME cut to its first `bytes` bytes (a resumed run); refused as open_file, and when NAME is
-  // missing or shorter
-  void truncate(const std::string& name, long bytes) const;
+  // missing or shorter. `room` more bytes past the cut are taken from the file system, as
+  // WholeFile::reserve takes them (none where it cannot)
+  void truncate(const std::string& name, long bytes, long room = 0) const;
   // the size of NAME (not through a link), -1 when there is none
   long size(const std::string& name) const;
   // whether NAME exists in the folder (a file, a folder or a link, never followed)

@@ -643,6 +643,12 @@ void Outputs::set_state(const State& s) {
   last_ = s.fingerprinted ? s : with_fingerprints(s);  // (before the files are cut: their hashes go on from it)
   if (dir_) {
     for (const Cut& c : cuts(s)) dir_->truncate(c.name, c.bytes);
+    // parameters.csv back to the rows its run wrote at its start: the end rows a run that closed
+    // appended (warning.*, check.*, end.*) are the continuation's to write, once (a resume into
+    // the stopped run's folder left end.status interrupted and, after it, ok). Its room for them
+    // taken again. (A version 12 checkpoint knows no start: its file is kept whole.)
+    if (last_.parameters_bytes > 0 && dir_->size("parameters.csv") > last_.parameters_bytes)
+      dir_->truncate("parameters.csv", last_.parameters_bytes, kParametersTail);
     if (csv_) open_rows(true);  // written on at their new ends (a file opened to be emptied writes at its own offset)
   }
   rows_ = s.rows;

@@ -154,6 +154,31 @@ class Resume(unittest.TestCase):
         code, _, err = run(["run", "resume.lua", "--set", "ck=out/ck/mid.ckpt"], self.dir)
         self.assertEqual(code, 0, err)
 
+    def test_a_resumed_run_leaves_one_set_of_end_rows(self):
+        # docs/outputs.md's recipe (a stopped run continued into its folder) left parameters.csv with
+        # the stopped run's end rows (end.status interrupted) and then the continuation's (ok): a
+        # lookup by name found two. The continuation cuts the file back to the rows its run wrote
+        # at its start, and its own end rows follow once
+        out = os.path.join(self.dir, "out", "drive")
+        code, _, err = run(["run", "drive.lua", "--set", "save=true", "--set", "t_end=0.15"], self.dir)
+        self.assertEqual(code, 0, err)
+        with open(os.path.join(out, "parameters.csv"), "rb") as f:
+            first = f.read()
+        code, _, err = run(["run", "resume.lua", "--set", "ck=out/drive/mid.ckpt"], self.dir)
+        self.assertEqual(code, 0, err)
+        with open(os.path.join(out, "parameters.csv"), "rb") as f:
+            raw = f.read()
+        text = raw.decode()
+        names = [line.split(",", 1)[0] for line in text.splitlines()]
+        for name in ["end.status", "end.t", "end.last_row_t", "warning.failed_step.count"]:
+            self.assertEqual(names.count(name), 1, name + " in:\n" + text)
+        self.assertTrue(text.endswith("\n"))
+        self.assertIn("\nend.t,0.2,s,", text)
+        self.assertNotIn("\nend.t,0.15,", text)
+        start = self.parameters_bytes(out)  # (bytes: the notes hold N·m)
+        self.assertEqual(raw[:start], first[:start])
+        self.assertTrue(raw[start:].startswith(b"warning."), raw[start:start + 80])
+
     def test_a_lua_law_is_named_at_save_only(self):
         code, out, err = run(["run", "law.lua"], self.dir)
         self.assertEqual((code, out), (1, ""), err)
