@@ -101,7 +101,8 @@ void Timeline::restart(double p, const Eigen::VectorXd& y) {
   for (When& w : when_) w.crossing = std::numeric_limits<double>::quiet_NaN(), w.last = w.cond(p, y_now_);
 }
 
-// everything due at time p (p inside the held step, after now_)
+// everything due at time p (p inside the held step, after now_): the actions, then the outputs,
+// which show the system after them
 void Timeline::process(double p) {
   companion_to(p);
   integ_.dense(p, y_now_);
@@ -110,8 +111,6 @@ void Timeline::process(double p) {
   dirty_ = false;
   bool landed = false;
   try {
-    for (Periodic& s : periodic_)
-      if (s.output && s.time() == p) s.k++, s.out(p, y_now_);
     // actions may add or remove entries: iterate over the ids due now
     std::vector<int> due;
     for (const Periodic& s : periodic_)
@@ -149,11 +148,16 @@ void Timeline::process(double p) {
     throw;
   }
   in_actions_ = false;
+  const bool restarted = dirty_;
   if (dirty_)
     restart(p, have_new_state_ ? new_state_ : y_now_);
   else if (landed && p == integ_.t())
     integ_.kink();
-  if (landed && !dirty_ && companion_ && companion_failed_.empty() && p == companion_->t()) companion_->kink();
+  if (landed && !restarted && companion_ && companion_failed_.empty() && p == companion_->t()) companion_->kink();
+  // the outputs due at p, after its actions and the restart: a sample, a frame or a snapshot at the
+  // time of a law's step or a timed change shows the system after it, as a pause there does
+  for (Periodic& s : periodic_)
+    if (s.output && s.time() == p) s.k++, s.out(p, y_now_);
 }
 
 double Timeline::next_landing(const Integrator& integ) const {

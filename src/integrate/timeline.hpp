@@ -14,9 +14,11 @@
 // run_to(b) gives exactly what run_to(b) gives. A change of the system at the current time (an
 // action's, or one made at a pause) restarts the integrator there (Integrator::start).
 //
-// At one time the order is: streams (in the order added), every-actions, landings, when-actions;
-// then, if any of them changed the system, the restart. Everything at or before now() has been
-// delivered.
+// At one time the order is: every-actions, landings, when-actions; then, if any of them changed
+// the system, the restart; then the streams (in the order added), so that an output at the time
+// of a change shows the system after it (a sample at a law's step has the value the law takes
+// from then on, a frame at a timed wetting shows the wet stretch), as the system reads at a pause
+// there. Everything at or before now() has been delivered.
 //
 // A companion (optional): a second integrator of the same system, at another tolerance, driven by
 // this schedule in lockstep with the main one (a run's error check, sim/run_check.hpp). Before

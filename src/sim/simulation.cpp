@@ -155,10 +155,14 @@ void Simulation::set_landings() {
   for (double t : drive_.breakpoints()) l.push_back({t, {}});
   // a step of a law: the step that ends here saw the value before it; the integrator restarts
   // here after it (Drive::restart_time). A kinematic pulley's state speed, which nothing reads
-  // (its prescribed one is used), is kept equal to it.
+  // (its prescribed one is used), is kept equal to it. Each change here covers the interval
+  // means up to now first, with the drive as it was (before_change), as the changes made at a
+  // pause do: the outputs of this time come after it (integrate/timeline.hpp), and the step's end
+  // read with the law's new value would count it in the interval before.
   for (double t : drive_.jumps())
     l.push_back({t, [this](double at) {
                    Eigen::VectorXd y = state();
+                   before_change();
                    drive_.restart_time = at;
                    for (int j = 0; j < model_.n_p(); ++j)
                      if (drive_.kinematic(j))
@@ -174,6 +178,7 @@ void Simulation::set_landings() {
   for (size_t k = 0; k < pending_.size(); ++k)
     l.push_back({pending_[k].t, [this](double t) {
                    // every μ event due now, in the order given
+                   before_change();
                    while (!pending_.empty() && pending_.front().t <= t) {
                      const MuEvent ev = pending_.front();
                      pending_.erase(pending_.begin());

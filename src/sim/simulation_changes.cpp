@@ -102,6 +102,7 @@ std::string Simulation::spray_name(int z) {
 }
 
 void Simulation::spray_at(double t) {
+  before_change();  // (the interval means up to now with the spray as it was)
   const Eigen::VectorXd& y = state();
   const std::vector<int> switched = spray_switch(drive_.spray, t);
   for (int z : switched) write_event(t, spray_name(z), drive_.spray.zones[z].on ? "on" : "off");

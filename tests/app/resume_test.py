@@ -8,6 +8,7 @@
 - a simulation with a Lua function law is said not to be savable where it is saved: sim:save names
   the pulley and the law; a script that never saves hears nothing of it (scene:start warned at
   every start, saved or not)."""
+import csv
 import hashlib
 import os
 import re
@@ -41,6 +42,21 @@ RESUME = """
 local sim = beltsim.resume(beltsim.args.ck, { rewind = true, progress = false })
 sim:run_to(0.2)
 sim:close()
+"""
+
+# a step of the driven pulley's torque at 0.01 s and a wetting of the whole belt at 0.02 s, both at
+# sample and frame times (frames every 1/300 s: 3/300 and 6/300), a state kept at each frame
+EVENTS = """
+local drive = beltsim.scene {
+  pulleys = {
+    { name = "driver", centre = {0, 0}, radius = 0.1, torque = beltsim.ramp(0.02, -40) },
+    { name = "driven", centre = {0.29, 0}, radius = 0.1, torque = beltsim.step(0.01, 0, 3) },
+  },
+  belt = { elements = 40, pretension = 500, direction = "cw" },
+}
+drive:run { t_end = 0.03, sample = 1e-3, progress = false, out = "out/events", keep_states = true,
+  frames = { fps = 30, slowdown = 10, png = false, video = false },
+  events = { { t = 0.02, mu = 0.2 } } }
 """
 
 LUA_LAW = """
@@ -89,7 +105,8 @@ class Resume(unittest.TestCase):
     def setUp(self):
         self.dir = tempfile.mkdtemp(prefix="beltsim_resume_")
         self.addCleanup(shutil.rmtree, self.dir, True)
-        for name, text in (("drive.lua", DRIVE), ("resume.lua", RESUME), ("law.lua", LUA_LAW)):
+        for name, text in (("drive.lua", DRIVE), ("resume.lua", RESUME), ("law.lua", LUA_LAW),
+                           ("events.lua", EVENTS)):
             with open(os.path.join(self.dir, name), "w") as f:
                 f.write(text)
 
@@ -178,6 +195,33 @@ class Resume(unittest.TestCase):
         start = self.parameters_bytes(out)  # (bytes: the notes hold N·m)
         self.assertEqual(raw[:start], first[:start])
         self.assertTrue(raw[start:].startswith(b"warning."), raw[start:start + 80])
+
+    def test_the_outputs_at_a_changes_time_show_the_run_after_it(self):
+        # a trial's row at t = 0.3 of beltsim.step(0.3, from, to) had the `from` torque, and its row
+        # at a wet event's 0.5 s the dry belt, while events.csv dated the event 0.5: the changes at
+        # a time now come before its outputs. A state kept there (frames at those times) holds the
+        # run after the change too: resumed, it went on without the event, which was still ahead
+        # in it at a time its resume took as past
+        out = os.path.join(self.dir, "out", "events")
+        code, _, err = run(["run", "events.lua"], self.dir)
+        self.assertEqual(code, 0, err)
+        with open(os.path.join(out, "timeseries.csv")) as f:
+            rows = {r["t"]: r for r in csv.DictReader(f)}
+        self.assertEqual([rows[t]["driven.torque"] for t in ("0.009", "0.01", "0.011")], ["0", "3", "3"])
+        # the means over (t - 0.001, t]: the step's value before it up to 0.01, its value after from there
+        self.assertEqual([round(float(rows[t]["driven.torque_mean"]), 12) for t in ("0.01", "0.011")], [0, 3])
+        self.assertEqual([round(float(rows[t]["driver.mu"]), 12) for t in ("0.019", "0.02", "0.021")], [1, 0.2, 0.2])
+        with open(os.path.join(out, "events.csv")) as f:
+            self.assertIn("\n0.02,set_mu,", f.read())
+        with open(os.path.join(out, "timeseries.csv"), "rb") as f:
+            series = f.read()
+        for state in ("state_00003.ckpt", "state_00006.ckpt"):  # at 0.01 s and 0.02 s
+            code, _, err = run(["run", "resume.lua", "--set", "ck=out/events/states/" + state], self.dir)
+            self.assertEqual(code, 0, err)
+            with open(os.path.join(out, "timeseries.csv"), "rb") as f:
+                self.assertEqual(f.read()[:len(series)], series, state)
+            with open(os.path.join(out, "events.csv")) as f:
+                self.assertEqual(f.read().count(",set_mu,"), 1, state)
 
     def test_a_lua_law_is_named_at_save_only(self):
         code, out, err = run(["run", "law.lua"], self.dir)

@@ -7,6 +7,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <string>
+#include <vector>
 
 #include "integrate/make_integrator.hpp"
 
@@ -68,6 +70,34 @@ TEST(Timeline, LandedSamplesDoNotShortenLongSteps) {
   ASSERT_EQ(landed.samples, 1000);
   EXPECT_LE(landed.steps, none.steps + 2);
   EXPECT_LE(landed.at_step_ends, 3);
+}
+
+// at one time the changes come first and the outputs after them: a sample at the time of a
+// landing's action (a law's step, a timed wetting) or an every-action shows the system after it,
+// as a pause there reads it (the sample came first, and a row at a step's time had its `from`)
+TEST(Timeline, AnOutputAtAChangesTimeComesAfterIt) {
+  CosineWave sys;
+  auto integ = make_integrator("rkf45", sys, Tolerances{1e-6, 1e-6});
+  Timeline tl(*integ);
+  std::vector<std::string> order;
+  tl.add_stream(
+      0.0, 0.1,
+      [&](double t, const Eigen::VectorXd&) {
+        if (t == 0.2) order.push_back("sample");
+      },
+      true);
+  tl.add_every(0.2, [&](double t) {
+    if (t == 0.2) order.push_back("every");
+  });
+  tl.set_landings({{0.2, [&](double) {
+                      order.push_back("landing");
+                      tl.changed();
+                    }}});
+  Eigen::VectorXd y0(1);
+  y0[0] = 0;
+  tl.start(0.0, y0);
+  tl.run_to(0.3);
+  EXPECT_EQ(order, (std::vector<std::string>{"every", "landing", "sample"}));
 }
 
 }  // namespace
