@@ -5,6 +5,7 @@ usage or a file it cannot read); and the two recipes of docs/testing-your-scenar
 (docs/examples/my_drive/: ctest and pytest) run as a user runs them, passing on the stored results
 and failing on a stored result that is off."""
 import os
+import re
 import shutil
 import struct
 import subprocess
@@ -422,6 +423,27 @@ class Recipes(Base):
         self.assertNotEqual(p.returncode, 0, p.stdout)
         self.assertIn("67% tests passed, 1 tests failed out of 3", p.stdout)
         self.assertIn("differ: 1 of 36 columns differ (driver.omega); worst: driver.omega", p.stdout)
+
+    def test_the_ctest_recipes_tolerances_are_what_it_says(self):
+        # its comment's "atol by unit: 1 N, 0.1 N·m, ..." against the tolerances compare names for
+        # the comparison's --rtol (it said 1 rad/s where compare takes 0.1)
+        with open(os.path.join(self.example(), "CMakeLists.txt"), encoding="utf-8") as f:
+            text = f.read()
+        said = re.search(r"atol by unit[^:]*: ([^)]*)\)", text).group(1).split(", ")
+        rtol = re.search(r"compare \S+ \S+ --rtol (\S+)", text).group(1)
+        column = {"N": "driver.hub_load", "N·m": "driver.torque", "rad/s": "driver.omega", "mm": "driver.contact_arc",
+                  "m/s": "driver.slip_speed", "rad": "driver.angle"}
+        checked = [s.split(" ") for s in said if s != "..."]
+        names = ["t"] + [column[unit] for _, unit in checked]
+        write_csv(self.path("a.csv"), names, [[0] * len(names)])
+        write_csv(self.path("b.csv"), names, [[0] + [1000] * (len(names) - 1)])
+        code, out, err = self.compare("a.csv", "b.csv", "--rtol", rtol, "--failing")
+        self.assertEqual(code, 1, out + err)
+        for value, unit in checked:
+            si, si_unit = (float(value) / 1000, "m") if unit == "mm" else (float(value), unit)
+            line = next(l for l in out.splitlines() if l.startswith("  " + column[unit] + " "))
+            atol = re.search(r"atol (\S+) (\S+)\)$", line)
+            self.assertEqual((float(atol.group(1)), atol.group(2)), (si, si_unit), value + " " + unit + ": " + line)
 
     def test_the_example_runs_without_a_warning_of_the_contract(self):
         # a user's first run of the example they copy does not start by saying its integrator
