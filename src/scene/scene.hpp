@@ -50,5 +50,8 @@ std::vector<SceneInput> scene_inputs(const SceneDef& def);
 // word `text`; its unit and note from the table.
 SceneInput scene_input(const Parameter& par, const std::string& name, double value, const std::string& text,
                        bool given);
+// The inputs derived from others: belt.mu from belt.mu_flank and belt.rib_angle (the rib wedge's
+// effective μ) gets SceneInput::derived and a note naming them (a scene's inputs, a checkpoint's)
+void mark_derived(std::vector<SceneInput>& inputs);
 
 }  // namespace beltsim
