@@ -439,6 +439,66 @@ TEST(LiveApi, RibWedgeGivesTheEffectiveMu) {
             std::string::npos);
 }
 
+// values in another unit than their key's (a user trial): each error names the key given, its
+// value and the line of the key, and says the unit; a derived μ out of range names what it comes
+// from (it named belt.mu, never written, at the call's line); an implausible value that is no
+// error warns (it was accepted silently)
+TEST(LiveApi, ValuesInAnotherUnitAreToldSo) {
+  const auto with = [](const std::string& assign, const std::string& belt, const std::string& driven = "") {
+    beltsim::test::TwoPulley p;
+    p.assign = assign, p.belt = belt, p.driven = driven;
+    return beltsim::test::two_pulley(p);
+  };
+  // rib_angle in radians with mu_flank: mu = 0.3/sin(0.349°) = 49.25 (the belt table is on line 6)
+  std::string err = run_text(with("", "mu_flank = 0.3, rib_angle = 0.698"));
+  EXPECT_NE(err.find(":6: belt.mu = 49.25, derived from belt.mu_flank = 0.3 and belt.rib_angle = 0.698° (mu = "
+                     "mu_flank/sin(rib_angle/2)), must be in [0, 10]: a friction coefficient"),
+            std::string::npos)
+      << err;
+  EXPECT_NE(err.find("; belt.rib_angle = 0.698° is no V-rib's included angle (20° to 60°; PK belts: 40°): the angle "
+                     "is in degrees, not radians (0.698 rad is 39.99°)"),
+            std::string::npos)
+      << err;
+  // a flank μ too large for a plausible angle names mu_flank's line and no angle
+  err = run_text(with("", "mu_flank = 4, rib_angle = 40"));
+  EXPECT_NE(err.find(":6: belt.mu = 11.7, derived from belt.mu_flank = 4 and belt.rib_angle = 40°"), std::string::npos)
+      << err;
+  EXPECT_EQ(err.find("V-rib"), std::string::npos) << err;
+  // without mu_flank the angle changes nothing, but is told; an inertia in g·cm² warns
+  EXPECT_EQ(
+      run_text(with("local t = ", "rib_angle = 0.698", "inertia = 2000, torque = { per_speed = -0.955 }") +
+               "local w = table.concat(t:info().warnings, '\\n')\n"
+               "assert(w:find(\"belt.rib_angle = 0.698° is no V-rib's included angle (20° to 60°; PK belts: 40°): "
+               "the angle is in degrees, not radians (0.698 rad is 39.99°); it changes nothing here: without "
+               "belt.mu_flank, belt.mu is the effective coefficient itself\", 1, true), w)\n"
+               "assert(w:find(\"pulley 'driven'.inertia = 2000 kg·m² is more than a solid steel disc of its "
+               "radius (0.1 m), 1 m wide, would have (1.23 kg·m²): the inertia is in kg·m² (2000 g·cm² is "
+               "0.0002 kg·m², 2000 kg·cm² 0.2 kg·m²)\", 1, true), w)\n"
+               "assert(not w:find('driver'), w)\n"),
+      "");
+  EXPECT_EQ(run_text(with("local t = ", "mu_flank = 0.3, rib_angle = 35") +
+                     "local w = table.concat(t:info().warnings, '\\n')\n"
+                     "assert(not w:find('rib_angle') and not w:find('inertia'), w)\n"),
+            "");
+  // a pretension in kN: the belt's weight over the 0.29 m span is 0.273 N
+  beltsim::test::TwoPulley p;
+  p.belt_lines = "  belt = { elements = 40, pretension = 0.25 },\n";
+  err = run_text(beltsim::test::two_pulley(p));
+  // (2 N holds it, the span sagging by 1.7 %: a warning)
+  p.assign = "local t = ", p.belt_lines = "  belt = { elements = 40, pretension = 2 },\n";
+  EXPECT_EQ(run_text(beltsim::test::two_pulley(p) +
+                     "local w = table.concat(t:info().warnings, '\\n')\n"
+                     "assert(w:find(\"belt.pretension = 2 N is tiny against the belt's weight over its longest span "
+                     "(0.2731 N over 0.29 m): at 2 N that span sags by 1.71 % of its length (ρ·g·L/8T), where the "
+                     "start holds the spans straight; the pretension is in N (2 kN would be 2000 N)\", 1, true), w)\n"),
+            "");
+  EXPECT_NE(err.find(":6: belt.pretension is less than the belt's weight over its longest span (ρ·g·L = 0.27311 N: "
+                     "0.096 kg/m over 0.29 m at g = 9.81 m/s²): the belt would hang rather than span its pulleys; the "
+                     "pretension is in N (0.25 kN would be 250 N; the paper's belt is mounted at 500 N) (got 0.25 N)"),
+            std::string::npos)
+      << err;
+}
+
 TEST(LiveApi, BadCallsNameFileLineAndWhat) {
   struct Case {
     std::string call, expect;
