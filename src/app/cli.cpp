@@ -151,7 +151,8 @@ CLI::App* add_compare_command(CLI::App& app, CompareOptions& o) {
       "levels). CSVs: columns matched by name; a and b agree when |a - b| <= atol + rtol*max(|a|, |b|),\n"
       "atol by the column's unit (100 N, 10 N.m, 10 rad/s, 1 rad, 0.1 m, 1 m/s, 10 J, 1 s, 0.01 for a\n"
       "ratio, times rtol, unless given); NaN against a number is reported apart; rows aligned on the\n"
-      "'t' column, B interpolated linearly onto A's times when they differ (said on stderr). Prints\n"
+      "'t' column: B's rows at A's times, or B interpolated linearly onto A's times when A has times\n"
+      "B has not (said on stderr). Prints\n"
       "one line (--failing: and one per failing column); exit 0 when they match, 1 when they differ,\n"
       "2 on bad usage or a file that cannot be read (only regular files are), 3 when the difference\n"
       "image could not be written (the line still says whether they match).");

@@ -191,12 +191,24 @@ CsvComparison compare_csv(const Table& a, const Table& b, const CsvTolerance& to
   const std::size_t rows_b = b.columns.empty() ? 0 : b.columns[0].size();
   c.timed = a.has(kTime);
   bool interpolated = false;
+  std::vector<std::size_t> rows_of_b;  // when A's times are some of B's: B's row (from 0) of each
   if (c.timed) {
     check_increasing(a);
     check_increasing(b);
     const std::vector<double>&ta = a.column(kTime), &tb = b.column(kTime);
-    interpolated = ta != tb;
-    if (interpolated) {
+    // A's times all among B's (a short run against the first part of a long one at the same sample
+    // times, or a coarser sample of the same run): compared with those rows, nothing interpolated
+    if (ta != tb && rows > 0 && rows < rows_b) {
+      for (std::size_t i = 0, j = 0; i < rows; ++i) {
+        while (j < rows_b && tb[j] < ta[i]) ++j;
+        if (j == rows_b || tb[j] != ta[i]) break;
+        rows_of_b.push_back(j);
+      }
+      if (rows_of_b.size() != rows) rows_of_b.clear();
+    }
+    const bool some_of_b = !rows_of_b.empty();
+    interpolated = ta != tb && !some_of_b;
+    if (ta != tb) {
       if (rows_b < 2 || rows == 0 || ta.front() < tb.front() || ta.back() > tb.back()) {
         c.reason = "the times differ and " + b.path + " (t in [" + (rows_b ? num(tb.front()) : "") + ", " +
                    (rows_b ? num(tb.back()) : "") + "] s, " + std::to_string(rows_b) + " rows) does not cover " +
@@ -213,9 +225,20 @@ CsvComparison compare_csv(const Table& a, const Table& b, const CsvTolerance& to
                    " with the part of " + b.path + " it spans)";
         return c;
       }
-      c.note = "the times differ (" + std::to_string(rows) + " rows in " + a.path + ", " + std::to_string(rows_b) +
-               " in " + b.path + (spans ? "" : "; " + a.path + " spans a part of " + b.path + "'s times") +
-               "): " + b.path + " interpolated linearly onto " + a.path + "'s times";
+      if (some_of_b) {
+        const std::string n = std::to_string(rows), n_b = std::to_string(rows_b);
+        const bool run = rows_of_b.back() - rows_of_b.front() + 1 == rows;  // consecutive rows
+        c.note = run ? a.path + " spans a part of " + b.path + "'s times: its " + n + " times are " + b.path +
+                           "'s rows " + std::to_string(rows_of_b.front() + 1) + " to " +
+                           std::to_string(rows_of_b.back() + 1) + " of " + n_b + ", compared row by row"
+                     : a.path + "'s " + n + " times are among " + b.path + "'s " + n_b +
+                           (spans ? "" : " (" + a.path + " spans a part of them)") + ", compared at those rows";
+        c.note += " (nothing interpolated)";
+      } else {
+        c.note = "the times differ (" + std::to_string(rows) + " rows in " + a.path + ", " + std::to_string(rows_b) +
+                 " in " + b.path + (spans ? "" : "; " + a.path + " spans a part of " + b.path + "'s times") +
+                 "): " + b.path + " interpolated linearly onto " + a.path + "'s times";
+      }
     }
   } else if (rows != rows_b) {
     c.reason = "the row counts differ: " + std::to_string(rows) + " in " + a.path + ", " + std::to_string(rows_b) +
@@ -228,10 +251,13 @@ CsvComparison compare_csv(const Table& a, const Table& b, const CsvTolerance& to
     const std::string& name = a.names[k];
     if ((c.timed && name == kTime) || tol.skip.count(name)) continue;
     ++c.compared;
-    std::vector<double> yb = b.column(name);
-    if (interpolated)
-      for (std::size_t i = 0; i < rows; ++i) yb[i] = interpolate(b.column(kTime), b.column(name), (*t)[i]);
-    yb.resize(rows);
+    // B's value at each of A's rows (B may have more rows than A, or fewer when interpolated)
+    const std::vector<double>& column_b = b.column(name);
+    std::vector<double> yb(rows);
+    for (std::size_t i = 0; i < rows; ++i)
+      yb[i] = interpolated        ? interpolate(b.column(kTime), column_b, (*t)[i])
+              : rows_of_b.empty() ? column_b[i]
+                                  : column_b[rows_of_b[i]];
     const ColumnResult r = compare_column(name, tol.of(name), a.columns[k], yb, t);
     if (r.ratio > c.worst.ratio) c.worst = r;
     if (r.failed()) c.failing.push_back(r);

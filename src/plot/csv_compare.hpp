@@ -6,7 +6,8 @@
 // rtol and atol where given, else atol from the column's unit (io/units.hpp: the unit given for
 // all columns of that unit, else the one given for all, else rtol times the unit's scale). Both
 // NaN agree; NaN against a number is counted apart from the numbers that differ. Rows are aligned
-// on the time column 't' when both files have one: the same times row by row, otherwise B
+// on the time column 't' when both files have one: the same times row by row, A's times all among
+// B's (a short run against the first part of a long one) with those rows of B, otherwise B
 // interpolated linearly onto A's times (B must cover them); without a 't' column, row by row.
 #pragma once
 

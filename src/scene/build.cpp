@@ -183,21 +183,50 @@ TensionAtRest tension_at_rest(const BeltDef& bd, double route_length, Belt& b) {
   return t;
 }
 
-void check_sag(const Route& route, const BeltDef& bd, double gravity, double tension) {
+void check_sag(const Route& route, const SceneDef& d, const TensionAtRest& t) {
   // The static start holds straight spans at the tension at rest: a belt whose weight over its
   // longest span passes that tension (ρ·|g|·L > T: a sag above L/8, δ = ρgL²/8T) hangs instead
   // (on the paper's drive from gravity = 1.8e4 m/s²; at 1e4 the spans already carry 554 N, not 500)
+  const BeltDef& bd = d.belt;
   double longest = 0;
   for (const Route::Span& sp : route.spans) longest = std::max(longest, sp.length);
-  const double weight = bd.mass_per_length * std::abs(gravity) * longest;
-  if (!(weight <= tension)) {
+  const double weight = bd.mass_per_length * std::abs(d.gravity) * longest;
+  if (weight <= t.tension) return;
+  const std::string over = "the belt's weight over its longest span (ρ·g·L = " + rounded_text(weight, 6) +
+                           " N: " + rounded_text(bd.mass_per_length, 6) + " kg/m over " + rounded_text(longest, 6) +
+                           " m at g = " + rounded_text(d.gravity, 6) + " m/s²)";
+  constexpr double kEarth = 9.81;                            // [m/s²]
+  if (bd.mass_per_length * kEarth * longest <= t.tension) {  // a tension that holds it on Earth: gravity's fault
     reject("gravity",
            "makes the belt's weight over its longest span (ρ·g·L = " + rounded_text(weight, 6) + " N over " +
-               rounded_text(longest, 6) + " m) larger than its tension at rest (" + rounded_text(tension, 6) +
+               rounded_text(longest, 6) + " m) larger than its tension at rest (" + rounded_text(t.tension, 6) +
                " N): the belt would hang rather than span its pulleys; lower gravity or belt.mass_per_length, or "
                "tension the belt more",
-           gravity);
+           d.gravity);
   }
+  const std::string hang = ": the belt would hang rather than span its pulleys; ";
+  for (const PulleyDef& p : d.pulleys) {
+    if (!p.tensioner || !p.tensioner->sets_tension()) continue;
+    const bool preload = p.tensioner->preload.has_value();
+    reject("pulley '" + p.name + "'.tensioner." + (preload ? "preload" : "angle0"),
+           "gives the belt a tension at rest of " + rounded_text(t.tension, 6) + " N, less than " + over + hang +
+               (preload ? "raise the preload (in N·m)" : "move the free angle further from the installed one (in rad)"),
+           preload ? *p.tensioner->preload : *p.tensioner->angle0, preload ? "N·m" : "rad");
+  }
+  const std::string key = t.key;
+  if (key == "belt.pretension") {
+    // (a value below 10 may be kilonewtons: a belt is mounted at some hundreds of N)
+    const std::string kn =
+        t.value < 10 ? rounded_text(t.value, 6) + " kN would be " + rounded_text(1000 * t.value, 6) + " N; " : "";
+    reject(key,
+           "is less than " + over + hang + "the pretension is in N (" + kn + "the paper's belt is mounted at 500 N)",
+           t.value);
+  }
+  reject(key,
+         "gives the spans a tension at rest of " + rounded_text(t.tension, 6) + " N, less than " + over + hang +
+             (key == "belt.strain" ? "raise it (strain is a fraction: 0.005 = 0.5 %)"
+                                   : "shorten it (the route is " + rounded_text(route.length, 6) + " m)"),
+         t.value);
 }
 
 Contact element_contact(const SceneDef& d, double pitch) {

@@ -56,8 +56,10 @@ struct TensionAtRest {
 // sets b's rest length when the rest length is given (set_rest_length); throws when the belt would
 // hang slack or each SDE would stretch by more than half a pitch
 TensionAtRest tension_at_rest(const BeltDef& bd, double route_length, Belt& b);
-// throws when the belt's weight over its longest span passes its tension at rest (it would sag)
-void check_sag(const Route& route, const BeltDef& bd, double gravity, double tension);
+// throws when the belt's weight over its longest span passes its tension at rest t (it would sag),
+// naming what is at fault: gravity when the tension would hold the belt under Earth's, else what
+// gave the tension (t.key, or the tensioner of d that sets it) with its value and unit
+void check_sag(const Route& route, const SceneDef& d, const TensionAtRest& t);
 
 // 5. the contact constants of an element of the given pitch (the per-length ones times the pitch)
 Contact element_contact(const SceneDef& d, double pitch);

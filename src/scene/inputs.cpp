@@ -6,6 +6,7 @@
 
 #include <cmath>
 
+#include "io/number_text.hpp"
 #include "scene/scene.hpp"
 
 namespace beltsim {
@@ -14,7 +15,7 @@ SceneInput scene_input(const Parameter& par, const std::string& name, double val
                        bool given) {
   std::string note(par.note);
   if (par.whose != Whose::none) note.append("; default: ").append(whose_text(par.whose));
-  return {name, value, text, std::string(text.empty() ? par.unit : ""), given, note};
+  return {name, value, text, std::string(text.empty() ? par.unit : ""), given, note, ""};
 }
 
 std::vector<SceneInput> scene_inputs(const SceneDef& d) {
@@ -70,7 +71,21 @@ std::vector<SceneInput> scene_inputs(const SceneDef& d) {
                                d.given.count(name) > 0));
     }
   }
+  mark_derived(in);
   return in;
+}
+
+void mark_derived(std::vector<SceneInput>& inputs) {
+  const auto find = [&](std::string_view name) -> SceneInput* {
+    for (SceneInput& in : inputs)
+      if (in.name == name) return &in;
+    return nullptr;
+  };
+  SceneInput *mu = find("belt.mu"), *flank = find("belt.mu_flank"), *angle = find("belt.rib_angle");
+  if (!mu || !flank || !angle || !mu->text.empty()) return;
+  mu->derived = "belt.mu_flank = " + rounded_text(flank->value, 6) +
+                " and belt.rib_angle = " + rounded_text(angle->value, 6) + "°";
+  mu->note = std::string(find_parameter("belt.mu")->note) + "; derived: mu_flank/sin(rib_angle/2) from " + mu->derived;
 }
 
 }  // namespace beltsim

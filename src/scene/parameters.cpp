@@ -50,7 +50,8 @@ constexpr Parameter kParameters[] = {
     {"pulley", "radius", K::number, "m", 0.1, "", W::paper, R::pulley_radius, "contact (pitch) radius r_p",
      [](SceneDef&, PulleyDef& p) -> Slot { return &p.radius; }, nullptr, nullptr},
     {"pulley", "inertia", K::number, "kg·m²", 0.025, "", W::ours, R::positive,
-     "moment of inertia about its axis (the default is a steel disc of r = 0.1 m, 20 mm wide)",
+     "moment of inertia about its axis (the default is a steel disc of r = 0.1 m, 20 mm wide); above a solid "
+     "steel disc of its radius 1 m wide the run's first lines warn (in g·cm² or kg·cm²?)",
      [](SceneDef&, PulleyDef& p) -> Slot { return &p.inertia; }, nullptr, nullptr},
     {"pulley", "wrap", K::other, "", {}, "`\"inside\"`", W::ours, R::none,
      "\"inside\" the loop, or \"back\" (the belt's back side, e.g. a tensioner idler)", nullptr, nullptr,
@@ -202,7 +203,8 @@ constexpr Parameter kParameters[] = {
      }},
 
     {"belt", "rib_angle", K::number, "°", 40, "", W::ours, R::positive,
-     "the V-ribs' included angle β (40° for PK belts); with mu_flank the effective μ = mu_flank/sin(β/2)",
+     "the V-ribs' included angle β, in degrees (40° for PK belts); with mu_flank the effective μ = "
+     "mu_flank/sin(β/2); outside 20°-60° the run's first lines warn (below 3: in radians?)",
      [](SceneDef& d, PulleyDef&) -> Slot { return &d.belt.rib_angle; }, nullptr, nullptr},
     {"belt", "mu_flank", K::number, "", {}, "", W::none, R::friction_coefficient,
      "friction coefficient of the rib flanks, instead of mu: mu = mu_flank/sin(rib_angle/2) (the paper's μ = 1 is "

@@ -89,6 +89,22 @@ constexpr double kStrainWarn = 0.1;
 // strain of 1 for a rest length or strain, T = EA/2 for a pretension.)
 constexpr double kStrainMax = 0.5;
 
+// [°] The V-ribs' included angle a scene may give without a warning (belt.rib_angle): a PK belt's
+// is 40° (ISO 9982), a classical V-belt's about as much (its pulleys' grooves 32° to 38°); the
+// angle sets the effective μ = mu_flank/sin(β/2), which at 20° is already 5.8 times the flank's.
+// An angle given in radians (a PK belt's 40° is 0.698 rad; every V-rib's angle is below
+// kRadiansBelow in radians) is told so.
+constexpr double kRibAngleMin = 20, kRibAngleMax = 60, kRadiansBelow = 3;
+
+// [kg/m³, m] The pulley inertia above which the run's first lines warn (belt pulley inertia
+// against its radius): that of a solid steel disc of the pulley's radius kSolidWidth wide, ½·ρ·π·w·r⁴.
+// A belt pulley is a rim on a hub, 20-50 mm wide: the paper's default inertia is a steel disc of
+// 0.1 m, 20 mm wide; the example scripts' stay below a disc 0.1 m wide. A rotor lumped into the
+// pulley (an alternator's, behind its 28 mm pulley: some 2e-3 kg·m², a disc 0.3 m wide; an
+// engine's crank and flywheel) may come near it; an inertia in g·cm² (1e-7 kg·m²) or kg·cm²
+// (1e-4 kg·m²) written as kg·m² passes it by orders of magnitude.
+constexpr double kSteelDensity = 7850, kSolidWidth = 1;
+
 // where a parameter's value lives in a SceneDef (a pulley's in its PulleyDef)
 using Slot = std::variant<std::monostate, double*, int*, std::optional<double>*>;
 

@@ -2,6 +2,7 @@
 // order, with the static solve's retry.
 #include "scene/scene.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 
@@ -10,6 +11,7 @@
 #include "model/forces.hpp"
 #include "scene/bending_loss.hpp"
 #include "scene/build.hpp"
+#include "scene/parameters.hpp"
 #include "scene/validate.hpp"
 
 namespace beltsim {
@@ -77,16 +79,25 @@ std::vector<std::string> wrong_side_maps(const Scene& sc) {
   return out;
 }
 
+namespace {
+
+// the input that sets the belt's tension at rest: its pretension, rest length or strain, else a
+// tensioner's preload or free angle; nullptr when none (a scene read without its inputs)
+const SceneInput* tension_input(const Scene& sc) {
+  for (const SceneInput& in : sc.inputs)
+    if (in.name == "belt.pretension" || in.name == "belt.rest_length" || in.name == "belt.strain") return &in;
+  for (const SceneInput& in : sc.inputs)
+    if (in.name.ends_with(".tensioner.preload") || in.name.ends_with(".tensioner.angle0")) return &in;
+  return nullptr;
+}
+
+}  // namespace
+
 std::string strain_warning(const Scene& sc) {
   StrainAtRest s;
-  for (const SceneInput& in : sc.inputs)
-    if (in.name == "belt.pretension" || in.name == "belt.rest_length" || in.name == "belt.strain")
-      s.key = in.name, s.value = in.value, s.unit = in.unit;
-  // else a tensioner's preload or free angle sets the tension
-  for (const SceneInput& in : sc.inputs)
-    if (s.key.empty() && (in.name.ends_with(".tensioner.preload") || in.name.ends_with(".tensioner.angle0")))
-      s.key = in.name, s.value = in.value, s.unit = in.unit;
-  if (s.key.empty()) return "";
+  const SceneInput* in = tension_input(sc);
+  if (!in) return "";
+  s.key = in->name, s.value = in->value, s.unit = in->unit;
   const Belt& b = sc.model.belt;
   s.strain = b.pitch / b.rigid_length - 1;
   s.tension = sc.static_tension;
@@ -150,10 +161,70 @@ std::string belt_speed_warning(const Scene& sc) {
   return w + " (docs/model.md, limits the scene build enforces)";
 }
 
+std::string sag_warning(const Scene& sc) {
+  const SceneInput* in = tension_input(sc);
+  if (!in) return "";
+  const Belt& b = sc.model.belt;
+  double longest = 0;
+  for (const Route::Span& sp : sc.route.spans) longest = std::max(longest, sp.length);
+  const double weight = b.mass / b.rigid_length * std::abs(sc.model.gravity) * longest;  // ρ·g·L [N]
+  // the tension the input gives: a pretension's own value (the static state may hold the spans at
+  // more: the belt's bending stiffness round the wraps), else the static state's
+  const bool pretension = in->name == "belt.pretension";
+  const double T = pretension ? in->value : sc.static_tension;
+  const double sag = weight / (8 * T);  // δ/L = ρgL/8T
+  if (!(sag > kSagWarn)) return "";
+  const std::string N = rounded_text(T, 4) + " N";
+  std::string m = in->name + " = " + rounded_text(in->value, 6) + (in->unit.empty() ? "" : " " + in->unit) +
+                  (pretension ? " is" : " gives the spans " + N + " at rest,") +
+                  " tiny against the belt's weight over its longest span (" + rounded_text(weight, 4) + " N over " +
+                  rounded_text(longest, 4) + " m): at " + N + " that span sags by " + rounded_text(100 * sag, 3) +
+                  " % of its length (ρ·g·L/8T), where the start holds the spans straight";
+  if (pretension && in->value < 10)
+    m += "; the pretension is in N (" + rounded_text(in->value, 6) + " kN would be " +
+         rounded_text(1000 * in->value, 6) + " N)";
+  return m;
+}
+
+std::vector<std::string> unit_warnings(const Scene& sc) {
+  std::vector<std::string> out;
+  const auto input = [&](const std::string& name) -> const SceneInput* {
+    for (const SceneInput& in : sc.inputs)
+      if (in.name == name) return &in;
+    return nullptr;
+  };
+  // a rib angle no V-rib has (in radians?): with mu_flank it sets μ, without it changes nothing
+  if (const SceneInput* angle = input("belt.rib_angle"); angle && angle->given) {
+    if (std::string m = rib_angle_problem(angle->value); !m.empty()) {
+      const SceneInput* mu = input("belt.mu");
+      if (input("belt.mu_flank") && mu)
+        m += "; it makes belt.mu = mu_flank/sin(rib_angle/2) = " + rounded_text(mu->value, 4);
+      else
+        m += "; it changes nothing here: without belt.mu_flank, belt.mu is the effective coefficient itself";
+      out.push_back(m);
+    }
+  }
+  // a pulley inertia in g·cm² or kg·cm² written as kg·m²
+  for (const Pulley& p : sc.model.pulleys) {
+    const SceneInput* in = input("pulley." + p.name + ".inertia");
+    const double solid = 0.5 * kSteelDensity * M_PI * kSolidWidth * std::pow(p.radius, 4);
+    if (!in || !in->given || !(p.inertia > solid)) continue;
+    const std::string J = rounded_text(p.inertia, 6);
+    out.push_back("pulley '" + p.name + "'.inertia = " + J + " kg·m² is more than a solid steel disc of its radius (" +
+                  rounded_text(p.radius, 6) + " m), " + rounded_text(kSolidWidth) + " m wide, would have (" +
+                  rounded_text(solid, 3) + " kg·m²): the inertia is in kg·m² (" + J + " g·cm² is " +
+                  rounded_text(p.inertia * 1e-7, 6) + " kg·m², " + J + " kg·cm² " + rounded_text(p.inertia * 1e-4, 6) +
+                  " kg·m²); a rotor lumped into the pulley (an engine's, a motor's) may have so much");
+  }
+  return out;
+}
+
 std::vector<std::string> scene_warnings(const Scene& sc) {
   std::vector<std::string> out;
+  for (std::string& w : unit_warnings(sc)) out.push_back(std::move(w));
   if (std::string strain = strain_warning(sc); !strain.empty()) out.push_back(std::move(strain));
   if (std::string speed = belt_speed_warning(sc); !speed.empty()) out.push_back(std::move(speed));
+  if (std::string sag = sag_warning(sc); !sag.empty()) out.push_back(std::move(sag));
   for (std::string& w : coarse_wraps(sc)) out.push_back(std::move(w));
   for (std::string& w : wrong_side_maps(sc)) out.push_back(std::move(w));
   for (int j = 0; j < sc.model.n_p(); ++j) {
@@ -198,7 +269,7 @@ Scene build_at(const SceneDef& d, BuildWatch& watch) {
   build::check_inertias(sc.route, order, m.pulleys, sc.drive, b.mass / b.rigid_length);
   build::check_sde_values(b, bd);
   const build::TensionAtRest tension = build::tension_at_rest(bd, sc.route.length, b);
-  build::check_sag(sc.route, bd, d.gravity, tension.tension);
+  build::check_sag(sc.route, d, tension);
   m.contact = build::element_contact(d, b.pitch);
   m.friction = d.friction;
   m.gravity = d.gravity;

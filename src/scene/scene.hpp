@@ -46,8 +46,21 @@ inline constexpr double kBeltSpeedWarn = 60;
 // at the start only).
 std::string belt_speed_warning(const Scene& sc);
 
-// What the run's first lines warn of (scene:info().warnings lists the same): a strain at rest past
-// a belt's (strain_warning), a belt speed past a PK belt's rating (belt_speed_warning), the coarse wraps,
+// The belt's sag under its weight past kSagWarn of its longest span at the tension its input gives
+// (δ/L = ρ·g·L/8T; check_sag refuses one that would hang, T < ρ·g·L), naming that input (a
+// pretension below 10 N: "in N"); "" when smaller. The static start holds the spans straight.
+inline constexpr double kSagWarn = 0.01;
+std::string sag_warning(const Scene& sc);
+
+// Values given in another unit than their key's, likely: a belt.rib_angle no V-rib has
+// (rib_angle_problem, scene/validate.hpp: in radians when below kRadiansBelow), a pulley inertia
+// above a solid steel disc of its radius kSolidWidth wide (in g·cm² or kg·cm²?)
+// (scene/parameters.hpp). Given values only; empty when none.
+std::vector<std::string> unit_warnings(const Scene& sc);
+
+// What the run's first lines warn of (scene:info().warnings lists the same): the values in another
+// unit, likely (unit_warnings), a strain at rest past a belt's (strain_warning), a belt speed past a
+// PK belt's rating (belt_speed_warning), spans that sag (sag_warning), the coarse wraps,
 // the speed maps on the wrong side of zero (wrong_side_maps), each free pulley whose torque grows
 // with its speed (per_speed > 0, an energy source: the speed grows as exp(per_speed·t/J) unless
 // the belt holds it back), and bending dampers that will take more than a few per cent of the
@@ -68,5 +81,8 @@ std::vector<SceneInput> scene_inputs(const SceneDef& def);
 // word `text`; its unit and note from the table.
 SceneInput scene_input(const Parameter& par, const std::string& name, double value, const std::string& text,
                        bool given);
+// The inputs derived from others: belt.mu from belt.mu_flank and belt.rib_angle (the rib wedge's
+// effective μ) gets SceneInput::derived and a note naming them (a scene's inputs, a checkpoint's)
+void mark_derived(std::vector<SceneInput>& inputs);
 
 }  // namespace beltsim

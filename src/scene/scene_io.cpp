@@ -289,6 +289,7 @@ void read_placement(CheckpointReader& r, Scene& sc) {
     if (!par) r.fail_at(r.line_of("input.name"), "input.name", "'" + e.name + "' is not a scene parameter");
     e = scene_input(*par, e.name, e.value, e.text, e.given);
   });
+  mark_derived(sc.inputs);
   get_list(r, "sites", "site.", sc.sites, static_cast<size_t>(m.n_el()), [&](size_t i, const ElementSite& e) {
     if (e.index != static_cast<int>(i))
       r.fail_at(r.line_of("site.index"), "site.index", "element " + std::to_string(i) + " expected");

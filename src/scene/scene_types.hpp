@@ -168,6 +168,9 @@ struct SceneInput {
   std::string unit;
   bool given = false; // false: a default was taken
   std::string note;   // where a default comes from (the paper, or ours) and what the value refers to
+  // "" unless the value is derived from other inputs, then which ("belt.mu_flank = 0.3 and
+  // belt.rib_angle = 40°": belt.mu); such an input is not the script's own (mark_derived)
+  std::string derived;
 };
 
 struct Scene {

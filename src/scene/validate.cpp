@@ -55,6 +55,16 @@ void require_non_negative(const std::string& what, double value, const std::stri
   if (!(value >= 0)) reject(what, "must be >= 0", value, unit);
 }
 
+std::string rib_angle_problem(double degrees) {
+  if (degrees >= kRibAngleMin && degrees <= kRibAngleMax) return "";
+  std::string m = "belt.rib_angle = " + rounded_text(degrees, 6) + "° is no V-rib's included angle (" +
+                  rounded_text(kRibAngleMin) + "° to " + rounded_text(kRibAngleMax) + "°; PK belts: 40°)";
+  if (degrees > 0 && degrees < kRadiansBelow)
+    m += ": the angle is in degrees, not radians (" + rounded_text(degrees, 6) + " rad is " +
+         rounded_text(degrees * 180 / M_PI, 4) + "°)";
+  return m;
+}
+
 void check_rule(const Parameter& par, const std::string& what, double v) {
   const std::string unit(par.unit);
   require_finite(what, v, unit);
@@ -211,6 +221,17 @@ void validate(const SceneDef& d) {
       }
     }
   const BeltDef& b = d.belt;
+  if (b.mu_flank) {
+    // mu = mu_flank/sin(rib_angle/2) (script/lua_scene_parts.cpp): out of range, it is named with
+    // the two it comes from, at the line of the one more likely wrong (a rib angle no V-rib has)
+    if (const std::string bad = mu_problem(b.mu); !bad.empty()) {
+      const std::string angle = rib_angle_problem(b.rib_angle);
+      throw ParameterError(KeyPath{"", {"belt", angle.empty() ? "mu_flank" : "rib_angle"}},
+                           "belt.mu = " + rounded_text(b.mu, 4) + ", derived from belt.mu_flank = " +
+                               rounded_text(*b.mu_flank, 6) + " and belt.rib_angle = " + rounded_text(b.rib_angle, 6) +
+                               "° (mu = mu_flank/sin(rib_angle/2)), " + bad + (angle.empty() ? "" : "; " + angle));
+    }
+  }
   check_rules(d, "belt", nullptr);
   // the cost of a simulated second grows faster than the element count (docs/performance.md:
   // 2400 elements take minutes per simulated second); past this a scene is surely a mistake

@@ -31,6 +31,10 @@ std::string mu_problem(double mu);
 // for element 5)" (sim:wet, sim:set_mu, the live view's wet stretch)
 std::string mu_problem(double mu, int element);
 void require_mu(const std::string& what, double mu);
+// "" when belt.rib_angle (degrees) is a V-rib's included angle (kRibAngleMin..kRibAngleMax), else
+// why not: "belt.rib_angle = 0.698° is no V-rib's included angle (20° to 60°; PK belts: 40°): the
+// angle is in degrees, not radians (0.698 rad is 40°)", the hint when it is below kRadiansBelow
+std::string rib_angle_problem(double degrees);
 // value v of parameter par (scene/parameters.hpp), named `what`, against the parameter's rule
 void check_rule(const Parameter& par, const std::string& what, double v);
 // a friction law's numbers by the rules of the parameter table's "friction" entries, named

@@ -1,6 +1,7 @@
 #include "script/docall.hpp"
 
 #include <sstream>
+#include <string_view>
 
 #include "lauxlib.h"
 #include "lua.h"
@@ -11,9 +12,30 @@ namespace beltsim::script {
 
 namespace {
 
+constexpr const char* kKeptTraceback = "beltsim.kept_traceback";  // registry: {message, traceback}
+
+// the traceback keep_traceback left for the string error at index 1, pushed and taken away; false
+// when there is none for it
+bool push_kept_traceback(lua_State* L) {
+  if (lua_getfield(L, LUA_REGISTRYINDEX, kKeptTraceback) != LUA_TTABLE) return lua_pop(L, 1), false;
+  const int kept = lua_gettop(L);
+  lua_rawgeti(L, kept, 1);
+  size_t n = 0, m = 0;
+  const char* text = lua_tolstring(L, 1, &n);
+  const char* message = lua_tolstring(L, -1, &m);
+  const bool ends = text && message && m <= n && std::string_view(text + n - m, m) == std::string_view(message, m);
+  lua_pop(L, 1);
+  if (!ends) return lua_pop(L, 1), false;
+  lua_rawgeti(L, kept, 2);
+  lua_remove(L, kept);
+  lua_pushnil(L);
+  lua_setfield(L, LUA_REGISTRYINDEX, kKeptTraceback);
+  return true;
+}
+
 // the message handler: a string error keeps its "file:line:" (Lua adds it); any other error
 // object gets the place it was raised at and its __tostring (or its type), so that error(42)
-// still says where it came from; then Lua's traceback
+// still says where it came from; then Lua's traceback (or the one keep_traceback left for it)
 int msghandler(lua_State* L) {
   if (lua_type(L, 1) != LUA_TSTRING) {
     luaL_where(L, 2);  // "file:line:" of the Lua function that called error (1 is error itself)
@@ -25,6 +47,9 @@ int msghandler(lua_State* L) {
       lua_pushfstring(L, "%s(an error object that is a %s value)", lua_tostring(L, 2), luaL_typename(L, 1));
     lua_replace(L, 1);
     lua_settop(L, 1);
+  } else if (push_kept_traceback(L)) {
+    lua_pushfstring(L, "%s\n%s", lua_tostring(L, 1), lua_tostring(L, -1));
+    return 1;
   }
   luaL_traceback(L, L, lua_tostring(L, 1), 1);
   return 1;
@@ -65,6 +90,13 @@ bool docall(lua_State* L, int nargs, int nresults, CallError* error, const std::
   lua_settop(L, fn - 1);
   if (error) *error = std::move(e);
   return false;
+}
+
+void keep_traceback(lua_State* L, const std::string& message, const std::string& traceback) {
+  lua_createtable(L, 2, 0);
+  lua_pushstring(L, message.c_str()), lua_rawseti(L, -2, 1);
+  lua_pushstring(L, traceback.c_str()), lua_rawseti(L, -2, 2);
+  lua_setfield(L, LUA_REGISTRYINDEX, kKeptTraceback);
 }
 
 int call_original(lua_State* L, const char* what) {

@@ -29,6 +29,12 @@ bool docall(lua_State* L, int nargs, int nresults, CallError* error, const std::
 // names the call for docall
 int call_original(lua_State* L, const char* what);
 
+// The error about to be raised whose message ends with `message` was raised at another place
+// first, with `traceback` ("stack traceback:\n\t..."): docall's message handler gives that
+// traceback instead of the one where it is raised again (a callback's error, which the running
+// method raises again naming the callback and the time: sim_box.hpp, guarded)
+void keep_traceback(lua_State* L, const std::string& message, const std::string& traceback);
+
 // the traceback as a reader wants it: without the host's own frames ("[C]: in ?"), at most
 // `frames` frames; "" when no more than one frame is left (the message already names that place)
 std::string shown_traceback(const std::string& traceback, int frames = 8);

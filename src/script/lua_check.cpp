@@ -244,6 +244,45 @@ void set_number(lua_State* L, const char* key, double v) {
   lua_setfield(L, -2, key);
 }
 
+namespace {
+
+// __index of a results' table (strict_fields): upvalue 1 its kind, upvalue 2 the set of its fields
+int index_fields(lua_State* L) {
+  if (lua_type(L, 2) != LUA_TSTRING) return lua_pushnil(L), 1;
+  lua_pushvalue(L, 2);
+  if (lua_rawget(L, lua_upvalueindex(2)) != LUA_TNIL) return lua_pushnil(L), 1;  // a field it may lack
+  std::vector<std::string> names;
+  lua_pushnil(L);
+  while (lua_next(L, lua_upvalueindex(2))) {
+    lua_pop(L, 1);
+    names.push_back(lua_tostring(L, -1));
+  }
+  std::sort(names.begin(), names.end());
+  const std::string name = lua_tostring(L, 2);
+  fail_at(L, {},
+          std::string(lua_tostring(L, lua_upvalueindex(1))) + " has no field '" + name + "'" +
+              did_you_mean(name, names) + "; its fields: " + join(names));
+}
+
+}  // namespace
+
+void strict_fields(lua_State* L, const char* kind, std::initializer_list<const char*> fields) {
+  // kept in the registry (not luaL_newmetatable's, whose __name would change what tostring says)
+  const std::string key = std::string("beltsim.fields.") + kind;
+  if (lua_getfield(L, LUA_REGISTRYINDEX, key.c_str()) == LUA_TNIL) {
+    lua_pop(L, 1);
+    lua_createtable(L, 0, 1);
+    lua_pushstring(L, kind);
+    lua_createtable(L, 0, static_cast<int>(fields.size()));
+    for (const char* f : fields) lua_pushboolean(L, 1), lua_setfield(L, -2, f);
+    lua_pushcclosure(L, index_fields, 2);
+    lua_setfield(L, -2, "__index");
+    lua_pushvalue(L, -1);
+    lua_setfield(L, LUA_REGISTRYINDEX, key.c_str());
+  }
+  lua_setmetatable(L, -2);
+}
+
 int index_methods(lua_State* L) {
   lua_pushvalue(L, 2);
   if (lua_rawget(L, lua_upvalueindex(1)) != LUA_TNIL || lua_type(L, 2) != LUA_TSTRING) return 1;

@@ -63,6 +63,13 @@ void check_args(lua_State* L, const std::string& function, std::initializer_list
 // t[key] = v for the table on the top of the stack (the results' tables)
 void set_number(lua_State* L, const char* key, double v);
 
+// Gives the table on the stack top a metatable (one per `kind`) under which reading a field not
+// in `fields` is an error with a suggestion, "sim:pulley's table has no field 'omgea' (did you
+// mean 'omega'?); its fields: ...", not a nil that fails later; a field of `fields` the table
+// lacks (one only some have: a tensioner arm's arm_angle) reads nil. `kind` names the table
+// ("sim:pulley's table"). The results' tables of sim:pulley, sim:element, sim:energy.
+void strict_fields(lua_State* L, const char* kind, std::initializer_list<const char*> fields);
+
 // __index of an object whose methods are in the table of upvalue 1 (its kind, e.g. "sim", in
 // upvalue 2): an unknown name is an error with a suggestion, not a nil to call
 int index_methods(lua_State* L);

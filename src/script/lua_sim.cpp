@@ -12,6 +12,8 @@
 #include <cstdio>
 #include <map>
 #include <sstream>
+#include <stdexcept>
+#include <string>
 
 #include "integrate/stepper.hpp"
 #include "io/number_text.hpp"
@@ -19,6 +21,7 @@
 #include "io/units.hpp"
 #include "scene/law_text.hpp"
 #include "script/context.hpp"
+#include "script/docall.hpp"
 #include "script/limits.hpp"
 #include "script/live_feed.hpp"
 #include "script/lua_check.hpp"
@@ -300,13 +303,35 @@ int l_log(lua_State* L) {
 
 // ---- callbacks -------------------------------------------------------------------------------
 
-// calls the function in ref with the simulation; nret results left on the stack
-void call_back(SimBox& box, const LuaRef& ref, int nret) {
+// a callback: its role for messages ("sim:every's function") and its function's place ("cb.lua:9")
+struct Callback {
+  std::string what, where;
+  Callback(lua_State* L, int idx, std::string role) : what(std::move(role)) {
+    lua_Debug ar;
+    lua_pushvalue(L, idx);
+    lua_getinfo(L, ">S", &ar);
+    where = std::string(ar.short_src) + ":" + std::to_string(ar.linedefined);
+  }
+  // "sim:every's function (function at cb.lua:9) at t = 0.005 s"
+  std::string text(const SimBox& box) const {
+    return what + " (function at " + where + ") at t = " + rounded_text(box.sim->now()) + " s";
+  }
+};
+
+// calls the function in ref with the simulation; nret results left on the stack. Its error is a
+// CallbackError; a stop (Ctrl-C) or a limit that fired is raised again as it was
+void call_back(SimBox& box, const LuaRef& ref, int nret, const Callback& cb) {
   lua_State* L = box.L;
-  const InsideLua lua(L);  // back in Lua code, inside the run: a call of its own (lua_clock.hpp)
   ref.push(L);
   lua_pushvalue(L, 1);  // the simulation: index 1 of the running method
-  lua_call(L, 1, nret);
+  CallError e;
+  // (docall: back in Lua code, inside the run, a call of its own: lua_clock.hpp)
+  if (docall(L, 1, nret, &e, cb.what)) return;
+  if (limit_fired(L)) {
+    lua_pushstring(L, e.message.c_str());
+    lua_error(L);
+  }
+  throw CallbackError(cb.text(box) + ": " + e.message, e.traceback);
 }
 
 // sim:every(dt, function(sim) ... end) -> id: called at now + k·dt exactly
@@ -318,7 +343,8 @@ int l_every(lua_State* L) {
   auto ref = std::make_unique<LuaRef>(L, 3);
   const LuaRef* r = ref.get();
   int id = 0;
-  guarded(L, "sim:every", [&] { id = s.every(dt, [box, r] { call_back(*box, *r, 0); }); });
+  const Callback cb(L, 3, "sim:every's function");
+  guarded(L, "sim:every", [&] { id = s.every(dt, [box, r, cb] { call_back(*box, *r, 0, cb); }); });
   box->refs[id] = std::move(ref);
   lua_pushinteger(L, id);
   return 1;
@@ -342,23 +368,25 @@ int l_when(lua_State* L) {
   const LuaRef *c = cond.get(), *a = action.get();
   auto own_id = std::make_shared<int>(0);  // the callback's id, for the once-action to remove it
   int id = 0;
+  const Callback cc(L, 2, "sim:when's condition"), ca(L, 3, "sim:when's action");
   guarded(L, "sim:when", [&] {
     id = s.when(
-        [box, c] {
-          call_back(*box, *c, 1);
+        [box, c, cc] {
+          call_back(*box, *c, 1, cc);
           lua_State* K = box->L;
           if (!lua_isboolean(K, -1)) {
             // 0 is true in Lua: a condition returning 1 or 0 fired at once or never, without a word
-            // (the error is named by the line of the running call, as any callback's)
+            // (named as any callback's error, by the line of the running call)
             const std::string got = type_name(K, -1);
-            luaL_error(K, "sim:when: the condition returned %s; it must return true or false", got.c_str());
+            lua_pop(K, 1);
+            throw CallbackError(cc.text(*box) + ": it returned " + got + "; it must return true or false", "");
           }
           const bool v = lua_toboolean(K, -1);
           lua_pop(K, 1);
           return v;
         },
-        [box, a, once, own_id] {
-          call_back(*box, *a, 0);
+        [box, a, once, own_id, ca] {
+          call_back(*box, *a, 0, ca);
           if (once && box->sim->cancel(*own_id)) box->refs.erase(*own_id), box->refs.erase(-*own_id);
         });
   });

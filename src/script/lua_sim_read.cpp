@@ -40,6 +40,10 @@ int l_pulley(lua_State* L) {
     set_number(L, "rotor_angle", p.rotor_angle), set_number(L, "rotor_speed", p.rotor_speed);
     set_number(L, "windup", p.windup), set_number(L, "coupling_torque", p.coupling_torque);
   }
+  strict_fields(L, "sim:pulley's table",
+                {"omega", "angle", "torque", "belt_torque", "hub_load", "contact_arc", "slip_arc", "stick_arc", "creep",
+                 "slip_speed", "creep_pitch", "slip_pitch", "mu", "arm_angle", "arm_rate", "rotor_angle", "rotor_speed",
+                 "windup", "coupling_torque"});
   return 1;
 }
 
@@ -65,6 +69,8 @@ int l_element(lua_State* L) {
   set_number(L, "mu", e.mu);
   if (e.pulley >= 0) lua_pushstring(L, s.model().pulleys[e.pulley].name.c_str()), lua_setfield(L, -2, "pulley");
   lua_pushstring(L, contact_state_name(e.state)), lua_setfield(L, -2, "state");
+  strict_fields(L, "sim:element's table",
+                {"x", "y", "phi", "s", "tension", "normal", "friction", "slip", "mu", "pulley", "state"});
   return 1;
 }
 
@@ -117,6 +123,9 @@ int l_energy(lua_State* L) {
   static const char* names[] = {"work_torques", "dissipated_axial", "dissipated_bending", "dissipated_contact",
                                 "dissipated_friction"};
   for (size_t k = 0; k < w.size(); ++k) set_number(L, names[k], w[k]);
+  strict_fields(L, "sim:energy's table",
+                {"kinetic", "sde", "bending", "contact", "gravity", "arm", "coupling", "mechanical", names[0], names[1],
+                 names[2], names[3], names[4]});
   return 1;
 }
 

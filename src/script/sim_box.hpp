@@ -3,15 +3,19 @@
 // each method opens with, and the guard that turns C++ exceptions into Lua errors.
 #pragma once
 
+#include <cctype>
 #include <initializer_list>
 #include <map>
 #include <memory>
 #include <set>
+#include <stdexcept>
 #include <string>
+#include <utility>
 
 #include "integrate/integrator.hpp"
 #include "live/live_server.hpp"
 #include "script/context.hpp"
+#include "script/docall.hpp"
 #include "script/lua_check.hpp"
 #include "script/lua_clock.hpp"
 #include "sim/simulation.hpp"
@@ -59,12 +63,25 @@ inline Simulation& live(lua_State* L, const char* method, std::initializer_list<
 
 // "what: message", the call named once where the C++ message begins with the same name
 // ("sim:run_to" and "run_to: -1 s is before now (0 s)" -> "sim:run_to: -1 s is before now (0 s)")
+// (a message that begins with the whole name, "sim:when's condition ...", is left as it is)
 inline std::string call_error(const char* what, const std::string& message) {
   const std::string w(what);
+  if (message.compare(0, w.size(), w) == 0 && message.size() > w.size() &&
+      !(std::isalnum(static_cast<unsigned char>(message[w.size()])) || message[w.size()] == '_'))
+    return message;
   const std::string name = w.substr(w.rfind(':') == std::string::npos ? 0 : w.rfind(':') + 1);
   if (message.compare(0, name.size() + 2, name + ": ") == 0) return w + message.substr(name.size());
   return w + ": " + message;
 }
+
+// A callback's Lua code failed (sim:every's function, sim:when's condition or action, lua_sim.cpp):
+// the message names the callback, its place and the simulated time before the error's own
+// file:line, as a Lua law's error does (lua_law.cpp); the traceback is the error's, where it was
+// raised in the callback. The simulation may go on (Simulation::run_to).
+struct CallbackError : std::runtime_error {
+  CallbackError(const std::string& message, std::string tb) : std::runtime_error(message), traceback(std::move(tb)) {}
+  std::string traceback;
+};
 
 // a C++ call whose exceptions become Lua errors once the catch block is left
 // (a divergence is noted in ctx, when given, for a sweep point's status: lua_sweep.hpp)
@@ -74,6 +91,9 @@ void guarded(lua_State* L, const char* what, F&& f, Context* ctx = nullptr) {
   try {
     const HostWork work;  // beltsim's own work, not Lua code (lua_clock.hpp)
     f();
+  } catch (const CallbackError& e) {  // raised again here, with the traceback of where it was raised
+    error = call_error(what, e.what());
+    if (!e.traceback.empty()) keep_traceback(L, error, e.traceback);
   } catch (const DivergenceError& e) {
     error = call_error(what, e.what());
     if (ctx) ctx->divergence = {e.t, e.what()};

@@ -64,7 +64,11 @@ std::string write_parameters(const Scene& sc, const RunSettings& rs, const Outpu
       f << value_text(in.value);
     else
       f << csv_text(in.text);
-    f << ',' << csv_text(in.unit) << ',' << (in.given ? "given" : "default") << ',' << csv_text(in.note) << '\n';
+    f << ',' << csv_text(in.unit) << ','
+      << (!in.derived.empty() ? "derived"
+          : in.given          ? "given"
+                              : "default")
+      << ',' << csv_text(in.note) << '\n';
   }
   text("stiffness_reading", sc.reading == StiffnessReading::rigidity ? "rigidity" : "per_sde",
        sc.reading == StiffnessReading::rigidity

@@ -564,7 +564,19 @@ int Simulation::when(std::function<bool()> cond, std::function<void()> action) {
     const Scoped<View> at(view_, {t, &y});
     return cond();
   };
-  return tl_->add_when(std::move(c), [action = std::move(action)](double) { action(); });
+  // a simulation under way checks the condition now: its error is a callback's, as in run_to
+  // (the script fails unless it catches the error; then the simulation may go on)
+  try {
+    return tl_->add_when(std::move(c), [action = std::move(action)](double) { action(); });
+  } catch (const std::exception& e) {
+    callbacks_--;
+    end_status_ = "failed", end_note_ = e.what();
+    throw;
+  } catch (...) {
+    callbacks_--;
+    end_status_ = "failed", end_note_ = "an error in a callback";
+    throw;
+  }
 }
 
 bool Simulation::cancel(int id) {

@@ -186,7 +186,9 @@ class Errors(unittest.TestCase):
                            "sim:every(0.001, function(s) check(s) end)\nsim:run_to(0.003)\n")
         code, out, err = run(["run", path], cwd=self.dir)
         self.assertEqual(code, 1, err)
-        self.assertIn("beltsim: %s:11: too fast\nstack traceback:\n" % path, err)
+        # the message names the callback and the simulated time, the traceback is where it failed
+        self.assertIn("beltsim: %s:14: sim:run_to: sim:every's function (function at %s:13) at t = 0.001 s: %s:11: "
+                      "too fast\nstack traceback:\n" % (path, path, path), err)
         self.assertIn("%s:11: in upvalue 'check'" % path, err)
         self.assertIn("%s:13: in function <%s:13>" % (path, path), err)  # the callback
         self.assertIn("%s:14: in main chunk" % path, err)                 # its run_to

@@ -5,6 +5,7 @@ usage or a file it cannot read); and the two recipes of docs/testing-your-scenar
 (docs/examples/my_drive/: ctest and pytest) run as a user runs them, passing on the stored results
 and failing on a stored result that is off."""
 import os
+import re
 import shutil
 import struct
 import subprocess
@@ -275,19 +276,38 @@ class Csvs(Base):
         write_csv(self.path("b.csv"), ["driven.omega", "t", "driver.omega"], [[r[2], r[0], r[1]] for r in rows])
         self.assertEqual(self.compare("a.csv", "b.csv")[0], 0)
 
-    def test_a_finer_time_grid_is_interpolated_and_said(self):
-        # the columns are linear in t: interpolation is exact to rounding
+    def test_times_among_bs_are_compared_at_those_rows(self):
+        # B sampled four times as finely, at the same times: B's rows at A's times, nothing
+        # interpolated (and not said to be)
         write_csv(self.path("b.csv"), self.HEADER, self.rows([i * 0.0025 for i in range(41)]))
-        code, out, err = self.compare("a.csv", "b.csv", "--rtol", "1e-12")
+        code, out, err = self.compare("a.csv", "b.csv")
         self.assertEqual(code, 0, out + err)
-        self.assertEqual(err, "beltsim compare: the times differ (11 rows in a.csv, 41 in b.csv): b.csv "
-                              "interpolated linearly onto a.csv's times\n")
-        self.assertTrue(out.startswith("match: 2 columns agree at 11 times"), out)
+        self.assertEqual(err, "beltsim compare: a.csv's 11 times are among b.csv's 41, compared at those rows "
+                              "(nothing interpolated)\n")
+        self.assertTrue(out.startswith("match: 2 columns agree at 11 times: every value equal"), out)
         # a bump between A's times is not seen; one at A's time 0.05 is
+        write_csv(self.path("b.csv"), self.HEADER, self.rows([i * 0.0025 for i in range(41)], bump=(1, 19, 1.01)))
+        self.assertEqual(self.compare("a.csv", "b.csv")[0], 0)
         write_csv(self.path("b.csv"), self.HEADER, self.rows([i * 0.0025 for i in range(41)], bump=(1, 20, 1.01)))
         code, out, err = self.compare("a.csv", "b.csv")
         self.assertEqual(code, 1)
         self.assertIn("worst: driver.omega at t = 0.05 s (row 6): 0.5 vs 0.505", out)
+
+    def test_a_finer_time_grid_is_interpolated_and_said(self):
+        # B's times are not A's (0.003 s apart): interpolated, exact to rounding on these linear columns
+        write_csv(self.path("b.csv"), self.HEADER, self.rows([i * 0.003 for i in range(34)] + [0.1]))
+        code, out, err = self.compare("a.csv", "b.csv", "--rtol", "1e-12")
+        self.assertEqual(code, 0, out + err)
+        self.assertEqual(err, "beltsim compare: the times differ (11 rows in a.csv, 35 in b.csv): b.csv "
+                              "interpolated linearly onto a.csv's times\n")
+        self.assertTrue(out.startswith("match: 2 columns agree at 11 times"), out)
+        # A the finer one: B interpolated onto A's 35 times (B's values past its row count were
+        # taken as 0)
+        code, out, err = self.compare("b.csv", "a.csv", "--rtol", "1e-12")
+        self.assertEqual(code, 0, out + err)
+        self.assertEqual(err, "beltsim compare: the times differ (35 rows in b.csv, 11 in a.csv): a.csv "
+                              "interpolated linearly onto b.csv's times\n")
+        self.assertTrue(out.startswith("match: 2 columns agree at 35 times"), out)
 
     def test_times_that_do_not_cover_a_differ(self):
         write_csv(self.path("b.csv"), self.HEADER, self.rows([i * 0.01 for i in range(6)]))
@@ -303,8 +323,15 @@ class Csvs(Base):
                               "compares b.csv with the part of a.csv it spans)\n")
         code, out, err = self.compare("b.csv", "a.csv", "--partial")
         self.assertEqual(code, 0, out + err)
-        self.assertIn("b.csv spans a part of a.csv's times", err)
-        self.assertTrue(out.startswith("match: 2 columns agree at 6 times"), out)
+        # its times are a.csv's first six: compared row by row, not said to be interpolated
+        self.assertEqual(err, "beltsim compare: b.csv spans a part of a.csv's times: its 6 times are a.csv's rows 1 "
+                              "to 6 of 11, compared row by row (nothing interpolated)\n")
+        self.assertTrue(out.startswith("match: 2 columns agree at 6 times: every value equal"), out)
+        # at other times than a.csv's it is interpolated, and said so
+        write_csv(self.path("c.csv"), self.HEADER, self.rows([0.001 + i * 0.01 for i in range(5)]))
+        code, out, err = self.compare("c.csv", "a.csv", "--partial", "--rtol", "1e-12")
+        self.assertEqual(code, 0, out + err)
+        self.assertIn("c.csv spans a part of a.csv's times): a.csv interpolated linearly onto c.csv's times", err)
 
     def test_times_that_do_not_increase_are_an_error_naming_the_file(self):
         write_csv(self.path("b.csv"), self.HEADER, self.rows([0, 0.01, 0.01, 0.02]))
@@ -396,6 +423,27 @@ class Recipes(Base):
         self.assertNotEqual(p.returncode, 0, p.stdout)
         self.assertIn("67% tests passed, 1 tests failed out of 3", p.stdout)
         self.assertIn("differ: 1 of 36 columns differ (driver.omega); worst: driver.omega", p.stdout)
+
+    def test_the_ctest_recipes_tolerances_are_what_it_says(self):
+        # its comment's "atol by unit: 1 N, 0.1 N·m, ..." against the tolerances compare names for
+        # the comparison's --rtol (it said 1 rad/s where compare takes 0.1)
+        with open(os.path.join(self.example(), "CMakeLists.txt"), encoding="utf-8") as f:
+            text = f.read()
+        said = re.search(r"atol by unit[^:]*: ([^)]*)\)", text).group(1).split(", ")
+        rtol = re.search(r"compare \S+ \S+ --rtol (\S+)", text).group(1)
+        column = {"N": "driver.hub_load", "N·m": "driver.torque", "rad/s": "driver.omega", "mm": "driver.contact_arc",
+                  "m/s": "driver.slip_speed", "rad": "driver.angle"}
+        checked = [s.split(" ") for s in said if s != "..."]
+        names = ["t"] + [column[unit] for _, unit in checked]
+        write_csv(self.path("a.csv"), names, [[0] * len(names)])
+        write_csv(self.path("b.csv"), names, [[0] + [1000] * (len(names) - 1)])
+        code, out, err = self.compare("a.csv", "b.csv", "--rtol", rtol, "--failing")
+        self.assertEqual(code, 1, out + err)
+        for value, unit in checked:
+            si, si_unit = (float(value) / 1000, "m") if unit == "mm" else (float(value), unit)
+            line = next(l for l in out.splitlines() if l.startswith("  " + column[unit] + " "))
+            atol = re.search(r"atol (\S+) (\S+)\)$", line)
+            self.assertEqual((float(atol.group(1)), atol.group(2)), (si, si_unit), value + " " + unit + ": " + line)
 
     def test_the_example_runs_without_a_warning_of_the_contract(self):
         # a user's first run of the example they copy does not start by saying its integrator

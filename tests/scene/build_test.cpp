@@ -151,13 +151,33 @@ TEST(BuildStages, TensionAtRestFromEachWayOfGivingIt) {
             std::string::npos);
 }
 
-// ρ·g·L against T: on the 0.29 m spans, 0.096 kg/m, 500 N hold up to g = 17 960 m/s²
+// ρ·g·L against T: on the 0.29 m spans, 0.096 kg/m, 500 N hold up to g = 17 960 m/s². The
+// message names what is at fault: gravity when the tension would hold the belt on Earth, else what
+// gave the tension, with its value and unit (a pretension of 0.3 meant in kN blamed gravity)
 TEST(BuildStages, SagCheckComparesTheSpanWeightWithTheTension) {
   Stages s;
   s.run_route();
+  const build::TensionAtRest t{"belt.pretension", 500, 0, 500};
   const double g_max = 500 / (0.096 * kD);
-  EXPECT_EQ(error_of([&] { build::check_sag(s.route, s.d.belt, 0.99 * g_max, 500); }), "");
-  EXPECT_NE(error_of([&] { build::check_sag(s.route, s.d.belt, -1.01 * g_max, 500); }).find("would hang"),
+  const auto sag = [&](double g, const build::TensionAtRest& at) {
+    s.d.gravity = g;
+    return error_of([&] { build::check_sag(s.route, s.d, at); });
+  };
+  EXPECT_EQ(sag(0.99 * g_max, t), "");
+  EXPECT_NE(sag(-1.01 * g_max, t).find("gravity makes the belt's weight over its longest span"), std::string::npos);
+  // on Earth, 0.3 N against the 0.273 N the 0.29 m span weighs: holds; 0.25 N does not
+  EXPECT_EQ(sag(9.81, {"belt.pretension", 0.3, 0, 0.3}), "");
+  EXPECT_EQ(sag(9.81, {"belt.pretension", 0.25, 0, 0.25}),
+            "belt.pretension is less than the belt's weight over its longest span (ρ·g·L = 0.27311 N: 0.096 kg/m "
+            "over 0.29 m at g = 9.81 m/s²): the belt would hang rather than span its pulleys; the pretension is in N "
+            "(0.25 kN would be 250 N; the paper's belt is mounted at 500 N) (got 0.25 N)");
+  EXPECT_NE(
+      sag(9.81, {"belt.strain", 1e-6, 0.01, 0.152}).find("belt.strain gives the spans a tension at rest of 0.152 N"),
+      std::string::npos);
+  // a tensioner's preload that sets the tension is named, not the pretension the build derived from it
+  s.d.pulleys[1].tensioner.emplace().preload = 1e-3;
+  EXPECT_NE(sag(9.81, {"belt.pretension", 0.01, 0, 0.01})
+                .find("pulley 'driven'.tensioner.preload gives the belt a tension at rest of 0.01 N, less than"),
             std::string::npos);
 }
 
