@@ -101,7 +101,6 @@ const std::vector<HelpEntry>& api_help() {
        "natural frequencies, damping ratios and where each mode's energy is, about the state now (a running belt: "
        "of its motion over one element passing, m.period); shapes = N draws the first N (docs/modes.md)"},
       {"save", "sim:save(path) -> path",
-      {"save", "sim:save(path) -> path",
        "a checkpoint: state, integrator, laws, μ, pending events, output positions (not a law given as a Lua "
        "function, nor cvode's history: refused, naming it); a relative path lies in the output folder, as "
        "sim:show's and sim:plot's files"},
