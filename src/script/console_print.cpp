@@ -11,6 +11,7 @@
 #include "io/units.hpp"
 #include "lauxlib.h"
 #include "lua.h"
+#include "script/lua_run.hpp"
 #include "script/progress.hpp"
 
 namespace beltsim::script {
@@ -81,8 +82,16 @@ void pretty_table(lua_State* L, int idx, std::string& out, int depth, std::set<c
     }
   }
   std::sort(names.begin(), names.end());
+  // a field's unit by its name (unit_of), but a run's check estimate's (push_check) as the run
+  // result's check.<name> (relative errors, a time)
+  const int named = luaL_getmetafield(L, idx, "__name");  // pushes the field unless nil
+  const bool check = named == LUA_TSTRING && std::string(lua_tostring(L, -1)) == kCheckTable;
+  if (named != LUA_TNIL) lua_pop(L, 1);
+  const auto field_unit = [&](const std::string& k) {
+    return check ? run_result_unit("check." + k).value_or("") : unit_of(k);
+  };
   bool flat = n + static_cast<lua_Integer>(names.size()) <= 6 && other.empty();
-  for (const std::string& k : names) flat = flat && unit_of(k).empty();
+  for (const std::string& k : names) flat = flat && field_unit(k).empty();
   if (flat) {
     for (lua_Integer k = 1; k <= n && flat; ++k) flat = lua_rawgeti(L, idx, k) != LUA_TTABLE, lua_pop(L, 1);
     for (const std::string& k : names) flat = flat && (lua_getfield(L, idx, k.c_str()), scalar(L, -1)), lua_pop(L, 1);
@@ -119,7 +128,7 @@ void pretty_table(lua_State* L, int idx, std::string& out, int depth, std::set<c
     std::string key = is_identifier(k) ? k : std::string("[");
     if (!is_identifier(k)) key.append(quoted(k.data(), k.size())).append("]");
     key += " = ";
-    item(key, unit_of(k));
+    item(key, field_unit(k));
     lua_pop(L, 1);
   }
   for (const auto& o : other) out += (flat ? "" : pad) + "[" + o.first + "] = ...," + (flat ? " " : "\n");

@@ -457,6 +457,10 @@ void push_check(lua_State* L, const CheckEstimate& c) {
   lua_pushboolean(L, c.shared()), lua_setfield(L, -2, "shared");
   if (c.warned_t >= 0) lua_pushnumber(L, c.warned_t), lua_setfield(L, -2, "warned_t");
   if (!c.failed.empty()) lua_pushstring(L, c.failed.c_str()), lua_setfield(L, -2, "failed");
+  // named, so that the console prints its fields with their units as a run result's check
+  // (console_print.cpp): its tension is a relative error, not a force in N
+  luaL_newmetatable(L, kCheckTable);
+  lua_setmetatable(L, -2);
 }
 
 std::string wall_limit_text(double limit, double t, double target, const std::string& outputs) {

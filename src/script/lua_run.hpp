@@ -71,8 +71,10 @@ void end_if_probing(lua_State* L, Context* ctx, const char* call);
 // a run stopped at its start. The console clears the stop after each command.
 void end_if_stopped(lua_State* L, const Context* ctx, const char* call);
 
+// the metatable's name (its __name) of a table push_check pushes
+inline constexpr const char* kCheckTable = "beltsim.check";
 // pushes a checked run's estimate (sim/run_check.hpp) as { speed, tension, limit_speed,
-// limit_tension, over, steps_ratio, shared, warned_t, failed }
+// limit_tension, over, steps_ratio, shared, warned_t, failed }, with kCheckTable's metatable
 void push_check(lua_State* L, const CheckEstimate& c);
 
 }  // namespace beltsim::script

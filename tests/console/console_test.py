@@ -270,6 +270,18 @@ class ConsoleTest(unittest.TestCase):
         self.assertIn("after boom\n", out, err)
         self.assertEqual(r.returncode, 1, out + err)
 
+    def test_a_checked_runs_estimate_prints_without_a_force_unit(self):
+        # the check's tension is a relative error (io/units.cpp kRunResult), not a span's tension
+        # in N: printed, its fields carry the run result's units (none; a time's s), and no N
+        r = self.piped(["sim:advance(0.002)", "s = sim:stats()", "s.check", "s"], flags=["--check"])
+        out, err = r.stdout.decode(), r.stderr.decode()
+        self.assertEqual(r.returncode, 0, out + err)
+        self.assertRegex(out, r"\n  limit_tension = [0-9.e-]+,\n")
+        self.assertRegex(out, r"\n  tension = [0-9.e-]+,\n")
+        self.assertRegex(out, r"\n    tension = [0-9.e-]+,\n")  # the stats' own check table, nested
+        self.assertNotRegex(out, r"tension = [0-9.e-]+, -- N")
+        self.assertRegex(out, r"\n  wall = [0-9.e-]+, -- s\n")  # a field's unit elsewhere as before
+
     def test_closing_a_simulation_says_where_it_ended_once(self):
         # sim:close() says the closing line of its runs, as `beltsim run` does; the console's own
         # end (the interpreter's, which closes every simulation) does not say it again
