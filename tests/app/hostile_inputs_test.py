@@ -30,8 +30,9 @@ def limited():
 
 def run(args, cwd, timeout=60):
     """the exit status, stdout and stderr; a hang past `timeout` raises (the FIFO's test failure)"""
+    # stdin closed: a command that reads it (the console) must not wait on or take ctest's
     p = subprocess.run([BELTSIM] + args, capture_output=True, text=True, cwd=cwd, timeout=timeout,
-                       preexec_fn=limited)
+                       stdin=subprocess.DEVNULL, preexec_fn=limited)
     return p.returncode, p.stdout, p.stderr
 
 
