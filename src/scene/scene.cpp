@@ -106,29 +106,68 @@ std::string strain_warning(const Scene& sc) {
   return strain_at_rest_warning(s);
 }
 
+namespace {
+// [m] the radius at which the belt runs on pulley j (its arc of the route; a pulley off the route
+// has none: 0)
+double pitch_radius(const Scene& sc, int j) {
+  for (size_t k = 0; k < sc.route_pulleys.size(); ++k)
+    if (sc.route_pulleys[k] == j) return sc.route.arcs[k].radius;
+  return 0;
+}
+}  // namespace
+
+std::optional<double> peak_speed(const TimeSpeedLaw& speed) {
+  const std::optional<double> steady = steady_value(speed, 0.0);
+  if (!steady) return std::nullopt;
+  double peak = std::abs(*steady);
+  for (const Sine& x : speed.sines) peak += std::abs(x.amplitude);
+  for (const Harmonic& h : speed.harmonics) peak += std::abs(h.amplitude);
+  return *steady < 0 ? -peak : peak;
+}
+
+std::string belt_speed_text(const Scene& sc, int pulley, double omega, const std::string& when, bool prescribed) {
+  const Model& m = sc.model;
+  const double radius = pitch_radius(sc, pulley);
+  const double v = std::abs(omega) * radius;
+  if (!(v > kBeltSpeedWarn)) return "";
+  const Belt& b = m.belt;
+  const double per_length = b.mass / b.rigid_length;  // [kg/m]
+  const double centrifugal = per_length * v * v;
+  const auto num = [](double x) { return rounded_text(x, 5); };
+  const std::string name = "pulley '" + m.pulleys[pulley].name + "'";
+  std::string w = (prescribed ? name + ".speed: " : name + " turns at ") + num(omega) + " rad/s " + when +
+                  ", which moves the belt at " + num(v) + " m/s (pitch radius " + num(radius) +
+                  " m), past what PK belts are rated for (about 50-60 m/s; warned above " + num(kBeltSpeedWarn) +
+                  " m/s): its centrifugal tension m'·v² would be " + num(centrifugal) + " N (m' = " + num(per_length) +
+                  " kg/m), " + num(centrifugal / sc.static_tension) + " times its " + num(sc.static_tension) +
+                  " N at rest";
+  if (prescribed)
+    w += ". Speeds are in rad/s: if " + num(std::abs(omega)) + " rpm was meant, beltsim.rpm(" + num(std::abs(omega)) +
+         ") is " + num(std::abs(omega) * 2 * M_PI / 60) + " rad/s";
+  else
+    w += ". Check the torques: a load too light for the driving torque lets the drive run so fast";
+  return w + " (docs/model.md, limits the scene build enforces)";
+}
+
 std::string belt_speed_warning(const Scene& sc) {
   const Model& m = sc.model;
-  // the fastest: its pulley, speed [rad/s], pitch radius [m] and when it turns so
+  // the fastest: its pulley, speed [rad/s] and when it turns so
   int pulley = -1;
-  double omega = 0, radius = 0;
+  double omega = 0;
   std::string when;
-  const auto consider = [&](int j, double w, double r, const std::string& at) {
-    if (std::isfinite(w) && std::abs(w) * r > std::abs(omega) * radius) pulley = j, omega = w, radius = r, when = at;
+  const auto consider = [&](int j, double w, const std::string& at) {
+    if (std::isfinite(w) &&
+        (pulley < 0 || std::abs(w) * pitch_radius(sc, j) > std::abs(omega) * pitch_radius(sc, pulley)))
+      pulley = j, omega = w, when = at;
   };
   bool kinematic = false;
-  for (size_t k = 0; k < sc.route_pulleys.size(); ++k) {
-    const int j = sc.route_pulleys[k];
+  for (const int j : sc.route_pulleys) {
     const PulleyDrive& p = sc.drive.pulleys[j];
     if (!p.kinematic) continue;
     kinematic = true;
-    const double r = sc.route.arcs[k].radius;
-    consider(j, sc.y0[m.n_coord() + m.pulley_coord(j)], r, "at the start");
-    if (const std::optional<double> steady = steady_value(p.speed, 0.0)) {
-      double peak = std::abs(*steady);
-      for (const Sine& x : p.speed.sines) peak += std::abs(x.amplitude);
-      for (const Harmonic& h : p.speed.harmonics) peak += std::abs(h.amplitude);
-      consider(j, *steady < 0 ? -peak : peak, r, "once its ramps and tables have ended");
-    }
+    consider(j, sc.y0[m.n_coord() + m.pulley_coord(j)], "at the start");
+    if (const std::optional<double> peak = peak_speed(p.speed))
+      consider(j, *peak, "once its ramps and tables have ended");
   }
   if (!kinematic)
     if (const std::optional<double> v = steady_belt_speed(sc)) {
@@ -137,28 +176,10 @@ std::string belt_speed_warning(const Scene& sc) {
       for (size_t k = 1; k < sc.route_pulleys.size(); ++k)
         if (sc.route.arcs[k].radius < sc.route.arcs[fastest].radius) fastest = k;
       const double r = sc.route.arcs[fastest].radius;
-      consider(sc.route_pulleys[fastest], sc.route.arcs[fastest].sense * *v / r, r,
+      consider(sc.route_pulleys[fastest], sc.route.arcs[fastest].sense * *v / r,
                "at the drive's steady speeds (the free pulleys' torques balanced)");
     }
-  const double v = std::abs(omega) * radius;
-  if (pulley < 0 || !(v > kBeltSpeedWarn)) return "";
-  const Belt& b = m.belt;
-  const double per_length = b.mass / b.rigid_length;  // [kg/m]
-  const double centrifugal = per_length * v * v;
-  const auto num = [](double x) { return rounded_text(x, 5); };
-  const std::string name = "pulley '" + m.pulleys[pulley].name + "'";
-  std::string w = (kinematic ? name + ".speed: " : name + " turns at ") + num(omega) + " rad/s " + when +
-                  ", which moves the belt at " + num(v) + " m/s (pitch radius " + num(radius) +
-                  " m), past what PK belts are rated for (about 50-60 m/s; warned above " + num(kBeltSpeedWarn) +
-                  " m/s): its centrifugal tension m'·v² would be " + num(centrifugal) + " N (m' = " + num(per_length) +
-                  " kg/m), " + num(centrifugal / sc.static_tension) + " times its " + num(sc.static_tension) +
-                  " N at rest";
-  if (kinematic)
-    w += ". Speeds are in rad/s: if " + num(std::abs(omega)) + " rpm was meant, beltsim.rpm(" + num(std::abs(omega)) +
-         ") is " + num(std::abs(omega) * 2 * M_PI / 60) + " rad/s";
-  else
-    w += ". Check the torques: a load too light for the driving torque lets the drive run so fast";
-  return w + " (docs/model.md, limits the scene build enforces)";
+  return pulley < 0 ? "" : belt_speed_text(sc, pulley, omega, when, kinematic);
 }
 
 std::string sag_warning(const Scene& sc) {

@@ -45,6 +45,12 @@ inline constexpr double kBeltSpeedWarn = 60;
 // tension at rest; "" when no speed passes it (or none is known: a law given as Lua code is read
 // at the start only).
 std::string belt_speed_warning(const Scene& sc);
+// A speed law's largest speed once its ramps and tables have ended [rad/s], signed: its steady
+// value plus its sines' and harmonics' amplitudes; nullopt for a law given as Lua code.
+std::optional<double> peak_speed(const TimeSpeedLaw& speed);
+// belt_speed_warning's line for pulley `pulley` turning at omega [rad/s] `when` (prescribed: its
+// speed given, else reached); "" when the belt speed |omega|·r does not pass kBeltSpeedWarn.
+std::string belt_speed_text(const Scene& sc, int pulley, double omega, const std::string& when, bool prescribed);
 
 // The belt's sag under its weight past kSagWarn of its longest span at the tension its input gives
 // (δ/L = ρ·g·L/8T; check_sag refuses one that would hang, T < ρ·g·L), naming that input (a

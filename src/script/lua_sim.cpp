@@ -20,6 +20,7 @@
 #include "io/suggest.hpp"
 #include "io/units.hpp"
 #include "scene/law_text.hpp"
+#include "scene/scene.hpp"
 #include "script/context.hpp"
 #include "script/docall.hpp"
 #include "script/limits.hpp"
@@ -128,6 +129,11 @@ int set_law(lua_State* L, bool speed) {
     else
       s.set_torque(j, law, law_text(law));
   });
+  // a belt speed past a PK belt's rating, as the scene build warns of a scene's speeds
+  if (const std::optional<double> peak = speed ? peak_speed(law) : std::nullopt)
+    if (const std::string w = belt_speed_text(s.scene(), j, *peak, "once its ramps and tables have ended", true);
+        !w.empty())
+      say("beltsim: warning: sim:set_speed: %s\n", w.c_str());
   const std::string message = s.model().pulleys[j].name + ": " + before + " -> " + (speed ? "speed " : "torque ") +
                               law_text(law) + " from t = " + rounded_text(s.now(), 6) + " s";
   lua_pushstring(L, message.c_str());

@@ -282,6 +282,15 @@ class ConsoleTest(unittest.TestCase):
         self.assertNotRegex(out, r"tension = [0-9.e-]+, -- N")
         self.assertRegex(out, r"\n  wall = [0-9.e-]+, -- s\n")  # a field's unit elsewhere as before
 
+    def test_a_speed_set_past_a_belts_rating_is_warned_of(self):
+        # as the scene build warns of a scene's speeds (scene/scene.hpp kBeltSpeedWarn, 60 m/s)
+        r = self.piped(['sim:set_speed("driver", 10)', 'sim:set_speed("driver", beltsim.ramp(0.1, 5000))'])
+        out, err = r.stdout.decode(), r.stderr.decode()
+        self.assertEqual(r.returncode, 0, out + err)
+        self.assertEqual(len(re.findall(r"warning: sim:set_speed", err)), 1, err)
+        self.assertRegex(err, r"warning: sim:set_speed: pulley 'driver'\.speed: 5000 rad/s once its ramps and tables "
+                         r"have ended, which moves the belt at [0-9.]+ m/s .*beltsim\.rpm\(5000\)")
+
     def test_closing_a_simulation_says_where_it_ended_once(self):
         # sim:close() says the closing line of its runs, as `beltsim run` does; the console's own
         # end (the interpreter's, which closes every simulation) does not say it again
