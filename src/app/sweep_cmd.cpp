@@ -265,9 +265,9 @@ int sweep(const std::string& file, const Raw& raw, const script::Safety& s) {
     const sw::SummaryCounts c =
         sw::write_summary(dir, points, definition(raw, file), quick ? sw::Figures::kRunResult : sw::Figures::kOwn);
     std::fprintf(stderr,
-                 "beltsim sweep: %s/%s: %d ok, %d failed, %d not run (the results it holds of the %zu points, "
+                 "beltsim sweep: %s/%s: %d ok%s, %d failed, %d not run (the results it holds of the %zu points, "
                  "whenever they ran)\n",
-                 dir.c_str(), sw::kSummaryFile, c.ok, c.failed, c.not_run, points.size());
+                 dir.c_str(), sw::kSummaryFile, c.ok, c.over_text().c_str(), c.failed, c.not_run, points.size());
     return c.failed + c.not_run == 0 ? 0 : 1;
   };
   if (raw.collect) return summary();

@@ -52,7 +52,7 @@ class Progress {
   // time_left's estimate
   void show(const SummaryCounts& standing, std::size_t running, std::optional<double> left, bool final_line) {
     std::string line = "sweep " + s_.name + ": " + std::to_string(standing.ok) + "/" + std::to_string(total_) +
-                       " done, " + std::to_string(standing.failed) + " failed";
+                       " done" + standing.over_text(true) + ", " + std::to_string(standing.failed) + " failed";
     if (running > 0) line += ", " + std::to_string(running) + " running";
     if (left) line += ", about " + duration_text(*left) + " left";
     if (tty_)

@@ -516,6 +516,14 @@ std::string moved_line(const std::string& name, const OutputDir& top, const std:
          top.file(kEarlierFolder) + "/: " + names;
 }
 
+std::string SummaryCounts::over_text(bool brief) const {
+  if (over == 0) return "";
+  if (brief) return " (" + std::to_string(over) + " past " + (over == 1 ? "its" : "their") + " check)";
+  return ", " + std::to_string(over) +
+         (over == 1 ? " of them past its accuracy check" : " of them past their accuracy check") + " (check.over in " +
+         kSummaryFile + ": do not trust " + (over == 1 ? "its" : "their") + " answer at this tolerance)";
+}
+
 SummaryCounts write_summary(const OutputDir& top, const std::vector<Point>& points, const Results& results,
                             Figures named) {
   SummaryCounts counts;

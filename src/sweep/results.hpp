@@ -42,6 +42,12 @@ struct PointResult {
   std::string inputs = "";  // inputs_text (sweep/inputs.hpp); "" when unknown (a point whose process died)
   bool ok() const { return status == "ok"; }
   bool outdated() const { return status.rfind(kOutdated, 0) == 0; }
+  // its figure check.over is true: the run's own error estimate passed the contract's bounds
+  bool check_over() const {
+    for (const auto& [name, text] : figures)
+      if (name == "check.over") return text == "true";
+    return false;
+  }
 };
 
 inline constexpr const char* kPointFile = "point.csv";
@@ -86,8 +92,17 @@ OutputDir claim_sweep_folder(const std::string& dir);
 
 struct SummaryCounts {
   int ok = 0, failed = 0, not_run = 0;
+  // of the ok: those whose run estimated its own error past the contract (check = true: the figure
+  // check.over true, its log saying "do not trust this run's answer at this tolerance")
+  int over = 0;
   // a point's result as summary.csv counts it: ok, failed, or not run (none, or outdated)
-  void add(const std::optional<PointResult>& r) { ++(!r || r->outdated() ? not_run : r->ok() ? ok : failed); }
+  void add(const std::optional<PointResult>& r) {
+    ++(!r || r->outdated() ? not_run : r->ok() ? ok : failed);
+    if (r && r->ok() && r->check_over()) ++over;
+  }
+  // after the ok count, "" when none: ", 1 of them past its accuracy check (check.over in
+  // summary.csv: ...)"; brief (the progress line, redrawn in place), " (1 past its check)"
+  std::string over_text(bool brief = false) const;
 };
 // what DIR holds of each point: its result, nullopt when it has none; a result with other
 // inputs than now's as the status "outdated: why" without figures (but a failure recorded

@@ -88,6 +88,29 @@ TEST(SweepResults, PointValuesReadBackExactly) {
 // summary_units.csv names summary.csv's columns in order (rewritten with it as figures come): the
 // unit a parameter's or a sweep file's figure's name gives in brackets, else none (a sweep's names
 // are its own: "slip" is not read as an element's m/s); point and status are text
+// A point whose run estimated its own error past the contract (check.over true) counts ok, and the
+// sweep's lines say how many of the ok did (a trial's sweep said "3 ok" with one point's log
+// saying "do not trust this run's answer")
+TEST(SweepResults, PointsPastTheirCheckAreCountedAmongTheOk) {
+  PointResult trusted, untrusted, unchecked, failed;
+  trusted.figures = {{"check.over", "false"}, {"check.tension", "0.006"}};
+  untrusted.figures = {{"check.tension", "0.0144"}, {"check.over", "true"}};
+  failed.status = error_status("boom");
+  failed.figures = {{"check.over", "true"}};
+  SummaryCounts c;
+  for (const PointResult& r : {trusted, unchecked, failed}) c.add(r);
+  EXPECT_EQ(c.ok, 2);
+  EXPECT_EQ(c.failed, 1);
+  EXPECT_EQ(c.over, 0);
+  EXPECT_EQ(c.over_text(), "");
+  c.add(untrusted);
+  EXPECT_EQ(c.ok, 3);
+  EXPECT_EQ(c.over, 1);
+  EXPECT_EQ(c.over_text(true), " (1 past its check)");
+  EXPECT_NE(c.over_text().find("1 of them past its accuracy check (check.over in summary.csv"), std::string::npos)
+      << c.over_text();
+}
+
 TEST(SweepResults, SummaryUnitsNameEveryColumn) {
   const std::string dir = results_folder("units");
   const std::vector<Point> points = grid_points(Grid{{"mu"}, {{Value(0.3), Value(1.0)}}});
