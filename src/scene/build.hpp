@@ -153,6 +153,10 @@ void balance_arms(Scene& sc);
 // the preload that sets the belt's tension at rest (the one arm that gives preload or angle0),
 // none when no arm does; throws when two arms do or the belt's tension is given as well
 std::optional<double> tensioner_preload(const SceneDef& d);
+// refuses a tensioner's angle0 on the side of the installed angle where the spring would turn the
+// arm the way the belt does (off the belt: no tension at rest holds it), naming the angle on the
+// other side that gives the same preload; sc is a build of d, pulley the tensioner's
+void check_angle0_side(const Scene& sc, const SceneDef& d, int pulley);
 // the belt's moment about arm a's pivot in the static state sc.y0 [N·m], from its contact records
 // at t = 0 (model/contacts.hpp: fill_contacts)
 double arm_belt_moment(const Scene& sc, const ContactRecords& contacts, int a);

@@ -350,6 +350,7 @@ Scene build_scene(const SceneDef& d, BuildWatch& watch) {
   constexpr double kAgree = 1e-6;  // relative: far below the static state's own residual tension error
   for (int it = 0;; ++it) {
     Scene sc = build_at(e, watch);
+    if (it == 0) build::check_angle0_side(sc, d, arm);
     ContactRecords contacts;
     fill_contacts(sc.model, sc.drive, 0.0, sc.y0.data(), contacts);
     const double Mb = std::abs(build::arm_belt_moment(sc, contacts, sc.model.pulleys[arm].arm));

@@ -83,6 +83,29 @@ void balance_arms(Scene& sc) {
   }
 }
 
+void check_angle0_side(const Scene& sc, const SceneDef& d, int pulley) {
+  const TensionerDef& t = *d.pulleys[pulley].tensioner;
+  if (!t.angle0) return;
+  const Model& m = sc.model;
+  const int a = m.pulleys[pulley].arm;
+  ContactRecords contacts;
+  fill_contacts(m, sc.drive, 0.0, sc.y0.data(), contacts);
+  const double Mb = arm_belt_moment(sc, contacts, a);
+  const double psi = sc.y0[m.arm_coord(a)];
+  // the spring holds the belt's moment: -k·(ψ_i - ψ0) + M_b = 0, so ψ_i - ψ0 has M_b's sign; on
+  // the other side the spring turns the arm the way the belt does, off the belt, and no tension
+  // holds it
+  if ((psi - *t.angle0) * Mb > 0) return;
+  const double mirror = psi - std::copysign(std::abs(psi - *t.angle0), Mb);
+  reject("pulley '" + m.pulleys[pulley].name + "'.tensioner.angle0",
+         "puts the spring's free angle on the side that turns the arm away from the belt: at the installed angle " +
+             rounded_text(psi, 6) + " rad the belt turns the arm toward " + (Mb > 0 ? "larger" : "smaller") +
+             " angles, so the spring must be free at " + (Mb > 0 ? "a smaller" : "a larger") +
+             " angle to press the pulley on the belt (" + rounded_text(mirror, 6) +
+             " rad gives the same preload); as given, no tension at rest could hold the arm",
+         *t.angle0, "rad");
+}
+
 std::optional<double> tensioner_preload(const SceneDef& d) {
   std::optional<double> preload;
   std::string setter;
@@ -108,6 +131,19 @@ std::optional<double> tensioner_preload(const SceneDef& d) {
       if (!(*preload > 0))
         throw ParameterError(w + ".angle0", "the spring's free angle equals the installed angle (" + rounded_text(psi) +
                                                 " rad): the spring would hold no tension");
+      // a windup past a turn is no tensioner's: an angle in degrees, or a turn added
+      if (std::abs(psi - *t.angle0) > 2 * M_PI) {
+        // (past 2π it cannot be an angle in (-π, π]: likely degrees)
+        const std::string degrees =
+            std::abs(*t.angle0) > 2 * M_PI
+                ? " (" + rounded_text(*t.angle0, 6) + "° would be " + rounded_text(*t.angle0 * M_PI / 180, 4) + " rad)"
+                : "";
+        reject(w + ".angle0",
+               "winds the spring by " + rounded_text(std::abs(psi - *t.angle0), 4) + " rad from the installed angle " +
+                   rounded_text(psi, 6) + " rad, more than a turn; the angle is in radians" + degrees +
+                   ", measured as the installed angle is: atan2 of the pulley's centre from the pivot, in (-π, π]",
+               *t.angle0, "rad");
+      }
     }
     setter = p.name;
   }

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <string>
 
+#include "io/number_text.hpp"
 #include "model/contacts.hpp"
 #include "model/forces.hpp"
 #include "model/observables.hpp"
@@ -95,6 +96,34 @@ TEST(Tensioner, Angle0GivesThePreload) {
   const Scene sc = build_scene(d);
   EXPECT_NEAR(std::abs(balance(sc).spring), 9.0, 1e-5 * 9.0);
   EXPECT_NEAR(sc.model.arms[0].free_angle, psi + press * 0.3, 1e-5 * 0.3);
+}
+
+// angle0 on the other side of the installed angle (a spring that turns the arm the way the belt
+// does, off the belt) has no static state with a tension; its preload's size alone was taken, the
+// free angle mirrored (a user's trial: angle0 = 4 at ψ = π ran at 268 N, free_angle 2π - 4). A
+// spring wound past a turn is refused too, with degrees named past 2π.
+TEST(Tensioner, Angle0OnTheWrongSideOrPastATurnIsRefused) {
+  SceneDef d = presets::automotive_tensioner();
+  const Scene ref = build_scene(d);
+  const double psi = ref.y0[ref.model.arm_coord(0)];
+  const int press = ref.model.arms[0].press;
+  auto error = [&](double angle0) {
+    SceneDef e = d;
+    e.pulleys[1].tensioner->angle0 = angle0;
+    return error_of([&] { build_scene(e); });
+  };
+  const std::string wrong = error(psi - press * 0.3);
+  EXPECT_NE(
+      wrong.find("tensioner.angle0 puts the spring's free angle on the side that turns the arm away from the belt"),
+      std::string::npos)
+      << wrong;
+  EXPECT_NE(wrong.find(rounded_text(psi + press * 0.3, 6) + " rad gives the same preload"), std::string::npos) << wrong;
+  const std::string turn = error(psi + press * 7.0);
+  EXPECT_NE(turn.find("winds the spring by 7 rad"), std::string::npos) << turn;
+  EXPECT_EQ(turn.find("°"), std::string::npos) << turn;  // not past 2π itself: no degrees named
+  const std::string degrees = error(125);
+  EXPECT_NE(degrees.find("more than a turn; the angle is in radians (125° would be 2.182 rad)"), std::string::npos)
+      << degrees;
 }
 
 TEST(Tensioner, ErrorsNameTheParameter) {
