@@ -50,6 +50,9 @@ struct Captured {
   bool until_run = false;
   bool quiet = false;
   std::string run_at;
+  // without until_run: the command capturing ("wp", "modes"), named where a script starts a live
+  // simulation (scene:start, beltsim.resume), which it refuses at once (refuse_if_capturing)
+  std::string command = "wp";
 };
 
 }  // namespace beltsim::script

@@ -281,6 +281,23 @@ class Errors(unittest.TestCase):
         self.assertEqual(code, 2, err)
         self.assertIn("unknown integrator 'trbdf' (did you mean 'trbdf2'?) (valid: esdirk32", err)
 
+    def test_wp_refuses_a_live_simulation_at_once(self):
+        # trial 12: wp on a script that runs scene:start ran the whole simulation (into out/<script>,
+        # whatever --out), then said "the script never calls scene:run{}", without file:line
+        text = SCENE.replace('out = "out"', 'out = "live"') + "sim:run_to(0.05)\nsim:close()\n"
+        path = self.script(text, "live.lua")
+        line = text.splitlines().index('local sim = drive:start { progress = false, out = "live" }') + 1
+        for command in ["wp", "modes"]:
+            out_dir = os.path.join(self.dir, command + "_out")
+            code, out, err = run([command, path, "--out", out_dir], cwd=self.dir)
+            self.assertEqual(code, 1, err)
+            self.assertIn("%s:%d: scene:start: beltsim %s takes the scene and settings of a batch run, scene:run{}, "
+                          "and this script runs a live simulation here; nothing was run. To measure it, write its "
+                          "run as scene:run{ t_end = ..., events = {...} }" % (path, line, command), err)
+            self.assertNotIn("never calls scene:run", err)
+            for folder in ["live", out_dir, os.path.join(self.dir, "out")]:
+                self.assertFalse(os.path.exists(folder), command + ": " + folder)
+
     def test_check_estimates_the_error_of_each_run(self):
         # --check: each run ends with its estimate, written to parameters.csv (sim/run_check.hpp)
         path = self.script(two_pulley(elements=30) + 'drive:run { t_end = 0.01, progress = false, out = "out" }\n')
