@@ -52,6 +52,25 @@ class SetOption(unittest.TestCase):
         self.assertIn("--set elemnts=120 was never read by " + self.script + " (did you mean 'elements'?); "
                       "keys it read: elements, mu, wet, name", err)
 
+    def test_unread_key_that_names_an_option_suggests_it(self):
+        # trial 12: --set rtol=1e-3 for --rtol 1e-3 was told the keys the script read, not the option
+        for key, value, option in [("rtol", "1e-3", "--rtol 1e-3"), ("t_end", "0.1", "--t-end 0.1"),
+                                   ("integrator", "esdirk32", "--integrator esdirk32"), ("check", "true", "--check"),
+                                   ("max_wall", "5", "--max-wall 5")]:
+            code, out, err = run(["run", self.script, "--set", key + "=" + value], cwd=self.dir)
+            self.assertEqual(code, 1, err)
+            self.assertIn("--set %s=%s was never read by %s (did you mean the option %s?); keys it read: "
+                          "elements, mu, wet, name" % (key, value, self.script, option), err)
+        # a key no option of the command names: no option suggested (wp takes --rtols, not --rtol)
+        path = os.path.join(self.dir, "batch.lua")
+        with open(path, "w") as f:
+            f.write(two_pulley(elements=30) + 'drive:run { t_end = 0.002, progress = false }\n')
+        code, out, err = run(["wp", path, "--set", "rtol=1e-3", "--integrators", "trbdf2", "--rtols", "1e-2",
+                              "--ref-rtol", "1e-3", "--out", os.path.join(self.dir, "wp")], cwd=self.dir)
+        self.assertEqual(code, 0, err)
+        self.assertIn("--set rtol=1e-3 was never read by " + path + "; keys it read: none", err)
+        self.assertNotIn("did you mean the option", err)
+
     def test_unread_key_fails_the_first_run_before_it_integrates(self):
         # issue 29: a misspelt key used to cost the whole simulation before the error
         path = os.path.join(self.dir, "runs.lua")
