@@ -1,4 +1,4 @@
-// `beltsim plot CSV [COLUMNS...]`: columns of a time series drawn to a PNG (commands.hpp).
+// `beltsim plot CSV|DIR [COLUMNS...]`: columns of a time series drawn to a PNG (commands.hpp).
 #include <unistd.h>
 
 #include <cmath>
