@@ -244,7 +244,9 @@ void add_plot_command(CLI::App& app, CommandLine& cl) {
   Raw& raw = cl.raw;
   CLI::App* plot =
       app.add_subcommand("plot", "draw columns of a timeseries.csv, or of a sweep's summary.csv, to a PNG");
-  plot->add_option("CSV", cl.csv, "a timeseries.csv written by run, or a sweep's summary.csv")->required();
+  plot->add_option("CSV", cl.csv,
+                   "a timeseries.csv written by run (or the run's folder), or a sweep's summary.csv (or its folder)")
+      ->required();
   plot->add_option("COLUMNS", cl.columns,
                    "columns to draw (default: every <pulley>.omega); of a sweep's summary.csv the x column, then y");
   plot->add_option("--out", raw.out, "the PNG (default: plot.png beside the CSV)")->type_name("PNG")->check(kNotEmpty);

@@ -4,7 +4,7 @@
 //                          [--no-frames] [--set KEY=VALUE]... [SAFETY]
 //   beltsim wp      SCRIPT [--out DIR] [--t-end T] [--integrators A,B] [--rtols R1,R2] [--ref-rtol R]
 //                          [--wall-limit S] [--set KEY=VALUE]... [SAFETY]
-//   beltsim plot    CSV [COLUMNS...] [--out PNG] [--from T]
+//   beltsim plot    CSV|DIR [COLUMNS...] [--out PNG] [--from T]
 //   beltsim sweep   FILE [--out DIR] [--jobs N] [--point K] [--list] [--collect] [--set KEY=V1,V2,..]...
 //                        [--slurm [--submit] [--partition P] [--time T] [--max-parallel M]] [SAFETY]
 //   beltsim render  STATE... [--out PNG|DIR] [--video MP4] [--quantity Q] [--size WxH] [--view X,Y,W] [--magnify M]

@@ -22,6 +22,12 @@ script::Captured capture_first_run(script::Interpreter& lua, const std::string& 
 int cmd_wp(const std::string& script, const script::Overrides& o, const script::Safety& s, WpSettings wps);
 int cmd_console(const std::optional<std::string>& script, const std::vector<std::string>& args,
                 const script::Overrides& o, const script::Safety& s, const Environment& env);
+// A run's outputs given either way, as `summary` and `plot` take them: its folder (DIR or
+// DIR/timeseries.csv given; "." for a bare timeseries.csv), and the CSV to draw (DIR/timeseries.csv
+// for a folder, DIR/summary.csv for a sweep's folder; a file as given)
+std::string run_folder(const std::string& given);
+std::string run_csv(const std::string& given);
+// `beltsim plot CSV|DIR [COLUMNS...]`
 int cmd_plot(const std::string& csv, const std::vector<std::string>& columns, const Raw& raw,
              term::ImageMode images);
 // `beltsim summary DIR [--from T0] [--to T1] [--csv FILE] [--plot PNG]` (plot/summary.hpp)

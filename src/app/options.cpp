@@ -98,8 +98,16 @@ script::Safety safety(const Raw& raw) {
   return s;
 }
 
-script::Overrides overrides(const Raw& raw) {
+std::vector<std::string> run_option_keys() {
+  std::vector<std::string> keys;
+  for (const RunSetting& s : run_settings())
+    if (!s.option.empty()) keys.emplace_back(s.key);
+  return keys;
+}
+
+script::Overrides overrides(const Raw& raw, std::vector<std::string> option_keys) {
   script::Overrides o;
+  o.option_keys = std::move(option_keys);
   // each option of the run-settings table given, read by its kind and checked by its setting's rule
   for (const RunSetting& s : run_settings()) {
     if (s.option.empty()) continue;

@@ -51,7 +51,11 @@ std::string integrator_list();
 
 script::Safety safety(const Raw& raw);
 // the run settings' options (--out, --t-end, ...: sim/run_table.hpp), --no-frames and --set of run, console and wp
-script::Overrides overrides(const Raw& raw);
+// the keys of the run settings the command line overrides (sim/run_table.hpp, their option)
+std::vector<std::string> run_option_keys();
+// option_keys: the run settings the command's options override (Overrides::option_keys); every
+// one of the table's by default (run, console)
+script::Overrides overrides(const Raw& raw, std::vector<std::string> option_keys = run_option_keys());
 // wp's --integrators, --rtols, --ref-rtol and --wall-limit
 WpSettings wp_settings(const Raw& raw);
 

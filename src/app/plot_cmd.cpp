@@ -1,4 +1,4 @@
-// `beltsim plot CSV [COLUMNS...]`: columns of a time series drawn to a PNG (commands.hpp).
+// `beltsim plot CSV|DIR [COLUMNS...]`: columns of a time series drawn to a PNG (commands.hpp).
 #include <unistd.h>
 
 #include <cmath>
@@ -14,8 +14,9 @@ namespace beltsim::app {
 
 namespace fs = std::filesystem;
 
-int cmd_plot(const std::string& csv, const std::vector<std::string>& columns, const Raw& raw,
+int cmd_plot(const std::string& given, const std::vector<std::string>& columns, const Raw& raw,
              term::ImageMode images) {
+  const std::string csv = run_csv(given);  // a run's folder for its timeseries.csv, as summary takes it
   const double from = raw.from ? number("--from", *raw.from) : -INFINITY;
   if (raw.out) require_png("--out", *raw.out);
   const std::string png = raw.out ? *raw.out : (fs::path(csv).parent_path() / "plot.png").string();

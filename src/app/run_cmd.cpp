@@ -46,9 +46,11 @@ int cmd_run(const std::string& script, const script::Overrides& o, const script:
 script::Captured capture_first_run(script::Interpreter& lua, const std::string& script, const script::Overrides& o,
                                    const char* command, bool t_end_to_script) {
   script::Captured cap;
+  cap.command = command;
   script::Overrides captured;  // --out is the command's own folder
   if (t_end_to_script && o.has("t_end")) captured.run.t_end = o.run.t_end, captured.give("t_end");
   captured.set = o.set;
+  captured.option_keys = o.option_keys;
   lua.set_overrides(captured);
   lua.set_capture(&cap);
   lua.run_file(script);

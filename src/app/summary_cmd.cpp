@@ -11,18 +11,33 @@
 
 namespace beltsim::app {
 
-int cmd_summary(const std::string& given, const Raw& raw) {
-  namespace fs = std::filesystem;
-  if (raw.plot_out) require_png("--plot", *raw.plot_out);
-  std::error_code ec;
+namespace fs = std::filesystem;
+
+std::string run_folder(const std::string& given) {
   // the run's timeseries.csv given for its folder: the folder ("cannot read
   // DIR/timeseries.csv/timeseries.csv: Not a directory" said nothing useful; a missing one is
   // named as given)
-  std::string dir = given;
-  if (fs::path(given).filename() == "timeseries.csv" && !fs::is_directory(given, ec)) {
-    dir = fs::path(given).parent_path().lexically_normal().string();
-    if (dir.empty()) dir = ".";  // the one in the folder beltsim runs in
-  }
+  std::error_code ec;
+  if (fs::path(given).filename() != "timeseries.csv" || fs::is_directory(given, ec)) return given;
+  const std::string dir = fs::path(given).parent_path().lexically_normal().string();
+  return dir.empty() ? "." : dir;  // (the one in the folder beltsim runs in)
+}
+
+std::string run_csv(const std::string& given) {
+  // a run's folder given for its timeseries.csv (summary takes the folder; plot said "cannot read
+  // DIR: it is a folder"); a sweep's folder for its summary.csv, which plot draws too
+  std::error_code ec;
+  if (!fs::is_directory(given, ec)) return given;
+  const fs::path dir(given);
+  if (!fs::exists(dir / "timeseries.csv", ec) && fs::exists(dir / "summary.csv", ec))
+    return (dir / "summary.csv").string();
+  return (dir / "timeseries.csv").string();
+}
+
+int cmd_summary(const std::string& given, const Raw& raw) {
+  if (raw.plot_out) require_png("--plot", *raw.plot_out);
+  std::error_code ec;
+  const std::string dir = run_folder(given);
   // a sweep's folder holds a run's folder per point, not a run's outputs
   if (!fs::exists(fs::path(dir) / "timeseries.csv", ec) && fs::exists(fs::path(dir) / "summary.csv", ec)) {
     std::fprintf(stderr,

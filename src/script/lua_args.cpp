@@ -14,6 +14,7 @@
 #include "script/context.hpp"
 #include "script/lua_check.hpp"
 #include "script/progress.hpp"
+#include "sim/run_table.hpp"
 
 namespace beltsim::script {
 
@@ -96,12 +97,31 @@ void push_args(lua_State* L, Context* ctx) {
   lua_setmetatable(L, -2);
 }
 
+namespace {
+
+// " (did you mean the option --rtol 1e-3?)" when `key` (t-end or t_end) names a run setting the
+// command's own options override (a user gave --set rtol=1e-3 for --rtol 1e-3), "" otherwise
+std::string option_meant(const Overrides& o, const ScriptArg& a) {
+  std::string key = a.key;
+  std::replace(key.begin(), key.end(), '-', '_');
+  if (std::find(o.option_keys.begin(), o.option_keys.end(), key) == o.option_keys.end()) return "";
+  const RunSetting* s = find_run_setting(key);
+  // (a flag's false is its default: no option says it)
+  if (!s || s->option.empty() || (s->kind == RunKind::flag && a.text != "true")) return "";
+  const std::string option(s->option);
+  return " (did you mean the option " + (s->kind == RunKind::flag ? option : option + " " + a.text) + "?)";
+}
+
+}  // namespace
+
 std::vector<std::string> unread_arg_messages(const Context& ctx, const std::string& script, bool so_far) {
   std::vector<std::string> out;
   for (const ScriptArg& a : ctx.overrides.set) {
     if (std::find(ctx.args_read.begin(), ctx.args_read.end(), a.key) != ctx.args_read.end()) continue;
+    std::string meant = option_meant(ctx.overrides, a);
+    if (meant.empty()) meant = did_you_mean(a.key, ctx.args_read);
     out.push_back("--set " + a.key + "=" + a.text + (so_far ? " has not been read by " : " was never read by ") +
-                  script + (so_far ? " before its first run or start" : "") + did_you_mean(a.key, ctx.args_read) +
+                  script + (so_far ? " before its first run or start" : "") + meant +
                   "; keys it read: " + (ctx.args_read.empty() ? std::string("none") : join(ctx.args_read)));
   }
   return out;

@@ -117,7 +117,7 @@ const std::vector<HelpEntry>& api_help() {
        "a PK belt's values (3PK … 8PK) for the belt table, a new table each time (docs/belts.md)"},
       {"ramp", "beltsim.ramp{ t0 [s], t1 [s], from, to, shape = \"linear\"|\"cosine\" }",
        "a law going from `from` at t0 to `to` at t1 (beltsim.ramp(t1, to): from 0 at t = 0)"},
-      {"step", "beltsim.step(t [s], from, to)", "a law jumping from `from` to `to` at t"},
+      {"step", "beltsim.step{ t [s], from, to }", "a law jumping from `from` to `to` at t (beltsim.step(t, from, to) too)"},
       {"sine", "beltsim.sine{ mean, amplitude, frequency [Hz], phase [rad] }",
        "mean + amplitude·sin(2π·frequency·t + phase)"},
       {"args", "beltsim.args.KEY", "a script parameter given as --set KEY=VALUE (nil when not given)"},

@@ -290,13 +290,23 @@ int l_ramp(lua_State* L) {
   return 1;
 }
 
-// beltsim.step(t, from, to) -> { step = {t, from, to} }
+// beltsim.step{ t, from = 0, to } (the law key's form, as beltsim.ramp takes both: a user's
+// beltsim.step{ t = 0.2, to = 13 } was refused, "expected 3 arguments") or beltsim.step(t, from, to)
+// -> { step = {t, from, to} }
 int l_step(lua_State* L) {
-  check_args(L, "beltsim.step", {{"t", kNumber}, {"from", kNumber}, {"to", kNumber}});
-  lua_createtable(L, 0, 3);
-  set_number(L, "t", lua_tonumber(L, 1));
-  set_number(L, "from", lua_tonumber(L, 2));
-  set_number(L, "to", lua_tonumber(L, 3));
+  if (lua_type(L, 1) == LUA_TTABLE) {
+    check_args(L, "beltsim.step", {{"{t, from, to}", kTable}});
+    lua_createtable(L, 0, 3);
+    const int r = lua_gettop(L);
+    check_keys(L, 1, "beltsim.step", {"t", "from", "to"});
+    for (const char* k : {"t", "from", "to"}) lua_getfield(L, 1, k), lua_setfield(L, r, k);
+  } else {
+    check_args(L, "beltsim.step", {{"t", kNumber}, {"from", kNumber}, {"to", kNumber}});
+    lua_createtable(L, 0, 3);
+    set_number(L, "t", lua_tonumber(L, 1));
+    set_number(L, "from", lua_tonumber(L, 2));
+    set_number(L, "to", lua_tonumber(L, 3));
+  }
   wrap(L, "step", -1);
   check_helper(L, "beltsim");
   return 1;

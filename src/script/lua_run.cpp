@@ -441,6 +441,16 @@ void end_if_probing(lua_State* L, Context* ctx, const char* call) {
   lua_error(L);
 }
 
+void refuse_if_capturing(lua_State* L, Context* ctx, const char* call) {
+  if (!ctx || !ctx->capture || ctx->capture->until_run) return;
+  const std::string& cmd = ctx->capture->command;
+  luaL_error(L,
+             "%s: beltsim %s takes the scene and settings of a batch run, scene:run{}, and this script runs a live "
+             "simulation here; nothing was run. To measure it, write its run as scene:run{ t_end = ..., events = "
+             "{...} } (the changes at known times: docs/lua-api.md, scene:run's events)",
+             call, cmd.c_str());
+}
+
 void end_if_stopped(lua_State* L, const Context* ctx, const char* call) {
   if (!ctx || !ctx->stop || !ctx->stop->load(std::memory_order_relaxed)) return;
   luaL_error(L, "%s: not run: Ctrl-C (or SIGTERM) stopped a run earlier in this script or console command", call);

@@ -65,6 +65,10 @@ void record_run_dir(Context* ctx, const std::string& out_dir);
 // beltsim.resume), noting where; nothing otherwise
 void end_if_probing(lua_State* L, Context* ctx, const char* call);
 
+// a capture of a scene:run{} (beltsim wp, beltsim modes) met a live simulation (scene:start,
+// beltsim.resume): an error at this call's file:line, before anything runs or is written
+void refuse_if_capturing(lua_State* L, Context* ctx, const char* call);
+
 // After Ctrl-C or SIGTERM stopped a run, the script may go on to save or report what it has, but
 // no run starts or goes on (scene:run, scene:start, beltsim.resume, sim:run_to, sim:advance): an
 // error before any output is opened, so a later run cannot replace a folder with the one row of

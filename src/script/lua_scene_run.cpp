@@ -122,6 +122,7 @@ int l_scene_start(lua_State* L) {
   check_args(L, "scene:start", {{"{integrator, rtol, ...}", kTable, true}}, 2);
   auto* ctx = static_cast<Context*>(lua_touserdata(L, lua_upvalueindex(1)));
   end_if_probing(L, ctx, "scene:start");
+  refuse_if_capturing(L, ctx, "scene:start");
   end_if_stopped(L, ctx, "scene:start");
   bool progress = true;
   const RunSettings rs = read_run_settings(L, 2, *sc, ctx, false, &progress);

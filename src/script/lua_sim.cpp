@@ -59,7 +59,7 @@ int run_to(lua_State* L, SimBox& box, double t, const char* what) {
   guarded(
       L, what,
       [&] {
-        ProgressLine line(box.progress, box.sim->stats().steps);
+        ProgressLine line(box.progress, box.sim->stats().steps, box.t_start);
         box.running = true;
         struct Done {
           SimBox& b;
@@ -590,6 +590,7 @@ void push_simulation(lua_State* L, std::unique_ptr<Simulation> sim, Context* ctx
   box->ctx = ctx;
   box->progress = progress;
   box->steps_before = box->sim->stats().steps, box->wall_before = box->sim->wall();
+  box->t_start = box->sim->now();
   luaL_setmetatable(L, kSimMeta);
   // --serve's page, before a run has fed it, shows the simulation started last (a console's
   // prompt applies the page's changes to it)

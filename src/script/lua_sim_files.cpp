@@ -153,6 +153,7 @@ int l_resume(lua_State* L) {
   check_args(L, "beltsim.resume", {{"path", kString}, {"{progress, rewind}", kTable, true}});
   auto* ctx = static_cast<Context*>(lua_touserdata(L, lua_upvalueindex(1)));
   end_if_probing(L, ctx, "beltsim.resume");
+  refuse_if_capturing(L, ctx, "beltsim.resume");
   end_if_stopped(L, ctx, "beltsim.resume");
   bool progress = true, rewind = false;
   if (!lua_isnoneornil(L, 2)) {

@@ -29,6 +29,9 @@ struct Overrides {
   void give(std::string_view key) {
     if (!has(key)) given.emplace_back(key);
   }
+  // the run settings the command's own options override (run, console: all the table's; wp: out,
+  // t_end): a --set of one of them the script never reads is named as the option it may have meant
+  std::vector<std::string> option_keys;
   bool no_frames = false;      // ignore the scripts' frames = {...} (no rendering, no video)
   std::vector<ScriptArg> set;  // --set KEY=VALUE: beltsim.args (not an override of run{})
   std::optional<int> serve;    // --serve [PORT]: the live view on 127.0.0.1 (0: a free port)
@@ -50,6 +53,9 @@ struct Captured {
   bool until_run = false;
   bool quiet = false;
   std::string run_at;
+  // without until_run: the command capturing ("wp", "modes"), named where a script starts a live
+  // simulation (scene:start, beltsim.resume), which it refuses at once (refuse_if_capturing)
+  std::string command = "wp";
 };
 
 }  // namespace beltsim::script

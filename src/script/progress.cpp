@@ -125,8 +125,8 @@ void say_run_end(const RunEnd& e) {
   if (e.closing_line) say("beltsim: %s\n", run_end_text(e.t, e.t_end, e.stopped, e.steps, e.wall, e.out_dir).c_str());
 }
 
-ProgressLine::ProgressLine(bool enabled, long steps_before)
-    : enabled_(enabled), tty_(isatty(STDERR_FILENO)), steps_before_(steps_before) {}
+ProgressLine::ProgressLine(bool enabled, long steps_before, double origin)
+    : enabled_(enabled), tty_(isatty(STDERR_FILENO)), origin_(origin), steps_before_(steps_before) {}
 
 ProgressLine::~ProgressLine() {
   if (drawn_) draw(true);
@@ -166,13 +166,19 @@ double wall_left(const std::deque<std::pair<double, double>>& seen, double t0, d
   return done > 0 ? std::max(0.0, (wall - w_ref) * (target - t) / done) : NAN;
 }
 
-ProgressParts ProgressLine::run_parts(bool last) const {
-  const double done = t_ - t0_;
-  const double pct = target_ > t0_ ? 100 * done / (target_ - t0_) : 100;
+std::string progress_head(double t, double target, double origin) {
+  const double pct = target > origin ? std::clamp(100 * (t - origin) / (target - origin), 0.0, 100.0) : 100;
   char text[256];
+  std::snprintf(text, sizeof text, "beltsim: t = %.4f s of %.4g s (%.0f %%)", t, target, pct);
+  return text;
+}
+
+ProgressParts ProgressLine::run_parts(bool last) const {
   ProgressParts parts;
-  std::snprintf(text, sizeof text, "beltsim: t = %.4f s of %.4g s (%.0f %%)", t_, target_, pct);
-  parts.head = text;
+  // from the simulation's start (a state restored to before it: from where this call started);
+  // the estimate of the time left is this call's rate over what is left of it
+  const double origin = std::isnan(origin_) ? t0_ : std::min(origin_, t0_);
+  parts.head = progress_head(t_, target_, origin);
   parts.elapsed = duration_text(wall_) + " elapsed";
   if (!last) parts.left = "about " + duration_text(wall_left(seen_, t0_, t_, target_, wall_)) + " left";
   parts.steps = std::to_string(steps_) + " steps";

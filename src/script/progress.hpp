@@ -25,6 +25,7 @@
 #pragma once
 
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <deque>
 #include <functional>
@@ -43,7 +44,10 @@ struct ProgressParts {
 
 class ProgressLine {
  public:
-  explicit ProgressLine(bool enabled, long steps_before = 0);
+  // origin: [s] where the simulation started (0, or the checkpoint's time of a resumed one), from
+  // which the line's percentage counts: "t = 0.18 s of 0.4 s (46 %)" whether this call started at 0
+  // or at 0.15 (a live simulation's second run_to); NaN: where this call started
+  explicit ProgressLine(bool enabled, long steps_before = 0, double origin = NAN);
   ~ProgressLine();  // shows the end (finish, else the last state reported) and closes the line, if one was drawn
   ProgressLine(const ProgressLine&) = delete;
   ProgressLine& operator=(const ProgressLine&) = delete;
@@ -67,7 +71,7 @@ class ProgressLine {
   void draw(bool last);
   bool enabled_, tty_, drawn_ = false;
   bool echo_off_ = false;  // this line turned the terminal's echo off (restored with the line's end)
-  double last_ = 0, t0_ = -1;
+  double last_ = 0, t0_ = -1, origin_;
   long steps_before_ = 0;
   // the last state reported (or finish's): what the line shows
   double t_ = 0, target_ = 0, wall_ = 0;
@@ -87,6 +91,10 @@ class ProgressLine {
 // order of precedence, each in its place ("beltsim: t = 1.2 s of 30 s (4 %), 10 s elapsed, about
 // 4 min 10 s left, 12000 steps")
 std::string fit_progress_text(const ProgressParts& parts, int columns);
+// the line's head, "beltsim: t = 0.1834 s of 0.4 s (46 %)": the percentage of the span from
+// `origin` (the simulation's start) to `target` that t has covered (a user read "(13 %)", the share of
+// the last run_to from 0.15 s, beside "of 0.4 s")
+std::string progress_head(double t, double target, double origin);
 // [s] the progress line's estimate of the wall time left (NaN: no basis yet) of a run from t0 to
 // target now at t after `wall` seconds, from the (wall, t) pairs seen so far: at the rate of the
 // last third of the wall time (from the last pair at or before two thirds of it), else of all of it

@@ -41,6 +41,7 @@ struct SimBox {
   // resumed), the target of its last run_to and whether that run was stopped short of it
   long steps_before = 0;
   double wall_before = 0;
+  double t_start = 0;  // [s] its time when handed to the script: the progress line's percentages count from it
   double last_target = 0;
   bool last_stopped = false;
   std::shared_ptr<live::LiveServer> serve;  // sim:serve{}: stops when the simulation closes

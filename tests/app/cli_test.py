@@ -52,6 +52,25 @@ class SetOption(unittest.TestCase):
         self.assertIn("--set elemnts=120 was never read by " + self.script + " (did you mean 'elements'?); "
                       "keys it read: elements, mu, wet, name", err)
 
+    def test_unread_key_that_names_an_option_suggests_it(self):
+        # trial 12: --set rtol=1e-3 for --rtol 1e-3 was told the keys the script read, not the option
+        for key, value, option in [("rtol", "1e-3", "--rtol 1e-3"), ("t_end", "0.1", "--t-end 0.1"),
+                                   ("integrator", "esdirk32", "--integrator esdirk32"), ("check", "true", "--check"),
+                                   ("max_wall", "5", "--max-wall 5")]:
+            code, out, err = run(["run", self.script, "--set", key + "=" + value], cwd=self.dir)
+            self.assertEqual(code, 1, err)
+            self.assertIn("--set %s=%s was never read by %s (did you mean the option %s?); keys it read: "
+                          "elements, mu, wet, name" % (key, value, self.script, option), err)
+        # a key no option of the command names: no option suggested (wp takes --rtols, not --rtol)
+        path = os.path.join(self.dir, "batch.lua")
+        with open(path, "w") as f:
+            f.write(two_pulley(elements=30) + 'drive:run { t_end = 0.002, progress = false }\n')
+        code, out, err = run(["wp", path, "--set", "rtol=1e-3", "--integrators", "trbdf2", "--rtols", "1e-2",
+                              "--ref-rtol", "1e-3", "--out", os.path.join(self.dir, "wp")], cwd=self.dir)
+        self.assertEqual(code, 0, err)
+        self.assertIn("--set rtol=1e-3 was never read by " + path + "; keys it read: none", err)
+        self.assertNotIn("did you mean the option", err)
+
     def test_unread_key_fails_the_first_run_before_it_integrates(self):
         # issue 29: a misspelt key used to cost the whole simulation before the error
         path = os.path.join(self.dir, "runs.lua")
@@ -280,6 +299,23 @@ class Errors(unittest.TestCase):
         code, out, err = run(["wp", path, "--ref-integrator", "trbdf"], cwd=self.dir)
         self.assertEqual(code, 2, err)
         self.assertIn("unknown integrator 'trbdf' (did you mean 'trbdf2'?) (valid: esdirk32", err)
+
+    def test_wp_refuses_a_live_simulation_at_once(self):
+        # trial 12: wp on a script that runs scene:start ran the whole simulation (into out/<script>,
+        # whatever --out), then said "the script never calls scene:run{}", without file:line
+        text = SCENE.replace('out = "out"', 'out = "live"') + "sim:run_to(0.05)\nsim:close()\n"
+        path = self.script(text, "live.lua")
+        line = text.splitlines().index('local sim = drive:start { progress = false, out = "live" }') + 1
+        for command in ["wp", "modes"]:
+            out_dir = os.path.join(self.dir, command + "_out")
+            code, out, err = run([command, path, "--out", out_dir], cwd=self.dir)
+            self.assertEqual(code, 1, err)
+            self.assertIn("%s:%d: scene:start: beltsim %s takes the scene and settings of a batch run, scene:run{}, "
+                          "and this script runs a live simulation here; nothing was run. To measure it, write its "
+                          "run as scene:run{ t_end = ..., events = {...} }" % (path, line, command), err)
+            self.assertNotIn("never calls scene:run", err)
+            for folder in ["live", out_dir, os.path.join(self.dir, "out")]:
+                self.assertFalse(os.path.exists(folder), command + ": " + folder)
 
     def test_check_estimates_the_error_of_each_run(self):
         # --check: each run ends with its estimate, written to parameters.csv (sim/run_check.hpp)

@@ -79,6 +79,25 @@ class Forms(unittest.TestCase):
             self.assertEqual(code, 2, err)
             self.assertIn("plot does not take: " + option, err)
 
+    def test_a_runs_folder_is_drawn_from_its_timeseries(self):
+        # trial 12: `plot DIR` said "cannot read DIR: it is a folder" where summary takes a run's folder;
+        # a sweep's folder gives its summary.csv, a folder with neither names the file it lacks
+        for name, text in (("run1", TIMESERIES), ("sweep1", SUMMARY)):
+            os.mkdir(os.path.join(self.dir, name))
+            with open(os.path.join(self.dir, name, "timeseries.csv" if name == "run1" else "summary.csv"), "w") as f:
+                f.write(text)
+        code, out, err = run(["plot", "run1", "driven.omega"], self.dir)
+        self.assertEqual(code, 0, err)
+        self.assertEqual(out, os.path.join("run1", "plot.png") + "\n")
+        self.assertTrue(self.exists(os.path.join("run1", "plot.png")))
+        code, out, err = run(["plot", "sweep1/", "pretension", "slip"], self.dir)
+        self.assertEqual(code, 0, err)
+        self.assertTrue(self.exists(os.path.join("sweep1", "plot.png")))
+        os.mkdir(os.path.join(self.dir, "empty"))
+        code, out, err = run(["plot", "empty"], self.dir)
+        self.assertEqual(code, 1, err)
+        self.assertIn("cannot read empty/timeseries.csv: No such file or directory", err)
+
     def test_a_missing_file_is_exit_1_with_or_without_from(self):
         # (docs/cli.md: a file that cannot be read is exit 1; its kind cannot be known)
         for extra in ([], ["--from", "1"]):

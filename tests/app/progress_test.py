@@ -314,6 +314,21 @@ class ProgressTest(unittest.TestCase):
         self.assertNotIn("building the scene", raw)
         self.assertNotIn("scene built", raw)
 
+    def test_the_percentage_is_of_the_time_the_line_names(self):
+        # trial 12: a live simulation's run_to(0.15) then run_to(0.4) read "t = 0.1834 s of 0.4 s (13 %)",
+        # the share of the second call (from 0.15 s); the share is of the time from the simulation's start
+        segments = (two_pulley(40) + WAIT + 'local sim = drive:start { out = "segments" }\n'
+                    "sim:every(0.001, function() wait(0.02) end)\n"
+                    "sim:run_to(0.05)\nsim:run_to(0.15)\nsim:close()\n")
+        code, raw = on_terminal([BELTSIM, "run", self.script("segments.lua", segments)], self.dir)
+        self.assertEqual(code, 0, raw)
+        second = [d for d in progress_texts(raw) if " of 0.15 s " in d]
+        shares = [(float(m.group(1)), int(m.group(2)))
+                  for m in (re.match(r"beltsim: t = ([0-9.]+) s of 0\.15 s \((\d+) %\)", d) for d in second)]
+        self.assertTrue([t for t, _ in shares if t < 0.14], "no drawing of the second run_to before its end: %r" % raw)
+        for t, share in shares:
+            self.assertLessEqual(abs(share - 100 * t / 0.15), 1, raw)
+
     def test_a_run_says_where_it_ended(self):
         # the README's minimal run: one line on stderr names the end, the steps, the time and the outputs
         name = self.script("my.lua", MINIMAL)

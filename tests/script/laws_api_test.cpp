@@ -169,7 +169,8 @@ TEST(LawsApi, RampStepSineAndSums) {
   std::vector<double> r;
   ASSERT_EQ(run_text(isolated("speed = { beltsim.ramp{ t0 = 0.01, t1 = 0.03, from = 2, to = 6, shape = 'cosine' },\n"
                               "  beltsim.sine{ mean = 1, amplitude = 0.5, frequency = 40, phase = 0.2 },\n"
-                              "  beltsim.step(0.025, 0, -3), beltsim.ramp(0.04, 8) }",
+                              "  beltsim.step(0.025, 0, -3), beltsim.ramp(0.04, 8),\n"
+                              "  beltsim.step{ t = 0.035, to = 1.5 }, beltsim.step{ t = 0.02, from = 0.25, to = 0 } }",
                               "torque = 0") +
                          "local sim = s:start{ progress = false }\n"
                          "result = {}\n"
@@ -181,7 +182,9 @@ TEST(LawsApi, RampStepSineAndSums) {
     const double t = 0.0047 * k;
     const double s = std::clamp((t - 0.01) / 0.02, 0.0, 1.0);
     const double expect = 2 + 4 * (1 - std::cos(M_PI * s)) / 2 + 1 + 0.5 * std::sin(2 * M_PI * 40 * t + 0.2) +
-                          (t > 0.025 ? -3 : 0) + 8 * std::min(t / 0.04, 1.0);
+                          (t > 0.025 ? -3 : 0) + 8 * std::min(t / 0.04, 1.0) +
+                          // the table form of beltsim.step (trial 12: refused, "expected 3 arguments")
+                          (t > 0.035 ? 1.5 : 0) + (t < 0.02 ? 0.25 : 0);
     EXPECT_NEAR(r[k - 1], expect, 1e-12) << t;
   }
 }
@@ -273,6 +276,9 @@ TEST(LawsApi, BadArgumentsAndMisspeltNames) {
            {"beltsim.step(0.1, 1)", "beltsim.step(t, from, to): expected 3 arguments, got 2"},
            {"beltsim.step(0.1, 1, 2, 3)", "expected 3 arguments, got 4"},
            {"beltsim.step(0.1, 1, {})", "argument 3 (to): number expected, got table"},
+           {"beltsim.step{ t = 0.1 }", "beltsim.step.to is required"},
+           {"beltsim.step{ t = 0.1, form = 1, to = 2 }", "did you mean 'from'"},
+           {"beltsim.step({ t = 0.1, to = 1 }, 2)", "expected 1 argument, got 2"},
            {"beltsim.sine{ amplitude = 1 }", "frequency is required"},
            {"beltsim.sine{ amplitude = 1, frequncy = 2 }", "did you mean 'frequency'"},
            {"beltsim.sine(1, 2)", "expected 1 argument, got 2"},

@@ -55,5 +55,15 @@ TEST(ProgressText, TheEstimateFollowsTheRateOfTheLastThirdOfTheRun) {
   EXPECT_TRUE(std::isnan(wall_left({}, 0, 0, 2, 5)));
 }
 
+// trial 12: a live simulation's run_to(0.15) then run_to(0.4) read "t = 0.1834 s of 0.4 s (13 %)",
+// the share of the second call's 0.15..0.4; the percentage is of the span the line names, from the
+// simulation's start (0, or a resumed simulation's checkpoint time)
+TEST(ProgressText, ThePercentageIsOfTheSpanFromTheSimulationsStart) {
+  EXPECT_EQ(progress_head(0.1834, 0.4, 0), "beltsim: t = 0.1834 s of 0.4 s (46 %)");
+  EXPECT_EQ(progress_head(0.35, 0.4, 0.3), "beltsim: t = 0.3500 s of 0.4 s (50 %)");
+  EXPECT_EQ(progress_head(0.4, 0.4, 0), "beltsim: t = 0.4000 s of 0.4 s (100 %)");
+  EXPECT_EQ(progress_head(0.2, 0.2, 0.2), "beltsim: t = 0.2000 s of 0.2 s (100 %)");
+}
+
 }  // namespace
 }  // namespace beltsim::script
