@@ -82,7 +82,8 @@ constexpr Parameter kParameters[] = {
      [](SceneDef&, PulleyDef& p) -> Slot { return p.tensioner ? Slot(&p.tensioner->preload) : Slot(); }, nullptr,
      nullptr},
     {"pulley.tensioner", "angle0", K::number, "rad", {}, "", W::none, R::finite,
-     "the spring's free angle, instead of preload; sets the belt's tension at rest",
+     "the spring's free angle, instead of preload; sets the belt's tension at rest; within a turn of the installed "
+     "angle, on the side from which the spring presses the pulley on the belt (else refused)",
      [](SceneDef&, PulleyDef& p) -> Slot { return p.tensioner ? Slot(&p.tensioner->angle0) : Slot(); }, nullptr,
      nullptr},
     {"pulley.tensioner", "damping", K::number, "N·m·s/rad", 0, "", W::ours, R::non_negative,
