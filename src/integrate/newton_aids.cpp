@@ -118,6 +118,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <cstdlib>
 
 #include "model/block_matrix.hpp"
 #include "model/contact_law.hpp"
@@ -379,6 +381,133 @@ double falling_friction_rate(const Model& m, const ContactView& pairs) {
   for (const ContactPair& c : pairs)
     if (c.touching && c.nl.pushing && c.fl.dmu < 0) worst = std::max(worst, -c.fl.dmu * c.nl.N / m.belt.mass);
   return worst;
+}
+
+double falling_friction_rate(const Model& m, const ContactView& pairs, bool redirectable) {
+  double worst = 0;
+  for (const ContactPair& c : pairs)
+    if (c.touching && c.nl.pushing && c.fl.dmu < 0 &&
+        (m.friction_of(c.i).law == FrictionKind::stribeck) == redirectable)
+      worst = std::max(worst, -c.fl.dmu * c.nl.N / m.belt.mass);
+  return worst;
+}
+
+// Falling friction's roots (falling_redirect). With everything but element i's slip velocity v
+// held, the stage equation v - h·γ·a(v) = ψ reads, on the element's own tangential row (L the
+// rest of its tangential load: springs, neighbours, the pulley's surface, held; ψ_T the slip
+// velocity of ψ),
+//   Φ(v) = v + h·γ·μ(v)·N/m = ψ_T + h·γ·L/m =: c,         Φ'(v) = 1 - h·γ·ρ(v),  ρ = -μ'·N/m.
+// Under Stribeck's law (v > 0; v < 0 is the mirror) Φ rises through the band to μ_s at Δv, falls
+// where h·γ·ρ > 1 (the falling curve at the stage's length: ρ ≈ μ_i·(s - 1)·δ·a·e^(-a)·N/(m·v),
+// a = (v/v_s)^δ, largest near v_s, vanishing at the band's edge and at a few v_s), and rises again
+// past the speed v* where h·γ·ρ(v*) = 1 (slope 1 in v, plus μ_v). So for c between Φ's low at v*
+// and its peak at the band's edge the stage has three roots on that row: one in the band (stick),
+// v_r on the falling part (Φ' < 0) and one past v* (fast sliding). The motion with the same load
+// held, m·dv/dt = L - μ(v)·N, has an unstable equilibrium v_e on the falling curve, μ(v_e)·N = L:
+// a slip velocity below it falls to the band within about 1/ρ, one above it runs up the curve as
+// fast. An L-stable stage over h ≫ 1/ρ steps over that transient and ought to stand at the root the
+// transient ends at, the band's or the fast one; Newton, started near the middle one, may converge
+// to it instead, as it converges to any root (falling_friction_rate, the refusal). v_r is not v_e
+// (v_r - ψ_T = h·γ·a(v_r)): which side the motion takes is the sign of its acceleration at the
+// slip v0 the element starts the stage with (the predictor's, which carries each element's slip
+// along), under the load the root has,
+//   L = m·(v_r - ψ_T)/(h·γ) + μ(v_r)·N:
+//   L > μ(v0)·N (along v_r's sign)  ->  fast sliding: the fast root of Φ(v) = c, c = Φ(v_r), or the
+//                                        least speed past |v_r| with h·γ·ρ <= 1/2 when Φ has none
+//                                        there or it lies below that speed
+//   otherwise                       ->  stick: the band's root of Φ(v) = c (Φ ≈ v·(1 + h·γ·μ_i·g·N/
+//                                        (m·Δv)) there; within 0.9·Δv)
+// The element's velocity moves by δ = (target - v_r) along its tangent t̂ and its position by
+// δ·h·γ, which keeps the stage's position rows Z_q - ψ_q - h·γ·Z_v as they were (as
+// friction_local_solve moves it); Newton then starts again from there. Only Stribeck's pairs are
+// moved: LuGre's falling curve is its bristle's, at a held deflection, and goes on being refused.
+// The speeds past |v_r| are searched by factors of 1.05 (ρ has one hump in |v|, so the first speed
+// below the bound past the root is the fast side's), the fast root then by bisection (Φ rises there).
+namespace {
+// Stribeck's μ at slip v (signed) and its slope, outside the band as friction.cpp has them
+double stribeck_mu(const Friction& f, double mu_i, double v, double& dmu) {
+  double powr;
+  const double a = std::abs(v), peak = stribeck_peak(f, v, powr), g = 1 + peak, x = v / f.dv;
+  if (std::abs(x) < 1) {
+    dmu = mu_i * (g - peak * f.exponent * powr) / f.dv + f.viscous;
+    return mu_i * g * x + f.viscous * v;
+  }
+  dmu = -mu_i * peak * f.exponent * powr / a + f.viscous;
+  return std::copysign(mu_i * g, v) + f.viscous * v;
+}
+}  // namespace
+
+int falling_redirect(const Model& m, const Drive& d, const ContactView& pairs, const std::vector<double>& slip0,
+                     const std::vector<int>& on0, const double* psi, double hg, bool other, double* q, double* v) {
+  int moved = 0;
+  const double mass = m.belt.mass;
+  const int nc = m.n_coord();
+  for (const ContactPair& c : pairs) {
+    if (!c.touching || !c.nl.pushing || c.fl.dmu >= 0) continue;
+    const Friction& f = m.friction_of(c.i);
+    if (f.law != FrictionKind::stribeck) continue;
+    const double N = c.nl.N, k = hg * N / mass;  // Φ(v) = v + k·μ(v)
+    if (k * -c.fl.dmu <= 1) continue;
+    const int i = c.i, j = c.j;
+    const double vr = c.fl.vT, sg = vr > 0 ? 1.0 : -1.0;
+    // ψ's slip velocity on the root's tangent (the pulley's, on its arm, as ψ has them)
+    const Vec2 Vp = Vec2(psi[nc + 3 * i], psi[nc + 3 * i + 1]) - m.centre_velocity(j, q, psi + nc);
+    const double om = d.kinematic(j) ? c.omega : psi[nc + m.pulley_coord(j)];
+    const double psiT = Vp.dot(c.nl.t) - om * c.nl.r;
+    double dmu;
+    const double cr = vr + k * stribeck_mu(f, c.mu, vr, dmu);  // c = Φ(v_r)
+    const double Lk = cr - psiT;                               // h·γ·L/m
+    // the element's slip at the stage's start, when it pressed on the same pulley there (else
+    // taken as starting from the band's middle)
+    const double v0 = on0[i] == j ? slip0[i] : 0.0;
+    double target;
+    static const bool by_root = std::getenv("BELTSIM_RULE_ROOT") != nullptr;
+    const bool fast = by_root ? ((v0 > 0) == (vr > 0) && std::abs(v0) >= std::abs(vr))
+                              : sg * (Lk - k * stribeck_mu(f, c.mu, v0, dmu)) > 0;
+    static const char* only = std::getenv("BELTSIM_ONLY");
+    if (only && (fast != other) != (only[0] == 'f')) continue;
+    if (fast != other) {
+      double a = std::abs(vr);
+      for (int it = 0; it < 400; ++it) {
+        a *= 1.05;
+        stribeck_mu(f, c.mu, sg * a, dmu);
+        if (k * -dmu <= 0.5) break;
+      }
+      // Φ rises past a; the fast root lies beyond a when Φ(a) < c
+      double lo = a, hi = a;
+      auto phi = [&](double u) { return sg * (sg * u + k * stribeck_mu(f, c.mu, sg * u, dmu)); };
+      const double cs = sg * cr;
+      if (phi(a) < cs) {
+        while (phi(hi) < cs && hi < 1e3) lo = hi, hi *= 2;
+        for (int it = 0; it < 60; ++it) {
+          const double mid = 0.5 * (lo + hi);
+          (phi(mid) < cs ? lo : hi) = mid;
+        }
+        a = hi;
+      }
+      target = sg * a;
+    } else {
+      const double gs = c.mu * (1 + stribeck_peak(f, 0.0, dmu));  // μ_i·g(0) = μ_s
+      target = std::clamp(cr / (1 + k * (gs / f.dv + f.viscous)), -0.9 * f.dv, 0.9 * f.dv);
+    }
+    const double dvt = target - vr;
+    if (std::getenv("BELTSIM_REDIRECT_TRACE"))
+      std::fprintf(stderr, "  el %d pulley %d hgrho %.3g N %.3g mu %.3g v0 %.4g vr %.4g psiT %.4g -> %.4g\n", i, j,
+                   k * -c.fl.dmu, N, c.mu, v0, vr, psiT, target);
+    v[3 * i] += dvt * c.nl.t.x();
+    v[3 * i + 1] += dvt * c.nl.t.y();
+    q[3 * i] += dvt * hg * c.nl.t.x();
+    q[3 * i + 1] += dvt * hg * c.nl.t.y();
+    ++moved;
+  }
+  return moved;
+}
+
+void element_slips(const Model& m, const ContactView& pairs, std::vector<double>& slip, std::vector<int>& on) {
+  on.assign(m.belt.n, -1);
+  slip.assign(m.belt.n, 0.0);
+  for (const ContactPair& c : pairs)
+    if (c.touching && c.nl.pushing && on[c.i] < 0) on[c.i] = c.j, slip[c.i] = c.fl.vT;
 }
 
 void pressed_pulleys(const Model& m, const ContactView& pairs, std::vector<int>& on) {
