@@ -30,15 +30,4 @@ double BeltNewtonAids::unstable_rate(double t, const double* z) {
   return falling_friction_rate(model_, pairs(t, z));
 }
 
-double BeltNewtonAids::held_rate(double t, const double* z) {
-  if (!model_.any_law(FrictionKind::lugre)) return 0;
-  return falling_friction_rate(model_, pairs(t, z), false);
-}
-
-bool BeltNewtonAids::redirect(double t, const double* z0, const double* psi, double* z, double hg, bool other) {
-  if (!model_.any_law(FrictionKind::stribeck)) return false;
-  element_slips(model_, pairs(t, z0), slip0_, on0_);
-  return falling_redirect(model_, drive_, pairs(t, z), slip0_, on0_, psi, hg, other, z, z + model_.n_coord()) > 0;
-}
-
 }  // namespace beltsim

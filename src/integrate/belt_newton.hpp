@@ -23,8 +23,6 @@ class BeltNewtonAids final : public NewtonAids {
   uint64_t branches(double t, const double* y) override;
   double overshoot(double t, const double* z, const double* dz) override;
   double unstable_rate(double t, const double* z) override;
-  double held_rate(double t, const double* z) override;
-  bool redirect(double t, const double* z0, const double* psi, double* z, double hg, bool other) override;
 
  private:
   // the pairs of the contact records of the state y at t
@@ -34,8 +32,6 @@ class BeltNewtonAids final : public NewtonAids {
   Workspace& ws_;
   PredictScratch predict_;   // Newton's starting point's copies of the state (predict)
   LocalSolveScratch local_;  // the local solve's per-pair values
-  std::vector<double> slip0_;  // redirect: each element's slip at the stage's start
-  std::vector<int> on0_;       // and the pulley it pressed on there
 };
 
 }  // namespace beltsim

@@ -26,8 +26,6 @@
 // growth and may be a root the motion never visits (newton_aids.cpp, Falling friction): the step is
 // refused, and every step is kept to h·γ·ρ <= kGrowth, ρ the largest of its stages.
 #include <algorithm>
-#include <cstdio>
-#include <cstdlib>
 #include <cmath>
 #include <limits>
 
@@ -81,43 +79,12 @@ class Esdirk final : public Stepper {
       // stick, ≈ 5e9 1/s) across their kinks and start Newton on the wrong branch for many
       // elements, each a failed iteration and often a shortened step.
       aids_->predict(t + tab.c[i - 1] * h, (tab.c[i] - tab.c[i - 1]) * h, Z_.data());
-      start_ = Z_;
       if (!newton(sys, ti, sh, n)) return false;
-      double rate = aids_->unstable_rate(ti, Z_.data());
-      if (rate > 0 && std::getenv("BELTSIM_REDIRECT_TRACE")) std::fprintf(stderr, "t %.9f h %.3g stage %d hgrho %.3g\n", t, h, i, rate / sh);
-      if (rate > sh) {
-        // the root on the falling curve: try the side the motion heads for, then the other
-        root_ = Z_;
-        const double rate0 = rate;
-        bool found = false;
-        int back = 0;  // restarts that came back to root_
-        for (int k = 0; k < kRedirects && !found; ++k) {
-          Z_ = root_;
-          if (!aids_->redirect(ti, start_.data(), psi_.data(), Z_.data(), 1 / sh, k == 1)) break;
-          g_redirects++;
-          if (!newton(sys, ti, sh, n)) {
-            g_redirect_fail++;
-            if (std::getenv("BELTSIM_REDIRECT_TRACE")) std::fprintf(stderr, "  after redirect %d: newton failed\n", k);
-            continue;
-          }
-          rate = aids_->unstable_rate(ti, Z_.data());
-          dZ_ = Z_ - root_;
-          const double dist = ctl_->weighted_norm(root_, dZ_);
-          if (dist <= kSameRoot) ++back;
-          if (std::getenv("BELTSIM_REDIRECT_TRACE")) std::fprintf(stderr, "  after redirect %d: hgrho %.3g dist %.3g\n", k, rate / sh, dist);
-          found = rate <= sh;
-        }
-        if (!found && g_accept && back == kRedirects) {
-          Z_ = root_, rate = rate0, found = true;
-          g_accepted++;
-        }
-        if (!found) {
-          g_refused++;
-          h_limit_ = kGrowth / (tab.gamma * std::max(rho, rate0));
-          return false;
-        }
+      rho = std::max(rho, aids_->unstable_rate(ti, Z_.data()));
+      if (rho > sh) {
+        h_limit_ = kGrowth / (tab.gamma * rho);
+        return false;
       }
-      rho = std::max(rho, g_cap ? rate : aids_->held_rate(ti, Z_.data()));
       F_[i] = (Z_ - psi_) * sh;
       if (i + 1 < s) stage_[i] = Z_;
     }
@@ -322,14 +289,6 @@ class Esdirk final : public Stepper {
   // the largest h·γ·ρ a step is planned for, from the growth its predecessor met: below the
   // refusal at 1, since the growth changes from step to step as elements reach the falling curve
   static constexpr double kGrowth = 0.7;
-  inline static const int kRedirects = std::getenv("BELTSIM_REDIRECTS") ? std::atoi(std::getenv("BELTSIM_REDIRECTS")) : 0;
-  inline static const bool g_cap = std::getenv("BELTSIM_CAP") ? std::atoi(std::getenv("BELTSIM_CAP")) : 1;
-  inline static const bool g_accept = std::getenv("BELTSIM_ACCEPT") ? std::atoi(std::getenv("BELTSIM_ACCEPT")) : 0;
-  inline static const double kSameRoot = std::getenv("BELTSIM_SAMEROOT") ? std::atof(std::getenv("BELTSIM_SAMEROOT")) : 0.1;
-  inline static long g_accepted = 0;
-  inline static long g_redirects = 0, g_redirect_fail = 0, g_refused = 0;
-  struct Report { ~Report() { if (std::getenv("BELTSIM_REDIRECT_REPORT")) std::fprintf(stderr, "redirects %ld newton-fail %ld refused %ld accepted %ld\n", g_redirects, g_redirect_fail, g_refused, g_accepted); } };
-  inline static Report report_;
   const EsdirkTableau& tab_;
   const StepController* ctl_ = nullptr;
   double h_limit_ = kInf;  // h_limit() of the last step
@@ -339,7 +298,7 @@ class Esdirk final : public Stepper {
   uint64_t jac_sig_ = 0;   // the branches it was taken on
   std::vector<Eigen::VectorXd> F_;
   std::vector<Eigen::VectorXd> stage_;  // the stage values of the last step (interior)
-  Eigen::VectorXd start_, root_, Z_, Zt_, psi_, G_, Gt_, dZ_, raw_, rhs_, Fz_, Ft_, eint_;
+  Eigen::VectorXd Z_, Zt_, psi_, G_, Gt_, dZ_, raw_, rhs_, Fz_, Ft_, eint_;
 };
 
 }  // namespace

@@ -48,19 +48,6 @@ double friction_overshoot(const Model& m, const Drive& d, const ContactView& pai
 // the largest rate at which an element's slip velocity grows on a falling friction curve with
 // everything else held, -μ'·N/m over the pairs in contact (see newton_aids.cpp); 0 when none falls
 double falling_friction_rate(const Model& m, const ContactView& pairs);
-// the same, over the pairs whose law the stage can redirect (falling_redirect) left out (held)
-// or only those (!held)
-double falling_friction_rate(const Model& m, const ContactView& pairs, bool redirectable);
-// Newton aid for a stage converged with elements on a falling friction curve past h·γ·ρ > 1 (see
-// newton_aids.cpp, Falling friction's roots): each such element under Stribeck's law is moved to
-// the stable root the motion from its slip at the stage's start (slip0, on the pulley on0; from
-// element_slips) heads for, under the load the stage's root has (psi: the stage's ψ): into the band, or out to fast sliding where h·γ·ρ <= 1/2. hg = h·γ.
-// Returns the number moved.
-int falling_redirect(const Model& m, const Drive& d, const ContactView& pairs, const std::vector<double>& slip0,
-                     const std::vector<int>& on0, const double* psi, double hg, bool other, double* q, double* v);
-// slip[i], on[i]: the slip velocity of element i on the first pulley it presses on (on[i] = -1:
-// none, slip 0)
-void element_slips(const Model& m, const ContactView& pairs, std::vector<double>& slip, std::vector<int>& on);
 // on[i]: the first pulley element i presses on in the pass (-1: none)
 void pressed_pulleys(const Model& m, const ContactView& pairs, std::vector<int>& on);
 

@@ -11,8 +11,6 @@
 // forces' vibration, and the Hermite cubic bulges between two right ends. On the paper's drive
 // with both pulleys just above the inertia floor (3.1e-6 kg·m²) at rtol 1e-4 the samples were 5e-3
 // off where the step ends were 9e-5 off; through the stage values ... (commit message).
-#include <cstdio>
-#include <cstdlib>
 #include <algorithm>
 #include <climits>
 #include <cmath>
@@ -107,7 +105,6 @@ class OneStep final : public Integrator {
       if (ok && st_->interior_error(sys_, t_, y_, h, ci, zi, ei))
         e = std::max(e, ctl_.interior_norm(t_ + ci * h, y_, *zi, *ei));
       worst_ = worst;
-      if (std::getenv("BELTSIM_STEP_TRACE")) std::fprintf(stderr, "S %.9f %.3g ok %d e %.3g lim %.3g cap %.3g\n", t_, h, (int)ok, e, st_->h_limit(), cap_);
       const double ulp = std::numeric_limits<double>::epsilon() * std::max(1.0, std::abs(t_));
       if (!(e <= 1.0)) {
         sys_.problem->counters.rejected++;

@@ -128,14 +128,6 @@ class NewtonAids {
   // friction); 0 when nothing grows. An implicit stage with h·γ·rate > 1 has lost its solution's
   // growth and may sit on a root the motion never visits (esdirk.cpp)
   virtual double unstable_rate(double, const double*) { return 0; }
-  // the same over what redirect below cannot move (the refusal's and the step bound's only rate
-  // once the stage redirects the rest)
-  virtual double held_rate(double t, const double* z) { return unstable_rate(t, z); }
-  // a stage converged at z with variables growing past h·γ·rate > 1 (hg = h·γ): move each that it
-  // can to the stable root the motion from the stage's starting value z0 heads for (psi: the
-  // stage's ψ, which with z gives the load at the root; see
-  // newton_aids.cpp, Falling friction's roots); true when one moved, and Newton starts again from z
-  virtual bool redirect(double, const double*, const double*, double*, double, bool) { return false; }
 };
 
 // What an integrator is given (none of it owned): the problem, and optionally a linear solver
