@@ -9,6 +9,7 @@
 #include "app/commands.hpp"
 #include "io/csv_writer.hpp"
 #include "io/number_text.hpp"
+#include "io/suggest.hpp"
 #include "io/output_dir.hpp"
 #include "plot/campbell_plot.hpp"
 #include "render/mode_frames.hpp"
@@ -253,7 +254,13 @@ int campbell_modes(const std::string& script, const Scene& sc, const RunSettings
                    const ModeSettings& ms) {
   CampbellSettings cs;
   cs.pulley = sc.find_pulley(*raw.campbell);
-  if (cs.pulley < 0) throw UsageError("--campbell: the scene has no pulley '" + *raw.campbell + "'");
+  if (cs.pulley < 0) {
+    std::vector<std::string> names;
+    std::string list;
+    for (const Pulley& p : sc.model.pulleys) names.push_back(p.name), list += (list.empty() ? "" : ", ") + p.name;
+    throw UsageError("--campbell: the scene has no pulley '" + *raw.campbell + "'" + did_you_mean(*raw.campbell, names) +
+                     "; its pulleys: " + list);
+  }
   cs.rpm = form.rpm;
   cs.settle = form.settle;
   cs.modes = ms;

@@ -136,6 +136,9 @@ class Modes(unittest.TestCase):
 
     def test_bad_options(self):
         for args, message in [(["--campbell", "crank", "--rpm", "1:2:3"], "--campbell: the scene has no pulley 'crank'"),
+                              (["--campbell", "drivr", "--rpm", "1:2:3"],
+                               "--campbell: the scene has no pulley 'drivr' (did you mean 'driver'?); its pulleys: "
+                               "driver, driven"),
                               (["--campbell", "driver"], "--campbell needs --rpm FROM:TO:COUNT"),
                               (["--campbell", "driver", "--rpm", "1:2"], "--rpm takes FROM:TO:COUNT"),
                               (["--fmin", "10", "--fmax", "5"], "--fmin must be >= 0 and below --fmax"),
