@@ -66,7 +66,23 @@ void print_table(const Scene& sc, const ModeAnalysis& a) {
   for (size_t k = 0; k < a.modes.size(); ++k)
     std::printf("%5zu %10.2f %8.4f  %s\n", k + 1, a.modes[k].frequency, a.modes[k].damping,
                 where_text(a.groups, a.modes[k].participation).c_str());
-  if (a.period == 0) return;
+  if (a.period == 0) {
+    // a drive at rest holds no energy a mode could grow from (but a torque that grows with speed):
+    // a negative ζ there is the eigensolver's on a stiff matrix (a user's trial: 300 elements at
+    // rest, ζ -0.56 at 84 Hz, which the mode's check in time found at 131 Hz, ζ 0.05)
+    std::string growing;
+    for (size_t k = 0; k < a.modes.size(); ++k)
+      if (a.modes[k].damping < 0) growing += (growing.empty() ? "" : ", ") + std::to_string(k + 1);
+    if (!growing.empty())
+      std::fprintf(stderr,
+                   "beltsim modes: warning: mode%s %s grow%s (zeta < 0) about a state at rest, which holds no energy "
+                   "for a mode to grow from unless a torque grows with its pulley's speed: likely the eigensolver's "
+                   "error on this stiff matrix; --check %s integrates %s in time (docs/modes.md)\n",
+                   growing.find(',') == std::string::npos ? "" : "s", growing.c_str(),
+                   growing.find(',') == std::string::npos ? "s" : "", growing.c_str(),
+                   growing.find(',') == std::string::npos ? "it" : "them");
+    return;
+  }
   // a running belt: the modes of its motion over one element passing (docs/modes.md, A running drive)
   std::printf(
       "modes of the drive's motion over one element passing (%.3g ms, %.4g elements a second); over it the motion "
