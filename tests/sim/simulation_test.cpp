@@ -526,7 +526,7 @@ TEST(Live, IntervalMeansAreExactFromTheSteps) {
 
 // the fallbacks are counted and shown: the static start's retry (needed at 120 elements on the
 // paper's drive, not at 60: docs/model.md, Initial state) and steps whose iteration failed, with their
-// counts and first times, in notes(), the summary line and parameters.csv
+// counts and first times, in notes() and parameters.csv, the failed steps in the summary line too
 TEST(Live, FallbacksAreCountedAndShown) {
   test::expect_warnings({WarningKind::static_retry, WarningKind::failed_step});
   EXPECT_FALSE(dry_scene().static_retried);
@@ -550,7 +550,8 @@ TEST(Live, FallbacksAreCountedAndShown) {
   EXPECT_GT(failed.first_t, 0.0);
   EXPECT_LE(failed.first_t, 0.05);
   const std::string summary = s.warning_summary();
-  EXPECT_NE(summary.find("static_retry 1 time (first at t = 0 s)"), std::string::npos) << summary;
+  // the retry converged: parameters.csv and notes() count it, the closing line does not
+  EXPECT_EQ(summary.find("static_retry"), std::string::npos) << summary;
   EXPECT_NE(summary.find("failed_step " + std::to_string(failed.count) + (failed.count == 1 ? " time" : " times")),
             std::string::npos)
       << summary;
