@@ -124,6 +124,17 @@ TEST(Outputs, OneSimulationPerFolder) {
   EXPECT_FALSE(fs::exists(out / ".beltsim.lock"));
 }
 
+// the warnings a 2 ms run with rs gives of its output folder (those that begin "the output folder")
+std::vector<std::string> folder_warnings(RunSettings rs) {
+  std::vector<std::string> said;
+  rs.t_end = 0.002;
+  rs.on_warning = [&](const std::string& m) {  // (esdirk32's contract warning aside)
+    if (m.rfind("the output folder", 0) == 0) said.push_back(m);
+  };
+  run(dry_scene(), rs);
+  return said;
+}
+
 // a run into a folder that holds an earlier run's outputs it does not write says so as it starts
 // (a user's console session beside an earlier batch run's snapshots and video found them mixed,
 // without a word)
@@ -131,14 +142,9 @@ TEST(Outputs, AnEarlierRunsOutputsThisRunDoesNotWriteAreNamed) {
   const fs::path out = fresh("earlier") / "out";
   std::vector<std::string> said;
   auto runs = [&](bool snapshots) {
-    said.clear();
     RunSettings rs = settings(out);
-    rs.t_end = 0.002;
     if (!snapshots) rs.snapshot_every = 0;
-    rs.on_warning = [&](const std::string& m) {  // (esdirk32's contract warning aside)
-      if (m.rfind("the output folder", 0) == 0) said.push_back(m);
-    };
-    run(dry_scene(), rs);
+    said = folder_warnings(rs);
   };
   runs(true);
   EXPECT_TRUE(said.empty()) << said[0];
@@ -172,19 +178,14 @@ TEST(Outputs, AnEarlierRunsVideoAndPngFolderAreNamedWhateverTheirNames) {
   const fs::path out = fresh("earlier_named") / "out";
   std::vector<std::string> said;
   auto runs = [&](const char* video, const char* png) {
-    said.clear();
     RunSettings rs = settings(out);
-    rs.t_end = 0.002;
     if (video || png) {
       rs.frames = FrameSettings{};
       rs.frames->video_path = video ? video : "";
       rs.frames->png_dir = png ? png : "";
       rs.frame_factory = [](const Scene&, const FrameSettings&) { return std::make_unique<NoPictures>(); };
     }
-    rs.on_warning = [&](const std::string& m) {
-      if (m.rfind("the output folder", 0) == 0) said.push_back(m);
-    };
-    run(dry_scene(), rs);
+    said = folder_warnings(rs);
   };
   runs(nullptr, nullptr);
   EXPECT_TRUE(said.empty()) << said[0];
@@ -222,15 +223,7 @@ TEST(Outputs, AnEarlierRunsVideoAndPngFolderAreNamedWhateverTheirNames) {
 TEST(Outputs, AnEarlierRunsCheckpointsAreNamed) {
   const fs::path out = fresh("earlier_ckpt") / "out";
   std::vector<std::string> said;
-  auto runs = [&] {
-    said.clear();
-    RunSettings rs = settings(out);
-    rs.t_end = 0.002;
-    rs.on_warning = [&](const std::string& m) {
-      if (m.rfind("the output folder", 0) == 0) said.push_back(m);
-    };
-    run(dry_scene(), rs);
-  };
+  auto runs = [&] { said = folder_warnings(settings(out)); };
   runs();
   EXPECT_TRUE(said.empty()) << said[0];
   std::ofstream(out / "mid.ckpt") << "x";
@@ -259,15 +252,7 @@ TEST(Outputs, AnEarlierRunsCheckpointsAreNamed) {
 TEST(Outputs, AnEarlierRunsPicturesAndCheckpointsInSubfoldersAreNamed) {
   const fs::path out = fresh("earlier_pictures") / "out";
   std::vector<std::string> said;
-  auto runs = [&] {
-    said.clear();
-    RunSettings rs = settings(out);
-    rs.t_end = 0.002;
-    rs.on_warning = [&](const std::string& m) {
-      if (m.rfind("the output folder", 0) == 0) said.push_back(m);
-    };
-    run(dry_scene(), rs);
-  };
+  auto runs = [&] { said = folder_warnings(settings(out)); };
   runs();
   EXPECT_TRUE(said.empty()) << said[0];
   for (const char* f : {"show_0.100000.png", "plot_0.250000.png", "a.png", "show_1.png", "show_0.1000000.png"})
