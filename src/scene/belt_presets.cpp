@@ -93,6 +93,7 @@ void apply_belt_preset(const BeltPreset& p, SceneDef& d, const std::function<boo
     else
       throw std::logic_error("belt preset " + p.name + ": '" + key + "' is not a number of the belt table");
     d.given.insert("belt." + key);
+    d.from_preset.insert("belt." + key);
   }
 }
 

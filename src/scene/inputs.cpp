@@ -15,7 +15,7 @@ SceneInput scene_input(const Parameter& par, const std::string& name, double val
                        bool given) {
   std::string note(par.note);
   if (par.whose != Whose::none) note.append("; default: ").append(whose_text(par.whose));
-  return {name, value, text, std::string(text.empty() ? par.unit : ""), given, note, ""};
+  return {name, value, text, std::string(text.empty() ? par.unit : ""), given, note, "", ""};
 }
 
 std::vector<SceneInput> scene_inputs(const SceneDef& d) {
@@ -29,6 +29,7 @@ std::vector<SceneInput> scene_inputs(const SceneDef& d) {
     const std::optional<double> v = value_of(*par, d, p);
     if (text.empty() && !v) return;  // read by its own code, or an alternative not given
     in.push_back(scene_input(*par, name, text.empty() ? *v : 0, text, d.given.count(name) > 0));
+    if (d.from_preset.count(name)) in.back().preset = d.belt.preset;
   };
   for (const char* table : {"belt", "belt.sde", "contact", "friction", "scene"})
     for (const Parameter* par : parameters_of(table)) add(par, nullptr);

@@ -237,6 +237,22 @@ std::vector<std::string> unit_warnings(const Scene& sc) {
                   rounded_text(p.inertia * 1e-7, 6) + " kg·m², " + J + " kg·cm² " + rounded_text(p.inertia * 1e-4, 6) +
                   " kg·m²); a rotor lumped into the pulley (an engine's, a motor's) may have so much");
   }
+  // a tensioner arm's inertia about its pivot, likewise: against a solid steel disc reaching to the
+  // pulley's rim (radius: the arm's length plus the pulley's), kSolidWidth wide
+  for (const Arm& a : sc.model.arms) {
+    const Pulley& p = sc.model.pulleys[a.pulley];
+    const SceneInput* in = input("pulley." + p.name + ".tensioner.inertia");
+    const double reach = a.length + p.radius;
+    const double solid = 0.5 * kSteelDensity * M_PI * kSolidWidth * std::pow(reach, 4);
+    if (!in || !in->given || !(a.inertia > solid)) continue;
+    const std::string J = rounded_text(a.inertia, 6);
+    out.push_back("pulley '" + p.name + "'.tensioner.inertia = " + J +
+                  " kg·m² is more than a solid steel disc reaching from the pivot to the pulley's rim (radius " +
+                  rounded_text(reach, 6) + " m), " + rounded_text(kSolidWidth) + " m wide, would have about it (" +
+                  rounded_text(solid, 3) + " kg·m²): the inertia is in kg·m² (" + J + " g·cm² is " +
+                  rounded_text(a.inertia * 1e-7, 6) + " kg·m², " + J + " kg·cm² " + rounded_text(a.inertia * 1e-4, 6) +
+                  " kg·m²)");
+  }
   return out;
 }
 

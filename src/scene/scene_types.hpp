@@ -157,6 +157,8 @@ struct SceneDef {
   // the parameters the scenario gave, as dotted keys ("belt.EA", "contact.c1", "pulley.driver.inertia"):
   // every other one takes its default, and the build lists those (Scene::inputs)
   std::set<std::string> given;
+  // of those, the ones the belt's preset gave (belt.preset: scene/belt_presets.hpp), not the script
+  std::set<std::string> from_preset;
 };
 
 // One input of a scene as the run reports it (parameters.csv, the run's first lines): its value
@@ -171,6 +173,8 @@ struct SceneInput {
   // "" unless the value is derived from other inputs, then which ("belt.mu_flank = 0.3 and
   // belt.rib_angle = 40°": belt.mu); such an input is not the script's own (mark_derived)
   std::string derived;
+  // the belt preset that gave the value ("6PK"), "" when the script gave it or a default was taken
+  std::string preset;
 };
 
 struct Scene {

@@ -49,7 +49,8 @@ std::string write_parameters(const Scene& sc, const RunSettings& rs, const Outpu
   const Belt& b = m.belt;
   std::ostringstream f;  // written whole at the end (io/row_file.hpp)
   // numbers as in timeseries.csv: the shortest decimal that reads back as the same double
-  // source: "given" by the scenario, "default" taken, "derived" by the build from those, or "run"
+  // source: "given" by the scenario, "preset" by its belt preset, "default" taken, "derived" by the
+  // build from those, or "run"
   f << "name,value,unit,source,note\n";
   auto row = [&](const std::string& name, double v, const std::string& unit, const std::string& note) {
     f << csv_text(name) << ',' << value_text(v) << ',' << csv_text(unit) << ",derived," << csv_text(note) << '\n';
@@ -65,10 +66,11 @@ std::string write_parameters(const Scene& sc, const RunSettings& rs, const Outpu
     else
       f << csv_text(in.text);
     f << ',' << csv_text(in.unit) << ','
-      << (!in.derived.empty() ? "derived"
-          : in.given          ? "given"
-                              : "default")
-      << ',' << csv_text(in.note) << '\n';
+      << (!in.derived.empty()  ? "derived"
+          : !in.preset.empty() ? "preset"
+          : in.given           ? "given"
+                               : "default")
+      << ',' << csv_text(in.preset.empty() ? in.note : in.note + "; from the " + in.preset + " preset") << '\n';
   }
   text("stiffness_reading", sc.reading == StiffnessReading::rigidity ? "rigidity" : "per_sde",
        sc.reading == StiffnessReading::rigidity

@@ -10,6 +10,7 @@
 #include "model/forces.hpp"
 #include "model/observables.hpp"
 #include "model/rhs.hpp"
+#include "scene/scene.hpp"
 #include "scene/validate.hpp"
 #include "support/parameter_error.hpp"
 #include "support/presets.hpp"
@@ -124,6 +125,28 @@ TEST(Tensioner, Angle0OnTheWrongSideOrPastATurnIsRefused) {
   const std::string degrees = error(125);
   EXPECT_NE(degrees.find("more than a turn; the angle is in radians (125° would be 2.182 rad)"), std::string::npos)
       << degrees;
+}
+
+// an arm inertia in g·cm² or kg·cm² written as kg·m² (a user's trial: 10 kg·m² on a 6 cm arm, unsaid
+// while a pulley's is warned of) warns; the preset's arm does not
+TEST(Tensioner, AnArmInertiaPastASteelDiscIsWarnedOf) {
+  SceneDef d = presets::automotive_tensioner();
+  const std::string name = d.pulleys[1].name;
+  d.given.insert("pulley." + name + ".tensioner.inertia");
+  auto warned = [](const Scene& sc) {
+    for (const std::string& w : scene_warnings(sc))
+      if (w.find(".tensioner.inertia") != std::string::npos) return w;
+    return std::string();
+  };
+  EXPECT_EQ(warned(build_scene(d)), "");
+  d.pulleys[1].tensioner->inertia = 10;
+  const std::string w = warned(build_scene(d));
+  EXPECT_NE(w.find("pulley '" + name +
+                   "'.tensioner.inertia = 10 kg·m² is more than a solid steel disc reaching from "
+                   "the pivot to the pulley's rim"),
+            std::string::npos)
+      << w;
+  EXPECT_NE(w.find("(10 g·cm² is 1e-06 kg·m², 10 kg·cm² 0.001 kg·m²)"), std::string::npos) << w;
 }
 
 TEST(Tensioner, ErrorsNameTheParameter) {

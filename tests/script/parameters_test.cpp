@@ -322,14 +322,15 @@ TEST(Parameters, EachKeyOnce) {
   EXPECT_EQ(find_parameter("contact.damping")->unit, "N·s/m");
 }
 
-// belt.preset: a PK section's values (scene/belt_presets.hpp) are given, the table's own keys
-// override them and parameters.csv names the preset; a name that is no preset is refused
+// belt.preset: a PK section's values (scene/belt_presets.hpp) are taken, the table's own keys
+// override them and parameters.csv names the preset as their source (a user's trial read them as
+// given by the script); a name that is no preset is refused
 TEST(Parameters, ABeltPresetGivesItsValues) {
   ASSERT_EQ(run_text(scene_with({{"belt.preset", "'6PK'"}, {"belt.EI", "0.01"}})), "");
   const std::string csv = slurp(temp_dir() / "out" / "parameters.csv");
-  for (const char* expected :
-       {"\nbelt.preset,6PK,,given,", "\nbelt.EA,182400,N,given,", "\nbelt.EI,0.01,N·m²,given,",
-        "\nbelt.bending_viscosity,8.4e-07,N·m²·s,given,", "\nbelt.mass_per_length,0.1152,kg/m,given,"})
+  for (const char* expected : {"\nbelt.preset,6PK,,given,", "\nbelt.EA,182400,N,preset,", "\nbelt.EI,0.01,N·m²,given,",
+                               "\nbelt.bending_viscosity,8.4e-07,N·m²·s,preset,",
+                               "\nbelt.mass_per_length,0.1152,kg/m,preset,", "; from the 6PK preset\"\n"})
     EXPECT_NE(csv.find(expected), std::string::npos) << expected << " in\n" << csv;
   EXPECT_EQ(csv.find("\nbelt.bending_damping,"), std::string::npos) << csv;
   const std::string bad = scene_with({{"belt.preset", "'6pk'"}});
