@@ -95,8 +95,14 @@ class OneStep final : public Integrator {
       bool lands = false;
       double h = h_;
       // land on t_land; a step that would stop just short of it is stretched onto it, so no
-      // sliver of a step is left between (at most 10 % longer than the controller asked)
-      if (t_ + kLandStretch * h >= t_land - kLandSlack * std::max(1.0, std::abs(t_land))) h = t_land - t_, lands = true;
+      // sliver of a step is left between (at most 10 % longer than the controller asked). A step
+      // that ends on it as asked keeps its size: t_land - t_ differs from h where t_ + h rounded,
+      // and a run stopped at a step's end (a pause, Ctrl-C) is replayed as run_to(that end), whose
+      // last step must be the run's own, bit for bit
+      if (t_ + kLandStretch * h >= t_land - kLandSlack * std::max(1.0, std::abs(t_land))) {
+        if (t_ + h != t_land) h = t_land - t_;
+        lands = true;
+      }
       const bool ok = st_->step(sys_, t_, y_, f_, h, y1_, err_);
       int worst = worst_;
       double e = ok ? ctl_.error_norm(lands ? t_land : t_ + h, y_, y1_, err_, &worst) : 1e300;
