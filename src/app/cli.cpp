@@ -251,6 +251,7 @@ void add_plot_command(CLI::App& app, CommandLine& cl) {
                    "columns to draw (default: every <pulley>.omega); of a sweep's summary.csv the x column, then y");
   plot->add_option("--out", raw.out, "the PNG (default: plot.png beside the CSV)")->type_name("PNG")->check(kNotEmpty);
   plot->add_option("--from", raw.from, "draw samples with t >= T only [s] (a timeseries.csv only)")->type_name("T");
+  plot->add_option("--to", raw.to, "draw samples with t <= T only [s] (a timeseries.csv only)")->type_name("T");
   plot->footer("Prints the PNG's path; on a terminal also shows the picture (BELTSIM_TERM_IMAGES=off|symbols|\n"
                "sixel|kitty|iterm forces a mode). Columns of two units share the plot on two y axes.");
 }

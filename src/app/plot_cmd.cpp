@@ -18,17 +18,20 @@ int cmd_plot(const std::string& given, const std::vector<std::string>& columns, 
              term::ImageMode images) {
   const std::string csv = run_csv(given);  // a run's folder for its timeseries.csv, as summary takes it
   const double from = raw.from ? number("--from", *raw.from) : -INFINITY;
+  const double to = raw.to ? number("--to", *raw.to) : INFINITY;
+  if (raw.from && raw.to && !(from <= to)) throw UsageError("--from " + *raw.from + " lies after --to " + *raw.to);
   if (raw.out) require_png("--out", *raw.out);
   const std::string png = raw.out ? *raw.out : (fs::path(csv).parent_path() / "plot.png").string();
   try {
     // a sweep's summary is drawn against a column of its own, so a start time would be ignored
     // there: refused as bad usage before anything is drawn (a file that cannot be read: exit 1)
-    if (raw.from && plot::is_sweep_summary(csv))
-      throw UsageError("--from: " + csv + " is a sweep's summary, drawn against " +
+    if ((raw.from || raw.to) && plot::is_sweep_summary(csv))
+      throw UsageError(std::string(raw.from ? "--from" : "--to") + ": " + csv +
+                       " is a sweep's summary, drawn against " +
                        (columns.empty() ? std::string("the column named first") : "its column " + columns[0]) +
-                       ", not against time, so --from (a start time) does not apply; it is for a run's "
-                       "timeseries.csv");
-    if (const std::string w = plot::left_out_warning(plot::plot_csv(csv, columns, from, png)); !w.empty())
+                       ", not against time, so " + (raw.from ? "--from (a start time)" : "--to (an end time)") +
+                       " does not apply; it is for a run's timeseries.csv");
+    if (const std::string w = plot::left_out_warning(plot::plot_csv(csv, columns, from, png, to)); !w.empty())
       std::fprintf(stderr, "beltsim plot: warning: %s\n", w.c_str());
   } catch (const UsageError&) {
     throw;

@@ -542,12 +542,12 @@ PlotSpec summary_spec(const std::string& csv_path, const std::vector<std::string
 }
 
 std::vector<std::string> plot_csv(const std::string& csv_path, const std::vector<std::string>& columns, double from_t,
-                                  const std::string& out_png) {
+                                  const std::string& out_png, double to_t) {
   if (is_sweep_summary(csv_path)) {
-    if (from_t > -INFINITY)
+    if (from_t > -INFINITY || to_t < INFINITY)
       throw std::runtime_error(csv_path +
                                " is a sweep's summary, drawn against a column of its own, not time: "
-                               "a start time does not apply to it");
+                               "a start or end time does not apply to it");
     PlotSpec spec = summary_spec(csv_path, columns, out_png);
     std::vector<std::string> dropped = drop_empty(spec, csv_path);
     plot_png(spec);
@@ -577,18 +577,25 @@ std::vector<std::string> plot_csv(const std::string& csv_path, const std::vector
   spec.title = cp.has_parent_path() && cp.parent_path().has_filename()
                    ? (cp.parent_path().filename() / cp.filename()).string()
                    : cp.filename().string();
-  if (!t.empty() && from_t > t.front()) spec.title += "  (t ≥ " + number_text(from_t) + " s)";
+  if (!t.empty() && from_t > t.front() && to_t < t.back())
+    spec.title += "  (" + number_text(from_t) + " s ≤ t ≤ " + number_text(to_t) + " s)";
+  else if (!t.empty() && from_t > t.front())
+    spec.title += "  (t ≥ " + number_text(from_t) + " s)";
+  else if (!t.empty() && to_t < t.back())
+    spec.title += "  (t ≤ " + number_text(to_t) + " s)";
   for (const auto& name : wanted) {
     const std::vector<double>& y = table.column(name);
     Series s{name, unit_of(name), {}, {}};
     for (size_t i = 0; i < t.size(); ++i) {
-      if (!(t[i] >= from_t)) continue;
+      if (!(t[i] >= from_t && t[i] <= to_t)) continue;
       s.t.push_back(t[i]);
       s.y.push_back(y[i]);
     }
     if (s.t.empty())
-      throw std::runtime_error(csv_path + " has no samples at t >= " + number_text(from_t) + " s" +
-                               (t.empty() ? " (it has no rows)" : " (its last is at " + number_text(t.back()) + " s)"));
+      throw std::runtime_error(
+          csv_path + " has no samples at " +
+          (to_t < INFINITY ? number_text(from_t) + " s <= t <= " + number_text(to_t) : "t >= " + number_text(from_t)) +
+          " s" + (t.empty() ? " (it has no rows)" : " (its last is at " + number_text(t.back()) + " s)"));
     spec.series.push_back(std::move(s));
   }
   spec.marks = read_event_marks((cp.parent_path() / "events.csv").string());

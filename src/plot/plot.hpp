@@ -9,6 +9,7 @@
 // series (with its unit when there are two axes). Undefined values (NaN, inf) leave a gap.
 #pragma once
 
+#include <cmath>
 #include <string>
 #include <string_view>
 #include <unordered_map>
@@ -81,15 +82,15 @@ std::vector<Mark> read_event_marks(const std::string& events_csv);
 bool is_sweep_summary(const std::string& csv_path);
 
 // Plots `columns` of a timeseries.csv (empty: every '<pulley>.omega' column) against its 't'
-// column, samples with t >= from_t only, units from io/units.hpp, titled with the CSV's path; the
+// column, samples with from_t <= t <= to_t only, units from io/units.hpp, titled with the CSV's path; the
 // events of the events.csv beside it, if there is one, as vertical lines with their labels.
 // A sweep's summary.csv (is_sweep_summary) is drawn as points: the first of `columns` is the x
-// axis, the others y; its x is not time, so a from_t above -inf is refused (an error); a point
+// axis, the others y; its x is not time, so a from_t above -inf or a to_t below inf is refused (an error); a point
 // without a value (failed, not run) is left out. A column with no finite value there (a creep
 // undefined at rest, a figure every point failed to give) is left out of the picture and named in
 // the result; when every column is, it fails naming them.
 std::vector<std::string> plot_csv(const std::string& csv_path, const std::vector<std::string>& columns, double from_t,
-                                  const std::string& out_png);
+                                  const std::string& out_png, double to_t = INFINITY);
 
 // the warning for plot_csv's left-out columns ("" for none)
 std::string left_out_warning(const std::vector<std::string>& names);

@@ -73,8 +73,28 @@ class Forms(unittest.TestCase):
         self.assertIn("timeseries.csv has no samples at t >= 1e+09 s (its last is at 0.1 s)", err)
         self.assertFalse(self.exists("none.png"))
 
+    def test_to_ends_the_window_as_summary_takes_it(self):
+        # (a user's trial: plot took --from but refused --to, which summary takes)
+        code, out, err = run(["plot", "timeseries.csv", "--out", "all.png"], self.dir)
+        self.assertEqual(code, 0, err)
+        code, out, err = run(["plot", "timeseries.csv", "--from", "0.02", "--to", "0.05", "--out", "mid.png"], self.dir)
+        self.assertEqual(code, 0, err)
+        with open(os.path.join(self.dir, "all.png"), "rb") as a, open(os.path.join(self.dir, "mid.png"), "rb") as b:
+            self.assertNotEqual(a.read(), b.read())
+        code, out, err = run(["plot", "timeseries.csv", "--from", "0.05", "--to", "0.02"], self.dir)
+        self.assertEqual(code, 2, err)
+        self.assertIn("--from 0.05 lies after --to 0.02", err)
+        code, out, err = run(["plot", "timeseries.csv", "--from", "0.021", "--to", "0.029", "--out", "gap.png"],
+                             self.dir)
+        self.assertEqual(code, 1, err)
+        self.assertIn("timeseries.csv has no samples at 0.021 s <= t <= 0.029 s", err)
+        code, out, err = run(["plot", "summary.csv", "pretension", "slip", "--to", "400", "--out", "p.png"], self.dir)
+        self.assertEqual(code, 2, err)
+        self.assertIn("--to (an end time) does not apply", err)
+        self.assertFalse(self.exists("p.png"))
+
     def test_options_plot_does_not_take(self):
-        for option in ("--to", "--csv"):
+        for option in ("--csv", "--rtol"):
             code, out, err = run(["plot", "summary.csv", "pretension", "slip", option, "1"], self.dir)
             self.assertEqual(code, 2, err)
             self.assertIn("plot does not take: " + option, err)
