@@ -14,7 +14,7 @@ std::atomic<WarningObserver> g_observer{nullptr};
 const std::array<WarningKindInfo, kWarningKinds>& warning_kinds() {
   static const std::array<WarningKindInfo, kWarningKinds> k{{
       {WarningKind::static_retry, "static_retry",
-       "the static start needed its trust-region retry (the plain Newton iteration drifted along the belt)"},
+       "the static start needed its trust-region retry (the plain Newton iteration drifted along the belt)", false},
       {WarningKind::failed_step, "failed_step",
        "steps that could not be taken (the implicit iteration did not converge, or its matrix was singular); "
        "each was retried at a fifth of its size, and steps were kept below half of it for a while"},

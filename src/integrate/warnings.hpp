@@ -23,6 +23,10 @@ struct WarningKindInfo {
   WarningKind kind;
   const char* name;         // warning.<name> in parameters.csv
   const char* description;  // what happened and what beltsim did about it
+  // named in a run's closing `warnings:` line too (false: parameters.csv and notes() only, for a
+  // fallback that always ends well, as the static start's retry, which converged or the build is
+  // refused: on a plain three-pulley drive it closed every run)
+  bool closing_line = true;
 };
 // every kind, in WarningKind's order
 const std::array<WarningKindInfo, kWarningKinds>& warning_kinds();

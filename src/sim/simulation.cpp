@@ -467,10 +467,7 @@ std::string Simulation::warning_summary() const {
   std::string s;
   for (const WarningKindInfo& i : warning_kinds()) {
     const WarningStat& st = w[i.kind];
-    // the static start's retry converged (else the build is refused): parameters.csv counts it,
-    // the closing line leaves it out (on a plain three-pulley drive it closed every run, noise
-    // that teaches users to pass over the line)
-    if (st.count == 0 || i.kind == WarningKind::static_retry) continue;
+    if (st.count == 0 || !i.closing_line) continue;  // (WarningKindInfo::closing_line)
     s += (s.empty() ? "" : ", ") + std::string(i.name) + " " + std::to_string(st.count) +
          (st.count == 1 ? " time" : " times") + " (first at t = " + rounded_text(st.first_t) + " s)";
   }
