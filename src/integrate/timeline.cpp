@@ -217,8 +217,8 @@ void Timeline::check_conditions() {
   }
 }
 
-Timeline::Result Timeline::run_to(double T, const std::atomic<bool>* stop, const Progress& progress,
-                                   const Poll& poll) {
+Timeline::Result Timeline::run_to(double T, const std::atomic<bool>* stop, const Progress& progress, const Poll& poll,
+                                  const std::atomic<bool>* pause) {
   using clock = std::chrono::steady_clock;
   const auto t_start = clock::now();
   Result r;
@@ -239,6 +239,10 @@ Timeline::Result Timeline::run_to(double T, const std::atomic<bool>* stop, const
         break;
       }
       process(p);
+      if (pause && pause->load(std::memory_order_relaxed) && p < T) {
+        r.interrupted = true;
+        break;
+      }
       continue;
     }
     if (b >= T) {

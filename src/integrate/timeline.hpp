@@ -90,10 +90,13 @@ class Timeline {
   // integrates until T (>= now()), delivering everything due on the way; stops early when *stop
   // is set or poll() returns true: at the last finished step, or between two outputs inside a
   // step (many samples or frames in one step), so now() may then lie inside the held step, as
-  // after run_to of that time. Throws DivergenceError (everything before it delivered).
+  // after run_to of that time. When *pause is set it stops right after the next output (a
+  // sample, frame, landing or located crossing), where run_to of that output's time stands too, so
+  // a change made there is replayed exactly as run_to(t) and the change. Throws DivergenceError
+  // (everything before it delivered).
   using Poll = std::function<bool()>;
-  Result run_to(double T, const std::atomic<bool>* stop = nullptr, const Progress& progress = {},
-                const Poll& poll = {});
+  Result run_to(double T, const std::atomic<bool>* stop = nullptr, const Progress& progress = {}, const Poll& poll = {},
+                const std::atomic<bool>* pause = nullptr);
 
   double now() const { return now_; }
   const Eigen::VectorXd& state() const { return y_now_; }

@@ -254,9 +254,9 @@ Simulation::Advance LiveFeed::run_to(Simulation& sim, double t, const RunProgres
   // what came before this run (a console's prompt, a script's start): applied where it stands
   if (server_->commands_pending()) apply_controls(false);
   for (;;) {
-    halt_ = false;
+    halt_ = pause_ = false, pause_asked_ = -1;
     const bool to_target = target_ > sim.now() && target_ < t;
-    const Simulation::Advance a = sim.run_to(to_target ? target_ : t, &halt_, progress);
+    const Simulation::Advance a = sim.run_to(to_target ? target_ : t, &halt_, progress, &pause_);
     total.t = a.t, total.steps += a.steps, total.wall += a.wall, wall_ = total.wall;
     if (a.over_wall_limit || (stop_ && stop_->load())) {
       total.interrupted = a.interrupted, total.over_wall_limit = a.over_wall_limit;
@@ -281,7 +281,12 @@ RunProgress LiveFeed::callback(RunProgress inner) {
     if (inner) inner(t, target, w, wall);
     wall += wall_;  // this run's wall time across the run_to calls a control split it into
     h_ = t - last_t_, last_t_ = t;
-    if (server_->commands_pending() || (stop_ && stop_->load())) halt_ = true;
+    if (stop_ && stop_->load()) halt_ = true;
+    if (server_->commands_pending()) {
+      if (pause_asked_ < 0) pause_asked_ = wall;
+      pause_ = true;
+      if (wall - pause_asked_ >= kPauseWait) halt_ = true;
+    }
     if (wall - last_wall_ >= kInterval) {
       last_wall_ = wall;
       publish(wall);

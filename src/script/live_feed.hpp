@@ -78,6 +78,9 @@ class LiveFeed {
 
   static constexpr double kInterval = 0.05;           // [s] of wall time between two samples
   static constexpr double kFrameInterval = 1.0 / 15;  // [s] between two frames (while a page is open)
+  // [s] of wall time a control waits for the run's next output before it stops the run at its
+  // last step instead (a run with samples far apart against its steps' pace)
+  static constexpr double kPauseWait = 0.5;
   // at most this share of the wall time goes to drawing frames while the run goes on: a frame that
   // takes longer (a loaded machine, a large belt) spaces the next ones out
   static constexpr double kFrameShare = 0.04;
@@ -104,7 +107,11 @@ class LiveFeed {
   const std::atomic<bool>* stop_;
   std::vector<PageChange>* record_;
   const void* key_;
-  std::atomic<bool> halt_{false};  // the run_to under way stops at its last step
+  // a control came: the run_to under way stops right after its next output (pause_), where a
+  // replay's run_to of that time stands too, or at its last step (halt_) on Ctrl-C or when no
+  // output came within kPauseWait of wall time
+  std::atomic<bool> pause_{false}, halt_{false};
+  double pause_asked_ = -1;  // [s] the wall time the control came (-1: none)
   Simulation* sim_ = nullptr;
   const char* at_end_ = "finished";
   double target_ = 0;  // the page's run to t (0: none)

@@ -337,7 +337,8 @@ void Simulation::require_open(const char* what) const {
   if (closed_) throw std::logic_error(std::string(what) + ": the simulation is closed");
 }
 
-Simulation::Advance Simulation::run_to(double t, const std::atomic<bool>* stop, const RunProgress& progress) {
+Simulation::Advance Simulation::run_to(double t, const std::atomic<bool>* stop, const RunProgress& progress,
+                                       const std::atomic<bool>* pause) {
   require_open("run_to");
   if (!std::isfinite(t)) throw std::invalid_argument("run_to: the time must be finite (got " + rounded_text(t) + " s)");
   if (t < now())
@@ -384,7 +385,7 @@ Simulation::Advance Simulation::run_to(double t, const std::atomic<bool>* stop, 
     return false;
   };
   try {
-    const Timeline::Result r = tl_->run_to(t, stop, pr, poll);
+    const Timeline::Result r = tl_->run_to(t, stop, pr, poll, pause);
     a.t = r.t, a.steps = r.steps, a.wall = clock() - start, a.interrupted = r.interrupted;
   } catch (const DivergenceError& e) {
     failed_ = e.what();

@@ -76,12 +76,13 @@ class Simulation {
   };
   // integrates to t (>= now) delivering samples, frames and callbacks on the way; stops early at
   // the last finished step or output when *stop is set or this call's wall time passes
-  // RunSettings::wall_limit. A run that makes no progress (simulated time per wall second below
-  // kRateCollapse of its own best over a window of kRateWindow) throws DivergenceError, as the
-  // integrators do for a step size stuck at the rounding floor or a failing implicit iteration
+  // RunSettings::wall_limit, right after the next output when *pause is set (Timeline::run_to). A run that makes no
+  // progress (simulated time per wall second below kRateCollapse of its own best over a window of kRateWindow) throws
+  // DivergenceError, as the integrators do for a step size stuck at the rounding floor or a failing implicit iteration
   // (integrate/one_step.cpp). Throws DivergenceError after flushing the outputs
   // (the simulation cannot continue after it), std::invalid_argument for t < now or not finite.
-  Advance run_to(double t, const std::atomic<bool>* stop = nullptr, const RunProgress& progress = {});
+  Advance run_to(double t, const std::atomic<bool>* stop = nullptr, const RunProgress& progress = {},
+                 const std::atomic<bool>* pause = nullptr);
   // flushes the CSV files and finalises the video (idempotent); a closed simulation can be read
   // but not advanced
   void close();

@@ -6,7 +6,9 @@
 
 #include <gtest/gtest.h>
 
+#include <atomic>
 #include <cmath>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -98,6 +100,55 @@ TEST(Timeline, AnOutputAtAChangesTimeComesAfterIt) {
   tl.start(0.0, y0);
   tl.run_to(0.3);
   EXPECT_EQ(order, (std::vector<std::string>{"every", "landing", "sample"}));
+}
+
+// a pause (the live page's control) stops right after the next output, where run_to of that
+// output's time stands too: a change made there and the run after it are those of run_to(t) and
+// the change, bit for bit (a session's replay). Stopped at a step's end instead, the replay's
+// run_to(t) read t from a step of its own where an attempt was rejected near it.
+TEST(Timeline, APauseStopsAtTheNextOutputWhereRunToOfItStands) {
+  struct Run {
+    CosineWave sys;
+    std::unique_ptr<Integrator> integ = make_integrator("rkf45", sys, Tolerances{1e-6, 1e-6});
+    Timeline tl{*integ};
+    std::vector<double> samples;
+    Run() {
+      tl.add_stream(
+          0.0, 0.01, [this](double t, const Eigen::VectorXd& y) { samples.push_back(t + y[0]); }, false);
+      Eigen::VectorXd y0(1);
+      y0[0] = 0;
+      tl.start(0.0, y0);
+    }
+    // the change made at the pause: the state moved by 1
+    void change() {
+      Eigen::VectorXd y = tl.state();
+      y[0] += 1;
+      tl.changed(&y);
+    }
+  };
+  Run paused;
+  std::atomic<bool> pause{false};
+  double asked_in = 0;  // the start of the step after which the pause was asked
+  const Timeline::Progress ask = [&](double t, const WorkCounters&) {
+    if (t > 0.123 && !pause) pause = true, asked_in = paused.integ->t_prev();
+  };
+  const Timeline::Result r = paused.tl.run_to(1.0, nullptr, ask, {}, &pause);
+  ASSERT_TRUE(r.interrupted);
+  const double t_p = r.t;
+  EXPECT_GT(t_p, asked_in) << "the first output the step that asked for it holds, or a later one";
+  EXPECT_LT(t_p, 1.0);
+  EXPECT_DOUBLE_EQ(std::round(t_p / 0.01) * 0.01, t_p) << "the pause stands on a sample's time";
+  paused.change();
+  paused.tl.run_to(1.0);
+
+  Run replay;
+  replay.tl.run_to(t_p);
+  ASSERT_EQ(replay.tl.now(), t_p);
+  replay.change();
+  replay.tl.run_to(1.0);
+  ASSERT_EQ(replay.samples.size(), paused.samples.size());
+  for (size_t k = 0; k < paused.samples.size(); ++k) ASSERT_EQ(replay.samples[k], paused.samples[k]) << "sample " << k;
+  EXPECT_EQ(replay.tl.state()[0], paused.tl.state()[0]);
 }
 
 }  // namespace
