@@ -207,6 +207,30 @@ std::string sag_warning(const Scene& sc) {
   return m;
 }
 
+std::vector<std::string> spray_warnings(const Scene& sc) {
+  std::vector<std::string> out;
+  const int n = sc.model.belt.n;
+  for (size_t k = 0; k < sc.drive.spray.zones.size(); ++k) {
+    const SprayZone& z = sc.drive.spray.zones[k];
+    // the distance from the circle's centre to the belt's path at rest: the polygon of its
+    // elements' centres, along which they travel
+    double nearest = INFINITY;
+    for (int i = 0; i < n; ++i) {
+      const int j = (i + 1) % n;
+      const Vec2 a(sc.y0[3 * i], sc.y0[3 * i + 1]), b(sc.y0[3 * j], sc.y0[3 * j + 1]);
+      const Vec2 ab = b - a;
+      const double u = ab.squaredNorm() > 0 ? std::clamp((z.centre - a).dot(ab) / ab.squaredNorm(), 0.0, 1.0) : 0.0;
+      nearest = std::min(nearest, (a + u * ab - z.centre).norm());
+    }
+    if (nearest <= z.radius) continue;
+    out.push_back("spray " + std::to_string(k + 1) + ": its circle (centre {" + rounded_text(z.centre.x(), 4) + ", " +
+                  rounded_text(z.centre.y(), 4) + "} m, radius " + rounded_text(z.radius, 4) +
+                  " m) does not reach the belt at rest, whose path passes " + rounded_text(nearest, 4) +
+                  " m from its centre: it wets nothing unless the belt moves there (docs/spray.md)");
+  }
+  return out;
+}
+
 std::vector<std::string> unit_warnings(const Scene& sc) {
   std::vector<std::string> out;
   const auto input = [&](const std::string& name) -> const SceneInput* {
@@ -262,6 +286,7 @@ std::vector<std::string> scene_warnings(const Scene& sc) {
   if (std::string strain = strain_warning(sc); !strain.empty()) out.push_back(std::move(strain));
   if (std::string speed = belt_speed_warning(sc); !speed.empty()) out.push_back(std::move(speed));
   if (std::string sag = sag_warning(sc); !sag.empty()) out.push_back(std::move(sag));
+  for (std::string& w : spray_warnings(sc)) out.push_back(std::move(w));
   for (std::string& w : coarse_wraps(sc)) out.push_back(std::move(w));
   for (std::string& w : wrong_side_maps(sc)) out.push_back(std::move(w));
   for (int j = 0; j < sc.model.n_p(); ++j) {

@@ -58,6 +58,10 @@ std::string belt_speed_text(const Scene& sc, int pulley, double omega, const std
 inline constexpr double kSagWarn = 0.01;
 std::string sag_warning(const Scene& sc);
 
+// Each spray zone whose circle does not reach the belt's path at rest (the polygon of its elements'
+// centres): its number, circle and distance; it wets nothing unless the belt moves there.
+std::vector<std::string> spray_warnings(const Scene& sc);
+
 // Values given in another unit than their key's, likely: a belt.rib_angle no V-rib has
 // (rib_angle_problem, scene/validate.hpp: in radians when below kRadiansBelow), a pulley inertia
 // above a solid steel disc of its radius kSolidWidth wide (in g·cm² or kg·cm²?)
@@ -66,7 +70,8 @@ std::vector<std::string> unit_warnings(const Scene& sc);
 
 // What the run's first lines warn of (scene:info().warnings lists the same): the values in another
 // unit, likely (unit_warnings), a strain at rest past a belt's (strain_warning), a belt speed past a
-// PK belt's rating (belt_speed_warning), spans that sag (sag_warning), the coarse wraps,
+// PK belt's rating (belt_speed_warning), spans that sag (sag_warning), spray zones off the belt
+// (spray_warnings), the coarse wraps,
 // the speed maps on the wrong side of zero (wrong_side_maps), each free pulley whose torque grows
 // with its speed (per_speed > 0, an energy source: the speed grows as exp(per_speed·t/J) unless
 // the belt holds it back), and bending dampers that will take more than a few per cent of the
