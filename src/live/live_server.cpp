@@ -20,6 +20,7 @@
 #include <utility>
 
 #include "io/suggest.hpp"
+#include "io/units.hpp"
 
 namespace beltsim::live {
 
@@ -342,6 +343,8 @@ std::string LiveServer::stream_text(Cursor& c) {
     add_string(out, run_name_);
     out += ",\"columns\":[";
     for (size_t k = 0; k < columns_.size(); ++k) out += k ? "," : "", add_string(out, columns_[k]);
+    out += "],\"units\":[";
+    for (size_t k = 0; k < columns_.size(); ++k) out += k ? "," : "", add_string(out, unit_of(columns_[k]));
     out += "],\"pulleys\":[";
     for (size_t k = 0; k < pulleys_.size(); ++k) out += k ? "," : "", add_string(out, pulleys_[k]);
     out += "]}\n\nevent: samples\ndata: [";

@@ -15,9 +15,9 @@ const char* page_html() {
 body { font-family: sans-serif; margin: 1em; }
 #bar span { margin-right: 1.5em; }
 #bar b { font-variant-numeric: tabular-nums; }
-#plot { width: 100%; height: 420px; }
-#legend { min-height: 1.4em; margin: 0.3em 0; }
-#legend span { margin-right: 1em; white-space: nowrap; }
+#plots .plot { width: 100%; height: 300px; margin-bottom: 0.6em; }
+#plots .legend { min-height: 1.4em; margin: 0.3em 0; }
+#plots .legend span { margin-right: 1em; white-space: nowrap; }
 #frame { display: block; max-width: 100%; height: auto; background: #222; cursor: crosshair; }
 #columns label, #controls span { margin-right: 1em; white-space: nowrap; }
 </style>
@@ -42,26 +42,49 @@ size="6"> m, μ <input id="mu" type="number" step="any" size="5"> <button id="we
 </div>
 <img id="frame" alt="the belt as the renderer draws it (frames come while a page is open)" width="960" height="540"
  draggable="false" title="drag along the belt (or click an element) to choose the stretch to wet">
-<div id="legend"></div>
-<div id="plot"></div>
+<div id="plots"></div>
 <div id="columns"></div>
 <script src="dygraph.js?token=@TOKEN@"></script>
 <script>
 "use strict";
 const q = "?token=@TOKEN@";
-let columns = [], data = [], graph = null, drawn = true, shown = [];
+let columns = [], units = [], data = [], graphs = [], drawn = true, shown = [];
 function fmt(x, digits) { return x === null ? "-" : Number(x).toPrecision(digits); }
-// the columns plotted at first: pulley speeds, span tensions, slip
-function chosen(name) { return /\.omega$|tension|slip/.test(name); }
+// the columns plotted at first: the pulleys' speeds and the span tensions
+function chosen(name) { return /\.omega$/.test(name) || /^span_.*\.tension$/.test(name); }
 // the shown series' colours, given in the order they are shown, so that no two shown look alike
 // (dygraphs' own spread its hues over every column, shown or not: neighbours came out the same)
 const palette = ["#1f77b4", "#d62728", "#2ca02c", "#ff7f0e", "#9467bd", "#8c564b", "#e377c2", "#17becf",
                  "#7f7f7f", "#bcbd22", "#000080", "#800000", "#008080", "#808000", "#ff00ff", "#00a000"];
-function series() {
+function colours() {
   const s = {};
   let n = 0;
-  columns.forEach((c, k) => { if (shown[k]) s[c] = { color: palette[n++ % palette.length] }; });
+  columns.forEach((c, k) => { if (shown[k]) s[c] = palette[n++ % palette.length]; });
   return s;
+}
+// one plot for each unit of the shown columns, as beltsim plot draws them (speeds in rad/s beside
+// tensions in N on one axis flattened the speeds into a line at zero), in the order of their first
+// column; each with its legend above it
+function rebuild() {
+  for (const g of graphs) g.destroy();
+  graphs = [];
+  const plots = document.getElementById("plots");
+  plots.innerHTML = "";
+  if (data.length === 0 || columns.length === 0) return;
+  const colour = colours(), seen = [];
+  columns.forEach((c, k) => { if (shown[k] && !seen.includes(units[k])) seen.push(units[k]); });
+  for (const u of seen) {
+    const labels = document.createElement("div"), div = document.createElement("div");
+    labels.className = "legend";
+    div.className = "plot";
+    plots.appendChild(labels);
+    plots.appendChild(div);
+    const visible = columns.map((c, k) => shown[k] && units[k] === u), series = {};
+    columns.forEach((c, k) => { if (visible[k]) series[c] = { color: colour[c] }; });
+    graphs.push(new Dygraph(div, data, { labels: ["t"].concat(columns), visibility: visible, series: series,
+                                         xlabel: "t [s]", ylabel: u === "" ? "" : "[" + u + "]", legend: "always",
+                                         labelsDiv: labels, labelsSeparateLines: false }));
+  }
 }
 function setup() {
   const box = document.getElementById("columns");
@@ -71,31 +94,21 @@ function setup() {
   columns.forEach((c, k) => {
     const l = document.createElement("label"), cb = document.createElement("input");
     cb.type = "checkbox"; cb.checked = shown[k]; cb.dataset.column = c;
-    cb.onchange = () => {
-      shown[k] = cb.checked;
-      if (graph) graph.updateOptions({ visibility: shown.slice(), series: series() });
-    };
+    cb.onchange = () => { shown[k] = cb.checked; rebuild(); };
     l.appendChild(cb); l.appendChild(document.createTextNode(" " + c)); box.appendChild(l);
   });
-  if (graph) graph.destroy();
-  graph = null;
+  rebuild();
 }
 function draw() {
   drawn = true;
-  if (data.length === 0 || columns.length === 0) return;
-  if (!graph) {
-    graph = new Dygraph(document.getElementById("plot"), data,
-                        { labels: ["t"].concat(columns), visibility: shown.slice(), series: series(), xlabel: "t [s]",
-                          legend: "always", labelsDiv: document.getElementById("legend"), labelsSeparateLines: false });
-  } else {
-    graph.updateOptions({ file: data });
-  }
+  if (graphs.length === 0) rebuild();
+  else for (const g of graphs) g.updateOptions({ file: data });
 }
 const es = new EventSource("events" + q);
 es.addEventListener("run", e => {
   const r = JSON.parse(e.data);
   document.getElementById("name").textContent = r.name || "-";
-  columns = r.columns; data = []; setup();
+  columns = r.columns; units = r.units || columns.map(() => ""); data = []; setup();
   const sel = document.getElementById("pulley");
   sel.innerHTML = "";
   for (const p of r.pulleys || []) { const o = document.createElement("option"); o.textContent = p; sel.appendChild(o); }

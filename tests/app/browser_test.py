@@ -53,8 +53,9 @@ T_SHOT = 0.05  # [s] the run-to time of the golden picture
 # swing. The screenshot was taken where a pause clicked on the page had caught the run: a
 # picture of the machine's speed, once the driver running away at -456 rad/s on the wet stretch
 T_README = 0.26
-# the columns the README's screenshot plots: the span tensions
-README_COLUMNS = ["span_driver_driven.tension", "span_driven_driver.tension"]
+# the columns the README's screenshot plots: the pulleys' speeds and the span tensions (the page's
+# first choice), in a plot for each unit
+README_COLUMNS = ["driver.omega", "driven.omega", "span_driver_driven.tension", "span_driven_driver.tension"]
 # [s] the run goes on to T_README in steps of this, a run to t each: the page's plot gets the sample
 # where each pauses, as well as those of the wall clock (20 a wall second): a plot as fine on a fast
 # machine as on a slow one (the tensions swing with a period of about 9 ms; a fast machine's run
@@ -95,7 +96,7 @@ class Browser(unittest.TestCase):
         o.add_experimental_option("browserStartupTimeout", START * 1000)  # [ms]
         for a in ["--headless", "--no-sandbox", "--disable-gpu", "--disable-background-networking",
                   "--disable-component-update", "--disable-sync", "--no-first-run",
-                  "--user-data-dir=" + os.path.join(self.dir, "chromium"), "--window-size=1280,1500",
+                  "--user-data-dir=" + os.path.join(self.dir, "chromium"), "--window-size=1280,1800",
                   "--force-device-scale-factor=1", "--force-color-profile=srgb"]:
             o.add_argument(a)
         RemoteConnection.set_timeout(COMMAND)
@@ -144,12 +145,24 @@ class Browser(unittest.TestCase):
             return b.execute_script("return Array.from(document.querySelectorAll('#columns input'))"
                                     ".filter(cb => cb.checked).map(cb => cb.dataset.column);")
 
-        def legend():
-            return b.execute_script("return document.getElementById('legend').innerText").split()
-        wait.until(lambda _: legend() == checked() and len(checked()) > 3)
+        def legend():  # each plot's legend, one plot per unit
+            return sorted(b.execute_script("return Array.from(document.querySelectorAll('#plots .legend'))"
+                                           ".map(e => e.innerText).join(' ')").split())
+
+        def per_plot():  # the shown columns of each plot and the plot's unit label
+            return b.execute_script("return graphs.map(g => [g.getLabels().filter((c, k) => k > 0 && "
+                                    "g.visibility()[k - 1]), g.getOption('ylabel')])")
+        wait.until(lambda _: legend() == sorted(checked()) and len(checked()) > 3)
+        # at first the pulleys' speeds and the span tensions, each unit in a plot of its own (on one
+        # axis the tensions flattened the speeds into a line at zero: a user's trial)
+        plots = per_plot()
+        self.assertEqual([p[1] for p in plots], ["[rad/s]", "[N]"], plots)
+        self.assertTrue(all(c.endswith(".omega") for c in plots[0][0]), plots)
+        self.assertTrue(all(c.startswith("span_") and c.endswith(".tension") for c in plots[1][0]), plots)
         b.find_element(By.CSS_SELECTOR, "#columns input[data-column='driver.omega']").click()
         b.find_element(By.CSS_SELECTOR, "#columns input[data-column='driven.torque']").click()
-        wait.until(lambda _: legend() == checked())
+        wait.until(lambda _: legend() == sorted(checked()))
+        self.assertEqual([p[1] for p in per_plot()], ["[rad/s]", "[N·m]", "[N]"])
         self.assertNotIn("driver.omega", checked())
         self.assertIn("driven.torque", checked())
 
@@ -157,7 +170,7 @@ class Browser(unittest.TestCase):
             if c.startswith("#"):
                 return [int(c[k:k + 2], 16) for k in (1, 3, 5)]
             return [int(v) for v in c[c.index("(") + 1:-1].split(",")]
-        colours = [rgb(c) for c in b.execute_script("return graph.getColors()")]
+        colours = [rgb(c) for c in b.execute_script("return graphs.flatMap(g => g.getColors())")]
         names = checked()
         self.assertEqual(len(colours), len(names))
         for i in range(len(colours)):
@@ -216,8 +229,9 @@ class Browser(unittest.TestCase):
                                 "want.includes(cb.dataset.column)).map(cb => cb.dataset.column);", README_COLUMNS)
         for column in flip:
             b.find_element(By.CSS_SELECTOR, "#columns input[data-column='%s']" % column).click()
-        wait.until(lambda _: b.execute_script("return document.getElementById('legend').innerText").split() ==
-                   README_COLUMNS)
+        wait.until(lambda _: sorted(b.execute_script("return Array.from(document.querySelectorAll("
+                                                     "'#plots .legend')).map(e => e.innerText).join(' ')").split()) ==
+                   sorted(README_COLUMNS))
         q = urllib.parse.urlsplit(self.url).query
         steps = round((T_README - T_SHOT) / README_STEP)
         for k in range(1, steps):  # the page's control, as its Run button sends it
@@ -232,7 +246,7 @@ class Browser(unittest.TestCase):
         wait.until(lambda _: self.text("reply") == "")  # the control applied: no "queued" left
         frame = b.find_element(By.ID, "frame")
         wait.until(lambda _: frame.get_attribute("data-t") == repr(T_README))
-        wait.until(lambda _: b.execute_script("return graph.xAxisExtremes()[1]") == T_README)
+        wait.until(lambda _: b.execute_script("return graphs[0].xAxisExtremes()[1]") == T_README)
         b.save_screenshot(SCREENSHOT)
         b.find_element(By.ID, "continue").click()
         self.assertEqual(self.proc.wait(timeout=RUN), 0)

@@ -196,7 +196,11 @@ class Live(unittest.TestCase, Page):
         columns, times = None, []
         for name, data in events(r):
             if name == "run":
-                columns = json.loads(data)["columns"]
+                columns, units = json.loads(data)["columns"], json.loads(data)["units"]
+                # each column's unit, for the page's plot of each unit (io/units.hpp's table)
+                self.assertEqual(len(units), len(columns))
+                self.assertEqual(units[columns.index("driver.omega")], "rad/s")
+                self.assertEqual(units[columns.index("span_driver_driven.tension")], "N")
             elif name == "samples":
                 for row in json.loads(data):
                     self.assertEqual(len(row), 3 + len(columns))  # t, wall/simulated, step, the columns
