@@ -134,6 +134,16 @@ int set_law(lua_State* L, bool speed) {
     if (const std::string w = belt_speed_text(s.scene(), j, *peak, "once its ramps and tables have ended", true);
         !w.empty())
       say("beltsim: warning: sim:set_speed: %s\n", w.c_str());
+  // law times are absolute: a law whose ramps, steps and table all lie before now holds its last
+  // value from now on (a ramp typed at the prompt as if from now jumps there at once)
+  if (std::vector<double> when = law.kinks(), steps = law.jumps(); s.now() > 0 && (!when.empty() || !steps.empty())) {
+    when.insert(when.end(), steps.begin(), steps.end());
+    if (const double last = *std::max_element(when.begin(), when.end()); last <= s.now())
+      say("beltsim: warning: sim:%s: every change of this law in time lies before now (its last at t = %s s, now "
+          "t = %s s): %s holds its final value from here, at once; law times are absolute (a ramp from now: "
+          "beltsim.ramp{ t0 = sim.t, t1 = sim.t + T, from = ..., to = ... })\n",
+          what, rounded_text(last, 6).c_str(), rounded_text(s.now(), 6).c_str(), s.model().pulleys[j].name.c_str());
+  }
   const std::string message = s.model().pulleys[j].name + ": " + before + " -> " + (speed ? "speed " : "torque ") +
                               law_text(law) + " from t = " + rounded_text(s.now(), 6) + " s";
   lua_pushstring(L, message.c_str());

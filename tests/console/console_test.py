@@ -291,6 +291,18 @@ class ConsoleTest(unittest.TestCase):
         self.assertRegex(err, r"warning: sim:set_speed: pulley 'driver'\.speed: 5000 rad/s once its ramps and tables "
                          r"have ended, which moves the belt at [0-9.]+ m/s .*beltsim\.rpm\(5000\)")
 
+    def test_a_law_whose_changes_all_lie_before_now_is_warned_of(self):
+        # law times are absolute: a ramp typed at t = 0.02 s as if from now (a user's trial) jumps
+        # to its end at once; a law with a change still ahead is not warned of
+        r = self.piped(['sim:run_to(0.02)', 'sim:set_speed("driver", beltsim.ramp(0.01, -10))',
+                        'sim:set_torque("driven", beltsim.step{t = 0.05, from = -5, to = -10})',
+                        'sim:set_torque("driven", -5)'])
+        out, err = r.stdout.decode(), r.stderr.decode()
+        self.assertEqual(r.returncode, 0, out + err)
+        self.assertEqual(len(re.findall(r"warning: sim:set_", err)), 1, err)
+        self.assertIn("warning: sim:set_speed: every change of this law in time lies before now (its last at "
+                      "t = 0.01 s, now t = 0.02 s): driver holds its final value from here, at once", err)
+
     def test_closing_a_simulation_says_where_it_ended_once(self):
         # sim:close() says the closing line of its runs, as `beltsim run` does; the console's own
         # end (the interpreter's, which closes every simulation) does not say it again
