@@ -87,7 +87,8 @@ void LiveFeed::watch(Simulation* sim, const char* at_end) {
     } catch (const std::exception& e) {  // a Lua law that fails on reading: the run's error says it
       say("beltsim: live view: %s\n", e.what());
     }
-    server_->set_status(at_end_);
+    server_->set_status(at_end_ + end_note_);
+    end_note_.clear();
     frames_.reset();  // the last offered drawn, before the simulation (its scene) goes
     sim_ = nullptr;
     return;
@@ -273,6 +274,12 @@ Simulation::Advance LiveFeed::run_to(Simulation& sim, double t, const RunProgres
     }
   }
   if (changed_ && record_) record_->push_back({key_, total.t, ""});
+  // a run to a later t asked from the page: this run_to (the console's, the script's) ends first;
+  // the status says so, and a later run_to does not stop there
+  if (target_ > total.t)
+    end_note_ = " at t = " + rounded_text(total.t, 6) + " s: the page's run to " + rounded_text(target_, 6) +
+                " s lies past the end of this run_to",
+    target_ = 0;
   return total;
 }
 

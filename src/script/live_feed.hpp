@@ -115,6 +115,7 @@ class LiveFeed {
   Simulation* sim_ = nullptr;
   const char* at_end_ = "finished";
   double target_ = 0;  // the page's run to t (0: none)
+  std::string end_note_;  // said after at_end_ in the status when the run ends (a page's run to past it)
   double wall_ = 0;    // [s] of the run_to calls before the one under way
   double last_wall_ = -1, last_frame_ = -1, last_t_ = 0, h_ = 0;
   bool changed_ = false;                 // the page changed the simulation during run_to

@@ -119,6 +119,21 @@ class ConsoleAndPage(unittest.TestCase):
             self.assertEqual([(h, u) for h, u, v in zip(head, x, y) if u != v],
                              [(h, v) for h, u, v in zip(head, x, y) if u != v], x[0])
 
+    def test_a_page_run_to_past_the_consoles_run_to_says_where_it_stopped(self):
+        """the page asks for a run to 2 s while the console's sim:run_to(0.2) runs: the run ends at
+        0.2 s, and the status says the page's run to lies past it (it said "paused" alone, a user's
+        trial); the console's next run_to does not stop at the page's stale 2 s"""
+        d, proc, live, c, it, paused = self.paused_mid_run("beltsim_live_past_", subprocess.PIPE,
+                                                            b"sim:run_to(0.2)\nprint('at', sim.t)\n"
+                                                            b"sim:run_to(2.5)\nprint('then', sim.t)\n")
+        self.assertEqual(live.post("do=run_to&value=2")[0], 202)
+        live.wait_status(it, "paused at t = 0.2 s: the page's run to 2 s lies past the end of this run_to")
+        out = proc.stdout.read().decode()
+        self.assertEqual(proc.wait(timeout=300), 0)
+        self.assertIn("at\t0.2\n", out)
+        self.assertIn("then\t2.5\n", out)
+        c.close()
+
     def test_an_assignment_changed_from_the_page_replays(self):
         """`r = sim:run_to(T)` changed from the page while it ran, and a command reading r after it:
         session.lua keeps the assignment on the run's last part (`r = sim:run_to(T)`), so that the
