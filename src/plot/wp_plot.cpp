@@ -8,6 +8,7 @@
 
 #include "io/number_text.hpp"
 #include "plot/gnuplot.hpp"
+#include "sim/run_check.hpp"
 
 namespace beltsim::plot {
 
@@ -18,6 +19,7 @@ constexpr double kWidth = 1000, kHeight = 700;
 constexpr double kLeft = 0.10, kRight = 0.70, kBottom = 0.10, kTop = 0.90;
 constexpr double kCharPx = 6.0, kLabelPx = 12.0;  // a label's character width and height at 8 pt
 constexpr double kPointPx = 5.0;                  // half the size of a point's mark
+constexpr double kRingPx = 10.0;                  // the radius of the ring about a point past its bound (ps 3)
 
 // one colour per integrator, its points and its rtol labels alike (gnuplot.hpp's)
 constexpr size_t kNumColours = sizeof kLineColours / sizeof kLineColours[0];
@@ -65,10 +67,19 @@ void set_ranges(const WpResult& res, WpLayout& l) {
   l.area_w = (kRight - kLeft) * kWidth, l.area_h = (kTop - kBottom) * kHeight;
 }
 
-void add_point(WpLayout& l, double x, double y, std::string text, size_t k, bool finished, bool tension = false) {
+void add_point(WpLayout& l, double x, double y, std::string text, size_t k, bool finished, bool tension = false,
+               bool past = false) {
   const double px = l.area_w * std::log(x / l.x_lo) / std::log(l.x_hi / l.x_lo);
   const double py = l.area_h * std::log(y / l.y_lo) / std::log(l.y_hi / l.y_lo);
-  l.points.push_back({x, y, px, py, std::move(text), k, finished, tension});
+  l.points.push_back({x, y, px, py, std::move(text), k, finished, tension, past});
+  l.any_past |= past;
+}
+
+// a finished run's error past the contract's bound for its rtol, where the contract promises one
+// (sim/run_check.hpp; not for a study's own metric)
+bool past_bound(const WpResult& res, const WpRow& r, bool tension) {
+  if (!res.metric.empty() || !r.finished || r.rtol > kContractRtol) return false;
+  return tension ? r.err_tension > kCheckTensionLimit * r.rtol : r.err_speed > kCheckSpeedLimit * r.rtol;
 }
 
 // each integrator's finished runs, then its unfinished ones on a row of their own above the
@@ -80,13 +91,13 @@ void collect_points(const WpResult& res, WpLayout& l) {
     WpLayout::Series s{name, kLineColours[k % kNumColours], 5 + 2 * static_cast<int>(k % 4)};
     for (const WpRow& r : res.rows)
       if (r.integrator == name && r.finished && shown_error(res, r) > 0) {
-        add_point(l, r.wall, shown_error(res, r), tol_text(r.rtol), k, true);
+        add_point(l, r.wall, shown_error(res, r), tol_text(r.rtol), k, true, false, past_bound(res, r, false));
         s.any_finished = true;
       }
     if (res.metric.empty())
       for (const WpRow& r : res.rows)
         if (r.integrator == name && r.finished && r.err_tension > 0)
-          add_point(l, r.wall, r.err_tension, tol_text(r.rtol), k, true, true);
+          add_point(l, r.wall, r.err_tension, tol_text(r.rtol), k, true, true, past_bound(res, r, true));
     const double y_row = l.y_errors * std::pow(10.0, (k + 0.5) / static_cast<double>(n_int));
     const size_t first_unfinished = l.points.size();
     for (const WpRow& r : res.rows) {
@@ -104,13 +115,13 @@ void collect_points(const WpResult& res, WpLayout& l) {
   }
 }
 
-// what labels must keep off: the points' marks and, as small boxes every 3 pixels, the line from
+// what labels must keep off: the points' marks (a ringed one's ring) and, as small boxes every 3 pixels, the line from
 // each finished point to its integrator's next
 void collect_obstacles(WpLayout& l) {
   const std::vector<WpLayout::Point>& p = l.points;
   for (size_t i = 0; i < p.size(); ++i) {
-    const double x = p[i].px, y = p[i].py;
-    l.marks.push_back({x - kPointPx, y - kPointPx, x + kPointPx, y + kPointPx});
+    const double x = p[i].px, y = p[i].py, r = p[i].past ? kRingPx : kPointPx;
+    l.marks.push_back({x - r, y - r, x + r, y + r});
     if (i + 1 < p.size() && p[i + 1].series == p[i].series && p[i].finished && p[i + 1].finished &&
         p[i + 1].tension == p[i].tension) {
       const double x1 = p[i + 1].px, y1 = p[i + 1].py;
@@ -135,7 +146,8 @@ void place_labels(WpLayout& l) {
     if (p.tension) continue;
     const double x = p.px, y = p.py;
     const double w = kCharPx * static_cast<double>(p.text.size()) + 2, h = kLabelPx;
-    const double side = 0.5 * w + kPointPx + 2, up = 0.5 * h + kPointPx + 1;
+    const double r = p.past ? kRingPx : kPointPx;
+    const double side = 0.5 * w + r + 2, up = 0.5 * h + r + 1;
     const double offsets[][2] = {{0, up},     {0, -up},    {side, 0},    {-side, 0},  {side, up},
                                  {-side, up}, {side, -up}, {-side, -up}, {0, up + h}, {0, -up - h}};
     bool placed = false;
@@ -217,6 +229,16 @@ std::string wp_script(const WpLayout& l, const std::string& output) {
     plots << ", \\\n     keyentry with linespoints lw 2 pt 5 lc rgb '#444444' title 'pulley speeds'"
           << ", \\\n     keyentry with linespoints lw 1.5 dt 2 pt 4 lc rgb '#444444' title 'span tensions'";
   if (l.unfinished) plots << ", \\\n     keyentry with points pt 2 ps 2 lw 2 lc rgb '#444444' title 'did not finish'";
+  // a ring about each point past its bound (the bounds are in the lines wp prints: the legend has
+  // room for a name alone)
+  if (l.any_past) {
+    g << "$past << EOD\n";
+    for (const WpLayout::Point& p : l.points)
+      if (p.past) g << number_text(p.x) << ' ' << number_text(p.y) << '\n';
+    g << "EOD\n";
+    plots << ", \\\n     $past using 1:2 with points pt 6 ps 3 lw 2 lc rgb '#d62728' title "
+          << gnuplot_string("past the contract");
+  }
   for (const WpLayout::Label& a : l.labels) {
     const WpLayout::Point& p = l.points[a.point];
     g << "set label " << gnuplot_string(p.text) << " at first " << number_text(p.x) << ", first " << number_text(p.y)

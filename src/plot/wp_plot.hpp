@@ -43,6 +43,10 @@ struct WpLayout {
     size_t series;     // index in `series` (and in WpResult::integrators)
     bool finished;
     bool tension = false;  // a span-tension error (no label; dashed); else the speeds' or the metric's
+    // past the accuracy contract's bound for its rtol (kCheckSpeedLimit·rtol for the speeds,
+    // kCheckTensionLimit·rtol for the span tensions; only where it is promised, rtol <= kContractRtol,
+    // and not for a metric): ringed
+    bool past = false;
   };
   // a placed label: centred at (px, py) of its point plus (dx, dy), within `box`
   struct Label {
@@ -58,6 +62,7 @@ struct WpLayout {
   double area_w, area_h;          // [px] the plot area
   std::vector<Series> series;     // one per integrator, in WpResult::integrators' order
   std::vector<Point> points;      // by series; within one the finished runs in the rows' order
+  bool any_past = false;          // a point is past its bound (the legend names the ring)
   std::vector<Box> marks;         // each point's mark, as points
   std::vector<Box> line_boxes;    // small boxes along each line from a finished point to the next
   std::vector<Label> labels;      // in the points' order (the span tensions' points have none)
