@@ -92,9 +92,15 @@ void pretty_table(lua_State* L, int idx, std::string& out, int depth, std::set<c
   };
   bool flat = n + static_cast<lua_Integer>(names.size()) <= 6 && other.empty();
   for (const std::string& k : names) flat = flat && field_unit(k).empty();
-  if (flat) {
-    for (lua_Integer k = 1; k <= n && flat; ++k) flat = lua_rawgeti(L, idx, k) != LUA_TTABLE, lua_pop(L, 1);
-    for (const std::string& k : names) flat = flat && (lua_getfield(L, idx, k.c_str()), scalar(L, -1)), lua_pop(L, 1);
+  // one line only when no entry is a table; each value looked at is popped before the next
+  for (lua_Integer k = 1; k <= n && flat; ++k) {
+    flat = lua_rawgeti(L, idx, k) != LUA_TTABLE;
+    lua_pop(L, 1);
+  }
+  for (size_t k = 0; k < names.size() && flat; ++k) {
+    lua_getfield(L, idx, names[k].c_str());
+    flat = scalar(L, -1);
+    lua_pop(L, 1);
   }
   if (n == 0 && names.empty() && other.empty()) {
     out += "{}";

@@ -282,6 +282,33 @@ class ConsoleTest(unittest.TestCase):
         self.assertNotRegex(out, r"tension = [0-9.e-]+, -- N")
         self.assertRegex(out, r"\n  wall = [0-9.e-]+, -- s\n")  # a field's unit elsewhere as before
 
+    def test_tables_with_two_table_fields_print(self):
+        # a table with two or more table fields, the API's results among them (the printer popped
+        # a value too many after the first: "printing the result: attempt to index a nil value"),
+        # and the session replays them
+        commands = ["{a = {}, b = {}}", "beltsim.print({a = {k = 1}, b = {k = 2}, c = 3})", "sim:advance(0.01)",
+                    "s = sim:summary{}", "s", "s.spans", "s.hubs", "sim:summary{}", "m = sim:modes{}", "m", "m[1]",
+                    "'the end'"]
+        r = self.piped(commands, args=[os.path.join(self.tmp, "out_console")])
+        out, err = r.stdout.decode(), r.stderr.decode()
+        self.assertEqual(r.returncode, 0, out + err)
+        self.assertNotIn("printing the result", err)
+        self.assertTrue(out.startswith("{\n  a = {},\n  b = {},\n}\n{\n  a = { k = 1 },\n  b = { k = 2 },\n  c = 3,\n}\n"),
+                        out)
+        self.assertRegex(out, r"\n  spans = \{\n    span_driven_driver = \{\s+tension_max = ")
+        self.assertRegex(out, r"\n\{\n  span_driven_driver = \{\s+tension_max = ")  # s.spans
+        self.assertRegex(out, r"\n\{\n  driven = \{\s+hub_load_max = ")  # s.hubs
+        self.assertEqual(len(re.findall(r"\n  hubs = \{\n", out)), 2, out)  # s and sim:summary{}
+        self.assertRegex(out, r"\n  \{\n    damping = ")  # m, its modes a list
+        self.assertRegex(out, r"\n\{\n  damping = [^\n]*\n  decay = [^\n]*\n  frequency = [^\n]*\n  share = \{")
+        self.assertTrue(out.endswith('"the end"\n'), out)
+        m = re.search(r"the session's commands are in (\S+)", err)
+        self.assertTrue(m, err)
+        r = subprocess.run([BELTSIM, "run", "--trusted", os.path.join(self.tmp, m.group(1))], cwd=self.tmp,
+                           env=child_env(self.tmp), stdout=subprocess.PIPE, stderr=subprocess.PIPE, timeout=120)
+        self.assertEqual(r.returncode, 0, (r.stdout + r.stderr).decode())
+        self.assertTrue(r.stdout.decode().endswith('"the end"\n'), r.stdout.decode())
+
     def test_a_speed_set_past_a_belts_rating_is_warned_of(self):
         # as the scene build warns of a scene's speeds (scene/scene.hpp kBeltSpeedWarn, 60 m/s)
         r = self.piped(['sim:set_speed("driver", 10)', 'sim:set_speed("driver", beltsim.ramp(0.1, 5000))'])
