@@ -90,6 +90,7 @@ int run_to(lua_State* L, SimBox& box, double t, const char* what) {
   lua_pushinteger(L, a.steps), lua_setfield(L, -2, "steps");
   set_number(L, "wall", a.wall);
   lua_pushboolean(L, interrupted), lua_setfield(L, -2, "interrupted");
+  for (const char* f : {"t", "steps", "wall"}) set_unit(L, -1, f, run_result_unit(f).value_or(""));
   return 1;
 }
 

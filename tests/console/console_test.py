@@ -309,6 +309,32 @@ class ConsoleTest(unittest.TestCase):
         self.assertEqual(r.returncode, 0, (r.stdout + r.stderr).decode())
         self.assertTrue(r.stdout.decode().endswith('"the end"\n'), r.stdout.decode())
 
+    def test_units_are_the_results_own(self):
+        # a number prints the unit its result recorded (the summary's figures, sim:pulley's fields
+        # from io/units.cpp), not one guessed from its key's name: the summary's losses are powers
+        # in W (they printed J and N), tension_min N as tension_mean, the hubs' loads N (none); a
+        # table of the user's own prints no unit (its y printed m)
+        with open(os.path.join(self.tmp, "scenario.lua"), "w") as f:
+            f.write((SCENARIO % {"out": os.path.join(self.tmp, "out").replace("\\", "/")})
+                    .replace("direction = 'cw' },", "direction = 'cw' },\n  energy = true,", 1))
+        r = self.piped(["sim:advance(0.01)", "s = sim:summary{}", "s.loss", "s.spans", "s.hubs",
+                        "{x = {y = 1}, driver = {tension_mean = 1, tension_min = 2}}", 'sim:pulley("driven")'])
+        out, err = r.stdout.decode(), r.stderr.decode()
+        self.assertEqual(r.returncode, 0, out + err)
+        blocks = re.findall(r"(?ms)^\{\n.*?^\}\n", out)
+        self.assertEqual(len(blocks), 6, out)
+        loss, spans, hubs, mine, pulley = blocks[1:]
+        for q in ["axial", "bending", "contact", "friction", "total", "input", "output", "stored"]:
+            self.assertRegex(loss, r"\n  %s = [-0-9.e]+, -- W\n" % q, loss)
+        self.assertRegex(loss, r"\n  share = [-0-9.e]+,\n", loss)
+        for q in ["tension_mean", "tension_min", "tension_max"]:
+            self.assertRegex(spans, r"\n    %s = [-0-9.e]+, -- N\n" % q, spans)
+        for q in ["hub_load_mean", "hub_load_max", "hub_load_spans"]:
+            self.assertRegex(hubs, r"\n    %s = [-0-9.e]+, -- N\n" % q, hubs)
+        self.assertNotIn("--", mine)
+        self.assertRegex(pulley, r"\n  omega = [-0-9.e]+, -- rad/s\n  slip_arc = [-0-9.e]+, -- m\n", pulley)
+        self.assertRegex(pulley, r"\n  mu = 1,\n", pulley)
+
     def test_a_speed_set_past_a_belts_rating_is_warned_of(self):
         # as the scene build warns of a scene's speeds (scene/scene.hpp kBeltSpeedWarn, 60 m/s)
         r = self.piped(['sim:set_speed("driver", 10)', 'sim:set_speed("driver", beltsim.ramp(0.1, 5000))'])
