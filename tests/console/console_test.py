@@ -377,11 +377,15 @@ class ConsoleTest(unittest.TestCase):
         self.assertTrue(os.path.exists(os.path.join(self.tmp, "out", "mine", "session.lua")))
 
     def test_changes_say_what_they_did(self):
-        # wet, set_torque and set_mu return one line: which elements (how many, in contact with
-        # which pulley now), old -> new; sim:elements{ pulley } lists the elements on a pulley
+        # wet, set_torque and set_mu return one line: which elements changed (how many, in contact
+        # with which pulley now), old -> new; those that already had the μ are not counted (they
+        # were: "40 of 40 elements ..., mu 0.5 -> 0.5"); sim:elements{ pulley } lists the elements on
+        # a pulley
         r = self.piped(["sim:advance(0.002)", "sim:wet{ mu = 0.2, from = 0, to = 0.3 }",
-                        'sim:set_torque("driver", -10)', "sim:set_mu(0.5)", 'sim:elements{ pulley = "driven" }',
-                        'print(#sim:elements{ pulley = "driven" } == tonumber(sim:wet{ mu = 0.5 }:match("(%d+) on driven")))'])
+                        'sim:set_torque("driver", -10)', "sim:set_mu(0.5)", "sim:set_mu(0.5)",
+                        "sim:wet{ mu = 0.2, from = 0, to = 0.3 }", "sim:set_mu(0.5)",
+                        'sim:elements{ pulley = "driven" }',
+                        'print(#sim:elements{ pulley = "driven" } == tonumber(sim:wet{ mu = 0.7 }:match("(%d+) on driven")))'])
         out, err = r.stdout.decode(), r.stderr.decode()
         self.assertEqual(r.returncode, 0, out + err)
         # 0.3 m of the 40-element belt's length (2·0.29 + 2π·0.1 m): 10 elements, μ 1 -> 0.2
@@ -389,6 +393,8 @@ class ConsoleTest(unittest.TestCase):
         self.assertRegex(out, r'"driver: torque \{.*ramp.*\} -> torque -10 from t = 0\.002 s"', out)
         self.assertRegex(out, r'"set_mu: 40 of 40 elements \(\d+ on driver, \d+ on driven, \d+ free\), '
                               r'mu \[0\.2, 1\] -> 0\.5"', out)
+        self.assertIn('"set_mu: no element changed (the 40 it sets already had mu 0.5)"', out)
+        self.assertRegex(out, r'"set_mu: 10 of 40 elements \([^)]*\), mu 0\.2 -> 0\.5"', out)
         self.assertRegex(out, r"\{\n  \d+,\n", out)
         self.assertIn("\ntrue\n", out)
 
