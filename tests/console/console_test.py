@@ -335,6 +335,19 @@ class ConsoleTest(unittest.TestCase):
         self.assertRegex(pulley, r"\n  omega = [-0-9.e]+, -- rad/s\n  slip_arc = [-0-9.e]+, -- m\n", pulley)
         self.assertRegex(pulley, r"\n  mu = 1,\n", pulley)
 
+    def test_a_local_of_an_earlier_line_is_named_when_its_nil_fails(self):
+        # each prompt line is a chunk of its own: its locals end with it (lua-api.md's every/when
+        # example pasted line by line failed with "got nil" and no word why)
+        r = self.piped(["local target, dt = -30, 0.002", "sim:every(dt, function(sim) end)",
+                        "sim:every(nosuch, function(sim) end)", "local function g() return 1 end", "g()"])
+        out, err = r.stdout.decode(), r.stderr.decode()
+        self.assertEqual(r.returncode, 1, out + err)
+        self.assertIn("stdin:1: sim:every(dt, fn): argument 1 (dt): number expected, got nil\nnote: dt was declared "
+                      "`local` on an earlier line, and a local at the prompt lasts for its own line only: declare it "
+                      "without `local` to keep it\n", err)
+        self.assertEqual(err.count("note: "), 2, err)  # not for nosuch, which no line declared
+        self.assertIn("note: g was declared `local`", err)
+
     def test_a_speed_set_past_a_belts_rating_is_warned_of(self):
         # as the scene build warns of a scene's speeds (scene/scene.hpp kBeltSpeedWarn, 60 m/s)
         r = self.piped(['sim:set_speed("driver", 10)', 'sim:set_speed("driver", beltsim.ramp(0.1, 5000))'])
