@@ -348,6 +348,15 @@ class ConsoleTest(unittest.TestCase):
         self.assertEqual(err.count("note: "), 2, err)  # not for nosuch, which no line declared
         self.assertIn("note: g was declared `local`", err)
 
+    def test_an_error_shows_a_traceback_from_inside_a_function(self):
+        # console.md: a command's own error (an API call's among them) is its stdin:N: line; one
+        # raised inside a function adds the calls that led there
+        r = self.piped(["sim:run_to(-1)", "function f()", "  sim:run_to(-1)", "end", "f()"])
+        out, err = r.stdout.decode(), r.stderr.decode()
+        self.assertEqual(r.returncode, 1, out + err)
+        self.assertIn("\nstdin:1: sim:run_to: -1 s is before now (0 s)\nstdin:2: sim:run_to: -1 s is before now (0 s)\n"
+                      "stack traceback:\n\t[C]: in method 'run_to'\n\tstdin:2: in function 'f'\n", err)
+
     def test_a_speed_set_past_a_belts_rating_is_warned_of(self):
         # as the scene build warns of a scene's speeds (scene/scene.hpp kBeltSpeedWarn, 60 m/s)
         r = self.piped(['sim:set_speed("driver", 10)', 'sim:set_speed("driver", beltsim.ramp(0.1, 5000))'])
