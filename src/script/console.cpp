@@ -7,6 +7,8 @@
 #include <cstring>
 #include <filesystem>
 #include <iterator>
+#include <regex>
+#include <set>
 #include <vector>
 
 #include "beltsim_version.hpp"
@@ -134,6 +136,41 @@ Word bare_word(lua_State* L, const std::string& chunk) {
   return type == LUA_TNIL ? Word::leave : Word::none;
 }
 
+// the names a command declared with `local` (`local a, b = ...`, `local function f`): at the
+// prompt each lives for its own command only
+std::vector<std::string> declared_locals(const std::string& chunk) {
+  static const std::regex decl(
+      R"((?:^|[\n;])\s*local\s+(?:function\s+)?([A-Za-z_]\w*(?:\s*<\w+>)?(?:\s*,\s*[A-Za-z_]\w*(?:\s*<\w+>)?)*))");
+  static const std::regex name(R"([A-Za-z_]\w*)");
+  std::vector<std::string> names;
+  for (std::sregex_iterator d(chunk.begin(), chunk.end(), decl), end; d != end; ++d) {
+    const std::string list = (*d)[1].str();
+    for (std::sregex_iterator n(list.begin(), list.end(), name); n != end; ++n)
+      if (const std::string w = n->str(); w != "const" && w != "close") names.push_back(w);
+  }
+  return names;
+}
+
+// a failed command's note when its error is about a nil and it uses a name an earlier command
+// declared `local` that is no global now: that local ended with its own command
+std::string local_note(lua_State* L, const std::string& chunk, const std::string& failure,
+                       const std::set<std::string>& earlier_locals) {
+  if (failure.find("nil") == std::string::npos) return "";
+  std::vector<std::string> names;
+  for (const std::string& n : earlier_locals) {
+    if (!std::regex_search(chunk, std::regex("(^|[^.:\\w])" + n + "\\b"))) continue;
+    const bool global = lua_getglobal(L, n.c_str()) != LUA_TNIL;
+    lua_pop(L, 1);
+    if (!global) names.push_back(n);
+  }
+  if (names.empty()) return "";
+  std::string list;
+  for (const std::string& n : names) list += (list.empty() ? "" : ", ") + n;
+  return "note: " + list + (names.size() > 1 ? " were" : " was") +
+         " declared `local` on an earlier line, and a local at the prompt lasts for its own line only: "
+         "declare it without `local` to keep it\n";
+}
+
 }  // namespace
 
 int run_console(const std::optional<std::string>& script, const std::vector<std::string>& args, const Overrides& o,
@@ -231,6 +268,7 @@ int run_console(const std::optional<std::string>& script, const std::vector<std:
           if (const std::string s = at_prompt(L, changes); !s.empty()) commands.push_back(s);
         });
     std::string chunk, line, failure;
+    std::set<std::string> earlier_locals;  // declared `local` by a command before (local_note)
     bool printed = false;  // the command's values were printed (session.lua prints them again)
     long ended = 0;  // progress lines ended before the command (progress.hpp)
     while (!terminating()) {
@@ -270,8 +308,11 @@ int run_console(const std::optional<std::string>& script, const std::vector<std:
         // it ran up to its error: what it changed before (a run stopped where its callback raised)
         // is replayed too
         commands.push_back(failed_replayable(L, chunk, expression, failure, ctx.stopped_runs, ctx.page_changes));
+        if (const std::string note = local_note(L, chunk, failure, earlier_locals); !note.empty())
+          say("%s", note.c_str());
         failed = true;
       }
+      for (const std::string& n : declared_locals(chunk)) earlier_locals.insert(n);
       // the terminal echoed ^C where a run (a live simulation's or a scene:run) was stopped; unless
       // a progress line ended that line, the next prompt would follow it there ("^C> ")
       if (interactive && tty_out && ctx.interrupted && progress_lines_ended() == ended) std::printf("\n");

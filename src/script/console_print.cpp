@@ -8,10 +8,9 @@
 #include <vector>
 
 #include "io/number_text.hpp"
-#include "io/units.hpp"
 #include "lauxlib.h"
 #include "lua.h"
-#include "script/lua_run.hpp"
+#include "script/lua_check.hpp"
 #include "script/progress.hpp"
 
 namespace beltsim::script {
@@ -82,19 +81,27 @@ void pretty_table(lua_State* L, int idx, std::string& out, int depth, std::set<c
     }
   }
   std::sort(names.begin(), names.end());
-  // a field's unit by its name (unit_of), but a run's check estimate's (push_check) as the run
-  // result's check.<name> (relative errors, a time)
-  const int named = luaL_getmetafield(L, idx, "__name");  // pushes the field unless nil
-  const bool check = named == LUA_TSTRING && std::string(lua_tostring(L, -1)) == kCheckTable;
-  if (named != LUA_TNIL) lua_pop(L, 1);
+  // a field's unit as the result that made the table recorded it (lua_check.hpp, kUnitsField);
+  // none for a field it does not name and for a table of the user's own
   const auto field_unit = [&](const std::string& k) {
-    return check ? run_result_unit("check." + k).value_or("") : unit_of(k);
+    std::string unit;
+    const int units = luaL_getmetafield(L, idx, kUnitsField);  // pushed unless nil
+    if (units == LUA_TTABLE && lua_getfield(L, -1, k.c_str()) == LUA_TSTRING) unit = lua_tostring(L, -1);
+    if (units == LUA_TTABLE) lua_pop(L, 1);
+    if (units != LUA_TNIL) lua_pop(L, 1);
+    return unit;
   };
   bool flat = n + static_cast<lua_Integer>(names.size()) <= 6 && other.empty();
   for (const std::string& k : names) flat = flat && field_unit(k).empty();
-  if (flat) {
-    for (lua_Integer k = 1; k <= n && flat; ++k) flat = lua_rawgeti(L, idx, k) != LUA_TTABLE, lua_pop(L, 1);
-    for (const std::string& k : names) flat = flat && (lua_getfield(L, idx, k.c_str()), scalar(L, -1)), lua_pop(L, 1);
+  // one line only when no entry is a table; each value looked at is popped before the next
+  for (lua_Integer k = 1; k <= n && flat; ++k) {
+    flat = lua_rawgeti(L, idx, k) != LUA_TTABLE;
+    lua_pop(L, 1);
+  }
+  for (size_t k = 0; k < names.size() && flat; ++k) {
+    lua_getfield(L, idx, names[k].c_str());
+    flat = scalar(L, -1);
+    lua_pop(L, 1);
   }
   if (n == 0 && names.empty() && other.empty()) {
     out += "{}";

@@ -1,6 +1,7 @@
 // How the console shows values: readable Lua (tables one entry a line, long lists shortened, a
-// number under a key with a known unit followed by "-- unit"), never running Lua code except a
-// __tostring (print_values is called protected for that reason).
+// number in a result of the API followed by "-- unit", the unit its result recorded: lua_check.hpp,
+// kUnitsField), never running Lua code except a __tostring (print_values is called protected for
+// that reason).
 #pragma once
 
 #include <string>

@@ -8,6 +8,7 @@
 
 #include "io/number_text.hpp"
 #include "io/suggest.hpp"
+#include "io/units.hpp"
 #include "script/key_line.hpp"
 
 namespace beltsim::script {
@@ -271,16 +272,39 @@ void strict_fields(lua_State* L, const char* kind, std::initializer_list<const c
   const std::string key = std::string("beltsim.fields.") + kind;
   if (lua_getfield(L, LUA_REGISTRYINDEX, key.c_str()) == LUA_TNIL) {
     lua_pop(L, 1);
-    lua_createtable(L, 0, 1);
+    lua_createtable(L, 0, 2);
     lua_pushstring(L, kind);
     lua_createtable(L, 0, static_cast<int>(fields.size()));
     for (const char* f : fields) lua_pushboolean(L, 1), lua_setfield(L, -2, f);
     lua_pushcclosure(L, index_fields, 2);
     lua_setfield(L, -2, "__index");
+    lua_createtable(L, 0, static_cast<int>(fields.size()));
+    for (const char* f : fields)
+      if (const std::optional<std::string> unit = known_unit(f))
+        lua_pushstring(L, unit->c_str()), lua_setfield(L, -2, f);
+    lua_setfield(L, -2, kUnitsField);
     lua_pushvalue(L, -1);
     lua_setfield(L, LUA_REGISTRYINDEX, key.c_str());
   }
   lua_setmetatable(L, -2);
+}
+
+void set_unit(lua_State* L, int idx, const std::string& name, const std::string& unit) {
+  idx = lua_absindex(L, idx);
+  if (!lua_getmetatable(L, idx)) {
+    lua_createtable(L, 0, 1);
+    lua_pushvalue(L, -1);
+    lua_setmetatable(L, idx);
+  }
+  if (lua_getfield(L, -1, kUnitsField) != LUA_TTABLE) {
+    lua_pop(L, 1);
+    lua_newtable(L);
+    lua_pushvalue(L, -1);
+    lua_setfield(L, -3, kUnitsField);
+  }
+  lua_pushstring(L, unit.c_str());
+  lua_setfield(L, -2, name.c_str());
+  lua_pop(L, 2);
 }
 
 int index_methods(lua_State* L) {

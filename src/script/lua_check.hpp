@@ -68,7 +68,17 @@ void set_number(lua_State* L, const char* key, double v);
 // mean 'omega'?); its fields: ...", not a nil that fails later; a field of `fields` the table
 // lacks (one only some have: a tensioner arm's arm_angle) reads nil. `kind` names the table
 // ("sim:pulley's table"). The results' tables of sim:pulley, sim:element, sim:energy.
+// The table's metatable also holds the units of its fields (set_units; kUnits' of io/units.hpp,
+// whose table names these results' fields).
 void strict_fields(lua_State* L, const char* kind, std::initializer_list<const char*> fields);
+
+// The units of a result table's fields, which the console's printer shows after them
+// (console_print.cpp): the table kUnitsField of the table's metatable, field name -> unit ("" for
+// a dimensionless number). A field it does not name has no unit known, and prints none.
+inline constexpr const char* kUnitsField = "__units";
+// records unit as the unit of the field `name` of the table at idx, in its metatable (one of its
+// own made when it has none: not a metatable tables share)
+void set_unit(lua_State* L, int idx, const std::string& name, const std::string& unit);
 
 // __index of an object whose methods are in the table of upvalue 1 (its kind, e.g. "sim", in
 // upvalue 2): an unknown name is an error with a suggestion, not a nil to call

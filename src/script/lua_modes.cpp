@@ -1,10 +1,12 @@
 // sim:modes{...}: the drive's modes about the simulation's state now (sim/modes.hpp, docs/modes.md),
 // as a table, and on request as a CSV and pictures of the mode shapes (sim_box.hpp).
 #include <cstdio>
+#include <utility>
 
 #include "io/csv_writer.hpp"
 #include "io/number_text.hpp"
 #include "render/mode_frames.hpp"
+#include "script/lua_check.hpp"
 #include "script/lua_sim.hpp"
 #include "script/sandbox.hpp"
 #include "script/sim_box.hpp"
@@ -63,6 +65,8 @@ int l_modes(lua_State* L) {
   set_number(L, "period", a.period);
   set_number(L, "position_defect", a.position_defect);
   set_number(L, "velocity_defect", a.velocity_defect);
+  for (const auto& [f, unit] : {std::pair{"t", "s"}, std::pair{"belt_speed", "m/s"}, std::pair{"period", "s"}})
+    set_unit(L, -1, f, unit);
   if (a.forced >= 0) {  // the pulley whose law changes in time now (ModeAnalysis::forced)
     lua_pushstring(L, s.scene().model.pulleys[a.forced].name.c_str());
     lua_setfield(L, -2, "forced");
@@ -89,6 +93,7 @@ int l_modes(lua_State* L) {
     set_number(L, "frequency", m.frequency);
     set_number(L, "damping", m.damping);
     set_number(L, "decay", -m.lambda.real());
+    set_unit(L, -1, "frequency", "Hz"), set_unit(L, -1, "decay", "1/s");  // as the CSV's frequency_Hz, decay_1_s
     lua_pushstring(L, a.groups[m.dominant].c_str());
     lua_setfield(L, -2, "where");
     lua_createtable(L, 0, static_cast<int>(a.groups.size()));

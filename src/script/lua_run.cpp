@@ -15,9 +15,11 @@
 #include "integrate/integrator.hpp"
 #include "io/number_text.hpp"
 #include "io/suggest.hpp"
+#include "io/units.hpp"
 #include "render/recorder.hpp"
 #include "scene/validate.hpp"
 #include "script/context.hpp"
+#include "script/lua_check.hpp"
 #include "script/lua_scene_parts.hpp"
 #include "script/progress.hpp"
 #include "script/sandbox.hpp"
@@ -467,9 +469,15 @@ void push_check(lua_State* L, const CheckEstimate& c) {
   lua_pushboolean(L, c.shared()), lua_setfield(L, -2, "shared");
   if (c.warned_t >= 0) lua_pushnumber(L, c.warned_t), lua_setfield(L, -2, "warned_t");
   if (!c.failed.empty()) lua_pushstring(L, c.failed.c_str()), lua_setfield(L, -2, "failed");
-  // named, so that the console prints its fields with their units as a run result's check
-  // (console_print.cpp): its tension is a relative error, not a force in N
-  luaL_newmetatable(L, kCheckTable);
+  // named, with the units of a run result's check (io/units.cpp kRunResult), which the console
+  // prints (lua_check.hpp, kUnitsField): its tension is a relative error, not a force in N
+  if (luaL_newmetatable(L, kCheckTable)) {
+    lua_newtable(L);
+    for (const char* f : {"speed", "tension", "limit_speed", "limit_tension", "steps_ratio", "warned_t"})
+      if (const std::optional<std::string> unit = run_result_unit(std::string("check.") + f))
+        lua_pushstring(L, unit->c_str()), lua_setfield(L, -2, f);
+    lua_setfield(L, -2, kUnitsField);
+  }
   lua_setmetatable(L, -2);
 }
 

@@ -7,10 +7,12 @@
 #include <string>
 
 #include "io/number_text.hpp"
+#include "io/units.hpp"
 #include "scene/validate.hpp"
 #include "script/context.hpp"
 #include "script/live_feed.hpp"
 #include "script/lua_args.hpp"
+#include "script/lua_check.hpp"
 #include "script/lua_clock.hpp"
 #include "script/lua_run.hpp"
 #include "script/lua_scene.hpp"
@@ -107,7 +109,8 @@ int l_scene_run(lua_State* L) {
   lua_pushinteger(L, res.frames), lua_setfield(L, -2, "frames");
   lua_newtable(L);
   for (int j = 0; j < sc->model.n_p(); ++j)
-    lua_pushnumber(L, res.omega[j]), lua_setfield(L, -2, sc->model.pulleys[j].name.c_str());
+    lua_pushnumber(L, res.omega[j]), lua_setfield(L, -2, sc->model.pulleys[j].name.c_str()),
+        set_unit(L, -1, sc->model.pulleys[j].name, run_result_unit("omega." + sc->model.pulleys[j].name).value_or(""));
   lua_setfield(L, -2, "omega");
   if (res.check.on) push_check(L, res.check), lua_setfield(L, -2, "check");
   set_results_methods(L, ctx);

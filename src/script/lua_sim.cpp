@@ -90,6 +90,7 @@ int run_to(lua_State* L, SimBox& box, double t, const char* what) {
   lua_pushinteger(L, a.steps), lua_setfield(L, -2, "steps");
   set_number(L, "wall", a.wall);
   lua_pushboolean(L, interrupted), lua_setfield(L, -2, "interrupted");
+  for (const char* f : {"t", "steps", "wall"}) set_unit(L, -1, f, run_result_unit(f).value_or(""));
   return 1;
 }
 
@@ -220,8 +221,9 @@ std::string value_range(double lo, double hi) {
   return lo == hi ? rounded_text(lo, 6) : "[" + rounded_text(lo, 6) + ", " + rounded_text(hi, 6) + "]";
 }
 
-// applies μ (NaN: unchanged) and pushes what changed as one line: how many elements, where they
-// are now (in contact with which pulley, or free), their μ before -> after
+// applies μ (NaN: unchanged) and pushes what changed as one line: how many elements' μ changed,
+// where they are now (in contact with which pulley, or free), their μ before -> after; or, when
+// none did, that the elements addressed already had that μ
 void apply_mu(lua_State* L, Simulation& s, const std::vector<double>& mu, const std::string& what,
               const std::string& text) {
   const std::vector<double> before = s.drive().mu;
@@ -231,24 +233,35 @@ void apply_mu(lua_State* L, Simulation& s, const std::vector<double>& mu, const 
   guarded(L, what.c_str(), [&] {  // a Lua law may fail
     for (int i = 0; i < n; ++i) pulley_of[static_cast<size_t>(i)] = s.element(i).pulley;
   });
-  int changed = 0;
+  int addressed = 0, changed = 0;
   std::vector<int> on(s.model().pulleys.size() + 1, 0);  // per pulley, last: free
   double lo0 = INFINITY, hi0 = -INFINITY, lo1 = INFINITY, hi1 = -INFINITY;
   for (int i = 0; i < n; ++i) {
     if (std::isnan(mu[i])) continue;
+    ++addressed;
+    lo0 = std::min(lo0, before[i]), hi0 = std::max(hi0, before[i]);
+    if (mu[i] == before[i]) continue;
     ++changed;
     const int p = pulley_of[static_cast<size_t>(i)];
     ++on[p >= 0 ? p : on.size() - 1];
-    lo0 = std::min(lo0, before[i]), hi0 = std::max(hi0, before[i]);
     lo1 = std::min(lo1, mu[i]), hi1 = std::max(hi1, mu[i]);
   }
-  std::string m = what + ": " + std::to_string(changed) + " of " + std::to_string(n) + " elements";
-  if (changed > 0) {
+  std::string m;
+  if (changed == 0) {
+    m = what + ": no element changed";
+    if (addressed > 0)
+      m += " (the " + std::to_string(addressed) + " it sets already had mu " + value_range(lo0, hi0) + ")";
+  } else {
+    // the range before of the elements that changed alone
+    lo0 = INFINITY, hi0 = -INFINITY;
+    for (int i = 0; i < n; ++i)
+      if (!std::isnan(mu[i]) && mu[i] != before[i]) lo0 = std::min(lo0, before[i]), hi0 = std::max(hi0, before[i]);
     std::vector<std::string> where;
     for (size_t p = 0; p < on.size(); ++p)
       if (on[p] > 0)
         where.push_back(std::to_string(on[p]) + (p + 1 < on.size() ? " on " + s.model().pulleys[p].name : " free"));
-    m += " (" + join(where) + "), mu " + value_range(lo0, hi0) + " -> " + value_range(lo1, hi1);
+    m = what + ": " + std::to_string(changed) + " of " + std::to_string(n) + " elements (" + join(where) + "), mu " +
+        value_range(lo0, hi0) + " -> " + value_range(lo1, hi1);
   }
   lua_pushstring(L, m.c_str());
 }

@@ -2,10 +2,13 @@
 // sim:elements, sim:span, sim:energy, sim:stats, in SI units. A prescribed speed's Lua law is
 // evaluated while the state is read, so each reading goes through guarded.
 #include <cmath>
+#include <optional>
 #include <string>
 #include <vector>
 
+#include "io/units.hpp"
 #include "model/observables.hpp"
+#include "script/lua_check.hpp"
 #include "script/lua_run.hpp"
 #include "script/sim_box.hpp"
 
@@ -145,6 +148,7 @@ int l_stats(lua_State* L) {
   lua_pushinteger(L, s.frames_written()), lua_setfield(L, -2, "frames");
   lua_pushinteger(L, s.callbacks()), lua_setfield(L, -2, "callbacks");
   lua_pushstring(L, s.out_dir().c_str()), lua_setfield(L, -2, "out");
+  for (const char* f : {"t", "wall"}) set_unit(L, -1, f, run_result_unit(f).value_or(""));
   if (const CheckEstimate c = s.check_estimate(); c.on) push_check(L, c), lua_setfield(L, -2, "check");
   return 1;
 }

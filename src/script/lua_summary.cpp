@@ -9,6 +9,7 @@
 #include <string>
 
 #include "io/output_dir.hpp"
+#include "io/units.hpp"
 #include "plot/summary.hpp"
 #include "script/context.hpp"
 #include "script/lua_check.hpp"
@@ -29,13 +30,15 @@ constexpr const char* kResultsMeta = "beltsim.run_results";
 void push_figures(lua_State* L, const plot::Summary& s) {
   lua_newtable(L);
   const int top = lua_gettop(L);
-  // a count as a Lua integer (301, not 301.0), the others as floats
+  // a count as a Lua integer (301, not 301.0), the others as floats; with the figure's unit for
+  // the console's printer (lua_check.hpp, set_unit)
   const auto set = [L](const plot::Figure& f) {
     if (f.count)
       lua_pushinteger(L, static_cast<lua_Integer>(f.value));
     else
       lua_pushnumber(L, f.value);
     lua_setfield(L, -2, f.quantity.c_str());
+    if (!f.unit.empty()) set_unit(L, -1, f.quantity, f.unit);
   };
   for (const plot::Figure& f : s.figures) {
     if (f.section == "window") {
@@ -145,6 +148,12 @@ void set_results_methods(lua_State* L, Context* ctx) {
     lua_pushcclosure(L, l_results_summary, 1);
     lua_setfield(L, -2, "summary");
     lua_setfield(L, -2, "__index");
+    // the units of its fields (io/units.cpp kRunResult) for the console's printer (kUnitsField)
+    lua_newtable(L);
+    for (const char* f : {"t", "wall", "steps", "rejected", "rhs", "jacobians", "factorizations", "frames"})
+      if (const std::optional<std::string> unit = run_result_unit(f))
+        lua_pushstring(L, unit->c_str()), lua_setfield(L, -2, f);
+    lua_setfield(L, -2, kUnitsField);
   }
   lua_setmetatable(L, -2);
 }

@@ -282,6 +282,81 @@ class ConsoleTest(unittest.TestCase):
         self.assertNotRegex(out, r"tension = [0-9.e-]+, -- N")
         self.assertRegex(out, r"\n  wall = [0-9.e-]+, -- s\n")  # a field's unit elsewhere as before
 
+    def test_tables_with_two_table_fields_print(self):
+        # a table with two or more table fields, the API's results among them (the printer popped
+        # a value too many after the first: "printing the result: attempt to index a nil value"),
+        # and the session replays them
+        commands = ["{a = {}, b = {}}", "beltsim.print({a = {k = 1}, b = {k = 2}, c = 3})", "sim:advance(0.01)",
+                    "s = sim:summary{}", "s", "s.spans", "s.hubs", "sim:summary{}", "m = sim:modes{}", "m", "m[1]",
+                    "'the end'"]
+        r = self.piped(commands, args=[os.path.join(self.tmp, "out_console")])
+        out, err = r.stdout.decode(), r.stderr.decode()
+        self.assertEqual(r.returncode, 0, out + err)
+        self.assertNotIn("printing the result", err)
+        self.assertTrue(out.startswith("{\n  a = {},\n  b = {},\n}\n{\n  a = { k = 1 },\n  b = { k = 2 },\n  c = 3,\n}\n"),
+                        out)
+        self.assertRegex(out, r"\n  spans = \{\n    span_driven_driver = \{\s+tension_max = ")
+        self.assertRegex(out, r"\n\{\n  span_driven_driver = \{\s+tension_max = ")  # s.spans
+        self.assertRegex(out, r"\n\{\n  driven = \{\s+hub_load_max = ")  # s.hubs
+        self.assertEqual(len(re.findall(r"\n  hubs = \{\n", out)), 2, out)  # s and sim:summary{}
+        self.assertRegex(out, r"\n  \{\n    damping = ")  # m, its modes a list
+        self.assertRegex(out, r"\n\{\n  damping = [^\n]*\n  decay = [^\n]*\n  frequency = [^\n]*\n  share = \{")
+        self.assertTrue(out.endswith('"the end"\n'), out)
+        m = re.search(r"the session's commands are in (\S+)", err)
+        self.assertTrue(m, err)
+        r = subprocess.run([BELTSIM, "run", "--trusted", os.path.join(self.tmp, m.group(1))], cwd=self.tmp,
+                           env=child_env(self.tmp), stdout=subprocess.PIPE, stderr=subprocess.PIPE, timeout=120)
+        self.assertEqual(r.returncode, 0, (r.stdout + r.stderr).decode())
+        self.assertTrue(r.stdout.decode().endswith('"the end"\n'), r.stdout.decode())
+
+    def test_units_are_the_results_own(self):
+        # a number prints the unit its result recorded (the summary's figures, sim:pulley's fields
+        # from io/units.cpp), not one guessed from its key's name: the summary's losses are powers
+        # in W (they printed J and N), tension_min N as tension_mean, the hubs' loads N (none); a
+        # table of the user's own prints no unit (its y printed m)
+        with open(os.path.join(self.tmp, "scenario.lua"), "w") as f:
+            f.write((SCENARIO % {"out": os.path.join(self.tmp, "out").replace("\\", "/")})
+                    .replace("direction = 'cw' },", "direction = 'cw' },\n  energy = true,", 1))
+        r = self.piped(["sim:advance(0.01)", "s = sim:summary{}", "s.loss", "s.spans", "s.hubs",
+                        "{x = {y = 1}, driver = {tension_mean = 1, tension_min = 2}}", 'sim:pulley("driven")'])
+        out, err = r.stdout.decode(), r.stderr.decode()
+        self.assertEqual(r.returncode, 0, out + err)
+        blocks = re.findall(r"(?ms)^\{\n.*?^\}\n", out)
+        self.assertEqual(len(blocks), 6, out)
+        loss, spans, hubs, mine, pulley = blocks[1:]
+        for q in ["axial", "bending", "contact", "friction", "total", "input", "output", "stored"]:
+            self.assertRegex(loss, r"\n  %s = [-0-9.e]+, -- W\n" % q, loss)
+        self.assertRegex(loss, r"\n  share = [-0-9.e]+,\n", loss)
+        for q in ["tension_mean", "tension_min", "tension_max"]:
+            self.assertRegex(spans, r"\n    %s = [-0-9.e]+, -- N\n" % q, spans)
+        for q in ["hub_load_mean", "hub_load_max", "hub_load_spans"]:
+            self.assertRegex(hubs, r"\n    %s = [-0-9.e]+, -- N\n" % q, hubs)
+        self.assertNotIn("--", mine)
+        self.assertRegex(pulley, r"\n  omega = [-0-9.e]+, -- rad/s\n  slip_arc = [-0-9.e]+, -- m\n", pulley)
+        self.assertRegex(pulley, r"\n  mu = 1,\n", pulley)
+
+    def test_a_local_of_an_earlier_line_is_named_when_its_nil_fails(self):
+        # each prompt line is a chunk of its own: its locals end with it (lua-api.md's every/when
+        # example pasted line by line failed with "got nil" and no word why)
+        r = self.piped(["local target, dt = -30, 0.002", "sim:every(dt, function(sim) end)",
+                        "sim:every(nosuch, function(sim) end)", "local function g() return 1 end", "g()"])
+        out, err = r.stdout.decode(), r.stderr.decode()
+        self.assertEqual(r.returncode, 1, out + err)
+        self.assertIn("stdin:1: sim:every(dt, fn): argument 1 (dt): number expected, got nil\nnote: dt was declared "
+                      "`local` on an earlier line, and a local at the prompt lasts for its own line only: declare it "
+                      "without `local` to keep it\n", err)
+        self.assertEqual(err.count("note: "), 2, err)  # not for nosuch, which no line declared
+        self.assertIn("note: g was declared `local`", err)
+
+    def test_an_error_shows_a_traceback_from_inside_a_function(self):
+        # console.md: a command's own error (an API call's among them) is its stdin:N: line; one
+        # raised inside a function adds the calls that led there
+        r = self.piped(["sim:run_to(-1)", "function f()", "  sim:run_to(-1)", "end", "f()"])
+        out, err = r.stdout.decode(), r.stderr.decode()
+        self.assertEqual(r.returncode, 1, out + err)
+        self.assertIn("\nstdin:1: sim:run_to: -1 s is before now (0 s)\nstdin:2: sim:run_to: -1 s is before now (0 s)\n"
+                      "stack traceback:\n\t[C]: in method 'run_to'\n\tstdin:2: in function 'f'\n", err)
+
     def test_a_speed_set_past_a_belts_rating_is_warned_of(self):
         # as the scene build warns of a scene's speeds (scene/scene.hpp kBeltSpeedWarn, 60 m/s)
         r = self.piped(['sim:set_speed("driver", 10)', 'sim:set_speed("driver", beltsim.ramp(0.1, 5000))'])
@@ -336,11 +411,15 @@ class ConsoleTest(unittest.TestCase):
         self.assertTrue(os.path.exists(os.path.join(self.tmp, "out", "mine", "session.lua")))
 
     def test_changes_say_what_they_did(self):
-        # wet, set_torque and set_mu return one line: which elements (how many, in contact with
-        # which pulley now), old -> new; sim:elements{ pulley } lists the elements on a pulley
+        # wet, set_torque and set_mu return one line: which elements changed (how many, in contact
+        # with which pulley now), old -> new; those that already had the μ are not counted (they
+        # were: "40 of 40 elements ..., mu 0.5 -> 0.5"); sim:elements{ pulley } lists the elements on
+        # a pulley
         r = self.piped(["sim:advance(0.002)", "sim:wet{ mu = 0.2, from = 0, to = 0.3 }",
-                        'sim:set_torque("driver", -10)', "sim:set_mu(0.5)", 'sim:elements{ pulley = "driven" }',
-                        'print(#sim:elements{ pulley = "driven" } == tonumber(sim:wet{ mu = 0.5 }:match("(%d+) on driven")))'])
+                        'sim:set_torque("driver", -10)', "sim:set_mu(0.5)", "sim:set_mu(0.5)",
+                        "sim:wet{ mu = 0.2, from = 0, to = 0.3 }", "sim:set_mu(0.5)",
+                        'sim:elements{ pulley = "driven" }',
+                        'print(#sim:elements{ pulley = "driven" } == tonumber(sim:wet{ mu = 0.7 }:match("(%d+) on driven")))'])
         out, err = r.stdout.decode(), r.stderr.decode()
         self.assertEqual(r.returncode, 0, out + err)
         # 0.3 m of the 40-element belt's length (2·0.29 + 2π·0.1 m): 10 elements, μ 1 -> 0.2
@@ -348,6 +427,8 @@ class ConsoleTest(unittest.TestCase):
         self.assertRegex(out, r'"driver: torque \{.*ramp.*\} -> torque -10 from t = 0\.002 s"', out)
         self.assertRegex(out, r'"set_mu: 40 of 40 elements \(\d+ on driver, \d+ on driven, \d+ free\), '
                               r'mu \[0\.2, 1\] -> 0\.5"', out)
+        self.assertIn('"set_mu: no element changed (the 40 it sets already had mu 0.5)"', out)
+        self.assertRegex(out, r'"set_mu: 10 of 40 elements \([^)]*\), mu 0\.2 -> 0\.5"', out)
         self.assertRegex(out, r"\{\n  \d+,\n", out)
         self.assertIn("\ntrue\n", out)
 
