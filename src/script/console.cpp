@@ -284,7 +284,8 @@ int run_console(const std::optional<std::string>& script, const std::vector<std:
   // session whose runs named their own folders is replayed into them again
   bool runs_in_dir = true;
   for (const std::string& d : ctx.run_dirs) runs_in_dir = runs_in_dir && d == run_dir_key(session_dir);
-  const bool written = write_session(session_dir, script, script_text, args, o.set, commands, runs_in_dir);
+  const bool written =
+      write_session(session_dir, script, script_text, args, o.set, settings.replay_options, commands, runs_in_dir);
   // the interpreter's end closes every simulation (their finalisers flush and finalise outputs)
   if (terminating()) return stopped_status();
   if (!written) return 1;

@@ -207,7 +207,8 @@ std::string at_prompt(lua_State* L, const std::vector<PageChange>& page) {
 
 bool write_session(const std::string& dir, const std::optional<std::string>& script, std::string script_text,
                    const std::vector<std::string>& args, const std::vector<ScriptArg>& sets,
-                   const std::vector<std::string>& commands, bool runs_in_dir) {
+                   const std::vector<std::string>& options, const std::vector<std::string>& commands,
+                   bool runs_in_dir) {
   if (commands.empty()) return true;
   namespace fs = std::filesystem;
   // never over an earlier session's record (a console resumed in its folder): session_2.lua, ...
@@ -225,6 +226,8 @@ bool write_session(const std::string& dir, const std::optional<std::string>& scr
   f << "-- The commands of a beltsim console session, in order (one that raised an error under pcall).\n"
     << "-- Replay with: beltsim run " << shell_word(path);
   if (runs_in_dir) f << " --out " << shell_word(replay_out);
+  // the options that changed the session's runs (--rtol, --integrator, --no-frames, ...), as typed
+  for (const std::string& w : options) f << " " << shell_word(w);
   // beltsim.args as in the session, each --set quoted for the shell
   for (const ScriptArg& a : sets) f << " --set " << shell_word(a.key + "=" + a.text);
   f << "\n";

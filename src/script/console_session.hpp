@@ -45,9 +45,10 @@ std::string failed_replayable(lua_State* L, const std::string& chunk, bool expre
 // no command ran); false, with the reason on stderr, when it cannot be written. runs_in_dir: every
 // run of the session wrote into dir (none named a folder of its own), and its replay line gives
 // --out <dir>/replay, so that the replay writes beside the session rather than into out/session,
-// where every session's replay went
+// where every session's replay went. options: the command line's other options that change a run
+// (ConsoleSettings::replay_options), which the replay line repeats with the --set values
 bool write_session(const std::string& dir, const std::optional<std::string>& script, std::string script_text,
                    const std::vector<std::string>& args, const std::vector<ScriptArg>& sets,
-                   const std::vector<std::string>& commands, bool runs_in_dir);
+                   const std::vector<std::string>& options, const std::vector<std::string>& commands, bool runs_in_dir);
 
 }  // namespace beltsim::script

@@ -523,6 +523,43 @@ class ConsoleTest(unittest.TestCase):
                 self.assertEqual(a.read(), b.read(), f)
         self.assertFalse(os.path.exists(os.path.join(self.tmp, "out", "session")))
 
+    # the replay line of session.lua (its second line) run through bash, in the test's folder
+    def replay_line(self, text, timeout=60, trusted=False):
+        replay = [ln for ln in text.splitlines() if ln.startswith("-- Replay with: beltsim run ")]
+        self.assertEqual(len(replay), 1, text)
+        cmd = "%s run %s%s" % (shlex.quote(BELTSIM), "--trusted " if trusted else "",
+                               replay[0][len("-- Replay with: beltsim run "):])
+        return subprocess.run(["bash", "-c", cmd], cwd=self.tmp, env=child_env(self.tmp), stdout=subprocess.PIPE,
+                              stderr=subprocess.PIPE, timeout=timeout)
+
+    def same_outputs(self, a, b, text):
+        for f in ["timeseries.csv", "events.csv"]:
+            with open(os.path.join(self.tmp, a, f), "rb") as x, open(os.path.join(self.tmp, b, f), "rb") as y:
+                self.assertEqual(x.read(), y.read(), "%s differs; session.lua:\n%s" % (f, text))
+
+    # 10e
+    def test_session_replays_with_the_consoles_options(self):
+        # a trial's session ran with --rtol 1e-3 --integrator esdirk32: its replay line left them
+        # out, and the replay ran at the defaults (38 of 42 columns differed). The replay line
+        # repeats the options that change a run, and the replay gives the same outputs
+        with open(os.path.join(self.tmp, "mydrive.lua"), "w") as f:
+            f.write(two_pulley(40) + "sim = drive:start{}\n")
+        r = subprocess.run([BELTSIM, "console", "mydrive.lua", "--out", "out/opt", "--rtol", "1e-3", "--integrator",
+                            "esdirk32", "--no-frames"], cwd=self.tmp, input=b"sim:advance(0.01)\n",
+                           env=child_env(self.tmp), stdout=subprocess.PIPE, stderr=subprocess.PIPE, timeout=60)
+        self.assertEqual(r.returncode, 0, (r.stdout + r.stderr).decode())
+        with open(os.path.join(self.tmp, "out", "opt", "session.lua")) as f:
+            text = f.read()
+        self.assertIn("\n-- Replay with: beltsim run out/opt/session.lua --out out/opt/replay --integrator esdirk32 "
+                      "--rtol 1e-3 --no-frames\n", text)
+        r = self.replay_line(text)
+        self.assertEqual(r.returncode, 0, (r.stdout + r.stderr).decode() + "\nsession.lua:\n" + text)
+        with open(os.path.join(self.tmp, "out", "opt", "replay", "parameters.csv")) as f:
+            params = f.read()
+        self.assertIn("\nrun.integrator,esdirk32,", params)
+        self.assertIn("\nrun.rtol,0.001,", params)
+        self.same_outputs("out/opt", "out/opt/replay", text)
+
     # 11
     def test_ctrl_c_stops_lua_code(self):
         c = self.console()
