@@ -205,21 +205,24 @@ std::string at_prompt(lua_State* L, const std::vector<PageChange>& page) {
   return out;
 }
 
-bool write_session(const std::string& dir, const std::optional<std::string>& script, std::string script_text,
-                   const std::vector<std::string>& args, const std::vector<ScriptArg>& sets,
-                   const std::vector<std::string>& options, const std::vector<std::string>& commands,
-                   bool runs_in_dir) {
+std::string SessionFile::path() const {
+  return name_.empty() ? "" : (std::filesystem::path(start_.dir) / name_).string();
+}
+
+bool SessionFile::write(const std::vector<std::string>& commands, bool runs_in_dir) {
   if (commands.empty()) return true;
   namespace fs = std::filesystem;
+  const std::string& dir = start_.dir;
+  const std::optional<std::string>& script = start_.script;
+  const std::vector<ScriptArg>& sets = start_.sets;
   // never over an earlier session's record (a console resumed in its folder): session_2.lua, ...
-  std::string name = "session.lua";
-  for (int k = 2;; ++k) {
+  for (int k = 2; name_.empty(); ++k) {
+    const std::string name = k == 2 ? "session.lua" : "session_" + std::to_string(k - 1) + ".lua";
     std::error_code ec;  // (a folder that cannot be read: the write says why)
-    if (fs::symlink_status(fs::path(dir) / name, ec).type() == fs::file_type::not_found || ec) break;
-    name = "session_" + std::to_string(k) + ".lua";
+    if (fs::symlink_status(fs::path(dir) / name, ec).type() == fs::file_type::not_found || ec) name_ = name;
   }
-  const std::string path = (fs::path(dir) / name).string();
-  std::ostringstream f;  // written whole at the end (io/output_dir.hpp: never through a link)
+  const std::string path = this->path();
+  std::ostringstream f;  // written whole (io/output_dir.hpp: never through a link, never half)
   // the replay's outputs in DIR/replay, beside the session's and apart from every other replay's
   // (without --out all went to out/session, one session's pictures left among another's)
   const std::string replay_out = (fs::path(dir) / "replay").string();
@@ -227,7 +230,7 @@ bool write_session(const std::string& dir, const std::optional<std::string>& scr
     << "-- Replay with: beltsim run " << shell_word(path);
   if (runs_in_dir) f << " --out " << shell_word(replay_out);
   // the options that changed the session's runs (--rtol, --integrator, --no-frames, ...), as typed
-  for (const std::string& w : options) f << " " << shell_word(w);
+  for (const std::string& w : start_.options) f << " " << shell_word(w);
   // beltsim.args as in the session, each --set quoted for the shell
   for (const ScriptArg& a : sets) f << " --set " << shell_word(a.key + "=" + a.text);
   f << "\n";
@@ -251,10 +254,11 @@ bool write_session(const std::string& dir, const std::optional<std::string>& scr
       << "-- name it and its own lines. A scenario that reads files beside it, or whose runs wrote outside\n"
       << "-- this file's folder (out = ..., an argument naming a folder), needs: beltsim run --trusted\n";
     f << "arg = { [0] = " << quoted(script->data(), script->size());
-    for (const std::string& a : args) f << ", " << quoted(a.data(), a.size());
+    for (const std::string& a : start_.args) f << ", " << quoted(a.data(), a.size());
     f << " }\n";
     // as luaL_loadfile reads a file: no UTF-8 byte order mark, a first line "#..." skipped (kept
     // as a comment, so the line numbers stay)
+    std::string script_text = start_.script_text;
     if (script_text.rfind("\xEF\xBB\xBF", 0) == 0) script_text.erase(0, 3);
     if (!script_text.empty() && script_text[0] == '#') script_text.insert(0, "--");
     const std::string chunkname = "@" + *script;
@@ -263,13 +267,14 @@ bool write_session(const std::string& dir, const std::optional<std::string>& scr
   }
   for (const std::string& c : commands) f << c << "\n";
   try {
-    write_file_whole(OutputDir(dir), name, f.str());  // the folder made when missing
+    write_file_whole(OutputDir(dir), name_, f.str());  // the folder made when missing
+    failed_.clear();
   } catch (const std::exception& e) {  // recorded: the exit status says so (app/main.cpp)
-    say("beltsim: %s\n", e.what());
+    if (failed_ != e.what()) say("beltsim: %s\n", e.what());
+    failed_ = e.what();
     mark_output_failure_shown(e.what());
     return false;
   }
-  say("beltsim: the session's commands are in %s\n", path.c_str());
   return true;
 }
 

@@ -23,7 +23,7 @@ import termios
 import time
 import unittest
 
-from pty_console import PROMPT, TIMEOUT, Console, child_env  # tests/console/pty_console.py
+from pty_console import PROMPT, STARTUP_TIMEOUT, TIMEOUT, Console, child_env  # tests/console/pty_console.py
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "support"))
 from scenes import two_pulley  # noqa: E402
@@ -559,6 +559,34 @@ class ConsoleTest(unittest.TestCase):
         self.assertIn("\nrun.integrator,esdirk32,", params)
         self.assertIn("\nrun.rtol,0.001,", params)
         self.same_outputs("out/opt", "out/opt/replay", text)
+
+    # 10f
+    def test_session_lua_is_written_as_the_session_goes(self):
+        # session.lua was written only at the console's end: a kill -9 lost the whole record. It
+        # is written after each command, and a SIGKILL keeps the commands so far
+        p = subprocess.Popen([BELTSIM, "console", "scenario.lua"], cwd=self.tmp, env=child_env(self.tmp),
+                             stdin=subprocess.PIPE, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+        self.addCleanup(p.kill)
+        p.stdin.write(b"y = 2\nsim:advance(0.002)\n")
+        p.stdin.flush()
+        session = os.path.join(self.tmp, "out", "scenario", "session.lua")
+        deadline = time.monotonic() + STARTUP_TIMEOUT + TIMEOUT
+        text = ""
+        while "\nsim:advance(0.002)\n" not in text:
+            self.assertLess(time.monotonic(), deadline, "session.lua does not hold the commands run:\n" + text)
+            time.sleep(0.05)
+            try:
+                with open(session) as f:
+                    text = f.read()
+            except FileNotFoundError:
+                pass
+        p.kill()
+        p.wait(timeout=TIMEOUT)
+        p.stdin.close()
+        with open(session) as f:
+            lines = f.read().splitlines()
+        self.assertIn("y = 2", lines)
+        self.assertLess(lines.index("y = 2"), lines.index("sim:advance(0.002)"))
 
     # 11
     def test_ctrl_c_stops_lua_code(self):
