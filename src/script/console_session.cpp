@@ -17,6 +17,7 @@
 #include "lua.h"
 #include "script/console_print.hpp"
 #include "script/progress.hpp"
+#include "script/signals.hpp"
 
 namespace beltsim::script {
 
@@ -190,10 +191,15 @@ std::string failed_replayable(lua_State* L, const std::string& chunk, bool expre
                               const StoppedRuns& stopped, const std::vector<PageChange>& page) {
   std::string said = error.substr(0, error.find('\n'));
   said = "-- failed at the prompt: " + said;
+  const std::string wrapped = said + "\npcall(function()\n" + as_statements(L, chunk, expression, false) + "\nend)";
   // (an assignment that failed kept nothing: its runs are replayed, the variable left as it was)
   if (!stopped.empty() || !page.empty()) return said + "\n" + stopped_or_changed(L, chunk, stopped, page, false);
-  const std::string out = said + "\npcall(function()\n" + as_statements(L, chunk, expression, false) + "\nend)";
-  if (compiles(L, out)) return out;
+  // Lua code that a stop signal interrupted (while true do end) may never end: its replay would
+  // run to the instruction limit and end the replay there. Kept as a comment
+  if (const int sig = pending_signal(); sig != 0)
+    return said + "\n-- (" + signal_name(sig) + " interrupted it at the prompt: not replayed, as it may not end)\n" +
+           commented(chunk);
+  if (compiles(L, wrapped)) return wrapped;
   return said + "\n" + commented("(not replayable) " + chunk);
 }
 

@@ -5,8 +5,9 @@
 // beltsim.print, after a comment with the command as it was typed (`-- > r`, then
 // `beltsim.print(r)`; `print(r)` prints a table's address); a chunk with locals keeps them to
 // itself (`do ... end`), one that returns runs as a function; a run that Ctrl-C stopped becomes
-// run_to(where it stopped). The scenario's text is copied in, so the replay needs no access to the scenario's
-// folder (which the sandbox would refuse). The file is written again after each command.
+// run_to(where it stopped); Lua code it interrupted is kept as a comment. The scenario's text is
+// copied in, so the replay needs no access to the scenario's folder (which the sandbox would
+// refuse). The file is written again after each command.
 #pragma once
 
 #include <optional>

@@ -604,6 +604,29 @@ class ConsoleTest(unittest.TestCase):
             out = c.command("1+1")
             self.assertRegex(out, r"\n2\n", c.transcript())
 
+    # 11b
+    def test_lua_code_that_ctrl_c_interrupted_is_not_replayed(self):
+        # `while true do end` interrupted by Ctrl-C was replayed under pcall: the replay looped to the
+        # instruction limit (25 s) and ended there, the commands after it not run. It is kept as a
+        # comment, and the replay runs the rest
+        c = self.console()
+        c.command("x = 1")
+        mark = len(c.screen)
+        c.send("print('loop' .. 'ing') while true do end\r")
+        c.wait_for(re.compile(r"\nlooping\r?\n"), start=mark, what="the loop's first line")
+        c.send("\x03")
+        c.wait_prompt(mark, timeout=5)
+        c.command("print('x is', x)")
+        self.assertEqual(c.eof(), 0, c.transcript())
+        with open(os.path.join(self.tmp, "out", "scenario", "session.lua")) as f:
+            text = f.read()
+        self.assertIn("\n-- (Ctrl-C interrupted it at the prompt: not replayed, as it may not end)\n"
+                      "-- print('loop' .. 'ing') while true do end\nprint('x is', x)\n", text)
+        # (the scenario's run writes beside it, outside session.lua's folder: --trusted)
+        r = self.replay_line(text, trusted=True)
+        self.assertEqual(r.returncode, 0, (r.stdout + r.stderr).decode() + "\nsession.lua:\n" + text)
+        self.assertEqual(r.stdout.decode(), "x is\t1\n", text)
+
     # 12
     def test_completion_runs_no_lua_code(self):
         c = self.console()
