@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cctype>
 #include <cerrno>
+#include <csignal>
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
@@ -136,6 +137,13 @@ std::string sim_name(lua_State* L, const void* p) {
   return name.empty() ? "-- (a simulation not held by a global) sim" : name;
 }
 
+// the signal that stopped the command's runs (Ctrl-C when none is under way: a run the page
+// paused, stopped by a Ctrl-C since done with)
+const char* stopped_by() {
+  const int sig = pending_signal();
+  return signal_name(sig ? sig : SIGINT);
+}
+
 }  // namespace
 
 namespace {
@@ -150,7 +158,8 @@ namespace {
 std::string stopped_or_changed(lua_State* L, const std::string& chunk, const StoppedRuns& stopped,
                                const std::vector<PageChange>& page, bool keep) {
   std::string out = commented(chunk);
-  out += page.empty() ? "  -- stopped by Ctrl-C" : "  -- changed from the live view while it ran";
+  out += page.empty() ? std::string("  -- stopped by ") + stopped_by()
+                      : std::string("  -- changed from the live view while it ran");
   static const std::regex kept(R"(^\s*((local\s+)?[A-Za-z_][A-Za-z0-9_.]*\s*=\s*)([A-Za-z_][A-Za-z0-9_]*)\s*:\s*)"
                                R"((advance|run_to)\s*\([^\n]*\)\s*;?\s*$)");
   std::smatch m;

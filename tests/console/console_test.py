@@ -588,6 +588,35 @@ class ConsoleTest(unittest.TestCase):
         self.assertIn("y = 2", lines)
         self.assertLess(lines.index("y = 2"), lines.index("sim:advance(0.002)"))
 
+    # 10g
+    def test_a_run_stopped_by_sigterm_is_recorded_so(self):
+        # it was recorded as "stopped by Ctrl-C"
+        p = subprocess.Popen([BELTSIM, "console", "scenario.lua"], cwd=self.tmp, env=child_env(self.tmp),
+                             stdin=subprocess.PIPE, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE)
+        self.addCleanup(p.kill)
+        p.stdin.write(b"r = sim:advance(100)\n")
+        p.stdin.flush()
+        self.wait_rows(os.path.join(self.tmp, "out", "timeseries.csv"), 100)
+        p.send_signal(signal.SIGTERM)
+        _, err = p.communicate(timeout=TIMEOUT)
+        self.assertEqual(p.returncode, 143, err.decode())
+        with open(os.path.join(self.tmp, "out", "scenario", "session.lua")) as f:
+            lines = f.read().splitlines()
+        self.assertIn("-- r = sim:advance(100)  -- stopped by SIGTERM", lines)
+
+    # until the CSV has more than n rows (the run under way)
+    def wait_rows(self, csv, n):
+        deadline = time.monotonic() + STARTUP_TIMEOUT + TIMEOUT
+        while True:
+            try:
+                with open(csv) as f:
+                    if f.read().count("\n") > n:
+                        return
+            except FileNotFoundError:
+                pass
+            self.assertLess(time.monotonic(), deadline, "no %d rows in %s" % (n, csv))
+            time.sleep(0.02)
+
     # 11
     def test_ctrl_c_stops_lua_code(self):
         c = self.console()
