@@ -3,6 +3,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <csignal>
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
@@ -175,7 +176,7 @@ int run_console(const std::optional<std::string>& script, const std::vector<std:
   lua_setglobal(L, "arg");
 
   bool failed = false;
-  SessionStart start{session_dir, script, "", args, o.set, settings.replay_options};
+  SessionStart start{session_dir, script, "", args, o.set, settings.replay_options, {}, "", ""};
   std::string& script_text = start.script_text;  // as it was when the session began, for session.lua
   std::string globals;      // the banner's line on the script's globals
   if (script) {
@@ -193,6 +194,12 @@ int run_console(const std::optional<std::string>& script, const std::vector<std:
       say("beltsim: %s\n%s", e.what(), shown_traceback(e.traceback).c_str());  // as run's
       mark_output_failure_shown(e.what());
       failed = true;
+      start.scenario_error = e.what();
+    }
+    // a run that a stop signal stopped (the first: the later ones were refused) is replayed to there
+    if (!ctx.stopped_runs.empty()) {
+      start.scenario_stop = ctx.stopped_runs.front().second;
+      start.scenario_stopped_by = signal_name(pending_signal() ? pending_signal() : SIGINT);
     }
     command_done();
   } else {

@@ -137,6 +137,14 @@ std::string sim_name(lua_State* L, const void* p) {
   return name.empty() ? "-- (a simulation not held by a global) sim" : name;
 }
 
+// text (a command, the scenario) whose scene:run a stop signal `by` stopped at t: between
+// beltsim.stop_at(t) and beltsim.stop_at(), so that the replay's run stops there too, and the runs
+// after it are refused as they were
+std::string stopped_at(double t, const char* by, const std::string& text) {
+  return "beltsim.stop_at(" + number_text(t) + ")  -- " + by + " stopped its run at t = " + number_text(t) + " s\n" +
+         text + "\nbeltsim.stop_at()";
+}
+
 // the signal that stopped the command's runs (Ctrl-C when none is under way: a run the page
 // paused, stopped by a Ctrl-C since done with)
 const char* stopped_by() {
@@ -193,6 +201,8 @@ std::string stopped_or_changed(lua_State* L, const std::string& chunk, const Sto
 std::string replayable(lua_State* L, const std::string& chunk, bool expression, bool printed,
                        const StoppedRuns& stopped, const std::vector<PageChange>& page) {
   if (stopped.empty() && page.empty()) return as_statements(L, chunk, expression, printed);
+  if (page.empty() && !stopped[0].first)
+    return stopped_at(stopped[0].second, stopped_by(), as_statements(L, chunk, expression, printed));
   return stopped_or_changed(L, chunk, stopped, page, true);
 }
 
@@ -201,6 +211,8 @@ std::string failed_replayable(lua_State* L, const std::string& chunk, bool expre
   std::string said = error.substr(0, error.find('\n'));
   said = "-- failed at the prompt: " + said;
   const std::string wrapped = said + "\npcall(function()\n" + as_statements(L, chunk, expression, false) + "\nend)";
+  if (page.empty() && !stopped.empty() && !stopped[0].first && compiles(L, wrapped))
+    return stopped_at(stopped[0].second, stopped_by(), wrapped);
   // (an assignment that failed kept nothing: its runs are replayed, the variable left as it was)
   if (!stopped.empty() || !page.empty()) return said + "\n" + stopped_or_changed(L, chunk, stopped, page, false);
   // Lua code that a stop signal interrupted (while true do end) may never end: its replay would
@@ -277,8 +289,16 @@ bool SessionFile::write(const std::vector<std::string>& commands, bool runs_in_d
     if (script_text.rfind("\xEF\xBB\xBF", 0) == 0) script_text.erase(0, 3);
     if (!script_text.empty() && script_text[0] == '#') script_text.insert(0, "--");
     const std::string chunkname = "@" + *script;
-    f << "assert(load(" << long_string(script_text) << ", " << quoted(chunkname.data(), chunkname.size())
-      << ", \"t\"))()\n";
+    const std::string load =
+        "assert(load(" + long_string(script_text) + ", " + quoted(chunkname.data(), chunkname.size()) + ", \"t\"))";
+    // one that failed at the console's start (its runs after a stopped one refused) under pcall, as a
+    // command that failed, so that the replay goes on
+    const std::string& failed = start_.scenario_error;
+    std::string text = failed.empty() ? load + "()"
+                                      : "-- failed at the console's start: " + failed.substr(0, failed.find('\n')) +
+                                            "\npcall(" + load + ")";
+    if (start_.scenario_stop) text = stopped_at(*start_.scenario_stop, start_.scenario_stopped_by.c_str(), text);
+    f << text << "\n";
   }
   for (const std::string& c : commands) f << c << "\n";
   try {

@@ -5,9 +5,10 @@
 // beltsim.print, after a comment with the command as it was typed (`-- > r`, then
 // `beltsim.print(r)`; `print(r)` prints a table's address); a chunk with locals keeps them to
 // itself (`do ... end`), one that returns runs as a function; a run that Ctrl-C stopped becomes
-// run_to(where it stopped); Lua code it interrupted is kept as a comment. The scenario's text is
-// copied in, so the replay needs no access to the scenario's folder (which the sandbox would
-// refuse). The file is written again after each command.
+// run_to(where it stopped), a scene:run (at the prompt or in the scenario) goes between
+// beltsim.stop_at(where it stopped) and beltsim.stop_at(); Lua code it interrupted is kept as a
+// comment. The scenario's text is copied in, so the replay needs no access to the scenario's
+// folder (which the sandbox would refuse). The file is written again after each command.
 #pragma once
 
 #include <optional>
@@ -52,6 +53,11 @@ struct SessionStart {
   std::vector<std::string> args;
   std::vector<ScriptArg> sets;
   std::vector<std::string> options;
+  // the scenario's run a stop signal stopped (where, and "Ctrl-C"), replayed to there (beltsim.stop_at),
+  // and the scenario's error, which its replay goes on after
+  std::optional<double> scenario_stop;
+  std::string scenario_stopped_by;
+  std::string scenario_error;
 };
 
 // <dir>/session.lua, or session_2.lua, ... when an earlier session's is there (the name chosen at

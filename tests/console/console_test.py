@@ -617,6 +617,31 @@ class ConsoleTest(unittest.TestCase):
             self.assertLess(time.monotonic(), deadline, "no %d rows in %s" % (n, csv))
             time.sleep(0.02)
 
+    # 10h
+    def test_a_scenario_run_stopped_at_the_start_replays_to_there(self):
+        # Ctrl-C stopped the scenario's scene:run as the console started: session.lua copied the
+        # scenario as it is, and the replay ran it to its end. It is replayed to where it stopped
+        # (beltsim.stop_at), the scenario going on after it as it did
+        with open(os.path.join(self.tmp, "batch.lua"), "w") as f:
+            f.write(two_pulley(40) + "r = drive:run{ t_end = 100 }\nprint('after', r.t, r.interrupted)\n")
+        p = subprocess.Popen([BELTSIM, "console", "batch.lua", "--no-frames"], cwd=self.tmp, env=child_env(self.tmp),
+                             stdin=subprocess.PIPE, stdout=subprocess.PIPE, stderr=subprocess.PIPE)
+        self.addCleanup(p.kill)
+        self.wait_rows(os.path.join(self.tmp, "out", "batch", "timeseries.csv"), 100)
+        p.send_signal(signal.SIGINT)
+        out, err = p.communicate(b"print('t', r.t)\n", timeout=STARTUP_TIMEOUT + TIMEOUT)
+        out, err = out.decode(), err.decode()
+        self.assertEqual(p.returncode, 0, out + err)
+        m = re.search(r"after\t([0-9.e+-]+)\ttrue\n", out)
+        self.assertTrue(m, out + err)
+        self.assertLess(float(m.group(1)), 100)
+        with open(os.path.join(self.tmp, "out", "batch", "session.lua")) as f:
+            text = f.read()
+        r = self.replay_line(text)
+        self.assertEqual(r.returncode, 0, (r.stdout + r.stderr).decode() + "\nsession.lua:\n" + text)
+        self.assertEqual(r.stdout.decode(), out, text)
+        self.same_outputs("out/batch", "out/batch/replay", text)
+
     # 11
     def test_ctrl_c_stops_lua_code(self):
         c = self.console()
