@@ -20,8 +20,10 @@ int cmd_run(const std::string& script, const script::Overrides& o, const script:
 script::Captured capture_first_run(script::Interpreter& lua, const std::string& script, const script::Overrides& o,
                                    const char* command, bool t_end_to_script);
 int cmd_wp(const std::string& script, const script::Overrides& o, const script::Safety& s, WpSettings wps);
+// replay_options: the options of the command line its session's replay repeats (run_option_words)
 int cmd_console(const std::optional<std::string>& script, const std::vector<std::string>& args,
-                const script::Overrides& o, const script::Safety& s, const Environment& env);
+                const script::Overrides& o, const script::Safety& s, const Environment& env,
+                const std::vector<std::string>& replay_options);
 // A run's outputs given either way, as `summary` and `plot` take them: its folder (DIR or
 // DIR/timeseries.csv given; "." for a bare timeseries.csv), and the CSV to draw (DIR/timeseries.csv
 // for a folder, DIR/summary.csv for a sweep's folder; a file as given)

@@ -66,7 +66,8 @@ int main(int argc, char** argv) {
     if (c == "modes") return with_outputs(cmd_modes(cl->script, overrides(raw, {"out"}), safety(raw), raw));
     if (c == "sweep") return with_outputs(cmd_sweep(cl->script, raw, safety(raw)));
     if (c == "console")
-      return with_outputs(cmd_console(cl->console_script, cl->console_args, overrides(raw), safety(raw), env));
+      return with_outputs(
+          cmd_console(cl->console_script, cl->console_args, overrides(raw), safety(raw), env, run_option_words(raw)));
     return with_outputs(cmd_wp(cl->script, overrides(raw, {"out", "t_end"}), safety(raw), wp_settings(raw)));
   } catch (const UsageError& e) {
     std::fprintf(stderr, "beltsim: %s\nRun 'beltsim %s --help' for the usage.\n", e.what(), c.c_str());

@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <sstream>
 #include <tuple>
+#include <utility>
 
 #include "integrate/integrator.hpp"
 #include "integrate/stepper.hpp"
@@ -96,6 +97,33 @@ script::Safety safety(const Raw& raw) {
     *value = x;
   }
   return s;
+}
+
+std::vector<std::string> safety_words(const Raw& raw) {
+  std::vector<std::string> w;
+  if (raw.trusted) w.push_back("--trusted");
+  for (auto [option, text] :
+       {std::pair{"--max-instructions", &raw.max_instructions}, std::pair{"--max-lua-memory", &raw.max_lua_memory},
+        std::pair{"--max-lua-wall", &raw.max_lua_wall}, std::pair{"--max-lua-cpu", &raw.max_lua_cpu}})
+    if (*text) w.insert(w.end(), {option, **text});
+  return w;
+}
+
+std::vector<std::string> run_option_words(const Raw& raw) {
+  std::vector<std::string> w;
+  for (const RunSetting& s : run_settings()) {
+    if (s.option.empty() || s.key == "out") continue;
+    const std::string key(s.key), option(s.option);
+    if (s.kind == RunKind::flag) {
+      if (const auto it = raw.run_flags.find(key); it != raw.run_flags.end() && it->second) w.push_back(option);
+    } else if (const auto it = raw.run.find(key); it != raw.run.end() && it->second) {
+      w.insert(w.end(), {option, *it->second});
+    }
+  }
+  if (raw.no_frames) w.push_back("--no-frames");
+  const std::vector<std::string> safe = safety_words(raw);
+  w.insert(w.end(), safe.begin(), safe.end());
+  return w;
 }
 
 std::vector<std::string> run_option_keys() {

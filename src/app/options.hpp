@@ -50,6 +50,11 @@ int whole_number(const std::string& option, const std::string& text, int lo);
 std::string integrator_list();
 
 script::Safety safety(const Raw& raw);
+// the safety options given, as typed: words of a command line ("--max-instructions", "1e6", ...)
+std::vector<std::string> safety_words(const Raw& raw);
+// the options given that change what a run does, as typed: the run settings' bar --out, --no-frames
+// and the safety options (what a console's replay line repeats: script/console_session.hpp)
+std::vector<std::string> run_option_words(const Raw& raw);
 // the run settings' options (--out, --t-end, ...: sim/run_table.hpp), --no-frames and --set of run, console and wp
 // the keys of the run settings the command line overrides (sim/run_table.hpp, their option)
 std::vector<std::string> run_option_keys();

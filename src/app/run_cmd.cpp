@@ -88,10 +88,10 @@ int cmd_wp(const std::string& script, const script::Overrides& o, const script::
 }
 
 int cmd_console(const std::optional<std::string>& script, const std::vector<std::string>& args,
-                const script::Overrides& o, const script::Safety& s,
-                const Environment& env) {
+                const script::Overrides& o, const script::Safety& s, const Environment& env,
+                const std::vector<std::string>& replay_options) {
   try {
-    return script::run_console(script, args, o, s, {env.history, env.images});
+    return script::run_console(script, args, o, s, {env.history, env.images, replay_options});
   } catch (const std::exception& e) {
     std::fprintf(stderr, "beltsim: %s\n", e.what());
     mark_output_failure_shown(e.what());

@@ -79,11 +79,8 @@ beltsim::sweep::Definition definition(const Raw& raw, const std::string& file) {
 std::vector<std::string> sweep_args(const std::string& file, const std::string& dir, const Raw& raw) {
   std::vector<std::string> a{"sweep", file, "--out", dir};
   for (const std::string& s : raw.set) a.insert(a.end(), {"--set", s});
-  if (raw.trusted) a.push_back("--trusted");
-  if (raw.max_instructions) a.insert(a.end(), {"--max-instructions", *raw.max_instructions});
-  if (raw.max_lua_memory) a.insert(a.end(), {"--max-lua-memory", *raw.max_lua_memory});
-  if (raw.max_lua_wall) a.insert(a.end(), {"--max-lua-wall", *raw.max_lua_wall});
-  if (raw.max_lua_cpu) a.insert(a.end(), {"--max-lua-cpu", *raw.max_lua_cpu});
+  const std::vector<std::string> safe = safety_words(raw);
+  a.insert(a.end(), safe.begin(), safe.end());
   return a;
 }
 

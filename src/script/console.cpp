@@ -3,6 +3,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <csignal>
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
@@ -212,7 +213,8 @@ int run_console(const std::optional<std::string>& script, const std::vector<std:
   lua_setglobal(L, "arg");
 
   bool failed = false;
-  std::string script_text;  // as it was when the session began, for session.lua
+  SessionStart start{session_dir, script, "", args, o.set, settings.replay_options, {}, "", ""};
+  std::string& script_text = start.script_text;  // as it was when the session began, for session.lua
   std::string globals;      // the banner's line on the script's globals
   if (script) {
     const std::vector<std::string> before = global_names(L);
@@ -229,6 +231,12 @@ int run_console(const std::optional<std::string>& script, const std::vector<std:
       say("beltsim: %s\n%s", e.what(), shown_traceback(e.traceback).c_str());  // as run's
       mark_output_failure_shown(e.what());
       failed = true;
+      start.scenario_error = e.what();
+    }
+    // a run that a stop signal stopped (the first: the later ones were refused) is replayed to there
+    if (!ctx.stopped_runs.empty()) {
+      start.scenario_stop = ctx.stopped_runs.front().second;
+      start.scenario_stopped_by = signal_name(pending_signal() ? pending_signal() : SIGINT);
     }
     command_done();
   } else {
@@ -240,7 +248,20 @@ int run_console(const std::optional<std::string>& script, const std::vector<std:
                 kBeltsimVersion, globals.c_str());
     std::fflush(stdout);
   }
+  // session.lua, written again after each command; the replay gets --out DIR/replay when every
+  // run of the session went into session_dir: a session whose runs named their own folders is
+  // replayed into them again
+  SessionFile session(start);
   std::vector<std::string> commands;
+  const auto write_session = [&] {
+    bool runs_in_dir = true;
+    for (const std::string& d : ctx.run_dirs) runs_in_dir = runs_in_dir && d == run_dir_key(session_dir);
+    return session.write(commands, runs_in_dir);
+  };
+  const auto record = [&](std::string command) {
+    commands.push_back(std::move(command));
+    write_session();
+  };
   {
     ConsoleInput input(interactive, settings.history, L);
     // the pages' changes while the console waits at its prompt (--serve's, and each sim:serve{}'s):
@@ -265,7 +286,7 @@ int run_console(const std::optional<std::string>& script, const std::vector<std:
             s.first->clear_wake();
             LiveFeed(s.first, ctx.stop, &changes, key).apply_waiting(s.second);
           }
-          if (const std::string s = at_prompt(L, changes); !s.empty()) commands.push_back(s);
+          if (const std::string s = at_prompt(L, changes); !s.empty()) record(s);
         });
     std::string chunk, line, failure;
     std::set<std::string> earlier_locals;  // declared `local` by a command before (local_note)
@@ -303,11 +324,11 @@ int run_console(const std::optional<std::string>& script, const std::vector<std:
         failed = true;
       } else if (ctx.stopped_runs.clear(), ctx.page_changes.clear(), ended = progress_lines_ended(),
                  ctx.interrupted = false, execute(L, failure, printed)) {
-        commands.push_back(replayable(L, chunk, expression, printed, ctx.stopped_runs, ctx.page_changes));
+        record(replayable(L, chunk, expression, printed, ctx.stopped_runs, ctx.page_changes));
       } else {
         // it ran up to its error: what it changed before (a run stopped where its callback raised)
         // is replayed too
-        commands.push_back(failed_replayable(L, chunk, expression, failure, ctx.stopped_runs, ctx.page_changes));
+        record(failed_replayable(L, chunk, expression, failure, ctx.stopped_runs, ctx.page_changes));
         if (const std::string note = local_note(L, chunk, failure, earlier_locals); !note.empty())
           say("%s", note.c_str());
         failed = true;
@@ -321,11 +342,9 @@ int run_console(const std::optional<std::string>& script, const std::vector<std:
     }
   }
   // the finalisers below run with a fresh budget (~Interpreter)
-  // the replay gets --out DIR/replay when every run of the session went into session_dir: a
-  // session whose runs named their own folders is replayed into them again
-  bool runs_in_dir = true;
-  for (const std::string& d : ctx.run_dirs) runs_in_dir = runs_in_dir && d == run_dir_key(session_dir);
-  const bool written = write_session(session_dir, script, script_text, args, o.set, commands, runs_in_dir);
+  // once more at the end (a write that failed is tried again)
+  const bool written = write_session();
+  if (written && !commands.empty()) say("beltsim: the session's commands are in %s\n", session.path().c_str());
   // the interpreter's end closes every simulation (their finalisers flush and finalise outputs)
   if (terminating()) return stopped_status();
   if (!written) return 1;

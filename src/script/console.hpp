@@ -28,6 +28,9 @@ namespace beltsim::script {
 struct ConsoleSettings {
   std::string history = ".beltsim_history";             // the history file
   term::ImageMode images = term::ImageMode::automatic;  // how pictures are shown
+  // the command line's options that change a run (--rtol 1e-3, --no-frames, ...), as typed: the
+  // replay line of session.lua repeats them, so that the replay gives the same results
+  std::vector<std::string> replay_options;
 };
 
 // returns the exit status: 0, or 1 when a command (or the script) failed in a non-interactive

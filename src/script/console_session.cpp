@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cctype>
 #include <cerrno>
+#include <csignal>
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
@@ -17,6 +18,7 @@
 #include "lua.h"
 #include "script/console_print.hpp"
 #include "script/progress.hpp"
+#include "script/signals.hpp"
 
 namespace beltsim::script {
 
@@ -135,6 +137,21 @@ std::string sim_name(lua_State* L, const void* p) {
   return name.empty() ? "-- (a simulation not held by a global) sim" : name;
 }
 
+// text (a command, the scenario) whose scene:run a stop signal `by` stopped at t: between
+// beltsim.stop_at(t) and beltsim.stop_at(), so that the replay's run stops there too, and the runs
+// after it are refused as they were
+std::string stopped_at(double t, const char* by, const std::string& text) {
+  return "beltsim.stop_at(" + number_text(t) + ")  -- " + by + " stopped its run at t = " + number_text(t) + " s\n" +
+         text + "\nbeltsim.stop_at()";
+}
+
+// the signal that stopped the command's runs (Ctrl-C when none is under way: a run the page
+// paused, stopped by a Ctrl-C since done with)
+const char* stopped_by() {
+  const int sig = pending_signal();
+  return signal_name(sig ? sig : SIGINT);
+}
+
 }  // namespace
 
 namespace {
@@ -149,7 +166,8 @@ namespace {
 std::string stopped_or_changed(lua_State* L, const std::string& chunk, const StoppedRuns& stopped,
                                const std::vector<PageChange>& page, bool keep) {
   std::string out = commented(chunk);
-  out += page.empty() ? "  -- stopped by Ctrl-C" : "  -- changed from the live view while it ran";
+  out += page.empty() ? std::string("  -- stopped by ") + stopped_by()
+                      : std::string("  -- changed from the live view while it ran");
   static const std::regex kept(R"(^\s*((local\s+)?[A-Za-z_][A-Za-z0-9_.]*\s*=\s*)([A-Za-z_][A-Za-z0-9_]*)\s*:\s*)"
                                R"((advance|run_to)\s*\([^\n]*\)\s*;?\s*$)");
   std::smatch m;
@@ -183,6 +201,8 @@ std::string stopped_or_changed(lua_State* L, const std::string& chunk, const Sto
 std::string replayable(lua_State* L, const std::string& chunk, bool expression, bool printed,
                        const StoppedRuns& stopped, const std::vector<PageChange>& page) {
   if (stopped.empty() && page.empty()) return as_statements(L, chunk, expression, printed);
+  if (page.empty() && !stopped[0].first)
+    return stopped_at(stopped[0].second, stopped_by(), as_statements(L, chunk, expression, printed));
   return stopped_or_changed(L, chunk, stopped, page, true);
 }
 
@@ -190,10 +210,17 @@ std::string failed_replayable(lua_State* L, const std::string& chunk, bool expre
                               const StoppedRuns& stopped, const std::vector<PageChange>& page) {
   std::string said = error.substr(0, error.find('\n'));
   said = "-- failed at the prompt: " + said;
+  const std::string wrapped = said + "\npcall(function()\n" + as_statements(L, chunk, expression, false) + "\nend)";
+  if (page.empty() && !stopped.empty() && !stopped[0].first && compiles(L, wrapped))
+    return stopped_at(stopped[0].second, stopped_by(), wrapped);
   // (an assignment that failed kept nothing: its runs are replayed, the variable left as it was)
   if (!stopped.empty() || !page.empty()) return said + "\n" + stopped_or_changed(L, chunk, stopped, page, false);
-  const std::string out = said + "\npcall(function()\n" + as_statements(L, chunk, expression, false) + "\nend)";
-  if (compiles(L, out)) return out;
+  // Lua code that a stop signal interrupted (while true do end) may never end: its replay would
+  // run to the instruction limit and end the replay there. Kept as a comment
+  if (const int sig = pending_signal(); sig != 0)
+    return said + "\n-- (" + signal_name(sig) + " interrupted it at the prompt: not replayed, as it may not end)\n" +
+           commented(chunk);
+  if (compiles(L, wrapped)) return wrapped;
   return said + "\n" + commented("(not replayable) " + chunk);
 }
 
@@ -205,26 +232,32 @@ std::string at_prompt(lua_State* L, const std::vector<PageChange>& page) {
   return out;
 }
 
-bool write_session(const std::string& dir, const std::optional<std::string>& script, std::string script_text,
-                   const std::vector<std::string>& args, const std::vector<ScriptArg>& sets,
-                   const std::vector<std::string>& commands, bool runs_in_dir) {
+std::string SessionFile::path() const {
+  return name_.empty() ? "" : (std::filesystem::path(start_.dir) / name_).string();
+}
+
+bool SessionFile::write(const std::vector<std::string>& commands, bool runs_in_dir) {
   if (commands.empty()) return true;
   namespace fs = std::filesystem;
+  const std::string& dir = start_.dir;
+  const std::optional<std::string>& script = start_.script;
+  const std::vector<ScriptArg>& sets = start_.sets;
   // never over an earlier session's record (a console resumed in its folder): session_2.lua, ...
-  std::string name = "session.lua";
-  for (int k = 2;; ++k) {
+  for (int k = 2; name_.empty(); ++k) {
+    const std::string name = k == 2 ? "session.lua" : "session_" + std::to_string(k - 1) + ".lua";
     std::error_code ec;  // (a folder that cannot be read: the write says why)
-    if (fs::symlink_status(fs::path(dir) / name, ec).type() == fs::file_type::not_found || ec) break;
-    name = "session_" + std::to_string(k) + ".lua";
+    if (fs::symlink_status(fs::path(dir) / name, ec).type() == fs::file_type::not_found || ec) name_ = name;
   }
-  const std::string path = (fs::path(dir) / name).string();
-  std::ostringstream f;  // written whole at the end (io/output_dir.hpp: never through a link)
+  const std::string path = this->path();
+  std::ostringstream f;  // written whole (io/output_dir.hpp: never through a link, never half)
   // the replay's outputs in DIR/replay, beside the session's and apart from every other replay's
   // (without --out all went to out/session, one session's pictures left among another's)
   const std::string replay_out = (fs::path(dir) / "replay").string();
   f << "-- The commands of a beltsim console session, in order (one that raised an error under pcall).\n"
     << "-- Replay with: beltsim run " << shell_word(path);
   if (runs_in_dir) f << " --out " << shell_word(replay_out);
+  // the options that changed the session's runs (--rtol, --integrator, --no-frames, ...), as typed
+  for (const std::string& w : start_.options) f << " " << shell_word(w);
   // beltsim.args as in the session, each --set quoted for the shell
   for (const ScriptArg& a : sets) f << " --set " << shell_word(a.key + "=" + a.text);
   f << "\n";
@@ -248,25 +281,35 @@ bool write_session(const std::string& dir, const std::optional<std::string>& scr
       << "-- name it and its own lines. A scenario that reads files beside it, or whose runs wrote outside\n"
       << "-- this file's folder (out = ..., an argument naming a folder), needs: beltsim run --trusted\n";
     f << "arg = { [0] = " << quoted(script->data(), script->size());
-    for (const std::string& a : args) f << ", " << quoted(a.data(), a.size());
+    for (const std::string& a : start_.args) f << ", " << quoted(a.data(), a.size());
     f << " }\n";
     // as luaL_loadfile reads a file: no UTF-8 byte order mark, a first line "#..." skipped (kept
     // as a comment, so the line numbers stay)
+    std::string script_text = start_.script_text;
     if (script_text.rfind("\xEF\xBB\xBF", 0) == 0) script_text.erase(0, 3);
     if (!script_text.empty() && script_text[0] == '#') script_text.insert(0, "--");
     const std::string chunkname = "@" + *script;
-    f << "assert(load(" << long_string(script_text) << ", " << quoted(chunkname.data(), chunkname.size())
-      << ", \"t\"))()\n";
+    const std::string load =
+        "assert(load(" + long_string(script_text) + ", " + quoted(chunkname.data(), chunkname.size()) + ", \"t\"))";
+    // one that failed at the console's start (its runs after a stopped one refused) under pcall, as a
+    // command that failed, so that the replay goes on
+    const std::string& failed = start_.scenario_error;
+    std::string text = failed.empty() ? load + "()"
+                                      : "-- failed at the console's start: " + failed.substr(0, failed.find('\n')) +
+                                            "\npcall(" + load + ")";
+    if (start_.scenario_stop) text = stopped_at(*start_.scenario_stop, start_.scenario_stopped_by.c_str(), text);
+    f << text << "\n";
   }
   for (const std::string& c : commands) f << c << "\n";
   try {
-    write_file_whole(OutputDir(dir), name, f.str());  // the folder made when missing
+    write_file_whole(OutputDir(dir), name_, f.str());  // the folder made when missing
+    failed_.clear();
   } catch (const std::exception& e) {  // recorded: the exit status says so (app/main.cpp)
-    say("beltsim: %s\n", e.what());
+    if (failed_ != e.what()) say("beltsim: %s\n", e.what());
+    failed_ = e.what();
     mark_output_failure_shown(e.what());
     return false;
   }
-  say("beltsim: the session's commands are in %s\n", path.c_str());
   return true;
 }
 

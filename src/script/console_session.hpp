@@ -5,8 +5,10 @@
 // beltsim.print, after a comment with the command as it was typed (`-- > r`, then
 // `beltsim.print(r)`; `print(r)` prints a table's address); a chunk with locals keeps them to
 // itself (`do ... end`), one that returns runs as a function; a run that Ctrl-C stopped becomes
-// run_to(where it stopped). The scenario's text is copied in, so the replay needs no access to
-// the scenario's folder (which the sandbox would refuse).
+// run_to(where it stopped), a scene:run (at the prompt or in the scenario) goes between
+// beltsim.stop_at(where it stopped) and beltsim.stop_at(); Lua code it interrupted is kept as a
+// comment. The scenario's text is copied in, so the replay needs no access to the scenario's
+// folder (which the sandbox would refuse). The file is written again after each command.
 #pragma once
 
 #include <optional>
@@ -41,13 +43,41 @@ std::string at_prompt(lua_State* L, const std::vector<PageChange>& page);
 std::string failed_replayable(lua_State* L, const std::string& chunk, bool expression, const std::string& error,
                               const StoppedRuns& stopped, const std::vector<PageChange>& page);
 
-// writes <dir>/session.lua, or session_2.lua, ... when an earlier session's is there (nothing when
-// no command ran); false, with the reason on stderr, when it cannot be written. runs_in_dir: every
-// run of the session wrote into dir (none named a folder of its own), and its replay line gives
-// --out <dir>/replay, so that the replay writes beside the session rather than into out/session,
-// where every session's replay went
-bool write_session(const std::string& dir, const std::optional<std::string>& script, std::string script_text,
-                   const std::vector<std::string>& args, const std::vector<ScriptArg>& sets,
-                   const std::vector<std::string>& commands, bool runs_in_dir);
+// what session.lua records besides the commands: the scenario (its path, its text when the session
+// began and its arguments after --), the --set values and the command line's other options that
+// change a run (ConsoleSettings::replay_options), all of which its replay line repeats
+struct SessionStart {
+  std::string dir;  // the console's output folder, where session.lua goes
+  std::optional<std::string> script;
+  std::string script_text;
+  std::vector<std::string> args;
+  std::vector<ScriptArg> sets;
+  std::vector<std::string> options;
+  // the scenario's run a stop signal stopped (where, and "Ctrl-C"), replayed to there (beltsim.stop_at),
+  // and the scenario's error, which its replay goes on after
+  std::optional<double> scenario_stop;
+  std::string scenario_stopped_by;
+  std::string scenario_error;
+};
+
+// <dir>/session.lua, or session_2.lua, ... when an earlier session's is there (the name chosen at
+// its first write): written whole again after each command (a kill of the console loses only the
+// command under way), nothing while no command has run
+class SessionFile {
+ public:
+  explicit SessionFile(SessionStart start) : start_(std::move(start)) {}
+  // writes the commands so far; false when it cannot be written, the reason said on stderr (once
+  // while it stays the same). runs_in_dir: every run of the session wrote into dir (none named a
+  // folder of its own), and its replay line gives --out <dir>/replay, so that the replay writes
+  // beside the session rather than into out/session, where every session's replay went
+  bool write(const std::vector<std::string>& commands, bool runs_in_dir);
+  // the path written ("" before the first write)
+  std::string path() const;
+
+ private:
+  SessionStart start_;
+  std::string name_;    // session.lua, session_2.lua, ...
+  std::string failed_;  // the reason the last write failed, said once
+};
 
 }  // namespace beltsim::script

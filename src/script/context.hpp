@@ -62,9 +62,14 @@ struct Context {
   // a console session: commands typed later may read --set keys, so a key unread at the first
   // run is a warning there, not the error it is in a script run (check_unread_args)
   bool interactive = false;
-  // runs stopped by Ctrl-C: the simulation's userdata and where it stopped (the console writes
-  // sim:run_to(t) into session.lua instead of the command, so that the replay stops there too)
+  // runs stopped by Ctrl-C: the simulation's userdata (null for a scene:run) and where it stopped
+  // (the console writes sim:run_to(t), or beltsim.stop_at(t) before a scene:run, into session.lua,
+  // so that the replay stops there too)
   std::vector<std::pair<const void*, double>> stopped_runs;
+  // beltsim.stop_at(t): the next run that would pass t stops there as Ctrl-C stops a run (run_feed),
+  // and stop_made is set: later runs are refused as after Ctrl-C, until beltsim.stop_at()
+  std::optional<double> stop_at;
+  bool stop_made = false;
   // the page's changes during the command running now, with the ends of that command's runs
   // while a page could change them (the console writes them into session.lua instead of the
   // command, as for Ctrl-C)

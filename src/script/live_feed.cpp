@@ -308,4 +308,19 @@ RunProgress LiveFeed::callback(RunProgress inner) {
   };
 }
 
+Simulation::Advance run_feed(Context* ctx, LiveFeed& feed, Simulation& sim, double t, const RunProgress& progress,
+                             const char* at_end) {
+  if (!ctx->stop_at || !(*ctx->stop_at < t)) return feed.run_to(sim, t, progress, at_end);
+  const double x = std::max(*ctx->stop_at, sim.now());
+  ctx->stop_at.reset();
+  Simulation::Advance a = feed.run_to(sim, x, progress, at_end);
+  if (!a.interrupted && !a.over_wall_limit) {
+    // ended as Ctrl-C ends it (parameters.csv's end.status "interrupted"): a run of no steps, its stop raised
+    static const std::atomic<bool> raised{true};
+    sim.run_to(t, &raised, {});
+    a.interrupted = true, ctx->stop_made = true;
+  }
+  return a;
+}
+
 }  // namespace beltsim::script

@@ -122,4 +122,10 @@ class LiveFeed {
   std::unique_ptr<FrameThread> frames_;  // made when a page is first open during a run
 };
 
+// every run of a script (scene:run, sim:run_to, sim:advance): feed.run_to(sim, t, ...), or, where
+// beltsim.stop_at(x) asked for a stop at x before t, feed.run_to(sim, x, ...) and the run then
+// interrupted, as Ctrl-C leaves it there (a console's replay: docs/console.md)
+Simulation::Advance run_feed(Context* ctx, LiveFeed& feed, Simulation& sim, double t, const RunProgress& progress,
+                             const char* at_end = "finished");
+
 }  // namespace beltsim::script

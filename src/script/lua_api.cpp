@@ -9,6 +9,7 @@
 #include "script/lua_args.hpp"
 #include "script/lua_check.hpp"
 #include "script/lua_help.hpp"
+#include "script/lua_run.hpp"
 #include "script/lua_scene.hpp"
 #include "script/lua_scene_run.hpp"
 #include "script/lua_sim.hpp"
@@ -25,6 +26,7 @@ void open_beltsim(lua_State* L, Context* ctx) {
   open_sweep(L, ctx);
   lua_pushstring(L, kBeltsimVersion), lua_setfield(L, -2, "version");
   lua_pushcfunction(L, print_values), lua_setfield(L, -2, "print");  // values as the console shows them
+  lua_pushlightuserdata(L, ctx), lua_pushcclosure(L, l_stop_at, 1), lua_setfield(L, -2, "stop_at");
   push_args(L, ctx);
   lua_setfield(L, -2, "args");
   // beltsim.<misspelt>: an error with a suggestion, not a nil to call

@@ -122,6 +122,9 @@ const std::vector<HelpEntry>& api_help() {
        "mean + amplitude·sin(2π·frequency·t + phase)"},
       {"args", "beltsim.args.KEY", "a script parameter given as --set KEY=VALUE (nil when not given)"},
       {"integrators", "beltsim.integrators()", "the integrators' names"},
+      {"stop_at", "beltsim.stop_at([t [s]])",
+       "the next run that would pass t stops there as Ctrl-C stops it, and later runs are refused as after "
+       "Ctrl-C until beltsim.stop_at() (a console's session.lua replays a stopped scene:run with it)"},
       {"print", "beltsim.print(...)",
        "prints its values as the console shows them (tables as readable Lua, units after numbers); session.lua "
        "replays with it what the prompt printed"},

@@ -454,7 +454,7 @@ void refuse_if_capturing(lua_State* L, Context* ctx, const char* call) {
 }
 
 void end_if_stopped(lua_State* L, const Context* ctx, const char* call) {
-  if (!ctx || !ctx->stop || !ctx->stop->load(std::memory_order_relaxed)) return;
+  if (!ctx || !(ctx->stop_made || (ctx->stop && ctx->stop->load(std::memory_order_relaxed)))) return;
   luaL_error(L, "%s: not run: Ctrl-C (or SIGTERM) stopped a run earlier in this script or console command", call);
 }
 
@@ -484,6 +484,18 @@ void push_check(lua_State* L, const CheckEstimate& c) {
 std::string wall_limit_text(double limit, double t, double target, const std::string& outputs) {
   return "stopped at its wall-time limit (max_wall = " + rounded_text(limit) + " s) at t = " + rounded_text(t) +
          " s of " + rounded_text(target) + " s; the outputs up to then are in " + outputs;
+}
+
+// beltsim.stop_at(t): the next run that would pass t stops there, as Ctrl-C stops it, and later
+// runs are refused until beltsim.stop_at() (without t), which also drops a stop not reached
+int l_stop_at(lua_State* L) {
+  check_args(L, "beltsim.stop_at", {{"t", kNumber, true}});
+  auto* ctx = static_cast<Context*>(lua_touserdata(L, lua_upvalueindex(1)));
+  if (ctx->stop_made) ctx->interrupted = false;  // its own stop, not one that ends `beltsim run` with 130
+  ctx->stop_made = false;
+  ctx->stop_at.reset();
+  if (!lua_isnoneornil(L, 1)) ctx->stop_at = lua_tonumber(L, 1);
+  return 0;
 }
 
 }  // namespace beltsim::script

@@ -75,6 +75,9 @@ void refuse_if_capturing(lua_State* L, Context* ctx, const char* call);
 // a run stopped at its start. The console clears the stop after each command.
 void end_if_stopped(lua_State* L, const Context* ctx, const char* call);
 
+// beltsim.stop_at([t])
+int l_stop_at(lua_State* L);
+
 // the metatable's name (its __name) of a table push_check pushes
 inline constexpr const char* kCheckTable = "beltsim.check";
 // pushes a checked run's estimate (sim/run_check.hpp) as { speed, tension, limit_speed,

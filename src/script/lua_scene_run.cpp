@@ -65,7 +65,7 @@ int l_scene_run(lua_State* L) {
     if (ctx->serve) ctx->page_ran = true;
     res = run(*sc, rs, ctx->stop, line.callback(), [&](Simulation& sim, double t) {
       record_run_dir(ctx, rs.out_dir);  // its outputs are open
-      return feed.run_to(sim, t, line.callback());
+      return run_feed(ctx, feed, sim, t, line.callback());
     });
     line.finish(res.t_reached, res.work.steps, res.wall_seconds);
   } catch (const DivergenceError& e) {
@@ -85,7 +85,7 @@ int l_scene_run(lua_State* L) {
   // is left to change; a console's prompt refused it only after it had been answered "queued")
   if (ctx->serve) ctx->serve->refuse_controls("no simulation to change (the run has ended)");
   if (!error.empty()) fail_at(L, about, error);
-  if (res.interrupted) ctx->interrupted = true;
+  if (res.interrupted) ctx->interrupted = true, ctx->stopped_runs.push_back({nullptr, res.t_reached});
   // the run's last lines; its closing line said with its progress (progress = false leaves both out)
   RunEnd end;
   end.warning_summary = res.warning_summary, end.check_line = res.check_line, end.check_warns = res.check.warns();

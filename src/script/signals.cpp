@@ -38,17 +38,13 @@ std::mutex& lua_mutex() {
   return *m;
 }
 
-const char* name(int sig) {
-  return sig == SIGINT ? "Ctrl-C" : sig == SIGHUP ? "SIGHUP" : "SIGTERM";
-}
-
 // the line a second stop signal ends the process with: it quits at once, so the outputs are not
 // closed (docs/outputs.md, Signals). One write(2) of a line built without allocating (safe in a
 // handler)
 void say_quit(int sig) {
   char line[320];
   size_t n = 0;
-  for (const char* part : {"\nbeltsim: ", name(sig),
+  for (const char* part : {"\nbeltsim: ", signal_name(sig),
                            " while stopping: quitting at once, without finishing the outputs: their rows so far are "
                            "kept whole, but parameters.csv gets no end rows and a video holds only its finished "
                            "fragments\n"})
@@ -144,7 +140,7 @@ void watchdog() {
     // does not return ends the process
     if (stuck_in_lua([] { return true; }, interrupt_lua)) {
       say_raw(std::string("\nbeltsim: the Lua code under way did not stop within ") + std::to_string(kGrace.count()) +
-              " ms of " + name(sig) +
+              " ms of " + signal_name(sig) +
               " (a long C call such as a string pattern, or code that runs with hooks off); "
               "ending now; the outputs written so far are kept\n");
       restore_echo();
@@ -184,6 +180,12 @@ std::atomic<bool>& stop_flag() {
 }
 int stop_signal() {
   return g_first.load();
+}
+int pending_signal() {
+  return g_pending.load();
+}
+const char* signal_name(int sig) {
+  return sig == SIGINT ? "Ctrl-C" : sig == SIGHUP ? "SIGHUP" : "SIGTERM";
 }
 bool terminating() {
   const int s = g_pending.load();

@@ -36,6 +36,11 @@ std::atomic<bool>& stop_flag();
 int stop_signal();
 // SIGTERM or SIGHUP was received: the process is to end
 bool terminating();
+// the stop under way: the signal that stopped the console's command now running (SIGINT, SIGTERM
+// or SIGHUP), or 0
+int pending_signal();
+// "Ctrl-C" (SIGINT), "SIGTERM" or "SIGHUP"
+const char* signal_name(int sig);
 // after a stop: "beltsim: interrupted|terminated|hung up; the outputs written so far are kept" on
 // stderr, and 128 + the signal's number
 int stopped_status();

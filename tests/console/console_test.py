@@ -23,7 +23,7 @@ import termios
 import time
 import unittest
 
-from pty_console import PROMPT, TIMEOUT, Console, child_env  # tests/console/pty_console.py
+from pty_console import PROMPT, STARTUP_TIMEOUT, TIMEOUT, Console, child_env  # tests/console/pty_console.py
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "support"))
 from scenes import two_pulley  # noqa: E402
@@ -616,6 +616,125 @@ class ConsoleTest(unittest.TestCase):
                 self.assertEqual(a.read(), b.read(), f)
         self.assertFalse(os.path.exists(os.path.join(self.tmp, "out", "session")))
 
+    # the replay line of session.lua (its second line) run through bash, in the test's folder
+    def replay_line(self, text, timeout=60, trusted=False):
+        replay = [ln for ln in text.splitlines() if ln.startswith("-- Replay with: beltsim run ")]
+        self.assertEqual(len(replay), 1, text)
+        cmd = "%s run %s%s" % (shlex.quote(BELTSIM), "--trusted " if trusted else "",
+                               replay[0][len("-- Replay with: beltsim run "):])
+        return subprocess.run(["bash", "-c", cmd], cwd=self.tmp, env=child_env(self.tmp), stdout=subprocess.PIPE,
+                              stderr=subprocess.PIPE, timeout=timeout)
+
+    def same_outputs(self, a, b, text):
+        for f in ["timeseries.csv", "events.csv"]:
+            with open(os.path.join(self.tmp, a, f), "rb") as x, open(os.path.join(self.tmp, b, f), "rb") as y:
+                self.assertEqual(x.read(), y.read(), "%s differs; session.lua:\n%s" % (f, text))
+
+    # 10e
+    def test_session_replays_with_the_consoles_options(self):
+        # a trial's session ran with --rtol 1e-3 --integrator esdirk32: its replay line left them
+        # out, and the replay ran at the defaults (38 of 42 columns differed). The replay line
+        # repeats the options that change a run, and the replay gives the same outputs
+        with open(os.path.join(self.tmp, "mydrive.lua"), "w") as f:
+            f.write(two_pulley(40) + "sim = drive:start{}\n")
+        r = subprocess.run([BELTSIM, "console", "mydrive.lua", "--out", "out/opt", "--rtol", "1e-3", "--integrator",
+                            "esdirk32", "--no-frames"], cwd=self.tmp, input=b"sim:advance(0.01)\n",
+                           env=child_env(self.tmp), stdout=subprocess.PIPE, stderr=subprocess.PIPE, timeout=60)
+        self.assertEqual(r.returncode, 0, (r.stdout + r.stderr).decode())
+        with open(os.path.join(self.tmp, "out", "opt", "session.lua")) as f:
+            text = f.read()
+        self.assertIn("\n-- Replay with: beltsim run out/opt/session.lua --out out/opt/replay --integrator esdirk32 "
+                      "--rtol 1e-3 --no-frames\n", text)
+        r = self.replay_line(text)
+        self.assertEqual(r.returncode, 0, (r.stdout + r.stderr).decode() + "\nsession.lua:\n" + text)
+        with open(os.path.join(self.tmp, "out", "opt", "replay", "parameters.csv")) as f:
+            params = f.read()
+        self.assertIn("\nrun.integrator,esdirk32,", params)
+        self.assertIn("\nrun.rtol,0.001,", params)
+        self.same_outputs("out/opt", "out/opt/replay", text)
+
+    # 10f
+    def test_session_lua_is_written_as_the_session_goes(self):
+        # session.lua was written only at the console's end: a kill -9 lost the whole record. It
+        # is written after each command, and a SIGKILL keeps the commands so far
+        p = subprocess.Popen([BELTSIM, "console", "scenario.lua"], cwd=self.tmp, env=child_env(self.tmp),
+                             stdin=subprocess.PIPE, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+        self.addCleanup(p.kill)
+        p.stdin.write(b"y = 2\nsim:advance(0.002)\n")
+        p.stdin.flush()
+        session = os.path.join(self.tmp, "out", "scenario", "session.lua")
+        deadline = time.monotonic() + STARTUP_TIMEOUT + TIMEOUT
+        text = ""
+        while "\nsim:advance(0.002)\n" not in text:
+            self.assertLess(time.monotonic(), deadline, "session.lua does not hold the commands run:\n" + text)
+            time.sleep(0.05)
+            try:
+                with open(session) as f:
+                    text = f.read()
+            except FileNotFoundError:
+                pass
+        p.kill()
+        p.wait(timeout=TIMEOUT)
+        p.stdin.close()
+        with open(session) as f:
+            lines = f.read().splitlines()
+        self.assertIn("y = 2", lines)
+        self.assertLess(lines.index("y = 2"), lines.index("sim:advance(0.002)"))
+
+    # 10g
+    def test_a_run_stopped_by_sigterm_is_recorded_so(self):
+        # it was recorded as "stopped by Ctrl-C"
+        p = subprocess.Popen([BELTSIM, "console", "scenario.lua"], cwd=self.tmp, env=child_env(self.tmp),
+                             stdin=subprocess.PIPE, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE)
+        self.addCleanup(p.kill)
+        p.stdin.write(b"r = sim:advance(100)\n")
+        p.stdin.flush()
+        self.wait_rows(os.path.join(self.tmp, "out", "timeseries.csv"), 100)
+        p.send_signal(signal.SIGTERM)
+        _, err = p.communicate(timeout=TIMEOUT)
+        self.assertEqual(p.returncode, 143, err.decode())
+        with open(os.path.join(self.tmp, "out", "scenario", "session.lua")) as f:
+            lines = f.read().splitlines()
+        self.assertIn("-- r = sim:advance(100)  -- stopped by SIGTERM", lines)
+
+    # until the CSV has more than n rows (the run under way)
+    def wait_rows(self, csv, n):
+        deadline = time.monotonic() + STARTUP_TIMEOUT + TIMEOUT
+        while True:
+            try:
+                with open(csv) as f:
+                    if f.read().count("\n") > n:
+                        return
+            except FileNotFoundError:
+                pass
+            self.assertLess(time.monotonic(), deadline, "no %d rows in %s" % (n, csv))
+            time.sleep(0.02)
+
+    # 10h
+    def test_a_scenario_run_stopped_at_the_start_replays_to_there(self):
+        # Ctrl-C stopped the scenario's scene:run as the console started: session.lua copied the
+        # scenario as it is, and the replay ran it to its end. It is replayed to where it stopped
+        # (beltsim.stop_at), the scenario going on after it as it did
+        with open(os.path.join(self.tmp, "batch.lua"), "w") as f:
+            f.write(two_pulley(40) + "r = drive:run{ t_end = 100 }\nprint('after', r.t, r.interrupted)\n")
+        p = subprocess.Popen([BELTSIM, "console", "batch.lua", "--no-frames"], cwd=self.tmp, env=child_env(self.tmp),
+                             stdin=subprocess.PIPE, stdout=subprocess.PIPE, stderr=subprocess.PIPE)
+        self.addCleanup(p.kill)
+        self.wait_rows(os.path.join(self.tmp, "out", "batch", "timeseries.csv"), 100)
+        p.send_signal(signal.SIGINT)
+        out, err = p.communicate(b"print('t', r.t)\n", timeout=STARTUP_TIMEOUT + TIMEOUT)
+        out, err = out.decode(), err.decode()
+        self.assertEqual(p.returncode, 0, out + err)
+        m = re.search(r"after\t([0-9.e+-]+)\ttrue\n", out)
+        self.assertTrue(m, out + err)
+        self.assertLess(float(m.group(1)), 100)
+        with open(os.path.join(self.tmp, "out", "batch", "session.lua")) as f:
+            text = f.read()
+        r = self.replay_line(text)
+        self.assertEqual(r.returncode, 0, (r.stdout + r.stderr).decode() + "\nsession.lua:\n" + text)
+        self.assertEqual(r.stdout.decode(), out, text)
+        self.same_outputs("out/batch", "out/batch/replay", text)
+
     # 11
     def test_ctrl_c_stops_lua_code(self):
         c = self.console()
@@ -631,6 +750,29 @@ class ConsoleTest(unittest.TestCase):
             self.assertIn("interrupted!", c.screen[mark:], c.transcript())
             out = c.command("1+1")
             self.assertRegex(out, r"\n2\n", c.transcript())
+
+    # 11b
+    def test_lua_code_that_ctrl_c_interrupted_is_not_replayed(self):
+        # `while true do end` interrupted by Ctrl-C was replayed under pcall: the replay looped to the
+        # instruction limit (25 s) and ended there, the commands after it not run. It is kept as a
+        # comment, and the replay runs the rest
+        c = self.console()
+        c.command("x = 1")
+        mark = len(c.screen)
+        c.send("print('loop' .. 'ing') while true do end\r")
+        c.wait_for(re.compile(r"\nlooping\r?\n"), start=mark, what="the loop's first line")
+        c.send("\x03")
+        c.wait_prompt(mark, timeout=5)
+        c.command("print('x is', x)")
+        self.assertEqual(c.eof(), 0, c.transcript())
+        with open(os.path.join(self.tmp, "out", "scenario", "session.lua")) as f:
+            text = f.read()
+        self.assertIn("\n-- (Ctrl-C interrupted it at the prompt: not replayed, as it may not end)\n"
+                      "-- print('loop' .. 'ing') while true do end\nprint('x is', x)\n", text)
+        # (the scenario's run writes beside it, outside session.lua's folder: --trusted)
+        r = self.replay_line(text, trusted=True)
+        self.assertEqual(r.returncode, 0, (r.stdout + r.stderr).decode() + "\nsession.lua:\n" + text)
+        self.assertEqual(r.stdout.decode(), "x is\t1\n", text)
 
     # 12
     def test_completion_runs_no_lua_code(self):
