@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <map>
 #include <optional>
 #include <sstream>
 #include <stdexcept>
@@ -146,6 +147,11 @@ StateToDraw to_draw(const Simulation& s) {
   return {s.now(), s.state(), s.drive(), s.observation()};
 }
 
+// the PNG of the state `file` among several: DIR/<state name>.png
+std::string png_path(const std::string& dir, const std::string& file) {
+  return (std::filesystem::path(dir) / std::filesystem::path(file).stem()).string() + ".png";
+}
+
 }  // namespace
 
 int cmd_render(const RenderOptions& o) {
@@ -172,6 +178,18 @@ int cmd_render(const RenderOptions& o) {
                                          : "the states of the folder " + o.states.front()) +
                        " need a folder for their PNGs (DIR/<state name>.png each), and a name ending in .png is "
                        "a picture's: give --out a folder, or one state file");
+    // two states of the same name (the same state of two runs) would give one PNG, the second
+    // drawn over the first
+    if (o.out && several) {
+      std::map<std::string, std::string> drawn;  // a PNG's path: the state drawn to it
+      for (const std::string& file : files) {
+        const std::string png = png_path(*o.out, file);
+        if (const auto [i, added] = drawn.emplace(png, file); !added)
+          throw UsageError("--out " + *o.out + ": " + i->second + " and " + file + " would both be drawn to " + png +
+                           " (DIR/<state name>.png each, the second over the first): render them into separate "
+                           "--out folders");
+      }
+    }
     // the first state gives the scene and the frame settings of every picture
     const std::unique_ptr<Simulation> first = Simulation::open_checkpoint(files.front());
     const FrameSettings f = settings(c, first->settings());
@@ -199,9 +217,7 @@ int cmd_render(const RenderOptions& o) {
     for (size_t k = 0; k < files.size(); ++k) {
       const StateToDraw& s = states[k];
       if (o.out) {
-        const std::string png =
-            several ? (std::filesystem::path(*o.out) / std::filesystem::path(files[k]).stem()).string() + ".png"
-                    : *o.out;
+        const std::string png = several ? png_path(*o.out, files[k]) : *o.out;
         render::render_snapshot(first->scene(), f, s.t, s.y.data(), s.drive, png, &s.obs);
         std::printf("%s\n", png.c_str());
       }

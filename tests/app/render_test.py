@@ -111,6 +111,26 @@ class Render(unittest.TestCase):
         code, out, err = run(["render", "one", "--out", "one_pngs"], self.dir)
         self.assertEqual((code, out), (0, os.path.join("one_pngs", "state_00006.png") + "\n"), err)
 
+    def test_states_of_one_name_into_one_folder(self):
+        # the same state of two runs made one PNG, the second drawn over the first: refused, nothing written
+        for run_dir in ("r5", "r7"):
+            os.makedirs(os.path.join(self.dir, run_dir), exist_ok=True)
+            shutil.copy(self.checkpoint, os.path.join(self.dir, run_dir, "state_00006.ckpt"))
+        r5, r7 = os.path.join("r5", "state_00006.ckpt"), os.path.join("r7", "state_00006.ckpt")
+        code, out, err = run(["render", r5, r7, "--out", "both"], self.dir)
+        self.assertEqual((code, out), (2, ""), err)
+        self.assertIn("beltsim: --out both: %s and %s would both be drawn to %s (DIR/<state name>.png each, the "
+                      "second over the first): render them into separate --out folders\n"
+                      % (r5, r7, os.path.join("both", "state_00006.png")), err)
+        self.assertFalse(os.path.exists(os.path.join(self.dir, "both")))
+        # folders of states too
+        code, out, err = run(["render", "r5", "r7", "--out", "both/"], self.dir)
+        self.assertEqual(code, 2, err)
+        self.assertIn("would both be drawn to", err)
+        self.assertFalse(os.path.exists(os.path.join(self.dir, "both")))
+        code, out, err = run(["render", "r5", "--out", "both_r5"], self.dir)
+        self.assertEqual((code, out), (0, os.path.join("both_r5", "state_00006.png") + "\n"), err)
+
     def test_bad_options_and_files(self):
         for args, message in [
                 (["--out", "x.png", "--quantity", "tensoin"], "--quantity: unknown quantity 'tensoin' (did you mean "
