@@ -440,8 +440,12 @@ void FrameBuilder::draw_text_and_legend(double t, const Observation& seen, bool 
   const double x0 = 0.6 * font_px_;
   Rgba paper = out.background;  // the boxes under the text
   paper.a = 0.85f;
-  std::string head = (fs_.caption.empty() ? "" : fs_.caption + "      ") + "t = " + format("%.4f", t) +
-                     " s      colour: " + label + (unit.empty() ? "" : " [" + unit + "]");
+  // the time to 4 decimals, or as many more as tell consecutive frames apart (fps = 30 with
+  // slowdown = 1000, frames 3.3e-5 s apart, read 0.3000, 0.3000, 0.3001 at 4)
+  const int decimals = std::max(4, static_cast<int>(std::ceil(-std::log10(fs_.frame_dt()) - 1e-9)));
+  std::string head = (fs_.caption.empty() ? "" : fs_.caption + "      ") +
+                     "t = " + format(("%." + std::to_string(decimals) + "f").c_str(), t) + " s      colour: " + label +
+                     (unit.empty() ? "" : " [" + unit + "]");
   if (fs_.magnify != 1) head += "      deformation \u00d7" + format("%g", fs_.magnify);
   out.boxed_text(Vec2(x0, line), head, font_px_, kInk, paper);
   for (int j = 0; j < m.n_p(); ++j)

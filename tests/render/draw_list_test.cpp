@@ -245,6 +245,31 @@ TEST_F(Fixture, SignedQuantitiesUseTheDivergingMapWithTheSignAlongTravel) {
   EXPECT_DOUBLE_EQ(b.scale().lo, -b.scale().hi);
 }
 
+// the time has 4 decimals, or as many more as tell consecutive frames apart (fps = 30 with
+// slowdown = 1000 read 0.3000, 0.3000, 0.3001: a user trial)
+TEST_F(Fixture, TheTimeTellsConsecutiveFramesApart) {
+  const Scene& sc = wet();
+  const Eigen::VectorXd y = test::moving_state(sc);
+  auto head = [&](double fps, double slowdown, double t) {
+    FrameSettings f = fs();
+    f.fps = fps, f.slowdown = slowdown;
+    FrameBuilder b(sc, f, &font);
+    DrawList dl;
+    b.build(t, y.data(), dl);
+    for (const std::string& text : dl.texts)
+      if (text.rfind("t = ", 0) == 0) return text.substr(0, text.find(" s "));
+    return std::string("no time");
+  };
+  EXPECT_EQ(head(30, 10, 0.3), "t = 0.3000");
+  EXPECT_EQ(head(240, 10, 0.3), "t = 0.3000");
+  EXPECT_EQ(head(240, 40, 0.3), "t = 0.3000");  // frames 1.04e-4 s apart
+  EXPECT_EQ(head(30, 1000, 0.3 + 1 / 30000.0), "t = 0.30003");
+  EXPECT_EQ(head(30, 1000, 0.3 + 2 / 30000.0), "t = 0.30007");
+  EXPECT_EQ(head(240, 1000, 0.3 + 1 / 240000.0), "t = 0.300004");
+  EXPECT_EQ(head(240, 1000, 0.3 + 2 / 240000.0), "t = 0.300008");
+  EXPECT_EQ(head(100, 100, 0.3), "t = 0.3000");  // 1e-4 apart: 4 are enough
+}
+
 // the text states the time, each pulley's speed and slip, the quantity, its unit and range
 TEST_F(Fixture, TextAndColourBarSayWhatIsShown) {
   const Scene& sc = wet();
