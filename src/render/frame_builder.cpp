@@ -21,6 +21,7 @@ namespace {
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 constexpr Rgba kInk{0.08f, 0.08f, 0.10f, 1};
 constexpr Rgba kWet{0.10f, 0.42f, 0.95f, 1};
+constexpr Rgba kSprayFill{0.10f, 0.42f, 0.95f, 0.25f};  // a spraying zone's disc: the wet colour, translucent
 constexpr Rgba kSlip = kSlipColour;
 constexpr Rgba kPulley{0.86f, 0.87f, 0.89f, 1};
 constexpr Rgba kRim{0.42f, 0.43f, 0.46f, 1};
@@ -248,9 +249,7 @@ void FrameBuilder::build(double t, const double* y, DrawList& out, const Drive* 
   for (const SprayZone& z : dr.spray.zones) {
     const Vec2 c = P(z.centre);
     const double r = z.radius * cam_.scale;
-    Rgba fill = kWet;
-    fill.a = 0.25f;
-    if (z.on) out.disc(c, r, fill, 64);
+    if (z.on) out.disc(c, r, kSprayFill, 64);
     out.ring(c, std::max(r - 1.5, 0.0), r, kWet, 64);
   }
 
@@ -328,12 +327,16 @@ void FrameBuilder::build(double t, const double* y, DrawList& out, const Drive* 
   const double arrow_len = 2.5 * font_px_, arrow_w = std::max(2.0, 0.16 * font_px_);
   const double gap = h + band_w + 0.6 * font_px_ * px;  // [m] from the belt's centre line
   // whether the arrow from tail to tip, with its head's half width, runs into a text box drawn so
-  // far (the pulleys' names)
+  // far (the pulleys' names) or a spray zone's disc (one on a span's middle held its arrow)
   const double head_half = 0.4 * font_px_;
   auto over_text = [&](const Vec2& tail, const Vec2& tip) {
     const Vec2 lo = tail.cwiseMin(tip) - Vec2::Constant(head_half), hi = tail.cwiseMax(tip) + Vec2::Constant(head_half);
     for (const DrawList::TextBox& b : out.boxes)
       if (lo.x() < b.hi.x() && hi.x() > b.lo.x() && lo.y() < b.hi.y() && hi.y() > b.lo.y()) return true;
+    for (const SprayZone& z : dr.spray.zones) {
+      const Vec2 c = P(z.centre);
+      if ((c.cwiseMax(lo).cwiseMin(hi) - c).norm() < z.radius * cam_.scale) return true;
+    }
     return false;
   };
   // an arrow beside element i, on the belt's outer side or else its inner side, if it is in view
@@ -467,15 +470,17 @@ void FrameBuilder::draw_text_and_legend(double t, const Observation& seen, bool 
   // it), the grey of the free spans (a 320x180 frame's legend ran off its bottom)
   bool any_wet = false;
   for (const ElementDraw& el : out.elements) any_wet = any_wet || el.wet;
+  // (a scene with spray zones has a sixth line for them, in every frame)
+  const bool spray_line = !sc_.drive.spray.zones.empty();
   bool sign_line = fs_.given || qi.is_signed, arrow_line = arrows,
        off_swatch = !fs_.given && fs_.quantity != FrameQuantity::tension && fs_.quantity != FrameQuantity::mu;
-  double bar_bot = fs_.height - 6.2 * line;
+  auto legend_lines = [&] { return sign_line + any_wet + 1 + spray_line + arrow_line + off_swatch; };
+  double bar_bot = fs_.height - (6.2 + spray_line) * line;
   if (bar_bot < bar_top + 4.0 * line) {
     const int room = static_cast<int>(std::floor((fs_.height - bar_top) / line - 3.2));
     for (bool* drop : {&sign_line, &arrow_line, &off_swatch})
-      if (sign_line + any_wet + 1 + arrow_line + off_swatch > room) *drop = false;
-    const int legend_lines = sign_line + any_wet + 1 + arrow_line + off_swatch;
-    bar_bot = std::max(fs_.height - (legend_lines + 1.2) * line, bar_top + 2.0 * line);
+      if (legend_lines() > room) *drop = false;
+    bar_bot = std::max(fs_.height - (legend_lines() + 1.2) * line, bar_top + 2.0 * line);
   }
   out.boxed_text(Vec2(panel_x, bar_top - 1.6 * line), label, font_px_, kInk, paper);
   out.boxed_text(Vec2(panel_x, bar_top - 0.6 * line), unit.empty() ? "[\u2013]" : "[" + unit + "]", font_px_, kInk,
@@ -544,6 +549,15 @@ void FrameBuilder::draw_text_and_legend(double t, const Observation& seen, bool 
     ly += line;
   }
   swatch(kSlip, "slipping");
+  if (spray_line) {  // a disc as the zones are drawn: filled while it sprays, its outline while not
+    const double r = std::min(0.22 * bar_w, 0.4 * font_px_);
+    const Vec2 on(panel_x + 0.25 * bar_w, ly - 0.35 * font_px_), off(panel_x + 0.75 * bar_w, ly - 0.35 * font_px_);
+    out.disc(on, r, kSprayFill, 24);
+    out.ring(on, std::max(r - 1.2, 0.0), r, kWet, 24);
+    out.ring(off, std::max(r - 1.2, 0.0), r, kWet, 24);
+    out.boxed_text(Vec2(panel_x + bar_w + 0.5 * font_px_, ly), "spray: on, off", font_px_, kInk, paper);
+    ly += line;
+  }
   if (arrow_line) {
     out.arrow(Vec2(panel_x, ly - 0.35 * font_px_), Vec2(panel_x + bar_w, ly - 0.35 * font_px_), arrow_w,
               std::min(0.8 * font_px_, 0.6 * bar_w), kInk);
