@@ -15,6 +15,7 @@
 #include "io/checkpoint_text.hpp"
 #include "io/output_dir.hpp"
 #include "io/suggest.hpp"
+#include "render/draw_list.hpp"
 #include "render/recorder.hpp"
 #include "scene/scene_io.hpp"
 #include "script/script_args.hpp"
@@ -203,6 +204,9 @@ int cmd_render(const RenderOptions& o) {
                          ": width and height must be even for --video (H.264 in yuv420p)");
       }
     }
+    if (const std::string small = render::frame_size_problem(first->scene(), f); !small.empty())
+      std::fprintf(stderr, "beltsim render: warning: %s %s\n",
+                   o.size ? "--size" : "the run's frames.size (--size sets it)", small.c_str());
     // every state read (once) and checked before anything is written: a state of another scene
     // among them left the PNGs before it, or a video of one frame, behind a failed render
     std::vector<StateToDraw> states{to_draw(*first)};

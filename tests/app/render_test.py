@@ -88,6 +88,23 @@ class Render(unittest.TestCase):
             head = f.read(24)
         self.assertEqual((int.from_bytes(head[16:20], "big"), int.from_bytes(head[20:24], "big")), (321, 181))
 
+    def test_a_size_too_small_for_the_text_is_said_once(self):
+        # a 161x91 frame cut its header and left its legend out without a word (a user trial): drawn, with a warning
+        code, out, err = self.render("--out", "tiny.png", "--size", "161x91")
+        self.assertEqual((code, out), (0, "tiny.png\n"), err)
+        self.assertEqual(err.count("warning"), 1, err)
+        self.assertIn("beltsim render: warning: --size 161x91 is too small for the frame's text with every line of its "
+                      "legend (", err)
+        self.assertIn(" is the smallest of its shape that shows it all; the frames are drawn as they are\n", err)
+        self.assertEqual(self.render("--out", "fits.png", "--size", "640x360"), (0, "fits.png\n", ""))
+        # a run's frames: said once, as the run starts
+        with open(os.path.join(self.dir, "tiny.lua"), "w") as f:
+            f.write(SCENE.replace("size = {320, 180}", "size = {161, 91}").replace('out = "out"', 'out = "tiny"'))
+        code, out, err = run(["run", "tiny.lua"], self.dir)
+        self.assertEqual(code, 0, err)
+        self.assertEqual(err.count("beltsim: warning: frames.size 161x91 is too small for the frame's text"), 1, err)
+        self.assertTrue(os.path.isfile(os.path.join(self.dir, "tiny", "frames", "frame_00006.png")))
+
     def test_a_name_ending_in_a_slash_is_a_folder(self):
         # one state with --out DIR/: DIR/<state name>.png (it wrote a PNG file named DIR)
         code, out, err = self.render("--out", "pics_dir/")
