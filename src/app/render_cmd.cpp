@@ -179,18 +179,6 @@ int cmd_render(const RenderOptions& o) {
                                          : "the states of the folder " + o.states.front()) +
                        " need a folder for their PNGs (DIR/<state name>.png each), and a name ending in .png is "
                        "a picture's: give --out a folder, or one state file");
-    // two states of the same name (the same state of two runs) would give one PNG, the second
-    // drawn over the first
-    if (o.out && several) {
-      std::map<std::string, std::string> drawn;  // a PNG's path: the state drawn to it
-      for (const std::string& file : files) {
-        const std::string png = png_path(*o.out, file);
-        if (const auto [i, added] = drawn.emplace(png, file); !added)
-          throw UsageError("--out " + *o.out + ": " + i->second + " and " + file + " would both be drawn to " + png +
-                           " (DIR/<state name>.png each, the second over the first): render them into separate "
-                           "--out folders");
-      }
-    }
     // the first state gives the scene and the frame settings of every picture
     const std::unique_ptr<Simulation> first = Simulation::open_checkpoint(files.front());
     const FrameSettings f = settings(c, first->settings());
@@ -204,9 +192,6 @@ int cmd_render(const RenderOptions& o) {
                          ": width and height must be even for --video (H.264 in yuv420p)");
       }
     }
-    if (const std::string small = render::frame_size_problem(first->scene(), f); !small.empty())
-      std::fprintf(stderr, "beltsim render: warning: %s %s\n",
-                   o.size ? "--size" : "the run's frames.size (--size sets it)", small.c_str());
     // every state read (once) and checked before anything is written: a state of another scene
     // among them left the PNGs before it, or a video of one frame, behind a failed render
     std::vector<StateToDraw> states{to_draw(*first)};
@@ -217,6 +202,21 @@ int cmd_render(const RenderOptions& o) {
                                  " differs; one render draws the states of one scene)");
       states.push_back(to_draw(*s));
     }
+    // (states of one scene:) two of the same name, the same state of two runs, would give one PNG,
+    // the second drawn over the first
+    if (o.out && several) {
+      std::map<std::string, std::string> drawn;  // a PNG's path: the state drawn to it
+      for (const std::string& file : files) {
+        const std::string png = png_path(*o.out, file);
+        if (const auto [i, added] = drawn.emplace(png, file); !added)
+          throw UsageError("--out " + *o.out + ": " + i->second + " and " + file + " would both be drawn to " + png +
+                           " (DIR/<state name>.png each, the second over the first): render them into separate "
+                           "--out folders");
+      }
+    }
+    if (const std::string small = render::frame_size_problem(first->scene(), f); !small.empty())
+      std::fprintf(stderr, "beltsim render: warning: %s %s\n",
+                   o.size ? "--size" : "the run's frames.size (--size sets it)", small.c_str());
     if (o.video) video = render::make_frame_recorder(first->scene(), v);
     for (size_t k = 0; k < files.size(); ++k) {
       const StateToDraw& s = states[k];
