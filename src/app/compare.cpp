@@ -72,6 +72,7 @@ int compare_pngs(const CompareOptions& o) {
   ImageTolerance tol;
   if (o.tol) tol.level_tol = static_cast<int>(whole("--tol", *o.tol, 255));
   if (o.max_bad) tol.max_bad_pixels = whole("--max-bad", *o.max_bad, 1e15);
+  if (o.diff) require_png("--diff", *o.diff);
   Image a, b;
   try {
     a = read_png(o.a);

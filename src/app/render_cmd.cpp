@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <map>
 #include <optional>
 #include <sstream>
 #include <stdexcept>
@@ -14,6 +15,7 @@
 #include "io/checkpoint_text.hpp"
 #include "io/output_dir.hpp"
 #include "io/suggest.hpp"
+#include "render/draw_list.hpp"
 #include "render/recorder.hpp"
 #include "scene/scene_io.hpp"
 #include "script/script_args.hpp"
@@ -146,6 +148,11 @@ StateToDraw to_draw(const Simulation& s) {
   return {s.now(), s.state(), s.drive(), s.observation()};
 }
 
+// the PNG of the state `file` among several: DIR/<state name>.png
+std::string png_path(const std::string& dir, const std::string& file) {
+  return (std::filesystem::path(dir) / std::filesystem::path(file).stem()).string() + ".png";
+}
+
 }  // namespace
 
 int cmd_render(const RenderOptions& o) {
@@ -195,13 +202,26 @@ int cmd_render(const RenderOptions& o) {
                                  " differs; one render draws the states of one scene)");
       states.push_back(to_draw(*s));
     }
+    // (states of one scene:) two of the same name, the same state of two runs, would give one PNG,
+    // the second drawn over the first
+    if (o.out && several) {
+      std::map<std::string, std::string> drawn;  // a PNG's path: the state drawn to it
+      for (const std::string& file : files) {
+        const std::string png = png_path(*o.out, file);
+        if (const auto [i, added] = drawn.emplace(png, file); !added)
+          throw UsageError("--out " + *o.out + ": " + i->second + " and " + file + " would both be drawn to " + png +
+                           " (DIR/<state name>.png each, the second over the first): render them into separate "
+                           "--out folders");
+      }
+    }
+    if (const std::string small = render::frame_size_problem(first->scene(), f); !small.empty())
+      std::fprintf(stderr, "beltsim render: warning: %s %s\n",
+                   o.size ? "--size" : "the run's frames.size (--size sets it)", small.c_str());
     if (o.video) video = render::make_frame_recorder(first->scene(), v);
     for (size_t k = 0; k < files.size(); ++k) {
       const StateToDraw& s = states[k];
       if (o.out) {
-        const std::string png =
-            several ? (std::filesystem::path(*o.out) / std::filesystem::path(files[k]).stem()).string() + ".png"
-                    : *o.out;
+        const std::string png = several ? png_path(*o.out, files[k]) : *o.out;
         render::render_snapshot(first->scene(), f, s.t, s.y.data(), s.drive, png, &s.obs);
         std::printf("%s\n", png.c_str());
       }

@@ -87,6 +87,7 @@ struct DrawList {
   };
   std::vector<TextBox> boxes;          // every boxed text with its box, in order (for tests)
   std::vector<std::pair<Vec2, Vec2>> travel;  // tail and tip [px] of the direction-of-travel arrows (for tests)
+  std::vector<std::string> left_out;          // the legend's lines left out for want of room
   ColourScale scale;
 
   void triangle(Vec2 a, Vec2 b, Vec2 c, Rgba col);
@@ -130,6 +131,13 @@ void default_range(const Scene& scene, FrameQuantity q, double& lo, double& hi);
 std::vector<double> element_values(const Scene& scene, FrameQuantity q, double t, const double* y,
                                    const Drive* drive = nullptr);
 
+// "" when the frames of these settings show all their text (FrameBuilder::cut_text, at the scene's
+// initial state), else "WxH is too small for the frame's text with every line of its legend (what
+// it cuts): W'xH' is the
+// smallest of its shape that shows it all; the frames are drawn as they are". Throws
+// std::runtime_error as Font does.
+std::string frame_size_problem(const Scene& scene, const FrameSettings& settings);
+
 class FrameBuilder {
  public:
   // settings are validated by the caller (sim/frames.hpp validate)
@@ -144,6 +152,10 @@ class FrameBuilder {
   void set_caption(std::string caption) { fs_.caption = std::move(caption); }
   const Camera& camera() const { return cam_; }
   const ColourScale& scale() const { return scale_; }
+  // what of its text the frame of the state y at t cannot show ("" when it shows it all), with every
+  // line its legend can have (the wet one too): a line running off an edge (the pulleys' lines as
+  // long as they can be), the legend's lines left out
+  std::string cut_text(double t, const double* y) const;
   // world position at which an element centre p is drawn (nominal point + magnify·deviation);
   // tangent (if not null) receives the nominal path's direction of travel there
   Vec2 displayed(const Vec2& p, Vec2* tangent = nullptr) const;
@@ -164,6 +176,7 @@ class FrameBuilder {
   std::vector<std::pair<double, int>> line_at_;
   bool band_wide_ = false;      // the text band runs over the panel's width too (above the bar)
   double top_ = 0, panel_ = 0;  // [px] height of the text band, width of the colour-bar panel
+  double lines_right_ = 0;      // [px] the right end of the longest the pulleys' lines can be
   // where each pulley's name goes, from its centre [px] (chosen once, so it stays put frame to
   // frame): on the disc or beside it; none when it has no place in view
   struct NamePlace {

@@ -21,6 +21,7 @@ namespace {
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 constexpr Rgba kInk{0.08f, 0.08f, 0.10f, 1};
 constexpr Rgba kWet{0.10f, 0.42f, 0.95f, 1};
+constexpr Rgba kSprayFill{0.10f, 0.42f, 0.95f, 0.25f};  // a spraying zone's disc: the wet colour, translucent
 constexpr Rgba kSlip = kSlipColour;
 constexpr Rgba kPulley{0.86f, 0.87f, 0.89f, 1};
 constexpr Rgba kRim{0.42f, 0.43f, 0.46f, 1};
@@ -150,11 +151,12 @@ FrameBuilder::FrameBuilder(const Scene& sc, const FrameSettings& fs, Font* font)
   const double line = 1.4 * font_px_;
   panel_ = std::max(0.17 * fs.width, 11.0 * font_px_);
   double widest = 0;
-  std::vector<double> widths;
+  std::vector<double> widths, longest_px;  // (with and without the gap to the next column)
   for (const Pulley& p : m.pulleys) {
     std::string longest = p.name + ": \u03c9 = \u2212000.00 rad/s, slip \u2212000.000 m/s";
     if (p.arm >= 0) longest += ", arm \u22120.000 rad";
     if (p.coupling >= 0) longest += ", rotor \u2212000.00 rad/s";
+    longest_px.push_back(font_ ? font_->width(longest, font_px_) : 0.0);
     longest += "   ";
     widths.push_back(font_ ? static_cast<double>(font_->width(longest, font_px_))
                            : (30.0 + (p.arm >= 0) * 8 + (p.coupling >= 0) * 10) * font_px_);
@@ -179,6 +181,7 @@ FrameBuilder::FrameBuilder(const Scene& sc, const FrameSettings& fs, Font* font)
   }
   int rows = 0;
   for (const auto& [x, row] : line_at_) rows = std::max(rows, row + 1);
+  for (int j = 0; j < np; ++j) lines_right_ = std::max(lines_right_, line_at_[j].first + longest_px[j]);
   top_ = (1.5 + rows) * line;
   const Vec2 area0(0, top_), area1(fs.width - panel_, fs.height);
   cam_.area_centre = 0.5 * (area0 + area1);
@@ -234,7 +237,7 @@ void FrameBuilder::build(double t, const double* y, DrawList& out, const Drive* 
   const double* q = y;
   out.width = fs_.width, out.height = fs_.height;
   out.triangles.clear(), out.glyphs.clear(), out.elements.clear(), out.texts.clear(), out.boxes.clear(),
-      out.travel.clear();
+      out.travel.clear(), out.left_out.clear();
   out.font = font_;
   out.scale = scale_;
   const double px = 1.0 / cam_.scale;  // one pixel in metres
@@ -248,9 +251,7 @@ void FrameBuilder::build(double t, const double* y, DrawList& out, const Drive* 
   for (const SprayZone& z : dr.spray.zones) {
     const Vec2 c = P(z.centre);
     const double r = z.radius * cam_.scale;
-    Rgba fill = kWet;
-    fill.a = 0.25f;
-    if (z.on) out.disc(c, r, fill, 64);
+    if (z.on) out.disc(c, r, kSprayFill, 64);
     out.ring(c, std::max(r - 1.5, 0.0), r, kWet, 64);
   }
 
@@ -328,12 +329,16 @@ void FrameBuilder::build(double t, const double* y, DrawList& out, const Drive* 
   const double arrow_len = 2.5 * font_px_, arrow_w = std::max(2.0, 0.16 * font_px_);
   const double gap = h + band_w + 0.6 * font_px_ * px;  // [m] from the belt's centre line
   // whether the arrow from tail to tip, with its head's half width, runs into a text box drawn so
-  // far (the pulleys' names)
+  // far (the pulleys' names) or a spray zone's disc (one on a span's middle held its arrow)
   const double head_half = 0.4 * font_px_;
   auto over_text = [&](const Vec2& tail, const Vec2& tip) {
     const Vec2 lo = tail.cwiseMin(tip) - Vec2::Constant(head_half), hi = tail.cwiseMax(tip) + Vec2::Constant(head_half);
     for (const DrawList::TextBox& b : out.boxes)
       if (lo.x() < b.hi.x() && hi.x() > b.lo.x() && lo.y() < b.hi.y() && hi.y() > b.lo.y()) return true;
+    for (const SprayZone& z : dr.spray.zones) {
+      const Vec2 c = P(z.centre);
+      if ((c.cwiseMax(lo).cwiseMin(hi) - c).norm() < z.radius * cam_.scale) return true;
+    }
     return false;
   };
   // an arrow beside element i, on the belt's outer side or else its inner side, if it is in view
@@ -440,8 +445,12 @@ void FrameBuilder::draw_text_and_legend(double t, const Observation& seen, bool 
   const double x0 = 0.6 * font_px_;
   Rgba paper = out.background;  // the boxes under the text
   paper.a = 0.85f;
-  std::string head = (fs_.caption.empty() ? "" : fs_.caption + "      ") + "t = " + format("%.4f", t) +
-                     " s      colour: " + label + (unit.empty() ? "" : " [" + unit + "]");
+  // the time to 4 decimals, or as many more as tell consecutive frames apart (fps = 30 with
+  // slowdown = 1000, frames 3.3e-5 s apart, read 0.3000, 0.3000, 0.3001 at 4)
+  const int decimals = std::max(4, static_cast<int>(std::ceil(-std::log10(fs_.frame_dt()) - 1e-9)));
+  std::string head = (fs_.caption.empty() ? "" : fs_.caption + "      ") +
+                     "t = " + format(("%." + std::to_string(decimals) + "f").c_str(), t) + " s      colour: " + label +
+                     (unit.empty() ? "" : " [" + unit + "]");
   if (fs_.magnify != 1) head += "      deformation \u00d7" + format("%g", fs_.magnify);
   out.boxed_text(Vec2(x0, line), head, font_px_, kInk, paper);
   for (int j = 0; j < m.n_p(); ++j)
@@ -463,15 +472,20 @@ void FrameBuilder::draw_text_and_legend(double t, const Observation& seen, bool 
   // it), the grey of the free spans (a 320x180 frame's legend ran off its bottom)
   bool any_wet = false;
   for (const ElementDraw& el : out.elements) any_wet = any_wet || el.wet;
+  // (a scene with spray zones has a sixth line for them, in every frame)
+  const bool spray_line = !sc_.drive.spray.zones.empty();
+  const std::string sign_text = fs_.given ? fs_.given->plus : "+ : along travel";
   bool sign_line = fs_.given || qi.is_signed, arrow_line = arrows,
        off_swatch = !fs_.given && fs_.quantity != FrameQuantity::tension && fs_.quantity != FrameQuantity::mu;
-  double bar_bot = fs_.height - 6.2 * line;
+  auto legend_lines = [&] { return sign_line + any_wet + 1 + spray_line + arrow_line + off_swatch; };
+  double bar_bot = fs_.height - (6.2 + spray_line) * line;
   if (bar_bot < bar_top + 4.0 * line) {
     const int room = static_cast<int>(std::floor((fs_.height - bar_top) / line - 3.2));
-    for (bool* drop : {&sign_line, &arrow_line, &off_swatch})
-      if (sign_line + any_wet + 1 + arrow_line + off_swatch > room) *drop = false;
-    const int legend_lines = sign_line + any_wet + 1 + arrow_line + off_swatch;
-    bar_bot = std::max(fs_.height - (legend_lines + 1.2) * line, bar_top + 2.0 * line);
+    for (const auto& [drop, what] :
+         {std::pair{&sign_line, sign_text}, std::pair{&arrow_line, std::string("belt travel")},
+          std::pair{&off_swatch, std::string("off the pulleys")}})
+      if (legend_lines() > room && *drop) *drop = false, out.left_out.push_back(what);
+    bar_bot = std::max(fs_.height - (legend_lines() + 1.2) * line, bar_top + 2.0 * line);
   }
   out.boxed_text(Vec2(panel_x, bar_top - 1.6 * line), label, font_px_, kInk, paper);
   out.boxed_text(Vec2(panel_x, bar_top - 0.6 * line), unit.empty() ? "[\u2013]" : "[" + unit + "]", font_px_, kInk,
@@ -526,9 +540,7 @@ void FrameBuilder::draw_text_and_legend(double t, const Observation& seen, bool 
     out.boxed_text(Vec2(panel_x + bar_w + 0.5 * font_px_, ly), what, font_px_, kInk, paper);
     ly += line;
   };
-  if (sign_line)
-    out.boxed_text(Vec2(panel_x, ly), fs_.given ? fs_.given->plus : "+ : along travel", font_px_, kInk, paper),
-        ly += line;
+  if (sign_line) out.boxed_text(Vec2(panel_x, ly), sign_text, font_px_, kInk, paper), ly += line;
   if (any_wet) {  // dashed, as on the belt
     for (int k = 0; k < 3; ++k) {
       const double d0 = panel_x + bar_w * k / 3.0, d1 = d0 + 0.6 * bar_w / 3.0;
@@ -540,6 +552,15 @@ void FrameBuilder::draw_text_and_legend(double t, const Observation& seen, bool 
     ly += line;
   }
   swatch(kSlip, "slipping");
+  if (spray_line) {  // a disc as the zones are drawn: filled while it sprays, its outline while not
+    const double r = std::min(0.22 * bar_w, 0.4 * font_px_);
+    const Vec2 on(panel_x + 0.25 * bar_w, ly - 0.35 * font_px_), off(panel_x + 0.75 * bar_w, ly - 0.35 * font_px_);
+    out.disc(on, r, kSprayFill, 24);
+    out.ring(on, std::max(r - 1.2, 0.0), r, kWet, 24);
+    out.ring(off, std::max(r - 1.2, 0.0), r, kWet, 24);
+    out.boxed_text(Vec2(panel_x + bar_w + 0.5 * font_px_, ly), "spray: on, off", font_px_, kInk, paper);
+    ly += line;
+  }
   if (arrow_line) {
     out.arrow(Vec2(panel_x, ly - 0.35 * font_px_), Vec2(panel_x + bar_w, ly - 0.35 * font_px_), arrow_w,
               std::min(0.8 * font_px_, 0.6 * bar_w), kInk);
@@ -561,6 +582,55 @@ std::string FrameBuilder::pulley_text(int j, const PulleyObs& o) const {
   if (p.arm >= 0) text += ", arm " + format("%.3f", o.arm_angle) + " rad";
   if (p.coupling >= 0) text += ", rotor " + format("%.2f", o.rotor_speed) + " rad/s";
   return text;
+}
+
+std::string FrameBuilder::cut_text(double t, const double* y) const {
+  // with every line the legend can have: an element wet (a dry start's legend gets the wet line
+  // when an event or a spray zone wets the belt)
+  Drive wet = sc_.drive;
+  if (!wet.mu.empty()) wet.mu[0] = 0.5 * mu_dry_;
+  DrawList dl;
+  build(t, y, dl, &wet);
+  std::string cut;
+  if (lines_right_ > fs_.width) cut = "the pulleys' lines run off its right edge";
+  for (const DrawList::TextBox& b : dl.boxes)
+    if (cut.empty() && (b.lo.x() < 0 || b.hi.x() > fs_.width || b.lo.y() < 0 || b.hi.y() > fs_.height))
+      cut = "'" + b.text + "' runs off its " +
+            (b.hi.x() > fs_.width    ? "right edge"
+             : b.hi.y() > fs_.height ? "bottom"
+                                     : "left or top edge");
+  if (!dl.left_out.empty()) {
+    std::string lines;
+    for (const std::string& l : dl.left_out) lines += (lines.empty() ? "'" : ", '") + l + "'";
+    cut += (cut.empty() ? "" : "; ") + std::string("its legend leaves out ") + lines;
+  }
+  return cut;
+}
+
+std::string frame_size_problem(const Scene& scene, const FrameSettings& settings) {
+  Font font;
+  auto cut = [&](int w, int h) {
+    FrameSettings f = settings;
+    f.width = w, f.height = h;
+    return FrameBuilder(scene, f, &font).cut_text(f.t_start, scene.y0.data());
+  };
+  const std::string now = cut(settings.width, settings.height);
+  if (now.empty()) return "";
+  // the smallest of its shape in even numbers (a video's): up in steps of 2 %, then back down in
+  // steps of 2 pixels of its width
+  const double aspect = static_cast<double>(settings.height) / settings.width;
+  auto height_of = [&](int w) { return 2 * static_cast<int>(std::ceil(0.5 * aspect * w)); };
+  std::string fits = "no size up to 8192 of its shape shows it all";
+  for (double k = 1.02; k * std::max(settings.width, settings.height) <= 8192; k *= 1.02) {
+    int w = 2 * static_cast<int>(std::ceil(0.5 * k * settings.width));
+    if (!cut(w, height_of(w)).empty()) continue;
+    while (w - 2 > settings.width && cut(w - 2, height_of(w - 2)).empty()) w -= 2;
+    fits = std::to_string(w) + "x" + std::to_string(height_of(w)) + " is the smallest of its shape that shows it all";
+    break;
+  }
+  return std::to_string(settings.width) + "x" + std::to_string(settings.height) +
+         " is too small for the frame's text with every line of its legend (" + now + "): " + fits +
+         "; the frames are drawn as they are";
 }
 
 }  // namespace beltsim::render

@@ -16,6 +16,7 @@
 #include "io/number_text.hpp"
 #include "io/suggest.hpp"
 #include "io/units.hpp"
+#include "render/draw_list.hpp"
 #include "render/recorder.hpp"
 #include "scene/validate.hpp"
 #include "script/context.hpp"
@@ -397,7 +398,13 @@ RunSettings read_run_settings(lua_State* L, int idx, const Scene& sc, Context* c
   // --no-frames draws nothing; kept states stay at the frames' times
   if (o.no_frames && rs.keep_states && rs.frames) rs.frames->png_dir.clear(), rs.frames->video_path.clear();
   if (o.no_frames && !rs.keep_states) rs.frames.reset();
-  rs.frame_factory = render::make_frame_recorder;
+  // the frames' recorder, made as the run opens its outputs, said once there when the frames'
+  // size is too small for their text
+  rs.frame_factory = [](const Scene& scene, const FrameSettings& f) {
+    if (const std::string small = render::frame_size_problem(scene, f); !small.empty())
+      say("beltsim: warning: frames.size %s\n", small.c_str());
+    return render::make_frame_recorder(scene, f);
+  };
   // the command line's settings over the script's (checked when they were read, app/options.cpp)
   for (const std::string& key : o.given) copy_run_setting(*find_run_setting(key), o.run, rs);
   // the check's warning while the run goes on (sim/run_check.hpp)

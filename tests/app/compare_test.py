@@ -107,6 +107,17 @@ class Pngs(Base):
         self.assertTrue(out.endswith("; difference image (differing pixels red): new/sub/d.png\n"), out)
         self.assertTrue(os.path.isfile(self.path("new/sub/d.png")))
 
+    def test_diff_needs_a_pngs_name(self):
+        # PNG bytes were written under any name (dd.jpg, d.txt; a user trial): refused as plot --out p.txt is
+        write_png(self.path("b.png"), 80, 60, square(2))
+        for name in ("dd.jpg", "d.txt", "d"):
+            code, out, err = self.compare("a.png", "b.png", "--diff", name)
+            self.assertEqual((code, out), (2, ""), err)
+            self.assertIn("beltsim: --diff %s: beltsim draws PNG pictures: give a name ending in .png\n" % name, err)
+            self.assertFalse(os.path.exists(self.path(name)), name)
+        self.assertEqual(self.compare("a.png", "b.png", "--diff", "D.PNG")[0], 1)
+        self.assertTrue(os.path.isfile(self.path("D.PNG")))
+
     def test_different_sizes_differ(self):
         write_png(self.path("b.png"), 60, 80, square(0))
         code, out, err = self.compare("a.png", "b.png")

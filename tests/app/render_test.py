@@ -88,6 +88,23 @@ class Render(unittest.TestCase):
             head = f.read(24)
         self.assertEqual((int.from_bytes(head[16:20], "big"), int.from_bytes(head[20:24], "big")), (321, 181))
 
+    def test_a_size_too_small_for_the_text_is_said_once(self):
+        # a 161x91 frame cut its header and left its legend out without a word (a user trial): drawn, with a warning
+        code, out, err = self.render("--out", "tiny.png", "--size", "161x91")
+        self.assertEqual((code, out), (0, "tiny.png\n"), err)
+        self.assertEqual(err.count("warning"), 1, err)
+        self.assertIn("beltsim render: warning: --size 161x91 is too small for the frame's text with every line of its "
+                      "legend (", err)
+        self.assertIn(" is the smallest of its shape that shows it all; the frames are drawn as they are\n", err)
+        self.assertEqual(self.render("--out", "fits.png", "--size", "640x360"), (0, "fits.png\n", ""))
+        # a run's frames: said once, as the run starts
+        with open(os.path.join(self.dir, "tiny.lua"), "w") as f:
+            f.write(SCENE.replace("size = {320, 180}", "size = {161, 91}").replace('out = "out"', 'out = "tiny"'))
+        code, out, err = run(["run", "tiny.lua"], self.dir)
+        self.assertEqual(code, 0, err)
+        self.assertEqual(err.count("beltsim: warning: frames.size 161x91 is too small for the frame's text"), 1, err)
+        self.assertTrue(os.path.isfile(os.path.join(self.dir, "tiny", "frames", "frame_00006.png")))
+
     def test_a_name_ending_in_a_slash_is_a_folder(self):
         # one state with --out DIR/: DIR/<state name>.png (it wrote a PNG file named DIR)
         code, out, err = self.render("--out", "pics_dir/")
@@ -110,6 +127,26 @@ class Render(unittest.TestCase):
         self.assertFalse(os.path.exists(os.path.join(self.dir, "one.PNG")))
         code, out, err = run(["render", "one", "--out", "one_pngs"], self.dir)
         self.assertEqual((code, out), (0, os.path.join("one_pngs", "state_00006.png") + "\n"), err)
+
+    def test_states_of_one_name_into_one_folder(self):
+        # the same state of two runs made one PNG, the second drawn over the first: refused, nothing written
+        for run_dir in ("r5", "r7"):
+            os.makedirs(os.path.join(self.dir, run_dir), exist_ok=True)
+            shutil.copy(self.checkpoint, os.path.join(self.dir, run_dir, "state_00006.ckpt"))
+        r5, r7 = os.path.join("r5", "state_00006.ckpt"), os.path.join("r7", "state_00006.ckpt")
+        code, out, err = run(["render", r5, r7, "--out", "both"], self.dir)
+        self.assertEqual((code, out), (2, ""), err)
+        self.assertIn("beltsim: --out both: %s and %s would both be drawn to %s (DIR/<state name>.png each, the "
+                      "second over the first): render them into separate --out folders\n"
+                      % (r5, r7, os.path.join("both", "state_00006.png")), err)
+        self.assertFalse(os.path.exists(os.path.join(self.dir, "both")))
+        # folders of states too
+        code, out, err = run(["render", "r5", "r7", "--out", "both/"], self.dir)
+        self.assertEqual(code, 2, err)
+        self.assertIn("would both be drawn to", err)
+        self.assertFalse(os.path.exists(os.path.join(self.dir, "both")))
+        code, out, err = run(["render", "r5", "--out", "both_r5"], self.dir)
+        self.assertEqual((code, out), (0, os.path.join("both_r5", "state_00006.png") + "\n"), err)
 
     def test_bad_options_and_files(self):
         for args, message in [

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <vector>
 
 #include "render/draw_list.hpp"
@@ -279,6 +280,33 @@ TEST_F(Fixture, ASmallFramesLegendStaysInsideWithTheBarsEnds) {
     for (const std::string& t : dl.texts) sign = sign || t == "+ : along travel";
     EXPECT_EQ(sign, w == 640) << w << "x" << h;
   }
+}
+
+// a frame too small for its text says so, naming what it cuts and the smallest size of its shape
+// that shows it all (a 161x91 frame cut its header and a 320x180 one left legend lines out without
+// a word: a user trial)
+TEST_F(Fixture, AFrameTooSmallForItsTextSaysSo) {
+  const Scene& sc = wet();
+  FrameSettings f = fs();
+  f.quantity = FrameQuantity::slip;
+  auto problem = [&](int w, int h) {
+    f.width = w, f.height = h;
+    return frame_size_problem(sc, f);
+  };
+  EXPECT_EQ(problem(640, 360), "");
+  const std::string small = problem(320, 180);
+  EXPECT_EQ(small.rfind("320x180 is too small for the frame's text with every line of its legend (its legend leaves "
+                        "out '+ : along travel', 'belt travel'): ",
+                        0),
+            0u)
+      << small;
+  int w = 0, h = 0;
+  ASSERT_EQ(std::sscanf(small.c_str() + small.find("): ") + 3, "%dx%d is the smallest", &w, &h), 2) << small;
+  EXPECT_EQ(problem(w, h), "") << w << "x" << h;
+  EXPECT_NE(problem(w - 2, h - 2), "") << w << "x" << h;
+  EXPECT_NE(problem(161, 91).find("(the pulleys' lines run off its right edge; its legend leaves out "),
+            std::string::npos)
+      << problem(161, 91);
 }
 
 }  // namespace
