@@ -120,17 +120,27 @@ class ConsoleAndPage(unittest.TestCase):
                              [(h, v) for h, u, v in zip(head, x, y) if u != v], x[0])
 
     def test_a_page_run_to_past_the_consoles_run_to_says_where_it_stopped(self):
-        """the page asks for a run to 2 s while the console's sim:run_to(0.2) runs: the run ends at
-        0.2 s, and the status says the page's run to lies past it (it said "paused" alone, a user's
+        """the page asks for a run to 2 s while the console's sim:run_to(1) runs: the run ends at
+        1 s, and the status says the page's run to lies past it (it said "paused" alone, a user's
         trial); the console's next run_to does not stop at the page's stale 2 s"""
-        d, proc, live, c, it, paused = self.paused_mid_run("beltsim_live_past_", subprocess.PIPE,
-                                                            b"sim:run_to(0.2)\nprint('at', sim.t)\n"
-                                                            b"sim:run_to(2.5)\nprint('then', sim.t)\n")
+        d, proc = self.console("beltsim_live_past_", subprocess.PIPE)
+        # the next commands only once the status is seen: a command that starts a run at once
+        # replaces the status before a slow stream reads it
+        proc.stdin.write(b"sim:run_to(1)\n")
+        proc.stdin.flush()
+        live, c, it = self.page(proc)
+        for _ in it:
+            if live.t:
+                break
+        self.assertEqual(live.post("do=pause")[0], 202)
+        live.wait_status(it, "paused at t = ", within=60)
         self.assertEqual(live.post("do=run_to&value=2")[0], 202)
-        live.wait_status(it, "paused at t = 0.2 s: the page's run to 2 s lies past the end of this run_to")
+        live.wait_status(it, "paused at t = 1 s: the page's run to 2 s lies past the end of this run_to", within=60)
+        proc.stdin.write(b"print('at', sim.t)\nsim:run_to(2.5)\nprint('then', sim.t)\n")
+        proc.stdin.close()
         out = proc.stdout.read().decode()
         self.assertEqual(proc.wait(timeout=300), 0)
-        self.assertIn("at\t0.2\n", out)
+        self.assertIn("at\t1.0\n", out)
         self.assertIn("then\t2.5\n", out)
         c.close()
 
