@@ -150,6 +150,8 @@ class FrameBuilder {
              const std::vector<double>* values = nullptr) const;
   // the title before the time in the text band (FrameSettings::caption), for the next builds
   void set_caption(std::string caption) { fs_.caption = std::move(caption); }
+  // each pulley's line of the text band (FrameSettings::pulley_lines), for the next builds
+  void set_pulley_lines(std::vector<std::string> lines) { fs_.pulley_lines = std::move(lines); }
   const Camera& camera() const { return cam_; }
   const ColourScale& scale() const { return scale_; }
   // what of its text the frame of the state y at t cannot show ("" when it shows it all), with every

@@ -454,8 +454,10 @@ void FrameBuilder::draw_text_and_legend(double t, const Observation& seen, bool 
   if (fs_.magnify != 1) head += "      deformation \u00d7" + format("%g", fs_.magnify);
   out.boxed_text(Vec2(x0, line), head, font_px_, kInk, paper);
   for (int j = 0; j < m.n_p(); ++j)
-    out.boxed_text(Vec2(line_at_[j].first, line * (2 + line_at_[j].second)), pulley_text(j, seen.pulleys[j]), font_px_,
-                   kInk, paper);
+    out.boxed_text(
+        Vec2(line_at_[j].first, line * (2 + line_at_[j].second)),
+        static_cast<size_t>(j) < fs_.pulley_lines.size() ? fs_.pulley_lines[j] : pulley_text(j, seen.pulleys[j]),
+        font_px_, kInk, paper);
 
   // colour bar: bands from lo (bottom) to hi (top), edges labelled where they fit, on the
   // background's colour (in a zoomed view the drawing reaches under the panel)

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <complex>
 #include <cstdio>
 #include <filesystem>
 #include <regex>
@@ -38,6 +39,30 @@ std::vector<double> tension_at(const std::vector<std::complex<double>>& change, 
 
 }  // namespace
 
+// each pulley's line of a mode picture's text band: how the mode moves its rim (R·|shape| of its
+// angle) and, on a tensioner arm, its centre (arm length·|shape| of the arm's angle), as shares of
+// the mode's largest point displacement (the shape's scale: 1 m) and phases from that point's
+// ("driver: rim 0.42 at +180°"). A speed and a slip there read the analysed state pushed by the
+// mode's amplitude, no running drive's: the rigid rotation's picture said "off the belt" of
+// pulleys the belt wraps (a user's trial)
+std::vector<std::string> mode_pulley_lines(const Model& model, const Mode& m) {
+  const auto share = [](std::complex<double> z, double arm) {
+    char b[64];
+    const double a = std::abs(z) * arm;
+    if (a < 5e-4) return std::string("0.000");
+    std::snprintf(b, sizeof b, "%.3f at %+.0f\u00b0", a, std::arg(z) * 180 / M_PI);
+    return std::string(b);
+  };
+  std::vector<std::string> lines;
+  for (int j = 0; j < model.n_p(); ++j) {
+    const Pulley& p = model.pulleys[j];
+    std::string line = p.name + ": rim " + share(m.shape[model.pulley_coord(j)], p.radius);
+    if (p.arm >= 0) line += ", centre " + share(m.shape[model.arm_coord(p.arm)], model.arms[p.arm].length);
+    lines.push_back(line);
+  }
+  return lines;
+}
+
 std::vector<std::string> draw_modes(const Scene& sc, const Drive& d, const Eigen::VectorXd& y, const ModeAnalysis& a,
                                     const ModePictures& p) {
   std::vector<std::string> written;
@@ -67,6 +92,7 @@ std::vector<std::string> draw_modes(const Scene& sc, const Drive& d, const Eigen
     char caption[96];
     std::snprintf(caption, sizeof caption, "mode %d: %.2f Hz, \u03b6 %.4f", k + 1, m.frequency, m.damping);
     drawer.set_caption(caption);
+    drawer.set_pulley_lines(mode_pulley_lines(sc.model, m));
     const std::vector<std::complex<double>> change = mode_tension_change(sc, d, a.t, y, m);
     const Eigen::VectorXd peak = mode_state(y, m, amplitude, 0.0);
     const std::vector<double> at_peak = tension_at(change, 0.0);

@@ -18,6 +18,10 @@ struct ModePictures {
   int width = 1280, height = 720;
 };
 
+// each pulley's line of a mode's picture: its rim's (and an arm's centre's) share of the mode's
+// largest point displacement and phase ("driver: rim 0.420 at +180°")
+std::vector<std::string> mode_pulley_lines(const Model& model, const Mode& m);
+
 // Draws the modes of `a` (analysed at the state y of the drive d) into DIR/mode_NN_<f>Hz.png (NN
 // from 01, the mode's number in modes.csv; f its frequency) and the videos asked for (.mp4 beside
 // them), after removing DIR's files of those names (an earlier analysis's: remove_numbered,

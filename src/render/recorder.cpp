@@ -207,6 +207,10 @@ void FrameDrawer::set_caption(const std::string& caption) {
   p_->builder.set_caption(caption);
 }
 
+void FrameDrawer::set_pulley_lines(const std::vector<std::string>& lines) {
+  p_->builder.set_pulley_lines(lines);
+}
+
 Image FrameDrawer::draw(double t, const double* y, const Drive& drive, const Observation* obs,
                         const std::vector<double>* values) {
   Image image;

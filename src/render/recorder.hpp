@@ -36,6 +36,8 @@ class FrameDrawer {
              const std::vector<double>* values = nullptr);
   // the title of the next frames' text band (FrameSettings::caption), the GL context kept
   void set_caption(const std::string& caption);
+  // each pulley's line of the next frames' text band (FrameSettings::pulley_lines)
+  void set_pulley_lines(const std::vector<std::string>& lines);
   // the elements as the last draw placed them (centres in pixels from the top left), by index
   const std::vector<ElementDraw>& drawn_elements() const;
 

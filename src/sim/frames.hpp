@@ -58,6 +58,10 @@ struct FrameSettings {
     std::string label, unit, plus;
   };
   std::optional<Given> given;
+  // each pulley's line of the text band in place of its speed and slip (how a mode moves it,
+  // render/mode_frames.cpp: the mode's state is no running drive's); empty: the speeds and slips.
+  // Not a run's key, not in a checkpoint
+  std::vector<std::string> pulley_lines;
 
   // simulated time between frames [s]
   double frame_dt() const { return 1.0 / (fps * slowdown); }

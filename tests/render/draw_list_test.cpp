@@ -13,6 +13,7 @@
 #include "model/observables.hpp"
 #include "render/colormap.hpp"
 #include "render/frame_fixture.hpp"
+#include "render/mode_frames.hpp"
 #include "render/render_scenes.hpp"
 #include "render/text.hpp"
 
@@ -439,6 +440,30 @@ TEST_F(Fixture, CaptionHeadsTheText) {
   };
   EXPECT_EQ(head(plain).rfind("t = 0.1250 s", 0), 0u) << head(plain);
   EXPECT_EQ(head(captioned).rfind("mode 3: 134.01 Hz, \u03b6 0.0914      t = 0.1250 s", 0), 0u) << head(captioned);
+}
+
+// a mode's picture says how the mode moves each pulley (render/mode_frames.cpp), not a speed and a
+// slip of the analysed state pushed by the mode's amplitude: the rigid rotation's picture said "off
+// the belt" of pulleys the belt wraps (a user's trial). The rim's share of the mode's largest point
+// displacement (the shape's 1 m) and its phase; the lines given take the speeds' and slips' place
+TEST_F(Fixture, AModesPictureSaysHowTheModeMovesEachPulley) {
+  const Scene& sc = wet();
+  Mode m;
+  m.shape = Eigen::VectorXcd::Zero(sc.model.n_coord());
+  const Pulley &p0 = sc.model.pulleys[0], &p1 = sc.model.pulleys[1];
+  m.shape[sc.model.pulley_coord(0)] = 1.0 / p0.radius;   // its rim moves by the largest point's 1 m
+  m.shape[sc.model.pulley_coord(1)] = -0.5 / p1.radius;  // half as far, the other way
+  const std::vector<std::string> lines = mode_pulley_lines(sc.model, m);
+  ASSERT_EQ(lines.size(), 2u);
+  EXPECT_EQ(lines[0], p0.name + ": rim 1.000 at +0\u00b0");
+  EXPECT_EQ(lines[1], p1.name + ": rim 0.500 at +180\u00b0");
+  const Eigen::VectorXd y = test::moving_state(sc);
+  FrameSettings f = fs();
+  f.pulley_lines = lines;
+  DrawList dl;
+  FrameBuilder(sc, f, &font).build(0.125, y.data(), dl);
+  EXPECT_EQ(header_line(dl, p0.name), lines[0]);
+  EXPECT_EQ(header_line(dl, p1.name), lines[1]);
 }
 
 // values the caller gives (a mode's change of tension: render/mode_frames.cpp) colour the belt in
