@@ -245,7 +245,12 @@ void Outputs::open(bool append) {
     FrameSettings f = *rs_.frames;
     for (std::string* p : {&f.png_dir, &f.video_path})
       if (!p->empty()) *p = output_path(rs_, *p);
-    if (!append && !f.png_dir.empty()) remove_numbered(OutputDir(f.png_dir), numbered("frame_", ".png"));
+    // an earlier run's frames go, and with them the difference images beltsim compare drew of
+    // them (frame_NNNNN_diff.png): of frames no longer there, they stayed after a passing run
+    if (!append && !f.png_dir.empty()) {
+      const auto frame = numbered("frame_", ".png"), diff = numbered("frame_", "_diff.png");
+      remove_numbered(OutputDir(f.png_dir), [&](const std::string& n) { return frame(n) || diff(n); });
+    }
     sink_ = rs_.frame_factory(scene_, f);
   }
   if (rs_.keep_states) {

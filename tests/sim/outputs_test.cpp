@@ -282,14 +282,17 @@ TEST(Outputs, AnEarlierRunsPicturesAndCheckpointsInSubfoldersAreNamed) {
 
 // a fresh run's frames and kept states replace an earlier run's: the numbered files it does not
 // write over (a longer run's last ones) go too, so that a golden test never compares a frame an
-// earlier run left; a file of any other name stays, and a resumed run removes nothing
+// earlier run left, and so do beltsim compare's difference images of them (frame_NNNNN_diff.png:
+// they stayed after a passing run, a user's trial); a file of any other name stays, and a resumed
+// run removes nothing
 TEST(Outputs, AnEarlierRunsNumberedFramesAndStatesAreRemoved) {
   const fs::path out = fresh("numbered") / "out";
   fs::create_directories(out / "frames");
   fs::create_directories(out / "states");
   for (const char* f :
        {"frames/frame_00000.png", "frames/frame_00041.png", "frames/frame_123456.png", "frames/frame_00041.png.keep",
-        "frames/my_frame_00041.png", "frames/frame_0004.png", "states/state_00041.ckpt", "states/notes.txt"})
+        "frames/my_frame_00041.png", "frames/frame_0004.png", "states/state_00041.ckpt", "states/notes.txt",
+        "frames/frame_00015_diff.png", "frames/frame_00015_diff.png.keep", "frames/frame_0001_diff.png"})
     std::ofstream(out / f) << "x";
   RunSettings rs = settings(out);
   rs.t_end = 0.002;
@@ -298,11 +301,11 @@ TEST(Outputs, AnEarlierRunsNumberedFramesAndStatesAreRemoved) {
   rs.frames->png_dir = "frames";
   rs.frame_factory = [](const Scene&, const FrameSettings&) { return std::unique_ptr<FrameSink>(); };
   run(dry_scene(), rs);
-  for (const char* gone :
-       {"frames/frame_00000.png", "frames/frame_00041.png", "frames/frame_123456.png", "states/state_00041.ckpt"})
+  for (const char* gone : {"frames/frame_00000.png", "frames/frame_00041.png", "frames/frame_123456.png",
+                           "states/state_00041.ckpt", "frames/frame_00015_diff.png"})
     EXPECT_FALSE(fs::exists(out / gone)) << gone;
-  for (const char* kept :
-       {"frames/frame_00041.png.keep", "frames/my_frame_00041.png", "frames/frame_0004.png", "states/notes.txt"})
+  for (const char* kept : {"frames/frame_00041.png.keep", "frames/my_frame_00041.png", "frames/frame_0004.png",
+                           "states/notes.txt", "frames/frame_00015_diff.png.keep", "frames/frame_0001_diff.png"})
     EXPECT_TRUE(fs::exists(out / kept)) << kept;
   EXPECT_TRUE(fs::exists(out / "states" / "state_00000.ckpt"));  // this run's own
 }
