@@ -50,7 +50,9 @@ std::vector<std::string> mode_pulley_lines(const Model& model, const Mode& m) {
     char b[64];
     const double a = std::abs(z) * arm;
     if (a < 5e-4) return std::string("0.000");
-    std::snprintf(b, sizeof b, "%.3f at %+.0f\u00b0", a, std::arg(z) * 180 / M_PI);
+    // the phase's sign as the frame's other numbers write it: U+2212 for a minus
+    const double deg = std::round(std::arg(z) * 180 / M_PI);
+    std::snprintf(b, sizeof b, "%.3f at %s%.0f\u00b0", a, deg < 0 ? "\u2212" : "+", std::abs(deg));
     return std::string(b);
   };
   std::vector<std::string> lines;

@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <complex>
 
 #include "model/contacts.hpp"
 #include "model/forces.hpp"
@@ -452,11 +453,11 @@ TEST_F(Fixture, AModesPictureSaysHowTheModeMovesEachPulley) {
   m.shape = Eigen::VectorXcd::Zero(sc.model.n_coord());
   const Pulley &p0 = sc.model.pulleys[0], &p1 = sc.model.pulleys[1];
   m.shape[sc.model.pulley_coord(0)] = 1.0 / p0.radius;   // its rim moves by the largest point's 1 m
-  m.shape[sc.model.pulley_coord(1)] = -0.5 / p1.radius;  // half as far, the other way
+  m.shape[sc.model.pulley_coord(1)] = std::polar(0.5 / p1.radius, -M_PI / 2);  // half as far, a quarter turn behind
   const std::vector<std::string> lines = mode_pulley_lines(sc.model, m);
   ASSERT_EQ(lines.size(), 2u);
   EXPECT_EQ(lines[0], p0.name + ": rim 1.000 at +0\u00b0");
-  EXPECT_EQ(lines[1], p1.name + ": rim 0.500 at +180\u00b0");
+  EXPECT_EQ(lines[1], p1.name + ": rim 0.500 at \u221290\u00b0");
   const Eigen::VectorXd y = test::moving_state(sc);
   FrameSettings f = fs();
   f.pulley_lines = lines;
