@@ -73,14 +73,13 @@ void print_table(const Scene& sc, const ModeAnalysis& a) {
     std::string growing;
     for (size_t k = 0; k < a.modes.size(); ++k)
       if (a.modes[k].damping < 0) growing += (growing.empty() ? "" : ", ") + std::to_string(k + 1);
+    const bool one = growing.find(',') == std::string::npos;
     if (!growing.empty())
       std::fprintf(stderr,
                    "beltsim modes: warning: mode%s %s grow%s (zeta < 0) about a state at rest, which holds no energy "
                    "for a mode to grow from unless a torque grows with its pulley's speed: likely the eigensolver's "
                    "error on this stiff matrix; --check %s integrates %s in time (docs/modes.md)\n",
-                   growing.find(',') == std::string::npos ? "" : "s", growing.c_str(),
-                   growing.find(',') == std::string::npos ? "s" : "", growing.c_str(),
-                   growing.find(',') == std::string::npos ? "it" : "them");
+                   one ? "" : "s", growing.c_str(), one ? "s" : "", growing.c_str(), one ? "it" : "them");
     return;
   }
   // a running belt: the modes of its motion over one element passing (docs/modes.md, A running drive)

@@ -179,6 +179,14 @@ std::string unit_of(std::string_view column) {
   return known_unit(column).value_or("");
 }
 
+std::vector<std::pair<std::string, std::string>> run_result_units(std::string_view prefix) {
+  std::vector<std::pair<std::string, std::string>> out;
+  for (const auto& [name, quantity] : kRunResult)
+    if (name.size() > prefix.size() && name.substr(0, prefix.size()) == prefix && name.back() != '.')
+      out.emplace_back(std::string(name.substr(prefix.size())), *run_result_unit(name));
+  return out;
+}
+
 std::optional<std::string> run_result_unit(std::string_view field) {
   for (const auto& [name, quantity] : kRunResult)
     if (name == field || (name.back() == '.' && field.size() > name.size() && field.substr(0, name.size()) == name))

@@ -28,6 +28,10 @@ std::optional<std::string> known_unit(std::string_view column);
 // (csv, interrupted, check.over) and a name the result table has not (a field a script added)
 std::optional<std::string> run_result_unit(std::string_view field);
 
+// the fields of scene:run{}'s result under prefix ("check." -> "speed", "tension", ...), each
+// with its run_result_unit: those of a table a result holds (its check estimate)
+std::vector<std::pair<std::string, std::string>> run_result_units(std::string_view prefix);
+
 // the unit a CSV header names between brackets at its end ("hub load [N]" -> "N", typed_unit's
 // form); nullopt when it names none
 std::optional<std::string> bracketed_unit(std::string_view header);

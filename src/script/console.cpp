@@ -3,7 +3,6 @@
 #include <unistd.h>
 
 #include <algorithm>
-#include <csignal>
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
@@ -236,7 +235,7 @@ int run_console(const std::optional<std::string>& script, const std::vector<std:
     // a run that a stop signal stopped (the first: the later ones were refused) is replayed to there
     if (!ctx.stopped_runs.empty()) {
       start.scenario_stop = ctx.stopped_runs.front().second;
-      start.scenario_stopped_by = signal_name(pending_signal() ? pending_signal() : SIGINT);
+      start.scenario_stopped_by = pending_signal_name();
     }
     command_done();
   } else {

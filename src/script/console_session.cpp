@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cctype>
 #include <cerrno>
-#include <csignal>
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
@@ -145,13 +144,6 @@ std::string stopped_at(double t, const char* by, const std::string& text) {
          text + "\nbeltsim.stop_at()";
 }
 
-// the signal that stopped the command's runs (Ctrl-C when none is under way: a run the page
-// paused, stopped by a Ctrl-C since done with)
-const char* stopped_by() {
-  const int sig = pending_signal();
-  return signal_name(sig ? sig : SIGINT);
-}
-
 }  // namespace
 
 namespace {
@@ -166,7 +158,7 @@ namespace {
 std::string stopped_or_changed(lua_State* L, const std::string& chunk, const StoppedRuns& stopped,
                                const std::vector<PageChange>& page, bool keep) {
   std::string out = commented(chunk);
-  out += page.empty() ? std::string("  -- stopped by ") + stopped_by()
+  out += page.empty() ? std::string("  -- stopped by ") + pending_signal_name()
                       : std::string("  -- changed from the live view while it ran");
   static const std::regex kept(R"(^\s*((local\s+)?[A-Za-z_][A-Za-z0-9_.]*\s*=\s*)([A-Za-z_][A-Za-z0-9_]*)\s*:\s*)"
                                R"((advance|run_to)\s*\([^\n]*\)\s*;?\s*$)");
@@ -202,7 +194,7 @@ std::string replayable(lua_State* L, const std::string& chunk, bool expression, 
                        const StoppedRuns& stopped, const std::vector<PageChange>& page) {
   if (stopped.empty() && page.empty()) return as_statements(L, chunk, expression, printed);
   if (page.empty() && !stopped[0].first)
-    return stopped_at(stopped[0].second, stopped_by(), as_statements(L, chunk, expression, printed));
+    return stopped_at(stopped[0].second, pending_signal_name(), as_statements(L, chunk, expression, printed));
   return stopped_or_changed(L, chunk, stopped, page, true);
 }
 
@@ -212,7 +204,7 @@ std::string failed_replayable(lua_State* L, const std::string& chunk, bool expre
   said = "-- failed at the prompt: " + said;
   const std::string wrapped = said + "\npcall(function()\n" + as_statements(L, chunk, expression, false) + "\nend)";
   if (page.empty() && !stopped.empty() && !stopped[0].first && compiles(L, wrapped))
-    return stopped_at(stopped[0].second, stopped_by(), wrapped);
+    return stopped_at(stopped[0].second, pending_signal_name(), wrapped);
   // (an assignment that failed kept nothing: its runs are replayed, the variable left as it was)
   if (!stopped.empty() || !page.empty()) return said + "\n" + stopped_or_changed(L, chunk, stopped, page, false);
   // Lua code that a stop signal interrupted (while true do end) may never end: its replay would

@@ -480,9 +480,8 @@ void push_check(lua_State* L, const CheckEstimate& c) {
   // prints (lua_check.hpp, kUnitsField): its tension is a relative error, not a force in N
   if (luaL_newmetatable(L, kCheckTable)) {
     lua_newtable(L);
-    for (const char* f : {"speed", "tension", "limit_speed", "limit_tension", "steps_ratio", "warned_t"})
-      if (const std::optional<std::string> unit = run_result_unit(std::string("check.") + f))
-        lua_pushstring(L, unit->c_str()), lua_setfield(L, -2, f);
+    for (const auto& [field, unit] : run_result_units("check."))
+      lua_pushstring(L, unit.c_str()), lua_setfield(L, -2, field.c_str());
     lua_setfield(L, -2, kUnitsField);
   }
   lua_setmetatable(L, -2);

@@ -235,27 +235,25 @@ void apply_mu(lua_State* L, Simulation& s, const std::vector<double>& mu, const 
   });
   int addressed = 0, changed = 0;
   std::vector<int> on(s.model().pulleys.size() + 1, 0);  // per pulley, last: free
-  double lo0 = INFINITY, hi0 = -INFINITY, lo1 = INFINITY, hi1 = -INFINITY;
+  // μ before of the elements addressed (lo_a, hi_a) and of those that changed (lo0, hi0); after (lo1, hi1)
+  double lo_a = INFINITY, hi_a = -INFINITY, lo0 = INFINITY, hi0 = -INFINITY, lo1 = INFINITY, hi1 = -INFINITY;
   for (int i = 0; i < n; ++i) {
     if (std::isnan(mu[i])) continue;
     ++addressed;
-    lo0 = std::min(lo0, before[i]), hi0 = std::max(hi0, before[i]);
+    lo_a = std::min(lo_a, before[i]), hi_a = std::max(hi_a, before[i]);
     if (mu[i] == before[i]) continue;
     ++changed;
     const int p = pulley_of[static_cast<size_t>(i)];
     ++on[p >= 0 ? p : on.size() - 1];
+    lo0 = std::min(lo0, before[i]), hi0 = std::max(hi0, before[i]);
     lo1 = std::min(lo1, mu[i]), hi1 = std::max(hi1, mu[i]);
   }
   std::string m;
   if (changed == 0) {
     m = what + ": no element changed";
     if (addressed > 0)
-      m += " (the " + std::to_string(addressed) + " it sets already had mu " + value_range(lo0, hi0) + ")";
+      m += " (the " + std::to_string(addressed) + " it sets already had mu " + value_range(lo_a, hi_a) + ")";
   } else {
-    // the range before of the elements that changed alone
-    lo0 = INFINITY, hi0 = -INFINITY;
-    for (int i = 0; i < n; ++i)
-      if (!std::isnan(mu[i]) && mu[i] != before[i]) lo0 = std::min(lo0, before[i]), hi0 = std::max(hi0, before[i]);
     std::vector<std::string> where;
     for (size_t p = 0; p < on.size(); ++p)
       if (on[p] > 0)

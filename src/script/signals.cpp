@@ -187,6 +187,10 @@ int pending_signal() {
 const char* signal_name(int sig) {
   return sig == SIGINT ? "Ctrl-C" : sig == SIGHUP ? "SIGHUP" : "SIGTERM";
 }
+const char* pending_signal_name() {
+  const int sig = g_pending.load();
+  return signal_name(sig ? sig : SIGINT);
+}
 bool terminating() {
   const int s = g_pending.load();
   return s == SIGTERM || s == SIGHUP;

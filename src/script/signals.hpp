@@ -41,6 +41,9 @@ bool terminating();
 int pending_signal();
 // "Ctrl-C" (SIGINT), "SIGTERM" or "SIGHUP"
 const char* signal_name(int sig);
+// the name of the signal that stopped the command now running (pending_signal), "Ctrl-C" when
+// none is under way (a run the page paused, stopped by a Ctrl-C since done with)
+const char* pending_signal_name();
 // after a stop: "beltsim: interrupted|terminated|hung up; the outputs written so far are kept" on
 // stderr, and 128 + the signal's number
 int stopped_status();
