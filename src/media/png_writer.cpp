@@ -2,8 +2,12 @@
 
 #include <png.h>
 
+#include <cerrno>
 #include <cstdio>
+#include <cstdlib>
+#include <cstring>
 #include <memory>
+#include <optional>
 #include <stdexcept>
 #include <vector>
 
@@ -54,6 +58,34 @@ std::string png_size_problem(png_uint_32 width, png_uint_32 height, size_t row_b
   return "";
 }
 
+// Image::text_boxes as the chunk's text, and back ("x,y,w,h;..."); false when it is not that
+std::string boxes_text(const std::vector<PixelRect>& boxes) {
+  std::string s;
+  for (const PixelRect& r : boxes)
+    s += (s.empty() ? "" : ";") + std::to_string(r.x) + "," + std::to_string(r.y) + "," + std::to_string(r.w) + "," +
+         std::to_string(r.h);
+  return s;
+}
+
+bool parse_boxes(const std::string& s, std::vector<PixelRect>& out) {
+  const char* p = s.c_str();
+  while (*p) {
+    long v[4];
+    for (int k = 0; k < 4; ++k) {
+      if (k > 0 && *p++ != ',') return false;
+      char* end = nullptr;
+      errno = 0;
+      v[k] = std::strtol(p, &end, 10);
+      if (end == p || errno || v[k] < -long{kMaxPngSide} || v[k] > 2 * long{kMaxPngSide}) return false;
+      p = end;
+    }
+    if (v[2] <= 0 || v[3] <= 0) return false;
+    out.push_back({static_cast<int>(v[0]), static_cast<int>(v[1]), static_cast<int>(v[2]), static_cast<int>(v[3])});
+    if (*p && *p++ != ';') return false;  // a ';' between boxes (and one after the last) only
+  }
+  return true;
+}
+
 }  // namespace
 
 void write_png(const std::string& path, const Image& img) {
@@ -86,6 +118,16 @@ std::string encode_png(const Image& img, const std::string& what) {
   png_set_filter(png, PNG_FILTER_TYPE_BASE, PNG_FILTER_SUB);
   png_set_IHDR(png, info, img.width, img.height, 8, PNG_COLOR_TYPE_RGB, PNG_INTERLACE_NONE, PNG_COMPRESSION_TYPE_DEFAULT,
                PNG_FILTER_TYPE_DEFAULT);
+  // the text boxes before the pixels (read with the header): a few hundred bytes, stored plain
+  std::string boxes = boxes_text(img.text_boxes);
+  png_text chunk{};
+  if (!boxes.empty()) {
+    chunk.compression = PNG_TEXT_COMPRESSION_NONE;
+    chunk.key = const_cast<char*>(kTextBoxesKey);
+    chunk.text = boxes.data();
+    chunk.text_length = boxes.size();
+    png_set_text(png, info, &chunk, 1);
+  }
   png_write_info(png, info);
   png_write_image(png, rows.data());
   png_write_end(png, nullptr);
@@ -144,7 +186,18 @@ Image read_png(const std::string& path) {
   for (int y = 0; y < img.height; ++y) rows[y] = img.pixel(0, y);
   png_read_image(png, rows.data());
   png_read_end(png, nullptr);
+  // the text boxes' chunk, when there is one (read with the header)
+  png_textp texts = nullptr;
+  int n_texts = 0;
+  png_get_text(png, info, &texts, &n_texts);
+  std::optional<std::string> boxes;
+  for (int k = 0; k < n_texts; ++k)
+    if (std::strcmp(texts[k].key, kTextBoxesKey) == 0) boxes.emplace(texts[k].text, texts[k].text_length);
   png_destroy_read_struct(&png, &info, nullptr);
+  if (boxes && !parse_boxes(*boxes, img.text_boxes))
+    throw std::runtime_error("read_png " + path + ": its " + kTextBoxesKey +
+                             " chunk is not a list of x,y,w,h (whole numbers, w and h > 0) separated by ';': '" +
+                             boxes->substr(0, 60) + (boxes->size() > 60 ? "...'" : "'"));
   return img;
 }
 

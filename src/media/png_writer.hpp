@@ -1,5 +1,7 @@
 // PNG files through libpng: 8-bit RGB, no interlace. Throws std::runtime_error with the path and
-// libpng's message on failure. A PNG is written whole (io/output_dir.hpp: never through a link, a
+// libpng's message on failure. An image's text boxes (Image::text_boxes) travel in a tEXt chunk
+// before the pixels, keyword kTextBoxesKey, its text "x,y,w,h;x,y,w,h;..." (pixels, origin top-left);
+// none is written for an image without them. A PNG is written whole (io/output_dir.hpp: never through a link, a
 // reader finds the old file or the new one).
 #pragma once
 
@@ -9,6 +11,8 @@
 #include "media/image.hpp"
 
 namespace beltsim {
+
+inline constexpr const char* kTextBoxesKey = "beltsim:text-boxes";
 
 // its missing folders made (io/output_dir.hpp, output_place)
 void write_png(const std::string& path, const Image& img);
@@ -23,7 +27,9 @@ inline constexpr unsigned kMaxPngSide = 20000;
 inline constexpr long kMaxPngPixels = 100'000'000;
 // reads any 8-bit or 16-bit PNG (grey, palette, alpha are converted) as 8-bit RGB: only a regular
 // file (io/input_file.hpp), and only a header whose size lies within the limits above and within
-// what the file's bytes can hold, checked before anything of that size is allocated
+// what the file's bytes can hold, checked before anything of that size is allocated; the text boxes
+// too when the file has them (a chunk that is not a list of four whole numbers each, sides > 0, is
+// an error)
 Image read_png(const std::string& path);
 
 }  // namespace beltsim

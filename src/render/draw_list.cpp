@@ -63,6 +63,17 @@ void DrawList::ring(Vec2 c, double r0, double r1, Rgba col, int seg) {
   }
 }
 
+namespace {
+
+// the whole pixels covering [lo, hi] and 1 px around them (antialiased edges reach into it)
+PixelRect pixel_rect(double x0, double y0, double x1, double y1) {
+  const int l = static_cast<int>(std::floor(x0)) - 1, t = static_cast<int>(std::floor(y0)) - 1;
+  const int r = static_cast<int>(std::ceil(x1)) + 1, b = static_cast<int>(std::ceil(y1)) + 1;
+  return {l, t, r - l, b - t};
+}
+
+}  // namespace
+
 float DrawList::text(Vec2 at, const std::string& utf8, int px, Rgba col, Align align) {
   texts.push_back(utf8);
   if (!font) return 0;
@@ -71,6 +82,7 @@ float DrawList::text(Vec2 at, const std::string& utf8, int px, Rgba col, Align a
   // whole pixels: glyph bitmaps are sampled texel for pixel, so text stays crisp
   x = std::round(x);
   const float y = std::round(static_cast<float>(at.y()));
+  text_rects.push_back(pixel_rect(x, y - font->ascent(px), x + w, y + font->descent(px)));
   const float inv = 1.0f / Font::atlas_size;
   for (char32_t c : decode_utf8(utf8)) {
     const Glyph& g = font->glyph(c, px);
@@ -93,7 +105,18 @@ float DrawList::boxed_text(Vec2 at, const std::string& utf8, int px, Rgba col, R
   const Vec2 lo(x - b.pad, at.y() - b.above), hi(x + w + b.pad, at.y() + b.below);
   quad(lo, Vec2(hi.x(), lo.y()), hi, Vec2(lo.x(), hi.y()), box);
   boxes.push_back({utf8, lo, hi});
-  return text(at, utf8, px, col, align);
+  const size_t before = text_rects.size();
+  const float drawn = text(at, utf8, px, col, align);
+  // one rectangle for the two: the box, grown over the text's extent should a glyph reach past it
+  PixelRect r = pixel_rect(lo.x(), lo.y(), hi.x(), hi.y());
+  if (text_rects.size() > before) {
+    const PixelRect t = text_rects.back();
+    text_rects.pop_back();
+    const int x1 = std::max(r.x + r.w, t.x + t.w), y1 = std::max(r.y + r.h, t.y + t.h);
+    r.x = std::min(r.x, t.x), r.y = std::min(r.y, t.y), r.w = x1 - r.x, r.h = y1 - r.y;
+  }
+  text_rects.push_back(r);
+  return drawn;
 }
 
 void DrawList::arrow(Vec2 tail, Vec2 tip, double w, double head, Rgba col) {

@@ -30,6 +30,7 @@
 #include <utility>
 #include <vector>
 
+#include "media/image.hpp"
 #include "model/model.hpp"
 #include "render/colormap.hpp"
 #include "sim/frames.hpp"
@@ -86,6 +87,11 @@ struct DrawList {
     Vec2 lo, hi;  // [px] the box's top-left and bottom-right corners
   };
   std::vector<TextBox> boxes;          // every boxed text with its box, in order (for tests)
+  // [px] where each piece of text drawn lies, in order: a boxed text's box, a plain text's extent
+  // (its width, the font's ascent over the baseline and descent under it), rounded outward to
+  // whole pixels and grown by 1 px for the antialiasing; not clipped to the frame. The renderer
+  // hands them on with the picture (Image::text_boxes).
+  std::vector<PixelRect> text_rects;
   std::vector<std::pair<Vec2, Vec2>> travel;  // tail and tip [px] of the direction-of-travel arrows (for tests)
   std::vector<std::string> left_out;          // the legend's lines left out for want of room
   ColourScale scale;

@@ -237,7 +237,7 @@ void FrameBuilder::build(double t, const double* y, DrawList& out, const Drive* 
   const double* q = y;
   out.width = fs_.width, out.height = fs_.height;
   out.triangles.clear(), out.glyphs.clear(), out.elements.clear(), out.texts.clear(), out.boxes.clear(),
-      out.travel.clear(), out.left_out.clear();
+      out.text_rects.clear(), out.travel.clear(), out.left_out.clear();
   out.font = font_;
   out.scale = scale_;
   const double px = 1.0 / cam_.scale;  // one pixel in metres

@@ -2,6 +2,7 @@
 
 #include <GL/glcorearb.h>
 
+#include <algorithm>
 #include <stdexcept>
 #include <vector>
 
@@ -232,6 +233,13 @@ void GlRenderer::render(const DrawList& list, Image& out) {
   if (out.width != d.w || out.height != d.h) out = Image(d.w, d.h);
   gl.ReadPixels(0, 0, d.w, d.h, GL_RGB, GL_UNSIGNED_BYTE, out.rgb.data());
   d.check("rendering a frame");
+  // where the text is, clipped to the picture (text may run off an edge; none of it counts then)
+  out.text_boxes.clear();
+  for (const PixelRect& r : list.text_rects) {
+    const int x0 = std::max(r.x, 0), y0 = std::max(r.y, 0);
+    const int x1 = std::min(r.x + r.w, d.w), y1 = std::min(r.y + r.h, d.h);
+    if (x1 > x0 && y1 > y0) out.text_boxes.push_back({x0, y0, x1 - x0, y1 - y0});
+  }
 }
 
 std::string GlRenderer::gl_renderer() const {

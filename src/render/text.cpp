@@ -76,6 +76,18 @@ float Font::width(const std::string& utf8, int px) {
   return w;
 }
 
+float Font::ascent(int px) {
+  FT_Face f = impl_->face;
+  if (impl_->size != px) FT_Set_Pixel_Sizes(f, 0, px), impl_->size = px;
+  return static_cast<float>(f->size->metrics.ascender) / 64.0f;
+}
+
+float Font::descent(int px) {
+  FT_Face f = impl_->face;
+  if (impl_->size != px) FT_Set_Pixel_Sizes(f, 0, px), impl_->size = px;
+  return static_cast<float>(-f->size->metrics.descender) / 64.0f;
+}
+
 std::u32string decode_utf8(const std::string& s) {
   std::u32string out;
   for (size_t i = 0; i < s.size();) {

@@ -32,6 +32,10 @@ class Font {
 
   const Glyph& glyph(char32_t code, int px);
   float width(const std::string& utf8, int px);
+  // [px] the font's extent above and below the baseline at this size (both positive): where its
+  // glyphs reach, for the frame's text boxes (Image::text_boxes)
+  float ascent(int px);
+  float descent(int px);
   const std::string& path() const { return path_; }
 
   // the atlas: atlas_size² bytes of coverage; version grows whenever glyphs are added

@@ -68,6 +68,21 @@ TEST(Png, RoundTrip) {
   EXPECT_EQ(read_png(deep.string()).rgb, img.rgb);
 }
 
+// a frame's text boxes travel in the PNG (a tEXt chunk, `beltsim compare --ignore-text`); a picture
+// without them reads back without them
+TEST(Png, TextBoxesRoundTrip) {
+  Image img = pattern(37, 21, 1);
+  img.text_boxes = {{0, 0, 37, 5}, {3, 7, 12, 9}, {30, 19, 7, 2}};
+  const fs::path f = temp_dir() / "boxes.png";
+  write_png(f.string(), img);
+  const Image back = read_png(f.string());
+  EXPECT_EQ(back.rgb, img.rgb);
+  EXPECT_EQ(back.text_boxes, img.text_boxes);
+  img.text_boxes.clear();
+  write_png(f.string(), img);
+  EXPECT_TRUE(read_png(f.string()).text_boxes.empty());
+}
+
 TEST(Video, ReadBackByFfprobe) {
   const fs::path f = temp_dir() / "clip.mp4";
   VideoOptions o;

@@ -309,6 +309,42 @@ TEST_F(Fixture, TheTimeTellsConsecutiveFramesApart) {
   EXPECT_EQ(head(100, 100, 0.3), "t = 0.3000");  // 1e-4 apart: 4 are enough
 }
 
+// every glyph drawn lies in a recorded text rectangle (what `beltsim compare --ignore-text` leaves
+// out), a boxed text's rectangle covering its box; a plain text's its extent from the font
+TEST_F(Fixture, EveryGlyphLiesInATextRectangle) {
+  const Scene& sc = wet();
+  const Eigen::VectorXd y = test::moving_state(sc);
+  FrameBuilder b(sc, fs(), &font);
+  DrawList dl;
+  b.build(0.3, y.data(), dl);
+  dl.text(Vec2(20.3, 40.6), "plain \u03c9 = 1.25 rad/s", 17, Rgba{0, 0, 0, 1}, DrawList::centre);
+  ASSERT_EQ(dl.text_rects.size(), dl.boxes.size() + 1);  // the frame's text is all boxed
+  auto inside = [](const PixelRect& r, double x0, double y0, double x1, double y1) {
+    return r.x <= x0 && r.y <= y0 && x1 <= r.x + r.w && y1 <= r.y + r.h;
+  };
+  for (size_t k = 0; k < dl.boxes.size(); ++k)
+    EXPECT_TRUE(
+        inside(dl.text_rects[k], dl.boxes[k].lo.x(), dl.boxes[k].lo.y(), dl.boxes[k].hi.x(), dl.boxes[k].hi.y()))
+        << dl.boxes[k].text;
+  ASSERT_EQ(dl.glyphs.size() % 6, 0u);
+  for (size_t g = 0; g < dl.glyphs.size(); g += 6) {
+    double x0 = 1e9, y0 = 1e9, x1 = -1e9, y1 = -1e9;
+    for (size_t v = g; v < g + 6; ++v)
+      x0 = std::min<double>(x0, dl.glyphs[v].x), y0 = std::min<double>(y0, dl.glyphs[v].y),
+      x1 = std::max<double>(x1, dl.glyphs[v].x), y1 = std::max<double>(y1, dl.glyphs[v].y);
+    EXPECT_TRUE(std::any_of(dl.text_rects.begin(), dl.text_rects.end(),
+                            [&](const PixelRect& r) { return inside(r, x0, y0, x1, y1); }))
+        << "a glyph at " << x0 << ", " << y0 << " to " << x1 << ", " << y1;
+  }
+  // the plain text's: its width and the font's extent, 1 px around, not the whole frame
+  const PixelRect& r = dl.text_rects.back();
+  EXPECT_NEAR(r.w, font.width("plain \u03c9 = 1.25 rad/s", 17) + 2, 2.01);
+  EXPECT_NEAR(r.h, font.ascent(17) + font.descent(17) + 2, 2.01);
+  // a new frame starts a new list
+  b.build(0.3, y.data(), dl);
+  EXPECT_EQ(dl.text_rects.size(), dl.boxes.size());
+}
+
 // the text states the time, each pulley's speed and slip, the quantity, its unit and range
 TEST_F(Fixture, TextAndColourBarSayWhatIsShown) {
   const Scene& sc = wet();
