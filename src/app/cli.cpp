@@ -130,6 +130,14 @@ CLI::App* add_compare_command(CLI::App& app, CompareOptions& o) {
   c->add_option("--diff", o.diff,
                 "PNG: the difference image, always written (default: A_diff.png beside A, written when they differ)")
       ->type_name("PNG");
+  c->add_option("--mask", o.mask,
+                "PNG: leave out W by H pixels from X,Y (pixels, from the top-left corner), clipped to the picture "
+                "(repeatable)")
+      ->type_name("X,Y,W,H")
+      ->allow_extra_args(false);
+  c->add_flag("--ignore-text", o.ignore_text,
+              "PNG: leave out the text of beltsim's frames (the boxes their PNGs record), for golden frames that "
+              "survive a font upgrade");
   c->add_option("--rtol", o.rtol, "CSV: relative tolerance (default 1e-6)")->type_name("R");
   c->add_option("--atol", o.atol,
                 "CSV: absolute tolerance, of every column (A) or of the columns of a unit (UNIT=A: N, N.m, m, m/s, "
@@ -148,7 +156,8 @@ CLI::App* add_compare_command(CLI::App& app, CompareOptions& o) {
               "the two must start and end at the same times");
   c->footer(
       "PNGs: the golden images' metric (a pixel differs when any channel differs by more than L\n"
-      "levels). CSVs: columns matched by name; a and b agree when |a - b| <= atol + rtol*max(|a|, |b|),\n"
+      "levels), masked pixels left out (dark blue in the difference image). CSVs: columns matched\n"
+      "by name; a and b agree when |a - b| <= atol + rtol*max(|a|, |b|),\n"
       "atol by the column's unit (100 N, 10 N.m, 10 rad/s, 1 rad, 0.1 m, 1 m/s, 10 J, 1 s, 0.01 for a\n"
       "ratio, times rtol, unless given); NaN against a number is reported apart; rows aligned on the\n"
       "'t' column: B's rows at A's times, or B interpolated linearly onto A's times when A has times\n"

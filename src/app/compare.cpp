@@ -7,6 +7,7 @@
 #include <set>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 #include "app/options.hpp"
 #include "io/input_file.hpp"
@@ -57,6 +58,29 @@ bool is_png(const std::string& path) {
   }
 }
 
+// --mask X,Y,W,H: four whole numbers [px], W and H > 0 (whether it meets the image is checked once
+// the image is read)
+PixelRect mask_rect(const std::string& text) {
+  std::vector<std::string> parts;
+  for (size_t at = 0;;) {
+    const size_t comma = text.find(',', at);
+    parts.push_back(text.substr(at, comma - at));
+    if (comma == std::string::npos) break;
+    at = comma + 1;
+  }
+  if (parts.size() != 4)
+    throw UsageError("--mask needs X,Y,W,H (pixels from the top-left corner, width and height), got '" + text + "'");
+  long v[4];
+  for (int k = 0; k < 4; ++k) {
+    const auto x = script::decimal(parts[k]);
+    if (!x || *x != std::floor(*x) || std::abs(*x) > 1e9)
+      throw UsageError("--mask " + text + ": X, Y, W and H must be whole numbers of pixels, got '" + parts[k] + "'");
+    v[k] = static_cast<long>(*x);
+  }
+  if (v[2] <= 0 || v[3] <= 0) throw UsageError("--mask " + text + ": the width and height W and H must be > 0");
+  return {static_cast<int>(v[0]), static_cast<int>(v[1]), static_cast<int>(v[2]), static_cast<int>(v[3])};
+}
+
 std::string size_text(const Image& i) {
   return std::to_string(i.width) + "x" + std::to_string(i.height);
 }
@@ -73,6 +97,8 @@ int compare_pngs(const CompareOptions& o) {
   if (o.tol) tol.level_tol = static_cast<int>(whole("--tol", *o.tol, 255));
   if (o.max_bad) tol.max_bad_pixels = whole("--max-bad", *o.max_bad, 1e15);
   if (o.diff) require_png("--diff", *o.diff);
+  std::vector<PixelRect> mask;
+  for (const std::string& m : o.mask) mask.push_back(mask_rect(m));
   Image a, b;
   try {
     a = read_png(o.a);
@@ -80,12 +106,27 @@ int compare_pngs(const CompareOptions& o) {
   } catch (const std::exception& e) {
     throw Unreadable(e.what());
   }
-  const ImageComparison c = compare_images(a, b, tol.level_tol);
-  if (!c.same_size) {
+  if (a.width != b.width || a.height != b.height) {
     std::printf("differ: the sizes differ: %s is %s, %s is %s\n", o.a.c_str(), size_text(a).c_str(), o.b.c_str(),
                 size_text(b).c_str());
     return 1;
   }
+  // a mask that misses the picture is a mistake (a typo, or the picture of another size): said, not ignored
+  for (size_t k = 0; k < mask.size(); ++k) {
+    const PixelRect& r = mask[k];
+    if (r.x >= a.width || r.y >= a.height || r.x + r.w <= 0 || r.y + r.h <= 0)
+      throw UsageError("--mask " + o.mask[k] + " lies wholly outside the " + size_text(a) + " pictures");
+  }
+  // the text of both frames: a label that moved or grew in one is left out where either has it
+  if (o.ignore_text) {
+    if (a.text_boxes.empty() && b.text_boxes.empty())
+      throw UsageError("--ignore-text: " + o.a + " and " + o.b +
+                       " carry no text boxes (made by another program or an older beltsim); leave regions out with "
+                       "--mask X,Y,W,H");
+    mask.insert(mask.end(), a.text_boxes.begin(), a.text_boxes.end());
+    mask.insert(mask.end(), b.text_boxes.begin(), b.text_boxes.end());
+  }
+  const ImageComparison c = compare_images(a, b, tol.level_tol, mask);
   const bool match = c.match(tol);
   std::string diff_note;
   bool diff_failed = false;
@@ -94,25 +135,30 @@ int compare_pngs(const CompareOptions& o) {
     const std::string path = o.diff ? *o.diff : (pa.parent_path() / (pa.stem().string() + "_diff.png")).string();
     try {
       write_png(path, c.diff);
-      diff_note = "; difference image (differing pixels red): " + path;
+      diff_note = std::string("; difference image (differing pixels red") + (mask.empty() ? "" : ", masked dark blue") +
+                  "): " + path;
     } catch (const std::exception& e) {
       std::fprintf(stderr, "beltsim compare: %s\n", e.what());
       mark_output_failure_shown(e.what());
       diff_failed = true;
     }
   }
-  std::printf("%s: %ld of %s pixels differ by more than %d levels (%ld allowed); largest difference %d levels%s%s\n",
+  const std::string masked = mask.empty() ? "" : "; " + std::to_string(c.masked) + " pixels masked";
+  std::printf("%s: %ld of %s pixels differ by more than %d levels (%ld allowed); largest difference %d levels%s%s%s\n",
               match ? "match" : "differ", c.bad, size_text(a).c_str(), tol.level_tol, tol.max_bad_pixels, c.worst,
               c.worst ? (" at x = " + std::to_string(c.worst_x) + ", y = " + std::to_string(c.worst_y)).c_str() : "",
-              diff_note.c_str());
+              masked.c_str(), diff_note.c_str());
   // one meaning per status: 3 whenever the difference image could not be written, the line
   // above saying whether they match (docs/testing-your-scenario.md)
   return diff_failed ? kDiffNotWritten : match ? 0 : 1;
 }
 
 int compare_csvs(const CompareOptions& o) {
-  for (const auto& [given, name] :
-       {std::pair{bool(o.tol), "--tol"}, {bool(o.max_bad), "--max-bad"}, {bool(o.diff), "--diff"}})
+  for (const auto& [given, name] : {std::pair{bool(o.tol), "--tol"},
+                                    {bool(o.max_bad), "--max-bad"},
+                                    {bool(o.diff), "--diff"},
+                                    {!o.mask.empty(), "--mask"},
+                                    {o.ignore_text, "--ignore-text"}})
     if (given) throw UsageError(std::string(name) + " is for PNG files; " + o.a + " and " + o.b + " are not PNGs");
   plot::CsvTolerance tol;
   if (o.rtol) tol.rtol = non_negative("--rtol", *o.rtol);
@@ -179,7 +225,7 @@ int cmd_compare(const CompareOptions& o) {
     const bool pa = is_png(o.a), pb = is_png(o.b);
     if (pa != pb)
       throw UsageError("cannot compare a PNG with a file that is not one: " + (pa ? o.a : o.b) + " is a PNG, " +
-                  (pa ? o.b : o.a) + " is not");
+                       (pa ? o.b : o.a) + " is not");
     return pa ? compare_pngs(o) : compare_csvs(o);
   } catch (const UsageError& e) {
     std::fprintf(stderr, "beltsim: %s\nRun 'beltsim compare --help' for the usage.\n", e.what());

@@ -13,6 +13,8 @@ namespace beltsim::app {
 struct CompareOptions {
   std::string a, b;
   std::optional<std::string> tol, max_bad, diff;  // PNGs
+  std::vector<std::string> mask;                  // PNGs: X,Y,W,H [px] left out
+  bool ignore_text = false;                       // PNGs: the frames' text boxes left out
   std::optional<std::string> rtol;                // CSVs
   std::vector<std::string> atol;                  // CSVs: A (every column) or UNIT=A
   std::vector<std::string> col_tol;               // CSVs: NAME=RTOL[,ATOL]

@@ -35,6 +35,37 @@ def write_png(path, width, height, pixel):
                 chunk(b"IDAT", zlib.compress(raw)) + chunk(b"IEND", b""))
 
 
+def read_png(path):
+    """(width, height, pixel(x, y) -> (r, g, b), the tEXt chunks {keyword: text}) of an 8-bit RGB PNG
+    as beltsim writes it (filters None, Sub, Up only)"""
+    with open(path, "rb") as f:
+        data = f.read()
+    i, idat, texts = 8, b"", {}
+    while i < len(data):
+        n, kind = struct.unpack(">I", data[i:i + 4])[0], data[i + 4:i + 8]
+        body = data[i + 8:i + 8 + n]
+        if kind == b"IHDR":
+            width, height = struct.unpack(">II", body[:8])
+        elif kind == b"IDAT":
+            idat += body
+        elif kind == b"tEXt":
+            key, text = body.split(b"\0", 1)
+            texts[key.decode()] = text.decode()
+        i += 12 + n
+    raw, rows, stride = zlib.decompress(idat), [], 3 * width
+    for y in range(height):
+        kind, line = raw[y * (stride + 1)], bytearray(raw[y * (stride + 1) + 1:(y + 1) * (stride + 1)])
+        for x in range(stride):
+            if kind == 1:
+                line[x] = (line[x] + (line[x - 3] if x >= 3 else 0)) & 255
+            elif kind == 2:
+                line[x] = (line[x] + rows[-1][x] if rows else line[x]) & 255
+            elif kind != 0:
+                raise ValueError("filter %d" % kind)
+        rows.append(line)
+    return width, height, lambda x, y: tuple(rows[y][3 * x:3 * x + 3]), texts
+
+
 def square(dx, level=200):
     """grey background, a 20x20 square at (30 + dx, 20)"""
     return lambda x, y: (level, 40, 40) if 30 + dx <= x < 50 + dx and 20 <= y < 40 else (90, 90, 90)
@@ -151,6 +182,145 @@ class Pngs(Base):
         code, out, err = self.compare("a.png", "b.png")
         self.assertEqual(code, 2)
         self.assertIn("b.png", err)
+
+
+class Masks(Base):
+    """--mask X,Y,W,H: pixels left out of the comparison, counted and shown dark blue."""
+
+    def setUp(self):
+        super().setUp()
+        write_png(self.path("a.png"), 80, 60, square(0))
+        write_png(self.path("b.png"), 80, 60, square(2))  # differs in columns 30, 31, 50, 51, rows 20..39
+
+    def test_a_mask_over_the_change_makes_a_match_one_beside_it_does_not(self):
+        code, out, err = self.compare("a.png", "b.png", "--mask", "28,18,26,24")
+        self.assertEqual((code, err), (0, ""))
+        self.assertEqual(out, "match: 0 of 80x60 pixels differ by more than 16 levels (12 allowed); largest "
+                              "difference 0 levels; 624 pixels masked\n")
+        code, out, err = self.compare("a.png", "b.png", "--mask", "0,0,40,60")  # the left edge only
+        self.assertEqual(code, 1, err)
+        self.assertTrue(out.startswith("differ: 40 of 80x60 pixels differ by more than 16 levels"), out)
+        self.assertIn("; 2400 pixels masked; difference image (differing pixels red, masked dark blue): a_diff.png",
+                      out)
+        # two masks, each over one edge; overlapping masks count each pixel once
+        code, out, err = self.compare("a.png", "b.png", "--mask", "30,20,2,20", "--mask", "50,20,2,20",
+                                      "--mask", "50,20,1,20")
+        self.assertEqual(code, 0, out + err)
+        self.assertIn("; 80 pixels masked", out)
+
+    def test_a_mask_partly_outside_is_clipped(self):
+        code, out, err = self.compare("a.png", "b.png", "--mask", "-10,-10,70,60")  # x 0..59, y 0..49
+        self.assertEqual(code, 0, out + err)
+        self.assertIn("; 3000 pixels masked", out)
+
+    def test_the_difference_image_shows_masked_pixels_dark_blue(self):
+        code, out, err = self.compare("a.png", "b.png", "--mask", "0,0,40,60", "--diff", "d.png")
+        self.assertEqual(code, 1, err)
+        w, h, pixel, texts = read_png(self.path("d.png"))
+        r, g, b = pixel(10, 10)  # masked, over grey
+        self.assertTrue(b >= 90 and r == g and b > r + 60, pixel(10, 10))
+        self.assertEqual(pixel(50, 25), (255, 0, 0))  # differs, not masked
+        r, g, b = pixel(70, 10)  # neither: grey
+        self.assertTrue(r == g == b, pixel(70, 10))
+
+    def test_bad_masks_are_usage_errors(self):
+        for value, message in [("1,2,3", "--mask needs X,Y,W,H (pixels from the top-left corner, width and "
+                                         "height), got '1,2,3'"),
+                               ("1,2,3,4,5", "--mask needs X,Y,W,H"),
+                               ("1,2,0,5", "--mask 1,2,0,5: the width and height W and H must be > 0"),
+                               ("1,2,5,-5", "--mask 1,2,5,-5: the width and height W and H must be > 0"),
+                               ("1.5,2,3,4", "--mask 1.5,2,3,4: X, Y, W and H must be whole numbers of pixels, "
+                                             "got '1.5'"),
+                               ("a,2,3,4", "--mask a,2,3,4: X, Y, W and H must be whole numbers of pixels"),
+                               ("80,0,5,5", "--mask 80,0,5,5 lies wholly outside the 80x60 pictures"),
+                               ("-5,10,5,5", "--mask -5,10,5,5 lies wholly outside the 80x60 pictures")]:
+            code, out, err = self.compare("a.png", "b.png", "--mask", value)
+            self.assertEqual((code, out), (2, ""), value)
+            self.assertIn("beltsim: " + message, err)
+            self.assertIn("Run 'beltsim compare --help' for the usage.", err)
+
+    def test_ignore_text_needs_pngs_with_text_boxes(self):
+        code, out, err = self.compare("a.png", "b.png", "--ignore-text")
+        self.assertEqual((code, out), (2, ""))
+        self.assertIn("beltsim: --ignore-text: a.png and b.png carry no text boxes (made by another program or an "
+                      "older beltsim); leave regions out with --mask X,Y,W,H\n", err)
+
+    def test_csvs_refuse_them(self):
+        write_csv(self.path("a.csv"), ["t"], [[0]])
+        for args in (["--mask", "0,0,1,1"], ["--ignore-text"]):
+            code, out, err = self.compare("a.csv", "a.csv", *args)
+            self.assertEqual(code, 2, args)
+            self.assertIn(args[0] + " is for PNG files; a.csv and a.csv are not PNGs", err)
+
+
+class FrameText(Base):
+    """--ignore-text on beltsim's own frames: another font (as after a font upgrade) changes only the
+    text, which the frames' PNGs record; a change of the drawing still fails."""
+    SCRIPT = """
+local drive = beltsim.scene {
+  pulleys = {
+    { name = "driver", centre = {0, 0},    radius = 0.1, inertia = 0.025, torque = beltsim.ramp(0.3, -70) },
+    { name = "driven", centre = {0.29, 0}, radius = 0.1, inertia = 0.025, torque = { per_speed = -0.955 } },
+  },
+  belt = { elements = 40, pretension = 500, direction = "cw" },
+}
+drive:run { t_end = 0.01, progress = false, keep_states = true,
+            frames = { fps = 30, slowdown = 10, size = {320, 180}, png = false, video = false } }
+"""
+    BOLD = "/usr/share/fonts/truetype/dejavu/DejaVuSans-Bold.ttf"  # fonts-dejavu-core, as the built-in one
+
+    def setUp(self):
+        super().setUp()
+        with open(self.path("d.lua"), "w") as f:
+            f.write(self.SCRIPT)
+        code, out, err = run(["run", "d.lua", "--out", "out"], cwd=self.dir)
+        self.assertEqual(code, 0, err)
+
+    def render(self, state, png, *options, font=None):
+        env = dict(os.environ)
+        env.pop("BELTSIM_FONT", None)
+        if font:
+            env["BELTSIM_FONT"] = font
+        code, out, err = run(["render", os.path.join("out", "states", "state_%05d.ckpt" % state), "--out", png] +
+                             list(options), cwd=self.dir, env=env)
+        self.assertEqual(code, 0, err)
+
+    def test_another_font_differs_and_matches_with_ignore_text(self):
+        if not os.path.exists(self.BOLD):
+            self.skipTest(self.BOLD + " missing")
+        self.render(3, "a.png")
+        self.render(3, "b.png", font=self.BOLD)
+        code, out, err = self.compare("a.png", "b.png")
+        self.assertEqual(code, 1, out + err)
+        code, out, err = self.compare("a.png", "b.png", "--ignore-text", "--diff", "d.png")
+        self.assertEqual((code, err), (0, ""), out)
+        self.assertTrue(re.match(r"match: 0 of 320x180 pixels differ by more than 16 levels \(12 allowed\); "
+                                 r"largest difference 0 levels; \d+ pixels masked; difference image \(differing "
+                                 r"pixels red, masked dark blue\): d.png\n$", out), out)
+        # the boxes are in the frames' PNGs (the bold text's wider), the union of both masked, and the
+        # difference image is dark blue inside them only
+        masked = set()
+        for name in ("a.png", "b.png"):
+            texts = read_png(self.path(name))[3]
+            boxes = [tuple(int(v) for v in box.split(",")) for box in texts["beltsim:text-boxes"].split(";")]
+            self.assertGreaterEqual(len(boxes), 8)  # time, two pulley lines, two names, bar, legend
+            for x0, y0, bw, bh in boxes:
+                masked |= {(x, y) for x in range(x0, x0 + bw) for y in range(y0, y0 + bh)}
+        self.assertIn("; %d pixels masked" % len(masked), out)
+        w, h, diff, _ = read_png(self.path("d.png"))
+        for (x, y) in [(x, y) for x in range(0, w, 7) for y in range(0, h, 5)]:
+            r, g, b = diff(x, y)
+            self.assertEqual((x, y) in masked, b > r + 60, (x, y, diff(x, y)))
+
+    def test_a_change_of_the_drawing_still_differs_with_ignore_text(self):
+        self.render(3, "a.png")
+        self.render(1, "b.png")  # the drive as it was 2/300 s earlier: pulleys and belt moved
+        code, out, err = self.compare("a.png", "b.png", "--ignore-text")
+        self.assertEqual(code, 1, out + err)
+        self.render(3, "c.png", "--range", "0,2000")  # the same state in other colours
+        code, out, err = self.compare("a.png", "c.png", "--ignore-text")
+        self.assertEqual(code, 1, out + err)
+        self.assertIn(" pixels masked; difference image (differing pixels red, masked dark blue): a_diff.png", out)
 
 
 class Csvs(Base):
