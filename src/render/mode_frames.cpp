@@ -39,6 +39,15 @@ std::vector<double> tension_at(const std::vector<std::complex<double>>& change, 
 
 }  // namespace
 
+std::string still_reach_text(const std::vector<double>& at_still) {
+  double reach = 0;
+  for (double v : at_still) reach = std::max(reach, std::abs(v));
+  if (!(reach < 0.95)) return "";
+  char b[80];
+  std::snprintf(b, sizeof b, "colours here within \u00b1%.2f", reach);
+  return b;
+}
+
 // each pulley's line of a mode picture's text band: how the mode moves its rim (R·|shape| of its
 // angle) and, on a tensioner arm, its centre (arm length·|shape| of the arm's angle), as shares of
 // the mode's largest point displacement (the shape's scale: 1 m) and phases from that point's
@@ -85,7 +94,7 @@ std::vector<std::string> draw_modes(const Scene& sc, const Drive& d, const Eigen
   fs.width = p.width;
   fs.height = p.height;
   fs.png_dir = p.dir;  // (draws() only: the files are written here)
-  fs.given = FrameSettings::Given{"tension change", "\u00d7 its largest", "+ : stretches"};
+  fs.given = FrameSettings::Given{"tension change", "\u00d7 its largest", "> 0: stretched"};
   fs.range_lo = -1, fs.range_hi = 1;
   FrameDrawer drawer(sc, fs);  // one GL context for every mode
   for (int k = 0; k < count; ++k) {
@@ -93,12 +102,18 @@ std::vector<std::string> draw_modes(const Scene& sc, const Drive& d, const Eigen
     const std::string base = (fs::path(p.dir) / mode_file_base(k, m.frequency)).string();
     char caption[96];
     std::snprintf(caption, sizeof caption, "mode %d: %.2f Hz, \u03b6 %.4f", k + 1, m.frequency, m.damping);
-    drawer.set_caption(caption);
     drawer.set_pulley_lines(mode_pulley_lines(sc.model, m));
     const std::vector<std::complex<double>> change = mode_tension_change(sc, d, a.t, y, m);
     const Eigen::VectorXd peak = mode_state(y, m, amplitude, 0.0);
     const std::vector<double> at_peak = tension_at(change, 0.0);
+    // the still is the largest deflection, where the tension change need not be at its largest
+    // (a span's sideways swing and its pulleys' turning apart, a quarter cycle off): its caption
+    // says how far the colours reach there, so that pale spans are not read as spans that do not
+    // stretch (a user's trial: ±0.4 in the still, ±1 in the video)
+    const std::string reach = still_reach_text(at_peak);
+    drawer.set_caption(reach.empty() ? std::string(caption) : std::string(caption) + ", " + reach);
     write_png(base + ".png", drawer.draw(a.t, peak.data(), d, nullptr, &at_peak));
+    drawer.set_caption(caption);
     written.push_back(base + ".png");
     if (!p.video) continue;
     constexpr int kPerCycle = 24, kCycles = 3;

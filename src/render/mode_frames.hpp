@@ -22,6 +22,11 @@ struct ModePictures {
 // largest point displacement and phase ("driver: rim 0.420 at +180°")
 std::vector<std::string> mode_pulley_lines(const Model& model, const Mode& m);
 
+// the still's note on how far its colours reach ("colours here within ±0.40"),
+// empty where they reach 0.95 or more: at_still, each element's tension change at the still's
+// phase on the scale of −1 to 1 (the largest over the cycle)
+std::string still_reach_text(const std::vector<double>& at_still);
+
 // Draws the modes of `a` (analysed at the state y of the drive d) into DIR/mode_NN_<f>Hz.png (NN
 // from 01, the mode's number in modes.csv; f its frequency) and the videos asked for (.mp4 beside
 // them), after removing DIR's files of those names (an earlier analysis's: remove_numbered,

@@ -503,6 +503,16 @@ TEST_F(Fixture, AModesPictureSaysHowTheModeMovesEachPulley) {
   EXPECT_EQ(header_line(dl, p1.name), lines[1]);
 }
 
+// a mode's still is its largest deflection, where the tension change may reach a part of its
+// cycle's largest: the caption then says how far (a user's trial read pale spans in the still as
+// spans that do not stretch, where the video showed them at ±1); none where the colours reach the
+// bar's ends
+TEST(ModePictures, TheStillSaysHowFarItsColoursReach) {
+  EXPECT_EQ(still_reach_text({0.1, -0.4, 0.25}), "colours here within \u00b10.40");
+  EXPECT_EQ(still_reach_text({0.3, -0.97}), "");
+  EXPECT_EQ(still_reach_text({1.0}), "");
+}
+
 // values the caller gives (a mode's change of tension: render/mode_frames.cpp) colour the belt in
 // place of the quantity, on the diverging map over the range given, their name, unit and sign said
 // in the text band, on the bar and in the legend; no element is past the bar's ends
