@@ -182,6 +182,7 @@ ProgressParts ProgressLine::run_parts(bool last) const {
   parts.elapsed = duration_text(wall_) + " elapsed";
   if (!last) parts.left = "about " + duration_text(wall_left(seen_, t0_, t_, target_, wall_)) + " left";
   parts.steps = std::to_string(steps_) + " steps";
+  if (!last && h_recent_ > 0) parts.steps += " (lately " + rounded_text(h_recent_, 2) + " s each)";
   return parts;
 }
 
@@ -231,7 +232,7 @@ void ProgressLine::draw(bool last) {
 RunProgress ProgressLine::callback() {
   if (!enabled_) return {};
   return [this](double t, double target, const WorkCounters& w, double wall) {
-    if (t0_ < 0) t0_ = t;
+    if (t0_ < 0) t0_ = drawn_t_ = t;
     // the integrator's last step may end past the target (the samples and callbacks up to the
     // target are read from its dense output): the line shows the run's progress, at most all of it
     t_ = std::min(t, target), target_ = target, wall_ = wall, steps_ = w.steps - steps_before_;
@@ -240,6 +241,11 @@ RunProgress ProgressLine::callback() {
     // and the one before them
     seen_.emplace_back(wall, t_);
     while (seen_.size() > 2 && seen_[1].first <= wall / 3) seen_.pop_front();
+    // the mean step since the last drawing: a run held to tiny steps (rkf45 in the friction band,
+    // a stiff transient) shows why its estimate is hours (a user's trial: "about 5 h 44 min left",
+    // the steps 7 ns, nothing on the line said so)
+    h_recent_ = steps_ > drawn_steps_ ? (t_ - drawn_t_) / static_cast<double>(steps_ - drawn_steps_) : NAN;
+    drawn_t_ = t_, drawn_steps_ = steps_;
     draw(false);
   };
 }

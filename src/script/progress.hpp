@@ -76,6 +76,9 @@ class ProgressLine {
   // the last state reported (or finish's): what the line shows
   double t_ = 0, target_ = 0, wall_ = 0;
   long steps_ = 0;
+  // the time and steps at the last drawing, and the mean step from there to the drawing after it
+  double drawn_t_ = 0, h_recent_ = NAN;
+  long drawn_steps_ = 0;
   size_t width_ = 0;  // of the text drawn last on the terminal, blanked by a shorter one
   std::deque<std::pair<double, double>> seen_;  // (wall, t) of the line's drawings
   // a build's (build_callback): the last state it told, and whether it made its scene

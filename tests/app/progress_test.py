@@ -220,7 +220,7 @@ class ProgressTest(unittest.TestCase):
         for text in ["written by io.write", "written to io.stdout", "written to io.stderr"]:
             at = raw.find(text)
             self.assertGreater(at, last, "%s missing or out of order: %r" % (text, raw))
-            self.assertRegex(raw[last:at + len(text)], r"beltsim: t = [^\r\n]*steps *\r?\n" + re.escape(text) + "$",
+            self.assertRegex(raw[last:at + len(text)], r"beltsim: t = [^\r\n]*steps( \(lately [^)]*\))? *\r?\n" + re.escape(text) + "$",
                              "%s does not follow a progress line, on a line of its own: %r" % (text, raw))
             last = at
         self.assertGreater(raw.rfind("beltsim: t = "), last, raw)
@@ -235,6 +235,19 @@ class ProgressTest(unittest.TestCase):
             self.assertRegex(drawn[-1], r"^beltsim: t = 0\.1500 s of 0\.15 s \(100 %\), [0-9]+ s elapsed, [0-9]+ steps$",
                              name)
             self.assertRegex(raw[raw.rfind(drawn[-1]):], r"^[^\r\n]*steps *\r\n", name)
+
+    def test_the_line_says_how_long_the_steps_are_lately(self):
+        # each drawing but the last gives the mean step since the one before it: a run held to tiny
+        # steps shows why its estimate is hours (a user's trial: rkf45's 7 ns steps went unsaid)
+        code, raw = on_terminal([BELTSIM, "run", self.script("batch.lua", BATCH)], self.dir)
+        self.assertEqual(code, 0, raw)
+        form = r"beltsim: t = ([0-9.]+) s of [^\r\n]*?, ([0-9]+) steps \(lately ([0-9.e+-]+) s each\)"
+        drawn = [(float(t), int(n), float(h)) for t, n, h in re.findall(form, raw)]
+        self.assertGreaterEqual(len(drawn), 2, raw)
+        for (t1, n1, _), (t2, n2, h) in zip(drawn, drawn[1:]):
+            # (the times are written to 4 decimals, the step to 2 significant digits)
+            self.assertAlmostEqual(h, (t2 - t1) / (n2 - n1), delta=0.05 * h + 1e-4 / (n2 - n1))
+        self.assertNotIn("lately", progress_texts(raw)[-1])
 
     def test_a_run_stopped_shows_where(self):
         # Ctrl-C (SIGINT) once the progress shows (the run's own code, no Lua code that ^C would
