@@ -325,6 +325,14 @@ TEST(LawsApi, BadLawsNameTheKey) {
            {"torque = { 1, { sine = { amplitude = 1, frequency = -2 } } }", "sine.frequency must be >= 0"},
            {"speed = { per_speed_table = {{0, 1}, {1, 2}} }", "a prescribed speed cannot depend on the speed"},
            {"torque = { [5] = 1 }", "named terms and a list of laws without holes expected"},
+           // a helper's value is checked where it is given, in that key's unit (a speed's NaN was
+           // "beltsim ramp.to ... (got nan N·m)"); its own keys name it with a dot
+           {"speed = beltsim.ramp{ t1 = 0.05, to = 0/0 }", "pulley 'driven'.speed ramp.to must be a finite number (got nan rad/s)"},
+           {"speed = beltsim.sine{ amplitude = 1/0, frequency = 2 }", "pulley 'driven'.speed sine.amplitude must be a finite number (got inf rad/s)"},
+           {"torque = beltsim.step(0.1, 0, 0/0)", "pulley 'driven'.torque step.to must be a finite number (got nan N·m)"},
+           {"torque = beltsim.sine{ amplitude = 1, frequency = -2 }", "beltsim.sine.frequency must be >= 0 (got -2 Hz)"},
+           {"torque = beltsim.ramp{ t0 = 0/0, t1 = 1, to = 1 }", "beltsim.ramp: t1 must be > t0"},
+           {"torque = beltsim.step(1/0, 0, 1)", "beltsim.step.t must be a finite number (got inf s)"},
        }) {
     const std::string msg = run_text(isolated("speed = 0", c.driven));
     EXPECT_NE(msg.find("laws.lua:4: "), std::string::npos) << c.driven << " -> " << msg;  // the driven pulley's line
