@@ -307,7 +307,7 @@ class CvodeIntegrator final : public Integrator {
                                        largest_error());
     const double* yr = N_VGetArrayPointer(cv_.y);
     if (const std::string bad = problem_.check(t_ret, yr); !bad.empty())
-      throw DivergenceError(t_ret, "the run diverged at t = " + rounded_text(t_ret, 9) + " s: " + bad);
+      throw DivergenceError(t_, diverged_text(t_, t_ret, bad));
     t_prev_ = t_, t_ = t_ret;
     y_prev_.swap(y_);
     y_.resize(problem_.size());

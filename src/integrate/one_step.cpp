@@ -153,7 +153,7 @@ class OneStep final : public Integrator {
       sys_.problem->counters.rhs++;
       sys_.problem->counters.steps++;
       if (const std::string bad = sys_.problem->check(t1, y1_.data()); !bad.empty())
-        throw DivergenceError(t1, "the run diverged at t = " + rounded_text(t1, 9) + " s: " + bad);
+        throw DivergenceError(t_, diverged_text(t_, t1, bad));
       t_prev_ = t_, t_ = t1;
       y_prev_.swap(y_), y_.swap(y1_);
       f_prev_.swap(f_), f_.swap(f1_);

@@ -21,7 +21,8 @@ namespace lua_api_test {
 // A run that diverges stops with the time and the pulley involved, and the samples taken up to
 // the last sound step are on disk: a frictionless belt leaves the driver free to spin up under
 // 1e6 N·m (4e7 rad/s² on 0.025 kg·m²), past the runaway check (1e5 rad/s) after 2.5 ms; the
-// integrator's steps grow meanwhile, so the check fires at the end of the first step past that.
+// integrator's steps grow meanwhile, so the check fires at the end of the first step past that,
+// and the run stops at that step's start.
 TEST(LuaApi, DivergenceNamesTimeAndPulleyAndKeepsTheSamples) {
   const std::string text = beltsim::test::runaway() + "s:run{ t_end = 0.01, sample = 1e-4 }\n";
   const std::string msg = run_text(text, "runaway.lua");
@@ -30,19 +31,31 @@ TEST(LuaApi, DivergenceNamesTimeAndPulleyAndKeepsTheSamples) {
   const size_t at = msg.find("diverged at t = ");
   ASSERT_NE(at, std::string::npos) << msg;
   const double t_fail = std::strtod(msg.c_str() + at + 16, nullptr);
-  EXPECT_GT(t_fail, 2.5e-3);
+  EXPECT_GT(t_fail, 1e-3);  // (the last accepted step's time: the step that ran away ends past 2.5 ms)
   EXPECT_LT(t_fail, 1e-2);
   std::ifstream csv(temp_dir() / "out" / "timeseries.csv");
   std::string line, last;
   int rows = 0;
   while (std::getline(csv, line)) rows++, last = line;
   EXPECT_GE(rows, 1 + 2) << "the header and the samples before the failure";
-  EXPECT_LT(std::strtod(last.c_str(), nullptr), t_fail);
+  EXPECT_LE(std::strtod(last.c_str(), nullptr), t_fail);
   // the folder says why the run ended: parameters.csv's last row
   std::ifstream p(temp_dir() / "out" / "parameters.csv");
   std::string params((std::istreambuf_iterator<char>(p)), std::istreambuf_iterator<char>());
   EXPECT_NE(params.find("\nend.status,diverged,,derived,the run diverged at t = "), std::string::npos) << params;
   EXPECT_NE(params.find("pulley 'driver' runs away"), std::string::npos) << params;
+  // one stop time: the message's is end.t, the state's (its last accepted step; trial 16 saw the
+  // failed step's end in the message and the state's time in end.t), and the failed step's end is
+  // named as what it is
+  const size_t end_t = params.find("\nend.t,");
+  ASSERT_NE(end_t, std::string::npos) << params;
+  const double t_state = std::strtod(params.c_str() + end_t + 7, nullptr);
+  EXPECT_NEAR(t_fail, t_state, 1e-8 * t_state) << msg;
+  const size_t step = msg.find(" rad/s in the step to t = ");
+  ASSERT_NE(step, std::string::npos) << msg;
+  const double t_step = std::strtod(msg.c_str() + step + 26, nullptr);
+  EXPECT_GT(t_step, t_state) << msg;
+  EXPECT_GT(t_step, 2.5e-3) << msg;
 }
 
 // CVODE's step that collapses names the component of its largest error, as the one-step methods'

@@ -197,8 +197,12 @@ class Sweep(SweepCase):
             # the time, then the whole message (it said the time alone): file:line, the cause, the samples
             run = r" \(the samples up to then are in out/div/0/timeseries.csv\)" if k == 0 else ""
             self.assertRegex(status, r"^diverged at t = [0-9.e+-]+ s: %s:[0-9]+: (sim:run_to: )?pulley 'driver' "
-                                     r"runs away at -?[0-9.e+]+ rad/s%s$" % (re.escape(script), run))
+                                     r"runs away at -?[0-9.e+]+ rad/s in the step to t = [0-9.e+-]+ s%s$"
+                                     % (re.escape(script), run))
             self.assertNotIn("the run diverged", status)
+            if k == 0:  # one stop time: the status's is the run's end.t, exactly (trial 16: 0.2 ms apart)
+                end = {r[0]: r[1] for r in rows(self.path("out", "div", "0", "parameters.csv"))}
+                self.assertEqual(status[len("diverged at t = "):status.index(" s: ")], end["end.t"])
             self.assertIn("point %d: %s\n" % (k, status), p.stderr)  # (its log.txt in a sweep)
 
     def test_samples_are_listed_in_their_ranges(self):
