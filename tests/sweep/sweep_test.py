@@ -142,6 +142,18 @@ class Sweep(SweepCase):
                                "4,1,300", "5,1,500"])
         self.assertFalse(os.path.exists(self.path("out")), "--list ran something")
 
+    def test_a_bad_grid_list_is_reported_at_its_line(self):
+        # an empty list as a bad value in it: at the list's line, spelt sweep.grid.NAME (trial 16:
+        # an empty one was "d5.lua:1: sweep: grid.load: no values", the line of beltsim.sweep's call)
+        script = self.path("badgrid.lua")
+        for load, expect in [("{}", ":4: sweep.grid.load: no values"),
+                             ("{-0.1, {1}}", ":4: sweep.grid.load[2]: a number, string or boolean expected, got table")]:
+            with open(script, "w") as f:
+                f.write("return beltsim.sweep {\n  grid = {\n    pretension = {200, 300},\n    load = %s,\n  },\n"
+                        "  run = function(p) return { x = p.load + p.pretension } end,\n}\n" % load)
+            p = self.run_beltsim("sweep", script, "--list", ok=(1,))
+            self.assertIn(script + expect, p.stderr)
+
     def test_summary_matches_the_points_run_one_by_one(self):
         self.run_beltsim("sweep", GRID, "--jobs", "2")
         summary = rows(self.path("out", "grid", "summary.csv"))
