@@ -183,7 +183,8 @@ void validate_helper_law(const std::string& helper, const TimeSpeedLaw& law) {
 
 void validate(const SceneDef& d) {
   if (d.pulleys.size() < 2)
-    reject("scene", "needs at least 2 pulleys", static_cast<double>(d.pulleys.size()), "pulleys");
+    reject("scene", "needs at least 2 pulleys", static_cast<double>(d.pulleys.size()),
+           d.pulleys.size() == 1 ? "pulley" : "pulleys");
   // The errors about a pulley as a whole carry the path of its key (the name, the centre, the
   // speed) or of its entry in `pulleys`, so that a script's error names that pulley's line
   // (script/key_line.hpp), not the call's.

@@ -550,6 +550,11 @@ TEST(BuildStages, HugeMuIsRefusedAndAnEnergySourceIsWarnedOf) {
   const std::vector<std::string> none = scene_warnings(build_scene(dry));
   ASSERT_EQ(none.size(), 1u);
   EXPECT_NE(none[0].find("belt.mu = 0 on every element: the belt transmits no torque"), std::string::npos) << none[0];
+  // one pulley is refused in the singular
+  SceneDef one = presets::paper_dry();
+  one.pulleys.resize(1);
+  EXPECT_NE(error_of([&] { validate(one); }).find("needs at least 2 pulleys (got 1 pulley)"), std::string::npos)
+      << error_of([&] { validate(one); });
 }
 
 // a spray zone whose circle does not reach the belt's path at rest wets nothing (docs/spray.md:
