@@ -282,6 +282,20 @@ class Errors(unittest.TestCase):
         self.assertEqual(code, 0, err)
         self.assertIn("an input file that is\nmissing or unreadable (compare: 2)", out)
 
+    def test_a_csv_file_as_the_script(self):
+        # trial 16: a run's timeseries.csv given to run got Lua's parse error alone
+        path = self.script("t,driver.omega\n0,0\n0.001,1\n", name="timeseries.csv")
+        code, out, err = run(["run", path], cwd=self.dir)
+        self.assertEqual(code, 1, err)
+        self.assertIn(path + ": not a Lua script? (its name ends in '.csv', not .lua; a run's CSV files are read by "
+                      "beltsim summary and beltsim plot); Lua's parser: " + path + ":2:", err)
+        # a script named .lua keeps Lua's message alone
+        path = self.script("x = = 1\n", name="bad.lua")
+        code, out, err = run(["run", path], cwd=self.dir)
+        self.assertEqual(code, 1, err)
+        self.assertNotIn("not a Lua script", err)
+        self.assertIn(path + ":1:", err)
+
     def test_a_folder_as_the_script(self):
         os.mkdir(os.path.join(self.dir, "scenario.lua"))
         for cmd in ["run", "wp"]:
