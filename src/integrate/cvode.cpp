@@ -301,8 +301,8 @@ class CvodeIntegrator final : public Integrator {
     double h_now = 0;
     CVodeGetCurrentStep(cv_.mem, &h_now);
     if (!(std::abs(h_now) >= 16 * std::numeric_limits<double>::epsilon() * std::max(1.0, std::abs(t_ret))))
-      throw DivergenceError(t_ret, "cvode: the step size collapsed to " + rounded_text(h_now, 9) + " s at t = " +
-                                       rounded_text(t_ret, 9) + " s" +
+      throw DivergenceError(t_ret, "cvode: the step size collapsed to " + rounded_text(h_now, 9) +
+                                       " s at t = " + rounded_text(t_ret, 9) + " s" +
                                        (ses_.last_error.empty() ? "" : " (" + ses_.last_error + ")") + "; " +
                                        absurd_input(t_ret) + largest_error());
     const double* yr = N_VGetArrayPointer(cv_.y);

@@ -14,7 +14,8 @@ void hermite(double th, double h, const Eigen::VectorXd& y0, const Eigen::Vector
 }
 
 std::string diverged_text(double t, double t1, const std::string& bad) {
-  return "the run diverged at t = " + rounded_text(t, 9) + " s: " + bad + " in the step to t = " + rounded_text(t1, 9) + " s";
+  return "the run diverged at t = " + rounded_text(t, 9) + " s: " + bad + " in the step to t = " + rounded_text(t1, 9) +
+         " s";
 }
 
 std::string rtol_problem(double rtol) {

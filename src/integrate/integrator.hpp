@@ -36,8 +36,9 @@ struct DivergenceError : std::runtime_error {
 
 // The message of a step from t (the last accepted state, where the run stops) to t1 whose result
 // fails the state's check (`bad`: "pulley 'driven' runs away at -100451 rad/s"): "the run diverged
-// at t = <t> s: <bad> in the step to t = <t1> s" (no comma: the note is a cell of parameters.csv). The two times used to be told apart by nothing:
-// the message named t1 alone, where the state that ran away was, while end.t was t (trial 16).
+// at t = <t> s: <bad> in the step to t = <t1> s" (no comma: the note is a cell of parameters.csv). The two times used
+// to be told apart by nothing: the message named t1 alone, where the state that ran away was, while end.t was t (trial
+// 16).
 std::string diverged_text(double t, double t1, const std::string& bad);
 
 // the advice every message of a run that diverged or made no progress ends with: an explicit method

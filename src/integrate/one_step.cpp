@@ -132,9 +132,9 @@ class OneStep final : public Integrator {
                                         rounded_text(h_, 9) + " s); " + absurd_input(t_ + h) + largest_error(worst) +
                                         "; " + divergence_hint(implicit()));
         if (!(h_ >= 16 * ulp))
-          throw DivergenceError(t_, "the step size collapsed to " + rounded_text(h_, 9) + " s at t = " +
-                                        rounded_text(t_, 9) + " s; " + absurd_input(t_ + h) + largest_error(worst) +
-                                        "; " + divergence_hint(implicit()));
+          throw DivergenceError(t_, "the step size collapsed to " + rounded_text(h_, 9) +
+                                        " s at t = " + rounded_text(t_, 9) + " s; " + absurd_input(t_ + h) +
+                                        largest_error(worst) + "; " + divergence_hint(implicit()));
         continue;
       }
       failed_in_a_row_ = 0;

@@ -73,8 +73,8 @@ double call_mu(lua_State* L, int idx, const ElementSite& site, const std::string
   lua_pushvalue(L, idx);
   lua_getinfo(L, ">S", &ar);
   const std::string where = std::string(ar.short_src) + ":" + std::to_string(ar.linedefined);
-  const std::string about =
-      key + " (function at " + where + ") for element " + std::to_string(site.index) + " at s = " + rounded_text(site.s) + " m";
+  const std::string about = key + " (function at " + where + ") for element " + std::to_string(site.index) +
+                            " at s = " + rounded_text(site.s) + " m";
   const int top = lua_gettop(L);
   lua_pushvalue(L, idx);
   push_site(L, site);

@@ -261,8 +261,9 @@ TEST(Summary, ARunThatDidNotEndOkSaysHowItEnded) {
          "end.status,diverged,,derived,\"the run diverged at t = 0.2 s: pulley 'b' runs away at -100451 rad/s\"\n";
   }
   const std::string table = summary_table(summarize(d.string(), -INFINITY, INFINITY));
-  const std::string said = "the run did not end ok: end.status = diverged (the run diverged at t = 0.2 s: pulley 'b' "
-                           "runs away at -100451 rad/s); these figures are of its samples up to its stop\n";
+  const std::string said =
+      "the run did not end ok: end.status = diverged (the run diverged at t = 0.2 s: pulley 'b' "
+      "runs away at -100451 rad/s); these figures are of its samples up to its stop\n";
   EXPECT_EQ(table.find(said), table.find('\n') + 1) << table;  // the line after the header
   const fs::path ok = folder("ended_ok");
   {

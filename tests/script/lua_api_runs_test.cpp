@@ -87,7 +87,9 @@ TEST(LuaApi, AnAbsurdTorqueThatStopsTheRunIsNamed) {
         "local drive = beltsim.scene {\n"
         "  pulleys = {\n"
         "    { name = 'driver', centre = {0, 0}, radius = 0.1, inertia = 0.02, torque = -5 },\n"
-        "    { name = 'driven', centre = {0.29, 0}, radius = 0.1, inertia = 0.005, torque = " + law + " },\n"
+        "    { name = 'driven', centre = {0.29, 0}, radius = 0.1, inertia = 0.005, torque = " +
+        law +
+        " },\n"
         "  },\n"
         "  belt = { elements = 60, pretension = 500 },\n"
         "}\n"

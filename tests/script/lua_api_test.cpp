@@ -95,12 +95,12 @@ TEST(LuaApi, MuFunctionErrorsNameTheKeyAndTheElement) {
     EXPECT_NE(msg.find(c.expect), std::string::npos) << c.expect << " -> " << msg;
     EXPECT_NE(msg.find(") for element "), std::string::npos) << msg;
   }
-  const std::string seven = run_text(
-      ok_scene + "s:run{ t_end = 0.01, events = { {t = 0.002, mu = function(site)\n"
-                 "  if site.index == 7 then error('seven') end return 0.3 end} } }\n");
+  const std::string seven = run_text(ok_scene +
+                                     "s:run{ t_end = 0.01, events = { {t = 0.002, mu = function(site)\n"
+                                     "  if site.index == 7 then error('seven') end return 0.3 end} } }\n");
   EXPECT_NE(seven.find(") for element 7 at s = "), std::string::npos) << seven;
   EXPECT_NE(seven.find("scene.lua:8) for element 7"), std::string::npos) << seven;  // the function's line
-  EXPECT_NE(seven.find("scene.lua:9: seven"), std::string::npos) << seven;           // the error's
+  EXPECT_NE(seven.find("scene.lua:9: seven"), std::string::npos) << seven;          // the error's
 }
 
 // absurd but finite values: the message names the parameter and its value (gravity = 1e308 used
