@@ -88,6 +88,33 @@ std::string BeltProblem::describe(int k) const {
   return s.str();
 }
 
+std::string BeltProblem::absurd_input(double t, const double* y) const {
+  const double force = model_.belt.k * std::pow(model_.belt.rigid_length, model_.belt.e_tra);  // [N]: EA
+  const double* v = y + model_.n_coord();
+  int worst = -1;
+  double worst_share = kAbsurdTorque, worst_torque = 0;
+  for (int j = 0; j < model_.n_p(); ++j) {
+    if (drive_.kinematic(j)) continue;
+    double M = 0;
+    try {
+      M = applied_torque(model_, drive_, t, v, j);
+    } catch (const std::exception&) {  // (a Lua law that fails here fails the run on its own)
+      continue;
+    }
+    const double limit = force * model_.pulleys[j].radius;
+    if (const double share = std::abs(M) / limit; !std::isfinite(M) || share > worst_share)
+      worst = j, worst_share = std::isfinite(M) ? share : INFINITY, worst_torque = M;
+  }
+  if (worst < 0) return {};
+  const double r = model_.pulleys[worst].radius;
+  std::ostringstream m;
+  m << "pulley '" << model_.pulleys[worst].name << "'.torque = " << worst_torque << " N·m at t = " << t
+    << " s is beyond any torque its belt could carry (" << force * r
+    << " N·m: the axial force that stretches the belt by its own length, " << force << " N, at its radius " << r
+    << " m); check its law";
+  return m.str();
+}
+
 std::string BeltProblem::check(double, const double* y) const {
   const int N = model_.n_coord();
   const int n = model_.n_state();

@@ -290,7 +290,7 @@ class CvodeIntegrator final : public Integrator {
     if (flag < 0)
       throw DivergenceError(t_, "cvode stopped at t = " + rounded_text(t_, 9) + " s: " + CVodeGetReturnFlagName(flag) +
                                     (ses_.last_error.empty() ? "" : " (" + ses_.last_error + ")") + "; " +
-                                    largest_error());
+                                    absurd_input(t_ret) + largest_error());
     if (flag == CV_TSTOP_RETURN) t_ret = t_land, tstop_ = std::nan("");  // SUNDIALS 6 clears a reached stop time
     // a kink located: restart there (at the next step, as after a stall), unless the last
     // restart was fewer than kink_gap steps ago (CvodeSettings::kink_gap)
@@ -301,13 +301,13 @@ class CvodeIntegrator final : public Integrator {
     double h_now = 0;
     CVodeGetCurrentStep(cv_.mem, &h_now);
     if (!(std::abs(h_now) >= 16 * std::numeric_limits<double>::epsilon() * std::max(1.0, std::abs(t_ret))))
-      throw DivergenceError(t_ret, "cvode: the step size collapsed to " + rounded_text(h_now, 9) + " s at t = " +
-                                       rounded_text(t_ret, 9) + " s" +
+      throw DivergenceError(t_ret, "cvode: the step size collapsed to " + rounded_text(h_now, 9) +
+                                       " s at t = " + rounded_text(t_ret, 9) + " s" +
                                        (ses_.last_error.empty() ? "" : " (" + ses_.last_error + ")") + "; " +
-                                       largest_error());
+                                       absurd_input(t_ret) + largest_error());
     const double* yr = N_VGetArrayPointer(cv_.y);
     if (const std::string bad = problem_.check(t_ret, yr); !bad.empty())
-      throw DivergenceError(t_ret, "the run diverged at t = " + rounded_text(t_ret, 9) + " s: " + bad);
+      throw DivergenceError(t_, diverged_text(t_, t_ret, bad));
     t_prev_ = t_, t_ = t_ret;
     y_prev_.swap(y_);
     y_.resize(problem_.size());
@@ -327,6 +327,14 @@ class CvodeIntegrator final : public Integrator {
 
   // a known kink at t(): restart the BDF history there
   void kink() override { start(t_, y_); }
+
+  // an applied input beyond the problem's scales at the last accepted state's time or at t (where
+  // CVODE got to), "...; ", as the one-step methods name it (OdeProblem::absurd_input)
+  std::string absurd_input(double t) const {
+    for (const double tt : {t_, t})
+      if (const std::string a = problem_.absurd_input(tt, y_.data()); !a.empty()) return a + "; ";
+    return "";
+  }
 
   // "the largest error is in <component>" for the stop messages, as the one-step methods say it:
   // the component of the largest weighted local error estimate of CVODE's last attempt

@@ -13,6 +13,11 @@ void hermite(double th, double h, const Eigen::VectorXd& y0, const Eigen::Vector
   out = (1 - th) * y0 + th * y1 + (th * (th - 1)) * ((1 - 2 * th) * (y1 - y0) + ((th - 1) * h) * f0 + (th * h) * f1);
 }
 
+std::string diverged_text(double t, double t1, const std::string& bad) {
+  return "the run diverged at t = " + rounded_text(t, 9) + " s: " + bad + " in the step to t = " + rounded_text(t1, 9) +
+         " s";
+}
+
 std::string rtol_problem(double rtol) {
   if (!(rtol >= kRtolMin && rtol < 1)) {
     const std::string bad = "must be in [1e-12, 1) (got " + rounded_text(rtol, 9) + ")";

@@ -26,11 +26,20 @@
 
 namespace beltsim {
 
-// A run that could not continue: NaN/Inf, runaway, or a step size that collapsed.
+// A run that could not continue: NaN/Inf, runaway, or a step size that collapsed. `t` is the time
+// of the run's state when it stopped: its last accepted step's (end.t in parameters.csv), which
+// every such message names as the time it stopped at.
 struct DivergenceError : std::runtime_error {
   DivergenceError(double time, const std::string& what) : std::runtime_error(what), t(time) {}
   double t;
 };
+
+// The message of a step from t (the last accepted state, where the run stops) to t1 whose result
+// fails the state's check (`bad`: "pulley 'driven' runs away at -100451 rad/s"): "the run diverged
+// at t = <t> s: <bad> in the step to t = <t1> s" (no comma: the note is a cell of parameters.csv). The two times used
+// to be told apart by nothing: the message named t1 alone, where the state that ran away was, while end.t was t (trial
+// 16).
+std::string diverged_text(double t, double t1, const std::string& bad);
 
 // the advice every message of a run that diverged or made no progress ends with: an explicit method
 // (rkf45) is told of the implicit ones; an implicit one (all others) has already tried that

@@ -129,12 +129,12 @@ class OneStep final : public Integrator {
         if (!ok && failed_in_a_row_ >= kFailedInARow)
           throw DivergenceError(t_, "no progress at t = " + rounded_text(t_, 9) + " s: the implicit iteration failed " +
                                         std::to_string(failed_in_a_row_) + " times in a row (step size now " +
-                                        rounded_text(h_, 9) + " s); " + largest_error(worst) + "; " +
-                                        divergence_hint(implicit()));
+                                        rounded_text(h_, 9) + " s); " + absurd_input(t_ + h) + largest_error(worst) +
+                                        "; " + divergence_hint(implicit()));
         if (!(h_ >= 16 * ulp))
           throw DivergenceError(t_, "the step size collapsed to " + rounded_text(h_, 9) +
-                                        " s at t = " + rounded_text(t_, 9) + " s; " + largest_error(worst) + "; " +
-                                        divergence_hint(implicit()));
+                                        " s at t = " + rounded_text(t_, 9) + " s; " + absurd_input(t_ + h) +
+                                        largest_error(worst) + "; " + divergence_hint(implicit()));
         continue;
       }
       failed_in_a_row_ = 0;
@@ -144,7 +144,8 @@ class OneStep final : public Integrator {
                                         " s: the step size has stayed at the "
                                         "rounding floor of t (" +
                                         rounded_text(h, 9) + " s) for " + std::to_string(at_floor_) + " steps; " +
-                                        largest_error(worst) + "; " + divergence_hint(implicit()));
+                                        absurd_input(t_ + h) + largest_error(worst) + "; " +
+                                        divergence_hint(implicit()));
       } else {
         at_floor_ = 0;
       }
@@ -153,7 +154,7 @@ class OneStep final : public Integrator {
       sys_.problem->counters.rhs++;
       sys_.problem->counters.steps++;
       if (const std::string bad = sys_.problem->check(t1, y1_.data()); !bad.empty())
-        throw DivergenceError(t1, "the run diverged at t = " + rounded_text(t1, 9) + " s: " + bad);
+        throw DivergenceError(t_, diverged_text(t_, t1, bad));
       t_prev_ = t_, t_ = t1;
       y_prev_.swap(y_), y_.swap(y1_);
       f_prev_.swap(f_), f_.swap(f1_);
@@ -166,6 +167,15 @@ class OneStep final : public Integrator {
       h_ = std::min({ctl_.propose(h_used_, e), h_max_, cap_, st_->h_limit()});
       return;
     }
+  }
+
+  // an input beyond the problem's scales (OdeProblem::absurd_input: an applied torque no belt could
+  // carry) at the start or the end of the step that failed (a law that jumps inside it), "...; ",
+  // named before the largest error: the stop is its doing, wherever the error shows
+  std::string absurd_input(double t_end) const {
+    for (const double t : {t_, t_end})
+      if (const std::string a = sys_.problem->absurd_input(t, y_.data()); !a.empty()) return a + "; ";
+    return "";
   }
 
   // "the largest error is in <component>" for the stop messages; before any error estimate (every

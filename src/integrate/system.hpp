@@ -78,6 +78,10 @@ class OdeProblem {
   // returns an empty string when it is sane, else what went wrong
   virtual std::string describe(int k) const { return "component " + std::to_string(k); }
   virtual std::string check(double, const double*) const { return {}; }
+  // for the stop messages of a step that collapsed or an iteration that kept failing: an input of
+  // the problem at (t, y) beyond what its own scales make plausible (an applied torque that no belt
+  // could carry), named with its value and the scale, as the likely cause; empty when none
+  virtual std::string absurd_input(double, const double*) const { return {}; }
 
   // the work of the integrator that solves this problem, counted by the integrator (the stepper
   // counts its evaluations, Jacobians and solves, the driver its steps; CVODE's statistics are

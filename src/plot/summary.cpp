@@ -24,7 +24,7 @@ namespace fs = std::filesystem;
 // parameters.csv's values by name (`name,value,unit,source,note`)
 struct Parameters {
   std::string path;
-  std::map<std::string, std::string> values;
+  std::map<std::string, std::string> values, notes;
   double number(const std::string& name) const {
     const auto it = values.find(name);
     if (it == values.end()) throw std::runtime_error(path + " has no row '" + name + "'");
@@ -35,7 +35,7 @@ struct Parameters {
 };
 
 Parameters read_parameters(const std::string& path) {
-  Parameters p{path, {}};
+  Parameters p{path, {}, {}};
   std::string text;
   try {
     InputFile f(path);
@@ -47,7 +47,10 @@ Parameters read_parameters(const std::string& path) {
   if (rows.empty() || rows[0].size() < 2 || rows[0][0] != "name" || rows[0][1] != "value")
     throw std::runtime_error(path + ":1: not a parameters.csv (its header must start name,value)");
   for (size_t k = 1; k < rows.size(); ++k)
-    if (rows[k].size() >= 2) p.values[rows[k][0]] = rows[k][1];
+    if (rows[k].size() >= 2) {
+      p.values[rows[k][0]] = rows[k][1];
+      if (rows[k].size() >= 5) p.notes[rows[k][0]] = rows[k][4];
+    }
   return p;
 }
 
@@ -297,6 +300,10 @@ Summary summarize(const std::string& dir, double from, double to) {
   s.dir = dir;
   const Table table = read_timeseries_csv((fs::path(dir) / "timeseries.csv").string());
   const Parameters prm = read_parameters((fs::path(dir) / "parameters.csv").string());
+  if (const auto it = prm.values.find("end.status"); it != prm.values.end()) {
+    s.end_status = it->second;
+    if (const auto n = prm.notes.find("end.status"); n != prm.notes.end()) s.end_note = n->second;
+  }
   const std::vector<double>& t = table.column("t");
   size_t r0 = 0;
   while (r0 < t.size() && t[r0] < from) ++r0;

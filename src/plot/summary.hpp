@@ -59,6 +59,11 @@ struct Summary {
   std::vector<Overrun> overruns;  // one per coupled pulley
   bool losses = false;            // the run carried the energy.* columns
   bool mu_per_sample = true;      // the run carried the wraps' <pulley>.mu (else: belt.mu_min throughout)
+  // how the run ended (parameters.csv's end.status and its note; "" when it has none: a run still
+  // running or killed outright): the table says so first when that is not "ok", since the figures of
+  // a run that diverged or was stopped read like a result otherwise (trial 16: a runaway's creep of
+  // -158 under a plain header)
+  std::string end_status, end_note;
   // [W] input − output − (total + stored): 0 but for the bias of the interval means of the belt
   // torques at the run's tolerance, which a kinematic pulley's torque_mean and so input and output
   // carry (docs/outputs.md, interval means); the table says so past kImbalanceShare of the input

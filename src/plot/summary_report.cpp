@@ -68,6 +68,9 @@ std::string summary_table(const Summary& s) {
   std::string out = "summary of " + s.dir + " over t = " + four_digits(window_value(s, "from")) + " to " +
                     four_digits(window_value(s, "to")) + " s (" + four_digits(window_value(s, "rows")) +
                     " samples), belt speed " + four_digits(window_value(s, "belt_speed")) + " m/s\n";
+  if (!s.end_status.empty() && s.end_status != "ok")
+    out += "the run did not end ok: end.status = " + s.end_status +
+           (s.end_note.empty() ? "" : " (" + s.end_note + ")") + "; these figures are of its samples up to its stop\n";
   for (const char* section : {"spans", "pulleys", "wraps", "hubs", "arms", "rotors", "loss"})
     section_table(s, section, out);
   // an interval that reaches an end of the window began before it or goes on after it

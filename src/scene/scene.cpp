@@ -289,6 +289,12 @@ std::vector<std::string> scene_warnings(const Scene& sc) {
   for (std::string& w : spray_warnings(sc)) out.push_back(std::move(w));
   for (std::string& w : coarse_wraps(sc)) out.push_back(std::move(w));
   for (std::string& w : wrong_side_maps(sc)) out.push_back(std::move(w));
+  // μ = 0 is in its range (the frictionless tests of the laws use it) but a drive that transmits
+  // nothing: said, as a user's belt.mu = 0 went silent while the driver spun alone (trial 16)
+  if (!sc.drive.mu.empty() && std::all_of(sc.drive.mu.begin(), sc.drive.mu.end(), [](double mu) { return mu == 0; }))
+    out.push_back(
+        "belt.mu = 0 on every element: the belt transmits no torque between the pulleys (each turns "
+        "under its own law alone) until an event or sim:set_mu gives it friction");
   for (int j = 0; j < sc.model.n_p(); ++j) {
     const PulleyDrive& p = sc.drive.pulleys[j];
     if (p.kinematic || !(p.torque.per_speed > 0)) continue;

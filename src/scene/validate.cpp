@@ -169,9 +169,22 @@ void validate_law(const std::string& what, const TimeSpeedLaw& law, bool speed) 
     throw ParameterError(what, "a prescribed speed cannot depend on the speed (per_speed, per_speed_table)");
 }
 
+void validate_helper_law(const std::string& helper, const TimeSpeedLaw& law) {
+  for (const Ramp& r : law.ramps) {
+    require_finite(helper + (r.is_step() ? ".t" : ".t0"), r.t0, "s");
+    if (!r.is_step()) require_finite(helper + ".t1", r.t1, "s");
+  }
+  for (const Sine& s : law.sines) {
+    require_non_negative(helper + ".frequency", s.frequency, "Hz");
+    require_finite(helper + ".frequency", s.frequency, "Hz");
+    require_finite(helper + ".phase", s.phase, "rad");
+  }
+}
+
 void validate(const SceneDef& d) {
   if (d.pulleys.size() < 2)
-    reject("scene", "needs at least 2 pulleys", static_cast<double>(d.pulleys.size()), "pulleys");
+    reject("scene", "needs at least 2 pulleys", static_cast<double>(d.pulleys.size()),
+           d.pulleys.size() == 1 ? "pulley" : "pulleys");
   // The errors about a pulley as a whole carry the path of its key (the name, the centre, the
   // speed) or of its entry in `pulleys`, so that a script's error names that pulley's line
   // (script/key_line.hpp), not the call's.

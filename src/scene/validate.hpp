@@ -45,6 +45,11 @@ void validate(const SceneDef& def);
 // a torque law [N·m] (speed = false) or a prescribed speed [rad/s]: every value finite, tables
 // increasing, ramps forward; a speed cannot depend on the speed. Throws ParameterError naming `what`.
 void validate_law(const std::string& what, const TimeSpeedLaw& law, bool speed);
+// a law made by a helper ("beltsim.ramp", "beltsim.step", "beltsim.sine"): only what its use does
+// not change (its times, a sine's frequency and phase), named "<helper>.<key>". Its values are a
+// torque's or a speed's by the key it is given to, so validate_law checks them there, in their unit
+// (a helper named N·m for a speed's NaN before).
+void validate_helper_law(const std::string& helper, const TimeSpeedLaw& law);
 inline constexpr size_t kMaxFrictionSegments = 255;
 
 // How the belt's tension at rest was given and the strain at rest it gives, for the checks of its

@@ -165,6 +165,12 @@ void Interpreter::run_file(const std::string& path, int nresults) {
   if (status != LUA_OK) {
     std::string msg;
     if (!memory_message(L_, status, path, msg)) msg = lua_tostring(L_, -1) ? lua_tostring(L_, -1) : path;
+    // a file that does not parse and is not named .lua is most likely another kind of file (a
+    // run's timeseries.csv given to run gave Lua's ":2: '=' expected near '0'" alone): said first
+    if (const std::string ext = p.extension().string(); status == LUA_ERRSYNTAX && ext != ".lua")
+      msg = path + ": not a Lua script? (its name ends in '" + ext + "', not .lua" +
+            (ext == ".csv" ? "; a run's CSV files are read by beltsim summary and beltsim plot" : "") +
+            "); Lua's parser: " + msg;
     lua_settop(L_, 0);
     throw ScriptError(msg);
   }

@@ -261,11 +261,26 @@ int wrap(lua_State* L, const char* key, int idx) {
   return 1;
 }
 
-// the law on the top of the stack, checked as a torque law (the helpers know no more); errors
-// name the helper
-void check_helper(lua_State* L, const std::string& what) {
+// the helper's law on the top of the stack ({ <term> = {...} }), checked for what its use does not
+// change; errors name the helper ("beltsim.ramp.t1"). Its values are checked, in the unit of its use
+// (N·m or rad/s), when it is given to a key (add_law)
+void check_helper(lua_State* L, const std::string& term) {
+  const std::string what = "beltsim." + term;
   TimeSpeedLaw law;
-  add_law(L, -1, what, false, nullptr, law, 0);
+  lua_getfield(L, -1, term.c_str());
+  const int t = lua_gettop(L);
+  if (term == "ramp") law.ramps.push_back(read_ramp(L, t, what));
+  if (term == "step") law.ramps.push_back(read_step(L, t, what));
+  if (term == "sine") law.sines.push_back(read_sine(L, t, what));
+  lua_pop(L, 1);
+  std::string error;
+  KeyPath about;
+  try {
+    validate_helper_law(what, law);
+  } catch (const ParameterError& e) {
+    error = e.what(), about = e.path;
+  }
+  if (!error.empty()) fail_at(L, about, error);
 }
 
 // beltsim.ramp{ t0 = 0, t1, from = 0, to, shape = "linear" | "cosine" } or beltsim.ramp(t1, to)
@@ -286,7 +301,7 @@ int l_ramp(lua_State* L) {
     set_number(L, "to", lua_tonumber(L, 2));
   }
   wrap(L, "ramp", -1);
-  check_helper(L, "beltsim");
+  check_helper(L, "ramp");
   return 1;
 }
 
@@ -308,7 +323,7 @@ int l_step(lua_State* L) {
     set_number(L, "to", lua_tonumber(L, 3));
   }
   wrap(L, "step", -1);
-  check_helper(L, "beltsim");
+  check_helper(L, "step");
   return 1;
 }
 
@@ -320,7 +335,7 @@ int l_sine(lua_State* L) {
   const int s = lua_gettop(L);
   for (const char* k : {"mean", "amplitude", "frequency", "phase"}) lua_getfield(L, 1, k), lua_setfield(L, s, k);
   wrap(L, "sine", -1);
-  check_helper(L, "beltsim");
+  check_helper(L, "sine");
   return 1;
 }
 

@@ -16,6 +16,7 @@
 #include "io/number_text.hpp"
 #include "io/suggest.hpp"
 #include "io/units.hpp"
+#include "model/laws.hpp"
 #include "render/draw_list.hpp"
 #include "render/recorder.hpp"
 #include "scene/validate.hpp"
@@ -79,11 +80,13 @@ std::vector<double> mu_over(lua_State* L, int mu_idx, const Scene& sc, std::opti
     if (from && !in_stretch(site, *from, *to)) continue;
     double mu = 0;
     if (lua_isfunction(L, mu_idx)) {
-      lua_pushvalue(L, mu_idx);
-      push_site(L, site);
-      lua_call(L, 1, 1);
-      mu = to_number(L, -1, what + ".mu(site) for element " + std::to_string(site.index));
-      lua_pop(L, 1);
+      std::string error;  // (raised after the call's C++ frame is left)
+      try {
+        mu = call_mu(L, mu_idx, site, what + ".mu");
+      } catch (const LawError& e) {
+        error = e.what();
+      }
+      if (!error.empty()) fail(L, error);  // (at the line of the key it names)
     } else {
       mu = lua_tonumber(L, mu_idx);
     }

@@ -10,10 +10,13 @@
 #include <string>
 #include <vector>
 
+#include "io/number_text.hpp"
+#include "model/laws.hpp"
 #include "scene/belt_presets.hpp"
 #include "scene/parameters.hpp"
 #include "scene/scene_types.hpp"
 #include "scene/validate.hpp"
+#include "script/docall.hpp"
 #include "script/lua_law.hpp"
 
 namespace beltsim::script {
@@ -62,6 +65,32 @@ void push_site(lua_State* L, const ElementSite& e) {
     for (const auto& [k, v] : *table) lua_pushnumber(L, v), lua_setfield(L, -2, k.c_str());
     lua_setfield(L, -2, name);
   }
+}
+
+double call_mu(lua_State* L, int idx, const ElementSite& site, const std::string& key) {
+  idx = lua_absindex(L, idx);
+  lua_Debug ar;
+  lua_pushvalue(L, idx);
+  lua_getinfo(L, ">S", &ar);
+  const std::string where = std::string(ar.short_src) + ":" + std::to_string(ar.linedefined);
+  const std::string about = key + " (function at " + where + ") for element " + std::to_string(site.index) +
+                            " at s = " + rounded_text(site.s) + " m";
+  const int top = lua_gettop(L);
+  lua_pushvalue(L, idx);
+  push_site(L, site);
+  CallError e;
+  if (!docall(L, 1, 1, &e, where)) {
+    keep_traceback(L, about + ": " + e.message, e.traceback);
+    throw LawError(about + ": " + e.message);
+  }
+  if (lua_type(L, -1) != LUA_TNUMBER) {
+    const std::string got = type_name(L, -1);
+    lua_settop(L, top);
+    throw LawError(about + ": it returned " + got + ", a number expected");
+  }
+  const double mu = lua_tonumber(L, -1);
+  lua_settop(L, top);
+  return mu;
 }
 
 // every number of the parameter table's `table` that the Lua table at idx gives (scene/parameters.hpp),
@@ -268,14 +297,10 @@ void read_belt(lua_State* L, int idx, SceneDef& d, std::unique_ptr<LuaRef>& mu_f
     } else if (lua_isfunction(L, m)) {
       mu_fn = std::make_unique<LuaRef>(L, m);
       LuaRef* ref = mu_fn.get();
-      b.mu_at = [ref](const ElementSite& site) {
+      b.mu_at = [ref](const ElementSite& site) {  // (called by the build: its error is a LawError, call_mu)
         lua_State* S = ref->L;
         lua_rawgeti(S, LUA_REGISTRYINDEX, ref->ref);
-        push_site(S, site);
-        lua_call(S, 1, 1);
-        if (lua_type(S, -1) != LUA_TNUMBER)
-          luaL_error(S, "belt.mu function: number expected for element %d, got %s", site.index, luaL_typename(S, -1));
-        const double mu = lua_tonumber(S, -1);
+        const double mu = call_mu(S, -1, site, "belt.mu");
         lua_pop(S, 1);
         return mu;
       };

@@ -21,6 +21,13 @@ struct Context;
 
 // the element's site as the table belt.mu functions get (and a run's μ events' functions, lua_run.cpp)
 void push_site(lua_State* L, const ElementSite& e);
+// calls the μ function at idx (belt.mu, an event's or sim:wet's mu) with the element's site and
+// returns its result; an error in it, or a result that is not a number, is a LawError naming the
+// key (`key`: "belt.mu", "run.events[1].mu"), the function's place and the element, as a torque
+// law's error names its law and time: "run.events[1].mu (function at s.lua:12) for element 48 at
+// s = 0.252 m: s.lua:12: attempt to index a nil value (field 'nope')". The error's traceback is kept
+// (docall.hpp, keep_traceback) for the error it is raised again as.
+double call_mu(lua_State* L, int idx, const ElementSite& site, const std::string& key);
 
 // every number of the parameter table's `table` that the Lua table at idx gives (scene/parameters.hpp),
 // into d (a pulley's into p); `where` names the table in errors ("belt", "pulley 'driver'")

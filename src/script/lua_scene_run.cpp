@@ -53,6 +53,9 @@ int l_scene_run(lua_State* L) {
     lua_pushliteral(L, "scene captured");
     return lua_error(L);
   }
+  // (not for a captured scene: what is captured is not run here)
+  if (const std::string w = sample_warning(rs, ctx->overrides.has("t_end") ? "--t-end" : nullptr); !w.empty())
+    say("beltsim: warning: %s\n", w.c_str());
 
   std::string error;
   KeyPath about;  // the setting an error is about: its line is the key's (lua_check.hpp, fail_at)

@@ -70,7 +70,10 @@ std::vector<sweep::Point> read_grid(lua_State* L, int g) {
   try {
     return sweep::grid_points(grid);
   } catch (const std::invalid_argument& e) {
-    fail(L, std::string("sweep: ") + e.what());
+    // an error about one list ("grid.load: no values") at that list's line, spelt as the others
+    // (sweep.grid.load[2]: ...): fail finds the path at the start of the message
+    const std::string m = e.what();
+    fail(L, m.rfind("grid.", 0) == 0 ? "sweep." + m : "sweep: " + m);
   }
 }
 

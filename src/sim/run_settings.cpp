@@ -64,4 +64,11 @@ std::vector<std::string> drop_after_end(RunSettings& rs, const char* shortened_b
   return notes;
 }
 
+std::string sample_warning(const RunSettings& rs, const char* shortened_by) {
+  if (!(rs.sample_dt > rs.t_end) || !std::isfinite(rs.t_end)) return "";
+  return "run.sample = " + rounded_text(rs.sample_dt) + " s is longer than t_end = " + rounded_text(rs.t_end) + " s" +
+         (shortened_by ? std::string(" (from ") + shortened_by + ")" : std::string()) +
+         ": timeseries.csv will hold only the row at t = 0 (the interval is in seconds: 1 ms is sample = 0.001)";
+}
+
 }  // namespace beltsim

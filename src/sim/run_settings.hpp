@@ -105,4 +105,11 @@ std::string out_dir_problem(const std::string& dir);
 // by itself (negative, not finite) is kept for check() to refuse.
 std::vector<std::string> drop_after_end(RunSettings& settings, const char* shortened_by = nullptr);
 
+// The warning before a batch run whose sample interval is longer than the run (t_end, from
+// `shortened_by` as drop_after_end's): its timeseries.csv would hold only the row at t = 0 ("" when
+// it holds more). A warning, not an error: the run is valid (its end state is in the result and in
+// parameters.csv) and a --t-end check of a long run may mean it, but a one-row time series is more
+// often a sample given in ms (sample = 1 for 1 ms) and went unnoticed until the CSV was opened.
+std::string sample_warning(const RunSettings& settings, const char* shortened_by = nullptr);
+
 }  // namespace beltsim

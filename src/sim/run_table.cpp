@@ -73,7 +73,8 @@ const RunSetting kRunSettings[] = {
      "absolute tolerance per natural size of each component (parameters.csv gives the one used)",
      [](RunSettings& rs) -> RunSlot { return &rs.atol; }, Tolerances::kAtolUnset, atol_problem, nullptr, atol_text},
     {"sample", RK::number, "s", "`1e-3`", kBoth | kSaved, "",
-     "interval of the rows of timeseries.csv (steps end on them while they are at most half of it)",
+     "interval of the rows of timeseries.csv (steps end on them while they are at most half of it); a batch run "
+     "whose `t_end` is shorter is warned of before it runs (its timeseries.csv holds only the row at t = 0)",
      [](RunSettings& rs) -> RunSlot { return &rs.sample_dt; }, kNone, positive_seconds, nullptr, nullptr},
     {"out", RK::text, "", "`\"out/<script>\"`", kBoth | kSaved, "--out", "the output folder",
      [](RunSettings& rs) -> RunSlot { return &rs.out_dir; }, kNone, nullptr, out_dir_problem, nullptr},

@@ -164,6 +164,25 @@ class Errors(unittest.TestCase):
         self.assertIn("beltsim: frames: they start at 0.2 s, after t_end = 0.003 s (from --t-end): none drawn", err)
         self.assertFalse(os.path.exists(os.path.join(self.dir, "out", "frames")), err)
 
+    def test_a_sample_longer_than_the_run_is_warned_of(self):
+        # trial 16: sample = 1 (meant 1 ms) on a 0.2 s run wrote a timeseries.csv of the row at t = 0
+        # alone, without a word
+        path = self.script(two_pulley(elements=30) + 'drive:run { t_end = 0.004, sample = 0.01, progress = false, out = "out" }\n')
+        code, out, err = run(["run", path], cwd=self.dir)
+        self.assertEqual(code, 0, err)
+        self.assertIn("beltsim: warning: run.sample = 0.01 s is longer than t_end = 0.004 s: timeseries.csv will hold "
+                      "only the row at t = 0 (the interval is in seconds: 1 ms is sample = 0.001)", err)
+        with open(os.path.join(self.dir, "out", "timeseries.csv")) as f:
+            self.assertEqual(len(f.readlines()), 2)
+        # a --t-end that shortens the run below it is named
+        path = self.script(two_pulley(elements=30) + 'drive:run { t_end = 0.5, sample = 0.01, progress = false, out = "out" }\n')
+        code, out, err = run(["run", path, "--t-end", "0.004"], cwd=self.dir)
+        self.assertEqual(code, 0, err)
+        self.assertIn("run.sample = 0.01 s is longer than t_end = 0.004 s (from --t-end): ", err)
+        code, out, err = run(["run", path, "--t-end", "0.01"], cwd=self.dir)  # two rows: no warning
+        self.assertEqual(code, 0, err)
+        self.assertNotIn("run.sample", err)
+
     def test_a_misspelt_command_or_option_gets_a_suggestion(self):
         for args, what in [(["runn", "x.lua"], "beltsim: unknown command 'runn' (did you mean 'run'?) (commands: run,"),
                            (["run", "x.lua", "--tend", "1"], "run does not take: --tend 1 (did you mean '--t-end'?)"),
@@ -262,6 +281,20 @@ class Errors(unittest.TestCase):
         code, out, err = run(["--help"])
         self.assertEqual(code, 0, err)
         self.assertIn("an input file that is\nmissing or unreadable (compare: 2)", out)
+
+    def test_a_csv_file_as_the_script(self):
+        # trial 16: a run's timeseries.csv given to run got Lua's parse error alone
+        path = self.script("t,driver.omega\n0,0\n0.001,1\n", name="timeseries.csv")
+        code, out, err = run(["run", path], cwd=self.dir)
+        self.assertEqual(code, 1, err)
+        self.assertIn(path + ": not a Lua script? (its name ends in '.csv', not .lua; a run's CSV files are read by "
+                      "beltsim summary and beltsim plot); Lua's parser: " + path + ":2:", err)
+        # a script named .lua keeps Lua's message alone
+        path = self.script("x = = 1\n", name="bad.lua")
+        code, out, err = run(["run", path], cwd=self.dir)
+        self.assertEqual(code, 1, err)
+        self.assertNotIn("not a Lua script", err)
+        self.assertIn(path + ":1:", err)
 
     def test_a_folder_as_the_script(self):
         os.mkdir(os.path.join(self.dir, "scenario.lua"))

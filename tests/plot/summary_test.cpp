@@ -251,6 +251,30 @@ TEST(Summary, ARunWithoutTheWrapsMuReadsTheStartsMuAndSaysSo) {
   EXPECT_EQ(summary_table(with).find("run it again"), std::string::npos);
 }
 
+// a run that did not end ok says so before its tables, with its end.status and note (trial 16: a
+// runaway's figures under a plain header); one that ended ok, or whose folder has no end rows, not
+TEST(Summary, ARunThatDidNotEndOkSaysHowItEnded) {
+  const fs::path d = folder("diverged");
+  {
+    std::ofstream p(d / "parameters.csv", std::ios::app);
+    p << "end.t,0.2,s,derived,the simulated time the run reached\n"
+         "end.status,diverged,,derived,\"the run diverged at t = 0.2 s: pulley 'b' runs away at -100451 rad/s\"\n";
+  }
+  const std::string table = summary_table(summarize(d.string(), -INFINITY, INFINITY));
+  const std::string said =
+      "the run did not end ok: end.status = diverged (the run diverged at t = 0.2 s: pulley 'b' "
+      "runs away at -100451 rad/s); these figures are of its samples up to its stop\n";
+  EXPECT_EQ(table.find(said), table.find('\n') + 1) << table;  // the line after the header
+  const fs::path ok = folder("ended_ok");
+  {
+    std::ofstream p(ok / "parameters.csv", std::ios::app);
+    p << "end.status,ok,,derived,how the run ended\n";
+  }
+  EXPECT_EQ(summary_table(summarize(ok.string(), -INFINITY, INFINITY)).find("did not end ok"), std::string::npos);
+  EXPECT_EQ(summary_table(summarize(folder("no_end").string(), -INFINITY, INFINITY)).find("did not end ok"),
+            std::string::npos);
+}
+
 // a mean lies within its values: b's μ is 0.8 in every row, and the sum of three 0.8s divided by
 // three rounds to 0.8000000000000002, above its own largest value (the trial's 0.7999999999999986
 // below mu_min 0.8000000000000003)

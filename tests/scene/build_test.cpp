@@ -543,6 +543,18 @@ TEST(BuildStages, HugeMuIsRefusedAndAnEnergySourceIsWarnedOf) {
   const std::vector<std::string> w = scene_warnings(build_scene(s));
   ASSERT_EQ(w.size(), 1u);
   EXPECT_NE(w[0].find("pulley 'driven'.torque: per_speed = 0.5"), std::string::npos) << w[0];
+  // μ = 0 is in range but transmits nothing: warned of (trial 16: taken silently)
+  SceneDef dry = quiet;
+  dry.belt.mu = 0;
+  EXPECT_EQ(error_of([&] { validate(dry); }), "");
+  const std::vector<std::string> none = scene_warnings(build_scene(dry));
+  ASSERT_EQ(none.size(), 1u);
+  EXPECT_NE(none[0].find("belt.mu = 0 on every element: the belt transmits no torque"), std::string::npos) << none[0];
+  // one pulley is refused in the singular
+  SceneDef one = presets::paper_dry();
+  one.pulleys.resize(1);
+  EXPECT_NE(error_of([&] { validate(one); }).find("needs at least 2 pulleys (got 1 pulley)"), std::string::npos)
+      << error_of([&] { validate(one); });
 }
 
 // a spray zone whose circle does not reach the belt's path at rest wets nothing (docs/spray.md:

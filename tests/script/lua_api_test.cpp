@@ -74,6 +74,35 @@ TEST(LuaApi, SilentMisreadingsAreErrors) {
   }
 }
 
+// an error in a μ function names its key, the function and the element it was called for, as a
+// torque law's names its law and time (trial 16: Lua's bare "attempt to index a nil value")
+TEST(LuaApi, MuFunctionErrorsNameTheKeyAndTheElement) {
+  struct Case {
+    std::string text, expect;
+  };
+  const std::string ok_scene = scene_text("");
+  for (const Case& c : std::vector<Case>{
+           {scene_text("mu = function(site) return site.nope.x end"), "belt.mu (function at "},
+           {scene_text("mu = function(site) return 'x' end"), "it returned string 'x', a number expected"},
+           {ok_scene + "s:run{ t_end = 0.01, events = { {t = 0.001, mu = function(site) return site.nope.x end} } }\n",
+            "run.events[1].mu (function at "},
+           {ok_scene + "s:run{ t_end = 0.01, events = { {t = 0.001, mu = 0.3}, {t = 0.002, mu = function(site)\n"
+                       "  if site.index == 7 then error('seven') end return 0.3 end} } }\n",
+            "run.events[2].mu (function at "},
+       }) {
+    const std::string msg = run_text(c.text);
+    EXPECT_NE(msg.find("scene.lua:"), std::string::npos) << c.expect << " -> " << msg;
+    EXPECT_NE(msg.find(c.expect), std::string::npos) << c.expect << " -> " << msg;
+    EXPECT_NE(msg.find(") for element "), std::string::npos) << msg;
+  }
+  const std::string seven = run_text(ok_scene +
+                                     "s:run{ t_end = 0.01, events = { {t = 0.002, mu = function(site)\n"
+                                     "  if site.index == 7 then error('seven') end return 0.3 end} } }\n");
+  EXPECT_NE(seven.find(") for element 7 at s = "), std::string::npos) << seven;
+  EXPECT_NE(seven.find("scene.lua:8) for element 7"), std::string::npos) << seven;  // the function's line
+  EXPECT_NE(seven.find("scene.lua:9: seven"), std::string::npos) << seven;          // the error's
+}
+
 // absurd but finite values: the message names the parameter and its value (gravity = 1e308 used
 // to get "a few elements more or fewer usually works"; contact.c1 = 1e308 a route with radii -nan)
 TEST(LuaApi, AbsurdButFiniteValuesNameTheParameter) {

@@ -142,6 +142,18 @@ class Sweep(SweepCase):
                                "4,1,300", "5,1,500"])
         self.assertFalse(os.path.exists(self.path("out")), "--list ran something")
 
+    def test_a_bad_grid_list_is_reported_at_its_line(self):
+        # an empty list as a bad value in it: at the list's line, spelt sweep.grid.NAME (trial 16:
+        # an empty one was "d5.lua:1: sweep: grid.load: no values", the line of beltsim.sweep's call)
+        script = self.path("badgrid.lua")
+        for load, expect in [("{}", ":4: sweep.grid.load: no values"),
+                             ("{-0.1, {1}}", ":4: sweep.grid.load[2]: a number, string or boolean expected, got table")]:
+            with open(script, "w") as f:
+                f.write("return beltsim.sweep {\n  grid = {\n    pretension = {200, 300},\n    load = %s,\n  },\n"
+                        "  run = function(p) return { x = p.load + p.pretension } end,\n}\n" % load)
+            p = self.run_beltsim("sweep", script, "--list", ok=(1,))
+            self.assertIn(script + expect, p.stderr)
+
     def test_summary_matches_the_points_run_one_by_one(self):
         self.run_beltsim("sweep", GRID, "--jobs", "2")
         summary = rows(self.path("out", "grid", "summary.csv"))
@@ -197,8 +209,12 @@ class Sweep(SweepCase):
             # the time, then the whole message (it said the time alone): file:line, the cause, the samples
             run = r" \(the samples up to then are in out/div/0/timeseries.csv\)" if k == 0 else ""
             self.assertRegex(status, r"^diverged at t = [0-9.e+-]+ s: %s:[0-9]+: (sim:run_to: )?pulley 'driver' "
-                                     r"runs away at -?[0-9.e+]+ rad/s%s$" % (re.escape(script), run))
+                                     r"runs away at -?[0-9.e+]+ rad/s in the step to t = [0-9.e+-]+ s%s$"
+                                     % (re.escape(script), run))
             self.assertNotIn("the run diverged", status)
+            if k == 0:  # one stop time: the status's is the run's end.t, exactly (trial 16: 0.2 ms apart)
+                end = {r[0]: r[1] for r in rows(self.path("out", "div", "0", "parameters.csv"))}
+                self.assertEqual(status[len("diverged at t = "):status.index(" s: ")], end["end.t"])
             self.assertIn("point %d: %s\n" % (k, status), p.stderr)  # (its log.txt in a sweep)
 
     def test_samples_are_listed_in_their_ranges(self):
