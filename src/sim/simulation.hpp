@@ -114,6 +114,10 @@ class Simulation {
   const Model& model() const { return scene_.model; }
   const Drive& drive() const { return drive_; }  // the laws and μ now
   const RunSettings& settings() const { return rs_; }
+  // the wall-time limit of each later run_to call [s] (0: none), RunSettings::wall_limit: a
+  // checkpoint does not keep it, so a resumed simulation is given one (beltsim.resume's max_wall,
+  // --max-wall)
+  void set_wall_limit(double seconds) { rs_.wall_limit = seconds; }
   const std::string& integrator_name() const;
   // what is observed now (model/observables.hpp; inside a step its contact forces come from the
   // step's ends): the CSV, the frames and the Lua reads all take it from here
