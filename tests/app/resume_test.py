@@ -69,6 +69,22 @@ sim:run_to(0.2)
 sim:close()
 """
 
+# the trial's periodic checkpoints: sim:save in an every callback (refused, "not inside a callback")
+EVERY_SAVE = """
+local drive = beltsim.scene {
+  pulleys = {
+    { name = "driver", centre = {0, 0}, radius = 0.1, torque = beltsim.ramp(0.1, -40) },
+    { name = "driven", centre = {0.29, 0}, radius = 0.1, torque = { per_speed = -0.955 } },
+  },
+  belt = { elements = 60, pretension = 500 },
+}
+local sim = drive:start { out = "out/every", progress = false }
+local k = 0
+sim:every(0.05, function(s) k = k + 1; print(s:save(string.format("ck/p%02d.ckpt", k))) end)
+sim:run_to(0.2)
+sim:close()
+"""
+
 LUA_LAW = """
 local drive = beltsim.scene {
   pulleys = {
@@ -116,7 +132,7 @@ class Resume(unittest.TestCase):
         self.dir = tempfile.mkdtemp(prefix="beltsim_resume_")
         self.addCleanup(shutil.rmtree, self.dir, True)
         for name, text in (("drive.lua", DRIVE), ("resume.lua", RESUME), ("law.lua", LUA_LAW),
-                           ("events.lua", EVENTS), ("slow_resume.lua", SLOW_RESUME)):
+                           ("events.lua", EVENTS), ("slow_resume.lua", SLOW_RESUME), ("every_save.lua", EVERY_SAVE)):
             with open(os.path.join(self.dir, name), "w") as f:
                 f.write(text)
 
@@ -176,6 +192,22 @@ class Resume(unittest.TestCase):
         self.assertEqual(code, 1, err)
         self.assertEqual(warnings(err), ["beltsim: slow_resume.lua:3: beltsim.resume.max_wall: must be > 0 s and "
                                          "finite (got 0 s)"])
+
+    def test_checkpoints_saved_by_a_callback_resume_bit_for_bit(self):
+        # written once everything due at the callback's time is done: resumed, each continues as the
+        # run that went on (sim_test's Live.ACheckpointACallbackAsksForResumesBitForBit: when's too)
+        code, out, err = run(["run", "every_save.lua"], self.dir)
+        self.assertEqual(code, 0, err)
+        self.assertEqual(out.split(), ["out/every/ck/p%02d.ckpt" % k for k in range(1, 5)])
+        series = os.path.join(self.dir, "out", "every", "timeseries.csv")
+        with open(series, "rb") as f:
+            whole = f.read()
+        for k in (1, 2, 3):
+            code, _, err = run(["run", "resume.lua", "--set", "ck=out/every/ck/p%02d.ckpt" % k], self.dir)
+            self.assertEqual(code, 0, err)
+            self.assertIn("resumed at t = %g s" % (0.05 * k), err)
+            with open(series, "rb") as f:
+                self.assertEqual(f.read(), whole, k)
 
     def parameters_bytes(self, out):
         with open(os.path.join(out, "mid.ckpt")) as f:
