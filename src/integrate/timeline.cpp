@@ -158,6 +158,7 @@ void Timeline::process(double p) {
   // time of a law's step or a timed change shows the system after it, as a pause there does
   for (Periodic& s : periodic_)
     if (s.output && s.time() == p) s.k++, s.out(p, y_now_);
+  if (time_done_) time_done_(p);
 }
 
 double Timeline::next_landing(const Integrator& integ) const {

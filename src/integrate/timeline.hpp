@@ -83,6 +83,10 @@ class Timeline {
   // replaced (the next step is taken, or a restart): integrals over the steps (interval means)
   // cover each step up to there
   void set_step_hook(std::function<void(double t)> hook) { step_hook_ = std::move(hook); }
+  // called at the end of a time's processing, everything due there delivered (its actions, the
+  // restart, its outputs): where a pause at that time stands, a state run_to(t) also stops at
+  // (a checkpoint a callback asked for is written there, Simulation::save)
+  void set_time_done(std::function<void(double t)> fn) { time_done_ = std::move(fn); }
   void set_landings(std::vector<Landing> landings);  // those at or before now() are dropped
   // the system (or, with y, the state) changed at now(): restart there; deferred to the end of
   // the current time's actions while they run
@@ -177,6 +181,7 @@ class Timeline {
   bool have_new_state_ = false;
   std::function<void(double)> on_restart_;
   std::function<void(double)> step_hook_;
+  std::function<void(double)> time_done_;
   Integrator* companion_ = nullptr;
   Eigen::VectorXd y_companion_;  // its state at companion_at_
   double companion_at_ = -std::numeric_limits<double>::infinity();

@@ -87,15 +87,17 @@ int l_scene_run(lua_State* L) {
   // the page showed this run, which has ended: a change from it is refused at once (no simulation
   // is left to change; a console's prompt refused it only after it had been answered "queued")
   if (ctx->serve) ctx->serve->refuse_controls("no simulation to change (the run has ended)");
-  if (!error.empty()) fail_at(L, about, error);
-  if (res.interrupted) ctx->interrupted = true, ctx->stopped_runs.push_back({nullptr, res.t_reached});
-  // the run's last lines; its closing line said with its progress (progress = false leaves both out)
+  // the run's last lines; its closing line said with its progress (progress = false leaves both
+  // out). A run stopped by max_wall ran, as one Ctrl-C stopped did: its lines come before the error
   RunEnd end;
   end.warning_summary = res.warning_summary, end.check_line = res.check_line, end.check_warns = res.check.warns();
   end.unapplied = res.unapplied;
   end.closing_line = progress;
-  end.t = res.t_reached, end.t_end = rs.t_end, end.stopped = res.interrupted;
+  end.t = res.t_reached, end.t_end = rs.t_end, end.stopped = res.interrupted || res.over_wall_limit;
   end.steps = res.work.steps, end.wall = res.wall_seconds, end.out_dir = rs.out_dir;
+  if (res.over_wall_limit) say_run_end(end);
+  if (!error.empty()) fail_at(L, about, error);
+  if (res.interrupted) ctx->interrupted = true, ctx->stopped_runs.push_back({nullptr, res.t_reached});
   say_run_end(end);
 
   lua_newtable(L);

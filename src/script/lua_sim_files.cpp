@@ -148,29 +148,41 @@ int l_save(lua_State* L) {
   return 1;
 }
 
-// beltsim.resume(path [, { progress = bool, rewind = bool }]) -> the saved simulation, continuing
+// beltsim.resume(path [, { progress = bool, rewind = bool, max_wall = s }]) -> the saved
+// simulation, continuing
 int l_resume(lua_State* L) {
-  check_args(L, "beltsim.resume", {{"path", kString}, {"{progress, rewind}", kTable, true}});
+  check_args(L, "beltsim.resume", {{"path", kString}, {"{progress, rewind, max_wall}", kTable, true}});
   auto* ctx = static_cast<Context*>(lua_touserdata(L, lua_upvalueindex(1)));
   end_if_probing(L, ctx, "beltsim.resume");
   refuse_if_capturing(L, ctx, "beltsim.resume");
   end_if_stopped(L, ctx, "beltsim.resume");
   bool progress = true, rewind = false;
+  // the wall-time limit of each integration call, which a checkpoint does not keep (it is this
+  // process's guard, not the run's): resume's own, checked as scene:start's max_wall; --max-wall over it
+  double max_wall = 0;
   if (!lua_isnoneornil(L, 2)) {
     require_table(L, 2, "beltsim.resume");
-    check_keys(L, 2, "beltsim.resume", {"progress", "rewind"});
+    check_keys(L, 2, "beltsim.resume", {"progress", "rewind", "max_wall"});
     if (auto v = opt_bool(L, 2, "progress", "beltsim.resume")) progress = *v;
     if (auto v = opt_bool(L, 2, "rewind", "beltsim.resume")) rewind = *v;
+    if (auto v = opt_number(L, 2, "max_wall", "beltsim.resume")) {
+      RunSettings given;
+      given.wall_limit = *v;
+      if (const std::string bad = run_problem(*find_run_setting("max_wall"), given, true); !bad.empty())
+        fail_on(L, "beltsim.resume.max_wall", bad);
+      max_wall = *v;
+    }
   }
-  // the command line's run options (--out, --rtol, --no-frames, ...) are scene:run's and
+  if (ctx->overrides.has("max_wall")) max_wall = ctx->overrides.run.wall_limit;
+  // the command line's other run options (--out, --rtol, --no-frames, ...) are scene:run's and
   // scene:start's: a resumed simulation keeps the checkpoint's settings. Said once, before it runs
-  if (!ctx->resume_warned && (!ctx->overrides.given.empty() || ctx->overrides.no_frames)) {
+  size_t count = ctx->overrides.no_frames ? 1 : 0;
+  std::string options;
+  for (const std::string& k : ctx->overrides.given)  // (the option each key comes from: sim/run_table.hpp)
+    if (k != "max_wall") options += (options.empty() ? "" : ", ") + std::string(find_run_setting(k)->option), ++count;
+  if (ctx->overrides.no_frames) options += options.empty() ? "--no-frames" : ", --no-frames";
+  if (!ctx->resume_warned && count > 0) {
     ctx->resume_warned = true;
-    std::string options;
-    const size_t count = ctx->overrides.given.size() + (ctx->overrides.no_frames ? 1 : 0);
-    for (const std::string& k : ctx->overrides.given)  // (the option each key comes from: sim/run_table.hpp)
-      options += (options.empty() ? "" : ", ") + std::string(find_run_setting(k)->option);
-    if (ctx->overrides.no_frames) options += options.empty() ? "--no-frames" : ", --no-frames";
     say("beltsim: warning: %s %s to scene:run and scene:start only; the simulation beltsim.resume "
         "continues keeps its checkpoint's settings (its folder, integrator, tolerances and frames)\n",
         options.c_str(), count == 1 ? "applies" : "apply");
@@ -186,6 +198,7 @@ int l_resume(lua_State* L) {
   guarded(L, "beltsim.resume", [&] {
     sim = Simulation::resume(lua_tostring(L, 1), render::make_frame_recorder, &callbacks, vet, rewind, warn);
   });
+  sim->set_wall_limit(max_wall);
   say("beltsim: %s resumed at t = %s s; its outputs go on in %s\n", lua_tostring(L, 1),
       rounded_text(sim->now()).c_str(), sim->out_dir().c_str());
   if (callbacks > 0)

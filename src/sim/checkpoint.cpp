@@ -188,15 +188,51 @@ std::string Simulation::lua_law() const {
 
 void Simulation::save(const std::string& path) const {
   require_open("save");
-  if (running_ || view_.y) throw std::logic_error("save: not inside a callback (save between run_to calls)");
+  // a law or a when-condition runs inside a step, at a state the run does not stand at
+  if (view_.y || (running_ && !in_action_))
+    throw std::logic_error(
+        "save: not inside a law or a when-condition (save in a callback's function, or between "
+        "run_to calls)");
   if (!integ_->can_save()) throw std::invalid_argument("save: " + cannot_save(rs_.integrator));
   if (const std::string law = lua_law(); !law.empty())
     throw std::invalid_argument("save: " + law +
                                 " is Lua code, which a checkpoint cannot hold: give the law as a table "
                                 "(constant, per_speed, ramps, sines, ...) to save this simulation");
+  // inside a callback's function the run stands inside its time's processing (the callbacks at
+  // that time run before its landings, its other callbacks, the restart a change asks for and its
+  // samples and frames, integrate/timeline.hpp), a state no run_to stops at, which a resumed run
+  // would not continue bit for bit: the checkpoint is written once that time is done, the state
+  // run_to(t) stops at (and the live view's pause saves), so that it holds the outputs at t
+  if (running_) {
+    saves_due_.push_back(path);
+    return;
+  }
   // written whole (io/output_dir.hpp): a checkpoint is never half a file, and no part of one is
   // left behind when it cannot be written; its missing folders made, as for every output
   write_file_whole(path, checkpoint_text());
+}
+
+void Simulation::write_saves_due() {
+  if (saves_due_.empty()) return;
+  std::vector<std::string> due;
+  due.swap(saves_due_);
+  // (a change later at that time may have given a law as Lua code)
+  if (const std::string law = lua_law(); !law.empty())
+    throw std::invalid_argument("save: " + law +
+                                " is Lua code, which a checkpoint cannot hold (it was given after "
+                                "the callback asked for the checkpoint)");
+  // with the wall time of the run so far, this call's included (between calls it is in wall_)
+  const double before = wall_;
+  wall_ += call_wall_ ? call_wall_() : 0.0;
+  std::string text;
+  try {
+    text = checkpoint_text();
+  } catch (...) {
+    wall_ = before;
+    throw;
+  }
+  wall_ = before;
+  for (const std::string& path : due) write_file_whole(path, text);
 }
 
 std::string Simulation::checkpoint_text() const {

@@ -95,7 +95,7 @@ const RunSetting kRunSettings[] = {
      "μ changed at known times (a live simulation's are in its state, sim:wet)",
      nullptr, kNone, nullptr, nullptr, events_text},
     {"max_wall", RK::number, "s", "none", kBoth, "--max-wall",
-     "wall-time limit of each integration call (not kept: a resumed simulation has none)",
+     "wall-time limit of each integration call (not kept: a resumed simulation gets resume's own or --max-wall)",
      [](RunSettings& rs) -> RunSlot { return &rs.wall_limit; }, 0, positive_seconds, nullptr, nullptr},
     {"check", RK::flag, "", "`false`", kBoth, "--check",
      "estimate the run's own error against a companion at rtol/10 (not kept: a resumed run is not checked)",

@@ -73,6 +73,7 @@ Simulation::Simulation(const Scene& sc, const RunSettings& rs, bool fresh)
   tl_->on_restart([this](double t) { drive_.restart_time = t; });
   means_ = std::make_unique<IntervalMeans>(model_, drive_, scene_.route, *integ_);
   tl_->set_step_hook([this](double t) { means_->cover(t, serial_); });
+  tl_->set_time_done([this](double) { write_saves_due(); });
   out_ = std::make_unique<Outputs>(scene_, rs_);
   pending_ = rs_.mu_events;
   std::stable_sort(pending_.begin(), pending_.end(), [](const MuEvent& a, const MuEvent& b) { return a.t < b.t; });
@@ -355,6 +356,12 @@ Simulation::Advance Simulation::run_to(double t, const std::atomic<bool>* stop, 
   const double start = clock();
   Timeline::Progress pr;
   if (progress) pr = [&](double tt, const WorkCounters& w) { progress(tt, t, w, clock() - start); };
+  const Scoped<std::function<double()>> so_far(call_wall_, [&] { return clock() - start; });
+  // a checkpoint a callback asked for at a time whose processing an error cut short is not written
+  struct DropSaves {
+    std::vector<std::string>& due;
+    ~DropSaves() { due.clear(); }
+  } drop_saves{saves_due_};
   // polled between steps and between outputs: the wall-time limit, and the no-progress watchdog
   // (simulated time per wall second over windows of kRateWindow against the best window so far).
   // The threshold, measured (windows of 1 s) on scripts/paper_dry.lua, paper_wet.lua and
@@ -553,7 +560,10 @@ int Simulation::every(double dt, std::function<void()> fn) {
   if (!(dt > 0 && std::isfinite(dt)))
     throw std::invalid_argument("every: the interval must be > 0 s and finite (got " + rounded_text(dt) + " s)");
   callbacks_++;
-  const int id = tl_->add_every(dt, [fn = std::move(fn)](double) { fn(); });
+  const int id = tl_->add_every(dt, [this, fn = std::move(fn)](double) {
+    const Scoped<bool> acting(in_action_, true);
+    fn();
+  });
   every_dt_[id] = dt;
   return id;
 }
@@ -568,7 +578,10 @@ int Simulation::when(std::function<bool()> cond, std::function<void()> action) {
   // a simulation under way checks the condition now: its error is a callback's, as in run_to
   // (the script fails unless it catches the error; then the simulation may go on)
   try {
-    return tl_->add_when(std::move(c), [action = std::move(action)](double) { action(); });
+    return tl_->add_when(std::move(c), [this, action = std::move(action)](double) {
+      const Scoped<bool> acting(in_action_, true);
+      action();
+    });
   } catch (const std::exception& e) {
     callbacks_--;
     end_status_ = "failed", end_note_ = e.what();

@@ -114,6 +114,10 @@ class Simulation {
   const Model& model() const { return scene_.model; }
   const Drive& drive() const { return drive_; }  // the laws and μ now
   const RunSettings& settings() const { return rs_; }
+  // the wall-time limit of each later run_to call [s] (0: none), RunSettings::wall_limit: a
+  // checkpoint does not keep it, so a resumed simulation is given one (beltsim.resume's max_wall,
+  // --max-wall)
+  void set_wall_limit(double seconds) { rs_.wall_limit = seconds; }
   const std::string& integrator_name() const;
   // what is observed now (model/observables.hpp; inside a step its contact forces come from the
   // step's ends): the CSV, the frames and the Lua reads all take it from here
@@ -275,7 +279,14 @@ class Simulation {
   int callbacks_ = 0;
   std::map<int, double> every_dt_;  // the period of each every() callback, by id (for run_to's volume check)
   bool closed_ = false;
-  bool running_ = false;          // inside run_to (callbacks may read and change, not run or save)
+  bool running_ = false;  // inside run_to (callbacks may read and change, not run)
+  // inside a callback's function (every, when's action): a checkpoint it asks for (save) is
+  // written once everything due at its time is done (write_saves_due), where run_to(t) stops too
+  bool in_action_ = false;
+  mutable std::vector<std::string> saves_due_;
+  std::function<double()> call_wall_;  // inside run_to: its wall time so far [s]
+  // writes the checkpoints asked for at the time just done (Timeline::set_time_done)
+  void write_saves_due();
   std::string failed_;            // why it cannot continue (a divergence)
   // how its last run_to ended, for parameters.csv's end.status and its note (close): ok,
   // interrupted, wall_limit, diverged or failed (a law or a callback raised)

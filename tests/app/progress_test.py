@@ -380,6 +380,24 @@ class ProgressTest(unittest.TestCase):
         self.assertRegex(ended[0], r"^beltsim: run ended at t = 0\.1 s \(%s steps, [0-9.]+ s\): out/live_end/$"
                          % p.stdout.strip(), p.stderr)
 
+    def test_a_batch_run_stopped_by_max_wall_says_where_and_its_warnings(self):
+        # a user's trial: a batch run that --max-wall stopped, in a log, said neither where it had
+        # stopped nor the fallbacks it had needed, as a stopped live run and Ctrl-C's stop do. The
+        # serpentine drive (200 elements) fails a step at 0.017 s, reached well inside its 1 s
+        shutil.copy(os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "scripts", "serpentine.lua"),
+                    self.dir)
+        p = subprocess.run([BELTSIM, "run", "serpentine.lua", "--set", "n=200", "--set", "t_end=3", "--max-wall", "1"],
+                           cwd=self.dir, env=child_env(self.dir), capture_output=True, text=True, timeout=120)
+        self.assertEqual(p.returncode, 1, p.stderr)
+        with open(os.path.join(self.dir, "out", "serpentine", "parameters.csv")) as f:
+            self.assertRegex(f.read(), r"\nwarning\.failed_step\.count,[1-9]")
+        last = p.stderr.splitlines()[-3:]
+        self.assertRegex(last[0], r"^beltsim: warnings: failed_step [0-9]+ times? \(first at t = 0\.01", p.stderr)
+        self.assertRegex(last[1], r"^beltsim: run stopped at t = [0-9.]+ s of 3 s \([0-9]+ steps, [0-9.]+ s\): "
+                         r"out/serpentine/$", p.stderr)
+        self.assertRegex(last[2], r"^beltsim: serpentine\.lua:[0-9]+: run\.max_wall: the run stopped at its wall-time "
+                         r"limit \(max_wall = 1 s\)", p.stderr)
+
     def test_a_log_has_no_redraws(self):
         # stderr a pipe (a CI log): no carriage returns, the progress every 10 s only, the end once,
         # the closing line last

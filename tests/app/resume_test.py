@@ -59,6 +59,32 @@ drive:run { t_end = 0.03, sample = 1e-3, progress = false, out = "out/events", k
   events = { { t = 0.02, mu = 0.2 } } }
 """
 
+# the resumed simulation slowed by a callback that waits on the CPU clock (50 ms of it each
+# simulated ms: the 0.1 s to run take 5 s at least), with beltsim.resume's max_wall from --set
+SLOW_RESUME = """
+local function wait(s) local c = os.clock() while os.clock() - c < s do end end
+local sim = beltsim.resume(beltsim.args.ck, { rewind = true, progress = false, max_wall = beltsim.args.max_wall })
+sim:every(0.001, function() wait(0.05) end)
+sim:run_to(0.2)
+sim:close()
+"""
+
+# the trial's periodic checkpoints: sim:save in an every callback (refused, "not inside a callback")
+EVERY_SAVE = """
+local drive = beltsim.scene {
+  pulleys = {
+    { name = "driver", centre = {0, 0}, radius = 0.1, torque = beltsim.ramp(0.1, -40) },
+    { name = "driven", centre = {0.29, 0}, radius = 0.1, torque = { per_speed = -0.955 } },
+  },
+  belt = { elements = 60, pretension = 500 },
+}
+local sim = drive:start { out = "out/every", progress = false }
+local k = 0
+sim:every(0.05, function(s) k = k + 1; print(s:save(string.format("ck/p%02d.ckpt", k))) end)
+sim:run_to(0.2)
+sim:close()
+"""
+
 LUA_LAW = """
 local drive = beltsim.scene {
   pulleys = {
@@ -106,7 +132,7 @@ class Resume(unittest.TestCase):
         self.dir = tempfile.mkdtemp(prefix="beltsim_resume_")
         self.addCleanup(shutil.rmtree, self.dir, True)
         for name, text in (("drive.lua", DRIVE), ("resume.lua", RESUME), ("law.lua", LUA_LAW),
-                           ("events.lua", EVENTS)):
+                           ("events.lua", EVENTS), ("slow_resume.lua", SLOW_RESUME), ("every_save.lua", EVERY_SAVE)):
             with open(os.path.join(self.dir, name), "w") as f:
                 f.write(text)
 
@@ -147,6 +173,41 @@ class Resume(unittest.TestCase):
         code, _, err = run(["run", "resume.lua", "--set", "ck=out/drive/mid.ckpt"], self.dir)
         self.assertEqual(code, 0, err)
         self.assertIn("beltsim: out/drive/mid.ckpt resumed at t = 0.1 s", err)
+
+    def test_a_resumed_simulation_has_a_wall_time_limit(self):
+        # a checkpoint does not keep max_wall: --max-wall (every run's) and beltsim.resume's own give
+        # the resumed simulation one (it had none, and --max-wall was said not to reach it)
+        code, _, err = run(["run", "drive.lua", "--set", "save=true"], self.dir)
+        self.assertEqual(code, 0, err)
+        stopped = (re.escape("beltsim: slow_resume.lua:5: sim:run_to: stopped at its wall-time limit (max_wall = 0.5 s) "
+                             "at t = ") + r"0\.1[0-9]* s of 0\.2 s; the outputs up to then are in ")
+        for args in (["--max-wall", "0.5"], ["--set", "max_wall=0.5"], ["--set", "max_wall=100", "--max-wall", "0.5"]):
+            code, _, err = run(["run", "slow_resume.lua", "--set", "ck=out/drive/mid.ckpt"] + args, self.dir)
+            self.assertEqual(code, 1, err)
+            self.assertNotIn("--max-wall", err)  # (no "applies to scene:run and scene:start only")
+            self.assertRegex(warnings(err)[-1], stopped, args)
+        # refused as scene:start's max_wall is
+        code, _, err = run(["run", "slow_resume.lua", "--set", "ck=out/drive/mid.ckpt", "--set", "max_wall=0"],
+                           self.dir)
+        self.assertEqual(code, 1, err)
+        self.assertEqual(warnings(err), ["beltsim: slow_resume.lua:3: beltsim.resume.max_wall: must be > 0 s and "
+                                         "finite (got 0 s)"])
+
+    def test_checkpoints_saved_by_a_callback_resume_bit_for_bit(self):
+        # written once everything due at the callback's time is done: resumed, each continues as the
+        # run that went on (sim_test's Live.ACheckpointACallbackAsksForResumesBitForBit: when's too)
+        code, out, err = run(["run", "every_save.lua"], self.dir)
+        self.assertEqual(code, 0, err)
+        self.assertEqual(out.split(), ["out/every/ck/p%02d.ckpt" % k for k in range(1, 5)])
+        series = os.path.join(self.dir, "out", "every", "timeseries.csv")
+        with open(series, "rb") as f:
+            whole = f.read()
+        for k in (1, 2, 3):
+            code, _, err = run(["run", "resume.lua", "--set", "ck=out/every/ck/p%02d.ckpt" % k], self.dir)
+            self.assertEqual(code, 0, err)
+            self.assertIn("resumed at t = %g s" % (0.05 * k), err)
+            with open(series, "rb") as f:
+                self.assertEqual(f.read(), whole, k)
 
     def parameters_bytes(self, out):
         with open(os.path.join(out, "mid.ckpt")) as f:

@@ -353,6 +353,22 @@ TEST(LuaApi, MaxWallStopsARunWithAnError) {
       << msg;
   EXPECT_TRUE(fs::exists(temp_dir() / "out" / "timeseries.csv"));
   expect_error(scene_text("") + "s:run{ t_end = 1, max_wall = 0 }\n", "scene.lua:", {"run.max_wall: must be > 0"});
+  // the run's last lines come before the error, as those of a run Ctrl-C stopped do (they were
+  // left out): the fallbacks it needed and, its progress on, where it stopped (docs/cli.md)
+  for (const bool progress : {true, false}) {
+    testing::internal::CaptureStderr();
+    const std::string stopped =
+        run_text(scene_text("") + "s:run{ t_end = 1, max_wall = 0.2" + (progress ? "" : ", progress = false") + " }\n");
+    const std::string err = testing::internal::GetCapturedStderr();
+    EXPECT_NE(stopped.find("run.max_wall: the run stopped at its wall-time limit"), std::string::npos) << stopped;
+    EXPECT_EQ(err.find("beltsim: run stopped at t = ") != std::string::npos, progress) << err;
+    EXPECT_EQ(err.find(" s of 1 s (") != std::string::npos, progress) << err;
+    std::ifstream f(temp_dir() / "out" / "parameters.csv");
+    const std::string params((std::istreambuf_iterator<char>(f)), std::istreambuf_iterator<char>());
+    const bool failed = params.find("\nwarning.failed_step.count,0,") == std::string::npos;
+    ASSERT_NE(params.find("\nwarning.failed_step.count,"), std::string::npos) << params;
+    EXPECT_EQ(err.find("beltsim: warnings: failed_step ") != std::string::npos, failed) << err << params;
+  }
 }
 
 // check: a boolean (else an error naming the line, as the other run keys); a checked run hands its

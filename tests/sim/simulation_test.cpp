@@ -11,6 +11,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <memory>
 #include <sstream>
 
 #include "io/csv_writer.hpp"
@@ -264,6 +265,63 @@ TEST(Live, CheckpointResumesBitForBit) {
     ADD_FAILURE() << "cvode saved a checkpoint";
   } catch (const std::invalid_argument& e) {
     EXPECT_NE(std::string(e.what()).find("one-step integrator"), std::string::npos) << e.what();
+  }
+}
+
+// a checkpoint a callback asks for (every, when's action) is written once everything due at its
+// time is done, the state run_to(t) stops at: resumed, it continues as the run that went on, bit for
+// bit (saved inside the callback's time's processing, it held a state no run stands at, and save
+// was refused there). A law or a when-condition still cannot save: they run inside a step
+TEST(Live, ACheckpointACallbackAsksForResumesBitForBit) {
+  test::expect_warnings({WarningKind::failed_step});
+  const Scene sc = build_scene(presets::paper_dry());
+  auto configure = [&](const fs::path& out) {
+    RunSettings rs = settings("trbdf2", out);
+    rs.snapshot_every = 0.007;
+    return rs;
+  };
+  // the same callbacks in both runs (a when's action restarts the integrator where it runs): every
+  // 0.007 s, off the samples' times but with a snapshot each, and once past 0.0123 s
+  const fs::path whole = temp("cb_whole"), parts = temp("cb_parts");
+  auto callbacks = [&](Simulation& s, bool save) {
+    auto k = std::make_shared<int>(0);
+    s.every(0.007, [&s, k, save, parts] {
+      if (++*k, save) s.save((parts / ("e" + std::to_string(*k) + ".txt")).string());
+    });
+    s.when([&s] { return s.now() > 0.0123; },
+           [&s, save, parts] {
+             if (save) s.save((parts / "w.txt").string());
+           });
+  };
+  Eigen::VectorXd y_whole;
+  {
+    Simulation s(sc, configure(whole));
+    callbacks(s, false);
+    s.run_to(0.03);
+    y_whole = s.state();
+  }
+  {
+    Simulation s(sc, configure(parts));
+    callbacks(s, true);
+    s.run_to(0.03);
+    EXPECT_TRUE(same_bits(y_whole, s.state()));
+    // a law's or a when-condition's save is refused
+    const std::string m =
+        test::what_of([&] { s.when([&s, parts] { return s.save((parts / "x.txt").string()), false; }, [] {}); });
+    EXPECT_NE(m.find("save: not inside a law or a when-condition"), std::string::npos) << m;
+  }
+  for (const char* name : {"e2.txt", "w.txt", "e4.txt"}) {
+    auto s = Simulation::resume((parts / name).string(), {}, nullptr, {}, true);
+    if (name[0] == 'e') {
+      EXPECT_EQ(s->now(), (name[1] - '0') * 0.007) << name;
+    } else {
+      EXPECT_GT(s->now(), 0.0123);
+    }
+    s->run_to(0.03);
+    EXPECT_TRUE(same_bits(y_whole, s->state())) << name;
+    s->close();
+    EXPECT_EQ(slurp((whole / "timeseries.csv").string()), slurp((parts / "timeseries.csv").string())) << name;
+    EXPECT_EQ(slurp((whole / "snapshots.csv").string()), slurp((parts / "snapshots.csv").string())) << name;
   }
 }
 
