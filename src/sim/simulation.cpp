@@ -18,26 +18,12 @@
 #include "model/forces.hpp"
 #include "scene/validate.hpp"
 #include "sim/interval_means.hpp"
+#include "sim/scoped.hpp"
 #include "sim/settings_check.hpp"
 
 namespace beltsim {
 
 namespace {
-
-// sets a variable for the guard's scope and gives it back its value before, however the scope is
-// left (an exception from a Lua callback included)
-template <class T>
-class Scoped {
- public:
-  Scoped(T& var, T value) : var_(var), saved_(std::exchange(var, std::move(value))) {}
-  ~Scoped() { var_ = std::move(saved_); }
-  Scoped(const Scoped&) = delete;
-  Scoped& operator=(const Scoped&) = delete;
-
- private:
-  T& var_;
-  T saved_;
-};
 
 // Simulation::id(): from 1, never reused (the live view keys a run by it: live/live_server.hpp)
 std::uint64_t next_id() {
@@ -553,50 +539,6 @@ void Simulation::warn_contract_misses() {
     misses_warned_.push_back(m);
     rs_.on_warning(m);
   }
-}
-
-int Simulation::every(double dt, std::function<void()> fn) {
-  require_open("every");
-  if (!(dt > 0 && std::isfinite(dt)))
-    throw std::invalid_argument("every: the interval must be > 0 s and finite (got " + rounded_text(dt) + " s)");
-  callbacks_++;
-  const int id = tl_->add_every(dt, [this, fn = std::move(fn)](double) {
-    const Scoped<bool> acting(in_action_, true);
-    fn();
-  });
-  every_dt_[id] = dt;
-  return id;
-}
-
-int Simulation::when(std::function<bool()> cond, std::function<void()> action) {
-  require_open("when");
-  callbacks_++;
-  auto c = [this, cond = std::move(cond)](double t, const Eigen::VectorXd& y) {
-    const Scoped<View> at(view_, {t, &y});
-    return cond();
-  };
-  // a simulation under way checks the condition now: its error is a callback's, as in run_to
-  // (the script fails unless it catches the error; then the simulation may go on)
-  try {
-    return tl_->add_when(std::move(c), [this, action = std::move(action)](double) {
-      const Scoped<bool> acting(in_action_, true);
-      action();
-    });
-  } catch (const std::exception& e) {
-    callbacks_--;
-    end_status_ = "failed", end_note_ = e.what();
-    throw;
-  } catch (...) {
-    callbacks_--;
-    end_status_ = "failed", end_note_ = "an error in a callback";
-    throw;
-  }
-}
-
-bool Simulation::cancel(int id) {
-  const bool removed = tl_->remove(id);
-  if (removed) callbacks_--, every_dt_.erase(id);
-  return removed;
 }
 
 RunResult run(const Scene& sc, const RunSettings& settings, const std::atomic<bool>* stop,
