@@ -110,6 +110,13 @@ int call_original(lua_State* L, const char* what) {
   return lua_error(L);
 }
 
+std::string function_place(lua_State* L, int idx) {
+  lua_Debug ar;
+  lua_pushvalue(L, idx);
+  lua_getinfo(L, ">S", &ar);  // (pops the function)
+  return std::string(ar.short_src) + ":" + std::to_string(ar.linedefined);
+}
+
 std::string shown_traceback(const std::string& traceback, int frames) {
   std::istringstream in(traceback);
   std::string line, out;

@@ -35,6 +35,10 @@ int call_original(lua_State* L, const char* what);
 // method raises again naming the callback and the time: sim_box.hpp, guarded)
 void keep_traceback(lua_State* L, const std::string& message, const std::string& traceback);
 
+// where the Lua function at idx is defined, "file:line" (the place messages about a law, a callback
+// or a μ function name: "function at cb.lua:9")
+std::string function_place(lua_State* L, int idx);
+
 // the traceback as a reader wants it: without the host's own frames ("[C]: in ?"), at most
 // `frames` frames; "" when no more than one frame is left (the message already names that place)
 std::string shown_traceback(const std::string& traceback, int frames = 8);

@@ -34,10 +34,7 @@ class LuaLaw final : public LawFunction {
  public:
   LuaLaw(lua_State* L, int idx, bool speed, std::string what, std::shared_ptr<LawHost> host)
       : host_(std::move(host)), speed_(speed), what_(std::move(what)) {
-    lua_Debug ar;
-    lua_pushvalue(L, idx);
-    lua_getinfo(L, ">S", &ar);
-    where_ = std::string(ar.short_src) + ":" + std::to_string(ar.linedefined);
+    where_ = function_place(L, idx);
     lua_pushvalue(L, idx);
     ref_ = luaL_ref(L, LUA_REGISTRYINDEX);
   }

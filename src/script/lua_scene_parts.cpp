@@ -69,10 +69,7 @@ void push_site(lua_State* L, const ElementSite& e) {
 
 double call_mu(lua_State* L, int idx, const ElementSite& site, const std::string& key) {
   idx = lua_absindex(L, idx);
-  lua_Debug ar;
-  lua_pushvalue(L, idx);
-  lua_getinfo(L, ">S", &ar);
-  const std::string where = std::string(ar.short_src) + ":" + std::to_string(ar.linedefined);
+  const std::string where = function_place(L, idx);
   const std::string about = key + " (function at " + where + ") for element " + std::to_string(site.index) +
                             " at s = " + rounded_text(site.s) + " m";
   const int top = lua_gettop(L);

@@ -333,12 +333,7 @@ int l_log(lua_State* L) {
 // a callback: its role for messages ("sim:every's function") and its function's place ("cb.lua:9")
 struct Callback {
   std::string what, where;
-  Callback(lua_State* L, int idx, std::string role) : what(std::move(role)) {
-    lua_Debug ar;
-    lua_pushvalue(L, idx);
-    lua_getinfo(L, ">S", &ar);
-    where = std::string(ar.short_src) + ":" + std::to_string(ar.linedefined);
-  }
+  Callback(lua_State* L, int idx, std::string role) : what(std::move(role)), where(function_place(L, idx)) {}
   // "sim:every's function (function at cb.lua:9) at t = 0.005 s"
   std::string text(const SimBox& box) const {
     return what + " (function at " + where + ") at t = " + rounded_text(box.sim->now()) + " s";
