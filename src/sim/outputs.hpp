@@ -26,6 +26,10 @@
 
 namespace beltsim {
 
+// the room parameters.csv keeps for the rows appended at close (WholeFile::reserve): the fallbacks'
+// rows take 1.4 KB, a checked run's check.* rows 1.5 KB and the end rows' note up to a message
+inline constexpr long kParametersTail = 16 * 1024;
+
 class CsvWriter;
 class OutputDir;
 class RowFile;
