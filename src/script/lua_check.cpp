@@ -319,7 +319,7 @@ int index_methods(lua_State* L) {
   }
   std::sort(names.begin(), names.end());
   fail_at(L, {},
-          kind + " has no field or method '" + name + "'" + did_you_mean(name, names) + "; methods: " + join(names));
+          kind + " has no field or method '" + name + "'" + did_you_mean(name, names) + "; it has: " + join(names));
 }
 
 }  // namespace beltsim::script

@@ -37,6 +37,19 @@
 namespace beltsim {
 
 namespace {
+// the output folder a checkpoint names (absolute) as the run that wrote it names it when it lies
+// in the folder beltsim runs in (out/x, not /home/u/out/x); absolute elsewhere
+std::string shown_folder(const std::string& out) {
+  std::error_code ec;
+  const std::filesystem::path cwd = std::filesystem::current_path(ec);
+  if (ec || out.empty()) return out;
+  const std::filesystem::path rel = std::filesystem::path(out).lexically_normal().lexically_relative(cwd);
+  if (rel.empty() || *rel.begin() == "..") return out;
+  return rel.string();
+}
+}  // namespace
+
+namespace {
 
 // The largest checkpoint read: a checkpoint takes about 710 bytes per element on two pulleys
 // (measured at 100 and 1000 elements), 15 MB at the 20 000 elements a scene may have without
@@ -298,6 +311,7 @@ std::unique_ptr<Simulation> Simulation::load(const std::string& path, const Fram
     st = read_state(r, sc);
     r.finish();
     if (rs.frames) rs.frame_factory = factory, rs.frames->first_number = st.outputs.frames;
+    rs.out_dir = shown_folder(rs.out_dir);
     try {
       s.reset(new Simulation(sc, rs, false));
     } catch (const std::invalid_argument& e) {

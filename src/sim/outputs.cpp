@@ -98,7 +98,8 @@ std::string write_parameters(const Scene& sc, const RunSettings& rs, const Outpu
     text(pre + "drive", pd.kinematic ? "kinematic" : "torque", "");
     // the law as the scene reads it (a pulley given none turns freely: torque 0)
     text(pre + (pd.kinematic ? "speed" : "torque"), law_text(pd.kinematic ? pd.speed : pd.torque),
-         "its law at the start of the run (docs/lua-api.md, Laws); per_speed terms in N·m·s/rad",
+         pd.kinematic ? "its law at the start of the run (docs/lua-api.md, Laws)"
+                      : "its law at the start of the run (docs/lua-api.md, Laws); per_speed terms in N·m·s/rad",
          pd.kinematic ? "rad/s" : "N·m");
     row(pre + "wrap_angle", sc.route.arcs[k].angle * 180 / M_PI, "deg", "of the pitch line");
     row(pre + "static_penetration", sc.penetration[j], "m", "p0 of the initial state");

@@ -241,6 +241,18 @@ def one_writer():
           "keeps its checkpoint's settings" in err, "the command line's options are said not to reach a resume: %r"
           % err[-600:])
 
+    # run from the folder that holds its outputs, a resumed run names them as the run that wrote them
+    # did (the checkpoint keeps the folder absolute, so that a run resumed from elsewhere finds it)
+    fresh("resume_here")
+    status, err = beltsim(["run", script("resume_here", SCENE + 'local s = drive:start {}\ns:run_to(0.002)\n'
+                                         's:save("run.ckpt")\ns:close()\n'
+                                         'local r = beltsim.resume("resume_here/run.ckpt")\n'
+                                         'r:run_to(0.003)\nr:close()\n'), "--out", "resume_here"], cwd=TMP)
+    check(status == 0 and "its outputs go on in resume_here\n" in err
+          and re.search(r"run ended at t = 0\.003 s \(\d+ steps?, [^)]*\): resume_here/\n", err) is not None,
+          "a resumed run in the folder beltsim runs in names its outputs relative to it, as the first run: %r"
+          % err[-600:])
+
 
 # ---- §6 outputs that cannot be written -----------------------------------------------------------
 def not_written():

@@ -11,6 +11,8 @@
 #include <string>
 #include <vector>
 
+#include "lua.h"
+#include "script/interpreter.hpp"
 #include "script/lua_help.hpp"
 #include "support/files.hpp"
 
@@ -87,6 +89,27 @@ TEST(LuaApiDocs, EveryRowIsAHelpEntry) {
   for (const auto& [call, line] : documented_calls())
     EXPECT_TRUE(help.count(call)) << "docs/lua-api.md:" << line << ": `" << call
                                   << "` is not a call of the help table (src/script/lua_sim.cpp, api_help())";
+}
+
+// what a script finds in the beltsim table is what help() and the docs describe: every key of it
+// has a help entry of that name (help("version") once said nothing is called so)
+TEST(LuaApiDocs, EveryKeyOfTheBeltsimTableIsAHelpEntry) {
+  std::set<std::string> help;
+  for (const HelpEntry& h : api_help()) help.insert(h.name);
+  beltsim::script::Interpreter lua;
+  lua_State* L = lua.state();
+  ASSERT_EQ(lua_getglobal(L, "beltsim"), LUA_TTABLE);
+  int keys = 0;
+  lua_pushnil(L);
+  while (lua_next(L, -2)) {
+    lua_pop(L, 1);
+    ASSERT_EQ(lua_type(L, -1), LUA_TSTRING);
+    const std::string key = lua_tostring(L, -1);
+    ++keys;
+    EXPECT_TRUE(help.count(key)) << "beltsim." << key << " has no help entry (script/lua_help.cpp)";
+  }
+  lua_pop(L, 1);
+  EXPECT_GT(keys, 5);
 }
 
 TEST(LuaApiDocs, ReadsCallsWithPipesAndSeveralSpans) {
