@@ -9,7 +9,8 @@
 // - the belt element by element: a band through the element centres, each element a quad from
 //   the joint with its predecessor to the joint with its successor, coloured by the chosen
 //   quantity on a banded colour map; the centres' deviation from the nominal path (the pitch
-//   line, sunk by the static penetration on each pulley) magnified by `magnify`;
+//   line round the pulleys where they are now, a tensioner's moving with its arm, sunk by the
+//   static penetration on each pulley) magnified by `magnify`;
 // - wet elements (μ below the largest μ of the belt as the scene built it) with a dashed blue line along the outer
 // (back) edge;
 // - elements that slip (model/observables.hpp: |slip| > Δv, outside the friction band) with a
@@ -33,6 +34,7 @@
 #include "media/image.hpp"
 #include "model/model.hpp"
 #include "render/colormap.hpp"
+#include "scene/route.hpp"
 #include "sim/frames.hpp"
 
 namespace beltsim {
@@ -164,9 +166,13 @@ class FrameBuilder {
   // line its legend can have (the wet one too): a line running off an edge (the pulleys' lines as
   // long as they can be), the legend's lines left out
   std::string cut_text(double t, const double* y) const;
-  // world position at which an element centre p is drawn (nominal point + magnify·deviation);
-  // tangent (if not null) receives the nominal path's direction of travel there
-  Vec2 displayed(const Vec2& p, Vec2* tangent = nullptr) const;
+  // the nominal path of the state y: the scene's route with each pulley where it is in y (a
+  // pulley on a tensioner arm moves with it; the scene's own route when the drive has no arm)
+  Route nominal(const double* y) const;
+  // world position at which an element centre p is drawn (the nearest point of the nominal path
+  // plus magnify times the deviation from it); tangent (if not null) receives the nominal path's
+  // direction of travel there
+  Vec2 displayed(const Route& nominal, const Vec2& p, Vec2* tangent = nullptr) const;
 
  private:
   const Scene& sc_;

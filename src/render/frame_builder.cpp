@@ -1,7 +1,5 @@
 // FrameBuilder: what a frame shows (draw_list.hpp's list) from the Scene and a state: the
 // quantities and their colour bar, the pulleys, the belt, the marks, the text band and the legend.
-#include "render/draw_list.hpp"
-
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -11,7 +9,9 @@
 #include "model/block_matrix.hpp"
 #include "model/forces.hpp"
 #include "model/observables.hpp"
+#include "render/draw_list.hpp"
 #include "render/text.hpp"
+#include "scene/route.hpp"
 #include "scene/scene.hpp"
 
 namespace beltsim::render {
@@ -200,11 +200,29 @@ FrameBuilder::FrameBuilder(const Scene& sc, const FrameSettings& fs, Font* font)
   place_names();
 }
 
-Vec2 FrameBuilder::displayed(const Vec2& p, Vec2* tangent) const {
+Route FrameBuilder::nominal(const double* y) const {
+  const Model& m = sc_.model;
+  if (m.arms.empty()) return sc_.route;
+  // the route's circles at the pulleys' centres in y; the senses and the loop's as the scene's
+  std::vector<RouteCircle> circles;
+  int loop_sense = -1;
+  for (size_t k = 0; k < sc_.route.arcs.size(); ++k) {
+    const Route::Arc& a = sc_.route.arcs[k];
+    const int j = sc_.route_pulleys[k];
+    circles.push_back({m.centre(j, y), a.radius, a.sense});
+    if (m.pulleys[j].wrap == WrapSide::inside) loop_sense = a.sense;
+  }
+  try {
+    return make_route(circles, loop_sense, sc_.route_names);
+  } catch (const std::exception&) {
+    return sc_.route;  // an arm swung where the belt has no route: drawn against the scene's
+  }
+}
+
+Vec2 FrameBuilder::displayed(const Route& r, const Vec2& p, Vec2* tangent) const {
   if (fs_.magnify == 1 && !tangent) return p;
   // nearest point of the nominal path: each span's segment, each arc's circle sunk by the
   // pulley's static penetration (the belt at rest sits there)
-  const Route& r = sc_.route;
   double best = 1e300;
   Vec2 nominal = p, tan(1, 0);
   for (const Route::Span& s : r.spans) {
@@ -270,7 +288,8 @@ void FrameBuilder::build(double t, const double* y, DrawList& out, const Drive* 
   // chords whose ends stand off the arc by l²/8r: magnifying their ends would show that, not
   // deformation).
   std::vector<Vec2> Cd(n), J(n), O(n);
-  for (int i = 0; i < n; ++i) Cd[i] = displayed(Vec2(q[3 * i], q[3 * i + 1]));
+  const Route path = fs_.magnify == 1 ? Route{} : nominal(q);
+  for (int i = 0; i < n; ++i) Cd[i] = displayed(path, Vec2(q[3 * i], q[3 * i + 1]));
   for (int i = 0; i < n; ++i) {
     const Vec2& prev = Cd[before(i, n)];
     J[i] = 0.5 * (prev + Cd[i]);

@@ -155,14 +155,57 @@ TEST_F(Fixture, MagnifiesTheDeviationFromTheNominalPath) {
   f.magnify = 50;
   FrameBuilder b(sc, f, &font);
   const Vec2 C(y[3 * i], y[3 * i + 1]);
-  const Vec2 shown = b.displayed(C);
-  const Vec2 rest = b.displayed(Vec2(sc.y0[3 * i], sc.y0[3 * i + 1]));
+  const Route path = b.nominal(y.data());
+  const Vec2 shown = b.displayed(path, C);
+  const Vec2 rest = b.displayed(path, Vec2(sc.y0[3 * i], sc.y0[3 * i + 1]));
   EXPECT_NEAR((shown - rest).y(), 50 * 2e-4, 1e-6);
   EXPECT_NEAR((shown - rest).x(), 0, 1e-9);
   // on a pulley the static penetration is not deformation: the state at rest is drawn on the path
   const int k = sc.element_nearest(Vec2(-0.1, 0));
   const Vec2 Ck(sc.y0[3 * k], sc.y0[3 * k + 1]);
-  EXPECT_NEAR((b.displayed(Ck) - Ck).norm(), 0, 50 * 2e-5);
+  EXPECT_NEAR((b.displayed(path, Ck) - Ck).norm(), 0, 50 * 2e-5);
+}
+
+// A pulley on a tensioner arm moves: the nominal path goes round it where it is, so a belt that
+// moves with it is not drawn lifted off it (a user read a magnified frame as the belt leaving the
+// tensioner while it pressed on it: the path had stayed where the arm was at rest)
+TEST_F(Fixture, TheNominalPathFollowsATensionerArm) {
+  const Scene sc = test::moving_scene(presets::automotive_tensioner());
+  const Model& m = sc.model;
+  ASSERT_EQ(m.arms.size(), 1u);
+  int j = 0;
+  while (m.pulleys[j].arm < 0) ++j;
+  // the elements on the pulley's wrap, which the frame of the state at rest draws where they are
+  FrameSettings f = fs();
+  f.magnify = 5;
+  FrameBuilder b(sc, f, &font);
+  Eigen::VectorXd y = sc.y0;
+  const Vec2 c0 = m.centre(j, y.data());
+  const Route rest = b.nominal(y.data());
+  std::vector<int> wrap;
+  std::vector<double> drawn_off;  // how far from itself each is drawn at rest (chords, magnified)
+  for (int i = 0; i < m.n_el(); ++i) {
+    const Vec2 P(y[3 * i], y[3 * i + 1]);
+    if (std::abs((P - c0).norm() - m.pulleys[j].radius) < 1e-3)
+      wrap.push_back(i), drawn_off.push_back((b.displayed(rest, P) - P).norm());
+  }
+  ASSERT_GE(wrap.size(), 3u);
+  // the arm turned by 0.03 rad (some 2 mm at its 63 mm), the wrap carried along with the pulley
+  y[m.arm_coord(m.pulleys[j].arm)] += 0.03;
+  const Vec2 shift = m.centre(j, y.data()) - c0;
+  ASSERT_GT(shift.norm(), 1e-3);
+  for (int i : wrap) y[3 * i] += shift.x(), y[3 * i + 1] += shift.y();
+  const Route path = b.nominal(y.data());
+  double worst_at_rest_path = 0;
+  for (size_t k = 0; k < wrap.size(); ++k) {
+    // drawn as at rest, within a tenth of the shift
+    const int i = wrap[k];
+    const Vec2 P(y[3 * i], y[3 * i + 1]);
+    EXPECT_NEAR((b.displayed(path, P) - P).norm(), drawn_off[k], 0.1 * shift.norm()) << "element " << i;
+    worst_at_rest_path = std::max(worst_at_rest_path, (b.displayed(rest, P) - P).norm() - drawn_off[k]);
+  }
+  // against the path at rest (what frames drew) the wrap stood off the rim by some magnify - 1 shifts
+  EXPECT_GT(worst_at_rest_path, 2 * shift.norm());
 }
 
 TEST_F(Fixture, WetAndSlippingElementsAreMarked) {
