@@ -24,30 +24,36 @@ std::vector<std::string> coarse_wraps(const Scene& sc) {
   bool per_element = false;
   for (const SceneInput& in : sc.inputs)
     per_element = per_element || in.name == "contact.c1" || in.name == "contact.c2" || in.name == "contact.damping";
+  // one warning for every coarse wrap: each named with its figures, the advice given once, with the
+  // element count that puts kWrapElementsWarn on the coarsest
+  std::ostringstream m;
+  m.precision(3);
+  int coarse = 0, needed = 0;
   for (size_t k = 0; k < sc.route_names.size(); ++k) {
     const double on = sc.wrap_elements(k);
     if (on >= kWrapElementsWarn) continue;
-    const int needed = static_cast<int>(std::ceil(kWrapElementsWarn / on * n));
-    std::ostringstream m;
-    m.precision(3);
-    // what the coarse wrap costs, measured (docs/model.md, element count: automotive_tensioner.lua
-    // over 0.3-0.6 s at 150, 386 and 770 elements, the contact per length): the figures that sum
-    // the wrap's contact forces hold, those that depend on where it slips do not. On fixed centres
-    // (scripts/fixed_centres.lua at 10 m/s, 60 to 480 elements) the running tension itself falls
-    // with the element count: the hub load 5.5 % low at 31 elements a wrap, 0.8 % at 62
-    m << "pulley '" << sc.route_names[k] << "': its wrap (" << sc.route.arcs[k].angle * 180 / M_PI
-      << "° of r = " << sc.route.arcs[k].radius << " m) holds " << on << " elements of " << 1e3 * sc.model.belt.pitch
-      << " mm, each " << 100 / on << " % of the wrap. On so coarse a wrap the hub load and arm angle hold but what "
-      << "the slip decides does not (measured on a 51° idler at 3.9 elements against 20: a slip arc twice as long, "
-      << "the belt's power loss 20 % high). belt.elements = " << needed << " or more puts " << kWrapElementsWarn
-      << " on it: the loads and the loss within 2 %, the slip arc within 20 %, where a tensioner arm sets the tension "
-      << "(on fixed centres the running tension falls with a coarse belt: 5 % low at 31 elements a wrap, within 1 % "
-      << "at 62)";
-    if (per_element)
-      m << ", with the contact given per length (contact.c1_per_length, ...) so that refining keeps the answer";
-    m << " (docs/model.md, element count)";
-    out.push_back(m.str());
+    needed = std::max(needed, static_cast<int>(std::ceil(kWrapElementsWarn / on * n)));
+    m << (coarse++ ? "; pulley '" : "pulley '") << sc.route_names[k] << "': its wrap ("
+      << sc.route.arcs[k].angle * 180 / M_PI << "° of r = " << sc.route.arcs[k].radius << " m) holds " << on
+      << " elements of " << 1e3 * sc.model.belt.pitch << " mm, each " << 100 / on << " % of the wrap";
   }
+  if (coarse == 0) return out;
+  // what the coarse wrap costs, measured (docs/model.md, element count: automotive_tensioner.lua
+  // over 0.3-0.6 s at 150, 386 and 770 elements, the contact per length): the figures that sum
+  // the wrap's contact forces hold, those that depend on where it slips do not. On fixed centres
+  // (scripts/fixed_centres.lua at 10 m/s, 60 to 480 elements) the running tension itself falls
+  // with the element count: the hub load 5.5 % low at 31 elements a wrap, 0.8 % at 62
+  m << (coarse == 1 ? ". On so coarse a wrap" : ". On wraps so coarse")
+    << " the hub load and arm angle hold but what the slip decides does not (measured on a 51° idler at 3.9 "
+    << "elements against 20: a slip arc twice as long, the belt's power loss 20 % high). belt.elements = " << needed
+    << " or more puts " << kWrapElementsWarn << (coarse == 1 ? " on it" : " on each")
+    << ": the loads and the loss within 2 %, the slip arc within 20 %, where a tensioner arm sets the tension "
+    << "(on fixed centres the running tension falls with a coarse belt: 5 % low at 31 elements a wrap, within 1 % "
+    << "at 62)";
+  if (per_element)
+    m << ", with the contact given per length (contact.c1_per_length, ...) so that refining keeps the answer";
+  m << " (docs/model.md, element count)";
+  out.push_back(m.str());
   return out;
 }
 

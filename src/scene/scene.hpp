@@ -17,8 +17,9 @@ namespace beltsim {
 // next to it are resolved by a handful of elements: the run's first lines warn (coarse_wraps).
 inline constexpr double kWrapElementsWarn = 10;
 
-// One line per pulley whose wrap holds fewer than kWrapElementsWarn elements: the count, the wrap,
-// and the belt.elements that would put kWrapElementsWarn on it. Empty when none.
+// One line naming every pulley whose wrap holds fewer than kWrapElementsWarn elements (each with
+// its count and wrap), what so coarse a wrap costs and the belt.elements that would put
+// kWrapElementsWarn on the coarsest. Empty when no wrap is so coarse.
 std::vector<std::string> coarse_wraps(const Scene& sc);
 
 // One line per free pulley whose torque's per_speed_table lies wholly on the other side of zero

@@ -190,7 +190,11 @@ void read_spray(lua_State* L, int idx, SceneDef& d) {
 PulleyDef to_pulley(lua_State* L, int idx, const std::string& what, SceneDef& d, Context* ctx) {
   idx = lua_absindex(L, idx);
   require_table(L, idx, what);
-  check_keys(L, idx, what, keys_of("pulley"));
+  // an unknown key named in the pulley it is in: by its name when it has a string one
+  lua_getfield(L, idx, "name");
+  const std::string known = lua_type(L, -1) == LUA_TSTRING ? "pulley '" + std::string(lua_tostring(L, -1)) + "'" : what;
+  lua_pop(L, 1);
+  check_keys(L, idx, known, keys_of("pulley"));
   PulleyDef p;
   const auto name = opt_string(L, idx, "name", what);
   // (the path pulley N.name: the line of its `name =`, or of the pulley's table when none is written)

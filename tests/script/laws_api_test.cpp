@@ -341,6 +341,8 @@ TEST(LawsApi, BadLawsNameTheKey) {
             "beltsim.sine.frequency must be >= 0 (got -2 Hz)"},
            {"torque = beltsim.ramp{ t0 = 0/0, t1 = 1, to = 1 }", "beltsim.ramp: t1 must be > t0"},
            {"torque = beltsim.step(1/0, 0, 1)", "beltsim.step.t must be a finite number (got inf s)"},
+           // an unknown key of a named pulley names it as the others do (it was "pulley 2")
+           {"torque = 1, inertia_kg = 1", "unknown key 'inertia_kg' in pulley 'driven'; valid keys: name,"},
        }) {
     const std::string msg = run_text(isolated("speed = 0", c.driven));
     EXPECT_NE(msg.find("laws.lua:4: "), std::string::npos) << c.driven << " -> " << msg;  // the driven pulley's line
