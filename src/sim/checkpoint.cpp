@@ -341,10 +341,12 @@ std::unique_ptr<Simulation> Simulation::load(const std::string& path, const Fram
   // by the refusal that follows (its files are missing)
   if (std::error_code ec; !std::filesystem::is_directory(s->rs_.out_dir, ec)) {
     std::string hint;
-    const std::filesystem::path beside = std::filesystem::absolute(path).parent_path();
-    if (beside != std::filesystem::path(s->rs_.out_dir) && std::filesystem::exists(beside / "timeseries.csv", ec))
-      hint = " (" + beside.string() + ", where the checkpoint lies, holds a timeseries.csv: if it is that folder " +
-             "moved, move it back to " + s->rs_.out_dir + ")";
+    const std::filesystem::path beside = std::filesystem::absolute(path).lexically_normal().parent_path();
+    if (beside != std::filesystem::absolute(s->rs_.out_dir, ec).lexically_normal() &&
+        std::filesystem::exists(beside / "timeseries.csv", ec))
+      hint = " (" + shown_folder(beside.string()) +
+             ", where the checkpoint lies, holds a timeseries.csv: if it is that folder " + "moved, move it back to " +
+             s->rs_.out_dir + ")";
     throw std::runtime_error(where + "the run's output folder " + s->rs_.out_dir +
                              ", whose files this checkpoint continues, is not there" + hint +
                              ": put the run's folder back where it was to resume it, or run the scene again; "
