@@ -85,6 +85,40 @@ std::vector<std::string> wrong_side_maps(const Scene& sc) {
   return out;
 }
 
+std::vector<std::string> aiding_loads(const Scene& sc) {
+  std::vector<std::string> out;
+  // only where a prescribed speed drives the belt: without one, a torque that turns its pulley
+  // the way it runs is how a driver is given (the paper's)
+  bool speed_driven = false;
+  for (const PulleyDrive& p : sc.drive.pulleys) speed_driven = speed_driven || p.kinematic;
+  const std::optional<double> v = steady_belt_speed(sc);
+  if (!speed_driven || !v || *v == 0 || !std::isfinite(*v)) return out;
+  const std::vector<int> sense = sc.senses();
+  for (int j = 0; j < sc.model.n_p(); ++j) {
+    const TimeSpeedLaw& law = sc.drive.pulleys[j].torque;
+    // a law of time alone that settles (constant, steps, ramps, a table): its value once settled
+    if (sc.drive.pulleys[j].kinematic || sc.model.pulleys[j].coupling >= 0 || law.fn || !law.omega.empty() ||
+        law.per_speed != 0 || !law.sines.empty() || !law.harmonics.empty())
+      continue;
+    double settled = 0;
+    for (double k : law.kinks()) settled = std::max(settled, k);
+    for (double k : law.jumps()) settled = std::max(settled, k);
+    const double M = law.eval(settled + 1, 0, true);
+    const int turns = *v < 0 ? -sense[j] : sense[j];  // +1: anticlockwise, Ω > 0
+    if (M == 0 || (M > 0) != (turns > 0)) continue;
+    std::ostringstream m;
+    m.precision(6);
+    m << "pulley '" << sc.model.pulleys[j].name << "'.torque: " << M << " N·m"
+      << (settled > 0 ? " once its law has settled" : "") << " turns the pulley the way it runs ("
+      << (turns < 0 ? "clockwise, Ω < 0" : "anticlockwise, Ω > 0")
+      << ", at the drive's steady speeds): it drives the belt with the prescribed speed instead of loading it; "
+      << "a load's torque has the sign opposite to its speed, here " << -M
+      << " N·m (counter-clockwise is positive; docs/lua-api.md, Laws)";
+    out.push_back(m.str());
+  }
+  return out;
+}
+
 namespace {
 
 // the input that sets the belt's tension at rest: its pretension, rest length or strain, else a
@@ -295,6 +329,7 @@ std::vector<std::string> scene_warnings(const Scene& sc) {
   for (std::string& w : spray_warnings(sc)) out.push_back(std::move(w));
   for (std::string& w : coarse_wraps(sc)) out.push_back(std::move(w));
   for (std::string& w : wrong_side_maps(sc)) out.push_back(std::move(w));
+  for (std::string& w : aiding_loads(sc)) out.push_back(std::move(w));
   // μ = 0 is in its range (the frictionless tests of the laws use it) but a drive that transmits
   // nothing: said, as a user's belt.mu = 0 went silent while the driver spun alone (trial 16)
   if (!sc.drive.mu.empty() && std::all_of(sc.drive.mu.begin(), sc.drive.mu.end(), [](double mu) { return mu == 0; }))

@@ -27,6 +27,12 @@ std::vector<std::string> coarse_wraps(const Scene& sc);
 // steady_belt_speed, else as belt.direction says): the table then gives one torque throughout.
 std::vector<std::string> wrong_side_maps(const Scene& sc);
 
+// One line per free pulley of a drive that a prescribed speed drives whose torque, a law of time
+// alone that settles (a constant, steps, ramps, a table), turns it once settled the way it runs at
+// the drive's steady speeds: a load given with the sign of a driver (a user's alternator at -3 N·m
+// turning clockwise was pushed by its "load"). None where no pulley's speed is prescribed.
+std::vector<std::string> aiding_loads(const Scene& sc);
+
 // The belt's strain at rest past kStrainWarn (scene/parameters.hpp), with how its tension at rest
 // was given (strain_at_rest_warning, scene/validate.hpp); "" when it is a belt's.
 std::string strain_warning(const Scene& sc);

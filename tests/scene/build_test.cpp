@@ -695,4 +695,44 @@ TEST(BuildStages, ASpeedMapOnTheOtherSideOfZeroIsWarnedOf) {
       << w[0];
 }
 
+// a load given with a driver's sign, on a drive a prescribed speed drives: the pulley is pushed by its
+// "load" (trial 20: an alternator at -3 N·m turning clockwise); warned of, naming the pulley, the
+// torque, the sense and the load's sign. Not where a torque drives the belt (the paper's driver)
+TEST(BuildStages, ALoadWithTheSignOfItsSpeedIsWarnedOf) {
+  SceneDef d = presets::paper_dry();
+  d.belt.bending_damping = 0;                         // its own warning (bending_loss_test.cpp)
+  EXPECT_TRUE(aiding_loads(build_scene(d)).empty());  // the driver's torque turns it the way it runs
+  d.pulleys[0].kinematic = true;
+  d.pulleys[0].torque = TimeSpeedLaw{};
+  d.pulleys[0].speed = TimeSpeedLaw{};
+  d.pulleys[0].speed.constant = -50;  // clockwise: so turns the driven pulley
+  const auto load = [&](TimeSpeedLaw law) {
+    d.pulleys[1].torque = std::move(law);
+    return aiding_loads(build_scene(d));
+  };
+  TimeSpeedLaw driving;
+  driving.constant = -3;
+  std::vector<std::string> w = load(driving);
+  ASSERT_EQ(w.size(), 1u);
+  EXPECT_EQ(w[0],
+            "pulley 'driven'.torque: -3 N·m turns the pulley the way it runs (clockwise, Ω < 0, at the drive's "
+            "steady speeds): it drives the belt with the prescribed speed instead of loading it; a load's torque "
+            "has the sign opposite to its speed, here 3 N·m (counter-clockwise is positive; docs/lua-api.md, Laws)");
+  const std::vector<std::string> all = scene_warnings(build_scene(d));  // among the run's first lines
+  EXPECT_NE(std::find(all.begin(), all.end(), w[0]), all.end());
+  TimeSpeedLaw loading;
+  loading.constant = 3;
+  EXPECT_TRUE(load(loading).empty());
+  // a step to a driving torque: its value once settled
+  TimeSpeedLaw step;
+  step.ramps.push_back({.t0 = 0.5, .t1 = 0.5, .from = 3, .to = -8});
+  w = load(step);
+  ASSERT_EQ(w.size(), 1u);
+  EXPECT_NE(w[0].find("-8 N·m once its law has settled"), std::string::npos) << w[0];
+  // a speed-dependent load is the user's map, not judged here
+  TimeSpeedLaw viscous;
+  viscous.constant = -3, viscous.per_speed = -0.1;
+  EXPECT_TRUE(load(viscous).empty());
+}
+
 }  // namespace beltsim
