@@ -137,7 +137,7 @@ constexpr double kStiffContact = 1;
 // contact more than kStiffContact times as stiff as the belt) a residual past kStaticConverged,
 // naming the contact constant that makes it so stiff, with its value and the paper's; else,
 // with a pulley lost, belt.elements. An unconverged state of a softer contact is kept (its
-// residual is in scene:info()).
+// residual is in scene:info(); the run's first lines warn of it: static_state_warning).
 void check_static_state(const Scene& sc, const SceneDef& d, const std::string& lost, double tension);
 
 // Tensioner arms (scene/tensioner.cpp). validate_tensioner: throws on what the parameter table's

@@ -85,6 +85,31 @@ std::vector<std::string> wrong_side_maps(const Scene& sc) {
   return out;
 }
 
+std::string static_state_warning(const Scene& sc) {
+  // the tension asked at rest, when a pretension gave it (a rest length or a strain gives what it gives)
+  double asked = 0;
+  for (const SceneInput& in : sc.inputs)
+    if (in.name == "belt.pretension" && in.given) asked = in.value;
+  std::ostringstream m;
+  m.precision(6);
+  if (!(sc.static_residual < build::kStaticConverged)) {
+    m << "the belt's static initial state was not found: the iteration stopped " << rounded_text(sc.static_residual, 3)
+      << " m/s² from equilibrium (scene:info().static_residual), the spans at " << rounded_text(sc.static_tension, 6)
+      << " N";
+    if (asked > 0) m << " for the " << rounded_text(asked, 6) << " N asked";
+    m << ": the run starts out of equilibrium, with a jolt the drive did not ask for; a belt far stiffer than its "
+      << "contact (belt.EA against contact.c2), or a few elements more or fewer, may let it be found (docs/model.md, "
+         "Limits the scene build enforces)";
+    return m.str();
+  }
+  if (asked > 0 && std::abs(sc.static_tension - asked) > 1e-3 * asked)
+    m << "the belt at rest carries " << rounded_text(sc.static_tension, 6)
+      << " N, not the belt.pretension = " << rounded_text(asked, 6) << " N asked ("
+      << rounded_text(100 * (sc.static_tension / asked - 1), 2)
+      << " %): the rest length that gives it was not found; the run starts from that tension";
+  return m.str();
+}
+
 std::vector<std::string> aiding_loads(const Scene& sc) {
   std::vector<std::string> out;
   // only where a prescribed speed drives the belt: without one, a torque that turns its pulley
@@ -323,6 +348,7 @@ std::vector<std::string> unit_warnings(const Scene& sc) {
 std::vector<std::string> scene_warnings(const Scene& sc) {
   std::vector<std::string> out;
   for (std::string& w : unit_warnings(sc)) out.push_back(std::move(w));
+  if (std::string rest = static_state_warning(sc); !rest.empty()) out.push_back(std::move(rest));
   if (std::string strain = strain_warning(sc); !strain.empty()) out.push_back(std::move(strain));
   if (std::string speed = belt_speed_warning(sc); !speed.empty()) out.push_back(std::move(speed));
   if (std::string sag = sag_warning(sc); !sag.empty()) out.push_back(std::move(sag));

@@ -27,6 +27,10 @@ std::vector<std::string> coarse_wraps(const Scene& sc);
 // steady_belt_speed, else as belt.direction says): the table then gives one torque throughout.
 std::vector<std::string> wrong_side_maps(const Scene& sc);
 
+// The static initial state not found (its residual past kStaticConverged), or found at a tension
+// more than 0.1 % from the belt.pretension asked; "" when neither.
+std::string static_state_warning(const Scene& sc);
+
 // One line per free pulley of a drive that a prescribed speed drives whose torque, a law of time
 // alone that settles (a constant, steps, ramps, a table), turns it once settled the way it runs at
 // the drive's steady speeds: a load given with the sign of a driver (a user's alternator at -3 N·m

@@ -735,4 +735,29 @@ TEST(BuildStages, ALoadWithTheSignOfItsSpeedIsWarnedOf) {
   EXPECT_TRUE(load(viscous).empty());
 }
 
+// a belt far stiffer than the paper's starts at the pretension asked: the rest length corrected
+// along the secant where the SDE's slope alone is too steep (at EA 3e6 N it stopped at 516 N for
+// 500 after its passes, from 6e6 N the static solve stalled, with no word of either); a state
+// that is not found is warned of on the run's first lines
+TEST(BuildStages, AStiffBeltStartsAtThePretensionOrSaysItDoesNot) {
+  SceneDef d = presets::paper_dry();
+  d.belt.bending_damping = 0;  // its own warning (bending_loss_test.cpp)
+  for (double EA : {3e6, 1.52e7}) {
+    d.belt.EA = EA;
+    const Scene sc = build_scene(d);
+    EXPECT_NEAR(sc.static_tension, d.belt.pretension, 1e-4 * d.belt.pretension) << "EA " << EA;
+    EXPECT_LT(sc.static_residual, build::kStaticConverged) << "EA " << EA;
+    EXPECT_EQ(static_state_warning(sc), "") << "EA " << EA;
+  }
+  d.belt.EA = 1e10;  // past what the iteration finds, by its retry too
+  test::expect_warnings({WarningKind::static_retry});
+  const Scene sc = build_scene(d);
+  ASSERT_FALSE(sc.static_residual < build::kStaticConverged);
+  const std::string w = static_state_warning(sc);
+  EXPECT_EQ(w.rfind("the belt's static initial state was not found: the iteration stopped ", 0), 0u) << w;
+  EXPECT_NE(w.find("for the 500 N asked"), std::string::npos) << w;
+  const std::vector<std::string> all = scene_warnings(sc);
+  EXPECT_NE(std::find(all.begin(), all.end(), w), all.end());
+}
+
 }  // namespace beltsim
