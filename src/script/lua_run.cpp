@@ -490,9 +490,10 @@ void push_check(lua_State* L, const CheckEstimate& c) {
   lua_setmetatable(L, -2);
 }
 
-std::string wall_limit_text(double limit, double t, double target, const std::string& outputs) {
-  return "stopped at its wall-time limit (max_wall = " + rounded_text(limit) + " s) at t = " + rounded_text(t) +
-         " s of " + rounded_text(target) + " s; the outputs up to then are in " + outputs;
+std::string wall_limit_text(double limit, double t, double target, const std::string& outputs, bool option) {
+  return "stopped at its wall-time limit (" + std::string(option ? "--max-wall " : "max_wall = ") +
+         rounded_text(limit) + " s) at t = " + rounded_text(t) + " s of " + rounded_text(target) +
+         " s; the outputs up to then are in " + outputs;
 }
 
 // beltsim.stop_at(t): the next run that would pass t stops there, as Ctrl-C stops it, and later

@@ -52,9 +52,10 @@ FrameSettings to_frames(lua_State* L, int idx, const std::string& where, const s
 // the settings of scene:run{} (batch) or scene:start{} (live), command-line overrides applied
 RunSettings read_run_settings(lua_State* L, int idx, const Scene& sc, Context* ctx, bool batch, bool* progress);
 
-// "stopped at its wall-time limit (max_wall = LIMIT s) at t = T s of TARGET s; the outputs up to
+// "stopped at its wall-time limit (max_wall = LIMIT s, or --max-wall LIMIT s where option: the
+// command line gave it) at t = T s of TARGET s; the outputs up to
 // then are in DIR": a run's or a live simulation's call's message, after the caller's name
-std::string wall_limit_text(double limit, double t, double target, const std::string& outputs);
+std::string wall_limit_text(double limit, double t, double target, const std::string& outputs, bool option);
 
 // the key of an output folder in Context::run_dirs (absolute, normalised, no trailing /), and its
 // record once a run's outputs have opened there (scene:run, scene:start)

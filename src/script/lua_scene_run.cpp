@@ -81,8 +81,11 @@ int l_scene_run(lua_State* L) {
   }
   if (res.over_wall_limit) {
     // not silent: the outputs are finalised (run() closed them) and the script stops here
-    about = KeyPath{"", {"run", "max_wall"}};
-    error = path_text(about) + ": the run " + wall_limit_text(rs.wall_limit, res.t_reached, rs.t_end, res.csv_path);
+    // the limit named where it was given: the run's max_wall, or the command line's --max-wall
+    const bool option = ctx->overrides.has("max_wall");
+    about = option ? KeyPath{} : KeyPath{"", {"run", "max_wall"}};
+    error = (option ? std::string() : path_text(about) + ": ") + "the run " +
+            wall_limit_text(rs.wall_limit, res.t_reached, rs.t_end, res.csv_path, option);
   }
   // the page showed this run, which has ended: a change from it is refused at once (no simulation
   // is left to change; a console's prompt refused it only after it had been answered "queued")

@@ -77,7 +77,9 @@ int run_to(lua_State* L, SimBox& box, double t, const char* what) {
   if (a.over_wall_limit) {
     // not silent: an error naming the limit and the time reached (outputs flushed; the
     // simulation can go on with another call)
-    fail(L, std::string(what) + ": " + wall_limit_text(box.sim->settings().wall_limit, a.t, t, box.sim->out_dir()));
+    fail(L, std::string(what) + ": " +
+                wall_limit_text(box.sim->settings().wall_limit, a.t, t, box.sim->out_dir(),
+                                box.ctx->overrides.has("max_wall")));
   }
   if (a.interrupted) {
     interrupted = true;

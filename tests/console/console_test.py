@@ -834,7 +834,7 @@ class ConsoleTest(unittest.TestCase):
         r = self.piped(["sim:advance(10)", 'print("after", sim.t)'], flags=["--max-wall", "0.2"])
         out, err = r.stdout.decode(), r.stderr.decode()
         self.assertEqual(r.returncode, 1, out + err)  # a command failed
-        m = re.search(r"stopped at its wall-time limit \(max_wall = 0\.2 s\) at t = ([0-9.e+-]+) s of 10 s", err)
+        m = re.search(r"stopped at its wall-time limit \(--max-wall 0\.2 s\) at t = ([0-9.e+-]+) s of 10 s", err)
         self.assertTrue(m, err)
         t = float(m.group(1))
         self.assertGreater(t, 0.0, err)
