@@ -331,7 +331,7 @@ std::string fraction_hint(double v) {
 void check_strain_at_rest(const StrainAtRest& s, bool past_half_pitch) {
   const bool too_large = s.strain >= kStrainMax;
   if (!too_large && !past_half_pitch) return;
-  const std::string limit = too_large ? "more than the " + percent(kStrainMax) + " accepted"
+  const std::string limit = too_large ? "where " + percent(kStrainMax) + " or more is refused"
                                       : "more than the model takes (an SDE stretched by more than half a pitch)";
   std::string reason;
   if (s.key == "belt.rest_length") {

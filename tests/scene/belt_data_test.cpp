@@ -115,7 +115,7 @@ TEST(BeltData, AStrainNoBeltTakesIsRefusedSayingWhichWay) {
   d.belt.rest_length = 0.5;
   std::string m = test::error_of([&] { build_scene(d); });
   EXPECT_EQ(m.rfind("belt.rest_length is too short for the route: the route is 1.20832 m; 0.5 m is a strain of 142 % "
-                    "(route / rest length - 1), more than the 50 % accepted: raise it towards the route's length "
+                    "(route / rest length - 1), where 50 % or more is refused: raise it towards the route's length "
                     "(1.20231 m is a strain of 0.5 %)",
                     0),
             0u)
@@ -135,8 +135,8 @@ TEST(BeltData, AStrainNoBeltTakesIsRefusedSayingWhichWay) {
   d.belt.tensioning = Tensioning::pretension;
   d.belt.pretension = 1e5;  // on EA = 1.52e5 N
   m = test::error_of([&] { build_scene(d); });
-  EXPECT_EQ(m.rfind("belt.pretension is 65.8 % of the belt's EA (152000 N), a strain at rest of 65.8 %, more than the "
-                    "50 % accepted: lower it (it is in N), or give the belt's own EA",
+  EXPECT_EQ(m.rfind("belt.pretension is 65.8 % of the belt's EA (152000 N), a strain at rest of 65.8 %, where 50 % or "
+                    "more is refused: lower it (it is in N), or give the belt's own EA",
                     0),
             0u)
       << m;
