@@ -37,6 +37,21 @@ std::string contract_miss(const std::string& name, double rtol) {
   return "";
 }
 
+std::string energy_miss(const std::string& name) {
+  // measured on the paper's dry drive at rtol 1e-3 (energy = true; a user's trial, 2026-12-02):
+  // the dissipation integrals against the torques' work, which the implicit methods close within
+  // 0.05 %
+  if (name == "ros34pw2")
+    return "its energy.* columns do not balance: the frozen Jacobian's wrong friction branch reaches the dissipation "
+           "integrals too (49 J dissipated against 5.1 J of work over the paper's dry drive's first 0.1 s at rtol "
+           "1e-3)";
+  if (name == "rkf45")
+    return "its energy.* columns do not balance: the friction band's chatter reaches the dissipation integrals, "
+           "which fall below zero (5.7 J off against some 0.001 J of work over the paper's dry drive's first 0.01 s "
+           "at rtol 1e-3)";
+  return "";
+}
+
 namespace {
 [[noreturn]] void unknown(const std::string& name) {
   throw std::invalid_argument("integrator: " + integrator_problem(name));

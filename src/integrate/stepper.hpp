@@ -73,5 +73,9 @@ void check_integrator(const std::string& name);
 // 3·rtol and the span tensions within 10·rtol of the converged answer; docs/accuracy.md), as
 // measured; "" where it keeps it (trbdf2; the CVODE peers from rtol 1e-3 up)
 std::string contract_miss(const std::string& name, double rtol);
+// why the energy.* columns of a run by this integrator do not balance (the torques' work against
+// the mechanical energy's change and the dissipation integrals), as measured; "" where they do
+// (within about the tolerance: trbdf2, esdirk32 and the CVODE peers)
+std::string energy_miss(const std::string& name);
 
 }  // namespace beltsim

@@ -300,6 +300,7 @@ Summary summarize(const std::string& dir, double from, double to) {
   s.dir = dir;
   const Table table = read_timeseries_csv((fs::path(dir) / "timeseries.csv").string());
   const Parameters prm = read_parameters((fs::path(dir) / "parameters.csv").string());
+  if (const auto it = prm.values.find("run.integrator"); it != prm.values.end()) s.integrator = it->second;
   if (const auto it = prm.values.find("end.status"); it != prm.values.end()) {
     s.end_status = it->second;
     if (const auto n = prm.notes.find("end.status"); n != prm.notes.end()) s.end_note = n->second;

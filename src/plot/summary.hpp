@@ -64,6 +64,7 @@ struct Summary {
   // a run that diverged or was stopped read like a result otherwise (trial 16: a runaway's creep of
   // -158 under a plain header)
   std::string end_status, end_note;
+  std::string integrator;  // parameters.csv's run.integrator ("" when it has none)
   // [W] input − output − (total + stored): 0 but for the bias of the interval means of the belt
   // torques at the run's tolerance, which a kinematic pulley's torque_mean and so input and output
   // carry (docs/outputs.md, interval means); the table says so past kImbalanceShare of the input

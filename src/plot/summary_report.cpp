@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <stdexcept>
 
+#include "integrate/stepper.hpp"
 #include "io/csv_writer.hpp"
 #include "plot/plot.hpp"
 #include "plot/summary.hpp"
@@ -91,12 +92,17 @@ std::string summary_table(const Summary& s) {
   double input = NAN;
   for (const Figure& f : s.figures)
     if (f.section == "loss" && f.quantity == "input") input = f.value;
+  // the integrator's own miss first (rkf45's, ros34pw2's): a tighter tolerance would not mend it
+  const std::string integrator_miss = energy_miss(s.integrator);
   if (s.losses && std::abs(s.imbalance) > Summary::kImbalanceShare * input)
     out += "\nloss: input - output - (total + stored) = " + four_digits(s.imbalance) + " W, " +
-           four_digits(100 * s.imbalance / input) +
-           " % of the input: the belt torques' interval means (and a kinematic pulley's torque_mean, so input and "
-           "output) carry a bias of the run's tolerance that the losses and the motion do not (docs/outputs.md, "
-           "interval means); run at rtol 1e-5 or 1e-6 for input, output and share\n";
+           four_digits(100 * s.imbalance / input) + " % of the input: " +
+           (integrator_miss.empty()
+                ? "the belt torques' interval means (and a kinematic pulley's torque_mean, so input and output) carry "
+                  "a bias of the run's tolerance that the losses and the motion do not (docs/outputs.md, interval "
+                  "means); run at rtol 1e-5 or 1e-6 for input, output and share\n"
+                : "the run's integrator is " + s.integrator + ", and " + integrator_miss +
+                      " (docs/integration.md); run it with trbdf2 (the default) for the losses\n");
   if (!s.losses) out += "\nloss: not recorded (the run has no energy.* columns: give energy = true to beltsim.scene)\n";
   if (!s.mu_per_sample)
     out += "\nmu: the belt's least mu at the start (parameters.csv belt.mu_min) on every wrap and sample: the run "

@@ -275,6 +275,28 @@ TEST(Summary, ARunThatDidNotEndOkSaysHowItEnded) {
             std::string::npos);
 }
 
+// an imbalance of a run by an integrator whose energy columns do not balance is said to be its, not
+// the tolerance's (a user's trial: rkf45's negative dissipation was sent to a tighter rtol)
+TEST(Summary, AnImbalanceNamesAnIntegratorThatCannotBalance) {
+  const fs::path tol = folder("imbalance_trbdf2");
+  {
+    std::ofstream p(tol / "parameters.csv", std::ios::app);
+    p << "run.integrator,trbdf2,,run,x\n";
+  }
+  const std::string by_tolerance = summary_table(summarize(tol.string(), -INFINITY, INFINITY));
+  EXPECT_NE(by_tolerance.find("carry a bias of the run's tolerance"), std::string::npos) << by_tolerance;
+  const fs::path rk = folder("imbalance_rkf45");
+  {
+    std::ofstream p(rk / "parameters.csv", std::ios::app);
+    p << "run.integrator,rkf45,,run,x\n";
+  }
+  const std::string by_integrator = summary_table(summarize(rk.string(), -INFINITY, INFINITY));
+  EXPECT_NE(by_integrator.find("the run's integrator is rkf45, and its energy.* columns do not balance"),
+            std::string::npos)
+      << by_integrator;
+  EXPECT_EQ(by_integrator.find("carry a bias"), std::string::npos) << by_integrator;
+}
+
 // a mean lies within its values: b's μ is 0.8 in every row, and the sum of three 0.8s divided by
 // three rounds to 0.8000000000000002, above its own largest value (the trial's 0.7999999999999986
 // below mu_min 0.8000000000000003)
