@@ -63,13 +63,12 @@ std::optional<double> belt_speed(const Scene& sc, const std::vector<WrapSeen>& w
   if (!f0 || *f0 == 0 || !std::isfinite(*f0)) return std::nullopt;
   const double dir = *f0 > 0 ? 1.0 : -1.0;
   double lo = 0, hi = 0.01;
-  constexpr double kFastest = 1e3;  // [m/s]: no balance below this, no speed to speak of
-  for (;; hi *= 2) {
-    if (hi > kFastest) return std::nullopt;
+  for (;;) {
     const std::optional<double> f = belt_force(sc, wraps, dir * hi);
     if (!f) return std::nullopt;
     if (*f * dir <= 0) break;
-    lo = hi;
+    if (hi >= kFastestBeltSpeed) return std::nullopt;  // no balance below it, no speed to speak of
+    lo = hi, hi = std::min(2 * hi, kFastestBeltSpeed);
   }
   for (int it = 0; it < 100; ++it) {
     const double mid = 0.5 * (lo + hi);
@@ -104,6 +103,17 @@ std::string power_text(double watts) {
 
 std::optional<double> steady_belt_speed(const Scene& sc) {
   return belt_speed(sc, wraps_of(sc));
+}
+
+bool drives_past_fastest(const Scene& sc) {
+  const std::vector<WrapSeen> wraps = wraps_of(sc);
+  for (const WrapSeen& w : wraps)
+    if (sc.drive.pulleys[w.pulley].kinematic) return false;
+  const std::optional<double> f0 = belt_force(sc, wraps, 0.0);
+  if (!f0 || *f0 == 0 || !std::isfinite(*f0)) return false;
+  const double dir = *f0 > 0 ? 1.0 : -1.0;
+  const std::optional<double> f = belt_force(sc, wraps, dir * kFastestBeltSpeed);
+  return f && *f * dir > 0;
 }
 
 std::optional<BendingLoss> estimate_bending_loss(const Scene& sc) {

@@ -54,6 +54,13 @@ std::optional<BendingLoss> estimate_bending_loss(const Scene& sc);
 // sense_j·v/R_j (Scene::senses()).
 std::optional<double> steady_belt_speed(const Scene& sc);
 
+// The fastest belt speed the balance of the free pulleys' torques is sought below [m/s].
+inline constexpr double kFastestBeltSpeed = 1e3;
+// Whether the free pulleys' torques still drive the belt on at kFastestBeltSpeed (no kinematic
+// pulley; laws of the speed that the estimate reads): no steady speed exists below it, and the drive
+// speeds up until the belt slips on a pulley or a pulley runs away.
+bool drives_past_fastest(const Scene& sc);
+
 // Above this share of the transmitted power the run's first lines warn: a PK belt's whole loss is
 // a few per cent (published efficiencies 95–98 %, docs/belts.md).
 inline constexpr double kBendingLossWarn = 0.05;

@@ -244,6 +244,14 @@ std::string belt_speed_warning(const Scene& sc) {
       consider(sc.route_pulleys[fastest], sc.route.arcs[fastest].sense * *v / r,
                "at the drive's steady speeds (the free pulleys' torques balanced)");
     }
+  if (!kinematic && pulley < 0 && drives_past_fastest(sc)) {
+    std::ostringstream w;
+    w << "the free pulleys' torques find no steady speed below " << kFastestBeltSpeed
+      << " m/s of belt: they drive it on faster than any belt runs, until it slips on a pulley or a pulley runs "
+         "away (a run stops past 1e5 rad/s). Check the torques: a load too light for the driving torque lets the "
+         "drive run so fast (docs/model.md, limits the scene build enforces)";
+    return w.str();
+  }
   return pulley < 0 ? "" : belt_speed_text(sc, pulley, omega, when, kinematic);
 }
 

@@ -652,6 +652,23 @@ TEST(BuildStages, ABeltSpeedPastAPkBeltsRatingIsWarnedOfOnce) {
       << w[0];
   EXPECT_NE(w[0].find("Check the torques"), std::string::npos) << w[0];
   EXPECT_TRUE(speed_warnings(d).empty());  // the paper's drive: 7.3 m/s
+  // a balance between 655 and 1000 m/s was missed by the search's doubling (trial 21: no warning at
+  // all from some 630 m/s on): 0.00095 N·m·s/rad against 9 N·m balance at 947 m/s
+  f.pulleys[0].torque.constant = -9;
+  f.pulleys[1].torque.per_speed = -0.00095;
+  w = speed_warnings(f);
+  ASSERT_EQ(w.size(), 1u);
+  EXPECT_NE(w[0].find("which moves the belt at 947.37 m/s"), std::string::npos) << w[0];
+  // no balance below 1000 m/s: said so, not left silent
+  f.pulleys[1].torque.per_speed = -0.00005;
+  const std::vector<std::string> all = scene_warnings(build_scene(f));
+  ASSERT_EQ(std::count_if(all.begin(), all.end(),
+                          [](const std::string& x) {
+                            return x.rfind("the free pulleys' torques find no steady speed below 1000 m/s of belt",
+                                           0) == 0;
+                          }),
+            1)
+      << ::testing::PrintToString(all);
 }
 
 // a speed map whose speeds all lie on the other side of zero from the way its pulley turns gives
