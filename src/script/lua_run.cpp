@@ -197,6 +197,7 @@ FrameSettings to_frames(lua_State* L, int idx, const std::string& w, const std::
 
 double wet_share(double s, double from, double to, double len, double tau) {
   const double span = from <= to ? to - from : len - from + to;
+  if (span >= len) return 1.0;  // the whole loop: its two ends meet, no edge to ramp across
   double u = std::fmod(s - from, len);
   if (u < 0) u += len;
   const bool inside = u <= span;

@@ -35,7 +35,8 @@ std::string wet_text(std::optional<double> mu, std::optional<double> from, std::
 // The share of the wet μ an element at belt coordinate s takes with a transition of length tau
 // [m] about each end of [from, to] (wrapping round the belt of length len when from > to): 1 inside
 // farther than tau/2 from both ends, 0 outside farther than tau/2, linear across the ends; tau = 0
-// is the sharp boundary (the ends inside).
+// is the sharp boundary (the ends inside). A stretch of the whole loop (from 0 to len) has no end:
+// 1 everywhere.
 double wet_share(double s, double from, double to, double len, double tau);
 // wet_share of every element (by index) at its start position
 std::vector<double> wet_shares(const Scene& sc, double from, double to, double tau);
