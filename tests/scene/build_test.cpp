@@ -551,8 +551,9 @@ TEST(BuildStages, HugeMuIsRefusedAndAnEnergySourceIsWarnedOf) {
   SceneDef s = presets::paper_dry();
   s.pulleys[1].torque.per_speed = 0.5;
   const std::vector<std::string> w = scene_warnings(build_scene(s));
-  ASSERT_EQ(w.size(), 1u);
-  EXPECT_NE(w[0].find("pulley 'driven'.torque: per_speed = 0.5"), std::string::npos) << w[0];
+  ASSERT_EQ(w.size(), 2u);  // and, the drive finding no steady speed, that it runs away
+  EXPECT_NE(w[0].find("find no steady speed below 1000 m/s"), std::string::npos) << w[0];
+  EXPECT_NE(w[1].find("pulley 'driven'.torque: per_speed = 0.5"), std::string::npos) << w[1];
   // μ = 0 is in range but transmits nothing: warned of (trial 16: taken silently)
   SceneDef dry = quiet;
   dry.belt.mu = 0;
@@ -684,15 +685,21 @@ TEST(BuildStages, ASpeedMapOnTheOtherSideOfZeroIsWarnedOf) {
   };
   // the driver's torque turns the belt clockwise; the map written for positive speeds loads nothing,
   // so no steady speed balances: the sense is belt.direction's
+  // (and the drive, loaded by nothing, finds no steady speed: said after the map's own warning)
   std::vector<std::string> w = map_warnings({0, 100}, {0, -70});
-  ASSERT_EQ(w.size(), 1u);
-  EXPECT_EQ(w[0],
+  ASSERT_EQ(w.size(), 2u);
+  EXPECT_EQ(w[0].rfind("the free pulleys' torques find no steady speed below 1000 m/s", 0), 0u) << w[0];
+  EXPECT_EQ(w[1],
             "pulley 'driven'.torque: per_speed_table's speeds lie in [0, 100] rad/s, but the pulley turns "
             "clockwise (Ω < 0) as the belt travels the way belt.direction gives: the table gives its first "
             "torque, 0 N·m, at every speed on that side of zero (the speeds are signed: a clockwise pulley's "
             "are negative; docs/lua-api.md, Laws)");
   EXPECT_TRUE(map_warnings({-100, 0}, {70, 0}).empty());    // the same load, signed: the steady speed balances
-  EXPECT_TRUE(map_warnings({-10, 100}, {7, -70}).empty());  // across zero: it loads
+  // across zero: it loads, no map warning (its 7 N·m below -10 rad/s cannot hold the driver's 70 N·m:
+  // the drive runs away, which the steady-speed line says)
+  w = map_warnings({-10, 100}, {7, -70});
+  ASSERT_EQ(w.size(), 1u);
+  EXPECT_EQ(w[0].rfind("the free pulleys' torques find no steady speed below 1000 m/s", 0), 0u) << w[0];
   // a kinematic driver sets the sense: clockwise, warned of at the steady speeds; anticlockwise
   // (against belt.direction), the positive map fits
   d.pulleys[0].kinematic = true;
