@@ -3,6 +3,7 @@
 // the live simulation's methods share.
 #include "script/lua_run.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -270,6 +271,13 @@ std::vector<MuEvent> read_events(lua_State* L, int idx, const Scene& sc) {
     } else {
       ev.mu = mu_over(L, lua_gettop(L), sc, from, to, what);
     }
+    // a stretch that holds no element's start would change nothing, and events.csv would record a
+    // wetting all the same (sim:wet answers "no element changed")
+    if (std::all_of(ev.mu.begin(), ev.mu.end(), [](double mu) { return std::isnan(mu); }))
+      fail_on(L, what,
+              "the stretch [" + rounded_text(from.value_or(0)) + ", " + rounded_text(to.value_or(0)) +
+                  "] m holds no element (an element is in it when its start s is): the event would change nothing; "
+                  "widen it, or give from > to for a stretch across s = 0");
     // recorded as sim:wet and sim:set_mu record theirs (events.csv, the plots' event lines)
     ev.what = from ? "wet" : "set_mu";
     ev.text = wet_text(lua_type(L, -1) == LUA_TNUMBER ? std::optional<double>(lua_tonumber(L, -1)) : std::nullopt, from,

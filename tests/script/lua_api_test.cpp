@@ -290,6 +290,10 @@ TEST(LuaApi, BadEventsAreRejectedWithFileLine) {
                "scene.lua:8:", {"both from and to"});
   expect_error(scene_text("") + "s:run{ t_end = 0.01, events = { { t = 0.005, mu = 0.2, wet = true } } }\n",
                "scene.lua:8:", {"wet"});
+  // a stretch that holds no element would change nothing, logged as a wetting all the same (trial 21)
+  expect_error(
+      scene_text("") + "s:run{ t_end = 0.01, events = { { t = 0.005, mu = 0.2, from = 0.3001, to = 0.3001 } } }\n",
+      "scene.lua:8:", {"run.events[1]: the stretch [0.3001, 0.3001] m holds no element", "change nothing"});
 }
 
 }  // namespace lua_api_test
