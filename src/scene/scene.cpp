@@ -85,6 +85,34 @@ std::vector<std::string> wrong_side_maps(const Scene& sc) {
   return out;
 }
 
+std::string gap_rotation_warning(const Scene& sc) {
+  // the SDE's damper acts on its gap vector d (F = k·d + c·ḋ, the paper's eq. 5), which turns at
+  // Ω = v/R round a wrap: |ḋ| = |d|·Ω with no stretching, a force c·|d|·Ω against the spring's k·|d|,
+  // their ratio the damper's time c/k times Ω (the paper's 1.35e-4 s at 73 rad/s: 1 %)
+  const Belt& b = sc.model.belt;
+  if (!(b.c > 0) || b.e_tra != 1) return "";
+  const std::optional<double> v = steady_belt_speed(sc);
+  if (!v || !std::isfinite(*v) || sc.route.arcs.empty()) return "";
+  size_t tightest = 0;
+  for (size_t k = 1; k < sc.route.arcs.size(); ++k)
+    if (sc.route.arcs[k].radius < sc.route.arcs[tightest].radius) tightest = k;
+  const double R = sc.route.arcs[tightest].radius, tau = b.c / b.k, ratio = tau * std::abs(*v) / R;
+  if (!(ratio > kGapRotationWarn)) return "";
+  std::string key = "belt.axial_damping";
+  for (const SceneInput& in : sc.inputs)
+    if (in.name == "belt.axial_damping" || in.name == "belt.sde.c")
+      key = in.name + " = " + rounded_text(in.value, 6) + " " + in.unit;
+  std::ostringstream m;
+  m.precision(3);
+  m << key << ": the SDE's damper acts on its gap vector, which turns with the belt round a wrap: at the drive's "
+    << "steady speeds (belt " << std::abs(*v) << " m/s) on pulley '" << sc.route_names[tightest] << "' (r = " << R
+    << " m) its force from that turning alone is " << ratio << " times the gap's spring force, a tension no "
+    << "strain gives that the spans and hub loads carry. The damper's time c/k is " << tau
+    << " s, where a PK belt's is about 1.4e-4 s (the paper's; docs/belts.md): give the belt's own axial damping "
+    << "(docs/model.md, the laws)";
+  return m.str();
+}
+
 std::string static_state_warning(const Scene& sc) {
   // the tension asked at rest, when a pretension gave it (a rest length or a strain gives what it gives)
   double asked = 0;
@@ -357,6 +385,7 @@ std::vector<std::string> scene_warnings(const Scene& sc) {
   std::vector<std::string> out;
   for (std::string& w : unit_warnings(sc)) out.push_back(std::move(w));
   if (std::string rest = static_state_warning(sc); !rest.empty()) out.push_back(std::move(rest));
+  if (std::string gap = gap_rotation_warning(sc); !gap.empty()) out.push_back(std::move(gap));
   if (std::string strain = strain_warning(sc); !strain.empty()) out.push_back(std::move(strain));
   if (std::string speed = belt_speed_warning(sc); !speed.empty()) out.push_back(std::move(speed));
   if (std::string sag = sag_warning(sc); !sag.empty()) out.push_back(std::move(sag));

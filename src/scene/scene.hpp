@@ -27,6 +27,13 @@ std::vector<std::string> coarse_wraps(const Scene& sc);
 // steady_belt_speed, else as belt.direction says): the table then gives one torque throughout.
 std::vector<std::string> wrong_side_maps(const Scene& sc);
 
+// The axial dampers' force from their gap vectors' turning round the tightest wrap at the drive's
+// steady speeds, past kGapRotationWarn of the gaps' spring force (a damping far above a belt's:
+// a user's 1e4 times the paper's carried 9 kN spans on a 500 N drive); "" below it, or when the
+// steady speed is not known.
+inline constexpr double kGapRotationWarn = 0.1;
+std::string gap_rotation_warning(const Scene& sc);
+
 // The static initial state not found (its residual past kStaticConverged), or found at a tension
 // more than 0.1 % from the belt.pretension asked; "" when neither.
 std::string static_state_warning(const Scene& sc);

@@ -12,6 +12,7 @@
 #include <utility>
 #include <vector>
 
+#include "scene/bending_loss.hpp"
 #include "scene/parameters.hpp"
 #include "scene/validate.hpp"
 #include "support/parameter_error.hpp"
@@ -782,6 +783,28 @@ TEST(BuildStages, AStiffBeltStartsAtThePretensionOrSaysItDoesNot) {
   EXPECT_NE(w.find("for the 500 N asked"), std::string::npos) << w;
   const std::vector<std::string> all = scene_warnings(sc);
   EXPECT_NE(std::find(all.begin(), all.end(), w), all.end());
+}
+
+// the axial damper acts on the gap vector, which turns round a wrap: its force from the turning
+// against the gap's spring force is (c/k)·v/R, 1 % on the paper's drive; a damping that makes it
+// more than 10 % is warned of (trial 21: 1e4 times the paper's carried 9 kN spans on a 500 N drive)
+TEST(BuildStages, AnAxialDampingWhoseGapTurningTensionsTheBeltIsWarnedOf) {
+  SceneDef d = presets::paper_dry();
+  d.belt.bending_damping = 0;  // its own warning (bending_loss_test.cpp)
+  const Scene paper = build_scene(d);
+  const Belt& b = paper.model.belt;
+  const double ratio = b.c / b.k * std::abs(*steady_belt_speed(paper)) / 0.1;
+  EXPECT_NEAR(ratio, 0.0099, 0.0005);  // 1.35e-4 s at 7.3 m/s on r = 0.1 m
+  EXPECT_EQ(gap_rotation_warning(paper), "");
+  d.belt.axial_damping *= 100;  // the ratio near 1
+  const std::string w = gap_rotation_warning(build_scene(d));
+  EXPECT_EQ(w.rfind("belt.axial_damping = 2050 N·s: the SDE's damper acts on its gap vector", 0), 0u) << w;
+  std::ostringstream said;
+  said.precision(3);
+  said << "its force from that turning alone is " << 100 * ratio << " times the gap's spring force";
+  EXPECT_NE(w.find(said.str()), std::string::npos) << w;
+  d.belt.axial_damping /= 20;  // 5 times the paper's: 5 %
+  EXPECT_EQ(gap_rotation_warning(build_scene(d)), "");
 }
 
 }  // namespace beltsim
