@@ -12,10 +12,12 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <initializer_list>
 #include <memory>
 #include <optional>
 #include <sstream>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "integrate/stepper.hpp"
@@ -196,6 +198,21 @@ int l_scene_info(lua_State* L) {
   set_number(L, "s_length", sc->sites.empty() ? 0.0 : sc->sites[0].length);
   set_number(L, "static_tension", sc->static_tension);
   set_number(L, "static_residual", sc->static_residual);
+  // the fields' units, which beltsim.print and the console print after them (docs/lua-api.md)
+  for (const auto& [field, unit] :
+       std::initializer_list<std::pair<const char*, const char*>>{{"pitch", "m"},
+                                                                  {"rigid_length", "m"},
+                                                                  {"rest_length", "m"},
+                                                                  {"mass", "kg"},
+                                                                  {"c", "N·s/m"},
+                                                                  {"kt", "N·m/rad"},
+                                                                  {"ct", "N·m·s/rad"},
+                                                                  {"route_length", "m"},
+                                                                  {"s_length", "m"},
+                                                                  {"static_tension", "N"},
+                                                                  {"static_residual", "m/s²"}})
+    set_unit(L, -1, field, unit);
+  if (b.e_tra == 1) set_unit(L, -1, "k", "N/m");  // (N/m^e for a law of exponent e)
   lua_newtable(L);
   for (size_t k = 0; k < sc->route_names.size(); ++k)
     lua_pushnumber(L, sc->route.arcs[k].angle * 180 / M_PI), lua_setfield(L, -2, sc->route_names[k].c_str());
@@ -215,6 +232,7 @@ int l_scene_info(lua_State* L) {
     set_number(L, "transmitted", e->transmitted);
     set_number(L, "dissipated", e->dissipated);
     set_number(L, "share", e->share());
+    set_unit(L, -1, "belt_speed", "m/s"), set_unit(L, -1, "transmitted", "W"), set_unit(L, -1, "dissipated", "W");
     lua_setfield(L, -2, "bending_loss");
   }
   return 1;

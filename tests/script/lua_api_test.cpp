@@ -16,6 +16,23 @@ namespace lua_api_test {
 
 TEST(LuaApi, ValidSceneBuilds) { EXPECT_EQ(run_text(scene_text("")), ""); }
 
+// scene:info()'s fields carry their units, which beltsim.print and the console print after them
+// (trial 19: its lengths printed bare where sim:stats()'s times said s)
+TEST(LuaApi, SceneInfoFieldsCarryTheirUnits) {
+  EXPECT_EQ(
+      run_text(scene_text("") +
+               "local u = getmetatable(s:info()).__units\n"
+               "for f, want in pairs{ pitch = 'm', rest_length = 'm', route_length = 'm', s_length = 'm', "
+               "mass = 'kg', k = 'N/m', c = 'N·s/m', kt = 'N·m/rad', ct = 'N·m·s/rad', static_tension = 'N', "
+               "static_residual = 'm/s²' } do\n"
+               "  assert(u[f] == want, f .. ': ' .. tostring(u[f]))\n"
+               "end\n"
+               "assert(u.elements == nil and u.strain == nil)\n"
+               "local b = getmetatable(s:info().bending_loss).__units\n"
+               "assert(b.belt_speed == 'm/s' and b.transmitted == 'W' and b.dissipated == 'W' and b.share == nil)\n"),
+      "");
+}
+
 // values that used to be taken silently or misread (issue 12): each is an error naming the key
 TEST(LuaApi, SilentMisreadingsAreErrors) {
   struct Case {
