@@ -330,11 +330,7 @@ class CvodeIntegrator final : public Integrator {
 
   // an applied input beyond the problem's scales at the last accepted state's time or at t (where
   // CVODE got to), "...; ", as the one-step methods name it (OdeProblem::absurd_input)
-  std::string absurd_input(double t) const {
-    for (const double tt : {t_, t})
-      if (const std::string a = problem_.absurd_input(tt, y_.data()); !a.empty()) return a + "; ";
-    return "";
-  }
+  std::string absurd_input(double t) const { return problem_.absurd_note(t_, t, y_.data()); }
 
   // "the largest error is in <component>" for the stop messages, as the one-step methods say it:
   // the component of the largest weighted local error estimate of CVODE's last attempt

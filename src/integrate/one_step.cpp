@@ -170,13 +170,9 @@ class OneStep final : public Integrator {
   }
 
   // an input beyond the problem's scales (OdeProblem::absurd_input: an applied torque no belt could
-  // carry) at the start or the end of the step that failed (a law that jumps inside it), "...; ",
-  // named before the largest error: the stop is its doing, wherever the error shows
-  std::string absurd_input(double t_end) const {
-    for (const double t : {t_, t_end})
-      if (const std::string a = sys_.problem->absurd_input(t, y_.data()); !a.empty()) return a + "; ";
-    return "";
-  }
+  // carry) at the start or the end of the step that failed, "...; ", named before the largest
+  // error: the stop is its doing, wherever the error shows
+  std::string absurd_input(double t_end) const { return sys_.problem->absurd_note(t_, t_end, y_.data()); }
 
   // "the largest error is in <component>" for the stop messages; before any error estimate (every
   // step failed from the start) no component can be named

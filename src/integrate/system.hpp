@@ -82,6 +82,13 @@ class OdeProblem {
   // the problem at (t, y) beyond what its own scales make plausible (an applied torque that no belt
   // could carry), named with its value and the scale, as the likely cause; empty when none
   virtual std::string absurd_input(double, const double*) const { return {}; }
+  // absurd_input at t0 or else at t1 (a step that failed: its start, and its end for a law that
+  // jumps inside it), both with the state y, as "<what>; " for a stop message, "" when neither
+  std::string absurd_note(double t0, double t1, const double* y) const {
+    for (const double t : {t0, t1})
+      if (std::string a = absurd_input(t, y); !a.empty()) return a + "; ";
+    return {};
+  }
 
   // the work of the integrator that solves this problem, counted by the integrator (the stepper
   // counts its evaluations, Jacobians and solves, the driver its steps; CVODE's statistics are

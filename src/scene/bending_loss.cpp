@@ -51,8 +51,9 @@ std::optional<double> belt_force(const Scene& sc, const std::vector<WrapSeen>& w
 }
 
 // the belt's steady speed along its travel (signed): a kinematic pulley's, else the balance of
-// the free pulleys' torques
-std::optional<double> belt_speed(const Scene& sc, const std::vector<WrapSeen>& wraps) {
+// the free pulleys' torques; past_fastest (when given) is set when they still drive the belt on
+// at kFastestBeltSpeed
+std::optional<double> belt_speed(const Scene& sc, const std::vector<WrapSeen>& wraps, bool* past_fastest = nullptr) {
   for (const WrapSeen& w : wraps) {
     const PulleyDrive& p = sc.drive.pulleys[w.pulley];
     if (!p.kinematic) continue;
@@ -67,7 +68,10 @@ std::optional<double> belt_speed(const Scene& sc, const std::vector<WrapSeen>& w
     const std::optional<double> f = belt_force(sc, wraps, dir * hi);
     if (!f) return std::nullopt;
     if (*f * dir <= 0) break;
-    if (hi >= kFastestBeltSpeed) return std::nullopt;  // no balance below it, no speed to speak of
+    if (hi >= kFastestBeltSpeed) {  // no balance below it, no speed to speak of
+      if (past_fastest) *past_fastest = true;
+      return std::nullopt;
+    }
     lo = hi, hi = std::min(2 * hi, kFastestBeltSpeed);
   }
   for (int it = 0; it < 100; ++it) {
@@ -106,14 +110,9 @@ std::optional<double> steady_belt_speed(const Scene& sc) {
 }
 
 bool drives_past_fastest(const Scene& sc) {
-  const std::vector<WrapSeen> wraps = wraps_of(sc);
-  for (const WrapSeen& w : wraps)
-    if (sc.drive.pulleys[w.pulley].kinematic) return false;
-  const std::optional<double> f0 = belt_force(sc, wraps, 0.0);
-  if (!f0 || *f0 == 0 || !std::isfinite(*f0)) return false;
-  const double dir = *f0 > 0 ? 1.0 : -1.0;
-  const std::optional<double> f = belt_force(sc, wraps, dir * kFastestBeltSpeed);
-  return f && *f * dir > 0;
+  bool past = false;
+  belt_speed(sc, wraps_of(sc), &past);
+  return past;
 }
 
 std::optional<BendingLoss> estimate_bending_loss(const Scene& sc) {

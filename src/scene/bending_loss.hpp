@@ -56,9 +56,10 @@ std::optional<double> steady_belt_speed(const Scene& sc);
 
 // The fastest belt speed the balance of the free pulleys' torques is sought below [m/s].
 inline constexpr double kFastestBeltSpeed = 1e3;
-// Whether the free pulleys' torques still drive the belt on at kFastestBeltSpeed (no kinematic
-// pulley; laws of the speed that the estimate reads): no steady speed exists below it, and the drive
-// speeds up until the belt slips on a pulley or a pulley runs away.
+// Whether steady_belt_speed's search found the free pulleys' torques still driving the belt on at
+// kFastestBeltSpeed (false where a kinematic pulley's speed sets the belt's, or a law is code): no
+// steady speed exists below it, and the drive speeds up until the belt slips on a pulley or a
+// pulley runs away.
 bool drives_past_fastest(const Scene& sc);
 
 // Above this share of the transmitted power the run's first lines warn: a PK belt's whole loss is

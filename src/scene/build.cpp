@@ -514,7 +514,7 @@ std::string settle(Scene& sc, const BeltDef& bd, bool rest_given, BuildWatch& wa
         if (std::isfinite(secant) && secant < 0) slope = secant;
       }
       last_length = b.rigid_length, last_tension = sc.static_tension;
-      set_rest_length(b, bd, b.rigid_length - (sc.static_tension - bd.pretension) / slope);
+      set_rest_length(b, bd, b.rigid_length - miss / slope);
     }
     // every pulley of the route still touched?
     for (const int j : sc.route_pulleys) {
