@@ -203,8 +203,9 @@ class FrameBuilder {
   std::string pulley_text(int j, const PulleyObs& o) const;
   // a pixel inside the drawing area (below the text band, left of the colour-bar panel)
   bool in_view(const Vec2& p_px) const;
-  // build's stages: tensioner arms and pulleys with their names; the text band, colour bar and
-  // legend (arrows: whether the belt got direction-of-travel arrows, arrow_w their width [px])
+  // build's stages: spray zones; tensioner arms and pulleys with their names; the text band, colour
+  // bar and legend (arrows: whether the belt got direction-of-travel arrows, arrow_w their width [px])
+  void draw_spray_zones(const Drive& dr, DrawList& out) const;
   void draw_pulleys(const double* q, DrawList& out) const;
   void draw_text_and_legend(double t, const Observation& seen, bool arrows, double arrow_w, DrawList& out) const;
 };

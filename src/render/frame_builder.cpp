@@ -211,6 +211,17 @@ Vec2 FrameBuilder::displayed(const Route& r, const Vec2& p, Vec2* tangent) const
   return nominal + fs_.magnify * (p - nominal);
 }
 
+// spray zones under the belt: a translucent disc of the wet colour while it sprays, the outline
+// while it does not
+void FrameBuilder::draw_spray_zones(const Drive& dr, DrawList& out) const {
+  for (const SprayZone& z : dr.spray.zones) {
+    const Vec2 c = cam_.to_px(z.centre);
+    const double r = z.radius * cam_.scale;
+    if (z.on) out.disc(c, r, kSprayFill, 64);
+    out.ring(c, std::max(r - 1.5, 0.0), r, kWet, 64);
+  }
+}
+
 void FrameBuilder::build(double t, const double* y, DrawList& out, const Drive* drive, const Observation* given,
                          const std::vector<double>* values) const {
   const Model& m = sc_.model;
@@ -227,15 +238,7 @@ void FrameBuilder::build(double t, const double* y, DrawList& out, const Drive* 
   auto P = [&](const Vec2& w) { return cam_.to_px(w); };
 
   draw_pulleys(q, out);
-
-  // spray zones under the belt: a translucent disc of the wet colour while it sprays, the outline
-  // while it does not
-  for (const SprayZone& z : dr.spray.zones) {
-    const Vec2 c = P(z.centre);
-    const double r = z.radius * cam_.scale;
-    if (z.on) out.disc(c, r, kSprayFill, 64);
-    out.ring(c, std::max(r - 1.5, 0.0), r, kWet, 64);
-  }
+  draw_spray_zones(dr, out);
 
   // belt elements
   Observation own;
