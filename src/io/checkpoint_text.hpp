@@ -34,8 +34,10 @@ namespace beltsim {
 // Raised whenever anything a checkpoint holds changes (the scene's fields, scene/scene_fields.hpp;
 // the run's state, sim/state_io.cpp; the settings, sim/checkpoint.cpp): a reader refuses every
 // version before kCheckpointOldest and after this one. Version 13 added the outputs' fingerprints
-// (sim/state_io.cpp); a version 12 checkpoint is read without them.
-inline constexpr int kCheckpointVersion = 13;
+// (sim/state_io.cpp); a version 12 checkpoint is read without them. Version 14 added the arms' and
+// the couplings' energy integrals (model.hpp, EnergyIndex); an older checkpoint of a run that
+// tracked energy is read with them at zero (sim/state_io.cpp, read_state).
+inline constexpr int kCheckpointVersion = 14;
 inline constexpr int kCheckpointOldest = 12;
 inline constexpr const char* kCheckpointMagic = "beltsim-checkpoint";
 

@@ -12,7 +12,7 @@ namespace beltsim {
 namespace {
 
 // last dotted component → unit (docs/outputs.md; element and pulley fields of the Lua API)
-constexpr std::array<std::pair<std::string_view, std::string_view>, 49> kUnits{{
+constexpr std::array<std::pair<std::string_view, std::string_view>, 51> kUnits{{
     {"t", "s"},
     // pulleys
     {"omega", "rad/s"},
@@ -66,6 +66,8 @@ constexpr std::array<std::pair<std::string_view, std::string_view>, 49> kUnits{{
     {"dissipated_bending", "J"},
     {"dissipated_contact", "J"},
     {"dissipated_friction", "J"},
+    {"dissipated_arms", "J"},
+    {"dissipated_couplings", "J"},
 }};
 
 // scene:run{}'s result table (script/lua_scene_run.cpp, docs/lua-api.md), its fields flattened as

@@ -26,7 +26,7 @@
 // hub catches the rotor's speed, whatever the angle between them.
 //
 // Potential k·(θ_p - θ_r)²/2 (two-way) or k·(θ_p - θ_h)²/2 (one-way); dissipated power c·δ̇² and
-// c_L·σ(x)·x ≥ 0 (EnergyIndex's kDissFriction). On a kinematic pulley ∂/∂ω_p goes to ∂f/∂t through
+// c_L·σ(x)·x ≥ 0 (EnergyIndex's kDissCouplings). On a kinematic pulley ∂/∂ω_p goes to ∂f/∂t through
 // ω_p'(t) and the drive supplies the power T·ω_p.
 #include "model/forces.hpp"
 
@@ -70,13 +70,13 @@ void coupling_forces(const Model& m, const Drive& d, double t, const double* q, 
     } else {
       f[kp] -= Ts;
     }
-    if (e_rate) e_rate[kDissFriction] += cp.damping * rel * rel;
+    if (e_rate) e_rate[kDissCouplings] += cp.damping * rel * rel;
     if (!cp.one_way) continue;
     const double x = cp.sense * (v[ke] - v[kr]);
     const double Tc = cp.sense * clutch_law(cp, x).T;
     f[kr] += Tc;
     f[ke] -= Tc;
-    if (e_rate) e_rate[kDissFriction] += Tc * cp.sense * x;
+    if (e_rate) e_rate[kDissCouplings] += Tc * cp.sense * x;
   }
 }
 

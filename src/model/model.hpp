@@ -118,11 +118,13 @@ struct Friction {
 
 // Running integrals carried in y when Model::track_energy is set; all in joules.
 enum EnergyIndex {
-  kWorkTorques = 0,   // work of the applied pulley torques (and of kinematic drives)
-  kDissSdeAxial,      // dissipated by longitudinal SDE dampers
-  kDissSdeBending,    // dissipated by torsional SDE dampers
-  kDissContact,       // dissipated by contact damping (and by the N >= 0 clamp)
-  kDissFriction,      // dissipated by friction
+  kWorkTorques = 0,  // work of the applied pulley torques (and of kinematic drives)
+  kDissSdeAxial,     // dissipated by longitudinal SDE dampers
+  kDissSdeBending,   // dissipated by torsional SDE dampers
+  kDissContact,      // dissipated by contact damping (and by the N >= 0 clamp)
+  kDissFriction,     // dissipated by friction between the belt and the pulleys
+  kDissArms,         // dissipated by the tensioner arms' dampers and pivot friction
+  kDissCouplings,    // dissipated by the couplings' dampers and one-way clutches
   kEnergyCount
 };
 

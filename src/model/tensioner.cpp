@@ -15,7 +15,7 @@
 // zero at ψ̇ = 0 (a kink only).
 //   ∂Q/∂ψ = -k,   ∂Q/∂ψ̇ = -s·(c + T_f/w_f·(1 - tanh²(ψ̇/w_f)))
 // Potential k·(ψ - ψ0)²/2; dissipated power s·(c·ψ̇² + T_f·tanh(ψ̇/w_f)·ψ̇) ≥ 0 (EnergyIndex's
-// kDissFriction).
+// kDissArms).
 //
 // The pairs on the arm's pulley see the element relative to the centre: F_i = F(P_i - c, V_i - V_c, Ω)
 // (contact_law.hpp), so with A_P = ∂F/∂P, A_V = ∂F/∂V (relative), ∂V_c/∂ψ = -ψ̇·h, ∂V_c/∂ψ̇ = g:
@@ -54,7 +54,7 @@ void arm_forces(const Model& m, const double* q, const double* v, double* f, dou
     const int k = m.arm_coord(a);
     const ArmLaw l = arm_law(m.arms[a], q[k], v[k]);
     f[k] += l.Q;
-    if (e_rate) e_rate[kDissFriction] += l.dissipated;
+    if (e_rate) e_rate[kDissArms] += l.dissipated;
   }
 }
 

@@ -155,12 +155,16 @@ void add_losses(Summary& s, const Window& w, const Layout& l) {
   const std::vector<double>& t = w.time();
   const double span = t[w.r1 - 1] - t[w.r0];
   double total = 0;
-  for (const char* c : channels) {
+  auto channel = [&](const char* c) {
     const std::vector<double>& e = w.t.column(std::string("energy.dissipated_") + c);
     const double p = span > 0 ? (e[w.r1 - 1] - e[w.r0]) / span : NAN;
     total += p;
     add(s, "loss", "", c, p, "W");
-  }
+  };
+  for (const char* c : channels) channel(c);
+  // the tensioner arms' and the couplings' own losses, where the drive has them
+  for (const char* c : {"arms", "couplings"})
+    if (w.t.has(std::string("energy.dissipated_") + c)) channel(c);
   add(s, "loss", "", "total", total, "W");
   // each pulley's mean power M·ω over the window (ω the rotor's where coupled): per interval
   // between samples its `torque_mean` (the exact mean over the interval, which a kinematic

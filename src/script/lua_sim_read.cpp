@@ -108,12 +108,12 @@ int l_span(lua_State* L) {
 // sim:energy() -> { kinetic, sde, bending, contact, gravity, arm, coupling, mechanical (their sum)
 // [J], and with energy
 // tracking work_torques, dissipated_axial, dissipated_bending, dissipated_contact,
-// dissipated_friction [J] }
+// dissipated_friction, dissipated_arms, dissipated_couplings [J] }
 int l_energy(lua_State* L) {
   Simulation& s = live(L, "energy", {});
   Energy e;
   guarded(L, "sim:energy", [&] { e = s.energy(); });  // a Lua law may fail
-  lua_createtable(L, 0, 13);
+  lua_createtable(L, 0, 15);
   set_number(L, "kinetic", e.kinetic);
   set_number(L, "sde", e.sde);
   set_number(L, "bending", e.bending);
@@ -123,12 +123,13 @@ int l_energy(lua_State* L) {
   set_number(L, "coupling", e.coupling);
   set_number(L, "mechanical", e.total());
   const std::vector<double> w = s.energy_integrals();
-  static const char* names[] = {"work_torques", "dissipated_axial", "dissipated_bending", "dissipated_contact",
-                                "dissipated_friction"};
+  static const char* names[] = {"work_torques",        "dissipated_axial", "dissipated_bending",  "dissipated_contact",
+                                "dissipated_friction", "dissipated_arms",  "dissipated_couplings"};
+  static_assert(std::size(names) == kEnergyCount);
   for (size_t k = 0; k < w.size(); ++k) set_number(L, names[k], w[k]);
   strict_fields(L, "sim:energy's table",
                 {"kinetic", "sde", "bending", "contact", "gravity", "arm", "coupling", "mechanical", names[0], names[1],
-                 names[2], names[3], names[4]});
+                 names[2], names[3], names[4], names[5], names[6]});
   return 1;
 }
 

@@ -208,10 +208,14 @@ std::vector<std::string> timeseries_columns(const Scene& sc, size_t probes) {
   for (size_t k = 0; k < probes; ++k)
     for (const char* q : {".sde_force", ".normal_force", ".friction_force", ".slip_velocity"})
       c.push_back(probe_name(k, probes) + q);
-  if (sc.model.track_energy)
+  if (sc.model.track_energy) {
     for (const char* q : {"energy.mechanical", "energy.work_torques", "energy.dissipated_axial",
                           "energy.dissipated_bending", "energy.dissipated_contact", "energy.dissipated_friction"})
       c.push_back(q);
+    // the arms' and couplings' losses, where the drive has them (Simulation::sample_row writes them alike)
+    if (sc.model.n_arm() > 0) c.push_back("energy.dissipated_arms");
+    if (sc.model.n_coupling() > 0) c.push_back("energy.dissipated_couplings");
+  }
   return c;
 }
 

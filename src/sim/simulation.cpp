@@ -238,6 +238,8 @@ std::vector<double> Simulation::sample_row() const {
     const double* en = q + 2 * m.n_coord();
     row.insert(row.end(), {beltsim::energy(m, drive_, t, q).total() - E0_, en[kWorkTorques], en[kDissSdeAxial],
                            en[kDissSdeBending], en[kDissContact], en[kDissFriction]});
+    if (m.n_arm() > 0) row.push_back(en[kDissArms]);
+    if (m.n_coupling() > 0) row.push_back(en[kDissCouplings]);
   }
   return row;
 }

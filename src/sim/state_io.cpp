@@ -153,7 +153,19 @@ void write_integrator(CheckpointWriter& w, const IntegratorState& s) {
   w.line("integrator.warnings.first_t", first_t);
 }
 
-void read_integrator(CheckpointReader& r, size_t n, IntegratorState& s) {
+// `widen`: the file's states lack that many values at `at` (an older version's), read as zeros
+void read_integrator(CheckpointReader& r, size_t n, IntegratorState& s, size_t at, size_t widen) {
+  auto widened = [&](std::vector<double> x, size_t count) {
+    if (widen == 0 || x.size() != count * (n - widen)) return x;
+    std::vector<double> out;
+    for (size_t i = 0; i < count; ++i) {
+      const auto from = x.begin() + static_cast<std::ptrdiff_t>(i * (n - widen));
+      out.insert(out.end(), from, from + static_cast<std::ptrdiff_t>(at));
+      out.insert(out.end(), widen, 0.0);
+      out.insert(out.end(), from + static_cast<std::ptrdiff_t>(at), from + static_cast<std::ptrdiff_t>(n - widen));
+    }
+    return out;
+  };
   s.method = r.line_str("integrator.state");
   s.t = r.line_num("integrator.t");
   s.t_prev = r.line_num("integrator.t_prev");
@@ -167,7 +179,7 @@ void read_integrator(CheckpointReader& r, size_t n, IntegratorState& s) {
   s.at_floor = r.line_int("integrator.at_floor", 0, LONG_MAX);
   s.failed_in_a_row = r.line_int("integrator.failed_in_a_row", 0, LONG_MAX);
   auto vec = [&](const char* k, Eigen::VectorXd& v) {
-    const std::vector<double> x = r.line_doubles(k, n);
+    const std::vector<double> x = widened(r.line_doubles(k, n), 1);
     if (x.size() != n) r.fail(std::to_string(x.size()) + " values for a state of " + std::to_string(n));
     v = Eigen::Map<const Eigen::VectorXd>(x.data(), static_cast<Eigen::Index>(n));
   };
@@ -177,7 +189,7 @@ void read_integrator(CheckpointReader& r, size_t n, IntegratorState& s) {
   for (double c : s.interior_c)
     if (!(c > 0 && c < 1)) r.fail("an interior node must lie strictly inside the step, in (0, 1)");
   const size_t k = s.interior_c.size();
-  const std::vector<double> z = r.line_doubles("integrator.interior", k * n);
+  const std::vector<double> z = widened(r.line_doubles("integrator.interior", k * n), k);
   if (z.size() != k * n)
     r.fail(std::to_string(z.size()) + " values for " + std::to_string(k) + " states of " + std::to_string(n));
   for (size_t i = 0; i < k; ++i)
@@ -219,7 +231,21 @@ SimState read_state(CheckpointReader& r, const Scene& sc) {
   r.line_choice("part", {"outputs"});
   read_outputs(r, sc, s);
   r.line_choice("part", {"integrator"});
-  read_integrator(r, static_cast<size_t>(sc.model.n_state()), s.integrator);
+  // before version 14 the arms' and couplings' losses were in the friction integral: a run that
+  // tracked energy reads on with the two new integrals at zero, but where the drive has an arm or
+  // a coupling its friction figure would hold their losses so far (and its timeseries.csv lacks
+  // their columns): refused
+  const Model& m = sc.model;
+  size_t widen = 0;
+  if (r.version() < 14 && m.track_energy) {
+    if (m.n_arm() > 0 || m.n_coupling() > 0)
+      r.fail(
+          "written by an older beltsim, whose energy figures counted the tensioner arms' and couplings' losses "
+          "as friction: run the scene again from the start (or resume it with the version that wrote it)");
+    widen = kEnergyCount - kDissArms;
+  }
+  read_integrator(r, static_cast<size_t>(m.n_state()), s.integrator, static_cast<size_t>(2 * m.n_coord() + kDissArms),
+                  widen);
   return s;
 }
 

@@ -152,6 +152,30 @@ TEST(Coupling, OneWayClutchOverruns) {
   EXPECT_GT(t.pulley(1).rotor_speed, -70.0);
 }
 
+// The overrunning clutch's energy: its drag takes T_d·|slip| per second, about T_d·30 rad/s over
+// the 0.1 s (the slip falls by the two changes above, 0.7 of 30 rad/s: the mean within 1.2 %), and
+// it is the couplings' loss, not the belt's friction (μ = 0 here: that channel stays exactly 0).
+// With no torques applied the energy only changes by what the channels take: ΔE + D = 0 (to 1e-6
+// of D; the integrals are carried in the state at rtol 1e-7).
+TEST(Coupling, ClutchDragIsTheCouplingsLoss) {
+  const CouplingDef c = one_way();
+  SceneDef d = frictionless(c);
+  d.track_energy = true;
+  const Scene sc = started(d, -50.0, -80.0);
+  Simulation s(sc, coupling_settings("clutch_energy"));
+  const double E0 = s.energy().total();
+  s.run_to(0.1);
+  const std::vector<double> e = s.energy_integrals();
+  ASSERT_EQ(e.size(), static_cast<size_t>(kEnergyCount));
+  const double drag = c.drag_torque * 30.0 * 0.1;
+  EXPECT_NEAR(e[kDissCouplings], drag, 0.015 * drag);
+  EXPECT_EQ(e[kDissFriction], 0.0);
+  EXPECT_EQ(e[kDissArms], 0.0);
+  double dissipated = 0;
+  for (int k = kDissSdeAxial; k < kEnergyCount; ++k) dissipated += e[k];
+  EXPECT_NEAR(s.energy().total() - E0 + dissipated, e[kWorkTorques], 1e-6 * dissipated);
+}
+
 // The pulley ahead of the rotor in the drive sense: the clutch engages and the rotor follows; the
 // damper settles the spring, and then all three turn together at the speed their angular momentum
 // gives (J_1·ω_1 + J_h·ω_1 + J_r·ω_r over the sum, less the clutch's slip |T|/c_L ≈ 0 at the end).

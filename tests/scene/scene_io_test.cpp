@@ -315,18 +315,18 @@ TEST(SceneIo, WrongKeywordOrVersionIsRefused) {
                 std::to_string(std::count(text.begin(), text.end(), '\n')) +
                 ": it was damaged or changed after it was written)");
   EXPECT_EQ(read_error("beltsim-checkpoint 4\nscene 4\n"),
-            "line 1: a version 4 checkpoint; this beltsim reads versions 12 and 13 only: resume it with the beltsim "
+            "line 1: a version 4 checkpoint; this beltsim reads versions 12 to 14 only: resume it with the beltsim "
             "that wrote it, or run the scene again from its script");
   // version 5 held each input's unit and note; 6 takes them from the parameter table; 7 holds spray zones, the
   // friction law and the couplings; 8 LuGre's parameters, the bristles' deflections and the run's keep_states;
   // 9 the frames' paths as given (relative ones inside the output folder), not joined to the folder; 10 each
   // struct's fields by its list (scene/scene_fields.hpp) and each part of the run's state by its struct
-  // (sim/state_io.hpp); 13 the outputs' fingerprints, read from 12 on without them (and one
-  // after this beltsim's is refused too)
-  for (const int v : {5, 6, 7, 8, 9, 11, 14})
+  // (sim/state_io.hpp); 13 the outputs' fingerprints, read from 12 on without them; 14 the arms' and
+  // couplings' energy integrals (and one after this beltsim's is refused too)
+  for (const int v : {5, 6, 7, 8, 9, 11, 15})
     EXPECT_EQ(read_error("beltsim-checkpoint " + std::to_string(v) + "\nscene 4\n"),
               "line 1: a version " + std::to_string(v) +
-                  " checkpoint; this beltsim reads versions 12 and 13 only: resume it "
+                  " checkpoint; this beltsim reads versions 12 to 14 only: resume it "
                   "with the beltsim that wrote it, or run the scene again from its script");
   EXPECT_EQ(read_error("scene 4\nmodel 4\n"), "line 1: not a beltsim checkpoint (it begins 'scene 4')");
   EXPECT_EQ(read_error(resealed(with_line(text, "pulley.wrap", "pulley.wrap outside"))),

@@ -73,7 +73,7 @@ TEST(Checkpoint, ReadsOnlyRegularFilesOfBoundedSize) {
 TEST(Checkpoint, OldVersionsAreRefusedNamingBoth) {
   EXPECT_EQ(refusal("beltsim-checkpoint 3\nintegrator 8 esdirk32\n"),
             prefix() +
-                "line 1: a version 3 checkpoint; this beltsim reads versions 12 and 13 only: resume it with the "
+                "line 1: a version 3 checkpoint; this beltsim reads versions 12 to 14 only: resume it with the "
                 "beltsim that wrote it, or run the scene again from its script");
 }
 

@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -190,6 +191,67 @@ TEST(Checkpoint, AVersion12CheckpointResumesUnchecked) {
   Simulation::resume(again.string(), {}, nullptr, {}, true, [&](const std::string& m) { said.push_back(m); })->close();
   EXPECT_TRUE(said.empty());
   saved().restore();
+}
+
+// A version 13 checkpoint of a run that tracked energy: `energy` with the two integrals added in
+// version 14 (the arms' and the couplings' losses) taken out of every state it holds, as such a
+// run wrote them (`at`: where they sit in the state; `count`: the values of a line are that many
+// states)
+std::string as_version_13(std::string text, const Model& m) {
+  text.replace(0, text.find('\n'), "beltsim-checkpoint 13");
+  const size_t n = static_cast<size_t>(m.n_state()), at = static_cast<size_t>(2 * m.n_coord() + kDissArms);
+  const size_t gone = kEnergyCount - kDissArms;
+  for (const char* key :
+       {"integrator.y", "integrator.f", "integrator.y_prev", "integrator.f_prev", "integrator.interior"}) {
+    const size_t from = text.find(std::string("\n") + key + " ") + 1, to = text.find('\n', from);
+    std::istringstream in(text.substr(from, to - from));
+    std::string k, v;
+    size_t count = 0;
+    in >> k >> count;
+    std::string line = k + " " + std::to_string(count - count / n * gone);
+    for (size_t i = 0; i < count && in >> v; ++i)
+      if (i % n < at || i % n >= at + gone) line += " " + v;
+    text.replace(from, to - from, line);
+  }
+  return resealed(text);
+}
+
+// a version 13 checkpoint of a run that tracked energy held five integrals, not seven: it resumes
+// with the arms' and couplings' at zero (a drive without either, whose are zero anyway); one of a
+// drive with a tensioner arm, whose friction integral held the arm's losses, is refused, saying why
+TEST(Checkpoint, AVersion13CheckpointOfAnEnergyRunResumes) {
+  for (const bool arm : {false, true}) {
+    SceneDef d = arm ? presets::automotive_tensioner() : presets::paper_dry();
+    d.track_energy = true;
+    const Scene sc = build_scene(d);
+    RunSettings rs;
+    rs.out_dir = (dir() / (arm ? "v13_arm" : "v13_energy")).string();
+    fs::remove_all(rs.out_dir);
+    const fs::path ck = dir() / "v14.ckpt", old = dir() / "v13.ckpt";
+    std::vector<double> e;
+    {
+      Simulation s(sc, rs);
+      s.run_to(0.003);
+      s.save(ck.string());
+      e = s.energy_integrals();
+    }
+    spit(old, as_version_13(slurp(ck), sc.model));
+    if (!arm) {
+      auto s = Simulation::resume(old.string(), {}, nullptr, {}, true, [](const std::string&) {});
+      EXPECT_EQ(s->energy_integrals(), e);
+      s->run_to(0.004);
+      s->close();
+      continue;
+    }
+    try {
+      Simulation::resume(old.string(), {}, nullptr, {}, true, [](const std::string&) {})->close();
+      ADD_FAILURE() << "resumed";
+    } catch (const std::exception& x) {
+      EXPECT_NE(std::string(x.what()).find("counted the tensioner arms' and couplings' losses as friction"),
+                std::string::npos)
+          << x.what();
+    }
+  }
 }
 
 // a checkpoint keeps every setting the run-settings table marks kept (sim/run_table.hpp): each set
