@@ -442,7 +442,8 @@ TEST(Live, KeptStatesAreWhatTheFramesWereDrawnFrom) {
 
 // the belt torque a sample reports is the one that turns the pulley: I·dΩ/dt − M, with dΩ/dt by
 // central differences of the sampled speeds. Measured worst difference over 0.01–0.28 s: 0.9 N·m
-// (the differences' own error); recomputing the friction from the interpolated state instead
+// under esdirk32, 1.3 N·m under trbdf2 (a user's trial, `beltsim run scripts/paper_dry.lua`; the
+// differences' own error); recomputing the friction from the interpolated state instead
 // gave errors up to 150 N·m (model/observables.hpp, blend_contact), so 2 N·m separates the two.
 TEST(Live, SampledBeltTorqueTurnsThePulley) {
   // the paper's dry drive has failed implicit steps from 0.036 s (esdirk32) and CVODE
