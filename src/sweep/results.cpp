@@ -535,13 +535,13 @@ SummaryCounts write_summary(const OutputDir& top, const std::vector<Point>& poin
       if (std::find(figures.begin(), figures.end(), name) == figures.end()) figures.push_back(name);
   }
   std::string text;
-  // summary_units.csv: a parameter's unit when its name ends with one in brackets, else none
-  // known; a figure's as its kind of names gives it (Figures); point and status are text
+  // summary_units.csv: a parameter has none (its name is a Lua name, which holds no brackets); a
+  // figure's as its kind of names gives it (Figures); point and status are text
   ColumnUnits units;
   if (!points.empty()) {
     text = header(points[0], false);
     units.emplace_back("point", std::nullopt);
-    for (const auto& [name, v] : points[0].params) units.emplace_back(name, bracketed_unit(name));
+    for (const auto& [name, v] : points[0].params) units.emplace_back(name, std::nullopt);
     units.emplace_back("status", std::nullopt);
     for (const std::string& f : figures) {
       text += ',';
