@@ -68,7 +68,7 @@ void section_table(const Summary& s, const std::string& section, std::string& ou
 std::string summary_table(const Summary& s) {
   std::string out = "summary of " + s.dir + " over t = " + four_digits(window_value(s, "from")) + " to " +
                     four_digits(window_value(s, "to")) + " s (" + four_digits(window_value(s, "rows")) +
-                    " samples), belt speed " + four_digits(window_value(s, "belt_speed")) + " m/s\n";
+                    (window_value(s, "rows") == 1 ? " sample" : " samples") + "), belt speed " + four_digits(window_value(s, "belt_speed")) + " m/s\n";
   if (!s.end_status.empty() && s.end_status != "ok")
     out += "the run did not end ok: end.status = " + s.end_status +
            (s.end_note.empty() ? "" : " (" + s.end_note + ")") + "; these figures are of its samples up to its stop\n";
@@ -103,6 +103,9 @@ std::string summary_table(const Summary& s) {
                   "means); run at rtol 1e-5 or 1e-6 for input, output and share\n"
                 : "the run's integrator is " + s.integrator + ", and " + integrator_miss +
                       " (docs/integration.md); run it with trbdf2 (the default) for the losses\n");
+  if (s.losses && window_value(s, "rows") == 1)
+    out += "\nloss: nan: the window holds one sample, and the losses, input and output are powers over its "
+           "duration: give --from and --to two samples or more apart\n";
   if (!s.losses) out += "\nloss: not recorded (the run has no energy.* columns: give energy = true to beltsim.scene)\n";
   if (!s.mu_per_sample)
     out += "\nmu: the belt's least mu at the start (parameters.csv belt.mu_min) on every wrap and sample: the run "

@@ -131,6 +131,12 @@ class Triangle(unittest.TestCase):
         self.assertEqual(code, 1)
         self.assertIn(os.path.join(self.out, "timeseries.csv") + " has no samples with t >= 5 s (its samples run "
                       "from t = 0 to 0.2 s)", err)
+        # a window of one sample: its means are that sample's, its powers need a duration, said so
+        code, out, err = run(["summary", self.out, "--from", "0.1", "--to", "0.1"], self.dir)
+        self.assertEqual(code, 0, err)
+        self.assertIn(" (1 sample), ", out)
+        self.assertIn("\nloss: nan: the window holds one sample, and the losses, input and output are powers over "
+                      "its duration: give --from and --to two samples or more apart\n", out)
         code, out, err = run(["summary", self.out, "--frm", "0.1"], self.dir)
         self.assertEqual(code, 2)
         self.assertIn("--from", err)
