@@ -488,6 +488,17 @@ class Csvs(Base):
                             lines[1 + k])
         self.assertEqual(lines[8], "  p0.creep [1]: NaN against a number at 1 time, the first at t = 1 s (row 2): 0.01 vs nan")
 
+    def test_failing_names_a_headers_unit_once(self):
+        # a header that carries its unit ("load [N]") read "load [N] [N]" (a user trial)
+        write_csv(self.path("x.csv"), ["t", "load [N]", "span_a_b.tension"], [[0, 100, 100], [0.1, 0, 200]])
+        write_csv(self.path("y.csv"), ["t", "load [N]", "span_a_b.tension"], [[0, 100, 102.1], [0.1, 1.1, 200]])
+        code, out, err = self.compare("x.csv", "y.csv", "--rtol", "1e-2", "--failing")
+        self.assertEqual(code, 1, err)
+        lines = out.splitlines()
+        self.assertEqual(len(lines), 3, out)
+        self.assertTrue(lines[1].startswith("  load [N]: worst at t = 0.1 s (row 2): 0 vs 1.1"), out)
+        self.assertTrue(lines[2].startswith("  span_a_b.tension [N]: worst at t = 0 s (row 1): 100 vs 102.1"), out)
+
     def test_mismatched_headers_differ_naming_the_columns(self):
         write_csv(self.path("b.csv"), ["t", "driver.omega", "idler.omega"], self.rows([i * 0.01 for i in range(11)]))
         code, out, err = self.compare("a.csv", "b.csv")
