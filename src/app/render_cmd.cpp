@@ -245,7 +245,8 @@ int cmd_render(const RenderOptions& o) {
                            "--out folders");
       }
     }
-    if (const std::string small = render::frame_size_problem(first->scene(), f); !small.empty())
+    if (const std::string small = render::frame_size_problem(first->scene(), f, states[0].t, states[0].y.data());
+        !small.empty())
       std::fprintf(stderr, "beltsim render: warning: %s %s\n",
                    o.size ? "--size" : "the run's frames.size (--size sets it)", small.c_str());
     if (o.video) video = render::make_frame_recorder(first->scene(), v);
