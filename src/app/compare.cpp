@@ -85,6 +85,17 @@ std::string size_text(const Image& i) {
   return std::to_string(i.width) + "x" + std::to_string(i.height);
 }
 
+// "A" or "B" (with its path when spelt otherwise) when the difference image's path names the same file (by device and
+// inode, so through another spelling, a link or a second hard link too), else "": writing it there replaced the file
+// compared, a golden reference perhaps (a user trial: `--diff gold/g.png` replaced the golden g.png with the
+// red-on-grey picture, and the next compare failed against it)
+std::string compared_file_at(const std::string& diff, const CompareOptions& o) {
+  std::error_code ec;
+  for (const std::string* f : {&o.a, &o.b})
+    if (fs::equivalent(diff, *f, ec)) return (f == &o.a ? "A" : "B") + (*f == diff ? "" : " (" + *f + ")");
+  return "";
+}
+
 int compare_pngs(const CompareOptions& o) {
   for (const auto& [given, name] : {std::pair{bool(o.rtol), "--rtol"},
                                     {!o.atol.empty(), "--atol"},
@@ -97,6 +108,11 @@ int compare_pngs(const CompareOptions& o) {
   if (o.tol) tol.level_tol = static_cast<int>(whole("--tol", *o.tol, 255));
   if (o.max_bad) tol.max_bad_pixels = whole("--max-bad", *o.max_bad, 1e15);
   if (o.diff) require_png("--diff", *o.diff);
+  if (o.diff)
+    if (const std::string f = compared_file_at(*o.diff, o); !f.empty())
+      throw UsageError("--diff " + *o.diff + " is " + f +
+                       ", a file compared: the difference image would replace it; "
+                       "give it another name");
   std::vector<PixelRect> mask;
   for (const std::string& m : o.mask) mask.push_back(mask_rect(m));
   Image a, b;
@@ -127,6 +143,15 @@ int compare_pngs(const CompareOptions& o) {
     mask.insert(mask.end(), b.text_boxes.begin(), b.text_boxes.end());
   }
   const ImageComparison c = compare_images(a, b, tol.level_tol, mask);
+  // a mask that covers the whole picture compares nothing: a golden test whose mask grew by
+  // mistake (a wrong W,H) reported a match forever (a user trial)
+  if (c.masked >= static_cast<long>(a.width) * a.height)
+    throw UsageError(std::string(o.mask.empty()  ? "--ignore-text"
+                                 : o.ignore_text ? "--mask and --ignore-text"
+                                                 : "--mask") +
+                     " left no pixel of the " + size_text(a) +
+                     " pictures to compare: nothing was compared; leave "
+                     "out less");
   const bool match = c.match(tol);
   std::string diff_note;
   bool diff_failed = false;
@@ -134,6 +159,11 @@ int compare_pngs(const CompareOptions& o) {
     const fs::path pa(o.a);
     const std::string path = o.diff ? *o.diff : (pa.parent_path() / (pa.stem().string() + "_diff.png")).string();
     try {
+      // (a --diff that is A or B was refused before anything was read)
+      if (const std::string f = compared_file_at(path, o); !f.empty())
+        throw std::runtime_error("the difference image's default name " + path + " (A's with _diff) is " + f +
+                                 ", a file compared: not written over it; give the difference image another name "
+                                 "with --diff PNG");
       write_png(path, c.diff);
       diff_note = std::string("; difference image (differing pixels red") + (mask.empty() ? "" : ", masked dark blue") +
                   "): " + path;

@@ -57,11 +57,11 @@ int main(int argc, char** argv) {
   const std::string& c = cl->command;
   const Raw& raw = cl->raw;
   try {
-    if (c == "render") return with_outputs(cmd_render(cl->render));
     if (c == "compare") return with_outputs(cmd_compare(cl->compare));
     if (c == "summary") return with_outputs(cmd_summary(cl->csv, raw));
     if (c == "plot") return with_outputs(cmd_plot(cl->csv, cl->columns, raw, env.images));  // a signal ends it at once: nothing to close
     beltsim::script::install_stop_signals();
+    if (c == "render") return with_outputs(cmd_render(cl->render));  // stops between two states
     if (c == "run") return with_outputs(cmd_run(cl->script, overrides(raw), safety(raw)));
     if (c == "modes") return with_outputs(cmd_modes(cl->script, overrides(raw, {"out"}), safety(raw), raw));
     if (c == "sweep") return with_outputs(cmd_sweep(cl->script, raw, safety(raw)));

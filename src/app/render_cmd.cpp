@@ -15,10 +15,12 @@
 #include "io/checkpoint_text.hpp"
 #include "io/output_dir.hpp"
 #include "io/suggest.hpp"
+#include "media/video_writer.hpp"
 #include "render/draw_list.hpp"
 #include "render/recorder.hpp"
 #include "scene/scene_io.hpp"
 #include "script/script_args.hpp"
+#include "script/signals.hpp"
 #include "sim/simulation.hpp"
 
 namespace beltsim::app {
@@ -153,10 +155,37 @@ std::string png_path(const std::string& dir, const std::string& file) {
   return (std::filesystem::path(dir) / std::filesystem::path(file).stem()).string() + ".png";
 }
 
+// A video that did not get a frame of every state (a stop signal, an error): finished with the
+// frames drawn, under the partial name (VideoWriter: written whole, so `path` itself, an earlier
+// render's finished video perhaps, is left as it was), and said on stderr; the partial video's
+// path on stdout, as a finished one's is
+void finish_partial(std::unique_ptr<FrameSink> video, const std::string& path, size_t states) {
+  const long drawn = video->frames_written();
+  std::error_code ec;
+  const bool earlier = std::filesystem::exists(std::filesystem::symlink_status(path, ec));
+  const std::string left = earlier ? path + " is left as it was" : "no " + path + " is written";
+  if (drawn == 0) {
+    video.reset();  // never named: nothing is left
+    std::fprintf(stderr, "beltsim render: no state was drawn: no video (%s)\n", left.c_str());
+    return;
+  }
+  video->finish();
+  const std::string partial = partial_video_path(path);
+  if (!std::filesystem::exists(std::filesystem::symlink_status(partial, ec))) {  // the video's own write failed
+    std::fprintf(stderr, "beltsim render: no video is left (%s)\n", left.c_str());
+    return;
+  }
+  std::printf("%s\n", partial.c_str());
+  std::fprintf(stderr,
+               "beltsim render: the video of the %ld of %zu states drawn is %s (it plays to its last frame; %s)\n",
+               drawn, states, partial.c_str(), left.c_str());
+}
+
 }  // namespace
 
 int cmd_render(const RenderOptions& o) {
   std::unique_ptr<FrameSink> video;
+  size_t total = 0;  // the states to draw
   try {
     if (!o.out && !o.video)
       throw UsageError("--out is required (the PNG, or a folder for several states), or --video MP4");
@@ -166,6 +195,7 @@ int cmd_render(const RenderOptions& o) {
     }
     const Chosen c = chosen(o);
     const std::vector<std::string> files = state_files(o.states);
+    total = files.size();
     std::error_code ec;
     // --out names a folder for several states (a folder of them too), or when it ends in / (a
     // name ending in / is a folder: it was written as a PNG file of that name, the / dropped)
@@ -185,6 +215,7 @@ int cmd_render(const RenderOptions& o) {
     FrameSettings v = f;
     if (o.video) {
       v.png_dir.clear(), v.video_path = *o.video;
+      v.video_whole_frames = static_cast<long>(files.size());
       // a video's size is even (H.264 in yuv420p); PNGs take any
       if (v.width % 2 || v.height % 2) {
         const std::string size = std::to_string(v.width) + "x" + std::to_string(v.height);
@@ -214,11 +245,18 @@ int cmd_render(const RenderOptions& o) {
                            "--out folders");
       }
     }
-    if (const std::string small = render::frame_size_problem(first->scene(), f); !small.empty())
+    if (const std::string small = render::frame_size_problem(first->scene(), f, states[0].t, states[0].y.data());
+        !small.empty())
       std::fprintf(stderr, "beltsim render: warning: %s %s\n",
                    o.size ? "--size" : "the run's frames.size (--size sets it)", small.c_str());
     if (o.video) video = render::make_frame_recorder(first->scene(), v);
     for (size_t k = 0; k < files.size(); ++k) {
+      // Ctrl-C, SIGTERM, SIGHUP (script/signals.hpp): stopped between two states, the pictures
+      // drawn so far kept (each PNG written whole, the video under its partial name)
+      if (script::stop_signal() != 0) {
+        if (video) finish_partial(std::move(video), *o.video, files.size());
+        return script::stopped_status();
+      }
       const StateToDraw& s = states[k];
       if (o.out) {
         const std::string png = several ? png_path(*o.out, files[k]) : *o.out;
@@ -237,14 +275,16 @@ int cmd_render(const RenderOptions& o) {
     std::fprintf(stderr, "beltsim: %s\nRun 'beltsim render --help' for the usage.\n", e.what());
     return 2;
   } catch (const std::exception& e) {
-    // the frames drawn so far make a video that plays
-    try {
-      if (video) video->finish();
-    } catch (const std::exception&) {
-    }
     std::fprintf(stderr, "beltsim render: %s\n", e.what());
     mark_output_failure_shown(e.what());
-    return 1;
+    // the frames drawn so far make a video that plays, under its partial name
+    try {
+      if (video) finish_partial(std::move(video), *o.video, total);
+    } catch (const std::exception& f) {
+      std::fprintf(stderr, "beltsim render: %s\n", f.what());
+      mark_output_failure_shown(f.what());
+    }
+    return script::stop_signal() != 0 ? script::stopped_status() : 1;
   }
 }
 

@@ -344,9 +344,11 @@ void WholeFile::discard() {
   if (!unnamed_) dir_.remove(name_ + ".part");
 }
 
-void WholeFile::commit() {
+void WholeFile::commit(const std::string& as) {
   if (done_) output_error(path(), "already written or given up");
   const std::string part = name_ + ".part";
+  const std::string name = as.empty() ? name_ : as;
+  check_name(dir_.file(name), name);
   int err = 0;
   if (unnamed_) {
     // an unnamed file gets a name by linkat, which never replaces one: NAME.part first (a stale one
@@ -360,11 +362,12 @@ void WholeFile::commit() {
   }
   if (::close(fd_) != 0 && err == 0) err = errno;
   fd_ = -1;
-  if (err == 0 && ::renameat(dir_.fd(), part.c_str(), dir_.fd(), name_.c_str()) != 0) err = errno;
+  if (err == 0 && ::renameat(dir_.fd(), part.c_str(), dir_.fd(), name.c_str()) != 0) err = errno;
   if (err != 0) {
     discard();
-    output_error(path(), std::strerror(err));
+    output_error(dir_.file(name), std::strerror(err));
   }
+  name_ = name;
   done_ = true;
 }
 

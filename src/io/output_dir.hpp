@@ -144,8 +144,9 @@ class WholeFile {
   // on a disk that has filled meanwhile (parameters.csv's end rows); nothing where the file system
   // cannot
   void reserve(long bytes);
-  // closes the file and names it NAME (output_error on failure: then nothing is left)
-  void commit();
+  // closes the file and names it NAME, or `as` (another name in the folder) when given
+  // (output_error on failure: then nothing is left)
+  void commit(const std::string& as = "");
   // gives up the file: nothing is left of it, NAME keeps its old content
   void discard();
 

@@ -6,6 +6,7 @@
 #include <atomic>
 #include <cerrno>
 #include <cstring>
+#include <filesystem>
 #include <stdexcept>
 
 #include "io/output_dir.hpp"
@@ -132,6 +133,7 @@ struct VideoWriter::Impl {
   VideoFile file;
   std::unique_ptr<OutputDir> dir;  // the video's folder and its name there
   std::string name;
+  std::unique_ptr<WholeFile> whole;  // VideoOptions::whole: the unnamed file (its fd is file.fd)
   int64_t whole_end = 0;  // [bytes] where the header or the last whole fragment ends
 
   [[noreturn]] void fail(const std::string& what, int err = 0) {
@@ -177,7 +179,7 @@ struct VideoWriter::Impl {
     ff().avio_flush(fmt->pb);
     ff().av_freep(&fmt->pb->buffer);
     ff().avio_context_free(&fmt->pb);
-    if (file.fd >= 0) ::close(file.fd);
+    if (file.fd >= 0 && !whole) ::close(file.fd);  // a whole file's is closed by its commit or discard
     file.fd = -1;
   }
 
@@ -251,16 +253,22 @@ VideoWriter::VideoWriter(const std::string& path, const VideoOptions& opt) : imp
 
     {
       OutputPlace place = output_place(path);
-      d.file.fd = place.dir.open_file(place.name, false);
       d.dir = std::make_unique<OutputDir>(std::move(place.dir));
       d.name = place.name;
+      if (opt.whole) {
+        d.whole = std::make_unique<WholeFile>(*d.dir, d.name);
+        d.file.fd = d.whole->fd();
+      } else {
+        d.file.fd = d.dir->open_file(d.name, false);
+      }
     }
     constexpr int kBuffer = 32768;
     auto* buffer = static_cast<unsigned char*>(ff().av_malloc(kBuffer));
     d.fmt->pb = buffer ? ff().avio_alloc_context(buffer, kBuffer, 1, &d.file, nullptr, write_packet, seek) : nullptr;
     if (!d.fmt->pb) {
       ff().av_free(buffer);
-      ::close(d.file.fd), d.file.fd = -1;
+      if (!d.whole) ::close(d.file.fd);
+      d.file.fd = -1;
       d.fail("out of memory");
     }
     d.fmt->flags |= AVFMT_FLAG_CUSTOM_IO;
@@ -277,7 +285,7 @@ VideoWriter::VideoWriter(const std::string& path, const VideoOptions& opt) : imp
       // nothing playable was written: no file is left
       const int err = d.file.error;
       d.close_io();
-      d.dir->remove(d.name);
+      if (!d.whole) d.dir->remove(d.name);  // (a whole file is given up with the writer)
       if (err) output_error(path, std::strerror(err));
       d.fail("cannot write the header", r);
     }
@@ -290,9 +298,13 @@ VideoWriter::VideoWriter(const std::string& path, const VideoOptions& opt) : imp
 }
 
 VideoWriter::~VideoWriter() {
-  try {
-    close();
-  } catch (...) {  // a destructor must not throw; the fragments written so far still play
+  // a video written whole that was not closed is given up (its WholeFile, released with impl_):
+  // the earlier file of its name stays
+  if (!impl_->whole) {
+    try {
+      close();
+    } catch (...) {  // a destructor must not throw; the fragments written so far still play
+    }
   }
   impl_->release();
 }
@@ -312,10 +324,18 @@ void VideoWriter::add(const Image& img) {
   d.encode(d.frame);
 }
 
-void VideoWriter::close() {
+void VideoWriter::close(const std::string& as) {
   Impl& d = *impl_;
   if (!d.open) return;
   d.open = false;  // whatever happens below, do not try twice
+  if (d.n == 0) {  // a header alone: no player opens it, so no file is left
+    d.close_io();
+    if (d.whole)
+      d.whole->discard();
+    else
+      d.dir->remove(d.name);
+    return;
+  }
   try {
     d.encode(nullptr);
     const int r = ff().av_write_trailer(d.fmt);
@@ -329,7 +349,17 @@ void VideoWriter::close() {
   const int fd = d.file.fd;
   d.file.fd = -1;
   d.close_io();
+  if (d.whole) {
+    d.whole->commit(as.empty() ? "" : std::filesystem::path(as).filename().string());
+    return;
+  }
   if (::close(fd) != 0) output_error(d.path, std::strerror(errno));
+}
+
+std::string partial_video_path(const std::string& path) {
+  std::filesystem::path p(path);
+  const std::string ext = p.extension().string();
+  return p.replace_extension(".partial" + ext).string();
 }
 
 long VideoWriter::frames() const { return impl_->n; }

@@ -162,7 +162,9 @@ std::string reason_text(const CsvComparison& c, std::size_t rows, const std::set
 std::vector<std::string> failing_lines(const CsvComparison& c) {
   std::vector<std::string> lines;
   for (const ColumnResult& r : c.failing) {
-    const std::string head = "  " + r.name + " [" + (r.unit.empty() ? "1" : r.unit) + "]: ";
+    // the unit after the name, unless the header names it already ("load [N]": it read "load [N] [N]")
+    const std::string head =
+        "  " + r.name + (bracketed_unit(r.name) ? "" : " [" + (r.unit.empty() ? "1" : r.unit) + "]") + ": ";
     if (r.ratio > 1)
       lines.push_back(head + "worst " + where(r.worst, c.timed) + ", |a - b| = " +
                       num(std::abs(r.worst.a - r.worst.b)) + ", " + times_text(r.ratio) + " (" + tols_text(r) + ")");

@@ -139,12 +139,13 @@ void default_range(const Scene& scene, FrameQuantity q, double& lo, double& hi);
 std::vector<double> element_values(const Scene& scene, FrameQuantity q, double t, const double* y,
                                    const Drive* drive = nullptr);
 
-// "" when the frames of these settings show all their text (FrameBuilder::cut_text, at the scene's
-// initial state), else "WxH is too small for the frame's text with every line of its legend (what
-// it cuts): W'xH' is the
-// smallest of its shape that shows it all; the frames are drawn as they are". Throws
-// std::runtime_error as Font does.
-std::string frame_size_problem(const Scene& scene, const FrameSettings& settings);
+// "" when the frames of these settings show all their text (FrameBuilder::cut_text, at the state y
+// at t: the scene's initial state at the first frame's time when y is null), else "WxH is too small
+// for the frame's text with every line of its legend (what it cuts): W'xH' is the smallest of its
+// shape that shows it all; the frames are drawn as they are". Throws std::runtime_error as Font
+// does.
+std::string frame_size_problem(const Scene& scene, const FrameSettings& settings, double t = 0,
+                               const double* y = nullptr);
 
 class FrameBuilder {
  public:

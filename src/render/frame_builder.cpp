@@ -419,12 +419,15 @@ void FrameBuilder::draw_pulleys(const double* q, DrawList& out) const {
   }
 }
 
-std::string frame_size_problem(const Scene& scene, const FrameSettings& settings) {
+std::string frame_size_problem(const Scene& scene, const FrameSettings& settings, double t, const double* y) {
   Font font;
+  // the text of the state drawn (beltsim render's, whose header said t = 0.2 s while this quoted
+  // t = 0.0000 s), else of the run's first frame
+  if (!y) t = settings.t_start, y = scene.y0.data();
   auto cut = [&](int w, int h) {
     FrameSettings f = settings;
     f.width = w, f.height = h;
-    return FrameBuilder(scene, f, &font).cut_text(f.t_start, scene.y0.data());
+    return FrameBuilder(scene, f, &font).cut_text(t, y);
   };
   const std::string now = cut(settings.width, settings.height);
   if (now.empty()) return "";

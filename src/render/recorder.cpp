@@ -131,6 +131,7 @@ class FrameRecorder final : public FrameSink {
     if (!fs.video_path.empty()) {
       VideoOptions vo;
       vo.width = fs.width, vo.height = fs.height, vo.fps = static_cast<int>(fs.fps);
+      vo.whole = fs.video_whole_frames > 0;
       video_ = std::make_unique<VideoWriter>(fs.video_path, vo);
     }
     writer_ = std::make_unique<FrameWriter>([this](const Image& img, long number) { write(img, number); });
@@ -144,11 +145,14 @@ class FrameRecorder final : public FrameSink {
     n_++;
   }
   // the video is closed even after a failed write, so that what was written plays; the failed
-  // write's error comes first
+  // write's error comes first. A video written whole without all its frames gets the partial name
   void finish() override {
     const std::exception_ptr failed = writer_->finish();
     try {
-      if (video_) video_->close();
+      if (video_)
+        video_->close(fs_.video_whole_frames > 0 && video_->frames() < fs_.video_whole_frames
+                          ? partial_video_path(fs_.video_path)
+                          : "");
     } catch (...) {
       if (!failed) throw;
     }

@@ -1,4 +1,5 @@
-// The process's stop signals, one module for every command (`beltsim run`, `wp` and the console).
+// The process's stop signals, one module for every command that has outputs to close (`beltsim
+// run`, `wp`, `modes`, `sweep`, `render` and the console).
 //
 // SIGINT (Ctrl-C), SIGTERM and SIGHUP (the terminal closed, handled as SIGTERM): a run stops at its
 // last finished step (the stop flag), Lua code raises "interrupted!" at its next slice of

@@ -62,6 +62,11 @@ struct FrameSettings {
   // render/mode_frames.cpp: the mode's state is no running drive's); empty: the speeds and slips.
   // Not a run's key, not in a checkpoint
   std::vector<std::string> pulley_lines;
+  // the frames a video is to have when it is written whole (beltsim render's, one per state):
+  // named video_path when it has them all, else partial_video_path's name (media/video_writer.hpp:
+  // a render stopped before its end), an earlier video_path left as it was; 0: written in place as
+  // the frames come (a run's, whose fragments a kill leaves). Not a run's key, not in a checkpoint
+  long video_whole_frames = 0;
 
   // simulated time between frames [s]
   double frame_dt() const { return 1.0 / (fps * slowdown); }

@@ -14,6 +14,7 @@
 
 #include "integrate/controller.hpp"
 #include "io/csv_writer.hpp"
+#include "io/number_text.hpp"
 #include "io/output_dir.hpp"
 #include "io/suggest.hpp"
 #include "io/units.hpp"
@@ -350,6 +351,11 @@ void Outputs::close(const Warnings& w, const std::string& rows) {
   } catch (...) {
     failed = std::current_exception();
   }
+  // a video that got no frame is removed by its writer (media/video_writer.hpp), which is said: a
+  // trial's run stopped before its first frame left, unsaid, an MP4 of 808 bytes no player opens
+  if (sink_ && rs_.frames && !rs_.frames->video_path.empty() && sink_->frames_written() == 0 && rs_.on_warning)
+    rs_.on_warning("no frame was drawn before the run ended (frames from t = " + rounded_text(rs_.frames->t_start) +
+                   " s): no video, " + output_path(rs_, rs_.frames->video_path) + " is not written");
   try {
     if (csv_) {  // the fallbacks, beside the parameters they qualify (whole rows, one write)
       std::ostringstream f;

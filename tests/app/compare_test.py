@@ -149,6 +149,35 @@ class Pngs(Base):
         self.assertEqual(self.compare("a.png", "b.png", "--diff", "D.PNG")[0], 1)
         self.assertTrue(os.path.isfile(self.path("D.PNG")))
 
+    def test_the_difference_image_never_replaces_a_file_compared(self):
+        # --diff B (or A, however spelt, or a second hard link of it) replaced the file with the
+        # red-on-grey picture: a golden reference, which every later compare then failed against
+        # (a user trial). Refused before anything is read, the file unchanged
+        write_png(self.path("b.png"), 80, 60, square(2))
+        os.makedirs(self.path("gold"))
+        os.link(self.path("b.png"), self.path("gold/b_link.png"))
+        with open(self.path("b.png"), "rb") as f:
+            b = f.read()
+        for diff, which in [("b.png", "B"), ("./b.png", "B (b.png)"), ("gold/../a.png", "A (a.png)"),
+                            ("gold/b_link.png", "B (b.png)")]:
+            code, out, err = self.compare("a.png", "b.png", "--diff", diff)
+            self.assertEqual((code, out), (2, ""), diff)
+            self.assertIn("beltsim: --diff %s is %s, a file compared: the difference image would replace it; give it "
+                          "another name\n" % (diff, which), err)
+        with open(self.path("b.png"), "rb") as f:
+            self.assertEqual(f.read(), b)
+        # the default name, A_diff.png, when that is B: compared, the difference image not written (3)
+        shutil.copy(self.path("b.png"), self.path("a_diff.png"))
+        code, out, err = self.compare("a.png", "a_diff.png")
+        self.assertEqual(code, 3, err)
+        self.assertTrue(out.startswith("differ: 80 of 80x60 pixels differ"), out)
+        self.assertNotIn("difference image", out)
+        self.assertEqual(err, "beltsim compare: the difference image's default name a_diff.png (A's with _diff) is B, "
+                              "a file compared: not written over it; give the difference image another name with "
+                              "--diff PNG\n")
+        with open(self.path("a_diff.png"), "rb") as f:
+            self.assertEqual(f.read(), b)
+
     def test_different_sizes_differ(self):
         write_png(self.path("b.png"), 60, 80, square(0))
         code, out, err = self.compare("a.png", "b.png")
@@ -238,6 +267,19 @@ class Masks(Base):
             self.assertEqual((code, out), (2, ""), value)
             self.assertIn("beltsim: " + message, err)
             self.assertIn("Run 'beltsim compare --help' for the usage.", err)
+
+    def test_a_mask_over_every_pixel_compares_nothing(self):
+        # it reported "match: 0 of 80x60 pixels differ ...; 4800 pixels masked", exit 0 (a user
+        # trial): a golden test whose mask grew by mistake passed forever
+        for masks in (["--mask", "0,0,80,60"], ["--mask", "-5,-5,100,100"], ["--mask", "0,0,40,60", "--mask", "40,0,40,60"]):
+            code, out, err = self.compare("a.png", "b.png", *masks)
+            self.assertEqual((code, out), (2, ""), masks)
+            self.assertIn("beltsim: --mask left no pixel of the 80x60 pictures to compare: nothing was compared; "
+                          "leave out less\n", err)
+            self.assertFalse(os.path.exists(self.path("a_diff.png")))
+        code, out, err = self.compare("a.png", "b.png", "--mask", "0,0,80,59")  # one row left
+        self.assertEqual(code, 0, out + err)
+        self.assertIn("; 4720 pixels masked", out)
 
     def test_ignore_text_needs_pngs_with_text_boxes(self):
         code, out, err = self.compare("a.png", "b.png", "--ignore-text")
@@ -445,6 +487,17 @@ class Csvs(Base):
             self.assertTrue(lines[1 + k].startswith("  p%d.omega [rad/s]: worst at t = 1 s (row 2): 10 vs %d," % (k, 11 + k)),
                             lines[1 + k])
         self.assertEqual(lines[8], "  p0.creep [1]: NaN against a number at 1 time, the first at t = 1 s (row 2): 0.01 vs nan")
+
+    def test_failing_names_a_headers_unit_once(self):
+        # a header that carries its unit ("load [N]") read "load [N] [N]" (a user trial)
+        write_csv(self.path("x.csv"), ["t", "load [N]", "span_a_b.tension"], [[0, 100, 100], [0.1, 0, 200]])
+        write_csv(self.path("y.csv"), ["t", "load [N]", "span_a_b.tension"], [[0, 100, 102.1], [0.1, 1.1, 200]])
+        code, out, err = self.compare("x.csv", "y.csv", "--rtol", "1e-2", "--failing")
+        self.assertEqual(code, 1, err)
+        lines = out.splitlines()
+        self.assertEqual(len(lines), 3, out)
+        self.assertTrue(lines[1].startswith("  load [N]: worst at t = 0.1 s (row 2): 0 vs 1.1"), out)
+        self.assertTrue(lines[2].startswith("  span_a_b.tension [N]: worst at t = 0 s (row 1): 100 vs 102.1"), out)
 
     def test_mismatched_headers_differ_naming_the_columns(self):
         write_csv(self.path("b.csv"), ["t", "driver.omega", "idler.omega"], self.rows([i * 0.01 for i in range(11)]))

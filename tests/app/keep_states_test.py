@@ -7,10 +7,12 @@ import os
 import ctypes
 import re
 import shutil
+import signal
 import struct
 import subprocess
 import sys
 import tempfile
+import time
 import unittest
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "support"))
 from scenes import two_pulley  # noqa: E402
@@ -147,6 +149,49 @@ class KeepStates(unittest.TestCase):
                             "stream=nb_read_frames", "-of", "csv=p=0", os.path.join(self.dir, "three.mp4")],
                            capture_output=True, text=True)
         self.assertEqual(r.stdout.strip(), "3", r.stderr)
+
+    def test_a_stopped_render_keeps_its_frames_apart(self):
+        # Ctrl-C or SIGTERM ended `render --video` at once: an earlier video of the name was left
+        # with no frame, a new one cut at its last whole second under the name asked for (a user
+        # trial). It stops between two states: the video of those drawn plays, named
+        # <stem>.partial.mp4, and the earlier video is left as it was
+        many = os.path.join(self.dir, "many")
+        os.makedirs(many, exist_ok=True)
+        for k in range(300):
+            shutil.copy(os.path.join(self.states, "state_00006.ckpt"), os.path.join(many, "state_%05d.ckpt" % k))
+        for sig, status, said in [(signal.SIGINT, 130, "interrupted"), (signal.SIGTERM, 143, "terminated")]:
+            name = "stopped_%d" % sig
+            with open(os.path.join(self.dir, name + ".mp4"), "wb") as f:
+                f.write(b"an earlier video")
+            p = subprocess.Popen([BELTSIM, "render", "many", "--out", name, "--video", name + ".mp4", "--size",
+                                  "640x360"], cwd=self.dir, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
+                                 preexec_fn=lambda: signal.signal(signal.SIGINT, signal.SIG_DFL))  # as a terminal's
+            pngs = os.path.join(self.dir, name)
+            deadline = time.monotonic() + 60
+            while not os.path.exists(os.path.join(pngs, "state_00002.png")):
+                self.assertIsNone(p.poll(), "the render ended before its third state")
+                self.assertLess(time.monotonic(), deadline, "no third state drawn")
+                time.sleep(0.01)
+            p.send_signal(sig)
+            out, err = p.communicate(timeout=30)
+            self.assertEqual(p.returncode, status, err)
+            drawn = len([n for n in os.listdir(pngs) if n.endswith(".png")])
+            self.assertLess(drawn, 300, err)
+            self.assertIn("beltsim render: the video of the %d of 300 states drawn is %s.partial.mp4 (it plays to its "
+                          "last frame; %s.mp4 is left as it was)\n" % (drawn, name, name), err)
+            self.assertIn("beltsim: %s; the outputs written so far are kept\n" % said, err)
+            self.assertTrue(out.endswith(name + ".partial.mp4\n"), out)
+            with open(os.path.join(self.dir, name + ".mp4"), "rb") as f:
+                self.assertEqual(f.read(), b"an earlier video")
+            r = subprocess.run(["ffprobe", "-v", "error", "-count_frames", "-select_streams", "v:0", "-show_entries",
+                                "stream=nb_read_frames", "-of", "csv=p=0",
+                                os.path.join(self.dir, name + ".partial.mp4")], capture_output=True, text=True)
+            self.assertEqual((r.stdout.strip(), r.stderr), (str(drawn), ""))
+        # a render that ends replaces the earlier video whole, and leaves no partial one
+        code, out, err = run(["render", os.path.join("out", "states"), "--video", "stopped_2.mp4"], self.dir)
+        self.assertEqual((code, out), (0, "stopped_2.mp4\n"), err)
+        with open(os.path.join(self.dir, "stopped_2.mp4"), "rb") as f:
+            self.assertNotEqual(f.read(), b"an earlier video")
 
     def test_states_without_frames_at_the_frame_times(self):
         # no frames: the default frame settings' times (fps 30, slowdown 10: every 1/300 s)

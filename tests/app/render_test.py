@@ -96,6 +96,10 @@ class Render(unittest.TestCase):
         self.assertIn("beltsim render: warning: --size 161x91 is too small for the frame's text with every line of its "
                       "legend (", err)
         self.assertIn(" is the smallest of its shape that shows it all; the frames are drawn as they are\n", err)
+        # the header quoted is the state's, drawn at t = 0.02 s (it quoted one of t = 0.0000 s: a user trial)
+        code, out, err = self.render("--out", "header.png", "--size", "260x146", "--quantity", "slip")
+        self.assertEqual(code, 0, err)
+        self.assertIn("legend ('t = 0.0200 s      colour: slip velocity [m/s]", err)
         self.assertEqual(self.render("--out", "fits.png", "--size", "640x360"), (0, "fits.png\n", ""))
         # a run's frames: said once, as the run starts
         with open(os.path.join(self.dir, "tiny.lua"), "w") as f:

@@ -1,14 +1,18 @@
 // The PNG and video writers on their own: a PNG round trip; an MP4 read back by ffprobe (codec,
 // frame count, duration, pixel format, colour tags); a video whose writer is killed before it
-// closes still plays up to its last whole fragment.
+// closes still plays up to its last whole fragment; one without a frame leaves no file; one written
+// whole replaces an earlier file only when closed.
 #include <gtest/gtest.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
 #include <map>
 #include <string>
+#include <vector>
 
 #include "media/png_writer.hpp"
 #include "media/video_writer.hpp"
@@ -139,6 +143,67 @@ TEST(Video, KilledWriterLeavesAPlayableFile) {
   // 100 frames sent; the encoder's look-ahead holds back a few, the unfinished fragment is lost
   EXPECT_GE(frames, 60) << p["error"];
   EXPECT_LE(frames, 100);
+}
+
+// A video closed (or destroyed) without a frame is a header alone, which no player opens (a trial's
+// run stopped before its first frame left one of 808 bytes): no file is left.
+TEST(Video, NoFrameLeavesNoFile) {
+  VideoOptions o;
+  o.width = 96, o.height = 64;
+  const fs::path closed = temp_dir() / "no_frame.mp4", destroyed = temp_dir() / "no_frame_destroyed.mp4";
+  {
+    VideoWriter v(closed.string(), o);
+    EXPECT_TRUE(fs::exists(closed));  // made at once (a run's video is written as it goes)
+    v.close();
+    EXPECT_FALSE(fs::exists(closed));
+  }
+  { VideoWriter v(destroyed.string(), o); }
+  EXPECT_FALSE(fs::exists(destroyed));
+}
+
+// VideoOptions::whole (beltsim render's): an earlier file of the name is left as it was until the
+// video is closed, and for good when it is closed under another name or never closed
+TEST(Video, WrittenWholeReplacesTheEarlierFileOnlyWhenClosed) {
+  VideoOptions o;
+  o.width = 96, o.height = 64, o.whole = true;
+  const fs::path f = temp_dir() / "whole.mp4", partial = temp_dir() / "whole.partial.mp4";
+  EXPECT_EQ(partial_video_path(f.string()), partial.string());
+  const auto earlier = [&] {
+    std::ifstream in(f, std::ios::binary);
+    return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>()) == "earlier";
+  };
+  fs::remove(partial);
+  std::ofstream(f) << "earlier";
+  {
+    VideoWriter v(f.string(), o);
+    for (int k = 0; k < 10; ++k) v.add(pattern(96, 64, k));
+    EXPECT_TRUE(earlier());
+  }  // never closed: given up
+  EXPECT_TRUE(earlier());
+  {
+    VideoWriter v(f.string(), o);
+    for (int k = 0; k < 10; ++k) v.add(pattern(96, 64, k));
+    v.close(partial.string());
+  }
+  EXPECT_TRUE(earlier());
+  EXPECT_EQ(probe(partial)["nb_read_frames"], "10");
+  {
+    VideoWriter v(f.string(), o);
+    v.close();  // no frame: nothing named
+  }
+  EXPECT_TRUE(earlier());
+  {
+    VideoWriter v(f.string(), o);
+    for (int k = 0; k < 12; ++k) v.add(pattern(96, 64, k));
+    EXPECT_TRUE(earlier());
+    v.close();
+  }
+  EXPECT_EQ(probe(f)["nb_read_frames"], "12");
+  std::vector<std::string> names;
+  for (const auto& e : fs::directory_iterator(temp_dir()))
+    if (e.path().filename().string().rfind("whole", 0) == 0) names.push_back(e.path().filename().string());
+  std::sort(names.begin(), names.end());
+  EXPECT_EQ(names, (std::vector<std::string>{"whole.mp4", "whole.partial.mp4"}));  // no .part left
 }
 
 }  // namespace

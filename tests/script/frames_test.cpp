@@ -1,7 +1,7 @@
 // scene:run{ frames = {...} }: bad options stop the script before anything is simulated, with
 // file:line, the reason and the value; a run without frames opens no GL context and no encoder;
 // a run with frames writes one PNG and one video frame per frame time; a diverging run leaves a
-// video that plays.
+// video that plays; a run that ends before its first frame leaves no video, and says so.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -241,6 +241,28 @@ TEST(Frames, CtrlCLeavesAFinishedVideo) {
   EXPECT_NE(bytes.find("mfra"), std::string::npos) << "no trailer: the writer was not closed";
   EXPECT_EQ(probe(out / "stopped.mp4", "stream=codec_name"), "h264");
   EXPECT_GE(std::stoi("0" + probe(out / "stopped.mp4", "stream=nb_read_frames")), 1);
+}
+
+// A run that ends before its first frame time (here a live simulation closed at 0.004 s; a trial's
+// was stopped by Ctrl-C) left an MP4 of a header alone, which no player opens, without a word: no
+// file, and a warning naming it
+TEST(Frames, NoFrameBeforeTheEndNoVideo) {
+  const fs::path out = temp_dir() / "no_frame";
+  fs::remove_all(out);
+  fs::create_directories(out);
+  std::ofstream(out / "v.mp4") << "an earlier run's";  // replaced, as a run's outputs are
+  testing::internal::CaptureStderr();
+  const std::string msg =
+      run("local sim = s:start{ frames = { t_start = 0.05, size = {320, 180}, video = 'v.mp4' } }\n"
+          "sim:run_to(0.004)\nsim:close()",
+          out);
+  const std::string err = testing::internal::GetCapturedStderr();
+  EXPECT_EQ(msg, "");
+  EXPECT_FALSE(fs::exists(out / "v.mp4"));
+  EXPECT_NE(err.find("beltsim: warning: no frame was drawn before the run ended (frames from t = 0.05 s): no video, " +
+                     (out / "v.mp4").string() + " is not written\n"),
+            std::string::npos)
+      << err;
 }
 
 }  // namespace frames_test
