@@ -225,11 +225,20 @@ std::string value_range(double lo, double hi) {
 
 // applies μ (NaN: unchanged) and pushes what changed as one line: how many elements' μ changed,
 // where they are now (in contact with which pulley, or free), their μ before -> after; or, when
-// none did, that the elements addressed already had that μ
+// none did, that the elements addressed already had that μ (nothing applied, nothing recorded in
+// events.csv). A wet stretch that holds no element is refused, as a batch run's event is
+// (lua_run.cpp): a user's trial found sim:wet{ from = 0.1, to = 0.1 } recorded as a wetting
 void apply_mu(lua_State* L, Simulation& s, const std::vector<double>& mu, const std::string& what,
               const std::string& text) {
   const std::vector<double> before = s.drive().mu;
-  guarded(L, what.c_str(), [&] { s.set_mu(mu, what, text); });
+  const bool none = std::all_of(mu.begin(), mu.end(), [](double x) { return std::isnan(x); });
+  if (none && what == "wet")
+    fail(L, "sim:wet: " + text +
+                ": the stretch holds no element (an element is in it when its start s is): nothing was changed; "
+                "widen it, or give from > to for a stretch across s = 0");
+  bool same = true;
+  for (size_t i = 0; i < mu.size(); ++i) same = same && (std::isnan(mu[i]) || mu[i] == before[i]);
+  if (!same) guarded(L, what.c_str(), [&] { s.set_mu(mu, what, text); });
   const int n = s.model().n_el();
   std::vector<int> pulley_of(static_cast<size_t>(n));
   guarded(L, what.c_str(), [&] {  // a Lua law may fail

@@ -323,6 +323,27 @@ TEST(LiveApi, WetTransitionRampsMuAcrossItsLength) {
       "");
 }
 
+// A wetting that changes nothing is not recorded (a user's trial: sim:wet{ from = 0.1, to = 0.1 }
+// answered "no element changed" and events.csv and the plots' event lines had it): a stretch that
+// holds no element is refused, as a batch run's event is; one whose elements have the μ already
+// is said and not applied; only the wetting that changed μ is in events.csv.
+TEST(LiveApi, AWettingThatChangesNothingIsNotRecorded) {
+  const fs::path out = temp_dir() / "wet_nothing";
+  EXPECT_EQ(run_text(wet_scene() + "local sim = s:start{ out = '" + out.string() +
+                     "', progress = false }\n"
+                     "assert(sim:wet{ from = 0.3, to = 0.6, mu = 0.2 }:find('elements'))\n"
+                     "local said = sim:wet{ from = 0.3, to = 0.6, mu = 0.2 }\n"
+                     "assert(said:find('wet: no element changed %(the %d+ it sets already had mu 0.2%)'), said)\n"
+                     "local ok, err = pcall(sim.wet, sim, { from = 0.301, to = 0.301, mu = 0.1 })\n"
+                     "assert(not ok and err:find('the stretch holds no element %(an element is in it when its start "
+                     "s is%): nothing was changed'), err)\n"
+                     "sim:close()\n"),
+            "");
+  std::ifstream events(out / "events.csv");
+  std::string text((std::istreambuf_iterator<char>(events)), std::istreambuf_iterator<char>());
+  EXPECT_EQ(text, "t,what,value\n0,wet,\"mu = 0.2 on s in [0.3, 0.6] m\"\n");
+}
+
 // The same transition on a run's events: μ ramps from the belt's μ when the event comes (here 0.5,
 // set by a first event) to the new one. Read from the states the run keeps (keep_states, frames
 // 1.5e-4 s apart): after both events, and resumed from the one between them (the pending event's
