@@ -148,10 +148,10 @@ int l_save(lua_State* L) {
   return 1;
 }
 
-// beltsim.resume(path [, { progress = bool, rewind = bool, max_wall = s }]) -> the saved
-// simulation, continuing
+// beltsim.resume(path [, { progress = bool, rewind = bool, max_wall = s, out = folder }]) -> the
+// saved simulation, continuing (in its own folder, or with out in a branch of it: sim/simulation.hpp)
 int l_resume(lua_State* L) {
-  check_args(L, "beltsim.resume", {{"path", kString}, {"{progress, rewind, max_wall}", kTable, true}});
+  check_args(L, "beltsim.resume", {{"path", kString}, {"{progress, rewind, max_wall, out}", kTable, true}});
   auto* ctx = static_cast<Context*>(lua_touserdata(L, lua_upvalueindex(1)));
   end_if_probing(L, ctx, "beltsim.resume");
   refuse_if_capturing(L, ctx, "beltsim.resume");
@@ -160,9 +160,10 @@ int l_resume(lua_State* L) {
   // the wall-time limit of each integration call, which a checkpoint does not keep (it is this
   // process's guard, not the run's): resume's own, checked as scene:start's max_wall; --max-wall over it
   double max_wall = 0;
+  std::string out;  // "": the checkpoint's own folder
   if (!lua_isnoneornil(L, 2)) {
     require_table(L, 2, "beltsim.resume");
-    check_keys(L, 2, "beltsim.resume", {"progress", "rewind", "max_wall"});
+    check_keys(L, 2, "beltsim.resume", {"progress", "rewind", "max_wall", "out"});
     if (auto v = opt_bool(L, 2, "progress", "beltsim.resume")) progress = *v;
     if (auto v = opt_bool(L, 2, "rewind", "beltsim.resume")) rewind = *v;
     if (auto v = opt_number(L, 2, "max_wall", "beltsim.resume")) {
@@ -171,6 +172,12 @@ int l_resume(lua_State* L) {
       if (const std::string bad = run_problem(*find_run_setting("max_wall"), given, true); !bad.empty())
         fail_on(L, "beltsim.resume.max_wall", bad);
       max_wall = *v;
+    }
+    if (auto v = opt_string(L, 2, "out", "beltsim.resume")) {
+      if (v->empty())
+        fail_on(L, "beltsim.resume.out",
+                "an empty folder name (leave out out to go on in the checkpoint's own folder)");
+      out = *v;
     }
   }
   if (ctx->overrides.has("max_wall")) max_wall = ctx->overrides.run.wall_limit;
@@ -196,11 +203,14 @@ int l_resume(lua_State* L) {
   };
   const auto warn = [](const std::string& m) { say("beltsim: warning: %s\n", m.c_str()); };
   guarded(L, "beltsim.resume", [&] {
-    sim = Simulation::resume(lua_tostring(L, 1), render::make_frame_recorder, &callbacks, vet, rewind, warn);
+    sim = Simulation::resume(lua_tostring(L, 1), render::make_frame_recorder, &callbacks, vet, rewind, warn, out);
   });
   sim->set_wall_limit(max_wall);
-  say("beltsim: %s resumed at t = %s s; its outputs go on in %s\n", lua_tostring(L, 1),
-      rounded_text(sim->now()).c_str(), sim->out_dir().c_str());
+  const std::string copied = sim->branched_from().empty()
+                                 ? ""
+                                 : " (a copy of " + sim->branched_from() + "'s up to it; that folder is left as it is)";
+  say("beltsim: %s resumed at t = %s s; its outputs go on in %s%s\n", lua_tostring(L, 1),
+      rounded_text(sim->now()).c_str(), sim->out_dir().c_str(), copied.c_str());
   if (callbacks > 0)
     say("beltsim: %s had %d callback(s) (every, when); register them again on the resumed simulation\n",
         lua_tostring(L, 1), callbacks);
