@@ -1,6 +1,7 @@
 // What a live simulation writes to files and reads back: sim:show (a frame of the belt now),
 // sim:plot (time histories so far), sim:save (a checkpoint) and beltsim.resume (sim_box.hpp).
 #include <cstdio>
+#include <filesystem>
 
 #include "io/number_text.hpp"
 #include "io/output_dir.hpp"
@@ -38,6 +39,27 @@ std::string picture_path(const SimBox& box, const std::string& stem, double t) {
   std::string path = output_path(box.sim->settings(), picture_name(stem, t));
   for (int k = 2; box.pictures.count(path); ++k) path = output_path(box.sim->settings(), picture_name(stem, t, k));
   return path;
+}
+
+// A relative path that is not there but is one sim:save was given (sim:save("ck/t03.ckpt")) or lies
+// so in the output folder: refused naming the checkpoint that is there. sim:save takes a relative
+// path inside the simulation's output folder, beltsim.resume from the folder beltsim runs in, so the
+// same path read back said only "No such file or directory"
+void refuse_a_save_path(lua_State* L, const Context& ctx, const std::string& path) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  if (path.empty() || fs::path(path).is_absolute() || fs::symlink_status(path, ec).type() != fs::file_type::not_found)
+    return;
+  std::vector<std::pair<std::string, std::string>> candidates;  // the path, and what says where it is
+  if (const auto it = ctx.saved.find(path); it != ctx.saved.end())
+    candidates.emplace_back(it->second, "sim:save(\"" + path + "\") wrote " + it->second);
+  const std::string out = ctx.overrides.has("out") ? ctx.overrides.run.out_dir : ctx.default_out;
+  candidates.emplace_back(output_path(out, path), "the output folder " + out + " holds " + output_path(out, path));
+  for (const auto& [there, found] : candidates)
+    if (fs::is_regular_file(there, ec))
+      fail(L, "beltsim.resume: " + path + ": no such file in the folder beltsim runs in, where beltsim.resume reads; " +
+                  found + " (sim:save takes a relative path inside the simulation's output folder): resume \"" + there +
+                  "\", the path sim:save returned");
 }
 
 }  // namespace
@@ -139,11 +161,12 @@ int l_save(lua_State* L) {
   // inside the output folder as every path beltsim writes for a script (sim/run_settings.hpp): the
   // same in the console and in its session.lua's replay (a path with a folder was taken from the
   // folder beltsim ran in, which the replay's sandbox refused)
+  const std::string given = path;
   path = output_path(s.settings(), path);
-  if (const std::string r = output_refusal(*static_cast<SimBox*>(lua_touserdata(L, 1))->ctx, "sim:save", path, true);
-      !r.empty())
-    fail(L, r);
+  Context& ctx = *static_cast<SimBox*>(lua_touserdata(L, 1))->ctx;
+  if (const std::string r = output_refusal(ctx, "sim:save", path, true); !r.empty()) fail(L, r);
   guarded(L, "sim:save", [&] { s.save(path); });
+  ctx.saved[given] = path;
   lua_pushstring(L, path.c_str());
   return 1;
 }
@@ -197,6 +220,7 @@ int l_resume(lua_State* L) {
   std::unique_ptr<Simulation> sim;
   int callbacks = 0;
   if (const std::string r = output_refusal(*ctx, "beltsim.resume", lua_tostring(L, 1), false); !r.empty()) fail(L, r);
+  refuse_a_save_path(L, *ctx, lua_tostring(L, 1));
   // the checkpoint names the outputs it continues: they lie where the sandbox allows too
   const auto vet = [ctx](const RunSettings& rs) {
     if (const std::string r = run_paths_refusal(*ctx, "resume", rs); !r.empty()) throw std::invalid_argument(r);
