@@ -84,6 +84,10 @@ struct Context {
   bool args_warned = false;   // the unread --set keys were reported at a run's start
   bool t_end_warned = false;  // --t-end was said not to shorten scene:start's simulations
   bool resume_warned = false;  // the run options were said not to apply to beltsim.resume
+  // the checkpoints sim:save wrote, by the path it was given (the last one for each): a relative
+  // path is taken inside the simulation's output folder, where beltsim.resume, reading from the
+  // folder beltsim runs in, does not find it by the same path (its refusal names the one written)
+  std::map<std::string, std::string> saved;
   // the live view of --serve (Interpreter::serve): every run of the session feeds it
   std::shared_ptr<live::LiveServer> serve;
   // the live simulation that page showed last (sim:run_to), and its userdata: the page's changes

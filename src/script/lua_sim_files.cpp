@@ -1,6 +1,7 @@
 // What a live simulation writes to files and reads back: sim:show (a frame of the belt now),
 // sim:plot (time histories so far), sim:save (a checkpoint) and beltsim.resume (sim_box.hpp).
 #include <cstdio>
+#include <filesystem>
 
 #include "io/number_text.hpp"
 #include "io/output_dir.hpp"
@@ -38,6 +39,27 @@ std::string picture_path(const SimBox& box, const std::string& stem, double t) {
   std::string path = output_path(box.sim->settings(), picture_name(stem, t));
   for (int k = 2; box.pictures.count(path); ++k) path = output_path(box.sim->settings(), picture_name(stem, t, k));
   return path;
+}
+
+// A relative path that is not there but is one sim:save was given (sim:save("ck/t03.ckpt")) or lies
+// so in the output folder: refused naming the checkpoint that is there. sim:save takes a relative
+// path inside the simulation's output folder, beltsim.resume from the folder beltsim runs in, so the
+// same path read back said only "No such file or directory"
+void refuse_a_save_path(lua_State* L, const Context& ctx, const std::string& path) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  if (path.empty() || fs::path(path).is_absolute() || fs::symlink_status(path, ec).type() != fs::file_type::not_found)
+    return;
+  std::vector<std::pair<std::string, std::string>> candidates;  // the path, and what says where it is
+  if (const auto it = ctx.saved.find(path); it != ctx.saved.end())
+    candidates.emplace_back(it->second, "sim:save(\"" + path + "\") wrote " + it->second);
+  const std::string out = ctx.overrides.has("out") ? ctx.overrides.run.out_dir : ctx.default_out;
+  candidates.emplace_back(output_path(out, path), "the output folder " + out + " holds " + output_path(out, path));
+  for (const auto& [there, found] : candidates)
+    if (fs::is_regular_file(there, ec))
+      fail(L, "beltsim.resume: " + path + ": no such file in the folder beltsim runs in, where beltsim.resume reads; " +
+                  found + " (sim:save takes a relative path inside the simulation's output folder): resume \"" + there +
+                  "\", the path sim:save returned");
 }
 
 }  // namespace
@@ -139,19 +161,20 @@ int l_save(lua_State* L) {
   // inside the output folder as every path beltsim writes for a script (sim/run_settings.hpp): the
   // same in the console and in its session.lua's replay (a path with a folder was taken from the
   // folder beltsim ran in, which the replay's sandbox refused)
+  const std::string given = path;
   path = output_path(s.settings(), path);
-  if (const std::string r = output_refusal(*static_cast<SimBox*>(lua_touserdata(L, 1))->ctx, "sim:save", path, true);
-      !r.empty())
-    fail(L, r);
+  Context& ctx = *static_cast<SimBox*>(lua_touserdata(L, 1))->ctx;
+  if (const std::string r = output_refusal(ctx, "sim:save", path, true); !r.empty()) fail(L, r);
   guarded(L, "sim:save", [&] { s.save(path); });
+  ctx.saved[given] = path;
   lua_pushstring(L, path.c_str());
   return 1;
 }
 
-// beltsim.resume(path [, { progress = bool, rewind = bool, max_wall = s }]) -> the saved
-// simulation, continuing
+// beltsim.resume(path [, { progress = bool, rewind = bool, max_wall = s, out = folder }]) -> the
+// saved simulation, continuing (in its own folder, or with out in a branch of it: sim/simulation.hpp)
 int l_resume(lua_State* L) {
-  check_args(L, "beltsim.resume", {{"path", kString}, {"{progress, rewind, max_wall}", kTable, true}});
+  check_args(L, "beltsim.resume", {{"path", kString}, {"{progress, rewind, max_wall, out}", kTable, true}});
   auto* ctx = static_cast<Context*>(lua_touserdata(L, lua_upvalueindex(1)));
   end_if_probing(L, ctx, "beltsim.resume");
   refuse_if_capturing(L, ctx, "beltsim.resume");
@@ -160,9 +183,10 @@ int l_resume(lua_State* L) {
   // the wall-time limit of each integration call, which a checkpoint does not keep (it is this
   // process's guard, not the run's): resume's own, checked as scene:start's max_wall; --max-wall over it
   double max_wall = 0;
+  std::string out;  // "": the checkpoint's own folder
   if (!lua_isnoneornil(L, 2)) {
     require_table(L, 2, "beltsim.resume");
-    check_keys(L, 2, "beltsim.resume", {"progress", "rewind", "max_wall"});
+    check_keys(L, 2, "beltsim.resume", {"progress", "rewind", "max_wall", "out"});
     if (auto v = opt_bool(L, 2, "progress", "beltsim.resume")) progress = *v;
     if (auto v = opt_bool(L, 2, "rewind", "beltsim.resume")) rewind = *v;
     if (auto v = opt_number(L, 2, "max_wall", "beltsim.resume")) {
@@ -171,6 +195,12 @@ int l_resume(lua_State* L) {
       if (const std::string bad = run_problem(*find_run_setting("max_wall"), given, true); !bad.empty())
         fail_on(L, "beltsim.resume.max_wall", bad);
       max_wall = *v;
+    }
+    if (auto v = opt_string(L, 2, "out", "beltsim.resume")) {
+      if (v->empty())
+        fail_on(L, "beltsim.resume.out",
+                "an empty folder name (leave out out to go on in the checkpoint's own folder)");
+      out = *v;
     }
   }
   if (ctx->overrides.has("max_wall")) max_wall = ctx->overrides.run.wall_limit;
@@ -190,17 +220,21 @@ int l_resume(lua_State* L) {
   std::unique_ptr<Simulation> sim;
   int callbacks = 0;
   if (const std::string r = output_refusal(*ctx, "beltsim.resume", lua_tostring(L, 1), false); !r.empty()) fail(L, r);
+  refuse_a_save_path(L, *ctx, lua_tostring(L, 1));
   // the checkpoint names the outputs it continues: they lie where the sandbox allows too
   const auto vet = [ctx](const RunSettings& rs) {
     if (const std::string r = run_paths_refusal(*ctx, "resume", rs); !r.empty()) throw std::invalid_argument(r);
   };
   const auto warn = [](const std::string& m) { say("beltsim: warning: %s\n", m.c_str()); };
   guarded(L, "beltsim.resume", [&] {
-    sim = Simulation::resume(lua_tostring(L, 1), render::make_frame_recorder, &callbacks, vet, rewind, warn);
+    sim = Simulation::resume(lua_tostring(L, 1), render::make_frame_recorder, &callbacks, vet, rewind, warn, out);
   });
   sim->set_wall_limit(max_wall);
-  say("beltsim: %s resumed at t = %s s; its outputs go on in %s\n", lua_tostring(L, 1),
-      rounded_text(sim->now()).c_str(), sim->out_dir().c_str());
+  const std::string copied = sim->branched_from().empty()
+                                 ? ""
+                                 : " (a copy of " + sim->branched_from() + "'s up to it; that folder is left as it is)";
+  say("beltsim: %s resumed at t = %s s; its outputs go on in %s%s\n", lua_tostring(L, 1),
+      rounded_text(sim->now()).c_str(), sim->out_dir().c_str(), copied.c_str());
   if (callbacks > 0)
     say("beltsim: %s had %d callback(s) (every, when); register them again on the resumed simulation\n",
         lua_tostring(L, 1), callbacks);

@@ -281,8 +281,9 @@ double Simulation::kept_state_bytes() const {
 
 std::unique_ptr<Simulation> Simulation::resume(const std::string& path, const FrameSinkFactory& factory, int* callbacks,
                                                const std::function<void(const RunSettings&)>& vet, bool rewind,
-                                               const std::function<void(const std::string&)>& warn) {
-  return load(path, factory, callbacks, vet, true, rewind, warn);
+                                               const std::function<void(const std::string&)>& warn,
+                                               const std::string& out) {
+  return load(path, factory, callbacks, vet, true, rewind, warn, out);
 }
 
 std::unique_ptr<Simulation> Simulation::open_checkpoint(const std::string& path) {
@@ -294,10 +295,12 @@ std::unique_ptr<Simulation> Simulation::open_checkpoint(const std::string& path)
 
 std::unique_ptr<Simulation> Simulation::load(const std::string& path, const FrameSinkFactory& factory, int* callbacks,
                                              const std::function<void(const RunSettings&)>& vet, bool outputs,
-                                             bool rewind, const std::function<void(const std::string&)>& warn) {
+                                             bool rewind, const std::function<void(const std::string&)>& warn,
+                                             const std::string& out) {
   const std::string where = path + ": ";  // the caller says what it was doing (beltsim.resume, render)
   std::unique_ptr<Simulation> s;
   SimState st;
+  std::string from;  // a branch's source: the checkpoint's folder, read only (out)
   try {
     CheckpointReader r(read_checkpoint_file(path));
     r.line_choice("part", {"settings"});
@@ -312,6 +315,20 @@ std::unique_ptr<Simulation> Simulation::load(const std::string& path, const Fram
     r.finish();
     if (rs.frames) rs.frame_factory = factory, rs.frames->first_number = st.outputs.frames;
     rs.out_dir = shown_folder(rs.out_dir);
+    std::error_code ec;
+    if (outputs && !out.empty() &&
+        std::filesystem::absolute(out, ec).lexically_normal() / "" !=
+            std::filesystem::absolute(rs.out_dir, ec).lexically_normal() / "") {
+      // the frames' paths relative ones lie in out; an absolute one the branch would draw over the run's own
+      if (rs.frames)
+        for (const std::string* p : {&rs.frames->png_dir, &rs.frames->video_path})
+          if (std::filesystem::path(*p).is_absolute())
+            throw std::runtime_error(where + "its frames go to " + *p +
+                                     ", outside its output folder, where a branch into " + out +
+                                     " would draw over the run's own frames; resume it without out (in its "
+                                     "own folder), or run the scene again with frames inside its folder");
+      from = rs.out_dir, rs.out_dir = out;
+    }
     try {
       s.reset(new Simulation(sc, rs, false));
     } catch (const std::invalid_argument& e) {
@@ -336,30 +353,47 @@ std::unique_ptr<Simulation> Simulation::load(const std::string& path, const Fram
     s->closed_ = true;  // nothing to close, and run_to refuses it
     return s;
   }
-  if (vet) vet(s->rs_);
+  if (vet) {
+    vet(s->rs_);
+    if (!from.empty()) {  // the source too: it is read
+      RunSettings source = s->rs_;
+      source.out_dir = from, source.frames.reset();
+      vet(source);
+    }
+  }
+  const std::string& folder = from.empty() ? s->rs_.out_dir : from;
   // the folder the checkpoint continues must be there: made anew, it would be left behind empty
   // by the refusal that follows (its files are missing)
-  if (std::error_code ec; !std::filesystem::is_directory(s->rs_.out_dir, ec)) {
+  if (std::error_code ec; !std::filesystem::is_directory(folder, ec)) {
     std::string hint;
     const std::filesystem::path beside = std::filesystem::absolute(path).lexically_normal().parent_path();
-    if (beside != std::filesystem::absolute(s->rs_.out_dir, ec).lexically_normal() &&
+    if (beside != std::filesystem::absolute(folder, ec).lexically_normal() &&
         std::filesystem::exists(beside / "timeseries.csv", ec))
       hint = " (" + shown_folder(beside.string()) +
              ", where the checkpoint lies, holds a timeseries.csv: if it is that folder " + "moved, move it back to " +
-             s->rs_.out_dir + ")";
-    throw std::runtime_error(where + "the run's output folder " + s->rs_.out_dir +
+             folder + ")";
+    throw std::runtime_error(where + "the run's output folder " + folder +
                              ", whose files this checkpoint continues, is not there" + hint +
                              ": put the run's folder back where it was to resume it, or run the scene again; "
                              "nothing was written");
   }
   // the outputs continue where the checkpoint left them, once the folder is this simulation's alone
   // (a checkpoint resumed twice: the second is refused before it cuts the first one's files);
-  // every one checked before any is cut
-  s->out_->claim(false);
+  // every one checked before any is cut. A branch's go on from a copy of them in its own folder
+  // (made when missing), the source only read: nothing of it is cut, so no rewind is asked for
+  if (from.empty()) s->out_->claim(false);
   try {
-    s->out_->check_state(st.outputs);
+    if (from.empty())
+      s->out_->check_state(st.outputs);
+    else
+      s->out_->check_files(st.outputs, from);
   } catch (const std::runtime_error& e) {
     throw std::runtime_error(where + e.what());
+  }
+  if (!from.empty()) {
+    st.outputs = s->out_->branch(st.outputs, from);
+    s->branched_from_ = from;
+    s->warn_earlier_outputs();
   }
   if (!st.outputs.fingerprinted && warn)
     warn(path + ": a version " + std::to_string(kCheckpointOldest) +
@@ -368,7 +402,7 @@ std::unique_ptr<Simulation> Simulation::load(const std::string& path, const Fram
          "saved by this beltsim is checked");
   // a run's results after the checkpoint are not dropped unasked (a kept state of a finished run,
   // or a copy of its folder, whose checkpoints name the run's own folder)
-  if (const std::string later = s->out_->later_results(st.outputs); !later.empty() && !rewind)
+  if (const std::string later = from.empty() ? s->out_->later_results(st.outputs) : ""; !later.empty() && !rewind)
     throw std::runtime_error(where + "resuming at t = " + rounded_text(st.now()) +
                              " s would cut the run's results after it (" + later +
                              (s->rs_.frames ? "; its frames after it would be drawn again" : "") +

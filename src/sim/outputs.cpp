@@ -254,12 +254,14 @@ void Outputs::open(bool append) {
     states_ = std::make_unique<OutputDir>(dir, "states");
     if (!append) remove_numbered(*states_, numbered("state_", ".ckpt"));
   }
-  if (!append) {
-    const std::string parameters = write_parameters(scene_, rs_, dir);
-    last_.parameters_bytes = static_cast<long>(parameters.size());
-    last_.parameters_hash = fnv1a64(parameters);
-  }
+  if (!append) start_parameters();
   open_rows(append);
+}
+
+void Outputs::start_parameters() {
+  const std::string parameters = write_parameters(scene_, rs_, *dir_);
+  last_.parameters_bytes = static_cast<long>(parameters.size());
+  last_.parameters_hash = fnv1a64(parameters);
 }
 
 std::vector<std::string> Outputs::earlier_outputs() const {

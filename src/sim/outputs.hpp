@@ -125,6 +125,14 @@ class Outputs {
   // parameters.csv's start, the last row's time or the bytes up to each size differ), or when
   // frames drawn since would have to be taken back from a video; nothing is touched
   void check_state(const State& s) const;
+  // the same checks of the files a state's run wrote into another folder `from` (a branch's
+  // source, which is read, never claimed nor written: its run may still be going on in it)
+  void check_files(const State& s, const std::string& from) const;
+  // a branch (beltsim.resume's out): the folder claimed (made when missing) to hold the state's
+  // outputs up to it, copied from `from` (check_files first) up to the state's sizes, and a parameters.csv of its
+  // own (run.out names this folder); the state returned names that parameters.csv. open(true) then
+  // continues them
+  State branch(const State& s, const std::string& from);
   // a state without fingerprints (fingerprinted false) with those of the claimed folder's files
   // as they are up to its sizes (check_state first), so that a later save holds them
   State with_fingerprints(const State& s) const;
@@ -155,6 +163,7 @@ class Outputs {
   };
   std::vector<Cut> cuts(const State& s) const;
   void open_rows(bool append);  // timeseries.csv, events.csv, snapshots.csv
+  void start_parameters();      // parameters.csv as the run writes it at its start (last_ its size and hash)
 };
 
 }  // namespace beltsim

@@ -159,7 +159,11 @@ void Outputs::check_state(const State& s) const {
   if (sink_ && s.frames != frames_written())
     throw std::runtime_error("the run has drawn " + std::to_string(frames_written()) + " frames, the state " +
                              std::to_string(s.frames) + ": frames drawn cannot be taken back");
-  if (!dir_) return;
+  if (dir_) check_files(s, dir_->path());
+}
+
+void Outputs::check_files(const State& s, const std::string& from) const {
+  const auto path = [&from](const char* name) { return output_path(from, name); };
   const std::string series = csv_header(timeseries_columns(scene_, rs_.probes.size()));
   for (const Cut& c : cuts(s))
     check_cut(ReadOutput(path(c.name)), c.bytes, std::string(c.name) == "timeseries.csv" ? &series : nullptr);
@@ -182,10 +186,34 @@ void Outputs::check_state(const State& s) const {
   }
   if (!differ.empty())
     throw std::runtime_error(
-        "the outputs in " + dir_->path() + " are not the ones this checkpoint's run wrote: " + and_list(differ) +
+        "the outputs in " + from + " are not the ones this checkpoint's run wrote: " + and_list(differ) +
         ". Another run has written the folder since the checkpoint was saved, and continuing would join this "
         "checkpoint's run to that run's rows. Nothing was changed: resume a checkpoint the later run saved, or run "
         "the script that saved this one again (each run its own folder: --out or out = ...)");
+}
+
+Outputs::State Outputs::branch(const State& s, const std::string& from) {
+  const OutputDir& dir = claim();
+  // the rows up to the state copied in whole rows, a MB at a time (a long run's timeseries.csv
+  // need not fit in memory): each file as its run wrote it, so its hash goes on from the state's
+  for (const Cut& c : cuts(s)) {
+    const ReadOutput in(output_path(from, c.name));
+    RowFile copy(dir, c.name, false);
+    std::string rest;
+    for (long at = 0; at < c.bytes;) {
+      const std::string b = in.read(at, std::min(1L << 20, c.bytes - at));
+      if (b.empty()) throw std::runtime_error("the run's output " + in.path() + " ended while it was copied");
+      at += static_cast<long>(b.size());
+      rest += b;
+      const size_t end = rest.rfind('\n') + 1;  // (0 when no row ends in it yet)
+      if (end > 0) copy.write(std::string_view(rest).substr(0, end)), rest.erase(0, end);
+    }
+  }
+  // parameters.csv the branch's own: its start as its run wrote it, but for run.out
+  start_parameters();
+  State b = s;
+  b.parameters_bytes = last_.parameters_bytes, b.parameters_hash = last_.parameters_hash;
+  return b;
 }
 
 Outputs::State Outputs::with_fingerprints(const State& s) const {

@@ -75,6 +75,19 @@ Simulation::Simulation(const Scene& sc, const RunSettings& rs, bool fresh)
   if (!fresh) return;  // a checkpoint's load sets the state (checkpoint.cpp)
 
   out_->open(false);
+  warn_earlier_outputs();
+  for (size_t z = 0; z < drive_.spray.zones.size(); ++z)
+    if (drive_.spray.zones[z].on) write_event(0.0, spray_name(static_cast<int>(z)), "on");
+  set_landings();
+  try {
+    tl_->start(0.0, scene_.y0);
+  } catch (...) {
+    close();
+    throw;
+  }
+}
+
+void Simulation::warn_earlier_outputs() const {
   if (const std::vector<std::string> left = out_->earlier_outputs(); !left.empty() && rs_.on_warning) {
     // the checkpoints apart (they come last): resumed after this run, each is refused
     const auto ckpt = std::find_if(left.begin(), left.end(), [](const std::string& n) {
@@ -93,15 +106,6 @@ Simulation::Simulation(const Scene& sc, const RunSettings& rs, bool fresh)
               (one ? "it" : "them") + (files.empty() ? " (" + own + (one ? "it)" : "them)") : "");
     }
     rs_.on_warning("the output folder " + rs_.out_dir + " holds an earlier run's " + held);
-  }
-  for (size_t z = 0; z < drive_.spray.zones.size(); ++z)
-    if (drive_.spray.zones[z].on) write_event(0.0, spray_name(static_cast<int>(z)), "on");
-  set_landings();
-  try {
-    tl_->start(0.0, scene_.y0);
-  } catch (...) {
-    close();
-    throw;
   }
 }
 

@@ -132,6 +132,8 @@ class Simulation {
   std::vector<std::string> columns() const;  // of timeseries.csv
   std::vector<double> sample_row() const;    // the row timeseries.csv would get now
   const std::string& out_dir() const { return rs_.out_dir; }
+  // a branch's source (resume's out): the folder whose outputs up to the checkpoint it copied; "" for any other
+  const std::string& branched_from() const { return branched_from_; }
   // a number no other simulation of this process has had, from 1: its identity where its address
   // is not one (a simulation gone leaves its address to the next, e.g. scene:run{}'s on the stack)
   std::uint64_t id() const { return id_; }
@@ -207,11 +209,18 @@ class Simulation {
   // to the checkpoint the ones its run wrote: parameters.csv's start, the last row's time and every
   // byte up to the cuts (a later run into the folder is refused, naming what differs). warn (if
   // set) hears what could not be checked (a version 12 checkpoint holds no fingerprints).
+  // out (when given and not the checkpoint's own folder) branches the run into that folder: the
+  // checkpoint's folder is only read (checked as above, never claimed or cut, so its run may still
+  // be going on), its files up to the checkpoint are copied into out (parameters.csv written anew,
+  // run.out naming out) and the run goes on there; rewind is not needed, as nothing is cut. Its
+  // frames, numbered on, and its states go into out too; a checkpoint whose frames go to an absolute
+  // path (which the branch would share with the run) is refused.
   static std::unique_ptr<Simulation> resume(const std::string& path, const FrameSinkFactory& factory,
                                             int* callbacks = nullptr,
                                             const std::function<void(const RunSettings&)>& vet = {},
                                             bool rewind = false,
-                                            const std::function<void(const std::string&)>& warn = {});
+                                            const std::function<void(const std::string&)>& warn = {},
+                                            const std::string& out = {});
   // a saved simulation at its time, to read (state, drive, observation) and draw: no output is
   // opened or touched, and it cannot run (it is closed). Throws std::runtime_error as resume does.
   static std::unique_ptr<Simulation> open_checkpoint(const std::string& path);
@@ -221,8 +230,10 @@ class Simulation {
   // resume (outputs: continue them) or open_checkpoint (no outputs)
   static std::unique_ptr<Simulation> load(const std::string& path, const FrameSinkFactory& factory, int* callbacks,
                                           const std::function<void(const RunSettings&)>& vet, bool outputs,
-                                          bool rewind = false,
-                                          const std::function<void(const std::string&)>& warn = {});
+                                          bool rewind = false, const std::function<void(const std::string&)>& warn = {},
+                                          const std::string& out = {});
+  // the warning (rs_.on_warning) of the outputs an earlier run left in the folder (earlier_outputs)
+  void warn_earlier_outputs() const;
   // set_state's parts: whether the state fits (StateError; the integrator's state and the outputs'
   // files are checked by Integrator::set_state and Outputs::check_state), and the state set but
   // the integrator's
@@ -279,6 +290,7 @@ class Simulation {
   int callbacks_ = 0;
   std::map<int, double> every_dt_;  // the period of each every() callback, by id (for run_to's volume check)
   bool closed_ = false;
+  std::string branched_from_;  // branched_from()
   bool running_ = false;  // inside run_to (callbacks may read and change, not run)
   // inside a callback's function (every, when's action): a checkpoint it asks for (save) is
   // written once everything due at its time is done (write_saves_due), where run_to(t) stops too

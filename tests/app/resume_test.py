@@ -69,6 +69,30 @@ sim:run_to(0.2)
 sim:close()
 """
 
+# trial 22's what-if: the drive saved at 0.05 s and wetted (mu 0.2) to 0.1 s; the checkpoint
+# resumed into a folder of its own (out) while the first simulation still runs, wetted otherwise
+# (mu 0.05) to 0.1 s; the first then goes on to 0.12 s in its folder
+BRANCH = """
+local drive = beltsim.scene {
+  pulleys = {
+    { name = "driver", centre = {0, 0}, radius = 0.1, torque = beltsim.ramp(0.1, -40) },
+    { name = "driven", centre = {0.29, 0}, radius = 0.1, torque = { per_speed = -0.955 } },
+  },
+  belt = { elements = 60, pretension = 500 },
+}
+local sim = drive:start { out = "out/drive", progress = false }
+sim:run_to(0.05)
+local ck = sim:save("ck/mid.ckpt")
+sim:wet { from = 0, to = 0.3, mu = 0.2 }
+sim:run_to(0.1)
+local other = beltsim.resume(ck, { out = "out/branch", progress = false })
+other:wet { from = 0, to = 0.3, mu = 0.05 }
+other:run_to(0.1)
+other:close()
+sim:run_to(0.12)
+sim:close()
+"""
+
 # the trial's periodic checkpoints: sim:save in an every callback (refused, "not inside a callback")
 EVERY_SAVE = """
 local drive = beltsim.scene {
@@ -132,7 +156,8 @@ class Resume(unittest.TestCase):
         self.dir = tempfile.mkdtemp(prefix="beltsim_resume_")
         self.addCleanup(shutil.rmtree, self.dir, True)
         for name, text in (("drive.lua", DRIVE), ("resume.lua", RESUME), ("law.lua", LUA_LAW),
-                           ("events.lua", EVENTS), ("slow_resume.lua", SLOW_RESUME), ("every_save.lua", EVERY_SAVE)):
+                           ("events.lua", EVENTS), ("slow_resume.lua", SLOW_RESUME), ("every_save.lua", EVERY_SAVE),
+                           ("branch.lua", BRANCH)):
             with open(os.path.join(self.dir, name), "w") as f:
                 f.write(text)
 
@@ -286,6 +311,36 @@ class Resume(unittest.TestCase):
                 self.assertEqual(f.read()[:len(series)], series, state)
             with open(os.path.join(out, "events.csv")) as f:
                 self.assertEqual(f.read().count(",set_mu,"), 1, state)
+
+    def test_a_checkpoint_branches_into_a_folder_of_its_own(self):
+        # trial 22: the folder-in-use refusal advised out = ..., which beltsim.resume refused as an
+        # unknown key, and the only second branch from a checkpoint was rewind = true, which cut the
+        # first branch's rows. With out, the checkpoint's outputs up to it are copied into the new
+        # folder and the run goes on there; the first simulation's folder is read, never written
+        code, _, err = run(["run", "branch.lua"], self.dir)
+        self.assertEqual(code, 0, err)
+        self.assertIn("beltsim: out/drive/ck/mid.ckpt resumed at t = 0.05 s; its outputs go on in out/branch (a copy "
+                      "of out/drive's up to it; that folder is left as it is)\n", err)
+        first, branch = os.path.join(self.dir, "out", "drive"), os.path.join(self.dir, "out", "branch")
+        with open(os.path.join(first, "timeseries.csv")) as f:
+            rows = f.read().splitlines()
+        with open(os.path.join(branch, "timeseries.csv")) as f:
+            other = f.read().splitlines()
+        # the first branch whole, to 0.12 s; the second the same rows to 0.05 s, its own after them
+        self.assertEqual((rows[-1].split(",")[0], other[-1].split(",")[0]), ("0.12", "0.1"))
+        self.assertEqual(other[:52], rows[:52])
+        self.assertNotEqual(other[60], rows[60])
+        with open(os.path.join(first, "events.csv")) as f:
+            self.assertEqual(f.read(), 't,what,value\n0.05,wet,"mu = 0.2 on s in [0, 0.3] m"\n')
+        with open(os.path.join(branch, "events.csv")) as f:
+            self.assertEqual(f.read(), 't,what,value\n0.05,resume,out/drive/ck/mid.ckpt\n'
+                                       '0.05,wet,"mu = 0.05 on s in [0, 0.3] m"\n')
+        with open(os.path.join(branch, "parameters.csv")) as f:
+            params = f.read()
+        self.assertIn("\nrun.out,out/branch,", params)
+        self.assertIn("\nend.t,0.1,s,", params)
+        with open(os.path.join(first, "parameters.csv")) as f:
+            self.assertIn("\nend.t,0.12,s,", f.read())
 
     def test_a_lua_law_is_named_at_save_only(self):
         code, out, err = run(["run", "law.lua"], self.dir)

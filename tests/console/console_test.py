@@ -616,6 +616,22 @@ class ConsoleTest(unittest.TestCase):
                 self.assertEqual(a.read(), b.read(), f)
         self.assertFalse(os.path.exists(os.path.join(self.tmp, "out", "session")))
 
+    def test_resume_of_sim_saves_path_names_the_file_it_wrote(self):
+        # trial 22: sim:save("ck/t03.ckpt") wrote out/live_dry/ck/t03.ckpt, and beltsim.resume("ck/t03.ckpt")
+        # said only "No such file or directory" (it reads from the working folder). It names the file
+        with open(os.path.join(self.tmp, "mydrive.lua"), "w") as f:
+            f.write(two_pulley(40) + "sim = drive:start{}\n")
+        commands = ["sim:advance(0.003)", "sim:save('ck/t.ckpt')", "sim:close()", "sim2 = beltsim.resume('ck/t.ckpt')"]
+        r = subprocess.run([BELTSIM, "console", "mydrive.lua", "--out", "out/mycon"], cwd=self.tmp,
+                           input="".join(c + "\n" for c in commands).encode(), env=child_env(self.tmp),
+                           stdout=subprocess.PIPE, stderr=subprocess.PIPE, timeout=60)
+        out, err = r.stdout.decode(), r.stderr.decode()
+        self.assertEqual(r.returncode, 1, out + err)
+        self.assertIn("stdin:1: beltsim.resume: ck/t.ckpt: no such file in the folder beltsim runs in, where "
+                      "beltsim.resume reads; sim:save(\"ck/t.ckpt\") wrote out/mycon/ck/t.ckpt (sim:save takes a "
+                      "relative path inside the simulation's output folder): resume \"out/mycon/ck/t.ckpt\", the "
+                      "path sim:save returned\n", out + err)
+
     # the replay line of session.lua (its second line) run through bash, in the test's folder
     def replay_line(self, text, timeout=60, trusted=False):
         replay = [ln for ln in text.splitlines() if ln.startswith("-- Replay with: beltsim run ")]
