@@ -259,10 +259,19 @@ int index_fields(lua_State* L) {
     names.push_back(lua_tostring(L, -1));
   }
   std::sort(names.begin(), names.end());
+  // its fields are those this table has: the kind's others (a tensioner arm's on a plain pulley)
+  // it lacks (a user's trial found them listed); a misspelling is matched against all of them
+  std::vector<std::string> has;
+  lua_pushnil(L);
+  while (lua_next(L, 1)) {
+    lua_pop(L, 1);
+    if (lua_type(L, -1) == LUA_TSTRING) has.push_back(lua_tostring(L, -1));
+  }
+  std::sort(has.begin(), has.end());
   const std::string name = lua_tostring(L, 2);
   fail_at(L, {},
           std::string(lua_tostring(L, lua_upvalueindex(1))) + " has no field '" + name + "'" +
-              did_you_mean(name, names) + "; its fields: " + join(names));
+              did_you_mean(name, names) + "; its fields: " + join(has));
 }
 
 }  // namespace

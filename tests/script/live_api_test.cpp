@@ -759,7 +759,7 @@ TEST(LiveApi, CallbackErrorsNameTheCallbackAndTheTime) {
   EXPECT_NE(err.find("live.lua:12: sim:run_to: sim:every's function (function at "), std::string::npos) << err;
   EXPECT_NE(err.find("live.lua:9) at t = 0.005 s: "), std::string::npos) << err;
   EXPECT_NE(err.find("live.lua:10: sim:pulley's table has no field 'omgea' (did you mean 'omega'?); its fields: "
-                     "angle, arm_angle, "),
+                     "angle, belt_torque, contact_arc, "),
             std::string::npos)
       << err;
   EXPECT_EQ(status().rfind("end.status,failed,,derived,\"sim:every's function (function at ", 0), 0u) << status();
