@@ -153,15 +153,16 @@ void FrameBuilder::draw_text_and_legend(double t, const Observation& seen, bool 
   if (off_swatch) swatch(scale_.none, "off the pulleys");
 }
 
-// "driver: ω = −57.05 rad/s, slip −0.021 m/s": the pulley's speed and its slip_pitch (the belt on
-// its wrap minus the rim's pitch line, model/observables.hpp: the gross-slip arc's slip, without
-// the radial part that slip_speed adds), ", off the belt" while no element touches it; on
+// "driver: ω = −57.05 rad/s, slip_pitch −0.021 m/s": the pulley's speed and its slip_pitch (the
+// belt on its wrap minus the rim's pitch line, model/observables.hpp: the gross-slip arc's slip,
+// without the radial part that slip_speed adds), named as the CSV and sim:pulley name it (a user's
+// trial read "slip" against sim:pulley's slip_speed), ", off the belt" while no element touches it; on
 // a tensioner arm ", arm 2.572 rad" (the arm's angle, as the CSV's arm_angle), with a coupled rotor
 // ", rotor −185.11 rad/s" (its speed, as rotor_speed)
 std::string FrameBuilder::pulley_text(int j, const PulleyObs& o) const {
   const Pulley& p = sc_.model.pulleys[j];
   std::string text = p.name + ": \u03c9 = " + format("%.2f", o.omega) + " rad/s" +
-                     (std::isnan(o.slip_pitch) ? ", off the belt" : ", slip " + format("%+.3f", o.slip_pitch) + " m/s");
+                     (std::isnan(o.slip_pitch) ? ", off the belt" : ", slip_pitch " + format("%+.3f", o.slip_pitch) + " m/s");
   if (p.arm >= 0) text += ", arm " + format("%.3f", o.arm_angle) + " rad";
   if (p.coupling >= 0) text += ", rotor " + format("%.2f", o.rotor_speed) + " rad/s";
   return text;

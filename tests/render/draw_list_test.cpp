@@ -414,8 +414,8 @@ TEST_F(Fixture, TextAndColourBarSayWhatIsShown) {
   observe(sc.model, sc.drive, sc.senses(), 0.125, y.data(), o);
   EXPECT_NEAR(o.pulleys[0].slip_pitch, -0.112, 5e-4);
   EXPECT_NEAR(o.pulleys[1].slip_pitch, 0.121, 5e-4);
-  EXPECT_TRUE(has("driver: \u03c9 = \u221260.60 rad/s, slip \u22120.112 m/s"));
-  EXPECT_TRUE(has("driven: \u03c9 = \u221259.40 rad/s, slip +0.121 m/s"));
+  EXPECT_TRUE(has("driver: \u03c9 = \u221260.60 rad/s, slip_pitch \u22120.112 m/s"));
+  EXPECT_TRUE(has("driven: \u03c9 = \u221259.40 rad/s, slip_pitch +0.121 m/s"));
   for (const char* s : {"belt tension", "[N]", "0", "1000", "wet (\u03bc < 1)", "slipping"}) EXPECT_TRUE(has(s)) << s;
 }
 
