@@ -104,9 +104,10 @@ const std::vector<HelpEntry>& api_help() {
        "a checkpoint: state, integrator, laws, μ, pending events, output positions (not a law given as a Lua "
        "function, nor cvode's history: refused, naming it); a relative path lies in the output folder, as "
        "sim:show's and sim:plot's files"},
-      {"resume", "beltsim.resume(path, { progress, rewind, max_wall [s] }) -> sim",
+      {"resume", "beltsim.resume(path, { progress, rewind, max_wall [s], out }) -> sim",
        "continues a checkpoint (bit for bit); callbacks must be added again; results written after it are cut only "
-       "with rewind = true; max_wall [s] as scene:start's (a checkpoint does not keep it)"},
+       "with rewind = true; max_wall [s] as scene:start's (a checkpoint does not keep it); out = folder branches it "
+       "into a folder of its own, with a copy of the run's outputs up to it"},
       {"serve", "sim:serve{ port = 0, host = \"127.0.0.1\" } -> url",
        "the live view of this simulation in a browser, until it closes; a port in use is refused, naming it "
        "(docs/live-view.md)"},

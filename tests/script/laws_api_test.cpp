@@ -288,7 +288,7 @@ TEST(LawsApi, BadArgumentsAndMisspeltNames) {
            {"beltsim.scene()", "beltsim.scene({pulleys, belt, ...}): expected 1 argument, got 0"},
            {"beltsim.scene({}, 1)", "expected 1 argument, got 2"},
            {"beltsim.resume()",
-            "beltsim.resume(path, [{progress, rewind, max_wall}]): expected 1 to 2 arguments, got 0"},
+            "beltsim.resume(path, [{progress, rewind, max_wall, out}]): expected 1 to 2 arguments, got 0"},
            {"help(1)", "argument 1 (name): string expected, got number"},
            {"s:info(1)", "scene:info(): expected 0 arguments, got 1"},
            {"s:element_near({0, 0}, 1)", "expected 1 argument, got 2"},
