@@ -249,13 +249,14 @@ int run_console(const std::optional<std::string>& script, const std::vector<std:
   }
   // session.lua, written again after each command; the replay gets --out DIR/replay when every
   // run of the session went into session_dir: a session whose runs named their own folders is
-  // replayed into them again
+  // replayed into them again. A session that resumed a checkpoint names session_dir in it
+  // (beltsim.replay_of): its replay resumes its own copies of the checkpoints saved there
   SessionFile session(start);
   std::vector<std::string> commands;
   const auto write_session = [&] {
     bool runs_in_dir = true;
     for (const std::string& d : ctx.run_dirs) runs_in_dir = runs_in_dir && d == run_dir_key(session_dir);
-    return session.write(commands, runs_in_dir);
+    return session.write(commands, runs_in_dir, ctx.resumed);
   };
   const auto record = [&](std::string command) {
     commands.push_back(std::move(command));

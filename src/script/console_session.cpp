@@ -228,7 +228,7 @@ std::string SessionFile::path() const {
   return name_.empty() ? "" : (std::filesystem::path(start_.dir) / name_).string();
 }
 
-bool SessionFile::write(const std::vector<std::string>& commands, bool runs_in_dir) {
+bool SessionFile::write(const std::vector<std::string>& commands, bool runs_in_dir, bool resumed) {
   if (commands.empty()) return true;
   namespace fs = std::filesystem;
   const std::string& dir = start_.dir;
@@ -258,6 +258,11 @@ bool SessionFile::write(const std::vector<std::string>& commands, bool runs_in_d
       << "-- sim:show's and sim:plot's, are taken there, as the session's were in its folder)\n";
   f << "-- An expression the prompt printed (not a call) is printed by beltsim.print, as the prompt\n"
     << "-- showed it, after the command as it was typed (-- > r).\n";
+  // before the scenario, which may resume a checkpoint too
+  if (resumed)
+    f << "-- The session resumed a checkpoint: its replay resumes, for one in this session's folder, its own\n"
+      << "-- copy (the same path in the replay's output folder), and writes nothing into this session's folder.\n"
+      << "beltsim.replay_of(" << quoted(dir.data(), dir.size()) << ")\n";
   // the keys are read by the commands below, after the scenario's first run: read here first,
   // so that the replay's first run does not stop on them as unread (lua_api.hpp, check_unread_args)
   if (!sets.empty()) {

@@ -69,8 +69,11 @@ class SessionFile {
   // writes the commands so far; false when it cannot be written, the reason said on stderr (once
   // while it stays the same). runs_in_dir: every run of the session wrote into dir (none named a
   // folder of its own), and its replay line gives --out <dir>/replay, so that the replay writes
-  // beside the session rather than into out/session, where every session's replay went
-  bool write(const std::vector<std::string>& commands, bool runs_in_dir);
+  // beside the session rather than into out/session, where every session's replay went.
+  // resumed: the session called beltsim.resume, and session.lua names the session's folder
+  // (beltsim.replay_of), so that its replay continues the checkpoints its own sim:save wrote and
+  // never writes into the session's folder
+  bool write(const std::vector<std::string>& commands, bool runs_in_dir, bool resumed);
   // the path written ("" before the first write)
   std::string path() const;
 

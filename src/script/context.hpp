@@ -88,6 +88,14 @@ struct Context {
   // path is taken inside the simulation's output folder, where beltsim.resume, reading from the
   // folder beltsim runs in, does not find it by the same path (its refusal names the one written)
   std::map<std::string, std::string> saved;
+  // beltsim.resume was called (even when it failed): the console's session.lua then names the
+  // session's folder (beltsim.replay_of), so that its replay resumes its own checkpoints
+  bool resumed = false;
+  // beltsim.replay_of(dir): this script replays the console session whose folder is dir. A
+  // beltsim.resume of a checkpoint in that folder reads the replay's own copy (the same path in the
+  // replay's output folder, where its sim:save wrote it), and a resume whose run would write into
+  // that folder is refused: a replay leaves the record it is checked against as it is
+  std::optional<std::string> replay_of;
   // the live view of --serve (Interpreter::serve): every run of the session feeds it
   std::shared_ptr<live::LiveServer> serve;
   // the live simulation that page showed last (sim:run_to), and its userdata: the page's changes

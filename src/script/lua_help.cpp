@@ -128,6 +128,10 @@ const std::vector<HelpEntry>& api_help() {
       {"stop_at", "beltsim.stop_at([t [s]])",
        "the next run that would pass t stops there as Ctrl-C stops it, and later runs are refused as after "
        "Ctrl-C until beltsim.stop_at() (a console's session.lua replays a stopped scene:run with it)"},
+      {"replay_of", "beltsim.replay_of(dir)",
+       "this script replays the console session whose folder is dir (a session.lua that resumed a checkpoint "
+       "begins with it): a beltsim.resume of a checkpoint in dir reads the replay's own copy (the same path in its "
+       "output folder), and a resume that would write into dir is refused"},
       {"print", "beltsim.print(...)",
        "prints its values as the console shows them (tables as readable Lua, units after numbers); session.lua "
        "replays with it what the prompt printed"},

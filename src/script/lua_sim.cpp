@@ -643,6 +643,8 @@ void open_sim(lua_State* L, Context* ctx) {
   lua_pop(L, 1);
   lua_pushlightuserdata(L, ctx);
   lua_pushcclosure(L, l_resume, 1), lua_setfield(L, -2, "resume");
+  lua_pushlightuserdata(L, ctx);
+  lua_pushcclosure(L, l_replay_of, 1), lua_setfield(L, -2, "replay_of");
 }
 
 }  // namespace beltsim::script

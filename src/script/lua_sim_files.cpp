@@ -1,5 +1,6 @@
 // What a live simulation writes to files and reads back: sim:show (a frame of the belt now),
 // sim:plot (time histories so far), sim:save (a checkpoint) and beltsim.resume (sim_box.hpp).
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 
@@ -62,7 +63,60 @@ void refuse_a_save_path(lua_State* L, const Context& ctx, const std::string& pat
                   "\", the path sim:save returned");
 }
 
+// ---- a replay of a console session that resumed checkpoints (Context::replay_of) -------------
+
+// the folder this script's runs write by default: --out, else out/<script name>; a replay of a
+// session's session.lua writes there (its replay line gives --out <session folder>/replay)
+std::string replay_folder(const Context& ctx) {
+  return ctx.overrides.has("out") ? ctx.overrides.run.out_dir : ctx.default_out;
+}
+
+// true when path is the folder dir or lies under it (absolute and normalised, as run_dir_key)
+bool lies_in(const std::string& path, const std::string& dir) {
+  const std::filesystem::path p(run_dir_key(path)), d(run_dir_key(dir));
+  return std::mismatch(d.begin(), d.end(), p.begin(), p.end()).first == d.end();
+}
+
+// true when path belongs to the session this script replays: it lies in the session's folder,
+// and not in the replay's own folder inside it (out/x/replay, which the replay line gives)
+bool of_the_session(const Context& ctx, const std::string& path) {
+  if (!ctx.replay_of || !lies_in(path, *ctx.replay_of)) return false;
+  const std::string mine = replay_folder(ctx);
+  const bool mine_inside = lies_in(mine, *ctx.replay_of) && run_dir_key(mine) != run_dir_key(*ctx.replay_of);
+  return !(mine_inside && lies_in(path, mine));
+}
+
+// the path in the replay's own folder that stands where path stands in the session's folder:
+// out/x/ck/t.ckpt -> out/x/replay/ck/t.ckpt (where the replay's sim:save("ck/t.ckpt") wrote)
+std::string in_replay_folder(const Context& ctx, const std::string& path) {
+  const std::filesystem::path rel =
+      std::filesystem::path(run_dir_key(path)).lexically_relative(run_dir_key(*ctx.replay_of));
+  const std::string mine = replay_folder(ctx);
+  return rel == "." ? mine : (std::filesystem::path(mine) / rel).string();
+}
+
 }  // namespace
+
+// beltsim.replay_of(dir): the console's session.lua names at its start the session's folder
+// when the session called beltsim.resume, so that its replay continues its own checkpoints and
+// never the session's (which would write the replay's runs into the session's folder)
+int l_replay_of(lua_State* L) {
+  check_args(L, "beltsim.replay_of", {{"dir", kString}});
+  auto* ctx = static_cast<Context*>(lua_touserdata(L, lua_upvalueindex(1)));
+  const std::string dir = lua_tostring(L, 1);
+  if (dir.empty())
+    fail(L,
+         "beltsim.replay_of: an empty folder name (give the folder of the session this script replays, where "
+         "its session.lua lies)");
+  const std::string mine = replay_folder(*ctx);
+  if (run_dir_key(mine) == run_dir_key(dir))
+    fail(L, "beltsim.replay_of: this replay's outputs would go into " + mine +
+                ", the folder of the session it replays, and overwrite the record it is checked against; give "
+                "the replay a folder of its own, as session.lua's replay line does: --out " +
+                (std::filesystem::path(dir) / "replay").string());
+  ctx->replay_of = dir;
+  return 0;
+}
 
 // sim:show{ quantity, range, levels, magnify, view, size, file } -> path of the PNG
 int l_show(lua_State* L) {
@@ -204,6 +258,34 @@ int l_resume(lua_State* L) {
     }
   }
   if (ctx->overrides.has("max_wall")) max_wall = ctx->overrides.run.wall_limit;
+  ctx->resumed = true;  // session.lua names the session's folder for its replay (beltsim.replay_of)
+  std::string path = lua_tostring(L, 1);
+  // a replay of a console session (beltsim.replay_of): a checkpoint the session saved in its
+  // folder, which continues the session's outputs, is read from the replay's own folder, where
+  // the replay's sim:save wrote its copy, whose outputs are the replay's; one missing there is
+  // refused (the session's would write the replay's run into the session's folder). A branch
+  // (out) into the session's folder goes into the replay's folder the same way
+  std::string session_copy;  // the session's checkpoint that path stands for ("": none)
+  if (ctx->replay_of && of_the_session(*ctx, path)) {
+    const std::string mine = in_replay_folder(*ctx, path);
+    std::error_code ec;
+    if (std::filesystem::symlink_status(mine, ec).type() == std::filesystem::file_type::not_found)
+      fail(L, "beltsim.resume: " + path + " lies in " + *ctx->replay_of +
+                  ", the folder of the session this script replays, and continues its outputs; a replay resumes "
+                  "its own copy instead, " +
+                  mine +
+                  ", and that is not there (this replay's sim:save did not write it: an earlier session "
+                  "saved the checkpoint, or this replay's simulations run in another folder than the session's "
+                  "did): replay the session as session.lua's replay line says; nothing was written");
+    session_copy = path, path = mine;
+  }
+  if (!out.empty() && of_the_session(*ctx, out)) {
+    const std::string mine = in_replay_folder(*ctx, out);
+    say("beltsim: beltsim.resume: the branch into %s, in the folder of the session this script replays, goes "
+        "into %s, in the replay's own folder, instead\n",
+        out.c_str(), mine.c_str());
+    out = mine;
+  }
   // the command line's other run options (--out, --rtol, --no-frames, ...) are scene:run's and
   // scene:start's: a resumed simulation keeps the checkpoint's settings. Said once, before it runs
   size_t count = ctx->overrides.no_frames ? 1 : 0;
@@ -219,25 +301,44 @@ int l_resume(lua_State* L) {
   }
   std::unique_ptr<Simulation> sim;
   int callbacks = 0;
-  if (const std::string r = output_refusal(*ctx, "beltsim.resume", lua_tostring(L, 1), false); !r.empty()) fail(L, r);
-  refuse_a_save_path(L, *ctx, lua_tostring(L, 1));
-  // the checkpoint names the outputs it continues: they lie where the sandbox allows too
-  const auto vet = [ctx](const RunSettings& rs) {
+  if (const std::string r = output_refusal(*ctx, "beltsim.resume", path, false); !r.empty()) fail(L, r);
+  refuse_a_save_path(L, *ctx, path);
+  // the checkpoint names the outputs it continues: they lie where the sandbox allows too; in a
+  // replay, not in the session's folder (a checkpoint saved elsewhere whose run wrote there).
+  // A branch's source (out given, another folder) is only read: it may be the session's
+  const auto vet = [ctx, &out, &path](const RunSettings& rs) {
     if (const std::string r = run_paths_refusal(*ctx, "resume", rs); !r.empty()) throw std::invalid_argument(r);
+    if (!ctx->replay_of || (!out.empty() && run_dir_key(rs.out_dir) != run_dir_key(out))) return;
+    std::vector<std::string> written{rs.out_dir};
+    if (rs.frames)
+      for (const std::string* p : {&rs.frames->png_dir, &rs.frames->video_path})
+        if (!p->empty()) written.push_back(output_path(rs, *p));
+    for (const std::string& w : written)
+      if (of_the_session(*ctx, w)) {
+        const std::string& session = *ctx->replay_of;
+        throw std::invalid_argument(
+            path + ": its run would write into " +
+            (run_dir_key(w) == run_dir_key(session) ? w : w + ", inside " + session) +
+            ", the folder of the session this script replays, and change the record the replay is checked "
+            "against; a replay resumes only checkpoints whose outputs are its own (one the session saved in its "
+            "folder is read from the replay's own folder), or branches one into a folder of its own (out = ...); "
+            "nothing was written");
+      }
   };
   const auto warn = [](const std::string& m) { say("beltsim: warning: %s\n", m.c_str()); };
-  guarded(L, "beltsim.resume", [&] {
-    sim = Simulation::resume(lua_tostring(L, 1), render::make_frame_recorder, &callbacks, vet, rewind, warn, out);
-  });
+  guarded(L, "beltsim.resume",
+          [&] { sim = Simulation::resume(path, render::make_frame_recorder, &callbacks, vet, rewind, warn, out); });
   sim->set_wall_limit(max_wall);
   const std::string copied = sim->branched_from().empty()
                                  ? ""
                                  : " (a copy of " + sim->branched_from() + "'s up to it; that folder is left as it is)";
-  say("beltsim: %s resumed at t = %s s; its outputs go on in %s%s\n", lua_tostring(L, 1),
-      rounded_text(sim->now()).c_str(), sim->out_dir().c_str(), copied.c_str());
+  const std::string shown =
+      session_copy.empty() ? path : path + " (this replay's copy of the session's " + session_copy + ")";
+  say("beltsim: %s resumed at t = %s s; its outputs go on in %s%s\n", shown.c_str(), rounded_text(sim->now()).c_str(),
+      sim->out_dir().c_str(), copied.c_str());
   if (callbacks > 0)
-    say("beltsim: %s had %d callback(s) (every, when); register them again on the resumed simulation\n",
-        lua_tostring(L, 1), callbacks);
+    say("beltsim: %s had %d callback(s) (every, when); register them again on the resumed simulation\n", path.c_str(),
+        callbacks);
   push_simulation(L, std::move(sim), ctx, progress);
   return 1;
 }

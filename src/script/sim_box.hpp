@@ -116,12 +116,14 @@ int l_span(lua_State* L);
 int l_energy(lua_State* L);
 int l_stats(lua_State* L);
 
-// lua_sim_files.cpp: sim:show, sim:plot, sim:save, and beltsim.resume (upvalue 1: the Context)
+// lua_sim_files.cpp: sim:show, sim:plot, sim:save, and beltsim.resume and beltsim.replay_of (upvalue 1:
+// the Context)
 int l_show(lua_State* L);
 int l_plot(lua_State* L);
 // lua_modes.cpp: sim:modes
 int l_modes(lua_State* L);
 int l_save(lua_State* L);
 int l_resume(lua_State* L);
+int l_replay_of(lua_State* L);
 
 }  // namespace beltsim::script

@@ -501,6 +501,77 @@ class ConsoleTest(unittest.TestCase):
         with open(os.path.join(out_console, "timeseries.csv"), "rb") as f:
             self.assertEqual(f.read(), series, "the replay's timeseries.csv differs; session.lua:\n" + text)
 
+    # 10d
+    def test_a_session_that_resumed_replays_into_its_own_folder(self):
+        # trial 22: a session saved a checkpoint, went on, closed and resumed it (rewind = true);
+        # its replay resumed the session's checkpoint, so it wrote into the session's folder
+        # (parameters.csv rewritten) and its own timeseries.csv stopped at the resume. The
+        # replay resumes its own copy (replay/ck/t.ckpt), leaves the session's folder as it was
+        # and gives the same timeseries.csv
+        with open(os.path.join(self.tmp, "scenario.lua"), "w") as f:  # into out/scenario, the default
+            f.write(two_pulley(40) + "sim = drive:start{ progress = false }\n")
+        r = self.piped(["sim:run_to(0.003)", 'sim:save("ck/t.ckpt")', "sim:wet{from=0.1, to=0.3, mu=0.2}",
+                        "sim:run_to(0.005)", "sim:close()",
+                        'sim2 = beltsim.resume("out/scenario/ck/t.ckpt", {rewind = true, progress = false})',
+                        "sim2:run_to(0.008)", "sim2:close()"])
+        err = r.stderr.decode()
+        self.assertEqual(r.returncode, 0, r.stdout.decode() + err)
+        session_dir = os.path.join(self.tmp, "out", "scenario")
+        with open(os.path.join(session_dir, "session.lua")) as f:
+            text = f.read()
+        replay_line = text.splitlines()[1]
+        self.assertTrue(replay_line.startswith("-- Replay with: beltsim run "), text)
+        self.assertIn("--out out/scenario/replay", replay_line)
+
+        def files():  # every file of the session's folder but the replays' (replay/, replay2/): bytes and mtime
+            got = {}
+            for root, dirs, names in os.walk(session_dir):
+                dirs[:] = [d for d in dirs if not (root == session_dir and d.startswith("replay"))]
+                for n in names:
+                    p = os.path.join(root, n)
+                    with open(p, "rb") as f:
+                        got[os.path.relpath(p, session_dir)] = (f.read(), os.stat(p).st_mtime_ns)
+            return got
+        before = files()
+        self.assertIn(os.path.join("ck", "t.ckpt"), before)
+        argv = shlex.split(replay_line[len("-- Replay with: "):])
+        r = subprocess.run([BELTSIM] + argv[1:], cwd=self.tmp, env=child_env(self.tmp),
+                           stdout=subprocess.PIPE, stderr=subprocess.PIPE, timeout=60)
+        out = (r.stdout + r.stderr).decode()
+        self.assertEqual(r.returncode, 0, out + "\nsession.lua:\n" + text)
+        self.assertEqual(files(), before, "the replay changed the session's folder: " + out)
+        with open(os.path.join(session_dir, "timeseries.csv"), "rb") as f:
+            series = f.read()
+        with open(os.path.join(session_dir, "replay", "timeseries.csv"), "rb") as f:
+            self.assertEqual(f.read(), series, "the replay's timeseries.csv differs; " + out)
+        self.assertIn(b"\n0.008,", series)
+        self.assertIn("out/scenario/replay/ck/t.ckpt (this replay's copy of the session's out/scenario/ck/t.ckpt) "
+                      "resumed at t = 0.003 s; its outputs go on in out/scenario/replay", out)
+        self.assertIn('\nbeltsim.replay_of("out/scenario")\n', text)
+
+        # a replay whose own copy is missing (the session.lua without its sim:save) is refused,
+        # naming it, and never falls back to the session's checkpoint
+        with open(os.path.join(session_dir, "nosave.lua"), "w") as f:
+            f.write(text.replace('sim:save("ck/t.ckpt")\n', ""))
+        before = files()
+        r = subprocess.run([BELTSIM, "run", "out/scenario/nosave.lua", "--out", "out/scenario/replay2"], cwd=self.tmp,
+                           env=child_env(self.tmp), stdout=subprocess.PIPE, stderr=subprocess.PIPE, timeout=60)
+        err = r.stderr.decode()
+        self.assertEqual(r.returncode, 1, err)
+        self.assertIn("beltsim.resume: out/scenario/ck/t.ckpt lies in out/scenario, the folder of the session this "
+                      "script replays, and continues its outputs; a replay resumes its own copy instead, "
+                      "out/scenario/replay2/ck/t.ckpt, and that is not there", err)
+        self.assertEqual(files(), before, "the refused replay changed the session's folder: " + err)
+
+        # a replay into the session's own folder is refused before it runs anything
+        r = subprocess.run([BELTSIM, "run", "out/scenario/session.lua", "--out", "out/scenario"], cwd=self.tmp,
+                           env=child_env(self.tmp), stdout=subprocess.PIPE, stderr=subprocess.PIPE, timeout=60)
+        err = r.stderr.decode()
+        self.assertEqual(r.returncode, 1, err)
+        self.assertIn("beltsim.replay_of: this replay's outputs would go into out/scenario, the folder of the "
+                      "session it replays", err)
+        self.assertEqual(files(), before, "the refused replay changed the session's folder: " + err)
+
     # 10b
     def test_a_second_session_keeps_the_first_ones_record(self):
         # two consoles in one output folder (a checkpoint resumed where it was saved): each
