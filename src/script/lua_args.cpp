@@ -100,10 +100,13 @@ void push_args(lua_State* L, Context* ctx) {
 namespace {
 
 // " (did you mean the option --rtol 1e-3?)" when `key` (t-end or t_end) names a run setting the
-// command's own options override (a user gave --set rtol=1e-3 for --rtol 1e-3), "" otherwise
-std::string option_meant(const Overrides& o, const ScriptArg& a) {
+// command's own options override (a user gave --set rtol=1e-3 for --rtol 1e-3), "" otherwise; at
+// a live simulation's start not t_end, which --t-end does not set for it (its run_to calls name
+// its times: a user's trial followed the hint and the run still stopped at 0.2 s)
+std::string option_meant(const Overrides& o, const ScriptArg& a, bool live) {
   std::string key = a.key;
   std::replace(key.begin(), key.end(), '-', '_');
+  if (live && key == "t_end") return "";
   if (std::find(o.option_keys.begin(), o.option_keys.end(), key) == o.option_keys.end()) return "";
   const RunSetting* s = find_run_setting(key);
   // (a flag's false is its default: no option says it)
@@ -114,11 +117,11 @@ std::string option_meant(const Overrides& o, const ScriptArg& a) {
 
 }  // namespace
 
-std::vector<std::string> unread_arg_messages(const Context& ctx, const std::string& script, bool so_far) {
+std::vector<std::string> unread_arg_messages(const Context& ctx, const std::string& script, bool so_far, bool live) {
   std::vector<std::string> out;
   for (const ScriptArg& a : ctx.overrides.set) {
     if (std::find(ctx.args_read.begin(), ctx.args_read.end(), a.key) != ctx.args_read.end()) continue;
-    std::string meant = option_meant(ctx.overrides, a);
+    std::string meant = option_meant(ctx.overrides, a, live);
     if (meant.empty()) meant = did_you_mean(a.key, ctx.args_read);
     out.push_back("--set " + a.key + "=" + a.text + (so_far ? " has not been read by " : " was never read by ") +
                   script + (so_far ? " before its first run or start" : "") + meant +
@@ -132,7 +135,7 @@ void check_unread_args(lua_State* L, Context& ctx, const char* call) {
   ctx.args_warned = true;
   const std::string script = ctx.script.empty() ? "the console" : ctx.script;
   std::string all;
-  for (const std::string& m : unread_arg_messages(ctx, script, true)) {
+  for (const std::string& m : unread_arg_messages(ctx, script, true, std::string(call) == "start")) {
     if (ctx.interactive) say("beltsim: warning: %s\n", m.c_str());
     all += (all.empty() ? "" : "; ") + m;
   }

@@ -16,7 +16,9 @@ void push_args(lua_State* L, Context* ctx);
 // the --set keys the script has not read (beltsim.args.KEY) so far, one message each naming the
 // key, a suggestion among the keys it read, and those keys
 // (so_far: said at a run's start, "has not been read ... before this run")
-std::vector<std::string> unread_arg_messages(const Context& ctx, const std::string& script, bool so_far = false);
+// (live: at a live simulation's start, where --t-end is no option for t_end)
+std::vector<std::string> unread_arg_messages(const Context& ctx, const std::string& script, bool so_far = false,
+                                             bool live = false);
 // at the start of a script's first run: a warning on stderr for each --set key not read so far
 // (a long run is not wasted on a misspelt key; the error comes after the script)
 // the first call that integrates (scene:run, scene:start) fails, before integrating, when a

@@ -70,6 +70,18 @@ class SetOption(unittest.TestCase):
         self.assertEqual(code, 0, err)
         self.assertIn("--set rtol=1e-3 was never read by " + path + "; keys it read: none", err)
         self.assertNotIn("did you mean the option", err)
+        # a live simulation's start: --t-end does not set its end (trial 23 followed the hint, and the
+        # run still stopped where its run_to said), so no option is suggested for t_end; --rtol is
+        path = os.path.join(self.dir, "live.lua")
+        with open(path, "w") as f:
+            f.write(two_pulley(elements=30) + 'local sim = drive:start { progress = false }\n'
+                    'sim:run_to(beltsim.args.t_end or 0.002)\n')
+        for key, value, meant in [("t_end", "0.004", ""), ("rtol", "1e-3", " (did you mean the option --rtol 1e-3?)")]:
+            code, out, err = run(["run", path, "--set", key + "=" + value, "--out", os.path.join(self.dir, "live")],
+                                 cwd=self.dir)
+            self.assertEqual(code, 1, err)
+            self.assertIn("start: the simulation was not started: --set %s=%s has not been read by %s before its first "
+                          "run or start%s; keys it read: none" % (key, value, path, meant), err)
 
     def test_unread_key_fails_the_first_run_before_it_integrates(self):
         # issue 29: a misspelt key used to cost the whole simulation before the error
