@@ -124,16 +124,6 @@ void FrameBuilder::draw_text_and_legend(double t, const Observation& seen, bool 
     ly += line;
   };
   if (sign_line) out.boxed_text(Vec2(panel_x, ly), sign_text, font_px_, kInk, paper), ly += line;
-  if (any_wet) {  // dashed, as on the belt
-    for (int k = 0; k < 3; ++k) {
-      const double d0 = panel_x + bar_w * k / 3.0, d1 = d0 + 0.6 * bar_w / 3.0;
-      out.quad(Vec2(d0, ly - 0.5 * font_px_), Vec2(d1, ly - 0.5 * font_px_), Vec2(d1, ly - 0.2 * font_px_),
-               Vec2(d0, ly - 0.2 * font_px_), kWet);
-    }
-    out.boxed_text(Vec2(panel_x + bar_w + 0.5 * font_px_, ly), "wet (\u03bc < " + format("%.3g", mu_dry_) + ")",
-                   font_px_, kInk, paper);
-    ly += line;
-  }
   swatch(kSlip, "slipping");
   if (spray_line) {  // a disc as the zones are drawn: filled while it sprays, its outline while not
     const double r = std::min(0.22 * bar_w, 0.4 * font_px_);
@@ -151,6 +141,19 @@ void FrameBuilder::draw_text_and_legend(double t, const Observation& seen, bool 
     ly += line;
   }
   if (off_swatch) swatch(scale_.none, "off the pulleys");
+  // the wet line last: it comes when the belt first gets wet, and above the others it moved each of
+  // them down a line in that frame (a user's trial: the legend jumped in a video at the very event
+  // it showed)
+  if (any_wet) {  // dashed, as on the belt
+    for (int k = 0; k < 3; ++k) {
+      const double d0 = panel_x + bar_w * k / 3.0, d1 = d0 + 0.6 * bar_w / 3.0;
+      out.quad(Vec2(d0, ly - 0.5 * font_px_), Vec2(d1, ly - 0.5 * font_px_), Vec2(d1, ly - 0.2 * font_px_),
+               Vec2(d0, ly - 0.2 * font_px_), kWet);
+    }
+    out.boxed_text(Vec2(panel_x + bar_w + 0.5 * font_px_, ly), "wet (\u03bc < " + format("%.3g", mu_dry_) + ")",
+                   font_px_, kInk, paper);
+    ly += line;
+  }
 }
 
 // "driver: ω = −57.05 rad/s, slip_pitch −0.021 m/s": the pulley's speed and its slip_pitch (the
