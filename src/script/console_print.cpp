@@ -41,6 +41,21 @@ bool is_identifier(const std::string& s) {
 
 namespace {
 
+// a string of several lines as a Lua long string, its lines as they print ([[ and a line break,
+// which Lua skips, then the text and ]]; as many = between the brackets as keep its own ]] out):
+// sim:summary{}'s table text read as one escaped line (a user's trial); NUL and the other control
+// characters but the tab keep the quoted form
+bool long_string(const char* s, size_t n, std::string& out) {
+  if (std::find(s, s + n, '\n') == s + n) return false;
+  for (size_t k = 0; k < n; ++k)
+    if (static_cast<unsigned char>(s[k]) < 32 && s[k] != '\n' && s[k] != '\t') return false;
+  const std::string text(s, n);
+  std::string eq;
+  while (text.find("]" + eq + "]") != std::string::npos) eq += '=';
+  out += "[" + eq + "[\n" + text + "]" + eq + "]";
+  return true;
+}
+
 constexpr int kMaxItems = 12;  // list entries shown before "... N more"
 constexpr int kMaxDepth = 3;
 
@@ -150,7 +165,7 @@ void pretty_into(lua_State* L, int idx, std::string& out, int depth, std::set<co
     case LUA_TSTRING: {
       size_t len = 0;
       const char* s = lua_tolstring(L, idx, &len);
-      out += quoted(s, len);
+      if (!long_string(s, len, out)) out += quoted(s, len);
       break;
     }
     case LUA_TTABLE: pretty_table(L, idx, out, depth, seen); break;

@@ -302,6 +302,10 @@ class ConsoleTest(unittest.TestCase):
         self.assertRegex(out, r"\n  \{\n    damping = ")  # m, its modes a list
         self.assertRegex(out, r"\n\{\n  damping = [^\n]*\n  decay = [^\n]*\n  frequency = [^\n]*\n  share = \{")
         self.assertTrue(out.endswith('"the end"\n'), out)
+        # the summary's table text, several lines, prints as its lines in a long string (a trial read
+        # it as one escaped line), the rest of the strings quoted
+        self.assertRegex(out, r"\n  table = \[\[\nsummary of [^\n]*\n\nspans ")
+        self.assertNotIn("\\n", out)
         m = re.search(r"the session's commands are in (\S+)", err)
         self.assertTrue(m, err)
         r = subprocess.run([BELTSIM, "run", "--trusted", os.path.join(self.tmp, m.group(1))], cwd=self.tmp,
