@@ -126,6 +126,8 @@ int set_law(lua_State* L, bool speed) {
   const TimeSpeedLaw law = to_law(L, 3, std::string("sim:") + what, speed, box->ctx);
   const PulleyDrive& p = s.drive().pulleys.at(j);
   const std::string before = p.kinematic ? "speed " + law_text(p.speed) : "torque " + law_text(p.torque);
+  double omega_before = 0;
+  guarded(L, "sim:set_speed", [&] { omega_before = speed ? s.pulley(j).omega : 0.0; });  // a Lua law may fail
   guarded(L, (std::string("sim:") + what).c_str(), [&] {
     if (speed)
       s.set_speed(j, law, law_text(law));
@@ -137,6 +139,18 @@ int set_law(lua_State* L, bool speed) {
     if (const std::string w = belt_speed_text(s.scene(), j, *peak, "once its ramps and tables have ended", true);
         !w.empty())
       say("beltsim: warning: sim:set_speed: %s\n", w.c_str());
+  // a speed the other way round: the pulley reverses at once, and the belt with it (a user's trial
+  // set +50 rad/s on a pulley turning at -45, a sign mistake the drive took without a word); below
+  // 1 rad/s either way is a start or a stop, not a reversal
+  if (speed) {
+    double omega_after = 0;
+    guarded(L, "sim:set_speed", [&] { omega_after = s.pulley(j).omega; });
+    if (std::abs(omega_before) >= 1 && std::abs(omega_after) >= 1 && (omega_before > 0) != (omega_after > 0))
+      say("beltsim: warning: sim:set_speed: %s turned at %s rad/s and now at %s rad/s: it reverses at once, and the "
+          "belt with it (a pulley's speed is positive counter-clockwise)\n",
+          s.model().pulleys[j].name.c_str(), rounded_text(omega_before, 4).c_str(),
+          rounded_text(omega_after, 4).c_str());
+  }
   // law times are absolute: a law whose ramps, steps and table all lie before now holds its last
   // value from now on (a ramp typed at the prompt as if from now jumps there at once)
   if (std::vector<double> when = law.kinks(), steps = law.jumps(); s.now() > 0 && (!when.empty() || !steps.empty())) {

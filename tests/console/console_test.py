@@ -370,6 +370,17 @@ class ConsoleTest(unittest.TestCase):
         self.assertRegex(err, r"warning: sim:set_speed: pulley 'driver'\.speed: 5000 rad/s once its ramps and tables "
                          r"have ended, which moves the belt at [0-9.]+ m/s .*beltsim\.rpm\(5000\)")
 
+    def test_a_speed_the_other_way_round_is_warned_of(self):
+        # a trial set +50 rad/s on a pulley turning at -45 (a sign mistake) without a word; a start
+        # from rest and a change within one sense are not warned of
+        r = self.piped(['sim:set_speed("driver", -10)', 'sim:set_speed("driver", -20)',
+                        'sim:set_speed("driver", 15)'])
+        out, err = r.stdout.decode(), r.stderr.decode()
+        self.assertEqual(r.returncode, 0, out + err)
+        self.assertEqual(len(re.findall(r"warning: sim:set_speed", err)), 1, err)
+        self.assertIn("warning: sim:set_speed: driver turned at -20 rad/s and now at 15 rad/s: it reverses at once, "
+                      "and the belt with it (a pulley's speed is positive counter-clockwise)", err)
+
     def test_a_law_whose_changes_all_lie_before_now_is_warned_of(self):
         # law times are absolute: a ramp typed at t = 0.02 s as if from now (a user's trial) jumps
         # to its end at once; a law with a change still ahead is not warned of
