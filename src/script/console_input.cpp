@@ -54,7 +54,27 @@ int next_char(FILE* f) {
     bool woken = false;
     for (size_t k = 1; k < p.size(); ++k) woken = woken || (p[k].revents & POLLIN);
     if (woken) {
+      // what the wake prints (a live-view change's report) goes on lines of its own above the
+      // prompt, which is drawn again under it with the line being typed, as readline programs
+      // print what comes while they read (a user's trial saw a warning written after the "> "
+      // and no prompt under it)
+      const bool reading = rl_line_buffer && RL_ISSTATE(RL_STATE_READCMD);
+      char* line = nullptr;
+      const int point = rl_point;
+      if (reading) {
+        line = rl_copy_text(0, rl_end);
+        rl_save_prompt();
+        rl_replace_line("", 0);
+        rl_redisplay();
+      }
       g_on_wake();
+      if (reading) {
+        rl_restore_prompt();
+        rl_replace_line(line, 0);
+        rl_point = point;
+        rl_redisplay();
+        std::free(line);
+      }
       if (!(p[0].revents & (POLLIN | POLLHUP))) continue;
     }
     unsigned char c;

@@ -221,6 +221,12 @@ void LiveFeed::apply_waiting(Simulation* sim) {
     } catch (const std::exception& e) {  // a Lua law that fails on reading: the next run's error says it
       say("beltsim: live view: %s\n", e.what());
     }
+    // the console says it too, as it says its own changes (a user's trial saw a live view's wet
+    // reach the console only as a warning on the prompt's line)
+    if (c->what != "pause")
+      say("beltsim: live view: %s\n",
+          (said.empty() ? c->what + " applied at t = " + rounded_text(sim->now(), 6) + " s" : "refused: " + said)
+              .c_str());
   }
   // a page opened while no run goes on: the picture where the simulation stands (a frame drawn
   // at the end of a run may be older: a change at the prompt since, or none drawn with no page)

@@ -225,6 +225,8 @@ class ConsoleAndPage(unittest.TestCase):
         err = proc.stderr.read().decode()
         self.assertEqual(proc.wait(timeout=300), 0, err)
         self.assertIn("torque\t-65", out)
+        # the console says it as it says its own changes (a trial saw it only as a warning on the prompt)
+        self.assertIn("beltsim: live view: torque applied at t = %s s\n" % status_t(t), err)
         rows = [r for r in events_csv(os.path.join(d, "out")) if r[1] == "driven.torque"]
         self.assertEqual([(float(r[0]), float(r[2])) for r in rows], [(t, -65)])
         return err
