@@ -134,8 +134,9 @@ std::string reason_text(const CsvComparison& c, std::size_t rows, const std::set
     return "no values to compare (" + std::to_string(c.compared) + " columns, " + std::to_string(rows) + " rows)";
   const std::string at = c.worst.name + " " + where(c.worst.worst, c.timed);
   if (c.match) {
-    const std::string agree = std::to_string(c.compared) + " columns" + left_out + " agree at " + std::to_string(rows) +
-                              (c.timed ? " times" : " rows");
+    const std::string agree = std::to_string(c.compared) + (c.compared == 1 ? " column" : " columns") + left_out +
+                              (c.compared == 1 ? " agrees at " : " agree at ") + std::to_string(rows) +
+                              (c.timed ? (rows == 1 ? " time" : " times") : (rows == 1 ? " row" : " rows"));
     if (c.worst.ratio == 0) return agree + ": every value equal";
     return agree + "; closest to its tolerance: " + at + ", " + num(c.worst.ratio) + " of its tolerance (" +
            tols_text(c.worst) + ")";

@@ -111,7 +111,7 @@ std::string run_end_text(double t, double t_end, bool interrupted, long steps, d
   const std::string w = wall < 60 ? rounded_text(wall, 2) + " s" : duration_text(wall);
   std::string s = std::string(interrupted ? "run stopped" : "run ended") + " at t = " + rounded_text(t, 4) + " s" +
                   (interrupted ? " of " + rounded_text(t_end, 4) + " s" : "") + " (" + std::to_string(steps) +
-                  " steps, " + w + ")";
+                  (steps == 1 ? " step, " : " steps, ") + w + ")";
   if (!out_dir.empty()) s += ": " + out_dir + (out_dir.back() == '/' ? "" : "/");
   return s;
 }
