@@ -416,7 +416,7 @@ class Csvs(Base):
         # a column left out: the rest is compared, and the line says what was left out
         code, out, err = self.compare("a.csv", "b.csv", "--skip", "driven.omega")
         self.assertEqual(code, 0, err)
-        self.assertIn("1 columns (left out: driven.omega) agree at 11 times", out)
+        self.assertIn("1 column (left out: driven.omega) agrees at 11 times", out)
 
     def test_nan_mismatches_are_reported_apart_from_the_numbers(self):
         # 0 against nan at t = 0 (a mean not defined yet in one run), and a real shift later: the
