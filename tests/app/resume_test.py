@@ -20,17 +20,27 @@ import unittest
 
 BELTSIM = None
 
-# the trial's drive: --set save=true saves out/drive/mid.ckpt at 0.1 s and runs on to 0.2 s;
-# --set pretension=P changes the belt
-DRIVE = """
-local save, t_end = beltsim.args.save, beltsim.args.t_end or 0.2
+
+def scene(pretension):
+    """the trial's two-pulley drive (60 elements, the driver's torque ramped to -40 N·m over 0.1 s,
+    the driven pulley's proportional to its speed) as `drive`, its belt's pretension the Lua
+    expression given"""
+    return """
 local drive = beltsim.scene {
   pulleys = {
     { name = "driver", centre = {0, 0}, radius = 0.1, torque = beltsim.ramp(0.1, -40) },
     { name = "driven", centre = {0.29, 0}, radius = 0.1, torque = { per_speed = -0.955 } },
   },
-  belt = { elements = 60, pretension = beltsim.args.pretension or 500 },
+  belt = { elements = 60, pretension = %s },
 }
+""" % pretension
+
+
+# the trial's drive: --set save=true saves out/drive/mid.ckpt at 0.1 s and runs on to 0.2 s;
+# --set pretension=P changes the belt
+DRIVE = """
+local save, t_end = beltsim.args.save, beltsim.args.t_end or 0.2
+""" + scene("beltsim.args.pretension or 500") + """
 local sim = drive:start { out = beltsim.args.out or "out/drive", progress = false }
 sim:run_to(0.1)
 if save then sim:save("mid.ckpt") end
@@ -72,15 +82,7 @@ sim:close()
 # trial 22's what-if: the drive saved at 0.05 s and wetted (mu 0.2) to 0.1 s; the checkpoint
 # resumed into a folder of its own (out) while the first simulation still runs, wetted otherwise
 # (mu 0.05) to 0.1 s; the first then goes on to 0.12 s in its folder
-BRANCH = """
-local drive = beltsim.scene {
-  pulleys = {
-    { name = "driver", centre = {0, 0}, radius = 0.1, torque = beltsim.ramp(0.1, -40) },
-    { name = "driven", centre = {0.29, 0}, radius = 0.1, torque = { per_speed = -0.955 } },
-  },
-  belt = { elements = 60, pretension = 500 },
-}
-local sim = drive:start { out = "out/drive", progress = false }
+BRANCH = scene("500") + """local sim = drive:start { out = "out/drive", progress = false }
 sim:run_to(0.05)
 local ck = sim:save("ck/mid.ckpt")
 sim:wet { from = 0, to = 0.3, mu = 0.2 }
@@ -94,15 +96,7 @@ sim:close()
 """
 
 # the trial's periodic checkpoints: sim:save in an every callback (refused, "not inside a callback")
-EVERY_SAVE = """
-local drive = beltsim.scene {
-  pulleys = {
-    { name = "driver", centre = {0, 0}, radius = 0.1, torque = beltsim.ramp(0.1, -40) },
-    { name = "driven", centre = {0.29, 0}, radius = 0.1, torque = { per_speed = -0.955 } },
-  },
-  belt = { elements = 60, pretension = 500 },
-}
-local sim = drive:start { out = "out/every", progress = false }
+EVERY_SAVE = scene("500") + """local sim = drive:start { out = "out/every", progress = false }
 local k = 0
 sim:every(0.05, function(s) k = k + 1; print(s:save(string.format("ck/p%02d.ckpt", k))) end)
 sim:run_to(0.2)
