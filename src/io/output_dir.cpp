@@ -314,7 +314,8 @@ WholeFile::WholeFile(const OutputDir& dir, std::string name) : dir_(dir), name_(
   const std::string part = name_ + ".part";
   dir_.remove(part);
   fd_ = ::openat(dir_.fd(), part.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, 0666);
-  if (fd_ < 0) output_error(dir_.file(part), why(errno));
+  // named as the file asked for (a user's trial read "cannot write ro/a.png.part" for ro/a.png)
+  if (fd_ < 0) output_error(path(), why(errno));
 }
 
 WholeFile::~WholeFile() {
