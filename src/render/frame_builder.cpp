@@ -117,13 +117,13 @@ FrameBuilder::FrameBuilder(const Scene& sc, const FrameSettings& fs, Font* font)
   double widest = 0;
   std::vector<double> widths, longest_px;  // (with and without the gap to the next column)
   for (const Pulley& p : m.pulleys) {
-    std::string longest = p.name + ": \u03c9 = \u2212000.00 rad/s, slip \u2212000.000 m/s";
+    std::string longest = p.name + ": \u03c9 = \u2212000.00 rad/s, slip_pitch \u2212000.000 m/s";  // (pulley_text's)
     if (p.arm >= 0) longest += ", arm \u22120.000 rad";
     if (p.coupling >= 0) longest += ", rotor \u2212000.00 rad/s";
     longest_px.push_back(font_ ? font_->width(longest, font_px_) : 0.0);
     longest += "   ";
     widths.push_back(font_ ? static_cast<double>(font_->width(longest, font_px_))
-                           : (30.0 + (p.arm >= 0) * 8 + (p.coupling >= 0) * 10) * font_px_);
+                           : (33.0 + (p.arm >= 0) * 8 + (p.coupling >= 0) * 10) * font_px_);
     widest = std::max(widest, widths.back());
   }
   const int np = m.n_p();
