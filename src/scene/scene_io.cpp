@@ -107,7 +107,17 @@ SceneDef definition(const Scene& sc) {
     copy(p, pd);
     copy(sc.drive.pulleys[j], pd);
     if (p.arm >= 0) copy(m.arms[p.arm], pd.tensioner.emplace());
-    if (p.coupling >= 0) copy(m.couplings[p.coupling], pd.coupling.emplace());
+    if (p.coupling >= 0) {
+      CouplingDef& c = pd.coupling.emplace();
+      copy(m.couplings[p.coupling], c);
+      // a two-way coupling has no clutch hub: its model holds zeros there, which the rules of a
+      // one-way coupling's hub refuse (a user's trial could not resume a two-way decoupler's
+      // checkpoint: "hub_inertia must be > 0 (got 0)"); the scene's defaults stand in, unused
+      if (!c.one_way) {
+        const CouplingDef unused;
+        c.hub_inertia = unused.hub_inertia, c.lock_damping = unused.lock_damping, c.drag_torque = unused.drag_torque;
+      }
+    }
   }
   BeltDef& b = d.belt;
   copy(m.belt, b);  // per SDE, as built

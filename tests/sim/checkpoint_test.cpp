@@ -254,6 +254,32 @@ TEST(Checkpoint, AVersion13CheckpointOfAnEnergyRunResumes) {
   }
 }
 
+// a two-way coupling has no clutch hub (its model holds zeros there): its checkpoint resumes (a
+// user's trial: "hub_inertia must be > 0 (got 0)") and goes on as the run it left did
+TEST(Checkpoint, ATwoWayCouplingResumes) {
+  SceneDef d = presets::paper_dry();
+  CouplingDef c;
+  c.inertia = 0.01, c.stiffness = 50, c.one_way = false;
+  d.pulleys[1].coupling = c;
+  const Scene sc = build_scene(d);
+  RunSettings rs;
+  rs.out_dir = (dir() / "two_way").string();
+  fs::remove_all(rs.out_dir);
+  const fs::path ck = dir() / "two_way.ckpt";
+  Eigen::VectorXd y;
+  {
+    Simulation s(sc, rs);
+    s.run_to(0.002);
+    s.save(ck.string());
+    s.run_to(0.003);
+    y = s.state();
+  }
+  auto s = Simulation::resume(ck.string(), {}, nullptr, {}, true, [](const std::string&) {});
+  s->run_to(0.003);
+  EXPECT_EQ(s->state(), y);
+  s->close();
+}
+
 // a checkpoint keeps every setting the run-settings table marks kept (sim/run_table.hpp): each set
 // to a value other than its default, saved, and read back the same
 TEST(Checkpoint, KeepsEveryRunSettingTheTableMarksKept) {
