@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <fstream>
 #include <map>
 #include <optional>
 #include <sstream>
@@ -196,6 +197,29 @@ void add_losses(Summary& s, const Window& w, const Layout& l) {
   add(s, "loss", "", "share", input > 0 ? total / input : NAN, "");
 }
 
+// the states a script set in (t0, t1], from DIR/events.csv (none without it): a speed law's jump
+// (`<pulley>.speed`), an arm's or a rotor's state (`.arm`, `.rotor`); a user's trial read the
+// energy a set_speed put in as the tolerance's imbalance, as the table then said
+std::vector<std::string> state_jumps(const std::string& dir, double t0, double t1) {
+  std::vector<std::string> out;
+  std::ifstream f(std::filesystem::path(dir) / "events.csv");
+  std::string line;
+  std::getline(f, line);  // the header
+  while (std::getline(f, line)) {
+    const size_t a = line.find(','), b = a == std::string::npos ? a : line.find(',', a + 1);
+    if (b == std::string::npos) continue;
+    const std::string what = line.substr(a + 1, b - a - 1);
+    char* end = nullptr;
+    const double t = std::strtod(line.c_str(), &end);
+    if (end != line.c_str() + a || !(t > t0 && t <= t1)) continue;
+    for (const char* kind : {".speed", ".arm", ".rotor"})
+      if (what.size() > std::string(kind).size() &&
+          what.compare(what.size() - std::string(kind).size(), std::string::npos, kind) == 0)
+        out.push_back(what + " at t = " + rounded_text(t, 6) + " s");
+  }
+  return out;
+}
+
 // the wrap's capstan margin at each sample of the window: e^{μθ} against (T1 − m'v²)/(T2 − m'v²),
 // μ the mean μ of the elements on the wrap then (`<p>.mu`: a wetted stretch moves through the
 // wrap), T1 ≥ T2 the tensions of the spans either side and v the belt's speed then; NaN where no
@@ -363,6 +387,7 @@ Summary summarize(const std::string& dir, double from, double to) {
   add_wraps(s, w, l, prm, speed, belt_speed);
   add_arms_and_rotors(s, w, l);
   add_losses(s, w, l);
+  if (s.losses) s.jumps = state_jumps(dir, t[r0], t[r1 - 1]);
   return s;
 }
 

@@ -70,6 +70,10 @@ struct Summary {
   // carry (docs/outputs.md, interval means); the table says so past kImbalanceShare of the input
   double imbalance = 0;
   static constexpr double kImbalanceShare = 0.02;
+  // the states a script set inside the window (events.csv's <pulley>.speed, .arm, .rotor rows, as
+  // "crankshaft.speed at t = 0.08 s"): each puts in or takes out energy that no torque does work
+  // for, which `stored` counts and `input` does not (docs/outputs.md, the energy columns)
+  std::vector<std::string> jumps;
 };
 
 // Throws std::runtime_error naming the file (and line) for a missing or unreadable file, a

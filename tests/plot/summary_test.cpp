@@ -297,6 +297,26 @@ TEST(Summary, AnImbalanceNamesAnIntegratorThatCannotBalance) {
   EXPECT_EQ(by_integrator.find("carry a bias"), std::string::npos) << by_integrator;
 }
 
+// a state set from a script in the window (events.csv's a.speed at 0.15 s; b.arm at 0.3 s and
+// a wetting at 0.2 s are outside it or no jump) is named as the imbalance's cause, not the
+// tolerance (a user's trial read a set_speed's energy as the tolerance's bias)
+TEST(Summary, AStateSetInTheWindowIsNamedAsTheImbalance) {
+  const fs::path d = folder("jump");
+  {
+    std::ofstream e(d / "events.csv");
+    e << "t,what,value\n0.15,a.speed,40\n0.2,wet,\"mu = 0.2 on s in [0, 0.1] m\"\n0.3,b.arm,\"rate 1\"\n";
+  }
+  const Summary s = summarize(d.string(), 0.0, 0.25);
+  ASSERT_EQ(s.jumps.size(), 1u);
+  EXPECT_EQ(s.jumps[0], "a.speed at t = 0.15 s");
+  const std::string table = summary_table(s);
+  EXPECT_NE(table.find("loss: the window holds a state set from a script (a.speed at t = 0.15 s): the energy it put "
+                       "in or took out is in stored"),
+            std::string::npos)
+      << table;
+  EXPECT_EQ(table.find("carry a bias"), std::string::npos) << table;
+}
+
 // a mean lies within its values: b's μ is 0.8 in every row, and the sum of three 0.8s divided by
 // three rounds to 0.8000000000000002, above its own largest value (the trial's 0.7999999999999986
 // below mu_min 0.8000000000000003)
