@@ -285,6 +285,17 @@ int l_resume(lua_State* L) {
         "into %s, in the replay's own folder, instead\n",
         out.c_str(), mine.c_str());
     out = mine;
+  } else if (!out.empty() && ctx->replay_of) {
+    // a branch of the session's into a folder of its own (beside the session's): into the replay's
+    // folder too, under its name, so that the replay writes nothing the session wrote (a user's
+    // trial: the replay's sandbox refused the session's out/con2b, and under --trusted the replay
+    // wrote over the session's branch)
+    std::filesystem::path p = std::filesystem::path(out).lexically_normal();
+    if (p.filename().empty()) p = p.parent_path();
+    const std::string mine = (std::filesystem::path(replay_folder(*ctx)) / p.filename()).string();
+    say("beltsim: beltsim.resume: the session's branch into %s goes into %s, in the replay's own folder, instead\n",
+        out.c_str(), mine.c_str());
+    out = mine;
   }
   // the command line's other run options (--out, --rtol, --no-frames, ...) are scene:run's and
   // scene:start's: a resumed simulation keeps the checkpoint's settings. Said once, before it runs

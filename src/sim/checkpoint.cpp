@@ -316,16 +316,14 @@ std::unique_ptr<Simulation> Simulation::load(const std::string& path, const Fram
     if (rs.frames) rs.frame_factory = factory, rs.frames->first_number = st.outputs.frames;
     rs.out_dir = shown_folder(rs.out_dir);
     std::error_code ec;
-    // a branch's folder is its own: neither the checkpoint's (a user's trial got the plain resume's
-    // refusal there, whose rewind = true cut the first run) nor one inside it (the first run's
-    // folder tree changed)
+    // a branch's folder is its own, not the checkpoint's (a user's trial got the plain resume's
+    // refusal there, whose rewind = true cut the first run)
     const std::filesystem::path branch = std::filesystem::absolute(out, ec).lexically_normal() / "",
                                 source = std::filesystem::absolute(rs.out_dir, ec).lexically_normal() / "";
-    if (outputs && !out.empty() && branch.string().rfind(source.string(), 0) == 0)
-      throw std::runtime_error(where + "out = " + out + (branch == source ? " is" : " lies inside") +
-                               " the checkpoint's own output folder, " + rs.out_dir +
-                               ": a branch goes into a folder of its own, beside it (resume without out to go on "
-                               "in that folder)");
+    if (outputs && !out.empty() && branch == source)
+      throw std::runtime_error(where + "out = " + out + " is the checkpoint's own output folder, " + rs.out_dir +
+                               ": a branch goes into a folder of its own (resume without out to go on in that "
+                               "folder)");
     if (outputs && !out.empty() && branch != source) {
       // the frames' paths relative ones lie in out; an absolute one the branch would draw over the run's own
       if (rs.frames)

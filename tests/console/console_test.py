@@ -525,8 +525,12 @@ class ConsoleTest(unittest.TestCase):
         # and gives the same timeseries.csv
         with open(os.path.join(self.tmp, "scenario.lua"), "w") as f:  # into out/scenario, the default
             f.write(two_pulley(40) + "sim = drive:start{ progress = false }\n")
+        # (and a branch beside the session's folder, out/branch, which the replay redirects into its own:
+        # trial 25's replay was refused by its sandbox there, and under --trusted wrote over it)
         r = self.piped(["sim:run_to(0.003)", 'sim:save("ck/t.ckpt")', "sim:wet{from=0.1, to=0.3, mu=0.2}",
                         "sim:run_to(0.005)", "sim:close()",
+                        'b = beltsim.resume("out/scenario/ck/t.ckpt", {out = "out/branch", progress = false})',
+                        "b:run_to(0.004)", "b:close()",
                         'sim2 = beltsim.resume("out/scenario/ck/t.ckpt", {rewind = true, progress = false})',
                         "sim2:run_to(0.008)", "sim2:close()"])
         err = r.stderr.decode()
@@ -549,6 +553,8 @@ class ConsoleTest(unittest.TestCase):
             return got
         before = files()
         self.assertIn(os.path.join("ck", "t.ckpt"), before)
+        with open(os.path.join(self.tmp, "out", "branch", "timeseries.csv"), "rb") as f:
+            branch = f.read()
         argv = shlex.split(replay_line[len("-- Replay with: "):])
         r = subprocess.run([BELTSIM] + argv[1:], cwd=self.tmp, env=child_env(self.tmp),
                            stdout=subprocess.PIPE, stderr=subprocess.PIPE, timeout=60)
@@ -560,6 +566,12 @@ class ConsoleTest(unittest.TestCase):
         with open(os.path.join(session_dir, "replay", "timeseries.csv"), "rb") as f:
             self.assertEqual(f.read(), series, "the replay's timeseries.csv differs; " + out)
         self.assertIn(b"\n0.008,", series)
+        with open(os.path.join(self.tmp, "out", "branch", "timeseries.csv"), "rb") as f:
+            self.assertEqual(f.read(), branch, "the replay changed the session's branch: " + out)
+        with open(os.path.join(session_dir, "replay", "branch", "timeseries.csv"), "rb") as f:
+            self.assertEqual(f.read(), branch, "the replay's branch differs from the session's: " + out)
+        self.assertIn("the session's branch into out/branch goes into out/scenario/replay/branch, in the replay's own "
+                      "folder, instead", out)
         self.assertIn("out/scenario/replay/ck/t.ckpt (this replay's copy of the session's out/scenario/ck/t.ckpt) "
                       "resumed at t = 0.003 s; its outputs go on in out/scenario/replay", out)
         self.assertIn('\nbeltsim.replay_of("out/scenario")\n', text)
