@@ -307,8 +307,10 @@ int l_resume(lua_State* L) {
   if (!ctx->resume_warned && count > 0) {
     ctx->resume_warned = true;
     say("beltsim: warning: %s %s to scene:run and scene:start only; the simulation beltsim.resume "
-        "continues keeps its checkpoint's settings (its folder, integrator, tolerances and frames)\n",
-        options.c_str(), count == 1 ? "applies" : "apply");
+        "continues keeps its checkpoint's settings (%s)\n",
+        options.c_str(), count == 1 ? "applies" : "apply",
+        out.empty() ? "its folder, integrator, tolerances and frames"
+                    : "its integrator, tolerances and frames; its folder is out's");
   }
   std::unique_ptr<Simulation> sim;
   int callbacks = 0;
