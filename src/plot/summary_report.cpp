@@ -7,6 +7,7 @@
 
 #include "integrate/stepper.hpp"
 #include "io/csv_writer.hpp"
+#include "io/suggest.hpp"
 #include "plot/plot.hpp"
 #include "plot/summary.hpp"
 
