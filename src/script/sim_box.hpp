@@ -108,6 +108,17 @@ void guarded(lua_State* L, const char* what, F&& f, Context* ctx = nullptr) {
 // when there is none (lua_sim.cpp)
 int pulley_index(lua_State* L, const Simulation& s, int idx, const char* what);
 
+// lua_sim_changes.cpp: sim:set_torque, sim:set_speed, sim:set_arm, sim:set_rotor, sim:spray, sim:wet,
+// sim:set_mu, sim:log
+int l_set_torque(lua_State* L);
+int l_set_speed(lua_State* L);
+int l_set_arm(lua_State* L);
+int l_set_rotor(lua_State* L);
+int l_spray(lua_State* L);
+int l_wet(lua_State* L);
+int l_set_mu(lua_State* L);
+int l_log(lua_State* L);
+
 // lua_sim_read.cpp: sim:pulley, sim:element, sim:elements, sim:span, sim:energy, sim:stats
 int l_pulley(lua_State* L);
 int l_element(lua_State* L);
