@@ -129,24 +129,33 @@ void apply_mu(lua_State* L, Simulation& s, const std::vector<double>& mu, const 
   lua_pushstring(L, m.c_str());
 }
 
+// sim:set_arm and sim:set_rotor: the angle [rad] and/or the rate [rad/s] (its key `rate`) of a
+// pulley's arm or rotor set now, by set(s, pulley, angle, rate); a refusal named by the call
+template <class Set>
+int set_state(lua_State* L, const char* what, const char* rate, Set&& set) {
+  const std::string call = std::string("sim:") + what, keys = std::string("{ angle, ") + rate + " }";
+  Simulation& s = live(L, what, {{"name", kString}, {keys.c_str(), kTable}});
+  const int j = pulley_index(L, s, 2, call.c_str());
+  check_keys(L, 3, call.c_str(), {"angle", rate});
+  const std::optional<double> a = opt_number(L, 3, "angle", call.c_str());
+  const std::optional<double> r = opt_number(L, 3, rate, call.c_str());
+  if (!a && !r) fail(L, call + ": give angle [rad] or " + rate + " [rad/s]");
+  std::string error;
+  try {
+    set(s, j, a, r);
+  } catch (const std::invalid_argument& e) {
+    error = e.what();
+  }
+  if (!error.empty()) fail(L, call + ": " + error);
+  return 0;
+}
+
 }  // namespace
 
 // sim:set_arm(name, { angle [rad], rate [rad/s] }): the tensioner arm's state from now
 int l_set_arm(lua_State* L) {
-  Simulation& s = live(L, "set_arm", {{"name", kString}, {"{ angle, rate }", kTable}});
-  const int j = pulley_index(L, s, 2, "sim:set_arm");
-  check_keys(L, 3, "sim:set_arm", {"angle", "rate"});
-  const std::optional<double> angle = opt_number(L, 3, "angle", "sim:set_arm");
-  const std::optional<double> rate = opt_number(L, 3, "rate", "sim:set_arm");
-  if (!angle && !rate) fail(L, "sim:set_arm: give angle [rad] or rate [rad/s]");
-  std::string error;
-  try {
-    s.set_arm(j, angle, rate);
-  } catch (const std::invalid_argument& e) {
-    error = e.what();
-  }
-  if (!error.empty()) fail(L, "sim:set_arm: " + error);
-  return 0;
+  return set_state(L, "set_arm", "rate",
+                   [](Simulation& s, int j, auto angle, auto rate) { s.set_arm(j, angle, rate); });
 }
 
 // sim:spray(k) -> { enabled, on, inside, drying }; sim:spray(k, enabled): switches spray zone k
@@ -180,20 +189,8 @@ int l_spray(lua_State* L) {
 
 // sim:set_rotor(name, { angle [rad], speed [rad/s] }): the coupled rotor's state from now
 int l_set_rotor(lua_State* L) {
-  Simulation& s = live(L, "set_rotor", {{"name", kString}, {"{ angle, speed }", kTable}});
-  const int j = pulley_index(L, s, 2, "sim:set_rotor");
-  check_keys(L, 3, "sim:set_rotor", {"angle", "speed"});
-  const std::optional<double> angle = opt_number(L, 3, "angle", "sim:set_rotor");
-  const std::optional<double> speed = opt_number(L, 3, "speed", "sim:set_rotor");
-  if (!angle && !speed) fail(L, "sim:set_rotor: give angle [rad] or speed [rad/s]");
-  std::string error;
-  try {
-    s.set_rotor(j, angle, speed);
-  } catch (const std::invalid_argument& e) {
-    error = e.what();
-  }
-  if (!error.empty()) fail(L, "sim:set_rotor: " + error);
-  return 0;
+  return set_state(L, "set_rotor", "speed",
+                   [](Simulation& s, int j, auto angle, auto speed) { s.set_rotor(j, angle, speed); });
 }
 
 int l_set_torque(lua_State* L) {
