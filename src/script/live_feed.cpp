@@ -125,6 +125,7 @@ void LiveFeed::record(double t, const std::string& call) {
 std::string LiveFeed::apply(const live::Command& c) {
   Simulation& s = *sim_;
   const double t = s.now();
+  done_ = c.what + " applied";
   try {
     if (c.what == "torque") {
       const int j = s.scene().find_pulley(c.pulley);
@@ -147,9 +148,15 @@ std::string LiveFeed::apply(const live::Command& c) {
         if (const std::string bad = mu_problem(c.value, site.index); !bad.empty()) return "wet.mu: " + bad;
         mu[site.index] = c.value;
       }
-      s.set_mu(mu, "wet", wet_text(c.value, c.from, c.to, std::nullopt));
-      record(t, "wet { from = " + number_text(c.from) + ", to = " + number_text(c.to) +
-                    ", mu = " + number_text(c.value) + " }");
+      const std::vector<double> before = s.drive().mu;
+      bool same = true;  // a change that changes nothing is not recorded, as at the prompt
+      for (size_t i = 0; i < mu.size(); ++i) same = same && (std::isnan(mu[i]) || mu[i] == before[i]);
+      if (!same) {
+        s.set_mu(mu, "wet", wet_text(c.value, c.from, c.to, std::nullopt));
+        record(t, "wet { from = " + number_text(c.from) + ", to = " + number_text(c.to) +
+                      ", mu = " + number_text(c.value) + " }");
+      }
+      done_ = mu_change_text(s, before, mu, "wet");
     } else if (c.what == "save") {  // as sim:save(name): a bare name, in the run's folder
       const std::string path = output_path(s.settings(), c.name);
       s.save(path);
@@ -200,7 +207,7 @@ void LiveFeed::report(const live::Command& c, const std::string& said, bool paus
   else if (c.what == "pause" || c.what == "continue" || c.what == "run_to")
     server_->set_status(paused ? "paused" + at : "running");
   else
-    server_->set_status((paused ? "paused" : "running") + at + " (" + c.what + " applied)");
+    server_->set_status((paused ? "paused" : "running") + at + " (" + done_ + ")");
 }
 
 void LiveFeed::apply_waiting(Simulation* sim) {
@@ -225,8 +232,7 @@ void LiveFeed::apply_waiting(Simulation* sim) {
     // reach the console only as a warning on the prompt's line)
     if (c->what != "pause")
       say("beltsim: live view: %s\n",
-          (said.empty() ? c->what + " applied at t = " + rounded_text(sim->now(), 6) + " s" : "refused: " + said)
-              .c_str());
+          (said.empty() ? done_ + " at t = " + rounded_text(sim->now(), 6) + " s" : "refused: " + said).c_str());
   }
   // a page opened while no run goes on: the picture where the simulation stands (a frame drawn
   // at the end of a run may be older: a change at the prompt since, or none drawn with no page)

@@ -100,7 +100,8 @@ class LiveFeed {
   void apply_controls(bool paused);
   // the page's picture, plot and status after the control c (said: "" or why it was refused)
   void report(const live::Command& c, const std::string& said, bool paused);
-  // one change (torque, wet, save); "" or why it was refused
+  // one change (torque, wet, save); "" or why it was refused. What an applied change did is in
+  // done_ (a wet's as sim:wet says it: how many elements' μ changed, where, from and to)
   std::string apply(const live::Command& c);
   void record(double t, const std::string& call);
   live::LiveServer* server_;
@@ -119,6 +120,7 @@ class LiveFeed {
   double wall_ = 0;    // [s] of the run_to calls before the one under way
   double last_wall_ = -1, last_frame_ = -1, last_t_ = 0, h_ = 0;
   bool changed_ = false;                 // the page changed the simulation during run_to
+  std::string done_;                     // what the last change applied did (apply)
   std::unique_ptr<FrameThread> frames_;  // made when a page is first open during a run
 };
 

@@ -517,4 +517,46 @@ int l_stop_at(lua_State* L) {
   return 0;
 }
 
+namespace {
+// "[lo, hi]" or "v" when lo == hi
+std::string value_range(double lo, double hi) {
+  return lo == hi ? rounded_text(lo, 6) : "[" + rounded_text(lo, 6) + ", " + rounded_text(hi, 6) + "]";
+}
+}  // namespace
+
+std::string mu_change_text(Simulation& s, const std::vector<double>& before, const std::vector<double>& mu,
+                           const std::string& what) {
+  const Model& m = s.model();
+  const int n = static_cast<int>(mu.size());
+  int addressed = 0, changed = 0;
+  std::vector<int> on(m.pulleys.size() + 1, 0);  // per pulley, last: free
+  // μ before of the elements addressed (lo_a, hi_a) and of those that changed (lo0, hi0); after (lo1, hi1)
+  double lo_a = INFINITY, hi_a = -INFINITY, lo0 = INFINITY, hi0 = -INFINITY, lo1 = INFINITY, hi1 = -INFINITY;
+  for (int i = 0; i < n; ++i) {
+    if (std::isnan(mu[i])) continue;
+    ++addressed;
+    lo_a = std::min(lo_a, before[i]), hi_a = std::max(hi_a, before[i]);
+    if (mu[i] == before[i]) continue;
+    ++changed;
+    const int p = s.element(i).pulley;
+    ++on[p >= 0 ? p : on.size() - 1];
+    lo0 = std::min(lo0, before[i]), hi0 = std::max(hi0, before[i]);
+    lo1 = std::min(lo1, mu[i]), hi1 = std::max(hi1, mu[i]);
+  }
+  std::string text;
+  if (changed == 0) {
+    text = what + ": no element changed";
+    if (addressed > 0)
+      text += " (the " + std::to_string(addressed) + " it sets already had mu " + value_range(lo_a, hi_a) + ")";
+  } else {
+    std::vector<std::string> where;
+    for (size_t p = 0; p < on.size(); ++p)
+      if (on[p] > 0)
+        where.push_back(std::to_string(on[p]) + (p + 1 < on.size() ? " on " + m.pulleys[p].name : " free"));
+    text = what + ": " + std::to_string(changed) + " of " + std::to_string(n) + " elements (" + join(where) + "), mu " +
+           value_range(lo0, hi0) + " -> " + value_range(lo1, hi1);
+  }
+  return text;
+}
+
 }  // namespace beltsim::script

@@ -32,6 +32,13 @@ bool in_stretch(const ElementSite& site, double from, double to);
 // the text of a wet stretch in events.csv ("mu = 0.2 on s in [0.1, 0.3] m"; mu absent: a function)
 std::string wet_text(std::optional<double> mu, std::optional<double> from, std::optional<double> to,
                      std::optional<double> transition);
+// what a change of μ did, in one line (sim:wet, sim:set_mu and the live view's wet say it): how many
+// elements' μ changed (mu: the new μ, NaN where unchanged; before: every element's μ before), where
+// they are now (in contact with which pulley, or free), their μ before -> after; or, when none
+// changed, that the elements addressed already had that μ. Reads the elements' contacts (a Lua
+// law may throw)
+std::string mu_change_text(Simulation& s, const std::vector<double>& before, const std::vector<double>& mu,
+                           const std::string& what);
 // The share of the wet μ an element at belt coordinate s takes with a transition of length tau
 // [m] about each end of [from, to] (wrapping round the belt of length len when from > to): 1 inside
 // farther than tau/2 from both ends, 0 outside farther than tau/2, linear across the ends; tau = 0

@@ -72,16 +72,9 @@ int set_law(lua_State* L, bool speed) {
   return 1;
 }
 
-// "[lo, hi]" or "v" when lo == hi
-std::string value_range(double lo, double hi) {
-  return lo == hi ? rounded_text(lo, 6) : "[" + rounded_text(lo, 6) + ", " + rounded_text(hi, 6) + "]";
-}
-
-// applies μ (NaN: unchanged) and pushes what changed as one line: how many elements' μ changed,
-// where they are now (in contact with which pulley, or free), their μ before -> after; or, when
-// none did, that the elements addressed already had that μ (nothing applied, nothing recorded in
-// events.csv). A wet stretch that holds no element is refused, as a batch run's event is
-// (lua_run.cpp): a user's trial found sim:wet{ from = 0.1, to = 0.1 } recorded as a wetting
+// applies μ (NaN: unchanged) and pushes what changed as one line (mu_change_text); when nothing
+// changes, nothing is applied and nothing recorded in events.csv. A wet stretch that holds no element is refused, as a
+// batch run's event is (lua_run.cpp): a user's trial found sim:wet{ from = 0.1, to = 0.1 } recorded as a wetting
 void apply_mu(lua_State* L, Simulation& s, const std::vector<double>& mu, const std::string& what,
               const std::string& text) {
   const std::vector<double> before = s.drive().mu;
@@ -93,39 +86,8 @@ void apply_mu(lua_State* L, Simulation& s, const std::vector<double>& mu, const 
   bool same = true;
   for (size_t i = 0; i < mu.size(); ++i) same = same && (std::isnan(mu[i]) || mu[i] == before[i]);
   if (!same) guarded(L, what.c_str(), [&] { s.set_mu(mu, what, text); });
-  const int n = s.model().n_el();
-  std::vector<int> pulley_of(static_cast<size_t>(n));
-  guarded(L, what.c_str(), [&] {  // a Lua law may fail
-    for (int i = 0; i < n; ++i) pulley_of[static_cast<size_t>(i)] = s.element(i).pulley;
-  });
-  int addressed = 0, changed = 0;
-  std::vector<int> on(s.model().pulleys.size() + 1, 0);  // per pulley, last: free
-  // μ before of the elements addressed (lo_a, hi_a) and of those that changed (lo0, hi0); after (lo1, hi1)
-  double lo_a = INFINITY, hi_a = -INFINITY, lo0 = INFINITY, hi0 = -INFINITY, lo1 = INFINITY, hi1 = -INFINITY;
-  for (int i = 0; i < n; ++i) {
-    if (std::isnan(mu[i])) continue;
-    ++addressed;
-    lo_a = std::min(lo_a, before[i]), hi_a = std::max(hi_a, before[i]);
-    if (mu[i] == before[i]) continue;
-    ++changed;
-    const int p = pulley_of[static_cast<size_t>(i)];
-    ++on[p >= 0 ? p : on.size() - 1];
-    lo0 = std::min(lo0, before[i]), hi0 = std::max(hi0, before[i]);
-    lo1 = std::min(lo1, mu[i]), hi1 = std::max(hi1, mu[i]);
-  }
   std::string m;
-  if (changed == 0) {
-    m = what + ": no element changed";
-    if (addressed > 0)
-      m += " (the " + std::to_string(addressed) + " it sets already had mu " + value_range(lo_a, hi_a) + ")";
-  } else {
-    std::vector<std::string> where;
-    for (size_t p = 0; p < on.size(); ++p)
-      if (on[p] > 0)
-        where.push_back(std::to_string(on[p]) + (p + 1 < on.size() ? " on " + s.model().pulleys[p].name : " free"));
-    m = what + ": " + std::to_string(changed) + " of " + std::to_string(n) + " elements (" + join(where) + "), mu " +
-        value_range(lo0, hi0) + " -> " + value_range(lo1, hi1);
-  }
+  guarded(L, what.c_str(), [&] { m = mu_change_text(s, before, mu, what); });  // a Lua law may fail
   lua_pushstring(L, m.c_str());
 }
 

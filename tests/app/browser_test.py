@@ -211,7 +211,7 @@ class Browser(unittest.TestCase):
         self.assertEqual((float(self.value("from")), float(self.value("to"))), (a[2], z[2]))
         b.find_element(By.ID, "mu").send_keys("0.05")
         b.find_element(By.ID, "wet").click()
-        wait.until(lambda _: self.text("status").endswith("(wet applied)"))
+        wait.until(lambda _: self.text("status").endswith(" -> 0.05)"))  # "(wet: N of 60 elements (...), mu 1 -> 0.05)"
         with open(os.path.join(self.dir, "out", "events.csv")) as f:
             wet = [r for r in f.read().splitlines() if r.split(",")[1] == "wet"]
         self.assertEqual(len(wet), 1)
@@ -294,7 +294,7 @@ class Browser(unittest.TestCase):
             watch.observe(document.getElementById("bar"), { childList: true, characterData: true, subtree: true });
             """, T_SHOT)
         b.find_element(By.ID, "continue").click()
-        # (paused again: the status before Continue said "paused at t = 0.05 s (wet applied)")
+        # (paused again: the status before Continue said "paused at t = 0.05 s (wet: ...)")
         wait.until(lambda _: b.execute_script("return window.seenRunning !== null && document.getElementById("
                                               "'status').textContent.startsWith('paused at t = ')")
                    or self.proc.poll() is not None)

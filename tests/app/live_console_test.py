@@ -86,7 +86,12 @@ class ConsoleAndPage(unittest.TestCase):
         paused_at = float(paused.split("= ")[1].split(" ")[0])
         self.assertEqual(live.post("do=torque&pulley=driven&value=%r" % LOAD)[0], 202)
         self.assertEqual(live.post("do=wet&from=0.1&to=0.3&value=0.05")[0], 202)
-        live.wait_status(it, "paused at t = %s s (wet applied)" % status_t(paused_at))
+        # the status says what the wet did, as sim:wet says it at the prompt
+        status = live.wait_status(it, "paused at t = %s s (wet: " % status_t(paused_at))
+        self.assertRegex(status, r"\(wet: \d+ of \d+ elements \(.+\), mu [0-9.]+ -> 0\.05\)$")
+        # the same wet again changes nothing: said so, and not recorded (events.csv below: one wet)
+        self.assertEqual(live.post("do=wet&from=0.1&to=0.3&value=0.05")[0], 202)
+        live.wait_status(it, "paused at t = %s s (wet: no element changed (the " % status_t(paused_at))
         self.assertEqual(live.post("do=continue")[0], 202)
         c.close()
         err = proc.stderr.read().decode()

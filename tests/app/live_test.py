@@ -126,7 +126,7 @@ class Live(unittest.TestCase, Page):
         self.assertRegex(self.wait_status(it, "refused: "), r"^refused: wet\.mu: must be in \[0, 10\]: .* \(got -1 for "
                                                           r"element \d+\)$")
         self.assertEqual(self.post("do=wet&from=0.1&to=0.3&value=0.05")[0], 202)
-        self.wait_status(it, "paused at t = %s s (wet applied)" % status_t(paused_at))
+        self.assertRegex(self.wait_status(it, "paused at t = %s s (wet: " % status_t(paused_at)), r" -> 0\.05\)$")
         self.assertEqual(self.post("do=save&name=live.ckpt")[0], 202)
         self.wait_status(it, "paused at t = %s s (save applied)" % status_t(paused_at))
         target = round(paused_at + 0.1, 3)
