@@ -7,6 +7,7 @@
 // could not be written), 2 on bad usage (or an environment variable it cannot read, or a CPU
 // without the instruction set it was built for: isa_check.cpp), 130 when stopped by Ctrl-C
 // (SIGINT), 143 by SIGTERM and 129 by SIGHUP (outputs closed; script/signals.hpp).
+#include <csignal>
 #include <cstdio>
 #include <string>
 
@@ -32,6 +33,11 @@ int with_outputs(int status) {
 
 int main(int argc, char** argv) {
   using namespace beltsim::app;
+  // A file-size limit (`ulimit -f`, a batch system's) sends SIGXFSZ at the write that passes it,
+  // whose default action kills the process mid-row, silently; ignored, that write(2) fails with
+  // EFBIG as on a full disk, and the output's error names the file, keeps whole rows and fails the
+  // command (a user's trial: exit 153, a row cut in two, no end rows in parameters.csv)
+  std::signal(SIGXFSZ, SIG_IGN);
   int status = 0;
   const std::optional<CommandLine> cl = parse_command_line(argc, argv, &status);
   if (!cl) return status;

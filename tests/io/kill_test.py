@@ -72,9 +72,10 @@ def whole_rows(path):
 
 
 def size_limit(limit):
-    """a child's file-size limit (a full disk: write(2) fails with EFBIG, SIGXFSZ ignored)"""
+    """a child's file-size limit (as on a full disk, write(2) fails, with EFBIG: beltsim ignores SIGXFSZ)"""
     def limited():
-        signal.signal(signal.SIGXFSZ, signal.SIG_IGN)
+        # SIGXFSZ at its default, as a shell leaves it (Python ignores it): beltsim ignores it itself
+        signal.signal(signal.SIGXFSZ, signal.SIG_DFL)
         resource.setrlimit(resource.RLIMIT_FSIZE, (limit, limit))
     return limited
 
