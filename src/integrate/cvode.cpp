@@ -213,7 +213,7 @@ class CvodeIntegrator final : public Integrator {
   void start(double t, const Eigen::VectorXd& y) override {
     const int n = problem_.size();
     if (const std::string bad = problem_.check(t, y.data()); !bad.empty())
-      throw DivergenceError(t, "the state at t = " + rounded_text(t, 9) + " s: " + bad);
+      throw DivergenceError(t, "at t = " + rounded_text(t, 9) + " s, " + bad);
     y_ = y_prev_ = y;
     t_ = t_prev_ = t;
     std::copy(y.data(), y.data() + n, N_VGetArrayPointer(cv_.y));

@@ -69,7 +69,7 @@ class OneStep final : public Integrator {
     sys_.problem->rhs(t, y_.data(), f_.data());
     sys_.problem->counters.rhs++;
     if (const std::string bad = sys_.problem->check(t, y_.data()); !bad.empty())
-      throw DivergenceError(t, "the state at t = " + rounded_text(t, 9) + " s: " + bad);
+      throw DivergenceError(t, "at t = " + rounded_text(t, 9) + " s, " + bad);
     y_prev_ = y_, f_prev_ = f_;
     ic_.clear(), iz_.clear();  // the held step is the point t: no interior
     // first step (Hairer II.4, simplified): make the first-order term small against the

@@ -128,6 +128,10 @@ enum EnergyIndex {
   kEnergyCount
 };
 
+// [rad/s] a pulley past this speed stops a run (BeltProblem::check: no drive reaches it, 1 km/s of
+// belt on a 1 cm pulley), and a speed law that prescribes more is refused at the build
+inline constexpr double kPulleySpeedMax = 1e5;
+
 struct Model {
   std::vector<Pulley> pulleys;
   std::vector<Arm> arms;          // tensioner arms, each carrying one pulley

@@ -31,6 +31,9 @@ struct RouteOrder {
 RouteOrder route_order(const SceneDef& d, const std::vector<Pulley>& pulleys);
 // throws when a wrap of `route` holds fewer than 3 elements of the pitch route.length / elements
 void check_wraps(const Route& route, const std::vector<std::string>& names, int elements);
+// throws when a speed law prescribes more than kPulleySpeedMax once its ramps and tables have ended
+// (peak_speed: a Lua function's is not known), where every run would stop
+void check_speeds(const std::vector<Pulley>& pulleys, const Drive& dr);
 // throws when a free pulley's inertia is below kWrapInertiaMin of the belt's on its wrap
 // (mass_per_length · wrap length · r²): the step-size control cannot follow so light a pulley
 constexpr double kWrapInertiaMin = 0.01;

@@ -3,11 +3,13 @@
 // found. Each rejects with the key the scene gave, its value and what to give instead
 // (docs/model.md, Limits the scene build enforces).
 #include <cmath>
+#include <optional>
 #include <tuple>
 
 #include "io/number_text.hpp"
 #include "scene/build.hpp"
 #include "scene/parameters.hpp"
+#include "scene/scene.hpp"
 #include "scene/validate.hpp"
 
 namespace beltsim {
@@ -31,6 +33,19 @@ void check_wraps(const Route& route, const std::vector<std::string>& names, int 
 // any step the error test accepts, and the embedded error estimate misses that fast mode: the
 // paper's driven pulley at a tenth of a percent of the belt's inertia on it ended at a wrong speed
 // at rtol 1e-3 without a word (docs/model.md, light pulleys). A kinematic pulley has no such mode.
+void check_speeds(const std::vector<Pulley>& pulleys, const Drive& dr) {
+  for (size_t j = 0; j < pulleys.size(); ++j) {
+    if (!dr.pulleys[j].kinematic) continue;
+    const std::optional<double> peak = peak_speed(dr.pulleys[j].speed);
+    if (peak && std::abs(*peak) > kPulleySpeedMax)
+      throw ParameterError("pulley '" + pulleys[j].name + "'.speed",
+                           rounded_text(*peak, 6) + " rad/s once its ramps and tables have ended, beyond the " +
+                               rounded_text(kPulleySpeedMax, 6) +
+                               " rad/s at which every run stops (no belt drive turns so fast); speeds are in rad/s: " +
+                               "beltsim.rpm(n) converts from rpm");
+  }
+}
+
 void check_inertias(const Route& route, const RouteOrder& order, const std::vector<Pulley>& pulleys, const Drive& dr,
                     double mass_per_length) {
   for (size_t k = 0; k < route.arcs.size(); ++k) {

@@ -438,6 +438,7 @@ Scene build_at(const SceneDef& d, BuildWatch& watch) {
   b.e_tra = bd.e_tra;
   b.e_tor = bd.e_tor;
   build::set_rest_length(b, bd, b.pitch);
+  build::check_speeds(m.pulleys, sc.drive);
   build::check_inertias(sc.route, order, m.pulleys, sc.drive, b.mass / b.rigid_length);
   build::check_sde_values(b, bd);
   const build::TensionAtRest tension = build::tension_at_rest(bd, sc.route.length, b);

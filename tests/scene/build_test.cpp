@@ -673,6 +673,29 @@ TEST(BuildStages, ABeltSpeedPastAPkBeltsRatingIsWarnedOfOnce) {
       << ::testing::PrintToString(all);
 }
 
+// a speed law past kPulleySpeedMax (1e5 rad/s), where every run stops, is refused at the build,
+// naming the pulley's speed and its value (a user's trial: a step to -1e6 rad/s passed the build
+// with warnings and stopped the run as a pulley that "runs away"); at the bound it builds
+TEST(BuildStages, ASpeedLawPastTheRunawayBoundIsRefused) {
+  SceneDef k = presets::paper_dry();
+  k.belt.bending_damping = 0;
+  k.pulleys[0].kinematic = true;
+  k.pulleys[0].torque = TimeSpeedLaw{};
+  k.pulleys[0].speed.ramps.push_back(Ramp{0, 0.01, 0, -1e6});
+  try {
+    build_scene(k);
+    FAIL() << "built";
+  } catch (const ParameterError& e) {
+    EXPECT_EQ(std::string(e.what()).rfind("pulley 'driver'.speed: -1e+06 rad/s once its ramps and tables have ended, "
+                                          "beyond the 100000 rad/s at which every run stops",
+                                          0),
+              0u)
+        << e.what();
+  }
+  k.pulleys[0].speed.ramps.back().to = -kPulleySpeedMax;
+  EXPECT_NO_THROW(build_scene(k));
+}
+
 // a speed map whose speeds all lie on the other side of zero from the way its pulley turns gives
 // one torque throughout (a load of 0 N·m, silently): warned of, naming the pulley, the map's
 // speeds and the sense, that of the drive's steady speeds (else belt.direction's)
