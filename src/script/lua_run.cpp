@@ -478,12 +478,13 @@ void end_if_stopped(lua_State* L, const Context* ctx, const char* call) {
 }
 
 void push_check(lua_State* L, const CheckEstimate& c) {
-  lua_createtable(L, 0, 9);
+  lua_createtable(L, 0, 10);
   lua_pushnumber(L, c.err_speed), lua_setfield(L, -2, "speed");
   lua_pushnumber(L, c.err_tension), lua_setfield(L, -2, "tension");
   lua_pushnumber(L, c.speed_limit()), lua_setfield(L, -2, "limit_speed");
   lua_pushnumber(L, c.tension_limit()), lua_setfield(L, -2, "limit_tension");
   lua_pushboolean(L, c.over()), lua_setfield(L, -2, "over");
+  lua_pushboolean(L, c.near()), lua_setfield(L, -2, "near");
   lua_pushnumber(L, c.steps_ratio), lua_setfield(L, -2, "steps_ratio");
   lua_pushboolean(L, c.shared()), lua_setfield(L, -2, "shared");
   if (c.warned_t >= 0) lua_pushnumber(L, c.warned_t), lua_setfield(L, -2, "warned_t");

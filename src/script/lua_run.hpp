@@ -90,7 +90,7 @@ int l_stop_at(lua_State* L);
 // the metatable's name (its __name) of a table push_check pushes
 inline constexpr const char* kCheckTable = "beltsim.check";
 // pushes a checked run's estimate (sim/run_check.hpp) as { speed, tension, limit_speed,
-// limit_tension, over, steps_ratio, shared, warned_t, failed }, with kCheckTable's metatable
+// limit_tension, over, near, steps_ratio, shared, warned_t, failed }, with kCheckTable's metatable
 void push_check(lua_State* L, const CheckEstimate& c);
 
 }  // namespace beltsim::script
