@@ -56,6 +56,13 @@ int cmd_summary(const std::string& given, const Raw& raw) {
     std::fprintf(stderr, "beltsim summary: %s\n", e.what());
     return 1;
   }
+  // a run closes parameters.csv with its end rows (end.status ...): without them it was killed
+  // outright (SIGKILL, a crash) or still runs (a user's trial read a killed run's figures unwarned)
+  if (s.end_status.empty())
+    std::fprintf(stderr,
+                 "beltsim summary: warning: %s/parameters.csv has no end rows: the run did not finish (it was killed, "
+                 "or it is still running); these figures are of its samples so far\n",
+                 dir.c_str());
   std::fputs(plot::summary_table(s).c_str(), stdout);
   std::fflush(stdout);
   // each output asked for is written, its missing folders made; one that cannot be written is

@@ -110,6 +110,25 @@ class Triangle(unittest.TestCase):
         with open(os.path.join(self.dir, "s.png"), "rb") as f:
             self.assertEqual(f.read(8), b"\x89PNG\r\n\x1a\n")
 
+    def test_a_run_without_end_rows_is_said_unfinished(self):
+        """a folder whose parameters.csv has no end rows holds a run killed outright (or still
+        running): the summary says so (a user's trial read a killed run's figures unwarned); the
+        finished run's says nothing of it"""
+        code, _, err = run(["summary", self.out], self.dir)
+        self.assertEqual(code, 0, err)
+        self.assertNotIn("no end rows", err)
+        killed = os.path.join(self.dir, "killed")
+        shutil.copytree(self.out, killed)
+        with open(os.path.join(killed, "parameters.csv")) as f:
+            rows = [r for r in f.read().splitlines(True) if not r.startswith("end.")]
+        with open(os.path.join(killed, "parameters.csv"), "w") as f:
+            f.write("".join(rows))
+        code, table, err = run(["summary", killed], self.dir)
+        self.assertEqual(code, 0, err)
+        self.assertIn("beltsim summary: warning: %s/parameters.csv has no end rows: the run did not finish" % killed,
+                      err)
+        self.assertIn("tension_mean [N]", table)
+
     def test_outputs_into_missing_folders(self):
         # --csv failed ("new2 is missing", exit 1) where --plot made its folder, and took the plot with it
         code, out, err = run(["summary", self.out, "--from", "0.1", "--csv", "new2/s.csv", "--plot", "new3/s.png"],
