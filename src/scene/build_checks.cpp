@@ -70,14 +70,23 @@ void check_sde_values(const Belt& b, const BeltDef& bd) {
   // per-SDE values that overflow (EA = 1e308 over a pitch of centimetres) make every force NaN
   // named by the key the scene gave (its unit from the parameter table)
   const bool rigid = bd.reading == StiffnessReading::rigidity;
-  for (const auto& [key, per_sde, v, given] :
-       {std::tuple{rigid ? "belt.EA" : "belt.sde.k", " (per SDE: EA / l0)", b.k, rigid ? bd.EA : bd.k},
-        std::tuple{rigid ? "belt.EI" : "belt.sde.kt", " (per SDE: EI / l0)", b.kt, rigid ? bd.EI : bd.kt},
-        std::tuple{rigid ? "belt.axial_damping" : "belt.sde.c", " (per SDE: axial_damping / l0)", b.c,
+  for (const auto& [key, sde_key, per_sde, v, given] :
+       {std::tuple{rigid ? "belt.EA" : "belt.sde.k", "belt.sde.k", " (per SDE: EA / l0)", b.k, rigid ? bd.EA : bd.k},
+        std::tuple{rigid ? "belt.EI" : "belt.sde.kt", "belt.sde.kt", " (per SDE: EI / l0)", b.kt,
+                   rigid ? bd.EI : bd.kt},
+        std::tuple{rigid ? "belt.axial_damping" : "belt.sde.c", "belt.sde.c", " (per SDE: axial_damping / l0)", b.c,
                    rigid ? bd.axial_damping : bd.c}})
-    if (!std::isfinite(v) || v > 1e15)
-      reject(std::string(key) + (rigid ? per_sde : ""), "is beyond what double precision integrates (> 1e15 per SDE)",
-             given, std::string(find_parameter(key)->unit));
+    if (!std::isfinite(v) || v > 1e15) {
+      const std::string sde_unit(find_parameter(sde_key)->unit);
+      // the per-SDE value and, read as a rigidity, the largest the belt's element length allows
+      // (a user's trial: the bound was given per SDE, the value per belt, and neither per the other)
+      std::string why = "is beyond what double precision integrates (> 1e15 per SDE";
+      if (rigid && std::isfinite(v)) why += ": " + rounded_text(v, 4) + " " + sde_unit + " here";
+      const std::string unit(find_parameter(key)->unit);
+      if (rigid && std::isfinite(v) && v > 0)
+        why += "; at most " + rounded_text(1e15 * (given / v), 3) + " " + unit + " at this element length";
+      reject(std::string(key) + (rigid ? per_sde : ""), why + ")", given, unit);
+    }
 }
 
 void check_sag(const Route& route, const SceneDef& d, const TensionAtRest& t) {

@@ -122,7 +122,8 @@ TEST(BuildStages, RestLengthSetsThePerSdeValues) {
   bd.EA = 1e300;
   build::set_rest_length(b, bd, l0);
   EXPECT_EQ(error_of([&] { build::check_sde_values(b, bd); }),
-            "belt.EA (per SDE: EA / l0) is beyond what double precision integrates (> 1e15 per SDE) (got 1e+300 N)");
+            "belt.EA (per SDE: EA / l0) is beyond what double precision integrates (> 1e15 per SDE: 5e+301 N/m "
+            "here; at most 2e+13 N at this element length) (got 1e+300 N)");
 }
 
 // a strain ε with e_tra = 1: l0 = pitch/(1 + ε) and T = (EA/l0)·(pitch - l0) = EA·ε; a rest length
