@@ -69,7 +69,11 @@ int run_to(lua_State* L, SimBox& box, double t, const char* what) {
                       lua_topointer(L, 1));
         if (!box.serve && box.ctx->serve)
           box.ctx->page_sim = box.sim.get(), box.ctx->page_key = lua_topointer(L, 1), box.ctx->page_ran = true;
-        a = run_feed(box.ctx, feed, *box.sim, t, line.callback(), "paused");
+        try {
+          a = run_feed(box.ctx, feed, *box.sim, t, line.callback(), "paused");
+        } catch (const DivergenceError& e) {  // where its samples are, as scene:run says
+          throw DivergenceError(e.t, e.what() + samples_note(box.sim->out_dir()));
+        }
         line.finish(a.t, a.steps, a.wall);
         box.last_target = t, box.last_stopped = a.interrupted;
       },
