@@ -132,7 +132,10 @@ struct Callback {
 };
 
 // calls the function in ref with the simulation; nret results left on the stack. Its error is a
-// CallbackError; a stop (Ctrl-C) or a limit that fired is raised again as it was
+// CallbackError, a limit that fired in it too (named with the callback, as any error of its own);
+// its code interrupted by Ctrl-C, a StoppedInCode: the run stops there (Simulation::run_to). A
+// limit or Ctrl-C were raised again as they were, a Lua error that the run recorded as "an error in
+// a callback" (a user's trial)
 void call_back(SimBox& box, const LuaRef& ref, int nret, const Callback& cb) {
   lua_State* L = box.L;
   ref.push(L);
@@ -140,10 +143,7 @@ void call_back(SimBox& box, const LuaRef& ref, int nret, const Callback& cb) {
   CallError e;
   // (docall: back in Lua code, inside the run, a call of its own: lua_clock.hpp)
   if (docall(L, 1, nret, &e, cb.what)) return;
-  if (limit_fired(L)) {
-    lua_pushstring(L, e.message.c_str());
-    lua_error(L);
-  }
+  if (take_interrupt(L)) throw StoppedInCode(cb.text(box) + ": " + e.message);
   throw CallbackError(cb.text(box) + ": " + e.message, e.traceback);
 }
 
