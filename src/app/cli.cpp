@@ -355,6 +355,30 @@ std::string parse_error_message(const CLI::App& app, const CLI::ParseError& e) {
   return msg;
 }
 
+// a flag of the command given a value ("--check=banana", "--trusted=2"): CLI11 reads the value as
+// a boolean, so a word it cannot convert got its raw "Could not convert: --check = banana" and any
+// number but 0 turned the flag on, the sandbox's --trusted too, without a word. A flag takes no
+// value: the message, or "" when every flag is given alone
+std::string flag_given_a_value(const CLI::App& app, const std::vector<std::string>& words) {
+  if (words.empty()) return "";
+  const CLI::App* sub = nullptr;
+  try {
+    sub = app.get_subcommand(words[0]);
+  } catch (const CLI::OptionNotFound&) {
+    return "";
+  }
+  for (size_t i = 1; i < words.size(); ++i) {
+    const std::string& w = words[i];
+    const size_t eq = w.find('=');
+    if (w.rfind("--", 0) != 0 || eq == std::string::npos) continue;
+    const std::string name = w.substr(0, eq);
+    const CLI::Option* o = sub->get_option_no_throw(name);
+    if (o && o->get_expected_max() == 0)
+      return name + " takes no value (got '" + w + "'): give " + name + " alone to turn it on, or leave it out";
+  }
+  return "";
+}
+
 }  // namespace
 
 std::optional<CommandLine> parse_command_line(int argc, char** argv, int* status) {
@@ -426,6 +450,10 @@ std::optional<CommandLine> parse_command_line(int argc, char** argv, int* status
       std::find(commands.begin(), commands.end(), words[0]) == commands.end()) {
     std::fprintf(stderr, "beltsim: unknown command '%s'%s (commands: %s)\nRun 'beltsim --help' for the usage.\n",
                  words[0].c_str(), did_you_mean(words[0], commands).c_str(), join(commands).c_str());
+    return fail(2);
+  }
+  if (const std::string m = flag_given_a_value(app, words); !m.empty()) {
+    std::fprintf(stderr, "beltsim: %s\nRun 'beltsim %s --help' for the usage.\n", m.c_str(), words[0].c_str());
     return fail(2);
   }
   std::reverse(words.begin(), words.end());  // CLI11 takes the arguments in reverse order

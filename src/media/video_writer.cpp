@@ -134,7 +134,8 @@ struct VideoWriter::Impl {
   std::unique_ptr<OutputDir> dir;  // the video's folder and its name there
   std::string name;
   std::unique_ptr<WholeFile> whole;  // VideoOptions::whole: the unnamed file (its fd is file.fd)
-  int64_t whole_end = 0;  // [bytes] where the header or the last whole fragment ends
+  int64_t whole_end = 0;             // [bytes] where the header or the last whole fragment ends
+  int64_t header_end = 0;            // [bytes] where the header ends (whole_end there: no frame on disk)
 
   [[noreturn]] void fail(const std::string& what, int err = 0) {
     const std::string m = "video " + path + ": " + what + (err ? ": " + av_message(err) : "");
@@ -143,7 +144,10 @@ struct VideoWriter::Impl {
   }
 
   // after each packet handed to the muxer: a write that failed (a full disk) ends the video at its
-  // last whole fragment, which plays; the error names the file
+  // last whole fragment, which plays; the error names the file. Before the first fragment is whole
+  // on disk the file is a header alone, which no player opens: it is removed, as a video closed
+  // without a frame is (a trial's disk filled at the first fragment and left 782 bytes, said to be
+  // "its whole fragments")
   void check_written() {
     if (file.error == 0 && fmt->pb->error == 0) {
       whole_end = ff().avio_seek(fmt->pb, 0, SEEK_CUR);
@@ -151,6 +155,10 @@ struct VideoWriter::Impl {
     }
     const int err = file.error ? file.error : EIO;
     open = false;
+    if (whole_end <= header_end) {
+      if (!whole) dir->remove(name);  // (a whole file is given up with the writer)
+      output_error(path, std::string(std::strerror(err)) + " (no frame reached the disk: the video is removed)");
+    }
     const bool cut = ::ftruncate(file.fd, whole_end) == 0;
     output_error(path, std::string(std::strerror(err)) +
                            (cut ? " (the video keeps its whole fragments, " + std::to_string(whole_end) + " bytes)"
@@ -289,7 +297,7 @@ VideoWriter::VideoWriter(const std::string& path, const VideoOptions& opt) : imp
       if (err) output_error(path, std::strerror(err));
       d.fail("cannot write the header", r);
     }
-    d.whole_end = ff().avio_seek(d.fmt->pb, 0, SEEK_CUR);
+    d.whole_end = d.header_end = ff().avio_seek(d.fmt->pb, 0, SEEK_CUR);
     d.open = true;
   } catch (...) {
     d.release();

@@ -48,6 +48,15 @@ struct LawError : std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+// Lua code a run called (a law, a live simulation's callback) was interrupted by Ctrl-C (or SIGTERM,
+// SIGHUP): the run stops where it stands, as at a stop signal between its steps (Simulation::run_to:
+// end.status interrupted, the outputs kept open). The message names the code ("pulley 'driven'.torque
+// (function at s.lua:3) at t = ...: s.lua:5: interrupted!"). A LawError to the callers that know
+// only those (a law called outside a run: the scene's build, the linearisation).
+struct StoppedInCode : LawError {
+  using LawError::LawError;
+};
+
 // A law given as code. value() may throw LawError.
 class LawFunction {
  public:

@@ -254,6 +254,10 @@ void interrupt(Limits& g) {
   if (!permanent(g)) arm(g);
 }
 
+bool take_interrupt(lua_State* L) {
+  return limits_of(L).interrupt.exchange(false);
+}
+
 bool limit_fired(lua_State* L) {
   const Limits& g = limits_of(L);
   return !g.fired.empty() || g.interrupt.load(std::memory_order_relaxed);

@@ -65,6 +65,12 @@ void clear_interrupt(lua_State* L);
 void interrupt(Limits& g);
 // a limit fired in this host call, or Ctrl-C is pending: no more Lua code is to run in it
 bool limit_fired(lua_State* L);
+// Ctrl-C (or SIGTERM, SIGHUP) is pending: Lua code that failed now was interrupted. A law's or a
+// callback's (lua_law.cpp, lua_sim.cpp) then stops the run it was called by, which honours the
+// interrupt: it is taken (cleared, as run_to clears one it stopped for), so the Lua code that
+// follows (a law evaluated as the outputs close, the script after the run) runs as after any
+// stopped run. True when one was pending
+bool take_interrupt(lua_State* L);
 // replaces xpcall (both in the sandbox and with --trusted) with one whose message handler does not
 // run once a limit fired (see above), and table.move and collectgarbage, which can run long in C,
 // with ones that raise a limit that fired or a time that is up (table.move between slices of its

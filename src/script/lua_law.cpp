@@ -16,12 +16,13 @@
 #include <cmath>
 #include <sstream>
 
+#include "io/number_text.hpp"
 #include "io/suggest.hpp"
 #include "scene/scene.hpp"
 #include "scene/validate.hpp"
 #include "script/context.hpp"
 #include "script/docall.hpp"
-#include "io/number_text.hpp"
+#include "script/limits.hpp"
 
 namespace beltsim::script {
 
@@ -29,7 +30,7 @@ namespace {
 
 // A Lua function as a law. Calls go through the main thread with the script's message handler;
 // an error, a value that is not a number or one that is not finite is a LawError naming the
-// function's place and the error's own file:line.
+// function's place and the error's own file:line; its code interrupted by Ctrl-C, a StoppedInCode.
 class LuaLaw final : public LawFunction {
  public:
   LuaLaw(lua_State* L, int idx, bool speed, std::string what, std::shared_ptr<LawHost> host)
@@ -56,8 +57,10 @@ class LuaLaw final : public LawFunction {
     CallError e;
     std::string error;
     double v = 0;
+    bool stopped = false;  // its code interrupted by Ctrl-C: the run stops (StoppedInCode)
     if (!docall(L, speed_ ? 1 : 2, 1, &e, where_)) {
       error = e.message;
+      stopped = take_interrupt(L);
     } else if (lua_type(L, -1) != LUA_TNUMBER) {
       error = std::string("it returned ") + luaL_typename(L, -1) + ", a number expected";
     } else {
@@ -68,6 +71,7 @@ class LuaLaw final : public LawFunction {
     if (!error.empty()) {
       std::string m = what_ + " (" + describe() + ") at t = " + rounded_text(t) + " s";
       if (!speed_) m += ", omega = " + rounded_text(omega) + " rad/s";
+      if (stopped) throw StoppedInCode(m + ": " + error);
       throw LawError(m + ": " + error);
     }
     return v;

@@ -506,6 +506,10 @@ std::string wall_limit_text(double limit, double t, double target, const std::st
          " s; the outputs up to then are in " + outputs;
 }
 
+std::string samples_note(const std::string& out_dir) {
+  return " (the samples up to then are in " + (std::filesystem::path(out_dir) / "timeseries.csv").string() + ")";
+}
+
 // beltsim.stop_at(t): the next run that would pass t stops there, as Ctrl-C stops it, and later
 // runs are refused until beltsim.stop_at() (without t), which also drops a stop not reached
 int l_stop_at(lua_State* L) {

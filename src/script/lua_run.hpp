@@ -64,6 +64,9 @@ RunSettings read_run_settings(lua_State* L, int idx, const Scene& sc, Context* c
 // command line gave it) at t = T s of TARGET s; the outputs up to
 // then are in DIR": a run's or a live simulation's call's message, after the caller's name
 std::string wall_limit_text(double limit, double t, double target, const std::string& outputs, bool option);
+// " (the samples up to then are in DIR/timeseries.csv)": what a run's divergence ends with, in
+// scene:run and in a live simulation's sim:run_to and sim:advance alike
+std::string samples_note(const std::string& out_dir);
 
 // the key of an output folder in Context::run_dirs (absolute, normalised, no trailing /), and its
 // record once a run's outputs have opened there (scene:run, scene:start)

@@ -72,7 +72,7 @@ int l_scene_run(lua_State* L) {
     });
     line.finish(res.t_reached, res.work.steps, res.wall_seconds);
   } catch (const DivergenceError& e) {
-    error = std::string(e.what()) + " (the samples up to then are in " + rs.out_dir + "/timeseries.csv)";
+    error = e.what() + samples_note(rs.out_dir);
     ctx->divergence = {e.t, e.what()};
   } catch (const ParameterError& e) {
     error = setting_error("run", e, about);

@@ -69,7 +69,11 @@ int run_to(lua_State* L, SimBox& box, double t, const char* what) {
                       lua_topointer(L, 1));
         if (!box.serve && box.ctx->serve)
           box.ctx->page_sim = box.sim.get(), box.ctx->page_key = lua_topointer(L, 1), box.ctx->page_ran = true;
-        a = run_feed(box.ctx, feed, *box.sim, t, line.callback(), "paused");
+        try {
+          a = run_feed(box.ctx, feed, *box.sim, t, line.callback(), "paused");
+        } catch (const DivergenceError& e) {  // where its samples are, as scene:run says
+          throw DivergenceError(e.t, e.what() + samples_note(box.sim->out_dir()));
+        }
         line.finish(a.t, a.steps, a.wall);
         box.last_target = t, box.last_stopped = a.interrupted;
       },
@@ -128,7 +132,10 @@ struct Callback {
 };
 
 // calls the function in ref with the simulation; nret results left on the stack. Its error is a
-// CallbackError; a stop (Ctrl-C) or a limit that fired is raised again as it was
+// CallbackError, a limit that fired in it too (named with the callback, as any error of its own);
+// its code interrupted by Ctrl-C, a StoppedInCode: the run stops there (Simulation::run_to). A
+// limit or Ctrl-C were raised again as they were, a Lua error that the run recorded as "an error in
+// a callback" (a user's trial)
 void call_back(SimBox& box, const LuaRef& ref, int nret, const Callback& cb) {
   lua_State* L = box.L;
   ref.push(L);
@@ -136,10 +143,7 @@ void call_back(SimBox& box, const LuaRef& ref, int nret, const Callback& cb) {
   CallError e;
   // (docall: back in Lua code, inside the run, a call of its own: lua_clock.hpp)
   if (docall(L, 1, nret, &e, cb.what)) return;
-  if (limit_fired(L)) {
-    lua_pushstring(L, e.message.c_str());
-    lua_error(L);
-  }
+  if (take_interrupt(L)) throw StoppedInCode(cb.text(box) + ": " + e.message);
   throw CallbackError(cb.text(box) + ": " + e.message, e.traceback);
 }
 

@@ -16,6 +16,7 @@
 #include "io/output_dir.hpp"
 #include "io/suggest.hpp"
 #include "model/forces.hpp"
+#include "model/laws.hpp"
 #include "scene/validate.hpp"
 #include "sim/interval_means.hpp"
 #include "sim/scoped.hpp"
@@ -383,9 +384,14 @@ Simulation::Advance Simulation::run_to(double t, const std::atomic<bool>* stop, 
     }
     return false;
   };
+  const long steps0 = stats().steps;
+  std::string stopped_in;  // the Lua code Ctrl-C interrupted inside the run, which stopped there
   try {
     const Timeline::Result r = tl_->run_to(t, stop, pr, poll, pause);
     a.t = r.t, a.steps = r.steps, a.wall = clock() - start, a.interrupted = r.interrupted;
+  } catch (const StoppedInCode& e) {  // (a law's step is not taken; a callback's time is reached)
+    a.t = now(), a.steps = stats().steps - steps0, a.wall = clock() - start, a.interrupted = true;
+    stopped_in = e.what();
   } catch (const DivergenceError& e) {
     failed_ = e.what();
     end_status_ = "diverged", end_note_ = e.what();
@@ -428,9 +434,10 @@ Simulation::Advance Simulation::run_to(double t, const std::atomic<bool>* stop, 
   }
   wall_ += a.wall;
   end_status_ = a.over_wall_limit ? "wall_limit" : a.interrupted ? "interrupted" : "ok";
-  end_note_ = a.over_wall_limit ? "stopped by run.max_wall at the last finished step"
-              : a.interrupted   ? "stopped at the last finished step (Ctrl-C, SIGTERM or a live view's control)"
-                                : "";
+  end_note_ = a.over_wall_limit     ? "stopped by run.max_wall at the last finished step"
+              : !stopped_in.empty() ? "stopped (Ctrl-C or SIGTERM) in the Lua code of " + stopped_in
+              : a.interrupted       ? "stopped at the last finished step (Ctrl-C, SIGTERM or a live view's control)"
+                                    : "";
   return a;
 }
 

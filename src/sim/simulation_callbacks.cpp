@@ -7,6 +7,7 @@
 
 #include "integrate/timeline.hpp"
 #include "io/number_text.hpp"
+#include "model/laws.hpp"
 #include "sim/scoped.hpp"
 #include "sim/simulation.hpp"
 
@@ -39,6 +40,10 @@ int Simulation::when(std::function<bool()> cond, std::function<void()> action) {
       const Scoped<bool> acting(in_action_, true);
       action();
     });
+  } catch (const StoppedInCode& e) {  // Ctrl-C in the condition: no run to stop, the script stops
+    callbacks_--;
+    end_status_ = "interrupted", end_note_ = std::string("stopped (Ctrl-C or SIGTERM) in the Lua code of ") + e.what();
+    throw;
   } catch (const std::exception& e) {
     callbacks_--;
     end_status_ = "failed", end_note_ = e.what();

@@ -219,6 +219,20 @@ class Errors(unittest.TestCase):
             self.assertEqual(code, 2, err)
             self.assertIn(what, err)
 
+    def test_a_flag_takes_no_value(self):
+        # CLI11 read a flag's value as a boolean: --check=banana got its raw "Could not convert:
+        # --check = banana", and --trusted=2 turned the sandbox off without a word (a user's trial)
+        for args in [["run", "x.lua", "--check=banana"], ["run", "x.lua", "--trusted=2"],
+                     ["run", "x.lua", "--trusted=false"], ["console", "--no-frames=1"],
+                     ["sweep", "x.lua", "--list=no"], ["modes", "x.lua", "--video=true"],
+                     ["compare", "a.csv", "b.csv", "--failing=yes"]]:
+            flag, value = args[-1].split("=")
+            code, out, err = run(args, cwd=self.dir)
+            self.assertEqual(code, 2, err)
+            self.assertEqual(err, "beltsim: %s takes no value (got '%s=%s'): give %s alone to turn it on, or leave it "
+                                  "out\nRun 'beltsim %s --help' for the usage.\n" % (flag, flag, value, flag, args[0]))
+            self.assertEqual(os.listdir(self.dir), [], "a refused command wrote")
+
     def test_sweep_jobs_outside_a_run_of_the_points_is_refused(self):
         # --jobs was ignored by --point, --list, --collect and --slurm: a user who asked for 2 at
         # once learnt nothing

@@ -173,6 +173,36 @@ class Stop(unittest.TestCase):
         with open(os.path.join(second, "timeseries.csv")) as f:
             self.assertEqual(f.read(), "t\n0\n0.001\n")
 
+    def test_ctrl_c_in_a_callback_or_a_law_stops_the_run(self):
+        # Lua code that a run calls (a live simulation's callback, a Lua torque law) and Ctrl-C
+        # interrupts: the run stops there as Ctrl-C between its steps stops it, said by the run's
+        # closing line, and parameters.csv says interrupted (a user's trial: "failed", "an error in a
+        # callback", and no closing line), exit 130
+        loop = 'print("looping") io.stdout:flush() while true do end'
+        law = ("local function load(t, w)\n  if t > 0.01 then " + loop + " end\n  return -0.955 * w\nend\n" +
+               SCENE.replace("torque = { per_speed = -0.955 }", "torque = load"))
+        for name, text, at in [
+                ("callback", SCENE + "sim = drive:start { out = 'out' }\n"
+                 "sim:every(0.01, function(s) " + loop + " end)\nlocal r = sim:run_to(1)\n"
+                 "print('returned', r.interrupted, r.t) io.stdout:flush()\nsim:close()\n", r"0\.01"),
+                ("law", law + "drive:run { t_end = 1, out = 'out' }\n", r"0\.0[0-9]+")]:
+            shutil.rmtree(os.path.join(self.dir, "out"), True)
+            p = self.start(["run", self.script(text)])
+            self.wait_line(p.stdout, "looping")
+            status, err = self.ends(p, signal.SIGINT)
+            out = p.stdout.read().decode()
+            self.assertEqual(status, 130, name + ": " + err)
+            self.assertRegex(err, r"beltsim: run stopped at t = %s s of 1 s \(\d+ steps, [0-9.]+ s\): out/\n" % at,
+                             name)
+            self.assertIn("beltsim: interrupted; the outputs written so far are kept\n", err, name)
+            with open(os.path.join(self.dir, "out", "parameters.csv")) as f:
+                end = [row for row in f.read().splitlines() if row.startswith("end.status,")]
+            self.assertEqual(len(end), 1, name)
+            self.assertTrue(end[0].startswith("end.status,interrupted,,derived,"), name + ": " + end[0])
+            self.assertNotIn("error in a callback", end[0], name)
+            if name == "callback":  # the script goes on after the stopped run, as after any stopped run
+                self.assertIn("returned\ttrue\t0.01\n", out)
+
     def test_sighup_is_handled_as_sigterm(self):
         p = self.start(["run", self.script(
             SCENE + "drive:run { t_end = 3, progress = false, out = 'out', "

@@ -1,7 +1,8 @@
 // The PNG and video writers on their own: a PNG round trip; an MP4 read back by ffprobe (codec,
 // frame count, duration, pixel format, colour tags); a video whose writer is killed before it
-// closes still plays up to its last whole fragment; one without a frame leaves no file; one written
-// whole replaces an earlier file only when closed.
+// closes still plays up to its last whole fragment; one without a frame leaves no file, as does one
+// whose disk filled before its first fragment; one written whole replaces an earlier file only when
+// closed.
 #include <gtest/gtest.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -16,6 +17,7 @@
 
 #include "media/png_writer.hpp"
 #include "media/video_writer.hpp"
+#include "support/file_size_limit.hpp"
 #include "support/scratch.hpp"
 
 namespace beltsim {
@@ -159,6 +161,51 @@ TEST(Video, NoFrameLeavesNoFile) {
   }
   { VideoWriter v(destroyed.string(), o); }
   EXPECT_FALSE(fs::exists(destroyed));
+}
+
+// A disk that fills before the first fragment (a second of video) reaches it: what is on disk is
+// the header alone, which no player opens (a user's trial on a 400 kB tmpfs was left a file of
+// 782 bytes, "the video keeps its whole fragments, 782 bytes"): it is removed, and the error says
+// that no frame reached the disk. A disk that fills later keeps the fragments before.
+TEST(Video, DiskFullBeforeTheFirstFragmentLeavesNoFile) {
+  VideoOptions o;
+  o.width = 96, o.height = 64, o.fps = 30;
+  const fs::path f = temp_dir() / "full_at_once.mp4";
+  enum { kRemoved = 0, kNoError = 1, kMessage = 2, kLeft = 3, kNoHeader = 4 };
+  // the header (under 1 kB) fits, the first fragment (30 frames) does not
+  const int status = test::exit_status_under_file_size_limit(2048, [&] {
+    try {
+      VideoWriter v(f.string(), o);
+      if (!fs::exists(f)) return int(kNoHeader);
+      for (int k = 0; k < 100; ++k) v.add(pattern(96, 64, k));
+      v.close();
+    } catch (const std::exception& e) {
+      const std::string m = e.what();
+      std::fprintf(stderr, "%s\n", m.c_str());
+      if (m != "cannot write " + f.string() + ": File too large (no frame reached the disk: the video is removed)")
+        return int(kMessage);
+      return int(fs::exists(f) ? kLeft : kRemoved);
+    }
+    return int(kNoError);
+  });
+  EXPECT_EQ(status, kRemoved);
+  EXPECT_FALSE(fs::exists(f));
+  // with room for a fragment or two, the whole fragments stay and play
+  const fs::path g = temp_dir() / "full_later.mp4";
+  const int later = test::exit_status_under_file_size_limit(16 * 1024, [&] {
+    try {
+      VideoWriter v(g.string(), o);
+      for (int k = 0; k < 1000; ++k) v.add(pattern(96, 64, k));
+      v.close();
+    } catch (const std::exception& e) {
+      std::fprintf(stderr, "%s\n", e.what());
+      return std::string(e.what()).find("(the video keeps its whole fragments, ") != std::string::npos ? 0 : 2;
+    }
+    return 1;
+  });
+  EXPECT_EQ(later, 0);
+  const std::string frames = probe(g)["nb_read_frames"];
+  EXPECT_GE(std::stoi(frames.empty() ? "0" : frames), 30);
 }
 
 // VideoOptions::whole (beltsim render's): an earlier file of the name is left as it was until the

@@ -7,8 +7,10 @@
 #include <atomic>
 #include <chrono>
 #include <filesystem>
+#include <fstream>
 #include <string>
 #include <thread>
+#include <tuple>
 #include <vector>
 
 #include "lua.h"
@@ -68,15 +70,36 @@ TEST(Limits, TheInstructionBudgetIsPerCallFromTheHost) {
   EXPECT_EQ(run(lua, body), "") << "the next call has a budget again";
 }
 
+// the end.status row of the run's parameters.csv (in <root>/out)
+std::string end_status() {
+  std::ifstream f(root() / "out" / "parameters.csv");
+  std::string line;
+  while (std::getline(f, line))
+    if (line.rfind("end.status,", 0) == 0) return line;
+  return "";
+}
+
+// a limit that fires in a callback is named with the callback, its function's place and the
+// simulated time, as an error of its own is, and parameters.csv says so (a user's trial: the
+// limit's message alone, and end.status "failed" with "an error in a callback")
 TEST(Limits, CallbacksCountAgainstTheCallThatRunsThem) {
   Safety s;
   s.max_instructions = 10'000'000;
-  const std::string msg = run(std::string(kScene) +
-                                  "local sim = s:start{ progress = false }\n"
-                                  "sim:every(0.001, function() while true do end end)\n"
-                                  "sim:run_to(0.01)\n",
-                              s);
-  expect_has(msg, {"limits.lua:9: ", "instruction limit"});
+  for (const auto& [callback, role, at] :
+       {std::tuple{"sim:every(0.001, function() while true do end end)", "sim:every's function", "0.001"},
+        std::tuple{"sim:when(function(sim) if sim.t > 0.002 then while true do end end return false end,\n"
+                   "  function() end)",
+                   "sim:when's condition", ""}}) {
+    const std::string msg =
+        run(std::string(kScene) + "local sim = s:start{ progress = false }\n" + callback + "\nsim:run_to(0.01)\n", s);
+    // the callback's function at line 9, run_to after it
+    const int run_to = 10 + static_cast<int>(std::string(callback).find('\n') != std::string::npos);
+    const std::string where =
+        role + std::string(" (function at ") + (root() / "limits.lua").string() + ":9) at t = " + at;
+    expect_has(msg, {"limits.lua:" + std::to_string(run_to) + ": sim:run_to: " + where,
+                     "limits.lua:9: ", "instruction limit"});
+    expect_has(end_status(), {"end.status,failed,,derived,\"" + where, "instruction limit"});
+  }
 }
 
 TEST(Limits, NoInstructionLimitMeansNone) {
@@ -263,7 +286,12 @@ TEST(TimeLimits, ALawOrACallbackThatLoopsIsStopped) {
                           "sim:every(0.001, function() while true do end end)\n"
                           "sim:run_to(0.01)\n",
                  s),
-             {"limits.lua:9: ", "wall-time limit", "--max-lua-wall"});
+             {"limits.lua:10: sim:run_to: sim:every's function (function at " + (root() / "limits.lua").string() +
+                  ":9) at t = 0.001 s: " + (root() / "limits.lua").string() + ":9: the wall-time limit",
+              "--max-lua-wall"});
+  expect_has(end_status(),
+             {"end.status,failed,,derived,\"sim:every's function (function at " + (root() / "limits.lua").string() +
+              ":9) at t = 0.001 s: " + (root() / "limits.lua").string() + ":9: the wall-time limit"});
 }
 
 // the clock's charging, from looks given here: only time in Lua code counts, a call's own
