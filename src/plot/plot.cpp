@@ -1,12 +1,8 @@
 #include "plot/plot.hpp"
 
 #include <algorithm>
-#include <cerrno>
-#include <charconv>
 #include <cmath>
 #include <cstdio>
-#include <cstdlib>
-#include <cstring>
 #include <filesystem>
 #include <optional>
 #include <sstream>
@@ -197,71 +193,6 @@ void plot_command(std::ostringstream& g, const PlotSpec& spec, const std::vector
   g << "\n";
 }
 
-std::string trim(const std::string& s) {
-  const size_t a = s.find_first_not_of(" \t");
-  if (a == std::string::npos) return "";
-  return s.substr(a, s.find_last_not_of(" \t") - a + 1);
-}
-
-// a decimal number, "nan"/"inf" in any case, or empty (NaN); hex and trailing text are not numbers
-bool parse_field(const std::string& text, double& out) {
-  std::string s = trim(text);
-  if (s.empty()) {
-    out = std::nan("");
-    return true;
-  }
-  size_t from = s[0] == '+' ? 1 : 0;
-  const auto r = std::from_chars(s.data() + from, s.data() + s.size(), out, std::chars_format::general);
-  return r.ec == std::errc() && r.ptr == s.data() + s.size();
-}
-
-// The rows of a CSV stream one at a time (POSIX getline, one buffer for all): a row is a line
-// without its '\n' (and a '\r' before it), and runs on over the line breaks inside a quoted cell
-// (csv_text writes a value with one so: a sweep's values and figures, summary.csv).
-class RowReader {
- public:
-  explicit RowReader(std::FILE* f) : f_(f) {}
-  ~RowReader() { std::free(buf_); }
-  RowReader(const RowReader&) = delete;
-  RowReader& operator=(const RowReader&) = delete;
-  // false at the end of the file
-  bool next(std::string& row) {
-    if (!line(row)) return false;
-    bool quoted = false;
-    for (size_t from = 0;;) {
-      for (size_t i = from; i < row.size(); ++i) quoted = quoted != (row[i] == '"');
-      if (!quoted) break;
-      from = row.size() + 1;
-      std::string more;
-      if (!line(more)) break;  // a quote left open at the end: the cells say what is wrong
-      row += '\n';
-      row += more;
-    }
-    if (!row.empty() && row.back() == '\r') row.pop_back();
-    return true;
-  }
-  int lines() const { return lines_; }  // read so far: the number of the row's last line
-
- private:
-  bool line(std::string& s) {
-    const ssize_t n = ::getline(&buf_, &cap_, f_);
-    if (n <= 0) return false;
-    s.assign(buf_, static_cast<size_t>(n) - (buf_[n - 1] == '\n' ? 1 : 0));
-    ++lines_;
-    return true;
-  }
-  std::FILE* f_;
-  char* buf_ = nullptr;
-  size_t cap_ = 0;
-  int lines_ = 0;
-};
-
-std::string joined(const std::vector<std::string>& names) {
-  std::string s;
-  for (const auto& n : names) s += (s.empty() ? "" : ", ") + n;
-  return s;
-}
-
 }  // namespace
 
 void plot_png(const PlotSpec& spec) {
@@ -387,60 +318,6 @@ std::string plot_script(const PlotSpec& spec, const std::string& png) {
   return g.str();
 }
 
-bool Table::has(std::string_view name) const {
-  return index.count(std::string(name)) > 0;
-}
-
-const std::vector<double>& Table::column(std::string_view name) const {
-  const auto it = index.find(std::string(name));
-  if (it == index.end())
-    throw std::runtime_error(path + " has no column '" + std::string(name) + "'" + did_you_mean(std::string(name), names) +
-                             "; its columns: " + joined(names));
-  return columns[it->second];
-}
-
-Table read_timeseries_csv(const std::string& path, const std::vector<std::string>* only) {
-  InputFile f(path);
-  Table t;
-  t.path = path;
-  std::string line;
-  std::vector<bool> wanted;  // per column: read its fields (with `only`: named there)
-  RowReader rows(f.stream());
-  for (int number_of_line = 1; rows.next(line); number_of_line = rows.lines() + 1) {
-    if (trim(line).empty()) continue;
-    std::vector<std::string> fields = csv_fields(line);
-    const std::string where = path + ":" + std::to_string(number_of_line) + ": ";
-    if (t.names.empty()) {
-      for (auto& s : fields) {
-        s = trim(s);
-        if (s.empty()) throw std::runtime_error(where + "the header has an empty column name");
-        if (!t.index.emplace(s, t.names.size()).second)
-          throw std::runtime_error(where + "the header names '" + s + "' twice");
-        t.names.push_back(s);
-        wanted.push_back(!only || std::find(only->begin(), only->end(), s) != only->end());
-      }
-      t.columns.resize(t.names.size());
-      continue;
-    }
-    if (fields.size() != t.names.size())
-      throw std::runtime_error(where + "expected " + std::to_string(t.names.size()) + " fields as in the header, got " +
-                               std::to_string(fields.size()));
-    for (size_t k = 0; k < fields.size(); ++k) {
-      double v = std::nan("");
-      if (!wanted[k]) {
-        t.columns[k].push_back(v);
-        continue;
-      }
-      if (!parse_field(fields[k], v))
-        throw std::runtime_error(where + "column '" + t.names[k] + "': '" + trim(fields[k]) + "' is not a number");
-      t.columns[k].push_back(v);
-    }
-  }
-  if (std::ferror(f.stream())) throw std::runtime_error("cannot read " + path + ": " + std::strerror(errno));
-  if (t.names.empty()) throw std::runtime_error(path + " is empty (no header line)");
-  return t;
-}
-
 std::vector<Mark> read_event_marks(const std::string& events_csv) {
   std::vector<Mark> marks;
   std::optional<InputFile> f;
@@ -456,8 +333,8 @@ std::vector<Mark> read_event_marks(const std::string& events_csv) {
     if (std::exchange(header, false)) continue;
     const std::vector<std::string> fields = csv_fields(line);
     double t = 0;
-    if (fields.size() != 3 || !parse_field(fields[0], t) || !std::isfinite(t)) continue;
-    const std::string label = shortened(trim(fields[1] + " " + fields[2]), 40);
+    if (fields.size() != 3 || !parse_number_field(fields[0], t) || !std::isfinite(t)) continue;
+    const std::string label = shortened(trim_blanks(fields[1] + " " + fields[2]), 40);
     if (!marks.empty() && marks.back().x == t)
       marks.back().label += "; " + label;
     else
@@ -483,7 +360,7 @@ std::vector<std::string> drop_empty(PlotSpec& spec, const std::string& csv_path)
       dropped.push_back(s.name);
   }
   if (kept.empty())
-    throw std::runtime_error(csv_path + ": no finite value to draw in " + joined(dropped) +
+    throw std::runtime_error(csv_path + ": no finite value to draw in " + join(dropped) +
                              (dropped.size() == 1 ? "" : " (any of them)"));
   spec.series = std::move(kept);
   return dropped;
@@ -491,17 +368,9 @@ std::vector<std::string> drop_empty(PlotSpec& spec, const std::string& csv_path)
 
 }  // namespace
 
-bool is_sweep_summary(const std::string& csv_path) {
-  InputFile f(csv_path);
-  std::string line;
-  if (!RowReader(f.stream()).next(line)) return false;
-  const std::vector<std::string> names = csv_fields(line);
-  return names.size() > 2 && names[0] == "point" && std::find(names.begin(), names.end(), "status") != names.end();
-}
-
 std::string left_out_warning(const std::vector<std::string>& names) {
   if (names.empty()) return "";
-  return "left out of the plot, with no finite value to draw: " + joined(names);
+  return "left out of the plot, with no finite value to draw: " + join(names);
 }
 
 PlotSpec summary_spec(const std::string& csv_path, const std::vector<std::string>& columns,
@@ -535,7 +404,8 @@ PlotSpec summary_spec(const std::string& csv_path, const std::vector<std::string
   for (size_t k = 1; k < columns.size(); ++k) {
     const std::string& h = columns[k];
     const std::optional<std::string> unit = unit_of_column(h);
-    const std::string name = unit && bracketed_unit(h) ? trim(h.substr(0, h.rfind('['))) : h;  // the unit drawn once
+    const std::string name =
+        unit && bracketed_unit(h) ? trim_blanks(h.substr(0, h.rfind('['))) : h;  // the unit drawn once
     spec.series.push_back(Series{name, unit.value_or(""), x, table.column(h), !unit});
   }
   return spec;
@@ -560,8 +430,8 @@ std::vector<std::string> plot_csv(const std::string& csv_path, const std::vector
     for (const auto& n : table.names)
       if (n.size() > 6 && n.compare(n.size() - 6, 6, ".omega") == 0) wanted.push_back(n);
     if (wanted.empty())
-      throw std::runtime_error(csv_path + " has no '<pulley>.omega' column to plot; name the columns, its columns: " +
-                               joined(table.names));
+      throw std::runtime_error(
+          csv_path + " has no '<pulley>.omega' column to plot; name the columns, its columns: " + join(table.names));
   }
   for (const auto& name : wanted) table.column(name);  // every unknown name fails before plotting
   // (a sweep's summary takes its x column first; a time series is drawn against t, which drawn as

@@ -11,9 +11,9 @@
 
 #include <cmath>
 #include <string>
-#include <string_view>
-#include <unordered_map>
 #include <vector>
+
+#include "plot/table.hpp"
 
 namespace beltsim::plot {
 
@@ -52,34 +52,10 @@ void plot_png(const PlotSpec& spec);
 // the gnuplot script plot_png runs, drawing spec into the PNG file `png`
 std::string plot_script(const PlotSpec& spec, const std::string& png);
 
-// A CSV file as columns: the first line is the header of names, every later line holds one
-// number per name ("nan" or an empty field: NaN).
-struct Table {
-  std::string path;
-  std::vector<std::string> names;
-  std::vector<std::vector<double>> columns;  // columns[k] belongs to names[k]
-  std::unordered_map<std::string, size_t> index;  // names[k] -> k (a lookup in constant time)
-
-  bool has(std::string_view name) const;
-  // throws std::runtime_error "<path> has no column 'x'; its columns: a, b, ..."
-  const std::vector<double>& column(std::string_view name) const;
-};
-
-// Throws std::runtime_error "<path>:<line>: <reason>" for a bad row (wrong field count, a field
-// that is not a decimal number) and for a missing, empty or unreadable file (a regular file only:
-// io/input_file.hpp). With `only`, the fields of the other columns are not read (NaN): text such
-// as a sweep's status may stand there. Time linear in the file's size, however many columns.
-Table read_timeseries_csv(const std::string& path, const std::vector<std::string>* only = nullptr);
-
 // The events of a run as marks: the rows `t,what,value` of an events.csv (outputs.hpp), labelled
 // "what value" (shortened to 40 characters), the events of one time in one mark joined by "; ".
 // No file: none; a row that is not `number,text,text` (a row cut by a kill) is left out.
 std::vector<Mark> read_event_marks(const std::string& events_csv);
-
-// Whether a CSV file is a sweep's summary.csv (or a point's point.csv): its header starts "point,"
-// and names a status column (sweep/results.hpp). Throws as read_timeseries_csv for a file it
-// cannot read.
-bool is_sweep_summary(const std::string& csv_path);
 
 // Plots `columns` of a timeseries.csv (empty: every '<pulley>.omega' column) against its 't'
 // column, samples with from_t <= t <= to_t only, units from io/units.hpp, titled with the CSV's path; the
