@@ -343,10 +343,6 @@ std::vector<Mark> read_event_marks(const std::string& events_csv) {
   return marks;
 }
 
-namespace {
-
-// leaves out the series with no finite (t, y) pair and returns their names; fails when that is
-// every series
 std::vector<std::string> drop_empty(PlotSpec& spec, const std::string& csv_path) {
   std::vector<std::string> dropped;
   std::vector<Series> kept;
@@ -366,49 +362,9 @@ std::vector<std::string> drop_empty(PlotSpec& spec, const std::string& csv_path)
   return dropped;
 }
 
-}  // namespace
-
 std::string left_out_warning(const std::vector<std::string>& names) {
   if (names.empty()) return "";
   return "left out of the plot, with no finite value to draw: " + join(names);
-}
-
-PlotSpec summary_spec(const std::string& csv_path, const std::vector<std::string>& columns,
-                      const std::string& out_png) {
-  if (columns.size() < 2)
-    throw std::runtime_error(csv_path + " is a sweep's summary: name the x column and at least one y column, e.g. "
-                             "beltsim plot " + csv_path + " pretension slip");
-  const Table table = read_timeseries_csv(csv_path, &columns);
-  const std::vector<double>& x = table.column(columns[0]);
-  for (const auto& name : columns) table.column(name);
-  PlotSpec spec;
-  spec.file = out_png;
-  spec.points = true;
-  // each column's unit as summary_units.csv beside it has it (sweep/results.hpp: the quick form's
-  // figures from the program's table, a sweep file's from the brackets its names end with); a
-  // summary written before that file came: the unit a header gives in brackets ("hub load [N]"),
-  // else not known (unit_of's table would read "slip" as an element's, m/s, for a user's
-  // difference of speeds)
-  const std::optional<ColumnUnits> units = read_units_file(csv_path);
-  const auto unit_of_column = [&](const std::string& h) {
-    if (units)
-      for (const auto& [column, unit] : *units)
-        if (column == h) return unit;
-    return bracketed_unit(h);
-  };
-  spec.x_label = columns[0];
-  const std::filesystem::path cp(csv_path);
-  spec.title = cp.has_parent_path() && cp.parent_path().has_filename()
-                   ? (cp.parent_path().filename() / cp.filename()).string()
-                   : cp.filename().string();
-  for (size_t k = 1; k < columns.size(); ++k) {
-    const std::string& h = columns[k];
-    const std::optional<std::string> unit = unit_of_column(h);
-    const std::string name =
-        unit && bracketed_unit(h) ? trim_blanks(h.substr(0, h.rfind('['))) : h;  // the unit drawn once
-    spec.series.push_back(Series{name, unit.value_or(""), x, table.column(h), !unit});
-  }
-  return spec;
 }
 
 std::vector<std::string> plot_csv(const std::string& csv_path, const std::vector<std::string>& columns, double from_t,
@@ -418,10 +374,7 @@ std::vector<std::string> plot_csv(const std::string& csv_path, const std::vector
       throw std::runtime_error(csv_path +
                                " is a sweep's summary, drawn against a column of its own, not time: "
                                "a start or end time does not apply to it");
-    PlotSpec spec = summary_spec(csv_path, columns, out_png);
-    std::vector<std::string> dropped = drop_empty(spec, csv_path);
-    plot_png(spec);
-    return dropped;
+    return plot_summary_csv(csv_path, columns, out_png);
   }
   const Table table = read_timeseries_csv(csv_path);
   const std::vector<double>& t = table.column("t");

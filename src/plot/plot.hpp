@@ -42,8 +42,14 @@ struct PlotSpec {
 };
 
 // The plot of columns of a sweep's summary.csv (x the first, a mark per point): a figure's unit
-// is the one in brackets at the end of its name, else unknown (its own axis)
+// is the one summary_units.csv beside it gives, else the one in brackets at the end of its name,
+// else unknown (its own axis). Fewer than two columns: an error whose example of a command line
+// names columns the file has (plot_example).
 PlotSpec summary_spec(const std::string& csv_path, const std::vector<std::string>& columns, const std::string& out_png);
+// "beltsim plot <csv> pretension 'slip_max [1]'": a command line that draws the summary, built
+// from its columns (x: the one of `columns` given, else the parameter of most values; y: the first
+// figure with a number that does not repeat a parameter); "" when it has no column of numbers
+std::string plot_example(const std::string& csv_path, const std::vector<std::string>& columns);
 
 // Writes spec.file, its missing folders made (as every output's). Throws std::runtime_error naming
 // the problem: no series, a series with no finite values or t and y of different lengths, a file
@@ -67,6 +73,15 @@ std::vector<Mark> read_event_marks(const std::string& events_csv);
 // the result; when every column is, it fails naming them.
 std::vector<std::string> plot_csv(const std::string& csv_path, const std::vector<std::string>& columns, double from_t,
                                   const std::string& out_png, double to_t = INFINITY);
+
+// plot_csv of a sweep's summary.csv (is_sweep_summary): summary_spec drawn, its columns with no
+// finite value left out and named
+std::vector<std::string> plot_summary_csv(const std::string& csv_path, const std::vector<std::string>& columns,
+                                          const std::string& out_png);
+
+// leaves out the series with no finite (t, y) pair and returns their names; fails naming them
+// when that is every series
+std::vector<std::string> drop_empty(PlotSpec& spec, const std::string& csv_path);
 
 // the warning for plot_csv's left-out columns ("" for none)
 std::string left_out_warning(const std::vector<std::string>& names);

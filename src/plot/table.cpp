@@ -63,20 +63,58 @@ bool Table::has(std::string_view name) const {
   return index.count(std::string(name)) > 0;
 }
 
+std::string name_without_unit(const std::string& name) {
+  const size_t open = name.rfind('[');
+  if (name.empty() || name.back() != ']' || open == std::string::npos) return name;
+  const std::string rest = trim_blanks(name.substr(0, open));
+  return rest.empty() ? name : rest;
+}
+
+std::string column_suggestion(const std::string& name, const std::vector<std::string>& names) {
+  // a sweep file's figures end with their unit, which is easily left out
+  const std::string bare = name_without_unit(name);
+  std::vector<std::string> same, bare_names;
+  for (const std::string& n : names) {
+    if (n != name && name_without_unit(n) == bare) same.push_back("'" + n + "'");
+    bare_names.push_back(name_without_unit(n));
+  }
+  if (!same.empty()) return " (did you mean " + or_list(same) + "?)";
+  if (std::string s = did_you_mean(name, names); !s.empty()) return s;
+  // a slip of the finger in a name that lacks its unit too ("slip_mx" for "slip_max [1]")
+  for (const std::string& close : close_names(bare, bare_names))
+    for (size_t k = 0; k < names.size(); ++k)
+      if (bare_names[k] == close && std::find(same.begin(), same.end(), "'" + names[k] + "'") == same.end())
+        same.push_back("'" + names[k] + "'");
+  return same.empty() ? "" : " (did you mean " + or_list(same) + "?)";
+}
+
 const std::vector<double>& Table::column(std::string_view name) const {
+  return columns[at(name)];
+}
+
+const std::vector<std::string>& Table::text(std::string_view name) const {
+  return texts[at(name)];
+}
+
+size_t Table::at(std::string_view name) const {
   const auto it = index.find(std::string(name));
   if (it == index.end())
     throw std::runtime_error(path + " has no column '" + std::string(name) + "'" +
-                             did_you_mean(std::string(name), names) + "; its columns: " + join(names));
-  return columns[it->second];
+                             column_suggestion(std::string(name), names) + "; its columns: " + join(names));
+  return it->second;
 }
 
-Table read_timeseries_csv(const std::string& path, const std::vector<std::string>* only) {
+Table read_timeseries_csv(const std::string& path, const std::vector<std::string>* only,
+                          const std::vector<std::string>* as_text) {
   InputFile f(path);
   Table t;
   t.path = path;
   std::string line;
   std::vector<bool> wanted;  // per column: read its fields (with `only`: named there)
+  std::vector<bool> text;    // per column: keep its fields as text (named in as_text)
+  const auto named = [](const std::vector<std::string>* list, const std::string& s) {
+    return list && std::find(list->begin(), list->end(), s) != list->end();
+  };
   RowReader rows(f.stream());
   for (int number_of_line = 1; rows.next(line); number_of_line = rows.lines() + 1) {
     if (trim_blanks(line).empty()) continue;
@@ -89,9 +127,11 @@ Table read_timeseries_csv(const std::string& path, const std::vector<std::string
         if (!t.index.emplace(s, t.names.size()).second)
           throw std::runtime_error(where + "the header names '" + s + "' twice");
         t.names.push_back(s);
-        wanted.push_back(!only || std::find(only->begin(), only->end(), s) != only->end());
+        text.push_back(named(as_text, s));
+        wanted.push_back(!text.back() && (!only || named(only, s)));
       }
       t.columns.resize(t.names.size());
+      t.texts.resize(t.names.size());
       continue;
     }
     if (fields.size() != t.names.size())
@@ -99,6 +139,7 @@ Table read_timeseries_csv(const std::string& path, const std::vector<std::string
                                std::to_string(fields.size()));
     for (size_t k = 0; k < fields.size(); ++k) {
       double v = std::nan("");
+      if (text[k]) t.texts[k].push_back(trim_blanks(fields[k]));
       if (!wanted[k]) {
         t.columns[k].push_back(v);
         continue;
@@ -114,11 +155,17 @@ Table read_timeseries_csv(const std::string& path, const std::vector<std::string
   return t;
 }
 
-bool is_sweep_summary(const std::string& csv_path) {
-  InputFile f(csv_path);
+std::vector<std::string> read_csv_header(const std::string& path) {
+  InputFile f(path);
   std::string line;
-  if (!RowReader(f.stream()).next(line)) return false;
-  const std::vector<std::string> names = csv_fields(line);
+  if (!RowReader(f.stream()).next(line)) return {};
+  std::vector<std::string> names = csv_fields(line);
+  for (std::string& n : names) n = trim_blanks(n);
+  return names;
+}
+
+bool is_sweep_summary(const std::string& csv_path) {
+  const std::vector<std::string> names = read_csv_header(csv_path);
   return names.size() > 2 && names[0] == "point" && std::find(names.begin(), names.end(), "status") != names.end();
 }
 
