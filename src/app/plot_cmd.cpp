@@ -31,7 +31,7 @@ int cmd_plot(const std::string& given, const std::vector<std::string>& columns, 
                        (columns.empty() ? std::string("the column named first") : "its column " + columns[0]) +
                        ", not against time, so " + (raw.from ? "--from (a start time)" : "--to (an end time)") +
                        " does not apply; it is for a run's timeseries.csv");
-    if (const std::string w = plot::left_out_warning(plot::plot_csv(csv, columns, from, png, to)); !w.empty())
+    for (const std::string& w : plot::left_out_warnings(plot::plot_csv(csv, columns, from, png, to)))
       std::fprintf(stderr, "beltsim plot: warning: %s\n", w.c_str());
   } catch (const UsageError&) {
     throw;

@@ -78,16 +78,6 @@ size_t code_points(const std::string& s) {
   return n;
 }
 
-// at most n characters (UTF-8 code points) of s, the last an ellipsis when it was longer
-std::string shortened(const std::string& s, size_t n) {
-  size_t chars = 0, cut = 0;
-  for (size_t i = 0; i < s.size(); ++i) {
-    if ((static_cast<unsigned char>(s[i]) & 0xC0) == 0x80) continue;  // a continuation byte
-    if (++chars == n) cut = i;
-  }
-  return chars <= n ? s : s.substr(0, cut) + "…";
-}
-
 // the marks inside [x0, x1], those at one time in one (an event and an overrun that begin at the
 // window's start share a line and a label: two labels there were drawn over each other)
 std::vector<Mark> shown_marks(const PlotSpec& spec, double x0, double x1) {
@@ -194,6 +184,15 @@ void plot_command(std::ostringstream& g, const PlotSpec& spec, const std::vector
 }
 
 }  // namespace
+
+std::string shortened(const std::string& s, size_t n) {
+  size_t chars = 0, cut = 0;
+  for (size_t i = 0; i < s.size(); ++i) {
+    if ((static_cast<unsigned char>(s[i]) & 0xC0) == 0x80) continue;  // a continuation byte
+    if (++chars == n) cut = i;
+  }
+  return chars <= n ? s : s.substr(0, cut) + "…";
+}
 
 void plot_png(const PlotSpec& spec) {
   if (spec.file.empty()) throw std::runtime_error("plot: no output file given");
@@ -367,8 +366,24 @@ std::string left_out_warning(const std::vector<std::string>& names) {
   return "left out of the plot, with no finite value to draw: " + join(names);
 }
 
-std::vector<std::string> plot_csv(const std::string& csv_path, const std::vector<std::string>& columns, double from_t,
-                                  const std::string& out_png, double to_t) {
+std::vector<std::string> left_out_warnings(const PlotReport& report) {
+  std::vector<std::string> w;
+  if (!report.columns.empty()) w.push_back(left_out_warning(report.columns));
+  if (!report.points.empty()) {
+    std::string s = "left out of the plot, with nothing to draw: " + std::to_string(report.points.size()) + " of the " +
+                    std::to_string(report.of_points) + " points (" + report.points_why + "):";
+    // (a sweep of many failed points: the first ten, the others counted)
+    constexpr size_t kListed = 10;
+    for (size_t k = 0; k < report.points.size() && k < kListed; ++k) s += "\n  " + report.points[k];
+    if (report.points.size() > kListed)
+      s += "\n  and " + std::to_string(report.points.size() - kListed) + " more (their status is in the summary)";
+    w.push_back(s);
+  }
+  return w;
+}
+
+PlotReport plot_csv(const std::string& csv_path, const std::vector<std::string>& columns, double from_t,
+                    const std::string& out_png, double to_t) {
   if (is_sweep_summary(csv_path)) {
     if (from_t > -INFINITY || to_t < INFINITY)
       throw std::runtime_error(csv_path +
@@ -422,9 +437,10 @@ std::vector<std::string> plot_csv(const std::string& csv_path, const std::vector
     spec.series.push_back(std::move(s));
   }
   spec.marks = read_event_marks((cp.parent_path() / "events.csv").string());
-  std::vector<std::string> dropped = drop_empty(spec, csv_path);
+  PlotReport report;
+  report.columns = drop_empty(spec, csv_path);
   plot_png(spec);
-  return dropped;
+  return report;
 }
 
 }  // namespace beltsim::plot

@@ -63,21 +63,31 @@ std::string plot_script(const PlotSpec& spec, const std::string& png);
 // No file: none; a row that is not `number,text,text` (a row cut by a kill) is left out.
 std::vector<Mark> read_event_marks(const std::string& events_csv);
 
+// What plot_csv left out of its picture, for the warnings it gives (left_out_warnings)
+struct PlotReport {
+  std::vector<std::string> columns;  // with no finite value there
+  // a sweep summary's points without a mark, in its order: "point 1 (load=40, pretension=-100):
+  // error: ..." (its status, shortened), "point 3 (...): ok, but without a value of slip"
+  std::vector<std::string> points;
+  std::string points_why;  // how many of them for what ("2 failed, 1 not run")
+  size_t of_points = 0;    // the summary's points
+};
+
 // Plots `columns` of a timeseries.csv (empty: every '<pulley>.omega' column) against its 't'
 // column, samples with from_t <= t <= to_t only, units from io/units.hpp, titled with the CSV's path; the
 // events of the events.csv beside it, if there is one, as vertical lines with their labels.
 // A sweep's summary.csv (is_sweep_summary) is drawn as points: the first of `columns` is the x
 // axis, the others y; its x is not time, so a from_t above -inf or a to_t below inf is refused (an error); a point
-// without a value (failed, not run) is left out. A column with no finite value there (a creep
-// undefined at rest, a figure every point failed to give) is left out of the picture and named in
-// the result; when every column is, it fails naming them.
-std::vector<std::string> plot_csv(const std::string& csv_path, const std::vector<std::string>& columns, double from_t,
-                                  const std::string& out_png, double to_t = INFINITY);
+// without a value (failed, not run) is left out and named in the result with its status. A column
+// with no finite value there (a creep undefined at rest, a figure every point failed to give) is
+// left out of the picture and named in the result; when every column is, it fails naming them.
+PlotReport plot_csv(const std::string& csv_path, const std::vector<std::string>& columns, double from_t,
+                    const std::string& out_png, double to_t = INFINITY);
 
 // plot_csv of a sweep's summary.csv (is_sweep_summary): summary_spec drawn, its columns with no
-// finite value left out and named
-std::vector<std::string> plot_summary_csv(const std::string& csv_path, const std::vector<std::string>& columns,
-                                          const std::string& out_png);
+// finite value and its points without a mark left out and named
+PlotReport plot_summary_csv(const std::string& csv_path, const std::vector<std::string>& columns,
+                            const std::string& out_png);
 
 // leaves out the series with no finite (t, y) pair and returns their names; fails naming them
 // when that is every series
@@ -85,5 +95,12 @@ std::vector<std::string> drop_empty(PlotSpec& spec, const std::string& csv_path)
 
 // the warning for plot_csv's left-out columns ("" for none)
 std::string left_out_warning(const std::vector<std::string>& names);
+// the warnings of a PlotReport, one for its columns and one for its points (a line each, the
+// first "left out of the plot, with nothing to draw: 2 of the 6 points (2 failed):"); none when
+// nothing was left out
+std::vector<std::string> left_out_warnings(const PlotReport& report);
+
+// at most n characters (UTF-8 code points) of s, the last an ellipsis when it was longer
+std::string shortened(const std::string& s, size_t n);
 
 }  // namespace beltsim::plot

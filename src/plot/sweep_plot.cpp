@@ -70,15 +70,17 @@ std::string plot_example(const std::string& csv_path, const std::vector<std::str
   return "beltsim plot " + shell_word(csv_path) + " " + shell_word(x) + " " + shell_word(y);
 }
 
-PlotSpec summary_spec(const std::string& csv_path, const std::vector<std::string>& columns,
-                      const std::string& out_png) {
-  if (columns.size() < 2) {
-    const std::string example = plot_example(csv_path, columns);
-    throw std::runtime_error(csv_path + " is a sweep's summary: name the x column and at least one y column" +
-                             (example.empty() ? "" : ", e.g. " + example) +
-                             "; its columns: " + join(read_csv_header(csv_path)));
-  }
-  const Table table = read_timeseries_csv(csv_path, &columns);
+namespace {
+
+// the summary's columns to draw as numbers, and point, status and the parameters as text too
+Table read_summary(const std::string& csv_path, const std::vector<std::string>& columns) {
+  std::vector<std::string> text = parameter_names(read_csv_header(csv_path));
+  text.insert(text.end(), {"point", "status"});
+  return read_timeseries_csv(csv_path, &columns, &text);
+}
+
+PlotSpec spec_of(const Table& table, const std::vector<std::string>& columns, const std::string& out_png) {
+  const std::string& csv_path = table.path;
   const std::vector<double>& x = table.column(columns[0]);
   for (const auto& name : columns) table.column(name);
   PlotSpec spec;
@@ -110,12 +112,78 @@ PlotSpec summary_spec(const std::string& csv_path, const std::vector<std::string
   return spec;
 }
 
-std::vector<std::string> plot_summary_csv(const std::string& csv_path, const std::vector<std::string>& columns,
-                                          const std::string& out_png) {
-  PlotSpec spec = summary_spec(csv_path, columns, out_png);
-  std::vector<std::string> dropped = drop_empty(spec, csv_path);
+// Into report: the points (rows) of the summary that get no mark in spec (its series one per
+// column, a value per row): no x, or no value in any series. Each named with its parameters and
+// why: its status, or what it lacks when it ran ok.
+void note_left_out_points(const Table& table, const PlotSpec& spec, PlotReport& report) {
+  const std::vector<std::string>& ids = table.text("point");
+  const std::vector<std::string>& status = table.text("status");
+  const std::vector<std::string> parameters = parameter_names(table.names);
+  const std::vector<double>& x = spec.series.at(0).t;
+  report.of_points = ids.size();
+  size_t failed = 0, not_run = 0, outdated = 0, lacking = 0;
+  for (size_t i = 0; i < ids.size(); ++i) {
+    bool drawn = false;
+    for (const Series& s : spec.series) drawn = drawn || (std::isfinite(s.t[i]) && std::isfinite(s.y[i]));
+    if (drawn) continue;
+    std::string why = status[i];
+    if (why == "ok") {
+      std::vector<std::string> lacks;
+      if (!std::isfinite(x[i]))
+        lacks.push_back(spec.x_label);
+      else
+        for (const Series& s : spec.series) lacks.push_back(s.name);
+      why = "ok, but without a value of " + or_list(lacks);
+      ++lacking;
+    } else if (why == "not run") {
+      ++not_run;
+    } else if (why.rfind("outdated: ", 0) == 0) {
+      ++outdated;
+    } else {
+      ++failed;
+    }
+    std::string where;
+    for (const std::string& p : parameters) where += (where.empty() ? "" : ", ") + p + "=" + table.text(p)[i];
+    report.points.push_back("point " + ids[i] + (where.empty() ? "" : " (" + where + ")") + ": " + shortened(why, 160));
+  }
+  std::vector<std::string> counts;
+  for (const auto& [n, what] :
+       {std::pair{failed, "failed"}, {not_run, "not run"}, {outdated, "outdated"}, {lacking, "ok without a value"}})
+    if (n > 0) counts.push_back(std::to_string(n) + " " + what);
+  report.points_why = join(counts);
+}
+
+}  // namespace
+
+namespace {
+
+// fewer than two columns: the error, with an example made of the file's own
+void require_x_and_y(const std::string& csv_path, const std::vector<std::string>& columns) {
+  if (columns.size() >= 2) return;
+  const std::string example = plot_example(csv_path, columns);
+  throw std::runtime_error(csv_path + " is a sweep's summary: name the x column and at least one y column" +
+                           (example.empty() ? "" : ", e.g. " + example) +
+                           "; its columns: " + join(read_csv_header(csv_path)));
+}
+
+}  // namespace
+
+PlotSpec summary_spec(const std::string& csv_path, const std::vector<std::string>& columns,
+                      const std::string& out_png) {
+  require_x_and_y(csv_path, columns);
+  return spec_of(read_timeseries_csv(csv_path, &columns), columns, out_png);
+}
+
+PlotReport plot_summary_csv(const std::string& csv_path, const std::vector<std::string>& columns,
+                            const std::string& out_png) {
+  require_x_and_y(csv_path, columns);
+  const Table table = read_summary(csv_path, columns);
+  PlotSpec spec = spec_of(table, columns, out_png);
+  PlotReport report;
+  report.columns = drop_empty(spec, csv_path);
+  note_left_out_points(table, spec, report);
   plot_png(spec);
-  return dropped;
+  return report;
 }
 
 }  // namespace beltsim::plot

@@ -128,7 +128,7 @@ Table read_timeseries_csv(const std::string& path, const std::vector<std::string
           throw std::runtime_error(where + "the header names '" + s + "' twice");
         t.names.push_back(s);
         text.push_back(named(as_text, s));
-        wanted.push_back(!text.back() && (!only || named(only, s)));
+        wanted.push_back(text.back() ? named(only, s) : !only || named(only, s));
       }
       t.columns.resize(t.names.size());
       t.texts.resize(t.names.size());

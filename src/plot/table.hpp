@@ -73,8 +73,8 @@ std::string column_suggestion(const std::string& name, const std::vector<std::st
 // that is not a decimal number) and for a missing, empty or unreadable file (a regular file only:
 // io/input_file.hpp). With `only`, the fields of the other columns are not read (NaN): text such
 // as a sweep's status may stand there. With `as_text`, the fields of the columns it names are kept
-// as text (Table::texts), not read as numbers (NaN). Time linear in the file's size, however many
-// columns.
+// as text (Table::texts), and read as numbers only when `only` names them too (else NaN). Time
+// linear in the file's size, however many columns.
 Table read_timeseries_csv(const std::string& path, const std::vector<std::string>* only = nullptr,
                           const std::vector<std::string>* as_text = nullptr);
 

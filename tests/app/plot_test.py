@@ -93,6 +93,26 @@ class Forms(unittest.TestCase):
         self.assertIn("--to (an end time) does not apply", err)
         self.assertFalse(self.exists("p.png"))
 
+    def test_points_left_out_of_a_summary_are_named(self):
+        # trial 27: 2 of 6 points failed, the figure drew 4 marks and nothing was said
+        with open(os.path.join(self.dir, "failed.csv"), "w") as f:
+            f.write("point,mu,pretension,status,inputs,slip\n"
+                    "0,0.3,300,ok,x,0.5\n"
+                    "1,0.3,-100,\"error: p.lua:9: belt.pretension must be > 0 (got -100 N)\",x,\n"
+                    "2,1,300,not run,,\n"
+                    "3,1,500,ok,x,0.0625\n")
+        code, out, err = run(["plot", "failed.csv", "pretension", "slip", "--out", "f.png"], self.dir)
+        self.assertEqual(code, 0, err)
+        self.assertEqual(out, "f.png\n")
+        self.assertEqual(err, "beltsim plot: warning: left out of the plot, with nothing to draw: 2 of the 4 points "
+                              "(1 failed, 1 not run):\n"
+                              "  point 1 (mu=0.3, pretension=-100): error: p.lua:9: belt.pretension must be > 0 "
+                              "(got -100 N)\n"
+                              "  point 2 (mu=1, pretension=300): not run\n")
+        # every point drawn: no warning
+        code, out, err = run(["plot", "summary.csv", "pretension", "slip", "--out", "s.png"], self.dir)
+        self.assertEqual((code, err), (0, ""))
+
     def test_options_plot_does_not_take(self):
         for option in ("--csv", "--rtol"):
             code, out, err = run(["plot", "summary.csv", "pretension", "slip", option, "1"], self.dir)

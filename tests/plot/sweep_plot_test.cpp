@@ -1,5 +1,5 @@
-// plot/sweep_plot.cpp: `beltsim plot` of a sweep's summary.csv: the hints of its errors built
-// from the file's own columns.
+// plot/sweep_plot.cpp: `beltsim plot` of a sweep's summary.csv: the points it leaves out named
+// with their status, the hints of its errors built from the file's own columns.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -81,7 +81,7 @@ TEST(SweepPlot, TheExampleNamesTheFilesOwnColumns) {
   const std::string x_only = error_of([&] { plot_csv(csv, {"mu"}, -INFINITY, (d / "p.png").string()); });
   EXPECT_NE(x_only.find("summary.csv' mu 'slip_max [1]';"), std::string::npos) << x_only;
   EXPECT_EQ(plot_example(csv, {}).substr(0, 13), "beltsim plot ");
-  EXPECT_TRUE(plot_csv(csv, {"pretension", "slip_max [1]"}, -INFINITY, (d / "p.png").string()).empty());
+  EXPECT_TRUE(plot_csv(csv, {"pretension", "slip_max [1]"}, -INFINITY, (d / "p.png").string()).columns.empty());
   EXPECT_TRUE(fs::exists(d / "p.png"));
   // no column of numbers but the parameter: no example, the columns still listed
   fs::create_directories(d / "text");
@@ -91,6 +91,66 @@ TEST(SweepPlot, TheExampleNamesTheFilesOwnColumns) {
   EXPECT_NE(bare.find("name the x column and at least one y column; its columns: point, mu, status, note"),
             std::string::npos)
       << bare;
+}
+
+// a point without a mark (failed, not run, outdated, or ok without the values drawn) is named with
+// its parameters and why, in the summary's order (trial 27: 2 of 6 points left out, nothing said)
+TEST(SweepPlot, PointsWithoutAMarkAreNamedWithTheirStatus) {
+  const fs::path d = dir("sweep_left_out");
+  const std::string long_error = "error: " + std::string(300, 'x');
+  const std::string csv = write_file(d / "summary.csv",
+                                     "point,load,pretension,status,slip,tight [N]\n"
+                                     "0,40,300,ok,0.5,700\n"
+                                     "1,40,-100,\"error: belt.pretension must be > 0 (got -100 N)\",,\n"
+                                     "2,60,300,ok,,\n"
+                                     "3,60,500,not run,,\n"
+                                     "4,60,700,\"outdated: the file has changed\",,\n"
+                                     "5,60,900,\"diverged at t = 0.05 s: runs away\",,\n"
+                                     "6,60,1100,ok,,900\n"
+                                     "7,80,300," +
+                                         long_error + ",,\n");
+  const PlotReport r = plot_csv(csv, {"pretension", "slip", "tight [N]"}, -INFINITY, (d / "p.png").string());
+  EXPECT_TRUE(fs::exists(d / "p.png"));
+  EXPECT_TRUE(r.columns.empty());
+  EXPECT_EQ(r.of_points, 8u);
+  ASSERT_EQ(r.points.size(), 6u);
+  EXPECT_EQ(r.points[0], "point 1 (load=40, pretension=-100): error: belt.pretension must be > 0 (got -100 N)");
+  EXPECT_EQ(r.points[1], "point 2 (load=60, pretension=300): ok, but without a value of slip or tight");
+  EXPECT_EQ(r.points[2], "point 3 (load=60, pretension=500): not run");
+  EXPECT_EQ(r.points[3], "point 4 (load=60, pretension=700): outdated: the file has changed");
+  EXPECT_EQ(r.points[4], "point 5 (load=60, pretension=900): diverged at t = 0.05 s: runs away");
+  // (point 6 has a value of one column: drawn) a long status is shortened
+  EXPECT_EQ(r.points[5].find("point 7 (load=80, pretension=300): error: xxx"), 0u);
+  EXPECT_LT(r.points[5].size(), 220u);
+  EXPECT_EQ(r.points_why, "3 failed, 1 not run, 1 outdated, 1 ok without a value");
+  const std::vector<std::string> w = left_out_warnings(r);
+  ASSERT_EQ(w.size(), 1u);
+  EXPECT_EQ(w[0].substr(0, w[0].find('\n')),
+            "left out of the plot, with nothing to draw: 6 of the 8 points (3 failed, 1 not run, 1 outdated, 1 ok "
+            "without a value):");
+  EXPECT_NE(w[0].find("\n  point 3 (load=60, pretension=500): not run\n"), std::string::npos) << w[0];
+  // a point without x is left out whatever its figures
+  const std::string no_x = write_file(d / "no_x.csv", "point,mu,status,x,slip\n0,0.3,ok,1,2\n1,0.5,ok,,3\n");
+  const PlotReport rx = plot_csv(no_x, {"x", "slip"}, -INFINITY, (d / "x.png").string());
+  ASSERT_EQ(rx.points.size(), 1u);
+  EXPECT_EQ(rx.points[0], "point 1 (mu=0.5): ok, but without a value of x");
+  // every point drawn: nothing to say
+  const PlotReport all = plot_csv(bracketed_summary(d), {"pretension", "tight [N]"}, -INFINITY, (d / "a.png").string());
+  EXPECT_TRUE(all.points.empty());
+  EXPECT_TRUE(left_out_warnings(all).empty());
+}
+
+// a sweep of many failed points: the first ten listed, the others counted
+TEST(SweepPlot, ManyLeftOutPointsAreCounted) {
+  PlotReport r;
+  r.of_points = 30;
+  r.points_why = "25 failed";
+  for (int k = 0; k < 25; ++k) r.points.push_back("point " + std::to_string(k) + ": error: boom");
+  const std::vector<std::string> w = left_out_warnings(r);
+  ASSERT_EQ(w.size(), 1u);
+  EXPECT_NE(w[0].find("\n  point 9: error: boom\n  and 15 more (their status is in the summary)"), std::string::npos)
+      << w[0];
+  EXPECT_EQ(w[0].find("point 10:"), std::string::npos) << w[0];
 }
 
 }  // namespace
