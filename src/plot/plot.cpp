@@ -46,13 +46,35 @@ std::string shared_quantity(const PlotSpec& spec, const Group& g) {
   return q;
 }
 
-// "name [unit]" for one series, "omega [rad/s]" for several of one quantity, else the names
+// whether every series of the group is of one name (one column, a series per value of another)
+bool one_name(const PlotSpec& spec, const std::vector<int>& series) {
+  for (int k : series)
+    if (spec.series[k].name != spec.series[series[0]].name) return false;
+  return true;
+}
+
+// "name [unit]" for series of one name, "omega [rad/s]" for several of one quantity, else the names
 std::string axis_label(const PlotSpec& spec, const Group& g) {
-  if (g.series.size() == 1) return with_unit(spec.series[g.series[0]].name, g.unit);
+  if (one_name(spec, g.series)) return with_unit(spec.series[g.series[0]].name, g.unit);
   if (const std::string q = shared_quantity(spec, g); !q.empty()) return with_unit(q, g.unit);
-  std::string names;
-  for (int k : g.series) names += (names.empty() ? "" : ", ") + spec.series[k].name;
-  return with_unit(names, g.unit);
+  std::vector<std::string> names;
+  for (int k : g.series)
+    if (std::find(names.begin(), names.end(), spec.series[k].name) == names.end()) names.push_back(spec.series[k].name);
+  return with_unit(join(names), g.unit);
+}
+
+// a series' title in the legend: its name, with its unit when the axes differ in theirs, and the
+// value of the column it is drawn for ("slip_max, load = 40 N·m"; that alone when every series
+// drawn is of one name)
+std::string legend_title(const PlotSpec& spec, int k, bool units_in_key, bool right) {
+  const Series& s = spec.series[k];
+  std::string title = units_in_key ? with_unit(s.name, s.unit) : s.name;
+  if (!s.variant.empty()) {
+    std::vector<int> all(spec.series.size());
+    for (size_t i = 0; i < all.size(); ++i) all[i] = static_cast<int>(i);
+    title = one_name(spec, all) ? s.variant : title + ", " + s.variant;
+  }
+  return title + (right ? " (right axis)" : "");
 }
 
 // the series as a gnuplot datablock $s<k>: "t y" rows, an empty line (a gap) at undefined values
@@ -175,10 +197,15 @@ void plot_command(std::ostringstream& g, const PlotSpec& spec, const std::vector
     const int k = series[n];
     const Series& s = spec.series[k];
     const bool right = second_axis && std::find(y2.begin(), y2.end(), k) != y2.end();
-    g << (n ? ", \\\n     " : "") << "$s" << k << " using 1:2 with "
-      << (spec.points ? "points pt 7 ps 1.5 lt " : "lines lw 2 lt ") << k + 1
-      << (right ? " axes x1y2" : "") << " title "
-      << gnuplot_string(units_in_key ? with_unit(s.name, s.unit) + (right ? " (right axis)" : "") : s.name);
+    // the shapes of a series' marks: a filled circle, square, triangle, diamond, triangle down
+    static constexpr int kShapes[] = {7, 5, 9, 13, 11};
+    g << (n ? ", \\\n     " : "") << "$s" << k << " using 1:2 with ";
+    if (spec.points)
+      g << (spec.joined ? "linespoints lw 1.5 " : "points ") << "pt " << kShapes[s.shape % 5] << " ps 1.5 ";
+    else
+      g << "lines lw 2 ";
+    g << "lt " << (s.colour > 0 ? s.colour : k + 1) << (right ? " axes x1y2" : "") << " title "
+      << gnuplot_string(legend_title(spec, k, units_in_key, right));
   }
   g << "\n";
 }
@@ -215,8 +242,10 @@ std::string plot_script(const PlotSpec& spec, const std::string& png) {
     bool any = false;
     for (size_t i = 0; i < s.t.size() && !any; ++i) any = std::isfinite(s.t[i]) && std::isfinite(s.y[i]);
     if (!any) throw std::runtime_error("plot " + spec.file + ": series '" + s.name + "' has no finite values");
-    auto g = std::find_if(groups.begin(), groups.end(),
-                          [&](const Group& x) { return x.unit == s.unit && !x.unknown && !s.unknown_unit; });
+    // (a series of unknown unit shares its axis only with those of its name: its column's, one a value)
+    auto g = std::find_if(groups.begin(), groups.end(), [&](const Group& x) {
+      return x.unit == s.unit && x.unknown == s.unknown_unit && (!x.unknown || spec.series[x.series[0]].name == s.name);
+    });
     if (g == groups.end()) g = groups.insert(groups.end(), Group{s.unit, {}, s.unknown_unit});
     g->series.push_back(static_cast<int>(k));
   }
@@ -267,7 +296,7 @@ std::string plot_script(const PlotSpec& spec, const std::string& png) {
     // the legends on the left, unless the top panel's (the one with the marks' labels) would cover
     // labels there (an event at the window's start) and fewer on the right: then on the right
     size_t longest = 0;
-    for (int k : groups[0].series) longest = std::max(longest, code_points(spec.series[k].name));
+    for (int k : groups[0].series) longest = std::max(longest, code_points(legend_title(spec, k, false, false)));
     // a sample line and the margins, about 9 pixels a character at 12 pt
     LegendBox legend{9.0 * static_cast<double>(longest) + 120, spec.width * (0.97 - 0.1)};
     int left = 0, right = 0;
@@ -379,18 +408,22 @@ std::vector<std::string> left_out_warnings(const PlotReport& report) {
       s += "\n  and " + std::to_string(report.points.size() - kListed) + " more (their status is in the summary)";
     w.push_back(s);
   }
+  w.insert(w.end(), report.notes.begin(), report.notes.end());
   return w;
 }
 
 PlotReport plot_csv(const std::string& csv_path, const std::vector<std::string>& columns, double from_t,
-                    const std::string& out_png, double to_t) {
+                    const std::string& out_png, double to_t, const std::string& by) {
   if (is_sweep_summary(csv_path)) {
     if (from_t > -INFINITY || to_t < INFINITY)
       throw std::runtime_error(csv_path +
                                " is a sweep's summary, drawn against a column of its own, not time: "
                                "a start or end time does not apply to it");
-    return plot_summary_csv(csv_path, columns, out_png);
+    return plot_summary_csv(csv_path, columns, out_png, by);
   }
+  if (!by.empty())
+    throw std::runtime_error(csv_path + " is a time series, drawn against t: a series per value of a column (" + by +
+                             ") is for a sweep's summary");
   const Table table = read_timeseries_csv(csv_path);
   const std::vector<double>& t = table.column("t");
   std::vector<std::string> wanted = columns;

@@ -7,6 +7,7 @@
 #include <set>
 #include <stdexcept>
 
+#include "io/number_text.hpp"
 #include "io/suggest.hpp"
 #include "io/units.hpp"
 #include "plot/plot.hpp"
@@ -72,11 +73,23 @@ std::string plot_example(const std::string& csv_path, const std::vector<std::str
 
 namespace {
 
-// the summary's columns to draw as numbers, and point, status and the parameters as text too
-Table read_summary(const std::string& csv_path, const std::vector<std::string>& columns) {
+// the summary's columns to draw as numbers, and point, status, the parameters and `by` as text too
+Table read_summary(const std::string& csv_path, const std::vector<std::string>& columns, const std::string& by) {
   std::vector<std::string> text = parameter_names(read_csv_header(csv_path));
-  text.insert(text.end(), {"point", "status"});
+  text.insert(text.end(), {"point", "status", by});
   return read_timeseries_csv(csv_path, &columns, &text);
+}
+
+// a column's unit as summary_units.csv beside the summary has it (sweep/results.hpp: the quick
+// form's figures from the program's table, a sweep file's from the brackets its names end with);
+// a summary written before that file came: the unit a header gives in brackets ("hub load [N]"),
+// else not known (unit_of's table would read "slip" as an element's, m/s, for a user's difference
+// of speeds)
+std::optional<std::string> column_unit(const std::optional<ColumnUnits>& units, const std::string& h) {
+  if (units)
+    for (const auto& [column, unit] : *units)
+      if (column == h) return unit;
+  return bracketed_unit(h);
 }
 
 PlotSpec spec_of(const Table& table, const std::vector<std::string>& columns, const std::string& out_png) {
@@ -86,18 +99,7 @@ PlotSpec spec_of(const Table& table, const std::vector<std::string>& columns, co
   PlotSpec spec;
   spec.file = out_png;
   spec.points = true;
-  // each column's unit as summary_units.csv beside it has it (sweep/results.hpp: the quick form's
-  // figures from the program's table, a sweep file's from the brackets its names end with); a
-  // summary written before that file came: the unit a header gives in brackets ("hub load [N]"),
-  // else not known (unit_of's table would read "slip" as an element's, m/s, for a user's
-  // difference of speeds)
   const std::optional<ColumnUnits> units = read_units_file(csv_path);
-  const auto unit_of_column = [&](const std::string& h) {
-    if (units)
-      for (const auto& [column, unit] : *units)
-        if (column == h) return unit;
-    return bracketed_unit(h);
-  };
   spec.x_label = columns[0];
   const std::filesystem::path cp(csv_path);
   spec.title = cp.has_parent_path() && cp.parent_path().has_filename()
@@ -105,7 +107,7 @@ PlotSpec spec_of(const Table& table, const std::vector<std::string>& columns, co
                    : cp.filename().string();
   for (size_t k = 1; k < columns.size(); ++k) {
     const std::string& h = columns[k];
-    const std::optional<std::string> unit = unit_of_column(h);
+    const std::optional<std::string> unit = column_unit(units, h);
     const std::string name = unit && bracketed_unit(h) ? name_without_unit(h) : h;  // the unit drawn once
     spec.series.push_back(Series{name, unit.value_or(""), x, table.column(h), !unit});
   }
@@ -113,9 +115,10 @@ PlotSpec spec_of(const Table& table, const std::vector<std::string>& columns, co
 }
 
 // Into report: the points (rows) of the summary that get no mark in spec (its series one per
-// column, a value per row): no x, or no value in any series. Each named with its parameters and
-// why: its status, or what it lacks when it ran ok.
-void note_left_out_points(const Table& table, const PlotSpec& spec, PlotReport& report) {
+// column, a value per row): no x, no value in any series, or (by) none of the column the series
+// are told apart by. Each named with its parameters and why: its status, or what it lacks when it
+// ran ok.
+void note_left_out_points(const Table& table, const PlotSpec& spec, const std::string& by, PlotReport& report) {
   const std::vector<std::string>& ids = table.text("point");
   const std::vector<std::string>& status = table.text("status");
   const std::vector<std::string> parameters = parameter_names(table.names);
@@ -125,12 +128,15 @@ void note_left_out_points(const Table& table, const PlotSpec& spec, PlotReport& 
   for (size_t i = 0; i < ids.size(); ++i) {
     bool drawn = false;
     for (const Series& s : spec.series) drawn = drawn || (std::isfinite(s.t[i]) && std::isfinite(s.y[i]));
-    if (drawn) continue;
+    const bool without_by = !by.empty() && table.text(by)[i].empty();
+    if (drawn && !without_by) continue;
     std::string why = status[i];
     if (why == "ok") {
       std::vector<std::string> lacks;
       if (!std::isfinite(x[i]))
         lacks.push_back(spec.x_label);
+      else if (drawn)
+        lacks.push_back(by);
       else
         for (const Series& s : spec.series) lacks.push_back(s.name);
       why = "ok, but without a value of " + or_list(lacks);
@@ -153,6 +159,90 @@ void note_left_out_points(const Table& table, const PlotSpec& spec, PlotReport& 
   report.points_why = join(counts);
 }
 
+// A value of the column the series are told apart by: its text as written, the number it is (when
+// every value is one) and the rows that have it
+struct ByValue {
+  std::string text;
+  double number = 0;
+  std::vector<size_t> rows;
+};
+
+// the values of the column `by` in its rows (none for an empty field): in increasing order when
+// every one is a number (one value however written: 40 and 40.0), else in the order they come
+std::vector<ByValue> by_values(const std::vector<std::string>& texts) {
+  bool numbers = true;
+  for (const std::string& t : texts) {
+    double v = 0;
+    numbers = numbers && (t.empty() || (parse_number_field(t, v) && std::isfinite(v)));
+  }
+  std::vector<ByValue> values;
+  for (size_t i = 0; i < texts.size(); ++i) {
+    if (texts[i].empty()) continue;
+    double v = 0;
+    if (numbers) parse_number_field(texts[i], v);
+    auto it = std::find_if(values.begin(), values.end(),
+                           [&](const ByValue& b) { return numbers ? b.number == v : b.text == texts[i]; });
+    if (it == values.end()) it = values.insert(values.end(), ByValue{texts[i], v, {}});
+    it->rows.push_back(i);
+  }
+  if (numbers)
+    std::stable_sort(values.begin(), values.end(),
+                     [](const ByValue& a, const ByValue& b) { return a.number < b.number; });
+  return values;
+}
+
+// Splits spec's series (one per column, a value per row) into one per value of the column `by`,
+// its marks joined by a line in x order: a colour per value, a shape per column; titled "load =
+// 40 N·m" (with the column's unit). A series with no value to draw is left out (its points are
+// named as such). When a series holds several points at one x (another parameter varies within
+// it), a line through them would zigzag: the marks are left unjoined, and report notes why.
+void split_by(const Table& table, const std::string& by, const std::optional<std::string>& unit, PlotSpec& spec,
+              PlotReport& report) {
+  const std::vector<ByValue> values = by_values(table.text(by));
+  const std::string label = unit && bracketed_unit(by) ? name_without_unit(by) : by;
+  const std::string suffix = unit && !unit->empty() ? " " + *unit : "";
+  std::vector<Series> split;
+  for (size_t c = 0; c < spec.series.size(); ++c) {
+    const Series& whole = spec.series[c];
+    for (size_t v = 0; v < values.size(); ++v) {
+      std::vector<size_t> rows;
+      for (const size_t i : values[v].rows)
+        if (std::isfinite(whole.t[i])) rows.push_back(i);
+      std::stable_sort(rows.begin(), rows.end(), [&](size_t a, size_t b) { return whole.t[a] < whole.t[b]; });
+      Series s{whole.name, whole.unit, {}, {}, whole.unknown_unit};
+      bool any = false;
+      for (const size_t i : rows) {
+        s.t.push_back(whole.t[i]);
+        s.y.push_back(whole.y[i]);
+        any = any || std::isfinite(whole.y[i]);
+      }
+      if (!any) continue;
+      s.variant = label + " = " + values[v].text + suffix;
+      s.colour = static_cast<int>(v) + 1;
+      s.shape = static_cast<int>(c);
+      split.push_back(std::move(s));
+    }
+  }
+  // the first x a series has two points at, and the parameters that differ between them
+  const std::vector<std::string> parameters = parameter_names(table.names);
+  const std::vector<double>& x = spec.series.at(0).t;
+  for (const ByValue& v : values)
+    for (size_t a = 0; a < v.rows.size() && report.notes.empty(); ++a)
+      for (size_t b = a + 1; b < v.rows.size() && report.notes.empty(); ++b) {
+        const size_t i = v.rows[a], j = v.rows[b];
+        if (!std::isfinite(x[i]) || x[i] != x[j]) continue;
+        std::vector<std::string> differ;
+        for (const std::string& p : parameters)
+          if (p != by && table.text(p)[i] != table.text(p)[j]) differ.push_back(p);
+        report.notes.push_back("--by " + by + ": the series " + label + " = " + v.text + suffix +
+                               " has several points at " + spec.x_label + " = " + number_text(x[i]) +
+                               (differ.empty() ? "" : " (they differ in " + and_list(differ) + ")") +
+                               ": the points are drawn unjoined, as a line through them would zigzag");
+      }
+  spec.series = std::move(split);
+  spec.joined = report.notes.empty();
+}
+
 }  // namespace
 
 namespace {
@@ -168,21 +258,41 @@ void require_x_and_y(const std::string& csv_path, const std::vector<std::string>
 
 }  // namespace
 
-PlotSpec summary_spec(const std::string& csv_path, const std::vector<std::string>& columns,
-                      const std::string& out_png) {
+namespace {
+
+// summary_spec's, its left-out columns and points and its notes in report
+PlotSpec build_spec(const std::string& csv_path, const std::vector<std::string>& columns, const std::string& out_png,
+                    const std::string& by, PlotReport& report) {
   require_x_and_y(csv_path, columns);
-  return spec_of(read_timeseries_csv(csv_path, &columns), columns, out_png);
+  if (!by.empty()) {
+    const std::vector<std::string> names = read_csv_header(csv_path);
+    if (std::find(names.begin(), names.end(), by) == names.end())
+      throw std::runtime_error("--by " + by + ": " + csv_path + " has no column '" + by + "'" +
+                               column_suggestion(by, names) + "; its columns: " + join(names));
+    if (std::find(columns.begin(), columns.end(), by) != columns.end())
+      throw std::runtime_error(csv_path + ": " + by + " is drawn (" + (by == columns[0] ? "x" : "y") +
+                               "), so it cannot tell series apart too: draw a series per value of another column");
+  }
+  const Table table = read_summary(csv_path, columns, by);
+  PlotSpec spec = spec_of(table, columns, out_png);
+  report.columns = drop_empty(spec, csv_path);
+  note_left_out_points(table, spec, by, report);
+  if (!by.empty()) split_by(table, by, column_unit(read_units_file(csv_path), by), spec, report);
+  return spec;
+}
+
+}  // namespace
+
+PlotSpec summary_spec(const std::string& csv_path, const std::vector<std::string>& columns, const std::string& out_png,
+                      const std::string& by) {
+  PlotReport report;
+  return build_spec(csv_path, columns, out_png, by, report);
 }
 
 PlotReport plot_summary_csv(const std::string& csv_path, const std::vector<std::string>& columns,
-                            const std::string& out_png) {
-  require_x_and_y(csv_path, columns);
-  const Table table = read_summary(csv_path, columns);
-  PlotSpec spec = spec_of(table, columns, out_png);
+                            const std::string& out_png, const std::string& by) {
   PlotReport report;
-  report.columns = drop_empty(spec, csv_path);
-  note_left_out_points(table, spec, report);
-  plot_png(spec);
+  plot_png(build_spec(csv_path, columns, out_png, by, report));
   return report;
 }
 

@@ -113,6 +113,38 @@ class Forms(unittest.TestCase):
         code, out, err = run(["plot", "summary.csv", "pretension", "slip", "--out", "s.png"], self.dir)
         self.assertEqual((code, err), (0, ""))
 
+    def test_by_draws_a_series_per_value_of_a_parameter(self):
+        # trial 27 S1: the points of both mu shared one colour; --by mu draws a line per mu
+        code, out, err = run(["plot", "summary.csv", "pretension", "slip", "--out", "plain.png"], self.dir)
+        self.assertEqual((code, err), (0, ""))
+        code, out, err = run(["plot", "summary.csv", "pretension", "slip", "--by", "mu", "--out", "by.png"], self.dir)
+        self.assertEqual((code, out, err), (0, "by.png\n", ""))
+        with open(os.path.join(self.dir, "plain.png"), "rb") as a, open(os.path.join(self.dir, "by.png"), "rb") as b:
+            self.assertNotEqual(a.read(), b.read())
+        code, out, err = run(["plot", "--help"], self.dir)
+        self.assertIn("--by PARAM", out)
+
+    def test_by_refuses_what_it_cannot_draw(self):
+        # a column the summary has not: exit 1 (as any column it has not), with the close name
+        code, out, err = run(["plot", "summary.csv", "pretension", "slip", "--by", "Mu", "--out", "p.png"], self.dir)
+        self.assertEqual(code, 1, err)
+        self.assertIn("--by Mu: summary.csv has no column 'Mu' (did you mean 'mu'?); its columns: point, mu,", err)
+        # the x or a y column: bad usage
+        for by, axis in (("pretension", "x"), ("slip", "y")):
+            code, out, err = run(["plot", "summary.csv", "pretension", "slip", "--by", by, "--out", "p.png"], self.dir)
+            self.assertEqual(code, 2, err)
+            self.assertIn("--by %s: %s is drawn, as %s; --by takes another column" % (by, by, axis), err)
+        # a time series: bad usage
+        code, out, err = run(["plot", "timeseries.csv", "driver.omega", "--by", "mu", "--out", "p.png"], self.dir)
+        self.assertEqual(code, 2, err)
+        self.assertIn("--by: timeseries.csv is a run's time series, drawn against t; --by (a series per value of a "
+                      "column) is for a sweep's summary.csv", err)
+        self.assertFalse(self.exists("p.png"))
+        # a command that does not take it
+        code, out, err = run(["summary", ".", "--by", "mu"], self.dir)
+        self.assertEqual(code, 2, err)
+        self.assertIn("summary does not take: --by mu", err)
+
     def test_options_plot_does_not_take(self):
         for option in ("--csv", "--rtol"):
             code, out, err = run(["plot", "summary.csv", "pretension", "slip", option, "1"], self.dir)

@@ -1,5 +1,6 @@
-// plot/sweep_plot.cpp: `beltsim plot` of a sweep's summary.csv: the points it leaves out named
-// with their status, the hints of its errors built from the file's own columns.
+// plot/sweep_plot.cpp: `beltsim plot` of a sweep's summary.csv: a series per value of a column
+// (--by), the points it leaves out named with their status, the hints of its errors built from
+// the file's own columns.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -151,6 +152,133 @@ TEST(SweepPlot, ManyLeftOutPointsAreCounted) {
   EXPECT_NE(w[0].find("\n  point 9: error: boom\n  and 15 more (their status is in the summary)"), std::string::npos)
       << w[0];
   EXPECT_EQ(w[0].find("point 10:"), std::string::npos) << w[0];
+}
+
+// the rows of load x pretension, not in x order (a sweep's first list varies slowest; here shuffled)
+std::string load_summary(const fs::path& d, const std::string& load_column = "load") {
+  return write_file(d / "summary.csv", "point," + load_column +
+                                           ",pretension,status,slip,tight [N]\n"
+                                           "0,60,700,ok,0.1,1200\n1,60,300,ok,0.6,1000\n2,60,500,ok,0.25,1100\n"
+                                           "3,40,500,ok,0.05,850\n4,40,300,ok,0.2,750\n5,40,700,ok,0.01,950\n");
+}
+
+// --by: a series per value of the column (trial 27 S1: the loads shared one colour, so the figure
+// could not tell them apart), in increasing order, each in x order, titled with the value, a
+// colour per value, a shape per column, joined
+TEST(SweepPlot, ASeriesPerValueOfAColumn) {
+  const fs::path d = dir("sweep_by");
+  const std::string csv = load_summary(d);
+  const PlotSpec spec = summary_spec(csv, {"pretension", "slip", "tight [N]"}, (d / "p.png").string(), "load");
+  ASSERT_EQ(spec.series.size(), 4u);
+  EXPECT_TRUE(spec.joined);
+  const std::vector<std::pair<std::string, std::string>> names{
+      {"slip", "load = 40"}, {"slip", "load = 60"}, {"tight", "load = 40"}, {"tight", "load = 60"}};
+  for (size_t k = 0; k < 4; ++k) {
+    EXPECT_EQ(spec.series[k].name, names[k].first);
+    EXPECT_EQ(spec.series[k].variant, names[k].second);
+    EXPECT_EQ(spec.series[k].colour, static_cast<int>(k % 2) + 1);
+    EXPECT_EQ(spec.series[k].shape, static_cast<int>(k / 2));
+    EXPECT_EQ(spec.series[k].t, (std::vector<double>{300, 500, 700}));  // x order
+  }
+  EXPECT_EQ(spec.series[0].y, (std::vector<double>{0.2, 0.05, 0.01}));  // load 40's, in x order
+  EXPECT_EQ(spec.series[3].y, (std::vector<double>{1000, 1100, 1200}));
+  EXPECT_EQ(spec.series[2].unit, "N");
+  const std::string script = plot_script(spec, "p.png");
+  EXPECT_NE(script.find("with linespoints"), std::string::npos) << script;
+  EXPECT_NE(script.find("title 'slip, load = 40'"), std::string::npos) << script;
+  EXPECT_NE(script.find("title 'tight [N], load = 60 (right axis)'"), std::string::npos) << script;
+  // one column: the value alone titles its series; slip (of no known unit) keeps one axis
+  const PlotSpec one = summary_spec(csv, {"pretension", "slip"}, (d / "p.png").string(), "load");
+  const std::string one_script = plot_script(one, "p.png");
+  EXPECT_NE(one_script.find("title 'load = 60'"), std::string::npos) << one_script;
+  EXPECT_EQ(one_script.find("multiplot"), std::string::npos) << one_script;
+  EXPECT_NE(one_script.find("set ylabel 'slip'"), std::string::npos) << one_script;
+  // without --by, as before: a mark per point, unjoined, one series per column
+  const PlotSpec plain = summary_spec(csv, {"pretension", "slip"}, (d / "p.png").string());
+  EXPECT_EQ(plain.series.size(), 1u);
+  EXPECT_FALSE(plain.joined);
+  EXPECT_EQ(plot_script(plain, "p.png").find("linespoints"), std::string::npos);
+  // drawn: a PNG
+  EXPECT_TRUE(
+      plot_csv(csv, {"pretension", "slip"}, -INFINITY, (d / "by.png").string(), INFINITY, "load").notes.empty());
+  EXPECT_TRUE(fs::exists(d / "by.png"));
+}
+
+// the value's unit in the title: the column's, from its brackets or summary_units.csv; the values
+// in increasing order as numbers however written, text in the order it comes
+TEST(SweepPlot, ASeriesTitleHasTheValuesUnit) {
+  const fs::path d = dir("sweep_by_unit");
+  const std::string csv = load_summary(d, "load [N·m]");
+  const PlotSpec spec = summary_spec(csv, {"pretension", "slip"}, (d / "p.png").string(), "load [N·m]");
+  ASSERT_EQ(spec.series.size(), 2u);
+  EXPECT_EQ(spec.series[0].variant, "load = 40 N·m");
+  write_file(d / "summary_units.csv",
+             "column,unit\npoint,\nload [N·m],N.m\npretension,N\nstatus,\nslip,1\ntight [N],N\n");
+  EXPECT_EQ(summary_spec(csv, {"pretension", "slip"}, (d / "p.png").string(), "load [N·m]").series[1].variant,
+            "load = 60 N·m");
+  const fs::path e = dir("sweep_by_order");
+  const std::string mixed = write_file(e / "summary.csv",
+                                       "point,load,method,pretension,status,slip\n0,1e+05,radau,300,ok,1\n"
+                                       "1,60,bdf,300,ok,2\n2,40.0,radau,500,ok,3\n3,40,bdf,500,ok,4\n");
+  const PlotSpec numbers = summary_spec(mixed, {"pretension", "slip"}, (e / "p.png").string(), "load");
+  ASSERT_EQ(numbers.series.size(), 3u);
+  EXPECT_EQ(numbers.series[0].variant, "load = 40.0");  // 40.0 and 40: one value, as first written
+  EXPECT_EQ(numbers.series[0].t, (std::vector<double>{500, 500}));
+  EXPECT_EQ(numbers.series[1].variant, "load = 60");
+  EXPECT_EQ(numbers.series[2].variant, "load = 1e+05");
+  const PlotSpec words = summary_spec(mixed, {"pretension", "slip"}, (e / "p.png").string(), "method");
+  ASSERT_EQ(words.series.size(), 2u);
+  EXPECT_EQ(words.series[0].variant, "method = radau");
+  EXPECT_EQ(words.series[1].variant, "method = bdf");
+  EXPECT_EQ(words.series[1].y, (std::vector<double>{2, 4}));
+}
+
+// a series whose points differ in a third parameter has several at one x: joined, its line would
+// zigzag between them; drawn unjoined, and said why
+TEST(SweepPlot, ASeriesWithPointsAtOneXIsNotJoined) {
+  const fs::path d = dir("sweep_by_third");
+  const std::string csv = write_file(d / "summary.csv",
+                                     "point,load,mu,pretension,status,slip\n0,40,0.3,300,ok,0.4\n1,40,0.3,500,ok,0.2\n"
+                                     "2,40,1,300,ok,0.1\n3,40,1,500,ok,0.05\n4,60,0.3,300,ok,0.6\n5,60,1,300,ok,0.2\n");
+  const PlotReport r = plot_csv(csv, {"pretension", "slip"}, -INFINITY, (d / "p.png").string(), INFINITY, "load");
+  ASSERT_EQ(r.notes.size(), 1u);
+  EXPECT_EQ(r.notes[0],
+            "--by load: the series load = 40 has several points at pretension = 300 (they differ in mu): the points "
+            "are drawn unjoined, as a line through them would zigzag");
+  EXPECT_FALSE(summary_spec(csv, {"pretension", "slip"}, (d / "p.png").string(), "load").joined);
+  EXPECT_EQ(left_out_warnings(r), r.notes);
+  EXPECT_TRUE(summary_spec(csv, {"pretension", "slip"}, (d / "p.png").string(), "load").series.size() == 2);
+  EXPECT_TRUE(plot_csv(csv, {"pretension", "slip"}, -INFINITY, (d / "q.png").string(), INFINITY, "mu").notes.size() ==
+              1);
+}
+
+// --by a column the file has not (a did-you-mean), one drawn, or on a time series: errors, nothing
+// drawn; a point without a value of the column is named as left out
+TEST(SweepPlot, ByRefusesWhatItCannotDraw) {
+  const fs::path d = dir("sweep_by_refused");
+  const std::string csv = load_summary(d);
+  const std::string png = (d / "p.png").string();
+  expect_error(
+      [&] {
+        plot_csv(csv, {"pretension", "slip"}, -INFINITY, png, INFINITY, "lod");
+      },
+      {"--by lod: ", "summary.csv has no column 'lod' (did you mean 'load'?); its columns: point, load,"});
+  expect_error(
+      [&] {
+        plot_csv(csv, {"pretension", "slip"}, -INFINITY, png, INFINITY, "pretension");
+      },
+      {"pretension is drawn (x), so it cannot tell series apart too"});
+  expect_error([&] { plot_csv(csv, {"pretension", "slip"}, -INFINITY, png, INFINITY, "slip"); }, {"slip is drawn (y)"});
+  const std::string ts = write_file(d / "timeseries.csv", "t,driver.omega\n0,1\n0.1,2\n");
+  expect_error([&] { plot_csv(ts, {"driver.omega"}, -INFINITY, png, INFINITY, "load"); },
+               {"is a time series, drawn against t: a series per value of a column (load) is for a sweep's summary"});
+  EXPECT_FALSE(fs::exists(png));
+  const std::string gap = write_file(d / "gap.csv",
+                                     "point,load,pretension,status,slip,mass\n0,40,300,ok,0.2,\n"
+                                     "1,40,500,ok,0.1,2\n2,60,300,ok,0.3,3\n");
+  const PlotReport r = plot_csv(gap, {"pretension", "slip"}, -INFINITY, png, INFINITY, "mass");
+  ASSERT_EQ(r.points.size(), 1u);
+  EXPECT_EQ(r.points[0], "point 0 (load=40, pretension=300): ok, but without a value of mass");
 }
 
 }  // namespace
