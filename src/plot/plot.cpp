@@ -190,6 +190,26 @@ void narrow_axis(std::ostringstream& g, const char* axis, double lo, double hi) 
   if (digits > 6) g << "set format " << axis << " '%." << std::min(digits, 15) << "g'\n";
 }
 
+// 1, 2 or 5 times a power of ten: the tic step at or above raw
+double nice_step(double raw) {
+  const double mag = std::pow(10.0, std::floor(std::log10(raw)));
+  return raw <= mag ? mag : raw <= 2 * mag ? 2 * mag : raw <= 5 * mag ? 5 * mag : 10 * mag;
+}
+
+// [share of the panel] the room between a sweep's marks and the frame, on every side: a mark at
+// the range's end was cut in half by it (trial 27)
+constexpr double kPointsMargin = 0.05;
+
+// The y2 axis of a points plot, its values from lo to hi: gnuplot's offsets widen y1 and x only,
+// so its range is set here, kPointsMargin of it beyond the values, out to the next tic (at about
+// four tic intervals, as gnuplot's own). A flat axis keeps narrow_axis's range.
+void pad_y2(std::ostringstream& g, double lo, double hi) {
+  if (!(hi - lo > 1e-9 * std::max(std::abs(lo), std::abs(hi)))) return;
+  const double pad = kPointsMargin * (hi - lo), step = nice_step((hi - lo + 2 * pad) / 4);
+  g << "set y2range [" << number_text(std::floor((lo - pad) / step) * step) << ":"
+    << number_text(std::ceil((hi + pad) / step) * step) << "]\nset y2tics " << number_text(step) << "\n";
+}
+
 void plot_command(std::ostringstream& g, const PlotSpec& spec, const std::vector<int>& series, bool second_axis,
                   const std::vector<int>& y2, bool units_in_key) {
   g << "plot ";
@@ -262,15 +282,17 @@ std::string plot_script(const PlotSpec& spec, const std::string& png) {
   for (const Series& s : spec.series)
     for (size_t i = 0; i < s.t.size(); ++i)
       if (std::isfinite(s.t[i]) && std::isfinite(s.y[i])) t0 = std::min(t0, s.t[i]), t1 = std::max(t1, s.t[i]);
-  if (spec.points)
-    g << "set offsets graph 0.05, graph 0.05, graph 0.05, graph 0.05\n";  // no mark on the frame
+  if (spec.points)  // no mark on the frame
+    g << "set offsets graph " << kPointsMargin << ", graph " << kPointsMargin << ", graph " << kPointsMargin
+      << ", graph " << kPointsMargin << "\n";
   else if (t1 > t0)
     g << "set xrange [" << number_text(t0) << ":" << number_text(t1) << "]\n";
   g << "set grid xtics ytics lc rgb '#dddddd'\n"
     << "set xlabel " << gnuplot_string(spec.x_label) << "\n";
   if (groups.size() <= 2) {
     // the legend below the plot: the plot keeps the full width, and both y axes stay in view
-    g << "set key below center horizontal Left reverse\n";
+    // (a sweep's: a line's room above it, where its entries touched the x axis' label)
+    g << "set key below center horizontal Left reverse" << (spec.points ? " height 1" : "") << "\n";
     if (!spec.title.empty()) g << "set title " << gnuplot_string(spec.title) << "\n";
     g << "set ylabel " << gnuplot_string(axis_label(spec, groups[0])) << "\n";
     std::vector<int> all;
@@ -281,6 +303,7 @@ std::string plot_script(const PlotSpec& spec, const std::string& png) {
     for (size_t a = 0; a < groups.size(); ++a) {
       const auto [lo, hi] = group_range(spec, groups[a]);
       narrow_axis(g, a == 0 ? "y" : "y2", lo, hi);
+      if (a == 1 && spec.points) pad_y2(g, lo, hi);
     }
     // (the panel: the picture's width but for the axes' numbers and labels, about 100 pixels a side
     // that has them)
@@ -326,16 +349,17 @@ std::string plot_script(const PlotSpec& spec, const std::string& png) {
       const auto [lo, hi] = group_range(spec, groups[p]);
       narrow_axis(g, "y", lo, hi);
       if (hi - lo > 1e-9 * std::max(std::abs(lo), std::abs(hi))) {
-        const double raw = (hi - lo) / 4, mag = std::pow(10.0, std::floor(std::log10(raw)));
-        const double step = raw <= mag ? mag : raw <= 2 * mag ? 2 * mag : raw <= 5 * mag ? 5 * mag : 10 * mag;
-        g << "set ytics " << number_text(step) << "\n";
+        g << "set ytics " << number_text(nice_step((hi - lo) / 4)) << "\n";
       } else {
         g << "set ytics autofreq\n";
       }
       // room above the curves for the legend (a line of about 17 pixels a series, and its box),
       // so that it covers none of them: the range grows upwards by the legend's share of the panel
       const double key = std::min(0.6, (17.0 * static_cast<double>(groups[p].series.size()) + 22) / panel_px);
-      g << "set offsets 0, 0, graph " << number_text(key / (1 - key)) << ", 0\n";
+      // (a sweep's marks: kPointsMargin more on every side)
+      const double margin = spec.points ? kPointsMargin : 0;
+      g << "set offsets graph " << margin << ", graph " << margin << ", graph " << number_text(key / (1 - key) + margin)
+        << ", graph " << margin << "\n";
       legend.height_share = key;
       if (!spec.points) mark_lines(g, spec, t0, t1, p == 0 ? 0.9 * panel_px : 0, legend.panel_width_px, legend);
       plot_command(g, spec, groups[p].series, false, {}, false);

@@ -3,10 +3,12 @@
 // the file's own columns.
 #include <gtest/gtest.h>
 
+#include <cctype>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <functional>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -279,6 +281,65 @@ TEST(SweepPlot, ByRefusesWhatItCannotDraw) {
   const PlotReport r = plot_csv(gap, {"pretension", "slip"}, -INFINITY, png, INFINITY, "mass");
   ASSERT_EQ(r.points.size(), 1u);
   EXPECT_EQ(r.points[0], "point 0 (load=40, pretension=300): ok, but without a value of mass");
+}
+
+// the numbers after `what` in script, each time it comes with some ("set offsets graph 0.05, graph
+// 0.05, ...": 0.05, 0.05, ...; "set y2range [600:1400]": 600, 1400; "set y2range [*:*]": none)
+std::vector<std::vector<double>> numbers_after(const std::string& script, const std::string& what) {
+  std::vector<std::vector<double>> all;
+  for (size_t at = script.find(what); at != std::string::npos; at = script.find(what, at + 1)) {
+    std::string line = script.substr(at + what.size(), script.find('\n', at) - at - what.size());
+    for (char& ch : line)
+      if (!(std::isdigit(static_cast<unsigned char>(ch)) || ch == '.' || ch == '-' || ch == 'e' || ch == '+')) ch = ' ';
+    std::istringstream in(line);
+    std::vector<double> v;
+    for (std::string word; in >> word;) v.push_back(std::stod(word));
+    if (!v.empty()) all.push_back(v);  // (not "[*:*]")
+  }
+  return all;
+}
+
+// a sweep's marks at the ends of the range were cut in half by the frame (trial 27 D3): x and y
+// had a margin on one panel, but y2 (gnuplot's offsets widen x and y only) ended at its largest
+// value, and stacked panels had none at the sides and bottom
+TEST(SweepPlot, MarksAtTheEndsAreClearOfTheFrame) {
+  const fs::path d = dir("sweep_margins");
+  const std::string csv = load_summary(d);
+  // two axes: y2's range set beyond the values (tight 750..1200 N)
+  const std::string two = plot_script(summary_spec(csv, {"pretension", "slip", "tight [N]"}, "p.png"), "p.png");
+  const auto y2 = numbers_after(two, "set y2range [");
+  ASSERT_EQ(y2.size(), 1u) << two;
+  ASSERT_EQ(y2[0].size(), 2u) << two;
+  EXPECT_LE(y2[0][0], 750 - 0.04 * 450) << two;
+  EXPECT_GE(y2[0][1], 1200 + 0.04 * 450) << two;
+  EXPECT_LT(y2[0][1] - y2[0][0], 3 * 450) << two;  // a margin, not a squashed plot
+  // stacked panels (three units): every side of every panel
+  const std::string csv3 = write_file(d / "three.csv",
+                                      "point,pretension,status,slip,tight [N],omega [rad/s]\n0,300,ok,0.2,750,-60\n"
+                                      "1,500,ok,0.1,850,-65\n2,700,ok,0.05,950,-67\n");
+  const PlotSpec stacked = summary_spec(csv3, {"pretension", "slip", "tight [N]", "omega [rad/s]"}, "p.png");
+  const std::string panels = plot_script(stacked, "p.png");
+  ASSERT_NE(panels.find("multiplot"), std::string::npos) << panels;
+  const auto offsets = numbers_after(panels, "set offsets ");
+  ASSERT_EQ(offsets.size(), 4u) << panels;  // the picture's, then each panel's
+  for (size_t p = 0; p < offsets.size(); ++p) {
+    const std::vector<double>& o = offsets[p];
+    ASSERT_EQ(o.size(), 4u) << panels;
+    EXPECT_GE(o[0], 0.04) << panels;  // left
+    EXPECT_GE(o[1], 0.04) << panels;  // right
+    EXPECT_GE(o[3], 0.04) << panels;  // bottom
+    if (p > 0) {
+      EXPECT_GT(o[2], o[3]) << panels;  // top: a panel's legend's room and the margin
+    }
+  }
+  // a time series' curves still reach the frame: no margin at its sides
+  PlotSpec lines = stacked;
+  lines.points = false;
+  for (const auto& o : numbers_after(plot_script(lines, "p.png"), "set offsets ")) {
+    EXPECT_EQ(o[0], 0);
+    EXPECT_EQ(o[1], 0);
+  }
+  EXPECT_TRUE(numbers_after(plot_script(lines, "p.png"), "set y2range [").empty());
 }
 
 }  // namespace
