@@ -145,6 +145,20 @@ class Forms(unittest.TestCase):
         self.assertEqual(code, 2, err)
         self.assertIn("summary does not take: --by mu", err)
 
+    def test_a_real_sweeps_summary(self):
+        # tests/sweep/grid.lua (pretension x mu, 6 points of 0.02 s): the example of too few columns
+        # names this summary's own (the x given, its first figure of numbers); --by mu draws a line
+        # of slip against pretension per mu, every point drawn, nothing to warn of
+        grid = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "sweep", "grid.lua")
+        code, out, err = run(["sweep", grid, "--jobs", "2", "--out", "grid"], self.dir)
+        self.assertEqual(code, 0, err)
+        code, out, err = run(["plot", "grid", "pretension"], self.dir)
+        self.assertEqual(code, 1, err)
+        self.assertIn("e.g. beltsim plot grid/summary.csv pretension omega.driven;", err)
+        code, out, err = run(["plot", "grid", "pretension", "slip", "--by", "mu", "--out", "by.png"], self.dir)
+        self.assertEqual((code, out, err), (0, "by.png\n", ""))
+        self.assertGreater(os.path.getsize(os.path.join(self.dir, "by.png")), 5000)
+
     def test_options_plot_does_not_take(self):
         for option in ("--csv", "--rtol"):
             code, out, err = run(["plot", "summary.csv", "pretension", "slip", option, "1"], self.dir)

@@ -639,12 +639,6 @@ class Sweep(SweepCase):
         self.assertGreater(os.path.getsize(png), 5000)
         p = self.run_beltsim("plot", "out/grid/summary.csv", "pretension", ok=(1,))
         self.assertIn("name the x column", p.stderr)
-        # the example names this summary's own columns: the x given, its first figure of numbers
-        self.assertIn("e.g. beltsim plot out/grid/summary.csv pretension omega.driven;", p.stderr)
-        # a line of slip against pretension per mu, every point drawn: nothing to warn of
-        p = self.run_beltsim("plot", "out/grid/summary.csv", "pretension", "slip", "--by", "mu", "--out", "by.png")
-        self.assertEqual((p.stdout, p.stderr), ("by.png\n", ""))
-        self.assertGreater(os.path.getsize(self.path("by.png")), 5000)
 
 
 if __name__ == "__main__":
