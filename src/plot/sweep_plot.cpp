@@ -1,11 +1,13 @@
 // `beltsim plot` of a sweep's summary.csv (plot.hpp): its figures against a parameter, a mark per
 // point.
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <filesystem>
 #include <optional>
 #include <set>
 #include <stdexcept>
+#include <string_view>
 
 #include "io/number_text.hpp"
 #include "io/suggest.hpp"
@@ -50,7 +52,7 @@ std::string plot_example(const std::string& csv_path, const std::vector<std::str
     return seen.size();
   };
   const std::vector<std::string> parameters = parameter_names(names);
-  std::string x = columns.empty() ? "" : columns[0];
+  std::string x = columns.empty() || std::find(names.begin(), names.end(), columns[0]) == names.end() ? "" : columns[0];
   if (x.empty()) {
     size_t most = 0;
     for (const std::string& p : parameters)
@@ -243,10 +245,6 @@ void split_by(const Table& table, const std::string& by, const std::optional<std
   spec.joined = report.notes.empty();
 }
 
-}  // namespace
-
-namespace {
-
 // fewer than two columns: the error, with an example made of the file's own
 void require_x_and_y(const std::string& csv_path, const std::vector<std::string>& columns) {
   if (columns.size() >= 2) return;
@@ -255,10 +253,6 @@ void require_x_and_y(const std::string& csv_path, const std::vector<std::string>
                            (example.empty() ? "" : ", e.g. " + example) +
                            "; its columns: " + join(read_csv_header(csv_path)));
 }
-
-}  // namespace
-
-namespace {
 
 // summary_spec's, its left-out columns and points and its notes in report
 PlotSpec build_spec(const std::string& csv_path, const std::vector<std::string>& columns, const std::string& out_png,

@@ -84,6 +84,8 @@ TEST(SweepPlot, TheExampleNamesTheFilesOwnColumns) {
   const std::string x_only = error_of([&] { plot_csv(csv, {"mu"}, -INFINITY, (d / "p.png").string()); });
   EXPECT_NE(x_only.find("summary.csv' mu 'slip_max [1]';"), std::string::npos) << x_only;
   EXPECT_EQ(plot_example(csv, {}).substr(0, 13), "beltsim plot ");
+  // an x column the file has not is not repeated in it
+  EXPECT_NE(plot_example(csv, {"load"}).find("summary.csv' pretension 'slip_max [1]'"), std::string::npos);
   EXPECT_TRUE(plot_csv(csv, {"pretension", "slip_max [1]"}, -INFINITY, (d / "p.png").string()).columns.empty());
   EXPECT_TRUE(fs::exists(d / "p.png"));
   // no column of numbers but the parameter: no example, the columns still listed
