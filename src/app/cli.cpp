@@ -261,8 +261,15 @@ void add_plot_command(CLI::App& app, CommandLine& cl) {
   plot->add_option("--out", raw.out, "the PNG (default: plot.png beside the CSV)")->type_name("PNG")->check(kNotEmpty);
   plot->add_option("--from", raw.from, "draw samples with t >= T only [s] (a timeseries.csv only)")->type_name("T");
   plot->add_option("--to", raw.to, "draw samples with t <= T only [s] (a timeseries.csv only)")->type_name("T");
-  plot->footer("Prints the PNG's path; on a terminal also shows the picture (BELTSIM_TERM_IMAGES=off|symbols|\n"
-               "sixel|kitty|iterm forces a mode). Columns of two units share the plot on two y axes.");
+  plot->add_option("--by", raw.by,
+                   "a sweep's summary.csv only: one series per value of the column PARAM, its points joined in x order")
+      ->type_name("PARAM")
+      ->check(kNotEmpty);
+  plot->footer(
+      "Prints the PNG's path; on a terminal also shows the picture (BELTSIM_TERM_IMAGES=off|symbols|\n"
+      "sixel|kitty|iterm forces a mode). Columns of two units share the plot on two y axes. A sweep's\n"
+      "points without a mark (failed, not run) are named on stderr. E.g. beltsim plot out/study\n"
+      "pretension 'slip_max [1]' --by load: slip_max against pretension, a line per load.");
 }
 
 void add_summary_command(CLI::App& app, CommandLine& cl) {

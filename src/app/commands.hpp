@@ -29,7 +29,7 @@ int cmd_console(const std::optional<std::string>& script, const std::vector<std:
 // for a folder, DIR/summary.csv for a sweep's folder; a file as given)
 std::string run_folder(const std::string& given);
 std::string run_csv(const std::string& given);
-// `beltsim plot CSV|DIR [COLUMNS...]`
+// `beltsim plot CSV|DIR [COLUMNS...] [--from T] [--to T] [--by PARAM]`
 int cmd_plot(const std::string& csv, const std::vector<std::string>& columns, const Raw& raw,
              term::ImageMode images);
 // `beltsim summary DIR [--from T0] [--to T1] [--csv FILE] [--plot PNG]` (plot/summary.hpp)

@@ -31,6 +31,7 @@ struct Raw {
   std::optional<std::string> serve;  // run, console: --serve [PORT]
   std::optional<std::string> integrators, rtols, ref_integrator, ref_rtol, wall_limit, metric;  // wp
   std::optional<std::string> from;                                      // plot, summary
+  std::optional<std::string> by;                                        // plot
   std::optional<std::string> to, csv_out, plot_out;                     // summary
   bool trusted = false;                                                 // run, wp, console, sweep
   std::optional<std::string> max_instructions, max_lua_memory, max_lua_wall, max_lua_cpu;

@@ -1,6 +1,7 @@
-// `beltsim plot CSV|DIR [COLUMNS...]`: columns of a time series drawn to a PNG (commands.hpp).
+// `beltsim plot CSV|DIR [COLUMNS...] [--by PARAM]`: columns of a time series drawn to a PNG (commands.hpp).
 #include <unistd.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -31,7 +32,17 @@ int cmd_plot(const std::string& given, const std::vector<std::string>& columns, 
                        (columns.empty() ? std::string("the column named first") : "its column " + columns[0]) +
                        ", not against time, so " + (raw.from ? "--from (a start time)" : "--to (an end time)") +
                        " does not apply; it is for a run's timeseries.csv");
-    if (const std::string w = plot::left_out_warning(plot::plot_csv(csv, columns, from, png, to)); !w.empty())
+    // --by: a sweep summary's column other than those drawn (known from the command line: bad
+    // usage); its file's kind is known once it is read (one that cannot be: exit 1)
+    if (raw.by && std::find(columns.begin(), columns.end(), *raw.by) != columns.end())
+      throw UsageError("--by " + *raw.by + ": " + *raw.by + " is drawn, as " + (*raw.by == columns[0] ? "x" : "y") +
+                       "; --by takes another column (a parameter of the sweep), a series per value of it");
+    if (raw.by && !plot::is_sweep_summary(csv))
+      throw UsageError("--by: " + csv +
+                       " is a run's time series, drawn against t; --by (a series per value of a column) is for a "
+                       "sweep's summary.csv");
+    for (const std::string& w :
+         plot::left_out_warnings(plot::plot_csv(csv, columns, from, png, to, raw.by.value_or(""))))
       std::fprintf(stderr, "beltsim plot: warning: %s\n", w.c_str());
   } catch (const UsageError&) {
     throw;

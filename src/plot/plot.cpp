@@ -3,8 +3,6 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <cstdlib>
-#include <cstring>
 #include <filesystem>
 #include <optional>
 #include <sstream>
@@ -48,13 +46,35 @@ std::string shared_quantity(const PlotSpec& spec, const Group& g) {
   return q;
 }
 
-// "name [unit]" for one series, "omega [rad/s]" for several of one quantity, else the names
+// whether every series of the group is of one name (one column, a series per value of another)
+bool one_name(const PlotSpec& spec, const std::vector<int>& series) {
+  for (int k : series)
+    if (spec.series[k].name != spec.series[series[0]].name) return false;
+  return true;
+}
+
+// "name [unit]" for series of one name, "omega [rad/s]" for several of one quantity, else the names
 std::string axis_label(const PlotSpec& spec, const Group& g) {
-  if (g.series.size() == 1) return with_unit(spec.series[g.series[0]].name, g.unit);
+  if (one_name(spec, g.series)) return with_unit(spec.series[g.series[0]].name, g.unit);
   if (const std::string q = shared_quantity(spec, g); !q.empty()) return with_unit(q, g.unit);
-  std::string names;
-  for (int k : g.series) names += (names.empty() ? "" : ", ") + spec.series[k].name;
-  return with_unit(names, g.unit);
+  std::vector<std::string> names;
+  for (int k : g.series)
+    if (std::find(names.begin(), names.end(), spec.series[k].name) == names.end()) names.push_back(spec.series[k].name);
+  return with_unit(join(names), g.unit);
+}
+
+// a series' title in the legend: its name, with its unit when the axes differ in theirs, and the
+// value of the column it is drawn for ("slip_max, load = 40 N·m"; that alone when every series
+// drawn is of one name)
+std::string legend_title(const PlotSpec& spec, int k, bool units_in_key, bool right) {
+  const Series& s = spec.series[k];
+  std::string title = units_in_key ? with_unit(s.name, s.unit) : s.name;
+  if (!s.variant.empty()) {
+    std::vector<int> all(spec.series.size());
+    for (size_t i = 0; i < all.size(); ++i) all[i] = static_cast<int>(i);
+    title = one_name(spec, all) ? s.variant : title + ", " + s.variant;
+  }
+  return title + (right ? " (right axis)" : "");
 }
 
 // the series as a gnuplot datablock $s<k>: "t y" rows, an empty line (a gap) at undefined values
@@ -78,16 +98,6 @@ size_t code_points(const std::string& s) {
   size_t n = 0;
   for (const char c : s) n += (static_cast<unsigned char>(c) & 0xC0) != 0x80;
   return n;
-}
-
-// at most n characters (UTF-8 code points) of s, the last an ellipsis when it was longer
-std::string shortened(const std::string& s, size_t n) {
-  size_t chars = 0, cut = 0;
-  for (size_t i = 0; i < s.size(); ++i) {
-    if ((static_cast<unsigned char>(s[i]) & 0xC0) == 0x80) continue;  // a continuation byte
-    if (++chars == n) cut = i;
-  }
-  return chars <= n ? s : s.substr(0, cut) + "…";
 }
 
 // the marks inside [x0, x1], those at one time in one (an event and an overrun that begin at the
@@ -180,6 +190,26 @@ void narrow_axis(std::ostringstream& g, const char* axis, double lo, double hi) 
   if (digits > 6) g << "set format " << axis << " '%." << std::min(digits, 15) << "g'\n";
 }
 
+// 1, 2 or 5 times a power of ten: the tic step at or above raw
+double nice_step(double raw) {
+  const double mag = std::pow(10.0, std::floor(std::log10(raw)));
+  return raw <= mag ? mag : raw <= 2 * mag ? 2 * mag : raw <= 5 * mag ? 5 * mag : 10 * mag;
+}
+
+// [share of the panel] the room between a sweep's marks and the frame, on every side: a mark at
+// the range's end was cut in half by it (trial 27)
+constexpr double kPointsMargin = 0.05;
+
+// The y2 axis of a points plot, its values from lo to hi: gnuplot's offsets widen y1 and x only,
+// so its range is set here, kPointsMargin of it beyond the values, out to the next tic (at about
+// four tic intervals, as gnuplot's own). A flat axis keeps narrow_axis's range.
+void pad_y2(std::ostringstream& g, double lo, double hi) {
+  if (!(hi - lo > 1e-9 * std::max(std::abs(lo), std::abs(hi)))) return;
+  const double pad = kPointsMargin * (hi - lo), step = nice_step((hi - lo + 2 * pad) / 4);
+  g << "set y2range [" << number_text(std::floor((lo - pad) / step) * step) << ":"
+    << number_text(std::ceil((hi + pad) / step) * step) << "]\nset y2tics " << number_text(step) << "\n";
+}
+
 void plot_command(std::ostringstream& g, const PlotSpec& spec, const std::vector<int>& series, bool second_axis,
                   const std::vector<int>& y2, bool units_in_key) {
   g << "plot ";
@@ -187,15 +217,29 @@ void plot_command(std::ostringstream& g, const PlotSpec& spec, const std::vector
     const int k = series[n];
     const Series& s = spec.series[k];
     const bool right = second_axis && std::find(y2.begin(), y2.end(), k) != y2.end();
-    g << (n ? ", \\\n     " : "") << "$s" << k << " using 1:2 with "
-      << (spec.points ? "points pt 7 ps 1.5 lt " : "lines lw 2 lt ") << k + 1
-      << (right ? " axes x1y2" : "") << " title "
-      << gnuplot_string(units_in_key ? with_unit(s.name, s.unit) + (right ? " (right axis)" : "") : s.name);
+    // the shapes of a series' marks: a filled circle, square, triangle, diamond, triangle down
+    static constexpr int kShapes[] = {7, 5, 9, 13, 11};
+    g << (n ? ", \\\n     " : "") << "$s" << k << " using 1:2 with ";
+    if (spec.points)
+      g << (spec.joined ? "linespoints lw 1.5 " : "points ") << "pt " << kShapes[s.shape % 5] << " ps 1.5 ";
+    else
+      g << "lines lw 2 ";
+    g << "lt " << (s.colour > 0 ? s.colour : k + 1) << (right ? " axes x1y2" : "") << " title "
+      << gnuplot_string(legend_title(spec, k, units_in_key, right));
   }
   g << "\n";
 }
 
 }  // namespace
+
+std::string shortened(const std::string& s, size_t n) {
+  size_t chars = 0, cut = 0;
+  for (size_t i = 0; i < s.size(); ++i) {
+    if ((static_cast<unsigned char>(s[i]) & 0xC0) == 0x80) continue;  // a continuation byte
+    if (++chars == n) cut = i;
+  }
+  return chars <= n ? s : s.substr(0, cut) + "…";
+}
 
 void plot_png(const PlotSpec& spec) {
   if (spec.file.empty()) throw std::runtime_error("plot: no output file given");
@@ -218,8 +262,10 @@ std::string plot_script(const PlotSpec& spec, const std::string& png) {
     bool any = false;
     for (size_t i = 0; i < s.t.size() && !any; ++i) any = std::isfinite(s.t[i]) && std::isfinite(s.y[i]);
     if (!any) throw std::runtime_error("plot " + spec.file + ": series '" + s.name + "' has no finite values");
-    auto g = std::find_if(groups.begin(), groups.end(),
-                          [&](const Group& x) { return x.unit == s.unit && !x.unknown && !s.unknown_unit; });
+    // (a series of unknown unit shares its axis only with those of its name: its column's, one a value)
+    auto g = std::find_if(groups.begin(), groups.end(), [&](const Group& x) {
+      return x.unit == s.unit && x.unknown == s.unknown_unit && (!x.unknown || spec.series[x.series[0]].name == s.name);
+    });
     if (g == groups.end()) g = groups.insert(groups.end(), Group{s.unit, {}, s.unknown_unit});
     g->series.push_back(static_cast<int>(k));
   }
@@ -236,15 +282,17 @@ std::string plot_script(const PlotSpec& spec, const std::string& png) {
   for (const Series& s : spec.series)
     for (size_t i = 0; i < s.t.size(); ++i)
       if (std::isfinite(s.t[i]) && std::isfinite(s.y[i])) t0 = std::min(t0, s.t[i]), t1 = std::max(t1, s.t[i]);
-  if (spec.points)
-    g << "set offsets graph 0.05, graph 0.05, graph 0.05, graph 0.05\n";  // no mark on the frame
+  if (spec.points)  // no mark on the frame
+    g << "set offsets graph " << kPointsMargin << ", graph " << kPointsMargin << ", graph " << kPointsMargin
+      << ", graph " << kPointsMargin << "\n";
   else if (t1 > t0)
     g << "set xrange [" << number_text(t0) << ":" << number_text(t1) << "]\n";
   g << "set grid xtics ytics lc rgb '#dddddd'\n"
     << "set xlabel " << gnuplot_string(spec.x_label) << "\n";
   if (groups.size() <= 2) {
     // the legend below the plot: the plot keeps the full width, and both y axes stay in view
-    g << "set key below center horizontal Left reverse\n";
+    // (a sweep's: a line's room above it, where its entries touched the x axis' label)
+    g << "set key below center horizontal Left reverse" << (spec.points ? " height 1" : "") << "\n";
     if (!spec.title.empty()) g << "set title " << gnuplot_string(spec.title) << "\n";
     g << "set ylabel " << gnuplot_string(axis_label(spec, groups[0])) << "\n";
     std::vector<int> all;
@@ -255,6 +303,7 @@ std::string plot_script(const PlotSpec& spec, const std::string& png) {
     for (size_t a = 0; a < groups.size(); ++a) {
       const auto [lo, hi] = group_range(spec, groups[a]);
       narrow_axis(g, a == 0 ? "y" : "y2", lo, hi);
+      if (a == 1 && spec.points) pad_y2(g, lo, hi);
     }
     // (the panel: the picture's width but for the axes' numbers and labels, about 100 pixels a side
     // that has them)
@@ -270,7 +319,7 @@ std::string plot_script(const PlotSpec& spec, const std::string& png) {
     // the legends on the left, unless the top panel's (the one with the marks' labels) would cover
     // labels there (an event at the window's start) and fewer on the right: then on the right
     size_t longest = 0;
-    for (int k : groups[0].series) longest = std::max(longest, code_points(spec.series[k].name));
+    for (int k : groups[0].series) longest = std::max(longest, code_points(legend_title(spec, k, false, false)));
     // a sample line and the margins, about 9 pixels a character at 12 pt
     LegendBox legend{9.0 * static_cast<double>(longest) + 120, spec.width * (0.97 - 0.1)};
     int left = 0, right = 0;
@@ -300,16 +349,17 @@ std::string plot_script(const PlotSpec& spec, const std::string& png) {
       const auto [lo, hi] = group_range(spec, groups[p]);
       narrow_axis(g, "y", lo, hi);
       if (hi - lo > 1e-9 * std::max(std::abs(lo), std::abs(hi))) {
-        const double raw = (hi - lo) / 4, mag = std::pow(10.0, std::floor(std::log10(raw)));
-        const double step = raw <= mag ? mag : raw <= 2 * mag ? 2 * mag : raw <= 5 * mag ? 5 * mag : 10 * mag;
-        g << "set ytics " << number_text(step) << "\n";
+        g << "set ytics " << number_text(nice_step((hi - lo) / 4)) << "\n";
       } else {
         g << "set ytics autofreq\n";
       }
       // room above the curves for the legend (a line of about 17 pixels a series, and its box),
       // so that it covers none of them: the range grows upwards by the legend's share of the panel
       const double key = std::min(0.6, (17.0 * static_cast<double>(groups[p].series.size()) + 22) / panel_px);
-      g << "set offsets 0, 0, graph " << number_text(key / (1 - key)) << ", 0\n";
+      // (a sweep's marks: kPointsMargin more on every side)
+      const double margin = spec.points ? kPointsMargin : 0;
+      g << "set offsets graph " << margin << ", graph " << margin << ", graph " << number_text(key / (1 - key) + margin)
+        << ", graph " << margin << "\n";
       legend.height_share = key;
       if (!spec.points) mark_lines(g, spec, t0, t1, p == 0 ? 0.9 * panel_px : 0, legend.panel_width_px, legend);
       plot_command(g, spec, groups[p].series, false, {}, false);
@@ -335,8 +385,8 @@ std::vector<Mark> read_event_marks(const std::string& events_csv) {
     if (std::exchange(header, false)) continue;
     const std::vector<std::string> fields = csv_fields(line);
     double t = 0;
-    if (fields.size() != 3 || !parse_field(fields[0], t) || !std::isfinite(t)) continue;
-    const std::string label = shortened(trim(fields[1] + " " + fields[2]), 40);
+    if (fields.size() != 3 || !parse_number_field(fields[0], t) || !std::isfinite(t)) continue;
+    const std::string label = shortened(trim_blanks(fields[1] + " " + fields[2]), 40);
     if (!marks.empty() && marks.back().x == t)
       marks.back().label += "; " + label;
     else
@@ -345,10 +395,6 @@ std::vector<Mark> read_event_marks(const std::string& events_csv) {
   return marks;
 }
 
-namespace {
-
-// leaves out the series with no finite (t, y) pair and returns their names; fails when that is
-// every series
 std::vector<std::string> drop_empty(PlotSpec& spec, const std::string& csv_path) {
   std::vector<std::string> dropped;
   std::vector<Series> kept;
@@ -368,62 +414,40 @@ std::vector<std::string> drop_empty(PlotSpec& spec, const std::string& csv_path)
   return dropped;
 }
 
-}  // namespace
-
 std::string left_out_warning(const std::vector<std::string>& names) {
   if (names.empty()) return "";
   return "left out of the plot, with no finite value to draw: " + join(names);
 }
 
-PlotSpec summary_spec(const std::string& csv_path, const std::vector<std::string>& columns,
-                      const std::string& out_png) {
-  if (columns.size() < 2)
-    throw std::runtime_error(csv_path + " is a sweep's summary: name the x column and at least one y column, e.g. "
-                             "beltsim plot " + csv_path + " pretension slip");
-  const Table table = read_timeseries_csv(csv_path, &columns);
-  const std::vector<double>& x = table.column(columns[0]);
-  for (const auto& name : columns) table.column(name);
-  PlotSpec spec;
-  spec.file = out_png;
-  spec.points = true;
-  // each column's unit as summary_units.csv beside it has it (sweep/results.hpp: the quick form's
-  // figures from the program's table, a sweep file's from the brackets its names end with); a
-  // summary written before that file came: the unit a header gives in brackets ("hub load [N]"),
-  // else not known (unit_of's table would read "slip" as an element's, m/s, for a user's
-  // difference of speeds)
-  const std::optional<ColumnUnits> units = read_units_file(csv_path);
-  const auto unit_of_column = [&](const std::string& h) {
-    if (units)
-      for (const auto& [column, unit] : *units)
-        if (column == h) return unit;
-    return bracketed_unit(h);
-  };
-  spec.x_label = columns[0];
-  const std::filesystem::path cp(csv_path);
-  spec.title = cp.has_parent_path() && cp.parent_path().has_filename()
-                   ? (cp.parent_path().filename() / cp.filename()).string()
-                   : cp.filename().string();
-  for (size_t k = 1; k < columns.size(); ++k) {
-    const std::string& h = columns[k];
-    const std::optional<std::string> unit = unit_of_column(h);
-    const std::string name = unit && bracketed_unit(h) ? trim(h.substr(0, h.rfind('['))) : h;  // the unit drawn once
-    spec.series.push_back(Series{name, unit.value_or(""), x, table.column(h), !unit});
+std::vector<std::string> left_out_warnings(const PlotReport& report) {
+  std::vector<std::string> w;
+  if (!report.columns.empty()) w.push_back(left_out_warning(report.columns));
+  if (!report.points.empty()) {
+    std::string s = "left out of the plot, with nothing to draw: " + std::to_string(report.points.size()) + " of the " +
+                    std::to_string(report.of_points) + " points (" + report.points_why + "):";
+    // (a sweep of many failed points: the first ten, the others counted)
+    constexpr size_t kListed = 10;
+    for (size_t k = 0; k < report.points.size() && k < kListed; ++k) s += "\n  " + report.points[k];
+    if (report.points.size() > kListed)
+      s += "\n  and " + std::to_string(report.points.size() - kListed) + " more (their status is in the summary)";
+    w.push_back(s);
   }
-  return spec;
+  w.insert(w.end(), report.notes.begin(), report.notes.end());
+  return w;
 }
 
-std::vector<std::string> plot_csv(const std::string& csv_path, const std::vector<std::string>& columns, double from_t,
-                                  const std::string& out_png, double to_t) {
+PlotReport plot_csv(const std::string& csv_path, const std::vector<std::string>& columns, double from_t,
+                    const std::string& out_png, double to_t, const std::string& by) {
   if (is_sweep_summary(csv_path)) {
     if (from_t > -INFINITY || to_t < INFINITY)
       throw std::runtime_error(csv_path +
                                " is a sweep's summary, drawn against a column of its own, not time: "
                                "a start or end time does not apply to it");
-    PlotSpec spec = summary_spec(csv_path, columns, out_png);
-    std::vector<std::string> dropped = drop_empty(spec, csv_path);
-    plot_png(spec);
-    return dropped;
+    return plot_summary_csv(csv_path, columns, out_png, by);
   }
+  if (!by.empty())
+    throw std::runtime_error(csv_path + " is a time series, drawn against t: a series per value of a column (" + by +
+                             ") is for a sweep's summary");
   const Table table = read_timeseries_csv(csv_path);
   const std::vector<double>& t = table.column("t");
   std::vector<std::string> wanted = columns;
@@ -470,9 +494,10 @@ std::vector<std::string> plot_csv(const std::string& csv_path, const std::vector
     spec.series.push_back(std::move(s));
   }
   spec.marks = read_event_marks((cp.parent_path() / "events.csv").string());
-  std::vector<std::string> dropped = drop_empty(spec, csv_path);
+  PlotReport report;
+  report.columns = drop_empty(spec, csv_path);
   plot_png(spec);
-  return dropped;
+  return report;
 }
 
 }  // namespace beltsim::plot

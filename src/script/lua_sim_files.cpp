@@ -196,7 +196,7 @@ int l_plot(lua_State* L) {
   file = file.empty() ? picture_path(box, "plot", s.now()) : output_path(s.settings(), file);
   if (const std::string r = output_refusal(*box.ctx, "sim:plot", file, true); !r.empty()) fail(L, r);
   guarded(L, "sim:plot", [&] {
-    if (const std::string w = plot::left_out_warning(plot::plot_csv(s.csv_path(), columns, from, file)); !w.empty())
+    for (const std::string& w : plot::left_out_warnings(plot::plot_csv(s.csv_path(), columns, from, file)))
       say("beltsim: warning: sim:plot: %s\n", w.c_str());
   });
   box.pictures.insert(file);

@@ -93,6 +93,72 @@ class Forms(unittest.TestCase):
         self.assertIn("--to (an end time) does not apply", err)
         self.assertFalse(self.exists("p.png"))
 
+    def test_points_left_out_of_a_summary_are_named(self):
+        # trial 27: 2 of 6 points failed, the figure drew 4 marks and nothing was said
+        with open(os.path.join(self.dir, "failed.csv"), "w") as f:
+            f.write("point,mu,pretension,status,inputs,slip\n"
+                    "0,0.3,300,ok,x,0.5\n"
+                    "1,0.3,-100,\"error: p.lua:9: belt.pretension must be > 0 (got -100 N)\",x,\n"
+                    "2,1,300,not run,,\n"
+                    "3,1,500,ok,x,0.0625\n")
+        code, out, err = run(["plot", "failed.csv", "pretension", "slip", "--out", "f.png"], self.dir)
+        self.assertEqual(code, 0, err)
+        self.assertEqual(out, "f.png\n")
+        self.assertEqual(err, "beltsim plot: warning: left out of the plot, with nothing to draw: 2 of the 4 points "
+                              "(1 failed, 1 not run):\n"
+                              "  point 1 (mu=0.3, pretension=-100): error: p.lua:9: belt.pretension must be > 0 "
+                              "(got -100 N)\n"
+                              "  point 2 (mu=1, pretension=300): not run\n")
+        # every point drawn: no warning
+        code, out, err = run(["plot", "summary.csv", "pretension", "slip", "--out", "s.png"], self.dir)
+        self.assertEqual((code, err), (0, ""))
+
+    def test_by_draws_a_series_per_value_of_a_parameter(self):
+        # trial 27 S1: the points of both mu shared one colour; --by mu draws a line per mu
+        code, out, err = run(["plot", "summary.csv", "pretension", "slip", "--out", "plain.png"], self.dir)
+        self.assertEqual((code, err), (0, ""))
+        code, out, err = run(["plot", "summary.csv", "pretension", "slip", "--by", "mu", "--out", "by.png"], self.dir)
+        self.assertEqual((code, out, err), (0, "by.png\n", ""))
+        with open(os.path.join(self.dir, "plain.png"), "rb") as a, open(os.path.join(self.dir, "by.png"), "rb") as b:
+            self.assertNotEqual(a.read(), b.read())
+        code, out, err = run(["plot", "--help"], self.dir)
+        self.assertIn("--by PARAM", out)
+
+    def test_by_refuses_what_it_cannot_draw(self):
+        # a column the summary has not: exit 1 (as any column it has not), with the close name
+        code, out, err = run(["plot", "summary.csv", "pretension", "slip", "--by", "Mu", "--out", "p.png"], self.dir)
+        self.assertEqual(code, 1, err)
+        self.assertIn("--by Mu: summary.csv has no column 'Mu' (did you mean 'mu'?); its columns: point, mu,", err)
+        # the x or a y column: bad usage
+        for by, axis in (("pretension", "x"), ("slip", "y")):
+            code, out, err = run(["plot", "summary.csv", "pretension", "slip", "--by", by, "--out", "p.png"], self.dir)
+            self.assertEqual(code, 2, err)
+            self.assertIn("--by %s: %s is drawn, as %s; --by takes another column" % (by, by, axis), err)
+        # a time series: bad usage
+        code, out, err = run(["plot", "timeseries.csv", "driver.omega", "--by", "mu", "--out", "p.png"], self.dir)
+        self.assertEqual(code, 2, err)
+        self.assertIn("--by: timeseries.csv is a run's time series, drawn against t; --by (a series per value of a "
+                      "column) is for a sweep's summary.csv", err)
+        self.assertFalse(self.exists("p.png"))
+        # a command that does not take it
+        code, out, err = run(["summary", ".", "--by", "mu"], self.dir)
+        self.assertEqual(code, 2, err)
+        self.assertIn("summary does not take: --by mu", err)
+
+    def test_a_real_sweeps_summary(self):
+        # tests/sweep/grid.lua (pretension x mu, 6 points of 0.02 s): the example of too few columns
+        # names this summary's own (the x given, its first figure of numbers); --by mu draws a line
+        # of slip against pretension per mu, every point drawn, nothing to warn of
+        grid = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "sweep", "grid.lua")
+        code, out, err = run(["sweep", grid, "--jobs", "2", "--out", "grid"], self.dir)
+        self.assertEqual(code, 0, err)
+        code, out, err = run(["plot", "grid", "pretension"], self.dir)
+        self.assertEqual(code, 1, err)
+        self.assertIn("e.g. beltsim plot grid/summary.csv pretension omega.driven;", err)
+        code, out, err = run(["plot", "grid", "pretension", "slip", "--by", "mu", "--out", "by.png"], self.dir)
+        self.assertEqual((code, out, err), (0, "by.png\n", ""))
+        self.assertGreater(os.path.getsize(os.path.join(self.dir, "by.png")), 5000)
+
     def test_options_plot_does_not_take(self):
         for option in ("--csv", "--rtol"):
             code, out, err = run(["plot", "summary.csv", "pretension", "slip", option, "1"], self.dir)

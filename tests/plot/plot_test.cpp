@@ -149,16 +149,17 @@ TEST(Plot, AMissingColumnSuggestsAndListsTheValidOnes) {
 TEST(Plot, AColumnWithoutAFiniteValueIsLeftOutAndNamed) {
   const fs::path d = dir("nan_column");
   const std::string csv = write(d / "timeseries.csv", "t,driver.omega,driver.creep\n0,1,nan\n0.1,2,nan\n");
-  EXPECT_EQ(plot_csv(csv, {"driver.omega", "driver.creep"}, 0, (d / "x.png").string()),
+  EXPECT_EQ(plot_csv(csv, {"driver.omega", "driver.creep"}, 0, (d / "x.png").string()).columns,
             std::vector<std::string>{"driver.creep"});
   EXPECT_EQ(read_png((d / "x.png").string()).width, 1280);
   EXPECT_EQ(left_out_warning({"driver.creep"}), "left out of the plot, with no finite value to draw: driver.creep");
   EXPECT_EQ(left_out_warning({}), "");
-  EXPECT_TRUE(plot_csv(csv, {"driver.omega"}, 0, (d / "y.png").string()).empty());
+  EXPECT_TRUE(plot_csv(csv, {"driver.omega"}, 0, (d / "y.png").string()).columns.empty());
   expect_error([&] { plot_csv(csv, {"driver.creep"}, 0, (d / "z.png").string()); },
                {"no finite value to draw in driver.creep"});
   const std::string sweep = write(d / "summary.csv", "point,mu,status,slip,x\n0,0.3,ok,1,\n1,0.5,\"error: boom\",,\n");
-  EXPECT_EQ(plot_csv(sweep, {"mu", "slip", "x"}, -INFINITY, (d / "s.png").string()), std::vector<std::string>{"x"});
+  EXPECT_EQ(plot_csv(sweep, {"mu", "slip", "x"}, -INFINITY, (d / "s.png").string()).columns,
+            std::vector<std::string>{"x"});
 }
 
 // a sweep's summary is drawn against a column of its own: a start time is refused, not ignored (it
