@@ -41,7 +41,7 @@ constexpr Parameter kParameters[] = {
      "past the limit of 20 000 elements (hours per simulated second)", nullptr, nullptr, nullptr},
 
     // ---- pulleys = { {...}, ... } ----
-    {"pulley", "name", K::other, "", {}, "", W::none, R::none, "used in column names and routes; required", nullptr,
+    {"pulley", "name", K::other, "", {}, "", W::none, R::none, "used in column names and routes; required, one per pulley, no control characters", nullptr,
      nullptr, nullptr},
     {"pulley", "centre", K::other, "m", {}, "", W::none, R::none, "{x, y} of its axis; required", nullptr, nullptr,
      nullptr},

@@ -195,6 +195,12 @@ void validate(const SceneDef& d) {
     if (p.name.empty())
       throw ParameterError(KeyPath{"", {"pulleys", entry, "name"}},
                            "pulley " + entry + ".name: every pulley needs a name (name = \"idler\")");
+    // a control character (a newline, a tab) would break the lines of stderr, parameters.csv's rows
+    // and the CSV headers that carry the name (a user's trial: name = "b\nc" was taken)
+    if (std::any_of(p.name.begin(), p.name.end(), [](char c) { return (c >= 0 && c < 0x20) || c == 0x7f; }))
+      throw ParameterError(KeyPath{"", {"pulleys", entry, "name"}},
+                           "pulley " + entry + ".name: a name may not hold a control character (a newline, a tab): " +
+                               "it names the pulley's columns and lines of the outputs");
     if (const auto [first, added] = names.emplace(p.name, k); !added)
       throw ParameterError(KeyPath{"", {"pulleys", entry, "name"}},
                            "pulley " + entry + ".name: pulleys " + std::to_string(first->second + 1) + " and " + entry +

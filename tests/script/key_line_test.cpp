@@ -200,6 +200,8 @@ TEST(KeyLine, PulleyErrorsNameThePulleysLine) {
   EXPECT_EQ(nil_name.rfind(file + ":6: pulley 2.name: a name is required, got nil", 0), 0u) << nil_name;
   const std::string no_name = sd.run(scene("", "{0.29, 0}", ""));
   EXPECT_EQ(no_name.rfind(file + ":5: pulley 2.name: a name is required", 0), 0u) << no_name;
+  const std::string control = sd.run(scene("name = 'b\\nc',", "{0.29, 0}", ""));
+  EXPECT_EQ(control.rfind(file + ":6: pulley 2.name: a name may not hold a control character", 0), 0u) << control;
   const std::string twice = sd.run(scene("name = 'driver',", "{0.29, 0}", ""));
   EXPECT_EQ(twice.rfind(file + ":6: pulley 2.name: pulleys 1 and 2 are both named 'driver'", 0), 0u) << twice;
   const std::string both = sd.run(scene("name = 'driven',", "{0.29, 0}", "speed = -40,"));
