@@ -10,6 +10,7 @@
 #include <string_view>
 
 #include "io/number_text.hpp"
+#include "io/shell_word.hpp"
 #include "io/suggest.hpp"
 #include "io/units.hpp"
 #include "plot/plot.hpp"
@@ -17,17 +18,6 @@
 namespace beltsim::plot {
 
 namespace {
-
-// a word as a shell reads it back: quoted when it holds anything but letters, digits and ._-/+=:,@%
-std::string shell_word(const std::string& s) {
-  const bool plain = !s.empty() && std::all_of(s.begin(), s.end(), [](char c) {
-    return std::isalnum(static_cast<unsigned char>(c)) || std::string_view("._-/+=:,@%").find(c) != std::string::npos;
-  });
-  if (plain) return s;
-  std::string q = "'";
-  for (const char c : s) q += c == '\'' ? std::string("'\\''") : std::string(1, c);
-  return q + "'";
-}
 
 // the columns of a sweep's summary between `point` and `status`: its parameters
 std::vector<std::string> parameter_names(const std::vector<std::string>& names) {

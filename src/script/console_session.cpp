@@ -13,6 +13,7 @@
 
 #include "io/number_text.hpp"
 #include "io/output_dir.hpp"
+#include "io/shell_word.hpp"
 #include "lauxlib.h"
 #include "lua.h"
 #include "script/console_print.hpp"
@@ -41,38 +42,6 @@ std::string long_string(const std::string& text) {
   std::string eq;
   while (text.find("]" + eq + "]") != std::string::npos) eq += '=';
   return "[" + eq + "[\n" + text + "\n]" + eq + "]";  // the first newline is not part of the string
-}
-
-// s as one word of a POSIX shell command line: as it is when it holds only characters no shell
-// treats specially, else in single quotes ('\'' for a quote); with a control character (a
-// newline would end session.lua's comment line) as bash's $'...' with escapes
-std::string shell_word(const std::string& s) {
-  auto plain = [](unsigned char c) { return std::isalnum(c) || (c != 0 && std::strchr("_./=:,+-@%", c)); };
-  if (!s.empty() && std::all_of(s.begin(), s.end(), plain)) return s;
-  const bool control = std::any_of(s.begin(), s.end(), [](unsigned char c) { return c < 0x20 || c == 0x7f; });
-  if (!control) {
-    std::string q = "'";
-    for (char c : s) q += c == '\'' ? std::string("'\\''") : std::string(1, c);
-    return q + "'";
-  }
-  std::string q = "$'";
-  for (unsigned char c : s) {
-    if (c == '\'' || c == '\\') {
-      q += '\\';
-      q += static_cast<char>(c);
-    } else if (c == '\n') {
-      q += "\\n";
-    } else if (c == '\t') {
-      q += "\\t";
-    } else if (c < 0x20 || c == 0x7f) {
-      char b[8];
-      std::snprintf(b, sizeof b, "\\x%02x", c);
-      q += b;
-    } else {
-      q += static_cast<char>(c);
-    }
-  }
-  return q + "'";
 }
 
 // true when `text` compiles as a Lua chunk (nothing is run)
