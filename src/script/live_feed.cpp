@@ -149,9 +149,7 @@ std::string LiveFeed::apply(const live::Command& c) {
         mu[site.index] = c.value;
       }
       const std::vector<double> before = s.drive().mu;
-      bool same = true;  // a change that changes nothing is not recorded, as at the prompt
-      for (size_t i = 0; i < mu.size(); ++i) same = same && (std::isnan(mu[i]) || mu[i] == before[i]);
-      if (!same) {
+      if (changes_mu(before, mu)) {  // a change that changes nothing is not recorded, as at the prompt
         s.set_mu(mu, "wet", wet_text(c.value, c.from, c.to, std::nullopt));
         record(t, "wet { from = " + number_text(c.from) + ", to = " + number_text(c.to) +
                       ", mu = " + number_text(c.value) + " }");

@@ -529,6 +529,12 @@ std::string value_range(double lo, double hi) {
 }
 }  // namespace
 
+bool changes_mu(const std::vector<double>& before, const std::vector<double>& mu) {
+  for (size_t i = 0; i < mu.size(); ++i)
+    if (!std::isnan(mu[i]) && mu[i] != before[i]) return true;
+  return false;
+}
+
 std::string mu_change_text(Simulation& s, const std::vector<double>& before, const std::vector<double>& mu,
                            const std::string& what) {
   const Model& m = s.model();

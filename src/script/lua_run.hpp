@@ -32,6 +32,8 @@ bool in_stretch(const ElementSite& site, double from, double to);
 // the text of a wet stretch in events.csv ("mu = 0.2 on s in [0.1, 0.3] m"; mu absent: a function)
 std::string wet_text(std::optional<double> mu, std::optional<double> from, std::optional<double> to,
                      std::optional<double> transition);
+// whether setting μ (NaN: unchanged) changes any element's from `before`
+bool changes_mu(const std::vector<double>& before, const std::vector<double>& mu);
 // what a change of μ did, in one line (sim:wet, sim:set_mu and the live view's wet say it): how many
 // elements' μ changed (mu: the new μ, NaN where unchanged; before: every element's μ before), where
 // they are now (in contact with which pulley, or free), their μ before -> after; or, when none

@@ -83,9 +83,7 @@ void apply_mu(lua_State* L, Simulation& s, const std::vector<double>& mu, const 
     fail(L, "sim:wet: " + text +
                 ": the stretch holds no element (an element is in it when its start s is): nothing was changed; "
                 "widen it, or give from > to for a stretch across s = 0");
-  bool same = true;
-  for (size_t i = 0; i < mu.size(); ++i) same = same && (std::isnan(mu[i]) || mu[i] == before[i]);
-  if (!same) guarded(L, what.c_str(), [&] { s.set_mu(mu, what, text); });
+  if (changes_mu(before, mu)) guarded(L, what.c_str(), [&] { s.set_mu(mu, what, text); });
   std::string m;
   guarded(L, what.c_str(), [&] { m = mu_change_text(s, before, mu, what); });  // a Lua law may fail
   lua_pushstring(L, m.c_str());
